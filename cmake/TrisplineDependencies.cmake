@@ -1,0 +1,33 @@
+# Finds every third-party package from Debian 12's -dev packages. Nothing is vendored or downloaded.
+# Two packages ship broken CMake configs (OpenImageIO, OpenSubdiv): we make our own imported targets for them.
+find_package(PkgConfig REQUIRED)
+find_package(glm CONFIG REQUIRED)
+find_package(TBB CONFIG REQUIRED)
+find_package(nlohmann_json CONFIG REQUIRED)
+find_package(embree 3 CONFIG REQUIRED)
+find_package(OpenMesh CONFIG REQUIRED)
+find_package(TinyGLTF CONFIG REQUIRED)
+find_package(CLI11 CONFIG REQUIRED)
+
+# OpenImageIO: its CMake config needs openimageio-tools and a missing opencv4 include dir; use pkg-config.
+pkg_check_modules(OIIO REQUIRED IMPORTED_TARGET OpenImageIO)
+
+# OpenSubdiv: find_package(OpenSubdiv) refers to unshipped .a files.
+find_path(OSD_INCLUDE_DIR opensubdiv/version.h REQUIRED)
+find_library(OSD_CPU_LIBRARY osdCPU REQUIRED)
+if(NOT TARGET trispline::osd_cpu)
+  add_library(trispline::osd_cpu UNKNOWN IMPORTED)
+  set_target_properties(trispline::osd_cpu PROPERTIES IMPORTED_LOCATION "${OSD_CPU_LIBRARY}"
+                                                      INTERFACE_INCLUDE_DIRECTORIES "${OSD_INCLUDE_DIR}")
+endif()
+
+if(TRISPLINE_BUILD_GUI)
+  find_package(glfw3 3.3 CONFIG REQUIRED)
+  pkg_check_modules(EPOXY REQUIRED IMPORTED_TARGET epoxy)
+  pkg_check_modules(IMGUI REQUIRED IMPORTED_TARGET imgui)
+endif()
+
+if(TRISPLINE_BUILD_TESTS)
+  find_package(GTest REQUIRED)
+endif()
+find_package(benchmark CONFIG QUIET)

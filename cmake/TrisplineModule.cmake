@@ -1,0 +1,25 @@
+# trispline_module(<name> SOURCES <files...> DEPS <targets...>)
+# Makes static library trispline_<name> with the project's warnings and the repository root on the include path,
+# so every header is included as "core/spline/knot_vector.h", "gpu/renderer.h", ...
+function(trispline_module name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
+  add_library(trispline_${name} STATIC ${ARG_SOURCES})
+  target_include_directories(trispline_${name} PUBLIC ${PROJECT_SOURCE_DIR})
+  target_compile_options(trispline_${name} PRIVATE ${TRISPLINE_WARNINGS})
+  target_compile_definitions(trispline_${name} PUBLIC GLM_FORCE_XYZW_ONLY GLM_ENABLE_EXPERIMENTAL)
+  target_link_libraries(trispline_${name} PUBLIC glm::glm ${ARG_DEPS})
+  set_target_properties(trispline_${name} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+endfunction()
+
+# trispline_test(<name> SOURCES <files...> DEPS <targets...> [LABELS <labels>])
+# One GoogleTest executable registered with ctest through gtest_discover_tests.
+function(trispline_test name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS;LABELS" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES})
+  target_compile_options(${name} PRIVATE ${TRISPLINE_WARNINGS})
+  target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gtest_main GTest::gmock)
+  target_compile_definitions(${name} PRIVATE TRISPLINE_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
+                                             TRISPLINE_BINARY_DIR="${PROJECT_BINARY_DIR}")
+  include(GoogleTest)
+  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS "${ARG_LABELS}")
+endfunction()

@@ -1,0 +1,53 @@
+// trispline::core::Command — one undoable change to the Scene (Blender operator / Godot UndoRedo style).
+//
+// Contract:
+//  * id() is the stable string in the log's "cmd" field ("place.sketch"); to_json() is the complete log line
+//    (it replays to the same result); label() is the human text of the History panel.
+//  * redo(scene) is also "do". It computes everything first and mutates the scene only at the end, so when it
+//    throws (CommandError) the scene is exactly as before. undo(scene) restores the state before redo bit for bit.
+//  * stats() holds figures for report.json after the last redo (vertex counts, rays hit, stage timings in ms).
+// Commands refer to objects by name, never by pointer.
+#pragma once
+
+#include "core/scene/scene.h"
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+namespace trispline::core {
+
+// A command failed; the scene is unchanged. `field` names the offending JSON field when there is one.
+class CommandError : public std::runtime_error {
+ public:
+  explicit CommandError(const std::string& message, std::string field = {})
+      : std::runtime_error(message), field_(std::move(field)) {}
+  const std::string& field() const { return field_; }
+
+ private:
+  std::string field_;
+};
+
+// What a command needs from outside the scene while parsing/executing.
+struct CommandContext {
+  std::filesystem::path base_dir;  // relative paths in a log are relative to the log's folder
+  std::filesystem::path resolve(const std::string& path) const;
+};
+
+class Command {
+ public:
+  virtual ~Command() = default;
+  virtual std::string id() const = 0;
+  virtual nlohmann::json to_json() const = 0;
+  virtual std::string label() const = 0;
+  virtual void redo(Scene& scene) = 0;  // throws CommandError; scene untouched on failure
+  virtual void undo(Scene& scene) = 0;
+  virtual nlohmann::json stats() const { return nlohmann::json::object(); }
+};
+
+using CommandPtr = std::unique_ptr<Command>;
+
+}  // namespace trispline::core

@@ -1,0 +1,41 @@
+// trispline::core::TriMesh — the plain triangle mesh every layer exchanges (libigl style V/F arrays).
+//
+//   positions  #V × 3   world units (object space for rest meshes, world space for evaluated meshes)
+//   normals    #V × 3   unit vertex normals, empty or #V
+//   uvs        #V × 2   texture coordinates, empty or #V
+//   triangles  #F × 3   vertex indices, counter-clockwise seen from outside
+//
+// Vertex order is the order of the source file; operations that add vertices append them.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace trispline::core {
+
+struct TriMesh {
+  std::vector<glm::dvec3> positions;  // #V × 3
+  std::vector<glm::dvec3> normals;    // #V × 3 or empty
+  std::vector<glm::dvec2> uvs;        // #V × 2 or empty
+  std::vector<glm::uvec3> triangles;  // #F × 3
+
+  std::size_t vertex_count() const { return positions.size(); }
+  std::size_t triangle_count() const { return triangles.size(); }
+  bool empty() const { return positions.empty() || triangles.empty(); }
+};
+
+// Axis-aligned bounding box, world units. An empty box has lo > hi.
+struct Aabb {
+  glm::dvec3 lo{1e300};
+  glm::dvec3 hi{-1e300};
+  void extend(const glm::dvec3& p) { lo = glm::min(lo, p); hi = glm::max(hi, p); }
+  bool valid() const { return lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z; }
+  glm::dvec3 size() const { return hi - lo; }
+  glm::dvec3 center() const { return 0.5 * (lo + hi); }
+  double diagonal() const { return valid() ? glm::length(hi - lo) : 0.0; }
+};
+
+}  // namespace trispline::core

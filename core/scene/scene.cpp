@@ -1,0 +1,127 @@
+#include "core/scene/scene.h"
+
+#include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <cstdio>
+#include <stdexcept>
+
+namespace trispline::core {
+
+glm::dmat4 Transform::matrix() const {
+  glm::dmat4 m(1.0);
+  m = glm::translate(m, translate);
+  m = glm::rotate(m, glm::radians(rotate_deg.z), glm::dvec3(0, 0, 1));
+  m = glm::rotate(m, glm::radians(rotate_deg.y), glm::dvec3(0, 1, 0));
+  m = glm::rotate(m, glm::radians(rotate_deg.x), glm::dvec3(1, 0, 0));
+  m = glm::scale(m, scale);
+  return m;
+}
+
+bool Transform::is_identity() const {
+  return translate == glm::dvec3(0.0) && rotate_deg == glm::dvec3(0.0) && scale == glm::dvec3(1.0);
+}
+
+TriMesh transformed(const TriMesh& mesh, const Transform& t) {
+  if (t.is_identity()) return mesh;
+  TriMesh out = mesh;
+  const glm::dmat4 m = t.matrix();
+  const glm::dmat3 lin(m);
+  const glm::dmat3 nrm = glm::inverseTranspose(lin);
+  for (auto& p : out.positions) p = glm::dvec3(m * glm::dvec4(p, 1.0));
+  for (auto& n : out.normals) {
+    const glm::dvec3 q = nrm * n;
+    const double len = glm::length(q);
+    if (len > 0) n = q / len;
+  }
+  if (glm::determinant(lin) < 0)
+    for (auto& f : out.triangles) std::swap(f.y, f.z);
+  return out;
+}
+
+TriMesh SceneObject::world_rest_mesh() const {
+  if (!rest_mesh) throw std::invalid_argument("object '" + name + "' has no mesh");
+  return transformed(*rest_mesh, transform);
+}
+
+void SceneObject::refresh() {
+  TriMesh rest = world_rest_mesh();
+  if (ffd) {
+    if (ffd->params.size() != rest.positions.size())
+      throw std::invalid_argument("object '" + name + "': FFD binding has " + std::to_string(ffd->params.size()) +
+                                  " parameters for " + std::to_string(rest.positions.size()) + " vertices");
+    world_mesh = std::make_shared<const TriMesh>(ffd_apply(*ffd, rest));
+  } else {
+    world_mesh = std::make_shared<const TriMesh>(std::move(rest));
+  }
+}
+
+const SceneObject* Scene::find(const std::string& name) const {
+  const int i = index_of(name);
+  return i < 0 ? nullptr : &objects_[i];
+}
+
+SceneObject* Scene::find(const std::string& name) {
+  const int i = index_of(name);
+  return i < 0 ? nullptr : &objects_[i];
+}
+
+int Scene::index_of(const std::string& name) const {
+  for (std::size_t i = 0; i < objects_.size(); ++i)
+    if (objects_[i].name == name) return static_cast<int>(i);
+  return -1;
+}
+
+void Scene::insert(SceneObject object, int index) {
+  if (object.name.empty()) throw std::invalid_argument("object name must not be empty");
+  if (index_of(object.name) >= 0) throw std::invalid_argument("an object named '" + object.name + "' already exists");
+  if (index < 0 || index > static_cast<int>(objects_.size())) index = static_cast<int>(objects_.size());
+  objects_.insert(objects_.begin() + index, std::move(object));
+}
+
+SceneObject Scene::remove(const std::string& name) {
+  const int i = index_of(name);
+  if (i < 0) throw std::out_of_range("no object named '" + name + "'");
+  SceneObject out = std::move(objects_[i]);
+  objects_.erase(objects_.begin() + i);
+  return out;
+}
+
+void Scene::replace(SceneObject object) {
+  const int i = index_of(object.name);
+  if (i < 0) throw std::out_of_range("no object named '" + object.name + "'");
+  objects_[i] = std::move(object);
+}
+
+void Scene::clear() {
+  objects_.clear();
+  camera = Camera{};
+  camera_set = false;
+}
+
+Aabb Scene::bounds() const {
+  Aabb box;
+  for (const auto& o : objects_)
+    if (o.visible && o.world_mesh)
+      for (const auto& p : o.world_mesh->positions) box.extend(p);
+  return box;
+}
+
+std::string Scene::unique_name(const std::string& base) const {
+  if (index_of(base) < 0) return base;
+  for (int i = 1;; ++i) {
+    char buf[16];
+    std::snprintf(buf, sizeof buf, ".%03d", i);
+    if (index_of(base + buf) < 0) return base + buf;
+  }
+}
+
+glm::vec3 palette_color(int i) {
+  // Okabe–Ito palette, lightened slightly for shading.
+  static const glm::vec3 colors[] = {{0.90f, 0.62f, 0.00f}, {0.34f, 0.71f, 0.91f}, {0.00f, 0.62f, 0.45f},
+                                     {0.94f, 0.89f, 0.26f}, {0.00f, 0.45f, 0.70f}, {0.84f, 0.37f, 0.00f},
+                                     {0.80f, 0.47f, 0.65f}, {0.75f, 0.75f, 0.75f}};
+  return colors[((i % 8) + 8) % 8];
+}
+
+}  // namespace trispline::core

@@ -1,0 +1,17 @@
+// B-spline basis functions and their derivatives (Cox–de Boor recurrence).
+// Source: Piegl & Tiller A2.2 (BasisFuns) and A2.3 (DersBasisFuns).
+#pragma once
+
+#include "core/spline/knot_vector.h"
+
+namespace trispline::core {
+
+// N[r] = B_{span-order+1+r}(t) for r in [0, order): the `order` non-zero basis functions at t in span `span`
+// (from KnotVector::find_span). N must hold order() doubles. Sums to 1 (partition of unity).
+void basis_functions(const KnotVector& kv, int span, double t, double* N);
+
+// ders[d * order + r] = d-th derivative of B_{span-order+1+r} at t, for d in [0, n_deriv] (derivatives above the
+// degree are 0). ders must hold (n_deriv + 1) * order doubles.
+void basis_derivatives(const KnotVector& kv, int span, double t, int n_deriv, double* ders);
+
+}  // namespace trispline::core
