@@ -21,7 +21,7 @@ class BSplineCurve {
   const std::vector<T>& control_points() const { return cps_; }
   std::vector<T>& control_points() { return cps_; }
 
-  T eval(double t) const;                      // t clamped to the domain
+  T eval(double t) const;                      // t clamped to the domain; throws std::invalid_argument if NaN
   // out[d] = d-th derivative at t, d in [0, n_deriv]; out.size() == n_deriv + 1.
   std::vector<T> derivatives(double t, int n_deriv) const;
 
@@ -30,6 +30,9 @@ class BSplineCurve {
   void insert_knot(double t, int times = 1);
   // Splits into Bézier pieces (one per non-empty span), each with a clamped knot vector on its own span.
   std::vector<BSplineCurve<T>> bezier_pieces() const;
+  // The same curve with every domain knot (ends included) at multiplicity = order and knots outside the domain
+  // dropped: clamped, span s is the Bézier piece with controls [s·order, (s+1)·order) (added API).
+  BSplineCurve<T> bezier_extracted() const;
 
  private:
   KnotVector knots_;

@@ -26,6 +26,8 @@ class KnotVector {
   static KnotVector uniform(int order, int control_count);
   // Clamped knot vector on [0,1] whose interior knots are placed by averaging parameters (Piegl & Tiller Eq. 9.69),
   // the right choice for least-squares fitting with `control_count` controls to points at `params` (sorted, [0,1]).
+  // With #params == control_count (interpolation) it uses knot averaging (Eq. 9.8; midpoints for order 1).
+  // Throws std::invalid_argument if #params < control_count or params are unsorted / non-finite.
   static KnotVector clamped_for_fit(int order, int control_count, const std::vector<double>& params);
 
   int order() const { return order_; }

@@ -30,6 +30,7 @@ class TrivariateBSpline {
   const std::vector<T>& control_points() const { return cps_; }
   std::vector<T>& control_points() { return cps_; }
 
+  // uvw is clamped to the domain per axis; a NaN component throws std::invalid_argument.
   T eval(const glm::dvec3& uvw) const;
 
   struct FirstDerivatives {
