@@ -1,0 +1,370 @@
+#include "core/mesh/gltf_io.h"
+
+#include "core/mesh/mesh_io.h"
+
+// The Debian package ships tinygltf as a shared library built with its default options (stb_image, stb_image_write,
+// nlohmann json, file system callbacks): include the header with no configuration macros so the declarations match
+// that library, and never define TINYGLTF_IMPLEMENTATION.
+#include <tiny_gltf.h>
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <limits>
+
+namespace trispline::core {
+namespace {
+
+std::string quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
+
+// Node-local matrix: `matrix` if given, else T · R · S (glTF 2.0 §5.25).
+glm::dmat4 local_matrix(const tinygltf::Node& n) {
+  if (n.matrix.size() == 16) return glm::make_mat4(n.matrix.data());  // column-major, as glm
+  glm::dmat4 m(1.0);
+  if (n.translation.size() == 3) m[3] = glm::dvec4(n.translation[0], n.translation[1], n.translation[2], 1.0);
+  if (n.rotation.size() == 4) {
+    const glm::dquat q(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]);  // glTF stores x, y, z, w
+    m = m * glm::dmat4(glm::mat3_cast(q));
+  }
+  if (n.scale.size() == 3) {
+    glm::dmat4 s(1.0);
+    for (int i = 0; i < 3; ++i) s[i][i] = n.scale[i];
+    m = m * s;
+  }
+  return m;
+}
+
+// Reads accessor `index` as #count × comps doubles (float components only, or normalised integers for texcoords).
+std::vector<double> read_floats(const tinygltf::Model& model, int index, int comps, const std::string& what,
+                                const std::filesystem::path& path) {
+  if (index < 0 || index >= static_cast<int>(model.accessors.size()))
+    throw MeshIoError(quoted(path) + ": " + what + " accessor index out of range");
+  const auto& acc = model.accessors[index];
+  if (tinygltf::GetNumComponentsInType(acc.type) != comps)
+    throw MeshIoError(quoted(path) + ": " + what + " accessor has the wrong type");
+  std::vector<double> out(acc.count * comps, 0.0);
+  if (acc.bufferView < 0) return out;  // all zeros (sparse accessors without a view are not supported further)
+  const auto& view = model.bufferViews.at(acc.bufferView);
+  const auto& buf = model.buffers.at(view.buffer);
+  const int csize = tinygltf::GetComponentSizeInBytes(acc.componentType);
+  if (csize <= 0) throw MeshIoError(quoted(path) + ": " + what + " has an unknown component type");
+  const std::size_t stride = view.byteStride ? view.byteStride : static_cast<std::size_t>(csize * comps);
+  const std::size_t start = view.byteOffset + acc.byteOffset;
+  if (acc.count > 0 && start + stride * (acc.count - 1) + csize * comps > buf.data.size())
+    throw MeshIoError(quoted(path) + ": " + what + " accessor runs past the end of its buffer");
+  for (std::size_t i = 0; i < acc.count; ++i) {
+    const unsigned char* p = buf.data.data() + start + stride * i;
+    for (int c = 0; c < comps; ++c) {
+      const unsigned char* q = p + c * csize;
+      double v = 0;
+      switch (acc.componentType) {
+        case TINYGLTF_COMPONENT_TYPE_FLOAT: {
+          float f;
+          std::memcpy(&f, q, 4);
+          v = f;
+          break;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+          v = *q / (acc.normalized ? 255.0 : 1.0);
+          break;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+          std::uint16_t s;
+          std::memcpy(&s, q, 2);
+          v = s / (acc.normalized ? 65535.0 : 1.0);
+          break;
+        }
+        default:
+          throw MeshIoError(quoted(path) + ": " + what + " must be float (or normalised unsigned)");
+      }
+      out[i * comps + c] = v;
+    }
+  }
+  return out;
+}
+
+std::vector<std::uint32_t> read_indices(const tinygltf::Model& model, int index, const std::filesystem::path& path) {
+  if (index < 0 || index >= static_cast<int>(model.accessors.size()))
+    throw MeshIoError(quoted(path) + ": index accessor out of range");
+  const auto& acc = model.accessors[index];
+  if (acc.type != TINYGLTF_TYPE_SCALAR || acc.bufferView < 0)
+    throw MeshIoError(quoted(path) + ": index accessor must be a scalar with a buffer view");
+  const auto& view = model.bufferViews.at(acc.bufferView);
+  const auto& buf = model.buffers.at(view.buffer);
+  const int csize = tinygltf::GetComponentSizeInBytes(acc.componentType);
+  if (csize != 1 && csize != 2 && csize != 4) throw MeshIoError(quoted(path) + ": bad index component type");
+  const std::size_t stride = view.byteStride ? view.byteStride : static_cast<std::size_t>(csize);
+  const std::size_t start = view.byteOffset + acc.byteOffset;
+  if (acc.count > 0 && start + stride * (acc.count - 1) + csize > buf.data.size())
+    throw MeshIoError(quoted(path) + ": index accessor runs past the end of its buffer");
+  std::vector<std::uint32_t> out(acc.count);
+  for (std::size_t i = 0; i < acc.count; ++i) {
+    const unsigned char* q = buf.data.data() + start + stride * i;
+    if (csize == 1) out[i] = *q;
+    if (csize == 2) {
+      std::uint16_t s;
+      std::memcpy(&s, q, 2);
+      out[i] = s;
+    }
+    if (csize == 4) std::memcpy(&out[i], q, 4);
+  }
+  return out;
+}
+
+void append_primitive(const tinygltf::Model& model, const tinygltf::Primitive& prim, const glm::dmat4& xf,
+                      TriMesh& mesh, bool& normals_ok, const std::filesystem::path& path) {
+  const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+  if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN)
+    return;  // points and lines carry no surface
+  const auto pos_it = prim.attributes.find("POSITION");
+  if (pos_it == prim.attributes.end()) throw MeshIoError(quoted(path) + ": primitive without POSITION");
+  const auto pos = read_floats(model, pos_it->second, 3, "POSITION", path);
+  const std::size_t n = pos.size() / 3;
+  const auto base = static_cast<std::uint32_t>(mesh.positions.size());
+  for (std::size_t i = 0; i < n; ++i)
+    mesh.positions.push_back(glm::dvec3(xf * glm::dvec4(pos[3 * i], pos[3 * i + 1], pos[3 * i + 2], 1.0)));
+
+  const auto nrm_it = prim.attributes.find("NORMAL");
+  if (nrm_it != prim.attributes.end() && normals_ok) {
+    const auto nrm = read_floats(model, nrm_it->second, 3, "NORMAL", path);
+    const glm::dmat3 nm = glm::transpose(glm::inverse(glm::dmat3(xf)));
+    for (std::size_t i = 0; i < n && 3 * i + 2 < nrm.size(); ++i) {
+      const glm::dvec3 v = nm * glm::dvec3(nrm[3 * i], nrm[3 * i + 1], nrm[3 * i + 2]);
+      const double len = glm::length(v);
+      mesh.normals.push_back(len > 0 ? v / len : v);
+    }
+    if (mesh.normals.size() != mesh.positions.size()) normals_ok = false;
+  } else {
+    normals_ok = false;
+  }
+  const auto uv_it = prim.attributes.find("TEXCOORD_0");
+  if (uv_it != prim.attributes.end()) {
+    const auto uv = read_floats(model, uv_it->second, 2, "TEXCOORD_0", path);
+    mesh.uvs.resize(base, glm::dvec2(0));
+    for (std::size_t i = 0; i < n && 2 * i + 1 < uv.size(); ++i) mesh.uvs.push_back({uv[2 * i], uv[2 * i + 1]});
+    mesh.uvs.resize(mesh.positions.size(), glm::dvec2(0));
+  } else if (!mesh.uvs.empty()) {
+    mesh.uvs.resize(mesh.positions.size(), glm::dvec2(0));
+  }
+
+  std::vector<std::uint32_t> idx;
+  if (prim.indices >= 0) {
+    idx = read_indices(model, prim.indices, path);
+  } else {
+    idx.resize(n);
+    for (std::size_t i = 0; i < n; ++i) idx[i] = static_cast<std::uint32_t>(i);
+  }
+  for (auto i : idx)
+    if (i >= n)
+      throw MeshIoError(quoted(path) + ": vertex index out of range (" + std::to_string(i) + " of " +
+                        std::to_string(n) + " vertices)");
+  const bool flip = glm::determinant(glm::dmat3(xf)) < 0;  // mirrored node: keep CCW seen from outside
+  auto tri = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    if (flip) std::swap(b, c);
+    mesh.triangles.push_back(glm::uvec3(base + a, base + b, base + c));
+  };
+  if (mode == TINYGLTF_MODE_TRIANGLES) {
+    for (std::size_t k = 0; k + 2 < idx.size(); k += 3) tri(idx[k], idx[k + 1], idx[k + 2]);
+  } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+    for (std::size_t k = 0; k + 2 < idx.size(); ++k)
+      k % 2 ? tri(idx[k + 1], idx[k], idx[k + 2]) : tri(idx[k], idx[k + 1], idx[k + 2]);
+  } else {
+    for (std::size_t k = 1; k + 1 < idx.size(); ++k) tri(idx[0], idx[k], idx[k + 1]);
+  }
+}
+
+}  // namespace
+
+std::vector<GltfObject> read_gltf_objects(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw MeshIoError(quoted(path) + ": file not found");
+  tinygltf::Model model;
+  tinygltf::TinyGLTF loader;
+  std::string err, warn;
+  const bool binary = lower_extension(path) == ".glb";
+  const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path.string())
+                         : loader.LoadASCIIFromFile(&model, &err, &warn, path.string());
+  if (!ok) throw MeshIoError(quoted(path) + ": cannot parse glTF file: " + (err.empty() ? "unknown error" : err));
+
+  std::vector<GltfObject> out;
+  auto emit = [&](const std::string& name, int mesh_index, const glm::dmat4& xf) {
+    if (mesh_index < 0 || mesh_index >= static_cast<int>(model.meshes.size()))
+      throw MeshIoError(quoted(path) + ": node refers to a missing mesh");
+    const auto& gm = model.meshes[mesh_index];
+    GltfObject obj;
+    obj.name = name.empty() ? gm.name : name;
+    bool normals_ok = true;
+    for (const auto& prim : gm.primitives) append_primitive(model, prim, xf, obj.mesh, normals_ok, path);
+    if (!normals_ok) obj.mesh.normals.clear();
+    if (!gm.primitives.empty()) {
+      const int mat = gm.primitives.front().material;
+      if (mat >= 0 && mat < static_cast<int>(model.materials.size())) {
+        const auto& f = model.materials[mat].pbrMetallicRoughness.baseColorFactor;
+        if (f.size() >= 3) obj.color = glm::vec3(float(f[0]), float(f[1]), float(f[2]));
+      }
+    }
+    out.push_back(std::move(obj));
+  };
+
+  std::vector<int> roots;
+  if (model.defaultScene >= 0 && model.defaultScene < static_cast<int>(model.scenes.size())) {
+    roots = model.scenes[model.defaultScene].nodes;
+  } else {
+    for (const auto& s : model.scenes) roots.insert(roots.end(), s.nodes.begin(), s.nodes.end());
+  }
+  if (model.nodes.empty()) {
+    for (std::size_t i = 0; i < model.meshes.size(); ++i)
+      emit(model.meshes[i].name, static_cast<int>(i), glm::dmat4(1));
+    return out;
+  }
+  if (roots.empty() && model.scenes.empty()) {
+    // No scene: every node that is nobody's child is a root.
+    std::vector<char> is_child(model.nodes.size(), 0);
+    for (const auto& n : model.nodes)
+      for (int c : n.children)
+        if (c >= 0 && c < static_cast<int>(is_child.size())) is_child[c] = 1;
+    for (std::size_t i = 0; i < model.nodes.size(); ++i)
+      if (!is_child[i]) roots.push_back(static_cast<int>(i));
+  }
+  // Depth-first with an explicit stack; a depth limit guards against cyclic (invalid) node graphs.
+  struct Item {
+    int node;
+    glm::dmat4 parent;
+    int depth;
+  };
+  std::vector<Item> stack;
+  for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.push_back({*it, glm::dmat4(1), 0});
+  while (!stack.empty()) {
+    const Item item = stack.back();
+    stack.pop_back();
+    if (item.node < 0 || item.node >= static_cast<int>(model.nodes.size()) || item.depth > 256)
+      throw MeshIoError(quoted(path) + ": invalid node hierarchy");
+    const auto& node = model.nodes[item.node];
+    const glm::dmat4 world = item.parent * local_matrix(node);
+    if (node.mesh >= 0) emit(node.name, node.mesh, world);
+    for (auto c = node.children.rbegin(); c != node.children.rend(); ++c) stack.push_back({*c, world, item.depth + 1});
+  }
+  return out;
+}
+
+namespace {
+
+// Appends raw bytes to buffer 0 (4-byte aligned) and returns a new buffer view index.
+int add_view(tinygltf::Model& model, const void* data, std::size_t bytes, int target) {
+  auto& buf = model.buffers[0].data;
+  while (buf.size() % 4) buf.push_back(0);
+  tinygltf::BufferView view;
+  view.buffer = 0;
+  view.byteOffset = buf.size();
+  view.byteLength = bytes;
+  view.target = target;
+  const auto* p = static_cast<const unsigned char*>(data);
+  buf.insert(buf.end(), p, p + bytes);
+  model.bufferViews.push_back(view);
+  return static_cast<int>(model.bufferViews.size()) - 1;
+}
+
+int add_accessor(tinygltf::Model& model, int view, int ctype, int type, std::size_t count) {
+  tinygltf::Accessor acc;
+  acc.bufferView = view;
+  acc.componentType = ctype;
+  acc.type = type;
+  acc.count = count;
+  model.accessors.push_back(acc);
+  return static_cast<int>(model.accessors.size()) - 1;
+}
+
+}  // namespace
+
+void write_glb(const std::filesystem::path& path, const std::vector<GltfNode>& nodes) {
+  tinygltf::Model model;
+  model.asset.version = "2.0";
+  model.asset.generator = "trispline";
+  model.buffers.resize(1);
+  tinygltf::Scene scene;
+  for (const auto& gn : nodes) {
+    tinygltf::Node node;
+    node.name = gn.name;
+    if (gn.mesh && !gn.mesh->empty()) {
+      const TriMesh& m = *gn.mesh;
+      validate_mesh(m, "object '" + gn.name + "'");
+      const std::size_t nv = m.positions.size();
+      std::vector<float> pos(nv * 3);
+      std::vector<double> lo(3, std::numeric_limits<double>::infinity()),
+          hi(3, -std::numeric_limits<double>::infinity());
+      for (std::size_t i = 0; i < nv; ++i)
+        for (int c = 0; c < 3; ++c) {
+          pos[3 * i + c] = static_cast<float>(m.positions[i][c]);
+          lo[c] = std::min(lo[c], double(pos[3 * i + c]));
+          hi[c] = std::max(hi[c], double(pos[3 * i + c]));
+        }
+      tinygltf::Primitive prim;
+      prim.mode = TINYGLTF_MODE_TRIANGLES;
+      const int pa = add_accessor(model, add_view(model, pos.data(), pos.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER),
+                                  TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, nv);
+      model.accessors[pa].minValues = lo;
+      model.accessors[pa].maxValues = hi;
+      prim.attributes["POSITION"] = pa;
+      if (m.normals.size() == nv) {
+        std::vector<float> nrm(nv * 3);
+        for (std::size_t i = 0; i < nv; ++i)
+          for (int c = 0; c < 3; ++c) nrm[3 * i + c] = static_cast<float>(m.normals[i][c]);
+        prim.attributes["NORMAL"] =
+            add_accessor(model, add_view(model, nrm.data(), nrm.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER),
+                         TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, nv);
+      }
+      if (m.uvs.size() == nv) {
+        std::vector<float> uv(nv * 2);
+        for (std::size_t i = 0; i < nv; ++i)
+          for (int c = 0; c < 2; ++c) uv[2 * i + c] = static_cast<float>(m.uvs[i][c]);
+        prim.attributes["TEXCOORD_0"] =
+            add_accessor(model, add_view(model, uv.data(), uv.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER),
+                         TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, nv);
+      }
+      std::vector<std::uint32_t> idx(m.triangles.size() * 3);
+      for (std::size_t f = 0; f < m.triangles.size(); ++f)
+        for (int c = 0; c < 3; ++c) idx[3 * f + c] = m.triangles[f][c];
+      prim.indices =
+          add_accessor(model, add_view(model, idx.data(), idx.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
+                       TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, idx.size());
+
+      tinygltf::Material mat;
+      mat.name = gn.name;
+      mat.pbrMetallicRoughness.baseColorFactor = {gn.color.x, gn.color.y, gn.color.z, 1.0};
+      mat.pbrMetallicRoughness.metallicFactor = 0.0;
+      mat.pbrMetallicRoughness.roughnessFactor = 0.6;
+      mat.doubleSided = true;
+      model.materials.push_back(mat);
+      prim.material = static_cast<int>(model.materials.size()) - 1;
+
+      tinygltf::Mesh mesh;
+      mesh.name = gn.name;
+      mesh.primitives.push_back(prim);
+      model.meshes.push_back(mesh);
+      node.mesh = static_cast<int>(model.meshes.size()) - 1;
+    }
+    model.nodes.push_back(node);
+    scene.nodes.push_back(static_cast<int>(model.nodes.size()) - 1);
+  }
+  model.scenes.push_back(scene);
+  model.defaultScene = 0;
+  if (model.buffers[0].data.empty()) model.buffers.clear();  // a buffer must not be empty
+
+  const std::filesystem::path tmp = path.string() + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) throw MeshIoError(quoted(path) + ": cannot open '" + tmp.string() + "' for writing");
+    tinygltf::TinyGLTF writer;
+    if (!writer.WriteGltfSceneToStream(&model, out, /*prettyPrint=*/false, /*writeBinary=*/true) || !out.flush())
+      throw MeshIoError(quoted(path) + ": writing glb failed");
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) {
+    std::filesystem::remove(tmp, ec);
+    throw MeshIoError(quoted(path) + ": cannot rename temporary file: " + ec.message());
+  }
+}
+
+}  // namespace trispline::core

@@ -1,0 +1,40 @@
+// trispline::core glTF 2.0 export and import (tinygltf).
+//
+//   write_glb           the scene export (scene.glb): one node + mesh + material per object, named by the object id
+//   read_gltf_objects   the reverse, one object per mesh-carrying node; also the glTF path of load_mesh
+#pragma once
+
+#include <filesystem>
+#include <glm/glm.hpp>
+#include <string>
+#include <vector>
+
+#include "core/mesh/tri_mesh.h"
+
+namespace trispline::core {
+
+struct GltfNode {
+  std::string name;               // node and mesh name (the object id)
+  const TriMesh* mesh = nullptr;  // world units; null or empty → a node with no mesh
+  glm::vec3 color{0.8f};          // linear RGB in [0,1], the PBR base colour (metallic 0, roughness 0.6)
+};
+
+// Writes a binary glTF (.glb): per node one mesh with one TRIANGLES primitive, float32 POSITION (with min/max),
+// NORMAL and TEXCOORD_0 when the mesh has them, uint32 indices, vertices in the mesh's order, and one material.
+// Written to "<path>.tmp" then renamed over `path` (atomic on one file system).
+// Throws MeshIoError if a mesh fails validate_mesh or the file cannot be written.
+void write_glb(const std::filesystem::path& path, const std::vector<GltfNode>& nodes);
+
+struct GltfObject {
+  std::string name;       // node name, or the mesh name if the node has none
+  TriMesh mesh;           // positions/normals in world space (node transforms applied); normals empty if absent
+  glm::vec3 color{0.8f};  // base colour of the first primitive's material (0.8 grey if none)
+};
+
+// Reads a .gltf or .glb: one object per node that has a mesh, in depth-first node order from the scene's roots
+// (see load_mesh for which roots), all TRIANGLES primitives of that mesh concatenated. Objects are not validated.
+// Throws MeshIoError on a missing or unparseable file, a non-float attribute, or a non-TRIANGLES primitive only
+// model.
+std::vector<GltfObject> read_gltf_objects(const std::filesystem::path& path);
+
+}  // namespace trispline::core

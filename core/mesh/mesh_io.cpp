@@ -1,0 +1,229 @@
+#include "core/mesh/mesh_io.h"
+
+#include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <sstream>
+
+#include "core/mesh/gltf_io.h"
+#include "core/mesh/mesh_precheck.h"
+
+namespace trispline::core {
+namespace {
+
+// Double-precision OpenMesh traits, so PLY/OBJ doubles survive a round trip.
+struct DoubleTraits : public OpenMesh::DefaultTraits {
+  using Point = OpenMesh::Vec3d;
+  using Normal = OpenMesh::Vec3d;
+  using TexCoord2D = OpenMesh::Vec2d;
+};
+using PolyMesh = OpenMesh::PolyMesh_ArrayKernelT<DoubleTraits>;
+
+std::string quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
+
+bool is_openmesh_ext(const std::string& e) { return e == ".obj" || e == ".ply" || e == ".off" || e == ".stl"; }
+bool is_gltf_ext(const std::string& e) { return e == ".gltf" || e == ".glb"; }
+
+// OpenMesh prints reader complaints to its own log streams; we only use its return value.
+struct SilenceOpenMesh {
+  SilenceOpenMesh() {
+    omerr().disable();
+    omout().disable();
+    omlog().disable();
+  }
+  ~SilenceOpenMesh() {
+    omerr().enable();
+    omout().enable();
+    omlog().enable();
+  }
+};
+
+TriMesh load_openmesh(const std::filesystem::path& path, const std::string& ext) {
+  const std::optional<std::string> text = precheck_mesh_file(path, ext);
+  PolyMesh pm;
+  pm.request_vertex_normals();
+  pm.request_vertex_texcoords2D();
+  OpenMesh::IO::Options opt = OpenMesh::IO::Options::VertexNormal | OpenMesh::IO::Options::VertexTexCoord;
+  bool ok = false;
+  {
+    SilenceOpenMesh silence;
+    if (text) {
+      std::istringstream stream(*text);
+      ok = OpenMesh::IO::read_mesh(pm, stream, ext, opt);
+    } else {
+      ok = OpenMesh::IO::read_mesh(pm, path.string(), opt);
+    }
+  }
+  if (!ok) throw MeshIoError(quoted(path) + ": cannot parse file (corrupt or not a " + ext.substr(1) + " file)");
+
+  TriMesh m;
+  const std::size_t nv = pm.n_vertices();
+  m.positions.resize(nv);
+  const bool has_n = opt.check(OpenMesh::IO::Options::VertexNormal);
+  const bool has_uv = opt.check(OpenMesh::IO::Options::VertexTexCoord);
+  if (has_n) m.normals.resize(nv);
+  if (has_uv) m.uvs.resize(nv);
+  for (const auto vh : pm.vertices()) {
+    const auto i = static_cast<std::size_t>(vh.idx());
+    const auto& p = pm.point(vh);
+    m.positions[i] = {p[0], p[1], p[2]};
+    if (has_n) {
+      const auto& n = pm.normal(vh);
+      m.normals[i] = {n[0], n[1], n[2]};
+    }
+    if (has_uv) {
+      const auto& t = pm.texcoord2D(vh);
+      m.uvs[i] = {t[0], t[1]};
+    }
+  }
+  for (const auto fh : pm.faces()) {
+    std::vector<unsigned> ids;
+    for (const auto vh : pm.fv_range(fh)) ids.push_back(static_cast<unsigned>(vh.idx()));
+    for (std::size_t k = 1; k + 1 < ids.size(); ++k) m.triangles.push_back({ids[0], ids[k], ids[k + 1]});
+  }
+  // File normals that are zero or non-finite are treated as absent.
+  if (has_n)
+    for (const auto& n : m.normals)
+      if (!(std::isfinite(n.x) && std::isfinite(n.y) && std::isfinite(n.z)) || glm::length(n) < 1e-12) {
+        m.normals.clear();
+        break;
+      }
+  return m;
+}
+
+TriMesh load_gltf(const std::filesystem::path& path) {
+  const auto objects = read_gltf_objects(path);
+  TriMesh out;
+  bool all_normals = true, any_uvs = false;
+  for (const auto& obj : objects) {
+    all_normals = all_normals && !obj.mesh.normals.empty();
+    any_uvs = any_uvs || !obj.mesh.uvs.empty();
+  }
+  for (const auto& obj : objects) {
+    const auto base = static_cast<unsigned>(out.positions.size());
+    out.positions.insert(out.positions.end(), obj.mesh.positions.begin(), obj.mesh.positions.end());
+    if (all_normals) out.normals.insert(out.normals.end(), obj.mesh.normals.begin(), obj.mesh.normals.end());
+    if (any_uvs) {
+      out.uvs.insert(out.uvs.end(), obj.mesh.uvs.begin(), obj.mesh.uvs.end());
+      out.uvs.resize(out.positions.size(), glm::dvec2(0.0));  // objects without TEXCOORD_0 get (0,0)
+    }
+    for (const auto& t : obj.mesh.triangles) out.triangles.push_back(t + glm::uvec3(base));
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string lower_extension(const std::filesystem::path& path) {
+  std::string e = path.extension().string();
+  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return e;
+}
+
+TriMesh load_mesh(const std::filesystem::path& path) {
+  const std::string ext = lower_extension(path);
+  if (!is_openmesh_ext(ext) && !is_gltf_ext(ext))
+    throw MeshIoError(quoted(path) + ": unsupported extension '" + ext +
+                      "' (supported: .obj .ply .off .stl .gltf .glb)");
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw MeshIoError(quoted(path) + ": file not found");
+  TriMesh m = is_gltf_ext(ext) ? load_gltf(path) : load_openmesh(path, ext);
+  validate_mesh(m, quoted(path));
+  if (m.normals.empty()) compute_vertex_normals(m);
+  return m;
+}
+
+void save_mesh(const std::filesystem::path& path, const TriMesh& mesh) {
+  const std::string ext = lower_extension(path);
+  if (ext != ".obj" && ext != ".ply")
+    throw MeshIoError(quoted(path) + ": unsupported extension '" + ext + "' for saving (supported: .obj .ply)");
+  validate_mesh(mesh, quoted(path));
+  PolyMesh pm;
+  OpenMesh::IO::Options opt = ext == ".ply" ? OpenMesh::IO::Options::Binary : OpenMesh::IO::Options::Default;
+  const bool has_n = mesh.normals.size() == mesh.positions.size();
+  const bool has_uv = mesh.uvs.size() == mesh.positions.size();
+  if (has_n) {
+    pm.request_vertex_normals();
+    opt += OpenMesh::IO::Options::VertexNormal;
+  }
+  if (has_uv) {
+    pm.request_vertex_texcoords2D();
+    opt += OpenMesh::IO::Options::VertexTexCoord;
+  }
+  std::vector<PolyMesh::VertexHandle> vh;
+  vh.reserve(mesh.positions.size());
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+    const auto& p = mesh.positions[i];
+    vh.push_back(pm.add_vertex({p.x, p.y, p.z}));
+    if (has_n) pm.set_normal(vh.back(), {mesh.normals[i].x, mesh.normals[i].y, mesh.normals[i].z});
+    if (has_uv) pm.set_texcoord2D(vh.back(), {mesh.uvs[i].x, mesh.uvs[i].y});
+  }
+  // Faces OpenMesh rejects (non-manifold) are added on duplicated vertices by OpenMesh's importer, not here: write
+  // through the low-level add_face and report failures instead of changing the vertex order silently.
+  for (const auto& t : mesh.triangles) {
+    const auto fh = pm.add_face(vh[t.x], vh[t.y], vh[t.z]);
+    if (!fh.is_valid())
+      throw MeshIoError(quoted(path) + ": cannot save a non-manifold or degenerate triangle through OpenMesh");
+  }
+  bool ok = false;
+  {
+    SilenceOpenMesh silence;
+    ok = OpenMesh::IO::write_mesh(pm, path.string(), opt, 17);
+  }
+  if (!ok) throw MeshIoError(quoted(path) + ": cannot write file");
+}
+
+void validate_mesh(const TriMesh& mesh, const std::string& what) {
+  if (mesh.positions.empty()) throw MeshIoError(what + ": empty mesh (no vertices)");
+  if (mesh.triangles.empty()) throw MeshIoError(what + ": empty mesh (no triangles)");
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+    const auto& p = mesh.positions[i];
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      throw MeshIoError(what + ": non-finite vertex coordinate (NaN or inf) at vertex " + std::to_string(i));
+  }
+  const std::size_t nv = mesh.positions.size();
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    const auto& t = mesh.triangles[f];
+    if (t.x >= nv || t.y >= nv || t.z >= nv)
+      throw MeshIoError(what + ": vertex index out of range in triangle " + std::to_string(f) + " (" +
+                        std::to_string(nv) + " vertices)");
+  }
+  if (!mesh.normals.empty() && mesh.normals.size() != nv)
+    throw MeshIoError(what + ": " + std::to_string(mesh.normals.size()) + " normals for " + std::to_string(nv) +
+                      " vertices");
+  if (!mesh.uvs.empty() && mesh.uvs.size() != nv)
+    throw MeshIoError(what + ": " + std::to_string(mesh.uvs.size()) + " uvs for " + std::to_string(nv) + " vertices");
+}
+
+void compute_vertex_normals(TriMesh& mesh) {
+  std::vector<glm::dvec3> acc(mesh.positions.size(), glm::dvec3(0.0));
+  for (const auto& t : mesh.triangles) {
+    const glm::dvec3 &a = mesh.positions[t.x], &b = mesh.positions[t.y], &c = mesh.positions[t.z];
+    const glm::dvec3 n = glm::cross(b - a, c - a);  // length = 2 × area: area weighting
+    acc[t.x] += n;
+    acc[t.y] += n;
+    acc[t.z] += n;
+  }
+  for (auto& n : acc) {
+    const double len = glm::length(n);
+    n = len > 0 && std::isfinite(len) ? n / len : glm::dvec3(0, 1, 0);
+  }
+  mesh.normals = std::move(acc);
+}
+
+Aabb mesh_bounds(const TriMesh& mesh) {
+  Aabb box;
+  for (const auto& p : mesh.positions) box.extend(p);
+  return box;
+}
+
+double signed_volume(const TriMesh& mesh) {
+  double v = 0;
+  for (const auto& t : mesh.triangles)
+    v += glm::dot(mesh.positions[t.x], glm::cross(mesh.positions[t.y], mesh.positions[t.z]));
+  return v / 6.0;
+}
+
+}  // namespace trispline::core
