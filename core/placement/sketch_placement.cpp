@@ -1,0 +1,225 @@
+// Sketch placement (seed §2.3.1): stroke → contact surface → FFD volume → deformed object. See sketch_placement.h.
+#include "core/placement/sketch_placement.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <optional>
+
+#include "core/placement/contact_grid.h"
+#include "core/placement/stroke_curve.h"
+#include "core/spline/fitting.h"
+
+namespace trispline::core {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point& t) {
+  const auto now = Clock::now();
+  const double ms = std::chrono::duration<double, std::milli>(now - t).count();
+  t = now;
+  return ms;
+}
+
+bool finite(double x) { return std::isfinite(x); }
+bool finite(const glm::dvec3& p) { return finite(p.x) && finite(p.y) && finite(p.z); }
+
+constexpr int kMaxSamples = 4096;  // per axis; keeps nu·nv rays and the fit small enough to be interactive
+
+void validate(const SketchPlacementParams& p, const std::vector<glm::dvec3>& object) {
+  if (p.stroke_px.size() < 2)
+    throw PlacementError("stroke", "needs at least 2 points (got " + std::to_string(p.stroke_px.size()) + ")");
+  for (std::size_t i = 0; i < p.stroke_px.size(); ++i)
+    if (!finite(p.stroke_px[i].x) || !finite(p.stroke_px[i].y))
+      throw PlacementError("stroke", "point " + std::to_string(i) + " is not finite");
+  try {
+    p.camera.validate();
+  } catch (const std::invalid_argument& e) {
+    throw PlacementError("camera", e.what());
+  }
+  if (!finite(p.half_width) || p.half_width <= 0.0)
+    throw PlacementError("width", "half-width must be a finite number > 0 (got " + std::to_string(p.half_width) + ")");
+  if (!finite(p.height) || p.height <= 0.0)
+    throw PlacementError("height", "height must be a finite number > 0 (got " + std::to_string(p.height) + ")");
+  static const char* axis_name[3] = {"u", "v", "w"};
+  for (int a = 0; a < 3; ++a) {
+    const std::string ax = axis_name[a];
+    if (p.controls[a] < 2)
+      throw PlacementError("controls",
+                           "controls in " + ax + " must be >= 2 (got " + std::to_string(p.controls[a]) + ")");
+    if (p.order[a] < 2)
+      throw PlacementError("order", "order in " + ax + " must be >= 2 (got " + std::to_string(p.order[a]) + ")");
+    if (p.order[a] > p.controls[a])
+      throw PlacementError("order", "order in " + ax + " (" + std::to_string(p.order[a]) +
+                                        ") exceeds the control count (" + std::to_string(p.controls[a]) + ")");
+  }
+  const int s[2] = {p.samples_u, p.samples_v};
+  for (int a = 0; a < 2; ++a) {
+    const std::string ax = axis_name[a];
+    if (s[a] < 2 || s[a] > kMaxSamples)
+      throw PlacementError("samples", "samples in " + ax + " must be in [2, " + std::to_string(kMaxSamples) +
+                                          "] (got " + std::to_string(s[a]) + ")");
+    if (s[a] < p.controls[a])
+      throw PlacementError("samples", "samples in " + ax + " (" + std::to_string(s[a]) +
+                                          ") are fewer than the controls (" + std::to_string(p.controls[a]) + ")");
+  }
+  const int la = p.axes.length_axis, ua = p.axes.up_axis;
+  if (la < 0 || la > 2 || ua < 0 || ua > 2 || la == ua)
+    throw PlacementError("axes", "length_axis and up_axis must be distinct axes among x, y, z");
+  if (object.empty()) throw PlacementError("object", "has no vertices");
+  for (const auto& q : object)
+    if (!finite(q)) throw PlacementError("object", "has a non-finite vertex position");
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+}  // namespace
+
+SketchPlacementResult place_along_stroke(const RayCaster& scene_rays, const SketchPlacementParams& p,
+                                         const std::vector<glm::dvec3>& object) {
+  validate(p, object);
+  const std::vector<glm::dvec2> stroke = remove_duplicate_points(p.stroke_px);
+  if (stroke.size() < 2 || !(polyline_length(stroke) > 1e-9))
+    throw PlacementError("stroke", "has zero length (all points coincide)");
+
+  PlacementStats st;
+  const Camera& cam = p.camera;
+  const int nu = p.samples_u, nv = p.samples_v;
+  auto clock = Clock::now();
+
+  // 1. fit: C(u) in pixels, sampled uniformly in its arc length.
+  StrokeCurve sc = [&] {
+    try {
+      return fit_stroke_curve(stroke);
+    } catch (const std::invalid_argument& e) {
+      throw PlacementError("stroke", std::string("curve fit failed: ") + e.what());
+    }
+  }();
+  st.curve_order = sc.curve.order();
+  st.curve_controls = static_cast<int>(sc.curve.control_points().size());
+  st.curve_fit_rms_px = sc.rms_px;
+  st.curve_fit_max_px = sc.max_px;
+  const CurveSamples cs = sample_by_arc_length(sc.curve, nu);
+  st.ms_fit = ms_since(clock);
+
+  // 2. rays: depth under the stroke → half-width in pixels; ruled surface R sampled, rays cast, misses filled.
+  const glm::dvec3 eye = cam.eye, fwd = cam.forward();
+  {
+    std::vector<glm::dvec3> origins(static_cast<std::size_t>(nu), eye), dirs;
+    for (const auto& c : cs.point) dirs.push_back(cam.ray_direction(c));
+    const auto hits = scene_rays.intersect_all(origins, dirs);
+    std::vector<double> depths;
+    for (const auto& h : hits)
+      if (h) depths.push_back(glm::dot(h->position - eye, fwd));
+    st.stroke_rays = nu;
+    st.stroke_rays_hit = static_cast<int>(depths.size());
+    st.stroke_depth = depths.empty() ? glm::dot(cam.target - eye, fwd) : median(depths);
+  }
+  const double tan_half = std::tan(glm::radians(cam.fov_deg) * 0.5);
+  st.pixels_per_world = cam.viewport.y / (2.0 * st.stroke_depth * tan_half);
+  st.half_width_px = p.half_width * st.pixels_per_world;
+  if (!finite(st.half_width_px) || st.half_width_px <= 0.0)
+    throw PlacementError("stroke", "the scene under the stroke is behind the camera");
+
+  const int total = nu * nv;
+  std::vector<glm::dvec3> dirs(static_cast<std::size_t>(total));
+  for (int j = 0; j < nv; ++j) {
+    const double v = static_cast<double>(j) / (nv - 1);
+    for (int i = 0; i < nu; ++i)  // R(u,v) = v·C+ + (1−v)·C− = C + (2v − 1)·d_px·N   (seed Eq. 2.2)
+      dirs[i + nu * j] = cam.ray_direction(cs.point[i] + (2.0 * v - 1.0) * st.half_width_px * cs.normal[i]);
+  }
+  const auto hits = scene_rays.intersect_all(std::vector<glm::dvec3>(dirs.size(), eye), dirs);
+  std::vector<double> depth(static_cast<std::size_t>(total), 0.0);
+  std::vector<unsigned char> hit(static_cast<std::size_t>(total), 0);
+  for (int g = 0; g < total; ++g)
+    if (hits[g]) {
+      hit[g] = 1;
+      depth[g] = glm::dot(hits[g]->position - eye, fwd);
+      ++st.rays_hit;
+    }
+  st.rays_total = total;
+  st.rays_filled = total - st.rays_hit;
+  if (st.rays_hit == 0)
+    throw PlacementError("stroke",
+                         "all " + std::to_string(total) + " rays missed the scene (nothing under the stroke)");
+  if (2 * st.rays_hit < total)
+    throw PlacementError("stroke", "only " + std::to_string(st.rays_hit) + " of " + std::to_string(total) +
+                                       " rays hit the scene (need at least 50%)");
+  fill_missing_depths(depth, hit, nu, nv);
+  std::vector<glm::dvec3> grid(static_cast<std::size_t>(total));
+  for (int g = 0; g < total; ++g)  // hits: exact hit point; misses: on their own ray at the filled view depth
+    grid[g] = hit[g] ? hits[g]->position : eye + dirs[g] * (depth[g] / glm::dot(dirs[g], fwd));
+  st.ms_rays = ms_since(clock);
+
+  // 3. surface: S(u,v) = F(u,v,0) re-fitted through the grid.
+  const std::vector<double> pu = contact_params_u(grid, nu, nv), pv = contact_params_v(grid, nu, nv);
+  std::optional<BSplineSurface<glm::dvec3>> S;
+  try {
+    S.emplace(fit_surface(grid, nu, nv, pu, pv, p.order[0], p.order[1], p.controls[0], p.controls[1]));
+  } catch (const std::invalid_argument& e) {
+    throw PlacementError("samples", std::string("contact surface fit failed: ") + e.what());
+  }
+  double sum2 = 0.0;
+  for (int j = 0; j < nv; ++j)
+    for (int i = 0; i < nu; ++i) {
+      const double e = glm::length(S->eval(pu[i], pv[j]) - grid[i + nu * j]);
+      sum2 += e * e;
+      st.surface_fit_max = std::max(st.surface_fit_max, e);
+    }
+  st.surface_fit_rms = std::sqrt(sum2 / total);
+  st.ms_surface = ms_since(clock);
+
+  // 4. volume: extrude (Eq. 2.3) or offset (Eq. 2.4) layers over S's control mesh.
+  const KnotVector& ku = S->knots(0);
+  const KnotVector& kv = S->knots(1);
+  const KnotVector kw = KnotVector::clamped_uniform(p.order[2], p.controls[2]);
+  const std::vector<double> gu = ku.greville(), gv = kv.greville(), gw = kw.greville();
+  const int l = ku.control_count(), m = kv.control_count(), n = kw.control_count();
+  const glm::dvec3 V = -fwd;
+  std::vector<glm::dvec3> dir(static_cast<std::size_t>(l * m), V);
+  if (p.volume == PlacementVolume::Offset)
+    for (int j = 0; j < m; ++j)
+      for (int i = 0; i < l; ++i) {
+        const glm::dvec3 nn = S->normal(gu[i], gv[j]);
+        if (glm::length(nn) > 0.5) dir[i + l * j] = nn;
+      }
+  std::vector<glm::dvec3> cps;
+  cps.reserve(static_cast<std::size_t>(l * m * n));
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < m; ++j)
+      for (int i = 0; i < l; ++i) cps.push_back(S->control_point(i, j) + p.height * gw[k] * dir[i + l * j]);
+  TrivariateBSpline<glm::dvec3> lattice(ku, kv, kw, std::move(cps));
+  st.min_det_jacobian = 1e300;
+  for (int c = 0; c < 3; ++c)
+    for (int b = 0; b < 5; ++b)
+      for (int a = 0; a < 5; ++a)
+        st.min_det_jacobian = std::min(st.min_det_jacobian, jacobian_determinant(lattice, {a / 4.0, b / 4.0, c / 2.0}));
+  st.ms_volume = ms_since(clock);
+
+  // 5. embed: bounding box → [0,1]³ (length axis → u, up axis → w, bottom at w = 0).
+  Embedding emb;
+  try {
+    emb = embed_bounding_box(object, p.axes);
+  } catch (const std::invalid_argument& e) {
+    throw PlacementError("object", e.what());
+  }
+  std::vector<glm::dvec3> params = embed_points(emb, object);
+  st.ms_embed = ms_since(clock);
+
+  // 6. evaluate.
+  std::vector<glm::dvec3> positions;
+  ffd_evaluate(lattice, params, positions);
+  st.ms_evaluate = ms_since(clock);
+
+  PlacementRecord record{p.stroke_px, nu, nv, std::move(grid), std::move(hit)};
+  return SketchPlacementResult{FfdBinding{std::move(lattice), emb, std::move(params)}, std::move(record),
+                               std::move(positions), st};
+}
+
+}  // namespace trispline::core
