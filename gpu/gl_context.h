@@ -17,16 +17,31 @@ class GlContextError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// True in builds without NDEBUG: contexts are created with the debug flag and KHR_debug messages are routed.
+#ifdef NDEBUG
+inline constexpr bool kGlDebugBuild = false;
+#else
+inline constexpr bool kGlDebugBuild = true;
+#endif
+
+struct ContextOptions {
+  bool debug = kGlDebugBuild;  // request a debug context (KHR_debug output, see gpu/gl_debug.h)
+};
+
 class HeadlessContext {
  public:
   // Creates and makes current a 4.5 (falling back to 4.3) core context. Throws GlContextError.
   HeadlessContext();
+  explicit HeadlessContext(const ContextOptions& options);
   ~HeadlessContext();
   HeadlessContext(const HeadlessContext&) = delete;
   HeadlessContext& operator=(const HeadlessContext&) = delete;
   void make_current();
   std::string renderer() const;  // GL_RENDERER, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
   std::string version() const;   // GL_VERSION
+  // EGL platform that gave the display: "surfaceless" (Mesa), "device" (EGL_EXT_platform_device, NVIDIA) or
+  // "default" (eglGetDisplay(EGL_DEFAULT_DISPLAY)).
+  std::string platform() const;
 
  private:
   struct Impl;

@@ -1,14 +1,21 @@
 // trispline::gpu::Renderer — draws a core::Scene with OpenGL 4.3 core into the currently bound framebuffer.
 // GPU buffers are cached per object and re-uploaded only when the object's world_mesh pointer changes.
 // Shaders are .glsl files under gpu/shaders/, embedded at build time.
+//
+// Look: flat vertical gradient background, studio shading (headlight + hemisphere ambient + rim, gamma-correct
+// sRGB output), ground grid on y = 0 fading with distance, selected object tinted and outlined, overlays for
+// control lattices, contact samples and the sketched stroke. Needs a depth+stencil framebuffer (outline mask).
 #pragma once
 
-#include "core/scene/scene.h"
+#include <epoxy/gl.h>
 
 #include <glm/glm.hpp>
 #include <memory>
 #include <string>
 #include <vector>
+
+#include "core/scene/scene.h"
+#include "gpu/mesh_buffers.h"
 
 namespace trispline::gpu {
 
@@ -21,6 +28,22 @@ struct ViewOptions {
   std::vector<glm::dvec2> stroke_px;  // stroke being sketched, viewport pixels (top-left origin)
   glm::vec3 background_top{0.23f, 0.23f, 0.25f};
   glm::vec3 background_bottom{0.13f, 0.13f, 0.14f};
+  // Added: colours are display (sRGB-encoded) values; sizes are pixels.
+  glm::vec3 grid_color{0.55f, 0.55f, 0.58f};
+  glm::vec3 selection_color{1.0f, 0.62f, 0.15f};
+  glm::vec3 stroke_color{1.0f, 0.45f, 0.05f};
+  float stroke_width_px = 4.0f;
+  float outline_px = 2.0f;
+  float lattice_point_px = 7.0f;
+  float contact_point_px = 4.5f;
+};
+
+// What the last draw() did (for tests, the timing overlay and replay's report).
+struct RenderStats {
+  int objects_drawn = 0;
+  std::size_t triangles = 0;
+  int uploads = 0;        // meshes (re)uploaded during this draw
+  int cached_meshes = 0;  // GPU meshes held after this draw
 };
 
 class Renderer {
@@ -31,6 +54,12 @@ class Renderer {
   void draw(const core::Scene& scene, const core::Camera& camera, const ViewOptions& options);
   // Forget cached buffers of objects no longer in the scene (called by draw automatically).
   void release_unused(const core::Scene& scene);
+
+  // Added. GPU buffers of `mesh` (uploaded now if not cached). They stay valid until the cache drops the mesh
+  // (it is no longer any object's world_mesh). A GPU evaluator may overwrite positions/normals in place; the
+  // renderer draws whatever they hold and re-uploads only when the world_mesh pointer changes.
+  MeshBuffers& buffers_for(const std::shared_ptr<const core::TriMesh>& mesh);
+  const RenderStats& last_stats() const;
 
  private:
   struct Impl;
@@ -47,6 +76,11 @@ class OffscreenTarget {
   int height() const;
   // RGBA8, #(w·h·4), top row first (ready to write as PNG).
   std::vector<unsigned char> read_rgba();
+
+  // Added.
+  int samples() const;         // actual sample count (clamped to GL_MAX_SAMPLES)
+  GLuint framebuffer() const;  // the FBO to draw into (multisampled if samples() > 1)
+  GLuint resolve();            // resolves MSAA; returns the RGBA8 GL_TEXTURE_2D (e.g. for ImGui::Image)
 
  private:
   struct Impl;

@@ -1,0 +1,46 @@
+// trispline::gpu::MeshBuffers — one triangle mesh on the GPU: a VAO over separate, tightly packed float32
+// buffers (positions #V×3, normals #V×3) and a uint32 index buffer (#F×3).
+//
+// Layout contract (shared with the GLSL FFD evaluator of issue 3): attribute 0 = position (vec3), attribute 1 =
+// normal (vec3), attribute 2 is reserved for per-vertex parameters (u,v,w). The position and normal buffers are
+// plain `float[]` arrays, so a compute shader can bind them as SSBOs (std430 `float p[]`, index 3·i + c) and
+// write deformed vertices in place, with no CPU round trip; the renderer then draws them unchanged.
+#pragma once
+
+#include <cstddef>
+
+#include "core/mesh/tri_mesh.h"
+#include "gpu/gl_resource.h"
+
+namespace trispline::gpu {
+
+class MeshBuffers {
+ public:
+  MeshBuffers() = default;  // empty; call upload()
+  // Converts to float32 and uploads (re-allocating storage). Missing normals are computed (area-weighted vertex
+  // normals). Throws std::invalid_argument if an index is out of range. Needs a current context.
+  void upload(const core::TriMesh& mesh);
+  // Overwrites positions (and normals if non-empty) in place; counts must match vertex_count(). For CPU
+  // evaluators that keep the topology. Throws std::invalid_argument on a count mismatch.
+  void update_vertices(const std::vector<glm::dvec3>& positions, const std::vector<glm::dvec3>& normals);
+
+  void draw_triangles() const;  // binds the VAO and issues one glDrawElements
+  void bind() const { glBindVertexArray(vao_.id()); }
+
+  GLuint vertex_array() const { return vao_.id(); }
+  GLuint position_buffer() const { return positions_.id(); }  // #V×3 float, world units
+  GLuint normal_buffer() const { return normals_.id(); }      // #V×3 float, unit
+  GLuint index_buffer() const { return indices_.id(); }       // #F×3 uint32
+  std::size_t vertex_count() const { return vertex_count_; }
+  std::size_t triangle_count() const { return triangle_count_; }
+
+ private:
+  VertexArray vao_;
+  Buffer positions_, normals_, indices_;
+  std::size_t vertex_count_ = 0, triangle_count_ = 0;
+};
+
+// Area-weighted vertex normals of `mesh` (#V×3 unit; zero-area neighbourhoods get (0,1,0)).
+std::vector<glm::vec3> vertex_normals(const core::TriMesh& mesh);
+
+}  // namespace trispline::gpu

@@ -1,0 +1,287 @@
+#include "gpu/renderer.h"
+
+#include <cmath>
+#include <glm/gtc/matrix_inverse.hpp>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "gpu/overlay_geometry.h"
+#include "gpu/shader_program.h"
+
+namespace trispline::gpu {
+namespace {
+
+struct CachedMesh {
+  std::shared_ptr<const core::TriMesh> mesh;  // held so the address cannot be reused by another mesh
+  MeshBuffers buffers;
+};
+
+// A growable stream buffer for per-frame overlay geometry (small: lattices, contact grids, the stroke).
+struct StreamBuffer {
+  VertexArray vao;
+  Buffer vbo;
+  GLsizeiptr capacity = 0;
+  void init(bool screen_space) {
+    vao = VertexArray::create();
+    vbo = Buffer::create();
+    glBindVertexArray(vao.id());
+    glBindBuffer(GL_ARRAY_BUFFER, vbo.id());
+    const GLsizei stride = sizeof(OverlayVertex);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, screen_space ? 2 : 3, GL_FLOAT, GL_FALSE, stride, nullptr);
+    glEnableVertexAttribArray(1);
+    glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, stride,
+                          reinterpret_cast<const void*>(offsetof(OverlayVertex, color)));
+    glBindVertexArray(0);
+  }
+  void upload(const std::vector<OverlayVertex>& v) {
+    glBindBuffer(GL_ARRAY_BUFFER, vbo.id());
+    const GLsizeiptr bytes = GLsizeiptr(v.size() * sizeof(OverlayVertex));
+    if (bytes > capacity) {
+      capacity = std::max<GLsizeiptr>(bytes, 2 * capacity);
+      glBufferData(GL_ARRAY_BUFFER, capacity, nullptr, GL_STREAM_DRAW);
+    }
+    glBufferSubData(GL_ARRAY_BUFFER, 0, bytes, v.data());
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+  }
+};
+
+glm::vec4 rgba(const glm::vec3& c, float a = 1.0f) { return {c, a}; }
+
+// Power of ten a tenth of the scene's size: minor grid cell, world units.
+float grid_cell_for(const core::Scene& scene) {
+  const core::Aabb b = scene.bounds();
+  const double size = b.valid() ? std::max(b.diagonal(), 1e-6) : 2.0;
+  return float(std::pow(10.0, std::floor(std::log10(size)) - 1.0));
+}
+
+}  // namespace
+
+struct Renderer::Impl {
+  ShaderProgram background{{"background.vert.glsl", "background.frag.glsl"}};
+  ShaderProgram mesh{{"mesh.vert.glsl", "mesh.frag.glsl"}};
+  ShaderProgram flat{{"mesh.vert.glsl", "mesh.frag.glsl"}, {{"FLAT_COLOR", ""}}};
+  ShaderProgram outline{{"mesh.vert.glsl", "mesh.frag.glsl"}, {{"OUTLINE", ""}, {"FLAT_COLOR", ""}}};
+  ShaderProgram grid{{"grid.vert.glsl", "grid.frag.glsl"}};
+  ShaderProgram lines{{"lines.vert.glsl", "lines.frag.glsl"}};
+  ShaderProgram points{{"lines.vert.glsl", "lines.frag.glsl"}, {{"ROUND_POINTS", ""}}};
+  ShaderProgram screen{{"lines.vert.glsl", "lines.frag.glsl"}, {{"SCREEN_SPACE", ""}}};
+  VertexArray empty_vao = VertexArray::create();  // attribute-less full-screen passes
+  StreamBuffer world_stream, screen_stream;
+  std::unordered_map<const core::TriMesh*, CachedMesh> cache;
+  RenderStats stats;
+
+  Impl() {
+    world_stream.init(false);
+    screen_stream.init(true);
+  }
+
+  MeshBuffers& buffers(const std::shared_ptr<const core::TriMesh>& m) {
+    auto [it, inserted] = cache.try_emplace(m.get());
+    if (inserted) {
+      it->second.mesh = m;
+      it->second.buffers.upload(*m);
+      ++stats.uploads;
+    }
+    return it->second.buffers;
+  }
+
+  void draw_overlay(const std::vector<OverlayVertex>& v, GLenum mode, const ShaderProgram& prog, float alpha) {
+    if (v.empty()) return;
+    world_stream.upload(v);
+    prog.set("u_alpha", alpha);
+    glBindVertexArray(world_stream.vao.id());
+    glDrawArrays(mode, 0, GLsizei(v.size()));
+  }
+
+  // Drawn twice: faint where hidden (no depth test), full where visible (x-ray look of modelling tools).
+  void draw_xray(const std::vector<OverlayVertex>& lines_v, const std::vector<OverlayVertex>& points_v,
+                 const glm::mat4& view_proj, float point_px) {
+    lines.use();
+    lines.set("u_view_proj", view_proj);
+    glDisable(GL_DEPTH_TEST);
+    draw_overlay(lines_v, GL_LINES, lines, 0.22f);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LEQUAL);
+    draw_overlay(lines_v, GL_LINES, lines, 1.0f);
+    points.use();
+    points.set("u_view_proj", view_proj);
+    points.set("u_point_px", point_px);
+    glDisable(GL_DEPTH_TEST);
+    draw_overlay(points_v, GL_POINTS, points, 0.3f);
+    glEnable(GL_DEPTH_TEST);
+    draw_overlay(points_v, GL_POINTS, points, 1.0f);
+    glDepthFunc(GL_LESS);
+  }
+};
+
+Renderer::Renderer() : impl_(std::make_unique<Impl>()) {}
+Renderer::~Renderer() = default;
+
+MeshBuffers& Renderer::buffers_for(const std::shared_ptr<const core::TriMesh>& mesh) { return impl_->buffers(mesh); }
+const RenderStats& Renderer::last_stats() const { return impl_->stats; }
+
+void Renderer::release_unused(const core::Scene& scene) {
+  std::unordered_set<const core::TriMesh*> live;
+  for (const core::SceneObject& o : scene.objects())
+    if (o.world_mesh) live.insert(o.world_mesh.get());
+  std::erase_if(impl_->cache, [&](const auto& kv) { return !live.count(kv.first); });
+}
+
+void Renderer::draw(const core::Scene& scene, const core::Camera& camera, const ViewOptions& options) {
+  Impl& d = *impl_;
+  d.stats = RenderStats{};
+  const glm::ivec2 vp = camera.viewport;
+  const glm::mat4 view_proj = glm::mat4(camera.projection_matrix() * camera.view_matrix());
+  const glm::vec3 eye(camera.eye);
+
+  // Known state: ImGui and others leave theirs behind.
+  glViewport(0, 0, vp.x, vp.y);
+  glDisable(GL_SCISSOR_TEST);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_BLEND);
+  glEnable(GL_MULTISAMPLE);
+  glEnable(GL_PROGRAM_POINT_SIZE);
+  glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glDepthMask(GL_TRUE);
+  glStencilMask(0xFF);
+  glClearColor(options.background_bottom.x, options.background_bottom.y, options.background_bottom.z, 1.0f);
+  glClearDepth(1.0);
+  glClearStencil(0);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+
+  // 1. Background gradient.
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_STENCIL_TEST);
+  d.background.use();
+  d.background.set("u_top", options.background_top);
+  d.background.set("u_bottom", options.background_bottom);
+  glBindVertexArray(d.empty_vao.id());
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+
+  // 2. Objects. The selected one writes stencil 1 (outline mask).
+  release_unused(scene);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glEnable(GL_STENCIL_TEST);
+  glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+  // Key light: from the camera, raised a little and from the left, so forms read better than a pure headlight.
+  const glm::vec3 key = glm::normalize(glm::vec3(-camera.forward() + 0.35 * camera.true_up() - 0.25 * camera.right()));
+  d.mesh.use();
+  d.mesh.set("u_view_proj", view_proj);
+  d.mesh.set("u_eye", eye);
+  d.mesh.set("u_key_dir", key);
+  const core::SceneObject* selected = nullptr;
+  if (options.wireframe) {
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(1.0f, 1.0f);
+  }
+  for (const core::SceneObject& o : scene.objects()) {
+    if (!o.visible || !o.world_mesh || o.world_mesh->empty()) continue;
+    const bool is_selected = !options.selected.empty() && o.name == options.selected;
+    if (is_selected) selected = &o;
+    glStencilFunc(GL_ALWAYS, is_selected ? 1 : 0, 0xFF);
+    d.mesh.set("u_albedo", o.color);
+    d.mesh.set("u_highlight", is_selected ? 1.0f : 0.0f);
+    const MeshBuffers& b = d.buffers(o.world_mesh);
+    b.draw_triangles();
+    ++d.stats.objects_drawn;
+    d.stats.triangles += b.triangle_count();
+  }
+  glDisable(GL_POLYGON_OFFSET_FILL);
+  glDisable(GL_STENCIL_TEST);
+
+  // 2b. Wireframe overlay: dark edges over the shaded surfaces.
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+  if (options.wireframe) {
+    glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+    glDepthFunc(GL_LEQUAL);
+    glDepthMask(GL_FALSE);
+    d.flat.use();
+    d.flat.set("u_view_proj", view_proj);
+    d.flat.set("u_flat_color", glm::vec4(0.05f, 0.05f, 0.06f, 0.45f));
+    for (const core::SceneObject& o : scene.objects())
+      if (o.visible && o.world_mesh && !o.world_mesh->empty()) d.buffers(o.world_mesh).draw_triangles();
+    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+    glDepthMask(GL_TRUE);
+    glDepthFunc(GL_LESS);
+  }
+
+  // 3. Ground grid (blended, occluded by meshes, writes no depth).
+  if (options.show_grid) {
+    glDepthMask(GL_FALSE);
+    const float cell = grid_cell_for(scene);
+    d.grid.use();
+    d.grid.set("u_view_proj", view_proj);
+    d.grid.set("u_inv_view_proj", glm::inverse(view_proj));
+    d.grid.set("u_eye", eye);
+    d.grid.set("u_cell", cell);
+    d.grid.set("u_fade_dist", std::max(60.0f * cell, 4.0f * float(glm::length(camera.eye - camera.target))));
+    d.grid.set("u_line_color", options.grid_color);
+    glBindVertexArray(d.empty_vao.id());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDepthMask(GL_TRUE);
+  }
+
+  // 4. Selection outline: the enlarged silhouette where the object itself is not (stencil != 1), on top.
+  if (selected) {
+    glEnable(GL_STENCIL_TEST);
+    glStencilFunc(GL_NOTEQUAL, 1, 0xFF);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    glDisable(GL_DEPTH_TEST);
+    d.outline.use();
+    d.outline.set("u_view_proj", view_proj);
+    d.outline.set("u_viewport", glm::vec2(vp));
+    d.outline.set("u_outline_px", options.outline_px);
+    d.outline.set("u_flat_color", rgba(options.selection_color));
+    d.buffers(selected->world_mesh).draw_triangles();
+    glDisable(GL_STENCIL_TEST);
+    glEnable(GL_DEPTH_TEST);
+  }
+
+  // 5. Lattices and contact surfaces.
+  if (options.show_lattice || options.show_contact_surface) {
+    std::vector<OverlayVertex> lines_v, points_v;
+    for (const core::SceneObject& o : scene.objects()) {
+      if (!o.visible) continue;
+      if (options.show_lattice && o.ffd)
+        append_lattice(o.ffd->lattice, {0.45f, 0.78f, 1.0f, 0.9f}, {0.92f, 0.96f, 1.0f, 1.0f}, lines_v, points_v);
+    }
+    d.draw_xray(lines_v, points_v, view_proj, options.lattice_point_px);
+    lines_v.clear();
+    points_v.clear();
+    for (const core::SceneObject& o : scene.objects())
+      if (options.show_contact_surface && o.visible && o.placement)
+        append_contact_surface(*o.placement, {0.3f, 0.9f, 0.35f, 1.0f}, {0.95f, 0.25f, 0.2f, 1.0f},
+                               {0.75f, 0.95f, 0.7f, 0.45f}, lines_v, points_v);
+    d.draw_xray(lines_v, points_v, view_proj, options.contact_point_px);
+  }
+
+  // 6. The sketched stroke, a thick screen-space polyline on top of everything.
+  if (options.stroke_px.size() >= 1) {
+    const std::vector<glm::vec2> tris = thick_polyline(options.stroke_px, options.stroke_width_px);
+    std::vector<OverlayVertex> v;
+    v.reserve(tris.size());
+    for (const glm::vec2& p : tris) v.push_back({glm::vec3(p, 0.0f), rgba(options.stroke_color)});
+    glDisable(GL_DEPTH_TEST);
+    d.screen.use();
+    d.screen.set("u_viewport", glm::vec2(vp));
+    d.screen.set("u_alpha", 1.0f);
+    d.screen_stream.upload(v);
+    glBindVertexArray(d.screen_stream.vao.id());
+    glDrawArrays(GL_TRIANGLES, 0, GLsizei(v.size()));
+  }
+
+  // Leave neutral state for the next user of the context (ImGui).
+  glBindVertexArray(0);
+  glUseProgram(0);
+  glDisable(GL_BLEND);
+  glDisable(GL_STENCIL_TEST);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  d.stats.cached_meshes = int(d.cache.size());
+}
+
+}  // namespace trispline::gpu

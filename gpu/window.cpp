@@ -1,0 +1,83 @@
+#include "gpu/window.h"
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <epoxy/gl.h>
+
+#include <cstdio>
+#include <mutex>
+#include <stdexcept>
+
+namespace trispline::gpu {
+namespace {
+
+std::mutex g_glfw_mutex;
+int g_windows = 0;         // live windows; GLFW is terminated with the last one
+std::string g_last_error;  // GLFW reports errors through a callback
+
+void on_glfw_error(int code, const char* description) {
+  char code_text[32];
+  std::snprintf(code_text, sizeof code_text, " (GLFW error 0x%x)", unsigned(code));
+  g_last_error = std::string(description ? description : "unknown") + code_text;
+}
+
+}  // namespace
+
+Window::Window(const std::string& title, int width, int height, const WindowOptions& options) {
+  if (width <= 0 || height <= 0) throw std::invalid_argument("Window: size must be positive");
+  std::lock_guard lock(g_glfw_mutex);
+  glfwSetErrorCallback(on_glfw_error);
+  g_last_error.clear();
+  if (g_windows == 0 && !glfwInit())
+    throw GlContextError("cannot open a window: glfwInit failed: " + g_last_error +
+                         " (no display? use HeadlessContext, or run under xvfb-run -a)");
+  glfwDefaultWindowHints();
+  glfwWindowHint(GLFW_CLIENT_API, GLFW_OPENGL_API);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, options.debug ? GLFW_TRUE : GLFW_FALSE);
+  glfwWindowHint(GLFW_SAMPLES, options.samples);
+  glfwWindowHint(GLFW_DEPTH_BITS, 24);
+  glfwWindowHint(GLFW_STENCIL_BITS, 8);
+  glfwWindowHint(GLFW_VISIBLE, options.visible ? GLFW_TRUE : GLFW_FALSE);
+  window_ = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
+  if (!window_) {
+    const std::string err = g_last_error;
+    if (g_windows == 0) glfwTerminate();
+    throw GlContextError("cannot open a window with an OpenGL 4.3 core context: " + err);
+  }
+  ++g_windows;
+  glfwMakeContextCurrent(window_);
+  glfwSwapInterval(options.vsync ? 1 : 0);
+}
+
+Window::~Window() {
+  std::lock_guard lock(g_glfw_mutex);
+  if (!window_) return;
+  glfwDestroyWindow(window_);
+  if (--g_windows == 0) glfwTerminate();
+}
+
+void Window::make_current() { glfwMakeContextCurrent(window_); }
+bool Window::should_close() const { return glfwWindowShouldClose(window_) != 0; }
+void Window::set_should_close(bool close) { glfwSetWindowShouldClose(window_, close ? GLFW_TRUE : GLFW_FALSE); }
+void Window::swap() { glfwSwapBuffers(window_); }
+void Window::poll_events() { glfwPollEvents(); }
+void Window::wait_events(double timeout_s) { glfwWaitEventsTimeout(timeout_s); }
+void Window::set_title(const std::string& title) { glfwSetWindowTitle(window_, title.c_str()); }
+
+glm::ivec2 Window::framebuffer_size() const {
+  glm::ivec2 s(0);
+  glfwGetFramebufferSize(window_, &s.x, &s.y);
+  return s;
+}
+
+glm::ivec2 Window::window_size() const {
+  glm::ivec2 s(0);
+  glfwGetWindowSize(window_, &s.x, &s.y);
+  return s;
+}
+
+}  // namespace trispline::gpu
