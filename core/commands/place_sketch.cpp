@@ -1,0 +1,123 @@
+#include "core/commands/place_sketch.h"
+
+#include <chrono>
+
+#include "core/commands/camera_set.h"
+#include "core/commands/json_fields.h"
+#include "core/placement/sketch_placement.h"
+#include "core/raycast/ray_caster.h"
+
+namespace trispline::core {
+namespace jf = json_fields;
+
+namespace {
+int axis_index(const std::string& a) { return a == "x" ? 0 : a == "y" ? 1 : 2; }
+const char* axis_name(int a) { return a == 0 ? "x" : a == 1 ? "y" : "z"; }
+}  // namespace
+
+CommandPtr PlaceSketchCommand::parse(const nlohmann::json& j, const CommandContext&) {
+  PlaceSketchParams p;
+  p.object = jf::get_string(j, "object");
+  p.stroke = jf::get_points2(j, "stroke");
+  p.width = jf::get_number(j, "width");
+  p.height = jf::get_number(j, "height");
+  if (jf::has(j, "samples")) p.samples = jf::get_ivec2(j, "samples");
+  p.volume = jf::get_enum(j, "volume", {"extrude", "offset"}, "extrude");
+  if (jf::has(j, "order")) p.order = jf::get_ivec3(j, "order");
+  if (jf::has(j, "controls")) p.controls = jf::get_ivec3(j, "controls");
+  p.length_axis = jf::get_enum(j, "length_axis", {"x", "y", "z"}, "x");
+  p.up_axis = jf::get_enum(j, "up_axis", {"x", "y", "z"}, "y");
+  if (p.length_axis == p.up_axis)
+    throw CommandError("field 'up_axis': must differ from length_axis ('" + p.length_axis + "')", "up_axis");
+  if (jf::has(j, "camera")) p.camera = CameraSetCommand::parse_camera(j.at("camera"));
+  return std::make_unique<PlaceSketchCommand>(std::move(p));
+}
+
+nlohmann::json PlaceSketchCommand::params_json(const PlaceSketchParams& p) {
+  nlohmann::json j = {{"cmd", "place.sketch"},
+                      {"object", p.object},
+                      {"stroke", jf::to_json(p.stroke)},
+                      {"width", p.width},
+                      {"height", p.height},
+                      {"samples", jf::to_json(p.samples)},
+                      {"volume", p.volume},
+                      {"order", jf::to_json(p.order)},
+                      {"controls", jf::to_json(p.controls)},
+                      {"length_axis", p.length_axis},
+                      {"up_axis", p.up_axis}};
+  if (p.camera) j["camera"] = CameraSetCommand::camera_json(*p.camera);
+  return j;
+}
+
+std::optional<SceneObject> PlaceSketchCommand::build(const Scene& scene) {
+  const SceneObject* target = scene.find(p_.object);
+  if (!target) throw CommandError("field 'object': no object named '" + p_.object + "'", "object");
+
+  const auto t0 = std::chrono::steady_clock::now();
+  RayCaster rays;
+  for (const auto& o : scene.objects())
+    if (o.visible && o.name != p_.object && o.world_mesh) rays.add_mesh(*o.world_mesh);
+  rays.commit();
+  const double bvh_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+
+  SketchPlacementParams sp;
+  sp.stroke_px = p_.stroke;
+  sp.camera = p_.camera ? *p_.camera : scene.camera;
+  sp.half_width = p_.width;
+  sp.height = p_.height;
+  sp.samples_u = p_.samples.x;
+  sp.samples_v = p_.samples.y;
+  sp.volume = p_.volume == "offset" ? PlacementVolume::Offset : PlacementVolume::Extrude;
+  sp.order = {p_.order.x, p_.order.y, p_.order.z};
+  sp.controls = {p_.controls.x, p_.controls.y, p_.controls.z};
+  sp.axes.length_axis = axis_index(p_.length_axis);
+  sp.axes.up_axis = axis_index(p_.up_axis);
+
+  const TriMesh rest = target->world_rest_mesh();
+  SketchPlacementResult r = [&] {
+    try {
+      return place_along_stroke(rays, sp, rest.positions);
+    } catch (const PlacementError& e) {
+      // Map the placement's parameter names onto the log's field names.
+      const std::string f = e.field() == "axes" ? "up_axis" : e.field();
+      std::string msg = e.what();
+      const std::string prefix = "place.sketch: " + e.field() + ": ";
+      if (msg.rfind(prefix, 0) == 0) msg = msg.substr(prefix.size());
+      throw CommandError("field '" + f + "': " + msg, f);
+    }
+  }();
+
+  SceneObject placed = *target;
+  placed.ffd = std::make_shared<const FfdBinding>(std::move(r.binding));
+  placed.placement = std::make_shared<const PlacementRecord>(std::move(r.record));
+  const auto te = std::chrono::steady_clock::now();
+  placed.refresh();
+  const double eval_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - te).count();
+
+  const PlacementStats& st = r.stats;
+  stats_ = {{"rays_total", st.rays_total},
+            {"rays_hit", st.rays_hit},
+            {"rays_filled", st.rays_filled},
+            {"stroke_depth", st.stroke_depth},
+            {"half_width_px", st.half_width_px},
+            {"curve_order", st.curve_order},
+            {"curve_controls", st.curve_controls},
+            {"curve_fit_rms_px", st.curve_fit_rms_px},
+            {"surface_fit_rms", st.surface_fit_rms},
+            {"surface_fit_max", st.surface_fit_max},
+            {"min_det_jacobian", st.min_det_jacobian},
+            {"ms",
+             {{"fit", st.ms_fit},
+              {"rays", st.ms_rays},
+              {"surface", st.ms_surface},
+              {"volume", st.ms_volume},
+              {"embed", st.ms_embed},
+              {"evaluate", st.ms_evaluate}}}};
+  stats_["bvh_ms"] = bvh_ms;
+  stats_["evaluate_ms"] = eval_ms;
+  stats_["vertices"] = placed.world_mesh->vertex_count();
+  stats_["length_axis"] = axis_name(sp.axes.length_axis);
+  return placed;
+}
+
+}  // namespace trispline::core

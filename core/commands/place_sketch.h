@@ -1,0 +1,52 @@
+// `place.sketch` — places an object along a stroke sketched over the scene (seed §2.3.1, Eq. 2.1–2.4).
+//   {"cmd":"place.sketch","object":"ID","stroke":[[px,py],...],"width":d,"height":h,"samples":[nu,nv],
+//    "volume":"extrude|offset","order":[ou,ov,ow],"controls":[nu,nv,nw],"length_axis":"x|y|z","up_axis":"x|y|z",
+//    "camera":{"eye":..,"target":..,"up":..,"fov_deg":..,"viewport":..}}
+// stroke: viewport pixels (top-left origin) of the camera in "camera" (optional) or of the last camera.set.
+// width: half-width d of the volume across the stroke, world units. height: h, world units. order = degree + 1.
+// The rays see every visible object except the one being placed. Re-placing an already placed object starts
+// again from its undeformed (transformed) rest mesh. Undo restores the object as it was.
+#pragma once
+
+#include "core/commands/snapshot_command.h"
+
+#include <optional>
+
+namespace trispline::core {
+
+struct PlaceSketchParams {
+  std::string object;
+  std::vector<glm::dvec2> stroke;  // #S × 2 pixels
+  double width = 0.15;             // half-width d, world units
+  double height = 0.2;             // h, world units
+  glm::ivec2 samples{32, 8};       // contact sampling nu × nv rays
+  std::string volume = "extrude";  // extrude (F1, Eq. 2.3) | offset (F2, Eq. 2.4)
+  glm::ivec3 order{4, 4, 3};       // per axis, degree + 1
+  glm::ivec3 controls{10, 4, 3};   // control points per axis
+  std::string length_axis = "x";
+  std::string up_axis = "y";
+  std::optional<Camera> camera;    // view the stroke was drawn in (else the scene camera)
+};
+
+class PlaceSketchCommand : public SnapshotCommand {
+ public:
+  explicit PlaceSketchCommand(PlaceSketchParams p) : p_(std::move(p)) {}
+  static CommandPtr parse(const nlohmann::json& j, const CommandContext& ctx);
+  static nlohmann::json params_json(const PlaceSketchParams& p);
+  const PlaceSketchParams& params() const { return p_; }
+
+  std::string id() const override { return "place.sketch"; }
+  nlohmann::json to_json() const override { return params_json(p_); }
+  std::string label() const override { return "Place '" + p_.object + "' along stroke"; }
+  nlohmann::json stats() const override { return stats_; }
+
+ protected:
+  std::string target() const override { return p_.object; }
+  std::optional<SceneObject> build(const Scene& scene) override;
+
+ private:
+  PlaceSketchParams p_;
+  nlohmann::json stats_ = nlohmann::json::object();
+};
+
+}  // namespace trispline::core

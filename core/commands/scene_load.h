@@ -1,0 +1,35 @@
+// `scene.load` — adds a mesh file as a new object.
+//   {"cmd":"scene.load","path":"PATH","name":"ID","translate":[x,y,z],"rotate_deg":[x,y,z],"scale":s|[sx,sy,sz],
+//    "color":[r,g,b]}
+// path: OBJ, PLY, OFF, STL (OpenMesh) or glTF/GLB (tinygltf), relative to the log's folder unless absolute.
+// name: optional, defaults to the file stem made unique ("bunny.001"); an existing name is an error.
+// Transform: scale, then rotation (degrees about x, then y, then z), then translation; world units.
+#pragma once
+
+#include "core/commands/snapshot_command.h"
+
+namespace trispline::core {
+
+class SceneLoadCommand : public SnapshotCommand {
+ public:
+  static CommandPtr parse(const nlohmann::json& j, const CommandContext& ctx);
+  std::string id() const override { return "scene.load"; }
+  nlohmann::json to_json() const override;
+  std::string label() const override;
+  nlohmann::json stats() const override;
+
+ protected:
+  std::string target() const override { return name_; }
+  std::optional<SceneObject> build(const Scene& scene) override;
+  std::string failure_field() const override { return "path"; }
+
+ private:
+  std::string path_;                 // as written in the log
+  std::filesystem::path resolved_;   // absolute or relative to cwd
+  std::string name_;
+  Transform transform_;
+  std::optional<glm::dvec3> color_;
+  std::size_t vertices_ = 0, triangles_ = 0;
+};
+
+}  // namespace trispline::core

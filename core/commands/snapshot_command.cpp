@@ -1,0 +1,43 @@
+#include "core/commands/snapshot_command.h"
+
+namespace trispline::core {
+
+std::filesystem::path CommandContext::resolve(const std::string& path) const {
+  const std::filesystem::path p(path);
+  return p.is_absolute() || base_dir.empty() ? p : base_dir / p;
+}
+
+void SnapshotCommand::redo(Scene& scene) {
+  if (!built_) {
+    try {
+      after_ = build(scene);
+    } catch (const CommandError&) {
+      throw;
+    } catch (const std::exception& e) {
+      throw CommandError(e.what(), failure_field());
+    }
+    built_ = true;
+  }
+  const int index = scene.index_of(target());
+  if (index >= 0) {
+    before_ = scene.objects()[index];
+    index_ = index;
+  } else {
+    before_.reset();
+    index_ = -1;
+  }
+  if (after_ && before_) {
+    scene.replace(*after_);
+  } else if (after_) {
+    scene.insert(*after_);
+  } else if (before_) {
+    scene.remove(target());
+  }
+}
+
+void SnapshotCommand::undo(Scene& scene) {
+  if (scene.index_of(target()) >= 0) scene.remove(target());
+  if (before_) scene.insert(*before_, index_);
+}
+
+}  // namespace trispline::core

@@ -1,0 +1,33 @@
+// trispline::core::SnapshotCommand — base for commands that create, change or remove one named object.
+// The new object is built completely (build()) before the scene is touched; undo restores the snapshot taken
+// before redo. Meshes are shared immutable pointers, so snapshots cost a few pointers, not mesh copies, and
+// undo/redo restore meshes bit for bit.
+#pragma once
+
+#include "core/commands/command.h"
+
+#include <optional>
+
+namespace trispline::core {
+
+class SnapshotCommand : public Command {
+ public:
+  void redo(Scene& scene) final;
+  void undo(Scene& scene) final;
+
+ protected:
+  // Name of the object this command changes (known after parsing).
+  virtual std::string target() const = 0;
+  // The object's new state (std::nullopt = remove it). Called once, on the first redo; must not modify the scene.
+  // May throw anything derived from std::exception: it is reported as CommandError and the scene is unchanged.
+  virtual std::optional<SceneObject> build(const Scene& scene) = 0;
+  // Field to blame when build() throws something that is not a CommandError (e.g. "path" for I/O errors).
+  virtual std::string failure_field() const { return {}; }
+
+ private:
+  bool built_ = false;
+  std::optional<SceneObject> before_, after_;
+  int index_ = -1;
+};
+
+}  // namespace trispline::core

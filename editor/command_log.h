@@ -1,0 +1,60 @@
+// trispline::editor command logs (JSON Lines, one command object per line; see docs/commands.md).
+//  * CommandLog: the append-only session log, flushed (and fsync'ed) after every line so a crash loses nothing.
+//  * read_log(): parses a log file into lines with their line numbers (blank lines and lines starting with
+//    '#' or '//' are skipped); a malformed JSON line throws LogError naming file and line.
+//  * write_log_atomic(): Save — writes to PATH.tmp, fsyncs, renames over PATH.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace trispline::editor {
+
+class LogError : public std::runtime_error {
+ public:
+  LogError(const std::filesystem::path& file, int line, const std::string& field, const std::string& message);
+  const std::filesystem::path& file() const { return file_; }
+  int line() const { return line_; }
+  const std::string& field() const { return field_; }
+
+ private:
+  std::filesystem::path file_;
+  int line_;
+  std::string field_;
+};
+
+struct LogLine {
+  int number = 0;     // 1-based line number in the file
+  std::string text;   // the line as written
+  nlohmann::json json;
+};
+
+// Every command line of the file (comments/blank lines skipped), parsed. Throws LogError at the first bad line.
+std::vector<LogLine> read_log(const std::filesystem::path& path);
+// The command lines with `json` left empty, for callers that parse line by line (replay stops at the bad line
+// but keeps the lines before it). Throws LogError if the file cannot be opened.
+std::vector<LogLine> read_log_text(const std::filesystem::path& path);
+// Parses one line's text into line.json. Throws LogError (malformed JSON / not an object).
+void parse_log_line(const std::filesystem::path& path, LogLine& line);
+void write_log_atomic(const std::filesystem::path& path, const std::vector<nlohmann::json>& lines);
+
+class CommandLog {
+ public:
+  explicit CommandLog(std::filesystem::path path, bool truncate = true);  // throws std::runtime_error
+  ~CommandLog();
+  CommandLog(const CommandLog&) = delete;
+  CommandLog& operator=(const CommandLog&) = delete;
+  void append(const nlohmann::json& line);
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+  std::FILE* file_ = nullptr;
+};
+
+}  // namespace trispline::editor

@@ -1,0 +1,49 @@
+#include "editor/command_registry.h"
+
+#include "core/commands/camera_set.h"
+#include "core/commands/place_sketch.h"
+#include "core/commands/scene_load.h"
+#include "core/commands/scene_primitive.h"
+#include "core/commands/scene_remove.h"
+
+namespace trispline::editor {
+
+void CommandRegistry::add(const std::string& id, std::string summary, CommandParser parser) {
+  entries_[id] = Entry{std::move(summary), std::move(parser)};
+}
+
+core::CommandPtr CommandRegistry::parse(const nlohmann::json& line, const core::CommandContext& ctx) const {
+  if (!line.is_object()) throw core::CommandError("a command must be a JSON object");
+  auto it = line.find("cmd");
+  if (it == line.end()) throw core::CommandError("field 'cmd': missing", "cmd");
+  if (!it->is_string()) throw core::CommandError("field 'cmd': expected a string", "cmd");
+  const std::string id = it->get<std::string>();
+  auto e = entries_.find(id);
+  if (e == entries_.end()) throw core::CommandError("field 'cmd': unknown command '" + id + "'", "cmd");
+  return e->second.parser(line, ctx);
+}
+
+std::vector<std::string> CommandRegistry::ids() const {
+  std::vector<std::string> out;
+  for (const auto& [id, e] : entries_) out.push_back(id);
+  return out;
+}
+
+const std::string& CommandRegistry::summary(const std::string& id) const { return entries_.at(id).summary; }
+
+const CommandRegistry& CommandRegistry::builtin() {
+  static const CommandRegistry registry = [] {
+    CommandRegistry r;
+    r.add("scene.load", "Load a mesh file (OBJ, PLY, OFF, STL, glTF, GLB) as a new object",
+          core::SceneLoadCommand::parse);
+    r.add("scene.primitive", "Add a teapot, plane, sphere, box, cylinder or terrain", core::ScenePrimitiveCommand::parse);
+    r.add("scene.remove", "Remove an object", core::SceneRemoveCommand::parse);
+    r.add("camera.set", "Set the view (eye, target, up, field of view, viewport)", core::CameraSetCommand::parse);
+    r.add("place.sketch", "Place an object along a stroke sketched over the scene (seed §2.3.1)",
+          core::PlaceSketchCommand::parse);
+    return r;
+  }();
+  return registry;
+}
+
+}  // namespace trispline::editor

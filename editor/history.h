@@ -1,0 +1,61 @@
+// trispline::editor::History — the undo stack over a Scene, and the session's command log.
+//
+// execute(cmd): runs cmd->redo(scene); on success pushes it (dropping the redo tail) and appends its JSON line
+// to the log (flushed at once); on failure the scene is unchanged, nothing is pushed, and the CommandError is
+// rethrown for the caller to report. undo()/redo() move through the stack and append {"cmd":"edit.undo"} /
+// {"cmd":"edit.redo"} lines so a crash log replays to the same state. jump_to(n) undoes/redoes until n commands
+// are applied (History panel click).
+#pragma once
+
+#include "core/commands/command.h"
+#include "editor/command_log.h"
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace trispline::editor {
+
+struct ExecutionRecord {      // one line of report.json
+  std::string cmd;            // command id
+  nlohmann::json line;        // the JSON line as executed
+  bool ok = true;
+  std::string error;          // message when !ok
+  double milliseconds = 0;    // wall time of redo()
+  nlohmann::json stats;       // Command::stats() after redo
+  int log_line = 0;           // 1-based line in the replayed log (0 when not replayed)
+};
+
+class History {
+ public:
+  explicit History(core::Scene& scene);
+
+  // Runs and records cmd; throws core::CommandError (scene unchanged) on failure.
+  ExecutionRecord execute(core::CommandPtr cmd);
+  bool can_undo() const { return applied_ > 0; }
+  bool can_redo() const { return applied_ < commands_.size(); }
+  void undo();  // no-op when nothing to undo
+  void redo();  // no-op when nothing to redo
+  void jump_to(std::size_t applied_count);
+  void clear();  // forgets the stack (the scene is not touched)
+
+  std::size_t size() const { return commands_.size(); }
+  std::size_t applied() const { return applied_; }  // commands [0, applied) are in effect
+  const core::Command& at(std::size_t i) const { return *commands_[i]; }
+  // JSON lines of the applied commands only: what Save writes.
+  std::vector<nlohmann::json> applied_lines() const;
+
+  // Optional session log: every execute/undo/redo is appended and flushed.
+  void set_log(CommandLog* log) { log_ = log; }
+  // Called after every change (execute/undo/redo), e.g. to mark the viewport dirty.
+  std::function<void()> on_change;
+
+ private:
+  core::Scene& scene_;
+  std::vector<core::CommandPtr> commands_;
+  std::size_t applied_ = 0;
+  CommandLog* log_ = nullptr;
+};
+
+}  // namespace trispline::editor

@@ -1,0 +1,228 @@
+// The interactive editor's logic without a window: session log + lock + crash recovery (editor/session.h),
+// Save/Open round trip, the Sketch placement tool's "parameter change = one undoable re-run", picking, and the
+// navigation maths (editor/navigation.h). The window itself is checked by the xvfb screenshot test.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <fstream>
+
+#include "editor/navigation.h"
+#include "editor/session.h"
+#include "editor/tools/select_tool.h"
+#include "editor/tools/sketch_tool.h"
+
+namespace fs = std::filesystem;
+using namespace trispline;
+
+namespace {
+
+// A fresh TRISPLINE_STATE_DIR per test.
+class AppSession : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("trispline_app_test_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    ::setenv("TRISPLINE_STATE_DIR", dir_.c_str(), 1);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path dir_;
+  ui::MessageLog messages_;
+};
+
+std::size_t line_count(const fs::path& p) {
+  std::ifstream in(p);
+  std::size_t n = 0;
+  for (std::string s; std::getline(in, s);) n += !s.empty();
+  return n;
+}
+
+const nlohmann::json kTeapot = {{"cmd", "scene.primitive"}, {"kind", "teapot"}, {"name", "teapot"}};
+const nlohmann::json kBox = {{"cmd", "scene.primitive"},
+                             {"kind", "box"},
+                             {"name", "crate"},
+                             {"scale", {0.2, 0.05, 0.05}},
+                             {"translate", {0, 2, 0}}};
+
+}  // namespace
+
+TEST_F(AppSession, StateDirHonoursOverride) { EXPECT_EQ(editor::state_dir(), dir_); }
+
+TEST_F(AppSession, LogIsWrittenAtOnceAndLockRemovedOnCleanExit) {
+  {
+    editor::EditorSession s(messages_);
+    EXPECT_FALSE(s.start(true));
+    EXPECT_TRUE(fs::exists(dir_ / "session.lock"));
+    ASSERT_TRUE(s.execute(kTeapot));
+    EXPECT_EQ(line_count(dir_ / "session.jsonl"), 1u);  // flushed before the next command
+    ASSERT_TRUE(s.undo());
+    EXPECT_EQ(line_count(dir_ / "session.jsonl"), 2u);  // + edit.undo
+    s.finish();
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "session.lock"));
+  editor::EditorSession next(messages_);
+  EXPECT_FALSE(next.start(true)) << "a clean exit must not offer recovery";
+}
+
+TEST_F(AppSession, UnfinishedSessionIsOfferedAndRecovered) {
+  {
+    editor::EditorSession crashed(messages_);
+    crashed.start(true);
+    ASSERT_TRUE(crashed.execute(kTeapot));
+    ASSERT_TRUE(crashed.execute(kBox));
+    ASSERT_TRUE(crashed.undo());
+    // no finish(): the lock stays, as after a crash or a kill
+  }
+  std::ofstream(dir_ / "session.jsonl", std::ios::app) << "{\"cmd\":\"scene.prim";  // torn last line
+  editor::EditorSession s(messages_);
+  const auto offer = s.start(true);
+  ASSERT_TRUE(offer);
+  EXPECT_EQ(offer->commands, 3u);  // teapot, crate, edit.undo; the torn line is dropped
+  ASSERT_TRUE(s.recover(*offer));
+  EXPECT_EQ(s.scene().objects().size(), 1u);
+  EXPECT_EQ(s.history().applied(), 1u);
+  EXPECT_TRUE(s.history().can_redo()) << "recovered history keeps the undone command";
+  s.finish();
+}
+
+TEST_F(AppSession, ErrorsGoToTheLogAndLeaveTheScene) {
+  editor::EditorSession s(messages_);
+  s.start(false);
+  ASSERT_TRUE(s.execute(kTeapot));
+  const std::size_t errors = messages_.error_count();
+  EXPECT_FALSE(s.execute({{"cmd", "scene.primitive"}, {"kind", "teapot"}, {"name", "teapot"}}));  // name taken
+  EXPECT_FALSE(s.execute({{"cmd", "no.such.command"}}));
+  EXPECT_EQ(messages_.error_count(), errors + 2);
+  EXPECT_EQ(s.scene().objects().size(), 1u);
+  EXPECT_EQ(s.history().size(), 1u);
+  s.finish();
+}
+
+TEST_F(AppSession, SaveThenOpenReplaysTheSameSceneAndView) {
+  editor::EditorSession s(messages_);
+  s.start(false);
+  ASSERT_TRUE(s.execute(kTeapot));
+  ASSERT_TRUE(s.execute(kBox));
+  core::Camera view;
+  view.eye = {1, 2, 5};
+  view.viewport = {640, 480};
+  const fs::path saved = dir_ / "saved.jsonl";
+  ASSERT_TRUE(s.save(saved, view));
+  EXPECT_FALSE(s.modified());
+  EXPECT_EQ(line_count(saved), 3u);  // two commands + camera.set
+
+  editor::EditorSession t(messages_);
+  ASSERT_TRUE(t.open(saved));
+  EXPECT_EQ(t.scene().objects().size(), 2u);
+  EXPECT_EQ(t.history().applied(), 3u);  // one undoable step per line
+  EXPECT_TRUE(t.scene().camera_set);
+  EXPECT_EQ(t.scene().camera.eye, view.eye);
+  EXPECT_FALSE(t.modified());
+  s.finish();
+}
+
+TEST_F(AppSession, SketchParameterChangeReRunsAsOneUndoableStep) {
+  editor::EditorSession s(messages_);
+  s.start(false);
+  ASSERT_TRUE(s.execute(kTeapot));
+  ASSERT_TRUE(s.execute(kBox));
+  editor::Navigator nav;
+  nav.frame(
+      s.scene().find("teapot")->world_mesh ? editor::bounds_of(*s.scene().find("teapot")->world_mesh) : core::Aabb{},
+      {800, 600});
+  const core::Camera view = nav.camera({800, 600});
+  std::string selected = "crate";
+  std::set<std::string> hidden;
+  editor::ToolContext ctx{s, view, selected, hidden, [](std::string, std::function<void()> work) { work(); }};
+  editor::SketchTool tool;
+  tool.activate(ctx);
+
+  // A stroke across the middle of the view (over the teapot's body).
+  editor::ToolInput in;
+  in.mouse_px = {330, 330};
+  in.left_pressed = in.left_down = true;
+  tool.handle_input(in, ctx);
+  in.left_pressed = false;
+  for (double x = 340; x <= 470; x += 10) {
+    in.mouse_px = {x, 330 + 0.1 * (x - 400) * (x - 400) / 40};
+    tool.handle_input(in, ctx);
+  }
+  in.left_down = false;
+  in.left_released = true;
+  tool.handle_input(in, ctx);
+  ASSERT_EQ(s.history().applied(), 3u) << (messages_.messages().empty() ? "" : messages_.messages().back().text);
+  EXPECT_EQ(s.history().at(2).id(), "place.sketch");
+  EXPECT_TRUE(s.history().at(2).to_json().contains("camera")) << "the line must carry its view";
+  ASSERT_TRUE(tool.can_rerun(ctx));
+  const auto placed = s.scene().find("crate")->world_mesh;
+
+  ui::PlacementParams p = tool.params();
+  p.height *= 2;
+  tool.set_params(p, ctx);
+  EXPECT_EQ(s.history().applied(), 3u) << "a parameter change replaces the placement, it does not stack";
+  EXPECT_EQ(s.history().size(), 3u);
+  EXPECT_EQ(s.history().at(2).to_json()["height"].get<double>(), p.height);
+  EXPECT_NE(s.scene().find("crate")->world_mesh, placed);
+
+  ui::PlacementParams bad = p;
+  bad.width = -1;  // rejected by the command: the previous placement must come back
+  const auto before_bad = s.scene().find("crate")->world_mesh->positions;
+  tool.set_params(bad, ctx);
+  EXPECT_EQ(s.history().applied(), 3u);
+  EXPECT_EQ(s.scene().find("crate")->world_mesh->positions, before_bad);
+
+  ASSERT_TRUE(s.undo());  // one undo goes back to before the placement
+  EXPECT_EQ(s.scene().find("crate")->ffd, nullptr);
+  s.finish();
+}
+
+TEST(AppPick, PicksTheObjectUnderTheCursor) {
+  ui::MessageLog messages;
+  editor::EditorSession s(messages);
+  ASSERT_TRUE(s.execute(kTeapot));
+  editor::Navigator nav;
+  nav.frame(s.scene().bounds(), {400, 300});
+  const core::Camera c = nav.camera({400, 300});
+  EXPECT_EQ(editor::pick_object(s.scene(), c, {200, 150}).value_or(""), "teapot");
+  EXPECT_FALSE(editor::pick_object(s.scene(), c, {2, 2}));
+  EXPECT_FALSE(editor::pick_object(s.scene(), c, {200, 150}, {"teapot"})) << "hidden objects are not picked";
+}
+
+TEST(AppNavigation, OrbitPanZoomFrame) {
+  editor::Navigator nav;
+  core::Camera start;
+  start.eye = {0, 0, 5};
+  start.target = {0, 0, 0};
+  nav.set_from_camera(start);
+  core::Camera c = nav.camera({800, 600});
+  EXPECT_NEAR(glm::length(c.eye - start.eye), 0.0, 1e-9);
+
+  nav.orbit({100, 0});  // turntable: distance and height kept
+  c = nav.camera({800, 600});
+  EXPECT_NEAR(glm::length(c.eye - c.target), 5.0, 1e-9);
+  EXPECT_NEAR(c.eye.y, 0.0, 1e-9);
+
+  const glm::dvec3 pivot = nav.pivot();
+  nav.pan({40, 0}, {800, 600});
+  EXPECT_GT(glm::length(nav.pivot() - pivot), 0.0);
+
+  const double d = nav.distance();
+  nav.zoom(1, {400, 300}, {800, 600});  // at the centre: pivot stays, distance shrinks
+  EXPECT_LT(nav.distance(), d);
+
+  core::Aabb box;
+  box.extend({-1, -1, -1});
+  box.extend({1, 1, 1});
+  nav.frame(box, {800, 600});
+  c = nav.camera({800, 600});
+  for (double x : {-1.0, 1.0})
+    for (double y : {-1.0, 1.0})
+      for (double z : {-1.0, 1.0}) {
+        const glm::dvec3 px = c.project({x, y, z});
+        EXPECT_GT(px.z, 0);
+        EXPECT_GE(px.x, 0);
+        EXPECT_LE(px.x, 800);
+        EXPECT_GE(px.y, 0);
+        EXPECT_LE(px.y, 600);
+      }
+}

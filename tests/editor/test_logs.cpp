@@ -1,0 +1,91 @@
+// Replay tests: the logs in tests/logs/ run headlessly through the same registry and history as the editor.
+#include "editor/command_registry.h"
+#include "editor/history.h"
+#include "editor/replay.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+namespace fs = std::filesystem;
+using namespace trispline;
+
+namespace {
+
+fs::path logs_dir() { return fs::path(TRISPLINE_SOURCE_DIR) / "tests" / "logs"; }
+
+struct BadLogCase {
+  const char* file;
+  int line;           // expected failing line number
+  const char* field;  // expected field named in the message ("" = no field)
+  const char* words;  // expected substring of the message
+};
+
+class BadLog : public ::testing::TestWithParam<BadLogCase> {};
+
+TEST_P(BadLog, StopsWithFileLineFieldAndLeavesEarlierLines) {
+  const BadLogCase c = GetParam();
+  core::Scene scene;
+  editor::History history(scene);
+  const fs::path log = logs_dir() / c.file;
+  const editor::ReplayResult r = editor::replay_lines(history, log);
+  ASSERT_FALSE(r.ok) << c.file << " replayed without error";
+  EXPECT_EQ(r.failed_line, c.line) << r.error;
+  EXPECT_NE(r.error.find(log.string() + ":" + std::to_string(c.line) + ":"), std::string::npos) << r.error;
+  if (*c.field) {
+    EXPECT_NE(r.error.find(std::string("field '") + c.field + "'"), std::string::npos) << r.error;
+  }
+  EXPECT_NE(r.error.find(c.words), std::string::npos) << r.error;
+  // Every line before the bad one is in effect, the bad one left no trace.
+  EXPECT_EQ(history.applied(), r.records.size() - 1);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Logs, BadLog,
+    ::testing::Values(BadLogCase{"bad_missing_file.jsonl", 3, "path", "does_not_exist.obj"},
+                      BadLogCase{"bad_unsupported_file.jsonl", 1, "path", "xyz"},
+                      BadLogCase{"bad_corrupt_file.jsonl", 1, "path", "corrupt.ply"},
+                      BadLogCase{"bad_nan_vertices.jsonl", 1, "path", "finite"},
+                      BadLogCase{"bad_empty_mesh.jsonl", 1, "path", "empty"},
+                      BadLogCase{"bad_unknown_command.jsonl", 2, "cmd", "scene.explode"},
+                      BadLogCase{"bad_malformed_json.jsonl", 2, "", "malformed JSON"},
+                      BadLogCase{"bad_wrong_field_type.jsonl", 1, "scale", "expected a number"},
+                      BadLogCase{"bad_unknown_kind.jsonl", 1, "kind", "dodecahedron"},
+                      BadLogCase{"bad_duplicate_name.jsonl", 2, "name", "already exists"},
+                      BadLogCase{"bad_undo_nothing.jsonl", 1, "cmd", "nothing to undo"},
+                      BadLogCase{"bad_stroke_one_point.jsonl", 4, "stroke", "2"},
+                      BadLogCase{"bad_zero_width.jsonl", 4, "width", "width"},
+                      BadLogCase{"bad_all_rays_miss.jsonl", 4, "stroke", "rays"},
+                      BadLogCase{"bad_unknown_object.jsonl", 4, "object", "nobody"},
+                      BadLogCase{"bad_order_above_controls.jsonl", 4, "order", "order"}),
+    [](const auto& info) {
+      std::string n = info.param.file;
+      n = n.substr(4, n.size() - 4 - 6);  // strip "bad_" and ".jsonl"
+      return n;
+    });
+
+TEST(GoodLogs, EveryGoodLogReplays) {
+  int count = 0;
+  for (const auto& entry : fs::directory_iterator(logs_dir())) {
+    const std::string name = entry.path().filename().string();
+    if (entry.path().extension() != ".jsonl" || name.rfind("bad_", 0) == 0) continue;
+    core::Scene scene;
+    editor::History history(scene);
+    const auto r = editor::replay_lines(history, entry.path());
+    EXPECT_TRUE(r.ok) << name << ": " << r.error;
+    ++count;
+  }
+  EXPECT_GE(count, 2);
+}
+
+TEST(Registry, UnknownAndMissingCmd) {
+  core::CommandContext ctx;
+  const auto& reg = editor::CommandRegistry::builtin();
+  EXPECT_THROW(reg.parse({{"name", "x"}}, ctx), core::CommandError);
+  EXPECT_THROW(reg.parse({{"cmd", 3}}, ctx), core::CommandError);
+  EXPECT_THROW(reg.parse(nlohmann::json::array(), ctx), core::CommandError);
+  for (const char* id : {"scene.load", "scene.primitive", "scene.remove", "camera.set", "place.sketch"})
+    EXPECT_NE(std::find(reg.ids().begin(), reg.ids().end(), id), reg.ids().end()) << id;
+}
+
+}  // namespace
