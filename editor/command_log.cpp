@@ -77,6 +77,18 @@ void write_log_atomic(const std::filesystem::path& path, const std::vector<nlohm
   if (ec) throw std::runtime_error("cannot rename " + tmp.string() + " to " + path.string() + ": " + ec.message());
 }
 
+void make_paths_relative(std::vector<nlohmann::json>& lines, const std::filesystem::path& dir) {
+  const std::filesystem::path base = std::filesystem::absolute(dir).lexically_normal();
+  for (auto& l : lines) {
+    auto it = l.find("path");
+    if (l.value("cmd", "") != "scene.load" || it == l.end() || !it->is_string()) continue;
+    const std::filesystem::path p(it->get<std::string>());
+    if (!p.is_absolute()) continue;
+    const std::filesystem::path rel = p.lexically_relative(base);
+    if (!rel.empty()) *it = rel.generic_string();
+  }
+}
+
 CommandLog::CommandLog(std::filesystem::path path, bool truncate) : path_(std::move(path)) {
   if (path_.has_parent_path()) std::filesystem::create_directories(path_.parent_path());
   file_ = std::fopen(path_.c_str(), truncate ? "w" : "a");

@@ -43,6 +43,10 @@ std::vector<LogLine> read_log_text(const std::filesystem::path& path);
 void parse_log_line(const std::filesystem::path& path, LogLine& line);
 void write_log_atomic(const std::filesystem::path& path, const std::vector<nlohmann::json>& lines);
 
+// Rewrites absolute "path" fields of scene.load lines relative to `dir` (the folder a log is saved in), as Blender
+// does with "//" paths, so a saved scene and its meshes can move together. Paths on another root stay absolute.
+void make_paths_relative(std::vector<nlohmann::json>& lines, const std::filesystem::path& dir);
+
 class CommandLog {
  public:
   explicit CommandLog(std::filesystem::path path, bool truncate = true);  // throws std::runtime_error

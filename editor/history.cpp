@@ -24,14 +24,16 @@ ExecutionRecord History::execute(core::CommandPtr cmd) {
 
 void History::undo() {
   if (!can_undo()) return;
-  commands_[--applied_]->undo(scene_);
+  commands_[applied_ - 1]->undo(scene_);
+  --applied_;
   if (log_) log_->append({{"cmd", "edit.undo"}});
   if (on_change) on_change();
 }
 
 void History::redo() {
   if (!can_redo()) return;
-  commands_[applied_++]->redo(scene_);
+  commands_[applied_]->redo(scene_);  // may throw (CommandError): then nothing moved
+  ++applied_;
   if (log_) log_->append({{"cmd", "edit.redo"}});
   if (on_change) on_change();
 }

@@ -10,7 +10,10 @@ CommandPtr SceneLoadCommand::parse(const nlohmann::json& j, const CommandContext
   auto c = std::make_unique<SceneLoadCommand>();
   c->path_ = jf::get_string(j, "path");
   if (c->path_.empty()) throw CommandError("field 'path': must not be empty", "path");
-  c->resolved_ = ctx.resolve(c->path_);
+  // Logged with its absolute path, so the session log replays from anywhere; Save makes it relative again
+  // (editor::make_paths_relative).
+  c->resolved_ = std::filesystem::absolute(ctx.resolve(c->path_)).lexically_normal();
+  c->path_ = c->resolved_.string();
   c->name_ = jf::get_string(j, "name", "");
   c->transform_ = jf::get_transform(j);
   if (jf::has(j, "color")) c->color_ = jf::get_vec3(j, "color");

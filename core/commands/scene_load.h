@@ -2,6 +2,7 @@
 //   {"cmd":"scene.load","path":"PATH","name":"ID","translate":[x,y,z],"rotate_deg":[x,y,z],"scale":s|[sx,sy,sz],
 //    "color":[r,g,b]}
 // path: OBJ, PLY, OFF, STL (OpenMesh) or glTF/GLB (tinygltf), relative to the log's folder unless absolute.
+// The command's own log line (to_json) holds the absolute path, so session logs replay from any folder.
 // name: optional, defaults to the file stem made unique ("bunny.001"); an existing name is an error.
 // Transform: scale, then rotation (degrees about x, then y, then z), then translation; world units.
 #pragma once
@@ -24,8 +25,8 @@ class SceneLoadCommand : public SnapshotCommand {
   std::string failure_field() const override { return "path"; }
 
  private:
-  std::string path_;                 // as written in the log
-  std::filesystem::path resolved_;   // absolute or relative to cwd
+  std::string path_;                 // absolute, as logged
+  std::filesystem::path resolved_;   // absolute, normalised
   std::string name_;
   Transform transform_;
   std::optional<glm::dvec3> color_;

@@ -1,15 +1,15 @@
 // The interactive editor's logic without a window: session log + lock + crash recovery (editor/session.h),
 // Save/Open round trip, the Sketch placement tool's "parameter change = one undoable re-run", picking, and the
 // navigation maths (editor/navigation.h). The window itself is checked by the xvfb screenshot test.
-#include <gtest/gtest.h>
-
-#include <cstdlib>
-#include <fstream>
-
 #include "editor/navigation.h"
 #include "editor/session.h"
 #include "editor/tools/select_tool.h"
 #include "editor/tools/sketch_tool.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <fstream>
 
 namespace fs = std::filesystem;
 using namespace trispline;
@@ -83,6 +83,27 @@ TEST_F(AppSession, UnfinishedSessionIsOfferedAndRecovered) {
   EXPECT_EQ(s.history().applied(), 1u);
   EXPECT_TRUE(s.history().can_redo()) << "recovered history keeps the undone command";
   s.finish();
+}
+
+TEST_F(AppSession, UnansweredRecoveryIsAskedAgain) {
+  {
+    editor::EditorSession crashed(messages_);
+    crashed.start(true);
+    ASSERT_TRUE(crashed.execute(kTeapot));
+  }
+  {
+    editor::EditorSession asked(messages_);
+    ASSERT_TRUE(asked.start(true));
+  }  // dies before the user answers
+  editor::EditorSession again(messages_);
+  const auto offer = again.start(true);
+  ASSERT_TRUE(offer);
+  EXPECT_EQ(offer->commands, 1u);
+  again.discard(*offer);
+  again.finish();
+  editor::EditorSession after(messages_);
+  EXPECT_FALSE(after.start(true)) << "answered: not asked again";
+  after.finish();
 }
 
 TEST_F(AppSession, ErrorsGoToTheLogAndLeaveTheScene) {

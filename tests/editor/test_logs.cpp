@@ -1,4 +1,5 @@
 // Replay tests: the logs in tests/logs/ run headlessly through the same registry and history as the editor.
+#include "editor/command_log.h"
 #include "editor/command_registry.h"
 #include "editor/history.h"
 #include "editor/replay.h"
@@ -86,6 +87,40 @@ TEST(Registry, UnknownAndMissingCmd) {
   EXPECT_THROW(reg.parse(nlohmann::json::array(), ctx), core::CommandError);
   for (const char* id : {"scene.load", "scene.primitive", "scene.remove", "camera.set", "place.sketch"})
     EXPECT_NE(std::find(reg.ids().begin(), reg.ids().end(), id), reg.ids().end()) << id;
+}
+
+}  // namespace
+
+namespace {
+
+TEST(CommandLog, LoadLinesCarryAbsolutePathsAndSaveMakesThemRelative) {
+  core::CommandContext ctx;
+  ctx.base_dir = logs_dir();
+  const auto cmd = editor::CommandRegistry::builtin().parse(
+      nlohmann::json::parse(R"({"cmd":"scene.load","path":"data/empty.obj","name":"e"})"), ctx);
+  const std::string logged = cmd->to_json().at("path");
+  EXPECT_TRUE(fs::path(logged).is_absolute()) << logged;
+  EXPECT_EQ(fs::path(logged), (logs_dir() / "data" / "empty.obj").lexically_normal());
+
+  std::vector<nlohmann::json> lines = {cmd->to_json(), {{"cmd", "camera.set"}, {"path", "/not/touched"}}};
+  editor::make_paths_relative(lines, logs_dir());
+  EXPECT_EQ(lines[0].at("path"), "data/empty.obj");
+  EXPECT_EQ(lines[1].at("path"), "/not/touched");
+}
+
+TEST(CommandLog, AtomicWriteThenReadRoundTripsWithCmdFirst) {
+  const fs::path dir = fs::path(TRISPLINE_BINARY_DIR) / "test_out" / "log_roundtrip";
+  fs::create_directories(dir);
+  const fs::path file = dir / "scene.jsonl";
+  const std::vector<nlohmann::json> lines = {{{"cmd", "scene.primitive"}, {"kind", "box"}, {"name", "b"}},
+                                             {{"cmd", "edit.undo"}}};
+  editor::write_log_atomic(file, lines);
+  EXPECT_FALSE(fs::exists(file.string() + ".tmp"));
+  const auto back = editor::read_log(file);
+  ASSERT_EQ(back.size(), 2u);
+  EXPECT_EQ(back[0].json, lines[0]);
+  EXPECT_EQ(back[0].text.rfind(R"({"cmd":"scene.primitive")", 0), 0u) << back[0].text;
+  EXPECT_EQ(back[1].number, 2);
 }
 
 }  // namespace

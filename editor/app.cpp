@@ -1,0 +1,395 @@
+#include "editor/app.h"
+
+#include "core/mesh/image_io.h"
+#include "editor/navigation.h"
+#include "editor/session.h"
+#include "editor/tools/toolbox.h"
+#include "editor/tools/work_queue.h"
+#include "gpu/renderer.h"
+#include "gpu/window.h"
+#include "ui/dialogs.h"
+#include "ui/file_dialog.h"
+#include "ui/history_panel.h"
+#include "ui/imgui_host.h"
+#include "ui/log_panel.h"
+#include "ui/main_menu.h"
+#include "ui/overlays.h"
+#include "ui/scene_panel.h"
+#include "ui/shortcuts.h"
+#include "ui/status_bar.h"
+#include "ui/window_capture.h"
+
+#include <epoxy/gl.h>
+#include <imgui.h>
+
+#include <chrono>
+#include <ctime>
+#include <cstdlib>
+#include <iostream>
+#include <memory>
+#include <utility>
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+namespace trispline::editor {
+namespace {
+
+const std::vector<std::string> kMeshExtensions = {".obj", ".ply", ".off", ".stl", ".gltf", ".glb"};
+const std::vector<std::string> kLogExtensions = {".jsonl"};
+constexpr int kScreenshotFrames = 5;  // frames rendered after the start-up work before the capture
+
+enum class FilePurpose { None, LoadMesh, OpenLog, SaveLog };
+
+// A window with 4x MSAA, reopened without it on a software renderer (llvmpipe: MSAA doubles the frame time).
+// TRISPLINE_MSAA=N forces N samples.
+std::unique_ptr<gpu::Window> make_window(int width, int height) {
+  gpu::WindowOptions o;
+  const char* forced = std::getenv("TRISPLINE_MSAA");
+  if (forced) o.samples = std::atoi(forced);
+  auto window = std::make_unique<gpu::Window>("trispline", width, height, o);
+  if (forced || o.samples == 0 || !gpu::is_software_renderer()) return window;
+  window.reset();
+  o.samples = 0;
+  return std::make_unique<gpu::Window>("trispline", width, height, o);
+}
+
+double ms_between(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+class App {
+ public:
+  explicit App(const AppOptions& options);
+  int run();
+
+ private:
+  void frame();
+  void handle_menu(ui::MenuAction action);
+  void handle_scene(const ui::SceneRequest& request);
+  void handle_file(const fs::path& path);
+  void viewport_input();
+  void render_view();
+  void frame_selected();
+  void open_later(const fs::path& log);  // replays `log` after a "Working…" frame
+  void showcase();                       // screenshot mode: select the placed object, show the Sketch placement tool
+  void request_quit();
+  bool save_or_ask();
+  void ask_file(FilePurpose purpose);  // opens the file dialog for `purpose`
+  int write_screenshot(const fs::path& path);
+
+  const AppOptions options_;
+  std::unique_ptr<gpu::Window> window_;
+  ui::ImGuiHost host_;
+  std::unique_ptr<gpu::Renderer> renderer_;
+  std::string gl_renderer_;
+  ui::MessageLog messages_;
+  EditorSession session_;
+  Navigator nav_;
+  core::Camera view_;
+
+  std::string selected_;
+  std::set<std::string> hidden_;
+  ui::ViewToggles toggles_;
+  ToolContext tool_ctx_;
+  Toolbox tools_;
+
+  ui::LogPanel log_panel_;
+  ui::FileDialog file_dialog_;
+  FilePurpose file_purpose_ = FilePurpose::None;
+  ui::TimingOverlay timing_;
+  WorkQueue work_;
+  std::optional<RecoveryOffer> recovery_;
+  bool show_about_ = false, show_keys_ = false, quit_prompt_ = false, quit_ = false;
+  bool screenshot_requested_ = false;      // F12: written after this frame is drawn
+  int screenshots_ = 0, idle_frames_ = 0;  // F12 count; frames since the last deferred work (screenshot mode)
+};
+
+App::App(const AppOptions& options)
+    : options_(options),
+      window_(make_window(options.width, options.height)),
+      host_(window_->native(), std::string()),  // fixed docked layout: nothing worth an imgui.ini
+      gl_renderer_(gpu::current_gl_renderer()),
+      session_(messages_),
+      tool_ctx_{session_, view_, selected_, hidden_,
+                [this](std::string what, std::function<void()> work) { work_.push(std::move(what), std::move(work)); }},
+      tools_(tool_ctx_) {
+  try {
+    renderer_ = std::make_unique<gpu::Renderer>();
+  } catch (const std::exception& e) {
+    messages_.error(std::string("the 3-D view is off: ") + e.what());
+  }
+  messages_.info("OpenGL renderer: " + gl_renderer_);
+  view_ = nav_.camera(window_->framebuffer_size());
+
+  if (options.screenshot.empty()) recovery_ = session_.start(options.recover_prompt);
+  if (!options.open_log.empty() && !recovery_) open_later(options.open_log);
+}
+
+void App::open_later(const fs::path& log) {
+  tool_ctx_.defer("Opening " + log.filename().string(), [this, log] {
+    selected_.clear();
+    hidden_.clear();
+    session_.open(log);
+    if (!session_.scene().camera_set) nav_.frame(session_.scene().bounds(), view_.viewport);
+    if (!options_.screenshot.empty()) showcase();
+  });
+}
+
+void App::showcase() {
+  const auto& objects = session_.scene().objects();
+  for (const core::SceneObject& o : objects)
+    if (o.placement) selected_ = o.name;
+  if (selected_.empty() && !objects.empty()) selected_ = objects.back().name;
+  tools_.set_active(Toolbox::kSketch);  // its parameters fill the Tool panel
+}
+
+void App::frame_selected() {
+  const core::SceneObject* o = session_.scene().find(selected_);
+  nav_.frame(o && o->world_mesh ? bounds_of(*o->world_mesh) : session_.scene().bounds(), view_.viewport);
+}
+
+void App::request_quit() {
+  quit_prompt_ = session_.modified() && session_.history().applied() > 0;
+  quit_ = !quit_prompt_;
+}
+
+bool App::save_or_ask() {
+  if (!session_.document().empty()) return session_.save(session_.document(), view_);
+  ask_file(FilePurpose::SaveLog);
+  return false;
+}
+
+void App::ask_file(FilePurpose purpose) {
+  const fs::path folder = session_.document().parent_path();
+  file_purpose_ = purpose;
+  if (purpose == FilePurpose::LoadMesh)
+    file_dialog_.open("Load a mesh", ui::FileDialog::Mode::Open, kMeshExtensions);
+  else if (purpose == FilePurpose::OpenLog)
+    file_dialog_.open("Open a command log (.jsonl): it is replayed", ui::FileDialog::Mode::Open, kLogExtensions,
+                      folder);
+  else
+    file_dialog_.open("Save the scene as a command log (.jsonl)", ui::FileDialog::Mode::Save, kLogExtensions, folder);
+}
+
+void App::handle_menu(ui::MenuAction action) {
+  using A = ui::MenuAction;
+  // clang-format off
+  switch (action) {
+    case A::New: session_.new_document(); selected_.clear(); hidden_.clear(); break;
+    case A::Open: ask_file(FilePurpose::OpenLog); break;
+    case A::Save: save_or_ask(); break;
+    case A::SaveAs: ask_file(FilePurpose::SaveLog); break;
+    case A::Quit: request_quit(); break;
+    case A::Undo: session_.undo(); break;
+    case A::Redo: session_.redo(); break;
+    case A::FrameSelected: frame_selected(); break;
+    case A::FrameAll: nav_.frame(session_.scene().bounds(), view_.viewport); break;
+    case A::About: show_about_ = true; break;
+    case A::Keys: show_keys_ = true; break;
+    case A::SelectTool: tools_.set_active(Toolbox::kSelect); break;
+    case A::SketchTool: tools_.set_active(Toolbox::kSketch); break;
+    case A::Screenshot: screenshot_requested_ = true; break;
+    case A::Delete: handle_scene({ui::SceneRequest::Kind::Remove, selected_}); break;
+    case A::None: break;
+  }
+  // clang-format on
+}
+
+void App::handle_scene(const ui::SceneRequest& r) {
+  using K = ui::SceneRequest::Kind;
+  if (r.kind == K::Select || r.kind == K::Frame) selected_ = r.name;
+  if (r.kind == K::Frame) frame_selected();
+  if (r.kind == K::ToggleVisible && !hidden_.erase(r.name)) hidden_.insert(r.name);
+  if (r.kind == K::Load) ask_file(FilePurpose::LoadMesh);
+  if (r.kind == K::AddPrimitive) {
+    const nlohmann::json line = {
+        {"cmd", "scene.primitive"}, {"kind", r.name}, {"name", session_.scene().unique_name(r.name)}};
+    tool_ctx_.defer("Adding a " + r.name, [this, line] {
+      if (session_.execute(line)) selected_ = line["name"];
+    });
+  }
+  if (r.kind == K::Remove && !r.name.empty() && session_.has_command("scene.remove") &&
+      session_.execute({{"cmd", "scene.remove"}, {"name", r.name}}))
+    selected_.clear();
+}
+
+void App::handle_file(const fs::path& chosen) {
+  fs::path path = chosen;
+  switch (file_purpose_) {
+    case FilePurpose::LoadMesh: {
+      const nlohmann::json line = {
+          {"cmd", "scene.load"}, {"path", path.string()}, {"name", session_.scene().unique_name(path.stem().string())}};
+      tool_ctx_.defer("Loading " + path.filename().string(), [this, line] {
+        if (session_.execute(line)) selected_ = line["name"];
+      });
+      break;
+    }
+    case FilePurpose::OpenLog:
+      open_later(path);
+      break;
+    case FilePurpose::SaveLog:
+      if (path.extension() != ".jsonl") path += ".jsonl";
+      if (session_.save(path, view_) && quit_prompt_) quit_ = true;
+      break;
+    case FilePurpose::None:
+      break;
+  }
+  file_purpose_ = FilePurpose::None;
+}
+
+void App::viewport_input() {
+  const ImGuiIO& io = ImGui::GetIO();
+  if (io.WantCaptureMouse || !work_.empty()) return;
+  const NavInput nav = nav_input_from_imgui();
+  const bool nav_owns_left = nav_.update(nav, view_.viewport);
+  if (!nav_owns_left && !(io.KeyAlt && io.MouseClicked[0])) tools_.handle_mouse(nav.mouse_px);
+}
+
+void App::render_view() {
+  const glm::ivec2 fb = window_->framebuffer_size();
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glViewport(0, 0, fb.x, fb.y);
+  if (!renderer_ || fb.x <= 0 || fb.y <= 0) {
+    glClearColor(0.15f, 0.15f, 0.16f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    return;
+  }
+  gpu::ViewOptions vo = ui::view_options(toggles_);
+  vo.selected = selected_;
+  tools_.decorate(vo);
+  try {
+    const core::Scene shown = hidden_.empty() ? core::Scene() : session_.shown_scene(hidden_);
+    renderer_->draw(hidden_.empty() ? session_.scene() : shown, view_, vo);
+  } catch (const std::exception& e) {
+    messages_.error(std::string("drawing failed, the 3-D view is off: ") + e.what());
+    renderer_.reset();
+  }
+}
+
+void App::frame() {
+  host_.new_frame();
+  nav_.follow(session_.scene().camera, session_.scene().camera_set, window_->framebuffer_size());
+  const ImGuiIO& io = ImGui::GetIO();
+  view_ = nav_.camera(window_->framebuffer_size());
+  if (!session_.scene().find(selected_)) selected_.clear();
+
+  handle_menu(ui::draw_main_menu(toggles_, session_.menu_state()));
+  handle_menu(work_.empty() ? ui::poll_shortcuts() : ui::MenuAction::None);
+
+  const ui::DockLayout layout =
+      ui::compute_layout(io.DisplaySize, ImGui::GetFrameHeight(), ui::status_bar_height(), {}, toggles_.show_tool_panel,
+                         toggles_.show_side_panels, toggles_.show_log_panel);
+  if (toggles_.show_tool_panel) tools_.draw_panel(layout.tool);
+  if (toggles_.show_side_panels) {
+    ui::ScenePanelState sps{selected_, hidden_, session_.has_command("scene.remove")};
+    handle_scene(ui::draw_scene_panel(layout.scene, session_.scene(), sps));
+    const ui::HistoryPanelResult hr = ui::draw_history_panel(layout.history, session_.history_view());
+    if (hr.jump_to) session_.jump_to(*hr.jump_to);
+    if (hr.undo) session_.undo();
+    if (hr.redo) session_.redo();
+  }
+  if (toggles_.show_log_panel) log_panel_.draw(layout.log, messages_);
+
+  ui::StatusInfo st = session_.status();
+  st.hint = tools_.hint();
+  ui::draw_status_bar(st);
+
+  if (auto chosen = file_dialog_.draw()) handle_file(*chosen);
+  ui::draw_about_window(&show_about_, gl_renderer_);
+  ui::draw_keys_window(&show_keys_);
+  if (recovery_) {
+    const ui::RecoverChoice c = ui::draw_recover_prompt(recovery_->commands, recovery_->log.string());
+    if (c == ui::RecoverChoice::Recover) {
+      const RecoveryOffer offer = *recovery_;
+      tool_ctx_.defer("Recovering the previous session", [this, offer] { session_.recover(offer); });
+    } else if (c == ui::RecoverChoice::Discard) {
+      session_.discard(*recovery_);
+      if (!options_.open_log.empty()) open_later(options_.open_log);
+    }
+    if (c != ui::RecoverChoice::Pending) recovery_.reset();
+  }
+  if (quit_prompt_ && !file_dialog_.is_open()) {
+    const ui::QuitChoice q = ui::draw_quit_prompt(st.document);
+    if (q == ui::QuitChoice::Quit) quit_ = true;
+    if (q == ui::QuitChoice::Cancel) quit_prompt_ = false;
+    if (q == ui::QuitChoice::SaveAndQuit && save_or_ask()) quit_ = true;
+  }
+
+  viewport_input();
+  if (toggles_.timing_overlay) timing_.draw(layout.viewport);
+  const ui::Rect& free = layout.viewport;  // what the panels leave visible: F / Home frame into it
+  const glm::dvec2 s(io.DisplayFramebufferScale.x, io.DisplayFramebufferScale.y), lo(free.pos.x, free.pos.y);
+  nav_.set_visible_rect(lo * s, (lo + glm::dvec2(free.size.x, free.size.y)) * s);
+  work_.draw_overlay();
+  render_view();
+  host_.render();
+}
+
+int App::write_screenshot(const fs::path& path) {
+  const glm::ivec2 fb = window_->framebuffer_size();
+  try {
+    core::write_image_rgba8(path, fb.x, fb.y, ui::capture_back_buffer(fb.x, fb.y));
+    messages_.info("screenshot: " + fs::absolute(path).string());
+    if (!options_.screenshot.empty()) std::cout << "screenshot: " << path.string() << '\n';
+    return 0;
+  } catch (const std::exception& e) {
+    messages_.error(std::string("cannot write the screenshot: ") + e.what());
+    return 1;
+  }
+}
+
+int App::run() {
+  auto last = Clock::now();
+  while (true) {
+    if (work_.run_ready(messages_)) idle_frames_ = 0;  // its "Working…" frame was on screen
+    const bool busy = !work_.empty() || ImGui::GetIO().MouseDown[0] || ImGui::GetIO().MouseDown[2];
+    if (busy || !options_.screenshot.empty())
+      gpu::Window::poll_events();
+    else
+      gpu::Window::wait_events(0.25);
+    const auto start = Clock::now();
+    if (window_->should_close()) {
+      window_->set_should_close(false);
+      request_quit();
+    }
+    frame();
+    if (!options_.screenshot.empty() && work_.empty() && ++idle_frames_ >= kScreenshotFrames)
+      return write_screenshot(options_.screenshot);
+    if (std::exchange(screenshot_requested_, false))
+      write_screenshot("trispline-screenshot-" + std::to_string(std::time(nullptr)) + "-" +
+                       std::to_string(++screenshots_) + ".png");
+    window_->swap();
+    const auto end = Clock::now();
+    timing_.add_frame(ms_between(start, end), ms_between(last, end));
+    last = end;
+    if (quit_) {
+      session_.finish();
+      return 0;
+    }
+  }
+}
+
+}  // namespace
+
+int run_editor(const AppOptions& options) {
+  std::unique_ptr<App> app;
+  try {
+    app = std::make_unique<App>(options);
+  } catch (const gpu::GlContextError& e) {
+    std::cerr << "trispline: no window can be created: " << e.what() << "\n"
+              << "  headless, `trispline replay LOG --out DIR` renders a log without a window\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "trispline: cannot start the editor: " << e.what() << '\n';
+    return 2;
+  }
+  try {
+    return app->run();
+  } catch (const std::exception& e) {
+    std::cerr << "trispline: internal error, the session log is kept for recovery: " << e.what() << '\n';
+    return 1;
+  }
+}
+
+}  // namespace trispline::editor

@@ -1,0 +1,10 @@
+# The interactive editor's sources (editor/app.*, navigation, session, tools), included by editor/CMakeLists.txt.
+# They need trispline_ui (ImGui panels), trispline_gpu (window, renderer) and core; the editor target links them.
+set(TRISPLINE_EDITOR_APP_SOURCES
+    app.cpp
+    navigation.cpp
+    session.cpp
+    tools/select_tool.cpp
+    tools/toolbox.cpp
+    tools/work_queue.cpp
+    tools/sketch_tool.cpp)

@@ -1,0 +1,326 @@
+#include "editor/session.h"
+
+#include "editor/command_registry.h"
+#include "editor/replay.h"
+
+#include <signal.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+
+namespace fs = std::filesystem;
+
+namespace trispline::editor {
+
+namespace {
+
+bool process_alive(long pid) {
+  if (pid <= 0) return false;
+  return ::kill(pid_t(pid), 0) == 0 || errno == EPERM;
+}
+
+// Reads the parseable prefix of a (possibly crash-truncated) log: JSON-object lines up to the first bad one.
+std::vector<nlohmann::json> readable_prefix(const fs::path& path, bool* truncated) {
+  std::vector<nlohmann::json> lines;
+  std::ifstream in(path);
+  std::string text;
+  *truncated = false;
+  while (std::getline(in, text)) {
+    if (text.find_first_not_of(" \t\r") == std::string::npos) continue;
+    nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
+    if (j.is_discarded() || !j.is_object()) {
+      *truncated = true;
+      break;
+    }
+    lines.push_back(std::move(j));
+  }
+  return lines;
+}
+
+nlohmann::json vec3(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
+
+}  // namespace
+
+fs::path state_dir() {
+  if (const char* d = std::getenv("TRISPLINE_STATE_DIR"); d && *d) return d;
+  if (const char* x = std::getenv("XDG_STATE_HOME"); x && *x) return fs::path(x) / "trispline";
+  if (const char* h = std::getenv("HOME"); h && *h) return fs::path(h) / ".local" / "state" / "trispline";
+  return fs::temp_directory_path() / "trispline-state";
+}
+
+nlohmann::json camera_line(const core::Camera& c) {
+  return {{"cmd", "camera.set"}, {"eye", vec3(c.eye)},   {"target", vec3(c.target)},
+          {"up", vec3(c.up)},    {"fov_deg", c.fov_deg}, {"viewport", {c.viewport.x, c.viewport.y}}};
+}
+
+EditorSession::EditorSession(ui::MessageLog& messages) : messages_(messages), history_(scene_) {
+  history_.on_change = [this] { ++changes_; };
+}
+
+EditorSession::~EditorSession() {
+  history_.set_log(nullptr);
+  log_.reset();
+}
+
+std::optional<RecoveryOffer> EditorSession::start(bool check_previous) {
+  std::optional<RecoveryOffer> offer;
+  std::error_code ec;
+  dir_ = state_dir();
+  fs::create_directories(dir_, ec);
+  if (ec) {
+    messages_.warning("no session log (crash recovery off): cannot create " + dir_.string() + ": " + ec.message());
+    return offer;
+  }
+  log_path_ = dir_ / "session.jsonl";
+  lock_path_ = dir_ / "session.lock";
+  if (fs::exists(lock_path_)) {
+    long pid = 0;
+    std::ifstream(lock_path_) >> pid;
+    if (pid != long(::getpid()) && process_alive(pid)) {
+      messages_.warning("another trispline editor (pid " + std::to_string(pid) + ") uses " + log_path_.string() +
+                        "; this one logs to session-" + std::to_string(::getpid()) + ".jsonl");
+      log_path_ = dir_ / ("session-" + std::to_string(::getpid()) + ".jsonl");
+      lock_path_ = dir_ / ("session-" + std::to_string(::getpid()) + ".lock");
+    } else {
+      offer = keep_unfinished(check_previous);
+    }
+  }
+  open_session_log();
+  std::ofstream(lock_path_, std::ios::trunc) << ::getpid() << '\n';
+  return offer;
+}
+
+std::optional<RecoveryOffer> EditorSession::keep_unfinished(bool ask) {
+  const fs::path aside = dir_ / "session.recovered.jsonl", pending = dir_ / "session.recover-pending";
+  std::error_code ec;
+  bool truncated = false;
+  std::vector<nlohmann::json> lines;
+  if (fs::file_size(log_path_, ec) > 0 && !ec) lines = readable_prefix(log_path_, &truncated);
+  if (!lines.empty()) {
+    try {
+      write_log_atomic(aside, lines);
+      std::ofstream(pending) << "asked\n";
+    } catch (const std::exception& e) {
+      messages_.error(std::string("cannot keep the unfinished session's log: ") + e.what());
+      return std::nullopt;
+    }
+    if (truncated) messages_.warning("the unfinished session's log ends with a damaged line; it was dropped");
+  } else if (fs::exists(pending, ec)) {  // the run that was asked died before answering: ask again
+    lines = readable_prefix(aside, &truncated);
+  }
+  if (lines.empty()) return std::nullopt;
+  if (ask) return RecoveryOffer{aside, lines.size()};
+  fs::remove(pending, ec);
+  messages_.info("unfinished previous session kept in " + aside.string());
+  return std::nullopt;
+}
+
+void EditorSession::open_session_log() {
+  if (log_path_.empty()) return;
+  history_.set_log(nullptr);
+  log_.reset();
+  try {
+    log_ = std::make_unique<CommandLog>(log_path_, true);
+    history_.set_log(log_.get());
+  } catch (const std::exception& e) {
+    messages_.warning(std::string("no session log (crash recovery off): ") + e.what());
+  }
+}
+
+void EditorSession::finish() {
+  history_.set_log(nullptr);
+  log_.reset();
+  std::error_code ec;
+  if (!lock_path_.empty()) fs::remove(lock_path_, ec);
+}
+
+bool EditorSession::has_command(const std::string& id) const {
+  for (const std::string& known : CommandRegistry::builtin().ids())
+    if (known == id) return true;
+  return false;
+}
+
+core::Scene EditorSession::shown_scene(const std::set<std::string>& hidden) const {
+  core::Scene shown = scene_;
+  for (const std::string& name : hidden)
+    if (core::SceneObject* o = shown.find(name)) o->visible = false;
+  return shown;
+}
+
+bool EditorSession::execute(const nlohmann::json& line, const fs::path& base_dir) {
+  try {
+    core::CommandContext ctx;
+    std::error_code ec;
+    ctx.base_dir = base_dir.empty() ? fs::current_path(ec) : base_dir;
+    core::CommandPtr cmd = CommandRegistry::builtin().parse(line, ctx);
+    const ExecutionRecord rec = history_.execute(std::move(cmd));
+    const std::string label = history_.at(history_.applied() - 1).label();
+    last_ms_ = rec.milliseconds;
+    last_label_ = label;
+    char ms[32];
+    std::snprintf(ms, sizeof ms, "%.1f", rec.milliseconds);
+    messages_.info(label + " (" + ms + " ms)");
+    return true;
+  } catch (const core::CommandError& e) {
+    const std::string cmd = line.contains("cmd") && line["cmd"].is_string() ? line["cmd"].get<std::string>() : "?";
+    const std::string what = e.what(), field = "field '" + e.field() + "'";
+    const bool named = e.field().empty() || what.find(field) != std::string::npos;  // message names it already
+    messages_.error(cmd + ": " + (named ? "" : field + ": ") + what);
+  } catch (const std::exception& e) {
+    messages_.error(std::string("command failed: ") + e.what());
+  }
+  return false;
+}
+
+bool EditorSession::undo() {
+  if (!history_.can_undo()) return false;
+  try {
+    const std::string label = history_.at(history_.applied() - 1).label();
+    history_.undo();
+    messages_.info("Undo " + label);
+    return true;
+  } catch (const std::exception& e) {
+    messages_.error(std::string("undo failed: ") + e.what());
+  }
+  return false;
+}
+
+bool EditorSession::redo() {
+  if (!history_.can_redo()) return false;
+  try {
+    const std::string label = history_.at(history_.applied()).label();
+    history_.redo();
+    messages_.info("Redo " + label);
+    return true;
+  } catch (const std::exception& e) {
+    messages_.error(std::string("redo failed: ") + e.what());
+  }
+  return false;
+}
+
+bool EditorSession::jump_to(std::size_t applied_count) {
+  try {
+    history_.jump_to(applied_count);
+    return true;
+  } catch (const std::exception& e) {
+    messages_.error(std::string("history jump failed: ") + e.what());
+  }
+  return false;
+}
+
+void EditorSession::new_document() {
+  history_.clear();
+  scene_.clear();
+  scene_.camera_set = false;
+  document_.clear();
+  last_ms_ = -1;
+  last_label_.clear();
+  open_session_log();  // the old lines no longer replay to this document
+  saved_ = marker();
+  ++changes_;
+}
+
+bool EditorSession::replay_into(const fs::path& log, const char* what) {
+  new_document();
+  const ReplayResult r = replay_lines(history_, log);
+  std::size_t ok = 0;
+  double ms = 0;
+  for (const ExecutionRecord& rec : r.records) {
+    if (rec.ok) ++ok;
+    ms += rec.milliseconds;
+  }
+  char line[256];
+  std::snprintf(line, sizeof line, "%s %s: %zu command%s in %.0f ms", what, log.filename().string().c_str(), ok,
+                ok == 1 ? "" : "s", ms);
+  messages_.info(line);
+  if (!r.ok) messages_.error(r.error);
+  last_ms_ = ms;
+  last_label_ = std::string(what) + " " + log.filename().string();
+  return r.ok;
+}
+
+bool EditorSession::open(const fs::path& log) {
+  std::error_code ec;
+  if (!fs::is_regular_file(log, ec)) {
+    messages_.error("cannot open " + log.string() + ": no such file");
+    return false;
+  }
+  const bool ok = replay_into(log, "Opened");
+  document_ = fs::absolute(log, ec);
+  saved_ = ok ? marker() : std::pair<std::size_t, const core::Command*>{0, nullptr};
+  return ok;
+}
+
+bool EditorSession::save(const fs::path& path, const core::Camera& view) {
+  try {
+    std::vector<nlohmann::json> lines = history_.applied_lines();
+    lines.push_back(camera_line(view));
+    make_paths_relative(lines, fs::absolute(path).parent_path());
+    write_log_atomic(path, lines);
+    document_ = path;
+    saved_ = marker();
+    messages_.info("Saved " + path.string() + " (" + std::to_string(lines.size()) + " lines)");
+    return true;
+  } catch (const std::exception& e) {
+    messages_.error("cannot save " + path.string() + ": " + e.what());
+  }
+  return false;
+}
+
+bool EditorSession::recover(const RecoveryOffer& offer) {
+  std::error_code ec;
+  fs::remove(dir_ / "session.recover-pending", ec);
+  return replay_into(offer.log, "Recovered");
+}
+
+void EditorSession::discard(const RecoveryOffer& offer) {
+  std::error_code ec;
+  fs::remove(dir_ / "session.recover-pending", ec);
+  messages_.info("previous session discarded (its log is kept in " + offer.log.string() + ")");
+}
+
+std::pair<std::size_t, const core::Command*> EditorSession::marker() const {
+  const std::size_t n = history_.applied();
+  return {n, n > 0 ? &history_.at(n - 1) : nullptr};
+}
+
+bool EditorSession::modified() const { return marker() != saved_; }
+
+ui::StatusInfo EditorSession::status() const {
+  ui::StatusInfo st;
+  st.document = document_.empty() ? "untitled" : document_.filename().string();
+  st.modified = modified();
+  for (const core::SceneObject& o : scene_.objects()) {
+    ++st.objects;
+    if (!o.world_mesh) continue;
+    st.vertices += o.world_mesh->vertex_count();
+    st.triangles += o.world_mesh->triangle_count();
+  }
+  st.last_command = last_label_;
+  st.last_command_ms = last_ms_;
+  return st;
+}
+
+ui::MenuState EditorSession::menu_state() const {
+  ui::MenuState m;
+  m.can_undo = history_.can_undo();
+  m.can_redo = history_.can_redo();
+  if (m.can_undo) m.undo_label = history_.at(history_.applied() - 1).label();
+  if (m.can_redo) m.redo_label = history_.at(history_.applied()).label();
+  m.has_document_path = !document_.empty();
+  return m;
+}
+
+ui::HistoryView EditorSession::history_view() const {
+  ui::HistoryView v;
+  v.applied = history_.applied();
+  v.can_undo = history_.can_undo();
+  v.can_redo = history_.can_redo();
+  for (std::size_t i = 0; i < history_.size(); ++i) v.labels.push_back(history_.at(i).label());
+  return v;
+}
+
+}  // namespace trispline::editor

@@ -1,0 +1,105 @@
+// trispline::editor::EditorSession — the interactive editor's document: the scene, its undo history, the
+// session command log with its lock (crash recovery), and Open / Save / New. Every error is reported to the
+// Log panel's MessageLog; no member throws.
+//
+// Session files live in state_dir() (TRISPLINE_STATE_DIR, else $XDG_STATE_HOME/trispline, else
+// ~/.local/state/trispline):
+//   session.jsonl            every executed / undone / redone command of this run, flushed at once (History log)
+//   session.lock             exists while an editor runs (holds its pid); removed on clean exit
+//   session.recovered.jsonl  the previous unfinished session's log, moved aside at start (the readable prefix)
+//   session.recover-pending  the recovery question is open (asked again if this run dies before answering)
+// A lock whose pid is still alive belongs to another running editor: this one then uses session-<pid>.* files.
+#pragma once
+
+#include "core/scene/scene.h"
+#include "editor/command_log.h"
+#include "editor/history.h"
+#include "ui/history_panel.h"
+#include "ui/main_menu.h"
+#include "ui/message_log.h"
+#include "ui/status_bar.h"
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+
+namespace trispline::editor {
+
+std::filesystem::path state_dir();  // see above; not created
+
+// A previous session that did not end cleanly and left commands behind.
+struct RecoveryOffer {
+  std::filesystem::path log;  // session.recovered.jsonl
+  std::size_t commands = 0;   // lines in it (edit.undo / edit.redo included)
+};
+
+// A camera.set log line for `camera` (eye, target, up, fov_deg, viewport).
+nlohmann::json camera_line(const core::Camera& camera);
+
+class EditorSession {
+ public:
+  explicit EditorSession(ui::MessageLog& messages);
+  ~EditorSession();  // closes the log; the lock stays unless finish() ran (so a crash is detected next time)
+  EditorSession(const EditorSession&) = delete;
+  EditorSession& operator=(const EditorSession&) = delete;
+
+  // Opens the session log and lock. With check_previous, an unfinished previous session is moved aside and
+  // returned as an offer (without it, it is still moved aside, and the Log says where).
+  std::optional<RecoveryOffer> start(bool check_previous);
+  void finish();  // clean exit: closes the log and removes the lock
+
+  // Parses `line` with the command registry and executes it (relative paths against base_dir, default: the
+  // current folder). Errors go to the Log in red; the scene is then unchanged. Returns success.
+  bool execute(const nlohmann::json& line, const std::filesystem::path& base_dir = {});
+  bool undo();
+  bool redo();
+  bool jump_to(std::size_t applied_count);
+
+  void new_document();                          // empty scene and history; restarts the session log
+  bool open(const std::filesystem::path& log);  // new_document() + replay (each line one undoable step)
+  bool save(const std::filesystem::path& path, const core::Camera& view);  // applied lines + camera.set, atomic
+  bool recover(const RecoveryOffer& offer);                                // new_document() + replay of the offer's log
+  void discard(const RecoveryOffer& offer);                                // keeps the file, says so
+
+  core::Scene& scene() { return scene_; }
+  const core::Scene& scene() const { return scene_; }
+  History& history() { return history_; }
+  const History& history() const { return history_; }
+  ui::MessageLog& messages() { return messages_; }
+  bool has_command(const std::string& id) const;  // registered in the command registry
+  // The scene as drawn with the objects in `hidden` invisible (hiding is view state, not a command): a shallow
+  // copy, the meshes are shared pointers.
+  core::Scene shown_scene(const std::set<std::string>& hidden) const;
+
+  const std::filesystem::path& document() const { return document_; }  // last opened/saved log ("" = untitled)
+  bool modified() const;
+  double last_ms() const { return last_ms_; }  // wall time of the last execute, < 0 = none
+  const std::string& last_label() const { return last_label_; }
+  std::uint64_t change_count() const { return changes_; }  // bumped on every history change
+  ui::StatusInfo status() const;         // for the status bar (document, counts, last command; no hint)
+  ui::HistoryView history_view() const;  // for the History panel
+  ui::MenuState menu_state() const;      // undo/redo availability and labels for the Edit menu
+
+ private:
+  bool replay_into(const std::filesystem::path& log, const char* what);
+  std::optional<RecoveryOffer> keep_unfinished(bool ask);  // previous run died: move its log aside, maybe offer
+  void open_session_log();
+  std::pair<std::size_t, const core::Command*> marker() const;
+
+  ui::MessageLog& messages_;
+  core::Scene scene_;
+  History history_;
+  std::unique_ptr<CommandLog> log_;
+  std::filesystem::path dir_, log_path_, lock_path_;
+  std::filesystem::path document_;
+  std::pair<std::size_t, const core::Command*> saved_{0, nullptr};
+  double last_ms_ = -1;
+  std::string last_label_;
+  std::uint64_t changes_ = 0;
+};
+
+}  // namespace trispline::editor

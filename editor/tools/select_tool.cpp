@@ -1,0 +1,65 @@
+#include "editor/tools/select_tool.h"
+
+#include "core/raycast/ray_caster.h"
+#include "editor/session.h"
+#include "ui/theme.h"
+
+#include <imgui.h>
+
+namespace trispline::editor {
+
+std::optional<std::string> pick_object(const core::Scene& scene, const core::Camera& camera, glm::dvec2 px,
+                                       const std::set<std::string>& hidden) {
+  core::RayCaster caster;
+  std::vector<std::string> names;
+  for (const core::SceneObject& o : scene.objects()) {
+    if (!o.visible || hidden.count(o.name) || !o.world_mesh || o.world_mesh->empty()) continue;
+    caster.add_mesh(*o.world_mesh);
+    names.push_back(o.name);
+  }
+  if (names.empty()) return std::nullopt;
+  caster.commit();
+  const auto hit = caster.intersect(camera.eye, camera.ray_direction(px));
+  if (!hit || hit->geometry < 0 || hit->geometry >= int(names.size())) return std::nullopt;
+  return names[hit->geometry];
+}
+
+ui::ToolEntry SelectTool::entry() const { return {"Select", "Q", "Click an object to select it"}; }
+
+void SelectTool::handle_input(const ToolInput& in, ToolContext& ctx) {
+  if (in.left_pressed) {
+    pressed_ = true;
+    press_px_ = in.mouse_px;
+  }
+  if (in.left_released && pressed_) {
+    pressed_ = false;
+    if (glm::length(in.mouse_px - press_px_) > 4.0) return;  // a drag, not a click
+    try {
+      const auto name = pick_object(ctx.session.scene(), ctx.view, in.mouse_px, ctx.hidden);
+      ctx.selected = name.value_or("");
+    } catch (const std::exception& e) {
+      ctx.session.messages().error(std::string("pick failed: ") + e.what());
+    }
+  }
+}
+
+void SelectTool::draw_panel(ToolContext& ctx) {
+  const core::SceneObject* o = ctx.session.scene().find(ctx.selected);
+  if (!o) {
+    ImGui::TextColored(ui::colors::dim, "Nothing selected.");
+    ImGui::TextWrapped("Click an object in the viewport or in the Scene panel.");
+    return;
+  }
+  ImGui::Text("%s", o->name.c_str());
+  ImGui::TextColored(ui::colors::dim, "%s", o->source.c_str());
+  if (o->world_mesh)
+    ImGui::Text("%zu vertices, %zu triangles", o->world_mesh->vertex_count(), o->world_mesh->triangle_count());
+  const auto& t = o->transform;
+  ImGui::Text("translate %.3g %.3g %.3g", t.translate.x, t.translate.y, t.translate.z);
+  ImGui::Text("rotate    %.3g %.3g %.3g deg", t.rotate_deg.x, t.rotate_deg.y, t.rotate_deg.z);
+  ImGui::Text("scale     %.3g %.3g %.3g", t.scale.x, t.scale.y, t.scale.z);
+  if (o->ffd) ImGui::TextColored(ui::colors::accent, "Deformed by an FFD lattice");
+  if (o->placement) ImGui::Text("Placed: %d x %d contact rays", o->placement->samples_u, o->placement->samples_v);
+}
+
+}  // namespace trispline::editor

@@ -1,0 +1,71 @@
+// trispline::editor::SketchTool — Sketch placement (seed §2.3.1): choose the object to place, left-drag a stroke
+// over the scene; on mouse-up the tool executes one `place.sketch` command (docs/commands.md) carrying the
+// stroke (viewport pixels, top-left origin), the parameters and the view it was drawn with ("camera"), so the
+// log line is self-contained.
+//
+// Changing a parameter after a placement re-runs it as ONE undoable step: when the tool's last place.sketch is
+// still the top applied command, it is undone and the edited command executed in its place (if that fails the
+// old placement is redone, so the scene is as before). Edits commit on IsItemDeactivatedAfterEdit, never per frame.
+// A place.sketch on top of the history that came from elsewhere (an opened log, a redo) is adopted the same way,
+// like Blender's "Adjust Last Operation" panel: its parameters fill the panel and edits re-run it.
+#pragma once
+
+#include "editor/history.h"
+#include "editor/tools/tool.h"
+#include "ui/placement_panel.h"
+
+#include <nlohmann/json.hpp>
+
+#include <optional>
+#include <vector>
+
+namespace trispline::editor {
+
+// The place.sketch line for a stroke drawn with `view` (fields exactly as in docs/commands.md).
+nlohmann::json place_sketch_line(const std::string& object, const std::vector<glm::dvec2>& stroke_px,
+                                 const ui::PlacementParams& params, const core::Camera& view);
+
+// Reads a place.sketch line back (stroke, parameters, camera if present). False if a field is missing/mistyped.
+bool parse_place_sketch_line(const nlohmann::json& line, std::string* object, std::vector<glm::dvec2>* stroke,
+                             ui::PlacementParams* params, std::optional<core::Camera>* camera);
+
+class SketchTool : public Tool {
+ public:
+  ui::ToolEntry entry() const override;
+  void activate(ToolContext& ctx) override;
+  void deactivate(ToolContext& ctx) override;
+  void handle_input(const ToolInput& in, ToolContext& ctx) override;
+  void draw_panel(ToolContext& ctx) override;
+  void decorate(gpu::ViewOptions& options) const override;
+  std::string hint() const override;
+
+  const ui::PlacementParams& params() const { return params_; }
+  // What a committed edit in the panel does: takes `params`, and re-runs the tool's last placement with them as
+  // one undoable step when it is still the top of the history (otherwise they apply to the next stroke).
+  void set_params(const ui::PlacementParams& params, ToolContext& ctx);
+  void set_object(const std::string& name) { object_ = name; }
+  // True while the last placement (the tool's own or an adopted one) can be re-run by a parameter change.
+  bool can_rerun(const ToolContext& ctx) const;
+
+ private:
+  void place(ToolContext& ctx, std::vector<glm::dvec2> stroke, const core::Camera& view);
+  void replace_last(ToolContext& ctx);  // parameter change after a placement
+  bool last_is_top(const History& history) const;
+  void adopt_top(const ToolContext& ctx);  // a place.sketch from elsewhere on top of the history
+
+  ui::PlacementParams params_;
+  std::string object_;              // object to place
+  std::string followed_selection_;  // selection the combo last followed
+  std::vector<glm::dvec2> stroke_;  // being drawn
+  bool drawing_ = false;
+
+  // The tool's last successful placement (for re-running with new parameters).
+  std::vector<glm::dvec2> last_stroke_;
+  core::Camera last_view_;
+  std::string last_object_;
+  const void* last_command_ = nullptr;  // identity of the History entry it produced
+  std::size_t last_applied_ = 0;
+  const void* adopt_checked_ = nullptr;  // top command adopt_top() examined last
+};
+
+}  // namespace trispline::editor

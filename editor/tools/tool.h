@@ -1,0 +1,51 @@
+// trispline::editor::Tool — an interactive viewport tool (Select, Sketch placement, later pressing, incisions…).
+// A tool reads mouse input over the viewport, draws its parameters in the Tool panel, decorates the view
+// (e.g. the stroke being sketched) and changes the document only by executing commands through the session.
+#pragma once
+
+#include "core/scene/camera.h"
+#include "gpu/renderer.h"
+#include "ui/tool_panel.h"
+
+#include <glm/glm.hpp>
+
+#include <functional>
+#include <set>
+#include <string>
+
+namespace trispline::editor {
+
+class EditorSession;
+
+// Mouse state for the active tool; only filled when ImGui does not want the mouse and navigation does not own
+// the left button.
+struct ToolInput {
+  glm::dvec2 mouse_px{0};     // viewport pixels, top-left origin (framebuffer pixels)
+  bool left_pressed = false;  // went down this frame
+  bool left_down = false;
+  bool left_released = false;  // went up this frame
+  bool shift = false, ctrl = false;
+};
+
+struct ToolContext {
+  EditorSession& session;
+  const core::Camera& view;             // the current view; viewport = window framebuffer size
+  std::string& selected;                // selected object name ("" = none)
+  const std::set<std::string>& hidden;  // objects hidden in the viewport
+  // Runs `work` after one frame showing "Working… <what>" (long synchronous commands).
+  std::function<void(std::string what, std::function<void()> work)> defer;
+};
+
+class Tool {
+ public:
+  virtual ~Tool() = default;
+  virtual ui::ToolEntry entry() const = 0;  // name, shortcut, tooltip for the selector
+  virtual void activate(ToolContext&) {}    // became the active tool
+  virtual void deactivate(ToolContext&) {}  // another tool was chosen: drop transient state
+  virtual void handle_input(const ToolInput& in, ToolContext& ctx) = 0;
+  virtual void draw_panel(ToolContext& ctx) = 0;     // inside the Tool window, below the selector
+  virtual void decorate(gpu::ViewOptions&) const {}  // view overlays (stroke being drawn)
+  virtual std::string hint() const { return {}; }    // status-bar hint
+};
+
+}  // namespace trispline::editor

@@ -1,0 +1,44 @@
+#include "editor/tools/toolbox.h"
+
+#include "editor/tools/select_tool.h"
+#include "editor/tools/sketch_tool.h"
+#include "ui/tool_panel.h"
+
+#include <imgui.h>
+
+namespace trispline::editor {
+
+Toolbox::Toolbox(ToolContext& ctx) : ctx_(ctx) {
+  tools_.push_back(std::make_unique<SelectTool>());
+  tools_.push_back(std::make_unique<SketchTool>());
+}
+
+void Toolbox::set_active(int index) {
+  if (index == active_ || index < 0 || index >= int(tools_.size())) return;
+  tools_[active_]->deactivate(ctx_);
+  active_ = index;
+  tools_[active_]->activate(ctx_);
+}
+
+void Toolbox::draw_panel(const ui::Rect& rect) {
+  std::vector<ui::ToolEntry> entries;
+  for (const auto& t : tools_) entries.push_back(t->entry());
+  int chosen = active_;
+  if (ui::begin_tool_panel(rect, entries, &chosen)) tool().draw_panel(ctx_);
+  ui::end_tool_panel();
+  set_active(chosen);
+}
+
+void Toolbox::handle_mouse(glm::dvec2 mouse_px) {
+  const ImGuiIO& io = ImGui::GetIO();
+  ToolInput in;
+  in.mouse_px = mouse_px;
+  in.left_pressed = io.MouseClicked[0];
+  in.left_down = io.MouseDown[0];
+  in.left_released = io.MouseReleased[0];
+  in.shift = io.KeyShift;
+  in.ctrl = io.KeyCtrl;
+  tool().handle_input(in, ctx_);
+}
+
+}  // namespace trispline::editor

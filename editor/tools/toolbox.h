@@ -1,0 +1,35 @@
+// trispline::editor::Toolbox — the editor's tools (Select, Sketch placement, …), which one is active, and the
+// plumbing every tool shares: the Tool panel (selector + the active tool's parameters), mouse input over the
+// viewport, view decorations and the status-bar hint.
+#pragma once
+
+#include "editor/tools/tool.h"
+#include "ui/layout.h"
+
+#include <memory>
+#include <vector>
+
+namespace trispline::editor {
+
+class Toolbox {
+ public:
+  explicit Toolbox(ToolContext& ctx);  // ctx must outlive the toolbox
+  enum Index { kSelect = 0, kSketch = 1 };
+
+  void set_active(int index);  // deactivates the old tool, activates the new one; out-of-range is ignored
+  int active() const { return active_; }
+  Tool& tool() { return *tools_[active_]; }
+  const Tool& tool() const { return *tools_[active_]; }
+
+  void draw_panel(const ui::Rect& rect);   // the docked Tool window
+  void handle_mouse(glm::dvec2 mouse_px);  // feeds ImGui's mouse state to the active tool
+  void decorate(gpu::ViewOptions& options) const { tool().decorate(options); }
+  std::string hint() const { return tool().hint(); }
+
+ private:
+  ToolContext& ctx_;
+  std::vector<std::unique_ptr<Tool>> tools_;
+  int active_ = kSelect;
+};
+
+}  // namespace trispline::editor

@@ -1,0 +1,143 @@
+#include "ui/file_dialog.h"
+
+#include "ui/theme.h"
+
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include <algorithm>
+#include <cctype>
+
+namespace fs = std::filesystem;
+
+namespace trispline::ui {
+
+namespace {
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return s;
+}
+}  // namespace
+
+void FileDialog::open(std::string title, Mode mode, std::vector<std::string> extensions, const fs::path& start_folder) {
+  title_ = std::move(title);
+  mode_ = mode;
+  extensions_ = std::move(extensions);
+  std::error_code ec;
+  folder_ = start_folder.empty() ? fs::current_path(ec) : fs::absolute(start_folder, ec);
+  if (!fs::is_directory(folder_, ec)) folder_ = fs::current_path(ec);
+  path_text_ = (folder_ / "").string();
+  list_folder();
+  open_ = true;
+}
+
+bool FileDialog::matches(const fs::path& p) const {
+  if (extensions_.empty()) return true;
+  const std::string ext = lower(p.extension().string());
+  return std::find(extensions_.begin(), extensions_.end(), ext) != extensions_.end();
+}
+
+void FileDialog::list_folder() {
+  dirs_.clear();
+  files_.clear();
+  error_.clear();
+  std::error_code ec;
+  for (fs::directory_iterator it(folder_, fs::directory_options::skip_permission_denied, ec), end; !ec && it != end;
+       it.increment(ec)) {
+    const fs::path& p = it->path();
+    if (p.filename().string().starts_with(".")) continue;
+    std::error_code ec2;
+    if (it->is_directory(ec2))
+      dirs_.push_back(p);
+    else if (matches(p))
+      files_.push_back(p);
+  }
+  if (ec) error_ = "cannot list " + folder_.string() + ": " + ec.message();
+  std::sort(dirs_.begin(), dirs_.end());
+  std::sort(files_.begin(), files_.end());
+}
+
+std::optional<fs::path> FileDialog::draw() {
+  std::optional<fs::path> chosen;
+  if (open_) {
+    ImGui::OpenPopup("###file_dialog");
+    open_ = false;
+  }
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowSize(ImVec2(std::min(640.0f, display.x * 0.9f), std::min(480.0f, display.y * 0.8f)),
+                           ImGuiCond_Appearing);
+  ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f, display.y * 0.5f), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+  visible_ = ImGui::BeginPopupModal((title_ + "###file_dialog").c_str(), nullptr, ImGuiWindowFlags_NoSavedSettings);
+  if (!visible_) return chosen;
+  auto enter = [&](const fs::path& dir) {
+    folder_ = dir.lexically_normal();
+    path_text_ = (folder_ / "").string();
+    list_folder();
+  };
+  if (ImGui::Button("Up")) enter(folder_.parent_path());
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(-1);
+  // Open: the path field takes the keyboard at once (typing replaces it); Save: the name field below does.
+  if (mode_ == Mode::Open && ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
+  bool accept = ImGui::InputText("##path", &path_text_, ImGuiInputTextFlags_EnterReturnsTrue);
+  bool accept_name = false;
+  if (!error_.empty()) ImGui::TextColored(colors::error, "%s", error_.c_str());
+
+  const float footer = ImGui::GetFrameHeightWithSpacing() * (mode_ == Mode::Save ? 2.6f : 1.6f);
+  ImGui::BeginChild("##listing", ImVec2(0, -footer), true);
+  for (const fs::path& d : dirs_) {
+    if (ImGui::Selectable((d.filename().string() + "/").c_str(), false, ImGuiSelectableFlags_DontClosePopups)) enter(d);
+  }
+  for (const fs::path& f : files_) {
+    const bool selected = path_text_ == f.string();
+    if (ImGui::Selectable(f.filename().string().c_str(), selected,
+                          ImGuiSelectableFlags_DontClosePopups | ImGuiSelectableFlags_AllowDoubleClick)) {
+      path_text_ = f.string();
+      name_ = f.filename().string();
+      if (ImGui::IsMouseDoubleClicked(0)) accept = true;
+    }
+  }
+  ImGui::EndChild();
+
+  if (mode_ == Mode::Save) {
+    ImGui::AlignTextToFramePadding();
+    ImGui::TextUnformatted("Name");
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(-1);
+    if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
+    accept_name = ImGui::InputText("##name", &name_, ImGuiInputTextFlags_EnterReturnsTrue);
+  }
+  if (!extensions_.empty()) {
+    std::string filter;
+    for (const std::string& e : extensions_) filter += (filter.empty() ? "" : " ") + std::string("*") + e;
+    ImGui::TextColored(colors::dim, "%s", filter.c_str());
+    ImGui::SameLine();
+  }
+  const float buttons_w = 170.0f;
+  ImGui::SetCursorPosX(std::max(ImGui::GetCursorPosX(), ImGui::GetWindowContentRegionMax().x - buttons_w));
+  if (ImGui::Button(mode_ == Mode::Open ? "Open" : "Save", ImVec2(80, 0)))
+    (mode_ == Mode::Save ? accept_name : accept) = true;
+  ImGui::SameLine();
+  if (ImGui::Button("Cancel", ImVec2(80, 0)) || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false))
+    ImGui::CloseCurrentPopup();
+
+  if (accept || accept_name) {
+    std::error_code ec;
+    const fs::path typed = accept_name && !name_.empty() ? folder_ / name_ : fs::path(path_text_);
+    fs::path p = fs::absolute(typed, ec).lexically_normal();
+    if (fs::is_directory(p, ec)) {
+      enter(p);
+    } else if (mode_ == Mode::Open && !fs::exists(p, ec)) {
+      error_ = "no such file: " + p.string();
+    } else if (mode_ == Mode::Save && (p.filename().empty() || !fs::is_directory(p.parent_path(), ec))) {
+      error_ = "choose a file name in an existing folder";
+    } else {
+      chosen = p;
+      ImGui::CloseCurrentPopup();
+    }
+  }
+  ImGui::EndPopup();
+  return chosen;
+}
+
+}  // namespace trispline::ui

@@ -1,0 +1,40 @@
+// trispline::ui::FileDialog — a small modal file chooser (no native dialogs: GLFW has none): a path field, the
+// folders and matching files of the current folder, ".." to go up. Used for Load… (meshes), Open… and Save As…
+// (command logs).
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace trispline::ui {
+
+class FileDialog {
+ public:
+  enum class Mode { Open, Save };
+
+  // Opens the dialog on the next draw(). extensions: lower-case with the dot (".obj"); empty = all files.
+  void open(std::string title, Mode mode, std::vector<std::string> extensions,
+            const std::filesystem::path& start_folder = {});
+  // Draws the modal if open; returns the chosen path once (absolute, lexically normal).
+  std::optional<std::filesystem::path> draw();
+  bool is_open() const { return open_ || visible_; }
+
+ private:
+  void list_folder();
+  bool matches(const std::filesystem::path& p) const;
+
+  std::string title_;
+  Mode mode_ = Mode::Open;
+  std::vector<std::string> extensions_;
+  std::filesystem::path folder_;
+  std::string path_text_;  // editable full path
+  std::string name_;       // Save: file name in folder_
+  std::vector<std::filesystem::path> dirs_, files_;
+  std::string error_;
+  bool open_ = false;     // open() called, popup not yet opened
+  bool visible_ = false;  // popup showing
+};
+
+}  // namespace trispline::ui

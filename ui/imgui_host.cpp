@@ -1,0 +1,77 @@
+#include "ui/imgui_host.h"
+
+#include "ui/theme.h"
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+
+#include <stdexcept>
+
+namespace trispline::ui {
+
+namespace {
+std::vector<KeyPress> g_pending, g_frame;  // one editor window per process
+std::vector<int> g_forced;                 // keys held down artificially for one frame (see new_frame)
+
+// Installed before ImGui's own callbacks, which chain to it.
+void record_key(GLFWwindow*, int key, int, int action, int mods) {
+  if (action == GLFW_PRESS) g_pending.push_back({key, mods});
+}
+}  // namespace
+
+const std::vector<KeyPress>& ImGuiHost::key_presses() { return g_frame; }
+
+ImGuiHost::ImGuiHost(GLFWwindow* window, const std::string& ini_path, float ui_scale)
+    : window_(window), ini_path_(ini_path) {
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGuiIO& io = ImGui::GetIO();
+  io.IniFilename = ini_path_.empty() ? nullptr : ini_path_.c_str();
+  io.ConfigWindowsMoveFromTitleBarOnly = true;
+  apply_dark_theme(ui_scale);
+  glfwSetKeyCallback(window, record_key);
+  if (!ImGui_ImplGlfw_InitForOpenGL(window, true)) {
+    ImGui::DestroyContext();
+    throw std::runtime_error("Dear ImGui: GLFW backend failed to initialise");
+  }
+  if (!ImGui_ImplOpenGL3_Init("#version 330 core")) {
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+    throw std::runtime_error("Dear ImGui: OpenGL3 backend failed to initialise");
+  }
+}
+
+ImGuiHost::~ImGuiHost() {
+  ImGui_ImplOpenGL3_Shutdown();
+  ImGui_ImplGlfw_Shutdown();
+  ImGui::DestroyContext();
+}
+
+void ImGuiHost::new_frame() {
+  g_frame.swap(g_pending);
+  g_pending.clear();
+  ImGui_ImplOpenGL3_NewFrame();
+  ImGui_ImplGlfw_NewFrame();
+  // ImGui 1.86 reads io.KeysDown once per frame: a key pressed and released since the last frame (a quick tap on a
+  // slow frame, e.g. Enter in a text field on llvmpipe) would never be seen. Hold such keys down for one frame.
+  ImGuiIO& io = ImGui::GetIO();
+  const int n_keys = int(sizeof io.KeysDown / sizeof io.KeysDown[0]);
+  for (int key : g_forced) io.KeysDown[key] = glfwGetKey(window_, key) == GLFW_PRESS;
+  g_forced.clear();
+  for (const KeyPress& k : g_frame) {
+    if (k.key < 0 || k.key >= n_keys || io.KeysDown[k.key]) continue;
+    io.KeysDown[k.key] = true;
+    g_forced.push_back(k.key);
+  }
+  ImGui::NewFrame();
+}
+
+void ImGuiHost::render() {
+  ImGui::Render();
+  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+}
+
+}  // namespace trispline::ui

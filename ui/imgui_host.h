@@ -1,0 +1,39 @@
+// trispline::ui::ImGuiHost — owns the Dear ImGui context on a GLFW window with the OpenGL 3 backend (Debian's
+// libimgui.a ships both backends). One per window; the window's GL context must be current.
+#pragma once
+
+#include <string>
+#include <vector>
+
+struct GLFWwindow;
+
+namespace trispline::ui {
+
+// A key press with the modifiers held at that moment (GLFW key code, GLFW_MOD_* bits).
+struct KeyPress {
+  int key = 0;
+  int mods = 0;
+};
+
+class ImGuiHost {
+ public:
+  // ini_path empty: no imgui.ini is read or written (fixed layout, e.g. for screenshots).
+  // Throws std::runtime_error if a backend fails to initialise.
+  ImGuiHost(GLFWwindow* window, const std::string& ini_path, float ui_scale = 1.0f);
+  ~ImGuiHost();
+  ImGuiHost(const ImGuiHost&) = delete;
+  ImGuiHost& operator=(const ImGuiHost&) = delete;
+
+  void new_frame();  // backends + ImGui::NewFrame()
+  void render();     // ImGui::Render() + draw into the bound default framebuffer
+
+  // Key presses since the previous new_frame(). ImGui 1.86 samples key state once per frame, so a press and
+  // release between two frames (a quick tap on a slow frame) never shows in ImGui::IsKeyPressed; these do.
+  static const std::vector<KeyPress>& key_presses();
+
+ private:
+  GLFWwindow* window_;
+  std::string ini_path_;  // ImGui keeps the char* we give it: must outlive the context
+};
+
+}  // namespace trispline::ui

@@ -1,0 +1,53 @@
+// trispline::ui main menu bar — File / Edit / View / Help. Returns what was picked; the editor acts on it.
+// The View toggles are edited in place (they are view state, not document changes).
+#pragma once
+
+#include "gpu/renderer.h"
+
+#include <string>
+
+namespace trispline::ui {
+
+struct ViewToggles {
+  bool show_lattice = false;
+  bool show_contact_surface = false;
+  bool show_grid = true;
+  bool wireframe = false;
+  bool timing_overlay = true;
+  bool show_tool_panel = true;
+  bool show_side_panels = true;  // Scene + History
+  bool show_log_panel = true;
+};
+
+// The renderer's options for these toggles (selection and stroke are filled in by the editor).
+gpu::ViewOptions view_options(const ViewToggles& toggles);
+
+enum class MenuAction {
+  None,
+  New,
+  Open,
+  Save,
+  SaveAs,
+  Quit,
+  Undo,
+  Redo,
+  FrameSelected,
+  FrameAll,
+  About,
+  Keys,
+  Screenshot,  // File > Save Screenshot (F12): the whole window as a PNG in the current folder
+  SelectTool,  // keyboard only (ui/shortcuts.h) from here on
+  SketchTool,
+  Delete
+};
+
+struct MenuState {
+  bool can_undo = false, can_redo = false;
+  std::string undo_label, redo_label;  // label of the command undo/redo would affect
+  bool has_document_path = false;      // Save writes without asking
+};
+
+// Draws the main menu bar; height via ImGui::GetFrameHeight().
+MenuAction draw_main_menu(ViewToggles& view, const MenuState& state);
+
+}  // namespace trispline::ui

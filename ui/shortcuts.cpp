@@ -1,0 +1,49 @@
+#include "ui/shortcuts.h"
+
+#include "ui/imgui_host.h"
+
+#include <imgui.h>
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
+namespace trispline::ui {
+
+namespace {
+
+MenuAction action_for(const KeyPress& k) {
+  using A = MenuAction;
+  const bool ctrl = k.mods & GLFW_MOD_CONTROL, shift = k.mods & GLFW_MOD_SHIFT, alt = k.mods & GLFW_MOD_ALT;
+  const int key = k.key;
+  if (ctrl) {
+    if (key == GLFW_KEY_Z) return shift ? A::Redo : A::Undo;
+    if (key == GLFW_KEY_Y) return A::Redo;
+    if (key == GLFW_KEY_N) return A::New;
+    if (key == GLFW_KEY_O) return A::Open;
+    if (key == GLFW_KEY_S) return shift ? A::SaveAs : A::Save;
+    if (key == GLFW_KEY_Q) return A::Quit;
+    return A::None;
+  }
+  if (alt) return A::None;
+  if (key == GLFW_KEY_F || key == GLFW_KEY_KP_DECIMAL) return A::FrameSelected;
+  if (key == GLFW_KEY_HOME) return A::FrameAll;
+  if (key == GLFW_KEY_Q) return A::SelectTool;
+  if (key == GLFW_KEY_W) return A::SketchTool;
+  if (key == GLFW_KEY_DELETE || key == GLFW_KEY_X) return A::Delete;
+  return A::None;
+}
+
+}  // namespace
+
+MenuAction poll_shortcuts() {
+  const ImGuiIO& io = ImGui::GetIO();
+  const bool typing = io.WantCaptureKeyboard || io.WantTextInput;
+  for (const KeyPress& k : ImGuiHost::key_presses()) {
+    // F12 works over dialogs too: harmless, and handy for bug reports.
+    if (k.key == GLFW_KEY_F12 && !(k.mods & (GLFW_MOD_CONTROL | GLFW_MOD_ALT))) return MenuAction::Screenshot;
+    if (typing) continue;
+    if (const MenuAction a = action_for(k); a != MenuAction::None) return a;
+  }
+  return MenuAction::None;
+}
+
+}  // namespace trispline::ui

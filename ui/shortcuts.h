@@ -1,0 +1,13 @@
+// trispline::ui keyboard shortcuts — maps the key presses since the last frame (ImGuiHost::key_presses) (Blender-like
+// bindings, see the Keys window) to the same actions as the main menu. Nothing fires while ImGui wants the keyboard
+// (typing in a field).
+#pragma once
+
+#include "ui/main_menu.h"
+
+namespace trispline::ui {
+
+// The action whose shortcut was pressed this frame, or MenuAction::None.
+MenuAction poll_shortcuts();
+
+}  // namespace trispline::ui
