@@ -9,14 +9,13 @@
 // Commands refer to objects by name, never by pointer.
 #pragma once
 
-#include "core/scene/scene.h"
-
-#include <nlohmann/json.hpp>
-
 #include <filesystem>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
+
+#include "core/scene/scene.h"
 
 namespace trispline::core {
 

@@ -110,8 +110,7 @@ std::vector<glm::dvec2> get_points2(const nlohmann::json& j, const char* field) 
   pts.reserve(v.size());
   for (std::size_t i = 0; i < v.size(); ++i) {
     const auto& p = v[i];
-    if (!p.is_array() || p.size() != 2)
-      fail(field, "point " + std::to_string(i) + " is not an array of 2 numbers");
+    if (!p.is_array() || p.size() != 2) fail(field, "point " + std::to_string(i) + " is not an array of 2 numbers");
     pts.emplace_back(as_number(p[0], field), as_number(p[1], field));
   }
   return pts;

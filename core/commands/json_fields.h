@@ -2,12 +2,12 @@
 // the field name and whose message says what was expected ("field 'width': expected a number, got string").
 #pragma once
 
-#include "core/commands/command.h"
-
 #include <glm/glm.hpp>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "core/commands/command.h"
 
 namespace trispline::core::json_fields {
 

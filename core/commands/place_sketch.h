@@ -8,9 +8,9 @@
 // again from its undeformed (transformed) rest mesh. Undo restores the object as it was.
 #pragma once
 
-#include "core/commands/snapshot_command.h"
-
 #include <optional>
+
+#include "core/commands/snapshot_command.h"
 
 namespace trispline::core {
 
@@ -25,7 +25,7 @@ struct PlaceSketchParams {
   glm::ivec3 controls{10, 4, 3};   // control points per axis
   std::string length_axis = "x";
   std::string up_axis = "y";
-  std::optional<Camera> camera;    // view the stroke was drawn in (else the scene camera)
+  std::optional<Camera> camera;  // view the stroke was drawn in (else the scene camera)
 };
 
 class PlaceSketchCommand : public SnapshotCommand {

@@ -7,30 +7,25 @@
 // Transform: scale, then rotation (degrees about x, then y, then z), then translation; world units.
 #pragma once
 
-#include "core/commands/snapshot_command.h"
+#include "core/commands/add_object_command.h"
 
 namespace trispline::core {
 
-class SceneLoadCommand : public SnapshotCommand {
+class SceneLoadCommand : public AddObjectCommand {
  public:
   static CommandPtr parse(const nlohmann::json& j, const CommandContext& ctx);
   std::string id() const override { return "scene.load"; }
   nlohmann::json to_json() const override;
-  std::string label() const override;
-  nlohmann::json stats() const override;
+  std::string label() const override { return "Load '" + name_ + "'"; }
 
  protected:
-  std::string target() const override { return name_; }
-  std::optional<SceneObject> build(const Scene& scene) override;
+  TriMesh make_mesh() const override;
+  std::string default_name() const override { return resolved_.stem().string(); }
+  std::string source() const override { return resolved_.string(); }
   std::string failure_field() const override { return "path"; }
 
  private:
-  std::string path_;                 // absolute, as logged
-  std::filesystem::path resolved_;   // absolute, normalised
-  std::string name_;
-  Transform transform_;
-  std::optional<glm::dvec3> color_;
-  std::size_t vertices_ = 0, triangles_ = 0;
+  std::filesystem::path resolved_;  // absolute, normalised
 };
 
 }  // namespace trispline::core

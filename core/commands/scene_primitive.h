@@ -5,30 +5,26 @@
 // terrain 2×2 in xz with heights in [0,0.3] (seeded), teapot on y = 0 with height 1 (Newell's 32 Bézier patches).
 #pragma once
 
-#include "core/commands/snapshot_command.h"
+#include "core/commands/add_object_command.h"
 
 namespace trispline::core {
 
-class ScenePrimitiveCommand : public SnapshotCommand {
+class ScenePrimitiveCommand : public AddObjectCommand {
  public:
   static CommandPtr parse(const nlohmann::json& j, const CommandContext& ctx);
   std::string id() const override { return "scene.primitive"; }
   nlohmann::json to_json() const override;
-  std::string label() const override;
-  nlohmann::json stats() const override;
+  std::string label() const override { return "Add " + kind_ + " '" + name_ + "'"; }
 
  protected:
-  std::string target() const override { return name_; }
-  std::optional<SceneObject> build(const Scene& scene) override;
+  TriMesh make_mesh() const override;
+  std::string default_name() const override { return kind_; }
+  std::string source() const override { return "primitive:" + kind_; }
   std::string failure_field() const override { return "kind"; }
 
  private:
   std::string kind_;
-  std::string name_;
-  Transform transform_;
   std::int64_t seed_ = 0;
-  std::optional<glm::dvec3> color_;
-  std::size_t vertices_ = 0, triangles_ = 0;
 };
 
 }  // namespace trispline::core

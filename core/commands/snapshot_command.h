@@ -4,9 +4,9 @@
 // undo/redo restore meshes bit for bit.
 #pragma once
 
-#include "core/commands/command.h"
-
 #include <optional>
+
+#include "core/commands/command.h"
 
 namespace trispline::core {
 
