@@ -1,13 +1,12 @@
 #include "editor/cli.h"
 
+#include <CLI/CLI.hpp>
+#include <iostream>
+
 #include "core/deform/ffd_bench.h"
 #include "editor/app.h"
 #include "editor/command_registry.h"
 #include "editor/replay.h"
-
-#include <CLI/CLI.hpp>
-
-#include <iostream>
 
 namespace trispline::editor {
 
@@ -25,11 +24,17 @@ int run_cli(int argc, char** argv) {
   edit->add_flag("!--no-recover", edit_options.recover_prompt, "Do not offer to recover an unfinished session");
 
   ReplayOptions replay_options;
-  auto* replay = app.add_subcommand("replay", "Replay a command log headlessly and write final.png, scene.glb, report.json");
+  auto* replay =
+      app.add_subcommand("replay", "Replay a command log headlessly and write final.png, scene.glb, report.json");
   replay->add_option("log", replay_options.log, "Command log (.jsonl)")->required()->check(CLI::ExistingFile);
   replay->add_option("--out", replay_options.out_dir, "Output folder")->required();
-  replay->add_option("--width", replay_options.width, "final.png width in pixels (default: the camera's viewport)");
-  replay->add_option("--height", replay_options.height, "final.png height in pixels");
+  auto* rw =
+      replay->add_option("--width", replay_options.width, "final.png width in pixels (default: the camera's viewport)")
+          ->check(CLI::Range(1, 16384));
+  auto* rh =
+      replay->add_option("--height", replay_options.height, "final.png height in pixels")->check(CLI::Range(1, 16384));
+  rw->needs(rh);
+  rh->needs(rw);
   replay->add_flag("!--no-render", replay_options.render, "Skip final.png (no GL context needed)");
 
   auto* bench = app.add_subcommand("bench", "Benchmarks that print figures (never assert timings)");

@@ -1,10 +1,10 @@
 #include "editor/render_scene.h"
 
-#include "gpu/gl_context.h"
-#include "gpu/renderer.h"
-
 #include <algorithm>
 #include <cmath>
+
+#include "gpu/gl_context.h"
+#include "gpu/renderer.h"
 
 namespace trispline::editor {
 
@@ -27,6 +27,14 @@ RenderedImage render_scene_headless(const core::Scene& scene, int width, int hei
   gpu::HeadlessContext context;
   core::Camera cam = scene.camera_set ? scene.camera : framing_camera(scene, width, height);
   if (width > 0 && height > 0) cam.viewport = {width, height};
+  // camera.set carries no clip planes: fit them to the scene so meshes in any units are neither clipped nor
+  // lose depth precision.
+  const core::Aabb box = scene.bounds();
+  if (box.valid()) {
+    const double reach = glm::length(box.center() - cam.eye) + 0.5 * box.diagonal();
+    cam.far_plane = std::max(reach * 1.5, 1e-3);
+    cam.near_plane = cam.far_plane * 1e-4;
+  }
   gpu::Renderer renderer;
   gpu::OffscreenTarget target(cam.viewport.x, cam.viewport.y);
   target.bind();

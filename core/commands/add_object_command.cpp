@@ -8,7 +8,11 @@ namespace jf = json_fields;
 void AddObjectCommand::parse_object_fields(const nlohmann::json& j) {
   name_ = jf::get_string(j, "name", "");
   transform_ = jf::get_transform(j);
-  if (jf::has(j, "color")) color_ = jf::get_vec3(j, "color");
+  if (jf::has(j, "color")) {
+    color_ = jf::get_vec3(j, "color");
+    if (glm::any(glm::lessThan(*color_, glm::dvec3(0.0))) || glm::any(glm::greaterThan(*color_, glm::dvec3(1.0))))
+      throw CommandError("field 'color': each component must be in [0, 1]", "color");
+  }
 }
 
 void AddObjectCommand::put_object_fields(nlohmann::json& j) const {

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 
 namespace trispline::core::json_fields {
 namespace {
@@ -17,6 +19,19 @@ double as_number(const nlohmann::json& v, const char* field) {
   const double d = v.get<double>();
   if (!std::isfinite(d)) fail(field, "must be finite");
   return d;
+}
+
+std::int64_t as_int64(const nlohmann::json& v, const char* field, std::int64_t lo, std::int64_t hi) {
+  if (!v.is_number_integer()) fail(field, "expected an integer, got " + type_name(v));
+  if (v.is_number_unsigned() && v.get<std::uint64_t>() > static_cast<std::uint64_t>(hi))
+    fail(field, "integer out of range [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  const std::int64_t i = v.get<std::int64_t>();
+  if (i < lo || i > hi) fail(field, "integer out of range [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  return i;
+}
+
+int as_int(const nlohmann::json& v, const char* field) {
+  return static_cast<int>(as_int64(v, field, std::numeric_limits<int>::min(), std::numeric_limits<int>::max()));
 }
 
 }  // namespace
@@ -46,10 +61,11 @@ double get_number(const nlohmann::json& j, const char* field, double fallback) {
   return has(j, field) ? get_number(j, field) : fallback;
 }
 
-int get_int(const nlohmann::json& j, const char* field) {
-  const auto& v = require(j, field);
-  if (!v.is_number_integer()) fail(field, "expected an integer, got " + type_name(v));
-  return v.get<int>();
+int get_int(const nlohmann::json& j, const char* field) { return as_int(require(j, field), field); }
+
+std::int64_t get_int64(const nlohmann::json& j, const char* field, std::int64_t fallback) {
+  if (!has(j, field)) return fallback;
+  return as_int64(j.at(field), field, 0, std::numeric_limits<std::int64_t>::max());
 }
 
 int get_int(const nlohmann::json& j, const char* field, int fallback) {
@@ -75,17 +91,14 @@ glm::dvec3 get_vec3(const nlohmann::json& j, const char* field, const glm::dvec3
 
 glm::ivec2 get_ivec2(const nlohmann::json& j, const char* field) {
   const auto& v = require(j, field);
-  if (!v.is_array() || v.size() != 2 || !v[0].is_number_integer() || !v[1].is_number_integer())
-    fail(field, "expected an array of 2 integers");
-  return {v[0].get<int>(), v[1].get<int>()};
+  if (!v.is_array() || v.size() != 2) fail(field, "expected an array of 2 integers");
+  return {as_int(v[0], field), as_int(v[1], field)};
 }
 
 glm::ivec3 get_ivec3(const nlohmann::json& j, const char* field) {
   const auto& v = require(j, field);
-  if (!v.is_array() || v.size() != 3 || !v[0].is_number_integer() || !v[1].is_number_integer() ||
-      !v[2].is_number_integer())
-    fail(field, "expected an array of 3 integers");
-  return {v[0].get<int>(), v[1].get<int>(), v[2].get<int>()};
+  if (!v.is_array() || v.size() != 3) fail(field, "expected an array of 3 integers");
+  return {as_int(v[0], field), as_int(v[1], field), as_int(v[2], field)};
 }
 
 glm::dvec3 get_scale(const nlohmann::json& j, const char* field, const glm::dvec3& fallback) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <glm/glm.hpp>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -19,7 +20,9 @@ std::string get_string(const nlohmann::json& j, const char* field, const std::st
 double get_number(const nlohmann::json& j, const char* field);  // finite
 double get_number(const nlohmann::json& j, const char* field, double fallback);
 int get_int(const nlohmann::json& j, const char* field);
-int get_int(const nlohmann::json& j, const char* field, int fallback);
+int get_int(const nlohmann::json& j, const char* field, int fallback);  // range-checked: no silent wrap-around
+// Non-negative 64-bit integer (seeds), range-checked.
+std::int64_t get_int64(const nlohmann::json& j, const char* field, std::int64_t fallback);
 bool get_bool(const nlohmann::json& j, const char* field, bool fallback);
 glm::dvec3 get_vec3(const nlohmann::json& j, const char* field);
 glm::dvec3 get_vec3(const nlohmann::json& j, const char* field, const glm::dvec3& fallback);

@@ -9,7 +9,7 @@ namespace jf = json_fields;
 CommandPtr ScenePrimitiveCommand::parse(const nlohmann::json& j, const CommandContext&) {
   auto c = std::make_unique<ScenePrimitiveCommand>();
   c->kind_ = jf::get_enum(j, "kind", {"teapot", "plane", "sphere", "box", "cylinder", "terrain"});
-  c->seed_ = jf::get_int(j, "seed", 0);
+  c->seed_ = jf::get_int64(j, "seed", 0);
   c->parse_object_fields(j);
   return c;
 }

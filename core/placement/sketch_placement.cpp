@@ -27,6 +27,8 @@ bool finite(double x) { return std::isfinite(x); }
 bool finite(const glm::dvec3& p) { return finite(p.x) && finite(p.y) && finite(p.z); }
 
 constexpr int kMaxSamples = 4096;  // per axis; keeps nu·nv rays and the fit small enough to be interactive
+constexpr int kMaxOrder = 8;       // per axis; evaluation costs O(order³) per vertex
+constexpr int kMaxControls = 256;  // per axis; l·m·n stays far from int overflow and within memory
 
 void validate(const SketchPlacementParams& p, const std::vector<glm::dvec3>& object) {
   if (p.stroke_px.size() < 2)
@@ -46,11 +48,12 @@ void validate(const SketchPlacementParams& p, const std::vector<glm::dvec3>& obj
   static const char* axis_name[3] = {"u", "v", "w"};
   for (int a = 0; a < 3; ++a) {
     const std::string ax = axis_name[a];
-    if (p.controls[a] < 2)
-      throw PlacementError("controls",
-                           "controls in " + ax + " must be >= 2 (got " + std::to_string(p.controls[a]) + ")");
-    if (p.order[a] < 2)
-      throw PlacementError("order", "order in " + ax + " must be >= 2 (got " + std::to_string(p.order[a]) + ")");
+    if (p.controls[a] < 2 || p.controls[a] > kMaxControls)
+      throw PlacementError("controls", "controls in " + ax + " must be in [2, " + std::to_string(kMaxControls) +
+                                           "] (got " + std::to_string(p.controls[a]) + ")");
+    if (p.order[a] < 2 || p.order[a] > kMaxOrder)
+      throw PlacementError("order", "order in " + ax + " must be in [2, " + std::to_string(kMaxOrder) + "] (got " +
+                                        std::to_string(p.order[a]) + ")");
     if (p.order[a] > p.controls[a])
       throw PlacementError("order", "order in " + ax + " (" + std::to_string(p.order[a]) +
                                         ") exceeds the control count (" + std::to_string(p.controls[a]) + ")");
@@ -214,7 +217,7 @@ SketchPlacementResult place_along_stroke(const RayCaster& scene_rays, const Sket
 
   // 6. evaluate.
   std::vector<glm::dvec3> positions;
-  ffd_evaluate(lattice, params, positions);
+  if (p.evaluate_positions) ffd_evaluate(lattice, params, positions);
   st.ms_evaluate = ms_since(clock);
 
   PlacementRecord record{p.stroke_px, nu, nv, std::move(grid), std::move(hit)};

@@ -58,7 +58,11 @@ INSTANTIATE_TEST_SUITE_P(
                       BadLogCase{"bad_zero_width.jsonl", 4, "width", "width"},
                       BadLogCase{"bad_all_rays_miss.jsonl", 4, "stroke", "rays"},
                       BadLogCase{"bad_unknown_object.jsonl", 4, "object", "nobody"},
-                      BadLogCase{"bad_order_above_controls.jsonl", 4, "order", "order"}),
+                      BadLogCase{"bad_order_above_controls.jsonl", 4, "order", "order"},
+                      BadLogCase{"bad_no_camera.jsonl", 3, "camera", "camera.set"},
+                      BadLogCase{"bad_too_many_controls.jsonl", 4, "controls", "256"},
+                      BadLogCase{"bad_negative_seed.jsonl", 1, "seed", "out of range"},
+                      BadLogCase{"bad_camera_fov.jsonl", 2, "camera.fov_deg", "fov"}),
     [](const auto& info) {
       std::string n = info.param.file;
       n = n.substr(4, n.size() - 4 - 6);  // strip "bad_" and ".jsonl"
@@ -121,6 +125,21 @@ TEST(CommandLog, AtomicWriteThenReadRoundTripsWithCmdFirst) {
   EXPECT_EQ(back[0].json, lines[0]);
   EXPECT_EQ(back[0].text.rfind(R"({"cmd":"scene.primitive")", 0), 0u) << back[0].text;
   EXPECT_EQ(back[1].number, 2);
+}
+
+}  // namespace
+
+namespace {
+
+TEST(CommandLog, FarAwayPathsStayAbsolute) {
+  std::vector<nlohmann::json> lines = {{{"cmd", "scene.load"}, {"path", "/usr/share/x/mesh.obj"}},
+                                       {{"cmd", "scene.load"}, {"path", "/home/u/project/data/m.obj"}}};
+  editor::make_paths_relative(lines, "/home/u/project/scenes/a/b");
+  EXPECT_EQ(lines[0].at("path"), "/usr/share/x/mesh.obj");
+  EXPECT_EQ(lines[1].at("path"), "/home/u/project/data/m.obj");  // three folders up: kept absolute
+  std::vector<nlohmann::json> near = {{{"cmd", "scene.load"}, {"path", "/home/u/project/data/m.obj"}}};
+  editor::make_paths_relative(near, "/home/u/project/scenes");
+  EXPECT_EQ(near[0].at("path"), "../data/m.obj");
 }
 
 }  // namespace
