@@ -1,6 +1,8 @@
 #include "gpu/overlay_geometry.h"
 
+#include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace trispline::gpu {
 
@@ -36,6 +38,63 @@ void append_contact_surface(const core::PlacementRecord& placement, const glm::v
       if (a + 1 < nu) lines.insert(lines.end(), {{at(a, b), grid_color}, {at(a + 1, b), grid_color}});
       if (b + 1 < nv) lines.insert(lines.end(), {{at(a, b), grid_color}, {at(a, b + 1), grid_color}});
     }
+}
+
+ContactSurfaceTessellation tessellate_contact_surface(const core::TrivariateBSpline<glm::dvec3>& lattice,
+                                                      int cells_u, int cells_v) {
+  if (cells_u < 1 || cells_v < 1)
+    throw std::invalid_argument("tessellate_contact_surface: cell counts must be >= 1");
+  ContactSurfaceTessellation t;
+  t.vertices_u = cells_u + 1;
+  t.vertices_v = cells_v + 1;
+  const core::KnotVector &ku = lattice.knots(0), &kv = lattice.knots(1);
+  const double w0 = lattice.knots(2).domain_min();
+  // Exact ends: the last parameter is domain_max itself, not an accumulated sum.
+  auto param = [](const core::KnotVector& k, int i, int cells) {
+    if (i == cells) return k.domain_max();
+    return k.domain_min() + (k.domain_max() - k.domain_min()) * double(i) / double(cells);
+  };
+  const std::size_t n = std::size_t(t.vertices_u) * std::size_t(t.vertices_v);
+  core::TriMesh& m = t.mesh;
+  m.positions.resize(n);
+  m.normals.resize(n);
+  m.uvs.resize(n);
+  for (int b = 0; b < t.vertices_v; ++b)
+    for (int a = 0; a < t.vertices_u; ++a) {
+      const std::size_t i = t.index(a, b);
+      const glm::dvec2 uv(param(ku, a, cells_u), param(kv, b, cells_v));
+      const auto f = lattice.eval_first({uv.x, uv.y, w0});
+      const glm::dvec3 nrm = glm::cross(f.d[0], f.d[1]);
+      const double len = glm::length(nrm);
+      m.uvs[i] = uv;
+      m.positions[i] = lattice.eval({uv.x, uv.y, w0});  // the plain evaluator: bit-identical to F itself
+      m.normals[i] = len > 1e-300 && std::isfinite(len) ? nrm / len : glm::dvec3(0.0, 1.0, 0.0);
+    }
+  m.triangles.reserve(2 * std::size_t(cells_u) * std::size_t(cells_v));
+  for (int b = 0; b < cells_v; ++b)
+    for (int a = 0; a < cells_u; ++a) {
+      const auto i00 = unsigned(t.index(a, b)), i10 = unsigned(t.index(a + 1, b));
+      const auto i01 = unsigned(t.index(a, b + 1)), i11 = unsigned(t.index(a + 1, b + 1));
+      m.triangles.push_back({i00, i10, i11});  // CCW about ∂S/∂u × ∂S/∂v
+      m.triangles.push_back({i00, i11, i01});
+    }
+  return t;
+}
+
+void append_contact_iso_lines(const ContactSurfaceTessellation& t, int every_u, int every_v,
+                              const glm::vec4& color, std::vector<OverlayVertex>& lines) {
+  const int nu = t.vertices_u, nv = t.vertices_v;
+  if (nu < 2 || nv < 2 || t.mesh.positions.size() != std::size_t(nu) * std::size_t(nv)) return;
+  every_u = std::max(every_u, 1);
+  every_v = std::max(every_v, 1);
+  auto at = [&](int a, int b) { return glm::vec3(t.mesh.positions[t.index(a, b)]); };
+  auto keep = [](int i, int n, int every) { return i % every == 0 || i == n - 1; };
+  for (int a = 0; a < nu; ++a)  // lines of constant u, running along v
+    if (keep(a, nu, every_u))
+      for (int b = 0; b + 1 < nv; ++b) lines.insert(lines.end(), {{at(a, b), color}, {at(a, b + 1), color}});
+  for (int b = 0; b < nv; ++b)  // lines of constant v, running along u
+    if (keep(b, nv, every_v))
+      for (int a = 0; a + 1 < nu; ++a) lines.insert(lines.end(), {{at(a, b), color}, {at(a + 1, b), color}});
 }
 
 std::vector<glm::vec2> thick_polyline(const std::vector<glm::dvec2>& px, float width_px, int segments) {

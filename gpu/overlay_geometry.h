@@ -1,5 +1,6 @@
 // trispline::gpu overlay geometry — CPU-built line/point/triangle lists for what the renderer draws over the
-// shaded scene: FFD control lattices, placement contact samples, and the sketched stroke as a thick polyline.
+// shaded scene: FFD control lattices, placement contact samples, the contact surface S(u,v) = F(u,v,0) of a
+// lattice (tessellated), and the sketched stroke as a thick polyline.
 // Pure functions (no GL), so they are tested without a context.
 #pragma once
 
@@ -26,6 +27,27 @@ void append_lattice(const core::TrivariateBSpline<glm::dvec3>& lattice, const gl
 void append_contact_surface(const core::PlacementRecord& placement, const glm::vec4& hit_color,
                             const glm::vec4& filled_color, const glm::vec4& grid_color,
                             std::vector<OverlayVertex>& lines, std::vector<OverlayVertex>& points);
+
+// The contact surface S(u,v) = F(u,v,w0) of a lattice (seed Definition 4; w0 = start of the w domain, 0 for the
+// clamped lattices placement builds), sampled on a regular parameter grid.
+struct ContactSurfaceTessellation {
+  int vertices_u = 0, vertices_v = 0;  // grid size: cells_u + 1 along u (the stroke), cells_v + 1 across it
+  // positions #(vertices_u·vertices_v) × 3 = S(u,v), world units, u fastest (index a + vertices_u·b);
+  // uvs       same count, the (u,v) of each vertex, uniformly spaced over the u and v knot domains (ends included);
+  // normals   same count, unit ∂S/∂u × ∂S/∂v ((0,1,0) where degenerate);
+  // triangles 2·cells_u·cells_v, two per grid cell.
+  core::TriMesh mesh;
+  std::size_t index(int a, int b) const { return std::size_t(a) + std::size_t(vertices_u) * std::size_t(b); }
+};
+
+// Tessellates S(u,v) = F(u,v,w0) on a cells_u × cells_v grid. Throws std::invalid_argument if a count is < 1.
+ContactSurfaceTessellation tessellate_contact_surface(const core::TrivariateBSpline<glm::dvec3>& lattice,
+                                                      int cells_u = 48, int cells_v = 16);
+
+// Appends iso-parameter lines of `t` (GL_LINES pairs along the grid edges): every `every_u`-th line of constant
+// u and every `every_v`-th line of constant v, the boundary lines always.
+void append_contact_iso_lines(const ContactSurfaceTessellation& t, int every_u, int every_v,
+                              const glm::vec4& color, std::vector<OverlayVertex>& lines);
 
 // Triangle list (GL_TRIANGLES, pixel coordinates) of a polyline `px` (#S×2 viewport pixels) drawn `width_px`
 // wide with round joins and caps (`segments` triangles per disc). Empty for < 1 point; a single point is a disc.

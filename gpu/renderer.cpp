@@ -1,5 +1,6 @@
 #include "gpu/renderer.h"
 
+#include <algorithm>
 #include <cmath>
 #include <glm/gtc/matrix_inverse.hpp>
 #include <unordered_map>
@@ -35,6 +36,7 @@ struct StreamBuffer {
     glBindVertexArray(0);
   }
   void upload(const std::vector<OverlayVertex>& v) {
+    if (!vao) init(false);
     glBindBuffer(GL_ARRAY_BUFFER, vbo.id());
     const GLsizeiptr bytes = GLsizeiptr(v.size() * sizeof(OverlayVertex));
     if (bytes > capacity) {
@@ -44,6 +46,17 @@ struct StreamBuffer {
     glBufferSubData(GL_ARRAY_BUFFER, 0, bytes, v.data());
     glBindBuffer(GL_ARRAY_BUFFER, 0);
   }
+};
+
+// The contact surface S(u,v) = F(u,v,0) of one FfdBinding on the GPU: the tessellation (MeshBuffers layout, drawn
+// translucent) and its iso-lines (OverlayVertex GL_LINES). Built once per binding and settings.
+struct CachedContactSurface {
+  std::shared_ptr<const core::FfdBinding> ffd;  // held so the address cannot be reused by another binding
+  int cells_u = 0, cells_v = 0, iso_every = 0;
+  glm::vec4 iso_color{0.0f};
+  MeshBuffers surface;
+  StreamBuffer iso;  // static after the build (uploaded once)
+  GLsizei iso_vertices = 0;
 };
 
 glm::vec4 rgba(const glm::vec3& c, float a = 1.0f) { return {c, a}; }
@@ -66,9 +79,12 @@ struct Renderer::Impl {
   ShaderProgram lines{{"lines.vert.glsl", "lines.frag.glsl"}};
   ShaderProgram points{{"lines.vert.glsl", "lines.frag.glsl"}, {{"ROUND_POINTS", ""}}};
   ShaderProgram screen{{"lines.vert.glsl", "lines.frag.glsl"}, {{"SCREEN_SPACE", ""}}};
+  ShaderProgram sheet{{"mesh.vert.glsl", "mesh.frag.glsl"}, {{"DEPTH_PULL", ""}, {"TRANSLUCENT", ""}}};
+  ShaderProgram pulled_lines{{"lines.vert.glsl", "lines.frag.glsl"}, {{"DEPTH_PULL", ""}}};
   VertexArray empty_vao = VertexArray::create();  // attribute-less full-screen passes
   StreamBuffer world_stream, screen_stream;
   std::unordered_map<const core::TriMesh*, CachedMesh> cache;
+  std::unordered_map<const core::FfdBinding*, CachedContactSurface> contact_cache;
   RenderStats stats;
 
   Impl() {
@@ -84,6 +100,67 @@ struct Renderer::Impl {
       ++stats.uploads;
     }
     return it->second.buffers;
+  }
+
+  CachedContactSurface& contact_surface(const std::shared_ptr<const core::FfdBinding>& ffd,
+                                        const ViewOptions& o) {
+    const int cells_u = std::max(o.contact_cells_u, 1), cells_v = std::max(o.contact_cells_v, 1);
+    CachedContactSurface& c = contact_cache[ffd.get()];
+    if (c.ffd != ffd || c.cells_u != cells_u || c.cells_v != cells_v ||
+        c.iso_every != o.contact_iso_every || c.iso_color != o.contact_iso_color) {
+      const ContactSurfaceTessellation t =
+          tessellate_contact_surface(ffd->lattice, cells_u, cells_v);
+      std::vector<OverlayVertex> iso;
+      append_contact_iso_lines(t, o.contact_iso_every, o.contact_iso_every, o.contact_iso_color, iso);
+      c.ffd = ffd;
+      c.cells_u = cells_u;
+      c.cells_v = cells_v;
+      c.iso_every = o.contact_iso_every;
+      c.iso_color = o.contact_iso_color;
+      c.surface.upload(t.mesh);
+      c.iso.upload(iso);
+      c.iso_vertices = GLsizei(iso.size());
+      ++stats.contact_uploads;
+    }
+    return c;
+  }
+
+  // Contact surfaces S(u,v) = F(u,v,0) of every visible deformed object: translucent sheets (depth test on, no
+  // depth writes, both faces), then their iso-lines. Both are pulled a little towards the eye so they are not
+  // lost in z-fighting with the surface they were fitted to.
+  void draw_contact_surfaces(const core::Scene& scene, const glm::mat4& view_proj, const glm::vec3& eye,
+                             const ViewOptions& o) {
+    constexpr float kDepthPull = 0.003f;  // fraction of the eye distance
+    std::vector<CachedContactSurface*> todo;
+    for (const core::SceneObject& obj : scene.objects())
+      if (obj.visible && obj.ffd) todo.push_back(&contact_surface(obj.ffd, o));
+    if (todo.empty()) return;
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LEQUAL);
+    glDepthMask(GL_FALSE);
+    glDisable(GL_CULL_FACE);
+    sheet.use();
+    sheet.set("u_view_proj", view_proj);
+    sheet.set("u_eye", eye);
+    sheet.set("u_depth_pull", kDepthPull);
+    sheet.set("u_tint", o.contact_surface_color);
+    for (CachedContactSurface* c : todo) {
+      c->surface.draw_triangles();
+      ++stats.contact_surfaces_drawn;
+    }
+    pulled_lines.use();
+    pulled_lines.set("u_view_proj", view_proj);
+    pulled_lines.set("u_eye", eye);
+    pulled_lines.set("u_depth_pull", kDepthPull);
+    pulled_lines.set("u_point_px", 1.0f);
+    pulled_lines.set("u_alpha", 1.0f);
+    for (CachedContactSurface* c : todo) {
+      if (c->iso_vertices == 0) continue;
+      glBindVertexArray(c->iso.vao.id());
+      glDrawArrays(GL_LINES, 0, c->iso_vertices);
+    }
+    glDepthMask(GL_TRUE);
+    glDepthFunc(GL_LESS);
   }
 
   void draw_overlay(const std::vector<OverlayVertex>& v, GLenum mode, const ShaderProgram& prog, float alpha) {
@@ -126,6 +203,10 @@ void Renderer::release_unused(const core::Scene& scene) {
   for (const core::SceneObject& o : scene.objects())
     if (o.world_mesh) live.insert(o.world_mesh.get());
   std::erase_if(impl_->cache, [&](const auto& kv) { return !live.count(kv.first); });
+  std::unordered_set<const core::FfdBinding*> live_ffd;
+  for (const core::SceneObject& o : scene.objects())
+    if (o.ffd) live_ffd.insert(o.ffd.get());
+  std::erase_if(impl_->contact_cache, [&](const auto& kv) { return !live_ffd.count(kv.first); });
 }
 
 void Renderer::draw(const core::Scene& scene, const core::Camera& camera, const ViewOptions& options) {
@@ -241,7 +322,8 @@ void Renderer::draw(const core::Scene& scene, const core::Camera& camera, const 
     glEnable(GL_DEPTH_TEST);
   }
 
-  // 5. Lattices and contact surfaces.
+  // 5. Contact surfaces (translucent, after every opaque mesh), lattices and contact samples on top.
+  if (options.show_contact_surface) d.draw_contact_surfaces(scene, view_proj, eye, options);
   if (options.show_lattice || options.show_contact_surface) {
     std::vector<OverlayVertex> lines_v, points_v;
     for (const core::SceneObject& o : scene.objects()) {
@@ -282,6 +364,7 @@ void Renderer::draw(const core::Scene& scene, const core::Camera& camera, const 
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   d.stats.cached_meshes = int(d.cache.size());
+  d.stats.cached_contact_surfaces = int(d.contact_cache.size());
 }
 
 }  // namespace trispline::gpu

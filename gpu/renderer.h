@@ -4,7 +4,8 @@
 //
 // Look: flat vertical gradient background, studio shading (headlight + hemisphere ambient + rim, gamma-correct
 // sRGB output), ground grid on y = 0 fading with distance, selected object tinted and outlined, overlays for
-// control lattices, contact samples and the sketched stroke. Needs a depth+stencil framebuffer (outline mask).
+// control lattices, contact surfaces S(u,v) = F(u,v,0) (translucent, with iso-lines) and contact samples, and the
+// sketched stroke. Needs a depth+stencil framebuffer (outline mask).
 #pragma once
 
 #include <epoxy/gl.h>
@@ -21,7 +22,7 @@ namespace trispline::gpu {
 
 struct ViewOptions {
   bool show_lattice = false;          // control lattice of deformed objects (points + polylines)
-  bool show_contact_surface = false;  // contact samples / F(u,v,0) of placed objects
+  bool show_contact_surface = false;  // S(u,v) = F(u,v,0) of deformed objects + contact samples of placed ones
   bool show_grid = true;              // ground grid on y = 0
   bool wireframe = false;
   std::string selected;               // highlighted object name (outline colour)
@@ -36,6 +37,13 @@ struct ViewOptions {
   float outline_px = 2.0f;
   float lattice_point_px = 7.0f;
   float contact_point_px = 4.5f;
+  // Contact surface S(u,v) = F(u,v,0): tessellation (u along the stroke), tint (display values, alpha at normal
+  // incidence), and iso-lines every contact_iso_every grid lines.
+  int contact_cells_u = 48;
+  int contact_cells_v = 16;
+  glm::vec4 contact_surface_color{0.25f, 0.85f, 0.70f, 0.35f};
+  glm::vec4 contact_iso_color{0.0f, 0.78f, 0.64f, 1.0f};
+  int contact_iso_every = 4;
 };
 
 // What the last draw() did (for tests, the timing overlay and replay's report).
@@ -44,6 +52,9 @@ struct RenderStats {
   std::size_t triangles = 0;
   int uploads = 0;        // meshes (re)uploaded during this draw
   int cached_meshes = 0;  // GPU meshes held after this draw
+  int contact_surfaces_drawn = 0;
+  int contact_uploads = 0;          // contact-surface tessellations built and uploaded during this draw
+  int cached_contact_surfaces = 0;  // held after this draw (one per FfdBinding and tessellation settings)
 };
 
 class Renderer {
@@ -52,7 +63,8 @@ class Renderer {
   ~Renderer();
   // Draws into the bound framebuffer with viewport (0,0,camera.viewport). Clears colour and depth.
   void draw(const core::Scene& scene, const core::Camera& camera, const ViewOptions& options);
-  // Forget cached buffers of objects no longer in the scene (called by draw automatically).
+  // Forget cached buffers of objects no longer in the scene: meshes no longer any object's world_mesh, contact
+  // surfaces whose FfdBinding is no longer any object's ffd (called by draw automatically).
   void release_unused(const core::Scene& scene);
 
   // Added. GPU buffers of `mesh` (uploaded now if not cached). They stay valid until the cache drops the mesh

@@ -1,6 +1,8 @@
 #version 430 core
 // Coloured world-space lines and points (lattice, contact samples). Variant SCREEN_SPACE: positions are
-// viewport pixels (x right, y down, top-left origin) — the sketched stroke.
+// viewport pixels (x right, y down, top-left origin) — the sketched stroke. Variant DEPTH_PULL (world space
+// only): as in mesh.vert.glsl, drawn moved towards the eye by the fraction u_depth_pull of its distance (same
+// pixel, nearer depth) — iso-lines of the contact surface lying on the object they were fitted to.
 #ifdef SCREEN_SPACE
 layout(location = 0) in vec2 a_position;  // pixels
 uniform vec2 u_viewport;                  // pixels
@@ -8,6 +10,10 @@ uniform vec2 u_viewport;                  // pixels
 layout(location = 0) in vec3 a_position;  // world units
 uniform mat4 u_view_proj;
 uniform float u_point_px;                 // point diameter, pixels
+#ifdef DEPTH_PULL
+uniform vec3 u_eye;                       // world units
+uniform float u_depth_pull;               // fraction of the eye distance
+#endif
 #endif
 layout(location = 1) in vec4 a_color;     // display values, alpha
 uniform float u_alpha;                    // multiplies a_color.a (hidden parts are drawn faint)
@@ -16,6 +22,9 @@ void main() {
 #ifdef SCREEN_SPACE
   vec2 ndc = vec2(2.0 * a_position.x / u_viewport.x - 1.0, 1.0 - 2.0 * a_position.y / u_viewport.y);
   gl_Position = vec4(ndc, 0.0, 1.0);
+#elif defined(DEPTH_PULL)
+  gl_Position = u_view_proj * vec4(mix(a_position, u_eye, u_depth_pull), 1.0);
+  gl_PointSize = u_point_px;
 #else
   gl_Position = u_view_proj * vec4(a_position, 1.0);
   gl_PointSize = u_point_px;

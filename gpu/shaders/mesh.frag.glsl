@@ -2,12 +2,23 @@
 // Studio shading: key headlight + hemisphere ambient + soft specular + a little rim, in linear RGB, then
 // tone-mapped and sRGB-encoded here (the framebuffer is plain RGBA8).
 // Variant FLAT_COLOR: writes u_flat_color (display values) unlit — selection outline and wireframe overlay.
+// Variant TRANSLUCENT: a see-through tinted sheet (the contact surface): u_tint (display values, alpha) lightly
+// shaded by the facing ratio, and more opaque at grazing angles so its folds read; both faces alike.
 in vec3 v_world;
 in vec3 v_normal;
 out vec4 o_color;
 #ifdef FLAT_COLOR
 uniform vec4 u_flat_color;
 void main() { o_color = u_flat_color; }
+#elif defined(TRANSLUCENT)
+uniform vec4 u_tint;  // display values, alpha at normal incidence
+uniform vec3 u_eye;   // world units
+void main() {
+  float facing = abs(dot(normalize(v_normal), normalize(u_eye - v_world)));
+  vec3 c = u_tint.rgb * (0.70 + 0.30 * facing) + vec3(0.10) * pow(facing, 24.0);
+  float a = u_tint.a * mix(1.8, 1.0, smoothstep(0.0, 0.6, facing));
+  o_color = vec4(c, clamp(a, 0.0, 1.0));
+}
 #else
 uniform vec3 u_albedo;      // linear RGB
 uniform vec3 u_eye;         // world units

@@ -48,6 +48,8 @@ TEST_F(GlTest, EveryEmbeddedShaderCompilesAndLinks) {
   EXPECT_NO_THROW(ShaderProgram({"mesh.vert.glsl", "mesh.frag.glsl"}, {{"OUTLINE", ""}, {"FLAT_COLOR", ""}}));
   EXPECT_NO_THROW(ShaderProgram({"lines.vert.glsl", "lines.frag.glsl"}, {{"SCREEN_SPACE", ""}}));
   EXPECT_NO_THROW(ShaderProgram({"lines.vert.glsl", "lines.frag.glsl"}, {{"ROUND_POINTS", ""}}));
+  EXPECT_NO_THROW(ShaderProgram({"lines.vert.glsl", "lines.frag.glsl"}, {{"DEPTH_PULL", ""}}));
+  EXPECT_NO_THROW(ShaderProgram({"mesh.vert.glsl", "mesh.frag.glsl"}, {{"DEPTH_PULL", ""}, {"TRANSLUCENT", ""}}));
   EXPECT_NO_THROW(Renderer());
   EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
 }
