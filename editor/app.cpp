@@ -40,6 +40,12 @@ const std::vector<std::string> kLogExtensions = {".jsonl"};
 constexpr int kScreenshotFrames = 5;  // frames rendered after the start-up work before the capture
 
 enum class FilePurpose { None, LoadMesh, OpenLog, SaveLog };
+// What waits for the "Save changes?" answer (the document was modified).
+enum class Pending { None, Quit, New, Open };
+
+const char* doing(Pending p) {
+  return p == Pending::New ? "starting a new scene" : p == Pending::Open ? "opening another log" : "quitting";
+}
 
 // A window with 4x MSAA, reopened without it on a software renderer (llvmpipe: MSAA doubles the frame time).
 // TRISPLINE_MSAA=N forces N samples.
@@ -73,7 +79,8 @@ class App {
   void frame_selected();
   void open_later(const fs::path& log);  // replays `log` after a "Working…" frame
   void showcase();                       // screenshot mode: select the placed object, show the Sketch placement tool
-  void request_quit();
+  void request(Pending what);  // Quit / New / Open: asks "Save changes?" first when the document is modified
+  void go_on(Pending what);    // does it (the question, if any, is answered)
   bool save_or_ask();
   void ask_file(FilePurpose purpose);  // opens the file dialog for `purpose`
   int write_screenshot(const fs::path& path);
@@ -100,7 +107,8 @@ class App {
   ui::TimingOverlay timing_;
   WorkQueue work_;
   std::optional<RecoveryOffer> recovery_;
-  bool show_about_ = false, show_keys_ = false, quit_prompt_ = false, quit_ = false;
+  Pending prompt_for_ = Pending::None;  // the "Save changes?" question is open for this
+  bool show_about_ = false, show_keys_ = false, quit_ = false;
   bool screenshot_requested_ = false;      // F12: written after this frame is drawn
   int screenshots_ = 0, idle_frames_ = 0;  // F12 count; frames since the last deferred work (screenshot mode)
 };
@@ -128,9 +136,11 @@ App::App(const AppOptions& options)
 
 void App::open_later(const fs::path& log) {
   tool_ctx_.defer("Opening " + log.filename().string(), [this, log] {
+    const std::uint64_t before = session_.change_count();
+    session_.open(log);
+    if (session_.change_count() == before) return;  // rejected before anything changed: the scene is kept
     selected_.clear();
     hidden_.clear();
-    session_.open(log);
     if (!session_.scene().camera_set) nav_.frame(session_.scene().bounds(), view_.viewport);
     if (!options_.screenshot.empty()) showcase();
   });
@@ -149,9 +159,25 @@ void App::frame_selected() {
   nav_.frame(o && o->world_mesh ? bounds_of(*o->world_mesh) : session_.scene().bounds(), view_.viewport);
 }
 
-void App::request_quit() {
-  quit_prompt_ = session_.modified() && session_.history().applied() > 0;
-  quit_ = !quit_prompt_;
+void App::request(Pending what) {
+  if (prompt_for_ != Pending::None && what != Pending::Quit) return;  // a question is open already
+  const bool ask = what == Pending::Quit ? session_.modified() && session_.history().applied() > 0
+                                         : session_.modified();
+  if (ask)
+    prompt_for_ = what;
+  else
+    go_on(what);
+}
+
+void App::go_on(Pending what) {
+  prompt_for_ = Pending::None;
+  if (what == Pending::Quit) quit_ = true;
+  if (what == Pending::New) {
+    session_.new_document();
+    selected_.clear();
+    hidden_.clear();
+  }
+  if (what == Pending::Open) ask_file(FilePurpose::OpenLog);
 }
 
 bool App::save_or_ask() {
@@ -176,15 +202,15 @@ void App::handle_menu(ui::MenuAction action) {
   using A = ui::MenuAction;
   // clang-format off
   switch (action) {
-    case A::New: session_.new_document(); selected_.clear(); hidden_.clear(); break;
-    case A::Open: ask_file(FilePurpose::OpenLog); break;
+    case A::New: request(Pending::New); break;
+    case A::Open: request(Pending::Open); break;
     case A::Save: save_or_ask(); break;
     case A::SaveAs: ask_file(FilePurpose::SaveLog); break;
-    case A::Quit: request_quit(); break;
+    case A::Quit: request(Pending::Quit); break;
     case A::Undo: session_.undo(); break;
     case A::Redo: session_.redo(); break;
-    case A::FrameSelected: frame_selected(); break;
-    case A::FrameAll: nav_.frame(session_.scene().bounds(), view_.viewport); break;
+    case A::FrameSelected: if (!tools_.owns_mouse()) frame_selected(); break;
+    case A::FrameAll: if (!tools_.owns_mouse()) nav_.frame(session_.scene().bounds(), view_.viewport); break;
     case A::About: show_about_ = true; break;
     case A::Keys: show_keys_ = true; break;
     case A::SelectTool: tools_.set_active(Toolbox::kSelect); break;
@@ -216,7 +242,7 @@ void App::handle_scene(const ui::SceneRequest& r) {
 
 void App::handle_file(const fs::path& chosen) {
   fs::path path = chosen;
-  switch (file_purpose_) {
+  switch (std::exchange(file_purpose_, FilePurpose::None)) {  // reset first: go_on(Open) asks for a file again
     case FilePurpose::LoadMesh: {
       const nlohmann::json line = {
           {"cmd", "scene.load"}, {"path", path.string()}, {"name", session_.scene().unique_name(path.stem().string())}};
@@ -230,18 +256,21 @@ void App::handle_file(const fs::path& chosen) {
       break;
     case FilePurpose::SaveLog:
       if (path.extension() != ".jsonl") path += ".jsonl";
-      if (session_.save(path, view_) && quit_prompt_) quit_ = true;
+      if (session_.save(path, view_) && prompt_for_ != Pending::None) go_on(prompt_for_);
       break;
     case FilePurpose::None:
       break;
   }
-  file_purpose_ = FilePurpose::None;
 }
 
 void App::viewport_input() {
   const ImGuiIO& io = ImGui::GetIO();
   if (io.WantCaptureMouse || !work_.empty()) return;
   const NavInput nav = nav_input_from_imgui();
+  if (tools_.owns_mouse()) {  // a stroke is being drawn: its pixels belong to the view at mouse-down, keep it
+    tools_.handle_mouse(nav.mouse_px);
+    return;
+  }
   const bool nav_owns_left = nav_.update(nav, view_.viewport);
   if (!nav_owns_left && !(io.KeyAlt && io.MouseClicked[0])) tools_.handle_mouse(nav.mouse_px);
 }
@@ -309,11 +338,11 @@ void App::frame() {
     }
     if (c != ui::RecoverChoice::Pending) recovery_.reset();
   }
-  if (quit_prompt_ && !file_dialog_.is_open()) {
-    const ui::QuitChoice q = ui::draw_quit_prompt(st.document);
-    if (q == ui::QuitChoice::Quit) quit_ = true;
-    if (q == ui::QuitChoice::Cancel) quit_prompt_ = false;
-    if (q == ui::QuitChoice::SaveAndQuit && save_or_ask()) quit_ = true;
+  if (prompt_for_ != Pending::None && !file_dialog_.is_open()) {
+    const ui::QuitChoice q = ui::draw_quit_prompt(st.document, doing(prompt_for_));
+    if (q == ui::QuitChoice::Quit) go_on(prompt_for_);  // "Don't save"
+    if (q == ui::QuitChoice::Cancel) prompt_for_ = Pending::None;
+    if (q == ui::QuitChoice::SaveAndQuit && save_or_ask()) go_on(prompt_for_);  // else the Save dialog goes on
   }
 
   viewport_input();
@@ -351,7 +380,7 @@ int App::run() {
     const auto start = Clock::now();
     if (window_->should_close()) {
       window_->set_should_close(false);
-      request_quit();
+      request(Pending::Quit);
     }
     frame();
     if (!options_.screenshot.empty() && work_.empty() && ++idle_frames_ >= kScreenshotFrames)

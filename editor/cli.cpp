@@ -16,6 +16,7 @@ int run_cli(int argc, char** argv) {
 
   AppOptions edit_options;
   std::string open_log;
+  app.add_option("log", open_log, "Command log (.jsonl) to open in the editor (same as `trispline edit LOG`)");
   auto* edit = app.add_subcommand("edit", "Open the editor (the default when no subcommand is given)");
   edit->add_option("log", open_log, "Command log (.jsonl) to open: replayed as undoable history");
   edit->add_option("--screenshot", edit_options.screenshot, "Render a few frames, write this PNG of the window, exit");

@@ -3,6 +3,8 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 
@@ -16,6 +18,9 @@ std::string describe(const std::filesystem::path& file, int line, const std::str
 }
 
 // "cmd" first, other keys in their (sorted) order: logs read naturally.
+// fsync that treats "this file cannot be synced" (a pipe, a character device) as success.
+bool sync_fd(int fd) { return ::fsync(fd) == 0 || errno == EINVAL || errno == EROFS; }
+
 std::string format_line(const nlohmann::json& line) {
   nlohmann::ordered_json out;
   if (line.contains("cmd")) out["cmd"] = line.at("cmd");
@@ -69,12 +74,20 @@ void write_log_atomic(const std::filesystem::path& path, const std::vector<nlohm
     if (!out) throw std::runtime_error("write failed: " + tmp.string());
   }
   if (int fd = ::open(tmp.c_str(), O_RDONLY); fd >= 0) {
-    ::fsync(fd);
+    const bool synced = sync_fd(fd);
+    const int err = errno;
     ::close(fd);
+    if (!synced) throw std::runtime_error("cannot fsync " + tmp.string() + ": " + std::strerror(err));
   }
   std::error_code ec;
   std::filesystem::rename(tmp, path, ec);
   if (ec) throw std::runtime_error("cannot rename " + tmp.string() + " to " + path.string() + ": " + ec.message());
+  // The rename itself lives in the folder: sync it so a power loss cannot bring the old file back.
+  const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+  if (int fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY); fd >= 0) {
+    sync_fd(fd);  // best effort: the file's content is safe already
+    ::close(fd);
+  }
 }
 
 void make_paths_relative(std::vector<nlohmann::json>& lines, const std::filesystem::path& dir) {
@@ -85,7 +98,9 @@ void make_paths_relative(std::vector<nlohmann::json>& lines, const std::filesyst
     const std::filesystem::path p(it->get<std::string>());
     if (!p.is_absolute()) continue;
     const std::filesystem::path rel = p.lexically_relative(base);
-    if (!rel.empty()) *it = rel.generic_string();
+    int ups = 0;
+    for (const auto& part : rel) ups += part == "..";
+    if (!rel.empty() && ups <= 2) *it = rel.generic_string();  // farther away: a moved folder would break it
   }
 }
 
@@ -99,11 +114,18 @@ CommandLog::~CommandLog() {
   if (file_) std::fclose(file_);
 }
 
-void CommandLog::append(const nlohmann::json& line) {
+bool CommandLog::append(const nlohmann::json& line) {
   const std::string s = format_line(line) + "\n";
-  std::fwrite(s.data(), 1, s.size(), file_);
-  std::fflush(file_);
-  ::fsync(::fileno(file_));  // a kill or a crash right after a command loses nothing
+  auto fail = [&](const char* what) {
+    error_ = std::string(what) + " " + path_.string() + " failed: " + std::strerror(errno);
+    std::clearerr(file_);
+    return false;
+  };
+  errno = 0;
+  if (std::fwrite(s.data(), 1, s.size(), file_) != s.size()) return fail("writing to");
+  if (std::fflush(file_) != 0) return fail("flushing");
+  if (!sync_fd(::fileno(file_))) return fail("fsync of");  // a kill or a crash right after a command loses nothing
+  return true;
 }
 
 }  // namespace trispline::editor

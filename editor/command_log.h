@@ -1,8 +1,9 @@
 // trispline::editor command logs (JSON Lines, one command object per line; see docs/commands.md).
-//  * CommandLog: the append-only session log, flushed (and fsync'ed) after every line so a crash loses nothing.
+//  * CommandLog: the append-only session log, flushed (and fsync'ed) after every line so a crash loses nothing;
+//    append() checks fwrite/fflush/fsync and returns false (error() says why) when the line may be lost.
 //  * read_log(): parses a log file into lines with their line numbers (blank lines and lines starting with
 //    '#' or '//' are skipped); a malformed JSON line throws LogError naming file and line.
-//  * write_log_atomic(): Save — writes to PATH.tmp, fsyncs, renames over PATH.
+//  * write_log_atomic(): Save — writes to PATH.tmp, fsyncs, renames over PATH, fsyncs PATH's folder.
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -44,7 +45,8 @@ void parse_log_line(const std::filesystem::path& path, LogLine& line);
 void write_log_atomic(const std::filesystem::path& path, const std::vector<nlohmann::json>& lines);
 
 // Rewrites absolute "path" fields of scene.load lines relative to `dir` (the folder a log is saved in), as Blender
-// does with "//" paths, so a saved scene and its meshes can move together. Paths on another root stay absolute.
+// does with "//" paths, so a saved scene and its meshes can move together. Paths more than two folders above
+// `dir` stay absolute (a relative "../../../usr/share/..." would break as soon as the log moved).
 void make_paths_relative(std::vector<nlohmann::json>& lines, const std::filesystem::path& dir);
 
 class CommandLog {
@@ -53,12 +55,15 @@ class CommandLog {
   ~CommandLog();
   CommandLog(const CommandLog&) = delete;
   CommandLog& operator=(const CommandLog&) = delete;
-  void append(const nlohmann::json& line);
+  // Writes, flushes and fsyncs one line. False if any of them failed; error() then says which and why.
+  bool append(const nlohmann::json& line);
   const std::filesystem::path& path() const { return path_; }
+  const std::string& error() const { return error_; }  // the last append failure ("" = none)
 
  private:
   std::filesystem::path path_;
   std::FILE* file_ = nullptr;
+  std::string error_;
 };
 
 }  // namespace trispline::editor

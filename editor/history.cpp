@@ -17,7 +17,7 @@ ExecutionRecord History::execute(core::CommandPtr cmd) {
   commands_.resize(applied_);
   commands_.push_back(std::move(cmd));
   applied_ = commands_.size();
-  if (log_) log_->append(rec.line);
+  log(rec.line);
   if (on_change) on_change();
   return rec;
 }
@@ -26,7 +26,7 @@ void History::undo() {
   if (!can_undo()) return;
   commands_[applied_ - 1]->undo(scene_);
   --applied_;
-  if (log_) log_->append({{"cmd", "edit.undo"}});
+  log({{"cmd", "edit.undo"}});
   if (on_change) on_change();
 }
 
@@ -34,8 +34,14 @@ void History::redo() {
   if (!can_redo()) return;
   commands_[applied_]->redo(scene_);  // may throw (CommandError): then nothing moved
   ++applied_;
-  if (log_) log_->append({{"cmd", "edit.redo"}});
+  log({{"cmd", "edit.redo"}});
   if (on_change) on_change();
+}
+
+void History::log(const nlohmann::json& line) {
+  if (!log_ || log_->append(line) || log_error_reported_) return;
+  log_error_reported_ = true;
+  if (on_log_error) on_log_error(log_->error());
 }
 
 void History::jump_to(std::size_t applied_count) {

@@ -47,15 +47,22 @@ class History {
   std::vector<nlohmann::json> applied_lines() const;
 
   // Optional session log: every execute/undo/redo is appended and flushed.
-  void set_log(CommandLog* log) { log_ = log; }
+  void set_log(CommandLog* log) {
+    log_ = log;
+    log_error_reported_ = false;
+  }
   // Called after every change (execute/undo/redo), e.g. to mark the viewport dirty.
   std::function<void()> on_change;
+  // Called with CommandLog::error() on the first failed append to the current log (the command itself stands).
+  std::function<void(const std::string&)> on_log_error;
 
  private:
   core::Scene& scene_;
   std::vector<core::CommandPtr> commands_;
   std::size_t applied_ = 0;
   CommandLog* log_ = nullptr;
+  bool log_error_reported_ = false;
+  void log(const nlohmann::json& line);
 };
 
 }  // namespace trispline::editor

@@ -6,6 +6,7 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -58,6 +59,9 @@ nlohmann::json camera_line(const core::Camera& c) {
 
 EditorSession::EditorSession(ui::MessageLog& messages) : messages_(messages), history_(scene_) {
   history_.on_change = [this] { ++changes_; };
+  history_.on_log_error = [this](const std::string& error) {
+    messages_.warning("session log: " + error + "; crash recovery may miss the commands from here on");
+  };
 }
 
 EditorSession::~EditorSession() {
@@ -74,6 +78,7 @@ std::optional<RecoveryOffer> EditorSession::start(bool check_previous) {
     messages_.warning("no session log (crash recovery off): cannot create " + dir_.string() + ": " + ec.message());
     return offer;
   }
+  const std::string own = "session-" + std::to_string(::getpid());
   log_path_ = dir_ / "session.jsonl";
   lock_path_ = dir_ / "session.lock";
   if (fs::exists(lock_path_)) {
@@ -81,34 +86,83 @@ std::optional<RecoveryOffer> EditorSession::start(bool check_previous) {
     std::ifstream(lock_path_) >> pid;
     if (pid != long(::getpid()) && process_alive(pid)) {
       messages_.warning("another trispline editor (pid " + std::to_string(pid) + ") uses " + log_path_.string() +
-                        "; this one logs to session-" + std::to_string(::getpid()) + ".jsonl");
-      log_path_ = dir_ / ("session-" + std::to_string(::getpid()) + ".jsonl");
-      lock_path_ = dir_ / ("session-" + std::to_string(::getpid()) + ".lock");
+                        "; this one logs to " + own + ".jsonl");
+      log_path_ = dir_ / (own + ".jsonl");
+      lock_path_ = dir_ / (own + ".lock");
     } else {
-      offer = keep_unfinished(check_previous);
+      bool kept = true;
+      offer = keep_unfinished(check_previous, log_path_, &kept);
+      if (!kept) {  // the only copy of that log: leave it (and its lock, so the next start tries again)
+        messages_.warning("the unfinished session's log is left in " + log_path_.string() + "; this editor logs to " +
+                          own + ".jsonl");
+        log_path_ = dir_ / (own + ".jsonl");
+        lock_path_ = dir_ / (own + ".lock");
+      }
     }
   }
-  open_session_log();
+  if (!offer) offer = keep_dead_instances(check_previous);
+  open_session_log(false);
   std::ofstream(lock_path_, std::ios::trunc) << ::getpid() << '\n';
   return offer;
 }
 
-std::optional<RecoveryOffer> EditorSession::keep_unfinished(bool ask) {
-  const fs::path aside = dir_ / "session.recovered.jsonl", pending = dir_ / "session.recover-pending";
+std::optional<RecoveryOffer> EditorSession::keep_dead_instances(bool ask) {
+  std::error_code ec;
+  std::vector<std::pair<long, fs::path>> locks;
+  for (fs::directory_iterator it(dir_, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    const std::string prefix = "session-", suffix = ".lock";
+    if (name.size() <= prefix.size() + suffix.size() || name.rfind(prefix, 0) != 0 ||
+        name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0)
+      continue;
+    const std::string digits = name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
+    if (digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos) continue;
+    locks.emplace_back(std::stol(digits), it->path());
+  }
+  std::sort(locks.begin(), locks.end());
+  for (const auto& [pid, lock] : locks) {
+    if (pid == long(::getpid()) || process_alive(pid)) continue;
+    const fs::path log = dir_ / ("session-" + std::to_string(pid) + ".jsonl");
+    bool kept = true;
+    std::optional<RecoveryOffer> offer = keep_unfinished(ask, log, &kept);
+    if (!kept) continue;  // left as it is for the next start
+    fs::remove(log, ec);
+    fs::remove(lock, ec);
+    if (offer) return offer;
+  }
+  return std::nullopt;
+}
+
+fs::path EditorSession::pending_log() const {
+  std::string name;
+  std::getline(std::ifstream(dir_ / "session.recover-pending"), name);
+  if (name.empty() || name == "asked" || name.find('/') != std::string::npos) name = "session.recovered.jsonl";
+  return dir_ / name;
+}
+
+std::optional<RecoveryOffer> EditorSession::keep_unfinished(bool ask, const fs::path& log, bool* kept) {
+  const fs::path pending = dir_ / "session.recover-pending";
+  fs::path aside = dir_ / "session.recovered.jsonl";
   std::error_code ec;
   bool truncated = false;
+  *kept = true;
   std::vector<nlohmann::json> lines;
-  if (fs::file_size(log_path_, ec) > 0 && !ec) lines = readable_prefix(log_path_, &truncated);
+  if (fs::file_size(log, ec) > 0 && !ec) lines = readable_prefix(log, &truncated);
   if (!lines.empty()) {
+    if (fs::exists(pending, ec))  // an unanswered offer: never overwrite its log (nor any other kept one)
+      for (int n = 1; fs::exists(aside, ec) || aside == pending_log(); ++n)
+        aside = dir_ / ("session.recovered-" + std::to_string(n) + ".jsonl");
     try {
       write_log_atomic(aside, lines);
-      std::ofstream(pending) << "asked\n";
     } catch (const std::exception& e) {
       messages_.error(std::string("cannot keep the unfinished session's log: ") + e.what());
+      *kept = false;
       return std::nullopt;
     }
+    std::ofstream(pending, std::ios::trunc) << aside.filename().string() << '\n';
     if (truncated) messages_.warning("the unfinished session's log ends with a damaged line; it was dropped");
   } else if (fs::exists(pending, ec)) {  // the run that was asked died before answering: ask again
+    aside = pending_log();
     lines = readable_prefix(aside, &truncated);
   }
   if (lines.empty()) return std::nullopt;
@@ -118,10 +172,18 @@ std::optional<RecoveryOffer> EditorSession::keep_unfinished(bool ask) {
   return std::nullopt;
 }
 
-void EditorSession::open_session_log() {
+void EditorSession::open_session_log(bool keep_old) {
   if (log_path_.empty()) return;
   history_.set_log(nullptr);
   log_.reset();
+  std::error_code ec;
+  if (keep_old && fs::file_size(log_path_, ec) > 0 && !ec) {
+    const fs::path prev = log_path_.parent_path() / (log_path_.stem().string() + ".prev.jsonl");
+    fs::rename(log_path_, prev, ec);
+    if (ec)
+      messages_.warning("cannot keep the old session log as " + prev.string() + ": " + ec.message() +
+                        "; it is restarted");
+  }
   try {
     log_ = std::make_unique<CommandLog>(log_path_, true);
     history_.set_log(log_.get());
@@ -218,7 +280,7 @@ void EditorSession::new_document() {
   document_.clear();
   last_ms_ = -1;
   last_label_.clear();
-  open_session_log();  // the old lines no longer replay to this document
+  open_session_log(true);  // the old lines no longer replay to this document: renamed aside
   saved_ = marker();
   ++changes_;
 }
@@ -248,6 +310,12 @@ bool EditorSession::open(const fs::path& log) {
     messages_.error("cannot open " + log.string() + ": no such file");
     return false;
   }
+  try {
+    read_log(log);  // the whole file parses before anything of the current document is dropped
+  } catch (const std::exception& e) {
+    messages_.error(std::string("cannot open ") + e.what() + " (the current scene is kept)");
+    return false;
+  }
   const bool ok = replay_into(log, "Opened");
   document_ = fs::absolute(log, ec);
   saved_ = ok ? marker() : std::pair<std::size_t, const core::Command*>{0, nullptr};
@@ -271,9 +339,10 @@ bool EditorSession::save(const fs::path& path, const core::Camera& view) {
 }
 
 bool EditorSession::recover(const RecoveryOffer& offer) {
-  std::error_code ec;
+  const bool ok = replay_into(offer.log, "Recovered");
+  std::error_code ec;  // answered only now: a crash during the replay asks again
   fs::remove(dir_ / "session.recover-pending", ec);
-  return replay_into(offer.log, "Recovered");
+  return ok;
 }
 
 void EditorSession::discard(const RecoveryOffer& offer) {

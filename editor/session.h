@@ -5,10 +5,16 @@
 // Session files live in state_dir() (TRISPLINE_STATE_DIR, else $XDG_STATE_HOME/trispline, else
 // ~/.local/state/trispline):
 //   session.jsonl            every executed / undone / redone command of this run, flushed at once (History log)
+//   session.prev.jsonl       the log of the document before the last New / Open / recovery (renamed aside)
 //   session.lock             exists while an editor runs (holds its pid); removed on clean exit
-//   session.recovered.jsonl  the previous unfinished session's log, moved aside at start (the readable prefix)
-//   session.recover-pending  the recovery question is open (asked again if this run dies before answering)
+//   session.recovered.jsonl  the previous unfinished session's log, moved aside at start (the readable prefix);
+//                            session.recovered-N.jsonl when an unanswered offer still holds that name
+//   session.recover-pending  the recovery question is open (asked again if this run dies before answering);
+//                            holds the file name of the log on offer
 // A lock whose pid is still alive belongs to another running editor: this one then uses session-<pid>.* files.
+// If the unfinished log cannot be moved aside, it is left untouched (with its lock) and this run logs to
+// session-<pid>.jsonl. A session-<pid>.lock whose pid is dead (a crashed second editor) is offered for recovery
+// like session.lock.
 #pragma once
 
 #include "core/scene/scene.h"
@@ -59,10 +65,13 @@ class EditorSession {
   bool redo();
   bool jump_to(std::size_t applied_count);
 
-  void new_document();                          // empty scene and history; restarts the session log
-  bool open(const std::filesystem::path& log);  // new_document() + replay (each line one undoable step)
+  // Empty scene and history; restarts the session log (the old one is renamed to <log>.prev.jsonl, not lost).
+  void new_document();
+  // Parses the whole log first: a malformed one is reported and the current scene kept. Then new_document() +
+  // replay (each line one undoable step).
+  bool open(const std::filesystem::path& log);
   bool save(const std::filesystem::path& path, const core::Camera& view);  // applied lines + camera.set, atomic
-  bool recover(const RecoveryOffer& offer);                                // new_document() + replay of the offer's log
+  bool recover(const RecoveryOffer& offer);  // new_document() + replay of the offer's log; then closes the question
   void discard(const RecoveryOffer& offer);                                // keeps the file, says so
 
   core::Scene& scene() { return scene_; }
@@ -86,8 +95,12 @@ class EditorSession {
 
  private:
   bool replay_into(const std::filesystem::path& log, const char* what);
-  std::optional<RecoveryOffer> keep_unfinished(bool ask);  // previous run died: move its log aside, maybe offer
-  void open_session_log();
+  // A previous run died leaving `log`: copy its readable prefix aside, maybe offer it. *kept is false if the copy
+  // could not be written (then `log` must be left alone).
+  std::optional<RecoveryOffer> keep_unfinished(bool ask, const std::filesystem::path& log, bool* kept);
+  std::optional<RecoveryOffer> keep_dead_instances(bool ask);  // session-<pid>.lock files whose pid is dead
+  std::filesystem::path pending_log() const;                    // the log the open recovery question is about
+  void open_session_log(bool keep_old);                        // keep_old: rename the current log aside first
   std::pair<std::size_t, const core::Command*> marker() const;
 
   ui::MessageLog& messages_;

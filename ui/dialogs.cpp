@@ -89,13 +89,13 @@ RecoverChoice draw_recover_prompt(std::size_t command_count, const std::string& 
   return choice;
 }
 
-QuitChoice draw_quit_prompt(const std::string& document) {
+QuitChoice draw_quit_prompt(const std::string& document, const char* doing) {
   QuitChoice choice = QuitChoice::Pending;
   const char* id = "Save changes?";
   if (!ImGui::IsPopupOpen(id)) ImGui::OpenPopup(id);
   center_next_window();
   if (ImGui::BeginPopupModal(id, nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings)) {
-    ImGui::Text("Save changes to %s before quitting?", document.c_str());
+    ImGui::Text("Save changes to %s before %s?", document.c_str(), doing);
     ImGui::TextColored(colors::dim, "Don't save discards the commands since the last save.");
     ImGui::Spacing();
     if (ImGui::Button("Save", ImVec2(100, 0))) choice = QuitChoice::SaveAndQuit;

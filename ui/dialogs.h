@@ -1,5 +1,5 @@
-// trispline::ui dialogs — small modal windows: About, Keys and mouse (the key list), and the crash-recovery
-// prompt shown at start when a previous session did not end cleanly.
+// trispline::ui dialogs — small modal windows: About, Keys and mouse (the key list), the crash-recovery
+// prompt shown at start when a previous session did not end cleanly, and "Save changes?" before Quit/New/Open.
 #pragma once
 
 #include <cstddef>
@@ -18,7 +18,8 @@ RecoverChoice draw_recover_prompt(std::size_t command_count, const std::string& 
 
 enum class QuitChoice { Pending, SaveAndQuit, Quit, Cancel };
 
-// Modal "Save changes before quitting?" for a modified document.
-QuitChoice draw_quit_prompt(const std::string& document);
+// Modal "Save changes to DOC before <doing>?" for a modified document (doing: "quitting", "starting a new scene",
+// "opening another log"). SaveAndQuit = save, then go on; Quit = "Don't save": go on and drop the changes.
+QuitChoice draw_quit_prompt(const std::string& document, const char* doing = "quitting");
 
 }  // namespace trispline::ui

@@ -1,5 +1,6 @@
 #include "core/commands/place_sketch.h"
 
+#include <algorithm>
 #include <chrono>
 
 #include "core/commands/camera_set.h"
@@ -29,7 +30,29 @@ CommandPtr PlaceSketchCommand::parse(const nlohmann::json& j, const CommandConte
   p.up_axis = jf::get_enum(j, "up_axis", {"x", "y", "z"}, "y");
   if (p.length_axis == p.up_axis)
     throw CommandError("field 'up_axis': must differ from length_axis ('" + p.length_axis + "')", "up_axis");
-  if (jf::has(j, "camera")) p.camera = CameraSetCommand::parse_camera(j.at("camera"));
+  if (jf::has(j, "camera")) {
+    try {
+      p.camera = CameraSetCommand::parse_camera(j.at("camera"));
+    } catch (const CommandError& e) {  // name the nested field: 'camera.fov_deg'
+      std::string msg = e.what();
+      if (msg.rfind("field '", 0) == 0) msg.insert(7, "camera.");
+      throw CommandError(msg, "camera." + e.field());
+    }
+  }
+  if (jf::has(j, "ignore")) {  // ids the rays pass through (the editor's hidden objects)
+    const nlohmann::json& list = j.at("ignore");
+    if (!list.is_array())
+      throw CommandError("field 'ignore': expected an array of object ids, got " + std::string(list.type_name()),
+                         "ignore");
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      try {
+        p.ignore.push_back(jf::get_string(nlohmann::json{{"ignore", list[i]}}, "ignore"));
+      } catch (const CommandError& e) {  // "field 'ignore': expected a string, got number" + which element
+        const std::string what = e.what(), prefix = "field 'ignore': ";
+        throw CommandError(prefix + "element " + std::to_string(i) + ": " + what.substr(prefix.size()), "ignore");
+      }
+    }
+  }
   return std::make_unique<PlaceSketchCommand>(std::move(p));
 }
 
@@ -46,6 +69,7 @@ nlohmann::json PlaceSketchCommand::params_json(const PlaceSketchParams& p) {
                       {"length_axis", p.length_axis},
                       {"up_axis", p.up_axis}};
   if (p.camera) j["camera"] = CameraSetCommand::camera_json(*p.camera);
+  if (!p.ignore.empty()) j["ignore"] = p.ignore;
   return j;
 }
 
@@ -56,13 +80,21 @@ std::optional<SceneObject> PlaceSketchCommand::build(const Scene& scene) {
   const auto t0 = std::chrono::steady_clock::now();
   RayCaster rays;
   for (const auto& o : scene.objects())
-    if (o.visible && o.name != p_.object && o.world_mesh) rays.add_mesh(*o.world_mesh);
+    if (o.visible && o.name != p_.object && o.world_mesh &&
+        std::find(p_.ignore.begin(), p_.ignore.end(), o.name) == p_.ignore.end())
+      rays.add_mesh(*o.world_mesh);
   rays.commit();
   const double bvh_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 
   SketchPlacementParams sp;
   sp.stroke_px = p_.stroke;
+  if (!p_.camera && !scene.camera_set)
+    throw CommandError(
+        "field 'camera': stroke pixels need a camera: add a camera.set line before this one or a "
+        "\"camera\" object to this line",
+        "camera");
   sp.camera = p_.camera ? *p_.camera : scene.camera;
+  sp.evaluate_positions = false;  // refresh() below evaluates positions and normals in one pass
   sp.half_width = p_.width;
   sp.height = p_.height;
   sp.samples_u = p_.samples.x;
@@ -111,8 +143,7 @@ std::optional<SceneObject> PlaceSketchCommand::build(const Scene& scene) {
               {"rays", st.ms_rays},
               {"surface", st.ms_surface},
               {"volume", st.ms_volume},
-              {"embed", st.ms_embed},
-              {"evaluate", st.ms_evaluate}}}};
+              {"embed", st.ms_embed}}}};
   stats_["bvh_ms"] = bvh_ms;
   stats_["evaluate_ms"] = eval_ms;
   stats_["vertices"] = placed.world_mesh->vertex_count();

@@ -1,10 +1,11 @@
 // `place.sketch` — places an object along a stroke sketched over the scene (seed §2.3.1, Eq. 2.1–2.4).
 //   {"cmd":"place.sketch","object":"ID","stroke":[[px,py],...],"width":d,"height":h,"samples":[nu,nv],
 //    "volume":"extrude|offset","order":[ou,ov,ow],"controls":[nu,nv,nw],"length_axis":"x|y|z","up_axis":"x|y|z",
-//    "camera":{"eye":..,"target":..,"up":..,"fov_deg":..,"viewport":..}}
+//    "camera":{"eye":..,"target":..,"up":..,"fov_deg":..,"viewport":..},"ignore":["ID",...]}
 // stroke: viewport pixels (top-left origin) of the camera in "camera" (optional) or of the last camera.set.
 // width: half-width d of the volume across the stroke, world units. height: h, world units. order = degree + 1.
-// The rays see every visible object except the one being placed. Re-placing an already placed object starts
+// The rays see every visible object except the one being placed and those listed in "ignore" (optional; the
+// editor lists the objects hidden in its viewport). Re-placing an already placed object starts
 // again from its undeformed (transformed) rest mesh. Undo restores the object as it was.
 #pragma once
 
@@ -26,6 +27,7 @@ struct PlaceSketchParams {
   std::string length_axis = "x";
   std::string up_axis = "y";
   std::optional<Camera> camera;  // view the stroke was drawn in (else the scene camera)
+  std::vector<std::string> ignore;  // objects the rays pass through (hidden in the editor's view)
 };
 
 class PlaceSketchCommand : public SnapshotCommand {

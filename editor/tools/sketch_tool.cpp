@@ -15,10 +15,11 @@ nlohmann::json vec3(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
 }  // namespace
 
 nlohmann::json place_sketch_line(const std::string& object, const std::vector<glm::dvec2>& stroke_px,
-                                 const ui::PlacementParams& p, const core::Camera& view) {
+                                 const ui::PlacementParams& p, const core::Camera& view,
+                                 const std::vector<std::string>& ignore) {
   nlohmann::json stroke = nlohmann::json::array();
   for (const glm::dvec2& q : stroke_px) stroke.push_back({q.x, q.y});
-  return {{"cmd", "place.sketch"},
+  nlohmann::json line = {{"cmd", "place.sketch"},
           {"object", object},
           {"stroke", stroke},
           {"width", p.width},
@@ -35,10 +36,13 @@ nlohmann::json place_sketch_line(const std::string& object, const std::vector<gl
             {"up", vec3(view.up)},
             {"fov_deg", view.fov_deg},
             {"viewport", {view.viewport.x, view.viewport.y}}}}};
+  if (!ignore.empty()) line["ignore"] = ignore;
+  return line;
 }
 
 bool parse_place_sketch_line(const nlohmann::json& j, std::string* object, std::vector<glm::dvec2>* stroke,
-                             ui::PlacementParams* p, std::optional<core::Camera>* camera) {
+                             ui::PlacementParams* p, std::optional<core::Camera>* camera,
+                             std::vector<std::string>* ignore) {
   try {
     auto axis = [](const std::string& a) { return a == "x" ? 0 : a == "y" ? 1 : 2; };
     *object = j.at("object").get<std::string>();
@@ -54,6 +58,7 @@ bool parse_place_sketch_line(const nlohmann::json& j, std::string* object, std::
     p->up_axis = axis(j.value("up_axis", "y"));
     camera->reset();
     if (j.contains("camera")) *camera = core::CameraSetCommand::parse_camera(j["camera"]);
+    if (ignore) *ignore = j.value("ignore", std::vector<std::string>{});
     return true;
   } catch (const std::exception&) {
     return false;
@@ -81,6 +86,7 @@ std::string SketchTool::hint() const {
 void SketchTool::handle_input(const ToolInput& in, ToolContext& ctx) {
   if (in.left_pressed) {
     stroke_ = {in.mouse_px};
+    stroke_view_ = ctx.view;  // pixels of this view, whatever the camera does until mouse-up
     drawing_ = true;
   }
   if (drawing_ && in.left_down) {
@@ -95,19 +101,25 @@ void SketchTool::handle_input(const ToolInput& in, ToolContext& ctx) {
       ctx.session.messages().error("place.sketch: choose the object to place in the Tool panel first");
       return;
     }
-    place(ctx, std::move(stroke), ctx.view);
+    // The rays pass through what the viewport hides, as picking does.
+    std::vector<std::string> ignore;
+    for (const std::string& name : ctx.hidden)
+      if (name != object_ && ctx.session.scene().find(name)) ignore.push_back(name);
+    place(ctx, std::move(stroke), stroke_view_, std::move(ignore));
   }
 }
 
-void SketchTool::place(ToolContext& ctx, std::vector<glm::dvec2> stroke, const core::Camera& view) {
-  const nlohmann::json line = place_sketch_line(object_, stroke, params_, view);
+void SketchTool::place(ToolContext& ctx, std::vector<glm::dvec2> stroke, const core::Camera& view,
+                       std::vector<std::string> ignore) {
+  const nlohmann::json line = place_sketch_line(object_, stroke, params_, view, ignore);
   const std::string object = object_;
   EditorSession& session = ctx.session;  // outlives the deferred work; ctx may not
-  ctx.defer("Placing " + object + " along the stroke", [this, &session, line, stroke, view, object]() {
+  ctx.defer("Placing " + object + " along the stroke", [this, &session, line, stroke, view, object, ignore]() {
     if (!session.execute(line)) return;
     History& h = session.history();
     last_stroke_ = stroke;
     last_view_ = view;
+    last_ignore_ = ignore;
     last_object_ = object;
     last_applied_ = h.applied();
     last_command_ = &h.at(h.applied() - 1);
@@ -126,7 +138,7 @@ bool SketchTool::last_is_top(const History& h) const {
 void SketchTool::replace_last(ToolContext& ctx) {
   if (!last_is_top(ctx.session.history()))
     return;  // nothing of ours to re-run: the new values apply to the next stroke
-  const nlohmann::json line = place_sketch_line(last_object_, last_stroke_, params_, last_view_);
+  const nlohmann::json line = place_sketch_line(last_object_, last_stroke_, params_, last_view_, last_ignore_);
   EditorSession& s = ctx.session;
   ctx.defer("Re-running the placement of " + last_object_, [this, &s, line]() {
     if (!last_is_top(s.history())) return;
@@ -157,7 +169,7 @@ void SketchTool::adopt_top(const ToolContext& ctx) {
   if (top.id() != "place.sketch") return;
   std::optional<core::Camera> camera;
   ui::PlacementParams params;
-  if (!parse_place_sketch_line(top.to_json(), &last_object_, &last_stroke_, &params, &camera)) return;
+  if (!parse_place_sketch_line(top.to_json(), &last_object_, &last_stroke_, &params, &camera, &last_ignore_)) return;
   params_ = params;
   last_view_ = camera ? *camera : ctx.session.scene().camera;  // a camera-less line used the scene camera
   last_applied_ = h.applied();

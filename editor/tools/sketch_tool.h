@@ -1,7 +1,8 @@
 // trispline::editor::SketchTool — Sketch placement (seed §2.3.1): choose the object to place, left-drag a stroke
 // over the scene; on mouse-up the tool executes one `place.sketch` command (docs/commands.md) carrying the
-// stroke (viewport pixels, top-left origin), the parameters and the view it was drawn with ("camera"), so the
-// log line is self-contained.
+// stroke (viewport pixels, top-left origin), the parameters, the view at mouse-down ("camera"; the editor does not
+// move the camera while a stroke is drawn) and the objects hidden in the viewport ("ignore", the rays pass through
+// them as picking does), so the log line is self-contained.
 //
 // Changing a parameter after a placement re-runs it as ONE undoable step: when the tool's last place.sketch is
 // still the top applied command, it is undone and the edited command executed in its place (if that fails the
@@ -21,13 +22,16 @@
 
 namespace trispline::editor {
 
-// The place.sketch line for a stroke drawn with `view` (fields exactly as in docs/commands.md).
+// The place.sketch line for a stroke drawn with `view` (fields exactly as in docs/commands.md); "ignore" only when
+// `ignore` is not empty.
 nlohmann::json place_sketch_line(const std::string& object, const std::vector<glm::dvec2>& stroke_px,
-                                 const ui::PlacementParams& params, const core::Camera& view);
+                                 const ui::PlacementParams& params, const core::Camera& view,
+                                 const std::vector<std::string>& ignore = {});
 
 // Reads a place.sketch line back (stroke, parameters, camera if present). False if a field is missing/mistyped.
 bool parse_place_sketch_line(const nlohmann::json& line, std::string* object, std::vector<glm::dvec2>* stroke,
-                             ui::PlacementParams* params, std::optional<core::Camera>* camera);
+                             ui::PlacementParams* params, std::optional<core::Camera>* camera,
+                             std::vector<std::string>* ignore = nullptr);
 
 class SketchTool : public Tool {
  public:
@@ -38,6 +42,7 @@ class SketchTool : public Tool {
   void draw_panel(ToolContext& ctx) override;
   void decorate(gpu::ViewOptions& options) const override;
   std::string hint() const override;
+  bool owns_mouse() const override { return drawing_; }
 
   const ui::PlacementParams& params() const { return params_; }
   // What a committed edit in the panel does: takes `params`, and re-runs the tool's last placement with them as
@@ -48,7 +53,8 @@ class SketchTool : public Tool {
   bool can_rerun(const ToolContext& ctx) const;
 
  private:
-  void place(ToolContext& ctx, std::vector<glm::dvec2> stroke, const core::Camera& view);
+  void place(ToolContext& ctx, std::vector<glm::dvec2> stroke, const core::Camera& view,
+             std::vector<std::string> ignore);
   void replace_last(ToolContext& ctx);  // parameter change after a placement
   bool last_is_top(const History& history) const;
   void adopt_top(const ToolContext& ctx);  // a place.sketch from elsewhere on top of the history
@@ -58,10 +64,12 @@ class SketchTool : public Tool {
   std::string followed_selection_;  // selection the combo last followed
   std::vector<glm::dvec2> stroke_;  // being drawn
   bool drawing_ = false;
+  core::Camera stroke_view_;  // the view at mouse-down: the stroke's pixels belong to it
 
   // The tool's last successful placement (for re-running with new parameters).
   std::vector<glm::dvec2> last_stroke_;
   core::Camera last_view_;
+  std::vector<std::string> last_ignore_;
   std::string last_object_;
   const void* last_command_ = nullptr;  // identity of the History entry it produced
   std::size_t last_applied_ = 0;

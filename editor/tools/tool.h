@@ -46,6 +46,8 @@ class Tool {
   virtual void draw_panel(ToolContext& ctx) = 0;     // inside the Tool window, below the selector
   virtual void decorate(gpu::ViewOptions&) const {}  // view overlays (stroke being drawn)
   virtual std::string hint() const { return {}; }    // status-bar hint
+  // True while a drag of this tool is under way (a stroke being drawn): the editor then leaves the camera alone.
+  virtual bool owns_mouse() const { return false; }
 };
 
 }  // namespace trispline::editor

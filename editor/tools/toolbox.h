@@ -25,6 +25,7 @@ class Toolbox {
   void handle_mouse(glm::dvec2 mouse_px);  // feeds ImGui's mouse state to the active tool
   void decorate(gpu::ViewOptions& options) const { tool().decorate(options); }
   std::string hint() const { return tool().hint(); }
+  bool owns_mouse() const { return tool().owns_mouse(); }  // the active tool is mid-drag: no navigation
 
  private:
   ToolContext& ctx_;

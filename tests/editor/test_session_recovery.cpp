@@ -1,0 +1,350 @@
+// Reviewer fixes in the editor session and tools: New/Open keep the crash log and never drop the scene for a
+// malformed file (F1), the stroke's camera is the one at mouse-down (F5), hidden objects do not catch placement
+// rays ("ignore", F2), crash recovery never loses the only copy of a log (F6), a crashed second editor is offered
+// recovery (F7), and session log write failures are reported (F10).
+#include "core/commands/place_sketch.h"
+#include "core/commands/camera_set.h"
+#include "editor/command_registry.h"
+#include "editor/navigation.h"
+#include "editor/session.h"
+#include "editor/tools/sketch_tool.h"
+
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <fstream>
+
+namespace fs = std::filesystem;
+using namespace trispline;
+
+namespace {
+
+class SessionRecovery : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("trispline_recovery_test_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    ::setenv("TRISPLINE_STATE_DIR", dir_.c_str(), 1);
+  }
+  void TearDown() override {
+    std::error_code ec;
+    fs::permissions(dir_, fs::perms::owner_all, fs::perm_options::add, ec);
+    fs::remove_all(dir_);
+  }
+  bool logged(const std::string& part) const {
+    for (const auto& m : messages_.messages())
+      if (m.text.find(part) != std::string::npos) return true;
+    return false;
+  }
+  fs::path dir_;
+  ui::MessageLog messages_;
+};
+
+std::size_t line_count(const fs::path& p) {
+  std::ifstream in(p);
+  std::size_t n = 0;
+  for (std::string s; std::getline(in, s);) n += !s.empty();
+  return n;
+}
+
+std::string read_all(const fs::path& p) {
+  std::ifstream in(p);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+// A pid that belonged to a process which has exited.
+long dead_pid() {
+  const pid_t child = ::fork();
+  if (child == 0) ::_exit(0);
+  ::waitpid(child, nullptr, 0);
+  return long(child);
+}
+
+const nlohmann::json kTeapot = {{"cmd", "scene.primitive"}, {"kind", "teapot"}, {"name", "teapot"}};
+const nlohmann::json kBox = {{"cmd", "scene.primitive"},
+                             {"kind", "box"},
+                             {"name", "crate"},
+                             {"scale", {0.2, 0.05, 0.05}},
+                             {"translate", {0, 2, 0}}};
+
+void crash_with(const std::vector<nlohmann::json>& lines) {  // a session that dies without finish()
+  ui::MessageLog m;
+  editor::EditorSession crashed(m);
+  crashed.start(true);
+  for (const auto& l : lines) ASSERT_TRUE(crashed.execute(l));
+}
+
+}  // namespace
+
+// F1: New keeps the previous session log aside instead of truncating it.
+TEST_F(SessionRecovery, NewDocumentRenamesTheSessionLogAside) {
+  editor::EditorSession s(messages_);
+  s.start(false);
+  ASSERT_TRUE(s.execute(kTeapot));
+  ASSERT_TRUE(s.execute(kBox));
+  s.new_document();
+  EXPECT_EQ(line_count(dir_ / "session.prev.jsonl"), 2u);
+  EXPECT_EQ(line_count(dir_ / "session.jsonl"), 0u);
+  ASSERT_TRUE(s.execute(kTeapot));
+  EXPECT_EQ(line_count(dir_ / "session.jsonl"), 1u);
+  s.finish();
+}
+
+// F1: a malformed log is rejected before the current scene is dropped; the crash log is untouched.
+TEST_F(SessionRecovery, MalformedOpenKeepsTheSceneAndTheLog) {
+  editor::EditorSession s(messages_);
+  s.start(false);
+  ASSERT_TRUE(s.execute(kTeapot));
+  const fs::path bad = dir_ / "bad.jsonl";
+  std::ofstream(bad) << kBox.dump() << "\n{\"cmd\":\"scene.prim\n";
+  const std::size_t errors = messages_.error_count();
+  EXPECT_FALSE(s.open(bad));
+  EXPECT_EQ(messages_.error_count(), errors + 1);
+  EXPECT_TRUE(logged("bad.jsonl:2")) << "the error names the file and line";
+  EXPECT_EQ(s.scene().objects().size(), 1u);
+  EXPECT_NE(s.scene().find("teapot"), nullptr);
+  EXPECT_EQ(s.history().applied(), 1u);
+  EXPECT_TRUE(s.modified());
+  EXPECT_EQ(line_count(dir_ / "session.jsonl"), 1u);
+  EXPECT_FALSE(fs::exists(dir_ / "session.prev.jsonl"));
+  s.finish();
+}
+
+// F1: a good Open restarts the session log with the old one kept aside.
+TEST_F(SessionRecovery, OpenKeepsThePreviousSessionLogAside) {
+  editor::EditorSession s(messages_);
+  s.start(false);
+  ASSERT_TRUE(s.execute(kTeapot));
+  const fs::path good = dir_ / "good.jsonl";
+  std::ofstream(good) << kBox.dump() << "\n";
+  ASSERT_TRUE(s.open(good));
+  EXPECT_EQ(s.scene().objects().size(), 1u);
+  EXPECT_NE(s.scene().find("crate"), nullptr);
+  EXPECT_EQ(line_count(dir_ / "session.prev.jsonl"), 1u);
+  s.finish();
+}
+
+// F6a: if the unfinished log cannot be copied aside, it is left as it is and this run logs elsewhere.
+TEST_F(SessionRecovery, FailedAsideCopyLeavesTheOnlyLogAlone) {
+  crash_with({kTeapot, kBox});
+  const std::string before = read_all(dir_ / "session.jsonl");
+  fs::create_directories(dir_ / "session.recovered.jsonl.tmp");  // write_log_atomic cannot create its temp file
+  {
+    editor::EditorSession s(messages_);
+    EXPECT_FALSE(s.start(true));
+    EXPECT_TRUE(logged("cannot keep the unfinished session's log"));
+    ASSERT_TRUE(s.execute(kTeapot));
+    EXPECT_EQ(read_all(dir_ / "session.jsonl"), before) << "the only copy must not be truncated";
+    const fs::path own = dir_ / ("session-" + std::to_string(::getpid()) + ".jsonl");
+    EXPECT_EQ(line_count(own), 1u);
+    s.finish();
+    EXPECT_FALSE(fs::exists(dir_ / ("session-" + std::to_string(::getpid()) + ".lock")));
+  }
+  fs::remove_all(dir_ / "session.recovered.jsonl.tmp");
+  editor::EditorSession next(messages_);
+  const auto offer = next.start(true);
+  ASSERT_TRUE(offer) << "the next start offers it again";
+  EXPECT_EQ(offer->commands, 2u);
+  next.finish();
+}
+
+// F6b: an unanswered offer's log is never overwritten by the next crash; the question stays open until the
+// replay has run.
+TEST_F(SessionRecovery, UnansweredOfferIsNotOverwritten) {
+  crash_with({kTeapot});
+  {
+    editor::EditorSession asked(messages_);
+    const auto offer = asked.start(true);
+    ASSERT_TRUE(offer);
+    EXPECT_EQ(offer->log, dir_ / "session.recovered.jsonl");
+    ASSERT_TRUE(asked.execute(kBox));
+    ASSERT_TRUE(asked.execute({{"cmd", "scene.primitive"}, {"kind", "box"}, {"name", "b2"}}));
+  }  // dies with its own commands before answering
+  const std::string first = read_all(dir_ / "session.recovered.jsonl");
+  editor::EditorSession s(messages_);
+  const auto offer = s.start(true);
+  ASSERT_TRUE(offer);
+  EXPECT_EQ(read_all(dir_ / "session.recovered.jsonl"), first) << "the unanswered log must survive";
+  EXPECT_NE(offer->log, dir_ / "session.recovered.jsonl");
+  EXPECT_EQ(offer->commands, 2u);
+  EXPECT_TRUE(fs::exists(dir_ / "session.recover-pending"));
+  ASSERT_TRUE(s.recover(*offer));
+  EXPECT_EQ(s.scene().objects().size(), 2u);
+  EXPECT_FALSE(fs::exists(dir_ / "session.recover-pending")) << "answered once the replay has run";
+  s.finish();
+}
+
+// F7: a crashed second editor (session-<pid>.jsonl + .lock, pid dead) is offered for recovery.
+TEST_F(SessionRecovery, CrashedSecondInstanceIsOffered) {
+  fs::create_directories(dir_);
+  const long pid = dead_pid();
+  const fs::path log = dir_ / ("session-" + std::to_string(pid) + ".jsonl");
+  const fs::path lock = dir_ / ("session-" + std::to_string(pid) + ".lock");
+  std::ofstream(log) << kTeapot.dump() << "\n" << kBox.dump() << "\n";
+  std::ofstream(lock) << pid << "\n";
+  editor::EditorSession s(messages_);
+  const auto offer = s.start(true);
+  ASSERT_TRUE(offer);
+  EXPECT_EQ(offer->commands, 2u);
+  EXPECT_FALSE(fs::exists(lock));
+  ASSERT_TRUE(s.recover(*offer));
+  EXPECT_EQ(s.scene().objects().size(), 2u);
+  s.finish();
+  editor::EditorSession next(messages_);
+  EXPECT_FALSE(next.start(true)) << "offered once";
+  next.finish();
+}
+
+// F7: a live second editor's files are left alone.
+TEST_F(SessionRecovery, LiveSecondInstanceIsNotTouched) {
+  fs::create_directories(dir_);
+  const long pid = long(::getppid());  // alive
+  const fs::path log = dir_ / ("session-" + std::to_string(pid) + ".jsonl");
+  const fs::path lock = dir_ / ("session-" + std::to_string(pid) + ".lock");
+  std::ofstream(log) << kTeapot.dump() << "\n";
+  std::ofstream(lock) << pid << "\n";
+  editor::EditorSession s(messages_);
+  EXPECT_FALSE(s.start(true));
+  EXPECT_TRUE(fs::exists(lock));
+  EXPECT_EQ(line_count(log), 1u);
+  s.finish();
+}
+
+// F10: append reports write failures; History reports the first one once.
+TEST_F(SessionRecovery, LogWriteFailuresAreReported) {
+  if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
+  editor::CommandLog log("/dev/full", true);
+  EXPECT_FALSE(log.append(kTeapot));
+  EXPECT_NE(log.error().find("/dev/full"), std::string::npos) << log.error();
+
+  core::Scene scene;
+  editor::History h(scene);
+  std::vector<std::string> errors;
+  h.on_log_error = [&](const std::string& e) { errors.push_back(e); };
+  h.set_log(&log);
+  core::CommandContext ctx;
+  h.execute(editor::CommandRegistry::builtin().parse(kTeapot, ctx));
+  h.undo();
+  h.redo();
+  EXPECT_EQ(h.applied(), 1u) << "the command itself stands";
+  ASSERT_EQ(errors.size(), 1u) << "only the first failure is reported";
+  EXPECT_NE(errors[0].find("/dev/full"), std::string::npos);
+}
+
+// F10: the session routes a failing log to the Log panel as a warning.
+TEST_F(SessionRecovery, SessionWarnsWhenItsLogFails) {
+  if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
+  editor::EditorSession s(messages_);
+  s.start(false);
+  editor::CommandLog full("/dev/full", true);
+  s.history().set_log(&full);
+  ASSERT_TRUE(s.execute(kTeapot));
+  EXPECT_TRUE(logged("session log:")) << "the failure reaches the Log panel";
+  s.history().set_log(nullptr);
+  s.finish();
+}
+
+// F5 + F2: the stroke uses the camera at mouse-down, and hidden objects are listed in "ignore".
+TEST_F(SessionRecovery, StrokeKeepsItsMouseDownCameraAndIgnoresHidden) {
+  editor::EditorSession s(messages_);
+  s.start(false);
+  ASSERT_TRUE(s.execute(kTeapot));
+  ASSERT_TRUE(s.execute(kBox));
+  ASSERT_TRUE(s.execute({{"cmd", "scene.primitive"}, {"kind", "box"}, {"name", "veil"}, {"translate", {0, 0, 3}}}));
+  editor::Navigator nav;
+  nav.frame(editor::bounds_of(*s.scene().find("teapot")->world_mesh), {800, 600});
+  core::Camera view = nav.camera({800, 600});
+  const core::Camera at_press = view;
+  std::string selected = "crate";
+  std::set<std::string> hidden = {"veil"};
+  editor::ToolContext ctx{s, view, selected, hidden, [](std::string, std::function<void()> work) { work(); }};
+  editor::SketchTool tool;
+  tool.activate(ctx);
+  editor::ToolInput in;
+  in.mouse_px = {330, 330};
+  in.left_pressed = in.left_down = true;
+  tool.handle_input(in, ctx);
+  EXPECT_TRUE(tool.owns_mouse()) << "the editor must not navigate while a stroke is drawn";
+  in.left_pressed = false;
+  for (double x = 340; x <= 470; x += 10) {
+    in.mouse_px = {x, 330 + 0.1 * (x - 400) * (x - 400) / 40};
+    tool.handle_input(in, ctx);
+  }
+  view.eye += glm::dvec3(0.5, 0.3, 0.0);  // the view changes before mouse-up (resize, follow, ...)
+  in.left_down = false;
+  in.left_released = true;
+  tool.handle_input(in, ctx);
+  EXPECT_FALSE(tool.owns_mouse());
+  ASSERT_EQ(s.history().applied(), 4u) << (messages_.messages().empty() ? "" : messages_.messages().back().text);
+  const nlohmann::json line = s.history().at(3).to_json();
+  const core::Camera used = core::CameraSetCommand::parse_camera(line.at("camera"));
+  EXPECT_EQ(used.eye, at_press.eye) << "the stroke's pixels belong to the view at mouse-down";
+  ASSERT_TRUE(line.contains("ignore"));
+  EXPECT_EQ(line["ignore"], nlohmann::json::array({"veil"}));
+
+  // A parameter re-run keeps both.
+  ui::PlacementParams p = tool.params();
+  p.height *= 2;
+  tool.set_params(p, ctx);
+  const nlohmann::json rerun = s.history().at(3).to_json();
+  EXPECT_EQ(rerun["ignore"], line["ignore"]);
+  EXPECT_EQ(rerun["camera"], line["camera"]);
+  s.finish();
+}
+
+// F2: "ignore" parses, round-trips only when non-empty, and names the field in its errors.
+TEST(PlaceSketchIgnore, ParseAndSerialise) {
+  nlohmann::json j = {{"cmd", "place.sketch"}, {"object", "a"}, {"stroke", {{0, 0}, {10, 0}}},
+                      {"width", 0.1},           {"height", 0.1}};
+  core::CommandContext ctx;
+  EXPECT_FALSE(core::PlaceSketchCommand::parse(j, ctx)->to_json().contains("ignore"));
+  j["ignore"] = {"b", "c"};
+  const auto cmd = core::PlaceSketchCommand::parse(j, ctx);
+  EXPECT_EQ(cmd->to_json()["ignore"], nlohmann::json::array({"b", "c"}));
+  for (const nlohmann::json& bad : {nlohmann::json("b"), nlohmann::json::array({"b", 3})}) {
+    j["ignore"] = bad;
+    try {
+      core::PlaceSketchCommand::parse(j, ctx);
+      ADD_FAILURE() << "accepted ignore=" << bad.dump();
+    } catch (const core::CommandError& e) {
+      EXPECT_EQ(e.field(), "ignore");
+      EXPECT_NE(std::string(e.what()).find("field 'ignore'"), std::string::npos) << e.what();
+    }
+  }
+}
+
+// F2: an ignored object does not catch the placement rays.
+TEST_F(SessionRecovery, IgnoredObjectsDoNotCatchRays) {
+  editor::EditorSession s(messages_);
+  s.start(false);
+  ASSERT_TRUE(s.execute(kTeapot));
+  ASSERT_TRUE(s.execute(kBox));
+  editor::Navigator nav;
+  nav.frame(editor::bounds_of(*s.scene().find("teapot")->world_mesh), {800, 600});
+  const core::Camera view = nav.camera({800, 600});
+  std::vector<glm::dvec2> stroke;
+  for (double x = 330; x <= 470; x += 10) stroke.push_back({x, 330 + 0.1 * (x - 400) * (x - 400) / 40});
+  const ui::PlacementParams params;
+  ASSERT_TRUE(s.execute(editor::place_sketch_line("crate", stroke, params, view)));
+  ASSERT_TRUE(s.undo());
+  // With the teapot ignored nothing else is under the stroke: every ray misses and the command is refused.
+  const std::size_t errors = messages_.error_count();
+  EXPECT_FALSE(s.execute(editor::place_sketch_line("crate", stroke, params, view, {"teapot"})));
+  EXPECT_EQ(messages_.error_count(), errors + 1);
+  EXPECT_FALSE(s.scene().find("crate")->ffd) << "the scene is unchanged";
+  s.finish();
+}
+
+// F10: write_log_atomic still writes and replaces (the folder fsync is best effort).
+TEST_F(SessionRecovery, AtomicWriteReplaces) {
+  fs::create_directories(dir_);
+  const fs::path p = dir_ / "x.jsonl";
+  editor::write_log_atomic(p, {kTeapot});
+  editor::write_log_atomic(p, {kTeapot, kBox});
+  EXPECT_EQ(line_count(p), 2u);
+  EXPECT_FALSE(fs::exists(dir_ / "x.jsonl.tmp"));
+}
