@@ -5,6 +5,7 @@
 #include "editor/session.h"
 #include "editor/tools/select_tool.h"
 #include "editor/tools/sketch_tool.h"
+#include "session_test_util.h"
 
 #include <gtest/gtest.h>
 
@@ -16,26 +17,12 @@ using namespace trispline;
 
 namespace {
 
-// A fresh TRISPLINE_STATE_DIR per test.
-class AppSession : public ::testing::Test {
+class AppSession : public test::StateDirTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("trispline_app_test_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    ::setenv("TRISPLINE_STATE_DIR", dir_.c_str(), 1);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path dir_;
-  ui::MessageLog messages_;
+  AppSession() : StateDirTest("trispline_app_test_") {}
 };
 
-std::size_t line_count(const fs::path& p) {
-  std::ifstream in(p);
-  std::size_t n = 0;
-  for (std::string s; std::getline(in, s);) n += !s.empty();
-  return n;
-}
+using test::line_count;
 
 const nlohmann::json kTeapot = {{"cmd", "scene.primitive"}, {"kind", "teapot"}, {"name", "teapot"}};
 const nlohmann::json kBox = {{"cmd", "scene.primitive"},

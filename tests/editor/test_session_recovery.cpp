@@ -8,6 +8,7 @@
 #include "editor/navigation.h"
 #include "editor/session.h"
 #include "editor/tools/sketch_tool.h"
+#include "session_test_util.h"
 
 #include <gtest/gtest.h>
 
@@ -22,34 +23,12 @@ using namespace trispline;
 
 namespace {
 
-class SessionRecovery : public ::testing::Test {
+class SessionRecovery : public test::StateDirTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("trispline_recovery_test_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    ::setenv("TRISPLINE_STATE_DIR", dir_.c_str(), 1);
-  }
-  void TearDown() override {
-    std::error_code ec;
-    fs::permissions(dir_, fs::perms::owner_all, fs::perm_options::add, ec);
-    fs::remove_all(dir_);
-  }
-  bool logged(const std::string& part) const {
-    for (const auto& m : messages_.messages())
-      if (m.text.find(part) != std::string::npos) return true;
-    return false;
-  }
-  fs::path dir_;
-  ui::MessageLog messages_;
+  SessionRecovery() : StateDirTest("trispline_recovery_test_") {}
 };
 
-std::size_t line_count(const fs::path& p) {
-  std::ifstream in(p);
-  std::size_t n = 0;
-  for (std::string s; std::getline(in, s);) n += !s.empty();
-  return n;
-}
+using test::line_count;
 
 std::string read_all(const fs::path& p) {
   std::ifstream in(p);
@@ -216,7 +195,7 @@ TEST_F(SessionRecovery, LiveSecondInstanceIsNotTouched) {
 
 // F10: append reports write failures; History reports the first one once.
 TEST_F(SessionRecovery, LogWriteFailuresAreReported) {
-  if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
+  ASSERT_TRUE(fs::exists("/dev/full")) << "this test writes to /dev/full (present on every Linux)";
   editor::CommandLog log("/dev/full", true);
   EXPECT_FALSE(log.append(kTeapot));
   EXPECT_NE(log.error().find("/dev/full"), std::string::npos) << log.error();
@@ -237,7 +216,7 @@ TEST_F(SessionRecovery, LogWriteFailuresAreReported) {
 
 // F10: the session routes a failing log to the Log panel as a warning.
 TEST_F(SessionRecovery, SessionWarnsWhenItsLogFails) {
-  if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
+  ASSERT_TRUE(fs::exists("/dev/full")) << "this test writes to /dev/full (present on every Linux)";
   editor::EditorSession s(messages_);
   s.start(false);
   editor::CommandLog full("/dev/full", true);
