@@ -22,6 +22,9 @@ struct BadLogCase {
   const char* words;  // expected substring of the message
 };
 
+// ctest shows the log's name instead of the bytes of the struct.
+void PrintTo(const BadLogCase& c, std::ostream* os) { *os << c.file; }
+
 class BadLog : public ::testing::TestWithParam<BadLogCase> {};
 
 TEST_P(BadLog, StopsWithFileLineFieldAndLeavesEarlierLines) {
