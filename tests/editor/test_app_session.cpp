@@ -6,6 +6,7 @@
 #include "editor/tools/select_tool.h"
 #include "editor/tools/sketch_tool.h"
 #include "session_test_util.h"
+#include "stroke_gesture.h"
 
 #include <gtest/gtest.h>
 
@@ -147,17 +148,9 @@ TEST_F(AppSession, SketchParameterChangeReRunsAsOneUndoableStep) {
 
   // A stroke across the middle of the view (over the teapot's body).
   editor::ToolInput in;
-  in.mouse_px = {330, 330};
-  in.left_pressed = in.left_down = true;
-  tool.handle_input(in, ctx);
-  in.left_pressed = false;
-  for (double x = 340; x <= 470; x += 10) {
-    in.mouse_px = {x, 330 + 0.1 * (x - 400) * (x - 400) / 40};
-    tool.handle_input(in, ctx);
-  }
-  in.left_down = false;
-  in.left_released = true;
-  tool.handle_input(in, ctx);
+  test::press_stroke(tool, ctx, in);
+  test::drag_stroke(tool, ctx, in);
+  test::release_stroke(tool, ctx, in);
   ASSERT_EQ(s.history().applied(), 3u) << (messages_.messages().empty() ? "" : messages_.messages().back().text);
   EXPECT_EQ(s.history().at(2).id(), "place.sketch");
   EXPECT_TRUE(s.history().at(2).to_json().contains("camera")) << "the line must carry its view";

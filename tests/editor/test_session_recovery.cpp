@@ -9,6 +9,7 @@
 #include "editor/session.h"
 #include "editor/tools/sketch_tool.h"
 #include "session_test_util.h"
+#include "stroke_gesture.h"
 
 #include <gtest/gtest.h>
 
@@ -244,19 +245,11 @@ TEST_F(SessionRecovery, StrokeKeepsItsMouseDownCameraAndIgnoresHidden) {
   editor::SketchTool tool;
   tool.activate(ctx);
   editor::ToolInput in;
-  in.mouse_px = {330, 330};
-  in.left_pressed = in.left_down = true;
-  tool.handle_input(in, ctx);
+  test::press_stroke(tool, ctx, in);
   EXPECT_TRUE(tool.owns_mouse()) << "the editor must not navigate while a stroke is drawn";
-  in.left_pressed = false;
-  for (double x = 340; x <= 470; x += 10) {
-    in.mouse_px = {x, 330 + 0.1 * (x - 400) * (x - 400) / 40};
-    tool.handle_input(in, ctx);
-  }
+  test::drag_stroke(tool, ctx, in);
   view.eye += glm::dvec3(0.5, 0.3, 0.0);  // the view changes before mouse-up (resize, follow, ...)
-  in.left_down = false;
-  in.left_released = true;
-  tool.handle_input(in, ctx);
+  test::release_stroke(tool, ctx, in);
   EXPECT_FALSE(tool.owns_mouse());
   ASSERT_EQ(s.history().applied(), 4u) << (messages_.messages().empty() ? "" : messages_.messages().back().text);
   const nlohmann::json line = s.history().at(3).to_json();
