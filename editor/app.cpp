@@ -6,9 +6,11 @@
 #include "editor/tools/toolbox.h"
 #include "editor/tools/work_queue.h"
 #include "gpu/renderer.h"
+#include "gpu/timer.h"
 #include "gpu/window.h"
 #include "ui/dialogs.h"
 #include "ui/file_dialog.h"
+#include "ui/frame_timings.h"
 #include "ui/history_panel.h"
 #include "ui/imgui_host.h"
 #include "ui/log_panel.h"
@@ -22,6 +24,7 @@
 #include <epoxy/gl.h>
 #include <imgui.h>
 
+#include <algorithm>
 #include <chrono>
 #include <ctime>
 #include <cstdlib>
@@ -76,6 +79,9 @@ class App {
   void handle_file(const fs::path& path);
   void viewport_input();
   void render_view();
+  bool animating() const;  // playback is on and some visible object has an animated offset
+  void render_ui();        // ImGui's draw data into the window, timed by ui_timer_
+  void record_frame_timings(Clock::time_point start, Clock::time_point end, Clock::time_point last);
   void frame_selected();
   void open_later(const fs::path& log);  // replays `log` after a "Working…" frame
   void showcase();                       // screenshot mode: select the placed object, show the Sketch placement tool
@@ -89,6 +95,7 @@ class App {
   std::unique_ptr<gpu::Window> window_;
   ui::ImGuiHost host_;
   std::unique_ptr<gpu::Renderer> renderer_;
+  std::unique_ptr<gpu::GpuTimer> ui_timer_;  // the UI pass (ImGui render) for the timing overlay
   std::string gl_renderer_;
   ui::MessageLog messages_;
   EditorSession session_;
@@ -105,6 +112,7 @@ class App {
   ui::FileDialog file_dialog_;
   FilePurpose file_purpose_ = FilePurpose::None;
   ui::TimingOverlay timing_;
+  double scene_time_s_ = 0;  // playback clock of animated objects (gpu::ViewOptions::time_s), seconds
   WorkQueue work_;
   std::optional<RecoveryOffer> recovery_;
   Pending prompt_for_ = Pending::None;  // the "Save changes?" question is open for this
@@ -126,6 +134,11 @@ App::App(const AppOptions& options)
     renderer_ = std::make_unique<gpu::Renderer>();
   } catch (const std::exception& e) {
     messages_.error(std::string("the 3-D view is off: ") + e.what());
+  }
+  try {
+    ui_timer_ = std::make_unique<gpu::GpuTimer>();
+  } catch (const std::exception& e) {
+    messages_.warning(std::string("the UI pass is not timed: ") + e.what());
   }
   messages_.info("OpenGL renderer: " + gl_renderer_);
   view_ = nav_.camera(window_->framebuffer_size());
@@ -217,6 +230,8 @@ void App::handle_menu(ui::MenuAction action) {
     case A::SketchTool: tools_.set_active(Toolbox::kSketch); break;
     case A::Screenshot: screenshot_requested_ = true; break;
     case A::Delete: handle_scene({ui::SceneRequest::Kind::Remove, selected_}); break;
+    case A::ToggleTimingOverlay:
+    case A::TogglePlayback: ui::apply_view_action(toggles_, action); break;
     case A::None: break;
   }
   // clang-format on
@@ -286,14 +301,29 @@ void App::render_view() {
   }
   gpu::ViewOptions vo = ui::view_options(toggles_);
   vo.selected = selected_;
+  vo.time_s = scene_time_s_;
   tools_.decorate(vo);
   try {
     const core::Scene shown = hidden_.empty() ? core::Scene() : session_.shown_scene(hidden_);
     renderer_->draw(hidden_.empty() ? session_.scene() : shown, view_, vo);
   } catch (const std::exception& e) {
+    if (vo.ffd_backend != core::FfdBackend::cpu_ref) {
+      // E.g. a lattice order the fast backends do not support (they take 2..4): the reference takes any.
+      messages_.error(std::string("FFD evaluator ") + ui::ffd_backend_label(vo.ffd_backend) + " failed (" + e.what() +
+                      "); switched to " + ui::ffd_backend_label(core::FfdBackend::cpu_ref));
+      toggles_.ffd_backend = core::FfdBackend::cpu_ref;
+      return;
+    }
     messages_.error(std::string("drawing failed, the 3-D view is off: ") + e.what());
     renderer_.reset();
   }
+}
+
+bool App::animating() const {
+  if (!toggles_.play_animation) return false;
+  for (const core::SceneObject& o : session_.scene().objects())
+    if (o.visible && o.animated()) return true;
+  return false;
 }
 
 void App::frame() {
@@ -352,7 +382,51 @@ void App::frame() {
   nav_.set_visible_rect(lo * s, (lo + glm::dvec2(free.size.x, free.size.y)) * s);
   work_.draw_overlay();
   render_view();
+  render_ui();
+}
+
+void App::render_ui() {
+  if (!ui_timer_) return host_.render();
+  gpu::GpuTimer::Scope timed(*ui_timer_);
   host_.render();
+}
+
+void App::record_frame_timings(Clock::time_point start, Clock::time_point end, Clock::time_point last) {
+  ui::FrameSample sample;
+  sample.time_s = std::chrono::duration<double>(end.time_since_epoch()).count();
+  sample.work_ms = ms_between(start, end);
+  sample.interval_ms = ms_between(last, end);
+  ui::TimingContext ctx;
+  bool any_animated = false;
+  for (const core::SceneObject& o : session_.scene().objects()) any_animated = any_animated || o.animated();
+  if (renderer_) {
+    const gpu::RenderStats& rs = renderer_->last_stats();
+    sample.passes.ffd_ms = rs.ffd_ms;
+    sample.passes.draw_ms = rs.draw_ms;
+    sample.passes.ffd_vertices = rs.ffd_vertices;
+    // The vertex-shader path evaluates while drawing; GLSL compute hands animated objects to it (gpu/renderer_ffd.h).
+    const core::FfdBackend b = toggles_.ffd_backend;
+    sample.passes.ffd_in_draw =
+        b == core::FfdBackend::glsl_vertex || (b == core::FfdBackend::glsl_compute && any_animated);
+    if (rs.timer_mode && *rs.timer_mode) ctx.timer_mode = rs.timer_mode;
+  }
+  if (ui_timer_) {
+    sample.passes.ui_ms = ui_timer_->last_ms();
+    if (ctx.timer_mode.empty()) ctx.timer_mode = ui_timer_->mode_description();
+  }
+  timing_.add_frame(sample);
+
+  ctx.ffd_backend = ui::ffd_backend_label(toggles_.ffd_backend);
+  if (any_animated) ctx.scene_time_s = scene_time_s_;
+  ctx.playing = animating();
+  const History& h = session_.history();
+  if (h.applied() > 0) {
+    const core::Command& top = h.at(h.applied() - 1);
+    ctx.last_command = top.id();
+    ctx.last_stages = ui::stage_timings(top.stats());
+    if (session_.last_label() == top.label()) ctx.last_command_ms = session_.last_ms();
+  }
+  timing_.set_context(std::move(ctx));
 }
 
 int App::write_screenshot(const fs::path& path) {
@@ -372,7 +446,8 @@ int App::run() {
   auto last = Clock::now();
   while (true) {
     if (work_.run_ready(messages_)) idle_frames_ = 0;  // its "Working…" frame was on screen
-    const bool busy = !work_.empty() || ImGui::GetIO().MouseDown[0] || ImGui::GetIO().MouseDown[2];
+    const bool busy =
+        !work_.empty() || ImGui::GetIO().MouseDown[0] || ImGui::GetIO().MouseDown[2] || animating();
     if (busy || !options_.screenshot.empty())
       gpu::Window::poll_events();
     else
@@ -390,7 +465,8 @@ int App::run() {
                        std::to_string(++screenshots_) + ".png");
     window_->swap();
     const auto end = Clock::now();
-    timing_.add_frame(ms_between(start, end), ms_between(last, end));
+    record_frame_timings(start, end, last);
+    if (animating()) scene_time_s_ += std::min(ms_between(last, end) * 1e-3, 0.1);  // no jump after a stall
     last = end;
     if (quit_) {
       session_.finish();

@@ -1,10 +1,12 @@
 #include "editor/cli.h"
 
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <iostream>
 
-#include "core/deform/ffd_bench.h"
+#include "core/deform/ffd_evaluator.h"
 #include "editor/app.h"
+#include "editor/bench_ffd.h"
 #include "editor/command_registry.h"
 #include "editor/replay.h"
 
@@ -37,14 +39,51 @@ int run_cli(int argc, char** argv) {
   rw->needs(rh);
   rh->needs(rw);
   replay->add_flag("!--no-render", replay_options.render, "Skip final.png (no GL context needed)");
+  replay
+      ->add_option_function<std::string>(
+          "--ffd-backend",
+          [&replay_options](const std::string& name) {
+            replay_options.ffd_backend = *core::parse_ffd_backend(name);  // checked below
+          },
+          "FFD evaluator for final.png and scene.glb: cpu_ref (default, the authoritative geometry), cpu_fast, "
+          "glsl_compute or glsl_vertex (scene.glb is then read back from the GPU)")
+      ->check(
+          [](const std::string& name) -> std::string {
+            if (core::parse_ffd_backend(name)) return {};
+            return "unknown FFD backend '" + name + "': use cpu_ref, cpu_fast, glsl_compute or glsl_vertex";
+          },
+          "BACKEND");
+  replay
+      ->add_option("--time", replay_options.time_s,
+                   "Scene time in seconds: animated objects (lattice.animate_offset) are drawn and exported at it")
+      ->check(
+          [](const std::string& text) -> std::string {
+            try {
+              std::size_t used = 0;
+              const double t = std::stod(text, &used);
+              if (used == text.size() && std::isfinite(t)) return {};
+            } catch (const std::exception&) {
+            }
+            return "--time needs a finite number of seconds, got '" + text + "'";
+          },
+          "SECONDS");
 
   auto* bench = app.add_subcommand("bench", "Benchmarks that print figures (never assert timings)");
   bench->require_subcommand(1);
-  core::FfdBenchOptions bench_options;
-  bool bench_json = false;
-  auto* bench_ffd = bench->add_subcommand("ffd", "CPU FFD throughput on the bunny subdivided to ~0.8 M vertices");
-  bench_ffd->add_flag("--json", bench_json, "Print one JSON object instead of a table");
-  bench_ffd->add_option("--mesh", bench_options.mesh_path, "Mesh to subdivide (default assets/data/bunny.obj)");
+  BenchFfdOptions bench_options;
+  auto* bench_ffd = bench->add_subcommand(
+      "ffd", "FFD throughput of every evaluator backend (CPU reference/fast, GLSL compute/vertex) on the bunny "
+             "subdivided to ~0.8 M vertices, 4^3 and 8^3 lattices, orders 3 and 4");
+  bench_ffd->add_flag("--json", bench_options.json, "Print one JSON object instead of a table");
+  bench_ffd->add_option("--mesh", bench_options.mesh_path,
+                        "Benchmark this mesh's vertices instead (OBJ/PLY/OFF/STL/glTF; default: the bunny)")
+      ->check(CLI::ExistingFile);
+  bench_ffd->add_option("--subdiv", bench_options.subdivision,
+                        "OpenSubdiv bilinear subdivision levels (default 2 for the bunny, 0 for --mesh)")
+      ->check(CLI::Range(0, 6));
+  bench_ffd->add_option("--runs", bench_options.runs, "Timed runs per case; the median is reported")
+      ->check(CLI::Range(1, 1000));
+  bench_ffd->add_flag("!--cpu-only", bench_options.gpu, "Skip the GLSL backends (no GL context)");
 
   auto* commands = app.add_subcommand("commands", "List the commands a log may contain");
 
@@ -56,14 +95,7 @@ int run_cli(int argc, char** argv) {
 
   try {
     if (*replay) return run_replay(replay_options);
-    if (*bench_ffd) {
-      const nlohmann::json result = core::run_ffd_benchmark(bench_options);
-      if (bench_json)
-        std::cout << result.dump() << "\n";
-      else
-        core::print_ffd_benchmark(result, std::cout);
-      return 0;
-    }
+    if (*bench_ffd) return run_bench_ffd(bench_options, std::cout, std::cerr);
     if (*commands) {
       const auto& registry = CommandRegistry::builtin();
       for (const auto& id : registry.ids()) std::cout << id << "\t" << registry.summary(id) << "\n";

@@ -1,6 +1,8 @@
 #include "editor/command_registry.h"
 
 #include "core/commands/camera_set.h"
+#include "core/commands/lattice_animate_offset.h"
+#include "core/commands/lattice_ring.h"
 #include "core/commands/place_sketch.h"
 #include "core/commands/scene_load.h"
 #include "core/commands/scene_primitive.h"
@@ -41,6 +43,10 @@ const CommandRegistry& CommandRegistry::builtin() {
     r.add("camera.set", "Set the view (eye, target, up, field of view, viewport)", core::CameraSetCommand::parse);
     r.add("place.sketch", "Place an object along a stroke sketched over the scene (seed §2.3.1)",
           core::PlaceSketchCommand::parse);
+    r.add("lattice.ring", "Bind an object to a ring-shaped lattice, periodic along u (seed §4.5, Fig. 4.5)",
+          core::LatticeRingCommand::parse);
+    r.add("lattice.animate_offset", "Move an object through its lattice over time: parameter offset and velocity",
+          core::LatticeAnimateOffsetCommand::parse);
     return r;
   }();
   return registry;

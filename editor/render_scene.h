@@ -1,17 +1,37 @@
-// Headless rendering of a scene (replay's final.png, README screenshots) through an EGL surfaceless context.
+// Headless rendering of a scene (replay's final.png, README screenshots) through an EGL surfaceless context, and
+// the deformed geometry as a chosen FFD backend computes it (replay --ffd-backend: scene.glb from the GPU path).
 #pragma once
 
+#include "core/deform/ffd_evaluator.h"
 #include "core/scene/scene.h"
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
 namespace trispline::editor {
 
+// How the scene is drawn: gpu::ViewOptions::ffd_backend and ::time_s.
+struct RenderSettings {
+  core::FfdBackend ffd_backend = core::FfdBackend::cpu_ref;
+  double time_s = 0;  // scene time, seconds (animated objects, lattice.animate_offset)
+};
+
+// gpu::RenderStats of the frame that made the image (replay's report.json timings.render).
+struct RenderTimings {
+  int ffd_objects = 0;           // deformed objects evaluated by the renderer's FFD pass
+  std::size_t ffd_vertices = 0;  // their vertices
+  double ffd_ms = -1;            // FFD pass, ms (GPU timer; negative = not measured)
+  double draw_ms = -1;           // scene draw, ms (GPU timer; negative = not measured)
+  bool ffd_in_draw = false;      // glsl_vertex: the evaluation is part of draw_ms (see ui::PassTimings)
+  std::string timer_mode;        // gpu::GpuTimer::describe() of the timers used
+};
+
 struct RenderedImage {
   int width = 0, height = 0;        // pixels
   std::vector<unsigned char> rgba;  // #(w·h·4), top row first
   std::string renderer;             // GL_RENDERER of the context used
+  RenderTimings timings;
 };
 
 // A camera that frames the visible objects from the front-right-above, for scenes without camera.set.
@@ -19,6 +39,24 @@ core::Camera framing_camera(const core::Scene& scene, int width, int height);
 
 // Renders with the scene's camera (or framing_camera when none was set). width/height 0 = the camera's viewport;
 // otherwise the camera's viewport is replaced (aspect follows). Throws gpu::GlContextError / std::runtime_error.
-RenderedImage render_scene_headless(const core::Scene& scene, int width = 0, int height = 0);
+// Three frames are drawn: timings.ffd_* are those of a frame that uploads and evaluates with shader programs already
+// built (as the editor's first frame after a command), draw_ms that of a steady frame; the image is the last frame.
+RenderedImage render_scene_headless(const core::Scene& scene, int width = 0, int height = 0,
+                                    const RenderSettings& settings = {});
+
+// What evaluate_with_backend() did.
+struct BackendGeometry {
+  core::Scene scene;         // a copy whose deformed objects' world meshes come from the backend
+  int objects = 0;           // deformed objects evaluated
+  std::size_t vertices = 0;  // their vertices
+  double ms = 0;             // wall time: bind + set_lattice (program builds) + evaluate + read back, all objects
+  std::string renderer;      // GL_RENDERER for GLSL backends, "" for CPU ones
+};
+
+// Every deformed object of `scene` evaluated at scene time `time_s` (offset SceneObject::offset_at) by `backend`
+// through the core::FfdEvaluator contract, read back to the host; positions and normals replace the world mesh's
+// (topology, uvs, names and colours kept). For GLSL backends a headless GL context is made for the duration.
+// Throws std::invalid_argument (e.g. an order the backend does not support), gpu::GlContextError, std::runtime_error.
+BackendGeometry evaluate_with_backend(const core::Scene& scene, core::FfdBackend backend, double time_s = 0);
 
 }  // namespace trispline::editor

@@ -5,11 +5,14 @@
 #include "editor/command_log.h"
 #include "editor/command_registry.h"
 #include "editor/render_scene.h"
+#include "ui/frame_timings.h"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <optional>
 
 namespace trispline::editor {
 namespace {
@@ -23,6 +26,42 @@ nlohmann::json record_json(const ExecutionRecord& r, int line) {
   if (!r.ok) j["error"] = r.error;
   if (!r.stats.empty()) j["stats"] = r.stats;
   return j;
+}
+
+// A measurement in ms, or null when it was not measured (negative) or is not finite.
+nlohmann::json ms_or_null(double ms) { return ms >= 0 && std::isfinite(ms) ? nlohmann::json(ms) : nlohmann::json(); }
+
+// timings.commands: every executed command's wall time and CPU time per stage (from its stats()).
+nlohmann::json command_timings(const std::vector<ExecutionRecord>& records) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const ExecutionRecord& r : records) {
+    if (r.cmd.empty()) continue;  // a line that did not parse
+    nlohmann::json stages = nlohmann::json::object();
+    for (const ui::StageTiming& st : ui::stage_timings(r.stats)) stages[st.name] = st.ms;
+    out.push_back({{"line", r.log_line}, {"cmd", r.cmd}, {"ok", r.ok}, {"total_ms", r.milliseconds},
+                   {"stages_ms", stages}});
+  }
+  return out;
+}
+
+nlohmann::json render_timings(const RenderedImage& image, const ReplayOptions& options) {
+  const RenderTimings& t = image.timings;
+  ui::PassTimings passes;
+  passes.ffd_ms = t.ffd_ms;
+  passes.draw_ms = t.draw_ms;
+  passes.ffd_in_draw = t.ffd_in_draw;
+  const double rate = ui::vertices_per_second(t.ffd_vertices, ui::ffd_time_ms(passes));
+  return {{"ffd_backend", core::to_string(options.ffd_backend)},
+          {"ffd_backend_label", ui::ffd_backend_label(options.ffd_backend)},
+          {"renderer", image.renderer},
+          {"timer_mode", t.timer_mode},
+          {"time_s", options.time_s},
+          {"ffd_objects", t.ffd_objects},
+          {"ffd_vertices", t.ffd_vertices},
+          {"ffd_ms", ms_or_null(t.ffd_ms)},
+          {"draw_ms", ms_or_null(t.draw_ms)},
+          {"ffd_in_draw", t.ffd_in_draw},
+          {"vertices_per_second", rate >= 0 ? nlohmann::json(rate) : nlohmann::json()}};
 }
 
 }  // namespace
@@ -119,35 +158,67 @@ int run_replay(const ReplayOptions& options) {
   int exit_code = result.ok ? 0 : 2;
   if (!result.ok) std::cerr << "replay failed: " << result.error << "\n";
 
+  report["ffd_backend"] = core::to_string(options.ffd_backend);
+  report["time_s"] = options.time_s;
+  nlohmann::json timings = {{"commands", command_timings(result.records)}};
+
   if (!options.out_dir.empty()) {
     std::filesystem::create_directories(options.out_dir);
     const auto glb = options.out_dir / "scene.glb";
     const auto png = options.out_dir / "final.png";
+    // The exported geometry: the CPU reference at the requested time (authoritative), or, with another backend,
+    // what that backend computes (read back from the GPU for GLSL backends).
+    std::optional<core::Scene> exported;
     try {
-      std::vector<core::GltfNode> nodes;
-      for (const auto& o : scene.objects())
-        if (o.world_mesh) nodes.push_back({o.name, o.world_mesh.get(), o.color});
-      core::write_glb(glb, nodes);
-      report["scene_glb"] = glb.string();
+      if (options.ffd_backend == core::FfdBackend::cpu_ref) {
+        exported = options.time_s != 0 ? core::scene_at_time(scene, options.time_s) : scene;
+        timings["geometry"] = {{"source", "cpu_ref"}};
+      } else {
+        BackendGeometry g = evaluate_with_backend(scene, options.ffd_backend, options.time_s);
+        // ms includes building shader programs and reading back: a check of the path, not a throughput figure.
+        timings["geometry"] = {{"source", core::to_string(options.ffd_backend)},
+                               {"objects", g.objects},
+                               {"vertices", g.vertices},
+                               {"ms", g.ms}};
+        if (!g.renderer.empty()) timings["geometry"]["renderer"] = g.renderer;
+        exported = std::move(g.scene);
+      }
     } catch (const std::exception& e) {
-      std::cerr << "cannot write " << glb << ": " << e.what() << "\n";
-      report["scene_glb_error"] = e.what();
+      std::cerr << "cannot evaluate the scene with FFD backend " << core::to_string(options.ffd_backend) << ": "
+                << e.what() << "\n";
+      report["scene_glb_error"] = std::string("FFD backend ") + core::to_string(options.ffd_backend) + ": " + e.what();
       exit_code = exit_code ? exit_code : 3;
+    }
+    if (exported) {
+      try {
+        std::vector<core::GltfNode> nodes;
+        for (const auto& o : exported->objects())
+          if (o.world_mesh) nodes.push_back({o.name, o.world_mesh.get(), o.color});
+        core::write_glb(glb, nodes);
+        report["scene_glb"] = glb.string();
+      } catch (const std::exception& e) {
+        std::cerr << "cannot write " << glb << ": " << e.what() << "\n";
+        report["scene_glb_error"] = e.what();
+        exit_code = exit_code ? exit_code : 3;
+      }
     }
     if (options.render) {
       try {
         const auto tr = std::chrono::steady_clock::now();
-        RenderedImage image = render_scene_headless(scene, options.width, options.height);
+        const RenderSettings settings{options.ffd_backend, options.time_s};
+        RenderedImage image = render_scene_headless(scene, options.width, options.height, settings);
         core::write_image_rgba8(png, image.width, image.height, image.rgba);
         report["final_png"] = png.string();
         report["renderer"] = image.renderer;
         report["render_ms"] = ms_since(tr);
+        timings["render"] = render_timings(image, options);
       } catch (const std::exception& e) {
         std::cerr << "cannot render " << png << ": " << e.what() << "\n";
         report["final_png_error"] = e.what();
         exit_code = exit_code ? exit_code : 3;
       }
     }
+    report["timings"] = timings;
     const auto report_path = options.out_dir / "report.json";
     std::ofstream(report_path) << report.dump(2) << "\n";
     if (report.contains("final_png")) std::cout << "rendered image: " << png.string() << "\n";

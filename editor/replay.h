@@ -1,6 +1,17 @@
 // trispline::editor replay — runs a command log headlessly: `trispline replay LOG --out DIR`.
+//
+// report.json: {"log", "ok", "replay_ms", ["error", "failed_line"], "commands": [{"line","cmd","ok","ms","stats"}],
+//   "objects": [{"name","vertices","triangles","deformed"}], "ffd_backend", "time_s", "scene_glb" | "scene_glb_error",
+//   "final_png" | "final_png_error", "renderer", "render_ms",
+//   "timings": the live timing overlay's numbers (ui/overlays.h) —
+//     "commands": [{"line","cmd","total_ms","stages_ms":{"fit":..,"rays":..}}]   CPU ms per command and stage
+//     "geometry": {"source"[,"objects","vertices","ms","renderer"]}  which backend evaluated scene.glb (ms: wall time
+//                 incl. shader builds and read-back)
+//     "render": {"ffd_backend","ffd_backend_label","renderer","timer_mode","time_s","ffd_objects","ffd_vertices",
+//                "ffd_ms","draw_ms","vertices_per_second"}   the final.png frame's GPU passes (null = not measured)}
 #pragma once
 
+#include "core/deform/ffd_evaluator.h"
 #include "core/scene/scene.h"
 #include "editor/history.h"
 
@@ -15,6 +26,10 @@ struct ReplayOptions {
   std::filesystem::path out_dir;  // empty: no outputs written
   int width = 0, height = 0;      // final.png size; 0 = the last camera.set viewport (default 1280×720)
   bool render = true;             // write final.png (needs an EGL context)
+  // Backend that evaluates the deformed objects for final.png and, unless cpu_ref, for scene.glb (read back from the
+  // GPU for GLSL backends, so the GPU path is tested end to end). cpu_ref: the authoritative CPU geometry.
+  core::FfdBackend ffd_backend = core::FfdBackend::cpu_ref;
+  double time_s = 0;  // scene time, seconds: animated objects (lattice.animate_offset) are shown and exported at it
 };
 
 struct ReplayResult {
@@ -26,7 +41,8 @@ struct ReplayResult {
 
 // Replays `lines` of a log into `history` (and its scene). Stops at the first failing line.
 ReplayResult replay_lines(History& history, const std::filesystem::path& log_path);
-// Full CLI behaviour: replay, then write DIR/final.png, DIR/scene.glb, DIR/report.json. Returns exit code.
+// Full CLI behaviour: replay, then write DIR/final.png, DIR/scene.glb, DIR/report.json. Returns the exit code: 0,
+// 2 when the log fails, 3 when an output cannot be written (or the chosen backend fails).
 int run_replay(const ReplayOptions& options);
 
 }  // namespace trispline::editor

@@ -3,11 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/gtc/matrix_inverse.hpp>
+#include <optional>
 #include <unordered_map>
 #include <unordered_set>
 
 #include "gpu/overlay_geometry.h"
+#include "gpu/renderer_ffd.h"
 #include "gpu/shader_program.h"
+#include "gpu/timer.h"
 
 namespace trispline::gpu {
 namespace {
@@ -15,6 +18,8 @@ namespace {
 struct CachedMesh {
   std::shared_ptr<const core::TriMesh> mesh;  // held so the address cannot be reused by another mesh
   MeshBuffers buffers;
+  std::uint64_t generation = 0;  // changes whenever the buffers' contents change (upload, FFD write)
+  bool overwritten = false;      // the buffers hold an FFD evaluation rather than world_mesh
 };
 
 // A growable stream buffer for per-frame overlay geometry (small: lattices, contact grids, the stroke).
@@ -85,6 +90,10 @@ struct Renderer::Impl {
   StreamBuffer world_stream, screen_stream;
   std::unordered_map<const core::TriMesh*, CachedMesh> cache;
   std::unordered_map<const core::FfdBinding*, CachedContactSurface> contact_cache;
+  std::shared_ptr<FfdProgramCache> ffd_programs = std::make_shared<FfdProgramCache>();
+  detail::FfdDisplay ffd{ffd_programs};
+  std::uint64_t generation = 0;  // source of CachedMesh::generation values
+  GpuTimer ffd_timer, draw_timer;
   RenderStats stats;
 
   Impl() {
@@ -92,24 +101,66 @@ struct Renderer::Impl {
     screen_stream.init(true);
   }
 
-  MeshBuffers& buffers(const std::shared_ptr<const core::TriMesh>& m) {
+  CachedMesh& cached(const std::shared_ptr<const core::TriMesh>& m) {
     auto [it, inserted] = cache.try_emplace(m.get());
     if (inserted) {
       it->second.mesh = m;
       it->second.buffers.upload(*m);
+      it->second.generation = ++generation;
       ++stats.uploads;
     }
-    return it->second.buffers;
+    return it->second;
+  }
+  MeshBuffers& buffers(const std::shared_ptr<const core::TriMesh>& m) { return cached(m).buffers; }
+
+  // FFD pass: brings every visible deformed object's display up to date; plans[i] says how to draw object i.
+  void prepare_ffd(const core::Scene& scene, const ViewOptions& o, std::vector<detail::FfdPlan>& plans) {
+    const std::vector<core::SceneObject>& objects = scene.objects();
+    plans.assign(objects.size(), {});
+    bool any = false;
+    for (const core::SceneObject& obj : objects) any = any || (obj.visible && obj.ffd && obj.world_mesh);
+    if (!any) return;
+    double cpu_ms = 0.0;
+    {
+      GpuTimer::Scope scope(ffd_timer);
+      for (std::size_t i = 0; i < objects.size(); ++i) {
+        const core::SceneObject& obj = objects[i];
+        if (!obj.visible || !obj.ffd || !obj.world_mesh || obj.world_mesh->empty()) continue;
+        if (obj.ffd->params.size() != obj.world_mesh->positions.size()) continue;  // inconsistent: draw world_mesh
+        CachedMesh& c = cached(obj.world_mesh);
+        plans[i] = ffd.prepare(obj, {&c.buffers, &c.generation, &c.overwritten, c.mesh.get()}, o.ffd_backend, o.time_s,
+                               generation, &stats.ffd_vertices, &cpu_ms, &stats.uploads);
+        ++stats.ffd_objects;
+      }
+    }
+    const double gpu_ms = ffd_timer.last_ms();
+    stats.ffd_ms = gpu_ms < 0.0 ? -1.0 : gpu_ms + (ffd_timer.mode() == GpuTimer::Mode::timer_query ? cpu_ms : 0.0);
   }
 
-  CachedContactSurface& contact_surface(const std::shared_ptr<const core::FfdBinding>& ffd,
-                                        const ViewOptions& o) {
+  // Draws object `obj`: through the FFD vertex shader (variant `variant` of mesh.vert/mesh.frag, its uniforms set
+  // by `uniforms`) when `plan` says so, else its MeshBuffers with `base`, which is in use and is left in use.
+  template <class Uniforms>
+  void draw_object(const core::SceneObject& obj, const detail::FfdPlan& plan, const ShaderProgram& base,
+                   const ShaderDefines& variant, const Uniforms& uniforms) {
+    const MeshBuffers& b = buffers(obj.world_mesh);
+    if (!plan.vertex) {
+      uniforms(base);
+      b.draw_triangles();
+      return;
+    }
+    const ShaderProgram& p = plan.vertex->draw_program(variant);
+    p.use();
+    uniforms(p);
+    plan.vertex->draw(p, b, plan.offset);
+    base.use();
+  }
+
+  CachedContactSurface& contact_surface(const std::shared_ptr<const core::FfdBinding>& ffd, const ViewOptions& o) {
     const int cells_u = std::max(o.contact_cells_u, 1), cells_v = std::max(o.contact_cells_v, 1);
     CachedContactSurface& c = contact_cache[ffd.get()];
-    if (c.ffd != ffd || c.cells_u != cells_u || c.cells_v != cells_v ||
-        c.iso_every != o.contact_iso_every || c.iso_color != o.contact_iso_color) {
-      const ContactSurfaceTessellation t =
-          tessellate_contact_surface(ffd->lattice, cells_u, cells_v);
+    if (c.ffd != ffd || c.cells_u != cells_u || c.cells_v != cells_v || c.iso_every != o.contact_iso_every ||
+        c.iso_color != o.contact_iso_color) {
+      const ContactSurfaceTessellation t = tessellate_contact_surface(ffd->lattice, cells_u, cells_v);
       std::vector<OverlayVertex> iso;
       append_contact_iso_lines(t, o.contact_iso_every, o.contact_iso_every, o.contact_iso_color, iso);
       c.ffd = ffd;
@@ -199,6 +250,7 @@ MeshBuffers& Renderer::buffers_for(const std::shared_ptr<const core::TriMesh>& m
 const RenderStats& Renderer::last_stats() const { return impl_->stats; }
 
 void Renderer::release_unused(const core::Scene& scene) {
+  impl_->ffd.release_unused(scene);
   std::unordered_set<const core::TriMesh*> live;
   for (const core::SceneObject& o : scene.objects())
     if (o.world_mesh) live.insert(o.world_mesh.get());
@@ -212,9 +264,16 @@ void Renderer::release_unused(const core::Scene& scene) {
 void Renderer::draw(const core::Scene& scene, const core::Camera& camera, const ViewOptions& options) {
   Impl& d = *impl_;
   d.stats = RenderStats{};
+  d.stats.timer_mode = d.draw_timer.mode_description();
   const glm::ivec2 vp = camera.viewport;
   const glm::mat4 view_proj = glm::mat4(camera.projection_matrix() * camera.view_matrix());
   const glm::vec3 eye(camera.eye);
+
+  // 0. FFD evaluation of deformed objects (timed on its own), before any drawing.
+  release_unused(scene);
+  std::vector<detail::FfdPlan> plans;
+  d.prepare_ffd(scene, options, plans);
+  std::optional<GpuTimer::Scope> draw_scope(std::in_place, d.draw_timer);
 
   // Known state: ImGui and others leave theirs behind.
   glViewport(0, 0, vp.x, vp.y);
@@ -242,7 +301,6 @@ void Renderer::draw(const core::Scene& scene, const core::Camera& camera, const 
   glDrawArrays(GL_TRIANGLES, 0, 3);
 
   // 2. Objects. The selected one writes stencil 1 (outline mask).
-  release_unused(scene);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glEnable(GL_STENCIL_TEST);
@@ -250,25 +308,31 @@ void Renderer::draw(const core::Scene& scene, const core::Camera& camera, const 
   // Key light: from the camera, raised a little and from the left, so forms read better than a pure headlight.
   const glm::vec3 key = glm::normalize(glm::vec3(-camera.forward() + 0.35 * camera.true_up() - 0.25 * camera.right()));
   d.mesh.use();
-  d.mesh.set("u_view_proj", view_proj);
-  d.mesh.set("u_eye", eye);
-  d.mesh.set("u_key_dir", key);
   const core::SceneObject* selected = nullptr;
+  std::size_t selected_index = 0;
   if (options.wireframe) {
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(1.0f, 1.0f);
   }
-  for (const core::SceneObject& o : scene.objects()) {
+  const std::vector<core::SceneObject>& objects = scene.objects();
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    const core::SceneObject& o = objects[i];
     if (!o.visible || !o.world_mesh || o.world_mesh->empty()) continue;
     const bool is_selected = !options.selected.empty() && o.name == options.selected;
-    if (is_selected) selected = &o;
+    if (is_selected) {
+      selected = &o;
+      selected_index = i;
+    }
     glStencilFunc(GL_ALWAYS, is_selected ? 1 : 0, 0xFF);
-    d.mesh.set("u_albedo", o.color);
-    d.mesh.set("u_highlight", is_selected ? 1.0f : 0.0f);
-    const MeshBuffers& b = d.buffers(o.world_mesh);
-    b.draw_triangles();
+    d.draw_object(o, plans[i], d.mesh, {}, [&](const ShaderProgram& p) {
+      p.set("u_view_proj", view_proj);
+      p.set("u_eye", eye);
+      p.set("u_key_dir", key);
+      p.set("u_albedo", o.color);
+      p.set("u_highlight", is_selected ? 1.0f : 0.0f);
+    });
     ++d.stats.objects_drawn;
-    d.stats.triangles += b.triangle_count();
+    d.stats.triangles += d.buffers(o.world_mesh).triangle_count();
   }
   glDisable(GL_POLYGON_OFFSET_FILL);
   glDisable(GL_STENCIL_TEST);
@@ -281,10 +345,13 @@ void Renderer::draw(const core::Scene& scene, const core::Camera& camera, const 
     glDepthFunc(GL_LEQUAL);
     glDepthMask(GL_FALSE);
     d.flat.use();
-    d.flat.set("u_view_proj", view_proj);
-    d.flat.set("u_flat_color", glm::vec4(0.05f, 0.05f, 0.06f, 0.45f));
-    for (const core::SceneObject& o : scene.objects())
-      if (o.visible && o.world_mesh && !o.world_mesh->empty()) d.buffers(o.world_mesh).draw_triangles();
+    const auto flat_uniforms = [&](const ShaderProgram& p) {
+      p.set("u_view_proj", view_proj);
+      p.set("u_flat_color", glm::vec4(0.05f, 0.05f, 0.06f, 0.45f));
+    };
+    for (std::size_t i = 0; i < objects.size(); ++i)
+      if (objects[i].visible && objects[i].world_mesh && !objects[i].world_mesh->empty())
+        d.draw_object(objects[i], plans[i], d.flat, {{"FLAT_COLOR", ""}}, flat_uniforms);
     glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
     glDepthMask(GL_TRUE);
     glDepthFunc(GL_LESS);
@@ -313,11 +380,13 @@ void Renderer::draw(const core::Scene& scene, const core::Camera& camera, const 
     glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
     glDisable(GL_DEPTH_TEST);
     d.outline.use();
-    d.outline.set("u_view_proj", view_proj);
-    d.outline.set("u_viewport", glm::vec2(vp));
-    d.outline.set("u_outline_px", options.outline_px);
-    d.outline.set("u_flat_color", rgba(options.selection_color));
-    d.buffers(selected->world_mesh).draw_triangles();
+    d.draw_object(*selected, plans[selected_index], d.outline, {{"OUTLINE", ""}, {"FLAT_COLOR", ""}},
+                  [&](const ShaderProgram& p) {
+                    p.set("u_view_proj", view_proj);
+                    p.set("u_viewport", glm::vec2(vp));
+                    p.set("u_outline_px", options.outline_px);
+                    p.set("u_flat_color", rgba(options.selection_color));
+                  });
     glDisable(GL_STENCIL_TEST);
     glEnable(GL_DEPTH_TEST);
   }
@@ -363,6 +432,8 @@ void Renderer::draw(const core::Scene& scene, const core::Camera& camera, const 
   glDisable(GL_STENCIL_TEST);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
+  draw_scope.reset();
+  d.stats.draw_ms = d.draw_timer.last_ms();
   d.stats.cached_meshes = int(d.cache.size());
   d.stats.cached_contact_surfaces = int(d.contact_cache.size());
 }

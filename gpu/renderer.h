@@ -6,6 +6,10 @@
 // sRGB output), ground grid on y = 0 fading with distance, selected object tinted and outlined, overlays for
 // control lattices, contact surfaces S(u,v) = F(u,v,0) (translucent, with iso-lines) and contact samples, and the
 // sketched stroke. Needs a depth+stencil framebuffer (outline mask).
+// Deformed objects (SceneObject::ffd) are evaluated for display by ViewOptions::ffd_backend at the object's offset
+// at ViewOptions::time_s (renderer_ffd.h): GLSL compute into the drawn buffers, the GLSL vertex path while drawing
+// (always for glsl_vertex; for glsl_compute when offset_velocity ≠ 0), the CPU fast path, or the CPU reference
+// (world_mesh). Only speed differs between backends.
 #pragma once
 
 #include <epoxy/gl.h>
@@ -15,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "core/deform/ffd_evaluator.h"
 #include "core/scene/scene.h"
 #include "gpu/mesh_buffers.h"
 
@@ -44,6 +49,10 @@ struct ViewOptions {
   glm::vec4 contact_surface_color{0.25f, 0.85f, 0.70f, 0.35f};
   glm::vec4 contact_iso_color{0.0f, 0.78f, 0.64f, 1.0f};
   int contact_iso_every = 4;
+  // FFD display (issue 3): backend evaluating deformed objects, and the scene time in seconds (an object shows
+  // F(E(x) + param_offset + offset_velocity·time_s)).
+  core::FfdBackend ffd_backend = core::FfdBackend::glsl_compute;
+  double time_s = 0.0;
 };
 
 // What the last draw() did (for tests, the timing overlay and replay's report).
@@ -55,6 +64,14 @@ struct RenderStats {
   int contact_surfaces_drawn = 0;
   int contact_uploads = 0;          // contact-surface tessellations built and uploaded during this draw
   int cached_contact_surfaces = 0;  // held after this draw (one per FfdBinding and tessellation settings)
+  int ffd_objects = 0;              // visible deformed objects drawn through the FFD display path
+  std::size_t ffd_vertices = 0;     // vertices evaluated during this draw (0 when every result was cached; the
+                                    // vertex path evaluates all of its objects' vertices every draw)
+  double ffd_ms = 0.0;    // FFD pass (dispatches, uploads, CPU evaluations; the vertex path's evaluation is part of
+                          // draw_ms): GpuTimer ms (+ CPU evaluation ms in query mode); 0 without deformed objects,
+                          // -1 while the timer has no result yet
+  double draw_ms = -1.0;  // the drawing passes (GpuTimer; -1 while unavailable)
+  const char* timer_mode = "";  // GpuTimer::mode_description() of the timers above
 };
 
 class Renderer {

@@ -3,7 +3,10 @@
 // Specialisation: a program variant is chosen by #define lines that are inserted right after the file's
 // `#version` line (followed by `#line 2`, so the driver's line numbers still match the file). Code bodies are
 // never assembled from C++ strings. Stage is taken from the file name: *.vert.glsl, *.frag.glsl, *.geom.glsl,
-// *.comp.glsl.
+// *.comp.glsl; other embedded files (e.g. ffd_eval.glsl) are libraries, pulled in by a line
+// `#include "ffd_eval.glsl"` (expanded before specialisation, so the library sees the defines; inside an `#ifdef`
+// it only matters to the variants that define it). A library starts with `#version` too (dropped when included);
+// its lines are reported as source string N (N = 1, 2, … in order of inclusion, named in ShaderError messages).
 #pragma once
 
 #include <epoxy/gl.h>
@@ -33,14 +36,25 @@ std::string specialise_source(std::string_view source, const ShaderDefines& defi
 
 // Stage enum (GL_VERTEX_SHADER, ...) from a file name's suffix. Throws ShaderError for an unknown suffix.
 GLenum shader_stage_from_name(std::string_view file);
+// True for files with a stage suffix (shader_stage_from_name would not throw); false for include libraries.
+bool is_shader_stage_file(std::string_view file);
+
+// `source` (the text of embedded `file`) with every line `#include "name.glsl"` replaced by that embedded file
+// minus its #version line, framed by `#line 2 N` / `#line L 0` so compiler messages keep file-relative line numbers.
+// `included` (optional) receives the included names; source string N is included[N-1]. Nested includes are
+// expanded too (depth ≤ 8). Throws ShaderError naming `file` for an unknown file or a malformed directive.
+std::string expand_includes(std::string_view source, std::string_view file,
+                            std::vector<std::string>* included = nullptr);
 
 class ShaderProgram {
  public:
   ShaderProgram() = default;  // empty (id() == 0)
   // Links one program from embedded files (e.g. {"mesh.vert.glsl", "mesh.frag.glsl"} or {"ffd.comp.glsl"}),
-  // each specialised with `defines`. Needs a current context. Throws ShaderError or std::out_of_range (no such
-  // embedded file).
-  ShaderProgram(const std::vector<std::string_view>& files, const ShaderDefines& defines = {});
+  // each specialised with `defines`. `feedback_varyings` (optional): vertex outputs captured by transform feedback,
+  // one buffer binding each (GL_SEPARATE_ATTRIBS), set before linking. Needs a current context. Throws ShaderError
+  // or std::out_of_range (no such embedded file).
+  ShaderProgram(const std::vector<std::string_view>& files, const ShaderDefines& defines = {},
+                const std::vector<std::string>& feedback_varyings = {});
   ~ShaderProgram();
   ShaderProgram(ShaderProgram&& o) noexcept;
   ShaderProgram& operator=(ShaderProgram&& o) noexcept;
@@ -55,6 +69,7 @@ class ShaderProgram {
 
   // Setters for the program, which must be in use.
   void set(const std::string& name, int v) const { glUniform1i(uniform(name), v); }
+  void set(const std::string& name, unsigned v) const { glUniform1ui(uniform(name), v); }
   void set(const std::string& name, float v) const { glUniform1f(uniform(name), v); }
   void set(const std::string& name, const glm::vec2& v) const { glUniform2f(uniform(name), v.x, v.y); }
   void set(const std::string& name, const glm::vec3& v) const { glUniform3f(uniform(name), v.x, v.y, v.z); }

@@ -61,6 +61,8 @@ void draw_keys_window(bool* open) {
       {"Ctrl+N / Ctrl+O / Ctrl+S", "new / open / save"},
       {"Ctrl+Shift+S", "save as"},
       {"Ctrl+Q", "quit"},
+      {"F7", "timing overlay on/off (FPS, FFD / render / UI times, graph)"},
+      {"Space", "play / pause animated objects (lattice.animate_offset)"},
       {"F12", "save a screenshot of the window (PNG, current folder)"},
   };
   center_next_window();

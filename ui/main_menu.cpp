@@ -1,5 +1,7 @@
 #include "ui/main_menu.h"
 
+#include "ui/frame_timings.h"
+
 #include <imgui.h>
 
 namespace trispline::ui {
@@ -10,7 +12,42 @@ gpu::ViewOptions view_options(const ViewToggles& t) {
   o.show_contact_surface = t.show_contact_surface;
   o.show_grid = t.show_grid;
   o.wireframe = t.wireframe;
+  o.ffd_backend = t.ffd_backend;
   return o;
+}
+
+bool apply_view_action(ViewToggles& view, MenuAction action) {
+  if (action == MenuAction::ToggleTimingOverlay) {
+    view.timing_overlay = !view.timing_overlay;
+    return true;
+  }
+  if (action == MenuAction::TogglePlayback) {
+    view.play_animation = !view.play_animation;
+    return true;
+  }
+  return false;
+}
+
+bool ffd_backend_combo(core::FfdBackend& backend) {
+  bool changed = false;
+  ImGui::SetNextItemWidth(ImGui::CalcTextSize("GLSL vertex shader").x + ImGui::GetFrameHeight() * 2);
+  if (ImGui::BeginCombo("FFD evaluator", ffd_backend_label(backend))) {
+    for (const core::FfdBackend b : kFfdBackendsShown) {
+      if (ImGui::Selectable(ffd_backend_label(b), b == backend) && b != backend) {
+        backend = b;
+        changed = true;
+      }
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", ffd_backend_tooltip(b));
+      if (b == backend) ImGui::SetItemDefaultFocus();
+    }
+    ImGui::EndCombo();
+  }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(
+        "Which backend evaluates the deformed objects in the viewport. Nothing visible changes\n"
+        "between backends except speed (see the timing overlay, F7).\n\n%s",
+        ffd_backend_tooltip(backend));
+  return changed;
 }
 
 MenuAction draw_main_menu(ViewToggles& view, const MenuState& state) {
@@ -41,7 +78,15 @@ MenuAction draw_main_menu(ViewToggles& view, const MenuState& state) {
     ImGui::MenuItem("Grid", nullptr, &view.show_grid);
     ImGui::MenuItem("Wireframe", nullptr, &view.wireframe);
     ImGui::Separator();
-    ImGui::MenuItem("Timing overlay", nullptr, &view.timing_overlay);
+    ImGui::MenuItem("Timing overlay", "F7", &view.timing_overlay);
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("Frame time and FPS, FFD / render / UI pass times, FFD vertices per second, a 5 s graph\n"
+                        "and the last command's time per stage, in the viewport's corner.");
+    ffd_backend_combo(view.ffd_backend);
+    ImGui::MenuItem("Play animation", "Space", &view.play_animation);
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("Objects with an animated offset (lattice.animate_offset) travel through their lattice while\n"
+                        "this is on (the GLSL vertex-shader path evaluates them every frame).");
     ImGui::MenuItem("Tool panel", nullptr, &view.show_tool_panel);
     ImGui::MenuItem("Scene && History panels", nullptr, &view.show_side_panels);
     ImGui::MenuItem("Log panel", nullptr, &view.show_log_panel);

@@ -2,6 +2,7 @@
 // The View toggles are edited in place (they are view state, not document changes).
 #pragma once
 
+#include "core/deform/ffd_evaluator.h"
 #include "gpu/renderer.h"
 
 #include <string>
@@ -13,7 +14,11 @@ struct ViewToggles {
   bool show_contact_surface = false;
   bool show_grid = true;
   bool wireframe = false;
-  bool timing_overlay = true;
+  bool timing_overlay = true;  // View > Timing overlay, F7
+  // View > FFD evaluator: which backend evaluates deformed objects in the viewport (changes live). The editor always
+  // has a GL context, so GLSL compute is the default; replay uses the CPU reference unless told otherwise.
+  core::FfdBackend ffd_backend = core::FfdBackend::glsl_compute;
+  bool play_animation = true;  // View > Play animation, Space: animated objects (lattice.animate_offset) move
   bool show_tool_panel = true;
   bool show_side_panels = true;  // Scene + History
   bool show_log_panel = true;
@@ -38,7 +43,9 @@ enum class MenuAction {
   Screenshot,  // File > Save Screenshot (F12): the whole window as a PNG in the current folder
   SelectTool,  // keyboard only (ui/shortcuts.h) from here on
   SketchTool,
-  Delete
+  Delete,
+  ToggleTimingOverlay,  // F7 (View > Timing overlay is a checkbox edited in place)
+  TogglePlayback        // Space, as Blender's Play (View > Play animation)
 };
 
 struct MenuState {
@@ -49,5 +56,13 @@ struct MenuState {
 
 // Draws the main menu bar; height via ImGui::GetFrameHeight().
 MenuAction draw_main_menu(ViewToggles& view, const MenuState& state);
+
+// Applies an action that only changes view state (ToggleTimingOverlay, TogglePlayback) to `view`; true if it was
+// one.
+bool apply_view_action(ViewToggles& view, MenuAction action);
+
+// The "FFD evaluator" combo (View menu): GLSL compute / GLSL vertex shader / CPU fast / CPU reference, with a
+// tooltip per entry. True when the user picked another backend.
+bool ffd_backend_combo(core::FfdBackend& backend);
 
 }  // namespace trispline::ui

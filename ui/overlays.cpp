@@ -5,55 +5,335 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 namespace trispline::ui {
 
-void TimingOverlay::add_frame(double work_ms, double interval_ms) {
-  history_[next_] = float(work_ms);
-  intervals_[next_] = float(interval_ms);
-  next_ = (next_ + 1) % history_.size();
-  count_ = std::min(count_ + 1, history_.size());
+namespace {
+
+constexpr std::size_t kMaxSamples = 2000;
+constexpr float kGraphWidth = 300.0f, kGraphHeight = 64.0f;
+
+enum class Pass { frame, ffd, draw, ui };
+constexpr Pass kPasses[] = {Pass::frame, Pass::ffd, Pass::draw, Pass::ui};
+
+ImU32 pass_color(Pass p) {
+  switch (p) {
+    case Pass::frame:
+      return IM_COL32(225, 225, 225, 255);
+    case Pass::ffd:
+      return IM_COL32(255, 160, 60, 255);
+    case Pass::draw:
+      return IM_COL32(90, 165, 255, 255);
+    case Pass::ui:
+      return IM_COL32(120, 215, 120, 255);
+  }
+  return IM_COL32_WHITE;
 }
 
-float TimingOverlay::median(const std::array<float, 120>& ring, std::size_t count) {
-  if (count == 0) return 0.0f;
-  std::array<float, 120> v = ring;  // the first `count` slots are filled until the ring wraps
-  std::nth_element(v.begin(), v.begin() + count / 2, v.begin() + count);
-  return v[count / 2];
+const char* pass_name(Pass p) {
+  switch (p) {
+    case Pass::frame:
+      return "frame";
+    case Pass::ffd:
+      return "FFD eval";
+    case Pass::draw:
+      return "render";
+    case Pass::ui:
+      return "UI";
+  }
+  return "";
+}
+
+const char* pass_tooltip(Pass p) {
+  switch (p) {
+    case Pass::frame:
+      return "Frame: CPU wall time from handling events to the buffer swap (includes the GPU passes when they are\n"
+             "timed with glFinish). FPS = 1000 / mean time between frames. Means over the last second.";
+    case Pass::ffd:
+      return "FFD evaluation: time to evaluate the trivariate B-spline at every vertex of the deformed objects with\n"
+             "the selected evaluator (GPU timer for GLSL backends, plus CPU time for CPU backends), mean over the\n"
+             "frames of the last second that evaluated. Results are cached until the deformation changes.";
+    case Pass::draw:
+      return "Render: GPU time of drawing the scene (objects, grid, overlays) into the framebuffer.";
+    case Pass::ui:
+      return "UI: GPU time of drawing the Dear ImGui panels (ImGui_ImplOpenGL3_RenderDrawData).";
+  }
+  return "";
+}
+
+double value(const FrameSample& s, Pass p) {
+  switch (p) {
+    case Pass::frame:
+      return s.work_ms;
+    case Pass::ffd:
+      return s.passes.ffd_ms;
+    case Pass::draw:
+      return s.passes.draw_ms;
+    case Pass::ui:
+      return s.passes.ui_ms;
+  }
+  return -1;
+}
+
+// Mean of the non-negative values; negative if none.
+struct Mean {
+  double sum = 0;
+  int n = 0;
+  void add(double v) {
+    if (v >= 0 && std::isfinite(v)) sum += v, ++n;
+  }
+  double get() const { return n ? sum / n : -1.0; }
+};
+
+void format_ms(char* buf, std::size_t size, double ms) {
+  if (ms < 0)
+    std::snprintf(buf, size, "-");
+  else
+    std::snprintf(buf, size, ms < 10 ? "%.2f ms" : ms < 100 ? "%.1f ms" : "%.0f ms", ms);
+}
+
+void format_rate(char* buf, std::size_t size, double per_s) {
+  if (per_s < 0)
+    std::snprintf(buf, size, "-");
+  else if (per_s >= 1e9)
+    std::snprintf(buf, size, "%.2f G vertices/s", per_s * 1e-9);
+  else if (per_s >= 1e6)
+    std::snprintf(buf, size, "%.1f M vertices/s", per_s * 1e-6);
+  else
+    std::snprintf(buf, size, "%.0f k vertices/s", per_s * 1e-3);
+}
+
+// The smallest of {1,2,3,4,5,6,8} × 10^k at or above v (the graph's scale).
+double nice_ceiling(double v) {
+  const double p = std::pow(10.0, std::floor(std::log10(std::max(v, 1e-3))));
+  for (double m : {1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 8.0, 10.0})
+    if (m * p >= v) return m * p;
+  return 10 * p;
+}
+
+void tooltip(const char* text) {
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", text);
+}
+
+// A coloured legend square on the current line.
+void swatch(ImU32 color) {
+  const float h = ImGui::GetTextLineHeight();
+  const ImVec2 p = ImGui::GetCursorScreenPos();
+  ImGui::GetWindowDrawList()->AddRectFilled(ImVec2(p.x, p.y + h * 0.2f), ImVec2(p.x + h * 0.6f, p.y + h * 0.8f), color);
+  ImGui::Dummy(ImVec2(h * 0.6f, h));
+  ImGui::SameLine();
+}
+
+}  // namespace
+
+void TimingOverlay::add_frame(const FrameSample& sample) {
+  samples_.push_back(sample);
+  while (!samples_.empty() &&
+         (samples_.size() > kMaxSamples || samples_.front().time_s < sample.time_s - kGraphSeconds))
+    samples_.pop_front();
+  if (sample.passes.ffd_vertices > 0) {
+    last_eval_ = sample;
+    has_eval_ = true;
+  }
+}
+
+TimingOverlay::Summary TimingOverlay::summary() const {
+  Summary s;
+  if (samples_.empty()) return s;
+  const double since = samples_.back().time_s - kAverageSeconds;
+  Mean interval, work, draw, ui, ffd, ffd_vertices;
+  double rate_vertices = 0, rate_ms = 0;  // evaluating frames with a measured FFD time
+  auto add_eval = [&](const FrameSample& f) {
+    ffd.add(f.passes.ffd_ms);
+    ffd_vertices.add(double(f.passes.ffd_vertices));
+    if (ffd_time_ms(f.passes) > 0) {
+      rate_vertices += double(f.passes.ffd_vertices);
+      rate_ms += ffd_time_ms(f.passes);
+    }
+    s.ffd_in_draw = f.passes.ffd_in_draw;
+  };
+  for (auto it = samples_.rbegin(); it != samples_.rend(); ++it) {
+    if (s.frames > 0 && it->time_s < since) break;  // the newest frame always counts
+    ++s.frames;
+    interval.add(it->interval_ms);
+    work.add(it->work_ms);
+    draw.add(it->passes.draw_ms);
+    ui.add(it->passes.ui_ms);
+    if (it->passes.ffd_vertices > 0) add_eval(*it);
+  }
+  s.ffd_recent = ffd_vertices.n > 0;
+  if (!s.ffd_recent && has_eval_) add_eval(last_eval_);
+  s.frame_ms = work.get();
+  s.draw_ms = draw.get();
+  s.ui_ms = ui.get();
+  s.ffd_ms = ffd.get();
+  s.ffd_vertices = std::max(ffd_vertices.get(), 0.0);
+  if (rate_ms > 0) s.vertices_per_second = rate_vertices / (rate_ms * 1e-3);
+  const double mean_interval = interval.get();
+  if (mean_interval > 0) s.fps = 1000.0 / mean_interval;
+  // The editor sleeps until input when nothing changes: an FPS figure would then only measure the idle wait.
+  s.idle = mean_interval > 100.0 && mean_interval > 4.0 * std::max(s.frame_ms, 0.0);
+  return s;
+}
+
+void TimingOverlay::draw_graph(float width, float height) const {
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  const ImVec2 g0 = ImGui::GetCursorScreenPos();
+  ImGui::Dummy(ImVec2(width, height));
+  const bool hovered = ImGui::IsItemHovered();
+  const ImVec2 g1(g0.x + width, g0.y + height);
+  dl->AddRectFilled(g0, g1, IM_COL32(0, 0, 0, 90));
+  if (samples_.empty()) return;
+
+  double top = 16.7 * 1.1;
+  for (const FrameSample& s : samples_)
+    for (Pass p : kPasses) top = std::max(top, value(s, p));
+  top = nice_ceiling(top);
+  const double now = samples_.back().time_s;
+  auto x_of = [&](double t) { return g1.x - float((now - t) / kGraphSeconds) * width; };
+  auto y_of = [&](double ms) { return g1.y - float(std::min(ms / top, 1.0)) * height; };
+
+  const float y60 = y_of(16.7);
+  dl->AddLine(ImVec2(g0.x, y60), ImVec2(g1.x, y60), IM_COL32(255, 255, 255, 60));
+  for (Pass p : kPasses) {
+    const ImU32 col = pass_color(p);
+    for (std::size_t i = 1; i < samples_.size(); ++i) {
+      const double a = value(samples_[i - 1], p), b = value(samples_[i], p);
+      if (a < 0 || b < 0) continue;  // not measured: a gap
+      dl->AddLine(ImVec2(x_of(samples_[i - 1].time_s), y_of(a)), ImVec2(x_of(samples_[i].time_s), y_of(b)), col,
+                  p == Pass::frame ? 1.5f : 1.2f);
+    }
+  }
+  char scale[32];
+  std::snprintf(scale, sizeof scale, "%g ms", top);
+  const float line_h = ImGui::GetTextLineHeight();
+  dl->AddText(ImVec2(g1.x - ImGui::CalcTextSize(scale).x - 3, g0.y + 1), IM_COL32(200, 200, 200, 200), scale);
+  // "60 FPS" at the left end of its line: above it, or below when the line is near the top.
+  dl->AddText(ImVec2(g0.x + 3, y60 - line_h > g0.y + line_h * 0.5f ? y60 - line_h : y60 + 1),
+              IM_COL32(200, 200, 200, 140), "60 FPS");
+
+  if (!hovered) return;
+  // The frame under the mouse, with its numbers.
+  const float mx = ImGui::GetIO().MousePos.x;
+  const FrameSample* best = &samples_.back();
+  for (const FrameSample& s : samples_)
+    if (std::abs(x_of(s.time_s) - mx) < std::abs(x_of(best->time_s) - mx)) best = &s;
+  dl->AddLine(ImVec2(x_of(best->time_s), g0.y), ImVec2(x_of(best->time_s), g1.y), IM_COL32(255, 255, 255, 120));
+  char f[24], e[24], d[24], u[24];
+  format_ms(f, sizeof f, best->work_ms);
+  format_ms(e, sizeof e, best->passes.ffd_ms);
+  format_ms(d, sizeof d, best->passes.draw_ms);
+  format_ms(u, sizeof u, best->passes.ui_ms);
+  ImGui::SetTooltip(
+      "Last %.0f s, one line per pass (newest on the right; the faint line is 16.7 ms = 60 FPS).\n"
+      "%.2f s ago: frame %s, FFD eval %s, render %s, UI %s",
+      kGraphSeconds, now - best->time_s, f, e, d, u);
 }
 
 void TimingOverlay::draw(const Rect& viewport) const {
-  ImDrawList* dl = ImGui::GetBackgroundDrawList();
-  char line[96];
-  const double interval = median(intervals_, count_), work = median(history_, count_);
-  // The editor sleeps until input when nothing changes: an FPS figure would then only measure the idle wait.
-  if (interval > 100.0 && interval > 4.0 * work)
-    std::snprintf(line, sizeof line, "idle   frame %.2f ms", work);
-  else
-    std::snprintf(line, sizeof line, "%.0f FPS   frame %.2f ms", interval > 0 ? 1000.0 / interval : 0.0, work);
-  const ImVec2 origin(viewport.pos.x + 10, viewport.pos.y + 10);
-  const ImVec2 text_size = ImGui::CalcTextSize(line);
-  const float graph_w = 120.0f, graph_h = 28.0f, pad = 6.0f;
-  const ImVec2 box_max(origin.x + std::max(text_size.x, graph_w) + 2 * pad, origin.y + text_size.y + graph_h + 3 * pad);
-  dl->AddRectFilled(origin, box_max, IM_COL32(20, 20, 22, 170), 4.0f);
-  dl->AddText(ImVec2(origin.x + pad, origin.y + pad), IM_COL32(230, 230, 230, 255), line);
-
-  // Frame-time graph: bars scaled to max(33 ms, worst frame); a line marks 16.7 ms (60 FPS).
-  if (count_ == 0) return;
-  float worst = 33.3f;
-  for (std::size_t i = 0; i < count_; ++i) worst = std::max(worst, history_[i]);
-  const ImVec2 g0(origin.x + pad, origin.y + 2 * pad + text_size.y);
-  const float bar_w = graph_w / float(history_.size());
-  for (std::size_t i = 0; i < count_; ++i) {
-    const std::size_t idx = (next_ + history_.size() - count_ + i) % history_.size();
-    const float h = graph_h * std::min(1.0f, history_[idx] / worst);
-    const float x = g0.x + bar_w * float(history_.size() - count_ + i);
-    const ImU32 col = history_[idx] > 33.3f ? IM_COL32(230, 110, 100, 220) : IM_COL32(110, 160, 230, 220);
-    dl->AddRectFilled(ImVec2(x, g0.y + graph_h - h), ImVec2(x + bar_w, g0.y + graph_h), col);
+  constexpr int flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
+                        ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
+                        ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoMove;
+  ImGui::SetNextWindowPos(ImVec2(viewport.pos.x + 10, viewport.pos.y + 10));
+  ImGui::SetNextWindowBgAlpha(0.82f);  // readable over a white object as over the dark background
+  ImGui::PushStyleColor(ImGuiCol_WindowBg, IM_COL32(18, 18, 20, 255));
+  ImGui::PushStyleColor(ImGuiCol_Text, IM_COL32(235, 235, 235, 255));
+  const bool open = ImGui::Begin("##timing_overlay", nullptr, flags);
+  ImGui::PopStyleColor(2);
+  if (!open) {
+    ImGui::End();
+    return;
   }
-  const float y60 = g0.y + graph_h * (1.0f - 16.7f / worst);
-  dl->AddLine(ImVec2(g0.x, y60), ImVec2(g0.x + graph_w, y60), IM_COL32(255, 255, 255, 80));
+  ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + kGraphWidth);
+  const Summary s = summary();
+  char ms[32], line[160];
+
+  format_ms(ms, sizeof ms, s.frame_ms);
+  swatch(pass_color(Pass::frame));
+  if (s.idle || s.fps < 0)
+    ImGui::Text("idle          frame %s", ms);
+  else
+    ImGui::Text("%5.0f FPS     frame %s", s.fps, ms);
+  tooltip(s.idle ? "The editor waits for input while nothing changes, so no FPS is shown.\n"
+                   "Frame: CPU wall time from handling events to the buffer swap, mean over the last second."
+                 : pass_tooltip(Pass::frame));
+
+  for (Pass p : {Pass::ffd, Pass::draw, Pass::ui}) {
+    const double v = p == Pass::ffd ? s.ffd_ms : p == Pass::draw ? s.draw_ms : s.ui_ms;
+    format_ms(ms, sizeof ms, v);
+    swatch(pass_color(p));
+    ImGui::Text("%-9s %10s", pass_name(p), ms);
+    tooltip(pass_tooltip(p));
+    if (p == Pass::ffd && s.ffd_in_draw) {
+      ImGui::SameLine();
+      ImGui::TextColored(colors::dim, "+ in render");
+      tooltip("The vertex-shader path evaluates the deformation while drawing: its cost is part of 'render'.");
+    } else if (p == Pass::ffd && !s.ffd_recent && s.ffd_ms >= 0) {
+      ImGui::SameLine();
+      ImGui::TextColored(colors::dim, "(last)");
+      tooltip(
+          "Nothing was evaluated in the last second (results are cached until the deformation changes):\n"
+          "these are the figures of the last evaluation.");
+    }
+  }
+
+  format_rate(line, sizeof line, s.vertices_per_second);
+  ImGui::Text("FFD  %s", line);
+  tooltip(s.ffd_in_draw
+              ? "FFD throughput of the vertex-shader path: vertices evaluated per second of render time (the\n"
+                "evaluation happens while drawing, so this is a lower bound)."
+              : "FFD throughput: vertices evaluated per second of FFD evaluation time, over the frames that\n"
+                "evaluated (GLSL compute and the CPU paths only evaluate when the deformation changes).");
+  if (s.ffd_vertices > 0) {
+    ImGui::SameLine();
+    ImGui::TextColored(colors::dim, "(%.0f k vertices)", s.ffd_vertices * 1e-3);
+    tooltip("Vertices of the deformed objects evaluated per evaluation.");
+  }
+  ImGui::Text("FFD evaluator: %s", context_.ffd_backend.empty() ? "-" : context_.ffd_backend.c_str());
+  tooltip(
+      "The backend that evaluates the deformation (View > FFD evaluator). Nothing visible changes between\n"
+      "backends except speed; export and tests always use the CPU reference.");
+  if (context_.scene_time_s >= 0) {
+    ImGui::Text("playback %s t = %.2f s", context_.playing ? "on " : "off", context_.scene_time_s);
+    tooltip(
+        "Scene time of animated objects (lattice.animate_offset): each shows F(E(x) + offset + velocity * t).\n"
+        "Space (View > Play animation) starts and stops the clock.");
+  }
+
+  draw_graph(kGraphWidth, kGraphHeight);
+
+  ImGui::TextColored(colors::dim, "%s", context_.timer_mode.empty() ? "GPU: not timed" : context_.timer_mode.c_str());
+  tooltip(
+      "How GPU passes are timed. Real GPUs: GL_TIME_ELAPSED queries, read a frame or two later without ever\n"
+      "waiting. Software renderers (Mesa llvmpipe): their timer queries return wrong values, so each pass is\n"
+      "bracketed by glFinish and timed with the wall clock (this slows the frame a little).");
+
+  if (!context_.last_command.empty()) {
+    ImGui::Separator();
+    char total[32];
+    format_ms(total, sizeof total, context_.last_command_ms);
+    ImGui::Text("%s  %s", context_.last_command.c_str(), total);
+    tooltip(
+        "The command on top of the undo stack and its wall time when it last ran (CPU). The rows below are its\n"
+        "stages (Command::stats(); the same figures as replay's report.json timings.commands).");
+    if (!context_.last_stages.empty() &&
+        ImGui::BeginTable("##stages", 4, ImGuiTableFlags_SizingFixedFit, ImVec2(kGraphWidth, 0))) {
+      for (const StageTiming& st : context_.last_stages) {
+        ImGui::TableNextColumn();
+        ImGui::TextColored(colors::dim, "%s", st.name.c_str());
+        tooltip("CPU wall time of this stage of the last command.");
+        ImGui::TableNextColumn();
+        format_ms(ms, sizeof ms, st.ms);
+        ImGui::TextUnformatted(ms);
+        tooltip("CPU wall time of this stage of the last command.");
+      }
+      ImGui::EndTable();
+    }
+  }
+  ImGui::PopTextWrapPos();
+  ImGui::End();
 }
 
 void draw_working_overlay(const std::string& text) {

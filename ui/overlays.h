@@ -1,31 +1,80 @@
-// trispline::ui viewport overlays, drawn on ImGui's foreground/background draw lists over the 3-D view:
-//  * TimingOverlay: FPS and frame milliseconds (medians of the last 120 frames) in the viewport's top-left corner, with
-//  a small frame-time graph
-//    (issue 3 extends it with GPU/CPU stage timings).
-//  * draw_working_overlay(): the "Working…" box shown for one frame before a long synchronous command runs.
+// trispline::ui viewport overlays, drawn over the 3-D view:
+//  * TimingOverlay: the live timing overlay (issue 3; View > Timing overlay, F7) in the viewport's top-left corner:
+//    FPS and frame time; per pass FFD evaluation, rendering and UI (ms); FFD vertices per second; a graph of the last
+//    5 seconds, one line per pass; the GPU timing method; the FFD evaluator in use; the last command's CPU time per
+//    stage. Every number explains itself in a tooltip. A small ImGui window with an opaque-ish background, so it
+//    reads over light and dark scenes.
+//  * draw_working_overlay(): the "Working..." box shown for one frame before a long synchronous command runs.
 #pragma once
 
+#include "ui/frame_timings.h"
 #include "ui/layout.h"
 
-#include <array>
+#include <cstddef>
+#include <deque>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace trispline::ui {
 
+// One frame's figures, as the editor measured them.
+struct FrameSample {
+  double time_s = 0;       // when the frame ended, seconds on any monotonic clock
+  double work_ms = 0;      // CPU wall time spent on the frame (events to swap)
+  double interval_ms = 0;  // time since the previous frame (includes idle waiting; gives the FPS)
+  PassTimings passes;      // GPU passes (negative = not measured)
+};
+
+// What the overlay names besides the per-frame numbers (set whenever it changes).
+struct TimingContext {
+  std::string timer_mode;    // GpuTimer::describe(): "GPU: GL_TIME_ELAPSED queries" / "GPU: glFinish + wall clock ..."
+  std::string ffd_backend;   // ffd_backend_label() of the evaluator in use
+  double scene_time_s = -1;  // playback time of animated objects, seconds (negative: no animated object)
+  bool playing = false;      // the playback clock runs
+  std::string last_command;  // id of the command on top of the undo stack ("" = none)
+  double last_command_ms = -1;           // its wall time when executed (negative = unknown)
+  std::vector<StageTiming> last_stages;  // its CPU time per stage, stage_timings(stats())
+};
+
 class TimingOverlay {
  public:
-  // Once per frame: work_ms = CPU+GPU time spent on the frame (events to swap), interval_ms = time since the
-  // previous frame (includes idle waiting; gives the FPS).
-  void add_frame(double work_ms, double interval_ms);
+  static constexpr double kGraphSeconds = 5.0;    // the graph's time span
+  static constexpr double kAverageSeconds = 1.0;  // the numbers are means over this much of the newest frames
+
+  void add_frame(const FrameSample& sample);  // keeps the last kGraphSeconds (and at most 2000 frames)
+  void set_context(TimingContext context) { context_ = std::move(context); }
+  const TimingContext& context() const { return context_; }
+
+  // The numbers the overlay shows (negative = unknown). Frame, render and UI: means over the last kAverageSeconds.
+  // FFD: GLSL compute and the CPU paths evaluate only when a deformation changes, so the FFD figures are means over
+  // the frames that evaluated (ffd_vertices > 0) in the last second, else those of the last frame that did
+  // (ffd_recent false) — an evaluation stays readable after the frame that made it.
+  struct Summary {
+    std::size_t frames = 0;  // frames averaged
+    bool idle = false;       // the editor was waiting for input: fps is meaningless then
+    double fps = -1, frame_ms = -1, draw_ms = -1, ui_ms = -1;
+    double ffd_ms = -1;               // FFD pass of the evaluating frames
+    double ffd_vertices = 0;          // vertices per evaluating frame
+    double vertices_per_second = -1;  // ffd_vertices / ffd_time_ms() (render time for the vertex-shader path)
+    bool ffd_recent = false;          // the FFD figures come from the last second
+    bool ffd_in_draw = false;         // the evaluation ran in the render pass (vertex-shader path)
+  };
+  Summary summary() const;
+  std::size_t sample_count() const { return samples_.size(); }
+
+  // Draws the overlay as a small window at the viewport's top-left corner. Call between NewFrame and Render.
   void draw(const Rect& viewport) const;
 
  private:
-  static float median(const std::array<float, 120>& ring, std::size_t count);
-  std::array<float, 120> history_{}, intervals_{};  // frame work / interval ms, ring buffers
-  std::size_t next_ = 0, count_ = 0;
+  void draw_graph(float width, float height) const;
+  std::deque<FrameSample> samples_;  // oldest first
+  FrameSample last_eval_;            // newest sample with ffd_vertices > 0, if has_eval_
+  bool has_eval_ = false;
+  TimingContext context_;
 };
 
-// Dims the whole window and shows `text` ("Working…: placing bunny") in a centred box.
+// Dims the whole window and shows `text` ("Working...: placing bunny") in a centred box.
 void draw_working_overlay(const std::string& text);
 
 }  // namespace trispline::ui

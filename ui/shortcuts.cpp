@@ -8,9 +8,7 @@
 
 namespace trispline::ui {
 
-namespace {
-
-MenuAction action_for(const KeyPress& k) {
+MenuAction shortcut_action(const KeyPress& k) {
   using A = MenuAction;
   const bool ctrl = k.mods & GLFW_MOD_CONTROL, shift = k.mods & GLFW_MOD_SHIFT, alt = k.mods & GLFW_MOD_ALT;
   const int key = k.key;
@@ -29,10 +27,11 @@ MenuAction action_for(const KeyPress& k) {
   if (key == GLFW_KEY_Q) return A::SelectTool;
   if (key == GLFW_KEY_W) return A::SketchTool;
   if (key == GLFW_KEY_DELETE || key == GLFW_KEY_X) return A::Delete;
+  // F7: Blender leaves F5-F8 to the user, so it clashes with nothing a Blender user knows.
+  if (key == GLFW_KEY_F7 && !shift) return A::ToggleTimingOverlay;
+  if (key == GLFW_KEY_SPACE && !shift) return A::TogglePlayback;  // Blender: Space plays the animation
   return A::None;
 }
-
-}  // namespace
 
 MenuAction poll_shortcuts() {
   const ImGuiIO& io = ImGui::GetIO();
@@ -41,7 +40,7 @@ MenuAction poll_shortcuts() {
     // F12 works over dialogs too: harmless, and handy for bug reports.
     if (k.key == GLFW_KEY_F12 && !(k.mods & (GLFW_MOD_CONTROL | GLFW_MOD_ALT))) return MenuAction::Screenshot;
     if (typing) continue;
-    if (const MenuAction a = action_for(k); a != MenuAction::None) return a;
+    if (const MenuAction a = shortcut_action(k); a != MenuAction::None) return a;
   }
   return MenuAction::None;
 }

@@ -3,11 +3,16 @@
 // (typing in a field).
 #pragma once
 
+#include "ui/imgui_host.h"
 #include "ui/main_menu.h"
 
 namespace trispline::ui {
 
 // The action whose shortcut was pressed this frame, or MenuAction::None.
 MenuAction poll_shortcuts();
+
+// The action bound to one key press (GLFW key code and GLFW_MOD_* bits), ignoring whether ImGui wants the
+// keyboard; MenuAction::None if unbound.
+MenuAction shortcut_action(const KeyPress& press);
 
 }  // namespace trispline::ui

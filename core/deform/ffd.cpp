@@ -19,19 +19,23 @@ namespace {
 bool finite3(const glm::dvec3& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
 
 // Non-zero basis functions (and optionally first derivatives) of one axis at one parameter.
-// Layout of `ders`: ders[0..order) values, ders[order..2·order) first derivatives.
+// Layout of `ders`: ders[0..order) values, ders[order..2·order) first derivatives; idx[r] = control index of basis r
+// along the axis (wrapped mod period on a periodic axis).
 struct AxisBasis {
   const KnotVector* kv = nullptr;
   int order = 0;
+  int period = 0;
   std::vector<double> ders;
-  int first = 0;  // index of the first non-zero basis function
+  std::vector<std::size_t> idx;
 
-  explicit AxisBasis(const KnotVector& k) : kv(&k), order(k.order()), ders(2 * static_cast<std::size_t>(k.order())) {}
+  explicit AxisBasis(const KnotVector& k)
+      : kv(&k), order(k.order()), period(k.period()), ders(2 * static_cast<std::size_t>(k.order())), idx(k.order()) {}
 
   void eval(double t, bool with_derivative) {
-    t = std::clamp(t, kv->domain_min(), kv->domain_max());  // parameters outside the domain are clamped
+    t = kv->wrap_or_clamp(t);  // clamped to the domain, wrapped on a periodic axis
     const int span = kv->find_span(t);
-    first = span - order + 1;
+    const int first = span - order + 1;
+    for (int r = 0; r < order; ++r) idx[r] = static_cast<std::size_t>(period > 0 ? (first + r) % period : first + r);
     if (with_derivative)
       basis_derivatives(*kv, span, t, 1, ders.data());
     else
@@ -68,9 +72,9 @@ struct Evaluator {
     for (int k = 0; k < bw.order; ++k) {
       glm::dvec3 acc_j(0.0);
       for (int j = 0; j < bv.order; ++j) {
-        const glm::dvec3* row = cps + static_cast<std::size_t>(bu.first) + l * (bv.first + j) + lm * (bw.first + k);
+        const glm::dvec3* row = cps + l * bv.idx[j] + lm * bw.idx[k];
         glm::dvec3 s(0.0);
-        for (int i = 0; i < bu.order; ++i) s += bu.n(i) * row[i];
+        for (int i = 0; i < bu.order; ++i) s += bu.n(i) * row[bu.idx[i]];
         acc_j += bv.n(j) * s;
       }
       acc += bw.n(k) * acc_j;
@@ -87,11 +91,11 @@ struct Evaluator {
     for (int k = 0; k < bw.order; ++k) {
       glm::dvec3 v_j(0.0), du_j(0.0), dv_j(0.0);
       for (int j = 0; j < bv.order; ++j) {
-        const glm::dvec3* row = cps + static_cast<std::size_t>(bu.first) + l * (bv.first + j) + lm * (bw.first + k);
+        const glm::dvec3* row = cps + l * bv.idx[j] + lm * bw.idx[k];
         glm::dvec3 s(0.0), su(0.0);
         for (int i = 0; i < bu.order; ++i) {
-          s += bu.n(i) * row[i];
-          su += bu.dn(i) * row[i];
+          s += bu.n(i) * row[bu.idx[i]];
+          su += bu.dn(i) * row[bu.idx[i]];
         }
         v_j += bv.n(j) * s;
         du_j += bv.n(j) * su;

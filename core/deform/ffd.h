@@ -45,7 +45,8 @@ struct FfdBinding {
   std::vector<glm::dvec3> params;         // #V × 3, E(rest position) per vertex
 };
 
-// Reference CPU FFD in double precision (parallel, deterministic).
+// Reference CPU FFD in double precision (parallel, deterministic), any order. Parameters outside the domain are
+// clamped per axis, wrapped (t − ⌊t⌋) on periodic axes (KnotVector::periodic_uniform).
 //   params        #V × 3   parameter-domain points
 //   out_positions #V × 3   resized; world units
 void ffd_evaluate(const TrivariateBSpline<glm::dvec3>& F, const std::vector<glm::dvec3>& params,

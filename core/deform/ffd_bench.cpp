@@ -11,6 +11,7 @@
 #include <fstream>
 #include <functional>
 #include <iomanip>
+#include <limits>
 #include <numbers>
 #include <ostream>
 #include <random>
@@ -19,7 +20,7 @@
 #include <thread>
 
 #include "core/deform/ffd.h"
-#include "core/deform/ffd_fast.h"
+#include "core/deform/ffd_evaluator.h"
 #include "core/mesh/mesh_io.h"
 
 namespace trispline::core {
@@ -71,17 +72,46 @@ std::string cpu_model() {
   return "unknown";
 }
 
+// Reference results of one (lattice, order, normals) case, and the figures every backend is compared with.
+struct Reference {
+  std::vector<glm::dvec3> positions, normals;
+  double diagonal = 1.0;  // control-point bounding-box diagonal of the lattice
+};
+
+struct Errors {
+  double rel = 0.0;        // max position error ÷ diagonal
+  double normal_rad = 0.0;  // max angle between normals
+};
+
+Errors compare(const Reference& ref, const std::vector<glm::dvec3>& p, const std::vector<glm::dvec3>& n) {
+  Errors e;
+  if (p.size() != ref.positions.size()) return {std::numeric_limits<double>::infinity(), 0.0};
+  double max_err = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) max_err = std::max(max_err, glm::length(ref.positions[i] - p[i]));
+  e.rel = max_err / ref.diagonal;
+  if (!ref.normals.empty()) {
+    if (n.size() != ref.normals.size()) return {e.rel, std::numeric_limits<double>::infinity()};
+    for (std::size_t i = 0; i < n.size(); ++i)  // atan2(|a×b|, a·b): accurate for tiny angles, unlike acos(a·b)
+      e.normal_rad =
+          std::max(e.normal_rad, std::atan2(glm::length(glm::cross(ref.normals[i], n[i])), glm::dot(ref.normals[i], n[i])));
+  }
+  return e;
+}
+
 }  // namespace
 
 nlohmann::json run_ffd_benchmark(const FfdBenchOptions& o) {
   if (o.runs < 1) throw std::invalid_argument("ffd bench: runs must be >= 1");
   if (o.subdivision_level < 0) throw std::invalid_argument("ffd bench: subdivision level must be >= 0");
-  for (int ord : o.orders)
-    if (ord < 2 || ord > o.controls)
-      throw std::invalid_argument("ffd bench: order " + std::to_string(ord) +
-                                  " must be in [2, controls = " + std::to_string(o.controls) + "]");
+  if (o.lattices.empty() || o.orders.empty()) throw std::invalid_argument("ffd bench: no lattice sizes or orders");
+  for (int lat : o.lattices)
+    for (int ord : o.orders)
+      if (ord < 2 || ord > lat)
+        throw std::invalid_argument("ffd bench: order " + std::to_string(ord) + " must be in [2, lattice size " +
+                                    std::to_string(lat) + "]");
   nlohmann::json out;
-  out["benchmark"] = "ffd";
+  out["renderer"] = o.renderer;
+  out["gpu_shaders"] = o.gpu_shaders;
 
   // Mesh: the bunny, or a sphere of similar vertex count when the file is not there.
   TriMesh base;
@@ -104,103 +134,126 @@ nlohmann::json run_ffd_benchmark(const FfdBenchOptions& o) {
   mj["vertices"] = mesh.positions.size();
   mj["triangles"] = mesh.triangles.size();
   mj["subdivision_level"] = o.subdivision_level;
-  out["mesh"] = mj;
-  out["lattice"] = {{"controls", o.controls}, {"perturbation", o.perturbation}, {"seed", o.seed}};
 
   const int all = o.threads > 0 ? o.threads : tbb::info::default_concurrency();
+  out["cpu"] = cpu_model();
   out["threads_all"] = all;
   out["hardware_threads"] = std::thread::hardware_concurrency();
-  out["cpu"] = cpu_model();
   out["runs"] = o.runs;
+  out["mesh"] = mj;
+  out["perturbation"] = o.perturbation;
+  out["seed"] = o.seed;
 
   const Embedding emb = embed_bounding_box(mesh.positions, EmbeddingAxes{0, 1});
   const std::vector<glm::dvec3> params = embed_points(emb, mesh.positions);
-  const FloatSoA3 params_f = FloatSoA3::from(params);
-  const FloatSoA3 normals_f = FloatSoA3::from(mesh.normals);
-  const double nverts = static_cast<double>(mesh.positions.size());
+  const std::vector<glm::dvec3> no_normals;
+  const std::size_t nverts = mesh.positions.size();
+  const auto mverts = [&](double ms) { return static_cast<double>(nverts) / (ms * 1e-3) * 1e-6; };
 
-  nlohmann::json results = nlohmann::json::array(), accuracy = nlohmann::json::array();
-  for (int ord : o.orders) {
-    const auto F = perturbed_lattice(emb, ord, o.controls, o.perturbation, o.seed);
-    const FfdFastLattice fast(F, emb);
-    Aabb lb;
-    for (const auto& p : F.control_points()) lb.extend(p);
-    for (bool normals : {false, true}) {
-      std::vector<glm::dvec3> ref_p, ref_n;
-      FloatSoA3 fp, fn;
-      for (int threads : {1, all}) {
-        tbb::global_control gc(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
-        const double ref_ms = median_ms(o.runs, [&] {
-          if (normals)
-            ffd_evaluate(F, emb, params, mesh.normals, ref_p, ref_n);
-          else
-            ffd_evaluate(F, params, ref_p);
-        });
-        const double fast_ms = median_ms(o.runs, [&] {
-          if (normals)
-            ffd_evaluate_fast(fast, params_f, normals_f, fp, fn);
-          else
-            ffd_evaluate_fast(fast, params_f, fp);
-        });
-        for (auto [path, ms] : {std::pair{"reference_double", ref_ms}, std::pair{"fast_float", fast_ms}})
-          results.push_back({{"order", ord},
-                             {"normals", normals},
-                             {"threads", threads},
-                             {"path", path},
-                             {"median_ms", ms},
-                             {"vertices_per_second", nverts / (ms * 1e-3)}});
-      }
-      double max_err = 0.0, max_ang = 0.0;
-      for (std::size_t i = 0; i < ref_p.size(); ++i) {
-        max_err = std::max(max_err, glm::length(ref_p[i] - glm::dvec3(fp.x[i], fp.y[i], fp.z[i])));
-        if (normals) {
-          // atan2(|a×b|, a·b): accurate for tiny angles (acos(a·b) is not, and float normals are unit only to ~1e-7)
-          const glm::dvec3 f(fn.x[i], fn.y[i], fn.z[i]);
-          const double ang = std::atan2(glm::length(glm::cross(ref_n[i], f)), glm::dot(ref_n[i], f));
-          max_ang = std::max(max_ang, ang * 180.0 / std::numbers::pi);
+  nlohmann::json cases = nlohmann::json::array();
+  for (int lat : o.lattices)
+    for (int ord : o.orders) {
+      const auto F = perturbed_lattice(emb, ord, lat, o.perturbation, o.seed);
+      Aabb lb;
+      for (const auto& p : F.control_points()) lb.extend(p);
+      for (bool normals : {false, true}) {
+        const std::vector<glm::dvec3>& rest_normals = normals ? mesh.normals : no_normals;
+        const std::string what = std::to_string(lat) + "^3 lattice, order " + std::to_string(ord) +
+                                 (normals ? ", positions+normals" : ", positions");
+        auto add = [&](FfdBackend b, int threads, const char* timing, double ms, const Errors& e) {
+          cases.push_back({{"backend", to_string(b)},
+                           {"threads", threads},
+                           {"order", {ord, ord, ord}},
+                           {"lattice", {lat, lat, lat}},
+                           {"normals", normals},
+                           {"vertices", nverts},
+                           {"timing", timing},
+                           {"median_ms", ms},
+                           {"mverts_per_s", mverts(ms)},
+                           {"max_err_rel", e.rel},
+                           {"max_normal_err_rad", normals ? nlohmann::json(e.normal_rad) : nlohmann::json(nullptr)}});
+        };
+        auto timed_cpu = [&](FfdBackend b, int threads, Reference* ref_out, const Reference* ref) {
+          if (o.progress) o.progress(std::string(to_string(b)) + ", " + std::to_string(threads) + " thread(s), " + what);
+          tbb::global_control gc(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+          auto ev = make_cpu_ffd_evaluator(b);
+          ev->bind_vertices(params, rest_normals);
+          ev->set_lattice(F, emb);
+          const double ms = median_ms(o.runs, [&] { ev->evaluate(); });
+          std::vector<glm::dvec3> p, n;
+          ev->read_results(p, n);
+          if (ref_out) {
+            ref_out->positions = std::move(p);
+            ref_out->normals = std::move(n);
+            ref_out->diagonal = lb.diagonal();
+            add(b, threads, "kernel", ms, Errors{});
+          } else {
+            add(b, threads, "kernel", ms, compare(*ref, p, n));
+          }
+        };
+        Reference ref;
+        timed_cpu(FfdBackend::cpu_ref, all, &ref, nullptr);
+        timed_cpu(FfdBackend::cpu_fast, 1, nullptr, &ref);
+        if (all != 1) timed_cpu(FfdBackend::cpu_fast, all, nullptr, &ref);
+
+        for (const FfdBenchBackend& g : o.gpu_backends) {
+          if (o.progress) o.progress(std::string(to_string(g.backend)) + ", " + what);
+          auto ev = g.make();
+          ev->bind_vertices(params, rest_normals);
+          ev->set_lattice(F, emb);
+          ev->evaluate();  // warm-up: shader JIT / first-use allocation are not what we measure
+          g.finish();
+          const double kernel_ms = median_ms(o.runs, [&] {
+            ev->evaluate();
+            g.finish();
+          });
+          std::vector<glm::dvec3> p, n;
+          ev->read_results(p, n);
+          add(g.backend, 0, "kernel", kernel_ms, compare(ref, p, n));
+          const double e2e_ms = median_ms(o.runs, [&] {
+            auto fresh = g.make();
+            fresh->bind_vertices(params, rest_normals);
+            fresh->set_lattice(F, emb);
+            fresh->evaluate();
+            fresh->read_results(p, n);
+          });
+          add(g.backend, 0, "end_to_end", e2e_ms, compare(ref, p, n));
         }
       }
-      accuracy.push_back({{"order", ord},
-                          {"normals", normals},
-                          {"max_position_error", max_err},
-                          {"relative_position_error", max_err / lb.diagonal()},
-                          {"max_normal_angle_deg", normals ? nlohmann::json(max_ang) : nlohmann::json(nullptr)}});
     }
-  }
-  out["results"] = results;
-  out["accuracy"] = accuracy;
+  out["cases"] = cases;
   return out;
 }
 
 void print_ffd_benchmark(const nlohmann::json& r, std::ostream& os) {
   const auto& m = r.at("mesh");
-  os << "FFD benchmark on " << r.value("cpu", std::string("?")) << " (" << r.at("threads_all") << " threads)\n";
+  os << "FFD benchmark on " << r.value("cpu", std::string("?")) << " (" << r.at("threads_all") << " threads), GL: "
+     << r.value("renderer", std::string("none")) << "\n";
   if (m.at("fallback").get<bool>()) os << "NOTE: " << m.at("note").get<std::string>() << "\n";
   os << "mesh: " << m.at("source").get<std::string>() << ", " << m.at("base_vertices") << " vertices -> "
      << m.at("vertices") << " vertices, " << m.at("triangles") << " triangles (OpenSubdiv bilinear level "
-     << m.at("subdivision_level") << ")\n";
-  os << "lattice: " << r.at("lattice").at("controls") << "^3 controls, perturbation "
-     << r.at("lattice").at("perturbation") << "; median of " << r.at("runs") << " runs\n\n";
-  os << std::left << std::setw(7) << "order" << std::setw(18) << "output" << std::setw(9) << "threads" << std::setw(18)
-     << "path" << std::right << std::setw(11) << "ms" << std::setw(16) << "Mvertices/s\n";
-  for (const auto& e : r.at("results")) {
-    std::ostringstream ms, rate;
+     << m.at("subdivision_level") << "); median of " << r.at("runs") << " runs\n\n";
+  os << std::left << std::setw(9) << "lattice" << std::setw(7) << "order" << std::setw(11) << "output" << std::setw(14)
+     << "backend" << std::setw(9) << "threads" << std::setw(12) << "timing" << std::right << std::setw(10) << "ms"
+     << std::setw(13) << "Mverts/s" << std::setw(13) << "err_rel" << std::setw(13) << "normal_rad"
+     << "\n";
+  for (const auto& e : r.at("cases")) {
+    std::ostringstream ms, rate, err, nerr;
     ms << std::fixed << std::setprecision(2) << e.at("median_ms").get<double>();
-    rate << std::fixed << std::setprecision(2) << e.at("vertices_per_second").get<double>() * 1e-6;
-    os << std::left << std::setw(7) << e.at("order").get<int>() << std::setw(18)
-       << (e.at("normals").get<bool>() ? "positions+normals" : "positions") << std::setw(9)
-       << e.at("threads").get<int>() << std::setw(18) << e.at("path").get<std::string>() << std::right << std::setw(11)
-       << ms.str() << std::setw(15) << rate.str() << "\n";
+    rate << std::fixed << std::setprecision(1) << e.at("mverts_per_s").get<double>();
+    err << std::scientific << std::setprecision(2) << e.at("max_err_rel").get<double>();
+    if (e.at("max_normal_err_rad").is_null())
+      nerr << "-";
+    else
+      nerr << std::scientific << std::setprecision(2) << e.at("max_normal_err_rad").get<double>();
+    const int l = e.at("lattice")[0].get<int>();
+    os << std::left << std::setw(9) << (std::to_string(l) + "^3") << std::setw(7) << e.at("order")[0].get<int>()
+       << std::setw(11) << (e.at("normals").get<bool>() ? "pos+nrm" : "pos") << std::setw(14)
+       << e.at("backend").get<std::string>() << std::setw(9) << e.at("threads").get<int>() << std::setw(12)
+       << e.at("timing").get<std::string>() << std::right << std::setw(10) << ms.str() << std::setw(13) << rate.str()
+       << std::setw(13) << err.str() << std::setw(13) << nerr.str() << "\n";
   }
-  os << "\nfast float vs reference double:\n";
-  for (const auto& a : r.at("accuracy")) {
-    os << "  order " << a.at("order").get<int>() << (a.at("normals").get<bool>() ? " positions+normals" : " positions")
-       << ": max position error " << a.at("max_position_error").get<double>() << " ("
-       << a.at("relative_position_error").get<double>() << " of lattice diagonal)";
-    if (!a.at("max_normal_angle_deg").is_null())
-      os << ", max normal angle " << a.at("max_normal_angle_deg").get<double>() << " deg";
-    os << "\n";
-  }
+  os << "\nerr_rel: max position error vs cpu_ref / lattice bbox diagonal; normal_rad: max normal angle vs cpu_ref.\n";
 }
 
 }  // namespace trispline::core

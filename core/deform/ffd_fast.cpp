@@ -1,4 +1,5 @@
-// Fast single-precision FFD: per-span power-basis tables and order-templated kernels. See ffd_fast.h.
+// FfdFastEvaluator (cpu_fast): cell tables, binning of vertices into same-cell blocks, threaded dispatch to the
+// per-ISA block kernels (ffd_fast_kernel_impl.h) or to the gather kernel. See ffd_fast.h.
 #include "core/deform/ffd_fast.h"
 
 #include <tbb/blocked_range.h>
@@ -6,290 +7,359 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
+#include <cstdint>
+#include <limits>
+#include <new>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
+#include "core/deform/ffd_fast_kernel.h"
+#include "core/deform/ffd_packed.h"
+#include "core/spline/span_basis.h"
+
 namespace trispline::core {
 
-FloatSoA3 FloatSoA3::from(const std::vector<glm::dvec3>& v) {
-  FloatSoA3 s;
-  s.resize(v.size());
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    s.x[i] = static_cast<float>(v[i].x);
-    s.y[i] = static_cast<float>(v[i].y);
-    s.z[i] = static_cast<float>(v[i].z);
-  }
-  return s;
-}
-
-std::vector<glm::dvec3> FloatSoA3::to_dvec3() const {
-  std::vector<glm::dvec3> v(size());
-  for (std::size_t i = 0; i < v.size(); ++i) v[i] = glm::dvec3(x[i], y[i], z[i]);
-  return v;
-}
-
-namespace {}  // namespace
-
-// Private access for the kernels (keeps FfdFastLattice's data out of the public API).
-struct FfdFastAccess {
-  const FfdFastLattice& L;
-  const SpanBasis<float>& axis(int i) const { return L.axes_[i]; }
-  const float* inv_len(int i) const { return L.inv_len_[i].data(); }
-  const float* cps() const { return L.cps_.data(); }
-  glm::ivec3 counts() const { return L.counts_; }
-  glm::dvec3 centre() const { return L.centre_; }
-  const float* linear() const { return L.linear_.data(); }
-  const std::optional<TrivariateBSpline<glm::dvec3>>& fallback() const { return L.fallback_; }
-  const Embedding& embedding() const { return L.embedding_; }
-};
-
 namespace {
 
-// Basis values (and d/dt) of order O at t from the span tables: O(1)/binary-search span lookup (SpanBasis::locate),
-// then Horner with a compile-time order so the loops unroll. Returns the index of the first non-zero function.
-template <int O, bool kDeriv>
-inline int basis(const SpanBasis<float>& b, const float* inv_len, float t, float* N, float* dN) {
-  float x;
-  const int s = b.locate(t, &x);
-  const float* c = b.coefficients(s);  // c[k·O + r]: coefficient of x^k of function r
-  for (int r = 0; r < O; ++r) N[r] = c[(O - 1) * O + r];
-  for (int k = O - 2; k >= 0; --k)
-    for (int r = 0; r < O; ++r) N[r] = N[r] * x + c[k * O + r];
-  if constexpr (kDeriv) {
-    for (int r = 0; r < O; ++r) dN[r] = static_cast<float>(O - 1) * c[(O - 1) * O + r];
-    for (int k = O - 2; k >= 1; --k)
-      for (int r = 0; r < O; ++r) dN[r] = dN[r] * x + static_cast<float>(k) * c[k * O + r];
-    for (int r = 0; r < O; ++r) dN[r] *= inv_len[s];
-  }
-  return b.first_index(s);
+using namespace ffd_fast_detail;
+
+// 64-byte aligned storage (whole cache lines for the vector loads of the block arrays).
+template <class T>
+struct Aligned64 {
+  using value_type = T;
+  Aligned64() = default;
+  template <class U>
+  Aligned64(const Aligned64<U>&) {}
+  T* allocate(std::size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), std::align_val_t(64))); }
+  void deallocate(T* p, std::size_t) { ::operator delete(p, std::align_val_t(64)); }
+  bool operator==(const Aligned64&) const { return true; }
+};
+template <class T>
+using AVec = std::vector<T, Aligned64<T>>;
+
+constexpr std::size_t kChunkVertices = 8192;  // vertices binned together (a task; its outputs stay in L2)
+constexpr std::size_t kGatherGrain = 2048;  // vertices per task in gather mode
+
+bool same_knots(const KnotVector& a, const KnotVector& b) {
+  return a.order() == b.order() && a.period() == b.period() && a.knots() == b.knots();
 }
 
-// Four floats in one SSE register (GCC/Clang vector extension): x, y, z and a zero pad of a control point.
-using v4 = float __attribute__((vector_size(16)));
-inline v4 load4(const float* p) {
-  v4 r;
-  std::memcpy(&r, p, sizeof r);
-  return r;
+// cof(M) = det(M)·M^{-T}, columns m1×m2, m2×m0, m0×m1.
+glm::dmat3 cofactor(const glm::dmat3& m) {
+  return glm::dmat3(glm::cross(m[1], m[2]), glm::cross(m[2], m[0]), glm::cross(m[0], m[1]));
 }
 
-struct Arrays {
-  const float *pu, *pv, *pw;  // params
-  const float *nx, *ny, *nz;  // rest normals (may be null)
-  float *ox, *oy, *oz;        // positions out
-  float *mx, *my, *mz;        // normals out (may be null)
+}  // namespace
+
+struct FfdFastEvaluator::Impl {
+  // Bound vertices.
+  bool bound = false;
+  std::vector<glm::dvec3> params;  // #V × 3, for (re-)binning in double
+  AVec<float> params_f;            // #V × 3 AoS float (gather mode)
+  AVec<float> normals_f;           // #V × 3 AoS float or empty
+
+  // Lattice.
+  bool has_lattice = false;
+  FfdPackedLattice packed;
+  std::vector<KnotVector> knots;  // the three knot vectors of the lattice
+  bool tables = false;            // cell-table mode (else gather)
+  glm::ivec3 spans{0};
+  AVec<float> coef, normal_matrix;
+  CellTables ct;
+
+  // Binning (blocks of kLanes same-cell vertices), valid for `binned_knots`.
+  bool binned = false;
+  std::vector<KnotVector> binned_knots;
+  std::size_t blocks = 0;
+  std::vector<std::size_t> chunk_first_block;  // #chunks + 1
+  AVec<float> xu, xv, xw, pu, pv, pw, bnx, bny, bnz;
+  AVec<std::int32_t> index, cell;
+
+  // Results (relative to `centre`).
+  bool evaluated = false;
+  glm::dvec3 centre{0.0};
+  AVec<float> pos, nrm;
+
+  void bin();
+  void build_tables(const TrivariateBSpline<glm::dvec3>& F, const Embedding& E);
 };
 
-template <int OU, int OV, int OW, bool kNormals>
-void kernel(const FfdFastAccess& L, const Arrays& a, std::size_t begin, std::size_t end) {
-  const SpanBasis<float>&tu = L.axis(0), &tv = L.axis(1), &tw = L.axis(2);
-  const float *iu = L.inv_len(0), *iv = L.inv_len(1), *iw = L.inv_len(2);
-  const float* cps = L.cps();
-  const std::size_t l = static_cast<std::size_t>(L.counts().x);
-  const std::size_t lm = l * static_cast<std::size_t>(L.counts().y);
-  const glm::dvec3 c = L.centre();
-  const float cx = static_cast<float>(c.x), cy = static_cast<float>(c.y), cz = static_cast<float>(c.z);
-  const float* A = L.linear();
-  for (std::size_t idx = begin; idx < end; ++idx) {
-    float Nu[OU], Nv[OV], Nw[OW], dNu[OU], dNv[OV], dNw[OW];
-    const int fu = basis<OU, kNormals>(tu, iu, a.pu[idx], Nu, dNu);
-    const int fv = basis<OV, kNormals>(tv, iv, a.pv[idx], Nv, dNv);
-    const int fw = basis<OW, kNormals>(tw, iw, a.pw[idx], Nw, dNw);
-    const float* base = cps + 4 * (static_cast<std::size_t>(fu) + l * fv + lm * fw);
-    v4 val{}, du{}, dv{}, dw{};
-    for (int k = 0; k < OW; ++k) {
-      v4 vj{}, duj{}, dvj{};
-      for (int j = 0; j < OV; ++j) {
-        const float* row = base + 4 * (l * j + lm * k);
-        v4 s{}, su{};
-        for (int i = 0; i < OU; ++i) {
-          const v4 P = load4(row + 4 * i);
-          s += Nu[i] * P;
-          if constexpr (kNormals) su += dNu[i] * P;
+// Locates every vertex in double (SpanBasis<double>, the reference's span convention); then, per chunk of
+// kChunkVertices consecutive vertices, a stable sort by cell into blocks of kLanes (tails repeat the cell's last
+// vertex). Chunking keeps each task's output writes inside a cache-sized window of the result arrays.
+void FfdFastEvaluator::Impl::bin() {
+  const std::size_t V = params.size();
+  const SpanBasis<double> sb[3] = {SpanBasis<double>(knots[0]), SpanBasis<double>(knots[1]),
+                                   SpanBasis<double>(knots[2])};
+  const std::size_t chunks = (V + kChunkVertices - 1) / kChunkVertices;
+  std::vector<std::uint64_t> key(V);  // (cell << 32) | vertex index: sorting it is a stable sort by cell
+  std::vector<float> local(3 * V);
+  std::vector<std::size_t> chunk_blocks(chunks, 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t ch = r.begin(); ch != r.end(); ++ch) {
+      const std::size_t i0 = ch * kChunkVertices, i1 = std::min(V, i0 + kChunkVertices);
+      for (std::size_t i = i0; i < i1; ++i) {
+        int s[3];
+        for (int a = 0; a < 3; ++a) {
+          double x;
+          s[a] = sb[a].locate(params[i][a], &x);
+          local[3 * i + a] = static_cast<float>(x);
         }
-        vj += Nv[j] * s;
-        if constexpr (kNormals) {
-          duj += Nv[j] * su;
-          dvj += dNv[j] * s;
-        }
+        const std::uint64_t c = static_cast<std::uint64_t>(s[0] + spans.x * (s[1] + spans.y * s[2]));
+        key[i] = (c << 32) | static_cast<std::uint64_t>(i);
       }
-      val += Nw[k] * vj;
-      if constexpr (kNormals) {
-        du += Nw[k] * duj;
-        dv += Nw[k] * dvj;
-        dw += dNw[k] * vj;
+      std::sort(key.begin() + static_cast<std::ptrdiff_t>(i0), key.begin() + static_cast<std::ptrdiff_t>(i1));
+      std::size_t nb = 0;
+      for (std::size_t i = i0; i < i1;) {
+        std::size_t j = i;
+        while (j < i1 && (key[j] >> 32) == (key[i] >> 32)) ++j;
+        nb += (j - i + kLanes - 1) / kLanes;
+        i = j;
+      }
+      chunk_blocks[ch] = nb;
+    }
+  });
+  chunk_first_block.assign(chunks + 1, 0);
+  for (std::size_t ch = 0; ch < chunks; ++ch) chunk_first_block[ch + 1] = chunk_first_block[ch] + chunk_blocks[ch];
+  blocks = chunk_first_block[chunks];
+  const std::size_t lanes = blocks * kLanes;
+  const bool with_normals = !normals_f.empty();
+  for (AVec<float>* a : {&xu, &xv, &xw, &pu, &pv, &pw}) a->resize(lanes);
+  for (AVec<float>* a : {&bnx, &bny, &bnz}) a->resize(with_normals ? lanes : 0);
+  index.resize(lanes);
+  cell.resize(blocks);
+  auto put = [&](std::size_t lane, std::size_t i) {
+    xu[lane] = local[3 * i];
+    xv[lane] = local[3 * i + 1];
+    xw[lane] = local[3 * i + 2];
+    pu[lane] = params_f[3 * i];
+    pv[lane] = params_f[3 * i + 1];
+    pw[lane] = params_f[3 * i + 2];
+    if (with_normals) {
+      bnx[lane] = normals_f[3 * i];
+      bny[lane] = normals_f[3 * i + 1];
+      bnz[lane] = normals_f[3 * i + 2];
+    }
+    index[lane] = static_cast<std::int32_t>(i);
+  };
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t ch = r.begin(); ch != r.end(); ++ch) {
+      const std::size_t i0 = ch * kChunkVertices, i1 = std::min(V, i0 + kChunkVertices);
+      std::size_t b = chunk_first_block[ch];
+      for (std::size_t i = i0; i < i1;) {
+        std::size_t j = i;
+        const std::uint64_t c = key[i] >> 32;
+        while (j < i1 && (key[j] >> 32) == c) ++j;
+        const std::size_t nb = (j - i + kLanes - 1) / kLanes;
+        for (std::size_t k = 0; k < nb * kLanes; ++k)
+          put(b * kLanes + k, static_cast<std::size_t>(key[std::min(i + k, j - 1)] & 0xffffffffu));
+        for (std::size_t k = 0; k < nb; ++k) cell[b + k] = static_cast<std::int32_t>(c);
+        b += nb;
+        i = j;
       }
     }
-    a.ox[idx] = val[0] + cx;
-    a.oy[idx] = val[1] + cy;
-    a.oz[idx] = val[2] + cz;
-    if constexpr (kNormals) {
-      // M = J_F · A (columns m0, m1, m2); n' = cof(M)·n = n.x (m1×m2) + n.y (m2×m0) + n.z (m0×m1).
-      float m[3][3];
-      for (int col = 0; col < 3; ++col)
-        for (int r = 0; r < 3; ++r)
-          m[col][r] = du[r] * A[3 * col + 0] + dv[r] * A[3 * col + 1] + dw[r] * A[3 * col + 2];
-      auto cross = [](const float* p, const float* q, float* o) {
-        o[0] = p[1] * q[2] - p[2] * q[1];
-        o[1] = p[2] * q[0] - p[0] * q[2];
-        o[2] = p[0] * q[1] - p[1] * q[0];
-      };
-      float c0[3], c1[3], c2[3];
-      cross(m[1], m[2], c0);
-      cross(m[2], m[0], c1);
-      cross(m[0], m[1], c2);
-      const float nx = a.nx[idx], ny = a.ny[idx], nz = a.nz[idx];
-      const float x = nx * c0[0] + ny * c1[0] + nz * c2[0];
-      const float y = nx * c0[1] + ny * c1[1] + nz * c2[1];
-      const float z = nx * c0[2] + ny * c1[2] + nz * c2[2];
-      const float len2 = x * x + y * y + z * z;
-      if (len2 > 0.0f && std::isfinite(len2)) {
-        const float inv = 1.0f / std::sqrt(len2);
-        a.mx[idx] = x * inv;
-        a.my[idx] = y * inv;
-        a.mz[idx] = z * inv;
-      } else {
-        a.mx[idx] = nx;
-        a.my[idx] = ny;
-        a.mz[idx] = nz;
-      }
-    }
-  }
+  });
+  binned_knots = knots;
+  binned = true;
 }
 
-using KernelFn = void (*)(const FfdFastAccess&, const Arrays&, std::size_t, std::size_t);
-
-template <int OU, int OV, int OW>
-KernelFn pick3(bool normals) {
-  return normals ? &kernel<OU, OV, OW, true> : &kernel<OU, OV, OW, false>;
-}
-template <int OU, int OV>
-KernelFn pick2(int ow, bool normals) {
-  switch (ow) {
-    case 2:
-      return pick3<OU, OV, 2>(normals);
-    case 3:
-      return pick3<OU, OV, 3>(normals);
-    case 4:
-      return pick3<OU, OV, 4>(normals);
-  }
-  return nullptr;
-}
-template <int OU>
-KernelFn pick1(int ov, int ow, bool normals) {
-  switch (ov) {
-    case 2:
-      return pick2<OU, 2>(ow, normals);
-    case 3:
-      return pick2<OU, 3>(ow, normals);
-    case 4:
-      return pick2<OU, 4>(ow, normals);
-  }
-  return nullptr;
-}
-KernelFn pick(const glm::ivec3& o, bool normals) {
-  switch (o.x) {
-    case 2:
-      return pick1<2>(o.y, o.z, normals);
-    case 3:
-      return pick1<3>(o.y, o.z, normals);
-    case 4:
-      return pick1<4>(o.y, o.z, normals);
-  }
-  return nullptr;
-}
-
-constexpr std::size_t kBlock = 2048;
-
-void run(const FfdFastLattice& lattice, const FloatSoA3& params, const FloatSoA3* rest_normals,
-         FloatSoA3& out_positions, FloatSoA3* out_normals) {
-  const FfdFastAccess L{lattice};
-  const std::size_t n = params.size();
-  if (params.y.size() != n || params.z.size() != n)
-    throw std::invalid_argument("ffd_evaluate_fast: params arrays differ in length");
-  if (rest_normals && (rest_normals->x.size() != n || rest_normals->y.size() != n || rest_normals->z.size() != n))
-    throw std::invalid_argument("ffd_evaluate_fast: " + std::to_string(rest_normals->size()) + " normals for " +
-                                std::to_string(n) + " parameters");
-  out_positions.resize(n);
-  if (out_normals) out_normals->resize(n);
-  if (!lattice.has_kernel()) {  // orders outside 2..4: round the double reference
-    std::vector<glm::dvec3> pos, nrm;
-    if (rest_normals) {
-      ffd_evaluate(*L.fallback(), L.embedding(), params.to_dvec3(), rest_normals->to_dvec3(), pos, nrm);
-      *out_normals = FloatSoA3::from(nrm);
-    } else {
-      ffd_evaluate(*L.fallback(), params.to_dvec3(), pos);
-    }
-    out_positions = FloatSoA3::from(pos);
+// Per cell: power-basis coefficients c_abc = Σ_ijk Cu[a][i]·Cv[b][j]·Cw[c][k]·(P_ijk − centre), folded in double and
+// rounded once; and the normal matrix cof(D)·cof(A), scaled so that mapped normals are O(1) before normalisation.
+void FfdFastEvaluator::Impl::build_tables(const TrivariateBSpline<glm::dvec3>& F, const Embedding& E) {
+  const glm::ivec3 o = F.orders();
+  const glm::ivec3 cnt = F.control_counts();
+  const std::size_t cells = static_cast<std::size_t>(spans.x) * spans.y * static_cast<std::size_t>(spans.z);
+  const int stride = 3 * o.x * o.y * o.z;
+  tables = cells * static_cast<std::size_t>(stride + 9) <= kMaxCellTableFloats;
+  if (!tables) {
+    coef.clear();
+    coef.shrink_to_fit();
+    normal_matrix.clear();
+    normal_matrix.shrink_to_fit();
     return;
   }
-  const glm::ivec3 orders(L.axis(0).order(), L.axis(1).order(), L.axis(2).order());
-  const KernelFn fn = pick(orders, rest_normals != nullptr);
-  Arrays a{params.x.data(),        params.y.data(),        params.z.data(),        nullptr, nullptr, nullptr,
-           out_positions.x.data(), out_positions.y.data(), out_positions.z.data(), nullptr, nullptr, nullptr};
-  if (rest_normals) {
-    a.nx = rest_normals->x.data();
-    a.ny = rest_normals->y.data();
-    a.nz = rest_normals->z.data();
-    a.mx = out_normals->x.data();
-    a.my = out_normals->y.data();
-    a.mz = out_normals->z.data();
+  const SpanBasis<double> sb[3] = {SpanBasis<double>(knots[0]), SpanBasis<double>(knots[1]),
+                                   SpanBasis<double>(knots[2])};
+  coef.resize(cells * static_cast<std::size_t>(stride));
+  normal_matrix.resize(cells * 9);
+  const std::vector<glm::dvec3>& P = F.control_points();
+  const glm::dvec3 centre_d = packed.centre;
+  const glm::dmat3 cofA = cofactor(E.linear);
+  const double h = packed.bbox_diagonal() / std::max({spans.x, spans.y, spans.z});
+  const double h2 = h > 0.0 && std::isfinite(h * h) ? h * h : 1.0;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells, 16), [&](const tbb::blocked_range<std::size_t>& r) {
+    glm::dvec3 t1[4][4][4], t2[4][4][4];  // [a][j][k], then [a][b][k]
+    for (std::size_t c = r.begin(); c != r.end(); ++c) {
+      const int s[3] = {static_cast<int>(c % spans.x), static_cast<int>((c / spans.x) % spans.y),
+                        static_cast<int>(c / (static_cast<std::size_t>(spans.x) * spans.y))};
+      const double* C[3];
+      int idx[3][4];
+      for (int a = 0; a < 3; ++a) {
+        C[a] = sb[a].coefficients(s[a]);
+        for (int r2 = 0; r2 < o[a]; ++r2) {
+          const int i = sb[a].first_index(s[a]) + r2;
+          idx[a][r2] = knots[a].is_periodic() ? i % cnt[a] : i;
+        }
+      }
+      for (int a = 0; a < o.x; ++a)
+        for (int j = 0; j < o.y; ++j)
+          for (int k = 0; k < o.z; ++k) {
+            glm::dvec3 sum(0.0);
+            for (int i = 0; i < o.x; ++i) sum += C[0][a * o.x + i] * (P[F.index(idx[0][i], idx[1][j], idx[2][k])] - centre_d);
+            t1[a][j][k] = sum;
+          }
+      for (int a = 0; a < o.x; ++a)
+        for (int b = 0; b < o.y; ++b)
+          for (int k = 0; k < o.z; ++k) {
+            glm::dvec3 sum(0.0);
+            for (int j = 0; j < o.y; ++j) sum += C[1][b * o.y + j] * t1[a][j][k];
+            t2[a][b][k] = sum;
+          }
+      float* out = &coef[c * static_cast<std::size_t>(stride)];
+      for (int a = 0; a < o.x; ++a)
+        for (int b = 0; b < o.y; ++b)
+          for (int cc = 0; cc < o.z; ++cc) {
+            glm::dvec3 sum(0.0);
+            for (int k = 0; k < o.z; ++k) sum += C[2][cc * o.z + k] * t2[a][b][k];
+            for (int d = 0; d < 3; ++d) out[((a * o.y + b) * o.z + cc) * 3 + d] = static_cast<float>(sum[d]);
+          }
+      // cof(D)·cof(A) with D = diag(1/span length): rows of cof(A) scaled by (iv·iw, iw·iu, iu·iv).
+      const double iu = static_cast<double>(sb[0].inv_span_lengths()[s[0]]);
+      const double iv = static_cast<double>(sb[1].inv_span_lengths()[s[1]]);
+      const double iw = static_cast<double>(sb[2].inv_span_lengths()[s[2]]);
+      const double rs[3] = {iv * iw, iw * iu, iu * iv};
+      double m[9], mx = 0.0;
+      for (int row = 0; row < 3; ++row)
+        for (int col = 0; col < 3; ++col) {
+          m[3 * row + col] = rs[row] * cofA[col][row];
+          mx = std::max(mx, std::abs(m[3 * row + col]));
+        }
+      const double scale = mx > 0.0 ? 1.0 / (mx * h2) : 1.0;
+      for (int e = 0; e < 9; ++e) normal_matrix[9 * c + e] = static_cast<float>(m[e] * scale);
+    }
+  });
+  ct.coef = coef.data();
+  ct.stride = stride;
+  ct.normal_matrix = normal_matrix.data();
+}
+
+FfdFastEvaluator::FfdFastEvaluator() : impl_(std::make_unique<Impl>()) {}
+FfdFastEvaluator::~FfdFastEvaluator() = default;
+
+void FfdFastEvaluator::bind_vertices(const std::vector<glm::dvec3>& params,
+                                     const std::vector<glm::dvec3>& rest_normals) {
+  detail::check_ffd_vertices(params, rest_normals, "cpu_fast bind_vertices");
+  if (params.size() > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
+    throw std::invalid_argument("cpu_fast bind_vertices: more than 2^31 - 1 vertices");
+  Impl& m = *impl_;
+  m.params = params;
+  m.params_f.resize(3 * params.size());
+  for (std::size_t i = 0; i < params.size(); ++i)
+    for (int a = 0; a < 3; ++a) m.params_f[3 * i + a] = static_cast<float>(params[i][a]);
+  m.normals_f.resize(3 * rest_normals.size());
+  for (std::size_t i = 0; i < rest_normals.size(); ++i)
+    for (int a = 0; a < 3; ++a) m.normals_f[3 * i + a] = static_cast<float>(rest_normals[i][a]);
+  m.bound = true;
+  m.binned = false;
+  m.blocks = 0;
+  m.evaluated = false;
+  if (m.has_lattice && m.tables) m.bin();
+}
+
+void FfdFastEvaluator::set_lattice(const TrivariateBSpline<glm::dvec3>& lattice, const Embedding& embedding) {
+  const glm::ivec3 o = lattice.orders();
+  for (int a = 0; a < 3; ++a)
+    if (o[a] < 2 || o[a] > 4)
+      throw std::invalid_argument("cpu_fast set_lattice: order " + std::to_string(o[a]) + " along axis " +
+                                  std::to_string(a) + " is outside 2..4 (use cpu_ref for other orders)");
+  Impl& m = *impl_;
+  m.packed = FfdPackedLattice::build(lattice, embedding);
+  m.knots = {lattice.knots(0), lattice.knots(1), lattice.knots(2)};
+  if (m.binned)
+    for (int a = 0; a < 3; ++a)
+      if (!same_knots(m.knots[a], m.binned_knots[a])) m.binned = false;
+  for (int a = 0; a < 3; ++a) {
+    const FfdPackedAxis& p = m.packed.axes[a];
+    m.spans[a] = p.span_count();
+    AxisTable& t = m.ct.axis[a];
+    t.order = p.order;
+    t.span_count = p.span_count();
+    t.periodic = p.periodic;
+    t.uniform = p.uniform_spans;
+    t.domain_min = p.domain_min;
+    t.domain_max = p.domain_max;
+    t.inv_uniform_len = p.inv_uniform_len;
+    t.span_begin = p.span_begin.data();
+    t.inv_span_len = p.inv_span_len.data();
   }
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kBlock),
-                    [&](const tbb::blocked_range<std::size_t>& r) { fn(L, a, r.begin(), r.end()); });
-}
-
-}  // namespace
-
-namespace {
-const KnotVector& checked_knots(const KnotVector& kv) {
-  if (kv.order() < 2)
-    throw std::invalid_argument("ffd fast path: order must be >= 2 (got " + std::to_string(kv.order()) + ")");
-  return kv;
-}
-}  // namespace
-
-FfdFastLattice::FfdFastLattice(const TrivariateBSpline<glm::dvec3>& F, const Embedding& embedding)
-    : axes_{SpanBasis<float>(checked_knots(F.knots(0))), SpanBasis<float>(checked_knots(F.knots(1))),
-            SpanBasis<float>(checked_knots(F.knots(2)))},
-      embedding_(embedding) {
-  for (int i = 0; i < 3; ++i) {  // 1 / length of every non-empty span, in SpanBasis's slot order
-    const KnotVector& kv = F.knots(i);
-    for (int s = kv.order() - 1; s < kv.control_count(); ++s)
-      if (kv[s + 1] != kv[s]) inv_len_[i].push_back(static_cast<float>(1.0 / (kv[s + 1] - kv[s])));
-    if (static_cast<int>(inv_len_[i].size()) != axes_[i].span_count())
-      throw std::logic_error("FfdFastLattice: span count differs from SpanBasis");
+  m.build_tables(lattice, embedding);
+  if (!m.tables) {
+    m.binned = false;
+    m.blocks = 0;
   }
-  counts_ = F.control_counts();
-  Aabb box;
-  for (const auto& p : F.control_points()) box.extend(p);
-  centre_ = box.center();
-  cps_.resize(F.control_points().size() * 4);
-  for (std::size_t i = 0; i < F.control_points().size(); ++i) {
-    const glm::dvec3 p = F.control_points()[i] - centre_;
-    cps_[4 * i + 0] = static_cast<float>(p.x);
-    cps_[4 * i + 1] = static_cast<float>(p.y);
-    cps_[4 * i + 2] = static_cast<float>(p.z);
-    cps_[4 * i + 3] = 0.0f;
+  m.has_lattice = true;
+  if (m.bound && m.tables && !m.binned) m.bin();
+}
+
+void FfdFastEvaluator::evaluate(const glm::dvec3& param_offset) {
+  Impl& m = *impl_;
+  if (!m.bound || !m.has_lattice)
+    throw std::logic_error("cpu_fast evaluate: bind_vertices and set_lattice must be called first");
+  glm::dvec3 off = param_offset;
+  for (int a = 0; a < 3; ++a)
+    if (m.packed.axes[a].periodic) off[a] -= std::floor(off[a]);  // whole periods change nothing
+  const float off_f[3] = {static_cast<float>(off.x), static_cast<float>(off.y), static_cast<float>(off.z)};
+  const bool rest = off == glm::dvec3(0.0);
+  const std::size_t V = m.params.size();
+  const bool normals = !m.normals_f.empty();
+  m.pos.resize(3 * V);
+  m.nrm.resize(normals ? 3 * V : 0);
+  const Outputs out{m.pos.data(), normals ? m.nrm.data() : nullptr};
+  if (m.tables) {
+    if (!m.binned) m.bin();
+    const BlockArrays ba{m.xu.data(), m.xv.data(), m.xw.data(), m.pu.data(),    m.pv.data(),   m.pw.data(),
+                         normals ? m.bnx.data() : nullptr,      normals ? m.bny.data() : nullptr,
+                         normals ? m.bnz.data() : nullptr,      m.index.data(), m.cell.data()};
+    const glm::ivec3 o(m.packed.axes[0].order, m.packed.axes[1].order, m.packed.axes[2].order);
+    const BlockKernel fn = active_kernels()->kernel[o.x - 2][o.y - 2][o.z - 2][normals ? 1 : 0];
+    const CellTables& ct = m.ct;
+    const std::vector<std::size_t>& cb = m.chunk_first_block;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cb.size() - 1, 1),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        fn(ct, ba, out, cb[r.begin()], cb[r.end()], rest ? nullptr : off_f);
+                      });
+  } else {
+    GatherInput in;
+    in.lattice = &m.packed;
+    in.params = m.params_f.data();
+    in.normals = normals ? m.normals_f.data() : nullptr;
+    for (int a = 0; a < 3; ++a) in.offset[a] = off_f[a];
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, V, kGatherGrain),
+                      [&](const tbb::blocked_range<std::size_t>& r) { gather_evaluate(in, out, r.begin(), r.end()); });
   }
-  for (int col = 0; col < 3; ++col)
-    for (int r = 0; r < 3; ++r) linear_[3 * col + r] = static_cast<float>(embedding.linear[col][r]);
-  if (!has_kernel()) fallback_.emplace(F);
+  m.centre = m.packed.centre;
+  m.evaluated = true;
 }
 
-bool FfdFastLattice::has_kernel() const {
-  for (const auto& a : axes_)
-    if (a.order() < 2 || a.order() > 4) return false;
-  return true;
+void FfdFastEvaluator::read_results(std::vector<glm::dvec3>& positions, std::vector<glm::dvec3>& normals) {
+  const Impl& m = *impl_;
+  if (!m.evaluated) throw std::logic_error("cpu_fast read_results: evaluate() has not run since bind_vertices");
+  const std::size_t V = m.params.size();
+  positions.resize(V);
+  normals.resize(m.nrm.empty() ? 0 : V);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, V, 16384), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i)
+      positions[i] = m.centre + glm::dvec3(m.pos[3 * i], m.pos[3 * i + 1], m.pos[3 * i + 2]);
+    if (!normals.empty())
+      for (std::size_t i = r.begin(); i != r.end(); ++i)
+        normals[i] = glm::dvec3(m.nrm[3 * i], m.nrm[3 * i + 1], m.nrm[3 * i + 2]);
+  });
 }
 
-void ffd_evaluate_fast(const FfdFastLattice& lattice, const FloatSoA3& params, FloatSoA3& out_positions) {
-  run(lattice, params, nullptr, out_positions, nullptr);
-}
-
-void ffd_evaluate_fast(const FfdFastLattice& lattice, const FloatSoA3& params, const FloatSoA3& rest_normals,
-                       FloatSoA3& out_positions, FloatSoA3& out_normals) {
-  run(lattice, params, &rest_normals, out_positions, &out_normals);
-}
+std::size_t FfdFastEvaluator::vertex_count() const { return impl_->params.size(); }
+bool FfdFastEvaluator::has_normals() const { return !impl_->normals_f.empty(); }
+bool FfdFastEvaluator::uses_cell_tables() const { return impl_->tables; }
+std::size_t FfdFastEvaluator::block_count() const { return impl_->binned ? impl_->blocks : 0; }
 
 }  // namespace trispline::core

@@ -1,68 +1,86 @@
-// trispline::core fast FFD path — single precision, per-span power-basis tables, fixed-order kernels.
+// trispline::core cpu_fast — the single-precision, vectorised CPU backend of the FFD evaluator contract
+// (ffd_evaluator.h; made by make_cpu_ffd_evaluator(FfdBackend::cpu_fast)). Orders 2..4 per axis (all 27
+// combinations), clamped, floating, non-uniform and periodic knot vectors.
 //
-// Same function as the reference ffd_evaluate (ffd.h), checked against it in tests/core/deform (position error
-// ≤ 1e-5 × lattice bounding-box diagonal). Built for throughput on big meshes (benchmark: `trispline bench ffd`):
-//   * per axis, basis functions come from SpanBasis<float> (core/spline/span_basis.h): per-span power-basis
-//     polynomials in the local coordinate (Horner, no recurrence), O(1) span lookup for uniform interior spans and
-//     a binary search otherwise;
-//   * control points are stored as float xyz + pad (relative to the lattice's bounding-box centre, which keeps float
-//     rounding relative to the lattice size), so the inner tensor contraction is a 4-wide SIMD multiply-add;
-//   * kernels are templates on the orders (2..4 per axis, all 27 combinations); other orders fall back to the double
-//     reference path and round its result.
-// Parallel over vertex blocks (oneTBB); every vertex is independent, so the output does not depend on the thread
-// count either (bit-identical on one machine and build).
-// Source: Sederberg & Parry 1986; seed Eq. 2.1; power-basis span tables as in Piegl & Tiller §2.5 / ch. 6.
+// How it is fast (figures in docs/performance.md):
+//   * set_lattice (O(#cells · order³)): per lattice cell (one non-empty knot span per axis) the B-spline is one
+//     tri-variate polynomial; its power-basis coefficients c_abc (xyz) in the cell's local coordinates
+//     x_u, x_v, x_w ∈ [0,1] are folded once, in double, from SpanBasis tables (P&T §2.5) and the control points;
+//   * binding (first evaluate after bind_vertices or after the knot vectors change, O(#V)): each vertex's cell and
+//     local coordinates are found in double; vertices are sorted by cell (stable) into blocks of 16 of one cell,
+//     tails padded; structure-of-arrays float;
+//   * evaluate: per block, Horner in w, v, u on the cell's coefficients (broadcast) with 16 vertices in vector
+//     lanes; normals by Horner with derivatives and n' ∝ cof(J_x)·(cof(D)·cof(A)·n) (D = 1 / span lengths, A the
+//     embedding's linear part; = cof(J_F·A)·n, seed §4.3); results written in the caller's vertex order;
+//   * the kernels are compiled for several instruction sets (x86-64 baseline SSE2, x86-64-v3 AVX2+FMA, x86-64-v4
+//     AVX-512) and chosen at run time (ffd_fast_isa); the rest of the build stays portable;
+//   * param_offset ≠ 0 (animation): spans are located per vertex at params + offset; a block is evaluated once per
+//     distinct cell among its lanes (at most a few: the block's vertices shared a cell before the shift);
+//   * lattices whose cell tables would exceed kMaxCellTableFloats (32 MiB) use a per-vertex gather kernel instead
+//     (basis per axis from the FfdPackedLattice tables, control points gathered): slower, any lattice size.
+// Positions are computed relative to the lattice's bounding-box centre and the centre is added in double by
+// read_results, so float rounding is relative to the lattice size, not to its distance from the origin.
+// Deterministic: every vertex runs a fixed operation sequence independent of its block neighbours and of the
+// partition, so results are bit-identical for any thread count on one machine and ISA (not across ISAs: the AVX
+// kernels use FMA).
 #pragma once
 
-#include <array>
-#include <optional>
+#include <memory>
+#include <string>
+#include <string_view>
 #include <vector>
 
-#include "core/deform/ffd.h"
-#include "core/spline/span_basis.h"
+#include "core/deform/ffd_evaluator.h"
 
 namespace trispline::core {
 
-// Three float arrays of equal length (structure of arrays): #N × 3.
-struct FloatSoA3 {
-  std::vector<float> x, y, z;
-  std::size_t size() const { return x.size(); }
-  void resize(std::size_t n) {
-    x.resize(n);
-    y.resize(n);
-    z.resize(n);
-  }
-  static FloatSoA3 from(const std::vector<glm::dvec3>& v);  // rounds to float
-  std::vector<glm::dvec3> to_dvec3() const;
-};
-
-// A lattice and embedding prepared for ffd_evaluate_fast. Rebuild after the lattice changes (cheap: O(#controls)).
-class FfdFastLattice {
+class FfdFastEvaluator final : public FfdEvaluator {
  public:
-  // Copies what it needs from F. Throws std::invalid_argument if an axis has order < 2.
-  FfdFastLattice(const TrivariateBSpline<glm::dvec3>& F, const Embedding& embedding);
+  // Upper bound on the per-cell coefficient tables, in floats (#cells · (3·order_u·order_v·order_w + 9)).
+  static constexpr std::size_t kMaxCellTableFloats = std::size_t(1) << 23;
 
-  const SpanBasis<float>& basis(int axis) const { return axes_[axis]; }  // axis 0 = u, 1 = v, 2 = w
-  bool has_kernel() const;  // true when all orders are in 2..4 (otherwise the double fallback runs)
+  FfdFastEvaluator();
+  ~FfdFastEvaluator() override;
+
+  FfdBackend backend() const override { return FfdBackend::cpu_fast; }
+  // See FfdEvaluator. Also throws std::invalid_argument for more than 2^31 − 1 vertices.
+  void bind_vertices(const std::vector<glm::dvec3>& params, const std::vector<glm::dvec3>& rest_normals) override;
+  // See FfdEvaluator; throws std::invalid_argument if an order is outside 2..4. Rebuilds the cell tables
+  // (O(#cells·order³)); re-bins the vertices (O(#V)) only when a knot vector changed.
+  void set_lattice(const TrivariateBSpline<glm::dvec3>& lattice, const Embedding& embedding) override;
+  // See FfdEvaluator. The offset is wrapped (in double) to [0,1) on periodic axes first, so a whole-period offset
+  // reproduces the rest evaluation bit for bit.
+  void evaluate(const glm::dvec3& param_offset = glm::dvec3(0.0)) override;
+  void read_results(std::vector<glm::dvec3>& positions, std::vector<glm::dvec3>& normals) override;
+  std::size_t vertex_count() const override;
+  bool has_normals() const override;
+
+  // False when the lattice's cell tables would exceed kMaxCellTableFloats and the gather kernel runs.
+  bool uses_cell_tables() const;
+  // Blocks of 16 same-cell vertices of the current binning (0 before the first evaluate or in gather mode).
+  std::size_t block_count() const;
 
  private:
-  friend struct FfdFastAccess;
-  std::array<SpanBasis<float>, 3> axes_;
-  std::array<std::vector<float>, 3> inv_len_;  // per axis, per span slot: 1 / span length (chain rule)
-  glm::ivec3 counts_{0};
-  std::vector<float> cps_;  // #controls × 4 (x, y, z, 0), relative to centre_
-  glm::dvec3 centre_{0.0};
-  std::array<float, 9> linear_{};                          // embedding A, column-major
-  std::optional<TrivariateBSpline<glm::dvec3>> fallback_;  // copy of F when an order is outside 2..4
-  Embedding embedding_;
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
 };
 
-// Positions only. params #N × 3 parameter-domain points; out_positions resized to #N, world units.
-void ffd_evaluate_fast(const FfdFastLattice& lattice, const FloatSoA3& params, FloatSoA3& out_positions);
+// The instruction set the cpu_fast kernels use: "sse" (x86-64 baseline), "avx2" (x86-64-v3: AVX2 + FMA),
+// "avx512" (x86-64-v4) or "generic" (other architectures). Chosen at first use: the best the CPU supports, or the
+// environment variable TRISPLINE_SIMD=sse|avx2|avx512 (capped at what the CPU supports).
+const char* ffd_fast_isa();
+// Switches the instruction set for later evaluations ("auto" = best available); a request above what the CPU or
+// build supports falls back to the best lower one. Returns the ISA now in use. Throws std::invalid_argument for
+// an unknown name. Call it between evaluations, not during one.
+const char* ffd_fast_select_isa(std::string_view name);
+// Instruction sets usable on this machine and build, lowest first (e.g. {"sse", "avx2", "avx512"}).
+std::vector<std::string> ffd_fast_available_isas();
 
-// Positions and exact normals n' ∝ cof(J_F·A)·n (unit; the rest normal where degenerate).
-// rest_normals #N × 3 unit, world rest space. Throws std::invalid_argument on size mismatch.
-void ffd_evaluate_fast(const FfdFastLattice& lattice, const FloatSoA3& params, const FloatSoA3& rest_normals,
-                       FloatSoA3& out_positions, FloatSoA3& out_normals);
+namespace detail {
+// Checks per-vertex FFD inputs (shared by the CPU evaluators): rest_normals empty or #params long, all finite.
+// Throws std::invalid_argument naming `who`.
+void check_ffd_vertices(const std::vector<glm::dvec3>& params, const std::vector<glm::dvec3>& rest_normals,
+                        const char* who);
+}  // namespace detail
 
 }  // namespace trispline::core

@@ -3,6 +3,7 @@
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
@@ -50,10 +51,31 @@ void SceneObject::refresh() {
     if (ffd->params.size() != rest.positions.size())
       throw std::invalid_argument("object '" + name + "': FFD binding has " + std::to_string(ffd->params.size()) +
                                   " parameters for " + std::to_string(rest.positions.size()) + " vertices");
-    world_mesh = std::make_shared<const TriMesh>(ffd_apply(*ffd, rest));
+    if (param_offset == glm::dvec3(0.0)) {
+      world_mesh = std::make_shared<const TriMesh>(ffd_apply(*ffd, rest));
+    } else {
+      if (!std::isfinite(param_offset.x) || !std::isfinite(param_offset.y) || !std::isfinite(param_offset.z))
+        throw std::invalid_argument("object '" + name + "': parameter offset is not finite");
+      FfdBinding shifted = *ffd;  // parameters outside [0,1] are clamped, or wrap on periodic axes
+      for (glm::dvec3& p : shifted.params) p += param_offset;
+      world_mesh = std::make_shared<const TriMesh>(ffd_apply(shifted, rest));
+    }
   } else {
     world_mesh = std::make_shared<const TriMesh>(std::move(rest));
   }
+}
+
+Scene scene_at_time(const Scene& scene, double time_s) {
+  if (!std::isfinite(time_s)) throw std::invalid_argument("scene time is not finite");
+  Scene out = scene;
+  for (const SceneObject& object : scene.objects()) {
+    if (!object.animated()) continue;
+    SceneObject moved = object;
+    moved.param_offset = object.offset_at(time_s);
+    moved.refresh();
+    out.replace(std::move(moved));
+  }
+  return out;
 }
 
 const SceneObject* Scene::find(const std::string& name) const {

@@ -46,13 +46,28 @@ struct SceneObject {
   bool visible = true;
   std::shared_ptr<const FfdBinding> ffd;     // null unless deformed; binding over the *transformed* rest mesh
   std::shared_ptr<const PlacementRecord> placement;  // null unless placed by place.sketch
-  std::shared_ptr<const TriMesh> world_mesh;  // evaluated: ffd ? F(E(T(rest))) : T(rest); see refresh()
+  std::shared_ptr<const TriMesh> world_mesh;  // evaluated: ffd ? F(E(T(rest)) + param_offset) : T(rest); see refresh()
+  // Parameter offset added to every vertex's (u,v,w) before F is evaluated (seed §4.5 animation offset), parameter
+  // units; on a periodic axis an offset of 1 is one full turn. Ignored without ffd.
+  glm::dvec3 param_offset{0.0};
+  // Rate of change of the offset during playback, parameter units per second: at scene time t the object shows
+  // F(E(x) + param_offset + offset_velocity·t). world_mesh is the t = 0 pose; see scene_at_time().
+  glm::dvec3 offset_velocity{0.0};
+  // param_offset + offset_velocity·time_s.
+  glm::dvec3 offset_at(double time_s) const { return param_offset + offset_velocity * time_s; }
+  bool animated() const { return ffd && offset_velocity != glm::dvec3(0.0); }
 
   // Recomputes world_mesh from rest_mesh, transform and ffd. Throws std::invalid_argument on inconsistency.
   void refresh();
   // Transformed rest mesh, world units (what an FFD embeds).
   TriMesh world_rest_mesh() const;
 };
+
+class Scene;
+// Copy of `scene` at time `time_s` (seconds): every animated object's param_offset becomes offset_at(time_s) and its
+// world_mesh is re-evaluated on the CPU reference path (the authoritative geometry, e.g. replay --time). Objects
+// that are not animated share their meshes with `scene`. Throws std::invalid_argument on a non-finite time.
+Scene scene_at_time(const Scene& scene, double time_s);
 
 class Scene {
  public:

@@ -72,6 +72,27 @@ KnotVector KnotVector::uniform(int order, int control_count) {
   return KnotVector(order, std::move(k));
 }
 
+KnotVector KnotVector::periodic_uniform(int order, int period) {
+  if (order < 1) fail("order must be >= 1 (order = degree + 1), got " + std::to_string(order));
+  if (period < 1) fail("periodic_uniform: period must be >= 1, got " + std::to_string(period));
+  const int p = order - 1;
+  std::vector<double> k(static_cast<std::size_t>(period + 2 * p + 1));
+  for (int i = 0; i <= period + 2 * p; ++i) k[i] = static_cast<double>(i - p) / static_cast<double>(period);
+  KnotVector kv(order, std::move(k));
+  kv.period_ = period;
+  return kv;
+}
+
+double KnotVector::wrap_or_clamp(double t) const {
+  if (period_ > 0) {
+    // Domain [0,1): t − ⌊t⌋ rounds to 1 for tiny negative t (−6.9e−18 − ⌊…⌋ = 1.0); map that to 0 so wrapping is
+    // idempotent (find_span wraps again, and 1 would wrap to 0 there while the basis was evaluated at 1).
+    const double w = t - std::floor(t);
+    return w < 1.0 ? w : 0.0;
+  }
+  return t < domain_min() ? domain_min() : (t > domain_max() ? domain_max() : t);
+}
+
 KnotVector KnotVector::clamped_for_fit(int order, int control_count, const std::vector<double>& params) {
   check_counts(order, control_count);
   const int P = static_cast<int>(params.size());
@@ -114,6 +135,7 @@ KnotVector KnotVector::clamped_for_fit(int order, int control_count, const std::
 int KnotVector::find_span(double t) const {
   if (std::isnan(t)) throw std::invalid_argument("KnotVector::find_span: parameter is NaN");
   const int n = control_count();
+  if (period_ > 0) t = wrap_or_clamp(t);
   if (t >= knots_[n]) {
     int s = n - 1;
     while (knots_[s] == knots_[s + 1]) --s;  // last non-empty span; terminates because the domain is non-empty
@@ -145,6 +167,7 @@ std::vector<double> KnotVector::greville() const {
 }
 
 bool KnotVector::is_clamped() const {
+  if (period_ > 0) return false;
   const int n = control_count();
   for (int i = 1; i < order_; ++i)
     if (knots_[i] != knots_[0] || knots_[n + i] != knots_[n]) return false;

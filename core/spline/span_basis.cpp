@@ -9,7 +9,8 @@
 namespace trispline::core {
 
 template <class Real>
-SpanBasis<Real>::SpanBasis(const KnotVector& kv) : order_(kv.order()), uniform_(kv.has_uniform_spans()) {
+SpanBasis<Real>::SpanBasis(const KnotVector& kv)
+    : order_(kv.order()), uniform_(kv.has_uniform_spans()), period_(kv.period()) {
   const int p = kv.degree(), n = kv.control_count(), k1 = order_;
   const std::vector<double>& U = kv.knots();
   std::vector<double> ders(static_cast<std::size_t>(k1 * k1));
@@ -44,6 +45,7 @@ SpanBasis<Real>::SpanBasis(const KnotVector& kv) : order_(kv.order()), uniform_(
 
 template <class Real>
 int SpanBasis<Real>::locate(Real t, Real* x) const {
+  if (period_ > 0) t -= std::floor(t);  // periodic: domain [0,1] is one period
   t = t >= t0_ ? t : t0_;  // also maps NaN to t0
   t = t <= t1_ ? t : t1_;
   int s;

@@ -24,25 +24,32 @@ void eval_partials(const TrivariateBSpline<T>& F, const glm::dvec3& uvw_in, int 
   const KnotVector& kw = F.knots(2);
   const int ou = ku.order(), ov = kv.order(), ow = kw.order();
   const int su = ku.find_span(uvw_in.x), sv = kv.find_span(uvw_in.y), sw = kw.find_span(uvw_in.z);
-  const double u = std::clamp(uvw_in.x, ku.domain_min(), ku.domain_max());
-  const double v = std::clamp(uvw_in.y, kv.domain_min(), kv.domain_max());
-  const double w = std::clamp(uvw_in.z, kw.domain_min(), kw.domain_max());
+  const double u = ku.wrap_or_clamp(uvw_in.x), v = kv.wrap_or_clamp(uvw_in.y), w = kw.wrap_or_clamp(uvw_in.z);
   detail::Scratch<24> Nu(static_cast<std::size_t>((nd + 1) * ou)), Nv(static_cast<std::size_t>((nd + 1) * ov)),
       Nw(static_cast<std::size_t>((nd + 1) * ow));
   basis_derivatives(ku, su, u, nd, Nu.data());
   basis_derivatives(kv, sv, v, nd, Nv.data());
   basis_derivatives(kw, sw, w, nd, Nw.data());
+  // Control indices per axis (wrapped mod period on periodic axes).
+  const glm::ivec3 cnt = F.control_counts();
+  auto axis_index = [](const KnotVector& kn, int first, int r, int count) {
+    const int i = first + r;
+    return kn.is_periodic() ? i % count : i;
+  };
   const int fu = su - ou + 1, fv = sv - ov + 1, fw = sw - ow + 1;
   const std::vector<T>& P = F.control_points();
   for (int i = 0; i < 27; ++i) out[i] = T(0.0);
   for (int k = 0; k < ow; ++k) {
     T B[9];
     for (int i = 0; i < 9; ++i) B[i] = T(0.0);
+    const int ck = axis_index(kw, fw, k, cnt.z);
     for (int j = 0; j < ov; ++j) {
       T A[3] = {T(0.0), T(0.0), T(0.0)};
-      const std::size_t row = F.index(fu, fv + j, fw + k);
-      for (int i = 0; i < ou; ++i)
-        for (int a = 0; a <= nd; ++a) A[a] += P[row + i] * Nu[a * ou + i];
+      const int cj = axis_index(kv, fv, j, cnt.y);
+      for (int i = 0; i < ou; ++i) {
+        const T& q = P[F.index(axis_index(ku, fu, i, cnt.x), cj, ck)];
+        for (int a = 0; a <= nd; ++a) A[a] += q * Nu[a * ou + i];
+      }
       for (int a = 0; a <= nd; ++a)
         for (int b = 0; a + b <= nd; ++b) B[a + 3 * b] += A[a] * Nv[b * ov + j];
     }
@@ -50,6 +57,12 @@ void eval_partials(const TrivariateBSpline<T>& F, const glm::dvec3& uvw_in, int 
       for (int b = 0; a + b <= nd; ++b)
         for (int c = 0; a + b + c <= nd; ++c) out[a + 3 * b + 9 * c] += B[a + 3 * b] * Nw[c * ow + k];
   }
+}
+
+void reject_periodic(const KnotVector& kv, int axis, const char* who) {
+  if (kv.is_periodic())
+    throw std::invalid_argument(std::string(who) + ": axis " + std::to_string(axis) +
+                                " has a periodic knot vector; knot refinement of periodic lattices is not supported");
 }
 
 constexpr int kUnit[3] = {1, 3, 9};  // stride of one derivative order along u, v, w in eval_partials' output
@@ -65,7 +78,7 @@ TrivariateBSpline<T>::TrivariateBSpline(KnotVector ku, KnotVector kv, KnotVector
 
 template <class T>
 glm::ivec3 TrivariateBSpline<T>::control_counts() const {
-  return {k_[0].control_count(), k_[1].control_count(), k_[2].control_count()};
+  return {k_[0].stored_control_count(), k_[1].stored_control_count(), k_[2].stored_control_count()};
 }
 
 template <class T>
@@ -75,8 +88,8 @@ glm::ivec3 TrivariateBSpline<T>::orders() const {
 
 template <class T>
 std::size_t TrivariateBSpline<T>::index(int i, int j, int k) const {
-  const std::size_t l = static_cast<std::size_t>(k_[0].control_count());
-  const std::size_t m = static_cast<std::size_t>(k_[1].control_count());
+  const std::size_t l = static_cast<std::size_t>(k_[0].stored_control_count());
+  const std::size_t m = static_cast<std::size_t>(k_[1].stored_control_count());
   return static_cast<std::size_t>(i) + l * (static_cast<std::size_t>(j) + m * static_cast<std::size_t>(k));
 }
 
@@ -109,6 +122,7 @@ void TrivariateBSpline<T>::insert_knot(int axis, double t, int times) {
   if (axis < 0 || axis > 2)
     throw std::invalid_argument("TrivariateBSpline::insert_knot: axis must be 0 (u), 1 (v) or 2 (w), got " +
                                 std::to_string(axis));
+  reject_periodic(k_[axis], axis, "TrivariateBSpline::insert_knot");
   const glm::ivec3 c = control_counts();
   const std::size_t inner = axis == 0 ? 1 : axis == 1 ? c.x : static_cast<std::size_t>(c.x) * c.y;
   const std::size_t outer = axis == 2 ? 1 : axis == 1 ? c.z : static_cast<std::size_t>(c.y) * c.z;
@@ -119,6 +133,7 @@ void TrivariateBSpline<T>::insert_knot(int axis, double t, int times) {
 
 template <class T>
 TrivariateBSpline<T> TrivariateBSpline<T>::bezier_extracted() const {
+  for (int axis = 0; axis < 3; ++axis) reject_periodic(k_[axis], axis, "TrivariateBSpline::bezier_extracted");
   std::array<KnotVector, 3> k = k_;
   std::vector<T> P = cps_;
   for (int axis = 0; axis < 3; ++axis) {

@@ -6,8 +6,17 @@
 // Variant DEPTH_PULL: the vertex is drawn moved towards the eye by the fraction u_depth_pull of its distance —
 // same pixel (it slides along its own view ray), slightly nearer depth — so an overlay lying on a surface (the
 // contact surface S(u,v) = F(u,v,0) on the object it was fitted to) wins the depth test without z-fighting.
-layout(location = 0) in vec3 a_position;  // world units
-layout(location = 1) in vec3 a_normal;    // unit
+// Variant FFD (seed §4.2.1 single phase, issue 3): position and normal are evaluated here from the vertex's
+// parameters a_param (location 2) and its rest normal (location 1, world rest space) through the control lattice
+// in SSBOs 4/5 (ffd_eval.glsl; ORDER_U/V/W, FFD_NORMALS), at a_param + u_param_offset (seed §4.5 animation).
+// gpu::GlslVertexFfdEvaluator draws with it, and captures v_world / v_normal by transform feedback for read-back.
+layout(location = 0) in vec3 a_position;  // world units (unused by FFD)
+layout(location = 1) in vec3 a_normal;    // unit (FFD: the rest normal)
+#ifdef FFD
+#include "ffd_eval.glsl"
+layout(location = 2) in vec3 a_param;  // (u,v,w), parameter domain
+uniform vec3 u_param_offset;           // parameter units
+#endif
 uniform mat4 u_view_proj;
 out vec3 v_world;
 out vec3 v_normal;
@@ -20,17 +29,24 @@ uniform vec3 u_eye;          // world units
 uniform float u_depth_pull;  // fraction of the eye distance, e.g. 0.003
 #endif
 void main() {
-#ifdef DEPTH_PULL
-  vec4 clip = u_view_proj * vec4(mix(a_position, u_eye, u_depth_pull), 1.0);
+#ifdef FFD
+  vec3 position, normal;
+  ffd_eval(a_param + u_param_offset, a_normal, position, normal);
 #else
-  vec4 clip = u_view_proj * vec4(a_position, 1.0);
+  vec3 position = a_position;
+  vec3 normal = a_normal;
+#endif
+#ifdef DEPTH_PULL
+  vec4 clip = u_view_proj * vec4(mix(position, u_eye, u_depth_pull), 1.0);
+#else
+  vec4 clip = u_view_proj * vec4(position, 1.0);
 #endif
 #ifdef OUTLINE
-  vec2 n = (u_view_proj * vec4(a_normal, 0.0)).xy;
+  vec2 n = (u_view_proj * vec4(normal, 0.0)).xy;
   float len = length(n);
   if (len > 1e-12) clip.xy += (n / len) * (2.0 * u_outline_px / u_viewport) * clip.w;
 #endif
-  v_world = a_position;
-  v_normal = a_normal;
+  v_world = position;
+  v_normal = normal;
   gl_Position = clip;
 }

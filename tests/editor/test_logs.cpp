@@ -65,7 +65,9 @@ INSTANTIATE_TEST_SUITE_P(
                       BadLogCase{"bad_no_camera.jsonl", 3, "camera", "camera.set"},
                       BadLogCase{"bad_too_many_controls.jsonl", 4, "controls", "256"},
                       BadLogCase{"bad_negative_seed.jsonl", 1, "seed", "out of range"},
-                      BadLogCase{"bad_camera_fov.jsonl", 2, "camera.fov_deg", "fov"}),
+                      BadLogCase{"bad_camera_fov.jsonl", 2, "camera.fov_deg", "fov"},
+                      BadLogCase{"bad_ring_radius.jsonl", 2, "radius", "half the width"},
+                      BadLogCase{"bad_animate_no_ffd.jsonl", 2, "object", "no FFD lattice"}),
     [](const auto& info) {
       std::string n = info.param.file;
       n = n.substr(4, n.size() - 4 - 6);  // strip "bad_" and ".jsonl"
@@ -92,7 +94,8 @@ TEST(Registry, UnknownAndMissingCmd) {
   EXPECT_THROW(reg.parse({{"name", "x"}}, ctx), core::CommandError);
   EXPECT_THROW(reg.parse({{"cmd", 3}}, ctx), core::CommandError);
   EXPECT_THROW(reg.parse(nlohmann::json::array(), ctx), core::CommandError);
-  for (const char* id : {"scene.load", "scene.primitive", "scene.remove", "camera.set", "place.sketch"})
+  for (const char* id : {"scene.load", "scene.primitive", "scene.remove", "camera.set", "place.sketch",
+                         "lattice.ring", "lattice.animate_offset"})
     EXPECT_NE(std::find(reg.ids().begin(), reg.ids().end(), id), reg.ids().end()) << id;
 }
 

@@ -28,11 +28,28 @@ TEST(ShaderSources, DefinesGoRightAfterVersion) {
   EXPECT_THROW(shader_stage_from_name("a.glsl"), ShaderError);
 }
 
-// Every .vert pairs with the .frag of the same base name; every file compiles and every pair links.
+TEST(ShaderSources, IncludesExpandWithLineDirectives) {
+  std::vector<std::string> included;
+  const std::string s = expand_includes("#version 430 core\n// a\n#include \"ffd_eval.glsl\"\nvoid main() {}\n",
+                                        "x.comp.glsl", &included);
+  ASSERT_EQ(included, std::vector<std::string>{"ffd_eval.glsl"});
+  EXPECT_EQ(s.rfind("#version 430 core\n// a\n#line 2 1\n", 0), 0u) << s.substr(0, 80);
+  EXPECT_NE(s.find("void ffd_eval("), std::string::npos);
+  EXPECT_EQ(s.find("#version", 1), std::string::npos) << "the library's #version line is dropped";
+  EXPECT_NE(s.find("\n#line 4 0\nvoid main() {}\n"), std::string::npos);
+  EXPECT_THROW(expand_includes("#version 430 core\n#include \"nope.glsl\"\n", "x.comp.glsl"), ShaderError);
+  EXPECT_THROW(expand_includes("#version 430 core\n#include nope\n", "x.comp.glsl"), ShaderError);
+  EXPECT_TRUE(is_shader_stage_file("ffd.comp.glsl"));
+  EXPECT_FALSE(is_shader_stage_file("ffd_eval.glsl"));
+}
+
+// Every .vert pairs with the .frag of the same base name; every file compiles and every pair links; include
+// libraries (no stage suffix) are compiled through the files that include them.
 TEST_F(GlTest, EveryEmbeddedShaderCompilesAndLinks) {
   int linked = 0;
   for (std::string_view n : shader_names()) {
     const std::string name(n);
+    if (!is_shader_stage_file(name)) continue;
     const GLenum stage = shader_stage_from_name(name);
     if (stage == GL_COMPUTE_SHADER) {
       EXPECT_NO_THROW(ShaderProgram({name})) << name;
@@ -50,6 +67,12 @@ TEST_F(GlTest, EveryEmbeddedShaderCompilesAndLinks) {
   EXPECT_NO_THROW(ShaderProgram({"lines.vert.glsl", "lines.frag.glsl"}, {{"ROUND_POINTS", ""}}));
   EXPECT_NO_THROW(ShaderProgram({"lines.vert.glsl", "lines.frag.glsl"}, {{"DEPTH_PULL", ""}}));
   EXPECT_NO_THROW(ShaderProgram({"mesh.vert.glsl", "mesh.frag.glsl"}, {{"DEPTH_PULL", ""}, {"TRANSLUCENT", ""}}));
+  // The FFD variants (issue 3): compute with normals, the vertex path drawn and captured by transform feedback.
+  EXPECT_NO_THROW(
+      ShaderProgram({"ffd.comp.glsl"}, {{"ORDER_U", "2"}, {"ORDER_V", "4"}, {"ORDER_W", "3"}, {"FFD_NORMALS", ""}}));
+  EXPECT_NO_THROW(ShaderProgram({"mesh.vert.glsl", "mesh.frag.glsl"},
+                                {{"FFD", ""}, {"FFD_NORMALS", ""}, {"OUTLINE", ""}, {"FLAT_COLOR", ""}}));
+  EXPECT_NO_THROW(ShaderProgram({"mesh.vert.glsl"}, {{"FFD", ""}}, {"v_world", "v_normal"}));
   EXPECT_NO_THROW(Renderer());
   EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
 }
@@ -65,6 +88,13 @@ TEST_F(GlTest, CompileErrorNamesFileAndCarriesInfoLog) {
     EXPECT_NE(what.find("u_view_proj=+"), std::string::npos) << what;
     ASSERT_NE(what.find(":\n"), std::string::npos) << what;
     EXPECT_GT(what.size(), what.find(":\n") + 5) << "no info log in: " << what;
+  }
+  // An error inside an included library is reported with the library's name.
+  try {
+    ShaderProgram p({"ffd.comp.glsl"}, {{"ffd_span", "+"}});  // declared in ffd_eval.glsl only
+    FAIL() << "expected a ShaderError";
+  } catch (const ShaderError& e) {
+    EXPECT_NE(std::string(e.what()).find("source string 1 = gpu/shaders/ffd_eval.glsl"), std::string::npos) << e.what();
   }
 }
 

@@ -1,5 +1,9 @@
 #include <epoxy/gl.h>
 
+#include <chrono>
+#include <cstdio>
+#include <thread>
+
 #include "gl_test.h"
 #include "gpu/gl_debug.h"
 #include "gpu/timer.h"
@@ -25,9 +29,58 @@ TEST_F(GlTest, TimerReportsTimeInTheRightMode) {
 
   GpuTimer wall(true);
   EXPECT_EQ(wall.mode(), GpuTimer::Mode::wall_clock_finish);
+  EXPECT_STREQ(wall.mode_description(),
+               "GPU: glFinish + wall clock (software renderer: llvmpipe timer queries are unreliable)");
+  EXPECT_STREQ(GpuTimer::describe(GpuTimer::Mode::timer_query), "GPU: GL_TIME_ELAPSED queries");
   wall.begin();
   wall.end();
   EXPECT_GE(wall.last_ms(), 0.0);
+}
+
+TEST_F(GlTest, WallClockTimerMeasuresTheTimeBetweenBeginAndEnd) {
+  GpuTimer wall(GpuTimer::Mode::wall_clock_finish);
+  wall.begin();
+  std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  wall.end();
+  EXPECT_GE(wall.last_ms(), 19.0);
+  EXPECT_LT(wall.last_ms(), 2000.0);
+  EXPECT_EQ(wall.in_flight(), 0);
+}
+
+// The query ring's protocol, run on whatever context the tests have (on llvmpipe the values are meaningless, the
+// bookkeeping is not): at most kQueriesInFlight queries pending, none read before it is available, every issued
+// query eventually read, and no GL error (e.g. from beginning a query that is still active).
+TEST_F(GlTest, QueryTimerKeepsAtMostThreeInFlightAndNeverWaits) {
+  GpuTimer t(GpuTimer::Mode::timer_query);
+  EXPECT_EQ(t.mode(), GpuTimer::Mode::timer_query);
+  OffscreenTarget target(128, 128);
+  Renderer r;
+  core::Scene scene;
+  scene.insert(make_object("ball", uv_sphere({0, 0, 0}, 1.0), {0.5f, 0.5f, 0.5f}));
+  while (glGetError() != GL_NO_ERROR) {
+  }
+  for (int frame = 0; frame < 30; ++frame) {
+    t.begin();
+    EXPECT_LE(t.in_flight(), GpuTimer::kQueriesInFlight);
+    target.bind();
+    r.draw(scene, front_camera(128, 128), {});
+    t.end();
+    EXPECT_LE(t.in_flight(), GpuTimer::kQueriesInFlight);
+  }
+  EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+  glFinish();  // every query's result is available now; collect() reads them without waiting
+  t.collect();
+  EXPECT_EQ(t.in_flight(), 0);
+  EXPECT_GE(t.last_ms(), 0.0);
+  EXPECT_LE(t.skipped(), 30);
+  // begin/end with no work in between still yields a (small) result once finished.
+  GpuTimer empty(GpuTimer::Mode::timer_query);
+  empty.begin();
+  empty.end();
+  glFinish();
+  empty.collect();
+  EXPECT_GE(empty.last_ms(), 0.0);
+  EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
 }
 
 TEST_F(GlTest, DebugOutputRoutesErrorsToTheSink) {

@@ -1,0 +1,41 @@
+#include "core/commands/lattice_animate_offset.h"
+
+#include <cmath>
+
+#include "core/commands/json_fields.h"
+
+namespace trispline::core {
+namespace jf = json_fields;
+
+CommandPtr LatticeAnimateOffsetCommand::parse(const nlohmann::json& j, const CommandContext&) {
+  auto c = std::make_unique<LatticeAnimateOffsetCommand>();
+  c->object_ = jf::get_string(j, "object");
+  c->offset_ = jf::get_vec3(j, "offset", glm::dvec3(0.0));
+  c->velocity_ = jf::get_vec3(j, "velocity", glm::dvec3(0.0));
+  for (int a = 0; a < 3; ++a) {
+    if (std::abs(c->offset_[a]) > 1e6) throw CommandError("field 'offset': |component| must be ≤ 1e6", "offset");
+    if (std::abs(c->velocity_[a]) > 100.0)
+      throw CommandError("field 'velocity': |component| must be ≤ 100 parameter units per second", "velocity");
+  }
+  return c;
+}
+
+nlohmann::json LatticeAnimateOffsetCommand::to_json() const {
+  return {{"cmd", id()}, {"object", object_}, {"offset", jf::to_json(offset_)}, {"velocity", jf::to_json(velocity_)}};
+}
+
+std::optional<SceneObject> LatticeAnimateOffsetCommand::build(const Scene& scene) {
+  const SceneObject* target = scene.find(object_);
+  if (!target) throw CommandError("field 'object': no object named '" + object_ + "'", "object");
+  if (!target->ffd)
+    throw CommandError("field 'object': '" + object_ +
+                           "' has no FFD lattice (place it with place.sketch or lattice.ring first)",
+                       "object");
+  SceneObject out = *target;
+  out.param_offset = offset_;
+  out.offset_velocity = velocity_;
+  out.refresh();
+  return out;
+}
+
+}  // namespace trispline::core

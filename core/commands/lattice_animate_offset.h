@@ -1,0 +1,31 @@
+// `lattice.animate_offset` — moves a deformed object through its lattice's parameter domain (seed §4.5): the object
+// shows F(E(x) + offset + velocity·t) at scene time t (seconds). On a periodic axis (lattice.ring) an offset of 1 is
+// one full turn, so the object travels around the ring forever; on other axes the parameters clamp at the domain's
+// ends. Playback evaluates the moving offset in the vertex shader (glsl_vertex path); the object's geometry for
+// export is the t = 0 pose (replay --time T exports the pose at T).
+//   {"cmd":"lattice.animate_offset","object":"ID","offset":[du,dv,dw],"velocity":[u/s,v/s,w/s]}
+// offset: parameter units (default [0,0,0]); velocity: parameter units per second (default [0,0,0] = still).
+// Errors (CommandError, field named): unknown object, object without an FFD, non-finite values, |velocity| > 100.
+#pragma once
+
+#include "core/commands/snapshot_command.h"
+
+namespace trispline::core {
+
+class LatticeAnimateOffsetCommand : public SnapshotCommand {
+ public:
+  static CommandPtr parse(const nlohmann::json& j, const CommandContext& ctx);
+  std::string id() const override { return "lattice.animate_offset"; }
+  nlohmann::json to_json() const override;
+  std::string label() const override { return "Animate offset of '" + object_ + "'"; }
+
+ protected:
+  std::string target() const override { return object_; }
+  std::optional<SceneObject> build(const Scene& scene) override;
+
+ private:
+  std::string object_;
+  glm::dvec3 offset_{0.0}, velocity_{0.0};
+};
+
+}  // namespace trispline::core

@@ -1,0 +1,59 @@
+// `lattice.ring` — binds an object to a ring-shaped control lattice that is periodic along u, so the object can
+// travel around the ring without a seam (seed §4.5, Fig. 4.5: whales swimming around a periodic deformation).
+//   {"cmd":"lattice.ring","object":"ID","center":[x,y,z],"radius":R,"width":W,"height":H,"span":s,"phase":u0,
+//    "controls":[nu,nv,nw],"order":[ou,ov,ow],"length_axis":"x|y|z","up_axis":"x|y|z"}
+// The ring lies in the plane y = center.y around the vertical axis through `center`; u runs from +x towards +z
+// (clockwise seen from +y), v outwards across the ring, w up (so det J > 0 and the object keeps its orientation). radius (world units) is the ring's centre line; width and height
+// (world units, default: the object's extents across / up) size the lattice. The object's length (its bounding box
+// along length_axis) covers u ∈ [phase, phase + span]; span defaults to length / (2π·radius), so the object keeps
+// its proportions. Knot vectors: u periodic uniform with nu control points (one period = one turn), v and w clamped
+// uniform. Orders = degree + 1 per axis (2..4: every FFD backend). Replaces any previous FFD of the object and
+// resets its parameter offset and offset velocity. Undo restores the object as it was.
+// Errors (CommandError, field named): unknown object, radius ≤ width/2 (the inner edge would cross the axis),
+// span ≥ 1 (longer than the ring), orders outside 2..4, controls < order, non-positive sizes.
+#pragma once
+
+#include "core/commands/snapshot_command.h"
+
+namespace trispline::core {
+
+struct LatticeRingParams {
+  std::string object;
+  glm::dvec3 center{0.0};
+  double radius = 1.0;          // world units
+  double width = 0.0;           // world units; 0 = the object's extent across the ring
+  double height = 0.0;          // world units; 0 = the object's extent up
+  double span = 0.0;            // fraction of the turn covered by the object; 0 = length / (2π·radius)
+  double phase = 0.0;           // u where the object starts, parameter units (one turn = 1)
+  glm::ivec3 controls{16, 2, 2};
+  glm::ivec3 order{4, 2, 2};
+  std::string length_axis = "x";
+  std::string up_axis = "y";
+};
+
+class LatticeRingCommand : public SnapshotCommand {
+ public:
+  explicit LatticeRingCommand(LatticeRingParams p) : p_(std::move(p)) {}
+  static CommandPtr parse(const nlohmann::json& j, const CommandContext& ctx);
+  std::string id() const override { return "lattice.ring"; }
+  nlohmann::json to_json() const override;
+  std::string label() const override { return "Ring lattice for '" + p_.object + "'"; }
+  nlohmann::json stats() const override { return stats_; }
+
+ protected:
+  std::string target() const override { return p_.object; }
+  std::optional<SceneObject> build(const Scene& scene) override;
+
+ private:
+  LatticeRingParams p_;
+  nlohmann::json stats_ = nlohmann::json::object();
+};
+
+// The ring lattice itself (for tests and tools): control points of a periodic-in-u lattice around `center`.
+// The circle of control points is enlarged so that the B-spline's centre line passes through radius `radius`
+// at the control points' parameters (a uniform B-spline over a control polygon on a circle lies inside it).
+// Throws std::invalid_argument on bad sizes (see the command's errors).
+TrivariateBSpline<glm::dvec3> ring_lattice(const glm::dvec3& center, double radius, double width, double height,
+                                           const glm::ivec3& controls, const glm::ivec3& order);
+
+}  // namespace trispline::core
