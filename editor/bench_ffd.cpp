@@ -12,13 +12,14 @@
 namespace trispline::editor {
 
 int run_bench_ffd(const BenchFfdOptions& options, std::ostream& out, std::ostream& err) {
+  // Declared first so it outlives `o`: the GPU backends' shared program cache deletes GL programs when destroyed.
+  std::unique_ptr<gpu::HeadlessContext> context;
   core::FfdBenchOptions o;
   if (!options.mesh_path.empty()) o.mesh_path = options.mesh_path;
   o.subdivision_level = options.subdivision >= 0 ? options.subdivision : (options.mesh_path.empty() ? 2 : 0);
   o.runs = options.runs;
   o.progress = [&err](const std::string& line) { err << "bench ffd: " << line << "\n" << std::flush; };
 
-  std::unique_ptr<gpu::HeadlessContext> context;
   if (options.gpu) {
     try {
       context = std::make_unique<gpu::HeadlessContext>();
@@ -26,11 +27,16 @@ int run_bench_ffd(const BenchFfdOptions& options, std::ostream& out, std::ostrea
       // One program cache for all evaluators: "end_to_end" makes a fresh evaluator per run, and llvmpipe would
       // otherwise JIT-compile the program again each time (about a second), which is not what we measure.
       auto programs = std::make_shared<gpu::FfdProgramCache>();
-      o.gpu_shaders = gpu::is_software_renderer() ? "generic orders (software renderer: one program for all orders)"
-                                                  : "order-specialised (ORDER_U/V/W defines, unrolled loops)";
+      const gpu::FfdOrderMode mode = options.gpu_shaders == "specialised" ? gpu::FfdOrderMode::specialised
+                                     : options.gpu_shaders == "generic"   ? gpu::FfdOrderMode::generic
+                                                                          : gpu::FfdOrderMode::automatic;
+      const bool specialised = mode == gpu::FfdOrderMode::specialised ||
+                               (mode == gpu::FfdOrderMode::automatic && !gpu::is_software_renderer());
+      o.gpu_shaders = specialised ? "order-specialised (ORDER_U/V/W defines, unrolled loops)"
+                                  : "generic orders (one program for all orders, read from the knot tables)";
       for (core::FfdBackend b : {core::FfdBackend::glsl_compute, core::FfdBackend::glsl_vertex})
         o.gpu_backends.push_back(
-            {b, [b, programs] { return gpu::make_gl_ffd_evaluator(b, programs); }, [] { glFinish(); }});
+            {b, [b, programs, mode] { return gpu::make_gl_ffd_evaluator(b, programs, mode); }, [] { glFinish(); }});
     } catch (const gpu::GlContextError& e) {
       o.renderer = std::string("none (no GL context: ") + e.what() + ")";
       err << "bench ffd: no GL context, GPU backends skipped: " << e.what() << "\n";

@@ -13,6 +13,7 @@ struct BenchFfdOptions {
   int runs = 5;            // timed runs per case (median)
   bool json = false;       // one JSON object on `out` instead of a table
   bool gpu = true;         // add glsl_compute and glsl_vertex (needs a GL 4.3 context)
+  std::string gpu_shaders = "auto";  // "auto" | "specialised" | "generic" (gpu::FfdOrderMode)
 };
 
 // Returns the process exit code (0). Progress lines go to `err`; a GL context that cannot be made is reported in

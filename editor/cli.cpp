@@ -84,6 +84,9 @@ int run_cli(int argc, char** argv) {
   bench_ffd->add_option("--runs", bench_options.runs, "Timed runs per case; the median is reported")
       ->check(CLI::Range(1, 1000));
   bench_ffd->add_flag("!--cpu-only", bench_options.gpu, "Skip the GLSL backends (no GL context)");
+  bench_ffd->add_option("--gpu-shaders", bench_options.gpu_shaders,
+                        "How GLSL shaders get the orders: auto (generic on software renderers), specialised, generic")
+      ->check(CLI::IsMember({"auto", "specialised", "generic"}));
 
   auto* commands = app.add_subcommand("commands", "List the commands a log may contain");
 

@@ -21,6 +21,7 @@
 
 #include "core/deform/ffd.h"
 #include "core/deform/ffd_evaluator.h"
+#include "core/deform/ffd_fast.h"
 #include "core/mesh/mesh_io.h"
 
 namespace trispline::core {
@@ -137,6 +138,7 @@ nlohmann::json run_ffd_benchmark(const FfdBenchOptions& o) {
 
   const int all = o.threads > 0 ? o.threads : tbb::info::default_concurrency();
   out["cpu"] = cpu_model();
+  out["simd"] = ffd_fast_isa();
   out["threads_all"] = all;
   out["hardware_threads"] = std::thread::hardware_concurrency();
   out["runs"] = o.runs;
@@ -227,7 +229,8 @@ nlohmann::json run_ffd_benchmark(const FfdBenchOptions& o) {
 
 void print_ffd_benchmark(const nlohmann::json& r, std::ostream& os) {
   const auto& m = r.at("mesh");
-  os << "FFD benchmark on " << r.value("cpu", std::string("?")) << " (" << r.at("threads_all") << " threads), GL: "
+  os << "FFD benchmark on " << r.value("cpu", std::string("?")) << " (" << r.at("threads_all")
+     << " threads, cpu_fast kernel: " << r.value("simd", std::string("?")) << "), GL: "
      << r.value("renderer", std::string("none")) << "\n";
   if (m.at("fallback").get<bool>()) os << "NOTE: " << m.at("note").get<std::string>() << "\n";
   os << "mesh: " << m.at("source").get<std::string>() << ", " << m.at("base_vertices") << " vertices -> "

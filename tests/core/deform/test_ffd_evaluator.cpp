@@ -79,6 +79,10 @@ TEST(FfdEvaluator, BadInputErrors) {
     EXPECT_EQ(ev->vertex_count(), 2u);
     ev->bind_vertices(params, {{0, 1, 0}, {1, 0, 0}});  // re-binding invalidates the results
     EXPECT_THROW(ev->read_results(p, n), std::logic_error) << to_string(b);
+    ev->bind_vertices({}, {});  // an empty mesh is valid
+    ev->evaluate(glm::dvec3(0.1, 0.0, 0.0));
+    ev->read_results(p, n);
+    EXPECT_TRUE(p.empty() && n.empty()) << to_string(b);
   }
 }
 
