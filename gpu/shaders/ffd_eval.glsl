@@ -116,6 +116,10 @@ void ffd_eval(vec3 p, vec3 n_rest, out vec3 position, out vec3 normal) {
   ffd_basis(2, FFD_ORDER_W, p.z, deriv, Nw, dNw, iw);
   int l = ffd_axes[0].count;
   int lm = l * ffd_axes[1].count;
+  // Sums run over P − P0, P0 = the support's first control point: the same function (the basis sums to 1 and its
+  // derivatives to 0), but Σ dN·P no longer cancels large terms on lattices with many spans, where dN grows with
+  // the span count (as the CPU fast path does).
+  vec3 P0 = ffd_cp[l * iv[0] + lm * iw[0] + iu[0]].xyz;
   vec3 val = vec3(0.0), du = vec3(0.0), dv = vec3(0.0), dw = vec3(0.0);
   for (int k = 0; k < FFD_ORDER_W; ++k) {
     vec3 v_j = vec3(0.0), du_j = vec3(0.0), dv_j = vec3(0.0);
@@ -123,7 +127,7 @@ void ffd_eval(vec3 p, vec3 n_rest, out vec3 position, out vec3 normal) {
       int row = l * iv[j] + lm * iw[k];
       vec3 s = vec3(0.0), su = vec3(0.0);
       for (int i = 0; i < FFD_ORDER_U; ++i) {
-        vec3 P = ffd_cp[row + iu[i]].xyz;
+        vec3 P = ffd_cp[row + iu[i]].xyz - P0;
         s += Nu[i] * P;
         if (deriv) su += dNu[i] * P;
       }
@@ -140,7 +144,7 @@ void ffd_eval(vec3 p, vec3 n_rest, out vec3 position, out vec3 normal) {
       dw += dNw[k] * v_j;
     }
   }
-  position = ffd_centre.xyz + val;
+  position = ffd_centre.xyz + (P0 + val);
   normal = n_rest;
 #ifdef FFD_NORMALS
   mat3 M = mat3(du, dv, dw) * mat3(ffd_linear[0].xyz, ffd_linear[1].xyz, ffd_linear[2].xyz);

@@ -116,6 +116,26 @@ TEST_F(GlTest, FfdGlPositionsOnly) {
 }
 
 // Seed Fig. 4.5: moving an object by one full period along a periodic u returns every vertex to its start.
+// A lattice with many spans (60 × 40 × 8 cubic): dN grows with the span count, which makes Σ dN·P prone to
+// cancellation in float (ffd_eval.glsl sums relative to the support's first control point); parity must still hold.
+TEST_F(GlTest, FfdGlManySpansKeepNormalsAccurate) {
+  std::vector<glm::dvec3> params, normals, ref_p, ref_n, p, n;
+  random_vertices(2000, 77, params, normals);
+  const auto F = random_lattice(KnotType::clamped_uniform, {4, 4, 4}, 78, {60, 40, 8});
+  const core::Embedding e = test_embedding();
+  reference(F, e, params, normals, glm::dvec3(0.0), ref_p, ref_n);
+  for (core::FfdBackend b : {core::FfdBackend::glsl_compute, core::FfdBackend::glsl_vertex}) {
+    auto ev = make_gl_ffd_evaluator(b);
+    ev->bind_vertices(params, normals);
+    ev->set_lattice(F, e);
+    ev->evaluate();
+    ev->read_results(p, n);
+    const FfdErrors err = ffd_errors(ref_p, ref_n, p, n);
+    EXPECT_LE(err.position, kPosTol * lattice_diagonal(F)) << core::to_string(b);
+    EXPECT_LE(err.normal_rad, kNrmTol) << core::to_string(b);
+  }
+}
+
 TEST_F(GlTest, FfdGlPeriodicOffsetReturnsToStart) {
   std::vector<glm::dvec3> params, normals, ref_p, ref_n, start_p, start_n, p, n;
   random_vertices(400, 9, params, normals);
