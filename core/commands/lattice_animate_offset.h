@@ -18,6 +18,7 @@ class LatticeAnimateOffsetCommand : public SnapshotCommand {
   std::string id() const override { return "lattice.animate_offset"; }
   nlohmann::json to_json() const override;
   std::string label() const override { return "Animate offset of '" + object_ + "'"; }
+  nlohmann::json stats() const override { return stats_; }
 
  protected:
   std::string target() const override { return object_; }
@@ -26,6 +27,7 @@ class LatticeAnimateOffsetCommand : public SnapshotCommand {
  private:
   std::string object_;
   glm::dvec3 offset_{0.0}, velocity_{0.0};
+  nlohmann::json stats_ = nlohmann::json::object();
 };
 
 }  // namespace trispline::core

@@ -117,7 +117,11 @@ nlohmann::json LatticeRingCommand::to_json() const {
 std::optional<SceneObject> LatticeRingCommand::build(const Scene& scene) {
   const SceneObject* target = scene.find(p_.object);
   if (!target) throw CommandError("field 'object': no object named '" + p_.object + "'", "object");
-  const auto t0 = std::chrono::steady_clock::now();
+  using Clock = std::chrono::steady_clock;
+  const auto ms = [](Clock::time_point a, Clock::time_point b) {
+    return std::chrono::duration<double, std::milli>(b - a).count();
+  };
+  const auto t0 = Clock::now();
   const TriMesh rest = target->world_rest_mesh();
   EmbeddingAxes axes;
   axes.length_axis = axis_index(p_.length_axis);
@@ -150,18 +154,23 @@ std::optional<SceneObject> LatticeRingCommand::build(const Scene& scene) {
       throw CommandError("field '" + std::string(field) + "': " + what, field);
     }
   }();
+  const auto t1 = Clock::now();
   auto binding = std::make_shared<FfdBinding>(FfdBinding{std::move(lattice), e, embed_points(e, rest.positions)});
+  const auto t2 = Clock::now();
   SceneObject out = *target;
   out.ffd = std::move(binding);
   out.placement.reset();
   out.param_offset = glm::dvec3(0.0);
   out.offset_velocity = glm::dvec3(0.0);
   out.refresh();
+  const auto t3 = Clock::now();
   stats_ = {{"vertices", rest.positions.size()},
             {"span", span},
             {"width", width},
             {"height", height},
-            {"ms_total", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count()}};
+            {"ms_volume", ms(t0, t1)},  // rest mesh, bounding box, ring lattice
+            {"ms_embed", ms(t1, t2)},
+            {"ms_evaluate", ms(t2, t3)}};  // F at every vertex, CPU double reference, with normals
   return out;
 }
 
