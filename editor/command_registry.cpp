@@ -2,6 +2,7 @@
 
 #include "core/commands/camera_set.h"
 #include "core/commands/lattice_animate_offset.h"
+#include "core/commands/lattice_press.h"
 #include "core/commands/lattice_ring.h"
 #include "core/commands/place_sketch.h"
 #include "core/commands/scene_load.h"
@@ -47,6 +48,10 @@ const CommandRegistry& CommandRegistry::builtin() {
           core::LatticeRingCommand::parse);
     r.add("lattice.animate_offset", "Move an object through its lattice over time: parameter offset and velocity",
           core::LatticeAnimateOffsetCommand::parse);
+    r.add("lattice.press", "Press a placed object's lattice with a sphere swept along a path (seed §2.4.1, Fig. 2.7)",
+          core::LatticePressCommand::parse);
+    r.add("lattice.pull_column", "Pull or push one contact control point and its column along V_P (seed §2.4.1)",
+          core::LatticePullColumnCommand::parse);
     return r;
   }();
   return registry;

@@ -1,0 +1,74 @@
+// Spherical pressing tools on a placed object's control lattice (seed §2.4.1, Fig. 2.7, 2.8).
+//
+// `lattice.press` — one drag of the pressing sphere = one command:
+//   {"cmd":"lattice.press","object":"ID","path":[[x,y,z],...],"radius":r,"strength":s,"falloff":"NAME"}
+// path: the sphere's centres sampled along the drag, world units (≥ 1 point); radius r > 0, world units;
+// strength s, world units: a control point P_ijk moves by −s·w·V_P, w = max over the path of
+// falloff(|P_ijk − c| / r) (falloff.h: gaussian, hat, box, smooth, sphere, root, sharp, constant), so a control
+// point is moved once by the strongest weight the swept sphere gave it — dragging over it twice in one stroke does
+// not press twice, and points outside every sphere do not move. s > 0 presses down into the volume, s < 0 pulls up.
+// V_P is the unit direction of the control point's column, from the contact control point P_ij0 to the top P_ij(n−1):
+// the extrusion direction V for an extruded volume (F1), the contact surface's offset normal for F2 (seed Eq.
+// 2.3, 2.4). Positions before the command decide the weights and directions.
+//
+// `lattice.pull_column` — pulls (d > 0) or pushes (d < 0) a contact control point P_ij0 along V_P and moves its whole
+// column with it by the same vector:
+//   {"cmd":"lattice.pull_column","object":"ID","column":[i,j],"distance":d}      d world units
+//
+// Both need an object with an FFD lattice; errors (CommandError, field named): unknown object / no lattice
+// (`object`), empty or non-finite path (`path`), radius ≤ 0 (`radius`), non-finite strength (`strength`), unknown
+// falloff (`falloff`, lists the names), column outside the lattice (`column`), a column of zero length (`object`).
+// stats(): moved (control points moved), max_displacement (world units), ms_evaluate.
+#pragma once
+
+#include "core/commands/snapshot_command.h"
+#include "core/deform/falloff.h"
+
+namespace trispline::core {
+
+class LatticePressCommand : public SnapshotCommand {
+ public:
+  static CommandPtr parse(const nlohmann::json& j, const CommandContext& ctx);
+  std::string id() const override { return "lattice.press"; }
+  nlohmann::json to_json() const override;
+  std::string label() const override { return "Press '" + object_ + "' (" + std::string(to_string(falloff_)) + ")"; }
+  nlohmann::json stats() const override { return stats_; }
+
+ protected:
+  std::string target() const override { return object_; }
+  std::optional<SceneObject> build(const Scene& scene) override;
+
+ private:
+  std::string object_;
+  std::vector<glm::dvec3> path_;
+  double radius_ = 0.1, strength_ = 0.05;
+  Falloff falloff_ = Falloff::smooth;
+  nlohmann::json stats_ = nlohmann::json::object();
+};
+
+class LatticePullColumnCommand : public SnapshotCommand {
+ public:
+  static CommandPtr parse(const nlohmann::json& j, const CommandContext& ctx);
+  std::string id() const override { return "lattice.pull_column"; }
+  nlohmann::json to_json() const override;
+  std::string label() const override {
+    return "Pull column (" + std::to_string(column_.x) + ", " + std::to_string(column_.y) + ") of '" + object_ + "'";
+  }
+  nlohmann::json stats() const override { return stats_; }
+
+ protected:
+  std::string target() const override { return object_; }
+  std::optional<SceneObject> build(const Scene& scene) override;
+
+ private:
+  std::string object_;
+  glm::ivec2 column_{0, 0};
+  double distance_ = 0.0;
+  nlohmann::json stats_ = nlohmann::json::object();
+};
+
+// Unit column direction V_P of column (i, j) of `lattice` (top minus contact control point); for a zero-length
+// column the mean direction of all columns. Throws std::invalid_argument if that is zero too or (i, j) is outside.
+glm::dvec3 column_direction(const TrivariateBSpline<glm::dvec3>& lattice, int i, int j);
+
+}  // namespace trispline::core
