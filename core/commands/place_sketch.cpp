@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 
 #include "core/commands/camera_set.h"
 #include "core/commands/json_fields.h"
@@ -13,6 +14,22 @@ namespace jf = json_fields;
 
 namespace {
 int axis_index(const std::string& a) { return a == "x" ? 0 : a == "y" ? 1 : 2; }
+
+// A JSON array of finite numbers (profile samples); the error names `field`.
+std::vector<double> get_numbers(const nlohmann::json& a, const char* field) {
+  if (!a.is_array())
+    throw CommandError("field '" + std::string(field) + "': expected an array of numbers, got " + a.type_name(),
+                       field);
+  std::vector<double> out;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (!a[i].is_number() || !std::isfinite(a[i].get<double>()))
+      throw CommandError("field '" + std::string(field) + "': element " + std::to_string(i) +
+                             " is not a finite number",
+                         field);
+    out.push_back(a[i].get<double>());
+  }
+  return out;
+}
 const char* axis_name(int a) { return a == 0 ? "x" : a == 1 ? "y" : "z"; }
 }  // namespace
 
@@ -22,6 +39,15 @@ CommandPtr PlaceSketchCommand::parse(const nlohmann::json& j, const CommandConte
   p.stroke = jf::get_points2(j, "stroke");
   p.width = jf::get_number(j, "width");
   p.height = jf::get_number(j, "height");
+  if (jf::has(j, "width_profile")) p.width_profile = get_numbers(j.at("width_profile"), "width_profile");
+  if (jf::has(j, "height_profile")) {
+    const nlohmann::json& h = j.at("height_profile");
+    if (h.is_array() && !h.empty() && h[0].is_array()) {
+      for (std::size_t r = 0; r < h.size(); ++r) p.height_profile.push_back(get_numbers(h[r], "height_profile"));
+    } else {
+      p.height_profile.push_back(get_numbers(h, "height_profile"));
+    }
+  }
   if (jf::has(j, "samples")) p.samples = jf::get_ivec2(j, "samples");
   p.volume = jf::get_enum(j, "volume", {"extrude", "offset"}, "extrude");
   if (jf::has(j, "order")) p.order = jf::get_ivec3(j, "order");
@@ -68,6 +94,9 @@ nlohmann::json PlaceSketchCommand::params_json(const PlaceSketchParams& p) {
                       {"controls", jf::to_json(p.controls)},
                       {"length_axis", p.length_axis},
                       {"up_axis", p.up_axis}};
+  if (!p.width_profile.empty()) j["width_profile"] = p.width_profile;
+  if (p.height_profile.size() == 1) j["height_profile"] = p.height_profile[0];
+  if (p.height_profile.size() > 1) j["height_profile"] = p.height_profile;
   if (p.camera) j["camera"] = CameraSetCommand::camera_json(*p.camera);
   if (!p.ignore.empty()) j["ignore"] = p.ignore;
   return j;
@@ -97,6 +126,8 @@ std::optional<SceneObject> PlaceSketchCommand::build(const Scene& scene) {
   sp.evaluate_positions = false;  // refresh() below evaluates positions and normals in one pass
   sp.half_width = p_.width;
   sp.height = p_.height;
+  sp.width_profile = p_.width_profile;
+  sp.height_profile = p_.height_profile;
   sp.samples_u = p_.samples.x;
   sp.samples_v = p_.samples.y;
   sp.volume = p_.volume == "offset" ? PlacementVolume::Offset : PlacementVolume::Extrude;

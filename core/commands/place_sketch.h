@@ -4,6 +4,8 @@
 //    "camera":{"eye":..,"target":..,"up":..,"fov_deg":..,"viewport":..},"ignore":["ID",...]}
 // stroke: viewport pixels (top-left origin) of the camera in "camera" (optional) or of the last camera.set.
 // width: half-width d of the volume across the stroke, world units. height: h, world units. order = degree + 1.
+// Optional "width_profile":[f0,f1,...] scales d along the stroke (u), "height_profile":[f0,...] or [[...],[...]]
+// scales h along u (one list) or over (u,v) (rows over v): factors > 0, piecewise linear (seed Eq. 2.5).
 // The rays see every visible object except the one being placed and those listed in "ignore" (optional; the
 // editor lists the objects hidden in its viewport). Re-placing an already placed object starts
 // again from its undeformed (transformed) rest mesh. Undo restores the object as it was.
@@ -20,6 +22,8 @@ struct PlaceSketchParams {
   std::vector<glm::dvec2> stroke;  // #S × 2 pixels
   double width = 0.15;             // half-width d, world units
   double height = 0.2;             // h, world units
+  std::vector<double> width_profile;                // d(u) factors over u (seed Eq. 2.5); empty = constant
+  std::vector<std::vector<double>> height_profile;  // h(u) or h(u,v) factors: rows over v; empty = constant
   glm::ivec2 samples{32, 8};       // contact sampling nu × nv rays
   std::string volume = "extrude";  // extrude (F1, Eq. 2.3) | offset (F2, Eq. 2.4)
   glm::ivec3 order{4, 4, 3};       // per axis, degree + 1

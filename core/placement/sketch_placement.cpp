@@ -30,6 +30,36 @@ constexpr int kMaxSamples = 4096;  // per axis; keeps nu·nv rays and the fit sm
 constexpr int kMaxOrder = 8;       // per axis; evaluation costs O(order³) per vertex
 constexpr int kMaxControls = 256;  // per axis; l·m·n stays far from int overflow and within memory
 
+constexpr std::size_t kMaxProfileSamples = 4096;
+
+void validate_profile_row(const std::vector<double>& row, const char* field) {
+  if (row.size() < 2 || row.size() > kMaxProfileSamples)
+    throw PlacementError(field, "needs 2.." + std::to_string(kMaxProfileSamples) + " samples over u (got " +
+                                    std::to_string(row.size()) + ")");
+  for (std::size_t i = 0; i < row.size(); ++i)
+    if (!finite(row[i]) || row[i] <= 0.0)
+      throw PlacementError(field, "sample " + std::to_string(i) + " must be a finite factor > 0 (got " +
+                                      std::to_string(row[i]) + ")");
+}
+
+// Piecewise-linear interpolation of samples taken uniformly over [0,1] (t clamped).
+double profile_at(const std::vector<double>& row, double t) {
+  const double x = std::clamp(t, 0.0, 1.0) * static_cast<double>(row.size() - 1);
+  const std::size_t k = std::min(static_cast<std::size_t>(x), row.size() - 2);
+  const double f = x - static_cast<double>(k);
+  return row[k] + f * (row[k + 1] - row[k]);
+}
+
+// Bilinear in (u, v): rows over v, samples over u; one row = a function of u only.
+double profile_at(const std::vector<std::vector<double>>& rows, double u, double v) {
+  if (rows.empty()) return 1.0;
+  if (rows.size() == 1) return profile_at(rows[0], u);
+  const double y = std::clamp(v, 0.0, 1.0) * static_cast<double>(rows.size() - 1);
+  const std::size_t r = std::min(static_cast<std::size_t>(y), rows.size() - 2);
+  const double f = y - static_cast<double>(r);
+  return (1.0 - f) * profile_at(rows[r], u) + f * profile_at(rows[r + 1], u);
+}
+
 void validate(const SketchPlacementParams& p, const std::vector<glm::dvec3>& object) {
   if (p.stroke_px.size() < 2)
     throw PlacementError("stroke", "needs at least 2 points (got " + std::to_string(p.stroke_px.size()) + ")");
@@ -45,6 +75,14 @@ void validate(const SketchPlacementParams& p, const std::vector<glm::dvec3>& obj
     throw PlacementError("width", "half-width must be a finite number > 0 (got " + std::to_string(p.half_width) + ")");
   if (!finite(p.height) || p.height <= 0.0)
     throw PlacementError("height", "height must be a finite number > 0 (got " + std::to_string(p.height) + ")");
+  if (!p.width_profile.empty()) validate_profile_row(p.width_profile, "width_profile");
+  if (p.height_profile.size() > kMaxProfileSamples)
+    throw PlacementError("height_profile", "at most " + std::to_string(kMaxProfileSamples) + " rows over v");
+  for (const auto& row : p.height_profile) {
+    validate_profile_row(row, "height_profile");
+    if (row.size() != p.height_profile[0].size())
+      throw PlacementError("height_profile", "every row over v needs the same number of samples over u");
+  }
   static const char* axis_name[3] = {"u", "v", "w"};
   for (int a = 0; a < 3; ++a) {
     const std::string ax = axis_name[a];
@@ -134,8 +172,12 @@ SketchPlacementResult place_along_stroke(const RayCaster& scene_rays, const Sket
   std::vector<glm::dvec3> dirs(static_cast<std::size_t>(total));
   for (int j = 0; j < nv; ++j) {
     const double v = static_cast<double>(j) / (nv - 1);
-    for (int i = 0; i < nu; ++i)  // R(u,v) = v·C+ + (1−v)·C− = C + (2v − 1)·d_px·N   (seed Eq. 2.2)
-      dirs[i + nu * j] = cam.ray_direction(cs.point[i] + (2.0 * v - 1.0) * st.half_width_px * cs.normal[i]);
+    for (int i = 0; i < nu; ++i) {  // R(u,v) = v·C+ + (1−v)·C− = C + (2v − 1)·d(u)·N   (seed Eq. 2.2, 2.5)
+      const double d = p.width_profile.empty()
+                           ? st.half_width_px
+                           : st.half_width_px * profile_at(p.width_profile, static_cast<double>(i) / (nu - 1));
+      dirs[i + nu * j] = cam.ray_direction(cs.point[i] + (2.0 * v - 1.0) * d * cs.normal[i]);
+    }
   }
   const auto hits = scene_rays.intersect_all(std::vector<glm::dvec3>(dirs.size(), eye), dirs);
   std::vector<double> depth(static_cast<std::size_t>(total), 0.0);
@@ -196,7 +238,10 @@ SketchPlacementResult place_along_stroke(const RayCaster& scene_rays, const Sket
   cps.reserve(static_cast<std::size_t>(l * m * n));
   for (int k = 0; k < n; ++k)
     for (int j = 0; j < m; ++j)
-      for (int i = 0; i < l; ++i) cps.push_back(S->control_point(i, j) + p.height * gw[k] * dir[i + l * j]);
+      for (int i = 0; i < l; ++i) {  // h, or h(u) / h(u,v) at the contact control point's Greville abscissae (Eq. 2.5)
+        const double h = p.height_profile.empty() ? p.height : p.height * profile_at(p.height_profile, gu[i], gv[j]);
+        cps.push_back(S->control_point(i, j) + h * gw[k] * dir[i + l * j]);
+      }
   TrivariateBSpline<glm::dvec3> lattice(ku, kv, kw, std::move(cps));
   st.min_det_jacobian = 1e300;
   for (int c = 0; c < 3; ++c)
