@@ -228,6 +228,7 @@ void App::handle_menu(ui::MenuAction action) {
     case A::Keys: show_keys_ = true; break;
     case A::SelectTool: tools_.set_active(Toolbox::kSelect); break;
     case A::SketchTool: tools_.set_active(Toolbox::kSketch); break;
+    case A::PressTool: tools_.set_active(Toolbox::kPress); break;
     case A::Screenshot: screenshot_requested_ = true; break;
     case A::Delete: handle_scene({ui::SceneRequest::Kind::Remove, selected_}); break;
     case A::ToggleTimingOverlay:
@@ -280,7 +281,10 @@ void App::handle_file(const fs::path& chosen) {
 
 void App::viewport_input() {
   const ImGuiIO& io = ImGui::GetIO();
-  if (io.WantCaptureMouse || !work_.empty()) return;
+  if (io.WantCaptureMouse || !work_.empty()) {
+    if (!tools_.owns_mouse()) tools_.mouse_away();
+    return;
+  }
   const NavInput nav = nav_input_from_imgui();
   if (tools_.owns_mouse()) {  // a stroke is being drawn: its pixels belong to the view at mouse-down, keep it
     tools_.handle_mouse(nav.mouse_px);
@@ -288,6 +292,7 @@ void App::viewport_input() {
   }
   const bool nav_owns_left = nav_.update(nav, view_.viewport);
   if (!nav_owns_left && !(io.KeyAlt && io.MouseClicked[0])) tools_.handle_mouse(nav.mouse_px);
+  else tools_.mouse_away();
 }
 
 void App::render_view() {

@@ -7,4 +7,5 @@ set(TRISPLINE_EDITOR_APP_SOURCES
     tools/select_tool.cpp
     tools/toolbox.cpp
     tools/work_queue.cpp
-    tools/sketch_tool.cpp)
+    tools/sketch_tool.cpp
+    tools/press_tool.cpp)

@@ -4,6 +4,7 @@
 #include "core/commands/lattice_animate_offset.h"
 #include "core/commands/lattice_press.h"
 #include "core/commands/lattice_ring.h"
+#include "core/commands/mesh_refine.h"
 #include "core/commands/place_sketch.h"
 #include "core/commands/scene_load.h"
 #include "core/commands/scene_primitive.h"
@@ -52,6 +53,8 @@ const CommandRegistry& CommandRegistry::builtin() {
           core::LatticePressCommand::parse);
     r.add("lattice.pull_column", "Pull or push one contact control point and its column along V_P (seed §2.4.1)",
           core::LatticePullColumnCommand::parse);
+    r.add("mesh.refine", "Refine a deformed object's mesh until its edges follow the FFD (seed §2.4.2)",
+          core::MeshRefineCommand::parse);
     return r;
   }();
   return registry;

@@ -410,6 +410,26 @@ void Renderer::draw(const core::Scene& scene, const core::Camera& camera, const 
     d.draw_xray(lines_v, points_v, view_proj, options.contact_point_px);
   }
 
+  // 5b. The pressing brush: translucent sphere (blended, depth-tested, no depth writes, back faces culled), then
+  // the sampled path as points drawn x-ray.
+  if (options.brush || !options.brush_path.empty()) {
+    std::vector<OverlayVertex> tris, path_v;
+    if (options.brush) append_brush_sphere(*options.brush, eye, tris);
+    for (const glm::dvec3& p : options.brush_path) path_v.push_back({glm::vec3(p), options.brush_path_color});
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    glEnable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    glEnable(GL_CULL_FACE);
+    glCullFace(GL_BACK);
+    d.lines.use();
+    d.lines.set("u_view_proj", view_proj);
+    d.draw_overlay(tris, GL_TRIANGLES, d.lines, 1.0f);
+    glDisable(GL_CULL_FACE);
+    glDepthMask(GL_TRUE);
+    d.draw_xray({}, path_v, view_proj, options.contact_point_px);
+  }
+
   // 6. The sketched stroke, a thick screen-space polyline on top of everything.
   if (options.stroke_px.size() >= 1) {
     const std::vector<glm::vec2> tris = thick_polyline(options.stroke_px, options.stroke_width_px);

@@ -5,7 +5,7 @@
 // Look: flat vertical gradient background, studio shading (headlight + hemisphere ambient + rim, gamma-correct
 // sRGB output), ground grid on y = 0 fading with distance, selected object tinted and outlined, overlays for
 // control lattices, contact surfaces S(u,v) = F(u,v,0) (translucent, with iso-lines) and contact samples, and the
-// sketched stroke. Needs a depth+stencil framebuffer (outline mask).
+// sketched stroke, and the pressing tool's brush sphere with its sampled path (gpu/brush_geometry.h). Needs a depth+stencil framebuffer (outline mask).
 // Deformed objects (SceneObject::ffd) are evaluated for display by ViewOptions::ffd_backend at the object's offset
 // at ViewOptions::time_s (renderer_ffd.h): GLSL compute into the drawn buffers, the GLSL vertex path while drawing
 // (always for glsl_vertex; for glsl_compute when offset_velocity ≠ 0), the CPU fast path, or the CPU reference
@@ -16,11 +16,13 @@
 
 #include <glm/glm.hpp>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/deform/ffd_evaluator.h"
 #include "core/scene/scene.h"
+#include "gpu/brush_geometry.h"
 #include "gpu/mesh_buffers.h"
 
 namespace trispline::gpu {
@@ -32,6 +34,9 @@ struct ViewOptions {
   bool wireframe = false;
   std::string selected;               // highlighted object name (outline colour)
   std::vector<glm::dvec2> stroke_px;  // stroke being sketched, viewport pixels (top-left origin)
+  std::optional<BrushSphere> brush;    // pressing tool's sphere under the cursor (translucent, depth-tested)
+  std::vector<glm::dvec3> brush_path;  // sphere centres sampled along the press being dragged, world units
+  glm::vec4 brush_path_color{1.0f, 0.85f, 0.3f, 1.0f};
   glm::vec3 background_top{0.23f, 0.23f, 0.25f};
   glm::vec3 background_bottom{0.13f, 0.13f, 0.14f};
   // Added: colours are display (sRGB-encoded) values; sizes are pixels.

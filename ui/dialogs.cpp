@@ -54,7 +54,7 @@ void draw_keys_window(bool* open) {
       {"Home", "frame all"},
       {"Left click", "Select tool: pick an object"},
       {"Left drag", "Sketch tool: draw a placement stroke"},
-      {"Q / W", "Select tool / Sketch placement tool"},
+      {"Q / W / E", "Select tool / Sketch placement tool / Press tool"},
       {"X / Delete", "remove the selected object"},
       {"Ctrl+Z", "undo"},
       {"Ctrl+Shift+Z / Ctrl+Y", "redo"},

@@ -43,6 +43,7 @@ enum class MenuAction {
   Screenshot,  // File > Save Screenshot (F12): the whole window as a PNG in the current folder
   SelectTool,  // keyboard only (ui/shortcuts.h) from here on
   SketchTool,
+  PressTool,
   Delete,
   ToggleTimingOverlay,  // F7 (View > Timing overlay is a checkbox edited in place)
   TogglePlayback        // Space, as Blender's Play (View > Play animation)

@@ -26,6 +26,7 @@ MenuAction shortcut_action(const KeyPress& k) {
   if (key == GLFW_KEY_HOME) return A::FrameAll;
   if (key == GLFW_KEY_Q) return A::SelectTool;
   if (key == GLFW_KEY_W) return A::SketchTool;
+  if (key == GLFW_KEY_E) return A::PressTool;
   if (key == GLFW_KEY_DELETE || key == GLFW_KEY_X) return A::Delete;
   // F7: Blender leaves F5-F8 to the user, so it clashes with nothing a Blender user knows.
   if (key == GLFW_KEY_F7 && !shift) return A::ToggleTimingOverlay;

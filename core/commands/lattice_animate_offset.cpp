@@ -26,12 +26,7 @@ nlohmann::json LatticeAnimateOffsetCommand::to_json() const {
 }
 
 std::optional<SceneObject> LatticeAnimateOffsetCommand::build(const Scene& scene) {
-  const SceneObject* target = scene.find(object_);
-  if (!target) throw CommandError("field 'object': no object named '" + object_ + "'", "object");
-  if (!target->ffd)
-    throw CommandError("field 'object': '" + object_ +
-                           "' has no FFD lattice (place it with place.sketch or lattice.ring first)",
-                       "object");
+  const SceneObject* target = &require_deformed_object(scene, object_);
   SceneObject out = *target;
   out.param_offset = offset_;
   out.offset_velocity = velocity_;

@@ -11,15 +11,6 @@ namespace jf = json_fields;
 
 namespace {
 
-const SceneObject& deformed_object(const Scene& scene, const std::string& name) {
-  const SceneObject* o = scene.find(name);
-  if (!o) throw CommandError("field 'object': no object named '" + name + "'", "object");
-  if (!o->ffd)
-    throw CommandError("field 'object': '" + name + "' has no FFD lattice (place it with place.sketch first)",
-                       "object");
-  return *o;
-}
-
 // Rebuilds `object` with `lattice` (same embedding and parameters) and evaluates it; fills ms_evaluate.
 SceneObject with_lattice(const SceneObject& object, TrivariateBSpline<glm::dvec3> lattice, nlohmann::json& stats) {
   SceneObject out = object;
@@ -92,7 +83,7 @@ nlohmann::json LatticePressCommand::to_json() const {
 }
 
 std::optional<SceneObject> LatticePressCommand::build(const Scene& scene) {
-  const SceneObject& object = deformed_object(scene, object_);
+  const SceneObject& object = require_deformed_object(scene, object_);
   const TrivariateBSpline<glm::dvec3>& before = object.ffd->lattice;
   TrivariateBSpline<glm::dvec3> after = before;
   const glm::ivec3 c = before.control_counts();
@@ -134,7 +125,7 @@ nlohmann::json LatticePullColumnCommand::to_json() const {
 }
 
 std::optional<SceneObject> LatticePullColumnCommand::build(const Scene& scene) {
-  const SceneObject& object = deformed_object(scene, object_);
+  const SceneObject& object = require_deformed_object(scene, object_);
   TrivariateBSpline<glm::dvec3> after = object.ffd->lattice;
   const glm::dvec3 vp = [&] {
     try {

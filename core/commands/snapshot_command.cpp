@@ -40,4 +40,14 @@ void SnapshotCommand::undo(Scene& scene) {
   if (before_) scene.insert(*before_, index_);
 }
 
+const SceneObject& require_deformed_object(const Scene& scene, const std::string& name) {
+  const SceneObject* o = scene.find(name);
+  if (!o) throw CommandError("field 'object': no object named '" + name + "'", "object");
+  if (!o->ffd)
+    throw CommandError("field 'object': '" + name +
+                           "' has no FFD lattice (place it with place.sketch or lattice.ring first)",
+                       "object");
+  return *o;
+}
+
 }  // namespace trispline::core

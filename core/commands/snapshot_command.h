@@ -30,4 +30,8 @@ class SnapshotCommand : public Command {
   int index_ = -1;
 };
 
+// The object named `name` when it has an FFD lattice. Throws CommandError (field 'object') naming what is wrong:
+// no such object, or no lattice (place it with place.sketch or lattice.ring first).
+const SceneObject& require_deformed_object(const Scene& scene, const std::string& name);
+
 }  // namespace trispline::core

@@ -43,6 +43,7 @@ class Tool {
   virtual void activate(ToolContext&) {}    // became the active tool
   virtual void deactivate(ToolContext&) {}  // another tool was chosen: drop transient state
   virtual void handle_input(const ToolInput& in, ToolContext& ctx) = 0;
+  virtual void mouse_away() {}  // the viewport does not get the mouse this frame (over a panel, navigating)
   virtual void draw_panel(ToolContext& ctx) = 0;     // inside the Tool window, below the selector
   virtual void decorate(gpu::ViewOptions&) const {}  // view overlays (stroke being drawn)
   virtual std::string hint() const { return {}; }    // status-bar hint

@@ -1,5 +1,6 @@
 #include "editor/tools/toolbox.h"
 
+#include "editor/tools/press_tool.h"
 #include "editor/tools/select_tool.h"
 #include "editor/tools/sketch_tool.h"
 #include "ui/tool_panel.h"
@@ -11,6 +12,7 @@ namespace trispline::editor {
 Toolbox::Toolbox(ToolContext& ctx) : ctx_(ctx) {
   tools_.push_back(std::make_unique<SelectTool>());
   tools_.push_back(std::make_unique<SketchTool>());
+  tools_.push_back(std::make_unique<PressTool>());
 }
 
 void Toolbox::set_active(int index) {

@@ -1,4 +1,4 @@
-// trispline::editor::Toolbox — the editor's tools (Select, Sketch placement, …), which one is active, and the
+// trispline::editor::Toolbox — the editor's tools (Select, Sketch placement, Press, …), which one is active, and the
 // plumbing every tool shares: the Tool panel (selector + the active tool's parameters), mouse input over the
 // viewport, view decorations and the status-bar hint.
 #pragma once
@@ -14,7 +14,7 @@ namespace trispline::editor {
 class Toolbox {
  public:
   explicit Toolbox(ToolContext& ctx);  // ctx must outlive the toolbox
-  enum Index { kSelect = 0, kSketch = 1 };
+  enum Index { kSelect = 0, kSketch = 1, kPress = 2 };
 
   void set_active(int index);  // deactivates the old tool, activates the new one; out-of-range is ignored
   int active() const { return active_; }
@@ -23,6 +23,7 @@ class Toolbox {
 
   void draw_panel(const ui::Rect& rect);   // the docked Tool window
   void handle_mouse(glm::dvec2 mouse_px);  // feeds ImGui's mouse state to the active tool
+  void mouse_away() { tool().mouse_away(); }  // the viewport does not get the mouse this frame
   void decorate(gpu::ViewOptions& options) const { tool().decorate(options); }
   std::string hint() const { return tool().hint(); }
   bool owns_mouse() const { return tool().owns_mouse(); }  // the active tool is mid-drag: no navigation

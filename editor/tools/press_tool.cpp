@@ -1,0 +1,198 @@
+#include "editor/tools/press_tool.h"
+
+#include <imgui.h>
+
+#include <cmath>
+#include <iterator>
+
+#include "editor/navigation.h"
+#include "editor/session.h"
+#include "ui/theme.h"
+
+namespace trispline::editor {
+
+namespace {
+constexpr double kDefaultRadiusFraction = 0.1;  // of the object's bounding-box diagonal
+constexpr double kMinSpacingFraction = 0.25;    // path samples closer than radius/4 to the previous one are dropped
+
+// Tooltip of each falloff in core::kFalloffNames order: which are the seed's (§2.4.1, Fig. 2.7) and which Blender's.
+constexpr const char* kFalloffTips[] = {
+    "Seed's Gaussian: exp(-t^2 / (2 sigma^2)), sigma = 1/3",
+    "Seed's hat = Blender's Linear: 1 - t",
+    "Seed's box = Blender's Constant: 1 inside the sphere",
+    "Blender's Smooth: 3s^2 - 2s^3, s = 1 - t",
+    "Blender's Sphere: sqrt(1 - t^2)",
+    "Blender's Root: sqrt(1 - t)",
+    "Blender's Sharp: (1 - t)^2",
+    "Blender's Constant: 1 inside the sphere",
+};
+static_assert(std::size(kFalloffTips) == core::kFalloffNames.size());
+
+double diagonal_of(const core::SceneObject& o) { return o.world_mesh ? bounds_of(*o.world_mesh).diagonal() : 0.0; }
+}  // namespace
+
+nlohmann::json lattice_press_line(const std::string& object, const std::vector<glm::dvec3>& path, double radius,
+                                  double strength, core::Falloff falloff) {
+  nlohmann::json p = nlohmann::json::array();
+  for (const glm::dvec3& c : path) p.push_back({c.x, c.y, c.z});
+  return {{"cmd", "lattice.press"}, {"object", object},     {"path", p},
+          {"radius", radius},       {"strength", strength}, {"falloff", std::string(core::to_string(falloff))}};
+}
+
+ui::ToolEntry PressTool::entry() const {
+  return {"Press", "E", "Drag the sphere over a deformed object to press its lattice (Ctrl: pull)"};
+}
+
+void PressTool::activate(ToolContext& ctx) {
+  if (!ctx.selected.empty()) object_ = followed_selection_ = ctx.selected;
+}
+
+void PressTool::deactivate(ToolContext&) {
+  hover_.reset();
+  path_.clear();
+  pressing_ = false;
+  caster_.reset();
+  caster_mesh_.reset();
+}
+
+void PressTool::mouse_away() {
+  if (!pressing_) hover_.reset();
+}
+
+const core::SceneObject* PressTool::target(const ToolContext& ctx) const {
+  const core::SceneObject* o = ctx.session.scene().find(object_);
+  return o && o->ffd && o->world_mesh ? o : nullptr;
+}
+
+double PressTool::radius(const ToolContext& ctx) const {
+  if (radius_ > 0.0) return radius_;
+  const core::SceneObject* o = target(ctx);
+  return o ? kDefaultRadiusFraction * diagonal_of(*o) : 0.0;
+}
+
+std::optional<glm::dvec3> PressTool::cast(const ToolContext& ctx, glm::dvec2 px) {
+  const core::SceneObject* o = target(ctx);
+  if (!o || !o->visible || ctx.hidden.count(o->name) || o->world_mesh->empty()) return std::nullopt;
+  if (!caster_ || caster_mesh_ != o->world_mesh) {
+    caster_.reset();
+    caster_mesh_ = o->world_mesh;
+    auto caster = std::make_unique<core::RayCaster>();
+    caster->add_mesh(*caster_mesh_);
+    caster->commit();
+    caster_ = std::move(caster);
+  }
+  const auto hit = caster_->intersect(ctx.view.eye, ctx.view.ray_direction(px));
+  if (!hit) return std::nullopt;
+  return hit->position;
+}
+
+void PressTool::handle_input(const ToolInput& in, ToolContext& ctx) {
+  try {
+    hover_ = cast(ctx, in.mouse_px);
+  } catch (const std::exception& e) {  // non-finite mesh positions
+    hover_.reset();
+    ctx.session.messages().error(std::string("press: ray casting failed: ") + e.what());
+    return;
+  }
+  hover_radius_ = radius(ctx);
+  if (in.left_pressed) {
+    pressing_ = true;
+    pull_ = in.ctrl;
+    path_.clear();
+  }
+  if (pressing_ && in.left_down && hover_) {
+    if (path_.empty() || glm::length(*hover_ - path_.back()) >= kMinSpacingFraction * hover_radius_)
+      path_.push_back(*hover_);
+  }
+  if (pressing_ && (in.left_released || !in.left_down)) {
+    pressing_ = false;
+    commit(ctx);
+  }
+}
+
+void PressTool::commit(ToolContext& ctx) {
+  std::vector<glm::dvec3> path = std::move(path_);
+  path_.clear();
+  if (path.empty()) return;  // the drag never touched the object
+  const core::SceneObject* o = target(ctx);
+  if (!o) {
+    ctx.session.messages().error("lattice.press: choose an object with an FFD lattice in the Tool panel first");
+    return;
+  }
+  const nlohmann::json line = lattice_press_line(object_, path, radius(ctx), pull_ ? -strength_ : strength_, falloff_);
+  EditorSession& session = ctx.session;  // outlives the deferred work; ctx may not
+  ctx.defer((pull_ ? "Pulling " : "Pressing ") + object_, [&session, line]() { session.execute(line); });
+}
+
+std::string PressTool::hint() const {
+  if (pressing_)
+    return pull_ ? "Release to pull the lattice" : "Release to press the lattice (Ctrl at mouse-down pulls)";
+  if (object_.empty()) return "Choose an object with an FFD lattice in the Tool panel";
+  return "Drag over " + object_ + " to press its lattice; Ctrl-drag pulls";
+}
+
+void PressTool::draw_panel(ToolContext& ctx) {
+  // The combo follows the selection until the user picks another object there.
+  if (!ctx.selected.empty() && ctx.selected != followed_selection_) object_ = followed_selection_ = ctx.selected;
+  const core::Scene& scene = ctx.session.scene();
+  if (ImGui::BeginCombo("Object", object_.empty() ? "(none)" : object_.c_str())) {
+    for (const core::SceneObject& o : scene.objects()) {
+      const std::string label = o.ffd ? o.name : o.name + "  (no lattice)";
+      if (ImGui::Selectable(label.c_str(), o.name == object_)) object_ = o.name;
+    }
+    ImGui::EndCombo();
+  }
+  const core::SceneObject* o = scene.find(object_);
+  const double diag = o ? diagonal_of(*o) : 0.0;
+  if (o && !o->ffd)
+    ImGui::TextColored(ui::colors::dim, "%s has no FFD lattice: bind one first (e.g. lattice.ring).", object_.c_str());
+
+  double r = radius(ctx);
+  const double r_min = diag > 0.0 ? 0.005 * diag : 1e-3, r_max = diag > 0.0 ? 0.5 * diag : 10.0;
+  if (r <= 0.0) r = r_min;
+  if (ImGui::SliderScalar("Radius", ImGuiDataType_Double, &r, &r_min, &r_max, "%.4g", ImGuiSliderFlags_Logarithmic))
+    radius_ = std::max(r, 1e-9);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Sphere radius, world units (default: 0.1 x the object's bounding-box diagonal)");
+  if (radius_ > 0.0 && o) {
+    ImGui::SameLine();
+    if (ImGui::SmallButton("Default")) radius_ = 0.0;
+  }
+
+  const double s_min = 0.0, s_max = diag > 0.0 ? diag : 10.0;
+  ImGui::DragScalar("Strength", ImGuiDataType_Double, &strength_, float(std::max(s_max, 1e-3) * 1e-3), &s_min, &s_max,
+                    "%.4g", ImGuiSliderFlags_AlwaysClamp);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("How far a control point at the sphere's centre moves along its column, world units");
+
+  const std::string current(core::to_string(falloff_));
+  if (ImGui::BeginCombo("Falloff", current.c_str())) {
+    for (std::size_t i = 0; i < core::kFalloffNames.size(); ++i) {
+      const std::string name(core::kFalloffNames[i]);
+      if (ImGui::Selectable(name.c_str(), i == std::size_t(falloff_))) falloff_ = core::Falloff(i);
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", kFalloffTips[i]);
+    }
+    ImGui::EndCombo();
+  }
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", kFalloffTips[std::size_t(falloff_)]);
+
+  ImGui::Spacing();
+  ImGui::Separator();
+  ImGui::TextWrapped(
+      "Left-drag over the object: control points inside the swept sphere move into the volume along their "
+      "columns (one undoable step per drag). Ctrl-drag pulls them out. Set the radius here (F frames the "
+      "selection).");
+}
+
+void PressTool::decorate(gpu::ViewOptions& options) const {
+  if (hover_ && hover_radius_ > 0.0) {
+    gpu::BrushSphere sphere;
+    sphere.centre = *hover_;
+    sphere.radius = hover_radius_;
+    if (pressing_ && pull_) sphere.color = {1.0f, 0.55f, 0.3f, 0.30f};  // pulling: warm tint
+    options.brush = sphere;
+  }
+  options.brush_path = path_;
+}
+
+}  // namespace trispline::editor

@@ -1,0 +1,70 @@
+// trispline::editor::PressTool — spherical pressing of a deformed object's control lattice in the viewport (seed
+// §2.4.1, Fig. 2.7, 2.8; issue 4 item 3). A translucent sphere of the panel's radius follows the mouse over the
+// chosen object (the object with an FFD lattice selected, or picked in the Object combo): its centre is the first
+// ray hit on the object's deformed mesh (world_mesh) under the cursor. Left-drag samples the centre at every mouse
+// move where the ray hits (misses skipped, samples closer than radius/4 to the previous one dropped) and shows the
+// path; on mouse-up the tool executes ONE `lattice.press` command (core/commands/lattice_press.h) through the
+// session (registry parse → History::execute; errors go to the Log panel, the scene stays as it was). Ctrl held at
+// mouse-down pulls (negative strength), as Ctrl inverts a Blender sculpt brush. A drag that never hits the object
+// issues nothing.
+#pragma once
+
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <vector>
+
+#include "core/deform/falloff.h"
+#include "core/raycast/ray_caster.h"
+#include "editor/tools/tool.h"
+
+namespace trispline::editor {
+
+// The lattice.press line (fields exactly as in core/commands/lattice_press.h): path #P×3 world units, radius and
+// strength world units.
+nlohmann::json lattice_press_line(const std::string& object, const std::vector<glm::dvec3>& path, double radius,
+                                  double strength, core::Falloff falloff);
+
+class PressTool : public Tool {
+ public:
+  ui::ToolEntry entry() const override;
+  void activate(ToolContext& ctx) override;
+  void deactivate(ToolContext& ctx) override;
+  void handle_input(const ToolInput& in, ToolContext& ctx) override;
+  void mouse_away() override;
+  void draw_panel(ToolContext& ctx) override;
+  void decorate(gpu::ViewOptions& options) const override;
+  std::string hint() const override;
+  bool owns_mouse() const override { return pressing_; }
+
+  void set_object(const std::string& name) { object_ = name; }
+  void set_radius(double r) { radius_ = r; }  // world units; ≤ 0 = unset: 0.1 × the object's bounding-box diagonal
+  void set_strength(double s) { strength_ = s; }  // world units, the magnitude (Ctrl-drag negates it)
+  void set_falloff(core::Falloff f) { falloff_ = f; }
+  // Radius the next press uses for the current object (the default when unset); 0 without a target object.
+  double radius(const ToolContext& ctx) const;
+  const std::optional<glm::dvec3>& hover() const { return hover_; }  // sphere centre under the cursor, if any
+  const std::vector<glm::dvec3>& path() const { return path_; }      // centres of the drag under way
+
+ private:
+  const core::SceneObject* target(const ToolContext& ctx) const;          // object_ if it exists and has a lattice
+  std::optional<glm::dvec3> cast(const ToolContext& ctx, glm::dvec2 px);  // first hit on the target's world_mesh
+  void commit(ToolContext& ctx);
+
+  std::string object_;
+  std::string followed_selection_;  // selection the combo last followed
+  double radius_ = 0.0;             // ≤ 0: default from the object's size
+  double strength_ = 0.05;
+  core::Falloff falloff_ = core::Falloff::smooth;
+
+  std::optional<glm::dvec3> hover_;
+  double hover_radius_ = 0.0;  // radius at the last hover (decorate has no context)
+  std::vector<glm::dvec3> path_;
+  bool pressing_ = false, pull_ = false;
+
+  // Ray caster over the target's world_mesh, rebuilt when that pointer changes (held, so it cannot be reused).
+  std::shared_ptr<const core::TriMesh> caster_mesh_;
+  std::unique_ptr<core::RayCaster> caster_;
+};
+
+}  // namespace trispline::editor

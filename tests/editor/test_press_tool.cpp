@@ -1,0 +1,171 @@
+// The Press tool (editor/tools/press_tool.h) driven like the Sketch placement tests drive theirs: hovering puts the
+// brush sphere on the object's deformed mesh, a drag issues exactly one lattice.press (undoable), a drag that never
+// touches the object issues nothing, Ctrl-drag pulls.
+#include <gtest/gtest.h>
+
+#include "editor/navigation.h"
+#include "editor/session.h"
+#include "editor/tools/press_tool.h"
+#include "editor/tools/select_tool.h"
+
+using namespace trispline;
+
+namespace {
+
+class PressTool : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    ASSERT_TRUE(s.execute({{"cmd", "scene.primitive"}, {"kind", "teapot"}, {"name", "t"}, {"scale", 0.3}}));
+    ASSERT_TRUE(s.execute(
+        {{"cmd", "lattice.ring"}, {"object", "t"}, {"radius", 1.2}, {"controls", {16, 3, 4}}, {"order", {4, 3, 2}}}));
+    editor::Navigator nav;
+    nav.frame(editor::bounds_of(*object().world_mesh), {800, 600});
+    view = nav.camera({800, 600});
+    tool.activate(ctx);
+    // A row through the middle of the view: the pixels whose rays hit the teapot.
+    for (double x = 0; x < 800; x += 4)
+      if (editor::pick_object(s.scene(), view, {x, 300})) row.push_back({x, 300});
+    ASSERT_GE(row.size(), 20u) << "the framed teapot must cover part of the middle row";
+  }
+  const core::SceneObject& object() const { return *s.scene().find("t"); }
+  double diagonal() const { return editor::bounds_of(*object().world_mesh).diagonal(); }
+
+  // Button down at the first pixel, moves over the others, up at the last one.
+  void drag(const std::vector<glm::dvec2>& px, bool ctrl = false) {
+    editor::ToolInput in;
+    in.ctrl = ctrl;
+    in.mouse_px = px.front();
+    in.left_pressed = in.left_down = true;
+    tool.handle_input(in, ctx);
+    in.left_pressed = false;
+    for (std::size_t i = 1; i < px.size(); ++i) {
+      in.mouse_px = px[i];
+      tool.handle_input(in, ctx);
+    }
+    in.left_down = false;
+    in.left_released = true;
+    tool.handle_input(in, ctx);
+  }
+  void hover(glm::dvec2 px) {
+    editor::ToolInput in;
+    in.mouse_px = px;
+    tool.handle_input(in, ctx);
+  }
+
+  ui::MessageLog messages;
+  editor::EditorSession s{messages};
+  core::Camera view;
+  std::string selected = "t";
+  std::set<std::string> hidden;
+  editor::ToolContext ctx{s, view, selected, hidden, [](std::string, std::function<void()> work) { work(); }};
+  editor::PressTool tool;
+  std::vector<glm::dvec2> row;
+};
+
+std::string last_message(const ui::MessageLog& log) { return log.messages().empty() ? "" : log.messages().back().text; }
+
+}  // namespace
+
+TEST_F(PressTool, HoverPutsTheBrushSphereOnTheDeformedMesh) {
+  const glm::dvec2 px = row[row.size() / 2];
+  hover(px);
+  ASSERT_TRUE(tool.hover());
+  gpu::ViewOptions vo;
+  tool.decorate(vo);
+  ASSERT_TRUE(vo.brush);
+  EXPECT_NEAR(vo.brush->radius, 0.1 * diagonal(), 1e-12) << "unset radius: 0.1 x the bounding-box diagonal";
+  // The centre is the first hit on the object's world_mesh along the cursor's ray.
+  core::RayCaster caster;
+  caster.add_mesh(*object().world_mesh);
+  caster.commit();
+  const auto hit = caster.intersect(view.eye, view.ray_direction(px));
+  ASSERT_TRUE(hit);
+  EXPECT_LT(glm::length(vo.brush->centre - hit->position), 1e-9 * diagonal());
+  EXPECT_TRUE(vo.brush_path.empty()) << "no path while only hovering";
+
+  hover({2, 2});  // off the object: no sphere
+  EXPECT_FALSE(tool.hover());
+  gpu::ViewOptions off;
+  tool.decorate(off);
+  EXPECT_FALSE(off.brush);
+
+  hover(px);
+  tool.mouse_away();  // over a panel
+  EXPECT_FALSE(tool.hover());
+}
+
+TEST_F(PressTool, DragIssuesOneUndoablePress) {
+  const double radius = 0.3 * diagonal();  // before the press changes the mesh
+  tool.set_radius(radius);
+  tool.set_falloff(core::Falloff::hat);
+  const auto before = object().ffd->lattice.control_points();
+  const std::size_t applied = s.history().applied();
+  drag(row);
+  ASSERT_EQ(s.history().applied(), applied + 1) << last_message(messages);
+  const nlohmann::json j = s.history().at(applied).to_json();
+  EXPECT_EQ(j["cmd"], "lattice.press");
+  EXPECT_EQ(j["object"], "t");
+  EXPECT_GE(j["path"].size(), 2u);
+  EXPECT_DOUBLE_EQ(j["radius"].get<double>(), radius);
+  EXPECT_DOUBLE_EQ(j["strength"].get<double>(), 0.05);
+  EXPECT_EQ(j["falloff"], "hat");
+  // Consecutive samples are at least radius/4 apart.
+  for (std::size_t i = 1; i < j["path"].size(); ++i) {
+    const auto& a = j["path"][i - 1];
+    const auto& b = j["path"][i];
+    const glm::dvec3 d(b[0].get<double>() - a[0].get<double>(), b[1].get<double>() - a[1].get<double>(),
+                       b[2].get<double>() - a[2].get<double>());
+    EXPECT_GE(glm::length(d), 0.25 * radius - 1e-12);
+  }
+  EXPECT_NE(object().ffd->lattice.control_points(), before) << "the press must move control points";
+  EXPECT_TRUE(tool.path().empty());
+
+  ASSERT_TRUE(s.undo());
+  EXPECT_EQ(object().ffd->lattice.control_points(), before) << "undo restores the lattice";
+}
+
+TEST_F(PressTool, DragThatNeverHitsTheObjectIssuesNothing) {
+  const std::size_t applied = s.history().applied();
+  std::vector<glm::dvec2> top;
+  for (double x = 10; x < 790; x += 20) top.push_back({x, 2});
+  drag(top);
+  EXPECT_EQ(s.history().applied(), applied);
+  EXPECT_EQ(s.history().size(), applied);
+}
+
+TEST_F(PressTool, CtrlDragPullsWithNegativeStrength) {
+  tool.set_radius(0.3 * diagonal());
+  tool.set_strength(0.02);
+  const std::size_t applied = s.history().applied();
+  drag(row, /*ctrl=*/true);
+  ASSERT_EQ(s.history().applied(), applied + 1) << last_message(messages);
+  EXPECT_DOUBLE_EQ(s.history().at(applied).to_json()["strength"].get<double>(), -0.02);
+}
+
+TEST_F(PressTool, ObjectWithoutLatticeShowsNoBrush) {
+  ASSERT_TRUE(s.execute({{"cmd", "scene.primitive"}, {"kind", "box"}, {"name", "b"}}));
+  tool.set_object("b");
+  hover(row[row.size() / 2]);
+  EXPECT_FALSE(tool.hover());
+  EXPECT_DOUBLE_EQ(tool.radius(ctx), 0.0);
+}
+
+TEST(PressBrushGeometry, SphereTrianglesLieOnTheSphereAndFaceOutwards) {
+  gpu::BrushSphere sphere;
+  sphere.centre = {1.0, 2.0, -0.5};
+  sphere.radius = 0.25;
+  std::vector<gpu::OverlayVertex> tris;
+  gpu::append_brush_sphere(sphere, {0.0f, 0.0f, 5.0f}, tris, 16, 8);
+  ASSERT_EQ(tris.size(), std::size_t(6 * 16 * (8 - 1)));
+  const glm::vec3 c(sphere.centre);
+  for (std::size_t i = 0; i < tris.size(); i += 3) {
+    for (std::size_t k = 0; k < 3; ++k) {
+      EXPECT_NEAR(glm::length(tris[i + k].position - c), 0.25f, 1e-5f);
+      EXPECT_GT(tris[i + k].color.w, 0.0f);
+      EXPECT_LE(tris[i + k].color.w, 1.0f);
+    }
+    const glm::vec3 n = glm::cross(tris[i + 1].position - tris[i].position, tris[i + 2].position - tris[i].position);
+    const glm::vec3 mid = (tris[i].position + tris[i + 1].position + tris[i + 2].position) / 3.0f;
+    EXPECT_GT(glm::dot(n, mid - c), 0.0f) << "triangle " << i / 3 << " must be CCW seen from outside";
+  }
+}
