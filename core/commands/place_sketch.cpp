@@ -15,6 +15,43 @@ namespace jf = json_fields;
 namespace {
 int axis_index(const std::string& a) { return a == "x" ? 0 : a == "y" ? 1 : 2; }
 
+// The optional "springs" object (seed §2.3.2); errors name "springs.<field>".
+SpringParams parse_springs(const nlohmann::json& j) {
+  if (!j.is_object())
+    throw CommandError("field 'springs': expected an object {stiffness, damping, mass, threshold_deg, "
+                       "neighbourhood, max_steps, rest_length}, got " + std::string(j.type_name()),
+                       "springs");
+  try {
+    SpringParams sp;
+    sp.stiffness = jf::get_number(j, "stiffness", sp.stiffness);
+    sp.damping = jf::get_number(j, "damping", sp.damping);
+    sp.mass = jf::get_number(j, "mass", sp.mass);
+    sp.angle_threshold_deg = jf::get_number(j, "threshold_deg", sp.angle_threshold_deg);
+    sp.neighbourhood = jf::get_int(j, "neighbourhood", sp.neighbourhood);
+    sp.max_steps = jf::get_int(j, "max_steps", sp.max_steps);
+    sp.rest_length_initial = jf::get_enum(j, "rest_length", {"zero", "initial"}, "zero") == "initial";
+    if (!(sp.stiffness > 0.0)) throw CommandError("field 'stiffness': must be > 0", "stiffness");
+    if (!(sp.mass > 0.0)) throw CommandError("field 'mass': must be > 0", "mass");
+    if (sp.damping < 0.0) throw CommandError("field 'damping': must be >= 0", "damping");
+    if (!(sp.angle_threshold_deg > 0.0 && sp.angle_threshold_deg < 180.0))
+      throw CommandError("field 'threshold_deg': must be in (0, 180) degrees", "threshold_deg");
+    if (sp.max_steps < 0 || sp.max_steps > 1000000)
+      throw CommandError("field 'max_steps': must be in [0, 1000000]", "max_steps");
+    return sp;
+  } catch (const CommandError& e) {  // name the nested field: 'springs.stiffness'
+    std::string msg = e.what();
+    if (msg.rfind("field '", 0) == 0) msg.insert(7, "springs.");
+    throw CommandError(msg, "springs." + e.field());
+  }
+}
+
+nlohmann::json springs_json(const SpringParams& sp) {
+  return {{"stiffness", sp.stiffness},         {"damping", sp.damping},
+          {"mass", sp.mass},                   {"threshold_deg", sp.angle_threshold_deg},
+          {"neighbourhood", sp.neighbourhood}, {"max_steps", sp.max_steps},
+          {"rest_length", sp.rest_length_initial ? "initial" : "zero"}};
+}
+
 // A JSON array of finite numbers (profile samples); the error names `field`.
 std::vector<double> get_numbers(const nlohmann::json& a, const char* field) {
   if (!a.is_array())
@@ -39,6 +76,7 @@ CommandPtr PlaceSketchCommand::parse(const nlohmann::json& j, const CommandConte
   p.stroke = jf::get_points2(j, "stroke");
   p.width = jf::get_number(j, "width");
   p.height = jf::get_number(j, "height");
+  if (jf::has(j, "springs")) p.springs = parse_springs(j.at("springs"));
   if (jf::has(j, "width_profile")) p.width_profile = get_numbers(j.at("width_profile"), "width_profile");
   if (jf::has(j, "height_profile")) {
     const nlohmann::json& h = j.at("height_profile");
@@ -94,6 +132,7 @@ nlohmann::json PlaceSketchCommand::params_json(const PlaceSketchParams& p) {
                       {"controls", jf::to_json(p.controls)},
                       {"length_axis", p.length_axis},
                       {"up_axis", p.up_axis}};
+  if (p.springs) j["springs"] = springs_json(*p.springs);
   if (!p.width_profile.empty()) j["width_profile"] = p.width_profile;
   if (p.height_profile.size() == 1) j["height_profile"] = p.height_profile[0];
   if (p.height_profile.size() > 1) j["height_profile"] = p.height_profile;
@@ -128,6 +167,7 @@ std::optional<SceneObject> PlaceSketchCommand::build(const Scene& scene) {
   sp.height = p_.height;
   sp.width_profile = p_.width_profile;
   sp.height_profile = p_.height_profile;
+  sp.springs = p_.springs;
   sp.samples_u = p_.samples.x;
   sp.samples_v = p_.samples.y;
   sp.volume = p_.volume == "offset" ? PlacementVolume::Offset : PlacementVolume::Extrude;
@@ -175,6 +215,14 @@ std::optional<SceneObject> PlaceSketchCommand::build(const Scene& scene) {
               {"surface", st.ms_surface},
               {"volume", st.ms_volume},
               {"embed", st.ms_embed}}}};
+  if (p_.springs) stats_["ms"]["springs"] = st.ms_springs;  // a stage only when it ran
+  if (p_.springs)
+    stats_["springs"] = {{"steps", st.springs.steps},
+                         {"converged", st.springs.converged},
+                         {"max_displacement", st.springs.max_displacement},
+                         {"dt", st.springs.dt},
+                         {"active", st.springs.active},
+                         {"floors", st.springs.floors}};
   stats_["bvh_ms"] = bvh_ms;
   stats_["evaluate_ms"] = eval_ms;
   stats_["vertices"] = placed.world_mesh->vertex_count();

@@ -6,6 +6,8 @@
 // width: half-width d of the volume across the stroke, world units. height: h, world units. order = degree + 1.
 // Optional "width_profile":[f0,f1,...] scales d along the stroke (u), "height_profile":[f0,...] or [[...],[...]]
 // scales h along u (one list) or over (u,v) (rows over v): factors > 0, piecewise linear (seed Eq. 2.5).
+// Optional "springs":{"stiffness":k,"damping":ρ,"mass":M,"threshold_deg":a,"neighbourhood":n,"max_steps":s,
+// "rest_length":"zero|initial"} relaxes the contact surface as a mass-spring net before the volume is built.
 // The rays see every visible object except the one being placed and those listed in "ignore" (optional; the
 // editor lists the objects hidden in its viewport). Re-placing an already placed object starts
 // again from its undeformed (transformed) rest mesh. Undo restores the object as it was.
@@ -14,6 +16,7 @@
 #include <optional>
 
 #include "core/commands/snapshot_command.h"
+#include "core/placement/contact_springs.h"
 
 namespace trispline::core {
 
@@ -24,6 +27,7 @@ struct PlaceSketchParams {
   double height = 0.2;             // h, world units
   std::vector<double> width_profile;                // d(u) factors over u (seed Eq. 2.5); empty = constant
   std::vector<std::vector<double>> height_profile;  // h(u) or h(u,v) factors: rows over v; empty = constant
+  std::optional<SpringParams> springs;              // mass-spring contact surface (seed §2.3.2); unset = off
   glm::ivec2 samples{32, 8};       // contact sampling nu × nv rays
   std::string volume = "extrude";  // extrude (F1, Eq. 2.3) | offset (F2, Eq. 2.4)
   glm::ivec3 order{4, 4, 3};       // per axis, degree + 1

@@ -234,6 +234,15 @@ SketchPlacementResult place_along_stroke(const RayCaster& scene_rays, const Sket
         const glm::dvec3 nn = S->normal(gu[i], gv[j]);
         if (glm::length(nn) > 0.5) dir[i + l * j] = nn;
       }
+  if (p.springs) {  // seed §2.3.2: relax S's control points along V_P, never below the scene under them
+    std::vector<glm::dvec3>& contact = S->control_points();
+    try {
+      st.springs = relax_contact_surface(contact, l, m, dir, &scene_rays, *p.springs);
+    } catch (const std::invalid_argument& e) {
+      throw PlacementError("springs", e.what());
+    }
+    st.ms_springs = ms_since(clock);
+  }
   std::vector<glm::dvec3> cps;
   cps.reserve(static_cast<std::size_t>(l * m * n));
   for (int k = 0; k < n; ++k)

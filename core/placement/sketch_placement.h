@@ -43,6 +43,10 @@
 // the same inputs give bit-identical results.
 #pragma once
 
+#include <optional>
+
+#include "core/placement/contact_springs.h"
+
 #include <array>
 #include <stdexcept>
 #include <string>
@@ -70,6 +74,10 @@ struct SketchPlacementParams {
   //                   one row is h(u), several rows h(u,v) (bilinear).
   std::vector<double> width_profile;
   std::vector<std::vector<double>> height_profile;
+  // Mass-spring relaxation of the contact surface's control points before the volume is built (seed §2.3.2,
+  // contact_springs.h): each control point moves only along its column direction V_P (V for F1, the normal for F2)
+  // and never below the scene under it, so the surface bridges gaps instead of sagging into them. Unset = off.
+  std::optional<SpringParams> springs;
   int samples_u = 32;                 // nu in [max(2, controls[0]), 4096]: contact samples along the stroke
   int samples_v = 8;                  // nv in [max(2, controls[1]), 4096]: contact samples across the stroke
   PlacementVolume volume = PlacementVolume::Extrude;
@@ -92,7 +100,8 @@ struct PlacementStats {
   double curve_fit_rms_px = 0, curve_fit_max_px = 0;  // residual of C at the resampled stroke, pixels
   double surface_fit_rms = 0, surface_fit_max = 0;    // residual of S at the contact grid, world units
   double min_det_jacobian = 0;  // min det J_F over a 5×5×3 grid of (u,v,w) in [0,1]³ (> 0: orientation kept)
-  double ms_fit = 0, ms_rays = 0, ms_surface = 0, ms_volume = 0, ms_embed = 0, ms_evaluate = 0;  // wall clock
+  double ms_fit = 0, ms_rays = 0, ms_surface = 0, ms_springs = 0, ms_volume = 0, ms_embed = 0, ms_evaluate = 0;
+  SpringStats springs;  // steps = 0 when the relaxation is off
 };
 
 struct SketchPlacementResult {
