@@ -282,16 +282,7 @@ void FfdFastEvaluator::set_lattice(const TrivariateBSpline<glm::dvec3>& lattice,
   for (int a = 0; a < 3; ++a) {
     const FfdPackedAxis& p = m.packed.axes[a];
     m.spans[a] = p.span_count();
-    AxisTable& t = m.ct.axis[a];
-    t.order = p.order;
-    t.span_count = p.span_count();
-    t.periodic = p.periodic;
-    t.uniform = p.uniform_spans;
-    t.domain_min = p.domain_min;
-    t.domain_max = p.domain_max;
-    t.inv_uniform_len = p.inv_uniform_len;
-    t.span_begin = p.span_begin.data();
-    t.inv_span_len = p.inv_span_len.data();
+    m.ct.axis[a] = axis_table(p);
   }
   m.build_tables(lattice, embedding);
   if (!m.tables) {

@@ -8,9 +8,8 @@
 #include "core/deform/ffd_packed.h"
 
 namespace trispline::core::ffd_fast_detail {
-namespace {
 
-AxisTable table_of(const FfdPackedAxis& a) {
+AxisTable axis_table(const FfdPackedAxis& a) {
   AxisTable t;
   t.order = a.order;
   t.span_count = a.span_count();
@@ -23,6 +22,8 @@ AxisTable table_of(const FfdPackedAxis& a) {
   t.inv_span_len = a.inv_span_len.data();
   return t;
 }
+
+namespace {
 
 // Basis values N[r], derivatives dN[r] (per unit parameter) and control indices idx[r] (wrapped) at t.
 template <int O>
@@ -46,7 +47,7 @@ inline void axis_basis(const FfdPackedAxis& a, const AxisTable& t_, float t, flo
 template <int OU, int OV, int OW, bool kNormals>
 void gather(const GatherInput& in, const Outputs& out, std::size_t begin, std::size_t end) {
   const FfdPackedLattice& L = *in.lattice;
-  const AxisTable tu = table_of(L.axes[0]), tv = table_of(L.axes[1]), tw = table_of(L.axes[2]);
+  const AxisTable tu = axis_table(L.axes[0]), tv = axis_table(L.axes[1]), tw = axis_table(L.axes[2]);
   const std::size_t l = static_cast<std::size_t>(L.axes[0].count);
   const std::size_t lm = l * static_cast<std::size_t>(L.axes[1].count);
   const float* P = L.control_points.data();

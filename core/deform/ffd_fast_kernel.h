@@ -13,6 +13,7 @@
 
 namespace trispline::core {
 struct FfdPackedLattice;
+struct FfdPackedAxis;
 }
 
 namespace trispline::core::ffd_fast_detail {
@@ -27,6 +28,9 @@ struct AxisTable {
   const float* span_begin = nullptr;    // #S + 1
   const float* inv_span_len = nullptr;  // #S
 };
+
+// View of a packed axis (pointers into `a`, which must outlive the table). Defined in ffd_fast_gather.cpp.
+AxisTable axis_table(const FfdPackedAxis& a);
 
 // Per-cell power-basis tables. Cell id = su + S_u·(sv + S_v·sw) (span slots per axis).
 struct CellTables {
