@@ -52,7 +52,7 @@ std::vector<LogLine> read_log_text(const std::filesystem::path& path) {
 void parse_log_line(const std::filesystem::path& path, LogLine& line) {
   try {
     line.json = nlohmann::json::parse(line.text);
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {  // parse errors, and numbers out of range such as 1e999
     throw LogError(path, line.number, "", std::string("malformed JSON: ") + e.what());
   }
   if (!line.json.is_object()) throw LogError(path, line.number, "", "a log line must be a JSON object");
@@ -94,7 +94,8 @@ void make_paths_relative(std::vector<nlohmann::json>& lines, const std::filesyst
   const std::filesystem::path base = std::filesystem::absolute(dir).lexically_normal();
   for (auto& l : lines) {
     auto it = l.find("path");
-    if (l.value("cmd", "") != "scene.load" || it == l.end() || !it->is_string()) continue;
+    const std::string cmd = l.value("cmd", "");
+    if ((cmd != "scene.load" && cmd != "anim.clip") || it == l.end() || !it->is_string()) continue;
     const std::filesystem::path p(it->get<std::string>());
     if (!p.is_absolute()) continue;
     const std::filesystem::path rel = p.lexically_relative(base);

@@ -41,8 +41,12 @@ std::optional<SceneObject> MeshRefineCommand::build(const Scene& scene) {
     throw CommandError("field 'max_triangles': " + std::to_string(options_.max_triangles) + " is below the " +
                            std::to_string(target->rest_mesh->triangles.size()) + " triangles of '" + object_ + "'",
                        "max_triangles");
+  if (target->clip)
+    throw CommandError("field 'object': '" + object_ + "' plays a glTF clip that animates its vertices; refining would "
+                       "break the clip's vertex correspondence (remove the clip with anim.clip \"remove\":true first)",
+                       "object");
   RefineOptions o = options_;
-  o.param_offset = target->param_offset;
+  o.param_offset = target->offset_at(0.0);
   const auto t0 = std::chrono::steady_clock::now();
   // Object space: the transform and the embedding are affine, so the splits are the same points as in world space.
   RefineResult r = refine_for_ffd(*target->rest_mesh, *target->ffd, o);

@@ -76,6 +76,8 @@ CommandPtr PlaceSketchCommand::parse(const nlohmann::json& j, const CommandConte
   p.stroke = jf::get_points2(j, "stroke");
   p.width = jf::get_number(j, "width");
   p.height = jf::get_number(j, "height");
+  p.extent = jf::get_number(j, "extent", 1.0);
+  if (!(p.extent > 0.0 && p.extent <= 1.0)) throw CommandError("field 'extent': must be in (0, 1]", "extent");
   if (jf::has(j, "springs")) p.springs = parse_springs(j.at("springs"));
   if (jf::has(j, "width_profile")) p.width_profile = get_numbers(j.at("width_profile"), "width_profile");
   if (jf::has(j, "height_profile")) {
@@ -133,6 +135,7 @@ nlohmann::json PlaceSketchCommand::params_json(const PlaceSketchParams& p) {
                       {"length_axis", p.length_axis},
                       {"up_axis", p.up_axis}};
   if (p.springs) j["springs"] = springs_json(*p.springs);
+  if (p.extent != 1.0) j["extent"] = p.extent;
   if (!p.width_profile.empty()) j["width_profile"] = p.width_profile;
   if (p.height_profile.size() == 1) j["height_profile"] = p.height_profile[0];
   if (p.height_profile.size() > 1) j["height_profile"] = p.height_profile;
@@ -190,6 +193,25 @@ std::optional<SceneObject> PlaceSketchCommand::build(const Scene& scene) {
     }
   }();
 
+  if (target->clip || p_.extent != 1.0) {
+    FfdBinding& b = r.binding;
+    if (target->clip) {  // embed the box of every pose, so the walking object stays inside the lattice
+      std::vector<glm::dvec3> span = rest.positions;
+      const ClipBinding& cb = *target->clip;
+      std::vector<glm::dvec3> pos, nrm;
+      for (int s = 0; s < 64; ++s) {
+        cb.clip->pose(cb.clip->duration_s() * s / 63.0, pos, nrm);
+        TriMesh m = *target->rest_mesh;
+        m.positions = pos;
+        const TriMesh w = transformed(m, target->transform);
+        span.insert(span.end(), w.positions.begin(), w.positions.end());
+      }
+      b.embedding = embed_bounding_box(span, sp.axes);
+    }
+    for (int c = 0; c < 3; ++c) b.embedding.linear[c][0] *= p_.extent;  // u' = e·u: the object covers [0, e]
+    b.embedding.offset.x *= p_.extent;
+    b.params = embed_points(b.embedding, rest.positions);
+  }
   SceneObject placed = *target;
   placed.ffd = std::make_shared<const FfdBinding>(std::move(r.binding));
   placed.placement = std::make_shared<const PlacementRecord>(std::move(r.record));

@@ -8,6 +8,9 @@
 // scales h along u (one list) or over (u,v) (rows over v): factors > 0, piecewise linear (seed Eq. 2.5).
 // Optional "springs":{"stiffness":k,"damping":ρ,"mass":M,"threshold_deg":a,"neighbourhood":n,"max_steps":s,
 // "rest_length":"zero|initial"} relaxes the contact surface as a mass-spring net before the volume is built.
+// Optional "extent":e in (0,1] (default 1): the object covers u ∈ [0, e] of the path instead of all of it, so an
+// offset along u (anim.keyframe) walks it along the stroke (seed §2.4.3). An object with a glTF clip (anim.clip) is
+// embedded by the bounding box of its poses over the clip (64 samples), so no pose leaves the lattice.
 // The rays see every visible object except the one being placed and those listed in "ignore" (optional; the
 // editor lists the objects hidden in its viewport). Re-placing an already placed object starts
 // again from its undeformed (transformed) rest mesh. Undo restores the object as it was.
@@ -25,6 +28,7 @@ struct PlaceSketchParams {
   std::vector<glm::dvec2> stroke;  // #S × 2 pixels
   double width = 0.15;             // half-width d, world units
   double height = 0.2;             // h, world units
+  double extent = 1.0;             // fraction of the path (u) the object covers, (0, 1]; < 1 leaves room to walk
   std::vector<double> width_profile;                // d(u) factors over u (seed Eq. 2.5); empty = constant
   std::vector<std::vector<double>> height_profile;  // h(u) or h(u,v) factors: rows over v; empty = constant
   std::optional<SpringParams> springs;              // mass-spring contact surface (seed §2.3.2); unset = off

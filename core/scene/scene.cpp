@@ -3,6 +3,7 @@
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -45,19 +46,30 @@ TriMesh SceneObject::world_rest_mesh() const {
   return transformed(*rest_mesh, transform);
 }
 
+namespace {
+SceneObject posed_by_clip(const SceneObject& object, double time_s);
+}  // namespace
+
 void SceneObject::refresh() {
+  if (clip) {  // the clip's pose at scene time 0, so world_mesh always equals scene_at_time(·, 0)'s
+    SceneObject posed = posed_by_clip(*this, 0.0);
+    posed.refresh();
+    world_mesh = std::move(posed.world_mesh);
+    return;
+  }
   TriMesh rest = world_rest_mesh();
   if (ffd) {
     if (ffd->params.size() != rest.positions.size())
       throw std::invalid_argument("object '" + name + "': FFD binding has " + std::to_string(ffd->params.size()) +
                                   " parameters for " + std::to_string(rest.positions.size()) + " vertices");
-    if (param_offset == glm::dvec3(0.0)) {
+    const glm::dvec3 offset = offset_at(0.0);  // the t = 0 pose (keys, when there are any, replace param_offset)
+    if (offset == glm::dvec3(0.0)) {
       world_mesh = std::make_shared<const TriMesh>(ffd_apply(*ffd, rest));
     } else {
-      if (!std::isfinite(param_offset.x) || !std::isfinite(param_offset.y) || !std::isfinite(param_offset.z))
+      if (!std::isfinite(offset.x) || !std::isfinite(offset.y) || !std::isfinite(offset.z))
         throw std::invalid_argument("object '" + name + "': parameter offset is not finite");
       FfdBinding shifted = *ffd;  // parameters outside [0,1] are clamped, or wrap on periodic axes
-      for (glm::dvec3& p : shifted.params) p += param_offset;
+      for (glm::dvec3& p : shifted.params) p += offset;
       world_mesh = std::make_shared<const TriMesh>(ffd_apply(shifted, rest));
     }
   } else {
@@ -65,13 +77,70 @@ void SceneObject::refresh() {
   }
 }
 
+glm::dvec3 evaluate_offset_keys(const std::vector<OffsetKey>& keys, double time_s) {
+  if (keys.empty()) throw std::invalid_argument("evaluate_offset_keys: no keys");
+  if (time_s <= keys.front().time_s) return keys.front().offset;
+  if (time_s >= keys.back().time_s) return keys.back().offset;
+  // First key later than time_s; keys are sorted and distinct, so a and b bracket time_s with a.time < b.time.
+  const auto b = std::upper_bound(keys.begin(), keys.end(), time_s,
+                                  [](double t, const OffsetKey& k) { return t < k.time_s; });
+  const OffsetKey& k1 = *b;
+  const OffsetKey& k0 = *(b - 1);
+  const double s = (time_s - k0.time_s) / (k1.time_s - k0.time_s);
+  switch (k0.interpolation) {
+    case KeyInterpolation::constant: return k0.offset;
+    case KeyInterpolation::smooth: {
+      const double e = s * s * (3.0 - 2.0 * s);  // cubic Hermite with zero tangents at both keys
+      return k0.offset + (k1.offset - k0.offset) * e;
+    }
+    case KeyInterpolation::linear: break;
+  }
+  return k0.offset + (k1.offset - k0.offset) * s;
+}
+
+namespace {
+// `object` (with a clip) posed at `time_s`: the clip's positions/normals as rest mesh, FFD parameters re-embedded with
+// the same embedding, clip removed. world_mesh is not refreshed.
+SceneObject posed_by_clip(const SceneObject& object, double time_s) {
+  SceneObject moved = object;
+  TriMesh posed = *object.rest_mesh;  // topology, uvs and names kept; positions and normals from the clip
+  object.clip->clip->pose(object.clip->clip_time(time_s), posed.positions, posed.normals);
+  if (posed.positions.size() != object.rest_mesh->positions.size())
+    throw std::invalid_argument("object '" + object.name + "': clip '" + object.clip->clip->name() + "' poses " +
+                                std::to_string(posed.positions.size()) + " vertices, the mesh has " +
+                                std::to_string(object.rest_mesh->positions.size()));
+  moved.rest_mesh = std::make_shared<const TriMesh>(std::move(posed));
+  moved.clip = nullptr;
+  if (object.ffd) {  // same lattice and embedding, parameters of the posed vertices
+    auto binding = std::make_shared<FfdBinding>(*object.ffd);
+    binding->params = embed_points(binding->embedding, moved.world_rest_mesh().positions);
+    moved.ffd = std::move(binding);
+  }
+  return moved;
+}
+}  // namespace
+
 Scene scene_at_time(const Scene& scene, double time_s) {
   if (!std::isfinite(time_s)) throw std::invalid_argument("scene time is not finite");
   Scene out = scene;
   for (const SceneObject& object : scene.objects()) {
     if (!object.animated()) continue;
-    SceneObject moved = object;
+    SceneObject moved = object.clip ? posed_by_clip(object, time_s) : object;
     moved.param_offset = object.offset_at(time_s);
+    moved.offset_keys.clear();
+    moved.offset_velocity = glm::dvec3(0.0);
+    moved.refresh();
+    out.replace(std::move(moved));
+  }
+  return out;
+}
+
+Scene scene_with_posed_clips(const Scene& scene, double time_s) {
+  if (!std::isfinite(time_s)) throw std::invalid_argument("scene time is not finite");
+  Scene out = scene;
+  for (const SceneObject& object : scene.objects()) {
+    if (!object.clip) continue;
+    SceneObject moved = posed_by_clip(object, time_s);
     moved.refresh();
     out.replace(std::move(moved));
   }

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "core/deform/ffd.h"
+#include "core/mesh/mesh_clip.h"
 #include "core/mesh/tri_mesh.h"
 #include "core/scene/camera.h"
 
@@ -37,6 +38,46 @@ struct PlacementRecord {
   std::vector<unsigned char> contact_hit;   // #(nu·nv): 1 = real hit, 0 = filled from neighbours
 };
 
+// The scene's timeline (Blender's Output ▸ Frame Range and Frame Rate): frames frame_start..frame_end inclusive at
+// `fps` frames per second. Frame f is shown at scene time (f − frame_start)/fps seconds; scene time is the single
+// clock every animation reads (offset keys and velocities, glTF clips), so recordings are exact per frame.
+struct Timeline {
+  double fps = 24;       // frames per second, in (0, 240]
+  int frame_start = 1;   // first frame number (≥ 0)
+  int frame_end = 120;   // last frame number, inclusive (≥ frame_start, ≤ 100000)
+  double time_of_frame(double frame) const { return (frame - frame_start) / fps; }  // seconds
+  double frame_of_time(double time_s) const { return frame_start + time_s * fps; }
+  int frame_count() const { return frame_end - frame_start + 1; }
+  double duration_s() const { return (frame_end - frame_start) / fps; }
+  bool operator==(const Timeline& o) const {
+    return fps == o.fps && frame_start == o.frame_start && frame_end == o.frame_end;
+  }
+};
+
+// How a keyed value moves from one key to the next (Blender's keyframe interpolation, set on the earlier key).
+enum class KeyInterpolation { constant, linear, smooth };  // smooth = ease in/out (cubic with flat tangents)
+
+// One keyframe of an object's parameter offset (anim.keyframe). Keys are kept sorted by time, one per time.
+struct OffsetKey {
+  double time_s = 0;                 // scene time, seconds (anim.keyframe takes a frame and converts it)
+  glm::dvec3 offset{0.0};            // parameter units, like SceneObject::param_offset
+  KeyInterpolation interpolation = KeyInterpolation::linear;
+};
+
+// Value of sorted `keys` (non-empty) at `time_s`: held constant before the first and after the last key.
+glm::dvec3 evaluate_offset_keys(const std::vector<OffsetKey>& keys, double time_s);
+
+// A glTF clip attached to an object (anim.clip): the object's rest mesh is posed by it at every scene time.
+struct ClipBinding {
+  std::shared_ptr<const MeshClip> clip;  // non-null
+  double speed = 1.0;    // clip seconds per scene second (> 0)
+  double start_s = 0.0;  // scene time at which the clip is at its time 0, seconds
+  bool loop = true;      // wrap (true) or hold the last pose (false)
+  double clip_time(double time_s) const {
+    return wrap_clip_time(time_s, start_s, speed, clip->duration_s(), loop);
+  }
+};
+
 struct SceneObject {
   std::string name;                          // stable id used by commands
   std::string source;                        // file path or "primitive:<kind>"
@@ -46,16 +87,30 @@ struct SceneObject {
   bool visible = true;
   std::shared_ptr<const FfdBinding> ffd;     // null unless deformed; binding over the *transformed* rest mesh
   std::shared_ptr<const PlacementRecord> placement;  // null unless placed by place.sketch
-  std::shared_ptr<const TriMesh> world_mesh;  // evaluated: ffd ? F(E(T(rest)) + param_offset) : T(rest); see refresh()
+  std::shared_ptr<const TriMesh> world_mesh;  // evaluated at scene time 0: ffd ? F(E(T(rest)) + offset_at(0)) : T(rest),
+                                              // rest posed by the clip at time 0 when there is one; see refresh()
   // Parameter offset added to every vertex's (u,v,w) before F is evaluated (seed §4.5 animation offset), parameter
   // units; on a periodic axis an offset of 1 is one full turn. Ignored without ffd.
   glm::dvec3 param_offset{0.0};
   // Rate of change of the offset during playback, parameter units per second: at scene time t the object shows
   // F(E(x) + param_offset + offset_velocity·t). world_mesh is the t = 0 pose; see scene_at_time().
   glm::dvec3 offset_velocity{0.0};
-  // param_offset + offset_velocity·time_s.
-  glm::dvec3 offset_at(double time_s) const { return param_offset + offset_velocity * time_s; }
-  bool animated() const { return ffd && offset_velocity != glm::dvec3(0.0); }
+  // Keyframes of the offset (anim.keyframe), sorted by time. When there are any they replace param_offset.
+  std::vector<OffsetKey> offset_keys;
+  // glTF clip posing the rest mesh over time (anim.clip); null = none. rest_mesh is then the clip's rest pose.
+  std::shared_ptr<const ClipBinding> clip;
+  // (offset_keys.empty() ? param_offset : evaluate_offset_keys(offset_keys, time_s)) + offset_velocity·time_s.
+  glm::dvec3 offset_at(double time_s) const {
+    return (offset_keys.empty() ? param_offset : evaluate_offset_keys(offset_keys, time_s)) +
+           offset_velocity * time_s;
+  }
+  // The FFD offset changes with time (velocity or ≥ 2 keys); the renderer can play it in the vertex shader.
+  bool offset_animated() const {
+    return ffd && (offset_velocity != glm::dvec3(0.0) || offset_keys.size() >= 2);
+  }
+  // The rest mesh itself changes with time (a clip): every frame needs a new pose (CPU) before the FFD.
+  bool clip_animated() const { return clip != nullptr; }
+  bool animated() const { return offset_animated() || clip_animated(); }
 
   // Recomputes world_mesh from rest_mesh, transform and ffd. Throws std::invalid_argument on inconsistency.
   void refresh();
@@ -64,10 +119,17 @@ struct SceneObject {
 };
 
 class Scene;
-// Copy of `scene` at time `time_s` (seconds): every animated object's param_offset becomes offset_at(time_s) and its
-// world_mesh is re-evaluated on the CPU reference path (the authoritative geometry, e.g. replay --time). Objects
-// that are not animated share their meshes with `scene`. Throws std::invalid_argument on a non-finite time.
+// Copy of `scene` at time `time_s` (seconds): every animated object's param_offset becomes offset_at(time_s) (its
+// offset_keys and offset_velocity are cleared, so the copy is a still), a clip object's rest_mesh becomes the clip's
+// pose at that time (transform applied through refresh, FFD parameters re-embedded with the same embedding), and
+// world_mesh is re-evaluated on the CPU reference path (the authoritative geometry: replay --time, anim.record).
+// Objects that are not animated share their meshes with `scene`. Deterministic: the same scene and time give the
+// same meshes bit for bit. Throws std::invalid_argument on a non-finite time.
 Scene scene_at_time(const Scene& scene, double time_s);
+// Copy of `scene` in which only the clip objects are posed at `time_s` (as scene_at_time does for them) and keep
+// their offset animation (keys, velocity) for the renderer to play (gpu::ViewOptions::time_s = time_s): what the
+// editor draws while playing. Throws std::invalid_argument on a non-finite time.
+Scene scene_with_posed_clips(const Scene& scene, double time_s);
 
 class Scene {
  public:
@@ -86,6 +148,7 @@ class Scene {
 
   Camera camera;
   bool camera_set = false;  // true once a camera.set command ran
+  Timeline timeline;        // anim.timeline; the default is Blender's (frames 1–120 at 24 fps)
 
   // Bounds of all visible world meshes (invalid if there are none).
   Aabb bounds() const;

@@ -1,0 +1,53 @@
+// `anim.record` — asks for the timeline's frames to be recorded (seed §2.4.3 animation sequences):
+//   {"cmd":"anim.record","out":"DIR","format":"png|exr","frames":[A,B],"glb":true,"mp4":true,"width":W,"height":H}
+// Every field is optional: out "" = the caller's default folder (the editor's "<log stem>_record/", replay's --out);
+// format "png" (8-bit RGBA) or "exr" (half RGBA, linear); frames [A, B] timeline frame numbers, inclusive (default:
+// the whole timeline); glb/mp4 (default true): also write animation.glb / animation.mp4; width/height pixels in
+// [1, 16384], both or neither (default: the camera's viewport).
+//
+// The command does not change the scene: redo() checks the request against the scene's timeline and keeps it
+// (request()), and whoever executed it (the editor's Record button, replay) runs editor::Recorder with it. Undo is a
+// no-op; the command is in the log so that replaying a session records what the artist recorded.
+// Errors (CommandError, field named): frames outside the timeline or A > B ("frames"), unknown format ("format"),
+// bad size ("width"/"height"), wrong field types.
+#pragma once
+
+#include <optional>
+
+#include "core/commands/command.h"
+
+namespace trispline::core {
+
+// What anim.record asks for, with the frame range resolved against the timeline by redo().
+struct RecordRequest {
+  std::string out;                      // as in the log ("" = the caller's default)
+  std::filesystem::path out_dir;        // `out` resolved against the log's folder ("" when out is "")
+  std::string format = "png";           // "png" | "exr"
+  int frame_first = 0, frame_last = 0;  // inclusive timeline frames (after redo: never 0/0 unless the timeline is)
+  bool frames_given = false;            // "frames" was in the line (else: the whole timeline at redo time)
+  bool glb = true, mp4 = true;
+  int width = 0, height = 0;  // pixels, 0 = the camera's viewport
+};
+
+// "" when [first, last] is a valid range of `timeline`, else the reason ("frames 100–130 lie outside the timeline
+// 1–120"). Shared by anim.record and editor::validate_record_options.
+std::string frame_range_error(const Timeline& timeline, int first, int last);
+
+class AnimRecordCommand : public Command {
+ public:
+  static CommandPtr parse(const nlohmann::json& j, const CommandContext& ctx);
+  std::string id() const override { return "anim.record"; }
+  nlohmann::json to_json() const override;
+  std::string label() const override;
+  void redo(Scene& scene) override;  // validates against scene.timeline; the scene is not modified
+  void undo(Scene&) override {}
+  nlohmann::json stats() const override;
+
+  // The request; frame_first/frame_last are resolved by the last redo() (the whole timeline when not given).
+  const RecordRequest& request() const { return request_; }
+
+ private:
+  RecordRequest request_;
+};
+
+}  // namespace trispline::core

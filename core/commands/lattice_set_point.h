@@ -1,0 +1,35 @@
+// `lattice.set_point` — moves one control point of a deformed object's FFD lattice to an exact position (the Tool
+// panel's "Control point" section: precise, undoable edits of P_ijk; seed §2.4.1 edits the lattice by hand too).
+//   {"cmd":"lattice.set_point","object":"ID","index":[i,j,k],"position":[x,y,z]}
+// index: control point indices along u, v, w, each in [0, control count of that axis); position: world units (the
+// lattice lives in world space). The object is re-evaluated with the same embedding and parameters; undo restores
+// the object bit for bit (SnapshotCommand).
+// Errors (CommandError, field named, scene untouched): unknown object / no lattice (`object`), index not 3 integers
+// or outside the lattice (`index`, names the counts), position not 3 finite numbers (`position`).
+// stats(): moved (1, or 0 when the point already was there), displacement (world units), ms_evaluate.
+#pragma once
+
+#include "core/commands/snapshot_command.h"
+
+namespace trispline::core {
+
+class LatticeSetPointCommand : public SnapshotCommand {
+ public:
+  static CommandPtr parse(const nlohmann::json& j, const CommandContext& ctx);
+  std::string id() const override { return "lattice.set_point"; }
+  nlohmann::json to_json() const override;
+  std::string label() const override;
+  nlohmann::json stats() const override { return stats_; }
+
+ protected:
+  std::string target() const override { return object_; }
+  std::optional<SceneObject> build(const Scene& scene) override;
+
+ private:
+  std::string object_;
+  glm::ivec3 index_{0};
+  glm::dvec3 position_{0.0};
+  nlohmann::json stats_ = nlohmann::json::object();
+};
+
+}  // namespace trispline::core

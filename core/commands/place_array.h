@@ -1,0 +1,37 @@
+// `place.array` — a row of copies of a placed object walking the same path (seed §2.4.3, Fig. 2.11: the ants).
+//   {"cmd":"place.array","object":"ID","count":n,"spacing":s,"clip_phase_s":p}
+// Adds n copies named "<ID>.001", "<ID>.002", … (the next free names) right after the object. Copy k (1..n) shares
+// the object's lattice, embedding, clip and keys, and is shifted back along the path by k·s in u (parameter units;
+// with place.sketch "extent":e the object covers u ∈ [0, e], so s ≥ e keeps the copies apart): its param_offset and
+// every offset key get −k·s in u. A clip starts k·p seconds later on copy k (p = clip_phase_s, default 0), so gaits
+// differ. Copies get the next palette colours. Undo removes the copies.
+// Errors (CommandError, field named): unknown or undeformed object ("object"), count outside [1, 64] ("count"),
+// spacing not finite or |s| > 10 ("spacing"), non-finite clip_phase_s ("clip_phase_s").
+#pragma once
+
+#include "core/commands/command.h"
+
+#include <vector>
+
+namespace trispline::core {
+
+class PlaceArrayCommand : public Command {
+ public:
+  static CommandPtr parse(const nlohmann::json& j, const CommandContext& ctx);
+  std::string id() const override { return "place.array"; }
+  nlohmann::json to_json() const override;
+  std::string label() const override;
+  void redo(Scene& scene) override;
+  void undo(Scene& scene) override;
+  nlohmann::json stats() const override { return stats_; }
+
+ private:
+  std::string object_;
+  int count_ = 2;
+  double spacing_ = 0.25;
+  double clip_phase_s_ = 0.0;
+  std::vector<std::string> added_;  // names of the copies, known after redo
+  nlohmann::json stats_ = nlohmann::json::object();
+};
+
+}  // namespace trispline::core

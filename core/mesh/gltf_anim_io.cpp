@@ -1,0 +1,365 @@
+#include "core/mesh/gltf_anim_io.h"
+
+#include "core/mesh/mesh_io.h"
+
+// As gltf_io.cpp: the Debian tinygltf library is built with its defaults; include the header without configuration
+// macros and never define TINYGLTF_IMPLEMENTATION.
+#include <tiny_gltf.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <stdexcept>
+
+namespace trispline::core {
+namespace {
+
+std::string quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
+
+std::string target_name(int frame) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "frame_%04d", frame);
+  return buf;
+}
+
+// Appends raw bytes to buffer 0 (4-byte aligned) and returns the new buffer view's index (target 0 = none).
+int add_view(tinygltf::Model& model, const void* data, std::size_t bytes, int target) {
+  auto& buf = model.buffers[0].data;
+  while (buf.size() % 4) buf.push_back(0);
+  tinygltf::BufferView view;
+  view.buffer = 0;
+  view.byteOffset = buf.size();
+  view.byteLength = bytes;
+  view.target = target;
+  const auto* p = static_cast<const unsigned char*>(data);
+  buf.insert(buf.end(), p, p + bytes);
+  model.bufferViews.push_back(view);
+  return static_cast<int>(model.bufferViews.size()) - 1;
+}
+
+// A float accessor over `values` (#count × comps) in a new view, with min/max when `bounds`.
+int add_floats(tinygltf::Model& model, const std::vector<float>& values, int type, int comps, int target, bool bounds) {
+  tinygltf::Accessor acc;
+  acc.bufferView = add_view(model, values.data(), values.size() * sizeof(float), target);
+  acc.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+  acc.type = type;
+  acc.count = values.size() / comps;
+  if (bounds) {
+    acc.minValues.assign(comps, std::numeric_limits<double>::infinity());
+    acc.maxValues.assign(comps, -std::numeric_limits<double>::infinity());
+    for (std::size_t i = 0; i < acc.count; ++i)
+      for (int c = 0; c < comps; ++c) {
+        acc.minValues[c] = std::min(acc.minValues[c], double(values[i * comps + c]));
+        acc.maxValues[c] = std::max(acc.maxValues[c], double(values[i * comps + c]));
+      }
+  }
+  model.accessors.push_back(acc);
+  return static_cast<int>(model.accessors.size()) - 1;
+}
+
+std::vector<float> to_floats(const std::vector<glm::dvec3>& v) {
+  std::vector<float> out(v.size() * 3);
+  for (std::size_t i = 0; i < v.size(); ++i)
+    for (int c = 0; c < 3; ++c) out[3 * i + c] = static_cast<float>(v[i][c]);
+  return out;
+}
+
+// float(b − a) per component, or empty when every component is exactly equal.
+std::vector<float> delta(const std::vector<glm::dvec3>& a, const std::vector<glm::dvec3>& b) {
+  bool any = false;
+  std::vector<float> out(a.size() * 3);
+  for (std::size_t i = 0; i < a.size(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      out[3 * i + c] = static_cast<float>(b[i][c] - a[i][c]);
+      any = any || b[i][c] != a[i][c];
+    }
+  if (!any) out.clear();
+  return out;
+}
+
+tinygltf::Model load(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw MeshIoError(quoted(path) + ": file not found");
+  tinygltf::Model model;
+  tinygltf::TinyGLTF loader;
+  std::string err, warn;
+  const bool ok = lower_extension(path) == ".glb" ? loader.LoadBinaryFromFile(&model, &err, &warn, path.string())
+                                                  : loader.LoadASCIIFromFile(&model, &err, &warn, path.string());
+  if (!ok) throw MeshIoError(quoted(path) + ": cannot parse glTF file: " + (err.empty() ? "unknown error" : err));
+  return model;
+}
+
+// Float VEC3 accessor `index` as #count vectors (a view-less accessor is all zeros).
+std::vector<glm::dvec3> read_vec3(const tinygltf::Model& model, int index, const std::filesystem::path& path) {
+  if (index < 0 || index >= static_cast<int>(model.accessors.size()))
+    throw MeshIoError(quoted(path) + ": accessor index out of range");
+  const auto& acc = model.accessors[index];
+  if (acc.type != TINYGLTF_TYPE_VEC3 || acc.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT)
+    throw MeshIoError(quoted(path) + ": expected a float VEC3 accessor");
+  std::vector<glm::dvec3> out(acc.count, glm::dvec3(0.0));
+  if (acc.bufferView < 0) return out;
+  const auto& view = model.bufferViews.at(acc.bufferView);
+  const auto& buf = model.buffers.at(view.buffer);
+  const std::size_t stride = view.byteStride ? view.byteStride : 12;
+  const std::size_t start = view.byteOffset + acc.byteOffset;
+  if (acc.count > 0 && start + stride * (acc.count - 1) + 12 > buf.data.size())
+    throw MeshIoError(quoted(path) + ": accessor runs past the end of its buffer");
+  for (std::size_t i = 0; i < acc.count; ++i) {
+    float f[3];
+    std::memcpy(f, buf.data.data() + start + stride * i, 12);
+    out[i] = glm::dvec3(f[0], f[1], f[2]);
+  }
+  return out;
+}
+
+}  // namespace
+
+MorphAnimationBuilder::MorphAnimationBuilder(double fps, int first_frame) : fps_(fps), first_frame_(first_frame) {
+  if (!std::isfinite(fps) || fps <= 0) throw std::invalid_argument("animation fps must be finite and > 0");
+}
+
+int MorphAnimationBuilder::animated_objects() const {
+  int n = 0;
+  for (const Object& o : objects_) n += o.changed ? 1 : 0;
+  return n;
+}
+
+void MorphAnimationBuilder::add_frame(const std::vector<GltfNode>& nodes) {
+  if (frames_ == 0) {
+    objects_.clear();
+    for (const GltfNode& n : nodes) {
+      Object o;
+      o.name = n.name;
+      o.color = n.color;
+      if (n.mesh && !n.mesh->empty()) {
+        validate_mesh(*n.mesh, "object '" + n.name + "'");
+        o.base = *n.mesh;
+      }
+      objects_.push_back(std::move(o));
+    }
+    frames_ = 1;
+    return;
+  }
+  if (nodes.size() != objects_.size())
+    throw MeshIoError("animation frame " + std::to_string(frames_) + " has " + std::to_string(nodes.size()) +
+                      " objects, the first frame had " + std::to_string(objects_.size()));
+  // Check every object before storing anything, so a bad frame leaves the builder as it was.
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    const GltfNode& n = nodes[i];
+    const Object& o = objects_[i];
+    const bool has_mesh = n.mesh && !n.mesh->empty();
+    const auto mismatch = [&](const std::string& what) {
+      return MeshIoError("object '" + n.name + "' in animation frame " + std::to_string(frames_) + ": " + what);
+    };
+    if (n.name != o.name) throw mismatch("expected object '" + o.name + "' at this position");
+    if (has_mesh != !o.base.empty()) throw mismatch("has a mesh in one frame and none in another");
+    if (!has_mesh) continue;
+    if (n.mesh->positions.size() != o.base.positions.size() || n.mesh->triangles.size() != o.base.triangles.size())
+      throw mismatch("topology changed (" + std::to_string(n.mesh->positions.size()) + " vertices, " +
+                     std::to_string(n.mesh->triangles.size()) + " triangles; first frame " +
+                     std::to_string(o.base.positions.size()) + ", " + std::to_string(o.base.triangles.size()) + ")");
+    validate_mesh(*n.mesh, "object '" + n.name + "'");
+  }
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    Object& o = objects_[i];
+    std::vector<float> dp, dn;
+    if (!o.base.empty()) {
+      const TriMesh& m = *nodes[i].mesh;
+      dp = delta(o.base.positions, m.positions);
+      if (o.base.normals.size() == o.base.positions.size() && m.normals.size() == m.positions.size())
+        dn = delta(o.base.normals, m.normals);
+    }
+    o.changed = o.changed || !dp.empty() || !dn.empty();
+    o.pos_delta.push_back(std::move(dp));
+    o.nrm_delta.push_back(std::move(dn));
+  }
+  ++frames_;
+}
+
+void MorphAnimationBuilder::write_glb(const std::filesystem::path& path) const {
+  if (frames_ == 0) throw MeshIoError(quoted(path) + ": no frames recorded");
+  tinygltf::Model model;
+  model.asset.version = "2.0";
+  model.asset.generator = "trispline";
+  model.buffers.resize(1);
+  tinygltf::Scene scene;
+  const int targets = frames_ - 1;
+  std::vector<int> animated_nodes;
+  for (const Object& o : objects_) {
+    tinygltf::Node node;
+    node.name = o.name;
+    if (!o.base.empty()) {
+      const TriMesh& m = o.base;
+      const std::size_t nv = m.positions.size();
+      const bool normals = m.normals.size() == nv;
+      tinygltf::Primitive prim;
+      prim.mode = TINYGLTF_MODE_TRIANGLES;
+      prim.attributes["POSITION"] =
+          add_floats(model, to_floats(m.positions), TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, true);
+      if (normals)
+        prim.attributes["NORMAL"] =
+            add_floats(model, to_floats(m.normals), TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, false);
+      if (m.uvs.size() == nv) {
+        std::vector<float> uv(nv * 2);
+        for (std::size_t i = 0; i < nv; ++i)
+          for (int c = 0; c < 2; ++c) uv[2 * i + c] = static_cast<float>(m.uvs[i][c]);
+        prim.attributes["TEXCOORD_0"] =
+            add_floats(model, uv, TINYGLTF_TYPE_VEC2, 2, TINYGLTF_TARGET_ARRAY_BUFFER, false);
+      }
+      std::vector<std::uint32_t> idx(m.triangles.size() * 3);
+      for (std::size_t f = 0; f < m.triangles.size(); ++f)
+        for (int c = 0; c < 3; ++c) idx[3 * f + c] = m.triangles[f][c];
+      tinygltf::Accessor ia;
+      ia.bufferView = add_view(model, idx.data(), idx.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+      ia.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+      ia.type = TINYGLTF_TYPE_SCALAR;
+      ia.count = idx.size();
+      model.accessors.push_back(ia);
+      prim.indices = static_cast<int>(model.accessors.size()) - 1;
+
+      tinygltf::Mesh mesh;
+      mesh.name = o.name;
+      if (o.changed && targets > 0) {
+        const std::vector<float> zeros(nv * 3, 0.0f);
+        tinygltf::Value::Array names;
+        for (int k = 0; k < targets; ++k) {
+          const std::vector<float>& dp = o.pos_delta[k].empty() ? zeros : o.pos_delta[k];
+          std::map<std::string, int> target;
+          // Morph target POSITION accessors need min/max (glTF 2.0 §3.7.2.2).
+          target["POSITION"] = add_floats(model, dp, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, true);
+          if (normals) {
+            const std::vector<float>& dn = o.nrm_delta[k].empty() ? zeros : o.nrm_delta[k];
+            target["NORMAL"] = add_floats(model, dn, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, false);
+          }
+          prim.targets.push_back(std::move(target));
+          names.emplace_back(target_name(first_frame_ + k + 1));
+        }
+        mesh.weights.assign(targets, 0.0);
+        tinygltf::Value::Object extras;
+        extras["targetNames"] = tinygltf::Value(std::move(names));
+        mesh.extras = tinygltf::Value(std::move(extras));
+        animated_nodes.push_back(static_cast<int>(model.nodes.size()));
+      }
+
+      tinygltf::Material mat;
+      mat.name = o.name;
+      mat.pbrMetallicRoughness.baseColorFactor = {o.color.x, o.color.y, o.color.z, 1.0};
+      mat.pbrMetallicRoughness.metallicFactor = 0.0;
+      mat.pbrMetallicRoughness.roughnessFactor = 0.6;
+      mat.doubleSided = true;
+      model.materials.push_back(mat);
+      prim.material = static_cast<int>(model.materials.size()) - 1;
+      mesh.primitives.push_back(std::move(prim));
+      model.meshes.push_back(std::move(mesh));
+      node.mesh = static_cast<int>(model.meshes.size()) - 1;
+    }
+    model.nodes.push_back(node);
+    scene.nodes.push_back(static_cast<int>(model.nodes.size()) - 1);
+  }
+
+  if (!animated_nodes.empty()) {
+    // One sampler shared by every channel: key k at k/fps shows target k−1 alone (key 0: the base).
+    std::vector<float> times(frames_), weights(static_cast<std::size_t>(frames_) * targets, 0.0f);
+    for (int k = 0; k < frames_; ++k) {
+      times[k] = static_cast<float>(k / fps_);
+      if (k > 0) weights[static_cast<std::size_t>(k) * targets + (k - 1)] = 1.0f;
+    }
+    tinygltf::AnimationSampler sampler;
+    sampler.input = add_floats(model, times, TINYGLTF_TYPE_SCALAR, 1, 0, true);  // input needs min/max
+    sampler.output = add_floats(model, weights, TINYGLTF_TYPE_SCALAR, 1, 0, false);
+    sampler.interpolation = "STEP";
+    tinygltf::Animation anim;
+    anim.name = "recording";
+    anim.samplers.push_back(sampler);
+    for (int node : animated_nodes) {
+      tinygltf::AnimationChannel ch;
+      ch.sampler = 0;
+      ch.target_node = node;
+      ch.target_path = "weights";
+      anim.channels.push_back(ch);
+    }
+    model.animations.push_back(std::move(anim));
+  }
+  model.scenes.push_back(scene);
+  model.defaultScene = 0;
+  if (model.buffers[0].data.empty()) model.buffers.clear();  // a buffer must not be empty
+
+  const std::filesystem::path tmp = path.string() + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) throw MeshIoError(quoted(path) + ": cannot open '" + tmp.string() + "' for writing");
+    tinygltf::TinyGLTF writer;
+    if (!writer.WriteGltfSceneToStream(&model, out, /*prettyPrint=*/false, /*writeBinary=*/true) || !out.flush())
+      throw MeshIoError(quoted(path) + ": writing glb failed");
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) {
+    std::filesystem::remove(tmp, ec);
+    throw MeshIoError(quoted(path) + ": cannot rename temporary file: " + ec.message());
+  }
+}
+
+MorphAnimationInfo read_morph_animation_info(const std::filesystem::path& path) {
+  const tinygltf::Model model = load(path);
+  MorphAnimationInfo info;
+  for (const tinygltf::Mesh& m : model.meshes) {
+    MorphAnimationInfo::Mesh mi;
+    mi.name = m.name;
+    if (!m.primitives.empty()) {
+      const tinygltf::Primitive& p = m.primitives.front();
+      const auto pos = p.attributes.find("POSITION");
+      if (pos != p.attributes.end() && pos->second >= 0 && pos->second < static_cast<int>(model.accessors.size()))
+        mi.vertices = model.accessors[pos->second].count;
+      mi.targets = static_cast<int>(p.targets.size());
+    }
+    if (m.extras.IsObject() && m.extras.Has("targetNames")) {
+      const tinygltf::Value& names = m.extras.Get("targetNames");
+      for (std::size_t i = 0; names.IsArray() && i < names.ArrayLen(); ++i)
+        if (names.Get(static_cast<int>(i)).IsString())
+          mi.target_names.push_back(names.Get(static_cast<int>(i)).Get<std::string>());
+    }
+    info.meshes.push_back(std::move(mi));
+  }
+  info.animations = static_cast<int>(model.animations.size());
+  for (const tinygltf::Animation& a : model.animations)
+    for (const tinygltf::AnimationChannel& ch : a.channels) info.weight_channels += ch.target_path == "weights";
+  if (!model.animations.empty() && !model.animations.front().samplers.empty()) {
+    const tinygltf::AnimationSampler& s = model.animations.front().samplers.front();
+    info.interpolation = s.interpolation;
+    if (s.input >= 0 && s.input < static_cast<int>(model.accessors.size())) {
+      const tinygltf::Accessor& in = model.accessors[s.input];
+      info.keyframes = static_cast<int>(in.count);
+      if (!in.maxValues.empty()) info.duration_s = in.maxValues.front();
+    }
+  }
+  return info;
+}
+
+std::vector<glm::dvec3> read_morph_frame_positions(const std::filesystem::path& path, const std::string& mesh_name,
+                                                   int frame) {
+  const tinygltf::Model model = load(path);
+  for (const tinygltf::Mesh& m : model.meshes) {
+    if (m.name != mesh_name || m.primitives.empty()) continue;
+    const tinygltf::Primitive& p = m.primitives.front();
+    const auto pos = p.attributes.find("POSITION");
+    if (pos == p.attributes.end()) throw MeshIoError(quoted(path) + ": mesh '" + mesh_name + "' has no POSITION");
+    std::vector<glm::dvec3> out = read_vec3(model, pos->second, path);
+    if (frame == 0) return out;
+    if (frame < 0 || frame > static_cast<int>(p.targets.size()))
+      throw MeshIoError(quoted(path) + ": mesh '" + mesh_name + "' has no frame " + std::to_string(frame) + " (" +
+                        std::to_string(p.targets.size()) + " morph targets)");
+    const auto d = p.targets[frame - 1].find("POSITION");
+    if (d == p.targets[frame - 1].end()) return out;
+    const std::vector<glm::dvec3> delta_pos = read_vec3(model, d->second, path);
+    if (delta_pos.size() != out.size()) throw MeshIoError(quoted(path) + ": morph target size mismatch");
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] = glm::dvec3(glm::vec3(out[i]) + glm::vec3(delta_pos[i]));
+    return out;
+  }
+  throw MeshIoError(quoted(path) + ": no mesh named '" + mesh_name + "'");
+}
+
+}  // namespace trispline::core

@@ -1,0 +1,85 @@
+// trispline::core animated glTF 2.0 (tinygltf): a recorded sequence of frames as morph targets (anim.record's
+// animation.glb, seed §2.4.3), and a reader used by tests and tools to check what was written.
+//
+//   MorphAnimationBuilder        add_frame() per recorded frame, write_glb() at the end
+//   read_morph_animation_info    counts: meshes, morph targets, keyframes, interpolation, duration
+//   read_morph_frame_positions   one mesh's vertex positions at one frame (base + that frame's target)
+//
+// Layout of the file (Blender's glTF importer turns it into shape keys with keyed values):
+//   * per object one node (named by the object id, no transform: positions are world units) and one mesh with one
+//     TRIANGLES primitive; its POSITION / NORMAL / TEXCOORD_0 / indices are the FIRST frame's mesh (as write_glb);
+//   * an object whose geometry changes in any frame gets one morph target per following frame (#frames − 1 targets,
+//     POSITION and NORMAL deltas relative to the first frame, float32; a frame equal to the first has zero deltas),
+//     mesh.weights all 0 and mesh.extras.targetNames = ["frame_NNNN", ...] (Blender names the shape keys so);
+//     an object whose geometry never changes gets no targets;
+//   * when some object has targets: one animation "recording" with, per such node, a "weights" channel; all channels
+//     share one sampler input (#frames times (k)/fps seconds, k = 0..#frames−1) and one output (#frames × (#frames − 1)
+//     weights: at key k target k−1 is 1, all others 0), interpolation STEP.
+// Memory: the builder keeps the first frame's meshes and per following frame 6 floats per vertex of every object.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "core/mesh/gltf_io.h"
+#include "core/mesh/tri_mesh.h"
+
+namespace trispline::core {
+
+class MorphAnimationBuilder {
+ public:
+  // fps: frames per second of the recording (> 0, finite); first_frame: the timeline number of the first frame added
+  // (names targets "frame_NNNN"). Throws std::invalid_argument on a bad fps.
+  explicit MorphAnimationBuilder(double fps, int first_frame = 0);
+
+  // Adds the next frame: the same objects (names, order) with the same vertex and triangle counts every time (a mesh
+  // may be null/empty in every frame: the node then has no mesh). Throws MeshIoError naming the object when a frame
+  // does not match the first, or when a mesh fails validate_mesh.
+  void add_frame(const std::vector<GltfNode>& nodes);
+  int frame_count() const { return frames_; }
+  // Objects with morph targets so far (geometry differs from the first frame in some frame).
+  int animated_objects() const;
+
+  // Writes the .glb ("<path>.tmp" then renamed). Throws MeshIoError when no frame was added or the write fails.
+  void write_glb(const std::filesystem::path& path) const;
+
+ private:
+  struct Object {
+    std::string name;
+    glm::vec3 color{0.8f};
+    TriMesh base;                               // first frame (empty: no mesh)
+    std::vector<std::vector<float>> pos_delta;  // per following frame: #V × 3, or empty = all zero
+    std::vector<std::vector<float>> nrm_delta;  // per following frame: #V × 3, or empty = all zero
+    bool changed = false;
+  };
+  double fps_;
+  int first_frame_;
+  int frames_ = 0;
+  std::vector<Object> objects_;
+};
+
+struct MorphAnimationInfo {
+  struct Mesh {
+    std::string name;
+    std::size_t vertices = 0;               // POSITION count of the first primitive
+    int targets = 0;                        // morph targets of the first primitive
+    std::vector<std::string> target_names;  // mesh.extras.targetNames (empty when absent)
+  };
+  std::vector<Mesh> meshes;  // in file order
+  int animations = 0;
+  int weight_channels = 0;    // channels with path "weights" over all animations
+  int keyframes = 0;          // input count of the first animation's first sampler (0 without animation)
+  std::string interpolation;  // that sampler's interpolation ("STEP"), "" without animation
+  double duration_s = 0;      // its last input time, seconds
+};
+
+// Reads the structure of an animated .glb/.gltf. Throws MeshIoError on a missing or unparseable file.
+MorphAnimationInfo read_morph_animation_info(const std::filesystem::path& path);
+
+// Positions (#V, world units, as stored: float32 widened) of the mesh named `mesh_name` at recorded frame index
+// `frame` (0 = the base, k ≥ 1 = base + target k−1). Throws MeshIoError when the mesh or the frame does not exist.
+std::vector<glm::dvec3> read_morph_frame_positions(const std::filesystem::path& path, const std::string& mesh_name,
+                                                   int frame);
+
+}  // namespace trispline::core
