@@ -7,6 +7,7 @@
 #include "core/deform/ffd_evaluator.h"
 #include "editor/app.h"
 #include "editor/bench_ffd.h"
+#include "editor/bench_place.h"
 #include "editor/command_registry.h"
 #include "editor/replay.h"
 
@@ -68,6 +69,25 @@ int run_cli(int argc, char** argv) {
           },
           "SECONDS");
 
+  replay
+      ->add_option_function<std::string>(
+          "--frames",
+          [&replay_options](const std::string& text) {
+            const auto range = parse_frame_range(text);  // checked below
+            replay_options.frames_given = true;
+            replay_options.frame_first = range->first;
+            replay_options.frame_last = range->second;
+          },
+          "Record timeline frames A-B (inclusive) of the final scene into --out: frame_NNNN.png|exr and "
+          "animation.glb of that range (exit 2, nothing written, when the range lies outside the timeline)")
+      ->check(
+          [](const std::string& text) -> std::string {
+            return parse_frame_range(text) ? "" : "--frames needs A-B with 0 <= A <= B, got '" + text + "'";
+          },
+          "A-B");
+  replay->add_option("--format", replay_options.format, "Image format of --frames: png (8-bit) or exr (half, linear)")
+      ->check(CLI::IsMember({"png", "exr"}));
+
   auto* bench = app.add_subcommand("bench", "Benchmarks that print figures (never assert timings)");
   bench->require_subcommand(1);
   BenchFfdOptions bench_options;
@@ -88,6 +108,40 @@ int run_cli(int argc, char** argv) {
                         "How GLSL shaders get the orders: auto (generic on software renderers), specialised, generic")
       ->check(CLI::IsMember({"auto", "specialised", "generic"}));
 
+  BenchPlaceOptions place_bench;
+  std::vector<int> place_samples{place_bench.samples_u, place_bench.samples_v};
+  bool springs_on_only = false, springs_off_only = false;
+  auto* bench_place = bench->add_subcommand(
+      "place", "place.sketch end to end (stroke -> placed bunny over the teapot and the terrain), ms per stage, "
+               "mass-spring contact surface on and off");
+  bench_place->add_flag("--json", place_bench.json, "Print one JSON object instead of a table");
+  bench_place->add_option("--runs", place_bench.runs, "Timed runs per case after one warm-up; the median is reported")
+      ->check(CLI::Range(1, 1000));
+  bench_place->add_option("--mesh", place_bench.mesh_path, "Place this mesh instead of assets/data/bunny.obj")
+      ->check(CLI::ExistingFile);
+  bench_place->add_option("--samples", place_samples, "Contact rays NU NV (default 64 8)")
+      ->expected(2)
+      ->check(CLI::Range(2, 4096));
+  auto* on_only = bench_place->add_flag("--springs", springs_on_only, "Only with the mass-spring contact surface");
+  bench_place->add_flag("--no-springs", springs_off_only, "Only without the mass-spring contact surface")
+      ->excludes(on_only);
+  bench_place->add_option("--scene", place_bench.scenes, "Scenes: teapot, terrain (default both)")
+      ->check(CLI::IsMember({"teapot", "terrain"}));
+
+  BenchPressOptions press_bench;
+  auto* bench_press = bench->add_subcommand(
+      "press", "A pressing drag on a ~1 M-vertex object: Press tool per mouse move, pressed lattice, cpu_fast / GLSL "
+               "re-evaluation per drag sample, and the lattice.press command at release");
+  bench_press->add_flag("--json", press_bench.json, "Print one JSON object instead of a table");
+  bench_press->add_option("--vertices", press_bench.vertices,
+                          "Target vertex count: the bunny's subdivision level closest to it (default 1000000)")
+      ->check(CLI::Range(8, 100000000));
+  bench_press->add_option("--runs", press_bench.runs, "Drags, timed updates and command runs (median)")
+      ->check(CLI::Range(1, 1000));
+  bench_press->add_option("--mesh", press_bench.mesh_path, "Use this mesh instead of assets/data/bunny.obj")
+      ->check(CLI::ExistingFile);
+  bench_press->add_flag("!--cpu-only", press_bench.gpu, "Skip glsl_compute (no GL context)");
+
   auto* commands = app.add_subcommand("commands", "List the commands a log may contain");
 
   try {
@@ -99,6 +153,13 @@ int run_cli(int argc, char** argv) {
   try {
     if (*replay) return run_replay(replay_options);
     if (*bench_ffd) return run_bench_ffd(bench_options, std::cout, std::cerr);
+    if (*bench_place) {
+      place_bench.samples_u = place_samples.at(0);
+      place_bench.samples_v = place_samples.at(1);
+      place_bench.springs = springs_on_only ? "on" : springs_off_only ? "off" : "both";
+      return run_bench_place(place_bench, std::cout, std::cerr);
+    }
+    if (*bench_press) return run_bench_press(press_bench, std::cout, std::cerr);
     if (*commands) {
       const auto& registry = CommandRegistry::builtin();
       for (const auto& id : registry.ids()) std::cout << id << "\t" << registry.summary(id) << "\n";

@@ -6,7 +6,10 @@
 #include <memory>
 #include <optional>
 
+#include <epoxy/egl.h>
 #include <epoxy/gl.h>
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
 
 #include "gpu/ffd_gl.h"
 #include "gpu/gl_context.h"
@@ -29,34 +32,104 @@ core::Camera framing_camera(const core::Scene& scene, int width, int height) {
   return cam;
 }
 
-RenderedImage render_scene_headless(const core::Scene& scene, int width, int height, const RenderSettings& settings) {
-  gpu::HeadlessContext context;
+void fit_clip_planes(core::Camera& cam, const core::Scene& scene) {
+  // camera.set carries no clip planes: fit them to the scene so meshes in any units are neither clipped nor lose
+  // depth precision.
+  const core::Aabb box = scene.bounds();
+  if (!box.valid()) return;
+  const double reach = glm::length(box.center() - cam.eye) + 0.5 * box.diagonal();
+  cam.far_plane = std::max(reach * 1.5, 1e-3);
+  cam.near_plane = cam.far_plane * 1e-4;
+}
+
+core::Camera render_camera(const core::Scene& scene, int width, int height) {
   core::Camera cam = scene.camera_set ? scene.camera : framing_camera(scene, width, height);
   if (width > 0 && height > 0) cam.viewport = {width, height};
-  // camera.set carries no clip planes: fit them to the scene so meshes in any units are neither clipped nor
-  // lose depth precision.
-  const core::Aabb box = scene.bounds();
-  if (box.valid()) {
-    const double reach = glm::length(box.center() - cam.eye) + 0.5 * box.diagonal();
-    cam.far_plane = std::max(reach * 1.5, 1e-3);
-    cam.near_plane = cam.far_plane * 1e-4;
+  fit_clip_planes(cam, scene);
+  return cam;
+}
+
+namespace {
+
+// A GL context is current on this thread (the editor's GLFW window, or an EGL context someone made current).
+bool context_is_current() { return glfwGetCurrentContext() != nullptr || eglGetCurrentContext() != EGL_NO_CONTEXT; }
+
+}  // namespace
+
+struct HeadlessRenderer::Impl {
+  std::optional<gpu::HeadlessContext> context;  // declared first: destroyed after the GL objects below
+  std::string renderer_name;
+  std::optional<gpu::Renderer> renderer;
+  std::optional<gpu::OffscreenTarget> target;
+};
+
+HeadlessRenderer::HeadlessRenderer() : impl_(std::make_unique<Impl>()) {
+  if (!context_is_current()) impl_->context.emplace();
+  impl_->renderer_name = gpu::current_gl_renderer();
+  impl_->renderer.emplace();
+}
+
+HeadlessRenderer::~HeadlessRenderer() {
+  if (impl_->context) impl_->context->make_current();
+  impl_->target.reset();
+  impl_->renderer.reset();
+}
+
+gpu::RenderStats HeadlessRenderer::draw(const core::Scene& scene, const core::Camera& cam,
+                                        const RenderSettings& settings) {
+  if (impl_->context) impl_->context->make_current();
+  GLint previous_fbo = 0, previous_viewport[4] = {0, 0, 0, 0};
+  if (!impl_->context) {
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &previous_fbo);
+    glGetIntegerv(GL_VIEWPORT, previous_viewport);
   }
-  gpu::Renderer renderer;
-  gpu::OffscreenTarget target(cam.viewport.x, cam.viewport.y);
+  if (!impl_->target || impl_->target->width() != cam.viewport.x || impl_->target->height() != cam.viewport.y)
+    impl_->target.emplace(cam.viewport.x, cam.viewport.y);
   gpu::ViewOptions view;
   view.ffd_backend = settings.ffd_backend;
   view.time_s = settings.time_s;
-  auto draw = [&] {
-    target.bind();
-    renderer.draw(scene, cam, view);
-    return renderer.last_stats();
-  };
+  view.show_grid = settings.show_grid;
+  impl_->target->bind();
+  impl_->renderer->draw(scene, cam, view);
+  if (!impl_->context) {
+    glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(previous_fbo));
+    glViewport(previous_viewport[0], previous_viewport[1], previous_viewport[2], previous_viewport[3]);
+  }
+  return impl_->renderer->last_stats();
+}
+
+RenderedImage HeadlessRenderer::read_image() {
+  if (!impl_->target) throw std::logic_error("HeadlessRenderer::read_image before draw");
+  if (impl_->context) impl_->context->make_current();
+  GLint previous_fbo = 0;
+  if (!impl_->context) glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &previous_fbo);
+  RenderedImage image;
+  image.width = impl_->target->width();
+  image.height = impl_->target->height();
+  image.rgba = impl_->target->read_rgba();
+  image.renderer = impl_->renderer_name;
+  if (!impl_->context) glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(previous_fbo));
+  return image;
+}
+
+void HeadlessRenderer::forget_caches() {
+  if (impl_->context) impl_->context->make_current();
+  impl_->renderer->release_unused(core::Scene());
+}
+
+const std::string& HeadlessRenderer::renderer() const { return impl_->renderer_name; }
+bool HeadlessRenderer::owns_context() const { return impl_->context.has_value(); }
+
+RenderedImage render_scene_headless(const core::Scene& scene, int width, int height, const RenderSettings& settings) {
+  HeadlessRenderer headless;
+  const core::Camera cam = render_camera(scene, width, height);
+  auto draw = [&] { return headless.draw(scene, cam, settings); };
   // Frame 1 builds shader programs and uploads everything. Dropping the caches makes frame 2 what the editor's first
   // frame after a command does (upload, bind, evaluate) without the one-time program builds: its FFD pass is
   // reported. Frame 3 is a steady frame (cached evaluation; GPU timer queries of frame 2 have answered after the
   // glFinish): its draw pass is reported.
   draw();
-  renderer.release_unused(core::Scene());
+  headless.forget_caches();
   const gpu::RenderStats warm = draw();
   glFinish();
   const gpu::RenderStats steady = draw();
@@ -72,11 +145,7 @@ RenderedImage render_scene_headless(const core::Scene& scene, int width, int hei
   t.ffd_in_draw = settings.ffd_backend == core::FfdBackend::glsl_vertex ||
                   (settings.ffd_backend == core::FfdBackend::glsl_compute && animated);
   t.timer_mode = steady.timer_mode ? steady.timer_mode : "";
-  RenderedImage image;
-  image.width = target.width();
-  image.height = target.height();
-  image.rgba = target.read_rgba();
-  image.renderer = context.renderer();
+  RenderedImage image = headless.read_image();
   image.timings = std::move(t);
   return image;
 }

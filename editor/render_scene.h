@@ -4,17 +4,20 @@
 
 #include "core/deform/ffd_evaluator.h"
 #include "core/scene/scene.h"
+#include "gpu/renderer.h"
 
 #include <cstddef>
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace trispline::editor {
 
-// How the scene is drawn: gpu::ViewOptions::ffd_backend and ::time_s.
+// How the scene is drawn: gpu::ViewOptions::ffd_backend, ::time_s and ::show_grid.
 struct RenderSettings {
   core::FfdBackend ffd_backend = core::FfdBackend::cpu_ref;
-  double time_s = 0;  // scene time, seconds (animated objects, lattice.animate_offset)
+  double time_s = 0;      // scene time, seconds (animated objects, lattice.animate_offset)
+  bool show_grid = true;  // the viewport's ground grid (recordings leave it out, as a render does)
 };
 
 // gpu::RenderStats of the frame that made the image (replay's report.json timings.render).
@@ -36,6 +39,39 @@ struct RenderedImage {
 
 // A camera that frames the visible objects from the front-right-above, for scenes without camera.set.
 core::Camera framing_camera(const core::Scene& scene, int width, int height);
+
+// The camera a headless image uses: the scene's camera (framing_camera when none was set), its viewport replaced by
+// width×height when both are > 0, and its clip planes fitted to the scene's bounds (camera.set carries none).
+core::Camera render_camera(const core::Scene& scene, int width = 0, int height = 0);
+// Sets camera.near_plane/far_plane so that every visible object of `scene` lies between them (unchanged when the
+// scene has no bounds).
+void fit_clip_planes(core::Camera& camera, const core::Scene& scene);
+
+// A persistent headless renderer for many images (anim.record's frames): one GL context, one gpu::Renderer with its
+// shader programs built once, one offscreen target per size. The context is a private EGL surfaceless one, or —
+// when a GL context is already current on the calling thread at construction (the editor's window) — that one;
+// every call must then be made with that context current, and the previous framebuffer binding and viewport are
+// restored after each draw. Throws gpu::GlContextError / std::runtime_error from the constructor.
+class HeadlessRenderer {
+ public:
+  HeadlessRenderer();
+  ~HeadlessRenderer();
+  HeadlessRenderer(const HeadlessRenderer&) = delete;
+  HeadlessRenderer& operator=(const HeadlessRenderer&) = delete;
+
+  // Draws one frame of `scene` seen by `camera` into a camera.viewport-sized target (4× MSAA) and returns its stats.
+  gpu::RenderStats draw(const core::Scene& scene, const core::Camera& camera, const RenderSettings& settings);
+  // Pixels of the last draw (top row first) with renderer() filled in; timings left empty.
+  RenderedImage read_image();
+  // Drops every cached GPU buffer, so the next draw uploads all it draws and depends on nothing drawn before.
+  void forget_caches();
+  const std::string& renderer() const;  // GL_RENDERER
+  bool owns_context() const;            // false: drawing with the context that was current at construction
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 // Renders with the scene's camera (or framing_camera when none was set). width/height 0 = the camera's viewport;
 // otherwise the camera's viewport is replaced (aspect follows). Throws gpu::GlContextError / std::runtime_error.

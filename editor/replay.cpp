@@ -1,9 +1,11 @@
 #include "editor/replay.h"
 
+#include "core/commands/anim_record.h"
 #include "core/mesh/gltf_io.h"
 #include "core/mesh/image_io.h"
 #include "editor/command_log.h"
 #include "editor/command_registry.h"
+#include "editor/record.h"
 #include "editor/render_scene.h"
 #include "ui/frame_timings.h"
 
@@ -64,9 +66,65 @@ nlohmann::json render_timings(const RenderedImage& image, const ReplayOptions& o
           {"vertices_per_second", rate >= 0 ? nlohmann::json(rate) : nlohmann::json()}};
 }
 
+struct PendingRecording {
+  int line = 0;
+  core::Scene scene;  // as it was right after the anim.record line
+  core::RecordRequest request;
+};
+
+RecordResult record_into(const core::Scene& scene, RecordOptions ro) {
+  ro.ffd_backend = core::FfdBackend::cpu_ref;  // frames are the authoritative geometry, bit-exact
+  RecordResult r = record_frames(scene, ro);
+  std::cout << "recorded:       frames " << r.frame_first << "-" << r.frame_last << " (" << r.frames_written
+            << ") in " << ro.out_dir.string() << "\n";
+  if (!r.mp4_note.empty()) std::cout << "mp4:            " << r.mp4_note << "\n";
+  return r;
+}
+
+// --frames, or the log's anim.record lines: writes report["record"] (and "records"); returns the new exit code.
+int run_recordings(const core::Scene& scene, const std::vector<PendingRecording>& pending,
+                   const ReplayOptions& options, nlohmann::json& report, int exit_code) {
+  try {
+    if (options.frames_given) {
+      RecordOptions ro;
+      ro.out_dir = options.out_dir;
+      ro.format = options.format;
+      ro.frame_first = options.frame_first;
+      ro.frame_last = options.frame_last;
+      ro.width = options.width;
+      ro.height = options.height;
+      ro.mp4 = false;
+      report["record"] = record_into(scene, ro).to_json();
+      return exit_code;
+    }
+    nlohmann::json all = nlohmann::json::array();
+    for (const PendingRecording& p : pending) {
+      RecordOptions ro;
+      ro.out_dir = options.out_dir;  // headless replay writes under --out; the line's "out" was the editor's
+      ro.format = p.request.format;
+      ro.frame_first = p.request.frame_first;
+      ro.frame_last = p.request.frame_last;
+      ro.width = p.request.width;
+      ro.height = p.request.height;
+      ro.glb = p.request.glb;
+      ro.mp4 = p.request.mp4;
+      nlohmann::json j = record_into(p.scene, ro).to_json();
+      j["line"] = p.line;
+      all.push_back(j);
+    }
+    if (!all.empty()) report["record"] = all.back();
+    if (all.size() > 1) report["records"] = all;
+  } catch (const std::exception& e) {
+    std::cerr << "cannot record frames: " << e.what() << "\n";
+    report["record_error"] = e.what();
+    return exit_code ? exit_code : 3;
+  }
+  return exit_code;
+}
+
 }  // namespace
 
-ReplayResult replay_lines(History& history, const std::filesystem::path& log_path) {
+ReplayResult replay_lines(History& history, const std::filesystem::path& log_path, const ReplayHook& on_executed) {
   ReplayResult result;
   std::vector<LogLine> lines;
   try {
@@ -111,6 +169,7 @@ ReplayResult replay_lines(History& history, const std::filesystem::path& log_pat
       } else {
         rec = history.execute(registry.parse(line.json, ctx));
         rec.log_line = line.number;
+        if (on_executed) on_executed(history.at(history.applied() - 1), line.number);
       }
     } catch (const core::CommandError& e) {
       rec.ok = false;
@@ -132,12 +191,38 @@ ReplayResult replay_lines(History& history, const std::filesystem::path& log_pat
   return result;
 }
 
+std::optional<std::pair<int, int>> parse_frame_range(const std::string& text) {
+  auto number = [](const std::string& t) -> std::optional<int> {
+    if (t.empty() || t.size() > 9 || t.find_first_not_of("0123456789") != std::string::npos) return std::nullopt;
+    return std::stoi(t);
+  };
+  const std::size_t dash = text.find('-');
+  const auto a = number(text.substr(0, dash));
+  const auto b = dash == std::string::npos ? a : number(text.substr(dash + 1));
+  if (!a || !b || *a > *b) return std::nullopt;
+  return std::make_pair(*a, *b);
+}
+
 int run_replay(const ReplayOptions& options) {
   core::Scene scene;
   History history(scene);
   const auto t0 = std::chrono::steady_clock::now();
-  ReplayResult result = replay_lines(history, options.log);
+  std::vector<PendingRecording> pending;  // the log's anim.record lines, with the scene as it was at each
+  const ReplayHook hook = [&](const core::Command& command, int line) {
+    if (options.frames_given || options.out_dir.empty()) return;
+    if (const auto* rec = dynamic_cast<const core::AnimRecordCommand*>(&command))
+      pending.push_back({line, scene, rec->request()});
+  };
+  ReplayResult result = replay_lines(history, options.log, hook);
   const double replay_ms = ms_since(t0);
+  if (result.ok && options.frames_given) {
+    const std::string err = core::frame_range_error(scene.timeline, options.frame_first, options.frame_last);
+    if (!err.empty()) {
+      std::cerr << "replay: --frames " << options.frame_first << "-" << options.frame_last << ": " << err
+                << " (nothing written)\n";
+      return 2;
+    }
+  }
 
   nlohmann::json report = {{"log", options.log.string()}, {"ok", result.ok}, {"replay_ms", replay_ms}};
   if (!result.ok) {
@@ -218,6 +303,7 @@ int run_replay(const ReplayOptions& options) {
         exit_code = exit_code ? exit_code : 3;
       }
     }
+    if (result.ok) exit_code = run_recordings(scene, pending, options, report, exit_code);
     report["timings"] = timings;
     const auto report_path = options.out_dir / "report.json";
     std::ofstream(report_path) << report.dump(2) << "\n";

@@ -8,7 +8,15 @@
 //     "geometry": {"source"[,"objects","vertices","ms","renderer"]}  which backend evaluated scene.glb (ms: wall time
 //                 incl. shader builds and read-back)
 //     "render": {"ffd_backend","ffd_backend_label","renderer","timer_mode","time_s","ffd_objects","ffd_vertices",
-//                "ffd_ms","draw_ms","vertices_per_second"}   the final.png frame's GPU passes (null = not measured)}
+//                "ffd_ms","draw_ms","vertices_per_second"}   the final.png frame's GPU passes (null = not measured),
+//   "record": RecordResult::to_json() of the recording (--frames, or the log's last anim.record line),
+//   "records": [...] every recording when the log holds more than one anim.record line, "record_error"}
+//
+// Recordings (editor/record.h): with --frames A-B the final scene's frames A..B are written into DIR
+// (frame_NNNN.png|exr and animation.glb of that range; no MP4: a slice of a render farm), after checking the range
+// against the timeline — a range outside it exits 2 before anything is written. Without --frames, every anim.record
+// line of the log is recorded as the editor did when it ran, from the scene at that line, into DIR itself (the
+// line's "out" is the editor's folder; a later recording overwrites files of the same name).
 #pragma once
 
 #include "core/deform/ffd_evaluator.h"
@@ -16,6 +24,9 @@
 #include "editor/history.h"
 
 #include <filesystem>
+#include <functional>
+#include <optional>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -30,6 +41,10 @@ struct ReplayOptions {
   // GPU for GLSL backends, so the GPU path is tested end to end). cpu_ref: the authoritative CPU geometry.
   core::FfdBackend ffd_backend = core::FfdBackend::cpu_ref;
   double time_s = 0;  // scene time, seconds: animated objects (lattice.animate_offset) are shown and exported at it
+  // --frames A-B: record timeline frames [frame_first, frame_last] into out_dir (see above); --format png|exr.
+  bool frames_given = false;
+  int frame_first = 0, frame_last = 0;
+  std::string format = "png";
 };
 
 struct ReplayResult {
@@ -39,10 +54,19 @@ struct ReplayResult {
   std::vector<ExecutionRecord> records;
 };
 
+// Called after a log line's command executed successfully (not for edit.undo / edit.redo), with the command (as
+// held by the history) and its 1-based log line; the history's scene is in the state right after it.
+using ReplayHook = std::function<void(const core::Command& command, int log_line)>;
+
 // Replays `lines` of a log into `history` (and its scene). Stops at the first failing line.
-ReplayResult replay_lines(History& history, const std::filesystem::path& log_path);
-// Full CLI behaviour: replay, then write DIR/final.png, DIR/scene.glb, DIR/report.json. Returns the exit code: 0,
-// 2 when the log fails, 3 when an output cannot be written (or the chosen backend fails).
+ReplayResult replay_lines(History& history, const std::filesystem::path& log_path,
+                          const ReplayHook& on_executed = {});
+// "A-B" (or "A" for one frame): non-negative frame numbers, A ≤ B; nullopt for anything else.
+std::optional<std::pair<int, int>> parse_frame_range(const std::string& text);
+
+// Full CLI behaviour: replay, then write DIR/final.png, DIR/scene.glb, the recordings, DIR/report.json. Returns the
+// exit code: 0, 2 when the log fails or --frames lies outside the timeline, 3 when an output cannot be written (or
+// the chosen backend fails).
 int run_replay(const ReplayOptions& options);
 
 }  // namespace trispline::editor
