@@ -1,6 +1,7 @@
 #include "editor/app.h"
 
 #include "core/mesh/image_io.h"
+#include "editor/animation_ui.h"
 #include "editor/navigation.h"
 #include "editor/session.h"
 #include "editor/tools/toolbox.h"
@@ -19,6 +20,8 @@
 #include "ui/scene_panel.h"
 #include "ui/shortcuts.h"
 #include "ui/status_bar.h"
+#include "ui/timeline_panel.h"
+#include "ui/tool_panel.h"
 #include "ui/window_capture.h"
 
 #include <epoxy/gl.h>
@@ -79,7 +82,8 @@ class App {
   void handle_file(const fs::path& path);
   void viewport_input();
   void render_view();
-  bool animating() const;  // playback is on and some visible object has an animated offset
+  bool animating() const;  // the timeline is playing
+  void draw_control_point();  // the "Control point" section appended to the Tool panel
   void render_ui();        // ImGui's draw data into the window, timed by ui_timer_
   void record_frame_timings(Clock::time_point start, Clock::time_point end, Clock::time_point last);
   void frame_selected();
@@ -112,7 +116,9 @@ class App {
   ui::FileDialog file_dialog_;
   FilePurpose file_purpose_ = FilePurpose::None;
   ui::TimingOverlay timing_;
-  double scene_time_s_ = 0;  // playback clock of animated objects (gpu::ViewOptions::time_s), seconds
+  ui::DockLayout layout_;  // this frame's panel rectangles
+  AnimationUi anim_{session_, messages_};  // timeline, playback clock, keys, recording
+  ui::ControlPointState control_point_;
   WorkQueue work_;
   std::optional<RecoveryOffer> recovery_;
   Pending prompt_for_ = Pending::None;  // the "Save changes?" question is open for this
@@ -233,6 +239,13 @@ void App::handle_menu(ui::MenuAction action) {
     case A::Delete: handle_scene({ui::SceneRequest::Kind::Remove, selected_}); break;
     case A::ToggleTimingOverlay:
     case A::TogglePlayback: ui::apply_view_action(toggles_, action); break;
+    case A::InsertKeyframe:
+    case A::DeleteKeyframe:
+    case A::FramePrev:
+    case A::FrameNext:
+    case A::FrameStart:
+    case A::FrameEnd:
+    case A::RecordAnimation: anim_.handle_action(action, view_.viewport); break;
     case A::None: break;
   }
   // clang-format on
@@ -306,11 +319,34 @@ void App::render_view() {
   }
   gpu::ViewOptions vo = ui::view_options(toggles_);
   vo.selected = selected_;
-  vo.time_s = scene_time_s_;
+  vo.time_s = anim_.time_s();
   tools_.decorate(vo);
+  if (const core::SceneObject* o = session_.scene().find(selected_); o && o->ffd && control_point_.highlight &&
+                                                                      !vo.brush) {
+    // The control point edited in the Tool panel: a small sphere at P_ijk, 2 % of the lattice's extent.
+    const auto& lattice = o->ffd->lattice;
+    core::Aabb box;
+    for (const glm::dvec3& p : lattice.control_points()) box.extend(p);
+    const glm::ivec3 n = lattice.control_counts();
+    int i[3];
+    for (int a = 0; a < 3; ++a) i[a] = std::clamp(control_point_.index[a], 0, n[a] - 1);
+    vo.brush = gpu::BrushSphere{lattice.control_point(i[0], i[1], i[2]), 0.02 * box.diagonal(), {1.0f, 0.85f, 0.3f, 0.6f}};
+  }
+  // The Press tool's drag preview: the pressed object drawn with the lattice pressed so far (its own world_mesh is
+  // the unpressed one until the command runs at mouse-up), evaluated by the FFD backend, never the stale CPU mesh.
+  const core::Scene& drawn = anim_.drawn_scene(hidden_);
+  std::optional<core::Scene> previewed;
+  if (const auto p = tools_.live_preview(tool_ctx_); p && drawn.find(p->object)) {
+    core::SceneObject o = *drawn.find(p->object);
+    if (o.ffd && o.ffd->params.size() == p->binding->params.size()) {
+      previewed = drawn;
+      o.ffd = p->binding;
+      previewed->replace(std::move(o));
+      vo.live_ffd_object = p->object;
+    }
+  }
   try {
-    const core::Scene shown = hidden_.empty() ? core::Scene() : session_.shown_scene(hidden_);
-    renderer_->draw(hidden_.empty() ? session_.scene() : shown, view_, vo);
+    renderer_->draw(previewed ? *previewed : drawn, view_, vo);
   } catch (const std::exception& e) {
     if (vo.ffd_backend != core::FfdBackend::cpu_ref) {
       // E.g. a lattice order the fast backends do not support (they take 2..4): the reference takes any.
@@ -324,11 +360,14 @@ void App::render_view() {
   }
 }
 
-bool App::animating() const {
-  if (!toggles_.play_animation) return false;
-  for (const core::SceneObject& o : session_.scene().objects())
-    if (o.visible && o.animated()) return true;
-  return false;
+bool App::animating() const { return toggles_.play_animation; }
+
+void App::draw_control_point() {
+  const core::SceneObject* o = session_.scene().find(selected_);
+  if (!o || !o->ffd) return;
+  if (ui::begin_docked("Tool", layout_.tool))  // the same window again: ImGui appends to it
+    if (auto line = ui::draw_control_point_section(*o, control_point_)) session_.execute(*line);
+  ImGui::End();
 }
 
 void App::frame() {
@@ -339,12 +378,26 @@ void App::frame() {
   if (!session_.scene().find(selected_)) selected_.clear();
 
   handle_menu(ui::draw_main_menu(toggles_, session_.menu_state()));
-  handle_menu(work_.empty() ? ui::poll_shortcuts() : ui::MenuAction::None);
+  // While working or recording only F12 (screenshot) is taken from the keyboard.
+  const ui::MenuAction key = ui::poll_shortcuts();
+  handle_menu(key == ui::MenuAction::Screenshot || (work_.empty() && !anim_.recording()) ? key : ui::MenuAction::None);
 
-  const ui::DockLayout layout =
-      ui::compute_layout(io.DisplaySize, ImGui::GetFrameHeight(), ui::status_bar_height(), {}, toggles_.show_tool_panel,
-                         toggles_.show_side_panels, toggles_.show_log_panel);
-  if (toggles_.show_tool_panel) tools_.draw_panel(layout.tool);
+  // The Timeline spans the window's width above the status bar (Blender); the other panels share the rest.
+  anim_.begin_frame(selected_, toggles_.play_animation);
+  const float timeline_h = toggles_.show_timeline ? ui::timeline_panel_height() : 0.0f;
+  layout_ = ui::compute_layout(io.DisplaySize, ImGui::GetFrameHeight(), ui::status_bar_height() + timeline_h, {},
+                               toggles_.show_tool_panel, toggles_.show_side_panels, toggles_.show_log_panel);
+  const ui::DockLayout& layout = layout_;
+  if (toggles_.show_timeline) {
+    const ui::Rect rect{{0, io.DisplaySize.y - ui::status_bar_height() - timeline_h}, {io.DisplaySize.x, timeline_h}};
+    anim_.draw_timeline(rect, view_.viewport);
+  }
+  toggles_.play_animation = anim_.playback().playing;  // the Play button
+  control_point_.highlight = false;  // set again while the Control point section is hovered
+  if (toggles_.show_tool_panel) {
+    tools_.draw_panel(layout.tool);
+    draw_control_point();
+  }
   if (toggles_.show_side_panels) {
     ui::ScenePanelState sps{selected_, hidden_, session_.has_command("scene.remove")};
     handle_scene(ui::draw_scene_panel(layout.scene, session_.scene(), sps));
@@ -360,6 +413,7 @@ void App::frame() {
   ui::draw_status_bar(st);
 
   if (auto chosen = file_dialog_.draw()) handle_file(*chosen);
+  anim_.draw_record_ui([this] { window_->make_current(); });
   ui::draw_about_window(&show_about_, gl_renderer_);
   ui::draw_keys_window(&show_keys_);
   if (recovery_) {
@@ -422,7 +476,7 @@ void App::record_frame_timings(Clock::time_point start, Clock::time_point end, C
   timing_.add_frame(sample);
 
   ctx.ffd_backend = ui::ffd_backend_label(toggles_.ffd_backend);
-  if (any_animated) ctx.scene_time_s = scene_time_s_;
+  if (any_animated) ctx.scene_time_s = anim_.time_s();
   ctx.playing = animating();
   const History& h = session_.history();
   if (h.applied() > 0) {
@@ -471,7 +525,8 @@ int App::run() {
     window_->swap();
     const auto end = Clock::now();
     record_frame_timings(start, end, last);
-    if (animating()) scene_time_s_ += std::min(ms_between(last, end) * 1e-3, 0.1);  // no jump after a stall
+    // Playback: real time × fps, whole frames, looping at frame_end (a stall shows at most 0.1 s of it).
+    if (animating()) anim_.advance(std::min(ms_between(last, end) * 1e-3, 0.1));
     last = end;
     if (quit_) {
       session_.finish();

@@ -1,10 +1,14 @@
 #include "editor/command_registry.h"
 
+#include "core/commands/anim_commands.h"
+#include "core/commands/anim_record.h"
 #include "core/commands/camera_set.h"
 #include "core/commands/lattice_animate_offset.h"
 #include "core/commands/lattice_press.h"
 #include "core/commands/lattice_ring.h"
+#include "core/commands/lattice_set_point.h"
 #include "core/commands/mesh_refine.h"
+#include "core/commands/place_array.h"
 #include "core/commands/place_sketch.h"
 #include "core/commands/scene_load.h"
 #include "core/commands/scene_primitive.h"
@@ -53,8 +57,19 @@ const CommandRegistry& CommandRegistry::builtin() {
           core::LatticePressCommand::parse);
     r.add("lattice.pull_column", "Pull or push one contact control point and its column along V_P (seed §2.4.1)",
           core::LatticePullColumnCommand::parse);
+    r.add("lattice.set_point", "Move one control point of a deformed object's lattice to an exact position",
+          core::LatticeSetPointCommand::parse);
     r.add("mesh.refine", "Refine a deformed object's mesh until its edges follow the FFD (seed §2.4.2)",
           core::MeshRefineCommand::parse);
+    r.add("anim.timeline", "Set the timeline's frame range and frame rate", core::AnimTimelineCommand::parse);
+    r.add("anim.keyframe", "Key (or delete a key of) an object's parameter offset along its path at a frame (seed §2.4.3)",
+          core::AnimKeyframeCommand::parse);
+    r.add("anim.clip", "Attach a glTF animation clip (morph targets, skin) played before the FFD (two-level animation)",
+          core::AnimClipCommand::parse);
+    r.add("place.array", "Add copies of a placed object in a row along its path (seed Fig. 2.11, the ants)",
+          core::PlaceArrayCommand::parse);
+    r.add("anim.record", "Record timeline frames to PNG/EXR images, an animated glb and an MP4 (seed §2.4.3)",
+          core::AnimRecordCommand::parse);
     return r;
   }();
   return registry;

@@ -62,7 +62,11 @@ void draw_keys_window(bool* open) {
       {"Ctrl+Shift+S", "save as"},
       {"Ctrl+Q", "quit"},
       {"F7", "timing overlay on/off (FPS, FFD / render / UI times, graph)"},
-      {"Space", "play / pause animated objects (lattice.animate_offset)"},
+      {"Space", "play / pause the timeline (loops at its end frame)"},
+      {"Left / Right", "previous / next frame"},
+      {"Shift+Left / Shift+Right", "first / last frame of the timeline"},
+      {"I / Alt+I", "insert / delete a keyframe of the selected object's offset"},
+      {"Ctrl+F12", "record the animation (images, GLB, MP4)"},
       {"F12", "save a screenshot of the window (PNG, current folder)"},
   };
   center_next_window();

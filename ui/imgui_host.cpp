@@ -18,7 +18,9 @@ std::vector<int> g_forced;                 // keys held down artificially for on
 
 // Installed before ImGui's own callbacks, which chain to it.
 void record_key(GLFWwindow*, int key, int, int action, int mods) {
-  if (action == GLFW_PRESS) g_pending.push_back({key, mods});
+  // Held Left / Right repeat (stepping frames, as in Blender); every other shortcut fires once per press.
+  const bool repeats = action == GLFW_REPEAT && (key == GLFW_KEY_LEFT || key == GLFW_KEY_RIGHT);
+  if (action == GLFW_PRESS || repeats) g_pending.push_back({key, mods});
 }
 }  // namespace
 

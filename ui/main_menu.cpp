@@ -61,6 +61,9 @@ MenuAction draw_main_menu(ViewToggles& view, const MenuState& state) {
     if (ImGui::MenuItem("Save As...", "Ctrl+Shift+S")) action = MenuAction::SaveAs;
     ImGui::Separator();
     if (ImGui::MenuItem("Save Screenshot", "F12")) action = MenuAction::Screenshot;
+    if (ImGui::MenuItem("Record animation...", "Ctrl+F12")) action = MenuAction::RecordAnimation;
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("Render the timeline's frames to PNG/EXR images, an animated GLB and an MP4 (anim.record)");
     ImGui::Separator();
     if (ImGui::MenuItem("Quit", "Ctrl+Q")) action = MenuAction::Quit;
     ImGui::EndMenu();
@@ -85,11 +88,12 @@ MenuAction draw_main_menu(ViewToggles& view, const MenuState& state) {
     ffd_backend_combo(view.ffd_backend);
     ImGui::MenuItem("Play animation", "Space", &view.play_animation);
     if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("Objects with an animated offset (lattice.animate_offset) travel through their lattice while\n"
-                        "this is on (the GLSL vertex-shader path evaluates them every frame).");
+      ImGui::SetTooltip("Play the timeline: the frame advances at the timeline's fps and loops at its end frame;\n"
+                        "animated objects (keys, lattice.animate_offset, glTF clips) move.");
     ImGui::MenuItem("Tool panel", nullptr, &view.show_tool_panel);
     ImGui::MenuItem("Scene && History panels", nullptr, &view.show_side_panels);
     ImGui::MenuItem("Log panel", nullptr, &view.show_log_panel);
+    ImGui::MenuItem("Timeline panel", nullptr, &view.show_timeline);
     ImGui::Separator();
     if (ImGui::MenuItem("Frame selected", "F / Numpad .")) action = MenuAction::FrameSelected;
     if (ImGui::MenuItem("Frame all", "Home")) action = MenuAction::FrameAll;

@@ -18,7 +18,8 @@ struct ViewToggles {
   // View > FFD evaluator: which backend evaluates deformed objects in the viewport (changes live). The editor always
   // has a GL context, so GLSL compute is the default; replay uses the CPU reference unless told otherwise.
   core::FfdBackend ffd_backend = core::FfdBackend::glsl_compute;
-  bool play_animation = true;  // View > Play animation, Space: animated objects (lattice.animate_offset) move
+  bool play_animation = false;  // View > Play animation, Space: the timeline plays (Blender starts paused)
+  bool show_timeline = true;     // View > Timeline panel
   bool show_tool_panel = true;
   bool show_side_panels = true;  // Scene + History
   bool show_log_panel = true;
@@ -46,7 +47,14 @@ enum class MenuAction {
   PressTool,
   Delete,
   ToggleTimingOverlay,  // F7 (View > Timing overlay is a checkbox edited in place)
-  TogglePlayback        // Space, as Blender's Play (View > Play animation)
+  TogglePlayback,       // Space, as Blender's Play (View > Play animation)
+  InsertKeyframe,       // I: key the selected object's offset at the current frame (anim.keyframe)
+  DeleteKeyframe,       // Alt+I: delete its key at the current frame
+  FramePrev,            // Left / Right: one frame back / forward
+  FrameNext,
+  FrameStart,           // Shift+Left / Shift+Right: first / last frame of the timeline
+  FrameEnd,
+  RecordAnimation       // File > Record animation..., Ctrl+F12 (Blender's Render Animation)
 };
 
 struct MenuState {

@@ -19,9 +19,10 @@ MenuAction shortcut_action(const KeyPress& k) {
     if (key == GLFW_KEY_O) return A::Open;
     if (key == GLFW_KEY_S) return shift ? A::SaveAs : A::Save;
     if (key == GLFW_KEY_Q) return A::Quit;
+    if (key == GLFW_KEY_F12) return A::RecordAnimation;  // Blender: Render Animation
     return A::None;
   }
-  if (alt) return A::None;
+  if (alt) return key == GLFW_KEY_I && !shift ? A::DeleteKeyframe : A::None;  // Blender: Alt+I deletes a key
   if (key == GLFW_KEY_F || key == GLFW_KEY_KP_DECIMAL) return A::FrameSelected;
   if (key == GLFW_KEY_HOME) return A::FrameAll;
   if (key == GLFW_KEY_Q) return A::SelectTool;
@@ -31,6 +32,10 @@ MenuAction shortcut_action(const KeyPress& k) {
   // F7: Blender leaves F5-F8 to the user, so it clashes with nothing a Blender user knows.
   if (key == GLFW_KEY_F7 && !shift) return A::ToggleTimingOverlay;
   if (key == GLFW_KEY_SPACE && !shift) return A::TogglePlayback;  // Blender: Space plays the animation
+  // Blender's timeline keys: I inserts a keyframe, arrows step frames, Shift+arrows jump to the ends.
+  if (key == GLFW_KEY_I && !shift) return A::InsertKeyframe;
+  if (key == GLFW_KEY_LEFT) return shift ? A::FrameStart : A::FramePrev;
+  if (key == GLFW_KEY_RIGHT) return shift ? A::FrameEnd : A::FrameNext;
   return A::None;
 }
 

@@ -37,6 +37,7 @@ nlohmann::json place_sketch_line(const std::string& object, const std::vector<gl
             {"fov_deg", view.fov_deg},
             {"viewport", {view.viewport.x, view.viewport.y}}}}};
   if (!ignore.empty()) line["ignore"] = ignore;
+  ui::add_placement_extras(p, line);  // profiles d(u), h(u), springs, extent (only when not off)
   return line;
 }
 
@@ -56,6 +57,7 @@ bool parse_place_sketch_line(const nlohmann::json& j, std::string* object, std::
     for (int a = 0; a < 3 && j.contains("controls"); ++a) p->controls[a] = j["controls"].at(a).get<int>();
     p->length_axis = axis(j.value("length_axis", "x"));
     p->up_axis = axis(j.value("up_axis", "y"));
+    ui::read_placement_extras(j, *p);
     camera->reset();
     if (j.contains("camera")) *camera = core::CameraSetCommand::parse_camera(j["camera"]);
     if (ignore) *ignore = j.value("ignore", std::vector<std::string>{});

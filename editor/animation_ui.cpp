@@ -1,0 +1,153 @@
+#include "editor/animation_ui.h"
+
+#include <filesystem>
+
+namespace fs = std::filesystem;
+
+namespace trispline::editor {
+
+void AnimationUi::begin_frame(const std::string& selected, bool playing) {
+  if (playing != playback_.playing) playback_.carry = 0.0;
+  playback_.playing = playing;
+  selected_ = selected;
+  ui::advance_playback(playback_, session_.scene().timeline, 0.0);
+  object_ = ui::timeline_object(session_.scene(), selected_, playback_.frame);
+}
+
+double AnimationUi::time_s() const { return session_.scene().timeline.time_of_frame(playback_.frame); }
+
+void AnimationUi::draw_timeline(const ui::Rect& rect, glm::ivec2 viewport) {
+  const ui::TimelineRequest r =
+      ui::draw_timeline_panel(rect, session_.scene().timeline, playback_, object_, panel_);
+  if (r.command && session_.execute(*r.command))
+    object_ = ui::timeline_object(session_.scene(), selected_, playback_.frame);
+  if (r.record) handle_action(ui::MenuAction::RecordAnimation, viewport);
+}
+
+bool AnimationUi::handle_action(ui::MenuAction action, glm::ivec2 viewport) {
+  using A = ui::MenuAction;
+  const core::Timeline& t = session_.scene().timeline;
+  auto go = [&](int frame) {
+    playback_.frame = ui::clamp_frame(t, frame);
+    playback_.carry = 0.0;
+  };
+  switch (action) {
+    case A::InsertKeyframe:
+      if (auto line = ui::insert_key_request(object_, playback_, panel_))
+        session_.execute(*line);
+      else
+        messages_.warning("Insert keyframe: select an object with a lattice (placed or ring) first");
+      break;
+    case A::DeleteKeyframe:
+      if (auto line = ui::delete_key_request(object_, playback_))
+        session_.execute(*line);
+      else
+        messages_.warning("Delete keyframe: the selected object has no key at frame " +
+                          std::to_string(playback_.frame));
+      break;
+    case A::FramePrev: go(playback_.frame - 1); break;
+    case A::FrameNext: go(playback_.frame + 1); break;
+    case A::FrameStart: go(t.frame_start); break;
+    case A::FrameEnd: go(t.frame_end); break;
+    case A::RecordAnimation:
+      if (recorder_) break;
+      if (dialog_.out_dir.empty()) {
+        const fs::path state = state_dir();
+        std::error_code ec;
+        dialog_.out_dir = ((state.empty() ? fs::current_path(ec) : state) / "render").string();
+      }
+      ui::open_record_dialog(dialog_, t, viewport.x, viewport.y);
+      break;
+    default: return false;
+  }
+  object_ = ui::timeline_object(session_.scene(), selected_, playback_.frame);
+  return true;
+}
+
+void AnimationUi::advance(double dt_s) {
+  if (!recorder_) ui::advance_playback(playback_, session_.scene().timeline, dt_s);
+}
+
+bool AnimationUi::start_recording(const nlohmann::json& line, const std::function<void()>& restore_context) {
+  if (recorder_ || !session_.execute(line)) return false;  // anim.record validates range, format and size
+  RecordOptions ro;
+  try {
+    ro.out_dir = line.at("out").get<std::string>();
+    ro.format = line.value("format", std::string("png"));
+    if (line.contains("frames")) {
+      ro.frame_first = line["frames"].at(0).get<int>();
+      ro.frame_last = line["frames"].at(1).get<int>();
+    }
+    ro.width = line.value("width", 0);
+    ro.height = line.value("height", 0);
+    ro.glb = line.value("glb", true);
+    ro.mp4 = line.value("mp4", true);
+    recorder_ = std::make_unique<Recorder>(session_.scene(), ro);
+    record_out_ = ro.out_dir.string();
+    messages_.info("recording " + std::to_string(recorder_->frames_total()) + " frames into " + record_out_);
+  } catch (const std::exception& e) {
+    messages_.error(std::string("cannot record: ") + e.what());
+  }
+  if (restore_context) restore_context();
+  return recorder_ != nullptr;
+}
+
+void AnimationUi::draw_record_ui(const std::function<void()>& restore_context) {
+  if (auto line = ui::draw_record_dialog(dialog_, session_.scene().timeline)) start_recording(*line, restore_context);
+  if (!recorder_) return;
+  ui::RecordProgress p{recorder_->frames_done(), recorder_->frames_total(), recorder_->seconds_left(),
+                       recorder_->current_frame(), record_out_};
+  const bool cancel = ui::draw_record_progress(p);
+  bool more = false;
+  try {
+    if (cancel) recorder_->cancel();
+    more = !cancel && recorder_->step() && recorder_->frames_done() < recorder_->frames_total();
+  } catch (const std::exception& e) {
+    messages_.error(std::string("recording stopped: ") + e.what());
+  }
+  if (!more) {
+    try {
+      const RecordResult res = recorder_->finish();
+      std::string files;
+      for (const fs::path& f : res.files)
+        if (f.extension() != ".png" && f.extension() != ".exr") files += " " + f.string();
+      messages_.info((res.cancelled ? "recording cancelled after " : "recorded ") +
+                     std::to_string(res.frames_written) + " frames (" + std::to_string(res.frame_first) + "-" +
+                     std::to_string(res.frame_last) + ") into " + record_out_ + (files.empty() ? "" : ":" + files));
+      if (!res.cancelled && !res.mp4_note.empty()) messages_.warning("no MP4: " + res.mp4_note);
+    } catch (const std::exception& e) {
+      messages_.error(std::string("recording failed: ") + e.what());
+    }
+    recorder_.reset();
+    p.close = true;
+    ui::draw_record_progress(p);
+  }
+  if (restore_context) restore_context();
+}
+
+const core::Scene& AnimationUi::drawn_scene(const std::set<std::string>& hidden) {
+  const core::Scene& doc = session_.scene();
+  bool clips = false;
+  for (const core::SceneObject& o : doc.objects()) clips = clips || (o.clip_animated() && !hidden.count(o.name));
+  if (!clips && hidden.empty()) {
+    drawn_.reset();
+    return doc;
+  }
+  const bool fresh = drawn_ && drawn_posed_ == clips && drawn_changes_ == session_.change_count() &&
+                     drawn_hidden_ == hidden && (!clips || drawn_frame_ == playback_.frame);
+  if (!fresh) {
+    if (clips) {
+      drawn_ = core::scene_with_posed_clips(hidden.empty() ? doc : session_.shown_scene(hidden), time_s());
+      ++poses_computed_;
+    } else {
+      drawn_ = session_.shown_scene(hidden);
+    }
+    drawn_posed_ = clips;
+    drawn_frame_ = playback_.frame;
+    drawn_changes_ = session_.change_count();
+    drawn_hidden_ = hidden;
+  }
+  return *drawn_;
+}
+
+}  // namespace trispline::editor

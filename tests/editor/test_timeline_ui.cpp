@@ -1,0 +1,467 @@
+// The editor's timeline and precise-edit UI (issue 4): the playback clock (whole frames at the timeline's fps,
+// looping at the end frame), scrubbing the real Timeline panel in a headless Dear ImGui frame (mouse events, no
+// window), the I / Alt+I keys issuing anim.keyframe, the Record dialog's anim.record line and a short recording
+// stepped one frame per UI frame, the Sketch tool's profile curves and springs feeding place.sketch, and
+// lattice.set_point (logs, undo bit for bit, bad input leaves the scene untouched) with its Tool panel section.
+#include "core/commands/command.h"
+#include "editor/animation_ui.h"
+#include "editor/command_registry.h"
+#include "editor/history.h"
+#include "editor/replay.h"
+#include "editor/tools/sketch_tool.h"
+#include "session_test_util.h"
+#include "ui/curve_editor.h"
+#include "ui/placement_panel.h"
+#include "ui/tool_panel.h"
+
+#include <gtest/gtest.h>
+#include <imgui.h>
+
+#include <cmath>
+#include <functional>
+
+namespace fs = std::filesystem;
+using namespace trispline;
+
+namespace {
+
+fs::path logs_dir() { return fs::path(TRISPLINE_SOURCE_DIR) / "tests" / "logs"; }
+
+// A Dear ImGui context with a built font atlas. step() ends the open frame, sets the mouse, opens the next frame
+// and draws `ui` in it (Dear ImGui reads input at NewFrame, widgets react while drawn).
+class HeadlessImGui {
+ public:
+  HeadlessImGui() {
+    ctx_ = ImGui::CreateContext();
+    ImGuiIO& io = ImGui::GetIO();
+    io.IniFilename = nullptr;
+    io.DisplaySize = ImVec2(1280, 720);
+    io.DeltaTime = 1.0f / 60.0f;
+    unsigned char* pixels = nullptr;
+    int w = 0, h = 0;
+    io.Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);
+    ImGui::NewFrame();
+  }
+  ~HeadlessImGui() {
+    ImGui::Render();
+    ImGui::DestroyContext(ctx_);
+  }
+  void step(ImVec2 mouse, bool down, const std::function<void()>& ui, int button = 0) {
+    ImGui::Render();
+    ImGuiIO& io = ImGui::GetIO();
+    io.MousePos = mouse;
+    for (int b = 0; b < 3; ++b) io.MouseDown[b] = down && b == button;
+    ImGui::NewFrame();
+    ui();
+  }
+
+ private:
+  ImGuiContext* ctx_;
+};
+
+const nlohmann::json kTeapot = {{"cmd", "scene.primitive"}, {"kind", "teapot"}, {"name", "t"}, {"scale", 0.3}};
+const nlohmann::json kRing = {
+    {"cmd", "lattice.ring"}, {"object", "t"}, {"radius", 1.2}, {"controls", {16, 3, 4}}, {"order", {4, 3, 2}}};
+
+class TimelineUi : public test::StateDirTest {
+ protected:
+  TimelineUi() : StateDirTest("trispline_timeline_ui_") {}
+  void SetUp() override {
+    StateDirTest::SetUp();
+    ASSERT_TRUE(s.execute(kTeapot));
+    ASSERT_TRUE(s.execute(kRing));
+  }
+  const core::SceneObject& teapot() const { return *s.scene().find("t"); }
+  nlohmann::json last_cmd() const {  // compared as JSON values: 10 == 10.0
+    const editor::History& h = s.history();
+    return h.applied() ? h.at(h.applied() - 1).to_json() : nlohmann::json();
+  }
+  editor::EditorSession s{messages_};
+  editor::AnimationUi anim{s, messages_};
+};
+
+}  // namespace
+
+TEST(Playback, AdvancesWholeFramesAtFpsAndLoopsAtTheEnd) {
+  core::Timeline t;  // 1..120 at 24 fps
+  ui::Playback p;
+  EXPECT_FALSE(ui::advance_playback(p, t, 1.0)) << "paused: the frame stays";
+  EXPECT_EQ(p.frame, 1);
+  p.playing = true;
+  EXPECT_TRUE(ui::advance_playback(p, t, 0.5));
+  EXPECT_EQ(p.frame, 13);  // 0.5 s × 24 fps = 12 frames
+  EXPECT_FALSE(ui::advance_playback(p, t, 0.03));  // 0.72 of a frame: carried, not shown
+  EXPECT_TRUE(ui::advance_playback(p, t, 0.03));   // 1.44: one frame shown, 0.44 carried
+  EXPECT_EQ(p.frame, 14);
+  p.frame = 119;
+  p.carry = 0;
+  ui::advance_playback(p, t, 3.0 / 24.0);
+  EXPECT_EQ(p.frame, 2) << "119 + 3 wraps past 120 to the start (Blender loops)";
+  p.scrubbing = true;
+  EXPECT_FALSE(ui::advance_playback(p, t, 1.0)) << "scrubbing holds the frame";
+  p.scrubbing = false;
+  p.frame = 500;  // the range shrank under it
+  ui::advance_playback(p, t, 0.0);
+  EXPECT_EQ(p.frame, 120);
+  ui::advance_playback(p, t, 1e6);  // a huge stall wraps, never loops forever
+  EXPECT_GE(p.frame, 1);
+  EXPECT_LE(p.frame, 120);
+}
+
+TEST_F(TimelineUi, ScrubbingThePanelSetsTheFrameAndTheSceneTime) {
+  ASSERT_TRUE(s.execute(ui::timeline_line(25, 0, 100)));
+  HeadlessImGui gui;
+  const float h = ui::timeline_panel_height();
+  const ui::Rect rect{{0, 720 - h}, {1280, h}};
+  const ImGuiStyle& st = ImGui::GetStyle();
+  // The scrub bar: second row of the panel, full content width, 8 px inner margin (ui/timeline_panel.cpp).
+  const float y = rect.pos.y + st.WindowPadding.y + ImGui::GetFrameHeight() + st.ItemSpacing.y +
+                  ImGui::GetFrameHeight() * 0.8f;
+  const float x0 = st.WindowPadding.x + 8.0f, x1 = 1280 - st.WindowPadding.x - 8.0f;
+  auto x_of = [&](double f) { return x0 + float(f / 100.0) * (x1 - x0); };
+  auto draw = [&] {
+    anim.begin_frame("t", false);
+    anim.draw_timeline(rect, {1280, 720});
+  };
+  gui.step({x_of(40), y}, false, draw);
+  EXPECT_EQ(anim.playback().frame, 1) << "the frame stays where it was when it is inside the range";
+  EXPECT_DOUBLE_EQ(anim.time_s(), 1 / 25.0);
+  gui.step({x_of(40), y}, true, draw);
+  gui.step({x_of(40), y}, true, draw);
+  EXPECT_EQ(anim.playback().frame, 40);
+  EXPECT_TRUE(anim.playback().scrubbing);
+  EXPECT_DOUBLE_EQ(anim.time_s(), 40 / 25.0) << "scene time = (frame - start) / fps";
+  gui.step({x_of(73), y}, true, draw);  // drag
+  EXPECT_EQ(anim.playback().frame, 73);
+  gui.step({x_of(150), y}, true, draw);  // past the end: clamped
+  EXPECT_EQ(anim.playback().frame, 100);
+  gui.step({x_of(60), y}, false, draw);  // released: the frame stays where it was
+  gui.step({x_of(60), y}, false, draw);
+  EXPECT_EQ(anim.playback().frame, 100);
+  EXPECT_FALSE(anim.playback().scrubbing);
+  EXPECT_EQ(s.history().applied(), 3u) << "scrubbing is view state: no command";
+}
+
+TEST_F(TimelineUi, PlayAdvancesTheDrawnTime) {
+  anim.begin_frame("t", true);
+  const double t0 = anim.time_s();
+  anim.advance(0.25);
+  anim.begin_frame("t", true);
+  EXPECT_EQ(anim.playback().frame, 7);  // 1 + 0.25 × 24
+  EXPECT_GT(anim.time_s(), t0);
+  anim.begin_frame("t", false);
+  anim.advance(0.25);
+  EXPECT_EQ(anim.playback().frame, 7) << "paused";
+}
+
+TEST_F(TimelineUi, InsertKeyIssuesAnimKeyframeAndAltIDeletesIt) {
+  const glm::ivec2 vp(800, 600);
+  // Frame 10, offset u = 0.25 typed into the panel's field, I.
+  anim.begin_frame("t", false);
+  anim.playback().frame = 10;
+  anim.begin_frame("t", false);
+  anim.panel_state() = {24, 1, 120, {0.25, 0, 0}, "t", 10, 0};
+  ASSERT_TRUE(anim.handle_action(ui::MenuAction::InsertKeyframe, vp));
+  EXPECT_EQ(last_cmd(), ui::keyframe_line("t", 10, {0.25, 0, 0}, "linear"));
+  ASSERT_EQ(teapot().offset_keys.size(), 1u);
+  EXPECT_DOUBLE_EQ(teapot().offset_keys[0].time_s, 9 / 24.0);
+  // Frame 30, u = 0.75, smooth; then the object's offset in between follows the keys.
+  ASSERT_TRUE(anim.handle_action(ui::MenuAction::FrameNext, vp));
+  EXPECT_EQ(anim.playback().frame, 11);
+  anim.playback().frame = 30;
+  anim.begin_frame("t", false);
+  anim.panel_state() = {24, 1, 120, {0.75, 0, 0}, "t", 30, 2};
+  ASSERT_TRUE(anim.handle_action(ui::MenuAction::InsertKeyframe, vp));
+  ASSERT_EQ(teapot().offset_keys.size(), 2u);
+  ASSERT_EQ(anim.timeline_object().key_frames.size(), 2u);
+  EXPECT_NEAR(anim.timeline_object().key_frames[0], 10, 1e-9);
+  EXPECT_NEAR(anim.timeline_object().key_frames[1], 30, 1e-9);
+  EXPECT_NEAR(teapot().offset_at(19 / 24.0).x, 0.5, 1e-12) << "linear from the key at frame 10";
+  // Without a typed value, I keys the object's current (keyed) offset.
+  anim.playback().frame = 20;
+  anim.begin_frame("t", false);
+  EXPECT_NEAR(anim.timeline_object().offset.x, 0.5, 1e-12);
+  // Alt+I at a frame without a key does nothing; at frame 30 it deletes the key (undoable).
+  const std::size_t applied = s.history().applied();
+  ASSERT_TRUE(anim.handle_action(ui::MenuAction::DeleteKeyframe, vp));
+  EXPECT_EQ(s.history().applied(), applied);
+  ASSERT_TRUE(anim.handle_action(ui::MenuAction::FrameEnd, vp));
+  EXPECT_EQ(anim.playback().frame, 120);
+  anim.playback().frame = 30;
+  anim.begin_frame("t", false);
+  ASSERT_TRUE(anim.handle_action(ui::MenuAction::DeleteKeyframe, vp));
+  EXPECT_EQ(last_cmd(), ui::remove_keyframe_line("t", 30));
+  EXPECT_EQ(teapot().offset_keys.size(), 1u);
+  ASSERT_TRUE(s.undo());
+  EXPECT_EQ(teapot().offset_keys.size(), 2u);
+  EXPECT_FALSE(anim.handle_action(ui::MenuAction::Undo, vp)) << "not a timeline action";
+}
+
+TEST_F(TimelineUi, ClipObjectsAreDrawnPosedAtTheFrameAndCachedPerFrame) {
+  EXPECT_EQ(&anim.drawn_scene({}), &s.scene()) << "no clip, nothing hidden: the document itself";
+  ASSERT_TRUE(s.open(logs_dir() / "clip_walk.jsonl"));
+  anim.begin_frame("cube", false);
+  const core::Scene& a = anim.drawn_scene({});
+  EXPECT_EQ(anim.poses_computed(), 1u);
+  const std::vector<glm::dvec3> rest_1 = a.find("cube")->rest_mesh->positions;
+  anim.drawn_scene({});
+  EXPECT_EQ(anim.poses_computed(), 1u) << "same frame, same document: the cached pose";
+  anim.playback().frame = 13;
+  anim.begin_frame("cube", false);
+  const core::Scene& b = anim.drawn_scene({});
+  EXPECT_EQ(anim.poses_computed(), 2u);
+  EXPECT_NE(b.find("cube")->rest_mesh->positions, rest_1) << "the clip poses the rest mesh at the frame's time";
+  const core::Scene expected = core::scene_with_posed_clips(s.scene(), s.scene().timeline.time_of_frame(13));
+  EXPECT_EQ(b.find("cube")->rest_mesh->positions, expected.find("cube")->rest_mesh->positions);
+  EXPECT_FALSE(b.find("cube")->offset_keys.empty()) << "offset keys stay for the renderer to play";
+  anim.drawn_scene({"teapot"});
+  EXPECT_EQ(anim.poses_computed(), 3u) << "another hidden set";
+  EXPECT_FALSE(anim.drawn_scene({"teapot"}).find("teapot")->visible);
+  ASSERT_TRUE(s.undo());
+  anim.drawn_scene({"teapot"});
+  EXPECT_EQ(anim.poses_computed(), 4u) << "the document changed";
+}
+
+TEST_F(TimelineUi, InsertKeyWithoutALatticeIssuesNothing) {
+  ASSERT_TRUE(s.execute({{"cmd", "scene.primitive"}, {"kind", "box"}, {"name", "b"}}));
+  const std::size_t applied = s.history().applied();
+  anim.begin_frame("b", false);
+  EXPECT_FALSE(anim.timeline_object().keyable);
+  anim.handle_action(ui::MenuAction::InsertKeyframe, {800, 600});
+  EXPECT_EQ(s.history().applied(), applied);
+  EXPECT_TRUE(logged("select an object with a lattice"));
+}
+
+TEST_F(TimelineUi, RecordDialogDefaultsAndShortRecordingStepsOncePerUiFrame) {
+  anim.begin_frame("t", false);
+  ASSERT_TRUE(anim.handle_action(ui::MenuAction::RecordAnimation, {640, 360}));
+  const ui::RecordDialogState& d = anim.record_dialog();
+  EXPECT_TRUE(d.open);
+  EXPECT_EQ(fs::path(d.out_dir), dir_ / "render") << "default: <state dir>/render";
+  EXPECT_EQ(d.frames[0], 1);
+  EXPECT_EQ(d.frames[1], 120);
+  EXPECT_EQ(d.size[0], 640);
+  EXPECT_EQ(d.size[1], 360);
+  EXPECT_EQ(ui::record_line(d).dump(),
+            nlohmann::json({{"cmd", "anim.record"}, {"out", d.out_dir}, {"format", "png"}, {"frames", {1, 120}},
+                            {"glb", true}, {"mp4", true}, {"width", 640}, {"height", 360}})
+                .dump());
+
+  ui::RecordDialogState small;
+  small.out_dir = (dir_ / "rec").string();
+  small.frames[0] = 1;
+  small.frames[1] = 3;
+  small.size[0] = 48;
+  small.size[1] = 32;
+  small.glb = small.mp4 = false;
+  const std::size_t applied = s.history().applied();
+  ASSERT_TRUE(anim.start_recording(ui::record_line(small))) << (messages_.messages().empty() ? "" : messages_.messages().back().text);
+  EXPECT_EQ(s.history().applied(), applied + 1) << "anim.record is a logged command";
+  HeadlessImGui gui;
+  int ui_frames = 0;
+  while (anim.recording() && ui_frames < 10) {
+    gui.step({0, 0}, false, [&] { anim.draw_record_ui({}); });
+    ++ui_frames;
+  }
+  EXPECT_FALSE(anim.recording());
+  EXPECT_EQ(ui_frames, 3) << "one recorded frame per UI frame";
+  for (const char* f : {"frame_0001.png", "frame_0002.png", "frame_0003.png"}) EXPECT_TRUE(fs::exists(dir_ / "rec" / f)) << f;
+  EXPECT_TRUE(logged("recorded 3 frames"));
+}
+
+TEST(CurveEditor, ProfilesAreExactUniformSamples) {
+  std::vector<ui::CurvePoint> c = ui::flat_curve();
+  EXPECT_TRUE(ui::profile_samples(c).empty()) << "flat: the field is left out";
+  c = {{0, 1}, {0.5, 2}, {1, 0.5}};
+  EXPECT_EQ(ui::profile_samples(c), (std::vector<double>{1, 2, 0.5}));
+  c = {{0, 1}, {0.25, 3}, {1, 1}};
+  EXPECT_EQ(ui::profile_samples(c), (std::vector<double>{1, 3, 7.0 / 3.0, 5.0 / 3.0, 1}));
+  // Off-grid and unsorted points, out-of-range factors: normalised onto the 1/32 grid and clamped.
+  c = {{1, 9}, {0.3, -1}, {0, 1}};
+  ui::normalise_curve(c);
+  ASSERT_EQ(c.size(), 3u);
+  EXPECT_EQ(c[1].u, 10.0 / 32.0);
+  EXPECT_EQ(c[1].f, ui::kCurveMinFactor);
+  EXPECT_EQ(c[2].f, ui::kCurveMaxFactor);
+  const std::vector<double> s = ui::profile_samples(c);
+  ASSERT_EQ(s.size(), 17u);  // 10/32 = 5/16: 16 intervals
+  for (std::size_t i = 0; i < s.size(); ++i) EXPECT_DOUBLE_EQ(s[i], ui::curve_value(c, i / 16.0));
+  const std::vector<ui::CurvePoint> back = ui::curve_from_samples({1, 2, 0.5});
+  EXPECT_EQ(ui::profile_samples(back), (std::vector<double>{1, 2, 0.5}));
+}
+
+TEST(CurveEditor, DoubleClickAddsDragMovesRightClickRemovesOneEditEach) {
+  HeadlessImGui gui;
+  std::vector<ui::CurvePoint> c = ui::flat_curve();
+  ImVec2 lo, hi;
+  int edits = 0;
+  auto draw = [&] {
+    ImGui::SetNextWindowPos({0, 0});
+    ImGui::SetNextWindowSize({400, 300});
+    ImGui::Begin("Tool");
+    const ImVec2 pos = ImGui::GetCursorScreenPos();
+    const float w = ImGui::GetContentRegionAvail().x;
+    lo = ImVec2(pos.x + 6, pos.y + 6);  // the plot's 6 px inner margin, 90 px tall
+    hi = ImVec2(pos.x + w - 6, pos.y + 90 - 6);
+    edits += ui::curve_editor("width", c, "test");
+    ImGui::End();
+  };
+  auto px = [&](double u, double f) {
+    return ImVec2(lo.x + float(u) * (hi.x - lo.x), hi.y - float(f / 3.0) * (hi.y - lo.y));
+  };
+  gui.step({0, 299}, false, draw);
+  gui.step({0, 299}, false, draw);
+  // Double-click at u = 0.5, factor 2: a point (on the 1/32 grid, factor to 0.01).
+  for (bool down : {true, false, true, false}) gui.step(px(0.5, 2.0), down, draw);
+  ASSERT_EQ(c.size(), 3u);
+  EXPECT_EQ(c[1].u, 0.5);
+  EXPECT_NEAR(c[1].f, 2.0, 0.015);
+  EXPECT_EQ(edits, 1) << "adding is one edit";
+  // Drag it down to factor 0.5: one edit when released.
+  gui.step({0, 299}, false, draw);
+  gui.step(px(0.5, c[1].f), true, draw);
+  gui.step(px(0.5, 0.5), true, draw);
+  EXPECT_EQ(edits, 1) << "no edit while dragging";
+  gui.step(px(0.5, 0.5), false, draw);
+  EXPECT_EQ(edits, 2);
+  EXPECT_NEAR(c[1].f, 0.5, 0.015);
+  EXPECT_EQ(ui::profile_samples(c).size(), 3u);
+  // An end point cannot be removed; the inner one can.
+  gui.step(px(0.0, 1.0), true, draw, 1);
+  gui.step(px(0.0, 1.0), false, draw, 1);
+  EXPECT_EQ(c.size(), 3u);
+  gui.step(px(0.5, c[1].f), true, draw, 1);
+  gui.step(px(0.5, c[1].f), false, draw, 1);
+  EXPECT_EQ(c.size(), 2u);
+  EXPECT_TRUE(ui::is_flat(c));
+  EXPECT_EQ(edits, 3);
+}
+
+TEST(PlacementPanel, ProfilesSpringsAndExtentFeedPlaceSketch) {
+  ui::PlacementParams p;
+  nlohmann::json line = {{"cmd", "place.sketch"}};
+  ui::add_placement_extras(p, line);
+  EXPECT_EQ(line.dump(), R"({"cmd":"place.sketch"})") << "defaults add nothing";
+  p.width_profile = {{0, 1}, {0.5, 2}, {1, 1}};
+  p.height_profile = {{0, 0.5}, {1, 1.5}};
+  p.springs_on = true;
+  p.springs.stiffness = 50;
+  p.springs.rest_length_initial = true;
+  p.extent = 0.4;
+  ui::add_placement_extras(p, line);
+  EXPECT_EQ(line["width_profile"], nlohmann::json({1, 2, 1}));
+  EXPECT_EQ(line["height_profile"], nlohmann::json({0.5, 1.5}));
+  EXPECT_EQ(line["springs"]["stiffness"], 50);
+  EXPECT_EQ(line["springs"]["rest_length"], "initial");
+  EXPECT_EQ(line["springs"]["max_steps"], 20000);
+  EXPECT_EQ(line["extent"], 0.4);
+  // The command accepts them, and the Sketch tool reads them back from a logged line (re-placement).
+  core::CommandContext ctx;
+  line.update({{"object", "crate"}, {"stroke", {{300, 350}, {500, 350}}}, {"width", 0.3}, {"height", 0.2}});
+  EXPECT_NO_THROW(editor::CommandRegistry::builtin().parse(line, ctx));
+  ui::PlacementParams q;
+  std::string object;
+  std::vector<glm::dvec2> stroke;
+  std::optional<core::Camera> camera;
+  ASSERT_TRUE(editor::parse_place_sketch_line(line, &object, &stroke, &q, &camera, nullptr));
+  nlohmann::json again = {{"cmd", "place.sketch"}};
+  ui::add_placement_extras(q, again);
+  for (const char* f : {"width_profile", "height_profile", "springs", "extent"}) EXPECT_EQ(again[f], line[f]) << f;
+}
+
+TEST(SetPoint, LogMovesOnePointExactlyAndUndoRestoresBitForBit) {
+  core::Scene scene;
+  editor::History history(scene);
+  const editor::ReplayResult r = editor::replay_lines(history, logs_dir() / "set_point.jsonl");
+  ASSERT_TRUE(r.ok) << r.error;
+  const core::SceneObject& t = *scene.find("t");
+  EXPECT_EQ(t.ffd->lattice.control_point(2, 1, 3), glm::dvec3(0.9, 0.75, 0.5));
+  // Against the lattice before: exactly one control point differs, and the mesh follows.
+  core::Scene before_scene;
+  editor::History before(before_scene);
+  core::CommandContext ctx;
+  before.execute(editor::CommandRegistry::builtin().parse(kTeapot, ctx));
+  before.execute(editor::CommandRegistry::builtin().parse(kRing, ctx));
+  const auto& a = before_scene.find("t")->ffd->lattice.control_points();
+  const auto& b = t.ffd->lattice.control_points();
+  ASSERT_EQ(a.size(), b.size());
+  int differ = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) differ += a[i] != b[i];
+  EXPECT_EQ(differ, 1);
+  EXPECT_NE(t.world_mesh->positions, before_scene.find("t")->world_mesh->positions);
+  // Undo the camera and the set_point: the lattice and the mesh are bit for bit the ring's.
+  const std::vector<glm::dvec3> moved_mesh = t.world_mesh->positions;
+  history.undo();
+  history.undo();
+  EXPECT_EQ(scene.find("t")->ffd->lattice.control_points(), a);
+  EXPECT_EQ(scene.find("t")->world_mesh->positions, before_scene.find("t")->world_mesh->positions);
+  history.redo();
+  EXPECT_EQ(scene.find("t")->world_mesh->positions, moved_mesh) << "redo is deterministic";
+}
+
+TEST(SetPoint, BadIndexAndNonFinitePositionNameTheFieldAndLeaveTheSceneUntouched) {
+  struct Case {
+    const char* log;
+    const char* field;
+  };
+  for (const Case c : {Case{"bad_set_point_index.jsonl", "index"}, Case{"bad_set_point_nan.jsonl", "position"}}) {
+    core::Scene scene;
+    editor::History history(scene);
+    const editor::ReplayResult r = editor::replay_lines(history, logs_dir() / c.log);
+    ASSERT_FALSE(r.ok) << c.log;
+    EXPECT_EQ(r.failed_line, 3) << r.error;
+    EXPECT_NE(r.error.find(std::string("field '") + c.field + "'"), std::string::npos) << r.error;
+    EXPECT_EQ(history.applied(), 2u);
+    core::Scene ring;
+    editor::History rh(ring);
+    core::CommandContext ctx;
+    rh.execute(editor::CommandRegistry::builtin().parse(kTeapot, ctx));
+    rh.execute(editor::CommandRegistry::builtin().parse(kRing, ctx));
+    EXPECT_EQ(scene.find("t")->ffd->lattice.control_points(), ring.find("t")->ffd->lattice.control_points()) << c.log;
+    EXPECT_EQ(scene.find("t")->world_mesh->positions, ring.find("t")->world_mesh->positions) << c.log;
+  }
+  core::CommandContext ctx;
+  EXPECT_THROW(editor::CommandRegistry::builtin().parse(
+                   {{"cmd", "lattice.set_point"}, {"object", "t"}, {"index", {1, 2}}, {"position", {0, 0, 0}}}, ctx),
+               core::CommandError);
+}
+
+TEST_F(TimelineUi, ControlPointSectionIssuesOneSetPointPerDrag) {
+  HeadlessImGui gui;
+  ui::ControlPointState state;
+  state.object = "t";
+  state.index[0] = 2;
+  state.index[1] = 1;
+  state.index[2] = 3;
+  std::optional<nlohmann::json> line;
+  auto draw = [&] {
+    ImGui::SetNextWindowPos({0, 0});
+    ImGui::SetNextWindowSize({400, 400});
+    ImGui::Begin("Tool");
+    if (auto l = ui::draw_control_point_section(teapot(), state)) line = l;
+    ImGui::End();
+  };
+  gui.step({0, 0}, false, draw);
+  const glm::dvec3 before = teapot().ffd->lattice.control_point(2, 1, 3);
+  // Find the position field: press and drag 50 px right down the rows until a drag yields a line.
+  // Below the section's header (a click there would fold it).
+  for (float y = 58; y < 300 && !line; y += 4) {
+    gui.step({140, y}, false, draw);
+    gui.step({140, y}, true, draw);
+    gui.step({190, y}, true, draw);
+    gui.step({190, y}, false, draw);
+    gui.step({0, 390}, false, draw);
+  }
+  ASSERT_TRUE(line) << "no drag on the position field produced a lattice.set_point";
+  EXPECT_EQ((*line)["cmd"], "lattice.set_point");
+  EXPECT_EQ((*line)["index"], nlohmann::json({2, 1, 3}));
+  const glm::dvec3 p((*line)["position"][0], (*line)["position"][1], (*line)["position"][2]);
+  EXPECT_NEAR(p.x, before.x + 0.1, 1e-4) << "50 px at 0.002 per px on x (rounded to the %.4f shown)";
+  EXPECT_EQ(p.y, before.y);
+  const std::size_t applied = s.history().applied();
+  ASSERT_TRUE(s.execute(*line));
+  EXPECT_EQ(s.history().applied(), applied + 1);
+  EXPECT_EQ(teapot().ffd->lattice.control_point(2, 1, 3), p);
+  ASSERT_TRUE(s.undo());
+  EXPECT_EQ(teapot().ffd->lattice.control_point(2, 1, 3), before);
+}

@@ -1,0 +1,107 @@
+#include "ui/record_dialog.h"
+
+#include "ui/theme.h"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+
+namespace trispline::ui {
+
+namespace {
+void tooltip(const char* text) {
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", text);
+}
+constexpr const char* kRecordTitle = "Record animation";
+constexpr const char* kProgressTitle = "Recording";
+}  // namespace
+
+void open_record_dialog(RecordDialogState& s, const core::Timeline& t, int viewport_w, int viewport_h) {
+  s.frames[0] = t.frame_start;
+  s.frames[1] = t.frame_end;
+  if (viewport_w > 0 && viewport_h > 0) {
+    s.size[0] = viewport_w;
+    s.size[1] = viewport_h;
+  }
+  s.open = true;
+}
+
+nlohmann::json record_line(const RecordDialogState& s) {
+  return {{"cmd", "anim.record"},
+          {"out", s.out_dir},
+          {"format", s.format == 1 ? "exr" : "png"},
+          {"frames", {s.frames[0], s.frames[1]}},
+          {"glb", s.glb},
+          {"mp4", s.mp4},
+          {"width", s.size[0]},
+          {"height", s.size[1]}};
+}
+
+std::optional<nlohmann::json> draw_record_dialog(RecordDialogState& s, const core::Timeline& t) {
+  std::optional<nlohmann::json> line;
+  if (!s.open) return line;
+  if (!ImGui::IsPopupOpen(kRecordTitle)) ImGui::OpenPopup(kRecordTitle);
+  ImGui::SetNextWindowPos(ImGui::GetMainViewport()->GetCenter(), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+  if (!ImGui::BeginPopupModal(kRecordTitle, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return line;
+  char buf[1024];
+  std::snprintf(buf, sizeof buf, "%s", s.out_dir.c_str());
+  ImGui::SetNextItemWidth(420);
+  if (ImGui::InputText("Output folder", buf, sizeof buf)) s.out_dir = buf;
+  tooltip("Folder for frame_NNNN.png|exr, animation.glb and animation.mp4 (created if missing)");
+  ImGui::SetNextItemWidth(200);
+  ImGui::Combo("Format", &s.format, "PNG (8-bit sRGB)\0EXR (half float, linear)\0");
+  tooltip("Image format of the numbered frames");
+  ImGui::SetNextItemWidth(200);
+  ImGui::DragInt2("Frames", s.frames, 0.2f, t.frame_start, t.frame_end, "%d", ImGuiSliderFlags_AlwaysClamp);
+  tooltip("First and last timeline frame to record, inclusive (default: the whole timeline)");
+  s.frames[1] = std::max(s.frames[1], s.frames[0]);
+  ImGui::SetNextItemWidth(200);
+  ImGui::DragInt2("Size", s.size, 1.0f, 16, 8192, "%d px", ImGuiSliderFlags_AlwaysClamp);
+  tooltip("Image width and height in pixels (default: the viewport)");
+  ImGui::Checkbox("Animated GLB", &s.glb);
+  tooltip("animation.glb: one mesh per object with a morph target per frame (Blender imports shape keys)");
+  ImGui::SameLine();
+  ImGui::Checkbox("MP4", &s.mp4);
+  tooltip("animation.mp4 (H.264) at the timeline's fps; needs ffmpeg on PATH (reported when it is missing)");
+  ImGui::TextColored(colors::dim, "%d frames at %.4g fps", s.frames[1] - s.frames[0] + 1, t.fps);
+  ImGui::Separator();
+  const bool can = !s.out_dir.empty();
+  ImGui::BeginDisabled(!can);
+  if (ImGui::Button("Record", ImVec2(120, 0))) {
+    line = record_line(s);
+    s.open = false;
+    ImGui::CloseCurrentPopup();
+  }
+  ImGui::EndDisabled();
+  ImGui::SameLine();
+  if (ImGui::Button("Cancel", ImVec2(120, 0)) || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) {
+    s.open = false;
+    ImGui::CloseCurrentPopup();
+  }
+  ImGui::EndPopup();
+  return line;
+}
+
+bool draw_record_progress(const RecordProgress& p) {
+  bool cancel = false;
+  if (!ImGui::IsPopupOpen(kProgressTitle)) ImGui::OpenPopup(kProgressTitle);
+  ImGui::SetNextWindowPos(ImGui::GetMainViewport()->GetCenter(), ImGuiCond_Always, ImVec2(0.5f, 0.5f));
+  if (!ImGui::BeginPopupModal(kProgressTitle, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return cancel;
+  ImGui::Text("Rendering frame %d into %s", p.frame, p.out_dir.c_str());
+  char overlay[64];
+  std::snprintf(overlay, sizeof overlay, "%d / %d frames", p.done, p.total);
+  ImGui::ProgressBar(p.total > 0 ? float(p.done) / float(p.total) : 0.0f, ImVec2(360, 0), overlay);
+  if (p.seconds_left >= 0)
+    ImGui::Text("about %.0f s left", p.seconds_left);
+  else
+    ImGui::TextColored(colors::dim, "estimating the time left...");
+  if (ImGui::Button("Cancel", ImVec2(120, 0))) cancel = true;
+  tooltip("Stop after the current frame; the frames already written stay");
+  if (p.close) ImGui::CloseCurrentPopup();
+  ImGui::EndPopup();
+  return cancel;
+}
+
+}  // namespace trispline::ui

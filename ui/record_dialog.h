@@ -1,0 +1,45 @@
+// trispline::ui Record dialog and progress — the Timeline's Record button and File > Record animation...: a modal
+// asking where and what to record (output folder, PNG/EXR, frame range, size, GLB and MP4), which returns the
+// logged anim.record line for the editor to execute (editor/record.h does the rendering), and the modal progress
+// bar shown while the editor's Recorder renders one frame per UI frame.
+#pragma once
+
+#include "core/scene/scene.h"
+
+#include <nlohmann/json.hpp>
+
+#include <optional>
+#include <string>
+
+namespace trispline::ui {
+
+struct RecordDialogState {
+  bool open = false;       // set to ask; cleared when the dialog closes
+  std::string out_dir;     // output folder (the editor presets <state dir or cwd>/render)
+  int format = 0;          // 0 png, 1 exr
+  int frames[2] = {1, 120};  // inclusive timeline frames (preset to the whole timeline when opened)
+  int size[2] = {1280, 720};  // pixels (preset to the viewport when opened)
+  bool glb = true, mp4 = true;
+};
+
+// Presets the range to the whole timeline and the size to `viewport` (pixels) and opens the dialog.
+void open_record_dialog(RecordDialogState& state, const core::Timeline& timeline, int viewport_w, int viewport_h);
+
+// {"cmd":"anim.record","out":DIR,"format":"png","frames":[A,B],"glb":true,"mp4":true,"width":W,"height":H}.
+nlohmann::json record_line(const RecordDialogState& state);
+
+// Draws the modal while state.open; returns the anim.record line when the user presses Record.
+std::optional<nlohmann::json> draw_record_dialog(RecordDialogState& state, const core::Timeline& timeline);
+
+struct RecordProgress {
+  int done = 0, total = 0;      // frames
+  double seconds_left = -1.0;   // < 0: unknown yet
+  int frame = 0;                // the frame being rendered
+  std::string out_dir;
+  bool close = false;           // the recording ended: close the modal this frame
+};
+
+// Draws the modal "Recording…" progress bar; returns true when Cancel was pressed.
+bool draw_record_progress(const RecordProgress& progress);
+
+}  // namespace trispline::ui
