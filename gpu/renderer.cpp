@@ -128,7 +128,10 @@ struct Renderer::Impl {
         if (!obj.visible || !obj.ffd || !obj.world_mesh || obj.world_mesh->empty()) continue;
         if (obj.ffd->params.size() != obj.world_mesh->positions.size()) continue;  // inconsistent: draw world_mesh
         CachedMesh& c = cached(obj.world_mesh);
-        plans[i] = ffd.prepare(obj, {&c.buffers, &c.generation, &c.overwritten, c.mesh.get()}, o.ffd_backend, o.time_s,
+        const bool live = !o.live_ffd_object.empty() && obj.name == o.live_ffd_object;
+        const core::FfdBackend backend =
+            live && o.ffd_backend == core::FfdBackend::cpu_ref ? core::FfdBackend::cpu_fast : o.ffd_backend;
+        plans[i] = ffd.prepare(obj, {&c.buffers, &c.generation, &c.overwritten, c.mesh.get()}, backend, o.time_s,
                                generation, &stats.ffd_vertices, &cpu_ms, &stats.uploads);
         ++stats.ffd_objects;
       }

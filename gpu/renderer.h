@@ -58,6 +58,9 @@ struct ViewOptions {
   // F(E(x) + param_offset + offset_velocity·time_s)).
   core::FfdBackend ffd_backend = core::FfdBackend::glsl_compute;
   double time_s = 0.0;
+  // Object being edited live (the Press tool's drag preview): its ffd lattice is newer than its world_mesh, so the
+  // CPU reference shortcut (draw world_mesh) does not apply; with ffd_backend cpu_ref it is evaluated by cpu_fast.
+  std::string live_ffd_object;
 };
 
 // What the last draw() did (for tests, the timing overlay and replay's report).

@@ -82,33 +82,40 @@ nlohmann::json LatticePressCommand::to_json() const {
           {"strength", strength_}, {"falloff", to_string(falloff_)}};
 }
 
-std::optional<SceneObject> LatticePressCommand::build(const Scene& scene) {
-  const SceneObject& object = require_deformed_object(scene, object_);
-  const TrivariateBSpline<glm::dvec3>& before = object.ffd->lattice;
+TrivariateBSpline<glm::dvec3> press_lattice(const TrivariateBSpline<glm::dvec3>& before,
+                                            const std::vector<glm::dvec3>& path, double radius, double strength,
+                                            Falloff falloff, PressResult* result) {
   TrivariateBSpline<glm::dvec3> after = before;
   const glm::ivec3 c = before.control_counts();
-  int moved = 0;
-  double max_disp = 0.0;
+  PressResult r;
   for (int j = 0; j < c.y; ++j)
     for (int i = 0; i < c.x; ++i) {
-      const glm::dvec3 vp = [&] {
-        try {
-          return column_direction(before, i, j);
-        } catch (const std::invalid_argument& e) {
-          throw CommandError("field 'object': " + std::string(e.what()), "object");
-        }
-      }();
+      const glm::dvec3 vp = column_direction(before, i, j);
       for (int k = 0; k < c.z; ++k) {
         const glm::dvec3& p = before.control_point(i, j, k);
         double w = 0.0;
-        for (const glm::dvec3& centre : path_) w = std::max(w, falloff_weight(falloff_, glm::length(p - centre) / radius_));
+        for (const glm::dvec3& centre : path) w = std::max(w, falloff_weight(falloff, glm::length(p - centre) / radius));
         if (w <= 0.0) continue;
-        after.control_point(i, j, k) = p - strength_ * w * vp;
-        ++moved;
-        max_disp = std::max(max_disp, std::abs(strength_) * w);
+        after.control_point(i, j, k) = p - strength * w * vp;
+        ++r.moved;
+        r.max_displacement = std::max(r.max_displacement, std::abs(strength) * w);
       }
     }
-  stats_ = {{"moved", moved}, {"max_displacement", max_disp}};
+  if (result) *result = r;
+  return after;
+}
+
+std::optional<SceneObject> LatticePressCommand::build(const Scene& scene) {
+  const SceneObject& object = require_deformed_object(scene, object_);
+  PressResult r;
+  TrivariateBSpline<glm::dvec3> after = [&] {
+    try {
+      return press_lattice(object.ffd->lattice, path_, radius_, strength_, falloff_, &r);
+    } catch (const std::invalid_argument& e) {
+      throw CommandError("field 'object': " + std::string(e.what()), "object");
+    }
+  }();
+  stats_ = {{"moved", r.moved}, {"max_displacement", r.max_displacement}};
   return with_lattice(object, std::move(after), stats_);
 }
 

@@ -26,6 +26,20 @@
 
 namespace trispline::core {
 
+// What one press did (lattice.press's stats).
+struct PressResult {
+  int moved = 0;                 // control points moved
+  double max_displacement = 0;   // world units
+};
+
+// The lattice after one sphere sweep (the math of lattice.press, above): `path` #P × 3 world units (≥ 1 point),
+// radius > 0 and strength in world units. The editor's Press tool calls it for the live preview during a drag, so
+// the preview is exactly what the command at mouse-up produces. Throws std::invalid_argument for a column of zero
+// length (no V_P). Source: seed §2.4.1, Fig. 2.7.
+TrivariateBSpline<glm::dvec3> press_lattice(const TrivariateBSpline<glm::dvec3>& before,
+                                            const std::vector<glm::dvec3>& path, double radius, double strength,
+                                            Falloff falloff, PressResult* result = nullptr);
+
 class LatticePressCommand : public SnapshotCommand {
  public:
   static CommandPtr parse(const nlohmann::json& j, const CommandContext& ctx);

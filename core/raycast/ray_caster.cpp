@@ -46,12 +46,14 @@ struct RayCaster::Impl {
   bool committed = false;
   bool any_triangles = false;
 
-  Impl() : device(shared_device()) {
+  RTCBuildQuality quality = RTC_BUILD_QUALITY_HIGH;
+  explicit Impl(BuildQuality q) : device(shared_device()) {
+    quality = q == BuildQuality::high ? RTC_BUILD_QUALITY_HIGH : RTC_BUILD_QUALITY_MEDIUM;
     scene = rtcNewScene(device);
     if (!scene) throw std::runtime_error("Embree: cannot create scene");
     // Robust: watertight-ish traversal (no rays slipping between adjacent triangles); high quality SAH build.
     rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
-    rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
+    rtcSetSceneBuildQuality(scene, quality);
   }
   ~Impl() {
     if (scene) rtcReleaseScene(scene);
@@ -59,7 +61,7 @@ struct RayCaster::Impl {
   }
 };
 
-RayCaster::RayCaster() : impl_(std::make_unique<Impl>()) {}
+RayCaster::RayCaster(BuildQuality quality) : impl_(std::make_unique<Impl>(quality)) {}
 RayCaster::~RayCaster() = default;
 RayCaster::RayCaster(RayCaster&&) noexcept = default;
 RayCaster& RayCaster::operator=(RayCaster&&) noexcept = default;
@@ -95,7 +97,7 @@ int RayCaster::add_mesh(const TriMesh& world_mesh) {
     for (int c = 0; c < 3; ++c) vb[3 * i + c] = static_cast<float>(world_mesh.positions[i][c]);
   for (std::size_t f = 0; f < world_mesh.triangles.size(); ++f)
     for (int c = 0; c < 3; ++c) ib[3 * f + c] = world_mesh.triangles[f][c];
-  rtcSetGeometryBuildQuality(geom, RTC_BUILD_QUALITY_HIGH);
+  rtcSetGeometryBuildQuality(geom, impl_->quality);
   rtcCommitGeometry(geom);
   rtcAttachGeometryByID(impl_->scene, geom, static_cast<unsigned>(id));
   rtcReleaseGeometry(geom);

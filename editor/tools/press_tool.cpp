@@ -1,8 +1,12 @@
 #include "editor/tools/press_tool.h"
 
+#include "core/commands/lattice_press.h"
+
 #include <imgui.h>
 
+#include <chrono>
 #include <cmath>
+#include <future>
 #include <iterator>
 
 #include "editor/navigation.h"
@@ -28,7 +32,6 @@ constexpr const char* kFalloffTips[] = {
 };
 static_assert(std::size(kFalloffTips) == core::kFalloffNames.size());
 
-double diagonal_of(const core::SceneObject& o) { return o.world_mesh ? bounds_of(*o.world_mesh).diagonal() : 0.0; }
 }  // namespace
 
 nlohmann::json lattice_press_line(const std::string& object, const std::vector<glm::dvec3>& path, double radius,
@@ -51,8 +54,12 @@ void PressTool::deactivate(ToolContext&) {
   hover_.reset();
   path_.clear();
   pressing_ = false;
+  preview_.reset();
   caster_.reset();
   caster_mesh_.reset();
+  if (pending_.valid()) pending_.wait();
+  pending_ = {};
+  pending_mesh_.reset();
 }
 
 void PressTool::mouse_away() {
@@ -64,22 +71,46 @@ const core::SceneObject* PressTool::target(const ToolContext& ctx) const {
   return o && o->ffd && o->world_mesh ? o : nullptr;
 }
 
+double PressTool::diagonal(const core::SceneObject& o) const {
+  if (!o.world_mesh) return 0.0;
+  if (diagonal_mesh_.lock() != o.world_mesh) {
+    diagonal_ = bounds_of(*o.world_mesh).diagonal();
+    diagonal_mesh_ = o.world_mesh;
+  }
+  return diagonal_;
+}
+
 double PressTool::radius(const ToolContext& ctx) const {
   if (radius_ > 0.0) return radius_;
   const core::SceneObject* o = target(ctx);
-  return o ? kDefaultRadiusFraction * diagonal_of(*o) : 0.0;
+  return o ? kDefaultRadiusFraction * diagonal(*o) : 0.0;
 }
 
-std::optional<glm::dvec3> PressTool::cast(const ToolContext& ctx, glm::dvec2 px) {
+namespace {
+std::unique_ptr<core::RayCaster> build_caster(std::shared_ptr<const core::TriMesh> mesh) {
+  auto caster = std::make_unique<core::RayCaster>(core::BuildQuality::interactive);  // rebuilt after every press
+  caster->add_mesh(*mesh);
+  caster->commit();
+  return caster;
+}
+}  // namespace
+
+std::optional<glm::dvec3> PressTool::cast(const ToolContext& ctx, glm::dvec2 px, bool need_current) {
   const core::SceneObject* o = target(ctx);
   if (!o || !o->visible || ctx.hidden.count(o->name) || o->world_mesh->empty()) return std::nullopt;
-  if (!caster_ || caster_mesh_ != o->world_mesh) {
-    caster_.reset();
-    caster_mesh_ = o->world_mesh;
-    auto caster = std::make_unique<core::RayCaster>();
-    caster->add_mesh(*caster_mesh_);
-    caster->commit();
-    caster_ = std::move(caster);
+  if (caster_mesh_ != o->world_mesh) {
+    // The mesh changed (a press, undo): build the new BVH on a worker thread and keep hovering over the previous
+    // one meanwhile (a 1 M-vertex mesh takes most of a second); a drag waits for the current one.
+    if (!pending_.valid() || pending_mesh_ != o->world_mesh) {
+      pending_mesh_ = o->world_mesh;
+      pending_ = std::async(std::launch::async, build_caster, pending_mesh_);
+    }
+    const bool ready = pending_.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
+    if (ready || !caster_ || need_current) {
+      caster_ = pending_.get();
+      caster_mesh_ = std::move(pending_mesh_);
+      pending_mesh_.reset();
+    }
   }
   const auto hit = caster_->intersect(ctx.view.eye, ctx.view.ray_direction(px));
   if (!hit) return std::nullopt;
@@ -88,7 +119,7 @@ std::optional<glm::dvec3> PressTool::cast(const ToolContext& ctx, glm::dvec2 px)
 
 void PressTool::handle_input(const ToolInput& in, ToolContext& ctx) {
   try {
-    hover_ = cast(ctx, in.mouse_px);
+    hover_ = cast(ctx, in.mouse_px, in.left_pressed || pressing_);
   } catch (const std::exception& e) {  // non-finite mesh positions
     hover_.reset();
     ctx.session.messages().error(std::string("press: ray casting failed: ") + e.what());
@@ -110,9 +141,35 @@ void PressTool::handle_input(const ToolInput& in, ToolContext& ctx) {
   }
 }
 
+std::optional<Tool::LivePreview> PressTool::live_preview(const ToolContext& ctx) {
+  const core::SceneObject* o = target(ctx);
+  if (!o) {
+    preview_.reset();
+    return std::nullopt;
+  }
+  if (pressing_ && !path_.empty()) {
+    if (!preview_ || preview_base_ != o->ffd || preview_samples_ != path_.size()) {
+      try {
+        auto b = std::make_shared<core::FfdBinding>(*o->ffd);
+        b->lattice = core::press_lattice(o->ffd->lattice, path_, hover_radius_, pull_ ? -strength_ : strength_, falloff_);
+        preview_ = std::move(b);
+        preview_base_ = o->ffd;
+        preview_samples_ = path_.size();
+      } catch (const std::exception&) {  // a degenerate column: the command at mouse-up reports it
+        preview_.reset();
+      }
+    }
+  } else if (preview_ && (preview_base_ != o->ffd || --preview_linger_ < 0)) {
+    preview_.reset();  // the command replaced the lattice (or failed): show the object's own
+  }
+  if (!preview_) return std::nullopt;
+  return LivePreview{object_, preview_};
+}
+
 void PressTool::commit(ToolContext& ctx) {
   std::vector<glm::dvec3> path = std::move(path_);
   path_.clear();
+  preview_linger_ = 3;
   if (path.empty()) return;  // the drag never touched the object
   const core::SceneObject* o = target(ctx);
   if (!o) {
@@ -143,7 +200,7 @@ void PressTool::draw_panel(ToolContext& ctx) {
     ImGui::EndCombo();
   }
   const core::SceneObject* o = scene.find(object_);
-  const double diag = o ? diagonal_of(*o) : 0.0;
+  const double diag = o ? diagonal(*o) : 0.0;
   if (o && !o->ffd)
     ImGui::TextColored(ui::colors::dim, "%s has no FFD lattice: bind one first (e.g. lattice.ring).", object_.c_str());
 

@@ -9,6 +9,7 @@
 // issues nothing.
 #pragma once
 
+#include <future>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -36,6 +37,10 @@ class PressTool : public Tool {
   void decorate(gpu::ViewOptions& options) const override;
   std::string hint() const override;
   bool owns_mouse() const override { return pressing_; }
+  // During a drag: the object's binding with the lattice pressed along the path so far (core::press_lattice, the
+  // same math as the command at mouse-up), recomputed only when the path grew; kept until the command has replaced
+  // the object's lattice (at most a few frames), so the view never flickers back to the unpressed shape.
+  std::optional<LivePreview> live_preview(const ToolContext& ctx) override;
 
   void set_object(const std::string& name) { object_ = name; }
   void set_radius(double r) { radius_ = r; }  // world units; ≤ 0 = unset: 0.1 × the object's bounding-box diagonal
@@ -48,7 +53,9 @@ class PressTool : public Tool {
 
  private:
   const core::SceneObject* target(const ToolContext& ctx) const;          // object_ if it exists and has a lattice
-  std::optional<glm::dvec3> cast(const ToolContext& ctx, glm::dvec2 px);  // first hit on the target's world_mesh
+  // First hit on the target's world_mesh; may use the previous mesh's BVH while the new one builds, unless
+  // need_current (a drag presses what is shown).
+  std::optional<glm::dvec3> cast(const ToolContext& ctx, glm::dvec2 px, bool need_current = false);
   void commit(ToolContext& ctx);
 
   std::string object_;
@@ -62,9 +69,22 @@ class PressTool : public Tool {
   std::vector<glm::dvec3> path_;
   bool pressing_ = false, pull_ = false;
 
+  // Live preview (live_preview()): the binding shown, what it was made from, and for how many samples.
+  std::shared_ptr<const core::FfdBinding> preview_, preview_base_;
+  std::size_t preview_samples_ = 0;
+  int preview_linger_ = 0;  // frames left to show the preview after mouse-up while the command runs
+
+  // Bounding-box diagonal of `o`'s world_mesh (0 without one), cached per mesh: it is an O(#V) pass and the default
+  // radius needs it at every mouse move and every panel frame (6 ms per call on a 1 M-vertex mesh).
+  double diagonal(const core::SceneObject& o) const;
+  mutable std::weak_ptr<const core::TriMesh> diagonal_mesh_;  // weak: an expired mesh is never mistaken for a new one
+  mutable double diagonal_ = 0.0;
+
   // Ray caster over the target's world_mesh, rebuilt when that pointer changes (held, so it cannot be reused).
   std::shared_ptr<const core::TriMesh> caster_mesh_;
   std::unique_ptr<core::RayCaster> caster_;
+  std::shared_ptr<const core::TriMesh> pending_mesh_;  // mesh whose BVH is building on a worker thread
+  std::future<std::unique_ptr<core::RayCaster>> pending_;
 };
 
 }  // namespace trispline::editor

@@ -10,6 +10,8 @@
 #include <glm/glm.hpp>
 
 #include <functional>
+#include <memory>
+#include <optional>
 #include <set>
 #include <string>
 
@@ -49,6 +51,13 @@ class Tool {
   virtual std::string hint() const { return {}; }    // status-bar hint
   // True while a drag of this tool is under way (a stroke being drawn): the editor then leaves the camera alone.
   virtual bool owns_mouse() const { return false; }
+  // A lattice to show instead of an object's own while the tool edits it live (the Press tool's drag preview):
+  // the app draws that object with it (gpu::ViewOptions::live_ffd_object). Called once per frame.
+  struct LivePreview {
+    std::string object;
+    std::shared_ptr<const core::FfdBinding> binding;
+  };
+  virtual std::optional<LivePreview> live_preview(const ToolContext&) { return std::nullopt; }
 };
 
 }  // namespace trispline::editor

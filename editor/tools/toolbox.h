@@ -25,6 +25,8 @@ class Toolbox {
   void handle_mouse(glm::dvec2 mouse_px);  // feeds ImGui's mouse state to the active tool
   void mouse_away() { tool().mouse_away(); }  // the viewport does not get the mouse this frame
   void decorate(gpu::ViewOptions& options) const { tool().decorate(options); }
+  // The active tool's live lattice preview (Tool::live_preview), if any.
+  std::optional<Tool::LivePreview> live_preview(const ToolContext& ctx) { return tool().live_preview(ctx); }
   std::string hint() const { return tool().hint(); }
   bool owns_mouse() const { return tool().owns_mouse(); }  // the active tool is mid-drag: no navigation
 

@@ -69,7 +69,13 @@ INSTANTIATE_TEST_SUITE_P(
                       BadLogCase{"bad_ring_radius.jsonl", 2, "radius", "half the width"},
                       BadLogCase{"bad_animate_no_ffd.jsonl", 2, "object", "no FFD lattice"},
                       BadLogCase{"bad_refine_tolerance.jsonl", 3, "tolerance", "> 0"},
-                      BadLogCase{"bad_width_profile.jsonl", 4, "width_profile", "finite"}),
+                      BadLogCase{"bad_width_profile.jsonl", 4, "width_profile", "finite"},
+                      BadLogCase{"bad_press_radius.jsonl", 5, "radius", "positive"},
+                      BadLogCase{"bad_keyframe_nan.jsonl", 5, "u", "expected a number"},
+                      BadLogCase{"bad_timeline_fps.jsonl", 2, "fps", "(0, 240]"},
+                      BadLogCase{"bad_empty_clip.jsonl", 2, "clip", "animates no mesh"},
+                      BadLogCase{"bad_array_count.jsonl", 5, "count", "[1, 64]"},
+                      BadLogCase{"bad_record_range.jsonl", 3, "frames", "outside the timeline"}),
     [](const auto& info) {
       std::string n = info.param.file;
       n = n.substr(4, n.size() - 4 - 6);  // strip "bad_" and ".jsonl"

@@ -124,6 +124,34 @@ TEST_F(PressTool, DragIssuesOneUndoablePress) {
   EXPECT_EQ(object().ffd->lattice.control_points(), before) << "undo restores the lattice";
 }
 
+// The drag preview (live_preview) shows, while the button is down, exactly the lattice the command at mouse-up
+// produces, and goes away once the command has replaced the object's lattice.
+TEST_F(PressTool, LivePreviewDuringTheDragEqualsTheCommittedPress) {
+  EXPECT_FALSE(tool.live_preview(ctx));  // nothing before a drag
+  editor::ToolInput in;
+  in.mouse_px = row[row.size() / 3];
+  in.left_pressed = in.left_down = true;
+  tool.handle_input(in, ctx);
+  in.left_pressed = false;
+  for (std::size_t i = row.size() / 3 + 1; i < 2 * row.size() / 3; ++i) {
+    in.mouse_px = row[i];
+    tool.handle_input(in, ctx);
+  }
+  const auto before = object().ffd;
+  const auto preview = tool.live_preview(ctx);
+  ASSERT_TRUE(preview);
+  EXPECT_EQ(preview->object, "t");
+  EXPECT_NE(preview->binding->lattice.control_points(), before->lattice.control_points());  // it pressed
+  EXPECT_EQ(preview->binding->params, before->params);
+  EXPECT_EQ(object().ffd, before);  // the scene is untouched until mouse-up
+  in.left_down = false;
+  in.left_released = true;
+  tool.handle_input(in, ctx);  // commits (this test's defer runs the work at once)
+  ASSERT_NE(object().ffd, before);
+  EXPECT_EQ(object().ffd->lattice.control_points(), preview->binding->lattice.control_points());
+  EXPECT_FALSE(tool.live_preview(ctx));  // the object's own lattice is shown again
+}
+
 TEST_F(PressTool, DragThatNeverHitsTheObjectIssuesNothing) {
   const std::size_t applied = s.history().applied();
   std::vector<glm::dvec2> top;
