@@ -37,7 +37,17 @@ TimelineObject timeline_object(const core::Scene& scene, const std::string& name
   for (const core::OffsetKey& k : so->offset_keys) o.key_frames.push_back(scene.timeline.frame_of_time(k.time_s));
   const double t = scene.timeline.time_of_frame(frame);
   o.offset = so->offset_keys.empty() ? so->param_offset : core::evaluate_offset_keys(so->offset_keys, t);
+  if (so->source.rfind("primitive:", 0) != 0) o.source = so->source;
+  if (so->clip) o.clip = so->clip->clip->name();
   return o;
+}
+
+nlohmann::json array_line(const std::string& object, int count, double spacing) {
+  return {{"cmd", "place.array"}, {"object", object}, {"count", count}, {"spacing", spacing}};
+}
+
+nlohmann::json clip_line(const std::string& object, const std::string& path, const std::string& clip, double speed) {
+  return {{"cmd", "anim.clip"}, {"object", object}, {"path", path}, {"clip", clip}, {"speed", speed}};
 }
 
 bool has_key_at(const TimelineObject& object, int frame) {
@@ -270,6 +280,56 @@ TimelineRequest draw_timeline_panel(const Rect& rect, const core::Timeline& t, P
     if (ImGui::Button("Delete key")) r.command = delete_key_request(object, p);
     ImGui::EndDisabled();
     tooltip("Delete the key at the current frame (Alt+I)");
+  }
+  if (!object.name.empty()) {
+    ImGui::SameLine();
+    if (ImGui::Button("Animate...")) {
+      if (!object.source.empty() && !*st.clip_path)
+        std::snprintf(st.clip_path, sizeof st.clip_path, "%s", object.source.c_str());
+      ImGui::OpenPopup("animate_popup");
+    }
+    tooltip("Copies in a row along the path (place.array, the seed's ants) and a glTF clip played under the FFD\n"
+            "(anim.clip: morph targets and skins, the seed's two-level animation)");
+    if (ImGui::BeginPopup("animate_popup")) {
+      ImGui::TextUnformatted("Row of copies along the path");
+      ImGui::BeginDisabled(!object.keyable);
+      ImGui::SetNextItemWidth(num_w * 2);
+      ImGui::InputInt("Count", &st.array_count);
+      st.array_count = std::clamp(st.array_count, 1, 64);
+      tooltip("Number of copies (1-64): they share the lattice, keys and clip");
+      ImGui::SetNextItemWidth(num_w * 2);
+      ImGui::InputDouble("Spacing (u)", &st.array_spacing, 0.01, 0.05, "%.3f");
+      tooltip("Copy k trails the object by k x spacing along u (parameter units; >= the Sketch tool's Extent keeps\n"
+              "them apart). Key the leader to start at u >= count x spacing.");
+      if (ImGui::Button("Add copies")) {
+        r.command = array_line(object.name, st.array_count, st.array_spacing);
+        ImGui::CloseCurrentPopup();
+      }
+      ImGui::EndDisabled();
+      ImGui::Separator();
+      ImGui::Text("glTF clip%s%s", object.clip.empty() ? "" : ": playing ", object.clip.c_str());
+      ImGui::SetNextItemWidth(num_w * 6);
+      ImGui::InputText("File", st.clip_path, sizeof st.clip_path);
+      tooltip("The .gltf/.glb the object was loaded from (the clip must animate the same vertices)");
+      ImGui::SetNextItemWidth(num_w * 3);
+      ImGui::InputText("Clip", st.clip_name, sizeof st.clip_name);
+      tooltip("Animation name, #i for the i-th, empty for the first");
+      ImGui::SetNextItemWidth(num_w * 2);
+      ImGui::InputDouble("Speed", &st.clip_speed, 0.1, 0.5, "%.2f");
+      tooltip("Clip seconds per scene second (> 0)");
+      if (ImGui::Button("Attach clip")) {
+        r.command = clip_line(object.name, st.clip_path, st.clip_name, st.clip_speed);
+        ImGui::CloseCurrentPopup();
+      }
+      if (!object.clip.empty()) {
+        ImGui::SameLine();
+        if (ImGui::Button("Remove clip")) {
+          r.command = nlohmann::json{{"cmd", "anim.clip"}, {"object", object.name}, {"remove", true}};
+          ImGui::CloseCurrentPopup();
+        }
+      }
+      ImGui::EndPopup();
+    }
   }
   ImGui::SameLine(0, 20);
   ImGui::PushStyleColor(ImGuiCol_Button, ImVec4(0.55f, 0.16f, 0.16f, 1.0f));

@@ -42,6 +42,8 @@ struct TimelineObject {
   bool keyable = false;            // has an FFD lattice (anim.keyframe needs one)
   std::vector<double> key_frames;  // timeline frames of its offset keys (frame_of_time of each key), sorted
   glm::dvec3 offset{0.0};          // its keyed offset at the current frame (param_offset without keys), parameter units
+  std::string source;              // file it was loaded from ("" for primitives): the default clip file
+  std::string clip;                // name of its glTF clip ("" = none)
 };
 
 // The selected object's timeline view from the scene at `frame` (object "" or unknown: an empty TimelineObject).
@@ -66,7 +68,17 @@ struct TimelinePanelState {
   std::string offset_for;  // object the offset was read from
   int offset_frame = -1;   // frame it was read at
   int interpolation = 0;   // 0 linear, 1 constant, 2 smooth (the segment that starts at the new key)
+  // The "Animate" popup: place.array and anim.clip fields.
+  int array_count = 2;
+  double array_spacing = 0.25;
+  char clip_path[512] = "";
+  char clip_name[128] = "";
+  double clip_speed = 1.0;
 };
+
+// place.array and anim.clip lines of the Animate popup (docs/commands.md).
+nlohmann::json array_line(const std::string& object, int count, double spacing);
+nlohmann::json clip_line(const std::string& object, const std::string& path, const std::string& clip, double speed);
 const char* interpolation_name(int index);  // "linear" / "constant" / "smooth"
 
 struct TimelineRequest {

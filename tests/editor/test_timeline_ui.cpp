@@ -197,6 +197,19 @@ TEST_F(TimelineUi, InsertKeyIssuesAnimKeyframeAndAltIDeletesIt) {
   EXPECT_FALSE(anim.handle_action(ui::MenuAction::Undo, vp)) << "not a timeline action";
 }
 
+// The Animate popup's lines run as commands: a row of copies along the path, and a clip error names the field.
+TEST_F(TimelineUi, AnimatePopupLinesAddCopiesAndReportClipErrors) {
+  ASSERT_TRUE(s.execute(ui::array_line("t", 2, 0.3)));
+  ASSERT_NE(s.scene().find("t.001"), nullptr);
+  ASSERT_NE(s.scene().find("t.002"), nullptr);
+  EXPECT_DOUBLE_EQ(s.scene().find("t.002")->param_offset.x, teapot().param_offset.x - 0.6);
+  const std::size_t applied = s.history().applied();
+  EXPECT_FALSE(s.execute(ui::clip_line("t", "/nonexistent/walk.glb", "", 1.0)));  // error in the log, nothing applied
+  EXPECT_EQ(s.history().applied(), applied);
+  ASSERT_TRUE(s.undo());
+  EXPECT_EQ(s.scene().find("t.001"), nullptr);
+}
+
 TEST_F(TimelineUi, ClipObjectsAreDrawnPosedAtTheFrameAndCachedPerFrame) {
   EXPECT_EQ(&anim.drawn_scene({}), &s.scene()) << "no clip, nothing hidden: the document itself";
   ASSERT_TRUE(s.open(logs_dir() / "clip_walk.jsonl"));
