@@ -6,6 +6,8 @@
 // macros and never define TINYGLTF_IMPLEMENTATION.
 #include <tiny_gltf.h>
 
+#include "core/mesh/gltf_model.h"
+
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -285,22 +287,7 @@ void MorphAnimationBuilder::write_glb(const std::filesystem::path& path) const {
   }
   model.scenes.push_back(scene);
   model.defaultScene = 0;
-  if (model.buffers[0].data.empty()) model.buffers.clear();  // a buffer must not be empty
-
-  const std::filesystem::path tmp = path.string() + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw MeshIoError(quoted(path) + ": cannot open '" + tmp.string() + "' for writing");
-    tinygltf::TinyGLTF writer;
-    if (!writer.WriteGltfSceneToStream(&model, out, /*prettyPrint=*/false, /*writeBinary=*/true) || !out.flush())
-      throw MeshIoError(quoted(path) + ": writing glb failed");
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::filesystem::remove(tmp, ec);
-    throw MeshIoError(quoted(path) + ": cannot rename temporary file: " + ec.message());
-  }
+  gltf_model::write_glb_atomically(model, path);
 }
 
 MorphAnimationInfo read_morph_animation_info(const std::filesystem::path& path) {

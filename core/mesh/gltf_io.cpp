@@ -7,6 +7,8 @@
 // that library, and never define TINYGLTF_IMPLEMENTATION.
 #include <tiny_gltf.h>
 
+#include "core/mesh/gltf_model.h"
+
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -207,25 +209,11 @@ std::vector<GltfObject> read_gltf_objects(const std::filesystem::path& path) {
     out.push_back(std::move(obj));
   };
 
-  std::vector<int> roots;
-  if (model.defaultScene >= 0 && model.defaultScene < static_cast<int>(model.scenes.size())) {
-    roots = model.scenes[model.defaultScene].nodes;
-  } else {
-    for (const auto& s : model.scenes) roots.insert(roots.end(), s.nodes.begin(), s.nodes.end());
-  }
+  const std::vector<int> roots = gltf_model::root_nodes(model);
   if (model.nodes.empty()) {
     for (std::size_t i = 0; i < model.meshes.size(); ++i)
       emit(model.meshes[i].name, static_cast<int>(i), glm::dmat4(1));
     return out;
-  }
-  if (roots.empty() && model.scenes.empty()) {
-    // No scene: every node that is nobody's child is a root.
-    std::vector<char> is_child(model.nodes.size(), 0);
-    for (const auto& n : model.nodes)
-      for (int c : n.children)
-        if (c >= 0 && c < static_cast<int>(is_child.size())) is_child[c] = 1;
-    for (std::size_t i = 0; i < model.nodes.size(); ++i)
-      if (!is_child[i]) roots.push_back(static_cast<int>(i));
   }
   // Depth-first with an explicit stack; a depth limit guards against cyclic (invalid) node graphs.
   struct Item {
@@ -349,8 +337,31 @@ void write_glb(const std::filesystem::path& path, const std::vector<GltfNode>& n
   }
   model.scenes.push_back(scene);
   model.defaultScene = 0;
-  if (model.buffers[0].data.empty()) model.buffers.clear();  // a buffer must not be empty
+  gltf_model::write_glb_atomically(model, path);
+}
 
+namespace gltf_model {
+
+std::vector<int> root_nodes(const tinygltf::Model& model) {
+  std::vector<int> roots;
+  if (model.defaultScene >= 0 && model.defaultScene < static_cast<int>(model.scenes.size())) {
+    roots = model.scenes[model.defaultScene].nodes;
+  } else {
+    for (const auto& s : model.scenes) roots.insert(roots.end(), s.nodes.begin(), s.nodes.end());
+  }
+  if (roots.empty() && model.scenes.empty()) {  // no scene: every node that is nobody's child is a root
+    std::vector<char> is_child(model.nodes.size(), 0);
+    for (const auto& n : model.nodes)
+      for (int c : n.children)
+        if (c >= 0 && c < static_cast<int>(is_child.size())) is_child[c] = 1;
+    for (std::size_t i = 0; i < model.nodes.size(); ++i)
+      if (!is_child[i]) roots.push_back(static_cast<int>(i));
+  }
+  return roots;
+}
+
+void write_glb_atomically(tinygltf::Model& model, const std::filesystem::path& path) {
+  if (!model.buffers.empty() && model.buffers[0].data.empty()) model.buffers.clear();  // a buffer must not be empty
   const std::filesystem::path tmp = path.string() + ".tmp";
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
@@ -367,4 +378,5 @@ void write_glb(const std::filesystem::path& path, const std::vector<GltfNode>& n
   }
 }
 
+}  // namespace gltf_model
 }  // namespace trispline::core

@@ -10,6 +10,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "core/mesh/gltf_model.h"
 #include "core/mesh/mesh_clip_gltf.h"
 #include "core/mesh/mesh_io.h"
 
@@ -226,20 +227,7 @@ int pick_animation(const std::vector<std::string>& names, const std::string& cli
 
 // Mesh-carrying nodes in read_gltf_objects' order: the default scene's roots (else every scene's), depth first.
 std::vector<int> mesh_nodes_in_load_order(const tinygltf::Model& model, const std::string& file) {
-  std::vector<int> roots;
-  if (model.defaultScene >= 0 && model.defaultScene < static_cast<int>(model.scenes.size())) {
-    roots = model.scenes[model.defaultScene].nodes;
-  } else {
-    for (const auto& s : model.scenes) roots.insert(roots.end(), s.nodes.begin(), s.nodes.end());
-  }
-  if (roots.empty() && model.scenes.empty()) {
-    std::vector<char> is_child(model.nodes.size(), 0);
-    for (const auto& n : model.nodes)
-      for (int c : n.children)
-        if (c >= 0 && c < static_cast<int>(is_child.size())) is_child[c] = 1;
-    for (std::size_t i = 0; i < model.nodes.size(); ++i)
-      if (!is_child[i]) roots.push_back(static_cast<int>(i));
-  }
+  const std::vector<int> roots = gltf_model::root_nodes(model);
   std::vector<std::pair<int, int>> stack;  // (node, depth)
   for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.push_back({*it, 0});
   std::vector<int> out;

@@ -3,6 +3,7 @@
 // window), the I / Alt+I keys issuing anim.keyframe, the Record dialog's anim.record line and a short recording
 // stepped one frame per UI frame, the Sketch tool's profile curves and springs feeding place.sketch, and
 // lattice.set_point (logs, undo bit for bit, bad input leaves the scene untouched) with its Tool panel section.
+#include "headless_imgui.h"
 #include "core/commands/command.h"
 #include "editor/animation_ui.h"
 #include "editor/command_registry.h"
@@ -27,37 +28,7 @@ namespace {
 
 fs::path logs_dir() { return fs::path(TRISPLINE_SOURCE_DIR) / "tests" / "logs"; }
 
-// A Dear ImGui context with a built font atlas. step() ends the open frame, sets the mouse, opens the next frame
-// and draws `ui` in it (Dear ImGui reads input at NewFrame, widgets react while drawn).
-class HeadlessImGui {
- public:
-  HeadlessImGui() {
-    ctx_ = ImGui::CreateContext();
-    ImGuiIO& io = ImGui::GetIO();
-    io.IniFilename = nullptr;
-    io.DisplaySize = ImVec2(1280, 720);
-    io.DeltaTime = 1.0f / 60.0f;
-    unsigned char* pixels = nullptr;
-    int w = 0, h = 0;
-    io.Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);
-    ImGui::NewFrame();
-  }
-  ~HeadlessImGui() {
-    ImGui::Render();
-    ImGui::DestroyContext(ctx_);
-  }
-  void step(ImVec2 mouse, bool down, const std::function<void()>& ui, int button = 0) {
-    ImGui::Render();
-    ImGuiIO& io = ImGui::GetIO();
-    io.MousePos = mouse;
-    for (int b = 0; b < 3; ++b) io.MouseDown[b] = down && b == button;
-    ImGui::NewFrame();
-    ui();
-  }
-
- private:
-  ImGuiContext* ctx_;
-};
+using test::HeadlessImGui;
 
 const nlohmann::json kTeapot = {{"cmd", "scene.primitive"}, {"kind", "teapot"}, {"name", "t"}, {"scale", 0.3}};
 const nlohmann::json kRing = {

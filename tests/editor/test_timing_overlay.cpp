@@ -1,6 +1,7 @@
 // The live timing overlay (issue 3) without a window: its key and menu toggle, the numbers it shows (means over the
 // last second, the 5 s graph window, vertices per second, idle detection), the stage timings it reads from a
 // command's stats(), and drawing it in a headless Dear ImGui frame (no GL needed: ImGui only builds draw lists).
+#include "headless_imgui.h"
 #include "core/commands/command.h"
 #include "editor/history.h"
 #include "editor/replay.h"
@@ -22,33 +23,7 @@ using namespace trispline;
 
 namespace {
 
-// A Dear ImGui context with a built font atlas and one frame open; Render() on destruction.
-class HeadlessImGui {
- public:
-  HeadlessImGui() {
-    ctx_ = ImGui::CreateContext();
-    ImGuiIO& io = ImGui::GetIO();
-    io.IniFilename = nullptr;
-    io.DisplaySize = ImVec2(1280, 720);
-    io.DeltaTime = 1.0f / 60.0f;
-    unsigned char* pixels = nullptr;
-    int w = 0, h = 0;
-    io.Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);
-    ImGui::NewFrame();
-  }
-  ~HeadlessImGui() { ImGui::DestroyContext(ctx_); }
-  const ImDrawData& render() {
-    ImGui::Render();
-    return *ImGui::GetDrawData();
-  }
-  void next_frame() {
-    ImGui::Render();
-    ImGui::NewFrame();
-  }
-
- private:
-  ImGuiContext* ctx_;
-};
+using test::HeadlessImGui;
 
 ui::FrameSample sample(double t, double work, double interval, double ffd, double draw, double uims, std::size_t n) {
   ui::FrameSample s;

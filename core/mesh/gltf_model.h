@@ -1,0 +1,20 @@
+// Internal helpers shared by the tinygltf-based files of core/mesh (gltf_io, gltf_anim_io, mesh_clip); not part of
+// the public API. Include <tiny_gltf.h> the way gltf_io.cpp explains (Debian's build defaults, no macros).
+#pragma once
+
+#include <tiny_gltf.h>
+
+#include <filesystem>
+#include <vector>
+
+namespace trispline::core::gltf_model {
+
+// The node roots load_mesh walks: the default scene's, else every scene's in order, else (no scene at all) every
+// node that is nobody's child. Out-of-range child indices are ignored here (the traversal rejects them).
+std::vector<int> root_nodes(const tinygltf::Model& model);
+
+// Writes `model` as a binary glTF to "<path>.tmp", then renames it over `path` (atomic on one file system). An empty
+// first buffer is dropped (glTF forbids empty buffers). Throws MeshIoError naming the file.
+void write_glb_atomically(tinygltf::Model& model, const std::filesystem::path& path);
+
+}  // namespace trispline::core::gltf_model
