@@ -334,19 +334,12 @@ void App::render_view() {
   }
   // The Press tool's drag preview: the pressed object drawn with the lattice pressed so far (its own world_mesh is
   // the unpressed one until the command runs at mouse-up), evaluated by the FFD backend, never the stale CPU mesh.
-  const core::Scene& drawn = anim_.drawn_scene(hidden_);
-  std::optional<core::Scene> previewed;
-  if (const auto p = tools_.live_preview(tool_ctx_); p && drawn.find(p->object)) {
-    core::SceneObject o = *drawn.find(p->object);
-    if (o.ffd && o.ffd->params.size() == p->binding->params.size()) {
-      previewed = drawn;
-      o.ffd = p->binding;
-      previewed->replace(std::move(o));
-      vo.live_ffd_object = p->object;
-    }
+  if (const auto p = tools_.live_preview(tool_ctx_)) {
+    vo.live_ffd_object = p->object;
+    vo.live_lattice = p->lattice;
   }
   try {
-    renderer_->draw(previewed ? *previewed : drawn, view_, vo);
+    renderer_->draw(anim_.drawn_scene(hidden_), view_, vo);
   } catch (const std::exception& e) {
     if (vo.ffd_backend != core::FfdBackend::cpu_ref) {
       // E.g. a lattice order the fast backends do not support (they take 2..4): the reference takes any.

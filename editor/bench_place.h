@@ -16,7 +16,7 @@
 // to the level closest to --vertices, default 1 M → 835,994 vertices; a UV sphere of ~N vertices when the file is
 // absent) placed with place.sketch on the teapot scene (12×5×3 lattice), driven through the real Press tool
 // (editor/tools/press_tool.h) over a row of the default 1280×720 view, and per drag sample (path prefix) the cost
-// of what a live preview would need: (a) the pressed lattice (lattice.press on a proxy object that shares the
+// of the live preview: (a) the pressed lattice (lattice.press on a proxy object that shares the
 // lattice and embedding but has 8 vertices: redo time − its ms_evaluate), (b) re-evaluating every vertex with
 // positions + normals: cpu_fast (set_lattice + evaluate, then read-back and, with GL, MeshBuffers upload) and
 // glsl_compute (set_lattice + evaluate + glFinish; needs an EGL context), and (c) the full lattice.press command at

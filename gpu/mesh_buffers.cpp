@@ -94,6 +94,19 @@ void MeshBuffers::update_vertices(const std::vector<glm::dvec3>& positions, cons
   glBindBuffer(GL_ARRAY_BUFFER, 0);
 }
 
+void MeshBuffers::update_vertices(const std::vector<glm::vec3>& positions, const std::vector<glm::vec3>& normals) {
+  if (positions.size() != vertex_count_ || (!normals.empty() && normals.size() != vertex_count_))
+    throw std::invalid_argument("MeshBuffers::update_vertices: expected " + std::to_string(vertex_count_) +
+                                " vertices, got " + std::to_string(positions.size()));
+  glBindBuffer(GL_ARRAY_BUFFER, positions_.id());
+  glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(positions.size() * sizeof(glm::vec3)), positions.data());
+  if (!normals.empty()) {
+    glBindBuffer(GL_ARRAY_BUFFER, normals_.id());
+    glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(normals.size() * sizeof(glm::vec3)), normals.data());
+  }
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+}
+
 void MeshBuffers::draw_triangles() const {
   if (triangle_count_ == 0) return;
   glBindVertexArray(vao_.id());

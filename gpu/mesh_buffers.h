@@ -23,6 +23,8 @@ class MeshBuffers {
   // Overwrites positions (and normals if non-empty) in place; counts must match vertex_count(). For CPU
   // evaluators that keep the topology. Throws std::invalid_argument on a count mismatch.
   void update_vertices(const std::vector<glm::dvec3>& positions, const std::vector<glm::dvec3>& normals);
+  // The same from single-precision arrays (uploaded as they are: no conversion pass).
+  void update_vertices(const std::vector<glm::vec3>& positions, const std::vector<glm::vec3>& normals);
 
   void draw_triangles() const;  // binds the VAO and issues one glDrawElements
   void bind() const { glBindVertexArray(vao_.id()); }

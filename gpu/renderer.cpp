@@ -128,11 +128,11 @@ struct Renderer::Impl {
         if (!obj.visible || !obj.ffd || !obj.world_mesh || obj.world_mesh->empty()) continue;
         if (obj.ffd->params.size() != obj.world_mesh->positions.size()) continue;  // inconsistent: draw world_mesh
         CachedMesh& c = cached(obj.world_mesh);
-        const bool live = !o.live_ffd_object.empty() && obj.name == o.live_ffd_object;
-        const core::FfdBackend backend =
-            live && o.ffd_backend == core::FfdBackend::cpu_ref ? core::FfdBackend::cpu_fast : o.ffd_backend;
-        plans[i] = ffd.prepare(obj, {&c.buffers, &c.generation, &c.overwritten, c.mesh.get()}, backend, o.time_s,
-                               generation, &stats.ffd_vertices, &cpu_ms, &stats.uploads);
+        const bool live = o.live_lattice && obj.name == o.live_ffd_object &&
+                          o.live_lattice->control_counts() == obj.ffd->lattice.control_counts();
+        plans[i] = ffd.prepare(obj, {&c.buffers, &c.generation, &c.overwritten, c.mesh.get()}, o.ffd_backend, o.time_s,
+                               generation, &stats.ffd_vertices, &cpu_ms, &stats.uploads,
+                               live ? o.live_lattice : nullptr);
         ++stats.ffd_objects;
       }
     }

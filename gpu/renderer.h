@@ -58,9 +58,11 @@ struct ViewOptions {
   // F(E(x) + param_offset + offset_velocity·time_s)).
   core::FfdBackend ffd_backend = core::FfdBackend::glsl_compute;
   double time_s = 0.0;
-  // Object being edited live (the Press tool's drag preview): its ffd lattice is newer than its world_mesh, so the
-  // CPU reference shortcut (draw world_mesh) does not apply; with ffd_backend cpu_ref it is evaluated by cpu_fast.
+  // Object being edited live (the Press tool's drag preview) and the lattice to show it with instead of its own
+  // (same counts, orders, knots): evaluated by ffd_backend through the object's cached evaluator (parameters stay
+  // bound; cpu_fast when ffd_backend is cpu_ref, whose stored world_mesh is stale during the edit).
   std::string live_ffd_object;
+  std::shared_ptr<const core::TrivariateBSpline<glm::dvec3>> live_lattice;
 };
 
 // What the last draw() did (for tests, the timing overlay and replay's report).

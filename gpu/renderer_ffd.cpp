@@ -43,7 +43,7 @@ void FfdDisplay::sync_inputs(State& s, const core::SceneObject& object) {
 
 FfdPlan FfdDisplay::prepare(const core::SceneObject& object, const DisplayBuffers& target, core::FfdBackend backend,
                             double time_s, std::uint64_t& generation_counter, std::size_t* vertices, double* cpu_ms,
-                            int* uploads) {
+                            int* uploads, std::shared_ptr<const core::TrivariateBSpline<glm::dvec3>> live_lattice) {
   State& s = states_[object.name];
   const glm::dvec3 offset = object.offset_at(time_s);
   core::FfdBackend eff = backend;
@@ -54,6 +54,7 @@ FfdPlan FfdDisplay::prepare(const core::SceneObject& object, const DisplayBuffer
   const glm::ivec3 orders = object.ffd->lattice.orders();
   if (glm::any(glm::lessThan(orders, glm::ivec3(2))) || glm::any(glm::greaterThan(orders, glm::ivec3(4))))
     eff = core::FfdBackend::cpu_ref;
+  if (eff == core::FfdBackend::cpu_ref && live_lattice) eff = core::FfdBackend::cpu_fast;  // world_mesh is stale
   if (eff == core::FfdBackend::cpu_ref && offset == object.offset_at(0.0)) {
     // world_mesh (the t = 0 pose) already is the CPU reference at this offset: draw it, restoring it if a backend overwrote it.
     if (*target.overwritten) {
@@ -77,30 +78,32 @@ FfdPlan FfdDisplay::prepare(const core::SceneObject& object, const DisplayBuffer
     s.bound = true;
     s.lattice_of = nullptr;
   }
-  if (s.lattice_of != s.binding.get()) {
-    s.evaluator->set_lattice(s.binding->lattice, s.binding->embedding);
-    s.lattice_of = s.binding.get();
+  const core::TrivariateBSpline<glm::dvec3>& lattice = live_lattice ? *live_lattice : s.binding->lattice;
+  if (s.lattice_of != &lattice) {
+    s.evaluator->set_lattice(lattice, s.binding->embedding);
+    s.lattice_of = &lattice;
   }
+  if (live_lattice) s.live_hold = std::move(live_lattice);  // after the comparison: the old one stays alive until here
   const std::size_t nv = s.binding->params.size();
   if (eff == core::FfdBackend::glsl_vertex) {
     *vertices += nv;  // evaluated while drawing
     return {static_cast<GlslVertexFfdEvaluator*>(s.evaluator.get()), offset};
   }
-  if (s.written_generation == *target.generation && s.written_binding == s.binding.get() &&
+  if (s.written_generation == *target.generation && s.written_lattice == &lattice &&
       s.written_offset == offset && s.written_backend == eff)
     return {};  // the buffers already hold this evaluation
   if (eff == core::FfdBackend::glsl_compute) {
     static_cast<GlslComputeFfdEvaluator*>(s.evaluator.get())->evaluate_into(*target.buffers, offset);
   } else {
     s.evaluator->evaluate(offset);
-    s.evaluator->read_results(s.positions, s.normals);
+    s.evaluator->read_results_float(s.positions, s.normals);
     target.buffers->update_vertices(s.positions, s.normals);
     *cpu_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   }
   *target.overwritten = true;
   *target.generation = ++generation_counter;
   s.written_generation = *target.generation;
-  s.written_binding = s.binding.get();
+  s.written_lattice = &lattice;
   s.written_offset = offset;
   s.written_backend = eff;
   *vertices += nv;

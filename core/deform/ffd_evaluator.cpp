@@ -116,4 +116,11 @@ std::unique_ptr<FfdEvaluator> make_cpu_ffd_evaluator(FfdBackend backend) {
   }
 }
 
+void FfdEvaluator::read_results_float(std::vector<glm::vec3>& positions, std::vector<glm::vec3>& normals) {
+  std::vector<glm::dvec3> p, n;
+  read_results(p, n);
+  positions.assign(p.begin(), p.end());
+  normals.assign(n.begin(), n.end());
+}
+
 }  // namespace trispline::core

@@ -64,6 +64,10 @@ class FfdEvaluator {
   // Copies the latest results to the host, waiting for the GPU if needed: positions #V × 3 world units, normals
   // #V × 3 unit (cleared when bound without normals). Throws std::logic_error before the first evaluate().
   virtual void read_results(std::vector<glm::dvec3>& positions, std::vector<glm::dvec3>& normals) = 0;
+  // The same in single precision, for display (the renderer uploads floats): #V × 3 each. The default converts
+  // read_results(); cpu_fast overrides it to skip the float → double → float round trip (half the cost of a live
+  // preview on a 1 M-vertex object).
+  virtual void read_results_float(std::vector<glm::vec3>& positions, std::vector<glm::vec3>& normals);
 
   virtual std::size_t vertex_count() const = 0;
   virtual bool has_normals() const = 0;

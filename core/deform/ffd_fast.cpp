@@ -348,6 +348,22 @@ void FfdFastEvaluator::read_results(std::vector<glm::dvec3>& positions, std::vec
   });
 }
 
+void FfdFastEvaluator::read_results_float(std::vector<glm::vec3>& positions, std::vector<glm::vec3>& normals) {
+  const Impl& m = *impl_;
+  if (!m.evaluated) throw std::logic_error("cpu_fast read_results_float: evaluate() has not run since bind_vertices");
+  const std::size_t V = m.params.size();
+  positions.resize(V);
+  normals.resize(m.nrm.empty() ? 0 : V);
+  const glm::dvec3 c = m.centre;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, V, 16384), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i)  // the centre added in double, then rounded once
+      positions[i] = glm::vec3(c + glm::dvec3(m.pos[3 * i], m.pos[3 * i + 1], m.pos[3 * i + 2]));
+    if (!normals.empty())
+      for (std::size_t i = r.begin(); i != r.end(); ++i)
+        normals[i] = glm::vec3(m.nrm[3 * i], m.nrm[3 * i + 1], m.nrm[3 * i + 2]);
+  });
+}
+
 std::size_t FfdFastEvaluator::vertex_count() const { return impl_->params.size(); }
 bool FfdFastEvaluator::has_normals() const { return !impl_->normals_f.empty(); }
 bool FfdFastEvaluator::uses_cell_tables() const { return impl_->tables; }

@@ -150,9 +150,8 @@ std::optional<Tool::LivePreview> PressTool::live_preview(const ToolContext& ctx)
   if (pressing_ && !path_.empty()) {
     if (!preview_ || preview_base_ != o->ffd || preview_samples_ != path_.size()) {
       try {
-        auto b = std::make_shared<core::FfdBinding>(*o->ffd);
-        b->lattice = core::press_lattice(o->ffd->lattice, path_, hover_radius_, pull_ ? -strength_ : strength_, falloff_);
-        preview_ = std::move(b);
+        preview_ = std::make_shared<const core::TrivariateBSpline<glm::dvec3>>(
+            core::press_lattice(o->ffd->lattice, path_, hover_radius_, pull_ ? -strength_ : strength_, falloff_));
         preview_base_ = o->ffd;
         preview_samples_ = path_.size();
       } catch (const std::exception&) {  // a degenerate column: the command at mouse-up reports it

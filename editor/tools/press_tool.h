@@ -37,7 +37,7 @@ class PressTool : public Tool {
   void decorate(gpu::ViewOptions& options) const override;
   std::string hint() const override;
   bool owns_mouse() const override { return pressing_; }
-  // During a drag: the object's binding with the lattice pressed along the path so far (core::press_lattice, the
+  // During a drag: the object's lattice pressed along the path so far (core::press_lattice, the
   // same math as the command at mouse-up), recomputed only when the path grew; kept until the command has replaced
   // the object's lattice (at most a few frames), so the view never flickers back to the unpressed shape.
   std::optional<LivePreview> live_preview(const ToolContext& ctx) override;
@@ -70,7 +70,8 @@ class PressTool : public Tool {
   bool pressing_ = false, pull_ = false;
 
   // Live preview (live_preview()): the binding shown, what it was made from, and for how many samples.
-  std::shared_ptr<const core::FfdBinding> preview_, preview_base_;
+  std::shared_ptr<const core::TrivariateBSpline<glm::dvec3>> preview_;
+  std::shared_ptr<const core::FfdBinding> preview_base_;
   std::size_t preview_samples_ = 0;
   int preview_linger_ = 0;  // frames left to show the preview after mouse-up while the command runs
 

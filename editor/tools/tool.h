@@ -55,7 +55,7 @@ class Tool {
   // the app draws that object with it (gpu::ViewOptions::live_ffd_object). Called once per frame.
   struct LivePreview {
     std::string object;
-    std::shared_ptr<const core::FfdBinding> binding;
+    std::shared_ptr<const core::TrivariateBSpline<glm::dvec3>> lattice;  // same counts, orders, knots as the object's
   };
   virtual std::optional<LivePreview> live_preview(const ToolContext&) { return std::nullopt; }
 };

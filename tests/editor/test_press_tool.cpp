@@ -141,14 +141,14 @@ TEST_F(PressTool, LivePreviewDuringTheDragEqualsTheCommittedPress) {
   const auto preview = tool.live_preview(ctx);
   ASSERT_TRUE(preview);
   EXPECT_EQ(preview->object, "t");
-  EXPECT_NE(preview->binding->lattice.control_points(), before->lattice.control_points());  // it pressed
-  EXPECT_EQ(preview->binding->params, before->params);
+  EXPECT_NE(preview->lattice->control_points(), before->lattice.control_points());  // it pressed
+  EXPECT_EQ(preview->lattice->control_counts(), before->lattice.control_counts());
   EXPECT_EQ(object().ffd, before);  // the scene is untouched until mouse-up
   in.left_down = false;
   in.left_released = true;
   tool.handle_input(in, ctx);  // commits (this test's defer runs the work at once)
   ASSERT_NE(object().ffd, before);
-  EXPECT_EQ(object().ffd->lattice.control_points(), preview->binding->lattice.control_points());
+  EXPECT_EQ(object().ffd->lattice.control_points(), preview->lattice->control_points());
   EXPECT_FALSE(tool.live_preview(ctx));  // the object's own lattice is shown again
 }
 

@@ -146,6 +146,46 @@ TEST_F(GlTest, FfdRendererImagesAgreeAcrossBackends) {
   EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
 }
 
+// The Press tool's drag preview (ViewOptions::live_lattice): drawing an object with an override lattice looks like
+// the object after the command (lattice replaced, world_mesh re-evaluated), on every backend, and dropping the
+// override shows the object's own lattice again.
+TEST_F(GlTest, FfdRendererDrawsALiveLatticeOverrideLikeTheCommittedLattice) {
+  Renderer r;
+  const core::Camera cam = front_camera(160, 120);
+  ViewOptions opt;
+  opt.show_grid = false;
+  core::Scene scene;
+  const core::SceneObject ball = deformed_ball();
+  scene.insert(ball);
+  auto pressed = std::make_shared<core::TrivariateBSpline<glm::dvec3>>(ball.ffd->lattice);
+  for (glm::dvec3& p : pressed->control_points()) p.y -= 0.3 * std::max(0.0, p.x);  // push the right half down
+  core::Scene committed;
+  core::SceneObject after = ball;
+  auto b = std::make_shared<core::FfdBinding>(*ball.ffd);
+  b->lattice = *pressed;
+  after.ffd = std::move(b);
+  after.refresh();
+  committed.insert(after);
+  for (core::FfdBackend backend : kBackends) {
+    opt.ffd_backend = backend;
+    opt.live_ffd_object.clear();
+    opt.live_lattice = nullptr;
+    const std::vector<unsigned char> own = render(r, scene, cam, opt);
+    opt.ffd_backend = core::FfdBackend::cpu_ref;
+    const std::vector<unsigned char> ref = render(r, committed, cam, opt);
+    opt.ffd_backend = backend;
+    opt.live_ffd_object = "blob";
+    opt.live_lattice = pressed;
+    const std::vector<unsigned char> live = render(r, scene, cam, opt);
+    EXPECT_GT(diff(live, own).frac_over, 0.02) << core::to_string(backend) << ": the preview should show";
+    EXPECT_LT(diff(live, ref).mean, 0.5) << core::to_string(backend);
+    EXPECT_LT(diff(live, ref).frac_over, 0.002) << core::to_string(backend);
+    opt.live_ffd_object.clear();
+    opt.live_lattice = nullptr;
+    EXPECT_LT(diff(render(r, scene, cam, opt), own).frac_over, 0.002) << core::to_string(backend) << ": own again";
+  }
+}
+
 // Per-binding caching: an unchanged object is not re-evaluated; a press (new binding, same parameters) or a new time
 // on an animated object is.
 TEST_F(GlTest, FfdRendererEvaluatesOnlyWhatChanged) {
