@@ -147,6 +147,12 @@ App::App(const AppOptions& options)
     messages_.warning(std::string("the UI pass is not timed: ") + e.what());
   }
   messages_.info("OpenGL renderer: " + gl_renderer_);
+  if (gpu::is_software_renderer()) {
+    // On a software rasteriser the CPU fast path evaluates FFDs ~20× faster than GLSL (docs/performance.md): the
+    // Press tool's live preview then stays interactive. View ▸ FFD evaluator switches back.
+    toggles_.ffd_backend = core::FfdBackend::cpu_fast;
+    messages_.info("software OpenGL: FFD evaluator set to " + std::string(ui::ffd_backend_label(toggles_.ffd_backend)));
+  }
   view_ = nav_.camera(window_->framebuffer_size());
 
   if (options.screenshot.empty()) recovery_ = session_.start(options.recover_prompt);
