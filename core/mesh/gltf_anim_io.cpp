@@ -27,20 +27,7 @@ std::string target_name(int frame) {
   return buf;
 }
 
-// Appends raw bytes to buffer 0 (4-byte aligned) and returns the new buffer view's index (target 0 = none).
-int add_view(tinygltf::Model& model, const void* data, std::size_t bytes, int target) {
-  auto& buf = model.buffers[0].data;
-  while (buf.size() % 4) buf.push_back(0);
-  tinygltf::BufferView view;
-  view.buffer = 0;
-  view.byteOffset = buf.size();
-  view.byteLength = bytes;
-  view.target = target;
-  const auto* p = static_cast<const unsigned char*>(data);
-  buf.insert(buf.end(), p, p + bytes);
-  model.bufferViews.push_back(view);
-  return static_cast<int>(model.bufferViews.size()) - 1;
-}
+using gltf_model::add_view;
 
 // A float accessor over `values` (#count × comps) in a new view, with min/max when `bounds`.
 int add_floats(tinygltf::Model& model, const std::vector<float>& values, int type, int comps, int target, bool bounds) {

@@ -238,20 +238,7 @@ std::vector<GltfObject> read_gltf_objects(const std::filesystem::path& path) {
 
 namespace {
 
-// Appends raw bytes to buffer 0 (4-byte aligned) and returns a new buffer view index.
-int add_view(tinygltf::Model& model, const void* data, std::size_t bytes, int target) {
-  auto& buf = model.buffers[0].data;
-  while (buf.size() % 4) buf.push_back(0);
-  tinygltf::BufferView view;
-  view.buffer = 0;
-  view.byteOffset = buf.size();
-  view.byteLength = bytes;
-  view.target = target;
-  const auto* p = static_cast<const unsigned char*>(data);
-  buf.insert(buf.end(), p, p + bytes);
-  model.bufferViews.push_back(view);
-  return static_cast<int>(model.bufferViews.size()) - 1;
-}
+using gltf_model::add_view;
 
 int add_accessor(tinygltf::Model& model, int view, int ctype, int type, std::size_t count) {
   tinygltf::Accessor acc;
@@ -341,6 +328,20 @@ void write_glb(const std::filesystem::path& path, const std::vector<GltfNode>& n
 }
 
 namespace gltf_model {
+
+int add_view(tinygltf::Model& model, const void* data, std::size_t bytes, int target) {
+  auto& buf = model.buffers[0].data;
+  while (buf.size() % 4) buf.push_back(0);
+  tinygltf::BufferView view;
+  view.buffer = 0;
+  view.byteOffset = buf.size();
+  view.byteLength = bytes;
+  view.target = target;
+  const auto* p = static_cast<const unsigned char*>(data);
+  buf.insert(buf.end(), p, p + bytes);
+  model.bufferViews.push_back(view);
+  return static_cast<int>(model.bufferViews.size()) - 1;
+}
 
 std::vector<int> root_nodes(const tinygltf::Model& model) {
   std::vector<int> roots;

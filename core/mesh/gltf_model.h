@@ -13,6 +13,10 @@ namespace trispline::core::gltf_model {
 // node that is nobody's child. Out-of-range child indices are ignored here (the traversal rejects them).
 std::vector<int> root_nodes(const tinygltf::Model& model);
 
+// Appends raw bytes to buffer 0 (padded to 4-byte alignment first) as a new buffer view; returns its index.
+// target: GL buffer target (e.g. TINYGLTF_TARGET_ARRAY_BUFFER) or 0 for none.
+int add_view(tinygltf::Model& model, const void* data, std::size_t bytes, int target);
+
 // Writes `model` as a binary glTF to "<path>.tmp", then renames it over `path` (atomic on one file system). An empty
 // first buffer is dropped (glTF forbids empty buffers). Throws MeshIoError naming the file.
 void write_glb_atomically(tinygltf::Model& model, const std::filesystem::path& path);
