@@ -3,6 +3,7 @@
 #include "core/commands/anim_commands.h"
 #include "core/commands/anim_record.h"
 #include "core/commands/camera_set.h"
+#include "core/commands/dffd_cut.h"
 #include "core/commands/lattice_animate_offset.h"
 #include "core/commands/lattice_press.h"
 #include "core/commands/lattice_ring.h"
@@ -66,6 +67,8 @@ const CommandRegistry& CommandRegistry::builtin() {
           core::AnimKeyframeCommand::parse);
     r.add("anim.clip", "Attach a glTF animation clip (morph targets, skin) played before the FFD (two-level animation)",
           core::AnimClipCommand::parse);
+    r.add("dffd.cut", "Cut a deformed object at a lattice parameter: C⁻¹ knots, exact mesh split, opening (seed §6.3)",
+          core::DffdCutCommand::parse);
     r.add("place.array", "Add copies of a placed object in a row along its path (seed Fig. 2.11, the ants)",
           core::PlaceArrayCommand::parse);
     r.add("anim.record", "Record timeline frames to PNG/EXR images, an animated glb and an MP4 (seed §2.4.3)",

@@ -75,7 +75,8 @@ INSTANTIATE_TEST_SUITE_P(
                       BadLogCase{"bad_timeline_fps.jsonl", 2, "fps", "(0, 240]"},
                       BadLogCase{"bad_empty_clip.jsonl", 2, "clip", "animates no mesh"},
                       BadLogCase{"bad_array_count.jsonl", 5, "count", "[1, 64]"},
-                      BadLogCase{"bad_record_range.jsonl", 3, "frames", "outside the timeline"}),
+                      BadLogCase{"bad_record_range.jsonl", 3, "frames", "outside the timeline"},
+                      BadLogCase{"bad_dffd_cut_outside.jsonl", 5, "at", "inside"}),
     [](const auto& info) {
       std::string n = info.param.file;
       n = n.substr(4, n.size() - 4 - 6);  // strip "bad_" and ".jsonl"

@@ -1,0 +1,40 @@
+// `dffd.cut` — one C⁻¹ discontinuity in a deformed object's lattice, its mesh split there and the cut opened
+// (seed §6.3.1 Def. 6 and §6.3.2, the "left open" case; the building block of dffd.split and incision.draw):
+//   {"cmd":"dffd.cut","object":"ID","axis":"u|v|w","at":u0,"gap":g,"eps":1e-6}
+// Inserts `order` knots at u0 (parameter domain, strictly inside, not already a break) on the lattice axis
+// (core::insert_discontinuity), splits every edge and face of the embedded mesh that crosses u0 exactly
+// (core::split_mesh_at_parameter: cut vertices interpolate position, normal and uv and move to u0 ∓ eps), then opens
+// the cut by moving the F⁻ plane by −g/2 and the F⁺ plane by +g/2 (world units) along the lattice's mean direction
+// of `axis` at the cut (centroid of the plane after F⁺ minus that of the plane before F⁻). g = 0 leaves the surface
+// closed in space but split in topology. The openings stay open (the inside shows); stitching and capping are
+// still to come. Undo restores the object (mesh, lattice, parameters) bit for bit.
+// report.json: cut_edges, vertices_before, vertices_after, duplicated_on_plane, ms.
+// Errors (CommandError, field named): unknown object / no lattice / a glTF clip on it ("object"); u0 outside the
+// domain or already a discontinuity, or a periodic axis ("at"); non-finite or |g| > 100 ("gap"); eps outside
+// (0, 1e-3] ("eps").
+#pragma once
+
+#include "core/commands/snapshot_command.h"
+
+namespace trispline::core {
+
+class DffdCutCommand : public SnapshotCommand {
+ public:
+  static CommandPtr parse(const nlohmann::json& j, const CommandContext& ctx);
+  std::string id() const override { return "dffd.cut"; }
+  nlohmann::json to_json() const override;
+  std::string label() const override;
+  nlohmann::json stats() const override { return stats_; }
+
+ protected:
+  std::string target() const override { return object_; }
+  std::optional<SceneObject> build(const Scene& scene) override;
+
+ private:
+  std::string object_;
+  int axis_ = 0;
+  double at_ = 0.5, gap_ = 0.0, eps_ = 1e-6;
+  nlohmann::json stats_ = nlohmann::json::object();
+};
+
+}  // namespace trispline::core
