@@ -233,14 +233,7 @@ void MorphAnimationBuilder::write_glb(const std::filesystem::path& path) const {
         animated_nodes.push_back(static_cast<int>(model.nodes.size()));
       }
 
-      tinygltf::Material mat;
-      mat.name = o.name;
-      mat.pbrMetallicRoughness.baseColorFactor = {o.color.x, o.color.y, o.color.z, 1.0};
-      mat.pbrMetallicRoughness.metallicFactor = 0.0;
-      mat.pbrMetallicRoughness.roughnessFactor = 0.6;
-      mat.doubleSided = true;
-      model.materials.push_back(mat);
-      prim.material = static_cast<int>(model.materials.size()) - 1;
+      prim.material = gltf_model::add_material(model, o.name, o.color);
       mesh.primitives.push_back(std::move(prim));
       model.meshes.push_back(std::move(mesh));
       node.mesh = static_cast<int>(model.meshes.size()) - 1;

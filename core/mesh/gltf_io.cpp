@@ -304,14 +304,7 @@ void write_glb(const std::filesystem::path& path, const std::vector<GltfNode>& n
           add_accessor(model, add_view(model, idx.data(), idx.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
                        TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, idx.size());
 
-      tinygltf::Material mat;
-      mat.name = gn.name;
-      mat.pbrMetallicRoughness.baseColorFactor = {gn.color.x, gn.color.y, gn.color.z, 1.0};
-      mat.pbrMetallicRoughness.metallicFactor = 0.0;
-      mat.pbrMetallicRoughness.roughnessFactor = 0.6;
-      mat.doubleSided = true;
-      model.materials.push_back(mat);
-      prim.material = static_cast<int>(model.materials.size()) - 1;
+      prim.material = gltf_model::add_material(model, gn.name, gn.color);
 
       tinygltf::Mesh mesh;
       mesh.name = gn.name;
@@ -341,6 +334,17 @@ int add_view(tinygltf::Model& model, const void* data, std::size_t bytes, int ta
   buf.insert(buf.end(), p, p + bytes);
   model.bufferViews.push_back(view);
   return static_cast<int>(model.bufferViews.size()) - 1;
+}
+
+int add_material(tinygltf::Model& model, const std::string& name, const glm::vec3& rgb) {
+  tinygltf::Material mat;
+  mat.name = name;
+  mat.pbrMetallicRoughness.baseColorFactor = {rgb.x, rgb.y, rgb.z, 1.0};
+  mat.pbrMetallicRoughness.metallicFactor = 0.0;
+  mat.pbrMetallicRoughness.roughnessFactor = 0.6;
+  mat.doubleSided = true;
+  model.materials.push_back(mat);
+  return static_cast<int>(model.materials.size()) - 1;
 }
 
 std::vector<int> root_nodes(const tinygltf::Model& model) {

@@ -5,6 +5,8 @@
 #include <tiny_gltf.h>
 
 #include <filesystem>
+#include <glm/glm.hpp>
+#include <string>
 #include <vector>
 
 namespace trispline::core::gltf_model {
@@ -16,6 +18,10 @@ std::vector<int> root_nodes(const tinygltf::Model& model);
 // Appends raw bytes to buffer 0 (padded to 4-byte alignment first) as a new buffer view; returns its index.
 // target: GL buffer target (e.g. TINYGLTF_TARGET_ARRAY_BUFFER) or 0 for none.
 int add_view(tinygltf::Model& model, const void* data, std::size_t bytes, int target);
+
+// Appends the project's material (PBR base colour `rgb` in linear [0,1], metallic 0, roughness 0.6, double-sided)
+// named `name`; returns its index.
+int add_material(tinygltf::Model& model, const std::string& name, const glm::vec3& rgb);
 
 // Writes `model` as a binary glTF to "<path>.tmp", then renames it over `path` (atomic on one file system). An empty
 // first buffer is dropped (glTF forbids empty buffers). Throws MeshIoError naming the file.
