@@ -123,7 +123,9 @@ std::string AnimKeyframeCommand::label() const {
 }
 
 std::optional<SceneObject> AnimKeyframeCommand::build(const Scene& scene) {
-  SceneObject out = require_deformed_object(scene, object_);
+  // An FFD object, or a DFFD object (dffd.split): both read their parameter offset at every scene time.
+  const SceneObject* found = scene.find(object_);
+  SceneObject out = found && found->dffd ? *found : require_deformed_object(scene, object_);
   const double t = scene.timeline.time_of_frame(frame_);
   auto& keys = out.offset_keys;
   // Keys closer than a microsecond are the same key (frames convert through a division).

@@ -6,7 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <map>
+#include <unordered_map>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -89,6 +89,7 @@ class Splitter {
       : in_(mesh), axis_(axis), u0_(u0), eps_(eps) {
     out_.mesh = mesh;
     out_.mesh.triangles.clear();
+    out_.mesh.face_material.clear();
     out_.params = params;
     const std::size_t nv = mesh.vertex_count();
     cls_.resize(nv);
@@ -102,7 +103,13 @@ class Splitter {
   }
 
   MeshSplit run() {
-    for (const glm::uvec3& t : in_.triangles) split_triangle(t);
+    out_.mesh.triangles.reserve(in_.triangles.size() + in_.triangles.size() / 16);
+    if (!in_.face_material.empty()) out_.mesh.face_material.reserve(out_.mesh.triangles.capacity());
+    cuts_.reserve(1024);
+    for (std::size_t f = 0; f < in_.triangles.size(); ++f) {
+      material_ = in_.material(f);
+      split_triangle(in_.triangles[f]);
+    }
     out_.cut_edges = cuts_.size();
     return std::move(out_);
   }
@@ -140,10 +147,10 @@ class Splitter {
 
   // Cut vertex of the edge (a, b) (strictly opposite sides) on side s.
   unsigned cut(unsigned a, unsigned b, int s) {
-    const std::pair<unsigned, unsigned> key(std::min(a, b), std::max(a, b));
+    const unsigned lo = std::min(a, b), hi = std::max(a, b);
+    const std::uint64_t key = (std::uint64_t(lo) << 32) | hi;
     auto it = cuts_.find(key);
     if (it == cuts_.end()) {
-      const unsigned lo = key.first, hi = key.second;
       const glm::dvec3 pl = in_params(lo);  // copies: out_.params grows below
       const glm::dvec3 ph = in_params(hi);
       const double t = (u0_ - pl[axis_]) / (ph[axis_] - pl[axis_]);
@@ -172,7 +179,10 @@ class Splitter {
 
   const glm::dvec3& in_params(unsigned v) const { return out_.params[v]; }  // off-plane vertices keep their params
 
-  void emit(unsigned a, unsigned b, unsigned c) { out_.mesh.triangles.push_back({a, b, c}); }
+  void emit(unsigned a, unsigned b, unsigned c) {
+    out_.mesh.triangles.push_back({a, b, c});
+    if (!in_.face_material.empty()) out_.mesh.face_material.push_back(material_);  // pieces keep their material
+  }
 
   double len2(unsigned a, unsigned b) const {
     const glm::dvec3 d = out_.mesh.positions[a] - out_.mesh.positions[b];
@@ -219,9 +229,10 @@ class Splitter {
   int axis_;
   double u0_, eps_;
   MeshSplit out_;
+  std::uint8_t material_ = kMaterialSurface;  // material of the input triangle being split
   std::vector<int> cls_;                  // -1 / 0 (on plane) / +1 per input vertex
   std::vector<std::array<int, 2>> copy_;  // per input vertex: index used on the minus / plus side, -1 = none yet
-  std::map<std::pair<unsigned, unsigned>, std::array<unsigned, 2>> cuts_;  // edge (lo, hi) → (minus, plus) vertex
+  std::unordered_map<std::uint64_t, std::array<unsigned, 2>> cuts_;  // edge (lo << 32 | hi) → (minus, plus) vertex
 };
 
 }  // namespace
@@ -236,6 +247,8 @@ MeshSplit split_mesh_at_parameter(const TriMesh& mesh, const std::vector<glm::dv
                                    " entries, the mesh has " + std::to_string(nv) + " vertices");
   require(mesh.normals.empty() || mesh.normals.size() == nv, "split_mesh_at_parameter: normals must be empty or #V");
   require(mesh.uvs.empty() || mesh.uvs.size() == nv, "split_mesh_at_parameter: uvs must be empty or #V");
+  require(mesh.face_material.empty() || mesh.face_material.size() == mesh.triangles.size(),
+          "split_mesh_at_parameter: face_material must be empty or #F");
   for (const glm::uvec3& t : mesh.triangles)
     require(t[0] < nv && t[1] < nv && t[2] < nv, "split_mesh_at_parameter: triangle index out of range");
   for (std::size_t v = 0; v < nv; ++v)

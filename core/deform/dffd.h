@@ -55,7 +55,8 @@ struct MeshSplit {
 };
 
 // Splits `mesh` along the parameter plane params[·][axis] = u0 (seed §6.3.2).
-//   mesh    #V vertices, #F triangles (normals / uvs optional, kept and interpolated when present)
+//   mesh    #V vertices, #F triangles (normals / uvs optional, kept and interpolated when present; face_material
+//           optional, every piece keeps its triangle's material)
 //   params  #V × 3, parameter domain (e.g. embed_points of the rest positions)
 //   eps     ≥ 0, parameter units: new/on-plane vertices get params[axis] = u0 ∓ eps on their side
 // Rules:

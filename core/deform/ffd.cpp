@@ -189,6 +189,7 @@ TriMesh ffd_apply(const FfdBinding& binding, const TriMesh& rest_world) {
                                 std::to_string(rest_world.positions.size()) + " vertices");
   TriMesh out;
   out.triangles = rest_world.triangles;
+  out.face_material = rest_world.face_material;
   out.uvs = rest_world.uvs;
   if (rest_world.normals.size() == rest_world.positions.size()) {
     ffd_evaluate(binding.lattice, binding.embedding, binding.params, rest_world.normals, out.positions, out.normals);

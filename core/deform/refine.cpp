@@ -338,7 +338,10 @@ RefineResult refine_for_ffd(const TriMesh& rest, const FfdBinding& binding, cons
 
     std::vector<glm::uvec3> tris;
     tris.reserve(next_tris);
+    std::vector<std::uint8_t> mats;  // face_material of the pieces: each keeps its triangle's slot
+    if (!m.face_material.empty()) mats.reserve(next_tris);
     for (std::size_t f = 0; f < m.triangles.size(); ++f) {
+      if (!m.face_material.empty() && f > 0) mats.resize(tris.size(), m.face_material[f - 1]);
       const glm::uvec3 v = m.triangles[f];
       const std::uint32_t* s = &tri_split[f * 3];
       const int count = (s[0] != kNone) + (s[1] != kNone) + (s[2] != kNone);
@@ -370,6 +373,10 @@ RefineResult refine_for_ffd(const TriMesh& rest, const FfdBinding& binding, cons
         tris.push_back({s[2], s[1], v[2]});
         tris.push_back({s[0], s[1], s[2]});
       }
+    }
+    if (!m.face_material.empty()) {
+      mats.resize(tris.size(), m.face_material.back());
+      m.face_material = std::move(mats);
     }
     m.triangles = std::move(tris);
     ++st.iterations;

@@ -9,17 +9,30 @@
 
 #include "core/mesh/gltf_model.h"
 
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <fstream>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 #include <limits>
+#include <map>
+#include <tuple>
+#include <utility>
 
 namespace trispline::core {
 namespace {
 
 std::string quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
+
+bool ends_with(const std::string& s, const std::string& tail) {
+  return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
+}
+
+glm::vec3 base_color(const tinygltf::Material& m, const glm::vec3& fallback) {
+  const auto& f = m.pbrMetallicRoughness.baseColorFactor;
+  return f.size() >= 3 ? glm::vec3(float(f[0]), float(f[1]), float(f[2])) : fallback;
+}
 
 // Node-local matrix: `matrix` if given, else T · R · S (glTF 2.0 §5.25).
 glm::dmat4 local_matrix(const tinygltf::Node& n) {
@@ -114,14 +127,10 @@ std::vector<std::uint32_t> read_indices(const tinygltf::Model& model, int index,
   return out;
 }
 
-void append_primitive(const tinygltf::Model& model, const tinygltf::Primitive& prim, const glm::dmat4& xf,
-                      TriMesh& mesh, bool& normals_ok, const std::filesystem::path& path) {
-  const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
-  if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN)
-    return;  // points and lines carry no surface
-  const auto pos_it = prim.attributes.find("POSITION");
-  if (pos_it == prim.attributes.end()) throw MeshIoError(quoted(path) + ": primitive without POSITION");
-  const auto pos = read_floats(model, pos_it->second, 3, "POSITION", path);
+std::pair<std::uint32_t, std::size_t> append_vertices(const tinygltf::Model& model, const tinygltf::Primitive& prim,
+                                                      const glm::dmat4& xf, TriMesh& mesh, bool& normals_ok,
+                                                      const std::filesystem::path& path) {
+  const auto pos = read_floats(model, prim.attributes.at("POSITION"), 3, "POSITION", path);
   const std::size_t n = pos.size() / 3;
   const auto base = static_cast<std::uint32_t>(mesh.positions.size());
   for (std::size_t i = 0; i < n; ++i)
@@ -149,7 +158,12 @@ void append_primitive(const tinygltf::Model& model, const tinygltf::Primitive& p
   } else if (!mesh.uvs.empty()) {
     mesh.uvs.resize(mesh.positions.size(), glm::dvec2(0));
   }
+  return {base, n};
+}
 
+std::size_t index_triangles(const tinygltf::Model& model, const tinygltf::Primitive& prim, int mode,
+                            const glm::dmat4& xf, std::uint32_t base, std::size_t n, TriMesh& mesh,
+                            const std::filesystem::path& path, std::size_t triangles_before) {
   std::vector<std::uint32_t> idx;
   if (prim.indices >= 0) {
     idx = read_indices(model, prim.indices, path);
@@ -174,6 +188,40 @@ void append_primitive(const tinygltf::Model& model, const tinygltf::Primitive& p
   } else {
     for (std::size_t k = 1; k + 1 < idx.size(); ++k) tri(idx[0], idx[k], idx[k + 1]);
   }
+  return mesh.triangles.size() - triangles_before;
+}
+
+// Vertex accessors of a primitive (POSITION, NORMAL, TEXCOORD_0; -1 when absent) → first vertex and vertex count of
+// the vertices already appended for them. Only "*.inside" primitives (write_glb's cut surfaces) reuse them; any other
+// primitive appends its vertices, as mesh_clip.cpp expects (it mirrors this concatenation).
+using SharedVertices = std::map<std::array<int, 3>, std::pair<std::uint32_t, std::size_t>>;
+
+// Appends the primitive's triangles (and its vertices unless `reuse` and `shared` has them); returns the triangle
+// count.
+std::size_t append_primitive(const tinygltf::Model& model, const tinygltf::Primitive& prim, const glm::dmat4& xf,
+                             TriMesh& mesh, bool& normals_ok, SharedVertices& shared, bool reuse,
+                             const std::filesystem::path& path) {
+  const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+  if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN)
+    return 0;  // points and lines carry no surface
+  const auto pos_it = prim.attributes.find("POSITION");
+  if (pos_it == prim.attributes.end()) throw MeshIoError(quoted(path) + ": primitive without POSITION");
+  auto accessor_of = [&](const char* name) {
+    const auto it = prim.attributes.find(name);
+    return it == prim.attributes.end() ? -1 : it->second;
+  };
+  const std::array<int, 3> key{pos_it->second, accessor_of("NORMAL"), accessor_of("TEXCOORD_0")};
+  const auto known = shared.find(key);
+  std::uint32_t base = 0;
+  std::size_t n = 0;
+  if (reuse && known != shared.end()) {
+    std::tie(base, n) = known->second;
+  } else {
+    std::tie(base, n) = append_vertices(model, prim, xf, mesh, normals_ok, path);
+    shared.emplace(key, std::make_pair(base, n));
+  }
+  const std::size_t triangles_before = mesh.triangles.size();
+  return index_triangles(model, prim, mode, xf, base, n, mesh, path, triangles_before);
 }
 
 }  // namespace
@@ -197,15 +245,25 @@ std::vector<GltfObject> read_gltf_objects(const std::filesystem::path& path) {
     GltfObject obj;
     obj.name = name.empty() ? gm.name : name;
     bool normals_ok = true;
-    for (const auto& prim : gm.primitives) append_primitive(model, prim, xf, obj.mesh, normals_ok, path);
-    if (!normals_ok) obj.mesh.normals.clear();
-    if (!gm.primitives.empty()) {
-      const int mat = gm.primitives.front().material;
-      if (mat >= 0 && mat < static_cast<int>(model.materials.size())) {
-        const auto& f = model.materials[mat].pbrMetallicRoughness.baseColorFactor;
-        if (f.size() >= 3) obj.color = glm::vec3(float(f[0]), float(f[1]), float(f[2]));
-      }
+    SharedVertices shared;
+    std::vector<std::uint8_t> slots;  // per triangle
+    bool any_inside = false;
+    int color_material = -1;
+    for (const auto& prim : gm.primitives) {
+      const int mat = prim.material >= 0 && prim.material < static_cast<int>(model.materials.size()) ? prim.material
+                                                                                                    : -1;
+      const bool inside = mat >= 0 && ends_with(model.materials[mat].name, ".inside");
+      const std::size_t added = append_primitive(model, prim, xf, obj.mesh, normals_ok, shared, inside, path);
+      slots.insert(slots.end(), added, inside ? kMaterialInside : kMaterialSurface);
+      any_inside = any_inside || (inside && added > 0);
+      if (inside && mat >= 0) obj.inside_color = base_color(model.materials[mat], obj.inside_color);
+      if (!inside && color_material < 0) color_material = mat;
     }
+    if (!normals_ok) obj.mesh.normals.clear();
+    if (any_inside) obj.mesh.face_material = std::move(slots);
+    if (color_material < 0 && !gm.primitives.empty() && !any_inside) color_material = gm.primitives.front().material;
+    if (color_material >= 0 && color_material < static_cast<int>(model.materials.size()))
+      obj.color = base_color(model.materials[color_material], obj.color);
     out.push_back(std::move(obj));
   };
 
@@ -297,18 +355,35 @@ void write_glb(const std::filesystem::path& path, const std::vector<GltfNode>& n
             add_accessor(model, add_view(model, uv.data(), uv.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER),
                          TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, nv);
       }
-      std::vector<std::uint32_t> idx(m.triangles.size() * 3);
-      for (std::size_t f = 0; f < m.triangles.size(); ++f)
-        for (int c = 0; c < 3; ++c) idx[3 * f + c] = m.triangles[f][c];
-      prim.indices =
-          add_accessor(model, add_view(model, idx.data(), idx.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
-                       TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, idx.size());
-
-      prim.material = gltf_model::add_material(model, gn.name, gn.color);
+      if (!m.face_material.empty() && m.face_material.size() != m.triangles.size())
+        throw MeshIoError("object '" + gn.name + "': face_material has " + std::to_string(m.face_material.size()) +
+                          " entries for " + std::to_string(m.triangles.size()) + " triangles");
+      // Faces of one slot (inside: any non-surface slot), in face order, as a uint32 index accessor.
+      const bool two_slots = m.has_inside_faces();
+      auto index_accessor = [&](bool inside) {
+        std::vector<std::uint32_t> idx;
+        idx.reserve(m.triangles.size() * 3);
+        for (std::size_t f = 0; f < m.triangles.size(); ++f)
+          if (!two_slots || (m.material(f) != kMaterialSurface) == inside)
+            for (int c = 0; c < 3; ++c) idx.push_back(m.triangles[f][c]);
+        if (idx.empty()) return -1;
+        return add_accessor(model, add_view(model, idx.data(), idx.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
+                            TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, idx.size());
+      };
 
       tinygltf::Mesh mesh;
       mesh.name = gn.name;
-      mesh.primitives.push_back(prim);
+      prim.indices = index_accessor(false);
+      if (prim.indices >= 0) {
+        prim.material = gltf_model::add_material(model, gn.name, gn.color);
+        mesh.primitives.push_back(prim);
+      }
+      if (two_slots) {  // the cut surfaces: same vertex accessors, their own material
+        tinygltf::Primitive inside = prim;
+        inside.indices = index_accessor(true);
+        inside.material = gltf_model::add_material(model, gn.name + ".inside", gn.inside_color);
+        mesh.primitives.push_back(inside);
+      }
       model.meshes.push_back(mesh);
       node.mesh = static_cast<int>(model.meshes.size()) - 1;
     }

@@ -97,9 +97,11 @@ TriMesh load_gltf(const std::filesystem::path& path) {
   const auto objects = read_gltf_objects(path);
   TriMesh out;
   bool all_normals = true, any_uvs = false;
+  bool any_materials = false;
   for (const auto& obj : objects) {
     all_normals = all_normals && !obj.mesh.normals.empty();
     any_uvs = any_uvs || !obj.mesh.uvs.empty();
+    any_materials = any_materials || !obj.mesh.face_material.empty();
   }
   for (const auto& obj : objects) {
     const auto base = static_cast<unsigned>(out.positions.size());
@@ -110,6 +112,12 @@ TriMesh load_gltf(const std::filesystem::path& path) {
       out.uvs.resize(out.positions.size(), glm::dvec2(0.0));  // objects without TEXCOORD_0 get (0,0)
     }
     for (const auto& t : obj.mesh.triangles) out.triangles.push_back(t + glm::uvec3(base));
+    if (any_materials) {  // cut surfaces (glTF "<id>.inside" primitives) keep their slot
+      if (obj.mesh.face_material.empty())
+        out.face_material.resize(out.triangles.size(), kMaterialSurface);
+      else
+        out.face_material.insert(out.face_material.end(), obj.mesh.face_material.begin(), obj.mesh.face_material.end());
+    }
   }
   return out;
 }

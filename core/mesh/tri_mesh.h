@@ -4,6 +4,8 @@
 //   normals    #V × 3   unit vertex normals, empty or #V
 //   uvs        #V × 2   texture coordinates, empty or #V
 //   triangles  #F × 3   vertex indices, counter-clockwise seen from outside
+//   face_material #F    per-triangle material slot, empty or #F: 0 = the object's surface colour, 1 = its inside
+//                       colour (cut surfaces: DFFD caps and incision walls, SceneObject::inside_color)
 //
 // Vertex order is the order of the source file; operations that add vertices append them.
 #pragma once
@@ -16,15 +18,27 @@
 
 namespace trispline::core {
 
+// Material slots of TriMesh::face_material.
+inline constexpr std::uint8_t kMaterialSurface = 0;  // the object's colour
+inline constexpr std::uint8_t kMaterialInside = 1;   // cut surfaces (caps, incision walls): the inside colour
+
 struct TriMesh {
   std::vector<glm::dvec3> positions;  // #V × 3
   std::vector<glm::dvec3> normals;    // #V × 3 or empty
   std::vector<glm::dvec2> uvs;        // #V × 2 or empty
   std::vector<glm::uvec3> triangles;  // #F × 3
+  std::vector<std::uint8_t> face_material;  // #F or empty (= all 0); kMaterialSurface / kMaterialInside
 
   std::size_t vertex_count() const { return positions.size(); }
   std::size_t triangle_count() const { return triangles.size(); }
   bool empty() const { return positions.empty() || triangles.empty(); }
+  // Material slot of triangle f (kMaterialSurface when face_material is empty).
+  std::uint8_t material(std::size_t f) const { return face_material.empty() ? kMaterialSurface : face_material[f]; }
+  bool has_inside_faces() const {
+    for (std::uint8_t m : face_material)
+      if (m != kMaterialSurface) return true;
+    return false;
+  }
 };
 
 // Axis-aligned bounding box, world units. An empty box has lo > hi.

@@ -58,7 +58,13 @@ void SceneObject::refresh() {
     return;
   }
   TriMesh rest = world_rest_mesh();
-  if (ffd) {
+  if (dffd) {
+    if (ffd) throw std::invalid_argument("object '" + name + "' has both an FFD and a DFFD binding");
+    if (dffd->params.size() != rest.positions.size())
+      throw std::invalid_argument("object '" + name + "': DFFD binding has " + std::to_string(dffd->params.size()) +
+                                  " parameters for " + std::to_string(rest.positions.size()) + " vertices");
+    world_mesh = std::make_shared<const TriMesh>(dffd_apply(*dffd, rest, offset_at(0.0)));
+  } else if (ffd) {
     if (ffd->params.size() != rest.positions.size())
       throw std::invalid_argument("object '" + name + "': FFD binding has " + std::to_string(ffd->params.size()) +
                                   " parameters for " + std::to_string(rest.positions.size()) + " vertices");
@@ -139,8 +145,13 @@ Scene scene_with_posed_clips(const Scene& scene, double time_s) {
   if (!std::isfinite(time_s)) throw std::invalid_argument("scene time is not finite");
   Scene out = scene;
   for (const SceneObject& object : scene.objects()) {
-    if (!object.clip) continue;
-    SceneObject moved = posed_by_clip(object, time_s);
+    if (!object.cpu_animated()) continue;
+    SceneObject moved = object.clip ? posed_by_clip(object, time_s) : object;
+    if (object.dffd_animated()) {  // a still at time_s, like scene_at_time
+      moved.param_offset = object.offset_at(time_s);
+      moved.offset_keys.clear();
+      moved.offset_velocity = glm::dvec3(0.0);
+    }
     moved.refresh();
     out.replace(std::move(moved));
   }

@@ -5,6 +5,7 @@
 // Object order is insertion order (it is the export order of scene.glb).
 #pragma once
 
+#include "core/deform/dffd_rig.h"
 #include "core/deform/ffd.h"
 #include "core/mesh/mesh_clip.h"
 #include "core/mesh/tri_mesh.h"
@@ -84,9 +85,14 @@ struct SceneObject {
   std::shared_ptr<const TriMesh> rest_mesh;  // object space, as loaded (with normals)
   Transform transform;
   glm::vec3 color{0.8f, 0.8f, 0.8f};         // linear RGB
+  glm::vec3 inside_color{0.62f, 0.10f, 0.08f};  // linear RGB of kMaterialInside faces (caps, incision walls: "flesh")
   bool visible = true;
   std::shared_ptr<const FfdBinding> ffd;     // null unless deformed; binding over the *transformed* rest mesh
   std::shared_ptr<const PlacementRecord> placement;  // null unless placed by place.sketch
+  // Discontinuous FFD (dffd.split, seed §6.3): null unless split around obstacles; never together with `ffd`. The
+  // mesh is split at the rig's breaks when evaluated (dffd_apply), so world_mesh has more vertices than rest_mesh
+  // and the renderer draws world_mesh as it is (no GPU re-evaluation).
+  std::shared_ptr<const DffdRig> dffd;
   std::shared_ptr<const TriMesh> world_mesh;  // evaluated at scene time 0: ffd ? F(E(T(rest)) + offset_at(0)) : T(rest),
                                               // rest posed by the clip at time 0 when there is one; see refresh()
   // Parameter offset added to every vertex's (u,v,w) before F is evaluated (seed §4.5 animation offset), parameter
@@ -110,9 +116,16 @@ struct SceneObject {
   }
   // The rest mesh itself changes with time (a clip): every frame needs a new pose (CPU) before the FFD.
   bool clip_animated() const { return clip != nullptr; }
-  bool animated() const { return offset_animated() || clip_animated(); }
+  // A DFFD object whose offset changes with time: every frame is split and evaluated again on the CPU.
+  bool dffd_animated() const {
+    return dffd && (offset_velocity != glm::dvec3(0.0) || offset_keys.size() >= 2);
+  }
+  // The object must be re-evaluated on the CPU for each scene time (clip poses, DFFD splits).
+  bool cpu_animated() const { return clip_animated() || dffd_animated(); }
+  bool animated() const { return offset_animated() || clip_animated() || dffd_animated(); }
 
-  // Recomputes world_mesh from rest_mesh, transform and ffd. Throws std::invalid_argument on inconsistency.
+  // Recomputes world_mesh from rest_mesh, transform and ffd (or dffd). Throws std::invalid_argument on
+  // inconsistency.
   void refresh();
   // Transformed rest mesh, world units (what an FFD embeds).
   TriMesh world_rest_mesh() const;
@@ -126,9 +139,10 @@ class Scene;
 // Objects that are not animated share their meshes with `scene`. Deterministic: the same scene and time give the
 // same meshes bit for bit. Throws std::invalid_argument on a non-finite time.
 Scene scene_at_time(const Scene& scene, double time_s);
-// Copy of `scene` in which only the clip objects are posed at `time_s` (as scene_at_time does for them) and keep
-// their offset animation (keys, velocity) for the renderer to play (gpu::ViewOptions::time_s = time_s): what the
-// editor draws while playing. Throws std::invalid_argument on a non-finite time.
+// Copy of `scene` in which only the objects the renderer cannot animate (cpu_animated: clip objects, animated DFFD
+// objects) are evaluated at `time_s` (as scene_at_time does for them), the others keep their offset animation
+// (keys, velocity) for the renderer to play (gpu::ViewOptions::time_s = time_s): what the editor draws while
+// playing. Throws std::invalid_argument on a non-finite time.
 Scene scene_with_posed_clips(const Scene& scene, double time_s);
 
 class Scene {

@@ -76,7 +76,11 @@ INSTANTIATE_TEST_SUITE_P(
                       BadLogCase{"bad_empty_clip.jsonl", 2, "clip", "animates no mesh"},
                       BadLogCase{"bad_array_count.jsonl", 5, "count", "[1, 64]"},
                       BadLogCase{"bad_record_range.jsonl", 3, "frames", "outside the timeline"},
-                      BadLogCase{"bad_dffd_cut_outside.jsonl", 5, "at", "inside"}),
+                      BadLogCase{"bad_dffd_cut_outside.jsonl", 5, "at", "inside"},
+                      BadLogCase{"bad_dffd_split_box.jsonl", 4, "box", "larger than the lattice"},
+                      BadLogCase{"bad_dffd_split_fold.jsonl", 4, "kernel_width", "fold-over"},
+                      BadLogCase{"bad_incision_miss.jsonl", 3, "stroke", "misses the surface"},
+                      BadLogCase{"bad_incision_depth.jsonl", 3, "depth", "zero depth"}),
     [](const auto& info) {
       std::string n = info.param.file;
       n = n.substr(4, n.size() - 4 - 6);  // strip "bad_" and ".jsonl"

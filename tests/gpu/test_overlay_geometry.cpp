@@ -113,3 +113,41 @@ TEST(OverlayGeometry, ContactIsoLinesEveryFewGridLinesAndTheBoundary) {
 }
 
 }  // namespace trispline::gpu
+
+namespace trispline::gpu {
+
+// F⁻ / F⁺ of a discontinuity along v: one m-plane each, its points in its colour, its polylines along u and w.
+TEST(OverlayGeometry, DiscontinuityPlanesListTheirControlPoints) {
+  core::TrivariateBSpline<glm::dvec3> F = bent_lattice();  // 7 × 4 × 3 controls, orders (4, 3, 2)
+  const core::Discontinuity d = core::insert_discontinuity(F, 1, 0.5);
+  const glm::ivec3 n = F.control_counts();
+  ASSERT_EQ(d.plus_plane, d.minus_plane + 1);
+  const glm::vec4 red{1, 0, 0, 1}, cyan{0, 1, 1, 1};
+  std::vector<OverlayVertex> lines, minus, plus;
+  append_discontinuity_planes(F, {d}, red, cyan, lines, minus, plus);
+  ASSERT_EQ(minus.size(), std::size_t(n.x * n.z));
+  ASSERT_EQ(plus.size(), std::size_t(n.x * n.z));
+  std::size_t q = 0;
+  for (int k = 0; k < n.z; ++k)
+    for (int i = 0; i < n.x; ++i, ++q) {
+      EXPECT_EQ(minus[q].position, glm::vec3(F.control_point(i, d.minus_plane, k)));
+      EXPECT_EQ(plus[q].position, glm::vec3(F.control_point(i, d.plus_plane, k)));
+      EXPECT_EQ(minus[q].color, red);
+      EXPECT_EQ(plus[q].color, cyan);
+    }
+  // Per plane: (l−1)·n + l·(n−1) segments, two vertices each.
+  EXPECT_EQ(lines.size(), 2u * 2u * std::size_t((n.x - 1) * n.z + n.x * (n.z - 1)));
+  // Out-of-range planes and axes are left out.
+  core::Discontinuity bad = d;
+  bad.axis = 3;
+  core::Discontinuity far = d;
+  far.minus_plane = n.y;
+  far.plus_plane = n.y + 1;
+  lines.clear();
+  minus.clear();
+  plus.clear();
+  append_discontinuity_planes(F, {bad, far}, red, cyan, lines, minus, plus);
+  EXPECT_TRUE(lines.empty() && minus.empty() && plus.empty());
+}
+
+}  // namespace trispline::gpu

@@ -1,5 +1,10 @@
 // scene.glb export: what write_glb writes, read back, is what was given (float32 positions, order, names, colours).
 #include "core/mesh/gltf_io.h"
+
+#include <algorithm>
+#include <fstream>
+#include <iterator>
+
 #include "core/mesh/mesh_io.h"
 #include "mesh_test_util.h"
 
@@ -82,6 +87,62 @@ TEST(GltfIo, EmptyObjectsBecomeMeshlessNodesAndBadMeshesThrow) {
   EXPECT_THROW(write_glb(dir / "bad.glb", {{"bad", &bad, glm::vec3(1)}}), MeshIoError);
   EXPECT_FALSE(std::filesystem::exists(dir / "bad.glb"));
   EXPECT_THROW(write_glb(dir / "no/such/dir/x.glb", {{"a", &a, glm::vec3(1)}}), MeshIoError);
+}
+
+TEST(GltfIo, InsideFacesGetTheirOwnPrimitiveAndMaterial) {
+  TempDir dir;
+  TriMesh a = grid_mesh(4, 0.0);
+  a.face_material.assign(a.triangle_count(), kMaterialSurface);
+  for (std::size_t f = 5; f < a.triangle_count(); f += 4) a.face_material[f] = kMaterialInside;
+  const std::size_t inside = std::count(a.face_material.begin(), a.face_material.end(), kMaterialInside);
+  GltfNode node{"cut", &a, glm::vec3(0.2f, 0.4f, 0.6f)};
+  node.inside_color = glm::vec3(0.7f, 0.1f, 0.05f);
+  write_glb(dir / "s.glb", {node});
+
+  // Read back: the vertices are shared (not duplicated), surface faces first then inside faces, each in face order.
+  const auto objects = read_gltf_objects(dir / "s.glb");
+  ASSERT_EQ(objects.size(), 1u);
+  const TriMesh& got = objects[0].mesh;
+  EXPECT_EQ(got.vertex_count(), a.vertex_count());
+  ASSERT_EQ(got.triangle_count(), a.triangle_count());
+  ASSERT_EQ(got.face_material.size(), got.triangle_count());
+  std::vector<glm::uvec3> surface, cut;
+  for (std::size_t f = 0; f < a.triangle_count(); ++f)
+    (a.face_material[f] == kMaterialInside ? cut : surface).push_back(a.triangles[f]);
+  for (std::size_t f = 0; f < got.triangle_count(); ++f) {
+    const bool is_inside = f >= surface.size();
+    EXPECT_EQ(got.face_material[f], is_inside ? kMaterialInside : kMaterialSurface) << f;
+    EXPECT_EQ(got.triangles[f], is_inside ? cut[f - surface.size()] : surface[f]) << f;
+  }
+  EXPECT_EQ(std::size_t(std::count(got.face_material.begin(), got.face_material.end(), kMaterialInside)), inside);
+  EXPECT_FLOAT_EQ(objects[0].color.y, 0.4f);
+  EXPECT_FLOAT_EQ(objects[0].inside_color.x, 0.7f);
+  EXPECT_FLOAT_EQ(objects[0].inside_color.z, 0.05f);
+
+  // The same mesh without inside faces is written byte for byte as a mesh without face_material.
+  TriMesh plain = a;
+  plain.face_material.assign(a.triangle_count(), kMaterialSurface);
+  TriMesh none = a;
+  none.face_material.clear();
+  write_glb(dir / "p.glb", {{"cut", &plain, glm::vec3(0.2f, 0.4f, 0.6f)}});
+  write_glb(dir / "n.glb", {{"cut", &none, glm::vec3(0.2f, 0.4f, 0.6f)}});
+  std::ifstream f1(dir / "p.glb", std::ios::binary), f2(dir / "n.glb", std::ios::binary);
+  const std::string p((std::istreambuf_iterator<char>(f1)), {}), n((std::istreambuf_iterator<char>(f2)), {});
+  EXPECT_EQ(p, n);
+  EXPECT_EQ(p.find(".inside"), std::string::npos);
+  EXPECT_TRUE(read_gltf_objects(dir / "n.glb")[0].mesh.face_material.empty());
+
+  // Only inside faces: one primitive, the inside one.
+  TriMesh all = a;
+  all.face_material.assign(a.triangle_count(), kMaterialInside);
+  write_glb(dir / "i.glb", {{"cut", &all, glm::vec3(1.0f)}});
+  const TriMesh back = read_gltf_objects(dir / "i.glb")[0].mesh;
+  EXPECT_EQ(back.triangles, a.triangles);
+  EXPECT_EQ(back.face_material, all.face_material);
+  // A face_material of the wrong size is an error.
+  TriMesh bad = a;
+  bad.face_material.pop_back();
+  EXPECT_THROW(write_glb(dir / "bad.glb", {{"bad", &bad, glm::vec3(1)}}), MeshIoError);
 }
 
 }  // namespace

@@ -1,0 +1,48 @@
+// `dffd.split` — a global discontinuous FFD that splits an object around obstacles and re-forms it behind them
+// (seed §6.3.1–6.3.2, Fig. 6.1, 6.4, 6.7, 6.10, 6.11):
+//   {"cmd":"dffd.split","object":"ID","obstacles":["ID",...],"axis":"x|y|z","w_axis":"x|y|z","order":[o,o,o],
+//    "controls":[l,m,n],"kernel":"gaussian|bspline","kernel_width":k,"openings":"open|stitch|cap"}
+// optional: "fold":"reject|warn" (reject), "margin":world (1.05 × kernel_width), "clearance":world (0),
+//           "box":{"lo":[x,y,z],"hi":[x,y,z]} (the lattice box; default: obstacles grown by margin along axis and
+//           to contain the object across), "eps":param (1e-6).
+// `axis` is the direction the object travels through the obstacles (the lattice's u), `w_axis` the lattice's w (the
+// slicing planes W_k are orthogonal to it; for vertical bars it is their length axis). The construction is
+// core::build_global_dffd (dffd_global.h); the object keeps its rest mesh and gets a DffdRig, evaluated (split,
+// capped, deformed) at every scene time, so animating its parameter offset along u (anim.keyframe) walks it through
+// the obstacles. Running it again on a split object replaces its rig. Undo restores the object bit for bit.
+// report.json: discontinuities, v_knots, projected_points, max_displacement, fold_overs, w_s, cut_edges, cap_loops,
+// open_chains, cap_triangles, outside_vertices, vertices_before, vertices_after, build_ms, eval_ms.
+// Errors (CommandError, field named): unknown object, an FFD or clip object ("object"); unknown / repeated /
+// self / empty obstacle ("obstacles"); axes equal ("w_axis"); order / controls out of range; kernel_width ≤ 0 or
+// a fold-over with fold = reject ("kernel_width": count, first (i,j,k), world position); obstacle larger than the
+// given box ("box"); caps asked for a mesh that is not closed at a cut ("openings").
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "core/commands/snapshot_command.h"
+#include "core/deform/dffd_global.h"
+
+namespace trispline::core {
+
+class DffdSplitCommand : public SnapshotCommand {
+ public:
+  static CommandPtr parse(const nlohmann::json& j, const CommandContext& ctx);
+  std::string id() const override { return "dffd.split"; }
+  nlohmann::json to_json() const override;
+  std::string label() const override;
+  nlohmann::json stats() const override { return stats_; }
+
+ protected:
+  std::string target() const override { return object_; }
+  std::optional<SceneObject> build(const Scene& scene) override;
+
+ private:
+  std::string object_;
+  std::vector<std::string> obstacles_;
+  GlobalDffdParams params_;
+  nlohmann::json stats_ = nlohmann::json::object();
+};
+
+}  // namespace trispline::core

@@ -1,0 +1,162 @@
+#include "core/commands/mesh_subdivide.h"
+
+#include <opensubdiv/far/primvarRefiner.h>
+#include <opensubdiv/far/topologyDescriptor.h>
+#include <opensubdiv/far/topologyRefinerFactory.h>
+
+#include <chrono>
+#include <memory>
+#include <stdexcept>
+#include <vector>
+
+#include "core/commands/json_fields.h"
+#include "core/mesh/mesh_io.h"
+
+namespace trispline::core {
+namespace jf = json_fields;
+
+namespace {
+
+namespace Far = OpenSubdiv::Far;
+namespace Sdc = OpenSubdiv::Sdc;
+
+constexpr int kMaxLevels = 4;
+constexpr std::size_t kMaxTriangles = 20'000'000;
+
+// Primvar element types for Far::PrimvarRefinerReal<double> (Clear / AddWithWeight protocol).
+struct Point3 {
+  glm::dvec3 p{0.0};
+  void Clear(void* = nullptr) { p = glm::dvec3(0.0); }
+  void AddWithWeight(const Point3& s, double w) { p += w * s.p; }
+};
+struct Point2 {
+  glm::dvec2 p{0.0};
+  void Clear(void* = nullptr) { p = glm::dvec2(0.0); }
+  void AddWithWeight(const Point2& s, double w) { p += w * s.p; }
+};
+
+}  // namespace
+
+TriMesh loop_subdivide(const TriMesh& mesh, int levels) {
+  if (levels < 0) throw std::invalid_argument("loop_subdivide: levels must be ≥ 0, got " + std::to_string(levels));
+  const std::size_t nv = mesh.vertex_count(), nf = mesh.triangle_count();
+  if (!mesh.uvs.empty() && mesh.uvs.size() != nv)
+    throw std::invalid_argument("loop_subdivide: uvs must be empty or #V");
+  if (!mesh.face_material.empty() && mesh.face_material.size() != nf)
+    throw std::invalid_argument("loop_subdivide: face_material must be empty or #F");
+  std::vector<int> verts_per_face(nf, 3), indices(3 * nf);
+  for (std::size_t f = 0; f < nf; ++f)
+    for (int k = 0; k < 3; ++k) {
+      if (mesh.triangles[f][k] >= nv)
+        throw std::invalid_argument("loop_subdivide: triangle " + std::to_string(f) + " has an index ≥ #V");
+      indices[3 * f + k] = static_cast<int>(mesh.triangles[f][k]);
+    }
+  if (levels == 0 || nf == 0) return mesh;
+
+  Far::TopologyDescriptor desc;
+  desc.numVertices = static_cast<int>(nv);
+  desc.numFaces = static_cast<int>(nf);
+  desc.numVertsPerFace = verts_per_face.data();
+  desc.vertIndicesPerFace = indices.data();
+  Sdc::Options sdc;
+  sdc.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
+  using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
+  std::unique_ptr<Far::TopologyRefiner> refiner(
+      Factory::Create(desc, Factory::Options(Sdc::SCHEME_LOOP, sdc)));
+  if (!refiner) throw std::invalid_argument("loop_subdivide: OpenSubdiv rejected the mesh topology");
+  Far::TopologyRefiner::UniformOptions uniform(levels);
+  uniform.fullTopologyInLastLevel = false;
+  refiner->RefineUniform(uniform);
+
+  // Level by level: positions (Loop rules), uvs (linear), face materials (inherited).
+  const Far::PrimvarRefinerReal<double> primvar(*refiner);
+  std::vector<Point3> pos(nv);
+  for (std::size_t v = 0; v < nv; ++v) pos[v].p = mesh.positions[v];
+  std::vector<Point2> uv(mesh.uvs.size());
+  for (std::size_t v = 0; v < uv.size(); ++v) uv[v].p = mesh.uvs[v];
+  std::vector<std::uint8_t> mat = mesh.face_material;
+  for (int l = 1; l <= levels; ++l) {
+    const Far::TopologyLevel& child = refiner->GetLevel(l);
+    std::vector<Point3> pos_next(child.GetNumVertices());
+    primvar.Interpolate(l, pos, pos_next);
+    pos = std::move(pos_next);
+    if (!uv.empty()) {
+      std::vector<Point2> uv_next(child.GetNumVertices());
+      primvar.InterpolateVarying(l, uv, uv_next);
+      uv = std::move(uv_next);
+    }
+    if (!mat.empty()) {
+      std::vector<std::uint8_t> mat_next(child.GetNumFaces());
+      primvar.InterpolateFaceUniform(l, mat, mat_next);
+      mat = std::move(mat_next);
+    }
+  }
+
+  const Far::TopologyLevel& last = refiner->GetLevel(levels);
+  TriMesh out;
+  out.positions.resize(pos.size());
+  for (std::size_t v = 0; v < pos.size(); ++v) out.positions[v] = pos[v].p;
+  out.uvs.resize(uv.size());
+  for (std::size_t v = 0; v < uv.size(); ++v) out.uvs[v] = uv[v].p;
+  out.triangles.resize(last.GetNumFaces());
+  for (int f = 0; f < last.GetNumFaces(); ++f) {
+    const Far::ConstIndexArray fv = last.GetFaceVertices(f);
+    out.triangles[f] = glm::uvec3(fv[0], fv[1], fv[2]);
+  }
+  out.face_material = std::move(mat);
+  compute_vertex_normals(out);
+  return out;
+}
+
+CommandPtr MeshSubdivideCommand::parse(const nlohmann::json& j, const CommandContext&) {
+  auto c = std::make_unique<MeshSubdivideCommand>();
+  c->object_ = jf::get_string(j, "object");
+  c->levels_ = jf::get_int(j, "levels", 1);
+  if (c->levels_ < 1 || c->levels_ > kMaxLevels)
+    throw CommandError("field 'levels': must be in 1..4, got " + std::to_string(c->levels_), "levels");
+  jf::get_enum(j, "scheme", {"loop"}, "loop");
+  return c;
+}
+
+nlohmann::json MeshSubdivideCommand::to_json() const {
+  return {{"cmd", id()}, {"object", object_}, {"levels", levels_}, {"scheme", "loop"}};
+}
+
+std::string MeshSubdivideCommand::label() const {
+  return "Subdivide '" + object_ + "' (Loop, " + std::to_string(levels_) + (levels_ == 1 ? " level)" : " levels)");
+}
+
+std::optional<SceneObject> MeshSubdivideCommand::build(const Scene& scene) {
+  const SceneObject* object = scene.find(object_);
+  if (!object) throw CommandError("field 'object': no object named '" + object_ + "'", "object");
+  const char* deformed = object->ffd ? "an FFD lattice" : object->dffd ? "a DFFD split" : object->clip ? "a glTF clip"
+                                                                                                      : nullptr;
+  if (deformed)
+    throw CommandError("field 'object': '" + object_ + "' has " + deformed + " bound to its vertices; subdivide " +
+                           "before deforming (mesh.subdivide first, then place.sketch / lattice.ring / dffd.* / " +
+                           "anim.clip)", "object");
+  const TriMesh& rest = *object->rest_mesh;
+  const std::size_t tris = rest.triangle_count() << (2 * levels_);
+  if (tris > kMaxTriangles)
+    throw CommandError("field 'levels': " + std::to_string(levels_) + " levels would make " + std::to_string(tris) +
+                           " triangles (at most " + std::to_string(kMaxTriangles) + ")", "levels");
+  const auto t0 = std::chrono::steady_clock::now();
+  TriMesh sub;
+  try {
+    sub = loop_subdivide(rest, levels_);
+  } catch (const std::invalid_argument& e) {
+    throw CommandError(std::string("field 'object': ") + e.what(), "object");
+  }
+  SceneObject out = *object;
+  out.rest_mesh = std::make_shared<const TriMesh>(std::move(sub));
+  out.refresh();
+  stats_ = {{"levels", levels_},
+            {"vertices_before", rest.vertex_count()},
+            {"vertices_after", out.rest_mesh->vertex_count()},
+            {"triangles_before", rest.triangle_count()},
+            {"triangles_after", out.rest_mesh->triangle_count()},
+            {"ms", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count()}};
+  return out;
+}
+
+}  // namespace trispline::core

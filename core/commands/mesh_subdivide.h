@@ -1,0 +1,49 @@
+// `mesh.subdivide` — uniform Loop subdivision of an object's rest mesh (OpenSubdiv Far, Loop 1987):
+//   {"cmd":"mesh.subdivide","object":"ID","levels":n,"scheme":"loop"}
+// levels: 1..4 (default 1); every level splits each triangle in four, so #F' = #F · 4^levels (at most 20,000,000:
+// else the command is refused). scheme: "loop" (the only one). Works in object space on rest_mesh, before any
+// deformation: objects with an FFD lattice (`ffd`), a DFFD rig (`dffd`) or a glTF clip (`clip`) are refused, since
+// the lattice parameters / clip targets are per vertex of the old mesh (subdivide first, then place or cut).
+// Positions follow the Loop rules (smooth interior; boundaries as cubic B-spline curves with corners, i.e. boundary
+// vertices with one face, kept: Sdc VTX_BOUNDARY_EDGE_AND_CORNER);
+// uvs are interpolated linearly (vertex-varying, PrimvarRefiner::InterpolateVarying: the texture is not
+// distorted); face_material is inherited by the four children of each triangle; normals are recomputed
+// (compute_vertex_normals). The topology is taken as it is: vertices that the file duplicated (uv seams, flat-shaded
+// edges such as the box primitive's) stay duplicated, so such edges are boundaries of Loop subdivision there.
+// Deterministic. Undo restores the object bit for bit.
+// report.json: levels, vertices_before, vertices_after, triangles_before, triangles_after, ms.
+// Errors (CommandError, field named): unknown object, an object with ffd / dffd / clip, a mesh OpenSubdiv rejects
+// ("object"); levels outside 1..4 or a result over 20,000,000 triangles ("levels"); another scheme ("scheme").
+#pragma once
+
+#include "core/commands/snapshot_command.h"
+#include "core/mesh/tri_mesh.h"
+
+namespace trispline::core {
+
+// Uniform Loop subdivision of `mesh` (#V × 3 positions, #F triangles; uvs and face_material optional) by `levels`
+// ≥ 0 (0 returns a copy). Result: #F·4^levels triangles; the first #V vertices are the input's vertices moved by
+// the Loop vertex rule, in the same order (Far's default child order: children of vertices first, then of edges);
+// uvs linear, face_material inherited, normals recomputed. Throws std::invalid_argument: levels < 0, a triangle index ≥ #V, uvs / face_material of the wrong
+// size, or topology OpenSubdiv cannot refine.
+TriMesh loop_subdivide(const TriMesh& mesh, int levels);
+
+class MeshSubdivideCommand : public SnapshotCommand {
+ public:
+  static CommandPtr parse(const nlohmann::json& j, const CommandContext& ctx);
+  std::string id() const override { return "mesh.subdivide"; }
+  nlohmann::json to_json() const override;
+  std::string label() const override;
+  nlohmann::json stats() const override { return stats_; }
+
+ protected:
+  std::string target() const override { return object_; }
+  std::optional<SceneObject> build(const Scene& scene) override;
+
+ private:
+  std::string object_;
+  int levels_ = 1;
+  nlohmann::json stats_ = nlohmann::json::object();
+};
+
+}  // namespace trispline::core

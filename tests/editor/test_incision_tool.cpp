@@ -1,0 +1,292 @@
+// The Incision tool (editor/tools/incision_tool.h) driven like the Press tool tests drive theirs: a drag across a
+// sphere previews the cut while dragging (generator curve + cut mesh in gpu::ViewOptions) and issues exactly one
+// incision.draw with the dragged stroke and the panel's values (after a camera.set of the view when the scene camera
+// differs), undoable bit for bit; a click issues nothing; a stroke off the surface shows only the stroke and its
+// command error goes to the Log panel with the scene unchanged.
+#include <gtest/gtest.h>
+
+#include "editor/navigation.h"
+#include "editor/session.h"
+#include "editor/tools/incision_tool.h"
+#include "editor/tools/select_tool.h"
+#include "editor/tools/toolbox.h"
+#include "headless_imgui.h"
+#include "ui/shortcuts.h"
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
+using namespace trispline;
+
+namespace {
+
+class IncisionTool : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    ASSERT_TRUE(s.execute({{"cmd", "scene.primitive"}, {"kind", "sphere"}, {"name", "s"}}));
+    editor::Navigator nav;
+    nav.frame(editor::bounds_of(*object().world_mesh), {800, 600});
+    view = nav.camera({800, 600});
+    tool.set_preview_interval_ms(0.0);  // a preview after every new stroke point: deterministic
+    tool.activate(ctx);
+    // The middle half of the pixels of row 300 whose rays hit the sphere: a stroke well inside its silhouette.
+    std::vector<glm::dvec2> hits;
+    for (double x = 0; x < 800; x += 4)
+      if (editor::pick_object(s.scene(), view, {x, 300})) hits.push_back({x, 300 + 0.02 * (x - 400)});
+    ASSERT_GE(hits.size(), 40u) << "the framed sphere must cover part of the middle row";
+    row.assign(hits.begin() + hits.size() / 4, hits.end() - hits.size() / 4);
+  }
+  const core::SceneObject& object() const { return *s.scene().find("s"); }
+
+  void press(glm::dvec2 px) {
+    in = {};
+    in.mouse_px = px;
+    in.left_pressed = in.left_down = true;
+    tool.handle_input(in, ctx);
+    in.left_pressed = false;
+  }
+  void move_through(const std::vector<glm::dvec2>& px) {
+    for (const glm::dvec2& p : px) {
+      in.mouse_px = p;
+      tool.handle_input(in, ctx);
+    }
+  }
+  void release() {
+    in.left_down = false;
+    in.left_released = true;
+    tool.handle_input(in, ctx);
+    in.left_released = false;
+  }
+  void drag(const std::vector<glm::dvec2>& px) {
+    press(px.front());
+    move_through({px.begin() + 1, px.end()});
+    release();
+  }
+  std::size_t count(const std::string& cmd) const {
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < s.history().applied(); ++i) n += s.history().at(i).id() == cmd;
+    return n;
+  }
+  bool logged_error(const std::string& part) const {
+    for (const auto& m : messages.messages())
+      if (m.severity == ui::Severity::Error && m.text.find(part) != std::string::npos) return true;
+    return false;
+  }
+  std::string last_message() const { return messages.messages().empty() ? "" : messages.messages().back().text; }
+
+  ui::MessageLog messages;
+  editor::EditorSession s{messages};
+  core::Camera view;
+  std::string selected;  // nothing selected: the object under the cursor at mouse-down is cut
+  std::set<std::string> hidden;
+  editor::ToolContext ctx{s, view, selected, hidden, [](std::string, std::function<void()> work) { work(); }};
+  editor::IncisionTool tool;
+  editor::ToolInput in;
+  std::vector<glm::dvec2> row;
+};
+
+}  // namespace
+
+TEST_F(IncisionTool, LineCarriesStrokeAndParameters) {
+  editor::IncisionToolParams p;
+  p.width = 0.1;
+  p.depth = 0.07;
+  p.opening = 0.0;
+  p.walls = false;
+  p.order = 4;
+  p.kernel = "bspline";
+  const nlohmann::json j = editor::incision_draw_line("venus", {{10.5, 20}, {30, 40.25}}, p);
+  EXPECT_EQ(j["cmd"], "incision.draw");
+  EXPECT_EQ(j["object"], "venus");
+  EXPECT_EQ(j["stroke"], nlohmann::json::parse("[[10.5,20.0],[30.0,40.25]]"));
+  EXPECT_DOUBLE_EQ(j["width"].get<double>(), 0.1);
+  EXPECT_DOUBLE_EQ(j["depth"].get<double>(), 0.07);
+  EXPECT_DOUBLE_EQ(j["opening"].get<double>(), 0.0);
+  EXPECT_EQ(j["walls"], false);
+  EXPECT_EQ(j["order"], 4);
+  EXPECT_EQ(j["kernel"], "bspline");
+  EXPECT_FALSE(j.contains("camera"));
+  core::Camera c;
+  c.eye = {1, 2, 3};
+  c.viewport = {640, 480};
+  const nlohmann::json k = editor::incision_draw_line("venus", {{1, 2}, {3, 4}}, p, c);
+  EXPECT_EQ(k["camera"]["eye"], nlohmann::json::parse("[1.0,2.0,3.0]"));
+  EXPECT_EQ(k["camera"]["viewport"], nlohmann::json::parse("[640,480]"));
+}
+
+TEST_F(IncisionTool, UnsetSizesFollowTheObjectAndExplicitOnesStay) {
+  const double diag = editor::bounds_of(*object().world_mesh).diagonal();
+  const editor::IncisionToolParams d = tool.resolved(&object());
+  EXPECT_NEAR(d.width, 0.02 * diag, 1e-12);
+  EXPECT_NEAR(d.depth, 0.02 * diag, 1e-12);
+  EXPECT_NEAR(d.opening, 0.006 * diag, 1e-12);
+  editor::IncisionToolParams p;
+  p.width = 0.3;
+  p.depth = 0.2;
+  p.opening = 0.0;  // zero is a valid opening, not "unset"
+  tool.set_params(p);
+  const editor::IncisionToolParams r = tool.resolved(&object());
+  EXPECT_EQ(r.width, 0.3);
+  EXPECT_EQ(r.depth, 0.2);
+  EXPECT_EQ(r.opening, 0.0);
+}
+
+TEST_F(IncisionTool, PreviewWhileDraggingOnTheSurface) {
+  press(row.front());
+  move_through({row.begin() + 1, row.end()});
+  EXPECT_TRUE(tool.owns_mouse()) << "mid-drag the camera is left alone";
+  EXPECT_EQ(tool.target(), "s") << "the object under the cursor at mouse-down";
+  ASSERT_FALSE(tool.preview_curve().empty()) << tool.preview_error();
+  ASSERT_TRUE(tool.preview_mesh()) << tool.preview_error();
+  // G(v) is fitted to the stroke's hits on the unit sphere: every sample lies close to it.
+  for (const glm::dvec3& p : tool.preview_curve()) EXPECT_NEAR(glm::length(p), 1.0, 0.05);
+  EXPECT_GT(tool.preview_mesh()->vertex_count(), object().world_mesh->vertex_count()) << "the cut adds vertices";
+
+  gpu::ViewOptions vo;
+  tool.decorate(vo);
+  EXPECT_EQ(vo.stroke_px.size(), row.size());
+  EXPECT_EQ(vo.incision_curve, tool.preview_curve());
+  EXPECT_EQ(vo.incision_preview_mesh, tool.preview_mesh());
+  EXPECT_EQ(vo.incision_preview_object, "s");
+  EXPECT_EQ(s.history().applied(), 1u) << "nothing is executed before mouse-up";
+
+  release();
+  gpu::ViewOptions after;
+  tool.decorate(after);
+  EXPECT_TRUE(after.stroke_px.empty());
+  EXPECT_TRUE(after.incision_curve.empty());
+  EXPECT_FALSE(after.incision_preview_mesh);
+}
+
+TEST_F(IncisionTool, DragIssuesOneUndoableIncisionDraw) {
+  editor::IncisionToolParams p;
+  p.width = 0.12;
+  p.depth = 0.09;
+  p.opening = 0.03;
+  p.walls = true;
+  p.order = 3;
+  p.kernel = "gaussian";
+  tool.set_params(p);
+  const std::shared_ptr<const core::TriMesh> before = object().world_mesh;
+  const std::vector<glm::dvec3> rest_before = object().rest_mesh->positions;
+  const std::size_t applied = s.history().applied();
+  drag(row);
+  ASSERT_EQ(count("incision.draw"), 1u) << last_message();
+  const nlohmann::json j = s.history().at(s.history().applied() - 1).to_json();
+  if (j.contains("camera")) {
+    // The command keeps the stroke's view: the line is self-contained, nothing else is logged.
+    ASSERT_EQ(s.history().applied(), applied + 1);
+    EXPECT_EQ(j["camera"]["eye"], nlohmann::json({view.eye.x, view.eye.y, view.eye.z}));
+  } else {
+    // The scene had no camera.set: the view at mouse-down is logged first, then the incision (nothing else).
+    ASSERT_EQ(s.history().applied(), applied + 2);
+    EXPECT_EQ(s.history().at(applied).id(), "camera.set");
+    EXPECT_TRUE(s.scene().camera_set);
+    EXPECT_EQ(s.scene().camera.eye, view.eye);
+    EXPECT_EQ(s.scene().camera.viewport, view.viewport);
+  }
+
+  EXPECT_EQ(j["cmd"], "incision.draw");
+  EXPECT_EQ(j["object"], "s");
+  ASSERT_EQ(j["stroke"].size(), row.size());
+  for (std::size_t i = 0; i < row.size(); ++i) {
+    EXPECT_DOUBLE_EQ(j["stroke"][i][0].get<double>(), row[i].x);
+    EXPECT_DOUBLE_EQ(j["stroke"][i][1].get<double>(), row[i].y);
+  }
+  EXPECT_DOUBLE_EQ(j["width"].get<double>(), 0.12);
+  EXPECT_DOUBLE_EQ(j["depth"].get<double>(), 0.09);
+  EXPECT_DOUBLE_EQ(j["opening"].get<double>(), 0.03);
+  EXPECT_EQ(j["walls"], true);
+  EXPECT_NE(object().world_mesh, before);
+  EXPECT_GT(object().world_mesh->vertex_count(), before->vertex_count());
+
+  // A second stroke with the camera unchanged: no second camera.set.
+  std::vector<glm::dvec2> lower = row;
+  for (glm::dvec2& q : lower) q.y += 40;
+  drag(lower);
+  EXPECT_EQ(count("camera.set"), j.contains("camera") ? 0u : 1u);
+  EXPECT_EQ(count("incision.draw"), 2u) << last_message();
+
+  while (s.history().applied() > applied) ASSERT_TRUE(s.undo());
+  EXPECT_EQ(object().rest_mesh->positions, rest_before) << "undo restores the mesh bit for bit";
+  EXPECT_EQ(object().world_mesh->vertex_count(), before->vertex_count());
+}
+
+TEST_F(IncisionTool, ClickWithoutDragIssuesNothing) {
+  const std::size_t applied = s.history().applied(), logged = messages.messages().size();
+  press(row[row.size() / 2]);
+  release();
+  EXPECT_EQ(s.history().applied(), applied);
+  EXPECT_EQ(messages.messages().size(), logged) << last_message();
+  EXPECT_FALSE(tool.owns_mouse());
+}
+
+TEST_F(IncisionTool, StrokeOffTheSurfaceShowsTheStrokeOnlyAndLogsTheError) {
+  selected = "s";  // the press misses every object: the selection is the target
+  ASSERT_TRUE(s.execute(editor::camera_line(view)));
+  const std::shared_ptr<const core::TriMesh> before = object().world_mesh;
+  const std::size_t applied = s.history().applied();
+  std::vector<glm::dvec2> corner;
+  for (double x = 4; x <= 120; x += 4) corner.push_back({x, 6});
+  press(corner.front());
+  move_through({corner.begin() + 1, corner.end()});
+  EXPECT_EQ(tool.target(), "s");
+  EXPECT_TRUE(tool.preview_curve().empty());
+  EXPECT_FALSE(tool.preview_mesh());
+  EXPECT_FALSE(tool.preview_error().empty());
+  gpu::ViewOptions vo;
+  tool.decorate(vo);
+  EXPECT_EQ(vo.stroke_px.size(), corner.size()) << "the stroke is still shown";
+  EXPECT_FALSE(vo.incision_preview_mesh);
+  release();
+  EXPECT_EQ(s.history().applied(), applied) << "the failing command leaves the history as it was";
+  EXPECT_EQ(object().world_mesh, before) << "and the scene";
+  EXPECT_TRUE(logged_error("incision.draw")) << last_message();
+}
+
+TEST_F(IncisionTool, KeyKActivatesTheIncisionTool) {
+  editor::Toolbox box(ctx);
+  ASSERT_TRUE(box.activate_shortcut("K"));
+  EXPECT_EQ(box.active(), editor::Toolbox::kIncision);
+  EXPECT_EQ(box.tool().entry().name, "Incision");
+  EXPECT_FALSE(box.activate_shortcut("J")) << "no tool has J";
+  EXPECT_EQ(box.active(), editor::Toolbox::kIncision);
+  // The key press reaches the toolbox as "K"; letters with modifiers or bound to a menu action (Q, W, E) do not.
+  EXPECT_EQ(ui::tool_key({GLFW_KEY_K, 0}), "K");
+  EXPECT_EQ(ui::tool_key({GLFW_KEY_K, GLFW_MOD_CONTROL}), "");
+  EXPECT_EQ(ui::tool_key({GLFW_KEY_Q, 0}), "");
+  EXPECT_EQ(ui::tool_key({GLFW_KEY_F7, 0}), "");
+}
+
+TEST_F(IncisionTool, PanelDrawsAndKeepsExplicitValues) {
+  selected = "s";
+  editor::IncisionToolParams p;
+  p.width = 0.25;
+  p.opening = 0.0;
+  tool.set_params(p);
+  test::HeadlessImGui gui;
+  for (int f = 0; f < 2; ++f)  // a new window is hidden in its first frame
+    gui.step({-10, -10}, false, [&] {
+      ImGui::Begin("Tool");
+      tool.draw_panel(ctx);
+      ImGui::End();
+    });
+  EXPECT_GT(gui.render().TotalVtxCount, 0);
+  EXPECT_EQ(tool.params().width, 0.25) << "drawing does not change the values";
+  EXPECT_EQ(tool.params().opening, 0.0);
+  EXPECT_LE(tool.params().depth, 0.0) << "an unset depth stays unset (shown resolved)";
+}
+
+TEST_F(IncisionTool, StrokeStartingBesideTheObjectCutsTheFirstObjectItCrosses) {
+  ASSERT_FALSE(editor::pick_object(s.scene(), view, {4, 300})) << "the stroke starts off the sphere";
+  std::vector<glm::dvec2> stroke = {{4, 300}};
+  stroke.insert(stroke.end(), row.begin(), row.end());
+  press(stroke.front());
+  EXPECT_EQ(tool.target(), "") << "nothing under the cursor, nothing selected";
+  move_through({stroke.begin() + 1, stroke.end()});
+  EXPECT_EQ(tool.target(), "s");
+  EXPECT_TRUE(tool.preview_mesh()) << tool.preview_error();
+  release();
+  ASSERT_EQ(count("incision.draw"), 1u) << last_message();
+  EXPECT_EQ(s.history().at(s.history().applied() - 1).to_json()["stroke"].size(), stroke.size());
+}
