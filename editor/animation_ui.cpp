@@ -128,7 +128,7 @@ void AnimationUi::draw_record_ui(const std::function<void()>& restore_context) {
 const core::Scene& AnimationUi::drawn_scene(const std::set<std::string>& hidden) {
   const core::Scene& doc = session_.scene();
   bool clips = false;
-  for (const core::SceneObject& o : doc.objects()) clips = clips || (o.clip_animated() && !hidden.count(o.name));
+  for (const core::SceneObject& o : doc.objects()) clips = clips || (o.cpu_animated() && !hidden.count(o.name));
   if (!clips && hidden.empty()) {
     drawn_.reset();
     return doc;

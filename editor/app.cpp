@@ -380,6 +380,8 @@ void App::frame() {
   // While working or recording only F12 (screenshot) is taken from the keyboard.
   const ui::MenuAction key = ui::poll_shortcuts();
   handle_menu(key == ui::MenuAction::Screenshot || (work_.empty() && !anim_.recording()) ? key : ui::MenuAction::None);
+  if (work_.empty() && !anim_.recording() && !tools_.owns_mouse())  // tool keys without a MenuAction (K: Incision)
+    if (const std::string k = ui::poll_tool_key(); !k.empty()) tools_.activate_shortcut(k);
 
   // The Timeline spans the window's width above the status bar (Blender); the other panels share the rest.
   anim_.begin_frame(selected_, toggles_.play_animation);

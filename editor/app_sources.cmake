@@ -9,4 +9,6 @@ set(TRISPLINE_EDITOR_APP_SOURCES
     tools/toolbox.cpp
     tools/work_queue.cpp
     tools/sketch_tool.cpp
-    tools/press_tool.cpp)
+    tools/press_tool.cpp
+    tools/incision_tool.cpp
+    tools/dffd_tool.cpp)

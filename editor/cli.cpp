@@ -7,6 +7,7 @@
 #include "core/deform/ffd_evaluator.h"
 #include "editor/app.h"
 #include "editor/bench_ffd.h"
+#include "editor/bench_dffd.h"
 #include "editor/bench_place.h"
 #include "editor/command_registry.h"
 #include "editor/replay.h"
@@ -128,6 +129,14 @@ int run_cli(int argc, char** argv) {
   bench_place->add_option("--scene", place_bench.scenes, "Scenes: teapot, terrain (default both)")
       ->check(CLI::IsMember({"teapot", "terrain"}));
 
+  BenchDffdOptions dffd_bench;
+  auto* bench_dffd = bench->add_subcommand(
+      "dffd", "Discontinuous FFD per frame: split + cap + deform of the bunny walking through bars (seed §6.3)");
+  bench_dffd->add_flag("--json", dffd_bench.json, "Print one JSON object instead of a table");
+  bench_dffd->add_option("--scene", dffd_bench.scene_path, "Scene log with an animated dffd.split object")
+      ->default_str("assets/scenes/bars_walk.jsonl");
+  bench_dffd->add_option("--runs", dffd_bench.runs, "Timed evaluations per frame (median)")->check(CLI::PositiveNumber);
+  bench_dffd->add_option("--frames", dffd_bench.frames, "Frames sampled over the walk")->check(CLI::PositiveNumber);
   BenchPressOptions press_bench;
   auto* bench_press = bench->add_subcommand(
       "press", "A pressing drag on a ~1 M-vertex object: Press tool per mouse move, pressed lattice, cpu_fast / GLSL "
@@ -159,6 +168,7 @@ int run_cli(int argc, char** argv) {
       place_bench.springs = springs_on_only ? "on" : springs_off_only ? "off" : "both";
       return run_bench_place(place_bench, std::cout, std::cerr);
     }
+    if (*bench_dffd) return run_bench_dffd(dffd_bench, std::cout, std::cerr);
     if (*bench_press) return run_bench_press(press_bench, std::cout, std::cerr);
     if (*commands) {
       const auto& registry = CommandRegistry::builtin();

@@ -4,11 +4,14 @@
 #include "core/commands/anim_record.h"
 #include "core/commands/camera_set.h"
 #include "core/commands/dffd_cut.h"
+#include "core/commands/incision_draw.h"
+#include "core/commands/dffd_split.h"
 #include "core/commands/lattice_animate_offset.h"
 #include "core/commands/lattice_press.h"
 #include "core/commands/lattice_ring.h"
 #include "core/commands/lattice_set_point.h"
 #include "core/commands/mesh_refine.h"
+#include "core/commands/mesh_subdivide.h"
 #include "core/commands/place_array.h"
 #include "core/commands/place_sketch.h"
 #include "core/commands/scene_load.h"
@@ -62,6 +65,8 @@ const CommandRegistry& CommandRegistry::builtin() {
           core::LatticeSetPointCommand::parse);
     r.add("mesh.refine", "Refine a deformed object's mesh until its edges follow the FFD (seed §2.4.2)",
           core::MeshRefineCommand::parse);
+    r.add("mesh.subdivide", "Subdivide an object's rest mesh uniformly (Loop, OpenSubdiv), before deforming it",
+          core::MeshSubdivideCommand::parse);
     r.add("anim.timeline", "Set the timeline's frame range and frame rate", core::AnimTimelineCommand::parse);
     r.add("anim.keyframe", "Key (or delete a key of) an object's parameter offset along its path at a frame (seed §2.4.3)",
           core::AnimKeyframeCommand::parse);
@@ -69,6 +74,10 @@ const CommandRegistry& CommandRegistry::builtin() {
           core::AnimClipCommand::parse);
     r.add("dffd.cut", "Cut a deformed object at a lattice parameter: C⁻¹ knots, exact mesh split, opening (seed §6.3)",
           core::DffdCutCommand::parse);
+    r.add("incision.draw", "Cut an incision drawn on a surface: width, depth, opening, walls (seed §6.4)",
+          core::IncisionDrawCommand::parse);
+    r.add("dffd.split", "Split an object around obstacles with a global discontinuous FFD; open, stitched or capped "
+          "openings (seed §6.3)", core::DffdSplitCommand::parse);
     r.add("place.array", "Add copies of a placed object in a row along its path (seed Fig. 2.11, the ants)",
           core::PlaceArrayCommand::parse);
     r.add("anim.record", "Record timeline frames to PNG/EXR images, an animated glb and an MP4 (seed §2.4.3)",

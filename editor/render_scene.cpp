@@ -120,7 +120,12 @@ void HeadlessRenderer::forget_caches() {
 const std::string& HeadlessRenderer::renderer() const { return impl_->renderer_name; }
 bool HeadlessRenderer::owns_context() const { return impl_->context.has_value(); }
 
-RenderedImage render_scene_headless(const core::Scene& scene, int width, int height, const RenderSettings& settings) {
+RenderedImage render_scene_headless(const core::Scene& document, int width, int height,
+                                    const RenderSettings& settings) {
+  // Objects the renderer cannot animate (glTF clips, DFFD splits) are evaluated on the CPU at the requested time.
+  bool cpu_animated = false;
+  for (const core::SceneObject& o : document.objects()) cpu_animated = cpu_animated || o.cpu_animated();
+  const core::Scene scene = cpu_animated ? core::scene_with_posed_clips(document, settings.time_s) : document;
   HeadlessRenderer headless;
   const core::Camera cam = render_camera(scene, width, height);
   auto draw = [&] { return headless.draw(scene, cam, settings); };

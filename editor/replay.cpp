@@ -278,7 +278,7 @@ int run_replay(const ReplayOptions& options) {
       try {
         std::vector<core::GltfNode> nodes;
         for (const auto& o : exported->objects())
-          if (o.world_mesh) nodes.push_back({o.name, o.world_mesh.get(), o.color});
+          if (o.world_mesh) nodes.push_back({o.name, o.world_mesh.get(), o.color, o.inside_color});
         core::write_glb(glb, nodes);
         report["scene_glb"] = glb.string();
       } catch (const std::exception& e) {

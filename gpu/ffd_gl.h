@@ -27,6 +27,7 @@
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -147,10 +148,12 @@ class GlslVertexFfdEvaluator final : public GlFfdEvaluatorBase {
   // {} shaded, {{"FLAT_COLOR",""}}, {{"OUTLINE",""},{"FLAT_COLOR",""}}), from the cache. Needs set_lattice and
   // rest normals (throws std::logic_error otherwise).
   const ShaderProgram& draw_program(const ShaderDefines& variant = {});
-  // Draws `mesh`'s triangles (its index buffer) with positions and normals evaluated per vertex at params +
-  // param_offset. `program` comes from draw_program, is in use and has its other uniforms set.
-  // Throws std::invalid_argument if mesh.vertex_count() != vertex_count(), std::logic_error, GlError.
-  void draw(const ShaderProgram& program, const MeshBuffers& mesh, const glm::dvec3& param_offset);
+  // Draws `mesh`'s triangles (its index buffer; only `range` when given, e.g. mesh.inside_range()) with positions
+  // and normals evaluated per vertex at params + param_offset. `program` comes from draw_program, is in use and has
+  // its other uniforms set. Throws std::invalid_argument if mesh.vertex_count() != vertex_count() or `range` lies
+  // outside the mesh's triangles, std::logic_error, GlError.
+  void draw(const ShaderProgram& program, const MeshBuffers& mesh, const glm::dvec3& param_offset,
+            std::optional<TriangleRange> range = std::nullopt);
 
  private:
   void prepare_programs() override;

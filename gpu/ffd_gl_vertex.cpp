@@ -89,18 +89,23 @@ const ShaderProgram& GlslVertexFfdEvaluator::draw_program(const ShaderDefines& v
 }
 
 void GlslVertexFfdEvaluator::draw(const ShaderProgram& program, const MeshBuffers& mesh,
-                                  const glm::dvec3& param_offset) {
+                                  const glm::dvec3& param_offset, std::optional<TriangleRange> range) {
   constexpr const char* where = "GlslVertexFfdEvaluator::draw";
   require_ready(where);
   if (mesh.vertex_count() != vertex_count_)
     throw std::invalid_argument(std::string(where) + ": mesh has " + std::to_string(mesh.vertex_count()) +
                                 " vertices, " + std::to_string(vertex_count_) + " are bound");
-  if (mesh.triangle_count() == 0) return;
+  const TriangleRange r = range.value_or(TriangleRange{0, mesh.triangle_count()});
+  if (r.first + r.count > mesh.triangle_count())
+    throw std::invalid_argument(std::string(where) + ": triangle range outside the mesh's " +
+                                std::to_string(mesh.triangle_count()) + " triangles");
+  if (r.count == 0) return;
   program.set("u_param_offset", shader_offset(param_offset));
   lattice_.bind();
   glBindVertexArray(vao_.id());
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mesh.index_buffer());  // VAO state: the mesh's triangles
-  glDrawElements(GL_TRIANGLES, GLsizei(mesh.triangle_count() * 3), GL_UNSIGNED_INT, nullptr);
+  glDrawElements(GL_TRIANGLES, GLsizei(r.count * 3), GL_UNSIGNED_INT,
+                 reinterpret_cast<const void*>(r.first * sizeof(glm::uvec3)));
   glBindVertexArray(0);
   check_gl_error(where);
 }

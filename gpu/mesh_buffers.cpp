@@ -1,5 +1,6 @@
 #include "gpu/mesh_buffers.h"
 
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -42,6 +43,21 @@ void MeshBuffers::upload(const core::TriMesh& mesh) {
     if (f.x >= nv || f.y >= nv || f.z >= nv)
       throw std::invalid_argument("MeshBuffers::upload: triangle index out of range (" + std::to_string(nv) +
                                   " vertices)");
+  if (!mesh.face_material.empty() && mesh.face_material.size() != mesh.triangles.size())
+    throw std::invalid_argument("MeshBuffers::upload: face_material has " + std::to_string(mesh.face_material.size()) +
+                                " entries for " + std::to_string(mesh.triangles.size()) + " triangles");
+  // Stable material order: surface triangles first, then the inside ones, each in mesh order.
+  std::size_t inside = 0;
+  for (std::uint8_t m : mesh.face_material) inside += m != core::kMaterialSurface ? 1 : 0;
+  std::vector<glm::uvec3> ordered;
+  if (inside > 0) {
+    ordered.reserve(mesh.triangles.size());
+    for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
+      if (mesh.face_material[f] == core::kMaterialSurface) ordered.push_back(mesh.triangles[f]);
+    for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
+      if (mesh.face_material[f] != core::kMaterialSurface) ordered.push_back(mesh.triangles[f]);
+  }
+  const std::vector<glm::uvec3>& tris = inside > 0 ? ordered : mesh.triangles;
   if (!vao_) {
     vao_ = VertexArray::create();
     positions_ = Buffer::create();
@@ -71,12 +87,12 @@ void MeshBuffers::upload(const core::TriMesh& mesh) {
   glEnableVertexAttribArray(1);
   glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, indices_.id());  // recorded in the VAO
-  glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(mesh.triangles.size() * sizeof(glm::uvec3)), mesh.triangles.data(),
-               GL_STATIC_DRAW);
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(tris.size() * sizeof(glm::uvec3)), tris.data(), GL_STATIC_DRAW);
   glBindVertexArray(0);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
   vertex_count_ = nv;
   triangle_count_ = mesh.triangles.size();
+  inside_count_ = inside;
 }
 
 void MeshBuffers::update_vertices(const std::vector<glm::dvec3>& positions, const std::vector<glm::dvec3>& normals) {
@@ -111,6 +127,13 @@ void MeshBuffers::draw_triangles() const {
   if (triangle_count_ == 0) return;
   glBindVertexArray(vao_.id());
   glDrawElements(GL_TRIANGLES, GLsizei(triangle_count_ * 3), GL_UNSIGNED_INT, nullptr);
+}
+
+void MeshBuffers::draw_range(TriangleRange range) const {
+  if (range.count == 0) return;
+  glBindVertexArray(vao_.id());
+  glDrawElements(GL_TRIANGLES, GLsizei(range.count * 3), GL_UNSIGNED_INT,
+                 reinterpret_cast<const void*>(range.first * sizeof(glm::uvec3)));
 }
 
 }  // namespace trispline::gpu

@@ -5,6 +5,11 @@
 // normal (vec3), attribute 2 is reserved for per-vertex parameters (u,v,w). The position and normal buffers are
 // plain `float[]` arrays, so a compute shader can bind them as SSBOs (std430 `float p[]`, index 3·i + c) and
 // write deformed vertices in place, with no CPU round trip; the renderer then draws them unchanged.
+//
+// Materials (issue 5): the index buffer holds the triangles ordered by TriMesh::face_material, stably — every
+// kMaterialSurface triangle first, then every other (kMaterialInside: DFFD caps, incision walls), each group in mesh
+// order — so the renderer draws the two ranges with two colours. Vertex order is never changed (update_vertices
+// and the FFD evaluators write vertices by their mesh index). Without inside faces the index buffer is the mesh's.
 #pragma once
 
 #include <cstddef>
@@ -14,11 +19,18 @@
 
 namespace trispline::gpu {
 
+// A contiguous run of triangles in the index buffer: triangles [first, first + count).
+struct TriangleRange {
+  std::size_t first = 0;
+  std::size_t count = 0;
+};
+
 class MeshBuffers {
  public:
   MeshBuffers() = default;  // empty; call upload()
   // Converts to float32 and uploads (re-allocating storage). Missing normals are computed (area-weighted vertex
-  // normals). Throws std::invalid_argument if an index is out of range. Needs a current context.
+  // normals). Triangles are ordered by material (see above). Throws std::invalid_argument if an index is out of
+  // range or face_material is neither empty nor #F. Needs a current context.
   void upload(const core::TriMesh& mesh);
   // Overwrites positions (and normals if non-empty) in place; counts must match vertex_count(). For CPU
   // evaluators that keep the topology. Throws std::invalid_argument on a count mismatch.
@@ -26,7 +38,8 @@ class MeshBuffers {
   // The same from single-precision arrays (uploaded as they are: no conversion pass).
   void update_vertices(const std::vector<glm::vec3>& positions, const std::vector<glm::vec3>& normals);
 
-  void draw_triangles() const;  // binds the VAO and issues one glDrawElements
+  void draw_triangles() const;  // binds the VAO and issues one glDrawElements (every triangle, all materials)
+  void draw_range(TriangleRange range) const;  // binds the VAO and draws `range` (nothing when count = 0)
   void bind() const { glBindVertexArray(vao_.id()); }
 
   GLuint vertex_array() const { return vao_.id(); }
@@ -35,11 +48,14 @@ class MeshBuffers {
   GLuint index_buffer() const { return indices_.id(); }       // #F×3 uint32
   std::size_t vertex_count() const { return vertex_count_; }
   std::size_t triangle_count() const { return triangle_count_; }
+  // Surface triangles (kMaterialSurface): [0, S); inside triangles (any other material): [S, #F).
+  TriangleRange surface_range() const { return {0, triangle_count_ - inside_count_}; }
+  TriangleRange inside_range() const { return {triangle_count_ - inside_count_, inside_count_}; }
 
  private:
   VertexArray vao_;
   Buffer positions_, normals_, indices_;
-  std::size_t vertex_count_ = 0, triangle_count_ = 0;
+  std::size_t vertex_count_ = 0, triangle_count_ = 0, inside_count_ = 0;
 };
 
 // Area-weighted vertex normals of `mesh` (#V×3 unit; zero-area neighbourhoods get (0,1,0)).

@@ -22,6 +22,37 @@ void append_lattice(const core::TrivariateBSpline<glm::dvec3>& lattice, const gl
       }
 }
 
+void append_discontinuity_planes(const core::TrivariateBSpline<glm::dvec3>& lattice,
+                                 const std::vector<core::Discontinuity>& discs, const glm::vec4& minus_color,
+                                 const glm::vec4& plus_color, std::vector<OverlayVertex>& lines,
+                                 std::vector<OverlayVertex>& minus_points, std::vector<OverlayVertex>& plus_points) {
+  const glm::ivec3 n = lattice.control_counts();
+  for (const core::Discontinuity& d : discs) {
+    if (d.axis < 0 || d.axis > 2) continue;
+    const int a = d.axis, b = a == 0 ? 1 : 0, c = a == 2 ? 1 : 2;  // the other two axes, b fastest
+    for (const int plane : {d.minus_plane, d.plus_plane}) {
+      if (plane < 0 || plane >= n[a]) continue;
+      const bool minus = plane == d.minus_plane;
+      const glm::vec4& color = minus ? minus_color : plus_color;
+      std::vector<OverlayVertex>& points = minus ? minus_points : plus_points;
+      auto cp = [&](int ib, int ic) {
+        glm::ivec3 idx;
+        idx[a] = plane;
+        idx[b] = ib;
+        idx[c] = ic;
+        return glm::vec3(lattice.control_point(idx.x, idx.y, idx.z));
+      };
+      for (int ic = 0; ic < n[c]; ++ic)
+        for (int ib = 0; ib < n[b]; ++ib) {
+          const glm::vec3 p = cp(ib, ic);
+          points.push_back({p, color});
+          if (ib + 1 < n[b]) lines.insert(lines.end(), {{p, color}, {cp(ib + 1, ic), color}});
+          if (ic + 1 < n[c]) lines.insert(lines.end(), {{p, color}, {cp(ib, ic + 1), color}});
+        }
+    }
+  }
+}
+
 void append_contact_surface(const core::PlacementRecord& placement, const glm::vec4& hit_color,
                             const glm::vec4& filled_color, const glm::vec4& grid_color,
                             std::vector<OverlayVertex>& lines, std::vector<OverlayVertex>& points) {

@@ -1,5 +1,5 @@
 // trispline::gpu overlay geometry — CPU-built line/point/triangle lists for what the renderer draws over the
-// shaded scene: FFD control lattices, placement contact samples, the contact surface S(u,v) = F(u,v,0) of a
+// shaded scene: FFD control lattices, DFFD discontinuity planes, placement contact samples, the contact surface S(u,v) = F(u,v,0) of a
 // lattice (tessellated), and the sketched stroke as a thick polyline.
 // Pure functions (no GL), so they are tested without a context.
 #pragma once
@@ -7,6 +7,7 @@
 #include <glm/glm.hpp>
 #include <vector>
 
+#include "core/deform/dffd.h"
 #include "core/scene/scene.h"
 
 namespace trispline::gpu {
@@ -21,6 +22,15 @@ struct OverlayVertex {
 void append_lattice(const core::TrivariateBSpline<glm::dvec3>& lattice, const glm::vec4& line_color,
                     const glm::vec4& point_color, std::vector<OverlayVertex>& lines,
                     std::vector<OverlayVertex>& points);
+
+// Appends the two control planes of every discontinuity in `discs` (seed §6.3.1 Def. 6): the control points of
+// F⁻ (index d.minus_plane along d.axis) to `minus_points` in `minus_color` and those of F⁺ (d.plus_plane) to
+// `plus_points` in `plus_color`, and each plane's polylines along its two other axes (GL_LINES pairs, in the
+// plane's colour) to `lines`. Points in lattice storage order (the lower of the two other axes fastest). A discontinuity whose axis or plane indices do not fit the lattice is left out.
+void append_discontinuity_planes(const core::TrivariateBSpline<glm::dvec3>& lattice,
+                                 const std::vector<core::Discontinuity>& discs, const glm::vec4& minus_color,
+                                 const glm::vec4& plus_color, std::vector<OverlayVertex>& lines,
+                                 std::vector<OverlayVertex>& minus_points, std::vector<OverlayVertex>& plus_points);
 
 // Appends the contact samples (#(nu·nv) points: hit → `hit_color`, filled → `filled_color`) and the sampling
 // grid's polylines along u and v (GL_LINES pairs) in `grid_color`.

@@ -66,6 +66,12 @@ struct CachedContactSurface {
 
 glm::vec4 rgba(const glm::vec3& c, float a = 1.0f) { return {c, a}; }
 
+// The mesh drawn for `o`: the incision preview mesh when the options name `o`, else its world_mesh.
+const std::shared_ptr<const core::TriMesh>& shown_mesh(const core::SceneObject& o, const ViewOptions& opt) {
+  const bool preview = opt.incision_preview_mesh && o.name == opt.incision_preview_object;
+  return preview ? opt.incision_preview_mesh : o.world_mesh;
+}
+
 // Power of ten a tenth of the scene's size: minor grid cell, world units.
 float grid_cell_for(const core::Scene& scene) {
   const core::Aabb b = scene.bounds();
@@ -95,6 +101,7 @@ struct Renderer::Impl {
   std::uint64_t generation = 0;  // source of CachedMesh::generation values
   GpuTimer ffd_timer, draw_timer;
   RenderStats stats;
+  std::shared_ptr<const core::TriMesh> preview;  // the incision preview mesh of the current draw (kept cached)
 
   Impl() {
     world_stream.init(false);
@@ -126,6 +133,7 @@ struct Renderer::Impl {
       for (std::size_t i = 0; i < objects.size(); ++i) {
         const core::SceneObject& obj = objects[i];
         if (!obj.visible || !obj.ffd || !obj.world_mesh || obj.world_mesh->empty()) continue;
+        if (shown_mesh(obj, o) != obj.world_mesh) continue;  // replaced by the incision preview: drawn as it is
         if (obj.ffd->params.size() != obj.world_mesh->positions.size()) continue;  // inconsistent: draw world_mesh
         CachedMesh& c = cached(obj.world_mesh);
         const bool live = o.live_lattice && obj.name == o.live_ffd_object &&
@@ -140,21 +148,26 @@ struct Renderer::Impl {
     stats.ffd_ms = gpu_ms < 0.0 ? -1.0 : gpu_ms + (ffd_timer.mode() == GpuTimer::Mode::timer_query ? cpu_ms : 0.0);
   }
 
-  // Draws object `obj`: through the FFD vertex shader (variant `variant` of mesh.vert/mesh.frag, its uniforms set
-  // by `uniforms`) when `plan` says so, else its MeshBuffers with `base`, which is in use and is left in use.
+  // Draws `mesh` (an object's shown mesh; `range` of its triangles, all when absent): through the FFD vertex shader
+  // (variant `variant` of mesh.vert/mesh.frag, its uniforms set by `uniforms`) when `plan` says so, else its
+  // MeshBuffers with `base`, which is in use and is left in use.
   template <class Uniforms>
-  void draw_object(const core::SceneObject& obj, const detail::FfdPlan& plan, const ShaderProgram& base,
-                   const ShaderDefines& variant, const Uniforms& uniforms) {
-    const MeshBuffers& b = buffers(obj.world_mesh);
+  void draw_object(const std::shared_ptr<const core::TriMesh>& mesh, const detail::FfdPlan& plan,
+                   const ShaderProgram& base, const ShaderDefines& variant, const Uniforms& uniforms,
+                   std::optional<TriangleRange> range = std::nullopt) {
+    const MeshBuffers& b = buffers(mesh);
     if (!plan.vertex) {
       uniforms(base);
-      b.draw_triangles();
+      if (range)
+        b.draw_range(*range);
+      else
+        b.draw_triangles();
       return;
     }
     const ShaderProgram& p = plan.vertex->draw_program(variant);
     p.use();
     uniforms(p);
-    plan.vertex->draw(p, b, plan.offset);
+    plan.vertex->draw(p, b, plan.offset, range);
     base.use();
   }
 
@@ -225,6 +238,51 @@ struct Renderer::Impl {
     glDrawArrays(mode, 0, GLsizei(v.size()));
   }
 
+  // A thick polyline through `px` (viewport pixels, top-left origin), on top (no depth test); nothing when empty.
+  void draw_screen_polyline(const std::vector<glm::dvec2>& px, float width_px, const glm::vec4& color,
+                            const glm::ivec2& vp) {
+    if (px.empty()) return;
+    const std::vector<glm::vec2> tris = thick_polyline(px, width_px);
+    std::vector<OverlayVertex> v;
+    v.reserve(tris.size());
+    for (const glm::vec2& p : tris) v.push_back({glm::vec3(p, 0.0f), color});
+    glDisable(GL_DEPTH_TEST);
+    screen.use();
+    screen.set("u_viewport", glm::vec2(vp));
+    screen.set("u_alpha", 1.0f);
+    screen_stream.upload(v);
+    glBindVertexArray(screen_stream.vao.id());
+    glDrawArrays(GL_TRIANGLES, 0, GLsizei(v.size()));
+    glEnable(GL_DEPTH_TEST);
+  }
+
+  // DFFD objects' discontinuity planes (F⁻ larger, F⁺ on top, x-ray) and fold-over points (on top of everything);
+  // which objects: see ViewOptions::show_discontinuities.
+  void draw_dffd(const core::Scene& scene, const ViewOptions& o, const glm::mat4& view_proj) {
+    std::vector<OverlayVertex> plane_lines, minus_points, plus_points, folds;
+    for (const core::SceneObject& obj : scene.objects()) {
+      if (!obj.visible || !obj.dffd) continue;
+      const bool selected = !o.selected.empty() && obj.name == o.selected;
+      if (o.show_discontinuities && (o.show_lattice || selected))
+        append_discontinuity_planes(obj.dffd->lattice, obj.dffd->discontinuities, o.dffd_minus_color,
+                                    o.dffd_plus_color, plane_lines, minus_points, plus_points);
+      if (o.show_lattice || selected)
+        for (const glm::dvec3& p : obj.dffd->fold_points) folds.push_back({glm::vec3(p), o.fold_point_color});
+    }
+    if (!plane_lines.empty() || !minus_points.empty()) {
+      draw_xray(plane_lines, minus_points, view_proj, 1.7f * o.lattice_point_px);
+      draw_xray({}, plus_points, view_proj, o.lattice_point_px);
+    }
+    if (!folds.empty()) {
+      points.use();
+      points.set("u_view_proj", view_proj);
+      points.set("u_point_px", o.fold_point_px);
+      glDisable(GL_DEPTH_TEST);
+      draw_overlay(folds, GL_POINTS, points, 1.0f);
+      glEnable(GL_DEPTH_TEST);
+    }
+  }
+
   // Drawn twice: faint where hidden (no depth test), full where visible (x-ray look of modelling tools).
   void draw_xray(const std::vector<OverlayVertex>& lines_v, const std::vector<OverlayVertex>& points_v,
                  const glm::mat4& view_proj, float point_px) {
@@ -257,6 +315,7 @@ void Renderer::release_unused(const core::Scene& scene) {
   std::unordered_set<const core::TriMesh*> live;
   for (const core::SceneObject& o : scene.objects())
     if (o.world_mesh) live.insert(o.world_mesh.get());
+  if (impl_->preview) live.insert(impl_->preview.get());
   std::erase_if(impl_->cache, [&](const auto& kv) { return !live.count(kv.first); });
   std::unordered_set<const core::FfdBinding*> live_ffd;
   for (const core::SceneObject& o : scene.objects())
@@ -273,6 +332,8 @@ void Renderer::draw(const core::Scene& scene, const core::Camera& camera, const 
   const glm::vec3 eye(camera.eye);
 
   // 0. FFD evaluation of deformed objects (timed on its own), before any drawing.
+  d.preview = options.incision_preview_mesh && !options.incision_preview_mesh->empty() ? options.incision_preview_mesh
+                                                                                       : nullptr;
   release_unused(scene);
   std::vector<detail::FfdPlan> plans;
   d.prepare_ffd(scene, options, plans);
@@ -320,22 +381,31 @@ void Renderer::draw(const core::Scene& scene, const core::Camera& camera, const 
   const std::vector<core::SceneObject>& objects = scene.objects();
   for (std::size_t i = 0; i < objects.size(); ++i) {
     const core::SceneObject& o = objects[i];
-    if (!o.visible || !o.world_mesh || o.world_mesh->empty()) continue;
+    const std::shared_ptr<const core::TriMesh>& shown = shown_mesh(o, options);
+    if (!o.visible || !shown || shown->empty()) continue;
     const bool is_selected = !options.selected.empty() && o.name == options.selected;
     if (is_selected) {
       selected = &o;
       selected_index = i;
     }
     glStencilFunc(GL_ALWAYS, is_selected ? 1 : 0, 0xFF);
-    d.draw_object(o, plans[i], d.mesh, {}, [&](const ShaderProgram& p) {
-      p.set("u_view_proj", view_proj);
-      p.set("u_eye", eye);
-      p.set("u_key_dir", key);
-      p.set("u_albedo", o.color);
-      p.set("u_highlight", is_selected ? 1.0f : 0.0f);
-    });
+    // Surface triangles in the object's colour, then the cut surfaces (inside material) flat in the inside colour.
+    const auto shaded = [&](const glm::vec3& albedo, int flat_normal) {
+      return [&, albedo, flat_normal](const ShaderProgram& p) {
+        p.set("u_view_proj", view_proj);
+        p.set("u_eye", eye);
+        p.set("u_key_dir", key);
+        p.set("u_albedo", albedo);
+        p.set("u_highlight", is_selected ? 1.0f : 0.0f);
+        p.set("u_flat_normal", flat_normal);
+      };
+    };
+    const MeshBuffers& b = d.buffers(shown);
+    d.draw_object(shown, plans[i], d.mesh, {}, shaded(o.color, 0), b.surface_range());
+    if (b.inside_range().count > 0)
+      d.draw_object(shown, plans[i], d.mesh, {}, shaded(o.inside_color, 1), b.inside_range());
     ++d.stats.objects_drawn;
-    d.stats.triangles += d.buffers(o.world_mesh).triangle_count();
+    d.stats.triangles += b.triangle_count();
   }
   glDisable(GL_POLYGON_OFFSET_FILL);
   glDisable(GL_STENCIL_TEST);
@@ -352,9 +422,11 @@ void Renderer::draw(const core::Scene& scene, const core::Camera& camera, const 
       p.set("u_view_proj", view_proj);
       p.set("u_flat_color", glm::vec4(0.05f, 0.05f, 0.06f, 0.45f));
     };
-    for (std::size_t i = 0; i < objects.size(); ++i)
-      if (objects[i].visible && objects[i].world_mesh && !objects[i].world_mesh->empty())
-        d.draw_object(objects[i], plans[i], d.flat, {{"FLAT_COLOR", ""}}, flat_uniforms);
+    for (std::size_t i = 0; i < objects.size(); ++i) {
+      const std::shared_ptr<const core::TriMesh>& shown = shown_mesh(objects[i], options);
+      if (objects[i].visible && shown && !shown->empty())
+        d.draw_object(shown, plans[i], d.flat, {{"FLAT_COLOR", ""}}, flat_uniforms);
+    }
     glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
     glDepthMask(GL_TRUE);
     glDepthFunc(GL_LESS);
@@ -383,7 +455,7 @@ void Renderer::draw(const core::Scene& scene, const core::Camera& camera, const 
     glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
     glDisable(GL_DEPTH_TEST);
     d.outline.use();
-    d.draw_object(*selected, plans[selected_index], d.outline, {{"OUTLINE", ""}, {"FLAT_COLOR", ""}},
+    d.draw_object(shown_mesh(*selected, options), plans[selected_index], d.outline, {{"OUTLINE", ""}, {"FLAT_COLOR", ""}},
                   [&](const ShaderProgram& p) {
                     p.set("u_view_proj", view_proj);
                     p.set("u_viewport", glm::vec2(vp));
@@ -402,6 +474,8 @@ void Renderer::draw(const core::Scene& scene, const core::Camera& camera, const 
       if (!o.visible) continue;
       if (options.show_lattice && o.ffd)
         append_lattice(o.ffd->lattice, {0.45f, 0.78f, 1.0f, 0.9f}, {0.92f, 0.96f, 1.0f, 1.0f}, lines_v, points_v);
+      if (options.show_lattice && o.dffd)
+        append_lattice(o.dffd->lattice, {0.45f, 0.78f, 1.0f, 0.9f}, {0.92f, 0.96f, 1.0f, 1.0f}, lines_v, points_v);
     }
     d.draw_xray(lines_v, points_v, view_proj, options.lattice_point_px);
     lines_v.clear();
@@ -433,20 +507,22 @@ void Renderer::draw(const core::Scene& scene, const core::Camera& camera, const 
     d.draw_xray({}, path_v, view_proj, options.contact_point_px);
   }
 
-  // 6. The sketched stroke, a thick screen-space polyline on top of everything.
-  if (options.stroke_px.size() >= 1) {
-    const std::vector<glm::vec2> tris = thick_polyline(options.stroke_px, options.stroke_width_px);
-    std::vector<OverlayVertex> v;
-    v.reserve(tris.size());
-    for (const glm::vec2& p : tris) v.push_back({glm::vec3(p, 0.0f), rgba(options.stroke_color)});
-    glDisable(GL_DEPTH_TEST);
-    d.screen.use();
-    d.screen.set("u_viewport", glm::vec2(vp));
-    d.screen.set("u_alpha", 1.0f);
-    d.screen_stream.upload(v);
-    glBindVertexArray(d.screen_stream.vao.id());
-    glDrawArrays(GL_TRIANGLES, 0, GLsizei(v.size()));
+  // 5c. DFFD overlays: discontinuity planes and fold-over points (see ViewOptions).
+  d.draw_dffd(scene, options, view_proj);
+
+  // 6. The incision tool's generator curve G(v) (projected; split where it passes behind the eye) and the sketched
+  // stroke: thick screen-space polylines on top of everything.
+  std::vector<glm::dvec2> run;
+  for (std::size_t i = 0; i <= options.incision_curve.size(); ++i) {
+    const glm::dvec3 p = i < options.incision_curve.size() ? camera.project(options.incision_curve[i]) : glm::dvec3(0.0);
+    if (i < options.incision_curve.size() && p.z > 0.0 && std::isfinite(p.x) && std::isfinite(p.y)) {
+      run.emplace_back(p.x, p.y);
+      continue;
+    }
+    d.draw_screen_polyline(run, options.incision_curve_px, rgba(options.incision_curve_color), vp);
+    run.clear();
   }
+  d.draw_screen_polyline(options.stroke_px, options.stroke_width_px, rgba(options.stroke_color), vp);
 
   // Leave neutral state for the next user of the context (ImGui).
   glBindVertexArray(0);

@@ -10,6 +10,11 @@
 // at ViewOptions::time_s (renderer_ffd.h): GLSL compute into the drawn buffers, the GLSL vertex path while drawing
 // (always for glsl_vertex; for glsl_compute when offset_velocity ≠ 0), the CPU fast path, or the CPU reference
 // (world_mesh). Only speed differs between backends.
+// Two materials (issue 5): triangles with TriMesh::face_material = kMaterialInside (DFFD caps, incision walls) are
+// drawn with SceneObject::inside_color and flat shading (face normals: their vertices share the surface's normals);
+// outline and wireframe cover all triangles. DFFD objects (SceneObject::dffd) are drawn as their world_mesh is (it
+// is already split and deformed on the CPU); their lattice, discontinuity planes and fold-over points are overlays
+// (ViewOptions::show_discontinuities).
 #pragma once
 
 #include <epoxy/gl.h>
@@ -63,6 +68,26 @@ struct ViewOptions {
   // bound; cpu_fast when ffd_backend is cpu_ref, whose stored world_mesh is stale during the edit).
   std::string live_ffd_object;
   std::shared_ptr<const core::TrivariateBSpline<glm::dvec3>> live_lattice;
+  // DFFD display (issue 5, seed §6.3). show_lattice draws a DFFD object's lattice like an FFD lattice. Its
+  // discontinuity planes — the control points of F⁻ (Discontinuity::minus_plane along its axis) as larger
+  // dffd_minus_color points, those of F⁺ as dffd_plus_color points on top (so coincident, unopened planes show
+  // both), and each plane's polylines — are drawn when show_discontinuities is on and either show_lattice is on
+  // (every DFFD object) or the object is selected (its planes only, without the rest of the lattice). The rig's
+  // fold_points (control points that broke u-monotonicity, seed Theorem 6) are drawn as big fold_point_color points
+  // on top of everything for the selected object always, and for every DFFD object when show_lattice is on.
+  bool show_discontinuities = true;
+  glm::vec4 dffd_minus_color{1.0f, 0.42f, 0.18f, 1.0f};  // warm red-orange (display values)
+  glm::vec4 dffd_plus_color{0.15f, 0.9f, 1.0f, 1.0f};    // cyan
+  glm::vec4 fold_point_color{1.0f, 0.0f, 0.0f, 1.0f};
+  float fold_point_px = 14.0f;
+  // Incision tool preview (issue 5, seed §6.4): the generator curve G(v) (world polyline) drawn as a thick bright
+  // line on top of everything, and a whole mesh (world units) drawn instead of object incision_preview_object's
+  // world_mesh (no FFD evaluation of that object while set; uploaded once per mesh pointer, like world meshes).
+  std::vector<glm::dvec3> incision_curve;
+  glm::vec3 incision_curve_color{0.4f, 1.0f, 0.3f};
+  float incision_curve_px = 3.0f;
+  std::shared_ptr<const core::TriMesh> incision_preview_mesh;
+  std::string incision_preview_object;
 };
 
 // What the last draw() did (for tests, the timing overlay and replay's report).

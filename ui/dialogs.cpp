@@ -55,6 +55,7 @@ void draw_keys_window(bool* open) {
       {"Left click", "Select tool: pick an object"},
       {"Left drag", "Sketch tool: draw a placement stroke"},
       {"Q / W / E", "Select tool / Sketch placement tool / Press tool"},
+      {"K", "Incision tool (like Blender's Knife): drag on a surface to cut it (seed §6.4)"},
       {"X / Delete", "remove the selected object"},
       {"Ctrl+Z", "undo"},
       {"Ctrl+Shift+Z / Ctrl+Y", "redo"},

@@ -39,6 +39,20 @@ MenuAction shortcut_action(const KeyPress& k) {
   return A::None;
 }
 
+std::string tool_key(const KeyPress& k) {
+  if (k.mods & (GLFW_MOD_CONTROL | GLFW_MOD_SHIFT | GLFW_MOD_ALT | GLFW_MOD_SUPER)) return {};
+  if (k.key < GLFW_KEY_A || k.key > GLFW_KEY_Z || shortcut_action(k) != MenuAction::None) return {};
+  return std::string(1, char('A' + (k.key - GLFW_KEY_A)));
+}
+
+std::string poll_tool_key() {
+  const ImGuiIO& io = ImGui::GetIO();
+  if (io.WantCaptureKeyboard || io.WantTextInput) return {};
+  for (const KeyPress& k : ImGuiHost::key_presses())
+    if (std::string letter = tool_key(k); !letter.empty()) return letter;
+  return {};
+}
+
 MenuAction poll_shortcuts() {
   const ImGuiIO& io = ImGui::GetIO();
   const bool typing = io.WantCaptureKeyboard || io.WantTextInput;

@@ -6,10 +6,18 @@
 #include "ui/imgui_host.h"
 #include "ui/main_menu.h"
 
+#include <string>
+
 namespace trispline::ui {
 
 // The action whose shortcut was pressed this frame, or MenuAction::None.
 MenuAction poll_shortcuts();
+
+// A letter key ("K") pressed this frame without modifiers that no MenuAction is bound to, for tools that declare
+// it as their shortcut (ToolEntry::shortcut, e.g. the Incision tool's K, Blender's Knife); "" if none or typing.
+std::string poll_tool_key();
+// The letter of one such key press ("" if it has modifiers, is bound to a MenuAction or is not a letter).
+std::string tool_key(const KeyPress& press);
 
 // The action bound to one key press (GLFW key code and GLFW_MOD_* bits), ignoring whether ImGui wants the
 // keyboard; MenuAction::None if unbound.

@@ -1,5 +1,7 @@
 #include "editor/tools/toolbox.h"
 
+#include "editor/tools/dffd_tool.h"
+#include "editor/tools/incision_tool.h"
 #include "editor/tools/press_tool.h"
 #include "editor/tools/select_tool.h"
 #include "editor/tools/sketch_tool.h"
@@ -13,6 +15,17 @@ Toolbox::Toolbox(ToolContext& ctx) : ctx_(ctx) {
   tools_.push_back(std::make_unique<SelectTool>());
   tools_.push_back(std::make_unique<SketchTool>());
   tools_.push_back(std::make_unique<PressTool>());
+  tools_.push_back(std::make_unique<IncisionTool>());
+  tools_.push_back(std::make_unique<DffdTool>());
+}
+
+bool Toolbox::activate_shortcut(const std::string& key) {
+  for (std::size_t i = 0; i < tools_.size(); ++i)
+    if (!key.empty() && tools_[i]->entry().shortcut == key) {
+      set_active(int(i));
+      return true;
+    }
+  return false;
 }
 
 void Toolbox::set_active(int index) {

@@ -14,10 +14,12 @@ namespace trispline::editor {
 class Toolbox {
  public:
   explicit Toolbox(ToolContext& ctx);  // ctx must outlive the toolbox
-  enum Index { kSelect = 0, kSketch = 1, kPress = 2 };
+  enum Index { kSelect = 0, kSketch = 1, kPress = 2, kIncision = 3, kDffdSplit = 4 };
 
   void set_active(int index);  // deactivates the old tool, activates the new one; out-of-range is ignored
   int active() const { return active_; }
+  // Activates the tool whose ToolEntry::shortcut is `key` ("K"); false if none has it.
+  bool activate_shortcut(const std::string& key);
   Tool& tool() { return *tools_[active_]; }
   const Tool& tool() const { return *tools_[active_]; }
 

@@ -4,6 +4,9 @@
 // Variant FLAT_COLOR: writes u_flat_color (display values) unlit — selection outline and wireframe overlay.
 // Variant TRANSLUCENT: a see-through tinted sheet (the contact surface): u_tint (display values, alpha) lightly
 // shaded by the facing ratio, and more opaque at grazing angles so its folds read; both faces alike.
+// u_flat_normal = 1 (default variant): the face normal from the screen derivatives of v_world replaces the
+// interpolated vertex normal — for cut surfaces (DFFD caps, incision walls, kMaterialInside), whose vertices are
+// shared with the surface and carry the surface's normals.
 in vec3 v_world;
 in vec3 v_normal;
 out vec4 o_color;
@@ -24,12 +27,13 @@ uniform vec3 u_albedo;      // linear RGB
 uniform vec3 u_eye;         // world units
 uniform vec3 u_key_dir;     // unit, towards the key light (near the view direction: a headlight)
 uniform float u_highlight;  // 0..1, selection tint
+uniform int u_flat_normal;  // 1: faceted (face normal from dFdx/dFdy of v_world), 0: interpolated v_normal
 vec3 linear_to_srgb(vec3 c) {
   c = clamp(c, 0.0, 1.0);
   return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
 }
 void main() {
-  vec3 n = normalize(v_normal);
+  vec3 n = normalize(u_flat_normal != 0 ? cross(dFdx(v_world), dFdy(v_world)) : v_normal);
   vec3 v = normalize(u_eye - v_world);
   bool back = dot(n, v) < 0.0;  // robust two-sided lighting even where the winding is inconsistent
   if (back) n = -n;

@@ -1,0 +1,109 @@
+#include "editor/bench_dffd.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <iomanip>
+#include <nlohmann/json.hpp>
+#include <ostream>
+#include <thread>
+#include <tbb/info.h>
+
+#include "core/deform/dffd_cap.h"
+#include "core/deform/dffd_rig.h"
+#include "editor/bench_place.h"
+#include "editor/command_log.h"
+#include "editor/command_registry.h"
+#include "editor/history.h"
+
+namespace trispline::editor {
+namespace {
+using json = nlohmann::json;
+
+std::filesystem::path default_scene() { return "assets/scenes/bars_walk.jsonl"; }  // run from the repository root
+
+}  // namespace
+
+int run_bench_dffd(const BenchDffdOptions& options, std::ostream& out, std::ostream& err) {
+  const std::filesystem::path path = options.scene_path.empty() ? default_scene() : std::filesystem::path(options.scene_path);
+  core::Scene scene;
+  History history(scene);
+  try {
+    core::CommandContext ctx;
+    ctx.base_dir = path.parent_path();
+    for (const LogLine& line : read_log(path)) history.execute(CommandRegistry::builtin().parse(line.json, ctx));
+  } catch (const std::exception& e) {
+    err << "bench dffd: cannot replay " << path << ": " << e.what() << "\n";
+    return 1;
+  }
+  const core::SceneObject* object = nullptr;
+  for (const core::SceneObject& o : scene.objects())
+    if (o.dffd && o.dffd_animated()) object = &o;
+  if (!object) {
+    err << "bench dffd: " << path << " has no animated dffd.split object\n";
+    return 1;
+  }
+  const core::TriMesh rest = object->world_rest_mesh();
+  const core::DffdRig& rig = *object->dffd;
+  const core::Timeline& tl = scene.timeline;
+  const int runs = std::max(1, options.runs), frames = std::max(1, options.frames);
+  json rows = json::array();
+  std::vector<double> all_total;
+  for (int f = 0; f < frames; ++f) {
+    const double frame = tl.frame_start + (frames == 1 ? 0.0 : double(f) * (tl.frame_end - tl.frame_start) / (frames - 1));
+    const glm::dvec3 offset = object->offset_at(tl.time_of_frame(frame));
+    std::vector<double> split_ms, total_ms;
+    core::DffdApplyStats st;
+    std::size_t vertices = 0;
+    for (int r = 0; r < runs + 1; ++r) {  // one warm-up
+      core::MeshSplit split;
+      const double s = bench_ms([&] { split = core::dffd_split(rig, rest, offset, &st); });
+      core::TriMesh mesh;
+      const double t = bench_ms([&] { mesh = core::dffd_apply(rig, rest, offset, &st); });
+      vertices = mesh.vertex_count();
+      if (r == 0) continue;
+      split_ms.push_back(s);
+      total_ms.push_back(t);
+    }
+    all_total.push_back(bench_median(total_ms));
+    rows.push_back({{"frame", frame},
+                    {"offset_u", offset.x},
+                    {"cut_edges", st.cut_edges},
+                    {"cap_triangles", st.cap_triangles},
+                    {"outside_vertices", st.outside_vertices},
+                    {"vertices", vertices},
+                    {"split_cap_ms", bench_median(split_ms)},
+                    {"split_cap_deform_ms", bench_median(total_ms)}});
+  }
+  const json result = {{"scene", path.string()},
+                       {"object", object->name},
+                       {"rest_vertices", rest.vertex_count()},
+                       {"discontinuities", rig.discontinuities.size()},
+                       {"openings", core::dffd_openings_name(rig.openings)},
+                       {"lattice_controls", {rig.lattice.control_counts().x, rig.lattice.control_counts().y,
+                                             rig.lattice.control_counts().z}},
+                       {"cpu", bench_cpu_model()},
+                       {"threads", tbb::info::default_concurrency()},
+                       {"runs", runs},
+                       {"frames", rows},
+                       {"max_frame_ms", *std::max_element(all_total.begin(), all_total.end())},
+                       {"median_frame_ms", bench_median(all_total)}};
+  if (options.json) {
+    out << result.dump(2) << "\n";
+    return 0;
+  }
+  out << "DFFD walk: " << result["object"].get<std::string>() << " (" << rest.vertex_count() << " vertices), "
+      << rig.discontinuities.size() << " discontinuities, openings " << result["openings"].get<std::string>()
+      << ", " << result["threads"] << " threads, " << result["cpu"].get<std::string>() << "\n";
+  out << "   frame  offset_u  cut_edges  cap_tris  vertices  split+cap ms  split+cap+deform ms\n";
+  for (const json& r : rows)
+    out << std::setw(8) << bench_fixed(r["frame"].get<double>(), 1) << std::setw(10)
+        << bench_fixed(r["offset_u"].get<double>(), 3) << std::setw(11) << r["cut_edges"].get<std::size_t>()
+        << std::setw(10) << r["cap_triangles"].get<std::size_t>() << std::setw(10)
+        << r["vertices"].get<std::size_t>() << std::setw(14) << bench_fixed(r["split_cap_ms"].get<double>(), 2)
+        << std::setw(21) << bench_fixed(r["split_cap_deform_ms"].get<double>(), 2) << "\n";
+  out << "median frame " << bench_fixed(result["median_frame_ms"].get<double>(), 2) << " ms, max frame "
+      << bench_fixed(result["max_frame_ms"].get<double>(), 2) << " ms (median of " << runs << " runs each)\n";
+  return 0;
+}
+
+}  // namespace trispline::editor

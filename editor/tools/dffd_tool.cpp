@@ -1,0 +1,69 @@
+#include "editor/tools/dffd_tool.h"
+
+#include <imgui.h>
+
+#include "editor/navigation.h"
+#include "editor/session.h"
+#include "editor/tools/select_tool.h"
+#include "ui/theme.h"
+
+namespace trispline::editor {
+
+ui::ToolEntry DffdTool::entry() const {
+  return {"Split (DFFD)", "", "Split the selected object around obstacles: it wraps around them and re-forms behind"};
+}
+
+std::string DffdTool::hint() const {
+  return "Click: select   Tool panel: tick obstacles, then Split";
+}
+
+void DffdTool::handle_input(const ToolInput& in, ToolContext& ctx) {
+  if (in.left_pressed) {
+    pressed_ = true;
+    press_px_ = in.mouse_px;
+  }
+  if (in.left_released && pressed_) {
+    pressed_ = false;
+    if (glm::length(in.mouse_px - press_px_) > 4.0) return;  // a drag, not a click
+    try {
+      ctx.selected = pick_object(ctx.session.scene(), ctx.view, in.mouse_px, ctx.hidden).value_or("");
+    } catch (const std::exception& e) {
+      ctx.session.messages().error(std::string("pick failed: ") + e.what());
+    }
+  }
+}
+
+std::vector<ui::DffdObstacleInfo> DffdTool::candidates(const ToolContext& ctx, const std::string& object) const {
+  std::vector<ui::DffdObstacleInfo> out;
+  for (const core::SceneObject& o : ctx.session.scene().objects()) {
+    if (o.name == object || !o.visible || ctx.hidden.count(o.name) || !o.world_mesh || o.world_mesh->empty())
+      continue;
+    auto& cached = extents_[o.name];
+    if (cached.first.lock() != o.world_mesh) {
+      const core::Aabb box = bounds_of(*o.world_mesh);
+      cached = {o.world_mesh, box.hi - box.lo};
+    }
+    out.push_back({o.name, cached.second});
+  }
+  return out;
+}
+
+void DffdTool::split(ToolContext& ctx, const nlohmann::json& line) {
+  EditorSession& session = ctx.session;  // outlives the deferred work; ctx may not
+  ctx.defer("Splitting " + line.value("object", std::string()), [&session, line]() { session.execute(line); });
+}
+
+void DffdTool::draw_panel(ToolContext& ctx) {
+  const std::string object = ctx.session.scene().find(ctx.selected) ? ctx.selected : std::string();
+  const ui::DffdPanelResult r = ui::draw_dffd_panel(params_, object, candidates(ctx, object));
+  if (r.line) split(ctx, *r.line);
+  ImGui::Spacing();
+  ImGui::Separator();
+  ImGui::TextWrapped(
+      "The lattice spans the obstacles' bounding box grown to hold the part of the object that must split; "
+      "each obstacle opens a discontinuity at its centre along u. One split is one undoable step.");
+}
+
+void DffdTool::decorate(gpu::ViewOptions& options) const { options.show_discontinuities = true; }
+
+}  // namespace trispline::editor

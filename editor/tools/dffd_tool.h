@@ -1,0 +1,39 @@
+// trispline::editor::DffdTool — "Split (DFFD)": the selected object splits around obstacles, wraps around them and
+// re-forms behind (global discontinuous FFD, seed §6.3.1–6.3.2, Fig. 6.4, 6.10, 6.11; issue 5 item 3). The Tool panel
+// (ui/dffd_panel.h) ticks obstacles among the other visible objects and sets the lattice and opening parameters; its
+// "Split" button executes ONE `dffd.split` command through the session (errors go to the Log panel, the scene stays
+// as it was). In the viewport a click selects the object under the cursor, as the Select tool does; while the tool
+// is active the view shows the discontinuity planes (gpu::ViewOptions::show_discontinuities).
+#pragma once
+
+#include <map>
+#include <memory>
+
+#include "editor/tools/tool.h"
+#include "ui/dffd_panel.h"
+
+namespace trispline::editor {
+
+class DffdTool : public Tool {
+ public:
+  ui::ToolEntry entry() const override;
+  void handle_input(const ToolInput& in, ToolContext& ctx) override;
+  void draw_panel(ToolContext& ctx) override;
+  void decorate(gpu::ViewOptions& options) const override;
+  std::string hint() const override;
+
+  ui::DffdSplitParams& params() { return params_; }
+  // The visible objects other than `object` with their world bounding-box extents (obstacle candidates).
+  std::vector<ui::DffdObstacleInfo> candidates(const ToolContext& ctx, const std::string& object) const;
+  // What the Split button does: executes `line` (a dffd.split) through the session, after one "Working…" frame.
+  void split(ToolContext& ctx, const nlohmann::json& line);
+
+ private:
+  ui::DffdSplitParams params_;
+  glm::dvec2 press_px_{0};
+  bool pressed_ = false;
+  // Bounding-box extent per object, cached on its world_mesh (an O(#V) pass each panel frame otherwise).
+  mutable std::map<std::string, std::pair<std::weak_ptr<const core::TriMesh>, glm::dvec3>> extents_;
+};
+
+}  // namespace trispline::editor

@@ -1,0 +1,283 @@
+#include "editor/tools/incision_tool.h"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/commands/camera_set.h"
+#include "editor/command_registry.h"
+#include "editor/navigation.h"
+#include "editor/session.h"
+#include "editor/tools/select_tool.h"
+#include "ui/theme.h"
+
+namespace trispline::editor {
+
+namespace {
+constexpr double kMinPointSpacingPx = 2.0;  // stroke points closer than this to the previous one are dropped
+constexpr int kCurveSamples = 64;           // G(v) samples shown while dragging
+constexpr double kDefaultWidth = 0.02, kDefaultDepth = 0.02, kDefaultOpening = 0.006;  // × bounding-box diagonal
+
+void tooltip(const char* text) {
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", text);
+}
+
+// True when incision.draw keeps the line's "camera" (parsed and written back, as place.sketch does): the line is then
+// self-contained and needs no camera.set before it. Parsing has no side effects.
+bool command_keeps_camera(const nlohmann::json& line) {
+  try {
+    return CommandRegistry::builtin().parse(line, core::CommandContext{})->to_json().contains("camera");
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+bool same_camera(const core::Camera& a, const core::Camera& b) {
+  return a.eye == b.eye && a.target == b.target && a.up == b.up && a.fov_deg == b.fov_deg &&
+         a.viewport == b.viewport;
+}
+}  // namespace
+
+nlohmann::json incision_draw_line(const std::string& object, const std::vector<glm::dvec2>& stroke_px,
+                                  const IncisionToolParams& p, const std::optional<core::Camera>& view) {
+  nlohmann::json stroke = nlohmann::json::array();
+  for (const glm::dvec2& q : stroke_px) stroke.push_back({q.x, q.y});
+  nlohmann::json line = {{"cmd", "incision.draw"}, {"object", object},     {"stroke", stroke},
+                         {"width", p.width},       {"depth", p.depth},     {"opening", p.opening},
+                         {"walls", p.walls},       {"order", p.order},     {"kernel", p.kernel}};
+  if (view) line["camera"] = core::CameraSetCommand::camera_json(*view);
+  return line;
+}
+
+ui::ToolEntry IncisionTool::entry() const {
+  return {"Incision", "K", "Drag over a surface to cut an incision along the stroke (seed section 6.4)"};
+}
+
+void IncisionTool::activate(ToolContext&) {}
+
+void IncisionTool::deactivate(ToolContext&) {
+  drawing_ = false;
+  stroke_.clear();
+  clear_preview();
+  target_.clear();
+  caster_.reset();
+  caster_mesh_.reset();
+}
+
+void IncisionTool::clear_preview() {
+  curve_.clear();
+  preview_mesh_.reset();
+  preview_error_.clear();
+  previewed_points_ = 0;
+}
+
+const core::SceneObject* IncisionTool::object(const ToolContext& ctx) const {
+  const core::SceneObject* o = ctx.session.scene().find(target_);
+  return o && o->world_mesh && !o->world_mesh->empty() ? o : nullptr;
+}
+
+IncisionToolParams IncisionTool::resolved(const core::SceneObject* o) const {
+  IncisionToolParams p = params_;
+  const double diag = o && o->world_mesh && !o->world_mesh->empty() ? bounds_of(*o->world_mesh).diagonal() : 0.0;
+  if (diag > 0.0) {
+    if (p.width <= 0.0) p.width = kDefaultWidth * diag;
+    if (p.depth <= 0.0) p.depth = kDefaultDepth * diag;
+    if (p.opening < 0.0) p.opening = kDefaultOpening * diag;
+  }
+  return p;
+}
+
+const core::RayCaster* IncisionTool::caster_for(const core::SceneObject& o) {
+  if (caster_mesh_ != o.world_mesh) {
+    auto caster = std::make_unique<core::RayCaster>(core::BuildQuality::interactive);  // rebuilt after every cut
+    caster->add_mesh(*o.world_mesh);
+    caster->commit();
+    caster_ = std::move(caster);
+    caster_mesh_ = o.world_mesh;
+  }
+  return caster_.get();
+}
+
+void IncisionTool::handle_input(const ToolInput& in, ToolContext& ctx) {
+  if (in.left_pressed) {
+    stroke_ = {in.mouse_px};
+    stroke_view_ = ctx.view;  // pixels of this view, whatever the camera does until mouse-up
+    drawing_ = true;
+    clear_preview();
+    // The object under the cursor at mouse-down wins over the selection.
+    target_ = ctx.selected;
+    if (const auto name = pick(ctx, in.mouse_px)) target_ = *name;
+  }
+  if (drawing_ && in.left_down && glm::length(in.mouse_px - stroke_.back()) >= kMinPointSpacingPx)
+    stroke_.push_back(in.mouse_px);
+  // Throttled preview, also on frames without a move so the last points of a fast drag are shown.
+  if (drawing_ && in.left_down && stroke_.size() >= 2 && stroke_.size() != previewed_points_) {
+    const auto now = std::chrono::steady_clock::now();
+    if (std::chrono::duration<double, std::milli>(now - last_preview_).count() >= preview_interval_ms_) {
+      // Nothing under the cursor at mouse-down and nothing selected: the first object the stroke passes over.
+      if (target_.empty())
+        if (const auto name = pick(ctx, in.mouse_px)) target_ = *name;
+      update_preview(ctx);
+      last_preview_ = now;
+    }
+  }
+  if (drawing_ && (in.left_released || !in.left_down)) {
+    drawing_ = false;
+    commit(ctx);
+  }
+}
+
+std::optional<std::string> IncisionTool::pick(const ToolContext& ctx, glm::dvec2 px) const {
+  try {
+    return pick_object(ctx.session.scene(), ctx.view, px, ctx.hidden);
+  } catch (const std::exception& e) {  // non-finite mesh positions
+    ctx.session.messages().error(std::string("incision: picking failed: ") + e.what());
+    return std::nullopt;
+  }
+}
+
+void IncisionTool::update_preview(const ToolContext& ctx) {
+  if (stroke_.size() < 2 || stroke_.size() == previewed_points_) return;
+  previewed_points_ = stroke_.size();
+  const core::SceneObject* o = object(ctx);
+  if (!o || !o->visible || ctx.hidden.count(o->name)) {
+    curve_.clear();
+    preview_mesh_.reset();
+    preview_error_ = "no visible object to cut";
+    return;
+  }
+  if (o->ffd || o->dffd || o->clip) {  // incision.draw rejects them: show the stroke only
+    curve_.clear();
+    preview_mesh_.reset();
+    preview_error_ = o->name + " is deformed by a lattice or a clip and cannot be cut";
+    return;
+  }
+  try {
+    const core::RayCaster* caster = caster_for(*o);
+    const auto frame = core::fit_incision_frame(stroke_, stroke_view_, *caster);
+    if (!frame) {
+      curve_.clear();
+      preview_mesh_.reset();
+      preview_error_ = "the stroke is not on " + o->name + " yet";
+      return;
+    }
+    std::vector<glm::dvec3> curve;
+    for (int i = 0; i < kCurveSamples; ++i) curve.push_back(frame->generator.eval(double(i) / (kCurveSamples - 1)));
+    curve_ = std::move(curve);
+    const IncisionToolParams rp = resolved(o);
+    core::IncisionParams ip;
+    ip.width = rp.width;
+    ip.depth = rp.depth;
+    ip.opening = rp.opening;
+    ip.walls = rp.walls;
+    ip.order = rp.order;
+    preview_mesh_ = std::make_shared<const core::TriMesh>(core::incise(*o->world_mesh, *frame, ip).mesh);
+    preview_error_.clear();
+  } catch (const std::exception& e) {  // not yet across the surface, or parameters the command will reject
+    preview_mesh_.reset();
+    preview_error_ = e.what();
+  }
+}
+
+void IncisionTool::commit(ToolContext& ctx) {
+  std::vector<glm::dvec2> stroke = std::move(stroke_);
+  stroke_.clear();
+  clear_preview();
+  if (stroke.size() < 2) return;  // a click, not a stroke
+  const core::SceneObject* o = object(ctx);
+  if (!o) {
+    ctx.session.messages().error("incision.draw: start the stroke on an object or select the object to cut first");
+    return;
+  }
+  const nlohmann::json line = incision_draw_line(o->name, stroke, resolved(o), stroke_view_);
+  // Without a "camera" of its own, incision.draw's pixels belong to the current camera.set: log the view at
+  // mouse-down first when it differs.
+  const core::Scene& scene = ctx.session.scene();
+  std::optional<nlohmann::json> camera;
+  if ((!scene.camera_set || !same_camera(scene.camera, stroke_view_)) && !command_keeps_camera(line))
+    camera = camera_line(stroke_view_);
+  EditorSession& session = ctx.session;  // outlives the deferred work; ctx may not
+  ctx.defer("Cutting " + o->name, [&session, line, camera]() {
+    if (camera && !session.execute(*camera)) return;
+    session.execute(line);  // errors go to the Log panel; the scene stays as it was
+  });
+}
+
+std::string IncisionTool::hint() const {
+  if (drawing_) return preview_mesh_ ? "Release to cut" : "Drag across the surface; release to cut";
+  return "Drag over an object to cut an incision (the object under the cursor, else the selection)";
+}
+
+void IncisionTool::draw_panel(ToolContext& ctx) {
+  // Sizes shown for the selected object (else the last one cut); unset ones are marked "auto".
+  const core::SceneObject* sel = ctx.session.scene().find(ctx.selected.empty() ? target_ : ctx.selected);
+  const IncisionToolParams shown = resolved(sel);
+  auto format = [&](bool unset, double value) { return !unset ? "%.4g" : value > 0.0 ? "%.4g (auto)" : "auto"; };
+  const double diag = sel && sel->world_mesh && !sel->world_mesh->empty() ? bounds_of(*sel->world_mesh).diagonal()
+                                                                          : 1.0;
+  const float speed = float(std::max(diag, 1e-6) * 1e-3);
+  const double lo = 1e-6;
+
+  double width = shown.width, depth = shown.depth, opening = shown.opening;
+  if (ImGui::DragScalar("Width", ImGuiDataType_Double, &width, speed, &lo, nullptr,
+                        format(params_.width <= 0.0, width)))
+    params_.width = std::max(width, lo);
+  tooltip(
+      "alpha: half-extent of the cutting lattice across the cut, world units (seed Eq. 6.2: P_ijk = G_j +\n"
+      "(l/2 - i) alpha S_j + (n/2 - k) beta N_j). Sets how far to each side the surface is pushed apart.\n"
+      "Default: 0.02 x the selected object's bounding-box diagonal");
+  if (ImGui::DragScalar("Depth", ImGuiDataType_Double, &depth, speed, &lo, nullptr,
+                        format(params_.depth <= 0.0, depth)))
+    params_.depth = std::max(depth, lo);
+  tooltip(
+      "beta: how deep below the surface the cut goes (along -N), world units (seed Eq. 6.2).\n"
+      "Default: 0.02 x the bounding-box diagonal");
+  const double zero = 0.0;
+  if (ImGui::DragScalar("Opening", ImGuiDataType_Double, &opening, speed, &zero, nullptr,
+                        format(params_.opening < 0.0, opening)))
+    params_.opening = std::max(opening, 0.0);
+  tooltip(
+      "kappa: gap between the two cut faces at the surface in the middle of the stroke, world units; it tapers to\n"
+      "zero at the cut's bottom and at both ends of the stroke (seed section 6.4). Default: 0.006 x the diagonal");
+  if (params_.width > 0 || params_.depth > 0 || params_.opening >= 0) {
+    if (ImGui::SmallButton("Defaults")) {
+      params_.width = params_.depth = 0.0;
+      params_.opening = -1.0;
+    }
+    tooltip("Back to sizes relative to the object (width, depth, opening)");
+  }
+  ImGui::Checkbox("Walls", &params_.walls);
+  tooltip(
+      "Build the cut-depth walls in the shape of the tool so the surface stays a closed 2-manifold (seed section\n"
+      "6.4, last paragraph); they carry the inside ('flesh') material. Off: the cut is left open");
+  ImGui::SliderInt("Order", &params_.order, 2, 4);
+  tooltip("Order (= degree + 1) of the local cutting lattice; 'order' knots at u = 1/2 make the C-1 discontinuity");
+  params_.order = std::clamp(params_.order, 2, 4);
+  int kernel = params_.kernel == "bspline" ? 1 : 0;
+  if (ImGui::Combo("Kernel", &kernel, "gaussian\0bspline\0")) params_.kernel = kernel == 1 ? "bspline" : "gaussian";
+  tooltip(
+      "Profile kappa of the opening across the cut (how the control planes next to the discontinuity follow F-/F+):\n"
+      "gaussian: truncated Gaussian; bspline: quadratic B-spline (seed section 6.3.1)");
+
+  ImGui::Spacing();
+  ImGui::Separator();
+  if (drawing_ && !preview_error_.empty())
+    ImGui::TextColored(ui::colors::warning, "Preview: %s", preview_error_.c_str());
+  ImGui::TextWrapped(
+      "Left-drag across the surface (the object under the cursor, else the selected one): the cut is previewed "
+      "while you drag; releasing cuts it as one undoable step.");
+}
+
+void IncisionTool::decorate(gpu::ViewOptions& options) const {
+  if (!drawing_) return;
+  options.stroke_px = stroke_;
+  options.incision_curve = curve_;
+  if (!curve_.empty()) options.stroke_width_px = std::min(options.stroke_width_px, 1.5f);  // G(v) shows under it
+  if (preview_mesh_) {
+    options.incision_preview_mesh = preview_mesh_;
+    options.incision_preview_object = target_;
+  }
+}
+
+}  // namespace trispline::editor

@@ -1,0 +1,97 @@
+// trispline::editor::IncisionTool — the incision drawing tool (seed §6.4, Eq. 6.2, Fig. 6.5, 6.6, 6.8; issue 5
+// item 4), Blender's Knife key K. Left-drag over an object (the one under the cursor at mouse-down, else the selected
+// one, else the first object the stroke passes over) collects the stroke in viewport pixels (top-left origin) of the
+// view at mouse-down. While dragging, at most every preview_interval_ms, the cut is previewed on the UI thread:
+// core::fit_incision_frame + core::incise on the object's world_mesh with the panel's parameters; the view shows the
+// generator curve G(v) and the cut mesh instead of the object (gpu::ViewOptions::incision_curve /
+// incision_preview_mesh / incision_preview_object), or only the stroke while it does not lie on the surface. On
+// mouse-up the tool executes ONE `incision.draw` command (docs/commands.md) carrying the view at mouse-down
+// ("camera"); while the command does not keep that field, a `camera.set` of the view precedes it when the scene
+// camera differs (the stroke is then in pixels of the current camera.set).
+// A click without a drag issues nothing; errors go to the Log panel and leave the scene as it was.
+#pragma once
+
+#include <chrono>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/incision/incision.h"
+#include "core/raycast/ray_caster.h"
+#include "editor/tools/tool.h"
+
+namespace trispline::editor {
+
+// Parameters of the Incision tool panel (incision.draw fields). width / depth ≤ 0 and opening < 0 = unset: a fraction
+// of the object's bounding-box diagonal (IncisionTool::resolved()).
+struct IncisionToolParams {
+  double width = 0.0;    // world units: the lattice's half-extent across the cut (α of seed Eq. 6.2)
+  double depth = 0.0;    // world units: how deep below the surface the cut goes (β of Eq. 6.2)
+  double opening = -1.0;  // world units: gap between the cut faces at the surface, mid-stroke (κ, §6.4)
+  bool walls = true;     // cut-depth walls in the shape of the tool (seed §6.4, last paragraph)
+  int order = 3;         // order (= degree + 1) of the local lattice, 2..4
+  std::string kernel = "gaussian";  // opening profile along u: "gaussian" | "bspline"
+};
+
+// The incision.draw line: {"cmd":"incision.draw","object":ID,"stroke":[[px,py],...] (#S × 2 viewport pixels),
+// "width":a,"depth":b,"opening":c,"walls":bool,"order":o,"kernel":k} (parameters resolved: width, depth > 0), plus
+// "camera" (as place.sketch's: the view the pixels belong to) when `view` is given.
+nlohmann::json incision_draw_line(const std::string& object, const std::vector<glm::dvec2>& stroke_px,
+                                  const IncisionToolParams& params,
+                                  const std::optional<core::Camera>& view = std::nullopt);
+
+class IncisionTool : public Tool {
+ public:
+  ui::ToolEntry entry() const override;
+  void activate(ToolContext& ctx) override;
+  void deactivate(ToolContext& ctx) override;
+  void handle_input(const ToolInput& in, ToolContext& ctx) override;
+  void mouse_away() override {}
+  void draw_panel(ToolContext& ctx) override;
+  void decorate(gpu::ViewOptions& options) const override;
+  std::string hint() const override;
+  bool owns_mouse() const override { return drawing_; }
+
+  const IncisionToolParams& params() const { return params_; }
+  void set_params(const IncisionToolParams& p) { params_ = p; }
+  // The parameters with unset width / depth / opening replaced by 0.02 / 0.02 / 0.006 × the bounding-box diagonal of
+  // `object`'s world_mesh (unchanged when it has none).
+  IncisionToolParams resolved(const core::SceneObject* object) const;
+  // Minimum time between two previews while dragging (0: after every new stroke point; tests use 0).
+  void set_preview_interval_ms(double ms) { preview_interval_ms_ = ms; }
+
+  // The preview of the drag under way (empty when not dragging or when the stroke misses the surface).
+  const std::string& target() const { return target_; }                  // object being cut
+  const std::vector<glm::dvec2>& stroke() const { return stroke_; }      // pixels so far
+  const std::vector<glm::dvec3>& preview_curve() const { return curve_; }  // G(v) sampled, world units
+  const std::shared_ptr<const core::TriMesh>& preview_mesh() const { return preview_mesh_; }  // the cut surface
+  const std::string& preview_error() const { return preview_error_; }  // why the last preview showed no cut
+
+ private:
+  const core::SceneObject* object(const ToolContext& ctx) const;
+  std::optional<std::string> pick(const ToolContext& ctx, glm::dvec2 px) const;  // object under pixel px
+  const core::RayCaster* caster_for(const core::SceneObject& o);  // cached per world_mesh
+  void update_preview(const ToolContext& ctx);
+  void commit(ToolContext& ctx);
+  void clear_preview();
+
+  IncisionToolParams params_;
+  std::vector<glm::dvec2> stroke_;
+  bool drawing_ = false;
+  core::Camera stroke_view_;  // the view at mouse-down: the stroke's pixels belong to it
+  std::string target_;
+
+  std::vector<glm::dvec3> curve_;
+  std::shared_ptr<const core::TriMesh> preview_mesh_;
+  std::string preview_error_;
+  std::size_t previewed_points_ = 0;
+  std::chrono::steady_clock::time_point last_preview_{};
+  double preview_interval_ms_ = 50.0;
+
+  std::shared_ptr<const core::TriMesh> caster_mesh_;  // held so the pointer cannot be reused by another mesh
+  std::unique_ptr<core::RayCaster> caster_;
+};
+
+}  // namespace trispline::editor
