@@ -9,7 +9,12 @@
 #include <tbb/info.h>
 
 #include "core/deform/dffd_cap.h"
+#include "core/commands/incision_draw.h"
+#include "core/commands/mesh_subdivide.h"
 #include "core/deform/dffd_rig.h"
+#include "core/incision/incision.h"
+#include "core/mesh/mesh_io.h"
+#include "core/raycast/ray_caster.h"
 #include "editor/bench_place.h"
 #include "editor/command_log.h"
 #include "editor/command_registry.h"
@@ -20,6 +25,63 @@ namespace {
 using json = nlohmann::json;
 
 std::filesystem::path default_scene() { return "assets/scenes/bars_walk.jsonl"; }  // run from the repository root
+
+// incision.draw on the bunny Loop-subdivided once (139K vertices): a stroke across its flank (two surface points
+// projected through a camera facing it), the command end to end through History, and incise() alone.
+json bench_incision(int runs) {
+  const core::TriMesh bunny = core::load_mesh("assets/data/bunny.obj");
+  core::Scene scene;
+  core::SceneObject o;
+  o.name = "surface";
+  o.source = "assets/data/bunny.obj (Loop ×1)";
+  o.rest_mesh = std::make_shared<const core::TriMesh>(core::loop_subdivide(bunny, 1));
+  o.refresh();
+  scene.insert(o);
+  core::Camera cam;
+  cam.eye = {0.0, 0.2, 4.0};
+  cam.target = {0.0, 0.0, 0.0};
+  cam.viewport = {800, 600};
+  scene.camera = cam;
+  scene.camera_set = true;
+  const glm::dvec3 a = cam.project({-0.45, 0.05, 0.6}), b = cam.project({0.35, -0.05, 0.6});
+  json stroke = json::array();
+  for (int i = 0; i < 16; ++i) {
+    const double t = i / 15.0;
+    stroke.push_back({a.x + t * (b.x - a.x), a.y + t * (b.y - a.y)});
+  }
+  const json line = {{"cmd", "incision.draw"}, {"object", "surface"}, {"stroke", stroke}, {"width", 0.06},
+                     {"depth", 0.05}, {"opening", 0.02}, {"walls", true}};
+  std::vector<double> command_ms, incise_ms;
+  json stats;
+  for (int r = 0; r < runs + 1; ++r) {
+    core::Scene s = scene;
+    History history(s);
+    core::CommandContext ctx;
+    auto cmd = CommandRegistry::builtin().parse(line, ctx);
+    ExecutionRecord rec;
+    const double ms = bench_ms([&] { rec = history.execute(std::move(cmd)); });
+    if (!rec.ok) throw std::runtime_error("bench incision: " + rec.error);
+    stats = rec.stats;
+    if (r > 0) command_ms.push_back(ms);
+  }
+  const core::TriMesh& world = *scene.find("surface")->world_mesh;
+  std::vector<glm::dvec2> px;
+  for (const json& p : stroke) px.push_back({p[0].get<double>(), p[1].get<double>()});
+  const core::RayCaster rays = core::stroke_ray_caster(world, cam, px, core::BuildQuality::high);
+  const std::optional<core::IncisionFrame> frame = core::fit_incision_frame(px, cam, rays);
+  core::IncisionParams params;
+  params.width = 0.06;
+  params.depth = 0.05;
+  params.opening = 0.02;
+  for (int r = 0; r < runs + 1 && frame; ++r) {
+    const double ms = bench_ms([&] { (void)core::incise(world, *frame, params); });
+    if (r > 0) incise_ms.push_back(ms);
+  }
+  return {{"surface_vertices", world.vertex_count()},
+          {"stats", stats},
+          {"command_ms", bench_median(command_ms)},
+          {"incise_ms", incise_ms.empty() ? -1.0 : bench_median(incise_ms)}};
+}
 
 }  // namespace
 
@@ -86,7 +148,8 @@ int run_bench_dffd(const BenchDffdOptions& options, std::ostream& out, std::ostr
                        {"runs", runs},
                        {"frames", rows},
                        {"max_frame_ms", *std::max_element(all_total.begin(), all_total.end())},
-                       {"median_frame_ms", bench_median(all_total)}};
+                       {"median_frame_ms", bench_median(all_total)},
+                       {"incision", bench_incision(runs)}};
   if (options.json) {
     out << result.dump(2) << "\n";
     return 0;
@@ -103,6 +166,11 @@ int run_bench_dffd(const BenchDffdOptions& options, std::ostream& out, std::ostr
         << std::setw(21) << bench_fixed(r["split_cap_deform_ms"].get<double>(), 2) << "\n";
   out << "median frame " << bench_fixed(result["median_frame_ms"].get<double>(), 2) << " ms, max frame "
       << bench_fixed(result["max_frame_ms"].get<double>(), 2) << " ms (median of " << runs << " runs each)\n";
+  const json& inc = result["incision"];
+  out << "incision.draw on " << inc["surface_vertices"] << " vertices (bunny, Loop x1): command "
+      << bench_fixed(inc["command_ms"].get<double>(), 2) << " ms, incise() " << bench_fixed(inc["incise_ms"].get<double>(), 2)
+      << " ms (median of " << runs << "); " << inc["stats"].value("cut_edges", 0) << " cut edges, "
+      << inc["stats"].value("wall_faces", 0) << " wall faces\n";
   return 0;
 }
 

@@ -87,10 +87,13 @@ class Splitter {
  public:
   Splitter(const TriMesh& mesh, const std::vector<glm::dvec3>& params, int axis, double u0, double eps)
       : in_(mesh), axis_(axis), u0_(u0), eps_(eps) {
-    out_.mesh = mesh;
-    out_.mesh.triangles.clear();
-    out_.mesh.face_material.clear();
-    out_.params = params;
+    // Room for the cut vertices up front: appending to vectors filled to capacity would copy them all again.
+    const std::size_t room = mesh.vertex_count() + mesh.vertex_count() / 8 + 64;
+    reserve_copy(out_.mesh.positions, mesh.positions, room);
+    reserve_copy(out_.mesh.normals, mesh.normals, mesh.normals.empty() ? 0 : room);
+    reserve_copy(out_.mesh.uvs, mesh.uvs, mesh.uvs.empty() ? 0 : room);
+    reserve_copy(out_.params, params, room);
+    out_.side.reserve(room);
     const std::size_t nv = mesh.vertex_count();
     cls_.resize(nv);
     copy_.assign(nv, {-1, -1});
@@ -116,6 +119,12 @@ class Splitter {
 
  private:
   static int side_slot(int s) { return s < 0 ? 0 : 1; }
+
+  template <class T>
+  static void reserve_copy(std::vector<T>& out, const std::vector<T>& in, std::size_t capacity) {
+    out.reserve(std::max(capacity, in.size()));
+    out.assign(in.begin(), in.end());
+  }
 
   // Index of vertex v as used on side s (-1/+1); on-plane vertices get their per-side copy.
   unsigned vert(unsigned v, int s) {
