@@ -202,6 +202,7 @@ GlobalDffd build_global_dffd(const TriMesh& object_world, const std::vector<Dffd
   const glm::ivec3 n = F.control_counts();
   const std::vector<glm::dvec3> original = F.control_points();
   std::vector<double> shift(original.size(), 0.0);  // world units along +axis, summed over obstacles
+  std::vector<std::vector<char>> opened(placed.size(), std::vector<char>(std::size_t(n.y), 0));  // rows j with hits
   const double reach = box.size()[u_ax] + 1.0;
   for (std::size_t di = 0; di < placed.size(); ++di) {
     const std::size_t oi = placed[di].obstacle;
@@ -230,6 +231,7 @@ GlobalDffd build_global_dffd(const TriMesh& object_world, const std::vector<Dffd
         const double vm = cm - pm[u_ax];                                               // V⁻ (F⁻ moves back)
         const double vp = cp - original[F.index(d.plus_plane, j, k)][u_ax];            // V⁺ (F⁺ moves ahead)
         out.projected_points += 2;
+        opened[di][std::size_t(j)] = 1;
         out.max_displacement = std::max({out.max_displacement, std::abs(vm), std::abs(vp)});
         for (int i = 0; i < n.x; ++i) {
           if (i == 0 || i == n.x - 1) continue;  // the box's faces stay put: F = E⁻¹ there
@@ -294,8 +296,12 @@ GlobalDffd build_global_dffd(const TriMesh& object_world, const std::vector<Dffd
       const double ws = std::clamp(sum / double(count), 0.0, 1.0);
       out.w_s.push_back(ws);
       const double world_w = to_world({0.0, 0.0, ws})[w_ax];
+      // Only the rows the obstacle opened: elsewhere F⁻ = F⁺ already closes the seam, and flattening those rows
+      // too would pinch the object's whole cross-section to one curve (see docs/decisions.md).
+      const std::size_t di = std::size_t(&d - rig.discontinuities.data());
       for (int k = 0; k < n.z; ++k)
         for (int j = 0; j < n.y; ++j) {
+          if (!opened[di][std::size_t(j)]) continue;
           F.control_point(d.minus_plane, j, k)[w_ax] = world_w;
           F.control_point(d.plus_plane, j, k)[w_ax] = world_w;
         }

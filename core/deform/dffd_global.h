@@ -19,8 +19,9 @@
 //     [−width, width] with κ(0) = 1. The lattice's first and last u-planes never move (F stays E⁻¹ on B's faces).
 //  6. Fold-over check (seed Theorem 6): along every (j, k) the u-components of the control points must increase
 //     (coincident F⁻/F⁺ allowed); then det J > 0. Violations are rejected (or reported, fold = warn).
-//  7. Stitching (openings = stitch, §6.3.2): all control points of both discontinuity planes move to the level
-//     w = w_s, the mean w of the object's vertices on the cut (at the given offset).
+//  7. Stitching (openings = stitch, §6.3.2): the control points of both discontinuity planes in the rows the
+//     obstacle opened move to the level w = w_s, the mean w of the object's vertices on the cut (at the given
+//     offset); the other rows are closed already (F⁻ = F⁺).
 #pragma once
 
 #include <cstddef>

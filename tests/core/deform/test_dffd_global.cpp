@@ -134,19 +134,36 @@ TEST(DffdGlobal, CappedAndStitchedAreClosedTwoManifolds) {
     for (std::size_t f = 0; f < out.triangle_count(); ++f) inside += out.material(f) == kMaterialInside;
     EXPECT_EQ(inside, st.cap_triangles);
   }
-  // Stitching moves every control point of both discontinuity planes to the level w_s (seed §6.3.2).
+  // Stitching moves the control points of both discontinuity planes to the level w_s (seed §6.3.2) in the rows the
+  // obstacle opened (F⁻ ≠ F⁺); the other rows are closed already and keep their levels.
   const GlobalDffd g = build_global_dffd(s.sphere, {s.cylinder}, s.params(DffdOpenings::stitch));
+  const GlobalDffd c = build_global_dffd(s.sphere, {s.cylinder}, s.params(DffdOpenings::cap));
   ASSERT_EQ(g.w_s.size(), 1u);
   EXPECT_GT(g.w_s[0], 0.2);
   EXPECT_LT(g.w_s[0], 0.8);
   const Discontinuity& d = g.rig.discontinuities[0];
   const glm::ivec3 n = g.rig.lattice.control_counts();
-  const double level = g.rig.lattice.control_point(d.minus_plane, 0, 0).y;
-  for (int k = 0; k < n.z; ++k)
-    for (int j = 0; j < n.y; ++j) {
-      EXPECT_EQ(g.rig.lattice.control_point(d.minus_plane, j, k).y, level);
-      EXPECT_EQ(g.rig.lattice.control_point(d.plus_plane, j, k).y, level);
+  int stitched_rows = 0, kept_rows = 0;
+  double first_level = std::nan("");
+  for (int j = 0; j < n.y; ++j) {
+    bool opened = false;
+    for (int k = 0; k < n.z; ++k)
+      opened = opened || c.rig.lattice.control_point(d.minus_plane, j, k).x != c.rig.lattice.control_point(d.plus_plane, j, k).x;
+    for (int k = 0; k < n.z; ++k) {
+      const double ym = g.rig.lattice.control_point(d.minus_plane, j, k).y;
+      const double yp = g.rig.lattice.control_point(d.plus_plane, j, k).y;
+      if (opened) {
+        if (std::isnan(first_level)) first_level = ym;
+        EXPECT_EQ(ym, first_level) << j << " " << k;
+        EXPECT_EQ(yp, first_level) << j << " " << k;
+      } else {
+        EXPECT_EQ(ym, c.rig.lattice.control_point(d.minus_plane, j, k).y) << j << " " << k;
+      }
     }
+    (opened ? stitched_rows : kept_rows) += 1;
+  }
+  EXPECT_GT(stitched_rows, 0);
+  EXPECT_GT(kept_rows, 0);
 }
 
 TEST(DffdGlobal, OutsideTheBoxTheObjectIsOnlyTranslatedByItsOffset) {
