@@ -85,34 +85,52 @@ namespace {
 // Builds the split mesh; one instance per call.
 class Splitter {
  public:
-  Splitter(const TriMesh& mesh, const std::vector<glm::dvec3>& params, int axis, double u0, double eps)
-      : in_(mesh), axis_(axis), u0_(u0), eps_(eps) {
+  // Splits `base` in place: its mesh and params are extended, its triangles rewritten where they touch the plane.
+  Splitter(MeshSplit&& base, int axis, double u0, double eps)
+      : out_(std::move(base)), in_(out_.mesh), axis_(axis), u0_(u0), eps_(eps) {
+    const std::size_t nv = out_.mesh.vertex_count();
     // Room for the cut vertices up front: appending to vectors filled to capacity would copy them all again.
-    const std::size_t room = mesh.vertex_count() + mesh.vertex_count() / 8 + 64;
-    reserve_copy(out_.mesh.positions, mesh.positions, room);
-    reserve_copy(out_.mesh.normals, mesh.normals, mesh.normals.empty() ? 0 : room);
-    reserve_copy(out_.mesh.uvs, mesh.uvs, mesh.uvs.empty() ? 0 : room);
-    reserve_copy(out_.params, params, room);
+    const std::size_t room = nv + nv / 8 + 64;
+    out_.mesh.positions.reserve(room);
+    if (!out_.mesh.normals.empty()) out_.mesh.normals.reserve(room);
+    if (!out_.mesh.uvs.empty()) out_.mesh.uvs.reserve(room);
+    out_.params.reserve(room);
     out_.side.reserve(room);
-    const std::size_t nv = mesh.vertex_count();
-    cls_.resize(nv);
-    copy_.assign(nv, {-1, -1});
     out_.side.resize(nv);
+    out_.cut_edges = 0;
+    out_.duplicated_on_plane = 0;
+    cls_.resize(nv);
     for (std::size_t v = 0; v < nv; ++v) {
-      const double d = params[v][axis] - u0;
+      const double d = out_.params[v][axis] - u0;
       cls_[v] = std::abs(d) <= kOnPlaneTol ? 0 : (d < 0 ? -1 : 1);
       out_.side[v] = static_cast<std::int8_t>(cls_[v] == 0 ? -1 : cls_[v]);
     }
   }
 
+  // Triangles on one side keep their slot untouched; a triangle touching the plane is replaced by its first piece
+  // and its other pieces are appended after all input triangles (in input order).
   MeshSplit run() {
-    out_.mesh.triangles.reserve(in_.triangles.size() + in_.triangles.size() / 16);
-    if (!in_.face_material.empty()) out_.mesh.face_material.reserve(out_.mesh.triangles.capacity());
+    TriMesh& m = out_.mesh;
+    const std::size_t nf = m.triangles.size();
+    const bool with_materials = !m.face_material.empty();
+    std::vector<glm::uvec3> extra;
+    std::vector<std::uint8_t> extra_material;
     cuts_.reserve(1024);
-    for (std::size_t f = 0; f < in_.triangles.size(); ++f) {
-      material_ = in_.material(f);
-      split_triangle(in_.triangles[f]);
+    for (std::size_t f = 0; f < nf; ++f) {
+      const glm::uvec3 t = m.triangles[f];
+      const int a = cls_[t[0]], b = cls_[t[1]], c = cls_[t[2]];
+      if (a != 0 && a == b && a == c) continue;  // strictly on one side: untouched
+      material_ = m.material(f);
+      pieces_.clear();
+      split_triangle(t);
+      m.triangles[f] = pieces_[0];
+      for (std::size_t k = 1; k < pieces_.size(); ++k) {
+        extra.push_back(pieces_[k]);
+        if (with_materials) extra_material.push_back(material_);
+      }
     }
+    m.triangles.insert(m.triangles.end(), extra.begin(), extra.end());
+    if (with_materials) m.face_material.insert(m.face_material.end(), extra_material.begin(), extra_material.end());
     out_.cut_edges = cuts_.size();
     return std::move(out_);
   }
@@ -120,18 +138,14 @@ class Splitter {
  private:
   static int side_slot(int s) { return s < 0 ? 0 : 1; }
 
-  template <class T>
-  static void reserve_copy(std::vector<T>& out, const std::vector<T>& in, std::size_t capacity) {
-    out.reserve(std::max(capacity, in.size()));
-    out.assign(in.begin(), in.end());
-  }
 
   // Index of vertex v as used on side s (-1/+1); on-plane vertices get their per-side copy.
   unsigned vert(unsigned v, int s) {
     if (cls_[v] != 0) return v;
-    int& slot = copy_[v][side_slot(s)];
+    std::array<int, 2>& copies = copy_.try_emplace(v, std::array<int, 2>{-1, -1}).first->second;
+    int& slot = copies[side_slot(s)];
     if (slot >= 0) return static_cast<unsigned>(slot);
-    const int other = copy_[v][1 - side_slot(s)];
+    const int other = copies[1 - side_slot(s)];
     unsigned idx = v;
     if (other >= 0) {  // the input index already serves the other side: append a copy
       idx = append_copy(v);
@@ -188,10 +202,7 @@ class Splitter {
 
   const glm::dvec3& in_params(unsigned v) const { return out_.params[v]; }  // off-plane vertices keep their params
 
-  void emit(unsigned a, unsigned b, unsigned c) {
-    out_.mesh.triangles.push_back({a, b, c});
-    if (!in_.face_material.empty()) out_.mesh.face_material.push_back(material_);  // pieces keep their material
-  }
+  void emit(unsigned a, unsigned b, unsigned c) { pieces_.push_back({a, b, c}); }  // pieces keep the material
 
   double len2(unsigned a, unsigned b) const {
     const glm::dvec3 d = out_.mesh.positions[a] - out_.mesh.positions[b];
@@ -234,20 +245,22 @@ class Splitter {
     }
   }
 
-  const TriMesh& in_;
+  MeshSplit out_;
+  const TriMesh& in_;  // = out_.mesh: input vertices keep their indices and values while cut vertices are appended
   int axis_;
   double u0_, eps_;
-  MeshSplit out_;
   std::uint8_t material_ = kMaterialSurface;  // material of the input triangle being split
   std::vector<int> cls_;                  // -1 / 0 (on plane) / +1 per input vertex
-  std::vector<std::array<int, 2>> copy_;  // per input vertex: index used on the minus / plus side, -1 = none yet
+  std::unordered_map<unsigned, std::array<int, 2>> copy_;  // on-plane vertex → index used on the minus / plus side
+  std::vector<glm::uvec3> pieces_;  // the pieces of the triangle being split
   std::unordered_map<std::uint64_t, std::array<unsigned, 2>> cuts_;  // edge (lo << 32 | hi) → (minus, plus) vertex
 };
 
 }  // namespace
 
-MeshSplit split_mesh_at_parameter(const TriMesh& mesh, const std::vector<glm::dvec3>& params, int axis, double u0,
-                                  double eps) {
+namespace {
+
+void check_split_input(const TriMesh& mesh, const std::vector<glm::dvec3>& params, int axis, double u0, double eps) {
   const std::size_t nv = mesh.vertex_count();
   require(axis >= 0 && axis <= 2, "split_mesh_at_parameter: axis must be 0, 1 or 2, got " + std::to_string(axis));
   require(std::isfinite(u0), "split_mesh_at_parameter: u0 must be finite, got " + num(u0));
@@ -262,7 +275,22 @@ MeshSplit split_mesh_at_parameter(const TriMesh& mesh, const std::vector<glm::dv
     require(t[0] < nv && t[1] < nv && t[2] < nv, "split_mesh_at_parameter: triangle index out of range");
   for (std::size_t v = 0; v < nv; ++v)
     require(std::isfinite(params[v][axis]), "split_mesh_at_parameter: params[" + std::to_string(v) + "] is not finite");
-  return Splitter(mesh, params, axis, u0, eps).run();
+}
+
+}  // namespace
+
+MeshSplit split_mesh_at_parameter(const TriMesh& mesh, const std::vector<glm::dvec3>& params, int axis, double u0,
+                                  double eps) {
+  check_split_input(mesh, params, axis, u0, eps);
+  MeshSplit base;
+  base.mesh = mesh;
+  base.params = params;
+  return Splitter(std::move(base), axis, u0, eps).run();
+}
+
+void split_mesh_at_parameter_in_place(MeshSplit& split, int axis, double u0, double eps) {
+  check_split_input(split.mesh, split.params, axis, u0, eps);
+  split = Splitter(std::move(split), axis, u0, eps).run();
 }
 
 }  // namespace trispline::core

@@ -68,6 +68,8 @@ struct MeshSplit {
 //  * A triangle with one vertex alone on its side becomes a triangle (that side) + a quad split into two
 //    triangles (other side, shorter diagonal); one on-plane vertex with the other two opposite gives two triangles.
 //    Winding is preserved; the pieces tile the input triangle exactly (area preserved).
+//  * Triangle order: a triangle on one side keeps its index; a triangle that touches the plane is replaced by its
+//    first piece and its other pieces are appended after all input triangles, in input order.
 //  * Every other triangle lies on one side: that of its off-plane vertices, or the minus side when all three are
 //    on the plane. On-plane vertices are used by the side of each triangle that references them: the input index
 //    serves the first side met (in triangle order), a copy is appended for the other side if it is met too; either
@@ -78,5 +80,10 @@ struct MeshSplit {
 // a triangle index ≥ #V, normals / uvs sizes neither 0 nor #V.
 MeshSplit split_mesh_at_parameter(const TriMesh& mesh, const std::vector<glm::dvec3>& params, int axis, double u0,
                                   double eps);
+
+// The same split applied to split.mesh / split.params in place (no copy of the untouched part; what dffd_apply
+// does every frame). split.side, cut_edges and duplicated_on_plane describe this split afterwards. Same errors;
+// `split` is unchanged when it throws.
+void split_mesh_at_parameter_in_place(MeshSplit& split, int axis, double u0, double eps);
 
 }  // namespace trispline::core

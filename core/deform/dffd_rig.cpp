@@ -54,15 +54,14 @@ MeshSplit dffd_split(const DffdRig& rig, const TriMesh& rest_world, const glm::d
   for (glm::dvec3& p : split.params) p += offset;
   for (const Discontinuity& d : rig.discontinuities) {
     if (!touches_plane(split.mesh, split.params, d.axis, d.u0)) continue;  // nothing to cut at this offset
-    MeshSplit next = split_mesh_at_parameter(split.mesh, split.params, d.axis, d.u0, rig.eps);
-    st.cut_edges += next.cut_edges;
+    split_mesh_at_parameter_in_place(split, d.axis, d.u0, rig.eps);
+    st.cut_edges += split.cut_edges;
     if (rig.openings != DffdOpenings::open) {
-      const CapStats cs = cap_split_openings(next, d.axis, d.u0, rig.eps, kMaterialInside);
+      const CapStats cs = cap_split_openings(split, d.axis, d.u0, rig.eps, kMaterialInside);
       st.cap_loops += cs.loops;
       st.open_chains += cs.open_chains;
       st.cap_triangles += cs.triangles;
     }
-    split = std::move(next);
   }
   if (stats) *stats = st;
   return split;

@@ -37,8 +37,9 @@ TEST(DffdLogs, CylinderCutOpenStitchedCapped) {
   for (const glm::uvec3& f : split.mesh.triangles)
     for (int e = 0; e < 3; ++e) ++edges[{std::min(f[e], f[(e + 1) % 3]), std::max(f[e], f[(e + 1) % 3])}];
   for (const auto& [e, n] : edges)
-    if (n == 1)
+    if (n == 1) {
       for (unsigned v : {e.first, e.second}) ASSERT_NEAR(std::abs(split.params[v].x - u0), open.dffd->eps, 1e-12);
+    }
   for (const char* name : {"stitched", "capped"}) {
     const core::SceneObject& o = *scene.find(name);
     const core::Topology t = core::topology(*o.world_mesh);
@@ -67,7 +68,9 @@ TEST(DffdLogs, WalkThroughBarsSplitsOnlyWhereABarPasses) {
     EXPECT_EQ(t.non_manifold_edges, 0u) << "frame " << frame;
     EXPECT_EQ(t.rejected_faces, 0u) << "frame " << frame;
     if (m.vertex_count() > nv) ++split_frames;
-    if (frame == 1 || frame == 120) EXPECT_EQ(m.vertex_count(), nv) << "whole before and after the bars";
+    if (frame == 1 || frame == 120) {
+      EXPECT_EQ(m.vertex_count(), nv) << "whole before and after the bars";
+    }
   }
   EXPECT_GE(split_frames, 3);
   const core::Scene a = core::scene_at_time(scene, 2.5), b = core::scene_at_time(scene, 2.5);
