@@ -84,6 +84,18 @@ TriMesh dffd_apply(const DffdRig& rig, const TriMesh& rest_world, const glm::dve
   // Vertices in the box go through the reference evaluator (ffd_evaluate: exact normals via cof(J·A)); the rest
   // map by E⁻¹ (the rest position moved by the offset) and keep their normals.
   const glm::dmat3 A_inv = glm::inverse(rig.embedding.linear);
+  bool all_inside = true;
+  for (std::size_t i = 0; i < params.size() && all_inside; ++i)
+    all_inside = !rig.identity_outside || inside_unit_box(params[i]);
+  if (all_inside) {  // the common case while cutting: evaluate in place, no gather / scatter copies
+    if (with_normals)
+      ffd_evaluate(rig.lattice, rig.embedding, params, rest_nrm, out.positions, out.normals);
+    else
+      ffd_evaluate(rig.lattice, params, out.positions);
+    if (!with_normals) compute_vertex_normals(out);
+    if (stats) *stats = st;
+    return out;
+  }
   std::vector<std::size_t> inside;
   inside.reserve(params.size());
   for (std::size_t i = 0; i < params.size(); ++i) {
