@@ -198,13 +198,14 @@ TEST(IncisionDraw, DenseSphereCommand) {
 }
 
 #ifdef TRISPLINE_HAVE_VENUS
-// Pixel strokes of the log tests/logs/incision_venus.jsonl: two cheeks and across the nose (seed Fig. 6.8).
+// Three incisions on the raw 711-vertex Venus bust (seed Fig. 6.8). The Debian bust is a headless torso: two cuts
+// down the sides of the neck and one across its front (tests/logs/incision_torso.jsonl cuts the chest instead).
 const char* kVenusLines[] = {
     R"({"cmd":"scene.load","path":")" TRISPLINE_SOURCE_DIR R"(/assets/data/venus.obj","name":"venus","scale":0.01})",
     R"({"cmd":"camera.set","eye":[-0.14,1.35,1.5],"target":[-0.14,1.33,0],"up":[0,1,0],"fov_deg":20,"viewport":[800,600]})",
 };
 
-TEST(IncisionDraw, VenusCheeksAndNose) {
+TEST(IncisionDraw, VenusThreeIncisionsOnTheNeck) {
   Scene s;
   for (const char* l : kVenusLines) {
     CommandContext ctx;
@@ -216,7 +217,7 @@ TEST(IncisionDraw, VenusCheeksAndNose) {
   }
   const TriMesh input = *s.find("venus")->rest_mesh;
   const test::Topology t0 = test::topology(input);
-  // World points on the face → pixels (rounded to 0.1 px: the strokes of tests/logs/incision_venus.jsonl).
+  // World points on the neck → pixels (rounded to 0.1 px, as a log would store them).
   const std::vector<std::pair<glm::dvec3, glm::dvec3>> segs = {{{-0.26, 1.35, 0.08}, {-0.20, 1.22, 0.08}},
                                                                {{-0.04, 1.34, 0.1}, {-0.08, 1.22, 0.1}},
                                                                {{-0.21, 1.37, 0.15}, {-0.07, 1.37, 0.15}}};
