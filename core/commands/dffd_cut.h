@@ -6,8 +6,8 @@
 // (core::split_mesh_at_parameter: cut vertices interpolate position, normal and uv and move to u0 ∓ eps), then opens
 // the cut by moving the F⁻ plane by −g/2 and the F⁺ plane by +g/2 (world units) along the lattice's mean direction
 // of `axis` at the cut (centroid of the plane after F⁺ minus that of the plane before F⁻). g = 0 leaves the surface
-// closed in space but split in topology. The openings stay open (the inside shows); stitching and capping are
-// still to come. Undo restores the object (mesh, lattice, parameters) bit for bit.
+// closed in space but split in topology. The openings stay open (the inside shows); kernel propagation, stitching
+// and capping are dffd.split's (dffd_split.h). Undo restores the object (mesh, lattice, parameters) bit for bit.
 // report.json: cut_edges, vertices_before, vertices_after, duplicated_on_plane, ms.
 // Errors (CommandError, field named): unknown object / no lattice / a glTF clip on it ("object"); u0 outside the
 // domain or already a discontinuity, or a periodic axis ("at"); non-finite or |g| > 100 ("gap"); eps outside
