@@ -1,5 +1,6 @@
-// Topology checks shared by the DFFD tests: OpenMesh builds the mesh (refusing faces at complex edges or vertices),
-// and edge/face counts on our arrays find boundary edges, non-manifold edges and duplicate faces.
+// Mesh topology checks shared by the DFFD and incision tests: edge and face counts on our arrays (boundary,
+// non-manifold and repeated half-edges, duplicate and degenerate faces) and OpenMesh's view of the same triangles
+// (faces its add_face refuses at complex edges or vertices, non-manifold vertices, boundary loops).
 #pragma once
 
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
@@ -7,39 +8,70 @@
 #include <algorithm>
 #include <array>
 #include <map>
+#include <set>
 #include <utility>
 #include <vector>
 
 #include "core/mesh/tri_mesh.h"
 
-namespace trispline::core {
+namespace trispline::core::test {
 
 struct Topology {
-  std::size_t rejected_faces = 0;  // OpenMesh refused the face: a complex (non-manifold) edge or vertex
-  std::size_t boundary_edges = 0;
-  std::size_t non_manifold_edges = 0;  // edges with more than two faces (counted on our arrays)
-  std::size_t duplicate_faces = 0;
+  std::size_t nonmanifold_edges = 0;              // undirected edges with > 2 faces
+  std::size_t boundary_edges = 0;                 // undirected edges with exactly one face
+  std::size_t repeated_halfedges = 0;             // directed edges used twice (orientation broken)
+  std::size_t duplicate_faces = 0;                // same vertex set twice
+  std::size_t degenerate_faces = 0;               // a repeated vertex index
+  std::size_t openmesh_rejected = 0;              // faces OpenMesh's add_face refuses (complex edge / vertex)
+  std::size_t openmesh_nonmanifold_vertices = 0;  // vertices OpenMesh sees as not manifold
+  std::size_t boundary_loops = 0;                 // boundary loops of the OpenMesh halfedge structure
+  std::vector<std::pair<unsigned, unsigned>> boundary;  // the boundary edges (lower index first), sorted
 };
 
 inline Topology topology(const TriMesh& m) {
   Topology t;
-  OpenMesh::TriMesh_ArrayKernelT<> om;
-  std::vector<OpenMesh::VertexHandle> vh;
-  for (const glm::dvec3& p : m.positions) vh.push_back(om.add_vertex({float(p.x), float(p.y), float(p.z)}));
-  std::map<std::pair<unsigned, unsigned>, int> edges;
-  std::map<std::array<unsigned, 3>, int> faces;
+  std::map<std::pair<unsigned, unsigned>, int> undirected, directed;
+  std::set<std::array<unsigned, 3>> faces;
   for (const glm::uvec3& f : m.triangles) {
-    if (!om.add_face(vh[f[0]], vh[f[1]], vh[f[2]]).is_valid()) ++t.rejected_faces;
+    if (f[0] == f[1] || f[1] == f[2] || f[0] == f[2]) ++t.degenerate_faces;
     std::array<unsigned, 3> key{f[0], f[1], f[2]};
     std::sort(key.begin(), key.end());
-    if (++faces[key] == 2) ++t.duplicate_faces;
-    for (int e = 0; e < 3; ++e) ++edges[{std::min(f[e], f[(e + 1) % 3]), std::max(f[e], f[(e + 1) % 3])}];
+    if (!faces.insert(key).second) ++t.duplicate_faces;
+    for (int e = 0; e < 3; ++e) {
+      const unsigned a = f[e], b = f[(e + 1) % 3];
+      ++undirected[{std::min(a, b), std::max(a, b)}];
+      ++directed[{a, b}];
+    }
   }
-  for (const auto& [e, n] : edges) {
-    if (n == 1) ++t.boundary_edges;
-    if (n > 2) ++t.non_manifold_edges;
+  for (const auto& [e, n] : undirected) {
+    if (n > 2) ++t.nonmanifold_edges;
+    if (n == 1) {
+      ++t.boundary_edges;
+      t.boundary.push_back(e);
+    }
+  }
+  for (const auto& [e, n] : directed)
+    if (n > 1) ++t.repeated_halfedges;
+
+  using OM = OpenMesh::TriMesh_ArrayKernelT<>;
+  OM om;
+  std::vector<OM::VertexHandle> vh;
+  for (const glm::dvec3& p : m.positions) vh.push_back(om.add_vertex(OM::Point(float(p.x), float(p.y), float(p.z))));
+  for (const glm::uvec3& f : m.triangles)
+    if (!om.add_face(vh[f.x], vh[f.y], vh[f.z]).is_valid()) ++t.openmesh_rejected;
+  for (auto v : om.vertices())
+    if (!om.is_manifold(v)) ++t.openmesh_nonmanifold_vertices;
+  std::set<int> seen;
+  for (auto h : om.halfedges()) {
+    if (!om.is_boundary(h) || seen.count(h.idx())) continue;
+    ++t.boundary_loops;
+    OM::HalfedgeHandle c = h;
+    do {
+      seen.insert(c.idx());
+      c = om.next_halfedge_handle(c);
+    } while (c != h && c.is_valid() && !seen.count(c.idx()));
   }
   return t;
 }
 
-}  // namespace trispline::core
+}  // namespace trispline::core::test

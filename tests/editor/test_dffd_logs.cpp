@@ -24,9 +24,9 @@ TEST(DffdLogs, CylinderCutOpenStitchedCapped) {
   ASSERT_TRUE(r.ok) << r.error;
   const core::SceneObject& open = *scene.find("open");
   ASSERT_TRUE(open.dffd);
-  const core::Topology t_open = core::topology(*open.world_mesh);
-  EXPECT_EQ(t_open.rejected_faces, 0u);
-  EXPECT_EQ(t_open.non_manifold_edges, 0u);
+  const core::test::Topology t_open = core::test::topology(*open.world_mesh);
+  EXPECT_EQ(t_open.openmesh_rejected, 0u);
+  EXPECT_EQ(t_open.nonmanifold_edges, 0u);
   EXPECT_EQ(t_open.duplicate_faces, 0u);
   EXPECT_GT(t_open.boundary_edges, 100u);  // the opening's rims
   // Every boundary vertex is a cut vertex at u0 ∓ eps.
@@ -42,10 +42,10 @@ TEST(DffdLogs, CylinderCutOpenStitchedCapped) {
     }
   for (const char* name : {"stitched", "capped"}) {
     const core::SceneObject& o = *scene.find(name);
-    const core::Topology t = core::topology(*o.world_mesh);
-    EXPECT_EQ(t.rejected_faces, 0u) << name;
+    const core::test::Topology t = core::test::topology(*o.world_mesh);
+    EXPECT_EQ(t.openmesh_rejected, 0u) << name;
     EXPECT_EQ(t.boundary_edges, 0u) << name;
-    EXPECT_EQ(t.non_manifold_edges, 0u) << name;
+    EXPECT_EQ(t.nonmanifold_edges, 0u) << name;
     EXPECT_EQ(t.duplicate_faces, 0u) << name;
     EXPECT_TRUE(o.world_mesh->has_inside_faces()) << name;
   }
@@ -63,10 +63,10 @@ TEST(DffdLogs, WalkThroughBarsSplitsOnlyWhereABarPasses) {
   for (int frame : {1, 30, 45, 60, 75, 90, 120}) {
     const core::Scene still = core::scene_at_time(scene, scene.timeline.time_of_frame(frame));
     const core::TriMesh& m = *still.find("walker")->world_mesh;
-    const core::Topology t = core::topology(m);
+    const core::test::Topology t = core::test::topology(m);
     EXPECT_EQ(t.boundary_edges, 0u) << "frame " << frame;
-    EXPECT_EQ(t.non_manifold_edges, 0u) << "frame " << frame;
-    EXPECT_EQ(t.rejected_faces, 0u) << "frame " << frame;
+    EXPECT_EQ(t.nonmanifold_edges, 0u) << "frame " << frame;
+    EXPECT_EQ(t.openmesh_rejected, 0u) << "frame " << frame;
     if (m.vertex_count() > nv) ++split_frames;
     if (frame == 1 || frame == 120) {
       EXPECT_EQ(m.vertex_count(), nv) << "whole before and after the bars";

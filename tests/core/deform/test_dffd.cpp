@@ -2,6 +2,8 @@
 // parameter plane, and the two together through ffd_evaluate (seed §6.3.1 Def. 6, §6.3.2).
 #include <gtest/gtest.h>
 
+#include "tests/mesh_topology.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -22,40 +24,10 @@ namespace {
 
 using test::bent_lattice;
 using test::identity_lattice;
+using test::Topology;
+using test::topology;
 
 // ---------------------------------------------------------------- mesh topology helpers
-
-struct Topology {
-  std::size_t bad_edges = 0;           // undirected edges with 0 or > 2 faces
-  std::size_t repeated_halfedges = 0;  // directed edges used twice (orientation broken)
-  std::size_t duplicate_faces = 0;
-  std::size_t degenerate_faces = 0;                     // a repeated vertex index
-  std::vector<std::pair<unsigned, unsigned>> boundary;  // undirected edges with exactly one face
-};
-
-Topology topology(const TriMesh& m) {
-  Topology t;
-  std::map<std::pair<unsigned, unsigned>, int> undirected, directed;
-  std::set<std::array<unsigned, 3>> faces;
-  for (const glm::uvec3& f : m.triangles) {
-    if (f[0] == f[1] || f[1] == f[2] || f[0] == f[2]) ++t.degenerate_faces;
-    std::array<unsigned, 3> key{f[0], f[1], f[2]};
-    std::sort(key.begin(), key.end());
-    if (!faces.insert(key).second) ++t.duplicate_faces;
-    for (int e = 0; e < 3; ++e) {
-      const unsigned a = f[e], b = f[(e + 1) % 3];
-      ++undirected[{std::min(a, b), std::max(a, b)}];
-      ++directed[{a, b}];
-    }
-  }
-  for (const auto& [e, n] : undirected) {
-    if (n < 1 || n > 2) ++t.bad_edges;
-    if (n == 1) t.boundary.push_back(e);
-  }
-  for (const auto& [e, n] : directed)
-    if (n > 1) ++t.repeated_halfedges;
-  return t;
-}
 
 // Connected components of the boundary-edge graph (= boundary loops for a manifold boundary).
 std::size_t boundary_loops(const std::vector<std::pair<unsigned, unsigned>>& edges) {
@@ -108,7 +80,7 @@ void add_linear_uvs(TriMesh& m) {
 MeshSplit check_split(const TriMesh& mesh, const Embedding& e, int axis, double u0, double eps, int cross_sections) {
   const std::vector<glm::dvec3> params = embed_points(e, mesh.positions);
   const Topology before = topology(mesh);
-  EXPECT_EQ(before.bad_edges, 0u);
+  EXPECT_EQ(before.nonmanifold_edges, 0u);
   EXPECT_EQ(before.repeated_halfedges, 0u);
   MeshSplit s = split_mesh_at_parameter(mesh, params, axis, u0, eps);
   const TriMesh& m = s.mesh;
@@ -120,7 +92,7 @@ MeshSplit check_split(const TriMesh& mesh, const Embedding& e, int axis, double 
   EXPECT_GT(s.cut_edges + s.duplicated_on_plane, 0u);  // a cut through mesh vertices only has no cut edges
   // (a) 2-manifold edges, consistent orientation, no duplicate / degenerate faces.
   const Topology after = topology(m);
-  EXPECT_EQ(after.bad_edges, 0u);
+  EXPECT_EQ(after.nonmanifold_edges, 0u);
   EXPECT_EQ(after.repeated_halfedges, 0u);
   EXPECT_EQ(after.duplicate_faces, 0u);
   EXPECT_EQ(after.degenerate_faces, 0u);
@@ -415,7 +387,7 @@ TEST(Dffd, SphereOpensAlongTheCut) {
   TriMesh mapped = s.mesh;
   mapped.positions = out;
   const Topology t = topology(mapped);
-  EXPECT_EQ(t.bad_edges, 0u);
+  EXPECT_EQ(t.nonmanifold_edges, 0u);
   EXPECT_EQ(t.repeated_halfedges, 0u);
   EXPECT_EQ(boundary_loops(t.boundary), 2u);
   for (const auto& [a, b] : t.boundary) {

@@ -94,9 +94,9 @@ TEST(DffdGlobal, OpenSplitHasBoundaryLoopsExactlyOnTheDiscontinuity) {
     }
   EXPECT_GT(boundary, 20u);
   const TriMesh out = dffd_apply(rig, s.sphere, glm::dvec3(0.0));
-  const Topology t = topology(out);
-  EXPECT_EQ(t.rejected_faces, 0u);
-  EXPECT_EQ(t.non_manifold_edges, 0u);
+  const test::Topology t = test::topology(out);
+  EXPECT_EQ(t.openmesh_rejected, 0u);
+  EXPECT_EQ(t.nonmanifold_edges, 0u);
   EXPECT_EQ(t.duplicate_faces, 0u);
   EXPECT_EQ(t.boundary_edges, boundary);
 }
@@ -125,10 +125,10 @@ TEST(DffdGlobal, CappedAndStitchedAreClosedTwoManifolds) {
     const TriMesh out = dffd_apply(g.rig, s.sphere, glm::dvec3(0.0), &st);
     EXPECT_GT(st.cap_triangles, 0u);
     EXPECT_EQ(st.open_chains, 0u);
-    const Topology t = topology(out);
-    EXPECT_EQ(t.rejected_faces, 0u) << dffd_openings_name(o);
+    const test::Topology t = test::topology(out);
+    EXPECT_EQ(t.openmesh_rejected, 0u) << dffd_openings_name(o);
     EXPECT_EQ(t.boundary_edges, 0u) << dffd_openings_name(o);
-    EXPECT_EQ(t.non_manifold_edges, 0u) << dffd_openings_name(o);
+    EXPECT_EQ(t.nonmanifold_edges, 0u) << dffd_openings_name(o);
     EXPECT_EQ(t.duplicate_faces, 0u) << dffd_openings_name(o);
     std::size_t inside = 0;
     for (std::size_t f = 0; f < out.triangle_count(); ++f) inside += out.material(f) == kMaterialInside;
@@ -258,7 +258,7 @@ TEST(DffdGlobal, SceneObjectEvaluatesItsRigAndAnimatesThroughTheBox) {
   const Scene mid = scene_at_time(scene, 1.0);  // offset 0: pierced, split and capped
   const TriMesh& m = *mid.find("ball")->world_mesh;
   EXPECT_GT(m.vertex_count(), s.sphere.vertex_count());
-  EXPECT_EQ(topology(m).boundary_edges, 0u);
+  EXPECT_EQ(test::topology(m).boundary_edges, 0u);
   const Scene mid2 = scene_with_posed_clips(scene, 1.0);
   EXPECT_EQ(mid2.find("ball")->world_mesh->positions, m.positions);
 }
