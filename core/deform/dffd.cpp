@@ -90,20 +90,28 @@ class Splitter {
       : out_(std::move(base)), in_(out_.mesh), axis_(axis), u0_(u0), eps_(eps) {
     const std::size_t nv = out_.mesh.vertex_count();
     // Room for the cut vertices up front: appending to vectors filled to capacity would copy them all again.
-    const std::size_t room = nv + nv / 8 + 64;
-    out_.mesh.positions.reserve(room);
-    if (!out_.mesh.normals.empty()) out_.mesh.normals.reserve(room);
-    if (!out_.mesh.uvs.empty()) out_.mesh.uvs.reserve(room);
-    out_.params.reserve(room);
-    out_.side.reserve(room);
+    // Callers that split at several planes reserve once for all (dffd_split); only grow when that room is short.
+    if (out_.mesh.positions.capacity() < nv + nv / 16 + 64) {
+      const std::size_t room = nv + nv / 8 + 64;
+      out_.mesh.positions.reserve(room);
+      if (!out_.mesh.normals.empty()) out_.mesh.normals.reserve(room);
+      if (!out_.mesh.uvs.empty()) out_.mesh.uvs.reserve(room);
+      out_.params.reserve(room);
+      out_.side.reserve(room);
+    }
     out_.side.resize(nv);
     out_.cut_edges = 0;
     out_.duplicated_on_plane = 0;
+    out_.cut_vertices.clear();
+    out_.touched.clear();
     cls_.resize(nv);
+    const glm::dvec3* params = out_.params.data();
+    std::int8_t* side = out_.side.data();
     for (std::size_t v = 0; v < nv; ++v) {
-      const double d = out_.params[v][axis] - u0;
-      cls_[v] = std::abs(d) <= kOnPlaneTol ? 0 : (d < 0 ? -1 : 1);
-      out_.side[v] = static_cast<std::int8_t>(cls_[v] == 0 ? -1 : cls_[v]);
+      const double d = params[v][axis] - u0;
+      const std::int8_t c = std::abs(d) <= kOnPlaneTol ? 0 : (d < 0 ? -1 : 1);
+      cls_[v] = c;
+      side[v] = c == 0 ? -1 : c;
     }
   }
 
@@ -124,6 +132,7 @@ class Splitter {
       pieces_.clear();
       split_triangle(t);
       m.triangles[f] = pieces_[0];
+      out_.touched.push_back(static_cast<std::uint32_t>(f));
       for (std::size_t k = 1; k < pieces_.size(); ++k) {
         extra.push_back(pieces_[k]);
         if (with_materials) extra_material.push_back(material_);
@@ -131,6 +140,8 @@ class Splitter {
     }
     m.triangles.insert(m.triangles.end(), extra.begin(), extra.end());
     if (with_materials) m.face_material.insert(m.face_material.end(), extra_material.begin(), extra_material.end());
+    for (std::size_t k = 0; k < extra.size(); ++k) out_.touched.push_back(static_cast<std::uint32_t>(nf + k));
+    std::sort(out_.cut_vertices.begin(), out_.cut_vertices.end());
     out_.cut_edges = cuts_.size();
     return std::move(out_);
   }
@@ -153,6 +164,7 @@ class Splitter {
     }
     out_.params[idx][axis_] = u0_ + s * eps_;
     out_.side[idx] = static_cast<std::int8_t>(s);
+    out_.cut_vertices.push_back(idx);
     slot = static_cast<int>(idx);
     return idx;
   }
@@ -193,6 +205,7 @@ class Splitter {
         p[axis_] = u0_ + s2 * eps_;
         out_.params.push_back(p);
         out_.side.push_back(static_cast<std::int8_t>(s2));
+        out_.cut_vertices.push_back(idx);
         ids[slot] = idx;
       }
       it = cuts_.emplace(key, ids).first;
@@ -250,7 +263,7 @@ class Splitter {
   int axis_;
   double u0_, eps_;
   std::uint8_t material_ = kMaterialSurface;  // material of the input triangle being split
-  std::vector<int> cls_;                  // -1 / 0 (on plane) / +1 per input vertex
+  std::vector<std::int8_t> cls_;          // -1 / 0 (on plane) / +1 per input vertex
   std::unordered_map<unsigned, std::array<int, 2>> copy_;  // on-plane vertex → index used on the minus / plus side
   std::vector<glm::uvec3> pieces_;  // the pieces of the triangle being split
   std::unordered_map<std::uint64_t, std::array<unsigned, 2>> cuts_;  // edge (lo << 32 | hi) → (minus, plus) vertex
@@ -290,6 +303,10 @@ MeshSplit split_mesh_at_parameter(const TriMesh& mesh, const std::vector<glm::dv
 
 void split_mesh_at_parameter_in_place(MeshSplit& split, int axis, double u0, double eps) {
   check_split_input(split.mesh, split.params, axis, u0, eps);
+  split = Splitter(std::move(split), axis, u0, eps).run();
+}
+
+void detail::split_in_place_unchecked(MeshSplit& split, int axis, double u0, double eps) {
   split = Splitter(std::move(split), axis, u0, eps).run();
 }
 

@@ -52,6 +52,9 @@ struct MeshSplit {
   std::vector<std::int8_t> side;        // #V': -1 (params[v][axis] < u0) or +1 (> u0)
   std::size_t cut_edges = 0;            // distinct input edges that crossed u0 strictly
   std::size_t duplicated_on_plane = 0;  // input vertices on u0 that got a copy for the second side
+  // What the last split changed, so later passes (cap_split_openings) need not scan the whole mesh:
+  std::vector<std::uint32_t> cut_vertices;  // vertices it put at u0 ∓ eps (new cut vertices, on-plane ones), ascending
+  std::vector<std::uint32_t> touched;       // triangles it rewrote or appended, ascending
 };
 
 // Splits `mesh` along the parameter plane params[·][axis] = u0 (seed §6.3.2).
@@ -82,8 +85,14 @@ MeshSplit split_mesh_at_parameter(const TriMesh& mesh, const std::vector<glm::dv
                                   double eps);
 
 // The same split applied to split.mesh / split.params in place (no copy of the untouched part; what dffd_apply
-// does every frame). split.side, cut_edges and duplicated_on_plane describe this split afterwards. Same errors;
-// `split` is unchanged when it throws.
+// does every frame). split.side, cut_edges, duplicated_on_plane, cut_vertices and touched describe this split
+// afterwards. Same errors; `split` is unchanged when it throws.
 void split_mesh_at_parameter_in_place(MeshSplit& split, int axis, double u0, double eps);
+
+namespace detail {
+// split_mesh_at_parameter_in_place without the O(#V + #F) input checks, for callers that validated the mesh once
+// and split it at several planes (dffd_split). Internal to core/deform.
+void split_in_place_unchecked(MeshSplit& split, int axis, double u0, double eps);
+}  // namespace detail
 
 }  // namespace trispline::core

@@ -9,15 +9,18 @@
 #include <CGAL/Triangulation_data_structure_2.h>
 #include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
+#include <CGAL/property_map.h>
+#include <CGAL/spatial_sort.h>
+#include <CGAL/Spatial_sort_traits_adapter_2.h>
+
+#include <tbb/parallel_invoke.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <deque>
-#include <map>
 #include <stdexcept>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 namespace trispline::core {
@@ -77,41 +80,51 @@ void mark_nesting(Cdt& cdt) {
 // Walks are deterministic: chain heads (more out- than in-edges) first, in increasing vertex order, then loops
 // from the smallest vertex with an unused edge; at a branching vertex the smallest unused successor is taken.
 // Walks that cannot close are counted in `open_chains` and dropped.
-std::vector<std::vector<std::uint32_t>> chain_loops(const std::vector<std::pair<std::uint32_t, std::uint32_t>>& edges,
+std::vector<std::vector<std::uint32_t>> chain_loops(std::vector<std::pair<std::uint32_t, std::uint32_t>> edges,
                                                     std::size_t& open_chains) {
-  std::map<std::uint32_t, std::vector<std::uint32_t>> out;  // sorted successors, consumed from the front
-  std::map<std::uint32_t, int> in;
-  for (const auto& [a, b] : edges) out[a].push_back(b), ++in[b], out.try_emplace(b);
-  std::map<std::uint32_t, std::size_t> next_unused;
-  for (auto& [v, succ] : out) std::sort(succ.begin(), succ.end()), next_unused[v] = 0;
-  auto take = [&](std::uint32_t v, std::uint32_t& w) {
-    std::size_t& k = next_unused[v];
-    if (k >= out[v].size()) return false;
-    w = out[v][k++];
+  // Compact adjacency: vertices sorted (dense ids), edges sorted by (from, to) so each vertex's successors are a
+  // sorted run consumed from the front.
+  std::vector<std::uint32_t> verts;
+  verts.reserve(2 * edges.size());
+  for (const auto& [a, b] : edges) verts.push_back(a), verts.push_back(b);
+  std::sort(verts.begin(), verts.end());
+  verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
+  auto id = [&](std::uint32_t v) {
+    return static_cast<std::size_t>(std::lower_bound(verts.begin(), verts.end(), v) - verts.begin());
+  };
+  std::sort(edges.begin(), edges.end());
+  std::vector<std::size_t> begin(verts.size() + 1, 0), next(verts.size());
+  std::vector<int> in(verts.size(), 0);
+  for (const auto& [a, b] : edges) ++begin[id(a) + 1], ++in[id(b)];
+  for (std::size_t i = 0; i < verts.size(); ++i) begin[i + 1] += begin[i];
+  for (std::size_t i = 0; i < verts.size(); ++i) next[i] = begin[i];
+  auto remaining = [&](std::size_t i) { return begin[i + 1] - next[i]; };
+  auto take = [&](std::size_t i, std::size_t& j) {  // next unused successor of vertex id i, as an id
+    if (next[i] >= begin[i + 1]) return false;
+    j = id(edges[next[i]++].second);
     return true;
   };
-  auto remaining = [&](std::uint32_t v) { return out[v].size() - next_unused[v]; };
 
-  for (const auto& [v, succ] : out) {  // open chains start where out-degree exceeds in-degree
-    const int excess = static_cast<int>(succ.size()) - in[v];
+  for (std::size_t v = 0; v < verts.size(); ++v) {  // open chains start where out-degree exceeds in-degree
+    const int excess = static_cast<int>(begin[v + 1] - begin[v]) - in[v];
     for (int k = 0; k < excess && remaining(v) > 0; ++k) {
-      std::uint32_t cur = v, w = 0;
+      std::size_t cur = v, w = 0;
       while (take(cur, w)) cur = w;
       ++open_chains;
     }
   }
   std::vector<std::vector<std::uint32_t>> loops;
-  for (const auto& [v, succ] : out) {
+  for (std::size_t v = 0; v < verts.size(); ++v) {
     while (remaining(v) > 0) {
-      std::vector<std::uint32_t> loop{v};
-      std::uint32_t cur = v, w = 0;
+      std::vector<std::uint32_t> loop{verts[v]};
+      std::size_t cur = v, w = 0;
       bool closed = false;
       while (take(cur, w)) {
         if (w == v) {
           closed = true;
           break;
         }
-        loop.push_back(w);
+        loop.push_back(verts[w]);
         cur = w;
       }
       if (closed && loop.size() >= 3)
@@ -133,17 +146,31 @@ std::vector<Tri> triangulate_loops(const std::vector<std::vector<std::uint32_t>>
   std::sort(verts.begin(), verts.end());
   verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
 
+  // Points inserted in CGAL's spatial (Hilbert) order with the previous vertex as location hint, as CGAL's own
+  // range insertion does (deterministic: spatial_sort shuffles with a fixed-seed rand48); a 2D duplicate maps to
+  // the smallest mesh index at that point.
+  std::vector<K::Point_2> points(verts.size());
+  for (std::size_t i = 0; i < verts.size(); ++i) points[i] = K::Point_2(params[verts[i]][a1], params[verts[i]][a2]);
+  std::vector<std::size_t> order(verts.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  using Pmap = CGAL::Pointer_property_map<K::Point_2>::type;
+  CGAL::spatial_sort(order.begin(), order.end(),
+                     CGAL::Spatial_sort_traits_adapter_2<K, Pmap>(CGAL::make_property_map(points)));
   Cdt cdt;
-  std::unordered_map<std::uint32_t, Cdt::Vertex_handle> handle;
-  handle.reserve(verts.size());
-  for (std::uint32_t v : verts) {  // increasing index: a 2D duplicate maps to the smallest index at that point
-    const Cdt::Vertex_handle h = cdt.insert(K::Point_2(params[v][a1], params[v][a2]));
-    if (h->info().index < 0) h->info().index = v;
-    handle.emplace(v, h);
+  std::vector<Cdt::Vertex_handle> handle(verts.size());
+  Cdt::Face_handle hint;
+  for (std::size_t i : order) {
+    const Cdt::Vertex_handle h = cdt.insert(points[i], hint);
+    if (h->info().index < 0 || h->info().index > static_cast<std::int64_t>(verts[i])) h->info().index = verts[i];
+    handle[i] = h;
+    hint = h->face();
   }
+  auto handle_of = [&](std::uint32_t v) {
+    return handle[static_cast<std::size_t>(std::lower_bound(verts.begin(), verts.end(), v) - verts.begin())];
+  };
   for (const auto& loop : loops)
     for (std::size_t i = 0; i < loop.size(); ++i) {
-      const Cdt::Vertex_handle ha = handle.at(loop[i]), hb = handle.at(loop[(i + 1) % loop.size()]);
+      const Cdt::Vertex_handle ha = handle_of(loop[i]), hb = handle_of(loop[(i + 1) % loop.size()]);
       if (ha != hb) cdt.insert_constraint(ha, hb);
     }
   std::vector<Tri> tris;
@@ -166,31 +193,48 @@ std::vector<Tri> triangulate_loops(const std::vector<std::vector<std::uint32_t>>
 // half-edge b→a once and pairs every other half-edge of its own with its reverse. One flag per loop.
 std::vector<bool> unclosed_loops(const std::vector<std::vector<std::uint32_t>>& loops, const std::vector<Tri>& tris) {
   auto key = [](std::uint32_t a, std::uint32_t b) { return (static_cast<std::uint64_t>(a) << 32) | b; };
-  std::unordered_map<std::uint64_t, int> half;  // cap half-edges a→b
+  // Cap half-edges a→b with their use counts: sorted unique keys (binary search instead of a hash map).
+  std::vector<std::uint64_t> keys;
+  keys.reserve(3 * tris.size());
   for (const Tri& t : tris)
-    for (int e = 0; e < 3; ++e) ++half[key(t[e], t[(e + 1) % 3])];
-  std::unordered_map<std::uint32_t, std::size_t> loop_of;
+    for (int e = 0; e < 3; ++e) keys.push_back(key(t[e], t[(e + 1) % 3]));
+  std::sort(keys.begin(), keys.end());
+  std::vector<std::pair<std::uint64_t, int>> half;  // (key, count)
+  for (std::uint64_t k : keys) {
+    if (!half.empty() && half.back().first == k)
+      ++half.back().second;
+    else
+      half.emplace_back(k, 1);
+  }
+  auto find = [&](std::uint64_t k) -> std::pair<std::uint64_t, int>* {
+    auto it = std::lower_bound(half.begin(), half.end(), std::make_pair(k, 0),
+                               [](const auto& x, const auto& y) { return x.first < y.first; });
+    return it != half.end() && it->first == k ? &*it : nullptr;
+  };
+  std::vector<std::pair<std::uint32_t, std::size_t>> loop_of;  // (vertex, first loop holding it)
   for (std::size_t i = 0; i < loops.size(); ++i)
-    for (std::uint32_t v : loops[i]) loop_of.emplace(v, i);
+    for (std::uint32_t v : loops[i]) loop_of.emplace_back(v, i);
+  std::stable_sort(loop_of.begin(), loop_of.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
   std::vector<bool> bad(loops.size(), false);
   for (std::size_t i = 0; i < loops.size(); ++i)
     for (std::size_t j = 0; j < loops[i].size(); ++j) {
       const std::uint32_t a = loops[i][j], b = loops[i][(j + 1) % loops[i].size()];
-      auto it = half.find(key(b, a));
-      if (it == half.end() || it->second != 1 || half.count(key(a, b))) {
+      auto* rev = find(key(b, a));
+      if (rev == nullptr || rev->second != 1 || find(key(a, b)) != nullptr) {
         bad[i] = true;
         continue;
       }
-      it->second = 0;  // consumed by the loop
+      rev->second = 0;  // consumed by the loop
     }
   for (const auto& [k, n] : half) {
     if (n == 0) continue;
     const auto a = static_cast<std::uint32_t>(k >> 32), b = static_cast<std::uint32_t>(k & 0xffffffffu);
-    auto rev = half.find(key(b, a));
-    if (n == 1 && rev != half.end() && rev->second == 1) continue;
+    const auto* rev = find(key(b, a));
+    if (n == 1 && rev != nullptr && rev->second == 1) continue;
     for (std::uint32_t v : {a, b}) {
-      auto l = loop_of.find(v);
-      if (l != loop_of.end()) bad[l->second] = true;
+      auto l = std::lower_bound(loop_of.begin(), loop_of.end(), std::make_pair(v, std::size_t{0}),
+                                [](const auto& x, const auto& y) { return x.first < y.first; });
+      if (l != loop_of.end() && l->first == v) bad[l->second] = true;
     }
   }
   return bad;
@@ -200,7 +244,7 @@ std::vector<bool> unclosed_loops(const std::vector<std::vector<std::uint32_t>>& 
 
 CapStats cap_split_openings(MeshSplit& split, int axis, double u0, double eps, std::uint8_t material) {
   TriMesh& mesh = split.mesh;
-  const std::size_t nv = mesh.vertex_count();
+  const std::size_t nv = mesh.vertex_count(), nf = mesh.triangle_count();
   if (axis < 0 || axis > 2)
     throw std::invalid_argument("cap_split_openings: axis must be 0, 1 or 2, got " + std::to_string(axis));
   if (split.params.size() != nv)
@@ -209,16 +253,22 @@ CapStats cap_split_openings(MeshSplit& split, int axis, double u0, double eps, s
   if (split.side.size() != nv)
     throw std::invalid_argument("cap_split_openings: side has " + std::to_string(split.side.size()) +
                                 " entries, mesh has " + std::to_string(nv) + " vertices");
-  for (const glm::uvec3& f : mesh.triangles)
-    if (f[0] >= nv || f[1] >= nv || f[2] >= nv)
-      throw std::invalid_argument("cap_split_openings: a triangle index is ≥ #V = " + std::to_string(nv));
-  if (!mesh.face_material.empty() && mesh.face_material.size() != mesh.triangle_count())
+  if (!mesh.face_material.empty() && mesh.face_material.size() != nf)
     throw std::invalid_argument("cap_split_openings: face_material has " + std::to_string(mesh.face_material.size()) +
-                                " entries, mesh has " + std::to_string(mesh.triangle_count()) + " triangles");
+                                " entries, mesh has " + std::to_string(nf) + " triangles");
+  for (std::uint32_t f : split.touched) {
+    if (f >= nf) throw std::invalid_argument("cap_split_openings: touched triangle " + std::to_string(f) + " ≥ #F");
+    const glm::uvec3& t = mesh.triangles[f];
+    if (t[0] >= nv || t[1] >= nv || t[2] >= nv)
+      throw std::invalid_argument("cap_split_openings: a triangle index is ≥ #V = " + std::to_string(nv));
+  }
+  for (std::uint32_t v : split.cut_vertices)
+    if (v >= nv) throw std::invalid_argument("cap_split_openings: cut vertex " + std::to_string(v) + " ≥ #V");
 
-  // Cut vertices: side s ∈ {−1, +1} and params[axis] = u0 + s·eps.
+  // Cut vertices of this split: side s ∈ {−1, +1} and params[axis] = u0 + s·eps. Only the triangles the split
+  // touched can hold two of them (every other triangle lies strictly on one side), so only those are scanned.
   std::vector<std::int8_t> cut(nv, 0);
-  for (std::size_t v = 0; v < nv; ++v) {
+  for (std::uint32_t v : split.cut_vertices) {
     const int s = split.side[v];
     if ((s == -1 || s == 1) && std::abs(split.params[v][axis] - (u0 + s * eps)) <= kCutTol)
       cut[v] = static_cast<std::int8_t>(s);
@@ -227,25 +277,40 @@ CapStats cap_split_openings(MeshSplit& split, int axis, double u0, double eps, s
   auto key = [](std::uint32_t a, std::uint32_t b) {
     return (static_cast<std::uint64_t>(std::min(a, b)) << 32) | std::max(a, b);
   };
-  std::unordered_map<std::uint64_t, int> uses;
-  for (const glm::uvec3& f : mesh.triangles)
+  std::vector<std::uint64_t> uses;  // one key per use, sorted: an edge used once appears once
+  uses.reserve(4 * split.cut_vertices.size());
+  for (std::uint32_t fi : split.touched) {
+    const glm::uvec3& f = mesh.triangles[fi];
     for (int e = 0; e < 3; ++e) {
       const std::uint32_t a = f[e], b = f[(e + 1) % 3];
-      if (cut[a] != 0 && cut[a] == cut[b]) ++uses[key(a, b)];
+      if (cut[a] != 0 && cut[a] == cut[b]) uses.push_back(key(a, b));
     }
+  }
+  std::sort(uses.begin(), uses.end());
+  auto used_once = [&](std::uint64_t k) {
+    const auto r = std::equal_range(uses.begin(), uses.end(), k);
+    return r.second - r.first == 1;
+  };
   // Boundary half-edges (used once), per side, in triangle order.
   std::vector<std::pair<std::uint32_t, std::uint32_t>> boundary[2];
-  for (const glm::uvec3& f : mesh.triangles)
+  for (std::uint32_t fi : split.touched) {
+    const glm::uvec3& f = mesh.triangles[fi];
     for (int e = 0; e < 3; ++e) {
       const std::uint32_t a = f[e], b = f[(e + 1) % 3];
-      if (cut[a] != 0 && cut[a] == cut[b] && uses[key(a, b)] == 1) boundary[cut[a] < 0 ? 0 : 1].emplace_back(a, b);
+      if (cut[a] != 0 && cut[a] == cut[b] && used_once(key(a, b))) boundary[cut[a] < 0 ? 0 : 1].emplace_back(a, b);
     }
+  }
 
-  CapStats stats;
-  std::vector<Tri> caps;
-  for (int k = 0; k < 2; ++k) {  // k = 0: minus side (faces +axis), k = 1: plus side (faces −axis)
-    const auto loops = chain_loops(boundary[k], stats.open_chains);
-    stats.loops += loops.size();
+  // The two sides are independent (their own loops, read-only params): triangulated concurrently, merged in order.
+  struct Side {
+    std::vector<Tri> tris;
+    std::size_t loops = 0, open_chains = 0, fan_loops = 0;
+  };
+  Side sides[2];
+  auto cap_side = [&](int k) {  // k = 0: minus side (faces +axis), k = 1: plus side (faces −axis)
+    Side& out = sides[k];
+    const auto loops = chain_loops(std::move(boundary[k]), out.open_chains);
+    out.loops = loops.size();
     auto oriented = [&](std::vector<Tri> tris) {
       if (k == 1)
         for (Tri& t : tris) std::swap(t[1], t[2]);
@@ -260,8 +325,8 @@ CapStats cap_split_openings(MeshSplit& split, int axis, double u0, double eps, s
       for (std::size_t i = 0; i < loops.size(); ++i)
         if (!bad[i]) good.push_back(loops[i]);
       tris = oriented(triangulate_loops(good, split.params, axis));
-      if (std::find(unclosed_loops(good, tris).begin(), unclosed_loops(good, tris).end(), true) !=
-          unclosed_loops(good, tris).end()) {
+      const std::vector<bool> still_bad = unclosed_loops(good, tris);
+      if (std::find(still_bad.begin(), still_bad.end(), true) != still_bad.end()) {
         tris.clear();
         std::fill(bad.begin(), bad.end(), true);
       }
@@ -269,10 +334,19 @@ CapStats cap_split_openings(MeshSplit& split, int axis, double u0, double eps, s
         if (bad[i]) {
           const auto& L = loops[i];
           for (std::size_t j = 1; j + 1 < L.size(); ++j) tris.push_back({L[0], L[j + 1], L[j]});
-          ++stats.fan_loops;
+          ++out.fan_loops;
         }
     }
-    caps.insert(caps.end(), tris.begin(), tris.end());
+    out.tris = std::move(tris);
+  };
+  tbb::parallel_invoke([&] { cap_side(0); }, [&] { cap_side(1); });
+  CapStats stats;
+  std::vector<Tri> caps;
+  for (const Side& side : sides) {
+    stats.loops += side.loops;
+    stats.open_chains += side.open_chains;
+    stats.fan_loops += side.fan_loops;
+    caps.insert(caps.end(), side.tris.begin(), side.tris.end());
   }
   if (caps.empty()) return stats;
   if (mesh.face_material.empty()) mesh.face_material.assign(mesh.triangles.size(), kMaterialSurface);

@@ -26,7 +26,8 @@ struct CapStats {
 
 // Appends cap triangles to split.mesh (no vertices are added; split.params / split.side unchanged) for the cut
 // params[·][axis] = u0 made by split_mesh_at_parameter(…, axis, u0, eps):
-//  * cut vertices are those with |params[v][axis] − (u0 ∓ eps)| ≤ 1e-9 on side ∓1;
+//  * cut vertices are the split's split.cut_vertices with |params[v][axis] − (u0 ∓ eps)| ≤ 1e-9 on side ∓1, and
+//    only the triangles it touched (split.touched) are scanned: O(cut) work, not O(#F), however large the mesh;
 //  * boundary edges (used by exactly one triangle) whose two ends are cut vertices of the same side are chained
 //    into loops per side; each side's loops are triangulated in the two other parameter coordinates (constrained
 //    Delaunay, CGAL; a face is inside when its nesting depth among the loops is odd, so holes stay open);
@@ -43,8 +44,8 @@ struct CapStats {
 // of a second triangulation and closed by a fan from their first vertex instead (counted in fan_loops), so a closed
 // mesh always gets closed sides (no vertex is ever added to the mesh).
 // Deterministic: the same input gives the same triangles in the same order. Throws std::invalid_argument: bad axis,
-// params.size() != #V, side.size() != #V, a triangle index ≥ #V, face_material neither empty nor #F; `split` is
-// then unchanged.
+// params.size() != #V, side.size() != #V, a touched triangle ≥ #F or with an index ≥ #V, a cut vertex ≥ #V,
+// face_material neither empty nor #F; `split` is then unchanged.
 CapStats cap_split_openings(MeshSplit& split, int axis, double u0, double eps,
                             std::uint8_t material = kMaterialInside);
 

@@ -19,6 +19,7 @@
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/deform/dffd.h"
@@ -60,11 +61,46 @@ struct DffdApplyStats {
 MeshSplit dffd_split(const DffdRig& rig, const TriMesh& rest_world, const glm::dvec3& offset,
                      DffdApplyStats* stats = nullptr);
 
+// The same into `out`, whose buffers are reused (assigned, not reallocated, once they are large enough): one copy of
+// the rest mesh per call, breaks outside the mesh's parameter range skipped, each cap built from the triangles its
+// split touched. On error `out` is unspecified.
+void dffd_split(const DffdRig& rig, const TriMesh& rest_world, const glm::dvec3& offset, MeshSplit& out,
+                DffdApplyStats* stats = nullptr);
+
+// Step 3 only: deforms `split` (from dffd_split) into `out`. Triangles, uvs and face_material are swapped out of
+// split.mesh (so both keep their buffers); positions / normals are evaluated into out's buffers in one parallel
+// pass (ffd_evaluate_identity_outside when rig.identity_outside). Sets stats->outside_vertices.
+// Throws std::invalid_argument: split.mesh and split.params disagree on #V, normals neither empty nor #V.
+void dffd_deform(const DffdRig& rig, MeshSplit& split, TriMesh& out, DffdApplyStats* stats = nullptr);
+
 // Evaluates the rig on `rest_world` (world rest mesh with normals, #V = rig.params.size()) at parameter offset
 // `offset`: the split (and capped) mesh, deformed. Output vertices: the #V input vertices first, then the split's
-// new ones; face_material kept (caps get kMaterialInside). Deterministic.
-// Throws std::invalid_argument: params.size() != #V, non-finite offset.
+// new ones; face_material kept (caps get kMaterialInside). Deterministic, and the same mesh bit for bit as
+// dffd_split followed by dffd_deform (it runs as a fresh DffdFrameEvaluator, see below).
+// Throws std::invalid_argument: params.size() != #V, non-finite offset, normals / uvs neither empty nor #V,
+// face_material neither empty nor #F, a triangle index ≥ #V.
 TriMesh dffd_apply(const DffdRig& rig, const TriMesh& rest_world, const glm::dvec3& offset,
                    DffdApplyStats* stats = nullptr);
+
+// Frame after frame evaluation of one rig (playback, recording, the bench): dffd_apply with its buffers kept
+// between calls, so a warm evaluator allocates nothing, and with the deformation of the input vertices (whose
+// parameters the split does not change, except on-plane ones, re-evaluated after) running on a worker while the
+// split and caps are built. The result is bit-identical to dffd_apply's (each vertex depends only on its own
+// parameter and rest normal). The returned mesh lives until the next evaluate(). Same errors as dffd_apply.
+// Not thread-safe: one per object and thread.
+class DffdFrameEvaluator {
+ public:
+  const TriMesh& evaluate(const DffdRig& rig, const TriMesh& rest_world, const glm::dvec3& offset,
+                          DffdApplyStats* stats = nullptr);
+  // The last evaluated mesh, moved out (the evaluator's output buffers start empty again).
+  TriMesh take() { return std::move(mesh_); }
+
+ private:
+  MeshSplit split_;
+  TriMesh mesh_;
+  std::vector<glm::dvec3> base_;  // #V: params + offset of the input vertices
+  std::vector<std::size_t> redo_;
+  std::vector<glm::dvec3> redo_params_, redo_normals_, redo_pos_, redo_out_normals_;
+};
 
 }  // namespace trispline::core

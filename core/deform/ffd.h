@@ -58,6 +58,24 @@ void ffd_evaluate(const TrivariateBSpline<glm::dvec3>& F, const Embedding& embed
                   const std::vector<glm::dvec3>& params, const std::vector<glm::dvec3>& rest_normals,
                   std::vector<glm::dvec3>& out_positions, std::vector<glm::dvec3>& out_normals);
 
+// ffd_evaluate for a lattice that spans only part of space (the global DFFD's box, seed §6.3.1): params inside
+// [0,1]³ map through F (normals through cof(J·A), as above); a param outside maps by the inverse embedding
+// E⁻¹(p) = A⁻¹(p − b) and keeps its rest normal, so the map is the identity there when F is the identity of the
+// box on its faces. One parallel pass, no gather / scatter. rest_normals #V × 3, or empty: then only positions are
+// written (out_normals left as is). Returns the number of params outside [0,1]³.
+// Throws std::invalid_argument: rest_normals neither empty nor #V.
+std::size_t ffd_evaluate_identity_outside(const TrivariateBSpline<glm::dvec3>& F, const Embedding& embedding,
+                                          const std::vector<glm::dvec3>& params,
+                                          const std::vector<glm::dvec3>& rest_normals,
+                                          std::vector<glm::dvec3>& out_positions,
+                                          std::vector<glm::dvec3>& out_normals);
+
+// The same on raw arrays of `count` points (a sub-range of a mesh, arrays already sized by the caller):
+// params / out_positions count × 3; rest_normals and out_normals count × 3, or both null (positions only).
+void ffd_evaluate_identity_outside(const TrivariateBSpline<glm::dvec3>& F, const Embedding& embedding,
+                                   std::size_t count, const glm::dvec3* params, const glm::dvec3* rest_normals,
+                                   glm::dvec3* out_positions, glm::dvec3* out_normals);
+
 // Deformed copy of `rest_world` (world rest mesh with normals) through `binding`: topology and uvs copied,
 // positions and normals evaluated. Throws std::invalid_argument if binding.params.size() != #V.
 TriMesh ffd_apply(const FfdBinding& binding, const TriMesh& rest_world);

@@ -90,4 +90,44 @@ void basis_derivatives(const KnotVector& kv, int span, double t, int n_deriv, do
     for (int j = 0; j <= p; ++j) ders[k * k1 + j] = 0.0;
 }
 
+void basis_first_derivatives(const KnotVector& kv, int span, double t, double* N, double* dN) {
+  const int p = kv.degree();
+  if (p == 0) {
+    N[0] = 1.0;
+    dN[0] = 0.0;
+    return;
+  }
+  const double* U = kv.knots().data();
+  // A2.2 up to degree p − 1 (N[0..p)), saved as `prev`, then its last step to degree p: the same operations as
+  // A2.3's table (its upper triangle is A2.2's rows, its lower triangle the knot differences `diff` of each step).
+  detail::Scratch<48> tmp(4 * static_cast<std::size_t>(p + 1));
+  double* left = tmp.data();
+  double* right = left + (p + 1);
+  double* prev = right + (p + 1);
+  double* diff = prev + (p + 1);
+  N[0] = 1.0;
+  for (int j = 1; j <= p; ++j) {
+    left[j] = t - U[span + 1 - j];
+    right[j] = U[span + j] - t;
+    if (j == p) std::copy(N, N + p, prev);
+    double saved = 0.0;
+    for (int r = 0; r < j; ++r) {
+      const double d = right[r + 1] + left[j - r];
+      if (j == p) diff[r] = d;
+      const double temp = N[r] / d;
+      N[r] = saved + right[r + 1] * temp;
+      saved = left[j - r] * temp;
+    }
+    N[j] = saved;
+  }
+  // A2.3, k = 1: a2[0] = 1/diff[r−1] (r ≥ 1), a2[1] = −1/diff[r] (r ≤ p − 1); times p.
+  const double f = p;
+  for (int r = 0; r <= p; ++r) {
+    double d = 0.0;
+    if (r >= 1) d = (1.0 / diff[r - 1]) * prev[r - 1];
+    if (r <= p - 1) d += (-1.0 / diff[r]) * prev[r];
+    dN[r] = d * f;
+  }
+}
+
 }  // namespace trispline::core

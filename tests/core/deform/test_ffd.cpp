@@ -3,7 +3,10 @@
 #include <tbb/global_control.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <cstring>
+#include <glm/gtx/string_cast.hpp>
+#include <random>
 
 #include "core/deform/ffd.h"
 #include "core/mesh/mesh_io.h"
@@ -135,4 +138,52 @@ TEST(Ffd, ApplyDeformsMeshKeepsTopologyAndOrientation) {
   EXPECT_EQ(ffd_apply(b, no_normals).normals.size(), sphere.positions.size());
   b.params.pop_back();
   EXPECT_THROW(ffd_apply(b, sphere), std::invalid_argument);
+}
+
+// ffd_evaluate picks a fixed-order evaluator (one order ≤ 4 on every axis, none periodic) with a span table instead
+// of KnotVector::find_span, or the generic one. Both must agree with TrivariateBSpline::eval / eval_first at random
+// points and exactly on every knot, including C⁻¹ knots (multiplicity = order): a wrong span there lands on the
+// other side of a jump, far outside the tolerance.
+TEST(Ffd, EveryEvaluatorPathMatchesTheSplineOnAndBetweenKnots) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  auto knots = [&](int order, int controls) {  // clamped, interior knots with multiplicities up to `order`
+    std::vector<double> interior;
+    while (static_cast<int>(interior.size()) < controls - order) {
+      const double v = 0.05 + 0.9 * unit(rng);
+      const int m = std::min<int>(1 + static_cast<int>(unit(rng) * order), controls - order - int(interior.size()));
+      for (int i = 0; i < m; ++i) interior.push_back(v);
+    }
+    std::sort(interior.begin(), interior.end());
+    std::vector<double> k(order, 0.0);
+    k.insert(k.end(), interior.begin(), interior.end());
+    k.insert(k.end(), order, 1.0);
+    return KnotVector(order, k);
+  };
+  for (const glm::ivec3 orders : {glm::ivec3(2), glm::ivec3(3), glm::ivec3(4), glm::ivec3(3, 4, 2), glm::ivec3(5)}) {
+    const KnotVector ku = knots(orders.x, 9), kv = knots(orders.y, 8), kw = knots(orders.z, 7);
+    std::vector<glm::dvec3> cps(9 * 8 * 7);
+    for (glm::dvec3& c : cps) c = {unit(rng), unit(rng), unit(rng)};
+    const TrivariateBSpline<glm::dvec3> F(ku, kv, kw, cps);
+    std::vector<glm::dvec3> params;
+    for (int i = 0; i < 300; ++i) params.push_back({unit(rng), unit(rng), unit(rng)});
+    for (double u : ku.knots()) params.push_back({u, unit(rng), unit(rng)});
+    for (double v : kv.knots()) params.push_back({unit(rng), v, unit(rng)});
+    for (double w : kw.knots()) params.push_back({unit(rng), unit(rng), w});
+    params.push_back({-0.5, 1.5, 0.5});  // clamped to the domain
+    std::vector<glm::dvec3> normals(params.size(), glm::normalize(glm::dvec3(0.3, -0.5, 0.8))), p, n, q;
+    Embedding e;
+    e.linear = glm::dmat3(1.0);
+    ffd_evaluate(F, e, params, normals, p, n);
+    ffd_evaluate(F, params, q);
+    for (std::size_t i = 0; i < params.size(); ++i) {
+      const auto d = F.eval_first(params[i]);
+      EXPECT_LT(glm::length(p[i] - d.value), 1e-12) << glm::to_string(orders) << " at " << glm::to_string(params[i]);
+      EXPECT_EQ(p[i], q[i]);
+      const glm::dvec3 m = glm::dmat3(glm::cross(d.d[1], d.d[2]), glm::cross(d.d[2], d.d[0]),
+                                      glm::cross(d.d[0], d.d[1])) * normals[i];
+      if (glm::length(m) > 1e-6)
+        EXPECT_LT(glm::length(n[i] - glm::normalize(m)), 1e-9) << glm::to_string(orders) << " at " << glm::to_string(params[i]);
+    }
+  }
 }

@@ -44,6 +44,26 @@ TEST(Basis, KnownCubicValuesOnUniformKnots) {
   EXPECT_NEAR(N[3], 1.0 / 48, 1e-15);
 }
 
+// basis_first_derivatives is A2.3 restricted to k = 1 with the same arithmetic: bit-identical to
+// basis_derivatives(·, 1, ·) (values and first derivatives), on random knots with repeated (up to C⁻¹) knots.
+TEST(Basis, FirstDerivativesBitIdenticalToDersBasisFuns) {
+  test::Rng rng(5);
+  for (int order = 1; order <= 6; ++order)
+    for (int trial = 0; trial < 4; ++trial) {
+      const KnotVector kv = test::random_knots(rng, order, order + 5, false, order);
+      std::vector<double> N(order), dN(order), D(2 * order);
+      for (double t : test::sample_params(rng, kv, 40)) {
+        const int s = kv.find_span(t);
+        basis_first_derivatives(kv, s, t, N.data(), dN.data());
+        basis_derivatives(kv, s, t, 1, D.data());
+        for (int r = 0; r < order; ++r) {
+          EXPECT_EQ(N[r], D[r]) << "order " << order << " t " << t << " r " << r;
+          EXPECT_EQ(dN[r], D[order + r]) << "order " << order << " t " << t << " r " << r;
+        }
+      }
+    }
+}
+
 TEST(Basis, DerivativeRowZeroEqualsBasisFunctions) {
   test::Rng rng(2);
   for (int order = 1; order <= 6; ++order) {
