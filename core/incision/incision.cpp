@@ -36,36 +36,39 @@ IncisionResult incise(const TriMesh& surface, const IncisionFrame& frame, const 
   const LocalLattice L = incision_detail::build_local_lattice(frame, params);
   const std::size_t V = surface.positions.size();
   const bool has_n = surface.normals.size() == V && V > 0, has_uv = surface.uvs.size() == V && V > 0;
-  IncisionResult res{surface, L.split, 0, 0, 0, 0, 0, 0, L.bottom_w, L.controls, {}};
+  // The output mesh: the input's vertex attributes copied, its triangles built below (step 3) from one copy.
+  IncisionResult res{TriMesh{}, L.split, 0, 0, 0, 0, 0, 0, L.bottom_w, L.controls, {}};
+  res.mesh.positions = surface.positions;
+  res.mesh.normals = surface.normals;
+  res.mesh.uvs = surface.uvs;
   for (std::size_t c = 0; c < res.lattice.control_points().size(); ++c)
     res.lattice.control_points()[c] += L.offset.control_points()[c];
 
-  // 1. Cull to the lattice's bounding box (the range lies in the convex hull of the control points) grown by the
-  // longest edge (so both ends of every edge that can cross the cut sheet get parameters), then invert.
-  double longest = 0.0;
-  for (const glm::uvec3& t : surface.triangles)
-    for (int e = 0; e < 3; ++e) {
-      const glm::dvec3 d = surface.positions[t[e]] - surface.positions[t[(e + 1) % 3]];
-      longest = std::max(longest, glm::dot(d, d));
-    }
-  longest = std::sqrt(longest);
+  // 1. Cull: the vertices of every triangle whose bounding box meets the lattice's (the range lies in the convex hull
+  // of the control points), so both ends of every edge that can cross the cut sheet get parameters; then invert.
   Aabb box;
   for (const glm::dvec3& c : L.base.control_points()) box.extend(c);
-  const glm::dvec3 pad(1e-9 * (params.width + L.half_height) + longest);
-  std::vector<std::uint32_t> cand;
-  for (std::size_t v = 0; v < V; ++v) {
-    const glm::dvec3& x = surface.positions[v];
-    if (x.x >= box.lo.x - pad.x && x.x <= box.hi.x + pad.x && x.y >= box.lo.y - pad.y && x.y <= box.hi.y + pad.y &&
-        x.z >= box.lo.z - pad.z && x.z <= box.hi.z + pad.z)
-      cand.push_back(static_cast<std::uint32_t>(v));
+  const glm::dvec3 pad(1e-9 * (params.width + L.half_height));
+  box.lo -= pad;
+  box.hi += pad;
+  std::vector<std::uint8_t> has(V, 0);
+  for (const glm::uvec3& t : surface.triangles) {
+    const glm::dvec3 &a = surface.positions[t.x], &b = surface.positions[t.y], &c = surface.positions[t.z];
+    const glm::dvec3 lo = glm::min(a, glm::min(b, c)), hi = glm::max(a, glm::max(b, c));
+    if (lo.x <= box.hi.x && hi.x >= box.lo.x && lo.y <= box.hi.y && hi.y >= box.lo.y && lo.z <= box.hi.z &&
+        hi.z >= box.lo.z)
+      has[t.x] = has[t.y] = has[t.z] = 1;
   }
+  std::vector<std::uint32_t> cand;
+  for (std::size_t v = 0; v < V; ++v)
+    if (has[v]) cand.push_back(static_cast<std::uint32_t>(v));
   // prm: parameters (Newton inside the lattice, the frame's extended guess outside); has: prm is set.
   std::vector<glm::dvec3> prm(V, glm::dvec3(-1.0));
-  std::vector<std::uint8_t> has(V, 0), emb(V, 0), fb(V, 0);
+  std::vector<std::uint8_t> emb(V, 0), fb(V, 0);
   tbb::parallel_for(std::size_t(0), cand.size(), [&](std::size_t c) {
     const std::uint32_t v = cand[c];
     const incision_detail::Located q = incision_detail::invert_point(L, surface.positions[v]);
-    prm[v] = q.param, has[v] = 1, emb[v] = q.inside, fb[v] = q.fallback;
+    prm[v] = q.param, emb[v] = q.inside, fb[v] = q.fallback;
   });
   for (std::uint32_t v : cand) res.embedded_vertices += emb[v], res.newton_fallbacks += fb[v];
   auto side = [&](std::uint32_t v) { return prm[v].x < 0.5 ? 0 : 1; };  // 0 = minus, 1 = plus
@@ -129,10 +132,12 @@ IncisionResult incise(const TriMesh& surface, const IncisionFrame& frame, const 
     colrefs.push_back({true, t, 0});
     return static_cast<int>(colrefs.size()) - 1;
   };
+  std::vector<std::uint32_t> near_faces;  // input faces with a located vertex (the only ones a moved vertex can be in)
   for (std::size_t f = 0; f < F.size(); ++f) {
     const std::uint8_t mat = surface.material(f);
     const std::uint32_t t3[3] = {F[f].x, F[f].y, F[f].z};
     if (!(has[t3[0]] || has[t3[1]] || has[t3[2]])) continue;
+    near_faces.push_back(static_cast<std::uint32_t>(f));
     int cut[3] = {-1, -1, -1};  // crossing on edge (t3[e], t3[e+1])
     bool cr[3];
     glm::dvec3 pc[3];
@@ -212,6 +217,7 @@ IncisionResult incise(const TriMesh& surface, const IncisionFrame& frame, const 
   }
   res.cut_edges = crossings.size();
   res.tips = tips.size();
+  const std::size_t n_input_faces = F.size();
   if (crossings.empty()) {  // nothing to cut: the surface unchanged
     res.mesh = surface;
     res.split_faces = 0;
@@ -314,29 +320,39 @@ IncisionResult incise(const TriMesh& surface, const IncisionFrame& frame, const 
     out.face_material.clear();
 
   // 6. Normals of moved and new vertices: area-weighted face normals, surface faces first (rims stay smooth); where
-  // they cancel (< 1e-6 of the summed face areas) the vertex keeps its interpolated / initial normal.
+  // they cancel (< 1e-6 of the summed face areas) the vertex keeps its interpolated / initial normal. Only faces
+  // near the cut (near_faces, then every appended face) can hold a moved vertex; sums are kept per moved vertex.
   if (has_n) {
     const std::size_t NV = out.positions.size();
-    std::vector<glm::dvec3> ns(NV, glm::dvec3(0.0)), ni(NV, glm::dvec3(0.0));
-    std::vector<double> as(NV, 0.0), ai(NV, 0.0);
-    for (std::size_t f = 0; f < out.triangles.size(); ++f) {
+    std::vector<std::int32_t> slot(NV, -1);
+    std::vector<std::uint32_t> moved_list;
+    for (std::size_t v = 0; v < NV; ++v)
+      if (res.moved[v]) slot[v] = static_cast<std::int32_t>(moved_list.size()), moved_list.push_back(v);
+    const std::size_t M = moved_list.size();
+    std::vector<glm::dvec3> ns(M, glm::dvec3(0.0)), ni(M, glm::dvec3(0.0));
+    std::vector<double> as(M, 0.0), ai(M, 0.0);
+    auto accumulate = [&](std::size_t f) {
       const glm::uvec3 t = out.triangles[f];
-      if (!(res.moved[t.x] || res.moved[t.y] || res.moved[t.z])) continue;
+      if (!(res.moved[t.x] || res.moved[t.y] || res.moved[t.z])) return;
       const glm::dvec3 fn =
           glm::cross(out.positions[t.y] - out.positions[t.x], out.positions[t.z] - out.positions[t.x]);
       const bool surf = out.material(f) == kMaterialSurface;
       std::vector<glm::dvec3>& acc = surf ? ns : ni;
       std::vector<double>& area = surf ? as : ai;
       const double a = glm::length(fn);
-      acc[t.x] += fn, acc[t.y] += fn, acc[t.z] += fn;
-      area[t.x] += a, area[t.y] += a, area[t.z] += a;
-    }
-    for (std::size_t v = 0; v < NV; ++v) {
-      if (!res.moved[v]) continue;
-      const bool surf = as[v] > 0.0;
-      const glm::dvec3 s = surf ? ns[v] : ni[v];
-      const double len = glm::length(s);
-      if (len > 1e-6 * (surf ? as[v] : ai[v])) out.normals[v] = s / len;
+      for (int k = 0; k < 3; ++k) {
+        const std::int32_t m = slot[t[k]];
+        if (m >= 0) acc[m] += fn, area[m] += a;
+      }
+    };
+    for (std::uint32_t f : near_faces) accumulate(f);  // ascending, then the appended faces: the input face order
+    for (std::size_t f = n_input_faces; f < out.triangles.size(); ++f) accumulate(f);
+    for (std::size_t m = 0; m < M; ++m) {
+      const std::uint32_t v = moved_list[m];
+      const bool surf = as[m] > 0.0;
+      const glm::dvec3 sum = surf ? ns[m] : ni[m];
+      const double len = glm::length(sum);
+      if (len > 1e-6 * (surf ? as[m] : ai[m])) out.normals[v] = sum / len;
     }
   }
   return res;

@@ -43,8 +43,17 @@ RayCaster stroke_ray_caster(const TriMesh& surface, const Camera& camera, const 
     chunks.push_back(c);
   }
   const double margin = 2.0;  // pixels: float rounding in the ray tracer, pixel-centre conventions
+  // The kept triangles over only the vertices they use (hits give positions and normals, never input indices).
   TriMesh sub;
-  sub.positions = surface.positions;
+  std::vector<std::uint32_t> remap;
+  auto use = [&](std::uint32_t v) {
+    if (remap.empty()) remap.assign(V, ~0u);
+    if (remap[v] == ~0u) {
+      remap[v] = static_cast<std::uint32_t>(sub.positions.size());
+      sub.positions.push_back(surface.positions[v]);
+    }
+    return remap[v];
+  };
   for (const glm::uvec3& t : surface.triangles) {
     bool keep = behind[t.x] || behind[t.y] || behind[t.z];
     if (!keep) {
@@ -57,7 +66,7 @@ RayCaster stroke_ray_caster(const TriMesh& surface, const Camera& camera, const 
         if (keep) break;
       }
     }
-    if (keep) sub.triangles.push_back(t);
+    if (keep) sub.triangles.emplace_back(use(t.x), use(t.y), use(t.z));
   }
   RayCaster rc(quality);
   rc.add_mesh(sub);

@@ -57,6 +57,11 @@ void SceneObject::refresh() {
     world_mesh = std::move(posed.world_mesh);
     return;
   }
+  if (!dffd && !ffd && transform.is_identity()) {  // world = rest exactly (transformed() copies): share it
+    if (!rest_mesh) throw std::invalid_argument("object '" + name + "' has no mesh");
+    world_mesh = rest_mesh;
+    return;
+  }
   TriMesh rest = world_rest_mesh();
   if (dffd) {
     if (ffd) throw std::invalid_argument("object '" + name + "' has both an FFD and a DFFD binding");
