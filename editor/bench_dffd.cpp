@@ -113,8 +113,9 @@ int run_bench_dffd(const BenchDffdOptions& options, std::ostream& out, std::ostr
   for (int f = 0; f < frames; ++f) {
     const double frame = tl.frame_start + (frames == 1 ? 0.0 : double(f) * (tl.frame_end - tl.frame_start) / (frames - 1));
     const glm::dvec3 offset = object->offset_at(tl.time_of_frame(frame));
-    // Warm per-frame path (what playback runs: DffdFrameEvaluator, buffers kept between frames), split with caps
-    // and deform timed apart on the same buffers, and the cold dffd_apply (fresh buffers every call).
+    // Split with caps and deform timed apart (dffd_split, dffd_deform on kept buffers); the warm per-frame path
+    // (DffdFrameEvaluator: buffers kept, input vertices deformed while the split runs); and the cold dffd_apply
+    // (fresh buffers every call: what SceneObject::refresh runs for every played or recorded frame).
     std::vector<double> split_ms, deform_ms, total_ms, cold_ms;
     core::DffdApplyStats st;
     std::size_t vertices = 0;

@@ -509,6 +509,25 @@ void Renderer::draw(const core::Scene& scene, const core::Camera& camera, const 
 
   // 5c. DFFD overlays: discontinuity planes and fold-over points (see ViewOptions).
   d.draw_dffd(scene, options, view_proj);
+  if (options.incision_lattice) {  // the incision preview's cut lattice and its break at u = 1/2
+    const core::TrivariateBSpline<glm::dvec3>& L = *options.incision_lattice;
+    std::vector<OverlayVertex> net_lines, net_points, plane_lines, minus_points, plus_points;
+    append_lattice(L, {0.45f, 0.78f, 1.0f, 0.6f}, {0.92f, 0.96f, 1.0f, 0.8f}, net_lines, net_points);
+    d.draw_xray(net_lines, net_points, view_proj, 0.7f * options.lattice_point_px);
+    const std::vector<double>& U = L.knots(0).knots();
+    const auto first = std::find(U.begin(), U.end(), 0.5);
+    if (options.show_discontinuities && first != U.end() && L.knots(0).multiplicity(0.5) == L.knots(0).order()) {
+      core::Discontinuity cut;
+      cut.axis = 0;
+      cut.u0 = 0.5;
+      cut.plus_plane = static_cast<int>(first - U.begin());
+      cut.minus_plane = cut.plus_plane - 1;
+      append_discontinuity_planes(L, {cut}, options.dffd_minus_color, options.dffd_plus_color, plane_lines,
+                                  minus_points, plus_points);
+      d.draw_xray(plane_lines, minus_points, view_proj, 1.7f * options.lattice_point_px);
+      d.draw_xray({}, plus_points, view_proj, options.lattice_point_px);
+    }
+  }
 
   // 6. The incision tool's generator curve G(v) (projected; split where it passes behind the eye) and the sketched
   // stroke: thick screen-space polylines on top of everything.

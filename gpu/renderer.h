@@ -88,6 +88,10 @@ struct ViewOptions {
   float incision_curve_px = 3.0f;
   std::shared_ptr<const core::TriMesh> incision_preview_mesh;
   std::string incision_preview_object;
+  // The preview's cut lattice (the opened local lattice of seed Eq. 6.2 with its C⁻¹ break at u = 1/2, world
+  // units): its net drawn like a DFFD lattice, its F⁻ / F⁺ planes in dffd_minus_color / dffd_plus_color when
+  // show_discontinuities is on. Null: none.
+  std::shared_ptr<const core::TrivariateBSpline<glm::dvec3>> incision_lattice;
 };
 
 // What the last draw() did (for tests, the timing overlay and replay's report).

@@ -9,6 +9,7 @@ namespace trispline::ui {
 gpu::ViewOptions view_options(const ViewToggles& t) {
   gpu::ViewOptions o;
   o.show_lattice = t.show_lattice;
+  o.show_discontinuities = t.show_discontinuities;
   o.show_contact_surface = t.show_contact_surface;
   o.show_grid = t.show_grid;
   o.wireframe = t.wireframe;
@@ -77,6 +78,11 @@ MenuAction draw_main_menu(ViewToggles& view, const MenuState& state) {
   }
   if (ImGui::BeginMenu("View")) {
     ImGui::MenuItem("Lattice", nullptr, &view.show_lattice);
+    ImGui::MenuItem("Discontinuities", nullptr, &view.show_discontinuities);
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("C-1 breaks of discontinuous FFD lattices and of the incision preview's cut lattice:\n"
+                        "the F- plane's control points in red-orange, F+ in cyan (coincident until opened),\n"
+                        "for every DFFD object with Lattice on, else for the selected one.");
     ImGui::MenuItem("Contact surface", nullptr, &view.show_contact_surface);
     ImGui::MenuItem("Grid", nullptr, &view.show_grid);
     ImGui::MenuItem("Wireframe", nullptr, &view.wireframe);

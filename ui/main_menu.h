@@ -11,6 +11,7 @@ namespace trispline::ui {
 
 struct ViewToggles {
   bool show_lattice = false;
+  bool show_discontinuities = true;  // DFFD / incision F⁻ / F⁺ planes and fold points (seed §6.3, §6.4)
   bool show_contact_surface = false;
   bool show_grid = true;
   bool wireframe = false;

@@ -68,6 +68,7 @@ void IncisionTool::deactivate(ToolContext&) {
 void IncisionTool::clear_preview() {
   curve_.clear();
   preview_mesh_.reset();
+  preview_lattice_.reset();
   preview_error_.clear();
   previewed_points_ = 0;
 }
@@ -144,12 +145,14 @@ void IncisionTool::update_preview(const ToolContext& ctx) {
   if (!o || !o->visible || ctx.hidden.count(o->name)) {
     curve_.clear();
     preview_mesh_.reset();
+    preview_lattice_.reset();
     preview_error_ = "no visible object to cut";
     return;
   }
   if (o->ffd || o->dffd || o->clip) {  // incision.draw rejects them: show the stroke only
     curve_.clear();
     preview_mesh_.reset();
+    preview_lattice_.reset();
     preview_error_ = o->name + " is deformed by a lattice or a clip and cannot be cut";
     return;
   }
@@ -159,6 +162,7 @@ void IncisionTool::update_preview(const ToolContext& ctx) {
     if (!frame) {
       curve_.clear();
       preview_mesh_.reset();
+      preview_lattice_.reset();
       preview_error_ = "the stroke is not on " + o->name + " yet";
       return;
     }
@@ -172,10 +176,13 @@ void IncisionTool::update_preview(const ToolContext& ctx) {
     ip.opening = rp.opening;
     ip.walls = rp.walls;
     ip.order = rp.order;
-    preview_mesh_ = std::make_shared<const core::TriMesh>(core::incise(*o->world_mesh, *frame, ip).mesh);
+    core::IncisionResult cut = core::incise(*o->world_mesh, *frame, ip);
+    preview_mesh_ = std::make_shared<const core::TriMesh>(std::move(cut.mesh));
+    preview_lattice_ = std::make_shared<const core::TrivariateBSpline<glm::dvec3>>(std::move(cut.lattice));
     preview_error_.clear();
   } catch (const std::exception& e) {  // not yet across the surface, or parameters the command will reject
     preview_mesh_.reset();
+    preview_lattice_.reset();
     preview_error_ = e.what();
   }
 }
@@ -278,6 +285,7 @@ void IncisionTool::decorate(gpu::ViewOptions& options) const {
     options.incision_preview_mesh = preview_mesh_;
     options.incision_preview_object = target_;
   }
+  options.incision_lattice = preview_lattice_;
 }
 
 }  // namespace trispline::editor

@@ -67,6 +67,8 @@ class IncisionTool : public Tool {
   const std::vector<glm::dvec2>& stroke() const { return stroke_; }      // pixels so far
   const std::vector<glm::dvec3>& preview_curve() const { return curve_; }  // G(v) sampled, world units
   const std::shared_ptr<const core::TriMesh>& preview_mesh() const { return preview_mesh_; }  // the cut surface
+  // The preview's opened cut lattice (seed Eq. 6.2, C⁻¹ at u = 1/2), world units; null without a preview.
+  const std::shared_ptr<const core::TrivariateBSpline<glm::dvec3>>& preview_lattice() const { return preview_lattice_; }
   const std::string& preview_error() const { return preview_error_; }  // why the last preview showed no cut
 
  private:
@@ -85,6 +87,7 @@ class IncisionTool : public Tool {
 
   std::vector<glm::dvec3> curve_;
   std::shared_ptr<const core::TriMesh> preview_mesh_;
+  std::shared_ptr<const core::TrivariateBSpline<glm::dvec3>> preview_lattice_;
   std::string preview_error_;
   std::size_t previewed_points_ = 0;
   std::chrono::steady_clock::time_point last_preview_{};

@@ -148,6 +148,11 @@ TEST_F(IncisionTool, PreviewWhileDraggingOnTheSurface) {
   EXPECT_EQ(vo.incision_curve, tool.preview_curve());
   EXPECT_EQ(vo.incision_preview_mesh, tool.preview_mesh());
   EXPECT_EQ(vo.incision_preview_object, "s");
+  // The cut lattice is shown with the preview: order knots at u = 1/2 (the C⁻¹ break), around the curve.
+  ASSERT_TRUE(tool.preview_lattice());
+  EXPECT_EQ(vo.incision_lattice, tool.preview_lattice());
+  const core::KnotVector& ku = tool.preview_lattice()->knots(0);
+  EXPECT_EQ(ku.multiplicity(0.5), ku.order());
   EXPECT_EQ(s.history().applied(), 1u) << "nothing is executed before mouse-up";
 
   release();
@@ -156,6 +161,7 @@ TEST_F(IncisionTool, PreviewWhileDraggingOnTheSurface) {
   EXPECT_TRUE(after.stroke_px.empty());
   EXPECT_TRUE(after.incision_curve.empty());
   EXPECT_FALSE(after.incision_preview_mesh);
+  EXPECT_FALSE(after.incision_lattice);
 }
 
 TEST_F(IncisionTool, DragIssuesOneUndoableIncisionDraw) {

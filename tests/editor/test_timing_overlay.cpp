@@ -62,6 +62,13 @@ TEST(TimingOverlay, F7TogglesItAndClashesWithNoOtherShortcut) {
   EXPECT_TRUE(view.timing_overlay);
 }
 
+TEST(TimingOverlay, DiscontinuityToggleDefaultsOnAndReachesTheRenderer) {
+  ui::ViewToggles view;
+  EXPECT_TRUE(ui::view_options(view).show_discontinuities);
+  view.show_discontinuities = false;
+  EXPECT_FALSE(ui::view_options(view).show_discontinuities);
+}
+
 TEST(TimingOverlay, FfdBackendSettingDefaultsToGlslComputeAndReachesTheRenderer) {
   ui::ViewToggles view;
   EXPECT_EQ(view.ffd_backend, core::FfdBackend::glsl_compute);

@@ -296,6 +296,29 @@ TEST_F(GlTest, IncisionPreviewMeshReplacesTheObjectsMesh) {
   const Rgba c = pixel(img, 160, int(mid.x), int(mid.y));
   EXPECT_TRUE(c.g > 200 && c.r > 70 && c.r < 140 && c.b < 110) << c.r << " " << c.g << " " << c.b;
   EXPECT_EQ(r.last_stats().cached_meshes, 1);
+
+  // The preview's cut lattice: its F⁻ / F⁺ planes (the C⁻¹ break at u = 1/2) where their points project; off
+  // with show_discontinuities, and nothing without a lattice.
+  opt = ViewOptions{};
+  opt.show_grid = false;
+  const auto none = render(r, scene, cam, opt);
+  core::TrivariateBSpline<glm::dvec3> cut(core::KnotVector::clamped_uniform(3, 4), core::KnotVector::clamped_uniform(2, 2),
+                                          core::KnotVector::clamped_uniform(2, 2), std::vector<glm::dvec3>(16));
+  for (int k = 0; k < 2; ++k)
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i < 4; ++i) cut.control_point(i, j, k) = {0.3 + 0.2 * i, -0.3 + 0.6 * j, -0.3 + 0.6 * k};
+  const core::Discontinuity d = core::insert_discontinuity(cut, 0, 0.5);  // order (3) knots at u = 1/2
+  opt.incision_lattice = std::make_shared<const core::TrivariateBSpline<glm::dvec3>>(cut);
+  img = render(r, scene, cam, opt);
+  const long red_ball = count_if(none, 160, 120, minus_coloured);  // the red ball's highlights match too
+  EXPECT_GT(count_if(img, 160, 120, minus_coloured), red_ball + 10);
+  EXPECT_GT(count_if(img, 160, 120, plus_coloured), count_if(none, 160, 120, plus_coloured) + 10);
+  const glm::dvec3 pp = cam.project(cut.control_point(d.plus_plane, 1, 1));
+  EXPECT_TRUE(plus_coloured(pixel(img, 160, int(pp.x), int(pp.y))));
+  opt.show_discontinuities = false;
+  img = render(r, scene, cam, opt);
+  EXPECT_LE(count_if(img, 160, 120, minus_coloured), red_ball);
+  EXPECT_NE(img, none) << "the lattice net is still drawn";
   EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
 }
 
