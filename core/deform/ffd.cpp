@@ -216,15 +216,7 @@ struct FixedAxis {
         }
         N[j] = saved;
       }
-      if constexpr (kDerivative) {
-        const double f = p;
-        for (int r = 0; r <= p; ++r) {
-          double d = 0.0;
-          if (r >= 1) d = (1.0 / diff[r - 1]) * prev[r - 1];
-          if (r <= p - 1) d += (-1.0 / diff[r]) * prev[r];
-          dN[r] = d * f;
-        }
-      }
+      if constexpr (kDerivative) detail::first_derivative_row(p, prev, diff, dN);
     }
   }
 };

@@ -121,13 +121,7 @@ void basis_first_derivatives(const KnotVector& kv, int span, double t, double* N
     N[j] = saved;
   }
   // A2.3, k = 1: a2[0] = 1/diff[r−1] (r ≥ 1), a2[1] = −1/diff[r] (r ≤ p − 1); times p.
-  const double f = p;
-  for (int r = 0; r <= p; ++r) {
-    double d = 0.0;
-    if (r >= 1) d = (1.0 / diff[r - 1]) * prev[r - 1];
-    if (r <= p - 1) d += (-1.0 / diff[r]) * prev[r];
-    dN[r] = d * f;
-  }
+  detail::first_derivative_row(p, prev, diff, dN);
 }
 
 }  // namespace trispline::core

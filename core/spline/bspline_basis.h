@@ -20,4 +20,18 @@ void basis_derivatives(const KnotVector& kv, int span, double t, int n_deriv, do
 // are bit-identical to basis_derivatives(kv, span, t, 1, ·), without its (p+1)² table.
 void basis_first_derivatives(const KnotVector& kv, int span, double t, double* N, double* dN);
 
+namespace detail {
+// A2.3's k = 1 row (shared with the fixed-order FFD evaluator so both stay bit-identical): dN[r] for r in [0, p] from
+// the degree-(p − 1) values prev[0..p) and the last Cox–de Boor step's knot differences diff[0..p), p ≥ 1.
+inline void first_derivative_row(int p, const double* prev, const double* diff, double* dN) {
+  const double f = p;
+  for (int r = 0; r <= p; ++r) {
+    double d = 0.0;
+    if (r >= 1) d = (1.0 / diff[r - 1]) * prev[r - 1];
+    if (r <= p - 1) d += (-1.0 / diff[r]) * prev[r];
+    dN[r] = d * f;
+  }
+}
+}  // namespace detail
+
 }  // namespace trispline::core
