@@ -1,0 +1,87 @@
+// trispline::core DDM map — deformation displacement maps on the CPU (seed ch. 5): base surfaces as charts, tile
+// layouts, and the reference evaluation T(u,v,w) = S(u,v) + n(u,v)·w (seed Eq. 5.1–5.2) with exact normals. The
+// GPU path (seed §5.3.2) samples the same charts from P/N textures; this one is what tests and exports compare to.
+//
+// Conventions: chart parameters (u, v) ∈ [0,1]² (clamped); world units for S and height; tile space as ddm_tile.h.
+#pragma once
+
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/ddm/ddm_tile.h"
+#include "core/mesh/tri_mesh.h"
+#include "core/spline/bspline_surface.h"
+
+namespace trispline::core {
+
+// One base-surface point with what T and its Jacobian need: S, ∂S/∂u, ∂S/∂v (world units per parameter unit), the
+// unit normal n = S_u × S_v / |S_u × S_v| and its partials ∂n/∂u, ∂n/∂v (Weingarten: the tangential part of
+// ∂(S_u × S_v)/∂· divided by |S_u × S_v|).
+struct DdmSurfacePoint {
+  glm::dvec3 p{0.0}, du{0.0}, dv{0.0}, n{0.0}, dn_du{0.0}, dn_dv{0.0};
+};
+
+// A base surface made of charts, each parametrised over [0,1]² (seed §5.3.1).
+class DdmBase {
+ public:
+  virtual ~DdmBase() = default;
+  virtual int chart_count() const = 0;
+  // (u, v) clamped to [0,1]². Throws std::out_of_range for chart ∉ [0, chart_count()).
+  virtual DdmSurfacePoint eval(int chart, double u, double v) const = 0;
+};
+
+// B-spline / Bézier patches as charts (seed §5.3.1 (a)): chart c is patches[c] with its domain mapped onto [0,1]².
+// Where S_u × S_v vanishes (a collapsed patch edge, the teapot's bottom centre) n is taken a little inside the patch.
+class DdmSplineBase final : public DdmBase {
+ public:
+  // Throws std::invalid_argument: no patches.
+  explicit DdmSplineBase(std::vector<BSplineSurface<glm::dvec3>> patches);
+  int chart_count() const override { return static_cast<int>(patches_.size()); }
+  DdmSurfacePoint eval(int chart, double u, double v) const override;
+  const BSplineSurface<glm::dvec3>& patch(int chart) const { return patches_.at(static_cast<std::size_t>(chart)); }
+
+ private:
+  std::vector<BSplineSurface<glm::dvec3>> patches_;
+};
+
+// Newell's teapot body (patches 4–11 of the 32: the upper and lower body, 8 bicubic Bézier patches) in the frame of
+// make_primitive("teapot") (y up), du × dv pointing out of the teapot.
+std::vector<BSplineSurface<glm::dvec3>> teapot_body_patches();
+
+// One tile instance (seed §5.3.2: per-instance offsets): the cell [origin, origin + size] of chart `chart` that the
+// tile's [0,1]² fills.
+struct DdmInstance {
+  int chart = 0;
+  glm::dvec2 origin{0.0};
+  glm::dvec2 size{1.0};
+  bool operator==(const DdmInstance&) const = default;
+};
+
+enum class DdmLayout { rect, hex, brick };
+const char* ddm_layout_name(DdmLayout l);  // "rect" | "hex" | "brick"
+
+// The cells of an n × m layout on every chart, chart by chart, row by row (v), then along u:
+//   rect   n × m cells of size (1/n, 1/m);
+//   brick  m rows of height 1/m; even rows n cells, odd rows n − 1 cells shifted by half a cell (seed Fig. 5.12);
+//   hex    m rows of the hex tile (its corners at y = ¼, ¾): cells of width 1/n and height 1/(0.75·(m − 1) + 1), rows
+//          0.75 of a cell apart, odd rows n − 1 cells shifted by half a cell (seed Fig. 5.11).
+// Throws std::invalid_argument ("counts: …") when n or m < 1 (or n < 2 for brick / hex, whose odd rows would be
+// empty), or chart_count < 1.
+std::vector<DdmInstance> ddm_layout_cells(DdmLayout layout, glm::ivec2 counts, int chart_count);
+
+// The reference evaluation (seed Eq. 5.1–5.2): every instance's copy of the tile, instances one after another, each
+// in the tile's vertex order (#V = #instances × #tile vertices; triangles offset per instance; what ddm.bake writes).
+// A tile point (x, y, w) of an instance maps to T(u, v, w·height) with (u, v) = origin + size ⊙ (x, y). Normals: the
+// tile's normal through the cofactor of T's Jacobian J = [size.x·(S_u + w·h·n_u), size.y·(S_v + w·h·n_v), h·n]
+// (exact, seed §5.3.2 last paragraph, without its ε trick), renormalised.
+// Throws std::invalid_argument: height not finite or ≤ 0, a chart index out of range, tile without normals (#V).
+TriMesh ddm_evaluate(const DdmBase& base, const DdmTile& tile, const std::vector<DdmInstance>& instances,
+                     double height);
+
+// Metamorphosis (seed Eq. 5.3): V = V1·(1 − α) + V2·α vertex by vertex, normals interpolated and renormalised; α
+// outside [0,1] extrapolates. Throws std::invalid_argument: different topology (require_same_ddm_topology),
+// non-finite α.
+DdmTile ddm_morph(const DdmTile& a, const DdmTile& b, double alpha);
+
+}  // namespace trispline::core

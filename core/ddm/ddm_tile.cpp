@@ -1,0 +1,203 @@
+// DDM tiles: generated tiles (thorn, flower, chain, hex), canonical tiles from meshes, topology check. See ddm_tile.h.
+// Source: seed ch. 5 §5.2 (canonical tile space), Eq. 5.3 / Fig. 5.13 (metamorphosis needs equal topology).
+#include "core/ddm/ddm_tile.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <stdexcept>
+
+#include "core/mesh/mesh_io.h"
+
+namespace trispline::core {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// A closed tube-like grid: `rings` rings of `segments` points (ring 0 at the foot), a foot centre below ring 0 and
+// a tip above the last ring; triangles wound outward (counter-clockwise seen from outside).
+TriMesh ring_grid(int rings, int segments, const std::function<glm::dvec3(int, int)>& ring_point,
+                  const glm::dvec3& foot, const glm::dvec3& tip) {
+  TriMesh m;
+  for (int k = 0; k < rings; ++k)
+    for (int s = 0; s < segments; ++s) m.positions.push_back(ring_point(k, s));
+  const auto foot_i = static_cast<unsigned>(m.positions.size());
+  m.positions.push_back(foot);
+  const auto tip_i = foot_i + 1;
+  m.positions.push_back(tip);
+  auto at = [&](int k, int s) { return static_cast<unsigned>(k * segments + (s % segments)); };
+  for (int s = 0; s < segments; ++s) m.triangles.emplace_back(foot_i, at(0, s + 1), at(0, s));  // faces −w
+  for (int k = 0; k + 1 < rings; ++k)
+    for (int s = 0; s < segments; ++s) {
+      m.triangles.emplace_back(at(k, s), at(k, s + 1), at(k + 1, s + 1));
+      m.triangles.emplace_back(at(k, s), at(k + 1, s + 1), at(k + 1, s));
+    }
+  for (int s = 0; s < segments; ++s) m.triangles.emplace_back(at(rings - 1, s), at(rings - 1, s + 1), tip_i);
+  compute_vertex_normals(m);
+  return m;
+}
+
+constexpr int kThornRings = 26, kThornSegments = 24;
+
+TriMesh thorn_mesh() {
+  const auto ring = [](int k, int s) {
+    const double t = double(k) / kThornRings, a = 2.0 * kPi * s / kThornSegments;
+    const double r = 0.3 * std::pow(1.0 - t, 1.3), cx = 0.5 + 0.18 * t * t;  // a horn bending towards +x
+    return glm::dvec3(cx + r * std::cos(a), 0.5 + r * std::sin(a), 0.9 * t);
+  };
+  return ring_grid(kThornRings, kThornSegments, ring, {0.5, 0.5, 0.0}, {0.68, 0.5, 0.9});
+}
+
+TriMesh flower_mesh() {  // the thorn's grid: a stem (rings 0–12), then a cup of five petals (rings 13–25)
+  const auto ring = [](int k, int s) {
+    const double a = 2.0 * kPi * s / kThornSegments;
+    if (k <= 12) {
+      const double t = k / 12.0;
+      return glm::dvec3(0.5 + 0.05 * std::cos(a), 0.5 + 0.05 * std::sin(a), 0.45 * t);
+    }
+    const double tau = (k - 12) / double(kThornRings - 13);  // (0, 1]
+    const double petal = 0.62 + 0.38 * std::cos(5.0 * a);
+    const double r = 0.05 + 0.4 * tau * petal;
+    return glm::dvec3(0.5 + r * std::cos(a), 0.5 + r * std::sin(a), 0.45 + 0.16 * std::sin(0.5 * kPi * tau));
+  };
+  return ring_grid(kThornRings, kThornSegments, ring, {0.5, 0.5, 0.0}, {0.5, 0.5, 0.58});
+}
+
+// A stadium-shaped torus: centre line of two half circles of radius `bend` joined by straight parts from
+// centre − half_len to centre + half_len along `along`; `across` is the other in-plane direction; tube radius `tube`.
+void append_link(TriMesh& m, const glm::dvec3& centre, const glm::dvec3& along, const glm::dvec3& across,
+                 double half_len, double bend, double tube) {
+  constexpr int kLine = 48, kTube = 12;
+  const glm::dvec3 normal = glm::normalize(glm::cross(along, across));
+  const double straight = 2.0 * half_len, arc = kPi * bend, total = 2.0 * (straight + arc);
+  const auto base = static_cast<unsigned>(m.positions.size());
+  for (int i = 0; i < kLine; ++i) {
+    double d = total * i / kLine;  // arc length along the centre line
+    glm::dvec3 c, radial;           // centre-line point and its in-plane outward direction
+    if (d < straight) {
+      c = centre + (d - half_len) * along - bend * across, radial = -across;
+    } else if ((d -= straight) < arc) {
+      const double a = d / bend - 0.5 * kPi;
+      radial = std::cos(a) * along + std::sin(a) * across;
+      c = centre + half_len * along + bend * radial;
+    } else if ((d -= arc) < straight) {
+      c = centre + (half_len - d) * along + bend * across, radial = across;
+    } else {
+      d -= straight;
+      const double a = d / bend + 0.5 * kPi;
+      radial = std::cos(a) * along + std::sin(a) * across;
+      c = centre - half_len * along + bend * radial;
+    }
+    for (int j = 0; j < kTube; ++j) {
+      const double b = 2.0 * kPi * j / kTube;
+      const glm::dvec3 n = std::cos(b) * radial + std::sin(b) * normal;
+      m.positions.push_back(c + tube * n);
+      m.normals.push_back(n);
+    }
+  }
+  auto at = [&](int i, int j) { return base + static_cast<unsigned>((i % kLine) * kTube + (j % kTube)); };
+  for (int i = 0; i < kLine; ++i)
+    for (int j = 0; j < kTube; ++j) {
+      m.triangles.emplace_back(at(i, j), at(i + 1, j), at(i + 1, j + 1));
+      m.triangles.emplace_back(at(i, j), at(i + 1, j + 1), at(i, j + 1));
+    }
+}
+
+TriMesh chain_mesh() {
+  TriMesh m;
+  // Lying link (in the x–y plane) and standing link (in the x–w plane); each passes through the other's hole.
+  append_link(m, {0.35, 0.5, 0.22}, {1, 0, 0}, {0, 1, 0}, 0.13, 0.1, 0.05);
+  append_link(m, {0.7, 0.5, 0.22}, {1, 0, 0}, {0, 0, 1}, 0.1, 0.14, 0.05);
+  return m;
+}
+
+TriMesh hex_mesh() {
+  constexpr double kInset = 0.03, kHeight = 0.15;  // a gap between neighbours, the slab's thickness
+  const glm::dvec2 corner[6] = {{0.5, 0.0}, {1.0, 0.25}, {1.0, 0.75}, {0.5, 1.0}, {0.0, 0.75}, {0.0, 0.25}};
+  glm::dvec2 c[6];
+  for (int i = 0; i < 6; ++i) c[i] = glm::dvec2(0.5) + (1.0 - kInset) * (corner[i] - glm::dvec2(0.5));
+  TriMesh m;
+  auto add = [&](const glm::dvec3& p, const glm::dvec3& n) {
+    m.positions.push_back(p), m.normals.push_back(n);
+    return static_cast<unsigned>(m.positions.size() - 1);
+  };
+  for (int cap = 0; cap < 2; ++cap) {  // flat top (+w) and bottom (−w), fans from the centre
+    const double w = cap == 0 ? kHeight : 0.0;
+    const glm::dvec3 n(0.0, 0.0, cap == 0 ? 1.0 : -1.0);
+    const unsigned centre = add({0.5, 0.5, w}, n);
+    unsigned ring[6];
+    for (int i = 0; i < 6; ++i) ring[i] = add({c[i].x, c[i].y, w}, n);
+    for (int i = 0; i < 6; ++i)
+      cap == 0 ? m.triangles.emplace_back(centre, ring[i], ring[(i + 1) % 6])
+               : m.triangles.emplace_back(centre, ring[(i + 1) % 6], ring[i]);
+  }
+  for (int i = 0; i < 6; ++i) {  // sides, one flat quad each (corners listed counter-clockwise seen from +w)
+    const glm::dvec2 a = c[i], b = c[(i + 1) % 6];
+    const glm::dvec3 n = glm::normalize(glm::dvec3(b.y - a.y, a.x - b.x, 0.0));
+    const unsigned p0 = add({a.x, a.y, 0.0}, n), p1 = add({b.x, b.y, 0.0}, n), p2 = add({b.x, b.y, kHeight}, n),
+                   p3 = add({a.x, a.y, kHeight}, n);
+    m.triangles.emplace_back(p0, p1, p2);
+    m.triangles.emplace_back(p0, p2, p3);
+  }
+  return m;
+}
+
+}  // namespace
+
+bool is_generated_ddm_tile(const std::string& kind) {
+  return kind == "thorn" || kind == "flower" || kind == "chain" || kind == "hex";
+}
+
+DdmTile make_ddm_tile(const std::string& kind) {
+  if (kind == "thorn") return {kind, thorn_mesh()};
+  if (kind == "flower") return {kind, flower_mesh()};
+  if (kind == "chain") return {kind, chain_mesh()};
+  if (kind == "hex") return {kind, hex_mesh()};
+  throw std::invalid_argument("tile: unknown generated tile '" + kind + "' (thorn, flower, chain, hex, or a mesh file)");
+}
+
+DdmTile canonical_ddm_tile(const TriMesh& mesh, const std::string& name) {
+  if (mesh.triangles.empty()) throw std::invalid_argument("tile: '" + name + "' has no triangles");
+  Aabb box;
+  for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+    const glm::dvec3& p = mesh.positions[v];
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      throw std::invalid_argument("tile: '" + name + "' has a non-finite position at vertex " + std::to_string(v));
+    box.extend(p);
+  }
+  for (const glm::uvec3& t : mesh.triangles)
+    if (t.x >= mesh.positions.size() || t.y >= mesh.positions.size() || t.z >= mesh.positions.size())
+      throw std::invalid_argument("tile: '" + name + "' has a triangle index ≥ #V");
+  const glm::dvec3 ext = box.size();
+  if (!(ext.x > 0.0) || !(ext.y > 0.0))
+    throw std::invalid_argument("tile: '" + name + "' is flat across (zero x or y extent): nothing to lay out");
+  const glm::dvec3 scale(1.0 / ext.x, 1.0 / ext.y, 1.0 / std::max(ext.x, ext.y));
+  DdmTile tile{name, mesh};
+  for (glm::dvec3& p : tile.mesh.positions) p = (p - box.lo) * scale;
+  if (tile.mesh.normals.size() == tile.mesh.positions.size()) {
+    for (glm::dvec3& n : tile.mesh.normals) {  // inverse transpose of diag(scale) = diag(1 / scale)
+      const glm::dvec3 q = n / scale;
+      const double len = glm::length(q);
+      if (len > 0.0 && std::isfinite(len)) n = q / len;
+    }
+  } else {
+    compute_vertex_normals(tile.mesh);
+  }
+  return tile;
+}
+
+void require_same_ddm_topology(const DdmTile& a, const DdmTile& b) {
+  if (a.mesh.vertex_count() != b.mesh.vertex_count())
+    throw std::invalid_argument("tile: '" + a.name + "' has " + std::to_string(a.mesh.vertex_count()) +
+                                " vertices and '" + b.name + "' " + std::to_string(b.mesh.vertex_count()) +
+                                ": a metamorphosis needs tiles of the same topology");
+  if (a.mesh.triangles.size() != b.mesh.triangles.size())
+    throw std::invalid_argument("tile: '" + a.name + "' and '" + b.name +
+                                "' have different triangle counts: a metamorphosis needs the same topology");
+  for (std::size_t f = 0; f < a.mesh.triangles.size(); ++f)
+    if (a.mesh.triangles[f] != b.mesh.triangles[f])
+      throw std::invalid_argument("tile: '" + a.name + "' and '" + b.name + "' differ at triangle " +
+                                  std::to_string(f) + ": a metamorphosis needs the same topology");
+}
+
+}  // namespace trispline::core

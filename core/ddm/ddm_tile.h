@@ -1,0 +1,44 @@
+// trispline::core DDM tiles — the geometry D that a deformation displacement map places over a base surface
+// (seed ch. 5, §5.2: "D is an arbitrary geometric object defined in the canonical tile space").
+//
+// Canonical tile space: x, y ∈ [0,1]² span one layout cell across the surface, w = z ≥ 0 is the height above it
+// (tile units: a layer's `height` scales w into world units along the base surface's normal, seed Eq. 5.1–5.2).
+// A tile may reach a little outside [0,1]² (neighbouring cells then overlap, as the seed's interlocking chains do).
+#pragma once
+
+#include <string>
+
+#include "core/mesh/tri_mesh.h"
+
+namespace trispline::core {
+
+struct DdmTile {
+  std::string name;  // "thorn", "chain", "hex", "flower", or the source file's stem
+  TriMesh mesh;      // #V × 3 positions (x, y, w) in tile space, unit normals #V × 3 (tile space), #F × 3
+};
+
+// Generated tiles for tests and scenes (closed 2-manifolds, outward normals, w ≥ 0, x, y within [0,1]):
+//   "thorn"   a bent horn on a round foot, 24 segments × 26 rings (626 vertices, seed Fig. 5.9's ~670);
+//   "flower"  the thorn's mesh (same vertex count and triangles) shaped as a five-petal flower on a stem: the
+//             metamorphosis partner of "thorn" (seed Eq. 5.3, Fig. 5.13);
+//   "chain"   two interlocked stadium-shaped links, one lying and one standing, a tube of radius 0.06;
+//   "hex"     a hexagonal slab filling the cell (vertices on the cell's border at x = 0, ½, 1), height 0.15, for the
+//             hexagonal layout (seed Fig. 5.11).
+// Throws std::invalid_argument for any other kind, naming the valid ones.
+DdmTile make_ddm_tile(const std::string& kind);
+
+// True for the kinds make_ddm_tile knows.
+bool is_generated_ddm_tile(const std::string& kind);
+
+// Canonical tile from any mesh (OBJ/PLY/glTF as loaded, any units): its bounding box's x and y extents map onto
+// [0,1]² (each axis scaled on its own) and its z extent onto [0, h] with h = z-extent / max(x-extent, y-extent), so
+// the tile keeps its proportions across the larger of its two spans; normals follow the same scaling (inverse
+// transpose, renormalised) or are computed when missing.
+// Throws std::invalid_argument: no triangles, a non-finite position, a triangle index ≥ #V, a zero x or y extent.
+DdmTile canonical_ddm_tile(const TriMesh& mesh, const std::string& name);
+
+// Throws std::invalid_argument unless `a` and `b` have the same vertex count and the same triangles (the
+// metamorphosis of seed Eq. 5.3 interpolates vertex by vertex). The message names both tiles and the first mismatch.
+void require_same_ddm_topology(const DdmTile& a, const DdmTile& b);
+
+}  // namespace trispline::core
