@@ -10,10 +10,30 @@
 
 #include "core/scene/primitives.h"
 
+#include <opensubdiv/bfr/refinerSurfaceFactory.h>
+#include <opensubdiv/bfr/surface.h>
+#include <opensubdiv/far/topologyDescriptor.h>
+#include <opensubdiv/far/topologyRefinerFactory.h>
+
 namespace trispline::core {
 namespace {
 
 double clamp01(double t) { return t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t); }
+
+// n = S_u × S_v / |S_u × S_v| and its partials from S's first and second derivatives (Weingarten: ∂n = (∂m − n (n·∂m))
+// / |m| with m = S_u × S_v, ∂m/∂u = S_uu × S_v + S_u × S_uv, ∂m/∂v = S_uv × S_v + S_u × S_vv). False when |m| = 0.
+bool set_normal(DdmSurfacePoint& q, const glm::dvec3& Su, const glm::dvec3& Sv, const glm::dvec3& Suu,
+                const glm::dvec3& Suv, const glm::dvec3& Svv) {
+  const glm::dvec3 m = glm::cross(Su, Sv);
+  const double len = glm::length(m);
+  if (!(len > 0.0) || !std::isfinite(len)) return false;
+  q.n = m / len;
+  const glm::dvec3 mu = glm::cross(Suu, Sv) + glm::cross(Su, Suv);
+  const glm::dvec3 mv = glm::cross(Suv, Sv) + glm::cross(Su, Svv);
+  q.dn_du = (mu - q.n * glm::dot(q.n, mu)) / len;
+  q.dn_dv = (mv - q.n * glm::dot(q.n, mv)) / len;
+  return true;
+}
 
 }  // namespace
 
@@ -31,34 +51,20 @@ DdmSurfacePoint DdmSplineBase::eval(int chart, double u, double v) const {
   auto at = [&](double a, double b) {
     return S.eval_second(ku.domain_min() + su * a, kv.domain_min() + sv * b);
   };
-  auto d = at(u, v);
   DdmSurfacePoint q;
+  const auto d = at(u, v);
   q.p = d.value;
   q.du = su * d.du, q.dv = sv * d.dv;  // chain rule onto [0,1]²
-  glm::dvec3 m = glm::cross(q.du, q.dv);
-  double len = glm::length(m);
   const double scale = std::max(glm::length(q.du), glm::length(q.dv));
-  if (!(len > 1e-12 * scale * scale)) {
-    // A collapsed edge: the normal (and its derivatives) from a point slightly towards the patch centre.
-    for (double step : {1e-4, 1e-3, 1e-2}) {
-      const auto e = at(u + (0.5 - u) * step, v + (0.5 - v) * step);
-      const glm::dvec3 m2 = glm::cross(su * e.du, sv * e.dv);
-      if (glm::length(m2) > 1e-12 * scale * scale || step == 1e-2) {
-        d.duu = e.duu, d.duv = e.duv, d.dvv = e.dvv, d.du = e.du, d.dv = e.dv;
-        m = m2, len = glm::length(m2);
-        break;
-      }
-    }
-    if (!(len > 0.0)) return q;  // flat degenerate patch: no normal
+  const bool regular = glm::length(glm::cross(q.du, q.dv)) > 1e-12 * scale * scale;
+  // A collapsed edge (the teapot's bottom centre): the normal and its derivatives from a point slightly inside.
+  for (double step : {0.0, 1e-4, 1e-3, 1e-2}) {
+    if (step > 0.0 && regular) break;
+    const auto e = step > 0.0 ? at(u + (0.5 - u) * step, v + (0.5 - v) * step) : d;
+    if (set_normal(q, su * e.du, sv * e.dv, su * su * e.duu, su * sv * e.duv, sv * sv * e.dvv) &&
+        (regular || step > 0.0))
+      break;
   }
-  q.n = m / len;
-  // ∂m/∂u = S_uu × S_v + S_u × S_uv (on [0,1]²: scaled by su²·sv and su·sv·su); ∂n = (∂m − n (n·∂m)) / |m|.
-  const glm::dvec3 Su = su * d.du, Sv = sv * d.dv, Suu = su * su * d.duu, Suv = su * sv * d.duv,
-                   Svv = sv * sv * d.dvv;
-  const glm::dvec3 mu = glm::cross(Suu, Sv) + glm::cross(Su, Suv);
-  const glm::dvec3 mv = glm::cross(Suv, Sv) + glm::cross(Su, Svv);
-  q.dn_du = (mu - q.n * glm::dot(q.n, mu)) / len;
-  q.dn_dv = (mv - q.n * glm::dot(q.n, mv)) / len;
   return q;
 }
 
@@ -158,6 +164,118 @@ DdmTile ddm_morph(const DdmTile& a, const DdmTile& b, double alpha) {
       const double len = glm::length(n);
       out.mesh.normals[v] = len > 0.0 ? n / len : (alpha < 0.5 ? a.mesh.normals[v] : b.mesh.normals[v]);
     }
+  return out;
+}
+
+// ---- DdmSubdivBase: Loop limit surface through OpenSubdiv Bfr -------------------------------------------------
+
+struct DdmSubdivBase::Impl {
+  std::vector<OpenSubdiv::Bfr::Surface<double>> surfaces;  // per face
+  std::vector<std::vector<double>> patch_points;             // per face, 3 doubles per patch point
+};
+
+DdmSubdivBase::DdmSubdivBase(const TriMesh& mesh) : impl_(std::make_unique<Impl>()) {
+  namespace Far = OpenSubdiv::Far;
+  namespace Sdc = OpenSubdiv::Sdc;
+  namespace Bfr = OpenSubdiv::Bfr;
+  const std::size_t nv = mesh.vertex_count(), nf = mesh.triangle_count();
+  if (nf == 0) throw std::invalid_argument("base: the mesh has no triangles");
+  std::vector<double> points(3 * nv);
+  for (std::size_t v = 0; v < nv; ++v) {
+    const glm::dvec3& p = mesh.positions[v];
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      throw std::invalid_argument("base: non-finite position at vertex " + std::to_string(v));
+    points[3 * v] = p.x, points[3 * v + 1] = p.y, points[3 * v + 2] = p.z;
+  }
+  std::vector<int> sizes(nf, 3), indices(3 * nf);
+  for (std::size_t f = 0; f < nf; ++f)
+    for (int k = 0; k < 3; ++k) {
+      if (mesh.triangles[f][k] >= nv)
+        throw std::invalid_argument("base: triangle " + std::to_string(f) + " has an index ≥ #V");
+      indices[3 * f + k] = static_cast<int>(mesh.triangles[f][k]);
+    }
+  {  // 2-manifold edges only (OpenSubdiv would accept a fan of faces on one edge as a sharp, non-manifold edge)
+    std::vector<std::uint64_t> halfedges(3 * nf);
+    for (std::size_t f = 0; f < nf; ++f)
+      for (int k = 0; k < 3; ++k) {
+        const std::uint64_t a = mesh.triangles[f][k], b = mesh.triangles[f][(k + 1) % 3];
+        halfedges[3 * f + k] = (std::min(a, b) << 32) | std::max(a, b);
+      }
+    std::sort(halfedges.begin(), halfedges.end());
+    for (std::size_t i = 0; i + 2 < halfedges.size(); ++i)
+      if (halfedges[i] == halfedges[i + 2])
+        throw std::invalid_argument("base: non-manifold edge (" + std::to_string(halfedges[i] >> 32) + ", " +
+                                    std::to_string(halfedges[i] & 0xffffffffu) + ") has more than two faces");
+  }
+  Far::TopologyDescriptor desc;
+  desc.numVertices = static_cast<int>(nv);
+  desc.numFaces = static_cast<int>(nf);
+  desc.numVertsPerFace = sizes.data();
+  desc.vertIndicesPerFace = indices.data();
+  Sdc::Options sdc;
+  sdc.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
+  using RefinerFactory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
+  std::unique_ptr<Far::TopologyRefiner> refiner(
+      RefinerFactory::Create(desc, RefinerFactory::Options(Sdc::SCHEME_LOOP, sdc)));
+  if (!refiner) throw std::invalid_argument("base: OpenSubdiv rejected the mesh topology (non-manifold?)");
+  if (refiner->GetLevel(0).GetNumVertices() != static_cast<int>(nv))
+    throw std::invalid_argument("base: OpenSubdiv changed the vertex count (non-manifold input)");
+  Bfr::RefinerSurfaceFactory<> factory(*refiner, Bfr::RefinerSurfaceFactory<>::Options());
+  const Bfr::Surface<double>::PointDescriptor pd(3);
+  impl_->surfaces.resize(nf);
+  impl_->patch_points.resize(nf);
+  for (std::size_t f = 0; f < nf; ++f) {
+    Bfr::Surface<double>& surface = impl_->surfaces[f];
+    if (!factory.InitVertexSurface(static_cast<int>(f), &surface) || !surface.IsValid())
+      throw std::invalid_argument("base: face " + std::to_string(f) + " has no limit surface (non-manifold there?)");
+    impl_->patch_points[f].resize(3 * static_cast<std::size_t>(surface.GetNumPatchPoints()));
+    surface.PreparePatchPoints(points.data(), pd, impl_->patch_points[f].data(), pd);
+  }
+}
+
+DdmSubdivBase::~DdmSubdivBase() = default;
+DdmSubdivBase::DdmSubdivBase(DdmSubdivBase&&) noexcept = default;
+
+int DdmSubdivBase::chart_count() const { return static_cast<int>(3 * impl_->surfaces.size()); }
+
+glm::dvec3 DdmSubdivBase::limit_point(int face, double s, double t) const {
+  if (face < 0 || face >= static_cast<int>(impl_->surfaces.size()))
+    throw std::out_of_range("base: face " + std::to_string(face));
+  const double uv[2] = {s, t};
+  double P[3];
+  impl_->surfaces[face].Evaluate(uv, impl_->patch_points[face].data(),
+                                 OpenSubdiv::Bfr::Surface<double>::PointDescriptor(3), P);
+  return {P[0], P[1], P[2]};
+}
+
+DdmSurfacePoint DdmSubdivBase::eval(int chart, double u, double v) const {
+  if (chart < 0 || chart >= chart_count())
+    throw std::out_of_range("base: chart " + std::to_string(chart) + " of " + std::to_string(chart_count()));
+  const int f = chart / 3, k = chart % 3;
+  u = clamp01(u), v = clamp01(v);
+  // The corner quad in the face's triangular parameters: A (vertex k), B (middle of edge k→k+1), C (centre),
+  // D (middle of edge k+2→k); q(u,v) = A(1−u)(1−v) + B u(1−v) + C u v + D (1−u) v.
+  const glm::dvec2 corner[3] = {{0.0, 0.0}, {1.0, 0.0}, {0.0, 1.0}};
+  const glm::dvec2 A = corner[k], B = 0.5 * (corner[k] + corner[(k + 1) % 3]), C(1.0 / 3.0),
+                   D = 0.5 * (corner[(k + 2) % 3] + corner[k]);
+  const glm::dvec2 q = A * (1 - u) * (1 - v) + B * u * (1 - v) + C * u * v + D * (1 - u) * v;
+  const glm::dvec2 qu = (B - A) * (1 - v) + (C - D) * v, qv = (D - A) * (1 - u) + (C - B) * u;
+  const glm::dvec2 quv = A - B + C - D;  // q_uu = q_vv = 0 (bilinear)
+  const double st[2] = {q.x, q.y};
+  double P[3], Ds[3], Dt[3], Dss[3], Dst[3], Dtt[3];
+  impl_->surfaces[f].Evaluate(st, impl_->patch_points[f].data(),
+                              OpenSubdiv::Bfr::Surface<double>::PointDescriptor(3), P, Ds, Dt, Dss, Dst, Dtt);
+  const glm::dvec3 Ss(Ds[0], Ds[1], Ds[2]), St(Dt[0], Dt[1], Dt[2]), Sss(Dss[0], Dss[1], Dss[2]),
+      Sst(Dst[0], Dst[1], Dst[2]), Stt(Dtt[0], Dtt[1], Dtt[2]);
+  DdmSurfacePoint out;
+  out.p = {P[0], P[1], P[2]};
+  out.du = Ss * qu.x + St * qu.y;
+  out.dv = Ss * qv.x + St * qv.y;
+  auto second = [&](const glm::dvec2& a, const glm::dvec2& b) {  // S along a then b (bilinear map: q_aa = 0)
+    return Sss * (a.x * b.x) + Sst * (a.x * b.y + a.y * b.x) + Stt * (a.y * b.y);
+  };
+  const glm::dvec3 Suu = second(qu, qu), Svv = second(qv, qv), Suv = second(qu, qv) + Ss * quv.x + St * quv.y;
+  set_normal(out, out.du, out.dv, Suu, Suv, Svv);
   return out;
 }
 

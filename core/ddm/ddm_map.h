@@ -5,6 +5,7 @@
 // Conventions: chart parameters (u, v) ∈ [0,1]² (clamped); world units for S and height; tile space as ddm_tile.h.
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -43,6 +44,30 @@ class DdmSplineBase final : public DdmBase {
 
  private:
   std::vector<BSplineSurface<glm::dvec3>> patches_;
+};
+
+// The limit surface of a triangle mesh (Loop scheme, OpenSubdiv Bfr, double precision; seed §5.3.1 (b), without its
+// global parametrisation): chart 3f + k is the quad of face f at its corner k — corners (in the face's triangular
+// parameters) vertex k, the middle of edge (k, k+1), the face centre, the middle of edge (k+2, k) — mapped
+// bilinearly from [0,1]², u along edge (k, k+1), v along edge (k, k+2). Neighbouring charts meet along their shared
+// edges on the same limit curve, so tiles cross face borders without cracks. Boundaries: edges and corners
+// interpolated (as mesh.subdivide).
+// Throws std::invalid_argument ("base: …"): no triangles, an index ≥ #V, a non-finite position, an edge with more
+// than two faces, a topology OpenSubdiv rejects, a face without limit surface.
+class DdmSubdivBase final : public DdmBase {
+ public:
+  explicit DdmSubdivBase(const TriMesh& mesh);
+  ~DdmSubdivBase() override;
+  DdmSubdivBase(DdmSubdivBase&&) noexcept;
+  int chart_count() const override;
+  DdmSurfacePoint eval(int chart, double u, double v) const override;
+  // The limit surface of face f at its own triangular parameters (s, t) (s, t ≥ 0, s + t ≤ 1; vertex 0 at (0,0),
+  // vertex 1 at (1,0), vertex 2 at (0,1)).
+  glm::dvec3 limit_point(int face, double s, double t) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
 };
 
 // Newell's teapot body (patches 4–11 of the 32: the upper and lower body, 8 bicubic Bézier patches) in the frame of

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <set>
 
 #include "core/ddm/ddm_map.h"
@@ -212,6 +213,71 @@ TEST(DdmBase, TeapotBodyChartsLieOnTheTeapot) {
     const DdmSurfacePoint s = body.eval(c, 0.5, 0.5);
     EXPECT_GT(glm::dot(s.n, glm::normalize(glm::dvec3(s.p.x, 0.0, s.p.z))), 0.5) << "chart " << c;
   }
+}
+
+// Polygonal base (Loop limit surface via OpenSubdiv Bfr): neighbouring faces' charts meet on the same limit curve
+// (no cracks across face borders), charts inside one face meet too, and a tile on a sphere lands at R + w·height.
+TEST(DdmSubdivBase, ChartsMeetAcrossFaceBordersWithoutCracks) {
+  const TriMesh sphere = make_primitive(PrimitiveKind::Sphere);
+  const DdmSubdivBase base(sphere);
+  ASSERT_EQ(base.chart_count(), int(3 * sphere.triangle_count()));
+  // Edge (a, b) → (face, corner of a) for the face where it runs a → b.
+  std::map<std::pair<unsigned, unsigned>, std::pair<int, int>> half;
+  for (std::size_t f = 0; f < sphere.triangle_count(); ++f)
+    for (int k = 0; k < 3; ++k) half[{sphere.triangles[f][k], sphere.triangles[f][(k + 1) % 3]}] = {int(f), k};
+  double worst = 0.0;
+  int shared = 0;
+  for (const auto& [edge, fk] : half) {
+    auto twin = half.find({edge.second, edge.first});
+    if (twin == half.end()) continue;
+    ++shared;
+    // In f the edge a→b is chart (f, k)'s u-edge from a; in g it runs b→a, so a is g's corner j+1 and the edge is
+    // that chart's v-edge from a.
+    const int f = fk.first, k = fk.second, g = twin->second.first, j = (twin->second.second + 1) % 3;
+    for (double l : {0.0, 0.3, 0.7, 1.0}) {
+      const glm::dvec3 p = base.eval(3 * f + k, l, 0.0).p, q = base.eval(3 * g + j, 0.0, l).p;
+      worst = std::max(worst, glm::length(p - q));
+    }
+    if (shared > 400) break;
+  }
+  EXPECT_GT(shared, 400);
+  EXPECT_LT(worst, 1e-12);
+  // Inside a face: chart k's v = 1 edge (B → C) is chart k+1's u = 1 edge (D' → C) reversed … both reach the centre.
+  for (int f : {0, 17, 101}) {
+    const glm::dvec3 c0 = base.eval(3 * f, 1.0, 1.0).p, c1 = base.eval(3 * f + 1, 1.0, 1.0).p;
+    EXPECT_LT(glm::length(c0 - c1), 1e-12);
+    EXPECT_LT(glm::length(base.eval(3 * f, 1.0, 0.4).p - base.eval(3 * f + 1, 0.4, 1.0).p), 1e-12);
+  }
+  // The thorn on a unit sphere: every vertex at its limit point + w·height along the limit normal; the limit surface
+  // of the tessellated sphere lies within 1 % of R.
+  const DdmTile thorn = make_ddm_tile("thorn");
+  const std::vector<DdmInstance> cells = {{5, {0.1, 0.1}, {0.8, 0.8}}, {200, {0.0, 0.0}, {1.0, 1.0}}};
+  const TriMesh out = ddm_evaluate(base, thorn, cells, 0.1);
+  for (std::size_t k = 0; k < cells.size(); ++k)
+    for (std::size_t v = 0; v < thorn.mesh.vertex_count(); ++v) {
+      const glm::dvec3 t = thorn.mesh.positions[v];
+      const glm::dvec3 x = out.positions[k * thorn.mesh.vertex_count() + v];
+      EXPECT_NEAR(glm::length(x), 1.0 + 0.1 * t.z, 0.01);
+    }
+}
+
+TEST(DdmSubdivBase, BadMeshesAreRejected) {
+  EXPECT_THROW(DdmSubdivBase(TriMesh{}), std::invalid_argument);
+  TriMesh bad = make_primitive(PrimitiveKind::Sphere);
+  bad.positions[2].x = std::nan("");
+  EXPECT_THROW({ DdmSubdivBase b(bad); }, std::invalid_argument);
+  TriMesh fin;  // three triangles on one edge (a non-manifold fan)
+  fin.positions = {{0, 0, 0}, {1, 0, 0}, {0.5, 1, 0}, {0.5, -1, 0}, {0.5, 0, 1}};
+  fin.triangles = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}};
+  try {
+    DdmSubdivBase b(fin);
+    FAIL() << "a non-manifold base must be rejected";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("base:", 0), 0u) << e.what();
+  }
+  TriMesh out_of_range = make_primitive(PrimitiveKind::Sphere);
+  out_of_range.triangles[0].x = 1u << 30;
+  EXPECT_THROW({ DdmSubdivBase b(out_of_range); }, std::invalid_argument);
 }
 
 }  // namespace
