@@ -12,6 +12,7 @@
 #include "core/commands/lattice_set_point.h"
 #include "core/commands/mesh_refine.h"
 #include "core/commands/mesh_subdivide.h"
+#include "core/commands/ddm_commands.h"
 #include "core/commands/place_array.h"
 #include "core/commands/place_sketch.h"
 #include "core/commands/scene_load.h"
@@ -67,6 +68,9 @@ const CommandRegistry& CommandRegistry::builtin() {
           core::MeshRefineCommand::parse);
     r.add("mesh.subdivide", "Subdivide an object's rest mesh uniformly (Loop, OpenSubdiv), before deforming it",
           core::MeshSubdivideCommand::parse);
+    r.add("ddm.fill", "Cover an object's surface with a layer of geometric tiles (DDM, seed ch. 5)",
+          core::DdmFillCommand::parse);
+    r.add("ddm.bake", "Turn a tile layer into an ordinary mesh object (for export)", core::DdmBakeCommand::parse);
     r.add("anim.timeline", "Set the timeline's frame range and frame rate", core::AnimTimelineCommand::parse);
     r.add("anim.keyframe", "Key (or delete a key of) an object's parameter offset along its path at a frame (seed §2.4.3)",
           core::AnimKeyframeCommand::parse);

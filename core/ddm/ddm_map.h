@@ -70,10 +70,6 @@ class DdmSubdivBase final : public DdmBase {
   std::unique_ptr<Impl> impl_;
 };
 
-// Newell's teapot body (patches 4–11 of the 32: the upper and lower body, 8 bicubic Bézier patches) in the frame of
-// make_primitive("teapot") (y up), du × dv pointing out of the teapot.
-std::vector<BSplineSurface<glm::dvec3>> teapot_body_patches();
-
 // One tile instance (seed §5.3.2: per-instance offsets): the cell [origin, origin + size] of chart `chart` that the
 // tile's [0,1]² fills.
 struct DdmInstance {

@@ -315,4 +315,25 @@ TriMesh make_teapot(int segments) {
   return m;
 }
 
+std::vector<BSplineSurface<glm::dvec3>> teapot_body_patches() {
+  // make_teapot stands the tessellated teapot on y = 0 with height 1 (uniform scale). Its lowest and highest points
+  // are patch corners (the bottom's and the lid knob's poles), which every tessellation samples, so its y range is
+  // that of the patch corners; the same affine map applied to the control points moves the patches exactly.
+  Aabb raw;  // Newell units, y up
+  for (int p = 0; p < detail::kTeapotPatchCount; ++p)
+    for (int k : {0, 3, 12, 15}) raw.extend(glm::dvec3(0.0, detail::kTeapotVertices[detail::kTeapotPatches[p][k]][2], 0.0));
+  const double scale = 1.0 / raw.size().y;
+  const KnotVector bezier(4, {0, 0, 0, 0, 1, 1, 1, 1});
+  std::vector<BSplineSurface<glm::dvec3>> out;
+  for (int p = 4; p < 12; ++p) {
+    std::vector<glm::dvec3> cps(16);
+    for (int k = 0; k < 16; ++k) {  // as make_teapot: u fastest, (x, y, z) ↦ (x, z, −y)
+      const double* q = detail::kTeapotVertices[detail::kTeapotPatches[p][k]];
+      cps[k] = (glm::dvec3(q[0], q[2], -q[1]) - glm::dvec3(0.0, raw.lo.y, 0.0)) * scale;
+    }
+    out.emplace_back(bezier, bezier, std::move(cps));
+  }
+  return out;
+}
+
 }  // namespace trispline::core

@@ -19,6 +19,7 @@
 #include <string>
 
 #include "core/mesh/tri_mesh.h"
+#include "core/spline/bspline_surface.h"
 
 namespace trispline::core {
 
@@ -42,6 +43,10 @@ TriMesh make_terrain(std::uint64_t seed, int divisions = 128);  // divisions ≥
 // segments ≥ 2 samples per patch edge; #F = 32·2·s² − 8·s (the 8 lid/bottom patches lose the s triangles that
 // collapse at their pole). Vertices shared by neighbouring patches are welded (within 1e-9 of the model's size).
 TriMesh make_teapot(int segments = 10);
+
+// Newell's teapot body (patches 4–11 of the 32: the upper and lower body, 8 bicubic Bézier patches) in the frame of
+// make_teapot (y up, standing on y = 0 with height 1), du × dv pointing out of the teapot: DDM's spline base.
+std::vector<BSplineSurface<glm::dvec3>> teapot_body_patches();
 
 namespace detail {
 // Newell's teapot control data (teapot_data.cpp): z up, Newell's units. Patch rows are v, columns u.

@@ -5,6 +5,7 @@
 // Object order is insertion order (it is the export order of scene.glb).
 #pragma once
 
+#include "core/ddm/ddm_layer.h"
 #include "core/deform/dffd_rig.h"
 #include "core/deform/ffd.h"
 #include "core/mesh/mesh_clip.h"
@@ -93,6 +94,9 @@ struct SceneObject {
   // mesh is split at the rig's breaks when evaluated (dffd_apply), so world_mesh has more vertices than rest_mesh
   // and the renderer draws world_mesh as it is (no GPU re-evaluation).
   std::shared_ptr<const DffdRig> dffd;
+  // Tile layers over the object's surface (DDM, seed ch. 5; ddm.fill / ddm.paint), in the order they were made. Their
+  // meshes are in object space, drawn with the object's transform.
+  std::vector<std::shared_ptr<const DdmLayer>> ddm_layers;
   std::shared_ptr<const TriMesh> world_mesh;  // evaluated at scene time 0: ffd ? F(E(T(rest)) + offset_at(0)) : T(rest),
                                               // rest posed by the clip at time 0 when there is one; see refresh()
   // Parameter offset added to every vertex's (u,v,w) before F is evaluated (seed §4.5 animation offset), parameter

@@ -1,0 +1,134 @@
+// ddm.fill / ddm.bake (core/commands/ddm_commands.h; seed ch. 5): a layer over a coarse sphere's limit surface and
+// over the teapot's body patches, the baked object (world units, instances contiguous in the tile's vertex order),
+// undo bit for bit, bad input refused with the scene unchanged.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/commands/ddm_commands.h"
+#include "core/commands/scene_primitive.h"
+#include "core/scene/primitives.h"
+
+namespace trispline::core {
+namespace {
+
+using nlohmann::json;
+
+Scene ball_scene() {
+  Scene s;
+  SceneObject o;
+  o.name = "ball";
+  o.source = "primitive:sphere";
+  o.rest_mesh = std::make_shared<const TriMesh>(make_sphere(8, 4));
+  o.transform.translate = {2.0, 0.0, 0.0};
+  o.refresh();
+  s.insert(o);
+  return s;
+}
+
+TEST(DdmCommands, FillThenBakeOnALimitSurface) {
+  Scene s = ball_scene();
+  const TriMesh rest = *s.find("ball")->rest_mesh;
+  auto fill = DdmFillCommand::parse(json::parse(R"({"cmd":"ddm.fill","object":"ball","layer":"spikes","tile":"thorn",
+      "layout":"rect","counts":[1,1],"height":0.2})"), {});
+  EXPECT_EQ(fill->to_json()["counts"], json::parse("[1,1]"));
+  fill->redo(s);
+  const SceneObject& ball = *s.find("ball");
+  ASSERT_EQ(ball.ddm_layers.size(), 1u);
+  const DdmLayer& layer = *ball.ddm_layers[0];
+  EXPECT_EQ(layer.instances.size(), 3 * rest.triangle_count());  // one tile per chart, three charts per face
+  EXPECT_EQ(layer.mesh->vertex_count(), layer.instances.size() * 626);
+  EXPECT_EQ(fill->stats()["tiles"], layer.instances.size());
+  // The limit surface of this coarse sphere lies inside its unit-sphere vertices; thorn tips stand 0.9·0.2 above it.
+  double far = 0.0;
+  for (const glm::dvec3& p : layer.mesh->positions) far = std::max(far, glm::length(p));
+  EXPECT_GT(far, 1.0);
+  EXPECT_LT(far, 1.18);
+
+  auto bake = DdmBakeCommand::parse(json::parse(R"({"cmd":"ddm.bake","object":"ball","layer":"spikes",
+      "name":"spikes.baked"})"), {});
+  bake->redo(s);
+  const SceneObject* baked = s.find("spikes.baked");
+  ASSERT_TRUE(baked);
+  ASSERT_EQ(baked->rest_mesh->vertex_count(), layer.mesh->vertex_count());
+  EXPECT_EQ(baked->rest_mesh->triangles, layer.mesh->triangles);
+  for (std::size_t v = 0; v < layer.mesh->vertex_count(); v += 101)  // world units: the ball's translation applied
+    EXPECT_NEAR(glm::length(baked->world_mesh->positions[v] - (layer.mesh->positions[v] + glm::dvec3(2, 0, 0))), 0.0,
+                1e-12);
+  bake->undo(s);
+  EXPECT_FALSE(s.find("spikes.baked"));
+  fill->undo(s);
+  EXPECT_TRUE(s.find("ball")->ddm_layers.empty());
+  EXPECT_EQ(s.find("ball")->rest_mesh->positions, rest.positions);
+}
+
+TEST(DdmCommands, TeapotBodyLayerAndReplacingALayer) {
+  Scene s;
+  ScenePrimitiveCommand::parse(json::parse(R"({"cmd":"scene.primitive","kind":"teapot","name":"pot"})"), {})->redo(s);
+  auto fill = [&](const char* line) { DdmFillCommand::parse(json::parse(line), {})->redo(s); };
+  fill(R"({"cmd":"ddm.fill","object":"pot","layer":"a","tile":"hex","layout":"hex","counts":[6,5],"height":0.02,
+          "base":"teapot_body"})");
+  const SceneObject& pot = *s.find("pot");
+  ASSERT_EQ(pot.ddm_layers.size(), 1u);
+  EXPECT_EQ(pot.ddm_layers[0]->instances.size(), 8u * (6 + 5 + 6 + 5 + 6));
+  fill(R"({"cmd":"ddm.fill","object":"pot","layer":"a","tile":"thorn","layout":"rect","counts":[2,2],"height":0.05,
+          "base":"teapot_body"})");
+  ASSERT_EQ(s.find("pot")->ddm_layers.size(), 1u);  // same name: replaced
+  EXPECT_EQ(s.find("pot")->ddm_layers[0]->tile_source, "thorn");
+  EXPECT_EQ(s.find("pot")->ddm_layers[0]->instances.size(), 8u * 4u);
+}
+
+TEST(DdmCommands, BadInputIsRefusedAndTheSceneIsUnchanged) {
+  auto field_of = [](const char* line, Scene& s) -> std::string {
+    try {
+      DdmFillCommand::parse(json::parse(line), {})->redo(s);
+    } catch (const CommandError& e) {
+      return e.field();
+    }
+    return "(accepted)";
+  };
+  Scene s = ball_scene();
+  EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","object":"ball","layer":"x","tile":"thorn","layout":"rect","counts":[0,2],
+      "height":0.1})", s), "counts");
+  EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","object":"ball","layer":"x","tile":"thorn","layout":"rect","counts":[1,1],
+      "height":0})", s), "height");
+  EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","object":"ball","layer":"x","tile":"spiral.obj","layout":"rect",
+      "counts":[1,1],"height":0.1})", s), "tile");
+  EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","object":"ball","layer":"x","tile":"thorn","layout":"zigzag",
+      "counts":[1,1],"height":0.1})", s), "layout");
+  EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","object":"nope","layer":"x","tile":"thorn","layout":"rect",
+      "counts":[1,1],"height":0.1})", s), "object");
+  EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","object":"ball","layer":"x","tile":"thorn","layout":"rect",
+      "counts":[1,1],"height":0.1,"base":"teapot_body"})", s), "base");
+  EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","object":"ball","layer":"x","tile":"thorn","layout":"rect",
+      "counts":[400,400],"height":0.1})", s), "counts");  // too many tile vertices
+  // A non-manifold base.
+  SceneObject fin;
+  fin.name = "fin";
+  TriMesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {0.5, 1, 0}, {0.5, -1, 0}, {0.5, 0, 1}};
+  m.triangles = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}};
+  fin.rest_mesh = std::make_shared<const TriMesh>(m);
+  fin.refresh();
+  s.insert(fin);
+  EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","object":"fin","layer":"x","tile":"thorn","layout":"rect",
+      "counts":[1,1],"height":0.1})", s), "object");
+  for (const SceneObject& o : s.objects()) EXPECT_TRUE(o.ddm_layers.empty()) << o.name;
+  // Bake: unknown layer, taken name.
+  DdmFillCommand::parse(json::parse(R"({"cmd":"ddm.fill","object":"ball","layer":"ok","tile":"hex","layout":"rect",
+      "counts":[1,1],"height":0.1})"), {})->redo(s);
+  auto bake_field = [&](const char* line) -> std::string {
+    try {
+      DdmBakeCommand::parse(json::parse(line), {})->redo(s);
+    } catch (const CommandError& e) {
+      return e.field();
+    }
+    return "(accepted)";
+  };
+  EXPECT_EQ(bake_field(R"({"cmd":"ddm.bake","object":"ball","layer":"missing","name":"b"})"), "layer");
+  EXPECT_EQ(bake_field(R"({"cmd":"ddm.bake","object":"ball","layer":"ok","name":"fin"})"), "name");
+  EXPECT_EQ(s.objects().size(), 2u);
+}
+
+}  // namespace
+}  // namespace trispline::core
