@@ -93,9 +93,10 @@ void write_log_atomic(const std::filesystem::path& path, const std::vector<nlohm
 void make_paths_relative(std::vector<nlohmann::json>& lines, const std::filesystem::path& dir) {
   const std::filesystem::path base = std::filesystem::absolute(dir).lexically_normal();
   for (auto& l : lines) {
-    auto it = l.find("path");
     const std::string cmd = l.value("cmd", "");
-    if ((cmd != "scene.load" && cmd != "anim.clip") || it == l.end() || !it->is_string()) continue;
+    auto it = l.find(cmd == "ddm.fill" ? "tile" : "path");  // ddm.fill's tile file (generated tiles are names)
+    if ((cmd != "scene.load" && cmd != "anim.clip" && cmd != "ddm.fill") || it == l.end() || !it->is_string())
+      continue;
     const std::filesystem::path p(it->get<std::string>());
     if (!p.is_absolute()) continue;
     const std::filesystem::path rel = p.lexically_relative(base);

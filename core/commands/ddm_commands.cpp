@@ -45,7 +45,9 @@ CommandPtr DdmFillCommand::parse(const nlohmann::json& j, const CommandContext& 
 }
 
 nlohmann::json DdmFillCommand::to_json() const {
-  nlohmann::json j = {{"cmd", id()},         {"object", object_}, {"layer", layer_},   {"tile", tile_},
+  // A tile file is logged absolute (replayable from anywhere), made relative again when a log is saved.
+  const std::string tile = tile_path_.empty() ? tile_ : tile_path_.string();
+  nlohmann::json j = {{"cmd", id()},         {"object", object_}, {"layer", layer_},   {"tile", tile},
                       {"layout", layout_},   {"counts", jf::to_json(counts_)},        {"height", height_}};
   if (base_ != "limit") j["base"] = base_;
   return j;

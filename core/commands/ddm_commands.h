@@ -4,8 +4,8 @@
 //   {"cmd":"ddm.fill","object":"ID","layer":"NAME","tile":"PATH|thorn|chain|hex|flower","layout":"rect|hex|brick",
 //    "counts":[n,m],"height":h}
 //   optional: "base":"limit|teapot_body" (default "limit").
-//   tile    a generated tile (ddm_tile.h) or a mesh file (OBJ/PLY/glTF, relative to the log's folder), made canonical
-//           by its bounding box (canonical_ddm_tile);
+//   tile    a generated tile (ddm_tile.h) or a mesh file (OBJ/PLY/glTF, relative to the log's folder; logged absolute,
+//           relative again in saved logs, like scene.load's path), made canonical by its bounding box;
 //   base    limit: the Loop limit surface of the object's rest mesh (OpenSubdiv Bfr), three charts per triangle;
 //           teapot_body: the teapot primitive's 8 Bézier body patches (objects made by scene.primitive "teapot");
 //   layout, counts: cells per chart (ddm_layout_cells): n × m, n ≥ 1 (≥ 2 for hex / brick), m ≥ 1;

@@ -130,6 +130,17 @@ TEST(CommandLog, LoadLinesCarryAbsolutePathsAndSaveMakesThemRelative) {
   editor::make_paths_relative(lines, logs_dir());
   EXPECT_EQ(lines[0].at("path"), "data/empty.obj");
   EXPECT_EQ(lines[1].at("path"), "/not/touched");
+
+  // ddm.fill's tile file likewise; a generated tile is a name and stays as it is.
+  const auto fill = editor::CommandRegistry::builtin().parse(
+      nlohmann::json::parse(R"({"cmd":"ddm.fill","object":"o","layer":"l","tile":"data/brick.obj","layout":"rect",
+                                "counts":[1,1],"height":0.1})"), ctx);
+  EXPECT_TRUE(fs::path(fill->to_json().at("tile").get<std::string>()).is_absolute());
+  std::vector<nlohmann::json> fills = {fill->to_json(), fill->to_json()};
+  fills[1]["tile"] = "thorn";
+  editor::make_paths_relative(fills, logs_dir());
+  EXPECT_EQ(fills[0].at("tile"), "data/brick.obj");
+  EXPECT_EQ(fills[1].at("tile"), "thorn");
 }
 
 TEST(CommandLog, AtomicWriteThenReadRoundTripsWithCmdFirst) {

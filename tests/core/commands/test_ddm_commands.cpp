@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 
 #include "core/commands/ddm_commands.h"
 #include "core/commands/scene_primitive.h"
@@ -76,6 +77,24 @@ TEST(DdmCommands, TeapotBodyLayerAndReplacingALayer) {
   ASSERT_EQ(s.find("pot")->ddm_layers.size(), 1u);  // same name: replaced
   EXPECT_EQ(s.find("pot")->ddm_layers[0]->tile_source, "thorn");
   EXPECT_EQ(s.find("pot")->ddm_layers[0]->instances.size(), 8u * 4u);
+}
+
+// A tile from a mesh file, relative to the log's folder: made canonical, logged with its absolute path.
+TEST(DdmCommands, TileFromAFileRelativeToTheLog) {
+  CommandContext ctx;
+  ctx.base_dir = std::filesystem::path(TRISPLINE_SOURCE_DIR) / "tests" / "logs";
+  auto fill = DdmFillCommand::parse(json::parse(R"({"cmd":"ddm.fill","object":"ball","layer":"t","tile":"data/brick.obj",
+      "layout":"rect","counts":[1,1],"height":0.1})"), ctx);
+  EXPECT_TRUE(std::filesystem::path(fill->to_json().at("tile").get<std::string>()).is_absolute());
+  Scene s = ball_scene();
+  fill->redo(s);
+  const DdmLayer& layer = *s.find("ball")->ddm_layers.at(0);
+  EXPECT_EQ(layer.tile.name, "brick");
+  EXPECT_NEAR(layer.tile.mesh.positions[6].z, 0.25, 1e-12);  // z extent 0.5 over the larger span 2
+  Aabb b;
+  for (const glm::dvec3& p : layer.tile.mesh.positions) b.extend(p);
+  EXPECT_NEAR(b.hi.x, 1.0, 1e-12);
+  EXPECT_NEAR(b.hi.y, 1.0, 1e-12);
 }
 
 TEST(DdmCommands, BadInputIsRefusedAndTheSceneIsUnchanged) {
