@@ -1,6 +1,7 @@
-// trispline::core::DdmLayer — one layer of tiles painted or filled over an object (seed ch. 5): the tile, how its
-// instances are laid out on the object's base surface, and their evaluated mesh. Held by SceneObject::ddm_layers
-// (immutable, shared between undo states); made by the ddm.* commands (core/commands/ddm_commands.h).
+// trispline::core::DdmLayer — one layer of tiles painted or filled over an object (seed ch. 5): its tiles, how their
+// instances are laid out on the object's base surface, the base's P/N maps, its animation, and the evaluated mesh.
+// Held by SceneObject::ddm_layers (immutable, shared between undo states); made by the ddm.* commands
+// (core/commands/ddm_commands.h) through ddm_layer_build / ddm_layer_with_instances.
 #pragma once
 
 #include <memory>
@@ -8,28 +9,66 @@
 #include <vector>
 
 #include "core/ddm/ddm_map.h"
+#include "core/ddm/ddm_maps.h"
 #include "core/ddm/ddm_tile.h"
 #include "core/mesh/tri_mesh.h"
+#include "core/spline/keyframes.h"
 
 namespace trispline::core {
 
 // Which surface of the object the tiles sit on.
 enum class DdmBaseKind {
   limit,        // the Loop limit surface of the object's rest mesh, three charts per triangle (DdmSubdivBase)
-  teapot_body,  // the 8 Bézier body patches of the teapot primitive (DdmSplineBase over teapot_body_patches())
+  teapot_body,  // the teapot primitive's 8 Bézier body patches as one chart, periodic around (DdmSplineBase grid)
+  uv,           // the rest mesh rasterised in its texture coordinates (ddm_rasterize_uv_maps), one chart
 };
-const char* ddm_base_name(DdmBaseKind k);  // "limit" | "teapot_body"
+const char* ddm_base_name(DdmBaseKind k);  // "limit" | "teapot_body" | "uv"
 
 struct DdmLayer {
-  std::string name;          // the layer's name, unique per object
-  std::string tile_source;   // "thorn" | "chain" | "hex" | "flower" | the tile file as logged
-  DdmTile tile;              // canonical tile space (ddm_tile.h)
+  std::string name;                       // unique per object
+  std::vector<std::string> tile_sources;  // per tile: "thorn" | "chain" | "hex" | "flower" | the tile file as logged
+  std::vector<DdmTile> tiles;             // ≥ 1, canonical tile space (ddm_tile.h)
   DdmBaseKind base = DdmBaseKind::limit;
   DdmLayout layout = DdmLayout::rect;
   glm::ivec2 counts{1, 1};   // cells per chart (n along u, m along v)
   double height = 0.1;       // world units per tile unit of w, along the base normal
-  std::vector<DdmInstance> instances;  // the cells that hold a tile
-  std::shared_ptr<const TriMesh> mesh;  // ddm_evaluate of the instances, object space (#instances × #tile vertices)
+  DdmTileTransform transform;              // in the tile's texture space
+  std::vector<DdmInstance> instances;      // the cells that hold a tile (order: as filled / painted)
+  std::shared_ptr<const DdmBase> surface;  // the exact base (null for uv: the maps are the base)
+  std::shared_ptr<const DdmMaps> maps;     // P/N maps of every chart that holds an instance (GPU + CPU reference)
+
+  // Animation (seed §5.4.2), scene time in seconds. Metamorphosis (Eq. 5.3): morph_tiles is empty or one tile per
+  // entry of `tiles`, each of the same topology; α(t) = alpha_keys (in .offset.x) or `alpha` without keys.
+  std::vector<std::string> morph_sources;
+  std::vector<DdmTile> morph_tiles;
+  double alpha = 0.0;
+  std::vector<OffsetKey> alpha_keys;
+  // Texture-space offset of every tile (chart parameter units; wraps on periodic axes): offset_keys (.offset.xy) or
+  // zero, plus offset_velocity·t.
+  std::vector<OffsetKey> offset_keys;
+  glm::dvec2 offset_velocity{0.0};
+
+  // The layer at scene time 0 evaluated on the CPU reference over `maps` (what the GPU draws, object space).
+  std::shared_ptr<const TriMesh> mesh;
+
+  double alpha_at(double time_s) const;
+  glm::dvec2 offset_at(double time_s) const;
+  bool animated() const;  // α or the offset changes with time
+  // The tiles at α (tiles themselves when there are no morph tiles).
+  std::vector<DdmTile> tiles_at(double alpha) const;
 };
+
+// The layer's mesh at scene time `time_s`: ddm_evaluate over DdmMapsBase(maps) with tiles_at(alpha_at(t)), transform
+// and offset_at(t). Object space, #V = Σ instance tile vertex counts. Deterministic.
+TriMesh ddm_layer_mesh(const DdmLayer& layer, double time_s);
+
+// A copy of `layer` with `instances` (maps extended to the charts they reach, mesh re-evaluated at time 0): what
+// ddm.paint makes. Throws std::invalid_argument: an instance on a chart out of range or with a tile index out of range,
+// no surface to sample new charts from (uv layers are sampled whole).
+std::shared_ptr<DdmLayer> ddm_layer_with_instances(const DdmLayer& layer, std::vector<DdmInstance> instances);
+
+// Sets maps (every chart of `instances`, at `map_resolution`; a uv layer keeps its maps) and mesh of a layer whose
+// other fields are set. Throws as ddm_sample_maps and ddm_evaluate.
+void ddm_layer_finish(DdmLayer& layer, glm::ivec2 map_resolution);
 
 }  // namespace trispline::core

@@ -8,7 +8,11 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <limits>
 #include <string>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 
 #include <opensubdiv/bfr/refinerSurfaceFactory.h>
@@ -20,6 +24,7 @@ namespace trispline::core {
 namespace {
 
 double clamp01(double t) { return t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t); }
+double wrap01(double t) { return t - std::floor(t); }
 
 // n = S_u × S_v / |S_u × S_v| and its partials from S's first and second derivatives (Weingarten: ∂n = (∂m − n (n·∂m))
 // / |m| with m = S_u × S_v, ∂m/∂u = S_uu × S_v + S_u × S_uv, ∂m/∂v = S_uv × S_v + S_u × S_vv). False when |m| = 0.
@@ -38,14 +43,31 @@ bool set_normal(DdmSurfacePoint& q, const glm::dvec3& Su, const glm::dvec3& Sv, 
 
 }  // namespace
 
-DdmSplineBase::DdmSplineBase(std::vector<BSplineSurface<glm::dvec3>> patches) : patches_(std::move(patches)) {
+DdmSplineBase::DdmSplineBase(std::vector<BSplineSurface<glm::dvec3>> patches, glm::ivec2 grid, glm::bvec2 periodic)
+    : patches_(std::move(patches)), grid_(grid), periodic_(periodic) {
   if (patches_.empty()) throw std::invalid_argument("base: a spline base needs at least one patch");
+  if (grid_ != glm::ivec2(0) &&
+      (grid_.x < 1 || grid_.y < 1 || static_cast<std::size_t>(grid_.x) * grid_.y != patches_.size()))
+    throw std::invalid_argument("base: a " + std::to_string(grid_.x) + " × " + std::to_string(grid_.y) +
+                                " patch grid needs that many patches, got " + std::to_string(patches_.size()));
 }
 
 DdmSurfacePoint DdmSplineBase::eval(int chart, double u, double v) const {
   if (chart < 0 || chart >= chart_count())
     throw std::out_of_range("base: chart " + std::to_string(chart) + " of " + std::to_string(chart_count()));
-  const BSplineSurface<glm::dvec3>& S = patches_[static_cast<std::size_t>(chart)];
+  u = periodic_.x ? wrap01(u) : clamp01(u);
+  v = periodic_.y ? wrap01(v) : clamp01(v);
+  if (grid_.x == 0) return eval_patch(chart, u, v);
+  // One chart over the grid: patch (i, j) covers [i/c, (i+1)/c] × [j/r, (j+1)/r]; the chain rule scales by (c, r).
+  const int i = std::min(static_cast<int>(u * grid_.x), grid_.x - 1), j = std::min(static_cast<int>(v * grid_.y), grid_.y - 1);
+  DdmSurfacePoint q = eval_patch(i + grid_.x * j, u * grid_.x - i, v * grid_.y - j);
+  q.du *= grid_.x, q.dn_du *= grid_.x;
+  q.dv *= grid_.y, q.dn_dv *= grid_.y;
+  return q;
+}
+
+DdmSurfacePoint DdmSplineBase::eval_patch(int patch, double u, double v) const {
+  const BSplineSurface<glm::dvec3>& S = patches_[static_cast<std::size_t>(patch)];
   const KnotVector &ku = S.knots(0), &kv = S.knots(1);
   const double su = ku.domain_max() - ku.domain_min(), sv = kv.domain_max() - kv.domain_min();
   u = clamp01(u), v = clamp01(v);
@@ -69,7 +91,14 @@ DdmSurfacePoint DdmSplineBase::eval(int chart, double u, double v) const {
   return q;
 }
 
-const char* ddm_base_name(DdmBaseKind k) { return k == DdmBaseKind::teapot_body ? "teapot_body" : "limit"; }
+glm::dmat2 DdmTileTransform::linear() const {
+  const double a = glm::radians(rotate_deg), c = std::cos(a), s = std::sin(a);
+  return glm::dmat2(c * scale.x, s * scale.x, -s * scale.y, c * scale.y);  // columns: R·e_x·sx, R·e_y·sy
+}
+
+const char* ddm_base_name(DdmBaseKind k) {
+  return k == DdmBaseKind::teapot_body ? "teapot_body" : k == DdmBaseKind::uv ? "uv" : "limit";
+}
 
 const char* ddm_layout_name(DdmLayout l) {
   switch (l) {
@@ -100,38 +129,68 @@ std::vector<DdmInstance> ddm_layout_cells(DdmLayout layout, glm::ivec2 counts, i
   return cells;
 }
 
-TriMesh ddm_evaluate(const DdmBase& base, const DdmTile& tile, const std::vector<DdmInstance>& instances,
-                     double height) {
+TriMesh ddm_evaluate(const DdmBase& base, const std::vector<DdmTile>& tiles, const std::vector<DdmInstance>& instances,
+                     double height, const DdmTileTransform& transform, glm::dvec2 offset) {
   if (!std::isfinite(height) || !(height > 0.0))
     throw std::invalid_argument("height: must be finite and > 0, got " + std::to_string(height));
-  const std::size_t nv = tile.mesh.vertex_count();
-  if (tile.mesh.normals.size() != nv)
-    throw std::invalid_argument("tile: '" + tile.name + "' has no per-vertex normals");
-  for (const DdmInstance& inst : instances)
+  if (tiles.empty()) throw std::invalid_argument("tile: a layer needs at least one tile");
+  for (const DdmTile& tile : tiles)
+    if (tile.mesh.normals.size() != tile.mesh.vertex_count())
+      throw std::invalid_argument("tile: '" + tile.name + "' has no per-vertex normals");
+  if (!std::isfinite(offset.x) || !std::isfinite(offset.y)) throw std::invalid_argument("offset: must be finite");
+  // Vertex offset of every instance (instances one after another, each in its tile's vertex order).
+  std::vector<std::size_t> first(instances.size() + 1, 0);
+  for (std::size_t k = 0; k < instances.size(); ++k) {
+    const DdmInstance& inst = instances[k];
     if (inst.chart < 0 || inst.chart >= base.chart_count())
       throw std::invalid_argument("base: instance on chart " + std::to_string(inst.chart) + " of " +
                                   std::to_string(base.chart_count()));
-  TriMesh out;
-  out.positions.resize(nv * instances.size());
-  out.normals.resize(nv * instances.size());
-  out.triangles.reserve(tile.mesh.triangles.size() * instances.size());
-  for (std::size_t k = 0; k < instances.size(); ++k) {
-    const DdmInstance& inst = instances[k];
-    for (std::size_t v = 0; v < nv; ++v) {
-      const glm::dvec3& t = tile.mesh.positions[v];
-      const DdmSurfacePoint s = base.eval(inst.chart, inst.origin.x + inst.size.x * t.x, inst.origin.y + inst.size.y * t.y);
-      const double wh = t.z * height;
-      out.positions[k * nv + v] = s.p + wh * s.n;  // seed Eq. 5.2
-      const glm::dmat3 J(inst.size.x * (s.du + wh * s.dn_du), inst.size.y * (s.dv + wh * s.dn_dv), height * s.n);
-      const glm::dmat3 cof(glm::cross(J[1], J[2]), glm::cross(J[2], J[0]), glm::cross(J[0], J[1]));
-      const glm::dvec3 n = cof * tile.mesh.normals[v];
-      const double len = glm::length(n);
-      out.normals[k * nv + v] = len > 0.0 && std::isfinite(len) ? n / len : s.n;
-    }
-    const auto off = static_cast<unsigned>(k * nv);
-    for (const glm::uvec3& f : tile.mesh.triangles) out.triangles.push_back(f + glm::uvec3(off));
+    if (inst.tile < 0 || inst.tile >= static_cast<int>(tiles.size()))
+      throw std::invalid_argument("tile: instance " + std::to_string(k) + " uses tile " + std::to_string(inst.tile) +
+                                  " of " + std::to_string(tiles.size()));
+    first[k + 1] = first[k] + tiles[static_cast<std::size_t>(inst.tile)].mesh.vertex_count();
   }
+  if (first.back() > std::numeric_limits<std::uint32_t>::max())
+    throw std::invalid_argument("counts: " + std::to_string(first.back()) + " vertices exceed 32-bit indices");
+  const glm::dmat2 L = transform.linear();
+  TriMesh out;
+  out.positions.resize(first.back());
+  out.normals.resize(first.back());
+  std::vector<std::size_t> first_tri(instances.size() + 1, 0);
+  for (std::size_t k = 0; k < instances.size(); ++k)
+    first_tri[k + 1] = first_tri[k] + tiles[static_cast<std::size_t>(instances[k].tile)].mesh.triangle_count();
+  out.triangles.resize(first_tri.back());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, instances.size(), 16), [&](const auto& range) {
+    for (std::size_t k = range.begin(); k != range.end(); ++k) {
+      const DdmInstance& inst = instances[k];
+      const TriMesh& tm = tiles[static_cast<std::size_t>(inst.tile)].mesh;
+      const glm::dvec2 cx = inst.size.x * glm::dvec2(L[0][0], L[1][0]);  // ∂u/∂(x, y)
+      const glm::dvec2 cy = inst.size.y * glm::dvec2(L[0][1], L[1][1]);  // ∂v/∂(x, y)
+      for (std::size_t v = 0; v < tm.vertex_count(); ++v) {
+        const glm::dvec3& t = tm.positions[v];
+        const glm::dvec2 uv = inst.origin + inst.size * transform.apply({t.x, t.y}) + offset;
+        const DdmSurfacePoint s = base.eval(inst.chart, uv.x, uv.y);
+        const double wh = t.z * height;
+        out.positions[first[k] + v] = s.p + wh * s.n;  // seed Eq. 5.2
+        const glm::dvec3 Tu = s.du + wh * s.dn_du, Tv = s.dv + wh * s.dn_dv;
+        const glm::dmat3 J(Tu * cx.x + Tv * cy.x, Tu * cx.y + Tv * cy.y, height * s.n);
+        const glm::dmat3 cof(glm::cross(J[1], J[2]), glm::cross(J[2], J[0]), glm::cross(J[0], J[1]));
+        const glm::dvec3 n = cof * tm.normals[v];
+        const double len = glm::length(n);
+        out.normals[first[k] + v] = len > 0.0 && std::isfinite(len) ? n / len : s.n;
+      }
+      const auto off = static_cast<unsigned>(first[k]);
+      for (std::size_t f = 0; f < tm.triangle_count(); ++f) out.triangles[first_tri[k] + f] = tm.triangles[f] + glm::uvec3(off);
+    }
+  });
   return out;
+}
+
+TriMesh ddm_evaluate(const DdmBase& base, const DdmTile& tile, const std::vector<DdmInstance>& instances,
+                     double height) {
+  std::vector<DdmInstance> one = instances;
+  for (DdmInstance& i : one) i.tile = 0;
+  return ddm_evaluate(base, std::vector<DdmTile>{tile}, one, height);
 }
 
 DdmTile ddm_morph(const DdmTile& a, const DdmTile& b, double alpha) {

@@ -28,22 +28,33 @@ class DdmBase {
  public:
   virtual ~DdmBase() = default;
   virtual int chart_count() const = 0;
-  // (u, v) clamped to [0,1]². Throws std::out_of_range for chart ∉ [0, chart_count()).
+  // (u, v) clamped to [0,1]² (taken modulo 1 on a periodic axis). Throws std::out_of_range for chart ∉
+  // [0, chart_count()).
   virtual DdmSurfacePoint eval(int chart, double u, double v) const = 0;
+  // Axes along which every chart closes on itself (S(0, v) = S(1, v) for u): tiles and offset animation wrap there.
+  virtual glm::bvec2 periodic() const { return {false, false}; }
 };
 
 // B-spline / Bézier patches as charts (seed §5.3.1 (a)): chart c is patches[c] with its domain mapped onto [0,1]².
 // Where S_u × S_v vanishes (a collapsed patch edge, the teapot's bottom centre) n is taken a little inside the patch.
+// With grid = (c, r) (c·r = #patches) the patches instead form ONE chart: patch i + c·j covers
+// [i/c, (i+1)/c] × [j/r, (j+1)/r] (the teapot's body: 4 patches around × 2 high, periodic around, so tiles and
+// offset animation run round the pot across patch borders as in the seed's single texture space).
 class DdmSplineBase final : public DdmBase {
  public:
-  // Throws std::invalid_argument: no patches.
-  explicit DdmSplineBase(std::vector<BSplineSurface<glm::dvec3>> patches);
-  int chart_count() const override { return static_cast<int>(patches_.size()); }
+  // Throws std::invalid_argument: no patches; grid with c·r ≠ #patches or c, r < 1.
+  explicit DdmSplineBase(std::vector<BSplineSurface<glm::dvec3>> patches, glm::ivec2 grid = {0, 0},
+                         glm::bvec2 periodic = {false, false});
+  int chart_count() const override { return grid_.x > 0 ? 1 : static_cast<int>(patches_.size()); }
+  glm::bvec2 periodic() const override { return periodic_; }
   DdmSurfacePoint eval(int chart, double u, double v) const override;
-  const BSplineSurface<glm::dvec3>& patch(int chart) const { return patches_.at(static_cast<std::size_t>(chart)); }
+  const BSplineSurface<glm::dvec3>& patch(int i) const { return patches_.at(static_cast<std::size_t>(i)); }
 
  private:
+  DdmSurfacePoint eval_patch(int patch, double u, double v) const;
   std::vector<BSplineSurface<glm::dvec3>> patches_;
+  glm::ivec2 grid_{0, 0};
+  glm::bvec2 periodic_{false, false};
 };
 
 // The limit surface of a triangle mesh (Loop scheme, OpenSubdiv Bfr, double precision; seed §5.3.1 (b), without its
@@ -76,13 +87,26 @@ struct DdmInstance {
   int chart = 0;
   glm::dvec2 origin{0.0};
   glm::dvec2 size{1.0};
+  int tile = 0;  // index into the layer's tiles (several tiles per layer, seed Fig. 5.12)
   bool operator==(const DdmInstance&) const = default;
+};
+
+// Per-layer transform in the tile's texture space (applied before the cell map): the tile point (x, y) goes to
+//   (x', y') = R(rotate_deg) · diag(scale) · ((x, y) − ½) + ½ + shift,
+// then (u, v) = origin + size ⊙ (x', y') + offset (offset: the layer's texture-space animation, seed §5.4.2).
+struct DdmTileTransform {
+  glm::dvec2 scale{1.0};   // tile units per cell (1 = the tile fills its cell)
+  double rotate_deg = 0;   // degrees, counter-clockwise in (u, v)
+  glm::dvec2 shift{0.0};   // cell units
+  glm::dmat2 linear() const;  // R · diag(scale)
+  glm::dvec2 apply(glm::dvec2 xy) const { return linear() * (xy - 0.5) + 0.5 + shift; }
+  bool is_identity() const { return scale == glm::dvec2(1.0) && rotate_deg == 0 && shift == glm::dvec2(0.0); }
 };
 
 enum class DdmLayout { rect, hex, brick };
 const char* ddm_layout_name(DdmLayout l);  // "rect" | "hex" | "brick"
 
-// The cells of an n × m layout on every chart, chart by chart, row by row (v), then along u:
+// The cells of an n × m layout on every chart, chart by chart, row by row (v), then along u (tile 0 each):
 //   rect   n × m cells of size (1/n, 1/m);
 //   brick  m rows of height 1/m; even rows n cells, odd rows n − 1 cells shifted by half a cell (seed Fig. 5.12);
 //   hex    m rows of the hex tile (its corners at y = ¼, ¾): cells of width 1/n and height 1/(0.75·(m − 1) + 1), rows
@@ -91,12 +115,17 @@ const char* ddm_layout_name(DdmLayout l);  // "rect" | "hex" | "brick"
 // empty), or chart_count < 1.
 std::vector<DdmInstance> ddm_layout_cells(DdmLayout layout, glm::ivec2 counts, int chart_count);
 
-// The reference evaluation (seed Eq. 5.1–5.2): every instance's copy of the tile, instances one after another, each
-// in the tile's vertex order (#V = #instances × #tile vertices; triangles offset per instance; what ddm.bake writes).
-// A tile point (x, y, w) of an instance maps to T(u, v, w·height) with (u, v) = origin + size ⊙ (x, y). Normals: the
-// tile's normal through the cofactor of T's Jacobian J = [size.x·(S_u + w·h·n_u), size.y·(S_v + w·h·n_v), h·n]
-// (exact, seed §5.3.2 last paragraph, without its ε trick), renormalised.
-// Throws std::invalid_argument: height not finite or ≤ 0, a chart index out of range, tile without normals (#V).
+// The reference evaluation (seed Eq. 5.1–5.2): every instance's copy of its tile (tiles[instance.tile]), instances
+// one after another, each in its tile's vertex order (#V = Σ #tile vertices; triangles offset per instance; what
+// ddm.bake writes). A tile point (x, y, w) of an instance maps to T(u, v, w·height) with (u, v) from
+// DdmTileTransform above. Normals: the tile's normal through the cofactor of T's Jacobian
+//   J = [S'_u, S'_v] · diag(size) · L | h·n],  S'_· = S_· + w·h·n_·,  L = transform.linear()
+// (exact, seed §5.3.2 last paragraph, without its ε trick), renormalised. TBB over instances; deterministic.
+// Throws std::invalid_argument: height not finite or ≤ 0, a chart or tile index out of range, a tile without
+// normals (#V), no tiles.
+TriMesh ddm_evaluate(const DdmBase& base, const std::vector<DdmTile>& tiles, const std::vector<DdmInstance>& instances,
+                     double height, const DdmTileTransform& transform = {}, glm::dvec2 offset = glm::dvec2(0.0));
+// One tile for every instance (instance.tile ignored).
 TriMesh ddm_evaluate(const DdmBase& base, const DdmTile& tile, const std::vector<DdmInstance>& instances,
                      double height);
 

@@ -11,6 +11,7 @@
 #include "core/mesh/mesh_clip.h"
 #include "core/mesh/tri_mesh.h"
 #include "core/scene/camera.h"
+#include "core/spline/keyframes.h"
 
 #include <glm/glm.hpp>
 #include <memory>
@@ -55,19 +56,6 @@ struct Timeline {
     return fps == o.fps && frame_start == o.frame_start && frame_end == o.frame_end;
   }
 };
-
-// How a keyed value moves from one key to the next (Blender's keyframe interpolation, set on the earlier key).
-enum class KeyInterpolation { constant, linear, smooth };  // smooth = ease in/out (cubic with flat tangents)
-
-// One keyframe of an object's parameter offset (anim.keyframe). Keys are kept sorted by time, one per time.
-struct OffsetKey {
-  double time_s = 0;                 // scene time, seconds (anim.keyframe takes a frame and converts it)
-  glm::dvec3 offset{0.0};            // parameter units, like SceneObject::param_offset
-  KeyInterpolation interpolation = KeyInterpolation::linear;
-};
-
-// Value of sorted `keys` (non-empty) at `time_s`: held constant before the first and after the last key.
-glm::dvec3 evaluate_offset_keys(const std::vector<OffsetKey>& keys, double time_s);
 
 // A glTF clip attached to an object (anim.clip): the object's rest mesh is posed by it at every scene time.
 struct ClipBinding {

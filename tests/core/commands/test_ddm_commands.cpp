@@ -67,16 +67,17 @@ TEST(DdmCommands, TeapotBodyLayerAndReplacingALayer) {
   Scene s;
   ScenePrimitiveCommand::parse(json::parse(R"({"cmd":"scene.primitive","kind":"teapot","name":"pot"})"), {})->redo(s);
   auto fill = [&](const char* line) { DdmFillCommand::parse(json::parse(line), {})->redo(s); };
-  fill(R"({"cmd":"ddm.fill","object":"pot","layer":"a","tile":"hex","layout":"hex","counts":[6,5],"height":0.02,
+  fill(R"({"cmd":"ddm.fill","object":"pot","layer":"a","tile":"hex","layout":"hex","counts":[24,10],"height":0.02,
           "base":"teapot_body"})");
   const SceneObject& pot = *s.find("pot");
   ASSERT_EQ(pot.ddm_layers.size(), 1u);
-  EXPECT_EQ(pot.ddm_layers[0]->instances.size(), 8u * (6 + 5 + 6 + 5 + 6));
+  EXPECT_EQ(pot.ddm_layers[0]->instances.size(), 5u * 24 + 5u * 23);  // one chart: the 8 patches, round the pot
+  EXPECT_EQ(pot.ddm_layers[0]->maps->slot_count(), 1);
   fill(R"({"cmd":"ddm.fill","object":"pot","layer":"a","tile":"thorn","layout":"rect","counts":[2,2],"height":0.05,
           "base":"teapot_body"})");
   ASSERT_EQ(s.find("pot")->ddm_layers.size(), 1u);  // same name: replaced
-  EXPECT_EQ(s.find("pot")->ddm_layers[0]->tile_source, "thorn");
-  EXPECT_EQ(s.find("pot")->ddm_layers[0]->instances.size(), 8u * 4u);
+  EXPECT_EQ(s.find("pot")->ddm_layers[0]->tile_sources.at(0), "thorn");
+  EXPECT_EQ(s.find("pot")->ddm_layers[0]->instances.size(), 4u);
 }
 
 // A tile from a mesh file, relative to the log's folder: made canonical, logged with its absolute path.
@@ -89,10 +90,10 @@ TEST(DdmCommands, TileFromAFileRelativeToTheLog) {
   Scene s = ball_scene();
   fill->redo(s);
   const DdmLayer& layer = *s.find("ball")->ddm_layers.at(0);
-  EXPECT_EQ(layer.tile.name, "brick");
-  EXPECT_NEAR(layer.tile.mesh.positions[6].z, 0.25, 1e-12);  // z extent 0.5 over the larger span 2
+  EXPECT_EQ(layer.tiles.at(0).name, "brick");
+  EXPECT_NEAR(layer.tiles.at(0).mesh.positions[6].z, 0.25, 1e-12);  // z extent 0.5 over the larger span 2
   Aabb b;
-  for (const glm::dvec3& p : layer.tile.mesh.positions) b.extend(p);
+  for (const glm::dvec3& p : layer.tiles.at(0).mesh.positions) b.extend(p);
   EXPECT_NEAR(b.hi.x, 1.0, 1e-12);
   EXPECT_NEAR(b.hi.y, 1.0, 1e-12);
 }
@@ -131,7 +132,9 @@ TEST(DdmCommands, BadInputIsRefusedAndTheSceneIsUnchanged) {
   fin.refresh();
   s.insert(fin);
   EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","object":"fin","layer":"x","tile":"thorn","layout":"rect",
-      "counts":[1,1],"height":0.1})", s), "object");
+      "counts":[1,1],"height":0.1})", s), "base");
+  EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","object":"fin","layer":"x","tile":"thorn","layout":"rect",
+      "counts":[1,1],"height":0.1,"base":"uv"})", s), "base");  // no texture coordinates
   for (const SceneObject& o : s.objects()) EXPECT_TRUE(o.ddm_layers.empty()) << o.name;
   // Bake: unknown layer, taken name.
   DdmFillCommand::parse(json::parse(R"({"cmd":"ddm.fill","object":"ball","layer":"ok","tile":"hex","layout":"rect",
