@@ -92,17 +92,26 @@ void write_log_atomic(const std::filesystem::path& path, const std::vector<nlohm
 
 void make_paths_relative(std::vector<nlohmann::json>& lines, const std::filesystem::path& dir) {
   const std::filesystem::path base = std::filesystem::absolute(dir).lexically_normal();
-  for (auto& l : lines) {
-    const std::string cmd = l.value("cmd", "");
-    auto it = l.find(cmd == "ddm.fill" ? "tile" : "path");  // ddm.fill's tile file (generated tiles are names)
-    if ((cmd != "scene.load" && cmd != "anim.clip" && cmd != "ddm.fill") || it == l.end() || !it->is_string())
-      continue;
-    const std::filesystem::path p(it->get<std::string>());
-    if (!p.is_absolute()) continue;
+  auto relative = [&](nlohmann::json& value) {
+    if (!value.is_string()) return;
+    const std::filesystem::path p(value.get<std::string>());
+    if (!p.is_absolute()) return;  // generated tiles are names, and already relative paths stay
     const std::filesystem::path rel = p.lexically_relative(base);
     int ups = 0;
     for (const auto& part : rel) ups += part == "..";
-    if (!rel.empty() && ups <= 2) *it = rel.generic_string();  // farther away: a moved folder would break it
+    if (!rel.empty() && ups <= 2) value = rel.generic_string();  // farther away: a moved folder would break it
+  };
+  for (auto& l : lines) {
+    const std::string cmd = l.value("cmd", "");
+    if (cmd == "scene.load" || cmd == "anim.clip") {
+      if (auto it = l.find("path"); it != l.end()) relative(*it);
+    } else if (cmd.rfind("ddm.", 0) == 0) {  // tile files of ddm.fill / ddm.paint / ddm.animate
+      for (const char* field : {"tile", "morph_tile"})
+        if (auto it = l.find(field); it != l.end()) relative(*it);
+      for (const char* field : {"tiles", "morph_tiles"})
+        if (auto it = l.find(field); it != l.end() && it->is_array())
+          for (auto& t : *it) relative(t);
+    }
   }
 }
 

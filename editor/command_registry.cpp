@@ -12,6 +12,7 @@
 #include "core/commands/lattice_set_point.h"
 #include "core/commands/mesh_refine.h"
 #include "core/commands/mesh_subdivide.h"
+#include "core/commands/ddm_animate.h"
 #include "core/commands/ddm_commands.h"
 #include "core/commands/place_array.h"
 #include "core/commands/place_sketch.h"
@@ -71,6 +72,8 @@ const CommandRegistry& CommandRegistry::builtin() {
     r.add("ddm.fill", "Cover an object's surface with a layer of geometric tiles (DDM, seed ch. 5)",
           core::DdmFillCommand::parse);
     r.add("ddm.bake", "Turn a tile layer into an ordinary mesh object (for export)", core::DdmBakeCommand::parse);
+    r.add("ddm.animate", "Animate a tile layer: texture-space offset and metamorphosis to another tile (seed §5.4.2)",
+          core::DdmAnimateCommand::parse);
     r.add("anim.timeline", "Set the timeline's frame range and frame rate", core::AnimTimelineCommand::parse);
     r.add("anim.keyframe", "Key (or delete a key of) an object's parameter offset along its path at a frame (seed §2.4.3)",
           core::AnimKeyframeCommand::parse);

@@ -21,6 +21,7 @@
 
 #include "core/commands/anim_record.h"
 #include "core/mesh/gltf_anim_io.h"
+#include "core/scene/scene_export.h"
 #include "core/mesh/image_io.h"
 #include "editor/render_scene.h"
 
@@ -237,10 +238,8 @@ bool Recorder::step() {
   }
   d.result.files.push_back(file);
   if (d.glb) {
-    std::vector<core::GltfNode> nodes;
-    for (const core::SceneObject& o : posed.objects())
-      if (o.world_mesh) nodes.push_back({o.name, o.world_mesh.get(), o.color});
-    d.glb->add_frame(nodes);
+    const core::SceneExport exported = core::scene_export_nodes(posed);  // objects and their live tile layers
+    d.glb->add_frame(exported.nodes);
   }
   ++d.result.frames_written;
   ++d.next;

@@ -2,6 +2,7 @@
 
 #include "core/commands/anim_record.h"
 #include "core/mesh/gltf_io.h"
+#include "core/scene/scene_export.h"
 #include "core/mesh/image_io.h"
 #include "editor/command_log.h"
 #include "editor/command_registry.h"
@@ -276,10 +277,8 @@ int run_replay(const ReplayOptions& options) {
     }
     if (exported) {
       try {
-        std::vector<core::GltfNode> nodes;
-        for (const auto& o : exported->objects())
-          if (o.world_mesh) nodes.push_back({o.name, o.world_mesh.get(), o.color, o.inside_color});
-        core::write_glb(glb, nodes);
+        const core::SceneExport nodes = core::scene_export_nodes(*exported);  // objects and live tile layers
+        core::write_glb(glb, nodes.nodes);
         report["scene_glb"] = glb.string();
       } catch (const std::exception& e) {
         std::cerr << "cannot write " << glb << ": " << e.what() << "\n";

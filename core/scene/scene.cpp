@@ -110,12 +110,37 @@ SceneObject posed_by_clip(const SceneObject& object, double time_s) {
 }
 }  // namespace
 
+namespace {
+// The object's animated tile layers as stills at `time_s` (α and offset fixed, mesh evaluated there); false when none
+// is animated.
+bool pose_ddm_layers(SceneObject& object, double time_s) {
+  bool any = false;
+  for (auto& layer : object.ddm_layers) {
+    if (!layer->animated()) continue;
+    auto still = std::make_shared<DdmLayer>(*layer);
+    still->alpha = layer->alpha_at(time_s);
+    still->alpha_keys.clear();
+    still->offset_keys = {OffsetKey{0.0, glm::dvec3(layer->offset_at(time_s), 0.0), KeyInterpolation::constant}};
+    still->offset_velocity = glm::dvec2(0.0);
+    still->mesh = std::make_shared<const TriMesh>(ddm_layer_mesh(*layer, time_s));
+    layer = std::move(still);
+    any = true;
+  }
+  return any;
+}
+}  // namespace
+
 Scene scene_at_time(const Scene& scene, double time_s) {
   if (!std::isfinite(time_s)) throw std::invalid_argument("scene time is not finite");
   Scene out = scene;
   for (const SceneObject& object : scene.objects()) {
-    if (!object.animated()) continue;
+    if (!object.animated()) {
+      SceneObject posed = object;  // tile layers animate on their own (ddm.animate); the object stays as it is
+      if (pose_ddm_layers(posed, time_s)) out.replace(std::move(posed));
+      continue;
+    }
     SceneObject moved = object.clip ? posed_by_clip(object, time_s) : object;
+    pose_ddm_layers(moved, time_s);
     moved.param_offset = object.offset_at(time_s);
     moved.offset_keys.clear();
     moved.offset_velocity = glm::dvec3(0.0);

@@ -433,3 +433,31 @@ TEST(Record, ReplayRecordsTheLogsAnimRecordLinesFromTheSceneAtThatLine) {
 }
 
 }  // namespace
+
+// A tile layer's metamorphosis and offset (ddm.animate) record into animation.glb as the node "pot/thorns" with one
+// morph target per following frame, each the CPU reference (scene_at_time) of its frame.
+TEST(Record, TileLayerAnimationRecordsIntoTheGlb) {
+  const core::Scene scene = load_scene("ddm_morph_walk.jsonl");
+  const fs::path dir = fresh_dir("ddm");
+  const editor::RecordResult r = editor::record_frames(scene, options(dir, 1, 4));
+  const core::MorphAnimationInfo info = core::read_morph_animation_info(dir / "animation.glb");
+  ASSERT_EQ(info.meshes.size(), 2u);
+  EXPECT_EQ(info.meshes[0].name, "pot");
+  EXPECT_EQ(info.meshes[0].targets, 0);
+  EXPECT_EQ(info.meshes[1].name, "pot/thorns");
+  EXPECT_EQ(info.meshes[1].targets, 3);
+  const core::Scene posed = core::scene_at_time(scene, scene.timeline.time_of_frame(4));
+  const core::SceneObject& pot = *posed.find("pot");
+  const core::TriMesh expected = core::transformed(*pot.ddm_layers.at(0)->mesh, pot.transform);
+  const std::vector<glm::dvec3> got = core::read_morph_frame_positions(dir / "animation.glb", "pot/thorns", 3);
+  ASSERT_EQ(got.size(), expected.vertex_count());
+  double worst = 0, moved = 0;
+  const std::vector<glm::dvec3> first = core::read_morph_frame_positions(dir / "animation.glb", "pot/thorns", 0);
+  for (std::size_t i = 0; i < got.size(); ++i) {
+    worst = std::max(worst, glm::length(got[i] - expected.positions[i]));
+    moved = std::max(moved, glm::length(got[i] - first[i]));
+  }
+  EXPECT_LT(worst, 1e-5);
+  EXPECT_GT(moved, 0.01);  // the thorns walk round the pot and start to open
+  EXPECT_EQ(r.frames_written, 4);
+}

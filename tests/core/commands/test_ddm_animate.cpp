@@ -1,0 +1,77 @@
+// ddm.animate (core/commands/ddm_animate.h; seed §5.4.2, Eq. 5.3): metamorphosis keys and texture-space offset on a
+// layer, the scene at any time (scene_at_time) equal to the layer evaluated there, undo, bad input refused with the
+// scene unchanged, the log line round trip.
+#include <gtest/gtest.h>
+
+#include "core/commands/ddm_animate.h"
+#include "core/commands/scene_primitive.h"
+
+namespace trispline::core {
+namespace {
+
+using nlohmann::json;
+
+Scene pot_with_thorns() {
+  Scene s;
+  ScenePrimitiveCommand::parse(json::parse(R"({"cmd":"scene.primitive","kind":"teapot","name":"pot"})"), {})->redo(s);
+  DdmFillCommand::parse(json::parse(R"({"cmd":"ddm.fill","object":"pot","layer":"t","tile":"thorn","layout":"rect",
+      "counts":[8,2],"height":0.05,"base":"teapot_body","map_resolution":[65,33]})"), {})->redo(s);
+  return s;
+}
+
+TEST(DdmAnimate, MorphAndOffsetPlayOverTimeAndUndo) {
+  Scene s = pot_with_thorns();
+  const auto before = s.find("pot")->ddm_layers.at(0);
+  auto cmd = DdmAnimateCommand::parse(json::parse(R"({"cmd":"ddm.animate","object":"pot","layer":"t",
+      "morph_tile":"flower","alpha_keys":[[1,0],[25,1]],"offset_keys":[[1,0,0],[25,0.25,0]]})"), {});
+  cmd->redo(s);
+  const DdmLayer& layer = *s.find("pot")->ddm_layers.at(0);
+  ASSERT_TRUE(layer.animated());
+  EXPECT_EQ(layer.alpha_keys.size(), 2u);
+  EXPECT_DOUBLE_EQ(layer.alpha_at(0.5), 0.5);  // frame 13 of 24 fps
+  EXPECT_DOUBLE_EQ(layer.offset_at(1.0).x, 0.25);
+  EXPECT_EQ(layer.mesh->positions, before->mesh->positions);  // α = 0 and no offset at time 0
+  // The scene at 1 s: the layer is a still whose mesh is the layer evaluated there (flowers moved 2 cells round).
+  const Scene later = scene_at_time(s, 1.0);
+  const DdmLayer& still = *later.find("pot")->ddm_layers.at(0);
+  EXPECT_FALSE(still.animated());
+  EXPECT_DOUBLE_EQ(still.alpha, 1.0);
+  EXPECT_EQ(still.mesh->positions, ddm_layer_mesh(layer, 1.0).positions);
+  EXPECT_EQ(still.mesh->positions, ddm_layer_mesh(still, 0.0).positions);  // a still shows the same at any time
+  double moved = 0.0;
+  for (std::size_t v = 0; v < still.mesh->vertex_count(); ++v)
+    moved = std::max(moved, glm::length(still.mesh->positions[v] - layer.mesh->positions[v]));
+  EXPECT_GT(moved, 0.1);
+  // Round trip of the log line, then undo.
+  EXPECT_EQ(DdmAnimateCommand::parse(cmd->to_json(), {})->to_json(), cmd->to_json());
+  cmd->undo(s);
+  EXPECT_EQ(s.find("pot")->ddm_layers.at(0), before);
+}
+
+TEST(DdmAnimate, BadInputIsRefusedAndTheSceneIsUnchanged) {
+  Scene s = pot_with_thorns();
+  const auto before = s.find("pot")->ddm_layers.at(0);
+  auto field_of = [&](const char* line) -> std::string {
+    try {
+      DdmAnimateCommand::parse(json::parse(line), {})->redo(s);
+    } catch (const CommandError& e) {
+      return e.field();
+    }
+    return "(accepted)";
+  };
+  EXPECT_EQ(field_of(R"({"cmd":"ddm.animate","object":"pot","layer":"t","morph_tile":"chain"})"), "morph_tile");
+  EXPECT_EQ(field_of(R"({"cmd":"ddm.animate","object":"pot","layer":"t","alpha_keys":[[1,0],[9,1]]})"), "alpha_keys");
+  EXPECT_EQ(field_of(R"({"cmd":"ddm.animate","object":"pot","layer":"t","morph_tile":"flower",
+      "alpha_keys":[[1,0],[1,1]]})"), "alpha_keys");  // two keys on one frame
+  EXPECT_EQ(field_of(R"({"cmd":"ddm.animate","object":"pot","layer":"t","offset_keys":[[1,0]]})"), "offset_keys");
+  EXPECT_EQ(field_of(R"({"cmd":"ddm.animate","object":"pot","layer":"nope","alpha":0.5})"), "layer");
+  EXPECT_EQ(field_of(R"({"cmd":"ddm.animate","object":"nope","layer":"t"})"), "object");
+  EXPECT_EQ(s.find("pot")->ddm_layers.at(0), before);
+  // α outside [0, 1] extrapolates (Eq. 5.3 allows it).
+  EXPECT_EQ(field_of(R"({"cmd":"ddm.animate","object":"pot","layer":"t","morph_tile":"flower","alpha":1.5})"),
+            "(accepted)");
+  EXPECT_DOUBLE_EQ(s.find("pot")->ddm_layers.at(0)->alpha_at(3.0), 1.5);
+}
+
+}  // namespace
+}  // namespace trispline::core
