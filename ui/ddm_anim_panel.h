@@ -1,0 +1,50 @@
+// trispline::ui tile animation panel — the `ddm.animate` command's fields for one tile layer of the selected object
+// (seed §5.4.2: texture-space offset animation, Eq. 5.3: metamorphosis between two tiles of one topology) and its
+// "Animate" / "Clear" buttons. Plain data in, one command line out: the Tile Paint tool executes it.
+//   {"cmd":"ddm.animate","object":ID,"layer":NAME,"morph_tile":T,"alpha_keys":[[F0,α0],[F1,α1]],
+//    "offset_velocity":[du,dv],"interpolation":"linear|constant|smooth"}
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace trispline::ui {
+
+// What the panel shows about a layer (read from core::DdmLayer by the caller).
+struct DdmLayerInfo {
+  std::string name;
+  std::string tile;        // first tile's source ("thorn", a file, …)
+  std::size_t tiles = 0;   // instances
+  std::size_t vertices = 0;
+  bool animated = false;
+};
+
+struct DdmAnimParams {
+  std::string morph_tile = "flower";  // generated tile or file; "" = no metamorphosis (offset only)
+  int frame_from = 1, frame_to = 96;  // α runs alpha_from → alpha_to between these timeline frames
+  double alpha_from = 0.0, alpha_to = 1.0;  // may leave [0, 1] (extrapolation, Eq. 5.3)
+  double speed_u = 0.0, speed_v = 0.0;      // texture-space offset velocity, chart units per second
+  int interpolation = 2;                    // 0 constant, 1 linear, 2 smooth (Blender's ease in/out)
+};
+
+// Why Animate is disabled ("" when a line can be issued): no object / layer, frame_from ≥ frame_to with a morph tile,
+// nothing to animate (no morph tile and zero speed).
+std::string ddm_animate_blocked(const std::string& object, const std::string& layer, const DdmAnimParams& p);
+
+// The ddm.animate line for `layer` of `object` (alpha_keys only with a morph tile, offset_velocity always, so a
+// second Animate replaces the first). {"clear":true} when `clear`.
+nlohmann::json ddm_animate_line(const std::string& object, const std::string& layer, const DdmAnimParams& p,
+                                bool clear = false);
+
+struct DdmAnimPanelResult {
+  std::optional<nlohmann::json> line;  // Animate or Clear was clicked
+};
+
+// Draws inside the current window: `layer` (chosen among `layers`; reset to the first when not among them), the
+// morph tile, α keys over a frame range, the offset speed, and the buttons.
+DdmAnimPanelResult draw_ddm_anim_panel(DdmAnimParams& params, std::string& layer, const std::string& object,
+                                       const std::vector<DdmLayerInfo>& layers);
+
+}  // namespace trispline::ui
