@@ -11,4 +11,5 @@ set(TRISPLINE_EDITOR_APP_SOURCES
     tools/sketch_tool.cpp
     tools/press_tool.cpp
     tools/incision_tool.cpp
-    tools/dffd_tool.cpp)
+    tools/dffd_tool.cpp
+    tools/ddm_paint_tool.cpp)

@@ -7,6 +7,7 @@
 #include "core/deform/ffd_evaluator.h"
 #include "editor/app.h"
 #include "editor/bench_ffd.h"
+#include "editor/bench_ddm.h"
 #include "editor/bench_dffd.h"
 #include "editor/bench_place.h"
 #include "editor/command_registry.h"
@@ -137,6 +138,18 @@ int run_cli(int argc, char** argv) {
       ->default_str("assets/scenes/bars_walk.jsonl");
   bench_dffd->add_option("--runs", dffd_bench.runs, "Timed evaluations per frame (median)")->check(CLI::PositiveNumber);
   bench_dffd->add_option("--frames", dffd_bench.frames, "Frames sampled over the walk")->check(CLI::PositiveNumber);
+  BenchDdmOptions ddm_bench;
+  auto* bench_ddm = bench->add_subcommand(
+      "ddm", "Live DDM layers drawn by GPU instancing: tile vertices, GPU ms per frame, fps (seed §5.3.2, Table 5.1)");
+  bench_ddm->add_flag("--json", ddm_bench.json, "Print one JSON object instead of a table");
+  bench_ddm->add_option("--frames", ddm_bench.frames, "Timed frames per case (after 2 warm-up frames)")
+      ->check(CLI::PositiveNumber);
+  bench_ddm->add_option("--width", ddm_bench.width, "Offscreen target width, pixels")->check(CLI::PositiveNumber);
+  bench_ddm->add_option("--height", ddm_bench.height, "Offscreen target height, pixels")->check(CLI::PositiveNumber);
+  bench_ddm->add_option("--samples", ddm_bench.samples, "MSAA samples")->check(CLI::Range(1, 16));
+  bench_ddm->add_option("--case", ddm_bench.cases, "Cases: thorns_teapot, chains_1m, chains_3m (default all)")
+      ->check(CLI::IsMember({"thorns_teapot", "chains_1m", "chains_3m"}));
+  bench_ddm->add_flag("!--no-cpu", ddm_bench.cpu_reference, "Do not time the CPU reference evaluation");
   BenchPressOptions press_bench;
   auto* bench_press = bench->add_subcommand(
       "press", "A pressing drag on a ~1 M-vertex object: Press tool per mouse move, pressed lattice, cpu_fast / GLSL "
@@ -169,6 +182,7 @@ int run_cli(int argc, char** argv) {
       return run_bench_place(place_bench, std::cout, std::cerr);
     }
     if (*bench_dffd) return run_bench_dffd(dffd_bench, std::cout, std::cerr);
+    if (*bench_ddm) return run_bench_ddm(ddm_bench, std::cout, std::cerr);
     if (*bench_press) return run_bench_press(press_bench, std::cout, std::cerr);
     if (*commands) {
       const auto& registry = CommandRegistry::builtin();

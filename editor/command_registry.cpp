@@ -14,6 +14,7 @@
 #include "core/commands/mesh_subdivide.h"
 #include "core/commands/ddm_animate.h"
 #include "core/commands/ddm_commands.h"
+#include "core/commands/ddm_paint.h"
 #include "core/commands/place_array.h"
 #include "core/commands/place_sketch.h"
 #include "core/commands/scene_load.h"
@@ -71,6 +72,8 @@ const CommandRegistry& CommandRegistry::builtin() {
           core::MeshSubdivideCommand::parse);
     r.add("ddm.fill", "Cover an object's surface with a layer of geometric tiles (DDM, seed ch. 5)",
           core::DdmFillCommand::parse);
+    r.add("ddm.paint", "Paint (or erase) tiles of a layer with a brush stroke in the viewport (DDM, seed ch. 5)",
+          core::DdmPaintCommand::parse);
     r.add("ddm.bake", "Turn a tile layer into an ordinary mesh object (for export)", core::DdmBakeCommand::parse);
     r.add("ddm.animate", "Animate a tile layer: texture-space offset and metamorphosis to another tile (seed §5.4.2)",
           core::DdmAnimateCommand::parse);

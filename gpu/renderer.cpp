@@ -8,6 +8,7 @@
 #include <unordered_set>
 
 #include "gpu/overlay_geometry.h"
+#include "gpu/renderer_ddm.h"
 #include "gpu/renderer_ffd.h"
 #include "gpu/shader_program.h"
 #include "gpu/timer.h"
@@ -98,6 +99,8 @@ struct Renderer::Impl {
   std::unordered_map<const core::FfdBinding*, CachedContactSurface> contact_cache;
   std::shared_ptr<FfdProgramCache> ffd_programs = std::make_shared<FfdProgramCache>();
   detail::FfdDisplay ffd{ffd_programs};
+  detail::DdmDisplay ddm{ffd_programs};
+  GpuTimer ddm_timer, draw_timer_b;  // the DDM pass; the drawing passes after it (timers cannot nest)
   std::uint64_t generation = 0;  // source of CachedMesh::generation values
   GpuTimer ffd_timer, draw_timer;
   RenderStats stats;
@@ -312,6 +315,7 @@ const RenderStats& Renderer::last_stats() const { return impl_->stats; }
 
 void Renderer::release_unused(const core::Scene& scene) {
   impl_->ffd.release_unused(scene);
+  impl_->ddm.release_unused(scene);
   std::unordered_set<const core::TriMesh*> live;
   for (const core::SceneObject& o : scene.objects())
     if (o.world_mesh) live.insert(o.world_mesh.get());
@@ -407,6 +411,19 @@ void Renderer::draw(const core::Scene& scene, const core::Camera& camera, const 
     ++d.stats.objects_drawn;
     d.stats.triangles += b.triangle_count();
   }
+  // 2a. Live DDM layers, shaded like their objects and timed on their own (the draw timer pauses around them).
+  const bool any_ddm = detail::DdmDisplay::any_visible(scene);
+  if (any_ddm) {
+    draw_scope.reset();
+    {
+      GpuTimer::Scope ddm_scope(d.ddm_timer);
+      const detail::DdmDrawn drawn = d.ddm.draw_shaded(scene, options.time_s, view_proj, eye, key, options.selected);
+      d.stats.ddm_layers_drawn = drawn.layers;
+      d.stats.ddm_vertices = drawn.vertices;
+    }
+    d.stats.ddm_ms = d.ddm_timer.last_ms();
+    draw_scope.emplace(d.draw_timer_b);
+  }
   glDisable(GL_POLYGON_OFFSET_FILL);
   glDisable(GL_STENCIL_TEST);
 
@@ -427,6 +444,7 @@ void Renderer::draw(const core::Scene& scene, const core::Camera& camera, const 
       if (objects[i].visible && shown && !shown->empty())
         d.draw_object(shown, plans[i], d.flat, {{"FLAT_COLOR", ""}}, flat_uniforms);
     }
+    d.ddm.draw_flat(scene, options.time_s, view_proj, glm::vec4(0.05f, 0.05f, 0.06f, 0.45f));
     glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
     glDepthMask(GL_TRUE);
     glDepthFunc(GL_LESS);
@@ -462,6 +480,8 @@ void Renderer::draw(const core::Scene& scene, const core::Camera& camera, const 
                     p.set("u_outline_px", options.outline_px);
                     p.set("u_flat_color", rgba(options.selection_color));
                   });
+    d.ddm.draw_outline(*selected, options.time_s, view_proj, glm::vec2(vp), options.outline_px,
+                       rgba(options.selection_color));
     glDisable(GL_STENCIL_TEST);
     glEnable(GL_DEPTH_TEST);
   }
@@ -552,6 +572,10 @@ void Renderer::draw(const core::Scene& scene, const core::Camera& camera, const 
   glDepthFunc(GL_LESS);
   draw_scope.reset();
   d.stats.draw_ms = d.draw_timer.last_ms();
+  if (any_ddm) {
+    const double after = d.draw_timer_b.last_ms();
+    d.stats.draw_ms = d.stats.draw_ms < 0.0 || after < 0.0 ? -1.0 : d.stats.draw_ms + after;
+  }
   d.stats.cached_meshes = int(d.cache.size());
   d.stats.cached_contact_surfaces = int(d.contact_cache.size());
 }

@@ -15,6 +15,9 @@
 // outline and wireframe cover all triangles. DFFD objects (SceneObject::dffd) are drawn as their world_mesh is (it
 // is already split and deformed on the CPU); their lattice, discontinuity planes and fold-over points are overlays
 // (ViewOptions::show_discontinuities).
+// Live DDM layers (SceneObject::ddm_layers, issue 6, seed §5.3.2) are drawn by instancing on the GPU at
+// ViewOptions::time_s through the object's transform (renderer_ddm.h, gpu/ddm_gl.h), in its colour, wireframe and
+// outline included.
 #pragma once
 
 #include <epoxy/gl.h>
@@ -109,6 +112,12 @@ struct RenderStats {
   double ffd_ms = 0.0;    // FFD pass (dispatches, uploads, CPU evaluations; the vertex path's evaluation is part of
                           // draw_ms): GpuTimer ms (+ CPU evaluation ms in query mode); 0 without deformed objects,
                           // -1 while the timer has no result yet
+  // Live DDM layers (SceneObject::ddm_layers, renderer_ddm.h): layers drawn (with ≥ 1 instance), their vertices
+  // (Σ instances × tile vertices, evaluated by the vertex shader every draw), and the shaded layer pass: GpuTimer
+  // ms, 0 without layers, -1 while the timer has no result yet (not part of draw_ms).
+  int ddm_layers_drawn = 0;
+  std::size_t ddm_vertices = 0;
+  double ddm_ms = 0.0;
   double draw_ms = -1.0;  // the drawing passes (GpuTimer; -1 while unavailable)
   const char* timer_mode = "";  // GpuTimer::mode_description() of the timers above
 };

@@ -1,5 +1,6 @@
 #include "editor/tools/toolbox.h"
 
+#include "editor/tools/ddm_paint_tool.h"
 #include "editor/tools/dffd_tool.h"
 #include "editor/tools/incision_tool.h"
 #include "editor/tools/press_tool.h"
@@ -17,6 +18,7 @@ Toolbox::Toolbox(ToolContext& ctx) : ctx_(ctx) {
   tools_.push_back(std::make_unique<PressTool>());
   tools_.push_back(std::make_unique<IncisionTool>());
   tools_.push_back(std::make_unique<DffdTool>());
+  tools_.push_back(std::make_unique<DdmPaintTool>());
 }
 
 bool Toolbox::activate_shortcut(const std::string& key) {

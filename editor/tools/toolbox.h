@@ -14,7 +14,7 @@ namespace trispline::editor {
 class Toolbox {
  public:
   explicit Toolbox(ToolContext& ctx);  // ctx must outlive the toolbox
-  enum Index { kSelect = 0, kSketch = 1, kPress = 2, kIncision = 3, kDffdSplit = 4 };
+  enum Index { kSelect = 0, kSketch = 1, kPress = 2, kIncision = 3, kDffdSplit = 4, kDdmPaint = 5 };
 
   void set_active(int index);  // deactivates the old tool, activates the new one; out-of-range is ignored
   int active() const { return active_; }

@@ -57,6 +57,8 @@ INSTANTIATE_TEST_SUITE_P(
                       BadLogCase{"bad_unknown_kind.jsonl", 1, "kind", "dodecahedron"},
                       BadLogCase{"bad_duplicate_name.jsonl", 2, "name", "already exists"},
                       BadLogCase{"bad_ddm_fill_counts.jsonl", 2, "counts", "empty rect layout"},
+                      BadLogCase{"bad_ddm_paint_radius.jsonl", 3, "radius_px", "> 0"},
+                      BadLogCase{"bad_ddm_paint_miss.jsonl", 4, "stroke", "touches no visible cell"},
                       BadLogCase{"bad_undo_nothing.jsonl", 1, "cmd", "nothing to undo"},
                       BadLogCase{"bad_stroke_one_point.jsonl", 4, "stroke", "2"},
                       BadLogCase{"bad_zero_width.jsonl", 4, "width", "width"},

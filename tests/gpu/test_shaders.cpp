@@ -55,7 +55,10 @@ TEST_F(GlTest, EveryEmbeddedShaderCompilesAndLinks) {
       EXPECT_NO_THROW(ShaderProgram({name})) << name;
       ++linked;
     } else if (stage == GL_VERTEX_SHADER) {
-      const std::string frag = name.substr(0, name.size() - std::string(".vert.glsl").size()) + ".frag.glsl";
+      // Its own fragment shader, else the shared studio shading (ddm.vert.glsl draws with mesh.frag.glsl).
+      std::string frag = name.substr(0, name.size() - std::string(".vert.glsl").size()) + ".frag.glsl";
+      const auto names = shader_names();
+      if (std::find(names.begin(), names.end(), frag) == names.end()) frag = "mesh.frag.glsl";
       EXPECT_NO_THROW(ShaderProgram({name, frag})) << name;
       ++linked;
     }
@@ -73,6 +76,9 @@ TEST_F(GlTest, EveryEmbeddedShaderCompilesAndLinks) {
   EXPECT_NO_THROW(ShaderProgram({"mesh.vert.glsl", "mesh.frag.glsl"},
                                 {{"FFD", ""}, {"FFD_NORMALS", ""}, {"OUTLINE", ""}, {"FLAT_COLOR", ""}}));
   EXPECT_NO_THROW(ShaderProgram({"mesh.vert.glsl"}, {{"FFD", ""}}, {"v_world", "v_normal"}));
+  // DDM tile instances (issue 6): outline variant and the transform-feedback capture.
+  EXPECT_NO_THROW(ShaderProgram({"ddm.vert.glsl", "mesh.frag.glsl"}, {{"OUTLINE", ""}, {"FLAT_COLOR", ""}}));
+  EXPECT_NO_THROW(ShaderProgram({"ddm.vert.glsl"}, {}, {"v_world", "v_normal"}));
   EXPECT_NO_THROW(Renderer());
   EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
 }

@@ -1,0 +1,328 @@
+// ddm.paint. See ddm_paint.h. Source: seed ch. 5 (the painting of §5.4 / Fig. 5.10, here a brush over layout cells).
+#include "core/commands/ddm_paint.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <set>
+#include <stdexcept>
+#include <tuple>
+
+#include "core/commands/camera_set.h"
+#include "core/commands/ddm_commands.h"
+#include "core/commands/json_fields.h"
+#include "core/ddm/ddm_layer.h"
+#include "core/raycast/ray_caster.h"
+
+namespace trispline::core {
+namespace jf = json_fields;
+namespace {
+
+constexpr std::size_t kMaxTileVertices = 50'000'000;  // as ddm.fill
+constexpr double kCullMarginPx = 2.0;                 // occluder triangles: projected bbox grown by this much
+constexpr double kLimitGapFactor = 2.0;               // limit base: tolerance = this × |S(cell) − mesh point|
+constexpr double kOtherBaseTolerance = 0.01;          // other bases: tolerance = this × the object's diagonal
+
+// A cell whose centre passed the projection and facing tests: the ray test decides.
+struct Candidate {
+  DdmInstance cell;
+  glm::dvec3 p;      // centre on the base surface, world units
+  double tol = 0.0;  // how far before p the first hit may be, world units
+};
+
+double distance_to_polyline(glm::dvec2 q, const std::vector<glm::dvec2>& line) {
+  double best = glm::length(q - line.front());
+  for (std::size_t i = 1; i < line.size(); ++i) {
+    const glm::dvec2 a = line[i - 1], ab = line[i] - a;
+    const double len2 = glm::dot(ab, ab);
+    const double t = len2 > 0.0 ? std::clamp(glm::dot(q - a, ab) / len2, 0.0, 1.0) : 0.0;
+    best = std::min(best, glm::length(q - (a + t * ab)));
+  }
+  return best;
+}
+
+// The triangles of `world` whose projection can cover a pixel of [lo, hi] (their projected bounding box overlaps
+// it, or a vertex is at or behind the eye), compacted; `kept` maps new triangle → original index.
+TriMesh culled(const TriMesh& world, const Camera& camera, glm::dvec2 lo, glm::dvec2 hi, std::vector<int>* kept) {
+  std::vector<glm::dvec3> px(world.positions.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, px.size(), 4096), [&](const auto& r) {
+    for (std::size_t v = r.begin(); v != r.end(); ++v) px[v] = camera.project(world.positions[v]);
+  });
+  TriMesh out;
+  std::vector<int> remap(world.positions.size(), -1);
+  for (std::size_t f = 0; f < world.triangles.size(); ++f) {
+    const glm::uvec3 t = world.triangles[f];
+    glm::dvec2 a(1e300), b(-1e300);
+    bool behind = false;
+    for (int k = 0; k < 3; ++k) {
+      const glm::dvec3& q = px[t[k]];
+      behind = behind || !(q.z > 0.0);
+      a = glm::min(a, glm::dvec2(q));
+      b = glm::max(b, glm::dvec2(q));
+    }
+    if (!behind && (b.x < lo.x || b.y < lo.y || a.x > hi.x || a.y > hi.y)) continue;
+    glm::uvec3 n;
+    for (int k = 0; k < 3; ++k) {
+      int& m = remap[t[k]];
+      if (m < 0) m = static_cast<int>(out.positions.size()), out.positions.push_back(world.positions[t[k]]);
+      n[k] = static_cast<unsigned>(m);
+    }
+    out.triangles.push_back(n);
+    if (kept) kept->push_back(static_cast<int>(f));
+  }
+  return out;
+}
+
+// The point of face f's flat triangle at chart (3f + k)'s parameters (u, v): the chart's corner quad (vertex k, middle
+// of edge (k, k+1), centre, middle of edge (k+2, k)) mapped bilinearly, as DdmSubdivBase's charts (ddm_map.h).
+glm::dvec3 flat_point(const TriMesh& mesh, int chart, glm::dvec2 uv) {
+  const glm::uvec3 t = mesh.triangles[static_cast<std::size_t>(chart / 3)];
+  const int k = chart % 3;
+  const glm::dvec3 a = mesh.positions[t[k]], b = mesh.positions[t[(k + 1) % 3]], c = mesh.positions[t[(k + 2) % 3]];
+  const glm::dvec3 q00 = a, q10 = 0.5 * (a + b), q11 = (a + b + c) / 3.0, q01 = 0.5 * (a + c);
+  return (1 - uv.x) * (1 - uv.y) * q00 + uv.x * (1 - uv.y) * q10 + uv.x * uv.y * q11 + (1 - uv.x) * uv.y * q01;
+}
+
+bool share_vertex(const glm::uvec3& a, const glm::uvec3& b) {
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (a[i] == b[j]) return true;
+  return false;
+}
+
+using CellKey = std::tuple<int, double, double, double, double>;
+CellKey key_of(const DdmInstance& c) { return {c.chart, c.origin.x, c.origin.y, c.size.x, c.size.y}; }
+
+}  // namespace
+
+int ddm_paint_tile_index(int cell_index, int row, int tile_count) {
+  return tile_count <= 1 ? 0 : (cell_index + row) % tile_count;
+}
+
+std::vector<DdmInstance> ddm_paint_cells(const Scene& scene, const SceneObject& object, const DdmLayer& layer,
+                                         const Camera& camera, const std::vector<glm::dvec2>& stroke_px,
+                                         double radius_px) {
+  if (stroke_px.empty() || !(radius_px > 0.0)) return {};
+  std::shared_ptr<const DdmBase> base = layer.surface;
+  if (!base) {
+    if (!layer.maps) throw std::invalid_argument("layer: '" + layer.name + "' has neither a surface nor maps");
+    base = std::make_shared<DdmMapsBase>(layer.maps);
+  }
+  const bool check_valid = layer.base == DdmBaseKind::uv && layer.maps;
+  const int charts = base->chart_count();
+  std::vector<DdmInstance> cells = ddm_layout_cells(layer.layout, layer.counts, 1);
+  const int tile_count = std::max<int>(1, static_cast<int>(layer.tiles.size()));
+  for (std::size_t i = 0, row = 0; i < cells.size(); ++i) {  // rows: runs of equal origin.y (ddm_layout_cells' order)
+    if (i > 0 && cells[i].origin.y != cells[i - 1].origin.y) ++row;
+    cells[i].tile = ddm_paint_tile_index(static_cast<int>(i), static_cast<int>(row), tile_count);
+  }
+
+  const glm::dmat4 m = object.transform.matrix();
+  const glm::dmat3 normal_matrix = glm::transpose(glm::inverse(glm::dmat3(m)));
+  const TriMesh& rest = *object.rest_mesh;
+  const bool limit_faces = layer.base == DdmBaseKind::limit && charts == 3 * static_cast<int>(rest.triangle_count());
+  Aabb box;
+  if (object.world_mesh)
+    for (const glm::dvec3& p : object.world_mesh->positions) box.extend(p);
+  const double diag = box.diagonal();
+
+  glm::dvec2 lo(1e300), hi(-1e300);
+  for (const glm::dvec2& q : stroke_px) lo = glm::min(lo, q), hi = glm::max(hi, q);
+  lo -= radius_px, hi += radius_px;
+
+  // 1. Cell centres within the brush, in front of the eye, facing it (per chart: deterministic order).
+  std::vector<std::vector<Candidate>> per_chart(static_cast<std::size_t>(charts));
+  tbb::parallel_for(tbb::blocked_range<int>(0, charts, 64), [&](const tbb::blocked_range<int>& r) {
+    for (int c = r.begin(); c != r.end(); ++c) {
+      for (std::size_t i = 0; i < cells.size(); ++i) {
+        DdmInstance cell = cells[i];
+        cell.chart = c;
+        if (check_valid && !ddm_cell_valid(*layer.maps, cell)) continue;
+        const glm::dvec2 uv = cell.origin + 0.5 * cell.size;
+        const DdmSurfacePoint s = base->eval(c, uv.x, uv.y);
+        const glm::dvec3 p = glm::dvec3(m * glm::dvec4(s.p, 1.0));
+        const glm::dvec3 q = camera.project(p);
+        if (!(q.z > 0.0) || q.x < lo.x || q.y < lo.y || q.x > hi.x || q.y > hi.y) continue;
+        if (distance_to_polyline(glm::dvec2(q), stroke_px) > radius_px) continue;
+        if (!(glm::dot(normal_matrix * s.n, camera.eye - p) > 0.0)) continue;
+        double tol = kOtherBaseTolerance * diag;
+        if (limit_faces)
+          tol =
+              1e-6 * diag + kLimitGapFactor * glm::length(p - glm::dvec3(m * glm::dvec4(flat_point(rest, c, uv), 1.0)));
+        per_chart[static_cast<std::size_t>(c)].push_back({cell, p, tol});
+      }
+    }
+  });
+  std::vector<Candidate> candidates;
+  for (auto& v : per_chart) candidates.insert(candidates.end(), v.begin(), v.end());
+  if (candidates.empty()) return {};
+
+  // 2. Occlusion: first hits among the visible objects' world meshes, only triangles that can cover the brush.
+  RayCaster rays(BuildQuality::interactive);
+  int self_geometry = -1;
+  std::vector<int> self_triangles;
+  for (const SceneObject& o : scene.objects()) {
+    if (!o.visible || !o.world_mesh || o.world_mesh->empty()) continue;
+    const bool self = o.name == object.name;
+    const TriMesh part =
+        culled(*o.world_mesh, camera, lo - kCullMarginPx, hi + kCullMarginPx, self ? &self_triangles : nullptr);
+    const int g = rays.add_mesh(part);
+    if (self) self_geometry = g;
+  }
+  rays.commit();
+  std::vector<char> visible(candidates.size(), 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, candidates.size(), 64), [&](const auto& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      const Candidate& k = candidates[i];
+      const double d = glm::length(k.p - camera.eye);
+      const auto hit = rays.intersect(camera.eye, k.p - camera.eye, 0.0, d);
+      bool ok = !hit || hit->t >= d - k.tol;
+      if (!ok && limit_faces && hit->geometry == self_geometry) {
+        const int f = self_triangles[static_cast<std::size_t>(hit->triangle)];
+        ok = share_vertex(rest.triangles[static_cast<std::size_t>(f)],
+                          rest.triangles[static_cast<std::size_t>(k.cell.chart / 3)]);
+      }
+      visible[i] = ok;
+    }
+  });
+  std::vector<DdmInstance> out;
+  for (std::size_t i = 0; i < candidates.size(); ++i)
+    if (visible[i]) out.push_back(candidates[i].cell);
+  return out;
+}
+
+CommandPtr DdmPaintCommand::parse(const nlohmann::json& j, const CommandContext& ctx) {
+  auto c = std::make_unique<DdmPaintCommand>();
+  c->object_ = jf::get_string(j, "object");
+  c->spec_ = DdmLayerSpec::parse(j, ctx, false);  // "layer" (non-empty), and the new layer's fields with defaults
+  c->layer_ = c->spec_.layer;
+  for (const char* f : {"tile", "tiles", "choice", "seed", "layout", "counts", "height", "base", "map_resolution",
+                        "tile_scale", "tile_rotate_deg", "tile_shift"})
+    c->spec_given_ = c->spec_given_ || jf::has(j, f);
+  c->stroke_ = jf::get_points2(j, "stroke");
+  if (c->stroke_.empty()) throw CommandError("field 'stroke': needs at least 1 point", "stroke");
+  for (const glm::dvec2& p : c->stroke_)
+    if (!std::isfinite(p.x) || !std::isfinite(p.y))
+      throw CommandError("field 'stroke': points must be finite", "stroke");
+  c->radius_px_ = jf::get_number(j, "radius_px");
+  if (!(c->radius_px_ > 0.0)) throw CommandError("field 'radius_px': must be > 0 (viewport pixels)", "radius_px");
+  c->erase_ = jf::get_bool(j, "erase", false);
+  if (jf::has(j, "camera")) {  // the view the stroke was drawn in (as place.sketch): no camera.set needed
+    try {
+      c->camera_ = CameraSetCommand::parse_camera(j.at("camera"));
+    } catch (const CommandError& e) {  // name the nested field: 'camera.fov_deg'
+      std::string msg = e.what();
+      if (msg.rfind("field '", 0) == 0) msg.insert(7, "camera.");
+      throw CommandError(msg, "camera." + e.field());
+    }
+  }
+  return c;
+}
+
+nlohmann::json DdmPaintCommand::to_json() const {
+  nlohmann::json j = {{"cmd", id()},
+                      {"object", object_},
+                      {"layer", layer_},
+                      {"stroke", jf::to_json(stroke_)},
+                      {"radius_px", radius_px_},
+                      {"erase", erase_}};
+  if (camera_) j["camera"] = CameraSetCommand::camera_json(*camera_);
+  if (spec_given_) spec_.write(j);
+  return j;
+}
+
+std::string DdmPaintCommand::label() const {
+  return std::string(erase_ ? "Erase tiles of " : "Paint tiles on ") + object_ + "/" + layer_;
+}
+
+std::optional<SceneObject> DdmPaintCommand::build(const Scene& scene) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const SceneObject* object = scene.find(object_);
+  if (!object) throw CommandError("field 'object': no object named '" + object_ + "'", "object");
+  const char* deformed = object->ffd    ? "an FFD lattice"
+                         : object->dffd ? "a DFFD split"
+                         : object->clip ? "a glTF clip"
+                                        : nullptr;
+  if (deformed)
+    throw CommandError(
+        "field 'object': '" + object_ + "' has " + deformed + "; tiles sit on the rest surface and would not follow it",
+        "object");
+  if (!camera_ && !scene.camera_set)
+    throw CommandError(
+        "field 'camera': stroke pixels need a camera: add a camera.set line before this one or a "
+        "\"camera\" object to this line",
+        "camera");
+  const Camera& camera = camera_ ? *camera_ : scene.camera;
+  std::shared_ptr<const DdmLayer> existing;
+  for (const auto& l : object->ddm_layers)
+    if (l->name == layer_) existing = l;
+  if (!existing && erase_)
+    throw CommandError("field 'layer': '" + object_ + "' has no tile layer '" + layer_ + "' to erase from", "layer");
+  // A new layer: the spec's tiles and base, no cells yet (ddm.fill's construction).
+  const std::shared_ptr<const DdmLayer> held_layer = existing ? existing : make_ddm_layer(*object, spec_, false);
+  const DdmLayer& layer = *held_layer;
+
+  std::vector<DdmInstance> touched;
+  try {
+    touched = ddm_paint_cells(scene, *object, layer, camera, stroke_, radius_px_);
+  } catch (const std::invalid_argument& e) {
+    throw CommandError("field 'layer': " + std::string(e.what()), "layer");
+  }
+  if (touched.empty()) {
+    char r[32];
+    std::snprintf(r, sizeof r, "%g", radius_px_);
+    throw CommandError("field 'stroke': the stroke touches no visible cell of layer '" + layer_ + "' on '" + object_ +
+                           "' (brush radius " + r + " px)",
+                       "stroke");
+  }
+
+  std::set<CellKey> held, hit;
+  for (const DdmInstance& c : layer.instances) held.insert(key_of(c));
+  for (const DdmInstance& c : touched) hit.insert(key_of(c));
+  std::vector<DdmInstance> instances;
+  std::size_t added = 0, removed = 0;
+  if (erase_) {
+    for (const DdmInstance& c : layer.instances)
+      if (hit.count(key_of(c)))
+        ++removed;
+      else
+        instances.push_back(c);
+  } else {
+    instances = layer.instances;
+    for (const DdmInstance& c : touched)
+      if (!held.count(key_of(c))) instances.push_back(c), ++added;
+  }
+
+  std::shared_ptr<const DdmLayer> result = held_layer;
+  if (added + removed > 0) {
+    std::size_t vertices = 0;
+    for (const DdmInstance& c : instances)
+      if (c.tile >= 0 && c.tile < static_cast<int>(layer.tiles.size()))
+        vertices += layer.tiles[static_cast<std::size_t>(c.tile)].mesh.vertex_count();
+    if (vertices > kMaxTileVertices)
+      throw CommandError("field 'stroke': the layer would hold " + std::to_string(vertices) +
+                             " tile vertices (at most " + std::to_string(kMaxTileVertices) + ")",
+                         "stroke");
+    try {
+      result = ddm_layer_with_instances(layer, std::move(instances));
+    } catch (const std::invalid_argument& e) {
+      throw CommandError("field 'layer': " + std::string(e.what()), "layer");
+    }
+  }
+  const DdmLayer& now = *result;
+  stats_ = {{"created", !existing},
+            {"touched", touched.size()},
+            {"cells_added", added},
+            {"cells_removed", removed},
+            {"tiles", now.instances.size()},
+            {"vertices", now.mesh ? now.mesh->vertex_count() : 0},
+            {"ms", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count()}};
+  return with_ddm_layer(*object, result);
+}
+
+}  // namespace trispline::core

@@ -1,0 +1,78 @@
+// `ddm.paint` — a brush stroke that adds tiles to (or erases them from) a DDM layer (seed ch. 5; issue 6 item 3):
+//   {"cmd":"ddm.paint","object":"ID","layer":"NAME","stroke":[[px,py],...],"radius_px":r,"erase":false}
+//   optional: "camera" (as place.sketch / incision.draw: the view the stroke was drawn in; else the scene's camera,
+//   the last camera.set).
+// `stroke` is #S × 2 viewport pixels (top-left origin), S ≥ 1; `radius_px` the brush radius in the same pixels.
+// The candidate cells are every cell of the layer's layout (ddm_layout_cells(layout, counts, #charts)) on every
+// chart of its base (uv bases: cells without a valid sample are skipped). A cell is touched when its centre — the
+// base point S(chart, cell centre) (w = 0), through the object's transform — (1) projects within radius_px of the
+// stroke polyline, (2) lies in front of the eye with its normal facing the camera and (3) is not occluded: the first
+// hit of the eye ray towards it among the visible objects' world meshes is none, lies within a tolerance of it
+// (2 × the gap between the limit point and the flat face on a limit base — the Loop limit surface lies inside a
+// coarse cage —, 1 % of the object's diagonal otherwise), or — on a limit base — is on the object itself on a
+// triangle sharing a vertex with the cell's face (ddm_paint_cells).
+// Painting adds the touched cells the layer does not hold (appended in chart / layout order; with several tiles each
+// cell gets the tile ddm.fill's "pattern" gives it, ddm_paint_tile_index); erase = true removes the touched cells it
+// holds; cells already as asked change nothing (no error). The layer is rebuilt with ddm_layer_with_instances (maps
+// extended, mesh re-evaluated); undo restores the previous layer pointer (the instance set exactly).
+// When the object has no layer of that name, painting creates it (empty, then painted) from ddm.fill's fields, all
+// optional here (DdmLayerSpec, ddm_commands.h): "tile" (default "thorn"), "tiles", "choice", "seed", "layout"
+// ("rect"), "counts" ([1,1]), "height" (0.1), "base" ("limit"), "map_resolution", "tile_scale", "tile_rotate_deg",
+// "tile_shift"; they are ignored when the layer exists (it keeps its own). Erasing needs the layer.
+// report.json stats: created (the layer was made by this stroke), touched, cells_added, cells_removed, tiles
+// (instances after), vertices (the layer's mesh), ms.
+// Errors (CommandError, field named; the scene is unchanged): unknown object, or one with an FFD / DFFD / clip
+// ("object"); empty layer name, erasing from a layer that does not exist ("layer"); the new layer's fields as
+// ddm.fill ("tile", "counts", "base", …); no points, non-finite points, a stroke that touches no
+// visible cell ("stroke"); radius_px ≤ 0 or not finite ("radius_px"); no camera.set and no "camera" ("camera");
+// more than 50,000,000 tile vertices ("stroke").
+#pragma once
+
+#include <glm/glm.hpp>
+#include <optional>
+#include <vector>
+
+#include "core/commands/ddm_commands.h"
+#include "core/commands/snapshot_command.h"
+#include "core/scene/camera.h"
+
+namespace trispline::core {
+
+// The cells of `layer` (on `object`, in `scene`) that a stroke touches, as described above: layout cells in chart /
+// layout order, each with tile = ddm_paint_tile_index(its index and row in its chart, #tiles). Pure; TBB over charts
+// and rays; deterministic.
+// Throws std::invalid_argument: a layer without a surface or maps, non-finite world meshes.
+std::vector<DdmInstance> ddm_paint_cells(const Scene& scene, const SceneObject& object, const DdmLayer& layer,
+                                         const Camera& camera, const std::vector<glm::dvec2>& stroke_px,
+                                         double radius_px);
+
+// The tile painting gives a cell: `cell_index` is its position in ddm_layout_cells' list of one chart, `row` its row
+// there; 0 for one tile, else (cell_index + row) mod tile_count — ddm.fill's "pattern" choice, so a painted cell gets
+// the tile a pattern fill gives it whatever the stroke order.
+int ddm_paint_tile_index(int cell_index, int row, int tile_count);
+
+class DdmPaintCommand : public SnapshotCommand {
+ public:
+  static CommandPtr parse(const nlohmann::json& j, const CommandContext& ctx);
+  std::string id() const override { return "ddm.paint"; }
+  nlohmann::json to_json() const override;
+  std::string label() const override;
+  nlohmann::json stats() const override { return stats_; }
+
+ protected:
+  std::string target() const override { return object_; }
+  std::optional<SceneObject> build(const Scene& scene) override;
+  std::string failure_field() const override { return "layer"; }
+
+ private:
+  std::string object_, layer_;
+  DdmLayerSpec spec_;               // the layer to create when the object has none of that name
+  bool spec_given_ = false;         // the line named any of spec_'s fields (logged back only then)
+  std::vector<glm::dvec2> stroke_;  // #S × 2 viewport pixels
+  double radius_px_ = 0.0;
+  bool erase_ = false;
+  std::optional<Camera> camera_;  // "camera" (the view the stroke was drawn in); else the scene's camera
+  nlohmann::json stats_ = nlohmann::json::object();
+};
+
+}  // namespace trispline::core

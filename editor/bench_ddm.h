@@ -1,0 +1,34 @@
+// trispline::editor — `trispline bench ddm`: live DDM layers drawn by the renderer's instanced GPU path (issue 6,
+// seed §5.3.2, Table 5.1) in an offscreen target: per case the tile vertices, the GPU time of the layer pass
+// (RenderStats::ddm_ms, GpuTimer: GL_TIME_ELAPSED queries on GPUs, glFinish + wall clock on llvmpipe), the whole
+// frame (draw + glFinish, wall clock) and frames per second. Cases (like the seed's table, with our tiles):
+//   thorns_teapot    640 thorns (626 vertices each) on the teapot's body patches, ≈ 0.40 M vertices
+//   chains_1m        a chain tile (1152 vertices) on every chart of the Loop limit surface of a sphere, ≈ 1.0 M
+//   chains_3m        the same on a finer sphere, ≈ 3.1 M
+// The layers' texture-space offset moves every frame (seed §5.4.2), so every frame is a full evaluation. Prints
+// figures; never asserts timings (docs/performance.md records them with the machine).
+#pragma once
+
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+namespace trispline::editor {
+
+struct BenchDdmOptions {
+  int frames = 30;                 // timed frames per case (after 2 warm-up frames), ≥ 1
+  int width = 1280, height = 720;  // offscreen target, pixels
+  int samples = 4;                 // MSAA samples of the target (as the editor's viewport)
+  std::vector<std::string> cases;  // empty: all; else names from the list above
+  bool cpu_reference = true;       // also time one core::ddm_layer_mesh of each layer (the CPU reference)
+  bool json = false;               // one JSON object instead of a table
+};
+
+// Returns 0; 1 with a message on `err` when no GL context can be made or a case name is unknown.
+// JSON: {bench:"ddm", renderer, timer_mode, cpu, threads, width, height, samples, frames,
+//        cases [{name, base, tile, instances, tile_vertices, vertices, setup_ms, first_frame_ms, cpu_reference_ms,
+//                ddm_gpu_ms {median, min, max}, draw_ms_median, frame_ms {median, min, max}, fps,
+//                vertices_per_s}]}
+int run_bench_ddm(const BenchDdmOptions& options, std::ostream& out, std::ostream& err);
+
+}  // namespace trispline::editor

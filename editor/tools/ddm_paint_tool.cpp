@@ -1,0 +1,340 @@
+#include "editor/tools/ddm_paint_tool.h"
+
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+
+#include "core/commands/camera_set.h"
+#include "editor/session.h"
+#include "ui/theme.h"
+
+namespace trispline::editor {
+
+namespace {
+constexpr double kMinPointSpacingPx = 2.0;  // stroke points closer than this to the previous one are dropped
+constexpr double kRadiusStep = 1.15;        // [ and ] scale the brush radius by this
+constexpr std::array<const char*, 4> kGeneratedTiles = {"thorn", "chain", "hex", "flower"};
+constexpr const char* kTileTips[] = {
+    "A bent horn on a round foot (626 vertices; seed Fig. 5.9)",
+    "Two interlocked chain links (neighbouring cells overlap, as the seed's chains)",
+    "A hexagonal slab filling its cell: use the hex layout (seed Fig. 5.11)",
+    "A five-petal flower with the thorn's topology: the thorn's metamorphosis partner (seed Eq. 5.3)",
+};
+
+void tooltip(const char* text) {
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", text);
+}
+
+bool deformed(const core::SceneObject& o) { return o.ffd || o.dffd || o.clip; }
+
+bool is_generated(const std::string& tile) {
+  return std::find(kGeneratedTiles.begin(), kGeneratedTiles.end(), tile) != kGeneratedTiles.end();
+}
+
+// The layer fields ddm.fill and a layer-creating ddm.paint share.
+void put_layer_fields(nlohmann::json& j, const DdmPaintToolParams& p) {
+  j["tile"] = p.tile;
+  j["layout"] = p.layout;
+  j["counts"] = {p.counts.x, p.counts.y};
+  j["height"] = p.height;
+  if (p.base != "limit") j["base"] = p.base;
+}
+}  // namespace
+
+nlohmann::json ddm_paint_line(const std::string& object, const std::vector<glm::dvec2>& stroke_px,
+                              const DdmPaintToolParams& p, bool erase, bool new_layer,
+                              const std::optional<core::Camera>& view) {
+  nlohmann::json stroke = nlohmann::json::array();
+  for (const glm::dvec2& q : stroke_px) stroke.push_back({q.x, q.y});
+  nlohmann::json line = {{"cmd", "ddm.paint"}, {"object", object},         {"layer", p.layer},
+                         {"stroke", stroke},   {"radius_px", p.radius_px}, {"erase", erase}};
+  if (view) line["camera"] = core::CameraSetCommand::camera_json(*view);
+  if (new_layer) put_layer_fields(line, p);
+  return line;
+}
+
+nlohmann::json ddm_fill_line(const std::string& object, const DdmPaintToolParams& p) {
+  nlohmann::json line = {{"cmd", "ddm.fill"}, {"object", object}, {"layer", p.layer}};
+  put_layer_fields(line, p);
+  return line;
+}
+
+ui::ToolEntry DdmPaintTool::entry() const {
+  return {"Tile Paint", "T",
+          "Paint geometric tiles (thorns, chains, hexagons…) onto a surface with a brush: drag paints, Ctrl-drag "
+          "erases, [ and ] resize the brush; Fill covers the whole surface (seed ch. 5, displacement maps)"};
+}
+
+void DdmPaintTool::activate(ToolContext& ctx) { follow_selection(ctx); }
+
+void DdmPaintTool::deactivate(ToolContext&) {
+  hover_.reset();
+  stroke_.clear();
+  painting_ = erasing_ = false;
+}
+
+void DdmPaintTool::mouse_away() {
+  if (!painting_) hover_.reset();
+}
+
+void DdmPaintTool::follow_selection(const ToolContext& ctx) {
+  // The Object combo follows the selection until the user picks another object there.
+  if (!ctx.selected.empty() && ctx.selected != followed_selection_) object_ = followed_selection_ = ctx.selected;
+}
+
+const core::SceneObject* DdmPaintTool::target(const ToolContext& ctx) const {
+  const core::SceneObject* o = ctx.session.scene().find(object_);
+  return o && o->rest_mesh && !o->rest_mesh->empty() ? o : nullptr;
+}
+
+bool DdmPaintTool::new_layer(const ToolContext& ctx) const {
+  const core::SceneObject* o = ctx.session.scene().find(object_);
+  if (!o) return true;
+  return std::none_of(o->ddm_layers.begin(), o->ddm_layers.end(),
+                      [&](const auto& l) { return l->name == params_.layer; });
+}
+
+void DdmPaintTool::scale_radius(double factor) {
+  params_.radius_px = std::clamp(params_.radius_px * factor, kMinRadiusPx, kMaxRadiusPx);
+}
+
+void DdmPaintTool::handle_input(const ToolInput& in, ToolContext& ctx) {
+  hover_ = in.mouse_px;
+  if (ImGui::GetCurrentContext() && !ImGui::GetIO().WantCaptureKeyboard) {
+    if (ImGui::IsKeyPressed(GLFW_KEY_LEFT_BRACKET)) scale_radius(1.0 / kRadiusStep);
+    if (ImGui::IsKeyPressed(GLFW_KEY_RIGHT_BRACKET)) scale_radius(kRadiusStep);
+  }
+  if (in.left_pressed) {
+    follow_selection(ctx);
+    painting_ = true;
+    erasing_ = params_.erase != in.ctrl;  // Ctrl inverts, as in a Blender brush
+    stroke_ = {in.mouse_px};
+    stroke_view_ = ctx.view;  // pixels of this view, whatever the camera does until mouse-up
+  }
+  if (painting_ && in.left_down && glm::length(in.mouse_px - stroke_.back()) >= kMinPointSpacingPx)
+    stroke_.push_back(in.mouse_px);
+  if (ImGui::GetCurrentContext()) draw_brush();
+  if (painting_ && (in.left_released || !in.left_down)) {
+    painting_ = false;
+    commit(ctx);
+  }
+}
+
+void DdmPaintTool::commit(ToolContext& ctx) {
+  std::vector<glm::dvec2> stroke = std::move(stroke_);
+  stroke_.clear();
+  if (stroke.empty()) return;
+  const core::SceneObject* o = target(ctx);
+  if (!o) {
+    ctx.session.messages().error("ddm.paint: choose the object to paint on (select it, or the Tool panel's Object)");
+    return;
+  }
+  const nlohmann::json line = ddm_paint_line(o->name, stroke, params_, erasing_, new_layer(ctx), stroke_view_);
+  EditorSession& session = ctx.session;  // outlives the deferred work; ctx may not
+  ctx.defer((erasing_ ? "Erasing tiles on " : "Painting tiles on ") + o->name, [&session, line]() {
+    session.execute(line);  // errors go to the Log panel; the scene stays as it was
+  });
+}
+
+void DdmPaintTool::fill(ToolContext& ctx) {
+  const core::SceneObject* o = target(ctx);
+  if (!o) {
+    ctx.session.messages().error("ddm.fill: choose the object to fill (select it, or the Tool panel's Object)");
+    return;
+  }
+  const nlohmann::json line = ddm_fill_line(o->name, params_);
+  EditorSession& session = ctx.session;
+  ctx.defer("Filling " + o->name + " with " + params_.tile, [&session, line]() { session.execute(line); });
+}
+
+void DdmPaintTool::bake(ToolContext& ctx) {
+  const core::SceneObject* o = target(ctx);
+  if (!o || new_layer(ctx)) {
+    ctx.session.messages().error("ddm.bake: paint or fill the layer '" + params_.layer + "' first");
+    return;
+  }
+  const std::string name = ctx.session.scene().unique_name(o->name + "." + params_.layer);
+  const nlohmann::json line = {{"cmd", "ddm.bake"}, {"object", o->name}, {"layer", params_.layer}, {"name", name}};
+  EditorSession& session = ctx.session;
+  ctx.defer("Baking " + o->name + "/" + params_.layer, [&session, line]() { session.execute(line); });
+}
+
+std::string DdmPaintTool::hint() const {
+  if (painting_) return erasing_ ? "Release to erase the tiles under the stroke" : "Release to paint tiles";
+  if (object_.empty()) return "Select the object to paint tiles on";
+  return "Drag over " + object_ + " to paint tiles on '" + params_.layer + "'; Ctrl-drag erases; [ ] brush size";
+}
+
+void DdmPaintTool::draw_brush() const {
+  if (!hover_) return;
+  const ImGuiIO& io = ImGui::GetIO();
+  // Viewport pixels are framebuffer pixels; ImGui draws in window coordinates.
+  const float sx = io.DisplayFramebufferScale.x > 0 ? io.DisplayFramebufferScale.x : 1.0f;
+  const float sy = io.DisplayFramebufferScale.y > 0 ? io.DisplayFramebufferScale.y : 1.0f;
+  auto screen = [&](glm::dvec2 p) { return ImVec2(float(p.x) / sx, float(p.y) / sy); };
+  const bool erase = painting_ ? erasing_ : params_.erase != io.KeyCtrl;
+  const ImU32 line = erase ? IM_COL32(255, 95, 80, 235) : IM_COL32(255, 205, 90, 235);
+  const ImU32 swath = erase ? IM_COL32(255, 95, 80, 45) : IM_COL32(255, 205, 90, 45);
+  const float r = float(params_.radius_px) / sx;
+  ImDrawList* dl = ImGui::GetBackgroundDrawList();
+  if (painting_ && stroke_.size() >= 2) {  // what the stroke covers so far
+    std::vector<ImVec2> pts;
+    for (const glm::dvec2& p : stroke_) pts.push_back(screen(p));
+    dl->AddPolyline(pts.data(), int(pts.size()), swath, ImDrawFlags_None, 2.0f * r);
+  } else if (painting_ && !stroke_.empty()) {
+    dl->AddCircleFilled(screen(stroke_.front()), r, swath, 48);
+  }
+  dl->AddCircle(screen(*hover_), r, line, 48, 1.5f);
+  dl->AddCircle(screen(*hover_), 1.5f, line, 8, 1.5f);
+}
+
+void DdmPaintTool::decorate(gpu::ViewOptions& options) const {
+  if (!painting_) return;
+  options.stroke_px = stroke_;
+  options.stroke_width_px = std::min(options.stroke_width_px, 2.0f);
+  if (erasing_) options.stroke_color = {1.0f, 0.25f, 0.2f};
+}
+
+void DdmPaintTool::draw_layer_combo(ToolContext& ctx, const core::SceneObject* o) {
+  const bool fresh = new_layer(ctx);
+  const std::string shown = fresh ? params_.layer + "  (new)" : params_.layer;
+  if (ImGui::BeginCombo("Layer", shown.c_str())) {
+    if (o)
+      for (const auto& l : o->ddm_layers) {
+        char label[160];
+        std::snprintf(label, sizeof label, "%s  (%zu tiles)", l->name.c_str(), l->instances.size());
+        if (ImGui::Selectable(label, l->name == params_.layer)) params_.layer = l->name;
+      }
+    if (ImGui::Selectable("New layer…", false)) {
+      std::string name = "tiles";
+      for (int i = 1;
+           o && std::any_of(o->ddm_layers.begin(), o->ddm_layers.end(), [&](const auto& l) { return l->name == name; });
+           ++i) {
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "tiles.%03d", i);
+        name = buf;
+      }
+      params_.layer = name;
+    }
+    ImGui::EndCombo();
+  }
+  tooltip(
+      "The tile layer the brush paints on: one of the object's layers, or a new one, made by the first stroke "
+      "(or by Fill) with the settings below");
+  if (fresh) {
+    ImGui::InputText("Name", &params_.layer);
+    tooltip("Name of the new layer (unique per object)");
+  }
+}
+
+void DdmPaintTool::draw_new_layer_fields(const core::SceneObject* o) {
+  const bool generated = is_generated(params_.tile);
+  if (ImGui::BeginCombo("Tile", generated ? params_.tile.c_str() : "file")) {
+    for (std::size_t i = 0; i < kGeneratedTiles.size(); ++i) {
+      if (ImGui::Selectable(kGeneratedTiles[i], params_.tile == kGeneratedTiles[i])) params_.tile = kGeneratedTiles[i];
+      tooltip(kTileTips[i]);
+    }
+    if (ImGui::Selectable("file", !generated)) params_.tile = file_tile_;
+    tooltip("Any mesh (OBJ, PLY, glTF) as a tile, fitted into the cell by its bounding box");
+    ImGui::EndCombo();
+  }
+  if (!is_generated(params_.tile)) {
+    if (ImGui::InputText("Tile file", &file_tile_)) params_.tile = file_tile_;
+    tooltip("Path of a mesh file (OBJ / PLY / glTF); x, y span the cell, z is the height");
+  }
+  int layout = params_.layout == "hex" ? 1 : params_.layout == "brick" ? 2 : 0;
+  if (ImGui::Combo("Layout", &layout, "rect\0hex\0brick\0"))
+    params_.layout = layout == 1 ? "hex" : layout == 2 ? "brick" : "rect";
+  tooltip(
+      "Cells per chart: rect n x m; hex rows 0.75 apart, odd rows shifted (seed Fig. 5.11); brick odd rows "
+      "shifted by half a cell (Fig. 5.12). hex and brick need n >= 2");
+  int counts[2] = {params_.counts.x, params_.counts.y};
+  if (ImGui::InputInt2("Counts", counts)) params_.counts = glm::max(glm::ivec2(counts[0], counts[1]), glm::ivec2(1));
+  tooltip("Cells along u and v of every chart (a polygonal base has three charts per triangle)");
+  const double h_min = 1e-6, h_max = 10.0;
+  ImGui::DragScalar("Height", ImGuiDataType_Double, &params_.height, 0.001f, &h_min, &h_max, "%.4g",
+                    ImGuiSliderFlags_AlwaysClamp);
+  tooltip("World units per tile unit of height, along the surface normal");
+  const bool teapot = o && o->source == "primitive:teapot";
+  const bool uvs = o && o->rest_mesh && !o->rest_mesh->uvs.empty();
+  if (ImGui::BeginCombo("Base", params_.base.c_str())) {
+    if (ImGui::Selectable("limit", params_.base == "limit")) params_.base = "limit";
+    tooltip("The Loop limit surface of the mesh, three charts per triangle: tiles cross faces without cracks");
+    if (teapot && ImGui::Selectable("teapot_body", params_.base == "teapot_body")) params_.base = "teapot_body";
+    if (teapot) tooltip("The teapot's 8 Bezier body patches as one chart around the pot");
+    if (uvs && ImGui::Selectable("uv", params_.base == "uv")) params_.base = "uv";
+    if (uvs) tooltip("The mesh's texture coordinates (one chart, the UV square; the seed's way)");
+    ImGui::EndCombo();
+  }
+}
+
+void DdmPaintTool::draw_panel(ToolContext& ctx) {
+  follow_selection(ctx);
+  const core::Scene& scene = ctx.session.scene();
+  if (ImGui::BeginCombo("Object", object_.empty() ? "(none)" : object_.c_str())) {
+    for (const core::SceneObject& o : scene.objects()) {
+      const std::string label = deformed(o) ? o.name + "  (deformed)" : o.name;
+      if (ImGui::Selectable(label.c_str(), o.name == object_)) object_ = o.name;
+    }
+    ImGui::EndCombo();
+  }
+  const core::SceneObject* o = scene.find(object_);
+  if (o && deformed(*o))
+    ImGui::TextColored(ui::colors::warning, "%s is deformed (lattice, split or clip): tiles need an undeformed object.",
+                       object_.c_str());
+  draw_layer_combo(ctx, o);
+
+  ImGui::Separator();
+  ImGui::TextUnformatted("Layer settings");
+  if (!new_layer(ctx)) {
+    const core::SceneObject& obj = *o;
+    for (const auto& l : obj.ddm_layers)
+      if (l->name == params_.layer)
+        ImGui::TextColored(ui::colors::dim, "%s: %s, %s %dx%d, height %.3g, %s base", l->name.c_str(),
+                           l->tile_sources.empty() ? "?" : l->tile_sources.front().c_str(),
+                           core::ddm_layout_name(l->layout), l->counts.x, l->counts.y, l->height,
+                           core::ddm_base_name(l->base));
+    ImGui::TextColored(ui::colors::dim, "The brush keeps the layer's own; these apply to Fill (which replaces it).");
+  }
+  draw_new_layer_fields(o);
+
+  ImGui::Separator();
+  ImGui::TextUnformatted("Brush");
+  const double r_min = kMinRadiusPx, r_max = kMaxRadiusPx;
+  ImGui::SliderScalar("Radius (px)", ImGuiDataType_Double, &params_.radius_px, &r_min, &r_max, "%.0f",
+                      ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
+  tooltip(
+      "Brush radius in viewport pixels: a cell is painted when its centre on the surface is this close to the "
+      "stroke and visible. [ and ] resize it");
+  ImGui::Checkbox("Erase", &params_.erase);
+  tooltip("Remove the tiles under the stroke instead of adding them (Ctrl held at mouse-down inverts this)");
+
+  ImGui::Spacing();
+  ImGui::BeginDisabled(!target(ctx));
+  if (ImGui::Button("Fill")) fill(ctx);
+  fill_rect_ = {ImGui::GetItemRectMin().x, ImGui::GetItemRectMin().y, ImGui::GetItemRectMax().x,
+                ImGui::GetItemRectMax().y};
+  tooltip("Cover the whole surface with the layer settings above: one ddm.fill (replaces a layer of that name)");
+  ImGui::EndDisabled();
+  ImGui::SameLine();
+  ImGui::BeginDisabled(!target(ctx) || new_layer(ctx));
+  if (ImGui::Button("Bake")) bake(ctx);
+  bake_rect_ = {ImGui::GetItemRectMin().x, ImGui::GetItemRectMin().y, ImGui::GetItemRectMax().x,
+                ImGui::GetItemRectMax().y};
+  tooltip("Add the layer's tiles as an ordinary mesh object (for export): one ddm.bake");
+  ImGui::EndDisabled();
+
+  ImGui::Spacing();
+  ImGui::Separator();
+  ImGui::TextWrapped(
+      "Left-drag over the object to paint tiles on the cells under the brush (one undoable step per stroke; a click "
+      "paints a dab). Ctrl-drag erases. Cells on the far side or hidden behind other objects are left alone.");
+}
+
+}  // namespace trispline::editor

@@ -1,0 +1,102 @@
+// trispline::editor::DdmPaintTool — the "Tile Paint" tool (issue 6 item 3; seed ch. 5, deformation displacement
+// maps): a brush that paints geometric tiles onto an object's surface. A circle of radius_px viewport pixels follows
+// the cursor over the viewport ([ and ] shrink / grow it, as Blender's brush radius); left-drag collects one stroke in
+// viewport pixels (top-left origin) of the view at mouse-down, shown as the brush's swath; on mouse-up the tool
+// executes ONE `ddm.paint` (core/commands/ddm_paint.h) on the chosen object and layer, carrying that view as
+// "camera". A click is a dab (a one-point stroke). Ctrl held at mouse-down erases (Blender's invert), as does the
+// panel's Erase toggle (Ctrl then paints).
+// The panel picks the object (follows the selection), the layer (one of the object's layers, or a new one, made by
+// the first stroke or by Fill with the panel's tile / layout / counts / height / base), the brush radius and the
+// erase toggle; Fill submits `ddm.fill` for the whole surface, Bake `ddm.bake` (a mesh object named
+// "<object>.<layer>"). Commands run through ToolContext::defer (a "Working…" frame first: a large layer takes a
+// while to re-evaluate); errors go to the Log panel and leave the scene as it was.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "editor/tools/tool.h"
+
+namespace trispline::editor {
+
+// The panel's values: the fields of a new layer (ddm.fill's; ignored by ddm.paint when the layer exists) and the
+// brush.
+struct DdmPaintToolParams {
+  std::string layer = "tiles";  // an existing layer of the object, or the name of a new one
+  std::string tile = "thorn";   // "thorn" | "chain" | "hex" | "flower" | a mesh file (OBJ/PLY/glTF)
+  std::string layout = "rect";  // "rect" | "hex" | "brick"
+  glm::ivec2 counts{1, 1};      // cells per chart (n along u, m along v)
+  double height = 0.1;          // world units per tile unit of w
+  std::string base = "limit";   // "limit" | "teapot_body" | "uv"
+  double radius_px = 40.0;      // brush radius, viewport pixels
+  bool erase = false;           // the Erase toggle (Ctrl at mouse-down inverts it)
+};
+
+// The ddm.paint line: {"cmd":"ddm.paint","object":ID,"layer":NAME,"stroke":[[px,py],...] (#S × 2 viewport pixels),
+// "radius_px":r,"erase":bool} plus "camera" when `view` is given, plus the new layer's fields (tile, layout, counts,
+// height, base) when `new_layer`.
+nlohmann::json ddm_paint_line(const std::string& object, const std::vector<glm::dvec2>& stroke_px,
+                              const DdmPaintToolParams& params, bool erase, bool new_layer,
+                              const std::optional<core::Camera>& view = std::nullopt);
+// The ddm.fill line of the panel's values (the whole surface; a layer of that name is replaced).
+nlohmann::json ddm_fill_line(const std::string& object, const DdmPaintToolParams& params);
+
+class DdmPaintTool : public Tool {
+ public:
+  static constexpr double kMinRadiusPx = 2.0, kMaxRadiusPx = 500.0;
+
+  ui::ToolEntry entry() const override;
+  void activate(ToolContext& ctx) override;
+  void deactivate(ToolContext& ctx) override;
+  void handle_input(const ToolInput& in, ToolContext& ctx) override;
+  void mouse_away() override;
+  void draw_panel(ToolContext& ctx) override;
+  void decorate(gpu::ViewOptions& options) const override;
+  std::string hint() const override;
+  bool owns_mouse() const override { return painting_; }
+
+  const DdmPaintToolParams& params() const { return params_; }
+  void set_params(const DdmPaintToolParams& p) { params_ = p; }
+  void set_object(const std::string& name) { object_ = followed_selection_ = name; }
+  const std::string& object() const { return object_; }
+  // True when the object has no layer called params().layer (the next stroke or Fill makes it).
+  bool new_layer(const ToolContext& ctx) const;
+  // Multiplies the brush radius by `factor`, clamped to [kMinRadiusPx, kMaxRadiusPx] ([ = 1/1.15, ] = 1.15).
+  void scale_radius(double factor);
+
+  const std::vector<glm::dvec2>& stroke() const { return stroke_; }  // pixels of the drag under way
+  bool erasing() const { return erasing_; }                          // the drag under way erases
+  const std::optional<glm::dvec2>& hover() const { return hover_; }  // brush centre, viewport pixels
+  // Draws the brush circle (and the swath of the drag under way) into ImGui's background draw list, over the 3-D
+  // view and under the panels; called from handle_input while an ImGui frame is open.
+  void draw_brush() const;
+
+  // The commands the panel's buttons submit (also for tests): ddm.fill of the whole surface, ddm.bake of the layer.
+  void fill(ToolContext& ctx);
+  void bake(ToolContext& ctx);
+  // Where the last draw_panel put the Fill and Bake buttons (ImGui screen coordinates: min x, min y, max x, max y).
+  glm::vec4 fill_button() const { return fill_rect_; }
+  glm::vec4 bake_button() const { return bake_rect_; }
+
+ private:
+  const core::SceneObject* target(const ToolContext& ctx) const;
+  void follow_selection(const ToolContext& ctx);
+  void commit(ToolContext& ctx);
+  void draw_layer_combo(ToolContext& ctx, const core::SceneObject* o);
+  void draw_new_layer_fields(const core::SceneObject* o);
+
+  DdmPaintToolParams params_;
+  std::string object_;
+  std::string followed_selection_;  // selection the Object combo last followed
+  std::string file_tile_;           // the path typed for a file tile
+
+  std::optional<glm::dvec2> hover_;
+  std::vector<glm::dvec2> stroke_;
+  bool painting_ = false, erasing_ = false;
+  core::Camera stroke_view_;  // the view at mouse-down: the stroke's pixels belong to it
+  glm::vec4 fill_rect_{0.0f}, bake_rect_{0.0f};
+};
+
+}  // namespace trispline::editor

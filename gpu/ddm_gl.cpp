@@ -1,0 +1,344 @@
+// DdmGl: live DDM layers drawn and captured through shaders/ddm.vert.glsl. See ddm_gl.h; seed §5.3.2.
+#include "gpu/ddm_gl.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <stdexcept>
+#include <string>
+
+#include "gpu/ffd_gl_lattice.h"
+
+namespace trispline::gpu {
+namespace {
+
+constexpr GLuint kMapsBinding = 6;  // SSBO binding of the maps (FFD uses 0–5)
+
+// One instance as the vertex shader reads it (attributes 4, 5, 6 with divisor 1).
+struct InstanceRecord {
+  GLint slot;
+  float origin[2];
+  float size[2];
+};
+static_assert(sizeof(InstanceRecord) == 20);
+
+std::vector<float> to_float(const std::vector<glm::dvec3>& v) {
+  std::vector<float> out(3 * v.size());
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    out[3 * i] = static_cast<float>(v[i].x);
+    out[3 * i + 1] = static_cast<float>(v[i].y);
+    out[3 * i + 2] = static_cast<float>(v[i].z);
+  }
+  return out;
+}
+
+Buffer upload_array(GLenum target, const void* data, std::size_t bytes) {
+  Buffer b = Buffer::create();
+  glBindBuffer(target, b.id());
+  glBufferData(target, GLsizeiptr(bytes), data, GL_STATIC_DRAW);
+  glBindBuffer(target, 0);
+  return b;
+}
+
+void vec3_attribute(GLuint location, GLuint buffer) {
+  glBindBuffer(GL_ARRAY_BUFFER, buffer);
+  glEnableVertexAttribArray(location);
+  glVertexAttribPointer(location, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
+}
+
+std::invalid_argument layer_error(const core::DdmLayer& layer, const std::string& what) {
+  return std::invalid_argument("layer '" + layer.name + "': " + what);
+}
+
+}  // namespace
+
+DdmPose DdmPose::at(const core::DdmLayer& layer, double time_s) {
+  return {layer.morph_tiles.empty() ? 0.0 : layer.alpha_at(time_s), layer.offset_at(time_s)};
+}
+
+struct DdmGl::MapsGl {
+  std::shared_ptr<const core::DdmMaps> maps;  // held so the address cannot be reused
+  Buffer samples;                             // #slots × R_v × R_u × 18 floats
+};
+
+struct DdmGl::LayerGl {
+  // One tile mesh of the layer and the instances that use it (a contiguous run of the instance buffer).
+  struct TileGl {
+    Buffer positions, normals, morph_positions, morph_normals, indices;
+    VertexArray vao;
+    GLsizei vertex_count = 0, index_count = 0;
+    GLuint first_instance = 0;
+    GLsizei instance_count = 0;
+  };
+  std::shared_ptr<const core::DdmLayer> layer;  // held so the address cannot be reused
+  Buffer instances;                             // InstanceRecord per instance, grouped by tile (stable)
+  std::vector<TileGl> tiles;                    // per layer tile
+  std::vector<std::size_t> grouped;             // position in the instance buffer → index in layer.instances
+  std::size_t vertices = 0;                     // Σ instances × tile vertices
+};
+
+DdmGl::DdmGl(std::shared_ptr<FfdProgramCache> programs)
+    : programs_(programs ? std::move(programs) : std::make_shared<FfdProgramCache>()) {}
+
+DdmGl::~DdmGl() = default;
+
+const ShaderProgram& DdmGl::program(const ShaderDefines& variant) {
+  return programs_->get({"ddm.vert.glsl", "mesh.frag.glsl"}, variant);
+}
+
+std::size_t DdmGl::cached_layers() const { return layers_.size(); }
+std::size_t DdmGl::cached_maps() const { return maps_.size(); }
+
+void DdmGl::check(const core::DdmLayer& layer) {
+  if (!layer.maps) throw layer_error(layer, "no maps");
+  const core::DdmMaps& m = *layer.maps;
+  if (m.resolution.x < 2 || m.resolution.y < 2) throw layer_error(layer, "map resolution below 2");
+  if (m.samples.size() != std::size_t(m.slot_count()) * m.samples_per_slot() * core::DdmMaps::kFloatsPerSample)
+    throw layer_error(layer, "maps hold " + std::to_string(m.samples.size()) + " floats, not #slots × R_u × R_v × 18");
+  if (!std::isfinite(layer.height) || !(layer.height > 0.0)) throw layer_error(layer, "height must be finite and > 0");
+  if (layer.tiles.empty()) throw layer_error(layer, "no tiles");
+  for (const core::DdmTile& t : layer.tiles)
+    if (t.mesh.normals.size() != t.mesh.vertex_count())
+      throw layer_error(layer, "tile '" + t.name + "' has no per-vertex normals");
+  if (!layer.morph_tiles.empty()) {
+    if (layer.morph_tiles.size() != layer.tiles.size()) throw layer_error(layer, "morph tiles: need one per tile");
+    for (std::size_t i = 0; i < layer.tiles.size(); ++i) {
+      const core::TriMesh &a = layer.tiles[i].mesh, &b = layer.morph_tiles[i].mesh;
+      if (a.vertex_count() != b.vertex_count() || a.triangle_count() != b.triangle_count() ||
+          b.normals.size() != b.vertex_count())
+        throw layer_error(
+            layer, "morph tile '" + layer.morph_tiles[i].name + "' does not match tile '" + layer.tiles[i].name + "'");
+    }
+  }
+  for (std::size_t k = 0; k < layer.instances.size(); ++k) {
+    const core::DdmInstance& inst = layer.instances[k];
+    if (inst.tile < 0 || inst.tile >= int(layer.tiles.size()))
+      throw layer_error(layer, "instance " + std::to_string(k) + " uses tile " + std::to_string(inst.tile));
+    if (inst.chart < 0 || inst.chart >= int(m.slot_of_chart.size()) || m.slot_of_chart[std::size_t(inst.chart)] < 0 ||
+        m.slot_of_chart[std::size_t(inst.chart)] >= m.slot_count())
+      throw layer_error(layer, "instance " + std::to_string(k) + " is on chart " + std::to_string(inst.chart) +
+                                   ", which the maps do not hold");
+  }
+}
+
+DdmGl::MapsGl& DdmGl::maps_for(const std::shared_ptr<const core::DdmMaps>& maps) {
+  auto [it, inserted] = maps_.try_emplace(maps.get());
+  if (inserted) {
+    auto m = std::make_unique<MapsGl>();
+    m->maps = maps;
+    // An empty SSBO cannot be bound; keep at least one float.
+    const std::size_t bytes = std::max<std::size_t>(maps->samples.size(), 1) * sizeof(float);
+    m->samples = upload_array(GL_SHADER_STORAGE_BUFFER, maps->samples.empty() ? nullptr : maps->samples.data(), bytes);
+    it->second = std::move(m);
+    ++uploads_;
+    check_gl_error("DdmGl: maps upload");
+  }
+  return *it->second;
+}
+
+DdmGl::LayerGl& DdmGl::layer_for(const std::shared_ptr<const core::DdmLayer>& layer) {
+  if (auto it = layers_.find(layer.get()); it != layers_.end()) return *it->second;
+  check(*layer);
+  // No vertex array bound while uploading: binding GL_ELEMENT_ARRAY_BUFFER would change the bound VAO's indices.
+  glBindVertexArray(0);
+  const core::DdmLayer& l = *layer;
+  auto g = std::make_unique<LayerGl>();
+  g->layer = layer;
+  // Instances grouped by tile, in layer order within a group (so each tile's run is one instanced draw).
+  std::vector<InstanceRecord> records;
+  records.reserve(l.instances.size());
+  g->tiles.resize(l.tiles.size());
+  for (std::size_t t = 0; t < l.tiles.size(); ++t) {
+    LayerGl::TileGl& tile = g->tiles[t];
+    tile.first_instance = GLuint(records.size());
+    for (std::size_t k = 0; k < l.instances.size(); ++k) {
+      const core::DdmInstance& inst = l.instances[k];
+      if (inst.tile != int(t)) continue;
+      records.push_back({l.maps->slot_of_chart[std::size_t(inst.chart)],
+                         {float(inst.origin.x), float(inst.origin.y)},
+                         {float(inst.size.x), float(inst.size.y)}});
+      g->grouped.push_back(k);
+    }
+    tile.instance_count = GLsizei(records.size() - tile.first_instance);
+  }
+  g->instances = upload_array(GL_ARRAY_BUFFER, records.empty() ? nullptr : records.data(),
+                              std::max<std::size_t>(records.size(), 1) * sizeof(InstanceRecord));
+  for (std::size_t t = 0; t < l.tiles.size(); ++t) {
+    LayerGl::TileGl& tile = g->tiles[t];
+    const core::TriMesh& mesh = l.tiles[t].mesh;
+    tile.vertex_count = GLsizei(mesh.vertex_count());
+    tile.index_count = GLsizei(3 * mesh.triangle_count());
+    g->vertices += std::size_t(tile.vertex_count) * std::size_t(tile.instance_count);
+    if (tile.instance_count == 0) continue;  // nothing to draw: upload nothing
+    const std::vector<float> p = to_float(mesh.positions), n = to_float(mesh.normals);
+    tile.positions = upload_array(GL_ARRAY_BUFFER, p.data(), p.size() * sizeof(float));
+    tile.normals = upload_array(GL_ARRAY_BUFFER, n.data(), n.size() * sizeof(float));
+    if (!l.morph_tiles.empty()) {
+      const core::TriMesh& morph = l.morph_tiles[t].mesh;
+      const std::vector<float> mp = to_float(morph.positions), mn = to_float(morph.normals);
+      tile.morph_positions = upload_array(GL_ARRAY_BUFFER, mp.data(), mp.size() * sizeof(float));
+      tile.morph_normals = upload_array(GL_ARRAY_BUFFER, mn.data(), mn.size() * sizeof(float));
+    }
+    std::vector<std::uint32_t> idx(3 * mesh.triangle_count());
+    for (std::size_t f = 0; f < mesh.triangle_count(); ++f)
+      for (int c = 0; c < 3; ++c) idx[3 * f + std::size_t(c)] = mesh.triangles[f][c];
+    tile.vao = VertexArray::create();
+    glBindVertexArray(tile.vao.id());
+    tile.indices = Buffer::create();
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, tile.indices.id());  // recorded in the tile's VAO
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(std::max<std::size_t>(idx.size(), 1) * sizeof(std::uint32_t)),
+                 idx.empty() ? nullptr : idx.data(), GL_STATIC_DRAW);
+    vec3_attribute(0, tile.positions.id());
+    vec3_attribute(1, tile.normals.id());
+    // Without a partner the tile itself (drawn with α = 0, so V = V1 exactly).
+    vec3_attribute(2, tile.morph_positions ? tile.morph_positions.id() : tile.positions.id());
+    vec3_attribute(3, tile.morph_normals ? tile.morph_normals.id() : tile.normals.id());
+    glBindBuffer(GL_ARRAY_BUFFER, g->instances.id());
+    const GLsizei stride = sizeof(InstanceRecord);
+    glEnableVertexAttribArray(4);
+    glVertexAttribIPointer(4, 1, GL_INT, stride, reinterpret_cast<const void*>(offsetof(InstanceRecord, slot)));
+    glEnableVertexAttribArray(5);
+    glVertexAttribPointer(5, 2, GL_FLOAT, GL_FALSE, stride,
+                          reinterpret_cast<const void*>(offsetof(InstanceRecord, origin)));
+    glEnableVertexAttribArray(6);
+    glVertexAttribPointer(6, 2, GL_FLOAT, GL_FALSE, stride,
+                          reinterpret_cast<const void*>(offsetof(InstanceRecord, size)));
+    for (GLuint a = 4; a <= 6; ++a) glVertexAttribDivisor(a, 1);
+    glBindVertexArray(0);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+  }
+  ++uploads_;
+  check_gl_error("DdmGl: layer upload");
+  return *layers_.emplace(layer.get(), std::move(g)).first->second;
+}
+
+void DdmGl::set_uniforms(const ShaderProgram& p, const core::DdmLayer& layer, const DdmPose& pose,
+                         const glm::dmat4& model) const {
+  const core::DdmMaps& m = *layer.maps;
+  glUniform2i(p.uniform("u_resolution"), m.resolution.x, m.resolution.y);
+  glUniform2i(p.uniform("u_periodic"), m.periodic.x ? 1 : 0, m.periodic.y ? 1 : 0);
+  p.set("u_height", float(layer.height));
+  const glm::mat2 linear(layer.transform.linear());
+  glUniformMatrix2fv(p.uniform("u_tile_linear"), 1, GL_FALSE, glm::value_ptr(linear));
+  p.set("u_tile_shift", glm::vec2(layer.transform.shift));
+  // Reduced modulo 1 in double on periodic axes (the shader wraps anyway): keeps float precision for long animations.
+  glm::dvec2 offset = pose.offset;
+  if (m.periodic.x) offset.x -= std::floor(offset.x);
+  if (m.periodic.y) offset.y -= std::floor(offset.y);
+  p.set("u_offset", glm::vec2(offset));
+  p.set("u_alpha", layer.morph_tiles.empty() ? 0.0f : float(pose.alpha));
+  p.set("u_model", glm::mat4(model));
+  p.set("u_normal_matrix", glm::mat3(glm::inverseTranspose(glm::dmat3(model))));
+}
+
+std::size_t DdmGl::draw(const std::shared_ptr<const core::DdmLayer>& layer, const DdmPose& pose,
+                        const glm::dmat4& model, const ShaderProgram& program) {
+  constexpr const char* where = "DdmGl::draw";
+  if (!layer) throw std::invalid_argument(std::string(where) + ": no layer");
+  LayerGl& g = layer_for(layer);
+  if (g.vertices == 0) return 0;
+  const MapsGl& maps = maps_for(layer->maps);
+  set_uniforms(program, *layer, pose, model);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kMapsBinding, maps.samples.id());
+  for (const LayerGl::TileGl& t : g.tiles) {
+    if (t.instance_count == 0 || t.index_count == 0) continue;
+    glBindVertexArray(t.vao.id());
+    glDrawElementsInstancedBaseInstance(GL_TRIANGLES, t.index_count, GL_UNSIGNED_INT, nullptr, t.instance_count,
+                                        t.first_instance);
+  }
+  glBindVertexArray(0);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kMapsBinding, 0);
+  check_gl_error(where);
+  return g.vertices;
+}
+
+DdmCapture DdmGl::capture(const std::shared_ptr<const core::DdmLayer>& layer, const DdmPose& pose) {
+  constexpr const char* where = "DdmGl::capture";
+  if (!layer) throw std::invalid_argument(std::string(where) + ": no layer");
+  LayerGl& g = layer_for(layer);
+  DdmCapture out;
+  if (g.vertices == 0) return out;
+  const MapsGl& maps = maps_for(layer->maps);
+  const ShaderProgram& prog = programs_->get({"ddm.vert.glsl"}, {}, {"v_world", "v_normal"});
+  if (g.vertices > capture_capacity_) {
+    const auto bytes = GLsizeiptr(g.vertices * 3 * sizeof(float));
+    capture_positions_ = upload_array(GL_TRANSFORM_FEEDBACK_BUFFER, nullptr, std::size_t(bytes));
+    capture_normals_ = upload_array(GL_TRANSFORM_FEEDBACK_BUFFER, nullptr, std::size_t(bytes));
+    capture_capacity_ = g.vertices;
+  }
+  // Surfaceless EGL has no default framebuffer; a draw needs a complete one even with rasterisation discarded.
+  GLint previous_fbo = 0;
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &previous_fbo);
+  const bool need_fbo = glCheckFramebufferStatus(GL_DRAW_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE;
+  if (need_fbo) {
+    if (!fallback_fbo_) {
+      fallback_fbo_ = Framebuffer::create();
+      fallback_rb_ = Renderbuffer::create();
+      glBindRenderbuffer(GL_RENDERBUFFER, fallback_rb_.id());
+      glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, 1, 1);
+      glBindRenderbuffer(GL_RENDERBUFFER, 0);
+      glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fallback_fbo_.id());
+      glFramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, fallback_rb_.id());
+    }
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fallback_fbo_.id());
+  }
+  prog.use();
+  prog.set("u_view_proj", glm::mat4(1.0f));
+  set_uniforms(prog, *layer, pose, glm::dmat4(1.0));
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kMapsBinding, maps.samples.id());
+  glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, capture_positions_.id());
+  glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 1, capture_normals_.id());
+  const bool discard_was_on = glIsEnabled(GL_RASTERIZER_DISCARD);
+  glEnable(GL_RASTERIZER_DISCARD);
+  glBeginTransformFeedback(GL_POINTS);
+  for (const LayerGl::TileGl& t : g.tiles)  // successive draws append: tile groups one after another, instance-major
+    if (t.instance_count > 0 && t.vertex_count > 0) {
+      glBindVertexArray(t.vao.id());
+      glDrawArraysInstancedBaseInstance(GL_POINTS, 0, t.vertex_count, t.instance_count, t.first_instance);
+    }
+  glEndTransformFeedback();
+  if (!discard_was_on) glDisable(GL_RASTERIZER_DISCARD);
+  glBindVertexArray(0);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kMapsBinding, 0);
+  std::vector<glm::vec3> pos(g.vertices), nrm(g.vertices);
+  glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, capture_positions_.id());
+  glGetBufferSubData(GL_TRANSFORM_FEEDBACK_BUFFER, 0, GLsizeiptr(pos.size() * sizeof(glm::vec3)), pos.data());
+  glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, capture_normals_.id());
+  glGetBufferSubData(GL_TRANSFORM_FEEDBACK_BUFFER, 0, GLsizeiptr(nrm.size() * sizeof(glm::vec3)), nrm.data());
+  glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, 0);
+  glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
+  glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 1, 0);
+  glUseProgram(0);
+  if (need_fbo) glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(previous_fbo));
+  check_gl_error(where);
+  // Grouped (by tile) order → the layer's instance order.
+  const core::DdmLayer& l = *layer;
+  std::vector<std::size_t> first(l.instances.size() + 1, 0);
+  for (std::size_t k = 0; k < l.instances.size(); ++k)
+    first[k + 1] = first[k] + l.tiles[std::size_t(l.instances[k].tile)].mesh.vertex_count();
+  out.positions.resize(g.vertices);
+  out.normals.resize(g.vertices);
+  std::size_t src = 0;
+  for (std::size_t k : g.grouped) {
+    const std::size_t nv = first[k + 1] - first[k];
+    std::copy_n(pos.begin() + std::ptrdiff_t(src), nv, out.positions.begin() + std::ptrdiff_t(first[k]));
+    std::copy_n(nrm.begin() + std::ptrdiff_t(src), nv, out.normals.begin() + std::ptrdiff_t(first[k]));
+    src += nv;
+  }
+  return out;
+}
+
+void DdmGl::release_unused(const std::unordered_set<const core::DdmLayer*>& live) {
+  std::erase_if(layers_, [&](const auto& kv) { return !live.count(kv.first); });
+  std::unordered_set<const core::DdmMaps*> live_maps;
+  for (const auto& [ptr, g] : layers_)
+    if (g->layer->maps) live_maps.insert(g->layer->maps.get());
+  for (const core::DdmLayer* l : live)
+    if (l && l->maps) live_maps.insert(l->maps.get());
+  std::erase_if(maps_, [&](const auto& kv) { return !live_maps.count(kv.first); });
+}
+
+}  // namespace trispline::gpu

@@ -1,0 +1,45 @@
+// trispline::gpu::detail::DdmDisplay — how the Renderer shows live DDM layers (SceneObject::ddm_layers, issue 6,
+// seed §5.3.2): every visible object's layers through DdmGl's instanced path at ViewOptions::time_s (α =
+// alpha_at(t), offset = offset_at(t)), in object space through the object's transform (Transform::matrix(); normals
+// by its inverse transpose), shaded like the object (its colour, studio shading of mesh.frag.glsl), and in the
+// wireframe overlay and the selection outline. GPU copies are cached per layer / maps pointer (DdmGl) and dropped
+// in release_unused. Internal to the renderer (renderer.cpp); not a public API.
+#pragma once
+
+#include <cstddef>
+#include <glm/glm.hpp>
+#include <memory>
+#include <string>
+
+#include "core/scene/scene.h"
+#include "gpu/ddm_gl.h"
+
+namespace trispline::gpu::detail {
+
+struct DdmDrawn {
+  int layers = 0;            // layers drawn (with at least one instance)
+  std::size_t vertices = 0;  // Σ instances × tile vertices
+};
+
+class DdmDisplay {
+ public:
+  explicit DdmDisplay(std::shared_ptr<FfdProgramCache> programs) : gl_(std::move(programs)) {}
+  // True when some visible object has a layer with instances (the renderer then times the DDM pass on its own).
+  static bool any_visible(const core::Scene& scene);
+  // Shaded pass (inside the renderer's object pass: depth test on, stencil test on with GL_REPLACE): each visible
+  // object's layers in its colour, writing stencil 1 for the object named `selected` (outline mask), 0 otherwise.
+  DdmDrawn draw_shaded(const core::Scene& scene, double time_s, const glm::mat4& view_proj, const glm::vec3& eye,
+                       const glm::vec3& key_dir, const std::string& selected);
+  // Wireframe overlay pass (polygon mode GL_LINE set by the caller): every visible object's layers in `color`.
+  void draw_flat(const core::Scene& scene, double time_s, const glm::mat4& view_proj, const glm::vec4& color);
+  // Selection outline of `object`'s layers (the caller set stencil and depth state, as for the object's outline).
+  void draw_outline(const core::SceneObject& object, double time_s, const glm::mat4& view_proj,
+                    const glm::vec2& viewport, float outline_px, const glm::vec4& color);
+  void release_unused(const core::Scene& scene);
+  DdmGl& gl() { return gl_; }
+
+ private:
+  DdmGl gl_;
+};
+
+}  // namespace trispline::gpu::detail
