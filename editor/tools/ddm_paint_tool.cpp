@@ -12,6 +12,7 @@
 
 #include "core/commands/camera_set.h"
 #include "editor/session.h"
+#include "ui/ddm_anim_panel.h"
 #include "ui/theme.h"
 
 namespace trispline::editor {
@@ -329,6 +330,23 @@ void DdmPaintTool::draw_panel(ToolContext& ctx) {
                 ImGui::GetItemRectMax().y};
   tooltip("Add the layer's tiles as an ordinary mesh object (for export): one ddm.bake");
   ImGui::EndDisabled();
+
+  // Animation of a layer (seed §5.4.2): metamorphosis keys and texture-space offset, one ddm.animate per click.
+  ImGui::Spacing();
+  if (ImGui::CollapsingHeader("Animation")) {
+    const core::SceneObject* o = target(ctx);
+    std::vector<ui::DdmLayerInfo> layers;
+    if (o)
+      for (const auto& l : o->ddm_layers)
+        layers.push_back({l->name, l->tile_sources.empty() ? "" : l->tile_sources.front(), l->instances.size(),
+                          l->mesh ? l->mesh->vertex_count() : 0, l->animated()});
+    const ui::DdmAnimPanelResult r = ui::draw_ddm_anim_panel(anim_params_, anim_layer_, o ? o->name : "", layers);
+    if (r.line) {
+      EditorSession& session = ctx.session;
+      const nlohmann::json line = *r.line;
+      ctx.defer("Animating tiles of " + o->name, [&session, line]() { session.execute(line); });
+    }
+  }
 
   ImGui::Spacing();
   ImGui::Separator();

@@ -12,6 +12,8 @@
 // while to re-evaluate); errors go to the Log panel and leave the scene as it was.
 #pragma once
 
+#include "ui/ddm_anim_panel.h"
+
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -97,6 +99,8 @@ class DdmPaintTool : public Tool {
   bool painting_ = false, erasing_ = false;
   core::Camera stroke_view_;  // the view at mouse-down: the stroke's pixels belong to it
   glm::vec4 fill_rect_{0.0f}, bake_rect_{0.0f};
+  ui::DdmAnimParams anim_params_;  // the Animation section (ui/ddm_anim_panel.h)
+  std::string anim_layer_;
 };
 
 }  // namespace trispline::editor
