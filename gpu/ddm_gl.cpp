@@ -269,22 +269,7 @@ DdmCapture DdmGl::capture(const std::shared_ptr<const core::DdmLayer>& layer, co
     capture_normals_ = upload_array(GL_TRANSFORM_FEEDBACK_BUFFER, nullptr, std::size_t(bytes));
     capture_capacity_ = g.vertices;
   }
-  // Surfaceless EGL has no default framebuffer; a draw needs a complete one even with rasterisation discarded.
-  GLint previous_fbo = 0;
-  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &previous_fbo);
-  const bool need_fbo = glCheckFramebufferStatus(GL_DRAW_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE;
-  if (need_fbo) {
-    if (!fallback_fbo_) {
-      fallback_fbo_ = Framebuffer::create();
-      fallback_rb_ = Renderbuffer::create();
-      glBindRenderbuffer(GL_RENDERBUFFER, fallback_rb_.id());
-      glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, 1, 1);
-      glBindRenderbuffer(GL_RENDERBUFFER, 0);
-      glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fallback_fbo_.id());
-      glFramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, fallback_rb_.id());
-    }
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fallback_fbo_.id());
-  }
+  const GLint previous_fbo = bind_complete_draw_framebuffer(fallback_fbo_, fallback_rb_);  // surfaceless EGL
   prog.use();
   prog.set("u_view_proj", glm::mat4(1.0f));
   set_uniforms(prog, *layer, pose, glm::dmat4(1.0));
@@ -312,7 +297,7 @@ DdmCapture DdmGl::capture(const std::shared_ptr<const core::DdmLayer>& layer, co
   glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
   glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 1, 0);
   glUseProgram(0);
-  if (need_fbo) glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(previous_fbo));
+  restore_draw_framebuffer(previous_fbo);
   check_gl_error(where);
   // Grouped (by tile) order → the layer's instance order.
   const core::DdmLayer& l = *layer;

@@ -43,22 +43,7 @@ void GlslVertexFfdEvaluator::evaluate(const glm::dvec3& param_offset) {
   require_ready(where);
   evaluated_ = true;
   if (vertex_count_ == 0) return;
-  // Surfaceless EGL has no default framebuffer; a draw needs a complete one even with rasterisation discarded.
-  GLint previous_fbo = 0;
-  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &previous_fbo);
-  const bool need_fbo = glCheckFramebufferStatus(GL_DRAW_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE;
-  if (need_fbo) {
-    if (!fallback_fbo_) {
-      fallback_fbo_ = Framebuffer::create();
-      fallback_rb_ = Renderbuffer::create();
-      glBindRenderbuffer(GL_RENDERBUFFER, fallback_rb_.id());
-      glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, 1, 1);
-      glBindRenderbuffer(GL_RENDERBUFFER, 0);
-      glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fallback_fbo_.id());
-      glFramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, fallback_rb_.id());
-    }
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fallback_fbo_.id());
-  }
+  const GLint previous_fbo = bind_complete_draw_framebuffer(fallback_fbo_, fallback_rb_);  // surfaceless EGL
   feedback_program_->use();
   feedback_program_->set("u_param_offset", shader_offset(param_offset));
   lattice_.bind();
@@ -75,7 +60,7 @@ void GlslVertexFfdEvaluator::evaluate(const glm::dvec3& param_offset) {
   glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 1, 0);
   glBindVertexArray(0);
   glUseProgram(0);
-  if (need_fbo) glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(previous_fbo));
+  restore_draw_framebuffer(previous_fbo);
   check_gl_error(where);
 }
 

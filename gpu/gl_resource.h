@@ -52,4 +52,11 @@ using Renderbuffer = GlHandle<GlKind::renderbuffer>;
 using Framebuffer = GlHandle<GlKind::framebuffer>;
 using Query = GlHandle<GlKind::query>;
 
+// Surfaceless EGL has no default framebuffer, yet a draw — even one with GL_RASTERIZER_DISCARD, for transform
+// feedback — needs a complete draw framebuffer. When the bound one is incomplete, binds `fbo` (a 1 × 1 RGBA8
+// framebuffer with renderbuffer `rb`, made on first use and kept by the caller) and returns the previous binding;
+// returns −1 and binds nothing when the bound one is complete. Pass the result to restore_draw_framebuffer.
+GLint bind_complete_draw_framebuffer(Framebuffer& fbo, Renderbuffer& rb);
+void restore_draw_framebuffer(GLint previous);  // no-op for −1
+
 }  // namespace trispline::gpu

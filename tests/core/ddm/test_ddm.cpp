@@ -10,28 +10,14 @@
 #include "core/ddm/ddm_map.h"
 #include "core/ddm/ddm_tile.h"
 #include "core/scene/primitives.h"
+#include "tests/core/ddm/ddm_test_patches.h"
 #include "tests/mesh_topology.h"
 
 namespace trispline::core {
 namespace {
 
-// S(u,v) = (a·u, b·v, 0): a flat bilinear patch (degree 1), normal +z.
-BSplineSurface<glm::dvec3> flat_patch(double a, double b) {
-  const KnotVector k(2, {0, 0, 1, 1});
-  return BSplineSurface<glm::dvec3>(k, k, {{0, 0, 0}, {a, 0, 0}, {0, b, 0}, {a, b, 0}});
-}
-
-// A bicubic Bézier bump over [0,2]² (normal +z-ish, curved both ways).
-BSplineSurface<glm::dvec3> bump_patch() {
-  const KnotVector k(4, {0, 0, 0, 0, 1, 1, 1, 1});
-  std::vector<glm::dvec3> cps;
-  for (int j = 0; j < 4; ++j)
-    for (int i = 0; i < 4; ++i) {
-      const double z = (i == 1 || i == 2) && (j == 1 || j == 2) ? 0.8 : (i == 0 || j == 0 ? -0.2 : 0.1);
-      cps.push_back({2.0 * i / 3.0, 2.0 * j / 3.0, z});
-    }
-  return BSplineSurface<glm::dvec3>(k, k, cps);
-}
+using test::bump_patch;  // tests/core/ddm/ddm_test_patches.h
+using test::flat_patch;
 
 TEST(DdmTile, GeneratedTilesAreClosedManifoldsInTheCanonicalCell) {
   for (const char* kind : {"thorn", "flower", "chain", "hex"}) {
