@@ -127,7 +127,9 @@ class Scene;
 // Copy of `scene` at time `time_s` (seconds): every animated object's param_offset becomes offset_at(time_s) (its
 // offset_keys and offset_velocity are cleared, so the copy is a still), a clip object's rest_mesh becomes the clip's
 // pose at that time (transform applied through refresh, FFD parameters re-embedded with the same embedding), and
-// world_mesh is re-evaluated on the CPU reference path (the authoritative geometry: replay --time, anim.record).
+// world_mesh is re-evaluated on the CPU reference path (the authoritative geometry: replay --time, anim.record), and
+// every animated tile layer (DdmLayer::animated) becomes a still at that time (α fixed, offset as one constant key,
+// mesh = ddm_layer_mesh at time_s).
 // Objects that are not animated share their meshes with `scene`. Deterministic: the same scene and time give the
 // same meshes bit for bit. Throws std::invalid_argument on a non-finite time.
 Scene scene_at_time(const Scene& scene, double time_s);
