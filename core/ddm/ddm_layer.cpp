@@ -3,8 +3,13 @@
 #include "core/ddm/ddm_layer.h"
 
 #include <algorithm>
+#include <cstdint>
+#include <limits>
 #include <stdexcept>
 #include <string>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 namespace trispline::core {
 
@@ -59,6 +64,83 @@ void ddm_layer_finish(DdmLayer& layer, glm::ivec2 map_resolution) {
   layer.mesh = std::make_shared<const TriMesh>(ddm_layer_mesh(layer, 0.0));
 }
 
+namespace {
+// `layer`'s mesh at time 0 (as ddm_layer_mesh) when it differs from `previous` — its source, whose mesh is that layer
+// at time 0 — only in instances and in maps extended by new charts: the vertices of instances both hold are copied
+// (each instance depends on itself and its chart's map samples alone, and ddm_sample_maps keeps old slots bit for
+// bit), the others evaluated. Bit for bit the same as ddm_layer_mesh(layer, 0).
+TriMesh mesh_reusing(const DdmLayer& layer, const DdmLayer& previous) {
+  const auto vertex_starts = [](const DdmLayer& l) {
+    std::vector<std::size_t> first(l.instances.size() + 1, 0);
+    for (std::size_t k = 0; k < l.instances.size(); ++k)
+      first[k + 1] = first[k] + l.tiles[static_cast<std::size_t>(l.instances[k].tile)].mesh.vertex_count();
+    return first;
+  };
+  const std::vector<std::size_t> old_first = vertex_starts(previous);
+  if (!previous.mesh || previous.mesh->vertex_count() != old_first.back() || previous.mesh->normals.size() != old_first.back())
+    return ddm_layer_mesh(layer, 0.0);
+  for (std::size_t c = 0; c < previous.maps->slot_of_chart.size(); ++c)
+    if (previous.maps->slot_of_chart[c] >= 0 && layer.maps->slot_of_chart[c] != previous.maps->slot_of_chart[c])
+      return ddm_layer_mesh(layer, 0.0);
+
+  // Match the new instances against the old ones in order (painting appends, erasing removes; both keep order).
+  std::vector<std::ptrdiff_t> reused(layer.instances.size(), -1);
+  std::vector<DdmInstance> fresh;
+  std::vector<std::size_t> fresh_index(layer.instances.size(), 0);
+  std::size_t j = 0;
+  for (std::size_t k = 0; k < layer.instances.size(); ++k) {
+    std::size_t probe = j;
+    while (probe < previous.instances.size() && !(previous.instances[probe] == layer.instances[k])) ++probe;
+    if (probe < previous.instances.size()) {
+      reused[k] = static_cast<std::ptrdiff_t>(probe);
+      j = probe + 1;
+    } else {
+      fresh_index[k] = fresh.size();
+      fresh.push_back(layer.instances[k]);
+    }
+  }
+  TriMesh added;
+  if (!fresh.empty())
+    added = ddm_evaluate(DdmMapsBase(layer.maps), layer.tiles_at(layer.alpha_at(0.0)), fresh, layer.height,
+                         layer.transform, layer.offset_at(0.0));
+  std::vector<std::size_t> fresh_first(fresh.size() + 1, 0), fresh_tri(fresh.size() + 1, 0);
+  for (std::size_t f = 0; f < fresh.size(); ++f) {
+    const TriMesh& tm = layer.tiles[static_cast<std::size_t>(fresh[f].tile)].mesh;
+    fresh_first[f + 1] = fresh_first[f] + tm.vertex_count();
+    fresh_tri[f + 1] = fresh_tri[f] + tm.triangle_count();
+  }
+  std::vector<std::size_t> old_tri(previous.instances.size() + 1, 0);
+  for (std::size_t k = 0; k < previous.instances.size(); ++k)
+    old_tri[k + 1] = old_tri[k] + previous.tiles[static_cast<std::size_t>(previous.instances[k].tile)].mesh.triangle_count();
+
+  const std::vector<std::size_t> first = vertex_starts(layer);
+  std::vector<std::size_t> first_tri(layer.instances.size() + 1, 0);
+  for (std::size_t k = 0; k < layer.instances.size(); ++k)
+    first_tri[k + 1] = first_tri[k] + layer.tiles[static_cast<std::size_t>(layer.instances[k].tile)].mesh.triangle_count();
+  if (first.back() > std::numeric_limits<std::uint32_t>::max())
+    throw std::invalid_argument("counts: " + std::to_string(first.back()) + " vertices exceed 32-bit indices");
+  TriMesh out;
+  out.positions.resize(first.back());
+  out.normals.resize(first.back());
+  out.triangles.resize(first_tri.back());
+  const TriMesh& old = *previous.mesh;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, layer.instances.size(), 64), [&](const auto& range) {
+    for (std::size_t k = range.begin(); k != range.end(); ++k) {
+      const bool from_old = reused[k] >= 0;
+      const TriMesh& src = from_old ? old : added;
+      const std::size_t i = from_old ? static_cast<std::size_t>(reused[k]) : fresh_index[k];
+      const std::size_t v0 = from_old ? old_first[i] : fresh_first[i], nv = first[k + 1] - first[k];
+      const std::size_t t0 = from_old ? old_tri[i] : fresh_tri[i], nt = first_tri[k + 1] - first_tri[k];
+      std::copy_n(src.positions.begin() + static_cast<std::ptrdiff_t>(v0), nv, out.positions.begin() + static_cast<std::ptrdiff_t>(first[k]));
+      std::copy_n(src.normals.begin() + static_cast<std::ptrdiff_t>(v0), nv, out.normals.begin() + static_cast<std::ptrdiff_t>(first[k]));
+      const glm::uvec3 shift(static_cast<unsigned>(first[k])), back(static_cast<unsigned>(v0));
+      for (std::size_t f = 0; f < nt; ++f) out.triangles[first_tri[k] + f] = src.triangles[t0 + f] - back + shift;
+    }
+  });
+  return out;
+}
+}  // namespace
+
 std::shared_ptr<DdmLayer> ddm_layer_with_instances(const DdmLayer& layer, std::vector<DdmInstance> instances) {
   if (!layer.maps) throw std::invalid_argument("layer '" + layer.name + "': no maps");
   auto out = std::make_shared<DdmLayer>(layer);
@@ -79,7 +161,7 @@ std::shared_ptr<DdmLayer> ddm_layer_with_instances(const DdmLayer& layer, std::v
         ddm_sample_maps(*layer.surface, missing, layer.maps->resolution, layer.maps.get()));
   }
   out->instances = std::move(instances);
-  out->mesh = std::make_shared<const TriMesh>(ddm_layer_mesh(*out, 0.0));
+  out->mesh = std::make_shared<const TriMesh>(mesh_reusing(*out, layer));
   return out;
 }
 

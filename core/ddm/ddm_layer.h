@@ -62,8 +62,9 @@ struct DdmLayer {
 // and offset_at(t). Object space, #V = Σ instance tile vertex counts. Deterministic.
 TriMesh ddm_layer_mesh(const DdmLayer& layer, double time_s);
 
-// A copy of `layer` with `instances` (maps extended to the charts they reach, mesh re-evaluated at time 0): what
-// ddm.paint makes. Throws std::invalid_argument: an instance on a chart out of range or with a tile index out of range,
+// A copy of `layer` with `instances` (maps extended to the charts they reach, mesh at time 0): what ddm.paint makes.
+// Only instances `layer` does not hold are evaluated; the vertices of those it holds (matched in order, as painting
+// appends and erasing removes) are copied from its mesh — bit for bit what ddm_layer_mesh(result, 0) gives. Throws std::invalid_argument: an instance on a chart out of range or with a tile index out of range,
 // no surface to sample new charts from (uv layers are sampled whole).
 std::shared_ptr<DdmLayer> ddm_layer_with_instances(const DdmLayer& layer, std::vector<DdmInstance> instances);
 

@@ -155,6 +155,46 @@ TEST(DdmLayer, PaintingGrowsTheMapsAndKeepsTheSampledCharts) {
   EXPECT_THROW(ddm_layer_with_instances(layer, {{9999, {0, 0}, {1, 1}, 0}}), std::invalid_argument);
 }
 
+void expect_same_bits(const TriMesh& a, const TriMesh& b) {
+  ASSERT_EQ(a.vertex_count(), b.vertex_count());
+  ASSERT_EQ(a.triangle_count(), b.triangle_count());
+  for (std::size_t v = 0; v < a.vertex_count(); ++v) {
+    ASSERT_EQ(a.positions[v], b.positions[v]) << v;
+    ASSERT_EQ(a.normals[v], b.normals[v]) << v;
+  }
+  for (std::size_t f = 0; f < a.triangle_count(); ++f) ASSERT_EQ(a.triangles[f], b.triangles[f]) << f;
+}
+
+TEST(DdmLayer, PaintAndEraseReuseTheHeldTilesBitForBit) {
+  // Strokes evaluate only the cells they add; the copied vertices must be exactly those a whole evaluation gives, on
+  // a layer with two tiles, a metamorphosis at α(0) = 0.3, an offset and a texture-space transform.
+  DdmLayer layer = sphere_layer({});
+  layer.morph_tiles = {make_ddm_tile("flower"), make_ddm_tile("hex")};
+  layer.alpha = 0.3;
+  layer.offset_keys = {{0.0, {0.05, -0.02, 0}, KeyInterpolation::linear}};
+  layer.transform.rotate_deg = 20.0;
+  layer.transform.scale = {0.8, 0.9};
+  layer.instances = ddm_layout_cells(DdmLayout::brick, {2, 2}, 12);
+  for (std::size_t k = 0; k < layer.instances.size(); ++k) layer.instances[k].tile = static_cast<int>(k % 2);
+  ddm_layer_finish(layer, {9, 9});
+  ASSERT_EQ(layer.maps->slot_count(), 12);
+
+  std::vector<DdmInstance> painted = layer.instances;  // a stroke adds cells on sampled and on new charts
+  for (const DdmInstance& c : ddm_layout_cells(DdmLayout::brick, {2, 2}, 40))
+    if (c.chart >= 10 && c.chart < 30 && c.origin.x == 0.0) painted.push_back({c.chart, c.origin, c.size, c.chart % 2});
+  const auto grown = ddm_layer_with_instances(layer, painted);
+  EXPECT_GT(grown->maps->slot_count(), 12);
+  expect_same_bits(*grown->mesh, ddm_layer_mesh(*grown, 0.0));
+
+  std::vector<DdmInstance> erased;  // an erase removes cells from the middle
+  for (std::size_t k = 0; k < painted.size(); ++k)
+    if (k % 3 != 1) erased.push_back(painted[k]);
+  const auto thinned = ddm_layer_with_instances(*grown, erased);
+  expect_same_bits(*thinned->mesh, ddm_layer_mesh(*thinned, 0.0));
+  const auto emptied = ddm_layer_with_instances(*thinned, {});
+  EXPECT_EQ(emptied->mesh->vertex_count(), 0u);
+}
+
 TEST(DdmLayer, OffsetAndMetamorphosisOverTime) {
   DdmLayer layer;
   layer.name = "pot";
