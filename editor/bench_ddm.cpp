@@ -4,10 +4,12 @@
 #include <epoxy/gl.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <iomanip>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <ostream>
+#include <stdexcept>
 #include <thread>
 
 #include "core/ddm/ddm_layer.h"
@@ -15,6 +17,9 @@
 #include "core/scene/primitives.h"
 #include "core/scene/scene.h"
 #include "editor/bench_place.h"
+#include "editor/history.h"
+#include "editor/render_scene.h"
+#include "editor/replay.h"
 #include "gpu/gl_context.h"
 #include "gpu/renderer.h"
 
@@ -22,7 +27,10 @@ namespace trispline::editor {
 namespace {
 using json = nlohmann::json;
 
-const std::vector<std::string> kCases = {"thorns_teapot", "chains_1m", "chains_3m"};
+const std::vector<std::string> kCases = {"thorns_face", "thorns_teapot", "chains_1m", "chains_3m"};
+// The face case replays the shipped scene (seed Table 5.1's first row); it needs the repository's assets.
+const std::filesystem::path kFaceScene = "assets/scenes/face_thorns.jsonl";
+const std::filesystem::path kFaceMesh = "assets/data/nefertiti.off";
 
 struct Case {
   std::string name, base, tile;
@@ -63,7 +71,16 @@ Case make_case(const std::string& name, const BenchDdmOptions& o) {
   c.name = name;
   core::SceneObject object;
   c.setup_ms = bench_ms([&] {
-    if (name == "thorns_teapot") {
+    if (name == "thorns_face") {
+      c.base = "Loop limit surface of the Nefertiti face mask (562 triangles), one painted stroke";
+      c.tile = "thorn";
+      History history(c.scene);
+      const ReplayResult r = replay_lines(history, kFaceScene);
+      if (!r.ok) throw std::runtime_error("bench ddm: thorns_face: " + r.error);
+      for (const core::SceneObject& obj : c.scene.objects())
+        if (!obj.ddm_layers.empty()) c.layer = obj.ddm_layers.front();
+      if (!c.layer) throw std::runtime_error("bench ddm: thorns_face: the scene has no tile layer");
+    } else if (name == "thorns_teapot") {
       c.base = "teapot body (8 Bézier patches, one periodic chart)";
       c.tile = "thorn";
       object = mesh_object("teapot", "primitive:teapot", core::make_primitive(core::PrimitiveKind::Teapot));
@@ -88,6 +105,10 @@ Case make_case(const std::string& name, const BenchDdmOptions& o) {
       c.layer = layer;
     }
   });
+  if (name == "thorns_face") {
+    c.camera = render_camera(c.scene, o.width, o.height);
+    return c;
+  }
   object.ddm_layers.push_back(c.layer);
   c.scene.insert(object);
   const core::Aabb b = c.scene.bounds();
@@ -186,9 +207,20 @@ int run_bench_ddm(const BenchDdmOptions& options, std::ostream& out, std::ostrea
   std::vector<std::string> names = options.cases.empty() ? kCases : options.cases;
   for (const std::string& n : names)
     if (std::find(kCases.begin(), kCases.end(), n) == kCases.end()) {
-      err << "bench ddm: unknown case '" << n << "' (thorns_teapot, chains_1m, chains_3m)\n";
+      err << "bench ddm: unknown case '" << n << "' (thorns_face, thorns_teapot, chains_1m, chains_3m)\n";
       return 1;
     }
+  const bool have_face = std::filesystem::exists(kFaceScene) && std::filesystem::exists(kFaceMesh);
+  if (!have_face) {
+    const std::string why = "needs " + kFaceScene.string() + " and " + kFaceMesh.string() +
+                            " (run scripts/fetch_assets.sh, then the bench from the repository root)";
+    if (!options.cases.empty() && std::find(names.begin(), names.end(), "thorns_face") != names.end()) {
+      err << "bench ddm: case thorns_face " << why << "\n";
+      return 1;
+    }
+    err << "bench ddm: skipping thorns_face: it " << why << "\n";
+    names.erase(std::remove(names.begin(), names.end(), "thorns_face"), names.end());
+  }
   // Declared first: the renderer's GL objects are deleted while the context is still current.
   std::unique_ptr<gpu::HeadlessContext> context;
   try {
@@ -210,8 +242,13 @@ int run_bench_ddm(const BenchDdmOptions& options, std::ostream& out, std::ostrea
                  {"frames", options.frames},
                  {"cases", json::array()}};
   for (const std::string& n : names) {
-    Case c = make_case(n, options);
-    result["cases"].push_back(run_case(c, options, renderer, target, err));
+    try {
+      Case c = make_case(n, options);
+      result["cases"].push_back(run_case(c, options, renderer, target, err));
+    } catch (const std::exception& e) {
+      err << e.what() << "\n";
+      return 1;
+    }
     result["timer_mode"] = renderer.last_stats().timer_mode;
     renderer.release_unused(core::Scene{});  // free this case's buffers before the next
   }

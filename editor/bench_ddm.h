@@ -2,11 +2,15 @@
 // seed §5.3.2, Table 5.1) in an offscreen target: per case the tile vertices, the GPU time of the layer pass
 // (RenderStats::ddm_ms, GpuTimer: GL_TIME_ELAPSED queries on GPUs, glFinish + wall clock on llvmpipe), the whole
 // frame (draw + glFinish, wall clock) and frames per second. Cases (like the seed's table, with our tiles):
+//   thorns_face      assets/scenes/face_thorns.jsonl replayed: 645 thorns painted on the Loop limit surface of
+//                    CGAL's Nefertiti face mask, ≈ 0.40 M vertices (needs the repository's assets: run from its root
+//                    after scripts/fetch_assets.sh; skipped with a note otherwise, an error when asked for by name)
 //   thorns_teapot    640 thorns (626 vertices each) on the teapot's body patches, ≈ 0.40 M vertices
 //   chains_1m        a chain tile (1152 vertices) on every chart of the Loop limit surface of a sphere, ≈ 1.0 M
 //   chains_3m        the same on a finer sphere, ≈ 3.1 M
-// The layers' texture-space offset moves every frame (seed §5.4.2), so every frame is a full evaluation. Prints
-// figures; never asserts timings (docs/performance.md records them with the machine).
+// The generated layers' texture-space offset moves every frame (seed §5.4.2); every frame evaluates every tile vertex
+// in the vertex shader either way. Prints figures; never asserts timings (docs/performance.md records them with the
+// machine).
 #pragma once
 
 #include <iosfwd>
@@ -24,7 +28,8 @@ struct BenchDdmOptions {
   bool json = false;               // one JSON object instead of a table
 };
 
-// Returns 0; 1 with a message on `err` when no GL context can be made or a case name is unknown.
+// Returns 0; 1 with a message on `err` when no GL context can be made, a case name is unknown, thorns_face is asked
+// for without its assets, or a case cannot be built.
 // JSON: {bench:"ddm", renderer, timer_mode, cpu, threads, width, height, samples, frames,
 //        cases [{name, base, tile, instances, tile_vertices, vertices, setup_ms, first_frame_ms, cpu_reference_ms,
 //                ddm_gpu_ms {median, min, max}, draw_ms_median, frame_ms {median, min, max}, fps,

@@ -147,8 +147,8 @@ int run_cli(int argc, char** argv) {
   bench_ddm->add_option("--width", ddm_bench.width, "Offscreen target width, pixels")->check(CLI::PositiveNumber);
   bench_ddm->add_option("--height", ddm_bench.height, "Offscreen target height, pixels")->check(CLI::PositiveNumber);
   bench_ddm->add_option("--samples", ddm_bench.samples, "MSAA samples")->check(CLI::Range(1, 16));
-  bench_ddm->add_option("--case", ddm_bench.cases, "Cases: thorns_teapot, chains_1m, chains_3m (default all)")
-      ->check(CLI::IsMember({"thorns_teapot", "chains_1m", "chains_3m"}));
+  bench_ddm->add_option("--case", ddm_bench.cases, "Cases: thorns_face, thorns_teapot, chains_1m, chains_3m (default all)")
+      ->check(CLI::IsMember({"thorns_face", "thorns_teapot", "chains_1m", "chains_3m"}));
   bench_ddm->add_flag("!--no-cpu", ddm_bench.cpu_reference, "Do not time the CPU reference evaluation");
   BenchPressOptions press_bench;
   auto* bench_press = bench->add_subcommand(

@@ -3,7 +3,9 @@
 #   glmark2-data → bunny.obj (Stanford bunny, 34,835 vertices); gem-doc → venus.obj (Venus bust, 711 vertices);
 #   assimp-testmodels (20 MB, downloaded once for both) → glTF animation clips for core::MeshClip:
 #     AnimatedMorphCube/AnimatedMorphCube.gltf + .bin (Khronos sample, morph-target weights, 24 vertices) and
-#     simple_skin/simple_skin.gltf (glTF tutorial skin: two joints, 10 vertices, buffers embedded).
+#     simple_skin/simple_skin.gltf (glTF tutorial skin: two joints, 10 vertices, buffers embedded);
+#   libcgal-demo (23 MB) → nefertiti.off (CGAL's data/meshes/nefertiti.off, a face mask: 299 vertices, 562 triangles,
+#     one open boundary, looking along +z; CC0 per CGAL's LICENSE), from the data.tar.gz the package ships.
 # Uses `apt-get download` + `dpkg-deb -x`: nothing is installed. Idempotent: does nothing when the files exist.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -37,4 +39,11 @@ fetch assimp-testmodels \
   $gltf2/glTF-Sample-Models/AnimatedMorphCube-glTF/AnimatedMorphCube.gltf AnimatedMorphCube/AnimatedMorphCube.gltf \
   $gltf2/glTF-Sample-Models/AnimatedMorphCube-glTF/AnimatedMorphCube.bin AnimatedMorphCube/AnimatedMorphCube.bin \
   $gltf2/simple_skin/simple_skin.gltf simple_skin/simple_skin.gltf
+# CGAL's demo data sit in a tarball inside the package: fetch it, then take the one mesh out.
+if [ ! -s "$data/nefertiti.off" ]; then
+  fetch libcgal-demo usr/share/doc/libcgal-dev/data.tar.gz cgal-data.tar.gz
+  tar -xzf "$data/cgal-data.tar.gz" -O data/meshes/nefertiti.off >"$data/nefertiti.off.part"
+  mv "$data/nefertiti.off.part" "$data/nefertiti.off"
+  rm -f "$data/cgal-data.tar.gz"
+fi
 echo "assets: $(ls "$data" | tr '\n' ' ')in assets/data/"
