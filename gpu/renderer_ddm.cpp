@@ -32,11 +32,11 @@ DdmDrawn DdmDisplay::draw_shaded(const core::Scene& scene, double time_s, const 
     if (!o.visible || o.ddm_layers.empty()) continue;
     const bool is_selected = !selected.empty() && o.name == selected;
     glStencilFunc(GL_ALWAYS, is_selected ? 1 : 0, 0xFF);
-    p.set("u_albedo", o.color);
     p.set("u_highlight", is_selected ? 1.0f : 0.0f);
     const glm::dmat4 model = o.transform.matrix();
     for (const auto& layer : o.ddm_layers) {
       if (!has_instances(layer)) continue;
+      p.set("u_albedo", layer->color.value_or(o.color));
       drawn.vertices += gl_.draw(layer, DdmPose::at(*layer, time_s), model, p);
       ++drawn.layers;
     }

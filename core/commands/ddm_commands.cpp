@@ -73,6 +73,12 @@ DdmLayerSpec DdmLayerSpec::parse(const nlohmann::json& j, const CommandContext& 
     throw CommandError("field 'tile_scale': must be > 0", "tile_scale");
   s.transform.rotate_deg = jf::get_number(j, "tile_rotate_deg", 0.0);
   s.transform.shift = get_vec2(j, "tile_shift", glm::dvec2(0.0));
+  if (jf::has(j, "color")) {
+    const glm::dvec3 c = jf::get_vec3(j, "color");
+    if (!(glm::all(glm::greaterThanEqual(c, glm::dvec3(0.0))) && glm::all(glm::lessThanEqual(c, glm::dvec3(1.0)))))
+      throw CommandError("field 'color': each component must be in [0, 1] (linear RGB)", "color");
+    s.color = glm::vec3(c);
+  }
   try {  // the layout's own checks, before anything is built
     (void)ddm_layout_cells(layout_of(s.layout), s.counts, 1);
   } catch (const std::invalid_argument& e) {
@@ -102,6 +108,7 @@ void DdmLayerSpec::write(nlohmann::json& j) const {
   if (transform.scale != glm::dvec2(1.0)) j["tile_scale"] = {transform.scale.x, transform.scale.y};
   if (transform.rotate_deg != 0.0) j["tile_rotate_deg"] = transform.rotate_deg;
   if (transform.shift != glm::dvec2(0.0)) j["tile_shift"] = {transform.shift.x, transform.shift.y};
+  if (color) j["color"] = jf::to_json(glm::dvec3(*color));
 }
 
 DdmTile load_ddm_tile(const std::string& name, const std::filesystem::path& path, const char* field) {
@@ -128,6 +135,7 @@ std::shared_ptr<DdmLayer> make_ddm_layer(const SceneObject& object, const DdmLay
   layer->counts = spec.counts;
   layer->height = spec.height;
   layer->transform = spec.transform;
+  layer->color = spec.color;
   glm::ivec2 resolution{9, 9};
   int charts = 1;
   try {
@@ -261,7 +269,7 @@ std::optional<SceneObject> DdmBakeCommand::build(const Scene& scene) {
   SceneObject baked;
   baked.name = name_;
   baked.source = "ddm.bake:" + object_ + "/" + layer_;
-  baked.color = object->color;
+  baked.color = layer->color.value_or(object->color);
   const TriMesh mesh = frame_ ? ddm_layer_mesh(*layer, scene.timeline.time_of_frame(*frame_)) : *layer->mesh;
   baked.rest_mesh = std::make_shared<const TriMesh>(transformed(mesh, object->transform));
   baked.refresh();

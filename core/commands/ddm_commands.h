@@ -59,6 +59,7 @@ struct DdmLayerSpec {
   std::optional<glm::ivec2> map_resolution;
   DdmTileTransform transform;
   std::int64_t seed = 0;
+  std::optional<glm::vec3> color;  // "color": the layer's linear RGB, each in [0, 1] (default: the object's)
 
   // Throws CommandError naming the field.
   static DdmLayerSpec parse(const nlohmann::json& j, const CommandContext& ctx, bool require_tile);

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,7 @@ struct DdmLayer {
   DdmLayout layout = DdmLayout::rect;
   glm::ivec2 counts{1, 1};   // cells per chart (n along u, m along v)
   double height = 0.1;       // world units per tile unit of w, along the base normal
+  std::optional<glm::vec3> color;          // the tiles' linear RGB in [0,1]³; unset: the object's colour
   DdmTileTransform transform;              // in the tile's texture space
   std::vector<DdmInstance> instances;      // the cells that hold a tile (order: as filled / painted)
   std::shared_ptr<const DdmBase> surface;  // the exact base (null for uv: the maps are the base)

@@ -10,7 +10,7 @@ SceneExport scene_export_nodes(const Scene& scene) {
     for (const auto& layer : o.ddm_layers) {
       if (!layer->mesh) continue;
       auto world = std::make_shared<const TriMesh>(transformed(*layer->mesh, o.transform));
-      out.nodes.push_back({o.name + "/" + layer->name, world.get(), o.color, o.inside_color});
+      out.nodes.push_back({o.name + "/" + layer->name, world.get(), layer->color.value_or(o.color), o.inside_color});
       out.owned.push_back(std::move(world));
     }
   }

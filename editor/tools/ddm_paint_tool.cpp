@@ -45,6 +45,7 @@ void put_layer_fields(nlohmann::json& j, const DdmPaintToolParams& p) {
   j["counts"] = {p.counts.x, p.counts.y};
   j["height"] = p.height;
   if (p.base != "limit") j["base"] = p.base;
+  if (p.own_color) j["color"] = {p.color.x, p.color.y, p.color.z};
 }
 }  // namespace
 
@@ -272,6 +273,13 @@ void DdmPaintTool::draw_new_layer_fields(const core::SceneObject* o) {
     if (uvs && ImGui::Selectable("uv", params_.base == "uv")) params_.base = "uv";
     if (uvs) tooltip("The mesh's texture coordinates (one chart, the UV square; the seed's way)");
     ImGui::EndCombo();
+  }
+  ImGui::Checkbox("Own colour", &params_.own_color);
+  tooltip("Draw and export the tiles in a colour of their own instead of the object's");
+  if (params_.own_color) {
+    ImGui::SameLine();
+    ImGui::ColorEdit3("##tile colour", &params_.color.x, ImGuiColorEditFlags_NoInputs);
+    tooltip("The layer's colour (linear RGB), used by the viewport, scene.glb and ddm.bake");
   }
 }
 

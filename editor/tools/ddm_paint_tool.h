@@ -32,13 +32,15 @@ struct DdmPaintToolParams {
   glm::ivec2 counts{1, 1};      // cells per chart (n along u, m along v)
   double height = 0.1;          // world units per tile unit of w
   std::string base = "limit";   // "limit" | "teapot_body" | "uv"
+  bool own_color = false;       // give the layer its own colour (else it takes the object's)
+  glm::vec3 color{0.80f, 0.62f, 0.20f};  // that colour, linear RGB in [0,1]
   double radius_px = 40.0;      // brush radius, viewport pixels
   bool erase = false;           // the Erase toggle (Ctrl at mouse-down inverts it)
 };
 
 // The ddm.paint line: {"cmd":"ddm.paint","object":ID,"layer":NAME,"stroke":[[px,py],...] (#S × 2 viewport pixels),
 // "radius_px":r,"erase":bool} plus "camera" when `view` is given, plus the new layer's fields (tile, layout, counts,
-// height, base) when `new_layer`.
+// height, base, color when own_color) when `new_layer`.
 nlohmann::json ddm_paint_line(const std::string& object, const std::vector<glm::dvec2>& stroke_px,
                               const DdmPaintToolParams& params, bool erase, bool new_layer,
                               const std::optional<core::Camera>& view = std::nullopt);

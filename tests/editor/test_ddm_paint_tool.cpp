@@ -134,6 +134,11 @@ TEST_F(DdmPaintTool, LinesCarryTheFieldsOfTheCommands) {
   const nlohmann::json f = editor::ddm_fill_line("pot", p);
   EXPECT_EQ(f, nlohmann::json::parse(R"({"cmd":"ddm.fill","object":"pot","layer":"thorns","tile":"chain",
       "layout":"brick","counts":[3,2],"height":0.05,"base":"teapot_body"})"));
+  p.own_color = true;  // "Own colour": the new layer's lines carry it
+  p.color = {0.25f, 0.5f, 1.0f};
+  EXPECT_EQ(editor::ddm_fill_line("pot", p)["color"], nlohmann::json::parse("[0.25,0.5,1.0]"));
+  EXPECT_EQ(editor::ddm_paint_line("pot", {{1, 2}}, p, false, true)["color"], nlohmann::json::parse("[0.25,0.5,1.0]"));
+  EXPECT_FALSE(editor::ddm_paint_line("pot", {{1, 2}}, p, false, false).contains("color"));
 }
 
 TEST_F(DdmPaintTool, DragIssuesOneUndoableDdmPaint) {

@@ -9,6 +9,7 @@
 #include "core/commands/ddm_commands.h"
 #include "core/commands/scene_primitive.h"
 #include "core/scene/primitives.h"
+#include "core/scene/scene_export.h"
 
 namespace trispline::core {
 namespace {
@@ -61,6 +62,30 @@ TEST(DdmCommands, FillThenBakeOnALimitSurface) {
   fill->undo(s);
   EXPECT_TRUE(s.find("ball")->ddm_layers.empty());
   EXPECT_EQ(s.find("ball")->rest_mesh->positions, rest.positions);
+}
+
+TEST(DdmCommands, ALayersOwnColourIsDrawnBakedAndExported) {
+  Scene s = ball_scene();
+  auto fill = DdmFillCommand::parse(json::parse(R"({"cmd":"ddm.fill","object":"ball","layer":"gold","tile":"hex",
+      "layout":"rect","counts":[1,1],"height":0.05,"color":[0.9,0.6,0.1]})"), {});
+  EXPECT_EQ(fill->to_json()["color"].size(), 3u);  // logged back
+  fill->redo(s);
+  const glm::vec3 gold(0.9f, 0.6f, 0.1f);
+  ASSERT_TRUE(s.find("ball")->ddm_layers.at(0)->color.has_value());
+  EXPECT_EQ(*s.find("ball")->ddm_layers.at(0)->color, gold);
+  DdmBakeCommand::parse(json::parse(R"({"cmd":"ddm.bake","object":"ball","layer":"gold","name":"g"})"), {})->redo(s);
+  EXPECT_EQ(s.find("g")->color, gold);
+  const SceneExport nodes = scene_export_nodes(s);
+  bool exported = false;
+  for (const auto& n : nodes.nodes)
+    if (n.name == "ball/gold") exported = n.color == gold;
+  EXPECT_TRUE(exported);
+  // Without "color" the layer takes the object's colour everywhere.
+  DdmFillCommand::parse(json::parse(R"({"cmd":"ddm.fill","object":"ball","layer":"plain","tile":"hex",
+      "layout":"rect","counts":[1,1],"height":0.05})"), {})->redo(s);
+  EXPECT_FALSE(s.find("ball")->ddm_layers.at(1)->color.has_value());
+  DdmBakeCommand::parse(json::parse(R"({"cmd":"ddm.bake","object":"ball","layer":"plain","name":"p"})"), {})->redo(s);
+  EXPECT_EQ(s.find("p")->color, s.find("ball")->color);
 }
 
 TEST(DdmCommands, TeapotBodyLayerAndReplacingALayer) {
@@ -122,6 +147,8 @@ TEST(DdmCommands, BadInputIsRefusedAndTheSceneIsUnchanged) {
       "counts":[1,1],"height":0.1,"base":"teapot_body"})", s), "base");
   EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","object":"ball","layer":"x","tile":"thorn","layout":"rect",
       "counts":[400,400],"height":0.1})", s), "counts");  // too many tile vertices
+  EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","object":"ball","layer":"x","tile":"thorn","layout":"rect",
+      "counts":[1,1],"height":0.1,"color":[0.5,1.5,0]})", s), "color");
   // A non-manifold base.
   SceneObject fin;
   fin.name = "fin";
