@@ -75,6 +75,7 @@ const CommandRegistry& CommandRegistry::builtin() {
     r.add("ddm.paint", "Paint (or erase) tiles of a layer with a brush stroke in the viewport (DDM, seed ch. 5)",
           core::DdmPaintCommand::parse);
     r.add("ddm.bake", "Turn a tile layer into an ordinary mesh object (for export)", core::DdmBakeCommand::parse);
+    r.add("ddm.remove", "Delete a tile layer", core::DdmRemoveCommand::parse);
     r.add("ddm.animate", "Animate a tile layer: texture-space offset and metamorphosis to another tile (seed §5.4.2)",
           core::DdmAnimateCommand::parse);
     r.add("anim.timeline", "Set the timeline's frame range and frame rate", core::AnimTimelineCommand::parse);

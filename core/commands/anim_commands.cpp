@@ -194,6 +194,7 @@ std::string AnimClipCommand::label() const {
 std::optional<SceneObject> AnimClipCommand::build(const Scene& scene) {
   const SceneObject* target = scene.find(object_);
   if (!target) throw CommandError("field 'object': no object named '" + object_ + "'", "object");
+  if (!remove_) require_no_tile_layers(*target, "a glTF clip");
   SceneObject out = *target;
   if (remove_) {
     if (!target->clip) throw CommandError("field 'object': object '" + object_ + "' has no clip", "object");

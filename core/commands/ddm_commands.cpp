@@ -277,4 +277,27 @@ std::optional<SceneObject> DdmBakeCommand::build(const Scene& scene) {
   return baked;
 }
 
+CommandPtr DdmRemoveCommand::parse(const nlohmann::json& j, const CommandContext&) {
+  auto c = std::make_unique<DdmRemoveCommand>();
+  c->object_ = jf::get_string(j, "object");
+  c->layer_ = jf::get_string(j, "layer");
+  return c;
+}
+
+nlohmann::json DdmRemoveCommand::to_json() const {
+  return {{"cmd", id()}, {"object", object_}, {"layer", layer_}};
+}
+
+std::string DdmRemoveCommand::label() const { return "Remove tile layer " + object_ + "/" + layer_; }
+
+std::optional<SceneObject> DdmRemoveCommand::build(const Scene& scene) {
+  const SceneObject* object = scene.find(object_);
+  if (!object) throw CommandError("field 'object': no object named '" + object_ + "'", "object");
+  const std::shared_ptr<const DdmLayer> layer = find_ddm_layer(*object, layer_);
+  SceneObject out = *object;
+  std::erase(out.ddm_layers, layer);
+  stats_ = {{"tiles", layer->instances.size()}, {"vertices", layer->mesh ? layer->mesh->vertex_count() : 0}};
+  return out;
+}
+
 }  // namespace trispline::core

@@ -115,4 +115,23 @@ class DdmBakeCommand : public SnapshotCommand {
   nlohmann::json stats_ = nlohmann::json::object();
 };
 
+// {"cmd":"ddm.remove","object":ID,"layer":NAME}: deletes a tile layer (its tiles, maps and animation); undo brings it
+// back as it was. Errors (field named, scene unchanged): unknown object, no such layer.
+class DdmRemoveCommand : public SnapshotCommand {
+ public:
+  static CommandPtr parse(const nlohmann::json& j, const CommandContext& ctx);
+  std::string id() const override { return "ddm.remove"; }
+  nlohmann::json to_json() const override;
+  std::string label() const override;
+  nlohmann::json stats() const override { return stats_; }
+
+ protected:
+  std::string target() const override { return object_; }
+  std::optional<SceneObject> build(const Scene& scene) override;
+
+ private:
+  std::string object_, layer_;
+  nlohmann::json stats_ = nlohmann::json::object();
+};
+
 }  // namespace trispline::core

@@ -89,6 +89,7 @@ std::string DffdSplitCommand::label() const {
 std::optional<SceneObject> DffdSplitCommand::build(const Scene& scene) {
   const SceneObject* object = scene.find(object_);
   if (!object) throw CommandError("field 'object': no object named '" + object_ + "'", "object");
+  require_no_tile_layers(*object, "a split");
   if (object->ffd)
     throw CommandError("field 'object': '" + object_ + "' is deformed by an FFD lattice; dffd.split builds its own "
                        "lattice around the obstacles (split an undeformed object)", "object");

@@ -81,6 +81,7 @@ std::string IncisionDrawCommand::label() const {
 std::optional<SceneObject> IncisionDrawCommand::build(const Scene& scene) {
   const SceneObject* object = scene.find(object_);
   if (!object) throw CommandError("field 'object': no object named '" + object_ + "'", "object");
+  require_no_tile_layers(*object, "an incision");
   if (object->ffd || object->dffd || object->clip)
     throw CommandError("field 'object': '" + object_ +
                            "' is deformed (FFD, DFFD or clip); incisions cut "

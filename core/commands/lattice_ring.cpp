@@ -117,6 +117,7 @@ nlohmann::json LatticeRingCommand::to_json() const {
 std::optional<SceneObject> LatticeRingCommand::build(const Scene& scene) {
   const SceneObject* target = scene.find(p_.object);
   if (!target) throw CommandError("field 'object': no object named '" + p_.object + "'", "object");
+  require_no_tile_layers(*target, "a ring lattice");
   using Clock = std::chrono::steady_clock;
   const auto ms = [](Clock::time_point a, Clock::time_point b) {
     return std::chrono::duration<double, std::milli>(b - a).count();

@@ -129,6 +129,7 @@ std::string MeshSubdivideCommand::label() const {
 std::optional<SceneObject> MeshSubdivideCommand::build(const Scene& scene) {
   const SceneObject* object = scene.find(object_);
   if (!object) throw CommandError("field 'object': no object named '" + object_ + "'", "object");
+  require_no_tile_layers(*object, "a new mesh");
   const char* deformed = object->ffd ? "an FFD lattice" : object->dffd ? "a DFFD split" : object->clip ? "a glTF clip"
                                                                                                       : nullptr;
   if (deformed)

@@ -147,6 +147,7 @@ nlohmann::json PlaceSketchCommand::params_json(const PlaceSketchParams& p) {
 std::optional<SceneObject> PlaceSketchCommand::build(const Scene& scene) {
   const SceneObject* target = scene.find(p_.object);
   if (!target) throw CommandError("field 'object': no object named '" + p_.object + "'", "object");
+  require_no_tile_layers(*target, "an FFD placement");
 
   const auto t0 = std::chrono::steady_clock::now();
   RayCaster rays;

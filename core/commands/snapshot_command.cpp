@@ -50,4 +50,14 @@ const SceneObject& require_deformed_object(const Scene& scene, const std::string
   return *o;
 }
 
+void require_no_tile_layers(const SceneObject& object, const std::string& change) {
+  if (object.ddm_layers.empty()) return;
+  std::string names;
+  for (const auto& layer : object.ddm_layers) names += (names.empty() ? "" : ", ") + layer->name;
+  throw CommandError("field 'object': '" + object.name + "' holds tile layers (" + names +
+                         ") that sit on its undeformed surface and would not follow " + change +
+                         "; bake them (ddm.bake) or remove them (ddm.remove) first",
+                     "object");
+}
+
 }  // namespace trispline::core

@@ -34,4 +34,9 @@ class SnapshotCommand : public Command {
 // no such object, or no lattice (place it with place.sketch or lattice.ring first).
 const SceneObject& require_deformed_object(const Scene& scene, const std::string& name);
 
+// Throws CommandError (field 'object') when `object` holds tile layers (SceneObject::ddm_layers, seed ch. 5): they sit
+// on its undeformed rest surface and would not follow `change` (e.g. "an FFD lattice", "an incision"); the message
+// names the layers and says to bake (ddm.bake) or remove (ddm.remove) them first.
+void require_no_tile_layers(const SceneObject& object, const std::string& change);
+
 }  // namespace trispline::core

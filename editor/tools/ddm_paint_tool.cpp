@@ -167,6 +167,16 @@ void DdmPaintTool::bake(ToolContext& ctx) {
   ctx.defer("Baking " + o->name + "/" + params_.layer, [&session, line]() { session.execute(line); });
 }
 
+void DdmPaintTool::remove_layer(ToolContext& ctx) {
+  const core::SceneObject* o = target(ctx);
+  if (!o || new_layer(ctx)) {
+    ctx.session.messages().error("ddm.remove: '" + params_.layer + "' is not a layer of the selected object");
+    return;
+  }
+  const nlohmann::json line = {{"cmd", "ddm.remove"}, {"object", o->name}, {"layer", params_.layer}};
+  ctx.session.execute(line);  // undoable; errors go to the Log panel
+}
+
 std::string DdmPaintTool::hint() const {
   if (painting_) return erasing_ ? "Release to erase the tiles under the stroke" : "Release to paint tiles";
   if (object_.empty()) return "Select the object to paint tiles on";
@@ -337,6 +347,11 @@ void DdmPaintTool::draw_panel(ToolContext& ctx) {
   bake_rect_ = {ImGui::GetItemRectMin().x, ImGui::GetItemRectMin().y, ImGui::GetItemRectMax().x,
                 ImGui::GetItemRectMax().y};
   tooltip("Add the layer's tiles as an ordinary mesh object (for export): one ddm.bake");
+  ImGui::SameLine();
+  if (ImGui::Button("Remove")) remove_layer(ctx);
+  remove_rect_ = {ImGui::GetItemRectMin().x, ImGui::GetItemRectMin().y, ImGui::GetItemRectMax().x,
+                  ImGui::GetItemRectMax().y};
+  tooltip("Delete the layer (tiles, maps and animation): one ddm.remove, Ctrl+Z brings it back");
   ImGui::EndDisabled();
 
   // Animation of a layer (seed §5.4.2): metamorphosis keys and texture-space offset, one ddm.animate per click.

@@ -80,9 +80,11 @@ class DdmPaintTool : public Tool {
   // The commands the panel's buttons submit (also for tests): ddm.fill of the whole surface, ddm.bake of the layer.
   void fill(ToolContext& ctx);
   void bake(ToolContext& ctx);
+  void remove_layer(ToolContext& ctx);  // ddm.remove of the layer
   // Where the last draw_panel put the Fill and Bake buttons (ImGui screen coordinates: min x, min y, max x, max y).
   glm::vec4 fill_button() const { return fill_rect_; }
   glm::vec4 bake_button() const { return bake_rect_; }
+  glm::vec4 remove_button() const { return remove_rect_; }
 
  private:
   const core::SceneObject* target(const ToolContext& ctx) const;
@@ -100,7 +102,7 @@ class DdmPaintTool : public Tool {
   std::vector<glm::dvec2> stroke_;
   bool painting_ = false, erasing_ = false;
   core::Camera stroke_view_;  // the view at mouse-down: the stroke's pixels belong to it
-  glm::vec4 fill_rect_{0.0f}, bake_rect_{0.0f};
+  glm::vec4 fill_rect_{0.0f}, bake_rect_{0.0f}, remove_rect_{0.0f};
   ui::DdmAnimParams anim_params_;  // the Animation section (ui/ddm_anim_panel.h)
   std::string anim_layer_;
 };

@@ -242,6 +242,15 @@ TEST_F(DdmPaintTool, FillAndBakeButtons) {
   const core::SceneObject* baked = s.scene().find("s.spots");
   ASSERT_TRUE(baked);
   EXPECT_EQ(baked->rest_mesh->vertex_count(), layer()->mesh->vertex_count());
+  // Remove deletes the layer (one ddm.remove); undo brings it back, the same layer object.
+  const auto held = object().ddm_layers.at(0);
+  panel_frame({-10, -10}, false);
+  click(tool.remove_button());
+  ASSERT_EQ(count("ddm.remove"), 1u) << last_message();
+  EXPECT_TRUE(object().ddm_layers.empty());
+  ASSERT_TRUE(s.undo());
+  ASSERT_EQ(object().ddm_layers.size(), 1u);
+  EXPECT_EQ(object().ddm_layers[0], held);
 }
 
 TEST_F(DdmPaintTool, StrokeOffTheObjectLogsTheErrorAndChangesNothing) {

@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "core/commands/ddm_commands.h"
+#include "core/commands/mesh_subdivide.h"
 #include "core/commands/scene_primitive.h"
 #include "core/scene/primitives.h"
 #include "core/scene/scene_export.h"
@@ -86,6 +87,37 @@ TEST(DdmCommands, ALayersOwnColourIsDrawnBakedAndExported) {
   EXPECT_FALSE(s.find("ball")->ddm_layers.at(1)->color.has_value());
   DdmBakeCommand::parse(json::parse(R"({"cmd":"ddm.bake","object":"ball","layer":"plain","name":"p"})"), {})->redo(s);
   EXPECT_EQ(s.find("p")->color, s.find("ball")->color);
+}
+
+TEST(DdmCommands, RemoveALayerAndCommandsThatWouldLeaveTilesBehindAreRefused) {
+  Scene s = ball_scene();
+  DdmFillCommand::parse(json::parse(R"({"cmd":"ddm.fill","object":"ball","layer":"spots","tile":"hex",
+      "layout":"rect","counts":[1,1],"height":0.05})"), {})->redo(s);
+  const auto layer = s.find("ball")->ddm_layers.at(0);
+  // A new mesh would leave the tiles on the old surface: refused, naming the layer; the object is unchanged.
+  auto subdivide = MeshSubdivideCommand::parse(json::parse(R"({"cmd":"mesh.subdivide","object":"ball"})"), {});
+  try {
+    subdivide->redo(s);
+    ADD_FAILURE() << "mesh.subdivide accepted an object with tile layers";
+  } catch (const CommandError& e) {
+    EXPECT_EQ(e.field(), "object");
+    EXPECT_NE(std::string(e.what()).find("tile layers (spots)"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("ddm.remove"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(s.find("ball")->ddm_layers.at(0), layer);
+  // ddm.remove deletes it; undo brings back the very layer; then the mesh may change.
+  auto remove = DdmRemoveCommand::parse(json::parse(R"({"cmd":"ddm.remove","object":"ball","layer":"spots"})"), {});
+  EXPECT_EQ(remove->to_json(), json::parse(R"({"cmd":"ddm.remove","object":"ball","layer":"spots"})"));
+  remove->redo(s);
+  EXPECT_TRUE(s.find("ball")->ddm_layers.empty());
+  EXPECT_EQ(remove->stats()["tiles"], layer->instances.size());
+  remove->undo(s);
+  ASSERT_EQ(s.find("ball")->ddm_layers.size(), 1u);
+  EXPECT_EQ(s.find("ball")->ddm_layers.at(0), layer);
+  remove->redo(s);
+  EXPECT_NO_THROW(MeshSubdivideCommand::parse(json::parse(R"({"cmd":"mesh.subdivide","object":"ball"})"), {})->redo(s));
+  auto again = DdmRemoveCommand::parse(json::parse(R"({"cmd":"ddm.remove","object":"ball","layer":"spots"})"), {});
+  EXPECT_THROW(again->redo(s), CommandError);
 }
 
 TEST(DdmCommands, TeapotBodyLayerAndReplacingALayer) {
