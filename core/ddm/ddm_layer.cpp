@@ -2,14 +2,14 @@
 // §5.4.2 (texture-space offset animation).
 #include "core/ddm/ddm_layer.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cstdint>
 #include <limits>
 #include <stdexcept>
 #include <string>
-
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 namespace trispline::core {
 
@@ -18,7 +18,8 @@ double DdmLayer::alpha_at(double time_s) const {
 }
 
 glm::dvec2 DdmLayer::offset_at(double time_s) const {
-  const glm::dvec2 keyed = offset_keys.empty() ? glm::dvec2(0.0) : glm::dvec2(evaluate_offset_keys(offset_keys, time_s));
+  const glm::dvec2 keyed =
+      offset_keys.empty() ? glm::dvec2(0.0) : glm::dvec2(evaluate_offset_keys(offset_keys, time_s));
   return keyed + offset_velocity * time_s;
 }
 
@@ -59,7 +60,8 @@ void ddm_layer_finish(DdmLayer& layer, glm::ivec2 map_resolution) {
     std::erase_if(layer.instances, [&](const DdmInstance& c) { return !ddm_cell_valid(*layer.maps, c); });
   } else {
     if (!layer.surface) throw std::invalid_argument("base: the layer has no surface");
-    layer.maps = std::make_shared<const DdmMaps>(ddm_sample_maps(*layer.surface, charts_of(layer.instances), map_resolution));
+    layer.maps =
+        std::make_shared<const DdmMaps>(ddm_sample_maps(*layer.surface, charts_of(layer.instances), map_resolution));
   }
   layer.mesh = std::make_shared<const TriMesh>(ddm_layer_mesh(layer, 0.0));
 }
@@ -69,15 +71,25 @@ namespace {
 // at time 0 — only in instances and in maps extended by new charts: the vertices of instances both hold are copied
 // (each instance depends on itself and its chart's map samples alone, and ddm_sample_maps keeps old slots bit for
 // bit), the others evaluated. Bit for bit the same as ddm_layer_mesh(layer, 0).
+// Where each instance's vertices and triangles start in a layer mesh (instances one after another); #I + 1 entries.
+struct InstanceStarts {
+  std::vector<std::size_t> vertex, triangle;
+};
+InstanceStarts instance_starts(const std::vector<DdmTile>& tiles, const std::vector<DdmInstance>& instances) {
+  InstanceStarts s{std::vector<std::size_t>(instances.size() + 1, 0),
+                   std::vector<std::size_t>(instances.size() + 1, 0)};
+  for (std::size_t k = 0; k < instances.size(); ++k) {
+    const TriMesh& tm = tiles[static_cast<std::size_t>(instances[k].tile)].mesh;
+    s.vertex[k + 1] = s.vertex[k] + tm.vertex_count();
+    s.triangle[k + 1] = s.triangle[k] + tm.triangle_count();
+  }
+  return s;
+}
+
 TriMesh mesh_reusing(const DdmLayer& layer, const DdmLayer& previous) {
-  const auto vertex_starts = [](const DdmLayer& l) {
-    std::vector<std::size_t> first(l.instances.size() + 1, 0);
-    for (std::size_t k = 0; k < l.instances.size(); ++k)
-      first[k + 1] = first[k] + l.tiles[static_cast<std::size_t>(l.instances[k].tile)].mesh.vertex_count();
-    return first;
-  };
-  const std::vector<std::size_t> old_first = vertex_starts(previous);
-  if (!previous.mesh || previous.mesh->vertex_count() != old_first.back() || previous.mesh->normals.size() != old_first.back())
+  const InstanceStarts old_at = instance_starts(previous.tiles, previous.instances);
+  const std::size_t old_vertices = old_at.vertex.back();
+  if (!previous.mesh || previous.mesh->vertex_count() != old_vertices || previous.mesh->normals.size() != old_vertices)
     return ddm_layer_mesh(layer, 0.0);
   for (std::size_t c = 0; c < previous.maps->slot_of_chart.size(); ++c)
     if (previous.maps->slot_of_chart[c] >= 0 && layer.maps->slot_of_chart[c] != previous.maps->slot_of_chart[c])
@@ -103,38 +115,27 @@ TriMesh mesh_reusing(const DdmLayer& layer, const DdmLayer& previous) {
   if (!fresh.empty())
     added = ddm_evaluate(DdmMapsBase(layer.maps), layer.tiles_at(layer.alpha_at(0.0)), fresh, layer.height,
                          layer.transform, layer.offset_at(0.0));
-  std::vector<std::size_t> fresh_first(fresh.size() + 1, 0), fresh_tri(fresh.size() + 1, 0);
-  for (std::size_t f = 0; f < fresh.size(); ++f) {
-    const TriMesh& tm = layer.tiles[static_cast<std::size_t>(fresh[f].tile)].mesh;
-    fresh_first[f + 1] = fresh_first[f] + tm.vertex_count();
-    fresh_tri[f + 1] = fresh_tri[f] + tm.triangle_count();
-  }
-  std::vector<std::size_t> old_tri(previous.instances.size() + 1, 0);
-  for (std::size_t k = 0; k < previous.instances.size(); ++k)
-    old_tri[k + 1] = old_tri[k] + previous.tiles[static_cast<std::size_t>(previous.instances[k].tile)].mesh.triangle_count();
-
-  const std::vector<std::size_t> first = vertex_starts(layer);
-  std::vector<std::size_t> first_tri(layer.instances.size() + 1, 0);
-  for (std::size_t k = 0; k < layer.instances.size(); ++k)
-    first_tri[k + 1] = first_tri[k] + layer.tiles[static_cast<std::size_t>(layer.instances[k].tile)].mesh.triangle_count();
-  if (first.back() > std::numeric_limits<std::uint32_t>::max())
-    throw std::invalid_argument("counts: " + std::to_string(first.back()) + " vertices exceed 32-bit indices");
+  const InstanceStarts fresh_at = instance_starts(layer.tiles, fresh);
+  const InstanceStarts at = instance_starts(layer.tiles, layer.instances);
+  if (at.vertex.back() > std::numeric_limits<std::uint32_t>::max())
+    throw std::invalid_argument("counts: " + std::to_string(at.vertex.back()) + " vertices exceed 32-bit indices");
   TriMesh out;
-  out.positions.resize(first.back());
-  out.normals.resize(first.back());
-  out.triangles.resize(first_tri.back());
-  const TriMesh& old = *previous.mesh;
+  out.positions.resize(at.vertex.back());
+  out.normals.resize(at.vertex.back());
+  out.triangles.resize(at.triangle.back());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, layer.instances.size(), 64), [&](const auto& range) {
     for (std::size_t k = range.begin(); k != range.end(); ++k) {
       const bool from_old = reused[k] >= 0;
-      const TriMesh& src = from_old ? old : added;
+      const TriMesh& src = from_old ? *previous.mesh : added;
+      const InstanceStarts& src_at = from_old ? old_at : fresh_at;
       const std::size_t i = from_old ? static_cast<std::size_t>(reused[k]) : fresh_index[k];
-      const std::size_t v0 = from_old ? old_first[i] : fresh_first[i], nv = first[k + 1] - first[k];
-      const std::size_t t0 = from_old ? old_tri[i] : fresh_tri[i], nt = first_tri[k + 1] - first_tri[k];
-      std::copy_n(src.positions.begin() + static_cast<std::ptrdiff_t>(v0), nv, out.positions.begin() + static_cast<std::ptrdiff_t>(first[k]));
-      std::copy_n(src.normals.begin() + static_cast<std::ptrdiff_t>(v0), nv, out.normals.begin() + static_cast<std::ptrdiff_t>(first[k]));
-      const glm::uvec3 shift(static_cast<unsigned>(first[k])), back(static_cast<unsigned>(v0));
-      for (std::size_t f = 0; f < nt; ++f) out.triangles[first_tri[k] + f] = src.triangles[t0 + f] - back + shift;
+      const auto v0 = static_cast<std::ptrdiff_t>(src_at.vertex[i]), v = static_cast<std::ptrdiff_t>(at.vertex[k]);
+      const std::size_t nv = at.vertex[k + 1] - at.vertex[k], nt = at.triangle[k + 1] - at.triangle[k];
+      std::copy_n(src.positions.begin() + v0, nv, out.positions.begin() + v);
+      std::copy_n(src.normals.begin() + v0, nv, out.normals.begin() + v);
+      const glm::uvec3 back(static_cast<unsigned>(v0)), shift(static_cast<unsigned>(v));  // modulo 2³², exact
+      for (std::size_t f = 0; f < nt; ++f)
+        out.triangles[at.triangle[k] + f] = src.triangles[src_at.triangle[i] + f] - back + shift;
     }
   });
   return out;
@@ -147,7 +148,8 @@ std::shared_ptr<DdmLayer> ddm_layer_with_instances(const DdmLayer& layer, std::v
   const int charts = static_cast<int>(layer.maps->slot_of_chart.size());
   for (const DdmInstance& i : instances) {
     if (i.chart < 0 || i.chart >= charts)
-      throw std::invalid_argument("base: instance on chart " + std::to_string(i.chart) + " of " + std::to_string(charts));
+      throw std::invalid_argument("base: instance on chart " + std::to_string(i.chart) + " of " +
+                                  std::to_string(charts));
     if (i.tile < 0 || i.tile >= static_cast<int>(layer.tiles.size()))
       throw std::invalid_argument("tile: tile " + std::to_string(i.tile) + " of " + std::to_string(layer.tiles.size()));
   }

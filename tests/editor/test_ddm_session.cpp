@@ -5,10 +5,10 @@
 #include <gtest/gtest.h>
 #include <tiny_gltf.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
-#include <algorithm>
 #include <map>
 #include <string>
 #include <tuple>
@@ -69,9 +69,10 @@ TEST(DdmSession, PaintAnimateRecordAndBakeReplayHeadless) {
   ASSERT_TRUE(editor::replay_lines(history, kLog).ok);
   const double t24 = scene.timeline.time_of_frame(24);
   for (const auto& [object, layer_name, baked, time_s] :
-       std::vector<std::tuple<std::string, std::string, std::string, double>>{{"pot", "thorns", "pot.thorns", t24},
-                                                                             {"bust", "hexes", "bust.hexes", 0.0},
-                                                                             {"bunny", "chains", "bunny.chains", 0.0}}) {
+       std::vector<std::tuple<std::string, std::string, std::string, double>>{
+           {"pot", "thorns", "pot.thorns", t24},
+           {"bust", "hexes", "bust.hexes", 0.0},
+           {"bunny", "chains", "bunny.chains", 0.0}}) {
     const core::SceneObject& owner = *scene.find(object);
     ASSERT_EQ(owner.ddm_layers.size(), 1u) << object;
     const core::DdmLayer& layer = *owner.ddm_layers.front();
@@ -102,8 +103,8 @@ TEST(DdmSession, PaintAnimateRecordAndBakeReplayHeadless) {
     if (node.mesh >= 0)
       vertices[node.name] =
           model.accessors.at(model.meshes[node.mesh].primitives.at(0).attributes.at("POSITION")).count;
-  for (const char* name : {"pot", "bust", "bunny", "pot.thorns", "bust.hexes", "bunny.chains", "pot/thorns",
-                           "bust/hexes", "bunny/chains"})
+  for (const char* name :
+       {"pot", "bust", "bunny", "pot.thorns", "bust.hexes", "bunny.chains", "pot/thorns", "bust/hexes", "bunny/chains"})
     EXPECT_TRUE(vertices.count(name)) << name;
   EXPECT_EQ(vertices["bust.hexes"], vertices["bust/hexes"]);
   EXPECT_EQ(vertices["bunny.chains"], scene.find("bunny.chains")->world_mesh->vertex_count());
