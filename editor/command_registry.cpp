@@ -76,6 +76,7 @@ const CommandRegistry& CommandRegistry::builtin() {
           core::DdmPaintCommand::parse);
     r.add("ddm.bake", "Turn a tile layer into an ordinary mesh object (for export)", core::DdmBakeCommand::parse);
     r.add("ddm.remove", "Delete a tile layer", core::DdmRemoveCommand::parse);
+    r.add("ddm.color", "Give a tile layer its own colour, or its object's again", core::DdmColorCommand::parse);
     r.add("ddm.animate", "Animate a tile layer: texture-space offset and metamorphosis to another tile (seed §5.4.2)",
           core::DdmAnimateCommand::parse);
     r.add("anim.timeline", "Set the timeline's frame range and frame rate", core::AnimTimelineCommand::parse);

@@ -277,6 +277,38 @@ std::optional<SceneObject> DdmBakeCommand::build(const Scene& scene) {
   return baked;
 }
 
+CommandPtr DdmColorCommand::parse(const nlohmann::json& j, const CommandContext&) {
+  auto c = std::make_unique<DdmColorCommand>();
+  c->object_ = jf::get_string(j, "object");
+  c->layer_ = jf::get_string(j, "layer");
+  if (!j.contains("color")) throw CommandError("field 'color': missing ([r, g, b] in [0, 1], or null)", "color");
+  if (!j.at("color").is_null()) {
+    const glm::dvec3 rgb = jf::get_vec3(j, "color");
+    if (!(glm::all(glm::greaterThanEqual(rgb, glm::dvec3(0.0))) && glm::all(glm::lessThanEqual(rgb, glm::dvec3(1.0)))))
+      throw CommandError("field 'color': each component must be in [0, 1] (linear RGB)", "color");
+    c->color_ = glm::vec3(rgb);
+  }
+  return c;
+}
+
+nlohmann::json DdmColorCommand::to_json() const {
+  return {{"cmd", id()},
+          {"object", object_},
+          {"layer", layer_},
+          {"color", color_ ? jf::to_json(glm::dvec3(*color_)) : nlohmann::json(nullptr)}};
+}
+
+std::string DdmColorCommand::label() const { return "Colour of tile layer " + object_ + "/" + layer_; }
+
+std::optional<SceneObject> DdmColorCommand::build(const Scene& scene) {
+  const SceneObject* object = scene.find(object_);
+  if (!object) throw CommandError("field 'object': no object named '" + object_ + "'", "object");
+  const std::shared_ptr<const DdmLayer> layer = find_ddm_layer(*object, layer_);
+  auto recoloured = std::make_shared<DdmLayer>(*layer);  // tiles, maps and mesh stay shared
+  recoloured->color = color_;
+  return with_ddm_layer(*object, recoloured);
+}
+
 CommandPtr DdmRemoveCommand::parse(const nlohmann::json& j, const CommandContext&) {
   auto c = std::make_unique<DdmRemoveCommand>();
   c->object_ = jf::get_string(j, "object");

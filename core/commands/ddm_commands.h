@@ -115,6 +115,25 @@ class DdmBakeCommand : public SnapshotCommand {
   nlohmann::json stats_ = nlohmann::json::object();
 };
 
+// {"cmd":"ddm.color","object":ID,"layer":NAME,"color":[r,g,b] | null}: sets a layer's own colour (linear RGB, each in
+// [0, 1]) or, with null, makes it take its object's colour again. Only the colour changes (the tiles are shared).
+// Errors (field named, scene unchanged): unknown object, no such layer, a colour out of range.
+class DdmColorCommand : public SnapshotCommand {
+ public:
+  static CommandPtr parse(const nlohmann::json& j, const CommandContext& ctx);
+  std::string id() const override { return "ddm.color"; }
+  nlohmann::json to_json() const override;
+  std::string label() const override;
+
+ protected:
+  std::string target() const override { return object_; }
+  std::optional<SceneObject> build(const Scene& scene) override;
+
+ private:
+  std::string object_, layer_;
+  std::optional<glm::vec3> color_;
+};
+
 // {"cmd":"ddm.remove","object":ID,"layer":NAME}: deletes a tile layer (its tiles, maps and animation); undo brings it
 // back as it was. Errors (field named, scene unchanged): unknown object, no such layer.
 class DdmRemoveCommand : public SnapshotCommand {

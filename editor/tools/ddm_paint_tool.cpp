@@ -245,6 +245,30 @@ void DdmPaintTool::draw_layer_combo(ToolContext& ctx, const core::SceneObject* o
   }
 }
 
+void DdmPaintTool::draw_layer_color(ToolContext& ctx, const core::SceneObject& o, const core::DdmLayer& l) {
+  if (!color_editing_) layer_color_ = l.color.value_or(o.color);  // follows undo / redo unless being dragged
+  ImGui::ColorEdit3("Layer colour", &layer_color_.x, ImGuiColorEditFlags_NoInputs);
+  color_editing_ = ImGui::IsItemActive();
+  tooltip(l.color ? "The layer's own colour: one ddm.color when you let go" : "The object's colour; edit to give the "
+                                                                                "layer its own (one ddm.color)");
+  if (ImGui::IsItemDeactivatedAfterEdit()) set_layer_color(ctx, layer_color_);
+  if (l.color) {
+    ImGui::SameLine();
+    if (ImGui::SmallButton("Object's")) set_layer_color(ctx, std::nullopt);
+    tooltip("Draw the tiles in the object's colour again");
+  }
+}
+
+void DdmPaintTool::set_layer_color(ToolContext& ctx, std::optional<glm::vec3> color) {
+  const core::SceneObject* o = target(ctx);
+  if (!o || new_layer(ctx)) return;
+  const nlohmann::json line = {{"cmd", "ddm.color"},
+                               {"object", o->name},
+                               {"layer", params_.layer},
+                               {"color", color ? nlohmann::json{color->x, color->y, color->z} : nlohmann::json(nullptr)}};
+  ctx.session.execute(line);  // undoable; errors go to the Log panel
+}
+
 void DdmPaintTool::draw_new_layer_fields(const core::SceneObject* o) {
   const bool generated = is_generated(params_.tile);
   if (ImGui::BeginCombo("Tile", generated ? params_.tile.c_str() : "file")) {
@@ -314,11 +338,13 @@ void DdmPaintTool::draw_panel(ToolContext& ctx) {
   if (!new_layer(ctx)) {
     const core::SceneObject& obj = *o;
     for (const auto& l : obj.ddm_layers)
-      if (l->name == params_.layer)
+      if (l->name == params_.layer) {
         ImGui::TextColored(ui::colors::dim, "%s: %s, %s %dx%d, height %.3g, %s base", l->name.c_str(),
                            l->tile_sources.empty() ? "?" : l->tile_sources.front().c_str(),
                            core::ddm_layout_name(l->layout), l->counts.x, l->counts.y, l->height,
                            core::ddm_base_name(l->base));
+        draw_layer_color(ctx, obj, *l);
+      }
     ImGui::TextColored(ui::colors::dim, "The brush keeps the layer's own; these apply to Fill (which replaces it).");
   }
   draw_new_layer_fields(o);

@@ -81,6 +81,8 @@ class DdmPaintTool : public Tool {
   void fill(ToolContext& ctx);
   void bake(ToolContext& ctx);
   void remove_layer(ToolContext& ctx);  // ddm.remove of the layer
+  // ddm.color of the layer: its own colour, or nullopt for the object's again.
+  void set_layer_color(ToolContext& ctx, std::optional<glm::vec3> color);
   // Where the last draw_panel put the Fill and Bake buttons (ImGui screen coordinates: min x, min y, max x, max y).
   glm::vec4 fill_button() const { return fill_rect_; }
   glm::vec4 bake_button() const { return bake_rect_; }
@@ -92,6 +94,7 @@ class DdmPaintTool : public Tool {
   void commit(ToolContext& ctx);
   void draw_layer_combo(ToolContext& ctx, const core::SceneObject* o);
   void draw_new_layer_fields(const core::SceneObject* o);
+  void draw_layer_color(ToolContext& ctx, const core::SceneObject& o, const core::DdmLayer& layer);
 
   DdmPaintToolParams params_;
   std::string object_;
@@ -103,6 +106,8 @@ class DdmPaintTool : public Tool {
   bool painting_ = false, erasing_ = false;
   core::Camera stroke_view_;  // the view at mouse-down: the stroke's pixels belong to it
   glm::vec4 fill_rect_{0.0f}, bake_rect_{0.0f}, remove_rect_{0.0f};
+  glm::vec3 layer_color_{0.8f};  // the Layer colour swatch's value while it is edited
+  bool color_editing_ = false;
   ui::DdmAnimParams anim_params_;  // the Animation section (ui/ddm_anim_panel.h)
   std::string anim_layer_;
 };

@@ -242,6 +242,13 @@ TEST_F(DdmPaintTool, FillAndBakeButtons) {
   const core::SceneObject* baked = s.scene().find("s.spots");
   ASSERT_TRUE(baked);
   EXPECT_EQ(baked->rest_mesh->vertex_count(), layer()->mesh->vertex_count());
+  // The Layer colour swatch and its "Object's" button each issue one ddm.color.
+  tool.set_layer_color(ctx, glm::vec3(0.2f, 0.4f, 0.6f));
+  ASSERT_EQ(count("ddm.color"), 1u) << last_message();
+  EXPECT_EQ(*layer()->color, glm::vec3(0.2f, 0.4f, 0.6f));
+  tool.set_layer_color(ctx, std::nullopt);
+  EXPECT_EQ(count("ddm.color"), 2u);
+  EXPECT_FALSE(layer()->color.has_value());
   // Remove deletes the layer (one ddm.remove); undo brings it back, the same layer object.
   const auto held = object().ddm_layers.at(0);
   panel_frame({-10, -10}, false);

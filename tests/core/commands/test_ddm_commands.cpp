@@ -81,6 +81,29 @@ TEST(DdmCommands, ALayersOwnColourIsDrawnBakedAndExported) {
   for (const auto& n : nodes.nodes)
     if (n.name == "ball/gold") exported = n.color == gold;
   EXPECT_TRUE(exported);
+  // ddm.color recolours the layer alone (tiles, maps and mesh shared); null gives it the object's again; undo.
+  const auto before = s.find("ball")->ddm_layers.at(0);
+  auto blue = DdmColorCommand::parse(json::parse(R"({"cmd":"ddm.color","object":"ball","layer":"gold",
+      "color":[0.1,0.2,0.9]})"), {});
+  blue->redo(s);
+  const auto after = s.find("ball")->ddm_layers.at(0);
+  EXPECT_EQ(*after->color, glm::vec3(0.1f, 0.2f, 0.9f));
+  EXPECT_EQ(after->mesh, before->mesh);
+  EXPECT_EQ(after->maps, before->maps);
+  blue->undo(s);
+  EXPECT_EQ(s.find("ball")->ddm_layers.at(0), before);
+  auto clear = DdmColorCommand::parse(json::parse(R"({"cmd":"ddm.color","object":"ball","layer":"gold",
+      "color":null})"), {});
+  EXPECT_TRUE(clear->to_json()["color"].is_null());
+  clear->redo(s);
+  EXPECT_FALSE(s.find("ball")->ddm_layers.at(0)->color.has_value());
+  clear->undo(s);
+  EXPECT_THROW(DdmColorCommand::parse(json::parse(R"({"cmd":"ddm.color","object":"ball","layer":"gold",
+      "color":[2,0,0]})"), {}), CommandError);
+  EXPECT_THROW(DdmColorCommand::parse(json::parse(R"({"cmd":"ddm.color","object":"ball","layer":"gold"})"), {}),
+               CommandError);
+  EXPECT_THROW(DdmColorCommand::parse(json::parse(R"({"cmd":"ddm.color","object":"ball","layer":"nope",
+      "color":null})"), {})->redo(s), CommandError);
   // Without "color" the layer takes the object's colour everywhere.
   DdmFillCommand::parse(json::parse(R"({"cmd":"ddm.fill","object":"ball","layer":"plain","tile":"hex",
       "layout":"rect","counts":[1,1],"height":0.05})"), {})->redo(s);
