@@ -88,7 +88,7 @@ class App {
   void record_frame_timings(Clock::time_point start, Clock::time_point end, Clock::time_point last);
   void frame_selected();
   void open_later(const fs::path& log);  // replays `log` after a "Working…" frame
-  void showcase();                       // screenshot mode: select the placed object, show the Sketch placement tool
+  void showcase();                       // screenshot mode: select the placed (or tiled) object, show its tool
   void request(Pending what);  // Quit / New / Open: asks "Save changes?" first when the document is modified
   void go_on(Pending what);    // does it (the question, if any, is answered)
   bool save_or_ask();
@@ -176,7 +176,16 @@ void App::showcase() {
   for (const core::SceneObject& o : objects)
     if (o.placement) selected_ = o.name;
   if (selected_.empty() && !objects.empty()) selected_ = objects.back().name;
-  tools_.set_active(Toolbox::kSketch);  // its parameters fill the Tool panel
+  // Its parameters fill the Tool panel: Tile Paint when the scene is about tile layers, else Sketch.
+  const core::SceneObject* tiled = nullptr;
+  for (const core::SceneObject& o : objects)
+    if (!o.ddm_layers.empty() && !o.placement) tiled = &o;
+  if (tiled && std::none_of(objects.begin(), objects.end(), [](const auto& o) { return o.placement != nullptr; })) {
+    selected_ = tiled->name;
+    tools_.set_active(Toolbox::kDdmPaint);
+  } else {
+    tools_.set_active(Toolbox::kSketch);
+  }
 }
 
 void App::frame_selected() {

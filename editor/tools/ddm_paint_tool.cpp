@@ -87,7 +87,12 @@ void DdmPaintTool::mouse_away() {
 
 void DdmPaintTool::follow_selection(const ToolContext& ctx) {
   // The Object combo follows the selection until the user picks another object there.
-  if (!ctx.selected.empty() && ctx.selected != followed_selection_) object_ = followed_selection_ = ctx.selected;
+  if (ctx.selected.empty() || ctx.selected == followed_selection_) return;
+  object_ = followed_selection_ = ctx.selected;
+  // Like Blender's active layer: a newly selected object that holds layers brings up its last one, unless the
+  // panel's layer is one of its layers already.
+  const core::SceneObject* o = ctx.session.scene().find(object_);
+  if (o && !o->ddm_layers.empty() && new_layer(ctx)) params_.layer = o->ddm_layers.back()->name;
 }
 
 const core::SceneObject* DdmPaintTool::target(const ToolContext& ctx) const {
@@ -336,6 +341,7 @@ void DdmPaintTool::draw_panel(ToolContext& ctx) {
   ImGui::Separator();
   ImGui::TextUnformatted("Layer settings");
   if (!new_layer(ctx)) {
+    ImGui::PushTextWrapPos(0.0f);  // the panel is narrow: wrap the layer's summary instead of clipping it
     const core::SceneObject& obj = *o;
     for (const auto& l : obj.ddm_layers)
       if (l->name == params_.layer) {
@@ -346,6 +352,7 @@ void DdmPaintTool::draw_panel(ToolContext& ctx) {
         draw_layer_color(ctx, obj, *l);
       }
     ImGui::TextColored(ui::colors::dim, "The brush keeps the layer's own; these apply to Fill (which replaces it).");
+    ImGui::PopTextWrapPos();
   }
   draw_new_layer_fields(o);
 
