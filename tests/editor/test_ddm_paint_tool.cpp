@@ -260,6 +260,19 @@ TEST_F(DdmPaintTool, FillAndBakeButtons) {
   EXPECT_EQ(object().ddm_layers[0], held);
 }
 
+TEST_F(DdmPaintTool, SelectingAnObjectWithLayersBringsUpItsLastLayer) {
+  ASSERT_TRUE(s.execute({{"cmd", "scene.primitive"}, {"kind", "sphere"}, {"name", "t"}, {"translate", {3, 0, 0}}}));
+  ASSERT_TRUE(s.execute(nlohmann::json::parse(R"({"cmd":"ddm.fill","object":"t","layer":"dots","tile":"hex",
+      "layout":"rect","counts":[1,1],"height":0.02})")));
+  EXPECT_EQ(tool.params().layer, "spots");  // "s" has no layers: the panel keeps the new layer's name
+  selected = "t";
+  panel_frame({-10, -10}, false);
+  EXPECT_EQ(tool.params().layer, "dots");
+  selected = "s";  // back to an object without layers: the name stays (the next stroke makes "dots" there)
+  panel_frame({-10, -10}, false);
+  EXPECT_EQ(tool.params().layer, "dots");
+}
+
 TEST_F(DdmPaintTool, StrokeOffTheObjectLogsTheErrorAndChangesNothing) {
   const std::size_t applied = s.history().applied();
   drag({{4, 6}, {60, 8}});
