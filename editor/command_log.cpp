@@ -1,11 +1,14 @@
 #include "editor/command_log.h"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <algorithm>
 #include <cstring>
 #include <fstream>
+#include <memory>
 #include <sstream>
 
 namespace trispline::editor {
@@ -15,6 +18,21 @@ std::string describe(const std::filesystem::path& file, int line, const std::str
   std::string s = file.string() + ":" + std::to_string(line) + ": ";
   if (!field.empty() && msg.find("field '" + field + "'") == std::string::npos) s += "field '" + field + "': ";
   return s + msg;
+}
+
+// What a path that is not a regular file is, for error messages.
+std::string describe_file_type(const std::filesystem::path& path) {
+  std::error_code ec;
+  switch (std::filesystem::status(path, ec).type()) {
+    case std::filesystem::file_type::not_found: return "no such file";
+    case std::filesystem::file_type::directory: return "it is a directory";
+    case std::filesystem::file_type::fifo: return "it is a FIFO (named pipe)";
+    case std::filesystem::file_type::character: return "it is a character device";
+    case std::filesystem::file_type::block: return "it is a block device";
+    case std::filesystem::file_type::socket: return "it is a socket";
+    case std::filesystem::file_type::regular: return "a regular file";
+    default: return ec ? ec.message() : "not a regular file";
+  }
 }
 
 // "cmd" first, other keys in their (sorted) order: logs read naturally.
@@ -34,22 +52,121 @@ std::string format_line(const nlohmann::json& line) {
 LogError::LogError(const std::filesystem::path& file, int line, const std::string& field, const std::string& message)
     : std::runtime_error(describe(file, line, field, message)), file_(file), line_(line), field_(field) {}
 
+const LogLimits& log_limits() {
+  static const LogLimits limits;
+  return limits;
+}
+
+std::string utf8_error(std::string_view text) {
+  const auto* s = reinterpret_cast<const unsigned char*>(text.data());
+  const std::size_t n = text.size();
+  for (std::size_t i = 0; i < n;) {
+    const unsigned char c = s[i];
+    int extra = 0;
+    std::uint32_t min = 0, cp = 0;
+    if (c < 0x80) {
+      ++i;
+      continue;
+    } else if ((c & 0xE0) == 0xC0) {
+      extra = 1, min = 0x80, cp = c & 0x1F;
+    } else if ((c & 0xF0) == 0xE0) {
+      extra = 2, min = 0x800, cp = c & 0x0F;
+    } else if ((c & 0xF8) == 0xF0) {
+      extra = 3, min = 0x10000, cp = c & 0x07;
+    } else {
+      return "invalid UTF-8 at byte " + std::to_string(i + 1);
+    }
+    if (i + extra >= n) return "invalid UTF-8 at byte " + std::to_string(i + 1) + " (truncated sequence)";
+    for (int k = 1; k <= extra; ++k) {
+      if ((s[i + k] & 0xC0) != 0x80) return "invalid UTF-8 at byte " + std::to_string(i + 1);
+      cp = (cp << 6) | (s[i + k] & 0x3F);
+    }
+    if (cp < min || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF))
+      return "invalid UTF-8 at byte " + std::to_string(i + 1) + " (overlong or not a character)";
+    i += std::size_t(extra) + 1;
+  }
+  return {};
+}
+
+int json_nesting_depth(std::string_view text) {
+  int depth = 0, deepest = 0;
+  bool in_string = false, escaped = false;
+  for (const char c : text) {
+    if (in_string) {
+      if (escaped)
+        escaped = false;
+      else if (c == '\\')
+        escaped = true;
+      else if (c == '"')
+        in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      deepest = std::max(deepest, ++depth);
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+  return deepest;
+}
+
 std::vector<LogLine> read_log_text(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) throw LogError(path, 0, "", "cannot open command log");
+  const LogLimits& limits = log_limits();
+  // Opened without blocking and checked on the descriptor itself (a path can change between a check and an open):
+  // a FIFO or a device would never end, a directory reads as nothing.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) throw LogError(path, 0, "", "cannot open command log: " + std::string(std::strerror(errno)));
+  struct stat st {};
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+    ::close(fd);
+    throw LogError(path, 0, "", "not a command log: " + describe_file_type(path));
+  }
+  if (std::uintmax_t(st.st_size) > limits.max_file_bytes) {
+    ::close(fd);
+    throw LogError(path, 0, "", "the file is " + std::to_string(st.st_size) + " bytes, over the " +
+                                    std::to_string(limits.max_file_bytes) + "-byte limit of a command log");
+  }
+  std::FILE* file = ::fdopen(fd, "rb");
+  if (!file) {
+    ::close(fd);
+    throw LogError(path, 0, "", "cannot read command log: " + std::string(std::strerror(errno)));
+  }
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> in(file, &std::fclose);
   std::vector<LogLine> lines;
   std::string text;
   int number = 0;
-  while (std::getline(in, text)) {
+  std::uintmax_t read_total = 0;
+  for (int c = std::getc(in.get()); c != EOF; c = std::getc(in.get())) {
     ++number;
+    text.clear();
+    // Reads one line but never holds more than max_line_bytes of it.
+    bool too_long = false;
+    for (; c != EOF && c != '\n'; c = std::getc(in.get())) {
+      if (++read_total > limits.max_file_bytes)
+        throw LogError(path, number, "", "the file grew past the limit of a command log while being read");
+      if (text.size() >= limits.max_line_bytes) {
+        too_long = true;
+        break;
+      }
+      text.push_back(char(c));
+    }
+    if (too_long)
+      throw LogError(path, number, "", "line longer than " + std::to_string(limits.max_line_bytes) +
+                                           " bytes (the limit of a command log line)");
     const auto first = text.find_first_not_of(" \t\r");
     if (first == std::string::npos || text[first] == '#' || text.compare(first, 2, "//") == 0) continue;
-    lines.push_back(LogLine{number, std::move(text), {}});
+    if (lines.size() >= limits.max_lines)
+      throw LogError(path, number, "", "more than " + std::to_string(limits.max_lines) + " command lines");
+    lines.push_back(LogLine{number, text, {}});
   }
   return lines;
 }
 
 void parse_log_line(const std::filesystem::path& path, LogLine& line) {
+  if (const std::string bad = utf8_error(line.text); !bad.empty()) throw LogError(path, line.number, "", bad);
+  if (const int depth = json_nesting_depth(line.text); depth > log_limits().max_depth)
+    throw LogError(path, line.number, "", "JSON nested " + std::to_string(depth) + " levels deep (the limit is " +
+                                              std::to_string(log_limits().max_depth) + ")");
   try {
     line.json = nlohmann::json::parse(line.text);
   } catch (const nlohmann::json::exception& e) {  // parse errors, and numbers out of range such as 1e999

@@ -3,6 +3,10 @@
 //    append() checks fwrite/fflush/fsync and returns false (error() says why) when the line may be lost.
 //  * read_log(): parses a log file into lines with their line numbers (blank lines and lines starting with
 //    '#' or '//' are skipped); a malformed JSON line throws LogError naming file and line.
+//    Hostile input is refused before it costs memory or stack (LogLimits): the path must be a regular file no larger
+//    than max_file_bytes, a line no longer than max_line_bytes (checked while reading, so a 200 MB line is never
+//    held), valid UTF-8, and nested no deeper than max_depth arrays/objects (checked before the JSON parser and
+//    every recursive JSON operation after it see the line).
 //  * write_log_atomic(): Save — writes to PATH.tmp, fsyncs, renames over PATH, fsyncs PATH's folder.
 #pragma once
 
@@ -11,7 +15,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <stdexcept>
+#include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace trispline::editor {
@@ -29,6 +35,21 @@ class LogError : public std::runtime_error {
   std::string field_;
 };
 
+// Bounds on what a command log may hold (docs/decisions.md, "Command logs"). The longest line a real session writes
+// is a stroke of a few thousand points (≈ 100 KB); the deepest nesting is 3 (an array of points in an object).
+struct LogLimits {
+  std::uintmax_t max_file_bytes = std::uintmax_t(1) << 30;  // 1 GiB
+  std::size_t max_line_bytes = std::size_t(8) << 20;        // 8 MiB
+  int max_depth = 32;                                       // nested JSON arrays/objects in one line
+  std::size_t max_lines = 1000000;                          // command lines (comments and blanks not counted)
+};
+const LogLimits& log_limits();
+
+// "" when `text` is valid UTF-8, else where it is not ("invalid UTF-8 at byte 17").
+std::string utf8_error(std::string_view text);
+// Depth of nested JSON arrays/objects in `text` (brackets inside strings ignored), counted without parsing.
+int json_nesting_depth(std::string_view text);
+
 struct LogLine {
   int number = 0;     // 1-based line number in the file
   std::string text;   // the line as written
@@ -38,9 +59,11 @@ struct LogLine {
 // Every command line of the file (comments/blank lines skipped), parsed. Throws LogError at the first bad line.
 std::vector<LogLine> read_log(const std::filesystem::path& path);
 // The command lines with `json` left empty, for callers that parse line by line (replay stops at the bad line
-// but keeps the lines before it). Throws LogError if the file cannot be opened.
+// but keeps the lines before it). Throws LogError if the file cannot be opened, is not a regular file, or breaks
+// LogLimits (file size, line length, line count: the error names the line).
 std::vector<LogLine> read_log_text(const std::filesystem::path& path);
-// Parses one line's text into line.json. Throws LogError (malformed JSON / not an object).
+// Parses one line's text into line.json. Throws LogError (invalid UTF-8, nesting deeper than LogLimits::max_depth,
+// malformed JSON, not an object).
 void parse_log_line(const std::filesystem::path& path, LogLine& line);
 void write_log_atomic(const std::filesystem::path& path, const std::vector<nlohmann::json>& lines);
 

@@ -67,6 +67,28 @@ nlohmann::json render_timings(const RenderedImage& image, const ReplayOptions& o
           {"vertices_per_second", rate >= 0 ? nlohmann::json(rate) : nlohmann::json()}};
 }
 
+// Writes report.json whole or not at all (PATH.tmp, then rename): text that is not valid UTF-8 (a message quoting a
+// hostile file) is replaced by U+FFFD rather than failing the dump, so a report is never empty.
+bool write_report(const std::filesystem::path& path, const nlohmann::json& report) {
+  const std::filesystem::path tmp = path.string() + ".tmp";
+  try {
+    const std::string text = report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+    {
+      std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+      out << text;
+      out.flush();
+      if (!out) throw std::runtime_error("cannot write " + tmp.string());
+    }
+    std::filesystem::rename(tmp, path);
+    return true;
+  } catch (const std::exception& e) {
+    std::error_code ec;
+    std::filesystem::remove(tmp, ec);
+    std::cerr << "cannot write " << path.string() << ": " << e.what() << "\n";
+    return false;
+  }
+}
+
 struct PendingRecording {
   int line = 0;
   core::Scene scene;  // as it was right after the anim.record line
@@ -305,7 +327,7 @@ int run_replay(const ReplayOptions& options) {
     if (result.ok) exit_code = run_recordings(scene, pending, options, report, exit_code);
     report["timings"] = timings;
     const auto report_path = options.out_dir / "report.json";
-    std::ofstream(report_path) << report.dump(2) << "\n";
+    if (!write_report(report_path, report)) exit_code = exit_code ? exit_code : 3;
     if (report.contains("final_png")) std::cout << "rendered image: " << png.string() << "\n";
     if (report.contains("scene_glb")) std::cout << "exported scene: " << glb.string() << "\n";
     std::cout << "report:         " << report_path.string() << "\n";
