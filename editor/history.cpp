@@ -1,5 +1,7 @@
 #include "editor/history.h"
 
+#include "core/scene/scene_check.h"
+
 #include <chrono>
 
 namespace trispline::editor {
@@ -10,7 +12,13 @@ ExecutionRecord History::execute(core::CommandPtr cmd) {
   ExecutionRecord rec;
   rec.cmd = cmd->id();
   const auto t0 = std::chrono::steady_clock::now();
+  const core::SceneGuard guard(scene_);
   cmd->redo(scene_);  // throws CommandError with the scene unchanged
+  // Every command's result must be finite and in range (core/scene/scene_check.h); one that is not is taken back.
+  if (const std::string bad = guard.error(scene_); !bad.empty()) {
+    cmd->undo(scene_);
+    throw core::CommandError("the result is not finite or out of range, nothing changed: " + bad);
+  }
   rec.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   rec.line = cmd->to_json();
   rec.stats = cmd->stats();
@@ -48,6 +56,16 @@ void History::jump_to(std::size_t applied_count) {
   if (applied_count > commands_.size()) applied_count = commands_.size();
   while (applied_ > applied_count) undo();
   while (applied_ < applied_count) redo();
+}
+
+void History::adopt(History& other) {
+  commands_ = std::move(other.commands_);
+  applied_ = other.applied_;
+  other.commands_.clear();
+  other.applied_ = 0;
+  for (const auto& c : commands_) log(c->to_json());
+  for (std::size_t i = applied_; i < commands_.size(); ++i) log({{"cmd", "edit.undo"}});
+  if (on_change) on_change();
 }
 
 void History::clear() {

@@ -1,6 +1,7 @@
 // trispline::editor::History — the undo stack over a Scene, and the session's command log.
 //
-// execute(cmd): runs cmd->redo(scene); on success pushes it (dropping the redo tail) and appends its JSON line
+// execute(cmd): runs cmd->redo(scene); a result that is not finite or lies out of range (core::SceneGuard) is undone
+// at once and reported as a CommandError; on success pushes it (dropping the redo tail) and appends its JSON line
 // to the log (flushed at once); on failure the scene is unchanged, nothing is pushed, and the CommandError is
 // rethrown for the caller to report. undo()/redo() move through the stack and append {"cmd":"edit.undo"} /
 // {"cmd":"edit.redo"} lines so a crash log replays to the same state. jump_to(n) undoes/redoes until n commands
@@ -39,6 +40,10 @@ class History {
   void redo();  // no-op when nothing to redo
   void jump_to(std::size_t applied_count);
   void clear();  // forgets the stack (the scene is not touched)
+  // Takes over `other`'s stack (other is left empty), for a scene that was built by `other` and has just been moved
+  // into this history's scene (Open as a transaction). Writes the stack to the log as lines that replay to it: every
+  // command, then one edit.undo per command of the redo tail.
+  void adopt(History& other);
 
   std::size_t size() const { return commands_.size(); }
   std::size_t applied() const { return applied_; }  // commands [0, applied) are in effect

@@ -200,6 +200,7 @@ Recorder::Recorder(const core::Scene& scene, RecordOptions options) : impl_(std:
   d.camera = d.scene.camera_set ? d.scene.camera : framing_camera(d.scene, d.options.width, d.options.height);
   if (d.options.width > 0) d.camera.viewport = {d.options.width, d.options.height};
   d.renderer = std::make_unique<HeadlessRenderer>();
+  d.renderer->check_frame_size(d.camera.viewport.x, d.camera.viewport.y);  // before any file is written
   std::error_code ec;
   fs::create_directories(d.options.out_dir, ec);
   if (ec) throw std::runtime_error("cannot create '" + d.options.out_dir.string() + "': " + ec.message());

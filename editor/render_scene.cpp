@@ -1,5 +1,7 @@
 #include "editor/render_scene.h"
 
+#include "core/commands/anim_record.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -83,8 +85,10 @@ gpu::RenderStats HeadlessRenderer::draw(const core::Scene& scene, const core::Ca
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &previous_fbo);
     glGetIntegerv(GL_VIEWPORT, previous_viewport);
   }
-  if (!impl_->target || impl_->target->width() != cam.viewport.x || impl_->target->height() != cam.viewport.y)
+  if (!impl_->target || impl_->target->width() != cam.viewport.x || impl_->target->height() != cam.viewport.y) {
+    check_frame_size(cam.viewport.x, cam.viewport.y);
     impl_->target.emplace(cam.viewport.x, cam.viewport.y);
+  }
   gpu::ViewOptions view;
   view.ffd_backend = settings.ffd_backend;
   view.time_s = settings.time_s;
@@ -115,6 +119,27 @@ RenderedImage HeadlessRenderer::read_image() {
 void HeadlessRenderer::forget_caches() {
   if (impl_->context) impl_->context->make_current();
   impl_->renderer->release_unused(core::Scene());
+}
+
+glm::ivec2 HeadlessRenderer::max_frame_size() const {
+  if (impl_->context) impl_->context->make_current();
+  GLint renderbuffer = 0, texture = 0, viewport[2] = {0, 0};
+  glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &renderbuffer);
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &texture);
+  glGetIntegerv(GL_MAX_VIEWPORT_DIMS, viewport);
+  return {std::min({renderbuffer, texture, viewport[0]}), std::min({renderbuffer, texture, viewport[1]})};
+}
+
+void HeadlessRenderer::check_frame_size(int width, int height) const {
+  const glm::ivec2 max = max_frame_size();
+  if (width < 1 || height < 1 || width > max.x || height > max.y)
+    throw std::runtime_error("a frame of " + std::to_string(width) + "×" + std::to_string(height) +
+                             " pixels is larger than this GL implementation draws (" + impl_->renderer_name +
+                             ": GL_MAX_RENDERBUFFER_SIZE / GL_MAX_VIEWPORT_DIMS allow " + std::to_string(max.x) + "×" +
+                             std::to_string(max.y) + ")");
+  if (std::int64_t(width) * height > core::kMaxRecordPixels)
+    throw std::runtime_error("a frame of " + std::to_string(width) + "×" + std::to_string(height) +
+                             " pixels is over the 64-megapixel budget of an offscreen frame (8192×8192)");
 }
 
 const std::string& HeadlessRenderer::renderer() const { return impl_->renderer_name; }

@@ -65,6 +65,12 @@ class HeadlessRenderer {
   RenderedImage read_image();
   // Drops every cached GPU buffer, so the next draw uploads all it draws and depends on nothing drawn before.
   void forget_caches();
+  // The largest frame this GL implementation draws: min of GL_MAX_RENDERBUFFER_SIZE, GL_MAX_TEXTURE_SIZE and
+  // GL_MAX_VIEWPORT_DIMS, pixels.
+  glm::ivec2 max_frame_size() const;
+  // Throws std::runtime_error naming the limit when a width × height frame exceeds max_frame_size() or
+  // core::kMaxRecordPixels. draw() calls it before allocating a target.
+  void check_frame_size(int width, int height) const;
   const std::string& renderer() const;  // GL_RENDERER
   bool owns_context() const;            // false: drawing with the context that was current at construction
 

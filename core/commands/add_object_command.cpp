@@ -7,6 +7,8 @@ namespace jf = json_fields;
 
 void AddObjectCommand::parse_object_fields(const nlohmann::json& j) {
   name_ = jf::get_string(j, "name", "");
+  if (!name_.empty())
+    if (const std::string bad = object_name_error(name_); !bad.empty()) throw CommandError("field 'name': " + bad, "name");
   transform_ = jf::get_transform(j);
   if (jf::has(j, "color")) {
     color_ = jf::get_vec3(j, "color");
@@ -22,7 +24,7 @@ void AddObjectCommand::put_object_fields(nlohmann::json& j) const {
 }
 
 std::optional<SceneObject> AddObjectCommand::build(const Scene& scene) {
-  if (name_.empty()) name_ = scene.unique_name(default_name());
+  if (name_.empty()) name_ = scene.unique_name(sanitized_object_name(default_name()));
   if (scene.index_of(name_) >= 0)
     throw CommandError("field 'name': an object named '" + name_ + "' already exists", "name");
   SceneObject o;

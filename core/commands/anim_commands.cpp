@@ -25,7 +25,9 @@ CommandPtr AnimTimelineCommand::parse(const nlohmann::json& j, const CommandCont
   auto c = std::make_unique<AnimTimelineCommand>();
   if (jf::has(j, "fps")) {
     c->fps_ = jf::get_number(j, "fps");
-    if (!(*c->fps_ > 0.0 && *c->fps_ <= 240.0)) throw CommandError("field 'fps': must be in (0, 240]", "fps");
+    // At least one frame per 100 s: below that, frame times overflow long before a timeline ends (1e-320 fps).
+    if (!(*c->fps_ >= 0.01 && *c->fps_ <= 240.0))
+      throw CommandError("field 'fps': must be in [0.01, 240] frames per second", "fps");
   }
   if (jf::has(j, "start")) {
     c->start_ = jf::get_int(j, "start");

@@ -1,7 +1,7 @@
 // Animation commands (seed §2.4.3: objects walking along the sketched path; two-level animation with a glTF clip).
 //
 //   {"cmd":"anim.timeline","fps":24,"start":1,"end":120}
-//       The scene's frame range and rate (core::Timeline). fps in (0, 240]; 0 ≤ start ≤ end ≤ 100000. Omitted fields
+//       The scene's frame range and rate (core::Timeline). fps in [0.01, 240]; 0 ≤ start ≤ end ≤ 100000. Omitted fields
 //       keep their current value. Undo restores the previous timeline.
 //   {"cmd":"anim.keyframe","object":"ID","frame":F,"offset":[du,dv,dw],"interpolation":"linear|constant|smooth"}
 //       Keys the object's FFD parameter offset (parameter units; du moves it along the stroke) at timeline frame F

@@ -43,6 +43,12 @@ CommandPtr AnimRecordCommand::parse(const nlohmann::json& j, const CommandContex
     const char* missing = jf::has(j, "width") ? "height" : "width";
     throw CommandError(std::string("field '") + missing + "': give width and height together", missing);
   }
+  if (std::int64_t(r.width) * r.height > kMaxRecordPixels)
+    throw CommandError("field 'width': a frame of " + std::to_string(r.width) + "×" + std::to_string(r.height) +
+                           " pixels is over the budget of " + std::to_string(kMaxRecordPixels / (1 << 20)) +
+                           " megapixels (8192×8192): its 4× multisampled colour and depth alone would need " +
+                           std::to_string(std::int64_t(r.width) * r.height * 32 >> 30) + " GiB",
+                       "width");
   return c;
 }
 

@@ -3,7 +3,8 @@
 // Every field is optional: out "" = the caller's default folder (the editor's "<log stem>_record/", replay's --out);
 // format "png" (8-bit RGBA) or "exr" (half RGBA, linear); frames [A, B] timeline frame numbers, inclusive (default:
 // the whole timeline); glb/mp4 (default true): also write animation.glb / animation.mp4; width/height pixels in
-// [1, 16384], both or neither (default: the camera's viewport).
+// [1, 16384], both or neither, at most kMaxRecordPixels in all (default: the camera's viewport); the recorder also
+// checks the size against the GL implementation's limits (GL_MAX_RENDERBUFFER_SIZE, GL_MAX_VIEWPORT_DIMS).
 //
 // The command does not change the scene: redo() checks the request against the scene's timeline and keeps it
 // (request()), and whoever executed it (the editor's Record button, replay) runs editor::Recorder with it. Undo is a
@@ -12,11 +13,15 @@
 // bad size ("width"/"height"), wrong field types.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 
 #include "core/commands/command.h"
 
 namespace trispline::core {
+
+// Pixels a recorded frame may have (8192 × 8192): 4× MSAA colour + depth take 32 bytes a pixel (2 GiB here).
+inline constexpr std::int64_t kMaxRecordPixels = std::int64_t(8192) * 8192;
 
 // What anim.record asks for, with the frame range resolved against the timeline by redo().
 struct RecordRequest {

@@ -15,7 +15,7 @@ namespace trispline::core {
 namespace jf = json_fields;
 namespace {
 
-constexpr std::size_t kMaxTileVertices = 50'000'000;
+constexpr std::size_t kMaxTileVertices = kMaxDdmLayerVertices;
 
 DdmLayout layout_of(const std::string& s) {
   return s == "hex" ? DdmLayout::hex : s == "brick" ? DdmLayout::brick : DdmLayout::rect;
@@ -39,7 +39,7 @@ glm::dvec2 get_vec2(const nlohmann::json& j, const char* field, glm::dvec2 fallb
 DdmLayerSpec DdmLayerSpec::parse(const nlohmann::json& j, const CommandContext& ctx, bool require_tile) {
   DdmLayerSpec s;
   s.layer = jf::get_string(j, "layer");
-  if (s.layer.empty()) throw CommandError("field 'layer': must not be empty", "layer");
+  if (const std::string bad = object_name_error(s.layer); !bad.empty()) throw CommandError("field 'layer': " + bad, "layer");
   const std::string tile = require_tile ? jf::get_string(j, "tile") : jf::get_string(j, "tile", "thorn");
   if (tile.empty()) throw CommandError("field 'tile': must not be empty", "tile");
   s.tiles.push_back(tile);
@@ -248,7 +248,8 @@ CommandPtr DdmBakeCommand::parse(const nlohmann::json& j, const CommandContext&)
   c->object_ = jf::get_string(j, "object");
   c->layer_ = jf::get_string(j, "layer");
   c->name_ = jf::get_string(j, "name");
-  if (c->name_.empty()) throw CommandError("field 'name': must not be empty", "name");
+  if (const std::string bad = object_name_error(c->name_); !bad.empty())
+    throw CommandError("field 'name': " + bad, "name");
   if (jf::has(j, "frame")) c->frame_ = jf::get_number(j, "frame");
   return c;
 }

@@ -23,7 +23,8 @@ namespace trispline::core {
 namespace jf = json_fields;
 namespace {
 
-constexpr std::size_t kMaxTileVertices = 50'000'000;  // as ddm.fill
+constexpr std::size_t kMaxTileVertices = kMaxDdmLayerVertices;
+constexpr double kMaxBrushRadiusPx = 16384.0;
 constexpr double kCullMarginPx = 2.0;                 // occluder triangles: projected bbox grown by this much
 constexpr double kLimitGapFactor = 2.0;               // limit base: tolerance = this × |S(cell) − mesh point|
 constexpr double kOtherBaseTolerance = 0.01;          // other bases: tolerance = this × the object's diagonal
@@ -210,7 +211,9 @@ CommandPtr DdmPaintCommand::parse(const nlohmann::json& j, const CommandContext&
     if (!std::isfinite(p.x) || !std::isfinite(p.y))
       throw CommandError("field 'stroke': points must be finite", "stroke");
   c->radius_px_ = jf::get_number(j, "radius_px");
-  if (!(c->radius_px_ > 0.0)) throw CommandError("field 'radius_px': must be > 0 (viewport pixels)", "radius_px");
+  // A brush is at most as wide as a large viewport: larger radii select nothing more, and keep the maths finite.
+  if (!(c->radius_px_ > 0.0) || !(c->radius_px_ <= kMaxBrushRadiusPx))
+    throw CommandError("field 'radius_px': must be in (0, 16384] viewport pixels", "radius_px");
   c->erase_ = jf::get_bool(j, "erase", false);
   if (jf::has(j, "camera")) {  // the view the stroke was drawn in (as place.sketch): no camera.set needed
     try {

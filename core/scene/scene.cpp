@@ -183,8 +183,31 @@ int Scene::index_of(const std::string& name) const {
   return -1;
 }
 
+std::string object_name_error(const std::string& name) {
+  if (name.empty()) return "a name must not be empty";
+  if (name.size() > 256) return "a name must be at most 256 bytes long";
+  if (name == "." || name == "..") return "'" + name + "' cannot be a name";
+  for (const char c : name) {
+    if (c == '/') return "a name must not contain '/' (scene.glb names a tile layer '<object>/<layer>')";
+    if ((unsigned char)c < 0x20 || c == 0x7F) return "a name must not contain control characters (NUL, tab, newline)";
+  }
+  return {};
+}
+
+std::string sanitized_object_name(const std::string& name) {
+  std::string out;
+  for (const char c : name) out.push_back(c == '/' || (unsigned char)c < 0x20 || c == 0x7F ? '_' : c);
+  if (out.size() > 256) {
+    std::size_t cut = 256;
+    while (cut > 0 && ((unsigned char)out[cut] & 0xC0) == 0x80) --cut;  // not inside a UTF-8 sequence
+    out.resize(cut);
+  }
+  if (out.empty() || out == "." || out == "..") out = "object";
+  return out;
+}
+
 void Scene::insert(SceneObject object, int index) {
-  if (object.name.empty()) throw std::invalid_argument("object name must not be empty");
+  if (const std::string bad = object_name_error(object.name); !bad.empty()) throw std::invalid_argument(bad);
   if (index_of(object.name) >= 0) throw std::invalid_argument("an object named '" + object.name + "' already exists");
   if (index < 0 || index > static_cast<int>(objects_.size())) index = static_cast<int>(objects_.size());
   objects_.insert(objects_.begin() + index, std::move(object));

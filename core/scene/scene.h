@@ -45,7 +45,7 @@ struct PlacementRecord {
 // `fps` frames per second. Frame f is shown at scene time (f − frame_start)/fps seconds; scene time is the single
 // clock every animation reads (offset keys and velocities, glTF clips), so recordings are exact per frame.
 struct Timeline {
-  double fps = 24;       // frames per second, in (0, 240]
+  double fps = 24;       // frames per second, in [0.01, 240]
   int frame_start = 1;   // first frame number (≥ 0)
   int frame_end = 120;   // last frame number, inclusive (≥ frame_start, ≤ 100000)
   double time_of_frame(double frame) const { return (frame - frame_start) / fps; }  // seconds
@@ -139,6 +139,14 @@ Scene scene_at_time(const Scene& scene, double time_s);
 // playing. Throws std::invalid_argument on a non-finite time.
 Scene scene_with_posed_clips(const Scene& scene, double time_s);
 
+// Why `name` cannot name an object or a tile layer, or "" when it can: names are ids in logs and node names in
+// scene.glb (a layer's node is "<object>/<layer>"), so they must be non-empty, at most 256 bytes, free of control
+// characters (NUL included) and of '/', and not "." or "..".
+std::string object_name_error(const std::string& name);
+// `name` with every character object_name_error refuses replaced by '_' (empty → "object"), cut to 256 bytes at a
+// character boundary: default names made from file names.
+std::string sanitized_object_name(const std::string& name);
+
 class Scene {
  public:
   const std::vector<SceneObject>& objects() const { return objects_; }
@@ -146,7 +154,7 @@ class Scene {
   SceneObject* find(const std::string& name);
   int index_of(const std::string& name) const;  // -1 if absent
 
-  // Inserts at `index` (-1 = end). Throws std::invalid_argument if the name is empty or taken.
+  // Inserts at `index` (-1 = end). Throws std::invalid_argument if the name is taken or object_name_error refuses it.
   void insert(SceneObject object, int index = -1);
   // Removes and returns the object. Throws std::out_of_range if absent.
   SceneObject remove(const std::string& name);
