@@ -306,20 +306,45 @@ bool EditorSession::replay_into(const fs::path& log, const char* what) {
 
 bool EditorSession::open(const fs::path& log) {
   std::error_code ec;
-  if (!fs::is_regular_file(log, ec)) {
+  if (!fs::exists(log, ec)) {
     messages_.error("cannot open " + log.string() + ": no such file");
     return false;
   }
+  // A transaction: the log is replayed into a scene of its own, which replaces the document only when every line
+  // succeeded. Otherwise the current scene, its history, its title and its session log stay as they were.
+  core::Scene fresh;
+  History fresh_history(fresh);
+  ReplayResult r;
   try {
-    read_log(log);  // the whole file parses before anything of the current document is dropped
-  } catch (const std::exception& e) {
-    messages_.error(std::string("cannot open ") + e.what() + " (the current scene is kept)");
+    r = replay_lines(fresh_history, log);
+  } catch (const std::exception& e) {  // replay_lines reports line errors itself; this is memory and the like
+    r.ok = false;
+    r.error = log.string() + ": " + e.what();
+  }
+  if (!r.ok) {
+    messages_.error("cannot open " + r.error + " (nothing was opened: the current scene is kept)");
     return false;
   }
-  const bool ok = replay_into(log, "Opened");
-  document_ = fs::absolute(log, ec);
-  saved_ = ok ? marker() : std::pair<std::size_t, const core::Command*>{0, nullptr};
-  return ok;
+  std::size_t ok = 0;
+  double ms = 0;
+  for (const ExecutionRecord& rec : r.records) {
+    ok += rec.ok;
+    ms += rec.milliseconds;
+  }
+  history_.clear();
+  scene_ = std::move(fresh);
+  last_ms_ = ms;
+  last_label_ = "Opened " + log.filename().string();
+  open_session_log(true);  // the old document's lines are renamed aside, the new log gets the opened history
+  history_.adopt(fresh_history);
+  document_ = fs::absolute(log, ec).lexically_normal();
+  saved_ = marker();
+  ++changes_;
+  char line[256];
+  std::snprintf(line, sizeof line, "Opened %s: %zu command%s in %.0f ms", log.filename().string().c_str(), ok,
+                ok == 1 ? "" : "s", ms);
+  messages_.info(line);
+  return true;
 }
 
 bool EditorSession::save(const fs::path& path, const core::Camera& view) {

@@ -67,8 +67,9 @@ class EditorSession {
 
   // Empty scene and history; restarts the session log (the old one is renamed to <log>.prev.jsonl, not lost).
   void new_document();
-  // Parses the whole log first: a malformed one is reported and the current scene kept. Then new_document() +
-  // replay (each line one undoable step).
+  // A transaction: replays the log into a fresh scene (each line one undoable step) and swaps it in only when every
+  // line succeeded; otherwise the error (LOG:LINE: ...) goes to the Log and the current scene, history, title and
+  // session log are kept as they were. On success the session log restarts with the opened history.
   bool open(const std::filesystem::path& log);
   bool save(const std::filesystem::path& path, const core::Camera& view);  // applied lines + camera.set, atomic
   bool recover(const RecoveryOffer& offer);  // new_document() + replay of the offer's log; then closes the question

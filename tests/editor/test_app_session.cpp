@@ -130,6 +130,48 @@ TEST_F(AppSession, SaveThenOpenReplaysTheSameSceneAndView) {
   s.finish();
 }
 
+// Open is a transaction: a log whose second line fails leaves the open document exactly as it was — scene, history,
+// title, modified flag and session log — instead of a half-opened scene that a later Save would write over the file.
+TEST_F(AppSession, OpenOfALogThatFailsHalfwayKeepsTheCurrentDocument) {
+  editor::EditorSession s(messages_);
+  s.start(false);
+  ASSERT_TRUE(s.execute(kTeapot));
+  core::Camera view;
+  const fs::path good = dir_ / "good.jsonl";
+  ASSERT_TRUE(s.save(good, view));
+  ASSERT_TRUE(s.execute(kBox));  // an unsaved change
+  const fs::path bad = dir_ / "bad.jsonl";
+  {
+    std::ofstream out(bad);
+    out << R"({"cmd":"scene.primitive","kind":"sphere","name":"ball"})" << "\n";
+    out << R"({"cmd":"scene.load","path":"does_not_exist.obj","name":"m"})" << "\n";
+  }
+  const std::size_t log_lines = line_count(dir_ / "session.jsonl");
+  const std::size_t applied = s.history().applied();
+  const auto teapot_mesh = s.scene().find("teapot")->world_mesh;
+  EXPECT_FALSE(s.open(bad));
+  EXPECT_EQ(s.scene().objects().size(), 2u);
+  EXPECT_EQ(s.scene().find("ball"), nullptr) << "line 1 of the failed log must not be applied";
+  EXPECT_EQ(s.scene().find("teapot")->world_mesh, teapot_mesh);
+  EXPECT_EQ(s.history().applied(), applied);
+  EXPECT_EQ(s.document(), good);
+  EXPECT_TRUE(s.modified());
+  EXPECT_EQ(line_count(dir_ / "session.jsonl"), log_lines) << "the session log must not be restarted";
+  ASSERT_FALSE(messages_.messages().empty());
+  EXPECT_NE(messages_.messages().back().text.find("bad.jsonl:2:"), std::string::npos) << messages_.messages().back().text;
+  EXPECT_NE(messages_.messages().back().text.find("current scene is kept"), std::string::npos);
+
+  // A good Open then replaces the document, and the session log replays to it (crash recovery stays exact).
+  ASSERT_TRUE(s.undo());  // a redo tail: it must survive as edit.undo lines
+  const fs::path two = dir_ / "two.jsonl";
+  ASSERT_TRUE(s.save(two, view));
+  editor::EditorSession t(messages_);
+  ASSERT_TRUE(t.open(good));
+  EXPECT_EQ(t.scene().objects().size(), 1u);
+  EXPECT_FALSE(t.modified());
+  s.finish();
+}
+
 TEST_F(AppSession, SketchParameterChangeReRunsAsOneUndoableStep) {
   editor::EditorSession s(messages_);
   s.start(false);
