@@ -112,9 +112,25 @@ MorphAnimationBuilder::MorphAnimationBuilder(double fps, int first_frame) : fps_
 
 int MorphAnimationBuilder::animated_objects() const {
   int n = 0;
-  for (const Object& o : objects_) n += o.changed ? 1 : 0;
+  for (const Object& o : objects_) n += o.segments.size() > 1 || (o.segments.size() == 1 && o.segments[0].changed);
   return n;
 }
+
+int MorphAnimationBuilder::segment_count(const std::string& object) const {
+  for (const Object& o : objects_)
+    if (o.name == object) return static_cast<int>(o.segments.size());
+  return 0;
+}
+
+namespace {
+
+// Morph targets need the same vertex count and the same triangles.
+bool same_topology(const TriMesh& a, const TriMesh& b) {
+  return a.positions.size() == b.positions.size() && a.triangles == b.triangles &&
+         (a.normals.size() == a.positions.size()) == (b.normals.size() == b.positions.size());
+}
+
+}  // namespace
 
 void MorphAnimationBuilder::add_frame(const std::vector<GltfNode>& nodes) {
   if (frames_ == 0) {
@@ -125,7 +141,7 @@ void MorphAnimationBuilder::add_frame(const std::vector<GltfNode>& nodes) {
       o.color = n.color;
       if (n.mesh && !n.mesh->empty()) {
         validate_mesh(*n.mesh, "object '" + n.name + "'");
-        o.base = *n.mesh;
+        o.segments.push_back(Segment{0, 1, *n.mesh, {}, {}, false});
       }
       objects_.push_back(std::move(o));
     }
@@ -144,29 +160,63 @@ void MorphAnimationBuilder::add_frame(const std::vector<GltfNode>& nodes) {
       return MeshIoError("object '" + n.name + "' in animation frame " + std::to_string(frames_) + ": " + what);
     };
     if (n.name != o.name) throw mismatch("expected object '" + o.name + "' at this position");
-    if (has_mesh != !o.base.empty()) throw mismatch("has a mesh in one frame and none in another");
-    if (!has_mesh) continue;
-    if (n.mesh->positions.size() != o.base.positions.size() || n.mesh->triangles.size() != o.base.triangles.size())
-      throw mismatch("topology changed (" + std::to_string(n.mesh->positions.size()) + " vertices, " +
-                     std::to_string(n.mesh->triangles.size()) + " triangles; first frame " +
-                     std::to_string(o.base.positions.size()) + ", " + std::to_string(o.base.triangles.size()) + ")");
-    validate_mesh(*n.mesh, "object '" + n.name + "'");
+    if (has_mesh != !o.segments.empty()) throw mismatch("has a mesh in one frame and none in another");
+    if (has_mesh) validate_mesh(*n.mesh, "object '" + n.name + "'");
   }
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     Object& o = objects_[i];
-    std::vector<float> dp, dn;
-    if (!o.base.empty()) {
-      const TriMesh& m = *nodes[i].mesh;
-      dp = delta(o.base.positions, m.positions);
-      if (o.base.normals.size() == o.base.positions.size() && m.normals.size() == m.positions.size())
-        dn = delta(o.base.normals, m.normals);
+    if (o.segments.empty()) continue;
+    const TriMesh& m = *nodes[i].mesh;
+    Segment& last = o.segments.back();
+    if (!same_topology(last.base, m)) {  // a new mesh from this frame on (a DFFD split opened or closed, say)
+      o.segments.push_back(Segment{frames_, 1, m, {}, {}, false});
+      continue;
     }
-    o.changed = o.changed || !dp.empty() || !dn.empty();
-    o.pos_delta.push_back(std::move(dp));
-    o.nrm_delta.push_back(std::move(dn));
+    std::vector<float> dp = delta(last.base.positions, m.positions), dn;
+    if (last.base.normals.size() == last.base.positions.size() && m.normals.size() == m.positions.size())
+      dn = delta(last.base.normals, m.normals);
+    last.changed = last.changed || !dp.empty() || !dn.empty();
+    last.pos_delta.push_back(std::move(dp));
+    last.nrm_delta.push_back(std::move(dn));
+    ++last.frames;
   }
   ++frames_;
 }
+
+namespace {
+
+// One TRIANGLES primitive of `m` (POSITION with bounds, NORMAL, TEXCOORD_0, uint32 indices) with the material.
+tinygltf::Primitive add_primitive(tinygltf::Model& model, const TriMesh& m, const std::string& name,
+                                  const glm::vec3& color) {
+  const std::size_t nv = m.positions.size();
+  tinygltf::Primitive prim;
+  prim.mode = TINYGLTF_MODE_TRIANGLES;
+  prim.attributes["POSITION"] =
+      add_floats(model, to_floats(m.positions), TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, true);
+  if (m.normals.size() == nv)
+    prim.attributes["NORMAL"] =
+        add_floats(model, to_floats(m.normals), TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, false);
+  if (m.uvs.size() == nv) {
+    std::vector<float> uv(nv * 2);
+    for (std::size_t i = 0; i < nv; ++i)
+      for (int c = 0; c < 2; ++c) uv[2 * i + c] = static_cast<float>(m.uvs[i][c]);
+    prim.attributes["TEXCOORD_0"] = add_floats(model, uv, TINYGLTF_TYPE_VEC2, 2, TINYGLTF_TARGET_ARRAY_BUFFER, false);
+  }
+  std::vector<std::uint32_t> idx(m.triangles.size() * 3);
+  for (std::size_t f = 0; f < m.triangles.size(); ++f)
+    for (int c = 0; c < 3; ++c) idx[3 * f + c] = m.triangles[f][c];
+  tinygltf::Accessor ia;
+  ia.bufferView = add_view(model, idx.data(), idx.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+  ia.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+  ia.type = TINYGLTF_TYPE_SCALAR;
+  ia.count = idx.size();
+  model.accessors.push_back(ia);
+  prim.indices = static_cast<int>(model.accessors.size()) - 1;
+  prim.material = gltf_model::add_material(model, name, color);
+  return prim;
+}
+
+}  // namespace
 
 void MorphAnimationBuilder::write_glb(const std::filesystem::path& path) const {
   if (frames_ == 0) throw MeshIoError(quoted(path) + ": no frames recorded");
@@ -175,96 +225,109 @@ void MorphAnimationBuilder::write_glb(const std::filesystem::path& path) const {
   model.asset.generator = "trispline";
   model.buffers.resize(1);
   tinygltf::Scene scene;
-  const int targets = frames_ - 1;
-  std::vector<int> animated_nodes;
-  for (const Object& o : objects_) {
-    tinygltf::Node node;
-    node.name = o.name;
-    if (!o.base.empty()) {
-      const TriMesh& m = o.base;
-      const std::size_t nv = m.positions.size();
-      const bool normals = m.normals.size() == nv;
-      tinygltf::Primitive prim;
-      prim.mode = TINYGLTF_MODE_TRIANGLES;
-      prim.attributes["POSITION"] =
-          add_floats(model, to_floats(m.positions), TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, true);
-      if (normals)
-        prim.attributes["NORMAL"] =
-            add_floats(model, to_floats(m.normals), TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, false);
-      if (m.uvs.size() == nv) {
-        std::vector<float> uv(nv * 2);
-        for (std::size_t i = 0; i < nv; ++i)
-          for (int c = 0; c < 2; ++c) uv[2 * i + c] = static_cast<float>(m.uvs[i][c]);
-        prim.attributes["TEXCOORD_0"] =
-            add_floats(model, uv, TINYGLTF_TYPE_VEC2, 2, TINYGLTF_TARGET_ARRAY_BUFFER, false);
-      }
-      std::vector<std::uint32_t> idx(m.triangles.size() * 3);
-      for (std::size_t f = 0; f < m.triangles.size(); ++f)
-        for (int c = 0; c < 3; ++c) idx[3 * f + c] = m.triangles[f][c];
-      tinygltf::Accessor ia;
-      ia.bufferView = add_view(model, idx.data(), idx.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-      ia.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-      ia.type = TINYGLTF_TYPE_SCALAR;
-      ia.count = idx.size();
-      model.accessors.push_back(ia);
-      prim.indices = static_cast<int>(model.accessors.size()) - 1;
-
-      tinygltf::Mesh mesh;
-      mesh.name = o.name;
-      if (o.changed && targets > 0) {
-        const std::vector<float> zeros(nv * 3, 0.0f);
-        tinygltf::Value::Array names;
-        for (int k = 0; k < targets; ++k) {
-          const std::vector<float>& dp = o.pos_delta[k].empty() ? zeros : o.pos_delta[k];
-          std::map<std::string, int> target;
-          // Morph target POSITION accessors need min/max (glTF 2.0 §3.7.2.2).
-          target["POSITION"] = add_floats(model, dp, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, true);
-          if (normals) {
-            const std::vector<float>& dn = o.nrm_delta[k].empty() ? zeros : o.nrm_delta[k];
-            target["NORMAL"] = add_floats(model, dn, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, false);
-          }
-          prim.targets.push_back(std::move(target));
-          names.emplace_back(target_name(first_frame_ + k + 1));
-        }
-        mesh.weights.assign(targets, 0.0);
-        tinygltf::Value::Object extras;
-        extras["targetNames"] = tinygltf::Value(std::move(names));
-        mesh.extras = tinygltf::Value(std::move(extras));
-        animated_nodes.push_back(static_cast<int>(model.nodes.size()));
-      }
-
-      prim.material = gltf_model::add_material(model, o.name, o.color);
-      mesh.primitives.push_back(std::move(prim));
-      model.meshes.push_back(std::move(mesh));
-      node.mesh = static_cast<int>(model.meshes.size()) - 1;
-    }
-    model.nodes.push_back(node);
-    scene.nodes.push_back(static_cast<int>(model.nodes.size()) - 1);
-  }
-
-  if (!animated_nodes.empty()) {
-    // One sampler shared by every channel: key k at k/fps shows target k−1 alone (key 0: the base).
-    std::vector<float> times(frames_), weights(static_cast<std::size_t>(frames_) * targets, 0.0f);
-    for (int k = 0; k < frames_; ++k) {
-      times[k] = static_cast<float>(k / fps_);
-      if (k > 0) weights[static_cast<std::size_t>(k) * targets + (k - 1)] = 1.0f;
-    }
+  std::vector<float> times(frames_);
+  for (int k = 0; k < frames_; ++k) times[k] = static_cast<float>(k / fps_);
+  tinygltf::Animation anim;
+  anim.name = "recording";
+  int times_accessor = -1;
+  auto add_channel = [&](int node, const char* path_name, const std::vector<float>& output, int type, int comps) {
+    if (times_accessor < 0) times_accessor = add_floats(model, times, TINYGLTF_TYPE_SCALAR, 1, 0, true);  // min/max
     tinygltf::AnimationSampler sampler;
-    sampler.input = add_floats(model, times, TINYGLTF_TYPE_SCALAR, 1, 0, true);  // input needs min/max
-    sampler.output = add_floats(model, weights, TINYGLTF_TYPE_SCALAR, 1, 0, false);
+    sampler.input = times_accessor;
+    sampler.output = add_floats(model, output, type, comps, 0, false);
     sampler.interpolation = "STEP";
-    tinygltf::Animation anim;
-    anim.name = "recording";
     anim.samplers.push_back(sampler);
-    for (int node : animated_nodes) {
-      tinygltf::AnimationChannel ch;
-      ch.sampler = 0;
-      ch.target_node = node;
-      ch.target_path = "weights";
-      anim.channels.push_back(ch);
+    tinygltf::AnimationChannel ch;
+    ch.sampler = static_cast<int>(anim.samplers.size()) - 1;
+    ch.target_node = node;
+    ch.target_path = path_name;
+    anim.channels.push_back(ch);
+  };
+  // Node names are unique in the file (a segment's "<object>/frames_NNNN-MMMM" cannot meet another name, but check).
+  std::map<std::string, int> used;
+  auto unique = [&](const std::string& name) {
+    std::string out = name;
+    for (int k = 1; used.count(out); ++k) out = name + "." + std::to_string(k);
+    used[out] = 1;
+    return out;
+  };
+
+  // A segment as a mesh whose morph targets are its frames after the first; returns the mesh index. Its weights key
+  // frame k (of the recording) to target k − first − 1 inside the segment, and to all zeros elsewhere.
+  auto add_segment_mesh = [&](const Object& o, const Segment& seg, const std::string& name, int node) {
+    tinygltf::Primitive prim = add_primitive(model, seg.base, o.name, o.color);
+    tinygltf::Mesh mesh;
+    mesh.name = name;
+    const int targets = seg.frames - 1;
+    if (seg.changed && targets > 0) {
+      const std::size_t nv = seg.base.positions.size();
+      const bool normals = seg.base.normals.size() == nv;
+      const std::vector<float> zeros(nv * 3, 0.0f);
+      tinygltf::Value::Array names;
+      for (int k = 0; k < targets; ++k) {
+        const std::vector<float>& dp = seg.pos_delta[k].empty() ? zeros : seg.pos_delta[k];
+        std::map<std::string, int> target;
+        // Morph target POSITION accessors need min/max (glTF 2.0 §3.7.2.2).
+        target["POSITION"] = add_floats(model, dp, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, true);
+        if (normals) {
+          const std::vector<float>& dn = seg.nrm_delta[k].empty() ? zeros : seg.nrm_delta[k];
+          target["NORMAL"] = add_floats(model, dn, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, false);
+        }
+        prim.targets.push_back(std::move(target));
+        names.emplace_back(target_name(first_frame_ + seg.first + k + 1));
+      }
+      mesh.weights.assign(targets, 0.0);
+      tinygltf::Value::Object extras;
+      extras["targetNames"] = tinygltf::Value(std::move(names));
+      mesh.extras = tinygltf::Value(std::move(extras));
+      std::vector<float> weights(static_cast<std::size_t>(frames_) * targets, 0.0f);
+      for (int k = seg.first + 1; k < seg.first + seg.frames; ++k)
+        weights[static_cast<std::size_t>(k) * targets + (k - seg.first - 1)] = 1.0f;
+      add_channel(node, "weights", weights, TINYGLTF_TYPE_SCALAR, 1);
     }
-    model.animations.push_back(std::move(anim));
+    mesh.primitives.push_back(std::move(prim));
+    model.meshes.push_back(std::move(mesh));
+    return static_cast<int>(model.meshes.size()) - 1;
+  };
+
+  for (const Object& o : objects_) {
+    const int index = static_cast<int>(model.nodes.size());
+    model.nodes.emplace_back();
+    model.nodes[index].name = unique(o.name);
+    scene.nodes.push_back(index);
+    if (o.segments.size() == 1) {
+      const int mesh = add_segment_mesh(o, o.segments[0], o.name, index);
+      model.nodes[index].mesh = mesh;
+      continue;
+    }
+    // The topology changed during the recording: one child node per run of frames with one topology, shown (scale 1)
+    // on its frames and hidden (scale 0) on the others by STEP scale keys, as Blender imports them.
+    std::vector<int> children;
+    for (const Segment& seg : o.segments) {
+      char range[64];
+      std::snprintf(range, sizeof range, "/frames_%04d-%04d", first_frame_ + seg.first,
+                    first_frame_ + seg.first + seg.frames - 1);
+      const int child = static_cast<int>(model.nodes.size());
+      model.nodes.emplace_back();
+      model.nodes[child].name = unique(o.name + range);
+      const int mesh = add_segment_mesh(o, seg, model.nodes[child].name, child);
+      model.nodes[child].mesh = mesh;
+      const bool shown_first = seg.first == 0;
+      if (!shown_first) model.nodes[child].scale = {0.0, 0.0, 0.0};
+      tinygltf::Value::Object extras;
+      extras["frames"] = tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(first_frame_ + seg.first),
+                                                                tinygltf::Value(first_frame_ + seg.first + seg.frames - 1)});
+      model.nodes[child].extras = tinygltf::Value(std::move(extras));
+      std::vector<float> scale(static_cast<std::size_t>(frames_) * 3, 0.0f);
+      for (int k = seg.first; k < seg.first + seg.frames; ++k)
+        for (int c = 0; c < 3; ++c) scale[static_cast<std::size_t>(k) * 3 + c] = 1.0f;
+      add_channel(child, "scale", scale, TINYGLTF_TYPE_VEC3, 3);
+      children.push_back(child);
+    }
+    model.nodes[index].children = children;
   }
+
+  if (!anim.channels.empty()) model.animations.push_back(std::move(anim));
   model.scenes.push_back(scene);
   model.defaultScene = 0;
   gltf_model::write_glb_atomically(model, path);
@@ -293,7 +356,10 @@ MorphAnimationInfo read_morph_animation_info(const std::filesystem::path& path) 
   }
   info.animations = static_cast<int>(model.animations.size());
   for (const tinygltf::Animation& a : model.animations)
-    for (const tinygltf::AnimationChannel& ch : a.channels) info.weight_channels += ch.target_path == "weights";
+    for (const tinygltf::AnimationChannel& ch : a.channels) {
+      info.weight_channels += ch.target_path == "weights";
+      info.scale_channels += ch.target_path == "scale";
+    }
   if (!model.animations.empty() && !model.animations.front().samplers.empty()) {
     const tinygltf::AnimationSampler& s = model.animations.front().samplers.front();
     info.interpolation = s.interpolation;

@@ -12,10 +12,16 @@
 //     POSITION and NORMAL deltas relative to the first frame, float32; a frame equal to the first has zero deltas),
 //     mesh.weights all 0 and mesh.extras.targetNames = ["frame_NNNN", ...] (Blender names the shape keys so);
 //     an object whose geometry never changes gets no targets;
-//   * when some object has targets: one animation "recording" with, per such node, a "weights" channel; all channels
-//     share one sampler input (#frames times (k)/fps seconds, k = 0..#frames−1) and one output (#frames × (#frames − 1)
-//     weights: at key k target k−1 is 1, all others 0), interpolation STEP.
-// Memory: the builder keeps the first frame's meshes and per following frame 6 floats per vertex of every object.
+//   * an object whose topology changes (vertex count or triangles: a DFFD split opening, seed Fig. 6.10) is split into
+//     segments, runs of frames with one topology: its node has no mesh but one child per segment, named
+//     "<object>/frames_NNNN-MMMM" (extras.frames = [NNNN, MMMM], timeline frames), each with the segment's first mesh
+//     and morph targets for the segment's other frames, and a STEP "scale" channel that shows it (1) on its frames and
+//     hides it (0) elsewhere (its rest scale is that of the recording's first frame) — Blender imports these as an
+//     object per segment with keyed scale;
+//   * when some node is animated: one animation "recording" whose channels ("weights" per morphing mesh node,
+//     "scale" per segment node) all share one input (#frames times k/fps seconds, k = 0..#frames−1), interpolation
+//     STEP; a weights output holds #frames × #targets weights: at key k the target of frame k is 1, all others 0.
+// Memory: the builder keeps each segment's first mesh and per following frame 6 floats per vertex.
 #pragma once
 
 #include <filesystem>
@@ -33,25 +39,33 @@ class MorphAnimationBuilder {
   // (names targets "frame_NNNN"). Throws std::invalid_argument on a bad fps.
   explicit MorphAnimationBuilder(double fps, int first_frame = 0);
 
-  // Adds the next frame: the same objects (names, order) with the same vertex and triangle counts every time (a mesh
-  // may be null/empty in every frame: the node then has no mesh). Throws MeshIoError naming the object when a frame
-  // does not match the first, or when a mesh fails validate_mesh.
+  // Adds the next frame: the same objects (names, order) every time; a mesh whose topology differs from the previous
+  // frame's starts a new segment (see above). A mesh may be null/empty in every frame (the node then has no mesh).
+  // Throws MeshIoError naming the object when the objects differ from the first frame's, a mesh appears or
+  // disappears, or a mesh fails validate_mesh; the builder is then unchanged.
   void add_frame(const std::vector<GltfNode>& nodes);
   int frame_count() const { return frames_; }
-  // Objects with morph targets so far (geometry differs from the first frame in some frame).
+  // Objects whose geometry changed so far (morph targets, or several segments).
   int animated_objects() const;
+  // Segments (runs of frames with one topology) of `object` so far; 0 for an unknown object or one without a mesh.
+  int segment_count(const std::string& object) const;
 
   // Writes the .glb ("<path>.tmp" then renamed). Throws MeshIoError when no frame was added or the write fails.
   void write_glb(const std::filesystem::path& path) const;
 
  private:
+  struct Segment {
+    int first = 0;                              // index of its first frame in the recording
+    int frames = 1;                             // frames it covers
+    TriMesh base;                               // its first frame's mesh
+    std::vector<std::vector<float>> pos_delta;  // per following frame: #V × 3, or empty = all zero
+    std::vector<std::vector<float>> nrm_delta;  // per following frame: #V × 3, or empty = all zero
+    bool changed = false;                       // some following frame differs from base
+  };
   struct Object {
     std::string name;
     glm::vec3 color{0.8f};
-    TriMesh base;                               // first frame (empty: no mesh)
-    std::vector<std::vector<float>> pos_delta;  // per following frame: #V × 3, or empty = all zero
-    std::vector<std::vector<float>> nrm_delta;  // per following frame: #V × 3, or empty = all zero
-    bool changed = false;
+    std::vector<Segment> segments;  // empty: no mesh
   };
   double fps_;
   int first_frame_;
@@ -69,6 +83,7 @@ struct MorphAnimationInfo {
   std::vector<Mesh> meshes;  // in file order
   int animations = 0;
   int weight_channels = 0;    // channels with path "weights" over all animations
+  int scale_channels = 0;     // channels with path "scale" (segments of objects whose topology changed)
   int keyframes = 0;          // input count of the first animation's first sampler (0 without animation)
   std::string interpolation;  // that sampler's interpolation ("STEP"), "" without animation
   double duration_s = 0;      // its last input time, seconds

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <set>
 
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
@@ -140,6 +141,50 @@ TEST(Record, GlbHasOneMorphTargetPerFollowingFrame) {
   double moved = 0;
   for (std::size_t i = 0; i < got.size(); ++i) moved = std::max(moved, glm::length(got[i] - base[i]));
   EXPECT_GT(moved, 0.1);  // the target really moves the teapot
+}
+
+// The DFFD walk (seed Fig. 6.10): the bunny's mesh is split where a bar passes, so its vertex count changes from
+// frame to frame. The recording still writes every frame (byte-identical across ranges), and animation.glb holds one
+// child node per run of frames with one topology, switched by STEP scale keys, each posing exactly as the CPU
+// reference on its frames.
+TEST(Record, TopologyChangingWalkRecordsEveryFrameAndSegmentsTheGlb) {
+  const core::Scene scene = load_scene("dffd_walk_bars.jsonl");
+  const fs::path full = fresh_dir("dffd_full"), part = fresh_dir("dffd_part");
+  const editor::RecordResult a = editor::record_frames(scene, options(full, 40, 45));
+  const editor::RecordResult b = editor::record_frames(scene, options(part, 43, 45));
+  EXPECT_EQ(a.frames_written, 6);
+  EXPECT_EQ(b.frames_written, 3);
+  for (int f = 43; f <= 45; ++f) {
+    const std::string name = editor::frame_file_name(f, "png");
+    EXPECT_TRUE(bytes(full / name) == bytes(part / name)) << name << " differs between ranges 40-45 and 43-45";
+  }
+  std::set<std::size_t> vertex_counts;
+  for (int f = 40; f <= 45; ++f)
+    vertex_counts.insert(
+        core::scene_at_time(scene, scene.timeline.time_of_frame(f)).find("walker")->world_mesh->vertex_count());
+  ASSERT_GT(vertex_counts.size(), 1u) << "frames 40-45 no longer change the walker's topology: pick other frames";
+
+  const core::MorphAnimationInfo info = core::read_morph_animation_info(full / "animation.glb");
+  int segments = 0, covered = 0;
+  for (const auto& m : info.meshes) {
+    if (m.name.rfind("walker/frames_", 0) != 0) continue;
+    ++segments;
+    const int first = std::stoi(m.name.substr(14, 4)), last = std::stoi(m.name.substr(19, 4));
+    ASSERT_LE(first, last) << m.name;
+    for (int f = first; f <= last; ++f, ++covered) {
+      const core::Scene posed = core::scene_at_time(scene, scene.timeline.time_of_frame(f));
+      const auto& expected = posed.find("walker")->world_mesh->positions;
+      const auto got = core::read_morph_frame_positions(full / "animation.glb", m.name, f - first);
+      ASSERT_EQ(got.size(), expected.size()) << m.name << " frame " << f;
+      double worst = 0;
+      for (std::size_t i = 0; i < got.size(); ++i) worst = std::max(worst, glm::length(got[i] - expected[i]));
+      EXPECT_LT(worst, 1e-5) << m.name << " frame " << f;
+    }
+  }
+  EXPECT_GE(segments, 2);
+  EXPECT_EQ(covered, 6) << "every recorded frame belongs to exactly one segment";
+  EXPECT_EQ(info.scale_channels, segments);
+  EXPECT_EQ(info.interpolation, "STEP");
 }
 
 TEST(Record, ExrFramesAreHalfLinearAndReadBack) {
