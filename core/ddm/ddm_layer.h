@@ -25,10 +25,11 @@ enum class DdmBaseKind {
 };
 const char* ddm_base_name(DdmBaseKind k);  // "limit" | "teapot_body" | "uv"
 
-// Tile vertices one layer may hold (ddm.fill, ddm.paint refuse more before evaluating anything). A vertex costs
-// about 160 bytes across the layer's double-precision mesh, its triangles, the float32 copy scene.glb writes and the
-// GPU upload, so 16 M vertices stay under about 2.5 GiB; the largest shipped layer (bust_chains) holds 4.9 M.
-inline constexpr std::size_t kMaxDdmLayerVertices = 16'000'000;
+// Tile vertices one layer may hold (ddm.fill, ddm.paint refuse more before evaluating anything). Measured at peak
+// (`replay` of a full layer writing scene.glb): ~255 bytes a vertex across the double-precision mesh, its triangles,
+// the maps and the float32 export, so 10 M vertices peak near 2.6 GB; the largest shipped layer (bust_chains) holds
+// 4.9 M.
+inline constexpr std::size_t kMaxDdmLayerVertices = 10'000'000;
 
 struct DdmLayer {
   std::string name;                       // unique per object

@@ -39,13 +39,13 @@ std::string scene_value_error(const Scene& scene, const std::set<const void*>& u
     for (const OffsetKey& k : o.offset_keys)
       if (!std::isfinite(k.time_s) || !finite(k.offset)) return name + ": an offset key is not finite";
     if (!seen(o.world_mesh.get()))
-      if (std::string e = mesh_error(*o.world_mesh, name + "'s mesh"); !e.empty()) return e;
+      if (std::string e = mesh_error(*o.world_mesh, "the mesh of " + name); !e.empty()) return e;
     if (!seen(o.ffd.get()))
       for (const glm::dvec3& p : o.ffd->lattice.control_points())
         if (!in_range(p)) return name + ": a lattice control point is not finite or beyond ±1e12 world units";
     for (const auto& layer : o.ddm_layers)
       if (layer && !seen(layer.get()) && layer->mesh)
-        if (std::string e = mesh_error(*layer->mesh, name + "'s tile layer '" + layer->name + "'"); !e.empty())
+        if (std::string e = mesh_error(*layer->mesh, "tile layer '" + layer->name + "' of " + name); !e.empty())
           return e;
   }
   return {};
