@@ -13,6 +13,7 @@
 #include "core/commands/camera_set.h"
 #include "editor/session.h"
 #include "ui/ddm_anim_panel.h"
+#include "ui/number_field.h"
 #include "ui/theme.h"
 
 namespace trispline::editor {
@@ -299,7 +300,7 @@ void DdmPaintTool::draw_new_layer_fields(const core::SceneObject* o) {
   if (ImGui::InputInt2("Counts", counts)) params_.counts = glm::max(glm::ivec2(counts[0], counts[1]), glm::ivec2(1));
   tooltip("Cells along u and v of every chart (a polygonal base has three charts per triangle)");
   const double h_min = 1e-6, h_max = 10.0;
-  ImGui::DragScalar("Height", ImGuiDataType_Double, &params_.height, 0.001f, &h_min, &h_max, "%.4g",
+  ui::drag_scalar("Height", ImGuiDataType_Double, &params_.height, 0.001f, &h_min, &h_max, "%.4g",
                     ImGuiSliderFlags_AlwaysClamp);
   tooltip("World units per tile unit of height, along the surface normal");
   const bool teapot = o && o->source == "primitive:teapot";

@@ -11,6 +11,7 @@
 
 #include "editor/navigation.h"
 #include "editor/session.h"
+#include "ui/number_field.h"
 #include "ui/theme.h"
 
 namespace trispline::editor {
@@ -216,8 +217,8 @@ void PressTool::draw_panel(ToolContext& ctx) {
   }
 
   const double s_min = 0.0, s_max = diag > 0.0 ? diag : 10.0;
-  ImGui::DragScalar("Strength", ImGuiDataType_Double, &strength_, float(std::max(s_max, 1e-3) * 1e-3), &s_min, &s_max,
-                    "%.4g", ImGuiSliderFlags_AlwaysClamp);
+  ui::drag_scalar("Strength", ImGuiDataType_Double, &strength_, float(std::max(s_max, 1e-3) * 1e-3), &s_min, &s_max,
+                  "%.4g", ImGuiSliderFlags_AlwaysClamp);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("How far a control point at the sphere's centre moves along its column, world units");
 
