@@ -168,6 +168,7 @@ TEST_F(PressTool, CtrlDragPullsWithNegativeStrength) {
   drag(row, /*ctrl=*/true);
   ASSERT_EQ(s.history().applied(), applied + 1) << last_message(messages);
   EXPECT_DOUBLE_EQ(s.history().at(applied).to_json()["strength"].get<double>(), -0.02);
+  EXPECT_EQ(s.history().at(applied).label().rfind("Pull '", 0), 0u) << s.history().at(applied).label();
 }
 
 TEST_F(PressTool, ObjectWithoutLatticeShowsNoBrush) {
