@@ -53,10 +53,14 @@ bool AnimationUi::handle_action(ui::MenuAction action, glm::ivec2 viewport) {
     case A::FrameEnd: go(t.frame_end); break;
     case A::RecordAnimation:
       if (recorder_) break;
-      if (dialog_.out_dir.empty()) {
-        const fs::path state = state_dir();
+      if (dialog_.out_dir.empty() || dialog_.out_dir == default_out_) {  // the artist's own choice stays
+        // Beside the scene file, like Blender's //render: <scene dir>/<scene stem>_frames/ (untitled: ./frames/).
+        const fs::path doc = session_.document();
         std::error_code ec;
-        dialog_.out_dir = ((state.empty() ? fs::current_path(ec) : state) / "render").string();
+        const fs::path out =
+            doc.empty() ? fs::current_path(ec) / "frames" : doc.parent_path() / (doc.stem().string() + "_frames");
+        default_out_ = out.string();
+        dialog_.out_dir = default_out_;
       }
       ui::open_record_dialog(dialog_, t, viewport.x, viewport.y);
       break;

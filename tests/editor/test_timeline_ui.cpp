@@ -226,7 +226,7 @@ TEST_F(TimelineUi, RecordDialogDefaultsAndShortRecordingStepsOncePerUiFrame) {
   ASSERT_TRUE(anim.handle_action(ui::MenuAction::RecordAnimation, {640, 360}));
   const ui::RecordDialogState& d = anim.record_dialog();
   EXPECT_TRUE(d.open);
-  EXPECT_EQ(fs::path(d.out_dir), dir_ / "render") << "default: <state dir>/render";
+  EXPECT_EQ(fs::path(d.out_dir), fs::current_path() / "frames") << "untitled: ./frames, never the state folder";
   EXPECT_EQ(d.frames[0], 1);
   EXPECT_EQ(d.frames[1], 120);
   EXPECT_EQ(d.size[0], 640);
