@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 
 #include "core/commands/camera_set.h"
@@ -201,12 +202,21 @@ void DdmPaintTool::draw_brush() const {
   const ImU32 swath = erase ? IM_COL32(255, 95, 80, 45) : IM_COL32(255, 205, 90, 45);
   const float r = float(params_.radius_px) / sx;
   ImDrawList* dl = ImGui::GetBackgroundDrawList();
-  if (painting_ && stroke_.size() >= 2) {  // what the stroke covers so far
-    std::vector<ImVec2> pts;
-    for (const glm::dvec2& p : stroke_) pts.push_back(screen(p));
-    dl->AddPolyline(pts.data(), int(pts.size()), swath, ImDrawFlags_None, 2.0f * r);
-  } else if (painting_ && !stroke_.empty()) {
-    dl->AddCircleFilled(screen(stroke_.front()), r, swath, 48);
+  if (painting_ && !stroke_.empty()) {  // what the stroke covers so far: a disc per sample, a band per segment
+    // Not a polyline 2r thick: ImGui mitres its joints, and where a stroke turns sharply the mitre shoots far out of
+    // the swath as a big translucent quad.
+    dl->AddCircleFilled(screen(stroke_.front()), r, swath, 32);
+    for (std::size_t i = 1; i < stroke_.size(); ++i) {
+      const ImVec2 a = screen(stroke_[i - 1]), b = screen(stroke_[i]);
+      const float dx = b.x - a.x, dy = b.y - a.y, len = std::sqrt(dx * dx + dy * dy);
+      if (len > 0.5f) {
+        const ImVec2 n(-dy / len * r, dx / len * r);
+        const ImVec2 quad[4] = {{a.x + n.x, a.y + n.y}, {b.x + n.x, b.y + n.y}, {b.x - n.x, b.y - n.y},
+                                {a.x - n.x, a.y - n.y}};
+        dl->AddConvexPolyFilled(quad, 4, swath);
+      }
+      dl->AddCircleFilled(b, r, swath, 32);
+    }
   }
   dl->AddCircle(screen(*hover_), r, line, 48, 1.5f);
   dl->AddCircle(screen(*hover_), 1.5f, line, 8, 1.5f);
