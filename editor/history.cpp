@@ -15,12 +15,15 @@ ExecutionRecord History::execute(core::CommandPtr cmd) {
   rec.line = cmd->to_json();
   rec.stats = cmd->stats();
   if (!cmd->undoable()) {  // logged for replays; the undo stack and its redo tail stay as they are
+    transient_ = std::move(cmd);
+    last_executed_ = transient_.get();
     log(rec.line);
     return rec;
   }
   commands_.resize(applied_);
   commands_.push_back(std::move(cmd));
   applied_ = commands_.size();
+  last_executed_ = commands_.back().get();
   log(rec.line);
   if (on_change) on_change();
   return rec;
@@ -56,6 +59,8 @@ void History::jump_to(std::size_t applied_count) {
 
 void History::clear() {
   commands_.clear();
+  transient_.reset();
+  last_executed_ = nullptr;
   applied_ = 0;
   if (on_change) on_change();
 }

@@ -43,6 +43,9 @@ class History {
   std::size_t size() const { return commands_.size(); }
   std::size_t applied() const { return applied_; }  // commands [0, applied) are in effect
   const core::Command& at(std::size_t i) const { return *commands_[i]; }
+  // The command the last successful execute() ran (the top of the stack, or a non-undoable one such as anim.record);
+  // valid right after it, until the next execute() or clear().
+  const core::Command& last_executed() const { return *last_executed_; }
   // JSON lines of the applied commands only: what Save writes.
   std::vector<nlohmann::json> applied_lines() const;
 
@@ -60,6 +63,8 @@ class History {
   core::Scene& scene_;
   std::vector<core::CommandPtr> commands_;
   std::size_t applied_ = 0;
+  core::CommandPtr transient_;                   // the last non-undoable command executed
+  const core::Command* last_executed_ = nullptr;  // see last_executed()
   CommandLog* log_ = nullptr;
   bool log_error_reported_ = false;
   void log(const nlohmann::json& line);
