@@ -35,6 +35,7 @@ gui_log() { echo "[$GUI_TEST $(date +%T)] $*"; }
 gui_fail() {
   set +e +o pipefail
   echo "FAIL: $GUI_TEST: $*" >&2
+  echo "$*" >"$GUI_DIR/failure.txt"
   if gui_alive; then
     local before shot
     before="$(find "$GUI_WORK" -maxdepth 1 -name 'trispline-screenshot-*.png' | wc -l)"

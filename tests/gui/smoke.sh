@@ -4,7 +4,7 @@
 source "$(dirname "$0")/gui_lib.sh"
 gui_start "$GUI_ROOT/assets/scenes/default.jsonl"
 gui_wait '(.objects | length) >= 2 and (.history.labels | length) >= 4' "the default scene is open"
-gui_check '.popups == [] and (.viewport | length) == 4 and (.items["scene.load"] != null)' "probe fields"
+gui_wait '.popups == [] and (.viewport | length) == 4 and (.items["scene.load"] != null)' "probe fields" 5
 gui_click_item scene.object.teapot
 gui_wait '.selected == "teapot"' "a click on the Scene panel's row selects the teapot"
 [ "$(gui_session_count '.cmd == "place.sketch"')" -ge 1 ] || gui_fail "the session log has the replayed scene"
