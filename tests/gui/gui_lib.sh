@@ -100,7 +100,12 @@ gui_wait() {
   local cond="$1" what="$2" limit="${3:-$GUI_TIMEOUT}" end
   end=$(($(date +%s) + limit))
   while true; do
-    gui_alive || { wait "$GUI_PID" 2>/dev/null; GUI_EXIT=$?; GUI_PID=""; gui_fail "the editor died, waiting for: $what"; }
+    if ! gui_alive; then
+      GUI_EXIT=0
+      wait "$GUI_PID" 2>/dev/null || GUI_EXIT=$?
+      GUI_PID=""
+      gui_fail "the editor died (exit status $GUI_EXIT), waiting for: $what"
+    fi
     [ "$(jq -r "($cond) == true" "$GUI_PROBE" 2>/dev/null)" = "true" ] && return 0
     [ "$(date +%s)" -ge "$end" ] && gui_fail "timed out after ${limit}s waiting for: $what ($cond)"
     sleep 0.1
