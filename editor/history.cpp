@@ -22,9 +22,16 @@ ExecutionRecord History::execute(core::CommandPtr cmd) {
   rec.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   rec.line = cmd->to_json();
   rec.stats = cmd->stats();
+  if (!cmd->undoable()) {  // logged for replays; the undo stack and its redo tail stay as they are
+    transient_ = std::move(cmd);
+    last_executed_ = transient_.get();
+    log(rec.line);
+    return rec;
+  }
   commands_.resize(applied_);
   commands_.push_back(std::move(cmd));
   applied_ = commands_.size();
+  last_executed_ = commands_.back().get();
   log(rec.line);
   if (on_change) on_change();
   return rec;
@@ -61,8 +68,11 @@ void History::jump_to(std::size_t applied_count) {
 void History::adopt(History& other) {
   commands_ = std::move(other.commands_);
   applied_ = other.applied_;
+  transient_ = std::move(other.transient_);
+  last_executed_ = other.last_executed_;  // owned by commands_ or transient_ now
   other.commands_.clear();
   other.applied_ = 0;
+  other.last_executed_ = nullptr;
   for (const auto& c : commands_) log(c->to_json());
   for (std::size_t i = applied_; i < commands_.size(); ++i) log({{"cmd", "edit.undo"}});
   if (on_change) on_change();
@@ -70,6 +80,8 @@ void History::adopt(History& other) {
 
 void History::clear() {
   commands_.clear();
+  transient_.reset();
+  last_executed_ = nullptr;
   applied_ = 0;
   if (on_change) on_change();
 }

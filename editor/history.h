@@ -2,10 +2,10 @@
 //
 // execute(cmd): runs cmd->redo(scene); a result that is not finite or lies out of range (core::SceneGuard) is undone
 // at once and reported as a CommandError; on success pushes it (dropping the redo tail) and appends its JSON line
-// to the log (flushed at once); on failure the scene is unchanged, nothing is pushed, and the CommandError is
-// rethrown for the caller to report. undo()/redo() move through the stack and append {"cmd":"edit.undo"} /
-// {"cmd":"edit.redo"} lines so a crash log replays to the same state. jump_to(n) undoes/redoes until n commands
-// are applied (History panel click).
+// to the log (flushed at once); a command that is not undoable() (anim.record) is run and logged, never pushed. On
+// failure the scene is unchanged, nothing is pushed, and the CommandError is rethrown for the caller to report.
+// undo()/redo() move through the stack and append {"cmd":"edit.undo"} / {"cmd":"edit.redo"} lines so a crash log
+// replays to the same state. jump_to(n) undoes/redoes until n commands are applied (History panel click).
 #pragma once
 
 #include "core/commands/command.h"
@@ -48,6 +48,9 @@ class History {
   std::size_t size() const { return commands_.size(); }
   std::size_t applied() const { return applied_; }  // commands [0, applied) are in effect
   const core::Command& at(std::size_t i) const { return *commands_[i]; }
+  // The command the last successful execute() ran (the top of the stack, or a non-undoable one such as anim.record);
+  // valid right after it, until the next execute() or clear().
+  const core::Command& last_executed() const { return *last_executed_; }
   // JSON lines of the applied commands only: what Save writes.
   std::vector<nlohmann::json> applied_lines() const;
 
@@ -65,6 +68,8 @@ class History {
   core::Scene& scene_;
   std::vector<core::CommandPtr> commands_;
   std::size_t applied_ = 0;
+  core::CommandPtr transient_;                   // the last non-undoable command executed
+  const core::Command* last_executed_ = nullptr;  // see last_executed()
   CommandLog* log_ = nullptr;
   bool log_error_reported_ = false;
   void log(const nlohmann::json& line);

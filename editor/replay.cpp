@@ -192,7 +192,7 @@ ReplayResult replay_lines(History& history, const std::filesystem::path& log_pat
       } else {
         rec = history.execute(registry.parse(line.json, ctx));
         rec.log_line = line.number;
-        if (on_executed) on_executed(history.at(history.applied() - 1), line.number);
+        if (on_executed) on_executed(history.last_executed(), line.number);
       }
     } catch (const core::CommandError& e) {
       rec.ok = false;

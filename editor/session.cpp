@@ -219,7 +219,7 @@ bool EditorSession::execute(const nlohmann::json& line, const fs::path& base_dir
     ctx.base_dir = base_dir.empty() ? fs::current_path(ec) : base_dir;
     core::CommandPtr cmd = CommandRegistry::builtin().parse(line, ctx);
     const ExecutionRecord rec = history_.execute(std::move(cmd));
-    const std::string label = history_.at(history_.applied() - 1).label();
+    const std::string label = history_.last_executed().label();
     last_ms_ = rec.milliseconds;
     last_label_ = label;
     char ms[32];

@@ -265,7 +265,8 @@ TEST(Record, BadRequestsThrowAndWriteNothing) {
   }
   // A good request resolves the whole timeline, changes nothing, and undoes to nothing.
   history.execute(registry.parse({{"cmd", "anim.record"}, {"out", "x"}}, ctx));
-  const auto& cmd = dynamic_cast<const core::AnimRecordCommand&>(history.at(0));
+  EXPECT_EQ(history.size(), 0u) << "anim.record is never an undo step";
+  const auto& cmd = dynamic_cast<const core::AnimRecordCommand&>(history.last_executed());
   EXPECT_EQ(cmd.request().frame_first, 1);
   EXPECT_EQ(cmd.request().frame_last, 12);
   EXPECT_EQ(cmd.to_json().count("frames"), 0u);
