@@ -434,7 +434,8 @@ void App::frame() {
   // The modal transform (G / R / S) takes every key while it runs: X is then an axis, not Delete.
   transform_frame_ = transform_input();
   // While working or recording only F12 (screenshot) is taken from the keyboard.
-  const ui::MenuAction key = transform_frame_ ? ui::MenuAction::None : ui::poll_shortcuts();
+  ui::MenuAction key = ui::poll_shortcuts();
+  if (transform_frame_ && key != ui::MenuAction::Screenshot) key = ui::MenuAction::None;
   handle_menu(key == ui::MenuAction::Screenshot || (work_.empty() && !anim_.recording()) ? key : ui::MenuAction::None);
   if (!transform_frame_ && work_.empty() && !anim_.recording() && !tools_.owns_mouse())  // tool keys (K: Incision)
     if (const std::string k = ui::poll_tool_key(); !k.empty()) tools_.activate_shortcut(k);

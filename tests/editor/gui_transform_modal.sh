@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The real editor under Xvfb driven with real X input (xdotool, XTEST): click the box to select it, G X 1.5 Enter →
 # session.jsonl holds exactly one object.transform with translate [1.5,0,0]; G Y 3 Esc → still one; Ctrl+Z → an
-# edit.undo line. Run it under tests/with_xvfb.sh (ctest: editor.gui_transform_modal):
+# edit.undo line; a click in the Scene panel's Location x field, G 2 Enter → one object.transform with only translate
+# [2,0,0] (G went into the field, not to the modal). Run it under tests/with_xvfb.sh (ctest: editor.gui_transform_modal):
 #   with_xvfb.sh 1280x900x24 gui_transform_modal.sh path/to/trispline
 # Keys are sent in bursts (xdotool's 12 ms between keys), so at 2-4 fps several arrive within one frame, as typed by
 # a fast user on software GL. Exits 0 on success; prints the elapsed time.
@@ -98,6 +99,25 @@ sleep 2
 xdotool key ctrl+z
 wait_count 30 '"edit.undo"' 1 || fail "Ctrl+Z wrote no edit.undo"
 [[ $(tail -1 "$log") == *'"edit.undo"'* ]] || fail "the last line is not edit.undo"
+
+# The Scene panel's Location x field (Transform section, bottom of the Scene panel: x ~1020..1098, y ~337): one click
+# enters text; G typed there is not a grab (the field refuses the letter), 2 Enter sets x = 2: one object.transform
+# with only "translate" (the modal would write all three fields).
+xdotool mousemove --window "$wid" 1058 337
+sleep 0.3
+xdotool click 1
+sleep 1.5
+xdotool key g 2 Return
+wait_count 30 '"object.transform"' 2 || fail "no object.transform from the Location field"
+sleep 1
+[[ $(count '"object.transform"') == 2 ]] || fail "the Location field ran more than one object.transform"
+line=$(grep '"object.transform"' "$log" | tail -1)
+python3 - "$line" <<'EOF' || fail "wrong object.transform from the Location field: $line"
+import json, sys
+j = json.loads(sys.argv[1])
+assert j["object"] == "b" and j["translate"] == [2, 0, 0], j
+assert "rotate_deg" not in j and "scale" not in j, j
+EOF
 kill -0 "$editor_pid" 2>/dev/null || fail "the editor died"
 
 end=$(date +%s.%N)
