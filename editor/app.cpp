@@ -2,6 +2,7 @@
 
 #include "core/mesh/image_io.h"
 #include "editor/animation_ui.h"
+#include "editor/gui_probe.h"
 #include "editor/navigation.h"
 #include "editor/session.h"
 #include "editor/tools/toolbox.h"
@@ -13,6 +14,7 @@
 #include "ui/dialogs.h"
 #include "ui/file_dialog.h"
 #include "ui/frame_timings.h"
+#include "ui/gui_probe.h"
 #include "ui/history_panel.h"
 #include "ui/imgui_host.h"
 #include "ui/log_panel.h"
@@ -34,6 +36,7 @@
 #include <cstdlib>
 #include <iostream>
 #include <memory>
+#include <thread>
 #include <utility>
 
 namespace fs = std::filesystem;
@@ -96,6 +99,7 @@ class App {
   bool save_or_ask();
   void ask_file(FilePurpose purpose);  // opens the file dialog for `purpose`
   int write_screenshot(const fs::path& path);
+  void write_probe();  // --gui-probe: this frame's state for GUI tests (editor/gui_probe.h)
 
   const AppOptions options_;
   std::unique_ptr<gpu::Window> window_;
@@ -130,6 +134,7 @@ class App {
   bool show_about_ = false, show_keys_ = false, quit_ = false;
   bool screenshot_requested_ = false;      // F12: written after this frame is drawn
   int screenshots_ = 0, idle_frames_ = 0;  // F12 count; frames since the last deferred work (screenshot mode)
+  std::uint64_t frames_ = 0;               // frames drawn (the probe's "frame")
 };
 
 App::App(const AppOptions& options)
@@ -152,6 +157,7 @@ App::App(const AppOptions& options)
     messages_.warning(std::string("the UI pass is not timed: ") + e.what());
   }
   messages_.info("OpenGL renderer: " + gl_renderer_);
+  ui::probe::set_enabled(!options.gui_probe.empty());
   if (gpu::is_software_renderer()) {
     // On a software rasteriser the CPU fast path evaluates FFDs ~20× faster than GLSL (docs/performance.md): the
     // Press tool's live preview then stays interactive. View ▸ FFD evaluator switches back.
@@ -425,6 +431,7 @@ void App::draw_control_point() {
 
 void App::frame() {
   host_.new_frame();
+  ui::probe::begin_frame();
   nav_.follow(session_.scene().camera, session_.scene().camera_set, window_->framebuffer_size());
   const ImGuiIO& io = ImGui::GetIO();
   view_ = nav_.camera(window_->framebuffer_size());
@@ -505,8 +512,44 @@ void App::frame() {
     dl->AddText(at, IM_COL32(255, 220, 120, 255), text.c_str());
   }
   work_.draw_overlay();
+  if (!options_.gui_probe.empty()) write_probe();
   render_view();
   render_ui();
+}
+
+void App::write_probe() {
+  nlohmann::json p = imgui_probe_fields();
+  p["frame"] = ++frames_;
+  p["document"] = session_.document().string();
+  p["modified"] = session_.modified();
+  const ui::HistoryView hv = session_.history_view();
+  p["history"] = {{"labels", hv.labels}, {"applied", hv.applied}};
+  const glm::dvec2 scale(ImGui::GetIO().DisplayFramebufferScale.x, ImGui::GetIO().DisplayFramebufferScale.y);
+  nlohmann::json objects = nlohmann::json::array(), object_px = nlohmann::json::object();
+  for (const core::SceneObject& o : session_.scene().objects()) {
+    objects.push_back(o.name);
+    if (!o.world_mesh) continue;
+    const glm::dvec3 c = view_.project(bounds_of(*o.world_mesh).center());
+    object_px[o.name] = {c.x / scale.x, c.y / scale.y};
+  }
+  p["objects"] = objects;
+  p["object_px"] = object_px;
+  p["selected"] = selected_;
+  p["tool"] = tools_.tool().entry().name;
+  nlohmann::json log = nlohmann::json::array();
+  const auto& m = messages_.messages();
+  for (std::size_t i = m.size() > 5 ? m.size() - 5 : 0; i < m.size(); ++i) log.push_back(m[i].text);
+  p["log"] = log;
+  const ui::Rect& v = layout_.viewport;
+  p["viewport"] = {v.pos.x, v.pos.y, v.pos.x + v.size.x, v.pos.y + v.size.y};
+  if (const core::Aabb box = session_.scene().bounds(); box.valid()) {
+    const glm::dvec3 c = view_.project(box.center());
+    p["scene_center_px"] = {c.x / scale.x, c.y / scale.y};
+  }
+  p["camera"] = {{"eye", {view_.eye.x, view_.eye.y, view_.eye.z}},
+                 {"target", {view_.target.x, view_.target.y, view_.target.z}}};
+  p["current_frame"] = anim_.playback().frame;
+  write_probe_file(options_.gui_probe, p);
 }
 
 void App::render_ui() {
@@ -588,6 +631,9 @@ int App::run() {
       write_screenshot("trispline-screenshot-" + std::to_string(std::time(nullptr)) + "-" +
                        std::to_string(++screenshots_) + ".png");
     window_->swap();
+    if (options_.max_fps > 0.0)  // GUI tests: software-GL frame rates on any machine
+      std::this_thread::sleep_until(start + std::chrono::duration_cast<Clock::duration>(
+                                                std::chrono::duration<double>(1.0 / options_.max_fps)));
     const auto end = Clock::now();
     record_frame_timings(start, end, last);
     // Playback: real time × fps, whole frames, looping at frame_end (a stall shows at most 0.1 s of it).

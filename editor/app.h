@@ -16,6 +16,10 @@ struct AppOptions {
   // If set: run the start-up work, render a few frames with every panel open, write a PNG of the whole window
   // (UI included) to this path and exit (README screenshots under xvfb). No session log is written then.
   std::filesystem::path screenshot;
+  // GUI tests (tests/gui): write the probe JSON (editor/gui_probe.h) to this path after every frame.
+  std::filesystem::path gui_probe;
+  // > 0: at most this many frames per second (GUI tests reproduce software-GL frame rates, e.g. 3).
+  double max_fps = 0.0;
 };
 
 // Runs the editor. Returns the exit code: 0 on a normal quit (or a written screenshot), 1 if the screenshot

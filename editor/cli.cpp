@@ -27,6 +27,10 @@ int run_cli(int argc, char** argv) {
   edit->add_option("--screenshot", edit_options.screenshot, "Render a few frames, write this PNG of the window, exit");
   edit->add_option("--width", edit_options.width, "Window width in pixels");
   edit->add_option("--height", edit_options.height, "Window height in pixels");
+  edit->add_option("--gui-probe", edit_options.gui_probe,
+                   "Write widget rectangles, popups, history and log as JSON to this file every frame (GUI tests)");
+  edit->add_option("--max-fps", edit_options.max_fps, "Draw at most this many frames per second (GUI tests: 3)")
+      ->check(CLI::NonNegativeNumber);
   edit->add_flag("!--no-recover", edit_options.recover_prompt, "Do not offer to recover an unfinished session");
 
   ReplayOptions replay_options;

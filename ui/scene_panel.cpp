@@ -1,6 +1,7 @@
 #include "ui/scene_panel.h"
 
 #include "ui/theme.h"
+#include "ui/gui_probe.h"
 
 #include <imgui.h>
 
@@ -82,6 +83,7 @@ SceneRequest draw_scene_panel(const Rect& rect, const core::Scene& scene, const 
   SceneRequest req;
   if (begin_docked("Scene", rect)) {
     if (ImGui::Button("Load...")) req.kind = SceneRequest::Kind::Load;
+    probe::item("scene.load");
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("Load a mesh (OBJ, PLY, OFF, STL, glTF, GLB) as a new object");
     ImGui::SameLine();
     if (ImGui::Button("Add")) ImGui::OpenPopup("##add_primitive");
@@ -127,6 +129,7 @@ SceneRequest draw_scene_panel(const Rect& rect, const core::Scene& scene, const 
                                   ImGuiSelectableFlags_AllowDoubleClick)) {
           req = {ImGui::IsMouseDoubleClicked(0) ? SceneRequest::Kind::Frame : SceneRequest::Kind::Select, o.name};
         }
+        probe::item("scene.object." + o.name);
         if (!visible) ImGui::PopStyleColor();
         if (ImGui::IsItemHovered() && !eye_hovered) {
           ImGui::SetTooltip("%s\nsource: %s%s\ndouble-click to frame", o.name.c_str(), o.source.c_str(),

@@ -1,0 +1,162 @@
+#!/usr/bin/env bash
+# GUI test harness: drives the real `trispline` editor through real X input (xdotool) under the private Xvfb of
+# tests/with_xvfb.sh, at a throttled frame rate, and asserts on its probe file (--gui-probe, editor/gui_probe.h) and
+# its session log. A test is a bash script that sources this file:
+#
+#   source "$(dirname "$0")/gui_lib.sh"        # needs TRISPLINE (the executable) and GUI_OUT (a results folder)
+#   gui_start "$GUI_ROOT/assets/scenes/default.jsonl"      # editor at GUI_FPS (default 3) frames per second; waits for it
+#   gui_click_item scene.load                   # a widget named with ui::probe::item() in the editor
+#   gui_wait '.popups | length > 0' "the Load dialog opens"   # a jq condition on the probe JSON, with a timeout
+#   gui_pass                                    # quits the editor; exit 0
+#
+# On a failed check the editor's screenshot (F12), the probe JSON and the session log are saved under
+# $GUI_OUT/<test>/ and their paths printed; the test exits 1. The editor dying is a failure at the next check.
+set -euo pipefail
+
+: "${TRISPLINE:?set TRISPLINE to the trispline executable}"
+: "${GUI_OUT:?set GUI_OUT to a folder for failure artefacts}"
+GUI_FPS="${GUI_FPS:-3}"
+GUI_TIMEOUT="${GUI_TIMEOUT:-20}"  # seconds a gui_wait may take by default
+GUI_TEST="$(basename "${0%.sh}")"
+GUI_DIR="$GUI_OUT/$GUI_TEST"
+rm -rf "$GUI_DIR"
+mkdir -p "$GUI_DIR"
+GUI_STATE="$GUI_DIR/state"   # TRISPLINE_STATE_DIR: session.jsonl lands here
+GUI_WORK="$GUI_DIR/work"     # the editor's current folder (F12 screenshots land here)
+GUI_PROBE="$GUI_DIR/probe.json"
+mkdir -p "$GUI_STATE" "$GUI_WORK"
+GUI_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
+GUI_PID=""
+GUI_WID=""
+
+gui_log() { echo "[$GUI_TEST $(date +%T)] $*"; }
+
+# Saves the artefacts and fails the test.
+gui_fail() {
+  echo "FAIL: $GUI_TEST: $*" >&2
+  if gui_alive; then
+    local before
+    before="$(ls "$GUI_WORK"/trispline-screenshot-*.png 2>/dev/null | wc -l)"
+    xdotool key F12 2>/dev/null || true
+    for _ in $(seq 1 30); do
+      [ "$(ls "$GUI_WORK"/trispline-screenshot-*.png 2>/dev/null | wc -l)" -gt "$before" ] && break
+      sleep 0.2
+    done
+    local shot
+    shot="$(ls -t "$GUI_WORK"/trispline-screenshot-*.png 2>/dev/null | head -1 || true)"
+    [ -n "$shot" ] && cp "$shot" "$GUI_DIR/failure.png" && echo "  screenshot: $GUI_DIR/failure.png" >&2
+  else
+    echo "  the editor is not running (exit status ${GUI_EXIT:-?}); its output: $GUI_DIR/editor.log" >&2
+  fi
+  [ -f "$GUI_PROBE" ] && cp "$GUI_PROBE" "$GUI_DIR/failure_probe.json" && echo "  probe: $GUI_DIR/failure_probe.json" >&2
+  [ -f "$GUI_STATE/session.jsonl" ] && echo "  session log: $GUI_STATE/session.jsonl" >&2
+  echo "  editor output: $GUI_DIR/editor.log" >&2
+  gui_kill
+  exit 1
+}
+
+gui_alive() { [ -n "$GUI_PID" ] && kill -0 "$GUI_PID" 2>/dev/null; }
+
+gui_kill() {
+  if gui_alive; then kill "$GUI_PID" 2>/dev/null || true; wait "$GUI_PID" 2>/dev/null || true; fi
+  GUI_PID=""
+}
+
+# gui_start [EDITOR ARGS...]: starts `trispline edit --no-recover` with the probe and the frame-rate cap, waits for
+# its window and its first frames. The editor runs in $GUI_WORK (its file dialogs start there): give absolute paths
+# ($GUI_ROOT is the repository root).
+gui_start() {
+  (cd "$GUI_WORK" && exec env TRISPLINE_STATE_DIR="$GUI_STATE" \
+     "$TRISPLINE" edit --no-recover --gui-probe "$GUI_PROBE" --max-fps "$GUI_FPS" --width 1280 --height 800 "$@" \
+     >"$GUI_DIR/editor.log" 2>&1) &
+  GUI_PID=$!
+  gui_log "editor pid $GUI_PID at $GUI_FPS fps: $*"
+  local i
+  for i in $(seq 1 $((GUI_TIMEOUT * 10))); do
+    GUI_WID="$(xdotool search --pid "$GUI_PID" --name trispline 2>/dev/null | head -1 || true)"
+    [ -n "$GUI_WID" ] && [ -f "$GUI_PROBE" ] && break
+    gui_alive || gui_fail "the editor exited at start"
+    sleep 0.1
+  done
+  [ -n "$GUI_WID" ] || gui_fail "no editor window after ${GUI_TIMEOUT}s"
+  xdotool windowmove "$GUI_WID" 0 0 2>/dev/null || true
+  xdotool windowfocus "$GUI_WID" 2>/dev/null || true
+  gui_wait '.frame >= 3' "the editor draws frames"
+}
+
+# gui_q JQ: the jq expression evaluated on the current probe (raw output).
+gui_q() { jq -r "$1" "$GUI_PROBE" 2>/dev/null; }
+
+# gui_wait JQ WHAT [SECONDS]: waits until the jq condition holds on the probe; fails with WHAT otherwise.
+gui_wait() {
+  local cond="$1" what="$2" limit="${3:-$GUI_TIMEOUT}" end
+  end=$(($(date +%s) + limit))
+  while true; do
+    gui_alive || { wait "$GUI_PID" 2>/dev/null; GUI_EXIT=$?; GUI_PID=""; gui_fail "the editor died, waiting for: $what"; }
+    [ "$(jq -r "($cond) == true" "$GUI_PROBE" 2>/dev/null)" = "true" ] && return 0
+    [ "$(date +%s)" -ge "$end" ] && gui_fail "timed out after ${limit}s waiting for: $what ($cond)"
+    sleep 0.1
+  done
+}
+
+# gui_check JQ WHAT: the condition must hold now.
+gui_check() { gui_wait "$1" "$2" 0; }
+
+# gui_frames N: waits until N more frames were drawn (input given before is then handled).
+gui_frames() {
+  local now
+  now="$(gui_q .frame)"
+  gui_wait ".frame >= $((now + $1))" "$1 more frames"
+}
+
+# gui_item_center NAME: "x y" of the named widget's centre (fails if it is not on screen this frame).
+gui_item_center() {
+  gui_wait ".items[\"$1\"] != null" "widget $1 on screen"
+  gui_q ".items[\"$1\"] | \"\(((.[0] + .[2]) / 2) | floor) \(((.[1] + .[3]) / 2) | floor)\""
+}
+
+gui_move() { xdotool mousemove --window "$GUI_WID" "$1" "$2"; }
+# gui_click X Y [BUTTON]: moves there, lets one frame see the hover, clicks.
+gui_click() {
+  gui_move "$1" "$2"
+  gui_frames 1
+  xdotool click "${3:-1}"
+}
+gui_click_item() {
+  local xy
+  xy="$(gui_item_center "$1")"
+  gui_log "click $1 at $xy"
+  # shellcheck disable=SC2086
+  gui_click $xy "${2:-1}"
+}
+# gui_drag X0 Y0 X1 Y1 [MODIFIER]: a left-button drag in a few steps, optionally holding ctrl / shift / alt.
+gui_drag() {
+  local mod="${5:-}" i
+  gui_move "$1" "$2"
+  gui_frames 1
+  [ -n "$mod" ] && xdotool keydown "$mod"
+  xdotool mousedown 1
+  gui_frames 1
+  for i in 1 2 3 4; do
+    gui_move $(($1 + ($3 - $1) * i / 4)) $(($2 + ($4 - $2) * i / 4))
+    gui_frames 1
+  done
+  xdotool mouseup 1
+  [ -n "$mod" ] && xdotool keyup "$mod"
+  gui_frames 1
+}
+gui_key() { gui_log "key $*"; xdotool key --delay 30 "$@"; }
+gui_type() { gui_log "type '$1'"; xdotool type --delay 30 "$1"; }
+
+# gui_session_has JQ: some line of the session log satisfies the jq condition (e.g. '.cmd == "scene.load"').
+gui_session_count() { jq -c "select($1)" "$GUI_STATE/session.jsonl" 2>/dev/null | wc -l; }
+
+# Quits the editor (kills it: the session log is flushed line by line) and passes.
+gui_pass() {
+  gui_alive || gui_fail "the editor is gone at the end"
+  gui_kill
+  gui_log "PASS"
+  exit 0
+}
+
+trap 'gui_kill' EXIT

@@ -1,0 +1,31 @@
+#include "ui/gui_probe.h"
+
+namespace trispline::ui::probe {
+
+namespace {
+bool g_enabled = false;
+std::map<std::string, ItemRect> g_items;
+std::map<std::string, std::string> g_values;
+}  // namespace
+
+void set_enabled(bool on) { g_enabled = on; }
+bool enabled() { return g_enabled; }
+
+void begin_frame() {
+  g_items.clear();
+  g_values.clear();
+}
+
+void item(const std::string& name) {
+  if (!g_enabled) return;
+  g_items[name] = {ImGui::GetItemRectMin(), ImGui::GetItemRectMax()};
+}
+
+void value(const std::string& name, const std::string& text) {
+  if (g_enabled) g_values[name] = text;
+}
+
+const std::map<std::string, ItemRect>& items() { return g_items; }
+const std::map<std::string, std::string>& values() { return g_values; }
+
+}  // namespace trispline::ui::probe
