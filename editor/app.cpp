@@ -549,6 +549,7 @@ void App::write_probe() {
   p["camera"] = {{"eye", {view_.eye.x, view_.eye.y, view_.eye.z}},
                  {"target", {view_.target.x, view_.target.y, view_.target.z}}};
   p["current_frame"] = anim_.playback().frame;
+  p["transform"] = transform_.active() ? nlohmann::json(transform_.header()) : nlohmann::json(nullptr);
   write_probe_file(options_.gui_probe, p);
 }
 

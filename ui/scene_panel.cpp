@@ -64,6 +64,7 @@ void draw_transform_fields(const core::SceneObject& o, TransformFields& f, Scene
     ImGui::SetNextItemWidth(-FLT_MIN);
     if (ImGui::InputScalarN("##xyz", ImGuiDataType_Double, f.values[r], 3, nullptr, nullptr, r == 1 ? "%.2f" : "%.3f"))
       f.dirty = true;
+    probe::item(std::string("scene.transform.") + kFields[r]);  // the row (x, y, z fields side by side)
     f.row_min[r] = {ImGui::GetItemRectMin().x, ImGui::GetItemRectMin().y};
     f.row_max[r] = {ImGui::GetItemRectMax().x, ImGui::GetItemRectMax().y};
     active = active || ImGui::IsItemActive();
