@@ -16,6 +16,8 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include <fstream>
 
 using namespace trispline;
@@ -191,6 +193,60 @@ TEST_F(Modal, RotateAboutXOfATurnedObjectGoesThroughTheMatrix) {
   const glm::dmat3 m(got.matrix());
   for (int c = 0; c < 3; ++c)
     for (int k = 0; k < 3; ++k) EXPECT_NEAR(m[c][k], expect[c][k], 1e-9) << r.x << " " << r.y << " " << r.z;
+}
+
+TEST_F(Modal, MouseScaleIsTheDistanceRatioAndMouseRotateTurnsAboutTheViewAxis) {
+  const glm::dvec3 p = view.project(glm::dvec3(1, 0, 0));  // the pivot: the box's origin
+  const glm::dvec2 c(p.x, p.y);
+  type("s", c + glm::dvec2(40, 0));
+  editor::TransformModalInput in;
+  in.mouse_px = c + glm::dvec2(0, -100);  // 2.5 times as far from the pivot
+  modal.update(in);
+  EXPECT_NEAR(modal.current().scale.x, 0.5 * 2.5, 1e-12);
+  EXPECT_EQ(modal.current().translate, glm::dvec3(1, 0, 0));
+  in.keys = keys("\x1b");
+  modal.update(in);
+
+  // A quarter turn counter-clockwise on screen = +90 degrees about the axis pointing at the viewer.
+  type("r", c + glm::dvec2(50, 0));
+  in.keys.clear();
+  in.mouse_px = c + glm::dvec2(0, -50);
+  modal.update(in);
+  core::Transform t;
+  t.rotate_deg = modal.current().rotate_deg;
+  const glm::dmat3 got(t.matrix());
+  const glm::dmat3 want(glm::rotate(glm::dmat4(1.0), glm::radians(90.0), -view.forward()));
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) EXPECT_NEAR(got[a][b], want[a][b], 1e-9);
+  EXPECT_EQ(modal.current().translate, glm::dvec3(1, 0, 0));
+  in.right_clicked = true;
+  EXPECT_EQ(modal.update(in), editor::TransformModal::Outcome::cancelled);
+}
+
+TEST(EulerXyz, RoundTripsRotationMatrices) {
+  for (double x : {-170.0, -45.0, 0.0, 30.0, 120.0})
+    for (double y : {-89.0, -30.0, 0.0, 10.0, 60.0, 89.5})
+      for (double z : {-135.0, 0.0, 45.0, 179.0}) {
+        core::Transform t;
+        t.rotate_deg = {x, y, z};
+        const glm::dmat3 m(t.matrix());
+        core::Transform back;
+        back.rotate_deg = editor::euler_xyz_deg(m);
+        const glm::dmat3 m2(back.matrix());
+        for (int a = 0; a < 3; ++a)
+          for (int b = 0; b < 3; ++b) ASSERT_NEAR(m[a][b], m2[a][b], 1e-12) << x << " " << y << " " << z;
+        EXPECT_NEAR(back.rotate_deg.x, x, 1e-9);
+        EXPECT_NEAR(back.rotate_deg.y, y, 1e-9);
+        EXPECT_NEAR(back.rotate_deg.z, z, 1e-9);
+      }
+  // Gimbal lock (y = 90): only x − z is defined; the matrix still round-trips.
+  core::Transform t;
+  t.rotate_deg = {30, 90, 10};
+  core::Transform back;
+  back.rotate_deg = editor::euler_xyz_deg(glm::dmat3(t.matrix()));
+  const glm::dmat3 m(t.matrix()), m2(back.matrix());
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) EXPECT_NEAR(m[a][b], m2[a][b], 1e-9);
 }
 
 TEST_F(Modal, InvalidTypedScaleIsRefusedByTheCommandAndChangesNothing) {
