@@ -2,7 +2,6 @@
 
 #include <chrono>
 #include <cmath>
-
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include "core/commands/json_fields.h"

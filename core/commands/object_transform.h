@@ -20,9 +20,9 @@
 namespace trispline::core {
 
 // Limits of object.transform's fields (also used by the editor's fields to clamp what is typed).
-inline constexpr double kMaxTranslate = 1e9;   // |component|, world units
-inline constexpr double kMaxRotateDeg = 1e6;   // |component|, degrees
-inline constexpr double kMaxScale = 1e6;       // scale components are in (0, kMaxScale]
+inline constexpr double kMaxTranslate = 1e9;  // |component|, world units
+inline constexpr double kMaxRotateDeg = 1e6;  // |component|, degrees
+inline constexpr double kMaxScale = 1e6;      // scale components are in (0, kMaxScale]
 
 // Throws CommandError naming the field when `t` breaks the limits above.
 void check_transform(const Transform& t);

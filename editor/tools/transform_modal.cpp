@@ -6,11 +6,10 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
-#include <glm/gtc/matrix_transform.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <glm/gtc/matrix_transform.hpp>
 #include <utility>
 
 namespace trispline::editor {
@@ -127,8 +126,10 @@ void TransformModal::restart(TransformMode mode) {
 
 double TransformModal::typed_value() const {
   double v = 0.0;
-  if (!text_.empty() && text_ != ".") v = std::strtod(text_.c_str(), nullptr);
-  else if (mode_ == TransformMode::scale) v = 1.0;  // a bare "-" flips the scale
+  if (!text_.empty() && text_ != ".")
+    v = std::strtod(text_.c_str(), nullptr);
+  else if (mode_ == TransformMode::scale)
+    v = 1.0;  // a bare "-" flips the scale
   return negative_ ? -v : v;
 }
 
@@ -157,8 +158,10 @@ bool TransformModal::key(const ui::KeyPress& k) {
   } else if (key == GLFW_KEY_MINUS || key == GLFW_KEY_KP_SUBTRACT) {
     negative_ = !negative_;
   } else if (key == GLFW_KEY_BACKSPACE) {
-    if (!text_.empty()) text_.pop_back();
-    else negative_ = false;
+    if (!text_.empty())
+      text_.pop_back();
+    else
+      negative_ = false;
   }
   return true;
 }
@@ -168,12 +171,13 @@ TransformModal::Outcome TransformModal::update(const TransformModalInput& in, st
   mouse_ = in.mouse_px;
   for (std::size_t i = first; i < in.keys.size() && outcome_ == Outcome::running; ++i) key(in.keys[i]);
   if (outcome_ == Outcome::running) {
-    if (in.right_clicked) outcome_ = Outcome::cancelled;
-    else if (in.left_clicked) outcome_ = Outcome::confirmed;
+    if (in.right_clicked)
+      outcome_ = Outcome::cancelled;
+    else if (in.left_clicked)
+      outcome_ = Outcome::confirmed;
   }
   if (outcome_ == Outcome::running) return outcome_;
-  if (outcome_ == Outcome::confirmed)
-    confirmed_ = core::ObjectTransformCommand::make(object_, current())->to_json();
+  if (outcome_ == Outcome::confirmed) confirmed_ = core::ObjectTransformCommand::make(object_, current())->to_json();
   active_ = false;
   preview_.reset();
   original_ = core::SceneObject();  // drop the meshes it held
@@ -195,8 +199,8 @@ core::Transform TransformModal::current() const {
         const double probe = 100.0 * units_per_px_;
         const glm::dvec2 s = (glm::dvec2(view_.project(pivot_ + e * probe)) - pivot_px_) / probe;
         const double s2 = glm::dot(s, s);
-        const double along = s2 > 1e-6 / (units_per_px_ * units_per_px_) ? glm::dot(d, s) / s2
-                                                                          : glm::length(d) * units_per_px_;
+        const double along =
+            s2 > 1e-6 / (units_per_px_ * units_per_px_) ? glm::dot(d, s) / s2 : glm::length(d) * units_per_px_;
         t.translate += e * along;
       }
       return t;

@@ -14,16 +14,15 @@
 // evaluated bounds when a lattice has moved the shape away from it (placed, ring, DFFD objects).
 #pragma once
 
-#include "core/scene/camera.h"
-#include "core/scene/scene.h"
-#include "ui/imgui_host.h"
-
-#include <nlohmann/json.hpp>
-
 #include <glm/glm.hpp>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "core/scene/camera.h"
+#include "core/scene/scene.h"
+#include "ui/imgui_host.h"
 
 namespace trispline::editor {
 

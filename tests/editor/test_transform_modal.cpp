@@ -16,9 +16,8 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
-#include <glm/gtc/matrix_transform.hpp>
-
 #include <fstream>
+#include <glm/gtc/matrix_transform.hpp>
 
 using namespace trispline;
 
@@ -28,13 +27,20 @@ std::vector<ui::KeyPress> keys(const std::string& typed) {  // "gx1.5\n": one pr
   std::vector<ui::KeyPress> out;
   for (char c : typed) {
     int k = 0;
-    if (c >= 'a' && c <= 'z') k = GLFW_KEY_A + (c - 'a');
-    else if (c >= '0' && c <= '9') k = GLFW_KEY_0 + (c - '0');
-    else if (c == '.') k = GLFW_KEY_PERIOD;
-    else if (c == '-') k = GLFW_KEY_MINUS;
-    else if (c == '\b') k = GLFW_KEY_BACKSPACE;
-    else if (c == '\n') k = GLFW_KEY_ENTER;
-    else if (c == '\x1b') k = GLFW_KEY_ESCAPE;
+    if (c >= 'a' && c <= 'z')
+      k = GLFW_KEY_A + (c - 'a');
+    else if (c >= '0' && c <= '9')
+      k = GLFW_KEY_0 + (c - '0');
+    else if (c == '.')
+      k = GLFW_KEY_PERIOD;
+    else if (c == '-')
+      k = GLFW_KEY_MINUS;
+    else if (c == '\b')
+      k = GLFW_KEY_BACKSPACE;
+    else if (c == '\n')
+      k = GLFW_KEY_ENTER;
+    else if (c == '\x1b')
+      k = GLFW_KEY_ESCAPE;
     out.push_back({k, 0});
   }
   return out;
@@ -57,8 +63,8 @@ class Modal : public test::StateDirTest {
   void SetUp() override {
     StateDirTest::SetUp();
     s.start(false);
-    ASSERT_TRUE(s.execute({{"cmd", "scene.primitive"}, {"kind", "box"}, {"name", "b"}, {"translate", {1, 0, 0}},
-                           {"scale", 0.5}}));
+    ASSERT_TRUE(s.execute(
+        {{"cmd", "scene.primitive"}, {"kind", "box"}, {"name", "b"}, {"translate", {1, 0, 0}}, {"scale", 0.5}}));
     editor::Navigator nav;
     nav.frame(editor::bounds_of(*object().world_mesh), {800, 600});
     view = nav.camera({800, 600});
@@ -331,7 +337,8 @@ TEST_F(PanelFields, TypedLocationIsOneCommandWhenTheFieldIsLeft) {
   EXPECT_EQ(r.field, "translate");
   EXPECT_EQ(r.value, glm::dvec3(2.25, 0, 0));
   // Nothing was requested per keystroke; the editor runs exactly this one line.
-  ASSERT_TRUE(s.execute({{"cmd", "object.transform"}, {"object", r.name}, {r.field, {r.value.x, r.value.y, r.value.z}}}));
+  ASSERT_TRUE(
+      s.execute({{"cmd", "object.transform"}, {"object", r.name}, {r.field, {r.value.x, r.value.y, r.value.z}}}));
   EXPECT_EQ(object().transform.translate, glm::dvec3(2.25, 0, 0));
   frame(gui, {-1, -1}, false);
   EXPECT_EQ(fields.values[0][0], 2.25);  // refreshed from the scene once the field is left

@@ -129,7 +129,8 @@ TEST(ObjectTransform, RefusesAbsurdValuesNamingTheFieldAndLeavesTheSceneAlone) {
     }
   }
   // NaN cannot be written in JSON text but can be in a json value built in code.
-  json nan_line = {{"cmd", "object.transform"}, {"object", "b"},
+  json nan_line = {{"cmd", "object.transform"},
+                   {"object", "b"},
                    {"translate", {0.0, std::numeric_limits<double>::quiet_NaN(), 0.0}}};
   EXPECT_THROW(ObjectTransformCommand::parse(nan_line, {}), CommandError);
 
@@ -162,10 +163,12 @@ TEST(ObjectTransform, PlacedObjectMovesWithItsLattice) {
   const auto& p0 = before.ffd->lattice.control_points();
   const auto& p1 = moved.ffd->lattice.control_points();
   ASSERT_EQ(p0.size(), p1.size());
-  for (std::size_t i = 0; i < p0.size(); ++i) EXPECT_LT(glm::length(p1[i] - (p0[i] + glm::dvec3(0.25, 1, -0.5))), 1e-12);
+  for (std::size_t i = 0; i < p0.size(); ++i)
+    EXPECT_LT(glm::length(p1[i] - (p0[i] + glm::dvec3(0.25, 1, -0.5))), 1e-12);
   EXPECT_EQ(moved.ffd->params, before.ffd->params);  // parameters kept, the embedding moved
-  EXPECT_LT(glm::length(moved.placement->contact_points[0] - before.placement->contact_points[0] -
-                        glm::dvec3(0.25, 1, -0.5)), 1e-12);
+  EXPECT_LT(
+      glm::length(moved.placement->contact_points[0] - before.placement->contact_points[0] - glm::dvec3(0.25, 1, -0.5)),
+      1e-12);
   // The moved embedding gives the moved rest mesh the same parameters.
   const auto params = embed_points(moved.ffd->embedding, moved.world_rest_mesh().positions);
   for (std::size_t v = 0; v < params.size(); ++v) ASSERT_LT(glm::length(params[v] - before.ffd->params[v]), 1e-9);
