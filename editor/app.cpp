@@ -504,9 +504,10 @@ void App::frame() {
   const ui::Rect& free = layout.viewport;  // what the panels leave visible: F / Home frame into it
   const glm::dvec2 s(io.DisplayFramebufferScale.x, io.DisplayFramebufferScale.y), lo(free.pos.x, free.pos.y);
   nav_.set_visible_rect(lo * s, (lo + glm::dvec2(free.size.x, free.size.y)) * s);
-  if (transform_.active()) {  // Blender shows the modal's state in the viewport header
+  if (transform_.active()) {  // the modal's state on the viewport (Blender: in its header)
     const std::string text = transform_.header();
-    const ImVec2 at(free.pos.x + 8.0f, free.pos.y + 6.0f), size = ImGui::CalcTextSize(text.c_str());
+    const ImVec2 size = ImGui::CalcTextSize(text.c_str());  // bottom left: the timing overlay holds the top left
+    const ImVec2 at(free.pos.x + 8.0f, free.pos.y + free.size.y - size.y - 8.0f);
     ImDrawList* dl = ImGui::GetForegroundDrawList();
     dl->AddRectFilled({at.x - 4, at.y - 2}, {at.x + size.x + 4, at.y + size.y + 2}, IM_COL32(20, 20, 22, 210), 3.0f);
     dl->AddText(at, IM_COL32(255, 220, 120, 255), text.c_str());

@@ -184,6 +184,23 @@ TransformModal::Outcome TransformModal::update(const TransformModalInput& in, st
   return std::exchange(outcome_, Outcome::running);
 }
 
+double TransformModal::angle_deg() const {
+  if (typing()) return typed_value();
+  double deg = 0.0;
+  const glm::dvec2 a = mouse0_ - pivot_px_, b = mouse_ - pivot_px_;
+  if (glm::length(a) > 0.5 && glm::length(b) > 0.5)  // screen y is down: counter-clockwise on screen is +
+    deg = glm::degrees(std::atan2(-b.y, b.x) - std::atan2(-a.y, a.x));
+  if (deg > 180.0) deg -= 360.0;
+  if (deg <= -180.0) deg += 360.0;
+  if (axis_ >= 0 && -view_.forward()[axis_] < 0) deg = -deg;  // the object turns the way the cursor does
+  return deg;
+}
+
+double TransformModal::factor() const {
+  if (typing()) return typed_value();
+  return glm::length(mouse_ - pivot_px_) / std::max(glm::length(mouse0_ - pivot_px_), 1.0);
+}
+
 core::Transform TransformModal::current() const {
   const glm::dvec2 d = mouse_ - mouse0_;
   switch (mode_) {
@@ -207,27 +224,10 @@ core::Transform TransformModal::current() const {
     }
     case TransformMode::rotate: {
       const glm::dvec3 towards_viewer = -view_.forward();
-      double deg = 0.0;
-      if (typing()) {
-        deg = typed_value();
-      } else {
-        const glm::dvec2 a = mouse0_ - pivot_px_, b = mouse_ - pivot_px_;
-        if (glm::length(a) > 0.5 && glm::length(b) > 0.5)  // screen y is down: counter-clockwise on screen is +
-          deg = glm::degrees(std::atan2(-b.y, b.x) - std::atan2(-a.y, a.x));
-        if (deg > 180.0) deg -= 360.0;
-        if (deg <= -180.0) deg += 360.0;
-        if (axis_ >= 0 && towards_viewer[axis_] < 0) deg = -deg;  // the object turns the way the cursor does
-      }
-      return rotated(start_, axis_ < 0 ? towards_viewer : unit_axis(axis_), axis_, deg, pivot_);
+      return rotated(start_, axis_ < 0 ? towards_viewer : unit_axis(axis_), axis_, angle_deg(), pivot_);
     }
     case TransformMode::scale: {
-      double f = 1.0;
-      if (typing()) {
-        f = typed_value();
-      } else {
-        const double r0 = std::max(glm::length(mouse0_ - pivot_px_), 1.0);
-        f = glm::length(mouse_ - pivot_px_) / r0;
-      }
+      const double f = factor();
       glm::dvec3 factor(f);
       if (axis_ >= 0) factor = glm::dvec3(1.0), factor[axis_] = f;
       return scaled(start_, factor, pivot_);
@@ -251,26 +251,22 @@ const core::SceneObject& TransformModal::preview_object() {
 
 std::string TransformModal::header() const {
   static const char* kAxis[] = {"X", "Y", "Z"};
-  const char* name = mode_ == TransformMode::grab ? "Grab" : mode_ == TransformMode::rotate ? "Rotate" : "Scale";
-  std::string value;
-  const core::Transform t = current();
+  const std::string axis = axis_ < 0 ? "" : std::string(kAxis[axis_]) + ": ";
   const std::string typed = typing() ? std::string("[") + (negative_ ? "-" : "") + text_ + "|]  " : "";
+  std::string value;
   if (mode_ == TransformMode::grab) {
-    const glm::dvec3 d = t.translate - start_.translate;
+    const glm::dvec3 d = current().translate - start_.translate;
     if (axis_ >= 0 || typing())
       value = std::string(kAxis[axis_ < 0 ? 0 : axis_]) + ": " + fmt("%.3f", d[axis_ < 0 ? 0 : axis_]);
     else
       value = "D: " + fmt("%.3f", d.x) + ", " + fmt("%.3f", d.y) + ", " + fmt("%.3f", d.z);
+    value = "Grab  " + typed + value;
   } else if (mode_ == TransformMode::rotate) {
-    const glm::dvec3 r = t.rotate_deg;
-    value = std::string(axis_ < 0 ? "View" : kAxis[axis_]) + "  rotation: " + fmt("%.2f", r.x) + ", " +
-            fmt("%.2f", r.y) + ", " + fmt("%.2f", r.z) + " deg";
+    value = "Rotate  " + typed + (axis_ < 0 ? std::string("View: ") : axis) + fmt("%.2f", angle_deg()) + " deg";
   } else {
-    const glm::dvec3 s = t.scale;
-    value = std::string(axis_ < 0 ? "" : std::string(kAxis[axis_]) + "  ") + "scale: " + fmt("%.3f", s.x) + ", " +
-            fmt("%.3f", s.y) + ", " + fmt("%.3f", s.z);
+    value = "Scale  " + typed + axis + fmt("%.3f", factor());
   }
-  return std::string(name) + "  " + typed + value + "  (X/Y/Z axis, type a value, Esc cancel, Enter confirm)";
+  return value + "  (Esc cancel, Enter confirm)";
 }
 
 }  // namespace trispline::editor

@@ -59,13 +59,16 @@ class TransformModal {
   const core::SceneObject& preview_object();
   // The object.transform line of the last confirm.
   const nlohmann::json& confirmed_line() const { return confirmed_; }
-  // "Grab  X: 1.500  (…)": what is happening, for the status bar / viewport header.
+  // "Grab  X: 1.500  (Esc cancel, Enter confirm)", "Rotate  [90|]  Z: 90.00 deg  (…)", "Scale  2.000  (…)": what is
+  // happening, for a line at the bottom of the viewport and the status bar.
   std::string header() const;
 
  private:
   bool key(const ui::KeyPress& k);  // false when the key ends the modal (outcome_ set)
   bool typing() const { return !text_.empty() || negative_; }
   double typed_value() const;
+  double angle_deg() const;  // R: the turn, degrees (typed, or swept by the cursor around the pivot)
+  double factor() const;     // S: the scale factor (typed, or the cursor's distance ratio)
   void restart(TransformMode mode);
 
   bool active_ = false;
