@@ -1,5 +1,6 @@
 #include "editor/animation_ui.h"
 
+#include <cmath>
 #include <filesystem>
 
 namespace fs = std::filesystem;
@@ -19,7 +20,8 @@ double AnimationUi::time_s() const { return session_.scene().timeline.time_of_fr
 void AnimationUi::draw_timeline(const ui::Rect& rect, glm::ivec2 viewport) {
   const ui::TimelineRequest r =
       ui::draw_timeline_panel(rect, session_.scene().timeline, playback_, object_, panel_);
-  if (r.command && session_.execute(*r.command))
+  const bool keying = r.command && r.command->value("cmd", "") == "anim.keyframe" && !r.command->contains("remove");
+  if (r.command && (keying ? insert_key(*r.command) : session_.execute(*r.command)))
     object_ = ui::timeline_object(session_.scene(), selected_, playback_.frame);
   if (r.record) handle_action(ui::MenuAction::RecordAnimation, viewport);
 }
@@ -34,7 +36,7 @@ bool AnimationUi::handle_action(ui::MenuAction action, glm::ivec2 viewport) {
   switch (action) {
     case A::InsertKeyframe:
       if (auto line = ui::insert_key_request(object_, playback_, panel_))
-        session_.execute(*line);
+        insert_key(*line);
       else
         messages_.warning("Insert keyframe: select an object with a lattice (placed or ring) first");
       break;
@@ -51,10 +53,14 @@ bool AnimationUi::handle_action(ui::MenuAction action, glm::ivec2 viewport) {
     case A::FrameEnd: go(t.frame_end); break;
     case A::RecordAnimation:
       if (recorder_) break;
-      if (dialog_.out_dir.empty()) {
-        const fs::path state = state_dir();
+      if (dialog_.out_dir.empty() || dialog_.out_dir == default_out_) {  // the artist's own choice stays
+        // Beside the scene file, like Blender's //render: <scene dir>/<scene stem>_frames/ (untitled: ./frames/).
+        const fs::path doc = session_.document();
         std::error_code ec;
-        dialog_.out_dir = ((state.empty() ? fs::current_path(ec) : state) / "render").string();
+        const fs::path out =
+            doc.empty() ? fs::current_path(ec) / "frames" : doc.parent_path() / (doc.stem().string() + "_frames");
+        default_out_ = out.string();
+        dialog_.out_dir = default_out_;
       }
       ui::open_record_dialog(dialog_, t, viewport.x, viewport.y);
       break;
@@ -62,6 +68,28 @@ bool AnimationUi::handle_action(ui::MenuAction action, glm::ivec2 viewport) {
   }
   object_ = ui::timeline_object(session_.scene(), selected_, playback_.frame);
   return true;
+}
+
+bool AnimationUi::insert_key(const nlohmann::json& line) {
+  // Keying the same offset at a frame that has that very key again (I pressed twice) is not a new history step.
+  const core::SceneObject* o = session_.scene().find(line.value("object", ""));
+  const core::Timeline& t = session_.scene().timeline;
+  if (o && line.contains("offset") && line["offset"].size() == 3) {
+    const double time = t.time_of_frame(line.value("frame", 0));
+    const glm::dvec3 offset(line["offset"][0].get<double>(), line["offset"][1].get<double>(),
+                            line["offset"][2].get<double>());
+    const std::string interp = line.value("interpolation", "linear");
+    for (const core::OffsetKey& k : o->offset_keys) {
+      const char* name = k.interpolation == core::KeyInterpolation::constant ? "constant"
+                         : k.interpolation == core::KeyInterpolation::smooth ? "smooth"
+                                                                               : "linear";
+      if (std::abs(k.time_s - time) < 1e-9 && k.offset == offset && interp == name) {
+        messages_.info("'" + o->name + "' already has this key at frame " + std::to_string(line.value("frame", 0)));
+        return false;
+      }
+    }
+  }
+  return session_.execute(line);
 }
 
 void AnimationUi::advance(double dt_s) {

@@ -66,6 +66,8 @@ class AnimationUi {
   ui::RecordDialogState dialog_;
   std::unique_ptr<Recorder> recorder_;
   std::string record_out_;
+  std::string default_out_;  // the Record dialog's last default output folder
+  bool insert_key(const nlohmann::json& line);  // executes an anim.keyframe unless that key exists already
   std::optional<core::Scene> drawn_;  // a copy when hidden objects or clips make one necessary
   bool drawn_posed_ = false;
   int drawn_frame_ = 0;

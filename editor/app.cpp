@@ -177,7 +177,12 @@ void App::open_later(const fs::path& log) {
     if (session_.change_count() == before) return;  // rejected before anything changed: the scene is kept
     selected_.clear();
     hidden_.clear();
-    if (!session_.scene().camera_set) nav_.frame(session_.scene().bounds(), view_.viewport);
+    // The log's last camera.set is the view it was saved with: shown as it is (even when the same log is opened
+    // again after orbiting); a log without one is framed.
+    if (session_.scene().camera_set)
+      nav_.adopt(session_.scene().camera, window_->framebuffer_size());
+    else
+      nav_.frame(session_.scene().bounds(), view_.viewport);
     if (!options_.screenshot.empty()) showcase();
   });
 }

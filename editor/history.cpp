@@ -14,6 +14,10 @@ ExecutionRecord History::execute(core::CommandPtr cmd) {
   rec.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   rec.line = cmd->to_json();
   rec.stats = cmd->stats();
+  if (!cmd->undoable()) {  // logged for replays; the undo stack and its redo tail stay as they are
+    log(rec.line);
+    return rec;
+  }
   commands_.resize(applied_);
   commands_.push_back(std::move(cmd));
   applied_ = commands_.size();

@@ -1,10 +1,10 @@
 // trispline::editor::History — the undo stack over a Scene, and the session's command log.
 //
 // execute(cmd): runs cmd->redo(scene); on success pushes it (dropping the redo tail) and appends its JSON line
-// to the log (flushed at once); on failure the scene is unchanged, nothing is pushed, and the CommandError is
-// rethrown for the caller to report. undo()/redo() move through the stack and append {"cmd":"edit.undo"} /
-// {"cmd":"edit.redo"} lines so a crash log replays to the same state. jump_to(n) undoes/redoes until n commands
-// are applied (History panel click).
+// to the log (flushed at once); a command that is not undoable() (anim.record) is run and logged, never pushed. On
+// failure the scene is unchanged, nothing is pushed, and the CommandError is rethrown for the caller to report.
+// undo()/redo() move through the stack and append {"cmd":"edit.undo"} / {"cmd":"edit.redo"} lines so a crash log
+// replays to the same state. jump_to(n) undoes/redoes until n commands are applied (History panel click).
 #pragma once
 
 #include "core/commands/command.h"

@@ -50,14 +50,20 @@ void Navigator::set_from_camera(const core::Camera& c) {
 void Navigator::follow(const core::Camera& c, bool camera_set, glm::ivec2 viewport) {
   const core::Camera& f = followed_;
   if (camera_set &&
-      (!followed_set_ || c.eye != f.eye || c.target != f.target || c.up != f.up || c.fov_deg != f.fov_deg)) {
-    set_from_camera(c);
-    const glm::dvec2 v = visible_fraction(viewport);
-    const double aspect = double(std::max(viewport.x, 1)) / double(std::max(viewport.y, 1));
-    distance_ *= std::max({1.0, 1.0 / v.y, c.aspect() / (aspect * v.x)});
-  }
+      (!followed_set_ || c.eye != f.eye || c.target != f.target || c.up != f.up || c.fov_deg != f.fov_deg))
+    adopt(c, viewport);
   followed_ = c;
   followed_set_ = camera_set;
+}
+
+void Navigator::adopt(const core::Camera& c, glm::ivec2 viewport) {
+  set_from_camera(c);
+  followed_ = c;
+  followed_set_ = true;
+  if (c.viewport == viewport) return;  // saved from a window of this size: show exactly what was saved
+  const glm::dvec2 v = visible_fraction(viewport);
+  const double aspect = double(std::max(viewport.x, 1)) / double(std::max(viewport.y, 1));
+  distance_ *= std::max({1.0, 1.0 / v.y, c.aspect() / (aspect * v.x)});
 }
 
 glm::dvec3 Navigator::eye() const {
@@ -105,13 +111,23 @@ void Navigator::zoom(double steps, glm::dvec2 cursor_px, glm::ivec2 viewport) {
 
 void Navigator::frame(const core::Aabb& box, glm::ivec2 viewport) {
   if (!box.valid()) return;
-  pivot_ = box.center();
+  const glm::dvec2 size = glm::max(glm::dvec2(viewport), glm::dvec2(1.0));
+  const glm::dvec2 lo = glm::clamp(visible_lo_, glm::dvec2(0.0), size);
+  const glm::dvec2 hi = glm::clamp(visible_hi_, lo + 1.0, glm::max(size, lo + 1.0));
+  // Fit the bounding sphere into the visible rectangle's half extents...
+  const glm::dvec2 v = glm::max(0.5 * (hi - lo), glm::dvec2(16.0)) / (0.5 * size);
   const double radius = std::max(0.5 * box.diagonal(), 1e-3);
-  const glm::dvec2 v = visible_fraction(viewport);
-  const double aspect = double(std::max(viewport.x, 1)) / double(std::max(viewport.y, 1));
+  const double aspect = size.x / size.y;
   const double tan_v = std::tan(glm::radians(fov_deg_) * 0.5);
   const double tan_fit = std::min(tan_v * v.y, tan_v * aspect * v.x);
   distance_ = 1.1 * radius / std::sin(std::atan(tan_fit));
+  // ...and centre it there rather than at the window's centre: the pivot moves in the view plane by the offset of
+  // the visible centre from the window centre (so orbiting turns about that point, a little beside the box centre).
+  pivot_ = box.center();
+  const core::Camera c = camera(viewport);
+  const double units_per_px = 2.0 * distance_ * tan_v / size.y;
+  const glm::dvec2 shift = 0.5 * (lo + hi) - 0.5 * size;  // pixels, x right, y down
+  pivot_ -= (shift.x * c.right() - shift.y * c.true_up()) * units_per_px;
 }
 
 glm::dvec2 Navigator::visible_fraction(glm::ivec2 viewport) const {

@@ -38,6 +38,9 @@ class Navigator {
   // Adopts `scene_camera` when it differs from the one seen last time (a camera.set command ran, an Open), backing
   // off if needed so that what it framed fits in the visible part of `viewport` (see set_visible_rect).
   void follow(const core::Camera& scene_camera, bool camera_set, glm::ivec2 viewport);
+  // Adopts `scene_camera` now (after an Open, even if it equals the one seen last). Exactly as saved when its
+  // viewport is `viewport` (the log was saved from a window of this size); else backed off as in follow().
+  void adopt(const core::Camera& scene_camera, glm::ivec2 viewport);
   // The current view as a core::Camera with the given viewport size (pixels).
   core::Camera camera(glm::ivec2 viewport) const;
 
@@ -48,8 +51,8 @@ class Navigator {
   void orbit(glm::dvec2 delta_px);                                     // 0.4 degrees per pixel
   void pan(glm::dvec2 delta_px, glm::ivec2 viewport);                  // pixels
   void zoom(double steps, glm::dvec2 cursor_px, glm::ivec2 viewport);  // 1 step = 15 % closer
-  // Centres `box` and backs off so it fits the view (keeps yaw/pitch). Invalid boxes are ignored.
-  // It fits inside the visible part of the viewport (set_visible_rect), which panels do not cover.
+  // Centres `box` in the visible part of the viewport (set_visible_rect: what the panels leave uncovered) and backs
+  // off so it fits there (keeps yaw/pitch). Invalid boxes are ignored.
   void frame(const core::Aabb& box, glm::ivec2 viewport);
   // The part of the viewport not covered by panels, pixels [lo, hi) (top-left origin). Default: all of it.
   void set_visible_rect(glm::dvec2 lo_px, glm::dvec2 hi_px) {

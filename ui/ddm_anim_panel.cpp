@@ -1,5 +1,7 @@
 #include "ui/ddm_anim_panel.h"
 
+#include "ui/number_field.h"
+
 #include <imgui.h>
 
 #include <algorithm>
@@ -80,17 +82,17 @@ DdmAnimPanelResult draw_ddm_anim_panel(DdmAnimParams& p, std::string& layer, con
   ImGui::BeginDisabled(p.morph_tile.empty());
   row_label("Frames");
   int frames[2] = {p.frame_from, p.frame_to};
-  if (ImGui::DragInt2("##frames", frames, 0.5f, 0, 100000)) p.frame_from = frames[0], p.frame_to = frames[1];
+  if (drag_int_n("##frames", frames, 2, 0.5f, 0, 100000)) p.frame_from = frames[0], p.frame_to = frames[1];
   tooltip("Timeline frames of the two alpha keys");
   row_label("Alpha");
   double alphas[2] = {p.alpha_from, p.alpha_to};
-  if (ImGui::DragScalarN("##alpha", ImGuiDataType_Double, alphas, 2, 0.01f, nullptr, nullptr, "%.2f"))
+  if (drag_scalar_n("##alpha", ImGuiDataType_Double, alphas, 2, 0.01f, nullptr, nullptr, "%.2f"))
     p.alpha_from = alphas[0], p.alpha_to = alphas[1];
   tooltip("Alpha at the two keys; values outside [0, 1] extrapolate the shapes");
   ImGui::EndDisabled();
   row_label("Offset speed");
   double speed[2] = {p.speed_u, p.speed_v};
-  if (ImGui::DragScalarN("##speed", ImGuiDataType_Double, speed, 2, 0.001f, nullptr, nullptr, "%.3f /s"))
+  if (drag_scalar_n("##speed", ImGuiDataType_Double, speed, 2, 0.001f, nullptr, nullptr, "%.3f /s"))
     p.speed_u = speed[0], p.speed_v = speed[1];
   tooltip("Texture-space offset of every tile, chart units per second (seed section 5.4.2). On the teapot body, "
           "u = 1 is one turn round the pot.");

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "ui/number_field.h"
 #include "ui/placement_panel.h"
 #include "ui/theme.h"
 
@@ -161,7 +162,7 @@ DffdPanelResult draw_dffd_panel(DffdSplitParams& p, const std::string& object,
   double kw = p.kernel_width > 0.0 ? p.kernel_width : auto_kw;
   const double kw_min = 1e-6;
   row_label("Kernel width");
-  if (ImGui::DragScalar("##kernel_width", ImGuiDataType_Double, &kw, float(std::max(auto_kw, 1.0) * 1e-3), &kw_min,
+  if (drag_scalar("##kernel_width", ImGuiDataType_Double, &kw, float(std::max(auto_kw, 1.0) * 1e-3), &kw_min,
                         nullptr, p.kernel_width > 0.0 ? "%.4g" : auto_kw > 0.0 ? "%.4g (auto)" : "auto"))
     p.kernel_width = std::max(kw, kw_min);
   tooltip("Support of kappa along u, world units. Auto: 2 x the largest ticked obstacle's extent along the axis");
@@ -182,7 +183,7 @@ DffdPanelResult draw_dffd_panel(DffdSplitParams& p, const std::string& object,
   row_label("Margin");
   double margin = std::max(p.margin, 0.0);
   const double zero = 0.0;
-  if (ImGui::DragScalar("##margin", ImGuiDataType_Double, &margin, float(std::max(auto_kw, 1.0) * 1e-3), &zero,
+  if (drag_scalar("##margin", ImGuiDataType_Double, &margin, float(std::max(auto_kw, 1.0) * 1e-3), &zero,
                         nullptr, p.margin > 0.0 ? "%.4g" : "%.4g (default)"))
     p.margin = std::max(margin, 0.0);
   tooltip("World units the lattice extends beyond the obstacles' bounding box (0: the command's default)");

@@ -1,5 +1,6 @@
 #include "ui/file_dialog.h"
 
+#include "ui/gui_probe.h"
 #include "ui/theme.h"
 
 #include <imgui.h>
@@ -7,6 +8,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <utility>
 
 namespace fs = std::filesystem;
 
@@ -57,6 +59,18 @@ void FileDialog::list_folder() {
   std::sort(files_.begin(), files_.end());
 }
 
+fs::path FileDialog::save_target() const {
+  // The path field names the folder (ending in a separator, or an existing folder) or the whole file; the name
+  // field names the file in that folder. What is typed there wins over the folder listed, so a mistyped folder is
+  // refused rather than replaced by the listed one.
+  std::error_code ec;
+  const fs::path typed(path_text_);
+  const bool names_folder = path_text_.empty() || path_text_.back() == '/' || fs::is_directory(typed, ec);
+  const fs::path folder = path_text_.empty() ? folder_ : names_folder ? typed : typed.parent_path();
+  if (!name_.empty()) return folder / name_;
+  return names_folder ? folder / "" : typed;
+}
+
 std::optional<fs::path> FileDialog::draw() {
   std::optional<fs::path> chosen;
   if (open_) {
@@ -73,20 +87,30 @@ std::optional<fs::path> FileDialog::draw() {
     folder_ = dir.lexically_normal();
     path_text_ = (folder_ / "").string();
     list_folder();
+    refocus_ = mode_ == Mode::Open;  // the path field takes the keyboard again, its text selected
   };
-  if (ImGui::Button("Up")) enter(folder_.parent_path());
+  std::optional<fs::path> go_to;  // entered after the listing is drawn: enter() rebuilds dirs_
+  if (ImGui::Button("Up")) go_to = folder_.parent_path();
   ImGui::SameLine();
   ImGui::SetNextItemWidth(-1);
-  // Open: the path field takes the keyboard at once (typing replaces it); Save: the name field below does.
-  if (mode_ == Mode::Open && ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
-  bool accept = ImGui::InputText("##path", &path_text_, ImGuiInputTextFlags_EnterReturnsTrue);
+  // Open: the path field takes the keyboard at once; Save: the name field below does. Either way a field that gets
+  // the keyboard selects its whole text, so typing replaces it (Ctrl+A selects it again).
+  if (mode_ == Mode::Open && (ImGui::IsWindowAppearing() || std::exchange(refocus_, false)))
+    ImGui::SetKeyboardFocusHere();
+  constexpr ImGuiInputTextFlags kField = ImGuiInputTextFlags_EnterReturnsTrue | ImGuiInputTextFlags_AutoSelectAll;
+  bool accept = ImGui::InputText("##path", &path_text_, kField);
+  probe::item("file.path");
+  probe::value("file.path", path_text_);
   bool accept_name = false;
   if (!error_.empty()) ImGui::TextColored(colors::error, "%s", error_.c_str());
+  probe::value("file.error", error_);
 
   const float footer = ImGui::GetFrameHeightWithSpacing() * (mode_ == Mode::Save ? 2.6f : 1.6f);
   ImGui::BeginChild("##listing", ImVec2(0, -footer), true);
   for (const fs::path& d : dirs_) {
-    if (ImGui::Selectable((d.filename().string() + "/").c_str(), false, ImGuiSelectableFlags_DontClosePopups)) enter(d);
+    const std::string label = d.filename().string() + "/";
+    if (ImGui::Selectable(label.c_str(), false, ImGuiSelectableFlags_DontClosePopups)) go_to = d;
+    probe::item("file.entry." + label);
   }
   for (const fs::path& f : files_) {
     const bool selected = path_text_ == f.string();
@@ -96,8 +120,10 @@ std::optional<fs::path> FileDialog::draw() {
       name_ = f.filename().string();
       if (ImGui::IsMouseDoubleClicked(0)) accept = true;
     }
+    probe::item("file.entry." + f.filename().string());
   }
   ImGui::EndChild();
+  if (go_to) enter(*go_to);
 
   if (mode_ == Mode::Save) {
     ImGui::AlignTextToFramePadding();
@@ -105,7 +131,9 @@ std::optional<fs::path> FileDialog::draw() {
     ImGui::SameLine();
     ImGui::SetNextItemWidth(-1);
     if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
-    accept_name = ImGui::InputText("##name", &name_, ImGuiInputTextFlags_EnterReturnsTrue);
+    accept_name = ImGui::InputText("##name", &name_, kField);
+    probe::item("file.name");
+    probe::value("file.name", name_);
   }
   if (!extensions_.empty()) {
     std::string filter;
@@ -117,20 +145,23 @@ std::optional<fs::path> FileDialog::draw() {
   ImGui::SetCursorPosX(std::max(ImGui::GetCursorPosX(), ImGui::GetWindowContentRegionMax().x - buttons_w));
   if (ImGui::Button(mode_ == Mode::Open ? "Open" : "Save", ImVec2(80, 0)))
     (mode_ == Mode::Save ? accept_name : accept) = true;
+  probe::item("file.ok");
   ImGui::SameLine();
-  if (ImGui::Button("Cancel", ImVec2(80, 0)) || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false))
-    ImGui::CloseCurrentPopup();
+  const bool cancel = ImGui::Button("Cancel", ImVec2(80, 0));
+  probe::item("file.cancel");
+  if (cancel || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false)) ImGui::CloseCurrentPopup();
 
   if (accept || accept_name) {
     std::error_code ec;
-    const fs::path typed = accept_name && !name_.empty() ? folder_ / name_ : fs::path(path_text_);
-    fs::path p = fs::absolute(typed, ec).lexically_normal();
-    if (fs::is_directory(p, ec)) {
+    fs::path p = fs::absolute(accept_name ? save_target() : fs::path(path_text_), ec).lexically_normal();
+    if (!accept_name && fs::is_directory(p, ec)) {
       enter(p);
     } else if (mode_ == Mode::Open && !fs::exists(p, ec)) {
       error_ = "no such file: " + p.string();
-    } else if (mode_ == Mode::Save && (p.filename().empty() || !fs::is_directory(p.parent_path(), ec))) {
-      error_ = "choose a file name in an existing folder";
+    } else if (mode_ == Mode::Save && !fs::is_directory(p.parent_path(), ec)) {
+      error_ = "no such folder: " + p.parent_path().string() + " (nothing saved)";
+    } else if (mode_ == Mode::Save && p.filename().empty()) {
+      error_ = "type a file name";
     } else {
       chosen = p;
       ImGui::CloseCurrentPopup();

@@ -24,6 +24,7 @@ class FileDialog {
  private:
   void list_folder();
   bool matches(const std::filesystem::path& p) const;
+  std::filesystem::path save_target() const;  // Save: the folder typed in the path field / the name field
 
   std::string title_;
   Mode mode_ = Mode::Open;
@@ -35,6 +36,7 @@ class FileDialog {
   std::string error_;
   bool open_ = false;     // open() called, popup not yet opened
   bool visible_ = false;  // popup showing
+  bool refocus_ = false;  // Open: give the path field the keyboard on the next draw (a folder was entered)
 };
 
 }  // namespace trispline::ui

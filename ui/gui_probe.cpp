@@ -21,6 +21,10 @@ void item(const std::string& name) {
   g_items[name] = {ImGui::GetItemRectMin(), ImGui::GetItemRectMax()};
 }
 
+void rect(const std::string& name, ImVec2 min, ImVec2 max) {
+  if (g_enabled) g_items[name] = {min, max};
+}
+
 void value(const std::string& name, const std::string& text) {
   if (g_enabled) g_values[name] = text;
 }

@@ -63,11 +63,21 @@ void ImGuiHost::new_frame() {
   const int n_keys = int(sizeof io.KeysDown / sizeof io.KeysDown[0]);
   for (int key : g_forced) io.KeysDown[key] = glfwGetKey(window_, key) == GLFW_PRESS;
   g_forced.clear();
+  int mods = 0;  // modifiers held with the keys pressed since the last frame
   for (const KeyPress& k : g_frame) {
-    if (k.key < 0 || k.key >= n_keys || io.KeysDown[k.key]) continue;
-    io.KeysDown[k.key] = true;
-    g_forced.push_back(k.key);
+    if (k.key < 0 || k.key >= n_keys) continue;
+    if (!io.KeysDown[k.key]) {
+      io.KeysDown[k.key] = true;
+      g_forced.push_back(k.key);
+    }
+    mods |= k.mods;
   }
+  // The backend sets the modifier flags in its key callback, so a Ctrl+A tapped between two frames reaches ImGui
+  // with Ctrl already released: take them from the keys held this frame and the modifiers the presses came with.
+  io.KeyCtrl = io.KeysDown[GLFW_KEY_LEFT_CONTROL] || io.KeysDown[GLFW_KEY_RIGHT_CONTROL] || (mods & GLFW_MOD_CONTROL);
+  io.KeyShift = io.KeysDown[GLFW_KEY_LEFT_SHIFT] || io.KeysDown[GLFW_KEY_RIGHT_SHIFT] || (mods & GLFW_MOD_SHIFT);
+  io.KeyAlt = io.KeysDown[GLFW_KEY_LEFT_ALT] || io.KeysDown[GLFW_KEY_RIGHT_ALT] || (mods & GLFW_MOD_ALT);
+  io.KeySuper = io.KeysDown[GLFW_KEY_LEFT_SUPER] || io.KeysDown[GLFW_KEY_RIGHT_SUPER] || (mods & GLFW_MOD_SUPER);
   ImGui::NewFrame();
 }
 

@@ -1,6 +1,7 @@
 #include "ui/main_menu.h"
 
 #include "ui/frame_timings.h"
+#include "ui/gui_probe.h"
 
 #include <imgui.h>
 
@@ -32,12 +33,15 @@ bool apply_view_action(ViewToggles& view, MenuAction action) {
 bool ffd_backend_combo(core::FfdBackend& backend) {
   bool changed = false;
   ImGui::SetNextItemWidth(ImGui::CalcTextSize("GLSL vertex shader").x + ImGui::GetFrameHeight() * 2);
-  if (ImGui::BeginCombo("FFD evaluator", ffd_backend_label(backend))) {
+  const bool open = ImGui::BeginCombo("FFD evaluator", ffd_backend_label(backend));
+  probe::item("menu.FFD evaluator");
+  if (open) {
     for (const core::FfdBackend b : kFfdBackendsShown) {
       if (ImGui::Selectable(ffd_backend_label(b), b == backend) && b != backend) {
         backend = b;
         changed = true;
       }
+      probe::item(std::string("menu.FFD evaluator.") + ffd_backend_label(b));
       if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", ffd_backend_tooltip(b));
       if (b == backend) ImGui::SetItemDefaultFocus();
     }
@@ -51,64 +55,101 @@ bool ffd_backend_combo(core::FfdBackend& backend) {
   return changed;
 }
 
+namespace {
+
+// A menu item that the GUI tests can find ("menu.<label>").
+bool menu_item(const char* label, const char* shortcut = nullptr, bool selected = false, bool enabled = true) {
+  const bool clicked = ImGui::MenuItem(label, shortcut, selected, enabled);
+  probe::item(std::string("menu.") + label);
+  return clicked;
+}
+bool menu_item(const char* label, const char* shortcut, bool* value) {
+  const bool clicked = ImGui::MenuItem(label, shortcut, value);
+  probe::item(std::string("menu.") + label);
+  return clicked;
+}
+
+// Opens a menu of the main menu bar ("menu.<label>" for the tests). A pick closes it, and so does Esc.
+bool begin_menu(const char* label) {
+  const ImVec2 at = ImGui::GetCursorScreenPos();
+  const bool open = ImGui::BeginMenu(label);
+  if (!open) {
+    probe::item(std::string("menu.") + label);
+  } else if (probe::enabled()) {  // ImGui's last item is now inside the menu: the header's rectangle, as laid out
+    const ImVec2 size(ImGui::CalcTextSize(label).x + ImGui::GetStyle().ItemSpacing.x, ImGui::GetFrameHeight());
+    probe::rect(std::string("menu.") + label, at, ImVec2(at.x + size.x, at.y + size.y));
+  }
+  if (open && ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false)) ImGui::CloseCurrentPopup();
+  return open;
+}
+
+// Ends a menu; `picked`: an item was chosen this frame, so the menu closes (whatever ImGui decided).
+void end_menu(bool picked) {
+  if (picked) ImGui::CloseCurrentPopup();
+  ImGui::EndMenu();
+}
+
+}  // namespace
+
 MenuAction draw_main_menu(ViewToggles& view, const MenuState& state) {
   MenuAction action = MenuAction::None;
+  bool picked = false;  // a View toggle or the FFD evaluator changed
   if (!ImGui::BeginMainMenuBar()) return action;
-  if (ImGui::BeginMenu("File")) {
-    if (ImGui::MenuItem("New", "Ctrl+N")) action = MenuAction::New;
-    if (ImGui::MenuItem("Open...", "Ctrl+O")) action = MenuAction::Open;
+  if (begin_menu("File")) {
+    if (menu_item("New", "Ctrl+N")) action = MenuAction::New;
+    if (menu_item("Open...", "Ctrl+O")) action = MenuAction::Open;
     ImGui::Separator();
-    if (ImGui::MenuItem("Save", "Ctrl+S")) action = MenuAction::Save;
-    if (ImGui::MenuItem("Save As...", "Ctrl+Shift+S")) action = MenuAction::SaveAs;
+    if (menu_item("Save", "Ctrl+S")) action = MenuAction::Save;
+    if (menu_item("Save As...", "Ctrl+Shift+S")) action = MenuAction::SaveAs;
     ImGui::Separator();
-    if (ImGui::MenuItem("Save Screenshot", "F12")) action = MenuAction::Screenshot;
-    if (ImGui::MenuItem("Record animation...", "Ctrl+F12")) action = MenuAction::RecordAnimation;
+    if (menu_item("Save Screenshot", "F12")) action = MenuAction::Screenshot;
+    if (menu_item("Record animation...", "Ctrl+F12")) action = MenuAction::RecordAnimation;
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip("Render the timeline's frames to PNG/EXR images, an animated GLB and an MP4 (anim.record)");
     ImGui::Separator();
-    if (ImGui::MenuItem("Quit", "Ctrl+Q")) action = MenuAction::Quit;
-    ImGui::EndMenu();
+    if (menu_item("Quit", "Ctrl+Q")) action = MenuAction::Quit;
+    end_menu(action != MenuAction::None || picked);
   }
-  if (ImGui::BeginMenu("Edit")) {
+  if (begin_menu("Edit")) {
     const std::string undo = state.can_undo ? "Undo " + state.undo_label : std::string("Undo");
     const std::string redo = state.can_redo ? "Redo " + state.redo_label : std::string("Redo");
-    if (ImGui::MenuItem(undo.c_str(), "Ctrl+Z", false, state.can_undo)) action = MenuAction::Undo;
-    if (ImGui::MenuItem(redo.c_str(), "Ctrl+Shift+Z", false, state.can_redo)) action = MenuAction::Redo;
-    ImGui::EndMenu();
+    if (menu_item(undo.c_str(), "Ctrl+Z", false, state.can_undo)) action = MenuAction::Undo;
+    if (menu_item(redo.c_str(), "Ctrl+Shift+Z", false, state.can_redo)) action = MenuAction::Redo;
+    end_menu(action != MenuAction::None || picked);
   }
-  if (ImGui::BeginMenu("View")) {
-    ImGui::MenuItem("Lattice", nullptr, &view.show_lattice);
-    ImGui::MenuItem("Discontinuities", nullptr, &view.show_discontinuities);
+  if (begin_menu("View")) {
+    picked |= menu_item("Lattice", nullptr, &view.show_lattice);
+    picked |= menu_item("Discontinuities", nullptr, &view.show_discontinuities);
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip("C-1 breaks of discontinuous FFD lattices and of the incision preview's cut lattice:\n"
                         "the F- plane's control points in red-orange, F+ in cyan (coincident until opened),\n"
                         "for every DFFD object with Lattice on, else for the selected one.");
-    ImGui::MenuItem("Contact surface", nullptr, &view.show_contact_surface);
-    ImGui::MenuItem("Grid", nullptr, &view.show_grid);
-    ImGui::MenuItem("Wireframe", nullptr, &view.wireframe);
+    picked |= menu_item("Contact surface", nullptr, &view.show_contact_surface);
+    picked |= menu_item("Grid", nullptr, &view.show_grid);
+    picked |= menu_item("Wireframe", nullptr, &view.wireframe);
     ImGui::Separator();
-    ImGui::MenuItem("Timing overlay", "F7", &view.timing_overlay);
+    picked |= menu_item("Timing overlay", "F7", &view.timing_overlay);
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip("Frame time and FPS, FFD / render / UI pass times, FFD vertices per second, a 5 s graph\n"
                         "and the last command's time per stage, in the viewport's corner.");
-    ffd_backend_combo(view.ffd_backend);
-    ImGui::MenuItem("Play animation", "Space", &view.play_animation);
+    picked |= ffd_backend_combo(view.ffd_backend);
+    picked |= menu_item("Play animation", "Space", &view.play_animation);
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip("Play the timeline: the frame advances at the timeline's fps and loops at its end frame;\n"
                         "animated objects (keys, lattice.animate_offset, glTF clips) move.");
-    ImGui::MenuItem("Tool panel", nullptr, &view.show_tool_panel);
-    ImGui::MenuItem("Scene && History panels", nullptr, &view.show_side_panels);
-    ImGui::MenuItem("Log panel", nullptr, &view.show_log_panel);
-    ImGui::MenuItem("Timeline panel", nullptr, &view.show_timeline);
+    picked |= menu_item("Tool panel", nullptr, &view.show_tool_panel);
+    picked |= menu_item("Scene & History panels", nullptr, &view.show_side_panels);
+    picked |= menu_item("Log panel", nullptr, &view.show_log_panel);
+    picked |= menu_item("Timeline panel", nullptr, &view.show_timeline);
     ImGui::Separator();
-    if (ImGui::MenuItem("Frame selected", "F / Numpad .")) action = MenuAction::FrameSelected;
-    if (ImGui::MenuItem("Frame all", "Home")) action = MenuAction::FrameAll;
-    ImGui::EndMenu();
+    if (menu_item("Frame selected", "F / Numpad .")) action = MenuAction::FrameSelected;
+    if (menu_item("Frame all", "Home")) action = MenuAction::FrameAll;
+    end_menu(action != MenuAction::None || picked);
   }
-  if (ImGui::BeginMenu("Help")) {
-    if (ImGui::MenuItem("Keys and mouse")) action = MenuAction::Keys;
-    if (ImGui::MenuItem("About trispline")) action = MenuAction::About;
-    ImGui::EndMenu();
+  if (begin_menu("Help")) {
+    if (menu_item("Keys and mouse")) action = MenuAction::Keys;
+    if (menu_item("About trispline")) action = MenuAction::About;
+    end_menu(action != MenuAction::None || picked);
   }
   ImGui::EndMainMenuBar();
   return action;

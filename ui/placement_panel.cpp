@@ -1,5 +1,6 @@
 #include "ui/placement_panel.h"
 
+#include "ui/number_field.h"
 #include "ui/theme.h"
 
 #include <imgui.h>
@@ -93,12 +94,12 @@ PlacementPanelResult draw_placement_panel(PlacementParams& p, std::string& objec
   ImGui::TextColored(colors::dim, "Volume");
   ImGui::Separator();
   row_label("Half-width");
-  ImGui::DragScalar("##width", ImGuiDataType_Double, &p.width, 0.002f, nullptr, nullptr, "%.3f");
+  drag_scalar("##width", ImGuiDataType_Double, &p.width, 0.002f, nullptr, nullptr, "%.3f");
   done();
   tooltip("d: half-width of the band around the stroke (C(u) +- d N(u)), world units");
   p.width = std::max(p.width, 1e-4);
   row_label("Height");
-  ImGui::DragScalar("##height", ImGuiDataType_Double, &p.height, 0.002f, nullptr, nullptr, "%.3f");
+  drag_scalar("##height", ImGuiDataType_Double, &p.height, 0.002f, nullptr, nullptr, "%.3f");
   done();
   tooltip("h: height of the deformation volume above the contact surface, world units");
   p.height = std::max(p.height, 1e-4);
@@ -140,27 +141,27 @@ PlacementPanelResult draw_placement_panel(PlacementParams& p, std::string& objec
     ImGui::BeginDisabled(!p.springs_on);
     core::SpringParams& sp = p.springs;
     row_label("Stiffness");
-    ImGui::DragScalar("##k", ImGuiDataType_Double, &sp.stiffness, 1.0f, nullptr, nullptr, "%.1f");
+    drag_scalar("##k", ImGuiDataType_Double, &sp.stiffness, 1.0f, nullptr, nullptr, "%.1f");
     done();
     tooltip("k > 0: spring stiffness (force per world unit); default 100");
     row_label("Damping");
-    ImGui::DragScalar("##rho", ImGuiDataType_Double, &sp.damping, 0.5f, nullptr, nullptr, "%.1f");
+    drag_scalar("##rho", ImGuiDataType_Double, &sp.damping, 0.5f, nullptr, nullptr, "%.1f");
     done();
     tooltip("rho >= 0: damping (force per unit velocity); >= sqrt(8 k M) is critically damped; default 30");
     row_label("Mass");
-    ImGui::DragScalar("##mass", ImGuiDataType_Double, &sp.mass, 0.01f, nullptr, nullptr, "%.3f");
+    drag_scalar("##mass", ImGuiDataType_Double, &sp.mass, 0.01f, nullptr, nullptr, "%.3f");
     done();
     tooltip("M > 0: mass of each control point (mass units); default 1");
     row_label("Threshold");
-    ImGui::DragScalar("##thr", ImGuiDataType_Double, &sp.angle_threshold_deg, 0.05f, nullptr, nullptr, "%.2f deg");
+    drag_scalar("##thr", ImGuiDataType_Double, &sp.angle_threshold_deg, 0.05f, nullptr, nullptr, "%.2f deg");
     done();
     tooltip("Roughness threshold in (0, 180) degrees: points whose neighbouring normals differ more move; default 2");
     row_label("Neighbourhood");
-    ImGui::DragInt("##nbh", &sp.neighbourhood, 0.1f, -1, 64);
+    drag_int("##nbh", &sp.neighbourhood, 0.1f, -1, 64);
     done();
     tooltip("Grid steps around rough points that may move; -1 = every point moves (default)");
     row_label("Max steps");
-    ImGui::DragInt("##steps", &sp.max_steps, 50.0f, 0, 1000000);
+    drag_int("##steps", &sp.max_steps, 50.0f, 0, 1000000);
     done();
     tooltip("Integration steps at most, [0, 1000000]; default 20000");
     row_label("Rest length");
@@ -183,7 +184,7 @@ PlacementPanelResult draw_placement_panel(PlacementParams& p, std::string& objec
   ImGui::TextColored(colors::dim, "Contact sampling");
   ImGui::Separator();
   row_label("Rays u x v");
-  ImGui::DragInt2("##samples", p.samples, 0.2f, 2, 512);
+  drag_int_n("##samples", p.samples, 2, 0.2f, 2, 512);
   done();
   tooltip("nu x nv rays shot along the view direction through the band; more rays follow the surface closer");
 
@@ -191,11 +192,11 @@ PlacementPanelResult draw_placement_panel(PlacementParams& p, std::string& objec
   ImGui::TextColored(colors::dim, "Lattice");
   ImGui::Separator();
   row_label("Order u v w");
-  ImGui::DragInt3("##order", p.order, 0.05f, 2, 6);
+  drag_int_n("##order", p.order, 3, 0.05f, 2, 6);
   done();
   tooltip("B-spline order per axis (degree + 1): 2 linear, 3 quadratic, 4 cubic");
   row_label("Controls");
-  ImGui::DragInt3("##controls", p.controls, 0.1f, 2, 64);
+  drag_int_n("##controls", p.controls, 3, 0.1f, 2, 64);
   done();
   tooltip("Control points per axis (u along the stroke, v across, w up); at least the order");
   for (int a = 0; a < 3; ++a) {

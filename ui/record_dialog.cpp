@@ -1,5 +1,6 @@
 #include "ui/record_dialog.h"
 
+#include "ui/number_field.h"
 #include "ui/theme.h"
 
 #include <imgui.h>
@@ -54,11 +55,11 @@ std::optional<nlohmann::json> draw_record_dialog(RecordDialogState& s, const cor
   ImGui::Combo("Format", &s.format, "PNG (8-bit sRGB)\0EXR (half float, linear)\0");
   tooltip("Image format of the numbered frames");
   ImGui::SetNextItemWidth(200);
-  ImGui::DragInt2("Frames", s.frames, 0.2f, t.frame_start, t.frame_end, "%d", ImGuiSliderFlags_AlwaysClamp);
+  drag_int_n("Frames", s.frames, 2, 0.2f, t.frame_start, t.frame_end, "%d", ImGuiSliderFlags_AlwaysClamp);
   tooltip("First and last timeline frame to record, inclusive (default: the whole timeline)");
   s.frames[1] = std::max(s.frames[1], s.frames[0]);
   ImGui::SetNextItemWidth(200);
-  ImGui::DragInt2("Size", s.size, 1.0f, 16, 8192, "%d px", ImGuiSliderFlags_AlwaysClamp);
+  drag_int_n("Size", s.size, 2, 1.0f, 16, 8192, "%d px", ImGuiSliderFlags_AlwaysClamp);
   tooltip("Image width and height in pixels (default: the viewport)");
   ImGui::Checkbox("Animated GLB", &s.glb);
   tooltip("animation.glb: one mesh per object with a morph target per frame (Blender imports shape keys)");

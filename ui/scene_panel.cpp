@@ -1,7 +1,7 @@
 #include "ui/scene_panel.h"
 
-#include "ui/theme.h"
 #include "ui/gui_probe.h"
+#include "ui/theme.h"
 
 #include <imgui.h>
 

@@ -1,5 +1,7 @@
 #include "ui/timeline_panel.h"
 
+#include "ui/gui_probe.h"
+#include "ui/number_field.h"
 #include "ui/theme.h"
 
 #include <imgui.h>
@@ -213,8 +215,9 @@ TimelineRequest draw_timeline_panel(const Rect& rect, const core::Timeline& t, P
   const float num_w = ImGui::CalcTextSize("000000").x + ImGui::GetFrameHeight();
   int frame = p.frame;
   ImGui::SetNextItemWidth(num_w);
-  if (ImGui::DragInt("##frame", &frame, 0.2f, t.frame_start, t.frame_end, "%d", ImGuiSliderFlags_AlwaysClamp))
+  if (drag_int("##frame", &frame, 0.2f, t.frame_start, t.frame_end, "%d", ImGuiSliderFlags_AlwaysClamp))
     set_frame(frame);
+  probe::item("timeline.frame");
   tooltip("Current frame (view state: not logged, not undoable). Scene time = (frame - start) / fps seconds");
   ImGui::SameLine();
   ImGui::TextColored(colors::dim, "%.2f s", t.time_of_frame(p.frame));
@@ -229,21 +232,24 @@ TimelineRequest draw_timeline_panel(const Rect& rect, const core::Timeline& t, P
   ImGui::TextUnformatted("Start");
   ImGui::SameLine();
   ImGui::SetNextItemWidth(num_w);
-  ImGui::DragInt("##start", &st.start, 0.2f, 0, 100000, "%d", ImGuiSliderFlags_AlwaysClamp);
+  drag_int("##start", &st.start, 0.2f, 0, 100000, "%d", ImGuiSliderFlags_AlwaysClamp);
+  probe::item("timeline.start");
   field_done();
   tooltip("First frame of the timeline (anim.timeline \"start\", >= 0); logged and undoable");
   ImGui::SameLine();
   ImGui::TextUnformatted("End");
   ImGui::SameLine();
   ImGui::SetNextItemWidth(num_w);
-  ImGui::DragInt("##end", &st.end, 0.2f, 0, 100000, "%d", ImGuiSliderFlags_AlwaysClamp);
+  drag_int("##end", &st.end, 0.2f, 0, 100000, "%d", ImGuiSliderFlags_AlwaysClamp);
+  probe::item("timeline.end");
   field_done();
   tooltip("Last frame of the timeline, inclusive (anim.timeline \"end\", >= start, <= 100000); playback loops here");
   ImGui::SameLine();
   ImGui::TextUnformatted("FPS");
   ImGui::SameLine();
   ImGui::SetNextItemWidth(num_w);
-  ImGui::DragScalar("##fps", ImGuiDataType_Double, &st.fps, 0.1f, nullptr, nullptr, "%.3g");
+  drag_scalar("##fps", ImGuiDataType_Double, &st.fps, 0.1f, nullptr, nullptr, "%.3g");
+  probe::item("timeline.fps");
   field_done();
   tooltip("Frames per second, in (0, 240] (anim.timeline \"fps\"); playback and recordings use it");
   if (committed && (st.fps != t.fps || st.start != t.frame_start || st.end != t.frame_end))
@@ -263,7 +269,8 @@ TimelineRequest draw_timeline_panel(const Rect& rect, const core::Timeline& t, P
     ImGui::Text("%s offset", object.name.c_str());
     ImGui::SameLine();
     ImGui::SetNextItemWidth(num_w * 3.0f);
-    ImGui::DragScalarN("##offset", ImGuiDataType_Double, &st.offset.x, 3, 0.002f, nullptr, nullptr, "%.3f");
+    drag_scalar_n("##offset", ImGuiDataType_Double, &st.offset.x, 3, 0.002f, nullptr, nullptr, "%.3f");
+    probe::item("timeline.offset");
     tooltip(
         "Parameter offset (u along the path, v, w) of the object inside its lattice at this frame, parameter\n"
         "units (u = 1 is the whole path). Edit it, then Insert key (I): the object walks along the path\n"

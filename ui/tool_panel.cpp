@@ -1,5 +1,6 @@
 #include "ui/tool_panel.h"
 
+#include "ui/number_field.h"
 #include "ui/theme.h"
 
 #include <imgui.h>
@@ -65,7 +66,7 @@ std::optional<nlohmann::json> draw_control_point_section(const core::SceneObject
   ImGui::TextUnformatted("Position");
   ImGui::SameLine(110.0f);
   ImGui::SetNextItemWidth(-1);
-  ImGui::DragScalarN("##position", ImGuiDataType_Double, st.position, 3, 0.002f, nullptr, nullptr, "%.4f");
+  drag_scalar_n("##position", ImGuiDataType_Double, st.position, 3, 0.002f, nullptr, nullptr, "%.4f");
   const bool active = ImGui::IsItemActive();
   if (ImGui::IsItemDeactivatedAfterEdit()) line = set_point_line(object.name, st.index, st.position);
   if (ImGui::IsItemHovered())

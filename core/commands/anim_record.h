@@ -41,6 +41,7 @@ class AnimRecordCommand : public Command {
   std::string label() const override;
   void redo(Scene& scene) override;  // validates against scene.timeline; the scene is not modified
   void undo(Scene&) override {}
+  bool undoable() const override { return false; }  // logged for replays, never an undo step
   nlohmann::json stats() const override;
 
   // The request; frame_first/frame_last are resolved by the last redo() (the whole timeline when not given).

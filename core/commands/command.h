@@ -45,6 +45,9 @@ class Command {
   virtual void redo(Scene& scene) = 0;  // throws CommandError; scene untouched on failure
   virtual void undo(Scene& scene) = 0;
   virtual nlohmann::json stats() const { return nlohmann::json::object(); }
+  // False for an action that leaves the document alone and is logged only so a replay repeats it (anim.record, like
+  // Blender's renders): the history runs and logs it but never makes it an undo step.
+  virtual bool undoable() const { return true; }
 };
 
 using CommandPtr = std::unique_ptr<Command>;

@@ -45,7 +45,9 @@ class LatticePressCommand : public SnapshotCommand {
   static CommandPtr parse(const nlohmann::json& j, const CommandContext& ctx);
   std::string id() const override { return "lattice.press"; }
   nlohmann::json to_json() const override;
-  std::string label() const override { return "Press '" + object_ + "' (" + std::string(to_string(falloff_)) + ")"; }
+  std::string label() const override {  // a negative strength pulls (the Press tool's Ctrl+drag)
+    return (strength_ < 0 ? "Pull '" : "Press '") + object_ + "' (" + std::string(to_string(falloff_)) + ")";
+  }
   nlohmann::json stats() const override { return stats_; }
 
  protected:

@@ -8,11 +8,13 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 
 #include "core/commands/camera_set.h"
 #include "editor/session.h"
 #include "ui/ddm_anim_panel.h"
+#include "ui/number_field.h"
 #include "ui/theme.h"
 
 namespace trispline::editor {
@@ -200,12 +202,21 @@ void DdmPaintTool::draw_brush() const {
   const ImU32 swath = erase ? IM_COL32(255, 95, 80, 45) : IM_COL32(255, 205, 90, 45);
   const float r = float(params_.radius_px) / sx;
   ImDrawList* dl = ImGui::GetBackgroundDrawList();
-  if (painting_ && stroke_.size() >= 2) {  // what the stroke covers so far
-    std::vector<ImVec2> pts;
-    for (const glm::dvec2& p : stroke_) pts.push_back(screen(p));
-    dl->AddPolyline(pts.data(), int(pts.size()), swath, ImDrawFlags_None, 2.0f * r);
-  } else if (painting_ && !stroke_.empty()) {
-    dl->AddCircleFilled(screen(stroke_.front()), r, swath, 48);
+  if (painting_ && !stroke_.empty()) {  // what the stroke covers so far: a disc per sample, a band per segment
+    // Not a polyline 2r thick: ImGui mitres its joints, and where a stroke turns sharply the mitre shoots far out of
+    // the swath as a big translucent quad.
+    dl->AddCircleFilled(screen(stroke_.front()), r, swath, 32);
+    for (std::size_t i = 1; i < stroke_.size(); ++i) {
+      const ImVec2 a = screen(stroke_[i - 1]), b = screen(stroke_[i]);
+      const float dx = b.x - a.x, dy = b.y - a.y, len = std::sqrt(dx * dx + dy * dy);
+      if (len > 0.5f) {
+        const ImVec2 n(-dy / len * r, dx / len * r);
+        const ImVec2 quad[4] = {{a.x + n.x, a.y + n.y}, {b.x + n.x, b.y + n.y}, {b.x - n.x, b.y - n.y},
+                                {a.x - n.x, a.y - n.y}};
+        dl->AddConvexPolyFilled(quad, 4, swath);
+      }
+      dl->AddCircleFilled(b, r, swath, 32);
+    }
   }
   dl->AddCircle(screen(*hover_), r, line, 48, 1.5f);
   dl->AddCircle(screen(*hover_), 1.5f, line, 8, 1.5f);
@@ -299,7 +310,7 @@ void DdmPaintTool::draw_new_layer_fields(const core::SceneObject* o) {
   if (ImGui::InputInt2("Counts", counts)) params_.counts = glm::max(glm::ivec2(counts[0], counts[1]), glm::ivec2(1));
   tooltip("Cells along u and v of every chart (a polygonal base has three charts per triangle)");
   const double h_min = 1e-6, h_max = 10.0;
-  ImGui::DragScalar("Height", ImGuiDataType_Double, &params_.height, 0.001f, &h_min, &h_max, "%.4g",
+  ui::drag_scalar("Height", ImGuiDataType_Double, &params_.height, 0.001f, &h_min, &h_max, "%.4g",
                     ImGuiSliderFlags_AlwaysClamp);
   tooltip("World units per tile unit of height, along the surface normal");
   const bool teapot = o && o->source == "primitive:teapot";

@@ -10,6 +10,7 @@
 #include "editor/navigation.h"
 #include "editor/session.h"
 #include "editor/tools/select_tool.h"
+#include "ui/number_field.h"
 #include "ui/theme.h"
 
 namespace trispline::editor {
@@ -227,21 +228,21 @@ void IncisionTool::draw_panel(ToolContext& ctx) {
   const double lo = 1e-6;
 
   double width = shown.width, depth = shown.depth, opening = shown.opening;
-  if (ImGui::DragScalar("Width", ImGuiDataType_Double, &width, speed, &lo, nullptr,
+  if (ui::drag_scalar("Width", ImGuiDataType_Double, &width, speed, &lo, nullptr,
                         format(params_.width <= 0.0, width)))
     params_.width = std::max(width, lo);
   tooltip(
       "alpha: half-extent of the cutting lattice across the cut, world units (seed Eq. 6.2: P_ijk = G_j +\n"
       "(l/2 - i) alpha S_j + (n/2 - k) beta N_j). Sets how far to each side the surface is pushed apart.\n"
       "Default: 0.02 x the selected object's bounding-box diagonal");
-  if (ImGui::DragScalar("Depth", ImGuiDataType_Double, &depth, speed, &lo, nullptr,
+  if (ui::drag_scalar("Depth", ImGuiDataType_Double, &depth, speed, &lo, nullptr,
                         format(params_.depth <= 0.0, depth)))
     params_.depth = std::max(depth, lo);
   tooltip(
       "beta: how deep below the surface the cut goes (along -N), world units (seed Eq. 6.2).\n"
       "Default: 0.02 x the bounding-box diagonal");
   const double zero = 0.0;
-  if (ImGui::DragScalar("Opening", ImGuiDataType_Double, &opening, speed, &zero, nullptr,
+  if (ui::drag_scalar("Opening", ImGuiDataType_Double, &opening, speed, &zero, nullptr,
                         format(params_.opening < 0.0, opening)))
     params_.opening = std::max(opening, 0.0);
   tooltip(

@@ -11,13 +11,15 @@
 
 #include "editor/navigation.h"
 #include "editor/session.h"
+#include "ui/number_field.h"
 #include "ui/theme.h"
 
 namespace trispline::editor {
 
 namespace {
-constexpr double kDefaultRadiusFraction = 0.1;  // of the object's bounding-box diagonal
-constexpr double kMinSpacingFraction = 0.25;    // path samples closer than radius/4 to the previous one are dropped
+constexpr double kDefaultRadiusFraction = 0.1;     // of the object's bounding-box diagonal
+constexpr double kDefaultStrengthFraction = 0.25;  // of the radius: like a Blender brush, relative to its size
+constexpr double kMinSpacingFraction = 0.25;       // path samples closer than radius/4 to the previous one are dropped
 
 // Tooltip of each falloff in core::kFalloffNames order: which are the seed's (§2.4.1, Fig. 2.7) and which Blender's.
 constexpr const char* kFalloffTips[] = {
@@ -86,6 +88,10 @@ double PressTool::radius(const ToolContext& ctx) const {
   return o ? kDefaultRadiusFraction * diagonal(*o) : 0.0;
 }
 
+double PressTool::strength(const ToolContext& ctx) const {
+  return strength_ > 0.0 ? strength_ : kDefaultStrengthFraction * radius(ctx);
+}
+
 namespace {
 std::unique_ptr<core::RayCaster> build_caster(std::shared_ptr<const core::TriMesh> mesh) {
   auto caster = std::make_unique<core::RayCaster>(core::BuildQuality::interactive);  // rebuilt after every press
@@ -151,7 +157,7 @@ std::optional<Tool::LivePreview> PressTool::live_preview(const ToolContext& ctx)
     if (!preview_ || preview_base_ != o->ffd || preview_samples_ != path_.size()) {
       try {
         preview_ = std::make_shared<const core::TrivariateBSpline<glm::dvec3>>(
-            core::press_lattice(o->ffd->lattice, path_, hover_radius_, pull_ ? -strength_ : strength_, falloff_));
+            core::press_lattice(o->ffd->lattice, path_, hover_radius_, signed_strength(ctx), falloff_));
         preview_base_ = o->ffd;
         preview_samples_ = path_.size();
       } catch (const std::exception&) {  // a degenerate column: the command at mouse-up reports it
@@ -175,7 +181,7 @@ void PressTool::commit(ToolContext& ctx) {
     ctx.session.messages().error("lattice.press: choose an object with an FFD lattice in the Tool panel first");
     return;
   }
-  const nlohmann::json line = lattice_press_line(object_, path, radius(ctx), pull_ ? -strength_ : strength_, falloff_);
+  const nlohmann::json line = lattice_press_line(object_, path, radius(ctx), signed_strength(ctx), falloff_);
   EditorSession& session = ctx.session;  // outlives the deferred work; ctx may not
   ctx.defer((pull_ ? "Pulling " : "Pressing ") + object_, [&session, line]() { session.execute(line); });
 }
@@ -199,13 +205,15 @@ void PressTool::draw_panel(ToolContext& ctx) {
     ImGui::EndCombo();
   }
   const core::SceneObject* o = scene.find(object_);
-  const double diag = o ? diagonal(*o) : 0.0;
+  // Before an object is chosen the sizes follow the scene's, so the fields never start at a meaningless 0.001.
+  const core::Aabb scene_box = scene.bounds();
+  const double diag = o ? diagonal(*o) : scene_box.valid() ? scene_box.diagonal() : 0.0;
   if (o && !o->ffd)
     ImGui::TextColored(ui::colors::dim, "%s has no FFD lattice: bind one first (e.g. lattice.ring).", object_.c_str());
 
   double r = radius(ctx);
   const double r_min = diag > 0.0 ? 0.005 * diag : 1e-3, r_max = diag > 0.0 ? 0.5 * diag : 10.0;
-  if (r <= 0.0) r = r_min;
+  if (r <= 0.0) r = diag > 0.0 ? kDefaultRadiusFraction * diag : 0.1;
   if (ImGui::SliderScalar("Radius", ImGuiDataType_Double, &r, &r_min, &r_max, "%.4g", ImGuiSliderFlags_Logarithmic))
     radius_ = std::max(r, 1e-9);
   if (ImGui::IsItemHovered())
@@ -216,10 +224,13 @@ void PressTool::draw_panel(ToolContext& ctx) {
   }
 
   const double s_min = 0.0, s_max = diag > 0.0 ? diag : 10.0;
-  ImGui::DragScalar("Strength", ImGuiDataType_Double, &strength_, float(std::max(s_max, 1e-3) * 1e-3), &s_min, &s_max,
-                    "%.4g", ImGuiSliderFlags_AlwaysClamp);
+  double s = strength_ > 0.0 ? strength_ : kDefaultStrengthFraction * r;
+  if (ui::drag_scalar("Strength", ImGuiDataType_Double, &s, float(std::max(s_max, 1e-3) * 1e-3), &s_min, &s_max,
+                      "%.4g", ImGuiSliderFlags_AlwaysClamp))
+    strength_ = std::max(s, 1e-12);
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("How far a control point at the sphere's centre moves along its column, world units");
+    ImGui::SetTooltip("How far a control point at the sphere's centre moves along its column, world units\n"
+                      "(default: a quarter of the radius)");
 
   const std::string current(core::to_string(falloff_));
   if (ImGui::BeginCombo("Falloff", current.c_str())) {

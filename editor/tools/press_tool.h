@@ -44,10 +44,13 @@ class PressTool : public Tool {
 
   void set_object(const std::string& name) { object_ = name; }
   void set_radius(double r) { radius_ = r; }  // world units; ≤ 0 = unset: 0.1 × the object's bounding-box diagonal
-  void set_strength(double s) { strength_ = s; }  // world units, the magnitude (Ctrl-drag negates it)
+  // World units, the magnitude (Ctrl-drag negates it); ≤ 0 = unset: a quarter of the radius, a dent that shows.
+  void set_strength(double s) { strength_ = s; }
   void set_falloff(core::Falloff f) { falloff_ = f; }
   // Radius the next press uses for the current object (the default when unset); 0 without a target object.
   double radius(const ToolContext& ctx) const;
+  double strength(const ToolContext& ctx) const;  // the magnitude the next press uses (the default when unset)
+  double signed_strength(const ToolContext& ctx) const { return pull_ ? -strength(ctx) : strength(ctx); }
   const std::optional<glm::dvec3>& hover() const { return hover_; }  // sphere centre under the cursor, if any
   const std::vector<glm::dvec3>& path() const { return path_; }      // centres of the drag under way
 
@@ -61,7 +64,7 @@ class PressTool : public Tool {
   std::string object_;
   std::string followed_selection_;  // selection the combo last followed
   double radius_ = 0.0;             // ≤ 0: default from the object's size
-  double strength_ = 0.05;
+  double strength_ = 0.0;            // ≤ 0: default from the radius
   core::Falloff falloff_ = core::Falloff::smooth;
 
   std::optional<glm::dvec3> hover_;

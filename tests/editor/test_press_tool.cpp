@@ -107,7 +107,7 @@ TEST_F(PressTool, DragIssuesOneUndoablePress) {
   EXPECT_EQ(j["object"], "t");
   EXPECT_GE(j["path"].size(), 2u);
   EXPECT_DOUBLE_EQ(j["radius"].get<double>(), radius);
-  EXPECT_DOUBLE_EQ(j["strength"].get<double>(), 0.05);
+  EXPECT_DOUBLE_EQ(j["strength"].get<double>(), 0.25 * radius) << "default strength: a quarter of the radius";
   EXPECT_EQ(j["falloff"], "hat");
   // Consecutive samples are at least radius/4 apart.
   for (std::size_t i = 1; i < j["path"].size(); ++i) {
@@ -168,6 +168,7 @@ TEST_F(PressTool, CtrlDragPullsWithNegativeStrength) {
   drag(row, /*ctrl=*/true);
   ASSERT_EQ(s.history().applied(), applied + 1) << last_message(messages);
   EXPECT_DOUBLE_EQ(s.history().at(applied).to_json()["strength"].get<double>(), -0.02);
+  EXPECT_EQ(s.history().at(applied).label().rfind("Pull '", 0), 0u) << s.history().at(applied).label();
 }
 
 TEST_F(PressTool, ObjectWithoutLatticeShowsNoBrush) {
