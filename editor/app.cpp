@@ -6,6 +6,7 @@
 #include "editor/navigation.h"
 #include "editor/session.h"
 #include "editor/tools/toolbox.h"
+#include "editor/tools/transform_modal.h"
 #include "editor/tools/work_queue.h"
 #include "gpu/renderer.h"
 #include "gpu/timer.h"
@@ -84,6 +85,7 @@ class App {
   void handle_scene(const ui::SceneRequest& request);
   void handle_file(const fs::path& path);
   void viewport_input();
+  bool transform_input();  // G / R / S: starts or feeds the modal transform; true while it has the keyboard
   void render_view();
   bool animating() const;  // the timeline is playing
   void draw_control_point();  // the "Control point" section appended to the Tool panel
@@ -115,6 +117,9 @@ class App {
   ui::ViewToggles toggles_;
   ToolContext tool_ctx_;
   Toolbox tools_;
+  TransformModal transform_;
+  ui::TransformFields transform_fields_;  // the Scene panel's Location / Rotation / Scale while edited
+  bool transform_frame_ = false;  // the modal transform had the input this frame (the viewport ignores it)
 
   ui::LogPanel log_panel_;
   ui::FileDialog file_dialog_;
@@ -283,6 +288,8 @@ void App::handle_scene(const ui::SceneRequest& r) {
   if (r.kind == K::Frame) frame_selected();
   if (r.kind == K::ToggleVisible && !hidden_.erase(r.name)) hidden_.insert(r.name);
   if (r.kind == K::Load) ask_file(FilePurpose::LoadMesh);
+  if (r.kind == K::Transform)  // one Scene panel field left after an edit: one step
+    session_.execute({{"cmd", "object.transform"}, {"object", r.name}, {r.field, {r.value.x, r.value.y, r.value.z}}});
   if (r.kind == K::AddPrimitive) {
     const nlohmann::json line = {
         {"cmd", "scene.primitive"}, {"kind", r.name}, {"name", session_.scene().unique_name(r.name)}};
@@ -302,7 +309,9 @@ void App::handle_file(const fs::path& chosen) {
       const nlohmann::json line = {
           {"cmd", "scene.load"}, {"path", path.string()}, {"name", session_.scene().unique_name(path.stem().string())}};
       tool_ctx_.defer("Loading " + path.filename().string(), [this, line] {
-        if (session_.execute(line)) selected_ = line["name"];
+        if (!session_.execute(line)) return;
+        selected_ = line["name"];
+        frame_selected();  // a mesh in its own units (mm, km) would otherwise fill or vanish from the view
       });
       break;
     }
@@ -318,8 +327,38 @@ void App::handle_file(const fs::path& chosen) {
   }
 }
 
+bool App::transform_input() {
+  const ImGuiIO& io = ImGui::GetIO();
+  const std::vector<ui::KeyPress>& keys = ui::ImGuiHost::key_presses();
+  std::size_t first = 0;
+  if (!transform_.active()) {
+    if (io.WantCaptureKeyboard || io.WantTextInput || !work_.empty() || anim_.recording() || tools_.owns_mouse() ||
+        file_dialog_.is_open() || recovery_ || prompt_for_ != Pending::None)
+      return false;
+    const core::SceneObject* o = session_.scene().find(selected_);
+    if (!o || !o->world_mesh || hidden_.count(selected_)) return false;
+    const auto start = std::find_if(keys.begin(), keys.end(), [](const ui::KeyPress& k) {
+      return TransformModal::start_key(k).has_value();
+    });
+    if (start == keys.end()) return false;
+    transform_.begin(*TransformModal::start_key(*start), *o, view_, nav_input_from_imgui().mouse_px);
+    first = std::size_t(start - keys.begin()) + 1;  // the keys typed after G in the same frame belong to it
+  }
+  TransformModalInput in;
+  in.keys = keys;
+  in.mouse_px = nav_input_from_imgui().mouse_px;
+  in.left_clicked = io.MouseClicked[0] && first == 0;
+  in.right_clicked = io.MouseClicked[1];
+  if (transform_.update(in, first) == TransformModal::Outcome::confirmed) session_.execute(transform_.confirmed_line());
+  return true;
+}
+
 void App::viewport_input() {
   const ImGuiIO& io = ImGui::GetIO();
+  if (transform_frame_) {  // the modal transform owns the mouse: no navigation, no tool, no picking
+    tools_.mouse_away();
+    return;
+  }
   if (io.WantCaptureMouse || !work_.empty()) {
     if (!tools_.owns_mouse()) tools_.mouse_away();
     return;
@@ -365,7 +404,13 @@ void App::render_view() {
     vo.live_lattice = p->lattice;
   }
   try {
-    renderer_->draw(anim_.drawn_scene(hidden_), view_, vo);
+    if (transform_.active()) {  // the live preview: a shallow copy with the object moved, the document untouched
+      core::Scene shown = anim_.drawn_scene(hidden_);
+      if (shown.find(transform_.object())) shown.replace(transform_.preview_object());
+      renderer_->draw(shown, view_, vo);
+    } else {
+      renderer_->draw(anim_.drawn_scene(hidden_), view_, vo);
+    }
   } catch (const std::exception& e) {
     if (vo.ffd_backend != core::FfdBackend::cpu_ref) {
       // E.g. a lattice order the fast backends do not support (they take 2..4): the reference takes any.
@@ -398,10 +443,13 @@ void App::frame() {
   if (!session_.scene().find(selected_)) selected_.clear();
 
   handle_menu(ui::draw_main_menu(toggles_, session_.menu_state()));
+  // The modal transform (G / R / S) takes every key while it runs: X is then an axis, not Delete.
+  transform_frame_ = transform_input();
   // While working or recording only F12 (screenshot) is taken from the keyboard.
-  const ui::MenuAction key = ui::poll_shortcuts();
+  ui::MenuAction key = ui::poll_shortcuts();
+  if (transform_frame_ && key != ui::MenuAction::Screenshot) key = ui::MenuAction::None;
   handle_menu(key == ui::MenuAction::Screenshot || (work_.empty() && !anim_.recording()) ? key : ui::MenuAction::None);
-  if (work_.empty() && !anim_.recording() && !tools_.owns_mouse())  // tool keys without a MenuAction (K: Incision)
+  if (!transform_frame_ && work_.empty() && !anim_.recording() && !tools_.owns_mouse())  // tool keys (K: Incision)
     if (const std::string k = ui::poll_tool_key(); !k.empty()) tools_.activate_shortcut(k);
 
   // The Timeline spans the window's width above the status bar (Blender); the other panels share the rest.
@@ -421,7 +469,7 @@ void App::frame() {
     draw_control_point();
   }
   if (toggles_.show_side_panels) {
-    ui::ScenePanelState sps{selected_, hidden_, session_.has_command("scene.remove")};
+    ui::ScenePanelState sps{selected_, hidden_, session_.has_command("scene.remove"), &transform_fields_};
     handle_scene(ui::draw_scene_panel(layout.scene, session_.scene(), sps));
     const ui::HistoryPanelResult hr = ui::draw_history_panel(layout.history, session_.history_view());
     if (hr.jump_to) session_.jump_to(*hr.jump_to);
@@ -431,7 +479,7 @@ void App::frame() {
   if (toggles_.show_log_panel) log_panel_.draw(layout.log, messages_);
 
   ui::StatusInfo st = session_.status();
-  st.hint = tools_.hint();
+  st.hint = transform_.active() ? transform_.header() : tools_.hint();
   ui::draw_status_bar(st);
 
   if (auto chosen = file_dialog_.draw()) handle_file(*chosen);
@@ -461,6 +509,14 @@ void App::frame() {
   const ui::Rect& free = layout.viewport;  // what the panels leave visible: F / Home frame into it
   const glm::dvec2 s(io.DisplayFramebufferScale.x, io.DisplayFramebufferScale.y), lo(free.pos.x, free.pos.y);
   nav_.set_visible_rect(lo * s, (lo + glm::dvec2(free.size.x, free.size.y)) * s);
+  if (transform_.active()) {  // the modal's state on the viewport (Blender: in its header)
+    const std::string text = transform_.header();
+    const ImVec2 size = ImGui::CalcTextSize(text.c_str());  // bottom left: the timing overlay holds the top left
+    const ImVec2 at(free.pos.x + 8.0f, free.pos.y + free.size.y - size.y - 8.0f);
+    ImDrawList* dl = ImGui::GetForegroundDrawList();
+    dl->AddRectFilled({at.x - 4, at.y - 2}, {at.x + size.x + 4, at.y + size.y + 2}, IM_COL32(20, 20, 22, 210), 3.0f);
+    dl->AddText(at, IM_COL32(255, 220, 120, 255), text.c_str());
+  }
   work_.draw_overlay();
   if (!options_.gui_probe.empty()) write_probe();
   render_view();
@@ -499,6 +555,7 @@ void App::write_probe() {
   p["camera"] = {{"eye", {view_.eye.x, view_.eye.y, view_.eye.z}},
                  {"target", {view_.target.x, view_.target.y, view_.target.z}}};
   p["current_frame"] = anim_.playback().frame;
+  p["transform"] = transform_.active() ? nlohmann::json(transform_.header()) : nlohmann::json(nullptr);
   write_probe_file(options_.gui_probe, p);
 }
 

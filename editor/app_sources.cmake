@@ -13,4 +13,5 @@ set(TRISPLINE_EDITOR_APP_SOURCES
     tools/press_tool.cpp
     tools/incision_tool.cpp
     tools/dffd_tool.cpp
-    tools/ddm_paint_tool.cpp)
+    tools/ddm_paint_tool.cpp
+    tools/transform_modal.cpp)

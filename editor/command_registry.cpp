@@ -12,6 +12,7 @@
 #include "core/commands/lattice_set_point.h"
 #include "core/commands/mesh_refine.h"
 #include "core/commands/mesh_subdivide.h"
+#include "core/commands/object_transform.h"
 #include "core/commands/ddm_animate.h"
 #include "core/commands/ddm_commands.h"
 #include "core/commands/ddm_paint.h"
@@ -53,6 +54,8 @@ const CommandRegistry& CommandRegistry::builtin() {
           core::SceneLoadCommand::parse);
     r.add("scene.primitive", "Add a teapot, plane, sphere, box, cylinder or terrain", core::ScenePrimitiveCommand::parse);
     r.add("scene.remove", "Remove an object", core::SceneRemoveCommand::parse);
+    r.add("object.transform", "Set an object's location, rotation and scale (its lattice moves with it)",
+          core::ObjectTransformCommand::parse);
     r.add("camera.set", "Set the view (eye, target, up, field of view, viewport)", core::CameraSetCommand::parse);
     r.add("place.sketch", "Place an object along a stroke sketched over the scene (seed §2.3.1)",
           core::PlaceSketchCommand::parse);

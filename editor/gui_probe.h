@@ -7,7 +7,8 @@
 //   values             {"name": "text"} of ui::probe::value() (e.g. the file dialog's path field)
 //   the editor's part  document, modified, history {labels, applied}, objects, object_px (each object's bounds
 //                      centre on screen), selected, tool, log (last messages), viewport (the visible region
-//                      [x0, y0, x1, y1]), scene_center_px, camera, current_frame
+//                      [x0, y0, x1, y1]), scene_center_px, camera, current_frame, transform (the G / R / S
+//                      modal's header line while it runs, else null)
 // Written to FILE.tmp and renamed, so a reader never sees half a file.
 #pragma once
 

@@ -38,6 +38,46 @@ ImVec4 to_display(const glm::vec3& c) {
   return ImVec4(g(c.x), g(c.y), g(c.z), 1.0f);
 }
 
+// Location / Rotation / Scale of `o` as typed fields (a click enters text). Values come from the scene unless a field
+// is being edited; leaving an edited row requests object.transform with that row.
+void draw_transform_fields(const core::SceneObject& o, TransformFields& f, SceneRequest& req) {
+  if (f.object != o.name || !(f.active || f.dirty)) {
+    f.object = o.name;
+    f.dirty = false;
+    const glm::dvec3 v[3] = {o.transform.translate, o.transform.rotate_deg, o.transform.scale};
+    for (int r = 0; r < 3; ++r)
+      for (int a = 0; a < 3; ++a) f.values[r][a] = v[r][a];
+  }
+  ImGui::Separator();
+  ImGui::TextColored(colors::dim, "Transform");
+  static const char* kLabels[] = {"Location", "Rotation", "Scale"};
+  static const char* kFields[] = {"translate", "rotate_deg", "scale"};
+  static const char* kTips[] = {"world units (x, y, z)", "degrees about x, then y, then z", "per axis, > 0"};
+  const float label_w = ImGui::CalcTextSize("Location").x + ImGui::GetStyle().ItemSpacing.x * 2;
+  bool active = false;
+  for (int r = 0; r < 3; ++r) {
+    ImGui::PushID(r);
+    ImGui::AlignTextToFramePadding();
+    ImGui::TextUnformatted(kLabels[r]);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", kTips[r]);
+    ImGui::SameLine(label_w);
+    ImGui::SetNextItemWidth(-FLT_MIN);
+    if (ImGui::InputScalarN("##xyz", ImGuiDataType_Double, f.values[r], 3, nullptr, nullptr, r == 1 ? "%.2f" : "%.3f"))
+      f.dirty = true;
+    probe::item(std::string("scene.transform.") + kFields[r]);  // the row (x, y, z fields side by side)
+    f.row_min[r] = {ImGui::GetItemRectMin().x, ImGui::GetItemRectMin().y};
+    f.row_max[r] = {ImGui::GetItemRectMax().x, ImGui::GetItemRectMax().y};
+    active = active || ImGui::IsItemActive();
+    if (ImGui::IsItemDeactivatedAfterEdit()) {
+      req = {SceneRequest::Kind::Transform, o.name, kFields[r],
+             glm::dvec3(f.values[r][0], f.values[r][1], f.values[r][2])};
+      f.dirty = false;
+    }
+    ImGui::PopID();
+  }
+  f.active = active;
+}
+
 }  // namespace
 
 SceneRequest draw_scene_panel(const Rect& rect, const core::Scene& scene, const ScenePanelState& state) {
@@ -61,8 +101,12 @@ SceneRequest draw_scene_panel(const Rect& rect, const core::Scene& scene, const 
     ImGui::Separator();
     if (scene.objects().empty()) ImGui::TextColored(colors::dim, "Empty scene: Load... or Add a primitive.");
 
+    const core::SceneObject* sel = scene.find(state.selected);
+    const bool show_transform = sel && state.transform;
+    const ImGuiStyle& style = ImGui::GetStyle();
+    const float reserve = show_transform ? 4 * ImGui::GetFrameHeightWithSpacing() + style.ItemSpacing.y : 0.0f;
     const int flags = ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY | ImGuiTableFlags_BordersInnerV;
-    if (ImGui::BeginTable("##objects", 3, flags)) {
+    if (ImGui::BeginTable("##objects", 3, flags, ImVec2(0.0f, -reserve))) {
       ImGui::TableSetupColumn("##eye", ImGuiTableColumnFlags_WidthFixed, ImGui::GetFrameHeight());
       ImGui::TableSetupColumn("Object", ImGuiTableColumnFlags_WidthStretch);
       ImGui::TableSetupColumn("Vertices", ImGuiTableColumnFlags_WidthFixed, 70.0f);
@@ -99,6 +143,7 @@ SceneRequest draw_scene_panel(const Rect& rect, const core::Scene& scene, const 
       }
       ImGui::EndTable();
     }
+    if (show_transform) draw_transform_fields(*sel, *state.transform, req);
   }
   ImGui::End();
   return req;

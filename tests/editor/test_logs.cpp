@@ -85,7 +85,8 @@ INSTANTIATE_TEST_SUITE_P(
                       BadLogCase{"bad_dffd_split_box.jsonl", 4, "box", "larger than the lattice"},
                       BadLogCase{"bad_dffd_split_fold.jsonl", 4, "kernel_width", "fold-over"},
                       BadLogCase{"bad_incision_miss.jsonl", 3, "stroke", "misses the surface"},
-                      BadLogCase{"bad_incision_depth.jsonl", 3, "depth", "zero depth"}),
+                      BadLogCase{"bad_incision_depth.jsonl", 3, "depth", "zero depth"},
+                      BadLogCase{"bad_transform_scale.jsonl", 3, "scale", "(0, 1e6]"}),
     [](const auto& info) {
       std::string n = info.param.file;
       n = n.substr(4, n.size() - 4 - 6);  // strip "bad_" and ".jsonl"
@@ -113,7 +114,7 @@ TEST(Registry, UnknownAndMissingCmd) {
   EXPECT_THROW(reg.parse({{"cmd", 3}}, ctx), core::CommandError);
   EXPECT_THROW(reg.parse(nlohmann::json::array(), ctx), core::CommandError);
   for (const char* id : {"scene.load", "scene.primitive", "scene.remove", "camera.set", "place.sketch",
-                         "lattice.ring", "lattice.animate_offset"})
+                         "lattice.ring", "lattice.animate_offset", "object.transform"})
     EXPECT_NE(std::find(reg.ids().begin(), reg.ids().end(), id), reg.ids().end()) << id;
 }
 
