@@ -33,8 +33,9 @@ void check_stat(const std::filesystem::path& path, const struct stat& st, std::u
   if (kind) throw MeshIoError(quoted(path) + ": is " + kind + ", not a regular file");
   const auto size = static_cast<std::uintmax_t>(st.st_size);
   if (size > max_bytes)
-    throw MeshIoError(quoted(path) + ": " + format_bytes(size) + " (" + std::to_string(size) +
-                      " bytes) is over the " + format_bytes(max_bytes) + " limit for " + what);
+    throw MeshIoError(quoted(path) + ": " + format_bytes(size) +
+                      (size >= 1024 ? " (" + std::to_string(size) + " bytes)" : std::string()) + " is over the " +
+                      format_bytes(max_bytes) + " limit for " + what);
 }
 
 [[noreturn]] void throw_errno(const std::filesystem::path& path, int err, const char* doing) {

@@ -7,6 +7,7 @@
 #include <tiny_gltf.h>
 
 #include "core/mesh/gltf_model.h"
+#include "core/mesh/gltf_read.h"
 
 #include <cmath>
 #include <cstdio>
@@ -69,38 +70,16 @@ std::vector<float> delta(const std::vector<glm::dvec3>& a, const std::vector<glm
   return out;
 }
 
-tinygltf::Model load(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw MeshIoError(quoted(path) + ": file not found");
-  tinygltf::Model model;
-  tinygltf::TinyGLTF loader;
-  std::string err, warn;
-  const bool ok = lower_extension(path) == ".glb" ? loader.LoadBinaryFromFile(&model, &err, &warn, path.string())
-                                                  : loader.LoadASCIIFromFile(&model, &err, &warn, path.string());
-  if (!ok) throw MeshIoError(quoted(path) + ": cannot parse glTF file: " + (err.empty() ? "unknown error" : err));
-  return model;
-}
+tinygltf::Model load(const std::filesystem::path& path) { return gltf_read::read_model(path); }
 
-// Float VEC3 accessor `index` as #count vectors (a view-less accessor is all zeros).
+// Float VEC3 accessor `index` as #count vectors (a view-less accessor is all zeros), at most kMaxMeshFileVertices.
 std::vector<glm::dvec3> read_vec3(const tinygltf::Model& model, int index, const std::filesystem::path& path) {
-  if (index < 0 || index >= static_cast<int>(model.accessors.size()))
-    throw MeshIoError(quoted(path) + ": accessor index out of range");
-  const auto& acc = model.accessors[index];
-  if (acc.type != TINYGLTF_TYPE_VEC3 || acc.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT)
+  if (gltf_read::accessor_layout(model, index, "VEC3", path).component_type != TINYGLTF_COMPONENT_TYPE_FLOAT)
     throw MeshIoError(quoted(path) + ": expected a float VEC3 accessor");
-  std::vector<glm::dvec3> out(acc.count, glm::dvec3(0.0));
-  if (acc.bufferView < 0) return out;
-  const auto& view = model.bufferViews.at(acc.bufferView);
-  const auto& buf = model.buffers.at(view.buffer);
-  const std::size_t stride = view.byteStride ? view.byteStride : 12;
-  const std::size_t start = view.byteOffset + acc.byteOffset;
-  if (acc.count > 0 && start + stride * (acc.count - 1) + 12 > buf.data.size())
-    throw MeshIoError(quoted(path) + ": accessor runs past the end of its buffer");
-  for (std::size_t i = 0; i < acc.count; ++i) {
-    float f[3];
-    std::memcpy(f, buf.data.data() + start + stride * i, 12);
-    out[i] = glm::dvec3(f[0], f[1], f[2]);
-  }
+  const std::vector<double> v =
+      gltf_read::read_accessor(model, index, 3, "VEC3", path, gltf_read::kMaxMeshFileVertices, /*sparse=*/false);
+  std::vector<glm::dvec3> out(v.size() / 3);
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = glm::dvec3(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
   return out;
 }
 

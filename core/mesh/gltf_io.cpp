@@ -8,6 +8,7 @@
 #include <tiny_gltf.h>
 
 #include "core/mesh/gltf_model.h"
+#include "core/mesh/gltf_read.h"
 
 #include <array>
 #include <cmath>
@@ -51,96 +52,71 @@ glm::dmat4 local_matrix(const tinygltf::Node& n) {
   return m;
 }
 
-// Reads accessor `index` as #count × comps doubles (float components only, or normalised integers for texcoords).
-std::vector<double> read_floats(const tinygltf::Model& model, int index, int comps, const std::string& what,
-                                const std::filesystem::path& path) {
-  if (index < 0 || index >= static_cast<int>(model.accessors.size()))
-    throw MeshIoError(quoted(path) + ": " + what + " accessor index out of range");
-  const auto& acc = model.accessors[index];
-  if (tinygltf::GetNumComponentsInType(acc.type) != comps)
-    throw MeshIoError(quoted(path) + ": " + what + " accessor has the wrong type");
-  std::vector<double> out(acc.count * comps, 0.0);
-  if (acc.bufferView < 0) return out;  // all zeros (sparse accessors without a view are not supported further)
-  const auto& view = model.bufferViews.at(acc.bufferView);
-  const auto& buf = model.buffers.at(view.buffer);
-  const int csize = tinygltf::GetComponentSizeInBytes(acc.componentType);
-  if (csize <= 0) throw MeshIoError(quoted(path) + ": " + what + " has an unknown component type");
-  const std::size_t stride = view.byteStride ? view.byteStride : static_cast<std::size_t>(csize * comps);
-  const std::size_t start = view.byteOffset + acc.byteOffset;
-  if (acc.count > 0 && start + stride * (acc.count - 1) + csize * comps > buf.data.size())
-    throw MeshIoError(quoted(path) + ": " + what + " accessor runs past the end of its buffer");
-  for (std::size_t i = 0; i < acc.count; ++i) {
-    const unsigned char* p = buf.data.data() + start + stride * i;
-    for (int c = 0; c < comps; ++c) {
-      const unsigned char* q = p + c * csize;
-      double v = 0;
-      switch (acc.componentType) {
-        case TINYGLTF_COMPONENT_TYPE_FLOAT: {
-          float f;
-          std::memcpy(&f, q, 4);
-          v = f;
-          break;
-        }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-          v = *q / (acc.normalized ? 255.0 : 1.0);
-          break;
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-          std::uint16_t s;
-          std::memcpy(&s, q, 2);
-          v = s / (acc.normalized ? 65535.0 : 1.0);
-          break;
-        }
-        default:
-          throw MeshIoError(quoted(path) + ": " + what + " must be float (or normalised unsigned)");
-      }
-      out[i * comps + c] = v;
-    }
-  }
+using gltf_read::kMaxMeshFileTriangles;
+using gltf_read::kMaxMeshFileVertices;
+
+// Vertices and triangles read so far from one file, against kMaxMeshFileVertices / kMaxMeshFileTriangles.
+struct Totals {
+  std::size_t vertices = 0, triangles = 0;
+};
+
+// Element count of vertex attribute `index`, which must equal the primitive's POSITION count `n`.
+void require_count(const tinygltf::Model& model, int index, const std::string& what, std::size_t n,
+                   const std::string& where, const std::filesystem::path& path) {
+  const std::size_t count = gltf_read::accessor_layout(model, index, what, path).count;
+  if (count != n)
+    throw MeshIoError(quoted(path) + ": " + where + ": " + what + " has " + std::to_string(count) +
+                      " elements, POSITION has " + std::to_string(n));
+}
+
+// Vertex attribute `index` as #n × comps finite doubles: float components, or (normalised) unsigned byte/short.
+std::vector<double> read_attribute(const tinygltf::Model& model, int index, int comps, const std::string& what,
+                                   std::size_t n, const std::string& where, const std::filesystem::path& path) {
+  const auto layout = gltf_read::accessor_layout(model, index, what, path);
+  if (layout.component_type != TINYGLTF_COMPONENT_TYPE_FLOAT &&
+      layout.component_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+      layout.component_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)
+    throw MeshIoError(quoted(path) + ": " + what + " must be float (or normalised unsigned)");
+  // Sparse substitution is not applied here (MeshClip mirrors this).
+  std::vector<double> out = gltf_read::read_accessor(model, index, comps, what, path, n, /*sparse=*/false);
+  for (std::size_t i = 0; i < out.size(); ++i)
+    if (!std::isfinite(out[i]))
+      throw MeshIoError(quoted(path) + ": " + where + ": non-finite " + what + " value (vertex " +
+                        std::to_string(i / comps) + ")");
   return out;
 }
 
-std::vector<std::uint32_t> read_indices(const tinygltf::Model& model, int index, const std::filesystem::path& path) {
-  if (index < 0 || index >= static_cast<int>(model.accessors.size()))
-    throw MeshIoError(quoted(path) + ": index accessor out of range");
-  const auto& acc = model.accessors[index];
-  if (acc.type != TINYGLTF_TYPE_SCALAR || acc.bufferView < 0)
-    throw MeshIoError(quoted(path) + ": index accessor must be a scalar with a buffer view");
-  const auto& view = model.bufferViews.at(acc.bufferView);
-  const auto& buf = model.buffers.at(view.buffer);
-  const int csize = tinygltf::GetComponentSizeInBytes(acc.componentType);
-  if (csize != 1 && csize != 2 && csize != 4) throw MeshIoError(quoted(path) + ": bad index component type");
-  const std::size_t stride = view.byteStride ? view.byteStride : static_cast<std::size_t>(csize);
-  const std::size_t start = view.byteOffset + acc.byteOffset;
-  if (acc.count > 0 && start + stride * (acc.count - 1) + csize > buf.data.size())
-    throw MeshIoError(quoted(path) + ": index accessor runs past the end of its buffer");
-  std::vector<std::uint32_t> out(acc.count);
-  for (std::size_t i = 0; i < acc.count; ++i) {
-    const unsigned char* q = buf.data.data() + start + stride * i;
-    if (csize == 1) out[i] = *q;
-    if (csize == 2) {
-      std::uint16_t s;
-      std::memcpy(&s, q, 2);
-      out[i] = s;
-    }
-    if (csize == 4) std::memcpy(&out[i], q, 4);
-  }
-  return out;
-}
-
+// Appends the primitive's vertices (POSITION through xf, NORMAL through its inverse transpose, TEXCOORD_0); returns
+// the first vertex and the count. Counts are checked against POSITION and the file's budget before any read.
 std::pair<std::uint32_t, std::size_t> append_vertices(const tinygltf::Model& model, const tinygltf::Primitive& prim,
                                                       const glm::dmat4& xf, TriMesh& mesh, bool& normals_ok,
+                                                      Totals& totals, const std::string& where,
                                                       const std::filesystem::path& path) {
-  const auto pos = read_floats(model, prim.attributes.at("POSITION"), 3, "POSITION", path);
-  const std::size_t n = pos.size() / 3;
-  const auto base = static_cast<std::uint32_t>(mesh.positions.size());
-  for (std::size_t i = 0; i < n; ++i)
-    mesh.positions.push_back(glm::dvec3(xf * glm::dvec4(pos[3 * i], pos[3 * i + 1], pos[3 * i + 2], 1.0)));
-
+  const int pos_index = prim.attributes.at("POSITION");
+  const std::size_t n = gltf_read::accessor_layout(model, pos_index, "POSITION", path).count;
+  if (n > kMaxMeshFileVertices - totals.vertices)
+    throw MeshIoError(quoted(path) + ": the file's meshes have more than " + std::to_string(kMaxMeshFileVertices) +
+                      " vertices (the limit for mesh files; a mesh used by several nodes counts once per node)");
   const auto nrm_it = prim.attributes.find("NORMAL");
+  const auto uv_it = prim.attributes.find("TEXCOORD_0");
+  if (nrm_it != prim.attributes.end()) require_count(model, nrm_it->second, "NORMAL", n, where, path);
+  if (uv_it != prim.attributes.end()) require_count(model, uv_it->second, "TEXCOORD_0", n, where, path);
+
+  const auto pos = read_attribute(model, pos_index, 3, "POSITION", n, where, path);
+  const auto base = static_cast<std::uint32_t>(mesh.positions.size());
+  for (std::size_t i = 0; i < n; ++i) {
+    const glm::dvec3 p(xf * glm::dvec4(pos[3 * i], pos[3 * i + 1], pos[3 * i + 2], 1.0));
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      throw MeshIoError(quoted(path) + ": " + where + ": vertex " + std::to_string(i) +
+                        " is not finite after its node's transform");
+    mesh.positions.push_back(p);
+  }
+  totals.vertices += n;
+
   if (nrm_it != prim.attributes.end() && normals_ok) {
-    const auto nrm = read_floats(model, nrm_it->second, 3, "NORMAL", path);
+    const auto nrm = read_attribute(model, nrm_it->second, 3, "NORMAL", n, where, path);
     const glm::dmat3 nm = glm::transpose(glm::inverse(glm::dmat3(xf)));
-    for (std::size_t i = 0; i < n && 3 * i + 2 < nrm.size(); ++i) {
+    for (std::size_t i = 0; i < n; ++i) {
       const glm::dvec3 v = nm * glm::dvec3(nrm[3 * i], nrm[3 * i + 1], nrm[3 * i + 2]);
       const double len = glm::length(v);
       mesh.normals.push_back(len > 0 ? v / len : v);
@@ -149,12 +125,10 @@ std::pair<std::uint32_t, std::size_t> append_vertices(const tinygltf::Model& mod
   } else {
     normals_ok = false;
   }
-  const auto uv_it = prim.attributes.find("TEXCOORD_0");
   if (uv_it != prim.attributes.end()) {
-    const auto uv = read_floats(model, uv_it->second, 2, "TEXCOORD_0", path);
+    const auto uv = read_attribute(model, uv_it->second, 2, "TEXCOORD_0", n, where, path);
     mesh.uvs.resize(base, glm::dvec2(0));
-    for (std::size_t i = 0; i < n && 2 * i + 1 < uv.size(); ++i) mesh.uvs.push_back({uv[2 * i], uv[2 * i + 1]});
-    mesh.uvs.resize(mesh.positions.size(), glm::dvec2(0));
+    for (std::size_t i = 0; i < n; ++i) mesh.uvs.push_back({uv[2 * i], uv[2 * i + 1]});
   } else if (!mesh.uvs.empty()) {
     mesh.uvs.resize(mesh.positions.size(), glm::dvec2(0));
   }
@@ -162,11 +136,20 @@ std::pair<std::uint32_t, std::size_t> append_vertices(const tinygltf::Model& mod
 }
 
 std::size_t index_triangles(const tinygltf::Model& model, const tinygltf::Primitive& prim, int mode,
-                            const glm::dmat4& xf, std::uint32_t base, std::size_t n, TriMesh& mesh,
-                            const std::filesystem::path& path, std::size_t triangles_before) {
+                            const glm::dmat4& xf, std::uint32_t base, std::size_t n, TriMesh& mesh, Totals& totals,
+                            const std::string& where, const std::filesystem::path& path) {
+  const bool indexed = prim.indices >= 0;
+  const std::size_t count = indexed ? gltf_read::accessor_layout(model, prim.indices, "index", path).count : n;
+  if (mode == TINYGLTF_MODE_TRIANGLES && count % 3 != 0)
+    throw MeshIoError(quoted(path) + ": " + where + ": " + std::to_string(count) +
+                      (indexed ? " indices" : " vertices without indices") + ", not a multiple of 3 (TRIANGLES)");
+  const std::size_t triangles = mode == TINYGLTF_MODE_TRIANGLES ? count / 3 : count >= 3 ? count - 2 : 0;
+  if (triangles > kMaxMeshFileTriangles - totals.triangles)
+    throw MeshIoError(quoted(path) + ": the file's meshes have more than " + std::to_string(kMaxMeshFileTriangles) +
+                      " triangles (the limit for mesh files)");
   std::vector<std::uint32_t> idx;
-  if (prim.indices >= 0) {
-    idx = read_indices(model, prim.indices, path);
+  if (indexed) {
+    idx = gltf_read::read_indices(model, prim.indices, path, count);
   } else {
     idx.resize(n);
     for (std::size_t i = 0; i < n; ++i) idx[i] = static_cast<std::uint32_t>(i);
@@ -175,6 +158,8 @@ std::size_t index_triangles(const tinygltf::Model& model, const tinygltf::Primit
     if (i >= n)
       throw MeshIoError(quoted(path) + ": vertex index out of range (" + std::to_string(i) + " of " +
                         std::to_string(n) + " vertices)");
+  const std::size_t triangles_before = mesh.triangles.size();
+  mesh.triangles.reserve(triangles_before + triangles);
   const bool flip = glm::determinant(glm::dmat3(xf)) < 0;  // mirrored node: keep CCW seen from outside
   auto tri = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
     if (flip) std::swap(b, c);
@@ -188,6 +173,7 @@ std::size_t index_triangles(const tinygltf::Model& model, const tinygltf::Primit
   } else {
     for (std::size_t k = 1; k + 1 < idx.size(); ++k) tri(idx[0], idx[k], idx[k + 1]);
   }
+  totals.triangles += mesh.triangles.size() - triangles_before;
   return mesh.triangles.size() - triangles_before;
 }
 
@@ -199,8 +185,8 @@ using SharedVertices = std::map<std::array<int, 3>, std::pair<std::uint32_t, std
 // Appends the primitive's triangles (and its vertices unless `reuse` and `shared` has them); returns the triangle
 // count.
 std::size_t append_primitive(const tinygltf::Model& model, const tinygltf::Primitive& prim, const glm::dmat4& xf,
-                             TriMesh& mesh, bool& normals_ok, SharedVertices& shared, bool reuse,
-                             const std::filesystem::path& path) {
+                             TriMesh& mesh, bool& normals_ok, SharedVertices& shared, bool reuse, Totals& totals,
+                             const std::string& where, const std::filesystem::path& path) {
   const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
   if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN)
     return 0;  // points and lines carry no surface
@@ -217,27 +203,26 @@ std::size_t append_primitive(const tinygltf::Model& model, const tinygltf::Primi
   if (reuse && known != shared.end()) {
     std::tie(base, n) = known->second;
   } else {
-    std::tie(base, n) = append_vertices(model, prim, xf, mesh, normals_ok, path);
+    std::tie(base, n) = append_vertices(model, prim, xf, mesh, normals_ok, totals, where, path);
     shared.emplace(key, std::make_pair(base, n));
   }
-  const std::size_t triangles_before = mesh.triangles.size();
-  return index_triangles(model, prim, mode, xf, base, n, mesh, path, triangles_before);
+  return index_triangles(model, prim, mode, xf, base, n, mesh, totals, where, path);
+}
+
+bool finite_matrix(const glm::dmat4& m) {
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      if (!std::isfinite(m[c][r])) return false;
+  return true;
 }
 
 }  // namespace
 
 std::vector<GltfObject> read_gltf_objects(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw MeshIoError(quoted(path) + ": file not found");
-  tinygltf::Model model;
-  tinygltf::TinyGLTF loader;
-  std::string err, warn;
-  const bool binary = lower_extension(path) == ".glb";
-  const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path.string())
-                         : loader.LoadASCIIFromFile(&model, &err, &warn, path.string());
-  if (!ok) throw MeshIoError(quoted(path) + ": cannot parse glTF file: " + (err.empty() ? "unknown error" : err));
+  const tinygltf::Model model = gltf_read::read_model(path);  // checked: indices in range, nodes a forest
 
   std::vector<GltfObject> out;
+  Totals totals;
   auto emit = [&](const std::string& name, int mesh_index, const glm::dmat4& xf) {
     if (mesh_index < 0 || mesh_index >= static_cast<int>(model.meshes.size()))
       throw MeshIoError(quoted(path) + ": node refers to a missing mesh");
@@ -249,11 +234,14 @@ std::vector<GltfObject> read_gltf_objects(const std::filesystem::path& path) {
     std::vector<std::uint8_t> slots;  // per triangle
     bool any_inside = false;
     int color_material = -1;
-    for (const auto& prim : gm.primitives) {
+    for (std::size_t p = 0; p < gm.primitives.size(); ++p) {
+      const auto& prim = gm.primitives[p];
       const int mat = prim.material >= 0 && prim.material < static_cast<int>(model.materials.size()) ? prim.material
                                                                                                     : -1;
       const bool inside = mat >= 0 && ends_with(model.materials[mat].name, ".inside");
-      const std::size_t added = append_primitive(model, prim, xf, obj.mesh, normals_ok, shared, inside, path);
+      const std::string where = "mesh " + std::to_string(mesh_index) + " primitive " + std::to_string(p);
+      const std::size_t added =
+          append_primitive(model, prim, xf, obj.mesh, normals_ok, shared, inside, totals, where, path);
       slots.insert(slots.end(), added, inside ? kMaterialInside : kMaterialSurface);
       any_inside = any_inside || (inside && added > 0);
       if (inside && mat >= 0) obj.inside_color = base_color(model.materials[mat], obj.inside_color);
@@ -273,23 +261,24 @@ std::vector<GltfObject> read_gltf_objects(const std::filesystem::path& path) {
       emit(model.meshes[i].name, static_cast<int>(i), glm::dmat4(1));
     return out;
   }
-  // Depth-first with an explicit stack; a depth limit guards against cyclic (invalid) node graphs.
+  // Depth-first with an explicit stack; read_model checked that the nodes form a forest, so this ends.
   struct Item {
     int node;
     glm::dmat4 parent;
-    int depth;
   };
   std::vector<Item> stack;
-  for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.push_back({*it, glm::dmat4(1), 0});
+  for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.push_back({*it, glm::dmat4(1)});
   while (!stack.empty()) {
     const Item item = stack.back();
     stack.pop_back();
-    if (item.node < 0 || item.node >= static_cast<int>(model.nodes.size()) || item.depth > 256)
+    if (item.node < 0 || item.node >= static_cast<int>(model.nodes.size()))
       throw MeshIoError(quoted(path) + ": invalid node hierarchy");
     const auto& node = model.nodes[item.node];
     const glm::dmat4 world = item.parent * local_matrix(node);
+    if (!finite_matrix(world))
+      throw MeshIoError(quoted(path) + ": node " + std::to_string(item.node) + " has a non-finite transform");
     if (node.mesh >= 0) emit(node.name, node.mesh, world);
-    for (auto c = node.children.rbegin(); c != node.children.rend(); ++c) stack.push_back({*c, world, item.depth + 1});
+    for (auto c = node.children.rbegin(); c != node.children.rend(); ++c) stack.push_back({*c, world});
   }
   return out;
 }

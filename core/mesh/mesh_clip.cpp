@@ -192,7 +192,9 @@ std::vector<std::string> animation_names(const tinygltf::Model& model) {
 }
 }  // namespace
 
-std::vector<std::string> MeshClip::list(const std::filesystem::path& path) { return animation_names(parse_gltf(path)); }
+std::vector<std::string> MeshClip::list(const std::filesystem::path& path) {
+  return animation_names(gltf_read::read_model(path));
+}
 
 void MeshClip::pose(double t_s, std::vector<glm::dvec3>& positions, std::vector<glm::dvec3>& normals) const {
   if (!std::isfinite(t_s))
@@ -225,20 +227,19 @@ int pick_animation(const std::vector<std::string>& names, const std::string& cli
   throw std::invalid_argument(file + ": no clip '" + clip + "' (the file's clips: " + all + ")");
 }
 
-// Mesh-carrying nodes in read_gltf_objects' order: the default scene's roots (else every scene's), depth first.
+// Mesh-carrying nodes in read_gltf_objects' order: the default scene's roots (else every scene's), depth first
+// (read_model checked that the nodes form a forest, so this ends).
 std::vector<int> mesh_nodes_in_load_order(const tinygltf::Model& model, const std::string& file) {
   const std::vector<int> roots = gltf_model::root_nodes(model);
-  std::vector<std::pair<int, int>> stack;  // (node, depth)
-  for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.push_back({*it, 0});
+  std::vector<int> stack(roots.rbegin(), roots.rend());
   std::vector<int> out;
   while (!stack.empty()) {
-    const auto [node, depth] = stack.back();
+    const int node = stack.back();
     stack.pop_back();
-    if (node < 0 || node >= static_cast<int>(model.nodes.size()) || depth > 256)
-      throw MeshIoError(file + ": invalid node hierarchy");
+    if (node < 0 || node >= static_cast<int>(model.nodes.size())) throw MeshIoError(file + ": invalid node hierarchy");
     if (model.nodes[node].mesh >= 0) out.push_back(node);
     const auto& ch = model.nodes[node].children;
-    for (auto c = ch.rbegin(); c != ch.rend(); ++c) stack.push_back({*c, depth + 1});
+    stack.insert(stack.end(), ch.rbegin(), ch.rend());
   }
   return out;
 }
@@ -247,8 +248,16 @@ std::vector<int> mesh_nodes_in_load_order(const tinygltf::Model& model, const st
 
 std::shared_ptr<const MeshClip> MeshClip::load(const std::filesystem::path& path, const std::string& clip) {
   const TriMesh rest = load_mesh(path);  // MeshIoError for file problems; the vertices the clip must reproduce
-  const tinygltf::Model model = parse_gltf(path);
+  const tinygltf::Model model = gltf_read::read_model(path);  // checked: indices in range, nodes a forest
   const std::string file = quoted_path(path);
+  // Everything decoded or held besides the vertices is charged to one budget, before it is allocated.
+  std::size_t values_left = gltf_read::kMaxClipValues;
+  auto charge = [&](std::size_t items, std::size_t per_item, const std::string& what) {
+    if (per_item != 0 && items > values_left / per_item)
+      throw MeshIoError(file + ": the clip's " + what + " need more than " + std::to_string(gltf_read::kMaxClipValues) +
+                        " numbers (the limit for a clip)");
+    values_left -= items * per_item;
+  };
   const std::vector<std::string> names = animation_names(model);
   const int ai = pick_animation(names, clip, file);
   const std::string where = file + " clip '" + names[ai] + "'";
@@ -293,9 +302,12 @@ std::shared_ptr<const MeshClip> MeshClip::load(const std::filesystem::path& path
       if (j < 0 || j >= static_cast<int>(nn)) throw MeshIoError(file + ": skin joint index out of range");
     sk.ibm.assign(sk.joints.size(), glm::dmat4(1.0));  // §3.7.3.1: identity when inverseBindMatrices is absent
     if (s.inverseBindMatrices >= 0) {
-      const auto m = read_accessor(model, s.inverseBindMatrices, 16, "inverseBindMatrices", path);
+      const std::size_t count =
+          gltf_read::accessor_layout(model, s.inverseBindMatrices, "inverseBindMatrices", path).count;
+      if (count < sk.joints.size()) throw MeshIoError(file + ": fewer inverse bind matrices than joints");
+      charge(count, 16, "inverse bind matrices");
+      const auto m = gltf_read::read_accessor(model, s.inverseBindMatrices, 16, "inverseBindMatrices", path, count);
       require_finite(m, file + ": non-finite inverse bind matrix");
-      if (m.size() < 16 * sk.joints.size()) throw MeshIoError(file + ": fewer inverse bind matrices than joints");
       for (std::size_t j = 0; j < sk.joints.size(); ++j) sk.ibm[j] = glm::make_mat4(m.data() + 16 * j);
     }
     im->skins.push_back(std::move(sk));
@@ -304,6 +316,7 @@ std::shared_ptr<const MeshClip> MeshClip::load(const std::filesystem::path& path
   // Vertices, exactly as read_gltf_objects concatenates them: mesh nodes in load order, surface primitives in order.
   bool file_normals = true;
   im->infl_begin.push_back(0);
+  std::size_t total_vertices = 0;
   for (int node : mesh_nodes_in_load_order(model, file)) {
     const auto& gn = model.nodes[node];
     if (gn.mesh >= static_cast<int>(model.meshes.size())) throw MeshIoError(file + ": node refers to a missing mesh");
@@ -320,8 +333,16 @@ std::shared_ptr<const MeshClip> MeshClip::load(const std::filesystem::path& path
       if (!first && prim.targets.size() != nt)
         throw MeshIoError(file + ": mesh '" + gm.name + "' primitives have different morph target counts");
       nt = prim.targets.size(), first = false;
-      count += model.accessors.at(prim.attributes.at("POSITION")).count;  // load_mesh checked both exist
+      const auto pos = prim.attributes.find("POSITION");
+      if (pos == prim.attributes.end()) throw MeshIoError(file + ": primitive without POSITION");
+      const std::size_t n = gltf_read::accessor_layout(model, pos->second, "POSITION", path).count;
+      if (n > gltf_read::kMaxMeshFileVertices - total_vertices)
+        throw MeshIoError(file + ": the file's meshes have more than " +
+                          std::to_string(gltf_read::kMaxMeshFileVertices) + " vertices (the limit for mesh files)");
+      total_vertices += n;
+      count += n;
     }
+    charge(nt, count * 6, "morph targets");  // dpos and dnrm: 2 × 3 doubles per target and vertex
     in.dpos.assign(nt * count, glm::dvec3(0.0));
     in.dnrm.assign(nt * count, glm::dvec3(0.0));
     in.default_weights.assign(nt, 0.0);
@@ -334,23 +355,34 @@ std::shared_ptr<const MeshClip> MeshClip::load(const std::filesystem::path& path
         const auto it = attrs.find(key);
         return it == attrs.end() ? -1 : it->second;
       };
-      const auto pos = read_accessor(model, attr(prim.attributes, "POSITION"), 3, "POSITION", path, false);
-      const std::size_t n = pos.size() / 3;
+      const int pi = attr(prim.attributes, "POSITION");
+      const std::size_t n = gltf_read::accessor_layout(model, pi, "POSITION", path).count;  // counted above
+      // An attribute, morph delta, joint or weight accessor of this primitive: exactly n elements.
+      auto require_n = [&](int index, const std::string& what) {
+        const std::size_t c = gltf_read::accessor_layout(model, index, what, path).count;
+        if (c != n)
+          throw MeshIoError(file + ": mesh '" + gm.name + "': " + what + " has " + std::to_string(c) +
+                            " elements, POSITION has " + std::to_string(n));
+      };
+      const auto pos = gltf_read::read_accessor(model, pi, 3, "POSITION", path, n, false);
+      require_finite(pos, file + ": non-finite POSITION value");
       for (std::size_t i = 0; i < n; ++i) im->base_pos.push_back(glm::make_vec3(pos.data() + 3 * i));
       const int ni = attr(prim.attributes, "NORMAL");
       if (ni >= 0 && file_normals) {
-        const auto nrm = read_accessor(model, ni, 3, "NORMAL", path, false);
-        for (std::size_t i = 0; i < n && 3 * i + 2 < nrm.size(); ++i)
-          im->base_nrm.push_back(glm::make_vec3(nrm.data() + 3 * i));
+        require_n(ni, "NORMAL");
+        const auto nrm = gltf_read::read_accessor(model, ni, 3, "NORMAL", path, n, false);
+        require_finite(nrm, file + ": non-finite NORMAL value");
+        for (std::size_t i = 0; i < n; ++i) im->base_nrm.push_back(glm::make_vec3(nrm.data() + 3 * i));
       }
       file_normals = file_normals && ni >= 0 && im->base_nrm.size() == im->base_pos.size();
       for (std::size_t k = 0; k < nt; ++k) {
         for (const char* key : {"POSITION", "NORMAL"}) {
           const int ti = attr(prim.targets[k], key);
           if (ti < 0) continue;
-          const auto d = read_accessor(model, ti, 3, std::string("morph target ") + key, path);
+          const std::string what = std::string("morph target ") + key;
+          require_n(ti, what);
+          const auto d = gltf_read::read_accessor(model, ti, 3, what, path, n);
           require_finite(d, file + ": non-finite morph target " + key);
-          if (d.size() != 3 * n) throw MeshIoError(file + ": morph target " + key + " count differs from POSITION");
           auto& dst = key[0] == 'P' ? in.dpos : in.dnrm;
           for (std::size_t i = 0; i < n; ++i) dst[k * count + off + i] = glm::make_vec3(d.data() + 3 * i);
         }
@@ -360,9 +392,12 @@ std::shared_ptr<const MeshClip> MeshClip::load(const std::filesystem::path& path
         const int ji = attr(prim.attributes, "JOINTS_" + std::to_string(set));
         const int wi = attr(prim.attributes, "WEIGHTS_" + std::to_string(set));
         if (ji < 0 || wi < 0) break;
-        const auto jv = read_accessor(model, ji, 4, "JOINTS", path), wv = read_accessor(model, wi, 4, "WEIGHTS", path);
+        require_n(ji, "JOINTS_" + std::to_string(set));
+        require_n(wi, "WEIGHTS_" + std::to_string(set));
+        charge(n, 16, "skin influences");  // 4 joints + 4 weights decoded, up to 4 influences of 2 numbers kept
+        const auto jv = gltf_read::read_accessor(model, ji, 4, "JOINTS", path, n);
+        const auto wv = gltf_read::read_accessor(model, wi, 4, "WEIGHTS", path, n);
         require_finite(wv, file + ": non-finite skin weight");
-        if (jv.size() != 4 * n || wv.size() != 4 * n) throw MeshIoError(file + ": JOINTS/WEIGHTS count differs");
         for (std::size_t q = 0; q < 4 * n; ++q) {
           if (wv[q] == 0) continue;
           if (!(jv[q] >= 0 && jv[q] < static_cast<double>(im->skins[in.skin].joints.size())))
@@ -457,7 +492,7 @@ std::shared_ptr<const MeshClip> MeshClip::load(const std::filesystem::path& path
       if (width == 0) throw std::invalid_argument(at + " animates weights of a node without morph targets");
     }
     const int comps = out.path == Path::Weights ? 1 : width;
-    AnimSampler smp = read_sampler(model, as, width, comps, out.path == Path::Rotation, at, path);
+    AnimSampler smp = read_sampler(model, as, width, comps, out.path == Path::Rotation, at, path, values_left);
     duration = std::max(duration, smp.times.back());
     animates_mesh = animates_mesh || (out.path == Path::Weights ? morphs[out.node] : moves[out.node]);
     out.sampler = static_cast<int>(im->samplers.size());

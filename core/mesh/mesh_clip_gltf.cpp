@@ -2,41 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <stdexcept>
 
 #include "core/mesh/mesh_io.h"
 
 namespace trispline::core::clip_gltf {
+
+using gltf_read::kMaxClipValues;
+
 namespace {
-
-template <class T>
-double as(const unsigned char* q) {
-  T v;
-  std::memcpy(&v, q, sizeof v);
-  return static_cast<double>(v);
-}
-
-// One accessor component; normalised integers per glTF 2.0 §3.11 (signed: max(c / max, −1)).
-double component(const unsigned char* q, int ctype, bool nrm) {
-  using namespace std;
-  switch (ctype) {
-    case TINYGLTF_COMPONENT_TYPE_FLOAT:
-      return as<float>(q);
-    case TINYGLTF_COMPONENT_TYPE_BYTE:
-      return nrm ? max(as<int8_t>(q) / 127.0, -1.0) : as<int8_t>(q);
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-      return nrm ? as<uint8_t>(q) / 255.0 : as<uint8_t>(q);
-    case TINYGLTF_COMPONENT_TYPE_SHORT:
-      return nrm ? max(as<int16_t>(q) / 32767.0, -1.0) : as<int16_t>(q);
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
-      return nrm ? as<uint16_t>(q) / 65535.0 : as<uint16_t>(q);
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-      return nrm ? as<uint32_t>(q) / 4294967295.0 : as<uint32_t>(q);
-    default:
-      return std::nan("");
-  }
-}
 
 // Spherical linear interpolation of unit quaternions (glTF 2.0 Appendix C, shortest arc), normalised.
 glm::dquat slerp(glm::dquat a, glm::dquat b, double u) {
@@ -57,69 +31,6 @@ std::string quoted_path(const std::filesystem::path& p) {
   q += p.string();
   q += '\'';
   return q;
-}
-
-tinygltf::Model parse_gltf(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw MeshIoError(quoted_path(path) + ": file not found");
-  tinygltf::Model model;
-  tinygltf::TinyGLTF loader;
-  std::string err, warn;
-  const bool ok = lower_extension(path) == ".glb" ? loader.LoadBinaryFromFile(&model, &err, &warn, path.string())
-                                                  : loader.LoadASCIIFromFile(&model, &err, &warn, path.string());
-  if (!ok) throw MeshIoError(quoted_path(path) + ": cannot parse glTF file: " + (err.empty() ? "unknown error" : err));
-  return model;
-}
-
-// Accessor `index` as #count × comps doubles (glTF 2.0 §3.6.2; normalised integers per §3.11 table). Sparse
-// substitution (§3.6.2.3) is applied when `sparse`; base POSITION/NORMAL skip it, as load_mesh does.
-std::vector<double> read_accessor(const tinygltf::Model& model, int index, int comps, const std::string& what,
-                                  const std::filesystem::path& path, bool sparse) {
-  if (index < 0 || index >= static_cast<int>(model.accessors.size()))
-    throw MeshIoError(quoted_path(path) + ": " + what + " accessor index out of range");
-  const auto& acc = model.accessors[index];
-  if (tinygltf::GetNumComponentsInType(acc.type) != comps)
-    throw MeshIoError(quoted_path(path) + ": " + what + " accessor has the wrong type");
-  const int csize = tinygltf::GetComponentSizeInBytes(acc.componentType);
-  if (csize <= 0) throw MeshIoError(quoted_path(path) + ": " + what + " has an unknown component type");
-  auto view_bytes = [&](int view_index, std::size_t offset, std::size_t stride_default, std::size_t count,
-                        std::size_t elem) -> std::pair<const unsigned char*, std::size_t> {
-    if (view_index < 0 || view_index >= static_cast<int>(model.bufferViews.size()))
-      throw MeshIoError(quoted_path(path) + ": " + what + " buffer view out of range");
-    const auto& view = model.bufferViews[view_index];
-    if (view.buffer < 0 || view.buffer >= static_cast<int>(model.buffers.size()))
-      throw MeshIoError(quoted_path(path) + ": " + what + " buffer out of range");
-    const auto& buf = model.buffers[view.buffer].data;
-    const std::size_t stride = view.byteStride ? view.byteStride : stride_default;
-    const std::size_t start = view.byteOffset + offset;
-    if (count > 0 && start + stride * (count - 1) + elem > buf.size())
-      throw MeshIoError(quoted_path(path) + ": " + what + " accessor runs past the end of its buffer");
-    return {buf.data() + start, stride};
-  };
-  const std::size_t elem = static_cast<std::size_t>(csize) * comps;
-  std::vector<double> out(acc.count * comps, 0.0);
-  if (acc.bufferView >= 0) {
-    const auto [p, stride] = view_bytes(acc.bufferView, acc.byteOffset, elem, acc.count, elem);
-    for (std::size_t i = 0; i < acc.count; ++i)
-      for (int c = 0; c < comps; ++c)
-        out[i * comps + c] = component(p + stride * i + c * csize, acc.componentType, acc.normalized);
-  }
-  if (sparse && acc.sparse.isSparse && acc.sparse.count > 0) {
-    const auto n = static_cast<std::size_t>(acc.sparse.count);
-    const int isize = tinygltf::GetComponentSizeInBytes(acc.sparse.indices.componentType);
-    const auto [ip, istride] =
-        view_bytes(acc.sparse.indices.bufferView, acc.sparse.indices.byteOffset, isize, n, isize);
-    const auto [vp, vstride] = view_bytes(acc.sparse.values.bufferView, acc.sparse.values.byteOffset, elem, n, elem);
-    for (std::size_t k = 0; k < n; ++k) {
-      const double id = component(ip + istride * k, acc.sparse.indices.componentType, false);
-      if (!(id >= 0 && id < static_cast<double>(acc.count)))
-        throw MeshIoError(quoted_path(path) + ": " + what + " sparse index out of range");
-      for (int c = 0; c < comps; ++c)
-        out[static_cast<std::size_t>(id) * comps + c] =
-            component(vp + vstride * k + c * csize, acc.componentType, acc.normalized);
-    }
-  }
-  return out;  // finiteness is checked by the callers (keys: invalid_argument; geometry: MeshIoError)
 }
 
 // Node-local matrix T · R · S (glTF 2.0 §3.5.3), the same operations as gltf_io.cpp's, so the rest pose is
@@ -173,7 +84,8 @@ void sample_channel(const AnimSampler& smp, double t, bool quat, double* out) {
 }
 
 AnimSampler read_sampler(const tinygltf::Model& model, const tinygltf::AnimationSampler& sampler, int width, int comps,
-                         bool rotation, const std::string& at, const std::filesystem::path& path) {
+                         bool rotation, const std::string& at, const std::filesystem::path& path,
+                         std::size_t& values_left) {
   AnimSampler smp;
   smp.width = width;
   if (sampler.interpolation == "STEP")
@@ -184,18 +96,33 @@ AnimSampler read_sampler(const tinygltf::Model& model, const tinygltf::Animation
     smp.interp = Interp::Cubic;
   else
     throw std::invalid_argument(at + ": unknown interpolation '" + sampler.interpolation + "'");
-  smp.times = read_accessor(model, sampler.input, 1, "sampler input", path);
-  smp.values = read_accessor(model, sampler.output, comps, "sampler output", path);
-  if (smp.times.empty()) throw std::invalid_argument(at + ": empty sampler (no keys)");
+  // Counts first (read_model checked the accessors against their bytes), then the budget, then the values.
+  const auto in = gltf_read::accessor_layout(model, sampler.input, "sampler input", path);
+  const auto out = gltf_read::accessor_layout(model, sampler.output, "sampler output", path);
+  if (in.comps != 1) throw std::invalid_argument(at + ": sampler input must be SCALAR key times");
+  if (out.comps != comps)
+    throw std::invalid_argument(at + ": sampler output has " + std::to_string(out.comps) +
+                                " components per element, expected " + std::to_string(comps));
+  if (in.count == 0) throw std::invalid_argument(at + ": empty sampler (no keys)");
+  auto over_budget = [&] {
+    return MeshIoError(quoted_path(path) + ": the clip's keys and other animation data need more than " +
+                       std::to_string(kMaxClipValues) + " numbers (the limit for a clip)");
+  };
+  if (in.count > kMaxClipValues || out.count > kMaxClipValues) throw over_budget();  // products below cannot overflow
+  const std::size_t per_key = static_cast<std::size_t>(width) * (smp.interp == Interp::Cubic ? 3 : 1);
+  const std::size_t have = out.count * static_cast<std::size_t>(comps);
+  if (have != in.count * per_key)
+    throw std::invalid_argument(at + ": sampler output has " + std::to_string(have) + " values, expected " +
+                                std::to_string(in.count * per_key));
+  if (in.count + have > values_left) throw over_budget();
+  values_left -= in.count + have;
+  smp.times = gltf_read::read_accessor(model, sampler.input, 1, "sampler input", path, in.count);
+  smp.values = gltf_read::read_accessor(model, sampler.output, comps, "sampler output", path, out.count);
   for (std::size_t k = 0; k < smp.times.size(); ++k)
     if (!std::isfinite(smp.times[k]) || (k > 0 && smp.times[k] < smp.times[k - 1]))
       throw std::invalid_argument(at + ": key times must be finite and increasing");
   for (double v : smp.values)
     if (!std::isfinite(v)) throw std::invalid_argument(at + ": non-finite key value");
-  const std::size_t need = smp.times.size() * width * (smp.interp == Interp::Cubic ? 3 : 1);
-  if (smp.values.size() != need)
-    throw std::invalid_argument(at + ": sampler output has " + std::to_string(smp.values.size()) +
-                                " values, expected " + std::to_string(need));
   if (rotation && smp.interp != Interp::Cubic)  // keys as unit quaternions, so slerp is exact
     for (std::size_t k = 0; k < smp.times.size(); ++k) {
       double* q = smp.values.data() + 4 * k;

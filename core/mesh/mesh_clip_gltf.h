@@ -1,7 +1,6 @@
-// trispline::core::clip_gltf — glTF 2.0 animation data for MeshClip (internal to core/mesh; tinygltf types).
+// trispline::core::clip_gltf — glTF 2.0 animation data for MeshClip (internal to core/mesh; tinygltf types). Files are
+// opened and accessors decoded through gltf_read.h.
 //
-//   parse_gltf      .gltf/.glb → tinygltf::Model; MeshIoError naming the file
-//   read_accessor   accessor → #count × comps doubles (§3.6.2: strides, normalised integers, sparse substitution)
 //   AnimSampler     one sampler's keys; read_sampler validates them, sample_channel evaluates STEP, LINEAR (slerp for
 //                   rotations) and CUBICSPLINE (Hermite with tangents scaled by the key interval) — §3.11, Appendix C
 //   node_trs        node-local T · R · S (§3.5.3), the same operations as gltf_io.cpp, so rest transforms match
@@ -10,24 +9,18 @@
 
 #include <tiny_gltf.h>  // Debian's shared tinygltf: no configuration macros (see gltf_io.cpp)
 
+#include <cstddef>
 #include <filesystem>
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <string>
 #include <vector>
 
+#include "core/mesh/gltf_read.h"
+
 namespace trispline::core::clip_gltf {
 
 std::string quoted_path(const std::filesystem::path& p);  // 'p'
-
-// Throws MeshIoError "'path': file not found" / "'path': cannot parse glTF file: <tinygltf's error>".
-tinygltf::Model parse_gltf(const std::filesystem::path& path);
-
-// Accessor `index` as #count × comps doubles: float, or (normalised) signed/unsigned byte/short and unsigned int.
-// `sparse` applies sparse substitution (base POSITION/NORMAL skip it, as load_mesh does). Values are not checked
-// for finiteness. Throws MeshIoError (index/view/buffer out of range, wrong type, runs past its buffer).
-std::vector<double> read_accessor(const tinygltf::Model& model, int index, int comps, const std::string& what,
-                                  const std::filesystem::path& path, bool sparse = true);
 
 enum class Interp { Step, Linear, Cubic };
 
@@ -39,11 +32,14 @@ struct AnimSampler {
 };
 
 // Reads and checks a sampler for a channel of `width` values per key whose output accessor has `comps` components
-// (weights: SCALAR, #targets per key; `rotation`: VEC4, LINEAR/STEP keys normalised to unit quaternions). Throws
-// std::invalid_argument "<at>: ..." (unknown interpolation, no keys, non-finite or decreasing times, non-finite values,
-// wrong output count, zero quaternion); MeshIoError for bad accessors.
+// (weights: SCALAR, #targets per key; `rotation`: VEC4, LINEAR/STEP keys normalised to unit quaternions). Counts are
+// checked before anything is decoded; the keys and values read are taken from `values_left` (the clip's share of
+// gltf_read::kMaxClipValues). Throws std::invalid_argument "<at>: ..." (unknown interpolation, no keys, input not
+// SCALAR, wrong output type or count, non-finite or decreasing times, non-finite values, zero quaternion);
+// MeshIoError for bad accessors or when `values_left` is too small.
 AnimSampler read_sampler(const tinygltf::Model& model, const tinygltf::AnimationSampler& sampler, int width, int comps,
-                         bool rotation, const std::string& at, const std::filesystem::path& path);
+                         bool rotation, const std::string& at, const std::filesystem::path& path,
+                         std::size_t& values_left);
 
 // Value at time t (clamped to the first/last key) into out[0 .. width). `rotation`: slerp (shortest arc) for
 // LINEAR, and the result normalised.
