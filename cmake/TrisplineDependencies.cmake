@@ -7,6 +7,7 @@ find_package(nlohmann_json CONFIG REQUIRED)
 find_package(embree 3 CONFIG REQUIRED)
 find_package(OpenMesh CONFIG REQUIRED)
 find_package(TinyGLTF CONFIG REQUIRED)
+find_package(assimp 5 CONFIG REQUIRED)  # OBJ, PLY, OFF, STL
 find_package(CLI11 CONFIG REQUIRED)
 
 # OpenImageIO: its CMake config needs openimageio-tools and a missing opencv4 include dir; use pkg-config.

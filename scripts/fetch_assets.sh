@@ -6,6 +6,10 @@
 #     simple_skin/simple_skin.gltf (glTF tutorial skin: two joints, 10 vertices, buffers embedded);
 #   libcgal-demo (23 MB) → nefertiti.off (CGAL's data/meshes/nefertiti.off, a face mask: 299 vertices, 562 triangles,
 #     one open boundary, looking along +z; CC0 per CGAL's LICENSE), from the data.tar.gz the package ships.
+# A corpus of real mesh files the project does not ship, for the loader test (tests/core/mesh/test_mesh_corpus.cpp):
+#   corpus/cgal/      CGAL's data/meshes (libcgal-demo): ~150 OFF/PLY/OBJ/STL meshes, polygonal, coloured, broken;
+#   corpus/assimp/    assimp's own test models (assimp-testmodels) for OBJ, PLY, OFF, STL, invalid files included;
+#   corpus/geomview/  Geomview's sample OFF files (geomview): per-face colours, COFF, comments, 4OFF.
 # Uses `apt-get download` + `dpkg-deb -x`: nothing is installed. Idempotent: does nothing when the files exist.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -39,11 +43,33 @@ fetch assimp-testmodels \
   $gltf2/glTF-Sample-Models/AnimatedMorphCube-glTF/AnimatedMorphCube.gltf AnimatedMorphCube/AnimatedMorphCube.gltf \
   $gltf2/glTF-Sample-Models/AnimatedMorphCube-glTF/AnimatedMorphCube.bin AnimatedMorphCube/AnimatedMorphCube.bin \
   $gltf2/simple_skin/simple_skin.gltf simple_skin/simple_skin.gltf
-# CGAL's demo data sit in a tarball inside the package: fetch it, then take the one mesh out.
-if [ ! -s "$data/nefertiti.off" ]; then
+
+fetch_tree() {  # fetch_tree PACKAGE TARGET_DIR PATH_IN_PACKAGE... : copies folders of a package (all files below)
+  local pkg="$1" name="$2" target="$data/$2"; shift 2
+  [ -e "$target/.complete" ] && return 0
+  local tmp; tmp="$(mktemp -d)"
+  echo "assets: fetching $name from Debian package $pkg"
+  (cd "$tmp" && apt-get download "$pkg" >/dev/null 2>&1) || { echo "assets: cannot download $pkg" >&2; rm -rf "$tmp"; return 1; }
+  dpkg-deb -x "$tmp"/"$pkg"_*.deb "$tmp/x"
+  rm -rf "$target" && mkdir -p "$target"
+  local inner
+  for inner in "$@"; do cp -r "$tmp/x/$inner" "$target/"; done
+  touch "$target/.complete"
+  rm -rf "$tmp"
+}
+
+# CGAL's demo data sit in a tarball inside the package: fetch it, then take the meshes out (nefertiti.off for the
+# scenes, the whole folder for the loader corpus).
+if [ ! -s "$data/nefertiti.off" ] || [ ! -e "$data/corpus/cgal/.complete" ]; then
   fetch libcgal-demo usr/share/doc/libcgal-dev/data.tar.gz cgal-data.tar.gz
-  tar -xzf "$data/cgal-data.tar.gz" -O data/meshes/nefertiti.off >"$data/nefertiti.off.part"
+  rm -rf "$data/corpus/cgal" && mkdir -p "$data/corpus/cgal"
+  tar -xzf "$data/cgal-data.tar.gz" -C "$data/corpus/cgal" --strip-components=2 data/meshes
+  cp "$data/corpus/cgal/nefertiti.off" "$data/nefertiti.off.part"
   mv "$data/nefertiti.off.part" "$data/nefertiti.off"
   rm -f "$data/cgal-data.tar.gz"
+  touch "$data/corpus/cgal/.complete"
 fi
+models=usr/share/assimp/models
+fetch_tree assimp-testmodels corpus/assimp $models/OBJ $models/PLY $models/OFF $models/STL
+fetch_tree geomview corpus/geomview usr/share/geomview/geom
 echo "assets: $(ls "$data" | tr '\n' ' ')in assets/data/"

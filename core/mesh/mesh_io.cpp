@@ -5,8 +5,11 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <fstream>
 #include <sstream>
 
+#include "core/mesh/assimp_io.h"
+#include "core/mesh/file_check.h"
 #include "core/mesh/gltf_io.h"
 #include "core/mesh/mesh_precheck.h"
 
@@ -23,10 +26,10 @@ using PolyMesh = OpenMesh::PolyMesh_ArrayKernelT<DoubleTraits>;
 
 std::string quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
 
-bool is_openmesh_ext(const std::string& e) { return e == ".obj" || e == ".ply" || e == ".off" || e == ".stl"; }
+bool is_assimp_ext(const std::string& e) { return e == ".obj" || e == ".ply" || e == ".off" || e == ".stl"; }
 bool is_gltf_ext(const std::string& e) { return e == ".gltf" || e == ".glb"; }
 
-// OpenMesh prints reader complaints to its own log streams; we only use its return value.
+// OpenMesh (the OBJ/PLY writer) prints complaints to its own log streams; we only use its return value.
 struct SilenceOpenMesh {
   SilenceOpenMesh() {
     omerr().disable();
@@ -39,59 +42,6 @@ struct SilenceOpenMesh {
     omlog().enable();
   }
 };
-
-TriMesh load_openmesh(const std::filesystem::path& path, const std::string& ext) {
-  const std::optional<std::string> text = precheck_mesh_file(path, ext);
-  PolyMesh pm;
-  pm.request_vertex_normals();
-  pm.request_vertex_texcoords2D();
-  OpenMesh::IO::Options opt = OpenMesh::IO::Options::VertexNormal | OpenMesh::IO::Options::VertexTexCoord;
-  bool ok = false;
-  {
-    SilenceOpenMesh silence;
-    if (text) {
-      std::istringstream stream(*text);
-      ok = OpenMesh::IO::read_mesh(pm, stream, ext, opt);
-    } else {
-      ok = OpenMesh::IO::read_mesh(pm, path.string(), opt);
-    }
-  }
-  if (!ok) throw MeshIoError(quoted(path) + ": cannot parse file (corrupt or not a " + ext.substr(1) + " file)");
-
-  TriMesh m;
-  const std::size_t nv = pm.n_vertices();
-  m.positions.resize(nv);
-  const bool has_n = opt.check(OpenMesh::IO::Options::VertexNormal);
-  const bool has_uv = opt.check(OpenMesh::IO::Options::VertexTexCoord);
-  if (has_n) m.normals.resize(nv);
-  if (has_uv) m.uvs.resize(nv);
-  for (const auto vh : pm.vertices()) {
-    const auto i = static_cast<std::size_t>(vh.idx());
-    const auto& p = pm.point(vh);
-    m.positions[i] = {p[0], p[1], p[2]};
-    if (has_n) {
-      const auto& n = pm.normal(vh);
-      m.normals[i] = {n[0], n[1], n[2]};
-    }
-    if (has_uv) {
-      const auto& t = pm.texcoord2D(vh);
-      m.uvs[i] = {t[0], t[1]};
-    }
-  }
-  for (const auto fh : pm.faces()) {
-    std::vector<unsigned> ids;
-    for (const auto vh : pm.fv_range(fh)) ids.push_back(static_cast<unsigned>(vh.idx()));
-    for (std::size_t k = 1; k + 1 < ids.size(); ++k) m.triangles.push_back({ids[0], ids[k], ids[k + 1]});
-  }
-  // File normals that are zero or non-finite are treated as absent.
-  if (has_n)
-    for (const auto& n : m.normals)
-      if (!(std::isfinite(n.x) && std::isfinite(n.y) && std::isfinite(n.z)) || glm::length(n) < 1e-12) {
-        m.normals.clear();
-        break;
-      }
-  return m;
-}
 
 TriMesh load_gltf(const std::filesystem::path& path) {
   const auto objects = read_gltf_objects(path);
@@ -130,14 +80,42 @@ std::string lower_extension(const std::filesystem::path& path) {
   return e;
 }
 
-TriMesh load_mesh(const std::filesystem::path& path) {
+TriMesh load_mesh(const std::filesystem::path& path, const MeshLoadOptions& options, MeshLoadReport* report) {
   const std::string ext = lower_extension(path);
-  if (!is_openmesh_ext(ext) && !is_gltf_ext(ext))
+  if (!is_assimp_ext(ext) && !is_gltf_ext(ext))
     throw MeshIoError(quoted(path) + ": unsupported extension '" + ext +
                       "' (supported: .obj .ply .off .stl .gltf .glb)");
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw MeshIoError(quoted(path) + ": file not found");
-  TriMesh m = is_gltf_ext(ext) ? load_gltf(path) : load_openmesh(path, ext);
+  MeshLoadReport local;
+  MeshLoadReport& r = report ? *report : local;
+  r = {};
+  TriMesh m;
+  if (is_gltf_ext(ext)) {
+    r.loader = "tinygltf";
+    m = load_gltf(path);
+    r.faces = m.triangles.size();
+  } else {
+    r.loader = "assimp";
+    check_input_file(path, kMaxMeshFileBytes, "mesh files");
+    {  // what the size and the head tell, before the whole file is read
+      std::ifstream in(path, std::ios::binary);
+      std::vector<unsigned char> head(kMeshHeadBytes);
+      in.read(reinterpret_cast<char*>(head.data()), static_cast<std::streamsize>(head.size()));
+      head.resize(static_cast<std::size_t>(in.gcount()));
+      std::error_code ec;
+      const std::uintmax_t size = std::filesystem::file_size(path, ec);
+      if (ec) throw MeshIoError(quoted(path) + ": cannot access: " + ec.message());
+      precheck_mesh_head(path, ext, head, size);
+    }
+    std::vector<unsigned char> bytes = read_input_file(path, kMaxMeshFileBytes, "mesh files");
+    prepare_mesh_bytes(path, ext, bytes);
+    precheck_mesh_file(path, ext, bytes);
+    m = read_assimp_mesh(path, ext, bytes, r);
+    if ((r.ignored_points || r.ignored_lines) && !options.ignore_loose)
+      throw MeshIoError(quoted(path) + ": holds " + std::to_string(r.ignored_points) + " point and " +
+                        std::to_string(r.ignored_lines) + " line elements besides its " + std::to_string(r.faces) +
+                        " faces; trispline loads surfaces only (delete the loose geometry, or load with "
+                        "\"loose\":\"ignore\" to leave it out)");
+  }
   validate_mesh(m, quoted(path));
   if (m.normals.empty()) compute_vertex_normals(m);
   return m;

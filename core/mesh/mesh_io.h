@@ -1,6 +1,6 @@
 // trispline::core mesh files — loading and saving TriMesh, plus the checks every loaded mesh goes through.
 //
-//   load_mesh               OBJ, PLY, OFF, STL (OpenMesh) and glTF 2.0 .gltf/.glb (tinygltf) → TriMesh
+//   load_mesh               OBJ, PLY, OFF, STL (assimp) and glTF 2.0 .gltf/.glb (tinygltf) → TriMesh, whole or refused
 //   save_mesh               TriMesh → OBJ or PLY (OpenMesh)
 //   validate_mesh           finite positions, non-empty, indices in range; throws MeshIoError
 //   compute_vertex_normals  area-weighted vertex normals
@@ -24,16 +24,35 @@ class MeshIoError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Loads a triangle mesh, units as in the file.
-//   .obj .ply .off .stl  through OpenMesh into a polygon mesh, polygons split into fans (v0, vi, vi+1); vertex order
-//                        is the file's (STL, which has no shared vertices, gets OpenMesh's merged vertices in order
-//                        of first use). Normals and texture coordinates are kept when the file has them per vertex.
+// What a load met besides the triangles it returns.
+struct MeshLoadReport {
+  std::size_t faces = 0;           // triangles loaded (#T), after triangulating the file's polygons
+  std::size_t ignored_points = 0;  // point elements left out (only with MeshLoadOptions::ignore_loose)
+  std::size_t ignored_lines = 0;   // line elements left out (only with MeshLoadOptions::ignore_loose)
+  std::string loader;              // "assimp" or "tinygltf"
+};
+
+struct MeshLoadOptions {
+  // false (default): a file holding point or line elements besides its faces is refused, naming their counts, so
+  // nothing of a file is dropped silently; true: they are left out and counted in MeshLoadReport.
+  bool ignore_loose = false;
+};
+
+// Loads a triangle mesh, units as in the file: all of it, or nothing (MeshIoError).
+// Before any parser runs, the path must be a regular file (not a directory, FIFO or device) of at most
+// kMaxMeshFileBytes, and the file must pass mesh_precheck's size/header checks against kMeshLoadMemoryBudget.
+//   .obj .ply .off .stl  through assimp (aiProcess_Triangulate: polygons ear-clipped into #faces − 2 triangles each);
+//                        meshes joined, vertices equal in every attribute welded, in order of first use (see
+//                        core/mesh/assimp_io.h). Normals and texture coordinates are kept when every mesh has them
+//                        per vertex (STL normals are per face and dropped). 4-D OFF, binary OFF, files with no
+//                        faces, 2-corner OBJ faces and truncated OBJ vertex lines are refused.
 //   .gltf .glb           every TRIANGLES primitive of every node of the default scene (all root nodes of all scenes
 //                        if none is marked default; all meshes untransformed if there are no nodes), each with its
 //                        node's world transform; POSITION, NORMAL, TEXCOORD_0; indices of any unsigned type.
 // Missing normals are computed (compute_vertex_normals). Result passes validate_mesh.
 // Throws MeshIoError (see header comment).
-TriMesh load_mesh(const std::filesystem::path& path);
+TriMesh load_mesh(const std::filesystem::path& path, const MeshLoadOptions& options = {},
+                  MeshLoadReport* report = nullptr);
 
 // Writes .obj or .ply (ASCII for OBJ, binary little-endian for PLY) through OpenMesh, with normals when present and
 // texture coordinates when present. Throws MeshIoError on an unsupported extension or a failed write.

@@ -1,220 +1,294 @@
 #include "core/mesh/mesh_precheck.h"
 
-#include <algorithm>
-#include <cmath>
-#include <cstdint>
-#include <cstdlib>
-#include <fstream>
-#include <sstream>
-#include <vector>
+#include <iconv.h>
 
+#include <algorithm>
+#include <cstring>
+#include <string_view>
+
+#include "core/mesh/file_check.h"
 #include "core/mesh/mesh_io.h"
 
 namespace trispline::core {
 namespace {
 
+// Peak bytes of a load per byte of a text file (assimp's parse + its per-corner meshes + our welded double
+// TriMesh), measured on real OBJ/OFF/PLY/STL files (docs/decisions.md "Mesh files").
+constexpr std::uintmax_t kTextPeakPerByte = 12;
+// Peak bytes per value of a PLY file: assimp keeps every value of every element in a DOM node.
+constexpr std::uintmax_t kPlyPeakPerValue = 48;
+
 std::string quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
 
+// A file that is not what its extension says: "cannot parse" (the word every mesh reader's parse error carries).
 [[noreturn]] void fail(const std::filesystem::path& path, const std::string& why) {
+  throw MeshIoError(quoted(path) + ": cannot parse: " + why);
+}
+// A well-formed file trispline does not take (over a budget, 4-D).
+[[noreturn]] void refuse(const std::filesystem::path& path, const std::string& why) {
   throw MeshIoError(quoted(path) + ": " + why);
 }
 
-// Vertex coordinates are checked here, because OpenMesh's text readers drop or zero "nan", "inf" and overflowing
-// numbers (std::istream cannot read them) instead of reporting them.
-void check_coordinate(const std::filesystem::path& path, const std::string& tok, const std::string& where) {
-  char* end = nullptr;
-  const double v = std::strtod(tok.c_str(), &end);
-  if (end == tok.c_str()) fail(path, "cannot parse vertex coordinate '" + tok + "' " + where);
-  if (!std::isfinite(v)) fail(path, "non-finite vertex coordinate (NaN or inf) '" + tok + "' " + where);
+std::string_view as_text(const std::vector<unsigned char>& bytes) {
+  return {reinterpret_cast<const char*>(bytes.data()), bytes.size()};
 }
 
-void check_obj(const std::filesystem::path& path, std::istream& in) {
-  long long nv = 0;
-  int lineno = 0;
-  std::string line;
-  while (std::getline(in, line)) {
-    ++lineno;
-    std::istringstream ls(line);
-    std::string tag;
-    ls >> tag;
-    if (tag == "v") {
-      ++nv;
-      std::string tok;
-      for (int c = 0; c < 3 && ls >> tok; ++c) check_coordinate(path, tok, "on line " + std::to_string(lineno));
-    } else if (tag == "f" || tag == "l") {
-      std::string tok;
-      while (ls >> tok) {
-        long long idx = 0;
-        try {
-          idx = std::stoll(tok.substr(0, tok.find('/')));
-        } catch (const std::exception&) {
-          fail(path, "cannot parse face on line " + std::to_string(lineno));
+void check_no_nul(const std::filesystem::path& path, std::string_view text, std::size_t from, const char* kind) {
+  const std::size_t nul = text.find('\0', from);
+  if (nul != std::string_view::npos)
+    fail(path, std::string("binary data (a NUL byte) at byte ") + std::to_string(nul) + " of a text " + kind +
+                   " file (corrupt, or not " + kind + ")");
+}
+
+void check_text_budget(const std::filesystem::path& path, std::uintmax_t size, const char* kind) {
+  if (size > kMeshLoadMemoryBudget / kTextPeakPerByte)
+    refuse(path, std::string("a text ") + kind + " file of " + format_bytes(size) + " would need about " +
+                     format_bytes(size * kTextPeakPerByte) + " to load, over the " +
+                     format_bytes(kMeshLoadMemoryBudget) + " memory budget (save it as binary PLY or glTF)");
+}
+
+// Splits text into lines (without '\n' / '\r').
+template <class F>
+void for_each_line(std::string_view text, F&& f) {
+  std::size_t start = 0;
+  long long number = 0;
+  while (start < text.size()) {
+    std::size_t end = text.find('\n', start);
+    if (end == std::string_view::npos) end = text.size();
+    std::string_view line = text.substr(start, end - start);
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    f(++number, line);
+    start = end + 1;
+  }
+}
+
+bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
+
+std::size_t count_tokens(std::string_view s) {
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < s.size();) {
+    while (i < s.size() && is_space(s[i])) ++i;
+    if (i < s.size()) ++n;
+    while (i < s.size() && !is_space(s[i])) ++i;
+  }
+  return n;
+}
+
+std::string_view first_token(std::string_view s) {
+  std::size_t i = 0;
+  while (i < s.size() && is_space(s[i])) ++i;
+  std::size_t j = i;
+  while (j < s.size() && !is_space(s[j])) ++j;
+  return s.substr(i, j - i);
+}
+
+void check_obj(const std::filesystem::path& path, std::string_view text, std::uintmax_t file_size, bool whole) {
+  check_text_budget(path, file_size, "OBJ");
+  check_no_nul(path, text, 0, "OBJ");
+  if (!whole) return;
+  for_each_line(text, [&](long long number, std::string_view line) {
+    const std::string_view tag = first_token(line);
+    if (tag == "f") {
+      const std::size_t corners = count_tokens(line) - 1;
+      if (corners < 3)
+        fail(path, "line " + std::to_string(number) + ": a face needs at least 3 corners, " + std::to_string(corners) +
+                       " given (a line element is written 'l')");
+    } else if (tag == "v") {
+      const std::size_t coords = count_tokens(line) - 1;
+      if (coords < 3)
+        fail(path, "line " + std::to_string(number) + ": a vertex needs 3 coordinates, " + std::to_string(coords) +
+                       " given (truncated line?)");
+    }
+  });
+}
+
+// Parses a non-negative decimal count; -1 when `s` is not one.
+long long parse_count(std::string_view s) {
+  if (s.empty() || s.size() > 18) return -1;
+  long long n = 0;
+  for (char c : s) {
+    if (c < '0' || c > '9') return -1;
+    n = n * 10 + (c - '0');
+  }
+  return n;
+}
+
+// OFF (Geomview): optional comments, a keyword [ST][C][N][4][n]OFF, optional "BINARY", then NV NF NE.
+void check_off(const std::filesystem::path& path, std::string_view text, std::uintmax_t file_size) {
+  std::vector<std::string_view> tokens;  // the keyword and the three counts, comments skipped
+  bool binary = false;
+  std::size_t pos = 0;
+  while (pos < text.size() && tokens.size() < 4) {
+    std::size_t end = text.find('\n', pos);
+    if (end == std::string_view::npos) end = text.size();
+    std::string_view line = text.substr(pos, end - pos);
+    pos = end + 1;
+    if (const auto hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
+    for (std::size_t i = 0; i < line.size() && tokens.size() < 4;) {
+      while (i < line.size() && is_space(line[i])) ++i;
+      std::size_t j = i;
+      while (j < line.size() && !is_space(line[j])) ++j;
+      if (j > i) {
+        const std::string_view tok = line.substr(i, j - i);
+        if (tokens.size() == 1 && tok == "BINARY") {
+          binary = true;
+        } else {
+          tokens.push_back(tok);
         }
-        const long long resolved = idx < 0 ? nv + idx + 1 : idx;  // negative indices count back from the last vertex
-        if (idx == 0 || resolved < 1 || resolved > nv)
-          fail(path, "vertex index out of range on line " + std::to_string(lineno) + " (" + std::to_string(idx) +
-                         " with " + std::to_string(nv) + " vertices so far)");
       }
+      i = j;
     }
+    if (binary && tokens.size() == 1) break;  // binary counts follow as int32
   }
+  if (!tokens.empty() && parse_count(tokens[0]) >= 0) tokens.insert(tokens.begin(), "OFF");  // keyword is optional
+  if (tokens.empty() || tokens[0].size() < 3 || tokens[0].substr(tokens[0].size() - 3) != "OFF")
+    fail(path, "no OFF header (the file must start with OFF, COFF, NOFF, STOFF, … or the counts, after comments)");
+  const std::string_view key = tokens[0].substr(0, tokens[0].size() - 3);
+  if (key.find('4') != std::string_view::npos || key.find('n') != std::string_view::npos)
+    refuse(path, "'" + std::string(tokens[0]) + "' is a 4-D or n-D OFF file (a polytope in more than 3 dimensions), " +
+                     "not a 3-D mesh");
+  if (key.find_first_not_of("STCN") != std::string_view::npos)
+    fail(path, "unknown OFF keyword '" + std::string(tokens[0]) + "'");
+  if (binary) refuse(path, "binary OFF files are not supported (save as ASCII OFF, PLY or glTF)");
+  check_text_budget(path, file_size, "OFF");
+  check_no_nul(path, text, 0, "OFF");
+  if (tokens.size() < 3) fail(path, "truncated OFF header: vertex and face counts are missing");
+  const long long nv = parse_count(tokens[1]), nf = parse_count(tokens[2]);
+  if (nv < 0 || nf < 0) fail(path, "bad OFF counts '" + std::string(tokens[1]) + " " + std::string(tokens[2]) + "'");
+  // An ASCII vertex takes at least "0 0 0\n" (6 bytes), a face at least "3 0 1 2\n" (8 bytes).
+  if (static_cast<unsigned long long>(nv) > file_size / 6 || static_cast<unsigned long long>(nf) > file_size / 8)
+    fail(path, "the OFF header claims " + std::to_string(nv) + " vertices and " + std::to_string(nf) +
+                   " faces, more than a file of " + format_bytes(file_size) + " can hold (truncated or corrupt)");
 }
 
-// Plain ASCII OFF ("OFF" or with N/ST prefixes; colour files are left to OpenMesh): counts and face indices.
-std::optional<std::string> check_off(const std::filesystem::path& path, std::istream& in) {
-  std::string text((std::istreambuf_iterator<char>(in)), {}), stripped;
-  if (text.rfind("OFF BINARY", 0) == 0 || text.find("BINARY") < text.find('\n')) return std::nullopt;
-  bool had_comment = false;
-  std::vector<std::string> toks;
-  std::istringstream all(text);
-  std::string line;
-  while (std::getline(all, line)) {
-    const auto hash = line.find('#');
-    if (hash != std::string::npos) had_comment = true, line.resize(hash);
-    stripped += line + '\n';
-    std::istringstream ls(line);
-    std::string t;
-    while (ls >> t) toks.push_back(t);
-  }
-  if (toks.empty() || toks[0].find("OFF") == std::string::npos) fail(path, "cannot parse: no OFF header");
-  const std::string& head = toks[0];
-  if (head.find('C') != std::string::npos || head.find('4') != std::string::npos || head[0] == 'n')
-    return had_comment ? std::optional<std::string>(stripped) : std::nullopt;
-  const std::size_t per_vertex =
-      3 + (head.find('N') != std::string::npos ? 3 : 0) + (head.find("ST") != std::string::npos ? 2 : 0);
-  try {
-    std::size_t k = 1;
-    const long long nv = std::stoll(toks.at(k++)), nf = std::stoll(toks.at(k++));
-    ++k;  // edge count
-    if (nv < 0 || nf < 0) fail(path, "cannot parse: negative counts in OFF header");
-    if (toks.size() < k + per_vertex * static_cast<std::size_t>(nv)) fail(path, "cannot parse: OFF file is truncated");
-    for (long long v = 0; v < nv; ++v, k += per_vertex)
-      for (int c = 0; c < 3; ++c) check_coordinate(path, toks[k + c], "of vertex " + std::to_string(v));
-    for (long long f = 0; f < nf; ++f) {
-      const long long n = std::stoll(toks.at(k++));
-      for (long long i = 0; i < n; ++i) {
-        const long long idx = std::stoll(toks.at(k++));
-        if (idx < 0 || idx >= nv)
-          fail(path, "vertex index out of range in face " + std::to_string(f) + " (" + std::to_string(idx) + " of " +
-                         std::to_string(nv) + " vertices)");
-      }
-      while (k < toks.size() && toks[k].find('.') != std::string::npos) ++k;  // optional face colour
-    }
-  } catch (const std::logic_error&) {  // std::stoll and vector::at failures
-    fail(path, "cannot parse OFF counts or faces");
-  }
-  return had_comment ? std::optional<std::string>(stripped) : std::nullopt;
-}
-
-// PLY header: magic, format, "element NAME COUNT" with counts the file can hold, end_header. For ASCII files whose
-// first element is "vertex" (and, if the second is "face", has one list property) the body is checked too.
-void check_ply(const std::filesystem::path& path, std::istream& in, std::uintmax_t file_size) {
-  std::string line;
-  if (!std::getline(in, line) || line.rfind("ply", 0) != 0) fail(path, "cannot parse: not a PLY file");
-  struct Element {
-    std::string name;
-    long long count = 0;
-    int properties = 0;
-    bool list = false;
-  };
-  std::vector<Element> elements;
+void check_ply(const std::filesystem::path& path, std::string_view text, std::uintmax_t file_size) {
+  const std::size_t header_end = text.find("end_header");
+  if (text.substr(0, 3) != "ply") fail(path, "not a PLY file (no 'ply' magic)");
+  if (header_end == std::string_view::npos)
+    fail(path, "incomplete PLY header (no end_header in its first " + format_bytes(kMeshHeadBytes) + ")");
+  const std::string_view header = text.substr(0, header_end);
+  check_no_nul(path, header, 0, "PLY header");
   std::string format;
-  bool ended = false;
-  long long total = 0;
-  while (std::getline(in, line)) {
-    std::istringstream ls(line);
-    std::string word;
-    ls >> word;
-    if (word == "format") {
-      ls >> format;
-      if (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian")
-        fail(path, "cannot parse: unknown PLY format '" + format + "'");
-    } else if (word == "element") {
-      std::string name, count;
-      ls >> name >> count;
-      long long n = -1;
-      try {
-        std::size_t used = 0;
-        n = std::stoll(count, &used);
-        if (used != count.size()) n = -1;
-      } catch (const std::exception&) {
-      }
-      if (n < 0) fail(path, "cannot parse: bad PLY element count '" + count + "' for " + name);
-      total += n;
-      elements.push_back({name, n});
-    } else if (word == "property" && !elements.empty()) {
-      std::string type;
-      ls >> type;
-      ++elements.back().properties;
-      elements.back().list = elements.back().list || type == "list";
-    } else if (word == "end_header") {
-      ended = true;
-      break;
+  unsigned long long total_values = 0, total_elements = 0;
+  long long count = 0;
+  for_each_line(header, [&](long long, std::string_view line) {
+    const std::string_view tag = first_token(line);
+    std::vector<std::string_view> words;
+    for (std::size_t i = 0; i < line.size();) {
+      while (i < line.size() && is_space(line[i])) ++i;
+      std::size_t j = i;
+      while (j < line.size() && !is_space(line[j])) ++j;
+      if (j > i) words.push_back(line.substr(i, j - i));
+      i = j;
     }
-  }
-  if (format.empty() || !ended) fail(path, "cannot parse: incomplete PLY header");
-  // Every element takes at least one byte: a larger count is a corrupt header (and would make OpenMesh allocate it).
-  if (static_cast<std::uintmax_t>(total) > file_size) fail(path, "cannot parse: PLY element counts exceed file size");
-  if (format != "ascii" || elements.empty() || elements[0].name != "vertex" || elements[0].list) return;
-  const long long nv = elements[0].count;
-  for (long long v = 0; v < nv; ++v) {
-    if (!std::getline(in, line)) fail(path, "cannot parse: PLY file is truncated");
-    std::istringstream ls(line);
-    std::string tok;
-    for (int c = 0; c < elements[0].properties && ls >> tok; ++c)
-      check_coordinate(path, tok, "of vertex " + std::to_string(v));
-  }
-  if (elements.size() < 2 || elements[1].name != "face" || elements[1].properties != 1 || !elements[1].list) return;
-  for (long long f = 0; f < elements[1].count && std::getline(in, line); ++f) {
-    std::istringstream ls(line);
-    long long n = 0, idx = 0;
-    ls >> n;
-    for (long long i = 0; i < n && ls >> idx; ++i)
-      if (idx < 0 || idx >= nv)
-        fail(path, "vertex index out of range in face " + std::to_string(f) + " (" + std::to_string(idx) + " of " +
-                       std::to_string(nv) + " vertices)");
+    if (tag == "format" && words.size() >= 2) {
+      format = std::string(words[1]);
+      if (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian")
+        fail(path, "unknown PLY format '" + format + "'");
+    } else if (tag == "element") {
+      count = words.size() >= 3 ? parse_count(words[2]) : -1;
+      if (count < 0)
+        fail(path, "bad PLY element count '" + std::string(words.size() >= 3 ? words[2] : "") + "' for " +
+                       std::string(words.size() >= 2 ? words[1] : "?"));
+      total_elements += static_cast<unsigned long long>(count);
+    } else if (tag == "property") {
+      // A list is at least its count; with a face's 3 corners, 4 values.
+      const unsigned long long per = words.size() >= 2 && words[1] == "list" ? 4 : 1;
+      total_values += per * static_cast<unsigned long long>(count);
+    }
+  });
+  if (format.empty()) fail(path, "incomplete PLY header (no format line)");
+  const std::uintmax_t body = file_size - header_end;
+  // Every element takes at least one byte of the body: a larger count is a corrupt or truncated header.
+  if (total_elements > body)
+    fail(path, "PLY element counts (" + std::to_string(total_elements) + " elements) exceed what a body of " +
+                   format_bytes(body) + " can hold (truncated or corrupt)");
+  if (total_values > kMeshLoadMemoryBudget / kPlyPeakPerValue)
+    refuse(path, "a PLY file of " + std::to_string(total_values) + " values would need about " +
+                     format_bytes(total_values * kPlyPeakPerValue) + " to load, over the " +
+                     format_bytes(kMeshLoadMemoryBudget) + " memory budget");
+  if (format == "ascii") {
+    check_text_budget(path, file_size, "PLY");
+    check_no_nul(path, text, header_end, "PLY");
   }
 }
 
 // Binary STL is 84 + 50·n bytes; anything else must be ASCII ("solid").
-void check_stl(const std::filesystem::path& path, std::istream& in, std::uintmax_t file_size) {
-  char header[84] = {};
-  in.read(header, sizeof header);
-  if (file_size >= 84) {
+void check_stl(const std::filesystem::path& path, std::string_view text, std::uintmax_t file_size) {
+  check_text_budget(path, file_size, "STL");  // binary STL costs about as much per byte as text (50 bytes a triangle)
+  if (text.size() >= 84) {
     std::uint32_t n = 0;
-    for (int i = 0; i < 4; ++i) n |= static_cast<std::uint32_t>(static_cast<unsigned char>(header[80 + i])) << (8 * i);
+    for (int i = 0; i < 4; ++i) n |= static_cast<std::uint32_t>(static_cast<unsigned char>(text[80 + i])) << (8 * i);
     if (file_size == 84 + 50ull * n) return;
   }
-  if (std::string(header, std::min<std::uintmax_t>(file_size, 5)) != "solid")
-    fail(path, "cannot parse: neither ASCII STL nor a binary STL of consistent size");
-  in.clear();
-  in.seekg(0);
-  std::string line;
-  int lineno = 0;
-  while (std::getline(in, line)) {
-    ++lineno;
-    std::istringstream ls(line);
-    std::string word, tok;
-    ls >> word;
-    if (word == "vertex")
-      for (int c = 0; c < 3; ++c) {
-        if (!(ls >> tok)) fail(path, "cannot parse vertex on line " + std::to_string(lineno));
-        check_coordinate(path, tok, "on line " + std::to_string(lineno));
-      }
-  }
+  if (text.substr(0, 5) != "solid")
+    fail(path, "neither ASCII STL (starting 'solid') nor a binary STL whose size matches its triangle count");
+  check_no_nul(path, text, 0, "STL");
+}
+
+// Text in UTF-16/32 with a byte order mark → UTF-8, through glibc's iconv (the BOM picks the byte order).
+std::vector<unsigned char> to_utf8(const std::filesystem::path& path, std::vector<unsigned char>& in,
+                                   const char* from) {
+  const iconv_t cd = ::iconv_open("UTF-8", from);
+  if (cd == reinterpret_cast<iconv_t>(-1)) fail(path, std::string("cannot convert ") + from + " text to UTF-8");
+  std::vector<unsigned char> out(in.size() * 2 + 16);  // UTF-16 → UTF-8 at most 1.5×; UTF-32 shrinks
+  char* src = reinterpret_cast<char*>(in.data());
+  char* dst = reinterpret_cast<char*>(out.data());
+  std::size_t src_left = in.size(), dst_left = out.size();
+  const std::size_t r = ::iconv(cd, &src, &src_left, &dst, &dst_left);
+  ::iconv_close(cd);
+  if (r == static_cast<std::size_t>(-1))
+    fail(path, std::string("invalid ") + from + " text at byte " + std::to_string(in.size() - src_left));
+  out.resize(out.size() - dst_left);
+  return out;
+}
+
+bool starts_with(const std::vector<unsigned char>& b, std::initializer_list<unsigned char> magic) {
+  return b.size() >= magic.size() && std::equal(magic.begin(), magic.end(), b.begin());
 }
 
 }  // namespace
 
-std::optional<std::string> precheck_mesh_file(const std::filesystem::path& path, const std::string& ext) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail(path, "cannot open file");
-  std::error_code ec;
-  const std::uintmax_t size = std::filesystem::file_size(path, ec);
-  if (ext == ".obj") check_obj(path, in);
-  if (ext == ".off") return check_off(path, in);
-  if (ext == ".ply") check_ply(path, in, ec ? 0 : size);
-  if (ext == ".stl") check_stl(path, in, ec ? 0 : size);
-  return std::nullopt;
+void prepare_mesh_bytes(const std::filesystem::path& path, const std::string& ext, std::vector<unsigned char>& bytes) {
+  if (ext == ".stl") return;  // binary STL may start with any bytes; ASCII STL is plain ASCII
+  const bool utf32 = starts_with(bytes, {0xFF, 0xFE, 0x00, 0x00}) || starts_with(bytes, {0x00, 0x00, 0xFE, 0xFF});
+  const bool utf16 = !utf32 && (starts_with(bytes, {0xFF, 0xFE}) || starts_with(bytes, {0xFE, 0xFF}));
+  if (utf16 || utf32) bytes = to_utf8(path, bytes, utf32 ? "UTF-32" : "UTF-16");
+  if (starts_with(bytes, {0xEF, 0xBB, 0xBF})) bytes.erase(bytes.begin(), bytes.begin() + 3);
+  if (ext == ".off") {  // binary OFF is refused by precheck_mesh_file; its header has no comment to remove
+    std::size_t out = 0;
+    bool comment = false;
+    for (const unsigned char c : bytes) {
+      if (c == '\n' || c == '\r')
+        comment = false;
+      else if (c == '#')
+        comment = true;
+      if (!comment) bytes[out++] = c;
+    }
+    bytes.resize(out);
+  }
+}
+
+void precheck_mesh_head(const std::filesystem::path& path, const std::string& ext,
+                        const std::vector<unsigned char>& head, std::uintmax_t file_size) {
+  if (file_size == 0) fail(path, "empty file");
+  if (starts_with(head, {0xFF, 0xFE}) || starts_with(head, {0xFE, 0xFF}) || starts_with(head, {0x00, 0x00, 0xFE, 0xFF}))
+    return;  // UTF-16/32 text: checked once converted (precheck_mesh_file)
+  const std::string_view text = as_text(head);
+  if (ext == ".obj") check_obj(path, text, file_size, false);
+  if (ext == ".off") check_off(path, text, file_size);
+  if (ext == ".ply") check_ply(path, text, file_size);
+  if (ext == ".stl") check_stl(path, text, file_size);
+}
+
+void precheck_mesh_file(const std::filesystem::path& path, const std::string& ext,
+                        const std::vector<unsigned char>& bytes) {
+  const std::string_view text = as_text(bytes);
+  if (text.empty()) fail(path, "empty file");
+  if (ext == ".obj") check_obj(path, text, text.size(), true);
+  if (ext == ".off") check_off(path, text, text.size());
+  if (ext == ".ply") check_ply(path, text, text.size());
+  if (ext == ".stl") check_stl(path, text, text.size());
 }
 
 }  // namespace trispline::core

@@ -1,17 +1,47 @@
-// Internal to trispline_mesh: checks done on a mesh file before OpenMesh reads it, because OpenMesh's readers do not
-// check face indices (OBJ, OFF), loop forever or allocate without bound on some corrupt headers (PLY), and accept
-// truncated binary STL as an empty mesh.
+// Internal to trispline_mesh: what an OBJ, PLY, OFF or STL file must satisfy before assimp parses it.
+//
+// assimp reads every well-formed file of these formats, but it trusts counts in headers (a PLY or OFF header that
+// claims 10⁹ vertices in a 100-byte file is allocated, not refused), keeps a PLY in a DOM of ~40 bytes a value, and
+// reads a text file full of NUL bytes (a sparse file) to the end. These checks refuse such files by their size and
+// header alone, naming the file and what is wrong; a file that passes is parsed once, by assimp.
+//
+//   * text formats (OBJ, ASCII OFF / PLY / STL): no NUL byte (the offset of the first one is named);
+//   * OBJ: every 'f' line has at least 3 corners (a 2-corner face is malformed, not a line: 'l' is);
+//   * OFF: a 3-D header ("OFF", "COFF", "NOFF", "STOFF", …; 4OFF / nOFF are 4-D or n-D polytopes, refused), counts
+//     that the file's size can hold;
+//   * PLY: magic, known format, element counts the file's size can hold, and assimp's DOM within the memory budget;
+//   * STL: binary (84 + 50·n bytes exactly) or ASCII ("solid").
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
-#include <optional>
 #include <string>
+#include <vector>
 
 namespace trispline::core {
 
-// Throws MeshIoError ("cannot parse ..." or "vertex index out of range ...") for `path` with lower-case extension
-// `ext` (.obj .off .ply .stl). Returns the file's text with '#' comments removed when it is an ASCII OFF file that
-// has comments (OpenMesh's OFF reader does not skip them); std::nullopt otherwise.
-std::optional<std::string> precheck_mesh_file(const std::filesystem::path& path, const std::string& ext);
+// Peak memory a mesh load may reach, estimated from the file before parsing: 3 GiB (the hostile-input bound is 4 GB;
+// a real 10 M-triangle scan stays far below).
+inline constexpr std::uintmax_t kMeshLoadMemoryBudget = std::uintmax_t(3) << 30;
+// The head of a file read for precheck_mesh_head (PLY and OFF headers, STL's triangle count, the first NUL bytes).
+inline constexpr std::size_t kMeshHeadBytes = 64 * 1024;
+
+// Checks what the head of a file (its first kMeshHeadBytes, or all of a smaller file) and its size in bytes tell,
+// before the whole file is read: the memory budget from the size (text formats, binary STL), PLY and OFF header
+// counts against the size, STL's size against its triangle count, no NUL byte in a text head. Throws MeshIoError.
+// Text with a UTF-16/32 byte order mark is left to precheck_mesh_file.
+void precheck_mesh_head(const std::filesystem::path& path, const std::string& ext,
+                        const std::vector<unsigned char>& head, std::uintmax_t file_size);
+
+// Rewrites `bytes` (the whole file, extension `ext`) into what assimp reads fully: text with a UTF-16/32 byte order
+// mark becomes UTF-8 (glibc iconv; assimp 5.2's own conversion loses every face of a UTF-16 BE file) and a UTF-8 byte
+// order mark is dropped; OFF comments ('#' to the end of a line, which the OFF format allows anywhere and assimp's
+// reader skips only before the header) are removed. Throws MeshIoError on invalid UTF-16/32.
+void prepare_mesh_bytes(const std::filesystem::path& path, const std::string& ext, std::vector<unsigned char>& bytes);
+
+// Throws MeshIoError "'PATH': <reason>" when `bytes` (the whole file, after prepare_mesh_bytes) is not acceptable for
+// extension `ext` (".obj" ".ply" ".off" ".stl").
+void precheck_mesh_file(const std::filesystem::path& path, const std::string& ext,
+                        const std::vector<unsigned char>& bytes);
 
 }  // namespace trispline::core

@@ -1,0 +1,161 @@
+// OBJ / PLY / OFF / STL files as they come from other tools (through assimp): every face loads or the file is
+// refused with a reason — per-face colours, COFF, comments and tabs (Geomview's samples), loose points and lines,
+// truncated lines, 4-D OFF, UTF-16 text; and hostile files are refused by their size and head before they cost
+// memory (sparse files, headers claiming 10⁹ elements, a path that is a device, a FIFO or a folder).
+#include <gmock/gmock.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <fstream>
+
+#include "core/mesh/mesh_io.h"
+#include "mesh_test_util.h"
+
+namespace trispline::core {
+namespace {
+
+using test::TempDir;
+using test::write_text;
+using ::testing::HasSubstr;
+
+std::string error_of(const std::filesystem::path& path, const MeshLoadOptions& options = {}) {
+  try {
+    load_mesh(path, options);
+  } catch (const MeshIoError& e) {
+    return e.what();
+  }
+  return "(loaded)";
+}
+
+long max_rss_kb() {
+  rusage ru{};
+  ::getrusage(RUSAGE_SELF, &ru);
+  return ru.ru_maxrss;
+}
+
+// A file of `size` bytes that starts with `head` and is a hole (zeros, no disk) after it.
+void write_sparse(const std::filesystem::path& p, const std::string& head, std::uintmax_t size) {
+  write_text(p, head);
+  std::filesystem::resize_file(p, size);
+}
+
+// Geomview's OFF as its sample files write it: comments, tabs, blank lines, RGBA per face.
+TEST(MeshFiles, OffWithCommentsTabsBlankLinesAndFaceColoursLoadsEveryFace) {
+  TempDir dir;
+  write_text(dir / "facecube.off",
+             "# a cube with a colour per face\nOFF\n8 6 12\n\n"
+             "\t1 1 1\n\t1 1 -1   # a comment after a vertex\n\t1 -1 1\n\t1 -1 -1\n"
+             "\t-1 1 1\n\t-1 1 -1\n\t-1 -1 1\n\t-1 -1 -1\n\n"
+             "4 0 2 3 1\t1.0 0.0 0.0 1.0\n4 4 5 7 6\t0 1 0 1\n4 0 1 5 4\t0 0 1 1\n"
+             "4 2 6 7 3\t1 1 0 1\n4 0 4 6 2  # no colour\n4 1 3 7 5\t0 1 1 1\n");
+  const TriMesh m = load_mesh(dir / "facecube.off");
+  EXPECT_EQ(m.triangle_count(), 12u);  // 6 quads: the old reader kept 1–3 triangles of such files
+  EXPECT_EQ(m.vertex_count(), 8u);
+  EXPECT_NEAR(std::abs(signed_volume(m)), 8.0, 1e-12);
+}
+
+TEST(MeshFiles, CoffWithVertexColoursAndNoKeywordOffLoad) {
+  TempDir dir;
+  write_text(dir / "coff.off",
+             "COFF\n4 2 0\n0 0 0 1 0 0 1\n1 0 0 0 1 0 1\n1 1 0 0 0 1 1\n0 1 0 1 1 1 1\n3 0 1 2\n3 0 2 3\n");
+  EXPECT_EQ(load_mesh(dir / "coff.off").triangle_count(), 2u);
+  write_text(dir / "bare.off", "# no keyword: Geomview allows it\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  EXPECT_EQ(load_mesh(dir / "bare.off").triangle_count(), 1u);
+}
+
+TEST(MeshFiles, FourDimensionalOffIsRefusedNotProjected) {
+  TempDir dir;
+  write_text(dir / "tetra4.off", "4OFF\n3 1 0\n0 0 0 1\n1 0 0 1\n0 1 0 1\n3 0 1 2\n");
+  EXPECT_THAT(error_of(dir / "tetra4.off"), HasSubstr("4-D or n-D OFF file"));
+}
+
+TEST(MeshFiles, TruncatedObjLinesAreRefusedWithTheirLine) {
+  TempDir dir;
+  write_text(dir / "short_v.obj", "v 0 0 0\nv 1 0 0\nv 1 1\nv 0 1 0\nf 1 2 4\n");
+  EXPECT_THAT(error_of(dir / "short_v.obj"), HasSubstr("line 3: a vertex needs 3 coordinates, 2 given"));
+  write_text(dir / "two_corner.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2\n");
+  EXPECT_THAT(error_of(dir / "two_corner.obj"), HasSubstr("line 5: a face needs at least 3 corners, 2 given"));
+}
+
+TEST(MeshFiles, LooseGeometryIsRefusedUnlessAskedToIgnoreIt) {
+  TempDir dir;
+  write_text(dir / "mixed.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nl 1 4\np 4\n");
+  EXPECT_THAT(error_of(dir / "mixed.obj"), HasSubstr("holds 1 point and 1 line elements besides its 1 faces"));
+  MeshLoadOptions ignore;
+  ignore.ignore_loose = true;
+  MeshLoadReport report;
+  const TriMesh m = load_mesh(dir / "mixed.obj", ignore, &report);
+  EXPECT_EQ(m.triangle_count(), 1u);
+  EXPECT_EQ(report.ignored_points, 1u);
+  EXPECT_EQ(report.ignored_lines, 1u);
+  EXPECT_EQ(report.loader, "assimp");
+  write_text(dir / "lines.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\nl 2 3\n");
+  EXPECT_THAT(error_of(dir / "lines.obj", ignore), HasSubstr("empty mesh (no triangles): only 0 points and 2 lines"));
+}
+
+TEST(MeshFiles, OffFaceCountInTheHeaderMustMatch) {
+  TempDir dir;  // assimp would load the two faces present and only warn that the header said three
+  write_text(dir / "short.off", "OFF\n4 3 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n");
+  EXPECT_THAT(error_of(dir / "short.off"), HasSubstr("cannot parse off file"));
+}
+
+TEST(MeshFiles, Utf16ObjLoads) {
+  TempDir dir;
+  const std::string text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  std::string be = "\xFE\xFF";
+  for (char c : text) be += std::string{'\0', c};
+  write_text(dir / "be.obj", be);
+  EXPECT_EQ(load_mesh(dir / "be.obj").triangle_count(), 1u);  // assimp 5.2's own conversion loses the face
+  write_text(dir / "odd.obj", be + "x");
+  EXPECT_THAT(error_of(dir / "odd.obj"), HasSubstr("invalid UTF-16"));
+}
+
+TEST(MeshFiles, GroupsShareTheirVerticesAfterLoading) {
+  TempDir dir;  // two OBJ groups (two assimp meshes) along a shared edge stay one connected mesh
+  write_text(dir / "groups.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\ng a\nf 1 2 3\ng b\nf 1 3 4\n");
+  const TriMesh m = load_mesh(dir / "groups.obj");
+  EXPECT_EQ(m.vertex_count(), 4u);
+  EXPECT_EQ(m.triangle_count(), 2u);
+}
+
+// Hostile files: refused by their size or head, before the whole file is read.
+TEST(MeshFiles, SparseAndOverclaimingFilesAreRefusedBeforeTheyCostMemory) {
+  TempDir dir;
+  const long rss_before = max_rss_kb();
+  // 2 GB, as the hostile-input probe's: a text OBJ of that size is over the memory budget by its size alone.
+  write_sparse(dir / "sparse.obj", "v 0 0 0\n", 2'000'000'000ull);
+  EXPECT_THAT(error_of(dir / "sparse.obj"), HasSubstr("memory budget"));
+  write_sparse(dir / "sparse.ply",
+               "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+               "end_header\n",
+               2'000'000'000ull);
+  EXPECT_THAT(error_of(dir / "sparse.ply"), HasSubstr("memory budget"));
+  // Small enough for the budget: the NUL bytes of the hole are found in the head.
+  write_sparse(dir / "holes.obj", "v 0 0 0\n", 100'000'000ull);
+  EXPECT_THAT(error_of(dir / "holes.obj"), HasSubstr("NUL byte"));
+  // Headers that claim far more than the file holds.
+  write_text(dir / "claims.ply",
+             "ply\nformat binary_little_endian 1.0\nelement vertex 1000000000\nproperty float x\nproperty float y\n"
+             "property float z\nend_header\n\x01\x02\x03\x04");
+  EXPECT_THAT(error_of(dir / "claims.ply"), HasSubstr("exceed what a body of"));
+  write_text(dir / "claims.off", "OFF\n1000000000 1 0\n0 0 0\n");
+  EXPECT_THAT(error_of(dir / "claims.off"), HasSubstr("more than a file of"));
+  write_text(dir / "claims.stl", std::string(80, 'x') + std::string("\xFF\xFF\xFF\x0F", 4) + std::string(50, '\0'));
+  EXPECT_THAT(error_of(dir / "claims.stl"), HasSubstr("binary STL whose size matches its triangle count"));
+  EXPECT_LT(max_rss_kb() - rss_before, 64 * 1024) << "a refused file cost more than 64 MB";
+}
+
+TEST(MeshFiles, PathsThatAreNotRegularFilesSayWhatTheyAre) {
+  TempDir dir;
+  std::filesystem::create_directory(dir / "folder.obj");
+  EXPECT_THAT(error_of(dir / "folder.obj"), HasSubstr("is a directory"));
+  std::filesystem::create_symlink("/dev/zero", dir / "zero.ply");
+  EXPECT_THAT(error_of(dir / "zero.ply"), HasSubstr("is a character device, not a regular file"));
+  ASSERT_EQ(::mkfifo((dir / "pipe.off").c_str(), 0600), 0);
+  EXPECT_THAT(error_of(dir / "pipe.off"), HasSubstr("is a FIFO"));
+  EXPECT_THAT(error_of(dir / "missing.stl"), HasSubstr("file not found"));
+}
+
+}  // namespace
+}  // namespace trispline::core
