@@ -171,6 +171,23 @@ void check_ply(const std::filesystem::path& path, std::string_view text, std::ui
   std::string format;
   unsigned long long total_values = 0, total_elements = 0;
   long long count = 0;
+  // Binary body size the header describes: at least min_body bytes, at most max_body (unbounded with a 4-byte list
+  // count). Element sizes are summed per element, then multiplied by its count (saturating).
+  unsigned long long min_body = 0, max_body = 0, element_min = 0, element_max = 0;
+  bool bounded = true;
+  auto saturating = [](unsigned long long a, unsigned long long b) { return b != 0 && a > ~0ull / b ? ~0ull : a * b; };
+  auto close_element = [&] {
+    min_body += saturating(element_min, static_cast<unsigned long long>(count));
+    max_body += saturating(element_max, static_cast<unsigned long long>(count));
+    element_min = element_max = 0;
+  };
+  auto type_size = [&](std::string_view t) -> unsigned long long {
+    if (t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
+    if (t == "short" || t == "ushort" || t == "int16" || t == "uint16") return 2;
+    if (t == "int" || t == "uint" || t == "int32" || t == "uint32" || t == "float" || t == "float32") return 4;
+    if (t == "double" || t == "float64") return 8;
+    fail(path, "unknown PLY property type '" + std::string(t) + "'");
+  };
   for_each_line(header, [&](long long, std::string_view line) {
     const std::string_view tag = first_token(line);
     std::vector<std::string_view> words;
@@ -186,6 +203,7 @@ void check_ply(const std::filesystem::path& path, std::string_view text, std::ui
       if (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian")
         fail(path, "unknown PLY format '" + format + "'");
     } else if (tag == "element") {
+      close_element();
       count = words.size() >= 3 ? parse_count(words[2]) : -1;
       if (count < 0)
         fail(path, "bad PLY element count '" + std::string(words.size() >= 3 ? words[2] : "") + "' for " +
@@ -193,10 +211,22 @@ void check_ply(const std::filesystem::path& path, std::string_view text, std::ui
       total_elements += static_cast<unsigned long long>(count);
     } else if (tag == "property") {
       // A list is at least its count; with a face's 3 corners, 4 values.
-      const unsigned long long per = words.size() >= 2 && words[1] == "list" ? 4 : 1;
-      total_values += per * static_cast<unsigned long long>(count);
+      const bool list = words.size() >= 2 && words[1] == "list";
+      total_values += (list ? 4 : 1) * static_cast<unsigned long long>(count);
+      if (list && words.size() >= 4) {
+        const unsigned long long count_size = type_size(words[2]), item = type_size(words[3]);
+        element_min += count_size;
+        if (count_size >= 4) bounded = false;
+        element_max += count_size + item * ((1ull << (8 * count_size)) - 1);
+      } else if (!list && words.size() >= 2) {
+        element_min += type_size(words[1]);
+        element_max += type_size(words[1]);
+      } else {
+        fail(path, "bad PLY property line '" + std::string(line) + "'");
+      }
     }
   });
+  close_element();
   if (format.empty()) fail(path, "incomplete PLY header (no format line)");
   const std::uintmax_t body = file_size - header_end;
   // Every element takes at least one byte of the body: a larger count is a corrupt or truncated header.
@@ -207,7 +237,18 @@ void check_ply(const std::filesystem::path& path, std::string_view text, std::ui
     refuse(path, "a PLY file of " + std::to_string(total_values) + " values would need about " +
                      format_bytes(total_values * kPlyPeakPerValue) + " to load, over the " +
                      format_bytes(kMeshLoadMemoryBudget) + " memory budget");
-  if (format == "ascii") {
+  if (format != "ascii") {
+    const std::size_t eol = text.find('\n', header_end);  // the body starts after end_header's line break
+    const std::uintmax_t data = eol == std::string_view::npos ? 0 : file_size - (eol + 1);
+    if (data < min_body)
+      fail(path, "binary PLY body of " + std::to_string(data) + " bytes is shorter than the " +
+                     std::to_string(min_body) + " its header describes (truncated)");
+    // Bytes past what the header can describe are not mesh data: refuse rather than read them (a 2 GB sparse file
+    // with a 3-vertex header). A little slack for trailing line breaks some writers add.
+    if (bounded && data > max_body + 4096)
+      fail(path, "binary PLY body of " + format_bytes(data) + " is longer than its header can describe (at most " +
+                     format_bytes(max_body) + ")");
+  } else {
     check_text_budget(path, file_size, "PLY");
     check_no_nul(path, text, header_end, "PLY");
   }

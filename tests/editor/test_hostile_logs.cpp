@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/resource.h>
 #include <sys/stat.h>
 
 #include <filesystem>
@@ -156,6 +157,82 @@ TEST(HostileLogText, NonFiniteResultsAreTakenBackNotKept) {
   const core::SceneObject* t = scene.find("t");
   ASSERT_NE(t, nullptr);
   EXPECT_EQ(core::scene_value_error(scene), "");
+}
+
+// Mesh files a log points at: refused at their line with a clear error, before they cost memory, and the scene
+// keeps the lines before. (The loaders' own tests are in tests/core/mesh/; this is the path replay, Open and crash
+// recovery take.)
+long max_rss_mb() {
+  rusage ru{};
+  ::getrusage(RUSAGE_SELF, &ru);
+  return ru.ru_maxrss / 1024;
+}
+
+void write_glb(const fs::path& path, std::string json, const std::string& bin) {
+  while (json.size() % 4) json += ' ';
+  auto u32 = [](std::uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); };
+  const std::uint32_t total = 12 + 8 + static_cast<std::uint32_t>(json.size()) + 8 + static_cast<std::uint32_t>(bin.size());
+  std::ofstream(path, std::ios::binary) << "glTF" << u32(2) << u32(total) << u32(static_cast<std::uint32_t>(json.size()))
+                                        << "JSON" << json << u32(static_cast<std::uint32_t>(bin.size())) << "BIN"
+                                        << std::string(1, '\0') << bin;
+}
+
+TEST(HostileMeshFiles, EndAtTheirLineWithAClearErrorAndLittleMemory) {
+  const fs::path dir = scratch("meshes");
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  // A 128-byte GLB whose accessor claims 3e8 vertices (7 GB before its bounds error, as found).
+  write_glb(dir / "claims.glb",
+            R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":8}],"bufferViews":[{"buffer":0,"byteLength":8}],)"
+            R"("accessors":[{"bufferView":0,"componentType":5126,"count":300000000,"type":"VEC3"}],)"
+            R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],"nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}]})",
+            std::string(8, '\0'));
+  // 2 GB sparse files (read whole, or hanging, before).
+  std::ofstream(dir / "sparse.ply") << "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
+                                       "property float y\nproperty float z\nend_header\n";
+  fs::resize_file(dir / "sparse.ply", 2'000'000'000ull);
+  std::ofstream(dir / "sparse.obj") << "v 0 0 0\n";
+  fs::resize_file(dir / "sparse.obj", 2'000'000'000ull);
+  // A glTF whose buffer is a file outside its folder.
+  std::ofstream(dir / "escape.gltf")
+      << R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":36,"uri":"../../../../../../../../etc/passwd"}],)"
+         R"("bufferViews":[{"buffer":0,"byteLength":36}],)"
+         R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"}],)"
+         R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],"nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}]})";
+  fs::remove(dir / "zero.obj");
+  fs::create_symlink("/dev/zero", dir / "zero.obj");
+
+  struct Case {
+    const char* line;
+    const char* words;
+  };
+  const Case cases[] = {
+      {R"({"cmd":"scene.load","path":"claims.glb"})", "claims.glb"},
+      {R"({"cmd":"scene.load","path":"sparse.ply"})", "longer than its header can describe"},
+      {R"({"cmd":"scene.load","path":"sparse.obj"})", "memory budget"},
+      {R"({"cmd":"scene.load","path":"escape.gltf"})", "outside"},
+      {R"({"cmd":"scene.load","path":"zero.obj"})", "is a character device"},
+      {R"({"cmd":"ddm.fill","object":"ball","layer":"l","tile":"zero.obj","layout":"rect","counts":[1,1],"height":0.05})",
+       "is a character device"},
+  };
+  const long rss_before = max_rss_mb();
+  for (const Case& c : cases) {
+    const fs::path log = dir / "case.jsonl";
+    std::ofstream(log) << R"({"cmd":"scene.primitive","kind":"sphere","name":"ball"})" << "\n" << c.line << "\n";
+    SCOPED_TRACE(c.line);
+    core::Scene scene;
+    editor::History history(scene);
+    const editor::ReplayResult r = editor::replay_lines(history, log);
+    ASSERT_FALSE(r.ok);
+    EXPECT_EQ(r.failed_line, 2) << r.error;
+    EXPECT_NE(r.error.find(log.string() + ":2:"), std::string::npos) << r.error;
+    EXPECT_NE(r.error.find(c.words), std::string::npos) << r.error;
+    EXPECT_EQ(r.error.find("root:"), std::string::npos) << "the bytes of a file outside the folder were read: " << r.error;
+    EXPECT_EQ(history.applied(), 1u);
+    EXPECT_EQ(scene.objects().size(), 1u);
+    EXPECT_LT(max_rss_mb() - rss_before, 256) << "refusing the file cost more than 256 MB: " << r.error;
+  }
+  EXPECT_LT(max_rss_mb() - rss_before, 256) << "refusing the files cost more than 256 MB";
 }
 
 }  // namespace

@@ -146,6 +146,24 @@ TEST(MeshFiles, SparseAndOverclaimingFilesAreRefusedBeforeTheyCostMemory) {
   EXPECT_LT(max_rss_kb() - rss_before, 64 * 1024) << "a refused file cost more than 64 MB";
 }
 
+TEST(MeshFiles, BinaryPlyBodyMustMatchItsHeader) {
+  TempDir dir;
+  std::string ply =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  const float v[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  ply.append(reinterpret_cast<const char*>(v), sizeof v);
+  const int idx[3] = {0, 1, 2};
+  ply += '\3';
+  ply.append(reinterpret_cast<const char*>(idx), sizeof idx);
+  write_text(dir / "exact.ply", ply);
+  EXPECT_EQ(load_mesh(dir / "exact.ply").triangle_count(), 1u);
+  write_text(dir / "short.ply", ply.substr(0, ply.size() - 13));  // the face is missing
+  EXPECT_THAT(error_of(dir / "short.ply"), HasSubstr("truncated"));
+  write_text(dir / "long.ply", ply + std::string(1 << 20, '\0'));
+  EXPECT_THAT(error_of(dir / "long.ply"), HasSubstr("longer than its header can describe"));
+}
+
 TEST(MeshFiles, PathsThatAreNotRegularFilesSayWhatTheyAre) {
   TempDir dir;
   std::filesystem::create_directory(dir / "folder.obj");
