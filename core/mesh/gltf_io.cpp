@@ -18,6 +18,7 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <limits>
 #include <map>
+#include <set>
 #include <tuple>
 #include <utility>
 
@@ -60,6 +61,25 @@ struct Totals {
   std::size_t vertices = 0, triangles = 0;
 };
 
+[[noreturn]] void over_vertex_budget(const std::filesystem::path& path) {
+  throw MeshIoError(quoted(path) + ": the file's meshes have more than " + std::to_string(kMaxMeshFileVertices) +
+                    " vertices (the limit for mesh files; a mesh used by several nodes counts once per node)");
+}
+
+[[noreturn]] void over_triangle_budget(const std::filesystem::path& path) {
+  throw MeshIoError(quoted(path) + ": the file's meshes have more than " + std::to_string(kMaxMeshFileTriangles) +
+                    " triangles (the limit for mesh files)");
+}
+
+bool is_surface_mode(int mode) {
+  return mode == TINYGLTF_MODE_TRIANGLES || mode == TINYGLTF_MODE_TRIANGLE_STRIP || mode == TINYGLTF_MODE_TRIANGLE_FAN;
+}
+
+// Triangles `count` indices (or vertices) make in `mode`.
+std::size_t triangle_count(int mode, std::size_t count) {
+  return mode == TINYGLTF_MODE_TRIANGLES ? count / 3 : count >= 3 ? count - 2 : 0;
+}
+
 // Element count of vertex attribute `index`, which must equal the primitive's POSITION count `n`.
 void require_count(const tinygltf::Model& model, int index, const std::string& what, std::size_t n,
                    const std::string& where, const std::filesystem::path& path) {
@@ -94,9 +114,7 @@ std::pair<std::uint32_t, std::size_t> append_vertices(const tinygltf::Model& mod
                                                       const std::filesystem::path& path) {
   const int pos_index = prim.attributes.at("POSITION");
   const std::size_t n = gltf_read::accessor_layout(model, pos_index, "POSITION", path).count;
-  if (n > kMaxMeshFileVertices - totals.vertices)
-    throw MeshIoError(quoted(path) + ": the file's meshes have more than " + std::to_string(kMaxMeshFileVertices) +
-                      " vertices (the limit for mesh files; a mesh used by several nodes counts once per node)");
+  if (n > kMaxMeshFileVertices - totals.vertices) over_vertex_budget(path);
   const auto nrm_it = prim.attributes.find("NORMAL");
   const auto uv_it = prim.attributes.find("TEXCOORD_0");
   if (nrm_it != prim.attributes.end()) require_count(model, nrm_it->second, "NORMAL", n, where, path);
@@ -143,10 +161,7 @@ std::size_t index_triangles(const tinygltf::Model& model, const tinygltf::Primit
   if (mode == TINYGLTF_MODE_TRIANGLES && count % 3 != 0)
     throw MeshIoError(quoted(path) + ": " + where + ": " + std::to_string(count) +
                       (indexed ? " indices" : " vertices without indices") + ", not a multiple of 3 (TRIANGLES)");
-  const std::size_t triangles = mode == TINYGLTF_MODE_TRIANGLES ? count / 3 : count >= 3 ? count - 2 : 0;
-  if (triangles > kMaxMeshFileTriangles - totals.triangles)
-    throw MeshIoError(quoted(path) + ": the file's meshes have more than " + std::to_string(kMaxMeshFileTriangles) +
-                      " triangles (the limit for mesh files)");
+  if (triangle_count(mode, count) > kMaxMeshFileTriangles - totals.triangles) over_triangle_budget(path);
   std::vector<std::uint32_t> idx;
   if (indexed) {
     idx = gltf_read::read_indices(model, prim.indices, path, count);
@@ -159,7 +174,7 @@ std::size_t index_triangles(const tinygltf::Model& model, const tinygltf::Primit
       throw MeshIoError(quoted(path) + ": vertex index out of range (" + std::to_string(i) + " of " +
                         std::to_string(n) + " vertices)");
   const std::size_t triangles_before = mesh.triangles.size();
-  mesh.triangles.reserve(triangles_before + triangles);
+  mesh.triangles.reserve(triangles_before + triangle_count(mode, count));
   const bool flip = glm::determinant(glm::dmat3(xf)) < 0;  // mirrored node: keep CCW seen from outside
   auto tri = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
     if (flip) std::swap(b, c);
@@ -188,8 +203,7 @@ std::size_t append_primitive(const tinygltf::Model& model, const tinygltf::Primi
                              TriMesh& mesh, bool& normals_ok, SharedVertices& shared, bool reuse, Totals& totals,
                              const std::string& where, const std::filesystem::path& path) {
   const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
-  if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN)
-    return 0;  // points and lines carry no surface
+  if (!is_surface_mode(mode)) return 0;  // points and lines carry no surface
   const auto pos_it = prim.attributes.find("POSITION");
   if (pos_it == prim.attributes.end()) throw MeshIoError(quoted(path) + ": primitive without POSITION");
   auto accessor_of = [&](const char* name) {
@@ -207,6 +221,58 @@ std::size_t append_primitive(const tinygltf::Model& model, const tinygltf::Primi
     shared.emplace(key, std::make_pair(base, n));
   }
   return index_triangles(model, prim, mode, xf, base, n, mesh, totals, where, path);
+}
+
+bool is_inside(const tinygltf::Model& model, const tinygltf::Primitive& prim) {
+  const int mat = prim.material;
+  return mat >= 0 && mat < static_cast<int>(model.materials.size()) && ends_with(model.materials[mat].name, ".inside");
+}
+
+// One mesh node (or, without nodes, one mesh) in load order.
+struct MeshUse {
+  std::string name;
+  int mesh = -1;
+  glm::dmat4 world{1.0};
+};
+
+// Checks the vertices and triangles all uses will append against the budgets from accessor counts alone, as
+// append_primitive counts them, so a file over them is refused before anything is decoded.
+void check_budgets(const tinygltf::Model& model, const std::vector<MeshUse>& uses,
+                   const std::filesystem::path& path) {
+  std::vector<std::pair<std::size_t, std::size_t>> per_mesh(model.meshes.size());  // (vertices, triangles)
+  for (std::size_t m = 0; m < model.meshes.size(); ++m) {
+    std::set<std::array<int, 3>> seen;
+    auto& [v, t] = per_mesh[m];
+    for (const auto& prim : model.meshes[m].primitives) {
+      const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+      const auto pos = prim.attributes.find("POSITION");
+      if (!is_surface_mode(mode) || pos == prim.attributes.end()) continue;  // skipped, or refused when read
+      auto accessor_of = [&](const char* name) {
+        const auto it = prim.attributes.find(name);
+        return it == prim.attributes.end() ? -1 : it->second;
+      };
+      const std::array<int, 3> key{pos->second, accessor_of("NORMAL"), accessor_of("TEXCOORD_0")};
+      const std::size_t n = gltf_read::accessor_layout(model, pos->second, "POSITION", path).count;
+      if (!(is_inside(model, prim) && seen.count(key))) {
+        if (n > kMaxMeshFileVertices - std::min(v, kMaxMeshFileVertices)) over_vertex_budget(path);
+        v += n;
+        seen.insert(key);
+      }
+      const std::size_t count =
+          prim.indices >= 0 ? gltf_read::accessor_layout(model, prim.indices, "index", path).count : n;
+      const std::size_t tris = triangle_count(mode, count);
+      if (tris > kMaxMeshFileTriangles - std::min(t, kMaxMeshFileTriangles)) over_triangle_budget(path);
+      t += tris;
+    }
+  }
+  std::size_t vertices = 0, triangles = 0;
+  for (const MeshUse& u : uses) {
+    const auto [v, t] = per_mesh.at(static_cast<std::size_t>(u.mesh));
+    if (v > kMaxMeshFileVertices - vertices) over_vertex_budget(path);
+    if (t > kMaxMeshFileTriangles - triangles) over_triangle_budget(path);
+    vertices += v;
+    triangles += t;
+  }
 }
 
 bool finite_matrix(const glm::dmat4& m) {
@@ -238,7 +304,7 @@ std::vector<GltfObject> read_gltf_objects(const std::filesystem::path& path) {
       const auto& prim = gm.primitives[p];
       const int mat = prim.material >= 0 && prim.material < static_cast<int>(model.materials.size()) ? prim.material
                                                                                                     : -1;
-      const bool inside = mat >= 0 && ends_with(model.materials[mat].name, ".inside");
+      const bool inside = is_inside(model, prim);
       const std::string where = "mesh " + std::to_string(mesh_index) + " primitive " + std::to_string(p);
       const std::size_t added =
           append_primitive(model, prim, xf, obj.mesh, normals_ok, shared, inside, totals, where, path);
@@ -255,18 +321,19 @@ std::vector<GltfObject> read_gltf_objects(const std::filesystem::path& path) {
     out.push_back(std::move(obj));
   };
 
-  const std::vector<int> roots = gltf_model::root_nodes(model);
+  // The mesh uses in load order: every mesh untransformed if there are no nodes, else the mesh nodes depth first
+  // (read_model checked that the nodes form a forest, so the walk ends).
+  std::vector<MeshUse> uses;
   if (model.nodes.empty()) {
     for (std::size_t i = 0; i < model.meshes.size(); ++i)
-      emit(model.meshes[i].name, static_cast<int>(i), glm::dmat4(1));
-    return out;
+      uses.push_back({model.meshes[i].name, static_cast<int>(i), glm::dmat4(1)});
   }
-  // Depth-first with an explicit stack; read_model checked that the nodes form a forest, so this ends.
   struct Item {
     int node;
     glm::dmat4 parent;
   };
   std::vector<Item> stack;
+  const std::vector<int> roots = model.nodes.empty() ? std::vector<int>{} : gltf_model::root_nodes(model);
   for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.push_back({*it, glm::dmat4(1)});
   while (!stack.empty()) {
     const Item item = stack.back();
@@ -277,9 +344,11 @@ std::vector<GltfObject> read_gltf_objects(const std::filesystem::path& path) {
     const glm::dmat4 world = item.parent * local_matrix(node);
     if (!finite_matrix(world))
       throw MeshIoError(quoted(path) + ": node " + std::to_string(item.node) + " has a non-finite transform");
-    if (node.mesh >= 0) emit(node.name, node.mesh, world);
+    if (node.mesh >= 0) uses.push_back({node.name, node.mesh, world});
     for (auto c = node.children.rbegin(); c != node.children.rend(); ++c) stack.push_back({*c, world});
   }
+  check_budgets(model, uses, path);
+  for (const MeshUse& u : uses) emit(u.name, u.mesh, u.world);
   return out;
 }
 

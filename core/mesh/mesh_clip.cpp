@@ -252,10 +252,12 @@ std::shared_ptr<const MeshClip> MeshClip::load(const std::filesystem::path& path
   const std::string file = quoted_path(path);
   // Everything decoded or held besides the vertices is charged to one budget, before it is allocated.
   std::size_t values_left = gltf_read::kMaxClipValues;
+  auto over_budget = [&](const std::string& what) {
+    return MeshIoError(file + ": the clip's " + what + " need more than " + std::to_string(gltf_read::kMaxClipValues) +
+                       " numbers (the limit for a clip)");
+  };
   auto charge = [&](std::size_t items, std::size_t per_item, const std::string& what) {
-    if (per_item != 0 && items > values_left / per_item)
-      throw MeshIoError(file + ": the clip's " + what + " need more than " + std::to_string(gltf_read::kMaxClipValues) +
-                        " numbers (the limit for a clip)");
+    if (per_item != 0 && items > values_left / per_item) throw over_budget(what);
     values_left -= items * per_item;
   };
   const std::vector<std::string> names = animation_names(model);
@@ -460,6 +462,18 @@ std::shared_ptr<const MeshClip> MeshClip::load(const std::filesystem::path& path
   const auto& anim = model.animations[ai];
   bool animates_mesh = false;
   double duration = 0;
+  // Each channel decodes its sampler (several may share one): the sum is checked before the first is read.
+  std::size_t keys_and_values = 0;
+  for (const auto& ch : anim.channels) {
+    const std::string& p = ch.target_path;
+    if (ch.target_node < 0 || ch.sampler < 0 || ch.sampler >= static_cast<int>(anim.samplers.size()) ||
+        (p != "translation" && p != "rotation" && p != "scale" && p != "weights"))
+      continue;
+    const auto in = gltf_read::accessor_layout(model, anim.samplers[ch.sampler].input, "sampler input", path);
+    const auto out = gltf_read::accessor_layout(model, anim.samplers[ch.sampler].output, "sampler output", path);
+    keys_and_values += std::min(in.count, values_left + 1) + std::min(out.count, values_left + 1) * out.comps;
+    if (keys_and_values > values_left) throw over_budget("keys and other animation data");
+  }  // read_sampler takes them from values_left as it reads
   for (std::size_t c = 0; c < anim.channels.size(); ++c) {
     const auto& ch = anim.channels[c];
     const std::string at = where + ": channel " + std::to_string(c);
