@@ -35,6 +35,7 @@ nlohmann::json SceneLoadCommand::stats() const {
   s["loader"] = report_.loader;
   if (report_.ignored_points) s["ignored_points"] = report_.ignored_points;
   if (report_.ignored_lines) s["ignored_lines"] = report_.ignored_lines;
+  if (report_.duplicate_faces) s["duplicate_faces"] = report_.duplicate_faces;
   return s;
 }
 

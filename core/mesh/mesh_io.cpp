@@ -3,10 +3,12 @@
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <unordered_set>
 
 #include "core/mesh/assimp_io.h"
 #include "core/mesh/file_check.h"
@@ -117,8 +119,44 @@ TriMesh load_mesh(const std::filesystem::path& path, const MeshLoadOptions& opti
                         "\"loose\":\"ignore\" to leave it out)");
   }
   validate_mesh(m, quoted(path));
+  r.duplicate_faces = remove_duplicate_triangles(m);
+  r.faces = m.triangles.size();
   if (m.normals.empty()) compute_vertex_normals(m);
   return m;
+}
+
+std::size_t remove_duplicate_triangles(TriMesh& mesh) {
+  struct Key {
+    unsigned a, b, c;
+    bool operator==(const Key& o) const { return a == o.a && b == o.b && c == o.c; }
+  };
+  struct KeyHash {
+    std::size_t operator()(const Key& k) const {
+      std::uint64_t h = k.a;
+      h = h * 0x9E3779B97F4A7C15ull ^ k.b;
+      h = h * 0x9E3779B97F4A7C15ull ^ k.c;
+      return static_cast<std::size_t>(h ^ (h >> 29));
+    }
+  };
+  std::unordered_set<Key, KeyHash> seen;
+  seen.reserve(mesh.triangles.size());
+  const bool has_material = !mesh.face_material.empty();
+  std::size_t kept = 0;
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    const glm::uvec3 t = mesh.triangles[f];
+    // the lexicographically smallest rotation: same face, same orientation → same key
+    std::array<unsigned, 3> best{t[0], t[1], t[2]};
+    for (int s = 1; s < 3; ++s) best = std::min(best, std::array<unsigned, 3>{t[s], t[(s + 1) % 3], t[(s + 2) % 3]});
+    const Key key{best[0], best[1], best[2]};
+    if (!seen.insert(key).second) continue;
+    mesh.triangles[kept] = t;
+    if (has_material) mesh.face_material[kept] = mesh.face_material[f];
+    ++kept;
+  }
+  const std::size_t removed = mesh.triangles.size() - kept;
+  mesh.triangles.resize(kept);
+  if (has_material) mesh.face_material.resize(kept);
+  return removed;
 }
 
 void save_mesh(const std::filesystem::path& path, const TriMesh& mesh) {

@@ -29,6 +29,7 @@ struct MeshLoadReport {
   std::size_t faces = 0;           // triangles loaded (#T), after triangulating the file's polygons
   std::size_t ignored_points = 0;  // point elements left out (only with MeshLoadOptions::ignore_loose)
   std::size_t ignored_lines = 0;   // line elements left out (only with MeshLoadOptions::ignore_loose)
+  std::size_t duplicate_faces = 0; // repeated triangles removed (remove_duplicate_triangles); faces excludes them
   std::string loader;              // "assimp" or "tinygltf"
 };
 
@@ -49,6 +50,8 @@ struct MeshLoadOptions {
 //   .gltf .glb           every TRIANGLES primitive of every node of the default scene (all root nodes of all scenes
 //                        if none is marked default; all meshes untransformed if there are no nodes), each with its
 //                        node's world transform; POSITION, NORMAL, TEXCOORD_0; indices of any unsigned type.
+// A triangle that repeats an earlier one (same vertices, same orientation) is removed and counted in
+// MeshLoadReport::duplicate_faces: it adds no surface, only a non-manifold edge (see remove_duplicate_triangles).
 // Missing normals are computed (compute_vertex_normals). Result passes validate_mesh.
 // Throws MeshIoError (see header comment).
 TriMesh load_mesh(const std::filesystem::path& path, const MeshLoadOptions& options = {},
@@ -61,6 +64,12 @@ void save_mesh(const std::filesystem::path& path, const TriMesh& mesh);
 // Throws MeshIoError "<what>: ..." if the mesh has no vertices or no triangles, a non-finite position, an index
 // >= #V, or normals/uvs whose count is neither 0 nor #V.
 void validate_mesh(const TriMesh& mesh, const std::string& what);
+
+// Removes every triangle whose vertex indices repeat an earlier triangle's up to rotation — (a,b,c), (b,c,a) and
+// (c,a,b) are the same face; the reversed (a,c,b) is the other side and is kept. The first copy stays, the order
+// of the others is kept, face_material follows. Vertices are not touched. Returns how many were removed.
+// (Blender's Mesh.validate removes such faces on import too.)
+std::size_t remove_duplicate_triangles(TriMesh& mesh);
 
 // Replaces mesh.normals by area-weighted vertex normals (sum of unnormalised face normals (b−a)×(c−a), then
 // normalised). Vertices with no non-degenerate incident triangle get (0,1,0).
