@@ -93,7 +93,9 @@ TEST(MeshSubdivide, UvsLinearAndMaterialsInherited) {
     for (std::size_t v = 0; v < plane.vertex_count(); ++v) ASSERT_LT(glm::length(plane.uvs[v] - expected(plane.positions[v])), 1e-12);
     for (std::size_t v = 0; v < s.vertex_count(); ++v) {
       const glm::dvec3 p = s.positions[v];
-      if (std::abs(p.x) < 0.5 || std::abs(p.z) < 0.5) EXPECT_LT(glm::length(s.uvs[v] - expected(p)), 1e-12) << v;
+      if (std::abs(p.x) < 0.5 || std::abs(p.z) < 0.5) {
+        EXPECT_LT(glm::length(s.uvs[v] - expected(p)), 1e-12) << v;
+      }
       EXPECT_NEAR(s.positions[v].y, 0.0, 1e-15);
     }
     // Materials: the 4^levels children of a face keep its slot.

@@ -103,7 +103,9 @@ TEST(Incision, PlaneWithWallsIsClosedAlongTheCut) {
   // Vertices outside the lattice keep their positions bit for bit; input vertices keep their indices.
   for (std::size_t v = 0; v < pc.plane.positions.size(); ++v) {
     const glm::dvec3& p = pc.plane.positions[v];
-    if (std::abs(p.x) > 0.75 || std::abs(p.z) > 0.3) EXPECT_EQ(std::memcmp(&p, &r.mesh.positions[v], sizeof p), 0) << v;
+    if (std::abs(p.x) > 0.75 || std::abs(p.z) > 0.3) {
+      EXPECT_EQ(std::memcmp(&p, &r.mesh.positions[v], sizeof p), 0) << v;
+    }
   }
 }
 
@@ -315,7 +317,9 @@ TEST(Incision, BunnyCutKeepsItsTopology) {
     EXPECT_EQ(t.repeated_halfedges, 0u);
     EXPECT_EQ(t.openmesh_rejected, input.openmesh_rejected);
     EXPECT_EQ(t.boundary_loops, input.boundary_loops + (walls ? 0u : r.tips / 2));
-    if (walls) EXPECT_EQ(t.boundary_edges, input.boundary_edges);
+    if (walls) {
+      EXPECT_EQ(t.boundary_edges, input.boundary_edges);
+    }
   }
 }
 #endif

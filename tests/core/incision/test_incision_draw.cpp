@@ -75,8 +75,9 @@ TEST(IncisionDraw, CutsATransformedObjectAndUndoRestoresBitForBit) {
     EXPECT_LT(glm::length(ball.rest_mesh->positions[v]), 1.0 + 1e-3);
   // Vertices on the back keep their rest values bit for bit.
   for (std::size_t v = 0; v < ball0.rest_mesh->positions.size(); ++v)
-    if (ball0.rest_mesh->positions[v].z < 0.0)
+    if (ball0.rest_mesh->positions[v].z < 0.0) {
       ASSERT_EQ(std::memcmp(&ball0.rest_mesh->positions[v], &ball.rest_mesh->positions[v], sizeof(glm::dvec3)), 0);
+    }
   EXPECT_TRUE(cmd->to_json().at("walls").get<bool>());
   cmd->undo(s);
   EXPECT_TRUE(same_mesh(*s.find("ball")->rest_mesh, *ball0.rest_mesh));
@@ -190,7 +191,9 @@ TEST(IncisionDraw, DenseSphereCommand) {
     c->redo(t);
     best = std::min(best, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     st = c->stats();
-    if (i == 0) EXPECT_EQ(test::topology(*t.find("ball")->rest_mesh).boundary_edges, 0u);
+    if (i == 0) {
+      EXPECT_EQ(test::topology(*t.find("ball")->rest_mesh).boundary_edges, 0u);
+    }
   }
   std::printf("incision.draw on %zu vertices: %.2f ms wall (best of 5), stats %s\n",
               before.find("ball")->rest_mesh->positions.size(), best, st.dump().c_str());
