@@ -123,6 +123,7 @@ class App {
 
   ui::LogPanel log_panel_;
   ui::FileDialog file_dialog_;
+  bool load_ignore_loose_ = false;  // the Load dialog's "Leave out points and lines", kept between loads
   FilePurpose file_purpose_ = FilePurpose::None;
   ui::TimingOverlay timing_;
   ui::DockLayout layout_;  // this frame's panel rectangles
@@ -239,9 +240,13 @@ bool App::save_or_ask() {
 void App::ask_file(FilePurpose purpose) {
   const fs::path folder = session_.document().parent_path();
   file_purpose_ = purpose;
-  if (purpose == FilePurpose::LoadMesh)
+  if (purpose == FilePurpose::LoadMesh) {
     file_dialog_.open("Load a mesh", ui::FileDialog::Mode::Open, kMeshExtensions);
-  else if (purpose == FilePurpose::OpenLog)
+    file_dialog_.set_option("Leave out points and lines",
+                            "A file with point or line elements beside its faces is refused (nothing of a file is "
+                            "dropped silently). On: only the faces load; the Log says how many elements were left out.",
+                            load_ignore_loose_);
+  } else if (purpose == FilePurpose::OpenLog)
     file_dialog_.open("Open a command log (.jsonl): it is replayed", ui::FileDialog::Mode::Open, kLogExtensions,
                       folder);
   else
@@ -306,10 +311,23 @@ void App::handle_file(const fs::path& chosen) {
   fs::path path = chosen;
   switch (std::exchange(file_purpose_, FilePurpose::None)) {  // reset first: go_on(Open) asks for a file again
     case FilePurpose::LoadMesh: {
-      const nlohmann::json line = {
+      nlohmann::json line = {
           {"cmd", "scene.load"}, {"path", path.string()}, {"name", session_.scene().unique_name(path.stem().string())}};
+      load_ignore_loose_ = file_dialog_.option();
+      if (load_ignore_loose_) line["loose"] = "ignore";
       tool_ctx_.defer("Loading " + path.filename().string(), [this, line] {
         if (!session_.execute(line)) return;
+        const nlohmann::json stats = session_.history().last_executed().stats();
+        auto counted = [](long long n, const char* noun) {
+          return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
+        };
+        const long long points = stats.value("ignored_points", 0), lines = stats.value("ignored_lines", 0);
+        const std::string name = line["name"];
+        if (points || lines)
+          messages_.warning(name + ": left out " + counted(points, "point") + " and " + counted(lines, "line") +
+                            " of the file");
+        if (const long long repeated = stats.value("duplicate_faces", 0))
+          messages_.warning(name + ": removed " + counted(repeated, "repeated triangle") + " (a copy of another face)");
         selected_ = line["name"];
         frame_selected();  // a mesh in its own units (mm, km) would otherwise fill or vanish from the view
       });

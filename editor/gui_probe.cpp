@@ -20,7 +20,11 @@ nlohmann::json imgui_probe_fields() {
   for (const auto& [name, r] : ui::probe::items()) items[name] = {r.min.x, r.min.y, r.max.x, r.max.y};
   nlohmann::json values = nlohmann::json::object();
   for (const auto& [name, text] : ui::probe::values()) values[name] = text;
-  return {{"popups", popups}, {"typing", ImGui::GetIO().WantTextInput}, {"items", items}, {"values", values}};
+  return {{"popups", popups},
+          {"typing", ImGui::GetIO().WantTextInput},
+          {"active", ui::probe::active()},
+          {"items", items},
+          {"values", values}};
 }
 
 void write_probe_file(const fs::path& path, const nlohmann::json& probe) {

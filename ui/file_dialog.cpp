@@ -1,14 +1,14 @@
 #include "ui/file_dialog.h"
 
-#include "ui/gui_probe.h"
-#include "ui/theme.h"
-
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
 #include <algorithm>
 #include <cctype>
 #include <utility>
+
+#include "ui/gui_probe.h"
+#include "ui/theme.h"
 
 namespace fs = std::filesystem;
 
@@ -31,6 +31,13 @@ void FileDialog::open(std::string title, Mode mode, std::vector<std::string> ext
   path_text_ = (folder_ / "").string();
   list_folder();
   open_ = true;
+  option_label_.clear();
+}
+
+void FileDialog::set_option(std::string label, std::string tooltip, bool value) {
+  option_label_ = std::move(label);
+  option_tooltip_ = std::move(tooltip);
+  option_value_ = value;
 }
 
 bool FileDialog::matches(const fs::path& p) const {
@@ -105,7 +112,8 @@ std::optional<fs::path> FileDialog::draw() {
   if (!error_.empty()) ImGui::TextColored(colors::error, "%s", error_.c_str());
   probe::value("file.error", error_);
 
-  const float footer = ImGui::GetFrameHeightWithSpacing() * (mode_ == Mode::Save ? 2.6f : 1.6f);
+  const float footer =
+      ImGui::GetFrameHeightWithSpacing() * ((mode_ == Mode::Save ? 2.6f : 1.6f) + (option_label_.empty() ? 0 : 1));
   ImGui::BeginChild("##listing", ImVec2(0, -footer), true);
   for (const fs::path& d : dirs_) {
     const std::string label = d.filename().string() + "/";
@@ -134,6 +142,12 @@ std::optional<fs::path> FileDialog::draw() {
     accept_name = ImGui::InputText("##name", &name_, kField);
     probe::item("file.name");
     probe::value("file.name", name_);
+  }
+  if (!option_label_.empty()) {
+    ImGui::Checkbox(option_label_.c_str(), &option_value_);
+    probe::item("file.option");
+    probe::value("file.option", option_value_ ? "on" : "off");
+    if (ImGui::IsItemHovered() && !option_tooltip_.empty()) ImGui::SetTooltip("%s", option_tooltip_.c_str());
   }
   if (!extensions_.empty()) {
     std::string filter;

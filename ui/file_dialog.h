@@ -17,6 +17,10 @@ class FileDialog {
   // Opens the dialog on the next draw(). extensions: lower-case with the dot (".obj"); empty = all files.
   void open(std::string title, Mode mode, std::vector<std::string> extensions,
             const std::filesystem::path& start_folder = {});
+  // An import option shown as a checkbox above the buttons until the next open() (Blender's file browser keeps an
+  // importer's options beside the file list); `value` is its state, kept across dialogs. Empty label = none.
+  void set_option(std::string label, std::string tooltip, bool value);
+  bool option() const { return option_value_; }
   // Draws the modal if open; returns the chosen path once (absolute, lexically normal).
   std::optional<std::filesystem::path> draw();
   bool is_open() const { return open_ || visible_; }
@@ -37,6 +41,8 @@ class FileDialog {
   bool open_ = false;     // open() called, popup not yet opened
   bool visible_ = false;  // popup showing
   bool refocus_ = false;  // Open: give the path field the keyboard on the next draw (a folder was entered)
+  std::string option_label_, option_tooltip_;
+  bool option_value_ = false;
 };
 
 }  // namespace trispline::ui

@@ -23,5 +23,6 @@ void rect(const std::string& name, ImVec2 min, ImVec2 max);    // a rectangle Im
 void value(const std::string& name, const std::string& text);  // a value a test reads (a text field's content)
 const std::map<std::string, ItemRect>& items();
 const std::map<std::string, std::string>& values();
+const std::string& active();  // the named item that is active (being typed into, dragged, held) this frame, or ""
 
 }  // namespace trispline::ui::probe

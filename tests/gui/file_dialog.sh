@@ -12,7 +12,7 @@ gui_wait '.items["file.entry.inner/"] != null' "a single click on meshes/ enters
 gui_check '.values["file.path"] | endswith("/meshes/")' "the path field shows the folder entered"
 
 # The path field has the keyboard again, its text selected: typing replaces the path shown.
-gui_wait '.typing' "the path field has the keyboard"
+gui_wait '.typing and .active == "file.path"' "the path field has the keyboard"
 gui_type "$GUI_WORK/other/"
 gui_wait ".values[\"file.path\"] == \"$GUI_WORK/other/\"" "typing replaces the old path (not appended)"
 gui_key Return
@@ -20,7 +20,7 @@ gui_wait '.items["file.entry.other/"] == null and .items["file.entry.meshes/"] =
 
 # Click into the field, Ctrl+A, type: replaced again.
 gui_click_item file.path
-gui_wait '.typing' "a click gives the path field the keyboard"
+gui_wait '.typing and .active == "file.path"' "a click gives the path field the keyboard"
 gui_frames 2
 gui_key ctrl+a
 gui_frames 2  # ImGui 1.86 inserts a frame's characters before its shortcuts: type in the next frame

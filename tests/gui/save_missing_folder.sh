@@ -6,11 +6,11 @@ gui_start
 gui_key ctrl+shift+s
 gui_wait '.popups | map(test("file_dialog")) | any' "the Save dialog opens"
 gui_click_item file.path
-gui_wait '.typing' "the path field has the keyboard"
+gui_wait '.typing and .active == "file.path"' "the path field has the keyboard"
 gui_type "$GUI_WORK/missing/"
 gui_wait ".values[\"file.path\"] == \"$GUI_WORK/missing/\"" "the folder typed"
 gui_click_item file.name
-gui_wait '.typing' "the name field has the keyboard"
+gui_wait '.typing and .active == "file.name"' "the name field has the keyboard"
 gui_type "scene"
 gui_key Return
 gui_wait '.values["file.error"] | test("no such folder")' "the Save is refused with an error"
