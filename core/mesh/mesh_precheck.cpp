@@ -307,6 +307,15 @@ void prepare_mesh_bytes(const std::filesystem::path& path, const std::string& ex
       if (!comment) bytes[out++] = c;
     }
     bytes.resize(out);
+    // The keyword is optional, but assimp reads a leading 4 / C / N / ST / n as a keyword prefix even without "OFF":
+    // a header "4 1 20…" would be read as a 4-D file of 1 vertex and 20… faces. With the keyword written, assimp
+    // reads the counts check_off checked.
+    std::size_t first = 0;
+    while (first < bytes.size() && (is_space(static_cast<char>(bytes[first])) || bytes[first] == '\n')) ++first;
+    if (first < bytes.size() && bytes[first] >= '0' && bytes[first] <= '9') {
+      static constexpr std::string_view kKeyword = "OFF\n";
+      bytes.insert(bytes.begin(), kKeyword.begin(), kKeyword.end());
+    }
   }
 }
 

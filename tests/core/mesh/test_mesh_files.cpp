@@ -62,6 +62,13 @@ TEST(MeshFiles, CoffWithVertexColoursAndNoKeywordOffLoad) {
   EXPECT_EQ(load_mesh(dir / "coff.off").triangle_count(), 2u);
   write_text(dir / "bare.off", "# no keyword: Geomview allows it\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
   EXPECT_EQ(load_mesh(dir / "bare.off").triangle_count(), 1u);
+  // Counts starting with 4 (or any digit) are counts, not the 4-D prefix: 4 vertices, 2 faces.
+  write_text(dir / "bare4.off", "4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n");
+  EXPECT_EQ(load_mesh(dir / "bare4.off").triangle_count(), 2u);
+  // "4 01 2006161000": 4 vertices, 1 face, 2·10⁹ edges (ignored) — assimp alone read 1 vertex and 2·10⁹ faces and
+  // allocated 32 GB; now a truncated file like any other
+  write_text(dir / "claims.off", "4 01  2006161000 013\n0 0 0\n");
+  EXPECT_THAT(error_of(dir / "claims.off"), HasSubstr("cannot parse off file"));
 }
 
 TEST(MeshFiles, FourDimensionalOffIsRefusedNotProjected) {
@@ -117,6 +124,28 @@ TEST(MeshFiles, GroupsShareTheirVerticesAfterLoading) {
   const TriMesh m = load_mesh(dir / "groups.obj");
   EXPECT_EQ(m.vertex_count(), 4u);
   EXPECT_EQ(m.triangle_count(), 2u);
+}
+
+TEST(MeshFiles, RepeatedTrianglesAreRemovedAndCountedTheOtherSideIsKept) {
+  TempDir dir;  // face 3 repeats face 1 rotated (same orientation); face 4 is face 1 reversed (its other side)
+  write_text(dir / "repeat.obj",
+             "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\nf 2 3 1\nf 1 3 2\nf 3 1 2\n");
+  MeshLoadReport report;
+  const TriMesh m = load_mesh(dir / "repeat.obj", {}, &report);
+  EXPECT_EQ(report.duplicate_faces, 2u);
+  EXPECT_EQ(report.faces, 3u);
+  ASSERT_EQ(m.triangle_count(), 3u);
+  // the first copy stays where it was, the reversed face is kept, the order of the others is kept
+  EXPECT_EQ(m.triangles[0], glm::uvec3(0, 1, 2));
+  EXPECT_EQ(m.triangles[1], glm::uvec3(0, 2, 3));
+  EXPECT_EQ(m.triangles[2], glm::uvec3(0, 2, 1));
+
+  TriMesh direct;  // on its own: face_material follows the faces kept
+  direct.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  direct.triangles = {{0, 1, 2}, {1, 2, 0}, {0, 2, 1}};
+  direct.face_material = {kMaterialSurface, kMaterialInside, kMaterialInside};
+  EXPECT_EQ(remove_duplicate_triangles(direct), 1u);
+  EXPECT_EQ(direct.face_material, (std::vector<std::uint8_t>{kMaterialSurface, kMaterialInside}));
 }
 
 // Hostile files: refused by their size or head, before the whole file is read.
