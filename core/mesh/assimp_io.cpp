@@ -114,20 +114,22 @@ void collect(const aiScene& scene, const aiNode* node, const glm::dmat4& parent,
 TriMesh read_assimp_mesh(const std::filesystem::path& path, const std::string& ext,
                          const std::vector<unsigned char>& bytes, MeshLoadReport& report) {
   Assimp::Importer importer;
-  unsigned flags = aiProcess_Triangulate | aiProcess_ValidateDataStructure;
-  if (ext == ".stl") {  // per-face normals: dropped, so the corners weld into a connected mesh
-    importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS, aiComponent_NORMALS);
-    flags |= aiProcess_RemoveComponent;
-  }
   install_warning_sink();
   std::vector<std::string> warnings;
   t_warnings = &warnings;
-  const aiScene* scene = importer.ReadFileFromMemory(bytes.data(), bytes.size(), flags, ext.c_str() + 1);
-  t_warnings = nullptr;
-    for (auto& w : warnings) std::fprintf(stderr, "W %s: %s\n", path.c_str(), w.c_str());
-  if (scene)
+  struct StopCollecting {
+    ~StopCollecting() { t_warnings = nullptr; }
+  } stop_collecting;
+  // Two steps: read and validate, then triangulate. assimp's importers can leave a mesh whose primitive-type flags
+  // disagree with its faces (a PLY face list of 0, 1 or 2 corners), and aiProcess_Triangulate then fails an
+  // ai_assert, which aborts the process. Between the steps the flags are set from the faces themselves.
+  const aiScene* scene = importer.ReadFileFromMemory(bytes.data(), bytes.size(), aiProcess_ValidateDataStructure,
+                                                     ext.c_str() + 1);
+  auto refuse_if_repaired = [&] {
     for (const std::string& w : warnings)
       if (is_repair(w)) throw MeshIoError(quoted(path) + ": cannot parse " + ext.substr(1) + " file: " + w);
+  };
+  if (scene) refuse_if_repaired();
   if (!scene) {
     std::string why = importer.GetErrorString();
     if (why.empty()) why = "unknown reason";
@@ -139,6 +141,25 @@ TriMesh read_assimp_mesh(const std::filesystem::path& path, const std::string& e
   }
   if ((scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) || !scene->mRootNode)
     throw MeshIoError(quoted(path) + ": cannot parse " + ext.substr(1) + " file: the file holds no complete mesh");
+  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
+    aiMesh& mesh = *scene->mMeshes[m];  // owned by `importer`; only its flags are corrected
+    unsigned types = 0;
+    for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+      const unsigned n = mesh.mFaces[f].mNumIndices;
+      if (n == 0) throw MeshIoError(quoted(path) + ": cannot parse " + ext.substr(1) + " file: a face with no corners");
+      types |= n == 1 ? aiPrimitiveType_POINT : n == 2 ? aiPrimitiveType_LINE
+                                              : n == 3 ? aiPrimitiveType_TRIANGLE : aiPrimitiveType_POLYGON;
+    }
+    mesh.mPrimitiveTypes = types;
+  }
+  unsigned flags = aiProcess_Triangulate;
+  if (ext == ".stl") {  // per-face normals: dropped, so the corners weld into a connected mesh
+    importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS, aiComponent_NORMALS);
+    flags |= aiProcess_RemoveComponent;
+  }
+  scene = importer.ApplyPostProcessing(flags);
+  if (!scene) throw MeshIoError(quoted(path) + ": cannot parse " + ext.substr(1) + " file: " + importer.GetErrorString());
+  refuse_if_repaired();
 
   std::vector<Placed> placed;
   std::vector<bool> used(scene->mNumMeshes, false);

@@ -148,6 +148,20 @@ TEST(MeshFiles, RepeatedTrianglesAreRemovedAndCountedTheOtherSideIsKept) {
   EXPECT_EQ(direct.face_material, (std::vector<std::uint8_t>{kMaterialSurface, kMaterialInside}));
 }
 
+TEST(MeshFiles, PlyFaceListsOfFewerThanThreeCornersNeverReachTheTriangulator) {
+  TempDir dir;  // assimp flags such a mesh as polygons; its triangulation step then fails an assertion and aborts
+  const std::string head =
+      "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 2\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n";
+  write_text(dir / "zero.ply", head + "3 0 1 2\n0\n");
+  EXPECT_THAT(error_of(dir / "zero.ply"), HasSubstr("zero.ply"));
+  write_text(dir / "line.ply", head + "4 0 1 2 3\n2 0 2\n");
+  EXPECT_THAT(error_of(dir / "line.ply"), HasSubstr("1 line elements besides its 2 faces"));
+  MeshLoadOptions ignore;
+  ignore.ignore_loose = true;
+  EXPECT_EQ(load_mesh(dir / "line.ply", ignore).triangle_count(), 2u);
+}
+
 // Hostile files: refused by their size or head, before the whole file is read.
 TEST(MeshFiles, SparseAndOverclaimingFilesAreRefusedBeforeTheyCostMemory) {
   TempDir dir;
