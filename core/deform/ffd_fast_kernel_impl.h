@@ -29,6 +29,22 @@ static_assert(kLanes % W == 0, "block size must be a multiple of the vector widt
 typedef float vf __attribute__((vector_size(4 * W)));
 typedef std::int32_t vi __attribute__((vector_size(4 * W)));
 
+// Two-source permute with lane indices known only at run time: r[l] = (a ++ b)[m[l] mod 2W]. GCC lowers
+// __builtin_shuffle to vpermt2ps / vpermps; clang (used by the sanitizer build) has no run-time form, so it gets the
+// same result lane by lane.
+[[gnu::always_inline]] inline vf permute2(vf a, vf b, vi m) {
+#if defined(__clang__)
+  vf r;
+  for (int l = 0; l < W; ++l) {
+    const int i = m[l] & (2 * W - 1);
+    r[l] = i < W ? a[i] : b[i - W];
+  }
+  return r;
+#else
+  return __builtin_shuffle(a, b, m);
+#endif
+}
+
 inline vf load(const float* p) {
   vf v;
   std::memcpy(&v, p, sizeof v);
@@ -165,7 +181,7 @@ constexpr InterleaveMasks kInterleave = make_interleave_masks();
 #pragma GCC unroll 3
     for (int k = 0; k < 3; ++k) {
       const vi m1 = loadi(kInterleave.m[k][0]), m2 = loadi(kInterleave.m[k][1]);
-      store(o + k * W, __builtin_shuffle(__builtin_shuffle(v[0], v[1], m1), v[2], m2));
+      store(o + k * W, permute2(permute2(v[0], v[1], m1), v[2], m2));
     }
     return;
   }
@@ -211,10 +227,15 @@ struct LaneTable {
   bool in_registers = false;
   LaneTable(const float* table, int n) : data(table), in_registers(n <= 2 * W) {
     if (!in_registers) return;
-    for (int i = 0; i < n; ++i) (i < W ? lo[i] : hi[i - W]) = table[i];
+    for (int i = 0; i < n; ++i) {
+      if (i < W)
+        lo[i] = table[i];
+      else
+        hi[i - W] = table[i];
+    }
   }
   [[gnu::always_inline]] vf operator()(vi k) const {
-    if (in_registers) return __builtin_shuffle(lo, hi, k);
+    if (in_registers) return permute2(lo, hi, k);
     vf r;
 #pragma GCC unroll 16
     for (int l = 0; l < W; ++l) r[l] = data[k[l]];

@@ -251,7 +251,8 @@ TEST(AnimClipReal, MorphCubeWalksAndMorphsUnderThePlacement) {
   const SceneObject& cube = *s.find("cube");
   ASSERT_TRUE(cube.ffd && cube.clip);
   for (int k = 0; k <= 8; ++k) {
-    const SceneObject& posed = *scene_at_time(s, duration * k / 8.0).find("cube");
+    const Scene at_k = scene_at_time(s, duration * k / 8.0);
+    const SceneObject& posed = *at_k.find("cube");
     for (const glm::dvec3& p : posed.ffd->params) {
       EXPECT_GE(p.x, -1e-9);
       EXPECT_LE(p.x, 0.5 + 1e-9);

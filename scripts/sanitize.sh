@@ -1,0 +1,66 @@
+#!/usr/bin/env bash
+# The sanitizer and fuzz runs CI makes after the test command (docs/decisions.md "Sanitizers and fuzzing in CI"):
+#   1. builds core, the command layer, their tests and the libFuzzer targets with clang under AddressSanitizer +
+#      UndefinedBehaviorSanitizer into build-asan/ (no GUI: the GL layers run in the plain build's tests);
+#   2. runs the core and command tests and every fuzz target's seeds and regression files once (ctest);
+#   3. fuzzes each target for TRISPLINE_FUZZ_SECONDS (default 60), two at a time. A crash fails the run and leaves the
+#      input in build-asan/fuzz/<target>/crashes/; add it to tests/fuzz/regressions/<target>/ with the fix.
+# Usage: scripts/sanitize.sh [--no-fuzz | --fuzz-only]   (run scripts/setup.sh --no-build first on a fresh machine)
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$root"
+export CCACHE_BASEDIR="$root" CCACHE_NOHASHDIR=1  # hits across clones and worktrees
+build=build-asan
+seconds="${TRISPLINE_FUZZ_SECONDS:-60}"
+jobs="$(nproc)"
+
+log="$build/sanitize-build.log"
+mkdir -p "$build"
+start=$SECONDS
+cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Sanitize \
+  -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14 \
+  -DCMAKE_CXX_FLAGS_SANITIZE="-O1 -gline-tables-only" -DCMAKE_C_FLAGS_SANITIZE="-O1 -gline-tables-only" \
+  -DTRISPLINE_BUILD_GUI=OFF -DTRISPLINE_FUZZ=ON > "$log" 2>&1 || { cat "$log"; exit 1; }
+echo "sanitize: building ($build/, ASan + UBSan + libFuzzer coverage, $jobs jobs)…"
+cmake --build "$build" -j"$jobs" >> "$log" 2>&1 || { tail -n 60 "$log"; exit 1; }
+echo "sanitize: built in $((SECONDS - start)) s"
+
+# abort_on_error: a finding ends the test with a signal; detect_leaks: leaks are findings too.
+export ASAN_OPTIONS="abort_on_error=1:detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1"
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+export LSAN_OPTIONS="suppressions=$root/tests/fuzz/lsan.supp:print_suppressions=0"  # third-party leaks, each explained
+if [ "${1:-}" != "--fuzz-only" ]; then
+  start=$SECONDS
+  ctest --test-dir "$build" --output-on-failure -j"$jobs" --timeout 900 -L 'core|fuzz-regress'
+  echo "sanitize: core, command and fuzz-regression tests in $((SECONDS - start)) s"
+fi
+
+[ "${1:-}" = "--no-fuzz" ] && exit 0
+
+# Each target fuzzes from a fresh working corpus seeded by its seed folders (the seeds themselves are never written).
+start=$SECONDS
+fuzz_one() {
+  local target="$1" dir="$build/fuzz/$1"
+  rm -rf "$dir" && mkdir -p "$dir/corpus" "$dir/crashes"
+  local seeds
+  read -r -a seeds < <(tr ';' ' ' < "$build/tests/fuzz/$target.seeds"; echo)
+  if "$build/tests/fuzz/$target" "$dir/corpus" "${seeds[@]}" -max_total_time="$seconds" -max_len=65536 \
+       -rss_limit_mb=2048 -timeout=20 -artifact_prefix="$dir/crashes/" -print_final_stats=1 > "$dir/log.txt" 2>&1; then
+    echo "fuzz: $target: $(grep -m1 -o 'stat::number_of_executed_units: *[0-9]*' "$dir/log.txt" | grep -o '[0-9]*$') runs, no crash"
+  else
+    echo "fuzz: $target FAILED — input in $dir/crashes/:"
+    ls "$dir/crashes"
+    grep -A40 -m1 -E 'ERROR: |==[0-9]+==|deadly signal|abort' "$dir/log.txt" | head -60
+    return 1
+  fi
+}
+mapfile -t targets < "$build/fuzz_targets.txt"
+status=0
+pids=()
+for t in "${targets[@]}"; do
+  fuzz_one "$t" & pids+=($!)
+  if ((${#pids[@]} >= jobs)); then wait "${pids[0]}" || status=1; pids=("${pids[@]:1}"); fi
+done
+for p in "${pids[@]}"; do wait "$p" || status=1; done
+echo "sanitize: fuzzed ${#targets[@]} targets for ${seconds} s each in $((SECONDS - start)) s"
+exit $status
