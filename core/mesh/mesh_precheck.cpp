@@ -161,11 +161,25 @@ void check_off(const std::filesystem::path& path, std::string_view text, std::ui
                    " faces, more than a file of " + format_bytes(file_size) + " can hold (truncated or corrupt)");
 }
 
+// The header must follow the PLY grammar line by line (Turk's specification, as assimp's reader expects it): `ply`,
+// one `format` before the elements, `element NAME N`, `property TYPE NAME` / `property list T T NAME` after an
+// element, a line that is `end_header`; other lines are free text (comments). assimp's reader does not check the
+// grammar and reads beyond its buffers on a header it misparses (properties before any element and no end_header
+// line crashed it), so those are refused here.
 void check_ply(const std::filesystem::path& path, std::string_view text, std::uintmax_t file_size) {
-  const std::size_t header_end = text.find("end_header");
   if (text.substr(0, 3) != "ply") fail(path, "not a PLY file (no 'ply' magic)");
+  std::size_t header_end = std::string_view::npos;  // offset of the line "end_header"
+  for (std::size_t at = text.find("\nend_header"); at != std::string_view::npos;
+       at = text.find("\nend_header", at + 1)) {
+    std::size_t e = at + 11;
+    while (e < text.size() && (text[e] == ' ' || text[e] == '\t' || text[e] == '\r')) ++e;
+    if (e == text.size() || text[e] == '\n') {
+      header_end = at + 1;
+      break;
+    }
+  }
   if (header_end == std::string_view::npos)
-    fail(path, "incomplete PLY header (no end_header in its first " + format_bytes(kMeshHeadBytes) + ")");
+    fail(path, "incomplete PLY header (no end_header line in its first " + format_bytes(kMeshHeadBytes) + ")");
   const std::string_view header = text.substr(0, header_end);
   check_no_nul(path, header, 0, "PLY header");
   std::string format;
@@ -188,7 +202,8 @@ void check_ply(const std::filesystem::path& path, std::string_view text, std::ui
     if (t == "double" || t == "float64") return 8;
     fail(path, "unknown PLY property type '" + std::string(t) + "'");
   };
-  for_each_line(header, [&](long long, std::string_view line) {
+  bool has_element = false;
+  for_each_line(header, [&](long long number, std::string_view line) {
     const std::string_view tag = first_token(line);
     std::vector<std::string_view> words;
     for (std::size_t i = 0; i < line.size();) {
@@ -198,11 +213,19 @@ void check_ply(const std::filesystem::path& path, std::string_view text, std::ui
       if (j > i) words.push_back(line.substr(i, j - i));
       i = j;
     }
-    if (tag == "format" && words.size() >= 2) {
+    auto bad_line = [&](const char* why) {
+      fail(path, "bad PLY header line " + std::to_string(number) + " '" + std::string(line.substr(0, 80)) + "': " + why);
+    };
+    if (number == 1) {
+      if (words.size() != 1 || words[0] != "ply") bad_line("the first line must be 'ply'");
+    } else if (tag == "format") {
+      if (words.size() != 3 || !format.empty() || has_element) bad_line("one 'format TYPE VERSION' before the elements");
       format = std::string(words[1]);
       if (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian")
         fail(path, "unknown PLY format '" + format + "'");
     } else if (tag == "element") {
+      if (words.size() != 3) bad_line("expected 'element NAME COUNT'");
+      has_element = true;
       close_element();
       count = words.size() >= 3 ? parse_count(words[2]) : -1;
       if (count < 0)
@@ -212,6 +235,9 @@ void check_ply(const std::filesystem::path& path, std::string_view text, std::ui
     } else if (tag == "property") {
       // A list is at least its count; with a face's 3 corners, 4 values.
       const bool list = words.size() >= 2 && words[1] == "list";
+      if (!has_element) bad_line("a property before any element");
+      if (words.size() != (list ? 5u : 3u))
+        bad_line(list ? "expected 'property list COUNT_TYPE ITEM_TYPE NAME'" : "expected 'property TYPE NAME'");
       total_values += (list ? 4 : 1) * static_cast<unsigned long long>(count);
       if (list && words.size() >= 4) {
         const unsigned long long count_size = type_size(words[2]), item = type_size(words[3]);
@@ -221,10 +247,9 @@ void check_ply(const std::filesystem::path& path, std::string_view text, std::ui
       } else if (!list && words.size() >= 2) {
         element_min += type_size(words[1]);
         element_max += type_size(words[1]);
-      } else {
-        fail(path, "bad PLY property line '" + std::string(line) + "'");
       }
     }
+    // Any other line is free text, as in assimp's reader: Blender 2.47 wrote a bare "Created by Blender3D …" line.
   });
   close_element();
   if (format.empty()) fail(path, "incomplete PLY header (no format line)");

@@ -162,6 +162,24 @@ TEST(MeshFiles, PlyFaceListsOfFewerThanThreeCornersNeverReachTheTriangulator) {
   EXPECT_EQ(load_mesh(dir / "line.ply", ignore).triangle_count(), 2u);
 }
 
+TEST(MeshFiles, PlyHeaderGrammarIsCheckedBeforeAssimpReadsIt) {
+  TempDir dir;
+  const std::string body = "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  const std::string props = "property float x\nproperty float y\nproperty float z\n";
+  const std::string faces = "element face 1\nproperty list uchar int vertex_indices\n";
+  // a free-text line (Blender 2.47 wrote one) is a comment
+  write_text(dir / "note.ply", "ply\nformat ascii 1.0\nCreated by an exporter\nelement vertex 3\n" + props + faces +
+                                   "end_header\n" + body);
+  EXPECT_EQ(load_mesh(dir / "note.ply").triangle_count(), 1u);
+  // properties before any element, and 'end_header' only inside another line (a fuzzer's input that crashed assimp)
+  write_text(dir / "orphan.ply", "ply\nformat ascii 1.0\nelemeend_header4\n" + props + faces + "end_\n" + body);
+  EXPECT_THAT(error_of(dir / "orphan.ply"), HasSubstr("no end_header line"));
+  write_text(dir / "early.ply", "ply\nformat ascii 1.0\n" + props + "element vertex 3\n" + faces + "end_header\n" + body);
+  EXPECT_THAT(error_of(dir / "early.ply"), HasSubstr("a property before any element"));
+  write_text(dir / "short.ply", "ply\nformat ascii 1.0\nelement vertex\n" + props + faces + "end_header\n" + body);
+  EXPECT_THAT(error_of(dir / "short.ply"), HasSubstr("expected 'element NAME COUNT'"));
+}
+
 // Hostile files: refused by their size or head, before the whole file is read.
 TEST(MeshFiles, SparseAndOverclaimingFilesAreRefusedBeforeTheyCostMemory) {
   TempDir dir;
