@@ -3,8 +3,9 @@
 #   1. builds core, the command layer, their tests and the libFuzzer targets with clang under AddressSanitizer +
 #      UndefinedBehaviorSanitizer into build-asan/ (no GUI: the GL layers run in the plain build's tests);
 #   2. runs the core and command tests and every fuzz target's seeds and regression files once (ctest);
-#   3. fuzzes each target for TRISPLINE_FUZZ_SECONDS (default 60, seed TRISPLINE_FUZZ_SEED, default 1), two at a time. A crash fails the run and leaves the
-#      input in build-asan/fuzz/<target>/crashes/; add it to tests/fuzz/regressions/<target>/ with the fix.
+#   3. fuzzes each target for TRISPLINE_FUZZ_SECONDS (default 60; seed TRISPLINE_FUZZ_SEED, default 1), two at a
+#      time. A crash fails the run and leaves the input in build-asan/fuzz/<target>/crashes/; add it to
+#      tests/fuzz/regressions/<target>/ with the fix.
 # Usage: scripts/sanitize.sh [--no-fuzz | --fuzz-only]   (run scripts/setup.sh --no-build first on a fresh machine)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
