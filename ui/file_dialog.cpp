@@ -147,7 +147,13 @@ std::optional<fs::path> FileDialog::draw() {
     ImGui::Checkbox(option_label_.c_str(), &option_value_);
     probe::item("file.option");
     probe::value("file.option", option_value_ ? "on" : "off");
-    if (ImGui::IsItemHovered() && !option_tooltip_.empty()) ImGui::SetTooltip("%s", option_tooltip_.c_str());
+    if (ImGui::IsItemHovered() && !option_tooltip_.empty()) {
+      ImGui::BeginTooltip();
+      ImGui::PushTextWrapPos(ImGui::GetFontSize() * 32.0f);  // a paragraph, not one screen-wide line
+      ImGui::TextUnformatted(option_tooltip_.c_str());
+      ImGui::PopTextWrapPos();
+      ImGui::EndTooltip();
+    }
   }
   if (!extensions_.empty()) {
     std::string filter;
