@@ -1,5 +1,5 @@
-// trispline::editor — `trispline bench ddm`: live DDM layers drawn by the renderer's instanced GPU path (issue 6,
-// seed §5.3.2, Table 5.1) in an offscreen target: per case the tile vertices, the GPU time of the layer pass
+// trispline::editor — `trispline bench ddm`: live DDM layers drawn by the renderer's instanced GPU path (seed
+// §5.3.2, Table 5.1) in an offscreen target: per case the tile vertices, the GPU time of the layer pass
 // (RenderStats::ddm_ms, GpuTimer: GL_TIME_ELAPSED queries on GPUs, glFinish + wall clock on llvmpipe), the whole
 // frame (draw + glFinish, wall clock) and frames per second. Cases (like the seed's table, with our tiles):
 //   thorns_face      assets/scenes/face_thorns.jsonl replayed: 645 thorns painted on the Loop limit surface of

@@ -1,4 +1,4 @@
-// `trispline bench place` and `trispline bench press` — issue 4 figures (docs/performance.md). Numbers, never asserts.
+// `trispline bench place` and `trispline bench press` — figures for docs/performance.md. Numbers, never asserts.
 //
 // bench place (bench_place.cpp): placement end to end through the real command path (registry parse →
 // History::execute → undo, as the editor and replay run it) — the Stanford bunny (assets/data/bunny.obj, 34,835

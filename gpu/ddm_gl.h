@@ -1,4 +1,4 @@
-// trispline::gpu::DdmGl — live DDM layers on the GPU (seed §5.3.2, issue 6 item 4): the base surface's P/N maps in
+// trispline::gpu::DdmGl — live DDM layers on the GPU (seed §5.3.2): the base surface's P/N maps in
 // an SSBO, each tile stored once, and ONE instanced draw per tile mesh whose vertex shader (shaders/ddm.vert.glsl)
 // places every instance's copy: T(u,v,w) = P + N·w·height with normals through the cofactor of T's Jacobian, the
 // metamorphosis of seed Eq. 5.3 and the texture-space offset of §5.4.2. It computes what core::ddm_layer_mesh

@@ -1,4 +1,4 @@
-// trispline::gpu GLSL FFD evaluators (issue 3; seed ch. 4 "Real-time FFD using programmable hardware").
+// trispline::gpu GLSL FFD evaluators (seed ch. 4 "Real-time FFD using programmable hardware").
 //
 // Two backends of core::FfdEvaluator (core/deform/ffd_evaluator.h: same calls as the CPU backends, checked against
 // the double reference in tests/gpu/test_ffd_gl.cpp within 1e-5 × lattice diagonal, normals within 1e-4 rad):

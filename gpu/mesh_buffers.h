@@ -1,12 +1,12 @@
 // trispline::gpu::MeshBuffers — one triangle mesh on the GPU: a VAO over separate, tightly packed float32
 // buffers (positions #V×3, normals #V×3) and a uint32 index buffer (#F×3).
 //
-// Layout contract (shared with the GLSL FFD evaluator of issue 3): attribute 0 = position (vec3), attribute 1 =
+// Layout contract (shared with the GLSL FFD evaluator): attribute 0 = position (vec3), attribute 1 =
 // normal (vec3), attribute 2 is reserved for per-vertex parameters (u,v,w). The position and normal buffers are
 // plain `float[]` arrays, so a compute shader can bind them as SSBOs (std430 `float p[]`, index 3·i + c) and
 // write deformed vertices in place, with no CPU round trip; the renderer then draws them unchanged.
 //
-// Materials (issue 5): the index buffer holds the triangles ordered by TriMesh::face_material, stably — every
+// Materials: the index buffer holds the triangles ordered by TriMesh::face_material, stably — every
 // kMaterialSurface triangle first, then every other (kMaterialInside: DFFD caps, incision walls), each group in mesh
 // order — so the renderer draws the two ranges with two colours. Vertex order is never changed (update_vertices
 // and the FFD evaluators write vertices by their mesh index). Without inside faces the index buffer is the mesh's.

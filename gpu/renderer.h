@@ -10,12 +10,12 @@
 // at ViewOptions::time_s (renderer_ffd.h): GLSL compute into the drawn buffers, the GLSL vertex path while drawing
 // (always for glsl_vertex; for glsl_compute when offset_velocity ≠ 0), the CPU fast path, or the CPU reference
 // (world_mesh). Only speed differs between backends.
-// Two materials (issue 5): triangles with TriMesh::face_material = kMaterialInside (DFFD caps, incision walls) are
+// Two materials: triangles with TriMesh::face_material = kMaterialInside (DFFD caps, incision walls) are
 // drawn with SceneObject::inside_color and flat shading (face normals: their vertices share the surface's normals);
 // outline and wireframe cover all triangles. DFFD objects (SceneObject::dffd) are drawn as their world_mesh is (it
 // is already split and deformed on the CPU); their lattice, discontinuity planes and fold-over points are overlays
 // (ViewOptions::show_discontinuities).
-// Live DDM layers (SceneObject::ddm_layers, issue 6, seed §5.3.2) are drawn by instancing on the GPU at
+// Live DDM layers (SceneObject::ddm_layers, seed §5.3.2) are drawn by instancing on the GPU at
 // ViewOptions::time_s through the object's transform (renderer_ddm.h, gpu/ddm_gl.h), in its colour, wireframe and
 // outline included.
 #pragma once
@@ -62,7 +62,7 @@ struct ViewOptions {
   glm::vec4 contact_surface_color{0.25f, 0.85f, 0.70f, 0.35f};
   glm::vec4 contact_iso_color{0.0f, 0.78f, 0.64f, 1.0f};
   int contact_iso_every = 4;
-  // FFD display (issue 3): backend evaluating deformed objects, and the scene time in seconds (an object shows
+  // FFD display: backend evaluating deformed objects, and the scene time in seconds (an object shows
   // F(E(x) + param_offset + offset_velocity·time_s)).
   core::FfdBackend ffd_backend = core::FfdBackend::glsl_compute;
   double time_s = 0.0;
@@ -71,7 +71,7 @@ struct ViewOptions {
   // bound; cpu_fast when ffd_backend is cpu_ref, whose stored world_mesh is stale during the edit).
   std::string live_ffd_object;
   std::shared_ptr<const core::TrivariateBSpline<glm::dvec3>> live_lattice;
-  // DFFD display (issue 5, seed §6.3). show_lattice draws a DFFD object's lattice like an FFD lattice. Its
+  // DFFD display (seed §6.3). show_lattice draws a DFFD object's lattice like an FFD lattice. Its
   // discontinuity planes — the control points of F⁻ (Discontinuity::minus_plane along its axis) as larger
   // dffd_minus_color points, those of F⁺ as dffd_plus_color points on top (so coincident, unopened planes show
   // both), and each plane's polylines — are drawn when show_discontinuities is on and either show_lattice is on
@@ -83,7 +83,7 @@ struct ViewOptions {
   glm::vec4 dffd_plus_color{0.15f, 0.9f, 1.0f, 1.0f};    // cyan
   glm::vec4 fold_point_color{1.0f, 0.0f, 0.0f, 1.0f};
   float fold_point_px = 14.0f;
-  // Incision tool preview (issue 5, seed §6.4): the generator curve G(v) (world polyline) drawn as a thick bright
+  // Incision tool preview (seed §6.4): the generator curve G(v) (world polyline) drawn as a thick bright
   // line on top of everything, and a whole mesh (world units) drawn instead of object incision_preview_object's
   // world_mesh (no FFD evaluation of that object while set; uploaded once per mesh pointer, like world meshes).
   std::vector<glm::dvec3> incision_curve;

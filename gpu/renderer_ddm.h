@@ -1,4 +1,4 @@
-// trispline::gpu::detail::DdmDisplay — how the Renderer shows live DDM layers (SceneObject::ddm_layers, issue 6,
+// trispline::gpu::detail::DdmDisplay — how the Renderer shows live DDM layers (SceneObject::ddm_layers,
 // seed §5.3.2): every visible object's layers through DdmGl's instanced path at ViewOptions::time_s (α =
 // alpha_at(t), offset = offset_at(t)), in object space through the object's transform (Transform::matrix(); normals
 // by its inverse transpose), shaded like the object (its colour, studio shading of mesh.frag.glsl), and in the

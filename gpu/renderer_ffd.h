@@ -1,4 +1,4 @@
-// trispline::gpu::FfdDisplay — how the Renderer shows deformed objects (issue 3): per object, the selected FFD
+// trispline::gpu::FfdDisplay — how the Renderer shows deformed objects: per object, the selected FFD
 // backend (ViewOptions::ffd_backend) evaluates F(E(x) + offset) for display, offset = param_offset +
 // offset_velocity · time_s (seed §4.5), with nothing visible changing between backends except speed:
 //   glsl_compute  compute dispatch straight into the object's MeshBuffers (the buffers the renderer draws); objects

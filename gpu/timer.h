@@ -1,5 +1,5 @@
 // trispline::gpu::GpuTimer — times a GPU pass (FFD evaluation, scene draw, ImGui) for the live timing overlay and
-// replay's report.json (issue 3) without ever making the CPU wait for the GPU.
+// replay's report.json without ever making the CPU wait for the GPU.
 //
 // Query mode (real GPUs): a ring of kQueriesInFlight GL_TIME_ELAPSED queries. begin()/end() of frame N record into
 // the next free query; last_ms() is the newest result GL_QUERY_RESULT_AVAILABLE reports finished (normally frame

@@ -1,5 +1,5 @@
 // trispline::ui viewport overlays, drawn over the 3-D view:
-//  * TimingOverlay: the live timing overlay (issue 3; View > Timing overlay, F7) in the viewport's top-left corner:
+//  * TimingOverlay: the live timing overlay (View > Timing overlay, F7) in the viewport's top-left corner:
 //    FPS and frame time; per pass FFD evaluation, rendering and UI (ms); FFD vertices per second; a graph of the last
 //    5 seconds, one line per pass; the GPU timing method; the FFD evaluator in use; the last command's CPU time per
 //    stage. Every number explains itself in a tooltip. A small ImGui window with an opaque-ish background, so it

@@ -1,4 +1,4 @@
-// `ddm.paint` — a brush stroke that adds tiles to (or erases them from) a DDM layer (seed ch. 5; issue 6 item 3):
+// `ddm.paint` — a brush stroke that adds tiles to (or erases them from) a DDM layer (seed ch. 5):
 //   {"cmd":"ddm.paint","object":"ID","layer":"NAME","stroke":[[px,py],...],"radius_px":r,"erase":false}
 //   optional: "camera" (as place.sketch / incision.draw: the view the stroke was drawn in; else the scene's camera,
 //   the last camera.set).

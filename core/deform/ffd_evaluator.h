@@ -1,4 +1,4 @@
-// trispline::core FFD evaluator contract — one interface, several backends (issue 3; seed ch. 4).
+// trispline::core FFD evaluator contract — one interface, several backends (seed ch. 4).
 //
 // What an FFD evaluation takes:
 //   * per-vertex inputs, bound once (the parameters of a mesh do not change while its lattice moves, seed §4.2):

@@ -1,4 +1,4 @@
-// trispline::editor::DdmPaintTool — the "Tile Paint" tool (issue 6 item 3; seed ch. 5, deformation displacement
+// trispline::editor::DdmPaintTool — the "Tile Paint" tool (seed ch. 5, deformation displacement
 // maps): a brush that paints geometric tiles onto an object's surface. A circle of radius_px viewport pixels follows
 // the cursor over the viewport ([ and ] shrink / grow it, as Blender's brush radius); left-drag collects one stroke in
 // viewport pixels (top-left origin) of the view at mouse-down, shown as the brush's swath; on mouse-up the tool

@@ -1,5 +1,5 @@
 // trispline::editor::DffdTool — "Split (DFFD)": the selected object splits around obstacles, wraps around them and
-// re-forms behind (global discontinuous FFD, seed §6.3.1–6.3.2, Fig. 6.4, 6.10, 6.11; issue 5 item 3). The Tool panel
+// re-forms behind (global discontinuous FFD, seed §6.3.1–6.3.2, Fig. 6.4, 6.10, 6.11). The Tool panel
 // (ui/dffd_panel.h) ticks obstacles among the other visible objects and sets the lattice and opening parameters; its
 // "Split" button executes ONE `dffd.split` command through the session (errors go to the Log panel, the scene stays
 // as it was). In the viewport a click selects the object under the cursor, as the Select tool does; while the tool

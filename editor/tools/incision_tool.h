@@ -1,5 +1,5 @@
-// trispline::editor::IncisionTool — the incision drawing tool (seed §6.4, Eq. 6.2, Fig. 6.5, 6.6, 6.8; issue 5
-// item 4), Blender's Knife key K. Left-drag over an object (the one under the cursor at mouse-down, else the selected
+// trispline::editor::IncisionTool — the incision drawing tool (seed §6.4, Eq. 6.2, Fig. 6.5, 6.6, 6.8),
+// Blender's Knife key K. Left-drag over an object (the one under the cursor at mouse-down, else the selected
 // one, else the first object the stroke passes over) collects the stroke in viewport pixels (top-left origin) of the
 // view at mouse-down. While dragging, at most every preview_interval_ms, the cut is previewed on the UI thread:
 // core::fit_incision_frame + core::incise on the object's world_mesh with the panel's parameters; the view shows the

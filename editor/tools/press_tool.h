@@ -1,5 +1,5 @@
 // trispline::editor::PressTool — spherical pressing of a deformed object's control lattice in the viewport (seed
-// §2.4.1, Fig. 2.7, 2.8; issue 4 item 3). A translucent sphere of the panel's radius follows the mouse over the
+// §2.4.1, Fig. 2.7, 2.8). A translucent sphere of the panel's radius follows the mouse over the
 // chosen object (the object with an FFD lattice selected, or picked in the Object combo): its centre is the first
 // ray hit on the object's deformed mesh (world_mesh) under the cursor. Left-drag samples the centre at every mouse
 // move where the ray hits (misses skipped, samples closer than radius/4 to the previous one dropped) and shows the

@@ -1,5 +1,5 @@
 #version 430 core
-// GLSL compute FFD (issue 3): one invocation per vertex, x' = F(uvw + u_param_offset) and, with FFD_NORMALS,
+// GLSL compute FFD: one invocation per vertex, x' = F(uvw + u_param_offset) and, with FFD_NORMALS,
 // n' ∝ cof(J_F·A)·n (ffd_eval.glsl). Inputs and outputs are tightly packed float arrays, element 3·i + c, so the
 // outputs can be the position / normal buffers the renderer draws (gpu::MeshBuffers, attributes 0 and 1).
 // Groups are laid out 2D (x ≤ 65535) to cover any vertex count; invocations past u_vertex_count return.

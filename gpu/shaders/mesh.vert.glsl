@@ -1,12 +1,12 @@
 #version 430 core
 // World-space triangle meshes (world_mesh is already in world space; no model matrix).
-// Attribute locations are shared with the GLSL FFD vertex path (issue 3): 0 position, 1 normal, 2 (u,v,w).
+// Attribute locations are shared with the GLSL FFD vertex path: 0 position, 1 normal, 2 (u,v,w).
 // Variant OUTLINE: the vertex is pushed outwards along its screen-space normal by u_outline_px pixels (the
 // selection outline is that enlarged silhouette, masked by the stencil of the object itself).
 // Variant DEPTH_PULL: the vertex is drawn moved towards the eye by the fraction u_depth_pull of its distance —
 // same pixel (it slides along its own view ray), slightly nearer depth — so an overlay lying on a surface (the
 // contact surface S(u,v) = F(u,v,0) on the object it was fitted to) wins the depth test without z-fighting.
-// Variant FFD (seed §4.2.1 single phase, issue 3): position and normal are evaluated here from the vertex's
+// Variant FFD (seed §4.2.1 single phase): position and normal are evaluated here from the vertex's
 // parameters a_param (location 2) and its rest normal (location 1, world rest space) through the control lattice
 // in SSBOs 4/5 (ffd_eval.glsl; ORDER_U/V/W, FFD_NORMALS), at a_param + u_param_offset (seed §4.5 animation).
 // gpu::GlslVertexFfdEvaluator draws with it, and captures v_world / v_normal by transform feedback for read-back.

@@ -1,4 +1,4 @@
-// The Tile Paint tool (editor/tools/ddm_paint_tool.h; issue 6 item 3) driven through headless ImGui frames: a drag
+// The Tile Paint tool (editor/tools/ddm_paint_tool.h) driven through headless ImGui frames: a drag
 // over a sphere issues exactly one ddm.paint (the dragged stroke, the view as "camera", the new layer's fields) and
 // undo removes what it made; a stroke on an existing layer adds to it and undo restores the instance set exactly;
 // Ctrl-drag erases; the brush circle is drawn and [ / ] resize it; Fill and Bake in the panel issue ddm.fill /

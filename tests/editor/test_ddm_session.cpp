@@ -1,4 +1,4 @@
-// Issue 6's "done when" end to end: tests/logs/ddm_session.jsonl paints thorns onto the teapot, hexagons onto the
+// The DDM workflow end to end: tests/logs/ddm_session.jsonl paints thorns onto the teapot, hexagons onto the
 // Venus bust and chain links onto the bunny, animates the thorns into flowers, records frames 20–24 and bakes all
 // three layers; `replay` runs it headless, the baked objects are the layers' CPU reference meshes (the thorns at
 // frame 24), scene.glb holds baked and live layers, and a second replay writes the same scene.glb byte for byte.

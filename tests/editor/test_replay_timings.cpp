@@ -1,4 +1,4 @@
-// `trispline replay` and issue 3: report.json carries the timing overlay's numbers (per-command stage timings, the
+// `trispline replay`: report.json carries the timing overlay's numbers (per-command stage timings, the
 // final render's FFD / draw passes, the timer method), `--ffd-backend` renders and exports through the chosen
 // evaluator (a GLSL backend's scene.glb is read back from the GPU and must match the CPU reference), `--time`
 // moves animated objects, and bad options fail with a clear message. GL runs for real on llvmpipe (EGL).

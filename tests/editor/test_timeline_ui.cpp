@@ -1,4 +1,4 @@
-// The editor's timeline and precise-edit UI (issue 4): the playback clock (whole frames at the timeline's fps,
+// The editor's timeline and precise-edit UI: the playback clock (whole frames at the timeline's fps,
 // looping at the end frame), scrubbing the real Timeline panel in a headless Dear ImGui frame (mouse events, no
 // window), the I / Alt+I keys issuing anim.keyframe, the Record dialog's anim.record line and a short recording
 // stepped one frame per UI frame, the Sketch tool's profile curves and springs feeding place.sketch, and

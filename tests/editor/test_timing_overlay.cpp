@@ -1,4 +1,4 @@
-// The live timing overlay (issue 3) without a window: its key and menu toggle, the numbers it shows (means over the
+// The live timing overlay without a window: its key and menu toggle, the numbers it shows (means over the
 // last second, the 5 s graph window, vertices per second, idle detection), the stage timings it reads from a
 // command's stats(), and drawing it in a headless Dear ImGui frame (no GL needed: ImGui only builds draw lists).
 #include "headless_imgui.h"

@@ -1,8 +1,8 @@
-// Live DDM layers on the GPU (gpu/ddm_gl.h, shaders/ddm.vert.glsl; issue 6 item 4, seed §5.3.2) against the CPU
+// Live DDM layers on the GPU (gpu/ddm_gl.h, shaders/ddm.vert.glsl, seed §5.3.2) against the CPU
 // reference core::ddm_layer_mesh (ddm_evaluate over DdmMapsBase), for real on llvmpipe: every base kind (the
 // teapot's body patches as one periodic chart, the Loop limit surface of a polygonal sphere, a UV-mapped terrain),
 // with a tile-space transform, a texture-space offset (wrapping on the periodic chart, clamped elsewhere), several
-// tiles in one layer and the thorn → flower metamorphosis at α = 0.3. Tolerances (issue 6 bars): positions ≤ 1e-5 ×
+// tiles in one layer and the thorn → flower metamorphosis at α = 0.3. Tolerances (the DDM bars): positions ≤ 1e-5 ×
 // maps.base_size, normals ≤ 1e-4. Then the renderer: a layer is drawn (pixels change) and counted in RenderStats.
 #include <cstdio>
 

@@ -1,4 +1,4 @@
-// Issue 5 display: two materials (cut surfaces in SceneObject::inside_color, flat-shaded), DFFD lattices with their
+// display: two materials (cut surfaces in SceneObject::inside_color, flat-shaded), DFFD lattices with their
 // discontinuity planes F⁻ / F⁺ and fold-over points, and the incision tool's preview (generator curve, mesh).
 #include <epoxy/gl.h>
 

@@ -1,7 +1,7 @@
 // GLSL FFD evaluators (gpu/ffd_gl.h) against the CPU double reference (core ffd_evaluate), for real on llvmpipe:
 // every order combination 2..4 × knot type (clamped uniform, floating uniform, periodic along u, non-uniform
 // clamped) with a parameter offset, the periodic return, the real bunny, and bad input.
-// Tolerances (issue 3): positions ≤ 1e-5 × lattice bounding-box diagonal, normals ≤ 1e-4 rad.
+// Tolerances: positions ≤ 1e-5 × lattice bounding-box diagonal, normals ≤ 1e-4 rad.
 #include <epoxy/gl.h>
 
 #include <chrono>

@@ -70,13 +70,13 @@ TEST_F(GlTest, EveryEmbeddedShaderCompilesAndLinks) {
   EXPECT_NO_THROW(ShaderProgram({"lines.vert.glsl", "lines.frag.glsl"}, {{"ROUND_POINTS", ""}}));
   EXPECT_NO_THROW(ShaderProgram({"lines.vert.glsl", "lines.frag.glsl"}, {{"DEPTH_PULL", ""}}));
   EXPECT_NO_THROW(ShaderProgram({"mesh.vert.glsl", "mesh.frag.glsl"}, {{"DEPTH_PULL", ""}, {"TRANSLUCENT", ""}}));
-  // The FFD variants (issue 3): compute with normals, the vertex path drawn and captured by transform feedback.
+  // The FFD variants: compute with normals, the vertex path drawn and captured by transform feedback.
   EXPECT_NO_THROW(
       ShaderProgram({"ffd.comp.glsl"}, {{"ORDER_U", "2"}, {"ORDER_V", "4"}, {"ORDER_W", "3"}, {"FFD_NORMALS", ""}}));
   EXPECT_NO_THROW(ShaderProgram({"mesh.vert.glsl", "mesh.frag.glsl"},
                                 {{"FFD", ""}, {"FFD_NORMALS", ""}, {"OUTLINE", ""}, {"FLAT_COLOR", ""}}));
   EXPECT_NO_THROW(ShaderProgram({"mesh.vert.glsl"}, {{"FFD", ""}}, {"v_world", "v_normal"}));
-  // DDM tile instances (issue 6): outline variant and the transform-feedback capture.
+  // DDM tile instances: outline variant and the transform-feedback capture.
   EXPECT_NO_THROW(ShaderProgram({"ddm.vert.glsl", "mesh.frag.glsl"}, {{"OUTLINE", ""}, {"FLAT_COLOR", ""}}));
   EXPECT_NO_THROW(ShaderProgram({"ddm.vert.glsl"}, {}, {"v_world", "v_normal"}));
   EXPECT_NO_THROW(Renderer());

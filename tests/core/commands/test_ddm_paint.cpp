@@ -1,4 +1,4 @@
-// ddm.paint (core/commands/ddm_paint.h; seed ch. 5, issue 6 item 3): a stroke over a sphere adds exactly the cells
+// ddm.paint (core/commands/ddm_paint.h; seed ch. 5): a stroke over a sphere adds exactly the cells
 // whose centres project within the brush radius and face the camera (the back of the sphere, under the same pixels,
 // stays bare; cells behind another object too); erase removes them; undo restores the instance set exactly; several
 // tiles follow ddm.fill's pattern; a stroke that touches nothing and bad fields are CommandErrors naming the field,

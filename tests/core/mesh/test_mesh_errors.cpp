@@ -1,4 +1,4 @@
-// Every bad input gives MeshIoError whose message names the reason (issue 2's error test list).
+// Every bad input gives MeshIoError whose message names the reason.
 #include <gmock/gmock.h>
 
 #include <limits>
