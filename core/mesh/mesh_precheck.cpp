@@ -161,12 +161,133 @@ void check_off(const std::filesystem::path& path, std::string_view text, std::ui
                    " faces, more than a file of " + format_bytes(file_size) + " can hold (truncated or corrupt)");
 }
 
+// One PLY element as its header lays it out: per property, a scalar of `size` bytes or a list (a count of
+// `count_size` bytes, signed or not, then that many items of `size` bytes).
+struct PlyProperty {
+  bool list = false;
+  bool count_signed = false;
+  unsigned long long count_size = 0;
+  unsigned long long size = 0;
+};
+struct PlyElement {
+  std::string name;
+  unsigned long long count = 0;
+  std::vector<PlyProperty> properties;
+};
+
+bool is_signed(std::string_view t) {
+  return t == "char" || t == "int8" || t == "short" || t == "int16" || t == "int" || t == "int32";
+}
+
+[[noreturn]] void bad_list(const std::filesystem::path& path, const PlyElement& e, unsigned long long index,
+                           const std::string& count, unsigned long long room, const char* unit) {
+  fail(path, "PLY " + e.name + " " + std::to_string(index) + " has a list of " + count + " items, more than the " +
+                 std::to_string(room) + " " + unit + " left in the file can hold (corrupt or truncated)");
+}
+[[noreturn]] void short_body(const std::filesystem::path& path, const PlyElement& e, unsigned long long index) {
+  fail(path, "the PLY body ends in " + e.name + " " + std::to_string(index) + " of the " + std::to_string(e.count) +
+                 " its header declares (truncated)");
+}
+
+// Walks an ASCII PLY body token by token as the header lays it out; returns the number of values it holds. Every
+// list count must be a non-negative integer no larger than the tokens left (assimp resizes a vector by the count
+// before reading its items: a count of -1 read as 4294967295, or 10⁹ in a 60-byte body, was tens of GB).
+unsigned long long walk_ply_ascii(const std::filesystem::path& path, std::string_view body,
+                                  const std::vector<PlyElement>& layout) {
+  std::size_t at = 0;
+  auto next = [&]() -> std::string_view {
+    while (at < body.size() && (is_space(body[at]) || body[at] == '\n')) ++at;
+    const std::size_t start = at;
+    while (at < body.size() && !is_space(body[at]) && body[at] != '\n') ++at;
+    return body.substr(start, at - start);
+  };
+  unsigned long long values = 0;
+  for (const PlyElement& e : layout)
+    for (unsigned long long i = 0; i < e.count; ++i)
+      for (const PlyProperty& p : e.properties) {
+        const std::string_view token = next();
+        if (token.empty()) short_body(path, e, i);
+        ++values;
+        if (!p.list) continue;
+        const bool negative = token[0] == '-';
+        const std::string_view number = token.substr(negative || token[0] == '+' ? 1 : 0);
+        const std::string_view digits =
+            number.substr(0, std::min(number.find_first_not_of("0123456789"), number.size()));
+        if (digits.empty())
+          fail(path, "PLY " + e.name + " " + std::to_string(i) + ": list count '" + std::string(token.substr(0, 24)) +
+                         "' is not a number");
+        if (negative && digits.find_first_not_of('0') != std::string_view::npos)
+          fail(path, "PLY " + e.name + " " + std::to_string(i) + " has a list of " + std::string(token.substr(0, 24)) +
+                         " items (a count cannot be negative)");
+        // A token takes at least two bytes ("0 "), so at most half the bytes left are items.
+        const unsigned long long room = (body.size() - at) / 2 + 1;
+        const long long n = negative ? 0 : parse_count(digits);  // -1: more than 18 digits
+        if (n < 0) bad_list(path, e, i, std::string(digits.substr(0, 24)), room, "values");
+        const auto items = static_cast<unsigned long long>(n);
+        if (items > room) bad_list(path, e, i, std::to_string(items), room, "values");
+        for (unsigned long long k = 0; k < items; ++k)
+          if (next().empty()) short_body(path, e, i);
+        values += items;
+      }
+  return values;
+}
+
+// Walks a binary PLY body as the header lays it out; returns the number of values it holds. Every list count must be
+// non-negative and its items must fit in the bytes left.
+unsigned long long walk_ply_binary(const std::filesystem::path& path, std::string_view body,
+                                   const std::vector<PlyElement>& layout, const std::string& format) {
+  const bool big = format == "binary_big_endian";
+  std::size_t at = 0;
+  unsigned long long values = 0;
+  for (const PlyElement& e : layout) {
+    // Elements of scalars only have a fixed size: skip them whole.
+    const bool fixed =
+        std::none_of(e.properties.begin(), e.properties.end(), [](const PlyProperty& p) { return p.list; });
+    if (fixed) {
+      unsigned long long size = 0;
+      for (const PlyProperty& p : e.properties) size += p.size;
+      if (size != 0 && e.count > (body.size() - at) / size) short_body(path, e, (body.size() - at) / size);
+      at += static_cast<std::size_t>(size * e.count);
+      values += e.count * e.properties.size();
+      continue;
+    }
+    for (unsigned long long i = 0; i < e.count; ++i)
+      for (const PlyProperty& p : e.properties) {
+        const std::size_t left = body.size() - at;
+        if (left < (p.list ? p.count_size : p.size)) short_body(path, e, i);
+        ++values;
+        if (!p.list) {
+          at += p.size;
+          continue;
+        }
+        unsigned long long raw = 0;
+        for (unsigned long long b = 0; b < p.count_size; ++b) {
+          const unsigned long long byte = static_cast<unsigned char>(body[at + (big ? b : p.count_size - 1 - b)]);
+          raw = (raw << 8) | byte;
+        }
+        at += p.count_size;
+        if (p.count_signed && (raw >> (8 * p.count_size - 1)) != 0)
+          fail(path, "PLY " + e.name + " " + std::to_string(i) + " has a list of " +
+                         std::to_string(static_cast<long long>(raw) - (1ll << (8 * p.count_size))) +
+                         " items (a count cannot be negative)");
+        const unsigned long long room = p.size == 0 ? 0 : (body.size() - at) / p.size;
+        if (raw > room) bad_list(path, e, i, std::to_string(raw), room, "items");
+        at += static_cast<std::size_t>(raw * p.size);
+        values += raw;
+      }
+  }
+  return values;
+}
+
 // The header must follow the PLY grammar line by line (Turk's specification, as assimp's reader expects it): `ply`,
 // one `format` before the elements, `element NAME N`, `property TYPE NAME` / `property list T T NAME` after an
 // element, a line that is `end_header`; other lines are free text (comments). assimp's reader does not check the
 // grammar and reads beyond its buffers on a header it misparses (properties before any element and no end_header
 // line crashed it), so those are refused here.
-void check_ply(const std::filesystem::path& path, std::string_view text, std::uintmax_t file_size) {
+//
+// With the whole file (`whole`), the body is walked element by element as the header lays it out (walk_ply_body), so
+// a list whose count the body cannot hold is refused before assimp sizes a vector by it.
+void check_ply(const std::filesystem::path& path, std::string_view text, std::uintmax_t file_size, bool whole) {
   if (text.substr(0, 3) != "ply") fail(path, "not a PLY file (no 'ply' magic)");
   std::size_t header_end = std::string_view::npos;  // offset of the line "end_header"
   for (std::size_t at = text.find("\nend_header"); at != std::string_view::npos;
@@ -203,6 +324,7 @@ void check_ply(const std::filesystem::path& path, std::string_view text, std::ui
     fail(path, "unknown PLY property type '" + std::string(t) + "'");
   };
   bool has_element = false;
+  std::vector<PlyElement> layout;
   for_each_line(header, [&](long long number, std::string_view line) {
     const std::string_view tag = first_token(line);
     std::vector<std::string_view> words;
@@ -214,12 +336,14 @@ void check_ply(const std::filesystem::path& path, std::string_view text, std::ui
       i = j;
     }
     auto bad_line = [&](const char* why) {
-      fail(path, "bad PLY header line " + std::to_string(number) + " '" + std::string(line.substr(0, 80)) + "': " + why);
+      fail(path,
+           "bad PLY header line " + std::to_string(number) + " '" + std::string(line.substr(0, 80)) + "': " + why);
     };
     if (number == 1) {
       if (words.size() != 1 || words[0] != "ply") bad_line("the first line must be 'ply'");
     } else if (tag == "format") {
-      if (words.size() != 3 || !format.empty() || has_element) bad_line("one 'format TYPE VERSION' before the elements");
+      if (words.size() != 3 || !format.empty() || has_element)
+        bad_line("one 'format TYPE VERSION' before the elements");
       format = std::string(words[1]);
       if (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian")
         fail(path, "unknown PLY format '" + format + "'");
@@ -232,6 +356,7 @@ void check_ply(const std::filesystem::path& path, std::string_view text, std::ui
         fail(path, "bad PLY element count '" + std::string(words.size() >= 3 ? words[2] : "") + "' for " +
                        std::string(words.size() >= 2 ? words[1] : "?"));
       total_elements += static_cast<unsigned long long>(count);
+      layout.push_back({std::string(words[1]), static_cast<unsigned long long>(count), {}});
     } else if (tag == "property") {
       // A list is at least its count; with a face's 3 corners, 4 values.
       const bool list = words.size() >= 2 && words[1] == "list";
@@ -244,9 +369,11 @@ void check_ply(const std::filesystem::path& path, std::string_view text, std::ui
         element_min += count_size;
         if (count_size >= 4) bounded = false;
         element_max += count_size + item * ((1ull << (8 * count_size)) - 1);
+        layout.back().properties.push_back({true, is_signed(words[2]), count_size, item});
       } else if (!list && words.size() >= 2) {
         element_min += type_size(words[1]);
         element_max += type_size(words[1]);
+        layout.back().properties.push_back({false, false, 0, type_size(words[1])});
       }
     }
     // Any other line is free text, as in assimp's reader: Blender 2.47 wrote a bare "Created by Blender3D …" line.
@@ -277,6 +404,15 @@ void check_ply(const std::filesystem::path& path, std::string_view text, std::ui
     check_text_budget(path, file_size, "PLY");
     check_no_nul(path, text, header_end, "PLY");
   }
+  if (!whole) return;
+  const std::size_t eol = text.find('\n', header_end);
+  const std::string_view data = eol == std::string_view::npos ? std::string_view() : text.substr(eol + 1);
+  const unsigned long long values =
+      format == "ascii" ? walk_ply_ascii(path, data, layout) : walk_ply_binary(path, data, layout, format);
+  if (values > kMeshLoadMemoryBudget / kPlyPeakPerValue)
+    refuse(path, "a PLY file of " + std::to_string(values) + " values would need about " +
+                     format_bytes(values * kPlyPeakPerValue) + " to load, over the " +
+                     format_bytes(kMeshLoadMemoryBudget) + " memory budget");
 }
 
 // Binary STL is 84 + 50·n bytes; anything else must be ASCII ("solid").
@@ -352,7 +488,7 @@ void precheck_mesh_head(const std::filesystem::path& path, const std::string& ex
   const std::string_view text = as_text(head);
   if (ext == ".obj") check_obj(path, text, file_size, false);
   if (ext == ".off") check_off(path, text, file_size);
-  if (ext == ".ply") check_ply(path, text, file_size);
+  if (ext == ".ply") check_ply(path, text, file_size, false);
   if (ext == ".stl") check_stl(path, text, file_size);
 }
 
@@ -362,7 +498,7 @@ void precheck_mesh_file(const std::filesystem::path& path, const std::string& ex
   if (text.empty()) fail(path, "empty file");
   if (ext == ".obj") check_obj(path, text, text.size(), true);
   if (ext == ".off") check_off(path, text, text.size());
-  if (ext == ".ply") check_ply(path, text, text.size());
+  if (ext == ".ply") check_ply(path, text, text.size(), true);
   if (ext == ".stl") check_stl(path, text, text.size());
 }
 

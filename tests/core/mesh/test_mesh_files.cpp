@@ -128,8 +128,7 @@ TEST(MeshFiles, GroupsShareTheirVerticesAfterLoading) {
 
 TEST(MeshFiles, RepeatedTrianglesAreRemovedAndCountedTheOtherSideIsKept) {
   TempDir dir;  // face 3 repeats face 1 rotated (same orientation); face 4 is face 1 reversed (its other side)
-  write_text(dir / "repeat.obj",
-             "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\nf 2 3 1\nf 1 3 2\nf 3 1 2\n");
+  write_text(dir / "repeat.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\nf 2 3 1\nf 1 3 2\nf 3 1 2\n");
   MeshLoadReport report;
   const TriMesh m = load_mesh(dir / "repeat.obj", {}, &report);
   EXPECT_EQ(report.duplicate_faces, 2u);
@@ -174,7 +173,8 @@ TEST(MeshFiles, PlyHeaderGrammarIsCheckedBeforeAssimpReadsIt) {
   // properties before any element, and 'end_header' only inside another line (a fuzzer's input that crashed assimp)
   write_text(dir / "orphan.ply", "ply\nformat ascii 1.0\nelemeend_header4\n" + props + faces + "end_\n" + body);
   EXPECT_THAT(error_of(dir / "orphan.ply"), HasSubstr("no end_header line"));
-  write_text(dir / "early.ply", "ply\nformat ascii 1.0\n" + props + "element vertex 3\n" + faces + "end_header\n" + body);
+  write_text(dir / "early.ply",
+             "ply\nformat ascii 1.0\n" + props + "element vertex 3\n" + faces + "end_header\n" + body);
   EXPECT_THAT(error_of(dir / "early.ply"), HasSubstr("a property before any element"));
   write_text(dir / "short.ply", "ply\nformat ascii 1.0\nelement vertex\n" + props + faces + "end_header\n" + body);
   EXPECT_THAT(error_of(dir / "short.ply"), HasSubstr("expected 'element NAME COUNT'"));
@@ -223,6 +223,41 @@ TEST(MeshFiles, BinaryPlyBodyMustMatchItsHeader) {
   EXPECT_THAT(error_of(dir / "short.ply"), HasSubstr("truncated"));
   write_text(dir / "long.ply", ply + std::string(1 << 20, '\0'));
   EXPECT_THAT(error_of(dir / "long.ply"), HasSubstr("longer than its header can describe"));
+}
+
+// A list's count sizes assimp's vector before its items are read: a count the rest of the body cannot hold (10⁹ in a
+// few bytes, -1 read as 4294967295) is refused by the body walk, in ASCII and binary, and costs no memory.
+TEST(MeshFiles, PlyListCountsMustFitTheBody) {
+  TempDir dir;
+  const long rss_before = max_rss_kb();
+  const std::string head =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 1\nproperty list int int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n";
+  write_text(dir / "ok.ply", head + "3 0 1 2\n");
+  EXPECT_EQ(load_mesh(dir / "ok.ply").triangle_count(), 1u);
+  write_text(dir / "huge.ply", head + "1000000000 0 1 2\n");
+  EXPECT_THAT(error_of(dir / "huge.ply"), HasSubstr("has a list of 1000000000 items, more than"));
+  write_text(dir / "digits.ply", head + "99999999999999999999999 0 1 2\n");
+  EXPECT_THAT(error_of(dir / "digits.ply"), HasSubstr("more than"));
+  write_text(dir / "negative.ply", head + "-1 0 1 2\n");
+  EXPECT_THAT(error_of(dir / "negative.ply"), HasSubstr("a count cannot be negative"));
+  write_text(dir / "word.ply", head + "three 0 1 2\n");
+  EXPECT_THAT(error_of(dir / "word.ply"), HasSubstr("list count 'three' is not a number"));
+  write_text(dir / "cut.ply", head + "3 0 1\n");
+  EXPECT_THAT(error_of(dir / "cut.ply"), HasSubstr("the PLY body ends in face 0 of the 1"));
+
+  std::string bin =
+      "ply\nformat binary_big_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty list int int vertex_indices\nend_header\n";
+  const std::string one("\x3F\x80\0\0", 4), zero(4, '\0');  // 1.0f and 0.0f, big-endian
+  bin += zero + zero + zero + one + zero + zero + zero + one + zero;
+  write_text(dir / "bin_huge.ply", bin + std::string("\x3F\xFF\xFF\xFF", 4) + std::string(12, '\0'));
+  EXPECT_THAT(error_of(dir / "bin_huge.ply"), HasSubstr("has a list of 1073741823 items, more than the 3 items"));
+  write_text(dir / "bin_negative.ply", bin + std::string("\xFF\xFF\xFF\xFF", 4) + std::string(12, '\0'));
+  EXPECT_THAT(error_of(dir / "bin_negative.ply"), HasSubstr("a list of -1 items (a count cannot be negative)"));
+  write_text(dir / "bin_ok.ply", bin + std::string("\0\0\0\3\0\0\0\0\0\0\0\1\0\0\0\2", 16));
+  EXPECT_EQ(load_mesh(dir / "bin_ok.ply").triangle_count(), 1u);
+  EXPECT_LT(max_rss_kb() - rss_before, 64 * 1024) << "a refused file cost more than 64 MB";
 }
 
 TEST(MeshFiles, PathsThatAreNotRegularFilesSayWhatTheyAre) {
