@@ -132,7 +132,7 @@ class Renderer {
   // surfaces whose FfdBinding is no longer any object's ffd (called by draw automatically).
   void release_unused(const core::Scene& scene);
 
-  // Added. GPU buffers of `mesh` (uploaded now if not cached). They stay valid until the cache drops the mesh
+  // GPU buffers of `mesh` (uploaded now if not cached). They stay valid until the cache drops the mesh
   // (it is no longer any object's world_mesh). A GPU evaluator may overwrite positions/normals in place; the
   // renderer draws whatever they hold and re-uploads only when the world_mesh pointer changes.
   MeshBuffers& buffers_for(const std::shared_ptr<const core::TriMesh>& mesh);
@@ -154,7 +154,6 @@ class OffscreenTarget {
   // RGBA8, #(w·h·4), top row first (ready to write as PNG).
   std::vector<unsigned char> read_rgba();
 
-  // Added.
   int samples() const;         // actual sample count (clamped to GL_MAX_SAMPLES)
   GLuint framebuffer() const;  // the FBO to draw into (multisampled if samples() > 1)
   GLuint resolve();            // resolves MSAA; returns the RGBA8 GL_TEXTURE_2D (e.g. for ImGui::Image)
