@@ -3,7 +3,10 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <assimp/MemoryIOWrapper.h>
+
 #include <assimp/DefaultLogger.hpp>
+#include <assimp/IOSystem.hpp>
 #include <assimp/Importer.hpp>
 #include <assimp/LogStream.hpp>
 #include <cstring>
@@ -46,6 +49,27 @@ bool is_repair(const std::string& w) {
     if (w.find(word) != std::string::npos) return true;
   return false;
 }
+
+// The only file an import may open: the bytes already read (and checked), under one name. Every other name does not
+// exist, so an OBJ's `mtllib` and the material file assimp falls back to are never opened. (assimp's own
+// ReadFileFromMemory serves its buffer for every name that starts with its magic name, so the OBJ importer's
+// fallback "<name>.mtl" read the OBJ itself as a material library, whose parser then wrote through a null material:
+// a crash found by fuzz_mesh_obj.)
+class OneFileIOSystem : public Assimp::IOSystem {
+ public:
+  OneFileIOSystem(std::string name, const std::vector<unsigned char>& bytes) : name_(std::move(name)), bytes_(bytes) {}
+  bool Exists(const char* file) const override { return file && name_ == file; }
+  char getOsSeparator() const override { return '/'; }
+  Assimp::IOStream* Open(const char* file, const char* mode) override {
+    if (!Exists(file) || !mode || std::strchr(mode, 'w') || std::strchr(mode, 'a')) return nullptr;
+    return new Assimp::MemoryIOStream(bytes_.data(), bytes_.size(), false);
+  }
+  void Close(Assimp::IOStream* stream) override { delete stream; }
+
+ private:
+  std::string name_;
+  const std::vector<unsigned char>& bytes_;
+};
 
 // One vertex of the joined mesh as the file gave it: position, normal, uv (unused parts zero). Welding compares the
 // bits, so -0.0 and 0.0 stay apart and NaNs never merge (both are refused later anyway).
@@ -123,8 +147,9 @@ TriMesh read_assimp_mesh(const std::filesystem::path& path, const std::string& e
   // Two steps: read and validate, then triangulate. assimp's importers can leave a mesh whose primitive-type flags
   // disagree with its faces (a PLY face list of 0, 1 or 2 corners), and aiProcess_Triangulate then fails an
   // ai_assert, which aborts the process. Between the steps the flags are set from the faces themselves.
-  const aiScene* scene = importer.ReadFileFromMemory(bytes.data(), bytes.size(), aiProcess_ValidateDataStructure,
-                                                     ext.c_str() + 1);
+  const std::string name = "mesh" + ext;
+  importer.SetIOHandler(new OneFileIOSystem(name, bytes));  // the importer owns it
+  const aiScene* scene = importer.ReadFile(name, aiProcess_ValidateDataStructure);
   auto refuse_if_repaired = [&] {
     for (const std::string& w : warnings)
       if (is_repair(w)) throw MeshIoError(quoted(path) + ": cannot parse " + ext.substr(1) + " file: " + w);

@@ -180,55 +180,74 @@ bool is_signed(std::string_view t) {
 }
 
 [[noreturn]] void bad_list(const std::filesystem::path& path, const PlyElement& e, unsigned long long index,
-                           const std::string& count, unsigned long long room, const char* unit) {
-  fail(path, "PLY " + e.name + " " + std::to_string(index) + " has a list of " + count + " items, more than the " +
-                 std::to_string(room) + " " + unit + " left in the file can hold (corrupt or truncated)");
+                           const std::string& count, unsigned long long room) {
+  fail(path, "PLY " + e.name + " " + std::to_string(index) + ": a list of " + count + " items, more than the " +
+                 std::to_string(room) + " items left in the file can hold (corrupt or truncated)");
 }
 [[noreturn]] void short_body(const std::filesystem::path& path, const PlyElement& e, unsigned long long index) {
   fail(path, "the PLY body ends in " + e.name + " " + std::to_string(index) + " of the " + std::to_string(e.count) +
                  " its header declares (truncated)");
 }
 
-// Walks an ASCII PLY body token by token as the header lays it out; returns the number of values it holds. Every
-// list count must be a non-negative integer no larger than the tokens left (assimp resizes a vector by the count
-// before reading its items: a count of -1 read as 4294967295, or 10⁹ in a 60-byte body, was tens of GB).
+// Walks an ASCII PLY body as assimp reads it — one element a line (blank lines and `comment` lines skipped), its
+// properties' values in order, anything after them on the line ignored — and returns the number of values it holds.
+// Every line must hold its element's values, and every list count must be a non-negative integer no larger than the
+// values left on its line: assimp resizes a vector by the count before reading the items (a count of -1 read as
+// 4294967295, or 3579139413 on a short line, asked for tens of GB).
 unsigned long long walk_ply_ascii(const std::filesystem::path& path, std::string_view body,
                                   const std::vector<PlyElement>& layout) {
-  std::size_t at = 0;
-  auto next = [&]() -> std::string_view {
-    while (at < body.size() && (is_space(body[at]) || body[at] == '\n')) ++at;
-    const std::size_t start = at;
-    while (at < body.size() && !is_space(body[at]) && body[at] != '\n') ++at;
-    return body.substr(start, at - start);
+  std::size_t next_line = 0;
+  std::string_view line;  // what is left of the current element's line
+  auto token = [&]() -> std::string_view {
+    std::size_t i = 0;
+    while (i < line.size() && is_space(line[i])) ++i;
+    std::size_t j = i;
+    while (j < line.size() && !is_space(line[j])) ++j;
+    const std::string_view t = line.substr(i, j - i);
+    line.remove_prefix(j);
+    return t;
+  };
+  auto bad = [&](const PlyElement& e, unsigned long long i, const std::string& why) {
+    fail(path, "PLY " + e.name + " " + std::to_string(i) + ": " + why);
   };
   unsigned long long values = 0;
   for (const PlyElement& e : layout)
-    for (unsigned long long i = 0; i < e.count; ++i)
+    for (unsigned long long i = 0; i < e.count; ++i) {
+      line = {};
+      while (next_line < body.size()) {
+        std::size_t end = body.find_first_of("\r\n", next_line);
+        if (end == std::string_view::npos) end = body.size();
+        line = body.substr(next_line, end - next_line);
+        next_line = end + 1;
+        const std::string_view first = first_token(line);
+        if (!first.empty() && first != "comment") break;
+        line = {};
+      }
+      if (line.empty()) short_body(path, e, i);
       for (const PlyProperty& p : e.properties) {
-        const std::string_view token = next();
-        if (token.empty()) short_body(path, e, i);
+        const std::string_view t = token();
+        if (t.empty())
+          bad(e, i,
+              "its line holds fewer values than the element's " + std::to_string(e.properties.size()) + " properties");
         ++values;
         if (!p.list) continue;
-        const bool negative = token[0] == '-';
-        const std::string_view number = token.substr(negative || token[0] == '+' ? 1 : 0);
+        const bool negative = t[0] == '-';
+        const std::string_view number = t.substr(negative || t[0] == '+' ? 1 : 0);
         const std::string_view digits =
             number.substr(0, std::min(number.find_first_not_of("0123456789"), number.size()));
-        if (digits.empty())
-          fail(path, "PLY " + e.name + " " + std::to_string(i) + ": list count '" + std::string(token.substr(0, 24)) +
-                         "' is not a number");
+        if (digits.empty()) bad(e, i, "list count '" + std::string(t.substr(0, 24)) + "' is not a number");
         if (negative && digits.find_first_not_of('0') != std::string_view::npos)
-          fail(path, "PLY " + e.name + " " + std::to_string(i) + " has a list of " + std::string(token.substr(0, 24)) +
-                         " items (a count cannot be negative)");
-        // A token takes at least two bytes ("0 "), so at most half the bytes left are items.
-        const unsigned long long room = (body.size() - at) / 2 + 1;
+          bad(e, i, "a list of " + std::string(t.substr(0, 24)) + " items (a count cannot be negative)");
+        const std::size_t left = count_tokens(line);
         const long long n = negative ? 0 : parse_count(digits);  // -1: more than 18 digits
-        if (n < 0) bad_list(path, e, i, std::string(digits.substr(0, 24)), room, "values");
-        const auto items = static_cast<unsigned long long>(n);
-        if (items > room) bad_list(path, e, i, std::to_string(items), room, "values");
-        for (unsigned long long k = 0; k < items; ++k)
-          if (next().empty()) short_body(path, e, i);
-        values += items;
+        if (n < 0 || static_cast<unsigned long long>(n) > left)
+          bad(e, i,
+              "a list of " + std::string(digits.substr(0, 24)) + " items, more than the " + std::to_string(left) +
+                  " values left on its line (corrupt or truncated)");
+        for (long long k = 0; k < n; ++k) token();
+        values += static_cast<unsigned long long>(n);
       }
+    }
   return values;
 }
 
@@ -267,11 +286,11 @@ unsigned long long walk_ply_binary(const std::filesystem::path& path, std::strin
         }
         at += p.count_size;
         if (p.count_signed && (raw >> (8 * p.count_size - 1)) != 0)
-          fail(path, "PLY " + e.name + " " + std::to_string(i) + " has a list of " +
+          fail(path, "PLY " + e.name + " " + std::to_string(i) + ": a list of " +
                          std::to_string(static_cast<long long>(raw) - (1ll << (8 * p.count_size))) +
                          " items (a count cannot be negative)");
         const unsigned long long room = p.size == 0 ? 0 : (body.size() - at) / p.size;
-        if (raw > room) bad_list(path, e, i, std::to_string(raw), room, "items");
+        if (raw > room) bad_list(path, e, i, std::to_string(raw), room);
         at += static_cast<std::size_t>(raw * p.size);
         values += raw;
       }
@@ -365,6 +384,8 @@ void check_ply(const std::filesystem::path& path, std::string_view text, std::ui
         bad_line(list ? "expected 'property list COUNT_TYPE ITEM_TYPE NAME'" : "expected 'property TYPE NAME'");
       total_values += (list ? 4 : 1) * static_cast<unsigned long long>(count);
       if (list && words.size() >= 4) {
+        if (words[2] == "float" || words[2] == "float32" || words[2] == "double" || words[2] == "float64")
+          bad_line("a list's count type must be an integer type");
         const unsigned long long count_size = type_size(words[2]), item = type_size(words[3]);
         element_min += count_size;
         if (count_size >= 4) bounded = false;

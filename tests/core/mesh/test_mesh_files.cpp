@@ -85,6 +85,22 @@ TEST(MeshFiles, TruncatedObjLinesAreRefusedWithTheirLine) {
   EXPECT_THAT(error_of(dir / "two_corner.obj"), HasSubstr("line 5: a face needs at least 3 corners, 2 given"));
 }
 
+// An OBJ's material library is never opened, neither the one it names nor the one assimp falls back to: the reader
+// serves assimp the checked bytes under one name. (The fallback once read the OBJ itself as a material file, whose
+// parser wrote through a null material on a line starting "n": a segfault.)
+TEST(MeshFiles, ObjMaterialLibrariesAreNotOpened) {
+  TempDir dir;
+  const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  write_text(dir / "fallback.obj", "mtllib cube.mtl\nnormals, two groups\n" + tri);
+  EXPECT_EQ(load_mesh(dir / "fallback.obj").triangle_count(), 1u);
+  // A material file that exists beside it, and one that would never end, are not read either.
+  write_text(dir / "cube.mtl", "newmtl skin\nKd 1 0 0\n");
+  write_text(dir / "beside.obj", "mtllib cube.mtl\nusemtl skin\n" + tri);
+  EXPECT_EQ(load_mesh(dir / "beside.obj").triangle_count(), 1u);
+  write_text(dir / "zero.obj", "mtllib /dev/zero\n" + tri);
+  EXPECT_EQ(load_mesh(dir / "zero.obj").triangle_count(), 1u);
+}
+
 TEST(MeshFiles, LooseGeometryIsRefusedUnlessAskedToIgnoreIt) {
   TempDir dir;
   write_text(dir / "mixed.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nl 1 4\np 4\n");
@@ -236,7 +252,7 @@ TEST(MeshFiles, PlyListCountsMustFitTheBody) {
   write_text(dir / "ok.ply", head + "3 0 1 2\n");
   EXPECT_EQ(load_mesh(dir / "ok.ply").triangle_count(), 1u);
   write_text(dir / "huge.ply", head + "1000000000 0 1 2\n");
-  EXPECT_THAT(error_of(dir / "huge.ply"), HasSubstr("has a list of 1000000000 items, more than"));
+  EXPECT_THAT(error_of(dir / "huge.ply"), HasSubstr("face 0: a list of 1000000000 items, more than the 3 values left on its line"));
   write_text(dir / "digits.ply", head + "99999999999999999999999 0 1 2\n");
   EXPECT_THAT(error_of(dir / "digits.ply"), HasSubstr("more than"));
   write_text(dir / "negative.ply", head + "-1 0 1 2\n");
@@ -244,7 +260,20 @@ TEST(MeshFiles, PlyListCountsMustFitTheBody) {
   write_text(dir / "word.ply", head + "three 0 1 2\n");
   EXPECT_THAT(error_of(dir / "word.ply"), HasSubstr("list count 'three' is not a number"));
   write_text(dir / "cut.ply", head + "3 0 1\n");
-  EXPECT_THAT(error_of(dir / "cut.ply"), HasSubstr("the PLY body ends in face 0 of the 1"));
+  EXPECT_THAT(error_of(dir / "cut.ply"), HasSubstr("a list of 3 items, more than the 2 values left on its line"));
+  // assimp reads an element a line: a list count is checked against its own line, not the rest of the file.
+  std::string zeros;
+  for (int k = 0; k < 2000; ++k) zeros += "0 ";
+  write_text(dir / "lines.ply", head + "1000 0 1 2\n" + zeros + "\n");
+  EXPECT_THAT(error_of(dir / "lines.ply"), HasSubstr("more than the 3 values left on its line"));
+  write_text(dir / "short_line.ply", head.substr(0, head.size() - 6) + "0 1\n3 0 1 2\n");
+  EXPECT_THAT(error_of(dir / "short_line.ply"), HasSubstr("vertex 2: its line holds fewer values"));
+  write_text(dir / "missing.ply", head);
+  EXPECT_THAT(error_of(dir / "missing.ply"), HasSubstr("the PLY body ends in face 0 of the 1"));
+  write_text(dir / "float_count.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                                      "property float z\nelement face 1\nproperty list double int vertex_indices\n"
+                                      "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  EXPECT_THAT(error_of(dir / "float_count.ply"), HasSubstr("a list's count type must be an integer type"));
 
   std::string bin =
       "ply\nformat binary_big_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
@@ -252,7 +281,7 @@ TEST(MeshFiles, PlyListCountsMustFitTheBody) {
   const std::string one("\x3F\x80\0\0", 4), zero(4, '\0');  // 1.0f and 0.0f, big-endian
   bin += zero + zero + zero + one + zero + zero + zero + one + zero;
   write_text(dir / "bin_huge.ply", bin + std::string("\x3F\xFF\xFF\xFF", 4) + std::string(12, '\0'));
-  EXPECT_THAT(error_of(dir / "bin_huge.ply"), HasSubstr("has a list of 1073741823 items, more than the 3 items"));
+  EXPECT_THAT(error_of(dir / "bin_huge.ply"), HasSubstr("face 0: a list of 1073741823 items, more than the 3 items"));
   write_text(dir / "bin_negative.ply", bin + std::string("\xFF\xFF\xFF\xFF", 4) + std::string(12, '\0'));
   EXPECT_THAT(error_of(dir / "bin_negative.ply"), HasSubstr("a list of -1 items (a count cannot be negative)"));
   write_text(dir / "bin_ok.ply", bin + std::string("\0\0\0\3\0\0\0\0\0\0\0\1\0\0\0\2", 16));
