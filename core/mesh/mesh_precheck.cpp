@@ -300,7 +300,8 @@ unsigned long long walk_ply_binary(const std::filesystem::path& path, std::strin
 
 // The header must follow the PLY grammar line by line (Turk's specification, as assimp's reader expects it): `ply`,
 // one `format` before the elements, `element NAME N`, `property TYPE NAME` / `property list T T NAME` after an
-// element, a line that is `end_header`; other lines are free text (comments). assimp's reader does not check the
+// element (each directly after its element's line or another property; blank lines aside), a line that is
+// `end_header`; other lines are free text (comments). assimp's reader does not check the
 // grammar and reads beyond its buffers on a header it misparses (properties before any element and no end_header
 // line crashed it), so those are refused here.
 //
@@ -343,6 +344,7 @@ void check_ply(const std::filesystem::path& path, std::string_view text, std::ui
     fail(path, "unknown PLY property type '" + std::string(t) + "'");
   };
   bool has_element = false;
+  bool in_properties = false;  // the previous line (blank lines aside) was an element or a property
   std::vector<PlyElement> layout;
   for_each_line(header, [&](long long number, std::string_view line) {
     const std::string_view tag = first_token(line);
@@ -380,6 +382,10 @@ void check_ply(const std::filesystem::path& path, std::string_view text, std::ui
       // A list is at least its count; with a face's 3 corners, 4 values.
       const bool list = words.size() >= 2 && words[1] == "list";
       if (!has_element) bad_line("a property before any element");
+      if (!in_properties)
+        bad_line(
+            "a property must follow its element's line or another property (assimp's reader ends an element's "
+            "properties at the first other line, a comment too, and would misread the body)");
       if (words.size() != (list ? 5u : 3u))
         bad_line(list ? "expected 'property list COUNT_TYPE ITEM_TYPE NAME'" : "expected 'property TYPE NAME'");
       total_values += (list ? 4 : 1) * static_cast<unsigned long long>(count);
@@ -398,6 +404,7 @@ void check_ply(const std::filesystem::path& path, std::string_view text, std::ui
       }
     }
     // Any other line is free text, as in assimp's reader: Blender 2.47 wrote a bare "Created by Blender3D …" line.
+    if (!words.empty()) in_properties = tag == "element" || tag == "property";
   });
   close_element();
   if (format.empty()) fail(path, "incomplete PLY header (no format line)");

@@ -194,6 +194,12 @@ TEST(MeshFiles, PlyHeaderGrammarIsCheckedBeforeAssimpReadsIt) {
   EXPECT_THAT(error_of(dir / "early.ply"), HasSubstr("a property before any element"));
   write_text(dir / "short.ply", "ply\nformat ascii 1.0\nelement vertex\n" + props + faces + "end_header\n" + body);
   EXPECT_THAT(error_of(dir / "short.ply"), HasSubstr("expected 'element NAME COUNT'"));
+  // assimp ends an element's properties at the first other line, a comment too: its vertices would be read with two
+  // properties instead of three (checked with assimp's own `assimp info`: 2 vertices of 3).
+  write_text(dir / "comment.ply",
+             "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\ncomment between\nproperty float y\n"
+             "property float z\n" + faces + "end_header\n" + body);
+  EXPECT_THAT(error_of(dir / "comment.ply"), HasSubstr("a property must follow its element's line or another property"));
 }
 
 // Hostile files: refused by their size or head, before the whole file is read.
