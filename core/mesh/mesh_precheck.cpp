@@ -314,15 +314,22 @@ void check_ply(const std::filesystem::path& path, std::string_view text, std::ui
        at = text.find("\nend_header", at + 1)) {
     std::size_t e = at + 11;
     while (e < text.size() && (text[e] == ' ' || text[e] == '\t' || text[e] == '\r')) ++e;
-    if (e == text.size() || text[e] == '\n') {
+    if (e < text.size() && text[e] == '\n') {  // a line of its own, ended by a line break (the body follows)
       header_end = at + 1;
       break;
     }
   }
   if (header_end == std::string_view::npos)
-    fail(path, "incomplete PLY header (no end_header line in its first " + format_bytes(kMeshHeadBytes) + ")");
+    fail(path, "incomplete PLY header (no end_header line ended by a line break in its first " +
+                   format_bytes(kMeshHeadBytes) + ")");
   const std::string_view header = text.substr(0, header_end);
-  check_no_nul(path, header, 0, "PLY header");
+  // The header is ASCII text: assimp's line reader looped forever on a header holding control characters.
+  for (std::size_t i = 0; i < header.size(); ++i) {
+    const auto c = static_cast<unsigned char>(header[i]);
+    if (c < 0x20 && c != '\n' && c != '\r' && c != '\t')
+      fail(path, "PLY header holds a control character (0x" + std::string(1, "0123456789abcdef"[c >> 4]) +
+                     std::string(1, "0123456789abcdef"[c & 15]) + ") at byte " + std::to_string(i));
+  }
   std::string format;
   unsigned long long total_values = 0, total_elements = 0;
   long long count = 0;

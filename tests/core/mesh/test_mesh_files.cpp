@@ -189,6 +189,12 @@ TEST(MeshFiles, PlyHeaderGrammarIsCheckedBeforeAssimpReadsIt) {
   // properties before any element, and 'end_header' only inside another line (a fuzzer's input that crashed assimp)
   write_text(dir / "orphan.ply", "ply\nformat ascii 1.0\nelemeend_header4\n" + props + faces + "end_\n" + body);
   EXPECT_THAT(error_of(dir / "orphan.ply"), HasSubstr("no end_header line"));
+  // end_header must end with a line break, and the header is text: assimp's line reader looped forever on a header of
+  // free text holding a control character that ended in a bare end_header (a fuzzer's input).
+  write_text(dir / "bare_end.ply", "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nend_header");
+  EXPECT_THAT(error_of(dir / "bare_end.ply"), HasSubstr("no end_header line ended by a line break"));
+  write_text(dir / "control.ply", "ply\nformat ascii 1.0\nnote \x1e\n" + props + faces + "end_header\n" + body);
+  EXPECT_THAT(error_of(dir / "control.ply"), HasSubstr("PLY header holds a control character (0x1e) at byte 26"));
   write_text(dir / "early.ply",
              "ply\nformat ascii 1.0\n" + props + "element vertex 3\n" + faces + "end_header\n" + body);
   EXPECT_THAT(error_of(dir / "early.ply"), HasSubstr("a property before any element"));
