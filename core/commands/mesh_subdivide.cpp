@@ -21,7 +21,7 @@ namespace Far = OpenSubdiv::Far;
 namespace Sdc = OpenSubdiv::Sdc;
 
 constexpr int kMaxLevels = 4;
-constexpr std::size_t kMaxTriangles = 20'000'000;
+constexpr std::size_t kMaxTriangles = 8'000'000;
 
 // Primvar element types for Far::PrimvarRefinerReal<double> (Clear / AddWithWeight protocol).
 struct Point3 {

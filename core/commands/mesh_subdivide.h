@@ -1,6 +1,6 @@
 // `mesh.subdivide` — uniform Loop subdivision of an object's rest mesh (OpenSubdiv Far, Loop 1987):
 //   {"cmd":"mesh.subdivide","object":"ID","levels":n,"scheme":"loop"}
-// levels: 1..4 (default 1); every level splits each triangle in four, so #F' = #F · 4^levels (at most 20,000,000:
+// levels: 1..4 (default 1); every level splits each triangle in four, so #F' = #F · 4^levels (at most 8,000,000:
 // else the command is refused). scheme: "loop" (the only one). Works in object space on rest_mesh, before any
 // deformation: objects with an FFD lattice (`ffd`), a DFFD rig (`dffd`) or a glTF clip (`clip`) are refused, since
 // the lattice parameters / clip targets are per vertex of the old mesh (subdivide first, then place or cut).
@@ -13,7 +13,7 @@
 // Deterministic. Undo restores the object bit for bit.
 // report.json: levels, vertices_before, vertices_after, triangles_before, triangles_after, ms.
 // Errors (CommandError, field named): unknown object, an object with ffd / dffd / clip, a mesh OpenSubdiv rejects
-// ("object"); levels outside 1..4 or a result over 20,000,000 triangles ("levels"); another scheme ("scheme").
+// ("object"); levels outside 1..4 or a result over 8,000,000 triangles ("levels"); another scheme ("scheme").
 #pragma once
 
 #include "core/commands/snapshot_command.h"

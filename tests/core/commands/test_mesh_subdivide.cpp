@@ -196,6 +196,24 @@ TEST(MeshSubdivide, VenusBust) {
   EXPECT_LT(glm::length(b1.lo - b0.lo) + glm::length(b1.hi - b0.hi), 0.05 * b0.diagonal());
 }
 
+// The result's size is checked before OpenSubdiv runs: the bunny's 69,666 triangles at 4 levels would be 17.8 M
+// (3.6 GB at peak in a replay), over the 8 M budget; 3 levels (4.5 M) are within it.
+TEST(MeshSubdivide, AResultOverTheTriangleBudgetIsRefusedBeforeSubdividing) {
+  Scene s;
+  const std::string path = std::string(TRISPLINE_SOURCE_DIR) + "/assets/data/bunny.obj";
+  SceneLoadCommand::parse(json{{"cmd", "scene.load"}, {"path", path}, {"name", "bunny"}}, {})->redo(s);
+  const auto rest = s.find("bunny")->rest_mesh;
+  ASSERT_EQ(rest->triangle_count(), 69666u);
+  try {
+    MeshSubdivideCommand::parse(json::parse(R"({"cmd":"mesh.subdivide","object":"bunny","levels":4})"), {})->redo(s);
+    ADD_FAILURE() << "4 levels of the bunny were accepted";
+  } catch (const CommandError& e) {
+    EXPECT_EQ(e.field(), "levels");
+    EXPECT_NE(std::string(e.what()).find("17834496 triangles (at most 8000000)"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(s.find("bunny")->rest_mesh, rest);
+}
+
 TEST(MeshSubdivide, BadInputNamesTheFieldAndChangesNothing) {
   Scene s;
   run(s, R"({"cmd":"scene.primitive","kind":"plane","name":"ground","scale":3})");
