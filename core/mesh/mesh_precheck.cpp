@@ -298,6 +298,13 @@ unsigned long long walk_ply_binary(const std::filesystem::path& path, std::strin
   return values;
 }
 
+// A PLY header written back as it was read: `ply`, the format, each element and its properties, `end_header`, one
+// line each, lowercase keywords, no comments or free text. `body_offset`: where the body starts in the file.
+struct PlyCanonical {
+  std::string header;
+  std::size_t body_offset = 0;
+};
+
 // The header must follow the PLY grammar line by line (Turk's specification, as assimp's reader expects it): `ply`,
 // one `format` before the elements, `element NAME N`, `property TYPE NAME` / `property list T T NAME` after an
 // element (each directly after its element's line or another property; blank lines aside), a line that is
@@ -307,7 +314,8 @@ unsigned long long walk_ply_binary(const std::filesystem::path& path, std::strin
 //
 // With the whole file (`whole`), the body is walked element by element as the header lays it out (walk_ply_body), so
 // a list whose count the body cannot hold is refused before assimp sizes a vector by it.
-void check_ply(const std::filesystem::path& path, std::string_view text, std::uintmax_t file_size, bool whole) {
+void check_ply(const std::filesystem::path& path, std::string_view text, std::uintmax_t file_size, bool whole,
+               PlyCanonical* canonical = nullptr) {
   if (text.substr(0, 3) != "ply") fail(path, "not a PLY file (no 'ply' magic)");
   std::size_t header_end = std::string_view::npos;  // offset of the line "end_header"
   for (std::size_t at = text.find("\nend_header"); at != std::string_view::npos;
@@ -352,6 +360,7 @@ void check_ply(const std::filesystem::path& path, std::string_view text, std::ui
   };
   bool has_element = false;
   bool in_properties = false;  // the previous line (blank lines aside) was an element or a property
+  std::string declarations;    // the format, element and property lines, one space between words
   std::vector<PlyElement> layout;
   for_each_line(header, [&](long long number, std::string_view line) {
     const std::string_view tag = first_token(line);
@@ -367,12 +376,20 @@ void check_ply(const std::filesystem::path& path, std::string_view text, std::ui
       fail(path,
            "bad PLY header line " + std::to_string(number) + " '" + std::string(line.substr(0, 80)) + "': " + why);
     };
+    // assimp matches some keywords without regard to case: one written in another case would be a property to assimp
+    // and free text here, so the two would read different layouts.
+    std::string lower(tag);
+    for (char& c : lower) c = static_cast<char>(c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c);
+    if (lower != tag)
+      for (const char* keyword : {"ply", "format", "element", "property", "comment", "obj_info", "end_header"})
+        if (lower == keyword) bad_line("header keywords are lowercase");
     if (number == 1) {
       if (words.size() != 1 || words[0] != "ply") bad_line("the first line must be 'ply'");
     } else if (tag == "format") {
       if (words.size() != 3 || !format.empty() || has_element)
         bad_line("one 'format TYPE VERSION' before the elements");
       format = std::string(words[1]);
+      declarations += "format " + format + " " + std::string(words[2]) + "\n";
       if (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian")
         fail(path, "unknown PLY format '" + format + "'");
     } else if (tag == "element") {
@@ -385,6 +402,7 @@ void check_ply(const std::filesystem::path& path, std::string_view text, std::ui
                        std::string(words.size() >= 2 ? words[1] : "?"));
       total_elements += static_cast<unsigned long long>(count);
       layout.push_back({std::string(words[1]), static_cast<unsigned long long>(count), {}});
+      declarations += "element " + std::string(words[1]) + " " + std::to_string(count) + "\n";
     } else if (tag == "property") {
       // A list is at least its count; with a face's 3 corners, 4 values.
       const bool list = words.size() >= 2 && words[1] == "list";
@@ -404,10 +422,13 @@ void check_ply(const std::filesystem::path& path, std::string_view text, std::ui
         if (count_size >= 4) bounded = false;
         element_max += count_size + item * ((1ull << (8 * count_size)) - 1);
         layout.back().properties.push_back({true, is_signed(words[2]), count_size, item});
+        declarations +=
+            "property list " + std::string(words[2]) + " " + std::string(words[3]) + " " + std::string(words[4]) + "\n";
       } else if (!list && words.size() >= 2) {
         element_min += type_size(words[1]);
         element_max += type_size(words[1]);
         layout.back().properties.push_back({false, false, 0, type_size(words[1])});
+        declarations += "property " + std::string(words[1]) + " " + std::string(words[2]) + "\n";
       }
     }
     // Any other line is free text, as in assimp's reader: Blender 2.47 wrote a bare "Created by Blender3D …" line.
@@ -438,6 +459,11 @@ void check_ply(const std::filesystem::path& path, std::string_view text, std::ui
   } else {
     check_text_budget(path, file_size, "PLY");
     check_no_nul(path, text, header_end, "PLY");
+  }
+  if (canonical) {
+    const std::size_t eol = text.find('\n', header_end);
+    canonical->header = "ply\n" + declarations + "end_header\n";
+    canonical->body_offset = eol == std::string_view::npos ? text.size() : eol + 1;
   }
   if (!whole) return;
   const std::size_t eol = text.find('\n', header_end);
@@ -492,6 +518,17 @@ void prepare_mesh_bytes(const std::filesystem::path& path, const std::string& ex
   const bool utf16 = !utf32 && (starts_with(bytes, {0xFF, 0xFE}) || starts_with(bytes, {0xFE, 0xFF}));
   if (utf16 || utf32) bytes = to_utf8(path, bytes, utf32 ? "UTF-32" : "UTF-16");
   if (starts_with(bytes, {0xEF, 0xBB, 0xBF})) bytes.erase(bytes.begin(), bytes.begin() + 3);
+  if (ext == ".ply") {
+    // assimp is handed the header as check_ply read it, so the two cannot read different layouts: assimp's header
+    // reader ends an element at a comment, matches keywords in any case and loops on some free text, and the body walk
+    // (the list counts checked against the bytes) is only as good as the layout they share.
+    PlyCanonical canonical;
+    check_ply(path, as_text(bytes), bytes.size(), false, &canonical);
+    std::vector<unsigned char> out(canonical.header.begin(), canonical.header.end());
+    out.insert(out.end(), bytes.begin() + static_cast<std::ptrdiff_t>(canonical.body_offset), bytes.end());
+    bytes = std::move(out);
+    return;
+  }
   if (ext == ".off") {  // binary OFF is refused by precheck_mesh_file; its header has no comment to remove
     std::size_t out = 0;
     bool comment = false;

@@ -204,8 +204,16 @@ TEST(MeshFiles, PlyHeaderGrammarIsCheckedBeforeAssimpReadsIt) {
   // properties instead of three (checked with assimp's own `assimp info`: 2 vertices of 3).
   write_text(dir / "comment.ply",
              "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\ncomment between\nproperty float y\n"
-             "property float z\n" + faces + "end_header\n" + body);
-  EXPECT_THAT(error_of(dir / "comment.ply"), HasSubstr("a property must follow its element's line or another property"));
+             "property float z\n" +
+                 faces + "end_header\n" + body);
+  EXPECT_THAT(error_of(dir / "comment.ply"),
+              HasSubstr("a property must follow its element's line or another property"));
+  // assimp reads "propErty" as a property; here it would be free text: keywords in another case are refused.
+  write_text(dir / "case.ply",
+             "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+             "propErty float z\n" +
+                 faces + "end_header\n" + body);
+  EXPECT_THAT(error_of(dir / "case.ply"), HasSubstr("'propErty float z': header keywords are lowercase"));
 }
 
 // Hostile files: refused by their size or head, before the whole file is read.
@@ -264,7 +272,8 @@ TEST(MeshFiles, PlyListCountsMustFitTheBody) {
   write_text(dir / "ok.ply", head + "3 0 1 2\n");
   EXPECT_EQ(load_mesh(dir / "ok.ply").triangle_count(), 1u);
   write_text(dir / "huge.ply", head + "1000000000 0 1 2\n");
-  EXPECT_THAT(error_of(dir / "huge.ply"), HasSubstr("face 0: a list of 1000000000 items, more than the 3 values left on its line"));
+  EXPECT_THAT(error_of(dir / "huge.ply"),
+              HasSubstr("face 0: a list of 1000000000 items, more than the 3 values left on its line"));
   write_text(dir / "digits.ply", head + "99999999999999999999999 0 1 2\n");
   EXPECT_THAT(error_of(dir / "digits.ply"), HasSubstr("more than"));
   write_text(dir / "negative.ply", head + "-1 0 1 2\n");
@@ -282,9 +291,10 @@ TEST(MeshFiles, PlyListCountsMustFitTheBody) {
   EXPECT_THAT(error_of(dir / "short_line.ply"), HasSubstr("vertex 2: its line holds fewer values"));
   write_text(dir / "missing.ply", head);
   EXPECT_THAT(error_of(dir / "missing.ply"), HasSubstr("the PLY body ends in face 0 of the 1"));
-  write_text(dir / "float_count.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                                      "property float z\nelement face 1\nproperty list double int vertex_indices\n"
-                                      "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  write_text(dir / "float_count.ply",
+             "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+             "property float z\nelement face 1\nproperty list double int vertex_indices\n"
+             "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
   EXPECT_THAT(error_of(dir / "float_count.ply"), HasSubstr("a list's count type must be an integer type"));
 
   std::string bin =
