@@ -173,7 +173,16 @@ struct PlyElement {
   std::string name;
   unsigned long long count = 0;
   std::vector<PlyProperty> properties;
+  std::vector<std::string> property_names;
 };
+
+// Names as assimp's PLY reader matches them: without regard to case.
+bool same_name(std::string_view a, std::string_view b) {
+  return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
+           auto lower = [](char c) { return c >= 'A' && c <= 'Z' ? static_cast<char>(c - 'A' + 'a') : c; };
+           return lower(x) == lower(y);
+         });
+}
 
 bool is_signed(std::string_view t) {
   return t == "char" || t == "int8" || t == "short" || t == "int16" || t == "int" || t == "int32";
@@ -401,9 +410,15 @@ void check_ply(const std::filesystem::path& path, std::string_view text, std::ui
         fail(path, "bad PLY element count '" + std::string(words.size() >= 3 ? words[2] : "") + "' for " +
                        std::string(words.size() >= 2 ? words[1] : "?"));
       total_elements += static_cast<unsigned long long>(count);
-      layout.push_back({std::string(words[1]), static_cast<unsigned long long>(count), {}});
+      // assimp fills one array per element kind: a second "face" element wrote past the first one's faces.
+      for (const PlyElement& e : layout)
+        if (same_name(e.name, words[1])) bad_line("an element of this name is already declared");
+      layout.push_back({std::string(words[1]), static_cast<unsigned long long>(count), {}, {}});
       declarations += "element " + std::string(words[1]) + " " + std::to_string(count) + "\n";
     } else if (tag == "property") {
+      if (!layout.empty() && words.size() >= 3)
+        for (const std::string& name : layout.back().property_names)
+          if (same_name(name, words.back())) bad_line("a property of this name is already declared in this element");
       // A list is at least its count; with a face's 3 corners, 4 values.
       const bool list = words.size() >= 2 && words[1] == "list";
       if (!has_element) bad_line("a property before any element");
@@ -422,12 +437,14 @@ void check_ply(const std::filesystem::path& path, std::string_view text, std::ui
         if (count_size >= 4) bounded = false;
         element_max += count_size + item * ((1ull << (8 * count_size)) - 1);
         layout.back().properties.push_back({true, is_signed(words[2]), count_size, item});
+        layout.back().property_names.emplace_back(words[4]);
         declarations +=
             "property list " + std::string(words[2]) + " " + std::string(words[3]) + " " + std::string(words[4]) + "\n";
       } else if (!list && words.size() >= 2) {
         element_min += type_size(words[1]);
         element_max += type_size(words[1]);
         layout.back().properties.push_back({false, false, 0, type_size(words[1])});
+        layout.back().property_names.emplace_back(words[2]);
         declarations += "property " + std::string(words[1]) + " " + std::string(words[2]) + "\n";
       }
     }
