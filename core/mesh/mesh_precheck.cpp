@@ -422,6 +422,13 @@ void check_ply(const std::filesystem::path& path, std::string_view text, std::ui
       // A list is at least its count; with a face's 3 corners, 4 values.
       const bool list = words.size() >= 2 && words[1] == "list";
       if (!has_element) bad_line("a property before any element");
+      // assimp reads a list where it expects a vertex coordinate (or a scalar where it expects a face's corners) as
+      // something else: a vertex element with a list 'x' loaded 2 vertices of 3.
+      if (!layout.empty() && same_name(layout.back().name, "vertex") && list)
+        bad_line("a vertex property cannot be a list");
+      if (!layout.empty() && !list && words.size() == 3 &&
+          (same_name(words[2], "vertex_indices") || same_name(words[2], "vertex_index")))
+        bad_line("a face's vertex indices must be a list");
       if (!in_properties)
         bad_line(
             "a property must follow its element's line or another property (assimp's reader ends an element's "

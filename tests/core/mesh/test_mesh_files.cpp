@@ -223,6 +223,11 @@ TEST(MeshFiles, PlyHeaderGrammarIsCheckedBeforeAssimpReadsIt) {
   write_text(dir / "two_x.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n" + props + faces +
                                     "end_header\n0 0 0 0\n1 1 0 0\n0 0 1 0\n3 0 1 2\n");
   EXPECT_THAT(error_of(dir / "two_x.ply"), HasSubstr("a property of this name is already declared in this element"));
+  write_text(dir / "x_list.ply",
+             "ply\nformat ascii 1.0\nelement vertex 3\nproperty list uchar float x\n"
+             "property float y\nproperty float z\n" +
+                 faces + "end_header\n2 0 0 0 0\n0 1 0\n0 0 0\n3 0 1 2\n");
+  EXPECT_THAT(error_of(dir / "x_list.ply"), HasSubstr("a vertex property cannot be a list"));
 }
 
 // Hostile files: refused by their size or head, before the whole file is read.
