@@ -484,6 +484,28 @@ void check_ply(const std::filesystem::path& path, std::string_view text, std::ui
     check_text_budget(path, file_size, "PLY");
     check_no_nul(path, text, header_end, "PLY");
   }
+  // A mesh needs an element "vertex" with x, y and z and a face (or triangle strip) element with its vertex indices.
+  // assimp reads a file without them in ways of its own (a header whose vertex element was misspelt took 11 GB).
+  auto find_element = [&](std::initializer_list<const char*> names) -> const PlyElement* {
+    for (const PlyElement& e : layout)
+      for (const char* n : names)
+        if (e.name == n) return &e;
+    return nullptr;
+  };
+  auto has_property = [](const PlyElement& e, std::initializer_list<const char*> names) {
+    for (const std::string& p : e.property_names)
+      for (const char* n : names)
+        if (p == n) return true;
+    return false;
+  };
+  const PlyElement* vertex = find_element({"vertex"});
+  if (!vertex || !has_property(*vertex, {"x"}) || !has_property(*vertex, {"y"}) || !has_property(*vertex, {"z"}))
+    fail(path, "the PLY header declares no element 'vertex' with properties x, y and z");
+  const PlyElement* face = find_element({"face", "tristrips"});
+  if (!face || !has_property(*face, {"vertex_indices", "vertex_index"}))
+    refuse(path,
+           "empty mesh (no triangles): the PLY header declares no element 'face' with vertex_indices (a point "
+           "cloud?)");
   if (canonical) {
     const std::size_t eol = text.find('\n', header_end);
     canonical->header = "ply\n" + declarations + "end_header\n";

@@ -228,6 +228,15 @@ TEST(MeshFiles, PlyHeaderGrammarIsCheckedBeforeAssimpReadsIt) {
              "property float y\nproperty float z\n" +
                  faces + "end_header\n2 0 0 0 0\n0 1 0\n0 0 0\n3 0 1 2\n");
   EXPECT_THAT(error_of(dir / "x_list.ply"), HasSubstr("a vertex property cannot be a list"));
+  // A misspelt vertex element took assimp 11 GB; a file without faces is a point cloud.
+  write_text(dir / "verex.ply", "ply\nformat ascii 1.0\nelement verex 3\n" + props + faces + "end_header\n" + body);
+  EXPECT_THAT(error_of(dir / "verex.ply"), HasSubstr("no element 'vertex' with properties x, y and z"));
+  write_text(dir / "no_z.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n" + faces +
+                                   "end_header\n0 0\n1 0\n0 1\n3 0 1 2\n");
+  EXPECT_THAT(error_of(dir / "no_z.ply"), HasSubstr("no element 'vertex' with properties x, y and z"));
+  write_text(dir / "cloud.ply",
+             "ply\nformat ascii 1.0\nelement vertex 3\n" + props + "end_header\n0 0 0\n1 0 0\n0 1 0\n");
+  EXPECT_THAT(error_of(dir / "cloud.ply"), HasSubstr("empty mesh (no triangles)"));
 }
 
 // Hostile files: refused by their size or head, before the whole file is read.
