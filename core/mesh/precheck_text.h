@@ -1,0 +1,98 @@
+// Internal to trispline_mesh: the text helpers the mesh file checks share (mesh_precheck.cpp, ply_precheck.cpp) —
+// the two kinds of refusal, line and token scanning, the text budgets.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/mesh/file_check.h"
+#include "core/mesh/mesh_io.h"
+#include "core/mesh/mesh_precheck.h"
+
+namespace trispline::core::precheck {
+
+// Peak bytes of a load per byte of a text file (assimp's parse + its per-corner meshes + our welded double
+// TriMesh), measured on real OBJ/OFF/PLY/STL files (docs/decisions.md "Mesh files").
+inline constexpr std::uintmax_t kTextPeakPerByte = 12;
+// Peak bytes per value of a PLY file: assimp keeps every value of every element in a DOM node.
+inline constexpr std::uintmax_t kPlyPeakPerValue = 48;
+
+inline std::string quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
+
+// A file that is not what its extension says: "cannot parse" (the word every mesh reader's parse error carries).
+[[noreturn]] inline void fail(const std::filesystem::path& path, const std::string& why) {
+  throw MeshIoError(quoted(path) + ": cannot parse: " + why);
+}
+// A well-formed file trispline does not take (over a budget, 4-D).
+[[noreturn]] inline void refuse(const std::filesystem::path& path, const std::string& why) {
+  throw MeshIoError(quoted(path) + ": " + why);
+}
+
+inline std::string_view as_text(const std::vector<unsigned char>& bytes) {
+  return {reinterpret_cast<const char*>(bytes.data()), bytes.size()};
+}
+
+inline void check_no_nul(const std::filesystem::path& path, std::string_view text, std::size_t from, const char* kind) {
+  const std::size_t nul = text.find('\0', from);
+  if (nul != std::string_view::npos)
+    fail(path, std::string("binary data (a NUL byte) at byte ") + std::to_string(nul) + " of a text " + kind +
+                   " file (corrupt, or not " + kind + ")");
+}
+
+inline void check_text_budget(const std::filesystem::path& path, std::uintmax_t size, const char* kind) {
+  if (size > kMeshLoadMemoryBudget / kTextPeakPerByte)
+    refuse(path, std::string("a text ") + kind + " file of " + format_bytes(size) + " would need about " +
+                     format_bytes(size * kTextPeakPerByte) + " to load, over the " +
+                     format_bytes(kMeshLoadMemoryBudget) + " memory budget (save it as binary PLY or glTF)");
+}
+
+// Splits text into lines (without '\n' / '\r').
+template <class F>
+void for_each_line(std::string_view text, F&& f) {
+  std::size_t start = 0;
+  long long number = 0;
+  while (start < text.size()) {
+    std::size_t end = text.find('\n', start);
+    if (end == std::string_view::npos) end = text.size();
+    std::string_view line = text.substr(start, end - start);
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    f(++number, line);
+    start = end + 1;
+  }
+}
+
+inline bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
+
+inline std::size_t count_tokens(std::string_view s) {
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < s.size();) {
+    while (i < s.size() && is_space(s[i])) ++i;
+    if (i < s.size()) ++n;
+    while (i < s.size() && !is_space(s[i])) ++i;
+  }
+  return n;
+}
+
+inline std::string_view first_token(std::string_view s) {
+  std::size_t i = 0;
+  while (i < s.size() && is_space(s[i])) ++i;
+  std::size_t j = i;
+  while (j < s.size() && !is_space(s[j])) ++j;
+  return s.substr(i, j - i);
+}
+
+// Parses a non-negative decimal count; -1 when `s` is not one.
+inline long long parse_count(std::string_view s) {
+  if (s.empty() || s.size() > 18) return -1;
+  long long n = 0;
+  for (char c : s) {
+    if (c < '0' || c > '9') return -1;
+    n = n * 10 + (c - '0');
+  }
+  return n;
+}
+
+}  // namespace trispline::core::precheck
