@@ -322,7 +322,7 @@ bool EditorSession::open(const fs::path& log) {
     r.error = log.string() + ": " + e.what();
   }
   if (!r.ok) {
-    messages_.error("cannot open " + r.error + " (nothing was opened: the current scene is kept)");
+    messages_.error("Open failed, the current scene is kept: " + r.error);
     return false;
   }
   std::size_t ok = 0;

@@ -19,7 +19,7 @@ gui_key ctrl+o
 gui_wait '(.popups | map(test("file_dialog")) | any) and .typing' "the Open dialog opens, its path field has the keyboard"
 gui_type "$GUI_WORK/scenes/bad.jsonl"
 gui_key Return
-gui_wait '.log | map(test("bad.jsonl:2")) | any' "the Log names the failing line (bad.jsonl:2)" 60
+gui_wait '.log | map(test("^Open failed, the current scene is kept: .*bad.jsonl:2")) | any' "the Log says the scene is kept and names the failing line (bad.jsonl:2)" 60
 gui_frames 2
 gui_check ".objects == $objects" "the scene's objects are unchanged (no ball from line 1)"
 gui_check ".history.labels == $labels" "the history is unchanged"
