@@ -1,16 +1,43 @@
 #!/usr/bin/env bash
-# Runs a command under a private Xvfb server. Unlike `xvfb-run -a`, the server picks its own free display and
-# reports it through -displayfd once it accepts connections, so no two runs race for a display number.
+# Runs a command under a private Xvfb server.
 #   Usage: with_xvfb.sh WxHxD COMMAND [ARGS...]
-# The ctest entries that use it are RUN_SERIAL: with other GL tests running beside it, XOpenDisplay on the fresh
-# server failed now and then on 2-core machines (server alive, socket present); alone it never did.
+# The server gets a display number of its own, away from the low numbers other servers and earlier runs take
+# (:100–:899, one without a lock file), and the command starts only once an X client has connected to it. On a
+# loaded 2-core machine a fresh server on the lowest free display (`-displayfd`) now and then refused every client
+# (server alive, socket present; a server of an earlier run that was still going away held the display's socket):
+# a server that takes no client within 10 s is replaced by one on another display, up to 5 times. The ctest entries
+# that use it are also RUN_SERIAL, so no other GL test loads the machine meanwhile.
 set -euo pipefail
 screen="$1"; shift
-fifo="$(mktemp -u)"; mkfifo "$fifo"
-Xvfb -displayfd 3 -screen 0 "$screen" -nolisten tcp 3>"$fifo" 2>/dev/null &
-xvfb_pid=$!
-# Wait for the server to be gone at exit: a dying Xvfb unlinks its socket late, which would delete the socket of
-# the next server that reuses its display number.
-trap 'kill "$xvfb_pid" 2>/dev/null || true; wait "$xvfb_pid" 2>/dev/null || true; rm -f "$fifo"' EXIT
-read -r -t 30 display <"$fifo" || { echo "with_xvfb: Xvfb did not start" >&2; exit 1; }
-DISPLAY=":$display" "$@"
+xvfb_pid=""
+stop_xvfb() {
+  if [ -n "$xvfb_pid" ]; then
+    kill "$xvfb_pid" 2>/dev/null || true
+    # Wait for it to be gone: a dying Xvfb unlinks its socket late.
+    wait "$xvfb_pid" 2>/dev/null || true
+  fi
+  xvfb_pid=""
+}
+trap stop_xvfb EXIT
+for attempt in 1 2 3 4 5; do
+  display=""
+  for _ in $(seq 1 50); do
+    n=$((100 + RANDOM % 800))
+    if [ ! -e "/tmp/.X$n-lock" ] && [ ! -e "/tmp/.X11-unix/X$n" ]; then display="$n"; break; fi
+  done
+  [ -n "$display" ] || { echo "with_xvfb: no free display number" >&2; exit 1; }
+  Xvfb ":$display" -screen 0 "$screen" -nolisten tcp 2>/dev/null &
+  xvfb_pid=$!
+  for _ in $(seq 1 100); do
+    if DISPLAY=":$display" xdotool getdisplaygeometry >/dev/null 2>&1; then
+      DISPLAY=":$display" "$@"
+      exit $?
+    fi
+    kill -0 "$xvfb_pid" 2>/dev/null || break  # the server died (a display taken meanwhile): try another
+    sleep 0.1
+  done
+  echo "with_xvfb: Xvfb on :$display took no client (attempt $attempt), trying another display" >&2
+  stop_xvfb
+done
+echo "with_xvfb: no Xvfb server took a client after 5 attempts" >&2
+exit 1
