@@ -4,9 +4,12 @@
 #include <GLFW/glfw3.h>
 #include <epoxy/gl.h>
 
+#include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <mutex>
 #include <stdexcept>
+#include <thread>
 
 namespace trispline::gpu {
 namespace {
@@ -28,9 +31,22 @@ Window::Window(const std::string& title, int width, int height, const WindowOpti
   std::lock_guard lock(g_glfw_mutex);
   glfwSetErrorCallback(on_glfw_error);
   g_last_error.clear();
-  if (g_windows == 0 && !glfwInit())
-    throw GlContextError("cannot open a window: glfwInit failed: " + g_last_error +
-                         " (no display? use HeadlessContext, or run under xvfb-run -a)");
+  // On a loaded machine the X server now and then refuses a connection it takes a moment later (seen under Xvfb on
+  // 2 cores: 2 starts in 15 failed, each X client started beside them connected): a display that is set but refused is
+  // asked again, five times in about 3 s, before the window is given up.
+  if (g_windows == 0) {
+    bool ready = glfwInit();
+    for (int attempt = 1; !ready && attempt <= 5 && std::getenv("DISPLAY") &&
+                          g_last_error.find("Failed to open display") != std::string::npos;
+         ++attempt) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(200 * attempt));
+      g_last_error.clear();
+      ready = glfwInit();
+    }
+    if (!ready)
+      throw GlContextError("cannot open a window: glfwInit failed: " + g_last_error +
+                           " (no display? use HeadlessContext, or run under xvfb-run -a)");
+  }
   glfwDefaultWindowHints();
   glfwWindowHint(GLFW_CLIENT_API, GLFW_OPENGL_API);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
