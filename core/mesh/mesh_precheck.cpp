@@ -83,6 +83,49 @@ void check_off(const std::filesystem::path& path, std::string_view text, std::ui
                    " faces, more than a file of " + format_bytes(file_size) + " can hold (truncated or corrupt)");
 }
 
+// The faces of an ASCII OFF body (comments already removed, the keyword written): assimp reads a face a line, its
+// corner count first, and took a count larger than the indices on the line as given (reading past the face it built:
+// a segfault found by fuzz_mesh_off). Every face line must hold its count's indices.
+void check_off_faces(const std::filesystem::path& path, std::string_view text) {
+  std::vector<std::string_view> lines;
+  for_each_line(text, [&](long long, std::string_view line) {
+    if (!first_token(line).empty()) lines.push_back(line);
+  });
+  if (lines.empty()) return;
+  std::vector<std::string_view> words;
+  auto split = [&](std::string_view line) {
+    words.clear();
+    for (std::size_t i = 0; i < line.size();) {
+      while (i < line.size() && is_space(line[i])) ++i;
+      std::size_t j = i;
+      while (j < line.size() && !is_space(line[j])) ++j;
+      if (j > i) words.push_back(line.substr(i, j - i));
+      i = j;
+    }
+  };
+  std::size_t at = 0;
+  split(lines[at++]);
+  if (words.size() < 4) {  // the counts on a line of their own
+    if (at >= lines.size()) return;
+    split(lines[at++]);
+  } else {
+    words.erase(words.begin());
+  }
+  if (words.size() < 2) return;  // check_off has refused it
+  const long long nv = parse_count(words[0]), nf = parse_count(words[1]);
+  if (nv < 0 || nf < 0) return;
+  at += static_cast<std::size_t>(nv);
+  for (long long f = 0; f < nf; ++f, ++at) {
+    if (at >= lines.size())
+      fail(path, "the OFF file ends after " + std::to_string(f) + " of its " + std::to_string(nf) + " faces");
+    split(lines[at]);
+    const long long n = parse_count(words[0]);
+    if (n < 0 || static_cast<unsigned long long>(n) + 1 > words.size())
+      fail(path, "OFF face " + std::to_string(f) + ": '" + std::string(lines[at].substr(0, 60)) +
+                     "' does not hold the corner count and that many vertex indices");
+  }
+}
+
 // Binary STL is 84 + 50·n bytes; anything else must be ASCII ("solid").
 void check_stl(const std::filesystem::path& path, std::string_view text, std::uintmax_t file_size) {
   check_text_budget(path, file_size, "STL");  // binary STL costs about as much per byte as text (50 bytes a triangle)
@@ -176,7 +219,10 @@ void precheck_mesh_file(const std::filesystem::path& path, const std::string& ex
   const std::string_view text = as_text(bytes);
   if (text.empty()) fail(path, "empty file");
   if (ext == ".obj") check_obj(path, text, text.size(), true);
-  if (ext == ".off") check_off(path, text, text.size());
+  if (ext == ".off") {
+    check_off(path, text, text.size());
+    check_off_faces(path, text);
+  }
   if (ext == ".ply") check_ply(path, text, text.size(), true);
   if (ext == ".stl") check_stl(path, text, text.size());
 }
