@@ -8,7 +8,7 @@
 //   * text formats (OBJ, ASCII OFF / PLY / STL): no NUL byte (the offset of the first one is named);
 //   * OBJ: every 'f' line has at least 3 corners (a 2-corner face is malformed, not a line: 'l' is);
 //   * OFF: a 3-D header ("OFF", "COFF", "NOFF", "STOFF", …; 4OFF / nOFF are 4-D or n-D polytopes, refused), counts
-//     that the file's size can hold;
+//     that the file's size can hold; with the whole file, every face line holding its corner count's indices;
 //   * PLY: magic, the header grammar, known format, element counts the file's size can hold, and assimp's DOM within
 //     the memory budget; with the whole file, the body walked as assimp reads it (ASCII: an element a line; binary:
 //     byte by byte), every list count non-negative and within what is left of its line or of the body;
