@@ -93,16 +93,7 @@ void check_off_faces(const std::filesystem::path& path, std::string_view text) {
   });
   if (lines.empty()) return;
   std::vector<std::string_view> words;
-  auto split = [&](std::string_view line) {
-    words.clear();
-    for (std::size_t i = 0; i < line.size();) {
-      while (i < line.size() && is_space(line[i])) ++i;
-      std::size_t j = i;
-      while (j < line.size() && !is_space(line[j])) ++j;
-      if (j > i) words.push_back(line.substr(i, j - i));
-      i = j;
-    }
-  };
+  auto split = [&](std::string_view line) { words = split_words(line); };
   std::size_t at = 0;
   split(lines[at++]);
   if (words.size() < 4) {  // the counts on a line of their own

@@ -215,14 +215,7 @@ void check_ply(const std::filesystem::path& path, std::string_view text, std::ui
   std::vector<PlyElement> layout;
   for_each_line(header, [&](long long number, std::string_view line) {
     const std::string_view tag = first_token(line);
-    std::vector<std::string_view> words;
-    for (std::size_t i = 0; i < line.size();) {
-      while (i < line.size() && is_space(line[i])) ++i;
-      std::size_t j = i;
-      while (j < line.size() && !is_space(line[j])) ++j;
-      if (j > i) words.push_back(line.substr(i, j - i));
-      i = j;
-    }
+    const std::vector<std::string_view> words = split_words(line);
     auto bad_line = [&](const char* why) {
       fail(path,
            "bad PLY header line " + std::to_string(number) + " '" + std::string(line.substr(0, 80)) + "': " + why);

@@ -84,6 +84,19 @@ inline std::string_view first_token(std::string_view s) {
   return s.substr(i, j - i);
 }
 
+// The words of a line (split at spaces and tabs).
+inline std::vector<std::string_view> split_words(std::string_view line) {
+  std::vector<std::string_view> words;
+  for (std::size_t i = 0; i < line.size();) {
+    while (i < line.size() && is_space(line[i])) ++i;
+    std::size_t j = i;
+    while (j < line.size() && !is_space(line[j])) ++j;
+    if (j > i) words.push_back(line.substr(i, j - i));
+    i = j;
+  }
+  return words;
+}
+
 // Parses a non-negative decimal count; -1 when `s` is not one.
 inline long long parse_count(std::string_view s) {
   if (s.empty() || s.size() > 18) return -1;
