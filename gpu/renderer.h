@@ -47,7 +47,7 @@ struct ViewOptions {
   glm::vec4 brush_path_color{1.0f, 0.85f, 0.3f, 1.0f};
   glm::vec3 background_top{0.23f, 0.23f, 0.25f};
   glm::vec3 background_bottom{0.13f, 0.13f, 0.14f};
-  // Added: colours are display (sRGB-encoded) values; sizes are pixels.
+  // Colours below are display (sRGB-encoded) values; sizes are pixels.
   glm::vec3 grid_color{0.55f, 0.55f, 0.58f};
   glm::vec3 selection_color{1.0f, 0.62f, 0.15f};
   glm::vec3 stroke_color{1.0f, 0.45f, 0.05f};

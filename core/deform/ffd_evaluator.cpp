@@ -1,5 +1,5 @@
 // FfdEvaluator contract: backend names, the CPU factory and the cpu_ref backend (double reference, ffd.h).
-// The cpu_fast backend lives in ffd_fast_evaluator.cpp.
+// The cpu_fast backend lives in ffd_fast.cpp (FfdFastEvaluator) and its kernels in ffd_fast_kernel_*.cpp.
 #include "core/deform/ffd_evaluator.h"
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// Internal to core/deform: the plain data the cpu_fast evaluator (ffd_fast_evaluator.cpp, baseline ISA, oneTBB)
+// Internal to core/deform: the plain data the cpu_fast evaluator (ffd_fast.cpp, baseline ISA, oneTBB)
 // hands to the per-ISA block kernels (ffd_fast_kernel_impl.h compiled once per ISA). Only PODs and raw pointers
 // cross this boundary, so no inline function compiled for a wider ISA can leak into baseline code through the
 // linker's choice of COMDAT copies.

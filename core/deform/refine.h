@@ -49,7 +49,7 @@ struct RefineOptions {
   int max_iterations = 16;                  // split rounds, ≥ 0
   std::size_t max_triangles = 2'000'000;    // a round that would exceed it is not applied; ≥ #F of the input
   double min_split = 0.1;                   // Greville split parameter clamped to [min_split, 1 − min_split]; (0, 0.5]
-  glm::dvec3 param_offset{0.0};             // added to every parameter before F (SceneObject::param_offset)
+  glm::dvec3 param_offset{0.0};             // F is evaluated at params + param_offset (SceneObject::param_offset)
 };
 
 struct RefineStats {

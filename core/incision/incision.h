@@ -79,7 +79,7 @@ struct IncisionResult {
   std::size_t newton_fallbacks = 0;       // of those, located by the fallback
   std::size_t cut_edges = 0;              // input edges split
   std::size_t wall_faces = 0;             // kMaterialInside faces added
-  // Added fields (diagnostics, display).
+  // Diagnostics and display:
   std::size_t split_faces = 0;      // input triangles replaced by pieces (2 cut edges, or 1 = a tip face)
   std::size_t tips = 0;             // tip vertices (where a cut ends inside a face; 2 for an interior stroke)
   double bottom_w = 0.0;            // parameter w of the cut's bottom (the depth) on the lattice

@@ -31,7 +31,7 @@ class BSplineCurve {
   // Splits into Bézier pieces (one per non-empty span), each with a clamped knot vector on its own span.
   std::vector<BSplineCurve<T>> bezier_pieces() const;
   // The same curve with every domain knot (ends included) at multiplicity = order and knots outside the domain
-  // dropped: clamped, span s is the Bézier piece with controls [s·order, (s+1)·order) (added API).
+  // dropped: clamped, span s is the Bézier piece with controls [s·order, (s+1)·order).
   BSplineCurve<T> bezier_extracted() const;
 
  private:

@@ -27,7 +27,7 @@ class BSplineSurface {
   T eval(double u, double v) const;
   struct FirstDerivatives { T value, du, dv; };
   FirstDerivatives eval_first(double u, double v) const;
-  struct SecondDerivatives { T value, du, dv, duu, duv, dvv; };  // added API
+  struct SecondDerivatives { T value, du, dv, duu, duv, dvv; };  // value and 1st/2nd partials
   SecondDerivatives eval_second(double u, double v) const;
   // Unit normal du × dv / |du × dv| (only for T = glm::dvec3, else throws std::logic_error); returns (0,0,0)
   // where the surface is degenerate.
@@ -36,7 +36,7 @@ class BSplineSurface {
   // Boehm knot insertion along axis (0 = u, 1 = v). Function unchanged.
   void insert_knot(int axis, double t, int times = 1);
   // Every domain knot of both axes at multiplicity = order, knots outside the domain dropped (clamped result);
-  // each non-empty cell is one Bézier patch. Function unchanged (added API).
+  // each non-empty cell is one Bézier patch. Function unchanged.
   BSplineSurface<T> bezier_extracted() const;
 
  private:
@@ -45,7 +45,7 @@ class BSplineSurface {
 };
 
 extern template class BSplineSurface<double>;
-extern template class BSplineSurface<glm::dvec2>;  // added: fit_surface<glm::dvec2> returns it
+extern template class BSplineSurface<glm::dvec2>;  // fit_surface<glm::dvec2> returns it
 extern template class BSplineSurface<glm::dvec3>;
 
 }  // namespace trispline::core

@@ -25,7 +25,7 @@ std::vector<double> parametrize(const std::vector<T>& points, Parametrization ki
 template <class T>
 BSplineCurve<T> fit_curve(const std::vector<T>& points, const std::vector<double>& params, int order,
                           int control_count);
-// Same with given knots (added API): knots must be clamped, params must start at knots.domain_min() and end at
+// Same with given knots: knots must be clamped, params must start at knots.domain_min() and end at
 // knots.domain_max() (within 1e-12 of the domain length), #P >= knots.control_count() >= 2. Throws
 // std::invalid_argument on any violation, on non-finite input, and when the normal equations are singular
 // (some basis function has no parameter in its support). The solver is a band Cholesky (band_cholesky.h).
@@ -41,7 +41,7 @@ template <class T>
 BSplineSurface<T> fit_surface(const std::vector<T>& grid, int pu, int pv, const std::vector<double>& params_u,
                               const std::vector<double>& params_v, int order_u, int order_v, int control_count_u,
                               int control_count_v);
-// Same with given clamped knot vectors per axis (added API; conditions as for fit_curve with knots).
+// Same with given clamped knot vectors per axis (conditions as for fit_curve with knots).
 template <class T>
 BSplineSurface<T> fit_surface(const std::vector<T>& grid, int pu, int pv, const std::vector<double>& params_u,
                               const std::vector<double>& params_v, const KnotVector& knots_u,

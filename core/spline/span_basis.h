@@ -37,7 +37,7 @@ class SpanBasis {
   // the first non-zero basis function, = find_span(t) − order + 1). N must hold order() values; dN may be null.
   int eval(Real t, Real* N, Real* dN) const;
 
-  // Slot of the non-empty span containing t (in [0, span_count())) and the local coordinate x ∈ [0,1] (added for
+  // Slot of the non-empty span containing t (in [0, span_count())) and the local coordinate x ∈ [0,1] (for
   // callers that evaluate several derivative orders themselves).
   int locate(Real t, Real* x) const;
 

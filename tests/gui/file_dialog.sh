@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Scene ▸ Load…: a single click on a folder enters it (it used to crash the editor); the path field selects its text
+# Scene ▸ Load…: a single click on a folder enters it (without crashing the editor); the path field selects its text
 # when it gets the keyboard, so typing replaces the old path, and Ctrl+A selects it again.
 source "$(dirname "$0")/gui_lib.sh"
 mkdir -p "$GUI_WORK/meshes/inner" "$GUI_WORK/other"

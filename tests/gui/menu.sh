@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# The main menu closes after a pick (a check item, and a choice in the View menu's FFD evaluator combo, which used to
-# leave the menu open) and on Esc; the View menu's label shows a single '&'.
+# The main menu closes after a pick (a check item, and a choice in the View menu's FFD evaluator combo, which ImGui
+# would leave open) and on Esc; the View menu's label shows a single '&'.
 source "$(dirname "$0")/gui_lib.sh"
 gui_start
 gui_click_item menu.View

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # File ▸ Save As with a folder that does not exist typed in the path field: refused with an error, nothing written
-# (it used to report the error and save into the folder listed).
+# (in particular, nothing saved into the folder listed).
 source "$(dirname "$0")/gui_lib.sh"
 gui_start
 gui_key ctrl+shift+s

@@ -442,7 +442,7 @@ TEST(GltfHostile, NodeGraphsThatAreNotForestsEndAtOnce) {
   write_glb(dir / "c.glb", j, triangle_bin());
   EXPECT_NE(error_of([&] { read_gltf_objects(dir / "c.glb"); }).find("refers to node 7, which does not exist"),
             std::string::npos);
-  // A deep but valid chain (10,000 nodes) loads: depth is no longer limited, the walk is iterative.
+  // A deep but valid chain (10,000 nodes) loads: depth is not limited, the walk is iterative.
   j["nodes"] = json::array();
   for (int i = 0; i < 10000; ++i) j["nodes"].push_back(i + 1 < 10000 ? json{{"children", {i + 1}}} : json{{"mesh", 0}});
   write_glb(dir / "deep.glb", j, triangle_bin());
