@@ -1,7 +1,11 @@
 #include "editor/cli.h"
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <iostream>
 
 #include "core/deform/ffd_evaluator.h"
@@ -10,10 +14,32 @@
 #include "editor/bench_ddm.h"
 #include "editor/bench_dffd.h"
 #include "editor/bench_place.h"
+#include "editor/command_docs.h"
 #include "editor/command_registry.h"
 #include "editor/replay.h"
 
 namespace trispline::editor {
+
+namespace {
+
+// Rewrites the generated parameter tables of a Markdown file in place (written whole, then renamed over it).
+int rewrite_command_docs(const std::string& path, const CommandRegistry& registry) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    std::cerr << "trispline commands: cannot read " << path << "\n";
+    return 2;
+  }
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string updated = with_generated_tables(text.str(), registry);
+  const std::string tmp = path + ".tmp";
+  std::ofstream(tmp, std::ios::binary) << updated;
+  std::filesystem::rename(tmp, path);
+  std::cout << (updated == text.str() ? "unchanged: " : "updated: ") << path << "\n";
+  return 0;
+}
+
+}  // namespace
 
 int run_cli(int argc, char** argv) {
   CLI::App app{"trispline — interactive modeling with trivariate B-spline functions"};
@@ -169,6 +195,10 @@ int run_cli(int argc, char** argv) {
   bench_press->add_flag("!--cpu-only", press_bench.gpu, "Skip glsl_compute (no GL context)");
 
   auto* commands = app.add_subcommand("commands", "List the commands a log may contain");
+  std::string command_id, docs_file;
+  commands->add_option("id", command_id, "Show this command's parameters as a Markdown table");
+  commands->add_option("--docs", docs_file,
+                       "Rewrite the generated parameter tables (<!-- params: ID --> blocks) of this Markdown file");
 
   try {
     app.parse(argc, argv);
@@ -190,6 +220,17 @@ int run_cli(int argc, char** argv) {
     if (*bench_press) return run_bench_press(press_bench, std::cout, std::cerr);
     if (*commands) {
       const auto& registry = CommandRegistry::builtin();
+      if (!docs_file.empty()) return rewrite_command_docs(docs_file, registry);
+      if (!command_id.empty()) {
+        const auto ids = registry.ids();
+        if (std::find(ids.begin(), ids.end(), command_id) == ids.end()) {
+          std::cerr << "trispline commands: no command '" << command_id << "' (trispline commands lists them)\n";
+          return 2;
+        }
+        std::cout << "# " << command_id << "\n" << registry.summary(command_id) << "\n\n"
+                  << params_table(registry, command_id);
+        return 0;
+      }
       for (const auto& id : registry.ids()) std::cout << id << "\t" << registry.summary(id) << "\n";
       std::cout << "edit.undo\tUndo the last command\nedit.redo\tRedo the last undone command\n";
       return 0;

@@ -47,6 +47,12 @@ std::vector<std::string> CommandRegistry::ids() const {
 
 const std::string& CommandRegistry::summary(const std::string& id) const { return entries_.at(id).summary; }
 
+const std::vector<core::ParamDoc>& CommandRegistry::params(const std::string& id) const {
+  return entries_.at(id).params;
+}
+
+bool CommandRegistry::declared(const std::string& id) const { return entries_.at(id).declared; }
+
 const CommandRegistry& CommandRegistry::builtin() {
   static const CommandRegistry registry = [] {
     CommandRegistry r;
@@ -56,21 +62,17 @@ const CommandRegistry& CommandRegistry::builtin() {
     r.add("scene.remove", "Remove an object", core::SceneRemoveCommand::parse);
     r.add("object.transform", "Set an object's location, rotation and scale (its lattice moves with it)",
           core::ObjectTransformCommand::parse);
-    r.add("camera.set", "Set the view (eye, target, up, field of view, viewport)", core::CameraSetCommand::parse);
-    r.add("place.sketch", "Place an object along a stroke sketched over the scene (seed §2.3.1)",
-          core::PlaceSketchCommand::parse);
-    r.add("lattice.ring", "Bind an object to a ring-shaped lattice, periodic along u (seed §4.5, Fig. 4.5)",
-          core::LatticeRingCommand::parse);
-    r.add("lattice.animate_offset", "Move an object through its lattice over time: parameter offset and velocity",
-          core::LatticeAnimateOffsetCommand::parse);
+    r.add<core::CameraSetCommand>();
+    r.add<core::PlaceSketchCommand>();
+    r.add<core::LatticeRingCommand>();
+    r.add<core::LatticeAnimateOffsetCommand>();
     r.add("lattice.press", "Press a placed object's lattice with a sphere swept along a path (seed §2.4.1, Fig. 2.7)",
           core::LatticePressCommand::parse);
     r.add("lattice.pull_column", "Pull or push one contact control point and its column along V_P (seed §2.4.1)",
           core::LatticePullColumnCommand::parse);
     r.add("lattice.set_point", "Move one control point of a deformed object's lattice to an exact position",
           core::LatticeSetPointCommand::parse);
-    r.add("mesh.refine", "Refine a deformed object's mesh until its edges follow the FFD (seed §2.4.2)",
-          core::MeshRefineCommand::parse);
+    r.add<core::MeshRefineCommand>();
     r.add("mesh.subdivide", "Subdivide an object's rest mesh uniformly (Loop, OpenSubdiv), before deforming it",
           core::MeshSubdivideCommand::parse);
     r.add("ddm.fill", "Cover an object's surface with a layer of geometric tiles (DDM, seed ch. 5)",

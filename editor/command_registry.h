@@ -4,6 +4,7 @@
 #pragma once
 
 #include "core/commands/command.h"
+#include "core/commands/params.h"
 
 #include <functional>
 #include <map>
@@ -21,15 +22,28 @@ class CommandRegistry {
   static const CommandRegistry& builtin();
 
   void add(const std::string& id, std::string summary, CommandParser parser);
+  // A command declared by a ParamSchema (core/commands/declared_command.h): id, summary, parser and parameter docs
+  // all come from C::schema().
+  template <class C>
+  void add() {
+    add(C::schema().id(), C::schema().summary(), &C::parse);
+    entries_[C::schema().id()].params = C::schema().docs();
+    entries_[C::schema().id()].declared = true;
+  }
   // Throws core::CommandError("unknown command 'x'", "cmd") if the id is not registered, or if "cmd" is missing.
   core::CommandPtr parse(const nlohmann::json& line, const core::CommandContext& ctx) const;
   std::vector<std::string> ids() const;
   const std::string& summary(const std::string& id) const;
+  // The declared parameters of `id` (empty for a command not declared by a ParamSchema).
+  const std::vector<core::ParamDoc>& params(const std::string& id) const;
+  bool declared(const std::string& id) const;
 
  private:
   struct Entry {
     std::string summary;
     CommandParser parser;
+    std::vector<core::ParamDoc> params;
+    bool declared = false;
   };
   std::map<std::string, Entry> entries_;
 };

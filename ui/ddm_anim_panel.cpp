@@ -1,4 +1,5 @@
 #include "ui/ddm_anim_panel.h"
+#include "ui/param_widgets.h"
 
 #include "ui/number_field.h"
 
@@ -9,16 +10,7 @@
 namespace trispline::ui {
 namespace {
 
-void tooltip(const char* text) {
-  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) ImGui::SetTooltip("%s", text);
-}
 
-void row_label(const char* label) {
-  ImGui::AlignTextToFramePadding();
-  ImGui::TextUnformatted(label);
-  ImGui::SameLine(110.0f);
-  ImGui::SetNextItemWidth(-1);
-}
 
 constexpr const char* kInterpolation[] = {"constant", "linear", "smooth"};
 

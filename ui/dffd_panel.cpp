@@ -1,4 +1,6 @@
 #include "ui/dffd_panel.h"
+#include "core/commands/codecs.h"
+#include "ui/param_widgets.h"
 
 #include <imgui.h>
 
@@ -12,17 +14,7 @@ namespace trispline::ui {
 
 namespace {
 
-void tooltip(const char* text) {
-  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) ImGui::SetTooltip("%s", text);
-}
 
-// Label in the left column, widget filling the rest of the row (as the placement panel).
-void row_label(const char* label) {
-  ImGui::AlignTextToFramePadding();
-  ImGui::TextUnformatted(label);
-  ImGui::SameLine(110.0f);
-  ImGui::SetNextItemWidth(-1);
-}
 
 // A combo over `names` (#N) choosing `value`; per-item tooltips `tips` (#N or empty). True when changed.
 bool string_combo(const char* id, std::string& value, const std::vector<const char*>& names,
@@ -43,9 +35,9 @@ bool string_combo(const char* id, std::string& value, const std::vector<const ch
 
 bool axis_combo(const char* id, int& axis) {
   bool changed = false;
-  if (ImGui::BeginCombo(id, axis_name(axis))) {
+  if (ImGui::BeginCombo(id, core::axis_name(axis))) {
     for (int a = 0; a < 3; ++a)
-      if (ImGui::Selectable(axis_name(a), a == axis) && a != axis) {
+      if (ImGui::Selectable(core::axis_name(a), a == axis) && a != axis) {
         axis = a;
         changed = true;
       }
@@ -85,8 +77,8 @@ nlohmann::json dffd_split_line(const std::string& object, const DffdSplitParams&
   nlohmann::json line = {{"cmd", "dffd.split"},
                          {"object", object},
                          {"obstacles", p.obstacles},
-                         {"axis", axis_name(p.axis)},
-                         {"w_axis", axis_name(p.w_axis)},
+                         {"axis", core::axis_name(p.axis)},
+                         {"w_axis", core::axis_name(p.w_axis)},
                          {"order", {p.order[0], p.order[1], p.order[2]}},
                          {"controls", {p.controls[0], p.controls[1], p.controls[2]}},
                          {"kernel", p.kernel},

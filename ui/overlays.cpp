@@ -1,4 +1,5 @@
 #include "ui/overlays.h"
+#include "ui/param_widgets.h"
 
 #include "ui/theme.h"
 
@@ -113,9 +114,6 @@ double nice_ceiling(double v) {
   return 10 * p;
 }
 
-void tooltip(const char* text) {
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", text);
-}
 
 // A coloured legend square on the current line.
 void swatch(ImU32 color) {

@@ -1,4 +1,5 @@
 #include "ui/record_dialog.h"
+#include "ui/param_widgets.h"
 
 #include "ui/number_field.h"
 #include "ui/theme.h"
@@ -12,9 +13,6 @@
 namespace trispline::ui {
 
 namespace {
-void tooltip(const char* text) {
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", text);
-}
 constexpr const char* kRecordTitle = "Record animation";
 constexpr const char* kProgressTitle = "Recording";
 }  // namespace

@@ -1,4 +1,5 @@
 #include "ui/timeline_panel.h"
+#include "ui/param_widgets.h"
 
 #include "ui/gui_probe.h"
 #include "ui/number_field.h"
@@ -100,9 +101,6 @@ float timeline_panel_height() {
 
 namespace {
 
-void tooltip(const char* text) {
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", text);
-}
 
 // A transport button of a fixed width; returns true on click.
 bool transport(const char* label, const char* tip) {

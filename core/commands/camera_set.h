@@ -1,28 +1,21 @@
 // `camera.set` — sets the view used for rendering and for strokes that carry no camera of their own.
-//   {"cmd":"camera.set","eye":[x,y,z],"target":[x,y,z],"up":[x,y,z],"fov_deg":f,"viewport":[w,h]}
-// eye/target world units; up need not be orthogonal to the view; fov_deg vertical, degrees; viewport pixels.
+// Fields: codecs.h camera_schema() (eye, target, up, fov_deg, viewport); docs/commands.md lists them.
 #pragma once
 
-#include "core/commands/command.h"
+#include "core/commands/declared_command.h"
 
 namespace trispline::core {
 
-class CameraSetCommand : public Command {
+class CameraSetCommand : public DeclaredCommand<CameraSetCommand, Camera> {
  public:
-  explicit CameraSetCommand(const Camera& camera) : camera_(camera) {}
-  static CommandPtr parse(const nlohmann::json& j, const CommandContext& ctx);
-  // Parses the camera fields of `j` (shared with place.sketch's optional "camera" object).
-  static Camera parse_camera(const nlohmann::json& j);
-  static nlohmann::json camera_json(const Camera& c);
+  using DeclaredCommand::DeclaredCommand;
+  static const ParamSchema<Camera>& schema();
 
-  std::string id() const override { return "camera.set"; }
-  nlohmann::json to_json() const override;
   std::string label() const override { return "Set camera"; }
   void redo(Scene& scene) override;
   void undo(Scene& scene) override;
 
  private:
-  Camera camera_;
   Camera before_;
   bool before_set_ = false;
 };

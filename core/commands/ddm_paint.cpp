@@ -13,7 +13,7 @@
 #include <stdexcept>
 #include <tuple>
 
-#include "core/commands/camera_set.h"
+#include "core/commands/codecs.h"
 #include "core/commands/ddm_commands.h"
 #include "core/commands/json_fields.h"
 #include "core/ddm/ddm_layer.h"
@@ -215,15 +215,8 @@ CommandPtr DdmPaintCommand::parse(const nlohmann::json& j, const CommandContext&
   if (!(c->radius_px_ > 0.0) || !(c->radius_px_ <= kMaxBrushRadiusPx))
     throw CommandError("field 'radius_px': must be in (0, 16384] viewport pixels", "radius_px");
   c->erase_ = jf::get_bool(j, "erase", false);
-  if (jf::has(j, "camera")) {  // the view the stroke was drawn in (as place.sketch): no camera.set needed
-    try {
-      c->camera_ = CameraSetCommand::parse_camera(j.at("camera"));
-    } catch (const CommandError& e) {  // name the nested field: 'camera.fov_deg'
-      std::string msg = e.what();
-      if (msg.rfind("field '", 0) == 0) msg.insert(7, "camera.");
-      throw CommandError(msg, "camera." + e.field());
-    }
-  }
+  if (jf::has(j, "camera"))  // the view the stroke was drawn in (as place.sketch): no camera.set needed
+    c->camera_ = camera_schema().parse_nested(j.at("camera"), "camera", ctx);
   return c;
 }
 
@@ -234,7 +227,7 @@ nlohmann::json DdmPaintCommand::to_json() const {
                       {"stroke", jf::to_json(stroke_)},
                       {"radius_px", radius_px_},
                       {"erase", erase_}};
-  if (camera_) j["camera"] = CameraSetCommand::camera_json(*camera_);
+  if (camera_) j["camera"] = camera_schema().fields_json(*camera_);
   if (spec_given_) spec_.write(j);
   return j;
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 
+#include "core/commands/codecs.h"
 #include "core/commands/json_fields.h"
 
 namespace trispline::core {
@@ -10,7 +11,6 @@ namespace jf = json_fields;
 
 namespace {
 const std::vector<std::string> kAxes = {"x", "y", "z"};
-int axis_index(const std::string& s) { return s == "x" ? 0 : s == "y" ? 1 : 2; }
 double ms_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }

@@ -1,6 +1,6 @@
 #include "core/commands/incision_draw.h"
 
-#include "core/commands/camera_set.h"
+#include "core/commands/codecs.h"
 
 #include <chrono>
 #include <cmath>
@@ -12,20 +12,13 @@
 namespace trispline::core {
 namespace jf = json_fields;
 
-CommandPtr IncisionDrawCommand::parse(const nlohmann::json& j, const CommandContext&) {
+CommandPtr IncisionDrawCommand::parse(const nlohmann::json& j, const CommandContext& ctx) {
   auto c = std::make_unique<IncisionDrawCommand>();
   c->object_ = jf::get_string(j, "object");
   c->stroke_ = jf::get_points2(j, "stroke");
   if (c->stroke_.size() < 2) throw CommandError("field 'stroke': needs at least 2 points", "stroke");
-  if (jf::has(j, "camera")) {  // the view the stroke was drawn in (as place.sketch): no camera.set needed
-    try {
-      c->camera_ = CameraSetCommand::parse_camera(j.at("camera"));
-    } catch (const CommandError& e) {  // name the nested field: 'camera.fov_deg'
-      std::string msg = e.what();
-      if (msg.rfind("field '", 0) == 0) msg.insert(7, "camera.");
-      throw CommandError(msg, "camera." + e.field());
-    }
-  }
+  if (jf::has(j, "camera"))  // the view the stroke was drawn in (as place.sketch): no camera.set needed
+    c->camera_ = camera_schema().parse_nested(j.at("camera"), "camera", ctx);
   for (const glm::dvec2& p : c->stroke_)
     if (!std::isfinite(p.x) || !std::isfinite(p.y))
       throw CommandError("field 'stroke': points must be finite", "stroke");
@@ -68,7 +61,7 @@ nlohmann::json IncisionDrawCommand::to_json() const {
                       {"kernel", params_.kernel == IncisionKernel::bspline ? "bspline" : "gaussian"},
                       {"wall_rows", params_.wall_rows}};
   if (has_controls_) j["controls"] = {params_.controls_u, params_.controls_v, params_.controls_w};
-  if (camera_) j["camera"] = CameraSetCommand::camera_json(*camera_);
+  if (camera_) j["camera"] = camera_schema().fields_json(*camera_);
   return j;
 }
 

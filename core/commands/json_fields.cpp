@@ -1,5 +1,7 @@
 #include "core/commands/json_fields.h"
 
+#include "core/commands/params.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -14,25 +16,8 @@ std::string type_name(const nlohmann::json& v) { return v.type_name(); }
   throw CommandError("field '" + std::string(field) + "': " + what, field);
 }
 
-double as_number(const nlohmann::json& v, const char* field) {
-  if (!v.is_number()) fail(field, "expected a number, got " + type_name(v));
-  const double d = v.get<double>();
-  if (!std::isfinite(d)) fail(field, "must be finite");
-  return d;
-}
-
-std::int64_t as_int64(const nlohmann::json& v, const char* field, std::int64_t lo, std::int64_t hi) {
-  if (!v.is_number_integer()) fail(field, "expected an integer, got " + type_name(v));
-  if (v.is_number_unsigned() && v.get<std::uint64_t>() > static_cast<std::uint64_t>(hi))
-    fail(field, "integer out of range [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
-  const std::int64_t i = v.get<std::int64_t>();
-  if (i < lo || i > hi) fail(field, "integer out of range [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
-  return i;
-}
-
-int as_int(const nlohmann::json& v, const char* field) {
-  return static_cast<int>(as_int64(v, field, std::numeric_limits<int>::min(), std::numeric_limits<int>::max()));
-}
+double as_number(const nlohmann::json& v, const char* field) { return params::Codec<double>::read(v, field); }
+int as_int(const nlohmann::json& v, const char* field) { return params::Codec<int>::read(v, field); }
 
 }  // namespace
 
@@ -65,7 +50,7 @@ int get_int(const nlohmann::json& j, const char* field) { return as_int(require(
 
 std::int64_t get_int64(const nlohmann::json& j, const char* field, std::int64_t fallback) {
   if (!has(j, field)) return fallback;
-  return as_int64(j.at(field), field, 0, std::numeric_limits<std::int64_t>::max());
+  return params::Codec<std::int64_t>::read(j.at(field), field);
 }
 
 int get_int(const nlohmann::json& j, const char* field, int fallback) {
@@ -117,16 +102,7 @@ glm::dvec3 get_scale(const nlohmann::json& j, const char* field, const glm::dvec
 }
 
 std::vector<glm::dvec2> get_points2(const nlohmann::json& j, const char* field) {
-  const auto& v = require(j, field);
-  if (!v.is_array()) fail(field, "expected an array of [x, y] points, got " + type_name(v));
-  std::vector<glm::dvec2> pts;
-  pts.reserve(v.size());
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    const auto& p = v[i];
-    if (!p.is_array() || p.size() != 2) fail(field, "point " + std::to_string(i) + " is not an array of 2 numbers");
-    pts.emplace_back(as_number(p[0], field), as_number(p[1], field));
-  }
-  return pts;
+  return params::Codec<std::vector<glm::dvec2>>::read(require(j, field), field);
 }
 
 std::string get_enum(const nlohmann::json& j, const char* field, const std::vector<std::string>& allowed,
@@ -144,11 +120,7 @@ std::string get_enum(const nlohmann::json& j, const char* field, const std::vect
 nlohmann::json to_json(const glm::dvec3& v) { return nlohmann::json::array({v.x, v.y, v.z}); }
 nlohmann::json to_json(const glm::ivec2& v) { return nlohmann::json::array({v.x, v.y}); }
 nlohmann::json to_json(const glm::ivec3& v) { return nlohmann::json::array({v.x, v.y, v.z}); }
-nlohmann::json to_json(const std::vector<glm::dvec2>& pts) {
-  nlohmann::json a = nlohmann::json::array();
-  for (const auto& p : pts) a.push_back({p.x, p.y});
-  return a;
-}
+nlohmann::json to_json(const std::vector<glm::dvec2>& pts) { return params::Codec<std::vector<glm::dvec2>>::write(pts); }
 
 Transform get_transform(const nlohmann::json& j) {
   Transform t;

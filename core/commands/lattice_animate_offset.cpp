@@ -3,33 +3,27 @@
 #include <chrono>
 #include <cmath>
 
-#include "core/commands/json_fields.h"
 
 namespace trispline::core {
-namespace jf = json_fields;
 
-CommandPtr LatticeAnimateOffsetCommand::parse(const nlohmann::json& j, const CommandContext&) {
-  auto c = std::make_unique<LatticeAnimateOffsetCommand>();
-  c->object_ = jf::get_string(j, "object");
-  c->offset_ = jf::get_vec3(j, "offset", glm::dvec3(0.0));
-  c->velocity_ = jf::get_vec3(j, "velocity", glm::dvec3(0.0));
-  for (int a = 0; a < 3; ++a) {
-    if (std::abs(c->offset_[a]) > 1e6) throw CommandError("field 'offset': |component| must be ≤ 1e6", "offset");
-    if (std::abs(c->velocity_[a]) > 100.0)
-      throw CommandError("field 'velocity': |component| must be ≤ 100 parameter units per second", "velocity");
-  }
-  return c;
-}
-
-nlohmann::json LatticeAnimateOffsetCommand::to_json() const {
-  return {{"cmd", id()}, {"object", object_}, {"offset", jf::to_json(offset_)}, {"velocity", jf::to_json(velocity_)}};
+const ParamSchema<LatticeAnimateOffsetParams>& LatticeAnimateOffsetCommand::schema() {
+  using P = LatticeAnimateOffsetParams;
+  static const ParamSchema<P> s =
+      ParamSchema<P>("lattice.animate_offset",
+                     "Move an object through its lattice over time: parameter offset and velocity")
+          .field("object", &P::object).required().help("A deformed object (with an FFD)")
+          .field("offset", &P::offset).magnitude_at_most(1e6).unit("parameter units")
+          .help("Added to the object's lattice parameters; on a periodic axis 1 is one turn")
+          .field("velocity", &P::velocity).magnitude_at_most(100).unit("parameter units per second")
+          .help("Offset change per second of scene time ([0,0,0] = still)");
+  return s;
 }
 
 std::optional<SceneObject> LatticeAnimateOffsetCommand::build(const Scene& scene) {
-  const SceneObject* target = &require_deformed_object(scene, object_);
+  const SceneObject* target = &require_deformed_object(scene, p_.object);
   SceneObject out = *target;
-  out.param_offset = offset_;
-  out.offset_velocity = velocity_;
+  out.param_offset = p_.offset;
+  out.offset_velocity = p_.velocity;
   const auto t0 = std::chrono::steady_clock::now();
   out.refresh();  // the t = 0 pose at the new offset, CPU double reference
   stats_ = {{"vertices", out.world_mesh->positions.size()},

@@ -8,25 +8,31 @@
 // Errors (CommandError, field named): unknown object, object without an FFD, non-finite values, |velocity| > 100.
 #pragma once
 
+#include "core/commands/declared_command.h"
 #include "core/commands/snapshot_command.h"
 
 namespace trispline::core {
 
-class LatticeAnimateOffsetCommand : public SnapshotCommand {
+struct LatticeAnimateOffsetParams {
+  std::string object;
+  glm::dvec3 offset{0.0};    // parameter units
+  glm::dvec3 velocity{0.0};  // parameter units per second
+};
+
+class LatticeAnimateOffsetCommand
+    : public DeclaredCommand<LatticeAnimateOffsetCommand, LatticeAnimateOffsetParams, SnapshotCommand> {
  public:
-  static CommandPtr parse(const nlohmann::json& j, const CommandContext& ctx);
-  std::string id() const override { return "lattice.animate_offset"; }
-  nlohmann::json to_json() const override;
-  std::string label() const override { return "Animate offset of '" + object_ + "'"; }
+  using DeclaredCommand::DeclaredCommand;
+  static const ParamSchema<LatticeAnimateOffsetParams>& schema();
+
+  std::string label() const override { return "Animate offset of '" + p_.object + "'"; }
   nlohmann::json stats() const override { return stats_; }
 
  protected:
-  std::string target() const override { return object_; }
+  std::string target() const override { return p_.object; }
   std::optional<SceneObject> build(const Scene& scene) override;
 
  private:
-  std::string object_;
-  glm::dvec3 offset_{0.0}, velocity_{0.0};
   nlohmann::json stats_ = nlohmann::json::object();
 };
 

@@ -1,19 +1,18 @@
 #include "core/commands/lattice_ring.h"
 
+#include "core/commands/codecs.h"
+
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
 
-#include "core/commands/json_fields.h"
 #include "core/mesh/tri_mesh.h"
 #include "core/spline/bspline_basis.h"
 
 namespace trispline::core {
-namespace jf = json_fields;
 
 namespace {
 constexpr double kTwoPi = 6.283185307179586476925286766559;
-int axis_index(const std::string& a) { return a == "x" ? 0 : a == "y" ? 1 : 2; }
 
 // Parameter of control point i on a periodic uniform axis: the centre of its basis function's support,
 // g_i = (i − (order − 2)/2) / period (mod 1).
@@ -70,48 +69,31 @@ TrivariateBSpline<glm::dvec3> ring_lattice(const glm::dvec3& center, double radi
   return TrivariateBSpline<glm::dvec3>(std::move(ku), std::move(kv), std::move(kw), std::move(cps));
 }
 
-CommandPtr LatticeRingCommand::parse(const nlohmann::json& j, const CommandContext&) {
-  LatticeRingParams p;
-  p.object = jf::get_string(j, "object");
-  p.center = jf::get_vec3(j, "center", glm::dvec3(0.0));
-  p.radius = jf::get_number(j, "radius");
-  p.width = jf::get_number(j, "width", 0.0);
-  p.height = jf::get_number(j, "height", 0.0);
-  p.span = jf::get_number(j, "span", 0.0);
-  p.phase = jf::get_number(j, "phase", 0.0);
-  if (jf::has(j, "controls")) p.controls = jf::get_ivec3(j, "controls");
-  if (jf::has(j, "order")) p.order = jf::get_ivec3(j, "order");
-  p.length_axis = jf::get_enum(j, "length_axis", {"x", "y", "z"}, "x");
-  p.up_axis = jf::get_enum(j, "up_axis", {"x", "y", "z"}, "y");
-  if (p.length_axis == p.up_axis)
-    throw CommandError("field 'up_axis': must differ from length_axis ('" + p.length_axis + "')", "up_axis");
-  if (!(p.radius > 0.0)) throw CommandError("field 'radius': must be positive (world units)", "radius");
-  if (p.width < 0.0) throw CommandError("field 'width': must be positive (0 = the object's extent)", "width");
-  if (p.height < 0.0) throw CommandError("field 'height': must be positive (0 = the object's extent)", "height");
-  if (p.span < 0.0 || p.span >= 1.0)
-    throw CommandError("field 'span': must be in (0, 1) (fraction of the turn; 0 = from the object's length)", "span");
-  for (int a = 0; a < 3; ++a) {
-    if (p.order[a] < 2 || p.order[a] > 4)
-      throw CommandError("field 'order': orders must be 2..4 (order = degree + 1)", "order");
-    if (p.controls[a] < p.order[a] || p.controls[a] > 256)
-      throw CommandError("field 'controls': need order ≤ controls ≤ 256 per axis", "controls");
-  }
-  return std::make_unique<LatticeRingCommand>(std::move(p));
-}
-
-nlohmann::json LatticeRingCommand::to_json() const {
-  return {{"cmd", id()},
-          {"object", p_.object},
-          {"center", jf::to_json(p_.center)},
-          {"radius", p_.radius},
-          {"width", p_.width},
-          {"height", p_.height},
-          {"span", p_.span},
-          {"phase", p_.phase},
-          {"controls", jf::to_json(p_.controls)},
-          {"order", jf::to_json(p_.order)},
-          {"length_axis", p_.length_axis},
-          {"up_axis", p_.up_axis}};
+const ParamSchema<LatticeRingParams>& LatticeRingCommand::schema() {
+  using P = LatticeRingParams;
+  static const ParamSchema<P> s =
+      ParamSchema<P>("lattice.ring", "Bind an object to a ring-shaped lattice, periodic along u (seed §4.5, Fig. 4.5)")
+          .field("object", &P::object).required().help("Object to bind; any previous FFD is replaced")
+          .field("center", &P::center).unit("world units").help("Centre of the ring, in the plane y = center.y")
+          .field("radius", &P::radius).required().above(0).unit("world units")
+          .help("Radius of the ring's centre line; more than half the width")
+          .field("width", &P::width).at_least(0).unit("world units")
+          .help("Lattice size across the ring; 0 = the object's extent")
+          .field("height", &P::height).at_least(0).unit("world units").help("Lattice size up; 0 = the object's extent")
+          .field("span", &P::span).range(0, 1, false, true)
+          .help("Fraction of the turn the object covers; 0 = its length / (2π·radius)")
+          .field("phase", &P::phase).unit("parameter units").help("u where the object starts (one turn = 1)")
+          .field("controls", &P::controls).range(2, 256).help("Control points per axis; u periodic, ≥ order")
+          .field("order", &P::order).range(2, 4).help("Order (= degree + 1) per axis")
+          .choice("length_axis", &P::length_axis, axis_names()).help("The object's axis laid along the ring (u)")
+          .choice("up_axis", &P::up_axis, axis_names()).help("The object's axis that points up (w)")
+          .check([](const P& p) {
+            if (p.length_axis == p.up_axis)
+              params::fail("up_axis", "must differ from length_axis ('" + p.length_axis + "')");
+            for (int a = 0; a < 3; ++a)
+              if (p.controls[a] < p.order[a]) params::fail("controls", "need order ≤ controls ≤ 256 per axis");
+          });
+  return s;
 }
 
 std::optional<SceneObject> LatticeRingCommand::build(const Scene& scene) {

@@ -13,6 +13,7 @@
 // span ≥ 1 (longer than the ring), orders outside 2..4, controls < order, non-positive sizes.
 #pragma once
 
+#include "core/commands/declared_command.h"
 #include "core/commands/snapshot_command.h"
 
 namespace trispline::core {
@@ -31,12 +32,11 @@ struct LatticeRingParams {
   std::string up_axis = "y";
 };
 
-class LatticeRingCommand : public SnapshotCommand {
+class LatticeRingCommand : public DeclaredCommand<LatticeRingCommand, LatticeRingParams, SnapshotCommand> {
  public:
-  explicit LatticeRingCommand(LatticeRingParams p) : p_(std::move(p)) {}
-  static CommandPtr parse(const nlohmann::json& j, const CommandContext& ctx);
-  std::string id() const override { return "lattice.ring"; }
-  nlohmann::json to_json() const override;
+  using DeclaredCommand::DeclaredCommand;
+  static const ParamSchema<LatticeRingParams>& schema();
+
   std::string label() const override { return "Ring lattice for '" + p_.object + "'"; }
   nlohmann::json stats() const override { return stats_; }
 
@@ -45,7 +45,6 @@ class LatticeRingCommand : public SnapshotCommand {
   std::optional<SceneObject> build(const Scene& scene) override;
 
  private:
-  LatticeRingParams p_;
   nlohmann::json stats_ = nlohmann::json::object();
 };
 

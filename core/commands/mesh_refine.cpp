@@ -3,52 +3,49 @@
 #include <chrono>
 #include <cmath>
 
-#include "core/commands/json_fields.h"
 
 namespace trispline::core {
-namespace jf = json_fields;
 
-CommandPtr MeshRefineCommand::parse(const nlohmann::json& j, const CommandContext&) {
-  auto c = std::make_unique<MeshRefineCommand>();
-  RefineOptions& o = c->options_;
-  c->object_ = jf::get_string(j, "object");
-  o.tolerance = jf::get_number(j, "tolerance");
-  if (!(o.tolerance > 0.0) || !std::isfinite(o.tolerance))
-    throw CommandError("field 'tolerance': must be a finite distance > 0 (world units)", "tolerance");
-  o.criterion = parse_refine_criterion(jf::get_enum(j, "criterion", {"midpoint", "greville"}, "greville"));
-  o.max_iterations = jf::get_int(j, "max_iterations", 16);
-  if (o.max_iterations < 0 || o.max_iterations > 64)
-    throw CommandError("field 'max_iterations': must be in 0..64", "max_iterations");
-  const std::int64_t max_tris = jf::get_int64(j, "max_triangles", 2'000'000);
-  // A refined triangle costs ~400 bytes across the mesh, its FFD parameters, the evaluated copy and the edge tables:
-  // 8 M triangles stay near 3 GiB (50 M reached 7 GB).
-  if (max_tris < 1 || max_tris > 8'000'000)
-    throw CommandError("field 'max_triangles': must be in 1..8000000 (the memory budget of a refinement)",
-                       "max_triangles");
-  o.max_triangles = static_cast<std::size_t>(max_tris);
-  return c;
+const ParamSchema<MeshRefineParams>& MeshRefineCommand::schema() {
+  using P = MeshRefineParams;
+  static const ParamSchema<P> s =
+      ParamSchema<P>("mesh.refine", "Refine a deformed object's mesh until its edges follow the FFD (seed §2.4.2)")
+          .field("object", &P::object).required().help("A deformed object (with an FFD), without a glTF clip")
+          .field("tolerance", &P::tolerance).required().above(0).unit("world units")
+          .help("Largest distance of a deformed edge from its straight chord")
+          .choice("criterion", &P::criterion, {"midpoint", "greville"})
+          .help("midpoint: the seed's Eq. 2.6 estimate at edge midpoints; greville: a bound from the edge curve's "
+                "control points, split at the farthest one")
+          .field("max_iterations", &P::max_iterations).range(0, 64).help("Split rounds at most")
+          // A refined triangle costs ~400 bytes across the mesh, its FFD parameters, the evaluated copy and the edge
+          // tables: 8 M triangles stay near 3 GiB (50 M reached 7 GB).
+          .field("max_triangles", &P::max_triangles).range(1, 8'000'000)
+          .help("The memory budget of a refinement: a round that would exceed it is not applied; ≥ the input's "
+                "triangles");
+  return s;
 }
 
-nlohmann::json MeshRefineCommand::to_json() const {
-  return {{"cmd", id()},
-          {"object", object_},
-          {"tolerance", options_.tolerance},
-          {"criterion", refine_criterion_name(options_.criterion)},
-          {"max_iterations", options_.max_iterations},
-          {"max_triangles", options_.max_triangles}};
+RefineOptions MeshRefineCommand::options() const {
+  RefineOptions o;
+  o.tolerance = p_.tolerance;
+  o.criterion = parse_refine_criterion(p_.criterion);
+  o.max_iterations = p_.max_iterations;
+  o.max_triangles = static_cast<std::size_t>(p_.max_triangles);
+  return o;
 }
 
 std::optional<SceneObject> MeshRefineCommand::build(const Scene& scene) {
-  const SceneObject* target = &require_deformed_object(scene, object_);
-  if (options_.max_triangles < target->rest_mesh->triangles.size())
-    throw CommandError("field 'max_triangles': " + std::to_string(options_.max_triangles) + " is below the " +
-                           std::to_string(target->rest_mesh->triangles.size()) + " triangles of '" + object_ + "'",
+  const RefineOptions opts = options();
+  const SceneObject* target = &require_deformed_object(scene, p_.object);
+  if (opts.max_triangles < target->rest_mesh->triangles.size())
+    throw CommandError("field 'max_triangles': " + std::to_string(opts.max_triangles) + " is below the " +
+                           std::to_string(target->rest_mesh->triangles.size()) + " triangles of '" + p_.object + "'",
                        "max_triangles");
   if (target->clip)
-    throw CommandError("field 'object': '" + object_ + "' plays a glTF clip that animates its vertices; refining would "
+    throw CommandError("field 'object': '" + p_.object + "' plays a glTF clip that animates its vertices; refining would "
                        "break the clip's vertex correspondence (remove the clip with anim.clip \"remove\":true first)",
                        "object");
-  RefineOptions o = options_;
+  RefineOptions o = opts;
   o.param_offset = target->offset_at(0.0);
   const auto t0 = std::chrono::steady_clock::now();
   // Object space: the transform and the embedding are affine, so the splits are the same points as in world space.
@@ -63,8 +60,8 @@ std::optional<SceneObject> MeshRefineCommand::build(const Scene& scene) {
   const auto t2 = std::chrono::steady_clock::now();
   using ms = std::chrono::duration<double, std::milli>;
   const RefineStats& s = r.stats;
-  stats_ = {{"criterion", refine_criterion_name(options_.criterion)},
-            {"tolerance", options_.tolerance},
+  stats_ = {{"criterion", refine_criterion_name(opts.criterion)},
+            {"tolerance", opts.tolerance},
             {"triangles_before", s.triangles_before},
             {"triangles_after", s.triangles_after},
             {"vertices_before", s.vertices_before},

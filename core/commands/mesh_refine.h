@@ -14,26 +14,34 @@
 // finite ("tolerance"), unknown criterion ("criterion"), limits out of range ("max_iterations", "max_triangles").
 #pragma once
 
+#include "core/commands/declared_command.h"
 #include "core/commands/snapshot_command.h"
 #include "core/deform/refine.h"
 
 namespace trispline::core {
 
-class MeshRefineCommand : public SnapshotCommand {
+struct MeshRefineParams {
+  std::string object;
+  double tolerance = 0.01;                 // world units
+  std::string criterion = "greville";      // midpoint (Eq. 2.6) | greville
+  int max_iterations = 16;                 // split rounds
+  std::int64_t max_triangles = 2'000'000;  // the memory budget of a refinement
+};
+
+class MeshRefineCommand : public DeclaredCommand<MeshRefineCommand, MeshRefineParams, SnapshotCommand> {
  public:
-  static CommandPtr parse(const nlohmann::json& j, const CommandContext& ctx);
-  std::string id() const override { return "mesh.refine"; }
-  nlohmann::json to_json() const override;
-  std::string label() const override { return "Refine '" + object_ + "' for its FFD"; }
+  using DeclaredCommand::DeclaredCommand;
+  static const ParamSchema<MeshRefineParams>& schema();
+
+  std::string label() const override { return "Refine '" + p_.object + "' for its FFD"; }
   nlohmann::json stats() const override { return stats_; }
 
  protected:
-  std::string target() const override { return object_; }
+  std::string target() const override { return p_.object; }
   std::optional<SceneObject> build(const Scene& scene) override;
 
  private:
-  std::string object_;
-  RefineOptions options_;
+  RefineOptions options() const;
   nlohmann::json stats_ = nlohmann::json::object();
 };
 

@@ -4,144 +4,94 @@
 #include <chrono>
 #include <cmath>
 
-#include "core/commands/camera_set.h"
-#include "core/commands/json_fields.h"
+#include "core/commands/codecs.h"
 #include "core/placement/sketch_placement.h"
 #include "core/raycast/ray_caster.h"
 
 namespace trispline::core {
-namespace jf = json_fields;
 
 namespace {
-int axis_index(const std::string& a) { return a == "x" ? 0 : a == "y" ? 1 : 2; }
 
-// The optional "springs" object (seed §2.3.2); errors name "springs.<field>".
-SpringParams parse_springs(const nlohmann::json& j) {
-  if (!j.is_object())
-    throw CommandError("field 'springs': expected an object {stiffness, damping, mass, threshold_deg, "
-                       "neighbourhood, max_steps, rest_length}, got " + std::string(j.type_name()),
-                       "springs");
-  try {
-    SpringParams sp;
-    sp.stiffness = jf::get_number(j, "stiffness", sp.stiffness);
-    sp.damping = jf::get_number(j, "damping", sp.damping);
-    sp.mass = jf::get_number(j, "mass", sp.mass);
-    sp.angle_threshold_deg = jf::get_number(j, "threshold_deg", sp.angle_threshold_deg);
-    sp.neighbourhood = jf::get_int(j, "neighbourhood", sp.neighbourhood);
-    sp.max_steps = jf::get_int(j, "max_steps", sp.max_steps);
-    sp.rest_length_initial = jf::get_enum(j, "rest_length", {"zero", "initial"}, "zero") == "initial";
-    if (!(sp.stiffness > 0.0)) throw CommandError("field 'stiffness': must be > 0", "stiffness");
-    if (!(sp.mass > 0.0)) throw CommandError("field 'mass': must be > 0", "mass");
-    if (sp.damping < 0.0) throw CommandError("field 'damping': must be >= 0", "damping");
-    if (!(sp.angle_threshold_deg > 0.0 && sp.angle_threshold_deg < 180.0))
-      throw CommandError("field 'threshold_deg': must be in (0, 180) degrees", "threshold_deg");
-    if (sp.max_steps < 0 || sp.max_steps > 1000000)
-      throw CommandError("field 'max_steps': must be in [0, 1000000]", "max_steps");
-    return sp;
-  } catch (const CommandError& e) {  // name the nested field: 'springs.stiffness'
-    std::string msg = e.what();
-    if (msg.rfind("field '", 0) == 0) msg.insert(7, "springs.");
-    throw CommandError(msg, "springs." + e.field());
+// "height_profile": one list of factors over u, or rows of factors over (u, v).
+void read_height_profile(const ParamSchema<PlaceSketchParams>::Field& f, const nlohmann::json& h,
+                         PlaceSketchParams& p, const CommandContext&) {
+  using Numbers = params::Codec<std::vector<double>>;
+  p.height_profile.clear();
+  if (h.is_array() && !h.empty() && h[0].is_array()) {
+    for (const nlohmann::json& row : h) p.height_profile.push_back(Numbers::read(row, f.doc.name));
+  } else {
+    p.height_profile.push_back(Numbers::read(h, f.doc.name));
   }
 }
 
-nlohmann::json springs_json(const SpringParams& sp) {
-  return {{"stiffness", sp.stiffness},         {"damping", sp.damping},
-          {"mass", sp.mass},                   {"threshold_deg", sp.angle_threshold_deg},
-          {"neighbourhood", sp.neighbourhood}, {"max_steps", sp.max_steps},
-          {"rest_length", sp.rest_length_initial ? "initial" : "zero"}};
+void write_height_profile(const ParamSchema<PlaceSketchParams>::Field& f, const PlaceSketchParams& p,
+                          nlohmann::json& line) {
+  if (p.height_profile.size() == 1) line[f.doc.name] = p.height_profile[0];
+  if (p.height_profile.size() > 1) line[f.doc.name] = p.height_profile;
 }
 
-// A JSON array of finite numbers (profile samples); the error names `field`.
-std::vector<double> get_numbers(const nlohmann::json& a, const char* field) {
-  if (!a.is_array())
-    throw CommandError("field '" + std::string(field) + "': expected an array of numbers, got " + a.type_name(),
-                       field);
-  std::vector<double> out;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    if (!a[i].is_number() || !std::isfinite(a[i].get<double>()))
-      throw CommandError("field '" + std::string(field) + "': element " + std::to_string(i) +
-                             " is not a finite number",
-                         field);
-    out.push_back(a[i].get<double>());
-  }
-  return out;
-}
-const char* axis_name(int a) { return a == 0 ? "x" : a == 1 ? "y" : "z"; }
 }  // namespace
 
-CommandPtr PlaceSketchCommand::parse(const nlohmann::json& j, const CommandContext&) {
-  PlaceSketchParams p;
-  p.object = jf::get_string(j, "object");
-  p.stroke = jf::get_points2(j, "stroke");
-  p.width = jf::get_number(j, "width");
-  p.height = jf::get_number(j, "height");
-  p.extent = jf::get_number(j, "extent", 1.0);
-  if (!(p.extent > 0.0 && p.extent <= 1.0)) throw CommandError("field 'extent': must be in (0, 1]", "extent");
-  if (jf::has(j, "springs")) p.springs = parse_springs(j.at("springs"));
-  if (jf::has(j, "width_profile")) p.width_profile = get_numbers(j.at("width_profile"), "width_profile");
-  if (jf::has(j, "height_profile")) {
-    const nlohmann::json& h = j.at("height_profile");
-    if (h.is_array() && !h.empty() && h[0].is_array()) {
-      for (std::size_t r = 0; r < h.size(); ++r) p.height_profile.push_back(get_numbers(h[r], "height_profile"));
-    } else {
-      p.height_profile.push_back(get_numbers(h, "height_profile"));
-    }
-  }
-  if (jf::has(j, "samples")) p.samples = jf::get_ivec2(j, "samples");
-  p.volume = jf::get_enum(j, "volume", {"extrude", "offset"}, "extrude");
-  if (jf::has(j, "order")) p.order = jf::get_ivec3(j, "order");
-  if (jf::has(j, "controls")) p.controls = jf::get_ivec3(j, "controls");
-  p.length_axis = jf::get_enum(j, "length_axis", {"x", "y", "z"}, "x");
-  p.up_axis = jf::get_enum(j, "up_axis", {"x", "y", "z"}, "y");
-  if (p.length_axis == p.up_axis)
-    throw CommandError("field 'up_axis': must differ from length_axis ('" + p.length_axis + "')", "up_axis");
-  if (jf::has(j, "camera")) {
-    try {
-      p.camera = CameraSetCommand::parse_camera(j.at("camera"));
-    } catch (const CommandError& e) {  // name the nested field: 'camera.fov_deg'
-      std::string msg = e.what();
-      if (msg.rfind("field '", 0) == 0) msg.insert(7, "camera.");
-      throw CommandError(msg, "camera." + e.field());
-    }
-  }
-  if (jf::has(j, "ignore")) {  // ids the rays pass through (the editor's hidden objects)
-    const nlohmann::json& list = j.at("ignore");
-    if (!list.is_array())
-      throw CommandError("field 'ignore': expected an array of object ids, got " + std::string(list.type_name()),
-                         "ignore");
-    for (std::size_t i = 0; i < list.size(); ++i) {
-      try {
-        p.ignore.push_back(jf::get_string(nlohmann::json{{"ignore", list[i]}}, "ignore"));
-      } catch (const CommandError& e) {  // "field 'ignore': expected a string, got number" + which element
-        const std::string what = e.what(), prefix = "field 'ignore': ";
-        throw CommandError(prefix + "element " + std::to_string(i) + ": " + what.substr(prefix.size()), "ignore");
-      }
-    }
-  }
-  return std::make_unique<PlaceSketchCommand>(std::move(p));
+const ParamSchema<SpringParams>& spring_schema() {
+  using S = SpringParams;
+  static const ParamSchema<S> s =
+      ParamSchema<S>("springs", "Mass-spring contact surface (seed §2.3.2)")
+          .field("stiffness", &S::stiffness).above(0).label("Stiffness").ui(1.0, "%.1f")
+          .help("k: spring stiffness, force per world unit")
+          .field("damping", &S::damping).at_least(0).label("Damping").ui(0.5, "%.1f")
+          .help("ρ: damping, force per unit velocity; ρ ≥ √(8kM) is critically damped")
+          .field("mass", &S::mass).above(0).label("Mass").ui(0.01, "%.3f").help("M: mass of each control point")
+          .field("threshold_deg", &S::angle_threshold_deg).range(0, 180, true, true).unit("degrees")
+          .label("Threshold").ui(0.05, "%.2f deg").help("Roughness threshold: points whose neighbouring normals differ more move")
+          .field("neighbourhood", &S::neighbourhood).at_least(-1).label("Neighbourhood").ui(0.1)
+          .help("Grid steps around rough points that may move; -1 = every point moves")
+          .field("max_steps", &S::max_steps).range(0, 1000000).label("Max steps").ui(50).help("Integration steps at most")
+          .choice("rest_length", &S::rest_length_initial, {"zero", "initial"}).label("Rest length")
+          .help("zero: springs pull neighbours together (the seed); initial: springs keep the starting distances");
+  return s;
 }
 
-nlohmann::json PlaceSketchCommand::params_json(const PlaceSketchParams& p) {
-  nlohmann::json j = {{"cmd", "place.sketch"},
-                      {"object", p.object},
-                      {"stroke", jf::to_json(p.stroke)},
-                      {"width", p.width},
-                      {"height", p.height},
-                      {"samples", jf::to_json(p.samples)},
-                      {"volume", p.volume},
-                      {"order", jf::to_json(p.order)},
-                      {"controls", jf::to_json(p.controls)},
-                      {"length_axis", p.length_axis},
-                      {"up_axis", p.up_axis}};
-  if (p.springs) j["springs"] = springs_json(*p.springs);
-  if (p.extent != 1.0) j["extent"] = p.extent;
-  if (!p.width_profile.empty()) j["width_profile"] = p.width_profile;
-  if (p.height_profile.size() == 1) j["height_profile"] = p.height_profile[0];
-  if (p.height_profile.size() > 1) j["height_profile"] = p.height_profile;
-  if (p.camera) j["camera"] = CameraSetCommand::camera_json(*p.camera);
-  if (!p.ignore.empty()) j["ignore"] = p.ignore;
-  return j;
+const ParamSchema<PlaceSketchParams>& PlaceSketchCommand::schema() {
+  using P = PlaceSketchParams;
+  static const ParamSchema<P> s =
+      ParamSchema<P>("place.sketch", "Place an object along a stroke sketched over the scene (seed §2.3.1)")
+          .field("object", &P::object).required().help("Id of the object to place; rays see every other visible object")
+          .field("stroke", &P::stroke).required().unit("pixels")
+          .help("Viewport points in drawing order, (0,0) top-left; at least 2 distinct points")
+          .field("width", &P::width).required().above(0).unit("world units").label("Half-width").ui(0.002, "%.3f")
+          .help("d: half-width of the band around the stroke, C(u) ± d N(u), at the median depth under the stroke")
+          .field("height", &P::height).required().above(0).unit("world units").label("Height").ui(0.002, "%.3f")
+          .help("h: height of the deformation volume above the contact surface")
+          .field("extent", &P::extent).range(0, 1, true, false).write_unless_default().label("Extent").ui(0.005, "%.3f")
+          .help("Fraction of the path (u) the object covers; below 1 it leaves room to walk along the path (§2.4.3)")
+          .object("springs", &P::springs, spring_schema())
+          .help("Relax the contact surface as a mass-spring net before the volume is built (§2.3.2)")
+          .field("width_profile", &P::width_profile).write_unless_default().default_text("constant")
+          .help("Factors > 0 scaling d along u, piecewise linear (Eq. 2.5)")
+          .custom("height_profile", read_height_profile, write_height_profile).type_text("[number,…] or [[number,…],…]")
+          .default_text("constant").help("Factors > 0 scaling h along u (one list) or over (u, v) (rows over v) (Eq. 2.5)")
+          .field("samples", &P::samples).range(2, 4096).label("Rays u x v").ui(0.2)
+          .help("Contact rays along × across the stroke; each ≥ the control count in that axis")
+          .choice("volume", &P::volume, {"extrude", "offset"}).label("Type")
+          .help("extrude: F1, contact surface extruded towards the viewer (Eq. 2.3); offset: F2, along its normals "
+                "(Eq. 2.4)")
+          .field("order", &P::order).range(2, 8).label("Order u v w").ui(0.05)
+          .help("B-spline order (= degree + 1) per axis; ≤ controls")
+          .field("controls", &P::controls).range(2, 256).label("Controls").ui(0.1)
+          .help("Control points per axis: u along the stroke, v across, w up")
+          .choice("length_axis", &P::length_axis, axis_names()).label("Length axis")
+          .help("The object's axis laid along the stroke (u)")
+          .choice("up_axis", &P::up_axis, axis_names()).label("Up axis")
+          .help("The object's axis that points away from the surface (w)")
+          .check([](const P& p) {
+            if (p.length_axis == p.up_axis)
+              params::fail("up_axis", "must differ from length_axis ('" + p.length_axis + "')");
+          })
+          .object("camera", &P::camera, camera_schema())
+          .help("The view the stroke was drawn in (camera.set's fields); default: the last camera.set")
+          .field("ignore", &P::ignore).write_unless_default().default_text("[]")
+          .help("Ids of objects the rays pass through (the editor lists those hidden in its viewport)");
+  return s;
 }
 
 std::optional<SceneObject> PlaceSketchCommand::build(const Scene& scene) {

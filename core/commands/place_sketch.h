@@ -18,6 +18,7 @@
 
 #include <optional>
 
+#include "core/commands/declared_command.h"
 #include "core/commands/snapshot_command.h"
 #include "core/placement/contact_springs.h"
 
@@ -42,15 +43,14 @@ struct PlaceSketchParams {
   std::vector<std::string> ignore;  // objects the rays pass through (hidden in the editor's view)
 };
 
-class PlaceSketchCommand : public SnapshotCommand {
- public:
-  explicit PlaceSketchCommand(PlaceSketchParams p) : p_(std::move(p)) {}
-  static CommandPtr parse(const nlohmann::json& j, const CommandContext& ctx);
-  static nlohmann::json params_json(const PlaceSketchParams& p);
-  const PlaceSketchParams& params() const { return p_; }
+// The "springs" object of place.sketch: the mass-spring contact surface (seed §2.3.2).
+const ParamSchema<SpringParams>& spring_schema();
 
-  std::string id() const override { return "place.sketch"; }
-  nlohmann::json to_json() const override { return params_json(p_); }
+class PlaceSketchCommand : public DeclaredCommand<PlaceSketchCommand, PlaceSketchParams, SnapshotCommand> {
+ public:
+  using DeclaredCommand::DeclaredCommand;
+  static const ParamSchema<PlaceSketchParams>& schema();
+
   std::string label() const override { return "Place '" + p_.object + "' along stroke"; }
   nlohmann::json stats() const override { return stats_; }
 
@@ -59,7 +59,6 @@ class PlaceSketchCommand : public SnapshotCommand {
   std::optional<SceneObject> build(const Scene& scene) override;
 
  private:
-  PlaceSketchParams p_;
   nlohmann::json stats_ = nlohmann::json::object();
 };
 

@@ -1,4 +1,5 @@
 #include "editor/tools/ddm_paint_tool.h"
+#include "ui/param_widgets.h"
 
 #include <imgui.h>
 #include <imgui_stdlib.h>
@@ -11,7 +12,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/commands/camera_set.h"
+#include "core/commands/codecs.h"
 #include "editor/session.h"
 #include "ui/ddm_anim_panel.h"
 #include "ui/number_field.h"
@@ -30,9 +31,6 @@ constexpr const char* kTileTips[] = {
     "A five-petal flower with the thorn's topology: the thorn's metamorphosis partner (seed Eq. 5.3)",
 };
 
-void tooltip(const char* text) {
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", text);
-}
 
 bool deformed(const core::SceneObject& o) { return o.ffd || o.dffd || o.clip; }
 
@@ -58,7 +56,7 @@ nlohmann::json ddm_paint_line(const std::string& object, const std::vector<glm::
   for (const glm::dvec2& q : stroke_px) stroke.push_back({q.x, q.y});
   nlohmann::json line = {{"cmd", "ddm.paint"}, {"object", object},         {"layer", p.layer},
                          {"stroke", stroke},   {"radius_px", p.radius_px}, {"erase", erase}};
-  if (view) line["camera"] = core::CameraSetCommand::camera_json(*view);
+  if (view) line["camera"] = core::camera_schema().fields_json(*view);
   if (new_layer) put_layer_fields(line, p);
   return line;
 }
@@ -252,12 +250,12 @@ void DdmPaintTool::draw_layer_combo(ToolContext& ctx, const core::SceneObject* o
     }
     ImGui::EndCombo();
   }
-  tooltip(
+  ui::tooltip(
       "The tile layer the brush paints on: one of the object's layers, or a new one, made by the first stroke "
       "(or by Fill) with the settings below");
   if (fresh) {
     ImGui::InputText("Name", &params_.layer);
-    tooltip("Name of the new layer (unique per object)");
+    ui::tooltip("Name of the new layer (unique per object)");
   }
 }
 
@@ -265,13 +263,13 @@ void DdmPaintTool::draw_layer_color(ToolContext& ctx, const core::SceneObject& o
   if (!color_editing_) layer_color_ = l.color.value_or(o.color);  // follows undo / redo unless being dragged
   ImGui::ColorEdit3("Layer colour", &layer_color_.x, ImGuiColorEditFlags_NoInputs);
   color_editing_ = ImGui::IsItemActive();
-  tooltip(l.color ? "The layer's own colour: one ddm.color when you let go" : "The object's colour; edit to give the "
+  ui::tooltip(l.color ? "The layer's own colour: one ddm.color when you let go" : "The object's colour; edit to give the "
                                                                                 "layer its own (one ddm.color)");
   if (ImGui::IsItemDeactivatedAfterEdit()) set_layer_color(ctx, layer_color_);
   if (l.color) {
     ImGui::SameLine();
     if (ImGui::SmallButton("Object's")) set_layer_color(ctx, std::nullopt);
-    tooltip("Draw the tiles in the object's colour again");
+    ui::tooltip("Draw the tiles in the object's colour again");
   }
 }
 
@@ -290,46 +288,46 @@ void DdmPaintTool::draw_new_layer_fields(const core::SceneObject* o) {
   if (ImGui::BeginCombo("Tile", generated ? params_.tile.c_str() : "file")) {
     for (std::size_t i = 0; i < kGeneratedTiles.size(); ++i) {
       if (ImGui::Selectable(kGeneratedTiles[i], params_.tile == kGeneratedTiles[i])) params_.tile = kGeneratedTiles[i];
-      tooltip(kTileTips[i]);
+      ui::tooltip(kTileTips[i]);
     }
     if (ImGui::Selectable("file", !generated)) params_.tile = file_tile_;
-    tooltip("Any mesh (OBJ, PLY, glTF) as a tile, fitted into the cell by its bounding box");
+    ui::tooltip("Any mesh (OBJ, PLY, glTF) as a tile, fitted into the cell by its bounding box");
     ImGui::EndCombo();
   }
   if (!is_generated(params_.tile)) {
     if (ImGui::InputText("Tile file", &file_tile_)) params_.tile = file_tile_;
-    tooltip("Path of a mesh file (OBJ / PLY / glTF); x, y span the cell, z is the height");
+    ui::tooltip("Path of a mesh file (OBJ / PLY / glTF); x, y span the cell, z is the height");
   }
   int layout = params_.layout == "hex" ? 1 : params_.layout == "brick" ? 2 : 0;
   if (ImGui::Combo("Layout", &layout, "rect\0hex\0brick\0"))
     params_.layout = layout == 1 ? "hex" : layout == 2 ? "brick" : "rect";
-  tooltip(
+  ui::tooltip(
       "Cells per chart: rect n x m; hex rows 0.75 apart, odd rows shifted (seed Fig. 5.11); brick odd rows "
       "shifted by half a cell (Fig. 5.12). hex and brick need n >= 2");
   int counts[2] = {params_.counts.x, params_.counts.y};
   if (ImGui::InputInt2("Counts", counts)) params_.counts = glm::max(glm::ivec2(counts[0], counts[1]), glm::ivec2(1));
-  tooltip("Cells along u and v of every chart (a polygonal base has three charts per triangle)");
+  ui::tooltip("Cells along u and v of every chart (a polygonal base has three charts per triangle)");
   const double h_min = 1e-6, h_max = 10.0;
   ui::drag_scalar("Height", ImGuiDataType_Double, &params_.height, 0.001f, &h_min, &h_max, "%.4g",
                     ImGuiSliderFlags_AlwaysClamp);
-  tooltip("World units per tile unit of height, along the surface normal");
+  ui::tooltip("World units per tile unit of height, along the surface normal");
   const bool teapot = o && o->source == "primitive:teapot";
   const bool uvs = o && o->rest_mesh && !o->rest_mesh->uvs.empty();
   if (ImGui::BeginCombo("Base", params_.base.c_str())) {
     if (ImGui::Selectable("limit", params_.base == "limit")) params_.base = "limit";
-    tooltip("The Loop limit surface of the mesh, three charts per triangle: tiles cross faces without cracks");
+    ui::tooltip("The Loop limit surface of the mesh, three charts per triangle: tiles cross faces without cracks");
     if (teapot && ImGui::Selectable("teapot_body", params_.base == "teapot_body")) params_.base = "teapot_body";
-    if (teapot) tooltip("The teapot's 8 Bezier body patches as one chart around the pot");
+    if (teapot) ui::tooltip("The teapot's 8 Bezier body patches as one chart around the pot");
     if (uvs && ImGui::Selectable("uv", params_.base == "uv")) params_.base = "uv";
-    if (uvs) tooltip("The mesh's texture coordinates (one chart, the UV square; the seed's way)");
+    if (uvs) ui::tooltip("The mesh's texture coordinates (one chart, the UV square; the seed's way)");
     ImGui::EndCombo();
   }
   ImGui::Checkbox("Own colour", &params_.own_color);
-  tooltip("Draw and export the tiles in a colour of their own instead of the object's");
+  ui::tooltip("Draw and export the tiles in a colour of their own instead of the object's");
   if (params_.own_color) {
     ImGui::SameLine();
     ImGui::ColorEdit3("##tile colour", &params_.color.x, ImGuiColorEditFlags_NoInputs);
-    tooltip("The layer's colour (linear RGB), used by the viewport, scene.glb and ddm.bake");
+    ui::tooltip("The layer's colour (linear RGB), used by the viewport, scene.glb and ddm.bake");
   }
 }
 
@@ -372,30 +370,30 @@ void DdmPaintTool::draw_panel(ToolContext& ctx) {
   const double r_min = kMinRadiusPx, r_max = kMaxRadiusPx;
   ImGui::SliderScalar("Radius (px)", ImGuiDataType_Double, &params_.radius_px, &r_min, &r_max, "%.0f",
                       ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
-  tooltip(
+  ui::tooltip(
       "Brush radius in viewport pixels: a cell is painted when its centre on the surface is this close to the "
       "stroke and visible. [ and ] resize it");
   ImGui::Checkbox("Erase", &params_.erase);
-  tooltip("Remove the tiles under the stroke instead of adding them (Ctrl held at mouse-down inverts this)");
+  ui::tooltip("Remove the tiles under the stroke instead of adding them (Ctrl held at mouse-down inverts this)");
 
   ImGui::Spacing();
   ImGui::BeginDisabled(!target(ctx));
   if (ImGui::Button("Fill")) fill(ctx);
   fill_rect_ = {ImGui::GetItemRectMin().x, ImGui::GetItemRectMin().y, ImGui::GetItemRectMax().x,
                 ImGui::GetItemRectMax().y};
-  tooltip("Cover the whole surface with the layer settings above: one ddm.fill (replaces a layer of that name)");
+  ui::tooltip("Cover the whole surface with the layer settings above: one ddm.fill (replaces a layer of that name)");
   ImGui::EndDisabled();
   ImGui::SameLine();
   ImGui::BeginDisabled(!target(ctx) || new_layer(ctx));
   if (ImGui::Button("Bake")) bake(ctx);
   bake_rect_ = {ImGui::GetItemRectMin().x, ImGui::GetItemRectMin().y, ImGui::GetItemRectMax().x,
                 ImGui::GetItemRectMax().y};
-  tooltip("Add the layer's tiles as an ordinary mesh object (for export): one ddm.bake");
+  ui::tooltip("Add the layer's tiles as an ordinary mesh object (for export): one ddm.bake");
   ImGui::SameLine();
   if (ImGui::Button("Remove")) remove_layer(ctx);
   remove_rect_ = {ImGui::GetItemRectMin().x, ImGui::GetItemRectMin().y, ImGui::GetItemRectMax().x,
                   ImGui::GetItemRectMax().y};
-  tooltip("Delete the layer (tiles, maps and animation): one ddm.remove, Ctrl+Z brings it back");
+  ui::tooltip("Delete the layer (tiles, maps and animation): one ddm.remove, Ctrl+Z brings it back");
   ImGui::EndDisabled();
 
   // Animation of a layer (seed §5.4.2): metamorphosis keys and texture-space offset, one ddm.animate per click.

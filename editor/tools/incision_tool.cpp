@@ -1,11 +1,12 @@
 #include "editor/tools/incision_tool.h"
+#include "ui/param_widgets.h"
 
 #include <imgui.h>
 
 #include <algorithm>
 #include <cmath>
 
-#include "core/commands/camera_set.h"
+#include "core/commands/codecs.h"
 #include "editor/command_registry.h"
 #include "editor/navigation.h"
 #include "editor/session.h"
@@ -20,9 +21,6 @@ constexpr double kMinPointSpacingPx = 2.0;  // stroke points closer than this to
 constexpr int kCurveSamples = 64;           // G(v) samples shown while dragging
 constexpr double kDefaultWidth = 0.02, kDefaultDepth = 0.02, kDefaultOpening = 0.006;  // × bounding-box diagonal
 
-void tooltip(const char* text) {
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", text);
-}
 
 // True when incision.draw keeps the line's "camera" (parsed and written back, as place.sketch does): the line is then
 // self-contained and needs no camera.set before it. Parsing has no side effects.
@@ -47,7 +45,7 @@ nlohmann::json incision_draw_line(const std::string& object, const std::vector<g
   nlohmann::json line = {{"cmd", "incision.draw"}, {"object", object},     {"stroke", stroke},
                          {"width", p.width},       {"depth", p.depth},     {"opening", p.opening},
                          {"walls", p.walls},       {"order", p.order},     {"kernel", p.kernel}};
-  if (view) line["camera"] = core::CameraSetCommand::camera_json(*view);
+  if (view) line["camera"] = core::camera_schema().fields_json(*view);
   return line;
 }
 
@@ -231,21 +229,21 @@ void IncisionTool::draw_panel(ToolContext& ctx) {
   if (ui::drag_scalar("Width", ImGuiDataType_Double, &width, speed, &lo, nullptr,
                         format(params_.width <= 0.0, width)))
     params_.width = std::max(width, lo);
-  tooltip(
+  ui::tooltip(
       "alpha: half-extent of the cutting lattice across the cut, world units (seed Eq. 6.2: P_ijk = G_j +\n"
       "(l/2 - i) alpha S_j + (n/2 - k) beta N_j). Sets how far to each side the surface is pushed apart.\n"
       "Default: 0.02 x the selected object's bounding-box diagonal");
   if (ui::drag_scalar("Depth", ImGuiDataType_Double, &depth, speed, &lo, nullptr,
                         format(params_.depth <= 0.0, depth)))
     params_.depth = std::max(depth, lo);
-  tooltip(
+  ui::tooltip(
       "beta: how deep below the surface the cut goes (along -N), world units (seed Eq. 6.2).\n"
       "Default: 0.02 x the bounding-box diagonal");
   const double zero = 0.0;
   if (ui::drag_scalar("Opening", ImGuiDataType_Double, &opening, speed, &zero, nullptr,
                         format(params_.opening < 0.0, opening)))
     params_.opening = std::max(opening, 0.0);
-  tooltip(
+  ui::tooltip(
       "kappa: gap between the two cut faces at the surface in the middle of the stroke, world units; it tapers to\n"
       "zero at the cut's bottom and at both ends of the stroke (seed section 6.4). Default: 0.006 x the diagonal");
   if (params_.width > 0 || params_.depth > 0 || params_.opening >= 0) {
@@ -253,18 +251,18 @@ void IncisionTool::draw_panel(ToolContext& ctx) {
       params_.width = params_.depth = 0.0;
       params_.opening = -1.0;
     }
-    tooltip("Back to sizes relative to the object (width, depth, opening)");
+    ui::tooltip("Back to sizes relative to the object (width, depth, opening)");
   }
   ImGui::Checkbox("Walls", &params_.walls);
-  tooltip(
+  ui::tooltip(
       "Build the cut-depth walls in the shape of the tool so the surface stays a closed 2-manifold (seed section\n"
       "6.4, last paragraph); they carry the inside ('flesh') material. Off: the cut is left open");
   ImGui::SliderInt("Order", &params_.order, 2, 4);
-  tooltip("Order (= degree + 1) of the local cutting lattice; 'order' knots at u = 1/2 make the C-1 discontinuity");
+  ui::tooltip("Order (= degree + 1) of the local cutting lattice; 'order' knots at u = 1/2 make the C-1 discontinuity");
   params_.order = std::clamp(params_.order, 2, 4);
   int kernel = params_.kernel == "bspline" ? 1 : 0;
   if (ImGui::Combo("Kernel", &kernel, "gaussian\0bspline\0")) params_.kernel = kernel == 1 ? "bspline" : "gaussian";
-  tooltip(
+  ui::tooltip(
       "Profile kappa of the opening across the cut (how the control planes next to the discontinuity follow F-/F+):\n"
       "gaussian: truncated Gaussian; bspline: quadratic B-spline (seed section 6.3.1)");
 

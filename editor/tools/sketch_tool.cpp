@@ -1,6 +1,5 @@
 #include "editor/tools/sketch_tool.h"
 
-#include "core/commands/camera_set.h"
 #include "editor/session.h"
 #include "ui/theme.h"
 
@@ -10,61 +9,14 @@ namespace trispline::editor {
 
 namespace {
 constexpr double kMinPointSpacingPx = 2.0;  // stroke points closer than this to the previous one are dropped
-
-nlohmann::json vec3(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
 }  // namespace
 
-nlohmann::json place_sketch_line(const std::string& object, const std::vector<glm::dvec2>& stroke_px,
-                                 const ui::PlacementParams& p, const core::Camera& view,
-                                 const std::vector<std::string>& ignore) {
-  nlohmann::json stroke = nlohmann::json::array();
-  for (const glm::dvec2& q : stroke_px) stroke.push_back({q.x, q.y});
-  nlohmann::json line = {{"cmd", "place.sketch"},
-          {"object", object},
-          {"stroke", stroke},
-          {"width", p.width},
-          {"height", p.height},
-          {"samples", {p.samples[0], p.samples[1]}},
-          {"volume", p.offset_volume ? "offset" : "extrude"},
-          {"order", {p.order[0], p.order[1], p.order[2]}},
-          {"controls", {p.controls[0], p.controls[1], p.controls[2]}},
-          {"length_axis", ui::axis_name(p.length_axis)},
-          {"up_axis", ui::axis_name(p.up_axis)},
-          {"camera",
-           {{"eye", vec3(view.eye)},
-            {"target", vec3(view.target)},
-            {"up", vec3(view.up)},
-            {"fov_deg", view.fov_deg},
-            {"viewport", {view.viewport.x, view.viewport.y}}}}};
-  if (!ignore.empty()) line["ignore"] = ignore;
-  ui::add_placement_extras(p, line);  // profiles d(u), h(u), springs, extent (only when not off)
-  return line;
-}
-
-bool parse_place_sketch_line(const nlohmann::json& j, std::string* object, std::vector<glm::dvec2>* stroke,
-                             ui::PlacementParams* p, std::optional<core::Camera>* camera,
-                             std::vector<std::string>* ignore) {
-  try {
-    auto axis = [](const std::string& a) { return a == "x" ? 0 : a == "y" ? 1 : 2; };
-    *object = j.at("object").get<std::string>();
-    stroke->clear();
-    for (const auto& q : j.at("stroke")) stroke->push_back({q.at(0).get<double>(), q.at(1).get<double>()});
-    p->width = j.at("width").get<double>();
-    p->height = j.at("height").get<double>();
-    p->offset_volume = j.value("volume", "extrude") == "offset";
-    for (int a = 0; a < 2 && j.contains("samples"); ++a) p->samples[a] = j["samples"].at(a).get<int>();
-    for (int a = 0; a < 3 && j.contains("order"); ++a) p->order[a] = j["order"].at(a).get<int>();
-    for (int a = 0; a < 3 && j.contains("controls"); ++a) p->controls[a] = j["controls"].at(a).get<int>();
-    p->length_axis = axis(j.value("length_axis", "x"));
-    p->up_axis = axis(j.value("up_axis", "y"));
-    ui::read_placement_extras(j, *p);
-    camera->reset();
-    if (j.contains("camera")) *camera = core::CameraSetCommand::parse_camera(j["camera"]);
-    if (ignore) *ignore = j.value("ignore", std::vector<std::string>{});
-    return true;
-  } catch (const std::exception&) {
-    return false;
-  }
+nlohmann::json place_sketch_line(core::PlaceSketchParams params, const std::vector<glm::dvec2>& stroke_px,
+                                 const core::Camera& view, const std::vector<std::string>& ignore) {
+  params.stroke = stroke_px;
+  params.camera = view;
+  params.ignore = ignore;
+  return core::PlaceSketchCommand::schema().to_json(params);
 }
 
 ui::ToolEntry SketchTool::entry() const {
@@ -72,7 +24,7 @@ ui::ToolEntry SketchTool::entry() const {
 }
 
 void SketchTool::activate(ToolContext& ctx) {
-  if (!ctx.selected.empty()) object_ = followed_selection_ = ctx.selected;
+  if (!ctx.selected.empty()) params_.object = followed_selection_ = ctx.selected;
 }
 
 void SketchTool::deactivate(ToolContext&) {
@@ -82,7 +34,8 @@ void SketchTool::deactivate(ToolContext&) {
 
 std::string SketchTool::hint() const {
   if (drawing_) return "Release to place";
-  return object_.empty() ? "Choose the object to place in the Tool panel" : "Drag to sketch a stroke for " + object_;
+  return params_.object.empty() ? "Choose the object to place in the Tool panel"
+                                : "Drag to sketch a stroke for " + params_.object;
 }
 
 void SketchTool::handle_input(const ToolInput& in, ToolContext& ctx) {
@@ -99,22 +52,22 @@ void SketchTool::handle_input(const ToolInput& in, ToolContext& ctx) {
     std::vector<glm::dvec2> stroke = std::move(stroke_);
     stroke_.clear();
     if (stroke.size() < 2) return;  // a click, not a stroke
-    if (object_.empty() || !ctx.session.scene().find(object_)) {
+    if (params_.object.empty() || !ctx.session.scene().find(params_.object)) {
       ctx.session.messages().error("place.sketch: choose the object to place in the Tool panel first");
       return;
     }
     // The rays pass through what the viewport hides, as picking does.
     std::vector<std::string> ignore;
     for (const std::string& name : ctx.hidden)
-      if (name != object_ && ctx.session.scene().find(name)) ignore.push_back(name);
+      if (name != params_.object && ctx.session.scene().find(name)) ignore.push_back(name);
     place(ctx, std::move(stroke), stroke_view_, std::move(ignore));
   }
 }
 
 void SketchTool::place(ToolContext& ctx, std::vector<glm::dvec2> stroke, const core::Camera& view,
                        std::vector<std::string> ignore) {
-  const nlohmann::json line = place_sketch_line(object_, stroke, params_, view, ignore);
-  const std::string object = object_;
+  const nlohmann::json line = place_sketch_line(params_, stroke, view, ignore);
+  const std::string object = params_.object;
   EditorSession& session = ctx.session;  // outlives the deferred work; ctx may not
   ctx.defer("Placing " + object + " along the stroke", [this, &session, line, stroke, view, object, ignore]() {
     if (!session.execute(line)) return;
@@ -140,7 +93,9 @@ bool SketchTool::last_is_top(const History& h) const {
 void SketchTool::replace_last(ToolContext& ctx) {
   if (!last_is_top(ctx.session.history()))
     return;  // nothing of ours to re-run: the new values apply to the next stroke
-  const nlohmann::json line = place_sketch_line(last_object_, last_stroke_, params_, last_view_, last_ignore_);
+  core::PlaceSketchParams p = params_;
+  p.object = last_object_;
+  const nlohmann::json line = place_sketch_line(p, last_stroke_, last_view_, last_ignore_);
   EditorSession& s = ctx.session;
   ctx.defer("Re-running the placement of " + last_object_, [this, &s, line]() {
     if (!last_is_top(s.history())) return;
@@ -157,7 +112,7 @@ void SketchTool::replace_last(ToolContext& ctx) {
 
 bool SketchTool::can_rerun(const ToolContext& ctx) const { return last_is_top(ctx.session.history()); }
 
-void SketchTool::set_params(const ui::PlacementParams& params, ToolContext& ctx) {
+void SketchTool::set_params(const core::PlaceSketchParams& params, ToolContext& ctx) {
   params_ = params;
   if (params_.length_axis != params_.up_axis) replace_last(ctx);
 }
@@ -169,11 +124,17 @@ void SketchTool::adopt_top(const ToolContext& ctx) {
   if (&top == adopt_checked_) return;  // looked at it already
   adopt_checked_ = &top;
   if (top.id() != "place.sketch") return;
-  std::optional<core::Camera> camera;
-  ui::PlacementParams params;
-  if (!parse_place_sketch_line(top.to_json(), &last_object_, &last_stroke_, &params, &camera, &last_ignore_)) return;
-  params_ = params;
-  last_view_ = camera ? *camera : ctx.session.scene().camera;  // a camera-less line used the scene camera
+  const auto* placed = dynamic_cast<const core::PlaceSketchCommand*>(&top);
+  if (!placed) return;
+  const core::PlaceSketchParams& p = placed->params();
+  last_object_ = p.object;
+  last_stroke_ = p.stroke;
+  last_ignore_ = p.ignore;
+  last_view_ = p.camera ? *p.camera : ctx.session.scene().camera;  // a camera-less line used the scene camera
+  const std::string object = params_.object;  // the combo keeps the user's choice
+  params_ = p;
+  params_.object = object;
+  panel_ = ui::PlacementPanelState::from(p);
   last_applied_ = h.applied();
   last_command_ = &top;
 }
@@ -181,11 +142,11 @@ void SketchTool::adopt_top(const ToolContext& ctx) {
 void SketchTool::draw_panel(ToolContext& ctx) {
   adopt_top(ctx);
   // The combo follows the selection until the user picks another object there.
-  if (!ctx.selected.empty() && ctx.selected != followed_selection_) object_ = followed_selection_ = ctx.selected;
+  if (!ctx.selected.empty() && ctx.selected != followed_selection_) params_.object = followed_selection_ = ctx.selected;
   std::vector<std::string> names;
   for (const core::SceneObject& o : ctx.session.scene().objects()) names.push_back(o.name);
 
-  const ui::PlacementPanelResult r = ui::draw_placement_panel(params_, object_, names);
+  const ui::PlacementPanelResult r = ui::draw_placement_panel(params_, panel_, names);
   if (r.committed) set_params(params_, ctx);
 
   ImGui::Spacing();

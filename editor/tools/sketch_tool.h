@@ -22,16 +22,9 @@
 
 namespace trispline::editor {
 
-// The place.sketch line for a stroke drawn with `view` (fields exactly as in docs/commands.md); "ignore" only when
-// `ignore` is not empty.
-nlohmann::json place_sketch_line(const std::string& object, const std::vector<glm::dvec2>& stroke_px,
-                                 const ui::PlacementParams& params, const core::Camera& view,
-                                 const std::vector<std::string>& ignore = {});
-
-// Reads a place.sketch line back (stroke, parameters, camera if present). False if a field is missing/mistyped.
-bool parse_place_sketch_line(const nlohmann::json& line, std::string* object, std::vector<glm::dvec2>* stroke,
-                             ui::PlacementParams* params, std::optional<core::Camera>* camera,
-                             std::vector<std::string>* ignore = nullptr);
+// The place.sketch line of `params` with the stroke drawn in `view` (its "camera") and `ignore` (omitted when empty).
+nlohmann::json place_sketch_line(core::PlaceSketchParams params, const std::vector<glm::dvec2>& stroke_px,
+                                 const core::Camera& view, const std::vector<std::string>& ignore = {});
 
 class SketchTool : public Tool {
  public:
@@ -44,11 +37,11 @@ class SketchTool : public Tool {
   std::string hint() const override;
   bool owns_mouse() const override { return drawing_; }
 
-  const ui::PlacementParams& params() const { return params_; }
+  const core::PlaceSketchParams& params() const { return params_; }
   // What a committed edit in the panel does: takes `params`, and re-runs the tool's last placement with them as
   // one undoable step when it is still the top of the history (otherwise they apply to the next stroke).
-  void set_params(const ui::PlacementParams& params, ToolContext& ctx);
-  void set_object(const std::string& name) { object_ = name; }
+  void set_params(const core::PlaceSketchParams& params, ToolContext& ctx);
+  void set_object(const std::string& name) { params_.object = name; }
   // True while the last placement (the tool's own or an adopted one) can be re-run by a parameter change.
   bool can_rerun(const ToolContext& ctx) const;
 
@@ -59,8 +52,8 @@ class SketchTool : public Tool {
   bool last_is_top(const History& history) const;
   void adopt_top(const ToolContext& ctx);  // a place.sketch from elsewhere on top of the history
 
-  ui::PlacementParams params_;
-  std::string object_;              // object to place
+  core::PlaceSketchParams params_;  // the next placement's parameters; object = the object to place
+  ui::PlacementPanelState panel_;
   std::string followed_selection_;  // selection the combo last followed
   std::vector<glm::dvec2> stroke_;  // being drawn
   bool drawing_ = false;

@@ -199,7 +199,7 @@ TEST_F(AppSession, SketchParameterChangeReRunsAsOneUndoableStep) {
   ASSERT_TRUE(tool.can_rerun(ctx));
   const auto placed = s.scene().find("crate")->world_mesh;
 
-  ui::PlacementParams p = tool.params();
+  core::PlaceSketchParams p = tool.params();
   p.height *= 2;
   tool.set_params(p, ctx);
   EXPECT_EQ(s.history().applied(), 3u) << "a parameter change replaces the placement, it does not stack";
@@ -207,7 +207,7 @@ TEST_F(AppSession, SketchParameterChangeReRunsAsOneUndoableStep) {
   EXPECT_EQ(s.history().at(2).to_json()["height"].get<double>(), p.height);
   EXPECT_NE(s.scene().find("crate")->world_mesh, placed);
 
-  ui::PlacementParams bad = p;
+  core::PlaceSketchParams bad = p;
   bad.width = -1;  // rejected by the command: the previous placement must come back
   const auto before_bad = s.scene().find("crate")->world_mesh->positions;
   tool.set_params(bad, ctx);

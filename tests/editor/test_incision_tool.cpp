@@ -1,8 +1,9 @@
 // The Incision tool (editor/tools/incision_tool.h) driven like the Press tool tests drive theirs: a drag across a
 // sphere previews the cut while dragging (generator curve + cut mesh in gpu::ViewOptions) and issues exactly one
-// incision.draw with the dragged stroke and the panel's values (after a camera.set of the view when the scene camera
-// differs), undoable bit for bit; a click issues nothing; a stroke off the surface shows only the stroke and its
-// command error goes to the Log panel with the scene unchanged.
+// incision.draw with the dragged stroke, the panel's values and the view as "camera" (the test also accepts the
+// tool's fallback for a command that drops that field: a camera.set of the view first), undoable bit for bit; a click
+// issues nothing; a stroke off the surface shows only the stroke and its command error goes to the Log panel with the
+// scene unchanged.
 #include <gtest/gtest.h>
 
 #include "editor/navigation.h"

@@ -3,7 +3,7 @@
 // rays ("ignore", F2), crash recovery never loses the only copy of a log (F6), a crashed second editor is offered
 // recovery (F7), and session log write failures are reported (F10).
 #include "core/commands/place_sketch.h"
-#include "core/commands/camera_set.h"
+#include "core/commands/codecs.h"
 #include "editor/command_registry.h"
 #include "editor/navigation.h"
 #include "editor/session.h"
@@ -253,13 +253,13 @@ TEST_F(SessionRecovery, StrokeKeepsItsMouseDownCameraAndIgnoresHidden) {
   EXPECT_FALSE(tool.owns_mouse());
   ASSERT_EQ(s.history().applied(), 4u) << (messages_.messages().empty() ? "" : messages_.messages().back().text);
   const nlohmann::json line = s.history().at(3).to_json();
-  const core::Camera used = core::CameraSetCommand::parse_camera(line.at("camera"));
+  const core::Camera used = core::camera_schema().parse(line.at("camera"));
   EXPECT_EQ(used.eye, at_press.eye) << "the stroke's pixels belong to the view at mouse-down";
   ASSERT_TRUE(line.contains("ignore"));
   EXPECT_EQ(line["ignore"], nlohmann::json::array({"veil"}));
 
   // A parameter re-run keeps both.
-  ui::PlacementParams p = tool.params();
+  core::PlaceSketchParams p = tool.params();
   p.height *= 2;
   tool.set_params(p, ctx);
   const nlohmann::json rerun = s.history().at(3).to_json();
@@ -300,12 +300,13 @@ TEST_F(SessionRecovery, IgnoredObjectsDoNotCatchRays) {
   const core::Camera view = nav.camera({800, 600});
   std::vector<glm::dvec2> stroke;
   for (double x = 330; x <= 470; x += 10) stroke.push_back({x, 330 + 0.1 * (x - 400) * (x - 400) / 40});
-  const ui::PlacementParams params;
-  ASSERT_TRUE(s.execute(editor::place_sketch_line("crate", stroke, params, view)));
+  core::PlaceSketchParams params;
+  params.object = "crate";
+  ASSERT_TRUE(s.execute(editor::place_sketch_line(params, stroke, view)));
   ASSERT_TRUE(s.undo());
   // With the teapot ignored nothing else is under the stroke: every ray misses and the command is refused.
   const std::size_t errors = messages_.error_count();
-  EXPECT_FALSE(s.execute(editor::place_sketch_line("crate", stroke, params, view, {"teapot"})));
+  EXPECT_FALSE(s.execute(editor::place_sketch_line(params, stroke, view, {"teapot"})));
   EXPECT_EQ(messages_.error_count(), errors + 1);
   EXPECT_FALSE(s.scene().find("crate")->ffd) << "the scene is unchanged";
   s.finish();

@@ -328,35 +328,40 @@ TEST(CurveEditor, DoubleClickAddsDragMovesRightClickRemovesOneEditEach) {
 }
 
 TEST(PlacementPanel, ProfilesSpringsAndExtentFeedPlaceSketch) {
-  ui::PlacementParams p;
-  nlohmann::json line = {{"cmd", "place.sketch"}};
-  ui::add_placement_extras(p, line);
-  EXPECT_EQ(line.dump(), R"({"cmd":"place.sketch"})") << "defaults add nothing";
-  p.width_profile = {{0, 1}, {0.5, 2}, {1, 1}};
-  p.height_profile = {{0, 0.5}, {1, 1.5}};
-  p.springs_on = true;
-  p.springs.stiffness = 50;
-  p.springs.rest_length_initial = true;
+  core::PlaceSketchParams p;
+  p.object = "crate";
+  const std::vector<glm::dvec2> stroke = {{300, 350}, {500, 350}};
+  const core::Camera view;
+  const nlohmann::json plain = editor::place_sketch_line(p, stroke, view);
+  for (const char* f : {"width_profile", "height_profile", "springs", "extent", "ignore"})
+    EXPECT_FALSE(plain.contains(f)) << f << ": defaults add nothing";
+  // The panel's curves and springs switch, as an artist leaves them.
+  ui::PlacementPanelState st;
+  st.width_curve = {{0, 1}, {0.5, 2}, {1, 1}};
+  st.height_curve = {{0, 0.5}, {1, 1.5}};
+  p.width_profile = ui::profile_samples(st.width_curve);
+  p.height_profile = {ui::profile_samples(st.height_curve)};
+  core::SpringParams springs;
+  springs.stiffness = 50;
+  springs.rest_length_initial = true;
+  p.springs = springs;
   p.extent = 0.4;
-  ui::add_placement_extras(p, line);
+  const nlohmann::json line = editor::place_sketch_line(p, stroke, view);
   EXPECT_EQ(line["width_profile"], nlohmann::json({1, 2, 1}));
   EXPECT_EQ(line["height_profile"], nlohmann::json({0.5, 1.5}));
   EXPECT_EQ(line["springs"]["stiffness"], 50);
   EXPECT_EQ(line["springs"]["rest_length"], "initial");
   EXPECT_EQ(line["springs"]["max_steps"], 20000);
   EXPECT_EQ(line["extent"], 0.4);
-  // The command accepts them, and the Sketch tool reads them back from a logged line (re-placement).
+  // The command accepts them, and a logged line shows again in the panel (re-placement of an adopted line).
   core::CommandContext ctx;
-  line.update({{"object", "crate"}, {"stroke", {{300, 350}, {500, 350}}}, {"width", 0.3}, {"height", 0.2}});
-  EXPECT_NO_THROW(editor::CommandRegistry::builtin().parse(line, ctx));
-  ui::PlacementParams q;
-  std::string object;
-  std::vector<glm::dvec2> stroke;
-  std::optional<core::Camera> camera;
-  ASSERT_TRUE(editor::parse_place_sketch_line(line, &object, &stroke, &q, &camera, nullptr));
-  nlohmann::json again = {{"cmd", "place.sketch"}};
-  ui::add_placement_extras(q, again);
-  for (const char* f : {"width_profile", "height_profile", "springs", "extent"}) EXPECT_EQ(again[f], line[f]) << f;
+  const core::CommandPtr cmd = editor::CommandRegistry::builtin().parse(line, ctx);
+  const auto& q = dynamic_cast<const core::PlaceSketchCommand&>(*cmd).params();
+  const ui::PlacementPanelState shown = ui::PlacementPanelState::from(q);
+  EXPECT_EQ(ui::profile_samples(shown.width_curve), p.width_profile);
+  EXPECT_EQ(ui::profile_samples(shown.height_curve), p.height_profile[0]);
+  EXPECT_EQ(shown.springs.stiffness, 50);
+  EXPECT_EQ(editor::place_sketch_line(q, stroke, view), line);
 }
 
 TEST(SetPoint, LogMovesOnePointExactlyAndUndoRestoresBitForBit) {

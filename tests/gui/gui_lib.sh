@@ -171,8 +171,18 @@ gui_drag() {
 gui_key() { gui_log "key $*"; xdotool key --delay 30 "$@"; }
 gui_type() { gui_log "type '$1'"; xdotool type --delay 30 "$1"; }
 
-# gui_session_has JQ: some line of the session log satisfies the jq condition (e.g. '.cmd == "scene.load"').
+# gui_session_count JQ: how many lines of the session log satisfy the jq condition (e.g. '.cmd == "scene.load"').
 gui_session_count() { jq -c "select($1)" "$GUI_STATE/session.jsonl" 2>/dev/null | wc -l; }
+
+# gui_wait_logged JQ MESSAGE [FRAMES]: waits (60 frames by default) until some session-log line satisfies JQ.
+gui_wait_logged() {
+  local i
+  for ((i = 0; i < ${3:-60}; ++i)); do
+    [ "$(gui_session_count "$1")" -ge 1 ] && { gui_log "ok: $2"; return 0; }
+    gui_frames 1
+  done
+  gui_fail "$2"
+}
 
 # Quits the editor (kills it: the session log is flushed line by line) and passes.
 gui_pass() {

@@ -10,6 +10,7 @@
 #include <set>
 #include <tuple>
 
+#include "core/commands/codecs.h"
 #include "core/commands/camera_set.h"
 #include "core/commands/ddm_commands.h"
 #include "core/commands/ddm_paint.h"
@@ -315,7 +316,7 @@ TEST(DdmPaint, BadFieldsNameTheField) {
   s.camera_set = false;
   EXPECT_EQ(field_of(paint_line("t")), "camera");
   l = paint_line("t");
-  l["camera"] = CameraSetCommand::camera_json(view());
+  l["camera"] = camera_schema().fields_json(view());
   const CommandPtr c = run(s, l);
   EXPECT_GT(c->stats()["cells_added"].get<int>(), 0);
   EXPECT_TRUE(c->to_json().contains("camera"));

@@ -1,0 +1,33 @@
+// trispline::core::DeclaredCommand — a command whose parameters are one params struct P declared by a ParamSchema.
+//
+// The derived class C defines `static const ParamSchema<P>& schema();` (in its .cpp) and the effect (redo/undo, or
+// build() for a SnapshotCommand); parsing, to_json() and id() come from the schema, so the id, every field's name,
+// default, range and help are written once. Register it with one line: `registry.add<C>();`.
+#pragma once
+
+#include <memory>
+#include <utility>
+
+#include "core/commands/params.h"
+
+namespace trispline::core {
+
+template <class C, class P, class Base = Command>
+class DeclaredCommand : public Base {
+ public:
+  using Params = P;
+  explicit DeclaredCommand(P p) : p_(std::move(p)) {}
+
+  // Throws CommandError naming the bad field.
+  static CommandPtr parse(const nlohmann::json& line, const CommandContext& ctx) {
+    return std::make_unique<C>(C::schema().parse(line, ctx));
+  }
+  std::string id() const override { return C::schema().id(); }
+  nlohmann::json to_json() const override { return C::schema().to_json(p_); }
+  const P& params() const { return p_; }
+
+ protected:
+  P p_;
+};
+
+}  // namespace trispline::core

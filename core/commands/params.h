@@ -1,0 +1,494 @@
+// trispline::core::ParamSchema — a command's parameters, each declared once (Blender's RNA_def_property).
+//
+// A declaration names the JSON field, the member of the command's params struct it fills, and its range, unit,
+// one-line help and widget label. The default is the struct's own member initialiser. From that one declaration:
+//  * parse(line) fills a params struct, checking type and range, with errors that name the field
+//    ("field 'width': must be > 0 (world units)", CommandError::field() == "width"; nested: "springs.mass");
+//  * to_json(params) writes the log line back (parse(to_json(p)) == p);
+//  * docs() lists the fields for `trispline commands --markdown` and the tables in docs/commands.md;
+//  * ui::param_widget() draws a field with its label, range and tooltip.
+//
+//   static const ParamSchema<P> s = ParamSchema<P>("mesh.refine", "Refine a deformed object's mesh ...")
+//       .field("object", &P::object).required().help("Object id")
+//       .field("tolerance", &P::tolerance).required().above(0).unit("world units").help("...");
+//
+// Field types and their JSON: std::string, double (finite), int / std::int64_t (range-checked, no wrap-around),
+// bool, glm::dvec3 [x,y,z], glm::ivec2 [a,b], glm::ivec3 [a,b,c], std::vector<glm::dvec2> [[x,y],...],
+// std::vector<double>, std::vector<std::string>, std::optional<T> of those, and nested ParamSchema objects.
+#pragma once
+
+#include <glm/glm.hpp>
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <optional>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "core/commands/command.h"
+
+namespace trispline::core {
+
+// One field as documented: for docs/commands.md, `trispline commands --markdown` and panel tooltips.
+struct ParamDoc {
+  std::string name;          // JSON field ("width"; nested fields "springs.stiffness")
+  std::string type;          // "number", "integer", "[x,y,z]", "x|y|z", "object", ...
+  std::string default_text;  // "required" for required fields
+  std::string range;         // "> 0", "[2, 64]", "(0, 1]", or ""
+  std::string unit;          // "world units", "pixels", "degrees", "seconds", or ""
+  std::string help;          // one line
+};
+
+// A closed, open or half-open interval of numbers; each component of a vector field must lie in it.
+struct ParamRange {
+  double lo = -std::numeric_limits<double>::infinity();
+  double hi = std::numeric_limits<double>::infinity();
+  bool lo_open = false, hi_open = false;
+  bool bounded() const;
+  bool contains(double x) const;
+  std::string text() const;  // "> 0", "≥ 0", "[2, 64]", "(0, 1]", "≤ 100"
+};
+
+// What a panel can draw for a field (ui::param_widget).
+enum class ParamKind { Other, String, Number, Integer, Bool, Choice, Vec3, IVec2, IVec3 };
+
+namespace params {
+
+[[noreturn]] void fail(const std::string& field, const std::string& what);
+// Re-raises an error from a nested object with its field prefixed: "field 'mass'" → "field 'springs.mass'".
+[[noreturn]] void rethrow_nested(const CommandError& e, const std::string& prefix);
+std::string choices_text(const std::vector<std::string>& choices);  // "x|y|z"
+std::string format_number(double x);                                // shortest text that reads back the same
+
+// JSON value ↔ C++ value, with the field named in errors. Specialised for every supported field type.
+template <class T, class = void>
+struct Codec;
+
+template <>
+struct Codec<std::string> {
+  static constexpr ParamKind kind = ParamKind::String;
+  static std::string read(const nlohmann::json& v, const std::string& field);
+  static nlohmann::json write(const std::string& s) { return s; }
+  static std::string type() { return "string"; }
+};
+template <>
+struct Codec<double> {
+  static constexpr ParamKind kind = ParamKind::Number;
+  static double read(const nlohmann::json& v, const std::string& field);
+  static nlohmann::json write(double x) { return x; }
+  static std::string type() { return "number"; }
+};
+template <>
+struct Codec<int> {
+  static constexpr ParamKind kind = ParamKind::Integer;
+  static int read(const nlohmann::json& v, const std::string& field);
+  static nlohmann::json write(int x) { return x; }
+  static std::string type() { return "integer"; }
+};
+template <>
+struct Codec<std::int64_t> {
+  static constexpr ParamKind kind = ParamKind::Other;
+  static std::int64_t read(const nlohmann::json& v, const std::string& field);  // ≥ 0
+  static nlohmann::json write(std::int64_t x) { return x; }
+  static std::string type() { return "integer ≥ 0"; }
+};
+template <>
+struct Codec<std::size_t> {
+  static constexpr ParamKind kind = ParamKind::Other;
+  static std::size_t read(const nlohmann::json& v, const std::string& field);
+  static nlohmann::json write(std::size_t x) { return x; }
+  static std::string type() { return "integer ≥ 0"; }
+};
+template <>
+struct Codec<bool> {
+  static constexpr ParamKind kind = ParamKind::Bool;
+  static bool read(const nlohmann::json& v, const std::string& field);
+  static nlohmann::json write(bool b) { return b; }
+  static std::string type() { return "true|false"; }
+};
+template <>
+struct Codec<glm::dvec3> {
+  static constexpr ParamKind kind = ParamKind::Vec3;
+  static glm::dvec3 read(const nlohmann::json& v, const std::string& field);
+  static nlohmann::json write(const glm::dvec3& x) { return nlohmann::json::array({x.x, x.y, x.z}); }
+  static std::string type() { return "[x,y,z]"; }
+};
+template <>
+struct Codec<glm::ivec2> {
+  static constexpr ParamKind kind = ParamKind::IVec2;
+  static glm::ivec2 read(const nlohmann::json& v, const std::string& field);
+  static nlohmann::json write(const glm::ivec2& x) { return nlohmann::json::array({x.x, x.y}); }
+  static std::string type() { return "[a,b]"; }
+};
+template <>
+struct Codec<glm::ivec3> {
+  static constexpr ParamKind kind = ParamKind::IVec3;
+  static glm::ivec3 read(const nlohmann::json& v, const std::string& field);
+  static nlohmann::json write(const glm::ivec3& x) { return nlohmann::json::array({x.x, x.y, x.z}); }
+  static std::string type() { return "[a,b,c]"; }
+};
+template <>
+struct Codec<std::vector<glm::dvec2>> {
+  static constexpr ParamKind kind = ParamKind::Other;
+  static std::vector<glm::dvec2> read(const nlohmann::json& v, const std::string& field);
+  static nlohmann::json write(const std::vector<glm::dvec2>& pts);
+  static std::string type() { return "[[x,y],…]"; }
+};
+template <>
+struct Codec<std::vector<double>> {
+  static constexpr ParamKind kind = ParamKind::Other;
+  static std::vector<double> read(const nlohmann::json& v, const std::string& field);
+  static nlohmann::json write(const std::vector<double>& x) { return x; }
+  static std::string type() { return "[number,…]"; }
+};
+template <>
+struct Codec<std::vector<std::string>> {
+  static constexpr ParamKind kind = ParamKind::Other;
+  static std::vector<std::string> read(const nlohmann::json& v, const std::string& field);
+  static nlohmann::json write(const std::vector<std::string>& x) { return x; }
+  static std::string type() { return "[string,…]"; }
+};
+
+// Every number a value holds (for range checks): the value itself, or each component.
+inline std::vector<double> components(double x) { return {x}; }
+inline std::vector<double> components(int x) { return {double(x)}; }
+inline std::vector<double> components(std::int64_t x) { return {double(x)}; }
+inline std::vector<double> components(std::size_t x) { return {double(x)}; }
+inline std::vector<double> components(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
+inline std::vector<double> components(const glm::ivec2& v) { return {double(v.x), double(v.y)}; }
+inline std::vector<double> components(const glm::ivec3& v) { return {double(v.x), double(v.y), double(v.z)}; }
+inline std::vector<double> components(const std::vector<double>& v) { return v; }
+template <class T>
+std::vector<double> components(const T&) {
+  return {};
+}
+
+// The default as the docs show it ("[32,8]", "0.15", "extrude").
+template <class T>
+std::string default_text(const T& v) {
+  const nlohmann::json j = Codec<T>::write(v);
+  if (j.is_string()) return j.get<std::string>();
+  if (j.is_number_float()) return format_number(j.get<double>());
+  if (j.is_array() && !j.empty() && j[0].is_number()) {
+    std::string out;
+    for (const nlohmann::json& x : j) out += (out.empty() ? "[" : ",") + format_number(x.get<double>());
+    return out + "]";
+  }
+  return j.dump();
+}
+
+template <class T>
+struct is_optional : std::false_type {};
+template <class T>
+struct is_optional<std::optional<T>> : std::true_type {};
+
+}  // namespace params
+
+// How a field is written back by to_json.
+enum class ParamWrite {
+  Always,         // every line carries it
+  UnlessDefault,  // omitted when equal to the struct's default (optional fields: when unset)
+  Never,          // read only (a field the line may carry but the command does not keep)
+};
+
+template <class P>
+class ParamSchema {
+ public:
+  struct Field {
+    ParamDoc doc;
+    std::string label;  // widget label ("Half-width"); empty = not shown by generic widgets
+    double ui_step = 0.0;     // drag speed per pixel; 0 = from the range
+    std::string ui_format;    // printf format of the widget ("%.3f"); empty = ImGui's
+    ParamKind kind = ParamKind::Other;
+    ParamRange range;
+    std::vector<std::string> choices;  // ParamKind::Choice: the allowed strings
+    enum class ChoiceMember { String, Index, Bool } choice_member = ChoiceMember::String;  // what the member holds
+    bool required = false;
+    ParamWrite write_mode = ParamWrite::Always;
+    std::function<void(const Field&, const nlohmann::json&, P&, const CommandContext&)> read;  // value present
+    std::function<void(const Field&, const P&, nlohmann::json&)> write;
+    std::function<void*(P&)> member;  // for widgets; null for composite fields
+    std::function<void(const P&)> check;  // a check over several fields (no JSON field of its own)
+    std::vector<ParamDoc> nested_docs;    // a nested object's fields
+  };
+
+  // Chained settings of the field just declared.
+  class Ref {
+   public:
+    Ref(ParamSchema& s, std::size_t i) : s_(s), i_(i) {}
+    Ref& required() { return f().required = true, f().doc.default_text = "required", *this; }
+    Ref& help(std::string text) { return f().doc.help = std::move(text), *this; }
+    Ref& unit(std::string u) { return f().doc.unit = std::move(u), *this; }
+    Ref& label(std::string l) { return f().label = std::move(l), *this; }
+    // How a panel's drag field moves: `step` per pixel dragged, `format` as printf shows the value.
+    Ref& ui(double step, std::string format = {}) {
+      f().ui_step = step;
+      f().ui_format = std::move(format);
+      return *this;
+    }
+    Ref& default_text(std::string t) { return f().doc.default_text = std::move(t), *this; }
+    Ref& type_text(std::string t) { return f().doc.type = std::move(t), *this; }
+    Ref& range(double lo, double hi, bool lo_open = false, bool hi_open = false) {
+      f().range = ParamRange{lo, hi, lo_open, hi_open};
+      f().doc.range = f().range.text();
+      return *this;
+    }
+    Ref& above(double lo) { return range(lo, std::numeric_limits<double>::infinity(), true, false); }
+    Ref& at_least(double lo) { return range(lo, std::numeric_limits<double>::infinity()); }
+    Ref& at_most(double hi) { return range(-std::numeric_limits<double>::infinity(), hi); }
+    Ref& magnitude_at_most(double m) { return range(-m, m); }
+    Ref& write(ParamWrite w) { return f().write_mode = w, *this; }
+    Ref& write_unless_default() { return write(ParamWrite::UnlessDefault); }
+    // Chains a declaration of the next field.
+    template <class T>
+    Ref field(const std::string& name, T P::*m) { return s_.field(name, m); }
+    template <class T>
+    Ref choice(const std::string& name, T P::*m, std::vector<std::string> choices) {
+      return s_.choice(name, m, std::move(choices));
+    }
+    template <class Q>
+    Ref object(const std::string& name, std::optional<Q> P::*m, const ParamSchema<Q>& sub) {
+      return s_.object(name, m, sub);
+    }
+    template <class Q>
+    Ref object(const std::string& name, Q P::*m, const ParamSchema<Q>& sub) {
+      return s_.object(name, m, sub);
+    }
+    Ref custom(const std::string& name, decltype(Field::read) read, decltype(Field::write) write) {
+      return s_.custom(name, std::move(read), std::move(write));
+    }
+    Ref check(std::function<void(const P&)> fn) { return s_.check(std::move(fn)); }
+    Ref include(const ParamSchema& other) { return s_.include(other); }
+    operator ParamSchema&&() { return std::move(s_); }
+
+   private:
+    Field& f() { return s_.fields_[i_]; }
+    ParamSchema& s_;
+    std::size_t i_;
+  };
+
+  ParamSchema(std::string id, std::string summary) : id_(std::move(id)), summary_(std::move(summary)) {}
+
+  const std::string& id() const { return id_; }
+  const std::string& summary() const { return summary_; }
+  const std::vector<Field>& fields() const { return fields_; }
+  const Field* find(const std::string& name) const {
+    for (const Field& f : fields_)
+      if (f.doc.name == name) return &f;
+    return nullptr;
+  }
+
+  // A field of one of the supported types (see the header), or std::optional of one.
+  template <class T>
+  Ref field(const std::string& name, T P::*m) {
+    Field f;
+    f.doc.name = name;
+    if constexpr (params::is_optional<T>::value) {
+      using V = typename T::value_type;
+      f.doc.type = params::Codec<V>::type();
+      f.doc.default_text = "unset";
+      f.write_mode = ParamWrite::UnlessDefault;
+      f.read = [m](const Field& self, const nlohmann::json& v, P& p, const CommandContext&) {
+        V x = params::Codec<V>::read(v, self.doc.name);
+        check_range(self, params::components(x));
+        p.*m = std::move(x);
+      };
+      f.write = [m](const Field& self, const P& p, nlohmann::json& line) {
+        if (p.*m) line[self.doc.name] = params::Codec<V>::write(*(p.*m));
+      };
+    } else {
+      f.kind = params::Codec<T>::kind;
+      f.doc.type = params::Codec<T>::type();
+      f.doc.default_text = params::default_text(P{}.*m);
+      f.member = [m](P& p) -> void* { return &(p.*m); };
+      f.read = [m](const Field& self, const nlohmann::json& v, P& p, const CommandContext&) {
+        T x = params::Codec<T>::read(v, self.doc.name);
+        check_range(self, params::components(x));
+        p.*m = std::move(x);
+      };
+      f.write = [m](const Field& self, const P& p, nlohmann::json& line) {
+        if (self.write_mode == ParamWrite::UnlessDefault && p.*m == P{}.*m) return;
+        line[self.doc.name] = params::Codec<T>::write(p.*m);
+      };
+    }
+    return push(std::move(f));
+  }
+
+  // A string field holding one of `choices` (the error lists them), or an int member holding the choice's index.
+  template <class T>
+  Ref choice(const std::string& name, T P::*m, std::vector<std::string> choices) {
+    static_assert(std::is_same_v<T, std::string> || std::is_same_v<T, int> || std::is_same_v<T, bool>,
+                  "a choice fills a string, an index or a bool (second choice = true)");
+    Field f;
+    f.doc.name = name;
+    f.doc.type = params::choices_text(choices);
+    f.kind = ParamKind::Choice;
+    f.choices = std::move(choices);
+    f.choice_member = std::is_same_v<T, std::string> ? Field::ChoiceMember::String
+                      : std::is_same_v<T, int>       ? Field::ChoiceMember::Index
+                                                     : Field::ChoiceMember::Bool;
+    f.member = [m](P& p) -> void* { return &(p.*m); };
+    auto index_of = [](const Field& self, const T& x) -> int {
+      if constexpr (std::is_same_v<T, std::string>) {
+        for (std::size_t i = 0; i < self.choices.size(); ++i)
+          if (self.choices[i] == x) return int(i);
+        return 0;
+      } else {
+        return int(x);
+      }
+    };
+    f.doc.default_text = f.choices.at(std::size_t(index_of(f, P{}.*m)));
+    f.read = [m](const Field& self, const nlohmann::json& v, P& p, const CommandContext&) {
+      const std::string s = params::Codec<std::string>::read(v, self.doc.name);
+      for (std::size_t i = 0; i < self.choices.size(); ++i) {
+        if (self.choices[i] != s) continue;
+        if constexpr (std::is_same_v<T, std::string>) p.*m = s;
+        else p.*m = T(i);
+        return;
+      }
+      params::fail(self.doc.name, "'" + s + "' is not one of " + params::choices_text(self.choices));
+    };
+    f.write = [m, index_of](const Field& self, const P& p, nlohmann::json& line) {
+      if (self.write_mode == ParamWrite::UnlessDefault && p.*m == P{}.*m) return;
+      line[self.doc.name] = self.choices.at(std::size_t(index_of(self, p.*m)));
+    };
+    return push(std::move(f));
+  }
+
+  // A nested object with its own schema; errors inside it name "<name>.<field>".
+  template <class Q>
+  Ref object(const std::string& name, std::optional<Q> P::*m, const ParamSchema<Q>& sub) {
+    Field f = object_field(name, sub);
+    f.doc.default_text = "unset";
+    f.write_mode = ParamWrite::UnlessDefault;
+    f.read = [m, &sub](const Field& self, const nlohmann::json& v, P& p, const CommandContext& ctx) {
+      p.*m = sub.parse_nested(v, self.doc.name, ctx);
+    };
+    f.write = [m, &sub](const Field& self, const P& p, nlohmann::json& line) {
+      if (p.*m) line[self.doc.name] = sub.fields_json(*(p.*m));
+    };
+    return push(std::move(f));
+  }
+  template <class Q>
+  Ref object(const std::string& name, Q P::*m, const ParamSchema<Q>& sub) {
+    Field f = object_field(name, sub);
+    f.read = [m, &sub](const Field& self, const nlohmann::json& v, P& p, const CommandContext& ctx) {
+      p.*m = sub.parse_nested(v, self.doc.name, ctx);
+    };
+    f.write = [m, &sub](const Field& self, const P& p, nlohmann::json& line) {
+      line[self.doc.name] = sub.fields_json(p.*m);
+    };
+    return push(std::move(f));
+  }
+
+  // A field with its own reader and writer (a shape no codec covers). Set type_text/default_text for the docs.
+  Ref custom(const std::string& name, decltype(Field::read) read, decltype(Field::write) write) {
+    Field f;
+    f.doc.name = name;
+    f.read = std::move(read);
+    f.write = std::move(write);
+    return push(std::move(f));
+  }
+
+  // Every field of `other` (a shared group of fields, e.g. camera_schema()), in its order.
+  Ref include(const ParamSchema& other) {
+    for (const Field& f : other.fields_) fields_.push_back(f);
+    return Ref(*this, fields_.size() - 1);
+  }
+
+  // A check across fields, run after the fields declared before it; throws CommandError naming a field.
+  Ref check(std::function<void(const P&)> fn) {
+    Field f;
+    f.check = std::move(fn);
+    return push(std::move(f));
+  }
+
+  // The params of a log line. Throws CommandError naming the first bad field (missing, mistyped, out of range).
+  P parse(const nlohmann::json& line, const CommandContext& ctx = {}) const {
+    if (!line.is_object()) throw CommandError("command line is not a JSON object");
+    P p{};
+    for (const Field& f : fields_) {
+      if (f.check) {
+        f.check(p);
+        continue;
+      }
+      auto it = line.find(f.doc.name);
+      if (it == line.end()) {
+        if (f.required) params::fail(f.doc.name, "missing");
+        continue;
+      }
+      f.read(f, *it, p, ctx);
+    }
+    return p;
+  }
+  // The complete log line: {"cmd": id, fields...}.
+  nlohmann::json to_json(const P& p) const {
+    nlohmann::json j = fields_json(p);
+    j["cmd"] = id_;
+    return j;
+  }
+  nlohmann::json fields_json(const P& p) const {
+    nlohmann::json j = nlohmann::json::object();
+    for (const Field& f : fields_)
+      if (f.write && f.write_mode != ParamWrite::Never) f.write(f, p, j);
+    return j;
+  }
+  P parse_nested(const nlohmann::json& v, const std::string& name, const CommandContext& ctx) const {
+    if (!v.is_object()) params::fail(name, "expected an object, got " + std::string(v.type_name()));
+    try {
+      return parse(v, ctx);
+    } catch (const CommandError& e) {
+      params::rethrow_nested(e, name);
+    }
+  }
+  // Every documented field, nested objects' fields as "<name>.<field>" after their object.
+  std::vector<ParamDoc> docs() const {
+    std::vector<ParamDoc> out;
+    for (const Field& f : fields_) {
+      if (f.check) continue;
+      out.push_back(f.doc);
+      for (ParamDoc d : f.nested_docs) {
+        d.name = f.doc.name + "." + d.name;
+        out.push_back(std::move(d));
+      }
+    }
+    return out;
+  }
+
+ private:
+  template <class>
+  friend class ParamSchema;
+
+  static void check_range(const Field& f, const std::vector<double>& values) {
+    if (!f.range.bounded()) return;
+    for (double x : values)
+      if (!f.range.contains(x))
+        params::fail(f.doc.name, "must be " + std::string(f.range.lo > -std::numeric_limits<double>::infinity() &&
+                                                                  f.range.hi < std::numeric_limits<double>::infinity()
+                                                              ? "in "
+                                                              : "") +
+                                     f.range.text() + (f.doc.unit.empty() ? "" : " (" + f.doc.unit + ")"));
+  }
+  template <class Q>
+  Field object_field(const std::string& name, const ParamSchema<Q>& sub) {
+    Field f;
+    f.doc.name = name;
+    f.doc.type = "object";
+    f.doc.default_text = "";
+    f.nested_docs = sub.docs();
+    return f;
+  }
+  Ref push(Field f) {
+    fields_.push_back(std::move(f));
+    return Ref(*this, fields_.size() - 1);
+  }
+
+  std::string id_, summary_;
+  std::vector<Field> fields_;
+};
+
+}  // namespace trispline::core
