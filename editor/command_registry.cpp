@@ -25,7 +25,7 @@
 namespace trispline::editor {
 
 void CommandRegistry::add(const std::string& id, std::string summary, CommandParser parser) {
-  entries_[id] = Entry{std::move(summary), std::move(parser)};
+  entries_[id] = Entry{std::move(summary), std::move(parser), {}, false};
 }
 
 core::CommandPtr CommandRegistry::parse(const nlohmann::json& line, const core::CommandContext& ctx) const {
