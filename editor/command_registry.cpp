@@ -56,12 +56,10 @@ bool CommandRegistry::declared(const std::string& id) const { return entries_.at
 const CommandRegistry& CommandRegistry::builtin() {
   static const CommandRegistry registry = [] {
     CommandRegistry r;
-    r.add("scene.load", "Load a mesh file (OBJ, PLY, OFF, STL, glTF, GLB) as a new object",
-          core::SceneLoadCommand::parse);
-    r.add("scene.primitive", "Add a teapot, plane, sphere, box, cylinder or terrain", core::ScenePrimitiveCommand::parse);
-    r.add("scene.remove", "Remove an object", core::SceneRemoveCommand::parse);
-    r.add("object.transform", "Set an object's location, rotation and scale (its lattice moves with it)",
-          core::ObjectTransformCommand::parse);
+    r.add<core::SceneLoadCommand>();
+    r.add<core::ScenePrimitiveCommand>();
+    r.add<core::SceneRemoveCommand>();
+    r.add<core::ObjectTransformCommand>();
     r.add<core::CameraSetCommand>();
     r.add<core::PlaceSketchCommand>();
     r.add<core::LatticeRingCommand>();
@@ -84,11 +82,9 @@ const CommandRegistry& CommandRegistry::builtin() {
     r.add("ddm.color", "Give a tile layer its own colour, or its object's again", core::DdmColorCommand::parse);
     r.add("ddm.animate", "Animate a tile layer: texture-space offset and metamorphosis to another tile (seed §5.4.2)",
           core::DdmAnimateCommand::parse);
-    r.add("anim.timeline", "Set the timeline's frame range and frame rate", core::AnimTimelineCommand::parse);
-    r.add("anim.keyframe", "Key (or delete a key of) an object's parameter offset along its path at a frame (seed §2.4.3)",
-          core::AnimKeyframeCommand::parse);
-    r.add("anim.clip", "Attach a glTF animation clip (morph targets, skin) played before the FFD (two-level animation)",
-          core::AnimClipCommand::parse);
+    r.add<core::AnimTimelineCommand>();
+    r.add<core::AnimKeyframeCommand>();
+    r.add<core::AnimClipCommand>();
     r.add("dffd.cut", "Cut a deformed object at a lattice parameter: C⁻¹ knots, exact mesh split, opening (seed §6.3)",
           core::DffdCutCommand::parse);
     r.add("incision.draw", "Cut an incision drawn on a surface: width, depth, opening, walls (seed §6.4)",

@@ -20,66 +20,79 @@
 // ("clip"), vertex count mismatch ("path"), an object with a refined mesh.
 #pragma once
 
+#include "core/commands/declared_command.h"
 #include "core/commands/snapshot_command.h"
 
 namespace trispline::core {
 
-class AnimTimelineCommand : public Command {
+struct AnimTimelineParams {
+  std::optional<double> fps;  // frames per second
+  std::optional<int> start, end;
+};
+
+class AnimTimelineCommand : public DeclaredCommand<AnimTimelineCommand, AnimTimelineParams> {
  public:
-  static CommandPtr parse(const nlohmann::json& j, const CommandContext& ctx);
-  std::string id() const override { return "anim.timeline"; }
-  nlohmann::json to_json() const override;
+  using DeclaredCommand::DeclaredCommand;
+  static const ParamSchema<AnimTimelineParams>& schema();
+
   std::string label() const override;
   void redo(Scene& scene) override;
   void undo(Scene& scene) override;
 
  private:
-  std::optional<double> fps_;
-  std::optional<int> start_, end_;
   Timeline before_;
 };
 
-class AnimKeyframeCommand : public SnapshotCommand {
+struct AnimKeyframeParams {
+  std::string object;
+  double frame = 0;
+  bool remove = false;                // delete the key at `frame` instead
+  std::optional<glm::dvec3> offset;   // parameter units
+  std::optional<double> u;            // the u offset alone (kept as "u" in the log)
+  std::string interpolation = "linear";
+  glm::dvec3 key_offset() const { return offset ? *offset : glm::dvec3(u ? *u : 0.0, 0.0, 0.0); }
+};
+
+class AnimKeyframeCommand : public DeclaredCommand<AnimKeyframeCommand, AnimKeyframeParams, SnapshotCommand> {
  public:
-  static CommandPtr parse(const nlohmann::json& j, const CommandContext& ctx);
-  std::string id() const override { return "anim.keyframe"; }
-  nlohmann::json to_json() const override;
+  using DeclaredCommand::DeclaredCommand;
+  static const ParamSchema<AnimKeyframeParams>& schema();
+
   std::string label() const override;
   nlohmann::json stats() const override { return stats_; }
 
  protected:
-  std::string target() const override { return object_; }
+  std::string target() const override { return p_.object; }
   std::optional<SceneObject> build(const Scene& scene) override;
 
  private:
-  std::string object_;
-  double frame_ = 0;
-  glm::dvec3 offset_{0.0};
-  bool u_only_ = false;  // logged as "u"
-  KeyInterpolation interpolation_ = KeyInterpolation::linear;
-  bool remove_ = false;
   nlohmann::json stats_ = nlohmann::json::object();
 };
 
-class AnimClipCommand : public SnapshotCommand {
+struct AnimClipParams {
+  std::string object;
+  bool remove = false;  // detach the object's clip instead
+  std::string path;     // absolute once parsed
+  std::string clip;     // clip name; empty = the file's first
+  double speed = 1.0;
+  std::optional<double> start_frame;  // default: the timeline's first frame
+  bool loop = true;
+};
+
+class AnimClipCommand : public DeclaredCommand<AnimClipCommand, AnimClipParams, SnapshotCommand> {
  public:
-  static CommandPtr parse(const nlohmann::json& j, const CommandContext& ctx);
-  std::string id() const override { return "anim.clip"; }
-  nlohmann::json to_json() const override;
+  using DeclaredCommand::DeclaredCommand;
+  static const ParamSchema<AnimClipParams>& schema();
+
   std::string label() const override;
   nlohmann::json stats() const override { return stats_; }
 
  protected:
-  std::string target() const override { return object_; }
+  std::string target() const override { return p_.object; }
   std::optional<SceneObject> build(const Scene& scene) override;
   std::string failure_field() const override { return "path"; }
 
  private:
-  std::string object_, path_logged_, clip_;
-  std::filesystem::path path_;
-  double speed_ = 1.0;
-  std::optional<double> start_frame_;
-  bool loop_ = true, remove_ = false;
   nlohmann::json stats_ = nlohmann::json::object();
 };
 

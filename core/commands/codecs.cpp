@@ -36,4 +36,48 @@ const ParamSchema<Camera>& camera_schema() {
   return schema;
 }
 
+glm::dvec3 ScaleCodec::read(const nlohmann::json& v, const std::string& field) {
+  glm::dvec3 s;
+  if (v.is_number()) {
+    s = glm::dvec3(params::Codec<double>::read(v, field));
+  } else if (v.is_array()) {
+    s = params::Codec<glm::dvec3>::read(v, field);
+  } else {
+    params::fail(field, "expected a number or an array of 3 numbers, got " + std::string(v.type_name()));
+  }
+  if (s.x == 0.0 || s.y == 0.0 || s.z == 0.0) params::fail(field, "scale must be non-zero");
+  return s;
+}
+
+nlohmann::json ScaleCodec::write(const glm::dvec3& s) {
+  if (s.x == s.y && s.y == s.z) return s.x;
+  return params::Codec<glm::dvec3>::write(s);
+}
+
+const ParamSchema<Transform>& transform_schema() {
+  using T = Transform;
+  static const ParamSchema<T> s =
+      ParamSchema<T>("transform", "Location, rotation and scale")
+          .field("translate", &T::translate).unit("world units").help("Location")
+          .field("rotate_deg", &T::rotate_deg).unit("degrees")
+          .help("Rotation about x, then y, then z (R = Rz·Ry·Rx)")
+          .field_as<ScaleCodec>("scale", &T::scale).help("Scale per axis, applied first; non-zero");
+  return s;
+}
+
+const ParamSchema<ObjectFields>& object_fields_schema() {
+  using O = ObjectFields;
+  static const ParamSchema<O> s =
+      ParamSchema<O>("object", "An added object's name, transform and colour")
+          .field("name", &O::name).default_text("made unique from the source")
+          .help("Object id; an existing name is an error")
+          .check([](const O& o) {
+            if (o.name.empty()) return;
+            if (const std::string bad = object_name_error(o.name); !bad.empty()) params::fail("name", bad);
+          })
+          .embed(&O::transform, transform_schema())
+          .field("color", &O::color).range(0, 1).default_text("palette").help("Linear RGB");
+  return s;
+}
+
 }  // namespace trispline::core

@@ -1,11 +1,13 @@
 // Parameter declarations shared by several commands: axes, the camera a stroke was drawn in, object transforms.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/commands/params.h"
 #include "core/scene/camera.h"
+#include "core/scene/scene.h"
 
 namespace trispline::core {
 
@@ -17,5 +19,25 @@ const char* axis_name(int axis);          // 0 → "x"; clamped to [0, 2]
 // {eye, target, up, fov_deg, viewport}: camera.set's fields, and the "camera" object of stroke commands. Checks
 // what Camera::validate() checks, each error naming its field.
 const ParamSchema<Camera>& camera_schema();
+
+// "scale": a number s (uniform) or [sx,sy,sz], each non-zero; written as one number when uniform.
+struct ScaleCodec {
+  static constexpr ParamKind kind = ParamKind::Vec3;
+  static glm::dvec3 read(const nlohmann::json& v, const std::string& field);
+  static nlohmann::json write(const glm::dvec3& s);
+  static std::string type() { return "number or [x,y,z]"; }
+};
+
+// translate, rotate_deg, scale of an added object (every field written back).
+const ParamSchema<Transform>& transform_schema();
+
+// The fields every command that adds an object has: name (empty = made from the source by the command), the
+// transform and the colour.
+struct ObjectFields {
+  std::string name;
+  Transform transform;
+  std::optional<glm::dvec3> color;  // linear RGB in [0,1]; unset = the palette's
+};
+const ParamSchema<ObjectFields>& object_fields_schema();
 
 }  // namespace trispline::core

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <glm/gtc/matrix_inverse.hpp>
 
+#include "core/commands/codecs.h"
 #include "core/commands/json_fields.h"
 
 namespace trispline::core {
@@ -119,51 +120,38 @@ SceneObject object_with_transform(const SceneObject& object, const Transform& t,
   return out;
 }
 
-CommandPtr ObjectTransformCommand::parse(const nlohmann::json& j, const CommandContext&) {
-  auto c = std::make_unique<ObjectTransformCommand>();
-  c->object_ = jf::get_string(j, "object");
-  Transform probe;  // each given field checked on its own, against the limits
-  if (jf::has(j, "translate")) probe.translate = *(c->translate_ = jf::get_vec3(j, "translate"));
-  if (jf::has(j, "rotate_deg")) probe.rotate_deg = *(c->rotate_deg_ = jf::get_vec3(j, "rotate_deg"));
-  if (jf::has(j, "scale")) probe.scale = *(c->scale_ = jf::get_scale(j, "scale", glm::dvec3(1.0)));
-  check_transform(probe);
-  return c;
+const ParamSchema<ObjectTransformParams>& ObjectTransformCommand::schema() {
+  using P = ObjectTransformParams;
+  static const ParamSchema<P> s =
+      ParamSchema<P>("object.transform", "Set an object's location, rotation and scale (its lattice moves with it)")
+          .field("object", &P::object).required().help("Object id")
+          .field("translate", &P::translate).magnitude_at_most(kMaxTranslate).unit("world units")
+          .default_text("unchanged").help("Absolute location")
+          .field("rotate_deg", &P::rotate_deg).magnitude_at_most(kMaxRotateDeg).unit("degrees")
+          .default_text("unchanged").help("Absolute rotation about x, then y, then z (R = Rz·Ry·Rx)")
+          .field_as<ScaleCodec>("scale", &P::scale).range(0, kMaxScale, true, false).default_text("unchanged")
+          .help("Absolute scale per axis; an object with a lattice keeps the signs of its scale");
+  return s;
 }
 
 CommandPtr ObjectTransformCommand::make(const std::string& object, const Transform& t) {
-  auto c = std::make_unique<ObjectTransformCommand>();
-  c->object_ = object;
-  c->translate_ = t.translate;
-  c->rotate_deg_ = t.rotate_deg;
-  c->scale_ = t.scale;
-  return c;
-}
-
-nlohmann::json ObjectTransformCommand::to_json() const {
-  nlohmann::json j = {{"cmd", id()}, {"object", object_}};
-  if (translate_) j["translate"] = jf::to_json(*translate_);
-  if (rotate_deg_) j["rotate_deg"] = jf::to_json(*rotate_deg_);
-  if (scale_) {
-    const glm::dvec3 s = *scale_;
-    j["scale"] = s.x == s.y && s.y == s.z ? nlohmann::json(s.x) : jf::to_json(s);
-  }
-  return j;
+  return std::make_unique<ObjectTransformCommand>(ObjectTransformParams{object, t.translate, t.rotate_deg, t.scale});
 }
 
 std::optional<SceneObject> ObjectTransformCommand::build(const Scene& scene) {
-  const SceneObject* object = scene.find(object_);
-  if (!object) throw CommandError("field 'object': no object named '" + object_ + "'", "object");
+  const SceneObject* object = scene.find(p_.object);
+  if (!object) throw CommandError("field 'object': no object named '" + p_.object + "'", "object");
   Transform t = object->transform;
-  if (translate_) t.translate = *translate_;
-  if (rotate_deg_) t.rotate_deg = *rotate_deg_;
-  if (scale_) t.scale = *scale_;
-  check_transform(Transform{t.translate, t.rotate_deg, scale_ ? *scale_ : glm::dvec3(1.0)});  // kept scales may be < 0
+  if (p_.translate) t.translate = *p_.translate;
+  if (p_.rotate_deg) t.rotate_deg = *p_.rotate_deg;
+  if (p_.scale) t.scale = *p_.scale;
+  check_transform(Transform{t.translate, t.rotate_deg, p_.scale ? *p_.scale : glm::dvec3(1.0)});  // kept scales may be < 0
   const auto t0 = std::chrono::steady_clock::now();
   SceneObject out = object_with_transform(*object, t);
   for (const glm::dvec3& p : out.world_mesh->positions)
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
-      const char* field = (scale_ && *scale_ != object->transform.scale) || !translate_ ? "scale" : "translate";
-      throw CommandError("field '" + std::string(field) + "': '" + object_ +
+      const char* field = (p_.scale && *p_.scale != object->transform.scale) || !p_.translate ? "scale" : "translate";
+      throw CommandError("field '" + std::string(field) + "': '" + p_.object +
                              "' would get non-finite vertices (its extent times this transform overflows)",
                          field);
     }

@@ -15,6 +15,7 @@
 // stats(): vertices, lattice_moved (0/1), ms_evaluate.
 #pragma once
 
+#include "core/commands/declared_command.h"
 #include "core/commands/snapshot_command.h"
 
 namespace trispline::core {
@@ -33,23 +34,27 @@ void check_transform(const Transform& t);
 // Throws CommandError (`scale`) when the object has a lattice and det A ≤ 0.
 SceneObject object_with_transform(const SceneObject& object, const Transform& t, bool exact = true);
 
-class ObjectTransformCommand : public SnapshotCommand {
+struct ObjectTransformParams {
+  std::string object;
+  std::optional<glm::dvec3> translate, rotate_deg, scale;  // absolute; unset = unchanged
+};
+
+class ObjectTransformCommand
+    : public DeclaredCommand<ObjectTransformCommand, ObjectTransformParams, SnapshotCommand> {
  public:
-  static CommandPtr parse(const nlohmann::json& j, const CommandContext& ctx);
+  using DeclaredCommand::DeclaredCommand;
+  static const ParamSchema<ObjectTransformParams>& schema();
   // The command setting `t` completely (all three fields), as the editor logs it.
   static CommandPtr make(const std::string& object, const Transform& t);
-  std::string id() const override { return "object.transform"; }
-  nlohmann::json to_json() const override;
-  std::string label() const override { return "Transform '" + object_ + "'"; }
+
+  std::string label() const override { return "Transform '" + p_.object + "'"; }
   nlohmann::json stats() const override { return stats_; }
 
  protected:
-  std::string target() const override { return object_; }
+  std::string target() const override { return p_.object; }
   std::optional<SceneObject> build(const Scene& scene) override;
 
  private:
-  std::string object_;
-  std::optional<glm::dvec3> translate_, rotate_deg_, scale_;
   nlohmann::json stats_ = nlohmann::json::object();
 };
 

@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 
 namespace trispline::core {
 
@@ -66,12 +67,36 @@ std::string choices_text(const std::vector<std::string>& choices) {
   return list;
 }
 
+std::string range_error(const ParamRange& r, const std::string& unit, double value, int component, int components) {
+  const std::string t = r.text(), in_unit = unit.empty() ? "" : " (" + unit + ")";
+  std::string what = "";
+  if (components > 1)
+    what = (components <= 3 ? std::string("component ") + "xyz"[component] : "element " + std::to_string(component)) +
+           " = " + format_number(value) + ": ";
+  if (t.rfind("|x| ", 0) == 0) return what + "|value| must be " + t.substr(4) + in_unit;
+  return what + "must be " + std::string(!t.empty() && (t[0] == '[' || t[0] == '(') ? "in " : "") + t + in_unit;
+}
+
+std::string resolve_path(const std::string& path, const std::string& field, const CommandContext& ctx) {
+  if (path.empty()) fail(field, "must not be empty");
+  return std::filesystem::absolute(ctx.resolve(path)).lexically_normal().string();
+}
+
 std::string format_number(double x) {
   if (std::isinf(x)) return x > 0 ? "∞" : "-∞";
-  if (x == std::floor(x) && std::abs(x) < 1e15) return std::to_string(static_cast<long long>(x));
   char buf[64];
   const auto r = std::to_chars(buf, buf + sizeof buf, x);
-  return std::string(buf, r.ptr);
+  std::string shortest(buf, r.ptr);
+  if (const std::size_t e = shortest.find("e+"); e != std::string::npos) {  // "1e+06" → "1e6"
+    std::size_t digits = e + 2;
+    while (digits + 1 < shortest.size() && shortest[digits] == '0') ++digits;
+    shortest = shortest.substr(0, e + 1) + shortest.substr(digits);
+  }
+  if (x == std::floor(x) && std::abs(x) < 1e15) {
+    const std::string whole = std::to_string(static_cast<long long>(x));
+    if (whole.size() <= shortest.size() + 3) return whole;  // 16384, 100000; but 1e6, 8e6
+  }
+  return shortest;
 }
 
 std::string Codec<std::string>::read(const nlohmann::json& v, const std::string& field) {

@@ -22,6 +22,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <limits>
 #include <optional>
 #include <string>
@@ -62,7 +63,12 @@ namespace params {
 // Re-raises an error from a nested object with its field prefixed: "field 'mass'" → "field 'springs.mass'".
 [[noreturn]] void rethrow_nested(const CommandError& e, const std::string& prefix);
 std::string choices_text(const std::vector<std::string>& choices);  // "x|y|z"
+// "must be in [2, 8] (pixels)", "must be > 0", "|value| must be ≤ 100 (degrees)"; for one of several components
+// "component y = -1: must be ...".
+std::string range_error(const ParamRange& r, const std::string& unit, double value, int component, int components);
 std::string format_number(double x);                                // shortest text that reads back the same
+// A path field's value made absolute against the log's folder; throws for an empty path.
+std::string resolve_path(const std::string& path, const std::string& field, const CommandContext& ctx);
 
 // JSON value ↔ C++ value, with the field named in errors. Specialised for every supported field type.
 template <class T, class = void>
@@ -168,9 +174,12 @@ std::vector<double> components(const T&) {
 }
 
 // The default as the docs show it ("[32,8]", "0.15", "extrude").
+inline std::string default_text(const nlohmann::json& j);
 template <class T>
 std::string default_text(const T& v) {
-  const nlohmann::json j = Codec<T>::write(v);
+  return default_text(Codec<T>::write(v));
+}
+inline std::string default_text(const nlohmann::json& j) {
   if (j.is_string()) return j.get<std::string>();
   if (j.is_number_float()) return format_number(j.get<double>());
   if (j.is_array() && !j.empty() && j[0].is_number()) {
@@ -212,7 +221,9 @@ class ParamSchema {
     std::function<void(const Field&, const nlohmann::json&, P&, const CommandContext&)> read;  // value present
     std::function<void(const Field&, const P&, nlohmann::json&)> write;
     std::function<void*(P&)> member;  // for widgets; null for composite fields
-    std::function<void(const P&)> check;  // a check over several fields (no JSON field of its own)
+    std::function<void(P&)> check;        // a check over several fields (no JSON field of its own); may normalise
+    std::function<bool(const P&)> stop;   // parse and to_json end here when it holds (e.g. "remove": true)
+    bool resolve_path = false;            // a string field holding a file path (see Ref::path())
     std::vector<ParamDoc> nested_docs;    // a nested object's fields
   };
 
@@ -246,6 +257,10 @@ class ParamSchema {
     // Chains a declaration of the next field.
     template <class T>
     Ref field(const std::string& name, T P::*m) { return s_.field(name, m); }
+    template <class Codec, class T>
+    Ref field_as(const std::string& name, T P::*m) { return s_.template field_as<Codec>(name, m); }
+    template <class Q>
+    Ref embed(Q P::*m, const ParamSchema<Q>& sub) { return s_.embed(m, sub); }
     template <class T>
     Ref choice(const std::string& name, T P::*m, std::vector<std::string> choices) {
       return s_.choice(name, m, std::move(choices));
@@ -261,7 +276,11 @@ class ParamSchema {
     Ref custom(const std::string& name, decltype(Field::read) read, decltype(Field::write) write) {
       return s_.custom(name, std::move(read), std::move(write));
     }
-    Ref check(std::function<void(const P&)> fn) { return s_.check(std::move(fn)); }
+    Ref check(std::function<void(P&)> fn) { return s_.check(std::move(fn)); }
+    Ref stop_if(std::function<bool(const P&)> fn) { return s_.stop_if(std::move(fn)); }
+    // A file path: must not be empty; relative paths are resolved against the log's folder (CommandContext) and
+    // kept absolute and normalised, so the logged line replays from anywhere.
+    Ref& path() { return f().resolve_path = true, *this; }
     Ref include(const ParamSchema& other) { return s_.include(other); }
     operator ParamSchema&&() { return std::move(s_); }
 
@@ -285,34 +304,44 @@ class ParamSchema {
   // A field of one of the supported types (see the header), or std::optional of one.
   template <class T>
   Ref field(const std::string& name, T P::*m) {
+    if constexpr (params::is_optional<T>::value) return field_as<params::Codec<typename T::value_type>>(name, m);
+    else return field_as<params::Codec<T>>(name, m);
+  }
+
+  // A field read and written by `Codec` (read(json, field) → V, write(V) → json, type(), kind) instead of the
+  // default one for its type: e.g. a scale that is a number or [sx,sy,sz].
+  template <class Codec, class T>
+  Ref field_as(const std::string& name, T P::*m) {
     Field f;
     f.doc.name = name;
     if constexpr (params::is_optional<T>::value) {
       using V = typename T::value_type;
-      f.doc.type = params::Codec<V>::type();
+      f.doc.type = Codec::type();
       f.doc.default_text = "unset";
       f.write_mode = ParamWrite::UnlessDefault;
       f.read = [m](const Field& self, const nlohmann::json& v, P& p, const CommandContext&) {
-        V x = params::Codec<V>::read(v, self.doc.name);
+        V x = Codec::read(v, self.doc.name);
         check_range(self, params::components(x));
         p.*m = std::move(x);
       };
       f.write = [m](const Field& self, const P& p, nlohmann::json& line) {
-        if (p.*m) line[self.doc.name] = params::Codec<V>::write(*(p.*m));
+        if (p.*m) line[self.doc.name] = Codec::write(*(p.*m));
       };
     } else {
-      f.kind = params::Codec<T>::kind;
-      f.doc.type = params::Codec<T>::type();
-      f.doc.default_text = params::default_text(P{}.*m);
+      f.kind = Codec::kind;
+      f.doc.type = Codec::type();
+      f.doc.default_text = params::default_text(nlohmann::json(Codec::write(P{}.*m)));
       f.member = [m](P& p) -> void* { return &(p.*m); };
-      f.read = [m](const Field& self, const nlohmann::json& v, P& p, const CommandContext&) {
-        T x = params::Codec<T>::read(v, self.doc.name);
+      f.read = [m](const Field& self, const nlohmann::json& v, P& p, const CommandContext& ctx) {
+        T x = Codec::read(v, self.doc.name);
         check_range(self, params::components(x));
+        if constexpr (std::is_same_v<T, std::string>)
+          if (self.resolve_path) x = params::resolve_path(x, self.doc.name, ctx);
         p.*m = std::move(x);
       };
       f.write = [m](const Field& self, const P& p, nlohmann::json& line) {
         if (self.write_mode == ParamWrite::UnlessDefault && p.*m == P{}.*m) return;
-        line[self.doc.name] = params::Codec<T>::write(p.*m);
+        line[self.doc.name] = Codec::write(p.*m);
       };
     }
     return push(std::move(f));
@@ -385,6 +414,38 @@ class ParamSchema {
     return push(std::move(f));
   }
 
+  // The fields of `sub` at this level of the line, filling member `m` (a group of fields several commands share,
+  // e.g. an added object's name, transform and colour).
+  template <class Q>
+  Ref embed(Q P::*m, const ParamSchema<Q>& sub) {
+    for (const auto& sf : sub.fields()) {
+      auto shared = std::make_shared<const typename ParamSchema<Q>::Field>(sf);
+      Field f;
+      f.doc = sf.doc;
+      f.label = sf.label;
+      f.ui_step = sf.ui_step;
+      f.ui_format = sf.ui_format;
+      f.kind = sf.kind;
+      f.range = sf.range;
+      f.choices = sf.choices;
+      f.choice_member = static_cast<typename Field::ChoiceMember>(static_cast<int>(sf.choice_member));
+      f.required = sf.required;
+      f.write_mode = sf.write_mode;
+      f.resolve_path = sf.resolve_path;
+      f.nested_docs = sf.nested_docs;
+      if (sf.read)
+        f.read = [m, shared](const Field&, const nlohmann::json& v, P& p, const CommandContext& ctx) {
+          shared->read(*shared, v, p.*m, ctx);
+        };
+      if (sf.write) f.write = [m, shared](const Field&, const P& p, nlohmann::json& line) { shared->write(*shared, p.*m, line); };
+      if (sf.member) f.member = [m, shared](P& p) { return shared->member(p.*m); };
+      if (sf.check) f.check = [m, shared](P& p) { shared->check(p.*m); };
+      if (sf.stop) f.stop = [m, shared](const P& p) { return shared->stop(p.*m); };
+      fields_.push_back(std::move(f));
+    }
+    return Ref(*this, fields_.size() - 1);
+  }
+
   // A field with its own reader and writer (a shape no codec covers). Set type_text/default_text for the docs.
   Ref custom(const std::string& name, decltype(Field::read) read, decltype(Field::write) write) {
     Field f;
@@ -400,10 +461,19 @@ class ParamSchema {
     return Ref(*this, fields_.size() - 1);
   }
 
-  // A check across fields, run after the fields declared before it; throws CommandError naming a field.
-  Ref check(std::function<void(const P&)> fn) {
+  // A check across fields, run after the fields declared before it; throws CommandError naming a field. It may
+  // normalise the params (drop a field another one overrides).
+  Ref check(std::function<void(P&)> fn) {
     Field f;
     f.check = std::move(fn);
+    return push(std::move(f));
+  }
+
+  // The fields declared after this are neither read nor written when `fn` holds for those before it (a line that
+  // removes something carries only what names it).
+  Ref stop_if(std::function<bool(const P&)> fn) {
+    Field f;
+    f.stop = std::move(fn);
     return push(std::move(f));
   }
 
@@ -412,6 +482,10 @@ class ParamSchema {
     if (!line.is_object()) throw CommandError("command line is not a JSON object");
     P p{};
     for (const Field& f : fields_) {
+      if (f.stop) {
+        if (f.stop(p)) break;
+        continue;
+      }
       if (f.check) {
         f.check(p);
         continue;
@@ -433,8 +507,10 @@ class ParamSchema {
   }
   nlohmann::json fields_json(const P& p) const {
     nlohmann::json j = nlohmann::json::object();
-    for (const Field& f : fields_)
+    for (const Field& f : fields_) {
+      if (f.stop && f.stop(p)) break;
       if (f.write && f.write_mode != ParamWrite::Never) f.write(f, p, j);
+    }
     return j;
   }
   P parse_nested(const nlohmann::json& v, const std::string& name, const CommandContext& ctx) const {
@@ -449,7 +525,7 @@ class ParamSchema {
   std::vector<ParamDoc> docs() const {
     std::vector<ParamDoc> out;
     for (const Field& f : fields_) {
-      if (f.check) continue;
+      if (f.check || f.stop) continue;
       out.push_back(f.doc);
       for (ParamDoc d : f.nested_docs) {
         d.name = f.doc.name + "." + d.name;
@@ -465,13 +541,9 @@ class ParamSchema {
 
   static void check_range(const Field& f, const std::vector<double>& values) {
     if (!f.range.bounded()) return;
-    for (double x : values)
-      if (!f.range.contains(x))
-        params::fail(f.doc.name, "must be " + std::string(f.range.lo > -std::numeric_limits<double>::infinity() &&
-                                                                  f.range.hi < std::numeric_limits<double>::infinity()
-                                                              ? "in "
-                                                              : "") +
-                                     f.range.text() + (f.doc.unit.empty() ? "" : " (" + f.doc.unit + ")"));
+    for (std::size_t i = 0; i < values.size(); ++i)
+      if (!f.range.contains(values[i]))
+        params::fail(f.doc.name, params::range_error(f.range, f.doc.unit, values[i], int(i), int(values.size())));
   }
   template <class Q>
   Field object_field(const std::string& name, const ParamSchema<Q>& sub) {

@@ -1,33 +1,29 @@
 #include "core/commands/scene_load.h"
 
-#include "core/commands/json_fields.h"
 #include "core/mesh/mesh_io.h"
 
 namespace trispline::core {
 
-CommandPtr SceneLoadCommand::parse(const nlohmann::json& j, const CommandContext& ctx) {
-  auto c = std::make_unique<SceneLoadCommand>();
-  const std::string path = json_fields::get_string(j, "path");
-  if (path.empty()) throw CommandError("field 'path': must not be empty", "path");
-  // Logged with its absolute path so the session log replays from anywhere; Save makes it relative again
-  // (editor::make_paths_relative).
-  c->resolved_ = std::filesystem::absolute(ctx.resolve(path)).lexically_normal();
-  c->ignore_loose_ = json_fields::get_enum(j, "loose", {"refuse", "ignore"}, "refuse") == "ignore";
-  c->parse_object_fields(j);
-  return c;
-}
-
-nlohmann::json SceneLoadCommand::to_json() const {
-  nlohmann::json j = {{"cmd", id()}, {"path", resolved_.string()}};
-  if (ignore_loose_) j["loose"] = "ignore";
-  put_object_fields(j);
-  return j;
+const ParamSchema<SceneLoadParams>& SceneLoadCommand::schema() {
+  using P = SceneLoadParams;
+  static const ParamSchema<P> s =
+      ParamSchema<P>("scene.load", "Load a mesh file (OBJ, PLY, OFF, STL, glTF, GLB) as a new object")
+          // Logged with its absolute path so the session log replays from anywhere; Save makes it relative again
+          // (editor::make_paths_relative).
+          .field("path", &P::path).required().path()
+          .help("OBJ, PLY, OFF, STL (assimp) or glTF/GLB (tinygltf), relative to the log's folder; loads whole or "
+                "fails")
+          .choice("loose", &P::loose, {"refuse", "ignore"}).write_unless_default()
+          .help("Point and line elements beside the faces: fail naming their counts, or leave them out (counted in "
+                "report.json)")
+          .embed(&P::object, object_fields_schema());
+  return s;
 }
 
 TriMesh SceneLoadCommand::make_mesh() const {
   MeshLoadOptions options;
-  options.ignore_loose = ignore_loose_;
-  return load_mesh(resolved_, options, &report_);
+  options.ignore_loose = p_.loose == "ignore";
+  return load_mesh(p_.path, options, &report_);
 }
 
 nlohmann::json SceneLoadCommand::stats() const {

@@ -11,27 +11,33 @@
 #pragma once
 
 #include "core/commands/add_object_command.h"
+#include "core/commands/declared_command.h"
 #include "core/mesh/mesh_io.h"
 
 namespace trispline::core {
 
-class SceneLoadCommand : public AddObjectCommand {
+struct SceneLoadParams {
+  std::string path;               // absolute and normalised once parsed
+  std::string loose = "refuse";   // refuse | ignore
+  ObjectFields object;
+};
+
+class SceneLoadCommand : public DeclaredCommand<SceneLoadCommand, SceneLoadParams, AddObjectCommand> {
  public:
-  static CommandPtr parse(const nlohmann::json& j, const CommandContext& ctx);
-  std::string id() const override { return "scene.load"; }
-  nlohmann::json to_json() const override;
-  std::string label() const override { return "Load '" + name_ + "'"; }
+  using DeclaredCommand::DeclaredCommand;
+  static const ParamSchema<SceneLoadParams>& schema();
+
+  std::string label() const override { return "Load '" + p_.object.name + "'"; }
 
  protected:
+  ObjectFields& object_fields() override { return p_.object; }
   TriMesh make_mesh() const override;
-  std::string default_name() const override { return resolved_.stem().string(); }
-  std::string source() const override { return resolved_.string(); }
+  std::string default_name() const override { return std::filesystem::path(p_.path).stem().string(); }
+  std::string source() const override { return p_.path; }
   std::string failure_field() const override { return "path"; }
   nlohmann::json stats() const override;
 
  private:
-  std::filesystem::path resolved_;  // absolute, normalised
-  bool ignore_loose_ = false;
   mutable MeshLoadReport report_;  // of the last make_mesh()
 };
 

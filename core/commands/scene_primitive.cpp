@@ -1,27 +1,23 @@
 #include "core/commands/scene_primitive.h"
 
-#include "core/commands/json_fields.h"
 #include "core/scene/primitives.h"
 
 namespace trispline::core {
-namespace jf = json_fields;
 
-CommandPtr ScenePrimitiveCommand::parse(const nlohmann::json& j, const CommandContext&) {
-  auto c = std::make_unique<ScenePrimitiveCommand>();
-  c->kind_ = jf::get_enum(j, "kind", {"teapot", "plane", "sphere", "box", "cylinder", "terrain"});
-  c->seed_ = jf::get_int64(j, "seed", 0);
-  c->parse_object_fields(j);
-  return c;
-}
-
-nlohmann::json ScenePrimitiveCommand::to_json() const {
-  nlohmann::json j = {{"cmd", id()}, {"kind", kind_}, {"seed", seed_}};
-  put_object_fields(j);
-  return j;
+const ParamSchema<ScenePrimitiveParams>& ScenePrimitiveCommand::schema() {
+  using P = ScenePrimitiveParams;
+  static const ParamSchema<P> s =
+      ParamSchema<P>("scene.primitive", "Add a teapot, plane, sphere, box, cylinder or terrain")
+          .choice("kind", &P::kind, {"teapot", "plane", "sphere", "box", "cylinder", "terrain"}).required()
+          .help("plane 2×2 in xz, sphere radius 1, box 2×2×2, cylinder r 1 h 2 along y, terrain 2×2 with heights in "
+                "[0, 0.3], teapot height 1 on y = 0 (Newell's patches)")
+          .field("seed", &P::seed).help("Terrain heights' random seed")
+          .embed(&P::object, object_fields_schema());
+  return s;
 }
 
 TriMesh ScenePrimitiveCommand::make_mesh() const {
-  return make_primitive(parse_primitive_kind(kind_), static_cast<std::uint64_t>(seed_));
+  return make_primitive(parse_primitive_kind(p_.kind), static_cast<std::uint64_t>(p_.seed));
 }
 
 }  // namespace trispline::core

@@ -6,25 +6,29 @@
 #pragma once
 
 #include "core/commands/add_object_command.h"
+#include "core/commands/declared_command.h"
 
 namespace trispline::core {
 
-class ScenePrimitiveCommand : public AddObjectCommand {
+struct ScenePrimitiveParams {
+  std::string kind;
+  std::int64_t seed = 0;  // terrain heights
+  ObjectFields object;
+};
+
+class ScenePrimitiveCommand : public DeclaredCommand<ScenePrimitiveCommand, ScenePrimitiveParams, AddObjectCommand> {
  public:
-  static CommandPtr parse(const nlohmann::json& j, const CommandContext& ctx);
-  std::string id() const override { return "scene.primitive"; }
-  nlohmann::json to_json() const override;
-  std::string label() const override { return "Add " + kind_ + " '" + name_ + "'"; }
+  using DeclaredCommand::DeclaredCommand;
+  static const ParamSchema<ScenePrimitiveParams>& schema();
+
+  std::string label() const override { return "Add " + p_.kind + " '" + p_.object.name + "'"; }
 
  protected:
+  ObjectFields& object_fields() override { return p_.object; }
   TriMesh make_mesh() const override;
-  std::string default_name() const override { return kind_; }
-  std::string source() const override { return "primitive:" + kind_; }
+  std::string default_name() const override { return p_.kind; }
+  std::string source() const override { return "primitive:" + p_.kind; }
   std::string failure_field() const override { return "kind"; }
-
- private:
-  std::string kind_;
-  std::int64_t seed_ = 0;
 };
 
 }  // namespace trispline::core

@@ -1,17 +1,16 @@
 #include "core/commands/scene_remove.h"
 
-#include "core/commands/json_fields.h"
-
 namespace trispline::core {
 
-CommandPtr SceneRemoveCommand::parse(const nlohmann::json& j, const CommandContext&) {
-  auto c = std::make_unique<SceneRemoveCommand>();
-  c->name_ = json_fields::get_string(j, "name");
-  return c;
+const ParamSchema<SceneRemoveParams>& SceneRemoveCommand::schema() {
+  using P = SceneRemoveParams;
+  static const ParamSchema<P> s = ParamSchema<P>("scene.remove", "Remove an object")
+                                      .field("name", &P::name).required().help("Id of the object to remove");
+  return s;
 }
 
 std::optional<SceneObject> SceneRemoveCommand::build(const Scene& scene) {
-  if (scene.index_of(name_) < 0) throw CommandError("no object named '" + name_ + "'", "name");
+  if (scene.index_of(p_.name) < 0) throw CommandError("no object named '" + p_.name + "'", "name");
   return std::nullopt;
 }
 

@@ -1,23 +1,25 @@
 // `scene.remove` — removes an object.   {"cmd":"scene.remove","name":"ID"}
 #pragma once
 
+#include "core/commands/declared_command.h"
 #include "core/commands/snapshot_command.h"
 
 namespace trispline::core {
 
-class SceneRemoveCommand : public SnapshotCommand {
+struct SceneRemoveParams {
+  std::string name;
+};
+
+class SceneRemoveCommand : public DeclaredCommand<SceneRemoveCommand, SceneRemoveParams, SnapshotCommand> {
  public:
-  static CommandPtr parse(const nlohmann::json& j, const CommandContext& ctx);
-  std::string id() const override { return "scene.remove"; }
-  nlohmann::json to_json() const override { return {{"cmd", id()}, {"name", name_}}; }
-  std::string label() const override { return "Remove '" + name_ + "'"; }
+  using DeclaredCommand::DeclaredCommand;
+  static const ParamSchema<SceneRemoveParams>& schema();
+
+  std::string label() const override { return "Remove '" + p_.name + "'"; }
 
  protected:
-  std::string target() const override { return name_; }
+  std::string target() const override { return p_.name; }
   std::optional<SceneObject> build(const Scene& scene) override;
-
- private:
-  std::string name_;
 };
 
 }  // namespace trispline::core

@@ -71,7 +71,7 @@ INSTANTIATE_TEST_SUITE_P(
                       HostileCase{"name_slash.jsonl", 1, "name", "'/'"},
                       HostileCase{"fps_tiny.jsonl", 1, "fps", "[0.01, 240]"},
                       HostileCase{"paint_radius.jsonl", 3, "radius_px", "(0, 16384]"},
-                      HostileCase{"refine_tol.jsonl", 3, "max_triangles", "[1, 8000000]"},
+                      HostileCase{"refine_tol.jsonl", 3, "max_triangles", "[1, 8e6]"},
                       HostileCase{"record_big.jsonl", 4, "width", "megapixels"}),
     [](const auto& info) {
       const std::string n = info.param.file;
