@@ -64,15 +64,11 @@ const CommandRegistry& CommandRegistry::builtin() {
     r.add<core::PlaceSketchCommand>();
     r.add<core::LatticeRingCommand>();
     r.add<core::LatticeAnimateOffsetCommand>();
-    r.add("lattice.press", "Press a placed object's lattice with a sphere swept along a path (seed §2.4.1, Fig. 2.7)",
-          core::LatticePressCommand::parse);
-    r.add("lattice.pull_column", "Pull or push one contact control point and its column along V_P (seed §2.4.1)",
-          core::LatticePullColumnCommand::parse);
-    r.add("lattice.set_point", "Move one control point of a deformed object's lattice to an exact position",
-          core::LatticeSetPointCommand::parse);
+    r.add<core::LatticePressCommand>();
+    r.add<core::LatticePullColumnCommand>();
+    r.add<core::LatticeSetPointCommand>();
     r.add<core::MeshRefineCommand>();
-    r.add("mesh.subdivide", "Subdivide an object's rest mesh uniformly (Loop, OpenSubdiv), before deforming it",
-          core::MeshSubdivideCommand::parse);
+    r.add<core::MeshSubdivideCommand>();
     r.add("ddm.fill", "Cover an object's surface with a layer of geometric tiles (DDM, seed ch. 5)",
           core::DdmFillCommand::parse);
     r.add("ddm.paint", "Paint (or erase) tiles of a layer with a brush stroke in the viewport (DDM, seed ch. 5)",
@@ -91,10 +87,8 @@ const CommandRegistry& CommandRegistry::builtin() {
           core::IncisionDrawCommand::parse);
     r.add("dffd.split", "Split an object around obstacles with a global discontinuous FFD; open, stitched or capped "
           "openings (seed §6.3)", core::DffdSplitCommand::parse);
-    r.add("place.array", "Add copies of a placed object in a row along its path (seed Fig. 2.11, the ants)",
-          core::PlaceArrayCommand::parse);
-    r.add("anim.record", "Record timeline frames to PNG/EXR images, an animated glb and an MP4 (seed §2.4.3)",
-          core::AnimRecordCommand::parse);
+    r.add<core::PlaceArrayCommand>();
+    r.add<core::AnimRecordCommand>();
     return r;
   }();
   return registry;

@@ -1,9 +1,7 @@
 #include "core/commands/anim_record.h"
 
-#include "core/commands/json_fields.h"
 
 namespace trispline::core {
-namespace jf = json_fields;
 
 std::string frame_range_error(const Timeline& timeline, int first, int last) {
   const std::string range = std::to_string(timeline.frame_start) + "-" + std::to_string(timeline.frame_end);
@@ -13,58 +11,62 @@ std::string frame_range_error(const Timeline& timeline, int first, int last) {
   return {};
 }
 
-CommandPtr AnimRecordCommand::parse(const nlohmann::json& j, const CommandContext& ctx) {
-  auto c = std::make_unique<AnimRecordCommand>();
-  RecordRequest& r = c->request_;
-  r.out = jf::get_string(j, "out", "");
-  if (!r.out.empty()) r.out_dir = std::filesystem::absolute(ctx.resolve(r.out)).lexically_normal();
-  r.format = jf::get_enum(j, "format", {"png", "exr"}, "png");
-  if (jf::has(j, "frames")) {
-    const glm::ivec2 f = jf::get_ivec2(j, "frames");
-    if (f.x > f.y)
-      throw CommandError(
-          "field 'frames': first frame " + std::to_string(f.x) + " is after the last frame " + std::to_string(f.y),
-          "frames");
-    r.frame_first = f.x;
-    r.frame_last = f.y;
-    r.frames_given = true;
-  }
-  r.glb = jf::get_bool(j, "glb", true);
-  r.mp4 = jf::get_bool(j, "mp4", true);
-  r.width = jf::get_int(j, "width", 0);
-  r.height = jf::get_int(j, "height", 0);
-  for (const char* field : {"width", "height"}) {
-    const int v = std::string(field) == "width" ? r.width : r.height;
-    if (jf::has(j, field) && (v < 1 || v > 16384))
-      throw CommandError(std::string("field '") + field + "': must be in [1, 16384] pixels, got " + std::to_string(v),
-                         field);
-  }
-  if (jf::has(j, "width") != jf::has(j, "height")) {
-    const char* missing = jf::has(j, "width") ? "height" : "width";
-    throw CommandError(std::string("field '") + missing + "': give width and height together", missing);
-  }
-  if (std::int64_t(r.width) * r.height > kMaxRecordPixels)
-    throw CommandError("field 'width': a frame of " + std::to_string(r.width) + "×" + std::to_string(r.height) +
-                           " pixels is over the budget of " + std::to_string(kMaxRecordPixels / (1 << 20)) +
-                           " megapixels (8192×8192): its 4× multisampled colour and depth alone would need " +
-                           std::to_string(std::int64_t(r.width) * r.height * 32 >> 30) + " GiB",
-                       "width");
-  return c;
+const ParamSchema<AnimRecordParams>& AnimRecordCommand::schema() {
+  using P = AnimRecordParams;
+  static const ParamSchema<P> s =
+      ParamSchema<P>("anim.record", "Record timeline frames to PNG/EXR images, an animated glb and an MP4 (seed §2.4.3)")
+          .field("out", &P::out).write_unless_default().default_text("the caller's")
+          .help("Output folder, relative to the log's folder")
+          .choice("format", &P::format, {"png", "exr"}).help("png: 8-bit sRGB; exr: half float, linear")
+          .field("frames", &P::frames).default_text("the whole timeline")
+          .help("First and last timeline frame, inclusive, inside the timeline")
+          .check([](const P& p) {
+            if (p.frames && p.frames->x > p.frames->y)
+              params::fail("frames", "first frame " + std::to_string(p.frames->x) + " is after the last frame " +
+                                         std::to_string(p.frames->y));
+          })
+          .field("glb", &P::glb).help("Write animation.glb (one mesh per frame, shown in turn)")
+          .field("mp4", &P::mp4).help("Write animation.mp4 when ffmpeg is installed")
+          .field("width", &P::width).range(1, 16384).unit("pixels").default_text("the camera's viewport")
+          .help("Frame width; give width and height together")
+          .field("height", &P::height).range(1, 16384).unit("pixels").default_text("the camera's viewport")
+          .help("Frame height")
+          .check([](const P& p) {
+            if (p.width.has_value() != p.height.has_value()) {
+              const char* missing = p.width ? "height" : "width";
+              params::fail(missing, "give width and height together");
+            }
+            const std::int64_t w = p.width.value_or(0), h = p.height.value_or(0);
+            if (w * h > kMaxRecordPixels)
+              params::fail("width", "a frame of " + std::to_string(w) + "×" + std::to_string(h) +
+                                        " pixels is over the budget of " +
+                                        std::to_string(kMaxRecordPixels / (1 << 20)) +
+                                        " megapixels (8192×8192): its 4× multisampled colour and depth alone would "
+                                        "need " +
+                                        std::to_string(w * h * 32 >> 30) + " GiB");
+          });
+  return s;
 }
 
-nlohmann::json AnimRecordCommand::to_json() const {
-  const RecordRequest& r = request_;
-  nlohmann::json j = {{"cmd", id()}};
-  if (!r.out.empty()) j["out"] = r.out;
-  j["format"] = r.format;
-  if (r.frames_given) j["frames"] = {r.frame_first, r.frame_last};
-  j["glb"] = r.glb;
-  j["mp4"] = r.mp4;
-  if (r.width > 0) {
-    j["width"] = r.width;
-    j["height"] = r.height;
+AnimRecordCommand::AnimRecordCommand(AnimRecordParams p, const std::filesystem::path& base_dir)
+    : DeclaredCommand(std::move(p)) {
+  RecordRequest& r = request_;
+  r.out = p_.out;
+  if (!r.out.empty()) r.out_dir = std::filesystem::absolute(CommandContext{base_dir}.resolve(r.out)).lexically_normal();
+  r.format = p_.format;
+  if (p_.frames) {
+    r.frame_first = p_.frames->x;
+    r.frame_last = p_.frames->y;
+    r.frames_given = true;
   }
-  return j;
+  r.glb = p_.glb;
+  r.mp4 = p_.mp4;
+  r.width = p_.width.value_or(0);
+  r.height = p_.height.value_or(0);
+}
+
+CommandPtr AnimRecordCommand::parse(const nlohmann::json& line, const CommandContext& ctx) {
+  return std::make_unique<AnimRecordCommand>(schema().parse(line, ctx), ctx.base_dir);
 }
 
 std::string AnimRecordCommand::label() const {

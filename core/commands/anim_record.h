@@ -16,7 +16,7 @@
 #include <cstdint>
 #include <optional>
 
-#include "core/commands/command.h"
+#include "core/commands/declared_command.h"
 
 namespace trispline::core {
 
@@ -38,11 +38,22 @@ struct RecordRequest {
 // 1–120"). Shared by anim.record and editor::validate_record_options.
 std::string frame_range_error(const Timeline& timeline, int first, int last);
 
-class AnimRecordCommand : public Command {
+// The fields of an anim.record line.
+struct AnimRecordParams {
+  std::string out;                  // folder, as written in the log ("" = the caller's default)
+  std::string format = "png";       // png | exr
+  std::optional<glm::ivec2> frames;  // inclusive timeline frames; unset = the whole timeline at redo time
+  bool glb = true, mp4 = true;
+  std::optional<int> width, height;  // pixels; unset = the camera's viewport
+};
+
+class AnimRecordCommand : public DeclaredCommand<AnimRecordCommand, AnimRecordParams> {
  public:
-  static CommandPtr parse(const nlohmann::json& j, const CommandContext& ctx);
-  std::string id() const override { return "anim.record"; }
-  nlohmann::json to_json() const override;
+  explicit AnimRecordCommand(AnimRecordParams p, const std::filesystem::path& base_dir = {});
+  static const ParamSchema<AnimRecordParams>& schema();
+  // As DeclaredCommand::parse, and `out` is resolved against the log's folder.
+  static CommandPtr parse(const nlohmann::json& line, const CommandContext& ctx);
+
   std::string label() const override;
   void redo(Scene& scene) override;  // validates against scene.timeline; the scene is not modified
   void undo(Scene&) override {}

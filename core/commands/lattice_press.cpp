@@ -4,10 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "core/commands/json_fields.h"
-
 namespace trispline::core {
-namespace jf = json_fields;
 
 namespace {
 
@@ -45,41 +42,22 @@ glm::dvec3 column_direction(const TrivariateBSpline<glm::dvec3>& F, int i, int j
   return glm::normalize(d);
 }
 
-CommandPtr LatticePressCommand::parse(const nlohmann::json& j, const CommandContext&) {
-  auto c = std::make_unique<LatticePressCommand>();
-  c->object_ = jf::get_string(j, "object");
-  const nlohmann::json& path = jf::require(j, "path");
-  if (!path.is_array() || path.empty())
-    throw CommandError("field 'path': expected a non-empty array of [x,y,z] sphere centres", "path");
-  for (std::size_t i = 0; i < path.size(); ++i) {
-    try {
-      c->path_.push_back(jf::get_vec3(nlohmann::json{{"path", path[i]}}, "path"));
-    } catch (const CommandError& e) {
-      const std::string what = e.what(), prefix = "field 'path': ";
-      throw CommandError(prefix + "point " + std::to_string(i) + ": " +
-                             (what.rfind(prefix, 0) == 0 ? what.substr(prefix.size()) : what),
-                         "path");
-    }
-  }
-  c->radius_ = jf::get_number(j, "radius");
-  if (!(c->radius_ > 0.0)) throw CommandError("field 'radius': must be positive (world units)", "radius");
-  c->strength_ = jf::get_number(j, "strength");
-  const std::string name = jf::get_string(j, "falloff", "smooth");
-  const auto f = parse_falloff(name);
-  if (!f) {
-    std::string list;
-    for (auto n : kFalloffNames) list += (list.empty() ? "" : ", ") + std::string(n);
-    throw CommandError("field 'falloff': unknown falloff '" + name + "' (use " + list + ")", "falloff");
-  }
-  c->falloff_ = *f;
-  return c;
-}
-
-nlohmann::json LatticePressCommand::to_json() const {
-  nlohmann::json path = nlohmann::json::array();
-  for (const glm::dvec3& p : path_) path.push_back(jf::to_json(p));
-  return {{"cmd", id()},       {"object", object_},     {"path", path}, {"radius", radius_},
-          {"strength", strength_}, {"falloff", to_string(falloff_)}};
+const ParamSchema<LatticePressParams>& LatticePressCommand::schema() {
+  using P = LatticePressParams;
+  static const std::vector<std::string> falloffs(kFalloffNames.begin(), kFalloffNames.end());
+  static const ParamSchema<P> s =
+      ParamSchema<P>("lattice.press",
+                     "Press a placed object's lattice with a sphere swept along a path (seed §2.4.1, Fig. 2.7)")
+          .field("object", &P::object).required().help("A deformed object (with an FFD)")
+          .field("path", &P::path).required().unit("world units").help("Sphere centres along the sweep, ≥ 1")
+          .check([](const P& p) {
+            if (p.path.empty()) params::fail("path", "expected a non-empty array of [x,y,z] sphere centres");
+          })
+          .field("radius", &P::radius).required().above(0).unit("world units").help("Sphere radius")
+          .field("strength", &P::strength).required().unit("world units")
+          .help("How far the contact points under the centre move along their columns; < 0 pulls")
+          .choice("falloff", &P::falloff, falloffs).help("Weight over the distance from the path, 1 at 0, 0 at radius");
+  return s;
 }
 
 TrivariateBSpline<glm::dvec3> press_lattice(const TrivariateBSpline<glm::dvec3>& before,
@@ -106,11 +84,11 @@ TrivariateBSpline<glm::dvec3> press_lattice(const TrivariateBSpline<glm::dvec3>&
 }
 
 std::optional<SceneObject> LatticePressCommand::build(const Scene& scene) {
-  const SceneObject& object = require_deformed_object(scene, object_);
+  const SceneObject& object = require_deformed_object(scene, p_.object);
   PressResult r;
   TrivariateBSpline<glm::dvec3> after = [&] {
     try {
-      return press_lattice(object.ffd->lattice, path_, radius_, strength_, falloff_, &r);
+      return press_lattice(object.ffd->lattice, p_.path, p_.radius, p_.strength, *parse_falloff(p_.falloff), &r);
     } catch (const std::invalid_argument& e) {
       throw CommandError("field 'object': " + std::string(e.what()), "object");
     }
@@ -119,24 +97,23 @@ std::optional<SceneObject> LatticePressCommand::build(const Scene& scene) {
   return with_lattice(object, std::move(after), stats_);
 }
 
-CommandPtr LatticePullColumnCommand::parse(const nlohmann::json& j, const CommandContext&) {
-  auto c = std::make_unique<LatticePullColumnCommand>();
-  c->object_ = jf::get_string(j, "object");
-  c->column_ = jf::get_ivec2(j, "column");
-  c->distance_ = jf::get_number(j, "distance");
-  return c;
-}
-
-nlohmann::json LatticePullColumnCommand::to_json() const {
-  return {{"cmd", id()}, {"object", object_}, {"column", jf::to_json(column_)}, {"distance", distance_}};
+const ParamSchema<LatticePullColumnParams>& LatticePullColumnCommand::schema() {
+  using P = LatticePullColumnParams;
+  static const ParamSchema<P> s =
+      ParamSchema<P>("lattice.pull_column",
+                     "Pull or push one contact control point and its column along V_P (seed §2.4.1)")
+          .field("object", &P::object).required().help("A deformed object (with an FFD)")
+          .field("column", &P::column).required().help("(i, j) of the contact control point")
+          .field("distance", &P::distance).required().unit("world units").help("Move along V_P; < 0 pushes");
+  return s;
 }
 
 std::optional<SceneObject> LatticePullColumnCommand::build(const Scene& scene) {
-  const SceneObject& object = require_deformed_object(scene, object_);
+  const SceneObject& object = require_deformed_object(scene, p_.object);
   TrivariateBSpline<glm::dvec3> after = object.ffd->lattice;
   const glm::dvec3 vp = [&] {
     try {
-      return column_direction(after, column_.x, column_.y);
+      return column_direction(after, p_.column.x, p_.column.y);
     } catch (const std::invalid_argument& e) {
       const std::string what = e.what();
       const char* field = what.find("outside") != std::string::npos ? "column" : "object";
@@ -144,8 +121,8 @@ std::optional<SceneObject> LatticePullColumnCommand::build(const Scene& scene) {
     }
   }();
   const int n = after.control_counts().z;
-  for (int k = 0; k < n; ++k) after.control_point(column_.x, column_.y, k) += distance_ * vp;
-  stats_ = {{"moved", n}, {"max_displacement", std::abs(distance_)}};
+  for (int k = 0; k < n; ++k) after.control_point(p_.column.x, p_.column.y, k) += p_.distance * vp;
+  stats_ = {{"moved", n}, {"max_displacement", std::abs(p_.distance)}};
   return with_lattice(object, std::move(after), stats_);
 }
 

@@ -21,6 +21,7 @@
 // stats(): moved (control points moved), max_displacement (world units), ms_evaluate.
 #pragma once
 
+#include "core/commands/declared_command.h"
 #include "core/commands/snapshot_command.h"
 #include "core/deform/falloff.h"
 
@@ -40,46 +41,55 @@ TrivariateBSpline<glm::dvec3> press_lattice(const TrivariateBSpline<glm::dvec3>&
                                             const std::vector<glm::dvec3>& path, double radius, double strength,
                                             Falloff falloff, PressResult* result = nullptr);
 
-class LatticePressCommand : public SnapshotCommand {
+struct LatticePressParams {
+  std::string object;
+  std::vector<glm::dvec3> path;  // #P × 3 sphere centres, world units
+  double radius = 0.1;           // world units
+  double strength = 0.05;        // world units; < 0 pulls
+  std::string falloff = "smooth";
+};
+
+class LatticePressCommand : public DeclaredCommand<LatticePressCommand, LatticePressParams, SnapshotCommand> {
  public:
-  static CommandPtr parse(const nlohmann::json& j, const CommandContext& ctx);
-  std::string id() const override { return "lattice.press"; }
-  nlohmann::json to_json() const override;
+  using DeclaredCommand::DeclaredCommand;
+  static const ParamSchema<LatticePressParams>& schema();
+
   std::string label() const override {  // a negative strength pulls (the Press tool's Ctrl+drag)
-    return (strength_ < 0 ? "Pull '" : "Press '") + object_ + "' (" + std::string(to_string(falloff_)) + ")";
+    return (p_.strength < 0 ? "Pull '" : "Press '") + p_.object + "' (" + p_.falloff + ")";
   }
   nlohmann::json stats() const override { return stats_; }
 
  protected:
-  std::string target() const override { return object_; }
+  std::string target() const override { return p_.object; }
   std::optional<SceneObject> build(const Scene& scene) override;
 
  private:
-  std::string object_;
-  std::vector<glm::dvec3> path_;
-  double radius_ = 0.1, strength_ = 0.05;
-  Falloff falloff_ = Falloff::smooth;
   nlohmann::json stats_ = nlohmann::json::object();
 };
 
-class LatticePullColumnCommand : public SnapshotCommand {
+struct LatticePullColumnParams {
+  std::string object;
+  glm::ivec2 column{0, 0};  // (i, j) of the contact control point
+  double distance = 0.0;    // world units along V_P
+};
+
+class LatticePullColumnCommand
+    : public DeclaredCommand<LatticePullColumnCommand, LatticePullColumnParams, SnapshotCommand> {
  public:
-  static CommandPtr parse(const nlohmann::json& j, const CommandContext& ctx);
-  std::string id() const override { return "lattice.pull_column"; }
-  nlohmann::json to_json() const override;
+  using DeclaredCommand::DeclaredCommand;
+  static const ParamSchema<LatticePullColumnParams>& schema();
+
   std::string label() const override {
-    return "Pull column (" + std::to_string(column_.x) + ", " + std::to_string(column_.y) + ") of '" + object_ + "'";
+    return "Pull column (" + std::to_string(p_.column.x) + ", " + std::to_string(p_.column.y) + ") of '" + p_.object +
+           "'";
   }
   nlohmann::json stats() const override { return stats_; }
 
  protected:
-  std::string target() const override { return object_; }
+  std::string target() const override { return p_.object; }
   std::optional<SceneObject> build(const Scene& scene) override;
 
  private:
-  std::string object_;
-  glm::ivec2 column_{0, 0};
-  double distance_ = 0.0;
   nlohmann::json stats_ = nlohmann::json::object();
 };
 

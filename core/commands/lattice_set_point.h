@@ -9,26 +9,31 @@
 // stats(): moved (1, or 0 when the point already was there), displacement (world units), ms_evaluate.
 #pragma once
 
+#include "core/commands/declared_command.h"
 #include "core/commands/snapshot_command.h"
 
 namespace trispline::core {
 
-class LatticeSetPointCommand : public SnapshotCommand {
+struct LatticeSetPointParams {
+  std::string object;
+  glm::ivec3 index{0};      // (i, j, k) of the control point
+  glm::dvec3 position{0.0};  // world units
+};
+
+class LatticeSetPointCommand
+    : public DeclaredCommand<LatticeSetPointCommand, LatticeSetPointParams, SnapshotCommand> {
  public:
-  static CommandPtr parse(const nlohmann::json& j, const CommandContext& ctx);
-  std::string id() const override { return "lattice.set_point"; }
-  nlohmann::json to_json() const override;
+  using DeclaredCommand::DeclaredCommand;
+  static const ParamSchema<LatticeSetPointParams>& schema();
+
   std::string label() const override;
   nlohmann::json stats() const override { return stats_; }
 
  protected:
-  std::string target() const override { return object_; }
+  std::string target() const override { return p_.object; }
   std::optional<SceneObject> build(const Scene& scene) override;
 
  private:
-  std::string object_;
-  glm::ivec3 index_{0};
-  glm::dvec3 position_{0.0};
   nlohmann::json stats_ = nlohmann::json::object();
 };
 

@@ -9,11 +9,9 @@
 #include <stdexcept>
 #include <vector>
 
-#include "core/commands/json_fields.h"
 #include "core/mesh/mesh_io.h"
 
 namespace trispline::core {
-namespace jf = json_fields;
 
 namespace {
 
@@ -108,50 +106,47 @@ TriMesh loop_subdivide(const TriMesh& mesh, int levels) {
   return out;
 }
 
-CommandPtr MeshSubdivideCommand::parse(const nlohmann::json& j, const CommandContext&) {
-  auto c = std::make_unique<MeshSubdivideCommand>();
-  c->object_ = jf::get_string(j, "object");
-  c->levels_ = jf::get_int(j, "levels", 1);
-  if (c->levels_ < 1 || c->levels_ > kMaxLevels)
-    throw CommandError("field 'levels': must be in 1..4, got " + std::to_string(c->levels_), "levels");
-  jf::get_enum(j, "scheme", {"loop"}, "loop");
-  return c;
-}
-
-nlohmann::json MeshSubdivideCommand::to_json() const {
-  return {{"cmd", id()}, {"object", object_}, {"levels", levels_}, {"scheme", "loop"}};
+const ParamSchema<MeshSubdivideParams>& MeshSubdivideCommand::schema() {
+  using P = MeshSubdivideParams;
+  static const ParamSchema<P> s =
+      ParamSchema<P>("mesh.subdivide",
+                     "Subdivide an object's rest mesh uniformly (Loop, OpenSubdiv), before deforming it")
+          .field("object", &P::object).required().help("An undeformed object without tile layers")
+          .field("levels", &P::levels).range(1, kMaxLevels).help("Subdivision levels; each quadruples the triangles")
+          .choice("scheme", &P::scheme, {"loop"}).help("Loop subdivision of the triangles (OpenSubdiv Far)");
+  return s;
 }
 
 std::string MeshSubdivideCommand::label() const {
-  return "Subdivide '" + object_ + "' (Loop, " + std::to_string(levels_) + (levels_ == 1 ? " level)" : " levels)");
+  return "Subdivide '" + p_.object + "' (Loop, " + std::to_string(p_.levels) + (p_.levels == 1 ? " level)" : " levels)");
 }
 
 std::optional<SceneObject> MeshSubdivideCommand::build(const Scene& scene) {
-  const SceneObject* object = scene.find(object_);
-  if (!object) throw CommandError("field 'object': no object named '" + object_ + "'", "object");
+  const SceneObject* object = scene.find(p_.object);
+  if (!object) throw CommandError("field 'object': no object named '" + p_.object + "'", "object");
   require_no_tile_layers(*object, "a new mesh");
   const char* deformed = object->ffd ? "an FFD lattice" : object->dffd ? "a DFFD split" : object->clip ? "a glTF clip"
                                                                                                       : nullptr;
   if (deformed)
-    throw CommandError("field 'object': '" + object_ + "' has " + deformed + " bound to its vertices; subdivide " +
+    throw CommandError("field 'object': '" + p_.object + "' has " + deformed + " bound to its vertices; subdivide " +
                            "before deforming (mesh.subdivide first, then place.sketch / lattice.ring / dffd.* / " +
                            "anim.clip)", "object");
   const TriMesh& rest = *object->rest_mesh;
-  const std::size_t tris = rest.triangle_count() << (2 * levels_);
+  const std::size_t tris = rest.triangle_count() << (2 * p_.levels);
   if (tris > kMaxTriangles)
-    throw CommandError("field 'levels': " + std::to_string(levels_) + " levels would make " + std::to_string(tris) +
+    throw CommandError("field 'levels': " + std::to_string(p_.levels) + " levels would make " + std::to_string(tris) +
                            " triangles (at most " + std::to_string(kMaxTriangles) + ")", "levels");
   const auto t0 = std::chrono::steady_clock::now();
   TriMesh sub;
   try {
-    sub = loop_subdivide(rest, levels_);
+    sub = loop_subdivide(rest, p_.levels);
   } catch (const std::invalid_argument& e) {
     throw CommandError(std::string("field 'object': ") + e.what(), "object");
   }
   SceneObject out = *object;
   out.rest_mesh = std::make_shared<const TriMesh>(std::move(sub));
   out.refresh();
-  stats_ = {{"levels", levels_},
+  stats_ = {{"levels", p_.levels},
             {"vertices_before", rest.vertex_count()},
             {"vertices_after", out.rest_mesh->vertex_count()},
             {"triangles_before", rest.triangle_count()},

@@ -16,6 +16,7 @@
 // ("object"); levels outside 1..4 or a result over 8,000,000 triangles ("levels"); another scheme ("scheme").
 #pragma once
 
+#include "core/commands/declared_command.h"
 #include "core/commands/snapshot_command.h"
 #include "core/mesh/tri_mesh.h"
 
@@ -28,21 +29,25 @@ namespace trispline::core {
 // size, or topology OpenSubdiv cannot refine.
 TriMesh loop_subdivide(const TriMesh& mesh, int levels);
 
-class MeshSubdivideCommand : public SnapshotCommand {
+struct MeshSubdivideParams {
+  std::string object;
+  int levels = 1;
+  std::string scheme = "loop";
+};
+
+class MeshSubdivideCommand : public DeclaredCommand<MeshSubdivideCommand, MeshSubdivideParams, SnapshotCommand> {
  public:
-  static CommandPtr parse(const nlohmann::json& j, const CommandContext& ctx);
-  std::string id() const override { return "mesh.subdivide"; }
-  nlohmann::json to_json() const override;
+  using DeclaredCommand::DeclaredCommand;
+  static const ParamSchema<MeshSubdivideParams>& schema();
+
   std::string label() const override;
   nlohmann::json stats() const override { return stats_; }
 
  protected:
-  std::string target() const override { return object_; }
+  std::string target() const override { return p_.object; }
   std::optional<SceneObject> build(const Scene& scene) override;
 
  private:
-  std::string object_;
-  int levels_ = 1;
   nlohmann::json stats_ = nlohmann::json::object();
 };
 

@@ -154,6 +154,27 @@ nlohmann::json Codec<std::vector<glm::dvec2>>::write(const std::vector<glm::dvec
   return a;
 }
 
+std::vector<glm::dvec3> Codec<std::vector<glm::dvec3>>::read(const nlohmann::json& v, const std::string& field) {
+  if (!v.is_array()) fail(field, "expected an array of [x, y, z] points, got " + std::string(v.type_name()));
+  std::vector<glm::dvec3> pts;
+  pts.reserve(v.size());
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    try {
+      pts.push_back(Codec<glm::dvec3>::read(v[i], field));
+    } catch (const CommandError& e) {
+      const std::string what = e.what(), prefix = "field '" + field + "': ";
+      fail(field, "point " + std::to_string(i) + ": " + (what.rfind(prefix, 0) == 0 ? what.substr(prefix.size()) : what));
+    }
+  }
+  return pts;
+}
+
+nlohmann::json Codec<std::vector<glm::dvec3>>::write(const std::vector<glm::dvec3>& pts) {
+  nlohmann::json a = nlohmann::json::array();
+  for (const auto& p : pts) a.push_back({p.x, p.y, p.z});
+  return a;
+}
+
 std::vector<double> Codec<std::vector<double>>::read(const nlohmann::json& v, const std::string& field) {
   if (!v.is_array()) fail(field, "expected an array of numbers, got " + std::string(v.type_name()));
   std::vector<double> out;

@@ -145,6 +145,13 @@ struct Codec<std::vector<glm::dvec2>> {
   static std::string type() { return "[[x,y],…]"; }
 };
 template <>
+struct Codec<std::vector<glm::dvec3>> {
+  static constexpr ParamKind kind = ParamKind::Other;
+  static std::vector<glm::dvec3> read(const nlohmann::json& v, const std::string& field);  // errors name the point
+  static nlohmann::json write(const std::vector<glm::dvec3>& pts);
+  static std::string type() { return "[[x,y,z],…]"; }
+};
+template <>
 struct Codec<std::vector<double>> {
   static constexpr ParamKind kind = ParamKind::Other;
   static std::vector<double> read(const nlohmann::json& v, const std::string& field);

@@ -3,51 +3,44 @@
 #include <chrono>
 #include <cmath>
 
-#include "core/commands/json_fields.h"
 #include "core/commands/snapshot_command.h"
 
 namespace trispline::core {
-namespace jf = json_fields;
 
-CommandPtr PlaceArrayCommand::parse(const nlohmann::json& j, const CommandContext&) {
-  auto c = std::make_unique<PlaceArrayCommand>();
-  c->object_ = jf::get_string(j, "object");
-  c->count_ = jf::get_int(j, "count", c->count_);
-  if (c->count_ < 1 || c->count_ > 64) throw CommandError("field 'count': must be in [1, 64]", "count");
-  c->spacing_ = jf::get_number(j, "spacing", c->spacing_);
-  if (std::abs(c->spacing_) > 10.0) throw CommandError("field 'spacing': |spacing| must be ≤ 10 parameter units", "spacing");
-  c->clip_phase_s_ = jf::get_number(j, "clip_phase_s", 0.0);
-  if (std::abs(c->clip_phase_s_) > 1e4) throw CommandError("field 'clip_phase_s': |phase| must be ≤ 1e4 s", "clip_phase_s");
-  return c;
-}
-
-nlohmann::json PlaceArrayCommand::to_json() const {
-  nlohmann::json j = {{"cmd", id()}, {"object", object_}, {"count", count_}, {"spacing", spacing_}};
-  if (clip_phase_s_ != 0.0) j["clip_phase_s"] = clip_phase_s_;
-  return j;
+const ParamSchema<PlaceArrayParams>& PlaceArrayCommand::schema() {
+  using P = PlaceArrayParams;
+  static const ParamSchema<P> s =
+      ParamSchema<P>("place.array", "Add copies of a placed object in a row along its path (seed Fig. 2.11, the ants)")
+          .field("object", &P::object).required().help("A placed object")
+          .field("count", &P::count).range(1, 64).help("Copies to add")
+          .field("spacing", &P::spacing).magnitude_at_most(10).unit("parameter units")
+          .help("u offset between neighbouring copies")
+          .field("clip_phase_s", &P::clip_phase_s).magnitude_at_most(1e4).unit("seconds").write_unless_default()
+          .help("Each copy's glTF clip starts this much later than the one before");
+  return s;
 }
 
 std::string PlaceArrayCommand::label() const {
-  return "Array " + std::to_string(count_) + " × '" + object_ + "' along its path";
+  return "Array " + std::to_string(p_.count) + " × '" + p_.object + "' along its path";
 }
 
 void PlaceArrayCommand::redo(Scene& scene) {
-  const SceneObject& source = require_deformed_object(scene, object_);
+  const SceneObject& source = require_deformed_object(scene, p_.object);
   const auto t0 = std::chrono::steady_clock::now();
   // Build every copy first; the scene changes only after all of them evaluated.
   Scene names = scene;  // for unique names only (objects share their meshes: cheap)
   std::vector<SceneObject> copies;
-  const int base_index = scene.index_of(object_);
-  for (int k = 1; k <= count_; ++k) {
+  const int base_index = scene.index_of(p_.object);
+  for (int k = 1; k <= p_.count; ++k) {
     SceneObject c = source;
-    c.name = names.unique_name(object_);
+    c.name = names.unique_name(p_.object);
     c.color = palette_color(static_cast<int>(scene.objects().size()) + k - 1);
-    const double du = -spacing_ * k;
+    const double du = -p_.spacing * k;
     c.param_offset.x += du;
     for (OffsetKey& key : c.offset_keys) key.offset.x += du;
     if (c.clip) {
       auto b = std::make_shared<ClipBinding>(*c.clip);
-      b->start_s += clip_phase_s_ * k;
+      b->start_s += p_.clip_phase_s * k;
       c.clip = std::move(b);
     }
     try {

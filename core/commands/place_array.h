@@ -9,27 +9,31 @@
 // spacing not finite or |s| > 10 ("spacing"), non-finite clip_phase_s ("clip_phase_s").
 #pragma once
 
+#include "core/commands/declared_command.h"
 #include "core/commands/command.h"
 
 #include <vector>
 
 namespace trispline::core {
 
-class PlaceArrayCommand : public Command {
+struct PlaceArrayParams {
+  std::string object;
+  int count = 2;
+  double spacing = 0.25;      // parameter units along u
+  double clip_phase_s = 0.0;  // seconds
+};
+
+class PlaceArrayCommand : public DeclaredCommand<PlaceArrayCommand, PlaceArrayParams> {
  public:
-  static CommandPtr parse(const nlohmann::json& j, const CommandContext& ctx);
-  std::string id() const override { return "place.array"; }
-  nlohmann::json to_json() const override;
+  using DeclaredCommand::DeclaredCommand;
+  static const ParamSchema<PlaceArrayParams>& schema();
+
   std::string label() const override;
   void redo(Scene& scene) override;
   void undo(Scene& scene) override;
   nlohmann::json stats() const override { return stats_; }
 
  private:
-  std::string object_;
-  int count_ = 2;
-  double spacing_ = 0.25;
-  double clip_phase_s_ = 0.0;
   std::vector<std::string> added_;  // names of the copies, known after redo
   nlohmann::json stats_ = nlohmann::json::object();
 };

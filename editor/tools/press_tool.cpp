@@ -38,10 +38,8 @@ static_assert(std::size(kFalloffTips) == core::kFalloffNames.size());
 
 nlohmann::json lattice_press_line(const std::string& object, const std::vector<glm::dvec3>& path, double radius,
                                   double strength, core::Falloff falloff) {
-  nlohmann::json p = nlohmann::json::array();
-  for (const glm::dvec3& c : path) p.push_back({c.x, c.y, c.z});
-  return {{"cmd", "lattice.press"}, {"object", object},     {"path", p},
-          {"radius", radius},       {"strength", strength}, {"falloff", std::string(core::to_string(falloff))}};
+  return core::LatticePressCommand::schema().to_json(
+      core::LatticePressParams{object, path, radius, strength, std::string(core::to_string(falloff))});
 }
 
 ui::ToolEntry PressTool::entry() const {

@@ -75,7 +75,7 @@ INSTANTIATE_TEST_SUITE_P(
                       BadLogCase{"bad_animate_no_ffd.jsonl", 2, "object", "no FFD lattice"},
                       BadLogCase{"bad_refine_tolerance.jsonl", 3, "tolerance", "> 0"},
                       BadLogCase{"bad_width_profile.jsonl", 4, "width_profile", "finite"},
-                      BadLogCase{"bad_press_radius.jsonl", 5, "radius", "positive"},
+                      BadLogCase{"bad_press_radius.jsonl", 5, "radius", "> 0"},
                       BadLogCase{"bad_keyframe_nan.jsonl", 5, "u", "expected a number"},
                       BadLogCase{"bad_timeline_fps.jsonl", 2, "fps", "[0.01, 240]"},
                       BadLogCase{"bad_empty_clip.jsonl", 2, "clip", "animates no mesh"},
