@@ -81,12 +81,9 @@ const CommandRegistry& CommandRegistry::builtin() {
     r.add<core::AnimTimelineCommand>();
     r.add<core::AnimKeyframeCommand>();
     r.add<core::AnimClipCommand>();
-    r.add("dffd.cut", "Cut a deformed object at a lattice parameter: C⁻¹ knots, exact mesh split, opening (seed §6.3)",
-          core::DffdCutCommand::parse);
-    r.add("incision.draw", "Cut an incision drawn on a surface: width, depth, opening, walls (seed §6.4)",
-          core::IncisionDrawCommand::parse);
-    r.add("dffd.split", "Split an object around obstacles with a global discontinuous FFD; open, stitched or capped "
-          "openings (seed §6.3)", core::DffdSplitCommand::parse);
+    r.add<core::DffdCutCommand>();
+    r.add<core::IncisionDrawCommand>();
+    r.add<core::DffdSplitCommand>();
     r.add<core::PlaceArrayCommand>();
     r.add<core::AnimRecordCommand>();
     return r;

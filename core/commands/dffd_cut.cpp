@@ -4,11 +4,9 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/commands/json_fields.h"
 #include "core/deform/dffd.h"
 
 namespace trispline::core {
-namespace jf = json_fields;
 
 namespace {
 const char* kAxisNames[] = {"u", "v", "w"};
@@ -30,53 +28,51 @@ glm::dvec3 plane_centroid(const TrivariateBSpline<glm::dvec3>& F, int axis, int 
 }
 }  // namespace
 
-CommandPtr DffdCutCommand::parse(const nlohmann::json& j, const CommandContext&) {
-  auto c = std::make_unique<DffdCutCommand>();
-  c->object_ = jf::get_string(j, "object");
-  const std::string axis = jf::get_enum(j, "axis", {"u", "v", "w"}, "u");
-  c->axis_ = axis == "u" ? 0 : axis == "v" ? 1 : 2;
-  c->at_ = jf::get_number(j, "at");
-  c->gap_ = jf::get_number(j, "gap", 0.0);
-  if (std::abs(c->gap_) > 100.0) throw CommandError("field 'gap': |gap| must be ≤ 100 world units", "gap");
-  c->eps_ = jf::get_number(j, "eps", 1e-6);
-  if (!(c->eps_ > 0.0 && c->eps_ <= 1e-3)) throw CommandError("field 'eps': must be in (0, 1e-3]", "eps");
-  return c;
-}
-
-nlohmann::json DffdCutCommand::to_json() const {
-  return {{"cmd", id()}, {"object", object_}, {"axis", kAxisNames[axis_]}, {"at", at_}, {"gap", gap_}, {"eps", eps_}};
+const ParamSchema<DffdCutParams>& DffdCutCommand::schema() {
+  using P = DffdCutParams;
+  static const ParamSchema<P> s =
+      ParamSchema<P>("dffd.cut",
+                     "Cut a deformed object at a lattice parameter: C⁻¹ knots, exact mesh split, opening (seed §6.3)")
+          .field("object", &P::object).required().help("A deformed object (with an FFD), without a glTF clip")
+          .choice("axis", &P::axis, {"u", "v", "w"}).help("Lattice axis the cut plane is orthogonal to")
+          .field("at", &P::at).required().unit("parameter units").help("Parameter of the cut, inside the domain")
+          .field("gap", &P::gap).magnitude_at_most(100).unit("world units")
+          .help("How far the two sides move apart across the cut")
+          .field("eps", &P::eps).range(0, 1e-3, true, false).unit("parameter units")
+          .help("Cut vertices sit at at ∓ eps");
+  return s;
 }
 
 std::string DffdCutCommand::label() const {
   char buf[64];
-  std::snprintf(buf, sizeof buf, " at %s = %g", kAxisNames[axis_], at_);
-  return "Cut '" + object_ + "'" + buf;
+  std::snprintf(buf, sizeof buf, " at %s = %g", kAxisNames[p_.axis], p_.at);
+  return "Cut '" + p_.object + "'" + buf;
 }
 
 std::optional<SceneObject> DffdCutCommand::build(const Scene& scene) {
-  const SceneObject& object = require_deformed_object(scene, object_);
+  const SceneObject& object = require_deformed_object(scene, p_.object);
   if (object.clip)
-    throw CommandError("field 'object': '" + object_ + "' plays a glTF clip; cutting would break its vertex "
+    throw CommandError("field 'object': '" + p_.object + "' plays a glTF clip; cutting would break its vertex "
                        "correspondence (remove the clip first)", "object");
   const auto t0 = std::chrono::steady_clock::now();
   auto binding = std::make_shared<FfdBinding>(*object.ffd);
   Discontinuity disc;
   try {
-    disc = insert_discontinuity(binding->lattice, axis_, at_);
+    disc = insert_discontinuity(binding->lattice, p_.axis, p_.at);
   } catch (const std::invalid_argument& e) {
     throw CommandError(std::string("field 'at': ") + e.what(), "at");
   }
-  MeshSplit split = split_mesh_at_parameter(*object.rest_mesh, object.ffd->params, axis_, at_, eps_);
-  if (gap_ != 0.0) {
-    const int last = binding->lattice.control_counts()[axis_] - 1;
-    const glm::dvec3 a = plane_centroid(binding->lattice, axis_, std::max(0, disc.minus_plane - 1));
-    const glm::dvec3 b = plane_centroid(binding->lattice, axis_, std::min(last, disc.plus_plane + 1));
+  MeshSplit split = split_mesh_at_parameter(*object.rest_mesh, object.ffd->params, p_.axis, p_.at, p_.eps);
+  if (p_.gap != 0.0) {
+    const int last = binding->lattice.control_counts()[p_.axis] - 1;
+    const glm::dvec3 a = plane_centroid(binding->lattice, p_.axis, std::max(0, disc.minus_plane - 1));
+    const glm::dvec3 b = plane_centroid(binding->lattice, p_.axis, std::min(last, disc.plus_plane + 1));
     const double len = glm::length(b - a);
     if (!(len > 0.0))
-      throw CommandError("field 'at': the lattice has no extent along " + std::string(kAxisNames[axis_]) +
+      throw CommandError("field 'at': the lattice has no extent along " + std::string(kAxisNames[p_.axis]) +
                          " at the cut, so the opening has no direction", "at");
     const glm::dvec3 d = (b - a) / len;
-    open_discontinuity(binding->lattice, disc, -0.5 * gap_ * d, 0.5 * gap_ * d);
+    open_discontinuity(binding->lattice, disc, -0.5 * p_.gap * d, 0.5 * p_.gap * d);
   }
   SceneObject out = object;
   const std::size_t before = object.rest_mesh->positions.size();

@@ -14,26 +14,32 @@
 // (0, 1e-3] ("eps").
 #pragma once
 
+#include "core/commands/declared_command.h"
 #include "core/commands/snapshot_command.h"
 
 namespace trispline::core {
 
-class DffdCutCommand : public SnapshotCommand {
+struct DffdCutParams {
+  std::string object;
+  int axis = 0;       // lattice axis: 0 u, 1 v, 2 w
+  double at = 0.5;    // parameter of the cut
+  double gap = 0.0;   // world units the two sides open by
+  double eps = 1e-6;  // parameter units: cut vertices at at ∓ eps
+};
+
+class DffdCutCommand : public DeclaredCommand<DffdCutCommand, DffdCutParams, SnapshotCommand> {
  public:
-  static CommandPtr parse(const nlohmann::json& j, const CommandContext& ctx);
-  std::string id() const override { return "dffd.cut"; }
-  nlohmann::json to_json() const override;
+  using DeclaredCommand::DeclaredCommand;
+  static const ParamSchema<DffdCutParams>& schema();
+
   std::string label() const override;
   nlohmann::json stats() const override { return stats_; }
 
  protected:
-  std::string target() const override { return object_; }
+  std::string target() const override { return p_.object; }
   std::optional<SceneObject> build(const Scene& scene) override;
 
  private:
-  std::string object_;
-  int axis_ = 0;
-  double at_ = 0.5, gap_ = 0.0, eps_ = 1e-6;
   nlohmann::json stats_ = nlohmann::json::object();
 };
 

@@ -4,101 +4,90 @@
 #include <chrono>
 
 #include "core/commands/codecs.h"
-#include "core/commands/json_fields.h"
 
 namespace trispline::core {
-namespace jf = json_fields;
 
 namespace {
-const std::vector<std::string> kAxes = {"x", "y", "z"};
 double ms_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
-}  // namespace
 
-CommandPtr DffdSplitCommand::parse(const nlohmann::json& j, const CommandContext&) {
-  auto c = std::make_unique<DffdSplitCommand>();
-  c->object_ = jf::get_string(j, "object");
-  const nlohmann::json& obs = jf::require(j, "obstacles");
-  if (!obs.is_array() || obs.empty())
-    throw CommandError("field 'obstacles': expected a non-empty array of object ids", "obstacles");
-  for (const auto& o : obs) {
-    if (!o.is_string()) throw CommandError("field 'obstacles': expected object ids (strings)", "obstacles");
-    const std::string id = o.get<std::string>();
-    if (id == c->object_)
-      throw CommandError("field 'obstacles': '" + id + "' is the object being split", "obstacles");
-    if (std::find(c->obstacles_.begin(), c->obstacles_.end(), id) != c->obstacles_.end())
-      throw CommandError("field 'obstacles': '" + id + "' is listed twice", "obstacles");
-    c->obstacles_.push_back(id);
-  }
-  GlobalDffdParams& p = c->params_;
-  p.axis = axis_index(jf::get_enum(j, "axis", kAxes, "x"));
-  p.w_axis = axis_index(jf::get_enum(j, "w_axis", kAxes, "y"));
-  if (p.axis == p.w_axis) throw CommandError("field 'w_axis': must differ from 'axis'", "w_axis");
-  p.order = jf::has(j, "order") ? jf::get_ivec3(j, "order") : glm::ivec3(3);
-  p.controls = jf::has(j, "controls") ? jf::get_ivec3(j, "controls") : glm::ivec3(12, 8, 8);
-  p.kernel = jf::get_enum(j, "kernel", {"gaussian", "bspline"}, "gaussian") == "gaussian" ? DffdKernel::gaussian
-                                                                                           : DffdKernel::bspline;
-  p.kernel_width = jf::get_number(j, "kernel_width");
-  if (!(p.kernel_width > 0.0)) throw CommandError("field 'kernel_width': must be > 0 (world units)", "kernel_width");
-  const std::string openings = jf::get_enum(j, "openings", {"open", "stitch", "cap"}, "cap");
-  p.openings = openings == "open" ? DffdOpenings::open : openings == "stitch" ? DffdOpenings::stitch : DffdOpenings::cap;
-  p.reject_fold = jf::get_enum(j, "fold", {"reject", "warn"}, "reject") == "reject";
-  p.margin = jf::get_number(j, "margin", -1.0);
-  if (jf::has(j, "margin") && p.margin < 0.0) throw CommandError("field 'margin': must be ≥ 0 (world units)", "margin");
-  p.clearance = jf::get_number(j, "clearance", 0.0);
-  if (p.clearance < 0.0) throw CommandError("field 'clearance': must be ≥ 0 (world units)", "clearance");
-  p.eps = jf::get_number(j, "eps", 1e-6);
-  if (!(p.eps > 0.0 && p.eps <= 1e-3)) throw CommandError("field 'eps': must be in (0, 1e-3]", "eps");
-  if (jf::has(j, "box")) {
-    const nlohmann::json& b = j.at("box");
-    if (!b.is_object()) throw CommandError("field 'box': expected {\"lo\":[x,y,z],\"hi\":[x,y,z]}", "box");
-    Aabb box;
-    box.lo = jf::get_vec3(b, "lo");
-    box.hi = jf::get_vec3(b, "hi");
-    p.box = box;
-  }
-  return c;
+const ParamSchema<Aabb>& box_schema() {
+  static const ParamSchema<Aabb> s = ParamSchema<Aabb>("box", "An axis-aligned box")
+                                         .field("lo", &Aabb::lo).required().unit("world units").help("Lowest corner")
+                                         .field("hi", &Aabb::hi).required().unit("world units").help("Highest corner");
+  return s;
 }
 
-nlohmann::json DffdSplitCommand::to_json() const {
-  const GlobalDffdParams& p = params_;
-  nlohmann::json j = {{"cmd", id()},
-                      {"object", object_},
-                      {"obstacles", obstacles_},
-                      {"axis", kAxes[p.axis]},
-                      {"w_axis", kAxes[p.w_axis]},
-                      {"order", jf::to_json(p.order)},
-                      {"controls", jf::to_json(p.controls)},
-                      {"kernel", p.kernel == DffdKernel::gaussian ? "gaussian" : "bspline"},
-                      {"kernel_width", p.kernel_width},
-                      {"openings", dffd_openings_name(p.openings)},
-                      {"fold", p.reject_fold ? "reject" : "warn"},
-                      {"clearance", p.clearance},
-                      {"eps", p.eps}};
-  if (p.margin >= 0.0) j["margin"] = p.margin;
-  if (p.box) j["box"] = {{"lo", jf::to_json(p.box->lo)}, {"hi", jf::to_json(p.box->hi)}};
-  return j;
+}  // namespace
+
+const ParamSchema<GlobalDffdParams>& global_dffd_schema() {
+  using G = GlobalDffdParams;
+  static const ParamSchema<G> s =
+      ParamSchema<G>("dffd", "The lattice of a global DFFD")
+          .choice("axis", &G::axis, axis_names()).help("World axis of the lattice's u: the travel direction")
+          .choice("w_axis", &G::w_axis, axis_names())
+          .help("World axis of the lattice's w: the slicing planes W_k are orthogonal to it")
+          .check([](const G& g) {
+            if (g.axis == g.w_axis) params::fail("w_axis", "must differ from 'axis'");
+          })
+          .field("order", &G::order).help("Order (= degree + 1) per lattice axis, 2..6")
+          .field("controls", &G::controls).help("Control points per lattice axis before knot insertion, order..64")
+          .choice("kernel", &G::kernel, {"gaussian", "bspline"}).help("κ: truncated Gaussian or quadratic B-spline")
+          .field("kernel_width", &G::kernel_width).required().above(0).unit("world units")
+          .help("κ's reach along axis (the opening's propagation)")
+          .choice("openings", &G::openings, {"open", "stitch", "cap"})
+          .help("open: holes; stitch: re-joined behind the obstacle; cap: closed by CGAL-triangulated caps")
+          .choice("fold", &G::reject_fold, {"warn", "reject"}).help("A fold-over (seed Theorem 6) fails or only warns")
+          .field("margin", &G::margin).at_least(0).write_unless_default().unit("world units")
+          .default_text("1.05 × kernel_width").help("Lattice growth beyond the obstacles along axis")
+          .field("clearance", &G::clearance).at_least(0).unit("world units")
+          .help("Kept between the wrapped object and the obstacle")
+          .field("eps", &G::eps).range(0, 1e-3, true, false).unit("parameter units")
+          .help("Cut vertices sit at u0 ∓ eps")
+          .object("box", &G::box, box_schema()).help("The lattice box; every obstacle must lie inside it");
+  return s;
+}
+
+const ParamSchema<DffdSplitParams>& DffdSplitCommand::schema() {
+  using P = DffdSplitParams;
+  static const ParamSchema<P> s =
+      ParamSchema<P>("dffd.split", "Split an object around obstacles with a global discontinuous FFD; open, stitched "
+                                   "or capped openings (seed §6.3)")
+          .field("object", &P::object).required().help("An undeformed object without a glTF clip")
+          .field("obstacles", &P::obstacles).required().help("Ids of other objects (static)")
+          .check([](const P& p) {
+            if (p.obstacles.empty()) params::fail("obstacles", "expected a non-empty array of object ids");
+            for (std::size_t i = 0; i < p.obstacles.size(); ++i) {
+              const std::string& id = p.obstacles[i];
+              if (id == p.object) params::fail("obstacles", "'" + id + "' is the object being split");
+              if (std::find(p.obstacles.begin(), p.obstacles.begin() + std::ptrdiff_t(i), id) !=
+                  p.obstacles.begin() + std::ptrdiff_t(i))
+                params::fail("obstacles", "'" + id + "' is listed twice");
+            }
+          })
+          .embed(&P::dffd, global_dffd_schema());
+  return s;
 }
 
 std::string DffdSplitCommand::label() const {
-  return "Split '" + object_ + "' around " + std::to_string(obstacles_.size()) + " obstacle" +
-         (obstacles_.size() == 1 ? "" : "s") + " (" + dffd_openings_name(params_.openings) + ")";
+  return "Split '" + p_.object + "' around " + std::to_string(p_.obstacles.size()) + " obstacle" +
+         (p_.obstacles.size() == 1 ? "" : "s") + " (" + dffd_openings_name(p_.dffd.openings) + ")";
 }
 
 std::optional<SceneObject> DffdSplitCommand::build(const Scene& scene) {
-  const SceneObject* object = scene.find(object_);
-  if (!object) throw CommandError("field 'object': no object named '" + object_ + "'", "object");
+  const SceneObject* object = scene.find(p_.object);
+  if (!object) throw CommandError("field 'object': no object named '" + p_.object + "'", "object");
   require_no_tile_layers(*object, "a split");
   if (object->ffd)
-    throw CommandError("field 'object': '" + object_ + "' is deformed by an FFD lattice; dffd.split builds its own "
+    throw CommandError("field 'object': '" + p_.object + "' is deformed by an FFD lattice; dffd.split builds its own "
                        "lattice around the obstacles (split an undeformed object)", "object");
   if (object->clip)
-    throw CommandError("field 'object': '" + object_ + "' plays a glTF clip; splitting would break its vertex "
+    throw CommandError("field 'object': '" + p_.object + "' plays a glTF clip; splitting would break its vertex "
                        "correspondence (remove the clip first)", "object");
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<DffdObstacle> obstacles;
-  for (const std::string& id : obstacles_) {
+  for (const std::string& id : p_.obstacles) {
     const SceneObject* o = scene.find(id);
     if (!o) throw CommandError("field 'obstacles': no object named '" + id + "'", "obstacles");
     if (!o->world_mesh || o->world_mesh->empty())
@@ -106,7 +95,7 @@ std::optional<SceneObject> DffdSplitCommand::build(const Scene& scene) {
     obstacles.push_back({id, *o->world_mesh});
   }
   const TriMesh rest = object->world_rest_mesh();
-  GlobalDffdParams p = params_;
+  GlobalDffdParams p = p_.dffd;
   p.offset = object->offset_at(0.0);
   GlobalDffd built = [&] {
     try {
@@ -123,7 +112,7 @@ std::optional<SceneObject> DffdSplitCommand::build(const Scene& scene) {
   out.world_mesh = std::make_shared<const TriMesh>(dffd_apply(*out.dffd, rest, p.offset, &st));
   const double eval_ms = ms_since(t1);
   if (st.open_chains > 0 && p.openings != DffdOpenings::open)
-    throw CommandError("field 'openings': '" + object_ + "' is not closed where it is cut (" +
+    throw CommandError("field 'openings': '" + p_.object + "' is not closed where it is cut (" +
                        std::to_string(st.open_chains) + " open boundary chain(s) on the discontinuity planes), so "
                        "its openings cannot be " + (p.openings == DffdOpenings::cap ? "capped" : "stitched") +
                        "; use \"openings\":\"open\" or close the mesh", "openings");

@@ -21,27 +21,34 @@
 #include <optional>
 #include <vector>
 
+#include "core/commands/declared_command.h"
 #include "core/commands/snapshot_command.h"
 #include "core/deform/dffd_global.h"
 
 namespace trispline::core {
 
-class DffdSplitCommand : public SnapshotCommand {
+struct DffdSplitParams {
+  std::string object;
+  std::vector<std::string> obstacles;  // ids of other objects (their meshes when the command runs)
+  GlobalDffdParams dffd;               // kernel_width is required in a line
+};
+
+// The fields of dffd.split that configure the lattice (axis, w_axis, order, controls, kernel, …).
+const ParamSchema<GlobalDffdParams>& global_dffd_schema();
+
+class DffdSplitCommand : public DeclaredCommand<DffdSplitCommand, DffdSplitParams, SnapshotCommand> {
  public:
-  static CommandPtr parse(const nlohmann::json& j, const CommandContext& ctx);
-  std::string id() const override { return "dffd.split"; }
-  nlohmann::json to_json() const override;
+  using DeclaredCommand::DeclaredCommand;
+  static const ParamSchema<DffdSplitParams>& schema();
+
   std::string label() const override;
   nlohmann::json stats() const override { return stats_; }
 
  protected:
-  std::string target() const override { return object_; }
+  std::string target() const override { return p_.object; }
   std::optional<SceneObject> build(const Scene& scene) override;
 
  private:
-  std::string object_;
-  std::vector<std::string> obstacles_;
-  GlobalDffdParams params_;
   nlohmann::json stats_ = nlohmann::json::object();
 };
 

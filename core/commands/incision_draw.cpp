@@ -6,97 +6,92 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/commands/json_fields.h"
 #include "core/raycast/ray_caster.h"
 
 namespace trispline::core {
-namespace jf = json_fields;
 
-CommandPtr IncisionDrawCommand::parse(const nlohmann::json& j, const CommandContext& ctx) {
-  auto c = std::make_unique<IncisionDrawCommand>();
-  c->object_ = jf::get_string(j, "object");
-  c->stroke_ = jf::get_points2(j, "stroke");
-  if (c->stroke_.size() < 2) throw CommandError("field 'stroke': needs at least 2 points", "stroke");
-  if (jf::has(j, "camera"))  // the view the stroke was drawn in (as place.sketch): no camera.set needed
-    c->camera_ = camera_schema().parse_nested(j.at("camera"), "camera", ctx);
-  for (const glm::dvec2& p : c->stroke_)
-    if (!std::isfinite(p.x) || !std::isfinite(p.y))
-      throw CommandError("field 'stroke': points must be finite", "stroke");
-  IncisionParams& p = c->params_;
-  p.width = jf::get_number(j, "width");
-  if (!(p.width > 0.0)) throw CommandError("field 'width': must be > 0 world units", "width");
-  p.depth = jf::get_number(j, "depth");
-  if (!(p.depth > 0.0))
-    throw CommandError("field 'depth': zero depth: the cut must go below the surface (depth > 0)", "depth");
-  p.opening = jf::get_number(j, "opening", 0.0);
-  if (p.opening < 0.0) throw CommandError("field 'opening': must be ≥ 0 world units", "opening");
-  p.walls = jf::get_bool(j, "walls", true);
-  p.order = jf::get_int(j, "order", 3);
-  if (p.order < 2 || p.order > 4) throw CommandError("field 'order': must be in 2..4", "order");
-  if (jf::has(j, "controls")) {
-    const glm::ivec3 n = jf::get_ivec3(j, "controls");
-    if (n.x % 2 == 0 || n.x < std::max(3, p.order) || n.x > 31 || n.y < p.order || n.y > 64 || n.z % 2 == 0 ||
-        n.z < std::max(3, p.order) || n.z > 31)
-      throw CommandError("field 'controls': [l, m, n] with l, n odd in max(3, order)..31 and m in order..64",
-                         "controls");
-    p.controls_u = n.x, p.controls_v = n.y, p.controls_w = n.z;
-    c->has_controls_ = true;
-  }
-  p.kernel = jf::get_enum(j, "kernel", {"gaussian", "bspline"}, "gaussian") == "bspline" ? IncisionKernel::bspline
-                                                                                         : IncisionKernel::gaussian;
-  p.wall_rows = jf::get_int(j, "wall_rows", 4);
-  if (p.wall_rows < 1 || p.wall_rows > 32) throw CommandError("field 'wall_rows': must be in 1..32", "wall_rows");
-  return c;
+const ParamSchema<IncisionParams>& incision_schema() {
+  using I = IncisionParams;
+  static const ParamSchema<I> s =
+      ParamSchema<I>("incision", "The shape of an incision (seed §6.4, Eq. 6.2)")
+          .field("width", &I::width).required().above(0).unit("world units")
+          .help("How far the opening reaches across the cut (the lattice spans ±width)")
+          .field("depth", &I::depth).required().above(0).unit("world units")
+          .help("How deep below the surface the cut goes (along −N)")
+          .field("opening", &I::opening).at_least(0).unit("world units")
+          .help("Gap between the two cut faces at the surface, mid-stroke")
+          .field("walls", &I::walls).help("Close the cut with walls (inside colour); false leaves it open")
+          .field("order", &I::order).range(2, 4).help("Order (= degree + 1) of the lattice in u, v, w")
+          .choice("kernel", &I::kernel, {"gaussian", "bspline"}).help("κ of the opening along u")
+          .field("wall_rows", &I::wall_rows).range(1, 32).help("Rows of wall quads from each rim to the bottom");
+  return s;
 }
 
-nlohmann::json IncisionDrawCommand::to_json() const {
-  nlohmann::json j = {{"cmd", id()},
-                      {"object", object_},
-                      {"stroke", jf::to_json(stroke_)},
-                      {"width", params_.width},
-                      {"depth", params_.depth},
-                      {"opening", params_.opening},
-                      {"walls", params_.walls},
-                      {"order", params_.order},
-                      {"kernel", params_.kernel == IncisionKernel::bspline ? "bspline" : "gaussian"},
-                      {"wall_rows", params_.wall_rows}};
-  if (has_controls_) j["controls"] = {params_.controls_u, params_.controls_v, params_.controls_w};
-  if (camera_) j["camera"] = camera_schema().fields_json(*camera_);
-  return j;
+const ParamSchema<IncisionDrawParams>& IncisionDrawCommand::schema() {
+  using P = IncisionDrawParams;
+  static const ParamSchema<P> s =
+      ParamSchema<P>("incision.draw", "Cut an incision drawn on a surface: width, depth, opening, walls (seed §6.4)")
+          .field("object", &P::object).required().help("An undeformed object (no ffd, dffd or clip)")
+          .field("stroke", &P::stroke).required().unit("pixels")
+          .help("Viewport points of the line's camera (else the scene camera), ≥ 2; each ray hits this object only")
+          .check([](const P& p) {
+            if (p.stroke.size() < 2) params::fail("stroke", "needs at least 2 points");
+          })
+          .object("camera", &P::camera, camera_schema()).help("The view the stroke was drawn in (camera.set's fields)")
+          .embed(&P::incision, incision_schema())
+          .field("controls", &P::controls).default_text("[7, clamp(#hits/3, order, 24), 5]")
+          .help("[l, m, n] before knot insertion: l, n odd in max(3, order)..31, m in order..64")
+          .check([](const P& p) {
+            if (!p.controls) return;
+            const glm::ivec3 n = *p.controls;
+            const int o = p.incision.order;
+            if (n.x % 2 == 0 || n.x < std::max(3, o) || n.x > 31 || n.y < o || n.y > 64 || n.z % 2 == 0 ||
+                n.z < std::max(3, o) || n.z > 31)
+              params::fail("controls", "[l, m, n] with l, n odd in max(3, order)..31 and m in order..64");
+          });
+  return s;
 }
+
+namespace {
+IncisionParams incision_params(const IncisionDrawParams& p) {
+  IncisionParams out = p.incision;
+  if (p.controls) out.controls_u = p.controls->x, out.controls_v = p.controls->y, out.controls_w = p.controls->z;
+  return out;
+}
+}  // namespace
 
 std::string IncisionDrawCommand::label() const {
   char buf[96];
-  std::snprintf(buf, sizeof buf, " (depth %g, opening %g)", params_.depth, params_.opening);
-  return "Incision on '" + object_ + "'" + buf;
+  std::snprintf(buf, sizeof buf, " (depth %g, opening %g)", p_.incision.depth, p_.incision.opening);
+  return "Incision on '" + p_.object + "'" + buf;
 }
 
 std::optional<SceneObject> IncisionDrawCommand::build(const Scene& scene) {
-  const SceneObject* object = scene.find(object_);
-  if (!object) throw CommandError("field 'object': no object named '" + object_ + "'", "object");
+  const SceneObject* object = scene.find(p_.object);
+  if (!object) throw CommandError("field 'object': no object named '" + p_.object + "'", "object");
   require_no_tile_layers(*object, "an incision");
   if (object->ffd || object->dffd || object->clip)
-    throw CommandError("field 'object': '" + object_ +
+    throw CommandError("field 'object': '" + p_.object +
                            "' is deformed (FFD, DFFD or clip); incisions cut "
                            "undeformed objects only",
                        "object");
   if (!object->rest_mesh || object->rest_mesh->empty())
-    throw CommandError("field 'object': '" + object_ + "' has no triangles to cut", "object");
-  if (!camera_ && !scene.camera_set)
+    throw CommandError("field 'object': '" + p_.object + "' has no triangles to cut", "object");
+  if (!p_.camera && !scene.camera_set)
     throw CommandError("field 'camera': stroke pixels need a camera: add a camera.set line before this one or a "
                        "\"camera\" object to this line", "camera");
-  const Camera& camera = camera_ ? *camera_ : scene.camera;
+  const Camera& camera = p_.camera ? *p_.camera : scene.camera;
   const auto t0 = std::chrono::steady_clock::now();
   // world_mesh is T(rest) for an object without ffd / dffd / clip (SceneObject::refresh).
   const TriMesh fallback = object->world_mesh ? TriMesh{} : object->world_rest_mesh();
   const TriMesh& world = object->world_mesh ? *object->world_mesh : fallback;
   // The target object only, and only its triangles under the stroke (same first hits, a much smaller BVH).
-  const RayCaster rays = stroke_ray_caster(world, camera, stroke_, BuildQuality::high);
-  const std::optional<IncisionFrame> frame = fit_incision_frame(stroke_, camera, rays);
-  if (!frame) throw CommandError("field 'stroke': the stroke misses the surface of '" + object_ + "'", "stroke");
+  const RayCaster rays = stroke_ray_caster(world, camera, p_.stroke, BuildQuality::high);
+  const std::optional<IncisionFrame> frame = fit_incision_frame(p_.stroke, camera, rays);
+  if (!frame) throw CommandError("field 'stroke': the stroke misses the surface of '" + p_.object + "'", "stroke");
   IncisionResult r = [&] {
     try {
-      return incise(world, *frame, params_);
+      return incise(world, *frame, incision_params(p_));
     } catch (const std::invalid_argument& e) {
       const std::string msg = e.what();
       const std::size_t colon = msg.find(':');
@@ -106,7 +101,7 @@ std::optional<SceneObject> IncisionDrawCommand::build(const Scene& scene) {
     }
   }();
   if (r.cut_edges == 0)
-    throw CommandError("field 'stroke': the cut crosses no edge of '" + object_ + "' (stroke too short?)", "stroke");
+    throw CommandError("field 'stroke': the cut crosses no edge of '" + p_.object + "' (stroke too short?)", "stroke");
 
   // Back to object space: only what the cut moved or added; the rest keeps its rest values bit for bit.
   const TriMesh& rest = *object->rest_mesh;

@@ -25,30 +25,37 @@
 #include <glm/glm.hpp>
 #include <vector>
 
+#include "core/commands/declared_command.h"
 #include "core/commands/snapshot_command.h"
 #include "core/scene/camera.h"
 #include "core/incision/incision.h"
 
 namespace trispline::core {
 
-class IncisionDrawCommand : public SnapshotCommand {
+struct IncisionDrawParams {
+  std::string object;
+  std::vector<glm::dvec2> stroke;     // #S × 2 viewport pixels
+  std::optional<Camera> camera;       // the view the stroke was drawn in; unset = the scene's camera
+  IncisionParams incision;            // width and depth are required in a line
+  std::optional<glm::ivec3> controls;  // (l, m, n) before knot insertion; unset = the defaults of IncisionParams
+};
+
+// The fields of incision.draw that shape the cut (width, depth, opening, walls, order, kernel, wall_rows).
+const ParamSchema<IncisionParams>& incision_schema();
+
+class IncisionDrawCommand : public DeclaredCommand<IncisionDrawCommand, IncisionDrawParams, SnapshotCommand> {
  public:
-  static CommandPtr parse(const nlohmann::json& j, const CommandContext& ctx);
-  std::string id() const override { return "incision.draw"; }
-  nlohmann::json to_json() const override;
+  using DeclaredCommand::DeclaredCommand;
+  static const ParamSchema<IncisionDrawParams>& schema();
+
   std::string label() const override;
   nlohmann::json stats() const override { return stats_; }
 
  protected:
-  std::string target() const override { return object_; }
+  std::string target() const override { return p_.object; }
   std::optional<SceneObject> build(const Scene& scene) override;
 
  private:
-  std::string object_;
-  std::vector<glm::dvec2> stroke_;  // #S × 2 viewport pixels
-  IncisionParams params_;
-  bool has_controls_ = false;
-  std::optional<Camera> camera_;  // "camera" (the view the stroke was drawn in); else the scene's camera
   nlohmann::json stats_ = nlohmann::json::object();
 };
 

@@ -87,10 +87,11 @@ std::string format_number(double x) {
   char buf[64];
   const auto r = std::to_chars(buf, buf + sizeof buf, x);
   std::string shortest(buf, r.ptr);
-  if (const std::size_t e = shortest.find("e+"); e != std::string::npos) {  // "1e+06" → "1e6"
+  if (const std::size_t e = shortest.find('e'); e != std::string::npos) {  // "1e+06" → "1e6", "1e-06" → "1e-6"
+    const bool negative = shortest[e + 1] == '-';
     std::size_t digits = e + 2;
     while (digits + 1 < shortest.size() && shortest[digits] == '0') ++digits;
-    shortest = shortest.substr(0, e + 1) + shortest.substr(digits);
+    shortest = shortest.substr(0, e + 1) + (negative ? "-" : "") + shortest.substr(digits);
   }
   if (x == std::floor(x) && std::abs(x) < 1e15) {
     const std::string whole = std::to_string(static_cast<long long>(x));

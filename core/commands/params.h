@@ -357,17 +357,18 @@ class ParamSchema {
   // A string field holding one of `choices` (the error lists them), or an int member holding the choice's index.
   template <class T>
   Ref choice(const std::string& name, T P::*m, std::vector<std::string> choices) {
-    static_assert(std::is_same_v<T, std::string> || std::is_same_v<T, int> || std::is_same_v<T, bool>,
-                  "a choice fills a string, an index or a bool (second choice = true)");
+    static_assert(std::is_same_v<T, std::string> || std::is_same_v<T, int> || std::is_same_v<T, bool> ||
+                      std::is_enum_v<T>,
+                  "a choice fills a string, an index, an enum (choice i = enumerator i) or a bool (second = true)");
     Field f;
     f.doc.name = name;
     f.doc.type = params::choices_text(choices);
     f.kind = ParamKind::Choice;
     f.choices = std::move(choices);
     f.choice_member = std::is_same_v<T, std::string> ? Field::ChoiceMember::String
-                      : std::is_same_v<T, int>       ? Field::ChoiceMember::Index
-                                                     : Field::ChoiceMember::Bool;
-    f.member = [m](P& p) -> void* { return &(p.*m); };
+                      : std::is_same_v<T, bool>      ? Field::ChoiceMember::Bool
+                                                     : Field::ChoiceMember::Index;
+    if constexpr (!std::is_enum_v<T>) f.member = [m](P& p) -> void* { return &(p.*m); };
     auto index_of = [](const Field& self, const T& x) -> int {
       if constexpr (std::is_same_v<T, std::string>) {
         for (std::size_t i = 0; i < self.choices.size(); ++i)

@@ -85,7 +85,7 @@ INSTANTIATE_TEST_SUITE_P(
                       BadLogCase{"bad_dffd_split_box.jsonl", 4, "box", "larger than the lattice"},
                       BadLogCase{"bad_dffd_split_fold.jsonl", 4, "kernel_width", "fold-over"},
                       BadLogCase{"bad_incision_miss.jsonl", 3, "stroke", "misses the surface"},
-                      BadLogCase{"bad_incision_depth.jsonl", 3, "depth", "zero depth"},
+                      BadLogCase{"bad_incision_depth.jsonl", 3, "depth", "> 0"},
                       BadLogCase{"bad_transform_scale.jsonl", 3, "scale", "(0, 1e6]"}),
     [](const auto& info) {
       std::string n = info.param.file;

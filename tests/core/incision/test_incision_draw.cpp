@@ -154,7 +154,7 @@ TEST(IncisionDraw, BadInputNamesTheFieldAndLeavesTheSceneUnchanged) {
   };
   fails(draw("[[5,5],[40,8],[60,20]]", 0.15, 0.1, 0.05), "stroke", "misses the surface of 'ball'");
   fails(draw("[[300,280]]", 0.15, 0.1, 0.05), "stroke", "2");
-  fails(draw("[[300,280],[480,300]]", 0.15, 0.0, 0.05), "depth", "zero depth");
+  fails(draw("[[300,280],[480,300]]", 0.15, 0.0, 0.05), "depth", "must be > 0");
   fails(draw("[[300,280],[480,300]]", 0.0, 0.1, 0.05), "width", "> 0");
   fails(draw("[[300,280],[480,300]]", 0.15, 0.1, -1.0), "opening", "≥ 0");
   fails(draw("[[300,280],[480,300]]", 0.15, 0.1, 3.0), "opening", "folds");
@@ -163,7 +163,7 @@ TEST(IncisionDraw, BadInputNamesTheFieldAndLeavesTheSceneUnchanged) {
   fails(j, "object", "nobody");
   j = draw("[[300,280],[480,300]]", 0.15, 0.1, 0.05);
   j["order"] = 7;
-  fails(j, "order", "2..4");
+  fails(j, "order", "[2, 4]");
   j = draw("[[300,280],[480,300]]", 0.15, 0.1, 0.05);
   j["controls"] = {6, 5, 5};
   fails(j, "controls", "odd");
