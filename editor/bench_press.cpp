@@ -12,9 +12,10 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "core/deform/ffd_bench.h"
 #include "core/deform/ffd_evaluator.h"
+#include "core/mesh/bilinear_subdivision.h"
 #include "core/mesh/mesh_io.h"
+#include "core/mesh/uv_sphere.h"
 #include "core/raycast/ray_caster.h"
 #include "editor/bench_place.h"
 #include "editor/command_registry.h"

@@ -22,7 +22,9 @@
 #include "core/deform/ffd.h"
 #include "core/deform/ffd_evaluator.h"
 #include "core/deform/ffd_fast.h"
+#include "core/mesh/bilinear_subdivision.h"
 #include "core/mesh/mesh_io.h"
+#include "core/mesh/uv_sphere.h"
 
 namespace trispline::core {
 

@@ -61,11 +61,4 @@ nlohmann::json run_ffd_benchmark(const FfdBenchOptions& options);
 // Human-readable table of a run_ffd_benchmark result.
 void print_ffd_benchmark(const nlohmann::json& result, std::ostream& out);
 
-// Uniform refinement with OpenSubdiv Far (bilinear scheme, Far::PrimvarRefiner for positions); quads are split
-// into two triangles (a,b,c), (a,c,d); normals recomputed (area-weighted), uvs dropped. level 0 returns a copy.
-TriMesh subdivide_bilinear(const TriMesh& mesh, int level);
-
-// Triangulated UV sphere of `radius` with `rings` latitude bands and `segments` longitude bands (poles shared).
-TriMesh make_uv_sphere(double radius, int rings, int segments);
-
 }  // namespace trispline::core

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "core/deform/ffd.h"
-#include "core/deform/ffd_bench.h"
+#include "core/mesh/uv_sphere.h"
 
 namespace trispline::core::test {
 

@@ -1,14 +1,13 @@
-// Benchmark meshes: OpenSubdiv Far bilinear refinement and a generated UV sphere. See ffd_bench.h.
+// Uniform bilinear refinement through OpenSubdiv Far. See bilinear_subdivision.h.
+#include "core/mesh/bilinear_subdivision.h"
+
 #include <opensubdiv/far/primvarRefiner.h>
 #include <opensubdiv/far/topologyDescriptor.h>
 #include <opensubdiv/far/topologyRefinerFactory.h>
 
-#include <cmath>
 #include <memory>
-#include <numbers>
 #include <stdexcept>
 
-#include "core/deform/ffd_bench.h"
 #include "core/mesh/mesh_io.h"
 
 namespace trispline::core {
@@ -73,33 +72,6 @@ TriMesh subdivide_bilinear(const TriMesh& mesh, int level) {
   }
   compute_vertex_normals(out);
   return out;
-}
-
-TriMesh make_uv_sphere(double radius, int rings, int segments) {
-  if (rings < 2 || segments < 3) throw std::invalid_argument("make_uv_sphere: need rings >= 2 and segments >= 3");
-  TriMesh m;
-  const double pi = std::numbers::pi;
-  m.positions.emplace_back(0.0, radius, 0.0);  // north pole
-  for (int r = 1; r < rings; ++r) {
-    const double th = pi * r / rings;
-    for (int s = 0; s < segments; ++s) {
-      const double ph = 2.0 * pi * s / segments;
-      m.positions.emplace_back(radius * std::sin(th) * std::cos(ph), radius * std::cos(th),
-                               -radius * std::sin(th) * std::sin(ph));
-    }
-  }
-  m.positions.emplace_back(0.0, -radius, 0.0);  // south pole
-  const unsigned south = static_cast<unsigned>(m.positions.size() - 1);
-  auto ring = [&](int r, int s) { return static_cast<unsigned>(1 + (r - 1) * segments + (s % segments)); };
-  for (int s = 0; s < segments; ++s) m.triangles.emplace_back(0u, ring(1, s), ring(1, s + 1));
-  for (int r = 1; r + 1 < rings; ++r)
-    for (int s = 0; s < segments; ++s) {
-      m.triangles.emplace_back(ring(r, s), ring(r + 1, s), ring(r + 1, s + 1));
-      m.triangles.emplace_back(ring(r, s), ring(r + 1, s + 1), ring(r, s + 1));
-    }
-  for (int s = 0; s < segments; ++s) m.triangles.emplace_back(ring(rings - 1, s), south, ring(rings - 1, s + 1));
-  compute_vertex_normals(m);
-  return m;
 }
 
 }  // namespace trispline::core
