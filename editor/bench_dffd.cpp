@@ -8,10 +8,10 @@
 #include <thread>
 #include <tbb/info.h>
 
-#include "core/deform/dffd_cap.h"
+#include "core/dffd/dffd_cap.h"
 #include "core/commands/incision_draw.h"
 #include "core/commands/mesh_subdivide.h"
-#include "core/deform/dffd_rig.h"
+#include "core/dffd/dffd_rig.h"
 #include "core/incision/incision.h"
 #include "core/mesh/mesh_io.h"
 #include "core/raycast/ray_caster.h"

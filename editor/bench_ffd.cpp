@@ -5,7 +5,7 @@
 #include <iostream>
 #include <memory>
 
-#include "core/deform/ffd_bench.h"
+#include "bench/ffd_bench.h"
 #include "gpu/ffd_gl.h"
 #include "gpu/gl_context.h"
 

@@ -12,7 +12,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "core/deform/ffd_evaluator.h"
+#include "core/ffd/ffd_evaluator.h"
 #include "core/mesh/bilinear_subdivision.h"
 #include "core/mesh/mesh_io.h"
 #include "core/mesh/uv_sphere.h"

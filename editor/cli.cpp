@@ -8,7 +8,7 @@
 #include <sstream>
 #include <iostream>
 
-#include "core/deform/ffd_evaluator.h"
+#include "core/ffd/ffd_evaluator.h"
 #include "editor/app.h"
 #include "editor/bench_ffd.h"
 #include "editor/bench_ddm.h"

@@ -5,7 +5,7 @@
 #include <cstdio>
 
 #include "core/commands/json_fields.h"
-#include "core/deform/dffd.h"
+#include "core/dffd/dffd.h"
 
 namespace trispline::core {
 namespace jf = json_fields;

@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "core/commands/snapshot_command.h"
-#include "core/deform/dffd_global.h"
+#include "core/dffd/dffd_global.h"
 
 namespace trispline::core {
 

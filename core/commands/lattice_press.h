@@ -22,7 +22,7 @@
 #pragma once
 
 #include "core/commands/snapshot_command.h"
-#include "core/deform/falloff.h"
+#include "core/ffd/falloff.h"
 
 namespace trispline::core {
 
