@@ -6,7 +6,7 @@
 // bounding box and deformed by randomly perturbed L×L×L lattices (clamped uniform knot vectors), for every
 //   lattice size (4 and 8) × order (3 = tri-quadratic, 4 = tri-cubic) × positions only / positions + normals
 // and every backend: cpu_ref (all threads), cpu_fast (1 thread and all threads), and the GPU backends the caller
-// passes in (core has no GL; editor/bench_ffd.cpp adds glsl_compute and glsl_vertex when a context can be made),
+// passes in (core has no GL; bench/bench_ffd.cpp adds glsl_compute and glsl_vertex when a context can be made),
 // each timed twice: "kernel" (evaluate() and, for the GPU, glFinish) and "end_to_end" (upload of the per-vertex
 // data and the lattice, evaluation, read-back to host memory). Every backend's result is compared with cpu_ref:
 // max_err_rel = max position error ÷ the lattice's control-point bounding-box diagonal, max_normal_err_rad = the

@@ -1,4 +1,4 @@
-#include "editor/bench_dffd.h"
+#include "bench/bench_dffd.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -15,7 +15,7 @@
 #include "core/incision/incision.h"
 #include "core/mesh/mesh_io.h"
 #include "core/raycast/ray_caster.h"
-#include "editor/bench_place.h"
+#include "bench/bench_place.h"
 #include "editor/command_log.h"
 #include "editor/command_registry.h"
 #include "editor/history.h"

@@ -17,7 +17,7 @@
 #include "core/mesh/mesh_io.h"
 #include "core/mesh/uv_sphere.h"
 #include "core/raycast/ray_caster.h"
-#include "editor/bench_place.h"
+#include "bench/bench_place.h"
 #include "editor/command_registry.h"
 #include "editor/session.h"
 #include "editor/tools/press_tool.h"

@@ -1,4 +1,4 @@
-#include "editor/bench_ffd.h"
+#include "bench/bench_ffd.h"
 
 #include <epoxy/gl.h>
 

@@ -1,5 +1,5 @@
 // `trispline bench place`: placement end to end through the command path, per stage. See bench_place.h.
-#include "editor/bench_place.h"
+#include "bench/bench_place.h"
 
 #include <tbb/info.h>
 

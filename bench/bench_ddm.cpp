@@ -1,5 +1,5 @@
 // `trispline bench ddm`: see bench_ddm.h.
-#include "editor/bench_ddm.h"
+#include "bench/bench_ddm.h"
 
 #include <epoxy/gl.h>
 
@@ -16,7 +16,7 @@
 #include "core/ddm/ddm_maps.h"
 #include "core/scene/primitives.h"
 #include "core/scene/scene.h"
-#include "editor/bench_place.h"
+#include "bench/bench_place.h"
 #include "editor/history.h"
 #include "editor/render_scene.h"
 #include "editor/replay.h"
