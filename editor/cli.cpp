@@ -8,12 +8,12 @@
 #include <sstream>
 #include <iostream>
 
-#include "core/deform/ffd_evaluator.h"
+#include "core/ffd/ffd_evaluator.h"
 #include "editor/app.h"
-#include "editor/bench_ffd.h"
-#include "editor/bench_ddm.h"
-#include "editor/bench_dffd.h"
-#include "editor/bench_place.h"
+#include "bench/bench_ffd.h"
+#include "bench/bench_ddm.h"
+#include "bench/bench_dffd.h"
+#include "bench/bench_place.h"
 #include "editor/command_docs.h"
 #include "editor/command_registry.h"
 #include "editor/replay.h"

@@ -16,7 +16,7 @@
 //   animation.mp4                     (mp4 = true, only when `ffmpeg` is on PATH) H.264, yuv420p, timeline fps
 #pragma once
 
-#include "core/deform/ffd_evaluator.h"
+#include "core/ffd/ffd_evaluator.h"
 #include "core/scene/scene.h"
 
 #include <chrono>

@@ -2,7 +2,7 @@
 // the deformed geometry as a chosen FFD backend computes it (replay --ffd-backend: scene.glb from the GPU path).
 #pragma once
 
-#include "core/deform/ffd_evaluator.h"
+#include "core/ffd/ffd_evaluator.h"
 #include "core/scene/scene.h"
 #include "gpu/renderer.h"
 

@@ -19,7 +19,7 @@
 // line's "out" is the editor's folder; a later recording overwrites files of the same name).
 #pragma once
 
-#include "core/deform/ffd_evaluator.h"
+#include "core/ffd/ffd_evaluator.h"
 #include "core/scene/scene.h"
 #include "editor/history.h"
 

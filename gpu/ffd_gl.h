@@ -1,6 +1,6 @@
 // trispline::gpu GLSL FFD evaluators (seed ch. 4 "Real-time FFD using programmable hardware").
 //
-// Two backends of core::FfdEvaluator (core/deform/ffd_evaluator.h: same calls as the CPU backends, checked against
+// Two backends of core::FfdEvaluator (core/ffd/ffd_evaluator.h: same calls as the CPU backends, checked against
 // the double reference in tests/gpu/test_ffd_gl.cpp within 1e-5 × lattice diagonal, normals within 1e-4 rad):
 //   GlslComputeFfdEvaluator  compute shader ffd.comp.glsl; writes #V × 3 float positions / normals into its own
 //                            buffers (evaluate) or straight into the buffers the renderer draws (evaluate_into).
@@ -32,8 +32,8 @@
 #include <string>
 #include <vector>
 
-#include "core/deform/ffd_evaluator.h"
-#include "core/deform/ffd_packed.h"
+#include "core/ffd/ffd_evaluator.h"
+#include "core/ffd/ffd_packed.h"
 #include "gpu/ffd_gl_lattice.h"
 #include "gpu/gl_resource.h"
 #include "gpu/mesh_buffers.h"

@@ -15,7 +15,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "core/deform/ffd_packed.h"
+#include "core/ffd/ffd_packed.h"
 #include "gpu/gl_resource.h"
 
 namespace trispline::gpu {

@@ -7,7 +7,7 @@
 #include <glm/glm.hpp>
 #include <vector>
 
-#include "core/deform/dffd.h"
+#include "core/dffd/dffd.h"
 #include "core/scene/scene.h"
 
 namespace trispline::gpu {

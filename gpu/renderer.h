@@ -28,7 +28,7 @@
 #include <string>
 #include <vector>
 
-#include "core/deform/ffd_evaluator.h"
+#include "core/ffd/ffd_evaluator.h"
 #include "core/scene/scene.h"
 #include "gpu/brush_geometry.h"
 #include "gpu/mesh_buffers.h"

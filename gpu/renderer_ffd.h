@@ -19,7 +19,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "core/deform/ffd_evaluator.h"
+#include "core/ffd/ffd_evaluator.h"
 #include "core/scene/scene.h"
 #include "gpu/ffd_gl.h"
 #include "gpu/mesh_buffers.h"

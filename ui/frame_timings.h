@@ -6,7 +6,7 @@
 //   ffd_backend_label/_tooltip()   the names the FFD evaluator setting shows
 #pragma once
 
-#include "core/deform/ffd_evaluator.h"
+#include "core/ffd/ffd_evaluator.h"
 
 #include <nlohmann/json.hpp>
 

@@ -2,7 +2,7 @@
 // The View toggles are edited in place (they are view state, not document changes).
 #pragma once
 
-#include "core/deform/ffd_evaluator.h"
+#include "core/ffd/ffd_evaluator.h"
 #include "gpu/renderer.h"
 
 #include <string>

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/deform/dffd.h"
+#include "core/dffd/dffd.h"
 
 namespace trispline::core {
 

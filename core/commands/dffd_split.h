@@ -23,7 +23,7 @@
 
 #include "core/commands/declared_command.h"
 #include "core/commands/snapshot_command.h"
-#include "core/deform/dffd_global.h"
+#include "core/dffd/dffd_global.h"
 
 namespace trispline::core {
 

@@ -23,7 +23,7 @@
 
 #include "core/commands/declared_command.h"
 #include "core/commands/snapshot_command.h"
-#include "core/deform/falloff.h"
+#include "core/ffd/falloff.h"
 
 namespace trispline::core {
 

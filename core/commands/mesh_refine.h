@@ -16,7 +16,7 @@
 
 #include "core/commands/declared_command.h"
 #include "core/commands/snapshot_command.h"
-#include "core/deform/refine.h"
+#include "core/ffd/refine.h"
 
 namespace trispline::core {
 

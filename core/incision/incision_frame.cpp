@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/deform/dffd.h"
+#include "core/dffd/dffd.h"
 #include "core/incision/incision_lattice.h"
 #include "core/raycast/ray_caster.h"
 #include "core/scene/camera.h"

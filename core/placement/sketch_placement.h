@@ -52,7 +52,7 @@
 #include <string>
 #include <vector>
 
-#include "core/deform/ffd.h"
+#include "core/ffd/ffd.h"
 #include "core/raycast/ray_caster.h"
 #include "core/scene/camera.h"
 #include "core/scene/scene.h"

@@ -8,6 +8,7 @@
 #include <unordered_map>
 
 #include "core/mesh/mesh_io.h"
+#include "core/mesh/uv_sphere.h"
 #include "core/spline/bspline_surface.h"
 
 namespace trispline::core {
@@ -137,31 +138,8 @@ TriMesh make_plane(int divisions) {
 
 TriMesh make_sphere(int slices, int stacks) {
   require(slices >= 3 && stacks >= 2, "make_sphere: need slices >= 3 and stacks >= 2");
-  TriMesh m;
-  m.positions.push_back({0, 1, 0});  // north pole, then rings k = 1 .. stacks-1, then the south pole
-  for (int k = 1; k < stacks; ++k) {
-    const double th = kPi * k / stacks;
-    for (int i = 0; i < slices; ++i) {
-      const double ph = 2.0 * kPi * i / slices;
-      m.positions.push_back({std::sin(th) * std::cos(ph), std::cos(th), std::sin(th) * std::sin(ph)});
-    }
-  }
-  m.positions.push_back({0, -1, 0});
-  const auto south = static_cast<unsigned>(m.positions.size() - 1);
-  auto ring = [&](int k, int i) -> unsigned {  // k in [0, stacks]: 0 and stacks are the poles
-    if (k == 0) return 0;
-    if (k == stacks) return south;
-    return 1u + static_cast<unsigned>((k - 1) * slices + (i % slices));
-  };
-  for (int k = 0; k < stacks; ++k)
-    for (int i = 0; i < slices; ++i) {
-      // a (upper, φ), b (lower, φ), c (lower, φ+dφ), d (upper, φ+dφ): (a, c, b) and (a, d, c) face outwards.
-      const unsigned a = ring(k, i), b = ring(k + 1, i), c = ring(k + 1, i + 1), d = ring(k, i + 1);
-      if (k + 1 < stacks) m.triangles.push_back({a, c, b});
-      if (k > 0) m.triangles.push_back({a, d, c});
-    }
-  m.normals = m.positions;  // unit sphere
-  return m;
+  // Unit sphere, φ toward +z, radial normals (= positions): core/mesh/uv_sphere.h.
+  return make_uv_sphere(1.0, stacks, slices, SpherePhi::toward_plus_z, SphereNormals::radial);
 }
 
 TriMesh make_box() {

@@ -6,8 +6,8 @@
 #pragma once
 
 #include "core/ddm/ddm_layer.h"
-#include "core/deform/dffd_rig.h"
-#include "core/deform/ffd.h"
+#include "core/dffd/dffd_rig.h"
+#include "core/ffd/ffd.h"
 #include "core/mesh/mesh_clip.h"
 #include "core/mesh/tri_mesh.h"
 #include "core/scene/camera.h"

@@ -15,7 +15,7 @@
 #include <optional>
 #include <vector>
 
-#include "core/deform/falloff.h"
+#include "core/ffd/falloff.h"
 #include "core/raycast/ray_caster.h"
 #include "editor/tools/tool.h"
 

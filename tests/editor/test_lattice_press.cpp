@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "core/commands/lattice_press.h"
-#include "core/deform/falloff.h"
+#include "core/ffd/falloff.h"
 #include "core/scene/scene.h"
 #include "editor/command_registry.h"
 #include "editor/history.h"

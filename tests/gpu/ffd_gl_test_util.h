@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "core/deform/ffd.h"
-#include "core/deform/ffd_packed.h"
+#include "core/ffd/ffd.h"
+#include "core/ffd/ffd_packed.h"
 #include "core/scene/scene.h"
 
 namespace trispline::gpu::test {

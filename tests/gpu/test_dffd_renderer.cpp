@@ -4,8 +4,8 @@
 
 #include <cstdint>
 
-#include "core/deform/dffd.h"
-#include "core/deform/dffd_rig.h"
+#include "core/dffd/dffd.h"
+#include "core/dffd/dffd_rig.h"
 #include "gl_test.h"
 #include "gpu/ffd_gl.h"
 

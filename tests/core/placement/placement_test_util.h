@@ -7,8 +7,8 @@
 #include <numbers>
 #include <vector>
 
-#include "core/deform/ffd_bench.h"
 #include "core/mesh/tri_mesh.h"
+#include "core/mesh/uv_sphere.h"
 #include "core/placement/sketch_placement.h"
 #include "core/raycast/ray_caster.h"
 

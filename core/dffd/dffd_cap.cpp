@@ -1,0 +1,361 @@
+// DFFD caps: the cross-section loops of a mesh split at a parameter plane, triangulated with holes by CGAL's
+// constrained Delaunay triangulation. See dffd_cap.h. Source: seed §6.3.2, Fig. 6.2b (caps); the nesting-depth
+// marking is the CGAL 2D Triangulations manual's "polygon with holes" example (mark_domains).
+#include "core/dffd/dffd_cap.h"
+
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Constrained_triangulation_face_base_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_data_structure_2.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+#include <CGAL/property_map.h>
+#include <CGAL/spatial_sort.h>
+#include <CGAL/Spatial_sort_traits_adapter_2.h>
+
+#include <tbb/parallel_invoke.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <deque>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace trispline::core {
+namespace {
+
+constexpr double kCutTol = 1e-9;  // |params[axis] − (u0 ∓ eps)| of a cut vertex (see dffd_cap.h)
+
+struct VertexInfo {
+  std::int64_t index = -1;  // mesh vertex; -1 for a vertex CGAL made at a constraint crossing
+};
+struct FaceInfo {
+  int nesting = -1;  // number of constrained edges crossed from the infinite face; -1 = not yet reached
+};
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Vb = CGAL::Triangulation_vertex_base_with_info_2<VertexInfo, K>;
+using Fbb = CGAL::Triangulation_face_base_with_info_2<FaceInfo, K>;
+using Fb = CGAL::Constrained_triangulation_face_base_2<K, Fbb>;
+using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
+using Cdt = CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::Exact_predicates_tag>;
+using Tri = std::array<std::uint32_t, 3>;
+
+// Flood fill from `start` without crossing constrained edges; constrained edges met go to `border`.
+void mark_region(Cdt& cdt, Cdt::Face_handle start, int level, std::deque<Cdt::Edge>& border) {
+  if (start->info().nesting != -1) return;
+  std::deque<Cdt::Face_handle> queue{start};
+  while (!queue.empty()) {
+    const Cdt::Face_handle f = queue.front();
+    queue.pop_front();
+    if (f->info().nesting != -1) continue;
+    f->info().nesting = level;
+    for (int i = 0; i < 3; ++i) {
+      const Cdt::Face_handle n = f->neighbor(i);
+      if (n->info().nesting != -1) continue;
+      if (cdt.is_constrained(Cdt::Edge(f, i)))
+        border.emplace_back(f, i);
+      else
+        queue.push_back(n);
+    }
+  }
+}
+
+// Nesting depth of every face: 0 outside all loops, 1 inside one, 2 in a hole, … (inside = odd).
+void mark_nesting(Cdt& cdt) {
+  for (Cdt::Face_handle f : cdt.all_face_handles()) f->info().nesting = -1;
+  std::deque<Cdt::Edge> border;
+  mark_region(cdt, cdt.infinite_face(), 0, border);
+  while (!border.empty()) {
+    const Cdt::Edge e = border.front();
+    border.pop_front();
+    const Cdt::Face_handle n = e.first->neighbor(e.second);
+    if (n->info().nesting == -1) mark_region(cdt, n, e.first->info().nesting + 1, border);
+  }
+}
+
+// Boundary half-edges a→b of one side, chained into closed loops (vertex sequences in the half-edges' direction).
+// Walks are deterministic: chain heads (more out- than in-edges) first, in increasing vertex order, then loops
+// from the smallest vertex with an unused edge; at a branching vertex the smallest unused successor is taken.
+// Walks that cannot close are counted in `open_chains` and dropped.
+std::vector<std::vector<std::uint32_t>> chain_loops(std::vector<std::pair<std::uint32_t, std::uint32_t>> edges,
+                                                    std::size_t& open_chains) {
+  // Compact adjacency: vertices sorted (dense ids), edges sorted by (from, to) so each vertex's successors are a
+  // sorted run consumed from the front.
+  std::vector<std::uint32_t> verts;
+  verts.reserve(2 * edges.size());
+  for (const auto& [a, b] : edges) verts.push_back(a), verts.push_back(b);
+  std::sort(verts.begin(), verts.end());
+  verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
+  auto id = [&](std::uint32_t v) {
+    return static_cast<std::size_t>(std::lower_bound(verts.begin(), verts.end(), v) - verts.begin());
+  };
+  std::sort(edges.begin(), edges.end());
+  std::vector<std::size_t> begin(verts.size() + 1, 0), next(verts.size());
+  std::vector<int> in(verts.size(), 0);
+  for (const auto& [a, b] : edges) ++begin[id(a) + 1], ++in[id(b)];
+  for (std::size_t i = 0; i < verts.size(); ++i) begin[i + 1] += begin[i];
+  for (std::size_t i = 0; i < verts.size(); ++i) next[i] = begin[i];
+  auto remaining = [&](std::size_t i) { return begin[i + 1] - next[i]; };
+  auto take = [&](std::size_t i, std::size_t& j) {  // next unused successor of vertex id i, as an id
+    if (next[i] >= begin[i + 1]) return false;
+    j = id(edges[next[i]++].second);
+    return true;
+  };
+
+  for (std::size_t v = 0; v < verts.size(); ++v) {  // open chains start where out-degree exceeds in-degree
+    const int excess = static_cast<int>(begin[v + 1] - begin[v]) - in[v];
+    for (int k = 0; k < excess && remaining(v) > 0; ++k) {
+      std::size_t cur = v, w = 0;
+      while (take(cur, w)) cur = w;
+      ++open_chains;
+    }
+  }
+  std::vector<std::vector<std::uint32_t>> loops;
+  for (std::size_t v = 0; v < verts.size(); ++v) {
+    while (remaining(v) > 0) {
+      std::vector<std::uint32_t> loop{verts[v]};
+      std::size_t cur = v, w = 0;
+      bool closed = false;
+      while (take(cur, w)) {
+        if (w == v) {
+          closed = true;
+          break;
+        }
+        loop.push_back(verts[w]);
+        cur = w;
+      }
+      if (closed && loop.size() >= 3)
+        loops.push_back(std::move(loop));
+      else
+        ++open_chains;
+    }
+  }
+  return loops;
+}
+
+// Triangulates one side's loops in the (axis+1, axis+2) parameter plane; inside faces (odd nesting) in CCW order
+// there, i.e. facing +axis (the cyclic order (axis, axis+1, axis+2) is right-handed).
+std::vector<Tri> triangulate_loops(const std::vector<std::vector<std::uint32_t>>& loops,
+                                   const std::vector<glm::dvec3>& params, int axis) {
+  const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
+  std::vector<std::uint32_t> verts;
+  for (const auto& loop : loops) verts.insert(verts.end(), loop.begin(), loop.end());
+  std::sort(verts.begin(), verts.end());
+  verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
+
+  // Points inserted in CGAL's spatial (Hilbert) order with the previous vertex as location hint, as CGAL's own
+  // range insertion does (deterministic: spatial_sort shuffles with a fixed-seed rand48); a 2D duplicate maps to
+  // the smallest mesh index at that point.
+  std::vector<K::Point_2> points(verts.size());
+  for (std::size_t i = 0; i < verts.size(); ++i) points[i] = K::Point_2(params[verts[i]][a1], params[verts[i]][a2]);
+  std::vector<std::size_t> order(verts.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  using Pmap = CGAL::Pointer_property_map<K::Point_2>::type;
+  CGAL::spatial_sort(order.begin(), order.end(),
+                     CGAL::Spatial_sort_traits_adapter_2<K, Pmap>(CGAL::make_property_map(points)));
+  Cdt cdt;
+  std::vector<Cdt::Vertex_handle> handle(verts.size());
+  Cdt::Face_handle hint;
+  for (std::size_t i : order) {
+    const Cdt::Vertex_handle h = cdt.insert(points[i], hint);
+    if (h->info().index < 0 || h->info().index > static_cast<std::int64_t>(verts[i])) h->info().index = verts[i];
+    handle[i] = h;
+    hint = h->face();
+  }
+  auto handle_of = [&](std::uint32_t v) {
+    return handle[static_cast<std::size_t>(std::lower_bound(verts.begin(), verts.end(), v) - verts.begin())];
+  };
+  for (const auto& loop : loops)
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      const Cdt::Vertex_handle ha = handle_of(loop[i]), hb = handle_of(loop[(i + 1) % loop.size()]);
+      if (ha != hb) cdt.insert_constraint(ha, hb);
+    }
+  std::vector<Tri> tris;
+  if (cdt.dimension() < 2) return tris;
+  mark_nesting(cdt);
+  for (Cdt::Face_handle f : cdt.finite_face_handles()) {
+    if (f->info().nesting % 2 != 1) continue;
+    const std::int64_t i0 = f->vertex(0)->info().index, i1 = f->vertex(1)->info().index,
+                       i2 = f->vertex(2)->info().index;
+    if (i0 < 0 || i1 < 0 || i2 < 0) continue;  // touches a constraint crossing (self-intersecting section)
+    tris.push_back({static_cast<std::uint32_t>(i0), static_cast<std::uint32_t>(i1), static_cast<std::uint32_t>(i2)});
+  }
+  // Canonical order, independent of CGAL's face storage: smallest index first (winding kept), then sorted.
+  for (Tri& t : tris) std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+  std::sort(tris.begin(), tris.end());
+  return tris;
+}
+
+// Loops (boundary half-edges a→b of the mesh) that `tris` do not close exactly: a closing cap has the reversed
+// half-edge b→a once and pairs every other half-edge of its own with its reverse. One flag per loop.
+std::vector<bool> unclosed_loops(const std::vector<std::vector<std::uint32_t>>& loops, const std::vector<Tri>& tris) {
+  auto key = [](std::uint32_t a, std::uint32_t b) { return (static_cast<std::uint64_t>(a) << 32) | b; };
+  // Cap half-edges a→b with their use counts: sorted unique keys (binary search instead of a hash map).
+  std::vector<std::uint64_t> keys;
+  keys.reserve(3 * tris.size());
+  for (const Tri& t : tris)
+    for (int e = 0; e < 3; ++e) keys.push_back(key(t[e], t[(e + 1) % 3]));
+  std::sort(keys.begin(), keys.end());
+  std::vector<std::pair<std::uint64_t, int>> half;  // (key, count)
+  for (std::uint64_t k : keys) {
+    if (!half.empty() && half.back().first == k)
+      ++half.back().second;
+    else
+      half.emplace_back(k, 1);
+  }
+  auto find = [&](std::uint64_t k) -> std::pair<std::uint64_t, int>* {
+    auto it = std::lower_bound(half.begin(), half.end(), std::make_pair(k, 0),
+                               [](const auto& x, const auto& y) { return x.first < y.first; });
+    return it != half.end() && it->first == k ? &*it : nullptr;
+  };
+  std::vector<std::pair<std::uint32_t, std::size_t>> loop_of;  // (vertex, first loop holding it)
+  for (std::size_t i = 0; i < loops.size(); ++i)
+    for (std::uint32_t v : loops[i]) loop_of.emplace_back(v, i);
+  std::stable_sort(loop_of.begin(), loop_of.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::vector<bool> bad(loops.size(), false);
+  for (std::size_t i = 0; i < loops.size(); ++i)
+    for (std::size_t j = 0; j < loops[i].size(); ++j) {
+      const std::uint32_t a = loops[i][j], b = loops[i][(j + 1) % loops[i].size()];
+      auto* rev = find(key(b, a));
+      if (rev == nullptr || rev->second != 1 || find(key(a, b)) != nullptr) {
+        bad[i] = true;
+        continue;
+      }
+      rev->second = 0;  // consumed by the loop
+    }
+  for (const auto& [k, n] : half) {
+    if (n == 0) continue;
+    const auto a = static_cast<std::uint32_t>(k >> 32), b = static_cast<std::uint32_t>(k & 0xffffffffu);
+    const auto* rev = find(key(b, a));
+    if (n == 1 && rev != nullptr && rev->second == 1) continue;
+    for (std::uint32_t v : {a, b}) {
+      auto l = std::lower_bound(loop_of.begin(), loop_of.end(), std::make_pair(v, std::size_t{0}),
+                                [](const auto& x, const auto& y) { return x.first < y.first; });
+      if (l != loop_of.end() && l->first == v) bad[l->second] = true;
+    }
+  }
+  return bad;
+}
+
+}  // namespace
+
+CapStats cap_split_openings(MeshSplit& split, int axis, double u0, double eps, std::uint8_t material) {
+  TriMesh& mesh = split.mesh;
+  const std::size_t nv = mesh.vertex_count(), nf = mesh.triangle_count();
+  if (axis < 0 || axis > 2)
+    throw std::invalid_argument("cap_split_openings: axis must be 0, 1 or 2, got " + std::to_string(axis));
+  if (split.params.size() != nv)
+    throw std::invalid_argument("cap_split_openings: params has " + std::to_string(split.params.size()) +
+                                " entries, mesh has " + std::to_string(nv) + " vertices");
+  if (split.side.size() != nv)
+    throw std::invalid_argument("cap_split_openings: side has " + std::to_string(split.side.size()) +
+                                " entries, mesh has " + std::to_string(nv) + " vertices");
+  if (!mesh.face_material.empty() && mesh.face_material.size() != nf)
+    throw std::invalid_argument("cap_split_openings: face_material has " + std::to_string(mesh.face_material.size()) +
+                                " entries, mesh has " + std::to_string(nf) + " triangles");
+  for (std::uint32_t f : split.touched) {
+    if (f >= nf) throw std::invalid_argument("cap_split_openings: touched triangle " + std::to_string(f) + " ≥ #F");
+    const glm::uvec3& t = mesh.triangles[f];
+    if (t[0] >= nv || t[1] >= nv || t[2] >= nv)
+      throw std::invalid_argument("cap_split_openings: a triangle index is ≥ #V = " + std::to_string(nv));
+  }
+  for (std::uint32_t v : split.cut_vertices)
+    if (v >= nv) throw std::invalid_argument("cap_split_openings: cut vertex " + std::to_string(v) + " ≥ #V");
+
+  // Cut vertices of this split: side s ∈ {−1, +1} and params[axis] = u0 + s·eps. Only the triangles the split
+  // touched can hold two of them (every other triangle lies strictly on one side), so only those are scanned.
+  std::vector<std::int8_t> cut(nv, 0);
+  for (std::uint32_t v : split.cut_vertices) {
+    const int s = split.side[v];
+    if ((s == -1 || s == 1) && std::abs(split.params[v][axis] - (u0 + s * eps)) <= kCutTol)
+      cut[v] = static_cast<std::int8_t>(s);
+  }
+  // Undirected edge use counts among edges with both ends cut on the same side.
+  auto key = [](std::uint32_t a, std::uint32_t b) {
+    return (static_cast<std::uint64_t>(std::min(a, b)) << 32) | std::max(a, b);
+  };
+  std::vector<std::uint64_t> uses;  // one key per use, sorted: an edge used once appears once
+  uses.reserve(4 * split.cut_vertices.size());
+  for (std::uint32_t fi : split.touched) {
+    const glm::uvec3& f = mesh.triangles[fi];
+    for (int e = 0; e < 3; ++e) {
+      const std::uint32_t a = f[e], b = f[(e + 1) % 3];
+      if (cut[a] != 0 && cut[a] == cut[b]) uses.push_back(key(a, b));
+    }
+  }
+  std::sort(uses.begin(), uses.end());
+  auto used_once = [&](std::uint64_t k) {
+    const auto r = std::equal_range(uses.begin(), uses.end(), k);
+    return r.second - r.first == 1;
+  };
+  // Boundary half-edges (used once), per side, in triangle order.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> boundary[2];
+  for (std::uint32_t fi : split.touched) {
+    const glm::uvec3& f = mesh.triangles[fi];
+    for (int e = 0; e < 3; ++e) {
+      const std::uint32_t a = f[e], b = f[(e + 1) % 3];
+      if (cut[a] != 0 && cut[a] == cut[b] && used_once(key(a, b))) boundary[cut[a] < 0 ? 0 : 1].emplace_back(a, b);
+    }
+  }
+
+  // The two sides are independent (their own loops, read-only params): triangulated concurrently, merged in order.
+  struct Side {
+    std::vector<Tri> tris;
+    std::size_t loops = 0, open_chains = 0, fan_loops = 0;
+  };
+  Side sides[2];
+  auto cap_side = [&](int k) {  // k = 0: minus side (faces +axis), k = 1: plus side (faces −axis)
+    Side& out = sides[k];
+    const auto loops = chain_loops(std::move(boundary[k]), out.open_chains);
+    out.loops = loops.size();
+    auto oriented = [&](std::vector<Tri> tris) {
+      if (k == 1)
+        for (Tri& t : tris) std::swap(t[1], t[2]);
+      return tris;
+    };
+    std::vector<Tri> tris = oriented(triangulate_loops(loops, split.params, axis));
+    std::vector<bool> bad = unclosed_loops(loops, tris);
+    if (std::find(bad.begin(), bad.end(), true) != bad.end()) {
+      // Degenerate sections (loops touching or crossing in the plane, 2-D duplicates of distinct vertices): the
+      // well-formed loops are triangulated again without the others, which get a fan so the side stays closed.
+      std::vector<std::vector<std::uint32_t>> good;
+      for (std::size_t i = 0; i < loops.size(); ++i)
+        if (!bad[i]) good.push_back(loops[i]);
+      tris = oriented(triangulate_loops(good, split.params, axis));
+      const std::vector<bool> still_bad = unclosed_loops(good, tris);
+      if (std::find(still_bad.begin(), still_bad.end(), true) != still_bad.end()) {
+        tris.clear();
+        std::fill(bad.begin(), bad.end(), true);
+      }
+      for (std::size_t i = 0; i < loops.size(); ++i)
+        if (bad[i]) {
+          const auto& L = loops[i];
+          for (std::size_t j = 1; j + 1 < L.size(); ++j) tris.push_back({L[0], L[j + 1], L[j]});
+          ++out.fan_loops;
+        }
+    }
+    out.tris = std::move(tris);
+  };
+  tbb::parallel_invoke([&] { cap_side(0); }, [&] { cap_side(1); });
+  CapStats stats;
+  std::vector<Tri> caps;
+  for (const Side& side : sides) {
+    stats.loops += side.loops;
+    stats.open_chains += side.open_chains;
+    stats.fan_loops += side.fan_loops;
+    caps.insert(caps.end(), side.tris.begin(), side.tris.end());
+  }
+  if (caps.empty()) return stats;
+  if (mesh.face_material.empty()) mesh.face_material.assign(mesh.triangles.size(), kMaterialSurface);
+  for (const Tri& t : caps) {
+    mesh.triangles.emplace_back(t[0], t[1], t[2]);
+    mesh.face_material.push_back(material);
+  }
+  stats.triangles = caps.size();
+  return stats;
+}
+
+}  // namespace trispline::core

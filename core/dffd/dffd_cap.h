@@ -1,0 +1,52 @@
+// trispline::core DFFD caps — closing the openings of a mesh split at a parameter plane (seed §6.3.2, Fig. 6.2b).
+//
+// The seed caps the two parts of a model split at u = u_i by Boolean operations (M⁺ = F(M ∗ P⁺), M⁻ = F(M − P⁺)).
+// We compute the same caps directly: after split_mesh_at_parameter, the boundary edges on the cut of each side form
+// the planar cross-section loops of the (closed) mesh at u = u_i; they are triangulated, holes included, by CGAL's
+// constrained Delaunay triangulation (CGAL 5.5, Debian libcgal-dev: Constrained_Delaunay_triangulation_2 with exact
+// predicates, faces marked inside by nesting depth), so each side becomes a closed 2-manifold without adding
+// vertices. Because the embedding is affine with det > 0, the loops are planar in rest space too and the
+// orientation found in parameter space is that of the mesh.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "core/dffd/dffd.h"
+
+namespace trispline::core {
+
+// What cap_split_openings did.
+struct CapStats {
+  std::size_t loops = 0;        // closed cross-section loops found (both sides together)
+  std::size_t open_chains = 0;  // boundary chains on the cut that do not close (mesh not closed there): not capped
+  std::size_t triangles = 0;    // cap triangles appended (both sides together)
+  std::size_t fan_loops = 0;    // degenerate loops (touching / crossing others in the plane) closed by a fan
+};
+
+// Appends cap triangles to split.mesh (no vertices are added; split.params / split.side unchanged) for the cut
+// params[·][axis] = u0 made by split_mesh_at_parameter(…, axis, u0, eps):
+//  * cut vertices are the split's split.cut_vertices with |params[v][axis] − (u0 ∓ eps)| ≤ 1e-9 on side ∓1, and
+//    only the triangles it touched (split.touched) are scanned: O(cut) work, not O(#F), however large the mesh;
+//  * boundary edges (used by exactly one triangle) whose two ends are cut vertices of the same side are chained
+//    into loops per side; each side's loops are triangulated in the two other parameter coordinates (constrained
+//    Delaunay, CGAL; a face is inside when its nesting depth among the loops is odd, so holes stay open);
+//  * minus-side cap triangles face +axis (out of the minus part), plus-side ones face −axis;
+//  * every appended triangle gets face_material = `material` (face_material is filled with kMaterialSurface for
+//    the existing triangles first if it was empty).
+//  * loops are chained in the direction of the mesh's boundary half-edges, deterministically (chain heads first,
+//    then from the smallest vertex index; at a branching vertex the smallest successor);
+//  * cap triangles are appended minus side first, each side's sorted (smallest index first in each triangle, winding
+//    kept), so the order does not depend on CGAL's internal face storage.
+// Chains that do not close (an open mesh) are left open and counted. Degenerate sections (two cut vertices of one
+// side at the same 2D point, loops touching or crossing in the plane): every side's caps are verified to close each
+// loop exactly (the reversed boundary half-edge once, every other cap half-edge paired); loops that fail are left out
+// of a second triangulation and closed by a fan from their first vertex instead (counted in fan_loops), so a closed
+// mesh always gets closed sides (no vertex is ever added to the mesh).
+// Deterministic: the same input gives the same triangles in the same order. Throws std::invalid_argument: bad axis,
+// params.size() != #V, side.size() != #V, a touched triangle ≥ #F or with an index ≥ #V, a cut vertex ≥ #V,
+// face_material neither empty nor #F; `split` is then unchanged.
+CapStats cap_split_openings(MeshSplit& split, int axis, double u0, double eps,
+                            std::uint8_t material = kMaterialInside);
+
+}  // namespace trispline::core

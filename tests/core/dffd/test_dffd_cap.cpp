@@ -1,0 +1,301 @@
+// DFFD caps (core/dffd/dffd_cap.h): closing the two sides of a mesh split at a parameter plane with CGAL
+// constrained Delaunay caps (seed §6.3.2, Fig. 6.2b). Topology is checked with OpenMesh.
+#include <gtest/gtest.h>
+
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <utility>
+
+#include "core/dffd/dffd.h"
+#include "core/dffd/dffd_cap.h"
+#include "core/mesh/mesh_io.h"
+#include "core/scene/primitives.h"
+
+namespace trispline::core {
+namespace {
+
+using OmMesh = OpenMesh::TriMesh_ArrayKernelT<>;
+
+// OpenMesh view of the triangles of one side (side = 0: all triangles).
+struct OmCheck {
+  std::size_t rejected_faces = 0;  // add_face refused: complex (non-manifold) edge or vertex
+  std::size_t boundary_edges = 0;
+  std::size_t non_manifold_vertices = 0;
+  std::size_t faces = 0;
+};
+
+OmCheck om_check(const MeshSplit& s, int side) {
+  OmMesh om;
+  std::vector<OmMesh::VertexHandle> vh;
+  for (const glm::dvec3& p : s.mesh.positions) vh.push_back(om.add_vertex(OmMesh::Point(p.x, p.y, p.z)));
+  OmCheck c;
+  for (const glm::uvec3& f : s.mesh.triangles) {
+    if (side != 0 && s.side[f[0]] != side) continue;
+    if (!om.add_face(vh[f[0]], vh[f[1]], vh[f[2]]).is_valid()) ++c.rejected_faces;
+  }
+  for (auto e : om.edges()) c.boundary_edges += om.is_boundary(e);
+  for (auto v : om.vertices())
+    if (!om.is_isolated(v) && !om.is_manifold(v)) ++c.non_manifold_vertices;
+  c.faces = om.n_faces();
+  return c;
+}
+
+// Every undirected edge used by exactly two faces, every directed edge once (closed, consistently oriented).
+void expect_closed_oriented(const TriMesh& m) {
+  std::map<std::pair<unsigned, unsigned>, int> undirected, directed;
+  for (const glm::uvec3& f : m.triangles)
+    for (int e = 0; e < 3; ++e) {
+      const unsigned a = f[e], b = f[(e + 1) % 3];
+      ++undirected[{std::min(a, b), std::max(a, b)}];
+      ++directed[{a, b}];
+    }
+  std::size_t bad = 0, repeated = 0;
+  for (const auto& [e, n] : undirected) bad += (n != 2);
+  for (const auto& [e, n] : directed) repeated += (n != 1);
+  EXPECT_EQ(bad, 0u);
+  EXPECT_EQ(repeated, 0u);
+}
+
+glm::dvec3 tri_normal(const TriMesh& m, const glm::uvec3& f) {  // area-weighted (|n| = 2 · area)
+  return glm::cross(m.positions[f[1]] - m.positions[f[0]], m.positions[f[2]] - m.positions[f[0]]);
+}
+
+// Sum of area-weighted normals of the cap triangles (index ≥ first_cap) of one side.
+glm::dvec3 cap_normal_sum(const MeshSplit& s, std::size_t first_cap, int side) {
+  glm::dvec3 n(0.0);
+  for (std::size_t f = first_cap; f < s.mesh.triangle_count(); ++f)
+    if (s.side[s.mesh.triangles[f][0]] == side) n += tri_normal(s.mesh, s.mesh.triangles[f]);
+  return n;
+}
+
+double cap_area(const MeshSplit& s, std::size_t first_cap, int side) {
+  double a = 0.0;
+  for (std::size_t f = first_cap; f < s.mesh.triangle_count(); ++f)
+    if (s.side[s.mesh.triangles[f][0]] == side) a += 0.5 * glm::length(tri_normal(s.mesh, s.mesh.triangles[f]));
+  return a;
+}
+
+// Torus around z (R = 2, r = 0.7), closed, shared vertices (as in test_dffd.cpp).
+TriMesh make_torus(int nu, int nv) {
+  TriMesh m;
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j) {
+      const double a = 2.0 * M_PI * i / nu, b = 2.0 * M_PI * j / nv;
+      m.positions.push_back(
+          {std::cos(a) * (2.0 + 0.7 * std::cos(b)), std::sin(a) * (2.0 + 0.7 * std::cos(b)), 0.7 * std::sin(b)});
+    }
+  auto id = [&](int i, int j) { return static_cast<unsigned>(((i + nu) % nu) * nv + (j + nv) % nv); };
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j) {
+      m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      m.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return m;
+}
+
+// Parameters = the bounding box mapped to [0,1]³ axis by axis (parameter axis k = world axis k, positive scale).
+std::vector<glm::dvec3> box_params(const TriMesh& m) {
+  Aabb box;
+  for (const glm::dvec3& p : m.positions) box.extend(p);
+  std::vector<glm::dvec3> params;
+  for (const glm::dvec3& p : m.positions) params.push_back((p - box.lo) / box.size());
+  return params;
+}
+
+// Splits, caps and checks: both sides closed 2-manifolds (OpenMesh + edge counts), materials, cap orientation
+// (minus side faces +axis, plus side −axis) and planarity of the caps.
+MeshSplit split_and_cap(const TriMesh& mesh, int axis, double u0, double eps, CapStats* stats_out = nullptr) {
+  MeshSplit s = split_mesh_at_parameter(mesh, box_params(mesh), axis, u0, eps);
+  const std::size_t first_cap = s.mesh.triangle_count();
+  const CapStats st = cap_split_openings(s, axis, u0, eps);
+  if (stats_out) *stats_out = st;
+  EXPECT_EQ(st.open_chains, 0u);
+  EXPECT_GE(st.loops, 2u);
+  EXPECT_EQ(s.mesh.triangle_count(), first_cap + st.triangles);
+  EXPECT_EQ(s.params.size(), s.mesh.vertex_count());  // no vertex added
+  for (int side : {-1, 1}) {
+    const OmCheck c = om_check(s, side);
+    EXPECT_GT(c.faces, 0u);
+    EXPECT_EQ(c.rejected_faces, 0u) << "side " << side;
+    EXPECT_EQ(c.boundary_edges, 0u) << "side " << side;
+    EXPECT_EQ(c.non_manifold_vertices, 0u) << "side " << side;
+    // Orientation: the sum of area-weighted normals of a planar cap is ±(2 · area) along the axis.
+    const glm::dvec3 n = cap_normal_sum(s, first_cap, side);
+    glm::dvec3 e(0.0);
+    e[axis] = side < 0 ? 1.0 : -1.0;
+    EXPECT_NEAR(glm::dot(n, e), 2.0 * cap_area(s, first_cap, side), 1e-9 * glm::length(n)) << "side " << side;
+    EXPECT_GT(glm::dot(n, e), 0.0);
+  }
+  expect_closed_oriented(s.mesh);
+  EXPECT_EQ(s.mesh.face_material.size(), s.mesh.triangle_count());
+  for (std::size_t f = 0; f < s.mesh.triangle_count(); ++f)
+    EXPECT_EQ(s.mesh.face_material[f], f < first_cap ? kMaterialSurface : kMaterialInside) << f;
+  return s;
+}
+
+TEST(DffdCap, SphereBothSidesClosedOnEveryAxis) {
+  const TriMesh sphere = make_primitive(PrimitiveKind::Sphere);
+  for (int axis = 0; axis < 3; ++axis) {
+    CapStats st;
+    split_and_cap(sphere, axis, 0.37, 1e-7, &st);
+    EXPECT_EQ(st.loops, 2u) << axis;
+    EXPECT_GT(st.triangles, 0u);
+  }
+  // Through on-plane vertices (x = 0 holds both poles and two meridians).
+  CapStats st;
+  const MeshSplit s = split_and_cap(sphere, 0, 0.5, 1e-9, &st);
+  EXPECT_GT(s.duplicated_on_plane, 0u);
+  EXPECT_EQ(st.loops, 2u);
+  // Cap of a disc of radius 1: close to π, below it (inscribed polygon).
+  const double a = cap_area(s, s.mesh.triangle_count() - st.triangles, -1);
+  EXPECT_LT(a, M_PI);
+  EXPECT_GT(a, 0.99 * M_PI);
+}
+
+TEST(DffdCap, TorusAnnulusKeepsItsHole) {
+  const TriMesh torus = make_torus(48, 24);
+  for (double u0 : {0.5, 0.55}) {  // z = 0 (through vertex rings) and z = 0.07
+    CapStats st;
+    MeshSplit s = split_and_cap(torus, 2, u0, 1e-9, &st);
+    EXPECT_EQ(st.loops, 4u);  // inner and outer circle on each side
+    const std::size_t first_cap = s.mesh.triangle_count() - st.triangles;
+    for (int side : {-1, 1}) {
+      // Outer and inner polygon areas (shoelace in z = const) from the open split's boundary edges of this side.
+      std::map<std::pair<unsigned, unsigned>, std::pair<int, std::pair<unsigned, unsigned>>> uses;  // n, a → b
+      for (std::size_t f = 0; f < first_cap; ++f)
+        for (int e = 0; e < 3; ++e) {
+          const unsigned a = s.mesh.triangles[f][e], b = s.mesh.triangles[f][(e + 1) % 3];
+          auto& u = uses[{std::min(a, b), std::max(a, b)}];
+          ++u.first, u.second = {a, b};
+        }
+      double a_out = 0.0, a_in = 0.0, r_in = 1e9;
+      for (const auto& [key, u] : uses) {
+        const auto [a, b] = u.second;
+        if (u.first != 1 || s.side[a] != side) continue;
+        const glm::dvec3 p = s.mesh.positions[a], q = s.mesh.positions[b];
+        const double r = std::hypot(p.x, p.y);
+        (r > 2.0 ? a_out : a_in) += 0.5 * (p.x * q.y - q.x * p.y);  // ± per edge direction: abs() below
+        if (r < 2.0) r_in = std::min(r_in, r);
+      }
+      const double area = cap_area(s, first_cap, side);
+      EXPECT_NEAR(area, std::abs(a_out) - std::abs(a_in), 1e-9 * area) << u0 << " side " << side;
+      EXPECT_GT(std::abs(a_in), 4.0);  // the hole is there and not small (π · 1.3² ≈ 5.3)
+      // No cap triangle covers the hole.
+      for (std::size_t f = first_cap; f < s.mesh.triangle_count(); ++f) {
+        const glm::uvec3& t = s.mesh.triangles[f];
+        const glm::dvec3 c = (s.mesh.positions[t[0]] + s.mesh.positions[t[1]] + s.mesh.positions[t[2]]) / 3.0;
+        EXPECT_GT(std::hypot(c.x, c.y), r_in * std::cos(M_PI / 48) - 1e-12);
+      }
+    }
+  }
+  // x = 0 cuts the tube twice: two separate discs per side, no hole.
+  CapStats st;
+  split_and_cap(torus, 0, 0.5, 1e-9, &st);
+  EXPECT_EQ(st.loops, 4u);
+}
+
+TEST(DffdCap, OpenMeshLeavesChainsOpen) {
+  // The plane primitive (open, in y = 0): the cut x = 0 gives one open chain per side, nothing to cap.
+  const TriMesh plane = make_primitive(PrimitiveKind::Plane);
+  std::vector<glm::dvec3> params;
+  for (const glm::dvec3& p : plane.positions) params.push_back({(p.x + 1.0) / 2.0, 0.5, (p.z + 1.0) / 2.0});
+  MeshSplit s = split_mesh_at_parameter(plane, params, 0, 0.43, 1e-9);
+  const std::vector<glm::uvec3> before = s.mesh.triangles;
+  const CapStats st = cap_split_openings(s, 0, 0.43, 1e-9);
+  EXPECT_EQ(st.open_chains, 2u);
+  EXPECT_EQ(st.loops, 0u);
+  EXPECT_EQ(st.triangles, 0u);
+  EXPECT_EQ(s.mesh.triangles, before);
+  EXPECT_TRUE(s.mesh.face_material.empty());
+  // A sphere with its top removed, cut through the opening: open arcs, not capped; a cut below the opening is
+  // a closed circle and is capped.
+  const TriMesh sphere = make_sphere(32, 16);
+  TriMesh open = sphere;
+  open.triangles.clear();
+  for (const glm::uvec3& f : sphere.triangles)
+    if (sphere.positions[f[0]].y + sphere.positions[f[1]].y + sphere.positions[f[2]].y < 3 * 0.5)
+      open.triangles.push_back(f);
+  const std::vector<glm::dvec3> op = box_params(sphere);
+  MeshSplit a = split_mesh_at_parameter(open, op, 0, 0.5, 1e-9);
+  const CapStats sa = cap_split_openings(a, 0, 0.5, 1e-9);
+  EXPECT_EQ(sa.open_chains, 2u);
+  EXPECT_EQ(sa.triangles, 0u);
+  MeshSplit b = split_mesh_at_parameter(open, op, 1, 0.3, 1e-9);
+  const CapStats sb = cap_split_openings(b, 1, 0.3, 1e-9);
+  EXPECT_EQ(sb.open_chains, 0u);
+  EXPECT_EQ(sb.loops, 2u);
+  EXPECT_GT(sb.triangles, 0u);
+  const OmCheck lower = om_check(b, -1);
+  EXPECT_EQ(lower.boundary_edges, 0u);  // the lower part is closed by its cap
+  EXPECT_EQ(lower.rejected_faces, 0u);
+  EXPECT_GT(om_check(b, 1).boundary_edges, 0u);  // the upper part keeps the removed top open
+}
+
+TEST(DffdCap, MaterialsAndDeterminism) {
+  TriMesh sphere = make_sphere(40, 21);
+  sphere.face_material.assign(sphere.triangle_count(), kMaterialSurface);
+  sphere.face_material[3] = kMaterialInside;  // an existing slot is kept
+  const std::vector<glm::dvec3> params = box_params(sphere);
+  MeshSplit a = split_mesh_at_parameter(sphere, params, 1, 0.61, 1e-8);
+  MeshSplit b = split_mesh_at_parameter(sphere, params, 1, 0.61, 1e-8);
+  const std::size_t n0 = a.mesh.triangle_count();
+  const std::vector<std::uint8_t> mat0 = a.mesh.face_material;
+  const CapStats sa = cap_split_openings(a, 1, 0.61, 1e-8, 7);
+  const CapStats sb = cap_split_openings(b, 1, 0.61, 1e-8, 7);
+  EXPECT_GT(sa.triangles, 0u);
+  EXPECT_EQ(sa.triangles, sb.triangles);
+  EXPECT_EQ(a.mesh.triangles, b.mesh.triangles);
+  EXPECT_EQ(a.mesh.face_material, b.mesh.face_material);
+  ASSERT_EQ(a.mesh.face_material.size(), a.mesh.triangle_count());
+  EXPECT_TRUE(std::equal(mat0.begin(), mat0.end(), a.mesh.face_material.begin()));
+  EXPECT_EQ(std::count(a.mesh.face_material.begin() + n0, a.mesh.face_material.end(), 7), long(sa.triangles));
+  // A plane that misses the mesh: nothing appended, nothing changed.
+  MeshSplit c = split_mesh_at_parameter(sphere, params, 1, 1.5, 1e-8);
+  const CapStats sc = cap_split_openings(c, 1, 1.5, 1e-8);
+  EXPECT_EQ(sc.loops + sc.open_chains + sc.triangles, 0u);
+  EXPECT_EQ(c.mesh.triangles, sphere.triangles);
+}
+
+TEST(DffdCap, RejectsBadInput) {
+  const TriMesh sphere = make_sphere(8, 4);
+  MeshSplit s = split_mesh_at_parameter(sphere, box_params(sphere), 0, 0.5, 1e-9);
+  EXPECT_THROW(cap_split_openings(s, 3, 0.5, 1e-9), std::invalid_argument);
+  EXPECT_THROW(cap_split_openings(s, -1, 0.5, 1e-9), std::invalid_argument);
+  MeshSplit bad = s;
+  bad.params.pop_back();
+  EXPECT_THROW(cap_split_openings(bad, 0, 0.5, 1e-9), std::invalid_argument);
+  bad = s;
+  bad.side.push_back(1);
+  EXPECT_THROW(cap_split_openings(bad, 0, 0.5, 1e-9), std::invalid_argument);
+  bad = s;
+  bad.mesh.face_material.assign(2, kMaterialSurface);
+  EXPECT_THROW(cap_split_openings(bad, 0, 0.5, 1e-9), std::invalid_argument);
+  EXPECT_EQ(bad.mesh.triangles, s.mesh.triangles);  // untouched on error
+}
+
+#ifdef TRISPLINE_HAVE_BUNNY
+TEST(DffdCap, StanfordBunnyCapsEveryCut) {
+  const TriMesh bunny = load_mesh(std::filesystem::path(TRISPLINE_SOURCE_DIR) / "assets/data/bunny.obj");
+  ASSERT_GT(bunny.triangle_count(), 60000u);
+  MeshSplit whole;  // the asset is closed: the checks below then mean "each side is a closed 2-manifold"
+  whole.mesh = bunny;
+  whole.side.assign(bunny.vertex_count(), -1);
+  ASSERT_EQ(om_check(whole, 0).boundary_edges, 0u);
+  for (int axis = 0; axis < 3; ++axis) {
+    CapStats st;
+    split_and_cap(bunny, axis, 0.5, 1e-9, &st);  // no open chain, closed sides, orientation, materials
+    EXPECT_GT(st.triangles, 500u) << axis;
+  }
+  // x = 0.5 crosses the asset in two separate sections (two loops per side).
+  CapStats st;
+  split_and_cap(bunny, 0, 0.5, 1e-9, &st);
+  EXPECT_EQ(st.loops, 4u);
+}
+#endif
+
+}  // namespace
+}  // namespace trispline::core
