@@ -1,5 +1,9 @@
 #include "editor/app.h"
 
+#include "core/commands/object_transform.h"
+#include "core/commands/scene_load.h"
+#include "core/commands/scene_primitive.h"
+#include "core/commands/scene_remove.h"
 #include "core/mesh/image_io.h"
 #include "editor/animation_ui.h"
 #include "editor/gui_probe.h"
@@ -293,17 +297,22 @@ void App::handle_scene(const ui::SceneRequest& r) {
   if (r.kind == K::Frame) frame_selected();
   if (r.kind == K::ToggleVisible && !hidden_.erase(r.name)) hidden_.insert(r.name);
   if (r.kind == K::Load) ask_file(FilePurpose::LoadMesh);
-  if (r.kind == K::Transform)  // one Scene panel field left after an edit: one step
-    session_.execute({{"cmd", "object.transform"}, {"object", r.name}, {r.field, {r.value.x, r.value.y, r.value.z}}});
+  if (r.kind == K::Transform) {  // one Scene panel field left after an edit: one step
+    core::ObjectTransformParams p{r.name, {}, {}, {}};
+    (r.field == "translate" ? p.translate : r.field == "rotate_deg" ? p.rotate_deg : p.scale) = r.value;
+    session_.execute(core::ObjectTransformCommand::schema().to_json(p));
+  }
   if (r.kind == K::AddPrimitive) {
-    const nlohmann::json line = {
-        {"cmd", "scene.primitive"}, {"kind", r.name}, {"name", session_.scene().unique_name(r.name)}};
+    core::ScenePrimitiveParams p;
+    p.kind = r.name;
+    p.object.name = session_.scene().unique_name(r.name);
+    const nlohmann::json line = core::ScenePrimitiveCommand::schema().to_json(p);
     tool_ctx_.defer("Adding a " + r.name, [this, line] {
       if (session_.execute(line)) selected_ = line["name"];
     });
   }
   if (r.kind == K::Remove && !r.name.empty() && session_.has_command("scene.remove") &&
-      session_.execute({{"cmd", "scene.remove"}, {"name", r.name}}))
+      session_.execute(core::SceneRemoveCommand::schema().to_json({r.name})))
     selected_.clear();
 }
 
@@ -311,10 +320,12 @@ void App::handle_file(const fs::path& chosen) {
   fs::path path = chosen;
   switch (std::exchange(file_purpose_, FilePurpose::None)) {  // reset first: go_on(Open) asks for a file again
     case FilePurpose::LoadMesh: {
-      nlohmann::json line = {
-          {"cmd", "scene.load"}, {"path", path.string()}, {"name", session_.scene().unique_name(path.stem().string())}};
       load_ignore_loose_ = file_dialog_.option();
-      if (load_ignore_loose_) line["loose"] = "ignore";
+      core::SceneLoadParams p;
+      p.path = path.string();
+      p.loose = load_ignore_loose_ ? "ignore" : "refuse";
+      p.object.name = session_.scene().unique_name(path.stem().string());
+      const nlohmann::json line = core::SceneLoadCommand::schema().to_json(p);
       tool_ctx_.defer("Loading " + path.filename().string(), [this, line] {
         if (!session_.execute(line)) return;
         const nlohmann::json stats = session_.history().last_executed().stats();

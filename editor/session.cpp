@@ -1,5 +1,7 @@
 #include "editor/session.h"
 
+#include "core/commands/camera_set.h"
+
 #include "editor/command_registry.h"
 #include "editor/replay.h"
 
@@ -41,8 +43,6 @@ std::vector<nlohmann::json> readable_prefix(const fs::path& path, bool* truncate
   return lines;
 }
 
-nlohmann::json vec3(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
-
 }  // namespace
 
 fs::path state_dir() {
@@ -52,10 +52,7 @@ fs::path state_dir() {
   return fs::temp_directory_path() / "trispline-state";
 }
 
-nlohmann::json camera_line(const core::Camera& c) {
-  return {{"cmd", "camera.set"}, {"eye", vec3(c.eye)},   {"target", vec3(c.target)},
-          {"up", vec3(c.up)},    {"fov_deg", c.fov_deg}, {"viewport", {c.viewport.x, c.viewport.y}}};
-}
+nlohmann::json camera_line(const core::Camera& c) { return core::CameraSetCommand::schema().to_json(c); }
 
 EditorSession::EditorSession(ui::MessageLog& messages) : messages_(messages), history_(scene_) {
   history_.on_change = [this] { ++changes_; };

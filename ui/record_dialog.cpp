@@ -1,4 +1,6 @@
 #include "ui/record_dialog.h"
+
+#include "core/commands/anim_record.h"
 #include "ui/param_widgets.h"
 
 #include "ui/number_field.h"
@@ -28,14 +30,15 @@ void open_record_dialog(RecordDialogState& s, const core::Timeline& t, int viewp
 }
 
 nlohmann::json record_line(const RecordDialogState& s) {
-  return {{"cmd", "anim.record"},
-          {"out", s.out_dir},
-          {"format", s.format == 1 ? "exr" : "png"},
-          {"frames", {s.frames[0], s.frames[1]}},
-          {"glb", s.glb},
-          {"mp4", s.mp4},
-          {"width", s.size[0]},
-          {"height", s.size[1]}};
+  core::AnimRecordParams p;
+  p.out = s.out_dir;
+  p.format = s.format == 1 ? "exr" : "png";
+  p.frames = glm::ivec2(s.frames[0], s.frames[1]);
+  p.glb = s.glb;
+  p.mp4 = s.mp4;
+  p.width = s.size[0];
+  p.height = s.size[1];
+  return core::AnimRecordCommand::schema().to_json(p);
 }
 
 std::optional<nlohmann::json> draw_record_dialog(RecordDialogState& s, const core::Timeline& t) {

@@ -1,4 +1,7 @@
 #include "ui/timeline_panel.h"
+
+#include "core/commands/anim_commands.h"
+#include "core/commands/place_array.h"
 #include "ui/param_widgets.h"
 
 #include "ui/gui_probe.h"
@@ -46,11 +49,20 @@ TimelineObject timeline_object(const core::Scene& scene, const std::string& name
 }
 
 nlohmann::json array_line(const std::string& object, int count, double spacing) {
-  return {{"cmd", "place.array"}, {"object", object}, {"count", count}, {"spacing", spacing}};
+  core::PlaceArrayParams p;
+  p.object = object;
+  p.count = count;
+  p.spacing = spacing;
+  return core::PlaceArrayCommand::schema().to_json(p);
 }
 
 nlohmann::json clip_line(const std::string& object, const std::string& path, const std::string& clip, double speed) {
-  return {{"cmd", "anim.clip"}, {"object", object}, {"path", path}, {"clip", clip}, {"speed", speed}};
+  core::AnimClipParams p;
+  p.object = object;
+  p.path = path;
+  p.clip = clip;
+  p.speed = speed;
+  return core::AnimClipCommand::schema().to_json(p);
 }
 
 bool has_key_at(const TimelineObject& object, int frame) {
@@ -65,20 +77,25 @@ const char* interpolation_name(int index) {
 }
 
 nlohmann::json timeline_line(double fps, int start, int end) {
-  return {{"cmd", "anim.timeline"}, {"fps", fps}, {"start", start}, {"end", end}};
+  return core::AnimTimelineCommand::schema().to_json(core::AnimTimelineParams{fps, start, end});
 }
 
 nlohmann::json keyframe_line(const std::string& object, int frame, const glm::dvec3& offset,
                              const std::string& interpolation) {
-  return {{"cmd", "anim.keyframe"},
-          {"object", object},
-          {"frame", frame},
-          {"offset", {offset.x, offset.y, offset.z}},
-          {"interpolation", interpolation}};
+  core::AnimKeyframeParams p;
+  p.object = object;
+  p.frame = frame;
+  p.offset = offset;
+  p.interpolation = interpolation;
+  return core::AnimKeyframeCommand::schema().to_json(p);
 }
 
 nlohmann::json remove_keyframe_line(const std::string& object, int frame) {
-  return {{"cmd", "anim.keyframe"}, {"object", object}, {"frame", frame}, {"remove", true}};
+  core::AnimKeyframeParams p;
+  p.object = object;
+  p.frame = frame;
+  p.remove = true;
+  return core::AnimKeyframeCommand::schema().to_json(p);
 }
 
 std::optional<nlohmann::json> insert_key_request(const TimelineObject& object, const Playback& playback,
@@ -329,7 +346,10 @@ TimelineRequest draw_timeline_panel(const Rect& rect, const core::Timeline& t, P
       if (!object.clip.empty()) {
         ImGui::SameLine();
         if (ImGui::Button("Remove clip")) {
-          r.command = nlohmann::json{{"cmd", "anim.clip"}, {"object", object.name}, {"remove", true}};
+          core::AnimClipParams remove;
+          remove.object = object.name;
+          remove.remove = true;
+          r.command = core::AnimClipCommand::schema().to_json(remove);
           ImGui::CloseCurrentPopup();
         }
       }

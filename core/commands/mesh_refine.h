@@ -1,5 +1,5 @@
 // `mesh.refine` — adaptive refinement of a deformed object's rest mesh so that its deformed edges follow the FFD
-// (seed §2.4.2, Eq. 2.6, Fig. 2.9–2.10; core/deform/refine.h has the algorithm).
+// (seed §2.4.2, Eq. 2.6, Fig. 2.9–2.10; core/ffd/refine.h has the algorithm).
 //   {"cmd":"mesh.refine","object":"ID","tolerance":t,"criterion":"midpoint|greville","max_iterations":n,
 //    "max_triangles":m}
 // tolerance: world units (> 0, finite); criterion: "greville" (default; the seed's split at the nodal value of the

@@ -22,14 +22,14 @@ class DffdTool : public Tool {
   void decorate(gpu::ViewOptions& options) const override;
   std::string hint() const override;
 
-  ui::DffdSplitParams& params() { return params_; }
+  core::DffdSplitParams& params() { return params_; }
   // The visible objects other than `object` with their world bounding-box extents (obstacle candidates).
   std::vector<ui::DffdObstacleInfo> candidates(const ToolContext& ctx, const std::string& object) const;
   // What the Split button does: executes `line` (a dffd.split) through the session, after one "Working…" frame.
   void split(ToolContext& ctx, const nlohmann::json& line);
 
  private:
-  ui::DffdSplitParams params_;
+  core::DffdSplitParams params_;
   glm::dvec2 press_px_{0};
   bool pressed_ = false;
   // Bounding-box extent per object, cached on its world_mesh (an O(#V) pass each panel frame otherwise).

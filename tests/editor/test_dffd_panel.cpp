@@ -18,7 +18,7 @@ const std::vector<ui::DffdObstacleInfo> kCandidates = {
     {"bar1", {0.4, 1.8, 0.4}}, {"bar2", {0.6, 1.0, 0.2}}, {"wall", {0.1, 2.0, 3.0}}};
 
 // Draws the panel in a fixed window for one frame with the mouse at `mouse` (button `down`); returns its result.
-ui::DffdPanelResult frame(test::HeadlessImGui& gui, ImVec2 mouse, bool down, ui::DffdSplitParams& p,
+ui::DffdPanelResult frame(test::HeadlessImGui& gui, ImVec2 mouse, bool down, core::DffdSplitParams& p,
                           const std::string& object) {
   ui::DffdPanelResult r;
   gui.step(mouse, down, [&] {
@@ -32,7 +32,7 @@ ui::DffdPanelResult frame(test::HeadlessImGui& gui, ImVec2 mouse, bool down, ui:
 }
 
 // Presses and releases the Split button; the line of the frame where it fired, if any.
-std::optional<nlohmann::json> click_split(ui::DffdSplitParams& p, const std::string& object) {
+std::optional<nlohmann::json> click_split(core::DffdSplitParams& p, const std::string& object) {
   test::HeadlessImGui gui;
   const ui::DffdPanelResult first = frame(gui, {-10, -10}, false, p, object);
   EXPECT_GT(first.button_max.x, first.button_min.x) << "the Split button is drawn";
@@ -46,16 +46,16 @@ std::optional<nlohmann::json> click_split(ui::DffdSplitParams& p, const std::str
 }  // namespace
 
 TEST(DffdPanel, LineCarriesTheChosenFields) {
-  ui::DffdSplitParams p;
+  core::DffdSplitParams p;
   p.obstacles = {"bar1", "wall"};
-  p.axis = 2;
-  p.w_axis = 1;
-  p.order[0] = 4;
-  p.controls[0] = 14;
-  p.kernel = "bspline";
-  p.kernel_width = 0.55;
-  p.openings = "stitch";
-  p.fold = "warn";
+  p.dffd.axis = 2;
+  p.dffd.w_axis = 1;
+  p.dffd.order[0] = 4;
+  p.dffd.controls[0] = 14;
+  p.dffd.kernel = core::DffdKernel::bspline;
+  p.dffd.kernel_width = 0.55;
+  p.dffd.openings = core::DffdOpenings::stitch;
+  p.dffd.reject_fold = false;
   const nlohmann::json j = ui::dffd_split_line("bunny", p, kCandidates);
   EXPECT_EQ(j["cmd"], "dffd.split");
   EXPECT_EQ(j["object"], "bunny");
@@ -68,42 +68,42 @@ TEST(DffdPanel, LineCarriesTheChosenFields) {
   EXPECT_DOUBLE_EQ(j["kernel_width"].get<double>(), 0.55);
   EXPECT_EQ(j["openings"], "stitch");
   EXPECT_EQ(j["fold"], "warn");
-  EXPECT_FALSE(j.contains("margin")) << "margin 0 leaves the command's default";
-  p.margin = 0.25;
+  EXPECT_FALSE(j.contains("margin")) << "no margin leaves the command's default";
+  p.dffd.margin = 0.25;
   EXPECT_DOUBLE_EQ(ui::dffd_split_line("bunny", p, kCandidates)["margin"].get<double>(), 0.25);
 }
 
 TEST(DffdPanel, DefaultsAndAutomaticKernelWidth) {
-  ui::DffdSplitParams p;
-  EXPECT_EQ(p.order[0], 3);
-  EXPECT_EQ(p.controls[0], 12);
-  EXPECT_EQ(p.controls[1], 8);
-  EXPECT_EQ(p.controls[2], 8);
-  EXPECT_EQ(p.kernel, "gaussian");
-  EXPECT_EQ(p.openings, "cap");
-  EXPECT_EQ(p.fold, "reject");
+  core::DffdSplitParams p;
+  EXPECT_EQ(p.dffd.order[0], 3);
+  EXPECT_EQ(p.dffd.controls[0], 12);
+  EXPECT_EQ(p.dffd.controls[1], 8);
+  EXPECT_EQ(p.dffd.controls[2], 8);
+  EXPECT_EQ(p.dffd.kernel, core::DffdKernel::gaussian);
+  EXPECT_EQ(p.dffd.openings, core::DffdOpenings::cap);
+  EXPECT_TRUE(p.dffd.reject_fold);
   EXPECT_EQ(ui::default_kernel_width(p, kCandidates), 0.0) << "nothing ticked";
   p.obstacles = {"bar1", "bar2"};
   EXPECT_DOUBLE_EQ(ui::default_kernel_width(p, kCandidates), 2 * 0.6) << "2 x the largest extent along x";
-  p.axis = 2;
+  p.dffd.axis = 2;
   EXPECT_DOUBLE_EQ(ui::default_kernel_width(p, kCandidates), 2 * 0.4);
   EXPECT_DOUBLE_EQ(ui::dffd_split_line("o", p, kCandidates)["kernel_width"].get<double>(), 0.8);
 }
 
 TEST(DffdPanel, BlockedReasons) {
-  ui::DffdSplitParams p;
+  core::DffdSplitParams p;
   EXPECT_NE(ui::dffd_split_blocked("", p), "");
   EXPECT_NE(ui::dffd_split_blocked("o", p).find("obstacle"), std::string::npos);
   p.obstacles = {"bar1"};
   EXPECT_EQ(ui::dffd_split_blocked("o", p), "");
-  p.w_axis = p.axis;
+  p.dffd.w_axis = p.dffd.axis;
   EXPECT_NE(ui::dffd_split_blocked("o", p).find("differ"), std::string::npos);
 }
 
 TEST(DffdPanel, SplitButtonIssuesTheLine) {
-  ui::DffdSplitParams p;
+  core::DffdSplitParams p;
   p.obstacles = {"wall", "gone", "bar2"};  // "gone" is no longer a candidate: dropped; scene order kept
-  p.openings = "open";
+  p.dffd.openings = core::DffdOpenings::open;
   const auto line = click_split(p, "bunny");
   ASSERT_TRUE(line) << "a click on the enabled Split button gives the dffd.split line";
   EXPECT_EQ((*line)["obstacles"], nlohmann::json::parse(R"(["bar2","wall"])"));
@@ -112,13 +112,13 @@ TEST(DffdPanel, SplitButtonIssuesTheLine) {
 }
 
 TEST(DffdPanel, DisabledButtonIssuesNothing) {
-  ui::DffdSplitParams none;
+  core::DffdSplitParams none;
   EXPECT_FALSE(click_split(none, "bunny")) << "no obstacle ticked";
-  ui::DffdSplitParams same;
+  core::DffdSplitParams same;
   same.obstacles = {"bar1"};
-  same.w_axis = same.axis;
+  same.dffd.w_axis = same.dffd.axis;
   EXPECT_FALSE(click_split(same, "bunny")) << "axis = w_axis";
-  ui::DffdSplitParams self;
+  core::DffdSplitParams self;
   self.obstacles = {"bar1"};
   EXPECT_FALSE(click_split(self, "bar1")) << "the object cannot be its own obstacle";
 }
@@ -148,7 +148,7 @@ TEST(DffdSplitTool, SplitIsOneUndoableCommand) {
   EXPECT_TRUE(tool.candidates(ctx, "ball").empty()) << "hidden objects are not offered";
   hidden.clear();
 
-  ui::DffdSplitParams& p = tool.params();
+  core::DffdSplitParams& p = tool.params();
   p.obstacles = {"bar"};
   const nlohmann::json line = ui::dffd_split_line("ball", p, candidates);
   EXPECT_DOUBLE_EQ(line["kernel_width"].get<double>(), 0.8);
