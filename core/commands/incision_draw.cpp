@@ -20,9 +20,12 @@ const ParamSchema<IncisionParams>& incision_schema() {
           .help("How deep below the surface the cut goes (along −N)")
           .field("opening", &I::opening).at_least(0).unit("world units")
           .help("Gap between the two cut faces at the surface, mid-stroke")
-          .field("walls", &I::walls).help("Close the cut with walls (inside colour); false leaves it open")
-          .field("order", &I::order).range(2, 4).help("Order (= degree + 1) of the lattice in u, v, w")
-          .choice("kernel", &I::kernel, {"gaussian", "bspline"}).help("κ of the opening along u")
+          .field("walls", &I::walls).label("Walls")
+          .help("Build cut-depth walls (inside colour) so the surface stays closed; false leaves the cut open")
+          .field("order", &I::order).range(2, 4).label("Order").ui(0.05)
+          .help("Order (= degree + 1) of the cutting lattice in u, v, w; order knots at u = 1/2 make the cut")
+          .choice("kernel", &I::kernel, {"gaussian", "bspline"}).label("Kernel")
+          .help("κ: how the planes next to the cut follow it: truncated Gaussian or quadratic B-spline (§6.3.1)")
           .field("wall_rows", &I::wall_rows).range(1, 32).help("Rows of wall quads from each rim to the bottom");
   return s;
 }

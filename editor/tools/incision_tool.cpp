@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/commands/codecs.h"
 #include "editor/command_registry.h"
 #include "editor/navigation.h"
 #include "editor/session.h"
@@ -38,15 +37,15 @@ bool same_camera(const core::Camera& a, const core::Camera& b) {
 }
 }  // namespace
 
+core::IncisionParams incision_tool_defaults() {
+  core::IncisionParams p;
+  p.opening = -1.0;  // relative to the object until the user sets it
+  return p;
+}
+
 nlohmann::json incision_draw_line(const std::string& object, const std::vector<glm::dvec2>& stroke_px,
-                                  const IncisionToolParams& p, const std::optional<core::Camera>& view) {
-  nlohmann::json stroke = nlohmann::json::array();
-  for (const glm::dvec2& q : stroke_px) stroke.push_back({q.x, q.y});
-  nlohmann::json line = {{"cmd", "incision.draw"}, {"object", object},     {"stroke", stroke},
-                         {"width", p.width},       {"depth", p.depth},     {"opening", p.opening},
-                         {"walls", p.walls},       {"order", p.order},     {"kernel", p.kernel}};
-  if (view) line["camera"] = core::camera_schema().fields_json(*view);
-  return line;
+                                  const core::IncisionParams& p, const std::optional<core::Camera>& view) {
+  return core::IncisionDrawCommand::schema().to_json(core::IncisionDrawParams{object, stroke_px, view, p, {}});
 }
 
 ui::ToolEntry IncisionTool::entry() const {
@@ -77,8 +76,8 @@ const core::SceneObject* IncisionTool::object(const ToolContext& ctx) const {
   return o && o->world_mesh && !o->world_mesh->empty() ? o : nullptr;
 }
 
-IncisionToolParams IncisionTool::resolved(const core::SceneObject* o) const {
-  IncisionToolParams p = params_;
+core::IncisionParams IncisionTool::resolved(const core::SceneObject* o) const {
+  core::IncisionParams p = params_;
   const double diag = o && o->world_mesh && !o->world_mesh->empty() ? bounds_of(*o->world_mesh).diagonal() : 0.0;
   if (diag > 0.0) {
     if (p.width <= 0.0) p.width = kDefaultWidth * diag;
@@ -168,14 +167,7 @@ void IncisionTool::update_preview(const ToolContext& ctx) {
     std::vector<glm::dvec3> curve;
     for (int i = 0; i < kCurveSamples; ++i) curve.push_back(frame->generator.eval(double(i) / (kCurveSamples - 1)));
     curve_ = std::move(curve);
-    const IncisionToolParams rp = resolved(o);
-    core::IncisionParams ip;
-    ip.width = rp.width;
-    ip.depth = rp.depth;
-    ip.opening = rp.opening;
-    ip.walls = rp.walls;
-    ip.order = rp.order;
-    core::IncisionResult cut = core::incise(*o->world_mesh, *frame, ip);
+    core::IncisionResult cut = core::incise(*o->world_mesh, *frame, resolved(o));
     preview_mesh_ = std::make_shared<const core::TriMesh>(std::move(cut.mesh));
     preview_lattice_ = std::make_shared<const core::TrivariateBSpline<glm::dvec3>>(std::move(cut.lattice));
     preview_error_.clear();
@@ -218,7 +210,7 @@ std::string IncisionTool::hint() const {
 void IncisionTool::draw_panel(ToolContext& ctx) {
   // Sizes shown for the selected object (else the last one cut); unset ones are marked "auto".
   const core::SceneObject* sel = ctx.session.scene().find(ctx.selected.empty() ? target_ : ctx.selected);
-  const IncisionToolParams shown = resolved(sel);
+  const core::IncisionParams shown = resolved(sel);
   auto format = [&](bool unset, double value) { return !unset ? "%.4g" : value > 0.0 ? "%.4g (auto)" : "auto"; };
   const double diag = sel && sel->world_mesh && !sel->world_mesh->empty() ? bounds_of(*sel->world_mesh).diagonal()
                                                                           : 1.0;
@@ -249,22 +241,17 @@ void IncisionTool::draw_panel(ToolContext& ctx) {
   if (params_.width > 0 || params_.depth > 0 || params_.opening >= 0) {
     if (ImGui::SmallButton("Defaults")) {
       params_.width = params_.depth = 0.0;
-      params_.opening = -1.0;
+      params_.opening = incision_tool_defaults().opening;
     }
     ui::tooltip("Back to sizes relative to the object (width, depth, opening)");
   }
-  ImGui::Checkbox("Walls", &params_.walls);
-  ui::tooltip(
-      "Build the cut-depth walls in the shape of the tool so the surface stays a closed 2-manifold (seed section\n"
-      "6.4, last paragraph); they carry the inside ('flesh') material. Off: the cut is left open");
-  ImGui::SliderInt("Order", &params_.order, 2, 4);
-  ui::tooltip("Order (= degree + 1) of the local cutting lattice; 'order' knots at u = 1/2 make the C-1 discontinuity");
-  params_.order = std::clamp(params_.order, 2, 4);
-  int kernel = params_.kernel == "bspline" ? 1 : 0;
-  if (ImGui::Combo("Kernel", &kernel, "gaussian\0bspline\0")) params_.kernel = kernel == 1 ? "bspline" : "gaussian";
-  ui::tooltip(
-      "Profile kappa of the opening across the cut (how the control planes next to the discontinuity follow F-/F+):\n"
-      "gaussian: truncated Gaussian; bspline: quadratic B-spline (seed section 6.3.1)");
+  const core::ParamSchema<core::IncisionParams>& schema = core::incision_schema();
+  ui::param_widget(schema, "walls", params_);
+  ui::param_widget(schema, "order", params_);
+  ui::row_label(schema.find("kernel")->label.c_str());
+  int kernel = static_cast<int>(params_.kernel);
+  if (ImGui::Combo("##kernel", &kernel, "gaussian\0bspline\0")) params_.kernel = core::IncisionKernel(kernel);
+  ui::tooltip(ui::param_tooltip(schema.find("kernel")->doc).c_str());
 
   ImGui::Spacing();
   ImGui::Separator();

@@ -20,26 +20,20 @@
 
 #include "core/incision/incision.h"
 #include "core/raycast/ray_caster.h"
+#include "core/commands/incision_draw.h"
 #include "editor/tools/tool.h"
 
 namespace trispline::editor {
 
-// Parameters of the Incision tool panel (incision.draw fields). width / depth ≤ 0 and opening < 0 = unset: a fraction
-// of the object's bounding-box diagonal (IncisionTool::resolved()).
-struct IncisionToolParams {
-  double width = 0.0;    // world units: the lattice's half-extent across the cut (α of seed Eq. 6.2)
-  double depth = 0.0;    // world units: how deep below the surface the cut goes (β of Eq. 6.2)
-  double opening = -1.0;  // world units: gap between the cut faces at the surface, mid-stroke (κ, §6.4)
-  bool walls = true;     // cut-depth walls in the shape of the tool (seed §6.4, last paragraph)
-  int order = 3;         // order (= degree + 1) of the local lattice, 2..4
-  std::string kernel = "gaussian";  // opening profile along u: "gaussian" | "bspline"
-};
+// The tool's parameters are incision.draw's own (core::IncisionParams, declared in core/commands/incision_draw.cpp),
+// with the tool's convention that a width or depth ≤ 0 and an opening < 0 mean "relative to the object" (resolved()).
+core::IncisionParams incision_tool_defaults();
 
 // The incision.draw line: {"cmd":"incision.draw","object":ID,"stroke":[[px,py],...] (#S × 2 viewport pixels),
 // "width":a,"depth":b,"opening":c,"walls":bool,"order":o,"kernel":k} (parameters resolved: width, depth > 0), plus
 // "camera" (as place.sketch's: the view the pixels belong to) when `view` is given.
 nlohmann::json incision_draw_line(const std::string& object, const std::vector<glm::dvec2>& stroke_px,
-                                  const IncisionToolParams& params,
+                                  const core::IncisionParams& params,
                                   const std::optional<core::Camera>& view = std::nullopt);
 
 class IncisionTool : public Tool {
@@ -54,11 +48,11 @@ class IncisionTool : public Tool {
   std::string hint() const override;
   bool owns_mouse() const override { return drawing_; }
 
-  const IncisionToolParams& params() const { return params_; }
-  void set_params(const IncisionToolParams& p) { params_ = p; }
+  const core::IncisionParams& params() const { return params_; }
+  void set_params(const core::IncisionParams& p) { params_ = p; }
   // The parameters with unset width / depth / opening replaced by 0.02 / 0.02 / 0.006 × the bounding-box diagonal of
   // `object`'s world_mesh (unchanged when it has none).
-  IncisionToolParams resolved(const core::SceneObject* object) const;
+  core::IncisionParams resolved(const core::SceneObject* object) const;
   // Minimum time between two previews while dragging (0: after every new stroke point; tests use 0).
   void set_preview_interval_ms(double ms) { preview_interval_ms_ = ms; }
 
@@ -79,7 +73,7 @@ class IncisionTool : public Tool {
   void commit(ToolContext& ctx);
   void clear_preview();
 
-  IncisionToolParams params_;
+  core::IncisionParams params_ = incision_tool_defaults();
   std::vector<glm::dvec2> stroke_;
   bool drawing_ = false;
   core::Camera stroke_view_;  // the view at mouse-down: the stroke's pixels belong to it

@@ -89,13 +89,13 @@ class IncisionTool : public ::testing::Test {
 }  // namespace
 
 TEST_F(IncisionTool, LineCarriesStrokeAndParameters) {
-  editor::IncisionToolParams p;
+  core::IncisionParams p = editor::incision_tool_defaults();
   p.width = 0.1;
   p.depth = 0.07;
   p.opening = 0.0;
   p.walls = false;
   p.order = 4;
-  p.kernel = "bspline";
+  p.kernel = core::IncisionKernel::bspline;
   const nlohmann::json j = editor::incision_draw_line("venus", {{10.5, 20}, {30, 40.25}}, p);
   EXPECT_EQ(j["cmd"], "incision.draw");
   EXPECT_EQ(j["object"], "venus");
@@ -117,16 +117,16 @@ TEST_F(IncisionTool, LineCarriesStrokeAndParameters) {
 
 TEST_F(IncisionTool, UnsetSizesFollowTheObjectAndExplicitOnesStay) {
   const double diag = editor::bounds_of(*object().world_mesh).diagonal();
-  const editor::IncisionToolParams d = tool.resolved(&object());
+  const core::IncisionParams d = tool.resolved(&object());
   EXPECT_NEAR(d.width, 0.02 * diag, 1e-12);
   EXPECT_NEAR(d.depth, 0.02 * diag, 1e-12);
   EXPECT_NEAR(d.opening, 0.006 * diag, 1e-12);
-  editor::IncisionToolParams p;
+  core::IncisionParams p = editor::incision_tool_defaults();
   p.width = 0.3;
   p.depth = 0.2;
   p.opening = 0.0;  // zero is a valid opening, not "unset"
   tool.set_params(p);
-  const editor::IncisionToolParams r = tool.resolved(&object());
+  const core::IncisionParams r = tool.resolved(&object());
   EXPECT_EQ(r.width, 0.3);
   EXPECT_EQ(r.depth, 0.2);
   EXPECT_EQ(r.opening, 0.0);
@@ -166,13 +166,13 @@ TEST_F(IncisionTool, PreviewWhileDraggingOnTheSurface) {
 }
 
 TEST_F(IncisionTool, DragIssuesOneUndoableIncisionDraw) {
-  editor::IncisionToolParams p;
+  core::IncisionParams p = editor::incision_tool_defaults();
   p.width = 0.12;
   p.depth = 0.09;
   p.opening = 0.03;
   p.walls = true;
   p.order = 3;
-  p.kernel = "gaussian";
+  p.kernel = core::IncisionKernel::gaussian;
   tool.set_params(p);
   const std::shared_ptr<const core::TriMesh> before = object().world_mesh;
   const std::vector<glm::dvec3> rest_before = object().rest_mesh->positions;
@@ -267,7 +267,7 @@ TEST_F(IncisionTool, KeyKActivatesTheIncisionTool) {
 
 TEST_F(IncisionTool, PanelDrawsAndKeepsExplicitValues) {
   selected = "s";
-  editor::IncisionToolParams p;
+  core::IncisionParams p = editor::incision_tool_defaults();
   p.width = 0.25;
   p.opening = 0.0;
   tool.set_params(p);
