@@ -16,25 +16,8 @@
 namespace trispline::editor {
 
 namespace {
-constexpr double kMinPointSpacingPx = 2.0;  // stroke points closer than this to the previous one are dropped
 constexpr int kCurveSamples = 64;           // G(v) samples shown while dragging
 constexpr double kDefaultWidth = 0.02, kDefaultDepth = 0.02, kDefaultOpening = 0.006;  // × bounding-box diagonal
-
-
-// True when incision.draw keeps the line's "camera" (parsed and written back, as place.sketch does): the line is then
-// self-contained and needs no camera.set before it. Parsing has no side effects.
-bool command_keeps_camera(const nlohmann::json& line) {
-  try {
-    return CommandRegistry::builtin().parse(line, core::CommandContext{})->to_json().contains("camera");
-  } catch (const std::exception&) {
-    return false;
-  }
-}
-
-bool same_camera(const core::Camera& a, const core::Camera& b) {
-  return a.eye == b.eye && a.target == b.target && a.up == b.up && a.fov_deg == b.fov_deg &&
-         a.viewport == b.viewport;
-}
 }  // namespace
 
 core::IncisionParams incision_tool_defaults() {
@@ -55,8 +38,7 @@ ui::ToolEntry IncisionTool::entry() const {
 void IncisionTool::activate(ToolContext&) {}
 
 void IncisionTool::deactivate(ToolContext&) {
-  drawing_ = false;
-  stroke_.clear();
+  gesture_.cancel();
   clear_preview();
   target_.clear();
   caster_.reset();
@@ -99,19 +81,16 @@ const core::RayCaster* IncisionTool::caster_for(const core::SceneObject& o) {
 }
 
 void IncisionTool::handle_input(const ToolInput& in, ToolContext& ctx) {
-  if (in.left_pressed) {
-    stroke_ = {in.mouse_px};
-    stroke_view_ = ctx.view;  // pixels of this view, whatever the camera does until mouse-up
-    drawing_ = true;
+  const StrokeGesture::Event event = gesture_.update(in, ctx.view);
+  if (event == StrokeGesture::Event::Began) {
     clear_preview();
     // The object under the cursor at mouse-down wins over the selection.
     target_ = ctx.selected;
     if (const auto name = pick(ctx, in.mouse_px)) target_ = *name;
   }
-  if (drawing_ && in.left_down && glm::length(in.mouse_px - stroke_.back()) >= kMinPointSpacingPx)
-    stroke_.push_back(in.mouse_px);
   // Throttled preview, also on frames without a move so the last points of a fast drag are shown.
-  if (drawing_ && in.left_down && stroke_.size() >= 2 && stroke_.size() != previewed_points_) {
+  const std::size_t points = gesture_.points().size();
+  if (gesture_.drawing() && points >= 2 && points != previewed_points_) {
     const auto now = std::chrono::steady_clock::now();
     if (std::chrono::duration<double, std::milli>(now - last_preview_).count() >= preview_interval_ms_) {
       // Nothing under the cursor at mouse-down and nothing selected: the first object the stroke passes over.
@@ -121,10 +100,7 @@ void IncisionTool::handle_input(const ToolInput& in, ToolContext& ctx) {
       last_preview_ = now;
     }
   }
-  if (drawing_ && (in.left_released || !in.left_down)) {
-    drawing_ = false;
-    commit(ctx);
-  }
+  if (event == StrokeGesture::Event::Ended) commit(ctx);
 }
 
 std::optional<std::string> IncisionTool::pick(const ToolContext& ctx, glm::dvec2 px) const {
@@ -137,8 +113,8 @@ std::optional<std::string> IncisionTool::pick(const ToolContext& ctx, glm::dvec2
 }
 
 void IncisionTool::update_preview(const ToolContext& ctx) {
-  if (stroke_.size() < 2 || stroke_.size() == previewed_points_) return;
-  previewed_points_ = stroke_.size();
+  if (gesture_.points().size() < 2 || gesture_.points().size() == previewed_points_) return;
+  previewed_points_ = gesture_.points().size();
   const core::SceneObject* o = object(ctx);
   if (!o || !o->visible || ctx.hidden.count(o->name)) {
     curve_.clear();
@@ -156,7 +132,7 @@ void IncisionTool::update_preview(const ToolContext& ctx) {
   }
   try {
     const core::RayCaster* caster = caster_for(*o);
-    const auto frame = core::fit_incision_frame(stroke_, stroke_view_, *caster);
+    const auto frame = core::fit_incision_frame(gesture_.points(), gesture_.view(), *caster);
     if (!frame) {
       curve_.clear();
       preview_mesh_.reset();
@@ -179,8 +155,8 @@ void IncisionTool::update_preview(const ToolContext& ctx) {
 }
 
 void IncisionTool::commit(ToolContext& ctx) {
-  std::vector<glm::dvec2> stroke = std::move(stroke_);
-  stroke_.clear();
+  const core::Camera view = gesture_.view();
+  std::vector<glm::dvec2> stroke = gesture_.take();
   clear_preview();
   if (stroke.size() < 2) return;  // a click, not a stroke
   const core::SceneObject* o = object(ctx);
@@ -188,22 +164,15 @@ void IncisionTool::commit(ToolContext& ctx) {
     ctx.session.messages().error("incision.draw: start the stroke on an object or select the object to cut first");
     return;
   }
-  const nlohmann::json line = incision_draw_line(o->name, stroke, resolved(o), stroke_view_);
-  // Without a "camera" of its own, incision.draw's pixels belong to the current camera.set: log the view at
-  // mouse-down first when it differs.
-  const core::Scene& scene = ctx.session.scene();
-  std::optional<nlohmann::json> camera;
-  if ((!scene.camera_set || !same_camera(scene.camera, stroke_view_)) && !command_keeps_camera(line))
-    camera = camera_line(stroke_view_);
+  const nlohmann::json line = incision_draw_line(o->name, stroke, resolved(o), view);
   EditorSession& session = ctx.session;  // outlives the deferred work; ctx may not
-  ctx.defer("Cutting " + o->name, [&session, line, camera]() {
-    if (camera && !session.execute(*camera)) return;
+  ctx.defer("Cutting " + o->name, [&session, line]() {
     session.execute(line);  // errors go to the Log panel; the scene stays as it was
   });
 }
 
 std::string IncisionTool::hint() const {
-  if (drawing_) return preview_mesh_ ? "Release to cut" : "Drag across the surface; release to cut";
+  if (gesture_.drawing()) return preview_mesh_ ? "Release to cut" : "Drag across the surface; release to cut";
   return "Drag over an object to cut an incision (the object under the cursor, else the selection)";
 }
 
@@ -255,7 +224,7 @@ void IncisionTool::draw_panel(ToolContext& ctx) {
 
   ImGui::Spacing();
   ImGui::Separator();
-  if (drawing_ && !preview_error_.empty())
+  if (gesture_.drawing() && !preview_error_.empty())
     ImGui::TextColored(ui::colors::warning, "Preview: %s", preview_error_.c_str());
   ImGui::TextWrapped(
       "Left-drag across the surface (the object under the cursor, else the selected one): the cut is previewed "
@@ -263,8 +232,8 @@ void IncisionTool::draw_panel(ToolContext& ctx) {
 }
 
 void IncisionTool::decorate(gpu::ViewOptions& options) const {
-  if (!drawing_) return;
-  options.stroke_px = stroke_;
+  if (!gesture_.drawing()) return;
+  options.stroke_px = gesture_.points();
   options.incision_curve = curve_;
   if (!curve_.empty()) options.stroke_width_px = std::min(options.stroke_width_px, 1.5f);  // G(v) shows under it
   if (preview_mesh_) {

@@ -6,8 +6,7 @@
 // generator curve G(v) and the cut mesh instead of the object (gpu::ViewOptions::incision_curve /
 // incision_preview_mesh / incision_preview_object), or only the stroke while it does not lie on the surface. On
 // mouse-up the tool executes ONE `incision.draw` command (docs/commands.md) carrying the view at mouse-down
-// ("camera"); while the command does not keep that field, a `camera.set` of the view precedes it when the scene
-// camera differs (the stroke is then in pixels of the current camera.set).
+// ("camera"), so the stroke's pixels replay in that view.
 // A click without a drag issues nothing; errors go to the Log panel and leave the scene as it was.
 #pragma once
 
@@ -21,6 +20,7 @@
 #include "core/incision/incision.h"
 #include "core/raycast/ray_caster.h"
 #include "core/commands/incision_draw.h"
+#include "editor/tools/stroke_gesture.h"
 #include "editor/tools/tool.h"
 
 namespace trispline::editor {
@@ -46,7 +46,7 @@ class IncisionTool : public Tool {
   void draw_panel(ToolContext& ctx) override;
   void decorate(gpu::ViewOptions& options) const override;
   std::string hint() const override;
-  bool owns_mouse() const override { return drawing_; }
+  bool owns_mouse() const override { return gesture_.drawing(); }
 
   const core::IncisionParams& params() const { return params_; }
   void set_params(const core::IncisionParams& p) { params_ = p; }
@@ -58,7 +58,7 @@ class IncisionTool : public Tool {
 
   // The preview of the drag under way (empty when not dragging or when the stroke misses the surface).
   const std::string& target() const { return target_; }                  // object being cut
-  const std::vector<glm::dvec2>& stroke() const { return stroke_; }      // pixels so far
+  const std::vector<glm::dvec2>& stroke() const { return gesture_.points(); }      // pixels so far
   const std::vector<glm::dvec3>& preview_curve() const { return curve_; }  // G(v) sampled, world units
   const std::shared_ptr<const core::TriMesh>& preview_mesh() const { return preview_mesh_; }  // the cut surface
   // The preview's opened cut lattice (seed Eq. 6.2, C⁻¹ at u = 1/2), world units; null without a preview.
@@ -74,9 +74,7 @@ class IncisionTool : public Tool {
   void clear_preview();
 
   core::IncisionParams params_ = incision_tool_defaults();
-  std::vector<glm::dvec2> stroke_;
-  bool drawing_ = false;
-  core::Camera stroke_view_;  // the view at mouse-down: the stroke's pixels belong to it
+  StrokeGesture gesture_;
   std::string target_;
 
   std::vector<glm::dvec3> curve_;

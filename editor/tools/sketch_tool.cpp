@@ -7,10 +7,6 @@
 
 namespace trispline::editor {
 
-namespace {
-constexpr double kMinPointSpacingPx = 2.0;  // stroke points closer than this to the previous one are dropped
-}  // namespace
-
 nlohmann::json place_sketch_line(core::PlaceSketchParams params, const std::vector<glm::dvec2>& stroke_px,
                                  const core::Camera& view, const std::vector<std::string>& ignore) {
   params.stroke = stroke_px;
@@ -28,29 +24,18 @@ void SketchTool::activate(ToolContext& ctx) {
 }
 
 void SketchTool::deactivate(ToolContext&) {
-  stroke_.clear();
-  drawing_ = false;
+  gesture_.cancel();
 }
 
 std::string SketchTool::hint() const {
-  if (drawing_) return "Release to place";
+  if (gesture_.drawing()) return "Release to place";
   return params_.object.empty() ? "Choose the object to place in the Tool panel"
                                 : "Drag to sketch a stroke for " + params_.object;
 }
 
 void SketchTool::handle_input(const ToolInput& in, ToolContext& ctx) {
-  if (in.left_pressed) {
-    stroke_ = {in.mouse_px};
-    stroke_view_ = ctx.view;  // pixels of this view, whatever the camera does until mouse-up
-    drawing_ = true;
-  }
-  if (drawing_ && in.left_down) {
-    if (glm::length(in.mouse_px - stroke_.back()) >= kMinPointSpacingPx) stroke_.push_back(in.mouse_px);
-  }
-  if (drawing_ && (in.left_released || !in.left_down)) {
-    drawing_ = false;
-    std::vector<glm::dvec2> stroke = std::move(stroke_);
-    stroke_.clear();
+  if (gesture_.update(in, ctx.view) == StrokeGesture::Event::Ended) {
+    std::vector<glm::dvec2> stroke = gesture_.take();
     if (stroke.size() < 2) return;  // a click, not a stroke
     if (params_.object.empty() || !ctx.session.scene().find(params_.object)) {
       ctx.session.messages().error("place.sketch: choose the object to place in the Tool panel first");
@@ -60,7 +45,7 @@ void SketchTool::handle_input(const ToolInput& in, ToolContext& ctx) {
     std::vector<std::string> ignore;
     for (const std::string& name : ctx.hidden)
       if (name != params_.object && ctx.session.scene().find(name)) ignore.push_back(name);
-    place(ctx, std::move(stroke), stroke_view_, std::move(ignore));
+    place(ctx, std::move(stroke), gesture_.view(), std::move(ignore));
   }
 }
 
@@ -162,7 +147,7 @@ void SketchTool::draw_panel(ToolContext& ctx) {
 }
 
 void SketchTool::decorate(gpu::ViewOptions& options) const {
-  if (drawing_) options.stroke_px = stroke_;
+  if (gesture_.drawing()) options.stroke_px = gesture_.points();
 }
 
 }  // namespace trispline::editor

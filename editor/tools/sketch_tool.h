@@ -12,6 +12,7 @@
 #pragma once
 
 #include "editor/history.h"
+#include "editor/tools/stroke_gesture.h"
 #include "editor/tools/tool.h"
 #include "ui/placement_panel.h"
 
@@ -35,7 +36,7 @@ class SketchTool : public Tool {
   void draw_panel(ToolContext& ctx) override;
   void decorate(gpu::ViewOptions& options) const override;
   std::string hint() const override;
-  bool owns_mouse() const override { return drawing_; }
+  bool owns_mouse() const override { return gesture_.drawing(); }
 
   const core::PlaceSketchParams& params() const { return params_; }
   // What a committed edit in the panel does: takes `params`, and re-runs the tool's last placement with them as
@@ -55,9 +56,7 @@ class SketchTool : public Tool {
   core::PlaceSketchParams params_;  // the next placement's parameters; object = the object to place
   ui::PlacementPanelState panel_;
   std::string followed_selection_;  // selection the combo last followed
-  std::vector<glm::dvec2> stroke_;  // being drawn
-  bool drawing_ = false;
-  core::Camera stroke_view_;  // the view at mouse-down: the stroke's pixels belong to it
+  StrokeGesture gesture_;
 
   // The tool's last successful placement (for re-running with new parameters).
   std::vector<glm::dvec2> last_stroke_;
