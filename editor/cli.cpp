@@ -39,44 +39,59 @@ int rewrite_command_docs(const std::string& path, const CommandRegistry& registr
   return 0;
 }
 
-}  // namespace
 
-int run_cli(int argc, char** argv) {
-  CLI::App app{"trispline — interactive modeling with trivariate B-spline functions"};
-  app.require_subcommand(0, 1);
-
-  AppOptions edit_options;
+// What the command line asked for: each subcommand's options, and the subcommand objects to test which one ran.
+struct CliRequest {
+  AppOptions edit;
   std::string open_log;
-  app.add_option("log", open_log, "Command log (.jsonl) to open in the editor (same as `trispline edit LOG`)");
-  auto* edit = app.add_subcommand("edit", "Open the editor (the default when no subcommand is given)");
-  edit->add_option("log", open_log, "Command log (.jsonl) to open: replayed as undoable history");
-  edit->add_option("--screenshot", edit_options.screenshot, "Render a few frames, write this PNG of the window, exit");
-  edit->add_option("--width", edit_options.width, "Window width in pixels");
-  edit->add_option("--height", edit_options.height, "Window height in pixels");
-  edit->add_option("--gui-probe", edit_options.gui_probe,
-                   "Write widget rectangles, popups, history and log as JSON to this file every frame (GUI tests)");
-  edit->add_option("--max-fps", edit_options.max_fps, "Draw at most this many frames per second (GUI tests: 3)")
-      ->check(CLI::NonNegativeNumber);
-  edit->add_flag("!--no-recover", edit_options.recover_prompt, "Do not offer to recover an unfinished session");
+  ReplayOptions replay;
+  CLI::App* replay_cmd = nullptr;
+  BenchFfdOptions ffd;
+  BenchPlaceOptions place;
+  std::vector<int> place_samples{place.samples_u, place.samples_v};
+  bool springs_on_only = false, springs_off_only = false;
+  BenchDffdOptions dffd;
+  BenchDdmOptions ddm;
+  BenchPressOptions press;
+  CLI::App *ffd_cmd = nullptr, *place_cmd = nullptr, *dffd_cmd = nullptr, *ddm_cmd = nullptr, *press_cmd = nullptr;
+  CLI::App* commands_cmd = nullptr;
+  std::string command_id, docs_file;
+};
 
-  ReplayOptions replay_options;
-  auto* replay =
+// `trispline [LOG]` and `trispline edit [LOG] [--screenshot PNG] ...`.
+void add_edit(CLI::App& app, CliRequest& o) {
+  app.add_option("log", o.open_log, "Command log (.jsonl) to open in the editor (same as `trispline edit LOG`)");
+  CLI::App* edit = app.add_subcommand("edit", "Open the editor (the default when no subcommand is given)");
+  edit->add_option("log", o.open_log, "Command log (.jsonl) to open: replayed as undoable history");
+  edit->add_option("--screenshot", o.edit.screenshot, "Render a few frames, write this PNG of the window, exit");
+  edit->add_option("--width", o.edit.width, "Window width in pixels");
+  edit->add_option("--height", o.edit.height, "Window height in pixels");
+  edit->add_option("--gui-probe", o.edit.gui_probe,
+                   "Write widget rectangles, popups, history and log as JSON to this file every frame (GUI tests)");
+  edit->add_option("--max-fps", o.edit.max_fps, "Draw at most this many frames per second (GUI tests: 3)")
+      ->check(CLI::NonNegativeNumber);
+  edit->add_flag("!--no-recover", o.edit.recover_prompt, "Do not offer to recover an unfinished session");
+}
+
+// `trispline replay LOG --out DIR [--frames A-B] ...`.
+void add_replay(CLI::App& app, CliRequest& o) {
+  o.replay_cmd =
       app.add_subcommand("replay", "Replay a command log headlessly and write final.png, scene.glb, report.json");
-  replay->add_option("log", replay_options.log, "Command log (.jsonl)")->required()->check(CLI::ExistingFile);
-  replay->add_option("--out", replay_options.out_dir, "Output folder")->required();
+  o.replay_cmd->add_option("log", o.replay.log, "Command log (.jsonl)")->required()->check(CLI::ExistingFile);
+  o.replay_cmd->add_option("--out", o.replay.out_dir, "Output folder")->required();
   auto* rw =
-      replay->add_option("--width", replay_options.width, "final.png width in pixels (default: the camera's viewport)")
+      o.replay_cmd->add_option("--width", o.replay.width, "final.png width in pixels (default: the camera's viewport)")
           ->check(CLI::Range(1, 16384));
   auto* rh =
-      replay->add_option("--height", replay_options.height, "final.png height in pixels")->check(CLI::Range(1, 16384));
+      o.replay_cmd->add_option("--height", o.replay.height, "final.png height in pixels")->check(CLI::Range(1, 16384));
   rw->needs(rh);
   rh->needs(rw);
-  replay->add_flag("!--no-render", replay_options.render, "Skip final.png (no GL context needed)");
-  replay
+  o.replay_cmd->add_flag("!--no-render", o.replay.render, "Skip final.png (no GL context needed)");
+  o.replay_cmd
       ->add_option_function<std::string>(
           "--ffd-backend",
-          [&replay_options](const std::string& name) {
-            replay_options.ffd_backend = *core::parse_ffd_backend(name);  // checked below
+          [&o](const std::string& name) {
+            o.replay.ffd_backend = *core::parse_ffd_backend(name);  // checked below
           },
           "FFD evaluator for final.png and scene.glb: cpu_ref (default, the authoritative geometry), cpu_fast, "
           "glsl_compute or glsl_vertex (scene.glb is then read back from the GPU)")
@@ -86,8 +101,8 @@ int run_cli(int argc, char** argv) {
             return "unknown FFD backend '" + name + "': use cpu_ref, cpu_fast, glsl_compute or glsl_vertex";
           },
           "BACKEND");
-  replay
-      ->add_option("--time", replay_options.time_s,
+  o.replay_cmd
+      ->add_option("--time", o.replay.time_s,
                    "Scene time in seconds: animated objects (lattice.animate_offset) are drawn and exported at it")
       ->check(
           [](const std::string& text) -> std::string {
@@ -101,14 +116,14 @@ int run_cli(int argc, char** argv) {
           },
           "SECONDS");
 
-  replay
+  o.replay_cmd
       ->add_option_function<std::string>(
           "--frames",
-          [&replay_options](const std::string& text) {
+          [&o](const std::string& text) {
             const auto range = parse_frame_range(text);  // checked below
-            replay_options.frames_given = true;
-            replay_options.frame_first = range->first;
-            replay_options.frame_last = range->second;
+            o.replay.frames_given = true;
+            o.replay.frame_first = range->first;
+            o.replay.frame_last = range->second;
           },
           "Record timeline frames A-B (inclusive) of the final scene into --out: frame_NNNN.png|exr and "
           "animation.glb of that range (exit 2, nothing written, when the range lies outside the timeline)")
@@ -117,88 +132,117 @@ int run_cli(int argc, char** argv) {
             return parse_frame_range(text) ? "" : "--frames needs A-B with 0 <= A <= B, got '" + text + "'";
           },
           "A-B");
-  replay->add_option("--format", replay_options.format, "Image format of --frames: png (8-bit) or exr (half, linear)")
+  o.replay_cmd->add_option("--format", o.replay.format, "Image format of --frames: png (8-bit) or exr (half, linear)")
       ->check(CLI::IsMember({"png", "exr"}));
+}
 
+// `trispline bench ffd|place|dffd|ddm|press`.
+void add_bench(CLI::App& app, CliRequest& o) {
   auto* bench = app.add_subcommand("bench", "Benchmarks that print figures (never assert timings)");
   bench->require_subcommand(1);
-  BenchFfdOptions bench_options;
-  auto* bench_ffd = bench->add_subcommand(
+  o.ffd_cmd = bench->add_subcommand(
       "ffd", "FFD throughput of every evaluator backend (CPU reference/fast, GLSL compute/vertex) on the bunny "
              "subdivided to ~0.8 M vertices, 4^3 and 8^3 lattices, orders 3 and 4");
-  bench_ffd->add_flag("--json", bench_options.json, "Print one JSON object instead of a table");
-  bench_ffd->add_option("--mesh", bench_options.mesh_path,
+  o.ffd_cmd->add_flag("--json", o.ffd.json, "Print one JSON object instead of a table");
+  o.ffd_cmd->add_option("--mesh", o.ffd.mesh_path,
                         "Benchmark this mesh's vertices instead (OBJ/PLY/OFF/STL/glTF; default: the bunny)")
       ->check(CLI::ExistingFile);
-  bench_ffd->add_option("--subdiv", bench_options.subdivision,
+  o.ffd_cmd->add_option("--subdiv", o.ffd.subdivision,
                         "OpenSubdiv bilinear subdivision levels (default 2 for the bunny, 0 for --mesh)")
       ->check(CLI::Range(0, 6));
-  bench_ffd->add_option("--runs", bench_options.runs, "Timed runs per case; the median is reported")
+  o.ffd_cmd->add_option("--runs", o.ffd.runs, "Timed runs per case; the median is reported")
       ->check(CLI::Range(1, 1000));
-  bench_ffd->add_flag("!--cpu-only", bench_options.gpu, "Skip the GLSL backends (no GL context)");
-  bench_ffd->add_option("--gpu-shaders", bench_options.gpu_shaders,
+  o.ffd_cmd->add_flag("!--cpu-only", o.ffd.gpu, "Skip the GLSL backends (no GL context)");
+  o.ffd_cmd->add_option("--gpu-shaders", o.ffd.gpu_shaders,
                         "How GLSL shaders get the orders: auto (generic on software renderers), specialised, generic")
       ->check(CLI::IsMember({"auto", "specialised", "generic"}));
 
-  BenchPlaceOptions place_bench;
-  std::vector<int> place_samples{place_bench.samples_u, place_bench.samples_v};
-  bool springs_on_only = false, springs_off_only = false;
-  auto* bench_place = bench->add_subcommand(
+  o.place_cmd = bench->add_subcommand(
       "place", "place.sketch end to end (stroke -> placed bunny over the teapot and the terrain), ms per stage, "
                "mass-spring contact surface on and off");
-  bench_place->add_flag("--json", place_bench.json, "Print one JSON object instead of a table");
-  bench_place->add_option("--runs", place_bench.runs, "Timed runs per case after one warm-up; the median is reported")
+  o.place_cmd->add_flag("--json", o.place.json, "Print one JSON object instead of a table");
+  o.place_cmd->add_option("--runs", o.place.runs, "Timed runs per case after one warm-up; the median is reported")
       ->check(CLI::Range(1, 1000));
-  bench_place->add_option("--mesh", place_bench.mesh_path, "Place this mesh instead of assets/data/bunny.obj")
+  o.place_cmd->add_option("--mesh", o.place.mesh_path, "Place this mesh instead of assets/data/bunny.obj")
       ->check(CLI::ExistingFile);
-  bench_place->add_option("--samples", place_samples, "Contact rays NU NV (default 64 8)")
+  o.place_cmd->add_option("--samples", o.place_samples, "Contact rays NU NV (default 64 8)")
       ->expected(2)
       ->check(CLI::Range(2, 4096));
-  auto* on_only = bench_place->add_flag("--springs", springs_on_only, "Only with the mass-spring contact surface");
-  bench_place->add_flag("--no-springs", springs_off_only, "Only without the mass-spring contact surface")
+  auto* on_only = o.place_cmd->add_flag("--springs", o.springs_on_only, "Only with the mass-spring contact surface");
+  o.place_cmd->add_flag("--no-springs", o.springs_off_only, "Only without the mass-spring contact surface")
       ->excludes(on_only);
-  bench_place->add_option("--scene", place_bench.scenes, "Scenes: teapot, terrain (default both)")
+  o.place_cmd->add_option("--scene", o.place.scenes, "Scenes: teapot, terrain (default both)")
       ->check(CLI::IsMember({"teapot", "terrain"}));
 
-  BenchDffdOptions dffd_bench;
-  auto* bench_dffd = bench->add_subcommand(
+  o.dffd_cmd = bench->add_subcommand(
       "dffd", "Discontinuous FFD per frame: split + cap + deform of the bunny walking through bars (seed §6.3)");
-  bench_dffd->add_flag("--json", dffd_bench.json, "Print one JSON object instead of a table");
-  bench_dffd->add_option("--scene", dffd_bench.scene_path, "Scene log with an animated dffd.split object")
+  o.dffd_cmd->add_flag("--json", o.dffd.json, "Print one JSON object instead of a table");
+  o.dffd_cmd->add_option("--scene", o.dffd.scene_path, "Scene log with an animated dffd.split object")
       ->default_str("assets/scenes/bars_walk.jsonl");
-  bench_dffd->add_option("--runs", dffd_bench.runs, "Timed evaluations per frame (median)")->check(CLI::PositiveNumber);
-  bench_dffd->add_option("--frames", dffd_bench.frames, "Frames sampled over the walk")->check(CLI::PositiveNumber);
-  BenchDdmOptions ddm_bench;
-  auto* bench_ddm = bench->add_subcommand(
+  o.dffd_cmd->add_option("--runs", o.dffd.runs, "Timed evaluations per frame (median)")->check(CLI::PositiveNumber);
+  o.dffd_cmd->add_option("--frames", o.dffd.frames, "Frames sampled over the walk")->check(CLI::PositiveNumber);
+  o.ddm_cmd = bench->add_subcommand(
       "ddm", "Live DDM layers drawn by GPU instancing: tile vertices, GPU ms per frame, fps (seed §5.3.2, Table 5.1)");
-  bench_ddm->add_flag("--json", ddm_bench.json, "Print one JSON object instead of a table");
-  bench_ddm->add_option("--frames", ddm_bench.frames, "Timed frames per case (after 2 warm-up frames)")
+  o.ddm_cmd->add_flag("--json", o.ddm.json, "Print one JSON object instead of a table");
+  o.ddm_cmd->add_option("--frames", o.ddm.frames, "Timed frames per case (after 2 warm-up frames)")
       ->check(CLI::PositiveNumber);
-  bench_ddm->add_option("--width", ddm_bench.width, "Offscreen target width, pixels")->check(CLI::PositiveNumber);
-  bench_ddm->add_option("--height", ddm_bench.height, "Offscreen target height, pixels")->check(CLI::PositiveNumber);
-  bench_ddm->add_option("--samples", ddm_bench.samples, "MSAA samples")->check(CLI::Range(1, 16));
-  bench_ddm->add_option("--case", ddm_bench.cases, "Cases: thorns_face, thorns_teapot, chains_1m, chains_3m (default all)")
+  o.ddm_cmd->add_option("--width", o.ddm.width, "Offscreen target width, pixels")->check(CLI::PositiveNumber);
+  o.ddm_cmd->add_option("--height", o.ddm.height, "Offscreen target height, pixels")->check(CLI::PositiveNumber);
+  o.ddm_cmd->add_option("--samples", o.ddm.samples, "MSAA samples")->check(CLI::Range(1, 16));
+  o.ddm_cmd->add_option("--case", o.ddm.cases, "Cases: thorns_face, thorns_teapot, chains_1m, chains_3m (default all)")
       ->check(CLI::IsMember({"thorns_face", "thorns_teapot", "chains_1m", "chains_3m"}));
-  bench_ddm->add_flag("!--no-cpu", ddm_bench.cpu_reference, "Do not time the CPU reference evaluation");
-  BenchPressOptions press_bench;
-  auto* bench_press = bench->add_subcommand(
+  o.ddm_cmd->add_flag("!--no-cpu", o.ddm.cpu_reference, "Do not time the CPU reference evaluation");
+  o.press_cmd = bench->add_subcommand(
       "press", "A pressing drag on a ~1 M-vertex object: Press tool per mouse move, pressed lattice, cpu_fast / GLSL "
                "re-evaluation per drag sample, and the lattice.press command at release");
-  bench_press->add_flag("--json", press_bench.json, "Print one JSON object instead of a table");
-  bench_press->add_option("--vertices", press_bench.vertices,
+  o.press_cmd->add_flag("--json", o.press.json, "Print one JSON object instead of a table");
+  o.press_cmd->add_option("--vertices", o.press.vertices,
                           "Target vertex count: the bunny's subdivision level closest to it (default 1000000)")
       ->check(CLI::Range(8, 100000000));
-  bench_press->add_option("--runs", press_bench.runs, "Drags, timed updates and command runs (median)")
+  o.press_cmd->add_option("--runs", o.press.runs, "Drags, timed updates and command runs (median)")
       ->check(CLI::Range(1, 1000));
-  bench_press->add_option("--mesh", press_bench.mesh_path, "Use this mesh instead of assets/data/bunny.obj")
+  o.press_cmd->add_option("--mesh", o.press.mesh_path, "Use this mesh instead of assets/data/bunny.obj")
       ->check(CLI::ExistingFile);
-  bench_press->add_flag("!--cpu-only", press_bench.gpu, "Skip glsl_compute (no GL context)");
+  o.press_cmd->add_flag("!--cpu-only", o.press.gpu, "Skip glsl_compute (no GL context)");
+}
 
-  auto* commands = app.add_subcommand("commands", "List the commands a log may contain");
-  std::string command_id, docs_file;
-  commands->add_option("id", command_id, "Show this command's parameters as a Markdown table");
-  commands->add_option("--docs", docs_file,
+// `trispline commands [ID] [--docs FILE]`.
+void add_commands(CLI::App& app, CliRequest& o) {
+  o.commands_cmd = app.add_subcommand("commands", "List the commands a log may contain");
+  o.commands_cmd->add_option("id", o.command_id, "Show this command's parameters as a Markdown table");
+  o.commands_cmd->add_option("--docs", o.docs_file,
                        "Rewrite the generated parameter tables (<!-- params: ID --> blocks) of this Markdown file");
+}
+
+// Lists the commands, one command's parameters, or rewrites a Markdown file's generated tables.
+int run_commands(const CliRequest& o) {
+  const auto& registry = CommandRegistry::builtin();
+  if (!o.docs_file.empty()) return rewrite_command_docs(o.docs_file, registry);
+  if (!o.command_id.empty()) {
+    const auto ids = registry.ids();
+    if (std::find(ids.begin(), ids.end(), o.command_id) == ids.end()) {
+      std::cerr << "trispline commands: no command '" << o.command_id << "' (trispline commands lists them)\n";
+      return 2;
+    }
+    std::cout << "# " << o.command_id << "\n" << registry.summary(o.command_id) << "\n\n"
+              << params_table(registry, o.command_id);
+    return 0;
+  }
+  for (const auto& id : registry.ids()) std::cout << id << "\t" << registry.summary(id) << "\n";
+  std::cout << "edit.undo\tUndo the last command\nedit.redo\tRedo the last undone command\n";
+  return 0;
+}
+
+}  // namespace
+
+int run_cli(int argc, char** argv) {
+  CLI::App app{"trispline — interactive modeling with trivariate B-spline functions"};
+  app.require_subcommand(0, 1);
+  CliRequest o;
+  add_edit(app, o);
+  add_replay(app, o);
+  add_bench(app, o);
+  add_commands(app, o);
 
   try {
     app.parse(argc, argv);
@@ -207,36 +251,20 @@ int run_cli(int argc, char** argv) {
   }
 
   try {
-    if (*replay) return run_replay(replay_options);
-    if (*bench_ffd) return run_bench_ffd(bench_options, std::cout, std::cerr);
-    if (*bench_place) {
-      place_bench.samples_u = place_samples.at(0);
-      place_bench.samples_v = place_samples.at(1);
-      place_bench.springs = springs_on_only ? "on" : springs_off_only ? "off" : "both";
-      return run_bench_place(place_bench, std::cout, std::cerr);
+    if (*o.replay_cmd) return run_replay(o.replay);
+    if (*o.ffd_cmd) return run_bench_ffd(o.ffd, std::cout, std::cerr);
+    if (*o.place_cmd) {
+      o.place.samples_u = o.place_samples.at(0);
+      o.place.samples_v = o.place_samples.at(1);
+      o.place.springs = o.springs_on_only ? "on" : o.springs_off_only ? "off" : "both";
+      return run_bench_place(o.place, std::cout, std::cerr);
     }
-    if (*bench_dffd) return run_bench_dffd(dffd_bench, std::cout, std::cerr);
-    if (*bench_ddm) return run_bench_ddm(ddm_bench, std::cout, std::cerr);
-    if (*bench_press) return run_bench_press(press_bench, std::cout, std::cerr);
-    if (*commands) {
-      const auto& registry = CommandRegistry::builtin();
-      if (!docs_file.empty()) return rewrite_command_docs(docs_file, registry);
-      if (!command_id.empty()) {
-        const auto ids = registry.ids();
-        if (std::find(ids.begin(), ids.end(), command_id) == ids.end()) {
-          std::cerr << "trispline commands: no command '" << command_id << "' (trispline commands lists them)\n";
-          return 2;
-        }
-        std::cout << "# " << command_id << "\n" << registry.summary(command_id) << "\n\n"
-                  << params_table(registry, command_id);
-        return 0;
-      }
-      for (const auto& id : registry.ids()) std::cout << id << "\t" << registry.summary(id) << "\n";
-      std::cout << "edit.undo\tUndo the last command\nedit.redo\tRedo the last undone command\n";
-      return 0;
-    }
-    if (!open_log.empty()) edit_options.open_log = open_log;
-    return run_editor(edit_options);
+    if (*o.dffd_cmd) return run_bench_dffd(o.dffd, std::cout, std::cerr);
+    if (*o.ddm_cmd) return run_bench_ddm(o.ddm, std::cout, std::cerr);
+    if (*o.press_cmd) return run_bench_press(o.press, std::cout, std::cerr);
+    if (*o.commands_cmd) return run_commands(o);
+    if (!o.open_log.empty()) o.edit.open_log = o.open_log;
+    return run_editor(o.edit);
   } catch (const std::exception& e) {
     std::cerr << "trispline: " << e.what() << "\n";
     return 1;
