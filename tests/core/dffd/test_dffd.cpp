@@ -2,6 +2,8 @@
 // parameter plane, and the two together through ffd_evaluate (seed §6.3.1 Def. 6, §6.3.2).
 #include <gtest/gtest.h>
 
+#include "tests/test_shapes.h"
+
 #include "tests/mesh_topology.h"
 
 #include <algorithm>
@@ -50,24 +52,7 @@ double total_area(const TriMesh& m) {
   return a;
 }
 
-// Torus around z (R = 2, r = 0.7), closed, shared vertices; the plane x = 0 cuts it in two circles.
-TriMesh make_torus(int nu, int nv) {
-  TriMesh m;
-  for (int i = 0; i < nu; ++i)
-    for (int j = 0; j < nv; ++j) {
-      const double a = 2.0 * M_PI * i / nu, b = 2.0 * M_PI * j / nv;
-      m.positions.push_back(
-          {std::cos(a) * (2.0 + 0.7 * std::cos(b)), std::sin(a) * (2.0 + 0.7 * std::cos(b)), 0.7 * std::sin(b)});
-      m.normals.push_back({std::cos(a) * std::cos(b), std::sin(a) * std::cos(b), std::sin(b)});
-    }
-  auto id = [&](int i, int j) { return static_cast<unsigned>(((i + nu) % nu) * nv + (j + nv) % nv); };
-  for (int i = 0; i < nu; ++i)
-    for (int j = 0; j < nv; ++j) {
-      m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-      m.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-    }
-  return m;
-}
+TriMesh make_torus(int nu, int nv) { return trispline::test::torus_mesh(nu, nv, true); }
 
 // uv = (x, y) of the position: a linear function, so interpolated uvs must equal it at the new positions.
 void add_linear_uvs(TriMesh& m) {

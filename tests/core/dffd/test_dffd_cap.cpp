@@ -2,6 +2,8 @@
 // constrained Delaunay caps (seed §6.3.2, Fig. 6.2b). Topology is checked with OpenMesh.
 #include <gtest/gtest.h>
 
+#include "tests/test_shapes.h"
+
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 
 #include <algorithm>
@@ -79,23 +81,7 @@ double cap_area(const MeshSplit& s, std::size_t first_cap, int side) {
   return a;
 }
 
-// Torus around z (R = 2, r = 0.7), closed, shared vertices (as in test_dffd.cpp).
-TriMesh make_torus(int nu, int nv) {
-  TriMesh m;
-  for (int i = 0; i < nu; ++i)
-    for (int j = 0; j < nv; ++j) {
-      const double a = 2.0 * M_PI * i / nu, b = 2.0 * M_PI * j / nv;
-      m.positions.push_back(
-          {std::cos(a) * (2.0 + 0.7 * std::cos(b)), std::sin(a) * (2.0 + 0.7 * std::cos(b)), 0.7 * std::sin(b)});
-    }
-  auto id = [&](int i, int j) { return static_cast<unsigned>(((i + nu) % nu) * nv + (j + nv) % nv); };
-  for (int i = 0; i < nu; ++i)
-    for (int j = 0; j < nv; ++j) {
-      m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-      m.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-    }
-  return m;
-}
+TriMesh make_torus(int nu, int nv) { return trispline::test::torus_mesh(nu, nv, false); }
 
 // Parameters = the bounding box mapped to [0,1]³ axis by axis (parameter axis k = world axis k, positive scale).
 std::vector<glm::dvec3> box_params(const TriMesh& m) {
