@@ -80,8 +80,20 @@ Discontinuity find_discontinuity(const TrivariateBSpline<glm::dvec3>& F, int axi
   return {axis, u0, r - 1, r};
 }
 
-GlobalDffd build_global_dffd(const TriMesh& object_world, const std::vector<DffdObstacle>& obstacles,
-                             const GlobalDffdParams& p) {
+namespace {
+
+// The lattice's axes as world axes: u = the travel direction, w = orthogonal to the slicing planes, v = the third.
+struct LatticeAxes {
+  int u, v, w;
+};
+
+// A C⁻¹ break: obstacle index and its parameter u0 along the lattice's u.
+struct PlacedBreak {
+  std::size_t obstacle;
+  double u0;
+};
+
+void validate(const TriMesh& object_world, const std::vector<DffdObstacle>& obstacles, const GlobalDffdParams& p) {
   // --- validation -------------------------------------------------------------------------------------------
   if (p.axis < 0 || p.axis > 2) throw DffdBuildError("axis must be x, y or z", "axis");
   if (p.w_axis < 0 || p.w_axis > 2) throw DffdBuildError("w_axis must be x, y or z", "w_axis");
@@ -101,10 +113,11 @@ GlobalDffd build_global_dffd(const TriMesh& object_world, const std::vector<Dffd
     throw DffdBuildError("clearance must be ≥ 0 (world units)", "clearance");
   if (obstacles.empty()) throw DffdBuildError("at least one obstacle is needed", "obstacles");
   if (object_world.positions.empty()) throw DffdBuildError("the object has no vertices", "object");
-  const int u_ax = p.axis, w_ax = p.w_axis, v_ax = 3 - p.axis - p.w_axis;
+}
 
+// The obstacles' bounding boxes (#O) and their union.
+std::vector<Aabb> obstacle_boxes(const std::vector<DffdObstacle>& obstacles, Aabb& all) {
   std::vector<Aabb> obox(obstacles.size());
-  Aabb all;
   for (std::size_t i = 0; i < obstacles.size(); ++i) {
     if (obstacles[i].world_mesh.empty())
       throw DffdBuildError("obstacle '" + obstacles[i].name + "' has no triangles", "obstacles");
@@ -112,7 +125,13 @@ GlobalDffd build_global_dffd(const TriMesh& object_world, const std::vector<Dffd
     all.extend(obox[i].lo);
     all.extend(obox[i].hi);
   }
+  return obox;
+}
 
+// Step 1: the lattice box B, given (p.box, every obstacle inside it) or grown from the obstacles and the object.
+Aabb lattice_box(const TriMesh& object_world, const std::vector<DffdObstacle>& obstacles,
+                 const std::vector<Aabb>& obox, const Aabb& all, const GlobalDffdParams& p, const LatticeAxes& ax) {
+  const int u_ax = ax.u, v_ax = ax.v, w_ax = ax.w;
   // --- 1. the lattice box B ------------------------------------------------------------------------------------
   Aabb box;
   if (p.box) {
@@ -139,7 +158,12 @@ GlobalDffd build_global_dffd(const TriMesh& object_world, const std::vector<Dffd
     }
     if (!(box.size()[u_ax] > 0.0)) throw DffdBuildError("the obstacles have no extent along axis", "margin");
   }
+  return box;
+}
 
+// Step 2: the identity lattice of B (clamped uniform knots, control points at the Greville abscissae).
+GlobalDffd identity_lattice(const Aabb& box, const GlobalDffdParams& p, const LatticeAxes& ax) {
+  const int u_ax = ax.u, w_ax = ax.w;
   // --- 2. the uniform (identity) lattice -----------------------------------------------------------------------
   const Embedding embedding = embed_bounding_box({box.lo, box.hi}, EmbeddingAxes{u_ax, w_ax});
   const glm::dmat3 A_inv = glm::inverse(embedding.linear);
@@ -159,28 +183,32 @@ GlobalDffd build_global_dffd(const TriMesh& object_world, const std::vector<Dffd
   rig.openings = p.openings;
   rig.eps = p.eps;
   rig.identity_outside = true;
-  TrivariateBSpline<glm::dvec3>& F = rig.lattice;
+  return out;
+}
 
+// Step 3: order knots in u at each obstacle's centre of mass (C⁻¹), order − 1 in v at its v-extremes. The breaks,
+// sorted by u0; out.rig.discontinuities and out.v_knots are filled.
+std::vector<PlacedBreak> insert_breaks(GlobalDffd& out, const std::vector<DffdObstacle>& obstacles,
+                                       const std::vector<Aabb>& obox, const LatticeAxes& ax) {
+  const int u_ax = ax.u;
+  DffdRig& rig = out.rig;
+  TrivariateBSpline<glm::dvec3>& F = rig.lattice;
   // --- 3. knots: C⁻¹ at each obstacle's centre of mass, order − 1 in v at its v-extremes ------------------------
-  struct Placed {
-    std::size_t obstacle;
-    double u0;
-  };
-  std::vector<Placed> placed;
+  std::vector<PlacedBreak> placed;
   for (std::size_t i = 0; i < obstacles.size(); ++i) {
     const double u0 = rig.embedding.apply(centre_of_mass(obstacles[i].world_mesh))[0];
     if (!(u0 > 0.0 && u0 < 1.0))
       throw DffdBuildError("the centre of obstacle '" + obstacles[i].name + "' lies outside the lattice's domain (u = " +
                                num(u0) + ")", "obstacles");
-    for (const Placed& q : placed)
+    for (const PlacedBreak& q : placed)
       if (std::abs(q.u0 - u0) < 1e-9)
         throw DffdBuildError("obstacles '" + obstacles[q.obstacle].name + "' and '" + obstacles[i].name +
                                  "' have the same centre along " + axis_name(u_ax) + ": merge them into one obstacle",
                              "obstacles");
     placed.push_back({i, u0});
   }
-  std::sort(placed.begin(), placed.end(), [](const Placed& a, const Placed& b) { return a.u0 < b.u0; });
-  for (Placed& q : placed) {
+  std::sort(placed.begin(), placed.end(), [](const PlacedBreak& a, const PlacedBreak& b) { return a.u0 < b.u0; });
+  for (PlacedBreak& q : placed) {
     q.u0 = snap_to_knot(F.knots(0), q.u0);
     insert_discontinuity(F, 0, q.u0);
   }
@@ -196,8 +224,20 @@ GlobalDffd build_global_dffd(const TriMesh& object_world, const std::vector<Dffd
       out.v_knots += static_cast<std::size_t>(times);
     }
   }
-  for (const Placed& q : placed) rig.discontinuities.push_back(find_discontinuity(F, 0, q.u0));
+  for (const PlacedBreak& q : placed) rig.discontinuities.push_back(find_discontinuity(F, 0, q.u0));
+  return placed;
+}
 
+// Steps 4 and 5: the F⁻/F⁺ control points of every row projected along u onto the obstacle's cross-section in W_k,
+// the displacement spread by κ. Returns, per break, the rows (j) the obstacle opened.
+std::vector<std::vector<char>> open_around_obstacles(GlobalDffd& out, const std::vector<PlacedBreak>& placed,
+                                                     const std::vector<DffdObstacle>& obstacles,
+                                                     const std::vector<Aabb>& obox, const GlobalDffdParams& p,
+                                                     const LatticeAxes& ax) {
+  const int u_ax = ax.u, v_ax = ax.v;
+  const Aabb& box = out.box;
+  DffdRig& rig = out.rig;
+  TrivariateBSpline<glm::dvec3>& F = rig.lattice;
   // --- 4./5. projection onto C±(v) at every W_k, propagation by κ ----------------------------------------------
   const glm::ivec3 n = F.control_counts();
   const std::vector<glm::dvec3> original = F.control_points();
@@ -247,7 +287,17 @@ GlobalDffd build_global_dffd(const TriMesh& object_world, const std::vector<Dffd
       }
   }
   for (std::size_t idx = 0; idx < shift.size(); ++idx) F.control_points()[idx][u_ax] += shift[idx];
+  return opened;
+}
 
+// Step 6 (seed Theorem 6): the u-components must increase along every row (j, k); folds are listed in out.folds and
+// out.rig.fold_points, and refused (DffdBuildError "kernel_width") when p.reject_fold.
+void check_folds(GlobalDffd& out, const GlobalDffdParams& p, const LatticeAxes& ax) {
+  const int u_ax = ax.u;
+  const Aabb& box = out.box;
+  DffdRig& rig = out.rig;
+  TrivariateBSpline<glm::dvec3>& F = rig.lattice;
+  const glm::ivec3 n = F.control_counts();
   // --- 6. fold-over check (Theorem 6): u-components increase along every (j, k) --------------------------------
   const double tol = 1e-9 * box.diagonal();
   auto is_break = [&](int i) {
@@ -272,7 +322,18 @@ GlobalDffd build_global_dffd(const TriMesh& object_world, const std::vector<Dffd
                          "kernel_width");
   }
   for (const DffdFold& f : out.folds) rig.fold_points.push_back(f.position);
+}
 
+// The object's parameters and step 7: with stitched openings, both discontinuity planes of the opened rows moved to
+// the level w_s (seed §6.3.2).
+void embed_and_stitch(GlobalDffd& out, const TriMesh& object_world, const std::vector<std::vector<char>>& opened,
+                      const GlobalDffdParams& p, const LatticeAxes& ax) {
+  const int w_ax = ax.w;
+  DffdRig& rig = out.rig;
+  TrivariateBSpline<glm::dvec3>& F = rig.lattice;
+  const glm::ivec3 n = F.control_counts();
+  const glm::dmat3 A_inv = glm::inverse(rig.embedding.linear);
+  const auto to_world = [&](const glm::dvec3& uvw) { return A_inv * (uvw - rig.embedding.offset); };
   // --- parameters of the object, 7. stitching -------------------------------------------------------------------
   rig.params = embed_points(rig.embedding, object_world.positions);
   if (p.openings == DffdOpenings::stitch) {
@@ -307,7 +368,23 @@ GlobalDffd build_global_dffd(const TriMesh& object_world, const std::vector<Dffd
         }
     }
   }
-  for (const DffdObstacle& o : obstacles) rig.obstacles.push_back(o.name);
+}
+
+}  // namespace
+
+GlobalDffd build_global_dffd(const TriMesh& object_world, const std::vector<DffdObstacle>& obstacles,
+                             const GlobalDffdParams& p) {
+  validate(object_world, obstacles, p);
+  const LatticeAxes ax{p.axis, 3 - p.axis - p.w_axis, p.w_axis};
+  Aabb all;
+  const std::vector<Aabb> obox = obstacle_boxes(obstacles, all);
+  const Aabb box = lattice_box(object_world, obstacles, obox, all, p, ax);
+  GlobalDffd out = identity_lattice(box, p, ax);
+  const std::vector<PlacedBreak> placed = insert_breaks(out, obstacles, obox, ax);
+  const std::vector<std::vector<char>> opened = open_around_obstacles(out, placed, obstacles, obox, p, ax);
+  check_folds(out, p, ax);
+  embed_and_stitch(out, object_world, opened, p, ax);
+  for (const DffdObstacle& o : obstacles) out.rig.obstacles.push_back(o.name);
   return out;
 }
 
