@@ -202,6 +202,117 @@ void ffd_edge_bezier(const TrivariateBSpline<glm::dvec3>& F, const glm::dvec3& p
   bezier_pieces(F, bi, pa, pb, breaks, ctrl);
 }
 
+namespace {
+
+// Position ids: vertices at bit-identical positions share an id (creases stored twice are one edge). `count` gets
+// the number of ids.
+std::vector<std::uint32_t> position_ids(const std::vector<glm::dvec3>& positions, std::uint32_t& count) {
+  std::vector<std::uint32_t> pid(positions.size());
+  std::uint32_t next_pid = 0;
+  std::vector<std::uint32_t> order(positions.size());
+  for (std::uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+  auto less = [&](std::uint32_t a, std::uint32_t b) {
+    const glm::dvec3 &p = positions[a], &q = positions[b];
+    if (p.x != q.x) return p.x < q.x;
+    if (p.y != q.y) return p.y < q.y;
+    if (p.z != q.z) return p.z < q.z;
+    return a < b;
+  };
+  std::sort(order.begin(), order.end(), less);
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    if (i > 0 && positions[order[i]] != positions[order[i - 1]]) ++next_pid;
+    pid[order[i]] = next_pid;
+  }
+  if (!order.empty()) ++next_pid;
+  count = next_pid;
+  return pid;
+}
+
+// Adds one vertex per marked edge (position, parameters, normal, uv interpolated at split_t from the end with the
+// lower position id) and returns, per triangle corner edge (#F × 3), the vertex splitting it or kNone.
+std::vector<std::uint32_t> add_split_vertices(TriMesh& m, std::vector<glm::dvec3>& params,
+                                              std::vector<std::uint32_t>& pid,
+                                              const std::vector<std::uint32_t>& tri_pedge,
+                                              const std::vector<unsigned char>& marked,
+                                              const std::vector<double>& split_t,
+                                              const std::vector<std::uint32_t>& pedge_pid, bool has_n, bool has_uv) {
+  std::vector<std::uint32_t> tri_split(m.triangles.size() * 3, kNone);
+  std::unordered_map<std::uint64_t, std::uint32_t> split_vertex;
+  for (std::size_t f = 0; f < m.triangles.size(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t pe = tri_pedge[f * 3 + k];
+      if (pe == kNone || !marked[pe]) continue;
+      std::uint32_t u = m.triangles[f][k], v = m.triangles[f][(k + 1) % 3];
+      if (pid[u] > pid[v]) std::swap(u, v);
+      const auto [it, fresh] = split_vertex.try_emplace(edge_key(u, v), std::uint32_t(m.positions.size()));
+      if (fresh) {
+        const double t = split_t[pe];
+        m.positions.push_back(m.positions[u] + t * (m.positions[v] - m.positions[u]));
+        params.push_back(params[u] + t * (params[v] - params[u]));
+        if (has_n) {
+          const glm::dvec3 n = m.normals[u] + t * (m.normals[v] - m.normals[u]);
+          const double len = glm::length(n);
+          m.normals.push_back(len > 0.0 ? n / len : m.normals[u]);
+        }
+        if (has_uv) m.uvs.push_back(m.uvs[u] + t * (m.uvs[v] - m.uvs[u]));
+        pid.push_back(pedge_pid[pe]);
+      }
+      tri_split[f * 3 + k] = it->second;
+    }
+  return tri_split;
+}
+
+// Replaces each triangle by its pieces (1, 2, 3 split edges → 2, 3, 4 triangles, winding kept; with two split edges
+// the quad is cut along its shorter deformed diagonal). Each piece keeps its triangle's face_material slot.
+void split_faces(TriMesh& m, const std::vector<std::uint32_t>& tri_split, const std::vector<glm::dvec3>& fpos,
+                 std::size_t next_tris) {
+  std::vector<glm::uvec3> tris;
+  tris.reserve(next_tris);
+  std::vector<std::uint8_t> mats;  // face_material of the pieces: each keeps its triangle's slot
+  if (!m.face_material.empty()) mats.reserve(next_tris);
+  for (std::size_t f = 0; f < m.triangles.size(); ++f) {
+    if (!m.face_material.empty() && f > 0) mats.resize(tris.size(), m.face_material[f - 1]);
+    const glm::uvec3 v = m.triangles[f];
+    const std::uint32_t* s = &tri_split[f * 3];
+    const int count = (s[0] != kNone) + (s[1] != kNone) + (s[2] != kNone);
+    if (count == 0) {
+      tris.push_back(v);
+    } else if (count == 1) {
+      const int k = s[0] != kNone ? 0 : (s[1] != kNone ? 1 : 2);
+      const std::uint32_t w0 = v[k], w1 = v[(k + 1) % 3], w2 = v[(k + 2) % 3], mid = s[k];
+      tris.push_back({w0, mid, w2});
+      tris.push_back({mid, w1, w2});
+    } else if (count == 2) {
+      const int k = s[0] == kNone ? 0 : (s[1] == kNone ? 1 : 2);  // the unsplit edge
+      const int r = (k + 1) % 3;
+      const std::uint32_t w0 = v[r], w1 = v[(r + 1) % 3], w2 = v[(r + 2) % 3];
+      const std::uint32_t m0 = s[r], m1 = s[(r + 1) % 3];
+      tris.push_back({m0, w1, m1});
+      const double d_a = glm::dot(fpos[w0] - fpos[m1], fpos[w0] - fpos[m1]);
+      const double d_b = glm::dot(fpos[m0] - fpos[w2], fpos[m0] - fpos[w2]);
+      if (d_a <= d_b) {
+        tris.push_back({w0, m0, m1});
+        tris.push_back({w0, m1, w2});
+      } else {
+        tris.push_back({w0, m0, w2});
+        tris.push_back({m0, m1, w2});
+      }
+    } else {
+      tris.push_back({v[0], s[0], s[2]});
+      tris.push_back({s[0], v[1], s[1]});
+      tris.push_back({s[2], s[1], v[2]});
+      tris.push_back({s[0], s[1], s[2]});
+    }
+  }
+  if (!m.face_material.empty()) {
+    mats.resize(tris.size(), m.face_material.back());
+    m.face_material = std::move(mats);
+  }
+  m.triangles = std::move(tris);
+}
+
+}  // namespace
+
 RefineResult refine_for_ffd(const TriMesh& rest, const FfdBinding& binding, const RefineOptions& o) {
   validate(rest, binding, o);
   const TrivariateBSpline<glm::dvec3>& F = binding.lattice;
@@ -217,25 +328,8 @@ RefineResult refine_for_ffd(const TriMesh& rest, const FfdBinding& binding, cons
   st.vertices_before = m.positions.size();
 
   // Position ids: vertices at bit-identical positions share an id (creases stored twice are one edge).
-  std::vector<std::uint32_t> pid(m.positions.size());
   std::uint32_t next_pid = 0;
-  {
-    std::vector<std::uint32_t> order(m.positions.size());
-    for (std::uint32_t i = 0; i < order.size(); ++i) order[i] = i;
-    auto less = [&](std::uint32_t a, std::uint32_t b) {
-      const glm::dvec3 &p = m.positions[a], &q = m.positions[b];
-      if (p.x != q.x) return p.x < q.x;
-      if (p.y != q.y) return p.y < q.y;
-      if (p.z != q.z) return p.z < q.z;
-      return a < b;
-    };
-    std::sort(order.begin(), order.end(), less);
-    for (std::size_t i = 0; i < order.size(); ++i) {
-      if (i > 0 && m.positions[order[i]] != m.positions[order[i - 1]]) ++next_pid;
-      pid[order[i]] = next_pid;
-    }
-    if (!order.empty()) ++next_pid;
-  }
+  std::vector<std::uint32_t> pid = position_ids(m.positions, next_pid);
 
   std::vector<glm::dvec3> fpos(m.positions.size());
   auto evaluate_from = [&](std::size_t first) {
@@ -310,75 +404,12 @@ RefineResult refine_for_ffd(const TriMesh& rest, const FfdBinding& binding, cons
     std::vector<std::uint32_t> pedge_pid(pedges.size(), kNone);
     for (std::size_t i = 0; i < pedges.size(); ++i)
       if (marked[i]) pedge_pid[i] = next_pid++;
-    std::unordered_map<std::uint64_t, std::uint32_t> split_vertex;
     const std::size_t first_new = m.positions.size();
-    std::vector<std::uint32_t> tri_split(m.triangles.size() * 3, kNone);
-    for (std::size_t f = 0; f < m.triangles.size(); ++f)
-      for (int k = 0; k < 3; ++k) {
-        const std::uint32_t pe = tri_pedge[f * 3 + k];
-        if (pe == kNone || !marked[pe]) continue;
-        std::uint32_t u = m.triangles[f][k], v = m.triangles[f][(k + 1) % 3];
-        if (pid[u] > pid[v]) std::swap(u, v);
-        const auto [it, fresh] = split_vertex.try_emplace(edge_key(u, v), std::uint32_t(m.positions.size()));
-        if (fresh) {
-          const double t = split_t[pe];
-          m.positions.push_back(m.positions[u] + t * (m.positions[v] - m.positions[u]));
-          params.push_back(params[u] + t * (params[v] - params[u]));
-          if (has_n) {
-            const glm::dvec3 n = m.normals[u] + t * (m.normals[v] - m.normals[u]);
-            const double len = glm::length(n);
-            m.normals.push_back(len > 0.0 ? n / len : m.normals[u]);
-          }
-          if (has_uv) m.uvs.push_back(m.uvs[u] + t * (m.uvs[v] - m.uvs[u]));
-          pid.push_back(pedge_pid[pe]);
-        }
-        tri_split[f * 3 + k] = it->second;
-      }
+    const std::vector<std::uint32_t> tri_split =
+        add_split_vertices(m, params, pid, tri_pedge, marked, split_t, pedge_pid, has_n, has_uv);
     evaluate_from(first_new);
 
-    std::vector<glm::uvec3> tris;
-    tris.reserve(next_tris);
-    std::vector<std::uint8_t> mats;  // face_material of the pieces: each keeps its triangle's slot
-    if (!m.face_material.empty()) mats.reserve(next_tris);
-    for (std::size_t f = 0; f < m.triangles.size(); ++f) {
-      if (!m.face_material.empty() && f > 0) mats.resize(tris.size(), m.face_material[f - 1]);
-      const glm::uvec3 v = m.triangles[f];
-      const std::uint32_t* s = &tri_split[f * 3];
-      const int count = (s[0] != kNone) + (s[1] != kNone) + (s[2] != kNone);
-      if (count == 0) {
-        tris.push_back(v);
-      } else if (count == 1) {
-        const int k = s[0] != kNone ? 0 : (s[1] != kNone ? 1 : 2);
-        const std::uint32_t w0 = v[k], w1 = v[(k + 1) % 3], w2 = v[(k + 2) % 3], mid = s[k];
-        tris.push_back({w0, mid, w2});
-        tris.push_back({mid, w1, w2});
-      } else if (count == 2) {
-        const int k = s[0] == kNone ? 0 : (s[1] == kNone ? 1 : 2);  // the unsplit edge
-        const int r = (k + 1) % 3;
-        const std::uint32_t w0 = v[r], w1 = v[(r + 1) % 3], w2 = v[(r + 2) % 3];
-        const std::uint32_t m0 = s[r], m1 = s[(r + 1) % 3];
-        tris.push_back({m0, w1, m1});
-        const double d_a = glm::dot(fpos[w0] - fpos[m1], fpos[w0] - fpos[m1]);
-        const double d_b = glm::dot(fpos[m0] - fpos[w2], fpos[m0] - fpos[w2]);
-        if (d_a <= d_b) {
-          tris.push_back({w0, m0, m1});
-          tris.push_back({w0, m1, w2});
-        } else {
-          tris.push_back({w0, m0, w2});
-          tris.push_back({m0, m1, w2});
-        }
-      } else {
-        tris.push_back({v[0], s[0], s[2]});
-        tris.push_back({s[0], v[1], s[1]});
-        tris.push_back({s[2], s[1], v[2]});
-        tris.push_back({s[0], s[1], s[2]});
-      }
-    }
-    if (!m.face_material.empty()) {
-      mats.resize(tris.size(), m.face_material.back());
-      m.face_material = std::move(mats);
-    }
-    m.triangles = std::move(tris);
+    split_faces(m, tri_split, fpos, next_tris);
     ++st.iterations;
   }
 
