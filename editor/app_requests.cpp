@@ -1,0 +1,190 @@
+#include "editor/app_state.h"
+
+namespace trispline::editor {
+
+const char* doing(Pending p) {
+  return p == Pending::New ? "starting a new scene" : p == Pending::Open ? "opening another log" : "quitting";
+}
+
+void App::open_later(const fs::path& log) {
+  tool_ctx_.defer("Opening " + log.filename().string(), [this, log] {
+    const std::uint64_t before = session_.change_count();
+    session_.open(log);
+    if (session_.change_count() == before) return;  // rejected before anything changed: the scene is kept
+    selected_.clear();
+    hidden_.clear();
+    // The log's last camera.set is the view it was saved with: shown as it is (even when the same log is opened
+    // again after orbiting); a log without one is framed.
+    if (session_.scene().camera_set)
+      nav_.adopt(session_.scene().camera, window_->framebuffer_size());
+    else
+      nav_.frame(session_.scene().bounds(), view_.viewport);
+    if (!options_.screenshot.empty()) showcase();
+  });
+}
+
+void App::showcase() {
+  const auto& objects = session_.scene().objects();
+  for (const core::SceneObject& o : objects)
+    if (o.placement) selected_ = o.name;
+  if (selected_.empty() && !objects.empty()) selected_ = objects.back().name;
+  // Its parameters fill the Tool panel: Tile Paint when the scene is about tile layers, else Sketch.
+  const core::SceneObject* tiled = nullptr;
+  for (const core::SceneObject& o : objects)
+    if (!o.ddm_layers.empty() && !o.placement) tiled = &o;
+  if (tiled && std::none_of(objects.begin(), objects.end(), [](const auto& o) { return o.placement != nullptr; })) {
+    selected_ = tiled->name;
+    tools_.set_active(Toolbox::kDdmPaint);
+  } else {
+    tools_.set_active(Toolbox::kSketch);
+  }
+}
+
+void App::frame_selected() {
+  const core::SceneObject* o = session_.scene().find(selected_);
+  nav_.frame(o && o->world_mesh ? bounds_of(*o->world_mesh) : session_.scene().bounds(), view_.viewport);
+}
+
+void App::request(Pending what) {
+  if (prompt_for_ != Pending::None && what != Pending::Quit) return;  // a question is open already
+  const bool ask = what == Pending::Quit ? session_.modified() && session_.history().applied() > 0
+                                         : session_.modified();
+  if (ask)
+    prompt_for_ = what;
+  else
+    go_on(what);
+}
+
+void App::go_on(Pending what) {
+  prompt_for_ = Pending::None;
+  if (what == Pending::Quit) quit_ = true;
+  if (what == Pending::New) {
+    session_.new_document();
+    selected_.clear();
+    hidden_.clear();
+  }
+  if (what == Pending::Open) ask_file(FilePurpose::OpenLog);
+}
+
+bool App::save_or_ask() {
+  if (!session_.document().empty()) return session_.save(session_.document(), view_);
+  ask_file(FilePurpose::SaveLog);
+  return false;
+}
+
+void App::ask_file(FilePurpose purpose) {
+  const fs::path folder = session_.document().parent_path();
+  file_purpose_ = purpose;
+  if (purpose == FilePurpose::LoadMesh) {
+    file_dialog_.open("Load a mesh", ui::FileDialog::Mode::Open, kMeshExtensions);
+    file_dialog_.set_option("Leave out points and lines",
+                            "A file with point or line elements beside its faces is refused (nothing of a file is "
+                            "dropped silently). On: only the faces load; the Log says how many elements were left out.",
+                            load_ignore_loose_);
+  } else if (purpose == FilePurpose::OpenLog)
+    file_dialog_.open("Open a command log (.jsonl): it is replayed", ui::FileDialog::Mode::Open, kLogExtensions,
+                      folder);
+  else
+    file_dialog_.open("Save the scene as a command log (.jsonl)", ui::FileDialog::Mode::Save, kLogExtensions, folder);
+}
+
+void App::handle_menu(ui::MenuAction action) {
+  using A = ui::MenuAction;
+  // clang-format off
+  switch (action) {
+    case A::New: request(Pending::New); break;
+    case A::Open: request(Pending::Open); break;
+    case A::Save: save_or_ask(); break;
+    case A::SaveAs: ask_file(FilePurpose::SaveLog); break;
+    case A::Quit: request(Pending::Quit); break;
+    case A::Undo: session_.undo(); break;
+    case A::Redo: session_.redo(); break;
+    case A::FrameSelected: if (!tools_.owns_mouse()) frame_selected(); break;
+    case A::FrameAll: if (!tools_.owns_mouse()) nav_.frame(session_.scene().bounds(), view_.viewport); break;
+    case A::About: show_about_ = true; break;
+    case A::Keys: show_keys_ = true; break;
+    case A::SelectTool: tools_.set_active(Toolbox::kSelect); break;
+    case A::SketchTool: tools_.set_active(Toolbox::kSketch); break;
+    case A::PressTool: tools_.set_active(Toolbox::kPress); break;
+    case A::Screenshot: screenshot_requested_ = true; break;
+    case A::Delete: handle_scene({ui::SceneRequest::Kind::Remove, selected_}); break;
+    case A::ToggleTimingOverlay:
+    case A::TogglePlayback: ui::apply_view_action(toggles_, action); break;
+    case A::InsertKeyframe:
+    case A::DeleteKeyframe:
+    case A::FramePrev:
+    case A::FrameNext:
+    case A::FrameStart:
+    case A::FrameEnd:
+    case A::RecordAnimation: anim_.handle_action(action, view_.viewport); break;
+    case A::None: break;
+  }
+  // clang-format on
+}
+
+void App::handle_scene(const ui::SceneRequest& r) {
+  using K = ui::SceneRequest::Kind;
+  if (r.kind == K::Select || r.kind == K::Frame) selected_ = r.name;
+  if (r.kind == K::Frame) frame_selected();
+  if (r.kind == K::ToggleVisible && !hidden_.erase(r.name)) hidden_.insert(r.name);
+  if (r.kind == K::Load) ask_file(FilePurpose::LoadMesh);
+  if (r.kind == K::Transform) {  // one Scene panel field left after an edit: one step
+    core::ObjectTransformParams p{r.name, {}, {}, {}};
+    (r.field == "translate" ? p.translate : r.field == "rotate_deg" ? p.rotate_deg : p.scale) = r.value;
+    session_.execute(core::ObjectTransformCommand::schema().to_json(p));
+  }
+  if (r.kind == K::AddPrimitive) {
+    core::ScenePrimitiveParams p;
+    p.kind = r.name;
+    p.object.name = session_.scene().unique_name(r.name);
+    const nlohmann::json line = core::ScenePrimitiveCommand::schema().to_json(p);
+    tool_ctx_.defer("Adding a " + r.name, [this, line] {
+      if (session_.execute(line)) selected_ = line["name"];
+    });
+  }
+  if (r.kind == K::Remove && !r.name.empty() && session_.has_command("scene.remove") &&
+      session_.execute(core::SceneRemoveCommand::schema().to_json({r.name})))
+    selected_.clear();
+}
+
+void App::handle_file(const fs::path& chosen) {
+  fs::path path = chosen;
+  switch (std::exchange(file_purpose_, FilePurpose::None)) {  // reset first: go_on(Open) asks for a file again
+    case FilePurpose::LoadMesh: {
+      load_ignore_loose_ = file_dialog_.option();
+      core::SceneLoadParams p;
+      p.path = path.string();
+      p.loose = load_ignore_loose_ ? "ignore" : "refuse";
+      p.object.name = session_.scene().unique_name(path.stem().string());
+      const nlohmann::json line = core::SceneLoadCommand::schema().to_json(p);
+      tool_ctx_.defer("Loading " + path.filename().string(), [this, line] {
+        if (!session_.execute(line)) return;
+        const nlohmann::json stats = session_.history().last_executed().stats();
+        auto counted = [](long long n, const char* noun) {
+          return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
+        };
+        const long long points = stats.value("ignored_points", 0), lines = stats.value("ignored_lines", 0);
+        const std::string name = line["name"];
+        if (points || lines)
+          messages_.warning(name + ": left out " + counted(points, "point") + " and " + counted(lines, "line") +
+                            " of the file");
+        if (const long long repeated = stats.value("duplicate_faces", 0))
+          messages_.warning(name + ": removed " + counted(repeated, "repeated triangle") + " (a copy of another face)");
+        selected_ = line["name"];
+        frame_selected();  // a mesh in its own units (mm, km) would otherwise fill or vanish from the view
+      });
+      break;
+    }
+    case FilePurpose::OpenLog:
+      open_later(path);
+      break;
+    case FilePurpose::SaveLog:
+      if (path.extension() != ".jsonl") path += ".jsonl";
+      if (session_.save(path, view_) && prompt_for_ != Pending::None) go_on(prompt_for_);
+      break;
+    case FilePurpose::None:
+      break;
+  }
+}
+
+}  // namespace trispline::editor

@@ -1,0 +1,131 @@
+// The editor application's state (editor::App) and what its two source files share: app.cpp runs the frame loop
+// (input, view, panels, probe, screenshots); app_requests.cpp answers the user's requests (menu, Scene panel, file
+// dialog, "Save changes?"). Internal to editor/: only run_editor() (editor/app.h) is public.
+#pragma once
+
+#include "editor/app.h"
+
+#include "core/commands/object_transform.h"
+#include "core/commands/scene_load.h"
+#include "core/commands/scene_primitive.h"
+#include "core/commands/scene_remove.h"
+#include "core/mesh/image_io.h"
+#include "editor/animation_ui.h"
+#include "editor/gui_probe.h"
+#include "editor/navigation.h"
+#include "editor/session.h"
+#include "editor/tools/toolbox.h"
+#include "editor/tools/transform_modal.h"
+#include "editor/tools/work_queue.h"
+#include "gpu/renderer.h"
+#include "gpu/timer.h"
+#include "gpu/window.h"
+#include "ui/dialogs.h"
+#include "ui/file_dialog.h"
+#include "ui/frame_timings.h"
+#include "ui/gui_probe.h"
+#include "ui/history_panel.h"
+#include "ui/imgui_host.h"
+#include "ui/log_panel.h"
+#include "ui/main_menu.h"
+#include "ui/overlays.h"
+#include "ui/scene_panel.h"
+#include "ui/shortcuts.h"
+#include "ui/status_bar.h"
+#include "ui/timeline_panel.h"
+#include "ui/tool_panel.h"
+#include "ui/window_capture.h"
+
+#include <epoxy/gl.h>
+#include <imgui.h>
+
+#include <algorithm>
+#include <chrono>
+#include <ctime>
+#include <cstdlib>
+#include <iostream>
+#include <memory>
+#include <thread>
+#include <utility>
+
+namespace trispline::editor {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+inline const std::vector<std::string> kMeshExtensions = {".obj", ".ply", ".off", ".stl", ".gltf", ".glb"};
+inline const std::vector<std::string> kLogExtensions = {".jsonl"};
+inline constexpr int kScreenshotFrames = 5;  // frames rendered after the start-up work before the capture
+
+enum class FilePurpose { None, LoadMesh, OpenLog, SaveLog };
+// What waits for the "Save changes?" answer (the document was modified).
+enum class Pending { None, Quit, New, Open };
+
+// "starting a new scene" / "opening another log" / "quitting".
+const char* doing(Pending p);
+
+class App {
+ public:
+  explicit App(const AppOptions& options);
+  int run();
+
+ private:
+  void frame();
+  void handle_menu(ui::MenuAction action);
+  void handle_scene(const ui::SceneRequest& request);
+  void handle_file(const fs::path& path);
+  void viewport_input();
+  bool transform_input();  // G / R / S: starts or feeds the modal transform; true while it has the keyboard
+  void render_view();
+  bool animating() const;  // the timeline is playing
+  void draw_control_point();  // the "Control point" section appended to the Tool panel
+  void render_ui();        // ImGui's draw data into the window, timed by ui_timer_
+  void record_frame_timings(Clock::time_point start, Clock::time_point end, Clock::time_point last);
+  void frame_selected();
+  void open_later(const fs::path& log);  // replays `log` after a "Working…" frame
+  void showcase();                       // screenshot mode: select the placed (or tiled) object, show its tool
+  void request(Pending what);  // Quit / New / Open: asks "Save changes?" first when the document is modified
+  void go_on(Pending what);    // does it (the question, if any, is answered)
+  bool save_or_ask();
+  void ask_file(FilePurpose purpose);  // opens the file dialog for `purpose`
+  int write_screenshot(const fs::path& path);
+  void write_probe();  // --gui-probe: this frame's state for GUI tests (editor/gui_probe.h)
+
+  const AppOptions options_;
+  std::unique_ptr<gpu::Window> window_;
+  ui::ImGuiHost host_;
+  std::unique_ptr<gpu::Renderer> renderer_;
+  std::unique_ptr<gpu::GpuTimer> ui_timer_;  // the UI pass (ImGui render) for the timing overlay
+  std::string gl_renderer_;
+  ui::MessageLog messages_;
+  EditorSession session_;
+  Navigator nav_;
+  core::Camera view_;
+
+  std::string selected_;
+  std::set<std::string> hidden_;
+  ui::ViewToggles toggles_;
+  ToolContext tool_ctx_;
+  Toolbox tools_;
+  TransformModal transform_;
+  ui::TransformFields transform_fields_;  // the Scene panel's Location / Rotation / Scale while edited
+  bool transform_frame_ = false;  // the modal transform had the input this frame (the viewport ignores it)
+
+  ui::LogPanel log_panel_;
+  ui::FileDialog file_dialog_;
+  bool load_ignore_loose_ = false;  // the Load dialog's "Leave out points and lines", kept between loads
+  FilePurpose file_purpose_ = FilePurpose::None;
+  ui::TimingOverlay timing_;
+  ui::DockLayout layout_;  // this frame's panel rectangles
+  AnimationUi anim_{session_, messages_};  // timeline, playback clock, keys, recording
+  ui::ControlPointState control_point_;
+  WorkQueue work_;
+  std::optional<RecoveryOffer> recovery_;
+  Pending prompt_for_ = Pending::None;  // the "Save changes?" question is open for this
+  bool show_about_ = false, show_keys_ = false, quit_ = false;
+  bool screenshot_requested_ = false;      // F12: written after this frame is drawn
+  int screenshots_ = 0, idle_frames_ = 0;  // F12 count; frames since the last deferred work (screenshot mode)
+  std::uint64_t frames_ = 0;               // frames drawn (the probe's "frame")
+};
+
+}  // namespace trispline::editor
