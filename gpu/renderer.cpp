@@ -80,9 +80,39 @@ float grid_cell_for(const core::Scene& scene) {
   return float(std::pow(10.0, std::floor(std::log10(size)) - 1.0));
 }
 
+// What every pass of Renderer::draw reads: the scene, the view and its matrices, the FFD plan per object.
+struct Frame {
+  const core::Scene& scene;
+  const core::Camera& camera;
+  const ViewOptions& options;
+  glm::ivec2 vp;         // viewport, pixels
+  glm::mat4 view_proj;   // world → clip
+  glm::vec3 eye;         // world units
+  glm::vec3 key;         // unit key-light direction
+  std::vector<detail::FfdPlan> plans;  // per scene object
+};
+
+// The selected object (it writes stencil 1 for the outline), when it was drawn.
+struct SelectedObject {
+  const core::SceneObject* object = nullptr;
+  std::size_t index = 0;
+};
+
 }  // namespace
 
 struct Renderer::Impl {
+  // The passes of Renderer::draw, in order; each leaves the GL state the next expects.
+  void pass_clear(const Frame& f);       // known state (ImGui leaves its own), cleared to the background colour
+  void pass_background(const Frame& f);  // 1. the background gradient
+  SelectedObject pass_objects(const Frame& f);  // 2. shaded objects; the selected one writes stencil 1
+  void pass_wireframe(const Frame& f);          // 2b. dark edges over the shaded surfaces
+  void pass_grid(const Frame& f);               // 3. the ground grid
+  void pass_selection_outline(const Frame& f, const SelectedObject& sel);  // 4. the selection outline
+  void pass_lattices_and_contacts(const Frame& f);  // 5. contact surfaces, lattices, contact samples
+  void pass_brush(const Frame& f);                  // 5b. the pressing brush and its path
+  void pass_cut_overlays(const Frame& f);           // 5c. DFFD planes and fold-overs, the incision preview lattice
+  void pass_screen_overlays(const Frame& f);        // 6. the incision curve and the sketched stroke, on top
+
   ShaderProgram background{{"background.vert.glsl", "background.frag.glsl"}};
   ShaderProgram mesh{{"mesh.vert.glsl", "mesh.frag.glsl"}};
   ShaderProgram flat{{"mesh.vert.glsl", "mesh.frag.glsl"}, {{"FLAT_COLOR", ""}}};
@@ -327,22 +357,9 @@ void Renderer::release_unused(const core::Scene& scene) {
   std::erase_if(impl_->contact_cache, [&](const auto& kv) { return !live_ffd.count(kv.first); });
 }
 
-void Renderer::draw(const core::Scene& scene, const core::Camera& camera, const ViewOptions& options) {
-  Impl& d = *impl_;
-  d.stats = RenderStats{};
-  d.stats.timer_mode = d.draw_timer.mode_description();
-  const glm::ivec2 vp = camera.viewport;
-  const glm::mat4 view_proj = glm::mat4(camera.projection_matrix() * camera.view_matrix());
-  const glm::vec3 eye(camera.eye);
-
-  // 0. FFD evaluation of deformed objects (timed on its own), before any drawing.
-  d.preview = options.incision_preview_mesh && !options.incision_preview_mesh->empty() ? options.incision_preview_mesh
-                                                                                       : nullptr;
-  release_unused(scene);
-  std::vector<detail::FfdPlan> plans;
-  d.prepare_ffd(scene, options, plans);
-  std::optional<GpuTimer::Scope> draw_scope(std::in_place, d.draw_timer);
-
+void Renderer::Impl::pass_clear(const Frame& f) {
+  const ViewOptions& options = f.options;
+  const glm::ivec2 vp = f.vp;
   // Known state: ImGui and others leave theirs behind.
   glViewport(0, 0, vp.x, vp.y);
   glDisable(GL_SCISSOR_TEST);
@@ -358,7 +375,11 @@ void Renderer::draw(const core::Scene& scene, const core::Camera& camera, const 
   glClearDepth(1.0);
   glClearStencil(0);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+}
 
+void Renderer::Impl::pass_background(const Frame& f) {
+  Impl& d = *this;
+  const ViewOptions& options = f.options;
   // 1. Background gradient.
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_STENCIL_TEST);
@@ -367,17 +388,23 @@ void Renderer::draw(const core::Scene& scene, const core::Camera& camera, const 
   d.background.set("u_bottom", options.background_bottom);
   glBindVertexArray(d.empty_vao.id());
   glDrawArrays(GL_TRIANGLES, 0, 3);
+}
 
+SelectedObject Renderer::Impl::pass_objects(const Frame& f) {
+  Impl& d = *this;
+  const core::Scene& scene = f.scene;
+  const ViewOptions& options = f.options;
+  const glm::mat4& view_proj = f.view_proj;
+  const glm::vec3& eye = f.eye;
+  const glm::vec3& key = f.key;
+  const std::vector<detail::FfdPlan>& plans = f.plans;
   // 2. Objects. The selected one writes stencil 1 (outline mask).
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glEnable(GL_STENCIL_TEST);
   glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
-  // Key light: from the camera, raised a little and from the left, so forms read better than a pure headlight.
-  const glm::vec3 key = glm::normalize(glm::vec3(-camera.forward() + 0.35 * camera.true_up() - 0.25 * camera.right()));
   d.mesh.use();
-  const core::SceneObject* selected = nullptr;
-  std::size_t selected_index = 0;
+  SelectedObject sel;
   if (options.wireframe) {
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(1.0f, 1.0f);
@@ -389,8 +416,8 @@ void Renderer::draw(const core::Scene& scene, const core::Camera& camera, const 
     if (!o.visible || !shown || shown->empty()) continue;
     const bool is_selected = !options.selected.empty() && o.name == options.selected;
     if (is_selected) {
-      selected = &o;
-      selected_index = i;
+      sel.object = &o;
+      sel.index = i;
     }
     glStencilFunc(GL_ALWAYS, is_selected ? 1 : 0, 0xFF);
     // Surface triangles in the object's colour, then the cut surfaces (inside material) flat in the inside colour.
@@ -411,19 +438,16 @@ void Renderer::draw(const core::Scene& scene, const core::Camera& camera, const 
     ++d.stats.objects_drawn;
     d.stats.triangles += b.triangle_count();
   }
-  // 2a. Live DDM layers, shaded like their objects and timed on their own (the draw timer pauses around them).
-  const bool any_ddm = detail::DdmDisplay::any_visible(scene);
-  if (any_ddm) {
-    draw_scope.reset();
-    {
-      GpuTimer::Scope ddm_scope(d.ddm_timer);
-      const detail::DdmDrawn drawn = d.ddm.draw_shaded(scene, options.time_s, view_proj, eye, key, options.selected);
-      d.stats.ddm_layers_drawn = drawn.layers;
-      d.stats.ddm_vertices = drawn.vertices;
-    }
-    d.stats.ddm_ms = d.ddm_timer.last_ms();
-    draw_scope.emplace(d.draw_timer_b);
-  }
+  return sel;
+}
+
+void Renderer::Impl::pass_wireframe(const Frame& f) {
+  const std::vector<core::SceneObject>& objects = f.scene.objects();
+  Impl& d = *this;
+  const core::Scene& scene = f.scene;
+  const ViewOptions& options = f.options;
+  const glm::mat4& view_proj = f.view_proj;
+  const std::vector<detail::FfdPlan>& plans = f.plans;
   glDisable(GL_POLYGON_OFFSET_FILL);
   glDisable(GL_STENCIL_TEST);
 
@@ -449,7 +473,15 @@ void Renderer::draw(const core::Scene& scene, const core::Camera& camera, const 
     glDepthMask(GL_TRUE);
     glDepthFunc(GL_LESS);
   }
+}
 
+void Renderer::Impl::pass_grid(const Frame& f) {
+  Impl& d = *this;
+  const core::Scene& scene = f.scene;
+  const core::Camera& camera = f.camera;
+  const ViewOptions& options = f.options;
+  const glm::mat4& view_proj = f.view_proj;
+  const glm::vec3& eye = f.eye;
   // 3. Ground grid (blended, occluded by meshes, writes no depth).
   if (options.show_grid) {
     glDepthMask(GL_FALSE);
@@ -465,27 +497,41 @@ void Renderer::draw(const core::Scene& scene, const core::Camera& camera, const 
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glDepthMask(GL_TRUE);
   }
+}
 
+void Renderer::Impl::pass_selection_outline(const Frame& f, const SelectedObject& sel) {
+  Impl& d = *this;
+  const ViewOptions& options = f.options;
+  const glm::ivec2 vp = f.vp;
+  const glm::mat4& view_proj = f.view_proj;
+  const std::vector<detail::FfdPlan>& plans = f.plans;
   // 4. Selection outline: the enlarged silhouette where the object itself is not (stencil != 1), on top.
-  if (selected) {
+  if (sel.object) {
     glEnable(GL_STENCIL_TEST);
     glStencilFunc(GL_NOTEQUAL, 1, 0xFF);
     glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
     glDisable(GL_DEPTH_TEST);
     d.outline.use();
-    d.draw_object(shown_mesh(*selected, options), plans[selected_index], d.outline, {{"OUTLINE", ""}, {"FLAT_COLOR", ""}},
+    d.draw_object(shown_mesh(*sel.object, options), plans[sel.index], d.outline, {{"OUTLINE", ""}, {"FLAT_COLOR", ""}},
                   [&](const ShaderProgram& p) {
                     p.set("u_view_proj", view_proj);
                     p.set("u_viewport", glm::vec2(vp));
                     p.set("u_outline_px", options.outline_px);
                     p.set("u_flat_color", rgba(options.selection_color));
                   });
-    d.ddm.draw_outline(*selected, options.time_s, view_proj, glm::vec2(vp), options.outline_px,
+    d.ddm.draw_outline(*sel.object, options.time_s, view_proj, glm::vec2(vp), options.outline_px,
                        rgba(options.selection_color));
     glDisable(GL_STENCIL_TEST);
     glEnable(GL_DEPTH_TEST);
   }
+}
 
+void Renderer::Impl::pass_lattices_and_contacts(const Frame& f) {
+  Impl& d = *this;
+  const core::Scene& scene = f.scene;
+  const ViewOptions& options = f.options;
+  const glm::mat4& view_proj = f.view_proj;
+  const glm::vec3& eye = f.eye;
   // 5. Contact surfaces (translucent, after every opaque mesh), lattices and contact samples on top.
   if (options.show_contact_surface) d.draw_contact_surfaces(scene, view_proj, eye, options);
   if (options.show_lattice || options.show_contact_surface) {
@@ -506,7 +552,13 @@ void Renderer::draw(const core::Scene& scene, const core::Camera& camera, const 
                                {0.75f, 0.95f, 0.7f, 0.45f}, lines_v, points_v);
     d.draw_xray(lines_v, points_v, view_proj, options.contact_point_px);
   }
+}
 
+void Renderer::Impl::pass_brush(const Frame& f) {
+  Impl& d = *this;
+  const ViewOptions& options = f.options;
+  const glm::mat4& view_proj = f.view_proj;
+  const glm::vec3& eye = f.eye;
   // 5b. The pressing brush: translucent sphere (blended, depth-tested, no depth writes, back faces culled), then
   // the sampled path as points drawn x-ray.
   if (options.brush || !options.brush_path.empty()) {
@@ -526,7 +578,13 @@ void Renderer::draw(const core::Scene& scene, const core::Camera& camera, const 
     glDepthMask(GL_TRUE);
     d.draw_xray({}, path_v, view_proj, options.contact_point_px);
   }
+}
 
+void Renderer::Impl::pass_cut_overlays(const Frame& f) {
+  Impl& d = *this;
+  const core::Scene& scene = f.scene;
+  const ViewOptions& options = f.options;
+  const glm::mat4& view_proj = f.view_proj;
   // 5c. DFFD overlays: discontinuity planes and fold-over points (see ViewOptions).
   d.draw_dffd(scene, options, view_proj);
   if (options.incision_lattice) {  // the incision preview's cut lattice and its break at u = 1/2
@@ -548,7 +606,13 @@ void Renderer::draw(const core::Scene& scene, const core::Camera& camera, const 
       d.draw_xray({}, plus_points, view_proj, options.lattice_point_px);
     }
   }
+}
 
+void Renderer::Impl::pass_screen_overlays(const Frame& f) {
+  Impl& d = *this;
+  const core::Camera& camera = f.camera;
+  const ViewOptions& options = f.options;
+  const glm::ivec2 vp = f.vp;
   // 6. The incision tool's generator curve G(v) (projected; split where it passes behind the eye) and the sketched
   // stroke: thick screen-space polylines on top of everything.
   std::vector<glm::dvec2> run;
@@ -562,6 +626,51 @@ void Renderer::draw(const core::Scene& scene, const core::Camera& camera, const 
     run.clear();
   }
   d.draw_screen_polyline(options.stroke_px, options.stroke_width_px, rgba(options.stroke_color), vp);
+}
+
+void Renderer::draw(const core::Scene& scene, const core::Camera& camera, const ViewOptions& options) {
+  Impl& d = *impl_;
+  d.stats = RenderStats{};
+  d.stats.timer_mode = d.draw_timer.mode_description();
+  Frame f{scene, camera, options, camera.viewport, glm::mat4(camera.projection_matrix() * camera.view_matrix()),
+          glm::vec3(camera.eye),
+          // Key light: from the camera, raised a little and from the left, so forms read better than a headlight.
+          glm::normalize(glm::vec3(-camera.forward() + 0.35 * camera.true_up() - 0.25 * camera.right())),
+          {}};
+
+  // 0. FFD evaluation of deformed objects (timed on its own), before any drawing.
+  d.preview = options.incision_preview_mesh && !options.incision_preview_mesh->empty() ? options.incision_preview_mesh
+                                                                                       : nullptr;
+  release_unused(scene);
+  d.prepare_ffd(scene, options, f.plans);
+  std::optional<GpuTimer::Scope> draw_scope(std::in_place, d.draw_timer);
+  const glm::mat4& view_proj = f.view_proj;
+  const glm::vec3& eye = f.eye;
+  const glm::vec3& key = f.key;
+
+  d.pass_clear(f);
+  d.pass_background(f);
+  const SelectedObject sel = d.pass_objects(f);
+  // 2a. Live DDM layers, shaded like their objects and timed on their own (the draw timer pauses around them).
+  const bool any_ddm = detail::DdmDisplay::any_visible(scene);
+  if (any_ddm) {
+    draw_scope.reset();
+    {
+      GpuTimer::Scope ddm_scope(d.ddm_timer);
+      const detail::DdmDrawn drawn = d.ddm.draw_shaded(scene, options.time_s, view_proj, eye, key, options.selected);
+      d.stats.ddm_layers_drawn = drawn.layers;
+      d.stats.ddm_vertices = drawn.vertices;
+    }
+    d.stats.ddm_ms = d.ddm_timer.last_ms();
+    draw_scope.emplace(d.draw_timer_b);
+  }
+  d.pass_wireframe(f);
+  d.pass_grid(f);
+  d.pass_selection_outline(f, sel);
+  d.pass_lattices_and_contacts(f);
+  d.pass_brush(f);
+  d.pass_cut_overlays(f);
+  d.pass_screen_overlays(f);
 
   // Leave neutral state for the next user of the context (ImGui).
   glBindVertexArray(0);
