@@ -36,33 +36,40 @@ std::string without_source_dir(std::string text) {
   return text;
 }
 
-// The first line of each command in the shipped scenes and test logs, with each of its fields in turn removed or
-// given a value of another type or out of range: what the parser answers (the command written back, or its error).
-std::string mutated_lines() {
-  const editor::CommandRegistry& registry = editor::CommandRegistry::builtin();
-  std::map<std::string, nlohmann::json> first;  // cmd -> its first valid line (with the context it came from)
-  std::map<std::string, fs::path> where;
+// Calls fn(log, line) for every line of the shipped scenes and top-level test logs that reads as JSON (logs that are
+// malformed on purpose are passed over).
+template <class Fn>
+void for_each_readable_line(Fn fn) {
   for (const fs::path& dir : {kSource / "assets" / "scenes", kSource / "tests" / "logs"}) {
     for (const fs::path& log : logs_in(dir)) {
       std::vector<editor::LogLine> lines;
       try {
         lines = editor::read_log(log);
       } catch (const std::exception&) {
-        continue;
+        continue;  // malformed on purpose
       }
-      for (const editor::LogLine& line : lines) {
-        const std::string cmd = line.json.value("cmd", std::string());
-        if (cmd.empty() || first.count(cmd)) continue;
-        try {
-          registry.parse(line.json, core::CommandContext{log.parent_path()});
-        } catch (const std::exception&) {
-          continue;
-        }
-        first[cmd] = line.json;
-        where[cmd] = log.parent_path();
-      }
+      for (const editor::LogLine& line : lines) fn(log, line);
     }
   }
+}
+
+// The first line of each command in the shipped scenes and test logs, with each of its fields in turn removed or
+// given a value of another type or out of range: what the parser answers (the command written back, or its error).
+std::string mutated_lines() {
+  const editor::CommandRegistry& registry = editor::CommandRegistry::builtin();
+  std::map<std::string, nlohmann::json> first;  // cmd -> its first valid line (with the context it came from)
+  std::map<std::string, fs::path> where;
+  for_each_readable_line([&](const fs::path& log, const editor::LogLine& line) {
+    const std::string cmd = line.json.value("cmd", std::string());
+    if (cmd.empty() || first.count(cmd)) return;
+    try {
+      registry.parse(line.json, core::CommandContext{log.parent_path()});
+    } catch (const std::exception&) {
+      return;
+    }
+    first[cmd] = line.json;
+    where[cmd] = log.parent_path();
+  });
   const std::vector<std::pair<const char*, nlohmann::json>> values = {
       {"string", "x"}, {"-1", -1}, {"0", 0}, {"0.5", 0.5}, {"1e9", 1e9}, {"[]", nlohmann::json::array()},
       {"[1,2]", {1, 2}}, {"{}", nlohmann::json::object()}, {"null", nullptr}, {"true", true}};
@@ -156,29 +163,19 @@ TEST(LogCanonical, EveryShippedLineParsesAndWritesBackAsPinned) {
 TEST(LogCanonical, ToJsonIsAFixedPointOfParse) {
   const editor::CommandRegistry& registry = editor::CommandRegistry::builtin();
   int checked = 0;
-  for (const fs::path& dir : {kSource / "assets" / "scenes", kSource / "tests" / "logs"}) {
-    for (const fs::path& log : logs_in(dir)) {
-      std::vector<editor::LogLine> lines;
-      try {
-        lines = editor::read_log(log);
-      } catch (const std::exception&) {
-        continue;  // malformed on purpose
-      }
-      const core::CommandContext ctx{log.parent_path()};
-      for (const editor::LogLine& line : lines) {
-        core::CommandPtr first;
-        try {
-          first = registry.parse(line.json, ctx);
-        } catch (const std::exception&) {
-          continue;  // a bad line on purpose
-        }
-        const nlohmann::json once = first->to_json();
-        const nlohmann::json twice = registry.parse(once, ctx)->to_json();
-        EXPECT_EQ(once.dump(), twice.dump()) << log.filename() << ":" << line.number;
-        ++checked;
-      }
+  for_each_readable_line([&](const fs::path& log, const editor::LogLine& line) {
+    const core::CommandContext ctx{log.parent_path()};
+    core::CommandPtr first;
+    try {
+      first = registry.parse(line.json, ctx);
+    } catch (const std::exception&) {
+      return;  // a bad line on purpose
     }
-  }
+    const nlohmann::json once = first->to_json();
+    const nlohmann::json twice = registry.parse(once, ctx)->to_json();
+    EXPECT_EQ(once.dump(), twice.dump()) << log.filename() << ":" << line.number;
+    ++checked;
+  });
   EXPECT_GT(checked, 300);
 }
 
