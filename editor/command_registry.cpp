@@ -69,15 +69,12 @@ const CommandRegistry& CommandRegistry::builtin() {
     r.add<core::LatticeSetPointCommand>();
     r.add<core::MeshRefineCommand>();
     r.add<core::MeshSubdivideCommand>();
-    r.add("ddm.fill", "Cover an object's surface with a layer of geometric tiles (DDM, seed ch. 5)",
-          core::DdmFillCommand::parse);
-    r.add("ddm.paint", "Paint (or erase) tiles of a layer with a brush stroke in the viewport (DDM, seed ch. 5)",
-          core::DdmPaintCommand::parse);
-    r.add("ddm.bake", "Turn a tile layer into an ordinary mesh object (for export)", core::DdmBakeCommand::parse);
-    r.add("ddm.remove", "Delete a tile layer", core::DdmRemoveCommand::parse);
-    r.add("ddm.color", "Give a tile layer its own colour, or its object's again", core::DdmColorCommand::parse);
-    r.add("ddm.animate", "Animate a tile layer: texture-space offset and metamorphosis to another tile (seed §5.4.2)",
-          core::DdmAnimateCommand::parse);
+    r.add<core::DdmFillCommand>();
+    r.add<core::DdmPaintCommand>();
+    r.add<core::DdmBakeCommand>();
+    r.add<core::DdmRemoveCommand>();
+    r.add<core::DdmColorCommand>();
+    r.add<core::DdmAnimateCommand>();
     r.add<core::AnimTimelineCommand>();
     r.add<core::AnimKeyframeCommand>();
     r.add<core::AnimClipCommand>();

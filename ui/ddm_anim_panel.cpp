@@ -7,14 +7,9 @@
 
 #include <algorithm>
 
+#include "core/commands/ddm_animate.h"
+
 namespace trispline::ui {
-namespace {
-
-
-
-constexpr const char* kInterpolation[] = {"constant", "linear", "smooth"};
-
-}  // namespace
 
 std::string ddm_animate_blocked(const std::string& object, const std::string& layer, const DdmAnimParams& p) {
   if (object.empty()) return "select an object with a tile layer";
@@ -27,19 +22,20 @@ std::string ddm_animate_blocked(const std::string& object, const std::string& la
 
 nlohmann::json ddm_animate_line(const std::string& object, const std::string& layer, const DdmAnimParams& p,
                                 bool clear) {
-  nlohmann::json j = {{"cmd", "ddm.animate"}, {"object", object}, {"layer", layer}};
-  if (clear) {
-    j["clear"] = true;
-    return j;
+  core::DdmAnimateParams a;
+  a.object = object;
+  a.layer = layer;
+  a.clear = clear;
+  if (!clear) {
+    a.morph = std::vector<std::string>{p.morph_tile};
+    if (!p.morph_tile.empty())
+      a.alpha_keys = std::vector<glm::dvec2>{{p.frame_from, p.alpha_from}, {p.frame_to, p.alpha_to}};
+    else
+      a.alpha_keys = std::vector<glm::dvec2>{}, a.alpha = 0.0;
+    a.offset_velocity = glm::dvec2(p.speed_u, p.speed_v);
+    a.interpolation = p.interpolation;
   }
-  j["morph_tile"] = p.morph_tile;
-  if (!p.morph_tile.empty())
-    j["alpha_keys"] = {{p.frame_from, p.alpha_from}, {p.frame_to, p.alpha_to}};
-  else
-    j["alpha_keys"] = nlohmann::json::array(), j["alpha"] = 0.0;
-  j["offset_velocity"] = {p.speed_u, p.speed_v};
-  j["interpolation"] = kInterpolation[std::clamp(p.interpolation, 0, 2)];
-  return j;
+  return core::DdmAnimateCommand::schema().to_json(a);
 }
 
 DdmAnimPanelResult draw_ddm_anim_panel(DdmAnimParams& p, std::string& layer, const std::string& object,
@@ -89,7 +85,11 @@ DdmAnimPanelResult draw_ddm_anim_panel(DdmAnimParams& p, std::string& layer, con
   tooltip("Texture-space offset of every tile, chart units per second (seed section 5.4.2). On the teapot body, "
           "u = 1 is one turn round the pot.");
   row_label("Easing");
-  ImGui::Combo("##interp", &p.interpolation, kInterpolation, 3);
+  if (ImGui::BeginCombo("##interp", p.interpolation.c_str())) {
+    for (const std::string& name : core::DdmAnimateCommand::schema().find("interpolation")->choices)
+      if (ImGui::Selectable(name.c_str(), name == p.interpolation)) p.interpolation = name;
+    ImGui::EndCombo();
+  }
   tooltip("How alpha moves between its keys (Blender's keyframe interpolation)");
   const std::string blocked = ddm_animate_blocked(object, layer, p);
   ImGui::BeginDisabled(!blocked.empty());

@@ -21,12 +21,14 @@ struct DdmLayerInfo {
   bool animated = false;
 };
 
+// The panel's values: a metamorphosis over two α keys and an offset speed, which ddm_animate_line turns into
+// ddm.animate's params (core::DdmAnimateParams).
 struct DdmAnimParams {
   std::string morph_tile = "flower";  // generated tile or file; "" = no metamorphosis (offset only)
   int frame_from = 1, frame_to = 96;  // α runs alpha_from → alpha_to between these timeline frames
   double alpha_from = 0.0, alpha_to = 1.0;  // may leave [0, 1] (extrapolation, Eq. 5.3)
   double speed_u = 0.0, speed_v = 0.0;      // texture-space offset velocity, chart units per second
-  int interpolation = 2;                    // 0 constant, 1 linear, 2 smooth (Blender's ease in/out)
+  std::string interpolation = "smooth";     // one of ddm.animate's "interpolation" choices (smooth: ease in/out)
 };
 
 // Why Animate is disabled ("" when a line can be issued): no object / layer, frame_from ≥ frame_to with a morph tile,
@@ -34,7 +36,8 @@ struct DdmAnimParams {
 std::string ddm_animate_blocked(const std::string& object, const std::string& layer, const DdmAnimParams& p);
 
 // The ddm.animate line for `layer` of `object` (alpha_keys only with a morph tile, offset_velocity always, so a
-// second Animate replaces the first). {"clear":true} when `clear`.
+// second Animate replaces the first): core::DdmAnimateCommand::schema().to_json of the params. {"clear":true} when
+// `clear`.
 nlohmann::json ddm_animate_line(const std::string& object, const std::string& layer, const DdmAnimParams& p,
                                 bool clear = false);
 

@@ -61,13 +61,11 @@ void AnimTimelineCommand::undo(Scene& scene) { scene.timeline = before_; }
 
 // ---- anim.keyframe ---------------------------------------------------------------------------------------------
 
-namespace {
 KeyInterpolation interpolation_of(const std::string& name) {
   return name == "constant" ? KeyInterpolation::constant
          : name == "smooth" ? KeyInterpolation::smooth
                             : KeyInterpolation::linear;
 }
-}  // namespace
 
 const ParamSchema<AnimKeyframeParams>& AnimKeyframeCommand::schema() {
   using P = AnimKeyframeParams;

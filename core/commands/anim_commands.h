@@ -96,7 +96,8 @@ class AnimClipCommand : public DeclaredCommand<AnimClipCommand, AnimClipParams, 
   nlohmann::json stats_ = nlohmann::json::object();
 };
 
-// "linear" | "constant" | "smooth".
+// "linear" | "constant" | "smooth", and back (anything else: linear).
 const char* interpolation_name(KeyInterpolation k);
+KeyInterpolation interpolation_of(const std::string& name);
 
 }  // namespace trispline::core

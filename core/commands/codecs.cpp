@@ -54,6 +54,13 @@ nlohmann::json ScaleCodec::write(const glm::dvec3& s) {
   return params::Codec<glm::dvec3>::write(s);
 }
 
+glm::dvec2 UniformVec2Codec::read(const nlohmann::json& v, const std::string& field) {
+  if (v.is_number()) return glm::dvec2(params::Codec<double>::read(v, field));
+  if (!v.is_array())
+    params::fail(field, "expected a number or an array of 2 numbers, got " + std::string(v.type_name()));
+  return params::Codec<glm::dvec2>::read(v, field);
+}
+
 const ParamSchema<Transform>& transform_schema() {
   using T = Transform;
   static const ParamSchema<T> s =

@@ -28,6 +28,14 @@ struct ScaleCodec {
   static std::string type() { return "number or [x,y,z]"; }
 };
 
+// A number a (read as [a, a]) or [x, y]; written as [x, y] (a tile's scale and shift in its cell).
+struct UniformVec2Codec {
+  static constexpr ParamKind kind = ParamKind::Other;
+  static glm::dvec2 read(const nlohmann::json& v, const std::string& field);
+  static nlohmann::json write(const glm::dvec2& x) { return params::Codec<glm::dvec2>::write(x); }
+  static std::string type() { return "number or [x,y]"; }
+};
+
 // translate, rotate_deg, scale of an added object (every field written back).
 const ParamSchema<Transform>& transform_schema();
 

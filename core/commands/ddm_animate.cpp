@@ -5,31 +5,9 @@
 #include <cmath>
 
 #include "core/commands/anim_commands.h"
-#include "core/commands/json_fields.h"
 
 namespace trispline::core {
-namespace jf = json_fields;
 namespace {
-
-// [[a, b(, c)], ...] rows of `width` finite numbers.
-std::vector<std::vector<double>> get_rows(const nlohmann::json& j, const char* field, std::size_t width) {
-  const nlohmann::json& v = jf::require(j, field);
-  const std::string want = width == 2 ? "[frame, alpha]" : "[frame, du, dv]";
-  if (!v.is_array()) throw CommandError(std::string("field '") + field + "': expected a list of " + want, field);
-  std::vector<std::vector<double>> rows;
-  for (const auto& r : v) {
-    if (!r.is_array() || r.size() != width)
-      throw CommandError(std::string("field '") + field + "': every key is " + want, field);
-    std::vector<double> row;
-    for (const auto& x : r) {
-      if (!x.is_number() || !std::isfinite(x.get<double>()))
-        throw CommandError(std::string("field '") + field + "': every entry must be a finite number", field);
-      row.push_back(x.get<double>());
-    }
-    rows.push_back(row);
-  }
-  return rows;
-}
 
 // Keys from (frame, value) rows, sorted by time; two keys on one frame are an error.
 std::vector<OffsetKey> keys_of(const std::vector<glm::dvec3>& rows, bool two, const Timeline& timeline,
@@ -46,116 +24,101 @@ std::vector<OffsetKey> keys_of(const std::vector<glm::dvec3>& rows, bool two, co
   return keys;
 }
 
+using P = DdmAnimateParams;
+using Field = ParamSchema<P>::Field;
+
+void read_morph_tile(const Field& f, const nlohmann::json& v, P& p, const CommandContext& ctx) {
+  const std::string tile = params::Codec<std::string>::read(v, f.doc.name);
+  p.morph = std::vector<std::string>{tile};
+  p.morph_paths = {resolve_ddm_tile(tile, ctx)};
+}
+
+void read_morph_tiles(const Field& f, const nlohmann::json& v, P& p, const CommandContext& ctx) {
+  const std::vector<std::string> tiles = params::Codec<std::vector<std::string>>::read(v, f.doc.name);
+  if (tiles.empty()) params::fail(f.doc.name, "expected a list of tiles, one per layer tile");
+  p.morph_paths.clear();
+  for (std::size_t i = 0; i < tiles.size(); ++i) {
+    if (tiles[i].empty())
+      params::fail(f.doc.name, "element " + std::to_string(i) + " is empty: every entry must be a tile name or file");
+    p.morph_paths.push_back(resolve_ddm_tile(tiles[i], ctx));
+  }
+  p.morph = tiles;
+}
+
+// One morph tile is logged as "morph_tile", several as "morph_tiles".
+void write_morph(const Field& f, const P& p, nlohmann::json& line) {
+  if (!p.morph || (p.morph->size() == 1) != (f.doc.name == "morph_tile")) return;
+  nlohmann::json tiles = nlohmann::json::array();
+  for (std::size_t i = 0; i < p.morph->size(); ++i) tiles.push_back(ddm_tile_file(*p.morph, p.morph_paths, i));
+  line[f.doc.name] = tiles.size() == 1 ? tiles[0] : tiles;
+}
+
 }  // namespace
 
-CommandPtr DdmAnimateCommand::parse(const nlohmann::json& j, const CommandContext& ctx) {
-  auto c = std::make_unique<DdmAnimateCommand>();
-  c->object_ = jf::get_string(j, "object");
-  c->layer_ = jf::get_string(j, "layer");
-  c->clear_ = jf::get_bool(j, "clear", false);
-  if (jf::has(j, "morph_tile")) c->morph_ = std::vector<std::string>{jf::get_string(j, "morph_tile")};
-  if (jf::has(j, "morph_tiles")) {
-    const nlohmann::json& m = j.at("morph_tiles");
-    if (!m.is_array() || m.empty())
-      throw CommandError("field 'morph_tiles': expected a list of tiles, one per layer tile", "morph_tiles");
-    std::vector<std::string> names;
-    for (const auto& t : m) {
-      if (!t.is_string() || t.get<std::string>().empty())
-        throw CommandError("field 'morph_tiles': every entry must be a tile name or file", "morph_tiles");
-      names.push_back(t.get<std::string>());
-    }
-    c->morph_ = names;
-  }
-  if (c->morph_)
-    for (const std::string& t : *c->morph_)
-      c->morph_paths_.push_back(t.empty() || is_generated_ddm_tile(t) ? std::filesystem::path() : ctx.resolve(t));
-  if (jf::has(j, "alpha_keys")) {
-    std::vector<glm::dvec2> keys;
-    for (const auto& r : get_rows(j, "alpha_keys", 2)) keys.push_back({r[0], r[1]});
-    c->alpha_keys_ = keys;
-  }
-  if (jf::has(j, "offset_keys")) {
-    std::vector<glm::dvec3> keys;
-    for (const auto& r : get_rows(j, "offset_keys", 3)) keys.push_back({r[0], r[1], r[2]});
-    c->offset_keys_ = keys;
-  }
-  if (jf::has(j, "offset_velocity")) {
-    const auto rows = get_rows(nlohmann::json{{"offset_velocity", {j.at("offset_velocity")}}}, "offset_velocity", 2);
-    c->offset_velocity_ = glm::dvec2(rows[0][0], rows[0][1]);
-  }
-  if (jf::has(j, "alpha")) c->alpha_ = jf::get_number(j, "alpha");
-  const std::string interp = jf::get_enum(j, "interpolation", {"linear", "constant", "smooth"}, "linear");
-  c->interpolation_ = interp == "constant" ? KeyInterpolation::constant
-                      : interp == "smooth" ? KeyInterpolation::smooth
-                                           : KeyInterpolation::linear;
-  return c;
+const ParamSchema<DdmAnimateParams>& DdmAnimateCommand::schema() {
+  static const ParamSchema<P> s =
+      ParamSchema<P>("ddm.animate",
+                     "Animate a tile layer: texture-space offset and metamorphosis to another tile (seed §5.4.2)")
+          .field("object", &P::object).required().help("The object holding the layer")
+          .field("layer", &P::layer).required().help("The layer to animate")
+          .field("clear", &P::clear).write_unless_default()
+          .help("Remove the layer's animation first (the other fields of the line then apply)")
+          .custom("morph_tile", read_morph_tile, write_morph).type_text("string").default_text("kept")
+          .help("Metamorphosis partner of the layer's tile (as ddm.fill's tile), of the same topology; \"\" removes it")
+          .custom("morph_tiles", read_morph_tiles, write_morph).type_text("[string,…]").default_text("kept")
+          .help("One morph tile per tile of a several-tile layer (instead of morph_tile)")
+          .field("alpha_keys", &P::alpha_keys).type_text("[[frame,α],…]").default_text("kept")
+          .help("[timeline frame, α] keys of the metamorphosis, V = V1·(1 − α) + V2·α (Eq. 5.3)")
+          .field("offset_keys", &P::offset_keys).type_text("[[frame,du,dv],…]").default_text("kept")
+          .help("[frame, du, dv] keys of the tiles' texture-space offset, chart parameter units")
+          .field("offset_velocity", &P::offset_velocity).type_text("[du,dv]").default_text("kept")
+          .help("Offset added per second, chart parameter units")
+          .field("alpha", &P::alpha).default_text("kept").help("α shown when there are no alpha keys (0 at first)")
+          .choice("interpolation", &P::interpolation, {"linear", "constant", "smooth"}).write_unless_default()
+          .help("How this line's keys move to the next key");
+  return s;
 }
 
-nlohmann::json DdmAnimateCommand::to_json() const {
-  nlohmann::json j = {{"cmd", id()}, {"object", object_}, {"layer", layer_}};
-  if (clear_) j["clear"] = true;
-  if (morph_) {
-    nlohmann::json m = nlohmann::json::array();
-    for (std::size_t i = 0; i < morph_->size(); ++i)
-      m.push_back(morph_paths_[i].empty() ? (*morph_)[i] : morph_paths_[i].string());
-    if (m.size() == 1) j["morph_tile"] = m[0];
-    else j["morph_tiles"] = m;
-  }
-  if (alpha_keys_) {
-    nlohmann::json k = nlohmann::json::array();
-    for (const glm::dvec2& r : *alpha_keys_) k.push_back({r.x, r.y});
-    j["alpha_keys"] = k;
-  }
-  if (offset_keys_) {
-    nlohmann::json k = nlohmann::json::array();
-    for (const glm::dvec3& r : *offset_keys_) k.push_back({r.x, r.y, r.z});
-    j["offset_keys"] = k;
-  }
-  if (offset_velocity_) j["offset_velocity"] = {offset_velocity_->x, offset_velocity_->y};
-  if (alpha_) j["alpha"] = *alpha_;
-  if (interpolation_ != KeyInterpolation::linear) j["interpolation"] = interpolation_name(interpolation_);
-  return j;
-}
-
-std::string DdmAnimateCommand::label() const { return "Animate tiles " + object_ + "/" + layer_; }
+std::string DdmAnimateCommand::label() const { return "Animate tiles " + p_.object + "/" + p_.layer; }
 
 std::optional<SceneObject> DdmAnimateCommand::build(const Scene& scene) {
-  const SceneObject* object = scene.find(object_);
-  if (!object) throw CommandError("field 'object': no object named '" + object_ + "'", "object");
-  auto layer = std::make_shared<DdmLayer>(*find_ddm_layer(*object, layer_));
-  if (clear_) {
+  const SceneObject* object = scene.find(p_.object);
+  if (!object) throw CommandError("field 'object': no object named '" + p_.object + "'", "object");
+  auto layer = std::make_shared<DdmLayer>(*find_ddm_layer(*object, p_.layer));
+  const KeyInterpolation interpolation = interpolation_of(p_.interpolation);
+  if (p_.clear) {
     layer->morph_sources.clear(), layer->morph_tiles.clear(), layer->alpha_keys.clear(), layer->offset_keys.clear();
     layer->alpha = 0.0, layer->offset_velocity = glm::dvec2(0.0);
   }
-  if (morph_) {
-    const bool remove = morph_->size() == 1 && morph_->front().empty();
+  if (p_.morph) {
+    const bool remove = p_.morph->size() == 1 && p_.morph->front().empty();
     layer->morph_sources.clear(), layer->morph_tiles.clear();
     if (!remove) {
-      if (morph_->size() != layer->tiles.size())
+      if (p_.morph->size() != layer->tiles.size())
         throw CommandError("field 'morph_tile': the layer has " + std::to_string(layer->tiles.size()) +
                                " tiles; give one morph tile per tile (morph_tiles)", "morph_tile");
-      for (std::size_t i = 0; i < morph_->size(); ++i) {
-        DdmTile partner = load_ddm_tile((*morph_)[i], morph_paths_[i], "morph_tile");
+      for (std::size_t i = 0; i < p_.morph->size(); ++i) {
+        DdmTile partner = load_ddm_tile((*p_.morph)[i], ddm_tile_file(*p_.morph, p_.morph_paths, i), "morph_tile");
         try {
           require_same_ddm_topology(layer->tiles[i], partner);
         } catch (const std::invalid_argument& e) {
           throw CommandError(std::string("field 'morph_tile': ") + e.what(), "morph_tile");
         }
-        layer->morph_sources.push_back((*morph_)[i]);
+        layer->morph_sources.push_back((*p_.morph)[i]);
         layer->morph_tiles.push_back(std::move(partner));
       }
     }
   }
-  if (alpha_keys_) {
+  if (p_.alpha_keys) {
     std::vector<glm::dvec3> rows;
-    for (const glm::dvec2& r : *alpha_keys_) rows.push_back({r.x, r.y, 0.0});
-    layer->alpha_keys = keys_of(rows, false, scene.timeline, interpolation_, "alpha_keys");
+    for (const glm::dvec2& r : *p_.alpha_keys) rows.push_back({r.x, r.y, 0.0});
+    layer->alpha_keys = keys_of(rows, false, scene.timeline, interpolation, "alpha_keys");
   }
-  if (offset_keys_) layer->offset_keys = keys_of(*offset_keys_, true, scene.timeline, interpolation_, "offset_keys");
-  if (offset_velocity_) layer->offset_velocity = *offset_velocity_;
-  if (alpha_) layer->alpha = *alpha_;
+  if (p_.offset_keys) layer->offset_keys = keys_of(*p_.offset_keys, true, scene.timeline, interpolation, "offset_keys");
+  if (p_.offset_velocity) layer->offset_velocity = *p_.offset_velocity;
+  if (p_.alpha) layer->alpha = *p_.alpha;
   if (layer->morph_tiles.empty() && (!layer->alpha_keys.empty() || layer->alpha != 0.0))
-    throw CommandError("field 'alpha_keys': layer '" + layer_ + "' has no morph tile to blend to (give morph_tile)",
+    throw CommandError("field 'alpha_keys': layer '" + p_.layer + "' has no morph tile to blend to (give morph_tile)",
                        "alpha_keys");
   layer->mesh = std::make_shared<const TriMesh>(ddm_layer_mesh(*layer, 0.0));
   stats_ = {{"alpha_keys", layer->alpha_keys.size()}, {"offset_keys", layer->offset_keys.size()},

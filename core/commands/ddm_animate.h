@@ -26,29 +26,32 @@
 
 namespace trispline::core {
 
-class DdmAnimateCommand : public SnapshotCommand {
+struct DdmAnimateParams {
+  std::string object, layer;
+  bool clear = false;  // remove the layer's animation before the fields below apply
+  // "morph_tile" (one) or "morph_tiles" (one per tile) as given; {""} removes the metamorphosis; unset = kept.
+  std::optional<std::vector<std::string>> morph;
+  std::vector<std::filesystem::path> morph_paths;   // per morph tile: the resolved file (parse), empty if none
+  std::optional<std::vector<glm::dvec2>> alpha_keys;   // (frame, α)
+  std::optional<std::vector<glm::dvec3>> offset_keys;  // (frame, du, dv)
+  std::optional<glm::dvec2> offset_velocity;           // chart units per second
+  std::optional<double> alpha;
+  std::string interpolation = "linear";  // of this line's keys: "linear" | "constant" | "smooth"
+};
+
+class DdmAnimateCommand : public DeclaredCommand<DdmAnimateCommand, DdmAnimateParams, SnapshotCommand> {
  public:
-  static CommandPtr parse(const nlohmann::json& j, const CommandContext& ctx);
-  std::string id() const override { return "ddm.animate"; }
-  nlohmann::json to_json() const override;
+  using DeclaredCommand::DeclaredCommand;
+  static const ParamSchema<DdmAnimateParams>& schema();
   std::string label() const override;
   nlohmann::json stats() const override { return stats_; }
 
  protected:
-  std::string target() const override { return object_; }
+  std::string target() const override { return p_.object; }
   std::optional<SceneObject> build(const Scene& scene) override;
   std::string failure_field() const override { return "morph_tile"; }
 
  private:
-  std::string object_, layer_;
-  bool clear_ = false;
-  std::optional<std::vector<std::string>> morph_;           // as given ("" = remove)
-  std::vector<std::filesystem::path> morph_paths_;          // resolved files (empty for generated / "")
-  std::optional<std::vector<glm::dvec2>> alpha_keys_;       // (frame, α)
-  std::optional<std::vector<glm::dvec3>> offset_keys_;      // (frame, du, dv)
-  std::optional<glm::dvec2> offset_velocity_;
-  std::optional<double> alpha_;
-  KeyInterpolation interpolation_ = KeyInterpolation::linear;
   nlohmann::json stats_ = nlohmann::json::object();
 };
 

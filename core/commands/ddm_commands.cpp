@@ -2,113 +2,132 @@
 // Source: seed ch. 5 (Eq. 5.1–5.2, §5.3, Fig. 5.11–5.12).
 #include "core/commands/ddm_commands.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <memory>
 #include <random>
 #include <stdexcept>
 
-#include "core/commands/json_fields.h"
+#include "core/commands/codecs.h"
 #include "core/mesh/mesh_io.h"
 #include "core/scene/primitives.h"
 
 namespace trispline::core {
-namespace jf = json_fields;
 namespace {
 
 constexpr std::size_t kMaxTileVertices = kMaxDdmLayerVertices;
 
-DdmLayout layout_of(const std::string& s) {
-  return s == "hex" ? DdmLayout::hex : s == "brick" ? DdmLayout::brick : DdmLayout::rect;
+using S = DdmLayerSpec;
+using Field = ParamSchema<S>::Field;
+
+// "tile": the first tile, not empty.
+void read_tile(const Field& f, const nlohmann::json& v, S& s, const CommandContext& ctx) {
+  const std::string tile = params::Codec<std::string>::read(v, f.doc.name);
+  if (tile.empty()) params::fail(f.doc.name, "must not be empty");
+  s.tiles.assign(1, tile);
+  s.tile_paths.assign(1, resolve_ddm_tile(tile, ctx));
 }
 
-// "name": a number a (→ [a, a]) or [x, y].
-glm::dvec2 get_vec2(const nlohmann::json& j, const char* field, glm::dvec2 fallback) {
-  if (!jf::has(j, field)) return fallback;
-  const nlohmann::json& v = j.at(field);
-  if (v.is_number()) return glm::dvec2(jf::get_number(j, field));
-  if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number())
-    throw CommandError(std::string("field '") + field + "': expected a number or [x, y]", field);
-  const glm::dvec2 out(v[0].get<double>(), v[1].get<double>());
-  if (!std::isfinite(out.x) || !std::isfinite(out.y))
-    throw CommandError(std::string("field '") + field + "': must be finite", field);
-  return out;
+void write_tile(const Field& f, const S& s, nlohmann::json& line) {
+  if (!s.tiles.empty()) line[f.doc.name] = ddm_tile_file(s.tiles, s.tile_paths, 0);
+}
+
+// "tiles": the tiles after the first, none empty.
+void read_more_tiles(const Field& f, const nlohmann::json& v, S& s, const CommandContext& ctx) {
+  const std::vector<std::string> more = params::Codec<std::vector<std::string>>::read(v, f.doc.name);
+  s.tile_paths.resize(s.tiles.size());
+  for (std::size_t i = 0; i < more.size(); ++i) {
+    if (more[i].empty())
+      params::fail(f.doc.name, "element " + std::to_string(i) + " is empty: every entry must be a tile name or file");
+    s.tiles.push_back(more[i]);
+    s.tile_paths.push_back(resolve_ddm_tile(more[i], ctx));
+  }
+}
+
+void write_more_tiles(const Field& f, const S& s, nlohmann::json& line) {
+  if (s.tiles.size() < 2) return;
+  nlohmann::json more = nlohmann::json::array();
+  for (std::size_t i = 1; i < s.tiles.size(); ++i) more.push_back(ddm_tile_file(s.tiles, s.tile_paths, i));
+  line[f.doc.name] = more;
+}
+
+// "map_resolution": a whole number R (read as [R, R]) or [Ru, Rv], whole numbers in the field's range (9.0 is 9).
+void read_map_resolution(const Field& f, const nlohmann::json& v, S& s, const CommandContext&) {
+  const glm::dvec2 r = UniformVec2Codec::read(v, f.doc.name);
+  for (int i = 0; i < 2; ++i) {
+    if (r[i] != std::floor(r[i])) params::fail(f.doc.name, "must be whole numbers");
+    if (!f.range.contains(r[i])) params::fail(f.doc.name, params::range_error(f.range, f.doc.unit, r[i], i, 2));
+  }
+  s.map_resolution = glm::ivec2(r);
+}
+
+void write_map_resolution(const Field& f, const S& s, nlohmann::json& line) {
+  if (s.map_resolution) line[f.doc.name] = params::Codec<glm::ivec2>::write(*s.map_resolution);
+}
+
+const ParamSchema<DdmTileTransform>& tile_transform_schema() {
+  using T = DdmTileTransform;
+  static const ParamSchema<T> s =
+      ParamSchema<T>("tile_transform", "A layer's transform in its tiles' texture space")
+          .field_as<UniformVec2Codec>("tile_scale", &T::scale).above(0).write_unless_default()
+          .help("Tile units per cell along x, y (one number: both); 1 = the tile fills its cell")
+          .field("tile_rotate_deg", &T::rotate_deg).write_unless_default().unit("degrees")
+          .help("Rotation of the tile in its cell, counter-clockwise")
+          .field_as<UniformVec2Codec>("tile_shift", &T::shift).write_unless_default().unit("cell units")
+          .help("Shift of the tile in its cell (one number: both)");
+  return s;
+}
+
+ParamSchema<S> make_layer_schema(bool fill) {
+  const auto several = [](const S& s) { return s.tiles.size() > 1; };
+  return ParamSchema<S>("ddm.layer", "The fields that make a tile layer")
+      .custom("tile", read_tile, write_tile).type_text("string").default_text("thorn").required(fill)
+      .help("A generated tile (thorn, chain, hex, flower) or a mesh file (OBJ/PLY/glTF) relative to the log's folder, "
+            "logged absolute")
+      .custom("tiles", read_more_tiles, write_more_tiles).type_text("[string,…]").default_text("[]")
+      .help("More tiles for the layer (as tile), chosen per cell by choice")
+      .choice("choice", &S::choice, {"pattern", "random"}).write_if(several)
+      .help("With several tiles: cell k of row r gets tile (k + r) mod #tiles, or one drawn with seed")
+      .field("seed", &S::seed).write_unless_default().write_if(several).help("Seed of random's mt19937")
+      .choice("layout", &S::layout, {"rect", "hex", "brick"}).required(fill)
+      .help("Cells per chart: rect n × m; hex and brick shift odd rows (n ≥ 2)")
+      .field("counts", &S::counts).required(fill).help("Cells per chart n × m")
+      .field("height", &S::height).required(fill).above(0).unit("world units")
+      .help("World units (object space) per tile unit of w, along the base normal")
+      .choice("base", &S::base, {"limit", "teapot_body", "uv"}).write_unless_default()
+      .help("limit: Loop limit surface, three charts per triangle; teapot_body: the teapot's body patches as one "
+            "chart; uv: the mesh's texture coordinates")
+      .custom("map_resolution", read_map_resolution, write_map_resolution).type_text("integer or [a,b]")
+      .default_text("[9,9] limit, [513,257] teapot_body, [1025,1025] uv").range(2, 4097)
+      .unit("samples per chart edge").help("P/N map samples per chart edge; square for uv")
+      .embed(&S::transform, tile_transform_schema())
+      .field("color", &S::color).type_text("[r,g,b]").range(0, 1).unit("linear RGB").default_text("the object's")
+      .help("The layer's own colour")
+      .check([](S& s) {  // the layout's own checks, before anything is built
+        try {
+          (void)ddm_layout_cells(s.layout, s.counts, 1);
+        } catch (const std::invalid_argument& e) {
+          const std::string msg = e.what();  // "counts: …"
+          params::fail("counts", msg.substr(msg.find(':') + 2));
+        }
+      });
 }
 
 }  // namespace
 
-DdmLayerSpec DdmLayerSpec::parse(const nlohmann::json& j, const CommandContext& ctx, bool require_tile) {
-  DdmLayerSpec s;
-  s.layer = jf::get_string(j, "layer");
-  if (const std::string bad = object_name_error(s.layer); !bad.empty()) throw CommandError("field 'layer': " + bad, "layer");
-  const std::string tile = require_tile ? jf::get_string(j, "tile") : jf::get_string(j, "tile", "thorn");
-  if (tile.empty()) throw CommandError("field 'tile': must not be empty", "tile");
-  s.tiles.push_back(tile);
-  if (jf::has(j, "tiles")) {
-    const nlohmann::json& more = j.at("tiles");
-    if (!more.is_array()) throw CommandError("field 'tiles': expected a list of tiles", "tiles");
-    for (const auto& t : more) {
-      if (!t.is_string() || t.get<std::string>().empty())
-        throw CommandError("field 'tiles': every entry must be a tile name or file", "tiles");
-      s.tiles.push_back(t.get<std::string>());
-    }
-  }
-  for (const std::string& t : s.tiles) s.tile_paths.push_back(is_generated_ddm_tile(t) ? std::filesystem::path()
-                                                                                     : ctx.resolve(t));
-  s.choice = jf::get_enum(j, "choice", {"pattern", "random"}, "pattern");
-  s.seed = jf::get_int64(j, "seed", 0);
-  s.layout = jf::get_enum(j, "layout", {"rect", "hex", "brick"}, require_tile ? "" : "rect");
-  s.counts = jf::has(j, "counts") || require_tile ? jf::get_ivec2(j, "counts") : glm::ivec2(1, 1);
-  s.height = require_tile ? jf::get_number(j, "height") : jf::get_number(j, "height", 0.1);
-  if (!(s.height > 0.0)) throw CommandError("field 'height': must be > 0 (world units)", "height");
-  s.base = jf::get_enum(j, "base", {"limit", "teapot_body", "uv"}, "limit");
-  if (jf::has(j, "map_resolution")) {
-    const glm::dvec2 r = get_vec2(j, "map_resolution", {0, 0});
-    if (r.x != std::floor(r.x) || r.y != std::floor(r.y) || r.x < 2 || r.y < 2 || r.x > 4097 || r.y > 4097)
-      throw CommandError("field 'map_resolution': whole numbers in [2, 4097] (samples per chart edge)",
-                         "map_resolution");
-    s.map_resolution = glm::ivec2(r);
-  }
-  s.transform.scale = get_vec2(j, "tile_scale", glm::dvec2(1.0));
-  if (!(s.transform.scale.x > 0.0) || !(s.transform.scale.y > 0.0))
-    throw CommandError("field 'tile_scale': must be > 0", "tile_scale");
-  s.transform.rotate_deg = jf::get_number(j, "tile_rotate_deg", 0.0);
-  s.transform.shift = get_vec2(j, "tile_shift", glm::dvec2(0.0));
-  if (jf::has(j, "color")) {
-    const glm::dvec3 c = jf::get_vec3(j, "color");
-    if (!(glm::all(glm::greaterThanEqual(c, glm::dvec3(0.0))) && glm::all(glm::lessThanEqual(c, glm::dvec3(1.0)))))
-      throw CommandError("field 'color': each component must be in [0, 1] (linear RGB)", "color");
-    s.color = glm::vec3(c);
-  }
-  try {  // the layout's own checks, before anything is built
-    (void)ddm_layout_cells(layout_of(s.layout), s.counts, 1);
-  } catch (const std::invalid_argument& e) {
-    const std::string msg = e.what();  // "counts: …"
-    throw CommandError("field 'counts': " + msg.substr(msg.find(':') + 2), "counts");
-  }
-  return s;
+const ParamSchema<DdmLayerSpec>& ddm_layer_schema(bool fill) {
+  static const ParamSchema<S> fill_schema = make_layer_schema(true), paint_schema = make_layer_schema(false);
+  return fill ? fill_schema : paint_schema;
 }
 
-void DdmLayerSpec::write(nlohmann::json& j) const {
-  // A tile file is logged absolute (replayable from anywhere), made relative again when a log is saved.
-  auto logged = [&](std::size_t i) { return tile_paths[i].empty() ? tiles[i] : tile_paths[i].string(); };
-  j["layer"] = layer;
-  j["tile"] = logged(0);
-  if (tiles.size() > 1) {
-    nlohmann::json more = nlohmann::json::array();
-    for (std::size_t i = 1; i < tiles.size(); ++i) more.push_back(logged(i));
-    j["tiles"] = more;
-    j["choice"] = choice;
-    if (seed != 0) j["seed"] = seed;
-  }
-  j["layout"] = layout;
-  j["counts"] = jf::to_json(counts);
-  j["height"] = height;
-  if (base != "limit") j["base"] = base;
-  if (map_resolution) j["map_resolution"] = jf::to_json(*map_resolution);
-  if (transform.scale != glm::dvec2(1.0)) j["tile_scale"] = {transform.scale.x, transform.scale.y};
-  if (transform.rotate_deg != 0.0) j["tile_rotate_deg"] = transform.rotate_deg;
-  if (transform.shift != glm::dvec2(0.0)) j["tile_shift"] = {transform.shift.x, transform.shift.y};
-  if (color) j["color"] = jf::to_json(glm::dvec3(*color));
+std::string ddm_tile_file(const std::vector<std::string>& names, const std::vector<std::filesystem::path>& paths,
+                          std::size_t i) {
+  return i < paths.size() && !paths[i].empty() ? paths[i].string() : names.at(i);
+}
+
+std::filesystem::path resolve_ddm_tile(const std::string& name, const CommandContext& ctx) {
+  return name.empty() || is_generated_ddm_tile(name) ? std::filesystem::path() : ctx.resolve(name);
 }
 
 DdmTile load_ddm_tile(const std::string& name, const std::filesystem::path& path, const char* field) {
@@ -120,18 +139,20 @@ DdmTile load_ddm_tile(const std::string& name, const std::filesystem::path& path
   }
 }
 
-std::shared_ptr<DdmLayer> make_ddm_layer(const SceneObject& object, const DdmLayerSpec& spec, bool fill) {
+std::shared_ptr<DdmLayer> make_ddm_layer(const SceneObject& object, const std::string& name, const DdmLayerSpec& spec,
+                                         bool fill) {
   const char* deformed = object.ffd ? "an FFD lattice" : object.dffd ? "a DFFD split" : object.clip ? "a glTF clip"
                                                                                                     : nullptr;
   if (deformed)
     throw CommandError("field 'object': '" + object.name + "' has " + deformed +
                            "; tiles sit on the rest surface and would not follow it", "object");
   auto layer = std::make_shared<DdmLayer>();
-  layer->name = spec.layer;
+  layer->name = name;
   layer->tile_sources = spec.tiles;
   for (std::size_t i = 0; i < spec.tiles.size(); ++i)
-    layer->tiles.push_back(load_ddm_tile(spec.tiles[i], spec.tile_paths[i], i == 0 ? "tile" : "tiles"));
-  layer->layout = layout_of(spec.layout);
+    layer->tiles.push_back(
+        load_ddm_tile(spec.tiles[i], ddm_tile_file(spec.tiles, spec.tile_paths, i), i == 0 ? "tile" : "tiles"));
+  layer->layout = spec.layout;
   layer->counts = spec.counts;
   layer->height = spec.height;
   layer->transform = spec.transform;
@@ -139,14 +160,14 @@ std::shared_ptr<DdmLayer> make_ddm_layer(const SceneObject& object, const DdmLay
   glm::ivec2 resolution{9, 9};
   int charts = 1;
   try {
-    if (spec.base == "teapot_body") {
+    if (spec.base == DdmBaseKind::teapot_body) {
       if (object.source != "primitive:teapot")
         throw CommandError("field 'base': teapot_body needs the teapot primitive; '" + object.name + "' is " +
                                object.source, "base");
       layer->base = DdmBaseKind::teapot_body;
       layer->surface = std::make_shared<DdmSplineBase>(teapot_body_patches(), glm::ivec2(4, 2), glm::bvec2(true, false));
       resolution = {513, 257};
-    } else if (spec.base == "uv") {
+    } else if (spec.base == DdmBaseKind::uv) {
       layer->base = DdmBaseKind::uv;
       resolution = {1025, 1025};
       if (spec.map_resolution && spec.map_resolution->x != spec.map_resolution->y)
@@ -210,28 +231,33 @@ std::shared_ptr<const DdmLayer> find_ddm_layer(const SceneObject& object, const 
   throw CommandError("field 'layer': '" + object.name + "' has no tile layer '" + name + "'", "layer");
 }
 
-CommandPtr DdmFillCommand::parse(const nlohmann::json& j, const CommandContext& ctx) {
-  auto c = std::make_unique<DdmFillCommand>();
-  c->object_ = jf::get_string(j, "object");
-  c->spec_ = DdmLayerSpec::parse(j, ctx, true);
-  return c;
+void check_ddm_layer_name(const std::string& name) {
+  if (const std::string bad = object_name_error(name); !bad.empty()) params::fail("layer", bad);
 }
 
-nlohmann::json DdmFillCommand::to_json() const {
-  nlohmann::json j = {{"cmd", id()}, {"object", object_}};
-  spec_.write(j);
-  return j;
+// ---- ddm.fill --------------------------------------------------------------------------------------------------
+
+const ParamSchema<DdmFillParams>& DdmFillCommand::schema() {
+  using P = DdmFillParams;
+  static const ParamSchema<P> s =
+      ParamSchema<P>("ddm.fill", "Cover an object's surface with a layer of geometric tiles (DDM, seed ch. 5)")
+          .field("object", &P::object).required()
+          .help("An object without an FFD lattice, DFFD split or glTF clip (tiles sit on the rest surface)")
+          .field("layer", &P::layer).required().help("Name of the layer; a layer of that name is replaced")
+          .check([](const P& p) { check_ddm_layer_name(p.layer); })
+          .embed(&P::spec, ddm_layer_schema(true));
+  return s;
 }
 
 std::string DdmFillCommand::label() const {
-  return "Fill '" + object_ + "' with " + spec_.tiles.front() + " (" + spec_.layer + ")";
+  return "Fill '" + p_.object + "' with " + p_.spec.tiles.front() + " (" + p_.layer + ")";
 }
 
 std::optional<SceneObject> DdmFillCommand::build(const Scene& scene) {
   const auto t0 = std::chrono::steady_clock::now();
-  const SceneObject* object = scene.find(object_);
-  if (!object) throw CommandError("field 'object': no object named '" + object_ + "'", "object");
-  std::shared_ptr<const DdmLayer> layer = make_ddm_layer(*object, spec_, true);
+  const SceneObject* object = scene.find(p_.object);
+  if (!object) throw CommandError("field 'object': no object named '" + p_.object + "'", "object");
+  std::shared_ptr<const DdmLayer> layer = make_ddm_layer(*object, p_.layer, p_.spec, true);
   std::size_t tile_vertices = 0;
   for (const DdmTile& t : layer->tiles) tile_vertices = std::max(tile_vertices, t.mesh.vertex_count());
   stats_ = {{"charts", layer->maps->slot_of_chart.size()},
@@ -243,90 +269,103 @@ std::optional<SceneObject> DdmFillCommand::build(const Scene& scene) {
   return with_ddm_layer(*object, std::move(layer));
 }
 
-CommandPtr DdmBakeCommand::parse(const nlohmann::json& j, const CommandContext&) {
-  auto c = std::make_unique<DdmBakeCommand>();
-  c->object_ = jf::get_string(j, "object");
-  c->layer_ = jf::get_string(j, "layer");
-  c->name_ = jf::get_string(j, "name");
-  if (const std::string bad = object_name_error(c->name_); !bad.empty())
-    throw CommandError("field 'name': " + bad, "name");
-  if (jf::has(j, "frame")) c->frame_ = jf::get_number(j, "frame");
-  return c;
+// ---- ddm.bake --------------------------------------------------------------------------------------------------
+
+const ParamSchema<DdmBakeParams>& DdmBakeCommand::schema() {
+  using P = DdmBakeParams;
+  static const ParamSchema<P> s =
+      ParamSchema<P>("ddm.bake", "Turn a tile layer into an ordinary mesh object (for export)")
+          .field("object", &P::object).required().help("The object holding the layer")
+          .field("layer", &P::layer).required().help("The layer to bake")
+          .field("name", &P::name).required().help("Id of the new object; an existing name is an error")
+          .check([](const P& p) {
+            if (const std::string bad = object_name_error(p.name); !bad.empty()) params::fail("name", bad);
+          })
+          .field("frame", &P::frame).default_text("scene time 0")
+          .help("Timeline frame of the layer's animation to bake");
+  return s;
 }
 
-nlohmann::json DdmBakeCommand::to_json() const {
-  nlohmann::json j = {{"cmd", id()}, {"object", object_}, {"layer", layer_}, {"name", name_}};
-  if (frame_) j["frame"] = *frame_;
-  return j;
-}
-
-std::string DdmBakeCommand::label() const { return "Bake " + object_ + "/" + layer_ + " as '" + name_ + "'"; }
+std::string DdmBakeCommand::label() const { return "Bake " + p_.object + "/" + p_.layer + " as '" + p_.name + "'"; }
 
 std::optional<SceneObject> DdmBakeCommand::build(const Scene& scene) {
-  const SceneObject* object = scene.find(object_);
-  if (!object) throw CommandError("field 'object': no object named '" + object_ + "'", "object");
-  const std::shared_ptr<const DdmLayer> layer = find_ddm_layer(*object, layer_);
-  if (scene.find(name_)) throw CommandError("field 'name': an object named '" + name_ + "' already exists", "name");
+  const SceneObject* object = scene.find(p_.object);
+  if (!object) throw CommandError("field 'object': no object named '" + p_.object + "'", "object");
+  const std::shared_ptr<const DdmLayer> layer = find_ddm_layer(*object, p_.layer);
+  if (scene.find(p_.name))
+    throw CommandError("field 'name': an object named '" + p_.name + "' already exists", "name");
   SceneObject baked;
-  baked.name = name_;
-  baked.source = "ddm.bake:" + object_ + "/" + layer_;
+  baked.name = p_.name;
+  baked.source = "ddm.bake:" + p_.object + "/" + p_.layer;
   baked.color = layer->color.value_or(object->color);
-  const TriMesh mesh = frame_ ? ddm_layer_mesh(*layer, scene.timeline.time_of_frame(*frame_)) : *layer->mesh;
+  const TriMesh mesh = p_.frame ? ddm_layer_mesh(*layer, scene.timeline.time_of_frame(*p_.frame)) : *layer->mesh;
   baked.rest_mesh = std::make_shared<const TriMesh>(transformed(mesh, object->transform));
   baked.refresh();
   stats_ = {{"vertices", baked.rest_mesh->vertex_count()}, {"triangles", baked.rest_mesh->triangle_count()}};
   return baked;
 }
 
-CommandPtr DdmColorCommand::parse(const nlohmann::json& j, const CommandContext&) {
-  auto c = std::make_unique<DdmColorCommand>();
-  c->object_ = jf::get_string(j, "object");
-  c->layer_ = jf::get_string(j, "layer");
-  if (!j.contains("color")) throw CommandError("field 'color': missing ([r, g, b] in [0, 1], or null)", "color");
-  if (!j.at("color").is_null()) {
-    const glm::dvec3 rgb = jf::get_vec3(j, "color");
-    if (!(glm::all(glm::greaterThanEqual(rgb, glm::dvec3(0.0))) && glm::all(glm::lessThanEqual(rgb, glm::dvec3(1.0)))))
-      throw CommandError("field 'color': each component must be in [0, 1] (linear RGB)", "color");
-    c->color_ = glm::vec3(rgb);
+// ---- ddm.color -------------------------------------------------------------------------------------------------
+
+namespace {
+
+// "color": [r, g, b] in the field's range; null = unset.
+void read_layer_color(const ParamSchema<DdmColorParams>::Field& f, const nlohmann::json& v, DdmColorParams& p,
+                      const CommandContext&) {
+  if (v.is_null()) {
+    p.color.reset();
+    return;
   }
-  return c;
+  const glm::dvec3 rgb = params::Codec<glm::dvec3>::read(v, f.doc.name);
+  for (int i = 0; i < 3; ++i)
+    if (!f.range.contains(rgb[i])) params::fail(f.doc.name, params::range_error(f.range, f.doc.unit, rgb[i], i, 3));
+  p.color = glm::vec3(rgb);
 }
 
-nlohmann::json DdmColorCommand::to_json() const {
-  return {{"cmd", id()},
-          {"object", object_},
-          {"layer", layer_},
-          {"color", color_ ? jf::to_json(glm::dvec3(*color_)) : nlohmann::json(nullptr)}};
+void write_layer_color(const ParamSchema<DdmColorParams>::Field& f, const DdmColorParams& p, nlohmann::json& line) {
+  line[f.doc.name] = p.color ? params::Codec<glm::vec3>::write(*p.color) : nlohmann::json(nullptr);
 }
 
-std::string DdmColorCommand::label() const { return "Colour of tile layer " + object_ + "/" + layer_; }
+}  // namespace
+
+const ParamSchema<DdmColorParams>& DdmColorCommand::schema() {
+  using P = DdmColorParams;
+  static const ParamSchema<P> s =
+      ParamSchema<P>("ddm.color", "Give a tile layer its own colour, or its object's again")
+          .field("object", &P::object).required().help("The object holding the layer")
+          .field("layer", &P::layer).required().help("The layer to colour")
+          .custom("color", read_layer_color, write_layer_color).required().type_text("[r,g,b] or null")
+          .range(0, 1).unit("linear RGB").help("The layer's own colour; null: its object's again");
+  return s;
+}
+
+std::string DdmColorCommand::label() const { return "Colour of tile layer " + p_.object + "/" + p_.layer; }
 
 std::optional<SceneObject> DdmColorCommand::build(const Scene& scene) {
-  const SceneObject* object = scene.find(object_);
-  if (!object) throw CommandError("field 'object': no object named '" + object_ + "'", "object");
-  const std::shared_ptr<const DdmLayer> layer = find_ddm_layer(*object, layer_);
+  const SceneObject* object = scene.find(p_.object);
+  if (!object) throw CommandError("field 'object': no object named '" + p_.object + "'", "object");
+  const std::shared_ptr<const DdmLayer> layer = find_ddm_layer(*object, p_.layer);
   auto recoloured = std::make_shared<DdmLayer>(*layer);  // tiles, maps and mesh stay shared
-  recoloured->color = color_;
+  recoloured->color = p_.color;
   return with_ddm_layer(*object, recoloured);
 }
 
-CommandPtr DdmRemoveCommand::parse(const nlohmann::json& j, const CommandContext&) {
-  auto c = std::make_unique<DdmRemoveCommand>();
-  c->object_ = jf::get_string(j, "object");
-  c->layer_ = jf::get_string(j, "layer");
-  return c;
+// ---- ddm.remove ------------------------------------------------------------------------------------------------
+
+const ParamSchema<DdmRemoveParams>& DdmRemoveCommand::schema() {
+  using P = DdmRemoveParams;
+  static const ParamSchema<P> s = ParamSchema<P>("ddm.remove", "Delete a tile layer")
+                                      .field("object", &P::object).required().help("The object holding the layer")
+                                      .field("layer", &P::layer).required().help("The layer to delete");
+  return s;
 }
 
-nlohmann::json DdmRemoveCommand::to_json() const {
-  return {{"cmd", id()}, {"object", object_}, {"layer", layer_}};
-}
-
-std::string DdmRemoveCommand::label() const { return "Remove tile layer " + object_ + "/" + layer_; }
+std::string DdmRemoveCommand::label() const { return "Remove tile layer " + p_.object + "/" + p_.layer; }
 
 std::optional<SceneObject> DdmRemoveCommand::build(const Scene& scene) {
-  const SceneObject* object = scene.find(object_);
-  if (!object) throw CommandError("field 'object': no object named '" + object_ + "'", "object");
-  const std::shared_ptr<const DdmLayer> layer = find_ddm_layer(*object, layer_);
+  const SceneObject* object = scene.find(p_.object);
+  if (!object) throw CommandError("field 'object': no object named '" + p_.object + "'", "object");
+  const std::shared_ptr<const DdmLayer> layer = find_ddm_layer(*object, p_.layer);
   SceneObject out = *object;
   std::erase(out.ddm_layers, layer);
   stats_ = {{"tiles", layer->instances.size()}, {"vertices", layer->mesh ? layer->mesh->vertex_count() : 0}};

@@ -42,114 +42,135 @@
 #include <string>
 #include <vector>
 
+#include "core/commands/declared_command.h"
 #include "core/commands/snapshot_command.h"
 #include "core/ddm/ddm_layer.h"
 
 namespace trispline::core {
 
-// The fields that make a layer: ddm.fill's, and ddm.paint's when it creates its layer. parse() reads them (all
-// optional but layer/tile when `require_tile`), write() logs them back (tile files absolute).
+// How to make a layer: ddm.fill's fields, and ddm.paint's when it creates its layer (ddm_layer_schema()).
 struct DdmLayerSpec {
-  std::string layer;
-  std::vector<std::string> tiles;                 // "thorn" | … | a file as given; tiles[0] is the "tile" field
-  std::vector<std::filesystem::path> tile_paths;  // per tile: resolved file, empty for generated tiles
-  std::string base = "limit", layout = "rect", choice = "pattern";
+  // "tile" (tiles[0]) and "tiles" (the rest): generated kinds (is_generated_ddm_tile) or mesh files, as given.
+  std::vector<std::string> tiles{"thorn"};
+  // Per tile: the file resolved against the log's folder by parse (lines are written back with it); empty for
+  // generated tiles, and for tiles not read from a line (then the name is used as it is).
+  std::vector<std::filesystem::path> tile_paths;
+  std::string choice = "pattern";  // with several tiles: "pattern" | "random"
+  std::int64_t seed = 0;           // "random"'s mt19937 seed
+  DdmLayout layout = DdmLayout::rect;
   glm::ivec2 counts{1, 1};
   double height = 0.1;
-  std::optional<glm::ivec2> map_resolution;
-  DdmTileTransform transform;
-  std::int64_t seed = 0;
-  std::optional<glm::vec3> color;  // "color": the layer's linear RGB, each in [0, 1] (default: the object's)
-
-  // Throws CommandError naming the field.
-  static DdmLayerSpec parse(const nlohmann::json& j, const CommandContext& ctx, bool require_tile);
-  void write(nlohmann::json& j) const;
+  DdmBaseKind base = DdmBaseKind::limit;
+  std::optional<glm::ivec2> map_resolution;  // unset = the base's default
+  DdmTileTransform transform;                // "tile_scale", "tile_rotate_deg", "tile_shift"
+  std::optional<glm::vec3> color;            // the layer's linear RGB in [0, 1]; unset = the object's
 };
+
+// DdmLayerSpec's fields, declared once: `fill` = ddm.fill's (tile, layout, counts and height required), else
+// ddm.paint's (every field optional, with the defaults above).
+const ParamSchema<DdmLayerSpec>& ddm_layer_schema(bool fill);
+
+// Tile i of a line's list (tiles / tile_paths, morph tiles): the resolved file when parse found one, else the name.
+std::string ddm_tile_file(const std::vector<std::string>& names, const std::vector<std::filesystem::path>& paths,
+                          std::size_t i);
+// A tile a line names, resolved against the log's folder: empty for generated kinds and for "".
+std::filesystem::path resolve_ddm_tile(const std::string& name, const CommandContext& ctx);
 
 // Loads a tile: a generated kind or a mesh file made canonical. Throws CommandError (`field`) on failure.
 DdmTile load_ddm_tile(const std::string& name, const std::filesystem::path& path, const char* field);
 
-// A new layer from `spec` on `object` (its rest mesh, object space): tiles loaded, base built, every layout cell
-// filled (`fill`) or none, maps sampled, mesh evaluated. Throws CommandError naming the field (see ddm.fill).
-std::shared_ptr<DdmLayer> make_ddm_layer(const SceneObject& object, const DdmLayerSpec& spec, bool fill);
+// A new layer `name` from `spec` on `object` (its rest mesh, object space): tiles loaded, base built, every layout
+// cell filled (`fill`) or none, maps sampled, mesh evaluated. Throws CommandError naming the field (see ddm.fill).
+std::shared_ptr<DdmLayer> make_ddm_layer(const SceneObject& object, const std::string& name, const DdmLayerSpec& spec,
+                                         bool fill);
 
 // `object` with `layer` added, or replacing the layer of the same name.
 SceneObject with_ddm_layer(const SceneObject& object, std::shared_ptr<const DdmLayer> layer);
 // The object's layer called `name`; throws CommandError ("layer") when there is none.
 std::shared_ptr<const DdmLayer> find_ddm_layer(const SceneObject& object, const std::string& name);
+// The "layer" a command may create (ddm.fill, ddm.paint): a valid name (object_name_error). Throws naming "layer".
+void check_ddm_layer_name(const std::string& name);
 
-class DdmFillCommand : public SnapshotCommand {
+struct DdmFillParams {
+  std::string object;
+  std::string layer;
+  DdmLayerSpec spec;
+};
+
+class DdmFillCommand : public DeclaredCommand<DdmFillCommand, DdmFillParams, SnapshotCommand> {
  public:
-  static CommandPtr parse(const nlohmann::json& j, const CommandContext& ctx);
-  std::string id() const override { return "ddm.fill"; }
-  nlohmann::json to_json() const override;
+  using DeclaredCommand::DeclaredCommand;
+  static const ParamSchema<DdmFillParams>& schema();
   std::string label() const override;
   nlohmann::json stats() const override { return stats_; }
 
  protected:
-  std::string target() const override { return object_; }
+  std::string target() const override { return p_.object; }
   std::optional<SceneObject> build(const Scene& scene) override;
   std::string failure_field() const override { return "tile"; }
 
  private:
-  std::string object_;
-  DdmLayerSpec spec_;
   nlohmann::json stats_ = nlohmann::json::object();
 };
 
-class DdmBakeCommand : public SnapshotCommand {
+struct DdmBakeParams {
+  std::string object, layer;
+  std::string name;             // the new object
+  std::optional<double> frame;  // timeline frame of the layer's animation; unset = scene time 0
+};
+
+class DdmBakeCommand : public DeclaredCommand<DdmBakeCommand, DdmBakeParams, SnapshotCommand> {
  public:
-  static CommandPtr parse(const nlohmann::json& j, const CommandContext& ctx);
-  std::string id() const override { return "ddm.bake"; }
-  nlohmann::json to_json() const override;
+  using DeclaredCommand::DeclaredCommand;
+  static const ParamSchema<DdmBakeParams>& schema();
   std::string label() const override;
   nlohmann::json stats() const override { return stats_; }
 
  protected:
-  std::string target() const override { return name_; }
+  std::string target() const override { return p_.name; }
   std::optional<SceneObject> build(const Scene& scene) override;
 
  private:
-  std::string object_, layer_, name_;
-  std::optional<double> frame_;
   nlohmann::json stats_ = nlohmann::json::object();
 };
 
 // {"cmd":"ddm.color","object":ID,"layer":NAME,"color":[r,g,b] | null}: sets a layer's own colour (linear RGB, each in
 // [0, 1]) or, with null, makes it take its object's colour again. Only the colour changes (the tiles are shared).
 // Errors (field named, scene unchanged): unknown object, no such layer, a colour out of range.
-class DdmColorCommand : public SnapshotCommand {
+struct DdmColorParams {
+  std::string object, layer;
+  std::optional<glm::vec3> color;  // unset: "color": null (the object's colour again)
+};
+
+class DdmColorCommand : public DeclaredCommand<DdmColorCommand, DdmColorParams, SnapshotCommand> {
  public:
-  static CommandPtr parse(const nlohmann::json& j, const CommandContext& ctx);
-  std::string id() const override { return "ddm.color"; }
-  nlohmann::json to_json() const override;
+  using DeclaredCommand::DeclaredCommand;
+  static const ParamSchema<DdmColorParams>& schema();
   std::string label() const override;
 
  protected:
-  std::string target() const override { return object_; }
+  std::string target() const override { return p_.object; }
   std::optional<SceneObject> build(const Scene& scene) override;
-
- private:
-  std::string object_, layer_;
-  std::optional<glm::vec3> color_;
 };
 
 // {"cmd":"ddm.remove","object":ID,"layer":NAME}: deletes a tile layer (its tiles, maps and animation); undo brings it
 // back as it was. Errors (field named, scene unchanged): unknown object, no such layer.
-class DdmRemoveCommand : public SnapshotCommand {
+struct DdmRemoveParams {
+  std::string object, layer;
+};
+
+class DdmRemoveCommand : public DeclaredCommand<DdmRemoveCommand, DdmRemoveParams, SnapshotCommand> {
  public:
-  static CommandPtr parse(const nlohmann::json& j, const CommandContext& ctx);
-  std::string id() const override { return "ddm.remove"; }
-  nlohmann::json to_json() const override;
+  using DeclaredCommand::DeclaredCommand;
+  static const ParamSchema<DdmRemoveParams>& schema();
   std::string label() const override;
   nlohmann::json stats() const override { return stats_; }
 
  protected:
-  std::string target() const override { return object_; }
+  std::string target() const override { return p_.object; }
   std::optional<SceneObject> build(const Scene& scene) override;
 
  private:
-  std::string object_, layer_;
   nlohmann::json stats_ = nlohmann::json::object();
 };
 

@@ -15,12 +15,10 @@
 
 #include "core/commands/codecs.h"
 #include "core/commands/ddm_commands.h"
-#include "core/commands/json_fields.h"
 #include "core/ddm/ddm_layer.h"
 #include "core/raycast/ray_caster.h"
 
 namespace trispline::core {
-namespace jf = json_fields;
 namespace {
 
 constexpr std::size_t kMaxTileVertices = kMaxDdmLayerVertices;
@@ -197,83 +195,77 @@ std::vector<DdmInstance> ddm_paint_cells(const Scene& scene, const SceneObject& 
   return out;
 }
 
-CommandPtr DdmPaintCommand::parse(const nlohmann::json& j, const CommandContext& ctx) {
-  auto c = std::make_unique<DdmPaintCommand>();
-  c->object_ = jf::get_string(j, "object");
-  c->spec_ = DdmLayerSpec::parse(j, ctx, false);  // "layer" (non-empty), and the new layer's fields with defaults
-  c->layer_ = c->spec_.layer;
-  for (const char* f : {"tile", "tiles", "choice", "seed", "layout", "counts", "height", "base", "map_resolution",
-                        "tile_scale", "tile_rotate_deg", "tile_shift"})
-    c->spec_given_ = c->spec_given_ || jf::has(j, f);
-  c->stroke_ = jf::get_points2(j, "stroke");
-  if (c->stroke_.empty()) throw CommandError("field 'stroke': needs at least 1 point", "stroke");
-  for (const glm::dvec2& p : c->stroke_)
-    if (!std::isfinite(p.x) || !std::isfinite(p.y))
-      throw CommandError("field 'stroke': points must be finite", "stroke");
-  c->radius_px_ = jf::get_number(j, "radius_px");
-  // A brush is at most as wide as a large viewport: larger radii select nothing more, and keep the maths finite.
-  if (!(c->radius_px_ > 0.0) || !(c->radius_px_ <= kMaxBrushRadiusPx))
-    throw CommandError("field 'radius_px': must be in (0, 16384] viewport pixels", "radius_px");
-  c->erase_ = jf::get_bool(j, "erase", false);
-  if (jf::has(j, "camera"))  // the view the stroke was drawn in (as place.sketch): no camera.set needed
-    c->camera_ = camera_schema().parse_nested(j.at("camera"), "camera", ctx);
-  return c;
-}
-
-nlohmann::json DdmPaintCommand::to_json() const {
-  nlohmann::json j = {{"cmd", id()},
-                      {"object", object_},
-                      {"layer", layer_},
-                      {"stroke", jf::to_json(stroke_)},
-                      {"radius_px", radius_px_},
-                      {"erase", erase_}};
-  if (camera_) j["camera"] = camera_schema().fields_json(*camera_);
-  if (spec_given_) spec_.write(j);
-  return j;
+const ParamSchema<DdmPaintParams>& DdmPaintCommand::schema() {
+  using P = DdmPaintParams;
+  static const ParamSchema<P> s =
+      ParamSchema<P>("ddm.paint",
+                     "Paint (or erase) tiles of a layer with a brush stroke in the viewport (DDM, seed ch. 5)")
+          .field("object", &P::object).required()
+          .help("An object without an FFD lattice, DFFD split or glTF clip (tiles sit on the rest surface)")
+          .field("layer", &P::layer).required()
+          .help("The layer painted on; a new one is made from the fields below (ddm.fill's, all optional)")
+          .check([](const P& p) { check_ddm_layer_name(p.layer); })
+          .embed_named(&P::spec, ddm_layer_schema(false), &P::spec_named)
+          .field("stroke", &P::stroke).required().unit("pixels")
+          .help("Viewport points in drawing order, (0,0) top-left; one point is a dab")
+          .check([](const P& p) {
+            if (p.stroke.empty()) params::fail("stroke", "needs at least 1 point");
+          })
+          // A brush is at most as wide as a large viewport: larger radii select nothing more, and keep the maths
+          // finite.
+          .field("radius_px", &P::radius_px).required().range(0, kMaxBrushRadiusPx, true, false).unit("pixels")
+          .help("Brush radius: cells whose centre projects this close to the stroke are touched")
+          .field("erase", &P::erase).help("Remove the touched cells instead of adding them")
+          .object("camera", &P::camera, camera_schema())
+          .help("The view the stroke was drawn in (camera.set's fields); default: the last camera.set");
+  return s;
 }
 
 std::string DdmPaintCommand::label() const {
-  return std::string(erase_ ? "Erase tiles of " : "Paint tiles on ") + object_ + "/" + layer_;
+  return std::string(p_.erase ? "Erase tiles of " : "Paint tiles on ") + p_.object + "/" + p_.layer;
 }
 
 std::optional<SceneObject> DdmPaintCommand::build(const Scene& scene) {
   const auto t0 = std::chrono::steady_clock::now();
-  const SceneObject* object = scene.find(object_);
-  if (!object) throw CommandError("field 'object': no object named '" + object_ + "'", "object");
+  const SceneObject* object = scene.find(p_.object);
+  if (!object) throw CommandError("field 'object': no object named '" + p_.object + "'", "object");
   const char* deformed = object->ffd    ? "an FFD lattice"
                          : object->dffd ? "a DFFD split"
                          : object->clip ? "a glTF clip"
                                         : nullptr;
   if (deformed)
     throw CommandError(
-        "field 'object': '" + object_ + "' has " + deformed + "; tiles sit on the rest surface and would not follow it",
+        "field 'object': '" + p_.object + "' has " + deformed +
+            "; tiles sit on the rest surface and would not follow it",
         "object");
-  if (!camera_ && !scene.camera_set)
+  if (!p_.camera && !scene.camera_set)
     throw CommandError(
         "field 'camera': stroke pixels need a camera: add a camera.set line before this one or a "
         "\"camera\" object to this line",
         "camera");
-  const Camera& camera = camera_ ? *camera_ : scene.camera;
+  const Camera& camera = p_.camera ? *p_.camera : scene.camera;
   std::shared_ptr<const DdmLayer> existing;
   for (const auto& l : object->ddm_layers)
-    if (l->name == layer_) existing = l;
-  if (!existing && erase_)
-    throw CommandError("field 'layer': '" + object_ + "' has no tile layer '" + layer_ + "' to erase from", "layer");
+    if (l->name == p_.layer) existing = l;
+  if (!existing && p_.erase)
+    throw CommandError("field 'layer': '" + p_.object + "' has no tile layer '" + p_.layer + "' to erase from",
+                       "layer");
   // A new layer: the spec's tiles and base, no cells yet (ddm.fill's construction).
-  const std::shared_ptr<const DdmLayer> held_layer = existing ? existing : make_ddm_layer(*object, spec_, false);
+  const std::shared_ptr<const DdmLayer> held_layer =
+      existing ? existing : make_ddm_layer(*object, p_.layer, p_.spec, false);
   const DdmLayer& layer = *held_layer;
 
   std::vector<DdmInstance> touched;
   try {
-    touched = ddm_paint_cells(scene, *object, layer, camera, stroke_, radius_px_);
+    touched = ddm_paint_cells(scene, *object, layer, camera, p_.stroke, p_.radius_px);
   } catch (const std::invalid_argument& e) {
     throw CommandError("field 'layer': " + std::string(e.what()), "layer");
   }
   if (touched.empty()) {
     char r[32];
-    std::snprintf(r, sizeof r, "%g", radius_px_);
-    throw CommandError("field 'stroke': the stroke touches no visible cell of layer '" + layer_ + "' on '" + object_ +
-                           "' (brush radius " + r + " px)",
+    std::snprintf(r, sizeof r, "%g", p_.radius_px);
+    throw CommandError("field 'stroke': the stroke touches no visible cell of layer '" + p_.layer + "' on '" +
+                           p_.object + "' (brush radius " + r + " px)",
                        "stroke");
   }
 
@@ -282,7 +274,7 @@ std::optional<SceneObject> DdmPaintCommand::build(const Scene& scene) {
   for (const DdmInstance& c : touched) hit.insert(key_of(c));
   std::vector<DdmInstance> instances;
   std::size_t added = 0, removed = 0;
-  if (erase_) {
+  if (p_.erase) {
     for (const DdmInstance& c : layer.instances)
       if (hit.count(key_of(c)))
         ++removed;

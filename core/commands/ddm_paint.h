@@ -18,7 +18,8 @@
 // When the object has no layer of that name, painting creates it (empty, then painted) from ddm.fill's fields, all
 // optional here (DdmLayerSpec, ddm_commands.h): "tile" (default "thorn"), "tiles", "choice", "seed", "layout"
 // ("rect"), "counts" ([1,1]), "height" (0.1), "base" ("limit"), "map_resolution", "tile_scale", "tile_rotate_deg",
-// "tile_shift"; they are ignored when the layer exists (it keeps its own). Erasing needs the layer.
+// "tile_shift", "color"; they are ignored when the layer exists (it keeps its own) and logged back only when the line
+// named any of them. Erasing needs the layer.
 // report.json stats: created (the layer was made by this stroke), touched, cells_added, cells_removed, tiles
 // (instances after), vertices (the layer's mesh), ms.
 // Errors (CommandError, field named; the scene is unchanged): unknown object, or one with an FFD / DFFD / clip
@@ -51,27 +52,29 @@ std::vector<DdmInstance> ddm_paint_cells(const Scene& scene, const SceneObject& 
 // the tile a pattern fill gives it whatever the stroke order.
 int ddm_paint_tile_index(int cell_index, int row, int tile_count);
 
-class DdmPaintCommand : public SnapshotCommand {
+struct DdmPaintParams {
+  std::string object, layer;
+  DdmLayerSpec spec;                // the layer to create when the object has none of that name
+  bool spec_named = false;          // the line named any of spec's fields (they are logged back only then)
+  std::vector<glm::dvec2> stroke;   // #S × 2 viewport pixels
+  double radius_px = 0.0;
+  bool erase = false;
+  std::optional<Camera> camera;     // the view the stroke was drawn in; unset = the scene's camera
+};
+
+class DdmPaintCommand : public DeclaredCommand<DdmPaintCommand, DdmPaintParams, SnapshotCommand> {
  public:
-  static CommandPtr parse(const nlohmann::json& j, const CommandContext& ctx);
-  std::string id() const override { return "ddm.paint"; }
-  nlohmann::json to_json() const override;
+  using DeclaredCommand::DeclaredCommand;
+  static const ParamSchema<DdmPaintParams>& schema();
   std::string label() const override;
   nlohmann::json stats() const override { return stats_; }
 
  protected:
-  std::string target() const override { return object_; }
+  std::string target() const override { return p_.object; }
   std::optional<SceneObject> build(const Scene& scene) override;
   std::string failure_field() const override { return "layer"; }
 
  private:
-  std::string object_, layer_;
-  DdmLayerSpec spec_;               // the layer to create when the object has none of that name
-  bool spec_given_ = false;         // the line named any of spec_'s fields (logged back only then)
-  std::vector<glm::dvec2> stroke_;  // #S × 2 viewport pixels
-  double radius_px_ = 0.0;
-  bool erase_ = false;
-  std::optional<Camera> camera_;  // "camera" (the view the stroke was drawn in); else the scene's camera
   nlohmann::json stats_ = nlohmann::json::object();
 };
 

@@ -122,9 +122,18 @@ bool Codec<bool>::read(const nlohmann::json& v, const std::string& field) {
   return v.get<bool>();
 }
 
+glm::dvec2 Codec<glm::dvec2>::read(const nlohmann::json& v, const std::string& field) {
+  if (!v.is_array() || v.size() != 2) fail(field, "expected an array of 2 numbers");
+  return {as_number(v[0], field), as_number(v[1], field)};
+}
+
 glm::dvec3 Codec<glm::dvec3>::read(const nlohmann::json& v, const std::string& field) {
   if (!v.is_array() || v.size() != 3) fail(field, "expected an array of 3 numbers");
   return {as_number(v[0], field), as_number(v[1], field), as_number(v[2], field)};
+}
+
+glm::vec3 Codec<glm::vec3>::read(const nlohmann::json& v, const std::string& field) {
+  return glm::vec3(Codec<glm::dvec3>::read(v, field));
 }
 
 glm::ivec2 Codec<glm::ivec2>::read(const nlohmann::json& v, const std::string& field) {

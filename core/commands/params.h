@@ -13,8 +13,9 @@
 //       .field("tolerance", &P::tolerance).required().above(0).unit("world units").help("...");
 //
 // Field types and their JSON: std::string, double (finite), int / std::int64_t (range-checked, no wrap-around),
-// bool, glm::dvec3 [x,y,z], glm::ivec2 [a,b], glm::ivec3 [a,b,c], std::vector<glm::dvec2> [[x,y],...],
-// std::vector<double>, std::vector<std::string>, std::optional<T> of those, and nested ParamSchema objects.
+// bool, glm::dvec2 [x,y], glm::dvec3 / glm::vec3 [x,y,z], glm::ivec2 [a,b], glm::ivec3 [a,b,c], std::vector<glm::dvec2>
+// [[x,y],...], std::vector<glm::dvec3>, std::vector<double>, std::vector<std::string>, std::optional<T> of those, and
+// nested ParamSchema objects.
 #pragma once
 
 #include <glm/glm.hpp>
@@ -117,6 +118,22 @@ struct Codec<bool> {
   static std::string type() { return "true|false"; }
 };
 template <>
+struct Codec<glm::dvec2> {
+  static constexpr ParamKind kind = ParamKind::Other;
+  static glm::dvec2 read(const nlohmann::json& v, const std::string& field);
+  static nlohmann::json write(const glm::dvec2& x) { return nlohmann::json::array({x.x, x.y}); }
+  static std::string type() { return "[x,y]"; }
+};
+template <>
+struct Codec<glm::vec3> {  // single precision (a colour as the renderer keeps it); read as doubles, then rounded
+  static constexpr ParamKind kind = ParamKind::Other;
+  static glm::vec3 read(const nlohmann::json& v, const std::string& field);
+  static nlohmann::json write(const glm::vec3& x) {
+    return nlohmann::json::array({double(x.x), double(x.y), double(x.z)});
+  }
+  static std::string type() { return "[x,y,z]"; }
+};
+template <>
 struct Codec<glm::dvec3> {
   static constexpr ParamKind kind = ParamKind::Vec3;
   static glm::dvec3 read(const nlohmann::json& v, const std::string& field);
@@ -171,7 +188,9 @@ inline std::vector<double> components(double x) { return {x}; }
 inline std::vector<double> components(int x) { return {double(x)}; }
 inline std::vector<double> components(std::int64_t x) { return {double(x)}; }
 inline std::vector<double> components(std::size_t x) { return {double(x)}; }
+inline std::vector<double> components(const glm::dvec2& v) { return {v.x, v.y}; }
 inline std::vector<double> components(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
+inline std::vector<double> components(const glm::vec3& v) { return {v.x, v.y, v.z}; }
 inline std::vector<double> components(const glm::ivec2& v) { return {double(v.x), double(v.y)}; }
 inline std::vector<double> components(const glm::ivec3& v) { return {double(v.x), double(v.y), double(v.z)}; }
 inline std::vector<double> components(const std::vector<double>& v) { return v; }
@@ -230,6 +249,7 @@ class ParamSchema {
     std::function<void*(P&)> member;  // for widgets; null for composite fields
     std::function<void(P&)> check;        // a check over several fields (no JSON field of its own); may normalise
     std::function<bool(const P&)> stop;   // parse and to_json end here when it holds (e.g. "remove": true)
+    std::function<bool(const P&)> write_if;  // to_json writes the field only when this holds (null: always)
     bool resolve_path = false;            // a string field holding a file path (see Ref::path())
     std::vector<ParamDoc> nested_docs;    // a nested object's fields
   };
@@ -238,7 +258,11 @@ class ParamSchema {
   class Ref {
    public:
     Ref(ParamSchema& s, std::size_t i) : s_(s), i_(i) {}
-    Ref& required() { return f().required = true, f().doc.default_text = "required", *this; }
+    // required(false) leaves the field optional (a schema built for two commands that differ in this).
+    Ref& required(bool yes = true) {
+      if (yes) f().required = true, f().doc.default_text = "required";
+      return *this;
+    }
     Ref& help(std::string text) { return f().doc.help = std::move(text), *this; }
     Ref& unit(std::string u) { return f().doc.unit = std::move(u), *this; }
     Ref& label(std::string l) { return f().label = std::move(l), *this; }
@@ -261,6 +285,8 @@ class ParamSchema {
     Ref& magnitude_at_most(double m) { return range(-m, m); }
     Ref& write(ParamWrite w) { return f().write_mode = w, *this; }
     Ref& write_unless_default() { return write(ParamWrite::UnlessDefault); }
+    // Written back only when `cond` holds as well (a field that only matters when another one is set).
+    Ref& write_if(std::function<bool(const P&)> cond) { return f().write_if = std::move(cond), *this; }
     // Chains a declaration of the next field.
     template <class T>
     Ref field(const std::string& name, T P::*m) { return s_.field(name, m); }
@@ -268,6 +294,8 @@ class ParamSchema {
     Ref field_as(const std::string& name, T P::*m) { return s_.template field_as<Codec>(name, m); }
     template <class Q>
     Ref embed(Q P::*m, const ParamSchema<Q>& sub) { return s_.embed(m, sub); }
+    template <class Q>
+    Ref embed_named(Q P::*m, const ParamSchema<Q>& sub, bool P::*named) { return s_.embed_named(m, sub, named); }
     template <class T>
     Ref choice(const std::string& name, T P::*m, std::vector<std::string> choices) {
       return s_.choice(name, m, std::move(choices));
@@ -449,7 +477,28 @@ class ParamSchema {
       if (sf.member) f.member = [m, shared](P& p) { return shared->member(p.*m); };
       if (sf.check) f.check = [m, shared](P& p) { shared->check(p.*m); };
       if (sf.stop) f.stop = [m, shared](const P& p) { return shared->stop(p.*m); };
+      if (sf.write_if) f.write_if = [m, shared](const P& p) { return shared->write_if(p.*m); };
       fields_.push_back(std::move(f));
+    }
+    return Ref(*this, fields_.size() - 1);
+  }
+
+  // As embed(), for a group of optional fields that matter together (the layer ddm.paint makes when there is none):
+  // parse sets p.*named when the line has any of them, and to_json writes them back only when p.*named holds.
+  template <class Q>
+  Ref embed_named(Q P::*m, const ParamSchema<Q>& sub, bool P::*named) {
+    const std::size_t first = fields_.size();
+    embed(m, sub);
+    for (std::size_t i = first; i < fields_.size(); ++i) {
+      Field& f = fields_[i];
+      if (f.read)
+        f.read = [named, read = std::move(f.read)](const Field& self, const nlohmann::json& v, P& p,
+                                                   const CommandContext& ctx) {
+          p.*named = true;
+          read(self, v, p, ctx);
+        };
+      if (f.write)
+        f.write_if = [named, cond = std::move(f.write_if)](const P& p) { return p.*named && (!cond || cond(p)); };
     }
     return Ref(*this, fields_.size() - 1);
   }
@@ -517,7 +566,7 @@ class ParamSchema {
     nlohmann::json j = nlohmann::json::object();
     for (const Field& f : fields_) {
       if (f.stop && f.stop(p)) break;
-      if (f.write && f.write_mode != ParamWrite::Never) f.write(f, p, j);
+      if (f.write && f.write_mode != ParamWrite::Never && (!f.write_if || f.write_if(p))) f.write(f, p, j);
     }
     return j;
   }

@@ -38,33 +38,29 @@ bool is_generated(const std::string& tile) {
   return std::find(kGeneratedTiles.begin(), kGeneratedTiles.end(), tile) != kGeneratedTiles.end();
 }
 
-// The layer fields ddm.fill and a layer-creating ddm.paint share.
-void put_layer_fields(nlohmann::json& j, const DdmPaintToolParams& p) {
-  j["tile"] = p.tile;
-  j["layout"] = p.layout;
-  j["counts"] = {p.counts.x, p.counts.y};
-  j["height"] = p.height;
-  if (p.base != "limit") j["base"] = p.base;
-  if (p.own_color) j["color"] = {p.color.x, p.color.y, p.color.z};
+// The new layer's colour: the panel's swatch when "Own colour" is on.
+std::optional<glm::vec3> layer_color(const DdmPaintToolParams& p) {
+  return p.own_color ? std::optional<glm::vec3>(p.color) : std::nullopt;
 }
 }  // namespace
 
 nlohmann::json ddm_paint_line(const std::string& object, const std::vector<glm::dvec2>& stroke_px,
-                              const DdmPaintToolParams& p, bool erase, bool new_layer,
+                              const DdmPaintToolParams& params, bool erase, bool new_layer,
                               const std::optional<core::Camera>& view) {
-  nlohmann::json stroke = nlohmann::json::array();
-  for (const glm::dvec2& q : stroke_px) stroke.push_back({q.x, q.y});
-  nlohmann::json line = {{"cmd", "ddm.paint"}, {"object", object},         {"layer", p.layer},
-                         {"stroke", stroke},   {"radius_px", p.radius_px}, {"erase", erase}};
-  if (view) line["camera"] = core::camera_schema().fields_json(*view);
-  if (new_layer) put_layer_fields(line, p);
-  return line;
+  core::DdmPaintParams p = params.paint;
+  p.object = object;
+  p.stroke = stroke_px;
+  p.erase = erase;
+  p.camera = view;
+  p.spec_named = new_layer;  // the new layer's fields are logged only for a new layer
+  p.spec.color = layer_color(params);
+  return core::DdmPaintCommand::schema().to_json(p);
 }
 
-nlohmann::json ddm_fill_line(const std::string& object, const DdmPaintToolParams& p) {
-  nlohmann::json line = {{"cmd", "ddm.fill"}, {"object", object}, {"layer", p.layer}};
-  put_layer_fields(line, p);
-  return line;
+nlohmann::json ddm_fill_line(const std::string& object, const DdmPaintToolParams& params) {
+  core::DdmFillParams f{object, params.paint.layer, params.paint.spec};
+  f.spec.color = layer_color(params);
+  return core::DdmFillCommand::schema().to_json(f);
 }
 
 ui::ToolEntry DdmPaintTool::entry() const {
@@ -92,7 +88,7 @@ void DdmPaintTool::follow_selection(const ToolContext& ctx) {
   // Like Blender's active layer: a newly selected object that holds layers brings up its last one, unless the
   // panel's layer is one of its layers already.
   const core::SceneObject* o = ctx.session.scene().find(object_);
-  if (o && !o->ddm_layers.empty() && new_layer(ctx)) params_.layer = o->ddm_layers.back()->name;
+  if (o && !o->ddm_layers.empty() && new_layer(ctx)) params_.paint.layer = o->ddm_layers.back()->name;
 }
 
 const core::SceneObject* DdmPaintTool::target(const ToolContext& ctx) const {
@@ -104,11 +100,11 @@ bool DdmPaintTool::new_layer(const ToolContext& ctx) const {
   const core::SceneObject* o = ctx.session.scene().find(object_);
   if (!o) return true;
   return std::none_of(o->ddm_layers.begin(), o->ddm_layers.end(),
-                      [&](const auto& l) { return l->name == params_.layer; });
+                      [&](const auto& l) { return l->name == params_.paint.layer; });
 }
 
 void DdmPaintTool::scale_radius(double factor) {
-  params_.radius_px = std::clamp(params_.radius_px * factor, kMinRadiusPx, kMaxRadiusPx);
+  params_.paint.radius_px = std::clamp(params_.paint.radius_px * factor, kMinRadiusPx, kMaxRadiusPx);
 }
 
 void DdmPaintTool::handle_input(const ToolInput& in, ToolContext& ctx) {
@@ -120,7 +116,7 @@ void DdmPaintTool::handle_input(const ToolInput& in, ToolContext& ctx) {
   if (in.left_pressed) {
     follow_selection(ctx);
     painting_ = true;
-    erasing_ = params_.erase != in.ctrl;  // Ctrl inverts, as in a Blender brush
+    erasing_ = params_.paint.erase != in.ctrl;  // Ctrl inverts, as in a Blender brush
     stroke_ = {in.mouse_px};
     stroke_view_ = ctx.view;  // pixels of this view, whatever the camera does until mouse-up
   }
@@ -157,35 +153,37 @@ void DdmPaintTool::fill(ToolContext& ctx) {
   }
   const nlohmann::json line = ddm_fill_line(o->name, params_);
   EditorSession& session = ctx.session;
-  ctx.defer("Filling " + o->name + " with " + params_.tile, [&session, line]() { session.execute(line); });
+  ctx.defer("Filling " + o->name + " with " + params_.paint.spec.tiles.front(),
+            [&session, line]() { session.execute(line); });
 }
 
 void DdmPaintTool::bake(ToolContext& ctx) {
   const core::SceneObject* o = target(ctx);
   if (!o || new_layer(ctx)) {
-    ctx.session.messages().error("ddm.bake: paint or fill the layer '" + params_.layer + "' first");
+    ctx.session.messages().error("ddm.bake: paint or fill the layer '" + params_.paint.layer + "' first");
     return;
   }
-  const std::string name = ctx.session.scene().unique_name(o->name + "." + params_.layer);
-  const nlohmann::json line = {{"cmd", "ddm.bake"}, {"object", o->name}, {"layer", params_.layer}, {"name", name}};
+  const std::string name = ctx.session.scene().unique_name(o->name + "." + params_.paint.layer);
+  const nlohmann::json line =
+      core::DdmBakeCommand::schema().to_json({o->name, params_.paint.layer, name, std::nullopt});
   EditorSession& session = ctx.session;
-  ctx.defer("Baking " + o->name + "/" + params_.layer, [&session, line]() { session.execute(line); });
+  ctx.defer("Baking " + o->name + "/" + params_.paint.layer, [&session, line]() { session.execute(line); });
 }
 
 void DdmPaintTool::remove_layer(ToolContext& ctx) {
   const core::SceneObject* o = target(ctx);
   if (!o || new_layer(ctx)) {
-    ctx.session.messages().error("ddm.remove: '" + params_.layer + "' is not a layer of the selected object");
+    ctx.session.messages().error("ddm.remove: '" + params_.paint.layer + "' is not a layer of the selected object");
     return;
   }
-  const nlohmann::json line = {{"cmd", "ddm.remove"}, {"object", o->name}, {"layer", params_.layer}};
+  const nlohmann::json line = core::DdmRemoveCommand::schema().to_json({o->name, params_.paint.layer});
   ctx.session.execute(line);  // undoable; errors go to the Log panel
 }
 
 std::string DdmPaintTool::hint() const {
   if (painting_) return erasing_ ? "Release to erase the tiles under the stroke" : "Release to paint tiles";
   if (object_.empty()) return "Select the object to paint tiles on";
-  return "Drag over " + object_ + " to paint tiles on '" + params_.layer + "'; Ctrl-drag erases; [ ] brush size";
+  return "Drag over " + object_ + " to paint tiles on '" + params_.paint.layer + "'; Ctrl-drag erases; [ ] brush size";
 }
 
 void DdmPaintTool::draw_brush() const {
@@ -195,10 +193,10 @@ void DdmPaintTool::draw_brush() const {
   const float sx = io.DisplayFramebufferScale.x > 0 ? io.DisplayFramebufferScale.x : 1.0f;
   const float sy = io.DisplayFramebufferScale.y > 0 ? io.DisplayFramebufferScale.y : 1.0f;
   auto screen = [&](glm::dvec2 p) { return ImVec2(float(p.x) / sx, float(p.y) / sy); };
-  const bool erase = painting_ ? erasing_ : params_.erase != io.KeyCtrl;
+  const bool erase = painting_ ? erasing_ : params_.paint.erase != io.KeyCtrl;
   const ImU32 line = erase ? IM_COL32(255, 95, 80, 235) : IM_COL32(255, 205, 90, 235);
   const ImU32 swath = erase ? IM_COL32(255, 95, 80, 45) : IM_COL32(255, 205, 90, 45);
-  const float r = float(params_.radius_px) / sx;
+  const float r = float(params_.paint.radius_px) / sx;
   ImDrawList* dl = ImGui::GetBackgroundDrawList();
   if (painting_ && !stroke_.empty()) {  // what the stroke covers so far: a disc per sample, a band per segment
     // Not a polyline 2r thick: ImGui mitres its joints, and where a stroke turns sharply the mitre shoots far out of
@@ -229,13 +227,13 @@ void DdmPaintTool::decorate(gpu::ViewOptions& options) const {
 
 void DdmPaintTool::draw_layer_combo(ToolContext& ctx, const core::SceneObject* o) {
   const bool fresh = new_layer(ctx);
-  const std::string shown = fresh ? params_.layer + "  (new)" : params_.layer;
+  const std::string shown = fresh ? params_.paint.layer + "  (new)" : params_.paint.layer;
   if (ImGui::BeginCombo("Layer", shown.c_str())) {
     if (o)
       for (const auto& l : o->ddm_layers) {
         char label[160];
         std::snprintf(label, sizeof label, "%s  (%zu tiles)", l->name.c_str(), l->instances.size());
-        if (ImGui::Selectable(label, l->name == params_.layer)) params_.layer = l->name;
+        if (ImGui::Selectable(label, l->name == params_.paint.layer)) params_.paint.layer = l->name;
       }
     if (ImGui::Selectable("New layer…", false)) {
       std::string name = "tiles";
@@ -246,7 +244,7 @@ void DdmPaintTool::draw_layer_combo(ToolContext& ctx, const core::SceneObject* o
         std::snprintf(buf, sizeof buf, "tiles.%03d", i);
         name = buf;
       }
-      params_.layer = name;
+      params_.paint.layer = name;
     }
     ImGui::EndCombo();
   }
@@ -254,7 +252,7 @@ void DdmPaintTool::draw_layer_combo(ToolContext& ctx, const core::SceneObject* o
       "The tile layer the brush paints on: one of the object's layers, or a new one, made by the first stroke "
       "(or by Fill) with the settings below");
   if (fresh) {
-    ImGui::InputText("Name", &params_.layer);
+    ImGui::InputText("Name", &params_.paint.layer);
     ui::tooltip("Name of the new layer (unique per object)");
   }
 }
@@ -276,49 +274,48 @@ void DdmPaintTool::draw_layer_color(ToolContext& ctx, const core::SceneObject& o
 void DdmPaintTool::set_layer_color(ToolContext& ctx, std::optional<glm::vec3> color) {
   const core::SceneObject* o = target(ctx);
   if (!o || new_layer(ctx)) return;
-  const nlohmann::json line = {{"cmd", "ddm.color"},
-                               {"object", o->name},
-                               {"layer", params_.layer},
-                               {"color", color ? nlohmann::json{color->x, color->y, color->z} : nlohmann::json(nullptr)}};
+  const nlohmann::json line = core::DdmColorCommand::schema().to_json({o->name, params_.paint.layer, color});
   ctx.session.execute(line);  // undoable; errors go to the Log panel
 }
 
 void DdmPaintTool::draw_new_layer_fields(const core::SceneObject* o) {
-  const bool generated = is_generated(params_.tile);
-  if (ImGui::BeginCombo("Tile", generated ? params_.tile.c_str() : "file")) {
+  core::DdmLayerSpec& spec = params_.paint.spec;
+  std::string& tile = spec.tiles.front();  // the panel makes one-tile layers
+  const bool generated = is_generated(tile);
+  if (ImGui::BeginCombo("Tile", generated ? tile.c_str() : "file")) {
     for (std::size_t i = 0; i < kGeneratedTiles.size(); ++i) {
-      if (ImGui::Selectable(kGeneratedTiles[i], params_.tile == kGeneratedTiles[i])) params_.tile = kGeneratedTiles[i];
+      if (ImGui::Selectable(kGeneratedTiles[i], tile == kGeneratedTiles[i])) tile = kGeneratedTiles[i];
       ui::tooltip(kTileTips[i]);
     }
-    if (ImGui::Selectable("file", !generated)) params_.tile = file_tile_;
+    if (ImGui::Selectable("file", !generated)) tile = file_tile_;
     ui::tooltip("Any mesh (OBJ, PLY, glTF) as a tile, fitted into the cell by its bounding box");
     ImGui::EndCombo();
   }
-  if (!is_generated(params_.tile)) {
-    if (ImGui::InputText("Tile file", &file_tile_)) params_.tile = file_tile_;
+  if (!is_generated(tile)) {
+    if (ImGui::InputText("Tile file", &file_tile_)) tile = file_tile_;
     ui::tooltip("Path of a mesh file (OBJ / PLY / glTF); x, y span the cell, z is the height");
   }
-  int layout = params_.layout == "hex" ? 1 : params_.layout == "brick" ? 2 : 0;
-  if (ImGui::Combo("Layout", &layout, "rect\0hex\0brick\0"))
-    params_.layout = layout == 1 ? "hex" : layout == 2 ? "brick" : "rect";
+  int layout = static_cast<int>(spec.layout);
+  if (ImGui::Combo("Layout", &layout, "rect\0hex\0brick\0")) spec.layout = static_cast<core::DdmLayout>(layout);
   ui::tooltip(
       "Cells per chart: rect n x m; hex rows 0.75 apart, odd rows shifted (seed Fig. 5.11); brick odd rows "
       "shifted by half a cell (Fig. 5.12). hex and brick need n >= 2");
-  int counts[2] = {params_.counts.x, params_.counts.y};
-  if (ImGui::InputInt2("Counts", counts)) params_.counts = glm::max(glm::ivec2(counts[0], counts[1]), glm::ivec2(1));
+  int counts[2] = {spec.counts.x, spec.counts.y};
+  if (ImGui::InputInt2("Counts", counts)) spec.counts = glm::max(glm::ivec2(counts[0], counts[1]), glm::ivec2(1));
   ui::tooltip("Cells along u and v of every chart (a polygonal base has three charts per triangle)");
   const double h_min = 1e-6, h_max = 10.0;
-  ui::drag_scalar("Height", ImGuiDataType_Double, &params_.height, 0.001f, &h_min, &h_max, "%.4g",
+  ui::drag_scalar("Height", ImGuiDataType_Double, &spec.height, 0.001f, &h_min, &h_max, "%.4g",
                     ImGuiSliderFlags_AlwaysClamp);
   ui::tooltip("World units per tile unit of height, along the surface normal");
   const bool teapot = o && o->source == "primitive:teapot";
   const bool uvs = o && o->rest_mesh && !o->rest_mesh->uvs.empty();
-  if (ImGui::BeginCombo("Base", params_.base.c_str())) {
-    if (ImGui::Selectable("limit", params_.base == "limit")) params_.base = "limit";
+  using Base = core::DdmBaseKind;
+  if (ImGui::BeginCombo("Base", core::ddm_base_name(spec.base))) {
+    if (ImGui::Selectable("limit", spec.base == Base::limit)) spec.base = Base::limit;
     ui::tooltip("The Loop limit surface of the mesh, three charts per triangle: tiles cross faces without cracks");
-    if (teapot && ImGui::Selectable("teapot_body", params_.base == "teapot_body")) params_.base = "teapot_body";
+    if (teapot && ImGui::Selectable("teapot_body", spec.base == Base::teapot_body)) spec.base = Base::teapot_body;
     if (teapot) ui::tooltip("The teapot's 8 Bezier body patches as one chart around the pot");
-    if (uvs && ImGui::Selectable("uv", params_.base == "uv")) params_.base = "uv";
+    if (uvs && ImGui::Selectable("uv", spec.base == Base::uv)) spec.base = Base::uv;
     if (uvs) ui::tooltip("The mesh's texture coordinates (one chart, the UV square; the seed's way)");
     ImGui::EndCombo();
   }
@@ -353,7 +350,7 @@ void DdmPaintTool::draw_panel(ToolContext& ctx) {
     ImGui::PushTextWrapPos(0.0f);  // the panel is narrow: wrap the layer's summary instead of clipping it
     const core::SceneObject& obj = *o;
     for (const auto& l : obj.ddm_layers)
-      if (l->name == params_.layer) {
+      if (l->name == params_.paint.layer) {
         ImGui::TextColored(ui::colors::dim, "%s: %s, %s %dx%d, height %.3g, %s base", l->name.c_str(),
                            l->tile_sources.empty() ? "?" : l->tile_sources.front().c_str(),
                            core::ddm_layout_name(l->layout), l->counts.x, l->counts.y, l->height,
@@ -368,12 +365,12 @@ void DdmPaintTool::draw_panel(ToolContext& ctx) {
   ImGui::Separator();
   ImGui::TextUnformatted("Brush");
   const double r_min = kMinRadiusPx, r_max = kMaxRadiusPx;
-  ImGui::SliderScalar("Radius (px)", ImGuiDataType_Double, &params_.radius_px, &r_min, &r_max, "%.0f",
+  ImGui::SliderScalar("Radius (px)", ImGuiDataType_Double, &params_.paint.radius_px, &r_min, &r_max, "%.0f",
                       ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
   ui::tooltip(
       "Brush radius in viewport pixels: a cell is painted when its centre on the surface is this close to the "
       "stroke and visible. [ and ] resize it");
-  ImGui::Checkbox("Erase", &params_.erase);
+  ImGui::Checkbox("Erase", &params_.paint.erase);
   ui::tooltip("Remove the tiles under the stroke instead of adding them (Ctrl held at mouse-down inverts this)");
 
   ImGui::Spacing();

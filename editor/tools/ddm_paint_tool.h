@@ -19,28 +19,28 @@
 #include <string>
 #include <vector>
 
+#include "core/commands/ddm_paint.h"
 #include "editor/tools/tool.h"
 
 namespace trispline::editor {
 
-// The panel's values: the fields of a new layer (ddm.fill's; ignored by ddm.paint when the layer exists) and the
-// brush.
+// The panel's values. `paint` is the next ddm.paint's params but the stroke's own (object, stroke, camera, erase are
+// set per stroke): the layer (an existing layer of the object, or the name of a new one), the new layer's fields
+// (also Fill's; ddm.paint ignores them when the layer exists), the brush radius and the Erase toggle (Ctrl at
+// mouse-down inverts it).
 struct DdmPaintToolParams {
-  std::string layer = "tiles";  // an existing layer of the object, or the name of a new one
-  std::string tile = "thorn";   // "thorn" | "chain" | "hex" | "flower" | a mesh file (OBJ/PLY/glTF)
-  std::string layout = "rect";  // "rect" | "hex" | "brick"
-  glm::ivec2 counts{1, 1};      // cells per chart (n along u, m along v)
-  double height = 0.1;          // world units per tile unit of w
-  std::string base = "limit";   // "limit" | "teapot_body" | "uv"
-  bool own_color = false;       // give the layer its own colour (else it takes the object's)
-  glm::vec3 color{0.80f, 0.62f, 0.20f};  // that colour, linear RGB in [0,1]
-  double radius_px = 40.0;      // brush radius, viewport pixels
-  bool erase = false;           // the Erase toggle (Ctrl at mouse-down inverts it)
+  core::DdmPaintParams paint = [] {
+    core::DdmPaintParams p;
+    p.layer = "tiles";
+    p.radius_px = 40.0;
+    return p;
+  }();
+  bool own_color = false;                // give a new layer its own colour (spec.color; else it takes the object's)
+  glm::vec3 color{0.80f, 0.62f, 0.20f};  // that colour, linear RGB in [0,1], kept while own_color is off
 };
 
-// The ddm.paint line: {"cmd":"ddm.paint","object":ID,"layer":NAME,"stroke":[[px,py],...] (#S × 2 viewport pixels),
-// "radius_px":r,"erase":bool} plus "camera" when `view` is given, plus the new layer's fields (tile, layout, counts,
-// height, base, color when own_color) when `new_layer`.
+// The ddm.paint line of `stroke_px` (#S × 2 viewport pixels): "camera" when `view` is given, the new layer's fields
+// (with "color" when own_color) when `new_layer`.
 nlohmann::json ddm_paint_line(const std::string& object, const std::vector<glm::dvec2>& stroke_px,
                               const DdmPaintToolParams& params, bool erase, bool new_layer,
                               const std::optional<core::Camera>& view = std::nullopt);

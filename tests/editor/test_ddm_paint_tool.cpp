@@ -34,11 +34,11 @@ class DdmPaintTool : public ::testing::Test {
     view = nav.camera({800, 600});
     selected = "s";
     editor::DdmPaintToolParams p;
-    p.layer = "spots";
-    p.tile = "hex";
-    p.counts = {1, 1};
-    p.height = 0.03;
-    p.radius_px = 30;
+    p.paint.layer = "spots";
+    p.paint.spec.tiles = {"hex"};
+    p.paint.spec.counts = {1, 1};
+    p.paint.spec.height = 0.03;
+    p.paint.radius_px = 30;
     tool.set_params(p);
     tool.activate(ctx);
     // The middle half of the pixels of row 300 whose rays hit the sphere.
@@ -112,13 +112,13 @@ class DdmPaintTool : public ::testing::Test {
 
 TEST_F(DdmPaintTool, LinesCarryTheFieldsOfTheCommands) {
   editor::DdmPaintToolParams p;
-  p.layer = "thorns";
-  p.tile = "chain";
-  p.layout = "brick";
-  p.counts = {3, 2};
-  p.height = 0.05;
-  p.base = "teapot_body";
-  p.radius_px = 12.5;
+  p.paint.layer = "thorns";
+  p.paint.spec.tiles = {"chain"};
+  p.paint.spec.layout = core::DdmLayout::brick;
+  p.paint.spec.counts = {3, 2};
+  p.paint.spec.height = 0.05;
+  p.paint.spec.base = core::DdmBaseKind::teapot_body;
+  p.paint.radius_px = 12.5;
   const nlohmann::json a = editor::ddm_paint_line("pot", {{10.5, 20}, {30, 40.25}}, p, true, false);
   EXPECT_EQ(a, nlohmann::json::parse(R"({"cmd":"ddm.paint","object":"pot","layer":"thorns",
       "stroke":[[10.5,20.0],[30.0,40.25]],"radius_px":12.5,"erase":true})"));
@@ -188,7 +188,7 @@ TEST_F(DdmPaintTool, CtrlDragErasesAndTheToggleInvertsIt) {
   EXPECT_EQ(s.history().at(s.history().applied() - 1).stats()["cells_removed"], painted);
 
   editor::DdmPaintToolParams p = tool.params();
-  p.erase = true;
+  p.paint.erase = true;
   tool.set_params(p);
   drag(row, /*ctrl=*/true);  // Erase on, Ctrl held: paints
   EXPECT_EQ(last_line()["erase"], false);
@@ -204,14 +204,14 @@ TEST_F(DdmPaintTool, BrushCircleFollowsTheCursorAndBracketsResizeIt) {
   ImGui::GetIO().KeysDown[GLFW_KEY_RIGHT_BRACKET] = true;
   frame({400, 300}, false);
   ImGui::GetIO().KeysDown[GLFW_KEY_RIGHT_BRACKET] = false;
-  EXPECT_NEAR(tool.params().radius_px, 30 * 1.15, 1e-9);
+  EXPECT_NEAR(tool.params().paint.radius_px, 30 * 1.15, 1e-9);
   frame({400, 300}, false);
   ImGui::GetIO().KeysDown[GLFW_KEY_LEFT_BRACKET] = true;
   frame({400, 300}, false);
   ImGui::GetIO().KeysDown[GLFW_KEY_LEFT_BRACKET] = false;
-  EXPECT_NEAR(tool.params().radius_px, 30.0, 1e-9);
+  EXPECT_NEAR(tool.params().paint.radius_px, 30.0, 1e-9);
   tool.scale_radius(1e6);
-  EXPECT_EQ(tool.params().radius_px, editor::DdmPaintTool::kMaxRadiusPx);
+  EXPECT_EQ(tool.params().paint.radius_px, editor::DdmPaintTool::kMaxRadiusPx);
   tool.mouse_away();
   EXPECT_FALSE(tool.hover());
 
@@ -264,13 +264,13 @@ TEST_F(DdmPaintTool, SelectingAnObjectWithLayersBringsUpItsLastLayer) {
   ASSERT_TRUE(s.execute({{"cmd", "scene.primitive"}, {"kind", "sphere"}, {"name", "t"}, {"translate", {3, 0, 0}}}));
   ASSERT_TRUE(s.execute(nlohmann::json::parse(R"({"cmd":"ddm.fill","object":"t","layer":"dots","tile":"hex",
       "layout":"rect","counts":[1,1],"height":0.02})")));
-  EXPECT_EQ(tool.params().layer, "spots");  // "s" has no layers: the panel keeps the new layer's name
+  EXPECT_EQ(tool.params().paint.layer, "spots");  // "s" has no layers: the panel keeps the new layer's name
   selected = "t";
   panel_frame({-10, -10}, false);
-  EXPECT_EQ(tool.params().layer, "dots");
+  EXPECT_EQ(tool.params().paint.layer, "dots");
   selected = "s";  // back to an object without layers: the name stays (the next stroke makes "dots" there)
   panel_frame({-10, -10}, false);
-  EXPECT_EQ(tool.params().layer, "dots");
+  EXPECT_EQ(tool.params().paint.layer, "dots");
 }
 
 TEST_F(DdmPaintTool, StrokeOffTheObjectLogsTheErrorAndChangesNothing) {

@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "core/commands/ddm_commands.h"
+#include "core/commands/ddm_paint.h"
 #include "core/commands/mesh_subdivide.h"
 #include "core/commands/scene_primitive.h"
 #include "core/scene/primitives.h"
@@ -232,6 +233,41 @@ TEST(DdmCommands, BadInputIsRefusedAndTheSceneIsUnchanged) {
   EXPECT_EQ(bake_field(R"({"cmd":"ddm.bake","object":"ball","layer":"missing","name":"b"})"), "layer");
   EXPECT_EQ(bake_field(R"({"cmd":"ddm.bake","object":"ball","layer":"ok","name":"fin"})"), "name");
   EXPECT_EQ(s.objects().size(), 2u);
+}
+
+}  // namespace
+}  // namespace trispline::core
+
+namespace trispline::core {
+namespace {
+
+// The layer fields are declared once (ddm_layer_schema) and written back as the lines had them: several tiles bring
+// choice (and a non-zero seed), tile files are resolved against the log's folder, defaults stay out of the line;
+// ddm.paint logs them only when the line named one of them.
+TEST(DdmCommands, LayerFieldsAreWrittenBackAsDeclared) {
+  CommandContext ctx;
+  ctx.base_dir = "/logs";
+  const json fill = json::parse(R"({"cmd":"ddm.fill","object":"ball","layer":"t","tile":"thorn","tiles":["m.obj"],
+      "seed":7,"layout":"brick","counts":[4,2],"height":0.5,"map_resolution":9.0,"tile_scale":2,"tile_shift":[0,0]})");
+  EXPECT_EQ(DdmFillCommand::parse(fill, ctx)->to_json(), json::parse(R"({"cmd":"ddm.fill","object":"ball","layer":"t",
+      "tile":"thorn","tiles":["/logs/m.obj"],"choice":"pattern","seed":7,"layout":"brick","counts":[4,2],
+      "height":0.5,"map_resolution":[9,9],"tile_scale":[2.0,2.0]})"));
+  json one = fill;
+  one.erase("tiles");
+  EXPECT_FALSE(DdmFillCommand::parse(one, ctx)->to_json().contains("seed")) << "seed only with several tiles";
+  EXPECT_FALSE(DdmFillCommand::parse(one, ctx)->to_json().contains("choice"));
+  one["map_resolution"] = 9.5;
+  EXPECT_THROW(DdmFillCommand::parse(one, ctx), CommandError);
+
+  const json paint = json::parse(R"({"cmd":"ddm.paint","object":"ball","layer":"t","stroke":[[1,2]],"radius_px":3})");
+  EXPECT_EQ(DdmPaintCommand::parse(paint, ctx)->to_json(),
+            json::parse(R"({"cmd":"ddm.paint","object":"ball","layer":"t","stroke":[[1,2]],"radius_px":3,
+                "erase":false})"));
+  json named = paint;
+  named["color"] = {0.5, 0.25, 1};  // any layer field: the new layer's fields are logged back
+  EXPECT_EQ(DdmPaintCommand::parse(named, ctx)->to_json(),
+            json::parse(R"({"cmd":"ddm.paint","object":"ball","layer":"t","stroke":[[1,2]],"radius_px":3,
+                "erase":false,"tile":"thorn","layout":"rect","counts":[1,1],"height":0.1,"color":[0.5,0.25,1]})"));
 }
 
 }  // namespace
