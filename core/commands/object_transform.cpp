@@ -5,10 +5,8 @@
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include "core/commands/codecs.h"
-#include "core/commands/json_fields.h"
 
 namespace trispline::core {
-namespace jf = json_fields;
 
 namespace {
 
