@@ -31,6 +31,8 @@
 #include <string>
 #include <vector>
 
+#include "bench/ffd_bench.h"
+
 namespace trispline::editor {
 
 struct BenchPlaceOptions {
@@ -72,7 +74,7 @@ int run_bench_press(const BenchPressOptions& options, std::ostream& out, std::os
 // line for the object "bunny" (no "samples", no "springs": the defaults apply). Throws std::invalid_argument.
 std::vector<nlohmann::json> bench_place_scene(const std::string& name);
 double bench_median(std::vector<double> values);    // of a non-empty list
-std::string bench_cpu_model();                      // "model name" of /proc/cpuinfo, or "unknown"
+using core::bench_cpu_model;                        // "model name" of /proc/cpuinfo, or "unknown"
 double bench_ms(const std::function<void()>& fn);   // wall time of one call, milliseconds
 std::string bench_fixed(double value, int digits);  // std::fixed with `digits` decimals
 

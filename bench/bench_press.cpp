@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <iomanip>
 #include <memory>
 #include <ostream>
@@ -110,15 +111,11 @@ void print_table(const json& r, std::ostream& os) {
      << "interactive = at least " << kInteractive << " updates per second.\n";
 }
 
-}  // namespace
-
-int run_bench_press(const BenchPressOptions& o, std::ostream& out, std::ostream& err) {
-  if (o.runs < 1) throw std::invalid_argument("bench press: --runs must be >= 1");
-  if (o.vertices < 8) throw std::invalid_argument("bench press: --vertices must be >= 8");
-  // Declared first so it outlives every GL evaluator and buffer below.
+// A GL context when `gpu` and one can be made; `renderer` names it or says why there is none.
+std::unique_ptr<gpu::HeadlessContext> open_context(bool gpu, std::string& renderer, std::ostream& err) {
   std::unique_ptr<gpu::HeadlessContext> context;
-  std::string renderer = "none (--cpu-only)";
-  if (o.gpu) {
+  renderer = "none (--cpu-only)";
+  if (gpu) {
     try {
       context = std::make_unique<gpu::HeadlessContext>();
       renderer = context->renderer();
@@ -127,17 +124,13 @@ int run_bench_press(const BenchPressOptions& o, std::ostream& out, std::ostream&
       err << "bench press: no GL context, GLSL skipped: " << e.what() << "\n";
     }
   }
-  auto progress = [&err](const std::string& s) { err << "bench press: " << s << "\n" << std::flush; };
+  return context;
+}
 
-  json mesh_info;
-  progress("building the mesh");
-  core::TriMesh mesh = big_mesh(o, mesh_info);
-  mesh_info["vertices"] = mesh.vertex_count();
-  mesh_info["triangles"] = mesh.triangle_count();
-
-  // The teapot scene with the big object placed on it (the scene set-up and placement are commands).
-  ui::MessageLog messages;
-  EditorSession session(messages);  // no start(): no session log or lock
+// The teapot scene with the big object "bunny" placed on it (the scene set-up and placement are commands).
+// Returns place.sketch's milliseconds.
+double place_big_object(EditorSession& session, const ui::MessageLog& messages, core::TriMesh mesh,
+                        const json& mesh_info, const std::function<void(const std::string&)>& progress) {
   auto execute = [&](const json& line) {
     if (!session.execute(line))
       throw std::runtime_error("bench press: " + line.value("cmd", std::string("?")) +
@@ -160,40 +153,51 @@ int run_bench_press(const BenchPressOptions& o, std::ostream& out, std::ostream&
   place["samples"] = {64, 8};
   progress("placing the object (place.sketch)");
   execute(place);
-  const double place_ms = session.last_ms();
-  const core::SceneObject& placed = *session.scene().find("bunny");
-  const glm::ivec3 counts = placed.ffd->lattice.control_counts(), orders = placed.ffd->lattice.orders();
+  return session.last_ms();
+}
 
-  // A row of the scene view across the object: the row of pixels (every 4th) with the most hits on it.
-  const core::Camera view = session.scene().camera;
-  std::vector<glm::dvec2> drag;
-  std::vector<double> ray_ms;
-  double bvh_ms = 0;
-  {
-    core::RayCaster caster;
-    bvh_ms = bench_ms([&] {  // what the Press tool does when the object's world_mesh changed
-      caster.add_mesh(*placed.world_mesh);
-      caster.commit();
-    });
-    int best = 0;
-    for (int y = 0; y < view.viewport.y; y += 8) {
-      std::vector<double> xs;
-      for (int x = 0; x < view.viewport.x; x += 4)
-        if (caster.intersect(view.eye, view.ray_direction({x, y}))) xs.push_back(x);
-      if (int(xs.size()) > best) {
-        best = int(xs.size());
-        drag.clear();
-        for (double x = xs.front(); x <= xs.back(); x += 4) drag.push_back({x, double(y)});
-      }
+// A row of the scene view across the object: the row of pixels (every 4th) with the most hits on it.
+struct DragRow {
+  std::vector<glm::dvec2> drag;  // pixels, top-left origin
+  std::vector<double> ray_ms;    // one first-hit ray per pixel of the row
+  double bvh_ms = 0;             // the caster's build over the placed object
+};
+
+DragRow find_drag_row(const core::SceneObject& placed, const core::Camera& view) {
+  DragRow row;
+  core::RayCaster caster;
+  row.bvh_ms = bench_ms([&] {  // what the Press tool does when the object's world_mesh changed
+    caster.add_mesh(*placed.world_mesh);
+    caster.commit();
+  });
+  int best = 0;
+  for (int y = 0; y < view.viewport.y; y += 8) {
+    std::vector<double> xs;
+    for (int x = 0; x < view.viewport.x; x += 4)
+      if (caster.intersect(view.eye, view.ray_direction({x, y}))) xs.push_back(x);
+    if (int(xs.size()) > best) {
+      best = int(xs.size());
+      row.drag.clear();
+      for (double x = xs.front(); x <= xs.back(); x += 4) row.drag.push_back({x, double(y)});
     }
-    if (drag.size() < 2) throw std::runtime_error("bench press: the placed object is not in view");
-    for (const glm::dvec2& px : drag)
-      ray_ms.push_back(bench_ms([&] { (void)caster.intersect(view.eye, view.ray_direction(px)); }));
   }
+  if (row.drag.size() < 2) throw std::runtime_error("bench press: the placed object is not in view");
+  for (const glm::dvec2& px : row.drag)
+    row.ray_ms.push_back(bench_ms([&] { (void)caster.intersect(view.eye, view.ray_direction(px)); }));
+  return row;
+}
 
-  // The drags through the real Press tool; the release runs lattice.press through the session (History).
-  progress("dragging the Press tool (" + std::to_string(o.runs) + " drag(s) of " + std::to_string(drag.size()) +
-           " moves)");
+// Milliseconds per run of the drags through the real Press tool, the path of the last, and the default radius.
+struct ToolRuns {
+  std::vector<double> first_hover, moves, after_release, commands, command_eval, radius_ms;
+  std::vector<glm::dvec3> path;  // world units
+  double radius = 0;             // world units
+};
+
+// `runs` drags along `drag`; the release runs lattice.press through the session (History), undone after each.
+ToolRuns run_press_tool(EditorSession& session, const ui::MessageLog& messages, const core::Camera& view,
+                        const std::vector<glm::dvec2>& drag, int runs) {
+  ToolRuns t;
   std::string selected = "bunny";
   std::set<std::string> hidden;
   double command_ms = 0;
@@ -203,20 +207,18 @@ int run_bench_press(const BenchPressOptions& o, std::ostream& out, std::ostream&
   tool.activate(ctx);
   tool.set_object("bunny");
   tool.set_strength(kStrength);
-  std::vector<double> first_hover, moves, after_release, commands, command_eval;
-  std::vector<glm::dvec3> path;
-  for (int r = 0; r < o.runs; ++r) {
+  for (int r = 0; r < runs; ++r) {
     ToolInput in;
     in.mouse_px = drag.front();
-    first_hover.push_back(bench_ms([&] { tool.handle_input(in, ctx); }));
+    t.first_hover.push_back(bench_ms([&] { tool.handle_input(in, ctx); }));
     in.left_pressed = in.left_down = true;
-    moves.push_back(bench_ms([&] { tool.handle_input(in, ctx); }));
+    t.moves.push_back(bench_ms([&] { tool.handle_input(in, ctx); }));
     in.left_pressed = false;
     for (std::size_t i = 1; i < drag.size(); ++i) {
       in.mouse_px = drag[i];
-      moves.push_back(bench_ms([&] { tool.handle_input(in, ctx); }));
+      t.moves.push_back(bench_ms([&] { tool.handle_input(in, ctx); }));
     }
-    path = tool.path();
+    t.path = tool.path();
     const std::size_t before = session.history().applied();
     in.left_down = false;
     in.left_released = true;
@@ -225,27 +227,26 @@ int run_bench_press(const BenchPressOptions& o, std::ostream& out, std::ostream&
     if (command_ms < 0 || session.history().applied() != before + 1)
       throw std::runtime_error("bench press: the drag did not execute lattice.press: " +
                                (messages.messages().empty() ? "" : messages.messages().back().text));
-    commands.push_back(command_ms);
-    command_eval.push_back(session.history().at(before).stats().value("ms_evaluate", 0.0));
+    t.commands.push_back(command_ms);
+    t.command_eval.push_back(session.history().at(before).stats().value("ms_evaluate", 0.0));
     in = ToolInput{};
     in.mouse_px = drag.front();
-    after_release.push_back(bench_ms([&] { tool.handle_input(in, ctx); }));
+    t.after_release.push_back(bench_ms([&] { tool.handle_input(in, ctx); }));
     session.undo();
   }
-  const double radius = tool.radius(ctx);
-  std::vector<double> radius_ms;  // the default radius (0.1 × bounding-box diagonal), asked at every mouse move
-  for (int r = 0; r < std::max(3, o.runs); ++r) radius_ms.push_back(bench_ms([&] { (void)tool.radius(ctx); }));
+  t.radius = tool.radius(ctx);
+  // The default radius (0.1 × bounding-box diagonal), asked at every mouse move.
+  for (int r = 0; r < std::max(3, runs); ++r) t.radius_ms.push_back(bench_ms([&] { (void)tool.radius(ctx); }));
+  return t;
+}
 
-  // Per drag sample (path prefixes spread over the drag): what the live preview computes (Tool::live_preview +
-  // the renderer's cpu_fast path: press_lattice, set_lattice + evaluate, float read-back, upload).
-  const core::SceneObject& obj = *session.scene().find("bunny");
+// (a) The pressed lattice per path prefix (#prefixes): lattice.press on a proxy object sharing obj's lattice and
+// embedding, with 8 vertices; lattice_ms gets each command's milliseconds minus its evaluation.
+std::vector<core::TrivariateBSpline<glm::dvec3>> pressed_lattices(const core::SceneObject& obj,
+                                                                  const std::vector<glm::dvec3>& path,
+                                                                  const std::vector<std::size_t>& prefixes,
+                                                                  double radius, std::vector<double>& lattice_ms) {
   const core::FfdBinding& binding = *obj.ffd;
-  std::vector<std::size_t> prefixes;
-  for (int i = 0; i < o.runs; ++i)
-    prefixes.push_back(o.runs == 1 ? path.size()
-                                   : 1 + std::size_t(std::lround(double(i) * double(path.size() - 1) / (o.runs - 1))));
-  // (a) The pressed lattice: lattice.press on a proxy object sharing the lattice and embedding, with 8 vertices.
-  progress("lattice.press on the proxy (" + std::to_string(prefixes.size()) + " prefixes)");
   core::Scene probe;
   {
     core::SceneObject proxy;
@@ -264,7 +265,6 @@ int run_bench_press(const BenchPressOptions& o, std::ostream& out, std::ostream&
     probe.insert(std::move(proxy));
   }
   std::vector<core::TrivariateBSpline<glm::dvec3>> lattices;
-  std::vector<double> lattice_ms;
   for (std::size_t k : prefixes) {
     const std::vector<glm::dvec3> prefix(path.begin(), path.begin() + std::ptrdiff_t(k));
     core::CommandPtr cmd = CommandRegistry::builtin().parse(
@@ -274,38 +274,47 @@ int run_bench_press(const BenchPressOptions& o, std::ostream& out, std::ostream&
     lattices.push_back(probe.find("probe")->ffd->lattice);
     cmd->undo(probe);
   }
+  return lattices;
+}
 
-  // (b) Re-evaluation of every vertex, positions + normals, with each lattice.
-  const std::vector<glm::dvec3> rest_normals = obj.world_rest_mesh().normals;
+// (b) Milliseconds per lattice of re-evaluating every vertex, positions + normals.
+struct Reevaluation {
   json bind_ms = json::object();
-  std::vector<double> fast_ms, read_ms, upload_ms, glsl_ms;
+  std::vector<double> fast_ms, read_ms, upload_ms, glsl_ms;  // upload and GLSL: with a GL context only
+};
+
+Reevaluation reevaluate(const core::SceneObject& obj, const std::vector<core::TrivariateBSpline<glm::dvec3>>& lattices,
+                        bool gl, const std::function<void(const std::string&)>& progress) {
+  const core::FfdBinding& binding = *obj.ffd;
+  const std::vector<glm::dvec3> rest_normals = obj.world_rest_mesh().normals;
+  Reevaluation e;
   {
     progress("cpu_fast re-evaluation");
     auto fast = core::make_cpu_ffd_evaluator(core::FfdBackend::cpu_fast);
-    bind_ms["cpu_fast"] = bench_ms([&] { fast->bind_vertices(binding.params, rest_normals); });
+    e.bind_ms["cpu_fast"] = bench_ms([&] { fast->bind_vertices(binding.params, rest_normals); });
     std::unique_ptr<gpu::MeshBuffers> buffers;
-    if (context) {
+    if (gl) {
       buffers = std::make_unique<gpu::MeshBuffers>();
       buffers->upload(*obj.world_mesh);
     }
     std::vector<glm::vec3> p, n;  // float, as gpu::detail::FfdDisplay reads and uploads them
     for (const auto& lattice : lattices) {
-      fast_ms.push_back(bench_ms([&] {
+      e.fast_ms.push_back(bench_ms([&] {
         fast->set_lattice(lattice, binding.embedding);
         fast->evaluate();
       }));
-      read_ms.push_back(bench_ms([&] { fast->read_results_float(p, n); }));
+      e.read_ms.push_back(bench_ms([&] { fast->read_results_float(p, n); }));
       if (buffers)
-        upload_ms.push_back(bench_ms([&] {
+        e.upload_ms.push_back(bench_ms([&] {
           buffers->update_vertices(p, n);
           glFinish();
         }));
     }
   }
-  if (context) {
+  if (gl) {
     progress("glsl_compute re-evaluation");
     auto glsl = gpu::make_gl_ffd_evaluator(core::FfdBackend::glsl_compute);
-    bind_ms["glsl_compute"] = bench_ms([&] {
+    e.bind_ms["glsl_compute"] = bench_ms([&] {
       glsl->bind_vertices(binding.params, rest_normals);
       glFinish();
     });
@@ -313,36 +322,86 @@ int run_bench_press(const BenchPressOptions& o, std::ostream& out, std::ostream&
     glsl->evaluate();
     glFinish();
     for (const auto& lattice : lattices)
-      glsl_ms.push_back(bench_ms([&] {
+      e.glsl_ms.push_back(bench_ms([&] {
         glsl->set_lattice(lattice, binding.embedding);
         glsl->evaluate();
         glFinish();
       }));
   }
+  return e;
+}
 
+// The per-update table: tool move, (a), (b) per backend and the live previews they add up to, (c).
+json per_update_stages(const ToolRuns& t, const std::vector<double>& lattice_ms, const Reevaluation& e, double cmd) {
   const double lat = bench_median(lattice_ms);
   json per_update = json::array();
-  per_update.push_back(stage("Press tool per mouse move (ray cast + path)", bench_median(moves)));
+  per_update.push_back(stage("Press tool per mouse move (ray cast + path)", bench_median(t.moves)));
   per_update.push_back(stage("(a) pressed lattice (lattice.press minus its evaluation)", lat));
-  per_update.push_back(stage("(b) cpu_fast set_lattice + evaluate (positions + normals)", bench_median(fast_ms)));
-  per_update.push_back(stage("    cpu_fast read-back to host arrays (float)", bench_median(read_ms)));
+  per_update.push_back(stage("(b) cpu_fast set_lattice + evaluate (positions + normals)", bench_median(e.fast_ms)));
+  per_update.push_back(stage("    cpu_fast read-back to host arrays (float)", bench_median(e.read_ms)));
   std::vector<double> preview_fast;
-  for (std::size_t i = 0; i < fast_ms.size(); ++i)
-    preview_fast.push_back(lattice_ms[i] + fast_ms[i] + read_ms[i] + (upload_ms.empty() ? 0.0 : upload_ms[i]));
-  if (!upload_ms.empty())
-    per_update.push_back(stage("    cpu_fast upload (MeshBuffers::update_vertices)", bench_median(upload_ms)));
-  per_update.push_back(stage(upload_ms.empty() ? "    live preview with cpu_fast: (a) + evaluate + read-back"
-                                               : "    live preview with cpu_fast: (a) + evaluate + read-back + upload",
+  for (std::size_t i = 0; i < e.fast_ms.size(); ++i)
+    preview_fast.push_back(lattice_ms[i] + e.fast_ms[i] + e.read_ms[i] + (e.upload_ms.empty() ? 0.0 : e.upload_ms[i]));
+  if (!e.upload_ms.empty())
+    per_update.push_back(stage("    cpu_fast upload (MeshBuffers::update_vertices)", bench_median(e.upload_ms)));
+  per_update.push_back(stage(e.upload_ms.empty()
+                                 ? "    live preview with cpu_fast: (a) + evaluate + read-back"
+                                 : "    live preview with cpu_fast: (a) + evaluate + read-back + upload",
                              bench_median(preview_fast)));
-  if (!glsl_ms.empty()) {
-    per_update.push_back(stage("(b) glsl_compute set_lattice + evaluate + glFinish", bench_median(glsl_ms)));
+  if (!e.glsl_ms.empty()) {
+    per_update.push_back(stage("(b) glsl_compute set_lattice + evaluate + glFinish", bench_median(e.glsl_ms)));
     std::vector<double> preview_glsl;
-    for (std::size_t i = 0; i < glsl_ms.size(); ++i) preview_glsl.push_back(lattice_ms[i] + glsl_ms[i]);
+    for (std::size_t i = 0; i < e.glsl_ms.size(); ++i) preview_glsl.push_back(lattice_ms[i] + e.glsl_ms[i]);
     per_update.push_back(stage("    live preview with glsl_compute: (a) + evaluate", bench_median(preview_glsl)));
   }
-  const double cmd = bench_median(commands);
   per_update.push_back(stage("(c) lattice.press command at release (History::execute)", cmd));
+  return per_update;
+}
 
+}  // namespace
+
+int run_bench_press(const BenchPressOptions& o, std::ostream& out, std::ostream& err) {
+  if (o.runs < 1) throw std::invalid_argument("bench press: --runs must be >= 1");
+  if (o.vertices < 8) throw std::invalid_argument("bench press: --vertices must be >= 8");
+  // Declared first so it outlives every GL evaluator and buffer below.
+  std::string renderer;
+  const std::unique_ptr<gpu::HeadlessContext> context = open_context(o.gpu, renderer, err);
+  const std::function<void(const std::string&)> progress = [&err](const std::string& s) {
+    err << "bench press: " << s << "\n" << std::flush;
+  };
+
+  json mesh_info;
+  progress("building the mesh");
+  core::TriMesh mesh = big_mesh(o, mesh_info);
+  mesh_info["vertices"] = mesh.vertex_count();
+  mesh_info["triangles"] = mesh.triangle_count();
+
+  ui::MessageLog messages;
+  EditorSession session(messages);  // no start(): no session log or lock
+  const double place_ms = place_big_object(session, messages, std::move(mesh), mesh_info, progress);
+  const core::SceneObject& placed = *session.scene().find("bunny");
+  const glm::ivec3 counts = placed.ffd->lattice.control_counts(), orders = placed.ffd->lattice.orders();
+  const core::Camera view = session.scene().camera;
+  const DragRow row = find_drag_row(placed, view);
+
+  progress("dragging the Press tool (" + std::to_string(o.runs) + " drag(s) of " + std::to_string(row.drag.size()) +
+           " moves)");
+  const ToolRuns t = run_press_tool(session, messages, view, row.drag, o.runs);
+
+  // Per drag sample (path prefixes spread over the drag): what the live preview computes (Tool::live_preview +
+  // the renderer's cpu_fast path: press_lattice, set_lattice + evaluate, float read-back, upload).
+  const core::SceneObject& obj = *session.scene().find("bunny");
+  std::vector<std::size_t> prefixes;
+  for (int i = 0; i < o.runs; ++i)
+    prefixes.push_back(o.runs == 1 ? t.path.size()
+                                   : 1 + std::size_t(std::lround(double(i) * double(t.path.size() - 1) / (o.runs - 1))));
+  progress("lattice.press on the proxy (" + std::to_string(prefixes.size()) + " prefixes)");
+  std::vector<double> lattice_ms;
+  const auto lattices = pressed_lattices(obj, t.path, prefixes, t.radius, lattice_ms);
+  const Reevaluation e = reevaluate(obj, lattices, context != nullptr, progress);
+
+  const double cmd = bench_median(t.commands);
+  const json per_update = per_update_stages(t, lattice_ms, e, cmd);
   json result = {
       {"bench", "press"},
       {"cpu", bench_cpu_model()},
@@ -352,20 +411,21 @@ int run_bench_press(const BenchPressOptions& o, std::ostream& out, std::ostream&
       {"mesh", mesh_info},
       {"lattice", {{"controls", {counts.x, counts.y, counts.z}}, {"order", {orders.x, orders.y, orders.z}}}},
       {"place_ms", place_ms},
-      {"drag", {{"pixels", drag.size()}, {"samples", path.size()}, {"radius", radius}, {"strength", kStrength}}},
+      {"drag",
+       {{"pixels", row.drag.size()}, {"samples", t.path.size()}, {"radius", t.radius}, {"strength", kStrength}}},
       {"tool",
-       {{"first_hover_ms", bench_median(first_hover)},
-        {"move_median_ms", bench_median(moves)},
-        {"move_max_ms", *std::max_element(moves.begin(), moves.end())},
-        {"hover_after_release_ms", bench_median(after_release)},
-        {"bvh_build_ms", bvh_ms},
-        {"ray_cast_ms", bench_median(ray_ms)},
-        {"default_radius_ms", bench_median(radius_ms)}}},
+       {{"first_hover_ms", bench_median(t.first_hover)},
+        {"move_median_ms", bench_median(t.moves)},
+        {"move_max_ms", *std::max_element(t.moves.begin(), t.moves.end())},
+        {"hover_after_release_ms", bench_median(t.after_release)},
+        {"bvh_build_ms", row.bvh_ms},
+        {"ray_cast_ms", bench_median(row.ray_ms)},
+        {"default_radius_ms", bench_median(t.radius_ms)}}},
       {"per_update", per_update},
-      {"bind_ms", bind_ms},
+      {"bind_ms", e.bind_ms},
       {"command",
        {{"median_ms", cmd},
-        {"ms_evaluate", bench_median(command_eval)},
+        {"ms_evaluate", bench_median(t.command_eval)},
         {"updates_per_s", 1000.0 / cmd},
         {"interactive", 1000.0 / cmd >= kInteractive}}}};
   if (o.json)

@@ -64,17 +64,6 @@ TrivariateBSpline<glm::dvec3> perturbed_lattice(const Embedding& e, int order, i
   return TrivariateBSpline<glm::dvec3>(kv, kv, kv, std::move(cps));
 }
 
-std::string cpu_model() {
-  std::ifstream f("/proc/cpuinfo");
-  std::string line;
-  while (std::getline(f, line))
-    if (line.rfind("model name", 0) == 0) {
-      const auto p = line.find(':');
-      return p == std::string::npos ? line : line.substr(p + 2);
-    }
-  return "unknown";
-}
-
 // Reference results of one (lattice, order, normals) case, and the figures every backend is compared with.
 struct Reference {
   std::vector<glm::dvec3> positions, normals;
@@ -101,7 +90,119 @@ Errors compare(const Reference& ref, const std::vector<glm::dvec3>& p, const std
   return e;
 }
 
+// Mesh: the bunny, or a sphere of similar vertex count when the file is not there; subdivided to o's level.
+// mj: its source, fallback note, counts and subdivision time.
+TriMesh benchmark_mesh(const FfdBenchOptions& o, nlohmann::json& mj) {
+  TriMesh base;
+  if (std::filesystem::exists(o.mesh_path)) {
+    base = load_mesh(o.mesh_path);
+    mj["source"] = o.mesh_path;
+    mj["fallback"] = false;
+    mj["note"] = "";
+  } else {
+    base = make_uv_sphere(1.0, 130, 268);
+    mj["source"] = "generated sphere (130 x 268)";
+    mj["fallback"] = true;
+    mj["note"] = "mesh file '" + o.mesh_path + "' not found; using a generated sphere instead";
+  }
+  const auto t0 = Clock::now();
+  TriMesh mesh = subdivide_bilinear(base, o.subdivision_level);
+  mj["subdivide_ms"] = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+  mj["base_vertices"] = base.positions.size();
+  mj["vertices"] = mesh.positions.size();
+  mj["triangles"] = mesh.triangles.size();
+  mj["subdivision_level"] = o.subdivision_level;
+  return mesh;
+}
+
+// One lattice size and order, positions only then with normals: cpu_ref (the reference, `all` threads), cpu_fast on
+// one and on `all` threads, each GL backend (kernel and end to end); one row per run appended to `cases`.
+void run_case(const FfdBenchOptions& o, const TriMesh& mesh, const Embedding& emb,
+              const std::vector<glm::dvec3>& params, int lat, int ord, int all, nlohmann::json& cases) {
+  const std::vector<glm::dvec3> no_normals;
+  const std::size_t nverts = mesh.positions.size();
+  const auto mverts = [&](double ms) { return static_cast<double>(nverts) / (ms * 1e-3) * 1e-6; };
+  const auto F = perturbed_lattice(emb, ord, lat, o.perturbation, o.seed);
+  Aabb lb;
+  for (const auto& p : F.control_points()) lb.extend(p);
+  for (bool normals : {false, true}) {
+    const std::vector<glm::dvec3>& rest_normals = normals ? mesh.normals : no_normals;
+    const std::string what = std::to_string(lat) + "^3 lattice, order " + std::to_string(ord) +
+                             (normals ? ", positions+normals" : ", positions");
+    auto add = [&](FfdBackend b, int threads, const char* timing, double ms, const Errors& e) {
+      cases.push_back({{"backend", to_string(b)},
+                       {"threads", threads},
+                       {"order", {ord, ord, ord}},
+                       {"lattice", {lat, lat, lat}},
+                       {"normals", normals},
+                       {"vertices", nverts},
+                       {"timing", timing},
+                       {"median_ms", ms},
+                       {"mverts_per_s", mverts(ms)},
+                       {"max_err_rel", e.rel},
+                       {"max_normal_err_rad", normals ? nlohmann::json(e.normal_rad) : nlohmann::json(nullptr)}});
+    };
+    auto timed_cpu = [&](FfdBackend b, int threads, Reference* ref_out, const Reference* ref) {
+      if (o.progress) o.progress(std::string(to_string(b)) + ", " + std::to_string(threads) + " thread(s), " + what);
+      tbb::global_control gc(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+      auto ev = make_cpu_ffd_evaluator(b);
+      ev->bind_vertices(params, rest_normals);
+      ev->set_lattice(F, emb);
+      const double ms = median_ms(o.runs, [&] { ev->evaluate(); });
+      std::vector<glm::dvec3> p, n;
+      ev->read_results(p, n);
+      if (ref_out) {
+        ref_out->positions = std::move(p);
+        ref_out->normals = std::move(n);
+        ref_out->diagonal = lb.diagonal();
+        add(b, threads, "kernel", ms, Errors{});
+      } else {
+        add(b, threads, "kernel", ms, compare(*ref, p, n));
+      }
+    };
+    Reference ref;
+    timed_cpu(FfdBackend::cpu_ref, all, &ref, nullptr);
+    timed_cpu(FfdBackend::cpu_fast, 1, nullptr, &ref);
+    if (all != 1) timed_cpu(FfdBackend::cpu_fast, all, nullptr, &ref);
+
+    for (const FfdBenchBackend& g : o.gpu_backends) {
+      if (o.progress) o.progress(std::string(to_string(g.backend)) + ", " + what);
+      auto ev = g.make();
+      ev->bind_vertices(params, rest_normals);
+      ev->set_lattice(F, emb);
+      ev->evaluate();  // warm-up: shader JIT / first-use allocation are not what we measure
+      g.finish();
+      const double kernel_ms = median_ms(o.runs, [&] {
+        ev->evaluate();
+        g.finish();
+      });
+      std::vector<glm::dvec3> p, n;
+      ev->read_results(p, n);
+      add(g.backend, 0, "kernel", kernel_ms, compare(ref, p, n));
+      const double e2e_ms = median_ms(o.runs, [&] {
+        auto fresh = g.make();
+        fresh->bind_vertices(params, rest_normals);
+        fresh->set_lattice(F, emb);
+        fresh->evaluate();
+        fresh->read_results(p, n);
+      });
+      add(g.backend, 0, "end_to_end", e2e_ms, compare(ref, p, n));
+    }
+  }
+}
+
 }  // namespace
+
+std::string bench_cpu_model() {
+  std::ifstream f("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(f, line))
+    if (line.rfind("model name", 0) == 0) {
+      const auto p = line.find(':');
+      return p == std::string::npos ? line : line.substr(p + 2);
+    }
+  return "unknown";
+}
 
 nlohmann::json run_ffd_benchmark(const FfdBenchOptions& o) {
   if (o.runs < 1) throw std::invalid_argument("ffd bench: runs must be >= 1");
@@ -116,30 +217,10 @@ nlohmann::json run_ffd_benchmark(const FfdBenchOptions& o) {
   out["renderer"] = o.renderer;
   out["gpu_shaders"] = o.gpu_shaders;
 
-  // Mesh: the bunny, or a sphere of similar vertex count when the file is not there.
-  TriMesh base;
   nlohmann::json mj;
-  if (std::filesystem::exists(o.mesh_path)) {
-    base = load_mesh(o.mesh_path);
-    mj["source"] = o.mesh_path;
-    mj["fallback"] = false;
-    mj["note"] = "";
-  } else {
-    base = make_uv_sphere(1.0, 130, 268);
-    mj["source"] = "generated sphere (130 x 268)";
-    mj["fallback"] = true;
-    mj["note"] = "mesh file '" + o.mesh_path + "' not found; using a generated sphere instead";
-  }
-  const auto t0 = Clock::now();
-  const TriMesh mesh = subdivide_bilinear(base, o.subdivision_level);
-  mj["subdivide_ms"] = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-  mj["base_vertices"] = base.positions.size();
-  mj["vertices"] = mesh.positions.size();
-  mj["triangles"] = mesh.triangles.size();
-  mj["subdivision_level"] = o.subdivision_level;
-
+  const TriMesh mesh = benchmark_mesh(o, mj);
   const int all = o.threads > 0 ? o.threads : tbb::info::default_concurrency();
-  out["cpu"] = cpu_model();
+  out["cpu"] = bench_cpu_model();
   out["simd"] = ffd_fast_isa();
   out["threads_all"] = all;
   out["hardware_threads"] = std::thread::hardware_concurrency();
@@ -150,81 +231,9 @@ nlohmann::json run_ffd_benchmark(const FfdBenchOptions& o) {
 
   const Embedding emb = embed_bounding_box(mesh.positions, EmbeddingAxes{0, 1});
   const std::vector<glm::dvec3> params = embed_points(emb, mesh.positions);
-  const std::vector<glm::dvec3> no_normals;
-  const std::size_t nverts = mesh.positions.size();
-  const auto mverts = [&](double ms) { return static_cast<double>(nverts) / (ms * 1e-3) * 1e-6; };
-
   nlohmann::json cases = nlohmann::json::array();
   for (int lat : o.lattices)
-    for (int ord : o.orders) {
-      const auto F = perturbed_lattice(emb, ord, lat, o.perturbation, o.seed);
-      Aabb lb;
-      for (const auto& p : F.control_points()) lb.extend(p);
-      for (bool normals : {false, true}) {
-        const std::vector<glm::dvec3>& rest_normals = normals ? mesh.normals : no_normals;
-        const std::string what = std::to_string(lat) + "^3 lattice, order " + std::to_string(ord) +
-                                 (normals ? ", positions+normals" : ", positions");
-        auto add = [&](FfdBackend b, int threads, const char* timing, double ms, const Errors& e) {
-          cases.push_back({{"backend", to_string(b)},
-                           {"threads", threads},
-                           {"order", {ord, ord, ord}},
-                           {"lattice", {lat, lat, lat}},
-                           {"normals", normals},
-                           {"vertices", nverts},
-                           {"timing", timing},
-                           {"median_ms", ms},
-                           {"mverts_per_s", mverts(ms)},
-                           {"max_err_rel", e.rel},
-                           {"max_normal_err_rad", normals ? nlohmann::json(e.normal_rad) : nlohmann::json(nullptr)}});
-        };
-        auto timed_cpu = [&](FfdBackend b, int threads, Reference* ref_out, const Reference* ref) {
-          if (o.progress) o.progress(std::string(to_string(b)) + ", " + std::to_string(threads) + " thread(s), " + what);
-          tbb::global_control gc(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
-          auto ev = make_cpu_ffd_evaluator(b);
-          ev->bind_vertices(params, rest_normals);
-          ev->set_lattice(F, emb);
-          const double ms = median_ms(o.runs, [&] { ev->evaluate(); });
-          std::vector<glm::dvec3> p, n;
-          ev->read_results(p, n);
-          if (ref_out) {
-            ref_out->positions = std::move(p);
-            ref_out->normals = std::move(n);
-            ref_out->diagonal = lb.diagonal();
-            add(b, threads, "kernel", ms, Errors{});
-          } else {
-            add(b, threads, "kernel", ms, compare(*ref, p, n));
-          }
-        };
-        Reference ref;
-        timed_cpu(FfdBackend::cpu_ref, all, &ref, nullptr);
-        timed_cpu(FfdBackend::cpu_fast, 1, nullptr, &ref);
-        if (all != 1) timed_cpu(FfdBackend::cpu_fast, all, nullptr, &ref);
-
-        for (const FfdBenchBackend& g : o.gpu_backends) {
-          if (o.progress) o.progress(std::string(to_string(g.backend)) + ", " + what);
-          auto ev = g.make();
-          ev->bind_vertices(params, rest_normals);
-          ev->set_lattice(F, emb);
-          ev->evaluate();  // warm-up: shader JIT / first-use allocation are not what we measure
-          g.finish();
-          const double kernel_ms = median_ms(o.runs, [&] {
-            ev->evaluate();
-            g.finish();
-          });
-          std::vector<glm::dvec3> p, n;
-          ev->read_results(p, n);
-          add(g.backend, 0, "kernel", kernel_ms, compare(ref, p, n));
-          const double e2e_ms = median_ms(o.runs, [&] {
-            auto fresh = g.make();
-            fresh->bind_vertices(params, rest_normals);
-            fresh->set_lattice(F, emb);
-            fresh->evaluate();
-            fresh->read_results(p, n);
-          });
-          add(g.backend, 0, "end_to_end", e2e_ms, compare(ref, p, n));
-        }
-      }
-    }
+    for (int ord : o.orders) run_case(o, mesh, emb, params, lat, ord, all, cases);
   out["cases"] = cases;
   return out;
 }

@@ -61,4 +61,7 @@ nlohmann::json run_ffd_benchmark(const FfdBenchOptions& options);
 // Human-readable table of a run_ffd_benchmark result.
 void print_ffd_benchmark(const nlohmann::json& result, std::ostream& out);
 
+// "model name" of /proc/cpuinfo, or "unknown": the "cpu" of every benchmark's result.
+std::string bench_cpu_model();
+
 }  // namespace trispline::core

@@ -114,7 +114,7 @@ void App::render_view() {
   vo.time_s = anim_.time_s();
   tools_.decorate(vo);
   if (const core::SceneObject* o = session_.scene().find(selected_); o && o->ffd && control_point_.highlight &&
-                                                                      !vo.brush) {
+                                                                      vo.overlays.spheres.empty()) {
     // The control point edited in the Tool panel: a small sphere at P_ijk, 2 % of the lattice's extent.
     const auto& lattice = o->ffd->lattice;
     core::Aabb box;
@@ -122,14 +122,17 @@ void App::render_view() {
     const glm::ivec3 n = lattice.control_counts();
     int i[3];
     for (int a = 0; a < 3; ++a) i[a] = std::clamp(control_point_.index[a], 0, n[a] - 1);
-    vo.brush = gpu::BrushSphere{lattice.control_point(i[0], i[1], i[2]), 0.02 * box.diagonal(), {1.0f, 0.85f, 0.3f, 0.6f}};
+    vo.overlays.spheres.push_back(
+        {lattice.control_point(i[0], i[1], i[2]), 0.02 * box.diagonal(), {1.0f, 0.85f, 0.3f, 0.6f}});
   }
   // The Press tool's drag preview: the pressed object drawn with the lattice pressed so far (its own world_mesh is
   // the unpressed one until the command runs at mouse-up), evaluated by the FFD backend, never the stale CPU mesh.
   if (const auto p = tools_.live_preview(tool_ctx_)) {
-    vo.live_ffd_object = p->object;
-    vo.live_lattice = p->lattice;
+    vo.overlays.lattices_in_place.push_back({p->object, p->lattice});
   }
+  const gpu::Overlays& ov = vo.overlays;
+  overlay_counts_ = {ov.strokes.size(), ov.curves.size(), ov.meshes.size(),
+                     ov.lattices.size(), ov.spheres.size(), ov.points.size()};
   try {
     if (transform_.active()) {  // the live preview: a shallow copy with the object moved, the document untouched
       core::Scene shown = anim_.drawn_scene(hidden_);
@@ -269,6 +272,9 @@ void App::write_probe() {
   p["object_px"] = object_px;
   p["selected"] = selected_;
   p["tool"] = tools_.tool().entry().name;
+  const auto& oc = overlay_counts_;
+  p["overlays"] = {{"strokes", oc[0]}, {"curves", oc[1]}, {"meshes", oc[2]},
+                   {"lattices", oc[3]}, {"spheres", oc[4]}, {"points", oc[5]}};
   nlohmann::json log = nlohmann::json::array();
   const auto& m = messages_.messages();
   for (std::size_t i = m.size() > 5 ? m.size() - 5 : 0; i < m.size(); ++i) log.push_back(m[i].text);

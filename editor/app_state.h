@@ -5,6 +5,8 @@
 
 #include "editor/app.h"
 
+#include <array>
+
 #include "core/commands/object_transform.h"
 #include "core/commands/scene_load.h"
 #include "core/commands/scene_primitive.h"
@@ -36,6 +38,7 @@
 #include "ui/tool_panel.h"
 #include "ui/window_capture.h"
 
+#include <array>
 #include <epoxy/gl.h>
 #include <imgui.h>
 
@@ -119,6 +122,7 @@ class App {
   ui::DockLayout layout_;  // this frame's panel rectangles
   AnimationUi anim_{session_, messages_};  // timeline, playback clock, keys, recording
   ui::ControlPointState control_point_;
+  std::array<std::size_t, 6> overlay_counts_{};  // the last drawn frame's overlays, by kind (for the GUI probe)
   WorkQueue work_;
   std::optional<RecoveryOffer> recovery_;
   Pending prompt_for_ = Pending::None;  // the "Save changes?" question is open for this

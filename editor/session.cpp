@@ -234,28 +234,19 @@ bool EditorSession::execute(const nlohmann::json& line, const fs::path& base_dir
   return false;
 }
 
-bool EditorSession::undo() {
-  if (!history_.can_undo()) return false;
-  try {
-    const std::string label = history_.at(history_.applied() - 1).label();
-    history_.undo();
-    messages_.info("Undo " + label);
-    return true;
-  } catch (const std::exception& e) {
-    messages_.error(std::string("undo failed: ") + e.what());
-  }
-  return false;
-}
+bool EditorSession::undo() { return step_history(false); }
+bool EditorSession::redo() { return step_history(true); }
 
-bool EditorSession::redo() {
-  if (!history_.can_redo()) return false;
+bool EditorSession::step_history(bool forward) {
+  if (forward ? !history_.can_redo() : !history_.can_undo()) return false;
+  const char* verb = forward ? "Redo" : "Undo";
   try {
-    const std::string label = history_.at(history_.applied()).label();
-    history_.redo();
-    messages_.info("Redo " + label);
+    const std::string label = history_.at(forward ? history_.applied() : history_.applied() - 1).label();
+    forward ? history_.redo() : history_.undo();
+    messages_.info(std::string(verb) + " " + label);
     return true;
   } catch (const std::exception& e) {
-    messages_.error(std::string("redo failed: ") + e.what());
+    messages_.error(std::string(forward ? "redo" : "undo") + " failed: " + e.what());
   }
   return false;
 }

@@ -95,6 +95,7 @@ class EditorSession {
   ui::MenuState menu_state() const;      // undo/redo availability and labels for the Edit menu
 
  private:
+  bool step_history(bool forward);  // undo (false) or redo (true) one step, reported in the Log
   bool replay_into(const std::filesystem::path& log, const char* what);
   // A previous run died leaving `log`: copy its readable prefix aside, maybe offer it. *kept is false if the copy
   // could not be written (then `log` must be left alone).

@@ -1,6 +1,6 @@
 // trispline::gpu overlay geometry — CPU-built line/point/triangle lists for what the renderer draws over the
-// shaded scene: FFD control lattices, DFFD discontinuity planes, placement contact samples, the contact surface S(u,v) = F(u,v,0) of a
-// lattice (tessellated), and the sketched stroke as a thick polyline.
+// shaded scene: control lattices, DFFD discontinuity planes, placement contact samples, the contact surface
+// S(u,v) = F(u,v,0) of a lattice (tessellated), translucent spheres, and screen strokes as thick polylines.
 // Pure functions (no GL), so they are tested without a context.
 #pragma once
 
@@ -9,6 +9,7 @@
 
 #include "core/dffd/dffd.h"
 #include "core/scene/scene.h"
+#include "gpu/view_options.h"
 
 namespace trispline::gpu {
 
@@ -62,5 +63,11 @@ void append_contact_iso_lines(const ContactSurfaceTessellation& t, int every_u, 
 // Triangle list (GL_TRIANGLES, pixel coordinates) of a polyline `px` (#S×2 viewport pixels) drawn `width_px`
 // wide with round joins and caps (`segments` triangles per disc). Empty for < 1 point; a single point is a disc.
 std::vector<glm::vec2> thick_polyline(const std::vector<glm::dvec2>& px, float width_px, int segments = 12);
+
+// Appends the sphere as a GL_TRIANGLES list (#(6·slices·(stacks−1)) vertices at most, CCW seen from outside, so
+// back faces can be culled). Colours are shaded for a viewer at `eye` (world units): brighter facing it, alpha
+// growing towards the silhouette so the surface under the sphere stays readable.
+void append_sphere(const SphereOverlay& sphere, const glm::vec3& eye, std::vector<OverlayVertex>& triangles,
+                   int slices = 32, int stacks = 16);
 
 }  // namespace trispline::gpu

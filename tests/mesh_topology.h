@@ -4,6 +4,7 @@
 #pragma once
 
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+#include <gtest/gtest.h>
 
 #include <algorithm>
 #include <array>
@@ -72,6 +73,26 @@ inline Topology topology(const TriMesh& m) {
     } while (c != h && c.is_valid() && !seen.count(c.idx()));
   }
   return t;
+}
+
+// Success when `t` has no non-manifold edge or vertex, repeated half-edge, duplicate or degenerate face, and
+// OpenMesh accepts every face; else a failure naming each non-zero count.
+inline ::testing::AssertionResult is_manifold(const Topology& t) {
+  const std::pair<const char*, std::size_t> counts[] = {{"nonmanifold_edges", t.nonmanifold_edges},
+                                                        {"repeated_halfedges", t.repeated_halfedges},
+                                                        {"duplicate_faces", t.duplicate_faces},
+                                                        {"degenerate_faces", t.degenerate_faces},
+                                                        {"openmesh_rejected", t.openmesh_rejected},
+                                                        {"openmesh_nonmanifold_vertices", t.openmesh_nonmanifold_vertices}};
+  ::testing::AssertionResult r = ::testing::AssertionSuccess();
+  bool ok = true;
+  for (const auto& [name, n] : counts)
+    if (n != 0) {
+      if (ok) r = ::testing::AssertionFailure();
+      ok = false;
+      r << name << " = " << n << "; ";
+    }
+  return r;
 }
 
 }  // namespace trispline::core::test

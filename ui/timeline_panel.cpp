@@ -190,6 +190,128 @@ bool scrub_bar(const core::Timeline& t, Playback& p, const TimelineObject& objec
   return changed;
 }
 
+// Start, End and FPS: edited in st's buffers; one anim.timeline line in r when an edit finishes.
+void range_fields(const core::Timeline& t, TimelinePanelState& st, float num_w, TimelineRequest& r) {
+  bool editing = false, committed = false;
+  const auto int_field = [&](const char* label, const char* id, int* value, const char* probe_id, const char* tip) {
+    ImGui::TextUnformatted(label);
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(num_w);
+    drag_int(id, value, 0.2f, 0, 100000, "%d", ImGuiSliderFlags_AlwaysClamp);
+    probe::item(probe_id);
+    editing |= ImGui::IsItemActive();
+    committed |= ImGui::IsItemDeactivatedAfterEdit();
+    tooltip(tip);
+    ImGui::SameLine();
+  };
+  int_field("Start", "##start", &st.start, "timeline.start",
+            "First frame of the timeline (anim.timeline \"start\", >= 0); logged and undoable");
+  int_field("End", "##end", &st.end, "timeline.end",
+            "Last frame of the timeline, inclusive (anim.timeline \"end\", >= start, <= 100000); playback loops here");
+  ImGui::TextUnformatted("FPS");
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(num_w);
+  drag_scalar("##fps", ImGuiDataType_Double, &st.fps, 0.1f, nullptr, nullptr, "%.3g");
+  probe::item("timeline.fps");
+  editing |= ImGui::IsItemActive();
+  committed |= ImGui::IsItemDeactivatedAfterEdit();
+  tooltip("Frames per second, in (0, 240] (anim.timeline \"fps\"); playback and recordings use it");
+  if (committed && (st.fps != t.fps || st.start != t.frame_start || st.end != t.frame_end))
+    r.command = timeline_line(st.fps, st.start, st.end);
+  else if (!editing) {
+    st.fps = t.fps;
+    st.start = t.frame_start;
+    st.end = t.frame_end;
+  }
+}
+
+// The selected object's offset and its key buttons (anim.keyframe), or why there is nothing to key.
+void key_fields(const TimelineObject& object, const Playback& p, TimelinePanelState& st, float num_w,
+                TimelineRequest& r) {
+  if (object.name.empty() || !object.keyable) {
+    ImGui::TextColored(colors::dim, object.name.empty() ? "Select a placed object to key its offset"
+                                                        : "'%s' has no lattice: nothing to key",
+                       object.name.c_str());
+  } else {
+    ImGui::Text("%s offset", object.name.c_str());
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(num_w * 3.0f);
+    drag_scalar_n("##offset", ImGuiDataType_Double, &st.offset.x, 3, 0.002f, nullptr, nullptr, "%.3f");
+    probe::item("timeline.offset");
+    tooltip(
+        "Parameter offset (u along the path, v, w) of the object inside its lattice at this frame, parameter\n"
+        "units (u = 1 is the whole path). Edit it, then Insert key (I): the object walks along the path\n"
+        "between keys (seed section 2.4.3).");
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(ImGui::CalcTextSize("constant").x + ImGui::GetFrameHeight() * 1.5f);
+    ImGui::Combo("##interp", &st.interpolation, "linear\0constant\0smooth\0");
+    tooltip("Interpolation from the new key to the next one: linear, constant (hold), smooth (ease in/out)");
+    ImGui::SameLine();
+    if (ImGui::Button("Insert key")) r.command = insert_key_request(object, p, st);
+    tooltip("Key the offset at the current frame (I): anim.keyframe, undoable");
+    ImGui::SameLine();
+    ImGui::BeginDisabled(!has_key_at(object, p.frame));
+    if (ImGui::Button("Delete key")) r.command = delete_key_request(object, p);
+    ImGui::EndDisabled();
+    tooltip("Delete the key at the current frame (Alt+I)");
+  }
+}
+
+// "Animate...": a row of copies along the path (place.array) and a glTF clip under the FFD (anim.clip).
+void animate_popup(const TimelineObject& object, TimelinePanelState& st, float num_w, TimelineRequest& r) {
+  ImGui::SameLine();
+  if (ImGui::Button("Animate...")) {
+    if (!object.source.empty() && !*st.clip_path)
+      std::snprintf(st.clip_path, sizeof st.clip_path, "%s", object.source.c_str());
+    ImGui::OpenPopup("animate_popup");
+  }
+  tooltip("Copies in a row along the path (place.array, the seed's ants) and a glTF clip played under the FFD\n"
+          "(anim.clip: morph targets and skins, the seed's two-level animation)");
+  if (ImGui::BeginPopup("animate_popup")) {
+    ImGui::TextUnformatted("Row of copies along the path");
+    ImGui::BeginDisabled(!object.keyable);
+    ImGui::SetNextItemWidth(num_w * 2);
+    ImGui::InputInt("Count", &st.array_count);
+    st.array_count = std::clamp(st.array_count, 1, 64);
+    tooltip("Number of copies (1-64): they share the lattice, keys and clip");
+    ImGui::SetNextItemWidth(num_w * 2);
+    ImGui::InputDouble("Spacing (u)", &st.array_spacing, 0.01, 0.05, "%.3f");
+    tooltip("Copy k trails the object by k x spacing along u (parameter units; >= the Sketch tool's Extent keeps\n"
+            "them apart). Key the leader to start at u >= count x spacing.");
+    if (ImGui::Button("Add copies")) {
+      r.command = array_line(object.name, st.array_count, st.array_spacing);
+      ImGui::CloseCurrentPopup();
+    }
+    ImGui::EndDisabled();
+    ImGui::Separator();
+    ImGui::Text("glTF clip%s%s", object.clip.empty() ? "" : ": playing ", object.clip.c_str());
+    ImGui::SetNextItemWidth(num_w * 6);
+    ImGui::InputText("File", st.clip_path, sizeof st.clip_path);
+    tooltip("The .gltf/.glb the object was loaded from (the clip must animate the same vertices)");
+    ImGui::SetNextItemWidth(num_w * 3);
+    ImGui::InputText("Clip", st.clip_name, sizeof st.clip_name);
+    tooltip("Animation name, #i for the i-th, empty for the first");
+    ImGui::SetNextItemWidth(num_w * 2);
+    ImGui::InputDouble("Speed", &st.clip_speed, 0.1, 0.5, "%.2f");
+    tooltip("Clip seconds per scene second (> 0)");
+    if (ImGui::Button("Attach clip")) {
+      r.command = clip_line(object.name, st.clip_path, st.clip_name, st.clip_speed);
+      ImGui::CloseCurrentPopup();
+    }
+    if (!object.clip.empty()) {
+      ImGui::SameLine();
+      if (ImGui::Button("Remove clip")) {
+        core::AnimClipParams remove;
+        remove.object = object.name;
+        remove.remove = true;
+        r.command = core::AnimClipCommand::schema().to_json(remove);
+        ImGui::CloseCurrentPopup();
+      }
+    }
+    ImGui::EndPopup();
+  }
+}
+
 }  // namespace
 
 TimelineRequest draw_timeline_panel(const Rect& rect, const core::Timeline& t, Playback& p,
@@ -238,124 +360,11 @@ TimelineRequest draw_timeline_panel(const Rect& rect, const core::Timeline& t, P
   ImGui::TextColored(colors::dim, "%.2f s", t.time_of_frame(p.frame));
   ImGui::SameLine(0, 20);
 
-  // Range and rate: edited in buffers, one anim.timeline line when an edit finishes.
-  bool editing = false, committed = false;
-  auto field_done = [&] {
-    editing |= ImGui::IsItemActive();
-    committed |= ImGui::IsItemDeactivatedAfterEdit();
-  };
-  ImGui::TextUnformatted("Start");
-  ImGui::SameLine();
-  ImGui::SetNextItemWidth(num_w);
-  drag_int("##start", &st.start, 0.2f, 0, 100000, "%d", ImGuiSliderFlags_AlwaysClamp);
-  probe::item("timeline.start");
-  field_done();
-  tooltip("First frame of the timeline (anim.timeline \"start\", >= 0); logged and undoable");
-  ImGui::SameLine();
-  ImGui::TextUnformatted("End");
-  ImGui::SameLine();
-  ImGui::SetNextItemWidth(num_w);
-  drag_int("##end", &st.end, 0.2f, 0, 100000, "%d", ImGuiSliderFlags_AlwaysClamp);
-  probe::item("timeline.end");
-  field_done();
-  tooltip("Last frame of the timeline, inclusive (anim.timeline \"end\", >= start, <= 100000); playback loops here");
-  ImGui::SameLine();
-  ImGui::TextUnformatted("FPS");
-  ImGui::SameLine();
-  ImGui::SetNextItemWidth(num_w);
-  drag_scalar("##fps", ImGuiDataType_Double, &st.fps, 0.1f, nullptr, nullptr, "%.3g");
-  probe::item("timeline.fps");
-  field_done();
-  tooltip("Frames per second, in (0, 240] (anim.timeline \"fps\"); playback and recordings use it");
-  if (committed && (st.fps != t.fps || st.start != t.frame_start || st.end != t.frame_end))
-    r.command = timeline_line(st.fps, st.start, st.end);
-  else if (!editing) {
-    st.fps = t.fps;
-    st.start = t.frame_start;
-    st.end = t.frame_end;
-  }
+  range_fields(t, st, num_w, r);
 
   ImGui::SameLine(0, 20);
-  if (object.name.empty() || !object.keyable) {
-    ImGui::TextColored(colors::dim, object.name.empty() ? "Select a placed object to key its offset"
-                                                        : "'%s' has no lattice: nothing to key",
-                       object.name.c_str());
-  } else {
-    ImGui::Text("%s offset", object.name.c_str());
-    ImGui::SameLine();
-    ImGui::SetNextItemWidth(num_w * 3.0f);
-    drag_scalar_n("##offset", ImGuiDataType_Double, &st.offset.x, 3, 0.002f, nullptr, nullptr, "%.3f");
-    probe::item("timeline.offset");
-    tooltip(
-        "Parameter offset (u along the path, v, w) of the object inside its lattice at this frame, parameter\n"
-        "units (u = 1 is the whole path). Edit it, then Insert key (I): the object walks along the path\n"
-        "between keys (seed section 2.4.3).");
-    ImGui::SameLine();
-    ImGui::SetNextItemWidth(ImGui::CalcTextSize("constant").x + ImGui::GetFrameHeight() * 1.5f);
-    ImGui::Combo("##interp", &st.interpolation, "linear\0constant\0smooth\0");
-    tooltip("Interpolation from the new key to the next one: linear, constant (hold), smooth (ease in/out)");
-    ImGui::SameLine();
-    if (ImGui::Button("Insert key")) r.command = insert_key_request(object, p, st);
-    tooltip("Key the offset at the current frame (I): anim.keyframe, undoable");
-    ImGui::SameLine();
-    ImGui::BeginDisabled(!has_key_at(object, p.frame));
-    if (ImGui::Button("Delete key")) r.command = delete_key_request(object, p);
-    ImGui::EndDisabled();
-    tooltip("Delete the key at the current frame (Alt+I)");
-  }
-  if (!object.name.empty()) {
-    ImGui::SameLine();
-    if (ImGui::Button("Animate...")) {
-      if (!object.source.empty() && !*st.clip_path)
-        std::snprintf(st.clip_path, sizeof st.clip_path, "%s", object.source.c_str());
-      ImGui::OpenPopup("animate_popup");
-    }
-    tooltip("Copies in a row along the path (place.array, the seed's ants) and a glTF clip played under the FFD\n"
-            "(anim.clip: morph targets and skins, the seed's two-level animation)");
-    if (ImGui::BeginPopup("animate_popup")) {
-      ImGui::TextUnformatted("Row of copies along the path");
-      ImGui::BeginDisabled(!object.keyable);
-      ImGui::SetNextItemWidth(num_w * 2);
-      ImGui::InputInt("Count", &st.array_count);
-      st.array_count = std::clamp(st.array_count, 1, 64);
-      tooltip("Number of copies (1-64): they share the lattice, keys and clip");
-      ImGui::SetNextItemWidth(num_w * 2);
-      ImGui::InputDouble("Spacing (u)", &st.array_spacing, 0.01, 0.05, "%.3f");
-      tooltip("Copy k trails the object by k x spacing along u (parameter units; >= the Sketch tool's Extent keeps\n"
-              "them apart). Key the leader to start at u >= count x spacing.");
-      if (ImGui::Button("Add copies")) {
-        r.command = array_line(object.name, st.array_count, st.array_spacing);
-        ImGui::CloseCurrentPopup();
-      }
-      ImGui::EndDisabled();
-      ImGui::Separator();
-      ImGui::Text("glTF clip%s%s", object.clip.empty() ? "" : ": playing ", object.clip.c_str());
-      ImGui::SetNextItemWidth(num_w * 6);
-      ImGui::InputText("File", st.clip_path, sizeof st.clip_path);
-      tooltip("The .gltf/.glb the object was loaded from (the clip must animate the same vertices)");
-      ImGui::SetNextItemWidth(num_w * 3);
-      ImGui::InputText("Clip", st.clip_name, sizeof st.clip_name);
-      tooltip("Animation name, #i for the i-th, empty for the first");
-      ImGui::SetNextItemWidth(num_w * 2);
-      ImGui::InputDouble("Speed", &st.clip_speed, 0.1, 0.5, "%.2f");
-      tooltip("Clip seconds per scene second (> 0)");
-      if (ImGui::Button("Attach clip")) {
-        r.command = clip_line(object.name, st.clip_path, st.clip_name, st.clip_speed);
-        ImGui::CloseCurrentPopup();
-      }
-      if (!object.clip.empty()) {
-        ImGui::SameLine();
-        if (ImGui::Button("Remove clip")) {
-          core::AnimClipParams remove;
-          remove.object = object.name;
-          remove.remove = true;
-          r.command = core::AnimClipCommand::schema().to_json(remove);
-          ImGui::CloseCurrentPopup();
-        }
-      }
-      ImGui::EndPopup();
-    }
-  }
+  key_fields(object, p, st, num_w, r);
+  if (!object.name.empty()) animate_popup(object, st, num_w, r);
   ImGui::SameLine(0, 20);
   ImGui::PushStyleColor(ImGuiCol_Button, ImVec4(0.55f, 0.16f, 0.16f, 1.0f));
   if (ImGui::Button("Record...")) r.record = true;

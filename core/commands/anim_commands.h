@@ -53,20 +53,15 @@ struct AnimKeyframeParams {
   glm::dvec3 key_offset() const { return offset ? *offset : glm::dvec3(u ? *u : 0.0, 0.0, 0.0); }
 };
 
-class AnimKeyframeCommand : public DeclaredCommand<AnimKeyframeCommand, AnimKeyframeParams, SnapshotCommand> {
+class AnimKeyframeCommand : public ObjectSnapshotCommand<AnimKeyframeCommand, AnimKeyframeParams> {
  public:
-  using DeclaredCommand::DeclaredCommand;
+  using ObjectSnapshotCommand::ObjectSnapshotCommand;
   static const ParamSchema<AnimKeyframeParams>& schema();
 
   std::string label() const override;
-  nlohmann::json stats() const override { return stats_; }
 
  protected:
-  std::string target() const override { return p_.object; }
   std::optional<SceneObject> build(const Scene& scene) override;
-
- private:
-  nlohmann::json stats_ = nlohmann::json::object();
 };
 
 struct AnimClipParams {
@@ -79,21 +74,16 @@ struct AnimClipParams {
   bool loop = true;
 };
 
-class AnimClipCommand : public DeclaredCommand<AnimClipCommand, AnimClipParams, SnapshotCommand> {
+class AnimClipCommand : public ObjectSnapshotCommand<AnimClipCommand, AnimClipParams> {
  public:
-  using DeclaredCommand::DeclaredCommand;
+  using ObjectSnapshotCommand::ObjectSnapshotCommand;
   static const ParamSchema<AnimClipParams>& schema();
 
   std::string label() const override;
-  nlohmann::json stats() const override { return stats_; }
 
  protected:
-  std::string target() const override { return p_.object; }
   std::optional<SceneObject> build(const Scene& scene) override;
   std::string failure_field() const override { return "path"; }
-
- private:
-  nlohmann::json stats_ = nlohmann::json::object();
 };
 
 // "linear" | "constant" | "smooth", and back (anything else: linear).

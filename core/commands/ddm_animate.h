@@ -39,20 +39,15 @@ struct DdmAnimateParams {
   std::string interpolation = "linear";  // of this line's keys: "linear" | "constant" | "smooth"
 };
 
-class DdmAnimateCommand : public DeclaredCommand<DdmAnimateCommand, DdmAnimateParams, SnapshotCommand> {
+class DdmAnimateCommand : public ObjectSnapshotCommand<DdmAnimateCommand, DdmAnimateParams> {
  public:
-  using DeclaredCommand::DeclaredCommand;
+  using ObjectSnapshotCommand::ObjectSnapshotCommand;
   static const ParamSchema<DdmAnimateParams>& schema();
   std::string label() const override;
-  nlohmann::json stats() const override { return stats_; }
 
  protected:
-  std::string target() const override { return p_.object; }
   std::optional<SceneObject> build(const Scene& scene) override;
   std::string failure_field() const override { return "morph_tile"; }
-
- private:
-  nlohmann::json stats_ = nlohmann::json::object();
 };
 
 }  // namespace trispline::core

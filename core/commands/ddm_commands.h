@@ -97,20 +97,15 @@ struct DdmFillParams {
   DdmLayerSpec spec;
 };
 
-class DdmFillCommand : public DeclaredCommand<DdmFillCommand, DdmFillParams, SnapshotCommand> {
+class DdmFillCommand : public ObjectSnapshotCommand<DdmFillCommand, DdmFillParams> {
  public:
-  using DeclaredCommand::DeclaredCommand;
+  using ObjectSnapshotCommand::ObjectSnapshotCommand;
   static const ParamSchema<DdmFillParams>& schema();
   std::string label() const override;
-  nlohmann::json stats() const override { return stats_; }
 
  protected:
-  std::string target() const override { return p_.object; }
   std::optional<SceneObject> build(const Scene& scene) override;
   std::string failure_field() const override { return "tile"; }
-
- private:
-  nlohmann::json stats_ = nlohmann::json::object();
 };
 
 struct DdmBakeParams {
@@ -124,14 +119,10 @@ class DdmBakeCommand : public DeclaredCommand<DdmBakeCommand, DdmBakeParams, Sna
   using DeclaredCommand::DeclaredCommand;
   static const ParamSchema<DdmBakeParams>& schema();
   std::string label() const override;
-  nlohmann::json stats() const override { return stats_; }
 
  protected:
   std::string target() const override { return p_.name; }
   std::optional<SceneObject> build(const Scene& scene) override;
-
- private:
-  nlohmann::json stats_ = nlohmann::json::object();
 };
 
 // {"cmd":"ddm.color","object":ID,"layer":NAME,"color":[r,g,b] | null}: sets a layer's own colour (linear RGB, each in
@@ -142,14 +133,13 @@ struct DdmColorParams {
   std::optional<glm::vec3> color;  // unset: "color": null (the object's colour again)
 };
 
-class DdmColorCommand : public DeclaredCommand<DdmColorCommand, DdmColorParams, SnapshotCommand> {
+class DdmColorCommand : public ObjectSnapshotCommand<DdmColorCommand, DdmColorParams> {
  public:
-  using DeclaredCommand::DeclaredCommand;
+  using ObjectSnapshotCommand::ObjectSnapshotCommand;
   static const ParamSchema<DdmColorParams>& schema();
   std::string label() const override;
 
  protected:
-  std::string target() const override { return p_.object; }
   std::optional<SceneObject> build(const Scene& scene) override;
 };
 
@@ -159,19 +149,14 @@ struct DdmRemoveParams {
   std::string object, layer;
 };
 
-class DdmRemoveCommand : public DeclaredCommand<DdmRemoveCommand, DdmRemoveParams, SnapshotCommand> {
+class DdmRemoveCommand : public ObjectSnapshotCommand<DdmRemoveCommand, DdmRemoveParams> {
  public:
-  using DeclaredCommand::DeclaredCommand;
+  using ObjectSnapshotCommand::ObjectSnapshotCommand;
   static const ParamSchema<DdmRemoveParams>& schema();
   std::string label() const override;
-  nlohmann::json stats() const override { return stats_; }
 
  protected:
-  std::string target() const override { return p_.object; }
   std::optional<SceneObject> build(const Scene& scene) override;
-
- private:
-  nlohmann::json stats_ = nlohmann::json::object();
 };
 
 }  // namespace trispline::core

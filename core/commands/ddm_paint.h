@@ -62,20 +62,15 @@ struct DdmPaintParams {
   std::optional<Camera> camera;     // the view the stroke was drawn in; unset = the scene's camera
 };
 
-class DdmPaintCommand : public DeclaredCommand<DdmPaintCommand, DdmPaintParams, SnapshotCommand> {
+class DdmPaintCommand : public ObjectSnapshotCommand<DdmPaintCommand, DdmPaintParams> {
  public:
-  using DeclaredCommand::DeclaredCommand;
+  using ObjectSnapshotCommand::ObjectSnapshotCommand;
   static const ParamSchema<DdmPaintParams>& schema();
   std::string label() const override;
-  nlohmann::json stats() const override { return stats_; }
 
  protected:
-  std::string target() const override { return p_.object; }
   std::optional<SceneObject> build(const Scene& scene) override;
   std::string failure_field() const override { return "layer"; }
-
- private:
-  nlohmann::json stats_ = nlohmann::json::object();
 };
 
 }  // namespace trispline::core

@@ -3,12 +3,14 @@
 // The derived class C defines `static const ParamSchema<P>& schema();` (in its .cpp) and the effect (redo/undo, or
 // build() for a SnapshotCommand); parsing, to_json() and id() come from the schema, so the id, every field's name,
 // default, range and help are written once. Register it with one line: `registry.add<C>();`.
+// ObjectSnapshotCommand<C, P> is the common case: a SnapshotCommand whose target is the params' `object` field.
 #pragma once
 
 #include <memory>
 #include <utility>
 
 #include "core/commands/params.h"
+#include "core/commands/snapshot_command.h"
 
 namespace trispline::core {
 
@@ -28,6 +30,16 @@ class DeclaredCommand : public Base {
 
  protected:
   P p_;
+};
+
+// A declared SnapshotCommand that changes the object named by P::object (a std::string).
+template <class C, class P>
+class ObjectSnapshotCommand : public DeclaredCommand<C, P, SnapshotCommand> {
+ public:
+  explicit ObjectSnapshotCommand(P p) : DeclaredCommand<C, P, SnapshotCommand>(std::move(p)) {}
+
+ protected:
+  std::string target() const override { return this->p_.object; }
 };
 
 }  // namespace trispline::core

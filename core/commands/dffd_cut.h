@@ -27,20 +27,15 @@ struct DffdCutParams {
   double eps = 1e-6;  // parameter units: cut vertices at at ∓ eps
 };
 
-class DffdCutCommand : public DeclaredCommand<DffdCutCommand, DffdCutParams, SnapshotCommand> {
+class DffdCutCommand : public ObjectSnapshotCommand<DffdCutCommand, DffdCutParams> {
  public:
-  using DeclaredCommand::DeclaredCommand;
+  using ObjectSnapshotCommand::ObjectSnapshotCommand;
   static const ParamSchema<DffdCutParams>& schema();
 
   std::string label() const override;
-  nlohmann::json stats() const override { return stats_; }
 
  protected:
-  std::string target() const override { return p_.object; }
   std::optional<SceneObject> build(const Scene& scene) override;
-
- private:
-  nlohmann::json stats_ = nlohmann::json::object();
 };
 
 }  // namespace trispline::core

@@ -36,20 +36,15 @@ struct DffdSplitParams {
 // The fields of dffd.split that configure the lattice (axis, w_axis, order, controls, kernel, …).
 const ParamSchema<GlobalDffdParams>& global_dffd_schema();
 
-class DffdSplitCommand : public DeclaredCommand<DffdSplitCommand, DffdSplitParams, SnapshotCommand> {
+class DffdSplitCommand : public ObjectSnapshotCommand<DffdSplitCommand, DffdSplitParams> {
  public:
-  using DeclaredCommand::DeclaredCommand;
+  using ObjectSnapshotCommand::ObjectSnapshotCommand;
   static const ParamSchema<DffdSplitParams>& schema();
 
   std::string label() const override;
-  nlohmann::json stats() const override { return stats_; }
 
  protected:
-  std::string target() const override { return p_.object; }
   std::optional<SceneObject> build(const Scene& scene) override;
-
- private:
-  nlohmann::json stats_ = nlohmann::json::object();
 };
 
 }  // namespace trispline::core

@@ -43,20 +43,15 @@ struct IncisionDrawParams {
 // The fields of incision.draw that shape the cut (width, depth, opening, walls, order, kernel, wall_rows).
 const ParamSchema<IncisionParams>& incision_schema();
 
-class IncisionDrawCommand : public DeclaredCommand<IncisionDrawCommand, IncisionDrawParams, SnapshotCommand> {
+class IncisionDrawCommand : public ObjectSnapshotCommand<IncisionDrawCommand, IncisionDrawParams> {
  public:
-  using DeclaredCommand::DeclaredCommand;
+  using ObjectSnapshotCommand::ObjectSnapshotCommand;
   static const ParamSchema<IncisionDrawParams>& schema();
 
   std::string label() const override;
-  nlohmann::json stats() const override { return stats_; }
 
  protected:
-  std::string target() const override { return p_.object; }
   std::optional<SceneObject> build(const Scene& scene) override;
-
- private:
-  nlohmann::json stats_ = nlohmann::json::object();
 };
 
 }  // namespace trispline::core

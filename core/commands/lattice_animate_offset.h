@@ -20,20 +20,15 @@ struct LatticeAnimateOffsetParams {
 };
 
 class LatticeAnimateOffsetCommand
-    : public DeclaredCommand<LatticeAnimateOffsetCommand, LatticeAnimateOffsetParams, SnapshotCommand> {
+    : public ObjectSnapshotCommand<LatticeAnimateOffsetCommand, LatticeAnimateOffsetParams> {
  public:
-  using DeclaredCommand::DeclaredCommand;
+  using ObjectSnapshotCommand::ObjectSnapshotCommand;
   static const ParamSchema<LatticeAnimateOffsetParams>& schema();
 
   std::string label() const override { return "Animate offset of '" + p_.object + "'"; }
-  nlohmann::json stats() const override { return stats_; }
 
  protected:
-  std::string target() const override { return p_.object; }
   std::optional<SceneObject> build(const Scene& scene) override;
-
- private:
-  nlohmann::json stats_ = nlohmann::json::object();
 };
 
 }  // namespace trispline::core

@@ -49,22 +49,17 @@ struct LatticePressParams {
   std::string falloff = "smooth";
 };
 
-class LatticePressCommand : public DeclaredCommand<LatticePressCommand, LatticePressParams, SnapshotCommand> {
+class LatticePressCommand : public ObjectSnapshotCommand<LatticePressCommand, LatticePressParams> {
  public:
-  using DeclaredCommand::DeclaredCommand;
+  using ObjectSnapshotCommand::ObjectSnapshotCommand;
   static const ParamSchema<LatticePressParams>& schema();
 
   std::string label() const override {  // a negative strength pulls (the Press tool's Ctrl+drag)
     return (p_.strength < 0 ? "Pull '" : "Press '") + p_.object + "' (" + p_.falloff + ")";
   }
-  nlohmann::json stats() const override { return stats_; }
 
  protected:
-  std::string target() const override { return p_.object; }
   std::optional<SceneObject> build(const Scene& scene) override;
-
- private:
-  nlohmann::json stats_ = nlohmann::json::object();
 };
 
 struct LatticePullColumnParams {
@@ -73,24 +68,18 @@ struct LatticePullColumnParams {
   double distance = 0.0;    // world units along V_P
 };
 
-class LatticePullColumnCommand
-    : public DeclaredCommand<LatticePullColumnCommand, LatticePullColumnParams, SnapshotCommand> {
+class LatticePullColumnCommand : public ObjectSnapshotCommand<LatticePullColumnCommand, LatticePullColumnParams> {
  public:
-  using DeclaredCommand::DeclaredCommand;
+  using ObjectSnapshotCommand::ObjectSnapshotCommand;
   static const ParamSchema<LatticePullColumnParams>& schema();
 
   std::string label() const override {
     return "Pull column (" + std::to_string(p_.column.x) + ", " + std::to_string(p_.column.y) + ") of '" + p_.object +
            "'";
   }
-  nlohmann::json stats() const override { return stats_; }
 
  protected:
-  std::string target() const override { return p_.object; }
   std::optional<SceneObject> build(const Scene& scene) override;
-
- private:
-  nlohmann::json stats_ = nlohmann::json::object();
 };
 
 // Unit column direction V_P of column (i, j) of `lattice` (top minus contact control point); for a zero-length

@@ -32,20 +32,15 @@ struct LatticeRingParams {
   std::string up_axis = "y";
 };
 
-class LatticeRingCommand : public DeclaredCommand<LatticeRingCommand, LatticeRingParams, SnapshotCommand> {
+class LatticeRingCommand : public ObjectSnapshotCommand<LatticeRingCommand, LatticeRingParams> {
  public:
-  using DeclaredCommand::DeclaredCommand;
+  using ObjectSnapshotCommand::ObjectSnapshotCommand;
   static const ParamSchema<LatticeRingParams>& schema();
 
   std::string label() const override { return "Ring lattice for '" + p_.object + "'"; }
-  nlohmann::json stats() const override { return stats_; }
 
  protected:
-  std::string target() const override { return p_.object; }
   std::optional<SceneObject> build(const Scene& scene) override;
-
- private:
-  nlohmann::json stats_ = nlohmann::json::object();
 };
 
 // The ring lattice itself (for tests and tools): control points of a periodic-in-u lattice around `center`.

@@ -20,21 +20,15 @@ struct LatticeSetPointParams {
   glm::dvec3 position{0.0};  // world units
 };
 
-class LatticeSetPointCommand
-    : public DeclaredCommand<LatticeSetPointCommand, LatticeSetPointParams, SnapshotCommand> {
+class LatticeSetPointCommand : public ObjectSnapshotCommand<LatticeSetPointCommand, LatticeSetPointParams> {
  public:
-  using DeclaredCommand::DeclaredCommand;
+  using ObjectSnapshotCommand::ObjectSnapshotCommand;
   static const ParamSchema<LatticeSetPointParams>& schema();
 
   std::string label() const override;
-  nlohmann::json stats() const override { return stats_; }
 
  protected:
-  std::string target() const override { return p_.object; }
   std::optional<SceneObject> build(const Scene& scene) override;
-
- private:
-  nlohmann::json stats_ = nlohmann::json::object();
 };
 
 }  // namespace trispline::core

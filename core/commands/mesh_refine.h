@@ -28,21 +28,18 @@ struct MeshRefineParams {
   std::int64_t max_triangles = 2'000'000;  // the memory budget of a refinement
 };
 
-class MeshRefineCommand : public DeclaredCommand<MeshRefineCommand, MeshRefineParams, SnapshotCommand> {
+class MeshRefineCommand : public ObjectSnapshotCommand<MeshRefineCommand, MeshRefineParams> {
  public:
-  using DeclaredCommand::DeclaredCommand;
+  using ObjectSnapshotCommand::ObjectSnapshotCommand;
   static const ParamSchema<MeshRefineParams>& schema();
 
   std::string label() const override { return "Refine '" + p_.object + "' for its FFD"; }
-  nlohmann::json stats() const override { return stats_; }
 
  protected:
-  std::string target() const override { return p_.object; }
   std::optional<SceneObject> build(const Scene& scene) override;
 
  private:
   RefineOptions options() const;
-  nlohmann::json stats_ = nlohmann::json::object();
 };
 
 }  // namespace trispline::core

@@ -1,8 +1,6 @@
 #include "core/commands/mesh_subdivide.h"
 
 #include <opensubdiv/far/primvarRefiner.h>
-#include <opensubdiv/far/topologyDescriptor.h>
-#include <opensubdiv/far/topologyRefinerFactory.h>
 
 #include <chrono>
 #include <memory>
@@ -10,6 +8,7 @@
 #include <vector>
 
 #include "core/mesh/mesh_io.h"
+#include "core/mesh/osd_topology.h"
 
 namespace trispline::core {
 
@@ -21,17 +20,8 @@ namespace Sdc = OpenSubdiv::Sdc;
 constexpr int kMaxLevels = 4;
 constexpr std::size_t kMaxTriangles = 8'000'000;
 
-// Primvar element types for Far::PrimvarRefinerReal<double> (Clear / AddWithWeight protocol).
-struct Point3 {
-  glm::dvec3 p{0.0};
-  void Clear(void* = nullptr) { p = glm::dvec3(0.0); }
-  void AddWithWeight(const Point3& s, double w) { p += w * s.p; }
-};
-struct Point2 {
-  glm::dvec2 p{0.0};
-  void Clear(void* = nullptr) { p = glm::dvec2(0.0); }
-  void AddWithWeight(const Point2& s, double w) { p += w * s.p; }
-};
+using Point3 = osd::Primvar<glm::dvec3>;
+using Point2 = osd::Primvar<glm::dvec2>;
 
 }  // namespace
 
@@ -42,25 +32,11 @@ TriMesh loop_subdivide(const TriMesh& mesh, int levels) {
     throw std::invalid_argument("loop_subdivide: uvs must be empty or #V");
   if (!mesh.face_material.empty() && mesh.face_material.size() != nf)
     throw std::invalid_argument("loop_subdivide: face_material must be empty or #F");
-  std::vector<int> verts_per_face(nf, 3), indices(3 * nf);
-  for (std::size_t f = 0; f < nf; ++f)
-    for (int k = 0; k < 3; ++k) {
-      if (mesh.triangles[f][k] >= nv)
-        throw std::invalid_argument("loop_subdivide: triangle " + std::to_string(f) + " has an index ≥ #V");
-      indices[3 * f + k] = static_cast<int>(mesh.triangles[f][k]);
-    }
+  const std::vector<int> indices = osd::checked_triangle_indices(mesh, "loop_subdivide");
   if (levels == 0 || nf == 0) return mesh;
 
-  Far::TopologyDescriptor desc;
-  desc.numVertices = static_cast<int>(nv);
-  desc.numFaces = static_cast<int>(nf);
-  desc.numVertsPerFace = verts_per_face.data();
-  desc.vertIndicesPerFace = indices.data();
-  Sdc::Options sdc;
-  sdc.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
-  using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
-  std::unique_ptr<Far::TopologyRefiner> refiner(
-      Factory::Create(desc, Factory::Options(Sdc::SCHEME_LOOP, sdc)));
+  const std::unique_ptr<Far::TopologyRefiner> refiner = osd::triangle_refiner(
+      static_cast<int>(nv), indices, Sdc::SCHEME_LOOP, Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
   if (!refiner) throw std::invalid_argument("loop_subdivide: OpenSubdiv rejected the mesh topology");
   Far::TopologyRefiner::UniformOptions uniform(levels);
   uniform.fullTopologyInLastLevel = false;

@@ -35,20 +35,15 @@ struct MeshSubdivideParams {
   std::string scheme = "loop";
 };
 
-class MeshSubdivideCommand : public DeclaredCommand<MeshSubdivideCommand, MeshSubdivideParams, SnapshotCommand> {
+class MeshSubdivideCommand : public ObjectSnapshotCommand<MeshSubdivideCommand, MeshSubdivideParams> {
  public:
-  using DeclaredCommand::DeclaredCommand;
+  using ObjectSnapshotCommand::ObjectSnapshotCommand;
   static const ParamSchema<MeshSubdivideParams>& schema();
 
   std::string label() const override;
-  nlohmann::json stats() const override { return stats_; }
 
  protected:
-  std::string target() const override { return p_.object; }
   std::optional<SceneObject> build(const Scene& scene) override;
-
- private:
-  nlohmann::json stats_ = nlohmann::json::object();
 };
 
 }  // namespace trispline::core

@@ -39,23 +39,17 @@ struct ObjectTransformParams {
   std::optional<glm::dvec3> translate, rotate_deg, scale;  // absolute; unset = unchanged
 };
 
-class ObjectTransformCommand
-    : public DeclaredCommand<ObjectTransformCommand, ObjectTransformParams, SnapshotCommand> {
+class ObjectTransformCommand : public ObjectSnapshotCommand<ObjectTransformCommand, ObjectTransformParams> {
  public:
-  using DeclaredCommand::DeclaredCommand;
+  using ObjectSnapshotCommand::ObjectSnapshotCommand;
   static const ParamSchema<ObjectTransformParams>& schema();
   // The command setting `t` completely (all three fields), as the editor logs it.
   static CommandPtr make(const std::string& object, const Transform& t);
 
   std::string label() const override { return "Transform '" + p_.object + "'"; }
-  nlohmann::json stats() const override { return stats_; }
 
  protected:
-  std::string target() const override { return p_.object; }
   std::optional<SceneObject> build(const Scene& scene) override;
-
- private:
-  nlohmann::json stats_ = nlohmann::json::object();
 };
 
 }  // namespace trispline::core

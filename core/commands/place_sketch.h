@@ -46,20 +46,15 @@ struct PlaceSketchParams {
 // The "springs" object of place.sketch: the mass-spring contact surface (seed §2.3.2).
 const ParamSchema<SpringParams>& spring_schema();
 
-class PlaceSketchCommand : public DeclaredCommand<PlaceSketchCommand, PlaceSketchParams, SnapshotCommand> {
+class PlaceSketchCommand : public ObjectSnapshotCommand<PlaceSketchCommand, PlaceSketchParams> {
  public:
-  using DeclaredCommand::DeclaredCommand;
+  using ObjectSnapshotCommand::ObjectSnapshotCommand;
   static const ParamSchema<PlaceSketchParams>& schema();
 
   std::string label() const override { return "Place '" + p_.object + "' along stroke"; }
-  nlohmann::json stats() const override { return stats_; }
 
  protected:
-  std::string target() const override { return p_.object; }
   std::optional<SceneObject> build(const Scene& scene) override;
-
- private:
-  nlohmann::json stats_ = nlohmann::json::object();
 };
 
 }  // namespace trispline::core

@@ -1,7 +1,7 @@
 // trispline::core::SnapshotCommand — base for commands that create, change or remove one named object.
 // The new object is built completely (build()) before the scene is touched; undo restores the snapshot taken
 // before redo. Meshes are shared immutable pointers, so snapshots cost a few pointers, not mesh copies, and
-// undo/redo restore meshes bit for bit.
+// undo/redo restore meshes bit for bit. build() may record figures in stats_ (reported by stats()).
 #pragma once
 
 #include <optional>
@@ -14,6 +14,7 @@ class SnapshotCommand : public Command {
  public:
   void redo(Scene& scene) final;
   void undo(Scene& scene) final;
+  nlohmann::json stats() const override { return stats_; }
 
  protected:
   // Name of the object this command changes (known after parsing).
@@ -23,6 +24,8 @@ class SnapshotCommand : public Command {
   virtual std::optional<SceneObject> build(const Scene& scene) = 0;
   // Field to blame when build() throws something that is not a CommandError (e.g. "path" for I/O errors).
   virtual std::string failure_field() const { return {}; }
+
+  nlohmann::json stats_ = nlohmann::json::object();  // what build() measured (counts, milliseconds)
 
  private:
   bool built_ = false;

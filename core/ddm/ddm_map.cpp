@@ -17,8 +17,8 @@
 
 #include <opensubdiv/bfr/refinerSurfaceFactory.h>
 #include <opensubdiv/bfr/surface.h>
-#include <opensubdiv/far/topologyDescriptor.h>
-#include <opensubdiv/far/topologyRefinerFactory.h>
+
+#include "core/mesh/osd_topology.h"
 
 namespace trispline::core {
 namespace {
@@ -228,13 +228,7 @@ DdmSubdivBase::DdmSubdivBase(const TriMesh& mesh) : impl_(std::make_unique<Impl>
       throw std::invalid_argument("base: non-finite position at vertex " + std::to_string(v));
     points[3 * v] = p.x, points[3 * v + 1] = p.y, points[3 * v + 2] = p.z;
   }
-  std::vector<int> sizes(nf, 3), indices(3 * nf);
-  for (std::size_t f = 0; f < nf; ++f)
-    for (int k = 0; k < 3; ++k) {
-      if (mesh.triangles[f][k] >= nv)
-        throw std::invalid_argument("base: triangle " + std::to_string(f) + " has an index ≥ #V");
-      indices[3 * f + k] = static_cast<int>(mesh.triangles[f][k]);
-    }
+  const std::vector<int> indices = osd::checked_triangle_indices(mesh, "base");
   {  // 2-manifold edges only (OpenSubdiv would accept a fan of faces on one edge as a sharp, non-manifold edge)
     std::vector<std::uint64_t> halfedges(3 * nf);
     for (std::size_t f = 0; f < nf; ++f)
@@ -248,16 +242,8 @@ DdmSubdivBase::DdmSubdivBase(const TriMesh& mesh) : impl_(std::make_unique<Impl>
         throw std::invalid_argument("base: non-manifold edge (" + std::to_string(halfedges[i] >> 32) + ", " +
                                     std::to_string(halfedges[i] & 0xffffffffu) + ") has more than two faces");
   }
-  Far::TopologyDescriptor desc;
-  desc.numVertices = static_cast<int>(nv);
-  desc.numFaces = static_cast<int>(nf);
-  desc.numVertsPerFace = sizes.data();
-  desc.vertIndicesPerFace = indices.data();
-  Sdc::Options sdc;
-  sdc.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
-  using RefinerFactory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
-  std::unique_ptr<Far::TopologyRefiner> refiner(
-      RefinerFactory::Create(desc, RefinerFactory::Options(Sdc::SCHEME_LOOP, sdc)));
+  const std::unique_ptr<Far::TopologyRefiner> refiner = osd::triangle_refiner(
+      static_cast<int>(nv), indices, Sdc::SCHEME_LOOP, Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
   if (!refiner) throw std::invalid_argument("base: OpenSubdiv rejected the mesh topology (non-manifold?)");
   if (refiner->GetLevel(0).GetNumVertices() != static_cast<int>(nv))
     throw std::invalid_argument("base: OpenSubdiv changed the vertex count (non-manifold input)");

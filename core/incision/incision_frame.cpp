@@ -60,9 +60,8 @@ double kernel_u(IncisionKernel k, double d) {  // d = |ū − 1/2| ∈ [0, 1/2]
 double eval_scalar(const KnotVector& kv, const std::vector<double>& c, double t) {
   return BSplineCurve<double>(kv, c).eval(t);
 }
-}  // namespace
-
-LocalLattice build_local_lattice(const IncisionFrame& frame, const IncisionParams& p) {
+// Checks p and returns the control counts (l, m, n) of Eq. 6.2 (defaults filled in from the hit count).
+glm::ivec3 lattice_controls(const IncisionFrame& frame, const IncisionParams& p) {
   if (!(std::isfinite(p.width) && p.width > 0.0)) throw std::invalid_argument("width: must be a finite number > 0");
   if (!(std::isfinite(p.depth) && p.depth > 0.0))
     throw std::invalid_argument("depth: must be > 0 (zero depth: the cut must go below the surface)");
@@ -80,7 +79,95 @@ LocalLattice build_local_lattice(const IncisionFrame& frame, const IncisionParam
   if (m < o || m > 64) throw std::invalid_argument("controls: m must be in order..64");
   if (n % 2 == 0 || n < std::max(3, o) || n > 31)
     throw std::invalid_argument("controls: n must be odd and in max(3, order)..31");
+  return {l, m, n};
+}
 
+// Frame at v: G, unit T, unit N ⊥ T, S = T × N (world units; throws on a degenerate stroke).
+void frame_at(const IncisionFrame& frame, double v, glm::dvec3& g, glm::dvec3& s, glm::dvec3& nn) {
+  const std::vector<glm::dvec3> d = frame.generator.derivatives(v, 1);
+  g = d[0];
+  const double tl = glm::length(d[1]);
+  glm::dvec3 nv = frame.normal.eval(v);
+  if (!(tl > 0.0) || !finite3(nv)) throw std::invalid_argument("stroke: the fitted generator curve is degenerate");
+  const glm::dvec3 tt = d[1] / tl;
+  nv -= glm::dot(nv, tt) * tt;
+  const double nl = glm::length(nv);
+  if (!(nl > 1e-9)) throw std::invalid_argument("stroke: the surface normals run along the stroke");
+  nn = nv / nl;
+  s = glm::cross(tt, nn);
+}
+
+// The cut's bottom: F(1/2, v, w) = Σ_j B_j(v)(G_j − (g(w) − ⌊n/2⌋)·β·N_j) with g(w) = Σ_k B_k(w)·k (monotone);
+// returns w where g(w) = ⌊n/2⌋ + depth/β, by bisection on [1/2, 1].
+double cut_bottom_w(const KnotVector& kw, int n, double depth, double beta) {
+  std::vector<double> kidx(n);
+  for (int k = 0; k < n; ++k) kidx[k] = k;
+  const double target = n / 2 + depth / beta;
+  double lo = 0.5, hi = 1.0;
+  for (int it = 0; it < 80; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (eval_scalar(kw, kidx, mid) < target ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+// Opening: D_ijk = ±(opening/2)·c·κ(ū_i)·τ_v(v̄_j)·τ_w(k)·S_j, F⁻ side (u < 1/2, the +S side) towards +S, into
+// L.offset (L.split's knots). gv: the Greville abscissae of kv (#m); Sj: unit S at them; minus_plane: the last
+// control plane of F⁻; k_bottom: the w index with B_k(bottom_w) = 1. Throws when the opened lattice folds over.
+void build_opening(LocalLattice& L, const IncisionParams& p, const KnotVector& kv, const std::vector<double>& gv,
+                   const std::vector<glm::dvec3>& Sj, int minus_plane, int k_bottom) {
+  const int m = static_cast<int>(gv.size());
+  const glm::ivec3 cnt = L.split.control_counts();
+  const std::vector<double> gu = L.split.knots(0).greville(), gww = L.split.knots(2).greville();
+  std::vector<double> tau_v(m), tau_w(cnt.z, 0.0);
+  for (int j = 0; j < m; ++j) tau_v[j] = std::sin(M_PI * std::clamp(gv[j], 0.0, 1.0));
+  tau_v.front() = tau_v.back() = 0.0;
+  for (int k = 0; k < std::min(k_bottom, cnt.z); ++k)
+    tau_w[k] = std::clamp((L.bottom_w - gww[k]) / (L.bottom_w - 0.5), 0.0, 1.0);
+  // Normalise so the gap at G(1/2) (u = 1/2∓, v = w = 1/2) is `opening`.
+  const double sv = eval_scalar(kv, tau_v, 0.5), sw = eval_scalar(L.split.knots(2), tau_w, 0.5);
+  const double scale = (sv > 0.0 && sw > 0.0) ? 0.5 * p.opening / (sv * sw) : 0.0;
+  std::vector<glm::dvec3> dcp(L.split.control_points().size(), glm::dvec3(0.0));
+  L.offset = TrivariateBSpline<glm::dvec3>(L.split.knots(0), L.split.knots(1), L.split.knots(2), dcp);
+  for (int k = 0; k < cnt.z; ++k)
+    for (int j = 0; j < cnt.y; ++j)
+      for (int i = 0; i < cnt.x; ++i) {
+        const double sign = i <= minus_plane ? 1.0 : -1.0;
+        L.offset.control_point(i, j, k) = sign * scale * kernel_u(p.kernel, gu[i] - 0.5) * tau_v[j] * tau_w[k] * Sj[j];
+      }
+  // Fold-over check (seed Theorem 6): along u the opened control points must keep their order across S.
+  for (int k = 0; k < cnt.z; ++k)
+    for (int j = 0; j < cnt.y; ++j)
+      for (int i = 0; i + 1 < cnt.x; ++i) {
+        const glm::dvec3 a = L.split.control_point(i, j, k) + L.offset.control_point(i, j, k);
+        const glm::dvec3 b = L.split.control_point(i + 1, j, k) + L.offset.control_point(i + 1, j, k);
+        if (glm::dot(b - a, Sj[j]) > 1e-9 * p.width)
+          throw std::invalid_argument("opening: " + std::to_string(p.opening) + " is too wide for width " +
+                                      std::to_string(p.width) + " (the opened lattice folds over; seed Theorem 6)");
+      }
+}
+
+// Frame samples for the inversion's initial guess: 8·m + 1 values of v, uniform in [0, 1].
+void sample_frame(LocalLattice& L, const IncisionFrame& frame, int m) {
+  const int K = 8 * m + 1;
+  for (int s = 0; s < K; ++s) {
+    const double v = double(s) / (K - 1);
+    glm::dvec3 g, sv3, nn;
+    frame_at(frame, v, g, sv3, nn);
+    const glm::dvec3 dg = frame.generator.derivatives(v, 1)[1];
+    L.sample_t.push_back(glm::normalize(dg));
+    L.sample_speed.push_back(glm::length(dg));
+    L.sample_v.push_back(v);
+    L.sample_g.push_back(g);
+    L.sample_s.push_back(sv3);
+    L.sample_n.push_back(nn);
+  }
+}
+}  // namespace
+
+LocalLattice build_local_lattice(const IncisionFrame& frame, const IncisionParams& p) {
+  const glm::ivec3 controls = lattice_controls(frame, p);
+  const int o = p.order, l = controls.x, m = controls.y, n = controls.z;
   LocalLattice L{p,
                  {l, m, n},
                  0.0,
@@ -102,21 +189,6 @@ LocalLattice build_local_lattice(const IncisionFrame& frame, const IncisionParam
   L.half_height = std::max(4.0 / 3.0 * p.depth, 0.5 * p.width);  // reaches 1/3 below the depth, and above the sag
   L.beta = L.half_height / hn;
 
-  // Frame at v: G, unit T, unit N ⊥ T, S = T × N.
-  auto frame_at = [&](double v, glm::dvec3& g, glm::dvec3& s, glm::dvec3& nn) {
-    const std::vector<glm::dvec3> d = frame.generator.derivatives(v, 1);
-    g = d[0];
-    const double tl = glm::length(d[1]);
-    glm::dvec3 nv = frame.normal.eval(v);
-    if (!(tl > 0.0) || !finite3(nv)) throw std::invalid_argument("stroke: the fitted generator curve is degenerate");
-    const glm::dvec3 tt = d[1] / tl;
-    nv -= glm::dot(nv, tt) * tt;
-    const double nl = glm::length(nv);
-    if (!(nl > 1e-9)) throw std::invalid_argument("stroke: the surface normals run along the stroke");
-    nn = nv / nl;
-    s = glm::cross(tt, nn);
-  };
-
   const KnotVector ku = KnotVector::clamped_uniform(o, l), kv = KnotVector::clamped_uniform(o, m),
                    kw = KnotVector::clamped_uniform(o, n);
   const std::vector<double> gv = kv.greville();
@@ -125,7 +197,7 @@ LocalLattice build_local_lattice(const IncisionFrame& frame, const IncisionParam
   L.base = TrivariateBSpline<glm::dvec3>(ku, kv, kw, std::vector<glm::dvec3>(cps.size()));
   for (int j = 0; j < m; ++j) {
     glm::dvec3 g, s, nn;
-    frame_at(gv[j], g, s, nn);
+    frame_at(frame, gv[j], g, s, nn);
     Sj[j] = s, Gj[j] = g, aS[j] = L.alpha * s, bN[j] = L.beta * nn;
     for (int k = 0; k < n; ++k)
       for (int i = 0; i < l; ++i)
@@ -137,17 +209,7 @@ LocalLattice build_local_lattice(const IncisionFrame& frame, const IncisionParam
   for (int k = 0; k < n; ++k) cw[k] = hn - k;
   L.g_hat.emplace(kv, Gj), L.s_hat.emplace(kv, aS), L.n_hat.emplace(kv, bN);
   L.a_of_u.emplace(ku, au), L.c_of_w.emplace(kw, cw);
-
-  // The cut's bottom: F(1/2, v, w) = Σ_j B_j(v)(G_j − (g(w) − ⌊n/2⌋)·β·N_j) with g(w) = Σ_k B_k(w)·k (monotone).
-  std::vector<double> kidx(n);
-  for (int k = 0; k < n; ++k) kidx[k] = k;
-  const double target = hn + p.depth / L.beta;
-  double lo = 0.5, hi = 1.0;
-  for (int it = 0; it < 80; ++it) {
-    const double mid = 0.5 * (lo + hi);
-    (eval_scalar(kw, kidx, mid) < target ? lo : hi) = mid;
-  }
-  L.bottom_w = 0.5 * (lo + hi);
+  L.bottom_w = cut_bottom_w(kw, n, p.depth, L.beta);
 
   // Discontinuity at u = 1/2 (order knots) and C⁰ at the bottom (order − 1 knots) so the opening ends there exactly.
   L.split = L.base;
@@ -159,50 +221,8 @@ LocalLattice build_local_lattice(const IncisionFrame& frame, const IncisionParam
   while (first_b < static_cast<int>(tw.size()) && tw[first_b] < L.bottom_w - 1e-14) ++first_b;
   const int k_bottom = first_b - 1;  // B_{k_bottom}(bottom_w) = 1
 
-  // Opening: D_ijk = ±(opening/2)·c·κ(ū_i)·τ_v(v̄_j)·τ_w(k)·S_j, F⁻ side (u < 1/2, the +S side) towards +S.
-  const glm::ivec3 cnt = L.split.control_counts();
-  const std::vector<double> gu = L.split.knots(0).greville(), gww = L.split.knots(2).greville();
-  std::vector<double> tau_v(m), tau_w(cnt.z, 0.0);
-  for (int j = 0; j < m; ++j) tau_v[j] = std::sin(M_PI * std::clamp(gv[j], 0.0, 1.0));
-  tau_v.front() = tau_v.back() = 0.0;
-  for (int k = 0; k < std::min(k_bottom, cnt.z); ++k)
-    tau_w[k] = std::clamp((L.bottom_w - gww[k]) / (L.bottom_w - 0.5), 0.0, 1.0);
-  // Normalise so the gap at G(1/2) (u = 1/2∓, v = w = 1/2) is `opening`.
-  const double sv = eval_scalar(kv, tau_v, 0.5), sw = eval_scalar(L.split.knots(2), tau_w, 0.5);
-  const double scale = (sv > 0.0 && sw > 0.0) ? 0.5 * p.opening / (sv * sw) : 0.0;
-  std::vector<glm::dvec3> dcp(L.split.control_points().size(), glm::dvec3(0.0));
-  L.offset = TrivariateBSpline<glm::dvec3>(L.split.knots(0), L.split.knots(1), L.split.knots(2), dcp);
-  for (int k = 0; k < cnt.z; ++k)
-    for (int j = 0; j < cnt.y; ++j)
-      for (int i = 0; i < cnt.x; ++i) {
-        const double sign = i <= disc.minus_plane ? 1.0 : -1.0;
-        L.offset.control_point(i, j, k) = sign * scale * kernel_u(p.kernel, gu[i] - 0.5) * tau_v[j] * tau_w[k] * Sj[j];
-      }
-  // Fold-over check (seed Theorem 6): along u the opened control points must keep their order across S.
-  for (int k = 0; k < cnt.z; ++k)
-    for (int j = 0; j < cnt.y; ++j)
-      for (int i = 0; i + 1 < cnt.x; ++i) {
-        const glm::dvec3 a = L.split.control_point(i, j, k) + L.offset.control_point(i, j, k);
-        const glm::dvec3 b = L.split.control_point(i + 1, j, k) + L.offset.control_point(i + 1, j, k);
-        if (glm::dot(b - a, Sj[j]) > 1e-9 * p.width)
-          throw std::invalid_argument("opening: " + std::to_string(p.opening) + " is too wide for width " +
-                                      std::to_string(p.width) + " (the opened lattice folds over; seed Theorem 6)");
-      }
-
-  // Frame samples for the inversion's initial guess.
-  const int K = 8 * m + 1;
-  for (int s = 0; s < K; ++s) {
-    const double v = double(s) / (K - 1);
-    glm::dvec3 g, sv3, nn;
-    frame_at(v, g, sv3, nn);
-    const glm::dvec3 dg = frame.generator.derivatives(v, 1)[1];
-    L.sample_t.push_back(glm::normalize(dg));
-    L.sample_speed.push_back(glm::length(dg));
-    L.sample_v.push_back(v);
-    L.sample_g.push_back(g);
-    L.sample_s.push_back(sv3);
-    L.sample_n.push_back(nn);
-  }
+  build_opening(L, p, kv, gv, Sj, disc.minus_plane, k_bottom);
+  sample_frame(L, frame, m);
   return L;
 }
 

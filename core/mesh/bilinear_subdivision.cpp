@@ -2,13 +2,12 @@
 #include "core/mesh/bilinear_subdivision.h"
 
 #include <opensubdiv/far/primvarRefiner.h>
-#include <opensubdiv/far/topologyDescriptor.h>
-#include <opensubdiv/far/topologyRefinerFactory.h>
 
 #include <memory>
 #include <stdexcept>
 
 #include "core/mesh/mesh_io.h"
+#include "core/mesh/osd_topology.h"
 
 namespace trispline::core {
 
@@ -16,13 +15,7 @@ namespace {
 
 namespace Far = OpenSubdiv::Far;
 namespace Sdc = OpenSubdiv::Sdc;
-
-// Primvar buffer element for Far::PrimvarRefinerReal<double>.
-struct OsdPoint {
-  glm::dvec3 p{0.0};
-  void Clear(void* = nullptr) { p = glm::dvec3(0.0); }
-  void AddWithWeight(const OsdPoint& src, double w) { p += w * src.p; }
-};
+using OsdPoint = osd::Primvar<glm::dvec3>;
 
 }  // namespace
 
@@ -30,24 +23,15 @@ TriMesh subdivide_bilinear(const TriMesh& mesh, int level) {
   if (level < 0) throw std::invalid_argument("subdivide_bilinear: level must be >= 0");
   if (level == 0) return mesh;
   const int nv = static_cast<int>(mesh.positions.size());
-  const int nf = static_cast<int>(mesh.triangles.size());
-  std::vector<int> verts_per_face(static_cast<std::size_t>(nf), 3);
-  std::vector<Far::Index> indices;
-  indices.reserve(3 * static_cast<std::size_t>(nf));
+  std::vector<int> indices;
+  indices.reserve(3 * mesh.triangles.size());
   for (const auto& t : mesh.triangles) {
     indices.push_back(static_cast<Far::Index>(t.x));
     indices.push_back(static_cast<Far::Index>(t.y));
     indices.push_back(static_cast<Far::Index>(t.z));
   }
-  Far::TopologyDescriptor desc;
-  desc.numVertices = nv;
-  desc.numFaces = nf;
-  desc.numVertsPerFace = verts_per_face.data();
-  desc.vertIndicesPerFace = indices.data();
-  Sdc::Options sdc;
-  sdc.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
-  using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
-  std::unique_ptr<Far::TopologyRefiner> refiner(Factory::Create(desc, Factory::Options(Sdc::SCHEME_BILINEAR, sdc)));
+  const std::unique_ptr<Far::TopologyRefiner> refiner =
+      osd::triangle_refiner(nv, indices, Sdc::SCHEME_BILINEAR, Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
   if (!refiner) throw std::runtime_error("subdivide_bilinear: OpenSubdiv could not build the topology");
   refiner->RefineUniform(Far::TopologyRefiner::UniformOptions(level));
 

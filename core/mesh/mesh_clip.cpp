@@ -246,57 +246,74 @@ std::vector<int> mesh_nodes_in_load_order(const tinygltf::Model& model, const st
 
 }  // namespace
 
-std::shared_ptr<const MeshClip> MeshClip::load(const std::filesystem::path& path, const std::string& clip) {
-  const TriMesh rest = load_mesh(path);  // MeshIoError for file problems; the vertices the clip must reproduce
-  const tinygltf::Model model = gltf_read::read_model(path);  // checked: indices in range, nodes a forest
-  const std::string file = quoted_path(path);
-  // Everything decoded or held besides the vertices is charged to one budget, before it is allocated.
+namespace {
+
+// The steps of MeshClip::load, in order; each throws as load() documents. Everything decoded or held besides the
+// vertices is charged to one budget (values_left), before it is allocated.
+struct ClipReader {
+  const tinygltf::Model& model;
+  const std::filesystem::path& path;
+  const std::string file;   // quoted path, for messages
+  const std::string where;  // file and clip, for messages about the clip
+  MeshClip::Impl& im;
   std::size_t values_left = gltf_read::kMaxClipValues;
-  auto over_budget = [&](const std::string& what) {
+  bool file_normals = true;
+  std::size_t total_vertices = 0;
+
+  MeshIoError over_budget(const std::string& what) const {
     return MeshIoError(file + ": the clip's " + what + " need more than " + std::to_string(gltf_read::kMaxClipValues) +
                        " numbers (the limit for a clip)");
-  };
-  auto charge = [&](std::size_t items, std::size_t per_item, const std::string& what) {
+  }
+  void charge(std::size_t items, std::size_t per_item, const std::string& what) {
     if (per_item != 0 && items > values_left / per_item) throw over_budget(what);
     values_left -= items * per_item;
-  };
-  const std::vector<std::string> names = animation_names(model);
-  const int ai = pick_animation(names, clip, file);
-  const std::string where = file + " clip '" + names[ai] + "'";
-  if (model.nodes.empty()) throw std::invalid_argument(where + ": the file has no nodes to animate");
+  }
 
-  auto im = std::make_shared<Impl>();
-  // Nodes: rest TRS (or fixed matrix), parents, and an order with parents first.
+  void read_nodes();
+  void read_skins();
+  void read_vertices();
+  void read_instance(int node);
+  std::size_t read_primitive(const tinygltf::Mesh& gm, const tinygltf::Primitive& prim, Instance& in, std::size_t nt,
+                             std::size_t count, std::size_t off);
+  void bind_rest(const Pose& rest_pose);
+  double read_channels(int ai);
+};
+
+// Nodes: rest TRS (or fixed matrix), parents, and an order with parents first.
+void ClipReader::read_nodes() {
   const std::size_t nn = model.nodes.size();
-  im->nodes.resize(nn);
+  im.nodes.resize(nn);
   std::vector<std::vector<int>> kids(nn);
   for (std::size_t i = 0; i < nn; ++i) {
     const auto& n = model.nodes[i];
-    NodeRest& r = im->nodes[i];
+    NodeRest& r = im.nodes[i];
     r.has_matrix = n.matrix.size() == 16;
     if (r.has_matrix) r.matrix = glm::make_mat4(n.matrix.data());
     if (n.translation.size() == 3) r.t = glm::make_vec3(n.translation.data());
     if (n.rotation.size() == 4) r.r = glm::dquat(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]);
     if (n.scale.size() == 3) r.s = glm::make_vec3(n.scale.data());
     for (int c : n.children) {
-      if (c < 0 || c >= static_cast<int>(nn) || im->nodes[c].parent >= 0 || c == static_cast<int>(i))
+      if (c < 0 || c >= static_cast<int>(nn) || im.nodes[c].parent >= 0 || c == static_cast<int>(i))
         throw MeshIoError(file + ": invalid node hierarchy (child index out of range or node with two parents)");
-      im->nodes[c].parent = static_cast<int>(i);
+      im.nodes[c].parent = static_cast<int>(i);
       kids[i].push_back(c);
     }
   }
   for (std::size_t i = 0; i < nn; ++i)
-    if (im->nodes[i].parent < 0) {
+    if (im.nodes[i].parent < 0) {
       std::vector<int> stack{static_cast<int>(i)};
       while (!stack.empty()) {
         const int n = stack.back();
         stack.pop_back();
-        im->node_order.push_back(n);
+        im.node_order.push_back(n);
         stack.insert(stack.end(), kids[n].begin(), kids[n].end());
       }
     }
-  if (im->node_order.size() != nn) throw MeshIoError(file + ": invalid node hierarchy (cycle)");
+  if (im.node_order.size() != nn) throw MeshIoError(file + ": invalid node hierarchy (cycle)");
+}
 
+void ClipReader::read_skins() {
+  const std::size_t nn = model.nodes.size();
   for (const auto& s : model.skins) {
     Skin sk;
     sk.joints = s.joints;
@@ -312,152 +329,162 @@ std::shared_ptr<const MeshClip> MeshClip::load(const std::filesystem::path& path
       require_finite(m, file + ": non-finite inverse bind matrix");
       for (std::size_t j = 0; j < sk.joints.size(); ++j) sk.ibm[j] = glm::make_mat4(m.data() + 16 * j);
     }
-    im->skins.push_back(std::move(sk));
+    im.skins.push_back(std::move(sk));
   }
+}
 
-  // Vertices, exactly as read_gltf_objects concatenates them: mesh nodes in load order, surface primitives in order.
-  bool file_normals = true;
-  im->infl_begin.push_back(0);
-  std::size_t total_vertices = 0;
-  for (int node : mesh_nodes_in_load_order(model, file)) {
-    const auto& gn = model.nodes[node];
-    if (gn.mesh >= static_cast<int>(model.meshes.size())) throw MeshIoError(file + ": node refers to a missing mesh");
-    const auto& gm = model.meshes[gn.mesh];
-    Instance in;
-    in.node = node;
-    in.skin = gn.skin;
-    if (in.skin >= static_cast<int>(im->skins.size())) throw MeshIoError(file + ": node refers to a missing skin");
-    in.begin = im->base_pos.size();
-    std::size_t nt = 0, count = 0;
-    bool first = true;
-    for (const auto& prim : gm.primitives) {
-      if (!is_surface(prim)) continue;
-      if (!first && prim.targets.size() != nt)
-        throw MeshIoError(file + ": mesh '" + gm.name + "' primitives have different morph target counts");
-      nt = prim.targets.size(), first = false;
-      const auto pos = prim.attributes.find("POSITION");
-      if (pos == prim.attributes.end()) throw MeshIoError(file + ": primitive without POSITION");
-      const std::size_t n = gltf_read::accessor_layout(model, pos->second, "POSITION", path).count;
-      if (n > gltf_read::kMaxMeshFileVertices - total_vertices)
-        throw MeshIoError(file + ": the file's meshes have more than " +
-                          std::to_string(gltf_read::kMaxMeshFileVertices) + " vertices (the limit for mesh files)");
-      total_vertices += n;
-      count += n;
-    }
-    charge(nt, count * 6, "morph targets");  // dpos and dnrm: 2 × 3 doubles per target and vertex
-    in.dpos.assign(nt * count, glm::dvec3(0.0));
-    in.dnrm.assign(nt * count, glm::dvec3(0.0));
-    in.default_weights.assign(nt, 0.0);
-    const auto& dw = gn.weights.empty() ? gm.weights : gn.weights;
-    for (std::size_t k = 0; k < nt && k < dw.size(); ++k) in.default_weights[k] = dw[k];
-    std::size_t off = 0;
-    for (const auto& prim : gm.primitives) {
-      if (!is_surface(prim)) continue;
-      auto attr = [&](const std::map<std::string, int>& attrs, const std::string& key) {
-        const auto it = attrs.find(key);
-        return it == attrs.end() ? -1 : it->second;
-      };
-      const int pi = attr(prim.attributes, "POSITION");
-      const std::size_t n = gltf_read::accessor_layout(model, pi, "POSITION", path).count;  // counted above
-      // An attribute, morph delta, joint or weight accessor of this primitive: exactly n elements.
-      auto require_n = [&](int index, const std::string& what) {
-        const std::size_t c = gltf_read::accessor_layout(model, index, what, path).count;
-        if (c != n)
-          throw MeshIoError(file + ": mesh '" + gm.name + "': " + what + " has " + std::to_string(c) +
-                            " elements, POSITION has " + std::to_string(n));
-      };
-      const auto pos = gltf_read::read_accessor(model, pi, 3, "POSITION", path, n, false);
-      require_finite(pos, file + ": non-finite POSITION value");
-      for (std::size_t i = 0; i < n; ++i) im->base_pos.push_back(glm::make_vec3(pos.data() + 3 * i));
-      const int ni = attr(prim.attributes, "NORMAL");
-      if (ni >= 0 && file_normals) {
-        require_n(ni, "NORMAL");
-        const auto nrm = gltf_read::read_accessor(model, ni, 3, "NORMAL", path, n, false);
-        require_finite(nrm, file + ": non-finite NORMAL value");
-        for (std::size_t i = 0; i < n; ++i) im->base_nrm.push_back(glm::make_vec3(nrm.data() + 3 * i));
-      }
-      file_normals = file_normals && ni >= 0 && im->base_nrm.size() == im->base_pos.size();
-      for (std::size_t k = 0; k < nt; ++k) {
-        for (const char* key : {"POSITION", "NORMAL"}) {
-          const int ti = attr(prim.targets[k], key);
-          if (ti < 0) continue;
-          const std::string what = std::string("morph target ") + key;
-          require_n(ti, what);
-          const auto d = gltf_read::read_accessor(model, ti, 3, what, path, n);
-          require_finite(d, file + ": non-finite morph target " + key);
-          auto& dst = key[0] == 'P' ? in.dpos : in.dnrm;
-          for (std::size_t i = 0; i < n; ++i) dst[k * count + off + i] = glm::make_vec3(d.data() + 3 * i);
-        }
-      }
-      std::vector<std::vector<std::pair<int, double>>> vi(n);
-      for (int set = 0; in.skin >= 0; ++set) {
-        const int ji = attr(prim.attributes, "JOINTS_" + std::to_string(set));
-        const int wi = attr(prim.attributes, "WEIGHTS_" + std::to_string(set));
-        if (ji < 0 || wi < 0) break;
-        require_n(ji, "JOINTS_" + std::to_string(set));
-        require_n(wi, "WEIGHTS_" + std::to_string(set));
-        charge(n, 16, "skin influences");  // 4 joints + 4 weights decoded, up to 4 influences of 2 numbers kept
-        const auto jv = gltf_read::read_accessor(model, ji, 4, "JOINTS", path, n);
-        const auto wv = gltf_read::read_accessor(model, wi, 4, "WEIGHTS", path, n);
-        require_finite(wv, file + ": non-finite skin weight");
-        for (std::size_t q = 0; q < 4 * n; ++q) {
-          if (wv[q] == 0) continue;
-          if (!(jv[q] >= 0 && jv[q] < static_cast<double>(im->skins[in.skin].joints.size())))
-            throw MeshIoError(file + ": skin joint index out of range in JOINTS_" + std::to_string(set));
-          vi[q / 4].push_back({static_cast<int>(jv[q]), wv[q]});
-        }
-      }
-      for (const auto& list : vi) {
-        im->infl.insert(im->infl.end(), list.begin(), list.end());
-        im->infl_begin.push_back(im->infl.size());
-      }
-      off += n;
-    }
-    in.end = im->base_pos.size();
-    im->instances.push_back(std::move(in));
+// Vertices, exactly as read_gltf_objects concatenates them: mesh nodes in load order, surface primitives in order.
+void ClipReader::read_vertices() {
+  im.infl_begin.push_back(0);
+  for (int node : mesh_nodes_in_load_order(model, file)) read_instance(node);
+  if (!file_normals) im.base_nrm.clear();
+}
+
+void ClipReader::read_instance(int node) {
+  const auto& gn = model.nodes[node];
+  if (gn.mesh >= static_cast<int>(model.meshes.size())) throw MeshIoError(file + ": node refers to a missing mesh");
+  const auto& gm = model.meshes[gn.mesh];
+  Instance in;
+  in.node = node;
+  in.skin = gn.skin;
+  if (in.skin >= static_cast<int>(im.skins.size())) throw MeshIoError(file + ": node refers to a missing skin");
+  in.begin = im.base_pos.size();
+  std::size_t nt = 0, count = 0;
+  bool first = true;
+  for (const auto& prim : gm.primitives) {
+    if (!is_surface(prim)) continue;
+    if (!first && prim.targets.size() != nt)
+      throw MeshIoError(file + ": mesh '" + gm.name + "' primitives have different morph target counts");
+    nt = prim.targets.size(), first = false;
+    const auto pos = prim.attributes.find("POSITION");
+    if (pos == prim.attributes.end()) throw MeshIoError(file + ": primitive without POSITION");
+    const std::size_t n = gltf_read::accessor_layout(model, pos->second, "POSITION", path).count;
+    if (n > gltf_read::kMaxMeshFileVertices - total_vertices)
+      throw MeshIoError(file + ": the file's meshes have more than " +
+                        std::to_string(gltf_read::kMaxMeshFileVertices) + " vertices (the limit for mesh files)");
+    total_vertices += n;
+    count += n;
   }
-  if (!file_normals) im->base_nrm.clear();
-  if (im->base_pos.size() != rest.positions.size())
-    throw MeshIoError(file + ": clip mesh has " + std::to_string(im->base_pos.size()) + " vertices, load_mesh " +
-                      std::to_string(rest.positions.size()));
-  im->triangles = rest.triangles;
+  charge(nt, count * 6, "morph targets");  // dpos and dnrm: 2 × 3 doubles per target and vertex
+  in.dpos.assign(nt * count, glm::dvec3(0.0));
+  in.dnrm.assign(nt * count, glm::dvec3(0.0));
+  in.default_weights.assign(nt, 0.0);
+  const auto& dw = gn.weights.empty() ? gm.weights : gn.weights;
+  for (std::size_t k = 0; k < nt && k < dw.size(); ++k) in.default_weights[k] = dw[k];
+  std::size_t off = 0;
+  for (const auto& prim : gm.primitives) {
+    if (!is_surface(prim)) continue;
+    off += read_primitive(gm, prim, in, nt, count, off);
+  }
+  in.end = im.base_pos.size();
+  im.instances.push_back(std::move(in));
+}
 
-  // Rest transforms (node TRS): load_mesh's node transforms, and the rest skin matrices that skinning is made
-  // relative to, so the clip's rest pose is load_mesh's mesh even when the rest pose is not the bind pose.
-  const Pose rest_pose = im->rest_pose();
-  const std::vector<glm::dmat4> g0 = im->globals(rest_pose);
-  for (Instance& in : im->instances) {
+// One surface primitive of `in` at vertex offset `off` (of `count`) in the instance: positions, normals, nt morph
+// deltas, skin influences. Returns its vertex count.
+std::size_t ClipReader::read_primitive(const tinygltf::Mesh& gm, const tinygltf::Primitive& prim, Instance& in,
+                                       std::size_t nt, std::size_t count, std::size_t off) {
+  auto attr = [&](const std::map<std::string, int>& attrs, const std::string& key) {
+    const auto it = attrs.find(key);
+    return it == attrs.end() ? -1 : it->second;
+  };
+  const int pi = attr(prim.attributes, "POSITION");
+  const std::size_t n = gltf_read::accessor_layout(model, pi, "POSITION", path).count;  // counted above
+  // An attribute, morph delta, joint or weight accessor of this primitive: exactly n elements.
+  auto require_n = [&](int index, const std::string& what) {
+    const std::size_t c = gltf_read::accessor_layout(model, index, what, path).count;
+    if (c != n)
+      throw MeshIoError(file + ": mesh '" + gm.name + "': " + what + " has " + std::to_string(c) +
+                        " elements, POSITION has " + std::to_string(n));
+  };
+  const auto pos = gltf_read::read_accessor(model, pi, 3, "POSITION", path, n, false);
+  require_finite(pos, file + ": non-finite POSITION value");
+  for (std::size_t i = 0; i < n; ++i) im.base_pos.push_back(glm::make_vec3(pos.data() + 3 * i));
+  const int ni = attr(prim.attributes, "NORMAL");
+  if (ni >= 0 && file_normals) {
+    require_n(ni, "NORMAL");
+    const auto nrm = gltf_read::read_accessor(model, ni, 3, "NORMAL", path, n, false);
+    require_finite(nrm, file + ": non-finite NORMAL value");
+    for (std::size_t i = 0; i < n; ++i) im.base_nrm.push_back(glm::make_vec3(nrm.data() + 3 * i));
+  }
+  file_normals = file_normals && ni >= 0 && im.base_nrm.size() == im.base_pos.size();
+  for (std::size_t k = 0; k < nt; ++k) {
+    for (const char* key : {"POSITION", "NORMAL"}) {
+      const int ti = attr(prim.targets[k], key);
+      if (ti < 0) continue;
+      const std::string what = std::string("morph target ") + key;
+      require_n(ti, what);
+      const auto d = gltf_read::read_accessor(model, ti, 3, what, path, n);
+      require_finite(d, file + ": non-finite morph target " + key);
+      auto& dst = key[0] == 'P' ? in.dpos : in.dnrm;
+      for (std::size_t i = 0; i < n; ++i) dst[k * count + off + i] = glm::make_vec3(d.data() + 3 * i);
+    }
+  }
+  std::vector<std::vector<std::pair<int, double>>> vi(n);
+  for (int set = 0; in.skin >= 0; ++set) {
+    const int ji = attr(prim.attributes, "JOINTS_" + std::to_string(set));
+    const int wi = attr(prim.attributes, "WEIGHTS_" + std::to_string(set));
+    if (ji < 0 || wi < 0) break;
+    require_n(ji, "JOINTS_" + std::to_string(set));
+    require_n(wi, "WEIGHTS_" + std::to_string(set));
+    charge(n, 16, "skin influences");  // 4 joints + 4 weights decoded, up to 4 influences of 2 numbers kept
+    const auto jv = gltf_read::read_accessor(model, ji, 4, "JOINTS", path, n);
+    const auto wv = gltf_read::read_accessor(model, wi, 4, "WEIGHTS", path, n);
+    require_finite(wv, file + ": non-finite skin weight");
+    for (std::size_t q = 0; q < 4 * n; ++q) {
+      if (wv[q] == 0) continue;
+      if (!(jv[q] >= 0 && jv[q] < static_cast<double>(im.skins[in.skin].joints.size())))
+        throw MeshIoError(file + ": skin joint index out of range in JOINTS_" + std::to_string(set));
+      vi[q / 4].push_back({static_cast<int>(jv[q]), wv[q]});
+    }
+  }
+  for (const auto& list : vi) {
+    im.infl.insert(im.infl.end(), list.begin(), list.end());
+    im.infl_begin.push_back(im.infl.size());
+  }
+  return n;
+}
+
+// Rest transforms (node TRS): load_mesh's node transforms, and the rest skin matrices that skinning is made
+// relative to, so the clip's rest pose is load_mesh's mesh even when the rest pose is not the bind pose.
+void ClipReader::bind_rest(const Pose& rest_pose) {
+  const std::vector<glm::dmat4> g0 = im.globals(rest_pose);
+  for (Instance& in : im.instances) {
     in.rest_xf = g0[in.node];
     if (in.skin < 0) continue;
-    const Skin& sk = im->skins[in.skin];
+    const Skin& sk = im.skins[in.skin];
     bool bind_is_rest = true;
     for (std::size_t v = in.begin; v < in.end; ++v) {
       glm::dmat4 b(0.0);
-      for (std::size_t q = im->infl_begin[v]; q < im->infl_begin[v + 1]; ++q)
-        b += im->infl[q].second * (g0[sk.joints[im->infl[q].first]] * sk.ibm[im->infl[q].first]);
+      for (std::size_t q = im.infl_begin[v]; q < im.infl_begin[v + 1]; ++q)
+        b += im.infl[q].second * (g0[sk.joints[im.infl[q].first]] * sk.ibm[im.infl[q].first]);
       double scale = 0;  // singular relative to the matrix's size
       for (int c = 0; c < 3; ++c) scale = std::max(scale, glm::length(glm::dvec3(b[c])));
       if (!(std::abs(glm::determinant(glm::dmat3(b))) > 1e-12 * scale * scale * scale) &&
-          im->infl_begin[v] < im->infl_begin[v + 1])
+          im.infl_begin[v] < im.infl_begin[v + 1])
         throw std::invalid_argument(where + ": vertex " + std::to_string(v) + " has a singular rest skin matrix");
       for (int c = 0; c < 4; ++c)
         for (int r = 0; r < 4; ++r) bind_is_rest = bind_is_rest && std::abs(b[c][r] - (c == r)) < 1e-12;
-      in.rest_skin_inv.push_back(im->infl_begin[v] < im->infl_begin[v + 1] ? glm::inverse(b) : glm::dmat4(1.0));
+      in.rest_skin_inv.push_back(im.infl_begin[v] < im.infl_begin[v + 1] ? glm::inverse(b) : glm::dmat4(1.0));
     }
     if (bind_is_rest) in.rest_skin_inv.clear();
   }
+}
 
-  // Channels (§3.11): only translation/rotation/scale/weights; a channel without a node is ignored (spec).
+// Channels (§3.11) of animation ai: only translation/rotation/scale/weights; a channel without a node is ignored
+// (spec). Returns the clip's duration in seconds.
+double ClipReader::read_channels(int ai) {
+  const std::size_t nn = model.nodes.size();
   std::vector<char> moves(nn, 0), morphs(nn, 0);
   auto mark_up = [&](int n) {
-    for (; n >= 0 && !moves[n]; n = im->nodes[n].parent) moves[n] = 1;
+    for (; n >= 0 && !moves[n]; n = im.nodes[n].parent) moves[n] = 1;
   };
-  for (const Instance& in : im->instances) {
+  for (const Instance& in : im.instances) {
     if (!in.default_weights.empty()) morphs[in.node] = 1;
     if (in.skin < 0)
       mark_up(in.node);
     else
-      for (int j : im->skins[in.skin].joints) mark_up(j);
+      for (int j : im.skins[in.skin].joints) mark_up(j);
   }
   const auto& anim = model.animations[ai];
   bool animates_mesh = false;
@@ -492,7 +519,7 @@ std::shared_ptr<const MeshClip> MeshClip::load(const std::filesystem::path& path
       out.path = Path::Weights;
     else
       continue;
-    if (out.path != Path::Weights && im->nodes[out.node].has_matrix)
+    if (out.path != Path::Weights && im.nodes[out.node].has_matrix)
       throw std::invalid_argument(at + " animates a node that has a matrix (glTF 2.0 §3.5.3 forbids it)");
     if (ch.sampler < 0 || ch.sampler >= static_cast<int>(anim.samplers.size()))
       throw std::invalid_argument(at + " refers to a missing sampler");
@@ -509,11 +536,37 @@ std::shared_ptr<const MeshClip> MeshClip::load(const std::filesystem::path& path
     AnimSampler smp = read_sampler(model, as, width, comps, out.path == Path::Rotation, at, path, values_left);
     duration = std::max(duration, smp.times.back());
     animates_mesh = animates_mesh || (out.path == Path::Weights ? morphs[out.node] : moves[out.node]);
-    out.sampler = static_cast<int>(im->samplers.size());
-    im->samplers.push_back(std::move(smp));
-    im->channels.push_back(out);
+    out.sampler = static_cast<int>(im.samplers.size());
+    im.samplers.push_back(std::move(smp));
+    im.channels.push_back(out);
   }
   if (!animates_mesh) throw std::invalid_argument(where + ": the clip animates no mesh that load_mesh includes");
+  return duration;
+}
+
+}  // namespace
+
+std::shared_ptr<const MeshClip> MeshClip::load(const std::filesystem::path& path, const std::string& clip) {
+  const TriMesh rest = load_mesh(path);  // MeshIoError for file problems; the vertices the clip must reproduce
+  const tinygltf::Model model = gltf_read::read_model(path);  // checked: indices in range, nodes a forest
+  const std::string file = quoted_path(path);
+  const std::vector<std::string> names = animation_names(model);
+  const int ai = pick_animation(names, clip, file);
+  const std::string where = file + " clip '" + names[ai] + "'";
+  if (model.nodes.empty()) throw std::invalid_argument(where + ": the file has no nodes to animate");
+
+  auto im = std::make_shared<Impl>();
+  ClipReader reader{model, path, file, where, *im};
+  reader.read_nodes();
+  reader.read_skins();
+  reader.read_vertices();
+  if (im->base_pos.size() != rest.positions.size())
+    throw MeshIoError(file + ": clip mesh has " + std::to_string(im->base_pos.size()) + " vertices, load_mesh " +
+                      std::to_string(rest.positions.size()));
+  im->triangles = rest.triangles;
+  const Pose rest_pose = im->rest_pose();
+  reader.bind_rest(rest_pose);
+  const double duration = reader.read_channels(ai);
 
   // Self-check: the rest pose must reproduce load_mesh (guards the two readers against drifting apart).
   std::vector<glm::dvec3> pos, nrm;

@@ -14,6 +14,10 @@ namespace trispline::core {
 
 namespace {
 
+// Neighbour offsets in cyclic order +u, +v, −u, −v (the four springs of a mass).
+constexpr int kSpringDi[4] = {1, 0, -1, 0};
+constexpr int kSpringDj[4] = {0, 1, 0, -1};
+
 bool finite3(const glm::dvec3& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
 
 void require(bool ok, const std::string& what) {
@@ -27,14 +31,11 @@ double angle_deg(const glm::dvec3& a, const glm::dvec3& b) {
 }  // namespace
 
 double contact_roughness_deg(const std::vector<glm::dvec3>& points, int l, int m, int i, int j) {
-  // Neighbour offsets in cyclic order +u, +v, −u, −v.
-  static constexpr int di[4] = {1, 0, -1, 0};
-  static constexpr int dj[4] = {0, 1, 0, -1};
   const glm::dvec3& p = points[static_cast<size_t>(i + l * j)];
   bool has[4];
   glm::dvec3 d[4];
   for (int q = 0; q < 4; ++q) {
-    const int ni = i + di[q], nj = j + dj[q];
+    const int ni = i + kSpringDi[q], nj = j + kSpringDj[q];
     has[q] = ni >= 0 && ni < l && nj >= 0 && nj < m;
     d[q] = has[q] ? points[static_cast<size_t>(ni + l * nj)] - p : glm::dvec3(0.0);
   }
@@ -56,9 +57,10 @@ double contact_roughness_deg(const std::vector<glm::dvec3>& points, int l, int m
   return worst;
 }
 
-SpringStats relax_contact_surface(std::vector<glm::dvec3>& points, int l, int m,
-                                  const std::vector<glm::dvec3>& directions, const RayCaster* scene,
-                                  const SpringParams& prm) {
+namespace {
+
+void validate_springs(const std::vector<glm::dvec3>& points, int l, int m, const std::vector<glm::dvec3>& directions,
+                      const SpringParams& prm) {
   require(l >= 1 && m >= 1, "grid size l, m must be >= 1");
   const size_t N = static_cast<size_t>(l) * static_cast<size_t>(m);
   require(points.size() == N, "points must have l*m entries");
@@ -75,18 +77,12 @@ SpringStats relax_contact_surface(std::vector<glm::dvec3>& points, int l, int m,
     require(finite3(directions[a]), "non-finite direction");
     require(std::abs(glm::length(directions[a]) - 1.0) <= 1e-6, "directions must be unit vectors");
   }
+}
 
-  SpringStats st;
-  const double M = prm.mass, k = prm.stiffness, rho = prm.damping;
-  const double w_max = std::sqrt(8.0 * k / M);
-  st.dt = 1.0 / w_max;
-  if (rho > 0.0) st.dt = std::min(st.dt, M / rho);
-  const double dt = st.dt;
-
-  const std::vector<glm::dvec3> P0 = points;
-  const auto idx = [l](int i, int j) { return static_cast<size_t>(i + l * j); };
-
-  // Floors along V_P (first hit from above).
+// Floors along V_P (first hit from above): per mass, the lowest offset s along its direction (−∞ = none).
+std::vector<double> spring_floors(const std::vector<glm::dvec3>& P0, const std::vector<glm::dvec3>& directions,
+                                  const RayCaster* scene, const SpringParams& prm, SpringStats& st) {
+  const size_t N = P0.size();
   const double no_floor = -std::numeric_limits<double>::infinity();
   std::vector<double> floor_s(N, no_floor);
   if (scene != nullptr && !scene->empty()) {
@@ -99,8 +95,14 @@ SpringStats relax_contact_surface(std::vector<glm::dvec3>& points, int l, int m,
       }
     }
   }
+  return floor_s;
+}
 
-  // Candidates and active set.
+// Candidates (rougher than the threshold) and the active set around them, in ascending index order.
+std::vector<size_t> active_masses(const std::vector<glm::dvec3>& points, int l, int m, const SpringParams& prm,
+                                  SpringStats& st) {
+  const size_t N = points.size();
+  const auto idx = [l](int i, int j) { return static_cast<size_t>(i + l * j); };
   std::vector<unsigned char> cand(N, 0), active(N, 0);
   for (int j = 0; j < m; ++j)
     for (int i = 0; i < l; ++i)
@@ -123,19 +125,44 @@ SpringStats relax_contact_surface(std::vector<glm::dvec3>& points, int l, int m,
   for (size_t a = 0; a < N; ++a)
     if (active[a]) act.push_back(a);
   st.active = static_cast<int>(act.size());
+  return act;
+}
 
-  // Rest lengths per (mass, neighbour slot).
-  static constexpr int di[4] = {1, 0, -1, 0};
-  static constexpr int dj[4] = {0, 1, 0, -1};
-  std::vector<double> rest(4 * N, 0.0);
+// Rest lengths per (mass, neighbour slot): 4·#masses, 0 where there is no neighbour or rest lengths are zero.
+std::vector<double> rest_lengths(const std::vector<glm::dvec3>& P0, int l, int m, const SpringParams& prm) {
+  const auto idx = [l](int i, int j) { return static_cast<size_t>(i + l * j); };
+  std::vector<double> rest(4 * P0.size(), 0.0);
   if (prm.rest_length_initial)
     for (int j = 0; j < m; ++j)
       for (int i = 0; i < l; ++i)
         for (int q = 0; q < 4; ++q) {
-          const int ni = i + di[q], nj = j + dj[q];
+          const int ni = i + kSpringDi[q], nj = j + kSpringDj[q];
           if (ni >= 0 && ni < l && nj >= 0 && nj < m)
             rest[4 * idx(i, j) + q] = glm::length(P0[idx(ni, nj)] - P0[idx(i, j)]);
         }
+  return rest;
+}
+
+}  // namespace
+
+SpringStats relax_contact_surface(std::vector<glm::dvec3>& points, int l, int m,
+                                  const std::vector<glm::dvec3>& directions, const RayCaster* scene,
+                                  const SpringParams& prm) {
+  validate_springs(points, l, m, directions, prm);
+  const size_t N = static_cast<size_t>(l) * static_cast<size_t>(m);
+
+  SpringStats st;
+  const double M = prm.mass, k = prm.stiffness, rho = prm.damping;
+  const double w_max = std::sqrt(8.0 * k / M);
+  st.dt = 1.0 / w_max;
+  if (rho > 0.0) st.dt = std::min(st.dt, M / rho);
+  const double dt = st.dt;
+
+  const std::vector<glm::dvec3> P0 = points;
+  const auto idx = [l](int i, int j) { return static_cast<size_t>(i + l * j); };
+  const std::vector<double> floor_s = spring_floors(P0, directions, scene, prm, st);
+  const std::vector<size_t> act = active_masses(points, l, m, prm, st);
+  const std::vector<double> rest = rest_lengths(P0, l, m, prm);
 
   // If a mass starts below its floor, lift it onto it first (the constraint holds at all times).
   std::vector<double> s(N, 0.0), v(N, 0.0), acc(N, 0.0);
@@ -160,7 +187,7 @@ SpringStats relax_contact_surface(std::vector<glm::dvec3>& points, int l, int m,
       const int i = static_cast<int>(a % static_cast<size_t>(l)), j = static_cast<int>(a / static_cast<size_t>(l));
       glm::dvec3 f(0.0);
       for (int q = 0; q < 4; ++q) {
-        const int ni = i + di[q], nj = j + dj[q];
+        const int ni = i + kSpringDi[q], nj = j + kSpringDj[q];
         if (ni < 0 || ni >= l || nj < 0 || nj >= m) continue;
         const glm::dvec3 D = points[idx(ni, nj)] - points[a];
         if (prm.rest_length_initial) {

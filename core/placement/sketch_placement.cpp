@@ -120,36 +120,17 @@ double median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-}  // namespace
+// The ray grid of step 2: #nu·nv world points (u fastest) and whether each is a hit (1) or filled (0).
+struct RayGrid {
+  std::vector<glm::dvec3> points;
+  std::vector<unsigned char> hit;
+};
 
-SketchPlacementResult place_along_stroke(const RayCaster& scene_rays, const SketchPlacementParams& p,
-                                         const std::vector<glm::dvec3>& object) {
-  validate(p, object);
-  const std::vector<glm::dvec2> stroke = remove_duplicate_points(p.stroke_px);
-  if (stroke.size() < 2 || !(polyline_length(stroke) > 1e-9))
-    throw PlacementError("stroke", "has zero length (all points coincide)");
-
-  PlacementStats st;
+// 2. rays: depth under the stroke → half-width in pixels; ruled surface R sampled, rays cast, misses filled.
+RayGrid cast_ray_grid(const RayCaster& scene_rays, const SketchPlacementParams& p, const CurveSamples& cs,
+                      PlacementStats& st) {
   const Camera& cam = p.camera;
   const int nu = p.samples_u, nv = p.samples_v;
-  auto clock = Clock::now();
-
-  // 1. fit: C(u) in pixels, sampled uniformly in its arc length.
-  StrokeCurve sc = [&] {
-    try {
-      return fit_stroke_curve(stroke);
-    } catch (const std::invalid_argument& e) {
-      throw PlacementError("stroke", std::string("curve fit failed: ") + e.what());
-    }
-  }();
-  st.curve_order = sc.curve.order();
-  st.curve_controls = static_cast<int>(sc.curve.control_points().size());
-  st.curve_fit_rms_px = sc.rms_px;
-  st.curve_fit_max_px = sc.max_px;
-  const CurveSamples cs = sample_by_arc_length(sc.curve, nu);
-  st.ms_fit = ms_since(clock);
-
-  // 2. rays: depth under the stroke → half-width in pixels; ruled surface R sampled, rays cast, misses filled.
   const glm::dvec3 eye = cam.eye, fwd = cam.forward();
   {
     std::vector<glm::dvec3> origins(static_cast<std::size_t>(nu), eye), dirs;
@@ -181,11 +162,12 @@ SketchPlacementResult place_along_stroke(const RayCaster& scene_rays, const Sket
   }
   const auto hits = scene_rays.intersect_all(std::vector<glm::dvec3>(dirs.size(), eye), dirs);
   std::vector<double> depth(static_cast<std::size_t>(total), 0.0);
-  std::vector<unsigned char> hit(static_cast<std::size_t>(total), 0);
-  for (int g = 0; g < total; ++g)
-    if (hits[g]) {
-      hit[g] = 1;
-      depth[g] = glm::dot(hits[g]->position - eye, fwd);
+  RayGrid g{std::vector<glm::dvec3>(static_cast<std::size_t>(total)),
+            std::vector<unsigned char>(static_cast<std::size_t>(total), 0)};
+  for (int k = 0; k < total; ++k)
+    if (hits[k]) {
+      g.hit[k] = 1;
+      depth[k] = glm::dot(hits[k]->position - eye, fwd);
       ++st.rays_hit;
     }
   st.rays_total = total;
@@ -196,13 +178,16 @@ SketchPlacementResult place_along_stroke(const RayCaster& scene_rays, const Sket
   if (2 * st.rays_hit < total)
     throw PlacementError("stroke", "only " + std::to_string(st.rays_hit) + " of " + std::to_string(total) +
                                        " rays hit the scene (need at least 50%)");
-  fill_missing_depths(depth, hit, nu, nv);
-  std::vector<glm::dvec3> grid(static_cast<std::size_t>(total));
-  for (int g = 0; g < total; ++g)  // hits: exact hit point; misses: on their own ray at the filled view depth
-    grid[g] = hit[g] ? hits[g]->position : eye + dirs[g] * (depth[g] / glm::dot(dirs[g], fwd));
-  st.ms_rays = ms_since(clock);
+  fill_missing_depths(depth, g.hit, nu, nv);
+  for (int k = 0; k < total; ++k)  // hits: exact hit point; misses: on their own ray at the filled view depth
+    g.points[k] = g.hit[k] ? hits[k]->position : eye + dirs[k] * (depth[k] / glm::dot(dirs[k], fwd));
+  return g;
+}
 
-  // 3. surface: S(u,v) = F(u,v,0) re-fitted through the grid.
+// 3. surface: S(u,v) = F(u,v,0) re-fitted through the grid (#nu·nv, u fastest).
+BSplineSurface<glm::dvec3> fit_contact_surface(const std::vector<glm::dvec3>& grid, const SketchPlacementParams& p,
+                                               PlacementStats& st) {
+  const int nu = p.samples_u, nv = p.samples_v;
   const std::vector<double> pu = contact_params_u(grid, nu, nv), pv = contact_params_v(grid, nu, nv);
   std::optional<BSplineSurface<glm::dvec3>> S;
   try {
@@ -217,25 +202,30 @@ SketchPlacementResult place_along_stroke(const RayCaster& scene_rays, const Sket
       sum2 += e * e;
       st.surface_fit_max = std::max(st.surface_fit_max, e);
     }
-  st.surface_fit_rms = std::sqrt(sum2 / total);
-  st.ms_surface = ms_since(clock);
+  st.surface_fit_rms = std::sqrt(sum2 / (nu * nv));
+  return std::move(*S);
+}
 
-  // 4. volume: extrude (Eq. 2.3) or offset (Eq. 2.4) layers over S's control mesh.
-  const KnotVector& ku = S->knots(0);
-  const KnotVector& kv = S->knots(1);
+// 4. volume: extrude (Eq. 2.3) or offset (Eq. 2.4) layers over S's control mesh; S's control points relaxed first
+// when p.springs. `clock` times the springs.
+TrivariateBSpline<glm::dvec3> build_volume(BSplineSurface<glm::dvec3>& S, const RayCaster& scene_rays,
+                                           const SketchPlacementParams& p, PlacementStats& st,
+                                           Clock::time_point& clock) {
+  const KnotVector& ku = S.knots(0);
+  const KnotVector& kv = S.knots(1);
   const KnotVector kw = KnotVector::clamped_uniform(p.order[2], p.controls[2]);
   const std::vector<double> gu = ku.greville(), gv = kv.greville(), gw = kw.greville();
   const int l = ku.control_count(), m = kv.control_count(), n = kw.control_count();
-  const glm::dvec3 V = -fwd;
+  const glm::dvec3 V = -p.camera.forward();
   std::vector<glm::dvec3> dir(static_cast<std::size_t>(l * m), V);
   if (p.volume == PlacementVolume::Offset)
     for (int j = 0; j < m; ++j)
       for (int i = 0; i < l; ++i) {
-        const glm::dvec3 nn = S->normal(gu[i], gv[j]);
+        const glm::dvec3 nn = S.normal(gu[i], gv[j]);
         if (glm::length(nn) > 0.5) dir[i + l * j] = nn;
       }
   if (p.springs) {  // seed §2.3.2: relax S's control points along V_P, never below the scene under them
-    std::vector<glm::dvec3>& contact = S->control_points();
+    std::vector<glm::dvec3>& contact = S.control_points();
     try {
       st.springs = relax_contact_surface(contact, l, m, dir, &scene_rays, *p.springs);
     } catch (const std::invalid_argument& e) {
@@ -249,7 +239,7 @@ SketchPlacementResult place_along_stroke(const RayCaster& scene_rays, const Sket
     for (int j = 0; j < m; ++j)
       for (int i = 0; i < l; ++i) {  // h, or h(u) / h(u,v) at the contact control point's Greville abscissae (Eq. 2.5)
         const double h = p.height_profile.empty() ? p.height : p.height * profile_at(p.height_profile, gu[i], gv[j]);
-        cps.push_back(S->control_point(i, j) + h * gw[k] * dir[i + l * j]);
+        cps.push_back(S.control_point(i, j) + h * gw[k] * dir[i + l * j]);
       }
   TrivariateBSpline<glm::dvec3> lattice(ku, kv, kw, std::move(cps));
   st.min_det_jacobian = 1e300;
@@ -257,6 +247,42 @@ SketchPlacementResult place_along_stroke(const RayCaster& scene_rays, const Sket
     for (int b = 0; b < 5; ++b)
       for (int a = 0; a < 5; ++a)
         st.min_det_jacobian = std::min(st.min_det_jacobian, jacobian_determinant(lattice, {a / 4.0, b / 4.0, c / 2.0}));
+  return lattice;
+}
+
+}  // namespace
+
+SketchPlacementResult place_along_stroke(const RayCaster& scene_rays, const SketchPlacementParams& p,
+                                         const std::vector<glm::dvec3>& object) {
+  validate(p, object);
+  const std::vector<glm::dvec2> stroke = remove_duplicate_points(p.stroke_px);
+  if (stroke.size() < 2 || !(polyline_length(stroke) > 1e-9))
+    throw PlacementError("stroke", "has zero length (all points coincide)");
+
+  PlacementStats st;
+  const int nu = p.samples_u, nv = p.samples_v;
+  auto clock = Clock::now();
+
+  // 1. fit: C(u) in pixels, sampled uniformly in its arc length.
+  StrokeCurve sc = [&] {
+    try {
+      return fit_stroke_curve(stroke);
+    } catch (const std::invalid_argument& e) {
+      throw PlacementError("stroke", std::string("curve fit failed: ") + e.what());
+    }
+  }();
+  st.curve_order = sc.curve.order();
+  st.curve_controls = static_cast<int>(sc.curve.control_points().size());
+  st.curve_fit_rms_px = sc.rms_px;
+  st.curve_fit_max_px = sc.max_px;
+  const CurveSamples cs = sample_by_arc_length(sc.curve, nu);
+  st.ms_fit = ms_since(clock);
+
+  RayGrid grid = cast_ray_grid(scene_rays, p, cs, st);  // 2.
+  st.ms_rays = ms_since(clock);
+  BSplineSurface<glm::dvec3> S = fit_contact_surface(grid.points, p, st);  // 3.
+  st.ms_surface = ms_since(clock);
+  TrivariateBSpline<glm::dvec3> lattice = build_volume(S, scene_rays, p, st, clock);  // 4.
   st.ms_volume = ms_since(clock);
 
   // 5. embed: bounding box → [0,1]³ (length axis → u, up axis → w, bottom at w = 0).
@@ -274,7 +300,7 @@ SketchPlacementResult place_along_stroke(const RayCaster& scene_rays, const Sket
   if (p.evaluate_positions) ffd_evaluate(lattice, params, positions);
   st.ms_evaluate = ms_since(clock);
 
-  PlacementRecord record{p.stroke_px, nu, nv, std::move(grid), std::move(hit)};
+  PlacementRecord record{p.stroke_px, nu, nv, std::move(grid.points), std::move(grid.hit)};
   return SketchPlacementResult{FfdBinding{std::move(lattice), emb, std::move(params)}, std::move(record),
                                std::move(positions), st};
 }

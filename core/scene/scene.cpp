@@ -128,6 +128,13 @@ bool pose_ddm_layers(SceneObject& object, double time_s) {
   }
   return any;
 }
+
+// `moved` (a copy of `object`) with its parameter offset fixed at `time_s`: no keys, no velocity.
+void freeze_offset(SceneObject& moved, const SceneObject& object, double time_s) {
+  moved.param_offset = object.offset_at(time_s);
+  moved.offset_keys.clear();
+  moved.offset_velocity = glm::dvec3(0.0);
+}
 }  // namespace
 
 Scene scene_at_time(const Scene& scene, double time_s) {
@@ -141,9 +148,7 @@ Scene scene_at_time(const Scene& scene, double time_s) {
     }
     SceneObject moved = object.clip ? posed_by_clip(object, time_s) : object;
     pose_ddm_layers(moved, time_s);
-    moved.param_offset = object.offset_at(time_s);
-    moved.offset_keys.clear();
-    moved.offset_velocity = glm::dvec3(0.0);
+    freeze_offset(moved, object, time_s);
     moved.refresh();
     out.replace(std::move(moved));
   }
@@ -156,11 +161,7 @@ Scene scene_with_posed_clips(const Scene& scene, double time_s) {
   for (const SceneObject& object : scene.objects()) {
     if (!object.cpu_animated()) continue;
     SceneObject moved = object.clip ? posed_by_clip(object, time_s) : object;
-    if (object.dffd_animated()) {  // a still at time_s, like scene_at_time
-      moved.param_offset = object.offset_at(time_s);
-      moved.offset_keys.clear();
-      moved.offset_velocity = glm::dvec3(0.0);
-    }
+    if (object.dffd_animated()) freeze_offset(moved, object, time_s);  // a still at time_s, like scene_at_time
     moved.refresh();
     out.replace(std::move(moved));
   }

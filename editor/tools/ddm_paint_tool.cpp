@@ -21,7 +21,12 @@
 namespace trispline::editor {
 
 namespace {
-constexpr double kMinPointSpacingPx = 2.0;  // stroke points closer than this to the previous one are dropped
+// The last ImGui item's rectangle (min x, min y, max x, max y), screen pixels.
+glm::vec4 last_item_rect() {
+  const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
+  return {lo.x, lo.y, hi.x, hi.y};
+}
+
 constexpr double kRadiusStep = 1.15;        // [ and ] scale the brush radius by this
 constexpr std::array<const char*, 4> kGeneratedTiles = {"thorn", "chain", "hex", "flower"};
 constexpr const char* kTileTips[] = {
@@ -73,12 +78,12 @@ void DdmPaintTool::activate(ToolContext& ctx) { follow_selection(ctx); }
 
 void DdmPaintTool::deactivate(ToolContext&) {
   hover_.reset();
-  stroke_.clear();
-  painting_ = erasing_ = false;
+  gesture_.cancel();
+  erasing_ = false;
 }
 
 void DdmPaintTool::mouse_away() {
-  if (!painting_) hover_.reset();
+  if (!gesture_.drawing()) hover_.reset();
 }
 
 void DdmPaintTool::follow_selection(const ToolContext& ctx) {
@@ -115,30 +120,22 @@ void DdmPaintTool::handle_input(const ToolInput& in, ToolContext& ctx) {
   }
   if (in.left_pressed) {
     follow_selection(ctx);
-    painting_ = true;
     erasing_ = params_.paint.erase != in.ctrl;  // Ctrl inverts, as in a Blender brush
-    stroke_ = {in.mouse_px};
-    stroke_view_ = ctx.view;  // pixels of this view, whatever the camera does until mouse-up
   }
-  if (painting_ && in.left_down && glm::length(in.mouse_px - stroke_.back()) >= kMinPointSpacingPx)
-    stroke_.push_back(in.mouse_px);
+  const StrokeGesture::Event event = gesture_.update(in, ctx.view);
   if (ImGui::GetCurrentContext()) draw_brush();
-  if (painting_ && (in.left_released || !in.left_down)) {
-    painting_ = false;
-    commit(ctx);
-  }
+  if (event == StrokeGesture::Event::Ended) commit(ctx);
 }
 
 void DdmPaintTool::commit(ToolContext& ctx) {
-  std::vector<glm::dvec2> stroke = std::move(stroke_);
-  stroke_.clear();
+  const std::vector<glm::dvec2> stroke = gesture_.take();
   if (stroke.empty()) return;
   const core::SceneObject* o = target(ctx);
   if (!o) {
     ctx.session.messages().error("ddm.paint: choose the object to paint on (select it, or the Tool panel's Object)");
     return;
   }
-  const nlohmann::json line = ddm_paint_line(o->name, stroke, params_, erasing_, new_layer(ctx), stroke_view_);
+  const nlohmann::json line = ddm_paint_line(o->name, stroke, params_, erasing_, new_layer(ctx), gesture_.view());
   EditorSession& session = ctx.session;  // outlives the deferred work; ctx may not
   ctx.defer((erasing_ ? "Erasing tiles on " : "Painting tiles on ") + o->name, [&session, line]() {
     session.execute(line);  // errors go to the Log panel; the scene stays as it was
@@ -181,7 +178,7 @@ void DdmPaintTool::remove_layer(ToolContext& ctx) {
 }
 
 std::string DdmPaintTool::hint() const {
-  if (painting_) return erasing_ ? "Release to erase the tiles under the stroke" : "Release to paint tiles";
+  if (gesture_.drawing()) return erasing_ ? "Release to erase the tiles under the stroke" : "Release to paint tiles";
   if (object_.empty()) return "Select the object to paint tiles on";
   return "Drag over " + object_ + " to paint tiles on '" + params_.paint.layer + "'; Ctrl-drag erases; [ ] brush size";
 }
@@ -193,17 +190,17 @@ void DdmPaintTool::draw_brush() const {
   const float sx = io.DisplayFramebufferScale.x > 0 ? io.DisplayFramebufferScale.x : 1.0f;
   const float sy = io.DisplayFramebufferScale.y > 0 ? io.DisplayFramebufferScale.y : 1.0f;
   auto screen = [&](glm::dvec2 p) { return ImVec2(float(p.x) / sx, float(p.y) / sy); };
-  const bool erase = painting_ ? erasing_ : params_.paint.erase != io.KeyCtrl;
+  const bool erase = gesture_.drawing() ? erasing_ : params_.paint.erase != io.KeyCtrl;
   const ImU32 line = erase ? IM_COL32(255, 95, 80, 235) : IM_COL32(255, 205, 90, 235);
   const ImU32 swath = erase ? IM_COL32(255, 95, 80, 45) : IM_COL32(255, 205, 90, 45);
   const float r = float(params_.paint.radius_px) / sx;
   ImDrawList* dl = ImGui::GetBackgroundDrawList();
-  if (painting_ && !stroke_.empty()) {  // what the stroke covers so far: a disc per sample, a band per segment
+  if (gesture_.drawing() && !gesture_.points().empty()) {  // what the stroke covers so far: a disc per sample, a band per segment
     // Not a polyline 2r thick: ImGui mitres its joints, and where a stroke turns sharply the mitre shoots far out of
     // the swath as a big translucent quad.
-    dl->AddCircleFilled(screen(stroke_.front()), r, swath, 32);
-    for (std::size_t i = 1; i < stroke_.size(); ++i) {
-      const ImVec2 a = screen(stroke_[i - 1]), b = screen(stroke_[i]);
+    dl->AddCircleFilled(screen(gesture_.points().front()), r, swath, 32);
+    for (std::size_t i = 1; i < gesture_.points().size(); ++i) {
+      const ImVec2 a = screen(gesture_.points()[i - 1]), b = screen(gesture_.points()[i]);
       const float dx = b.x - a.x, dy = b.y - a.y, len = std::sqrt(dx * dx + dy * dy);
       if (len > 0.5f) {
         const ImVec2 n(-dy / len * r, dx / len * r);
@@ -219,10 +216,10 @@ void DdmPaintTool::draw_brush() const {
 }
 
 void DdmPaintTool::decorate(gpu::ViewOptions& options) const {
-  if (!painting_) return;
-  options.stroke_px = stroke_;
-  options.stroke_width_px = std::min(options.stroke_width_px, 2.0f);
-  if (erasing_) options.stroke_color = {1.0f, 0.25f, 0.2f};
+  if (!gesture_.drawing()) return;
+  gpu::ScreenStroke& stroke = options.add_stroke(gesture_.points());
+  stroke.width_px = std::min(stroke.width_px, 2.0f);
+  if (erasing_) stroke.color = {1.0f, 0.25f, 0.2f, 1.0f};
 }
 
 void DdmPaintTool::draw_layer_combo(ToolContext& ctx, const core::SceneObject* o) {
@@ -376,20 +373,17 @@ void DdmPaintTool::draw_panel(ToolContext& ctx) {
   ImGui::Spacing();
   ImGui::BeginDisabled(!target(ctx));
   if (ImGui::Button("Fill")) fill(ctx);
-  fill_rect_ = {ImGui::GetItemRectMin().x, ImGui::GetItemRectMin().y, ImGui::GetItemRectMax().x,
-                ImGui::GetItemRectMax().y};
+  fill_rect_ = last_item_rect();
   ui::tooltip("Cover the whole surface with the layer settings above: one ddm.fill (replaces a layer of that name)");
   ImGui::EndDisabled();
   ImGui::SameLine();
   ImGui::BeginDisabled(!target(ctx) || new_layer(ctx));
   if (ImGui::Button("Bake")) bake(ctx);
-  bake_rect_ = {ImGui::GetItemRectMin().x, ImGui::GetItemRectMin().y, ImGui::GetItemRectMax().x,
-                ImGui::GetItemRectMax().y};
+  bake_rect_ = last_item_rect();
   ui::tooltip("Add the layer's tiles as an ordinary mesh object (for export): one ddm.bake");
   ImGui::SameLine();
   if (ImGui::Button("Remove")) remove_layer(ctx);
-  remove_rect_ = {ImGui::GetItemRectMin().x, ImGui::GetItemRectMin().y, ImGui::GetItemRectMax().x,
-                  ImGui::GetItemRectMax().y};
+  remove_rect_ = last_item_rect();
   ui::tooltip("Delete the layer (tiles, maps and animation): one ddm.remove, Ctrl+Z brings it back");
   ImGui::EndDisabled();
 

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "core/commands/ddm_paint.h"
+#include "editor/tools/stroke_gesture.h"
 #include "editor/tools/tool.h"
 
 namespace trispline::editor {
@@ -59,7 +60,7 @@ class DdmPaintTool : public Tool {
   void draw_panel(ToolContext& ctx) override;
   void decorate(gpu::ViewOptions& options) const override;
   std::string hint() const override;
-  bool owns_mouse() const override { return painting_; }
+  bool owns_mouse() const override { return gesture_.drawing(); }
 
   const DdmPaintToolParams& params() const { return params_; }
   void set_params(const DdmPaintToolParams& p) { params_ = p; }
@@ -70,7 +71,7 @@ class DdmPaintTool : public Tool {
   // Multiplies the brush radius by `factor`, clamped to [kMinRadiusPx, kMaxRadiusPx] ([ = 1/1.15, ] = 1.15).
   void scale_radius(double factor);
 
-  const std::vector<glm::dvec2>& stroke() const { return stroke_; }  // pixels of the drag under way
+  const std::vector<glm::dvec2>& stroke() const { return gesture_.points(); }  // pixels of the drag under way
   bool erasing() const { return erasing_; }                          // the drag under way erases
   const std::optional<glm::dvec2>& hover() const { return hover_; }  // brush centre, viewport pixels
   // Draws the brush circle (and the swath of the drag under way) into ImGui's background draw list, over the 3-D
@@ -102,9 +103,8 @@ class DdmPaintTool : public Tool {
   std::string file_tile_;           // the path typed for a file tile
 
   std::optional<glm::dvec2> hover_;
-  std::vector<glm::dvec2> stroke_;
-  bool painting_ = false, erasing_ = false;
-  core::Camera stroke_view_;  // the view at mouse-down: the stroke's pixels belong to it
+  StrokeGesture gesture_;  // the drag under way, in the view at mouse-down
+  bool erasing_ = false;   // the drag under way erases
   glm::vec4 fill_rect_{0.0f}, bake_rect_{0.0f}, remove_rect_{0.0f};
   glm::vec3 layer_color_{0.8f};  // the Layer colour swatch's value while it is edited
   bool color_editing_ = false;

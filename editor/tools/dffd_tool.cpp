@@ -17,22 +17,6 @@ std::string DffdTool::hint() const {
   return "Click: select   Tool panel: tick obstacles, then Split";
 }
 
-void DffdTool::handle_input(const ToolInput& in, ToolContext& ctx) {
-  if (in.left_pressed) {
-    pressed_ = true;
-    press_px_ = in.mouse_px;
-  }
-  if (in.left_released && pressed_) {
-    pressed_ = false;
-    if (glm::length(in.mouse_px - press_px_) > 4.0) return;  // a drag, not a click
-    try {
-      ctx.selected = pick_object(ctx.session.scene(), ctx.view, in.mouse_px, ctx.hidden).value_or("");
-    } catch (const std::exception& e) {
-      ctx.session.messages().error(std::string("pick failed: ") + e.what());
-    }
-  }
-}
-
 std::vector<ui::DffdObstacleInfo> DffdTool::candidates(const ToolContext& ctx, const std::string& object) const {
   std::vector<ui::DffdObstacleInfo> out;
   for (const core::SceneObject& o : ctx.session.scene().objects()) {

@@ -9,15 +9,15 @@
 #include <map>
 #include <memory>
 
-#include "editor/tools/tool.h"
+#include "editor/tools/select_tool.h"
 #include "ui/dffd_panel.h"
 
 namespace trispline::editor {
 
-class DffdTool : public Tool {
+// Clicks select as in SelectTool (its handle_input).
+class DffdTool : public SelectTool {
  public:
   ui::ToolEntry entry() const override;
-  void handle_input(const ToolInput& in, ToolContext& ctx) override;
   void draw_panel(ToolContext& ctx) override;
   void decorate(gpu::ViewOptions& options) const override;
   std::string hint() const override;
@@ -30,8 +30,6 @@ class DffdTool : public Tool {
 
  private:
   core::DffdSplitParams params_;
-  glm::dvec2 press_px_{0};
-  bool pressed_ = false;
   // Bounding-box extent per object, cached on its world_mesh (an O(#V) pass each panel frame otherwise).
   mutable std::map<std::string, std::pair<std::weak_ptr<const core::TriMesh>, glm::dvec3>> extents_;
 };

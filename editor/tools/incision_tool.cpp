@@ -231,16 +231,38 @@ void IncisionTool::draw_panel(ToolContext& ctx) {
       "while you drag; releasing cuts it as one undoable step.");
 }
 
+namespace {
+
+// The preview's cut lattice (the opened local lattice of seed Eq. 6.2) drawn fainter than object lattices, with its
+// C⁻¹ break at u = 1/2 marked as a discontinuity when the knots hold one there.
+gpu::LatticeOverlay incision_lattice_overlay(std::shared_ptr<const core::TrivariateBSpline<glm::dvec3>> lattice,
+                                             const gpu::ViewStyle& style) {
+  gpu::LatticeOverlay overlay{std::move(lattice), {}, {0.45f, 0.78f, 1.0f, 0.6f}, {0.92f, 0.96f, 1.0f, 0.8f},
+                              0.7f * style.lattice_point_px};
+  const core::KnotVector& u = overlay.lattice->knots(0);
+  const std::vector<double>& U = u.knots();
+  const auto first = std::find(U.begin(), U.end(), 0.5);
+  if (first != U.end() && u.multiplicity(0.5) == u.order()) {
+    core::Discontinuity cut;
+    cut.axis = 0;
+    cut.u0 = 0.5;
+    cut.plus_plane = static_cast<int>(first - U.begin());
+    cut.minus_plane = cut.plus_plane - 1;
+    overlay.discontinuities.push_back(cut);
+  }
+  return overlay;
+}
+
+}  // namespace
+
 void IncisionTool::decorate(gpu::ViewOptions& options) const {
   if (!gesture_.drawing()) return;
-  options.stroke_px = gesture_.points();
-  options.incision_curve = curve_;
-  if (!curve_.empty()) options.stroke_width_px = std::min(options.stroke_width_px, 1.5f);  // G(v) shows under it
-  if (preview_mesh_) {
-    options.incision_preview_mesh = preview_mesh_;
-    options.incision_preview_object = target_;
-  }
-  options.incision_lattice = preview_lattice_;
+  // G(v): a thick bright line on top; the stroke thinner over it, so it shows under the stroke.
+  if (!curve_.empty()) options.overlays.curves.push_back({curve_, {0.4f, 1.0f, 0.3f, 1.0f}, 3.0f});
+  gpu::ScreenStroke& stroke = options.add_stroke(gesture_.points());
+  if (!curve_.empty()) stroke.width_px = std::min(stroke.width_px, 1.5f);
+  if (preview_mesh_) options.overlays.meshes.push_back({target_, preview_mesh_});
+  if (preview_lattice_) options.overlays.lattices.push_back(incision_lattice_overlay(preview_lattice_, options.style));
 }
 
 }  // namespace trispline::editor

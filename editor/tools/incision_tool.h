@@ -3,8 +3,8 @@
 // one, else the first object the stroke passes over) collects the stroke in viewport pixels (top-left origin) of the
 // view at mouse-down. While dragging, at most every preview_interval_ms, the cut is previewed on the UI thread:
 // core::fit_incision_frame + core::incise on the object's world_mesh with the panel's parameters; the view shows the
-// generator curve G(v) and the cut mesh instead of the object (gpu::ViewOptions::incision_curve /
-// incision_preview_mesh / incision_preview_object), or only the stroke while it does not lie on the surface. On
+// generator curve G(v), the cut lattice and the cut mesh in place of the object (a curve, a lattice and a mesh in
+// gpu::Overlays), or only the stroke while it does not lie on the surface. On
 // mouse-up the tool executes ONE `incision.draw` command (docs/commands.md) carrying the view at mouse-down
 // ("camera"), so the stroke's pixels replay in that view.
 // A click without a drag issues nothing; errors go to the Log panel and leave the scene as it was.

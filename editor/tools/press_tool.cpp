@@ -251,13 +251,14 @@ void PressTool::draw_panel(ToolContext& ctx) {
 
 void PressTool::decorate(gpu::ViewOptions& options) const {
   if (hover_ && hover_radius_ > 0.0) {
-    gpu::BrushSphere sphere;
+    gpu::SphereOverlay sphere;
     sphere.centre = *hover_;
     sphere.radius = hover_radius_;
     if (pressing_ && pull_) sphere.color = {1.0f, 0.55f, 0.3f, 0.30f};  // pulling: warm tint
-    options.brush = sphere;
+    options.overlays.spheres.push_back(sphere);
   }
-  options.brush_path = path_;
+  // The sphere centres sampled along the drag.
+  if (!path_.empty()) options.overlays.points.push_back({path_, {1.0f, 0.85f, 0.3f, 1.0f}, options.style.contact_point_px});
 }
 
 }  // namespace trispline::editor

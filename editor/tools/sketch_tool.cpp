@@ -147,7 +147,7 @@ void SketchTool::draw_panel(ToolContext& ctx) {
 }
 
 void SketchTool::decorate(gpu::ViewOptions& options) const {
-  if (gesture_.drawing()) options.stroke_px = gesture_.points();
+  if (gesture_.drawing()) options.add_stroke(gesture_.points());
 }
 
 }  // namespace trispline::editor

@@ -52,7 +52,7 @@ class Tool {
   // True while a drag of this tool is under way (a stroke being drawn): the editor then leaves the camera alone.
   virtual bool owns_mouse() const { return false; }
   // A lattice to show instead of an object's own while the tool edits it live (the Press tool's drag preview):
-  // the app draws that object with it (gpu::ViewOptions::live_ffd_object). Called once per frame.
+  // the app draws that object with it (gpu::Overlays::lattices_in_place). Called once per frame.
   struct LivePreview {
     std::string object;
     std::shared_ptr<const core::TrivariateBSpline<glm::dvec3>> lattice;  // same counts, orders, knots as the object's

@@ -35,8 +35,7 @@ uniform mat4 u_view_proj;
 out vec3 v_world;
 out vec3 v_normal;
 #ifdef OUTLINE
-uniform vec2 u_viewport;    // pixels
-uniform float u_outline_px; // pixels
+#include "outline.glsl"
 #endif
 
 // Parameter t on an axis of r samples → sample index i ∈ [0, r − 2] and weight f ∈ [0, 1] (core locate()).
@@ -95,9 +94,7 @@ void main() {
   vec3 world_normal = wl > 0.0 ? wn / wl : normal;
   vec4 clip = u_view_proj * vec4(world, 1.0);
 #ifdef OUTLINE
-  vec2 sn = (u_view_proj * vec4(world_normal, 0.0)).xy;
-  float sl = length(sn);
-  if (sl > 1e-12) clip.xy += (sn / sl) * (2.0 * u_outline_px / u_viewport) * clip.w;
+  clip = outline_push(clip, u_view_proj, world_normal);
 #endif
   v_world = world;
   v_normal = world_normal;

@@ -21,8 +21,7 @@ uniform mat4 u_view_proj;
 out vec3 v_world;
 out vec3 v_normal;
 #ifdef OUTLINE
-uniform vec2 u_viewport;    // pixels
-uniform float u_outline_px; // pixels
+#include "outline.glsl"
 #endif
 #ifdef DEPTH_PULL
 uniform vec3 u_eye;          // world units
@@ -42,9 +41,7 @@ void main() {
   vec4 clip = u_view_proj * vec4(position, 1.0);
 #endif
 #ifdef OUTLINE
-  vec2 n = (u_view_proj * vec4(normal, 0.0)).xy;
-  float len = length(n);
-  if (len > 1e-12) clip.xy += (n / len) * (2.0 * u_outline_px / u_viewport) * clip.w;
+  clip = outline_push(clip, u_view_proj, normal);
 #endif
   v_world = position;
   v_normal = normal;

@@ -4,6 +4,7 @@
 #include "ui/message_log.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <cstdlib>
 #include <filesystem>
@@ -12,12 +13,13 @@
 
 namespace trispline::test {
 
+// TRISPLINE_STATE_DIR is <temp>/trispline_<suite>_<test>.
 class StateDirTest : public ::testing::Test {
  protected:
-  explicit StateDirTest(std::string prefix) : prefix_(std::move(prefix)) {}
   void SetUp() override {
+    const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
     dir_ = std::filesystem::temp_directory_path() /
-           (prefix_ + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+           (std::string("trispline_") + info->test_suite_name() + "_" + info->name());
     std::filesystem::remove_all(dir_);
     ::setenv("TRISPLINE_STATE_DIR", dir_.c_str(), 1);
   }
@@ -34,10 +36,15 @@ class StateDirTest : public ::testing::Test {
   }
   std::filesystem::path dir_;
   ui::MessageLog messages_;
-
- private:
-  std::string prefix_;
 };
+
+// Two objects the session tests load: the teapot primitive, and a small crate above it.
+inline const nlohmann::json kTeapot = {{"cmd", "scene.primitive"}, {"kind", "teapot"}, {"name", "teapot"}};
+inline const nlohmann::json kBox = {{"cmd", "scene.primitive"},
+                                    {"kind", "box"},
+                                    {"name", "crate"},
+                                    {"scale", {0.2, 0.05, 0.05}},
+                                    {"translate", {0, 2, 0}}};
 
 // Non-empty lines of a file.
 inline std::size_t line_count(const std::filesystem::path& p) {

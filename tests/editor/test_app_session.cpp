@@ -18,19 +18,11 @@ using namespace trispline;
 
 namespace {
 
-class AppSession : public test::StateDirTest {
- protected:
-  AppSession() : StateDirTest("trispline_app_test_") {}
-};
+using AppSession = test::StateDirTest;
+using test::kBox;
+using test::kTeapot;
 
 using test::line_count;
-
-const nlohmann::json kTeapot = {{"cmd", "scene.primitive"}, {"kind", "teapot"}, {"name", "teapot"}};
-const nlohmann::json kBox = {{"cmd", "scene.primitive"},
-                             {"kind", "box"},
-                             {"name", "crate"},
-                             {"scale", {0.2, 0.05, 0.05}},
-                             {"translate", {0, 2, 0}}};
 
 }  // namespace
 

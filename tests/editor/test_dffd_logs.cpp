@@ -25,9 +25,7 @@ TEST(DffdLogs, CylinderCutOpenStitchedCapped) {
   const core::SceneObject& open = *scene.find("open");
   ASSERT_TRUE(open.dffd);
   const core::test::Topology t_open = core::test::topology(*open.world_mesh);
-  EXPECT_EQ(t_open.openmesh_rejected, 0u);
-  EXPECT_EQ(t_open.nonmanifold_edges, 0u);
-  EXPECT_EQ(t_open.duplicate_faces, 0u);
+  EXPECT_TRUE(is_manifold(t_open));
   EXPECT_GT(t_open.boundary_edges, 100u);  // the opening's rims
   // Every boundary vertex is a cut vertex at u0 ∓ eps.
   const core::TriMesh rest = open.world_rest_mesh();

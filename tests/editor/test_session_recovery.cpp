@@ -24,10 +24,9 @@ using namespace trispline;
 
 namespace {
 
-class SessionRecovery : public test::StateDirTest {
- protected:
-  SessionRecovery() : StateDirTest("trispline_recovery_test_") {}
-};
+using SessionRecovery = test::StateDirTest;
+using test::kBox;
+using test::kTeapot;
 
 using test::line_count;
 
@@ -44,12 +43,6 @@ long dead_pid() {
   return long(child);
 }
 
-const nlohmann::json kTeapot = {{"cmd", "scene.primitive"}, {"kind", "teapot"}, {"name", "teapot"}};
-const nlohmann::json kBox = {{"cmd", "scene.primitive"},
-                             {"kind", "box"},
-                             {"name", "crate"},
-                             {"scale", {0.2, 0.05, 0.05}},
-                             {"translate", {0, 2, 0}}};
 
 void crash_with(const std::vector<nlohmann::json>& lines) {  // a session that dies without finish()
   ui::MessageLog m;

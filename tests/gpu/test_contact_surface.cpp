@@ -125,7 +125,7 @@ TEST_F(GlTest, ContactSurfaceIsCachedPerFfdBinding) {
   EXPECT_EQ(r.last_stats().cached_contact_surfaces, 1);  // the old one was released
   EXPECT_NE(bent, first);
 
-  opt.contact_cells_u = 12;  // new tessellation settings rebuild
+  opt.style.contact_cells_u = 12;  // new tessellation settings rebuild
   render(r, scene, oblique_camera(), opt);
   EXPECT_EQ(r.last_stats().contact_uploads, 1);
 

@@ -207,7 +207,7 @@ TEST_F(GlTest, DffdObjectShowsItsLatticeAndDiscontinuityPlanes) {
   Renderer r;
   ViewOptions opt;
   opt.show_grid = false;
-  opt.selection_color = {0.2f, 0.2f, 1.0f};  // keep the outline out of the predicates
+  opt.style.selection_color = {0.2f, 0.2f, 1.0f};  // keep the outline out of the predicates
   const auto img_off = render(r, scene, front_camera(), opt);
   EXPECT_EQ(count_if(img_off, 160, 120, minus_coloured), 0);
   EXPECT_EQ(count_if(img_off, 160, 120, plus_coloured), 0);
@@ -274,8 +274,7 @@ TEST_F(GlTest, IncisionPreviewMeshReplacesTheObjectsMesh) {
   EXPECT_TRUE(reddish(pixel(img, 160, int(left.x), int(left.y))));
   EXPECT_FALSE(reddish(pixel(img, 160, int(right.x), int(right.y))));
 
-  opt.incision_preview_object = "ball";
-  opt.incision_preview_mesh = std::make_shared<const core::TriMesh>(uv_sphere({1.2, 0, 0}, 0.4));
+  opt.overlays.meshes.push_back({"ball", std::make_shared<const core::TriMesh>(uv_sphere({1.2, 0, 0}, 0.4))});
   img = render(r, scene, cam, opt);
   EXPECT_FALSE(reddish(pixel(img, 160, int(left.x), int(left.y))));
   EXPECT_TRUE(reddish(pixel(img, 160, int(right.x), int(right.y))));
@@ -283,14 +282,14 @@ TEST_F(GlTest, IncisionPreviewMeshReplacesTheObjectsMesh) {
   render(r, scene, cam, opt);
   EXPECT_EQ(r.last_stats().uploads, 0);  // the preview stays cached while it is shown
   EXPECT_EQ(r.last_stats().cached_meshes, 2);
-  opt.incision_preview_object = "other";  // names no object: nothing replaced
+  opt.overlays.meshes[0].object = "other";  // names no object: nothing replaced
   img = render(r, scene, cam, opt);
   EXPECT_TRUE(reddish(pixel(img, 160, int(left.x), int(left.y))));
 
   // The generator curve: a bright line on top of the object, where its points project.
   opt = ViewOptions{};
   opt.show_grid = false;
-  opt.incision_curve = {{-1.6, 0.0, 0.5}, {-0.8, 0.0, 0.5}};
+  opt.overlays.curves.push_back({{{-1.6, 0.0, 0.5}, {-0.8, 0.0, 0.5}}, {0.4f, 1.0f, 0.3f, 1.0f}, 3.0f});
   img = render(r, scene, cam, opt);
   const glm::dvec3 mid = cam.project({-1.2, 0.0, 0.5});
   const Rgba c = pixel(img, 160, int(mid.x), int(mid.y));
@@ -308,7 +307,10 @@ TEST_F(GlTest, IncisionPreviewMeshReplacesTheObjectsMesh) {
     for (int j = 0; j < 2; ++j)
       for (int i = 0; i < 4; ++i) cut.control_point(i, j, k) = {0.3 + 0.2 * i, -0.3 + 0.6 * j, -0.3 + 0.6 * k};
   const core::Discontinuity d = core::insert_discontinuity(cut, 0, 0.5);  // order (3) knots at u = 1/2
-  opt.incision_lattice = std::make_shared<const core::TrivariateBSpline<glm::dvec3>>(cut);
+  gpu::LatticeOverlay overlay;
+  overlay.lattice = std::make_shared<const core::TrivariateBSpline<glm::dvec3>>(cut);
+  overlay.discontinuities = {d};
+  opt.overlays.lattices.push_back(overlay);
   img = render(r, scene, cam, opt);
   const long red_ball = count_if(none, 160, 120, minus_coloured);  // the red ball's highlights match too
   EXPECT_GT(count_if(img, 160, 120, minus_coloured), red_ball + 10);

@@ -146,7 +146,7 @@ TEST_F(GlTest, FfdRendererImagesAgreeAcrossBackends) {
   EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
 }
 
-// The Press tool's drag preview (ViewOptions::live_lattice): drawing an object with an override lattice looks like
+// The Press tool's drag preview (Overlays::lattices_in_place): drawing an object with an override lattice looks like
 // the object after the command (lattice replaced, world_mesh re-evaluated), on every backend, and dropping the
 // override shows the object's own lattice again.
 TEST_F(GlTest, FfdRendererDrawsALiveLatticeOverrideLikeTheCommittedLattice) {
@@ -168,20 +168,17 @@ TEST_F(GlTest, FfdRendererDrawsALiveLatticeOverrideLikeTheCommittedLattice) {
   committed.insert(after);
   for (core::FfdBackend backend : kBackends) {
     opt.ffd_backend = backend;
-    opt.live_ffd_object.clear();
-    opt.live_lattice = nullptr;
+    opt.overlays.lattices_in_place.clear();
     const std::vector<unsigned char> own = render(r, scene, cam, opt);
     opt.ffd_backend = core::FfdBackend::cpu_ref;
     const std::vector<unsigned char> ref = render(r, committed, cam, opt);
     opt.ffd_backend = backend;
-    opt.live_ffd_object = "blob";
-    opt.live_lattice = pressed;
+    opt.overlays.lattices_in_place.push_back({"blob", pressed});
     const std::vector<unsigned char> live = render(r, scene, cam, opt);
     EXPECT_GT(diff(live, own).frac_over, 0.02) << core::to_string(backend) << ": the preview should show";
     EXPECT_LT(diff(live, ref).mean, 0.5) << core::to_string(backend);
     EXPECT_LT(diff(live, ref).frac_over, 0.002) << core::to_string(backend);
-    opt.live_ffd_object.clear();
-    opt.live_lattice = nullptr;
+    opt.overlays.lattices_in_place.clear();
     EXPECT_LT(diff(render(r, scene, cam, opt), own).frac_over, 0.002) << core::to_string(backend) << ": own again";
   }
 }

@@ -150,4 +150,24 @@ TEST(OverlayGeometry, DiscontinuityPlanesListTheirControlPoints) {
   EXPECT_TRUE(lines.empty() && minus.empty() && plus.empty());
 }
 
+TEST(OverlayGeometry, SphereTrianglesLieOnTheSphereAndFaceOutwards) {
+  SphereOverlay sphere;
+  sphere.centre = {1.0, 2.0, -0.5};
+  sphere.radius = 0.25;
+  std::vector<OverlayVertex> tris;
+  append_sphere(sphere, {0.0f, 0.0f, 5.0f}, tris, 16, 8);
+  ASSERT_EQ(tris.size(), std::size_t(6 * 16 * (8 - 1)));
+  const glm::vec3 c(sphere.centre);
+  for (std::size_t i = 0; i < tris.size(); i += 3) {
+    for (std::size_t k = 0; k < 3; ++k) {
+      EXPECT_NEAR(glm::length(tris[i + k].position - c), 0.25f, 1e-5f);
+      EXPECT_GT(tris[i + k].color.w, 0.0f);
+      EXPECT_LE(tris[i + k].color.w, 1.0f);
+    }
+    const glm::vec3 n = glm::cross(tris[i + 1].position - tris[i].position, tris[i + 2].position - tris[i].position);
+    const glm::vec3 mid = (tris[i].position + tris[i + 1].position + tris[i + 2].position) / 3.0f;
+    EXPECT_GT(glm::dot(n, mid - c), 0.0f) << "triangle " << i / 3 << " must be CCW seen from outside";
+  }
+}
+
 }  // namespace trispline::gpu

@@ -30,10 +30,10 @@ TEST_F(GlTest, RedSphereInFrontIsRedInTheCentreAndBackgroundAtCorners) {
   const std::vector<unsigned char> img = render(r, red_sphere_scene({0, 0, 0}), cam, opt);
   EXPECT_TRUE(reddish(pixel(img, 160, 80, 60)));
   const Rgba tl = pixel(img, 160, 0, 0), bl = pixel(img, 160, 0, 119), br = pixel(img, 160, 159, 119);
-  EXPECT_TRUE(close_to(tl.r, opt.background_top.x) && close_to(tl.g, opt.background_top.y) &&
-              close_to(tl.b, opt.background_top.z))
+  EXPECT_TRUE(close_to(tl.r, opt.style.background_top.x) && close_to(tl.g, opt.style.background_top.y) &&
+              close_to(tl.b, opt.style.background_top.z))
       << tl.r << " " << tl.g << " " << tl.b;
-  EXPECT_TRUE(close_to(bl.r, opt.background_bottom.x) && close_to(bl.b, opt.background_bottom.z))
+  EXPECT_TRUE(close_to(bl.r, opt.style.background_bottom.x) && close_to(bl.b, opt.style.background_bottom.z))
       << bl.r << " " << bl.b;
   EXPECT_FALSE(reddish(br));
   EXPECT_EQ(tl.a, 255);
@@ -53,8 +53,7 @@ TEST_F(GlTest, SphereBehindTheCameraDoesNotAppear) {
 TEST_F(GlTest, StrokeIsDrawnWhereItsPixelsAre) {
   Renderer r;
   ViewOptions opt;
-  opt.stroke_px = {{20.0, 30.5}, {80.0, 30.5}, {140.0, 30.5}};
-  opt.stroke_width_px = 5.0f;
+  opt.add_stroke({{20.0, 30.5}, {80.0, 30.5}, {140.0, 30.5}}).width_px = 5.0f;
   const std::vector<unsigned char> img = render(r, core::Scene{}, front_camera(), opt);
   auto orange = [](const Rgba& p) { return p.r > 200 && p.g > 60 && p.g < 170 && p.b < 60; };
   for (int x : {20, 50, 80, 110, 140}) EXPECT_TRUE(orange(pixel(img, 160, x, 30))) << "x " << x;
@@ -66,7 +65,7 @@ TEST_F(GlTest, SameSceneTwiceGivesIdenticalImages) {
   const core::Scene scene = red_sphere_scene({0.3, 0.2, 0});
   ViewOptions opt;
   opt.selected = "ball";
-  opt.stroke_px = {{10, 10}, {100, 90}};
+  opt.add_stroke({{10, 10}, {100, 90}});
   Renderer a;
   const std::vector<unsigned char> first = render(a, scene, front_camera(), opt);
   EXPECT_EQ(render(a, scene, front_camera(), opt), first);  // cached buffers

@@ -81,7 +81,7 @@ TEST_F(GlTest, ShowcaseDefaultScene) {
   opt.show_lattice = true;
   opt.show_contact_surface = true;
   opt.selected = "bunny";
-  opt.stroke_px = params.stroke_px;
+  opt.add_stroke(params.stroke_px);
   Renderer r;
   const std::vector<unsigned char> img = render(r, scene, cam, opt);
   EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
@@ -94,7 +94,7 @@ TEST_F(GlTest, ShowcaseDefaultScene) {
   core::write_image_rgba8(out, 1280, 720, img);
   std::printf("wrote %s\n", out.c_str());
   opt.show_lattice = opt.show_contact_surface = false;
-  opt.stroke_px.clear();
+  opt.overlays.strokes.clear();
   core::write_image_rgba8(TRISPLINE_BINARY_DIR "/gpu_showcase_clean.png", 1280, 720, render(r, scene, cam, opt));
 }
 

@@ -1,67 +1,25 @@
-// Animation commands: anim.timeline, anim.keyframe, place.sketch "extent", place.array, and the offset keys they
-// drive (core::evaluate_offset_keys, core::scene_at_time). Commands run through parse + redo/undo on a real scene
+// Animation commands: anim.timeline, anim.keyframe, anim.clip, and the offset keys they drive (core::evaluate_offset_keys, core::scene_at_time). Commands run through parse + redo/undo on a real scene
 // (a crate placed over a plane by place.sketch), as the editor's history runs them.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
+#include "tests/core/commands/command_test_util.h"
+#include "tests/core/commands/placed_crate.h"
 #include "core/commands/anim_commands.h"
-#include "core/commands/camera_set.h"
 #include "core/commands/mesh_refine.h"
-#include "core/commands/place_array.h"
-#include "core/commands/place_sketch.h"
-#include "core/commands/scene_load.h"
-#include "core/commands/scene_primitive.h"
 
 namespace trispline::core {
 namespace {
 
 using nlohmann::json;
 
-CommandPtr run(Scene& scene, const json& line) {
-  CommandContext ctx;
-  const std::string id = line.at("cmd");
-  CommandPtr c = id == "scene.primitive"  ? ScenePrimitiveCommand::parse(line, ctx)
-                 : id == "camera.set"     ? CameraSetCommand::parse(line, ctx)
-                 : id == "place.sketch"   ? PlaceSketchCommand::parse(line, ctx)
-                 : id == "anim.timeline"  ? AnimTimelineCommand::parse(line, ctx)
-                 : id == "anim.keyframe"  ? AnimKeyframeCommand::parse(line, ctx)
-                 : id == "place.array"    ? PlaceArrayCommand::parse(line, ctx)
-                                          : AnimClipCommand::parse(line, ctx);
-  c->redo(scene);
-  return c;
-}
+using test::centroid;
+using test::expect_same_meshes;
+using test::place_line;
+using test::placed_crate;
 
-json place_line(double extent) {
-  json j = json::parse(R"({"cmd":"place.sketch","stroke":[[250,380],[330,340],[400,330],[470,340],[550,380]],
-    "object":"crate","width":0.3,"height":0.2,"samples":[24,8],"order":[4,4,3],"controls":[8,4,3]})");
-  if (extent != 1.0) j["extent"] = extent;
-  return j;
-}
-
-Scene placed_crate(double extent = 1.0) {
-  Scene s;
-  run(s, json::parse(R"({"cmd":"scene.primitive","kind":"plane","name":"ground","scale":3})"));
-  run(s, json::parse(R"({"cmd":"scene.primitive","kind":"box","name":"crate","scale":[0.5,0.2,0.2]})"));
-  run(s, json::parse(R"({"cmd":"camera.set","eye":[0,3,3],"target":[0,0,0],"up":[0,1,0],"fov_deg":45,
-                         "viewport":[800,600]})"));
-  run(s, place_line(extent));
-  return s;
-}
-
-glm::dvec3 centroid(const TriMesh& m) {
-  glm::dvec3 c(0.0);
-  for (const auto& p : m.positions) c += p;
-  return c / static_cast<double>(m.positions.size());
-}
-
-void expect_same_meshes(const Scene& a, const Scene& b) {
-  ASSERT_EQ(a.objects().size(), b.objects().size());
-  for (std::size_t i = 0; i < a.objects().size(); ++i) {
-    EXPECT_EQ(a.objects()[i].name, b.objects()[i].name);
-    EXPECT_EQ(a.objects()[i].world_mesh->positions, b.objects()[i].world_mesh->positions) << a.objects()[i].name;
-  }
-}
+CommandPtr run(Scene& scene, const json& line) { return test::run_crate_line(scene, line); }
 
 TEST(OffsetKeys, InterpolationModesAndHolds) {
   std::vector<OffsetKey> keys{{0.0, {0.0, 0, 0}, KeyInterpolation::linear},
@@ -147,62 +105,14 @@ TEST(AnimKeyframe, RemoveAndErrorsLeaveTheSceneUnchanged) {
   EXPECT_EQ(s.find("crate")->offset_keys.size(), 1u);
 }
 
-TEST(PlaceSketchExtent, ObjectCoversTheGivenFractionOfTheDomain) {
-  const Scene s = placed_crate(0.4);
-  const FfdBinding& b = *s.find("crate")->ffd;
-  double umin = 1e9, umax = -1e9;
-  for (const auto& p : b.params) umin = std::min(umin, p.x), umax = std::max(umax, p.x);
-  EXPECT_NEAR(umin, 0.0, 1e-12);
-  EXPECT_NEAR(umax, 0.4, 1e-12);
-  CommandContext ctx;
-  json bad = place_line(1.0);
-  bad["extent"] = 0.0;
-  EXPECT_THROW(PlaceSketchCommand::parse(bad, ctx), CommandError);
-  bad["extent"] = 1.5;
-  EXPECT_THROW(PlaceSketchCommand::parse(bad, ctx), CommandError);
-}
-
-TEST(PlaceArray, CopiesTrailAlongThePathAndUndoRemovesThem) {
-  Scene s = placed_crate(0.25);
-  run(s, json::parse(R"({"cmd":"anim.keyframe","object":"crate","frame":1,"u":0.75})"));
-  const Scene before = s;
-  auto c = run(s, json::parse(R"({"cmd":"place.array","object":"crate","count":2,"spacing":0.3})"));
-  ASSERT_EQ(s.objects().size(), 4u);
-  EXPECT_EQ(s.objects()[2].name, "crate.001");
-  EXPECT_EQ(s.objects()[3].name, "crate.002");
-  EXPECT_DOUBLE_EQ(s.find("crate.001")->offset_keys[0].offset.x, 0.75 - 0.3);
-  EXPECT_DOUBLE_EQ(s.find("crate.002")->offset_keys[0].offset.x, 0.75 - 0.6);
-  EXPECT_EQ(s.find("crate.001")->ffd, s.find("crate")->ffd);  // one shared lattice
-  const double x0 = centroid(*s.find("crate")->world_mesh).x, x1 = centroid(*s.find("crate.001")->world_mesh).x,
-               x2 = centroid(*s.find("crate.002")->world_mesh).x;
-  EXPECT_GT(x0, x1 + 0.1);  // in a row, the copies behind the leader
-  EXPECT_GT(x1, x2 + 0.1);
-  c->undo(s);
-  expect_same_meshes(s, before);
-  c->redo(s);  // redo gives the same names and meshes
-  EXPECT_EQ(s.objects()[3].name, "crate.002");
-  CommandContext ctx;
-  EXPECT_THROW(PlaceArrayCommand::parse(json::parse(R"({"cmd":"place.array","object":"crate","count":0})"), ctx),
-               CommandError);
-  auto undeformed = PlaceArrayCommand::parse(json::parse(R"({"cmd":"place.array","object":"ground","count":2})"), ctx);
-  const std::size_t n = s.objects().size();
-  EXPECT_THROW(undeformed->redo(s), CommandError);
-  EXPECT_EQ(s.objects().size(), n);
-}
-
 TEST(AnimClip, MissingFileIsAClearErrorAndChangesNothing) {
   Scene s = placed_crate();
   const Scene before = s;
   CommandContext ctx;
   auto c = AnimClipCommand::parse(
       json::parse(R"({"cmd":"anim.clip","object":"crate","path":"/nonexistent/walk.gltf"})"), ctx);
-  try {
-    c->redo(s);
-    ADD_FAILURE() << "missing clip file accepted";
-  } catch (const CommandError& e) {
-    EXPECT_EQ(e.field(), "path");
-    EXPECT_NE(std::string(e.what()).find("walk.gltf"), std::string::npos) << e.what();
-  }
+  EXPECT_TRUE(test::throws_command_error([&] { c->redo(s); }, "path", "walk.gltf"))
+      << "missing clip file accepted";
   expect_same_meshes(s, before);
   EXPECT_EQ(s.find("crate")->clip, nullptr);
   EXPECT_THROW(AnimClipCommand::parse(json::parse(R"({"cmd":"anim.clip","object":"crate","path":"x.gltf","speed":0})"),
@@ -277,13 +187,8 @@ TEST(AnimClipReal, VertexCountMismatchIsRejected) {
   CommandContext ctx;
   auto c = AnimClipCommand::parse(
       json{{"cmd", "anim.clip"}, {"object", "crate"}, {"path", kData + "simple_skin/simple_skin.gltf"}}, ctx);
-  try {
-    c->redo(s);
-    ADD_FAILURE() << "a clip with another vertex count was attached";
-  } catch (const CommandError& e) {
-    EXPECT_EQ(e.field(), "path");
-    EXPECT_NE(std::string(e.what()).find("vertices"), std::string::npos) << e.what();
-  }
+  EXPECT_TRUE(test::throws_command_error([&] { c->redo(s); }, "path", "vertices"))
+      << "a clip with another vertex count was attached";
   expect_same_meshes(s, before);
 }
 

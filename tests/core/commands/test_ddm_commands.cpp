@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "tests/test_shapes.h"
 #include "core/commands/ddm_commands.h"
 #include "core/commands/ddm_paint.h"
 #include "core/commands/mesh_subdivide.h"
@@ -20,13 +21,7 @@ using nlohmann::json;
 
 Scene ball_scene() {
   Scene s;
-  SceneObject o;
-  o.name = "ball";
-  o.source = "primitive:sphere";
-  o.rest_mesh = std::make_shared<const TriMesh>(make_sphere(8, 4));
-  o.transform.translate = {2.0, 0.0, 0.0};
-  o.refresh();
-  s.insert(o);
+  s.insert(trispline::test::sphere_object("ball", 8, 4, {2.0, 0.0, 0.0}));
   return s;
 }
 

@@ -10,6 +10,8 @@
 #include <set>
 #include <tuple>
 
+#include "tests/core/commands/command_test_util.h"
+#include "tests/test_shapes.h"
 #include "core/commands/codecs.h"
 #include "core/commands/camera_set.h"
 #include "core/commands/ddm_commands.h"
@@ -43,13 +45,7 @@ Camera view() {
 // A unit sphere at (0.3, 0, 0) seen from +z (its image: a disc of ~100 px radius around (200, 150)).
 Scene ball_scene() {
   Scene s;
-  SceneObject o;
-  o.name = "ball";
-  o.source = "primitive:sphere";
-  o.rest_mesh = std::make_shared<const TriMesh>(make_sphere(12, 6));
-  o.transform.translate = {0.3, 0.0, 0.0};
-  o.refresh();
-  s.insert(o);
+  s.insert(trispline::test::sphere_object("ball", 12, 6, {0.3, 0.0, 0.0}));
   s.camera = view();
   s.camera_set = true;
   return s;
@@ -256,13 +252,8 @@ TEST(DdmPaint, AStrokeThatTouchesNothingIsAnErrorAndChangesNothing) {
   const auto before = layer_of(s, "t");
   for (const char* layer : {"t", "new"}) {
     const CommandPtr c = DdmPaintCommand::parse(paint_line(layer, false, {{5, 5}, {20, 8}}, 4.0), {});
-    try {
-      c->redo(s);
-      ADD_FAILURE() << "a stroke in the corner touched something";
-    } catch (const CommandError& e) {
-      EXPECT_EQ(e.field(), "stroke");
-      EXPECT_NE(std::string(e.what()).find("touches no visible cell"), std::string::npos) << e.what();
-    }
+    EXPECT_TRUE(test::throws_command_error([&] { c->redo(s); }, "stroke", "touches no visible cell"))
+        << "a stroke in the corner touched something";
     EXPECT_EQ(s.find("ball")->ddm_layers.size(), 1u) << "no layer made";
     EXPECT_EQ(layer_of(s, "t"), before);
   }

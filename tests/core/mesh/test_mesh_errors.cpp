@@ -24,6 +24,21 @@ void expect_error(const std::filesystem::path& path, const std::string& reason) 
   }
 }
 
+struct BadFile {
+  const char* name;
+  std::string content;
+  const char* reason;
+};
+
+// Writes each file into a fresh folder and loads it expecting MeshIoError with its reason.
+void expect_errors(const std::vector<BadFile>& files) {
+  TempDir dir;
+  for (const BadFile& f : files) {
+    write_text(dir / f.name, f.content);
+    expect_error(dir / f.name, f.reason);
+  }
+}
+
 TEST(MeshIoErrors, MissingFile) {
   TempDir dir;
   for (const char* name : {"nope.obj", "nope.ply", "nope.off", "nope.stl", "nope.gltf", "nope.glb"})
@@ -31,25 +46,20 @@ TEST(MeshIoErrors, MissingFile) {
 }
 
 TEST(MeshIoErrors, UnsupportedExtension) {
-  TempDir dir;
-  write_text(dir / "mesh.xyz", "1 2 3\n");
-  expect_error(dir / "mesh.xyz", "unsupported extension");
-  write_text(dir / "noext", "v 0 0 0\n");
-  expect_error(dir / "noext", "unsupported extension");
+  expect_errors({
+      {"mesh.xyz", "1 2 3\n", "unsupported extension"},
+      {"noext", "v 0 0 0\n", "unsupported extension"},
+  });
 }
 
 TEST(MeshIoErrors, CorruptFiles) {
-  TempDir dir;
-  write_text(dir / "bad.ply", "ply\nformat binary_little_endian 1.0\nelement vertex banana\nend_header\n\x01\x02");
-  expect_error(dir / "bad.ply", "cannot parse");
-  write_text(dir / "bad.glb", "glTF\x02\0\0\0garbage garbage garbage");
-  expect_error(dir / "bad.glb", "cannot parse");
-  write_text(dir / "bad.gltf", "{ \"asset\": { \"version\": \"2.0\" }, \"meshes\": [ ");
-  expect_error(dir / "bad.gltf", "cannot parse");
-  write_text(dir / "bad.off", "OFF\n3 x 0\n");
-  expect_error(dir / "bad.off", "cannot parse");
-  write_text(dir / "bad.stl", std::string(40, '\x07'));  // binary STL shorter than its 84-byte header
-  expect_error(dir / "bad.stl", "cannot parse");
+  expect_errors({
+      {"bad.ply", "ply\nformat binary_little_endian 1.0\nelement vertex banana\nend_header\n\x01\x02", "cannot parse"},
+      {"bad.glb", "glTF\x02\0\0\0garbage garbage garbage", "cannot parse"},
+      {"bad.gltf", "{ \"asset\": { \"version\": \"2.0\" }, \"meshes\": [ ", "cannot parse"},
+      {"bad.off", "OFF\n3 x 0\n", "cannot parse"},
+      {"bad.stl", std::string(40, '\x07'), "cannot parse"},  // binary STL shorter than its 84-byte header
+  });
 }
 
 TEST(MeshIoErrors, NonFiniteCoordinates) {
@@ -72,58 +82,50 @@ TEST(MeshIoErrors, NonFiniteCoordinates) {
 
 TEST(MeshIoErrors, NonFiniteCoordinatesInTextFormats) {
   // OpenMesh's text readers would drop or zero these; the loader reports them.
-  TempDir dir;
-  write_text(dir / "nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n");
-  expect_error(dir / "nan.obj", "non-finite vertex coordinate");
-  write_text(dir / "inf.obj", "v 0 0 0\nv 1 1e999 0\nv 0 1 0\nf 1 2 3\n");
-  expect_error(dir / "inf.obj", "non-finite vertex coordinate");
-  write_text(dir / "inf.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 -inf 0\n3 0 1 2\n");
-  expect_error(dir / "inf.off", "non-finite vertex coordinate");
-  write_text(dir / "nan.ply",
-             "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
-             "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 NaN 0\n3 0 1 2\n");
-  expect_error(dir / "nan.ply", "non-finite vertex coordinate");
-  write_text(dir / "nan.stl",
-             "solid t\n facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n   vertex nan 0 0\n"
-             "   vertex 0 1 0\n  endloop\n endfacet\nendsolid t\n");
-  expect_error(dir / "nan.stl", "non-finite vertex coordinate");
+  expect_errors({
+      {"nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n", "non-finite vertex coordinate"},
+      {"inf.obj", "v 0 0 0\nv 1 1e999 0\nv 0 1 0\nf 1 2 3\n", "non-finite vertex coordinate"},
+      {"inf.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 -inf 0\n3 0 1 2\n", "non-finite vertex coordinate"},
+      {"nan.ply",
+       "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+       "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 NaN 0\n3 0 1 2\n",
+       "non-finite vertex coordinate"},
+      {"nan.stl",
+       "solid t\n facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n   vertex nan 0 0\n"
+       "   vertex 0 1 0\n  endloop\n endfacet\nendsolid t\n",
+       "non-finite vertex coordinate"},
+  });
 }
 
 TEST(MeshIoErrors, EmptyMeshes) {
-  TempDir dir;
-  write_text(dir / "empty.obj", "# nothing here\n");
-  expect_error(dir / "empty.obj", "empty mesh");
-  write_text(dir / "points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
-  expect_error(dir / "points.obj", "empty mesh (no triangles)");
-  write_text(dir / "empty.off", "OFF\n0 0 0\n");
-  expect_error(dir / "empty.off", "empty mesh");
-  write_text(dir / "empty.gltf", "{ \"asset\": { \"version\": \"2.0\" } }");
-  expect_error(dir / "empty.gltf", "empty mesh");
+  expect_errors({
+      {"empty.obj", "# nothing here\n", "empty mesh"},
+      {"points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n", "empty mesh (no triangles)"},
+      {"empty.off", "OFF\n0 0 0\n", "empty mesh"},
+      {"empty.gltf", "{ \"asset\": { \"version\": \"2.0\" } }", "empty mesh"},
+  });
 }
 
 TEST(MeshIoErrors, IndexOutOfRange) {
-  TempDir dir;
-  write_text(dir / "oor.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n");
-  expect_error(dir / "oor.obj", "out of range");
-  write_text(dir / "neg.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -1 -2 -9\n");
-  expect_error(dir / "neg.obj", "out of range");
-  write_text(dir / "oor.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n");
-  expect_error(dir / "oor.off", "out of range");
-  write_text(dir / "oor.ply",
-             "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
-             "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n");
-  expect_error(dir / "oor.ply", "out of range");
-  // glTF: 3 float positions then uint16 indices {0, 1, 7}.
-  write_text(
-      dir / "oor.gltf",
-      R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
-      R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}],)"
-      R"("buffers":[{"byteLength":44,"uri":"data:application/octet-stream;base64,)"
-      R"(AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAABAAcAAAA="}],)"
-      R"("bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":36},{"buffer":0,"byteOffset":36,"byteLength":6}],)"
-      R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]},)"
-      R"({"bufferView":1,"componentType":5123,"count":3,"type":"SCALAR"}]})");
-  expect_error(dir / "oor.gltf", "out of range");
+  expect_errors({
+      {"oor.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n", "out of range"},
+      {"neg.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -1 -2 -9\n", "out of range"},
+      {"oor.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n", "out of range"},
+      {"oor.ply",
+       "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+       "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n",
+       "out of range"},
+      // glTF: 3 float positions then uint16 indices {0, 1, 7}.
+      {"oor.gltf",
+       R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
+       R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}],)"
+       R"("buffers":[{"byteLength":44,"uri":"data:application/octet-stream;base64,)"
+       R"(AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAABAAcAAAA="}],)"
+       R"("bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":36},{"buffer":0,"byteOffset":36,"byteLength":6}],)"
+       R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]},)"
+       R"({"bufferView":1,"componentType":5123,"count":3,"type":"SCALAR"}]})",
+       "out of range"},
+  });
 }
 
 TEST(MeshIoErrors, ValidateMeshDirectly) {

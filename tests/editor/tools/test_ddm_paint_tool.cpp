@@ -17,6 +17,7 @@
 #include "editor/tools/select_tool.h"
 #include "editor/tools/toolbox.h"
 #include "headless_imgui.h"
+#include "tool_test.h"
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
@@ -25,13 +26,11 @@ using namespace trispline;
 
 namespace {
 
-class DdmPaintTool : public ::testing::Test {
+class DdmPaintTool : public test::ToolTest<editor::DdmPaintTool> {
  protected:
   void SetUp() override {
     ASSERT_TRUE(s.execute({{"cmd", "scene.primitive"}, {"kind", "sphere"}, {"name", "s"}}));
-    editor::Navigator nav;
-    nav.frame(editor::bounds_of(*object().world_mesh), {800, 600});
-    view = nav.camera({800, 600});
+    frame_view_on("s");
     selected = "s";
     editor::DdmPaintToolParams p;
     p.paint.layer = "spots";
@@ -41,12 +40,9 @@ class DdmPaintTool : public ::testing::Test {
     p.paint.radius_px = 30;
     tool.set_params(p);
     tool.activate(ctx);
-    // The middle half of the pixels of row 300 whose rays hit the sphere.
-    std::vector<glm::dvec2> hits;
-    for (double x = 0; x < 800; x += 4)
-      if (editor::pick_object(s.scene(), view, {x, 300})) hits.push_back({x, 300 + 0.05 * (x - 400)});
+    const std::vector<glm::dvec2> hits = row_hits(0.05);
     ASSERT_GE(hits.size(), 40u) << "the framed sphere must cover part of the middle row";
-    row.assign(hits.begin() + hits.size() / 4, hits.end() - hits.size() / 4);
+    row = middle_half(hits);
   }
   const core::SceneObject& object() const { return *s.scene().find("s"); }
   std::shared_ptr<const core::DdmLayer> layer(const std::string& name = "spots") const {
@@ -88,22 +84,9 @@ class DdmPaintTool : public ::testing::Test {
     panel_frame(c, true);
     panel_frame(c, false);
   }
-  std::size_t count(const std::string& cmd) const {
-    std::size_t n = 0;
-    for (std::size_t i = 0; i < s.history().applied(); ++i) n += s.history().at(i).id() == cmd;
-    return n;
-  }
   nlohmann::json last_line() const { return s.history().at(s.history().applied() - 1).to_json(); }
-  std::string last_message() const { return messages.messages().empty() ? "" : messages.messages().back().text; }
 
   test::HeadlessImGui gui;
-  ui::MessageLog messages;
-  editor::EditorSession s{messages};
-  core::Camera view;
-  std::string selected;
-  std::set<std::string> hidden;
-  editor::ToolContext ctx{s, view, selected, hidden, [](std::string, std::function<void()> work) { work(); }};
-  editor::DdmPaintTool tool;
   editor::ToolInput in;
   std::vector<glm::dvec2> row;
 };
@@ -222,7 +205,8 @@ TEST_F(DdmPaintTool, BrushCircleFollowsTheCursorAndBracketsResizeIt) {
   EXPECT_TRUE(tool.owns_mouse());
   gpu::ViewOptions vo;
   tool.decorate(vo);
-  EXPECT_EQ(vo.stroke_px.size(), 2u);
+  ASSERT_EQ(vo.overlays.strokes.size(), 1u);
+  EXPECT_EQ(vo.overlays.strokes[0].px.size(), 2u);
   EXPECT_EQ(count("ddm.paint"), 0u);
   frame(row.back(), false);
   EXPECT_EQ(count("ddm.paint"), 1u) << last_message();

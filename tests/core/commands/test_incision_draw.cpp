@@ -12,7 +12,8 @@
 #include "core/commands/scene_load.h"
 #include "core/commands/scene_primitive.h"
 #include "core/scene/primitives.h"
-#include "incision_test_util.h"
+#include "tests/core/commands/command_test_util.h"
+#include "tests/core/incision/incision_test_util.h"
 
 namespace trispline::core {
 namespace {
@@ -20,13 +21,7 @@ namespace {
 using nlohmann::json;
 
 void run(Scene& s, const json& j) {
-  CommandContext ctx;
-  const std::string cmd = j.at("cmd");
-  CommandPtr c = cmd == "scene.primitive" ? ScenePrimitiveCommand::parse(j, ctx)
-                 : cmd == "scene.load"    ? SceneLoadCommand::parse(j, ctx)
-                 : cmd == "camera.set"    ? CameraSetCommand::parse(j, ctx)
-                                          : IncisionDrawCommand::parse(j, ctx);
-  c->redo(s);
+  trispline::test::run_line<ScenePrimitiveCommand, SceneLoadCommand, CameraSetCommand, IncisionDrawCommand>(s, j);
 }
 
 bool same_mesh(const TriMesh& a, const TriMesh& b) {
@@ -143,13 +138,8 @@ TEST(IncisionDraw, BadInputNamesTheFieldAndLeavesTheSceneUnchanged) {
   Scene s = ball_scene();
   const TriMesh rest = *s.find("ball")->rest_mesh;
   auto fails = [&](const json& j, const char* field, const char* words) {
-    try {
-      IncisionDrawCommand::parse(j, CommandContext{})->redo(s);
-      ADD_FAILURE() << "no error: " << j.dump();
-    } catch (const CommandError& e) {
-      EXPECT_EQ(e.field(), field) << e.what();
-      EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
-    }
+    const auto run = [&] { IncisionDrawCommand::parse(j, CommandContext{})->redo(s); };
+    EXPECT_TRUE(trispline::test::throws_command_error(run, field, words)) << j.dump();
     EXPECT_TRUE(same_mesh(*s.find("ball")->rest_mesh, rest));
   };
   fails(draw("[[5,5],[40,8],[60,20]]", 0.15, 0.1, 0.05), "stroke", "misses the surface of 'ball'");

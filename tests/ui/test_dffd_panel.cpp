@@ -164,12 +164,7 @@ TEST(DffdSplitTool, SplitIsOneUndoableCommand) {
   EXPECT_EQ(s.scene().find("ball")->world_mesh->positions, before->positions) << "undo restores it";
 
   test::HeadlessImGui gui;  // the tool's panel for the selected object, the obstacle ticked above kept
-  for (int f = 0; f < 2; ++f)  // a new window is hidden in its first frame
-    gui.step({-10, -10}, false, [&] {
-      ImGui::Begin("Tool");
-      tool.draw_panel(ctx);
-      ImGui::End();
-    });
+  gui.show_window("Tool", [&] { tool.draw_panel(ctx); });
   EXPECT_GT(gui.render().TotalVtxCount, 0);
   EXPECT_EQ(tool.params().obstacles, std::vector<std::string>{"bar"});
 

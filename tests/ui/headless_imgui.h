@@ -48,6 +48,15 @@ class HeadlessImGui {
     frame_open_ = true;
     ui();
   }
+  // `frames` frames (a new window is hidden in its first) of a window `name` holding `draw`, the mouse off screen.
+  void show_window(const char* name, const std::function<void()>& draw, int frames = 2) {
+    for (int f = 0; f < frames; ++f)
+      step({-10, -10}, false, [&] {
+        ImGui::Begin(name);
+        draw();
+        ImGui::End();
+      });
+  }
 
  private:
   ImGuiContext* ctx_;

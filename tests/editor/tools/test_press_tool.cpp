@@ -7,24 +7,22 @@
 #include "editor/session.h"
 #include "editor/tools/press_tool.h"
 #include "editor/tools/select_tool.h"
+#include "tool_test.h"
 
 using namespace trispline;
 
 namespace {
 
-class PressTool : public ::testing::Test {
+class PressTool : public test::ToolTest<editor::PressTool> {
  protected:
   void SetUp() override {
+    selected = "t";
     ASSERT_TRUE(s.execute({{"cmd", "scene.primitive"}, {"kind", "teapot"}, {"name", "t"}, {"scale", 0.3}}));
     ASSERT_TRUE(s.execute(
         {{"cmd", "lattice.ring"}, {"object", "t"}, {"radius", 1.2}, {"controls", {16, 3, 4}}, {"order", {4, 3, 2}}}));
-    editor::Navigator nav;
-    nav.frame(editor::bounds_of(*object().world_mesh), {800, 600});
-    view = nav.camera({800, 600});
+    frame_view_on("t");
     tool.activate(ctx);
-    // A row through the middle of the view: the pixels whose rays hit the teapot.
-    for (double x = 0; x < 800; x += 4)
-      if (editor::pick_object(s.scene(), view, {x, 300})) row.push_back({x, 300});
+    row = row_hits();  // a row through the middle of the view: the pixels whose rays hit the teapot
     ASSERT_GE(row.size(), 20u) << "the framed teapot must cover part of the middle row";
   }
   const core::SceneObject& object() const { return *s.scene().find("t"); }
@@ -52,17 +50,9 @@ class PressTool : public ::testing::Test {
     tool.handle_input(in, ctx);
   }
 
-  ui::MessageLog messages;
-  editor::EditorSession s{messages};
-  core::Camera view;
-  std::string selected = "t";
-  std::set<std::string> hidden;
-  editor::ToolContext ctx{s, view, selected, hidden, [](std::string, std::function<void()> work) { work(); }};
-  editor::PressTool tool;
   std::vector<glm::dvec2> row;
 };
 
-std::string last_message(const ui::MessageLog& log) { return log.messages().empty() ? "" : log.messages().back().text; }
 
 }  // namespace
 
@@ -72,22 +62,23 @@ TEST_F(PressTool, HoverPutsTheBrushSphereOnTheDeformedMesh) {
   ASSERT_TRUE(tool.hover());
   gpu::ViewOptions vo;
   tool.decorate(vo);
-  ASSERT_TRUE(vo.brush);
-  EXPECT_NEAR(vo.brush->radius, 0.1 * diagonal(), 1e-12) << "unset radius: 0.1 x the bounding-box diagonal";
+  ASSERT_EQ(vo.overlays.spheres.size(), 1u);
+  const gpu::SphereOverlay& brush = vo.overlays.spheres[0];
+  EXPECT_NEAR(brush.radius, 0.1 * diagonal(), 1e-12) << "unset radius: 0.1 x the bounding-box diagonal";
   // The centre is the first hit on the object's world_mesh along the cursor's ray.
   core::RayCaster caster;
   caster.add_mesh(*object().world_mesh);
   caster.commit();
   const auto hit = caster.intersect(view.eye, view.ray_direction(px));
   ASSERT_TRUE(hit);
-  EXPECT_LT(glm::length(vo.brush->centre - hit->position), 1e-9 * diagonal());
-  EXPECT_TRUE(vo.brush_path.empty()) << "no path while only hovering";
+  EXPECT_LT(glm::length(brush.centre - hit->position), 1e-9 * diagonal());
+  EXPECT_TRUE(vo.overlays.points.empty()) << "no path while only hovering";
 
   hover({2, 2});  // off the object: no sphere
   EXPECT_FALSE(tool.hover());
   gpu::ViewOptions off;
   tool.decorate(off);
-  EXPECT_FALSE(off.brush);
+  EXPECT_TRUE(off.overlays.spheres.empty());
 
   hover(px);
   tool.mouse_away();  // over a panel
@@ -101,7 +92,7 @@ TEST_F(PressTool, DragIssuesOneUndoablePress) {
   const auto before = object().ffd->lattice.control_points();
   const std::size_t applied = s.history().applied();
   drag(row);
-  ASSERT_EQ(s.history().applied(), applied + 1) << last_message(messages);
+  ASSERT_EQ(s.history().applied(), applied + 1) << last_message();
   const nlohmann::json j = s.history().at(applied).to_json();
   EXPECT_EQ(j["cmd"], "lattice.press");
   EXPECT_EQ(j["object"], "t");
@@ -166,7 +157,7 @@ TEST_F(PressTool, CtrlDragPullsWithNegativeStrength) {
   tool.set_strength(0.02);
   const std::size_t applied = s.history().applied();
   drag(row, /*ctrl=*/true);
-  ASSERT_EQ(s.history().applied(), applied + 1) << last_message(messages);
+  ASSERT_EQ(s.history().applied(), applied + 1) << last_message();
   EXPECT_DOUBLE_EQ(s.history().at(applied).to_json()["strength"].get<double>(), -0.02);
   EXPECT_EQ(s.history().at(applied).label().rfind("Pull '", 0), 0u) << s.history().at(applied).label();
 }
@@ -177,24 +168,4 @@ TEST_F(PressTool, ObjectWithoutLatticeShowsNoBrush) {
   hover(row[row.size() / 2]);
   EXPECT_FALSE(tool.hover());
   EXPECT_DOUBLE_EQ(tool.radius(ctx), 0.0);
-}
-
-TEST(PressBrushGeometry, SphereTrianglesLieOnTheSphereAndFaceOutwards) {
-  gpu::BrushSphere sphere;
-  sphere.centre = {1.0, 2.0, -0.5};
-  sphere.radius = 0.25;
-  std::vector<gpu::OverlayVertex> tris;
-  gpu::append_brush_sphere(sphere, {0.0f, 0.0f, 5.0f}, tris, 16, 8);
-  ASSERT_EQ(tris.size(), std::size_t(6 * 16 * (8 - 1)));
-  const glm::vec3 c(sphere.centre);
-  for (std::size_t i = 0; i < tris.size(); i += 3) {
-    for (std::size_t k = 0; k < 3; ++k) {
-      EXPECT_NEAR(glm::length(tris[i + k].position - c), 0.25f, 1e-5f);
-      EXPECT_GT(tris[i + k].color.w, 0.0f);
-      EXPECT_LE(tris[i + k].color.w, 1.0f);
-    }
-    const glm::vec3 n = glm::cross(tris[i + 1].position - tris[i].position, tris[i + 2].position - tris[i].position);
-    const glm::vec3 mid = (tris[i].position + tris[i + 1].position + tris[i + 2].position) / 3.0f;
-    EXPECT_GT(glm::dot(n, mid - c), 0.0f) << "triangle " << i / 3 << " must be CCW seen from outside";
-  }
 }

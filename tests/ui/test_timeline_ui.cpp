@@ -10,7 +10,7 @@
 #include "editor/history.h"
 #include "editor/replay.h"
 #include "editor/tools/sketch_tool.h"
-#include "session_test_util.h"
+#include "tests/editor/session_test_util.h"
 #include "ui/curve_editor.h"
 #include "ui/placement_panel.h"
 #include "ui/tool_panel.h"
@@ -36,7 +36,6 @@ const nlohmann::json kRing = {
 
 class TimelineUi : public test::StateDirTest {
  protected:
-  TimelineUi() : StateDirTest("trispline_timeline_ui_") {}
   void SetUp() override {
     StateDirTest::SetUp();
     ASSERT_TRUE(s.execute(kTeapot));

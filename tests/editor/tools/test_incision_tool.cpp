@@ -1,7 +1,7 @@
 // The Incision tool (editor/tools/incision_tool.h) driven like the Press tool tests drive theirs: a drag across a
-// sphere previews the cut while dragging (generator curve + cut mesh in gpu::ViewOptions) and issues exactly one
-// incision.draw with the dragged stroke, the panel's values and the view as "camera" (the test also accepts the
-// tool's fallback for a command that drops that field: a camera.set of the view first), undoable bit for bit; a click
+// sphere previews the cut while dragging (generator curve, cut lattice and cut mesh as gpu::Overlays) and issues
+// exactly one incision.draw with the dragged stroke, the panel's values and the view as "camera", undoable bit for
+// bit; a click
 // issues nothing; a stroke off the surface shows only the stroke and its command error goes to the Log panel with the
 // scene unchanged.
 #include <gtest/gtest.h>
@@ -12,6 +12,7 @@
 #include "editor/tools/select_tool.h"
 #include "editor/tools/toolbox.h"
 #include "headless_imgui.h"
+#include "tool_test.h"
 #include "ui/shortcuts.h"
 
 #define GLFW_INCLUDE_NONE
@@ -21,21 +22,16 @@ using namespace trispline;
 
 namespace {
 
-class IncisionTool : public ::testing::Test {
+class IncisionTool : public test::ToolTest<editor::IncisionTool> {
  protected:
   void SetUp() override {
     ASSERT_TRUE(s.execute({{"cmd", "scene.primitive"}, {"kind", "sphere"}, {"name", "s"}}));
-    editor::Navigator nav;
-    nav.frame(editor::bounds_of(*object().world_mesh), {800, 600});
-    view = nav.camera({800, 600});
+    frame_view_on("s");
     tool.set_preview_interval_ms(0.0);  // a preview after every new stroke point: deterministic
     tool.activate(ctx);
-    // The middle half of the pixels of row 300 whose rays hit the sphere: a stroke well inside its silhouette.
-    std::vector<glm::dvec2> hits;
-    for (double x = 0; x < 800; x += 4)
-      if (editor::pick_object(s.scene(), view, {x, 300})) hits.push_back({x, 300 + 0.02 * (x - 400)});
+    const std::vector<glm::dvec2> hits = row_hits(0.02);
     ASSERT_GE(hits.size(), 40u) << "the framed sphere must cover part of the middle row";
-    row.assign(hits.begin() + hits.size() / 4, hits.end() - hits.size() / 4);
+    row = middle_half(hits);
   }
   const core::SceneObject& object() const { return *s.scene().find("s"); }
 
@@ -63,25 +59,7 @@ class IncisionTool : public ::testing::Test {
     move_through({px.begin() + 1, px.end()});
     release();
   }
-  std::size_t count(const std::string& cmd) const {
-    std::size_t n = 0;
-    for (std::size_t i = 0; i < s.history().applied(); ++i) n += s.history().at(i).id() == cmd;
-    return n;
-  }
-  bool logged_error(const std::string& part) const {
-    for (const auto& m : messages.messages())
-      if (m.severity == ui::Severity::Error && m.text.find(part) != std::string::npos) return true;
-    return false;
-  }
-  std::string last_message() const { return messages.messages().empty() ? "" : messages.messages().back().text; }
-
-  ui::MessageLog messages;
-  editor::EditorSession s{messages};
-  core::Camera view;
-  std::string selected;  // nothing selected: the object under the cursor at mouse-down is cut
-  std::set<std::string> hidden;
-  editor::ToolContext ctx{s, view, selected, hidden, [](std::string, std::function<void()> work) { work(); }};
-  editor::IncisionTool tool;
+  // Nothing is selected: the object under the cursor at mouse-down is cut.
   editor::ToolInput in;
   std::vector<glm::dvec2> row;
 };
@@ -145,24 +123,35 @@ TEST_F(IncisionTool, PreviewWhileDraggingOnTheSurface) {
 
   gpu::ViewOptions vo;
   tool.decorate(vo);
-  EXPECT_EQ(vo.stroke_px.size(), row.size());
-  EXPECT_EQ(vo.incision_curve, tool.preview_curve());
-  EXPECT_EQ(vo.incision_preview_mesh, tool.preview_mesh());
-  EXPECT_EQ(vo.incision_preview_object, "s");
-  // The cut lattice is shown with the preview: order knots at u = 1/2 (the C⁻¹ break), around the curve.
+  ASSERT_EQ(vo.overlays.strokes.size(), 1u);
+  EXPECT_EQ(vo.overlays.strokes[0].px.size(), row.size());
+  ASSERT_EQ(vo.overlays.curves.size(), 1u);
+  EXPECT_EQ(vo.overlays.curves[0].points, tool.preview_curve());
+  ASSERT_EQ(vo.overlays.meshes.size(), 1u);
+  EXPECT_EQ(vo.overlays.meshes[0].mesh, tool.preview_mesh());
+  EXPECT_EQ(vo.overlays.meshes[0].object, "s");
+  // The cut lattice is shown with the preview: order knots at u = 1/2 (the C⁻¹ break), around the curve, marked
+  // as a discontinuity between its F⁻ and F⁺ control planes.
   ASSERT_TRUE(tool.preview_lattice());
-  EXPECT_EQ(vo.incision_lattice, tool.preview_lattice());
+  ASSERT_EQ(vo.overlays.lattices.size(), 1u);
+  EXPECT_EQ(vo.overlays.lattices[0].lattice, tool.preview_lattice());
   const core::KnotVector& ku = tool.preview_lattice()->knots(0);
   EXPECT_EQ(ku.multiplicity(0.5), ku.order());
+  ASSERT_EQ(vo.overlays.lattices[0].discontinuities.size(), 1u);
+  const core::Discontinuity& cut = vo.overlays.lattices[0].discontinuities[0];
+  EXPECT_EQ(cut.axis, 0);
+  EXPECT_EQ(cut.u0, 0.5);
+  EXPECT_EQ(ku.knots()[std::size_t(cut.plus_plane)], 0.5) << "F⁺ starts at the first knot u = 1/2";
+  EXPECT_EQ(cut.minus_plane, cut.plus_plane - 1);
   EXPECT_EQ(s.history().applied(), 1u) << "nothing is executed before mouse-up";
 
   release();
   gpu::ViewOptions after;
   tool.decorate(after);
-  EXPECT_TRUE(after.stroke_px.empty());
-  EXPECT_TRUE(after.incision_curve.empty());
-  EXPECT_FALSE(after.incision_preview_mesh);
-  EXPECT_FALSE(after.incision_lattice);
+  EXPECT_TRUE(after.overlays.strokes.empty());
+  EXPECT_TRUE(after.overlays.curves.empty());
+  EXPECT_TRUE(after.overlays.meshes.empty());
+  EXPECT_TRUE(after.overlays.lattices.empty());
 }
 
 TEST_F(IncisionTool, DragIssuesOneUndoableIncisionDraw) {
@@ -243,8 +232,9 @@ TEST_F(IncisionTool, StrokeOffTheSurfaceShowsTheStrokeOnlyAndLogsTheError) {
   EXPECT_FALSE(tool.preview_error().empty());
   gpu::ViewOptions vo;
   tool.decorate(vo);
-  EXPECT_EQ(vo.stroke_px.size(), corner.size()) << "the stroke is still shown";
-  EXPECT_FALSE(vo.incision_preview_mesh);
+  ASSERT_EQ(vo.overlays.strokes.size(), 1u) << "the stroke is still shown";
+  EXPECT_EQ(vo.overlays.strokes[0].px.size(), corner.size());
+  EXPECT_TRUE(vo.overlays.meshes.empty());
   release();
   EXPECT_EQ(s.history().applied(), applied) << "the failing command leaves the history as it was";
   EXPECT_EQ(object().world_mesh, before) << "and the scene";
@@ -272,12 +262,7 @@ TEST_F(IncisionTool, PanelDrawsAndKeepsExplicitValues) {
   p.opening = 0.0;
   tool.set_params(p);
   test::HeadlessImGui gui;
-  for (int f = 0; f < 2; ++f)  // a new window is hidden in its first frame
-    gui.step({-10, -10}, false, [&] {
-      ImGui::Begin("Tool");
-      tool.draw_panel(ctx);
-      ImGui::End();
-    });
+  gui.show_window("Tool", [&] { tool.draw_panel(ctx); });
   EXPECT_GT(gui.render().TotalVtxCount, 0);
   EXPECT_EQ(tool.params().width, 0.25) << "drawing does not change the values";
   EXPECT_EQ(tool.params().opening, 0.0);

@@ -9,8 +9,8 @@
 #include "editor/navigation.h"
 #include "editor/session.h"
 #include "editor/tools/transform_modal.h"
-#include "headless_imgui.h"
-#include "session_test_util.h"
+#include "tests/ui/headless_imgui.h"
+#include "tests/editor/session_test_util.h"
 #include "ui/scene_panel.h"
 
 #define GLFW_INCLUDE_NONE
@@ -59,7 +59,6 @@ std::vector<nlohmann::json> logged_transforms(const std::filesystem::path& log) 
 
 class Modal : public test::StateDirTest {
  protected:
-  Modal() : StateDirTest("trispline_modal_test_") {}
   void SetUp() override {
     StateDirTest::SetUp();
     s.start(false);

@@ -1,0 +1,22 @@
+#include "gpu/view_options.h"
+
+namespace trispline::gpu {
+
+const std::shared_ptr<const core::TriMesh>* Overlays::mesh_for(const std::string& object) const {
+  for (const MeshInPlace& m : meshes)
+    if (m.object == object) return m.mesh ? &m.mesh : nullptr;
+  return nullptr;
+}
+
+const std::shared_ptr<const core::TrivariateBSpline<glm::dvec3>>* Overlays::lattice_for(
+    const std::string& object) const {
+  for (const LatticeInPlace& l : lattices_in_place)
+    if (l.object == object) return l.lattice ? &l.lattice : nullptr;
+  return nullptr;
+}
+
+ScreenStroke& ViewOptions::add_stroke(std::vector<glm::dvec2> px) {
+  return overlays.strokes.emplace_back(ScreenStroke{std::move(px), style.stroke_color, style.stroke_width_px});
+}
+
+}  // namespace trispline::gpu

@@ -1,0 +1,148 @@
+// trispline::gpu view options — what Renderer::draw is asked to show besides the scene: display switches, a
+// style (colours and sizes), and generic overlays that tools and panels fill (editor::Tool::decorate). The renderer
+// knows no tool: a stroke being sketched, a pressing brush or an incision preview reach it only as the overlay kinds
+// below. Plain data (no GL).
+//
+// Colours are display (sRGB-encoded) values with alpha; sizes are pixels; positions are world units unless a field
+// says viewport pixels (top-left origin, as core::Camera::project returns them).
+#pragma once
+
+#include <glm/glm.hpp>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/dffd/dffd.h"
+#include "core/ffd/ffd_evaluator.h"
+#include "core/mesh/tri_mesh.h"
+#include "core/spline/trivariate_bspline.h"
+
+namespace trispline::gpu {
+
+// Colours and sizes of everything the renderer draws on its own (background, grid, selection, lattices, contact
+// surfaces, discontinuity planes), and the default look of screen strokes.
+struct ViewStyle {
+  glm::vec3 background_top{0.23f, 0.23f, 0.25f};
+  glm::vec3 background_bottom{0.13f, 0.13f, 0.14f};
+  glm::vec3 grid_color{0.55f, 0.55f, 0.58f};
+  glm::vec3 selection_color{1.0f, 0.62f, 0.15f};
+  float outline_px = 2.0f;
+  // Control lattices (ViewOptions::show_lattice): polylines and points.
+  glm::vec4 lattice_line_color{0.45f, 0.78f, 1.0f, 0.9f};
+  glm::vec4 lattice_point_color{0.92f, 0.96f, 1.0f, 1.0f};
+  float lattice_point_px = 7.0f;
+  // Contact surface S(u,v) = F(u,v,0) (seed Def. 4): tessellation (u along the stroke), tint (alpha at normal
+  // incidence), and iso-lines every contact_iso_every grid lines.
+  int contact_cells_u = 48;
+  int contact_cells_v = 16;
+  glm::vec4 contact_surface_color{0.25f, 0.85f, 0.70f, 0.35f};
+  glm::vec4 contact_iso_color{0.0f, 0.78f, 0.64f, 1.0f};
+  int contact_iso_every = 4;
+  // Contact samples of placed objects (seed §2.3): hits, filled samples, and their sampling grid.
+  glm::vec4 contact_hit_color{0.3f, 0.9f, 0.35f, 1.0f};
+  glm::vec4 contact_filled_color{0.95f, 0.25f, 0.2f, 1.0f};
+  glm::vec4 contact_grid_color{0.75f, 0.95f, 0.7f, 0.45f};
+  float contact_point_px = 4.5f;
+  // Discontinuity planes (seed §6.3.1 Def. 6): F⁻'s control points larger, F⁺'s on top; fold-over points (seed
+  // Theorem 6) big, on top of everything.
+  glm::vec4 dffd_minus_color{1.0f, 0.42f, 0.18f, 1.0f};  // warm red-orange
+  glm::vec4 dffd_plus_color{0.15f, 0.9f, 1.0f, 1.0f};    // cyan
+  glm::vec4 fold_point_color{1.0f, 0.0f, 0.0f, 1.0f};
+  float fold_point_px = 14.0f;
+  // The usual look of a stroke being drawn over the viewport (ScreenStroke's defaults are these).
+  glm::vec4 stroke_color{1.0f, 0.45f, 0.05f, 1.0f};
+  float stroke_width_px = 4.0f;
+};
+
+// A translucent sphere, depth-tested, back faces culled (e.g. a pressing tool's brush, seed §2.4.1).
+struct SphereOverlay {
+  glm::dvec3 centre{0.0};                      // world units
+  double radius = 0.1;                         // world units, > 0
+  glm::vec4 color{0.35f, 0.75f, 1.0f, 0.30f};  // alpha at normal incidence (the rim is denser)
+};
+
+// Points drawn x-ray: faint where hidden, full where visible.
+struct PointsOverlay {
+  std::vector<glm::dvec3> points;  // #P × 3, world units
+  glm::vec4 color{1.0f};
+  float point_px = 4.5f;
+};
+
+// A lattice's net drawn like an object's control lattice, with its discontinuity planes in the style's F⁻ / F⁺
+// colours when ViewOptions::show_discontinuities is on.
+struct LatticeOverlay {
+  std::shared_ptr<const core::TrivariateBSpline<glm::dvec3>> lattice;  // world units; null: nothing drawn
+  std::vector<core::Discontinuity> discontinuities;  // planes to mark (indices into lattice); may be empty
+  glm::vec4 line_color{0.45f, 0.78f, 1.0f, 0.9f};
+  glm::vec4 point_color{0.92f, 0.96f, 1.0f, 1.0f};
+  float point_px = 7.0f;
+};
+
+// A world-space polyline projected and drawn as a thick line on top of everything (split where it passes behind
+// the eye).
+struct CurveOverlay {
+  std::vector<glm::dvec3> points;  // #P × 3, world units
+  glm::vec4 color{1.0f};
+  float width_px = 3.0f;
+};
+
+// A thick polyline in viewport pixels, on top of everything (round joins and caps).
+struct ScreenStroke {
+  std::vector<glm::dvec2> px;  // #S × 2, viewport pixels, top-left origin
+  glm::vec4 color{1.0f, 0.45f, 0.05f, 1.0f};
+  float width_px = 4.0f;
+};
+
+// A mesh drawn instead of a scene object's world_mesh (shaded, outlined and wireframed as the object; no FFD
+// evaluation of that object while set). Uploaded once per mesh pointer, like world meshes.
+struct MeshInPlace {
+  std::string object;
+  std::shared_ptr<const core::TriMesh> mesh;  // world units
+};
+
+// A lattice to evaluate a deformed object with instead of its own (a live edit before its command runs): the same
+// control counts, orders and knots as the object's FFD lattice, else ignored. Evaluated by ViewOptions::ffd_backend
+// (cpu_fast when that is cpu_ref, whose stored world_mesh is stale during the edit).
+struct LatticeInPlace {
+  std::string object;
+  std::shared_ptr<const core::TrivariateBSpline<glm::dvec3>> lattice;
+};
+
+// The overlays of one frame, drawn after the scene in this order: spheres, points, lattices, curves, strokes.
+struct Overlays {
+  std::vector<SphereOverlay> spheres;
+  std::vector<PointsOverlay> points;
+  std::vector<LatticeOverlay> lattices;
+  std::vector<CurveOverlay> curves;
+  std::vector<ScreenStroke> strokes;
+  std::vector<MeshInPlace> meshes;                // the first one naming an object is used
+  std::vector<LatticeInPlace> lattices_in_place;  // the first one naming an object is used
+
+  // The mesh drawn for `object` instead of its world_mesh, or null.
+  const std::shared_ptr<const core::TriMesh>* mesh_for(const std::string& object) const;
+  // The lattice `object` is evaluated with instead of its own, or null.
+  const std::shared_ptr<const core::TrivariateBSpline<glm::dvec3>>* lattice_for(const std::string& object) const;
+};
+
+struct ViewOptions {
+  bool show_lattice = false;          // control lattices of deformed objects (points + polylines)
+  bool show_contact_surface = false;  // S(u,v) = F(u,v,0) of deformed objects + contact samples of placed ones
+  bool show_grid = true;              // ground grid on y = 0
+  bool wireframe = false;
+  // DFFD display (seed §6.3): the discontinuity planes of DFFD objects are drawn when this is on and either
+  // show_lattice is on (every DFFD object) or the object is selected (its planes only). The rig's fold points are
+  // drawn for the selected object always, and for every DFFD object when show_lattice is on.
+  bool show_discontinuities = true;
+  std::string selected;  // highlighted object name (outline colour)
+  // FFD display: backend evaluating deformed objects, and the scene time in seconds (an object shows
+  // F(E(x) + param_offset + offset_velocity·time_s)).
+  core::FfdBackend ffd_backend = core::FfdBackend::glsl_compute;
+  double time_s = 0.0;
+  ViewStyle style;
+  Overlays overlays;
+
+  // A stroke in the style's colour and width (the usual way a tool shows the stroke being drawn).
+  ScreenStroke& add_stroke(std::vector<glm::dvec2> px);
+};
+
+}  // namespace trispline::gpu
