@@ -46,19 +46,12 @@ void check_off(const std::filesystem::path& path, std::string_view text, std::ui
     std::string_view line = text.substr(pos, end - pos);
     pos = end + 1;
     if (const auto hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
-    for (std::size_t i = 0; i < line.size() && tokens.size() < 4;) {
-      while (i < line.size() && is_space(line[i])) ++i;
-      std::size_t j = i;
-      while (j < line.size() && !is_space(line[j])) ++j;
-      if (j > i) {
-        const std::string_view tok = line.substr(i, j - i);
-        if (tokens.size() == 1 && tok == "BINARY") {
-          binary = true;
-        } else {
-          tokens.push_back(tok);
-        }
+    for (std::string_view tok = next_token(line); !tok.empty() && tokens.size() < 4; tok = next_token(line)) {
+      if (tokens.size() == 1 && tok == "BINARY") {
+        binary = true;
+      } else {
+        tokens.push_back(tok);
       }
-      i = j;
     }
     if (binary && tokens.size() == 1) break;  // binary counts follow as int32
   }
@@ -160,14 +153,13 @@ void prepare_mesh_bytes(const std::filesystem::path& path, const std::string& ex
   if (utf16 || utf32) bytes = to_utf8(path, bytes, utf32 ? "UTF-32" : "UTF-16");
   if (starts_with(bytes, {0xEF, 0xBB, 0xBF})) bytes.erase(bytes.begin(), bytes.begin() + 3);
   if (ext == ".ply") {
-    // assimp is handed the header as check_ply read it, so the two cannot read different layouts: assimp's header
-    // reader ends an element at a comment, matches keywords in any case and loops on some free text, and the body walk
-    // (the list counts checked against the bytes) is only as good as the layout they share.
-    PlyCanonical canonical;
-    check_ply(path, as_text(bytes), bytes.size(), false, &canonical);
-    std::vector<unsigned char> out(canonical.header.begin(), canonical.header.end());
-    out.insert(out.end(), bytes.begin() + static_cast<std::ptrdiff_t>(canonical.body_offset), bytes.end());
-    bytes = std::move(out);
+    // assimp is handed the file as check_ply walked it, so the two cannot read different layouts or values:
+    // assimp's header reader ends an element at a comment, matches keywords in any case and loops on some free
+    // text, its body reader splits values where a number stops parsing, and the body walk (the list counts checked
+    // against the bytes) is only as good as the reading they share.
+    std::string canonical;
+    check_ply(path, as_text(bytes), bytes.size(), true, &canonical);
+    bytes.assign(canonical.begin(), canonical.end());
     return;
   }
   if (ext == ".off") {  // binary OFF is refused by precheck_mesh_file; its header has no comment to remove

@@ -66,34 +66,32 @@ void for_each_line(std::string_view text, F&& f) {
 
 inline bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
 
-inline std::size_t count_tokens(std::string_view s) {
+// Takes the next token off the front of `s` (tokens are separated by characters for which `separator` holds) and
+// returns it; empty when `s` holds no more.
+template <class Separator = bool (*)(char)>
+std::string_view next_token(std::string_view& s, Separator separator = is_space) {
+  std::size_t i = 0;
+  while (i < s.size() && separator(s[i])) ++i;
+  std::size_t j = i;
+  while (j < s.size() && !separator(s[j])) ++j;
+  const std::string_view token = s.substr(i, j - i);
+  s.remove_prefix(j);
+  return token;
+}
+
+template <class Separator = bool (*)(char)>
+std::size_t count_tokens(std::string_view s, Separator separator = is_space) {
   std::size_t n = 0;
-  for (std::size_t i = 0; i < s.size();) {
-    while (i < s.size() && is_space(s[i])) ++i;
-    if (i < s.size()) ++n;
-    while (i < s.size() && !is_space(s[i])) ++i;
-  }
+  while (!next_token(s, separator).empty()) ++n;
   return n;
 }
 
-inline std::string_view first_token(std::string_view s) {
-  std::size_t i = 0;
-  while (i < s.size() && is_space(s[i])) ++i;
-  std::size_t j = i;
-  while (j < s.size() && !is_space(s[j])) ++j;
-  return s.substr(i, j - i);
-}
+inline std::string_view first_token(std::string_view s) { return next_token(s); }
 
 // The words of a line (split at spaces and tabs).
 inline std::vector<std::string_view> split_words(std::string_view line) {
   std::vector<std::string_view> words;
-  for (std::size_t i = 0; i < line.size();) {
-    while (i < line.size() && is_space(line[i])) ++i;
-    std::size_t j = i;
-    while (j < line.size() && !is_space(line[j])) ++j;
-    if (j > i) words.push_back(line.substr(i, j - i));
-    i = j;
-  }
+  for (std::string_view w = next_token(line); !w.empty(); w = next_token(line)) words.push_back(w);
   return words;
 }
 

@@ -306,7 +306,7 @@ TEST(MeshFiles, PlyListCountsMustFitTheBody) {
   write_text(dir / "negative.ply", head + "-1 0 1 2\n");
   EXPECT_THAT(error_of(dir / "negative.ply"), HasSubstr("a count cannot be negative"));
   write_text(dir / "word.ply", head + "three 0 1 2\n");
-  EXPECT_THAT(error_of(dir / "word.ply"), HasSubstr("list count 'three' is not a number"));
+  EXPECT_THAT(error_of(dir / "word.ply"), HasSubstr("face 0: 'three' is not an integer"));
   write_text(dir / "cut.ply", head + "3 0 1\n");
   EXPECT_THAT(error_of(dir / "cut.ply"), HasSubstr("a list of 3 items, more than the 2 values left on its line"));
   // assimp reads an element a line: a list count is checked against its own line, not the rest of the file.
@@ -335,6 +335,42 @@ TEST(MeshFiles, PlyListCountsMustFitTheBody) {
   EXPECT_THAT(error_of(dir / "bin_negative.ply"), HasSubstr("a list of -1 items (a count cannot be negative)"));
   write_text(dir / "bin_ok.ply", bin + std::string("\0\0\0\3\0\0\0\0\0\0\0\1\0\0\0\2", 16));
   EXPECT_EQ(load_mesh(dir / "bin_ok.ply").triangle_count(), 1u);
+  EXPECT_LT(max_rss_kb() - rss_before, 64 * 1024) << "a refused file cost more than 64 MB";
+}
+
+// assimp splits an ASCII line into values where a number stops parsing, not at spaces: `5-111` under a uchar is 5,
+// then -111 as the next value, which as a signed list count asked for 34 GB (a fuzzer's input). Every value must be a
+// whole number of its property's type, and assimp reads the body as written back by the walk (one element a line,
+// comments, blank lines and what follows the values dropped), so the two read the same values.
+TEST(MeshFiles, PlyValuesAreWholeNumbersOfTheirType) {
+  TempDir dir;
+  const long rss_before = max_rss_kb();
+  const std::string head =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 1\nproperty uchar flags\nproperty list int int vertex_indices\nend_header\n";
+  const std::string vertices = "0 0 0\n1 0 0\n0 1 0\n";
+  write_text(dir / "glued.ply", head + vertices + "5-111 3 0 1 2\n");
+  EXPECT_THAT(error_of(dir / "glued.ply"), HasSubstr("face 0: '5-111' is not an unsigned integer"));
+  write_text(dir / "signed_uchar.ply", head + vertices + "-5 3 0 1 2\n");
+  EXPECT_THAT(error_of(dir / "signed_uchar.ply"), HasSubstr("'-5' is not an unsigned integer"));
+  write_text(dir / "real_index.ply", head + vertices + "0 3 0 1.0 2\n");
+  EXPECT_THAT(error_of(dir / "real_index.ply"), HasSubstr("'1.0' is not an integer"));
+  write_text(dir / "comma.ply", head + "0 0 0\n1,5 0 0\n0 1 0\n0 3 0 1 2\n");
+  EXPECT_THAT(error_of(dir / "comma.ply"), HasSubstr("vertex 1: '1,5' is not a number"));
+  write_text(dir / "form_feed.ply", head + "0 0 0\n1\f-7 0 0\n0 1 0\n0 3 0 1 2\n");
+  EXPECT_THAT(error_of(dir / "form_feed.ply"), HasSubstr("is not a number"));
+  // Numbers as writers print them, comment and blank lines between elements, and text after an element's values.
+  write_text(dir / "written.ply", head + "comment between\n\n  -0.5e+0 .25 1.\n+1E2 0 -3.5e-1\n\t0 1 0 tail\n" +
+                                      "   \n0 3 +0 1 2 extra words\n");
+  const TriMesh m = load_mesh(dir / "written.ply");
+  ASSERT_EQ(m.triangle_count(), 1u);
+  glm::dvec3 lo(1e9), hi(-1e9);
+  for (const glm::dvec3& p : m.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  EXPECT_NEAR(lo.x, -0.5, 1e-6);
+  EXPECT_NEAR(hi.x, 100.0, 1e-4);
+  EXPECT_NEAR(hi.y, 1.0, 1e-6);
+  EXPECT_NEAR(lo.z, -0.35, 1e-6);
+  EXPECT_NEAR(hi.z, 1.0, 1e-6);
   EXPECT_LT(max_rss_kb() - rss_before, 64 * 1024) << "a refused file cost more than 64 MB";
 }
 
