@@ -10,7 +10,7 @@
 
 #include "core/dffd/dffd_cap.h"
 #include "core/commands/incision_draw.h"
-#include "core/commands/mesh_subdivide.h"
+#include "core/mesh/loop_subdivision.h"
 #include "core/dffd/dffd_rig.h"
 #include "core/incision/incision.h"
 #include "core/mesh/mesh_io.h"

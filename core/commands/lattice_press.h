@@ -24,22 +24,9 @@
 #include "core/commands/declared_command.h"
 #include "core/commands/snapshot_command.h"
 #include "core/ffd/falloff.h"
+#include "core/placement/pressing.h"
 
 namespace trispline::core {
-
-// What one press did (lattice.press's stats).
-struct PressResult {
-  int moved = 0;                 // control points moved
-  double max_displacement = 0;   // world units
-};
-
-// The lattice after one sphere sweep (the math of lattice.press, above): `path` #P × 3 world units (≥ 1 point),
-// radius > 0 and strength in world units. The editor's Press tool calls it for the live preview during a drag, so
-// the preview is exactly what the command at mouse-up produces. Throws std::invalid_argument for a column of zero
-// length (no V_P). Source: seed §2.4.1, Fig. 2.7.
-TrivariateBSpline<glm::dvec3> press_lattice(const TrivariateBSpline<glm::dvec3>& before,
-                                            const std::vector<glm::dvec3>& path, double radius, double strength,
-                                            Falloff falloff, PressResult* result = nullptr);
 
 struct LatticePressParams {
   std::string object;
@@ -81,9 +68,5 @@ class LatticePullColumnCommand : public ObjectSnapshotCommand<LatticePullColumnC
  protected:
   std::optional<SceneObject> build(const Scene& scene) override;
 };
-
-// Unit column direction V_P of column (i, j) of `lattice` (top minus contact control point); for a zero-length
-// column the mean direction of all columns. Throws std::invalid_argument if that is zero too or (i, j) is outside.
-glm::dvec3 column_direction(const TrivariateBSpline<glm::dvec3>& lattice, int i, int j);
 
 }  // namespace trispline::core

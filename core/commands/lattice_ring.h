@@ -15,6 +15,7 @@
 
 #include "core/commands/declared_command.h"
 #include "core/commands/snapshot_command.h"
+#include "core/placement/ring_lattice.h"
 
 namespace trispline::core {
 
@@ -42,12 +43,5 @@ class LatticeRingCommand : public ObjectSnapshotCommand<LatticeRingCommand, Latt
  protected:
   std::optional<SceneObject> build(const Scene& scene) override;
 };
-
-// The ring lattice itself (for tests and tools): control points of a periodic-in-u lattice around `center`.
-// The circle of control points is enlarged so that the B-spline's centre line passes through radius `radius`
-// at the control points' parameters (a uniform B-spline over a control polygon on a circle lies inside it).
-// Throws std::invalid_argument on bad sizes (see the command's errors).
-TrivariateBSpline<glm::dvec3> ring_lattice(const glm::dvec3& center, double radius, double width, double height,
-                                           const glm::ivec3& controls, const glm::ivec3& order);
 
 }  // namespace trispline::core

@@ -18,16 +18,9 @@
 
 #include "core/commands/declared_command.h"
 #include "core/commands/snapshot_command.h"
-#include "core/mesh/tri_mesh.h"
+#include "core/mesh/loop_subdivision.h"
 
 namespace trispline::core {
-
-// Uniform Loop subdivision of `mesh` (#V × 3 positions, #F triangles; uvs and face_material optional) by `levels`
-// ≥ 0 (0 returns a copy). Result: #F·4^levels triangles; the first #V vertices are the input's vertices moved by
-// the Loop vertex rule, in the same order (Far's default child order: children of vertices first, then of edges);
-// uvs linear, face_material inherited, normals recomputed. Throws std::invalid_argument: levels < 0, a triangle index ≥ #V, uvs / face_material of the wrong
-// size, or topology OpenSubdiv cannot refine.
-TriMesh loop_subdivide(const TriMesh& mesh, int levels);
 
 struct MeshSubdivideParams {
   std::string object;
