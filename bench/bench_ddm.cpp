@@ -252,11 +252,7 @@ int run_bench_ddm(const BenchDdmOptions& options, std::ostream& out, std::ostrea
     result["timer_mode"] = renderer.last_stats().timer_mode;
     renderer.release_unused(core::Scene{});  // free this case's buffers before the next
   }
-  if (options.json)
-    out << result.dump() << "\n";
-  else
-    print_table(result, out);
-  return 0;
+  return bench_emit(result, options.json, out, print_table);
 }
 
 }  // namespace trispline::editor

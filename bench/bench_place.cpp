@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <iomanip>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -18,6 +19,15 @@
 #include "ui/frame_timings.h"
 
 namespace trispline::editor {
+
+int bench_emit(const nlohmann::json& result, bool as_json, std::ostream& out,
+               void (*table)(const nlohmann::json&, std::ostream&)) {
+  if (as_json)
+    out << result.dump() << "\n";
+  else
+    table(result, out);
+  return 0;
+}
 
 double bench_median(std::vector<double> v) {
   if (v.empty()) throw std::invalid_argument("bench_median: no values");
@@ -47,58 +57,28 @@ struct PlaceScene {
   json place;               // without "samples" / "springs"
 };
 
+// A benchmark scene is a shipped log's set-up (its scene.primitive and camera.set lines) and its place.sketch line,
+// laid on the bunny (length along x, up along y). Logs are read from the repository root, as the other benchmarks.
 PlaceScene scene_lines(const std::string& name) {
+  static const std::map<std::string, std::filesystem::path> kLogs = {
+      {"teapot", "assets/scenes/default.jsonl"}, {"terrain", "tests/logs/real_mesh_on_terrain.jsonl"}};
+  const auto log = kLogs.find(name);
+  if (log == kLogs.end()) throw std::invalid_argument("bench place: unknown scene '" + name + "' (use teapot or terrain)");
+  std::ifstream in(log->second);
+  if (!in) throw std::runtime_error("bench place: cannot read " + log->second.string() + " (run from the repository root)");
   PlaceScene s;
-  if (name == "teapot") {  // assets/scenes/default.jsonl
-    s.setup = {{{"cmd", "scene.primitive"}, {"kind", "teapot"}, {"name", "teapot"}},
-               {{"cmd", "camera.set"},
-                {"eye", {0.0, 1.6, 2.3}},
-                {"target", {0.0, 0.45, 0.0}},
-                {"up", {0, 1, 0}},
-                {"fov_deg", 38},
-                {"viewport", {1280, 720}}}};
-    s.place = {{"cmd", "place.sketch"},
-               {"object", "bunny"},
-               {"stroke",
-                {{476.6, 372.8},
-                 {502.9, 382.5},
-                 {533.2, 390.5},
-                 {566.8, 396.5},
-                 {602.8, 400.2},
-                 {640.0, 401.5},
-                 {677.2, 400.2},
-                 {713.2, 396.5},
-                 {746.8, 390.5},
-                 {777.1, 382.5},
-                 {803.4, 372.8}}},
-               {"width", 0.2},
-               {"height", 0.45},
-               {"volume", "offset"},
-               {"order", {4, 4, 3}},
-               {"controls", {12, 5, 3}},
-               {"length_axis", "x"},
-               {"up_axis", "y"}};
-  } else if (name == "terrain") {  // tests/logs/real_mesh_on_terrain.jsonl
-    s.setup = {{{"cmd", "scene.primitive"}, {"kind", "terrain"}, {"name", "hills"}, {"scale", {3, 2, 3}}, {"seed", 11}},
-               {{"cmd", "camera.set"},
-                {"eye", {0, 4, 3.2}},
-                {"target", {0, 0.2, 0}},
-                {"up", {0, 1, 0}},
-                {"fov_deg", 45},
-                {"viewport", {800, 600}}}};
-    s.place = {{"cmd", "place.sketch"},
-               {"object", "bunny"},
-               {"stroke", {{220, 420}, {300, 360}, {400, 330}, {500, 350}, {580, 300}}},
-               {"width", 0.35},
-               {"height", 0.15},
-               {"volume", "extrude"},
-               {"order", {4, 4, 2}},
-               {"controls", {10, 4, 2}},
-               {"length_axis", "x"},
-               {"up_axis", "y"}};
-  } else {
-    throw std::invalid_argument("bench place: unknown scene '" + name + "' (use teapot or terrain)");
+  for (std::string text; std::getline(in, text);) {
+    if (text.empty() || text[0] == '#') continue;
+    json line = json::parse(text);
+    const std::string cmd = line.value("cmd", "");
+    if (cmd == "scene.primitive" || cmd == "camera.set") s.setup.push_back(std::move(line));
+    if (cmd == "place.sketch") s.place = std::move(line);
   }
+  if (s.place.is_null()) throw std::runtime_error("bench place: " + log->second.string() + " has no place.sketch line");
+  s.place.erase("samples");
+  s.place["object"] = "bunny";
+  s.place["length_axis"] = "x";
+  s.place["up_axis"] = "y";
   return s;
 }
 
@@ -273,11 +253,7 @@ int run_bench_place(const BenchPlaceOptions& o, std::ostream& out, std::ostream&
     }
   }
   result["cases"] = cases;
-  if (o.json)
-    out << result.dump() << "\n";
-  else
-    print_table(result, out);
-  return 0;
+  return bench_emit(result, o.json, out, print_table);
 }
 
 }  // namespace trispline::editor

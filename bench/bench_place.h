@@ -71,11 +71,16 @@ int run_bench_press(const BenchPressOptions& options, std::ostream& out, std::os
 
 // Helpers shared by both benches.
 // The set-up lines of scene "teapot" or "terrain" (scene primitive, camera.set) followed, last, by its place.sketch
-// line for the object "bunny" (no "samples", no "springs": the defaults apply). Throws std::invalid_argument.
+// line for the object "bunny" (no "samples", no "springs": the defaults apply), read from the scene's log (relative
+// to the repository root). Throws std::invalid_argument for another name, std::runtime_error when the log cannot be
+// read or has no place.sketch line.
 std::vector<nlohmann::json> bench_place_scene(const std::string& name);
 double bench_median(std::vector<double> values);    // of a non-empty list
 using core::bench_cpu_model;                        // "model name" of /proc/cpuinfo, or "unknown"
 double bench_ms(const std::function<void()>& fn);   // wall time of one call, milliseconds
 std::string bench_fixed(double value, int digits);  // std::fixed with `digits` decimals
+// Writes a benchmark's result: one JSON line with `json`, else `table`'s human-readable form. Returns 0 (the exit code).
+int bench_emit(const nlohmann::json& result, bool json, std::ostream& out,
+               void (*table)(const nlohmann::json&, std::ostream&));
 
 }  // namespace trispline::editor

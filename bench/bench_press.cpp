@@ -428,11 +428,7 @@ int run_bench_press(const BenchPressOptions& o, std::ostream& out, std::ostream&
         {"ms_evaluate", bench_median(t.command_eval)},
         {"updates_per_s", 1000.0 / cmd},
         {"interactive", 1000.0 / cmd >= kInteractive}}}};
-  if (o.json)
-    out << result.dump() << "\n";
-  else
-    print_table(result, out);
-  return 0;
+  return bench_emit(result, o.json, out, print_table);
 }
 
 }  // namespace trispline::editor

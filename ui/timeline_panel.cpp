@@ -49,20 +49,11 @@ TimelineObject timeline_object(const core::Scene& scene, const std::string& name
 }
 
 nlohmann::json array_line(const std::string& object, int count, double spacing) {
-  core::PlaceArrayParams p;
-  p.object = object;
-  p.count = count;
-  p.spacing = spacing;
-  return core::PlaceArrayCommand::schema().to_json(p);
+  return core::PlaceArrayCommand::schema().to_json({.object = object, .count = count, .spacing = spacing});
 }
 
 nlohmann::json clip_line(const std::string& object, const std::string& path, const std::string& clip, double speed) {
-  core::AnimClipParams p;
-  p.object = object;
-  p.path = path;
-  p.clip = clip;
-  p.speed = speed;
-  return core::AnimClipCommand::schema().to_json(p);
+  return core::AnimClipCommand::schema().to_json({.object = object, .path = path, .clip = clip, .speed = speed});
 }
 
 bool has_key_at(const TimelineObject& object, int frame) {
@@ -82,20 +73,12 @@ nlohmann::json timeline_line(double fps, int start, int end) {
 
 nlohmann::json keyframe_line(const std::string& object, int frame, const glm::dvec3& offset,
                              const std::string& interpolation) {
-  core::AnimKeyframeParams p;
-  p.object = object;
-  p.frame = frame;
-  p.offset = offset;
-  p.interpolation = interpolation;
-  return core::AnimKeyframeCommand::schema().to_json(p);
+  return core::AnimKeyframeCommand::schema().to_json(
+      {.object = object, .frame = double(frame), .offset = offset, .interpolation = interpolation});
 }
 
 nlohmann::json remove_keyframe_line(const std::string& object, int frame) {
-  core::AnimKeyframeParams p;
-  p.object = object;
-  p.frame = frame;
-  p.remove = true;
-  return core::AnimKeyframeCommand::schema().to_json(p);
+  return core::AnimKeyframeCommand::schema().to_json({.object = object, .frame = double(frame), .remove = true});
 }
 
 std::optional<nlohmann::json> insert_key_request(const TimelineObject& object, const Playback& playback,

@@ -10,19 +10,13 @@ namespace trispline::core {
 
 namespace {
 
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
-}
-
 void check_components(const glm::dvec3& v, const char* field, double lo, double hi, bool open_lo,
                       const std::string& what) {
   for (int a = 0; a < 3; ++a) {
     const double x = v[a];
     if (!std::isfinite(x) || x > hi || x < lo || (open_lo && x == lo))
       throw CommandError("field '" + std::string(field) + "': component " + std::string(1, char('x' + a)) + " = " +
-                             num(x) + " " + what,
+                             params::format_number(x) + " " + what,
                          field);
   }
 }
