@@ -147,8 +147,7 @@ std::string AnimClipCommand::label() const {
 }
 
 std::optional<SceneObject> AnimClipCommand::build(const Scene& scene) {
-  const SceneObject* target = scene.find(p_.object);
-  if (!target) throw CommandError("field 'object': no object named '" + p_.object + "'", "object");
+  const SceneObject* target = &require_object(scene, p_.object);
   if (!p_.remove) require_no_tile_layers(*target, "a glTF clip");
   SceneObject out = *target;
   if (p_.remove) {

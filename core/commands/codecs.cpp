@@ -16,6 +16,16 @@ const char* axis_name(int axis) {
   return names[std::clamp(axis, 0, 2)];
 }
 
+const Camera& stroke_camera(const Scene& scene, const std::optional<Camera>& camera) {
+  if (camera) return *camera;
+  if (!scene.camera_set)
+    throw CommandError(
+        "field 'camera': stroke pixels need a camera: add a camera.set line before this one or a \"camera\" object "
+        "to this line",
+        "camera");
+  return scene.camera;
+}
+
 const ParamSchema<Camera>& camera_schema() {
   using C = Camera;
   static const ParamSchema<Camera> schema =

@@ -20,6 +20,10 @@ const char* axis_name(int axis);          // 0 → "x"; clamped to [0, 2]
 // what Camera::validate() checks, each error naming its field.
 const ParamSchema<Camera>& camera_schema();
 
+// The camera a stroke command's pixels were drawn in: the line's own `camera` object, else the scene's last
+// camera.set. Throws CommandError (field 'camera') when there is neither.
+const Camera& stroke_camera(const Scene& scene, const std::optional<Camera>& camera);
+
 // "scale": a number s (uniform) or [sx,sy,sz], each non-zero; written as one number when uniform.
 struct ScaleCodec {
   static constexpr ParamKind kind = ParamKind::Vec3;

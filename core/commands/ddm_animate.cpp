@@ -82,8 +82,7 @@ const ParamSchema<DdmAnimateParams>& DdmAnimateCommand::schema() {
 std::string DdmAnimateCommand::label() const { return "Animate tiles " + p_.object + "/" + p_.layer; }
 
 std::optional<SceneObject> DdmAnimateCommand::build(const Scene& scene) {
-  const SceneObject* object = scene.find(p_.object);
-  if (!object) throw CommandError("field 'object': no object named '" + p_.object + "'", "object");
+  const SceneObject* object = &require_object(scene, p_.object);
   auto layer = std::make_shared<DdmLayer>(*find_ddm_layer(*object, p_.layer));
   const KeyInterpolation interpolation = interpolation_of(p_.interpolation);
   if (p_.clear) {

@@ -255,8 +255,7 @@ std::string DdmFillCommand::label() const {
 
 std::optional<SceneObject> DdmFillCommand::build(const Scene& scene) {
   const auto t0 = std::chrono::steady_clock::now();
-  const SceneObject* object = scene.find(p_.object);
-  if (!object) throw CommandError("field 'object': no object named '" + p_.object + "'", "object");
+  const SceneObject* object = &require_object(scene, p_.object);
   std::shared_ptr<const DdmLayer> layer = make_ddm_layer(*object, p_.layer, p_.spec, true);
   std::size_t tile_vertices = 0;
   for (const DdmTile& t : layer->tiles) tile_vertices = std::max(tile_vertices, t.mesh.vertex_count());
@@ -289,8 +288,7 @@ const ParamSchema<DdmBakeParams>& DdmBakeCommand::schema() {
 std::string DdmBakeCommand::label() const { return "Bake " + p_.object + "/" + p_.layer + " as '" + p_.name + "'"; }
 
 std::optional<SceneObject> DdmBakeCommand::build(const Scene& scene) {
-  const SceneObject* object = scene.find(p_.object);
-  if (!object) throw CommandError("field 'object': no object named '" + p_.object + "'", "object");
+  const SceneObject* object = &require_object(scene, p_.object);
   const std::shared_ptr<const DdmLayer> layer = find_ddm_layer(*object, p_.layer);
   if (scene.find(p_.name))
     throw CommandError("field 'name': an object named '" + p_.name + "' already exists", "name");
@@ -342,8 +340,7 @@ const ParamSchema<DdmColorParams>& DdmColorCommand::schema() {
 std::string DdmColorCommand::label() const { return "Colour of tile layer " + p_.object + "/" + p_.layer; }
 
 std::optional<SceneObject> DdmColorCommand::build(const Scene& scene) {
-  const SceneObject* object = scene.find(p_.object);
-  if (!object) throw CommandError("field 'object': no object named '" + p_.object + "'", "object");
+  const SceneObject* object = &require_object(scene, p_.object);
   const std::shared_ptr<const DdmLayer> layer = find_ddm_layer(*object, p_.layer);
   auto recoloured = std::make_shared<DdmLayer>(*layer);  // tiles, maps and mesh stay shared
   recoloured->color = p_.color;
@@ -363,8 +360,7 @@ const ParamSchema<DdmRemoveParams>& DdmRemoveCommand::schema() {
 std::string DdmRemoveCommand::label() const { return "Remove tile layer " + p_.object + "/" + p_.layer; }
 
 std::optional<SceneObject> DdmRemoveCommand::build(const Scene& scene) {
-  const SceneObject* object = scene.find(p_.object);
-  if (!object) throw CommandError("field 'object': no object named '" + p_.object + "'", "object");
+  const SceneObject* object = &require_object(scene, p_.object);
   const std::shared_ptr<const DdmLayer> layer = find_ddm_layer(*object, p_.layer);
   SceneObject out = *object;
   std::erase(out.ddm_layers, layer);

@@ -227,8 +227,7 @@ std::string DdmPaintCommand::label() const {
 
 std::optional<SceneObject> DdmPaintCommand::build(const Scene& scene) {
   const auto t0 = std::chrono::steady_clock::now();
-  const SceneObject* object = scene.find(p_.object);
-  if (!object) throw CommandError("field 'object': no object named '" + p_.object + "'", "object");
+  const SceneObject* object = &require_object(scene, p_.object);
   const char* deformed = object->ffd    ? "an FFD lattice"
                          : object->dffd ? "a DFFD split"
                          : object->clip ? "a glTF clip"
@@ -238,12 +237,7 @@ std::optional<SceneObject> DdmPaintCommand::build(const Scene& scene) {
         "field 'object': '" + p_.object + "' has " + deformed +
             "; tiles sit on the rest surface and would not follow it",
         "object");
-  if (!p_.camera && !scene.camera_set)
-    throw CommandError(
-        "field 'camera': stroke pixels need a camera: add a camera.set line before this one or a "
-        "\"camera\" object to this line",
-        "camera");
-  const Camera& camera = p_.camera ? *p_.camera : scene.camera;
+  const Camera& camera = stroke_camera(scene, p_.camera);
   std::shared_ptr<const DdmLayer> existing;
   for (const auto& l : object->ddm_layers)
     if (l->name == p_.layer) existing = l;

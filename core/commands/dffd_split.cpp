@@ -76,8 +76,7 @@ std::string DffdSplitCommand::label() const {
 }
 
 std::optional<SceneObject> DffdSplitCommand::build(const Scene& scene) {
-  const SceneObject* object = scene.find(p_.object);
-  if (!object) throw CommandError("field 'object': no object named '" + p_.object + "'", "object");
+  const SceneObject* object = &require_object(scene, p_.object);
   require_no_tile_layers(*object, "a split");
   if (object->ffd)
     throw CommandError("field 'object': '" + p_.object + "' is deformed by an FFD lattice; dffd.split builds its own "
@@ -88,8 +87,7 @@ std::optional<SceneObject> DffdSplitCommand::build(const Scene& scene) {
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<DffdObstacle> obstacles;
   for (const std::string& id : p_.obstacles) {
-    const SceneObject* o = scene.find(id);
-    if (!o) throw CommandError("field 'obstacles': no object named '" + id + "'", "obstacles");
+    const SceneObject* o = &require_object(scene, id, "obstacles");
     if (!o->world_mesh || o->world_mesh->empty())
       throw CommandError("field 'obstacles': '" + id + "' has no mesh", "obstacles");
     obstacles.push_back({id, *o->world_mesh});

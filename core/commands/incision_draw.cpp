@@ -70,8 +70,7 @@ std::string IncisionDrawCommand::label() const {
 }
 
 std::optional<SceneObject> IncisionDrawCommand::build(const Scene& scene) {
-  const SceneObject* object = scene.find(p_.object);
-  if (!object) throw CommandError("field 'object': no object named '" + p_.object + "'", "object");
+  const SceneObject* object = &require_object(scene, p_.object);
   require_no_tile_layers(*object, "an incision");
   if (object->ffd || object->dffd || object->clip)
     throw CommandError("field 'object': '" + p_.object +
@@ -80,10 +79,7 @@ std::optional<SceneObject> IncisionDrawCommand::build(const Scene& scene) {
                        "object");
   if (!object->rest_mesh || object->rest_mesh->empty())
     throw CommandError("field 'object': '" + p_.object + "' has no triangles to cut", "object");
-  if (!p_.camera && !scene.camera_set)
-    throw CommandError("field 'camera': stroke pixels need a camera: add a camera.set line before this one or a "
-                       "\"camera\" object to this line", "camera");
-  const Camera& camera = p_.camera ? *p_.camera : scene.camera;
+  const Camera& camera = stroke_camera(scene, p_.camera);
   const auto t0 = std::chrono::steady_clock::now();
   // world_mesh is T(rest) for an object without ffd / dffd / clip (SceneObject::refresh).
   const TriMesh fallback = object->world_mesh ? TriMesh{} : object->world_rest_mesh();

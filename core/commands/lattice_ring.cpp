@@ -40,8 +40,7 @@ const ParamSchema<LatticeRingParams>& LatticeRingCommand::schema() {
 }
 
 std::optional<SceneObject> LatticeRingCommand::build(const Scene& scene) {
-  const SceneObject* target = scene.find(p_.object);
-  if (!target) throw CommandError("field 'object': no object named '" + p_.object + "'", "object");
+  const SceneObject* target = &require_object(scene, p_.object);
   require_no_tile_layers(*target, "a ring lattice");
   using Clock = std::chrono::steady_clock;
   const auto ms = [](Clock::time_point a, Clock::time_point b) {

@@ -32,8 +32,7 @@ std::string MeshSubdivideCommand::label() const {
 }
 
 std::optional<SceneObject> MeshSubdivideCommand::build(const Scene& scene) {
-  const SceneObject* object = scene.find(p_.object);
-  if (!object) throw CommandError("field 'object': no object named '" + p_.object + "'", "object");
+  const SceneObject* object = &require_object(scene, p_.object);
   require_no_tile_layers(*object, "a new mesh");
   const char* deformed = object->ffd ? "an FFD lattice" : object->dffd ? "a DFFD split" : object->clip ? "a glTF clip"
                                                                                                       : nullptr;

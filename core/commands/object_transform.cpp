@@ -131,8 +131,7 @@ CommandPtr ObjectTransformCommand::make(const std::string& object, const Transfo
 }
 
 std::optional<SceneObject> ObjectTransformCommand::build(const Scene& scene) {
-  const SceneObject* object = scene.find(p_.object);
-  if (!object) throw CommandError("field 'object': no object named '" + p_.object + "'", "object");
+  const SceneObject* object = &require_object(scene, p_.object);
   Transform t = object->transform;
   if (p_.translate) t.translate = *p_.translate;
   if (p_.rotate_deg) t.rotate_deg = *p_.rotate_deg;

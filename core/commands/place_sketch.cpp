@@ -95,8 +95,7 @@ const ParamSchema<PlaceSketchParams>& PlaceSketchCommand::schema() {
 }
 
 std::optional<SceneObject> PlaceSketchCommand::build(const Scene& scene) {
-  const SceneObject* target = scene.find(p_.object);
-  if (!target) throw CommandError("field 'object': no object named '" + p_.object + "'", "object");
+  const SceneObject* target = &require_object(scene, p_.object);
   require_no_tile_layers(*target, "an FFD placement");
 
   const auto t0 = std::chrono::steady_clock::now();
@@ -110,12 +109,7 @@ std::optional<SceneObject> PlaceSketchCommand::build(const Scene& scene) {
 
   SketchPlacementParams sp;
   sp.stroke_px = p_.stroke;
-  if (!p_.camera && !scene.camera_set)
-    throw CommandError(
-        "field 'camera': stroke pixels need a camera: add a camera.set line before this one or a "
-        "\"camera\" object to this line",
-        "camera");
-  sp.camera = p_.camera ? *p_.camera : scene.camera;
+  sp.camera = stroke_camera(scene, p_.camera);
   sp.evaluate_positions = false;  // refresh() below evaluates positions and normals in one pass
   sp.half_width = p_.width;
   sp.height = p_.height;

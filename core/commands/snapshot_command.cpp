@@ -40,9 +40,14 @@ void SnapshotCommand::undo(Scene& scene) {
   if (before_) scene.insert(*before_, index_);
 }
 
-const SceneObject& require_deformed_object(const Scene& scene, const std::string& name) {
+const SceneObject& require_object(const Scene& scene, const std::string& name, const char* field) {
   const SceneObject* o = scene.find(name);
-  if (!o) throw CommandError("field 'object': no object named '" + name + "'", "object");
+  if (!o) throw CommandError("field '" + std::string(field) + "': no object named '" + name + "'", field);
+  return *o;
+}
+
+const SceneObject& require_deformed_object(const Scene& scene, const std::string& name) {
+  const SceneObject* o = &require_object(scene, name);
   if (!o->ffd)
     throw CommandError("field 'object': '" + name +
                            "' has no FFD lattice (place it with place.sketch or lattice.ring first)",

@@ -33,6 +33,9 @@ class SnapshotCommand : public Command {
   int index_ = -1;
 };
 
+// The object named `name`. Throws CommandError (field `field`): no object of that name.
+const SceneObject& require_object(const Scene& scene, const std::string& name, const char* field = "object");
+
 // The object named `name` when it has an FFD lattice. Throws CommandError (field 'object') naming what is wrong:
 // no such object, or no lattice (place it with place.sketch or lattice.ring first).
 const SceneObject& require_deformed_object(const Scene& scene, const std::string& name);
