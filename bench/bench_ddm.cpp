@@ -13,7 +13,7 @@
 #include <thread>
 
 #include "core/ddm/ddm_layer.h"
-#include "core/ddm/ddm_maps.h"
+#include "core/ddm/ddm_pn_maps.h"
 #include "core/scene/primitives.h"
 #include "core/scene/scene.h"
 #include "bench/bench_place.h"

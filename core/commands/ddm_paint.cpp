@@ -78,7 +78,7 @@ TriMesh culled(const TriMesh& world, const Camera& camera, glm::dvec2 lo, glm::d
 }
 
 // The point of face f's flat triangle at chart (3f + k)'s parameters (u, v): the chart's corner quad (vertex k, middle
-// of edge (k, k+1), centre, middle of edge (k+2, k)) mapped bilinearly, as DdmSubdivBase's charts (ddm_map.h).
+// of edge (k, k+1), centre, middle of edge (k+2, k)) mapped bilinearly, as DdmSubdivBase's charts (ddm_base.h).
 glm::dvec3 flat_point(const TriMesh& mesh, int chart, glm::dvec2 uv) {
   const glm::uvec3 t = mesh.triangles[static_cast<std::size_t>(chart / 3)];
   const int k = chart % 3;

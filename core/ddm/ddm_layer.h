@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "core/ddm/ddm_map.h"
-#include "core/ddm/ddm_maps.h"
+#include "core/ddm/ddm_base.h"
+#include "core/ddm/ddm_pn_maps.h"
 #include "core/ddm/ddm_tile.h"
 #include "core/mesh/tri_mesh.h"
 #include "core/spline/keyframes.h"

@@ -1,7 +1,7 @@
 // trispline::core uniform bilinear refinement of a triangle mesh through OpenSubdiv Far: a mesh of many more vertices
 // and the same shape (the FFD benchmark turns the 34,835-vertex bunny into 835,994 vertices at level 2).
 // The Loop subdivision of `mesh.subdivide` is core/commands/mesh_subdivide.h; the DDM's Loop limit surface is
-// core/ddm/ddm_map.h.
+// core/ddm/ddm_base.h.
 #pragma once
 
 #include "core/mesh/tri_mesh.h"

@@ -7,7 +7,7 @@
 #include <cstdio>
 
 #include "core/ddm/ddm_layer.h"
-#include "core/ddm/ddm_maps.h"
+#include "core/ddm/ddm_pn_maps.h"
 #include "core/scene/primitives.h"
 #include "gl_test.h"
 #include "gpu/ddm_gl.h"

@@ -7,7 +7,7 @@
 #include <map>
 #include <set>
 
-#include "core/ddm/ddm_map.h"
+#include "core/ddm/ddm_base.h"
 #include "core/ddm/ddm_tile.h"
 #include "core/scene/primitives.h"
 #include "tests/core/ddm/ddm_test_patches.h"

@@ -1,4 +1,4 @@
-// DDM P/N maps (core/ddm/ddm_maps.h, seed §5.3.1–5.3.2, §5.4.1) and layers (ddm_layer.h): the sampled base of a plane
+// DDM P/N maps (core/ddm/ddm_pn_maps.h, seed §5.3.1–5.3.2, §5.4.1) and layers (ddm_layer.h): the sampled base of a plane
 // is the plane, sampled bases converge to the exact base at second order, the teapot body is one periodic chart,
 // the tile transform rotates tiles rigidly, UV rasterisation with its diffusion fill and validity bitmap, layers that
 // grow their maps when painted, several tiles per layer, texture-space offset animation.
@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "core/ddm/ddm_layer.h"
-#include "core/ddm/ddm_maps.h"
+#include "core/ddm/ddm_pn_maps.h"
 #include "core/scene/primitives.h"
 #include "tests/core/ddm/ddm_test_patches.h"
 

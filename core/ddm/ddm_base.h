@@ -1,6 +1,7 @@
-// trispline::core DDM map — deformation displacement maps on the CPU (seed ch. 5): base surfaces as charts, tile
-// layouts, and the reference evaluation T(u,v,w) = S(u,v) + n(u,v)·w (seed Eq. 5.1–5.2) with exact normals. The
-// GPU path (seed §5.3.2) samples the same charts from P/N textures; this one is what tests and exports compare to.
+// trispline::core DDM base surfaces — deformation displacement maps on the CPU (seed ch. 5): base surfaces as
+// charts, tile layouts, and the reference evaluation T(u,v,w) = S(u,v) + n(u,v)·w (seed Eq. 5.1–5.2) with exact
+// normals. The GPU path (seed §5.3.2) samples the same charts from P/N textures (ddm_pn_maps.h); this one is what
+// tests and exports compare to.
 //
 // Conventions: chart parameters (u, v) ∈ [0,1]² (clamped); world units for S and height; tile space as ddm_tile.h.
 #pragma once

@@ -1,4 +1,4 @@
-// trispline::core DDM maps — a base surface sampled into P/N maps (seed §5.3.1), the data the GPU evaluator reads
+// trispline::core DDM P/N maps — a base surface sampled into P/N maps (seed §5.3.1), the data the GPU evaluator reads
 // (seed §5.3.2), and DdmMapsBase: the CPU reference of that evaluation, so GPU and CPU give the same positions for
 // tests, baking and export.
 //
@@ -16,7 +16,7 @@
 
 #include <glm/glm.hpp>
 
-#include "core/ddm/ddm_map.h"
+#include "core/ddm/ddm_base.h"
 #include "core/mesh/tri_mesh.h"
 
 namespace trispline::core {

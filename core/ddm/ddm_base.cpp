@@ -1,7 +1,7 @@
-// DDM on the CPU: spline charts, layouts, T(u,v,w) = S + n·w with exact normals, metamorphosis. See ddm_map.h.
+// DDM on the CPU: spline charts, layouts, T(u,v,w) = S + n·w with exact normals, metamorphosis. See ddm_base.h.
 // Sources: seed ch. 5 — Eq. 5.1–5.2 (the shell map), §5.3.1 (base surfaces), §5.3.2 (instances, normals),
 // Eq. 5.3 (metamorphosis), Fig. 5.11–5.12 (hexagonal and brick layouts).
-#include "core/ddm/ddm_map.h"
+#include "core/ddm/ddm_base.h"
 
 #include "core/ddm/ddm_layer.h"
 

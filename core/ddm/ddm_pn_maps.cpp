@@ -1,7 +1,7 @@
-// P/N maps of DDM base surfaces and their CPU evaluation. See ddm_maps.h.
+// P/N maps of DDM base surfaces and their CPU evaluation. See ddm_pn_maps.h.
 // Sources: seed §5.3.1 (P and N textures of the base surface), §5.3.2 (their bilinear lookup per tile vertex),
 // §5.4.1 (UV-space rasterisation, the 8-neighbour diffusion fill and the validity bitmap).
-#include "core/ddm/ddm_maps.h"
+#include "core/ddm/ddm_pn_maps.h"
 
 #include <algorithm>
 #include <cmath>
