@@ -124,7 +124,8 @@ struct Overlays {
   const std::shared_ptr<const core::TrivariateBSpline<glm::dvec3>>* lattice_for(const std::string& object) const;
 };
 
-struct ViewOptions {
+// The display switches a user toggles (the editor's View menu keeps them as they are).
+struct DisplaySwitches {
   bool show_lattice = false;          // control lattices of deformed objects (points + polylines)
   bool show_contact_surface = false;  // S(u,v) = F(u,v,0) of deformed objects + contact samples of placed ones
   bool show_grid = true;              // ground grid on y = 0
@@ -133,10 +134,14 @@ struct ViewOptions {
   // show_lattice is on (every DFFD object) or the object is selected (its planes only). The rig's fold points are
   // drawn for the selected object always, and for every DFFD object when show_lattice is on.
   bool show_discontinuities = true;
-  std::string selected;  // highlighted object name (outline colour)
-  // FFD display: backend evaluating deformed objects, and the scene time in seconds (an object shows
-  // F(E(x) + param_offset + offset_velocity·time_s)).
+  // The backend evaluating deformed objects. GLSL compute by default (the editor always has a GL context); replay
+  // uses the CPU reference unless told otherwise.
   core::FfdBackend ffd_backend = core::FfdBackend::glsl_compute;
+};
+
+struct ViewOptions : DisplaySwitches {
+  std::string selected;  // highlighted object name (outline colour)
+  // The scene time in seconds (a deformed object shows F(E(x) + param_offset + offset_velocity·time_s)).
   double time_s = 0.0;
   ViewStyle style;
   Overlays overlays;

@@ -9,12 +9,7 @@ namespace trispline::ui {
 
 gpu::ViewOptions view_options(const ViewToggles& t) {
   gpu::ViewOptions o;
-  o.show_lattice = t.show_lattice;
-  o.show_discontinuities = t.show_discontinuities;
-  o.show_contact_surface = t.show_contact_surface;
-  o.show_grid = t.show_grid;
-  o.wireframe = t.wireframe;
-  o.ffd_backend = t.ffd_backend;
+  static_cast<gpu::DisplaySwitches&>(o) = t;
   return o;
 }
 

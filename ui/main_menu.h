@@ -9,16 +9,10 @@
 
 namespace trispline::ui {
 
-struct ViewToggles {
-  bool show_lattice = false;
-  bool show_discontinuities = true;  // DFFD / incision F⁻ / F⁺ planes and fold points (seed §6.3, §6.4)
-  bool show_contact_surface = false;
-  bool show_grid = true;
-  bool wireframe = false;
+// The View menu's state: the renderer's display switches (View > Lattice, Contact surface, Grid, Wireframe,
+// Discontinuities, FFD evaluator: they change live) and the editor's own.
+struct ViewToggles : gpu::DisplaySwitches {
   bool timing_overlay = true;  // View > Timing overlay, F7
-  // View > FFD evaluator: which backend evaluates deformed objects in the viewport (changes live). The editor always
-  // has a GL context, so GLSL compute is the default; replay uses the CPU reference unless told otherwise.
-  core::FfdBackend ffd_backend = core::FfdBackend::glsl_compute;
   bool play_animation = false;  // View > Play animation, Space: the timeline plays (Blender starts paused)
   bool show_timeline = true;     // View > Timeline panel
   bool show_tool_panel = true;
