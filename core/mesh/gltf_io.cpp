@@ -7,9 +7,6 @@
 // that library, and never define TINYGLTF_IMPLEMENTATION.
 #include <tiny_gltf.h>
 
-#include "core/mesh/gltf_model.h"
-#include "core/mesh/gltf_read.h"
-
 #include <array>
 #include <cmath>
 #include <cstring>
@@ -21,6 +18,9 @@
 #include <set>
 #include <tuple>
 #include <utility>
+
+#include "core/mesh/gltf_model.h"
+#include "core/mesh/gltf_read.h"
 
 namespace trispline::core {
 namespace {
@@ -237,8 +237,7 @@ struct MeshUse {
 
 // Checks the vertices and triangles all uses will append against the budgets from accessor counts alone, as
 // append_primitive counts them, so a file over them is refused before anything is decoded.
-void check_budgets(const tinygltf::Model& model, const std::vector<MeshUse>& uses,
-                   const std::filesystem::path& path) {
+void check_budgets(const tinygltf::Model& model, const std::vector<MeshUse>& uses, const std::filesystem::path& path) {
   std::vector<std::pair<std::size_t, std::size_t>> per_mesh(model.meshes.size());  // (vertices, triangles)
   for (std::size_t m = 0; m < model.meshes.size(); ++m) {
     std::set<std::array<int, 3>> seen;
@@ -302,8 +301,8 @@ std::vector<GltfObject> read_gltf_objects(const std::filesystem::path& path) {
     int color_material = -1;
     for (std::size_t p = 0; p < gm.primitives.size(); ++p) {
       const auto& prim = gm.primitives[p];
-      const int mat = prim.material >= 0 && prim.material < static_cast<int>(model.materials.size()) ? prim.material
-                                                                                                    : -1;
+      const int mat =
+          prim.material >= 0 && prim.material < static_cast<int>(model.materials.size()) ? prim.material : -1;
       const bool inside = is_inside(model, prim);
       const std::string where = "mesh " + std::to_string(mesh_index) + " primitive " + std::to_string(p);
       const std::size_t added =
@@ -366,6 +365,16 @@ int add_accessor(tinygltf::Model& model, int view, int ctype, int type, std::siz
   return static_cast<int>(model.accessors.size()) - 1;
 }
 
+// A float32 vertex attribute of N components (TINYGLTF_TYPE_VEC`N` given as `type`) from `values` (#V × N doubles).
+template <int N, class V>
+int add_float_attribute(tinygltf::Model& model, const std::vector<V>& values, int type) {
+  std::vector<float> f(values.size() * N);
+  for (std::size_t i = 0; i < values.size(); ++i)
+    for (int c = 0; c < N; ++c) f[N * i + c] = static_cast<float>(values[i][c]);
+  return add_accessor(model, add_view(model, f.data(), f.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER),
+                      TINYGLTF_COMPONENT_TYPE_FLOAT, type, values.size());
+}
+
 }  // namespace
 
 void write_glb(const std::filesystem::path& path, const std::vector<GltfNode>& nodes) {
@@ -381,38 +390,22 @@ void write_glb(const std::filesystem::path& path, const std::vector<GltfNode>& n
       const TriMesh& m = *gn.mesh;
       validate_mesh(m, "object '" + gn.name + "'");
       const std::size_t nv = m.positions.size();
-      std::vector<float> pos(nv * 3);
       std::vector<double> lo(3, std::numeric_limits<double>::infinity()),
           hi(3, -std::numeric_limits<double>::infinity());
-      for (std::size_t i = 0; i < nv; ++i)
-        for (int c = 0; c < 3; ++c) {
-          pos[3 * i + c] = static_cast<float>(m.positions[i][c]);
-          lo[c] = std::min(lo[c], double(pos[3 * i + c]));
-          hi[c] = std::max(hi[c], double(pos[3 * i + c]));
+      for (const glm::dvec3& p : m.positions)
+        for (int c = 0; c < 3; ++c) {  // bounds of the float positions written
+          lo[c] = std::min(lo[c], double(static_cast<float>(p[c])));
+          hi[c] = std::max(hi[c], double(static_cast<float>(p[c])));
         }
       tinygltf::Primitive prim;
       prim.mode = TINYGLTF_MODE_TRIANGLES;
-      const int pa = add_accessor(model, add_view(model, pos.data(), pos.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER),
-                                  TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, nv);
+      const int pa = add_float_attribute<3>(model, m.positions, TINYGLTF_TYPE_VEC3);
       model.accessors[pa].minValues = lo;
       model.accessors[pa].maxValues = hi;
       prim.attributes["POSITION"] = pa;
-      if (m.normals.size() == nv) {
-        std::vector<float> nrm(nv * 3);
-        for (std::size_t i = 0; i < nv; ++i)
-          for (int c = 0; c < 3; ++c) nrm[3 * i + c] = static_cast<float>(m.normals[i][c]);
-        prim.attributes["NORMAL"] =
-            add_accessor(model, add_view(model, nrm.data(), nrm.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER),
-                         TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, nv);
-      }
-      if (m.uvs.size() == nv) {
-        std::vector<float> uv(nv * 2);
-        for (std::size_t i = 0; i < nv; ++i)
-          for (int c = 0; c < 2; ++c) uv[2 * i + c] = static_cast<float>(m.uvs[i][c]);
-        prim.attributes["TEXCOORD_0"] =
-            add_accessor(model, add_view(model, uv.data(), uv.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER),
-                         TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, nv);
-      }
+      if (m.normals.size() == nv)
+        prim.attributes["NORMAL"] = add_float_attribute<3>(model, m.normals, TINYGLTF_TYPE_VEC3);
+      if (m.uvs.size() == nv) prim.attributes["TEXCOORD_0"] = add_float_attribute<2>(model, m.uvs, TINYGLTF_TYPE_VEC2);
       if (!m.face_material.empty() && m.face_material.size() != m.triangles.size())
         throw MeshIoError("object '" + gn.name + "': face_material has " + std::to_string(m.face_material.size()) +
                           " entries for " + std::to_string(m.triangles.size()) + " triangles");
