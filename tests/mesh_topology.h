@@ -29,6 +29,14 @@ struct Topology {
   std::vector<std::pair<unsigned, unsigned>> boundary;  // the boundary edges (lower index first), sorted
 };
 
+// Undirected edge (lower index first) → the number of faces that use it.
+inline std::map<std::pair<unsigned, unsigned>, int> edge_faces(const TriMesh& m) {
+  std::map<std::pair<unsigned, unsigned>, int> undirected;
+  for (const glm::uvec3& f : m.triangles)
+    for (int e = 0; e < 3; ++e) ++undirected[{std::min(f[e], f[(e + 1) % 3]), std::max(f[e], f[(e + 1) % 3])}];
+  return undirected;
+}
+
 inline Topology topology(const TriMesh& m) {
   Topology t;
   std::map<std::pair<unsigned, unsigned>, int> undirected, directed;
@@ -38,12 +46,9 @@ inline Topology topology(const TriMesh& m) {
     std::array<unsigned, 3> key{f[0], f[1], f[2]};
     std::sort(key.begin(), key.end());
     if (!faces.insert(key).second) ++t.duplicate_faces;
-    for (int e = 0; e < 3; ++e) {
-      const unsigned a = f[e], b = f[(e + 1) % 3];
-      ++undirected[{std::min(a, b), std::max(a, b)}];
-      ++directed[{a, b}];
-    }
+    for (int e = 0; e < 3; ++e) ++directed[{f[e], f[(e + 1) % 3]}];
   }
+  undirected = edge_faces(m);
   for (const auto& [e, n] : undirected) {
     if (n > 2) ++t.nonmanifold_edges;
     if (n == 1) {
@@ -73,6 +78,13 @@ inline Topology topology(const TriMesh& m) {
     } while (c != h && c.is_valid() && !seen.count(c.idx()));
   }
   return t;
+}
+
+// A closed, consistently oriented 2-manifold: every edge has two faces, no directed edge is used twice.
+inline void expect_closed_manifold(const TriMesh& m) {
+  const Topology t = topology(m);
+  EXPECT_EQ(t.nonmanifold_edges + t.boundary_edges, 0u);
+  EXPECT_EQ(t.repeated_halfedges, 0u);
 }
 
 // Success when `t` has no non-manifold edge or vertex, repeated half-edge, duplicate or degenerate face, and

@@ -1,4 +1,5 @@
-// Named test shapes shared by the test folders (one definition each): closed tori and sphere objects.
+// Named test shapes and cameras shared by the test folders (one definition each): closed tori, sphere objects, the
+// top and front cameras.
 #pragma once
 
 #include <cmath>
@@ -39,6 +40,29 @@ inline core::SceneObject sphere_object(const std::string& name, int slices, int 
   o.transform.translate = translate;
   o.refresh();
   return o;
+}
+
+// A camera looking straight down at the xz-plane from (0, `height`, 0), image up = −z; vertical field of view
+// `fov_deg`, `viewport` pixels.
+inline core::Camera top_camera(double height, double fov_deg, glm::ivec2 viewport) {
+  core::Camera c;
+  c.eye = {0.0, height, 0.0};
+  c.target = {0.0, 0.0, 0.0};
+  c.up = {0.0, 0.0, -1.0};
+  c.fov_deg = fov_deg;
+  c.viewport = viewport;
+  return c;
+}
+
+// A camera on +z at `distance` looking at the origin, up = +y; vertical field of view `fov_deg`, `viewport` pixels.
+inline core::Camera front_camera(double distance, double fov_deg, glm::ivec2 viewport) {
+  core::Camera c;
+  c.eye = {0.0, 0.0, distance};
+  c.target = {0.0, 0.0, 0.0};
+  c.up = {0.0, 1.0, 0.0};
+  c.fov_deg = fov_deg;
+  c.viewport = viewport;
+  return c;
 }
 
 }  // namespace trispline::test

@@ -1,32 +1,45 @@
-// Mouse gestures for Sketch placement tool tests: press, drag along a shallow arc, release (viewport pixels).
+// The Sketch placement tool in an editor session, as the session tests drive it: the tool over a view, placing the
+// crate, and the stroke they draw (viewport pixels of an 800×600 view; gestures: tools/tool_test.h).
 #pragma once
 
+#include <functional>
+#include <set>
+#include <string>
+#include <vector>
+
 #include "editor/tools/sketch_tool.h"
+#include "tests/editor/tools/tool_test.h"
 
 namespace trispline::test {
 
-// Left button down at (330, 330).
-inline void press_stroke(editor::SketchTool& tool, editor::ToolContext& ctx, editor::ToolInput& in) {
-  in.mouse_px = {330, 330};
-  in.left_pressed = in.left_down = true;
-  tool.handle_input(in, ctx);
-  in.left_pressed = false;
+// A shallow arc over the middle of the view, every 10 px from x = `from` to 470.
+inline std::vector<glm::dvec2> shallow_arc(double from) {
+  std::vector<glm::dvec2> px;
+  for (double x = from; x <= 470; x += 10) px.push_back({x, 330 + 0.1 * (x - 400) * (x - 400) / 40});
+  return px;
 }
 
-// Drags along a shallow arc from x = 340 to 470 (over the middle of an 800×600 view).
-inline void drag_stroke(editor::SketchTool& tool, editor::ToolContext& ctx, editor::ToolInput& in) {
-  for (double x = 340; x <= 470; x += 10) {
-    in.mouse_px = {x, 330 + 0.1 * (x - 400) * (x - 400) / 40};
-    tool.handle_input(in, ctx);
+// The Sketch tool, active in `s` over `view` (held by reference: a test may move it mid-stroke), placing the crate,
+// with `hidden` hidden; deferred work runs at once.
+struct SketchToolRig {
+  SketchToolRig(editor::EditorSession& s, core::Camera& view, std::set<std::string> hidden_objects = {})
+      : hidden(std::move(hidden_objects)), ctx{s, view, selected, hidden, [](std::string, std::function<void()> work) {
+                                                 work();
+                                               }} {
+    tool.activate(ctx);
   }
-}
+  // Left button down at (330, 330).
+  void press_stroke() { press(tool, ctx, in, {330, 330}); }
+  // A drag along shallow_arc(340).
+  void drag_stroke() { move_through(tool, ctx, in, shallow_arc(340)); }
+  // Left button up: the tool executes its place.sketch.
+  void release_stroke() { release(tool, ctx, in); }
 
-// Left button up: the tool executes its place.sketch.
-inline void release_stroke(editor::SketchTool& tool, editor::ToolContext& ctx, editor::ToolInput& in) {
-  in.left_down = false;
-  in.left_released = true;
-  tool.handle_input(in, ctx);
-  in.left_released = false;
-}
+  std::string selected = "crate";
+  std::set<std::string> hidden;
+  editor::ToolContext ctx;
+  editor::SketchTool tool;
+  editor::ToolInput in;
+};
 
 }  // namespace trispline::test

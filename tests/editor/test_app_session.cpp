@@ -19,10 +19,7 @@ using namespace trispline;
 namespace {
 
 using AppSession = test::StateDirTest;
-using test::kBox;
-using test::kTeapot;
-
-using test::line_count;
+using test::kBox, test::kTeapot, test::line_count;
 
 }  // namespace
 
@@ -66,11 +63,7 @@ TEST_F(AppSession, UnfinishedSessionIsOfferedAndRecovered) {
 }
 
 TEST_F(AppSession, UnansweredRecoveryIsAskedAgain) {
-  {
-    editor::EditorSession crashed(messages_);
-    crashed.start(true);
-    ASSERT_TRUE(crashed.execute(kTeapot));
-  }
+  test::crash_with({kTeapot});
   {
     editor::EditorSession asked(messages_);
     ASSERT_TRUE(asked.start(true));
@@ -88,8 +81,7 @@ TEST_F(AppSession, UnansweredRecoveryIsAskedAgain) {
 
 TEST_F(AppSession, ErrorsGoToTheLogAndLeaveTheScene) {
   editor::EditorSession s(messages_);
-  s.start(false);
-  ASSERT_TRUE(s.execute(kTeapot));
+  ASSERT_TRUE(test::start_with(s, {kTeapot}));
   const std::size_t errors = messages_.error_count();
   EXPECT_FALSE(s.execute({{"cmd", "scene.primitive"}, {"kind", "teapot"}, {"name", "teapot"}}));  // name taken
   EXPECT_FALSE(s.execute({{"cmd", "no.such.command"}}));
@@ -101,9 +93,7 @@ TEST_F(AppSession, ErrorsGoToTheLogAndLeaveTheScene) {
 
 TEST_F(AppSession, SaveThenOpenReplaysTheSameSceneAndView) {
   editor::EditorSession s(messages_);
-  s.start(false);
-  ASSERT_TRUE(s.execute(kTeapot));
-  ASSERT_TRUE(s.execute(kBox));
+  ASSERT_TRUE(test::start_with(s, {kTeapot, kBox}));
   core::Camera view;
   view.eye = {1, 2, 5};
   view.viewport = {640, 480};
@@ -126,8 +116,7 @@ TEST_F(AppSession, SaveThenOpenReplaysTheSameSceneAndView) {
 // title, modified flag and session log — instead of a half-opened scene that a later Save would write over the file.
 TEST_F(AppSession, OpenOfALogThatFailsHalfwayKeepsTheCurrentDocument) {
   editor::EditorSession s(messages_);
-  s.start(false);
-  ASSERT_TRUE(s.execute(kTeapot));
+  ASSERT_TRUE(test::start_with(s, {kTeapot}));
   core::Camera view;
   const fs::path good = dir_ / "good.jsonl";
   ASSERT_TRUE(s.save(good, view));
@@ -166,25 +155,16 @@ TEST_F(AppSession, OpenOfALogThatFailsHalfwayKeepsTheCurrentDocument) {
 
 TEST_F(AppSession, SketchParameterChangeReRunsAsOneUndoableStep) {
   editor::EditorSession s(messages_);
-  s.start(false);
-  ASSERT_TRUE(s.execute(kTeapot));
-  ASSERT_TRUE(s.execute(kBox));
-  editor::Navigator nav;
-  nav.frame(
-      s.scene().find("teapot")->world_mesh ? editor::bounds_of(*s.scene().find("teapot")->world_mesh) : core::Aabb{},
-      {800, 600});
-  const core::Camera view = nav.camera({800, 600});
-  std::string selected = "crate";
-  std::set<std::string> hidden;
-  editor::ToolContext ctx{s, view, selected, hidden, [](std::string, std::function<void()> work) { work(); }};
-  editor::SketchTool tool;
-  tool.activate(ctx);
+  ASSERT_TRUE(test::start_with(s, {kTeapot, kBox}));
+  core::Camera view = test::framed_view(s.scene(), "teapot");
+  test::SketchToolRig rig(s, view);
+  editor::SketchTool& tool = rig.tool;
+  editor::ToolContext& ctx = rig.ctx;
 
   // A stroke across the middle of the view (over the teapot's body).
-  editor::ToolInput in;
-  test::press_stroke(tool, ctx, in);
-  test::drag_stroke(tool, ctx, in);
-  test::release_stroke(tool, ctx, in);
+  rig.press_stroke();
+  rig.drag_stroke();
+  rig.release_stroke();
   ASSERT_EQ(s.history().applied(), 3u) << (messages_.messages().empty() ? "" : messages_.messages().back().text);
   EXPECT_EQ(s.history().at(2).id(), "place.sketch");
   EXPECT_TRUE(s.history().at(2).to_json().contains("camera")) << "the line must carry its view";

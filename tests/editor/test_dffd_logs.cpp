@@ -8,6 +8,7 @@
 
 #include "editor/history.h"
 #include "editor/replay.h"
+#include "tests/editor/session_test_util.h"
 #include "tests/mesh_topology.h"
 
 namespace fs = std::filesystem;
@@ -15,13 +16,9 @@ using namespace trispline;
 
 namespace {
 
-fs::path log_path(const char* name) { return fs::path(TRISPLINE_SOURCE_DIR) / "tests" / "logs" / name; }
-
 TEST(DffdLogs, CylinderCutOpenStitchedCapped) {
   core::Scene scene;
-  editor::History history(scene);
-  const auto r = editor::replay_lines(history, log_path("dffd_split_cylinder.jsonl"));
-  ASSERT_TRUE(r.ok) << r.error;
+  ASSERT_TRUE(test::replay_log(scene, "dffd_split_cylinder.jsonl"));
   const core::SceneObject& open = *scene.find("open");
   ASSERT_TRUE(open.dffd);
   const core::test::Topology t_open = core::test::topology(*open.world_mesh);
@@ -51,9 +48,7 @@ TEST(DffdLogs, CylinderCutOpenStitchedCapped) {
 
 TEST(DffdLogs, WalkThroughBarsSplitsOnlyWhereABarPasses) {
   core::Scene scene;
-  editor::History history(scene);
-  const auto r = editor::replay_lines(history, log_path("dffd_walk_bars.jsonl"));
-  ASSERT_TRUE(r.ok) << r.error;
+  ASSERT_TRUE(test::replay_log(scene, "dffd_walk_bars.jsonl"));
   const core::SceneObject& walker = *scene.find("walker");
   ASSERT_TRUE(walker.dffd_animated());
   const std::size_t nv = walker.rest_mesh->vertex_count();

@@ -1,54 +1,38 @@
 // Hostile command logs (tests/logs/hostile/ and generated ones): every case ends with a clear LOG:LINE error and a
 // scene holding exactly the lines before the bad one — no crash, no runaway memory, no non-finite geometry, no
 // half-applied command. The limits are those of editor::LogLimits and core::SceneGuard (docs/decisions.md).
-#include "editor/command_log.h"
-#include "editor/history.h"
-#include "editor/replay.h"
-#include "core/scene/scene_check.h"
-
 #include <gtest/gtest.h>
-
 #include <sys/resource.h>
 #include <sys/stat.h>
 
 #include <filesystem>
 #include <fstream>
 
+#include "core/scene/scene_check.h"
+#include "editor/command_log.h"
+#include "editor/history.h"
+#include "editor/replay.h"
+#include "tests/editor/session_test_util.h"
+
 namespace fs = std::filesystem;
 using namespace trispline;
 
 namespace {
 
-fs::path hostile_dir() { return fs::path(TRISPLINE_SOURCE_DIR) / "tests" / "logs" / "hostile"; }
+fs::path hostile_dir() { return test::logs_dir() / "hostile"; }
 fs::path scratch(const std::string& name) {
   const fs::path dir = fs::path(TRISPLINE_BINARY_DIR) / "test_out" / "hostile";
   fs::create_directories(dir);
   return dir / name;
 }
 
-struct HostileCase {
-  const char* file;
-  int line;           // the line that must fail
-  const char* field;  // field named in the message ("" = none required)
-  const char* words;  // substring of the message
-};
-void PrintTo(const HostileCase& c, std::ostream* os) { *os << c.file; }
-
-editor::ReplayResult replay(const fs::path& log, core::Scene& scene, editor::History& history) {
-  return editor::replay_lines(history, log);
-}
+using HostileCase = test::BadLogCase;
 
 void expect_failure(const fs::path& log, const HostileCase& c) {
   core::Scene scene;
   editor::History history(scene);
-  const editor::ReplayResult r = replay(log, scene, history);
-  ASSERT_FALSE(r.ok) << log << " replayed without error";
-  EXPECT_EQ(r.failed_line, c.line) << r.error;
-  EXPECT_NE(r.error.find(log.string() + ":" + std::to_string(c.line) + ":"), std::string::npos) << r.error;
-  if (*c.field) {
-    EXPECT_NE(r.error.find(std::string("field '") + c.field + "'"), std::string::npos) << r.error;
-  }
-  EXPECT_NE(r.error.find(c.words), std::string::npos) << r.error;
+  editor::ReplayResult r;
+  ASSERT_NO_FATAL_FAILURE(test::expect_stops_at(history, log, c, r));
   EXPECT_EQ(history.applied(), r.records.empty() ? 0u : r.records.size() - 1);
   EXPECT_EQ(core::scene_value_error(scene), "") << "the scene holds a non-finite value after " << log;
 }

@@ -1,29 +1,22 @@
 // Replay tests: the logs in tests/logs/ run headlessly through the same registry and history as the editor.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
 #include "editor/command_log.h"
 #include "editor/command_registry.h"
 #include "editor/history.h"
 #include "editor/replay.h"
-
-#include <gtest/gtest.h>
-
-#include <filesystem>
+#include "tests/editor/session_test_util.h"
 
 namespace fs = std::filesystem;
 using namespace trispline;
 
 namespace {
 
-fs::path logs_dir() { return fs::path(TRISPLINE_SOURCE_DIR) / "tests" / "logs"; }
+using test::logs_dir;
 
-struct BadLogCase {
-  const char* file;
-  int line;           // expected failing line number
-  const char* field;  // expected field named in the message ("" = no field)
-  const char* words;  // expected substring of the message
-};
-
-// ctest shows the log's name instead of the bytes of the struct.
-void PrintTo(const BadLogCase& c, std::ostream* os) { *os << c.file; }
+using test::BadLogCase;
 
 class BadLog : public ::testing::TestWithParam<BadLogCase> {};
 
@@ -31,15 +24,8 @@ TEST_P(BadLog, StopsWithFileLineFieldAndLeavesEarlierLines) {
   const BadLogCase c = GetParam();
   core::Scene scene;
   editor::History history(scene);
-  const fs::path log = logs_dir() / c.file;
-  const editor::ReplayResult r = editor::replay_lines(history, log);
-  ASSERT_FALSE(r.ok) << c.file << " replayed without error";
-  EXPECT_EQ(r.failed_line, c.line) << r.error;
-  EXPECT_NE(r.error.find(log.string() + ":" + std::to_string(c.line) + ":"), std::string::npos) << r.error;
-  if (*c.field) {
-    EXPECT_NE(r.error.find(std::string("field '") + c.field + "'"), std::string::npos) << r.error;
-  }
-  EXPECT_NE(r.error.find(c.words), std::string::npos) << r.error;
+  editor::ReplayResult r;
+  ASSERT_NO_FATAL_FAILURE(test::expect_stops_at(history, logs_dir() / c.file, c, r));
   // Every line before the bad one is in effect, the bad one left no trace.
   EXPECT_EQ(history.applied(), r.records.size() - 1);
 }

@@ -3,6 +3,8 @@
 // target per following frame, EXR frames read back, bad requests write nothing, MP4 through ffmpeg or a note,
 // cancelling keeps the frames written. GL runs for real (EGL surfaceless; llvmpipe without a GPU).
 #include <OpenImageIO/imageio.h>
+#include <epoxy/egl.h>
+#include <epoxy/gl.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,25 +14,21 @@
 #include <iterator>
 #include <set>
 
-#include <epoxy/egl.h>
-#include <epoxy/gl.h>
-
-#include "core/commands/anim_record.h"
 #include "core/mesh/gltf_anim_io.h"
 #include "core/mesh/image_io.h"
-#include "editor/command_registry.h"
 #include "editor/history.h"
 #include "editor/record.h"
 #include "editor/replay.h"
 #include "gpu/gl_context.h"
 #include "gpu/renderer.h"
+#include "tests/editor/session_test_util.h"
 
 namespace fs = std::filesystem;
 using namespace trispline;
 
 namespace {
 
-fs::path log_path(const char* name) { return fs::path(TRISPLINE_SOURCE_DIR) / "tests" / "logs" / name; }
+using test::log_path;
 
 fs::path fresh_dir(const std::string& name) {
   const fs::path dir = fs::path(TRISPLINE_BINARY_DIR) / "test_out" / "record" / name;
@@ -40,10 +38,19 @@ fs::path fresh_dir(const std::string& name) {
 
 core::Scene load_scene(const char* log) {
   core::Scene scene;
-  editor::History history(scene);
-  const editor::ReplayResult r = editor::replay_lines(history, log_path(log));
-  EXPECT_TRUE(r.ok) << r.error;
+  EXPECT_TRUE(test::replay_log(scene, log));
   return scene;
+}
+
+// `replay LOG --out test_out/record/OUT --frames FIRST-LAST`.
+editor::ReplayOptions replay_frames(const char* log, const std::string& out, int first, int last) {
+  editor::ReplayOptions ro;
+  ro.log = log_path(log);
+  ro.out_dir = fresh_dir(out);
+  ro.frames_given = true;
+  ro.frame_first = first;
+  ro.frame_last = last;
+  return ro;
 }
 
 std::string bytes(const fs::path& p) {
@@ -244,35 +251,6 @@ TEST(Record, BadRequestsThrowAndWriteNothing) {
   EXPECT_THROW(editor::Recorder(scene, o), std::invalid_argument);
   EXPECT_FALSE(fs::exists(dir));
 
-  // The command: a range outside the timeline names "frames", an unknown format "format"; the scene is untouched.
-  core::Scene s = scene;
-  editor::History history(s);
-  const core::CommandContext ctx;
-  const auto& registry = editor::CommandRegistry::builtin();
-  try {
-    history.execute(registry.parse({{"cmd", "anim.record"}, {"frames", {10, 20}}}, ctx));
-    ADD_FAILURE() << "frames outside the timeline accepted";
-  } catch (const core::CommandError& e) {
-    EXPECT_EQ(e.field(), "frames");
-    EXPECT_NE(std::string(e.what()).find("outside the timeline 1-12"), std::string::npos) << e.what();
-  }
-  EXPECT_EQ(history.size(), 0u);
-  try {
-    registry.parse({{"cmd", "anim.record"}, {"format", "gif"}}, ctx);
-    ADD_FAILURE() << "format gif accepted";
-  } catch (const core::CommandError& e) {
-    EXPECT_EQ(e.field(), "format");
-  }
-  // A good request resolves the whole timeline, changes nothing, and undoes to nothing.
-  history.execute(registry.parse({{"cmd", "anim.record"}, {"out", "x"}}, ctx));
-  EXPECT_EQ(history.size(), 0u) << "anim.record is never an undo step";
-  const auto& cmd = dynamic_cast<const core::AnimRecordCommand&>(history.last_executed());
-  EXPECT_EQ(cmd.request().frame_first, 1);
-  EXPECT_EQ(cmd.request().frame_last, 12);
-  EXPECT_EQ(cmd.to_json().count("frames"), 0u);
-  history.undo();
-  EXPECT_EQ(s.objects().size(), scene.objects().size());
-
   // The bad log stops at the anim.record line with the field named.
   core::Scene bad;
   editor::History bad_history(bad);
@@ -283,12 +261,7 @@ TEST(Record, BadRequestsThrowAndWriteNothing) {
   EXPECT_EQ(bad_history.applied(), 2u);
 
   // replay --frames outside the timeline: exit code 2 and no output folder at all.
-  editor::ReplayOptions ro;
-  ro.log = log_path("record_anim.jsonl");
-  ro.out_dir = fresh_dir("bad_replay");
-  ro.frames_given = true;
-  ro.frame_first = 10;
-  ro.frame_last = 13;
+  const editor::ReplayOptions ro = replay_frames("record_anim.jsonl", "bad_replay", 10, 13);
   EXPECT_EQ(editor::run_replay(ro), 2);
   EXPECT_FALSE(fs::exists(ro.out_dir));
   EXPECT_EQ(editor::parse_frame_range("3-5"), std::make_pair(3, 5));
@@ -438,12 +411,7 @@ nlohmann::json read_report(const fs::path& dir) {
 }
 
 TEST(Record, ReplayFramesRendersTheRangeLikeTheRecorder) {
-  editor::ReplayOptions ro;
-  ro.log = log_path("record_anim.jsonl");
-  ro.out_dir = fresh_dir("replay_frames");
-  ro.frames_given = true;
-  ro.frame_first = 5;
-  ro.frame_last = 7;
+  const editor::ReplayOptions ro = replay_frames("record_anim.jsonl", "replay_frames", 5, 7);
   ASSERT_EQ(editor::run_replay(ro), 0);
   for (int f = 5; f <= 7; ++f) EXPECT_TRUE(fs::exists(ro.out_dir / editor::frame_file_name(f, "png"))) << f;
   EXPECT_FALSE(fs::exists(ro.out_dir / "frame_0004.png"));

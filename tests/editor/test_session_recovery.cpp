@@ -1,7 +1,8 @@
-// Reviewer fixes in the editor session and tools: New/Open keep the crash log and never drop the scene for a
-// malformed file (F1), the stroke's camera is the one at mouse-down (F5), hidden objects do not catch placement
-// rays ("ignore", F2), crash recovery never loses the only copy of a log (F6), a crashed second editor is offered
-// recovery (F7), and session log write failures are reported (F10).
+// The editor session's log and crash recovery, and the Sketch tool's stroke in a session: New/Open keep the crash
+// log aside and never drop the scene for a malformed file, crash recovery never loses the only copy of a log and
+// asks until it is answered, a crashed second editor is offered recovery (a live one is left alone), log write
+// failures are reported, a stroke uses the camera at mouse-down, and hidden objects do not catch placement rays
+// (place.sketch's "ignore").
 #include "core/commands/place_sketch.h"
 #include "core/commands/codecs.h"
 #include "editor/command_registry.h"
@@ -25,10 +26,7 @@ using namespace trispline;
 namespace {
 
 using SessionRecovery = test::StateDirTest;
-using test::kBox;
-using test::kTeapot;
-
-using test::line_count;
+using test::crash_with, test::kBox, test::kTeapot, test::line_count;
 
 std::string read_all(const fs::path& p) {
   std::ifstream in(p);
@@ -43,22 +41,12 @@ long dead_pid() {
   return long(child);
 }
 
-
-void crash_with(const std::vector<nlohmann::json>& lines) {  // a session that dies without finish()
-  ui::MessageLog m;
-  editor::EditorSession crashed(m);
-  crashed.start(true);
-  for (const auto& l : lines) ASSERT_TRUE(crashed.execute(l));
-}
-
 }  // namespace
 
-// F1: New keeps the previous session log aside instead of truncating it.
+// New keeps the previous session log aside instead of truncating it.
 TEST_F(SessionRecovery, NewDocumentRenamesTheSessionLogAside) {
   editor::EditorSession s(messages_);
-  s.start(false);
-  ASSERT_TRUE(s.execute(kTeapot));
-  ASSERT_TRUE(s.execute(kBox));
+  ASSERT_TRUE(test::start_with(s, {kTeapot, kBox}));
   s.new_document();
   EXPECT_EQ(line_count(dir_ / "session.prev.jsonl"), 2u);
   EXPECT_EQ(line_count(dir_ / "session.jsonl"), 0u);
@@ -67,11 +55,10 @@ TEST_F(SessionRecovery, NewDocumentRenamesTheSessionLogAside) {
   s.finish();
 }
 
-// F1: a malformed log is rejected before the current scene is dropped; the crash log is untouched.
+// A malformed log is rejected before the current scene is dropped; the crash log is untouched.
 TEST_F(SessionRecovery, MalformedOpenKeepsTheSceneAndTheLog) {
   editor::EditorSession s(messages_);
-  s.start(false);
-  ASSERT_TRUE(s.execute(kTeapot));
+  ASSERT_TRUE(test::start_with(s, {kTeapot}));
   const fs::path bad = dir_ / "bad.jsonl";
   std::ofstream(bad) << kBox.dump() << "\n{\"cmd\":\"scene.prim\n";
   const std::size_t errors = messages_.error_count();
@@ -87,11 +74,10 @@ TEST_F(SessionRecovery, MalformedOpenKeepsTheSceneAndTheLog) {
   s.finish();
 }
 
-// F1: a good Open restarts the session log with the old one kept aside.
+// A good Open restarts the session log with the old one kept aside.
 TEST_F(SessionRecovery, OpenKeepsThePreviousSessionLogAside) {
   editor::EditorSession s(messages_);
-  s.start(false);
-  ASSERT_TRUE(s.execute(kTeapot));
+  ASSERT_TRUE(test::start_with(s, {kTeapot}));
   const fs::path good = dir_ / "good.jsonl";
   std::ofstream(good) << kBox.dump() << "\n";
   ASSERT_TRUE(s.open(good));
@@ -101,7 +87,7 @@ TEST_F(SessionRecovery, OpenKeepsThePreviousSessionLogAside) {
   s.finish();
 }
 
-// F6a: if the unfinished log cannot be copied aside, it is left as it is and this run logs elsewhere.
+// If the unfinished log cannot be copied aside, it is left as it is and this run logs elsewhere.
 TEST_F(SessionRecovery, FailedAsideCopyLeavesTheOnlyLogAlone) {
   crash_with({kTeapot, kBox});
   const std::string before = read_all(dir_ / "session.jsonl");
@@ -125,7 +111,7 @@ TEST_F(SessionRecovery, FailedAsideCopyLeavesTheOnlyLogAlone) {
   next.finish();
 }
 
-// F6b: an unanswered offer's log is never overwritten by the next crash; the question stays open until the
+// An unanswered offer's log is never overwritten by the next crash; the question stays open until the
 // replay has run.
 TEST_F(SessionRecovery, UnansweredOfferIsNotOverwritten) {
   crash_with({kTeapot});
@@ -151,7 +137,7 @@ TEST_F(SessionRecovery, UnansweredOfferIsNotOverwritten) {
   s.finish();
 }
 
-// F7: a crashed second editor (session-<pid>.jsonl + .lock, pid dead) is offered for recovery.
+// A crashed second editor (session-<pid>.jsonl + .lock, pid dead) is offered for recovery.
 TEST_F(SessionRecovery, CrashedSecondInstanceIsOffered) {
   fs::create_directories(dir_);
   const long pid = dead_pid();
@@ -172,7 +158,7 @@ TEST_F(SessionRecovery, CrashedSecondInstanceIsOffered) {
   next.finish();
 }
 
-// F7: a live second editor's files are left alone.
+// A live second editor's files are left alone.
 TEST_F(SessionRecovery, LiveSecondInstanceIsNotTouched) {
   fs::create_directories(dir_);
   const long pid = long(::getppid());  // alive
@@ -187,7 +173,7 @@ TEST_F(SessionRecovery, LiveSecondInstanceIsNotTouched) {
   s.finish();
 }
 
-// F10: append reports write failures; History reports the first one once.
+// CommandLog::append reports write failures; History reports the first one once.
 TEST_F(SessionRecovery, LogWriteFailuresAreReported) {
   ASSERT_TRUE(fs::exists("/dev/full")) << "this test writes to /dev/full (present on every Linux)";
   editor::CommandLog log("/dev/full", true);
@@ -208,7 +194,7 @@ TEST_F(SessionRecovery, LogWriteFailuresAreReported) {
   EXPECT_NE(errors[0].find("/dev/full"), std::string::npos);
 }
 
-// F10: the session routes a failing log to the Log panel as a warning.
+// The session routes a failing log to the Log panel as a warning.
 TEST_F(SessionRecovery, SessionWarnsWhenItsLogFails) {
   ASSERT_TRUE(fs::exists("/dev/full")) << "this test writes to /dev/full (present on every Linux)";
   editor::EditorSession s(messages_);
@@ -221,28 +207,20 @@ TEST_F(SessionRecovery, SessionWarnsWhenItsLogFails) {
   s.finish();
 }
 
-// F5 + F2: the stroke uses the camera at mouse-down, and hidden objects are listed in "ignore".
+// The stroke uses the camera at mouse-down, and hidden objects are listed in "ignore".
 TEST_F(SessionRecovery, StrokeKeepsItsMouseDownCameraAndIgnoresHidden) {
   editor::EditorSession s(messages_);
-  s.start(false);
-  ASSERT_TRUE(s.execute(kTeapot));
-  ASSERT_TRUE(s.execute(kBox));
+  ASSERT_TRUE(test::start_with(s, {kTeapot, kBox}));
   ASSERT_TRUE(s.execute({{"cmd", "scene.primitive"}, {"kind", "box"}, {"name", "veil"}, {"translate", {0, 0, 3}}}));
-  editor::Navigator nav;
-  nav.frame(editor::bounds_of(*s.scene().find("teapot")->world_mesh), {800, 600});
-  core::Camera view = nav.camera({800, 600});
+  core::Camera view = test::framed_view(s.scene(), "teapot");
   const core::Camera at_press = view;
-  std::string selected = "crate";
-  std::set<std::string> hidden = {"veil"};
-  editor::ToolContext ctx{s, view, selected, hidden, [](std::string, std::function<void()> work) { work(); }};
-  editor::SketchTool tool;
-  tool.activate(ctx);
-  editor::ToolInput in;
-  test::press_stroke(tool, ctx, in);
+  test::SketchToolRig rig(s, view, {"veil"});
+  editor::SketchTool& tool = rig.tool;
+  rig.press_stroke();
   EXPECT_TRUE(tool.owns_mouse()) << "the editor must not navigate while a stroke is drawn";
-  test::drag_stroke(tool, ctx, in);
+  rig.drag_stroke();
   view.eye += glm::dvec3(0.5, 0.3, 0.0);  // the view changes before mouse-up (resize, follow, ...)
-  test::release_stroke(tool, ctx, in);
+  rig.release_stroke();
   EXPECT_FALSE(tool.owns_mouse());
   ASSERT_EQ(s.history().applied(), 4u) << (messages_.messages().empty() ? "" : messages_.messages().back().text);
   const nlohmann::json line = s.history().at(3).to_json();
@@ -254,14 +232,14 @@ TEST_F(SessionRecovery, StrokeKeepsItsMouseDownCameraAndIgnoresHidden) {
   // A parameter re-run keeps both.
   core::PlaceSketchParams p = tool.params();
   p.height *= 2;
-  tool.set_params(p, ctx);
+  tool.set_params(p, rig.ctx);
   const nlohmann::json rerun = s.history().at(3).to_json();
   EXPECT_EQ(rerun["ignore"], line["ignore"]);
   EXPECT_EQ(rerun["camera"], line["camera"]);
   s.finish();
 }
 
-// F2: "ignore" parses, round-trips only when non-empty, and names the field in its errors.
+// "ignore" parses, round-trips only when non-empty, and names the field in its errors.
 TEST(PlaceSketchIgnore, ParseAndSerialise) {
   nlohmann::json j = {{"cmd", "place.sketch"}, {"object", "a"}, {"stroke", {{0, 0}, {10, 0}}},
                       {"width", 0.1},           {"height", 0.1}};
@@ -282,17 +260,12 @@ TEST(PlaceSketchIgnore, ParseAndSerialise) {
   }
 }
 
-// F2: an ignored object does not catch the placement rays.
+// An ignored object does not catch the placement rays.
 TEST_F(SessionRecovery, IgnoredObjectsDoNotCatchRays) {
   editor::EditorSession s(messages_);
-  s.start(false);
-  ASSERT_TRUE(s.execute(kTeapot));
-  ASSERT_TRUE(s.execute(kBox));
-  editor::Navigator nav;
-  nav.frame(editor::bounds_of(*s.scene().find("teapot")->world_mesh), {800, 600});
-  const core::Camera view = nav.camera({800, 600});
-  std::vector<glm::dvec2> stroke;
-  for (double x = 330; x <= 470; x += 10) stroke.push_back({x, 330 + 0.1 * (x - 400) * (x - 400) / 40});
+  ASSERT_TRUE(test::start_with(s, {kTeapot, kBox}));
+  const core::Camera view = test::framed_view(s.scene(), "teapot");
+  const std::vector<glm::dvec2> stroke = test::shallow_arc(330);
   core::PlaceSketchParams params;
   params.object = "crate";
   ASSERT_TRUE(s.execute(editor::place_sketch_line(params, stroke, view)));
@@ -305,7 +278,7 @@ TEST_F(SessionRecovery, IgnoredObjectsDoNotCatchRays) {
   s.finish();
 }
 
-// F10: write_log_atomic still writes and replaces (the folder fsync is best effort).
+// write_log_atomic still writes and replaces (the folder fsync is best effort).
 TEST_F(SessionRecovery, AtomicWriteReplaces) {
   fs::create_directories(dir_);
   const fs::path p = dir_ / "x.jsonl";

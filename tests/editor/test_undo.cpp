@@ -1,20 +1,21 @@
 // Undo/redo and determinism: N commands then N undos restore the original meshes bit for bit; N redos equal a
 // straight replay; two replays of one log give identical meshes.
-#include "editor/command_registry.h"
-#include "editor/history.h"
-#include "editor/replay.h"
-
 #include <gtest/gtest.h>
 
 #include <cstring>
 #include <filesystem>
+
+#include "editor/command_registry.h"
+#include "editor/history.h"
+#include "editor/replay.h"
+#include "tests/test_paths.h"
 
 namespace fs = std::filesystem;
 using namespace trispline;
 
 namespace {
 
-fs::path logs_dir() { return fs::path(TRISPLINE_SOURCE_DIR) / "tests" / "logs"; }
+using test::logs_dir;
 
 bool bit_equal(const std::vector<glm::dvec3>& a, const std::vector<glm::dvec3>& b) {
   return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(glm::dvec3)) == 0);

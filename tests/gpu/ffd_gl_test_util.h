@@ -11,22 +11,13 @@
 #include "core/ffd/ffd.h"
 #include "core/ffd/ffd_packed.h"
 #include "core/scene/scene.h"
+#include "tests/core/ffd/ffd_test_util.h"
 
 namespace trispline::gpu::test {
 
-enum class KnotType { clamped_uniform, floating_uniform, periodic_u, nonuniform_clamped };
-inline const char* to_string(KnotType t) {
-  switch (t) {
-    case KnotType::clamped_uniform:
-      return "clamped uniform";
-    case KnotType::floating_uniform:
-      return "floating uniform";
-    case KnotType::periodic_u:
-      return "periodic along u";
-    default:
-      return "non-uniform clamped";
-  }
-}
+// The knot vector families of the CPU FFD tests (tests/core/ffd/ffd_test_util.h), with their names.
+using KnotType = core::test::KnotKind;
+inline const char* to_string(KnotType t) { return core::test::name_of(t); }
 
 // Clamped knot vector on [0,1] with `count` controls and random interior knots (one of them doubled when there
 // are at least two), so spans differ in length and one is empty.
@@ -60,8 +51,8 @@ inline core::KnotVector knots_for(KnotType type, int axis, int order, int count,
 // Random lattice over the box [-1,1]×[-0.5,0.5]×[-0.75,0.75]: a grid (a ring around the y axis on a periodic u
 // axis) jittered by ±20 % of the spacing, so the map stays regular (normals well defined) but every control differs.
 // counts: controls per axis (the period on a periodic axis); 0 = random (order..order+2, period 5..7).
-inline core::TrivariateBSpline<glm::dvec3> random_lattice(KnotType type, glm::ivec3 orders, unsigned seed,
-                                                          glm::ivec3 counts = glm::ivec3(0)) {
+inline core::TrivariateBSpline<glm::dvec3> random_box_lattice(KnotType type, glm::ivec3 orders, unsigned seed,
+                                                              glm::ivec3 counts = glm::ivec3(0)) {
   std::mt19937 rng(seed);
   std::uniform_int_distribution<int> extra(0, 2);
   std::uniform_real_distribution<double> jitter(-0.2, 0.2);

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "tests/test_shapes.h"
+
 namespace trispline::gpu::test {
 
 HeadlessContext& GlTest::context() {
@@ -49,15 +51,7 @@ core::SceneObject make_object(const std::string& name, core::TriMesh mesh, const
   return o;
 }
 
-core::Camera front_camera(int width, int height) {
-  core::Camera c;
-  c.eye = {0.0, 0.0, 4.0};
-  c.target = {0.0, 0.0, 0.0};
-  c.up = {0.0, 1.0, 0.0};
-  c.fov_deg = 45.0;
-  c.viewport = {width, height};
-  return c;
-}
+core::Camera front_camera(int width, int height) { return trispline::test::front_camera(4.0, 45.0, {width, height}); }
 
 Rgba pixel(const std::vector<unsigned char>& img, int width, int x, int y) {
   const std::size_t i = (std::size_t(y) * std::size_t(width) + std::size_t(x)) * 4;

@@ -50,7 +50,7 @@ void parity_for(KnotType type, unsigned seed_base, FfdOrderMode mode = FfdOrderM
   double worst_pos = 0.0, worst_nrm = 0.0;
   for (const glm::ivec3& o : combos) {
     const int ou = o.x, ov = o.y, ow = o.z;
-    const auto F = random_lattice(type, {ou, ov, ow}, seed_base + unsigned(100 * ou + 10 * ov + ow));
+    const auto F = random_box_lattice(type, {ou, ov, ow}, seed_base + unsigned(100 * ou + 10 * ov + ow));
     const double diag = lattice_diagonal(F);
     reference(F, e, params, normals, offset, ref_p, ref_n);
     for (core::FfdEvaluator* ev :
@@ -100,7 +100,7 @@ TEST_F(GlTest, FfdGlParityOtherOrderMode) {
 TEST_F(GlTest, FfdGlPositionsOnly) {
   std::vector<glm::dvec3> params, normals, ref_p, ref_n, p, n;
   random_vertices(300, 5, params, normals);
-  const auto F = random_lattice(KnotType::clamped_uniform, {3, 4, 2}, 5);
+  const auto F = random_box_lattice(KnotType::clamped_uniform, {3, 4, 2}, 5);
   const core::Embedding e = test_embedding();
   reference(F, e, params, normals, glm::dvec3(0.0), ref_p, ref_n);
   for (core::FfdBackend b : {core::FfdBackend::glsl_compute, core::FfdBackend::glsl_vertex}) {
@@ -121,7 +121,7 @@ TEST_F(GlTest, FfdGlPositionsOnly) {
 TEST_F(GlTest, FfdGlManySpansKeepNormalsAccurate) {
   std::vector<glm::dvec3> params, normals, ref_p, ref_n, p, n;
   random_vertices(2000, 77, params, normals);
-  const auto F = random_lattice(KnotType::clamped_uniform, {4, 4, 4}, 78, {60, 40, 8});
+  const auto F = random_box_lattice(KnotType::clamped_uniform, {4, 4, 4}, 78, {60, 40, 8});
   const core::Embedding e = test_embedding();
   reference(F, e, params, normals, glm::dvec3(0.0), ref_p, ref_n);
   for (core::FfdBackend b : {core::FfdBackend::glsl_compute, core::FfdBackend::glsl_vertex}) {
@@ -140,7 +140,7 @@ TEST_F(GlTest, FfdGlPeriodicOffsetReturnsToStart) {
   std::vector<glm::dvec3> params, normals, ref_p, ref_n, start_p, start_n, p, n;
   random_vertices(400, 9, params, normals);
   for (glm::dvec3& q : params) q.x = std::clamp(q.x, 0.0, 1.0);
-  const auto F = random_lattice(KnotType::periodic_u, {4, 3, 3}, 9);
+  const auto F = random_box_lattice(KnotType::periodic_u, {4, 3, 3}, 9);
   const core::Embedding e = test_embedding();
   const double tol = kPosTol * lattice_diagonal(F);
   for (core::FfdBackend b : {core::FfdBackend::glsl_compute, core::FfdBackend::glsl_vertex}) {
@@ -175,7 +175,7 @@ TEST_F(GlTest, FfdGlBunnyTriCubicMatchesReference) {
   ASSERT_EQ(bunny.normals.size(), bunny.positions.size());
   const core::Embedding e = core::embed_bounding_box(bunny.positions, {0, 1});
   const std::vector<glm::dvec3> params = core::embed_points(e, bunny.positions);
-  auto F44 = random_lattice(KnotType::clamped_uniform, {4, 4, 4}, 77, {4, 4, 4});
+  auto F44 = random_box_lattice(KnotType::clamped_uniform, {4, 4, 4}, 77, {4, 4, 4});
   // Re-centre the jittered grid on the bunny so the deformation is of its size.
   core::Aabb box;
   for (const glm::dvec3& q : bunny.positions) box.extend(q);
@@ -213,13 +213,13 @@ TEST_F(GlTest, FfdGlUploadsKnotTablesOnlyWhenTheyChange) {
   random_vertices(64, 3, params, normals);
   GlslComputeFfdEvaluator ev;
   ev.bind_vertices(params, normals);
-  auto F = random_lattice(KnotType::clamped_uniform, {3, 3, 3}, 3);
+  auto F = random_box_lattice(KnotType::clamped_uniform, {3, 3, 3}, 3);
   ev.set_lattice(F, test_embedding());
   F.control_points()[5] += glm::dvec3(0.1);
   ev.set_lattice(F, test_embedding());
   EXPECT_EQ(ev.lattice_buffers().table_uploads(), 1);
   EXPECT_EQ(ev.lattice_buffers().control_uploads(), 2);
-  ev.set_lattice(random_lattice(KnotType::nonuniform_clamped, {3, 3, 3}, 4), test_embedding());
+  ev.set_lattice(random_box_lattice(KnotType::nonuniform_clamped, {3, 3, 3}, 4), test_embedding());
   EXPECT_EQ(ev.lattice_buffers().table_uploads(), 2);
 }
 
@@ -239,20 +239,20 @@ TEST_F(GlTest, FfdGlBadInputThrows) {
     EXPECT_THROW(ev->bind_vertices(bad, normals), std::invalid_argument) << "NaN parameter";
     ev->bind_vertices(params, normals);
     EXPECT_THROW(ev->evaluate(), std::logic_error) << "evaluate before set_lattice";
-    const auto order5 = random_lattice(KnotType::clamped_uniform, {5, 3, 3}, 1);
+    const auto order5 = random_box_lattice(KnotType::clamped_uniform, {5, 3, 3}, 1);
     try {
       ev->set_lattice(order5, e);
       ADD_FAILURE() << "order 5 accepted";
     } catch (const std::invalid_argument& ex) {
       EXPECT_NE(std::string(ex.what()).find("order"), std::string::npos) << ex.what();
     }
-    ev->set_lattice(random_lattice(KnotType::clamped_uniform, {3, 3, 3}, 1), e);
+    ev->set_lattice(random_box_lattice(KnotType::clamped_uniform, {3, 3, 3}, 1), e);
     EXPECT_NO_THROW(ev->evaluate());
   }
   EXPECT_THROW(make_gl_ffd_evaluator(core::FfdBackend::cpu_ref), std::invalid_argument);
   GlslComputeFfdEvaluator compute;
   compute.bind_vertices(params, normals);
-  compute.set_lattice(random_lattice(KnotType::clamped_uniform, {2, 2, 2}, 1), e);
+  compute.set_lattice(random_box_lattice(KnotType::clamped_uniform, {2, 2, 2}, 1), e);
   MeshBuffers wrong;
   wrong.upload(uv_sphere({0, 0, 0}, 1.0, 8, 4));
   EXPECT_THROW(compute.evaluate_into(wrong, glm::dvec3(0.0)), std::invalid_argument);

@@ -1,32 +1,33 @@
 // The editor's timeline and precise-edit UI: the playback clock (whole frames at the timeline's fps,
 // looping at the end frame), scrubbing the real Timeline panel in a headless Dear ImGui frame (mouse events, no
 // window), the I / Alt+I keys issuing anim.keyframe, the Record dialog's anim.record line and a short recording
-// stepped one frame per UI frame, the Sketch tool's profile curves and springs feeding place.sketch, and
-// lattice.set_point (logs, undo bit for bit, bad input leaves the scene untouched) with its Tool panel section.
-#include "headless_imgui.h"
-#include "core/commands/command.h"
-#include "editor/animation_ui.h"
-#include "editor/command_registry.h"
-#include "editor/history.h"
-#include "editor/replay.h"
-#include "editor/tools/sketch_tool.h"
-#include "tests/editor/session_test_util.h"
-#include "ui/curve_editor.h"
-#include "ui/placement_panel.h"
-#include "ui/tool_panel.h"
-
+// stepped one frame per UI frame, the Sketch tool's profile curves and springs feeding place.sketch, and the Tool
+// panel's control point section issuing lattice.set_point (the command:
+// tests/core/commands/test_lattice_set_point.cpp).
 #include <gtest/gtest.h>
 #include <imgui.h>
 
 #include <cmath>
 #include <functional>
 
+#include "core/commands/command.h"
+#include "editor/animation_ui.h"
+#include "editor/command_registry.h"
+#include "editor/history.h"
+#include "editor/tools/sketch_tool.h"
+#include "headless_imgui.h"
+#include "tests/editor/session_test_util.h"
+#include "tests/test_paths.h"
+#include "ui/curve_editor.h"
+#include "ui/placement_panel.h"
+#include "ui/tool_panel.h"
+
 namespace fs = std::filesystem;
 using namespace trispline;
 
 namespace {
 
-fs::path logs_dir() { return fs::path(TRISPLINE_SOURCE_DIR) / "tests" / "logs"; }
+using test::logs_dir;
 
 using test::HeadlessImGui;
 
@@ -361,63 +362,6 @@ TEST(PlacementPanel, ProfilesSpringsAndExtentFeedPlaceSketch) {
   EXPECT_EQ(ui::profile_samples(shown.height_curve), p.height_profile[0]);
   EXPECT_EQ(shown.springs.stiffness, 50);
   EXPECT_EQ(editor::place_sketch_line(q, stroke, view), line);
-}
-
-TEST(SetPoint, LogMovesOnePointExactlyAndUndoRestoresBitForBit) {
-  core::Scene scene;
-  editor::History history(scene);
-  const editor::ReplayResult r = editor::replay_lines(history, logs_dir() / "set_point.jsonl");
-  ASSERT_TRUE(r.ok) << r.error;
-  const core::SceneObject& t = *scene.find("t");
-  EXPECT_EQ(t.ffd->lattice.control_point(2, 1, 3), glm::dvec3(0.9, 0.75, 0.5));
-  // Against the lattice before: exactly one control point differs, and the mesh follows.
-  core::Scene before_scene;
-  editor::History before(before_scene);
-  core::CommandContext ctx;
-  before.execute(editor::CommandRegistry::builtin().parse(kTeapot, ctx));
-  before.execute(editor::CommandRegistry::builtin().parse(kRing, ctx));
-  const auto& a = before_scene.find("t")->ffd->lattice.control_points();
-  const auto& b = t.ffd->lattice.control_points();
-  ASSERT_EQ(a.size(), b.size());
-  int differ = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) differ += a[i] != b[i];
-  EXPECT_EQ(differ, 1);
-  EXPECT_NE(t.world_mesh->positions, before_scene.find("t")->world_mesh->positions);
-  // Undo the camera and the set_point: the lattice and the mesh are bit for bit the ring's.
-  const std::vector<glm::dvec3> moved_mesh = t.world_mesh->positions;
-  history.undo();
-  history.undo();
-  EXPECT_EQ(scene.find("t")->ffd->lattice.control_points(), a);
-  EXPECT_EQ(scene.find("t")->world_mesh->positions, before_scene.find("t")->world_mesh->positions);
-  history.redo();
-  EXPECT_EQ(scene.find("t")->world_mesh->positions, moved_mesh) << "redo is deterministic";
-}
-
-TEST(SetPoint, BadIndexAndNonFinitePositionNameTheFieldAndLeaveTheSceneUntouched) {
-  struct Case {
-    const char* log;
-    const char* field;
-  };
-  for (const Case c : {Case{"bad_set_point_index.jsonl", "index"}, Case{"bad_set_point_nan.jsonl", "position"}}) {
-    core::Scene scene;
-    editor::History history(scene);
-    const editor::ReplayResult r = editor::replay_lines(history, logs_dir() / c.log);
-    ASSERT_FALSE(r.ok) << c.log;
-    EXPECT_EQ(r.failed_line, 3) << r.error;
-    EXPECT_NE(r.error.find(std::string("field '") + c.field + "'"), std::string::npos) << r.error;
-    EXPECT_EQ(history.applied(), 2u);
-    core::Scene ring;
-    editor::History rh(ring);
-    core::CommandContext ctx;
-    rh.execute(editor::CommandRegistry::builtin().parse(kTeapot, ctx));
-    rh.execute(editor::CommandRegistry::builtin().parse(kRing, ctx));
-    EXPECT_EQ(scene.find("t")->ffd->lattice.control_points(), ring.find("t")->ffd->lattice.control_points()) << c.log;
-    EXPECT_EQ(scene.find("t")->world_mesh->positions, ring.find("t")->world_mesh->positions) << c.log;
-  }
-  core::CommandContext ctx;
-  EXPECT_THROW(editor::CommandRegistry::builtin().parse(
-                   {{"cmd", "lattice.set_point"}, {"object", "t"}, {"index", {1, 2}}, {"position", {0, 0, 0}}}, ctx),
-               core::CommandError);
 }
 
 TEST_F(TimelineUi, ControlPointSectionIssuesOneSetPointPerDrag) {

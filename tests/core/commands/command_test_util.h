@@ -9,6 +9,7 @@
 
 #include "core/commands/command.h"
 #include "core/scene/scene.h"
+#include "tests/error_field.h"
 
 namespace trispline::test {
 
@@ -38,6 +39,21 @@ template <class F>
     return ::testing::AssertionSuccess();
   }
   return ::testing::AssertionFailure() << "no CommandError";
+}
+
+// The field a CommandError blames when `line` is parsed as C and redone on `scene`; "(accepted)" when it runs.
+template <class C>
+std::string command_field_of(core::Scene& scene, const nlohmann::json& line) {
+  return field_of<core::CommandError>([&] { C::parse(line, core::CommandContext{})->redo(scene); });
+}
+
+// Same objects in the same order, with bit-for-bit equal world meshes (positions).
+inline void expect_same_meshes(const core::Scene& a, const core::Scene& b) {
+  ASSERT_EQ(a.objects().size(), b.objects().size());
+  for (std::size_t i = 0; i < a.objects().size(); ++i) {
+    EXPECT_EQ(a.objects()[i].name, b.objects()[i].name);
+    EXPECT_EQ(a.objects()[i].world_mesh->positions, b.objects()[i].world_mesh->positions) << a.objects()[i].name;
+  }
 }
 
 }  // namespace trispline::test

@@ -34,10 +34,15 @@ inline json place_line(double extent) {
   return j;
 }
 
-inline Scene placed_crate(double extent = 1.0) {
+// A plane "ground" (scale 3) and a box "crate" of `crate_scale` placed over it along place_line(extent), seen from
+// (0, 3, 3).
+inline Scene placed_crate(double extent = 1.0, const glm::dvec3& crate_scale = {0.5, 0.2, 0.2}) {
   Scene s;
   run_crate_line(s, json::parse(R"({"cmd":"scene.primitive","kind":"plane","name":"ground","scale":3})"));
-  run_crate_line(s, json::parse(R"({"cmd":"scene.primitive","kind":"box","name":"crate","scale":[0.5,0.2,0.2]})"));
+  run_crate_line(s, {{"cmd", "scene.primitive"},
+                     {"kind", "box"},
+                     {"name", "crate"},
+                     {"scale", {crate_scale.x, crate_scale.y, crate_scale.z}}});
   run_crate_line(s, json::parse(R"({"cmd":"camera.set","eye":[0,3,3],"target":[0,0,0],"up":[0,1,0],"fov_deg":45,
                          "viewport":[800,600]})"));
   run_crate_line(s, place_line(extent));
@@ -48,14 +53,6 @@ inline glm::dvec3 centroid(const TriMesh& m) {
   glm::dvec3 c(0.0);
   for (const auto& p : m.positions) c += p;
   return c / static_cast<double>(m.positions.size());
-}
-
-inline void expect_same_meshes(const Scene& a, const Scene& b) {
-  ASSERT_EQ(a.objects().size(), b.objects().size());
-  for (std::size_t i = 0; i < a.objects().size(); ++i) {
-    EXPECT_EQ(a.objects()[i].name, b.objects()[i].name);
-    EXPECT_EQ(a.objects()[i].world_mesh->positions, b.objects()[i].world_mesh->positions) << a.objects()[i].name;
-  }
 }
 
 }  // namespace trispline::test

@@ -5,6 +5,7 @@
 
 #include "core/commands/ddm_animate.h"
 #include "core/commands/scene_primitive.h"
+#include "tests/core/commands/command_test_util.h"
 
 namespace trispline::core {
 namespace {
@@ -51,14 +52,7 @@ TEST(DdmAnimate, MorphAndOffsetPlayOverTimeAndUndo) {
 TEST(DdmAnimate, BadInputIsRefusedAndTheSceneIsUnchanged) {
   Scene s = pot_with_thorns();
   const auto before = s.find("pot")->ddm_layers.at(0);
-  auto field_of = [&](const char* line) -> std::string {
-    try {
-      DdmAnimateCommand::parse(json::parse(line), {})->redo(s);
-    } catch (const CommandError& e) {
-      return e.field();
-    }
-    return "(accepted)";
-  };
+  auto field_of = [&](const char* line) { return test::command_field_of<DdmAnimateCommand>(s, json::parse(line)); };
   EXPECT_EQ(field_of(R"({"cmd":"ddm.animate","object":"pot","layer":"t","morph_tile":"chain"})"), "morph_tile");
   EXPECT_EQ(field_of(R"({"cmd":"ddm.animate","object":"pot","layer":"t","alpha_keys":[[1,0],[9,1]]})"), "alpha_keys");
   EXPECT_EQ(field_of(R"({"cmd":"ddm.animate","object":"pot","layer":"t","morph_tile":"flower",

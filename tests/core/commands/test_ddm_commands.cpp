@@ -6,13 +6,14 @@
 #include <cmath>
 #include <filesystem>
 
-#include "tests/test_shapes.h"
 #include "core/commands/ddm_commands.h"
 #include "core/commands/ddm_paint.h"
 #include "core/commands/mesh_subdivide.h"
 #include "core/commands/scene_primitive.h"
 #include "core/scene/primitives.h"
 #include "core/scene/scene_export.h"
+#include "tests/core/commands/command_test_util.h"
+#include "tests/test_shapes.h"
 
 namespace trispline::core {
 namespace {
@@ -175,13 +176,8 @@ TEST(DdmCommands, TileFromAFileRelativeToTheLog) {
 }
 
 TEST(DdmCommands, BadInputIsRefusedAndTheSceneIsUnchanged) {
-  auto field_of = [](const char* line, Scene& s) -> std::string {
-    try {
-      DdmFillCommand::parse(json::parse(line), {})->redo(s);
-    } catch (const CommandError& e) {
-      return e.field();
-    }
-    return "(accepted)";
+  auto field_of = [](const char* line, Scene& s) {
+    return test::command_field_of<DdmFillCommand>(s, json::parse(line));
   };
   Scene s = ball_scene();
   EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","object":"ball","layer":"x","tile":"thorn","layout":"rect","counts":[0,2],
@@ -217,14 +213,7 @@ TEST(DdmCommands, BadInputIsRefusedAndTheSceneIsUnchanged) {
   // Bake: unknown layer, taken name.
   DdmFillCommand::parse(json::parse(R"({"cmd":"ddm.fill","object":"ball","layer":"ok","tile":"hex","layout":"rect",
       "counts":[1,1],"height":0.1})"), {})->redo(s);
-  auto bake_field = [&](const char* line) -> std::string {
-    try {
-      DdmBakeCommand::parse(json::parse(line), {})->redo(s);
-    } catch (const CommandError& e) {
-      return e.field();
-    }
-    return "(accepted)";
-  };
+  auto bake_field = [&](const char* line) { return test::command_field_of<DdmBakeCommand>(s, json::parse(line)); };
   EXPECT_EQ(bake_field(R"({"cmd":"ddm.bake","object":"ball","layer":"missing","name":"b"})"), "layer");
   EXPECT_EQ(bake_field(R"({"cmd":"ddm.bake","object":"ball","layer":"ok","name":"fin"})"), "name");
   EXPECT_EQ(s.objects().size(), 2u);

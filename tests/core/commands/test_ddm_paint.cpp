@@ -264,14 +264,7 @@ TEST(DdmPaint, AStrokeThatTouchesNothingIsAnErrorAndChangesNothing) {
 
 TEST(DdmPaint, BadFieldsNameTheField) {
   Scene s = ball_scene();
-  auto field_of = [&](json line) -> std::string {
-    try {
-      DdmPaintCommand::parse(line, {})->redo(s);
-    } catch (const CommandError& e) {
-      return e.field();
-    }
-    return "(none)";
-  };
+  auto field_of = [&](const json& line) { return test::command_field_of<DdmPaintCommand>(s, line); };
   const double nan = std::numeric_limits<double>::quiet_NaN();
   json l = paint_line("t");
   l["radius_px"] = 0.0;

@@ -14,6 +14,7 @@
 #include "core/scene/primitives.h"
 #include "tests/core/commands/command_test_util.h"
 #include "tests/core/incision/incision_test_util.h"
+#include "tests/test_shapes.h"
 
 namespace trispline::core {
 namespace {
@@ -162,12 +163,7 @@ TEST(IncisionDraw, BadInputNamesTheFieldAndLeavesTheSceneUnchanged) {
 // Performance figure for docs (printed, not asserted): the whole command on a ~100K-vertex sphere.
 TEST(IncisionDraw, DenseSphereCommand) {
   Scene s;
-  SceneObject o;
-  o.name = "ball";
-  o.source = "test:dense sphere";
-  o.rest_mesh = std::make_shared<const TriMesh>(make_sphere(448, 224));
-  o.refresh();
-  s.insert(o);
+  s.insert(trispline::test::sphere_object("ball", 448, 224, {0, 0, 0}));
   run(s, json::parse(R"({"cmd":"camera.set","eye":[0,0,4],"target":[0,0,0],"up":[0,1,0],"fov_deg":40,
                          "viewport":[800,600]})"));
   const Scene before = s;

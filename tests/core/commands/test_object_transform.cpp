@@ -13,7 +13,8 @@
 #include "core/commands/place_sketch.h"
 #include "core/commands/scene_primitive.h"
 #include "core/scene/primitives.h"
-#include "tests/core/commands/command_test_util.h"
+#include "tests/core/commands/placed_crate.h"
+#include "tests/test_shapes.h"
 
 namespace trispline::core {
 namespace {
@@ -26,16 +27,6 @@ void run(Scene& s, const std::string& line) {
 }
 
 CommandPtr parse(const std::string& line) { return ObjectTransformCommand::parse(json::parse(line), {}); }
-
-Scene placed_box() {
-  Scene s;
-  run(s, R"({"cmd":"scene.primitive","kind":"plane","name":"ground","scale":3})");
-  run(s, R"({"cmd":"scene.primitive","kind":"box","name":"crate","scale":[0.5,0.2,0.2]})");
-  run(s, R"({"cmd":"camera.set","eye":[0,3,3],"target":[0,0,0],"up":[0,1,0],"fov_deg":45,"viewport":[800,600]})");
-  run(s, R"({"cmd":"place.sketch","stroke":[[250,380],[330,340],[400,330],[470,340],[550,380]],"object":"crate",
-             "width":0.3,"height":0.2,"samples":[24,8],"controls":[8,4,3]})");
-  return s;
-}
 
 void expect_same_mesh(const TriMesh& a, const TriMesh& b) {
   ASSERT_EQ(a.positions.size(), b.positions.size());
@@ -130,7 +121,7 @@ TEST(ObjectTransform, RefusesAbsurdValuesNamingTheFieldAndLeavesTheSceneAlone) {
 }
 
 TEST(ObjectTransform, PlacedObjectMovesWithItsLattice) {
-  Scene s = placed_box();
+  Scene s = test::placed_crate();
   const SceneObject before = *s.find("crate");
   ASSERT_TRUE(before.ffd);
   ASSERT_TRUE(before.placement);
@@ -170,7 +161,7 @@ TEST(ObjectTransform, PlacedObjectMovesWithItsLattice) {
 }
 
 TEST(ObjectTransform, PreviewIsTheAffineImageOfTheCurrentEvaluation) {
-  Scene s = placed_box();
+  Scene s = test::placed_crate();
   const SceneObject& crate = *s.find("crate");
   Transform t = crate.transform;
   t.translate += glm::dvec3(1, 0, 0);
@@ -184,12 +175,7 @@ TEST(ObjectTransform, PreviewIsTheAffineImageOfTheCurrentEvaluation) {
 }
 
 TEST(ObjectTransform, MirroredLatticeObjectKeepsItsSigns) {
-  Scene s;
-  run(s, R"({"cmd":"scene.primitive","kind":"plane","name":"ground","scale":3})");
-  run(s, R"({"cmd":"scene.primitive","kind":"box","name":"crate","scale":[-0.5,0.2,0.2]})");
-  run(s, R"({"cmd":"camera.set","eye":[0,3,3],"target":[0,0,0],"up":[0,1,0],"fov_deg":45,"viewport":[800,600]})");
-  run(s, R"({"cmd":"place.sketch","stroke":[[250,380],[400,330],[550,380]],"object":"crate",
-             "width":0.3,"height":0.2,"samples":[24,8],"controls":[8,4,3]})");
+  Scene s = test::placed_crate(1.0, {-0.5, 0.2, 0.2});
   const auto mesh = s.find("crate")->world_mesh;
   auto c = parse(R"({"cmd":"object.transform","object":"crate","scale":1})");
   EXPECT_TRUE(test::throws_command_error([&] { c->redo(s); }, "scale", "mirror")) << "mirroring a lattice";
@@ -226,12 +212,7 @@ TEST(ObjectTransform, DffdRigMovesWithTheObject) {
 
 TEST(ObjectTransform, TileLayersFollowInObjectSpace) {
   Scene s;
-  SceneObject o;
-  o.name = "ball";
-  o.source = "test";
-  o.rest_mesh = std::make_shared<const TriMesh>(make_sphere(8, 4));
-  o.refresh();
-  s.insert(o);
+  s.insert(test::sphere_object("ball", 8, 4, {0, 0, 0}));
   run(s, R"({"cmd":"ddm.fill","object":"ball","layer":"spikes","tile":"thorn","layout":"rect","counts":[1,1],
              "height":0.2})");
   const auto layer = s.find("ball")->ddm_layers.at(0);

@@ -8,16 +8,14 @@
 #include "core/scene/scene.h"
 #include "editor/command_registry.h"
 #include "editor/history.h"
+#include "tests/core/commands/history_test_util.h"
 #include "tests/core/commands/placed_crate.h"
 
 using namespace trispline;
 
 namespace {
 
-void run(editor::History& history, const nlohmann::json& line) {
-  core::CommandContext ctx;
-  history.execute(editor::CommandRegistry::builtin().parse(line, ctx));
-}
+using test::run;
 
 // Replays tests/logs/bridge_springs.jsonl, optionally without the placement's "springs" object, and returns the
 // lowest contact-surface point F(u, v, 0) over the gap between the blocks (|x| < 0.25) and over everything.

@@ -1,6 +1,5 @@
 // Adaptive refinement for FFD (seed §2.4.2): exact composed curve, conforming output, orientation, the bound,
-// the seed's cube example (Fig. 2.10), determinism, and the mesh.refine command (undo, bad parameters).
-#include "core/commands/mesh_refine.h"
+// the seed's cube example (Fig. 2.10), determinism (the mesh.refine command: tests/core/commands/test_mesh_refine.cpp).
 #include "core/ffd/refine.h"
 #include "ffd_test_util.h"
 
@@ -15,22 +14,9 @@
 namespace trispline::core {
 namespace {
 
-// The seed's cube: 12 triangles, 8 shared vertices, [-1,1]³, CCW seen from outside.
-TriMesh cube12() {
-  TriMesh m;
-  for (int i = 0; i < 8; ++i) m.positions.push_back({i & 1 ? 1.0 : -1.0, i & 2 ? 1.0 : -1.0, i & 4 ? 1.0 : -1.0});
-  const unsigned q[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-  for (const auto& f : q) {
-    m.triangles.push_back({f[0], f[1], f[2]});
-    m.triangles.push_back({f[0], f[2], f[3]});
-  }
-  for (const auto& p : m.positions) m.normals.push_back(glm::normalize(p));
-  return m;
-}
-
 // Same cube with split vertices per face (flat normals, uvs): creases are stored twice.
 TriMesh cube24() {
-  const TriMesh c = cube12();
+  const TriMesh c = test::cube12();
   TriMesh m;
   for (std::size_t f = 0; f < c.triangles.size(); f += 2) {
     const auto base = static_cast<unsigned>(m.positions.size());
@@ -46,22 +32,6 @@ TriMesh cube24() {
     m.triangles.push_back({base, base + 2, base + 3});
   }
   return m;
-}
-
-// The cube example's deformation (the seed does not give its lattice): order 4, 5 controls per axis (2 cells), the
-// identity lattice bent into an arc of radius 2 about the z axis (x ↦ angle x/2) and twisted about x by 0.5·x rad.
-FfdBinding bent_twisted_binding(const TriMesh& mesh) {
-  FfdBinding b{test::identity_lattice(embed_bounding_box(mesh.positions, {0, 1}), KnotVector::clamped_uniform(4, 5),
-                                KnotVector::clamped_uniform(4, 5), KnotVector::clamped_uniform(4, 5)),
-               embed_bounding_box(mesh.positions, {0, 1}),
-               {}};
-  for (glm::dvec3& p : b.lattice.control_points()) {
-    const double R = 2.0, th = p.x / R, r = R + p.y, phi = 0.5 * p.x;
-    const glm::dvec3 bent(r * std::sin(th), r * std::cos(th) - R, p.z);
-    p = {bent.x, bent.y * std::cos(phi) - bent.z * std::sin(phi), bent.y * std::sin(phi) + bent.z * std::cos(phi)};
-  }
-  b.params = embed_points(b.embedding, mesh.positions);
-  return b;
 }
 
 // A deformation concentrated at one end of the edges (seed Fig. 2.9): the same order-4, 5³ identity lattice with one
@@ -133,16 +103,16 @@ double sampled_deviation(const RefineResult& r, const FfdBinding& b) {
   return worst;
 }
 
-RefineResult refine_cube(RefineCriterion c, double tol, const TriMesh& mesh = cube12()) {
+RefineResult refine_cube(RefineCriterion c, double tol, const TriMesh& mesh = test::cube12()) {
   RefineOptions o;
   o.tolerance = tol;
   o.criterion = c;
-  return refine_for_ffd(mesh, bent_twisted_binding(mesh), o);
+  return refine_for_ffd(mesh, test::bent_twisted_binding(mesh), o);
 }
 
 TEST(Refine, ComposedCurveBezierPiecesAreExact) {
-  const TriMesh mesh = cube12();
-  const FfdBinding b = bent_twisted_binding(mesh);
+  const TriMesh mesh = test::cube12();
+  const FfdBinding b = test::bent_twisted_binding(mesh);
   const glm::dvec3 pa(0.05, 0.9, 0.2), pb(0.97, 0.1, 0.7);  // crosses knot planes on all three axes
   std::vector<double> breaks;
   std::vector<glm::dvec3> ctrl;
@@ -161,7 +131,7 @@ TEST(Refine, ComposedCurveBezierPiecesAreExact) {
 }
 
 TEST(Refine, GrevilleBoundDominatesSampledDeviation) {
-  const FfdBinding b = bent_twisted_binding(cube12());
+  const FfdBinding b = test::bent_twisted_binding(test::cube12());
   const auto pts = test::random_points(40, glm::dvec3(-0.1), glm::dvec3(1.1), 7);  // some outside: clamping
   for (std::size_t i = 0; i + 1 < pts.size(); i += 2) {
     const glm::dvec3 pa = pts[i], pb = pts[i + 1];
@@ -182,8 +152,8 @@ TEST(Refine, SeedCubeConformingOrientedWithinTolerance) {
   const double tol = 0.01;
   for (RefineCriterion c : {RefineCriterion::Midpoint, RefineCriterion::Greville}) {
     SCOPED_TRACE(refine_criterion_name(c));
-    const TriMesh mesh = cube12();
-    const FfdBinding b = bent_twisted_binding(mesh);
+    const TriMesh mesh = test::cube12();
+    const FfdBinding b = test::bent_twisted_binding(mesh);
     const RefineResult r = refine_cube(c, tol);
     expect_conforming(r.mesh);
     EXPECT_EQ(r.stats.triangles_before, 12u);
@@ -217,10 +187,10 @@ TEST(Refine, SeedCubeConformingOrientedWithinTolerance) {
 }
 
 TEST(Refine, SeedCubeCounts) {
-  const TriMesh mesh = cube12();
+  const TriMesh mesh = test::cube12();
   for (int def = 0; def < 2; ++def)
     for (double tol : {0.02, 0.01, 0.005}) {
-      const FfdBinding b = def == 0 ? bent_twisted_binding(mesh) : corner_pull_binding(mesh);
+      const FfdBinding b = def == 0 ? test::bent_twisted_binding(mesh) : corner_pull_binding(mesh);
       RefineOptions o;
       o.tolerance = tol;
       o.criterion = RefineCriterion::Midpoint;
@@ -267,8 +237,8 @@ TEST(Refine, BudgetsStopAndAreReported) {
   RefineOptions o;
   o.tolerance = 1e-4;
   o.max_triangles = 100;
-  const TriMesh mesh = cube12();
-  const FfdBinding b = bent_twisted_binding(mesh);
+  const TriMesh mesh = test::cube12();
+  const FfdBinding b = test::bent_twisted_binding(mesh);
   RefineResult r = refine_for_ffd(mesh, b, o);
   EXPECT_TRUE(r.stats.stopped_by_budget);
   EXPECT_EQ(r.stats.stopped_by, "max_triangles");
@@ -284,8 +254,8 @@ TEST(Refine, BudgetsStopAndAreReported) {
 }
 
 TEST(Refine, BadOptionsThrow) {
-  const TriMesh mesh = cube12();
-  const FfdBinding b = bent_twisted_binding(mesh);
+  const TriMesh mesh = test::cube12();
+  const FfdBinding b = test::bent_twisted_binding(mesh);
   for (double tol : {0.0, -1.0, std::numeric_limits<double>::infinity(), std::nan("")}) {
     RefineOptions o;
     o.tolerance = tol;
@@ -301,78 +271,6 @@ TEST(Refine, BadOptionsThrow) {
   short_params.params.pop_back();
   EXPECT_THROW(refine_for_ffd(mesh, short_params, RefineOptions{}), std::invalid_argument);
   EXPECT_THROW(parse_refine_criterion("bisect"), std::invalid_argument);
-}
-
-// --- the mesh.refine command ---
-
-Scene cube_scene() {
-  Scene s;
-  SceneObject obj;
-  obj.name = "cube";
-  obj.source = "test:cube12";
-  obj.rest_mesh = std::make_shared<const TriMesh>(cube12());
-  obj.transform.translate = {0.5, 0.0, -0.25};
-  obj.transform.scale = {1.0, 0.5, 1.0};
-  const TriMesh world = obj.world_rest_mesh();
-  obj.ffd = std::make_shared<const FfdBinding>(bent_twisted_binding(world));
-  obj.refresh();
-  s.insert(obj);
-  SceneObject plain = obj;
-  plain.name = "plain";
-  plain.ffd.reset();
-  plain.refresh();
-  s.insert(plain);
-  return s;
-}
-
-CommandPtr parse(const std::string& line) { return MeshRefineCommand::parse(nlohmann::json::parse(line), {}); }
-
-TEST(MeshRefineCommand, RefinesInObjectSpaceAndUndoRestoresExactly) {
-  Scene s = cube_scene();
-  const SceneObject before = *s.find("cube");
-  auto cmd = parse(R"({"cmd":"mesh.refine","object":"cube","tolerance":0.01,"criterion":"greville"})");
-  cmd->redo(s);
-  const SceneObject& after = *s.find("cube");
-  EXPECT_GT(after.rest_mesh->triangles.size(), 12u);
-  EXPECT_EQ(after.ffd->params.size(), after.rest_mesh->positions.size());
-  EXPECT_EQ(&after.ffd->lattice == &before.ffd->lattice, false);
-  // World rest positions of the refined object embed to the stored parameters (object-space refinement is exact).
-  const TriMesh world = after.world_rest_mesh();
-  for (std::size_t i = 0; i < world.positions.size(); ++i)
-    EXPECT_LT(glm::length(after.ffd->embedding.apply(world.positions[i]) - after.ffd->params[i]), 1e-12);
-  const nlohmann::json st = cmd->stats();
-  EXPECT_EQ(st.at("triangles_before"), 12);
-  EXPECT_EQ(st.at("triangles_after"), after.rest_mesh->triangles.size());
-  EXPECT_LE(st.at("max_deviation_bound").get<double>(), 0.01);
-  for (const char* k : {"iterations", "stopped_by_budget", "ms_refine", "ms_evaluate"}) EXPECT_TRUE(st.contains(k)) << k;
-  cmd->undo(s);
-  EXPECT_EQ(s.find("cube")->rest_mesh, before.rest_mesh);  // the same immutable mesh, bit for bit
-  EXPECT_EQ(s.find("cube")->ffd, before.ffd);
-  EXPECT_EQ(s.find("cube")->world_mesh, before.world_mesh);
-  // Round trip through the log line.
-  EXPECT_EQ(parse(cmd->to_json().dump())->to_json(), cmd->to_json());
-}
-
-TEST(MeshRefineCommand, BadParametersNameTheirField) {
-  Scene s = cube_scene();
-  auto field_of = [&](const std::string& line) -> std::string {
-    try {
-      auto c = parse(line);
-      c->redo(s);
-    } catch (const CommandError& e) {
-      return e.field();
-    }
-    return "<none>";
-  };
-  EXPECT_EQ(field_of(R"({"cmd":"mesh.refine","object":"nobody","tolerance":0.01})"), "object");
-  EXPECT_EQ(field_of(R"({"cmd":"mesh.refine","object":"plain","tolerance":0.01})"), "object");
-  EXPECT_EQ(field_of(R"({"cmd":"mesh.refine","object":"cube","tolerance":0})"), "tolerance");
-  EXPECT_EQ(field_of(R"({"cmd":"mesh.refine","object":"cube","tolerance":-1})"), "tolerance");
-  EXPECT_EQ(field_of(R"({"cmd":"mesh.refine","object":"cube","tolerance":0.01,"criterion":"bisect"})"), "criterion");
-  EXPECT_EQ(field_of(R"({"cmd":"mesh.refine","object":"cube","tolerance":0.01,"max_iterations":-2})"),
-            "max_iterations");
-  EXPECT_EQ(field_of(R"({"cmd":"mesh.refine","object":"cube","tolerance":0.01,"max_triangles":5})"), "max_triangles");
-  EXPECT_EQ(s.find("cube")->rest_mesh->triangles.size(), 12u);  // untouched
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include "core/scene/primitives.h"
 #include "core/scene/scene.h"
 #include "incision_test_util.h"
+#include "tests/test_shapes.h"
 
 namespace trispline::core {
 namespace {
@@ -22,15 +23,7 @@ using test::segment;
 using test::topology;
 
 // A camera looking straight down at the xz-plane.
-Camera top_camera() {
-  Camera c;
-  c.eye = {0.0, 3.0, 0.0};
-  c.target = {0.0, 0.0, 0.0};
-  c.up = {0.0, 0.0, -1.0};
-  c.fov_deg = 45;
-  c.viewport = {800, 800};
-  return c;
-}
+Camera top_camera() { return trispline::test::top_camera(3.0, 45, {800, 800}); }
 
 // The 2 × 2 plane (y = 0) with 64 × 64 quads, and an incision along x from −0.5 to 0.5 at z = 0.013.
 struct PlaneCut {
@@ -174,15 +167,7 @@ TEST(Incision, BadParametersAreRejected) {
 }
 
 // A camera on +z looking at the origin.
-Camera front_camera(double dist = 4.0) {
-  Camera c;
-  c.eye = {0.0, 0.0, dist};
-  c.target = {0.0, 0.0, 0.0};
-  c.up = {0.0, 1.0, 0.0};
-  c.fov_deg = 40;
-  c.viewport = {800, 600};
-  return c;
-}
+Camera front_camera(double dist = 4.0) { return trispline::test::front_camera(dist, 40, {800, 600}); }
 
 TEST(Incision, StrokeCasterHitsLikeTheWholeMesh) {
   const TriMesh sphere = make_sphere(64, 32);

@@ -5,6 +5,7 @@
 #include "core/mesh/file_check.h"
 #include "core/mesh/mesh_io.h"
 #include "mesh_test_util.h"
+#include "tests/error_field.h"
 
 namespace trispline::core {
 namespace {
@@ -13,21 +14,11 @@ using test::TempDir;
 using test::write_text;
 
 std::string check_error(const std::filesystem::path& p, std::uintmax_t max_bytes) {
-  try {
-    check_input_file(p, max_bytes, "mesh files");
-  } catch (const MeshIoError& e) {
-    return e.what();
-  }
-  return "";
+  return trispline::test::message_of<MeshIoError>([&] { check_input_file(p, max_bytes, "mesh files"); });
 }
 
 std::string read_error(const std::filesystem::path& p, std::uintmax_t max_bytes) {
-  try {
-    read_input_file(p, max_bytes, "mesh files");
-  } catch (const MeshIoError& e) {
-    return e.what();
-  }
-  return "";
+  return trispline::test::message_of<MeshIoError>([&] { read_input_file(p, max_bytes, "mesh files"); });
 }
 
 TEST(FileCheck, RegularFileWithinBudgetPasses) {

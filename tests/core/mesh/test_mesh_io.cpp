@@ -14,6 +14,12 @@ namespace {
 using test::TempDir;
 using test::write_text;
 
+// Loads `text` written to `dir / name`.
+TriMesh load_text(const TempDir& dir, const std::string& name, const std::string& text) {
+  write_text(dir / name, text);
+  return load_mesh(dir / name);
+}
+
 void expect_same_mesh(const TriMesh& a, const TriMesh& b, double tol) {
   ASSERT_EQ(a.positions.size(), b.positions.size());
   ASSERT_EQ(a.triangles.size(), b.triangles.size());
@@ -24,9 +30,9 @@ void expect_same_mesh(const TriMesh& a, const TriMesh& b, double tol) {
 
 TEST(MeshIo, ObjQuadIsFanTriangulatedInFileOrder) {
   TempDir dir;
-  write_text(dir / "quad.obj",
-             "# a unit quad and a triangle\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nf 1 2 3 4\nf 2 5 3\n");
-  const TriMesh m = load_mesh(dir / "quad.obj");
+  const TriMesh m =
+      load_text(dir, "quad.obj",
+                "# a unit quad and a triangle\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nf 1 2 3 4\nf 2 5 3\n");
   ASSERT_EQ(m.vertex_count(), 5u);
   EXPECT_EQ(m.positions[4], glm::dvec3(2, 0, 0));
   ASSERT_EQ(m.triangle_count(), 3u);
@@ -39,8 +45,8 @@ TEST(MeshIo, ObjQuadIsFanTriangulatedInFileOrder) {
 
 TEST(MeshIo, ObjWithNormalsAndTexcoordsKeepsThem) {
   TempDir dir;
-  write_text(dir / "t.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nvn 0 0 1\nf 1/1/1 2/2/1 3/3/1\n");
-  const TriMesh m = load_mesh(dir / "t.obj");
+  const TriMesh m =
+      load_text(dir, "t.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nvn 0 0 1\nf 1/1/1 2/2/1 3/3/1\n");
   ASSERT_EQ(m.vertex_count(), 3u);
   ASSERT_EQ(m.uvs.size(), 3u);
   EXPECT_EQ(m.uvs[1], glm::dvec2(1, 0));
@@ -78,11 +84,11 @@ TEST(MeshIo, ObjAndPlySaveLoadRoundTrip) {
 
 TEST(MeshIo, AsciiPlyLoads) {
   TempDir dir;
-  write_text(dir / "a.ply",
-             "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
-             "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
-             "0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n");
-  const TriMesh m = load_mesh(dir / "a.ply");
+  const TriMesh m =
+      load_text(dir, "a.ply",
+                "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+                "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                "0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n");
   EXPECT_EQ(m.vertex_count(), 4u);
   EXPECT_EQ(m.triangle_count(), 2u);
   EXPECT_EQ(m.positions[2], glm::dvec3(1, 1, 0));
@@ -90,9 +96,8 @@ TEST(MeshIo, AsciiPlyLoads) {
 
 TEST(MeshIo, OffLoadsInFileOrder) {
   TempDir dir;
-  write_text(dir / "a.off",
-             "OFF\n# comment\n5 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0.5 0.5 -1 # apex\n4 0 1 2 3\n3 1 0 4\n");
-  const TriMesh m = load_mesh(dir / "a.off");
+  const TriMesh m = load_text(
+      dir, "a.off", "OFF\n# comment\n5 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0.5 0.5 -1 # apex\n4 0 1 2 3\n3 1 0 4\n");
   ASSERT_EQ(m.vertex_count(), 5u);
   EXPECT_EQ(m.positions[4], glm::dvec3(0.5, 0.5, -1));
   ASSERT_EQ(m.triangle_count(), 3u);
@@ -101,13 +106,13 @@ TEST(MeshIo, OffLoadsInFileOrder) {
 
 TEST(MeshIo, AsciiStlMergesSharedCorners) {
   TempDir dir;
-  write_text(dir / "a.stl",
-             "solid quad\n"
-             " facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n   vertex 1 0 0\n   vertex 1 1 0\n  endloop\n"
-             " endfacet\n"
-             " facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n   vertex 1 1 0\n   vertex 0 1 0\n  endloop\n"
-             " endfacet\nendsolid quad\n");
-  const TriMesh m = load_mesh(dir / "a.stl");
+  const TriMesh m =
+      load_text(dir, "a.stl",
+                "solid quad\n"
+                " facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n   vertex 1 0 0\n   vertex 1 1 0\n  endloop\n"
+                " endfacet\n"
+                " facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n   vertex 1 1 0\n   vertex 0 1 0\n  endloop\n"
+                " endfacet\nendsolid quad\n");
   EXPECT_EQ(m.vertex_count(), 4u);
   EXPECT_EQ(m.triangle_count(), 2u);
   EXPECT_EQ(mesh_bounds(m).hi, glm::dvec3(1, 1, 0));
@@ -121,8 +126,7 @@ TEST(MeshIo, BinaryStlLoads) {
   const float tri[12] = {0, 0, 1, 0, 0, 0, 2, 0, 0, 0, 2, 0};  // normal, then 3 corners
   bytes.append(reinterpret_cast<const char*>(tri), sizeof tri);
   bytes.append(2, '\0');
-  write_text(dir / "b.stl", bytes);
-  const TriMesh m = load_mesh(dir / "b.stl");
+  const TriMesh m = load_text(dir, "b.stl", bytes);
   EXPECT_EQ(m.vertex_count(), 3u);
   ASSERT_EQ(m.triangle_count(), 1u);
   EXPECT_EQ(mesh_bounds(m).hi, glm::dvec3(2, 2, 0));

@@ -11,6 +11,7 @@
 #include "core/mesh/uv_sphere.h"
 #include "core/placement/sketch_placement.h"
 #include "core/raycast/ray_caster.h"
+#include "tests/test_shapes.h"
 
 namespace trispline::core::test {
 
@@ -57,15 +58,7 @@ inline TriMesh tessellated_box(glm::dvec3 size, glm::dvec3 at, int n) {
   return m;
 }
 
-inline Camera top_down_camera() {
-  Camera c;
-  c.eye = {0.0, 6.0, 0.0};
-  c.target = {0.0, 0.0, 0.0};
-  c.up = {0.0, 0.0, -1.0};
-  c.fov_deg = 45.0;
-  c.viewport = {1280, 720};
-  return c;
-}
+inline Camera top_down_camera() { return trispline::test::top_camera(6.0, 45.0, {1280, 720}); }
 
 inline RayCaster caster_for(const TriMesh& scene) {
   RayCaster rc;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "placement_test_util.h"
+#include "tests/error_field.h"
 
 namespace trispline::core::test {
 namespace {
@@ -19,19 +20,25 @@ double lerp_profile(const std::vector<double>& s, double t) {
   return s[k] + (x - k) * (s[k + 1] - s[k]);
 }
 
+// Every column of the lattice F, |P(i, j, top) − P(i, j, 0)|, is want(i, j) within 1e-12.
+template <class Lattice, class Want>
+void expect_column_heights(const Lattice& F, Want want) {
+  const glm::ivec3 n = F.control_counts();
+  for (int j = 0; j < n.y; ++j)
+    for (int i = 0; i < n.x; ++i) {
+      const double column = glm::length(F.control_point(i, j, n.z - 1) - F.control_point(i, j, 0));
+      EXPECT_NEAR(column, want(i, j), 1e-12) << i << "," << j;
+    }
+}
+
 TEST(PlacementProfiles, HeightProfileOfUScalesEveryColumn) {
   const RayCaster rc = caster_for(flat_ground());
   SketchPlacementParams p = default_params(straight_stroke());
   p.height_profile = {{1.0, 3.0, 2.0}};
   const SketchPlacementResult r = place_along_stroke(rc, p, small_box().positions);
-  const auto& F = r.binding.lattice;
-  const auto gu = F.knots(0).greville();
-  const glm::ivec3 n = F.control_counts();
-  for (int j = 0; j < n.y; ++j)
-    for (int i = 0; i < n.x; ++i) {
-      const double column = glm::length(F.control_point(i, j, n.z - 1) - F.control_point(i, j, 0));
-      EXPECT_NEAR(column, p.height * lerp_profile(p.height_profile[0], gu[i]), 1e-12) << i << "," << j;
-    }
+  const auto gu = r.binding.lattice.knots(0).greville();
+  expect_column_heights(r.binding.lattice,
+                        [&](int i, int) { return p.height * lerp_profile(p.height_profile[0], gu[i]); });
 }
 
 TEST(PlacementProfiles, HeightProfileOfUVIsBilinearOverTheColumns) {
@@ -39,14 +46,8 @@ TEST(PlacementProfiles, HeightProfileOfUVIsBilinearOverTheColumns) {
   SketchPlacementParams p = default_params(straight_stroke());
   p.height_profile = {{1.0, 1.0}, {3.0, 3.0}};  // 1 on the v = 0 side, 3 on the v = 1 side
   const SketchPlacementResult r = place_along_stroke(rc, p, small_box().positions);
-  const auto& F = r.binding.lattice;
-  const auto gv = F.knots(1).greville();
-  const glm::ivec3 n = F.control_counts();
-  for (int j = 0; j < n.y; ++j)
-    for (int i = 0; i < n.x; ++i) {
-      const double column = glm::length(F.control_point(i, j, n.z - 1) - F.control_point(i, j, 0));
-      EXPECT_NEAR(column, p.height * (1.0 + 2.0 * gv[j]), 1e-12);
-    }
+  const auto gv = r.binding.lattice.knots(1).greville();
+  expect_column_heights(r.binding.lattice, [&](int, int j) { return p.height * (1.0 + 2.0 * gv[j]); });
 }
 
 TEST(PlacementProfiles, WidthProfileScalesTheContactGridAcrossTheStroke) {
@@ -69,13 +70,8 @@ TEST(PlacementProfiles, WidthProfileScalesTheContactGridAcrossTheStroke) {
 
 TEST(PlacementProfiles, BadProfilesNameTheirField) {
   const RayCaster rc = caster_for(flat_ground());
-  const auto field_of = [&](const SketchPlacementParams& p) -> std::string {
-    try {
-      place_along_stroke(rc, p, small_box().positions);
-    } catch (const PlacementError& e) {
-      return e.field();
-    }
-    return "accepted";
+  const auto field_of = [&](const SketchPlacementParams& p) {
+    return trispline::test::field_of<PlacementError>([&] { place_along_stroke(rc, p, small_box().positions); });
   };
   SketchPlacementParams p = default_params(straight_stroke());
   p.width_profile = {1.0, 0.0};

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/mesh/uv_sphere.h"
 #include "core/raycast/ray_caster.h"
 
 namespace trispline::core {
@@ -16,21 +17,10 @@ TriMesh triangle_at_z(double z) {
   return m;
 }
 
-// Icosphere-like UV sphere: radius 1 at centre c, slices × stacks.
+// The UV sphere of radius 1 (core::make_uv_sphere) with `slices` longitude and `stacks` latitude bands, at centre c.
 TriMesh sphere(const glm::dvec3& c, int slices, int stacks) {
-  TriMesh m;
-  const double pi = std::acos(-1.0);
-  for (int k = 0; k <= stacks; ++k)
-    for (int i = 0; i <= slices; ++i) {
-      const double th = pi * k / stacks, ph = 2 * pi * i / slices;
-      m.positions.push_back(c + glm::dvec3(std::sin(th) * std::cos(ph), std::cos(th), std::sin(th) * std::sin(ph)));
-    }
-  for (int k = 0; k < stacks; ++k)
-    for (int i = 0; i < slices; ++i) {
-      const unsigned a = k * (slices + 1) + i, b = a + slices + 1;
-      m.triangles.push_back({a, b + 1, b});
-      m.triangles.push_back({a, a + 1, b + 1});
-    }
+  TriMesh m = make_uv_sphere(1.0, stacks, slices);
+  for (glm::dvec3& p : m.positions) p += c;
   return m;
 }
 

@@ -19,6 +19,16 @@ SceneObject sphere(const std::string& name) {
   return o;
 }
 
+// Sets coordinate `axis` of vertex `v` of the world mesh of `name` to `value`, in a new mesh (the object changed, as
+// a command changes it).
+void set_world_coordinate(Scene& scene, const std::string& name, std::size_t v, int axis, double value) {
+  SceneObject o = *scene.find(name);
+  TriMesh m = *o.world_mesh;
+  m.positions[v][axis] = value;
+  o.world_mesh = std::make_shared<const TriMesh>(m);
+  scene.replace(o);
+}
+
 TEST(SceneCheck, AFiniteSceneIsAccepted) {
   Scene scene;
   scene.insert(sphere("ball"));
@@ -28,18 +38,12 @@ TEST(SceneCheck, AFiniteSceneIsAccepted) {
 TEST(SceneCheck, NonFiniteAndHugeValuesAreNamed) {
   Scene scene;
   scene.insert(sphere("ball"));
-  SceneObject bad = *scene.find("ball");
-  TriMesh m = *bad.world_mesh;
-  m.positions[7].y = std::numeric_limits<double>::infinity();
-  bad.world_mesh = std::make_shared<const TriMesh>(m);
-  scene.replace(bad);
+  set_world_coordinate(scene, "ball", 7, 1, std::numeric_limits<double>::infinity());
   const std::string e = scene_value_error(scene);
   EXPECT_NE(e.find("object 'ball'"), std::string::npos) << e;
   EXPECT_NE(e.find("vertex 7"), std::string::npos) << e;
 
-  m.positions[7].y = 2e12;  // finite, but beyond what float32 export keeps meaningful
-  bad.world_mesh = std::make_shared<const TriMesh>(m);
-  scene.replace(bad);
+  set_world_coordinate(scene, "ball", 7, 1, 2e12);  // finite, but beyond what float32 export keeps meaningful
   EXPECT_NE(scene_value_error(scene).find("beyond"), std::string::npos);
 
   Scene cam;
@@ -51,11 +55,7 @@ TEST(SceneCheck, GuardSkipsWhatDidNotChange) {
   Scene scene;
   scene.insert(sphere("ball"));
   // A mesh that was already there (same pointer) is not scanned again; a new one is.
-  SceneObject o = *scene.find("ball");
-  TriMesh m = *o.world_mesh;
-  m.positions[0].x = std::numeric_limits<double>::quiet_NaN();
-  o.world_mesh = std::make_shared<const TriMesh>(m);
-  scene.replace(o);
+  set_world_coordinate(scene, "ball", 0, 0, std::numeric_limits<double>::quiet_NaN());
   const SceneGuard guard(scene);
   EXPECT_EQ(guard.error(scene), "");
   scene.insert(sphere("other"));

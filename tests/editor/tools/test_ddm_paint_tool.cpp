@@ -87,7 +87,6 @@ class DdmPaintTool : public test::ToolTest<editor::DdmPaintTool> {
   nlohmann::json last_line() const { return s.history().at(s.history().applied() - 1).to_json(); }
 
   test::HeadlessImGui gui;
-  editor::ToolInput in;
   std::vector<glm::dvec2> row;
 };
 

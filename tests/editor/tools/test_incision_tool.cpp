@@ -22,8 +22,22 @@ using namespace trispline;
 
 namespace {
 
+// The tool's defaults with the cut's width and depth (world units), opening, walls, order and kernel set.
+core::IncisionParams incision_params(double width, double depth, double opening, bool walls, int order,
+                                     core::IncisionKernel kernel) {
+  core::IncisionParams p = editor::incision_tool_defaults();
+  p.width = width;
+  p.depth = depth;
+  p.opening = opening;
+  p.walls = walls;
+  p.order = order;
+  p.kernel = kernel;
+  return p;
+}
+
 class IncisionTool : public test::ToolTest<editor::IncisionTool> {
  protected:
+  // Nothing is selected: the object under the cursor at mouse-down is cut.
   void SetUp() override {
     ASSERT_TRUE(s.execute({{"cmd", "scene.primitive"}, {"kind", "sphere"}, {"name", "s"}}));
     frame_view_on("s");
@@ -35,45 +49,13 @@ class IncisionTool : public test::ToolTest<editor::IncisionTool> {
   }
   const core::SceneObject& object() const { return *s.scene().find("s"); }
 
-  void press(glm::dvec2 px) {
-    in = {};
-    in.mouse_px = px;
-    in.left_pressed = in.left_down = true;
-    tool.handle_input(in, ctx);
-    in.left_pressed = false;
-  }
-  void move_through(const std::vector<glm::dvec2>& px) {
-    for (const glm::dvec2& p : px) {
-      in.mouse_px = p;
-      tool.handle_input(in, ctx);
-    }
-  }
-  void release() {
-    in.left_down = false;
-    in.left_released = true;
-    tool.handle_input(in, ctx);
-    in.left_released = false;
-  }
-  void drag(const std::vector<glm::dvec2>& px) {
-    press(px.front());
-    move_through({px.begin() + 1, px.end()});
-    release();
-  }
-  // Nothing is selected: the object under the cursor at mouse-down is cut.
-  editor::ToolInput in;
   std::vector<glm::dvec2> row;
 };
 
 }  // namespace
 
 TEST_F(IncisionTool, LineCarriesStrokeAndParameters) {
-  core::IncisionParams p = editor::incision_tool_defaults();
-  p.width = 0.1;
-  p.depth = 0.07;
-  p.opening = 0.0;
-  p.walls = false;
-  p.order = 4;
-  p.kernel = core::IncisionKernel::bspline;
+  const core::IncisionParams p = incision_params(0.1, 0.07, 0.0, false, 4, core::IncisionKernel::bspline);
   const nlohmann::json j = editor::incision_draw_line("venus", {{10.5, 20}, {30, 40.25}}, p);
   EXPECT_EQ(j["cmd"], "incision.draw");
   EXPECT_EQ(j["object"], "venus");
@@ -155,13 +137,7 @@ TEST_F(IncisionTool, PreviewWhileDraggingOnTheSurface) {
 }
 
 TEST_F(IncisionTool, DragIssuesOneUndoableIncisionDraw) {
-  core::IncisionParams p = editor::incision_tool_defaults();
-  p.width = 0.12;
-  p.depth = 0.09;
-  p.opening = 0.03;
-  p.walls = true;
-  p.order = 3;
-  p.kernel = core::IncisionKernel::gaussian;
+  const core::IncisionParams p = incision_params(0.12, 0.09, 0.03, true, 3, core::IncisionKernel::gaussian);
   tool.set_params(p);
   const std::shared_ptr<const core::TriMesh> before = object().world_mesh;
   const std::vector<glm::dvec3> rest_before = object().rest_mesh->positions;

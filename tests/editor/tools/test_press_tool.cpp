@@ -28,26 +28,10 @@ class PressTool : public test::ToolTest<editor::PressTool> {
   const core::SceneObject& object() const { return *s.scene().find("t"); }
   double diagonal() const { return editor::bounds_of(*object().world_mesh).diagonal(); }
 
-  // Button down at the first pixel, moves over the others, up at the last one.
-  void drag(const std::vector<glm::dvec2>& px, bool ctrl = false) {
-    editor::ToolInput in;
-    in.ctrl = ctrl;
-    in.mouse_px = px.front();
-    in.left_pressed = in.left_down = true;
-    tool.handle_input(in, ctx);
-    in.left_pressed = false;
-    for (std::size_t i = 1; i < px.size(); ++i) {
-      in.mouse_px = px[i];
-      tool.handle_input(in, ctx);
-    }
-    in.left_down = false;
-    in.left_released = true;
-    tool.handle_input(in, ctx);
-  }
   void hover(glm::dvec2 px) {
-    editor::ToolInput in;
-    in.mouse_px = px;
-    tool.handle_input(in, ctx);
+    editor::ToolInput moved;
+    moved.mouse_px = px;
+    tool.handle_input(moved, ctx);
   }
 
   std::vector<glm::dvec2> row;
@@ -119,15 +103,8 @@ TEST_F(PressTool, DragIssuesOneUndoablePress) {
 // produces, and goes away once the command has replaced the object's lattice.
 TEST_F(PressTool, LivePreviewDuringTheDragEqualsTheCommittedPress) {
   EXPECT_FALSE(tool.live_preview(ctx));  // nothing before a drag
-  editor::ToolInput in;
-  in.mouse_px = row[row.size() / 3];
-  in.left_pressed = in.left_down = true;
-  tool.handle_input(in, ctx);
-  in.left_pressed = false;
-  for (std::size_t i = row.size() / 3 + 1; i < 2 * row.size() / 3; ++i) {
-    in.mouse_px = row[i];
-    tool.handle_input(in, ctx);
-  }
+  press(row[row.size() / 3]);
+  move_through({row.begin() + std::ptrdiff_t(row.size() / 3 + 1), row.begin() + std::ptrdiff_t(2 * row.size() / 3)});
   const auto before = object().ffd;
   const auto preview = tool.live_preview(ctx);
   ASSERT_TRUE(preview);
@@ -135,9 +112,7 @@ TEST_F(PressTool, LivePreviewDuringTheDragEqualsTheCommittedPress) {
   EXPECT_NE(preview->lattice->control_points(), before->lattice.control_points());  // it pressed
   EXPECT_EQ(preview->lattice->control_counts(), before->lattice.control_counts());
   EXPECT_EQ(object().ffd, before);  // the scene is untouched until mouse-up
-  in.left_down = false;
-  in.left_released = true;
-  tool.handle_input(in, ctx);  // commits (this test's defer runs the work at once)
+  release();                        // commits (this test's defer runs the work at once)
   ASSERT_NE(object().ffd, before);
   EXPECT_EQ(object().ffd->lattice.control_points(), preview->lattice->control_points());
   EXPECT_FALSE(tool.live_preview(ctx));  // the object's own lattice is shown again
