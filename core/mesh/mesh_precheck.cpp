@@ -162,6 +162,21 @@ void prepare_mesh_bytes(const std::filesystem::path& path, const std::string& ex
     bytes.assign(canonical.begin(), canonical.end());
     return;
   }
+  if (ext == ".obj") {
+    // Material libraries are never read (trispline keeps no OBJ materials): each `mtllib` line becomes a comment,
+    // same length, so line numbers hold. assimp opens the library by the name the line gives, and a line naming the
+    // served file itself had the OBJ parsed as a material library, which writes through a null material (SEGV).
+    std::size_t start = 0;
+    while (start < bytes.size()) {
+      std::size_t end = start;
+      while (end < bytes.size() && bytes[end] != '\n') ++end;
+      std::string_view line(reinterpret_cast<const char*>(bytes.data()) + start, end - start);
+      std::string_view rest = line;
+      if (next_token(rest) == "mtllib") bytes[start + line.find("mtllib")] = '#';
+      start = end + 1;
+    }
+    return;
+  }
   if (ext == ".off") {  // binary OFF is refused by precheck_mesh_file; its header has no comment to remove
     std::size_t out = 0;
     bool comment = false;

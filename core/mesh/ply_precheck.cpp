@@ -87,9 +87,18 @@ const char* kind_name(PlyKind kind) {
                  " its header declares (truncated)");
 }
 
+// The elements written back for assimp: the ones a mesh is read from (`vertex`, `face`, `tristrips`), with their
+// properties. Any other element is walked and checked, then left out: assimp does not skip an element it has no use
+// for by its declared size (binary or ASCII, the face after an extra element was read from that element's data, a
+// count of -20818 as 4294946478 corners, 34 GB: CI's fuzzer).
+bool written_back(const PlyElement& e) {
+  return !e.properties.empty() && (e.name == "vertex" || e.name == "face" || e.name == "tristrips");
+}
+
 // Walks an ASCII PLY body — one element a line (blank lines and `comment` lines skipped), its properties' values in
 // order, anything after them on the line ignored — and returns the number of values it holds. With `out`, appends the
-// body written back as walked: one line per element, its values one space apart, nothing else; assimp is handed that
+// body written back as walked: one line per element (written_back ones), its values one space apart, nothing else;
+// assimp is handed that
 // text, so its line and value boundaries are the ones checked here (it splits values by parsing numbers, not at
 // spaces, and a face read from a line another reading took for a vertex once asked for 34 GB).
 // Every value must be a whole number of its property's kind (is_ply_number), and every list count a non-negative
@@ -105,20 +114,22 @@ unsigned long long walk_ply_ascii(const std::filesystem::path& path, std::string
   auto bad = [&](const PlyElement& e, unsigned long long i, const std::string& why) {
     fail(path, "PLY " + e.name + " " + std::to_string(i) + ": " + why);
   };
+  std::string* sink = nullptr;  // `out` while walking an element written back
   auto value = [&](const PlyElement& e, unsigned long long i, PlyKind kind, bool first) {
     const std::string_view t = token();
     if (t.empty())
       bad(e, i, "its line holds fewer values than the element's " + std::to_string(e.properties.size()) + " properties");
     if (!is_ply_number(t, kind))
       bad(e, i, "'" + std::string(t.substr(0, 24)) + "' is not " + kind_name(kind));
-    if (out) {
-      if (!first) out->push_back(' ');
-      out->append(t);
+    if (sink) {
+      if (!first) sink->push_back(' ');
+      sink->append(t);
     }
     return t;
   };
   unsigned long long values = 0;
-  for (const PlyElement& e : layout)
+  for (const PlyElement& e : layout) {
+    sink = out && written_back(e) ? out : nullptr;
     for (unsigned long long i = 0; i < e.count; ++i) {
       line = {};
       while (next_line < body.size()) {
@@ -154,21 +165,27 @@ unsigned long long walk_ply_ascii(const std::filesystem::path& path, std::string
         for (long long k = 0; k < n; ++k) value(e, i, p.kind, false);
         values += static_cast<unsigned long long>(n);
       }
-      if (out && !e.properties.empty()) out->push_back('\n');
+      if (sink) sink->push_back('\n');
     }
+  }
   return values;
 }
 
 // Walks a binary PLY body as the header lays it out; returns the number of values it holds. Every list count must be
 // non-negative and its items must fit in the bytes left.
-// `used`: the bytes the elements take (anything after them is not read).
+// With `out`, appends the bytes of the elements written back (written_back; anything after the last element is
+// not read).
 unsigned long long walk_ply_binary(const std::filesystem::path& path, std::string_view body,
                                    const std::vector<PlyElement>& layout, const std::string& format,
-                                   std::size_t* used) {
+                                   std::string* out) {
   const bool big = format == "binary_big_endian";
   std::size_t at = 0;
   unsigned long long values = 0;
   for (const PlyElement& e : layout) {
+    const std::size_t start = at;
+    const auto keep = [&] {
+      if (out && written_back(e)) out->append(body.substr(start, at - start));
+    };
     // Elements of scalars only have a fixed size: skip them whole.
     const bool fixed =
         std::none_of(e.properties.begin(), e.properties.end(), [](const PlyProperty& p) { return p.list; });
@@ -178,6 +195,7 @@ unsigned long long walk_ply_binary(const std::filesystem::path& path, std::strin
       if (size != 0 && e.count > (body.size() - at) / size) short_body(path, e, (body.size() - at) / size);
       at += static_cast<std::size_t>(size * e.count);
       values += e.count * e.properties.size();
+      keep();
       continue;
     }
     for (unsigned long long i = 0; i < e.count; ++i)
@@ -204,8 +222,8 @@ unsigned long long walk_ply_binary(const std::filesystem::path& path, std::strin
         at += static_cast<std::size_t>(raw * p.size);
         values += raw;
       }
+    keep();
   }
-  *used = at;
   return values;
 }
 
@@ -409,13 +427,12 @@ void check_ply_mesh_elements(const std::filesystem::path& path, const std::vecto
            "cloud?)");
 }
 
-// The header written back from the layout: `ply`, the format, each element with a property and its properties, one
-// line each. An element without properties holds no data and is left out (assimp skips such an element's lines by
-// its own rules, which need not be the ones its count was checked by).
+// The header written back from the layout: `ply`, the format, each element written back (written_back) and its
+// properties, one line each.
 std::string canonical_header(const PlyHeader& h) {
   std::string header = "ply\nformat " + h.format + " 1.0\n";
   for (const PlyElement& e : h.layout) {
-    if (e.properties.empty()) continue;
+    if (!written_back(e)) continue;
     header += "element " + e.name + " " + std::to_string(e.count) + "\n";
     for (const PlyProperty& p : e.properties) header += p.declaration + "\n";
   }
@@ -453,9 +470,7 @@ void check_ply(const std::filesystem::path& path, std::string_view text, std::ui
   if (h.format == "ascii") {
     values = walk_ply_ascii(path, data, h.layout, canonical);
   } else {
-    std::size_t used = 0;
-    values = walk_ply_binary(path, data, h.layout, h.format, &used);
-    if (canonical) canonical->append(data.substr(0, used));
+    values = walk_ply_binary(path, data, h.layout, h.format, canonical);
   }
   if (values > kMeshLoadMemoryBudget / kPlyPeakPerValue)
     refuse(path, "a PLY file of " + std::to_string(values) + " values would need about " +
