@@ -31,6 +31,10 @@ std::string error_of(const TempDir& dir, const std::string& name, const std::str
   return error_of(dir / name, options);
 }
 
+// The head of an ASCII PLY file of three float vertices, up to the next element's line.
+const std::string kPlyThreeVertices =
+    "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n";
+
 long max_rss_kb() {
   rusage ru{};
   ::getrusage(RUSAGE_SELF, &ru);
@@ -260,10 +264,7 @@ TEST(MeshFiles, SparseAndOverclaimingFilesAreRefusedBeforeTheyCostMemory) {
   // 2 GB, as the hostile-input probe's: a text OBJ of that size is over the memory budget by its size alone.
   write_sparse(dir / "sparse.obj", "v 0 0 0\n", 2'000'000'000ull);
   EXPECT_THAT(error_of(dir / "sparse.obj"), HasSubstr("memory budget"));
-  write_sparse(dir / "sparse.ply",
-               "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
-               "end_header\n",
-               2'000'000'000ull);
+  write_sparse(dir / "sparse.ply", kPlyThreeVertices + "end_header\n", 2'000'000'000ull);
   EXPECT_THAT(error_of(dir / "sparse.ply"), HasSubstr("memory budget"));
   // Small enough for the budget: the NUL bytes of the hole are found in the head.
   write_sparse(dir / "holes.obj", "v 0 0 0\n", 100'000'000ull);
@@ -305,8 +306,7 @@ TEST(MeshFiles, PlyListCountsMustFitTheBody) {
   TempDir dir;
   const long rss_before = max_rss_kb();
   const std::string head =
-      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
-      "element face 1\nproperty list int int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n";
+      kPlyThreeVertices + "element face 1\nproperty list int int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n";
   write_text(dir / "ok.ply", head + "3 0 1 2\n");
   EXPECT_EQ(load_mesh(dir / "ok.ply").triangle_count(), 1u);
   EXPECT_THAT(error_of(dir, "huge.ply", head + "1000000000 0 1 2\n"),
@@ -352,8 +352,7 @@ TEST(MeshFiles, PlyValuesAreWholeNumbersOfTheirType) {
   TempDir dir;
   const long rss_before = max_rss_kb();
   const std::string head =
-      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
-      "element face 1\nproperty uchar flags\nproperty list int int vertex_indices\nend_header\n";
+      kPlyThreeVertices + "element face 1\nproperty uchar flags\nproperty list int int vertex_indices\nend_header\n";
   const std::string vertices = "0 0 0\n1 0 0\n0 1 0\n";
   EXPECT_THAT(error_of(dir, "glued.ply", head + vertices + "5-111 3 0 1 2\n"),
               HasSubstr("face 0: '5-111' is not an unsigned integer"));
@@ -384,13 +383,9 @@ TEST(MeshFiles, PlyValuesAreWholeNumbersOfTheirType) {
 // Such elements are checked with the rest of the body, then left out of what assimp reads.
 TEST(MeshFiles, PlyElementsOtherThanTheMeshAreCheckedAndLeftOut) {
   TempDir dir;
-  const std::string vertex_head =
-      "ply\nformat %s 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
-      "element junk 2\nproperty double q\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
-  auto head = [&](const char* format) {
-    std::string h = vertex_head;
-    h.replace(h.find("%s"), 2, format);
-    return h;
+  auto head = [](const std::string& format) {
+    return "ply\nformat " + format + " 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n" +
+           "element junk 2\nproperty double q\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
   };
   write_text(dir / "ascii.ply", head("ascii") + "0 0 0\n1 0 0\n0 1 0\n7\n-3\n3 0 1 2\n");
   const TriMesh a = load_mesh(dir / "ascii.ply");
