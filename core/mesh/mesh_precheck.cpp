@@ -221,7 +221,6 @@ void precheck_mesh_file(const std::filesystem::path& path, const std::string& ex
     check_off(path, text, text.size());
     check_off_faces(path, text);
   }
-  if (ext == ".ply") check_ply(path, text, text.size(), true);
   if (ext == ".stl") check_stl(path, text, text.size());
 }
 

@@ -38,13 +38,14 @@ void precheck_mesh_head(const std::filesystem::path& path, const std::string& ex
 // Rewrites `bytes` (the whole file, extension `ext`) into what assimp reads fully: text with a UTF-16/32 byte order
 // mark becomes UTF-8 (glibc iconv; assimp 5.2's own conversion loses every face of a UTF-16 BE file) and a UTF-8 byte
 // order mark is dropped; OFF comments ('#' to the end of a line, which the OFF format allows anywhere and assimp's
-// reader skips only before the header) are removed; a PLY header is written back as check_ply read it (one line per
-// format, element and property, lowercase keywords, no comments), so assimp reads the layout the body walk checked.
-// Throws MeshIoError on invalid UTF-16/32 or a PLY header that breaks the grammar.
+// reader skips only before the header) are removed; an OBJ's `mtllib` lines become comments (no material library is
+// ever read); a PLY file is checked whole and written back as check_ply walked it (its header one line per format,
+// element and property; only the mesh's elements; the ASCII body one element a line), so assimp reads the layout and
+// values the walk checked. Throws MeshIoError on invalid UTF-16/32 or a PLY file check_ply refuses.
 void prepare_mesh_bytes(const std::filesystem::path& path, const std::string& ext, std::vector<unsigned char>& bytes);
 
 // Throws MeshIoError "'PATH': <reason>" when `bytes` (the whole file, after prepare_mesh_bytes) is not acceptable for
-// extension `ext` (".obj" ".ply" ".off" ".stl").
+// extension `ext` (".obj" ".off" ".stl"; a PLY file was checked whole by prepare_mesh_bytes).
 void precheck_mesh_file(const std::filesystem::path& path, const std::string& ext,
                         const std::vector<unsigned char>& bytes);
 
