@@ -14,6 +14,7 @@
 #include "bench/bench_ddm.h"
 #include "bench/bench_dffd.h"
 #include "bench/bench_place.h"
+#include "bench/silhouette_bench.h"
 #include "editor/command_docs.h"
 #include "editor/command_registry.h"
 #include "editor/replay.h"
@@ -53,6 +54,9 @@ struct CliRequest {
   BenchDffdOptions dffd;
   BenchDdmOptions ddm;
   BenchPressOptions press;
+  core::SilhouetteBenchOptions silhouettes;
+  bool silhouettes_json = false;
+  CLI::App* silhouettes_cmd = nullptr;
   CLI::App *ffd_cmd = nullptr, *place_cmd = nullptr, *dffd_cmd = nullptr, *ddm_cmd = nullptr, *press_cmd = nullptr;
   CLI::App* commands_cmd = nullptr;
   std::string command_id, docs_file;
@@ -136,7 +140,27 @@ void add_replay(CLI::App& app, CliRequest& o) {
       ->check(CLI::IsMember({"png", "exr"}));
 }
 
-// `trispline bench ffd|place|dffd|ddm|press`.
+// `trispline bench silhouettes`: a table of the per-view figures, or the JSON object.
+void print_silhouette_table(const nlohmann::json& r, std::ostream& out) {
+  out << "silhouettes of " << r["volume"].get<std::string>() << " at iso " << r["iso"].get<double>() << ", order "
+      << r["order"].get<int>() << ", dims " << r["dims"].dump() << ", " << r["threads"].get<int>() << " threads\n"
+      << "  load " << bench_fixed(r["load_s"].get<double>(), 2) << " s, preprocessing "
+      << bench_fixed(r["prep_s"].get<double>(), 2) << " s, table " << bench_fixed(r["table_mb"].get<double>(), 1)
+      << " MB, peak RSS " << bench_fixed(r["peak_rss_mb"].get<double>(), 0) << " MB\n"
+      << "  view  extract_ms  hidden_ms  points  polylines  length_mm\n";
+  for (const auto& v : r["per_view"])
+    out << "  " << std::setw(4) << bench_fixed(v["azimuth_deg"].get<double>(), 0) << std::setw(12)
+        << bench_fixed(v["extract_ms"].get<double>(), 1) << std::setw(11) << bench_fixed(v["hidden_ms"].get<double>(), 1)
+        << std::setw(8) << v["points"].get<std::size_t>() << std::setw(11) << v["polylines"].get<std::size_t>()
+        << std::setw(11) << bench_fixed(v["length_mm"].get<double>(), 0) << "\n";
+  out << "  median view " << bench_fixed(r["median_view_ms"].get<double>(), 1) << " ms (extract "
+      << bench_fixed(r["median_extract_ms"].get<double>(), 1) << " + hidden "
+      << bench_fixed(r["median_hidden_ms"].get<double>(), 1) << "), max " << bench_fixed(r["max_view_ms"].get<double>(), 1)
+      << " ms; residuals |D-c|/range " << r["max_value_residual"].get<double>() << ", |G.V| "
+      << r["max_dot_residual"].get<double>() << "\n";
+}
+
+// `trispline bench ffd|place|dffd|ddm|press|silhouettes`.
 void add_bench(CLI::App& app, CliRequest& o) {
   auto* bench = app.add_subcommand("bench", "Benchmarks that print figures (never assert timings)");
   bench->require_subcommand(1);
@@ -192,6 +216,22 @@ void add_bench(CLI::App& app, CliRequest& o) {
   o.ddm_cmd->add_option("--case", o.ddm.cases, "Cases: thorns_face, thorns_teapot, chains_1m, chains_3m (default all)")
       ->check(CLI::IsMember({"thorns_face", "thorns_teapot", "chains_1m", "chains_3m"}));
   o.ddm_cmd->add_flag("!--no-cpu", o.ddm.cpu_reference, "Do not time the CPU reference evaluation");
+  o.silhouettes_cmd = bench->add_subcommand(
+      "silhouettes", "Silhouettes of a CT/MRI iso-surface (seed ch. 7): singleton preprocessing, then ms per view "
+                     "around the volume (default: the Cranium CT at 226 HU, 36 views)");
+  o.silhouettes_cmd->add_flag("--json", o.silhouettes_json, "Print one JSON object instead of a table");
+  o.silhouettes_cmd->add_option("--volume", o.silhouettes.volume_path,
+                                "Volume file (NIfTI, DICOM folder, .inv3) or analytic:sphere|torus|sines")
+      ->default_str("assets/data/Cranium.inv3");
+  o.silhouettes_cmd->add_option("--iso", o.silhouettes.iso, "Iso-level, the volume's units (HU for CT)")
+      ->default_str("226");
+  o.silhouettes_cmd->add_option("--views", o.silhouettes.views, "Views evenly around the volume")
+      ->check(CLI::Range(1, 100000));
+  o.silhouettes_cmd->add_option("--order", o.silhouettes.order, "Spline order per axis (degree + 1)")
+      ->check(CLI::Range(2, 4));
+  o.silhouettes_cmd->add_option("--subdivision", o.silhouettes.subdivision, "Newton seeds per singleton axis")
+      ->check(CLI::Range(1, 4));
+  o.silhouettes_cmd->add_flag("!--no-hidden", o.silhouettes.hidden, "Skip the hidden-line test");
   o.press_cmd = bench->add_subcommand(
       "press", "A pressing drag on a ~1 M-vertex object: Press tool per mouse move, pressed lattice, cpu_fast / GLSL "
                "re-evaluation per drag sample, and the lattice.press command at release");
@@ -262,6 +302,9 @@ int run_cli(int argc, char** argv) {
     if (*o.dffd_cmd) return run_bench_dffd(o.dffd, std::cout, std::cerr);
     if (*o.ddm_cmd) return run_bench_ddm(o.ddm, std::cout, std::cerr);
     if (*o.press_cmd) return run_bench_press(o.press, std::cout, std::cerr);
+    if (*o.silhouettes_cmd)
+      return bench_emit(core::run_silhouette_benchmark(o.silhouettes), o.silhouettes_json, std::cout,
+                        print_silhouette_table);
     if (*o.commands_cmd) return run_commands(o);
     if (!o.open_log.empty()) o.edit.open_log = o.open_log;
     return run_editor(o.edit);

@@ -1,5 +1,9 @@
 #include "editor/command_registry.h"
 
+#include "core/commands/volume_export.h"
+#include "core/commands/volume_iso.h"
+#include "core/commands/volume_load.h"
+#include "core/commands/volume_silhouettes.h"
 #include "core/commands/anim_commands.h"
 #include "core/commands/anim_record.h"
 #include "core/commands/camera_set.h"
@@ -83,6 +87,10 @@ const CommandRegistry& CommandRegistry::builtin() {
     r.add<core::DffdSplitCommand>();
     r.add<core::PlaceArrayCommand>();
     r.add<core::AnimRecordCommand>();
+    r.add<core::VolumeLoadCommand>();
+    r.add<core::VolumeIsoCommand>();
+    r.add<core::VolumeSilhouettesCommand>();
+    r.add<core::VolumeExportCommand>();
     return r;
   }();
   return registry;

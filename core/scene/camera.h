@@ -30,4 +30,9 @@ struct Camera {
   void validate() const;
 };
 
+// Same eye, target, up, field of view and viewport (the view a silhouette was extracted for).
+inline bool same_view(const Camera& a, const Camera& b) {
+  return a.eye == b.eye && a.target == b.target && a.up == b.up && a.fov_deg == b.fov_deg && a.viewport == b.viewport;
+}
+
 }  // namespace trispline::core

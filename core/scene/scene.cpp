@@ -209,7 +209,8 @@ std::string sanitized_object_name(const std::string& name) {
 
 void Scene::insert(SceneObject object, int index) {
   if (const std::string bad = object_name_error(object.name); !bad.empty()) throw std::invalid_argument(bad);
-  if (index_of(object.name) >= 0) throw std::invalid_argument("an object named '" + object.name + "' already exists");
+  if (index_of(object.name) >= 0 || volume_index_of(object.name) >= 0)
+    throw std::invalid_argument("an object named '" + object.name + "' already exists");
   if (index < 0 || index > static_cast<int>(objects_.size())) index = static_cast<int>(objects_.size());
   objects_.insert(objects_.begin() + index, std::move(object));
 }
@@ -230,6 +231,7 @@ void Scene::replace(SceneObject object) {
 
 void Scene::clear() {
   objects_.clear();
+  volumes_.clear();
   camera = Camera{};
   camera_set = false;
 }
@@ -239,15 +241,72 @@ Aabb Scene::bounds() const {
   for (const auto& o : objects_)
     if (o.visible && o.world_mesh)
       for (const auto& p : o.world_mesh->positions) box.extend(p);
+  for (const auto& v : volumes_)
+    if (v.visible) {
+      const Aabb b = v.world_bounds();
+      box.extend(b.lo), box.extend(b.hi);
+    }
   return box;
 }
 
+const VolumeObject* Scene::find_volume(const std::string& name) const {
+  const int i = volume_index_of(name);
+  return i < 0 ? nullptr : &volumes_[i];
+}
+
+int Scene::volume_index_of(const std::string& name) const {
+  for (std::size_t i = 0; i < volumes_.size(); ++i)
+    if (volumes_[i].name == name) return static_cast<int>(i);
+  return -1;
+}
+
+void Scene::insert_volume(VolumeObject volume, int index) {
+  if (const std::string bad = object_name_error(volume.name); !bad.empty()) throw std::invalid_argument(bad);
+  if (index_of(volume.name) >= 0 || volume_index_of(volume.name) >= 0)
+    throw std::invalid_argument("an object named '" + volume.name + "' already exists");
+  if (!volume.spline || !volume.table) throw std::invalid_argument("a volume needs its spline and singleton table");
+  if (index < 0 || index > static_cast<int>(volumes_.size())) index = static_cast<int>(volumes_.size());
+  volumes_.insert(volumes_.begin() + index, std::move(volume));
+}
+
+VolumeObject Scene::remove_volume(const std::string& name) {
+  const int i = volume_index_of(name);
+  if (i < 0) throw std::out_of_range("no volume named '" + name + "'");
+  VolumeObject out = std::move(volumes_[i]);
+  volumes_.erase(volumes_.begin() + i);
+  return out;
+}
+
+void Scene::replace_volume(VolumeObject volume) {
+  const int i = volume_index_of(volume.name);
+  if (i < 0) throw std::out_of_range("no volume named '" + volume.name + "'");
+  volumes_[i] = std::move(volume);
+}
+
+Aabb VolumeObject::world_bounds() const {
+  Aabb box;
+  const auto& d = spline->dims();
+  for (int c = 0; c < 8; ++c) {
+    const glm::dvec3 ijk((c & 1) ? d[0] - 1 : 0, (c & 2) ? d[1] - 1 : 0, (c & 4) ? d[2] - 1 : 0);
+    box.extend(glm::dvec3(spline->index_to_world() * glm::dvec4(ijk, 1.0)));
+  }
+  return box;
+}
+
+SilhouetteView VolumeObject::silhouette_view(const Camera& camera) const {
+  SilhouetteView v;
+  v.perspective = silhouette.projection != "orthographic";
+  v.eye = camera.eye;
+  v.direction = camera.forward();
+  return v;
+}
+
 std::string Scene::unique_name(const std::string& base) const {
-  if (index_of(base) < 0) return base;
+  if (index_of(base) < 0 && volume_index_of(base) < 0) return base;
   for (int i = 1;; ++i) {
     char buf[16];
     std::snprintf(buf, sizeof buf, ".%03d", i);
-    if (index_of(base + buf) < 0) return base + buf;
+    if (index_of(base + buf) < 0 && volume_index_of(base + buf) < 0) return base + buf;
   }
 }
 

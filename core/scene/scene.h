@@ -12,6 +12,9 @@
 #include "core/mesh/tri_mesh.h"
 #include "core/scene/camera.h"
 #include "core/spline/keyframes.h"
+#include "core/volume/silhouettes.h"
+#include "core/volume/singletons.h"
+#include "core/volume/volume_spline.h"
 
 #include <glm/glm.hpp>
 #include <memory>
@@ -123,6 +126,42 @@ struct SceneObject {
   TriMesh world_rest_mesh() const;
 };
 
+// How a volume's silhouettes are extracted and stroked (volume.silhouettes; seed §7.3.3–7.3.4).
+struct VolumeSilhouetteSettings {
+  bool enabled = false;              // extracted for the current view (live in the editor, at export and in replay)
+  std::string style = "hue";         // hue (hue by |∇D|) | glyphs (short strokes ⊥ the projected gradient) |
+                                     // width (stroke width and grey by |∇D|) | plain (black)
+  std::string hidden = "remove";     // remove | dashed | show: what is done with parts hidden by the iso-surface
+  std::string projection = "perspective";  // perspective (G·(P − eye) = 0) | orthographic (G·forward = 0)
+  SilhouetteParams params;           // subdivision, accuracy (hidden_test follows `hidden`)
+};
+
+// A CT/MRI volume as a scalar trivariate B-spline D (seed ch. 7): its samples' spline, the singleton table, the iso-level
+// shown, and the silhouettes last extracted for the scene camera. World units: millimetres of the file's space.
+struct VolumeObject {
+  std::string name;                                   // stable id (shares the namespace of SceneObject names)
+  std::string source;                                 // the file or folder it was read from
+  std::string units;                                  // value units ("HU" for CT, "" unknown)
+  std::string modality;                               // "CT", "MR", ... or ""
+  std::shared_ptr<const VolumeSpline> spline;         // non-null
+  std::shared_ptr<const SingletonTable> table;        // non-null, built from `spline`
+  double iso = 0.0;                                   // iso-level c of D = c, in `units`
+  bool visible = true;
+  bool show_surface = true;                           // draw the iso-surface (GPU ray casting)
+  glm::vec3 color{0.93f, 0.89f, 0.80f};               // linear RGB of the iso-surface
+  VolumeSilhouetteSettings silhouette;
+  // Silhouettes of D = iso for `silhouette_camera` (null until extracted, or when disabled).
+  std::shared_ptr<const SilhouetteResult> silhouettes;
+  Camera silhouette_camera;
+  // The iso-surface as a triangle mesh (volume.export of the surface), world millimetres; null until extracted.
+  std::shared_ptr<const TriMesh> iso_mesh;
+
+  // World-space corners of the grid box (millimetres).
+  Aabb world_bounds() const;
+  // The silhouette view of `camera` under this volume's projection setting.
+  SilhouetteView silhouette_view(const Camera& camera) const;
+};
+
 class Scene;
 // Copy of `scene` at time `time_s` (seconds): every animated object's param_offset becomes offset_at(time_s) (its
 // offset_keys and offset_velocity are cleared, so the copy is a still), a clip object's rest_mesh becomes the clip's
@@ -162,17 +201,30 @@ class Scene {
   void replace(SceneObject object);
   void clear();
 
+  // Volumes (seed ch. 7), in insertion order. Names are shared with objects: a name is used by at most one of them.
+  const std::vector<VolumeObject>& volumes() const { return volumes_; }
+  const VolumeObject* find_volume(const std::string& name) const;
+  // Throws std::invalid_argument if the name is taken (by an object or a volume) or refused; std::invalid_argument
+  // when spline or table is null.
+  void insert_volume(VolumeObject volume, int index = -1);
+  // Removes and returns the volume. Throws std::out_of_range if absent.
+  VolumeObject remove_volume(const std::string& name);
+  // Replaces the volume with the same name. Throws std::out_of_range if absent.
+  void replace_volume(VolumeObject volume);
+  int volume_index_of(const std::string& name) const;  // -1 if absent
+
   Camera camera;
   bool camera_set = false;  // true once a camera.set command ran
   Timeline timeline;        // anim.timeline; the default is Blender's (frames 1–120 at 24 fps)
 
-  // Bounds of all visible world meshes (invalid if there are none).
+  // Bounds of all visible world meshes and volume boxes (invalid if there are none).
   Aabb bounds() const;
   // A name not used yet, derived from `base` ("bunny", "bunny.001", ... as Blender does).
   std::string unique_name(const std::string& base) const;
 
  private:
   std::vector<SceneObject> objects_;
+  std::vector<VolumeObject> volumes_;
 };
 
 // Default per-object colour for the i-th object (a fixed, colour-blind-friendly palette).

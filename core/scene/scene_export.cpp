@@ -1,6 +1,8 @@
 // Scene export nodes. See scene_export.h.
 #include "core/scene/scene_export.h"
 
+#include "core/volume/silhouette_export.h"
+
 namespace trispline::core {
 
 SceneExport scene_export_nodes(const Scene& scene) {
@@ -13,6 +15,26 @@ SceneExport scene_export_nodes(const Scene& scene) {
       out.nodes.push_back({o.name + "/" + layer->name, world.get(), layer->color.value_or(o.color), o.inside_color});
       out.owned.push_back(std::move(world));
     }
+  }
+  for (const VolumeObject& v : scene.volumes()) {
+    if (v.iso_mesh) out.nodes.push_back({v.name + "/iso", v.iso_mesh.get(), v.color, v.color});
+    if (!v.silhouette.enabled) continue;
+    // The silhouettes of the scene's current camera (extracted again when the stored ones are for another view).
+    std::shared_ptr<const SilhouetteResult> sil = v.silhouettes;
+    if (!sil || !same_view(v.silhouette_camera, scene.camera)) {
+      SilhouetteParams params = v.silhouette.params;
+      params.hidden_test = v.silhouette.hidden != "show";
+      sil = std::make_shared<const SilhouetteResult>(
+          extract_silhouettes(*v.spline, *v.table, v.iso, v.silhouette_view(scene.camera), params));
+    }
+    auto strips = std::make_shared<const std::vector<std::vector<glm::vec3>>>(
+        silhouette_line_strips(sil->polylines, v.silhouette.hidden != "remove"));
+    GltfNode node;
+    node.name = v.name + "/silhouettes";
+    node.color = glm::vec3(0.0f);
+    node.line_strips = strips.get();
+    out.nodes.push_back(node);
+    out.owned_strips.push_back(std::move(strips));
   }
   return out;
 }

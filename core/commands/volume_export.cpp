@@ -1,0 +1,83 @@
+#include "core/commands/volume_export.h"
+
+#include <chrono>
+
+#include "core/mesh/gltf_io.h"
+#include "core/volume/iso_mesh.h"
+#include "core/volume/silhouette_export.h"
+
+namespace trispline::core {
+
+namespace {
+
+std::string lower_extension(const std::string& path) {
+  std::string e = std::filesystem::path(path).extension().string();
+  for (char& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return e;
+}
+
+}  // namespace
+
+const ParamSchema<VolumeExportParams>& VolumeExportCommand::schema() {
+  using P = VolumeExportParams;
+  static const ParamSchema<P> s =
+      ParamSchema<P>("volume.export", "Export a volume's silhouettes (SVG, glTF lines) or its iso-surface mesh")
+          .field("object", &P::object).required().help("A volume")
+          .choice("what", &P::what, {"silhouettes", "iso"})
+          .help("silhouettes: for the current camera, as .svg or .glb line strips; iso: the surface D = iso as a "
+                "triangle mesh, .glb/.obj/.ply")
+          .field("path", &P::path).required().path().help("Output file, relative to the log's folder")
+          .field("samples_per_voxel", &P::samples_per_voxel).range(1, 4).write_unless_default()
+          .help("iso: grid samples per voxel and axis before meshing (1 = at the control points)")
+          .check([](const P& p) {
+            const std::string e = lower_extension(p.path);
+            if (p.what == "silhouettes" && e != ".svg" && e != ".glb")
+              params::fail("path", "silhouettes are written as .svg or .glb, not '" + e + "'");
+            if (p.what == "iso" && e != ".glb" && e != ".obj" && e != ".ply")
+              params::fail("path", "an iso-surface is written as .glb, .obj or .ply, not '" + e + "'");
+          });
+  return s;
+}
+
+std::optional<VolumeObject> VolumeExportCommand::build(const Scene& scene) {
+  const VolumeObject& before = require_volume(scene, p_.object);
+  const auto t0 = std::chrono::steady_clock::now();
+  VolumeObject v = before;
+  if (p_.what == "silhouettes") {
+    v.silhouette.enabled = true;
+    v = volume_with_silhouettes(v, scene.camera, &stats_);
+    v.silhouette.enabled = before.silhouette.enabled;
+    const auto& polylines = v.silhouettes->polylines;
+    if (lower_extension(p_.path) == ".svg") {
+      SvgStyle style;
+      style.stroke = v.silhouette.style == "width" ? "width" : v.silhouette.style == "plain" ? "plain" : "hue";
+      style.hidden = v.silhouette.hidden == "dashed" ? "dashed" : "remove";
+      std::vector<SilhouettePolyline> drawn = polylines;
+      if (v.silhouette.hidden == "show")
+        for (auto& pl : drawn) std::fill(pl.visible.begin(), pl.visible.end(), 1);
+      const Camera& cam = scene.camera;
+      write_silhouettes_svg(p_.path, drawn, cam.projection_matrix() * cam.view_matrix(), cam.viewport, style);
+    } else {
+      const auto strips = silhouette_line_strips(polylines, v.silhouette.hidden != "remove");
+      GltfNode node;
+      node.name = p_.object + "/silhouettes";
+      node.line_strips = &strips;
+      node.color = glm::vec3(0.0f);
+      write_glb(p_.path, {node});
+    }
+  } else {
+    IsoMeshOptions opt;
+    opt.samples_per_voxel = p_.samples_per_voxel;
+    IsoMeshStats ms;
+    auto mesh = std::make_shared<const TriMesh>(extract_iso_mesh(*v.spline, v.iso, opt, nullptr, &ms));
+    write_iso_mesh(p_.path, *mesh);
+    stats_["vertices"] = mesh->positions.size();
+    stats_["triangles"] = mesh->triangles.size();
+    v.iso_mesh = std::move(mesh);
+  }
+  stats_["path"] = p_.path;
+  stats_["ms"] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return v;
+}
+
+}  // namespace trispline::core

@@ -1,0 +1,38 @@
+// `volume.export` — writes a volume's silhouettes or iso-surface to a file.
+//   {"cmd":"volume.export","object":"ID","what":"silhouettes","path":"skull.svg"}
+//   {"cmd":"volume.export","object":"ID","what":"iso","path":"skull.glb","samples_per_voxel":1}
+// what = silhouettes: extracted for the scene camera (the volume's style, hidden-line mode and projection) and written
+// as SVG (.svg: a line drawing for illustrations, the camera's viewport in pixels) or glTF line strips (.glb: world
+// millimetres, a node "<id>/silhouettes"); the volume keeps them (scene.glb exports them too).
+// what = iso: the surface D = iso as a triangle mesh (OpenVDB volume-to-mesh on the sampled spline, vertices projected
+// onto D = iso: iso_mesh.h) written as .glb, .obj or .ply (world millimetres); the volume keeps it (scene.glb node
+// "<id>/iso").
+// path: relative to the log's folder. Undo forgets what the volume kept (the file stays). stats(): what was written
+// (points/polylines or vertices/triangles) and ms.
+#pragma once
+
+#include "core/commands/declared_command.h"
+#include "core/commands/volume_snapshot.h"
+
+namespace trispline::core {
+
+struct VolumeExportParams {
+  std::string object;
+  std::string what = "silhouettes";  // silhouettes | iso
+  std::string path;
+  int samples_per_voxel = 1;         // iso: IsoMeshOptions::samples_per_voxel
+};
+
+class VolumeExportCommand : public DeclaredCommand<VolumeExportCommand, VolumeExportParams, VolumeSnapshotCommand> {
+ public:
+  using DeclaredCommand::DeclaredCommand;
+  static const ParamSchema<VolumeExportParams>& schema();
+  std::string label() const override { return "Export " + p_.what + " of '" + p_.object + "'"; }
+
+ protected:
+  std::string target() const override { return p_.object; }
+  std::optional<VolumeObject> build(const Scene& scene) override;
+  std::string failure_field() const override { return "path"; }
+};
+
+}  // namespace trispline::core

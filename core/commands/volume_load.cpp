@@ -1,0 +1,68 @@
+#include "core/commands/volume_load.h"
+
+#include <cmath>
+
+#include "core/volume/prepared_volume.h"
+
+namespace trispline::core {
+
+const ParamSchema<VolumeLoadParams>& VolumeLoadCommand::schema() {
+  using P = VolumeLoadParams;
+  static const ParamSchema<P> s =
+      ParamSchema<P>("volume.load", "Load a CT/MRI volume (NIfTI, DICOM series, InVesalius .inv3) as a trivariate "
+                                    "B-spline (seed ch. 7)")
+          .field("path", &P::path).path()
+          .help("NIfTI (.nii, .nii.gz), a DICOM series folder or .dcm file, or an InVesalius .inv3 project; relative "
+                "to the log's folder")
+          .choice("analytic", &P::analytic, {"", "sphere", "torus", "sines"}).write_unless_default()
+          .help("Instead of a file: an analytic test volume (96 samples a side; known silhouettes)")
+          .field("name", &P::name).write_unless_default().help("Object id (default: the file name, made unique)")
+          .field("order", &P::order).range(2, 4).help("Spline order per axis (degree + 1): 2 linear, 3 quadratic, 4 cubic")
+          .field("interpolate", &P::interpolate).write_unless_default()
+          .help("false: the samples are the control points (the seed; smooths noise); true: D passes through every "
+                "sample (B-spline prefilter)")
+          .field("iso", &P::iso).unit("volume units")
+          .help("First iso-level (default: 226 HU for CT, else Otsu's threshold of the samples)")
+          .check([](const P& p) {
+            if (p.path.empty() == p.analytic.empty())
+              params::fail("path", "give either a volume file ('path') or an analytic volume ('analytic')");
+          });
+  return s;
+}
+
+std::optional<VolumeObject> VolumeLoadCommand::build(const Scene& scene) {
+  const std::string source = p_.analytic.empty() ? p_.path : "analytic:" + p_.analytic;
+  const PreparedVolume pv = prepare_volume(source, p_.order, p_.interpolate);
+  if (p_.name.empty()) {
+    std::filesystem::path stem =
+        p_.analytic.empty() ? std::filesystem::path(p_.path).filename() : std::filesystem::path(p_.analytic);
+    while (stem.has_extension()) stem = stem.stem();  // Cranium.inv3 → Cranium, brain.nii.gz → brain
+    p_.name = scene.unique_name(sanitized_object_name(stem.string()));
+  }
+  if (const std::string bad = object_name_error(p_.name); !bad.empty()) throw CommandError("field 'name': " + bad, "name");
+  if (scene.index_of(p_.name) >= 0 || scene.volume_index_of(p_.name) >= 0)
+    throw CommandError("field 'name': an object named '" + p_.name + "' already exists", "name");
+  VolumeObject v;
+  v.name = p_.name;
+  v.source = source;
+  v.units = pv.units;
+  v.modality = pv.modality;
+  v.spline = pv.spline;
+  v.table = pv.table;
+  v.iso = p_.iso.value_or(pv.default_iso);
+  if (!std::isfinite(v.iso)) throw CommandError("field 'iso': must be a finite number", "iso");
+  p_.iso = v.iso;  // the log line keeps the level used
+  const auto& d = pv.spline->dims();
+  stats_ = {{"dims", {d[0], d[1], d[2]}},
+            {"order", p_.order},
+            {"units", pv.units},
+            {"iso", v.iso},
+            {"value_range", {pv.table->range_min(), pv.table->range_max()}},
+            {"from_cache", pv.table_from_disk},
+            {"load_ms", pv.load_ms},
+            {"prep_ms", pv.prep_ms},
+            {"table_mb", pv.table->memory_bytes() / 1048576.0}};
+  return v;
+}
+
+}  // namespace trispline::core

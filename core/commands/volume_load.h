@@ -1,0 +1,41 @@
+// `volume.load` — adds a CT/MRI volume as a scalar trivariate B-spline D (seed ch. 7).
+//   {"cmd":"volume.load","path":"PATH","name":"ID","order":4,"interpolate":false,"iso":226}
+//   {"cmd":"volume.load","analytic":"sphere|torus|sines", ...}
+// path: NIfTI (.nii, .nii.gz), a DICOM series folder or one of its .dcm files, an InVesalius .inv3 project; relative to
+// the log's folder unless absolute; loads whole or fails. analytic: a test volume with known silhouettes instead.
+// order: 2…4 per axis (degree + 1; default 4, tri-cubic). interpolate: control points = the samples (false, the seed)
+// or the interpolating spline's coefficients (true). iso: the first iso-level in the volume's units (default:
+// default_iso_level — 226 HU for CT, else Otsu's threshold).
+// World units are the file's millimetres. The singleton table is read from the disk cache when the same content was
+// preprocessed before (prepared_volume.h). stats(): dims, order, units, iso, from_cache, load_ms, prep_ms, table_mb.
+#pragma once
+
+#include <optional>
+
+#include "core/commands/declared_command.h"
+#include "core/commands/volume_snapshot.h"
+
+namespace trispline::core {
+
+struct VolumeLoadParams {
+  std::string path;      // a volume file, or
+  std::string analytic;  // an analytic test volume: sphere | torus | sines
+  std::string name;  // default: the file stem made unique
+  int order = 4;
+  bool interpolate = false;
+  std::optional<double> iso;
+};
+
+class VolumeLoadCommand : public DeclaredCommand<VolumeLoadCommand, VolumeLoadParams, VolumeSnapshotCommand> {
+ public:
+  using DeclaredCommand::DeclaredCommand;
+  static const ParamSchema<VolumeLoadParams>& schema();
+  std::string label() const override { return "Load volume '" + p_.name + "'"; }
+
+ protected:
+  std::string target() const override { return p_.name; }
+  std::optional<VolumeObject> build(const Scene& scene) override;
+  std::string failure_field() const override { return "path"; }
+};
+
+}  // namespace trispline::core

@@ -1,0 +1,62 @@
+#include "core/commands/volume_snapshot.h"
+
+namespace trispline::core {
+
+void VolumeSnapshotCommand::redo(Scene& scene) {
+  if (!built_) {
+    try {
+      after_ = build(scene);
+    } catch (const CommandError&) {
+      throw;
+    } catch (const std::exception& e) {
+      throw CommandError(e.what(), failure_field());
+    }
+    built_ = true;
+  }
+  index_ = scene.volume_index_of(target());
+  if (index_ >= 0) before_ = scene.volumes()[index_];
+  else before_.reset();
+  if (after_ && before_) scene.replace_volume(*after_);
+  else if (after_) scene.insert_volume(*after_);
+  else if (before_) scene.remove_volume(target());
+}
+
+void VolumeSnapshotCommand::undo(Scene& scene) {
+  if (scene.volume_index_of(target()) >= 0) scene.remove_volume(target());
+  if (before_) scene.insert_volume(*before_, index_);
+}
+
+const VolumeObject& require_volume(const Scene& scene, const std::string& name, const char* field) {
+  if (const VolumeObject* v = scene.find_volume(name)) return *v;
+  if (scene.find(name))
+    throw CommandError("field '" + std::string(field) + "': '" + name + "' is a mesh object, not a volume", field);
+  throw CommandError("field '" + std::string(field) + "': no volume named '" + name + "'", field);
+}
+
+VolumeObject volume_with_silhouettes(const VolumeObject& volume, const Camera& camera, nlohmann::json* stats) {
+  VolumeObject out = volume;
+  if (!volume.silhouette.enabled) {
+    out.silhouettes.reset();
+    return out;
+  }
+  SilhouetteParams params = volume.silhouette.params;
+  params.hidden_test = volume.silhouette.hidden != "show";
+  auto r = std::make_shared<SilhouetteResult>(
+      extract_silhouettes(*volume.spline, *volume.table, volume.iso, volume.silhouette_view(camera), params));
+  if (stats) {
+    (*stats)["points"] = r->points;
+    (*stats)["polylines"] = r->polylines.size();
+    (*stats)["length_mm"] = r->length_mm;
+    (*stats)["candidates"] = r->candidates;
+    (*stats)["seeds"] = r->seeds;
+    (*stats)["extract_ms"] = r->extract_ms;
+    (*stats)["hidden_ms"] = r->hidden_ms;
+    (*stats)["max_value_residual"] = r->max_value_residual;
+    (*stats)["max_dot_residual"] = r->max_dot_residual;
+  }
+  out.silhouettes = std::move(r);
+  out.silhouette_camera = camera;
+  return out;
+}
+
+}  // namespace trispline::core

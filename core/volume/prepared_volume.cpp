@@ -1,0 +1,114 @@
+#include "core/volume/prepared_volume.h"
+
+#include <algorithm>
+#include <chrono>
+#include <list>
+#include <mutex>
+
+#include "core/volume/analytic_volumes.h"
+#include "core/volume/volume_io.h"
+
+namespace trispline::core {
+
+namespace {
+
+struct Key {
+  std::string path;
+  std::uintmax_t size = 0;
+  std::int64_t mtime = 0;
+  int order = 0;
+  bool interpolate = false;
+  bool operator==(const Key& o) const {
+    return path == o.path && size == o.size && mtime == o.mtime && order == o.order && interpolate == o.interpolate;
+  }
+};
+
+std::mutex cache_mutex;
+std::list<std::pair<Key, PreparedVolume>> cache;  // most recent first
+constexpr std::size_t kCacheEntries = 3;
+
+Key key_of(const std::filesystem::path& path, int order, bool interpolate) {
+  Key k;
+  k.path = path.string();
+  k.order = order;
+  k.interpolate = interpolate;
+  std::error_code ec;
+  if (std::filesystem::is_regular_file(path, ec)) k.size = std::filesystem::file_size(path, ec);
+  const auto t = std::filesystem::last_write_time(path, ec);
+  if (!ec) k.mtime = t.time_since_epoch().count();
+  return k;
+}
+
+double ms_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+PreparedVolume prepare_volume(const std::filesystem::path& path, int order, bool interpolate,
+                              const ProgressSink& progress) {
+  const Key key = key_of(path, order, interpolate);
+  {
+    std::lock_guard<std::mutex> lock(cache_mutex);
+    for (auto it = cache.begin(); it != cache.end(); ++it)
+      if (it->first == key) {
+        cache.splice(cache.begin(), cache, it);
+        return cache.front().second;
+      }
+  }
+  PreparedVolume out;
+  auto t0 = std::chrono::steady_clock::now();
+  ScalarVolume volume;
+  AnalyticVolume kind;
+  const std::string name = path.string(), prefix = "analytic:";
+  if (name.rfind(prefix, 0) == 0 && parse_analytic_volume(name.substr(prefix.size()), kind))
+    volume = make_analytic_volume(kind, 96);
+  else
+    volume = load_volume(path);
+  out.load_ms = ms_since(t0);
+  progress.check(0.0);
+  t0 = std::chrono::steady_clock::now();
+  out.units = volume.units, out.modality = volume.modality, out.source = volume.source;
+  out.default_iso = default_iso_level(volume);
+  auto spline = std::make_shared<const VolumeSpline>(volume, order, interpolate);
+  volume.values = {};  // the spline holds its own control points
+  out.table = std::make_shared<const SingletonTable>(cached_singleton_table(*spline, progress, &out.table_from_disk));
+  out.spline = std::move(spline);
+  out.prep_ms = ms_since(t0);
+  std::lock_guard<std::mutex> lock(cache_mutex);
+  cache.emplace_front(key, out);
+  if (cache.size() > kCacheEntries) cache.pop_back();
+  return out;
+}
+
+void clear_prepared_volumes() {
+  std::lock_guard<std::mutex> lock(cache_mutex);
+  cache.clear();
+}
+
+double default_iso_level(const ScalarVolume& volume) {
+  if (volume.units == "HU") return 226.0;
+  const auto [lo_it, hi_it] = std::minmax_element(volume.values.begin(), volume.values.end());
+  const double lo = *lo_it, hi = *hi_it;
+  if (!(hi > lo)) return lo;
+  constexpr int bins = 256;
+  std::vector<double> hist(bins, 0.0);
+  for (float v : volume.values)
+    ++hist[std::min(bins - 1, static_cast<int>((v - lo) / (hi - lo) * bins))];
+  const double total = static_cast<double>(volume.values.size());
+  double sum_all = 0.0;
+  for (int i = 0; i < bins; ++i) sum_all += i * hist[i];
+  double w0 = 0.0, sum0 = 0.0, best = -1.0;
+  int best_i = bins / 2;
+  for (int i = 0; i < bins - 1; ++i) {
+    w0 += hist[i], sum0 += i * hist[i];
+    const double w1 = total - w0;
+    if (w0 == 0.0 || w1 == 0.0) continue;
+    const double m0 = sum0 / w0, m1 = (sum_all - sum0) / w1;
+    const double between = w0 * w1 * (m0 - m1) * (m0 - m1);
+    if (between > best) best = between, best_i = i;
+  }
+  return lo + (hi - lo) * (best_i + 1.0) / bins;
+}
+
+}  // namespace trispline::core

@@ -1,0 +1,77 @@
+// trispline::core silhouettes of an iso-surface D = c of a VolumeSpline (seed §7.3.3, Eq. 7.2).
+//
+// A silhouette point x satisfies D(x) = c and G(x)·V(x) = 0 with G = ∇D and V the view direction: constant for an
+// orthographic view, x − eye for a perspective one. Candidates come from the singleton table (singletons.h): the
+// singletons whose value range holds c and whose gradient cone holds a direction orthogonal to V. Each candidate is
+// subdivided `subdivision` times per axis (de Casteljau on its Bézier form); every sub-cell whose value range still
+// holds c and whose range of G·V still holds 0 seeds a multivariate Newton–Raphson solve of Eq. 7.2 (minimum-norm
+// steps for 2 equations in 3 unknowns) from its centre. Converged points are joined into polylines where they follow
+// each other along the curve's tangent (∇D × ∇(G·V)) in neighbouring cells; each point knows whether the iso-surface
+// hides it from the eye.
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/volume/singletons.h"
+#include "core/volume/volume_spline.h"
+
+namespace trispline::core {
+
+// The view a silhouette is taken for, in world units (millimetres).
+struct SilhouetteView {
+  bool perspective = true;
+  glm::dvec3 eye{0.0};        // perspective: the eye position
+  glm::dvec3 direction{0.0, 0.0, -1.0};  // orthographic: the viewing direction (need not be unit)
+};
+
+// The seed's two operational parameters (§7.3.3) and the hidden-line mode.
+struct SilhouetteParams {
+  // Sub-cells per singleton axis that seed Newton (1 = the singleton's centre only; 1…4).
+  int subdivision = 2;
+  // Newton stops when |D − c| ≤ accuracy·range(D) and |Ĝ·V̂| ≤ accuracy (dimensionless, 1e-12…1e-2).
+  double accuracy = 1e-7;
+  // Test every point for occlusion by the iso-surface (SilhouettePolyline::visible); false leaves every point visible.
+  bool hidden_test = true;
+};
+
+// One connected piece of silhouette, world units. The arrays have one entry per point.
+struct SilhouettePolyline {
+  std::vector<glm::dvec3> points;        // #P × 3, millimetres (world)
+  std::vector<float> gradient_norm;      // #P, |∇D| per millimetre (the seed's stroke styles shade by it)
+  std::vector<unsigned char> visible;    // #P, 1 = seen from the eye, 0 = hidden behind the iso-surface
+  bool closed = false;                   // the last point joins the first
+};
+
+struct SilhouetteResult {
+  std::vector<SilhouettePolyline> polylines;
+  // Figures of this extraction.
+  std::size_t candidates = 0;         // singletons that passed the range and cone tests
+  std::size_t seeds = 0;              // sub-cells that seeded Newton
+  std::size_t points = 0;             // converged points kept (= Σ polyline sizes)
+  double max_value_residual = 0.0;    // max |D − c| / range(D) over the points
+  double max_dot_residual = 0.0;      // max |Ĝ·V̂| over the points (world-space unit vectors)
+  double length_mm = 0.0;             // total polyline length, millimetres
+  double extract_ms = 0.0;            // wall-clock: candidates + Newton + polylines
+  double hidden_ms = 0.0;             // wall-clock: the occlusion test
+};
+
+// Silhouette of D = `iso` (the volume's units) for `view`. `table` must have been built from `spline`
+// (build_singleton_table). Throws std::invalid_argument: non-finite iso or view, perspective eye == a degenerate
+// point, parameters out of range. Deterministic: the same inputs give the same polylines bit for bit (threads
+// write to disjoint slots, results are ordered by cell).
+SilhouetteResult extract_silhouettes(const VolumeSpline& spline, const SingletonTable& table, double iso,
+                                     const SilhouetteView& view, const SilhouetteParams& params = {});
+
+// Whether the segment from index-space point `from` towards the eye (perspective: to `view.eye`; orthographic:
+// against `view.direction` to the volume's boundary) crosses D = iso, ignoring the first `skip` index units (the
+// point's own neighbourhood). Uses the table's macro-cells to skip space that cannot hold the level.
+bool iso_occluded(const VolumeSpline& spline, const SingletonTable& table, double iso, const SilhouetteView& view,
+                  const glm::dvec3& from_index, double skip = 1.5);
+
+}  // namespace trispline::core

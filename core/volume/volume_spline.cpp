@@ -1,0 +1,234 @@
+#include "core/volume/volume_spline.h"
+
+#include "core/volume/bezier_cell.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace trispline::core {
+
+namespace {
+
+// Power-basis coefficients (x^0 … x^{k−1}) of the k centred uniform B-spline segment polynomials of order k, in
+// control order: kPower[k][r][j]. Source: the uniform B-spline basis matrices (e.g. Piegl & Tiller §2.5 with uniform
+// knots; order 4 is the cubic B-spline matrix (1/6)[1 4 1 0; −3 0 3 0; 3 −6 3 0; −1 3 −3 1]ᵀ).
+constexpr double kPower[5][4][4] = {
+    {},
+    {},
+    {{1.0, -1.0, 0.0, 0.0}, {0.0, 1.0, 0.0, 0.0}},
+    {{0.5, -1.0, 0.5, 0.0}, {0.5, 1.0, -1.0, 0.0}, {0.0, 0.0, 0.5, 0.0}},
+    {{1.0 / 6, -0.5, 0.5, -1.0 / 6}, {2.0 / 3, 0.0, -1.0, 0.5}, {1.0 / 6, 0.5, 0.5, -0.5}, {0.0, 0.0, 0.0, 1.0 / 6}},
+};
+
+double binomial(int n, int k) {
+  double r = 1.0;
+  for (int i = 1; i <= k; ++i) r = r * (n - k + i) / i;
+  return r;
+}
+
+// Values of the centred cardinal B-spline of order k at the integers 0 and ±1 (the interpolation matrix's diagonal
+// and off-diagonal).
+void cardinal_at_integers(int order, double& b0, double& b1) {
+  switch (order) {
+    case 2: b0 = 1.0, b1 = 0.0; break;
+    case 3: b0 = 0.75, b1 = 0.125; break;
+    default: b0 = 2.0 / 3.0, b1 = 1.0 / 6.0; break;
+  }
+}
+
+// Solves the interpolation system along one line of n samples in place (stride `stride`): Σ_i c_i B(j − i) = v_j with
+// clamped boundary coefficients (c_{−1} = c_0, c_n = c_{n−1}): tridiagonal, diagonally dominant, Thomas algorithm.
+void prefilter_line(float* data, std::size_t stride, int n, double b0, double b1, std::vector<double>& cp,
+                    std::vector<double>& dp) {
+  cp.resize(n), dp.resize(n);
+  auto diag = [&](int j) { return (j == 0 || j == n - 1) ? b0 + b1 : b0; };
+  double denom = diag(0);
+  cp[0] = b1 / denom;
+  dp[0] = data[0] / denom;
+  for (int j = 1; j < n; ++j) {
+    denom = diag(j) - b1 * cp[j - 1];
+    cp[j] = b1 / denom;
+    dp[j] = (data[j * stride] - b1 * dp[j - 1]) / denom;
+  }
+  double c = dp[n - 1];
+  data[(n - 1) * stride] = static_cast<float>(c);
+  for (int j = n - 2; j >= 0; --j) {
+    c = dp[j] - cp[j] * c;
+    data[j * stride] = static_cast<float>(c);
+  }
+}
+
+}  // namespace
+
+void uniform_bspline_weights(int order, double x, double* w, double* dw, double* d2w) {
+  for (int r = 0; r < order; ++r) {
+    const double* c = kPower[order][r];
+    double v = 0.0, d = 0.0, dd = 0.0;
+    for (int j = order - 1; j >= 0; --j) v = v * x + c[j];
+    for (int j = order - 1; j >= 1; --j) d = d * x + j * c[j];
+    for (int j = order - 1; j >= 2; --j) dd = dd * x + j * (j - 1) * c[j];
+    w[r] = v;
+    if (dw) dw[r] = d;
+    if (d2w) d2w[r] = dd;
+  }
+}
+
+VolumeSpline::VolumeSpline(const ScalarVolume& volume, int order, bool interpolate)
+    : order_(order), interpolate_(interpolate), dims_(volume.dims) {
+  if (order < 2 || order > 4)
+    throw std::invalid_argument("volume spline order must be 2, 3 or 4 (degree + 1), got " + std::to_string(order));
+  if (const std::string e = scalar_volume_error(volume); !e.empty()) throw std::invalid_argument(e);
+  shift_ = (order % 2 == 0) ? 0.0 : -0.5;
+  for (int a = 0; a < 3; ++a) span_count_[a] = (order % 2 == 0) ? dims_[a] - 1 : dims_[a];
+  control_ = volume.values;
+  if (interpolate && order > 2) {
+    double b0 = 0, b1 = 0;
+    cardinal_at_integers(order, b0, b1);
+    std::vector<double> cp, dp;
+    const std::size_t nx = dims_[0], ny = dims_[1], nz = dims_[2];
+    for (std::size_t k = 0; k < nz; ++k)
+      for (std::size_t j = 0; j < ny; ++j) prefilter_line(&control_[nx * (j + ny * k)], 1, dims_[0], b0, b1, cp, dp);
+    for (std::size_t k = 0; k < nz; ++k)
+      for (std::size_t i = 0; i < nx; ++i) prefilter_line(&control_[i + nx * ny * k], nx, dims_[1], b0, b1, cp, dp);
+    for (std::size_t j = 0; j < ny; ++j)
+      for (std::size_t i = 0; i < nx; ++i) prefilter_line(&control_[i + nx * j], nx * ny, dims_[2], b0, b1, cp, dp);
+    for (float v : control_)
+      if (!std::isfinite(v)) throw std::invalid_argument("the interpolating spline's coefficients are not finite");
+  }
+  const auto [lo, hi] = std::minmax_element(control_.begin(), control_.end());
+  control_min_ = *lo, control_max_ = *hi;
+  index_to_world_ = volume.index_to_world;
+  world_to_index_ = glm::inverse(index_to_world_);
+  gradient_to_world_ = glm::transpose(glm::dmat3(world_to_index_));
+  // Bézier extraction of one span: Bernstein coefficient a of segment polynomial r.
+  const int p = order - 1;
+  for (int r = 0; r < order; ++r)
+    for (int a = 0; a < order; ++a) {
+      double b = 0.0;
+      for (int j = 0; j <= a; ++j) b += binomial(a, j) / binomial(p, j) * kPower[order][r][j];
+      to_bezier_[a * order + r] = b;
+    }
+}
+
+float VolumeSpline::control(int i, int j, int l) const {
+  i = std::clamp(i, 0, dims_[0] - 1), j = std::clamp(j, 0, dims_[1] - 1), l = std::clamp(l, 0, dims_[2] - 1);
+  return control_[static_cast<std::size_t>(i) +
+                  static_cast<std::size_t>(dims_[0]) * (static_cast<std::size_t>(j) + static_cast<std::size_t>(dims_[1]) * l)];
+}
+
+int VolumeSpline::span_of(int axis, double t) const {
+  const double s = std::floor(t - shift_);
+  if (!(s > 0.0)) return 0;  // NaN too
+  return static_cast<int>(std::min<double>(s, span_count_[axis] - 1));
+}
+
+namespace {
+
+struct AxisBasis {
+  int idx[4];
+  double w[4], dw[4], d2w[4];
+};
+
+void axis_basis(const VolumeSpline& s, int axis, double t, bool derivatives, AxisBasis& b) {
+  const int n = s.dims()[axis];
+  t = std::clamp(t, 0.0, double(n - 1));
+  const int span = s.span_of(axis, t);
+  const int first = s.first_control(span);
+  uniform_bspline_weights(s.order(), t - s.span_begin(span), b.w, derivatives ? b.dw : nullptr,
+                          derivatives ? b.d2w : nullptr);
+  for (int r = 0; r < s.order(); ++r) b.idx[r] = std::clamp(first + r, 0, n - 1);
+}
+
+}  // namespace
+
+double VolumeSpline::value(const glm::dvec3& x) const {
+  AxisBasis bx, by, bz;
+  axis_basis(*this, 0, x.x, false, bx);
+  axis_basis(*this, 1, x.y, false, by);
+  axis_basis(*this, 2, x.z, false, bz);
+  const std::size_t nx = dims_[0], nxy = nx * dims_[1];
+  double sum = 0.0;
+  for (int c = 0; c < order_; ++c) {
+    double sy = 0.0;
+    for (int b = 0; b < order_; ++b) {
+      const float* row = &control_[bz.idx[c] * nxy + by.idx[b] * nx];
+      double sx = 0.0;
+      for (int a = 0; a < order_; ++a) sx += bx.w[a] * row[bx.idx[a]];
+      sy += by.w[b] * sx;
+    }
+    sum += bz.w[c] * sy;
+  }
+  return sum;
+}
+
+VolumeJet VolumeSpline::jet(const glm::dvec3& x) const {
+  AxisBasis bx, by, bz;
+  axis_basis(*this, 0, x.x, true, bx);
+  axis_basis(*this, 1, x.y, true, by);
+  axis_basis(*this, 2, x.z, true, bz);
+  const std::size_t nx = dims_[0], nxy = nx * dims_[1];
+  // Contract x first (value, d, d²), then y (six combinations), then z (ten results).
+  double v = 0, dx = 0, dy = 0, dz = 0, dxx = 0, dyy = 0, dzz = 0, dxy = 0, dxz = 0, dyz = 0;
+  for (int c = 0; c < order_; ++c) {
+    double yv = 0, yx = 0, yy = 0, yxx = 0, yyy = 0, yxy = 0;
+    for (int b = 0; b < order_; ++b) {
+      const float* row = &control_[bz.idx[c] * nxy + by.idx[b] * nx];
+      double s0 = 0, s1 = 0, s2 = 0;
+      for (int a = 0; a < order_; ++a) {
+        const double p = row[bx.idx[a]];
+        s0 += bx.w[a] * p, s1 += bx.dw[a] * p, s2 += bx.d2w[a] * p;
+      }
+      yv += by.w[b] * s0, yx += by.w[b] * s1, yxx += by.w[b] * s2;
+      yy += by.dw[b] * s0, yxy += by.dw[b] * s1, yyy += by.d2w[b] * s0;
+    }
+    const double w = bz.w[c], dw = bz.dw[c], d2w = bz.d2w[c];
+    v += w * yv, dx += w * yx, dy += w * yy, dxx += w * yxx, dyy += w * yyy, dxy += w * yxy;
+    dz += dw * yv, dxz += dw * yx, dyz += dw * yy, dzz += d2w * yv;
+  }
+  VolumeJet j;
+  j.value = v;
+  j.gradient = {dx, dy, dz};
+  j.hessian = glm::dmat3(dxx, dxy, dxz, dxy, dyy, dyz, dxz, dyz, dzz);
+  return j;
+}
+
+glm::dvec3 VolumeSpline::world_gradient(const glm::dvec3& g) const { return gradient_to_world_ * g; }
+
+namespace {
+
+template <int K>
+void bezier_coefficients_k(const VolumeSpline& s, const std::array<double, 16>& to_bezier, int s0, int s1, int s2,
+                           double* out) {
+  static_assert(K >= 2 && K <= 4);
+  bezier_cell::Matrix<K> m;
+  for (int a = 0; a < K; ++a)
+    for (int r = 0; r < K; ++r) m[a][r] = to_bezier[a * K + r];
+  const auto& dims = s.dims();
+  int idx[3][K];
+  const int cell[3] = {s0, s1, s2};
+  for (int a = 0; a < 3; ++a)
+    for (int r = 0; r < K; ++r) idx[a][r] = std::clamp(s.first_control(cell[a]) + r, 0, dims[a] - 1);
+  const std::size_t nx = dims[0], nxy = nx * dims[1];
+  const float* cp = s.control_points().data();
+  double p[K * K * K];
+  for (int c = 0; c < K; ++c)
+    for (int b = 0; b < K; ++b) {
+      const float* row = cp + idx[2][c] * nxy + idx[1][b] * nx;
+      for (int a = 0; a < K; ++a) p[a + K * (b + K * c)] = row[idx[0][a]];
+    }
+  bezier_cell::apply3<K>(m, m, m, p, out);
+}
+
+}  // namespace
+
+void VolumeSpline::bezier_coefficients(int s0, int s1, int s2, double* out) const {
+  switch (order_) {
+    case 2: return bezier_coefficients_k<2>(*this, to_bezier_, s0, s1, s2, out);
+    case 3: return bezier_coefficients_k<3>(*this, to_bezier_, s0, s1, s2, out);
+    default: return bezier_coefficients_k<4>(*this, to_bezier_, s0, s1, s2, out);
+  }
+}
+
+}  // namespace trispline::core
