@@ -64,6 +64,10 @@ nlohmann::json render_timings(const RenderedImage& image, const ReplayOptions& o
           {"ffd_ms", ms_or_null(t.ffd_ms)},
           {"draw_ms", ms_or_null(t.draw_ms)},
           {"ffd_in_draw", t.ffd_in_draw},
+          {"volumes", t.volumes},
+          {"volume_ms", ms_or_null(t.volume_ms)},
+          {"silhouette_points", t.silhouette_points},
+          {"silhouette_ms", t.silhouette_ms},
           {"vertices_per_second", rate >= 0 ? nlohmann::json(rate) : nlohmann::json()}};
 }
 
@@ -147,7 +151,8 @@ int run_recordings(const core::Scene& scene, const std::vector<PendingRecording>
 
 }  // namespace
 
-ReplayResult replay_lines(History& history, const std::filesystem::path& log_path, const ReplayHook& on_executed) {
+ReplayResult replay_lines(History& history, const std::filesystem::path& log_path, const ReplayHook& on_executed,
+                          const std::filesystem::path& output_dir) {
   ReplayResult result;
   std::vector<LogLine> lines;
   try {
@@ -160,6 +165,7 @@ ReplayResult replay_lines(History& history, const std::filesystem::path& log_pat
   }
   core::CommandContext ctx;
   ctx.base_dir = log_path.has_parent_path() ? log_path.parent_path() : std::filesystem::path(".");
+  ctx.output_dir = output_dir;
   const auto& registry = CommandRegistry::builtin();
   for (auto& line : lines) {
     try {
@@ -236,7 +242,7 @@ int run_replay(const ReplayOptions& options) {
     if (const auto* rec = dynamic_cast<const core::AnimRecordCommand*>(&command))
       pending.push_back({line, scene, rec->request()});
   };
-  ReplayResult result = replay_lines(history, options.log, hook);
+  ReplayResult result = replay_lines(history, options.log, hook, options.out_dir);
   const double replay_ms = ms_since(t0);
   if (result.ok && options.frames_given) {
     const std::string err = core::frame_range_error(scene.timeline, options.frame_first, options.frame_last);

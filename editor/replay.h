@@ -58,9 +58,10 @@ struct ReplayResult {
 // held by the history) and its 1-based log line; the history's scene is in the state right after it.
 using ReplayHook = std::function<void(const core::Command& command, int log_line)>;
 
-// Replays `lines` of a log into `history` (and its scene). Stops at the first failing line.
+// Replays `lines` of a log into `history` (and its scene). Stops at the first failing line. Relative paths of files
+// the log's commands write (volume.export) go under `output_dir` (empty: the log's folder).
 ReplayResult replay_lines(History& history, const std::filesystem::path& log_path,
-                          const ReplayHook& on_executed = {});
+                          const ReplayHook& on_executed = {}, const std::filesystem::path& output_dir = {});
 // "A-B" (or "A" for one frame): non-negative frame numbers, A ≤ B; nullopt for anything else.
 std::optional<std::pair<int, int>> parse_frame_range(const std::string& text);
 

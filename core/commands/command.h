@@ -33,7 +33,11 @@ class CommandError : public std::runtime_error {
 // What a command needs from outside the scene while parsing/executing.
 struct CommandContext {
   std::filesystem::path base_dir;  // relative paths in a log are relative to the log's folder
+  // Where relative paths of files a command writes (volume.export) go: replay's --out folder; empty = base_dir.
+  std::filesystem::path output_dir;
   std::filesystem::path resolve(const std::string& path) const;
+  // An output path: absolute as given, else under output_dir (base_dir when empty).
+  std::filesystem::path resolve_output(const std::string& path) const;
 };
 
 class Command {

@@ -7,6 +7,13 @@ std::filesystem::path CommandContext::resolve(const std::string& path) const {
   return p.is_absolute() || base_dir.empty() ? p : base_dir / p;
 }
 
+std::filesystem::path CommandContext::resolve_output(const std::string& path) const {
+  const std::filesystem::path p(path);
+  if (p.is_absolute()) return p;
+  const std::filesystem::path& dir = output_dir.empty() ? base_dir : output_dir;
+  return dir.empty() ? p : dir / p;
+}
+
 void SnapshotCommand::redo(Scene& scene) {
   if (!built_) {
     try {

@@ -26,7 +26,8 @@ const ParamSchema<VolumeExportParams>& VolumeExportCommand::schema() {
           .choice("what", &P::what, {"silhouettes", "iso"})
           .help("silhouettes: for the current camera, as .svg or .glb line strips; iso: the surface D = iso as a "
                 "triangle mesh, .glb/.obj/.ply")
-          .field("path", &P::path).required().path().help("Output file, relative to the log's folder")
+          .field("path", &P::path).required()
+          .help("Output file; a relative path goes under replay's --out folder, else the log's folder")
           .field("samples_per_voxel", &P::samples_per_voxel).range(1, 4).write_unless_default()
           .help("iso: grid samples per voxel and axis before meshing (1 = at the control points)")
           .check([](const P& p) {
@@ -39,10 +40,19 @@ const ParamSchema<VolumeExportParams>& VolumeExportCommand::schema() {
   return s;
 }
 
+CommandPtr VolumeExportCommand::parse(const nlohmann::json& line, const CommandContext& ctx) {
+  VolumeExportParams p = schema().parse(line, ctx);
+  if (p.path.empty()) params::fail("path", "must not be empty");
+  p.path = ctx.resolve_output(p.path).lexically_normal().string();
+  return std::make_unique<VolumeExportCommand>(std::move(p));
+}
+
 std::optional<VolumeObject> VolumeExportCommand::build(const Scene& scene) {
   const VolumeObject& before = require_volume(scene, p_.object);
   const auto t0 = std::chrono::steady_clock::now();
   VolumeObject v = before;
+  if (const auto parent = std::filesystem::path(p_.path).parent_path(); !parent.empty())
+    std::filesystem::create_directories(parent);
   if (p_.what == "silhouettes") {
     v.silhouette.enabled = true;
     v = volume_with_silhouettes(v, scene.camera, &stats_);

@@ -7,7 +7,8 @@
 // what = iso: the surface D = iso as a triangle mesh (OpenVDB volume-to-mesh on the sampled spline, vertices projected
 // onto D = iso: iso_mesh.h) written as .glb, .obj or .ply (world millimetres); the volume keeps it (scene.glb node
 // "<id>/iso").
-// path: relative to the log's folder. Undo forgets what the volume kept (the file stays). stats(): what was written
+// path: a relative path goes under the replay's --out folder (CommandContext::output_dir), else the log's folder; the
+// logged line holds the absolute path. Undo forgets what the volume kept (the file stays). stats(): what was written
 // (points/polylines or vertices/triangles) and ms.
 #pragma once
 
@@ -27,6 +28,8 @@ class VolumeExportCommand : public DeclaredCommand<VolumeExportCommand, VolumeEx
  public:
   using DeclaredCommand::DeclaredCommand;
   static const ParamSchema<VolumeExportParams>& schema();
+  // As DeclaredCommand::parse, with `path` resolved by CommandContext::resolve_output.
+  static CommandPtr parse(const nlohmann::json& line, const CommandContext& ctx);
   std::string label() const override { return "Export " + p_.what + " of '" + p_.object + "'"; }
 
  protected:

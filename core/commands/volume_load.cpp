@@ -11,7 +11,7 @@ const ParamSchema<VolumeLoadParams>& VolumeLoadCommand::schema() {
   static const ParamSchema<P> s =
       ParamSchema<P>("volume.load", "Load a CT/MRI volume (NIfTI, DICOM series, InVesalius .inv3) as a trivariate "
                                     "B-spline (seed ch. 7)")
-          .field("path", &P::path).path()
+          .field("path", &P::path).path().write_unless_default()
           .help("NIfTI (.nii, .nii.gz), a DICOM series folder or .dcm file, or an InVesalius .inv3 project; relative "
                 "to the log's folder")
           .choice("analytic", &P::analytic, {"", "sphere", "torus", "sines"}).write_unless_default()

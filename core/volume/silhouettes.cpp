@@ -393,11 +393,26 @@ SilhouetteResult extract_silhouettes(const VolumeSpline& spline, const Singleton
   result.extract_ms = ms_since(t0);
   if (params.hidden_test) {
     const auto t1 = std::chrono::steady_clock::now();
-    for (SilhouettePolyline& pl : result.polylines)
-      tbb::parallel_for(std::size_t(0), pl.points.size(), [&](std::size_t i) {
-        const glm::dvec3 x(spline.world_to_index() * glm::dvec4(pl.points[i], 1.0));
-        pl.visible[i] = iso_occluded(spline, table, iso, view, x) ? 0 : 1;
-      });
+    // Every 4th point (and the last) is tested; the points between two tested ones of the same visibility take it,
+    // those between two that differ are tested one by one. A visibility change is located exactly; only a hidden
+    // stretch shorter than 4 points between two visible ones (or the reverse) could be missed.
+    constexpr std::size_t kStride = 4;
+    auto occluded = [&](const SilhouettePolyline& pl, std::size_t i) {
+      const glm::dvec3 x(spline.world_to_index() * glm::dvec4(pl.points[i], 1.0));
+      return iso_occluded(spline, table, iso, view, x) ? 0 : 1;
+    };
+    tbb::parallel_for(std::size_t(0), result.polylines.size(), [&](std::size_t k) {
+      SilhouettePolyline& pl = result.polylines[k];
+      const std::size_t n = pl.points.size();
+      std::size_t prev = 0;
+      pl.visible[0] = static_cast<unsigned char>(occluded(pl, 0));
+      for (std::size_t next = std::min(kStride, n - 1); prev < n - 1; prev = next, next = std::min(next + kStride, n - 1)) {
+        pl.visible[next] = static_cast<unsigned char>(occluded(pl, next));
+        for (std::size_t i = prev + 1; i < next; ++i)
+          pl.visible[i] = pl.visible[prev] == pl.visible[next] ? pl.visible[prev]
+                                                                : static_cast<unsigned char>(occluded(pl, i));
+      }
+    });
     result.hidden_ms = ms_since(t1);
   }
   return result;

@@ -62,7 +62,33 @@ void prefilter_line(float* data, std::size_t stride, int n, double b0, double b1
 
 }  // namespace
 
+namespace {
+
+// Closed forms of the cubic (order 4) segment weights and their derivatives (the rows of kPower[4]).
+inline void cubic_weights(double x, double* w, double* dw, double* d2w) {
+  const double x2 = x * x, x3 = x2 * x, u = 1.0 - x;
+  w[0] = u * u * u / 6.0;
+  w[1] = (3.0 * x3 - 6.0 * x2 + 4.0) / 6.0;
+  w[2] = (-3.0 * x3 + 3.0 * x2 + 3.0 * x + 1.0) / 6.0;
+  w[3] = x3 / 6.0;
+  if (dw) {
+    dw[0] = -0.5 * u * u;
+    dw[1] = 1.5 * x2 - 2.0 * x;
+    dw[2] = -1.5 * x2 + x + 0.5;
+    dw[3] = 0.5 * x2;
+  }
+  if (d2w) {
+    d2w[0] = u;
+    d2w[1] = 3.0 * x - 2.0;
+    d2w[2] = -3.0 * x + 1.0;
+    d2w[3] = x;
+  }
+}
+
+}  // namespace
+
 void uniform_bspline_weights(int order, double x, double* w, double* dw, double* d2w) {
+  if (order == 4) return cubic_weights(x, w, dw, d2w);
   for (int r = 0; r < order; ++r) {
     const double* c = kPower[order][r];
     double v = 0.0, d = 0.0, dd = 0.0;
