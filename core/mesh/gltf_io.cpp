@@ -7,6 +7,7 @@
 // that library, and never define TINYGLTF_IMPLEMENTATION.
 #include <tiny_gltf.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstring>
@@ -375,6 +376,37 @@ int add_float_attribute(tinygltf::Model& model, const std::vector<V>& values, in
                       TINYGLTF_COMPONENT_TYPE_FLOAT, type, values.size());
 }
 
+// The node's line strips as LINE_STRIP primitives appended to `mesh`, sharing one unlit material.
+void add_line_strips(tinygltf::Model& model, const GltfNode& gn, tinygltf::Mesh& mesh) {
+  int material = -1;
+  for (const std::vector<glm::vec3>& strip : *gn.line_strips) {
+    if (strip.size() < 2) continue;
+    std::vector<double> lo(3, std::numeric_limits<double>::infinity()), hi(3, -std::numeric_limits<double>::infinity());
+    for (const glm::vec3& p : strip)
+      for (int c = 0; c < 3; ++c) {
+        if (!std::isfinite(p[c])) throw MeshIoError("object '" + gn.name + "': a line strip has a non-finite point");
+        lo[c] = std::min(lo[c], double(p[c]));
+        hi[c] = std::max(hi[c], double(p[c]));
+      }
+    if (material < 0) {
+      const bool has_triangles = !mesh.primitives.empty();
+      material = gltf_model::add_material(model, has_triangles ? gn.name + ".lines" : gn.name, gn.color);
+      model.materials[material].extensions["KHR_materials_unlit"] = tinygltf::Value(tinygltf::Value::Object());
+      if (std::find(model.extensionsUsed.begin(), model.extensionsUsed.end(), "KHR_materials_unlit") ==
+          model.extensionsUsed.end())
+        model.extensionsUsed.push_back("KHR_materials_unlit");
+    }
+    tinygltf::Primitive prim;
+    prim.mode = TINYGLTF_MODE_LINE_STRIP;
+    const int pa = add_float_attribute<3>(model, strip, TINYGLTF_TYPE_VEC3);
+    model.accessors[pa].minValues = lo;
+    model.accessors[pa].maxValues = hi;
+    prim.attributes["POSITION"] = pa;
+    prim.material = material;
+    mesh.primitives.push_back(prim);
+  }
+}
+
 }  // namespace
 
 void write_glb(const std::filesystem::path& path, const std::vector<GltfNode>& nodes) {
@@ -435,8 +467,17 @@ void write_glb(const std::filesystem::path& path, const std::vector<GltfNode>& n
         inside.material = gltf_model::add_material(model, gn.name + ".inside", gn.inside_color);
         mesh.primitives.push_back(inside);
       }
+      if (gn.line_strips) add_line_strips(model, gn, mesh);
       model.meshes.push_back(mesh);
       node.mesh = static_cast<int>(model.meshes.size()) - 1;
+    } else if (gn.line_strips) {
+      tinygltf::Mesh mesh;
+      mesh.name = gn.name;
+      add_line_strips(model, gn, mesh);
+      if (!mesh.primitives.empty()) {
+        model.meshes.push_back(mesh);
+        node.mesh = static_cast<int>(model.meshes.size()) - 1;
+      }
     }
     model.nodes.push_back(node);
     scene.nodes.push_back(static_cast<int>(model.nodes.size()) - 1);
