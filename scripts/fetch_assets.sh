@@ -1,11 +1,15 @@
 #!/usr/bin/env bash
-# Fetches the real input meshes from Debian data packages into assets/data/ (git-ignored; never commit them):
+# Fetches the real input meshes and volumes from Debian data packages into assets/data/ (git-ignored; never commit them):
 #   glmark2-data → bunny.obj (Stanford bunny, 34,835 vertices); gem-doc → venus.obj (Venus bust, 711 vertices);
 #   assimp-testmodels (20 MB, downloaded once for both) → glTF animation clips for core::MeshClip:
 #     AnimatedMorphCube/AnimatedMorphCube.gltf + .bin (Khronos sample, morph-target weights, 24 vertices) and
 #     simple_skin/simple_skin.gltf (glTF tutorial skin: two joints, 10 vertices, buffers embedded);
 #   libcgal-demo (23 MB) → nefertiti.off (CGAL's data/meshes/nefertiti.off, a face mask: 299 vertices, 562 triangles,
 #     one open boundary, looking along +z; CC0 per CGAL's LICENSE), from the data.tar.gz the package ships.
+# Real volumes for core/volume's loaders (tests/core/volume/test_volume_io.cpp):
+#   invesalius-examples (19 MB) → Cranium.inv3 (InVesalius project of a CT skull: 256×256×108 int16 HU samples,
+#     0.957×0.957×1.5 mm); insighttoolkit5-examples (2 MB) → KmeansTest_T1UCharRaw.nii.gz (ITK's T1 MRI brain,
+#     128×128×62 uint8 samples, 2×2×3 mm).
 # A corpus of real mesh files the project does not ship, for the loader test (tests/core/mesh/test_mesh_corpus.cpp):
 #   corpus/cgal/      CGAL's data/meshes (libcgal-demo): ~150 OFF/PLY/OBJ/STL meshes, polygonal, coloured, broken;
 #   corpus/assimp/    assimp's own test models (assimp-testmodels) for OBJ, PLY, OFF, STL, invalid files included;
@@ -43,6 +47,9 @@ fetch assimp-testmodels \
   $gltf2/glTF-Sample-Models/AnimatedMorphCube-glTF/AnimatedMorphCube.gltf AnimatedMorphCube/AnimatedMorphCube.gltf \
   $gltf2/glTF-Sample-Models/AnimatedMorphCube-glTF/AnimatedMorphCube.bin AnimatedMorphCube/AnimatedMorphCube.bin \
   $gltf2/simple_skin/simple_skin.gltf simple_skin/simple_skin.gltf
+fetch invesalius-examples usr/share/doc/invesalius-examples/examples/Cranium.inv3 Cranium.inv3
+fetch insighttoolkit5-examples usr/share/doc/insighttoolkit5-examples/examples/Data/KmeansTest_T1UCharRaw.nii.gz \
+  KmeansTest_T1UCharRaw.nii.gz
 
 fetch_tree() {  # fetch_tree PACKAGE TARGET_DIR PATH_IN_PACKAGE... : copies folders of a package (all files below)
   local pkg="$1" name="$2" target="$data/$2"; shift 2

@@ -3,9 +3,10 @@
 #   1. builds core, the command layer, their tests and the libFuzzer targets with clang under AddressSanitizer +
 #      UndefinedBehaviorSanitizer into build-asan/ (no GUI: the GL layers run in the plain build's tests);
 #   2. runs the core and command tests and every fuzz target's seeds and regression files once (ctest);
-#   3. fuzzes each target for TRISPLINE_FUZZ_SECONDS (default 60; seed TRISPLINE_FUZZ_SEED, default 1), two at a
-#      time. A crash fails the run and leaves the input in build-asan/fuzz/<target>/crashes/; add it to
-#      tests/fuzz/regressions/<target>/ with the fix.
+#   3. fuzzes each target for TRISPLINE_FUZZ_SECONDS (default 60; at most a target's own SECONDS when
+#      tests/fuzz/CMakeLists.txt gives one; seed TRISPLINE_FUZZ_SEED, default 1), two at a time. A crash fails the run
+#      and leaves the input in build-asan/fuzz/<target>/crashes/; add it to tests/fuzz/regressions/<target>/ with the
+#      fix.
 # Usage: scripts/sanitize.sh [--no-fuzz | --fuzz-only]   (run scripts/setup.sh --no-build first on a fresh machine)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -44,13 +45,17 @@ fi
 # Each target fuzzes from a fresh working corpus seeded by its seed folders (the seeds themselves are never written).
 start=$SECONDS
 fuzz_one() {
-  local target="$1" dir="$build/fuzz/$1"
+  local target="$1" dir="$build/fuzz/$1" secs="$seconds" cap
+  if [ -f "$build/tests/fuzz/$target.seconds" ]; then
+    cap="$(cat "$build/tests/fuzz/$target.seconds")"
+    if ((cap < secs)); then secs="$cap"; fi
+  fi
   rm -rf "$dir" && mkdir -p "$dir/corpus" "$dir/crashes"
   local seeds
   read -r -a seeds < <(tr ';' ' ' < "$build/tests/fuzz/$target.seeds"; echo)
-  if "$build/tests/fuzz/$target" "$dir/corpus" "${seeds[@]}" -max_total_time="$seconds" -seed="$fuzz_seed" -max_len=65536 \
+  if "$build/tests/fuzz/$target" "$dir/corpus" "${seeds[@]}" -max_total_time="$secs" -seed="$fuzz_seed" -max_len=65536 \
        -rss_limit_mb=2048 -timeout=20 -artifact_prefix="$dir/crashes/" -print_final_stats=1 > "$dir/log.txt" 2>&1; then
-    echo "fuzz: $target: $(grep -m1 -o 'stat::number_of_executed_units: *[0-9]*' "$dir/log.txt" | grep -o '[0-9]*$') runs, no crash"
+    echo "fuzz: $target: ${secs} s, $(grep -m1 -o 'stat::number_of_executed_units: *[0-9]*' "$dir/log.txt" | grep -o '[0-9]*$') runs, no crash"
   else
     echo "fuzz: $target FAILED — input in $dir/crashes/:"
     ls "$dir/crashes"
@@ -66,5 +71,5 @@ for t in "${targets[@]}"; do
   if ((${#pids[@]} >= jobs)); then wait "${pids[0]}" || status=1; pids=("${pids[@]:1}"); fi
 done
 for p in "${pids[@]}"; do wait "$p" || status=1; done
-echo "sanitize: fuzzed ${#targets[@]} targets for ${seconds} s each in $((SECONDS - start)) s"
+echo "sanitize: fuzzed ${#targets[@]} targets for at most ${seconds} s each in $((SECONDS - start)) s"
 exit $status

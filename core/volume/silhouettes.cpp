@@ -152,21 +152,27 @@ void solve_singleton(const VolumeSpline& spline, const SingletonTable& table, st
   bezier_cell::Matrix<K> restrict[4];
   for (int i = 0; i < s; ++i) restrict[i] = bezier_cell::restriction<K>(i * h, (i + 1) * h);
   const std::size_t first_out = out.size();
-  for (int sz = 0; sz < s; ++sz)
-    for (int sy = 0; sy < s; ++sy)
+  auto holds_iso = [iso](const double* c) {
+    double mn = c[0], mx = c[0];
+    for (int m = 1; m < n; ++m) mn = std::min(mn, c[m]), mx = std::max(mx, c[m]);
+    return mn <= iso && iso <= mx;
+  };
+  // Sub-cells by slabs: z first, then y within a surviving slab, then x — a slab whose value range misses c is not
+  // split further (the sub-boxes of a slab hold subsets of its range).
+  double zslab[n], yrow[n], sub[n];
+  for (int sz = 0; sz < s; ++sz) {
+    if (s > 1) bezier_cell::apply<K>(restrict[sz], bez, zslab, 2);
+    else std::copy(bez, bez + n, zslab);
+    if (s > 1 && !holds_iso(zslab)) continue;
+    for (int sy = 0; sy < s; ++sy) {
+      if (s > 1) bezier_cell::apply<K>(restrict[sy], zslab, yrow, 1);
+      else std::copy(zslab, zslab + n, yrow);
+      if (s > 1 && !holds_iso(yrow)) continue;
       for (int sx = 0; sx < s; ++sx) {
+        if (s > 1) bezier_cell::apply<K>(restrict[sx], yrow, sub, 0);
+        else std::copy(yrow, yrow + n, sub);
+        if (!holds_iso(sub)) continue;
         const glm::dvec3 lo(sx * h, sy * h, sz * h);
-        double sub[n];
-        if (s > 1) {
-          double tmp[n];
-          std::copy(bez, bez + n, tmp);
-          bezier_cell::apply3<K>(restrict[sx], restrict[sy], restrict[sz], tmp, sub);
-        } else {
-          std::copy(bez, bez + n, sub);
-        }
-        double mn = sub[0], mx = sub[0];
-        for (int m = 1; m < n; ++m) mn = std::min(mn, sub[m]), mx = std::max(mx, sub[m]);
-        if (!(mn <= iso && iso <= mx)) continue;
         const glm::dvec3 centre = origin + lo + 0.5 * h;
         if (s > 1 && !dot_range_holds_zero<K>(sub, centre, h, view)) continue;
         ++seeds;
@@ -181,6 +187,8 @@ void solve_singleton(const VolumeSpline& spline, const SingletonTable& table, st
         p.cell = cell;
         out.push_back(p);
       }
+    }
+  }
 }
 
 void solve_singleton(const VolumeSpline& spline, const SingletonTable& table, std::uint32_t cell, double iso,

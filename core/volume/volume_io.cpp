@@ -1,0 +1,135 @@
+// load_volume: dispatch on the path (folder or extension) and the checks every reader shares.
+#include "core/volume/volume_io.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <limits>
+#include <new>
+#include <system_error>
+#include <vector>
+
+#include "core/volume/volume_io_formats.h"
+
+namespace trispline::core {
+
+namespace volume_io {
+
+std::string quoted(const std::filesystem::path& path) { return "'" + path.string() + "'"; }
+
+void fail(const std::filesystem::path& path, const std::string& what) {
+  throw VolumeLoadError(quoted(path) + ": " + what);
+}
+
+std::string format_number(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", x);
+  return text;
+}
+
+std::string format_bytes(std::uint64_t bytes) {
+  char text[64];
+  if (bytes < 1024) {
+    std::snprintf(text, sizeof text, "%llu bytes", static_cast<unsigned long long>(bytes));
+  } else {
+    const char* unit[] = {"KiB", "MiB", "GiB", "TiB", "PiB", "EiB"};
+    double value = static_cast<double>(bytes) / 1024.0;
+    int u = 0;
+    while (value >= 1024.0 && u < 5) value /= 1024.0, ++u;
+    std::snprintf(text, sizeof text, "%.1f %s", value, unit[u]);
+  }
+  return text;
+}
+
+std::uint64_t checked_voxel_count(const std::filesystem::path& path, const std::array<std::int64_t, 3>& dims) {
+  const std::string shape = std::to_string(dims[0]) + "×" + std::to_string(dims[1]) + "×" + std::to_string(dims[2]);
+  for (const std::int64_t d : dims)
+    if (d < 2) fail(path, "the volume is " + shape + " samples: at least 2 per axis are needed");
+  constexpr std::int64_t kMaxAxis = std::numeric_limits<int>::max();
+  for (const std::int64_t d : dims)
+    if (d > kMaxAxis)
+      fail(path, "the volume is " + shape + " samples: an axis is longer than " + std::to_string(kMaxAxis));
+  // Each factor < 2^31: the product of three fits 2^93, so check step by step.
+  std::uint64_t n = static_cast<std::uint64_t>(dims[0]) * static_cast<std::uint64_t>(dims[1]);
+  if (n > std::numeric_limits<std::uint64_t>::max() / static_cast<std::uint64_t>(dims[2]))
+    fail(path, "the volume is " + shape + " samples: too many to count");
+  return n * static_cast<std::uint64_t>(dims[2]);
+}
+
+void check_budget(const std::filesystem::path& path, std::uint64_t voxels, std::uint64_t buffer_bytes,
+                  const VolumeLoadOptions& options) {
+  const std::uint64_t limit = options.memory_budget_bytes;
+  if (voxels > limit / 4 || buffer_bytes > limit - voxels * 4) {
+    const std::uint64_t float_bytes =
+        voxels > std::numeric_limits<std::uint64_t>::max() / 4 ? std::numeric_limits<std::uint64_t>::max() : voxels * 4;
+    fail(path, std::to_string(voxels) + " samples need " + format_bytes(float_bytes) + " as float plus " +
+                   format_bytes(buffer_bytes) + " of file buffers: over the memory budget of " + format_bytes(limit));
+  }
+  if (voxels > std::vector<float>().max_size()) fail(path, std::to_string(voxels) + " samples: too many to hold");
+}
+
+}  // namespace volume_io
+
+namespace {
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
+}
+
+bool ends_with(const std::string& s, const std::string& tail) {
+  return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
+}
+
+enum class VolumeFormat { kNone, kNifti, kDicom, kInv3 };
+
+VolumeFormat format_of_name(const std::filesystem::path& p) {
+  const std::string name = lower(p.filename().string());
+  if (ends_with(name, ".nii") || ends_with(name, ".nii.gz")) return VolumeFormat::kNifti;
+  if (ends_with(name, ".dcm")) return VolumeFormat::kDicom;
+  if (ends_with(name, ".inv3")) return VolumeFormat::kInv3;
+  return VolumeFormat::kNone;
+}
+
+}  // namespace
+
+bool is_volume_path(const std::filesystem::path& p) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(p, ec)) return true;
+  return format_of_name(p) != VolumeFormat::kNone;
+}
+
+ScalarVolume load_volume(const std::filesystem::path& path, const VolumeLoadOptions& options) {
+  using volume_io::fail;
+  std::error_code ec;
+  const std::filesystem::file_status status = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(status)) fail(path, "no such file or folder");
+  const VolumeFormat format = std::filesystem::is_directory(status) ? VolumeFormat::kDicom : format_of_name(path);
+  if (format == VolumeFormat::kNone)
+    fail(path, "not a volume file (expected .nii, .nii.gz, .inv3, .dcm or a DICOM series folder)");
+  if (!std::filesystem::is_directory(status) && !std::filesystem::is_regular_file(status))
+    fail(path, "not a regular file");
+  ScalarVolume v;
+  try {
+    switch (format) {
+      case VolumeFormat::kNifti:
+        v = volume_io::load_nifti(path, options);
+        break;
+      case VolumeFormat::kDicom:
+        v = volume_io::load_dicom(path, options);
+        break;
+      case VolumeFormat::kInv3:
+        v = volume_io::load_inv3(path, options);
+        break;
+      case VolumeFormat::kNone:
+        break;
+    }
+  } catch (const std::bad_alloc&) {  // within the budget, but the machine has less memory than the budget allows
+    fail(path, "out of memory (memory budget " + volume_io::format_bytes(options.memory_budget_bytes) + ")");
+  }
+  v.source = path.string();
+  if (const std::string why = scalar_volume_error(v); !why.empty()) fail(path, why);
+  return v;
+}
+
+}  // namespace trispline::core

@@ -1,0 +1,57 @@
+// Private to load_volume (core/volume/volume_io.cpp): one reader per format and the checks they share.
+//
+//   load_nifti  volume_io_nifti.cpp   .nii / .nii.gz through niftilib
+//   load_dicom  volume_io_dicom.cpp   a DICOM series (folder or one .dcm file) through GDCM
+//   load_inv3   volume_io_inv3.cpp    an InVesalius .inv3 project through libarchive + tinyxml2
+//
+// Each returns a volume with dims, values, index_to_world, units and modality set, or throws VolumeLoadError via
+// fail(); load_volume sets `source` and runs scalar_volume_error on the result.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <limits>
+#include <string>
+
+#include "core/volume/scalar_volume.h"
+#include "core/volume/volume_io.h"
+
+namespace trispline::core::volume_io {
+
+// Samples converted per block when a reader streams (NIfTI, .inv3): the file buffer a load holds besides the floats.
+inline constexpr std::size_t kStreamBlockBytes = std::size_t{1} << 20;
+
+// A computed sample as float; beyond float's range it becomes ±inf (refused later as non-finite) rather than an
+// undefined conversion.
+inline float to_float(double x) {
+  constexpr double kMax = std::numeric_limits<float>::max();
+  if (x > kMax) return std::numeric_limits<float>::infinity();
+  if (x < -kMax) return -std::numeric_limits<float>::infinity();
+  return static_cast<float>(x);
+}
+
+// 'path' in quotes, for messages.
+std::string quoted(const std::filesystem::path& path);
+
+// Throws VolumeLoadError("'<path>': <what>").
+[[noreturn]] void fail(const std::filesystem::path& path, const std::string& what);
+
+// "0.5", "1e+12", "nan" — numbers in messages (%.6g).
+std::string format_number(double x);
+
+// "12.0 MiB", "3 bytes" — sizes in messages.
+std::string format_bytes(std::uint64_t bytes);
+
+// nx·ny·nz after checking each is ≥ 2 (fail: "<what> is a×b×c: at least 2 samples per axis are needed").
+std::uint64_t checked_voxel_count(const std::filesystem::path& path, const std::array<std::int64_t, 3>& dims);
+
+// Fails unless voxels·4 (the float samples) + buffer_bytes fits options.memory_budget_bytes; names both.
+void check_budget(const std::filesystem::path& path, std::uint64_t voxels, std::uint64_t buffer_bytes,
+                  const VolumeLoadOptions& options);
+
+ScalarVolume load_nifti(const std::filesystem::path& path, const VolumeLoadOptions& options);
+ScalarVolume load_dicom(const std::filesystem::path& path, const VolumeLoadOptions& options);
+ScalarVolume load_inv3(const std::filesystem::path& path, const VolumeLoadOptions& options);
+
+}  // namespace trispline::core::volume_io

@@ -1,0 +1,53 @@
+// libFuzzer target: one volume reader, the code that opens CT/MRI files from anywhere. The extension is fixed per
+// target (TRISPLINE_FUZZ_EXT: ".nii", ".nii.gz", ".inv3"); the input is written to a file of that name in a folder of
+// its own and loaded with load_volume under a 256 MiB memory budget (below libFuzzer's 2 GiB malloc limit, so a
+// header claiming a large volume is refused by the budget, as a user's file over the default 4 GiB would be). The
+// contract under test: a file loads whole — a volume that passes scalar_volume_error, with source set — or the
+// reader throws VolumeLoadError. Any other exception, a signal, a sanitizer finding or a volume that breaks the
+// contract aborts, which libFuzzer reports as a crash.
+#include <unistd.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include "core/volume/volume_io.h"
+
+#ifndef TRISPLINE_FUZZ_EXT
+#error "define TRISPLINE_FUZZ_EXT, e.g. \".nii\""
+#endif
+
+using namespace trispline;
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  static const std::filesystem::path file = [] {
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / ("trispline_fuzz_volume_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    return dir / (std::string("input") + TRISPLINE_FUZZ_EXT);
+  }();
+  if (std::FILE* f = std::fopen(file.c_str(), "wb")) {
+    std::fwrite(data, 1, size, f);
+    std::fclose(f);
+  } else {
+    return 0;
+  }
+  core::VolumeLoadOptions options;
+  options.memory_budget_bytes = std::uint64_t{256} << 20;
+  try {
+    const core::ScalarVolume v = core::load_volume(file, options);
+    const std::string why = core::scalar_volume_error(v);
+    if (!why.empty() || v.source != file.string()) {
+      std::fprintf(stderr, "load_volume returned a volume that breaks its contract: %s\n", why.c_str());
+      std::abort();
+    }
+    if (v.voxel_count() * 4 > options.memory_budget_bytes) {
+      std::fprintf(stderr, "load_volume returned %zu samples, over the memory budget\n", v.voxel_count());
+      std::abort();
+    }
+  } catch (const core::VolumeLoadError&) {
+  }
+  return 0;
+}
