@@ -11,14 +11,14 @@ namespace trispline::core::bezier_cell {
 template <int K>
 using Matrix = std::array<std::array<double, K>, K>;
 
-// out = M applied along `axis` (0 = first, fastest): out[..a..] = Σ_r M[a][r]·in[..r..]. in ≠ out.
-template <int K>
-inline void apply(const Matrix<K>& m, const double* in, double* out, int axis) {
-  const int stride = axis == 0 ? 1 : axis == 1 ? K : K * K;
+// out = M applied along AXIS (0 = first, fastest): out[..a..] = Σ_r M[a][r]·in[..r..]. in ≠ out.
+template <int K, int AXIS>
+inline void apply_axis(const Matrix<K>& m, const double* in, double* out) {
+  constexpr int stride = AXIS == 0 ? 1 : AXIS == 1 ? K : K * K;
   for (int l = 0; l < K * K; ++l) {
     // Base index of line l: the two other axes' indices.
     const int hi = l / K, lo = l % K;
-    const int base = axis == 0 ? K * l : axis == 1 ? lo + K * K * hi : l;
+    const int base = AXIS == 0 ? K * l : AXIS == 1 ? lo + K * K * hi : l;
     double v[K];
     for (int r = 0; r < K; ++r) v[r] = in[base + r * stride];
     for (int a = 0; a < K; ++a) {
@@ -29,13 +29,20 @@ inline void apply(const Matrix<K>& m, const double* in, double* out, int axis) {
   }
 }
 
+template <int K>
+inline void apply(const Matrix<K>& m, const double* in, double* out, int axis) {
+  if (axis == 0) apply_axis<K, 0>(m, in, out);
+  else if (axis == 1) apply_axis<K, 1>(m, in, out);
+  else apply_axis<K, 2>(m, in, out);
+}
+
 // The same matrix along all three axes (tensor product): in → out (in may be overwritten).
 template <int K>
 inline void apply3(const Matrix<K>& mx, const Matrix<K>& my, const Matrix<K>& mz, double* in, double* out) {
   double tmp[K * K * K];
-  apply<K>(mx, in, tmp, 0);
-  apply<K>(my, tmp, in, 1);
-  apply<K>(mz, in, out, 2);
+  apply_axis<K, 0>(mx, in, tmp);
+  apply_axis<K, 1>(my, tmp, in);
+  apply_axis<K, 2>(mz, in, out);
 }
 
 // Matrix restricting a Bernstein polynomial of order K on [0,1] to [t0, t1]: row a of the result = coefficient a of the
@@ -80,11 +87,23 @@ inline Matrix<K> identity() {
   return m;
 }
 
-// g[axis][m] for the K³ coefficients b.
+// g[axis][m] for the K³ coefficients b. The raised-derivative matrix is tridiagonal, so each output needs the two
+// differences beside it: e_a = a·Δ_{a−1} + (p − a)·Δ_a with Δ_m = b_{m+1} − b_m.
 template <int K>
 inline void gradient_vectors(const double* b, double g[3][64]) {
-  static const Matrix<K> e = raised_derivative<K>();
-  for (int axis = 0; axis < 3; ++axis) apply<K>(e, b, g[axis], axis);
+  constexpr int p = K - 1;
+  for (int axis = 0; axis < 3; ++axis) {
+    const int stride = axis == 0 ? 1 : axis == 1 ? K : K * K;
+    double* out = g[axis];
+    for (int l = 0; l < K * K; ++l) {
+      const int hi = l / K, lo = l % K;
+      const int base = axis == 0 ? K * l : axis == 1 ? lo + K * K * hi : l;
+      double d[K - 1];
+      for (int m = 0; m < p; ++m) d[m] = b[base + (m + 1) * stride] - b[base + m * stride];
+      for (int a = 0; a < K; ++a)
+        out[base + a * stride] = (a > 0 ? a * d[a - 1] : 0.0) + (a < p ? (p - a) * d[a] : 0.0);
+    }
+  }
 }
 
 }  // namespace trispline::core::bezier_cell

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -50,52 +51,65 @@ std::array<int, 3> VolumeRangeGrid::brick_of(const glm::dvec3& x) const {
 }
 
 VolumeRangeGrid build_volume_range_grid(const VolumeSpline& spline, int brick) {
-  if (brick < 3)
-    throw std::invalid_argument("volume range grid: brick must be ≥ 3 index units, got " + std::to_string(brick));
+  if (brick < 1)
+    throw std::invalid_argument("volume range grid: brick must be ≥ 1 index unit, got " + std::to_string(brick));
   VolumeRangeGrid g;
   g.brick = brick;
   const std::array<int, 3>& n = spline.dims();
   for (int a = 0; a < 3; ++a) g.dims[a] = std::max(1, (n[a] - 1 + brick - 1) / brick);
-  const std::size_t count = std::size_t(g.dims[0]) * std::size_t(g.dims[1]) * std::size_t(g.dims[2]);
-  std::vector<glm::vec2> block(
-      count, glm::vec2(std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity()));
-  auto idx = [&](int a, int b, int c) {
-    return std::size_t(a) + std::size_t(g.dims[0]) * (std::size_t(b) + std::size_t(g.dims[1]) * std::size_t(c));
-  };
-  // Block (a, b, c) holds control points [brick·a, brick·a + brick − 1] per axis (the last block the rest).
-  const std::vector<float>& cp = spline.control_points();
-  std::size_t k = 0;
-  for (int z = 0; z < n[2]; ++z) {
-    const int bz = std::min(z / brick, g.dims[2] - 1);
-    for (int y = 0; y < n[1]; ++y) {
-      const int by = std::min(y / brick, g.dims[1] - 1);
-      for (int x = 0; x < n[0]; ++x, ++k) {
-        glm::vec2& r = block[idx(std::min(x / brick, g.dims[0] - 1), by, bz)];
-        r.x = std::min(r.x, cp[k]);
-        r.y = std::max(r.y, cp[k]);
-      }
+  // Per axis, the controls [lo, hi] weighing D on brick b: those of the knot spans meeting the open interval
+  // (brick·b, min(brick·(b + 1), n − 1)) — D is continuous, so its values on the closed brick are theirs.
+  std::array<std::vector<std::array<int, 2>>, 3> support;
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < g.dims[a]; ++b) {
+      const double lo = double(brick) * b, hi = std::min(double(brick) * (b + 1), double(n[a] - 1));
+      const int first = spline.first_control(spline.span_of(a, lo + 0.25));
+      const int last = spline.first_control(spline.span_of(a, hi - 0.25)) + spline.order() - 1;
+      support[a].push_back({std::max(first, 0), std::min(last, n[a] - 1)});
     }
-  }
-  // Dilate by one block per axis (separable min / max): the controls weighing D in brick c lie in blocks c−1…c+1.
+  // Per control: value (min and max) and the largest difference to its next neighbour along any axis.
+  const std::vector<float>& cp = spline.control_points();
+  const std::size_t nx = std::size_t(n[0]), nxy = nx * std::size_t(n[1]);
+  std::vector<float> lo(cp), hi(cp), slope(cp.size(), 0.0f);
+  for (int z = 0; z < n[2]; ++z)
+    for (int y = 0; y < n[1]; ++y)
+      for (int x = 0; x < n[0]; ++x) {
+        const std::size_t k = std::size_t(x) + nx * std::size_t(y) + nxy * std::size_t(z);
+        double d = 0.0;  // differences of floats are exact in double; rounded up to float below
+        if (x + 1 < n[0]) d = std::max(d, std::abs(double(cp[k + 1]) - cp[k]));
+        if (y + 1 < n[1]) d = std::max(d, std::abs(double(cp[k + nx]) - cp[k]));
+        if (z + 1 < n[2]) d = std::max(d, std::abs(double(cp[k + nxy]) - cp[k]));
+        slope[k] = float(d) < d ? std::nextafter(float(d), std::numeric_limits<float>::infinity()) : float(d);
+      }
+  // Separable reduction, one axis at a time: extent[a] goes from n[a] controls to dims[a] bricks.
+  std::array<int, 3> extent = n;
   for (int axis = 0; axis < 3; ++axis) {
-    std::vector<glm::vec2> out(block);
-    for (int c = 0; c < g.dims[2]; ++c)
-      for (int b = 0; b < g.dims[1]; ++b)
-        for (int a = 0; a < g.dims[0]; ++a) {
-          const int p[3] = {a, b, c};
-          glm::vec2& r = out[idx(a, b, c)];
-          for (int d = -1; d <= 1; d += 2) {
-            int q[3] = {p[0], p[1], p[2]};
-            q[axis] += d;
-            if (q[axis] < 0 || q[axis] >= g.dims[axis]) continue;
-            const glm::vec2& s = block[idx(q[0], q[1], q[2])];
-            r.x = std::min(r.x, s.x);
-            r.y = std::max(r.y, s.y);
+    std::array<int, 3> out_extent = extent;
+    out_extent[axis] = g.dims[axis];
+    const std::size_t count = std::size_t(out_extent[0]) * out_extent[1] * out_extent[2];
+    std::vector<float> lo2(count), hi2(count), slope2(count);
+    const std::size_t stride = axis == 0 ? 1 : axis == 1 ? std::size_t(extent[0]) : std::size_t(extent[0]) * extent[1];
+    std::size_t o = 0;
+    for (int c = 0; c < out_extent[2]; ++c)
+      for (int b = 0; b < out_extent[1]; ++b)
+        for (int a = 0; a < out_extent[0]; ++a, ++o) {
+          int p[3] = {a, b, c};
+          const std::array<int, 2> range = support[axis][std::size_t(p[axis])];
+          p[axis] = range[0];
+          std::size_t k = std::size_t(p[0]) + std::size_t(extent[0]) * (std::size_t(p[1]) + std::size_t(extent[1]) * p[2]);
+          float l = lo[k], h = hi[k], s = slope[k];
+          for (int q = range[0] + 1; q <= range[1]; ++q) {
+            k += stride;
+            l = std::min(l, lo[k]), h = std::max(h, hi[k]), s = std::max(s, slope[k]);
           }
+          lo2[o] = l, hi2[o] = h, slope2[o] = s;
         }
-    block.swap(out);
+    lo.swap(lo2), hi.swap(hi2), slope.swap(slope2);
+    extent = out_extent;
   }
-  g.range = std::move(block);
+  g.range.resize(lo.size());
+  for (std::size_t i = 0; i < lo.size(); ++i) g.range[i] = glm::vec2(lo[i], hi[i]);
+  g.slope = std::move(slope);
   return g;
 }
 
@@ -108,9 +122,10 @@ IsoHit iso_ray_hit(const VolumeSpline& spline, double iso, const glm::dvec3& wor
   if (std::isnan(t_max) || t_max < 0.0) throw std::invalid_argument("iso_ray_hit: t_max must be ≥ 0");
   const std::array<int, 3>& n = spline.dims();
   if (bricks) {
+    const std::size_t count = std::size_t(bricks->dims[0]) * bricks->dims[1] * bricks->dims[2];
     for (int a = 0; a < 3; ++a)
-      if (bricks->dims[a] != std::max(1, (n[a] - 1 + bricks->brick - 1) / bricks->brick) ||
-          bricks->range.size() != std::size_t(bricks->dims[0]) * bricks->dims[1] * bricks->dims[2])
+      if (bricks->brick < 1 || bricks->dims[a] != std::max(1, (n[a] - 1 + bricks->brick - 1) / bricks->brick) ||
+          bricks->range.size() != count || bricks->slope.size() != count)
         throw std::invalid_argument("iso_ray_hit: the range grid was built for another volume size");
   }
   const glm::dmat4& w2i = spline.world_to_index();
@@ -138,39 +153,57 @@ IsoHit iso_ray_hit(const VolumeSpline& spline, double iso, const glm::dvec3& wor
   const double length = s_hi - s_lo;
   auto f = [&](double s) { return spline.value(entry + s * u) - iso; };
 
-  // Samples s_m = m·step, m = 0…M−1, and s_M = length.
+  // Samples s_m = m·step, m = 0…M−1, and s_M = length. The march keeps the sign of the previous sample m − 1 and its
+  // value when it was evaluated (NaN when only its sign is known).
   const std::int64_t last = static_cast<std::int64_t>(std::ceil(length / step_index));
   auto sample_at = [&](std::int64_t m) { return m >= last ? length : double(m) * step_index; };
+  const double u_l1 = std::abs(u.x) + std::abs(u.y) + std::abs(u.z);
   std::int64_t m = 0;
-  double s_prev = 0.0, f_prev = f(0.0);
-  bool skip_checked = false;  // the current sample's brick was already looked at
-  while (m < last) {
-    if (bricks && !skip_checked) {
-      const glm::dvec3 p = entry + s_prev * u;
+  std::int64_t brick_end = bricks ? -1 : last;  // last sample of the current brick whose range holds iso
+  double change_per_sample = 0.0;              // bound of |D(s_{m+1}) − D(s_m)| in that brick (0: no bound)
+  bool have_prev = false, neg_prev = false;
+  double f_prev = std::nan("");
+  while (m <= last) {
+    double s = sample_at(m), fs = std::nan("");
+    bool neg = false;
+    std::int64_t next = m + 1;
+    if (m > brick_end) {
+      // Into the next brick along the ray: its samples m…e.
+      const glm::dvec3 p = entry + s * u;
       const std::array<int, 3> b = bricks->brick_of(p);
-      const glm::vec2 r = bricks->at(b[0], b[1], b[2]);
+      const std::size_t bi = bricks->index(b[0], b[1], b[2]);
+      const glm::vec2 r = bricks->range[bi];
+      double exit = std::numeric_limits<double>::infinity();
+      for (int a = 0; a < 3; ++a) {
+        if (u[a] > 0.0) exit = std::min(exit, (double(bricks->brick) * (b[a] + 1) - p[a]) / u[a]);
+        if (u[a] < 0.0) exit = std::min(exit, (double(bricks->brick) * b[a] - p[a]) / u[a]);
+      }
+      const std::int64_t e = std::max<std::int64_t>(
+          m, static_cast<std::int64_t>(std::min(std::floor((s + std::max(exit, 0.0)) / step_index), double(last))));
       if (double(r.x) > iso || double(r.y) < iso) {
-        // D − iso keeps its sign up to the brick's exit: jump to the last sample before it.
-        double exit = std::numeric_limits<double>::infinity();
-        for (int a = 0; a < 3; ++a) {
-          if (u[a] > 0.0) exit = std::min(exit, (double(bricks->brick) * (b[a] + 1) - p[a]) / u[a]);
-          if (u[a] < 0.0) exit = std::min(exit, (double(bricks->brick) * b[a] - p[a]) / u[a]);
-        }
-        const double j = std::min(std::floor((s_prev + std::max(exit, 0.0)) / step_index), double(last));
-        skip_checked = true;
-        if (j > double(m)) {
-          m = static_cast<std::int64_t>(j);
-          s_prev = sample_at(m);
-          f_prev = f(s_prev);
-          continue;
-        }
+        // D − iso has one sign on the brick: every sample in it has that sign.
+        neg = double(r.y) < iso;
+        next = e + 1;
+      } else {
+        brick_end = e;
+        change_per_sample = double(bricks->slope[bi]) * u_l1 * step_index;
       }
     }
-    ++m;
-    const double s = sample_at(m);
-    const double fs = f(s);
-    if ((fs < 0.0) != (f_prev < 0.0)) {
-      const double sc = refine_crossing(f, s_prev, s, f_prev, fs);
+    if (m <= brick_end) {
+      fs = f(s);
+      neg = fs < 0.0;
+      if (change_per_sample > 0.0) {
+        // The next samples whose distance from s_m keeps |D − D(s_m)| below |fs| have fs's sign.
+        const double k = std::floor(std::abs(fs) * (1.0 - 1e-9) / change_per_sample);
+        if (k >= 1.0) next = std::min(m + 1 + static_cast<std::int64_t>(std::min(k, double(last))), brick_end + 1);
+      }
+    }
+    if (have_prev && neg != neg_prev) {
+      // The first sign change: between samples m − 1 and m.
+      const double a = sample_at(m - 1);
+      if (std::isnan(f_prev)) f_prev = f(a);
+      if (std::isnan(fs)) fs = f(s);
+      const double sc = refine_crossing(f, a, s, f_prev, fs);
       IsoHit h;
       h.hit = true;
       h.index_point = entry + sc * u;
@@ -181,8 +214,9 @@ IsoHit iso_ray_hit(const VolumeSpline& spline, double iso, const glm::dvec3& wor
       if (gl > 0.0) h.world_normal = -g / gl;
       return h;
     }
-    s_prev = s, f_prev = fs;
-    skip_checked = false;
+    have_prev = true, neg_prev = neg;
+    f_prev = next == m + 1 ? fs : std::nan("");  // skipped samples are known by sign only
+    m = next;
   }
   return {};
 }

@@ -13,9 +13,14 @@
 // shorter than 1e-9 index units — the sign-change detection and iterative refinement of Hadwiger et al. 2005,
 // "Real-time ray-casting and advanced shading of discrete isosurfaces". Crossings in either direction count (a ray
 // starting inside the object hits where it leaves); two crossings within one step are not seen (the step bounds the
-// thinnest feature found). With a VolumeRangeGrid, samples inside bricks whose range excludes c are skipped without
-// changing the result: the next sample evaluated is the last one in the brick, so every sign change the plain march
-// sees is still seen between the same two samples.
+// thinnest feature found).
+//
+// With a VolumeRangeGrid the same samples decide, but most of their signs are known without evaluating D (empty-space
+// skipping, Hadwiger et al. 2005 §4): the bricks are walked front to back (a 3D DDA); every sample in a brick whose
+// range excludes c has the sign of that range (convex hull property) and is not evaluated; in the other bricks a
+// sample with |D − c| = f is followed by ⌊f / (slope · |u|₁ · step)⌋ samples of the same sign (|dD/ds| ≤ slope ·
+// |u|₁ on the brick, u the unit index-space direction), also not evaluated. Only the two samples of the bracket are
+// needed as values, so the first sign change — and the hit, bit for bit — is the one of the plain march.
 #pragma once
 
 #include <array>
@@ -27,26 +32,29 @@
 
 namespace trispline::core {
 
-// Value bounds of D over bricks of `brick`³ index units: brick (a, b, c) covers the index-space box
-// [brick·a, brick·(a+1)] × … (the last bricks reach past the grid box). range(a, b, c) = (min, max) of every control
-// point that weighs D anywhere in the brick, widened to the neighbouring bricks' control points (a superset: brick ≥
-// 3 covers the order-4 support of one control point below and two above), so D − c has one sign in a brick whose
-// range excludes c (convex hull property of B-splines).
+// Value and slope bounds of D over bricks of `brick`³ index units: brick (a, b, c) covers the index-space box
+// [brick·a, brick·(a+1)] × … clipped to the grid box (the last bricks may be shorter). range(a, b, c) = (min, max) of
+// the control points that weigh D somewhere in the brick (the support of its knot spans: (brick + order − 1)³ controls
+// inside the grid, fewer at its border), so D − c has one sign in a brick whose range excludes c (convex hull property
+// of B-splines). slope(a, b, c) bounds |∂D/∂x|, |∂D/∂y| and |∂D/∂z| on the brick (per index unit): the largest
+// difference of two neighbouring control points of that support and the next one along an axis (∂D/∂x is a B-spline
+// of order k − 1 over the differences P_{i+1} − P_i).
 struct VolumeRangeGrid {
   int brick = 4;                     // index units per brick axis
   std::array<int, 3> dims{0, 0, 0};  // bricks per axis: ceil((n − 1) / brick), at least 1
   std::vector<glm::vec2> range;      // dims[0]·dims[1]·dims[2] (min, max), x fastest, in the volume's units
+  std::vector<float> slope;          // dims[0]·dims[1]·dims[2], the volume's units per index unit, ≥ 0
 
-  glm::vec2 at(int a, int b, int c) const {
-    return range[static_cast<std::size_t>(a) +
-                 static_cast<std::size_t>(dims[0]) *
-                     (static_cast<std::size_t>(b) + static_cast<std::size_t>(dims[1]) * c)];
+  std::size_t index(int a, int b, int c) const {
+    return static_cast<std::size_t>(a) +
+           static_cast<std::size_t>(dims[0]) * (static_cast<std::size_t>(b) + static_cast<std::size_t>(dims[1]) * c);
   }
+  glm::vec2 at(int a, int b, int c) const { return range[index(a, b, c)]; }
   // The brick holding index-space point x (clamped to the grid of bricks).
   std::array<int, 3> brick_of(const glm::dvec3& x) const;
 };
 
-// Builds the grid in O(#controls). Throws std::invalid_argument when brick < 3.
+// Builds the grid in O(#controls) (separable sliding min / max). Throws std::invalid_argument when brick < 1.
 VolumeRangeGrid build_volume_range_grid(const VolumeSpline& spline, int brick = 4);
 
 // The first crossing along a ray. When hit is false the other fields are zero.
