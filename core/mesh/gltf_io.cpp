@@ -313,6 +313,8 @@ std::vector<GltfObject> read_gltf_objects(const std::filesystem::path& path) {
       if (inside && mat >= 0) obj.inside_color = base_color(model.materials[mat], obj.inside_color);
       if (!inside && color_material < 0) color_material = mat;
     }
+    // A mesh of points or lines only (e.g. a volume's silhouettes in scene.glb) is no surface object.
+    if (obj.mesh.triangles.empty() && obj.mesh.positions.empty()) return;
     if (!normals_ok) obj.mesh.normals.clear();
     if (any_inside) obj.mesh.face_material = std::move(slots);
     if (color_material < 0 && !gm.primitives.empty() && !any_inside) color_material = gm.primitives.front().material;

@@ -47,7 +47,8 @@ struct GltfObject {
   glm::vec3 inside_color{0.62f, 0.10f, 0.08f};  // base colour of a "*.inside" material (see read_gltf_objects)
 };
 
-// Reads a .gltf or .glb: one object per node that has a mesh, in depth-first node order from the scene's roots
+// Reads a .gltf or .glb: one object per node that has a mesh with triangles (a points- or lines-only mesh, such as a
+// volume's silhouettes, is left out), in depth-first node order from the scene's roots
 // (see load_mesh for which roots), all TRIANGLES primitives of that mesh concatenated; a "*.inside" primitive that
 // uses the same vertex accessors as an earlier primitive of the mesh shares its vertices (as write_glb writes it).
 // When a primitive's material name ends in ".inside", face_material is filled: kMaterialInside for that

@@ -68,6 +68,15 @@ PreparedVolume prepare_volume(const std::filesystem::path& path, int order, bool
   out.load_ms = ms_since(t0);
   progress.check(0.0);
   t0 = std::chrono::steady_clock::now();
+  // The table needs a Singleton and a bin entry per cell besides the spline's control points: refuse before
+  // allocating when that exceeds the budget.
+  const double table_bytes = static_cast<double>(volume.voxel_count()) * (sizeof(Singleton) + 2 * sizeof(float));
+  if (table_bytes > kPreparedVolumeBudget)
+    throw std::invalid_argument(path.string() + ": a volume of " + std::to_string(volume.dims[0]) + "×" +
+                                std::to_string(volume.dims[1]) + "×" + std::to_string(volume.dims[2]) +
+                                " samples needs " + std::to_string(static_cast<long long>(table_bytes / 1048576.0)) +
+                                " MiB for its singletons (the budget is " +
+                                std::to_string(kPreparedVolumeBudget >> 20) + " MiB); crop or resample it first");
   out.units = volume.units, out.modality = volume.modality, out.source = volume.source;
   out.default_iso = default_iso_level(volume);
   auto spline = std::make_shared<const VolumeSpline>(volume, order, interpolate);

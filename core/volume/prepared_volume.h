@@ -8,6 +8,7 @@
 #pragma once
 
 #include <filesystem>
+#include <cstdint>
 #include <memory>
 #include <string>
 
@@ -15,6 +16,9 @@
 #include "core/volume/volume_spline.h"
 
 namespace trispline::core {
+
+// Memory a prepared volume's spline and singleton table may take (bytes): 6 GiB, ~200 M voxels (a 585³ CT).
+inline constexpr std::uint64_t kPreparedVolumeBudget = 6ull << 30;
 
 struct PreparedVolume {
   std::shared_ptr<const VolumeSpline> spline;   // non-null
@@ -28,7 +32,8 @@ struct PreparedVolume {
 // Reads `path` (load_volume; "analytic:sphere|torus|sines" makes an analytic volume of 96 samples a side), builds the
 // spline of `order` (2…4; interpolating or not) and its singleton table. A second call with the same path, file size,
 // modification time, order and mode returns the session's copy. Throws what load_volume throws (VolumeLoadError),
-// std::invalid_argument on a bad order, OperationCancelled through `progress`.
+// std::invalid_argument on a bad order or a volume whose table would exceed kPreparedVolumeBudget (checked before it
+// is built), OperationCancelled through `progress`.
 PreparedVolume prepare_volume(const std::filesystem::path& path, int order, bool interpolate,
                               const ProgressSink& progress = {});
 

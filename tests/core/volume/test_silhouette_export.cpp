@@ -396,5 +396,22 @@ TEST(SilhouetteGlb, NodesWithoutLinesAreWrittenAsBefore) {
   EXPECT_THROW(write_glb(dir.path / "nan.glb", with_empty), MeshIoError);
 }
 
+// A scene.glb with a volume's silhouettes beside a mesh reads back as the mesh alone, its normals kept.
+TEST(SilhouetteGlb, LineNodesAreLeftOutWhenTheFileIsReadAsMeshes) {
+  TempDir dir;
+  const TriMesh sphere = make_uv_sphere(3.0, 10, 6);
+  const std::vector<std::vector<glm::vec3>> strips{{glm::vec3(0.0f), glm::vec3(1.0f, 0.0f, 0.0f)}};
+  std::vector<GltfNode> nodes(2);
+  nodes[0].name = "ball";
+  nodes[0].mesh = &sphere;
+  nodes[1].name = "ct/silhouettes";
+  nodes[1].line_strips = &strips;
+  write_glb(dir.path / "scene.glb", nodes);
+  const auto objects = read_gltf_objects(dir.path / "scene.glb");
+  ASSERT_EQ(objects.size(), 1u);
+  EXPECT_EQ(objects[0].name, "ball");
+  EXPECT_EQ(objects[0].mesh.normals.size(), sphere.positions.size());
+}
+
 }  // namespace
 }  // namespace trispline::core
