@@ -60,7 +60,7 @@ std::optional<VolumeObject> VolumeExportCommand::build(const Scene& scene) {
     const auto& polylines = v.silhouettes->polylines;
     if (lower_extension(p_.path) == ".svg") {
       SvgStyle style;
-      style.stroke = v.silhouette.style == "width" ? "width" : v.silhouette.style == "plain" ? "plain" : "hue";
+      style.stroke = v.silhouette.style;  // hue | glyphs | width | plain
       style.hidden = v.silhouette.hidden == "dashed" ? "dashed" : "remove";
       std::vector<SilhouettePolyline> drawn = polylines;
       if (v.silhouette.hidden == "show")

@@ -18,7 +18,8 @@ namespace trispline::core {
 // t ∈ [0, 1] over [gradient_min, gradient_max] and quantised into `bins` levels, each one <path> element.
 struct SvgStyle {
   // "hue": colour on an HSV hue ramp, red (hue 0°, low |∇D|) to blue (240°, high |∇D|), seed Fig. 7.10;
-  // "width": high |∇D| thin and dark, low |∇D| thick and pale grey, seed Fig. 7.12; "plain": black.
+  // "width": high |∇D| thin and dark, low |∇D| thick and pale grey, seed Fig. 7.12; "plain": black; "glyphs": a
+  // short black stroke along the curve at each visible point, longer where |∇D| is larger (seed Fig. 7.11).
   std::string stroke = "hue";
   // "dashed": hidden runs drawn dashed in hidden_color under the visible ones; "remove": hidden runs left out.
   std::string hidden = "dashed";

@@ -170,6 +170,29 @@ TEST(SilhouetteSvg, PlainStrokeFollowsTheProjectedPoints) {
   EXPECT_NEAR(pts[0].y, 150.0, 0.01);
 }
 
+TEST(SilhouetteSvg, GlyphsAreOneShortStrokePerVisiblePoint) {
+  TempDir dir;
+  SilhouettePolyline pl = circle(glm::dvec3(0.0));
+  std::fill(pl.visible.begin(), pl.visible.end(), 1);
+  pl.visible[3] = 0;
+  SvgStyle style;
+  style.stroke = "glyphs";
+  style.hidden = "remove";
+  const fs::path file = dir.path / "glyphs.svg";
+  write_silhouettes_svg(file, {pl}, view_projection(), kViewport, style);
+  const Svg svg = parse_svg(read_text(file));
+  std::size_t strokes = 0;
+  for (const auto& path : svg.paths) {
+    EXPECT_EQ(path.stroke, "#000000");
+    for (const auto& sub : path.subpaths) {
+      ASSERT_EQ(sub.size(), 2u);
+      ++strokes;
+    }
+  }
+  EXPECT_EQ(strokes, pl.points.size() - 1);  // every visible point, none for the hidden one
+}
+
+
 TEST(SilhouetteSvg, HiddenRunsDashedOrRemoved) {
   TempDir dir;
   const std::vector<SilhouettePolyline> lines{circle(glm::dvec3(0.0)), circle(glm::dvec3(-5.0, 3.0, -4.0))};
