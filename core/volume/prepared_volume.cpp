@@ -107,17 +107,26 @@ double default_iso_level(const ScalarVolume& volume) {
   const double total = static_cast<double>(volume.values.size());
   double sum_all = 0.0;
   for (int i = 0; i < bins; ++i) sum_all += i * hist[i];
+  // Between-class variance per threshold; where several thresholds share the maximum (empty bins between two
+  // classes), the middle of that plateau.
+  std::vector<double> between(bins - 1, -1.0);
   double w0 = 0.0, sum0 = 0.0, best = -1.0;
-  int best_i = bins / 2;
   for (int i = 0; i < bins - 1; ++i) {
     w0 += hist[i], sum0 += i * hist[i];
     const double w1 = total - w0;
     if (w0 == 0.0 || w1 == 0.0) continue;
     const double m0 = sum0 / w0, m1 = (sum_all - sum0) / w1;
-    const double between = w0 * w1 * (m0 - m1) * (m0 - m1);
-    if (between > best) best = between, best_i = i;
+    between[i] = w0 * w1 * (m0 - m1) * (m0 - m1);
+    best = std::max(best, between[i]);
   }
-  return lo + (hi - lo) * (best_i + 1.0) / bins;
+  int first = -1, last = -1;
+  for (int i = 0; i < bins - 1; ++i)
+    if (between[i] >= best * (1.0 - 1e-12) && best > 0.0) {
+      if (first < 0) first = i;
+      last = i;
+    }
+  if (first < 0) return 0.5 * (lo + hi);
+  return lo + (hi - lo) * (0.5 * (first + last) + 1.0) / bins;
 }
 
 }  // namespace trispline::core
