@@ -20,7 +20,8 @@ void set_ivec3(const ShaderProgram& p, const char* name, const std::array<int, 3
   glUniform3i(p.uniform(name), v[0], v[1], v[2]);
 }
 
-Texture make_texture_3d(GLenum internal, GLenum format, int nx, int ny, int nz, const void* data) {
+Texture make_texture_3d(GLenum internal, GLenum format, int nx, int ny, int nz, const void* data,
+                        GLenum filter = GL_NEAREST) {
   Texture t = Texture::create();
   glBindTexture(GL_TEXTURE_3D, t.id());
   glTexStorage3D(GL_TEXTURE_3D, 1, internal, nx, ny, nz);
@@ -30,8 +31,8 @@ Texture make_texture_3d(GLenum internal, GLenum format, int nx, int ny, int nz, 
   glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
   glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, 0, nx, ny, nz, format, GL_FLOAT, data);
   glPixelStorei(GL_UNPACK_ALIGNMENT, prev_align);
-  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GLint(filter));
+  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GLint(filter));
   glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
   glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
   glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
@@ -109,10 +110,13 @@ void VolumeIsoRenderer::set_volume(const core::VolumeSpline& spline, int brick) 
       throw std::invalid_argument("VolumeIsoRenderer: volume of " + std::to_string(n[0]) + "x" + std::to_string(n[1]) +
                                   "x" + std::to_string(n[2]) + " exceeds GL_MAX_3D_TEXTURE_SIZE " +
                                   std::to_string(max_size));
-  const core::VolumeRangeGrid grid = core::build_volume_range_grid(spline, brick);  // throws for brick < 3
+  const core::VolumeRangeGrid grid = core::build_volume_range_grid(spline, brick);  // throws for brick < 1
+  std::vector<glm::vec4> bounds(grid.range.size());
+  for (std::size_t i = 0; i < bounds.size(); ++i) bounds[i] = glm::vec4(grid.range[i], grid.slope[i], 0.0f);
   check_gl_error("VolumeIsoRenderer: before upload");
-  Texture controls = make_texture_3d(GL_R32F, GL_RED, n[0], n[1], n[2], spline.control_points().data());
-  Texture bricks = make_texture_3d(GL_RG32F, GL_RG, grid.dims[0], grid.dims[1], grid.dims[2], grid.range.data());
+  // GL_LINEAR for the march's fast values (textureLod); texelFetch, the exact path, ignores the filter.
+  Texture controls = make_texture_3d(GL_R32F, GL_RED, n[0], n[1], n[2], spline.control_points().data(), GL_LINEAR);
+  Texture bricks = make_texture_3d(GL_RGBA32F, GL_RGBA, grid.dims[0], grid.dims[1], grid.dims[2], bounds.data());
   check_gl_error("VolumeIsoRenderer: volume upload");
   controls_ = std::move(controls);
   bricks_ = std::move(bricks);
@@ -131,9 +135,16 @@ void VolumeIsoRenderer::set_volume(const core::VolumeSpline& spline, int brick) 
 }
 
 void VolumeIsoRenderer::set_step(double step_index) {
-  if (!std::isfinite(step_index) || !(step_index > 0.0))
-    throw std::invalid_argument("VolumeIsoRenderer: step must be finite and > 0, got " + std::to_string(step_index));
+  if (!(step_index > 0.0 && step_index <= 1.0))
+    throw std::invalid_argument("VolumeIsoRenderer: step must be in (0, 1], got " + std::to_string(step_index));
   step_ = step_index;
+}
+
+void VolumeIsoRenderer::set_filter_error(double fraction) {
+  if (!(std::isfinite(fraction) && fraction >= 0x1p-24))
+    throw std::invalid_argument("VolumeIsoRenderer: filter error must be finite and ≥ 2^-24, got " +
+                                std::to_string(fraction));
+  filter_error_ = fraction;
 }
 
 const ShaderProgram& VolumeIsoRenderer::program(bool hits) {
@@ -149,6 +160,7 @@ void VolumeIsoRenderer::set_uniforms(const ShaderProgram& p, const glm::dmat4& v
   p.set("u_brick", brick_);
   p.set("u_iso", float(iso));
   p.set("u_step", float(step_));
+  p.set("u_filter_error", float(filter_error_));
   p.set("u_viewport", glm::vec4(viewport));
   p.set("u_inv_proj", to_float(glm::inverse(projection)));
   p.set("u_view_to_index", to_float(world_to_index_ * glm::inverse(view)));

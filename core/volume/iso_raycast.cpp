@@ -96,7 +96,8 @@ VolumeRangeGrid build_volume_range_grid(const VolumeSpline& spline, int brick) {
           int p[3] = {a, b, c};
           const std::array<int, 2> range = support[axis][std::size_t(p[axis])];
           p[axis] = range[0];
-          std::size_t k = std::size_t(p[0]) + std::size_t(extent[0]) * (std::size_t(p[1]) + std::size_t(extent[1]) * p[2]);
+          std::size_t k =
+              std::size_t(p[0]) + std::size_t(extent[0]) * (std::size_t(p[1]) + std::size_t(extent[1]) * p[2]);
           float l = lo[k], h = hi[k], s = slope[k];
           for (int q = range[0] + 1; q <= range[1]; ++q) {
             k += stride;
@@ -160,7 +161,7 @@ IsoHit iso_ray_hit(const VolumeSpline& spline, double iso, const glm::dvec3& wor
   const double u_l1 = std::abs(u.x) + std::abs(u.y) + std::abs(u.z);
   std::int64_t m = 0;
   std::int64_t brick_end = bricks ? -1 : last;  // last sample of the current brick whose range holds iso
-  double change_per_sample = 0.0;              // bound of |D(s_{m+1}) − D(s_m)| in that brick (0: no bound)
+  double change_per_sample = 0.0;               // bound of |D(s_{m+1}) − D(s_m)| in that brick (0: no bound)
   bool have_prev = false, neg_prev = false;
   double f_prev = std::nan("");
   while (m <= last) {

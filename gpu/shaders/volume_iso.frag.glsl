@@ -4,25 +4,41 @@
 //   1. the pixel's ray: origin on the near plane, direction towards NDC depth 0, both built in view space (where they
 //      are small, so their difference keeps its precision) and mapped to index space;
 //   2. clipped to the grid box [0, n−1]³ and to s ≥ 0 (s = index-space arc length from the near plane);
-//   3. D − iso sampled at s_m = m·u_step from the box entry and at the exit; bricks of u_bricks whose (min, max)
-//      excludes iso are skipped to their last sample (the result does not change);
-//   4. the first sign change (zero counts as positive) refined by Illinois regula falsi (Hadwiger et al. 2005);
-//   5. D is the tensor-product B-spline of order ORDER over the control points texelFetch'ed from u_controls
+//   3. the signs of D − iso at s_m = m·u_step from the box entry and at the exit, front to back: the bricks of
+//      u_bricks are walked (a 3D DDA) and the samples of a brick whose range excludes iso take its sign unevaluated;
+//      in the other bricks a sample is evaluated fast (below) and, when |D − iso| is large, the next samples that the
+//      brick's slope bound keeps on the same side take its sign too;
+//   4. a sample whose fast sign differs from the previous sample's, or is uncertain, is evaluated exactly: the first
+//      exact sign change brackets the crossing (zero counts as positive), refined by Illinois regula falsi (Hadwiger
+//      et al. 2005) on exact values;
+//   5. exact D is the tensor-product B-spline of order ORDER over the control points texelFetch'ed from u_controls
 //      (clamped indices; uniform knots as core::VolumeSpline, weights of core::uniform_bspline_weights), its gradient
 //      from the derivative weights; world normal −∇D / |∇D| through u_gradient_to_world.
+// The fast value (step 3) is the same spline from 2³ trilinear fetches (one for ORDER 2): per axis two neighbouring
+// weights are merged into one GL_LINEAR fetch placed at their ratio (Sigg & Hadwiger 2005, GPU Gems 2 ch. 20). Its
+// error is below eps = 3 · u_filter_error · (max − min of the brick's controls) + roundoff, u_filter_error bounding the
+// filter's weight error per axis, so a fast value with |f| > eps has the exact sign: the signs the march uses are the
+// exact ones and it finds the bracket the plain exact march finds.
+// llvmpipe runs both sides of every branch (masked SIMD lanes) and a loop body at least once, so the costly steps sit
+// in loops that only run while a lane needs them: the brick walk innermost, then fast samples, then exact rounds.
+// The refinement evaluates from the (ORDER + 1)³ control points around the bracket (two spans per axis: the bracket
+// is at most one index unit long), fetched once.
 // gl_FragDepth is the hit's depth, so meshes drawn with the depth test combine; misses are discarded.
 // Defines: ORDER (2, 3, 4; default 4); OUTPUT_HITS: outputs world position (w = 1) to location 0 and the world
 // normal to location 1 (RGBA32F attachments, for read-back) instead of the shaded colour.
 #ifndef ORDER
 #define ORDER 4
 #endif
-layout(binding = 0) uniform sampler3D u_controls;  // R32F, nx × ny × nz control points, texel (i, j, l)
-layout(binding = 1) uniform sampler3D u_bricks;    // RG32F, (min, max) of D per brick (core::VolumeRangeGrid)
+#define WIN (ORDER + 1)  // window of the refinement, control points per axis
+
+layout(binding = 0) uniform sampler3D u_controls;  // R32F, nx × ny × nz control points, texel (i, j, l); GL_LINEAR
+layout(binding = 1) uniform sampler3D u_bricks;    // RGBA32F per brick: min, max, slope (core::VolumeRangeGrid), 0
 uniform ivec3 u_dims;                // nx, ny, nz
 uniform int u_brick;                 // index units per brick axis
 uniform ivec3 u_brick_dims;          // bricks per axis
 uniform float u_iso;                 // iso-level, the volume's units
-uniform float u_step;                // march step, index units
+uniform float u_step;                // march step, index units, ≤ 1
+uniform float u_filter_error;        // bound of GL_LINEAR's weight error per axis (2^-8: 8-bit fractions)
 uniform vec4 u_viewport;             // x, y, width, height (pixels) of the viewport the matrices map to
 uniform mat4 u_inv_proj;             // inverse(projection)
 uniform mat4 u_view_to_index;        // world_to_index · inverse(view)
@@ -41,8 +57,9 @@ layout(location = 0) out vec4 o_color;
 const float kRefineTolerance = 1e-5;  // index units (float resolution of s over a few hundred voxels)
 const int kRefineIterations = 24;
 
-// Basis of one axis at index coordinate t: clamped control indices idx[r], weights w[r] and derivatives dw[r].
-void axis_basis(float t, int n, out int idx[ORDER], out float w[ORDER], out float dw[ORDER]) {
+// Basis of one axis at index coordinate t: first (unclamped) control index, weights w[r] of control first + r and
+// their derivatives dw[r].
+void axis_basis(float t, int n, out int first, out float w[ORDER], out float dw[ORDER]) {
   t = clamp(t, 0.0, float(n - 1));
 #if ORDER % 2 == 0
   int span = clamp(int(floor(t)), 0, n - 2);
@@ -51,8 +68,7 @@ void axis_basis(float t, int n, out int idx[ORDER], out float w[ORDER], out floa
   int span = clamp(int(floor(t + 0.5)), 0, n - 1);
   float x = t - (float(span) - 0.5);
 #endif
-  int first = span - (ORDER - 1) / 2;
-  for (int r = 0; r < ORDER; ++r) idx[r] = clamp(first + r, 0, n - 1);
+  first = span - (ORDER - 1) / 2;
 #if ORDER == 2
   w[0] = 1.0 - x, w[1] = x;
   dw[0] = -1.0, dw[1] = 1.0;
@@ -69,18 +85,22 @@ void axis_basis(float t, int n, out int idx[ORDER], out float w[ORDER], out floa
 #endif
 }
 
+// Exact D at index point p: ORDER³ texelFetch.
 float spline_value(vec3 p) {
-  int ix[ORDER], iy[ORDER], iz[ORDER];
+  int fx, fy, fz;
   float wx[ORDER], wy[ORDER], wz[ORDER], d[ORDER];
-  axis_basis(p.x, u_dims.x, ix, wx, d);
-  axis_basis(p.y, u_dims.y, iy, wy, d);
-  axis_basis(p.z, u_dims.z, iz, wz, d);
+  axis_basis(p.x, u_dims.x, fx, wx, d);
+  axis_basis(p.y, u_dims.y, fy, wy, d);
+  axis_basis(p.z, u_dims.z, fz, wz, d);
   float sum = 0.0;
   for (int c = 0; c < ORDER; ++c) {
+    int iz = clamp(fz + c, 0, u_dims.z - 1);
     float sy = 0.0;
     for (int b = 0; b < ORDER; ++b) {
+      int iy = clamp(fy + b, 0, u_dims.y - 1);
       float sx = 0.0;
-      for (int a = 0; a < ORDER; ++a) sx += wx[a] * texelFetch(u_controls, ivec3(ix[a], iy[b], iz[c]), 0).r;
+      for (int a = 0; a < ORDER; ++a)
+        sx += wx[a] * texelFetch(u_controls, ivec3(clamp(fx + a, 0, u_dims.x - 1), iy, iz), 0).r;
       sy += wy[b] * sx;
     }
     sum += wz[c] * sy;
@@ -88,20 +108,115 @@ float spline_value(vec3 p) {
   return sum;
 }
 
-// ∇D per index unit.
-vec3 spline_gradient(vec3 p) {
-  int ix[ORDER], iy[ORDER], iz[ORDER];
-  float wx[ORDER], wy[ORDER], wz[ORDER], dx[ORDER], dy[ORDER], dz[ORDER];
-  axis_basis(p.x, u_dims.x, ix, wx, dx);
-  axis_basis(p.y, u_dims.y, iy, wy, dy);
-  axis_basis(p.z, u_dims.z, iz, wz, dz);
+// Fast D at index point p from GL_LINEAR fetches (error bound in the header).
+#if ORDER == 2
+float fast_value(vec3 p) {
+  vec3 n = vec3(u_dims);
+  return textureLod(u_controls, (clamp(p, vec3(0.0), n - 1.0) + 0.5) / n, 0.0).r;
+}
+#else
+// One axis: weights g of the two fetches and their texture coordinates h.
+void fast_axis(float t, int n, out vec2 g, out vec2 h) {
+  int first;
+  float w[ORDER], dw[ORDER];
+  axis_basis(t, n, first, w, dw);
+#if ORDER == 3
+  g = vec2(w[0] + w[1], w[2]);
+  h = vec2(float(first) + w[1] / g.x, float(first + 2));
+#else
+  g = vec2(w[0] + w[1], w[2] + w[3]);
+  h = vec2(float(first) + w[1] / g.x, float(first + 2) + w[3] / g.y);
+#endif
+  h = (h + 0.5) / float(n);
+}
+
+float fast_value(vec3 p) {
+  vec2 gx, hx, gy, hy, gz, hz;
+  fast_axis(p.x, u_dims.x, gx, hx);
+  fast_axis(p.y, u_dims.y, gy, hy);
+  fast_axis(p.z, u_dims.z, gz, hz);
+  float sum = 0.0;
+  for (int c = 0; c < 2; ++c)
+    for (int b = 0; b < 2; ++b) {
+      float row = gx.x * textureLod(u_controls, vec3(hx.x, hy[b], hz[c]), 0.0).r +
+                  gx.y * textureLod(u_controls, vec3(hx.y, hy[b], hz[c]), 0.0).r;
+      sum += gz[c] * gy[b] * row;
+    }
+  return sum;
+}
+#endif
+
+// The refinement's window: control points g_window_first + (a, b, c), a, b, c < WIN (clamped indices).
+float g_window[WIN * WIN * WIN];
+ivec3 g_window_first;
+
+// Loads the window covering the spans of index points pa and pb (at most one span apart per axis).
+void load_window(vec3 pa, vec3 pb) {
+  int f0, f1;
+  float w[ORDER], dw[ORDER];
+  for (int axis = 0; axis < 3; ++axis) {
+    axis_basis(pa[axis], u_dims[axis], f0, w, dw);
+    axis_basis(pb[axis], u_dims[axis], f1, w, dw);
+    g_window_first[axis] = min(f0, f1);
+  }
+  for (int c = 0; c < WIN; ++c) {
+    int iz = clamp(g_window_first.z + c, 0, u_dims.z - 1);
+    for (int b = 0; b < WIN; ++b) {
+      int iy = clamp(g_window_first.y + b, 0, u_dims.y - 1);
+      for (int a = 0; a < WIN; ++a)
+        g_window[a + WIN * (b + WIN * c)] =
+            texelFetch(u_controls, ivec3(clamp(g_window_first.x + a, 0, u_dims.x - 1), iy, iz), 0).r;
+    }
+  }
+}
+
+// Weights (and derivatives) of the window's controls on one axis at t: the basis shifted by one when t's span is the
+// window's second.
+void window_axis(float t, int axis, out float w[WIN], out float dw[WIN]) {
+  int first;
+  float v[ORDER], dv[ORDER];
+  axis_basis(t, u_dims[axis], first, v, dv);
+  bool shifted = first > g_window_first[axis];
+  for (int r = 0; r < WIN; ++r) {
+    float a = r < ORDER ? v[min(r, ORDER - 1)] : 0.0, b = r > 0 ? v[max(r - 1, 0)] : 0.0;
+    float da = r < ORDER ? dv[min(r, ORDER - 1)] : 0.0, db = r > 0 ? dv[max(r - 1, 0)] : 0.0;
+    w[r] = shifted ? b : a;
+    dw[r] = shifted ? db : da;
+  }
+}
+
+// Exact D at p from the window.
+float window_value(vec3 p) {
+  float wx[WIN], wy[WIN], wz[WIN], d[WIN];
+  window_axis(p.x, 0, wx, d);
+  window_axis(p.y, 1, wy, d);
+  window_axis(p.z, 2, wz, d);
+  float sum = 0.0;
+  for (int c = 0; c < WIN; ++c) {
+    float sy = 0.0;
+    for (int b = 0; b < WIN; ++b) {
+      float sx = 0.0;
+      for (int a = 0; a < WIN; ++a) sx += wx[a] * g_window[a + WIN * (b + WIN * c)];
+      sy += wy[b] * sx;
+    }
+    sum += wz[c] * sy;
+  }
+  return sum;
+}
+
+// ∇D per index unit at p from the window.
+vec3 window_gradient(vec3 p) {
+  float wx[WIN], wy[WIN], wz[WIN], dx[WIN], dy[WIN], dz[WIN];
+  window_axis(p.x, 0, wx, dx);
+  window_axis(p.y, 1, wy, dy);
+  window_axis(p.z, 2, wz, dz);
   vec3 g = vec3(0.0);
-  for (int c = 0; c < ORDER; ++c) {
+  for (int c = 0; c < WIN; ++c) {
     vec3 gy = vec3(0.0);  // (∂x, ∂y, value) contracted over x and y
-    for (int b = 0; b < ORDER; ++b) {
+    for (int b = 0; b < WIN; ++b) {
       float s0 = 0.0, s1 = 0.0;
-      for (int a = 0; a < ORDER; ++a) {
-        float q = texelFetch(u_controls, ivec3(ix[a], iy[b], iz[c]), 0).r;
+      for (int a = 0; a < WIN; ++a) {
+        float q = g_window[a + WIN * (b + WIN * c)];
         s0 += wx[a] * q, s1 += dx[a] * q;
       }
       gy += vec3(wy[b] * s1, dy[b] * s0, wy[b] * s0);
@@ -111,13 +226,14 @@ vec3 spline_gradient(vec3 p) {
   return g;
 }
 
-// Illinois regula falsi on [a, b] with f(a) = fa, f(b) = fb of opposite signs; returns the crossing's s.
+// Illinois regula falsi on [a, b] with f(a) = fa, f(b) = fb of opposite signs, f from the loaded window; returns the
+// crossing's s.
 float refine_crossing(vec3 entry, vec3 u, float a, float b, float fa, float fb) {
   int side = 0;
   for (int it = 0; it < kRefineIterations && b - a > kRefineTolerance; ++it) {
     float c = b - fb * (b - a) / (fb - fa);
     if (!(c > a && c < b)) c = 0.5 * (a + b);
-    float fc = spline_value(entry + c * u) - u_iso;
+    float fc = window_value(entry + c * u) - u_iso;
     if (fc == 0.0) return c;
     if ((fc < 0.0) == (fa < 0.0)) {
       a = c, fa = fc;
@@ -163,55 +279,81 @@ void main() {
   if (!(s_lo <= s_hi)) discard;
   vec3 entry = o + s_lo * u;
   float len = s_hi - s_lo;
-  // 3. March.
+  // 3.–4. March: samples m = 0…last at s = m·u_step, the last at len.
   int last = int(ceil(len / u_step));
+  float u_l1 = abs(u.x) + abs(u.y) + abs(u.z);
   int m = 0;
-  float s_prev = 0.0, f_prev = spline_value(entry) - u_iso;
-  bool skip_checked = false;
+  int brick_end = -1;         // last sample of the current brick whose range holds iso
+  float eps = 0.0;            // that brick's bound of |fast − exact|
+  float change = 0.0;         // that brick's bound of |D(s_{m+1}) − D(s_m)|
+  bool have_prev = false;     // sample m − 1 has a sign
+  bool neg_prev = false;      // its sign (D − iso < 0)
   bool found = false;
-  float s_hit = 0.0;
-  while (m < last) {
-    if (!skip_checked) {
-      vec3 p = entry + s_prev * u;
-      ivec3 b = clamp(ivec3(floor(p / float(u_brick))), ivec3(0), u_brick_dims - 1);
-      vec2 r = texelFetch(u_bricks, b, 0).rg;
-      skip_checked = true;
-      if (r.x > u_iso || r.y < u_iso) {
+  float f_m = 0.0;            // exact D − iso at sample m
+  while (m <= last) {
+    // Fast march to a sample whose sign differs from the previous sample's or is uncertain.
+    while (true) {
+      bool differs = false;
+      // Walk the bricks whose range excludes iso (their samples have its sign) to the next one holding it.
+      while (m <= last && m > brick_end) {
+        float s = m >= last ? len : float(m) * u_step;
+        vec3 p = entry + s * u;
+        ivec3 b = clamp(ivec3(floor(p / float(u_brick))), ivec3(0), u_brick_dims - 1);
+        vec4 r = texelFetch(u_bricks, b, 0);
         vec3 lo = vec3(b * u_brick), hi = lo + float(u_brick);
         float exit_s = 3.0e38;
         for (int a = 0; a < 3; ++a) {
           if (u[a] > 0.0) exit_s = min(exit_s, (hi[a] - p[a]) / u[a]);
           if (u[a] < 0.0) exit_s = min(exit_s, (lo[a] - p[a]) / u[a]);
         }
-        float j = min(floor((s_prev + max(exit_s, 0.0)) / u_step), float(last));
-        if (j > float(m)) {
-          m = int(j);
-          s_prev = m >= last ? len : float(m) * u_step;
-          f_prev = spline_value(entry + s_prev * u) - u_iso;
-          continue;
+        int e = int(min(floor((s + max(exit_s, 0.0)) / u_step), float(last)));
+        e = max(e, m);
+        if (r.x > u_iso || r.y < u_iso) {
+          bool neg = r.y < u_iso;
+          if (have_prev && neg != neg_prev) {
+            differs = true;
+            break;
+          }
+          have_prev = true, neg_prev = neg;
+          m = e + 1;
+        } else {
+          brick_end = e;
+          eps = 3.0 * u_filter_error * (r.y - r.x) + 2e-5 * max(abs(r.x), abs(r.y));
+          change = r.z * u_l1 * u_step;
         }
       }
+      if (differs || m > last) break;
+      float f = fast_value(entry + (m >= last ? len : float(m) * u_step) * u) - u_iso;
+      if (abs(f) <= eps) break;  // uncertain
+      bool neg = f < 0.0;
+      if (have_prev && neg != neg_prev) break;
+      have_prev = true, neg_prev = neg;
+      // The samples within (|f| − eps) / change steps keep the sign (the slope bound holds on the brick).
+      float k = change > 0.0 ? floor(0.999 * (abs(f) - eps) / change) : 0.0;
+      m = int(min(float(m) + 1.0 + k, float(brick_end + 1)));
     }
-    ++m;
-    float s = m >= last ? len : float(m) * u_step;
-    float fs = spline_value(entry + s * u) - u_iso;
-    if ((fs < 0.0) != (f_prev < 0.0)) {
-      // 4. Refine.
-      s_hit = refine_crossing(entry, u, s_prev, s, f_prev, fs);
+    if (m > last) break;
+    f_m = spline_value(entry + (m >= last ? len : float(m) * u_step) * u) - u_iso;
+    bool neg = f_m < 0.0;
+    if (have_prev && neg != neg_prev) {
       found = true;
       break;
     }
-    s_prev = s, f_prev = fs;
-    skip_checked = false;
+    have_prev = true, neg_prev = neg;
+    ++m;
   }
   if (!found) discard;
+  // 4. Refine on [s_{m−1}, s_m].
+  float sa = float(m - 1) * u_step, sb = m >= last ? len : float(m) * u_step;
+  load_window(entry + sa * u, entry + sb * u);
+  float s_hit = refine_crossing(entry, u, sa, sb, window_value(entry + sa * u) - u_iso, f_m);
   vec3 p = entry + s_hit * u;
   vec4 clip = u_index_to_clip * vec4(p, 1.0);
   float ndc_z = clip.z / clip.w;
   if (ndc_z > 1.0) discard;
   gl_FragDepth = 0.5 * (gl_DepthRange.diff * ndc_z + gl_DepthRange.near + gl_DepthRange.far);
   // 5. Normal and output.
-  vec3 g = u_gradient_to_world * spline_gradient(p);
+  vec3 g = u_gradient_to_world * window_gradient(p);
   vec3 n = dot(g, g) > 0.0 ? -normalize(g) : vec3(0.0);
 #ifdef OUTPUT_HITS
   o_position = vec4((u_index_to_world * vec4(p, 1.0)).xyz, 1.0);

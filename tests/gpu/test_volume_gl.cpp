@@ -1,17 +1,21 @@
 // The GLSL iso-surface ray caster (gpu/volume_gl.h, shaders/volume_iso.frag.glsl) against the CPU reference
 // core::render_iso_hits_cpu (core/volume/iso_raycast.h), for real on llvmpipe, pixel by pixel on the same rays: a
 // sphere and a torus signed distance field on oblique anisotropic grids (tests/core/volume/iso_test_volumes.h), orders
-// 4, 3 and 2, an eye inside the grid box. Hit/miss masks agree but on the silhouette (mismatches ≤ 0.5 % of the
-// pixels, each next to a CPU mask edge); world points within 1e-3 × the volume's size, normals and window depths
-// close. Then depth: meshes drawn before and after the volume are occluded by it and occlude it where they should.
+// 4, 3 and 2, an eye inside the grid box, and the Cranium CT (assets/data) from the skull scene's three views. Hit/miss
+// masks agree but on the silhouette (mismatches ≤ 0.5 % of the pixels, each next to a CPU mask edge); world points
+// within 1e-3 × the volume's size, normals and window depths close. Brick size and the fast march (GL_LINEAR values,
+// slope skipping) change no bit of the hits. Then depth: meshes drawn before and after the volume are occluded by it
+// and occlude it where they should.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <glm/gtc/matrix_transform.hpp>
 #include <stdexcept>
 
 #include "core/volume/iso_raycast.h"
+#include "core/volume/volume_io.h"
 #include "core/volume/volume_spline.h"
 #include "gl_test.h"
 #include "gpu/mesh_buffers.h"
@@ -51,55 +55,76 @@ struct Parity {
   std::size_t hits = 0, mismatches = 0;
 };
 
-// GPU read_hits against render_iso_hits_cpu on an n × n image; asserts the bars of the header comment.
-Parity expect_parity(VolumeIsoRenderer& gpu, const core::VolumeSpline& spline, const View& v, int n, const char* what) {
+// GPU read_hits against render_iso_hits_cpu on a width × height image (square when height is 0) at `iso`; asserts
+// the bars of the header comment.
+Parity expect_parity(VolumeIsoRenderer& gpu, const core::VolumeSpline& spline, const View& v, int width,
+                     const char* what, int height = 0, double iso = 0.0) {
+  const int w = width, h = height > 0 ? height : width;
   const auto t0 = std::chrono::steady_clock::now();
-  const IsoHitReadback g = gpu.read_hits(v.view, v.projection, n, n, 0.0);
+  const IsoHitReadback g = gpu.read_hits(v.view, v.projection, w, h, iso);
   const auto t1 = std::chrono::steady_clock::now();
   const core::VolumeRangeGrid grid = core::build_volume_range_grid(spline);
-  const core::IsoHitImage c = core::render_iso_hits_cpu(spline, 0.0, v.view, v.projection, n, n, 0.25, &grid);
+  const core::IsoHitImage c = core::render_iso_hits_cpu(spline, iso, v.view, v.projection, w, h, 0.25, &grid);
   const auto t2 = std::chrono::steady_clock::now();
-  EXPECT_EQ(g.width, n);
-  EXPECT_EQ(g.hit.size(), std::size_t(n) * n);
+  EXPECT_EQ(g.width, w);
+  EXPECT_EQ(g.hit.size(), std::size_t(w) * h);
   Parity r;
   double worst_p = 0.0, worst_n = 0.0, worst_d = 0.0;
-  auto cpu_hit = [&](int x, int y) { return c.hits[std::size_t(x + n * y)].hit; };
-  for (int y = 0; y < n; ++y)
-    for (int x = 0; x < n; ++x) {
-      const std::size_t i = std::size_t(x + n * y);
-      const core::IsoHit& h = c.hits[i];
-      if (bool(g.hit[i]) != h.hit) {
+  auto cpu_hit = [&](int x, int y) { return c.hits[std::size_t(x + w * y)].hit; };
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const std::size_t i = std::size_t(x + w * y);
+      const core::IsoHit& ch = c.hits[i];
+      if (bool(g.hit[i]) != ch.hit) {
         ++r.mismatches;
         // Only on the silhouette: a 4-neighbour of the pixel has the other CPU status.
         bool edge = false;
         for (glm::ivec2 d : {glm::ivec2(1, 0), glm::ivec2(-1, 0), glm::ivec2(0, 1), glm::ivec2(0, -1)}) {
           const int xx = x + d.x, yy = y + d.y;
-          if (xx >= 0 && yy >= 0 && xx < n && yy < n && cpu_hit(xx, yy) != h.hit) edge = true;
+          if (xx >= 0 && yy >= 0 && xx < w && yy < h && cpu_hit(xx, yy) != ch.hit) edge = true;
         }
         EXPECT_TRUE(edge) << what << ": pixel (" << x << ", " << y << ") disagrees away from the silhouette";
         continue;
       }
-      if (!h.hit) {
+      if (!ch.hit) {
         EXPECT_EQ(g.depth[i], 1.0f);
         continue;
       }
       ++r.hits;
-      worst_p = std::max(worst_p, glm::length(glm::dvec3(g.world_point[i]) - h.world_point));
-      worst_n = std::max(worst_n, glm::length(glm::dvec3(g.world_normal[i]) - h.world_normal));
+      worst_p = std::max(worst_p, glm::length(glm::dvec3(g.world_point[i]) - ch.world_point));
+      worst_n = std::max(worst_n, glm::length(glm::dvec3(g.world_normal[i]) - ch.world_normal));
       worst_d = std::max(worst_d, std::abs(double(g.depth[i]) - c.depth[i]));
     }
   const double size = volume_size(spline);
   std::printf(
       "[volume iso] %-30s %dx%d: %zu hits, %zu mask mismatches (%.2f %%), max |Δp| = %.3g mm (%.2g × size %.1f mm), "
       "max |Δn| = %.3g, max |Δdepth| = %.3g; GPU %.0f ms, CPU %.0f ms\n",
-      what, n, n, r.hits, r.mismatches, 100.0 * double(r.mismatches) / (n * n), worst_p, worst_p / size, size, worst_n,
+      what, w, h, r.hits, r.mismatches, 100.0 * double(r.mismatches) / (w * h), worst_p, worst_p / size, size, worst_n,
       worst_d, std::chrono::duration<double, std::milli>(t1 - t0).count(),
       std::chrono::duration<double, std::milli>(t2 - t1).count());
-  EXPECT_LE(double(r.mismatches), 0.005 * n * n) << what;
+  EXPECT_LE(double(r.mismatches), 0.005 * w * h) << what;
   EXPECT_LE(worst_p, 1e-3 * size) << what;
   EXPECT_LE(worst_n, 1e-2) << what;
   EXPECT_LE(worst_d, 1e-5) << what;
   return r;
+}
+
+// The hits of the fast march equal, bit for bit, those with every sample of the bricks holding the iso-level
+// evaluated exactly (a filter error bound so large that no fast value is trusted): GL_LINEAR values and slope skipping
+// only decide signs the exact evaluation would give.
+void expect_fast_march_exact(VolumeIsoRenderer& gpu, const View& v, int w, int h, double iso, const char* what) {
+  const double kept = gpu.filter_error();
+  const IsoHitReadback fast = gpu.read_hits(v.view, v.projection, w, h, iso);
+  gpu.set_filter_error(1e6);
+  const IsoHitReadback exact = gpu.read_hits(v.view, v.projection, w, h, iso);
+  gpu.set_filter_error(kept);
+  EXPECT_GT(fast.hit_count(), 0u) << what;
+  EXPECT_EQ(fast.hit, exact.hit) << what;
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i < fast.hit.size(); ++i)
+    differ += fast.world_point[i] != exact.world_point[i] || fast.world_normal[i] != exact.world_normal[i] ||
+              fast.depth[i] != exact.depth[i];
+  EXPECT_EQ(differ, 0u) << what;
 }
 
 class VolumeGlTest : public GlTest {};
@@ -157,13 +182,60 @@ TEST_F(VolumeGlTest, BrickSizeDoesNotChangeTheImage) {
   const View v = look_at(s.field.center + glm::dvec3(0.0, -40.0, 60.0), s.field.center);
   gpu.set_volume(spline, 3);
   const IsoHitReadback a = gpu.read_hits(v.view, v.projection, 40, 40, 0.0);
-  gpu.set_volume(spline, 16);
-  const IsoHitReadback b = gpu.read_hits(v.view, v.projection, 40, 40, 0.0);
   ASSERT_GT(a.hit_count(), 100u);
-  EXPECT_EQ(a.hit, b.hit);
-  std::size_t differ = 0;
-  for (std::size_t i = 0; i < a.hit.size(); ++i) differ += a.world_point[i] != b.world_point[i];
-  EXPECT_EQ(differ, 0u);
+  for (int brick : {1, 16}) {
+    gpu.set_volume(spline, brick);
+    const IsoHitReadback b = gpu.read_hits(v.view, v.projection, 40, 40, 0.0);
+    EXPECT_EQ(a.hit, b.hit) << brick;
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < a.hit.size(); ++i) differ += a.world_point[i] != b.world_point[i];
+    EXPECT_EQ(differ, 0u) << brick;
+  }
+}
+
+TEST_F(VolumeGlTest, FastMarchChangesNothing) {
+  const auto s = sphere_volume();
+  const auto t = torus_volume();
+  const glm::dvec3 eye = t.field.center + 70.0 * glm::normalize(t.field.axis + glm::dvec3(0.4, 0.5, 0.2));
+  VolumeIsoRenderer gpu;
+  for (int order : {4, 3, 2}) {
+    const core::VolumeSpline sphere(s.volume, order, order > 2), torus(t.volume, order, order > 2);
+    gpu.set_volume(sphere);
+    expect_fast_march_exact(gpu, look_at(s.field.center + glm::dvec3(25.0, 30.0, 65.0), s.field.center), 48, 48, 0.0,
+                            "sphere");
+    gpu.set_volume(torus);
+    expect_fast_march_exact(gpu, look_at(eye, t.field.center), 48, 48, 0.0, "torus");
+  }
+  EXPECT_THROW(gpu.set_filter_error(0.0), std::invalid_argument);
+  EXPECT_THROW(gpu.set_filter_error(INFINITY), std::invalid_argument);
+}
+
+// The real CT: InVesalius' Cranium (256 × 256 × 108, HU) as the skull scene loads it (tri-cubic, approximating, bone
+// at 226 HU), from its three views (assets/scenes/skull.jsonl) on 4:3 images: thin bone, noise, a head rest.
+TEST_F(VolumeGlTest, CraniumMatchesTheCpuReference) {
+  const std::filesystem::path path = std::filesystem::path(TRISPLINE_SOURCE_DIR) / "assets/data/Cranium.inv3";
+  ASSERT_TRUE(std::filesystem::exists(path)) << path << " missing: run scripts/fetch_assets.sh";
+  const core::VolumeSpline spline(core::load_volume(path), 4, false);
+  VolumeIsoRenderer gpu;
+  gpu.set_volume(spline);
+  const glm::dvec3 target(122.0, 122.0, 80.0);
+  auto view_from = [&](const glm::dvec3& eye) {  // z up, near and far planes as the editor's replay sets them
+    const double d = glm::length(eye - target);
+    return View{glm::lookAt(eye, target, glm::dvec3(0.0, 0.0, 1.0)),
+                glm::perspective(glm::radians(30.0), 4.0 / 3.0, 0.01 * d, 10.0 * d)};
+  };
+  struct Case {
+    const char* name;
+    glm::dvec3 eye;
+  };
+  for (const Case& c :
+       {Case{"Cranium, front", {122.0, 760.0, 80.0}}, Case{"Cranium, three-quarter", {-330.0, 572.0, 140.0}},
+        Case{"Cranium, side", {-518.0, 122.0, 80.0}}}) {
+    const View v = view_from(c.eye);
+    const Parity p = expect_parity(gpu, spline, v, 160, c.name, 120, 226.0);
+    EXPECT_GT(p.hits, std::size_t(160 * 120 / 10)) << c.name;
+  }
+  expect_fast_march_exact(gpu, view_from({-330.0, 572.0, 140.0}), 160, 120, 226.0, "Cranium, three-quarter");
 }
 
 // Camera-facing quad at distance d from the eye covering screen x ∈ [x0, x1], y ∈ [y0, y1] (NDC).
@@ -287,9 +359,10 @@ TEST_F(VolumeGlTest, MisuseThrows) {
   EXPECT_THROW(gpu.read_hits(glm::dmat4(1.0), glm::dmat4(1.0), 8, 8, 0.0), std::logic_error);
   EXPECT_THROW(gpu.set_step(0.0), std::invalid_argument);
   EXPECT_THROW(gpu.set_step(NAN), std::invalid_argument);
+  EXPECT_THROW(gpu.set_step(1.5), std::invalid_argument);
   const auto s = sphere_volume({8, 8, 8});
   const core::VolumeSpline spline(s.volume, 4);
-  EXPECT_THROW(gpu.set_volume(spline, 2), std::invalid_argument);
+  EXPECT_THROW(gpu.set_volume(spline, 0), std::invalid_argument);
   EXPECT_FALSE(gpu.has_volume());
   gpu.set_volume(spline);
   EXPECT_THROW(gpu.read_hits(glm::dmat4(1.0), glm::dmat4(1.0), 0, 8, 0.0), std::invalid_argument);

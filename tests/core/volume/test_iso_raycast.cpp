@@ -5,6 +5,7 @@
 // changes no result; the pixel rays go through their pixel centres.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <glm/gtc/matrix_transform.hpp>
@@ -161,8 +162,16 @@ TEST(IsoRaycast, TorusHitsAndItsHoleIsEmpty) {
   EXPECT_LE(worst_n, 1e-3);
 }
 
-// Bricks bound D (convex hull) and skipping them gives the same hits bit for bit: the torus (two surfaces along
-// many rays, few bricks away from the surface) and a 64³ sphere (most bricks empty).
+// Control points weighing D somewhere on the index interval (lo, hi) of one axis: the centred basis function of
+// control i is nonzero on (i − k/2, i + k/2); indices outside the grid stand for the nearest boundary control.
+std::array<int, 2> support_of(double lo, double hi, int order, int n) {
+  const int first = int(std::floor(lo - 0.5 * order)) + 1, last = int(std::ceil(hi + 0.5 * order)) - 1;
+  return {std::clamp(first, 0, n - 1), std::clamp(last, 0, n - 1)};
+}
+
+// Bricks bound D (convex hull) and ∂D (the slope), tightly: their ranges are the min / max of exactly the control
+// points whose basis functions reach into the brick. Skipping (bricks and slope) gives the same hits bit for bit: the
+// torus (two surfaces along many rays, few bricks away from the surface) and a 64³ sphere (most bricks empty).
 TEST(IsoRaycast, RangeGridBoundsTheSplineAndSkippingChangesNothing) {
   const auto tv = torus_volume();
   const auto sv = sphere_volume({64, 64, 64});
@@ -177,11 +186,36 @@ TEST(IsoRaycast, RangeGridBoundsTheSplineAndSkippingChangesNothing) {
     for (int order = 2; order <= 4; ++order) {
       const VolumeSpline spline(*c.volume, order, order > 2);
       const std::array<int, 3>& n = spline.dims();
-      for (int brick : {3, 4, 7}) {
+      for (int brick : {1, 2, 4, 7}) {
         SCOPED_TRACE(std::string(c.name) + " order " + std::to_string(order) + " brick " + std::to_string(brick));
         const VolumeRangeGrid grid = build_volume_range_grid(spline, brick);
         for (int a = 0; a < 3; ++a) EXPECT_EQ(grid.dims[a], (n[a] - 1 + brick - 1) / brick);
-        // Conservative: D at random points (and brick corners) within its brick's range.
+        ASSERT_EQ(grid.slope.size(), grid.range.size());
+        // Tight: every brick's range is the min / max of its support's control points; its slope the largest
+        // neighbour difference from a support control (a superset of the support's own pairs).
+        for (int bz = 0; bz < grid.dims[2]; bz += 3)
+          for (int by = 0; by < grid.dims[1]; by += 2)
+            for (int bx = 0; bx < grid.dims[0]; ++bx) {
+              std::array<std::array<int, 2>, 3> sup;
+              const int b[3] = {bx, by, bz};
+              for (int a = 0; a < 3; ++a)
+                sup[a] = support_of(brick * b[a], std::min(brick * (b[a] + 1), n[a] - 1), order, n[a]);
+              float lo = 1e30f, hi = -1e30f;
+              double slope = 0.0;
+              for (int z = sup[2][0]; z <= sup[2][1]; ++z)
+                for (int y = sup[1][0]; y <= sup[1][1]; ++y)
+                  for (int x = sup[0][0]; x <= sup[0][1]; ++x) {
+                    const float v = spline.control(x, y, z);
+                    lo = std::min(lo, v), hi = std::max(hi, v);
+                    for (glm::ivec3 e : {glm::ivec3(1, 0, 0), glm::ivec3(0, 1, 0), glm::ivec3(0, 0, 1)})
+                      slope = std::max(slope, std::abs(double(spline.control(x + e.x, y + e.y, z + e.z)) - v));
+                  }
+              ASSERT_EQ(grid.at(bx, by, bz), glm::vec2(lo, hi)) << bx << " " << by << " " << bz;
+              const float s = grid.slope[grid.index(bx, by, bz)];  // the double difference rounded up
+              ASSERT_GE(double(s), slope) << bx << " " << by << " " << bz;
+              ASSERT_LE(double(s), slope * (1.0 + 0x1p-22)) << bx << " " << by << " " << bz;
+            }
+        // Conservative: D and ∂D at random points (and brick corners) within their brick's bounds.
         std::mt19937 rng(order * 10 + brick);
         std::uniform_real_distribution<double> unit(0.0, 1.0);
         const glm::dvec3 hi(n[0] - 1, n[1] - 1, n[2] - 1);
@@ -191,22 +225,27 @@ TEST(IsoRaycast, RangeGridBoundsTheSplineAndSkippingChangesNothing) {
           if (k % 4 == 0) p = glm::min(glm::floor(p / double(brick)) * double(brick), hi);
           const auto b = grid.brick_of(p);
           const glm::vec2 r = grid.at(b[0], b[1], b[2]);
-          const double v = spline.value(p);
-          ASSERT_GE(v, double(r.x) - 1e-6);
-          ASSERT_LE(v, double(r.y) + 1e-6);
+          const VolumeJet j = spline.jet(p);
+          ASSERT_GE(j.value, double(r.x) - 1e-6);
+          ASSERT_LE(j.value, double(r.y) + 1e-6);
+          // (At corners the one-sided derivative of order 2 is the next brick's: D is Lipschitz, not C¹, there.)
+          const double slope = grid.slope[grid.index(b[0], b[1], b[2])];
+          for (int a = 0; a < 3 && k % 4 != 0; ++a) ASSERT_LE(std::abs(j.gradient[a]), slope * (1.0 + 1e-9) + 1e-9);
           excluded += (r.x > 0.0f || r.y < 0.0f);
         }
         if (c.volume == &sv.volume && brick <= 4) {
           EXPECT_GT(excluded, 2000) << "most bricks of the sphere exclude 0";
         }
-        // The same hits, bit for bit, with and without skipping (rays from everywhere, hits and misses).
+        // The same hits, bit for bit, with and without skipping (rays from everywhere, hits and misses; a step of
+        // 0.1 too, where the slope skips most samples).
         std::mt19937 rr(42 + brick);
         int hits = 0;
         for (int k = 0; k < 150; ++k) {
           const glm::dvec3 origin = c.center + 45.0 * random_unit(rr);
           const glm::dvec3 target = c.center + c.ray_radius * random_unit(rr);
-          const IsoHit a = iso_ray_hit(spline, 0.0, origin, target - origin);
-          const IsoHit b = iso_ray_hit(spline, 0.0, origin, target - origin, 0.25, 1e300, &grid);
+          const double step = k % 3 == 0 ? 0.1 : 0.25;
+          const IsoHit a = iso_ray_hit(spline, 0.0, origin, target - origin, step);
+          const IsoHit b = iso_ray_hit(spline, 0.0, origin, target - origin, step, 1e300, &grid);
           ASSERT_EQ(a.hit, b.hit) << k;
           EXPECT_EQ(a.t, b.t) << k;
           hits += a.hit;
@@ -215,7 +254,7 @@ TEST(IsoRaycast, RangeGridBoundsTheSplineAndSkippingChangesNothing) {
         EXPECT_LT(hits, 150);
       }
     }
-  EXPECT_THROW(build_volume_range_grid(VolumeSpline(tv.volume, 4), 2), std::invalid_argument);
+  EXPECT_THROW(build_volume_range_grid(VolumeSpline(tv.volume, 4), 0), std::invalid_argument);
 }
 
 TEST(IsoRaycast, PixelRaysGoThroughTheirPixelCentres) {
