@@ -101,6 +101,7 @@ void App::viewport_input() {
 }
 
 void App::render_view() {
+  volumes_.update(anim_.drawn_scene(hidden_), view_);  // live silhouettes for this view, on a worker thread
   const glm::ivec2 fb = window_->framebuffer_size();
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   glViewport(0, 0, fb.x, fb.y);
@@ -112,7 +113,9 @@ void App::render_view() {
   gpu::ViewOptions vo = ui::view_options(toggles_);
   vo.selected = selected_;
   vo.time_s = anim_.time_s();
+  vo.volume_budget_ms = kVolumeBudgetMs;
   tools_.decorate(vo);
+  volumes_.decorate(vo);
   if (const core::SceneObject* o = session_.scene().find(selected_); o && o->ffd && control_point_.highlight &&
                                                                       vo.overlays.spheres.empty()) {
     // The control point edited in the Tool panel: a small sphere at P_ijk, 2 % of the lattice's extent.
@@ -170,7 +173,12 @@ void App::frame() {
   nav_.follow(session_.scene().camera, session_.scene().camera_set, window_->framebuffer_size());
   const ImGuiIO& io = ImGui::GetIO();
   view_ = nav_.camera(window_->framebuffer_size());
-  if (!session_.scene().find(selected_)) selected_.clear();
+  if (const std::string loaded = volumes_.finish_load(); !loaded.empty()) {
+    selected_ = loaded;
+    frame_selected();  // a volume in millimetres would otherwise fill or vanish from the view
+    view_ = nav_.camera(window_->framebuffer_size());
+  }
+  if (!session_.scene().find(selected_) && !session_.scene().find_volume(selected_)) selected_.clear();
 
   handle_menu(ui::draw_main_menu(toggles_, session_.menu_state()));
   // The modal transform (G / R / S) takes every key while it runs: X is then an axis, not Delete.
@@ -195,8 +203,16 @@ void App::frame() {
   toggles_.play_animation = anim_.playback().playing;  // the Play button
   control_point_.highlight = false;  // set again while the Control point section is hovered
   if (toggles_.show_tool_panel) {
-    tools_.draw_panel(layout.tool);
+    // A selected volume's panel takes the lower part of the Tool column (the tools work on meshes).
+    const core::VolumeObject* volume = session_.scene().find_volume(selected_);
+    const ui::RectPair column = ui::split_rect(layout.tool, volume ? 0.36f : 1.0f);
+    tools_.draw_panel(column.top);
     draw_control_point();
+    if (volume)
+      if (const ui::VolumeExportKind* kind = volumes_.draw_panel(column.bottom, *volume)) {
+        export_request_ = {volume->name, kind};
+        ask_file(FilePurpose::ExportVolume);
+      }
   }
   if (toggles_.show_side_panels) {
     ui::ScenePanelState sps{selected_, hidden_, session_.has_command("scene.remove"), &transform_fields_};
@@ -213,6 +229,7 @@ void App::frame() {
   ui::draw_status_bar(st);
 
   if (auto chosen = file_dialog_.draw()) handle_file(*chosen);
+  volumes_.draw_load_progress();
   anim_.draw_record_ui([this] { window_->make_current(); });
   ui::draw_about_window(&show_about_, gl_renderer_);
   ui::draw_keys_window(&show_keys_);
@@ -289,6 +306,9 @@ void App::write_probe() {
                  {"target", {view_.target.x, view_.target.y, view_.target.z}}};
   p["current_frame"] = anim_.playback().frame;
   p["transform"] = transform_.active() ? nlohmann::json(transform_.header()) : nlohmann::json(nullptr);
+  p["volume_refining"] = renderer_ && renderer_->last_stats().volume_refining;  // the last frame drawn's
+  const nlohmann::json volumes = volumes_.probe(session_.scene());
+  for (auto it = volumes.begin(); it != volumes.end(); ++it) p[it.key()] = it.value();
   write_probe_file(options_.gui_probe, p);
 }
 
@@ -311,6 +331,7 @@ void App::record_frame_timings(Clock::time_point start, Clock::time_point end, C
     sample.passes.ffd_ms = rs.ffd_ms;
     sample.passes.draw_ms = rs.draw_ms;
     sample.passes.ffd_vertices = rs.ffd_vertices;
+    sample.passes.volume_ms = rs.volumes_drawn > 0 ? rs.volume_ms : -1.0;
     // The vertex-shader path evaluates while drawing; GLSL compute hands animated objects to it (gpu/renderer_ffd.h).
     const core::FfdBackend b = toggles_.ffd_backend;
     sample.passes.ffd_in_draw =
@@ -326,6 +347,12 @@ void App::record_frame_timings(Clock::time_point start, Clock::time_point end, C
   ctx.ffd_backend = ui::ffd_backend_label(toggles_.ffd_backend);
   if (any_animated) ctx.scene_time_s = anim_.time_s();
   ctx.playing = animating();
+  const auto& volumes = session_.scene().volumes();
+  if (std::any_of(volumes.begin(), volumes.end(), [](const auto& v) { return v.silhouette.enabled; })) {
+    ctx.silhouette_ms = volumes_.last_extract_ms();
+    ctx.silhouette_points = volumes_.last_points();
+    ctx.silhouette_running = volumes_.extracting();
+  }
   const History& h = session_.history();
   if (h.applied() > 0) {
     const core::Command& top = h.at(h.applied() - 1);
@@ -353,8 +380,9 @@ int App::run() {
   auto last = Clock::now();
   while (true) {
     if (work_.run_ready(messages_)) idle_frames_ = 0;  // its "Working…" frame was on screen
-    const bool busy =
-        !work_.empty() || ImGui::GetIO().MouseDown[0] || ImGui::GetIO().MouseDown[2] || animating();
+    // Volumes: a load or a silhouette extraction running, or a volume preview being refined, keeps frames coming.
+    const bool busy = !work_.empty() || ImGui::GetIO().MouseDown[0] || ImGui::GetIO().MouseDown[2] || animating() ||
+                      volumes_.busy() || (renderer_ && renderer_->last_stats().volume_refining);
     if (busy || !options_.screenshot.empty())
       gpu::Window::poll_events();
     else
@@ -365,6 +393,8 @@ int App::run() {
       request(Pending::Quit);
     }
     frame();
+    if (volumes_.busy() || (renderer_ && renderer_->last_stats().volume_refining))
+      idle_frames_ = 0;  // a screenshot waits for loads, silhouettes and full-resolution volumes
     if (!options_.screenshot.empty() && work_.empty() && ++idle_frames_ >= kScreenshotFrames)
       return write_screenshot(options_.screenshot);
     if (std::exchange(screenshot_requested_, false))

@@ -35,6 +35,9 @@ void App::showcase() {
   if (tiled && std::none_of(objects.begin(), objects.end(), [](const auto& o) { return o.placement != nullptr; })) {
     selected_ = tiled->name;
     tools_.set_active(Toolbox::kDdmPaint);
+  } else if (objects.empty() && !session_.scene().volumes().empty()) {
+    selected_ = session_.scene().volumes().back().name;  // a volume scene: its Volume panel under the Select tool
+    tools_.set_active(Toolbox::kSelect);
   } else {
     tools_.set_active(Toolbox::kSketch);
   }
@@ -42,7 +45,9 @@ void App::showcase() {
 
 void App::frame_selected() {
   const core::SceneObject* o = session_.scene().find(selected_);
-  nav_.frame(o && o->world_mesh ? bounds_of(*o->world_mesh) : session_.scene().bounds(), view_.viewport);
+  const core::VolumeObject* v = session_.scene().find_volume(selected_);
+  nav_.frame(o && o->world_mesh ? bounds_of(*o->world_mesh) : v ? v->world_bounds() : session_.scene().bounds(),
+             view_.viewport);
 }
 
 void App::request(Pending what) {
@@ -76,11 +81,23 @@ void App::ask_file(FilePurpose purpose) {
   const fs::path folder = session_.document().parent_path();
   file_purpose_ = purpose;
   if (purpose == FilePurpose::LoadMesh) {
-    file_dialog_.open("Load a mesh", ui::FileDialog::Mode::Open, kMeshExtensions);
+    std::vector<std::string> extensions = kMeshExtensions;
+    extensions.insert(extensions.end(), kVolumeExtensions.begin(), kVolumeExtensions.end());
+    file_dialog_.open("Load a mesh or a CT/MRI volume", ui::FileDialog::Mode::Open, extensions);
     file_dialog_.set_option("Leave out points and lines",
-                            "A file with point or line elements beside its faces is refused (nothing of a file is "
-                            "dropped silently). On: only the faces load; the Log says how many elements were left out.",
+                            "Meshes: a file with point or line elements beside its faces is refused (nothing of a file "
+                            "is dropped silently). On: only the faces load; the Log says how many elements were left "
+                            "out.",
                             load_ignore_loose_);
+    file_dialog_.set_folder_choice("Load this folder",
+                                   "A DICOM series is a folder of slices: load the folder listed as one volume");
+  } else if (purpose == FilePurpose::ExportVolume && export_request_.kind) {
+    const ui::VolumeExportKind& k = *export_request_.kind;
+    const bool iso = std::string(k.what) == "iso";
+    file_dialog_.open(std::string("Export the ") + (iso ? "iso-surface" : "silhouettes") + " of " +
+                          export_request_.volume + " (" + k.extension + ")",
+                      ui::FileDialog::Mode::Save, {k.extension}, folder);
+    file_dialog_.set_name(export_request_.volume + (iso ? "_iso" : "_silhouettes") + k.extension);
   } else if (purpose == FilePurpose::OpenLog)
     file_dialog_.open("Open a command log (.jsonl): it is replayed", ui::FileDialog::Mode::Open, kLogExtensions,
                       folder);
@@ -142,6 +159,10 @@ void App::handle_scene(const ui::SceneRequest& r) {
       if (session_.execute(line)) selected_ = line["name"];
     });
   }
+  if (r.kind == K::Remove && session_.scene().find_volume(r.name)) {
+    messages_.warning("'" + r.name + "' is a volume: volumes cannot be removed yet (hide it with its eye)");
+    return;
+  }
   if (r.kind == K::Remove && !r.name.empty() && session_.has_command("scene.remove") &&
       session_.execute(core::SceneRemoveCommand::schema().to_json({r.name})))
     selected_.clear();
@@ -152,6 +173,10 @@ void App::handle_file(const fs::path& chosen) {
   switch (std::exchange(file_purpose_, FilePurpose::None)) {  // reset first: go_on(Open) asks for a file again
     case FilePurpose::LoadMesh: {
       load_ignore_loose_ = file_dialog_.option();
+      if (core::is_volume_path(path)) {  // a NIfTI / DICOM / .inv3 file or a folder: prepared on a worker thread
+        volumes_.start_load(path);
+        break;
+      }
       core::SceneLoadParams p;
       p.path = path.string();
       p.loose = load_ignore_loose_ ? "ignore" : "refuse";
@@ -181,6 +206,12 @@ void App::handle_file(const fs::path& chosen) {
     case FilePurpose::SaveLog:
       if (path.extension() != ".jsonl") path += ".jsonl";
       if (session_.save(path, view_) && prompt_for_ != Pending::None) go_on(prompt_for_);
+      break;
+    case FilePurpose::ExportVolume:
+      if (export_request_.kind)
+        tool_ctx_.defer("Exporting " + path.filename().string(), [this, request = export_request_, path] {
+          volumes_.export_volume(request.volume, *request.kind, path, view_);
+        });
       break;
     case FilePurpose::None:
       break;

@@ -7,6 +7,7 @@ set(TRISPLINE_EDITOR_APP_SOURCES
     animation_ui.cpp
     navigation.cpp
     session.cpp
+    volume_ui.cpp
     tools/select_tool.cpp
     tools/toolbox.cpp
     tools/work_queue.cpp

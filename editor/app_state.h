@@ -12,6 +12,7 @@
 #include "core/commands/scene_primitive.h"
 #include "core/commands/scene_remove.h"
 #include "core/mesh/image_io.h"
+#include "core/volume/volume_io.h"
 #include "editor/animation_ui.h"
 #include "editor/gui_probe.h"
 #include "editor/navigation.h"
@@ -19,6 +20,7 @@
 #include "editor/tools/toolbox.h"
 #include "editor/tools/transform_modal.h"
 #include "editor/tools/work_queue.h"
+#include "editor/volume_ui.h"
 #include "gpu/renderer.h"
 #include "gpu/timer.h"
 #include "gpu/window.h"
@@ -58,9 +60,12 @@ using Clock = std::chrono::steady_clock;
 
 inline const std::vector<std::string> kMeshExtensions = {".obj", ".ply", ".off", ".stl", ".gltf", ".glb"};
 inline const std::vector<std::string> kLogExtensions = {".jsonl"};
+inline const std::vector<std::string> kVolumeExtensions = {".nii", ".nii.gz", ".inv3", ".dcm"};  // and folders
+// Milliseconds a frame may spend ray casting volumes; longer casts show a preview refined over the next frames.
+inline constexpr double kVolumeBudgetMs = 150.0;
 inline constexpr int kScreenshotFrames = 5;  // frames rendered after the start-up work before the capture
 
-enum class FilePurpose { None, LoadMesh, OpenLog, SaveLog };
+enum class FilePurpose { None, LoadMesh, OpenLog, SaveLog, ExportVolume };
 // What waits for the "Save changes?" answer (the document was modified).
 enum class Pending { None, Quit, New, Open };
 
@@ -124,6 +129,13 @@ class App {
   ui::ControlPointState control_point_;
   std::array<std::size_t, 6> overlay_counts_{};  // the last drawn frame's overlays, by kind (for the GUI probe)
   WorkQueue work_;
+  VolumeUi volumes_{session_, messages_, [this](std::string what, std::function<void()> work) {
+                      work_.push(std::move(what), std::move(work));
+                    }};
+  struct {
+    std::string volume;
+    const ui::VolumeExportKind* kind = nullptr;
+  } export_request_;  // the Volume panel's Export button waiting for the Save dialog
   std::optional<RecoveryOffer> recovery_;
   Pending prompt_for_ = Pending::None;  // the "Save changes?" question is open for this
   bool show_about_ = false, show_keys_ = false, quit_ = false;

@@ -8,7 +8,9 @@
 //   the editor's part  document, modified, history {labels, applied}, objects, object_px (each object's bounds
 //                      centre on screen), selected, tool, log (last messages), viewport (the visible region
 //                      [x0, y0, x1, y1]), scene_center_px, camera, current_frame, transform (the G / R / S
-//                      modal's header line while it runs, else null)
+//                      modal's header line while it runs, else null), volumes (name, iso, preview_iso, dims,
+//                      silhouettes, style, live_points, live_current, extracting), volume_load (path, progress,
+//                      cancel; null when none runs), volume_refining (the last frame showed a volume preview)
 // Written to FILE.tmp and renamed, so a reader never sees half a file.
 #pragma once
 

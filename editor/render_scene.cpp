@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <map>
 #include <cmath>
 #include <memory>
 #include <optional>
@@ -56,6 +57,24 @@ namespace {
 // A GL context is current on this thread (the editor's GLFW window, or an EGL context someone made current).
 bool context_is_current() { return glfwGetCurrentContext() != nullptr || eglGetCurrentContext() != EGL_NO_CONTEXT; }
 
+// Silhouettes extracted for a render camera, with what they were extracted from.
+struct ViewSilhouettes {
+  std::shared_ptr<const core::VolumeSpline> spline;
+  std::shared_ptr<const core::SingletonTable> table;
+  double iso = 0.0;
+  core::VolumeSilhouetteSettings settings;
+  core::Camera camera;
+  std::shared_ptr<const core::SilhouetteResult> result;
+
+  bool serves(const core::VolumeObject& v, const core::Camera& cam) const {
+    const auto& a = settings;
+    const auto& b = v.silhouette;
+    return spline == v.spline && table == v.table && iso == v.iso && a.hidden == b.hidden &&
+           a.projection == b.projection && a.params.subdivision == b.params.subdivision &&
+           a.params.accuracy == b.params.accuracy && core::same_view(camera, cam);
+  }
+};
+
 }  // namespace
 
 struct HeadlessRenderer::Impl {
@@ -63,6 +82,29 @@ struct HeadlessRenderer::Impl {
   std::string renderer_name;
   std::optional<gpu::Renderer> renderer;
   std::optional<gpu::OffscreenTarget> target;
+  std::map<std::string, ViewSilhouettes> silhouettes;  // by volume name
+  double silhouette_ms = 0.0;
+
+  // The volumes' silhouettes for `cam` where the stored ones are for another view, as ViewOptions overrides.
+  void view_silhouettes(const core::Scene& scene, const core::Camera& cam, gpu::ViewOptions& view) {
+    silhouette_ms = 0.0;
+    for (const core::VolumeObject& v : scene.volumes()) {
+      if (!v.visible || !v.silhouette.enabled) continue;
+      if (v.silhouettes && core::same_view(v.silhouette_camera, cam)) continue;
+      ViewSilhouettes& kept = silhouettes[v.name];
+      if (!kept.result || !kept.serves(v, cam)) {
+        const auto t0 = std::chrono::steady_clock::now();
+        core::SilhouetteParams params = v.silhouette.params;
+        params.hidden_test = v.silhouette.hidden != "show";
+        auto result = std::make_shared<const core::SilhouetteResult>(
+            core::extract_silhouettes(*v.spline, *v.table, v.iso, v.silhouette_view(cam), params));
+        kept = {v.spline, v.table, v.iso, v.silhouette, cam, std::move(result)};
+        silhouette_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+      }
+      view.overlays.volumes_in_place.push_back({v.name, std::nullopt, kept.result});
+    }
+    std::erase_if(silhouettes, [&](const auto& kv) { return !scene.find_volume(kv.first); });
+  }
 };
 
 HeadlessRenderer::HeadlessRenderer() : impl_(std::make_unique<Impl>()) {
@@ -93,6 +135,7 @@ gpu::RenderStats HeadlessRenderer::draw(const core::Scene& scene, const core::Ca
   view.ffd_backend = settings.ffd_backend;
   view.time_s = settings.time_s;
   view.show_grid = settings.show_grid;
+  impl_->view_silhouettes(scene, cam, view);
   impl_->target->bind();
   impl_->renderer->draw(scene, cam, view);
   if (!impl_->context) {
@@ -142,6 +185,7 @@ void HeadlessRenderer::check_frame_size(int width, int height) const {
                              " pixels is over the 64-megapixel budget of an offscreen frame (8192×8192)");
 }
 
+double HeadlessRenderer::last_silhouette_ms() const { return impl_->silhouette_ms; }
 const std::string& HeadlessRenderer::renderer() const { return impl_->renderer_name; }
 bool HeadlessRenderer::owns_context() const { return impl_->context.has_value(); }
 
@@ -159,6 +203,7 @@ RenderedImage render_scene_headless(const core::Scene& document, int width, int 
   // reported. Frame 3 is a steady frame (cached evaluation; GPU timer queries of frame 2 have answered after the
   // glFinish): its draw pass is reported.
   draw();
+  const double silhouette_ms = headless.last_silhouette_ms();  // the later frames reuse what this one extracted
   headless.forget_caches();
   const gpu::RenderStats warm = draw();
   glFinish();
@@ -175,6 +220,11 @@ RenderedImage render_scene_headless(const core::Scene& document, int width, int 
   t.ffd_in_draw = settings.ffd_backend == core::FfdBackend::glsl_vertex ||
                   (settings.ffd_backend == core::FfdBackend::glsl_compute && animated);
   t.timer_mode = steady.timer_mode ? steady.timer_mode : "";
+  t.volumes = steady.volumes_drawn;
+  // The ray casting of frame 2 (the layer is cast there and only composited in frame 3), as for the FFD pass.
+  t.volume_ms = steady.volumes_drawn > 0 ? (gpu::is_software_renderer() ? warm.volume_ms : steady.volume_ms) : -1.0;
+  t.silhouettes = steady.silhouette_points;
+  t.silhouette_ms = silhouette_ms;
   RenderedImage image = headless.read_image();
   image.timings = std::move(t);
   return image;

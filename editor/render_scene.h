@@ -27,6 +27,11 @@ struct RenderTimings {
   double ffd_ms = -1;            // FFD pass, ms (GPU timer; negative = not measured)
   double draw_ms = -1;           // scene draw, ms (GPU timer; negative = not measured)
   bool ffd_in_draw = false;      // glsl_vertex: the evaluation is part of draw_ms (see ui::PassTimings)
+  int volumes = 0;               // volumes whose iso-surface was ray cast
+  double volume_ms = -1;         // the ray casting pass of a frame that casts (the volume layer: cast, composited),
+                                 // ms (GPU timer; negative = not measured or no volume)
+  std::size_t silhouettes = 0;   // silhouette points drawn
+  double silhouette_ms = 0;      // CPU wall time extracting silhouettes for the render camera (0: none needed)
   std::string timer_mode;        // gpu::GpuTimer::describe() of the timers used
 };
 
@@ -60,7 +65,11 @@ class HeadlessRenderer {
   HeadlessRenderer& operator=(const HeadlessRenderer&) = delete;
 
   // Draws one frame of `scene` seen by `camera` into a camera.viewport-sized target (4× MSAA) and returns its stats.
+  // A volume whose silhouettes are enabled but were extracted for another view (core::same_view) is drawn with
+  // silhouettes extracted for `camera` (CPU, deterministic; kept while the volume, its settings and the view stay).
   gpu::RenderStats draw(const core::Scene& scene, const core::Camera& camera, const RenderSettings& settings);
+  // CPU wall time of the silhouette extractions of the last draw, ms (0 when the stored ones or the kept ones served).
+  double last_silhouette_ms() const;
   // Pixels of the last draw (top row first) with renderer() filled in; timings left empty.
   RenderedImage read_image();
   // Drops every cached GPU buffer, so the next draw uploads all it draws and depends on nothing drawn before.

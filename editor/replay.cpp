@@ -66,7 +66,7 @@ nlohmann::json render_timings(const RenderedImage& image, const ReplayOptions& o
           {"ffd_in_draw", t.ffd_in_draw},
           {"volumes", t.volumes},
           {"volume_ms", ms_or_null(t.volume_ms)},
-          {"silhouette_points", t.silhouette_points},
+          {"silhouette_points", t.silhouettes},
           {"silhouette_ms", t.silhouette_ms},
           {"vertices_per_second", rate >= 0 ? nlohmann::json(rate) : nlohmann::json()}};
 }

@@ -204,8 +204,14 @@ bool EditorSession::has_command(const std::string& id) const {
 
 core::Scene EditorSession::shown_scene(const std::set<std::string>& hidden) const {
   core::Scene shown = scene_;
-  for (const std::string& name : hidden)
+  for (const std::string& name : hidden) {
     if (core::SceneObject* o = shown.find(name)) o->visible = false;
+    if (const core::VolumeObject* v = shown.find_volume(name); v && v->visible) {
+      core::VolumeObject hidden_volume = *v;
+      hidden_volume.visible = false;
+      shown.replace_volume(std::move(hidden_volume));
+    }
+  }
   return shown;
 }
 

@@ -81,8 +81,8 @@ class EditorSession {
   const History& history() const { return history_; }
   ui::MessageLog& messages() { return messages_; }
   bool has_command(const std::string& id) const;  // registered in the command registry
-  // The scene as drawn with the objects in `hidden` invisible (hiding is view state, not a command): a shallow
-  // copy, the meshes are shared pointers.
+  // The scene as drawn with the objects and volumes in `hidden` invisible (hiding is view state, not a command): a
+  // shallow copy, the meshes, splines and tables are shared pointers.
   core::Scene shown_scene(const std::set<std::string>& hidden) const;
 
   const std::filesystem::path& document() const { return document_; }  // last opened/saved log ("" = untitled)

@@ -83,6 +83,7 @@ const RenderStats& Renderer::last_stats() const { return impl_->stats; }
 void Renderer::release_unused(const core::Scene& scene) {
   impl_->ffd.release_unused(scene);
   impl_->ddm.release_unused(scene);
+  impl_->volumes.release_unused(scene);
   std::unordered_set<const core::TriMesh*> live;
   for (const core::SceneObject& o : scene.objects())
     if (o.world_mesh) live.insert(o.world_mesh.get());
@@ -295,15 +296,18 @@ void Renderer::draw(const core::Scene& scene, const core::Camera& camera, const 
   release_unused(scene);
   d.prepare_ffd(scene, options, f.plans);
   const bool any_ddm = detail::DdmDisplay::any_visible(scene);
+  const bool any_volume = detail::VolumeDisplay::any_surface(scene);
   std::optional<GpuTimer::Scope> draw_scope(std::in_place, d.draw_timer);
 
   d.pass_clear(f);
   d.pass_background(f);
   const SelectedObject sel = d.pass_objects(f);
   d.pass_ddm_layers(f, draw_scope);
+  d.pass_volumes(f, draw_scope, any_ddm ? d.draw_timer_c : d.draw_timer_b);
   d.pass_wireframe(f);
   d.pass_grid(f);
   d.pass_selection_outline(f, sel);
+  d.pass_volume_silhouettes(f);
   d.pass_lattices_and_contacts(f);
   d.pass_discontinuities(f);
   d.pass_world_overlays(f);
@@ -318,11 +322,15 @@ void Renderer::draw(const core::Scene& scene, const core::Camera& camera, const 
   glDepthFunc(GL_LESS);
   draw_scope.reset();
   d.stats.draw_ms = d.draw_timer.last_ms();
-  if (any_ddm) {
-    const double after = d.draw_timer_b.last_ms();
+  // The drawing passes are timed in up to three parts around the DDM and volume passes.
+  auto add_part = [&](const GpuTimer& t) {
+    const double after = t.last_ms();
     d.stats.draw_ms = d.stats.draw_ms < 0.0 || after < 0.0 ? -1.0 : d.stats.draw_ms + after;
-  }
+  };
+  if (any_ddm || any_volume) add_part(d.draw_timer_b);
+  if (any_ddm && any_volume) add_part(d.draw_timer_c);
   d.stats.cached_meshes = int(d.cache.size());
+  d.stats.cached_volumes = int(d.volumes.cached());
   d.stats.cached_contact_surfaces = int(d.contact_cache.size());
 }
 

@@ -18,6 +18,10 @@
 // Live DDM layers (SceneObject::ddm_layers, seed §5.3.2) are drawn by instancing on the GPU at
 // ViewOptions::time_s through the object's transform (renderer_ddm.h, gpu/ddm_gl.h), in its colour, wireframe and
 // outline included.
+// Volumes (Scene::volumes(), seed ch. 7) are drawn as their iso-surfaces D = iso, ray cast on the spline in GLSL
+// (gpu/volume_gl.h) and depth-combined with the meshes, with their silhouettes as strokes in the seed's styles
+// (renderer_volume.h, gpu/silhouette_strokes.h); ViewOptions::overlays.volumes_in_place replaces a volume's iso-level
+// or silhouettes for a frame.
 #pragma once
 
 #include <epoxy/gl.h>
@@ -56,6 +60,18 @@ struct RenderStats {
   int ddm_layers_drawn = 0;
   std::size_t ddm_vertices = 0;
   double ddm_ms = 0.0;
+  // Volumes (core::Scene::volumes(), renderer_volume.h): visible volumes drawn, ray casters (re)uploaded during this
+  // draw and held after it, the iso-surface ray casting pass (GpuTimer ms, 0 without volumes, -1 while the timer has
+  // no result yet; not part of draw_ms), and the silhouette points drawn.
+  int volumes_drawn = 0;
+  int volume_uploads = 0;
+  int cached_volumes = 0;
+  double volume_ms = 0.0;
+  std::size_t volume_cast_pixels = 0;  // rays cast this draw (0: the volume layer was up to date)
+  bool volume_refining = false;  // a low-resolution preview is shown in part (ViewOptions::volume_budget_ms): draw
+                                 // again to refine it
+  float volume_scale = 1.0f;     // resolution of the volume layer's unrefined part (1 = full)
+  std::size_t silhouette_points = 0;
   double draw_ms = -1.0;  // the drawing passes (GpuTimer; -1 while unavailable)
   const char* timer_mode = "";  // GpuTimer::mode_description() of the timers above
 };

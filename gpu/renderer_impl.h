@@ -12,6 +12,7 @@
 #include "gpu/renderer.h"
 #include "gpu/renderer_ddm.h"
 #include "gpu/renderer_ffd.h"
+#include "gpu/renderer_volume.h"
 #include "gpu/shader_program.h"
 #include "gpu/timer.h"
 
@@ -79,9 +80,12 @@ struct Renderer::Impl {
   void pass_background(const detail::Frame& f);  // 1. the background gradient
   detail::SelectedObject pass_objects(const detail::Frame& f);  // 2. shaded objects; the selected one: stencil 1
   void pass_ddm_layers(const detail::Frame& f, std::optional<GpuTimer::Scope>& draw_scope);  // 2a. live DDM layers
+  // 2a'. iso-surfaces, timed by volume_timer; the draw timer resumes with `resume`
+  void pass_volumes(const detail::Frame& f, std::optional<GpuTimer::Scope>& draw_scope, GpuTimer& resume);
   void pass_wireframe(const detail::Frame& f);                  // 2b. dark edges over the shaded surfaces
   void pass_grid(const detail::Frame& f);                       // 3. the ground grid
   void pass_selection_outline(const detail::Frame& f, const detail::SelectedObject& sel);  // 4. selection outline
+  void pass_volume_silhouettes(const detail::Frame& f);     // 4b. volume silhouettes; the selected volume's box
   void pass_lattices_and_contacts(const detail::Frame& f);  // 5. contact surfaces, lattices, contact samples
   void pass_discontinuities(const detail::Frame& f);        // 5b. DFFD planes and fold-overs
   void pass_world_overlays(const detail::Frame& f);         // 6. overlay spheres, points and lattices
@@ -95,6 +99,8 @@ struct Renderer::Impl {
   ShaderProgram lines{{"lines.vert.glsl", "lines.frag.glsl"}};
   ShaderProgram points{{"lines.vert.glsl", "lines.frag.glsl"}, {{"ROUND_POINTS", ""}}};
   ShaderProgram screen{{"lines.vert.glsl", "lines.frag.glsl"}, {{"SCREEN_SPACE", ""}}};
+  ShaderProgram volume_layer{{"background.vert.glsl", "volume_layer.frag.glsl"}};
+  ShaderProgram screen_depth{{"lines.vert.glsl", "lines.frag.glsl"}, {{"SCREEN_SPACE", ""}, {"SCREEN_DEPTH", ""}}};
   ShaderProgram sheet{{"mesh.vert.glsl", "mesh.frag.glsl"}, {{"DEPTH_PULL", ""}, {"TRANSLUCENT", ""}}};
   ShaderProgram pulled_lines{{"lines.vert.glsl", "lines.frag.glsl"}, {{"DEPTH_PULL", ""}}};
   VertexArray empty_vao = VertexArray::create();  // attribute-less full-screen passes
@@ -105,6 +111,8 @@ struct Renderer::Impl {
   detail::FfdDisplay ffd{ffd_programs};
   detail::DdmDisplay ddm{ffd_programs};
   GpuTimer ddm_timer, draw_timer_b;  // the DDM pass; the drawing passes after it (timers cannot nest)
+  detail::VolumeDisplay volumes{ffd_programs};
+  GpuTimer volume_timer, draw_timer_c;  // the iso-surface pass; the drawing passes after it (after DDM: timer c)
   std::uint64_t generation = 0;      // source of CachedMesh::generation values
   GpuTimer ffd_timer, draw_timer;
   RenderStats stats;

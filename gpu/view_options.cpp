@@ -15,6 +15,12 @@ const std::shared_ptr<const core::TrivariateBSpline<glm::dvec3>>* Overlays::latt
   return nullptr;
 }
 
+const VolumeInPlace* Overlays::volume_for(const std::string& volume) const {
+  for (const VolumeInPlace& v : volumes_in_place)
+    if (v.volume == volume) return &v;
+  return nullptr;
+}
+
 ScreenStroke& ViewOptions::add_stroke(std::vector<glm::dvec2> px) {
   return overlays.strokes.emplace_back(ScreenStroke{std::move(px), style.stroke_color, style.stroke_width_px});
 }

@@ -9,6 +9,7 @@
 
 #include <glm/glm.hpp>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,7 @@
 #include "core/ffd/ffd_evaluator.h"
 #include "core/mesh/tri_mesh.h"
 #include "core/spline/trivariate_bspline.h"
+#include "core/volume/silhouettes.h"
 
 namespace trispline::gpu {
 
@@ -52,6 +54,15 @@ struct ViewStyle {
   // The usual look of a stroke being drawn over the viewport (ScreenStroke's defaults are these).
   glm::vec4 stroke_color{1.0f, 0.45f, 0.05f, 1.0f};
   float stroke_width_px = 4.0f;
+  // Volume silhouettes (seed §7.3.4; gpu/silhouette_strokes.h): the thinnest and thickest strokes (the "width" style
+  // goes from max at low |∇D| to min at high), the colour of hidden runs ("dashed"), their dash and gap lengths, and
+  // how far visible runs are pulled towards the eye for the depth test against meshes, as a fraction of the volume's
+  // bounding-box diagonal (the lines lie on the iso-surface they outline, whose own occlusion is the CPU test's).
+  float silhouette_width_px = 1.5f;
+  float silhouette_max_width_px = 4.0f;
+  glm::vec4 silhouette_hidden_color{0.55f, 0.55f, 0.58f, 0.85f};
+  float silhouette_dash_px = 5.0f, silhouette_gap_px = 4.0f;
+  float silhouette_depth_pull = 0.05f;
 };
 
 // A translucent sphere, depth-tested, back faces culled (e.g. a pressing tool's brush, seed §2.4.1).
@@ -108,6 +119,15 @@ struct LatticeInPlace {
   std::shared_ptr<const core::TrivariateBSpline<glm::dvec3>> lattice;
 };
 
+// What a volume is drawn with instead of its own iso-level and silhouettes: the Volume panel's live iso-level while
+// its slider is dragged, the silhouettes the editor extracted for its current view. Silhouettes are drawn only when
+// the volume's silhouette settings are enabled.
+struct VolumeInPlace {
+  std::string volume;
+  std::optional<double> iso;                                  // volume units; none = the volume's own iso
+  std::shared_ptr<const core::SilhouetteResult> silhouettes;  // null = the volume's own `silhouettes`
+};
+
 // The overlays of one frame, drawn after the scene in this order: spheres, points, lattices, curves, strokes.
 struct Overlays {
   std::vector<SphereOverlay> spheres;
@@ -117,11 +137,14 @@ struct Overlays {
   std::vector<ScreenStroke> strokes;
   std::vector<MeshInPlace> meshes;                // the first one naming an object is used
   std::vector<LatticeInPlace> lattices_in_place;  // the first one naming an object is used
+  std::vector<VolumeInPlace> volumes_in_place;    // the first one naming a volume is used
 
   // The mesh drawn for `object` instead of its world_mesh, or null.
   const std::shared_ptr<const core::TriMesh>* mesh_for(const std::string& object) const;
   // The lattice `object` is evaluated with instead of its own, or null.
   const std::shared_ptr<const core::TrivariateBSpline<glm::dvec3>>* lattice_for(const std::string& object) const;
+  // What `volume` is drawn with instead of its own iso-level / silhouettes, or null.
+  const VolumeInPlace* volume_for(const std::string& volume) const;
 };
 
 // The display switches a user toggles (the editor's View menu keeps them as they are).
@@ -143,6 +166,10 @@ struct ViewOptions : DisplaySwitches {
   std::string selected;  // highlighted object name (outline colour)
   // The scene time in seconds (a deformed object shows F(E(x) + param_offset + offset_velocity·time_s)).
   double time_s = 0.0;
+  // Volume iso-surfaces are ray cast into a layer kept while the view and the volumes stay (renderer_volume.h). > 0:
+  // milliseconds one frame may spend casting; a longer cast is shown first at a lower resolution and refined over the
+  // next frames (RenderStats::volume_refining). ≤ 0: every cast whole at full resolution (replay, recordings, tests).
+  double volume_budget_ms = 0.0;
   ViewStyle style;
   Overlays overlays;
 

@@ -32,6 +32,12 @@ void FileDialog::open(std::string title, Mode mode, std::vector<std::string> ext
   list_folder();
   open_ = true;
   option_label_.clear();
+  folder_label_.clear();
+}
+
+void FileDialog::set_folder_choice(std::string label, std::string tooltip) {
+  folder_label_ = std::move(label);
+  folder_tooltip_ = std::move(tooltip);
 }
 
 void FileDialog::set_option(std::string label, std::string tooltip, bool value) {
@@ -42,8 +48,8 @@ void FileDialog::set_option(std::string label, std::string tooltip, bool value) 
 
 bool FileDialog::matches(const fs::path& p) const {
   if (extensions_.empty()) return true;
-  const std::string ext = lower(p.extension().string());
-  return std::find(extensions_.begin(), extensions_.end(), ext) != extensions_.end();
+  const std::string name = lower(p.filename().string());
+  return std::any_of(extensions_.begin(), extensions_.end(), [&](const std::string& e) { return name.ends_with(e); });
 }
 
 void FileDialog::list_folder() {
@@ -161,8 +167,18 @@ std::optional<fs::path> FileDialog::draw() {
     ImGui::TextColored(colors::dim, "%s", filter.c_str());
     ImGui::SameLine();
   }
-  const float buttons_w = 170.0f;
+  const float folder_w = folder_label_.empty() ? 0.0f : ImGui::CalcTextSize(folder_label_.c_str()).x + 24.0f;
+  const float buttons_w = 170.0f + folder_w;
   ImGui::SetCursorPosX(std::max(ImGui::GetCursorPosX(), ImGui::GetWindowContentRegionMax().x - buttons_w));
+  if (!folder_label_.empty()) {
+    if (ImGui::Button(folder_label_.c_str())) {
+      chosen = folder_;
+      ImGui::CloseCurrentPopup();
+    }
+    probe::item("file.folder");
+    if (ImGui::IsItemHovered() && !folder_tooltip_.empty()) ImGui::SetTooltip("%s", folder_tooltip_.c_str());
+    ImGui::SameLine();
+  }
   if (ImGui::Button(mode_ == Mode::Open ? "Open" : "Save", ImVec2(80, 0)))
     (mode_ == Mode::Save ? accept_name : accept) = true;
   probe::item("file.ok");

@@ -1,6 +1,6 @@
 // trispline::ui::FileDialog — a small modal file chooser (no native dialogs: GLFW has none): a path field, the
-// folders and matching files of the current folder, ".." to go up. Used for Load… (meshes), Open… and Save As…
-// (command logs).
+// folders and matching files of the current folder, ".." to go up. Used for Load… (meshes, volumes: a DICOM folder
+// too), Open… and Save As… (command logs), and the Volume panel's exports.
 #pragma once
 
 #include <filesystem>
@@ -14,13 +14,19 @@ class FileDialog {
  public:
   enum class Mode { Open, Save };
 
-  // Opens the dialog on the next draw(). extensions: lower-case with the dot (".obj"); empty = all files.
+  // Opens the dialog on the next draw(). extensions: lower-case with the dot (".obj", ".nii.gz": a file matches when
+  // its name ends with one, any case); empty = all files.
   void open(std::string title, Mode mode, std::vector<std::string> extensions,
             const std::filesystem::path& start_folder = {});
   // An import option shown as a checkbox above the buttons until the next open() (Blender's file browser keeps an
   // importer's options beside the file list); `value` is its state, kept across dialogs. Empty label = none.
   void set_option(std::string label, std::string tooltip, bool value);
   bool option() const { return option_value_; }
+  // Open: a button beside Open that chooses the folder listed (a DICOM series is a folder), with `tooltip`; until the
+  // next open(). Empty label = none.
+  void set_folder_choice(std::string label, std::string tooltip);
+  // Save: the file name the name field starts with (until the next open()).
+  void set_name(std::string name) { name_ = std::move(name); }
   // Draws the modal if open; returns the chosen path once (absolute, lexically normal).
   std::optional<std::filesystem::path> draw();
   bool is_open() const { return open_ || visible_; }
@@ -42,6 +48,7 @@ class FileDialog {
   bool visible_ = false;  // popup showing
   bool refocus_ = false;  // Open: give the path field the keyboard on the next draw (a folder was entered)
   std::string option_label_, option_tooltip_;
+  std::string folder_label_, folder_tooltip_;
   bool option_value_ = false;
 };
 

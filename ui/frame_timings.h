@@ -1,7 +1,8 @@
 // trispline::ui frame timings — the plain data behind the live timing overlay (ui/overlays.h) and replay's
 // report.json "timings" object (editor/replay.cpp), so both show the same numbers.
 //   StageTiming, stage_timings()   a command's CPU time per stage, from its Command::stats() JSON
-//   PassTimings                    one frame's GPU passes: FFD evaluation, scene draw, UI (ms; < 0 = unknown)
+//   PassTimings                    one frame's GPU passes: FFD evaluation, scene draw, iso ray casting, UI (ms;
+//                                  < 0 = unknown)
 //   vertices_per_second()          FFD throughput
 //   ffd_backend_label/_tooltip()   the names the FFD evaluator setting shows
 #pragma once
@@ -32,6 +33,7 @@ struct PassTimings {
   double ffd_ms = -1;            // FFD evaluation of the deformed objects (RenderStats::ffd_ms)
   double draw_ms = -1;           // scene rendering (RenderStats::draw_ms)
   double ui_ms = -1;             // ImGui's render pass
+  double volume_ms = -1;         // the volumes' iso-surface pass (RenderStats::volume_ms; -1 without volumes)
   std::size_t ffd_vertices = 0;  // vertices evaluated this frame (RenderStats::ffd_vertices)
   // The GLSL vertex-shader path evaluates while drawing: its FFD time is part of draw_ms (ffd_ms only covers the
   // preparation), so its throughput is measured against draw_ms (a lower bound).

@@ -36,4 +36,9 @@ bool begin_docked(const char* title, const Rect& r, int extra_flags) {
   return ImGui::Begin(title, nullptr, kDockedWindowFlags | extra_flags);
 }
 
+RectPair split_rect(const Rect& r, float top_fraction) {
+  const float top = std::floor(r.size.y * std::clamp(top_fraction, 0.0f, 1.0f));
+  return {{r.pos, {r.size.x, top}}, {{r.pos.x, r.pos.y + top}, {r.size.x, r.size.y - top}}};
+}
+
 }  // namespace trispline::ui

@@ -38,6 +38,12 @@ struct DockLayout {
 DockLayout compute_layout(ImVec2 display, float menu_h, float status_h, const LayoutSizes& sizes = {},
                           bool show_tool = true, bool show_right = true, bool show_log = true);
 
+// `r` cut horizontally: the top `top_fraction` of its height, then the rest (a column holding two panels).
+struct RectPair {
+  Rect top, bottom;
+};
+RectPair split_rect(const Rect& r, float top_fraction);
+
 // Flags for a docked panel window (fixed position/size, no saved settings).
 constexpr int kDockedWindowFlags = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
                                    ImGuiWindowFlags_NoSavedSettings;

@@ -16,8 +16,8 @@ namespace {
 constexpr std::size_t kMaxSamples = 2000;
 constexpr float kGraphWidth = 300.0f, kGraphHeight = 64.0f;
 
-enum class Pass { frame, ffd, draw, ui };
-constexpr Pass kPasses[] = {Pass::frame, Pass::ffd, Pass::draw, Pass::ui};
+enum class Pass { frame, ffd, draw, volume, ui };
+constexpr Pass kPasses[] = {Pass::frame, Pass::ffd, Pass::draw, Pass::volume, Pass::ui};
 
 ImU32 pass_color(Pass p) {
   switch (p) {
@@ -27,6 +27,8 @@ ImU32 pass_color(Pass p) {
       return IM_COL32(255, 160, 60, 255);
     case Pass::draw:
       return IM_COL32(90, 165, 255, 255);
+    case Pass::volume:
+      return IM_COL32(200, 130, 255, 255);
     case Pass::ui:
       return IM_COL32(120, 215, 120, 255);
   }
@@ -41,6 +43,8 @@ const char* pass_name(Pass p) {
       return "FFD eval";
     case Pass::draw:
       return "render";
+    case Pass::volume:
+      return "iso ray";
     case Pass::ui:
       return "UI";
   }
@@ -58,6 +62,10 @@ const char* pass_tooltip(Pass p) {
              "frames of the last second that evaluated. Results are cached until the deformation changes.";
     case Pass::draw:
       return "Render: GPU time of drawing the scene (objects, grid, overlays) into the framebuffer.";
+    case Pass::volume:
+      return "Iso ray: GPU time of the volumes' iso-surfaces, ray cast on the trivariate spline (seed section 7.3)\n"
+             "into a layer when the view or a level changed (a preview first when it would take long, refined over\n"
+             "the next frames), else only composited. Mean over the last second.";
     case Pass::ui:
       return "UI: GPU time of drawing the Dear ImGui panels (ImGui_ImplOpenGL3_RenderDrawData).";
   }
@@ -72,6 +80,8 @@ double value(const FrameSample& s, Pass p) {
       return s.passes.ffd_ms;
     case Pass::draw:
       return s.passes.draw_ms;
+    case Pass::volume:
+      return s.passes.volume_ms;
     case Pass::ui:
       return s.passes.ui_ms;
   }
@@ -141,7 +151,7 @@ TimingOverlay::Summary TimingOverlay::summary() const {
   Summary s;
   if (samples_.empty()) return s;
   const double since = samples_.back().time_s - kAverageSeconds;
-  Mean interval, work, draw, ui, ffd, ffd_vertices;
+  Mean interval, work, draw, ui, ffd, ffd_vertices, volume;
   double rate_vertices = 0, rate_ms = 0;  // evaluating frames with a measured FFD time
   auto add_eval = [&](const FrameSample& f) {
     ffd.add(f.passes.ffd_ms);
@@ -159,6 +169,7 @@ TimingOverlay::Summary TimingOverlay::summary() const {
     work.add(it->work_ms);
     draw.add(it->passes.draw_ms);
     ui.add(it->passes.ui_ms);
+    volume.add(it->passes.volume_ms);
     if (it->passes.ffd_vertices > 0) add_eval(*it);
   }
   s.ffd_recent = ffd_vertices.n > 0;
@@ -166,6 +177,7 @@ TimingOverlay::Summary TimingOverlay::summary() const {
   s.frame_ms = work.get();
   s.draw_ms = draw.get();
   s.ui_ms = ui.get();
+  s.volume_ms = volume.get();
   s.ffd_ms = ffd.get();
   s.ffd_vertices = std::max(ffd_vertices.get(), 0.0);
   if (rate_ms > 0) s.vertices_per_second = rate_vertices / (rate_ms * 1e-3);
@@ -219,15 +231,16 @@ void TimingOverlay::draw_graph(float width, float height) const {
   for (const FrameSample& s : samples_)
     if (std::abs(x_of(s.time_s) - mx) < std::abs(x_of(best->time_s) - mx)) best = &s;
   dl->AddLine(ImVec2(x_of(best->time_s), g0.y), ImVec2(x_of(best->time_s), g1.y), IM_COL32(255, 255, 255, 120));
-  char f[24], e[24], d[24], u[24];
+  char f[24], e[24], d[24], v[24], u[24];
   format_ms(f, sizeof f, best->work_ms);
   format_ms(e, sizeof e, best->passes.ffd_ms);
   format_ms(d, sizeof d, best->passes.draw_ms);
+  format_ms(v, sizeof v, best->passes.volume_ms);
   format_ms(u, sizeof u, best->passes.ui_ms);
   ImGui::SetTooltip(
       "Last %.0f s, one line per pass (newest on the right; the faint line is 16.7 ms = 60 FPS).\n"
-      "%.2f s ago: frame %s, FFD eval %s, render %s, UI %s",
-      kGraphSeconds, now - best->time_s, f, e, d, u);
+      "%.2f s ago: frame %s, FFD eval %s, render %s, iso ray %s, UI %s",
+      kGraphSeconds, now - best->time_s, f, e, d, v, u);
 }
 
 void TimingOverlay::draw(const Rect& viewport) const {
@@ -258,8 +271,12 @@ void TimingOverlay::draw(const Rect& viewport) const {
                    "Frame: CPU wall time from handling events to the buffer swap, mean over the last second."
                  : pass_tooltip(Pass::frame));
 
-  for (Pass p : {Pass::ffd, Pass::draw, Pass::ui}) {
-    const double v = p == Pass::ffd ? s.ffd_ms : p == Pass::draw ? s.draw_ms : s.ui_ms;
+  for (Pass p : {Pass::ffd, Pass::draw, Pass::volume, Pass::ui}) {
+    if (p == Pass::volume && s.volume_ms < 0) continue;  // no volume in the scene
+    const double v = p == Pass::ffd      ? s.ffd_ms
+                     : p == Pass::draw   ? s.draw_ms
+                     : p == Pass::volume ? s.volume_ms
+                                         : s.ui_ms;
     format_ms(ms, sizeof ms, v);
     swatch(pass_color(p));
     ImGui::Text("%-9s %10s", pass_name(p), ms);
@@ -298,6 +315,19 @@ void TimingOverlay::draw(const Rect& viewport) const {
     tooltip(
         "Scene time of animated objects (lattice.animate_offset): each shows F(E(x) + offset + velocity * t).\n"
         "Space (View > Play animation) starts and stops the clock.");
+  }
+
+  if (context_.silhouette_ms >= 0 || context_.silhouette_running) {
+    format_ms(ms, sizeof ms, context_.silhouette_ms);
+    ImGui::Text("silhouettes %8s", ms);
+    if (context_.silhouette_ms >= 0) {
+      ImGui::SameLine();
+      ImGui::TextColored(colors::dim, "(%zu points%s)", context_.silhouette_points,
+                         context_.silhouette_running ? ", updating" : "");
+    }
+    tooltip("Silhouettes of the volumes for the current view (seed section 7.3.3): CPU wall time of the last\n"
+            "extraction on a worker thread (singleton lookup, Newton steps, polylines, occlusion test). The view\n"
+            "stays interactive: a changed view or iso-level is extracted when the last extraction is done.");
   }
 
   draw_graph(kGraphWidth, kGraphHeight);

@@ -1,9 +1,9 @@
 // trispline::ui viewport overlays, drawn over the 3-D view:
 //  * TimingOverlay: the live timing overlay (View > Timing overlay, F7) in the viewport's top-left corner:
-//    FPS and frame time; per pass FFD evaluation, rendering and UI (ms); FFD vertices per second; a graph of the last
-//    5 seconds, one line per pass; the GPU timing method; the FFD evaluator in use; the last command's CPU time per
-//    stage. Every number explains itself in a tooltip. A small ImGui window with an opaque-ish background, so it
-//    reads over light and dark scenes.
+//    FPS and frame time; per pass FFD evaluation, rendering, volume ray casting (with volumes) and UI (ms); FFD
+//    vertices per second; the live silhouettes' extraction time; a graph of the last 5 seconds, one line per pass;
+//    the GPU timing method; the FFD evaluator in use; the last command's CPU time per stage. Every number explains
+//    itself in a tooltip. A small ImGui window with an opaque-ish background, so it reads over light and dark scenes.
 //  * draw_working_overlay(): the "Working..." box shown for one frame before a long synchronous command runs.
 #pragma once
 
@@ -35,6 +35,11 @@ struct TimingContext {
   std::string last_command;  // id of the command on top of the undo stack ("" = none)
   double last_command_ms = -1;           // its wall time when executed (negative = unknown)
   std::vector<StageTiming> last_stages;  // its CPU time per stage, stage_timings(stats())
+  // Live silhouettes of volumes (extracted on a worker thread for the current view): the last extraction's wall time
+  // (negative: none) and points, and whether one is running now.
+  double silhouette_ms = -1;
+  std::size_t silhouette_points = 0;
+  bool silhouette_running = false;
 };
 
 class TimingOverlay {
@@ -54,6 +59,7 @@ class TimingOverlay {
     std::size_t frames = 0;  // frames averaged
     bool idle = false;       // the editor was waiting for input: fps is meaningless then
     double fps = -1, frame_ms = -1, draw_ms = -1, ui_ms = -1;
+    double volume_ms = -1;            // iso-surface pass (ray casting when the view or a level changed), mean
     double ffd_ms = -1;               // FFD pass of the evaluating frames
     double ffd_vertices = 0;          // vertices per evaluating frame
     double vertices_per_second = -1;  // ffd_vertices / ffd_time_ms() (render time for the vertex-shader path)

@@ -78,6 +78,36 @@ void draw_transform_fields(const core::SceneObject& o, TransformFields& f, Scene
   f.active = active;
 }
 
+// A volume's row: eye, swatch, name (select / double-click frames), and "volume" where meshes show vertices.
+void draw_volume_row(const core::VolumeObject& v, const ScenePanelState& state, SceneRequest& req) {
+  ImGui::PushID(("volume:" + v.name).c_str());
+  ImGui::TableNextRow();
+  ImGui::TableNextColumn();
+  const bool visible = v.visible && !state.hidden.count(v.name);
+  if (eye_button("##eye", visible)) req = {SceneRequest::Kind::ToggleVisible, v.name};
+  const bool eye_hovered = ImGui::IsItemHovered();
+  if (eye_hovered) ImGui::SetTooltip(visible ? "Hide in viewport" : "Show in viewport");
+  ImGui::TableNextColumn();
+  ImGui::ColorButton("##swatch", to_display(v.color), ImGuiColorEditFlags_NoTooltip | ImGuiColorEditFlags_NoDragDrop,
+                     ImVec2(ImGui::GetTextLineHeight(), ImGui::GetTextLineHeight()));
+  ImGui::SameLine();
+  if (!visible) ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+  if (ImGui::Selectable(v.name.c_str(), v.name == state.selected,
+                        ImGuiSelectableFlags_SpanAllColumns | ImGuiSelectableFlags_AllowItemOverlap |
+                            ImGuiSelectableFlags_AllowDoubleClick))
+    req = {ImGui::IsMouseDoubleClicked(0) ? SceneRequest::Kind::Frame : SceneRequest::Kind::Select, v.name};
+  probe::item("scene.object." + v.name);
+  if (!visible) ImGui::PopStyleColor();
+  if (ImGui::IsItemHovered() && !eye_hovered) {
+    const auto& d = v.spline->dims();
+    ImGui::SetTooltip("%s (volume, %d x %d x %d samples)\nsource: %s\niso-level %g %s\ndouble-click to frame",
+                      v.name.c_str(), d[0], d[1], d[2], v.source.c_str(), v.iso, v.units.c_str());
+  }
+  ImGui::TableNextColumn();
+  ImGui::TextColored(colors::dim, "volume");
+  ImGui::PopID();
+}
+
 }  // namespace
 
 SceneRequest draw_scene_panel(const Rect& rect, const core::Scene& scene, const ScenePanelState& state) {
@@ -85,7 +115,11 @@ SceneRequest draw_scene_panel(const Rect& rect, const core::Scene& scene, const 
   if (begin_docked("Scene", rect)) {
     if (ImGui::Button("Load...")) req.kind = SceneRequest::Kind::Load;
     probe::item("scene.load");
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Load a mesh (OBJ, PLY, OFF, STL, glTF, GLB) as a new object");
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip(
+          "Load a mesh (OBJ, PLY, OFF, STL, glTF, GLB) as a new object, or a CT/MRI volume (NIfTI .nii /\n"
+          ".nii.gz, a DICOM series folder or .dcm file, an InVesalius .inv3 project) as a trivariate\n"
+          "B-spline whose iso-surface and silhouettes are drawn");
     ImGui::SameLine();
     if (ImGui::Button("Add")) ImGui::OpenPopup("##add_primitive");
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("Add a primitive (scene.primitive)");
@@ -99,7 +133,8 @@ SceneRequest draw_scene_panel(const Rect& rect, const core::Scene& scene, const 
     if (ImGui::Button("Remove")) req = {SceneRequest::Kind::Remove, state.selected};
     ImGui::EndDisabled();
     ImGui::Separator();
-    if (scene.objects().empty()) ImGui::TextColored(colors::dim, "Empty scene: Load... or Add a primitive.");
+    if (scene.objects().empty() && scene.volumes().empty())
+      ImGui::TextColored(colors::dim, "Empty scene: Load... or Add a primitive.");
 
     const core::SceneObject* sel = scene.find(state.selected);
     const bool show_transform = sel && state.transform;
@@ -141,6 +176,7 @@ SceneRequest draw_scene_panel(const Rect& rect, const core::Scene& scene, const 
         ImGui::TextColored(colors::dim, "%zu", verts);
         ImGui::PopID();
       }
+      for (const core::VolumeObject& v : scene.volumes()) draw_volume_row(v, state, req);
       ImGui::EndTable();
     }
     if (show_transform) draw_transform_fields(*sel, *state.transform, req);

@@ -1,4 +1,5 @@
-// trispline::ui Scene panel — the objects of a core::Scene (colour swatch, visibility eye, name, vertex count),
+// trispline::ui Scene panel — the objects of a core::Scene (colour swatch, visibility eye, name, vertex count) and its
+// volumes (same row, "volume" for the count; the Volume panel, ui/volume_panel.h, shows the selected one),
 // selection, the buttons that *request* changes: Load…, Add primitive, Remove, and the selected object's Location /
 // Rotation / Scale fields (typed values, one request when a field is left after an edit). The panel never edits the
 // scene: it returns a SceneRequest that the editor turns into a command.

@@ -1,10 +1,13 @@
 #include "editor/tools/select_tool.h"
 
 #include "core/raycast/ray_caster.h"
+#include "core/volume/iso_raycast.h"
 #include "editor/session.h"
 #include "ui/theme.h"
 
 #include <imgui.h>
+
+#include <limits>
 
 namespace trispline::editor {
 
@@ -17,11 +20,21 @@ std::optional<std::string> pick_object(const core::Scene& scene, const core::Cam
     caster.add_mesh(*o.world_mesh);
     names.push_back(o.name);
   }
-  if (names.empty()) return std::nullopt;
-  caster.commit();
-  const auto hit = caster.intersect(camera.eye, camera.ray_direction(px));
-  if (!hit || hit->geometry < 0 || hit->geometry >= int(names.size())) return std::nullopt;
-  return names[hit->geometry];
+  const glm::dvec3 dir = camera.ray_direction(px);
+  std::optional<std::string> picked;
+  double nearest = std::numeric_limits<double>::infinity();
+  if (!names.empty()) {
+    caster.commit();
+    const auto hit = caster.intersect(camera.eye, dir);
+    if (hit && hit->geometry >= 0 && hit->geometry < int(names.size())) picked = names[hit->geometry], nearest = hit->t;
+  }
+  // Volumes: the first crossing of their iso-surface D = iso along the same ray (the CPU reference of the drawn one).
+  for (const core::VolumeObject& v : scene.volumes()) {
+    if (!v.visible || hidden.count(v.name) || !v.spline || !v.show_surface) continue;
+    const core::IsoHit hit = core::iso_ray_hit(*v.spline, v.iso, camera.eye, dir, 0.25, nearest);
+    if (hit.hit && hit.t < nearest) picked = v.name, nearest = hit.t;
+  }
+  return picked;
 }
 
 ui::ToolEntry SelectTool::entry() const { return {"Select", "Q", "Click an object to select it"}; }
@@ -45,6 +58,11 @@ void SelectTool::handle_input(const ToolInput& in, ToolContext& ctx) {
 
 void SelectTool::draw_panel(ToolContext& ctx) {
   const core::SceneObject* o = ctx.session.scene().find(ctx.selected);
+  if (!o && ctx.session.scene().find_volume(ctx.selected)) {
+    ImGui::Text("%s", ctx.selected.c_str());
+    ImGui::TextColored(ui::colors::dim, "A volume: its iso-level, silhouettes and exports are in the Volume panel.");
+    return;
+  }
   if (!o) {
     ImGui::TextColored(ui::colors::dim, "Nothing selected.");
     ImGui::TextWrapped("Click an object in the viewport or in the Scene panel.");

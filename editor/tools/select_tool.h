@@ -12,7 +12,8 @@
 
 namespace trispline::editor {
 
-// Name of the first visible object hit by the ray through viewport pixel `px`, if any.
+// Name of the first visible object or volume (its iso-surface, core::iso_ray_hit) hit by the ray through viewport
+// pixel `px`, if any.
 std::optional<std::string> pick_object(const core::Scene& scene, const core::Camera& camera, glm::dvec2 px,
                                        const std::set<std::string>& hidden = {});
 

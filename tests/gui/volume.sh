@@ -1,0 +1,136 @@
+#!/usr/bin/env bash
+# CT/MRI volumes in the editor (seed ch. 7): Scene ▸ Load… of a real MRI (NIfTI) prepares it on a worker thread and
+# adds it selected, with its Volume panel; a typed iso-level and a dragged one are one volume.iso each; silhouettes
+# turned on are extracted for the current view on a worker thread and follow an orbit; Export ▸ SVG writes the view's
+# silhouettes; a CT whose preprocessing is cancelled, a truncated .nii.gz and an empty folder chosen with "Load this
+# folder" (a DICOM series is a folder) leave the scene unchanged and say so in the Log. Screenshots of the brain with
+# its surface and silhouettes are kept in the test's folder.
+source "$(dirname "$0")/gui_lib.sh"
+mri="$GUI_ROOT/assets/data/KmeansTest_T1UCharRaw.nii.gz"
+ct="$GUI_ROOT/assets/data/Cranium.inv3"
+[ -f "$mri" ] || gui_fail "missing $mri (scripts/fetch_assets.sh fetches it)"
+[ -f "$ct" ] || gui_fail "missing $ct (scripts/fetch_assets.sh fetches it)"
+export TRISPLINE_CACHE_DIR="$GUI_DIR/cache"  # a fresh singleton cache: every load preprocesses
+head -c 3000 "$mri" >"$GUI_WORK/truncated.nii.gz"
+name=KmeansTest_T1UCharRaw
+GUI_TIMEOUT=40
+gui_start
+
+load() {
+  gui_click_item scene.load
+  gui_wait '(.popups | map(test("file_dialog")) | any) and .typing' "the Load dialog opens, its path field has the keyboard"
+  gui_type "$1"
+  gui_key Return
+}
+
+# shot NAME: the editor's own screenshot (F12) once the volume is drawn at full resolution, as $GUI_DIR/NAME.png.
+shot() {
+  local before newest
+  gui_wait '.volume_refining == false and (.volumes | map(.extracting) | any | not)' "the view settles before $1" 60
+  gui_frames 2
+  shots() { find "$GUI_WORK" -maxdepth 1 -name 'trispline-screenshot-*.png' ! -name '*.tmp*'; }  # written, renamed
+  before="$(shots | wc -l)"
+  gui_key F12
+  for _ in $(seq 1 100); do
+    [ "$(shots | wc -l)" -gt "$before" ] && break
+    sleep 0.2
+  done
+  newest="$(shots | sort -V | tail -1)"
+  [ -n "$newest" ] || gui_fail "no screenshot for $1"
+  cp "$newest" "$GUI_DIR/$1.png"
+  gui_log "screenshot: $GUI_DIR/$1.png"
+}
+
+# 1. The MRI: prepared on a worker thread, then volume.load; selected, framed, its panel shown.
+load "$mri"
+gui_wait '.volumes | length == 1' "the MRI volume loads" 120
+gui_check ".volumes[0].name == \"$name\"" "the volume is named after the file"
+gui_check '.volumes[0].dims == [128, 128, 62]' "its grid is the file's"
+gui_wait ".selected == \"$name\"" "the loaded volume is selected"
+gui_wait '.items["volume.iso"] != null and .items["scene.object.'"$name"'"] != null' "the Volume panel and the Scene row show"
+gui_wait '.volume_load == null and (.popups | length == 0)' "the progress window closes"
+shot loaded
+
+# 2. A typed iso-level: one volume.iso.
+gui_click_item volume.iso
+gui_wait '.typing' "a click on the iso field types a value"
+gui_type 60
+gui_key Return
+gui_wait_logged '.cmd == "volume.iso" and .level == 60' "volume.iso at the typed level"
+gui_wait '.volumes[0].iso == 60' "the volume's iso-level is 60"
+
+# 3. A dragged iso-level: previewed while dragged, one volume.iso at release.
+read -r x y <<<"$(gui_item_center volume.iso)"
+gui_move "$x" "$y"
+gui_frames 1
+xdotool mousedown 1
+gui_frames 2
+for i in 1 2 3 4; do
+  gui_move $((x + 15 * i)) "$y"
+  gui_frames 1
+done
+gui_wait '.volumes[0].preview_iso != null and .volumes[0].preview_iso > 60' "the dragged level is previewed"
+gui_check '.volumes[0].iso == 60' "the volume keeps its level while dragged"
+xdotool mouseup 1
+gui_wait_logged '.cmd == "volume.iso" and .level > 60' "a drag ends in one volume.iso"
+[ "$(gui_session_count '.cmd == "volume.iso"')" = 2 ] || gui_fail "two volume.iso lines (typed, dragged)"
+gui_wait '.volumes[0].iso > 60 and .volumes[0].preview_iso == null' "the dragged level applies"
+
+# 4. Silhouettes on: extracted for the current view on a worker thread.
+gui_click_item volume.silhouettes.enabled
+gui_wait_logged '.cmd == "volume.silhouettes" and .enabled == true' "volume.silhouettes turns them on"
+gui_wait '.volumes[0].silhouettes and .volumes[0].live_points > 100 and .volumes[0].live_current' \
+  "live silhouettes for the current view" 90
+shot silhouettes
+
+# 5. An orbit (Alt + left drag): the silhouettes follow the new view.
+eye_before="$(gui_q '.camera.eye | map(floor) | tostring')"
+read -r vx vy <<<"$(gui_q '.viewport | "\(((.[0] + .[2]) / 2) | floor) \(((.[1] + .[3]) / 2 + 120) | floor)"')"
+gui_drag "$vx" "$vy" $((vx + 120)) "$vy" alt
+gui_wait "(.camera.eye | map(floor) | tostring) != \"$eye_before\"" "the view orbits"
+gui_wait '.volumes[0].live_current and .volumes[0].live_points > 100' "the silhouettes follow the orbit" 90
+shot orbited
+
+# 6. Export ▸ SVG: the view's silhouettes as <path> elements.
+gui_click_item volume.export.svg
+gui_wait '(.popups | map(test("file_dialog")) | any) and .typing' "the Save dialog opens, its name field has the keyboard"
+gui_check ".values[\"file.name\"] == \"${name}_silhouettes.svg\"" "the file name is proposed"
+gui_type brain
+gui_key Return
+svg="$GUI_WORK/brain.svg"
+for _ in $(seq 1 150); do [ -f "$svg" ] && break; sleep 0.2; done
+[ -f "$svg" ] || gui_fail "the SVG was not written to $svg"
+[ "$(grep -c '<path' "$svg")" -ge 1 ] || gui_fail "the SVG holds no <path element"
+gui_wait_logged '.cmd == "volume.export" and .what == "silhouettes" and (.path | endswith("brain.svg"))' "volume.export logged"
+gui_wait_logged '.cmd == "camera.set"' "the export's view is logged as camera.set first"
+
+# 7. A CT whose preprocessing is cancelled: the progress window's Cancel; nothing added.
+load "$ct"
+gui_wait '.volume_load != null' "the CT starts loading" 30
+gui_click_item volume.load.cancel
+gui_wait '.volume_load == null' "the load stops" 60
+gui_wait '.log | map(test("Loading Cranium.inv3 cancelled")) | any' "the Log says it was cancelled"
+gui_check '.volumes | length == 1' "the scene is unchanged after the cancel"
+
+# 8. A truncated .nii.gz: refused in the Log, the scene unchanged, the editor alive.
+load "$GUI_WORK/truncated.nii.gz"
+gui_wait '.log | map(test("cannot load truncated.nii.gz")) | any' "the truncated file is refused in the Log" 60
+gui_wait '.volume_load == null' "the failed load is over"
+gui_check '.volumes | length == 1' "the scene is unchanged after the refusal"
+
+# 9. A folder (a DICOM series is one) chosen with the dialog's "Load this folder": an empty one is refused.
+mkdir -p "$GUI_WORK/empty_series"
+gui_click_item scene.load
+gui_wait '(.popups | map(test("file_dialog")) | any) and .typing' "the Load dialog opens again"
+gui_type "$GUI_WORK/empty_series"
+gui_key Return
+gui_wait '.values["file.path"] | test("empty_series/$")' "Enter on a folder lists it"
+gui_click_item file.folder
+gui_wait '.log | map(test("cannot load empty_series")) | any' "the empty folder is refused in the Log" 60
+gui_check '.volumes | length == 1' "the scene is unchanged after the folder"
+gui_alive || gui_fail "the editor died"
+
+[ "$(gui_session_count '.cmd == "volume.load"')" = 1 ] || gui_fail "one volume.load line in the session log"
+[ "$(gui_session_count '.cmd == "volume.silhouettes"')" = 1 ] || gui_fail "one volume.silhouettes line"
+[ "$(gui_session_count '.cmd == "volume.export"')" = 1 ] || gui_fail "one volume.export line"
+gui_pass

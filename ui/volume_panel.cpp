@@ -1,0 +1,195 @@
+#include "ui/volume_panel.h"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "core/commands/volume_iso.h"
+#include "ui/gui_probe.h"
+#include "ui/number_field.h"
+#include "ui/param_widgets.h"
+#include "ui/theme.h"
+
+namespace trispline::ui {
+
+namespace {
+
+bool same_settings(const core::VolumeSilhouetteSettings& a, const core::VolumeSilhouetteSettings& b) {
+  return a.enabled == b.enabled && a.style == b.style && a.hidden == b.hidden && a.projection == b.projection &&
+         a.params.subdivision == b.params.subdivision && a.params.accuracy == b.params.accuracy;
+}
+
+void take_settings(const core::VolumeObject& v, VolumePanelState& s) {
+  core::VolumeSilhouettesParams& p = s.silhouettes;
+  p.object = v.name;
+  p.enabled = v.silhouette.enabled;
+  p.style = v.silhouette.style;
+  p.hidden = v.silhouette.hidden;
+  p.projection = v.silhouette.projection;
+  p.subdivision = v.silhouette.params.subdivision;
+  p.accuracy = v.silhouette.params.accuracy;
+  s.seen = v.silhouette;
+}
+
+// A row of the info table: label, value, tooltip.
+void info_row(const char* label, const std::string& value, const char* tip) {
+  ImGui::TableNextRow();
+  ImGui::TableNextColumn();
+  ImGui::TextColored(colors::dim, "%s", label);
+  tooltip(tip);
+  ImGui::TableNextColumn();
+  ImGui::TextUnformatted(value.c_str());
+  tooltip(tip);
+}
+
+std::string number(double x, const char* format = "%.6g") {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, format, x);
+  return buf;
+}
+
+// Newton's stopping accuracy (the seed's second parameter) as powers of ten.
+constexpr double kAccuracies[] = {1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10};
+
+bool accuracy_combo(core::VolumeSilhouettesParams& p) {
+  const auto& schema = core::VolumeSilhouettesCommand::schema();
+  const auto* f = schema.find("accuracy");
+  row_label(f && !f->label.empty() ? f->label.c_str() : "Accuracy");
+  bool changed = false;
+  if (ImGui::BeginCombo("##accuracy", number(p.accuracy, "%.0e").c_str())) {
+    for (double a : kAccuracies) {
+      if (ImGui::Selectable(number(a, "%.0e").c_str(), a == p.accuracy) && a != p.accuracy) {
+        p.accuracy = a;
+        changed = true;
+      }
+      probe::item("volume.silhouettes.accuracy." + number(a, "%.0e"));
+    }
+    ImGui::EndCombo();
+  }
+  probe::item("volume.silhouettes.accuracy");
+  if (f) tooltip(param_tooltip(f->doc).c_str());
+  return changed;
+}
+
+}  // namespace
+
+std::string volume_spacing_text(const core::VolumeSpline& spline) {
+  const glm::dmat4& m = spline.index_to_world();
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "%.3g × %.3g × %.3g mm", glm::length(glm::dvec3(m[0])), glm::length(glm::dvec3(m[1])),
+                glm::length(glm::dvec3(m[2])));
+  return buf;
+}
+
+VolumePanelResult draw_volume_panel(const Rect& rect, const core::VolumeObject& v, VolumePanelState& state,
+                                    const VolumeLiveInfo& live) {
+  VolumePanelResult r;
+  if (state.volume != v.name) {
+    state.volume = v.name;
+    state.iso = state.seen_iso = v.iso;
+    take_settings(v, state);
+  }
+  if (v.iso != state.seen_iso) state.iso = state.seen_iso = v.iso;  // a command changed it (undo, a replayed log)
+  if (!same_settings(v.silhouette, state.seen)) take_settings(v, state);
+
+  if (begin_docked("Volume", rect)) {
+    ImGui::TextUnformatted(v.name.c_str());
+    tooltip("The selected volume (its id in command lines)");
+    if (!v.modality.empty()) {
+      ImGui::SameLine();
+      ImGui::TextColored(colors::dim, "%s", v.modality.c_str());
+      tooltip("Modality, as the file says (DICOM 0008,0060)");
+    }
+    const std::string units = v.units.empty() ? std::string() : " " + v.units;
+    if (ImGui::BeginTable("##volume_info", 2, ImGuiTableFlags_SizingStretchProp)) {
+      const auto& d = v.spline->dims();
+      info_row("Grid", std::to_string(d[0]) + " × " + std::to_string(d[1]) + " × " + std::to_string(d[2]) + " samples",
+               "Samples per axis of the volume (voxels); each is a control point of the spline D (seed Eq. 7.1)");
+      info_row("Spacing", volume_spacing_text(*v.spline),
+               "Distance between neighbouring samples along each index axis, millimetres (world units)");
+      info_row("Values",
+               "[" + number(v.table->range_min(), "%.4g") + ", " + number(v.table->range_max(), "%.4g") + "]" +
+                   (v.units.empty() ? std::string(" (no unit)") : units),
+               "Range of D over the volume (its control points' bounds): HU for CT, the scanner's units for MR");
+      info_row("Spline",
+               "order " + std::to_string(v.spline->order()) +
+                   (v.spline->interpolating() ? ", interpolating" : ", control points = samples"),
+               "Order per axis (degree + 1) of the trivariate B-spline D; 'control points = samples' smooths noise "
+               "(the seed's choice), 'interpolating' passes through every sample");
+      info_row("File", std::filesystem::path(v.source).filename().string(), v.source.c_str());
+      ImGui::EndTable();
+    }
+
+    ImGui::Separator();
+    const double lo = v.table->range_min(), hi = v.table->range_max();
+    const double speed = hi > lo ? (hi - lo) / 400.0 : 1.0;
+    std::string format = "%.2f" + units;
+    for (std::size_t i = 4; i < format.size(); ++i)
+      if (format[i] == '%') format.insert(i++, "%");  // a '%' in the unit text is printed, not a conversion
+    row_label("Iso-level");
+    drag_scalar("##iso", ImGuiDataType_Double, &state.iso, float(speed), &lo, &hi, format.c_str(),
+                ImGuiSliderFlags_AlwaysClamp);
+    probe::item("volume.iso");
+    if (const auto* f = core::VolumeIsoCommand::schema().find("level"))
+      tooltip((param_tooltip(f->doc) + "\nDrag to preview the surface live, release to apply (volume.iso); a click "
+                                       "types a value. The silhouettes follow the level.")
+                  .c_str());
+    if (ImGui::IsItemActive() && state.iso != v.iso) r.iso_preview = state.iso;
+    if (ImGui::IsItemDeactivatedAfterEdit() && std::isfinite(state.iso) && state.iso != v.iso)
+      r.line = core::VolumeIsoCommand::schema().to_json(core::VolumeIsoParams{v.name, state.iso});
+
+    ImGui::Separator();
+    ImGui::TextColored(colors::dim, "Silhouettes");
+    tooltip(
+        "The iso-surface's smooth silhouettes for the current view, found by Newton steps in the singletons "
+        "holding the level (seed section 7.3.3)");
+    core::VolumeSilhouettesParams& p = state.silhouettes;
+    p.object = v.name;
+    const auto& schema = core::VolumeSilhouettesCommand::schema();
+    bool commit = false;
+    if (const auto* f = schema.find("enabled")) {
+      const ParamWidget w{schema.id(),           &f->doc,    "Show",      f->kind, f->range, &f->choices,
+                          int(f->choice_member), f->ui_step, f->ui_format};
+      commit |= param_widget(w, &p.enabled);
+    }
+    ImGui::BeginDisabled(!p.enabled);
+    for (const char* field : {"style", "hidden", "projection", "subdivision"}) commit |= param_widget(schema, field, p);
+    commit |= accuracy_combo(p);
+    ImGui::EndDisabled();
+    if (p.enabled) {
+      if (live.extracting && live.ms < 0)
+        ImGui::TextColored(colors::dim, "extracting...");
+      else if (live.ms >= 0)
+        ImGui::TextColored(colors::dim, "%zu points, %.0f ms%s", live.points, live.ms,
+                           live.extracting ? " (updating...)"
+                           : live.current  ? ""
+                                           : " (previous view)");
+      tooltip(
+          "The silhouettes drawn: points found for the current view and their extraction time on a worker "
+          "thread (the view stays interactive; a new view is extracted when the last one is done)");
+    }
+    if (commit) r.line = schema.to_json(p);
+
+    ImGui::Separator();
+    ImGui::TextColored(colors::dim, "Export");
+    tooltip("Write the silhouettes or the iso-surface to a file (volume.export)");
+    const char* group = "";
+    for (const VolumeExportKind& k : kVolumeExports) {
+      if (std::string(group) != k.what) {
+        group = k.what;
+        row_label(std::string(k.what) == "iso" ? "Iso-surface" : "Silhouettes");
+      } else {
+        ImGui::SameLine();
+      }
+      if (ImGui::Button(k.label)) r.export_kind = &k;
+      probe::item(std::string("volume.export.") + k.id);
+      tooltip(k.tooltip);
+    }
+  }
+  ImGui::End();
+  return r;
+}
+
+}  // namespace trispline::ui
