@@ -1,5 +1,7 @@
 #include "editor/app_state.h"
 
+#include "core/commands/volume_remove.h"
+
 namespace trispline::editor {
 
 const char* doing(Pending p) {
@@ -160,7 +162,7 @@ void App::handle_scene(const ui::SceneRequest& r) {
     });
   }
   if (r.kind == K::Remove && session_.scene().find_volume(r.name)) {
-    messages_.warning("'" + r.name + "' is a volume: volumes cannot be removed yet (hide it with its eye)");
+    if (session_.execute(core::VolumeRemoveCommand::schema().to_json({r.name}))) selected_.clear();
     return;
   }
   if (r.kind == K::Remove && !r.name.empty() && session_.has_command("scene.remove") &&

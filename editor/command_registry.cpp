@@ -3,6 +3,7 @@
 #include "core/commands/volume_export.h"
 #include "core/commands/volume_iso.h"
 #include "core/commands/volume_load.h"
+#include "core/commands/volume_remove.h"
 #include "core/commands/volume_silhouettes.h"
 #include "core/commands/anim_commands.h"
 #include "core/commands/anim_record.h"
@@ -91,6 +92,7 @@ const CommandRegistry& CommandRegistry::builtin() {
     r.add<core::VolumeIsoCommand>();
     r.add<core::VolumeSilhouettesCommand>();
     r.add<core::VolumeExportCommand>();
+    r.add<core::VolumeRemoveCommand>();
     return r;
   }();
   return registry;

@@ -260,15 +260,11 @@ bool VolumeUi::export_volume(const std::string& volume, const ui::VolumeExportKi
                              const core::Camera& view) {
   if (!lower(path.filename().string()).ends_with(kind.extension)) path += kind.extension;
   const std::string what = kind.what;
-  const core::Scene& scene = session_.scene();
-  // volume.export writes the silhouettes of the scene camera: make it the view the user sees.
-  if (what == "silhouettes" && !(scene.camera_set && core::same_view(scene.camera, view)) &&
-      !session_.execute(camera_line(view)))
-    return false;
   core::VolumeExportParams p;
   p.object = volume;
   p.what = what;
   p.path = path.string();
+  if (what == "silhouettes") p.camera = view;  // the view the user sees
   if (!session_.execute(core::VolumeExportCommand::schema().to_json(p))) return false;
   messages_.info("exported the " + std::string(what == "iso" ? "iso-surface" : "silhouettes") + " of " + volume +
                  " to " + path.string());

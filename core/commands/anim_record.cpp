@@ -52,7 +52,7 @@ AnimRecordCommand::AnimRecordCommand(AnimRecordParams p, const std::filesystem::
     : DeclaredCommand(std::move(p)) {
   RecordRequest& r = request_;
   r.out = p_.out;
-  if (!r.out.empty()) r.out_dir = std::filesystem::absolute(CommandContext{base_dir}.resolve(r.out)).lexically_normal();
+  if (!r.out.empty()) r.out_dir = std::filesystem::absolute(CommandContext{base_dir, {}}.resolve(r.out)).lexically_normal();
   r.format = p_.format;
   if (p_.frames) {
     r.frame_first = p_.frames->x;

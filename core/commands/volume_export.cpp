@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "core/commands/codecs.h"
 #include "core/mesh/gltf_io.h"
 #include "core/volume/iso_mesh.h"
 #include "core/volume/silhouette_export.h"
@@ -30,6 +31,8 @@ const ParamSchema<VolumeExportParams>& VolumeExportCommand::schema() {
           .help("Output file; a relative path goes under replay's --out folder, else the log's folder")
           .field("samples_per_voxel", &P::samples_per_voxel).range(1, 4).write_unless_default()
           .help("iso: grid samples per voxel and axis before meshing (1 = at the control points)")
+          .object("camera", &P::camera, camera_schema())
+          .help("silhouettes: the view they are taken for (camera.set's fields); default: the scene camera")
           .check([](const P& p) {
             const std::string e = lower_extension(p.path);
             if (p.what == "silhouettes" && e != ".svg" && e != ".glb")
@@ -54,8 +57,12 @@ std::optional<VolumeObject> VolumeExportCommand::build(const Scene& scene) {
   if (const auto parent = std::filesystem::path(p_.path).parent_path(); !parent.empty())
     std::filesystem::create_directories(parent);
   if (p_.what == "silhouettes") {
+    // The view, its far plane beyond the volume (the SVG's projection clips to it; camera.set carries none).
+    Camera cam = p_.camera ? *p_.camera : scene.camera;
+    const Aabb box = v.world_bounds();
+    cam.far_plane = std::max(cam.far_plane, glm::length(box.center() - cam.eye) + 0.51 * box.diagonal());
     v.silhouette.enabled = true;
-    v = volume_with_silhouettes(v, scene.camera, &stats_);
+    v = volume_with_silhouettes(v, cam, &stats_);
     v.silhouette.enabled = before.silhouette.enabled;
     const auto& polylines = v.silhouettes->polylines;
     if (lower_extension(p_.path) == ".svg") {
@@ -65,7 +72,6 @@ std::optional<VolumeObject> VolumeExportCommand::build(const Scene& scene) {
       std::vector<SilhouettePolyline> drawn = polylines;
       if (v.silhouette.hidden == "show")
         for (auto& pl : drawn) std::fill(pl.visible.begin(), pl.visible.end(), 1);
-      const Camera& cam = scene.camera;
       write_silhouettes_svg(p_.path, drawn, cam.projection_matrix() * cam.view_matrix(), cam.viewport, style);
     } else {
       const auto strips = silhouette_line_strips(polylines, v.silhouette.hidden != "remove");

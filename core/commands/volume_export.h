@@ -1,7 +1,7 @@
 // `volume.export` — writes a volume's silhouettes or iso-surface to a file.
 //   {"cmd":"volume.export","object":"ID","what":"silhouettes","path":"skull.svg"}
 //   {"cmd":"volume.export","object":"ID","what":"iso","path":"skull.glb","samples_per_voxel":1}
-// what = silhouettes: extracted for the scene camera (the volume's style, hidden-line mode and projection) and written
+// what = silhouettes: extracted for `camera` (camera.set's fields; default: the scene camera) (the volume's style, hidden-line mode and projection) and written
 // as SVG (.svg: a line drawing for illustrations, the camera's viewport in pixels) or glTF line strips (.glb: world
 // millimetres, a node "<id>/silhouettes"); the volume keeps them (scene.glb exports them too).
 // what = iso: the surface D = iso as a triangle mesh (OpenVDB volume-to-mesh on the sampled spline, vertices projected
@@ -22,6 +22,7 @@ struct VolumeExportParams {
   std::string what = "silhouettes";  // silhouettes | iso
   std::string path;
   int samples_per_voxel = 1;         // iso: IsoMeshOptions::samples_per_voxel
+  std::optional<Camera> camera;      // silhouettes: the view (camera.set's fields); default: the scene camera
 };
 
 class VolumeExportCommand : public DeclaredCommand<VolumeExportCommand, VolumeExportParams, VolumeSnapshotCommand> {

@@ -63,7 +63,7 @@ std::string mutated_lines() {
     const std::string cmd = line.json.value("cmd", std::string());
     if (cmd.empty() || first.count(cmd)) return;
     try {
-      registry.parse(line.json, core::CommandContext{log.parent_path()});
+      registry.parse(line.json, core::CommandContext{log.parent_path(), {}});
     } catch (const std::exception&) {
       return;
     }
@@ -75,7 +75,7 @@ std::string mutated_lines() {
       {"[1,2]", {1, 2}}, {"{}", nlohmann::json::object()}, {"null", nullptr}, {"true", true}};
   std::ostringstream out;
   for (const auto& [cmd, line] : first) {
-    const core::CommandContext ctx{where[cmd]};
+    const core::CommandContext ctx{where[cmd], {}};
     for (const auto& [field, value] : line.items()) {
       if (field == "cmd") continue;
       auto answer = [&](const nlohmann::json& j) {
@@ -113,7 +113,7 @@ std::string canonical_lines() {
         out << name << ": unreadable: " << without_source_dir(e.what()) << "\n";
         continue;
       }
-      const core::CommandContext ctx{log.parent_path()};
+      const core::CommandContext ctx{log.parent_path(), {}};
       for (editor::LogLine& line : lines) {
         out << name << ":" << line.number << ": ";
         try {
@@ -164,7 +164,7 @@ TEST(LogCanonical, ToJsonIsAFixedPointOfParse) {
   const editor::CommandRegistry& registry = editor::CommandRegistry::builtin();
   int checked = 0;
   for_each_readable_line([&](const fs::path& log, const editor::LogLine& line) {
-    const core::CommandContext ctx{log.parent_path()};
+    const core::CommandContext ctx{log.parent_path(), {}};
     core::CommandPtr first;
     try {
       first = registry.parse(line.json, ctx);

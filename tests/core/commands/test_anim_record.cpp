@@ -65,7 +65,7 @@ TEST(AnimRecord, LineRoundTripsAndResolvesItsFolderAgainstTheLog) {
   const json line = json::parse(
       R"({"cmd":"anim.record","out":"frames","format":"exr","frames":[3,5],"glb":false,"mp4":false,
           "width":320,"height":240})");
-  auto c = core::AnimRecordCommand::parse(line, core::CommandContext{"/tmp/logs"});
+  auto c = core::AnimRecordCommand::parse(line, core::CommandContext{"/tmp/logs", {}});
   EXPECT_EQ(c->to_json(), line);
   EXPECT_EQ(core::AnimRecordCommand::parse(c->to_json(), {})->to_json(), line);
   c->redo(s);

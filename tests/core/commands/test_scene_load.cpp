@@ -18,7 +18,7 @@ using test::write_text;
 const char* kQuad = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n";
 
 CommandPtr parse(const json& line, const std::filesystem::path& base_dir = {}) {
-  return SceneLoadCommand::parse(line, CommandContext{base_dir});
+  return SceneLoadCommand::parse(line, CommandContext{base_dir, {}});
 }
 
 TEST(SceneLoad, AddsTheFileUnderItsStemAndUndoRemovesIt) {

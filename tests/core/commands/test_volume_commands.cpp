@@ -11,6 +11,7 @@
 #include "core/commands/volume_export.h"
 #include "core/commands/volume_iso.h"
 #include "core/commands/volume_load.h"
+#include "core/commands/volume_remove.h"
 #include "core/commands/volume_silhouettes.h"
 #include "core/scene/scene_export.h"
 #include "core/volume/prepared_volume.h"
@@ -181,6 +182,48 @@ TEST_F(VolumeCommands, ExportWritesSvgGlbAndIsoMeshAndSceneGlbHoldsThem) {
   EXPECT_EQ(names(), (std::vector<std::string>{"torus/iso", "torus/silhouettes"}));
   e3->undo(s);
   EXPECT_FALSE(s.find_volume("torus")->iso_mesh);
+}
+
+TEST_F(VolumeCommands, RemoveAndUndoRestoreTheVolumeWhereItWas) {
+  Scene s = torus_scene();
+  parse<VolumeLoadCommand>(R"({"cmd":"volume.load","analytic":"sphere","name":"ball"})")->redo(s);
+  parse<VolumeIsoCommand>(R"({"cmd":"volume.iso","object":"torus","level":2})")->redo(s);
+  auto r = parse<VolumeRemoveCommand>(R"({"cmd":"volume.remove","object":"torus"})");
+  r->redo(s);
+  ASSERT_EQ(s.volumes().size(), 1u);
+  EXPECT_EQ(s.volumes()[0].name, "ball");
+  r->undo(s);
+  ASSERT_EQ(s.volumes().size(), 2u);
+  EXPECT_EQ(s.volumes()[0].name, "torus");  // back in its place, with its level
+  EXPECT_EQ(s.volumes()[0].iso, 2.0);
+  EXPECT_THROW(parse<VolumeRemoveCommand>(R"({"cmd":"volume.remove","object":"nope"})")->redo(s), CommandError);
+  EXPECT_EQ(s.volumes().size(), 2u);
+}
+
+TEST_F(VolumeCommands, ExportTakesTheViewFromItsCameraField) {
+  Scene s = torus_scene();
+  const auto a = dir_ / "a.svg", b = dir_ / "b.svg";
+  const json cam = {{"eye", {0, -150, 60}}, {"target", {0, 0, 0}}, {"up", {0, 0, 1}}, {"viewport", {320, 240}}};
+  // The same view as the scene camera, given in the line: the same drawing.
+  parse<VolumeExportCommand>(json({{"cmd", "volume.export"}, {"object", "torus"}, {"path", a.string()}}).dump())->redo(s);
+  parse<VolumeExportCommand>(
+      json({{"cmd", "volume.export"}, {"object", "torus"}, {"path", b.string()}, {"camera", cam}}).dump())
+      ->redo(s);
+  std::stringstream ta, tb;
+  ta << std::ifstream(a).rdbuf();
+  tb << std::ifstream(b).rdbuf();
+  EXPECT_EQ(ta.str(), tb.str());
+  // Another view in the line: another drawing, and the scene camera is unchanged.
+  json top = cam;
+  top["eye"] = {0, 0, 200};
+  top["up"] = {0, 1, 0};
+  parse<VolumeExportCommand>(
+      json({{"cmd", "volume.export"}, {"object", "torus"}, {"path", b.string()}, {"camera", top}}).dump())
+      ->redo(s);
+  std::stringstream tc;
+  tc << std::ifstream(b).rdbuf();
+  EXPECT_NE(ta.str(), tc.str());
+  EXPECT_EQ(s.camera.eye, glm::dvec3(0, -150, 60));
 }
 
 }  // namespace

@@ -1,0 +1,26 @@
+// `volume.remove` — removes a volume (Scene panel ▸ Remove, the Delete key on a selected volume).
+//   {"cmd":"volume.remove","object":"ID"}
+// Undo puts it back where it was, with its iso-level, settings and silhouettes. Error (field `object`): no such volume.
+#pragma once
+
+#include "core/commands/declared_command.h"
+#include "core/commands/volume_snapshot.h"
+
+namespace trispline::core {
+
+struct VolumeRemoveParams {
+  std::string object;
+};
+
+class VolumeRemoveCommand : public DeclaredCommand<VolumeRemoveCommand, VolumeRemoveParams, VolumeSnapshotCommand> {
+ public:
+  using DeclaredCommand::DeclaredCommand;
+  static const ParamSchema<VolumeRemoveParams>& schema();
+  std::string label() const override { return "Remove volume '" + p_.object + "'"; }
+
+ protected:
+  std::string target() const override { return p_.object; }
+  std::optional<VolumeObject> build(const Scene& scene) override;
+};
+
+}  // namespace trispline::core
