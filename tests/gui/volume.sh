@@ -102,7 +102,7 @@ for _ in $(seq 1 150); do [ -f "$svg" ] && break; sleep 0.2; done
 [ -f "$svg" ] || gui_fail "the SVG was not written to $svg"
 [ "$(grep -c '<path' "$svg")" -ge 1 ] || gui_fail "the SVG holds no <path element"
 gui_wait_logged '.cmd == "volume.export" and .what == "silhouettes" and (.path | endswith("brain.svg"))' "volume.export logged"
-gui_wait_logged '.cmd == "camera.set"' "the export's view is logged as camera.set first"
+gui_wait_logged '.cmd == "volume.export" and .camera != null' "the export carries the view it was made for"
 
 # 7. A CT whose preprocessing is cancelled: the progress window's Cancel; nothing added.
 load "$ct"
