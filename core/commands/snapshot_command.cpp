@@ -14,39 +14,6 @@ std::filesystem::path CommandContext::resolve_output(const std::string& path) co
   return dir.empty() ? p : dir / p;
 }
 
-void SnapshotCommand::redo(Scene& scene) {
-  if (!built_) {
-    try {
-      after_ = build(scene);
-    } catch (const CommandError&) {
-      throw;
-    } catch (const std::exception& e) {
-      throw CommandError(e.what(), failure_field());
-    }
-    built_ = true;
-  }
-  const int index = scene.index_of(target());
-  if (index >= 0) {
-    before_ = scene.objects()[index];
-    index_ = index;
-  } else {
-    before_.reset();
-    index_ = -1;
-  }
-  if (after_ && before_) {
-    scene.replace(*after_);
-  } else if (after_) {
-    scene.insert(*after_);
-  } else if (before_) {
-    scene.remove(target());
-  }
-}
-
-void SnapshotCommand::undo(Scene& scene) {
-  if (scene.index_of(target()) >= 0) scene.remove(target());
-  if (before_) scene.insert(*before_, index_);
-}
-
 const SceneObject& require_object(const Scene& scene, const std::string& name, const char* field) {
   const SceneObject* o = scene.find(name);
   if (!o) throw CommandError("field '" + std::string(field) + "': no object named '" + name + "'", field);

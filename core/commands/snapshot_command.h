@@ -1,4 +1,5 @@
-// trispline::core::SnapshotCommand — base for commands that create, change or remove one named object.
+// trispline::core::SnapshotCommand — base for commands that create, change or remove one named object
+// (BasicSnapshotCommand<SceneObject>; VolumeSnapshotCommand is the same for volumes).
 // The new object is built completely (build()) before the scene is touched; undo restores the snapshot taken
 // before redo. Meshes are shared immutable pointers, so snapshots cost a few pointers, not mesh copies, and
 // undo/redo restore meshes bit for bit. build() may record figures in stats_ (reported by stats()).
@@ -10,18 +11,63 @@
 
 namespace trispline::core {
 
-class SnapshotCommand : public Command {
+// Where a snapshot command finds, puts and takes its kind of named item in a Scene.
+template <class T>
+struct SnapshotSlots;
+
+template <>
+struct SnapshotSlots<SceneObject> {
+  static int index_of(const Scene& s, const std::string& name) { return s.index_of(name); }
+  static const SceneObject& at(const Scene& s, int i) { return s.objects()[i]; }
+  static void replace(Scene& s, const SceneObject& o) { s.replace(o); }
+  static void insert(Scene& s, const SceneObject& o, int i) { s.insert(o, i); }
+  static void remove(Scene& s, const std::string& name) { s.remove(name); }
+};
+
+template <>
+struct SnapshotSlots<VolumeObject> {
+  static int index_of(const Scene& s, const std::string& name) { return s.volume_index_of(name); }
+  static const VolumeObject& at(const Scene& s, int i) { return s.volumes()[i]; }
+  static void replace(Scene& s, const VolumeObject& v) { s.replace_volume(v); }
+  static void insert(Scene& s, const VolumeObject& v, int i) { s.insert_volume(v, i); }
+  static void remove(Scene& s, const std::string& name) { s.remove_volume(name); }
+};
+
+template <class T>
+class BasicSnapshotCommand : public Command {
  public:
-  void redo(Scene& scene) final;
-  void undo(Scene& scene) final;
+  void redo(Scene& scene) final {
+    using Slots = SnapshotSlots<T>;
+    if (!built_) {
+      try {
+        after_ = build(scene);
+      } catch (const CommandError&) {
+        throw;
+      } catch (const std::exception& e) {
+        throw CommandError(e.what(), failure_field());
+      }
+      built_ = true;
+    }
+    index_ = Slots::index_of(scene, target());
+    if (index_ >= 0) before_ = Slots::at(scene, index_);
+    else before_.reset();
+    if (after_ && before_) Slots::replace(scene, *after_);
+    else if (after_) Slots::insert(scene, *after_, -1);
+    else if (before_) Slots::remove(scene, target());
+  }
+  void undo(Scene& scene) final {
+    using Slots = SnapshotSlots<T>;
+    if (Slots::index_of(scene, target()) >= 0) Slots::remove(scene, target());
+    if (before_) Slots::insert(scene, *before_, index_);
+  }
   nlohmann::json stats() const override { return stats_; }
 
  protected:
-  // Name of the object this command changes (known after parsing).
+  // Name of the item this command changes (known after parsing).
   virtual std::string target() const = 0;
-  // The object's new state (std::nullopt = remove it). Called once, on the first redo; must not modify the scene.
+  // The item's new state (std::nullopt = remove it). Called once, on the first redo; must not modify the scene.
   // May throw anything derived from std::exception: it is reported as CommandError and the scene is unchanged.
-  virtual std::optional<SceneObject> build(const Scene& scene) = 0;
+  virtual std::optional<T> build(const Scene& scene) = 0;
   // Field to blame when build() throws something that is not a CommandError (e.g. "path" for I/O errors).
   virtual std::string failure_field() const { return {}; }
 
@@ -29,9 +75,11 @@ class SnapshotCommand : public Command {
 
  private:
   bool built_ = false;
-  std::optional<SceneObject> before_, after_;
+  std::optional<T> before_, after_;
   int index_ = -1;
 };
+
+using SnapshotCommand = BasicSnapshotCommand<SceneObject>;
 
 // The object named `name`. Throws CommandError (field `field`): no object of that name.
 const SceneObject& require_object(const Scene& scene, const std::string& name, const char* field = "object");

@@ -2,30 +2,6 @@
 
 namespace trispline::core {
 
-void VolumeSnapshotCommand::redo(Scene& scene) {
-  if (!built_) {
-    try {
-      after_ = build(scene);
-    } catch (const CommandError&) {
-      throw;
-    } catch (const std::exception& e) {
-      throw CommandError(e.what(), failure_field());
-    }
-    built_ = true;
-  }
-  index_ = scene.volume_index_of(target());
-  if (index_ >= 0) before_ = scene.volumes()[index_];
-  else before_.reset();
-  if (after_ && before_) scene.replace_volume(*after_);
-  else if (after_) scene.insert_volume(*after_);
-  else if (before_) scene.remove_volume(target());
-}
-
-void VolumeSnapshotCommand::undo(Scene& scene) {
-  if (scene.volume_index_of(target()) >= 0) scene.remove_volume(target());
-  if (before_) scene.insert_volume(*before_, index_);
-}
-
 const VolumeObject& require_volume(const Scene& scene, const std::string& name, const char* field) {
   if (const VolumeObject* v = scene.find_volume(name)) return *v;
   if (scene.find(name))
