@@ -5,8 +5,6 @@
 // passes validate_mesh, with every position finite — or the reader throws MeshIoError (MeshClip::load: or
 // std::invalid_argument, as documented). Any other exception, a
 // signal, a sanitizer finding or a loaded mesh that breaks the contract aborts, which libFuzzer reports as a crash.
-#include <unistd.h>
-
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -17,6 +15,7 @@
 
 #include "core/mesh/mesh_clip.h"
 #include "core/mesh/mesh_io.h"
+#include "tests/fuzz/fuzz_input_file.h"
 
 #ifndef TRISPLINE_FUZZ_EXT
 #error "define TRISPLINE_FUZZ_EXT, e.g. \".obj\""
@@ -48,18 +47,8 @@ void check_loaded(const core::TriMesh& m, const core::MeshLoadReport& report) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  static const std::filesystem::path file = [] {
-    const std::filesystem::path dir =
-        std::filesystem::temp_directory_path() / ("trispline_fuzz_mesh_" + std::to_string(::getpid()));
-    std::filesystem::create_directories(dir);
-    return dir / (std::string("input") + TRISPLINE_FUZZ_EXT);
-  }();
-  if (std::FILE* f = std::fopen(file.c_str(), "wb")) {
-    std::fwrite(data, 1, size, f);
-    std::fclose(f);
-  } else {
-    return 0;
-  }
+  const std::filesystem::path file = fuzz::write_input_file("trispline_fuzz_mesh", TRISPLINE_FUZZ_EXT, data, size);
+  if (file.empty()) return 0;
   for (const bool ignore_loose : {false, true}) {
     core::MeshLoadOptions options;
     options.ignore_loose = ignore_loose;

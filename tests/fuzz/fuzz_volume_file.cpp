@@ -5,8 +5,6 @@
 // contract under test: a file loads whole — a volume that passes scalar_volume_error, with source set — or the
 // reader throws VolumeLoadError. Any other exception, a signal, a sanitizer finding or a volume that breaks the
 // contract aborts, which libFuzzer reports as a crash.
-#include <unistd.h>
-
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -14,6 +12,7 @@
 #include <string>
 
 #include "core/volume/volume_io.h"
+#include "tests/fuzz/fuzz_input_file.h"
 
 #ifndef TRISPLINE_FUZZ_EXT
 #error "define TRISPLINE_FUZZ_EXT, e.g. \".nii\""
@@ -22,18 +21,8 @@
 using namespace trispline;
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  static const std::filesystem::path file = [] {
-    const std::filesystem::path dir =
-        std::filesystem::temp_directory_path() / ("trispline_fuzz_volume_" + std::to_string(::getpid()));
-    std::filesystem::create_directories(dir);
-    return dir / (std::string("input") + TRISPLINE_FUZZ_EXT);
-  }();
-  if (std::FILE* f = std::fopen(file.c_str(), "wb")) {
-    std::fwrite(data, 1, size, f);
-    std::fclose(f);
-  } else {
-    return 0;
-  }
+  const std::filesystem::path file = fuzz::write_input_file("trispline_fuzz_volume", TRISPLINE_FUZZ_EXT, data, size);
+  if (file.empty()) return 0;
   core::VolumeLoadOptions options;
   options.memory_budget_bytes = std::uint64_t{256} << 20;
   try {
