@@ -19,7 +19,7 @@ struct SilhouetteBenchOptions {
   double iso = 226.0;                                    // the volume's units (HU for the Cranium)
   int views = 36;                                        // ≥ 1
   int order = 4;                                         // 2…4
-  int subdivision = 2;                                   // SilhouetteParams::subdivision
+  int subdivision = 1;                                   // SilhouetteParams::subdivision
   double accuracy = 1e-7;                                // SilhouetteParams::accuracy
   bool hidden = true;                                    // time the hidden-line test too
 };

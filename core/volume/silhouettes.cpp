@@ -4,7 +4,14 @@
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
+#include <optional>
+#include <unordered_map>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include "core/volume/bezier_cell.h"
@@ -14,6 +21,16 @@ namespace trispline::core {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+
+// Curve tracing: steps of at most kStepMax index units, halved down to kStepMin where the corrector fails or the
+// tangent turns by more than kMaxTurnDeg in one step.
+constexpr double kStepMax = 0.5, kStepMin = 1.0 / 128.0, kMaxTurnDeg = 25.0;
+// A march stops where it comes within kJoinRadius index units of a point already traced (a point on a chord of length
+// kStepMax is within kStepMax/2 of one of its ends).
+constexpr double kJoinRadius = 0.75 * kStepMax;
+constexpr int kCorrectorIterations = 8, kSeedIterations = 6, kMaxSteps = 1 << 16;
+// Cells per block axis: blocks are traced independently (in parallel) and their traces joined at the block faces.
+constexpr int kBlock = 32;
 
 double ms_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -40,52 +57,88 @@ IndexView index_view(const VolumeSpline& spline, const SilhouetteView& view) {
   return iv;
 }
 
-struct Point {
-  glm::dvec3 x;           // index space
-  glm::dvec3 tangent;     // index space, unit
-  std::uint32_t cell;     // the singleton it was found in
-  float gradient_norm;    // per millimetre
-  double value_residual;  // |D − c| / range
-  double dot_residual;    // |Ĝ·V̂| in world space
+// What every solve needs: the spline, the level, the view and the stopping accuracy.
+struct Problem {
+  const VolumeSpline& spline;
+  const SingletonTable& table;
+  IndexView view;
+  double iso = 0.0;
+  double range = 1.0;  // range(D) for the relative value residual
+  double accuracy = 1e-7;
+  glm::dmat3 to_world{1.0};  // linear part of index_to_world
 };
 
-// Newton–Raphson on F(x) = (D(x) − c, ∇D(x)·w(x)) = 0 (seed Eq. 7.2) with minimum-norm steps −Jᵀ(JJᵀ)⁻¹F.
-// Returns false when it does not converge within the iteration budget or leaves `lo`…`hi`.
-bool newton_silhouette(const VolumeSpline& spline, const IndexView& view, double iso, double range, double accuracy,
-                       const glm::dvec3& lo, const glm::dvec3& hi, glm::dvec3& x, Point& out) {
-  for (int it = 0; it < 12; ++it) {
-    const VolumeJet j = spline.jet(x);
+struct CurvePoint {
+  glm::dvec3 x;           // index space
+  glm::dvec3 tangent;     // index space, unit: ∇D × ∇(g·w), the curve's direction
+  float gradient_norm;    // |∇D| per millimetre
+  double value_residual;  // |D − c| / range
+  double dot_residual;    // |Ĝ·V̂| in world space
+  int iterations;         // Newton iterations it took
+};
+
+// Newton–Raphson on F(x) = (D(x) − c, ∇D(x)·w(x)) = 0 (seed Eq. 7.2) from x. With plane_axis < 0 the steps are the
+// minimum-norm solutions −Jᵀ(JJᵀ)⁻¹F (2 equations, 3 unknowns); with plane_axis = a, x[a] stays fixed and the step
+// solves the 2 × 2 system in the other two coordinates (the curve's crossing of the plane x[a] = const). Returns false
+// when it does not converge within `iterations`, stops contracting, leaves lo…hi, ends at a singular point
+// (∇D ∥ ∇(g·w): no tangent), or when abort(x) says so after a step.
+struct NoAbort {
+  bool operator()(const glm::dvec3&) const { return false; }
+};
+
+template <class Abort = NoAbort>
+bool solve_point(const Problem& pb, glm::dvec3 x, const glm::dvec3& lo, const glm::dvec3& hi, int iterations,
+                 CurvePoint& out, int plane_axis = -1, Abort&& abort = {}) {
+  const IndexView& view = pb.view;
+  double last_step = INFINITY;
+  for (int it = 0; it <= iterations; ++it) {
+    const VolumeJet j = pb.spline.jet(x);
     const glm::dvec3 w = view.w(x);
-    const double f1 = j.value - iso, f2 = glm::dot(j.gradient, w);
-    const glm::dvec3 gw = spline.world_gradient(j.gradient);
-    const glm::dvec3 ww = view.perspective ? glm::dmat3(spline.index_to_world()) * w
-                                           : glm::dmat3(spline.index_to_world()) * view.v;
+    const double f1 = j.value - pb.iso, f2 = glm::dot(j.gradient, w);
+    const glm::dvec3 gw = pb.spline.world_gradient(j.gradient);
+    const glm::dvec3 ww = pb.to_world * w;
     const double gl = glm::length(gw), wl = glm::length(ww);
     if (!(gl > 0.0) || !(wl > 0.0)) return false;
-    const double value_res = std::abs(f1) / range, dot_res = std::abs(glm::dot(gw, ww)) / (gl * wl);
-    if (value_res <= accuracy && dot_res <= accuracy) {
+    const glm::dvec3 r1 = j.gradient;
+    const glm::dvec3 r2 = j.hessian * w + (view.perspective ? j.gradient : glm::dvec3(0.0));
+    const double value_res = std::abs(f1) / pb.range, dot_res = std::abs(glm::dot(gw, ww)) / (gl * wl);
+    if (value_res <= pb.accuracy && dot_res <= pb.accuracy) {
+      const glm::dvec3 t = glm::cross(r1, r2);
+      const double tl = glm::length(t);
+      if (!(tl > 0.0) || !std::isfinite(tl)) return false;
       out.x = x;
+      out.tangent = t / tl;
       out.value_residual = value_res;
       out.dot_residual = dot_res;
       out.gradient_norm = static_cast<float>(gl);
-      const glm::dvec3 r2 = j.hessian * w + (view.perspective ? j.gradient : glm::dvec3(0.0));
-      const glm::dvec3 t = glm::cross(j.gradient, r2);
-      const double tl = glm::length(t);
-      out.tangent = tl > 0.0 ? t / tl : glm::dvec3(0.0);
+      out.iterations = it;
       return true;
     }
-    const glm::dvec3 r1 = j.gradient;
-    const glm::dvec3 r2 = j.hessian * w + (view.perspective ? j.gradient : glm::dvec3(0.0));
-    const double a = glm::dot(r1, r1), b = glm::dot(r1, r2), c = glm::dot(r2, r2);
-    const double det = a * c - b * b;
-    if (!(det > 1e-300) || !(std::abs(det) > 1e-14 * a * c)) return false;
-    const double l1 = (c * f1 - b * f2) / det, l2 = (a * f2 - b * f1) / det;
-    glm::dvec3 step = -(l1 * r1 + l2 * r2);
+    if (it == iterations) break;
+    glm::dvec3 step(0.0);
+    if (plane_axis < 0) {
+      const double a = glm::dot(r1, r1), b = glm::dot(r1, r2), c = glm::dot(r2, r2);
+      const double det = a * c - b * b;
+      if (!(det > 1e-300) || !(std::abs(det) > 1e-14 * a * c)) return false;
+      const double l1 = (c * f1 - b * f2) / det, l2 = (a * f2 - b * f1) / det;
+      step = -(l1 * r1 + l2 * r2);
+    } else {
+      const int u = (plane_axis + 1) % 3, v = (plane_axis + 2) % 3;
+      const double det = r1[u] * r2[v] - r1[v] * r2[u];
+      const double scale = glm::length(r1) * glm::length(r2);
+      if (!(std::abs(det) > 1e-10 * scale)) return false;
+      step[u] = -(f1 * r2[v] - f2 * r1[v]) / det;
+      step[v] = -(r1[u] * f2 - r2[u] * f1) / det;
+    }
     const double sl = glm::length(step);
     if (!std::isfinite(sl)) return false;
+    // Past the first two steps Newton converging to a regular point at least halves its step each time; otherwise
+    // it is wandering.
+    if (it >= 2 && sl > 0.5 * last_step) return false;
+    last_step = sl;
     if (sl > 0.5) step *= 0.5 / sl;
     x += step;
-    if (glm::any(glm::lessThan(x, lo)) || glm::any(glm::greaterThan(x, hi))) return false;
+    if (glm::any(glm::lessThan(x, lo)) || glm::any(glm::greaterThan(x, hi)) || abort(x)) return false;
   }
   return false;
 }
@@ -107,7 +160,7 @@ bool cones_admit_orthogonal(const Singleton& s, const glm::dvec3& w, double s_w,
 // g·(x − eye) = g·(centre − eye) + g·(x − centre), |x − centre| ≤ (√3/2)·h). `h`: the box's side in index units (the
 // coefficients' local unit). Returns false when 0 is outside the range.
 template <int K>
-bool dot_range_holds_zero(const double* coefs, const glm::dvec3& centre, double h, const IndexView& view) {
+bool dot_range_holds_zero(const double* coefs, const glm::dvec3& centre, const IndexView& view) {
   constexpr int n = K * K * K;
   double g[3][64];
   bezier_cell::gradient_vectors<K>(coefs, g);
@@ -126,39 +179,153 @@ bool dot_range_holds_zero(const double* coefs, const glm::dvec3& centre, double 
   return fmin <= 0.0 && 0.0 <= fmax;
 }
 
-// Seeds of one candidate singleton: its sub-cells whose value range holds c and whose range of G·w holds 0; each seeds
-// Newton from its centre. Converged points inside the singleton (closed box) are appended.
+#if defined(__SSE2__)
+// A quick, conservative form of the whole-cell G·w hull test for cubic cells (order 4), in single precision with SSE:
+// the Bézier coefficients (the knot-insertion matrix along each axis), the gradient's raised vector coefficients and
+// their dot products with w, four coefficients (one x-row) at a time. Float rounding is covered by a margin of
+// 1e-4·max|P|·|w|₁ (P the control points), ten times the rounding these few dozen operations can make on the
+// raised derivative coefficients (≲ 12 ulp of max|P| per coefficient, times 6 for the differences), so a cell it rejects would be rejected in
+// double precision too; a cell it passes goes on to the exact tests.
+class CubicHullTest {
+ public:
+  CubicHullTest(const VolumeSpline& spline, const IndexView& view)
+      : spline_(spline), view_(view), max_abs_(std::max(std::abs(spline.control_min()), std::abs(spline.control_max()))) {
+    const auto& m = spline.to_bezier();
+    for (int a = 0; a < 4; ++a)
+      for (int r = 0; r < 4; ++r) m_[a][r] = static_cast<float>(m[a * 4 + r]);
+    for (int r = 0; r < 4; ++r) column_[r] = _mm_setr_ps(m_[0][r], m_[1][r], m_[2][r], m_[3][r]);
+  }
+
+  // False when G·w cannot vanish on cell (a, b, c).
+  bool may_hold_zero(int a, int b, int c) const {
+    const auto& dims = spline_.dims();
+    const std::size_t nx = dims[0], nxy = nx * dims[1];
+    const float* cp = spline_.control_points().data();
+    int ix[4], iy[4], iz[4];
+    for (int r = 0; r < 4; ++r) {
+      ix[r] = std::clamp(spline_.first_control(a) + r, 0, dims[0] - 1);
+      iy[r] = std::clamp(spline_.first_control(b) + r, 0, dims[1] - 1);
+      iz[r] = std::clamp(spline_.first_control(c) + r, 0, dims[2] - 1);
+    }
+    const bool contiguous = ix[3] - ix[0] == 3;
+    // p[z][y] = one x-row of control points, then rows of Bézier coefficients (knot insertion along z, y, then x).
+    __m128 p[4][4], q[4][4];
+    for (int z = 0; z < 4; ++z)
+      for (int y = 0; y < 4; ++y) {
+        const float* row = cp + iz[z] * nxy + iy[y] * nx;
+        p[z][y] = contiguous ? _mm_loadu_ps(row + ix[0]) : _mm_setr_ps(row[ix[0]], row[ix[1]], row[ix[2]], row[ix[3]]);
+      }
+    for (int z = 0; z < 4; ++z)
+      for (int y = 0; y < 4; ++y) q[z][y] = combine(m_[z], p[0][y], p[1][y], p[2][y], p[3][y]);
+    for (int z = 0; z < 4; ++z)
+      for (int y = 0; y < 4; ++y) p[z][y] = combine(m_[y], q[z][0], q[z][1], q[z][2], q[z][3]);
+    for (int z = 0; z < 4; ++z)
+      for (int y = 0; y < 4; ++y) p[z][y] = along_x(p[z][y]);
+    // Raised derivative vectors e_k = k·Δ_{k−1} + (3 − k)·Δ_k along each axis, dotted with w.
+    const glm::dvec3 wc = view_.w(glm::dvec3(spline_.span_begin(a), spline_.span_begin(b), spline_.span_begin(c)) + 0.5);
+    const __m128 wx = _mm_set1_ps(static_cast<float>(wc.x)), wy = _mm_set1_ps(static_cast<float>(wc.y)),
+                 wz = _mm_set1_ps(static_cast<float>(wc.z));
+    const __m128 up = _mm_setr_ps(0.f, 1.f, 2.f, 3.f), down = _mm_setr_ps(3.f, 2.f, 1.f, 0.f);
+    __m128 fmin = _mm_set1_ps(INFINITY), fmax = _mm_set1_ps(-INFINITY), g2 = _mm_setzero_ps();
+    for (int z = 0; z < 4; ++z)
+      for (int y = 0; y < 4; ++y) {
+        const __m128 v = p[z][y];
+        // x: differences inside the row.
+        const __m128 next = _mm_shuffle_ps(v, v, _MM_SHUFFLE(3, 3, 2, 1));  // b1 b2 b3 b3
+        const __m128 prev = _mm_shuffle_ps(v, v, _MM_SHUFFLE(2, 1, 0, 0));  // b0 b0 b1 b2
+        const __m128 ex = _mm_add_ps(_mm_mul_ps(up, _mm_sub_ps(v, prev)), _mm_mul_ps(down, _mm_sub_ps(next, v)));
+        const __m128 ey = raised(p[z], y);
+        const __m128 ez = raised_z(p, z, y);
+        const __m128 tx = _mm_mul_ps(wx, ex), ty = _mm_mul_ps(wy, ey), tz = _mm_mul_ps(wz, ez);
+        const __m128 f = _mm_add_ps(_mm_add_ps(tx, ty), tz);
+        fmin = _mm_min_ps(fmin, f), fmax = _mm_max_ps(fmax, f);
+        g2 = _mm_max_ps(g2, _mm_add_ps(_mm_add_ps(_mm_mul_ps(ex, ex), _mm_mul_ps(ey, ey)), _mm_mul_ps(ez, ez)));
+      }
+    const double lo = hmin(fmin), hi = hmax(fmax);
+    double slack = 1e-4 * max_abs_ * (std::abs(wc.x) + std::abs(wc.y) + std::abs(wc.z)) + 1e-30;
+    if (view_.perspective) slack += std::sqrt(hmax(g2)) * (1.0 + 1e-4) * std::sqrt(3.0) * 0.5;
+    return lo - slack <= 0.0 && 0.0 <= hi + slack;
+  }
+
+ private:
+  static __m128 combine(const float* m, __m128 r0, __m128 r1, __m128 r2, __m128 r3) {
+    return _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_set1_ps(m[0]), r0), _mm_mul_ps(_mm_set1_ps(m[1]), r1)),
+                      _mm_add_ps(_mm_mul_ps(_mm_set1_ps(m[2]), r2), _mm_mul_ps(_mm_set1_ps(m[3]), r3)));
+  }
+  // The knot-insertion matrix applied inside one x-row: out[a] = Σ_r m[a][r]·v[r].
+  __m128 along_x(__m128 v) const {
+    return _mm_add_ps(
+        _mm_add_ps(_mm_mul_ps(_mm_shuffle_ps(v, v, _MM_SHUFFLE(0, 0, 0, 0)), column_[0]),
+                   _mm_mul_ps(_mm_shuffle_ps(v, v, _MM_SHUFFLE(1, 1, 1, 1)), column_[1])),
+        _mm_add_ps(_mm_mul_ps(_mm_shuffle_ps(v, v, _MM_SHUFFLE(2, 2, 2, 2)), column_[2]),
+                   _mm_mul_ps(_mm_shuffle_ps(v, v, _MM_SHUFFLE(3, 3, 3, 3)), column_[3])));
+  }
+  // e_k along y (rows[k]) and z (p[k][y]) with k the row's index: k·(r_k − r_{k−1}) + (3 − k)·(r_{k+1} − r_k).
+  static __m128 raised(const __m128* rows, int k) {
+    __m128 e = _mm_setzero_ps();
+    if (k > 0) e = _mm_mul_ps(_mm_set1_ps(float(k)), _mm_sub_ps(rows[k], rows[k - 1]));
+    if (k < 3) e = _mm_add_ps(e, _mm_mul_ps(_mm_set1_ps(float(3 - k)), _mm_sub_ps(rows[k + 1], rows[k])));
+    return e;
+  }
+  static __m128 raised_z(const __m128 (*p)[4], int k, int y) {
+    __m128 e = _mm_setzero_ps();
+    if (k > 0) e = _mm_mul_ps(_mm_set1_ps(float(k)), _mm_sub_ps(p[k][y], p[k - 1][y]));
+    if (k < 3) e = _mm_add_ps(e, _mm_mul_ps(_mm_set1_ps(float(3 - k)), _mm_sub_ps(p[k + 1][y], p[k][y])));
+    return e;
+  }
+  static double hmin(__m128 v) {
+    alignas(16) float f[4];
+    _mm_store_ps(f, v);
+    return std::min(std::min(f[0], f[1]), std::min(f[2], f[3]));
+  }
+  static double hmax(__m128 v) {
+    alignas(16) float f[4];
+    _mm_store_ps(f, v);
+    return std::max(std::max(f[0], f[1]), std::max(f[2], f[3]));
+  }
+
+  const VolumeSpline& spline_;
+  const IndexView& view_;
+  double max_abs_;  // max |control point|
+  float m_[4][4];
+  __m128 column_[4];
+};
+#endif
+
+// The de Casteljau matrices restricting [0,1] to its s equal parts (s = 1…4), made once per order and s.
 template <int K>
-void solve_singleton(const VolumeSpline& spline, const SingletonTable& table, std::uint32_t cell, double iso,
-                     double range, const IndexView& view, const SilhouetteParams& params, std::vector<Point>& out,
-                     std::size_t& seeds) {
+const std::array<bezier_cell::Matrix<K>, 4>& restrictions(int s) {
+  static const auto table = [] {
+    std::array<std::array<bezier_cell::Matrix<K>, 4>, 5> t{};
+    for (int n = 1; n <= 4; ++n)
+      for (int i = 0; i < n; ++i) t[n][i] = bezier_cell::restriction<K>(double(i) / n, double(i + 1) / n);
+    return t;
+  }();
+  return table[s];
+}
+
+// The seeds of one candidate singleton (seed §7.3.3): it is split into `subdivision`³ sub-cells (de Casteljau on its
+// Bézier form); each sub-cell whose value range holds c and whose range of G·w holds 0 yields its centre. Slabs go
+// first (z, then y within a surviving slab, then x): a slab whose value range misses c is not split further. `seed`
+// is called with each centre (index space) and returns true to stop.
+template <int K, class Seed>
+void seed_cell(const Problem& pb, int a, int b, int c, int subdivision, bool whole_cell_tested, Seed&& seed) {
   constexpr int n = K * K * K;
-  const auto& dims = table.cells();
-  const int a = static_cast<int>(cell % dims[0]);
-  const int b = static_cast<int>((cell / dims[0]) % dims[1]);
-  const int c = static_cast<int>(cell / (static_cast<std::size_t>(dims[0]) * dims[1]));
+  const VolumeSpline& spline = pb.spline;
   double bez[n];
   spline.bezier_coefficients(a, b, c, bez);
   const glm::dvec3 origin(spline.span_begin(a), spline.span_begin(b), spline.span_begin(c));
   // The whole singleton first: its G·w hull must hold 0 before any sub-cell is made.
-  if (!dot_range_holds_zero<K>(bez, origin + 0.5, 1.0, view)) return;
-  glm::dvec3 domain_hi;
-  for (int ax = 0; ax < 3; ++ax) domain_hi[ax] = spline.dims()[ax] - 1;
-  // Converged points must lie in this singleton's box clipped to the domain (a point on a shared face may be found
-  // twice; duplicates are merged when the polylines are made).
-  const glm::dvec3 box_lo = glm::max(origin, glm::dvec3(0.0)), box_hi = glm::min(origin + 1.0, domain_hi);
-  const int s = params.subdivision;
+  if (!whole_cell_tested && !dot_range_holds_zero<K>(bez, origin + 0.5, pb.view)) return;
+  const int s = subdivision;
   const double h = 1.0 / s;
-  bezier_cell::Matrix<K> restrict[4];
-  for (int i = 0; i < s; ++i) restrict[i] = bezier_cell::restriction<K>(i * h, (i + 1) * h);
-  const std::size_t first_out = out.size();
-  auto holds_iso = [iso](const double* c) {
-    double mn = c[0], mx = c[0];
-    for (int m = 1; m < n; ++m) mn = std::min(mn, c[m]), mx = std::max(mx, c[m]);
+  const auto& restrict = restrictions<K>(s);
+  const double iso = pb.iso;
+  auto holds_iso = [iso](const double* q) {
+    double mn = q[0], mx = q[0];
+    for (int m = 1; m < n; ++m) mn = std::min(mn, q[m]), mx = std::max(mx, q[m]);
     return mn <= iso && iso <= mx;
   };
-  // Sub-cells by slabs: z first, then y within a surviving slab, then x — a slab whose value range misses c is not
-  // split further (the sub-boxes of a slab hold subsets of its range).
   double zslab[n], yrow[n], sub[n];
   for (int sz = 0; sz < s; ++sz) {
     if (s > 1) bezier_cell::apply<K>(restrict[sz], bez, zslab, 2);
@@ -172,130 +339,319 @@ void solve_singleton(const VolumeSpline& spline, const SingletonTable& table, st
         if (s > 1) bezier_cell::apply<K>(restrict[sx], yrow, sub, 0);
         else std::copy(yrow, yrow + n, sub);
         if (!holds_iso(sub)) continue;
-        const glm::dvec3 lo(sx * h, sy * h, sz * h);
-        const glm::dvec3 centre = origin + lo + 0.5 * h;
-        if (s > 1 && !dot_range_holds_zero<K>(sub, centre, h, view)) continue;
-        ++seeds;
-        glm::dvec3 x = centre;
-        Point p;
-        if (!newton_silhouette(spline, view, iso, range, params.accuracy, box_lo - 1.0, box_hi + 1.0, x, p)) continue;
-        if (glm::any(glm::lessThan(p.x, box_lo)) || glm::any(glm::greaterThan(p.x, box_hi))) continue;
-        bool duplicate = false;
-        for (std::size_t q = first_out; q < out.size() && !duplicate; ++q)
-          duplicate = glm::length(out[q].x - p.x) < 0.05 * h;
-        if (duplicate) continue;
-        p.cell = cell;
-        out.push_back(p);
+        const glm::dvec3 centre = origin + glm::dvec3(sx + 0.5, sy + 0.5, sz + 0.5) * h;
+        if (s > 1 && !dot_range_holds_zero<K>(sub, centre, pb.view)) continue;
+        if (seed(centre)) return;
       }
     }
   }
 }
 
-void solve_singleton(const VolumeSpline& spline, const SingletonTable& table, std::uint32_t cell, double iso,
-                     double range, const IndexView& view, const SilhouetteParams& params, std::vector<Point>& out,
-                     std::size_t& seeds) {
-  switch (spline.order()) {
-    case 2: return solve_singleton<2>(spline, table, cell, iso, range, view, params, out, seeds);
-    case 3: return solve_singleton<3>(spline, table, cell, iso, range, view, params, out, seeds);
-    default: return solve_singleton<4>(spline, table, cell, iso, range, view, params, out, seeds);
+template <class Seed>
+void seed_cell(const Problem& pb, int a, int b, int c, int subdivision, bool whole_cell_tested, Seed&& seed) {
+  switch (pb.spline.order()) {
+    case 2: return seed_cell<2>(pb, a, b, c, subdivision, whole_cell_tested, seed);
+    case 3: return seed_cell<3>(pb, a, b, c, subdivision, whole_cell_tested, seed);
+    default: return seed_cell<4>(pb, a, b, c, subdivision, whole_cell_tested, seed);
   }
 }
 
-// Joins points into polylines: each point links to the nearest point ahead of it along its tangent and the nearest
-// behind (within 2.5 index units, in the 5×5×5 block of cells around it, within 60° of the tangent line); a link is
-// kept when both ends chose each other, so every point has at most two links and the pieces are paths or cycles.
-std::vector<std::vector<std::uint32_t>> link_points(const std::vector<Point>& pts, const SingletonTable& table) {
-  const auto& dims = table.cells();
-  const std::size_t count = pts.size();
-  const double reach = 2.5, min_cos = std::cos(60.0 * kPi / 180.0);
-  // A hash grid of 4×4×4-cell blocks: the 5×5×5 cells around a point lie in at most 2×2×2 blocks.
-  constexpr int kBlock = 4;
-  const std::uint64_t bx = (dims[0] + kBlock - 1) / kBlock, by = (dims[1] + kBlock - 1) / kBlock;
-  auto block_of = [&](const glm::dvec3& x) {
-    auto q = [](double v) { return static_cast<std::int64_t>(std::floor(v / kBlock)); };
-    return glm::i64vec3(q(x.x), q(x.y), q(x.z));
+// One piece of curve traced inside one block. Its ends are either free (the curve ended, or tracing failed) or lie on
+// a face of the block, found exactly (solve_point on the face plane) so that the neighbour block's trace of the same
+// curve ends at the same point.
+struct Trace {
+  std::vector<CurvePoint> points;
+  bool closed = false;
+  bool on_face[2] = {false, false};  // first, last point
+};
+
+// Per-thread memory of a block: which cells a trace has crossed, and the traced points filed by cell.
+struct BlockScratch {
+  struct Entry {
+    glm::dvec3 x;
+    std::int32_t trace, next;
+    std::int32_t order;  // the point's number in its trace (in the order traced)
   };
-  auto block_key = [&](std::int64_t i, std::int64_t j, std::int64_t l) {
-    return static_cast<std::uint64_t>(i + 1) + (bx + 2) * (static_cast<std::uint64_t>(j + 1) +
-                                                           (by + 2) * static_cast<std::uint64_t>(l + 1));
-  };
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(count);
-  for (std::size_t i = 0; i < count; ++i) {
-    const auto b = block_of(pts[i].x);
-    keyed[i] = {block_key(b.x, b.y, b.z), static_cast<std::uint32_t>(i)};
+  std::vector<std::int32_t> head;       // per local cell: first Entry of the cell, −1 none
+  std::vector<unsigned char> visited;   // per local cell: a trace crossed it
+  std::vector<std::uint32_t> touched;   // local cells to reset
+  std::vector<Entry> entries;
+  void reset() {
+    for (std::uint32_t c : touched) head[c] = -1, visited[c] = 0;
+    touched.clear();
+    entries.clear();
   }
-  std::sort(keyed.begin(), keyed.end());
-  auto block_range = [&](std::uint64_t key) {
-    auto lo = std::lower_bound(keyed.begin(), keyed.end(), std::make_pair(key, std::uint32_t(0)));
-    auto hi = lo;
-    while (hi != keyed.end() && hi->first == key) ++hi;
-    return std::make_pair(lo, hi);
-  };
-  // Merge points closer than 0.02 index units (one found from each side of a shared face).
-  std::vector<char> dead(count, 0);
-  std::vector<std::array<std::int64_t, 2>> choice(count, {-1, -1});
-  tbb::parallel_for(std::size_t(0), count, [&](std::size_t i) {
-    const Point& p = pts[i];
-    double best[2] = {INFINITY, INFINITY};
-    const auto b0 = block_of(p.x - reach), b1 = block_of(p.x + reach);
-    for (std::int64_t l = b0.z; l <= b1.z; ++l)
-      for (std::int64_t j = b0.y; j <= b1.y; ++j)
-        for (std::int64_t k = b0.x; k <= b1.x; ++k) {
-          const auto [q0, q1] = block_range(block_key(k, j, l));
-          for (auto it = q0; it != q1; ++it) {
-            const std::size_t q = it->second;
-            if (q == i) continue;
-            const glm::dvec3 d = pts[q].x - p.x;
-            const double len = glm::length(d);
-            if (len < 0.02) {
-              if (q < i) dead[i] = 1;
-              continue;
-            }
-            if (len > reach) continue;
-            const double cosang = glm::dot(d, p.tangent) / len;
-            const int side = cosang >= min_cos ? 0 : (cosang <= -min_cos ? 1 : -1);
-            if (side < 0) continue;
-            if (len < best[side] || (len == best[side] && static_cast<std::int64_t>(q) < choice[i][side]))
-              best[side] = len, choice[i][side] = static_cast<std::int64_t>(q);
+};
+
+// Traces the silhouette curves of one block of cells (predictor–corrector continuation from each seed, both ways,
+// until the curve closes, leaves the block, runs into another trace or cannot be followed).
+class BlockTracer {
+ public:
+  BlockTracer(const Problem& pb, const glm::ivec3& first, const glm::ivec3& last, BlockScratch& scratch)
+      : pb_(pb), first_(first), last_(last), s_(scratch) {
+    const auto& dims = pb.spline.dims();
+    for (int a = 0; a < 3; ++a) {
+      extent_[a] = last[a] - first[a];
+      lo_[a] = std::max(pb.spline.span_begin(first[a]), 0.0);
+      hi_[a] = std::min(pb.spline.span_begin(last[a]), double(dims[a] - 1));
+    }
+    const std::size_t cells = static_cast<std::size_t>(kBlock) * kBlock * kBlock;
+    if (s_.head.size() != cells) s_.head.assign(cells, -1), s_.visited.assign(cells, 0);
+    s_.reset();
+  }
+  ~BlockTracer() { s_.reset(); }
+
+  std::vector<Trace> traces;
+
+  bool visited(const glm::ivec3& cell) const { return s_.visited[local(cell)] != 0; }
+
+  // A traced point within r (≤ 1) index units of x — of another trace than `own`, or of trace `own` numbered below
+  // `own_before` — or null.
+  const BlockScratch::Entry* near_trace(const glm::dvec3& x, double r, std::int32_t own = -1,
+                                        std::int32_t own_before = 0) const {
+    const glm::ivec3 c = cell_of(x);
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const glm::ivec3 q = c + glm::ivec3(dx, dy, dz);
+          if (glm::any(glm::lessThan(q, first_)) || glm::any(glm::greaterThanEqual(q, last_))) continue;
+          for (std::int32_t e = s_.head[local(q)]; e >= 0; e = s_.entries[e].next) {
+            const BlockScratch::Entry& en = s_.entries[e];
+            if ((en.trace != own || en.order < own_before) && glm::length(en.x - x) < r) return &en;
           }
         }
-  });
-  // Dead points' choices are dropped; others' choices of dead points are redirected by not linking them.
-  std::vector<std::array<std::int64_t, 2>> links(count, {-1, -1});
-  auto chose = [&](std::size_t i, std::int64_t q) { return choice[i][0] == q || choice[i][1] == q; };
-  for (std::size_t i = 0; i < count; ++i) {
-    if (dead[i]) continue;
-    int n = 0;
-    for (int side = 0; side < 2; ++side) {
-      const std::int64_t q = choice[i][side];
-      if (q < 0 || dead[q] || !chose(static_cast<std::size_t>(q), static_cast<std::int64_t>(i))) continue;
-      links[i][n++] = q;
-    }
+    return nullptr;
   }
-  // Walk: start at ends (one link or none) in index order, then the remaining cycles.
-  std::vector<char> used(count, 0);
-  std::vector<std::vector<std::uint32_t>> chains;
-  auto walk = [&](std::size_t start) {
-    std::vector<std::uint32_t> chain;
-    std::int64_t prev = -1, cur = static_cast<std::int64_t>(start);
-    while (cur >= 0 && !used[cur]) {
+
+  bool inside(const glm::dvec3& x) const {
+    return !glm::any(glm::lessThan(x, lo_)) && !glm::any(glm::greaterThan(x, hi_));
+  }
+
+  glm::ivec3 cell_of(const glm::dvec3& x) const {
+    glm::ivec3 c;
+    const double shift = pb_.spline.span_begin(0);
+    for (int a = 0; a < 3; ++a)
+      c[a] = std::clamp(static_cast<int>(std::floor(x[a] - shift)), first_[a], last_[a] - 1);
+    return c;
+  }
+
+  // Traces the curve through p both ways and keeps it when it is more than a point.
+  void trace_from(const CurvePoint& p) {
+    const auto id = static_cast<std::int32_t>(traces.size());
+    next_order_ = 0;
+    add_point(p.x, id);
+    std::vector<CurvePoint> ahead, behind;
+    const End e1 = march(p, 1.0, id, &p.x, ahead);
+    Trace tr;
+    if (e1 == End::closed) {
+      tr.closed = true;
+      tr.points.reserve(ahead.size() + 1);
+      tr.points.push_back(p);
+      tr.points.insert(tr.points.end(), ahead.begin(), ahead.end());
+    } else {
+      // Backwards, a loop the forward march could not close ends where the forward march stopped.
+      const End e0 = march(p, -1.0, id, ahead.empty() ? nullptr : &ahead.back().x, behind);
+      tr.points.reserve(behind.size() + ahead.size() + 1);
+      tr.points.insert(tr.points.end(), behind.rbegin(), behind.rend());
+      tr.points.push_back(p);
+      tr.points.insert(tr.points.end(), ahead.begin(), ahead.end());
+      tr.closed = e0 == End::closed;
+      tr.on_face[0] = e0 == End::face;
+      tr.on_face[1] = e1 == End::face;
+    }
+    if (tr.points.size() >= 2) traces.push_back(std::move(tr));
+  }
+
+ private:
+  enum class End { failed, face, closed, joined };
+
+  std::size_t local(const glm::ivec3& c) const {
+    return static_cast<std::size_t>(c.x - first_.x) +
+           kBlock * (static_cast<std::size_t>(c.y - first_.y) + kBlock * static_cast<std::size_t>(c.z - first_.z));
+  }
+
+  void visit(const glm::ivec3& c) {
+    const std::size_t l = local(c);
+    if (!s_.visited[l] && s_.head[l] < 0) s_.touched.push_back(static_cast<std::uint32_t>(l));
+    s_.visited[l] = 1;
+  }
+
+  void add_point(const glm::dvec3& x, std::int32_t trace) {
+    const std::int32_t order = next_order_++;
+    const glm::ivec3 c = cell_of(x);
+    const std::size_t l = local(c);
+    if (!s_.visited[l] && s_.head[l] < 0) s_.touched.push_back(static_cast<std::uint32_t>(l));
+    s_.visited[l] = 1;
+    s_.entries.push_back({x, trace, s_.head[l], order});
+    s_.head[l] = static_cast<std::int32_t>(s_.entries.size() - 1);
+  }
+
+  // Marks the cells the segment a→b crosses (samples every ¼ index unit).
+  void visit_segment(const glm::dvec3& a, const glm::dvec3& b) {
+    const int n = 1 + static_cast<int>(glm::length(b - a) * 4.0);
+    for (int i = 0; i <= n; ++i) visit(cell_of(a + (b - a) * (double(i) / n)));
+  }
+
+  // Follows the curve from `start` along sign·tangent, appending the points after it to `out`; the march closes when it
+  // comes back to *close_to (may be null) after going some way.
+  End march(const CurvePoint& start, double sign, std::int32_t id, const glm::dvec3* close_to,
+            std::vector<CurvePoint>& out) {
+    const double min_turn_cos = std::cos(kMaxTurnDeg * kPi / 180.0);
+    const glm::dvec3 margin(1.0);
+    glm::dvec3 x = start.x, t = sign * start.tangent;
+    double h = kStepMax, travelled = 0.0;
+    int easy = 0;
+    // A curve in one block is far shorter than kMaxSteps steps; the bound only stops a runaway march.
+    for (int n = 0; n < kMaxSteps; ++n) {
+      CurvePoint q;
+      bool ok = solve_point(pb_, x + h * t, lo_ - margin, hi_ + margin, kCorrectorIterations, q);
+      double dl = 0.0;
+      if (ok) {
+        const glm::dvec3 d = q.x - x;
+        dl = glm::length(d);
+        // A step goes forward by about h, lands near the predictor (not on a neighbouring branch) and turns little.
+        ok = dl >= 0.25 * h && dl <= 2.0 * h && glm::dot(d, t) >= 0.5 * dl &&
+             glm::length(q.x - (x + h * t)) <= 0.35 * h && std::abs(glm::dot(q.tangent, t)) >= min_turn_cos;
+      }
+      if (!ok) {
+        h *= 0.5, easy = 0;
+        if (h < kStepMin) return End::failed;
+        continue;
+      }
+      if (glm::dot(q.tangent, t) < 0.0) q.tangent = -q.tangent;
+      if (!inside(q.x)) {
+        // Leaving the block: the crossing of the face the segment x→q leaves through, solved on the face plane.
+        double s = 1.0;
+        int axis = -1;
+        double plane = 0.0;
+        for (int a = 0; a < 3; ++a) {
+          const double bound = q.x[a] > hi_[a] ? hi_[a] : (q.x[a] < lo_[a] ? lo_[a] : NAN);
+          if (std::isnan(bound)) continue;
+          const double sa = (bound - x[a]) / (q.x[a] - x[a]);
+          if (sa < s) s = sa, axis = a, plane = bound;
+        }
+        if (axis < 0) return End::failed;
+        glm::dvec3 y = x + s * (q.x - x);
+        y[axis] = plane;
+        CurvePoint f;
+        const glm::dvec3 tol(1e-9);
+        if (!solve_point(pb_, y, lo_ - margin, hi_ + margin, kCorrectorIterations, f, axis) ||
+            glm::length(f.x - y) > h || glm::any(glm::lessThan(f.x, lo_ - tol)) ||
+            glm::any(glm::greaterThan(f.x, hi_ + tol)))
+          return End::failed;
+        if (glm::dot(f.tangent, t) < 0.0) f.tangent = -f.tangent;
+        visit_segment(x, f.x);
+        out.push_back(f);
+        return End::face;
+      }
+      // Another trace, or this one (not its last few points): the curve is known from here on. Back at close_to, the
+      // curve is a closed loop.
+      if (const BlockScratch::Entry* en = near_trace(q.x, kJoinRadius, id, next_order_ - 8)) {
+        if (close_to && en->trace == id && en->x == *close_to) {
+          visit_segment(x, *close_to);
+          return End::closed;
+        }
+        return End::joined;
+      }
+      visit_segment(x, q.x);
+      add_point(q.x, id);
+      out.push_back(q);
+      travelled += dl;
+      x = q.x, t = q.tangent;
+      if (q.iterations <= 3 && ++easy >= 2) h = std::min(kStepMax, 1.5 * h);
+    }
+    return End::failed;
+  }
+
+  const Problem& pb_;
+  glm::ivec3 first_, last_;  // cells first…last − 1 per axis
+  glm::ivec3 extent_{0};
+  glm::dvec3 lo_{0.0}, hi_{0.0};  // the block's box in index space, clipped to the domain
+  std::int32_t next_order_ = 0;   // number of the next point of the trace being traced
+  BlockScratch& s_;
+};
+
+// Joins the traces of all blocks at their shared face points into polylines (index lists of traces with direction),
+// in the traces' order: open chains first (from a free end), then cycles.
+struct ChainPiece {
+  std::uint32_t trace;
+  bool reversed;
+};
+struct Chain {
+  std::vector<ChainPiece> pieces;
+  bool closed = false;
+};
+
+std::vector<Chain> join_traces(const std::vector<Trace>& traces) {
+  const std::size_t n = traces.size();
+  // Face ends filed in a hash grid of 1/1024 index units; two ends match within 1e-6 index units (both are solutions
+  // of the same three equations, converged to the Newton accuracy).
+  constexpr double kCell = 1.0 / 1024.0, kMatch = 1e-6;
+  auto key_of = [](const glm::i64vec3& q) {
+    return static_cast<std::uint64_t>(q.x) * 0x9E3779B97F4A7C15ull ^ static_cast<std::uint64_t>(q.y) * 0xC2B2AE3D27D4EB4Full ^
+           static_cast<std::uint64_t>(q.z) * 0x165667B19E3779F9ull;
+  };
+  auto quantise = [](const glm::dvec3& x) {
+    return glm::i64vec3(std::floor(x.x / kCell), std::floor(x.y / kCell), std::floor(x.z / kCell));
+  };
+  auto end_point = [&](std::size_t e) -> const glm::dvec3& {
+    const Trace& t = traces[e / 2];
+    return e % 2 == 0 ? t.points.front().x : t.points.back().x;
+  };
+  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> grid;
+  for (std::size_t e = 0; e < 2 * n; ++e)
+    if (traces[e / 2].on_face[e % 2]) grid[key_of(quantise(end_point(e)))].push_back(static_cast<std::uint32_t>(e));
+  std::vector<std::int64_t> partner(2 * n, -1);
+  for (std::size_t e = 0; e < 2 * n; ++e) {
+    if (!traces[e / 2].on_face[e % 2] || partner[e] >= 0) continue;
+    const glm::dvec3& p = end_point(e);
+    const glm::i64vec3 q = quantise(p);
+    std::int64_t best = -1;
+    double best_d = kMatch;
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const auto it = grid.find(key_of(q + glm::i64vec3(dx, dy, dz)));
+          if (it == grid.end()) continue;
+          for (std::uint32_t f : it->second) {
+            if (f == e || partner[f] >= 0) continue;
+            const double d = glm::length(end_point(f) - p);
+            if (d < best_d || (d == best_d && static_cast<std::int64_t>(f) < best)) best_d = d, best = f;
+          }
+        }
+    if (best >= 0) partner[e] = best, partner[best] = static_cast<std::int64_t>(e);
+  }
+  std::vector<char> used(n, 0);
+  std::vector<Chain> chains;
+  auto walk = [&](std::size_t start, int entry) {
+    Chain chain;
+    std::size_t cur = start;
+    while (!used[cur]) {
       used[cur] = 1;
-      chain.push_back(static_cast<std::uint32_t>(cur));
-      std::int64_t next = -1;
-      for (std::int64_t q : links[cur])
-        if (q >= 0 && q != prev && !used[q]) { next = q; break; }
-      prev = cur, cur = next;
+      chain.pieces.push_back({static_cast<std::uint32_t>(cur), entry == 1});
+      const std::int64_t next = partner[2 * cur + (1 - entry)];
+      if (next < 0) break;
+      if (static_cast<std::size_t>(next / 2) == start && used[start]) {
+        chain.closed = true;
+        break;
+      }
+      cur = static_cast<std::size_t>(next / 2), entry = static_cast<int>(next % 2);
     }
     return chain;
   };
-  for (std::size_t i = 0; i < count; ++i)
-    if (!dead[i] && !used[i] && (links[i][0] < 0 || links[i][1] < 0)) chains.push_back(walk(i));
-  for (std::size_t i = 0; i < count; ++i)
-    if (!dead[i] && !used[i]) {
-      auto chain = walk(i);
-      chain.push_back(chain.front());  // a cycle: closed (marked by repeating the first point, removed by the caller)
-      chains.push_back(std::move(chain));
+  for (std::size_t i = 0; i < n; ++i) {
+    if (used[i]) continue;
+    if (traces[i].closed) {
+      used[i] = 1;
+      chains.push_back({{{static_cast<std::uint32_t>(i), false}}, true});
+    } else if (partner[2 * i] < 0) {
+      chains.push_back(walk(i, 0));
+    } else if (partner[2 * i + 1] < 0) {
+      chains.push_back(walk(i, 1));
     }
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    if (!used[i]) chains.push_back(walk(i, 0));
   return chains;
 }
 
@@ -324,8 +680,14 @@ SilhouetteResult extract_silhouettes(const VolumeSpline& spline, const Singleton
       throw std::invalid_argument("the singleton table was built for another volume spline");
   const auto t0 = std::chrono::steady_clock::now();
   SilhouetteResult result;
-  const IndexView iv = index_view(spline, view);
-  const double range = std::max(spline.control_max() - spline.control_min(), 1e-30);
+  const Problem pb{spline,
+                   table,
+                   index_view(spline, view),
+                   iso,
+                   std::max(spline.control_max() - spline.control_min(), 1e-30),
+                   params.accuracy,
+                   glm::dmat3(spline.index_to_world())};
+  const IndexView& iv = pb.view;
   // The directions w can take over the grid box: one cone (axis, half-angle) for the bin filter.
   glm::dvec3 w_axis = iv.v;
   double w_half = 0.0;
@@ -338,25 +700,57 @@ SilhouetteResult extract_silhouettes(const VolumeSpline& spline, const Singleton
     w_axis = dist > 0.0 ? d / dist : glm::dvec3(0.0, 0.0, 1.0);
     w_half = dist > radius ? std::asin(radius / dist) : kPi;
   }
-  const std::vector<std::uint32_t> bins = table.cells_holding(iso, w_axis, w_half);
-  // Exact per-singleton tests (cell-sized view cone in perspective), then seeds and Newton, in fixed chunks whose
-  // outputs are concatenated in order (deterministic for any thread count).
-  const std::size_t chunk = 256, chunks = (bins.size() + chunk - 1) / chunk;
-  std::vector<std::vector<Point>> outs(chunks);
-  std::vector<std::size_t> cand(chunks, 0), seeds(chunks, 0);
-  const auto& singles = table.singletons();
+  const std::vector<std::uint32_t> bins = table.cells_holding(iso, w_axis, w_half, SingletonTable::CellOrder::by_bin);
+  // The candidates by block (in the table's order within a block: the bucketing is stable).
   const auto& dims = table.cells();
-  tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t ch) {
-    for (std::size_t e = ch * chunk; e < std::min(bins.size(), (ch + 1) * chunk); ++e) {
-      const std::uint32_t cell = bins[e];
+  const glm::ivec3 blocks((dims[0] + kBlock - 1) / kBlock, (dims[1] + kBlock - 1) / kBlock,
+                          (dims[2] + kBlock - 1) / kBlock);
+  const std::size_t block_count = static_cast<std::size_t>(blocks.x) * blocks.y * blocks.z;
+  auto cell_coords = [&](std::uint32_t cell) {
+    return glm::ivec3(static_cast<int>(cell % dims[0]), static_cast<int>((cell / dims[0]) % dims[1]),
+                      static_cast<int>(cell / (static_cast<std::size_t>(dims[0]) * dims[1])));
+  };
+  auto block_of = [&](const glm::ivec3& c) {
+    return static_cast<std::size_t>(c.x / kBlock) +
+           blocks.x * (static_cast<std::size_t>(c.y / kBlock) + blocks.y * static_cast<std::size_t>(c.z / kBlock));
+  };
+  std::vector<std::uint32_t> block_begin(block_count + 1, 0), by_block(bins.size());
+  for (std::uint32_t cell : bins) ++block_begin[block_of(cell_coords(cell)) + 1];
+  for (std::size_t b = 0; b < block_count; ++b) block_begin[b + 1] += block_begin[b];
+  {
+    std::vector<std::uint32_t> fill(block_begin.begin(), block_begin.end() - 1);
+    for (std::uint32_t cell : bins) by_block[fill[block_of(cell_coords(cell))]++] = cell;
+  }
+  // Each block: the exact per-singleton cone test (cell-sized view cone in perspective), then seeds, Newton and
+  // tracing, skipping cells a trace has already crossed. Blocks write to their own slots (deterministic for any
+  // thread count).
+  std::vector<std::vector<Trace>> block_traces(block_count);
+  std::vector<std::size_t> cand(block_count, 0), seeds(block_count, 0);
+  const auto& singles = table.singletons();
+  tbb::enumerable_thread_specific<BlockScratch> scratch;
+#if defined(__SSE2__)
+  std::optional<CubicHullTest> cubic;
+  if (spline.order() == 4) cubic.emplace(spline, iv);
+#endif
+  tbb::parallel_for(std::size_t(0), block_count, [&](std::size_t blk) {
+    if (block_begin[blk] == block_begin[blk + 1]) return;
+    const glm::ivec3 bc(static_cast<int>(blk % blocks.x), static_cast<int>((blk / blocks.x) % blocks.y),
+                        static_cast<int>(blk / (static_cast<std::size_t>(blocks.x) * blocks.y)));
+    const glm::ivec3 first = bc * kBlock;
+    const glm::ivec3 last = glm::min(first + kBlock, glm::ivec3(dims[0], dims[1], dims[2]));
+    BlockTracer tracer(pb, first, last, scratch.local());
+    for (std::uint32_t e = block_begin[blk]; e < block_begin[blk + 1]; ++e) {
+      // The singletons are read in bin order, far apart in memory: fetch a few ahead.
+      if (e + 8 < block_begin[blk + 1]) __builtin_prefetch(&singles[by_block[e + 8]]);
+      const std::uint32_t cell = by_block[e];
+      const glm::ivec3 c = cell_coords(cell);
+      if (tracer.visited(c)) continue;
       const Singleton& s = singles[cell];
       glm::dvec3 w = iv.v;
       double s_w = 0.0, c_w = 1.0;
       if (iv.perspective) {
-        const int a = static_cast<int>(cell % dims[0]);
-        const int b = static_cast<int>((cell / dims[0]) % dims[1]);
-        const int c = static_cast<int>(cell / (static_cast<std::size_t>(dims[0]) * dims[1]));
-        const glm::dvec3 centre(spline.span_begin(a) + 0.5, spline.span_begin(b) + 0.5, spline.span_begin(c) + 0.5);
+        const glm::dvec3 centre(spline.span_begin(c.x) + 0.5, spline.span_begin(c.y) + 0.5,
+                                spline.span_begin(c.z) + 0.5);
         w = centre - iv.eye;
         const double dist = glm::length(w);
         const double r = std::sqrt(3.0) * 0.5;
@@ -368,25 +762,53 @@ SilhouetteResult extract_silhouettes(const VolumeSpline& spline, const Singleton
         }
       }
       if (s_w < 1.0 && !cones_admit_orthogonal(s, w, s_w, c_w)) continue;
-      ++cand[ch];
-      solve_singleton(spline, table, cell, iso, range, iv, params, outs[ch], seeds[ch]);
+      ++cand[blk];
+      const glm::dvec3 cell_lo(spline.span_begin(c.x), spline.span_begin(c.y), spline.span_begin(c.z));
+      bool whole_cell_tested = false;
+#if defined(__SSE2__)
+      if (cubic) {
+        if (!cubic->may_hold_zero(c.x, c.y, c.z)) continue;
+        whole_cell_tested = true;
+      }
+#endif
+      seed_cell(pb, c.x, c.y, c.z, params.subdivision, whole_cell_tested, [&](const glm::dvec3& centre) {
+        ++seeds[blk];
+        CurvePoint p;
+        // A seed heading onto a curve already traced is given up early.
+        auto known = [&](const glm::dvec3& x) { return tracer.inside(x) && tracer.near_trace(x, kJoinRadius); };
+        if (!solve_point(pb, centre, cell_lo - 0.5, cell_lo + 1.5, kSeedIterations, p, -1, known)) return false;
+        // A converged point anywhere in the block starts a trace, unless a trace already passed there.
+        if (!tracer.inside(p.x) || tracer.visited(tracer.cell_of(p.x)) || tracer.near_trace(p.x, kJoinRadius))
+          return false;
+        tracer.trace_from(p);
+        return tracer.visited(c);  // this cell is covered: its other seeds would find the same curve
+      });
     }
+    block_traces[blk] = std::move(tracer.traces);
   });
-  std::vector<Point> pts;
-  for (std::size_t ch = 0; ch < chunks; ++ch) {
-    result.candidates += cand[ch];
-    result.seeds += seeds[ch];
-    pts.insert(pts.end(), outs[ch].begin(), outs[ch].end());
+  std::vector<Trace> traces;
+  for (std::size_t b = 0; b < block_count; ++b) {
+    result.candidates += cand[b];
+    result.seeds += seeds[b];
+    for (Trace& t : block_traces[b]) traces.push_back(std::move(t));
   }
-  const auto chains = link_points(pts, table);
-  for (const auto& chain : chains) {
+  for (const Chain& chain : join_traces(traces)) {
     SilhouettePolyline pl;
-    std::size_t n = chain.size();
-    if (n >= 3 && chain.front() == chain.back()) pl.closed = true, --n;
-    if (n < 2) continue;  // isolated points are not strokes of a curve
+    std::vector<const CurvePoint*> pts;
+    for (const ChainPiece& piece : chain.pieces) {
+      const auto& tp = traces[piece.trace].points;
+      const std::size_t m = tp.size();
+      // The first point of every piece after the first repeats the face point the previous piece ended on.
+      for (std::size_t i = pts.empty() ? 0 : 1; i < m; ++i) pts.push_back(&tp[piece.reversed ? m - 1 - i : i]);
+    }
+    if (chain.closed && chain.pieces.size() > 1 && !pts.empty()) pts.pop_back();  // back at the first face point
+    if (pts.size() < 2) continue;  // isolated points are not strokes of a curve
+    pl.closed = chain.closed && pts.size() >= 3;
+    const std::size_t n = pts.size();
     pl.points.reserve(n);
+    pl.gradient_norm.reserve(n);
     for (std::size_t i = 0; i < n; ++i) {
-      const Point& p = pts[chain[i]];
+      const CurvePoint& p = *pts[i];
       pl.points.push_back(glm::dvec3(spline.index_to_world() * glm::dvec4(p.x, 1.0)));
       pl.gradient_norm.push_back(p.gradient_norm);
       result.max_value_residual = std::max(result.max_value_residual, p.value_residual);
@@ -444,24 +866,37 @@ bool iso_occluded(const VolumeSpline& spline, const SingletonTable& table, doubl
   if (!(t < t_end)) return false;
   double prev = spline.value(from + t * dir) - iso;
   const auto& md = table.macro_cells();
+  const auto& cells = table.cells();
   const double shift = spline.span_begin(0);  // cell c starts at c + shift on every axis
+  // Where the ray leaves the box of `size` index units starting at index `first`·size + shift on each axis.
+  auto exit_of = [&](const int* first, double size) {
+    double exit = INFINITY;
+    for (int a = 0; a < 3; ++a) {
+      const double lo = first[a] * size + shift, up = lo + size;
+      if (dir[a] > 0.0) exit = std::min(exit, (up - from[a]) / dir[a]);
+      else if (dir[a] < 0.0) exit = std::min(exit, (lo - from[a]) / dir[a]);
+    }
+    return exit;
+  };
   while (t < t_end) {
-    // Skip macro-cells whose range cannot hold the level: jump to where the ray leaves the macro-cell.
+    // Skip macro-cells, then cells, whose range cannot hold the level: jump to where the ray leaves them. The sign of
+    // D − c there is the box's (its whole range is on one side of c), so no value is needed.
     const glm::dvec3 x = from + t * dir;
-    int m[3];
-    for (int a = 0; a < 3; ++a)
-      m[a] = std::clamp(static_cast<int>(std::floor((x[a] - shift) / SingletonTable::kMacro)), 0, md[a] - 1);
+    int m[3], c[3];
+    for (int a = 0; a < 3; ++a) {
+      c[a] = std::clamp(static_cast<int>(std::floor(x[a] - shift)), 0, cells[a] - 1);
+      m[a] = std::min(c[a] / SingletonTable::kMacro, md[a] - 1);
+    }
     const glm::vec2 r = table.macro_range(m[0], m[1], m[2]);
     if (!(double(r.x) <= iso && iso <= double(r.y))) {
-      double exit = INFINITY;
-      for (int a = 0; a < 3; ++a) {
-        const double lo = m[a] * SingletonTable::kMacro + shift, up = lo + SingletonTable::kMacro;
-        if (dir[a] > 0.0) exit = std::min(exit, (up - from[a]) / dir[a]);
-        else if (dir[a] < 0.0) exit = std::min(exit, (lo - from[a]) / dir[a]);
-      }
-      t = std::max(exit + 1e-6, t + 1e-6);
-      if (t >= t_end) break;
-      prev = spline.value(from + t * dir) - iso;
+      t = std::max(exit_of(m, SingletonTable::kMacro) + 1e-6, t + 1e-6);
+      prev = double(r.y) < iso ? -1.0 : 1.0;
+      continue;
+    }
+    const Singleton& sg = table.singletons()[table.cell_index(c[0], c[1], c[2])];
+    if (!(double(sg.lo) <= iso && iso <= double(sg.hi))) {
+      t = std::max(exit_of(c, 1.0) + 1e-6, t + 1e-6);
+      prev = double(sg.hi) < iso ? -1.0 : 1.0;
       continue;
     }
     const double tn = std::min(t + step, t_end);

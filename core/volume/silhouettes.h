@@ -1,13 +1,17 @@
 // trispline::core silhouettes of an iso-surface D = c of a VolumeSpline (seed §7.3.3, Eq. 7.2).
 //
 // A silhouette point x satisfies D(x) = c and G(x)·V(x) = 0 with G = ∇D and V the view direction: constant for an
-// orthographic view, x − eye for a perspective one. Candidates come from the singleton table (singletons.h): the
-// singletons whose value range holds c and whose gradient cone holds a direction orthogonal to V. Each candidate is
-// subdivided `subdivision` times per axis (de Casteljau on its Bézier form); every sub-cell whose value range still
-// holds c and whose range of G·V still holds 0 seeds a multivariate Newton–Raphson solve of Eq. 7.2 (minimum-norm
-// steps for 2 equations in 3 unknowns) from its centre. Converged points are joined into polylines where they follow
-// each other along the curve's tangent (∇D × ∇(G·V)) in neighbouring cells; each point knows whether the iso-surface
-// hides it from the eye.
+// orthographic view, x − eye for a perspective one; the points form curves (the contour generator) with tangent
+// ∇D × ∇(G·V). Candidates come from the singleton table (singletons.h): the singletons whose value range holds c and
+// whose gradient cone holds a direction orthogonal to V. A candidate whose Bézier hull of G·V holds 0 is split into
+// `subdivision`³ sub-cells (de Casteljau on its Bézier form); each sub-cell whose value range still holds c and whose
+// range of G·V still holds 0 seeds a multivariate Newton–Raphson solve of Eq. 7.2 (minimum-norm steps for 2 equations
+// in 3 unknowns) from its centre. Beyond the seed, which strokes the converged points one by one, each new point
+// starts a predictor–corrector trace of its curve both ways (tangent step, then Newton back onto the curve; every
+// traced point is converged to the same accuracy), and the cells a trace crosses seed nothing more. The volume is
+// traced in blocks of 32³ cells in parallel; a trace ends on a block face at the exact crossing of the curve with the
+// face plane, where the neighbour block's trace of the same curve ends too, and the pieces are joined there. Each
+// point knows whether the iso-surface hides it from the eye.
 #pragma once
 
 #include <atomic>
@@ -32,8 +36,9 @@ struct SilhouetteView {
 
 // The seed's two operational parameters (§7.3.3) and the hidden-line mode.
 struct SilhouetteParams {
-  // Sub-cells per singleton axis that seed Newton (1 = the singleton's centre only; 1…4).
-  int subdivision = 2;
+  // Sub-cells per singleton axis that seed Newton (1 = the singleton's centre only; 1…4). Tracing gives the curves
+  // their density, so more seeds only find more of the curves that lie wholly inside one singleton.
+  int subdivision = 1;
   // Newton stops when |D − c| ≤ accuracy·range(D) and |Ĝ·V̂| ≤ accuracy (dimensionless, 1e-12…1e-2).
   double accuracy = 1e-7;
   // Test every point for occlusion by the iso-surface (SilhouettePolyline::visible); false leaves every point visible.
@@ -52,12 +57,12 @@ struct SilhouetteResult {
   std::vector<SilhouettePolyline> polylines;
   // Figures of this extraction.
   std::size_t candidates = 0;         // singletons that passed the range and cone tests
-  std::size_t seeds = 0;              // sub-cells that seeded Newton
+  std::size_t seeds = 0;              // sub-cells that seeded Newton (traced cells seed nothing)
   std::size_t points = 0;             // converged points kept (= Σ polyline sizes)
   double max_value_residual = 0.0;    // max |D − c| / range(D) over the points
   double max_dot_residual = 0.0;      // max |Ĝ·V̂| over the points (world-space unit vectors)
   double length_mm = 0.0;             // total polyline length, millimetres
-  double extract_ms = 0.0;            // wall-clock: candidates + Newton + polylines
+  double extract_ms = 0.0;            // wall-clock: candidates + seeds + tracing + joining
   double hidden_ms = 0.0;             // wall-clock: the occlusion test
 };
 

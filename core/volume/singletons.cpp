@@ -198,10 +198,12 @@ void SingletonTable::file_bins() {
 
 namespace {
 
+using CellOrder = SingletonTable::CellOrder;
+
 template <class Keep>
 std::vector<std::uint32_t> query(const std::vector<Singleton>& singletons, const std::vector<std::uint32_t>& begin,
                                  const std::vector<std::uint32_t>& cells, int rows, int cols, double range_min,
-                                 double range_max, double iso, Keep keep_bin) {
+                                 double range_max, double iso, CellOrder order, Keep keep_bin) {
   std::vector<std::uint32_t> out;
   if (!(iso >= range_min && iso <= range_max)) return out;
   const double span = range_max - range_min;
@@ -211,13 +213,18 @@ std::vector<std::uint32_t> query(const std::vector<Singleton>& singletons, const
     for (int c = 0; c < cols; ++c) {
       const std::size_t bin = static_cast<std::size_t>(r) * cols + c;
       if (begin[bin] == begin[bin + 1] || !keep_bin(bin, c)) continue;
-      for (std::uint32_t e = begin[bin]; e < begin[bin + 1]; ++e) {
-        const Singleton& s = singletons[cells[e]];
-        if (double(s.hi) < iso) break;  // sorted by hi, largest first
-        if (double(s.lo) <= iso) out.push_back(cells[e]);
+      // Sorted by hi, largest first: the cells with hi ≥ iso are a prefix. A row below the level's row holds only
+      // cells with lo < iso (rows are filed by lo with the same monotone formula), so only the level's row tests lo.
+      const auto first = cells.begin() + begin[bin], last = cells.begin() + begin[bin + 1];
+      const auto end = std::partition_point(first, last, [&](std::uint32_t cell) { return double(singletons[cell].hi) >= iso; });
+      if (r < last_row) {
+        out.insert(out.end(), first, end);
+      } else {
+        for (auto e = first; e != end; ++e)
+          if (double(singletons[*e].lo) <= iso) out.push_back(*e);
       }
     }
-  std::sort(out.begin(), out.end());
+  if (order == CellOrder::ascending) std::sort(out.begin(), out.end());
   return out;
 }
 
@@ -225,12 +232,12 @@ std::vector<std::uint32_t> query(const std::vector<Singleton>& singletons, const
 
 std::vector<std::uint32_t> SingletonTable::cells_holding(double iso) const {
   return query(singletons_, bin_begin_, bin_cells_, rows_, columns(), range_min_, range_max_, iso,
-               [](std::size_t, int) { return true; });
+               CellOrder::ascending, [](std::size_t, int) { return true; });
 }
 
-std::vector<std::uint32_t> SingletonTable::cells_holding(double iso, const glm::dvec3& w_axis,
-                                                         double w_half_angle) const {
-  return query(singletons_, bin_begin_, bin_cells_, rows_, columns(), range_min_, range_max_, iso,
+std::vector<std::uint32_t> SingletonTable::cells_holding(double iso, const glm::dvec3& w_axis, double w_half_angle,
+                                                         CellOrder order) const {
+  return query(singletons_, bin_begin_, bin_cells_, rows_, columns(), range_min_, range_max_, iso, order,
                [&](std::size_t bin, int col) {
                  const double beta = bin_half_angle_[bin];
                  if (beta + w_half_angle >= kPi / 2) return true;

@@ -75,7 +75,10 @@ class SingletonTable {
   // As cells_holding, keeping only cells whose bin cone can hold a direction orthogonal to some direction of the cone
   // (w_axis unit, half-angle with sine/cosine w_sin, w_cos) of view directions — a bin-level filter; callers test
   // each singleton after it.
-  std::vector<std::uint32_t> cells_holding(double iso, const glm::dvec3& w_axis, double w_half_angle) const;
+  // `order`: ascending, or by_bin (the table's own order: no sort, for callers that regroup the cells anyway).
+  enum class CellOrder { ascending, by_bin };
+  std::vector<std::uint32_t> cells_holding(double iso, const glm::dvec3& w_axis, double w_half_angle,
+                                           CellOrder order = CellOrder::ascending) const;
 
   // Macro-cell bounds for ray skipping: macro (a, b, c) covers cells [8a, 8a+8) × ...
   const std::array<int, 3>& macro_cells() const { return macro_dims_; }

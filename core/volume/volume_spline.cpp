@@ -152,36 +152,43 @@ int VolumeSpline::span_of(int axis, double t) const {
 
 namespace {
 
+template <int K>
 struct AxisBasis {
-  int idx[4];
-  double w[4], dw[4], d2w[4];
+  int idx[K];
+  double w[K], dw[K], d2w[K];
 };
 
-void axis_basis(const VolumeSpline& s, int axis, double t, bool derivatives, AxisBasis& b) {
+template <int K>
+inline void axis_basis(const VolumeSpline& s, int axis, double t, bool derivatives, AxisBasis<K>& b) {
   const int n = s.dims()[axis];
   t = std::clamp(t, 0.0, double(n - 1));
   const int span = s.span_of(axis, t);
   const int first = s.first_control(span);
-  uniform_bspline_weights(s.order(), t - s.span_begin(span), b.w, derivatives ? b.dw : nullptr,
-                          derivatives ? b.d2w : nullptr);
-  for (int r = 0; r < s.order(); ++r) b.idx[r] = std::clamp(first + r, 0, n - 1);
+  if constexpr (K == 4) cubic_weights(t - s.span_begin(span), b.w, derivatives ? b.dw : nullptr, derivatives ? b.d2w : nullptr);
+  else uniform_bspline_weights(K, t - s.span_begin(span), b.w, derivatives ? b.dw : nullptr, derivatives ? b.d2w : nullptr);
+  if (first >= 0 && first + K <= n) {
+    for (int r = 0; r < K; ++r) b.idx[r] = first + r;
+  } else {
+    for (int r = 0; r < K; ++r) b.idx[r] = std::clamp(first + r, 0, n - 1);
+  }
 }
 
-}  // namespace
-
-double VolumeSpline::value(const glm::dvec3& x) const {
-  AxisBasis bx, by, bz;
-  axis_basis(*this, 0, x.x, false, bx);
-  axis_basis(*this, 1, x.y, false, by);
-  axis_basis(*this, 2, x.z, false, bz);
-  const std::size_t nx = dims_[0], nxy = nx * dims_[1];
+// D at x with the order K a compile-time constant (the loops unroll).
+template <int K>
+double value_k(const VolumeSpline& s, const glm::dvec3& x) {
+  AxisBasis<K> bx, by, bz;
+  axis_basis<K>(s, 0, x.x, false, bx);
+  axis_basis<K>(s, 1, x.y, false, by);
+  axis_basis<K>(s, 2, x.z, false, bz);
+  const std::size_t nx = s.dims()[0], nxy = nx * s.dims()[1];
+  const float* cp = s.control_points().data();
   double sum = 0.0;
-  for (int c = 0; c < order_; ++c) {
+  for (int c = 0; c < K; ++c) {
     double sy = 0.0;
-    for (int b = 0; b < order_; ++b) {
-      const float* row = &control_[bz.idx[c] * nxy + by.idx[b] * nx];
+    for (int b = 0; b < K; ++b) {
+      const float* row = cp + bz.idx[c] * nxy + by.idx[b] * nx;
       double sx = 0.0;
-      for (int a = 0; a < order_; ++a) sx += bx.w[a] * row[bx.idx[a]];
+      for (int a = 0; a < K; ++a) sx += bx.w[a] * row[bx.idx[a]];
       sy += by.w[b] * sx;
     }
     sum += bz.w[c] * sy;
@@ -189,20 +196,22 @@ double VolumeSpline::value(const glm::dvec3& x) const {
   return sum;
 }
 
-VolumeJet VolumeSpline::jet(const glm::dvec3& x) const {
-  AxisBasis bx, by, bz;
-  axis_basis(*this, 0, x.x, true, bx);
-  axis_basis(*this, 1, x.y, true, by);
-  axis_basis(*this, 2, x.z, true, bz);
-  const std::size_t nx = dims_[0], nxy = nx * dims_[1];
-  // Contract x first (value, d, d²), then y (six combinations), then z (ten results).
+// D, ∇D and the Hessian at x: contract x first (value, d, d²), then y (six combinations), then z (ten results).
+template <int K>
+VolumeJet jet_k(const VolumeSpline& s, const glm::dvec3& x) {
+  AxisBasis<K> bx, by, bz;
+  axis_basis<K>(s, 0, x.x, true, bx);
+  axis_basis<K>(s, 1, x.y, true, by);
+  axis_basis<K>(s, 2, x.z, true, bz);
+  const std::size_t nx = s.dims()[0], nxy = nx * s.dims()[1];
+  const float* cp = s.control_points().data();
   double v = 0, dx = 0, dy = 0, dz = 0, dxx = 0, dyy = 0, dzz = 0, dxy = 0, dxz = 0, dyz = 0;
-  for (int c = 0; c < order_; ++c) {
+  for (int c = 0; c < K; ++c) {
     double yv = 0, yx = 0, yy = 0, yxx = 0, yyy = 0, yxy = 0;
-    for (int b = 0; b < order_; ++b) {
-      const float* row = &control_[bz.idx[c] * nxy + by.idx[b] * nx];
+    for (int b = 0; b < K; ++b) {
+      const float* row = cp + bz.idx[c] * nxy + by.idx[b] * nx;
       double s0 = 0, s1 = 0, s2 = 0;
-      for (int a = 0; a < order_; ++a) {
+      for (int a = 0; a < K; ++a) {
         const double p = row[bx.idx[a]];
         s0 += bx.w[a] * p, s1 += bx.dw[a] * p, s2 += bx.d2w[a] * p;
       }
@@ -218,6 +227,24 @@ VolumeJet VolumeSpline::jet(const glm::dvec3& x) const {
   j.gradient = {dx, dy, dz};
   j.hessian = glm::dmat3(dxx, dxy, dxz, dxy, dyy, dyz, dxz, dyz, dzz);
   return j;
+}
+
+}  // namespace
+
+double VolumeSpline::value(const glm::dvec3& x) const {
+  switch (order_) {
+    case 2: return value_k<2>(*this, x);
+    case 3: return value_k<3>(*this, x);
+    default: return value_k<4>(*this, x);
+  }
+}
+
+VolumeJet VolumeSpline::jet(const glm::dvec3& x) const {
+  switch (order_) {
+    case 2: return jet_k<2>(*this, x);
+    case 3: return jet_k<3>(*this, x);
+    default: return jet_k<4>(*this, x);
+  }
 }
 
 glm::dvec3 VolumeSpline::world_gradient(const glm::dvec3& g) const { return gradient_to_world_ * g; }

@@ -67,6 +67,9 @@ class VolumeSpline {
   // Bernstein (Bézier) coefficients of D on cell (s0, s1, s2) over the whole unclipped span (knot insertion at every
   // interior knot, seed §7.3.2): order³ values, first axis fastest, out[a + k·(b + k·c)].
   void bezier_coefficients(int s0, int s1, int s2, double* out) const;
+  // The order × order matrix of that knot insertion on one axis: Bézier coefficient a of a span = Σ_r m[a·order + r]
+  // · control point first_control(s) + r.
+  const std::array<double, 16>& to_bezier() const { return to_bezier_; }
 
  private:
   int order_ = 4;

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <random>
 
+#include <tbb/global_control.h>
+
 #include "core/volume/analytic_volumes.h"
 #include "core/volume/silhouettes.h"
 #include "core/volume/singletons.h"
@@ -278,6 +280,52 @@ TEST(Silhouettes, DeterministicAndRefusesBadInput) {
   EXPECT_THROW(extract_silhouettes(s, t, 0.2, view, p), std::invalid_argument);
   const VolumeSpline other(make_analytic_volume(AnalyticVolume::sines, 20), 3);
   EXPECT_THROW(extract_silhouettes(other, t, 0.2, view), std::invalid_argument);
+}
+
+// Traced curves are continuous: consecutive points of a polyline are at most a step apart (index units), and the
+// torus' silhouette comes out as a few long closed curves, not as fragments.
+TEST(Silhouettes, TracedPolylinesAreContinuousAndFew) {
+  const AnalyticShape shape;
+  const ScalarVolume v = make_analytic_volume(AnalyticVolume::torus, 72, shape);
+  const VolumeSpline s(v, 4, true);
+  const SingletonTable t = build_singleton_table(s);
+  SilhouetteView view;
+  view.eye = glm::dvec3(30.0, 140.0, 90.0);
+  SilhouetteParams p;
+  p.hidden_test = false;
+  const SilhouetteResult r = extract_silhouettes(s, t, 0.0, view, p);
+  ASSERT_FALSE(r.polylines.empty());
+  EXPECT_LE(r.polylines.size(), 4u) << "a torus seen from above has an outer and an inner rim (and at most two more)";
+  double longest = 0.0;
+  for (const auto& pl : r.polylines) {
+    EXPECT_TRUE(pl.closed);
+    for (std::size_t i = 0; i + 1 < pl.points.size(); ++i) {
+      const glm::dvec3 a(s.world_to_index() * glm::dvec4(pl.points[i], 1.0));
+      const glm::dvec3 b(s.world_to_index() * glm::dvec4(pl.points[i + 1], 1.0));
+      longest = std::max(longest, glm::length(b - a));
+    }
+  }
+  EXPECT_LE(longest, 0.6) << "index units between consecutive points";
+}
+
+// Blocks are traced in parallel and joined afterwards: one thread and two give the same polylines bit for bit.
+TEST(Silhouettes, SameResultForAnyThreadCount) {
+  const ScalarVolume v = make_analytic_volume(AnalyticVolume::sines, 70);
+  const VolumeSpline s(v, 4);
+  const SingletonTable t = build_singleton_table(s);
+  SilhouetteView view;
+  view.eye = glm::dvec3(120.0, -40.0, 90.0);
+  auto run = [&](int threads) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    return extract_silhouettes(s, t, 0.15, view);
+  };
+  const SilhouetteResult a = run(1), b = run(2);
+  ASSERT_EQ(a.polylines.size(), b.polylines.size());
+  EXPECT_GT(a.polylines.size(), 10u);
+  for (std::size_t i = 0; i < a.polylines.size(); ++i) {
+    EXPECT_EQ(a.polylines[i].points, b.polylines[i].points);
+    EXPECT_EQ(a.polylines[i].visible, b.polylines[i].visible);
+  }
 }
 
 }  // namespace
