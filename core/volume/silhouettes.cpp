@@ -11,6 +11,7 @@
 #include <emmintrin.h>
 #endif
 
+#include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
@@ -30,7 +31,7 @@ constexpr double kStepMax = 0.5, kStepMin = 1.0 / 128.0, kMaxTurnDeg = 25.0;
 constexpr double kJoinRadius = 0.75 * kStepMax;
 constexpr int kCorrectorIterations = 8, kSeedIterations = 6, kMaxSteps = 1 << 16;
 // Cells per block axis: blocks are traced independently (in parallel) and their traces joined at the block faces.
-constexpr int kBlock = 32;
+constexpr int kBlock = 16;
 
 double ms_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -312,9 +313,14 @@ template <int K, class Seed>
 void seed_cell(const Problem& pb, int a, int b, int c, int subdivision, bool whole_cell_tested, Seed&& seed) {
   constexpr int n = K * K * K;
   const VolumeSpline& spline = pb.spline;
+  const glm::dvec3 origin(spline.span_begin(a), spline.span_begin(b), spline.span_begin(c));
+  // One seed per singleton whose hull test is done: its centre (the singleton's range holds c, it is a candidate).
+  if (subdivision == 1 && whole_cell_tested) {
+    seed(origin + 0.5);
+    return;
+  }
   double bez[n];
   spline.bezier_coefficients(a, b, c, bez);
-  const glm::dvec3 origin(spline.span_begin(a), spline.span_begin(b), spline.span_begin(c));
   // The whole singleton first: its G·w hull must hold 0 before any sub-cell is made.
   if (!whole_cell_tested && !dot_range_holds_zero<K>(bez, origin + 0.5, pb.view)) return;
   const int s = subdivision;
@@ -410,16 +416,18 @@ class BlockTracer {
   const BlockScratch::Entry* near_trace(const glm::dvec3& x, double r, std::int32_t own = -1,
                                         std::int32_t own_before = 0) const {
     const glm::ivec3 c = cell_of(x);
-    for (int dz = -1; dz <= 1; ++dz)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          const glm::ivec3 q = c + glm::ivec3(dx, dy, dz);
-          if (glm::any(glm::lessThan(q, first_)) || glm::any(glm::greaterThanEqual(q, last_))) continue;
-          for (std::int32_t e = s_.head[local(q)]; e >= 0; e = s_.entries[e].next) {
+    const glm::ivec3 lo = glm::max(c - 1, first_) - first_, hi = glm::min(c + 1, last_ - 1) - first_;
+    const double r2 = r * r;
+    for (int z = lo.z; z <= hi.z; ++z)
+      for (int y = lo.y; y <= hi.y; ++y) {
+        const std::size_t row = kBlock * (static_cast<std::size_t>(y) + kBlock * static_cast<std::size_t>(z));
+        for (int xi = lo.x; xi <= hi.x; ++xi)
+          for (std::int32_t e = s_.head[row + xi]; e >= 0; e = s_.entries[e].next) {
             const BlockScratch::Entry& en = s_.entries[e];
-            if ((en.trace != own || en.order < own_before) && glm::length(en.x - x) < r) return &en;
+            const glm::dvec3 d = en.x - x;
+            if ((en.trace != own || en.order < own_before) && glm::dot(d, d) < r2) return &en;
           }
-        }
+      }
     return nullptr;
   }
 
@@ -584,9 +592,10 @@ struct Chain {
 
 std::vector<Chain> join_traces(const std::vector<Trace>& traces) {
   const std::size_t n = traces.size();
-  // Face ends filed in a hash grid of 1/1024 index units; two ends match within 1e-6 index units (both are solutions
-  // of the same three equations, converged to the Newton accuracy).
-  constexpr double kCell = 1.0 / 1024.0, kMatch = 1e-6;
+  // Face ends filed in a hash grid of 1/256 index units; two ends match within 1e-3 index units. Both solve the same
+  // three equations, but the stopping test is on the residuals, so where the curve meets the face at a shallow angle
+  // the two solutions can differ by ~1e-5; distinct curves are never that close on a face at these residuals.
+  constexpr double kCell = 1.0 / 256.0, kMatch = 1e-3;
   auto key_of = [](const glm::i64vec3& q) {
     return static_cast<std::uint64_t>(q.x) * 0x9E3779B97F4A7C15ull ^ static_cast<std::uint64_t>(q.y) * 0xC2B2AE3D27D4EB4Full ^
            static_cast<std::uint64_t>(q.z) * 0x165667B19E3779F9ull;
@@ -774,8 +783,8 @@ SilhouetteResult extract_silhouettes(const VolumeSpline& spline, const Singleton
       seed_cell(pb, c.x, c.y, c.z, params.subdivision, whole_cell_tested, [&](const glm::dvec3& centre) {
         ++seeds[blk];
         CurvePoint p;
-        // A seed heading onto a curve already traced is given up early.
-        auto known = [&](const glm::dvec3& x) { return tracer.inside(x) && tracer.near_trace(x, kJoinRadius); };
+        // A seed heading into a cell a trace has crossed is given up early (what it would find there is known).
+        auto known = [&](const glm::dvec3& x) { return tracer.inside(x) && tracer.visited(tracer.cell_of(x)); };
         if (!solve_point(pb, centre, cell_lo - 0.5, cell_lo + 1.5, kSeedIterations, p, -1, known)) return false;
         // A converged point anywhere in the block starts a trace, unless a trace already passed there.
         if (!tracer.inside(p.x) || tracer.visited(tracer.cell_of(p.x)) || tracer.near_trace(p.x, kJoinRadius))
@@ -831,16 +840,29 @@ SilhouetteResult extract_silhouettes(const VolumeSpline& spline, const Singleton
       const glm::dvec3 x(spline.world_to_index() * glm::dvec4(pl.points[i], 1.0));
       return iso_occluded(spline, table, iso, view, x) ? 0 : 1;
     };
+    // The tested points of all polylines as one list (a few polylines hold most points: splitting by polyline would
+    // leave one thread with the longest), then the stretches between two tested points that differ, per polyline.
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> tested;  // (polyline, point)
+    for (std::size_t k = 0; k < result.polylines.size(); ++k) {
+      const std::size_t n = result.polylines[k].points.size();
+      for (std::size_t i = 0; i < n; i += kStride) tested.emplace_back(std::uint32_t(k), std::uint32_t(i));
+      if ((n - 1) % kStride != 0) tested.emplace_back(std::uint32_t(k), std::uint32_t(n - 1));
+    }
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tested.size(), 64), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t e = r.begin(); e != r.end(); ++e) {
+        SilhouettePolyline& pl = result.polylines[tested[e].first];
+        pl.visible[tested[e].second] = static_cast<unsigned char>(occluded(pl, tested[e].second));
+      }
+    });
     tbb::parallel_for(std::size_t(0), result.polylines.size(), [&](std::size_t k) {
       SilhouettePolyline& pl = result.polylines[k];
       const std::size_t n = pl.points.size();
-      std::size_t prev = 0;
-      pl.visible[0] = static_cast<unsigned char>(occluded(pl, 0));
-      for (std::size_t next = std::min(kStride, n - 1); prev < n - 1; prev = next, next = std::min(next + kStride, n - 1)) {
-        pl.visible[next] = static_cast<unsigned char>(occluded(pl, next));
+      for (std::size_t prev = 0; prev + 1 < n;) {
+        const std::size_t next = std::min(prev + kStride, n - 1);
         for (std::size_t i = prev + 1; i < next; ++i)
           pl.visible[i] = pl.visible[prev] == pl.visible[next] ? pl.visible[prev]
                                                                 : static_cast<unsigned char>(occluded(pl, i));
+        prev = next;
       }
     });
     result.hidden_ms = ms_since(t1);
