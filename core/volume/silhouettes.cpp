@@ -136,6 +136,9 @@ bool solve_point(const Problem& pb, glm::dvec3 x, const glm::dvec3& lo, const gl
     // Past the first two steps Newton converging to a regular point at least halves its step each time; otherwise
     // it is wandering.
     if (it >= 2 && sl > 0.5 * last_step) return false;
+    // The full step points (to first order) at the solution: well outside lo…hi, it would not be accepted.
+    const glm::dvec3 target = x + step;
+    if (glm::any(glm::lessThan(target, lo - 0.25)) || glm::any(glm::greaterThan(target, hi + 0.25))) return false;
     last_step = sl;
     if (sl > 0.5) step *= 0.5 / sl;
     x += step;
@@ -507,19 +510,21 @@ class BlockTracer {
     const double min_turn_cos = std::cos(kMaxTurnDeg * kPi / 180.0);
     const glm::dvec3 margin(1.0);
     glm::dvec3 x = start.x, t = sign * start.tangent;
+    glm::dvec3 bend(0.0);  // dt/ds from the last step: the predictor follows the curve's bending
     double h = kStepMax, travelled = 0.0;
     int easy = 0;
     // A curve in one block is far shorter than kMaxSteps steps; the bound only stops a runaway march.
     for (int n = 0; n < kMaxSteps; ++n) {
       CurvePoint q;
-      bool ok = solve_point(pb_, x + h * t, lo_ - margin, hi_ + margin, kCorrectorIterations, q);
+      const glm::dvec3 predicted = x + h * t + (0.5 * h * h) * bend;
+      bool ok = solve_point(pb_, predicted, lo_ - margin, hi_ + margin, kCorrectorIterations, q);
       double dl = 0.0;
       if (ok) {
         const glm::dvec3 d = q.x - x;
         dl = glm::length(d);
         // A step goes forward by about h, lands near the predictor (not on a neighbouring branch) and turns little.
         ok = dl >= 0.25 * h && dl <= 2.0 * h && glm::dot(d, t) >= 0.5 * dl &&
-             glm::length(q.x - (x + h * t)) <= 0.35 * h && std::abs(glm::dot(q.tangent, t)) >= min_turn_cos;
+             glm::length(q.x - predicted) <= 0.35 * h && std::abs(glm::dot(q.tangent, t)) >= min_turn_cos;
       }
       if (!ok) {
         h *= 0.5, easy = 0;
@@ -565,6 +570,7 @@ class BlockTracer {
       add_point(q.x, id);
       out.push_back(q);
       travelled += dl;
+      bend = (q.tangent - t) / dl;
       x = q.x, t = q.tangent;
       if (q.iterations <= 3 && ++easy >= 2) h = std::min(kStepMax, 1.5 * h);
     }
