@@ -1,5 +1,9 @@
 #include "core/volume/volume_spline.h"
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "core/volume/bezier_cell.h"
 
 #include <algorithm>
@@ -229,6 +233,67 @@ VolumeJet jet_k(const VolumeSpline& s, const glm::dvec3& x) {
   return j;
 }
 
+#if defined(__SSE2__)
+// The cubic jet with SSE2 pairs of doubles: per x-row the pairs (Σ w·p, Σ w′·p) and Σ w″·p, then y and z with the
+// partial sums paired so that each multiply-add updates two results. Same operations as jet_k<4>, in another order.
+VolumeJet jet_cubic_sse2(const VolumeSpline& s, const glm::dvec3& x) {
+  AxisBasis<4> bx, by, bz;
+  axis_basis<4>(s, 0, x.x, true, bx);
+  axis_basis<4>(s, 1, x.y, true, by);
+  axis_basis<4>(s, 2, x.z, true, bz);
+  const std::size_t nx = s.dims()[0], nxy = nx * s.dims()[1];
+  const float* cp = s.control_points().data();
+  const bool contiguous = bx.idx[3] - bx.idx[0] == 3;
+  __m128d wdw[4];  // (w_a, w′_a)
+  for (int a = 0; a < 4; ++a) wdw[a] = _mm_setr_pd(bx.w[a], bx.dw[a]);
+  const __m128d d2w01 = _mm_setr_pd(bx.d2w[0], bx.d2w[1]), d2w23 = _mm_setr_pd(bx.d2w[2], bx.d2w[3]);
+  __m128d v_dx = _mm_setzero_pd(), dy_dxy = _mm_setzero_pd(), dxx_dyy = _mm_setzero_pd();
+  __m128d dz_dxz = _mm_setzero_pd(), dyz_dzz = _mm_setzero_pd();
+  for (int c = 0; c < 4; ++c) {
+    __m128d yv_yx = _mm_setzero_pd(), yy_yxy = _mm_setzero_pd(), yxx_yyy = _mm_setzero_pd();
+    for (int b = 0; b < 4; ++b) {
+      const float* row = cp + bz.idx[c] * nxy + by.idx[b] * nx;
+      __m128 pf;
+      if (contiguous) pf = _mm_loadu_ps(row + bx.idx[0]);
+      else pf = _mm_setr_ps(row[bx.idx[0]], row[bx.idx[1]], row[bx.idx[2]], row[bx.idx[3]]);
+      const __m128d p01 = _mm_cvtps_pd(pf), p23 = _mm_cvtps_pd(_mm_movehl_ps(pf, pf));
+      // (s0, s1) = Σ_a p_a·(w_a, w′_a); s2 = Σ_a p_a·w″_a.
+      const __m128d s01 = _mm_add_pd(
+          _mm_add_pd(_mm_mul_pd(_mm_unpacklo_pd(p01, p01), wdw[0]), _mm_mul_pd(_mm_unpackhi_pd(p01, p01), wdw[1])),
+          _mm_add_pd(_mm_mul_pd(_mm_unpacklo_pd(p23, p23), wdw[2]), _mm_mul_pd(_mm_unpackhi_pd(p23, p23), wdw[3])));
+      const __m128d t2 = _mm_add_pd(_mm_mul_pd(p01, d2w01), _mm_mul_pd(p23, d2w23));
+      const __m128d s2 = _mm_add_sd(t2, _mm_unpackhi_pd(t2, t2));  // low lane: s2
+      const __m128d wb = _mm_set1_pd(by.w[b]), dwb = _mm_set1_pd(by.dw[b]);
+      yv_yx = _mm_add_pd(yv_yx, _mm_mul_pd(wb, s01));
+      yy_yxy = _mm_add_pd(yy_yxy, _mm_mul_pd(dwb, s01));
+      // (yxx, yyy) += (w_b·s2, w″_b·s0)
+      yxx_yyy = _mm_add_pd(yxx_yyy, _mm_mul_pd(_mm_setr_pd(by.w[b], by.d2w[b]), _mm_unpacklo_pd(s2, s01)));
+    }
+    const __m128d wc = _mm_set1_pd(bz.w[c]), dwc = _mm_set1_pd(bz.dw[c]);
+    v_dx = _mm_add_pd(v_dx, _mm_mul_pd(wc, yv_yx));
+    dy_dxy = _mm_add_pd(dy_dxy, _mm_mul_pd(wc, yy_yxy));
+    dxx_dyy = _mm_add_pd(dxx_dyy, _mm_mul_pd(wc, yxx_yyy));
+    dz_dxz = _mm_add_pd(dz_dxz, _mm_mul_pd(dwc, yv_yx));
+    // (dyz, dzz) += (w′_c·yy, w″_c·yv)
+    dyz_dzz = _mm_add_pd(dyz_dzz, _mm_mul_pd(_mm_setr_pd(bz.dw[c], bz.d2w[c]), _mm_unpacklo_pd(yy_yxy, yv_yx)));
+  }
+  alignas(16) double r[10];
+  _mm_store_pd(r, v_dx);
+  _mm_store_pd(r + 2, dy_dxy);
+  _mm_store_pd(r + 4, dxx_dyy);
+  _mm_store_pd(r + 6, dz_dxz);
+  _mm_store_pd(r + 8, dyz_dzz);
+  const double v = r[0], dx = r[1], dy = r[2], dxy = r[3], dxx = r[4], dyy = r[5], dz = r[6], dxz = r[7], dyz = r[8],
+               dzz = r[9];
+  VolumeJet j;
+  j.value = v;
+  j.gradient = {dx, dy, dz};
+  j.hessian = glm::dmat3(dxx, dxy, dxz, dxy, dyy, dyz, dxz, dyz, dzz);
+  return j;
+}
+
+#endif
+
 }  // namespace
 
 double VolumeSpline::value(const glm::dvec3& x) const {
@@ -243,7 +308,11 @@ VolumeJet VolumeSpline::jet(const glm::dvec3& x) const {
   switch (order_) {
     case 2: return jet_k<2>(*this, x);
     case 3: return jet_k<3>(*this, x);
+#if defined(__SSE2__)
+    default: return jet_cubic_sse2(*this, x);
+#else
     default: return jet_k<4>(*this, x);
+#endif
   }
 }
 
