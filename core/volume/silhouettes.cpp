@@ -729,12 +729,15 @@ SilhouetteResult extract_silhouettes(const VolumeSpline& spline, const Singleton
     return static_cast<std::size_t>(c.x / kBlock) +
            blocks.x * (static_cast<std::size_t>(c.y / kBlock) + blocks.y * static_cast<std::size_t>(c.z / kBlock));
   };
-  std::vector<std::uint32_t> block_begin(block_count + 1, 0), by_block(bins.size());
-  for (std::uint32_t cell : bins) ++block_begin[block_of(cell_coords(cell)) + 1];
+  std::vector<std::uint32_t> block_begin(block_count + 1, 0), by_block(bins.size()), block_id(bins.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, bins.size(), 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t e = r.begin(); e != r.end(); ++e) block_id[e] = static_cast<std::uint32_t>(block_of(cell_coords(bins[e])));
+  });
+  for (std::uint32_t b : block_id) ++block_begin[b + 1];
   for (std::size_t b = 0; b < block_count; ++b) block_begin[b + 1] += block_begin[b];
   {
     std::vector<std::uint32_t> fill(block_begin.begin(), block_begin.end() - 1);
-    for (std::uint32_t cell : bins) by_block[fill[block_of(cell_coords(cell))]++] = cell;
+    for (std::size_t e = 0; e < bins.size(); ++e) by_block[fill[block_id[e]]++] = bins[e];
   }
   // Each block: the exact per-singleton cone test (cell-sized view cone in perspective), then seeds, Newton and
   // tracing, skipping cells a trace has already crossed. Blocks write to their own slots (deterministic for any
