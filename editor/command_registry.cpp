@@ -14,6 +14,7 @@
 #include "core/commands/lattice_animate_offset.h"
 #include "core/commands/lattice_press.h"
 #include "core/commands/lattice_ring.h"
+#include "core/commands/lattice_certify.h"
 #include "core/commands/lattice_set_point.h"
 #include "core/commands/mesh_refine.h"
 #include "core/commands/mesh_subdivide.h"
@@ -72,6 +73,7 @@ const CommandRegistry& CommandRegistry::builtin() {
     r.add<core::LatticePressCommand>();
     r.add<core::LatticePullColumnCommand>();
     r.add<core::LatticeSetPointCommand>();
+    r.add<core::LatticeCertifyCommand>();
     r.add<core::MeshRefineCommand>();
     r.add<core::MeshSubdivideCommand>();
     r.add<core::DdmFillCommand>();

@@ -1,0 +1,51 @@
+#include "core/commands/lattice_certify.h"
+
+#include <chrono>
+
+namespace trispline::core {
+
+const ParamSchema<LatticeCertifyParams>& LatticeCertifyCommand::schema() {
+  using P = LatticeCertifyParams;
+  static const ParamSchema<P> s =
+      ParamSchema<P>("lattice.certify", "Certify that a deformed object's lattice does not fold (det J > 0 everywhere)")
+          .field("object", &P::object).required().help("A deformed object (with an FFD)")
+          .field("max_depth", &P::max_depth).range(0, 12)
+          .help("Halvings of a Bézier cell before a box that is neither certified nor folded is called undecided");
+  return s;
+}
+
+std::string LatticeCertifyCommand::label() const { return "Certify lattice of '" + p_.object + "'"; }
+
+void LatticeCertifyCommand::redo(Scene& scene) {
+  const SceneObject& object = require_deformed_object(scene, p_.object);
+  FoldCertificateOptions options;
+  options.max_depth = p_.max_depth;
+  const auto t0 = std::chrono::steady_clock::now();
+  try {
+    certificate_ = certify_fold_free(object.ffd->lattice, options);
+  } catch (const std::invalid_argument& e) {
+    throw CommandError(std::string("field 'object': ") + e.what(), "object");
+  }
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  nlohmann::json cells = nlohmann::json::array(), points = nlohmann::json::array(), params = nlohmann::json::array(),
+                 undecided = nlohmann::json::array();
+  for (std::size_t i = 0; i < certificate_.fold_cells.size(); ++i) {
+    const glm::ivec3& c = certificate_.fold_cells[i];
+    const glm::dvec3 &x = certificate_.fold_points[i], &t = certificate_.fold_params[i];
+    cells.push_back({c.x, c.y, c.z});
+    points.push_back({x.x, x.y, x.z});
+    params.push_back({t.x, t.y, t.z});
+  }
+  for (const glm::ivec3& c : certificate_.undecided_cells) undecided.push_back({c.x, c.y, c.z});
+  stats_ = {{"certificate", fold_verdict_name(certificate_.verdict)},
+            {"fold_cells", cells},
+            {"fold_points", points},
+            {"fold_params", params},
+            {"undecided_cells", undecided},
+            {"cells", certificate_.cells},
+            {"boxes", certificate_.boxes},
+            {"min_det_coefficient", certificate_.min_det_coefficient},
+            {"ms", ms}};
+}
+
+}  // namespace trispline::core
