@@ -14,6 +14,7 @@
 #include "bench/bench_ddm.h"
 #include "bench/bench_dffd.h"
 #include "bench/bench_place.h"
+#include "bench/bounds_bench.h"
 #include "bench/silhouette_bench.h"
 #include "editor/command_docs.h"
 #include "editor/command_registry.h"
@@ -57,6 +58,9 @@ struct CliRequest {
   core::SilhouetteBenchOptions silhouettes;
   bool silhouettes_json = false;
   CLI::App* silhouettes_cmd = nullptr;
+  core::BoundsBenchOptions bounds;
+  bool bounds_json = false;
+  CLI::App* bounds_cmd = nullptr;
   CLI::App *ffd_cmd = nullptr, *place_cmd = nullptr, *dffd_cmd = nullptr, *ddm_cmd = nullptr, *press_cmd = nullptr;
   CLI::App* commands_cmd = nullptr;
   std::string command_id, docs_file;
@@ -160,7 +164,24 @@ void print_silhouette_table(const nlohmann::json& r, std::ostream& out) {
       << r["max_dot_residual"].get<double>() << "\n";
 }
 
-// `trispline bench ffd|place|dffd|ddm|press|silhouettes`.
+// `trispline bench bounds`: certificate times per lattice, then the soundness sweep's counts.
+void print_bounds_table(const nlohmann::json& r, std::ostream& out) {
+  out << "fold-free certificate, " << r["threads"].get<int>() << " threads\n"
+      << "  order  controls   cells   boxes  verdict          ms\n";
+  for (const auto& c : r["certificate"])
+    out << "  " << std::setw(5) << c["order"].get<int>() << std::setw(8) << c["controls"].get<int>() << "^3"
+        << std::setw(8) << c["cells"].get<std::size_t>() << std::setw(8) << c["boxes"].get<std::size_t>() << "  "
+        << std::setw(10) << std::left << c["verdict"].get<std::string>() << std::right << std::setw(10)
+        << bench_fixed(c["ms"].get<double>(), 2) << "\n";
+  const auto& w = r["sweep"];
+  out << "  sweep: " << w["lattices"].get<int>() << " random lattices: " << w["fold_free"].get<std::size_t>()
+      << " fold-free, " << w["fold"].get<std::size_t>() << " fold, " << w["undecided"].get<std::size_t>()
+      << " undecided; sampling finds det J <= 0 in " << w["sampled_folds"].get<std::size_t>()
+      << "; certified yet folded: " << w["certified_but_sampled_fold"].get<std::size_t>()
+      << "; folds reported where det J > 0: " << w["fold_reported_at_positive_det"].get<std::size_t>() << "\n";
+}
+
+// `trispline bench ffd|place|dffd|ddm|press|silhouettes|bounds`.
 void add_bench(CLI::App& app, CliRequest& o) {
   auto* bench = app.add_subcommand("bench", "Benchmarks that print figures (never assert timings)");
   bench->require_subcommand(1);
@@ -232,6 +253,14 @@ void add_bench(CLI::App& app, CliRequest& o) {
   o.silhouettes_cmd->add_option("--subdivision", o.silhouettes.subdivision, "Newton seeds per singleton axis")
       ->check(CLI::Range(1, 4));
   o.silhouettes_cmd->add_flag("!--no-hidden", o.silhouettes.hidden, "Skip the hidden-line test");
+  o.bounds_cmd = bench->add_subcommand(
+      "bounds", "Guarantees: the fold-free certificate's time on 4^3, 8^3, 16^3 lattices (orders 3, 4) and a soundness "
+                "sweep over random lattices against dense sampling of det J");
+  o.bounds_cmd->add_flag("--json", o.bounds_json, "Print one JSON object instead of a table");
+  o.bounds_cmd->add_option("--repeats", o.bounds.repeats, "Certificate timings: best of this many runs")
+      ->check(CLI::Range(1, 1000));
+  o.bounds_cmd->add_option("--lattices", o.bounds.lattices, "Random lattices in the soundness sweep")
+      ->check(CLI::Range(0, 10000000));
   o.press_cmd = bench->add_subcommand(
       "press", "A pressing drag on a ~1 M-vertex object: Press tool per mouse move, pressed lattice, cpu_fast / GLSL "
                "re-evaluation per drag sample, and the lattice.press command at release");
@@ -305,6 +334,8 @@ int run_cli(int argc, char** argv) {
     if (*o.silhouettes_cmd)
       return bench_emit(core::run_silhouette_benchmark(o.silhouettes), o.silhouettes_json, std::cout,
                         print_silhouette_table);
+    if (*o.bounds_cmd)
+      return bench_emit(core::run_bounds_benchmark(o.bounds), o.bounds_json, std::cout, print_bounds_table);
     if (*o.commands_cmd) return run_commands(o);
     if (!o.open_log.empty()) o.edit.open_log = o.open_log;
     return run_editor(o.edit);

@@ -1,0 +1,25 @@
+// trispline::core guarantees benchmark — the figures behind `trispline bench bounds` (docs/performance.md).
+//
+// The fold-free certificate (core/ffd/fold_certificate.h): milliseconds to judge lattices of 4³, 8³ and 16³ control
+// points, tri-quadratic and tri-cubic, each an identity lattice with a mild random displacement (fold-free: every
+// cell is judged in full), best of `repeats`; then a soundness sweep: `lattices` random lattices (orders 2–4, 3–6
+// controls per axis, displacements from gentle to violent) judged and sampled densely (det J on a 12³ grid), counting
+// verdicts and the lattices certified fold-free although a sample has det J ≤ 0 (must be 0) and the folds reported at
+// points where det J > 0 (must be 0). Prints figures; never asserts timings.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+namespace trispline::core {
+
+struct BoundsBenchOptions {
+  int repeats = 5;      // ≥ 1: certificate timings are the best of these
+  int lattices = 1000;  // ≥ 0: random lattices in the soundness sweep
+};
+
+// Result: {bench:"bounds", threads, certificate:[{order, controls, cells, boxes, verdict, ms}], sweep:{lattices,
+//          fold_free, fold, undecided, sampled_folds, certified_but_sampled_fold, fold_reported_at_positive_det}}.
+// Throws std::invalid_argument on bad options.
+nlohmann::json run_bounds_benchmark(const BoundsBenchOptions& options);
+
+}  // namespace trispline::core
