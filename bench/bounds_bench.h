@@ -5,20 +5,26 @@
 // cell is judged in full), best of `repeats`; then a soundness sweep: `lattices` random lattices (orders 2–4, 3–6
 // controls per axis, displacements from gentle to violent) judged and sampled densely (det J on a 12³ grid), counting
 // verdicts and the lattices certified fold-free although a sample has det J ≤ 0 (must be 0) and the folds reported at
-// points where det J > 0 (must be 0). Prints figures; never asserts timings.
+// points where det J > 0 (must be 0); then the per-triangle deformation-error bounds (core/ffd/deformation_bounds.h) of
+// every triangle of the FFD benchmark's mesh (the bunny refined to 836K vertices) in a perturbed tri-cubic 8³ lattice.
+// Prints figures; never asserts timings.
 #pragma once
 
 #include <nlohmann/json.hpp>
+#include <string>
 
 namespace trispline::core {
 
 struct BoundsBenchOptions {
-  int repeats = 5;      // ≥ 1: certificate timings are the best of these
+  int repeats = 5;      // ≥ 1: timings are the best of these
   int lattices = 1000;  // ≥ 0: random lattices in the soundness sweep
+  std::string mesh_path = "assets/data/bunny.obj";  // the per-triangle bounds' mesh (a sphere when absent)
+  int subdivision_level = 2;                        // its bilinear refinement level
 };
 
 // Result: {bench:"bounds", threads, certificate:[{order, controls, cells, boxes, verdict, ms}], sweep:{lattices,
-//          fold_free, fold, undecided, sampled_folds, certified_but_sampled_fold, fold_reported_at_positive_det}}.
+//          fold_free, fold, undecided, sampled_folds, certified_but_sampled_fold, fold_reported_at_positive_det},
+//          triangles:{mesh, vertices, triangles, prepare_ms, ms, per_second, max_bound, median_bound}}.
 // Throws std::invalid_argument on bad options.
 nlohmann::json run_bounds_benchmark(const BoundsBenchOptions& options);
 

@@ -43,8 +43,8 @@ double median_ms(int runs, const std::function<void()>& fn) {
   return t.size() % 2 ? t[t.size() / 2] : 0.5 * (t[t.size() / 2 - 1] + t[t.size() / 2]);
 }
 
-// Lattice of `controls`³ control points over the embedded box: the identity (Greville abscissae mapped back to
-// world space) plus a uniform random displacement of ±perturbation × cell size per coordinate.
+}  // namespace
+
 TrivariateBSpline<glm::dvec3> perturbed_lattice(const Embedding& e, int order, int controls, double perturbation,
                                                 std::uint32_t seed) {
   const KnotVector kv = KnotVector::clamped_uniform(order, controls);
@@ -90,8 +90,6 @@ Errors compare(const Reference& ref, const std::vector<glm::dvec3>& p, const std
   return e;
 }
 
-// Mesh: the bunny, or a sphere of similar vertex count when the file is not there; subdivided to o's level.
-// mj: its source, fallback note, counts and subdivision time.
 TriMesh benchmark_mesh(const FfdBenchOptions& o, nlohmann::json& mj) {
   TriMesh base;
   if (std::filesystem::exists(o.mesh_path)) {
@@ -114,6 +112,8 @@ TriMesh benchmark_mesh(const FfdBenchOptions& o, nlohmann::json& mj) {
   mj["subdivision_level"] = o.subdivision_level;
   return mesh;
 }
+
+namespace {
 
 // One lattice size and order, positions only then with normals: cpu_ref (the reference, `all` threads), cpu_fast on
 // one and on `all` threads, each GL backend (kernel and end to end); one row per run appended to `cases`.

@@ -61,6 +61,15 @@ nlohmann::json run_ffd_benchmark(const FfdBenchOptions& options);
 // Human-readable table of a run_ffd_benchmark result.
 void print_ffd_benchmark(const nlohmann::json& result, std::ostream& out);
 
+// The benchmark mesh: o.mesh_path (the bunny), or a generated sphere of similar vertex count when the file is not
+// there, refined to o.subdivision_level. mj gets its source, fallback note, counts and subdivision time.
+TriMesh benchmark_mesh(const FfdBenchOptions& o, nlohmann::json& mj);
+
+// Lattice of controls³ control points (order per axis) over the box embedded by e: the identity (Greville abscissae
+// mapped back to world space) plus a uniform random displacement of ±perturbation × cell size per coordinate.
+TrivariateBSpline<glm::dvec3> perturbed_lattice(const Embedding& e, int order, int controls, double perturbation,
+                                                std::uint32_t seed);
+
 // "model name" of /proc/cpuinfo, or "unknown": the "cpu" of every benchmark's result.
 std::string bench_cpu_model();
 

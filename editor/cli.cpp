@@ -179,6 +179,13 @@ void print_bounds_table(const nlohmann::json& r, std::ostream& out) {
       << " undecided; sampling finds det J <= 0 in " << w["sampled_folds"].get<std::size_t>()
       << "; certified yet folded: " << w["certified_but_sampled_fold"].get<std::size_t>()
       << "; folds reported where det J > 0: " << w["fold_reported_at_positive_det"].get<std::size_t>() << "\n";
+  const auto& t = r["triangles"];
+  out << "per-triangle error bounds: " << t["triangles"].get<std::size_t>() << " triangles ("
+      << t["vertices"].get<std::size_t>() << " vertices, " << t["mesh"]["source"].get<std::string>()
+      << ") in a perturbed tri-cubic 8^3 lattice: " << bench_fixed(t["ms"].get<double>(), 1) << " ms (cell bounds "
+      << bench_fixed(t["prepare_ms"].get<double>(), 2) << " ms), " << bench_fixed(t["per_second"].get<double>() / 1e6, 1)
+      << " M triangles/s; bound median " << t["median_bound"].get<double>() << ", max " << t["max_bound"].get<double>()
+      << " world units\n";
 }
 
 // `trispline bench ffd|place|dffd|ddm|press|silhouettes|bounds`.

@@ -3,6 +3,8 @@
 // reported where det J > 0).
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "bench/bounds_bench.h"
 
 using namespace trispline;
@@ -11,6 +13,8 @@ TEST(BoundsBench, ShortSweepIsSoundAndComplete) {
   core::BoundsBenchOptions o;
   o.repeats = 1;
   o.lattices = 96;
+  o.mesh_path = "no-such-mesh.obj";  // the generated sphere, unrefined
+  o.subdivision_level = 0;
   const nlohmann::json r = core::run_bounds_benchmark(o);
   ASSERT_EQ(r.at("certificate").size(), 6u);
   for (const auto& c : r.at("certificate")) {
@@ -24,6 +28,11 @@ TEST(BoundsBench, ShortSweepIsSoundAndComplete) {
   EXPECT_GT(w.at("fold_free").get<int>(), 10);
   EXPECT_GT(w.at("fold").get<int>(), 10);
   EXPECT_EQ(w.at("fold_free").get<int>() + w.at("fold").get<int>() + w.at("undecided").get<int>(), 96);
+  const auto& t = r.at("triangles");
+  EXPECT_EQ(t.at("mesh").at("fallback"), true);
+  EXPECT_GT(t.at("triangles").get<std::size_t>(), 10000u);
+  EXPECT_GT(t.at("max_bound").get<double>(), 0.0);
+  EXPECT_TRUE(std::isfinite(t.at("max_bound").get<double>())) << "a cubic lattice bounds every triangle";
   o.repeats = 0;
   EXPECT_THROW(core::run_bounds_benchmark(o), std::invalid_argument);
 }
