@@ -19,14 +19,6 @@ double direction_bound(const glm::dmat3& m) {
   return std::min(rows, std::sqrt(frob));
 }
 
-double quad(const glm::dmat3& m, const glm::dvec3& x, const glm::dvec3& y) {
-  const glm::dvec3 ax = glm::abs(x), ay = glm::abs(y);
-  double s = 0.0;
-  for (int a = 0; a < 3; ++a)
-    for (int b = 0; b < 3; ++b) s += ax[a] * ay[b] * m[a][b];
-  return s;
-}
-
 }  // namespace
 
 SecondDerivativeBounds::SecondDerivativeBounds(const TrivariateBSpline<glm::dvec3>& F) {
@@ -127,12 +119,14 @@ double triangle_error_bound(const SecondDerivativeBounds& bounds, const glm::dve
   const glm::dvec3 lo = glm::min(a, glm::min(b, c)), hi = glm::max(a, glm::max(b, c));
   if (bounds.crosses_kink(lo, hi)) return INFINITY;
   const glm::dmat3 M = bounds.over_box(lo, hi);
-  double right = INFINITY;
-  const glm::dvec3 v[3] = {a, b, c};
-  for (int r = 0; r < 3; ++r) {
-    const glm::dvec3 e1 = v[(r + 1) % 3] - v[r], e2 = v[(r + 2) % 3] - v[r];
-    right = std::min(right, (quad(M, e1, e1) + 2.0 * quad(M, e1, e2) + quad(M, e2, e2)) / 8.0);
-  }
+  // |e|ᵀ M |e′| for the three edges (signs do not matter: absolute values), then the right angle at each vertex:
+  // at c the legs are ca and cb, at a ab and ac, at b bc and ba.
+  const glm::dvec3 e[3] = {glm::abs(a - c), glm::abs(b - c), glm::abs(b - a)};  // ca, cb, ab
+  glm::dvec3 me[3];
+  for (int i = 0; i < 3; ++i) me[i] = M * e[i];  // M is symmetric
+  const double q00 = glm::dot(e[0], me[0]), q11 = glm::dot(e[1], me[1]), q22 = glm::dot(e[2], me[2]);
+  const double q01 = glm::dot(e[0], me[1]), q02 = glm::dot(e[0], me[2]), q12 = glm::dot(e[1], me[2]);
+  const double right = std::min({q00 + 2.0 * q01 + q11, q22 + 2.0 * q02 + q00, q11 + 2.0 * q12 + q22}) / 8.0;
   if (method == ErrorBound::right_triangle) return right;
   // The smallest enclosing circle: the circumcircle of an acute triangle, else the longest edge's.
   const double la = glm::length(b - c), lb = glm::length(c - a), lc = glm::length(a - b);
