@@ -1,5 +1,7 @@
 #include "core/commands/mesh_refine.h"
 
+#include "core/ffd/deformation_bounds.h"
+
 #include <chrono>
 #include <cmath>
 
@@ -16,6 +18,9 @@ const ParamSchema<MeshRefineParams>& MeshRefineCommand::schema() {
           .choice("criterion", &P::criterion, {"midpoint", "greville"})
           .help("midpoint: the seed's Eq. 2.6 estimate at edge midpoints; greville: a bound from the edge curve's "
                 "control points, split at the farthest one")
+          .choice("error", &P::error, {"edge", "bound"})
+          .help("edge: hold each edge's measure (the criterion's) to the tolerance; bound: hold each triangle's "
+                "certified deformation-error bound (seed §3.2) to it, splitting where the criterion says")
           .field("max_iterations", &P::max_iterations).range(0, 64).help("Split rounds at most")
           // A refined triangle costs ~400 bytes across the mesh, its FFD parameters, the evaluated copy and the edge
           // tables: 8 M triangles stay near 3 GiB (50 M reached 7 GB).
@@ -29,6 +34,7 @@ RefineOptions MeshRefineCommand::options() const {
   RefineOptions o;
   o.tolerance = p_.tolerance;
   o.criterion = parse_refine_criterion(p_.criterion);
+  o.error = p_.error == "bound" ? RefineError::bound : RefineError::edge;
   o.max_iterations = p_.max_iterations;
   o.max_triangles = static_cast<std::size_t>(p_.max_triangles);
   return o;
@@ -45,6 +51,13 @@ std::optional<SceneObject> MeshRefineCommand::build(const Scene& scene) {
     throw CommandError("field 'object': '" + p_.object + "' plays a glTF clip that animates its vertices; refining would "
                        "break the clip's vertex correspondence (remove the clip with anim.clip \"remove\":true first)",
                        "object");
+  if (opts.error == RefineError::bound) {
+    try {
+      SecondDerivativeBounds check(target->ffd->lattice);
+    } catch (const std::invalid_argument& e) {
+      throw CommandError(std::string("field 'error': ") + e.what() + " (use \"error\":\"edge\")", "error");
+    }
+  }
   RefineOptions o = opts;
   o.param_offset = target->offset_at(0.0);
   const auto t0 = std::chrono::steady_clock::now();
@@ -71,8 +84,14 @@ std::optional<SceneObject> MeshRefineCommand::build(const Scene& scene) {
             {"max_deviation_bound", s.max_deviation_bound},
             {"stopped_by_budget", s.stopped_by_budget},
             {"stopped_by", s.stopped_by},
+            {"error", p_.error},
             {"ms_refine", ms(t1 - t0).count()},
             {"ms_evaluate", ms(t2 - t1).count()}};
+  if (opts.error == RefineError::bound) {
+    stats_["bound"] = "best of right triangle (Filip et al. Theorem 4) and smallest enclosing circle (Waldron)";
+    // +∞ (a triangle across a C⁰ knot plane) is written as null: JSON has no infinity.
+    stats_["max_bound"] = std::isfinite(s.max_triangle_bound) ? nlohmann::json(s.max_triangle_bound) : nlohmann::json();
+  }
   return out;
 }
 

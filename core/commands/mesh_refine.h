@@ -24,6 +24,7 @@ struct MeshRefineParams {
   std::string object;
   double tolerance = 0.01;                 // world units
   std::string criterion = "greville";      // midpoint (Eq. 2.6) | greville
+  std::string error = "edge";              // edge: each edge's measure | bound: each triangle's certified bound
   int max_iterations = 16;                 // split rounds
   std::int64_t max_triangles = 2'000'000;  // the memory budget of a refinement
 };

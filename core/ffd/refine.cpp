@@ -1,9 +1,12 @@
 #include "core/ffd/refine.h"
 
+#include "core/ffd/deformation_bounds.h"
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <optional>
 #include <cmath>
 #include <cstdint>
 #include <numbers>
@@ -363,6 +366,18 @@ RefineResult refine_for_ffd(const TriMesh& rest, const FfdBinding& binding, cons
     return std::pair{params[e.a] + o.param_offset, params[e.b] + o.param_offset};
   };
 
+  std::optional<SecondDerivativeBounds> second;
+  if (o.error == RefineError::bound) second.emplace(F);
+  std::vector<double> tri_bound;
+  auto bound_triangles = [&] {
+    tri_bound.resize(m.triangles.size());
+    parallel_each(m.triangles.size(), [&](std::size_t f) {
+      const glm::uvec3 t = m.triangles[f];
+      tri_bound[f] = triangle_error_bound(*second, params[t.x] + o.param_offset, params[t.y] + o.param_offset,
+                                          params[t.z] + o.param_offset);
+    });
+  };
+
   std::vector<double> split_t;
   std::vector<unsigned char> marked;
   st.stopped_by = "converged";
@@ -370,14 +385,23 @@ RefineResult refine_for_ffd(const TriMesh& rest, const FfdBinding& binding, cons
     collect_edges();
     split_t.assign(pedges.size(), 0.5);
     marked.assign(pedges.size(), 0);
+    if (second) {
+      // Every edge of a triangle over tolerance.
+      bound_triangles();
+      for (std::size_t f = 0; f < m.triangles.size(); ++f)
+        if (!(tri_bound[f] <= o.tolerance))
+          for (int k = 0; k < 3; ++k)
+            if (tri_pedge[f * 3 + k] != kNone) marked[tri_pedge[f * 3 + k]] = 1;
+    }
     parallel_each(pedges.size(), [&](std::size_t i) {
       const PEdge e = pedges[i];
       const auto [pa, pb] = ends(e);
+      if (second && (!marked[i] || o.criterion == RefineCriterion::Midpoint)) return;
       if (o.criterion == RefineCriterion::Midpoint) {
         marked[i] = midpoint_measure(F, pa, pb, fpos[e.a], fpos[e.b]) > o.tolerance;
       } else {
         const EdgeGreville g = greville_measure(F, bi, pa, pb, fpos[e.a], fpos[e.b]);
-        marked[i] = g.bound > o.tolerance;
+        if (!second) marked[i] = g.bound > o.tolerance;
         split_t[i] = std::clamp(g.t, o.min_split, 1.0 - o.min_split);
       }
     });
@@ -425,6 +449,10 @@ RefineResult refine_for_ffd(const TriMesh& rest, const FfdBinding& binding, cons
   for (std::size_t i = 0; i < pedges.size(); ++i) {
     st.max_midpoint_error = std::max(st.max_midpoint_error, mid_err[i]);
     st.max_deviation_bound = std::max(st.max_deviation_bound, bound[i]);
+  }
+  if (second) {
+    bound_triangles();
+    for (double b : tri_bound) st.max_triangle_bound = std::max(st.max_triangle_bound, b);
   }
   st.triangles_after = m.triangles.size();
   st.vertices_after = m.positions.size();

@@ -21,6 +21,11 @@
 //     its line, which is ≥ and stays a bound): by the convex hull property every point of E_p lies within that
 //     distance of the deformed straight edge. The edge is split at the nodal value of the farthest control point,
 //     clamped to [min_split, 1 − min_split] (no sliver triangles).
+// Certified mode (RefineError::bound, seed §3.3 BoundMeshError): instead of measuring edges, every triangle gets its
+// certified deformation-error bound (deformation_bounds.h: the best of Theorem 4's right-triangle bound and the
+// smallest-enclosing-circle bound); the three edges of each triangle over tolerance are split (at the midpoint, or at
+// the Greville criterion's split point), the rest conformingly as above, until every triangle's bound is within
+// tolerance — then the refined mesh certifies it (stats.max_triangle_bound ≤ tolerance, stopped_by "converged").
 // New vertices interpolate position, FFD parameters (the embedding is affine), normal (re-normalised) and uv
 // linearly along the edge, in the canonical direction of the edge, so equal inputs give bit-identical outputs.
 // The rest mesh may be given in any space that is an affine image of the embedded world rest space (object space,
@@ -38,6 +43,8 @@
 namespace trispline::core {
 
 enum class RefineCriterion { Midpoint, Greville };
+// What is held to the tolerance: each edge's measure (the criterion's), or each triangle's certified error bound.
+enum class RefineError { edge, bound };
 
 // "midpoint" / "greville" ↔ enum. parse throws std::invalid_argument on any other name.
 RefineCriterion parse_refine_criterion(const std::string& name);
@@ -45,7 +52,8 @@ const char* refine_criterion_name(RefineCriterion c);
 
 struct RefineOptions {
   double tolerance = 0.01;                  // world units, > 0 and finite
-  RefineCriterion criterion = RefineCriterion::Greville;
+  RefineCriterion criterion = RefineCriterion::Greville;  // where an edge is split (and, with RefineError::edge, what marks it)
+  RefineError error = RefineError::edge;
   int max_iterations = 16;                  // split rounds, ≥ 0
   std::size_t max_triangles = 2'000'000;    // a round that would exceed it is not applied; ≥ #F of the input
   double min_split = 0.1;                   // Greville split parameter clamped to [min_split, 1 − min_split]; (0, 0.5]
@@ -58,6 +66,8 @@ struct RefineStats {
   int iterations = 0;                 // split rounds applied
   double max_midpoint_error = 0.0;    // Eq. 2.6 over the final edges, world units
   double max_deviation_bound = 0.0;   // Greville measure (control points' distance from the chord), final edges
+  double max_triangle_bound = 0.0;    // RefineError::bound: the largest certified triangle bound, final triangles
+                                      // (+∞ where a triangle crosses a C⁰ knot plane); 0 otherwise
   bool stopped_by_budget = false;     // edges were still over tolerance when a limit stopped the rounds
   std::string stopped_by;             // "converged", "max_iterations" or "max_triangles"
 };
@@ -71,7 +81,8 @@ struct RefineResult {
 // Refines `rest` (#V vertices, #F triangles CCW; normals and uvs optional, kept and interpolated) bound to
 // `binding` (binding.params #V × 3 parameters, binding.lattice = F). Throws std::invalid_argument on a params/vertex
 // count mismatch, out-of-range indices, or bad options (tolerance ≤ 0 or non-finite, max_iterations < 0,
-// max_triangles < #F, min_split outside (0, 0.5]).
+// max_triangles < #F, min_split outside (0, 0.5]); with RefineError::bound also what SecondDerivativeBounds refuses
+// (a periodic lattice).
 RefineResult refine_for_ffd(const TriMesh& rest, const FfdBinding& binding, const RefineOptions& options);
 
 // Edge measures, exposed for tests (pa, pb: parameters of the edge's ends, offset already added).

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "core/commands/mesh_refine.h"
+#include "core/ffd/deformation_bounds.h"
 #include "tests/core/commands/command_test_util.h"
 #include "tests/core/ffd/ffd_test_util.h"
 
@@ -60,6 +61,33 @@ TEST(MeshRefineCommand, RefinesInObjectSpaceAndUndoRestoresExactly) {
   EXPECT_EQ(s.find("cube")->rest_mesh->positions, refined);
   // Round trip through the log line.
   EXPECT_EQ(parse(cmd->to_json().dump())->to_json(), cmd->to_json());
+}
+
+// "error":"bound": every final triangle's certified bound is within the tolerance (the refinement converged), for both
+// split rules; the counts are the seed's cube comparison (§3.3: midpoint vs Greville splits at the same certified
+// tolerance), reported as test properties.
+TEST(MeshRefineCommand, CertifiedRefinementBoundsEveryTriangle) {
+  for (const char* criterion : {"midpoint", "greville"}) {
+    Scene s = cube_scene();
+    auto cmd = parse(std::string(R"({"cmd":"mesh.refine","object":"cube","tolerance":0.02,"error":"bound","criterion":")") +
+                     criterion + R"(","max_iterations":32})");
+    cmd->redo(s);
+    const nlohmann::json st = cmd->stats();
+    EXPECT_EQ(st.at("stopped_by"), "converged") << criterion;
+    ASSERT_TRUE(st.at("max_bound").is_number()) << criterion;
+    EXPECT_LE(st.at("max_bound").get<double>(), 0.02) << criterion;
+    EXPECT_GT(st.at("triangles_after").get<int>(), 12) << criterion;
+    EXPECT_EQ(st.at("error"), "bound");
+    RecordProperty(std::string("triangles_") + criterion, st.at("triangles_after").dump());
+    // The certificate is real: the measured error of every final triangle is within it.
+    const SceneObject& c = *s.find("cube");
+    const auto& F = c.ffd->lattice;
+    for (std::size_t f = 0; f < c.rest_mesh->triangles.size(); f += 7) {
+      const glm::uvec3 t = c.rest_mesh->triangles[f];
+      EXPECT_LE(triangle_error_sampled(F, c.ffd->params[t.x], c.ffd->params[t.y], c.ffd->params[t.z], 8), 0.02)
+          << criterion << " triangle " << f;
+    }
+  }
 }
 
 TEST(MeshRefineCommand, BadParametersNameTheirField) {
