@@ -1,5 +1,6 @@
 #include "core/commands/lattice_certify.h"
 
+#include <algorithm>
 #include <chrono>
 
 namespace trispline::core {
@@ -18,6 +19,20 @@ std::string LatticeCertifyCommand::label() const { return "Certify lattice of '"
 
 void LatticeCertifyCommand::redo(Scene& scene) {
   const SceneObject& object = require_deformed_object(scene, p_.object);
+  // Budget: a tri-cubic cell costs ~50 µs (two cores), so 64³ cells is about ten seconds; a larger lattice is refused
+  // before any work (a replay must not hang on a hostile line).
+  std::size_t cell_count = 1;
+  for (int a = 0; a < 3; ++a) {
+    const KnotVector& k = object.ffd->lattice.knots(a);
+    std::size_t spans = 0;
+    for (int i = k.order() - 1; i < k.control_count(); ++i) spans += k[i + 1] > k[i] ? 1 : 0;
+    cell_count *= std::max<std::size_t>(spans, 1);
+  }
+  constexpr std::size_t kMaxCells = std::size_t(64) * 64 * 64;
+  if (cell_count > kMaxCells)
+    throw CommandError("field 'object': the lattice of '" + p_.object + "' has " + std::to_string(cell_count) +
+                           " Bézier cells, over the certificate's budget of " + std::to_string(kMaxCells),
+                       "object");
   FoldCertificateOptions options;
   options.max_depth = p_.max_depth;
   const auto t0 = std::chrono::steady_clock::now();

@@ -3,7 +3,8 @@
 // subdivided where undecided).
 //   {"cmd":"lattice.certify","object":"ID","max_depth":6}
 // A query: the scene is not modified and the line is never an undo step (it is logged so a replay reports it again).
-// Errors (CommandError, field named): unknown object / no lattice (`object`), max_depth outside 0…12.
+// Errors (CommandError, field named): unknown object / no lattice / more than 64³ Bézier cells (`object`), max_depth
+// outside 0…12.
 // stats(): certificate ("fold_free" | "fold" | "undecided"), fold_cells ([[i,j,k],…]: knot spans), fold_points
 // ([[x,y,z],…], world units: F at a parameter point of each folding cell where det J ≤ 0), fold_params (the
 // parameter points, [0,1]³), undecided_cells, cells, boxes, min_det_coefficient, ms.
