@@ -14,8 +14,8 @@
 //     right-angle vertex;
 //   * enclosing_circle: ε ≤ ½ R² λ, R the radius of the smallest circle enclosing the parameter triangle (the
 //     circumradius for an acute triangle, half the longest edge for an obtuse one; Waldron 1998, never worse than the
-//     seed's circumradius bound of §3.2.1) and λ = max over unit directions v in its plane of Σ|v_a||v_b|M_ab
-//     (≤ the largest eigenvalue of the 3 × 3 matrix M, which is what is used);
+//     seed's circumradius bound of §3.2.1) and λ ≥ max over unit directions v of Σ|v_a||v_b|M_ab, taken as the smaller
+//     of M's largest row sum and its Frobenius norm (both bound its largest eigenvalue, which bounds that maximum);
 //   * best: the smaller of the two.
 // The bounds need F ∈ C¹ along the triangle (Taylor with the second derivatives' sup): an order-2 (piecewise
 // trilinear) axis is only C⁰ across its knot planes, so a triangle crossing one of them gets no bound (+∞; split it).
