@@ -7,6 +7,9 @@
 // is one Bernstein polynomial of degree (3p−1, 3q−1, 3r−1) (729 coefficients for a tri-cubic cell), computed exactly
 // by products of Bernstein forms (scaled coefficients multiply by convolution; Farouki & Rajan 1988). Its
 // coefficients bound it (convex hull property) and its corner coefficients are its values at the cell's corners. So:
+//   the quick test passes                          → certified fold-free without the Bernstein form (the columns of J,
+//                                                    boxed from first differences, preconditioned by the inverse of
+//                                                    their centre, are diagonally dominant: Gershgorin);
 //   every coefficient > 0                          → the cell is certified fold-free;
 //   a corner value ≤ 0                             → a fold, at that corner;
 //   otherwise the cell is split in halves (de Casteljau, all three axes) and its eight children are judged the same
@@ -32,6 +35,8 @@ const char* fold_verdict_name(FoldVerdict v);  // "fold_free", "fold", "undecide
 struct FoldCertificateOptions {
   // Halvings of a cell (per axis, all three at once) before a mixed box is called undecided (0…12).
   int max_depth = 6;
+  // Try the quick sufficient test (first differences, Gershgorin) before the exact Bernstein form.
+  bool quick_test = true;
 };
 
 struct FoldCertificate {
@@ -44,8 +49,10 @@ struct FoldCertificate {
   std::vector<double> fold_det;
   std::vector<glm::ivec3> undecided_cells;  // cells with a box still mixed at max_depth
   std::size_t cells = 0;                    // Bézier cells judged
+  std::size_t quick_cells = 0;              // cells certified by the quick test alone
   std::size_t boxes = 0;                    // Bernstein boxes judged (cells plus their sub-boxes)
-  double min_det_coefficient = 0.0;         // smallest Bernstein coefficient of det J over the cells (unsplit)
+  double min_det_coefficient = 0.0;         // smallest Bernstein coefficient of det J over the cells the Bernstein
+                                            // test judged (unsplit); 0 when the quick test decided every cell
 };
 
 // Judges F (orders ≥ 2 per axis; periodic axes are unwrapped to their period). Throws std::invalid_argument: an order

@@ -132,6 +132,25 @@ void TrivariateBSpline<T>::insert_knot(int axis, double t, int times) {
 }
 
 template <class T>
+TrivariateBSpline<T> TrivariateBSpline<T>::periodic_unwrapped() const {
+  if (!k_[0].is_periodic() && !k_[1].is_periodic() && !k_[2].is_periodic()) return *this;
+  std::array<KnotVector, 3> k = k_;
+  const glm::ivec3 stored = control_counts();
+  glm::ivec3 full;
+  for (int a = 0; a < 3; ++a) {
+    full[a] = k[a].control_count();
+    if (k[a].is_periodic()) k[a] = KnotVector(k[a].order(), k[a].knots());
+  }
+  std::vector<T> P(static_cast<std::size_t>(full.x) * full.y * full.z);
+  for (int w = 0; w < full.z; ++w)
+    for (int v = 0; v < full.y; ++v)
+      for (int u = 0; u < full.x; ++u)
+        P[u + static_cast<std::size_t>(full.x) * (v + static_cast<std::size_t>(full.y) * w)] =
+            control_point(u % stored.x, v % stored.y, w % stored.z);
+  return TrivariateBSpline<T>(std::move(k[0]), std::move(k[1]), std::move(k[2]), std::move(P));
+}
+
+template <class T>
 TrivariateBSpline<T> TrivariateBSpline<T>::bezier_extracted() const {
   for (int axis = 0; axis < 3; ++axis) reject_periodic(k_[axis], axis, "TrivariateBSpline::bezier_extracted");
   std::array<KnotVector, 3> k = k_;

@@ -56,6 +56,9 @@ class TrivariateBSpline {
   // result is one Bézier trivariate. F unchanged as a function. Throws std::invalid_argument if any axis is
   // periodic (the result could not stay periodic).
   TrivariateBSpline<T> bezier_extracted() const;
+  // The same function with every periodic axis unwrapped to an ordinary (floating) knot vector over one period (its
+  // control points repeated as the periodic basis uses them); *this when no axis is periodic. Same domain.
+  TrivariateBSpline<T> periodic_unwrapped() const;
 
  private:
   std::array<KnotVector, 3> k_;

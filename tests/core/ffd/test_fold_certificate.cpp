@@ -40,8 +40,14 @@ double sampled_min_det(const TrivariateBSpline<glm::dvec3>& F, int n) {
 TEST(FoldCertificate, IdentityLatticesAreCertified) {
   for (int order : {2, 3, 4}) {
     const auto F = identity_lattice(glm::ivec3(order), glm::ivec3(order + 3, order + 2, order + 4));
-    const FoldCertificate c = certify_fold_free(F);
+    const FoldCertificate q = certify_fold_free(F);
+    EXPECT_EQ(q.verdict, FoldVerdict::fold_free) << order;
+    EXPECT_EQ(q.quick_cells, q.cells) << "an affine map passes the quick test everywhere";
+    FoldCertificateOptions exact;
+    exact.quick_test = false;
+    const FoldCertificate c = certify_fold_free(F, exact);
     EXPECT_EQ(c.verdict, FoldVerdict::fold_free) << order;
+    EXPECT_EQ(c.quick_cells, 0u);
     EXPECT_GT(c.min_det_coefficient, 0.0);
     EXPECT_EQ(c.cells, std::size_t(4 * 3 * 5)) << "one Bézier cell per knot span";
     EXPECT_EQ(c.boxes, c.cells) << "an affine map needs no subdivision";
@@ -92,6 +98,34 @@ TEST(FoldCertificate, NeverCertifiesWhatSamplingFindsFolded) {
   EXPECT_GT(folds, 40);
   EXPECT_GT(sampled_folds, 40);
   EXPECT_LT(undecided, 24);
+}
+
+TEST(FoldCertificate, QuickTestOnlyShortensTheWay) {
+  // The quick test (first-difference boxes, Gershgorin) decides gently deformed cells and never changes a verdict;
+  // on rotated and sheared lattices too (it is preconditioned by each cell's own mean Jacobian).
+  std::mt19937 rng(29);
+  std::size_t quick = 0, cells = 0;
+  int compared = 0;
+  for (int trial = 0; trial < 120; ++trial) {
+    const int order = 2 + trial % 3;
+    auto F = identity_lattice(glm::ivec3(order), glm::ivec3(order + 2 + trial % 2));
+    const glm::dmat3 A = glm::dmat3(1.0, 0.4, -0.2, -0.3, 0.8, 0.5, 0.1, -0.6, 1.2) * (0.5 + trial % 5);
+    std::normal_distribution<double> noise(0.0, 0.01 + 0.12 * (trial % 6) / 5.0);
+    for (glm::dvec3& p : F.control_points()) p = A * p + glm::dvec3(noise(rng), noise(rng), noise(rng));
+    FoldCertificateOptions exact;
+    exact.quick_test = false;
+    const FoldCertificate with = certify_fold_free(F), without = certify_fold_free(F, exact);
+    quick += with.quick_cells;
+    cells += with.cells;
+    if (without.verdict == FoldVerdict::undecided) continue;
+    ++compared;
+    EXPECT_EQ(with.verdict, without.verdict) << "trial " << trial;
+    EXPECT_EQ(with.fold_cells, without.fold_cells) << "trial " << trial;
+  }
+  EXPECT_GT(compared, 100);
+  EXPECT_GT(quick, cells / 4) << "the quick test decides a good share of the cells";
+  EXPECT_LT(quick, cells) << "and not all of them (some lattices fold)";
+  RecordProperty("quick_share", std::to_string(double(quick) / double(cells)));
 }
 
 TEST(FoldCertificate, PeriodicAxesAreUnwrapped) {
