@@ -15,9 +15,10 @@ const ParamSchema<MeshRefineParams>& MeshRefineCommand::schema() {
           .field("object", &P::object).required().help("A deformed object (with an FFD), without a glTF clip")
           .field("tolerance", &P::tolerance).required().above(0).unit("world units")
           .help("Largest distance of a deformed edge from its straight chord")
-          .choice("criterion", &P::criterion, {"midpoint", "greville"})
+          .choice("criterion", &P::criterion, {"midpoint", "greville", "best"})
           .help("midpoint: the seed's Eq. 2.6 estimate at edge midpoints; greville: a bound from the edge curve's "
-                "control points, split at the farthest one")
+                "control points, split at the farthest one; best (with error bound): each triangle takes the split "
+                "(1 → 4, or its longest edge halved) whose children need the fewest triangles")
           .choice("error", &P::error, {"edge", "bound"})
           .help("edge: hold each edge's measure (the criterion's) to the tolerance; bound: hold each triangle's "
                 "certified deformation-error bound (seed §3.2) to it, splitting where the criterion says")
@@ -51,6 +52,10 @@ std::optional<SceneObject> MeshRefineCommand::build(const Scene& scene) {
     throw CommandError("field 'object': '" + p_.object + "' plays a glTF clip that animates its vertices; refining would "
                        "break the clip's vertex correspondence (remove the clip with anim.clip \"remove\":true first)",
                        "object");
+  if (opts.criterion == RefineCriterion::Best && opts.error != RefineError::bound)
+    throw CommandError("field 'criterion': \"best\" chooses each split by the certified bound: use it with "
+                       "\"error\":\"bound\"",
+                       "criterion");
   if (opts.error == RefineError::bound) {
     try {
       SecondDerivativeBounds check(target->ffd->lattice);

@@ -177,6 +177,42 @@ void validate(const TriMesh& rest, const FfdBinding& binding, const RefineOption
   if (!(o.min_split > 0.0 && o.min_split <= 0.5)) throw std::invalid_argument("refine: min_split must be in (0, 0.5]");
   for (int a = 0; a < 3; ++a)
     if (!std::isfinite(o.param_offset[a])) throw std::invalid_argument("refine: parameter offset is not finite");
+  if (o.criterion == RefineCriterion::Best && o.error != RefineError::bound)
+    throw std::invalid_argument("refine: criterion 'best' chooses each triangle's split by its certified bound; use it "
+                                "with error 'bound'");
+}
+
+// A triangle's split in certified refinement: which of its edges (bit k: edge v_k → v_{k+1}) and at which points.
+// The split of the parameter triangle p[0..2] (bound over tolerance) whose children are expected to need the fewest
+// triangles in the end: a triangle with bound β needs about max(1, β/δ) triangles (bounds scale with the square of the
+// size, triangle counts with its inverse), so the 1 → 4 split at the edge midpoints (the seed's RefineTriangle) and the
+// bisection of the longest edge at its midpoint (Rivara: no slivers, bounds halve instead of quartering) are scored
+// by the sum over their children. Returns the edges to split as bits (edge k = v_k → v_{k+1}); an edge that cannot be
+// split (degenerate: splittable[k] false) rules out the candidates that need it (0: none is possible).
+unsigned char choose_split(const SecondDerivativeBounds& bounds, const glm::dvec3 p[3], const bool splittable[3],
+                           double tolerance) {
+  auto cost = [&](const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+    const double beta = triangle_error_bound(bounds, a, b, c);
+    return std::max(1.0, std::min(beta / tolerance, 1e12));
+  };
+  glm::dvec3 mid[3];
+  for (int k = 0; k < 3; ++k) mid[k] = 0.5 * (p[k] + p[(k + 1) % 3]);
+  unsigned char best = 0;
+  double best_cost = INFINITY;
+  if (splittable[0] && splittable[1] && splittable[2]) {
+    best_cost = cost(p[0], mid[0], mid[2]) + cost(mid[0], p[1], mid[1]) + cost(mid[2], mid[1], p[2]) +
+                cost(mid[0], mid[1], mid[2]);
+    best = 7;
+  }
+  int longest = 0;
+  for (int k = 1; k < 3; ++k)
+    if (glm::length(p[(k + 1) % 3] - p[k]) > glm::length(p[(longest + 1) % 3] - p[longest])) longest = k;
+  if (splittable[longest]) {
+    const glm::dvec3& opposite = p[(longest + 2) % 3];
+    const double c2 = cost(p[longest], mid[longest], opposite) + cost(mid[longest], p[(longest + 1) % 3], opposite);
+    if (c2 < best_cost) best = static_cast<unsigned char>(1u << longest);
+  }
+  return best;
 }
 
 }  // namespace
@@ -184,10 +220,18 @@ void validate(const TriMesh& rest, const FfdBinding& binding, const RefineOption
 RefineCriterion parse_refine_criterion(const std::string& name) {
   if (name == "midpoint") return RefineCriterion::Midpoint;
   if (name == "greville") return RefineCriterion::Greville;
-  throw std::invalid_argument("unknown refinement criterion '" + name + "' (valid: midpoint, greville)");
+  if (name == "best") return RefineCriterion::Best;
+  throw std::invalid_argument("unknown refinement criterion '" + name + "' (valid: midpoint, greville, best)");
 }
 
-const char* refine_criterion_name(RefineCriterion c) { return c == RefineCriterion::Midpoint ? "midpoint" : "greville"; }
+const char* refine_criterion_name(RefineCriterion c) {
+  switch (c) {
+    case RefineCriterion::Midpoint: return "midpoint";
+    case RefineCriterion::Greville: return "greville";
+    case RefineCriterion::Best: return "best";
+  }
+  return "?";
+}
 
 double ffd_edge_midpoint_error(const TrivariateBSpline<glm::dvec3>& F, const glm::dvec3& pa, const glm::dvec3& pb) {
   return midpoint_measure(F, pa, pb, F.eval(pa), F.eval(pb));
@@ -385,18 +429,41 @@ RefineResult refine_for_ffd(const TriMesh& rest, const FfdBinding& binding, cons
     collect_edges();
     split_t.assign(pedges.size(), 0.5);
     marked.assign(pedges.size(), 0);
-    if (second) {
+    if (second && o.criterion != RefineCriterion::Best) {
       // Every edge of a triangle over tolerance.
       bound_triangles();
       for (std::size_t f = 0; f < m.triangles.size(); ++f)
         if (!(tri_bound[f] <= o.tolerance))
           for (int k = 0; k < 3; ++k)
             if (tri_pedge[f * 3 + k] != kNone) marked[tri_pedge[f * 3 + k]] = 1;
+    } else if (second) {
+      // Each triangle over tolerance chooses its split (choose_split) at edge midpoints; the edges any of them wants
+      // are split, the rest of the mesh follows conformingly.
+      bound_triangles();
+      std::vector<std::uint32_t> over;
+      for (std::size_t f = 0; f < m.triangles.size(); ++f)
+        if (!(tri_bound[f] <= o.tolerance)) over.push_back(static_cast<std::uint32_t>(f));
+      std::vector<unsigned char> choice(over.size());
+      parallel_each(over.size(), [&](std::size_t j) {
+        const std::size_t f = over[j];
+        glm::dvec3 p[3];
+        bool splittable[3];
+        for (int k = 0; k < 3; ++k) {
+          p[k] = params[m.triangles[f][k]] + o.param_offset;
+          splittable[k] = tri_pedge[f * 3 + k] != kNone;
+        }
+        choice[j] = choose_split(*second, p, splittable, o.tolerance);
+      });
+      for (std::size_t j = 0; j < over.size(); ++j)
+        for (int k = 0; k < 3; ++k) {
+          const std::uint32_t pe = tri_pedge[over[j] * 3 + k];
+          if ((choice[j] >> k & 1u) && pe != kNone) marked[pe] = 1;
+        }
     }
     parallel_each(pedges.size(), [&](std::size_t i) {
       const PEdge e = pedges[i];
       const auto [pa, pb] = ends(e);
-      if (second && (!marked[i] || o.criterion == RefineCriterion::Midpoint)) return;
+      if (second && (!marked[i] || o.criterion != RefineCriterion::Greville)) return;
       if (o.criterion == RefineCriterion::Midpoint) {
         marked[i] = midpoint_measure(F, pa, pb, fpos[e.a], fpos[e.b]) > o.tolerance;
       } else {

@@ -23,9 +23,12 @@
 //     clamped to [min_split, 1 − min_split] (no sliver triangles).
 // Certified mode (RefineError::bound, seed §3.3 BoundMeshError): instead of measuring edges, every triangle gets its
 // certified deformation-error bound (deformation_bounds.h: the best of Theorem 4's right-triangle bound and the
-// smallest-enclosing-circle bound); the three edges of each triangle over tolerance are split (at the midpoint, or at
-// the Greville criterion's split point), the rest conformingly as above, until every triangle's bound is within
-// tolerance — then the refined mesh certifies it (stats.max_triangle_bound ≤ tolerance, stopped_by "converged").
+// smallest-enclosing-circle bound); each triangle over tolerance is split — Midpoint: the seed's RefineTriangle (all
+// three edges at their midpoints); Greville: all three at the Greville criterion's split points; Best: per triangle
+// the 1 → 4 split or the bisection of its longest edge (Rivara), at midpoints, whichever's children are expected to
+// need the fewest triangles (bounds scale with size², so a child with bound β needs ~β/δ) — the rest conformingly,
+// until every triangle's bound is within tolerance; then the refined mesh certifies it (stats.max_triangle_bound ≤
+// tolerance, stopped_by "converged").
 // New vertices interpolate position, FFD parameters (the embedding is affine), normal (re-normalised) and uv
 // linearly along the edge, in the canonical direction of the edge, so equal inputs give bit-identical outputs.
 // The rest mesh may be given in any space that is an affine image of the embedded world rest space (object space,
@@ -42,11 +45,13 @@
 
 namespace trispline::core {
 
-enum class RefineCriterion { Midpoint, Greville };
+// Best: certified refinement only — each triangle over tolerance takes, of the 1 → 4 split and the bisection of its
+// longest edge (both at midpoints), the one whose children are expected to need the fewest triangles.
+enum class RefineCriterion { Midpoint, Greville, Best };
 // What is held to the tolerance: each edge's measure (the criterion's), or each triangle's certified error bound.
 enum class RefineError { edge, bound };
 
-// "midpoint" / "greville" ↔ enum. parse throws std::invalid_argument on any other name.
+// "midpoint" / "greville" / "best" ↔ enum. parse throws std::invalid_argument on any other name.
 RefineCriterion parse_refine_criterion(const std::string& name);
 const char* refine_criterion_name(RefineCriterion c);
 
@@ -81,8 +86,7 @@ struct RefineResult {
 // Refines `rest` (#V vertices, #F triangles CCW; normals and uvs optional, kept and interpolated) bound to
 // `binding` (binding.params #V × 3 parameters, binding.lattice = F). Throws std::invalid_argument on a params/vertex
 // count mismatch, out-of-range indices, or bad options (tolerance ≤ 0 or non-finite, max_iterations < 0,
-// max_triangles < #F, min_split outside (0, 0.5]); with RefineError::bound also what SecondDerivativeBounds refuses
-// (a periodic lattice).
+// max_triangles < #F, min_split outside (0, 0.5], criterion Best without RefineError::bound).
 RefineResult refine_for_ffd(const TriMesh& rest, const FfdBinding& binding, const RefineOptions& options);
 
 // Edge measures, exposed for tests (pa, pb: parameters of the edge's ends, offset already added).

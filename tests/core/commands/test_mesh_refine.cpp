@@ -67,7 +67,7 @@ TEST(MeshRefineCommand, RefinesInObjectSpaceAndUndoRestoresExactly) {
 // split rules; the counts are the seed's cube comparison (§3.3: midpoint vs Greville splits at the same certified
 // tolerance), reported as test properties.
 TEST(MeshRefineCommand, CertifiedRefinementBoundsEveryTriangle) {
-  for (const char* criterion : {"midpoint", "greville"}) {
+  for (const char* criterion : {"midpoint", "greville", "best"}) {
     Scene s = cube_scene();
     auto cmd = parse(std::string(R"({"cmd":"mesh.refine","object":"cube","tolerance":0.02,"error":"bound","criterion":")") +
                      criterion + R"(","max_iterations":32})");
@@ -101,6 +101,8 @@ TEST(MeshRefineCommand, BadParametersNameTheirField) {
   EXPECT_EQ(field_of(R"({"cmd":"mesh.refine","object":"cube","tolerance":0})"), "tolerance");
   EXPECT_EQ(field_of(R"({"cmd":"mesh.refine","object":"cube","tolerance":-1})"), "tolerance");
   EXPECT_EQ(field_of(R"({"cmd":"mesh.refine","object":"cube","tolerance":0.01,"criterion":"bisect"})"), "criterion");
+  EXPECT_EQ(field_of(R"({"cmd":"mesh.refine","object":"cube","tolerance":0.01,"criterion":"best"})"), "criterion")
+      << "best chooses by the certified bound: only with error bound";
   EXPECT_EQ(field_of(R"({"cmd":"mesh.refine","object":"cube","tolerance":0.01,"max_iterations":-2})"),
             "max_iterations");
   EXPECT_EQ(field_of(R"({"cmd":"mesh.refine","object":"cube","tolerance":0.01,"max_triangles":5})"), "max_triangles");

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/ffd/ffd.h"
+#include "core/ffd/seed_cube.h"
 #include "core/mesh/uv_sphere.h"
 
 namespace trispline::core::test {
@@ -55,34 +56,9 @@ inline Aabb bounds_of(const std::vector<glm::dvec3>& pts) {
   return b;
 }
 
-// The seed's cube: 12 triangles, 8 shared vertices, [-1,1]³, CCW seen from outside.
-inline TriMesh cube12() {
-  TriMesh m;
-  for (int i = 0; i < 8; ++i) m.positions.push_back({i & 1 ? 1.0 : -1.0, i & 2 ? 1.0 : -1.0, i & 4 ? 1.0 : -1.0});
-  const unsigned q[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-  for (const auto& f : q) {
-    m.triangles.push_back({f[0], f[1], f[2]});
-    m.triangles.push_back({f[0], f[2], f[3]});
-  }
-  for (const auto& p : m.positions) m.normals.push_back(glm::normalize(p));
-  return m;
-}
-
-// The cube example's deformation (the seed does not give its lattice): order 4, 5 controls per axis (2 cells), the
-// identity lattice bent into an arc of radius 2 about the z axis (x ↦ angle x/2) and twisted about x by 0.5·x rad.
-inline FfdBinding bent_twisted_binding(const TriMesh& mesh) {
-  FfdBinding b{identity_lattice(embed_bounding_box(mesh.positions, {0, 1}), KnotVector::clamped_uniform(4, 5),
-                                KnotVector::clamped_uniform(4, 5), KnotVector::clamped_uniform(4, 5)),
-               embed_bounding_box(mesh.positions, {0, 1}),
-               {}};
-  for (glm::dvec3& p : b.lattice.control_points()) {
-    const double R = 2.0, th = p.x / R, r = R + p.y, phi = 0.5 * p.x;
-    const glm::dvec3 bent(r * std::sin(th), r * std::cos(th) - R, p.z);
-    p = {bent.x, bent.y * std::cos(phi) - bent.z * std::sin(phi), bent.y * std::sin(phi) + bent.z * std::cos(phi)};
-  }
-  b.params = embed_points(b.embedding, mesh.positions);
-  return b;
-}
+// The seed's cube and its bend + twist (core/ffd/seed_cube.h).
+inline TriMesh cube12() { return seed_cube(); }
+inline FfdBinding bent_twisted_binding(const TriMesh& mesh) { return seed_cube_bend_twist(mesh); }
 
 }  // namespace trispline::core::test
 

@@ -36,14 +36,7 @@ TriMesh cube24() {
 
 // A deformation concentrated at one end of the edges (seed Fig. 2.9): the same order-4, 5³ identity lattice with one
 // corner control point pulled out by (0.6, 0.6, 0.6) — a corner pressed outwards.
-FfdBinding corner_pull_binding(const TriMesh& mesh) {
-  const Embedding e = embed_bounding_box(mesh.positions, {0, 1});
-  FfdBinding b{test::identity_lattice(e, KnotVector::clamped_uniform(4, 5), KnotVector::clamped_uniform(4, 5),
-                                      KnotVector::clamped_uniform(4, 5)),
-               e, embed_points(e, mesh.positions)};
-  b.lattice.control_point(4, 4, 4) += glm::dvec3(0.6);
-  return b;
-}
+FfdBinding corner_pull_binding(const TriMesh& mesh) { return seed_cube_corner_pull(mesh); }
 
 double signed_volume(const std::vector<glm::dvec3>& p, const std::vector<glm::uvec3>& t) {
   double v = 0.0;
@@ -207,6 +200,51 @@ TEST(Refine, SeedCubeCounts) {
         EXPECT_LT(gre.stats.triangles_after, mid.stats.triangles_after) << "tolerance " << tol;
       }
     }
+}
+
+// Certified refinement (seed §3.3) on the seed's cube: every split converges to a mesh whose every triangle's bound
+// is within the tolerance, conforming, its sampled deviation within it too. Choosing the split per triangle (best)
+// needs at most 85 % of the seed's midpoint RefineTriangle's triangles at the same certified tolerance — over a sweep
+// of tolerances a factor ∛2 apart (geometric mean: each rule's count steps with its own quantisation, so a single
+// tolerance can land on a plateau where the midpoint rule's uniform 1 → 4 splits fit exactly), and never more than
+// 10 % above it at any of them.
+TEST(Refine, CertifiedBestSplitUsesFewerTrianglesThanTheMidpointSplit) {
+  const TriMesh mesh = test::cube12();
+  for (int def = 0; def < 2; ++def) {
+    const FfdBinding b = def == 0 ? test::bent_twisted_binding(mesh) : corner_pull_binding(mesh);
+    const char* name = def == 0 ? "bent+twisted" : "corner pull";
+    double log_ratio = 0.0;
+    int tolerances = 0;
+    for (int i = 0; i <= 12; ++i) {
+      const double tol = 0.08 * std::pow(0.5, i / 3.0);
+      std::size_t count[3];
+      for (RefineCriterion c : {RefineCriterion::Midpoint, RefineCriterion::Greville, RefineCriterion::Best}) {
+        RefineOptions o;
+        o.tolerance = tol;
+        o.criterion = c;
+        o.error = RefineError::bound;
+        o.max_iterations = 60;
+        const RefineResult r = refine_for_ffd(mesh, b, o);
+        SCOPED_TRACE(std::string(name) + " " + refine_criterion_name(c) + " " + std::to_string(tol));
+        EXPECT_EQ(r.stats.stopped_by, "converged");
+        EXPECT_LE(r.stats.max_triangle_bound, tol);
+        if (i % 4 == 0) {
+          expect_conforming(r.mesh);
+          EXPECT_LE(sampled_deviation(r, b), tol);
+        }
+        count[static_cast<int>(c)] = r.stats.triangles_after;
+      }
+      std::printf("[ certified] %s tol %.4f: midpoint %zu, greville %zu, best %zu triangles (best/midpoint %.0f %%)\n",
+                  name, tol, count[0], count[1], count[2], 100.0 * double(count[2]) / double(count[0]));
+      EXPECT_LE(double(count[2]), 1.1 * double(count[0])) << name << " " << tol;
+      log_ratio += std::log(double(count[2]) / double(count[0]));
+      ++tolerances;
+    }
+    const double ratio = std::exp(log_ratio / tolerances);
+    std::printf("[ certified] %s: best / midpoint %.1f %% (geometric mean)\n", name, 100.0 * ratio);
+    RecordProperty(def == 0 ? "best_over_midpoint_bend_twist" : "best_over_midpoint_corner_pull", std::to_string(ratio));
+    EXPECT_LE(ratio, 0.85) << name;
+  }
 }
 
 TEST(Refine, SplitCreasesStayClosed) {
