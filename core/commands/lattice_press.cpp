@@ -34,16 +34,36 @@ const ParamSchema<LatticePressParams>& LatticePressCommand::schema() {
           .field("radius", &P::radius).required().above(0).unit("world units").help("Sphere radius")
           .field("strength", &P::strength).required().unit("world units")
           .help("How far the contact points under the centre move along their columns; < 0 pulls")
-          .choice("falloff", &P::falloff, falloffs).help("Weight over the distance from the path, 1 at 0, 0 at radius");
+          .choice("falloff", &P::falloff, falloffs).help("Weight over the distance from the path, 1 at 0, 0 at radius")
+          .field("keep_fold_free", &P::keep_fold_free)
+          .help("Limit the strength (bisection) so that the pressed lattice stays certified fold-free (det J > 0)");
   return s;
 }
 
 std::optional<SceneObject> LatticePressCommand::build(const Scene& scene) {
   const SceneObject& object = require_deformed_object(scene, p_.object);
+  const Falloff falloff = *parse_falloff(p_.falloff);
+  if (p_.keep_fold_free) {
+    const auto t0 = std::chrono::steady_clock::now();
+    FoldFreePress press = [&] {
+      try {
+        return press_lattice_fold_free(object.ffd->lattice, p_.path, p_.radius, p_.strength, falloff);
+      } catch (const std::invalid_argument& e) {
+        throw CommandError("field 'keep_fold_free': " + std::string(e.what()), "keep_fold_free");
+      }
+    }();
+    stats_ = {{"moved", press.result.moved},
+              {"max_displacement", press.result.max_displacement},
+              {"strength_used", press.strength},
+              {"limited", press.limited},
+              {"certificates", press.certificates},
+              {"ms_certify", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count()}};
+    return with_lattice(object, std::move(press.lattice), stats_);
+  }
   PressResult r;
   TrivariateBSpline<glm::dvec3> after = [&] {
     try {
-      return press_lattice(object.ffd->lattice, p_.path, p_.radius, p_.strength, *parse_falloff(p_.falloff), &r);
+      return press_lattice(object.ffd->lattice, p_.path, p_.radius, p_.strength, falloff, &r);
     } catch (const std::invalid_argument& e) {
       throw CommandError("field 'object': " + std::string(e.what()), "object");
     }

@@ -18,7 +18,10 @@
 // Both need an object with an FFD lattice; errors (CommandError, field named): unknown object / no lattice
 // (`object`), empty or non-finite path (`path`), radius ≤ 0 (`radius`), non-finite strength (`strength`), unknown
 // falloff (`falloff`, lists the names), column outside the lattice (`column`), a column of zero length (`object`).
-// stats(): moved (control points moved), max_displacement (world units), ms_evaluate.
+// With "keep_fold_free": true the strength is limited (bisection) so that the pressed lattice stays certified
+// fold-free (core/ffd/fold_certificate.h); a lattice not certified before the press is refused (`keep_fold_free`).
+// stats(): moved (control points moved), max_displacement (world units), ms_evaluate; with keep_fold_free also
+// strength_used (world units), limited (bool), certificates, ms_certify.
 #pragma once
 
 #include "core/commands/declared_command.h"
@@ -34,6 +37,7 @@ struct LatticePressParams {
   double radius = 0.1;           // world units
   double strength = 0.05;        // world units; < 0 pulls
   std::string falloff = "smooth";
+  bool keep_fold_free = false;  // limit the strength so that the lattice stays certified fold-free
 };
 
 class LatticePressCommand : public ObjectSnapshotCommand<LatticePressCommand, LatticePressParams> {

@@ -1,6 +1,8 @@
 // Pressing a lattice with a swept sphere. See pressing.h. Source: seed §2.4.1 (Fig. 2.7, 2.8; Eq. 2.3, 2.4).
 #include "core/placement/pressing.h"
 
+#include "core/ffd/fold_certificate.h"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -54,6 +56,40 @@ TrivariateBSpline<glm::dvec3> press_lattice(const TrivariateBSpline<glm::dvec3>&
     }
   if (result) *result = r;
   return after;
+}
+
+FoldFreePress press_lattice_fold_free(const TrivariateBSpline<glm::dvec3>& before, const std::vector<glm::dvec3>& path,
+                                      double radius, double strength, Falloff falloff, int max_depth) {
+  FoldCertificateOptions options;
+  options.max_depth = max_depth;
+  FoldFreePress out{before, 0.0, false, 0, {}};
+  const FoldCertificate start = certify_fold_free(before, options);
+  ++out.certificates;
+  if (start.verdict != FoldVerdict::fold_free)
+    throw std::invalid_argument(std::string("the lattice is not certified fold-free before the press (") +
+                                (start.verdict == FoldVerdict::fold ? "it folds in " + std::to_string(start.fold_cells.size()) + " cells"
+                                                                    : "undecided in " + std::to_string(start.undecided_cells.size()) + " cells") +
+                                "): there is nothing to keep");
+  auto attempt = [&](double s, FoldFreePress& into) {
+    PressResult r;
+    TrivariateBSpline<glm::dvec3> after = press_lattice(before, path, radius, s, falloff, &r);
+    ++out.certificates;
+    if (certify_fold_free(after, options).verdict != FoldVerdict::fold_free) return false;
+    into.lattice = std::move(after);
+    into.strength = s;
+    into.result = r;
+    return true;
+  };
+  if (attempt(strength, out)) return out;
+  out.limited = true;
+  double lo = 0.0, hi = 1.0;  // fractions of the strength: lo certified (0 = the lattice before), hi not
+  for (int step = 0; step < 10; ++step) {
+    const double mid = 0.5 * (lo + hi);
+    if (attempt(mid * strength, out)) lo = mid;
+    else hi = mid;
+  }
+  if (lo == 0.0) out.lattice = before, out.strength = 0.0, out.result = {};
+  return out;
 }
 
 }  // namespace trispline::core

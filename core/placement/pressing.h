@@ -26,6 +26,24 @@ TrivariateBSpline<glm::dvec3> press_lattice(const TrivariateBSpline<glm::dvec3>&
                                             const std::vector<glm::dvec3>& path, double radius, double strength,
                                             Falloff falloff, PressResult* result = nullptr);
 
+// A press limited so that the lattice stays certified fold-free (fold_certificate.h): the Press tool's "Keep
+// fold-free" and lattice.press's keep_fold_free.
+struct FoldFreePress {
+  TrivariateBSpline<glm::dvec3> lattice;  // the pressed lattice, certified fold-free
+  double strength = 0;                    // the strength used, world units (same sign as asked, |.| ≤ |asked|)
+  bool limited = false;                   // less than asked
+  int certificates = 0;                   // certificates computed
+  PressResult result;
+};
+
+// press_lattice with the largest strength s (same sign, |s| ≤ |strength|) found by bisection whose result is
+// certified fold-free: the whole strength when that is certified, else 10 halvings of [0, |strength|] keeping the
+// largest certified one (certificates are exact: whatever is returned is certified, even where the verdict is not
+// monotone in s). Throws std::invalid_argument when `before` itself is not certified fold-free (the message says
+// whether it folds or is undecided), and as press_lattice does.
+FoldFreePress press_lattice_fold_free(const TrivariateBSpline<glm::dvec3>& before, const std::vector<glm::dvec3>& path,
+                                      double radius, double strength, Falloff falloff, int max_depth = 6);
+
 // Unit column direction V_P of column (i, j) of `lattice` (top minus contact control point); for a zero-length
 // column the mean direction of all columns. Throws std::invalid_argument if that is zero too or (i, j) is outside.
 glm::dvec3 column_direction(const TrivariateBSpline<glm::dvec3>& lattice, int i, int j);

@@ -75,6 +75,36 @@ TEST(LatticeCertify, AFoldIsFoundWhereDetJIsNonPositive) {
   }
 }
 
+// lattice.press with keep_fold_free: a press strong enough to fold the ring is limited (bisection) to a strength whose
+// lattice lattice.certify certifies; a lattice that folds already is refused, naming the field, scene untouched.
+TEST(LatticeCertify, KeepFoldFreeLimitsAPressThatWouldFold) {
+  core::Scene scene;
+  editor::History history(scene);
+  test::run(history, kTeapot);
+  test::run(history, kRing);
+  nlohmann::json press = {{"cmd", "lattice.press"}, {"object", "t"}, {"path", {{1.2, 0.3, 0.0}}},
+                          {"radius", 0.6}, {"strength", 3.0}, {"falloff", "smooth"}};
+  ASSERT_EQ(run_stats(history, kCertify).at("certificate"), "fold_free");
+  test::run(history, press);
+  ASSERT_EQ(run_stats(history, kCertify).at("certificate"), "fold") << "the plain press folds the ring";
+  history.undo();
+  press["keep_fold_free"] = true;
+  const nlohmann::json st = run_stats(history, press);
+  EXPECT_TRUE(st.at("limited").get<bool>());
+  const double used = st.at("strength_used").get<double>();
+  EXPECT_GT(used, 0.05) << "a real press remains";
+  EXPECT_LT(used, 3.0);
+  EXPECT_GT(st.at("certificates").get<int>(), 2);
+  EXPECT_EQ(run_stats(history, kCertify).at("certificate"), "fold_free");
+  // Folded already: nothing to keep.
+  const glm::dvec3 p = scene.find("t")->ffd->lattice.control_point(4, 1, 1);
+  test::run(history, {{"cmd", "lattice.set_point"}, {"object", "t"}, {"index", {4, 1, 1}},
+                      {"position", {-p.x, p.y, -p.z}}});
+  const auto before = scene.find("t")->ffd;
+  EXPECT_TRUE(test::throws_command_error([&] { test::run(history, press); }, "keep_fold_free", "fold"));
+  EXPECT_EQ(scene.find("t")->ffd, before) << "refused: the scene is untouched";
+}
+
 TEST(LatticeCertify, ErrorsNameTheirField) {
   core::Scene scene;
   editor::History history(scene);
