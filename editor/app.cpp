@@ -130,9 +130,8 @@ void App::render_view() {
   }
   // The Press tool's drag preview: the pressed object drawn with the lattice pressed so far (its own world_mesh is
   // the unpressed one until the command runs at mouse-up), evaluated by the FFD backend, never the stale CPU mesh.
-  if (const auto p = tools_.live_preview(tool_ctx_)) {
-    vo.overlays.lattices_in_place.push_back({p->object, p->lattice});
-  }
+  if (live_preview_) vo.overlays.lattices_in_place.push_back({live_preview_->object, live_preview_->lattice});
+  guarantees_.decorate(vo);
   const gpu::Overlays& ov = vo.overlays;
   overlay_counts_ = {ov.strokes.size(), ov.curves.size(), ov.meshes.size(),
                      ov.lattices.size(), ov.spheres.size(), ov.points.size()};
@@ -252,6 +251,11 @@ void App::frame() {
   }
 
   viewport_input();
+  live_preview_ = tools_.live_preview(tool_ctx_);
+  guarantees_.update(session_.scene(), live_preview_ ? live_preview_->object : selected_,
+                     live_preview_ ? live_preview_->lattice : nullptr, toggles_.show_error_bounds,
+                     toggles_.show_fold_certificate);
+  guarantees_.draw_legend(layout.viewport);
   if (toggles_.timing_overlay) timing_.draw(layout.viewport);
   const ui::Rect& free = layout.viewport;  // what the panels leave visible: F / Home frame into it
   const glm::dvec2 s(io.DisplayFramebufferScale.x, io.DisplayFramebufferScale.y), lo(free.pos.x, free.pos.y);
@@ -306,6 +310,7 @@ void App::write_probe() {
                  {"target", {view_.target.x, view_.target.y, view_.target.z}}};
   p["current_frame"] = anim_.playback().frame;
   p["transform"] = transform_.active() ? nlohmann::json(transform_.header()) : nlohmann::json(nullptr);
+  p["guarantees"] = guarantees_.probe();
   p["volume_refining"] = renderer_ && renderer_->last_stats().volume_refining;  // the last frame drawn's
   const nlohmann::json volumes = volumes_.probe(session_.scene());
   for (auto it = volumes.begin(); it != volumes.end(); ++it) p[it.key()] = it.value();
@@ -353,6 +358,9 @@ void App::record_frame_timings(Clock::time_point start, Clock::time_point end, C
     ctx.silhouette_points = volumes_.last_points();
     ctx.silhouette_running = volumes_.extracting();
   }
+  ctx.bounds_ms = guarantees_.bounds_ms();
+  ctx.certificate_ms = guarantees_.certificate_ms();
+  ctx.guarantees = guarantees_.summary();
   const History& h = session_.history();
   if (h.applied() > 0) {
     const core::Command& top = h.at(h.applied() - 1);

@@ -4,6 +4,7 @@ set(TRISPLINE_EDITOR_APP_SOURCES
     app.cpp
     app_requests.cpp
     gui_probe.cpp
+    guarantees_view.cpp
     animation_ui.cpp
     navigation.cpp
     session.cpp

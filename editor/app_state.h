@@ -15,6 +15,7 @@
 #include "core/volume/volume_io.h"
 #include "editor/animation_ui.h"
 #include "editor/gui_probe.h"
+#include "editor/guarantees_view.h"
 #include "editor/navigation.h"
 #include "editor/session.h"
 #include "editor/tools/toolbox.h"
@@ -117,6 +118,8 @@ class App {
   Toolbox tools_;
   TransformModal transform_;
   ui::TransformFields transform_fields_;  // the Scene panel's Location / Rotation / Scale while edited
+  GuaranteesView guarantees_;                         // View > Error bounds / Fold certificate
+  std::optional<Tool::LivePreview> live_preview_;     // this frame's tool preview (the Press tool's lattice)
   bool transform_frame_ = false;  // the modal transform had the input this frame (the viewport ignores it)
 
   ui::LogPanel log_panel_;

@@ -45,6 +45,15 @@ struct CachedContactSurface {
   GLsizei iso_vertices = 0;
 };
 
+// A ColoredTrianglesOverlay on the GPU (OverlayVertex GL_TRIANGLES), uploaded once.
+struct CachedColoredTriangles {
+  std::shared_ptr<const std::vector<glm::vec3>> corners;  // held so the address cannot be reused
+  std::shared_ptr<const std::vector<glm::vec4>> colors;
+  StreamBuffer buffer;
+  GLsizei vertices = 0;
+  bool used = false;  // shown in the current draw (others are dropped after it)
+};
+
 // What every pass of Renderer::draw reads: the scene, the view and its matrices, the FFD plan per object.
 struct Frame {
   const core::Scene& scene;
@@ -107,6 +116,7 @@ struct Renderer::Impl {
   detail::StreamBuffer world_stream, screen_stream;
   std::unordered_map<const core::TriMesh*, detail::CachedMesh> cache;
   std::unordered_map<const core::FfdBinding*, detail::CachedContactSurface> contact_cache;
+  std::unordered_map<const std::vector<glm::vec3>*, detail::CachedColoredTriangles> colored_cache;
   std::shared_ptr<FfdProgramCache> ffd_programs = std::make_shared<FfdProgramCache>();
   detail::FfdDisplay ffd{ffd_programs};
   detail::DdmDisplay ddm{ffd_programs};

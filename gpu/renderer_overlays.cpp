@@ -207,6 +207,52 @@ void Renderer::Impl::pass_world_overlays(const Frame& f) {
     glDisable(GL_CULL_FACE);
     glDepthMask(GL_TRUE);
   }
+  // 6a'. Coloured triangles (heat maps) on the surfaces they were made for: depth-tested, pulled towards the eye,
+  // blended, no depth writes; cached per corner array, dropped when no longer shown.
+  for (auto& [key, c] : colored_cache) c.used = false;
+  if (!overlays.colored_triangles.empty()) {
+    constexpr float kDepthPull = 0.002f;  // fraction of the eye distance
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LEQUAL);
+    glDepthMask(GL_FALSE);
+    glDisable(GL_CULL_FACE);
+    pulled_lines.use();
+    pulled_lines.set("u_view_proj", f.view_proj);
+    pulled_lines.set("u_eye", f.eye);
+    pulled_lines.set("u_depth_pull", kDepthPull);
+    pulled_lines.set("u_point_px", 1.0f);
+    pulled_lines.set("u_alpha", 1.0f);
+    for (const ColoredTrianglesOverlay& t : overlays.colored_triangles) {
+      if (!t.corners || !t.colors || t.colors->size() != t.corners->size() || t.corners->empty()) continue;
+      detail::CachedColoredTriangles& c = colored_cache[t.corners.get()];
+      if (c.corners != t.corners || c.colors != t.colors) {
+        std::vector<OverlayVertex> v(t.corners->size());
+        for (std::size_t i = 0; i < v.size(); ++i) v[i] = {(*t.corners)[i], (*t.colors)[i]};
+        c.buffer.upload(v);
+        c.vertices = GLsizei(v.size() - v.size() % 3);
+        c.corners = t.corners;
+        c.colors = t.colors;
+      }
+      c.used = true;
+      glBindVertexArray(c.buffer.vao.id());
+      glDrawArrays(GL_TRIANGLES, 0, c.vertices);
+    }
+    glDepthMask(GL_TRUE);
+    glDepthFunc(GL_LESS);
+  }
+  std::erase_if(colored_cache, [](const auto& kv) { return !kv.second.used; });
+  // 6a''. Coloured segments, x-ray.
+  for (const ColoredLinesOverlay& l : overlays.colored_lines) {
+    std::vector<OverlayVertex> v;
+    v.reserve(l.ends.size());
+    for (std::size_t i = 0; i + 1 < l.ends.size() && i / 2 < l.colors.size(); i += 2) {
+      v.push_back({glm::vec3(l.ends[i]), l.colors[i / 2]});
+      v.push_back({glm::vec3(l.ends[i + 1]), l.colors[i / 2]});
+    }
+    draw_xray(v, {}, f.view_proj, 1.0f);
+  }
   // 6b. Point sets, x-ray.
   for (const PointsOverlay& set : overlays.points) {
     std::vector<OverlayVertex> v;

@@ -128,13 +128,30 @@ struct VolumeInPlace {
   std::shared_ptr<const core::SilhouetteResult> silhouettes;  // null = the volume's own `silhouettes`
 };
 
-// The overlays of one frame, drawn after the scene in this order: spheres, points, lattices, curves, strokes.
+// Triangles with a colour per corner, drawn over the shaded scene — depth-tested against it, pulled a little towards
+// the eye so they win over the surface they lie on, blended — e.g. the certified deformation-error heat map. Uploaded
+// once per `corners` array (the renderer caches by its address while it is shown).
+struct ColoredTrianglesOverlay {
+  std::shared_ptr<const std::vector<glm::vec3>> corners;  // #3T, world units
+  std::shared_ptr<const std::vector<glm::vec4>> colors;   // #3T, display values with alpha
+};
+
+// Segments with a colour each, drawn x-ray like lattices (faint where hidden): e.g. the cells of a fold certificate.
+struct ColoredLinesOverlay {
+  std::vector<glm::dvec3> ends;    // #2S, world units
+  std::vector<glm::vec4> colors;   // #S, display values with alpha
+};
+
+// The overlays of one frame, drawn after the scene in this order: spheres, coloured triangles, coloured lines,
+// points, lattices, curves, strokes.
 struct Overlays {
   std::vector<SphereOverlay> spheres;
   std::vector<PointsOverlay> points;
   std::vector<LatticeOverlay> lattices;
   std::vector<CurveOverlay> curves;
   std::vector<ScreenStroke> strokes;
+  std::vector<ColoredTrianglesOverlay> colored_triangles;
+  std::vector<ColoredLinesOverlay> colored_lines;
   std::vector<MeshInPlace> meshes;                // the first one naming an object is used
   std::vector<LatticeInPlace> lattices_in_place;  // the first one naming an object is used
   std::vector<VolumeInPlace> volumes_in_place;    // the first one naming a volume is used

@@ -122,6 +122,15 @@ MenuAction draw_main_menu(ViewToggles& view, const MenuState& state) {
     picked |= menu_item("Contact surface", nullptr, &view.show_contact_surface);
     picked |= menu_item("Grid", nullptr, &view.show_grid);
     picked |= menu_item("Wireframe", nullptr, &view.wireframe);
+    picked |= menu_item("Error bounds", nullptr, &view.show_error_bounds);
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("Colour the selected deformed object's triangles by their certified deformation-error bound\n"
+                        "(how far the true deformed surface can be from the drawn triangle, world units; seed ch. 3),\n"
+                        "with a legend; follows a Press drag live.");
+    picked |= menu_item("Fold certificate", nullptr, &view.show_fold_certificate);
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("Draw the selected deformed object's lattice cells by their fold-free certificate:\n"
+                        "green certified det J > 0, red folding (red points: where), grey undecided.");
     ImGui::Separator();
     picked |= menu_item("Timing overlay", "F7", &view.timing_overlay);
     if (ImGui::IsItemHovered())

@@ -18,6 +18,8 @@ struct ViewToggles : gpu::DisplaySwitches {
   bool show_tool_panel = true;
   bool show_side_panels = true;  // Scene + History
   bool show_log_panel = true;
+  bool show_error_bounds = false;      // View > Error bounds: the certified deformation-error heat map
+  bool show_fold_certificate = false;  // View > Fold certificate: the lattice's cells by their det J certificate
 };
 
 // The renderer's options for these toggles (selection and stroke are filled in by the editor).

@@ -330,6 +330,16 @@ void TimingOverlay::draw(const Rect& viewport) const {
             "stays interactive: a changed view or iso-level is extracted when the last extraction is done.");
   }
 
+  if (context_.bounds_ms >= 0 || context_.certificate_ms >= 0) {
+    format_ms(ms, sizeof ms, std::max(context_.bounds_ms, 0.0) + std::max(context_.certificate_ms, 0.0));
+    ImGui::Text("guarantees  %8s", ms);
+    ImGui::SameLine();
+    ImGui::TextColored(colors::dim, "(%s)", context_.guarantees.c_str());
+    tooltip("View > Error bounds and Fold certificate (seed ch. 3): CPU wall time of the last computation for the\n"
+            "object shown — per-triangle certified error bounds (with the FFD of its vertices) and the lattice's\n"
+            "fold-free certificate. Recomputed only when the lattice changes (every step of a press drag).");
+  }
+
   draw_graph(kGraphWidth, kGraphHeight);
 
   ImGui::TextColored(colors::dim, "%s", context_.timer_mode.empty() ? "GPU: not timed" : context_.timer_mode.c_str());

@@ -40,6 +40,11 @@ struct TimingContext {
   double silhouette_ms = -1;
   std::size_t silhouette_points = 0;
   bool silhouette_running = false;
+  // Guarantees (View > Error bounds / Fold certificate) of the object shown: the last computation's cost in ms
+  // (negative: not shown) and its summary.
+  double bounds_ms = -1;
+  double certificate_ms = -1;
+  std::string guarantees;
 };
 
 class TimingOverlay {

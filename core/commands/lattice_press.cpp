@@ -1,6 +1,7 @@
 #include "core/commands/lattice_press.h"
 
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <stdexcept>
 
@@ -38,6 +39,16 @@ const ParamSchema<LatticePressParams>& LatticePressCommand::schema() {
           .field("keep_fold_free", &P::keep_fold_free)
           .help("Limit the strength (bisection) so that the pressed lattice stays certified fold-free (det J > 0)");
   return s;
+}
+
+std::string LatticePressCommand::label() const {
+  std::string l = (p_.strength < 0 ? "Pull '" : "Press '") + p_.object + "' (" + p_.falloff + ")";
+  if (stats_.is_object() && stats_.value("limited", false)) {
+    char used[64];
+    std::snprintf(used, sizeof used, ", limited to %.3g to stay fold-free", stats_.at("strength_used").get<double>());
+    l += used;
+  }
+  return l;
 }
 
 std::optional<SceneObject> LatticePressCommand::build(const Scene& scene) {

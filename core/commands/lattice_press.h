@@ -45,9 +45,8 @@ class LatticePressCommand : public ObjectSnapshotCommand<LatticePressCommand, La
   using ObjectSnapshotCommand::ObjectSnapshotCommand;
   static const ParamSchema<LatticePressParams>& schema();
 
-  std::string label() const override {  // a negative strength pulls (the Press tool's Ctrl+drag)
-    return (p_.strength < 0 ? "Pull '" : "Press '") + p_.object + "' (" + p_.falloff + ")";
-  }
+  // A negative strength pulls (the Press tool's Ctrl+drag); a press limited to stay fold-free says to what.
+  std::string label() const override;
 
  protected:
   std::optional<SceneObject> build(const Scene& scene) override;

@@ -11,6 +11,7 @@
 
 #include "editor/navigation.h"
 #include "editor/session.h"
+#include "ui/gui_probe.h"
 #include "ui/number_field.h"
 #include "ui/theme.h"
 
@@ -37,9 +38,9 @@ static_assert(std::size(kFalloffTips) == core::kFalloffNames.size());
 }  // namespace
 
 nlohmann::json lattice_press_line(const std::string& object, const std::vector<glm::dvec3>& path, double radius,
-                                  double strength, core::Falloff falloff) {
+                                  double strength, core::Falloff falloff, bool keep_fold_free) {
   return core::LatticePressCommand::schema().to_json(
-      core::LatticePressParams{object, path, radius, strength, std::string(core::to_string(falloff))});
+      core::LatticePressParams{object, path, radius, strength, std::string(core::to_string(falloff)), keep_fold_free});
 }
 
 ui::ToolEntry PressTool::entry() const {
@@ -131,6 +132,7 @@ void PressTool::handle_input(const ToolInput& in, ToolContext& ctx) {
   }
   hover_radius_ = radius(ctx);
   if (in.left_pressed) {
+    preview_strength_ = -1.0;
     pressing_ = true;
     pull_ = in.ctrl;
     path_.clear();
@@ -154,8 +156,20 @@ std::optional<Tool::LivePreview> PressTool::live_preview(const ToolContext& ctx)
   if (pressing_ && !path_.empty()) {
     if (!preview_ || preview_base_ != o->ffd || preview_samples_ != path_.size()) {
       try {
-        preview_ = std::make_shared<const core::TrivariateBSpline<glm::dvec3>>(
-            core::press_lattice(o->ffd->lattice, path_, hover_radius_, signed_strength(ctx), falloff_));
+        if (keep_fold_free_) {
+          try {
+            core::FoldFreePress press = core::press_lattice_fold_free(o->ffd->lattice, path_, hover_radius_,
+                                                                      signed_strength(ctx), falloff_);
+            preview_strength_ = press.limited ? std::abs(press.strength) : -1.0;
+            preview_ = std::make_shared<const core::TrivariateBSpline<glm::dvec3>>(std::move(press.lattice));
+          } catch (const std::invalid_argument&) {  // not certified before the press: the command will refuse
+            preview_strength_ = std::nan("");
+            preview_.reset();
+          }
+        } else {
+          preview_ = std::make_shared<const core::TrivariateBSpline<glm::dvec3>>(
+              core::press_lattice(o->ffd->lattice, path_, hover_radius_, signed_strength(ctx), falloff_));
+        }
         preview_base_ = o->ffd;
         preview_samples_ = path_.size();
       } catch (const std::exception&) {  // a degenerate column: the command at mouse-up reports it
@@ -179,7 +193,8 @@ void PressTool::commit(ToolContext& ctx) {
     ctx.session.messages().error("lattice.press: choose an object with an FFD lattice in the Tool panel first");
     return;
   }
-  const nlohmann::json line = lattice_press_line(object_, path, radius(ctx), signed_strength(ctx), falloff_);
+  const nlohmann::json line =
+      lattice_press_line(object_, path, radius(ctx), signed_strength(ctx), falloff_, keep_fold_free_);
   EditorSession& session = ctx.session;  // outlives the deferred work; ctx may not
   ctx.defer((pull_ ? "Pulling " : "Pressing ") + object_, [&session, line]() { session.execute(line); });
 }
@@ -226,6 +241,7 @@ void PressTool::draw_panel(ToolContext& ctx) {
   if (ui::drag_scalar("Strength", ImGuiDataType_Double, &s, float(std::max(s_max, 1e-3) * 1e-3), &s_min, &s_max,
                       "%.4g", ImGuiSliderFlags_AlwaysClamp))
     strength_ = std::max(s, 1e-12);
+  ui::probe::item("press.strength");
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("How far a control point at the sphere's centre moves along its column, world units\n"
                       "(default: a quarter of the radius)");
@@ -240,6 +256,21 @@ void PressTool::draw_panel(ToolContext& ctx) {
     ImGui::EndCombo();
   }
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", kFalloffTips[std::size_t(falloff_)]);
+
+  ImGui::Checkbox("Keep fold-free", &keep_fold_free_);
+  ui::probe::item("press.keep_fold_free");
+  ui::probe::value("press.keep_fold_free", keep_fold_free_ ? "1" : "0");
+  ui::probe::value("press.strength", std::to_string(s));
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Limit each press's strength (bisection) so that the lattice stays certified fold-free:\n"
+                      "det J > 0 everywhere, proven by its Bernstein coefficients (View > Fold certificate shows it).\n"
+                      "A lattice that is not certified before the press is refused.");
+  if (keep_fold_free_ && pressing_) {
+    if (std::isnan(preview_strength_))
+      ImGui::TextColored(ui::colors::dim, "The lattice is not certified fold-free: the press will be refused.");
+    else if (preview_strength_ >= 0.0)
+      ImGui::TextColored(ui::colors::dim, "Limited to strength %.4g to stay fold-free", preview_strength_);
+  }
 
   ImGui::Spacing();
   ImGui::Separator();

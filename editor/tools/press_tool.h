@@ -6,7 +6,8 @@
 // path; on mouse-up the tool executes ONE `lattice.press` command (core/commands/lattice_press.h) through the
 // session (registry parse → History::execute; errors go to the Log panel, the scene stays as it was). Ctrl held at
 // mouse-down pulls (negative strength), as Ctrl inverts a Blender sculpt brush. A drag that never hits the object
-// issues nothing.
+// issues nothing. With Keep fold-free on, the press (and its live preview) is limited to the largest strength whose
+// lattice stays certified fold-free (core::press_lattice_fold_free); the panel says how far it was limited.
 #pragma once
 
 #include <future>
@@ -24,7 +25,7 @@ namespace trispline::editor {
 // The lattice.press line (fields exactly as in core/commands/lattice_press.h): path #P×3 world units, radius and
 // strength world units.
 nlohmann::json lattice_press_line(const std::string& object, const std::vector<glm::dvec3>& path, double radius,
-                                  double strength, core::Falloff falloff);
+                                  double strength, core::Falloff falloff, bool keep_fold_free = false);
 
 class PressTool : public Tool {
  public:
@@ -47,6 +48,9 @@ class PressTool : public Tool {
   // World units, the magnitude (Ctrl-drag negates it); ≤ 0 = unset: a quarter of the radius, a dent that shows.
   void set_strength(double s) { strength_ = s; }
   void set_falloff(core::Falloff f) { falloff_ = f; }
+  // Keep fold-free: every press is limited (lattice.press keep_fold_free) so that the lattice stays certified.
+  void set_keep_fold_free(bool on) { keep_fold_free_ = on; }
+  bool keep_fold_free() const { return keep_fold_free_; }
   // Radius the next press uses for the current object (the default when unset); 0 without a target object.
   double radius(const ToolContext& ctx) const;
   double strength(const ToolContext& ctx) const;  // the magnitude the next press uses (the default when unset)
@@ -66,6 +70,10 @@ class PressTool : public Tool {
   double radius_ = 0.0;             // ≤ 0: default from the object's size
   double strength_ = 0.0;            // ≤ 0: default from the radius
   core::Falloff falloff_ = core::Falloff::smooth;
+  bool keep_fold_free_ = false;
+  // Keep fold-free during a drag: the strength the preview could use (negative: the whole strength; NaN: the lattice
+  // is not certified before the press, so the command will refuse).
+  double preview_strength_ = -1.0;
 
   std::optional<glm::dvec3> hover_;
   double hover_radius_ = 0.0;  // radius at the last hover (decorate has no context)

@@ -1,0 +1,287 @@
+#include "editor/guarantees_view.h"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "core/ffd/deformation_bounds.h"
+#include "core/ffd/ffd.h"
+
+namespace trispline::editor {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+constexpr double kDecades = 3.0;  // the ramp spans max/1000 … max
+constexpr float kHeatAlpha = 0.82f;
+const glm::vec4 kUnbounded{0.92f, 0.25f, 0.92f, kHeatAlpha};
+const glm::vec4 kCertified{0.30f, 0.86f, 0.38f, 0.95f}, kFold{1.0f, 0.18f, 0.12f, 1.0f}, kUndecided{0.62f, 0.62f, 0.64f, 0.95f};
+
+// Display colour of t ∈ [0,1]: dark blue → blue → green → yellow → red.
+glm::vec4 ramp(double t) {
+  static const glm::vec3 stops[] = {{0.16f, 0.20f, 0.52f}, {0.14f, 0.52f, 0.86f}, {0.22f, 0.78f, 0.42f},
+                                    {0.96f, 0.84f, 0.20f}, {0.90f, 0.18f, 0.14f}};
+  t = std::clamp(t, 0.0, 1.0) * 4.0;
+  const int i = std::min(static_cast<int>(t), 3);
+  return {glm::mix(stops[i], stops[i + 1], static_cast<float>(t - i)), kHeatAlpha};
+}
+
+double ramp_position(double bound, double max_bound) {
+  if (!(max_bound > 0.0) || !(bound > 0.0)) return 0.0;
+  return std::log10(bound / max_bound) / kDecades + 1.0;
+}
+
+ImU32 to_imgui(const glm::vec4& c) { return ImGui::ColorConvertFloat4ToU32(ImVec4(c.x, c.y, c.z, 1.0f)); }
+
+}  // namespace
+
+void GuaranteesView::update(const core::Scene& scene, const std::string& object,
+                            const std::shared_ptr<const core::TrivariateBSpline<glm::dvec3>>& lattice,
+                            bool error_bounds, bool certificate) {
+  const core::SceneObject* o = (error_bounds || certificate) ? scene.find(object) : nullptr;
+  if (!o || !o->ffd || !o->rest_mesh || o->ffd->params.size() != o->rest_mesh->positions.size()) {
+    const std::size_t updates = updates_;
+    *this = GuaranteesView{};
+    updates_ = updates;
+    return;
+  }
+  // The lattice shown: the preview's, else the object's own (aliasing the binding keeps it alive).
+  const std::shared_ptr<const core::TrivariateBSpline<glm::dvec3>> F =
+      lattice ? lattice : std::shared_ptr<const core::TrivariateBSpline<glm::dvec3>>(o->ffd, &o->ffd->lattice);
+  const glm::dvec3 offset = o->offset_at(0.0);
+  const bool same_input = object_ == object && lattice_.get() == F.get() && rest_ == o->rest_mesh && offset_ == offset;
+  const bool need_bounds = error_bounds && (!same_input || !shown_bounds_);
+  const bool need_certificate = certificate && (!same_input || !shown_certificate_);
+  if (!same_input) error_.clear();
+  object_ = object;
+  live_ = lattice != nullptr;
+  if (need_bounds || need_certificate) ++updates_;
+  lattice_ = F;
+  rest_ = o->rest_mesh;
+  offset_ = offset;
+  shown_bounds_ = error_bounds;
+  shown_certificate_ = certificate;
+  if (!error_bounds) corners_.reset(), colors_.reset();
+  if (!certificate) certificate_.reset(), cell_ends_.clear(), cell_colors_.clear();
+
+  try {
+    if (need_bounds) {
+      const auto t0 = Clock::now();
+      const core::SecondDerivativeBounds bounds(*F);
+      const std::vector<double> b = core::triangle_error_bounds(bounds, o->ffd->params, rest_->triangles, offset);
+      std::vector<glm::dvec3> params = o->ffd->params, deformed;
+      for (glm::dvec3& p : params) p += offset;
+      core::ffd_evaluate(*F, params, deformed);
+      triangles_ = b.size();
+      unbounded_ = 0;
+      std::vector<double> finite;
+      finite.reserve(b.size());
+      for (double x : b) {
+        if (std::isfinite(x)) finite.push_back(x);
+        else ++unbounded_;
+      }
+      max_bound_ = finite.empty() ? 0.0 : *std::max_element(finite.begin(), finite.end());
+      if (!finite.empty()) {
+        std::nth_element(finite.begin(), finite.begin() + finite.size() / 2, finite.end());
+        median_bound_ = finite[finite.size() / 2];
+      }
+      auto corners = std::make_shared<std::vector<glm::vec3>>();
+      auto colors = std::make_shared<std::vector<glm::vec4>>();
+      corners->reserve(3 * b.size());
+      colors->reserve(3 * b.size());
+      for (std::size_t f = 0; f < b.size(); ++f) {
+        const glm::vec4 c = std::isfinite(b[f]) ? ramp(ramp_position(b[f], max_bound_)) : kUnbounded;
+        for (int k = 0; k < 3; ++k) {
+          corners->push_back(glm::vec3(deformed[rest_->triangles[f][k]]));
+          colors->push_back(c);
+        }
+      }
+      corners_ = std::move(corners);
+      colors_ = std::move(colors);
+      bounds_ms_ = ms_since(t0);
+    }
+    if (need_certificate) {
+      const auto t0 = Clock::now();
+      certificate_ = core::certify_fold_free(*F);
+      certificate_ms_ = ms_since(t0);
+      // The Bézier cells' edges through F, each segment in the worst verdict of the cells sharing it.
+      const core::TrivariateBSpline<glm::dvec3> U = F->periodic_unwrapped();
+      std::array<std::vector<double>, 3> breaks;
+      for (int a = 0; a < 3; ++a) {
+        const core::KnotVector& k = U.knots(a);
+        for (double t : k.knots())
+          if (t >= k.domain_min() && t <= k.domain_max() && (breaks[a].empty() || breaks[a].back() != t))
+            breaks[a].push_back(t);
+      }
+      const glm::ivec3 cells(int(breaks[0].size()) - 1, int(breaks[1].size()) - 1, int(breaks[2].size()) - 1);
+      cell_ends_.clear();
+      cell_colors_.clear();
+      if (static_cast<std::size_t>(cells.x) * cells.y * cells.z == certificate_->cells) {
+        std::vector<unsigned char> verdict(certificate_->cells, 0);  // 0 certified, 1 undecided, 2 fold
+        auto id = [&](const glm::ivec3& c) { return c.x + std::size_t(cells.x) * (c.y + std::size_t(cells.y) * c.z); };
+        for (const glm::ivec3& c : certificate_->undecided_cells) verdict[id(c)] = 1;
+        for (const glm::ivec3& c : certificate_->fold_cells) verdict[id(c)] = 2;
+        constexpr int kPieces = 6;
+        for (int a = 0; a < 3; ++a) {
+          const int b = (a + 1) % 3, c = (a + 2) % 3;
+          for (std::size_t j = 0; j < breaks[b].size(); ++j)
+            for (std::size_t k = 0; k < breaks[c].size(); ++k)
+              for (int i = 0; i < cells[a]; ++i) {
+                unsigned char worst = 0;
+                for (int dj = -1; dj <= 0; ++dj)
+                  for (int dk = -1; dk <= 0; ++dk) {
+                    glm::ivec3 cell;
+                    cell[a] = i;
+                    cell[b] = int(j) + dj;
+                    cell[c] = int(k) + dk;
+                    if (cell[b] < 0 || cell[b] >= cells[b] || cell[c] < 0 || cell[c] >= cells[c]) continue;
+                    worst = std::max(worst, verdict[id(cell)]);
+                  }
+                const glm::vec4 colour = worst == 2 ? kFold : worst == 1 ? kUndecided : kCertified;
+                glm::dvec3 t;
+                t[b] = breaks[b][j];
+                t[c] = breaks[c][k];
+                for (int p = 0; p < kPieces; ++p) {
+                  t[a] = breaks[a][i] + (breaks[a][i + 1] - breaks[a][i]) * p / kPieces;
+                  cell_ends_.push_back(F->eval(t));
+                  t[a] = breaks[a][i] + (breaks[a][i + 1] - breaks[a][i]) * (p + 1) / kPieces;
+                  cell_ends_.push_back(F->eval(t));
+                  cell_colors_.push_back(colour);
+                }
+              }
+        }
+      }
+    }
+  } catch (const std::exception& e) {
+    error_ = e.what();
+    corners_.reset();
+    colors_.reset();
+    certificate_.reset();
+    cell_ends_.clear();
+    cell_colors_.clear();
+  }
+}
+
+void GuaranteesView::decorate(gpu::ViewOptions& options) const {
+  if (shown_bounds_ && corners_) options.overlays.colored_triangles.push_back({corners_, colors_});
+  if (shown_certificate_ && !cell_ends_.empty()) options.overlays.colored_lines.push_back({cell_ends_, cell_colors_});
+  if (shown_certificate_ && certificate_ && !certificate_->fold_points.empty())
+    options.overlays.points.push_back({certificate_->fold_points, kFold, options.style.fold_point_px});
+}
+
+std::string GuaranteesView::summary() const {
+  if (object_.empty() || (!shown_bounds_ && !shown_certificate_)) return {};
+  char line[200];
+  std::string s;
+  if (shown_bounds_ && corners_) {
+    std::snprintf(line, sizeof line, "bounds %.1f ms (%zu tris, max %.3g)", bounds_ms_, triangles_, max_bound_);
+    s += line;
+  }
+  if (shown_certificate_ && certificate_) {
+    std::snprintf(line, sizeof line, "%scertificate %.1f ms (%s, %zu cells)", s.empty() ? "" : "; ", certificate_ms_,
+                  core::fold_verdict_name(certificate_->verdict), certificate_->cells);
+    s += line;
+  }
+  return s;
+}
+
+nlohmann::json GuaranteesView::probe() const {
+  nlohmann::json p = {{"object", object_}, {"live", live_}, {"updates", updates_},
+                      {"error_bounds", shown_bounds_ && corners_ != nullptr},
+                      {"certificate", nullptr}, {"error", error_}};
+  if (shown_bounds_ && corners_) {
+    p["triangles"] = triangles_;
+    p["max_bound"] = max_bound_;
+    p["median_bound"] = median_bound_;
+    p["unbounded"] = unbounded_;
+  }
+  if (shown_certificate_ && certificate_) {
+    p["certificate"] = core::fold_verdict_name(certificate_->verdict);
+    p["cells"] = certificate_->cells;
+    p["fold_cells"] = certificate_->fold_cells.size();
+    p["undecided_cells"] = certificate_->undecided_cells.size();
+    p["cell_segments"] = cell_colors_.size();
+  }
+  return p;
+}
+
+void GuaranteesView::draw_legend(const ui::Rect& viewport) const {
+  if (object_.empty() || (!shown_bounds_ && !shown_certificate_)) return;
+  constexpr int flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
+                        ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
+                        ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoMove;
+  ImGui::SetNextWindowPos(ImVec2(viewport.pos.x + viewport.size.x - 10, viewport.pos.y + viewport.size.y - 10),
+                          ImGuiCond_Always, ImVec2(1.0f, 1.0f));
+  ImGui::SetNextWindowBgAlpha(0.85f);
+  ImGui::PushStyleColor(ImGuiCol_WindowBg, IM_COL32(18, 18, 20, 255));
+  ImGui::PushStyleColor(ImGuiCol_Text, IM_COL32(235, 235, 235, 255));
+  const bool open = ImGui::Begin("##guarantees_legend", nullptr, flags);
+  ImGui::PopStyleColor(2);
+  if (!open) {
+    ImGui::End();
+    return;
+  }
+  ImGui::Text("%s", object_.c_str());
+  if (!error_.empty()) ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.35f, 1.0f), "%s", error_.c_str());
+  if (shown_bounds_ && corners_) {
+    ImGui::TextUnformatted("Certified error bound (world units)");
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("Per triangle: an upper bound on the distance between the true deformed surface F(T) and\n"
+                        "the flat triangle drawn through its deformed corners (seed ch. 3: Filip et al.'s right-\n"
+                        "triangle bound and the smallest-enclosing-circle bound, from the lattice's second\n"
+                        "differences). Logarithmic colours over three decades below the largest bound.");
+    const float w = 220.0f, h = 12.0f;
+    const ImVec2 at = ImGui::GetCursorScreenPos();
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    constexpr int kSteps = 32;
+    for (int i = 0; i < kSteps; ++i)
+      dl->AddRectFilledMultiColor(ImVec2(at.x + w * i / kSteps, at.y), ImVec2(at.x + w * (i + 1) / kSteps, at.y + h),
+                                  to_imgui(ramp(double(i) / kSteps)), to_imgui(ramp(double(i + 1) / kSteps)),
+                                  to_imgui(ramp(double(i + 1) / kSteps)), to_imgui(ramp(double(i) / kSteps)));
+    ImGui::Dummy(ImVec2(w, h));
+    char lo[32], mid[32], hi[32];
+    std::snprintf(lo, sizeof lo, "%.2g", max_bound_ * std::pow(10.0, -kDecades));
+    std::snprintf(mid, sizeof mid, "%.2g", max_bound_ * std::pow(10.0, -kDecades / 2));
+    std::snprintf(hi, sizeof hi, "%.3g", max_bound_);
+    const float x0 = ImGui::GetCursorPosX();
+    ImGui::TextUnformatted(lo);
+    ImGui::SameLine(x0 + 0.5f * w - 0.5f * ImGui::CalcTextSize(mid).x);
+    ImGui::TextUnformatted(mid);
+    ImGui::SameLine(x0 + w - ImGui::CalcTextSize(hi).x);
+    ImGui::TextUnformatted(hi);
+    ImGui::Text("median %.3g, %zu triangles", median_bound_, triangles_);
+    if (unbounded_ > 0) {
+      ImGui::TextColored(ImVec4(kUnbounded.x, kUnbounded.y, kUnbounded.z, 1.0f), "%zu unbounded", unbounded_);
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("Triangles crossing a C0 knot plane (order 2) or leaving the lattice's domain: F is not\n"
+                          "smooth across them, so no bound holds. Refine (mesh.refine) to split them there.");
+    }
+  }
+  if (shown_certificate_ && certificate_) {
+    if (shown_bounds_) ImGui::Separator();
+    const core::FoldCertificate& c = *certificate_;
+    const glm::vec4 colour = c.verdict == core::FoldVerdict::fold      ? kFold
+                             : c.verdict == core::FoldVerdict::undecided ? kUndecided
+                                                                          : kCertified;
+    const ImVec4 ic(colour.x, colour.y, colour.z, 1.0f);
+    if (c.verdict == core::FoldVerdict::fold_free)
+      ImGui::TextColored(ic, "Fold-free: certified (%zu cells)", c.cells);
+    else if (c.verdict == core::FoldVerdict::fold)
+      ImGui::TextColored(ic, "Folds in %zu of %zu cells", c.fold_cells.size(), c.cells);
+    else
+      ImGui::TextColored(ic, "Undecided in %zu of %zu cells", c.undecided_cells.size(), c.cells);
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("det J of the lattice as an exact Bernstein polynomial per Bezier cell, subdivided:\n"
+                        "green cells are certified det J > 0 (no fold), red cells fold (det J <= 0 at the red\n"
+                        "points), grey cells are undecided after 6 halvings. %.1f ms.",
+                        certificate_ms_);
+  }
+  ImGui::End();
+}
+
+}  // namespace trispline::editor

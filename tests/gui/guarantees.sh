@@ -1,0 +1,55 @@
+#!/usr/bin/env bash
+# View > Error bounds and View > Fold certificate on the placed bunny of the default scene: the heat map and the
+# certificate are computed, follow a Press drag live, and a press with Keep fold-free (typed strength far too strong)
+# is logged with keep_fold_free, limited, and leaves the lattice certified.
+source "$(dirname "$0")/gui_lib.sh"
+gui_start "$GUI_ROOT/assets/scenes/default.jsonl"
+gui_wait '(.history.labels | length) >= 4' "the default scene is open"
+gui_click_item scene.object.bunny
+gui_wait '.selected == "bunny"' "bunny selected"
+
+gui_click_item menu.View
+gui_wait '.popups | length > 0' "the View menu opens"
+gui_click_item "menu.Error bounds"
+gui_wait '.guarantees.error_bounds == true and .guarantees.object == "bunny" and .guarantees.triangles > 10000' \
+  "the error heat map of the bunny is computed" 60
+gui_check '.guarantees.max_bound > 0 and .guarantees.unbounded == 0' "every triangle has a finite bound (order 4/3)"
+gui_click_item menu.View
+gui_wait '.popups | length > 0' "the View menu opens again"
+gui_click_item "menu.Fold certificate"
+gui_wait '.guarantees.certificate == "fold_free" and .guarantees.cell_segments > 0' \
+  "the placed bunny's lattice is certified fold-free and its cells are drawn" 60
+
+# The Press tool with Keep fold-free and a strength far beyond what the lattice takes.
+x="$(gui_q '.object_px.bunny[0] | floor')"; y="$(gui_q '.object_px.bunny[1] | floor')"
+gui_move "$x" "$y"
+gui_frames 1
+gui_key e
+gui_wait '.tool == "Press"' "E picks the Press tool"
+gui_click_item press.keep_fold_free
+gui_wait '.values["press.keep_fold_free"] == "1"' "Keep fold-free is ticked"
+gui_click_item press.strength
+gui_wait '.typing' "one click on Strength enters text editing"
+gui_type "0.4"
+gui_key Return
+gui_wait '(.typing | not) and (.values["press.strength"] | tonumber) == 0.4' "strength 0.4 typed"
+
+n="$(gui_q '.history.labels | length')"
+updates="$(gui_q '.guarantees.updates')"
+gui_move "$x" "$y"
+gui_frames 1
+xdotool mousedown 1
+gui_frames 2
+for i in 1 2 3; do
+  gui_move $((x + 4 * i)) $((y - 2 * i))
+  gui_frames 1
+done
+gui_wait ".guarantees.live == true and .guarantees.updates > $updates and .guarantees.certificate == \"fold_free\"" \
+  "during the drag the view shows the pressed (limited, still certified) lattice" 60
+xdotool mouseup 1
+gui_wait "(.history.labels | length) == $((n + 1))" "one history entry for the drag" 90
+gui_wait_logged '.cmd == "lattice.press" and .keep_fold_free == true and .strength == 0.4' \
+  "lattice.press logged with keep_fold_free and the typed strength"
+gui_wait '.guarantees.live == false and .guarantees.certificate == "fold_free"' \
+  "after the press the bunny's own lattice is shown, certified fold-free" 60
+gui_pass
