@@ -1,7 +1,9 @@
 #include "bench/bounds_bench.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
+#include <filesystem>
 #include <random>
 #include <stdexcept>
 
@@ -15,6 +17,9 @@
 #include "core/ffd/deformation_bounds.h"
 #include "core/ffd/ffd.h"
 #include "core/ffd/fold_certificate.h"
+#include "core/ffd/refine.h"
+#include "core/ffd/seed_cube.h"
+#include "core/mesh/mesh_io.h"
 #include "core/spline/knot_vector.h"
 #include "core/spline/trivariate_bspline.h"
 
@@ -36,11 +41,113 @@ TrivariateBSpline<glm::dvec3> displaced_lattice(int order, const glm::ivec3& con
   return TrivariateBSpline<glm::dvec3>(ku, kv, kw, std::move(P));
 }
 
+double ms_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Median and largest of `v` (sorted in place); zeros when empty.
+nlohmann::json spread(std::vector<double>& v) {
+  std::sort(v.begin(), v.end());
+  return {{"count", v.size()}, {"median", v.empty() ? 0.0 : v[v.size() / 2]}, {"worst", v.empty() ? 0.0 : v.back()}};
+}
+
+// The soundness sweep of the per-triangle bounds: every triangle of `mesh` in random lattices (orders 2–4, 4–8
+// controls per axis, displacements 5–30 % of a cell) until `target` triangles are checked; per triangle each
+// method's bound against the measured error (grid, finer grids, Newton), and the normal bound against the measured
+// error along the drawn triangle's normal. Counts the triangles whose measured error exceeds a bound (must be 0).
+nlohmann::json bound_soundness(const TriMesh& mesh, std::size_t target) {
+  const ErrorBound methods[] = {ErrorBound::right_triangle, ErrorBound::circumcircle, ErrorBound::enclosing_circle,
+                                ErrorBound::best};
+  constexpr int kMethods = 4;
+  const Embedding e = embed_bounding_box(mesh.positions, EmbeddingAxes{});
+  const std::vector<glm::dvec3> params = embed_points(e, mesh.positions);
+  std::size_t checked = 0, unbounded = 0, lattices = 0;
+  std::atomic<std::size_t> exceeded[kMethods + 1] = {};
+  std::vector<double> ratios[kMethods + 1];
+  const auto t0 = std::chrono::steady_clock::now();
+  while (checked < target && !mesh.triangles.empty()) {
+    const int order = 2 + lattices % 3, controls = std::max(order, 4 + int(lattices % 5));
+    const double perturbation = 0.05 + 0.25 * double(lattices % 6) / 5.0;
+    const auto F = perturbed_lattice(e, order, controls, perturbation, 100 + std::uint32_t(lattices));
+    ++lattices;
+    const SecondDerivativeBounds b(F);
+    const std::size_t n = std::min(mesh.triangles.size(), target - checked);
+    struct Row {
+      double bound[kMethods + 1], truth[2];
+    };
+    std::vector<Row> rows(n);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t f = r.begin(); f != r.end(); ++f) {
+        const glm::uvec3 t = mesh.triangles[f];
+        const glm::dvec3 &pa = params[t.x], &pb = params[t.y], &pc = params[t.z];
+        Row& row = rows[f];
+        for (int m = 0; m < kMethods; ++m) row.bound[m] = triangle_error_bound(b, pa, pb, pc, methods[m]);
+        row.truth[0] = triangle_error_sampled(F, pa, pb, pc, 4);
+        const glm::dvec3 normal = glm::cross(F.eval(pa) - F.eval(pc), F.eval(pb) - F.eval(pc));
+        row.bound[kMethods] = row.truth[1] = -1.0;
+        if (glm::length(normal) > 0.0) {
+          const glm::dvec3 nn = glm::normalize(normal);
+          row.bound[kMethods] = triangle_normal_error_bound(b, pa, pb, pc, nn);
+          row.truth[1] = triangle_normal_error_sampled(F, pa, pb, pc, nn, 4);
+        }
+        for (int m = 0; m <= kMethods; ++m) {
+          const double truth = row.truth[m == kMethods ? 1 : 0];
+          if (truth >= 0.0 && row.bound[m] * (1.0 + 1e-12) + 1e-15 < truth) ++exceeded[m];
+        }
+      }
+    });
+    for (const Row& row : rows) {
+      if (std::isinf(row.bound[kMethods - 1])) ++unbounded;
+      for (int m = 0; m <= kMethods; ++m) {
+        const double truth = row.truth[m == kMethods ? 1 : 0];
+        if (truth > 1e-12 && std::isfinite(row.bound[m])) ratios[m].push_back(row.bound[m] / truth);
+      }
+    }
+    checked += n;
+  }
+  nlohmann::json per_method = nlohmann::json::object();
+  for (int m = 0; m <= kMethods; ++m)
+    per_method[m == kMethods ? "normal" : error_bound_name(methods[m])] = {{"exceeded", exceeded[m].load()},
+                                                                           {"tightness", spread(ratios[m])}};
+  return {{"triangles", checked}, {"lattices", lattices}, {"unbounded", unbounded}, {"methods", per_method},
+          {"ms", ms_since(t0)}};
+}
+
+// Certified refinement (mesh.refine "error":"bound") of the seed's cube under its two deformations at three
+// tolerances, with the seed's split (midpoint RefineTriangle), the Greville split point and the per-triangle choice.
+nlohmann::json cube_refinement() {
+  const TriMesh cube = seed_cube();
+  nlohmann::json rows = nlohmann::json::array();
+  for (int def = 0; def < 2; ++def)
+    for (double tol : {0.04, 0.02, 0.01}) {
+      const FfdBinding b = def == 0 ? seed_cube_bend_twist(cube) : seed_cube_corner_pull(cube);
+      nlohmann::json row = {{"deformation", def == 0 ? "bend_twist" : "corner_pull"}, {"tolerance", tol}};
+      for (RefineCriterion c : {RefineCriterion::Midpoint, RefineCriterion::Greville, RefineCriterion::Best}) {
+        RefineOptions o;
+        o.tolerance = tol;
+        o.criterion = c;
+        o.error = RefineError::bound;
+        o.max_iterations = 40;
+        const auto t0 = std::chrono::steady_clock::now();
+        const RefineResult r = refine_for_ffd(cube, b, o);
+        row[refine_criterion_name(c)] = {{"triangles", r.stats.triangles_after},
+                                         {"max_bound", r.stats.max_triangle_bound},
+                                         {"stopped_by", r.stats.stopped_by},
+                                         {"ms", ms_since(t0)}};
+      }
+      row["best_over_midpoint"] = double(row["best"]["triangles"].get<std::size_t>()) /
+                                  double(row["midpoint"]["triangles"].get<std::size_t>());
+      rows.push_back(row);
+    }
+  return rows;
+}
+
 }  // namespace
 
 nlohmann::json run_bounds_benchmark(const BoundsBenchOptions& options) {
   if (options.repeats < 1) throw std::invalid_argument("--repeats must be at least 1");
   if (options.lattices < 0) throw std::invalid_argument("--lattices must be at least 0");
+  if (options.soundness_triangles < 0) throw std::invalid_argument("--soundness-triangles must be at least 0");
   nlohmann::json out = {{"bench", "bounds"},
                         {"threads", tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)}};
   nlohmann::json rows = nlohmann::json::array();
@@ -130,6 +237,13 @@ nlohmann::json run_bounds_benchmark(const BoundsBenchOptions& options) {
                       {"per_second", best > 0.0 ? mesh.triangles.size() / (best * 1e-3) : 0.0},
                       {"max_bound", sorted.empty() ? 0.0 : sorted.back()},
                       {"median_bound", sorted.empty() ? 0.0 : sorted[sorted.size() / 2]}};
+  // The soundness sweep runs on the unrefined mesh (its own triangles, many lattices).
+  TriMesh sweep_mesh = std::filesystem::exists(options.mesh_path) ? load_mesh(options.mesh_path) : mesh;
+  out["soundness"] = bound_soundness(sweep_mesh, static_cast<std::size_t>(options.soundness_triangles));
+  out["soundness"]["mesh"] = std::filesystem::exists(options.mesh_path) ? nlohmann::json(options.mesh_path) : mj["source"];
+  out["refinement"] = cube_refinement();
+  out["refinement_seed"] = {{"midpoint", 360}, {"greville", 308},
+                            {"note", "the seed's cube (Fig. 3.5) with its own lattice and error estimate"}};
   return out;
 }
 

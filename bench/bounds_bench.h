@@ -6,7 +6,11 @@
 // controls per axis, displacements from gentle to violent) judged and sampled densely (det J on a 12³ grid), counting
 // verdicts and the lattices certified fold-free although a sample has det J ≤ 0 (must be 0) and the folds reported at
 // points where det J > 0 (must be 0); then the per-triangle deformation-error bounds (core/ffd/deformation_bounds.h) of
-// every triangle of the FFD benchmark's mesh (the bunny refined to 836K vertices) in a perturbed tri-cubic 8³ lattice.
+// every triangle of the FFD benchmark's mesh (the bunny refined to 836K vertices) in a perturbed tri-cubic 8³ lattice;
+// then their soundness: `soundness_triangles` triangles of the bunny (as loaded) in random lattices, each bound
+// (right triangle, circumcircle, enclosing circle, best, normal-projected) against the error measured by sampling and
+// Newton, counting bounds exceeded (must be 0) and the tightness (bound ÷ measured, median and worst); then the
+// certified refinement of the seed's cube (midpoint / Greville / best split) beside the seed's counts.
 // Prints figures; never asserts timings.
 #pragma once
 
@@ -20,11 +24,15 @@ struct BoundsBenchOptions {
   int lattices = 1000;  // ≥ 0: random lattices in the soundness sweep
   std::string mesh_path = "assets/data/bunny.obj";  // the per-triangle bounds' mesh (a sphere when absent)
   int subdivision_level = 2;                        // its bilinear refinement level
+  int soundness_triangles = 1'000'000;              // ≥ 0: triangles of the unrefined mesh checked in random lattices
 };
 
 // Result: {bench:"bounds", threads, certificate:[{order, controls, cells, boxes, verdict, ms}], sweep:{lattices,
 //          fold_free, fold, undecided, sampled_folds, certified_but_sampled_fold, fold_reported_at_positive_det},
-//          triangles:{mesh, vertices, triangles, prepare_ms, ms, per_second, max_bound, median_bound}}.
+//          triangles:{mesh, vertices, triangles, prepare_ms, ms, per_second, max_bound, median_bound},
+//          soundness:{mesh, triangles, lattices, unbounded, ms, methods:{NAME:{exceeded, tightness:{count, median,
+//          worst}}}}, refinement:[{deformation, tolerance, midpoint|greville|best:{triangles, max_bound, stopped_by,
+//          ms}, best_over_midpoint}], refinement_seed:{midpoint, greville, note}}.
 // Throws std::invalid_argument on bad options.
 nlohmann::json run_bounds_benchmark(const BoundsBenchOptions& options);
 

@@ -1,6 +1,7 @@
 // `trispline bench bounds` (bench/bounds_bench.h) on a short sweep: the figures are there, the timing lattices are
 // certified, and the sweep finds no unsound verdict (a certified lattice that sampling finds folded, or a fold
-// reported where det J > 0).
+// reported where det J > 0); no triangle's measured error exceeds any of its bounds; the seed's cube refines to its
+// certified tolerance with every split rule.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -15,6 +16,7 @@ TEST(BoundsBench, ShortSweepIsSoundAndComplete) {
   o.lattices = 96;
   o.mesh_path = "no-such-mesh.obj";  // the generated sphere, unrefined
   o.subdivision_level = 0;
+  o.soundness_triangles = 20000;
   const nlohmann::json r = core::run_bounds_benchmark(o);
   ASSERT_EQ(r.at("certificate").size(), 6u);
   for (const auto& c : r.at("certificate")) {
@@ -33,6 +35,18 @@ TEST(BoundsBench, ShortSweepIsSoundAndComplete) {
   EXPECT_GT(t.at("triangles").get<std::size_t>(), 10000u);
   EXPECT_GT(t.at("max_bound").get<double>(), 0.0);
   EXPECT_TRUE(std::isfinite(t.at("max_bound").get<double>())) << "a cubic lattice bounds every triangle";
+  const auto& s = r.at("soundness");
+  EXPECT_EQ(s.at("triangles").get<std::size_t>(), 20000u);
+  for (const char* m : {"right_triangle", "circumcircle", "enclosing_circle", "best", "normal"}) {
+    EXPECT_EQ(s.at("methods").at(m).at("exceeded"), 0) << m;
+    EXPECT_GE(s.at("methods").at(m).at("tightness").at("median").get<double>(), 1.0) << m;
+  }
+  ASSERT_EQ(r.at("refinement").size(), 6u);
+  for (const auto& row : r.at("refinement"))
+    for (const char* c : {"midpoint", "greville", "best"}) {
+      EXPECT_EQ(row.at(c).at("stopped_by"), "converged") << row.dump();
+      EXPECT_LE(row.at(c).at("max_bound").get<double>(), row.at("tolerance").get<double>()) << row.dump();
+    }
   o.repeats = 0;
   EXPECT_THROW(core::run_bounds_benchmark(o), std::invalid_argument);
 }
