@@ -119,4 +119,42 @@ TEST(Determinism, TwoReplaysGiveIdenticalMeshes) {
   }
 }
 
+// The shipped guarantees scene (assets/scenes/guarantees.jsonl): its statistics say what the commands certify, and
+// it is deterministic: two replays, and undoing every command then redoing them, give bit-identical meshes.
+TEST(Determinism, GuaranteesSceneCertifiesAndReplaysBitForBit) {
+  const fs::path log = fs::path(TRISPLINE_SOURCE_DIR) / "assets" / "scenes" / "guarantees.jsonl";
+  core::Scene a, b;
+  editor::History ha(a), hb(b);
+  const editor::ReplayResult r = editor::replay_lines(ha, log);
+  ASSERT_TRUE(r.ok) << r.error;
+  ASSERT_TRUE(editor::replay_lines(hb, log).ok);
+  expect_same_meshes(a, b);
+
+  std::vector<nlohmann::json> certify, refine, press;
+  for (const editor::ExecutionRecord& e : r.records) {
+    if (e.cmd == "lattice.certify") certify.push_back(e.stats);
+    if (e.cmd == "mesh.refine") refine.push_back(e.stats);
+    if (e.cmd == "lattice.press") press.push_back(e.stats);
+  }
+  ASSERT_EQ(certify.size(), 2u);
+  ASSERT_EQ(refine.size(), 2u);
+  ASSERT_EQ(press.size(), 1u);
+  for (const auto& c : certify) EXPECT_EQ(c.at("certificate"), "fold_free") << c.dump();
+  for (const auto& f : refine) {
+    EXPECT_EQ(f.at("stopped_by"), "converged") << f.dump();
+    EXPECT_LE(f.at("max_bound").get<double>(), f.at("tolerance").get<double>()) << f.dump();
+    EXPECT_GT(f.at("triangles_after").get<std::size_t>(), f.at("triangles_before").get<std::size_t>()) << f.dump();
+  }
+  EXPECT_TRUE(press[0].at("limited").get<bool>()) << "the asked strength would fold the lattice";
+  EXPECT_GT(press[0].at("strength_used").get<double>(), 0.0);
+  EXPECT_LT(press[0].at("strength_used").get<double>(), 0.6);
+
+  const core::Scene after = a;
+  const std::size_t applied = ha.applied();
+  for (std::size_t i = 0; i < applied; ++i) ha.undo();
+  EXPECT_TRUE(a.objects().empty());
+  for (std::size_t i = 0; i < applied; ++i) ha.redo();
+  expect_same_meshes(a, after);
+}
+
 }  // namespace
