@@ -68,11 +68,11 @@ SecondDerivativeBounds::BoxBound bound_net(const Net& P, const glm::ivec3& deg, 
           glm::ivec3 q1 = q, q2 = q;
           q1[a] += 1, q2[a] += 2;
           const glm::dvec3 d = at(q2) - 2.0 * at(q1) + at(q);
-          mx = std::max(mx, glm::length(d));
+          mx = std::max(mx, glm::dot(d, d));  // squared: one square root at the end
           hull.add(a, d);
         }
     const double s = deg[a] * (deg[a] - 1) / (size[a] * size[a]);
-    out.m[a] = s * mx;
+    out.m[a] = s * std::sqrt(mx);
     hull.scale(a, s);
   }
   const int pairs[3][2] = {{0, 1}, {0, 2}, {1, 2}};
@@ -87,11 +87,11 @@ SecondDerivativeBounds::BoxBound bound_net(const Net& P, const glm::ivec3& deg, 
           glm::ivec3 qa = q, qb = q, qab = q;
           qa[a] += 1, qb[b] += 1, qab[a] += 1, qab[b] += 1;
           const glm::dvec3 d = at(qab) - at(qa) - at(qb) + at(q);
-          mx = std::max(mx, glm::length(d));
+          mx = std::max(mx, glm::dot(d, d));  // squared: one square root at the end
           hull.add(3 + e, d);
         }
     const double s = deg[a] * deg[b] / (size[a] * size[b]);
-    out.m[3 + e] = s * mx;
+    out.m[3 + e] = s * std::sqrt(mx);
     hull.scale(3 + e, s);
   }
   hull.store(out.box);
@@ -183,7 +183,8 @@ SecondDerivativeBounds::SecondDerivativeBounds(const TrivariateBSpline<glm::dvec
     if (total > max_sub_boxes) break;
   }
   levels_.resize(static_cast<std::size_t>(top) + 1);
-  for (int l = 0; l <= top; ++l) levels_[l].resize(cells << (3 * l));
+  level_boxes_.resize(levels_.size());
+  for (int l = 0; l <= top; ++l) levels_[l].resize(cells << (3 * l)), level_boxes_[l].resize(cells << (3 * l));
   tbb::parallel_for(std::size_t(0), cells, [&](std::size_t id) {
     const glm::ivec3 c(static_cast<int>(id % cells_.x), static_cast<int>((id / cells_.x) % cells_.y),
                        static_cast<int>(id / (static_cast<std::size_t>(cells_.x) * cells_.y)));
@@ -198,8 +199,11 @@ SecondDerivativeBounds::SecondDerivativeBounds(const TrivariateBSpline<glm::dvec
     std::vector<Net> nets{std::move(P)};
     for (int l = 0; l <= top; ++l) {
       const int n = 1 << l;
-      for (std::size_t s = 0; s < nets.size(); ++s)
-        levels_[l][(id << (3 * l)) + s] = bound_net(nets[s], deg, size / double(n));
+      for (std::size_t s = 0; s < nets.size(); ++s) {
+        const BoxBound b = bound_net(nets[s], deg, size / double(n));
+        levels_[l][(id << (3 * l)) + s] = b.m;
+        level_boxes_[l][(id << (3 * l)) + s] = b.box;
+      }
       if (l == top) break;
       std::vector<Net> next(nets.size() * 8);
       for (int sz = 0; sz < n; ++sz)
@@ -273,8 +277,10 @@ void SecondDerivativeBounds::for_boxes(const glm::dvec3& lo, const glm::dvec3& h
           const double shift = periodic_[a] ? k * (domain_hi_[a] - domain_lo_[a]) : 0.0;
           const double c0 = breaks_[a][w[a]] + shift, size = breaks_[a][w[a] + 1] - breaks_[a][w[a]];
           t[a] = glm::clamp(glm::dvec2(lo[a] - c0, hi[a] - c0) / size, 0.0, 1.0);
+          // The finest level whose sub-boxes are at least as wide as the extent: ⌊−log₂ extent⌋, here from the
+          // binary exponent (−ilogb − 1, one level coarser at exact powers of two: still sound).
           const double extent = t[a].y - t[a].x;
-          if (extent > 0.0) level = std::min(level, std::clamp(static_cast<int>(std::floor(-std::log2(extent))), 0, top));
+          if (extent > 0.0) level = std::min(level, std::clamp(-std::ilogb(extent) - 1, 0, top));
         }
         const int n = 1 << level;
         const std::size_t id = w.x + static_cast<std::size_t>(cells_.x) * (w.y + static_cast<std::size_t>(cells_.y) * w.z);
@@ -283,18 +289,18 @@ void SecondDerivativeBounds::for_boxes(const glm::dvec3& lo, const glm::dvec3& h
           s0[a] = std::min(static_cast<int>(t[a].x * n), n - 1);
           s1[a] = std::min(static_cast<int>(t[a].y * n), n - 1);
         }
-        const std::vector<BoxBound>& L = levels_[level];
         for (int sz = s0.z; sz <= s1.z; ++sz)
           for (int sy = s0.y; sy <= s1.y; ++sy)
             for (int sx = s0.x; sx <= s1.x; ++sx)
-              fn(L[(id << (3 * level)) + sx + static_cast<std::size_t>(n) * (sy + static_cast<std::size_t>(n) * sz)]);
+              fn(level, (id << (3 * level)) + sx + static_cast<std::size_t>(n) * (sy + static_cast<std::size_t>(n) * sz));
       }
 }
 
 glm::dmat3 SecondDerivativeBounds::over_box(const glm::dvec3& lo, const glm::dvec3& hi) const {
   std::array<double, 6> m{};
-  for_boxes(lo, hi, [&](const BoxBound& b) {
-    for (int e = 0; e < 6; ++e) m[e] = std::max(m[e], b.m[e]);
+  for_boxes(lo, hi, [&](int level, std::size_t at) {
+    const std::array<double, 6>& b = levels_[level][at];
+    for (int e = 0; e < 6; ++e) m[e] = std::max(m[e], b[e]);
   });
   return glm::dmat3(m[0], m[3], m[4], m[3], m[1], m[5], m[4], m[5], m[2]);
 }
@@ -302,13 +308,15 @@ glm::dmat3 SecondDerivativeBounds::over_box(const glm::dvec3& lo, const glm::dve
 glm::dmat3 SecondDerivativeBounds::over_box_along(const glm::dvec3& lo, const glm::dvec3& hi, const glm::dvec3& n) const {
   const glm::dvec3 an = glm::abs(n);
   std::array<double, 6> m{};
-  for_boxes(lo, hi, [&](const BoxBound& b) {
+  for_boxes(lo, hi, [&](int level, std::size_t at) {
+    const std::array<double, 6>& norms = levels_[level][at];
+    const std::array<double, 36>& box = level_boxes_[level][at];
     for (int e = 0; e < 6; ++e) {
-      const double* q = &b.box[6 * e];
+      const double* q = &box[6 * e];
       // max over the component box of |d·n|: |centre·n| + Σ|n_i| half_i; never more than the norm bound (|d·n| ≤ ‖d‖
       // for a unit n), which the box's corners can exceed.
       const double k = std::abs(q[0] * n.x + q[1] * n.y + q[2] * n.z) + an.x * q[3] + an.y * q[4] + an.z * q[5];
-      m[e] = std::max(m[e], std::min(k, b.m[e]));
+      m[e] = std::max(m[e], std::min(k, norms[e]));
     }
   });
   return glm::dmat3(m[0], m[3], m[4], m[3], m[1], m[5], m[4], m[5], m[2]);

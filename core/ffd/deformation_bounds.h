@@ -48,7 +48,7 @@ class SecondDerivativeBounds {
   // also halved (de Casteljau, all three axes) up to 4 times, as long as the sub-boxes of all levels number at most
   // `max_sub_boxes`, and bounded per sub-box: the second derivatives of a small triangle are bounded over the part of
   // the cell it lies in, not the whole cell (the bounds follow a local bump instead of spreading it over its cell).
-  explicit SecondDerivativeBounds(const TrivariateBSpline<glm::dvec3>& F, std::size_t max_sub_boxes = 1u << 16);
+  explicit SecondDerivativeBounds(const TrivariateBSpline<glm::dvec3>& F, std::size_t max_sub_boxes = 1u << 15);
 
   // M (symmetric 3 × 3: M[a][b] ≥ sup ‖∂²F/∂a∂b‖) over the box lo…hi (parameters, clamped to the domain): the finest
   // sub-boxes of every cell meeting it.
@@ -78,13 +78,15 @@ class SecondDerivativeBounds {
   // The cell of x along axis a (upper: a point on a knot plane counts for the cell above); on a periodic axis an
   // unrolled index (cell + period · cells).
   int cell_index(int a, double x, bool upper) const;
-  // Calls fn(bound) for the finest sub-boxes of every cell meeting the box lo…hi.
+  // Calls fn(level, index into levels_[level]) for the finest sub-boxes of every cell meeting the box lo…hi.
   template <class PerBox>
   void for_boxes(const glm::dvec3& lo, const glm::dvec3& hi, PerBox&& fn) const;
   glm::bvec3 periodic_{false};
   glm::dvec3 domain_lo_{0.0}, domain_hi_{1.0};
-  // levels_[l][cell · 8^l + sx + 2^l (sy + 2^l sz)]: the bounds of sub-box (sx, sy, sz) of a cell halved l times.
-  std::vector<std::vector<BoxBound>> levels_;
+  // levels_[l][cell · 8^l + sx + 2^l (sy + 2^l sz)]: the bounds of sub-box (sx, sy, sz) of a cell halved l times; the
+  // norms (what over_box reads, for every triangle) apart from the component boxes (over_box_along only).
+  std::vector<std::vector<std::array<double, 6>>> levels_;
+  std::vector<std::vector<std::array<double, 36>>> level_boxes_;
 };
 
 // The bound on ε_{F,T} of the parameter triangle (a, b, c), world units; +∞ when it crosses a C⁰ knot plane.
