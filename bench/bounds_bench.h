@@ -27,7 +27,8 @@ struct BoundsBenchOptions {
   int soundness_triangles = 1'000'000;              // ≥ 0: triangles of the unrefined mesh checked in random lattices
 };
 
-// Result: {bench:"bounds", threads, certificate:[{order, controls, cells, boxes, verdict, ms}], sweep:{lattices,
+// Result: {bench:"bounds", threads, certificate:[{order, controls, cells, boxes, quick_cells, verdict, ms, exact_boxes,
+//          exact_verdict, exact_ms}] (exact_*: without the quick test), sweep:{lattices,
 //          fold_free, fold, undecided, sampled_folds, certified_but_sampled_fold, fold_reported_at_positive_det},
 //          triangles:{mesh, vertices, triangles, prepare_ms, ms, per_second, max_bound, median_bound},
 //          soundness:{mesh, triangles, lattices, unbounded, ms, methods:{NAME:{exceeded, tightness:{count, median,

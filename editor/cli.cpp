@@ -167,12 +167,13 @@ void print_silhouette_table(const nlohmann::json& r, std::ostream& out) {
 // `trispline bench bounds`: certificate times per lattice, then the soundness sweep's counts.
 void print_bounds_table(const nlohmann::json& r, std::ostream& out) {
   out << "fold-free certificate, " << r["threads"].get<int>() << " threads\n"
-      << "  order  controls   cells   boxes  verdict          ms\n";
+      << "  order  controls   cells   quick  verdict          ms   exact ms (Bernstein boxes)\n";
   for (const auto& c : r["certificate"])
     out << "  " << std::setw(5) << c["order"].get<int>() << std::setw(8) << c["controls"].get<int>() << "^3"
-        << std::setw(8) << c["cells"].get<std::size_t>() << std::setw(8) << c["boxes"].get<std::size_t>() << "  "
+        << std::setw(8) << c["cells"].get<std::size_t>() << std::setw(8) << c["quick_cells"].get<std::size_t>() << "  "
         << std::setw(10) << std::left << c["verdict"].get<std::string>() << std::right << std::setw(10)
-        << bench_fixed(c["ms"].get<double>(), 2) << "\n";
+        << bench_fixed(c["ms"].get<double>(), 2) << std::setw(11) << bench_fixed(c["exact_ms"].get<double>(), 2) << " ("
+        << c["exact_boxes"].get<std::size_t>() << ")\n";
   const auto& w = r["sweep"];
   out << "  sweep: " << w["lattices"].get<int>() << " random lattices: " << w["fold_free"].get<std::size_t>()
       << " fold-free, " << w["fold"].get<std::size_t>() << " fold, " << w["undecided"].get<std::size_t>()

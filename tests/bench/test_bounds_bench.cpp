@@ -21,6 +21,8 @@ TEST(BoundsBench, ShortSweepIsSoundAndComplete) {
   ASSERT_EQ(r.at("certificate").size(), 6u);
   for (const auto& c : r.at("certificate")) {
     EXPECT_EQ(c.at("verdict"), "fold_free") << c.dump();
+    EXPECT_EQ(c.at("exact_verdict"), "fold_free") << c.dump();
+    EXPECT_GE(c.at("exact_boxes").get<std::size_t>(), c.at("cells").get<std::size_t>()) << c.dump();
     EXPECT_GE(c.at("ms").get<double>(), 0.0);
   }
   const auto& w = r.at("sweep");
