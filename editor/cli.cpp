@@ -142,6 +142,12 @@ void add_replay(CLI::App& app, CliRequest& o) {
           "A-B");
   o.replay_cmd->add_option("--format", o.replay.format, "Image format of --frames: png (8-bit) or exr (half, linear)")
       ->check(CLI::IsMember({"png", "exr"}));
+  o.replay_cmd
+      ->add_option("--piece-base", o.replay.piece_base,
+                   "With --frames: write animation.piece, morph targets relative to this timeline frame (the farm's "
+                   "range start), instead of animation.glb; `trispline farm assemble` joins the pieces")
+      ->check(CLI::NonNegativeNumber)
+      ->needs("--frames");
 }
 
 // `trispline bench silhouettes`: a table of the per-view figures, or the JSON object.
