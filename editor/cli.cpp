@@ -18,6 +18,7 @@
 #include "bench/silhouette_bench.h"
 #include "editor/command_docs.h"
 #include "editor/command_registry.h"
+#include "editor/farm_cli.h"
 #include "editor/replay.h"
 
 namespace trispline::editor {
@@ -64,6 +65,7 @@ struct CliRequest {
   CLI::App *ffd_cmd = nullptr, *place_cmd = nullptr, *dffd_cmd = nullptr, *ddm_cmd = nullptr, *press_cmd = nullptr;
   CLI::App* commands_cmd = nullptr;
   std::string command_id, docs_file;
+  FarmCli farm;
 };
 
 // `trispline [LOG]` and `trispline edit [LOG] [--screenshot PNG] ...`.
@@ -325,6 +327,7 @@ int run_cli(int argc, char** argv) {
   add_replay(app, o);
   add_bench(app, o);
   add_commands(app, o);
+  add_farm_commands(app, o.farm);
 
   try {
     app.parse(argc, argv);
@@ -350,6 +353,7 @@ int run_cli(int argc, char** argv) {
     if (*o.bounds_cmd)
       return bench_emit(core::run_bounds_benchmark(o.bounds), o.bounds_json, std::cout, print_bounds_table);
     if (*o.commands_cmd) return run_commands(o);
+    if (const int farm = run_farm_command(o.farm); farm >= 0) return farm;
     if (!o.open_log.empty()) o.edit.open_log = o.open_log;
     return run_editor(o.edit);
   } catch (const std::exception& e) {
