@@ -91,6 +91,20 @@ if [ "$engine" = local ]; then
   "$exe" farm resume "$farm" > "$out/resume_failed.txt"
   grep -q "tasks 1," "$out/resume_failed.txt" || { cat "$out/resume_failed.txt"; fail "resume did not rerun task 1 only"; }
   echo "failed chunk resumed at $((SECONDS - t0)) s"
+
+  # A batch: one task per log of a folder, every report.json in one summary (a failing log is a result).
+  mkdir -p "$out/library"
+  cp "$TRISPLINE_SOURCE"/tests/logs/{ring_animate,undo_redo,bad_unknown_command}.jsonl "$out/library/"
+  if "$exe" farm batch "$out/library" --out "$out/batch" --engine local --max-parallel 2 "${size[@]}" \
+      > "$out/batch.txt"; then
+    fail "farm batch exited 0 although a log fails"
+  fi
+  grep -q "^assembled: " "$out/batch.txt" || fail "the batch was not summarised: $(cat "$out/batch.txt")"
+  jq -e '.logs == 3 and .ok == 2 and .failed == ["bad_unknown_command"] and
+         ([.runs[] | select(.ok) | .report.final_png] | length == 2)' "$out/batch/summary.json" > /dev/null ||
+    { cat "$out/batch/summary.json" >&2; fail "the batch summary is not 3 logs, 2 ok, bad_unknown_command failed"; }
+  [ -f "$out/batch/runs/ring_animate/final.png" ] || fail "the batch did not render ring_animate"
+  echo "batch done at $((SECONDS - t0)) s"
 else
   "$exe" farm submit "$log" --frames 1-16 --chunk 4 --max-parallel 2 --out "$farm" --engine slurm "${size[@]}" \
     --time 00:10:00 | tee "$out/submit.txt"
