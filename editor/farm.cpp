@@ -62,7 +62,9 @@ std::string task_script(const FarmPlan& plan) {
     << "; written by `trispline farm " << (plan.kind == "batch" ? "batch" : "submit") << "`.\n"
     << sbatch_header(plan, "trispline-farm", plan.dir / "logs" / "task_%4a.log") << "#SBATCH --cpus-per-task=1\n"
     << "set -u\n"
-    << "task=${SLURM_ARRAY_TASK_ID:?run by sbatch --array or by trispline farm --engine local}\n";
+    << "task=${SLURM_ARRAY_TASK_ID:?run by sbatch --array or by trispline farm --engine local}\n"
+    << "# llvmpipe draws with the CPUs the task was given, not every CPU of the node\n"
+    << "export LP_NUM_THREADS=${LP_NUM_THREADS:-${SLURM_CPUS_PER_TASK:-1}}\n";
   if (plan.kind == "batch") {
     s << "logs=(";
     for (const FarmTask& t : plan.tasks) s << "\n  " << shell_quote(t.log.string());
@@ -426,6 +428,7 @@ void print_farm_status(const FarmPlan& plan, const FarmStatus& status, std::ostr
 }
 
 int farm_submit(FarmPlan plan, std::ostream& out, std::ostream& err) {
+  bool planned = false;  // farm.json written
   try {
     plan.dir = fs::absolute(plan.dir).lexically_normal();
     if (plan.kind == "frames") {
@@ -456,6 +459,7 @@ int farm_submit(FarmPlan plan, std::ostream& out, std::ostream& err) {
     fs::create_directories(plan.dir);
     write_job_scripts(plan);
     write_plan(plan);
+    planned = true;
     std::vector<int> all;
     for (const FarmTask& t : plan.tasks) all.push_back(t.index);
     return run_engine(plan, all, out);
@@ -464,6 +468,9 @@ int farm_submit(FarmPlan plan, std::ostream& out, std::ostream& err) {
     return 2;
   } catch (const std::exception& e) {
     err << "farm submit: " << e.what() << "\n";
+    if (planned)
+      err << "farm submit: the plan and job scripts stay in " << plan.dir.string() << ": `trispline farm resume "
+          << plan.dir.string() << "` submits them\n";
     return 3;
   }
 }

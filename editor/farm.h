@@ -119,7 +119,8 @@ std::vector<int> tasks_to_resume(const FarmStatus& status);
 
 // Replays the plan's log to check the range against its timeline, writes DIR/farm.json and the scripts, submits.
 // Returns the exit code: 0 submitted (local: every task and the assembly succeeded), 1 a task or the assembly
-// failed (local), 2 bad input (nothing submitted). Messages go to `out` / `err`.
+// failed (local), 2 bad input (nothing submitted), 3 sbatch refused or a file could not be written (the plan, once
+// written, stays for `farm resume`). Messages go to `out` / `err`; never throws.
 int farm_submit(FarmPlan plan, std::ostream& out, std::ostream& err);
 
 // Resubmits the tasks tasks_to_resume finds (and the assembly) with the plan's engine. Exit codes as farm_submit;
@@ -141,7 +142,9 @@ void print_farm_status(const FarmPlan& plan, const FarmStatus& status, std::ostr
 // assembly; returns the job, throws std::runtime_error when sbatch is missing or refuses (its message quoted).
 FarmJob submit_slurm(const FarmPlan& plan, const std::vector<int>& tasks);
 // Local: a pool of at most max_parallel processes (nproc when 0) on this machine, in the foreground, then the
-// assembly when every task succeeded (frames) or always (batch). Returns 0 when all succeeded, 1 otherwise.
+// assembly when every task succeeded (frames) or always (batch). Each task gets SLURM_ARRAY_TASK_ID and
+// SLURM_CPUS_PER_TASK = CPUs / max_parallel (its llvmpipe threads), as under Slurm. Returns 0 when all succeeded,
+// 1 otherwise; throws std::runtime_error when a process cannot be started.
 // `on_start` is called with the pool's job record once it runs (the caller stores it in the plan).
 int run_local(const FarmPlan& plan, const std::vector<int>& tasks, std::ostream& out,
               const std::function<void(const FarmJob&)>& on_start);

@@ -22,11 +22,13 @@ namespace trispline::editor {
 namespace {
 
 // Starts `bash script` with SLURM_ARRAY_TASK_ID=task (when task ≥ 0), output into `log`; returns the pid.
-pid_t spawn_script(const std::filesystem::path& script, int task, const std::filesystem::path& log) {
+// SLURM_CPUS_PER_TASK=cpus as Slurm would set it (the script gives llvmpipe that many threads).
+pid_t spawn_script(const std::filesystem::path& script, int task, int cpus, const std::filesystem::path& log) {
   std::vector<std::string> env_text;
   for (char** e = environ; *e; ++e)
     if (std::string(*e).rfind("SLURM_", 0) != 0) env_text.emplace_back(*e);
   if (task >= 0) env_text.push_back("SLURM_ARRAY_TASK_ID=" + std::to_string(task));
+  env_text.push_back("SLURM_CPUS_PER_TASK=" + std::to_string(cpus));
   std::vector<char*> env;
   for (std::string& e : env_text) env.push_back(e.data());
   env.push_back(nullptr);
@@ -57,8 +59,8 @@ std::string log_name(int task) { return "task_" + farm_task_name(task) + ".log";
 
 int run_local(const FarmPlan& plan, const std::vector<int>& tasks, std::ostream& out,
               const std::function<void(const FarmJob&)>& on_start) {
-  const int slots =
-      plan.max_parallel > 0 ? plan.max_parallel : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  const int cpus = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  const int slots = plan.max_parallel > 0 ? plan.max_parallel : cpus;
   FarmJob job;
   job.engine = "local";
   job.pool_pid = static_cast<long>(::getpid());
@@ -71,7 +73,7 @@ int run_local(const FarmPlan& plan, const std::vector<int>& tasks, std::ostream&
   while (next < tasks.size() || !running.empty()) {
     while (next < tasks.size() && static_cast<int>(running.size()) < slots) {
       const int task = tasks[next++];
-      running[spawn_script(script, task, logs / log_name(task))] = task;
+      running[spawn_script(script, task, std::max(1, cpus / slots), logs / log_name(task))] = task;
     }
     int status = 0;
     const pid_t pid = ::waitpid(-1, &status, 0);
@@ -98,7 +100,7 @@ int run_local(const FarmPlan& plan, const std::vector<int>& tasks, std::ostream&
     return 1;
   }
   const std::filesystem::path assemble_log = logs / "assemble.log";
-  const int code = wait_status(spawn_script(plan.dir / "farm_assemble.sh", -1, assemble_log));
+  const int code = wait_status(spawn_script(plan.dir / "farm_assemble.sh", -1, cpus, assemble_log));
   out << (code == 0 ? "assembled: " : "assembly failed: see ") << assemble_log.string() << "\n";
   return code == 0 && failed == 0 ? 0 : 1;
 }
