@@ -1,56 +1,32 @@
 // The local engine of `trispline farm`: the job scripts Slurm would run, run by a pool of processes on this machine
 // in the foreground (no daemon). Each task gets SLURM_ARRAY_TASK_ID as an array task would and writes the same log.
-#include <fcntl.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
-#include <cstdio>
-#include <cstring>
 #include <map>
 #include <ostream>
 #include <stdexcept>
 #include <thread>
 
 #include "editor/farm.h"
+#include "editor/process.h"
 
 extern char** environ;
 
 namespace trispline::editor {
 namespace {
 
-// Starts `bash script` with SLURM_ARRAY_TASK_ID=task (when task ≥ 0), output into `log`; returns the pid.
-// SLURM_CPUS_PER_TASK=cpus as Slurm would set it (the script gives llvmpipe that many threads).
+// Starts `bash script` with SLURM_ARRAY_TASK_ID=task (when task ≥ 0) and SLURM_CPUS_PER_TASK=cpus as Slurm would
+// set them (the script gives llvmpipe that many threads), output into `log`; returns the pid.
 pid_t spawn_script(const std::filesystem::path& script, int task, int cpus, const std::filesystem::path& log) {
-  std::vector<std::string> env_text;
+  std::vector<std::string> env;
   for (char** e = environ; *e; ++e)
-    if (std::string(*e).rfind("SLURM_", 0) != 0) env_text.emplace_back(*e);
-  if (task >= 0) env_text.push_back("SLURM_ARRAY_TASK_ID=" + std::to_string(task));
-  env_text.push_back("SLURM_CPUS_PER_TASK=" + std::to_string(cpus));
-  std::vector<char*> env;
-  for (std::string& e : env_text) env.push_back(e.data());
-  env.push_back(nullptr);
-  std::string bash = "/bin/bash", path = script.string();
-  char* argv[] = {bash.data(), path.data(), nullptr};
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&actions, 1, 2);
-  pid_t pid = 0;
-  const int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv, env.data());
-  posix_spawn_file_actions_destroy(&actions);
-  if (rc != 0) throw std::runtime_error("cannot start " + path + ": " + std::strerror(rc));
-  return pid;
-}
-
-int wait_status(pid_t pid) {
-  int status = 0;
-  while (::waitpid(pid, &status, 0) < 0)
-    if (errno != EINTR) return -1;
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    if (std::string(*e).rfind("SLURM_", 0) != 0) env.emplace_back(*e);
+  if (task >= 0) env.push_back("SLURM_ARRAY_TASK_ID=" + std::to_string(task));
+  env.push_back("SLURM_CPUS_PER_TASK=" + std::to_string(cpus));
+  return start_process({"/bin/bash", script.string()}, log, &env);
 }
 
 std::string log_name(int task) { return "task_" + farm_task_name(task) + ".log"; }
@@ -83,7 +59,7 @@ int run_local(const FarmPlan& plan, const std::vector<int>& tasks, std::ostream&
     }
     const auto it = running.find(pid);
     if (it == running.end()) continue;
-    const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    const int code = exit_status(status);
     if (code != 0) {
       ++failed;
       out << "task " << it->second << " failed (exit " << code << "): " << (logs / log_name(it->second)).string()
@@ -100,7 +76,7 @@ int run_local(const FarmPlan& plan, const std::vector<int>& tasks, std::ostream&
     return 1;
   }
   const std::filesystem::path assemble_log = logs / "assemble.log";
-  const int code = wait_status(spawn_script(plan.dir / "farm_assemble.sh", -1, cpus, assemble_log));
+  const int code = wait_process(spawn_script(plan.dir / "farm_assemble.sh", -1, cpus, assemble_log));
   out << (code == 0 ? "assembled: " : "assembly failed: see ") << assemble_log.string() << "\n";
   return code == 0 && failed == 0 ? 0 : 1;
 }

@@ -1,14 +1,10 @@
 #include "editor/record.h"
 
 #include <OpenImageIO/imageio.h>
-#include <fcntl.h>
-#include <spawn.h>
 #include <sys/stat.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <array>
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -23,9 +19,8 @@
 #include "core/mesh/gltf_anim_io.h"
 #include "core/scene/scene_export.h"
 #include "core/mesh/image_io.h"
+#include "editor/process.h"
 #include "editor/render_scene.h"
-
-extern char** environ;
 
 namespace trispline::editor {
 namespace fs = std::filesystem;
@@ -91,28 +86,6 @@ fs::path find_on_path(const std::string& name) {
 }
 
 namespace {
-
-// Runs `argv` (argv[0] an absolute path) with stdin from /dev/null and stdout+stderr into `log`; returns the exit
-// status (−1 when it could not start or died of a signal). No shell is involved, so paths need no quoting.
-int run_program(const std::vector<std::string>& argv, const fs::path& log) {
-  std::vector<char*> args;
-  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-  args.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&actions, 1, 2);
-  pid_t pid = 0;
-  const int rc = posix_spawn(&pid, args[0], &actions, nullptr, args.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (rc != 0) return -1;
-  int status = 0;
-  while (::waitpid(pid, &status, 0) < 0) {
-    if (errno != EINTR) return -1;
-  }
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
 
 std::string read_text(const fs::path& p, std::size_t max_chars) {
   std::ifstream in(p, std::ios::binary);
@@ -335,7 +308,7 @@ std::string write_mp4(const fs::path& dir, int first, int frames, double fps, in
   if (width % 2 || height % 2) argv.insert(argv.end(), {"-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2"});
   argv.insert(argv.end(),
               {"-frames:v", std::to_string(frames), "-c:v", "libx264", "-pix_fmt", "yuv420p", "-y", mp4.string()});
-  const int status = run_program(argv, log);
+  const int status = run_process(argv, log);
   std::error_code ec;
   std::string note;
   if (!(status == 0 && fs::is_regular_file(mp4, ec) && fs::file_size(mp4, ec) > 0)) {
