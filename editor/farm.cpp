@@ -394,8 +394,11 @@ FarmStatus farm_status(const fs::path& dir) {
       st.state = "missing";
     status.tasks.push_back(st);
   }
-  status.assembled = plan.kind == "batch" ? fs::is_regular_file(dir / "summary.json", ec)
-                                          : all_frames_in_dir && fs::is_regular_file(dir / "animation.glb", ec);
+  const bool all_done =
+      std::all_of(status.tasks.begin(), status.tasks.end(), [](const FarmTaskState& t) { return t.state == "done"; });
+  status.assembled = plan.kind == "batch"
+                         ? fs::is_regular_file(dir / "summary.json", ec)
+                         : all_done && all_frames_in_dir && fs::is_regular_file(dir / "animation.glb", ec);
   return status;
 }
 
@@ -422,7 +425,11 @@ void print_farm_status(const FarmPlan& plan, const FarmStatus& status, std::ostr
     if (t.state == "done") continue;
     out << "  task " << t.index << ": " << t.state;
     if (t.exit_status >= 0) out << " (exit " << t.exit_status << ")";
-    if (!t.missing_frames.empty()) out << ", " << t.missing_frames.size() << " frames missing";
+    if (!t.missing_frames.empty()) {
+      out << ", frames missing:";
+      for (std::size_t k = 0; k < t.missing_frames.size() && k < 10; ++k) out << " " << t.missing_frames[k];
+      if (t.missing_frames.size() > 10) out << " …";
+    }
     out << "\n";
   }
 }

@@ -106,7 +106,7 @@ struct FarmTaskState {
 
 struct FarmStatus {
   std::vector<FarmTaskState> tasks;
-  bool assembled = false;  // frames: DIR/animation.glb and every frame in DIR; batch: DIR/summary.json
+  bool assembled = false;  // frames: every task done, DIR/animation.glb and every frame in DIR; batch: summary.json
   nlohmann::json to_json() const;
 };
 
