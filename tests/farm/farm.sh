@@ -4,8 +4,9 @@
 # state and spool under the test's folder, stopped by PID on exit) or local (the pool). Asserts: every frame and
 # animation.glb equal one `replay --frames 1-16`'s bytes, two chunks overlapped in time and never more than 2 ran at
 # once (task logs), `farm resume` after deleting one chunk's frames re-renders only that chunk; local also: bad input
-# is refused with nothing written, and a failed chunk leaves the others intact. A Slurm daemon that does not start
-# fails the test with its log. Usage: farm.sh slurm|local (TRISPLINE, TRISPLINE_SOURCE, FARM_OUT from ctest).
+# is refused with nothing written, and a failed chunk leaves the others intact. Both: a batch of three logs (one bad)
+# summarised into summary.json. A Slurm daemon that does not start fails the test with its log.
+# Usage: farm.sh slurm|local (TRISPLINE, TRISPLINE_SOURCE, FARM_OUT from ctest).
 set -euo pipefail
 engine=${1:?usage: farm.sh slurm|local}
 exe=${TRISPLINE:?path of the trispline executable}
@@ -92,19 +93,6 @@ if [ "$engine" = local ]; then
   grep -q "tasks 1," "$out/resume_failed.txt" || { cat "$out/resume_failed.txt"; fail "resume did not rerun task 1 only"; }
   echo "failed chunk resumed at $((SECONDS - t0)) s"
 
-  # A batch: one task per log of a folder, every report.json in one summary (a failing log is a result).
-  mkdir -p "$out/library"
-  cp "$TRISPLINE_SOURCE"/tests/logs/{ring_animate,undo_redo,bad_unknown_command}.jsonl "$out/library/"
-  if "$exe" farm batch "$out/library" --out "$out/batch" --engine local --max-parallel 2 "${size[@]}" \
-      > "$out/batch.txt"; then
-    fail "farm batch exited 0 although a log fails"
-  fi
-  grep -q "^assembled: " "$out/batch.txt" || fail "the batch was not summarised: $(cat "$out/batch.txt")"
-  jq -e '.logs == 3 and .ok == 2 and .failed == ["bad_unknown_command"] and
-         ([.runs[] | select(.ok) | .report.final_png] | length == 2)' "$out/batch/summary.json" > /dev/null ||
-    { cat "$out/batch/summary.json" >&2; fail "the batch summary is not 3 logs, 2 ok, bad_unknown_command failed"; }
-  [ -f "$out/batch/runs/ring_animate/final.png" ] || fail "the batch did not render ring_animate"
-  echo "batch done at $((SECONDS - t0)) s"
 else
   "$exe" farm submit "$log" --frames 1-16 --chunk 4 --max-parallel 2 --out "$farm" --engine slurm "${size[@]}" \
     --time 00:10:00 | tee "$out/submit.txt"
@@ -146,4 +134,25 @@ cmp -s "$out/before.txt" "$out/after.txt" || fail "resume touched the frames or 
 [ "$(status_json | jq -r '.done')" = 4 ] || fail "not every chunk is done after resume"
 check_frames_and_glb
 "$exe" farm resume "$farm" | grep -q "nothing to do" || fail "a second resume found something to do"
+
+# A batch: one task per log of a folder, every report.json in one summary (a failing log is a result: afterany).
+mkdir -p "$out/library"
+cp "$TRISPLINE_SOURCE"/tests/logs/{ring_animate,undo_redo,bad_unknown_command}.jsonl "$out/library/"
+rc=0
+"$exe" farm batch "$out/library" --out "$out/batch" --engine "$engine" --max-parallel 2 "${size[@]}" \
+  > "$out/batch.txt" || rc=$?
+if [ "$engine" = local ]; then
+  [ "$rc" = 1 ] || fail "farm batch exited $rc, not 1, although a log fails"
+  grep -q "^assembled: " "$out/batch.txt" || fail "the batch was not summarised: $(cat "$out/batch.txt")"
+else
+  [ "$rc" = 0 ] && grep -q "assemble job [0-9]* (afterany)" "$out/batch.txt" ||
+    fail "farm batch did not submit an afterany assembly: $(cat "$out/batch.txt")"
+  wait_farm
+fi
+jq -e '.logs == 3 and .ok == 2 and .failed == ["bad_unknown_command"] and
+       ([.runs[] | select(.ok) | .report.final_png] | length == 2)' "$out/batch/summary.json" > /dev/null ||
+  { cat "$out/batch/summary.json" "$out/batch/logs/assemble.log" >&2; fail "the batch summary is not 3 logs, 2 ok"; }
+[ -f "$out/batch/runs/ring_animate/final.png" ] || fail "the batch did not render ring_animate"
+echo "batch done at $((SECONDS - t0)) s"
+
 echo "PASS farm.$engine in $((SECONDS - t0)) s"
