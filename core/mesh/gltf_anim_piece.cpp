@@ -172,6 +172,9 @@ MorphAnimationBuilder MorphAnimationBuilder::read_piece(const std::filesystem::p
       if (s.first != covered || s.frames < 1 || s.first + s.frames > b.frames_) r.fail("segment frames");
       covered += s.frames;
       s.base = read_mesh(r);
+      if (!s.base.face_material.empty() && s.base.face_material.size() != s.base.triangles.size())
+        r.fail("face materials");
+      validate_mesh(s.base, "'" + path.string() + "': object '" + o.name + "'");
       const std::size_t floats = s.base.positions.size() * 3;
       for (int f = 0; f + 1 < s.frames; ++f) {
         s.pos_delta.push_back(r.array<float>());
