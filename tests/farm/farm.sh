@@ -3,9 +3,9 @@
 # at once) on ENGINE = slurm (a single-node Slurm started here: slurmctld + slurmd from Debian's slurm-wlm, auth/none,
 # state and spool under the test's folder, stopped by PID on exit) or local (the pool). Asserts: every frame and
 # animation.glb equal one `replay --frames 1-16`'s bytes, two chunks overlapped in time and never more than 2 ran at
-# once (task logs), `farm resume` after deleting one chunk's frames re-renders only that chunk; local also: bad input
-# is refused with nothing written, and a failed chunk leaves the others intact. Both: a batch of three logs (one bad)
-# summarised into summary.json. A Slurm daemon that does not start fails the test with its log.
+# once (task logs), `farm resume` after deleting one chunk's frames re-renders only that chunk, a failed chunk leaves
+# the others intact and resume reruns it alone, a batch of three logs (one bad) is summarised into summary.json;
+# local also: bad input is refused with nothing written. A Slurm daemon that does not start fails the test with its log.
 # Usage: farm.sh slurm|local (TRISPLINE, TRISPLINE_SOURCE, FARM_OUT from ctest).
 set -euo pipefail
 engine=${1:?usage: farm.sh slurm|local}
@@ -73,34 +73,41 @@ if [ "$engine" = local ]; then
   grep -q "sbatch not found.*slurm-client" "$out/refused.txt" || { cat "$out/refused.txt" >&2; fail "no sbatch message"; }
   [ ! -e "$out/bad/farm.json" ] || fail "a submission without sbatch wrote farm.json"
   echo "bad input refused at $((SECONDS - t0)) s"
+fi
 
-  # A chunk that fails (its folder cannot be made: a file is in the way) leaves the other chunks' frames intact.
-  mkdir -p "$farm/chunks"
-  touch "$farm/chunks/0001"
-  if "$exe" farm submit "$log" --frames 1-16 --chunk 4 --max-parallel 2 --out "$farm" --engine local "${size[@]}" \
-      > "$out/submit_failing.txt"; then
-    fail "submit succeeded with a failing chunk"
-  fi
-  [ "$(status_json | jq -r '.tasks[1].state')" = failed ] || fail "task 1 is not reported failed"
-  [ "$(status_json | jq -r '.done')" = 3 ] || fail "the other 3 chunks are not done after one failed"
-  [ ! -e "$farm/animation.glb" ] || fail "assembled although a chunk failed"
-  for f in 1 2 3 4 9 10 11 12 13 14 15 16; do
-    cmp -s "$out/ref/$(printf frame_%04d.png $f)" "$farm/chunks/000$(((f - 1) / 4))/$(printf frame_%04d.png $f)" ||
-      fail "frame $f of a chunk that succeeded is not the reference's"
-  done
-  rm "$farm/chunks/0001"
-  "$exe" farm resume "$farm" > "$out/resume_failed.txt"
-  grep -q "tasks 1," "$out/resume_failed.txt" || { cat "$out/resume_failed.txt"; fail "resume did not rerun task 1 only"; }
-  echo "failed chunk resumed at $((SECONDS - t0)) s"
-
+# A chunk that fails (its folder cannot be made: a file is in the way) leaves the other chunks' frames intact, the
+# assembly does not run (Slurm: afterok never satisfied), and resume reruns that chunk alone (Slurm: after cancelling
+# the assemble job left waiting).
+mkdir -p "$farm/chunks"
+touch "$farm/chunks/0001"
+rc=0
+"$exe" farm submit "$log" --frames 1-16 --chunk 4 --max-parallel 2 --out "$farm" --engine "$engine" "${size[@]}" \
+  --time 00:10:00 > "$out/submit.txt" || rc=$?
+cat "$out/submit.txt"
+if [ "$engine" = local ]; then
+  [ "$rc" = 1 ] || fail "submit exited $rc, not 1, with a failing chunk"
 else
-  "$exe" farm submit "$log" --frames 1-16 --chunk 4 --max-parallel 2 --out "$farm" --engine slurm "${size[@]}" \
-    --time 00:10:00 | tee "$out/submit.txt"
-  grep -q "submitted array job [0-9]* (tasks 0,1,2,3) and assemble job [0-9]*" "$out/submit.txt" ||
+  [ "$rc" = 0 ] || fail "submit exited $rc"
+  grep -q "submitted array job [0-9]* (tasks 0,1,2,3) and assemble job [0-9]* (afterok)" "$out/submit.txt" ||
     fail "submit did not print the job ids"
   grep -q "^#SBATCH --time=00:10:00" "$farm/farm_task.sh" || fail "the job script has no --time"
-  wait_farm
+  for _ in $(seq 600); do  # until only the assemble job is left, waiting on its dependency
+    [ -z "$(squeue -h -o '%i %r' | grep -v ' Dependency' || true)" ] && break
+    sleep 0.25
+  done
+  [ "$(squeue -h -o %r)" = Dependency ] || { squeue >&2; fail "the assemble job is not left waiting"; }
 fi
+[ "$(status_json | jq -r '.tasks[1].state')" = failed ] || fail "task 1 is not reported failed"
+[ "$(status_json | jq -r '.done')" = 3 ] || fail "the other 3 chunks are not done after one failed"
+[ ! -e "$farm/animation.glb" ] || fail "assembled although a chunk failed"
+for f in 1 2 3 4 9 10 11 12 13 14 15 16; do
+  cmp -s "$out/ref/$(printf frame_%04d.png $f)" "$farm/chunks/000$(((f - 1) / 4))/$(printf frame_%04d.png $f)" ||
+    fail "frame $f of a chunk that succeeded is not the reference's"
+done
+rm "$farm/chunks/0001"
+"$exe" farm resume "$farm" > "$out/resume_failed.txt"
+grep -q "tasks 1[,)]" "$out/resume_failed.txt" || { cat "$out/resume_failed.txt"; fail "resume did not rerun task 1 only"; }
+wait_farm  # Slurm: also the first assemble job, which resume cancelled
 echo "farm done at $((SECONDS - t0)) s"
 
 [ "$(status_json | jq -r '.done')" = 4 ] || { status_json; fail "not every chunk is done"; }
