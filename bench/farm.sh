@@ -35,7 +35,8 @@ overhead() {
     start=$(awk '/ start / { for (i = 1; i < NF; ++i) if ($i == "start") print $(i + 1) }' "$l")
     first=$(ls "$dir/chunks/$k"/frame_* | head -1)
     awk -v s="$start" -v f="$(stat -c %.9Y "$first")" -v r="$(jq .replay_ms "$dir/chunks/$k/report.json")" \
-      -v k="$k" 'BEGIN { printf "    chunk %s: first frame %.2f s after the task started (log replay %.2f s)\n", k, f - s, r / 1000 }'
+      -v k="$k" 'BEGIN { printf "    chunk %s: first frame %.2f s after the task started (log replay %.2f s)\n",
+                              k, f - s, r / 1000 }'
   done
 }
 
@@ -67,8 +68,8 @@ for e in $engines; do
   asm=$(grep -o 'assembled frames.*' "$dir/logs/assemble.log" || true)
   echo "  $name, $par at once: $(printf %.1f "$s") s (submission to assembled), $(fpm "$s") frames/min" \
     "${single_s:+($(awk -v a="$s" -v b="$single_s" 'BEGIN { printf "%.2f", a / b }')× single)}"
-  first_start=$(cat "$dir"/logs/task_*.log | awk '/ start / { for (i = 1; i < NF; ++i) if ($i == "start") print $(i + 1) }' |
-    sort -n | head -1)
+  first_start=$(cat "$dir"/logs/task_*.log |
+    awk '/ start / { for (i = 1; i < NF; ++i) if ($i == "start") print $(i + 1) }' | sort -n | head -1)
   awk -v a="$t" -v b="$first_start" 'BEGIN { printf "    submission to the first task start: %.2f s\n", b - a }'
   overhead "$dir"
   [ -n "$asm" ] && echo "    $asm"

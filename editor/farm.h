@@ -15,8 +15,8 @@
 // Folder DIR (every path in the scripts absolute, so any node of a shared filesystem can run them):
 //   farm.json                  the plan and the submitted jobs
 //   farm_task.sh               run with SLURM_ARRAY_TASK_ID=k: `trispline replay LOG --frames a-b --out chunks/k`
-//                              (frames), or `trispline replay LOGk --out runs/NAMEk` (batch); prints a "farm: … start"
-//                              and a "farm: … exit STATUS" line with epoch seconds around it
+//                              (frames), or `trispline replay LOGk --out runs/NAMEk` (batch); prints a
+//                              "farm: … start" and a "farm: … exit STATUS" line with epoch seconds around it
 //   farm_assemble.sh           `trispline farm assemble DIR`
 //   logs/task_NNNN.log         each task's output (the journal: status reads it); logs/assemble.log
 //   chunks/NNNN/               a chunk's replay output: frame_NNNN.png|exr (written under a temporary name, then

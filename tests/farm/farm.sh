@@ -61,7 +61,8 @@ if [ "$engine" = local ]; then
   expect_refused() {
     local want=$1; shift
     if "$exe" farm "$@" > "$out/refused.txt" 2>&1; then fail "accepted: farm $*"; fi
-    grep -q -- "$want" "$out/refused.txt" || { cat "$out/refused.txt" >&2; fail "no '$want' in the message of: farm $*"; }
+    grep -q -- "$want" "$out/refused.txt" ||
+      { cat "$out/refused.txt" >&2; fail "no '$want' in the message of: farm $*"; }
     [ ! -e "$out/bad/farm.json" ] || fail "farm $* wrote farm.json"
   }
   expect_refused "chunk must be at least 1" submit "$log" --frames 1-16 --chunk 0 --out "$out/bad" --engine local
@@ -70,7 +71,8 @@ if [ "$engine" = local ]; then
   expect_refused "File does not exist" submit "$out/none.jsonl" --frames 1-4 --chunk 4 --out "$out/bad"
   if env PATH=/nonexistent "$exe" farm submit "$log" --frames 1-4 --chunk 4 --out "$out/bad" > "$out/refused.txt" 2>&1
   then fail "submitted to Slurm without sbatch"; fi
-  grep -q "sbatch not found.*slurm-client" "$out/refused.txt" || { cat "$out/refused.txt" >&2; fail "no sbatch message"; }
+  grep -q "sbatch not found.*slurm-client" "$out/refused.txt" ||
+    { cat "$out/refused.txt" >&2; fail "no sbatch message"; }
   [ ! -e "$out/bad/farm.json" ] || fail "a submission without sbatch wrote farm.json"
   echo "bad input refused at $((SECONDS - t0)) s"
 fi
@@ -106,14 +108,16 @@ for f in 1 2 3 4 9 10 11 12 13 14 15 16; do
 done
 rm "$farm/chunks/0001"
 "$exe" farm resume "$farm" > "$out/resume_failed.txt"
-grep -q "tasks 1[,)]" "$out/resume_failed.txt" || { cat "$out/resume_failed.txt"; fail "resume did not rerun task 1 only"; }
+grep -q "tasks 1[,)]" "$out/resume_failed.txt" ||
+  { cat "$out/resume_failed.txt"; fail "resume did not rerun task 1 only"; }
 wait_farm  # Slurm: also the first assemble job, which resume cancelled
 echo "farm done at $((SECONDS - t0)) s"
 
 [ "$(status_json | jq -r '.done')" = 4 ] || { status_json; fail "not every chunk is done"; }
 [ "$(status_json | jq -r '.assembled')" = true ] || { cat "$farm/logs/assemble.log"; fail "not assembled"; }
 check_frames_and_glb
-jq -e '.record.glb_source == "pieces"' "$farm/report.json" > /dev/null || fail "animation.glb was not joined from pieces"
+jq -e '.record.glb_source == "pieces"' "$farm/report.json" > /dev/null ||
+  fail "animation.glb was not joined from pieces"
 
 # Two chunks overlapped in time, and never more than --max-parallel 2 ran at once (the task logs' epoch times).
 cat "$farm"/logs/task_*.log | awk '
