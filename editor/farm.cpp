@@ -172,96 +172,52 @@ std::string farm_task_name(int index) {
   return buf;
 }
 
+namespace {
+
+// Every field of farm.json once, for writing and reading: visit(name, member) per field, tasks and jobs included.
+template <class Plan, class Visit>
+void visit_plan_fields(Plan& p, Visit&& visit) {
+  visit("kind", p.kind);
+  visit("dir", p.dir);
+  visit("trispline", p.trispline);
+  visit("log", p.log);
+  visit("frame_first", p.frame_first);
+  visit("frame_last", p.frame_last);
+  visit("chunk", p.chunk);
+  visit("format", p.format);
+  visit("width", p.width);
+  visit("height", p.height);
+  visit("fps", p.fps);
+  visit("frame_width", p.frame_width);
+  visit("frame_height", p.frame_height);
+  visit("engine", p.engine);
+  visit("max_parallel", p.max_parallel);
+  visit("partition", p.partition);
+  visit("time", p.time_limit);
+  visit("tasks", p.tasks);
+  visit("jobs", p.jobs);
+}
+
+}  // namespace
+
+// farm.json's "tasks" and "jobs" entries (found by the plan's conversions through ADL).
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(FarmTask, index, first, last, log, name)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(FarmJob, engine, array_id, assemble_id, pool_pid, tasks)
+
 nlohmann::json FarmPlan::to_json() const {
-  nlohmann::json tasks_j = nlohmann::json::array();
-  for (const FarmTask& t : tasks) {
-    nlohmann::json j = {{"index", t.index}};
-    if (kind == "batch") {
-      j["log"] = t.log.string();
-      j["name"] = t.name;
-    } else {
-      j["first"] = t.first;
-      j["last"] = t.last;
-    }
-    tasks_j.push_back(j);
-  }
-  nlohmann::json jobs_j = nlohmann::json::array();
-  for (const FarmJob& job : jobs)
-    jobs_j.push_back({{"engine", job.engine},
-                      {"array_id", job.array_id},
-                      {"assemble_id", job.assemble_id},
-                      {"pool_pid", job.pool_pid},
-                      {"tasks", job.tasks}});
-  return {{"kind", kind},
-          {"dir", dir.string()},
-          {"trispline", trispline.string()},
-          {"log", log.string()},
-          {"frame_first", frame_first},
-          {"frame_last", frame_last},
-          {"chunk", chunk},
-          {"format", format},
-          {"width", width},
-          {"height", height},
-          {"fps", fps},
-          {"frame_width", frame_width},
-          {"frame_height", frame_height},
-          {"engine", engine},
-          {"max_parallel", max_parallel},
-          {"partition", partition},
-          {"time", time_limit},
-          {"tasks", tasks_j},
-          {"jobs", jobs_j}};
+  nlohmann::json j = nlohmann::json::object();
+  visit_plan_fields(*this, [&](const char* name, const auto& value) { j[name] = value; });
+  return j;
 }
 
 FarmPlan FarmPlan::from_json(const nlohmann::json& j) {
   FarmPlan p;
   std::string field;
   try {
-    auto get = [&](const char* name, auto& value) {
+    visit_plan_fields(p, [&](const char* name, auto& value) {
       field = name;
       j.at(name).get_to(value);
-    };
-    std::string dir, exe, log;
-    get("kind", p.kind);
-    get("dir", dir);
-    get("trispline", exe);
-    get("log", log);
-    p.dir = dir;
-    p.trispline = exe;
-    p.log = log;
-    get("frame_first", p.frame_first);
-    get("frame_last", p.frame_last);
-    get("chunk", p.chunk);
-    get("format", p.format);
-    get("width", p.width);
-    get("height", p.height);
-    get("fps", p.fps);
-    get("frame_width", p.frame_width);
-    get("frame_height", p.frame_height);
-    get("engine", p.engine);
-    get("max_parallel", p.max_parallel);
-    get("partition", p.partition);
-    get("time", p.time_limit);
-    field = "tasks";
-    for (const auto& t : j.at("tasks")) {
-      FarmTask task;
-      task.index = t.at("index").get<int>();
-      task.first = t.value("first", 0);
-      task.last = t.value("last", 0);
-      task.log = t.value("log", std::string());
-      task.name = t.value("name", std::string());
-      p.tasks.push_back(task);
-    }
-    field = "jobs";
-    for (const auto& jj : j.at("jobs")) {
-      FarmJob job;
-      job.engine = jj.at("engine").get<std::string>();
-      job.array_id = jj.at("array_id").get<std::string>();
-      job.assemble_id = jj.at("assemble_id").get<std::string>();
-      job.pool_pid = jj.at("pool_pid").get<long>();
-      job.tasks = jj.at("tasks").get<std::vector<int>>();
-      p.jobs.push_back(job);
-    }
+    });
   } catch (const nlohmann::json::exception& e) {
     throw std::runtime_error("farm.json: field '" + field + "': " + e.what());
   }
