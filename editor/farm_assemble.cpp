@@ -75,16 +75,14 @@ void pose_animation_glb(const FarmPlan& plan) {
   History history(scene);
   const ReplayResult r = replay_lines(history, plan.log);
   if (!r.ok) throw std::runtime_error("the log does not replay: " + r.error);
-  RecordOptions ro;
-  ro.out_dir = plan.dir;
-  ro.format = plan.format;
-  ro.frame_first = plan.frame_first;
-  ro.frame_last = plan.frame_last;
-  ro.width = plan.width;
-  ro.height = plan.height;
-  ro.images = false;
-  ro.mp4 = false;
-  record_frames(scene, ro);
+  record_frames(scene, RecordOptions{.out_dir = plan.dir,
+                                     .format = plan.format,
+                                     .frame_first = plan.frame_first,
+                                     .frame_last = plan.frame_last,
+                                     .width = plan.width,
+                                     .height = plan.height,
+                                     .images = false,
+                                     .mp4 = false});
 }
 
 int assemble_frames(const FarmPlan& plan, std::ostream& out, std::ostream& err) {

@@ -5,7 +5,8 @@
 # animation.glb equal one `replay --frames 1-16`'s bytes, two chunks overlapped in time and never more than 2 ran at
 # once (task logs), `farm resume` after deleting one chunk's frames re-renders only that chunk, a failed chunk leaves
 # the others intact and resume reruns it alone, a batch of three logs (one bad) is summarised into summary.json;
-# local also: bad input is refused with nothing written. A Slurm daemon that does not start fails the test with its log.
+# local also: bad input is refused with nothing written, and a DFFD walk (topology changes) assembles exactly. A
+# Slurm daemon that does not start fails the test with its log.
 # Usage: farm.sh slurm|local (TRISPLINE, TRISPLINE_SOURCE, FARM_OUT from ctest).
 set -euo pipefail
 engine=${1:?usage: farm.sh slurm|local}
@@ -75,6 +76,18 @@ if [ "$engine" = local ]; then
     { cat "$out/refused.txt" >&2; fail "no sbatch message"; }
   [ ! -e "$out/bad/farm.json" ] || fail "a submission without sbatch wrote farm.json"
   echo "bad input refused at $((SECONDS - t0)) s"
+
+  # The DFFD walk's bunny changes topology from frame 25: its pieces cannot be joined, the assembly poses every frame.
+  bars=$TRISPLINE_SOURCE/assets/scenes/bars_walk.jsonl
+  "$exe" replay "$bars" --frames 21-28 --out "$out/bars_ref" --no-render --width 64 --height 36 > /dev/null
+  "$exe" farm submit "$bars" --frames 21-28 --chunk 4 --out "$out/bars" --engine local --width 64 --height 36 \
+    > "$out/bars.txt" || fail "the DFFD walk's farm failed: $(cat "$out/bars.txt")"
+  jq -e '.record.glb_source == "posed"' "$out/bars/report.json" > /dev/null || fail "the DFFD walk's GLB was not posed"
+  cmp -s "$out/bars_ref/animation.glb" "$out/bars/animation.glb" || fail "the DFFD walk's animation.glb differs"
+  for f in "$out"/bars_ref/frame_*.png; do
+    cmp -s "$f" "$out/bars/$(basename "$f")" || fail "the DFFD walk's $(basename "$f") differs"
+  done
+  echo "topology change assembled at $((SECONDS - t0)) s"
 fi
 
 # A chunk that fails (its folder cannot be made: a file is in the way) leaves the other chunks' frames intact, the
