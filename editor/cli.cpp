@@ -18,6 +18,7 @@
 #include "bench/silhouette_bench.h"
 #include "editor/command_docs.h"
 #include "editor/command_registry.h"
+#include "editor/farm_cli.h"
 #include "editor/replay.h"
 
 namespace trispline::editor {
@@ -64,6 +65,7 @@ struct CliRequest {
   CLI::App *ffd_cmd = nullptr, *place_cmd = nullptr, *dffd_cmd = nullptr, *ddm_cmd = nullptr, *press_cmd = nullptr;
   CLI::App* commands_cmd = nullptr;
   std::string command_id, docs_file;
+  FarmCli farm;
 };
 
 // `trispline [LOG]` and `trispline edit [LOG] [--screenshot PNG] ...`.
@@ -142,6 +144,12 @@ void add_replay(CLI::App& app, CliRequest& o) {
           "A-B");
   o.replay_cmd->add_option("--format", o.replay.format, "Image format of --frames: png (8-bit) or exr (half, linear)")
       ->check(CLI::IsMember({"png", "exr"}));
+  o.replay_cmd
+      ->add_option("--piece-base", o.replay.piece_base,
+                   "With --frames: write animation.piece, morph targets relative to this timeline frame (the farm's "
+                   "range start), instead of animation.glb; `trispline farm assemble` joins the pieces")
+      ->check(CLI::NonNegativeNumber)
+      ->needs("--frames");
 }
 
 // `trispline bench silhouettes`: a table of the per-view figures, or the JSON object.
@@ -344,6 +352,7 @@ int run_cli(int argc, char** argv) {
   add_replay(app, o);
   add_bench(app, o);
   add_commands(app, o);
+  add_farm_commands(app, o.farm);
 
   try {
     app.parse(argc, argv);
@@ -369,6 +378,7 @@ int run_cli(int argc, char** argv) {
     if (*o.bounds_cmd)
       return bench_emit(core::run_bounds_benchmark(o.bounds), o.bounds_json, std::cout, print_bounds_table);
     if (*o.commands_cmd) return run_commands(o);
+    if (const int farm = run_farm_command(o.farm); farm >= 0) return farm;
     if (!o.open_log.empty()) o.edit.open_log = o.open_log;
     return run_editor(o.edit);
   } catch (const std::exception& e) {

@@ -1,5 +1,5 @@
 // trispline's command line (CLI11): `trispline [edit] [LOG]`, `trispline replay LOG --out DIR`,
-// `trispline bench ffd [--json] [--mesh PATH]`, `trispline commands`.
+// `trispline bench ffd [--json] [--mesh PATH]`, `trispline commands`, `trispline farm ...` (editor/farm_cli.h).
 #pragma once
 
 namespace trispline::editor {

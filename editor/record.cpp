@@ -1,14 +1,10 @@
 #include "editor/record.h"
 
 #include <OpenImageIO/imageio.h>
-#include <fcntl.h>
-#include <spawn.h>
 #include <sys/stat.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <array>
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -23,9 +19,8 @@
 #include "core/mesh/gltf_anim_io.h"
 #include "core/scene/scene_export.h"
 #include "core/mesh/image_io.h"
+#include "editor/process.h"
 #include "editor/render_scene.h"
-
-extern char** environ;
 
 namespace trispline::editor {
 namespace fs = std::filesystem;
@@ -73,7 +68,8 @@ void write_exr_linear(const fs::path& path, int width, int height, const std::ve
   }
 }
 
-// Absolute path of an executable `name` found on PATH, or "" when there is none.
+}  // namespace
+
 fs::path find_on_path(const std::string& name) {
   const char* path = std::getenv("PATH");
   if (!path) return {};
@@ -89,27 +85,7 @@ fs::path find_on_path(const std::string& name) {
   return {};
 }
 
-// Runs `argv` (argv[0] an absolute path) with stdin from /dev/null and stdout+stderr into `log`; returns the exit
-// status (−1 when it could not start or died of a signal). No shell is involved, so paths need no quoting.
-int run_program(const std::vector<std::string>& argv, const fs::path& log) {
-  std::vector<char*> args;
-  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-  args.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&actions, 1, 2);
-  pid_t pid = 0;
-  const int rc = posix_spawn(&pid, args[0], &actions, nullptr, args.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (rc != 0) return -1;
-  int status = 0;
-  while (::waitpid(pid, &status, 0) < 0) {
-    if (errno != EINTR) return -1;
-  }
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
+namespace {
 
 std::string read_text(const fs::path& p, std::size_t max_chars) {
   std::ifstream in(p, std::ios::binary);
@@ -170,6 +146,9 @@ void validate_record_options(const core::Scene& scene, const RecordOptions& opti
   const auto [first, last] = record_range(scene, options);
   const std::string err = core::frame_range_error(scene.timeline, first, last);
   if (!err.empty()) throw std::invalid_argument(err);
+  if (options.piece_base >= 0 && (options.piece_base < scene.timeline.frame_start || options.piece_base > first))
+    throw std::invalid_argument("piece base frame " + std::to_string(options.piece_base) + " is not in [" +
+                                std::to_string(scene.timeline.frame_start) + ", " + std::to_string(first) + "]");
   const bool sized = options.width != 0 || options.height != 0;
   if (sized && (options.width < 1 || options.height < 1 || options.width > 16384 || options.height > 16384))
     throw std::invalid_argument("frame size " + std::to_string(options.width) + "×" + std::to_string(options.height) +
@@ -199,12 +178,21 @@ Recorder::Recorder(const core::Scene& scene, RecordOptions options) : impl_(std:
   d.next = d.first;
   d.camera = d.scene.camera_set ? d.scene.camera : framing_camera(d.scene, d.options.width, d.options.height);
   if (d.options.width > 0) d.camera.viewport = {d.options.width, d.options.height};
-  d.renderer = std::make_unique<HeadlessRenderer>();
-  d.renderer->check_frame_size(d.camera.viewport.x, d.camera.viewport.y);  // before any file is written
+  if (d.options.images) {
+    d.renderer = std::make_unique<HeadlessRenderer>();
+    d.renderer->check_frame_size(d.camera.viewport.x, d.camera.viewport.y);  // before any file is written
+  }
   std::error_code ec;
   fs::create_directories(d.options.out_dir, ec);
   if (ec) throw std::runtime_error("cannot create '" + d.options.out_dir.string() + "': " + ec.message());
-  if (d.options.glb) d.glb.emplace(d.scene.timeline.fps, d.first);
+  if (d.options.glb && d.options.piece_base < 0) d.glb.emplace(d.scene.timeline.fps, d.first);
+  if (d.options.glb && d.options.piece_base >= 0) {
+    d.glb.emplace(d.scene.timeline.fps, d.options.piece_base);
+    if (d.options.piece_base < d.first) {  // the base pose, as the recording of the whole range starts with it
+      const double t = d.scene.timeline.time_of_frame(d.options.piece_base);
+      d.glb->add_frame(core::scene_export_nodes(core::scene_at_time(d.scene, t)).nodes);
+    }
+  }
   d.result.frame_first = d.first;
   d.result.frame_last = d.last;
 }
@@ -219,25 +207,27 @@ bool Recorder::step() {
   // Everything below depends on the frame number only: the pose is evaluated from the document on the CPU
   // reference path, and the renderer's caches are dropped so nothing drawn before can show through.
   const core::Scene posed = core::scene_at_time(d.scene, d.scene.timeline.time_of_frame(frame));
-  core::Camera cam = d.camera;
-  fit_clip_planes(cam, posed);
-  RenderSettings settings;
-  settings.ffd_backend = d.options.ffd_backend;
-  settings.time_s = 0;  // posed is a still: its offsets already are those of `frame`
-  settings.show_grid = false;
-  d.renderer->forget_caches();
-  d.renderer->draw(posed, cam, settings);
-  const RenderedImage image = d.renderer->read_image();
-  const fs::path file = d.options.out_dir / frame_file_name(frame, d.options.format);
-  try {
-    if (d.options.format == "exr")
-      write_exr_linear(file, image.width, image.height, image.rgba);
-    else
-      core::write_image_rgba8(file, image.width, image.height, image.rgba);
-  } catch (const core::ImageIoError& e) {
-    throw std::runtime_error(e.what());
+  if (d.renderer) {
+    core::Camera cam = d.camera;
+    fit_clip_planes(cam, posed);
+    RenderSettings settings;
+    settings.ffd_backend = d.options.ffd_backend;
+    settings.time_s = 0;  // posed is a still: its offsets already are those of `frame`
+    settings.show_grid = false;
+    d.renderer->forget_caches();
+    d.renderer->draw(posed, cam, settings);
+    const RenderedImage image = d.renderer->read_image();
+    const fs::path file = d.options.out_dir / frame_file_name(frame, d.options.format);
+    try {
+      if (d.options.format == "exr")
+        write_exr_linear(file, image.width, image.height, image.rgba);
+      else
+        core::write_image_rgba8(file, image.width, image.height, image.rgba);
+    } catch (const core::ImageIoError& e) {
+      throw std::runtime_error(e.what());
+    }
+    d.result.files.push_back(file);
   }
-  d.result.files.push_back(file);
   if (d.glb) {
     const core::SceneExport exported = core::scene_export_nodes(posed);  // objects and their live tile layers
     d.glb->add_frame(exported.nodes);
@@ -270,60 +260,65 @@ RecordResult Recorder::finish() {
     if (d.options.mp4) r.mp4_note = "recording cancelled: no MP4";
   } else if (r.frames_written > 0) {
     if (d.glb) {
-      const fs::path glb = dir / "animation.glb";
+      const bool piece = d.options.piece_base >= 0;
+      const fs::path glb = dir / (piece ? "animation.piece" : "animation.glb");
       try {
-        d.glb->write_glb(glb);
+        piece ? d.glb->write_piece(glb) : d.glb->write_glb(glb);
       } catch (const std::exception& e) {
-        throw std::runtime_error(std::string("cannot write animation.glb: ") + e.what());
+        throw std::runtime_error("cannot write " + glb.filename().string() + ": " + e.what());
       }
       r.glb = glb.string();
       r.files.push_back(glb);
     }
     if (d.options.mp4) {
-      const fs::path ffmpeg = find_on_path("ffmpeg");
       if (d.options.format != "png") {
         r.mp4_note = "MP4 is made from PNG frames (format is " + d.options.format + ")";
-      } else if (ffmpeg.empty()) {
-        r.mp4_note = "ffmpeg not found on PATH";
       } else {
-        const fs::path mp4 = dir / "animation.mp4";
-        const fs::path log = dir / "animation.mp4.log";
-        std::vector<std::string> argv = {ffmpeg.string(),
-                                         "-hide_banner",
-                                         "-loglevel",
-                                         "error",
-                                         "-nostdin",
-                                         "-framerate",
-                                         number_text(d.scene.timeline.fps),
-                                         "-start_number",
-                                         std::to_string(r.frame_first),
-                                         "-i",
-                                         escape_percent((dir / "frame_").string()) + "%04d.png"};
-        // H.264 in 4:2:0 needs even sizes: pad an odd one with a black row or column.
-        if (d.camera.viewport.x % 2 || d.camera.viewport.y % 2)
-          argv.insert(argv.end(), {"-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2"});
-        argv.insert(argv.end(), {"-frames:v", std::to_string(r.frames_written), "-c:v", "libx264", "-pix_fmt",
-                                 "yuv420p", "-y", mp4.string()});
-        const int status = run_program(argv, log);
-        std::error_code ec;
-        const bool made = status == 0 && fs::is_regular_file(mp4, ec) && fs::file_size(mp4, ec) > 0;
-        if (made) {
-          r.mp4 = mp4.string();
-          r.files.push_back(mp4);
-        } else {
-          const std::string text = read_text(log, 600);
-          r.mp4_note = "ffmpeg failed (" +
-                       (status < 0 ? std::string("did not run") : "exit " + std::to_string(status)) + ")" +
-                       (text.empty() ? "" : ": " + text);
-          fs::remove(mp4, ec);
+        r.mp4_note = write_mp4(dir, r.frame_first, r.frames_written, d.scene.timeline.fps, d.camera.viewport.x,
+                               d.camera.viewport.y);
+        if (r.mp4_note.empty()) {
+          r.mp4 = (dir / "animation.mp4").string();
+          r.files.push_back(dir / "animation.mp4");
         }
-        fs::remove(log, ec);
       }
     }
   }
   r.ms = ms_since(d.t0);
   d.finished = r;
   return r;
+}
+
+std::string write_mp4(const fs::path& dir, int first, int frames, double fps, int width, int height) {
+  const fs::path ffmpeg = find_on_path("ffmpeg");
+  if (ffmpeg.empty()) return "ffmpeg not found on PATH";
+  const fs::path mp4 = dir / "animation.mp4";
+  const fs::path log = dir / "animation.mp4.log";
+  std::vector<std::string> argv = {ffmpeg.string(),
+                                   "-hide_banner",
+                                   "-loglevel",
+                                   "error",
+                                   "-nostdin",
+                                   "-framerate",
+                                   number_text(fps),
+                                   "-start_number",
+                                   std::to_string(first),
+                                   "-i",
+                                   escape_percent((dir / "frame_").string()) + "%04d.png"};
+  // H.264 in 4:2:0 needs even sizes: pad an odd one with a black row or column.
+  if (width % 2 || height % 2) argv.insert(argv.end(), {"-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2"});
+  argv.insert(argv.end(),
+              {"-frames:v", std::to_string(frames), "-c:v", "libx264", "-pix_fmt", "yuv420p", "-y", mp4.string()});
+  const int status = run_process(argv, log);
+  std::error_code ec;
+  std::string note;
+  if (!(status == 0 && fs::is_regular_file(mp4, ec) && fs::file_size(mp4, ec) > 0)) {
+    const std::string text = read_text(log, 600);
+    note = "ffmpeg failed (" + (status < 0 ? std::string("did not run") : "exit " + std::to_string(status)) + ")" +
+           (text.empty() ? "" : ": " + text);
+    fs::remove(mp4, ec);
+  }
+  fs::remove(log, ec);
+  return note;
 }
 
 RecordResult record_frames(const core::Scene& scene, const RecordOptions& options,

@@ -13,6 +13,8 @@
 //                                     morph targets are the per-frame positions/normals relative to the first
 //                                     recorded frame, and one animation whose STEP weight channel shows target k
 //                                     at frame k (Blender imports these as shape keys with keyed values)
+//   animation.piece                   (glb = true and piece_base ≥ 0, instead of animation.glb) the same frames
+//                                     relative to frame piece_base, for joining chunks (render farm)
 //   animation.mp4                     (mp4 = true, only when `ffmpeg` is on PATH) H.264, yuv420p, timeline fps
 #pragma once
 
@@ -37,6 +39,13 @@ struct RecordOptions {
   int frame_last = 0;
   int width = 0, height = 0;   // pixels in [1, 16384], both or neither; 0 = the camera's viewport (default 1280×720)
   bool glb = true;             // write animation.glb
+  // false: render nothing and write no frame files, only pose every frame for animation.glb (and make the MP4 from
+  // the frame_NNNN.png files already in out_dir): a render farm's assemble step. No GL context is needed.
+  bool images = true;
+  // ≥ 0: write animation.piece (core::MorphAnimationBuilder::write_piece) instead of animation.glb, its first frame
+  // the pose of this timeline frame (posed, not rendered, when it is before frame_first): one chunk of a render
+  // farm's range, joined exactly by `trispline farm assemble`. Must lie in [timeline start, frame_first].
+  int piece_base = -1;
   bool mp4 = true;             // write animation.mp4 when ffmpeg is available (reported when it is not)
   core::FfdBackend ffd_backend = core::FfdBackend::cpu_ref;  // geometry path (cpu_ref: bit-exact frames)
 };
@@ -103,5 +112,13 @@ std::pair<int, int> record_range(const core::Scene& scene, const RecordOptions& 
 
 // "frame_0007.png" for frame 7 and format "png".
 std::string frame_file_name(int frame, const std::string& format);
+
+// Makes dir/animation.mp4 (H.264, yuv420p, `fps` frames per second) from the `frames` files dir/frame_NNNN.png
+// numbered from timeline frame `first`; an odd width or height (pixels) is padded by a black row or column. Returns
+// "" when it was written, otherwise why not ("ffmpeg not found on PATH", ffmpeg's error); never throws.
+std::string write_mp4(const std::filesystem::path& dir, int first, int frames, double fps, int width, int height);
+
+// Absolute path of the executable `name` found on PATH, or an empty path when there is none.
+std::filesystem::path find_on_path(const std::string& name);
 
 }  // namespace trispline::editor

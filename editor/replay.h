@@ -16,7 +16,8 @@
 // (frame_NNNN.png|exr and animation.glb of that range; no MP4: a slice of a render farm), after checking the range
 // against the timeline — a range outside it exits 2 before anything is written. Without --frames, every anim.record
 // line of the log is recorded as the editor did when it ran, from the scene at that line, into DIR itself (the
-// line's "out" is the editor's folder; a later recording overwrites files of the same name).
+// line's "out" is the editor's folder; a later recording overwrites files of the same name). With --piece-base F
+// the chunk writes animation.piece (morph targets relative to frame F) instead, for `trispline farm assemble`.
 #pragma once
 
 #include "core/ffd/ffd_evaluator.h"
@@ -45,6 +46,8 @@ struct ReplayOptions {
   bool frames_given = false;
   int frame_first = 0, frame_last = 0;
   std::string format = "png";
+  // --piece-base F (with --frames): animation.piece relative to frame F instead of animation.glb (a farm chunk).
+  int piece_base = -1;
 };
 
 struct ReplayResult {

@@ -1,7 +1,8 @@
 // trispline::core animated glTF 2.0 (tinygltf): a recorded sequence of frames as morph targets (anim.record's
 // animation.glb, seed §2.4.3), and a reader used by tests and tools to check what was written.
 //
-//   MorphAnimationBuilder        add_frame() per recorded frame, write_glb() at the end
+//   MorphAnimationBuilder        add_frame() per recorded frame, write_glb() at the end; write_piece() /
+//                                read_piece() / append_piece() join recordings split by frames (a render farm)
 //   read_morph_animation_info    counts: meshes, morph targets, keyframes, interpolation, duration
 //   read_morph_frame_positions   one mesh's vertex positions at one frame (base + that frame's target)
 //
@@ -52,6 +53,18 @@ class MorphAnimationBuilder {
 
   // Writes the .glb ("<path>.tmp" then renamed). Throws MeshIoError when no frame was added or the write fails.
   void write_glb(const std::filesystem::path& path) const;
+
+  // Pieces of one recording split by frames (gltf_anim_piece.cpp). A piece is a builder whose first frame is the
+  // whole range's first frame (the base) followed by the frames of one chunk, so its morph targets are the deltas one
+  // builder over the whole range computes, bit for bit. write_piece stores the builder losslessly (base meshes in
+  // double; "<path>.tmp" then renamed); read_piece reads it back. Both throw MeshIoError (a bad or truncated file).
+  void write_piece(const std::filesystem::path& path) const;
+  static MorphAnimationBuilder read_piece(const std::filesystem::path& path);
+  // Appends the frames of `piece` after its first. Joinable when the piece has the same fps and first frame number,
+  // the same objects, and every object keeps one topology in both with the same base mesh (exactly): then this
+  // builder becomes what adding those frames one by one would make. Returns false, the builder unchanged, otherwise
+  // (an object whose topology changes cannot be re-based exactly: record the range in one process instead).
+  bool append_piece(const MorphAnimationBuilder& piece);
 
  private:
   struct Segment {
