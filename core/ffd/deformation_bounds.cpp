@@ -1,6 +1,8 @@
 #include "core/ffd/deformation_bounds.h"
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <cmath>
 #include <stdexcept>
 #include <utility>
@@ -174,6 +176,8 @@ SecondDerivativeBounds::SecondDerivativeBounds(const TrivariateBSpline<glm::dvec
   for (int a = 0; a < 3; ++a)
     for (double t : E.knots(a).knots())
       if (breaks_[a].empty() || breaks_[a].back() != t) breaks_[a].push_back(t);
+  for (int a = 0; a < 3; ++a)
+    for (std::size_t i = 0; i + 1 < breaks_[a].size(); ++i) inv_size_[a].push_back(1.0 / (breaks_[a][i + 1] - breaks_[a][i]));
   const std::size_t cells = cell_count();
   // Sub-levels: as many halvings (≤ 4) as the budget of sub-boxes over all levels allows.
   int top = 0;
@@ -275,12 +279,15 @@ void SecondDerivativeBounds::for_boxes(const glm::dvec3& lo, const glm::dvec3& h
           const int k = c[a] >= 0 ? c[a] / cells_[a] : -((-c[a] + cells_[a] - 1) / cells_[a]);  // floor division
           w[a] = c[a] - k * cells_[a];
           const double shift = periodic_[a] ? k * (domain_hi_[a] - domain_lo_[a]) : 0.0;
-          const double c0 = breaks_[a][w[a]] + shift, size = breaks_[a][w[a] + 1] - breaks_[a][w[a]];
-          t[a] = glm::clamp(glm::dvec2(lo[a] - c0, hi[a] - c0) / size, 0.0, 1.0);
+          const double c0 = breaks_[a][w[a]] + shift, inv = inv_size_[a][w[a]];
+          t[a] = glm::clamp(glm::dvec2(lo[a] - c0, hi[a] - c0) * inv, 0.0, 1.0);
           // The finest level whose sub-boxes are at least as wide as the extent: ⌊−log₂ extent⌋, here from the
-          // binary exponent (−ilogb − 1, one level coarser at exact powers of two: still sound).
+          // binary exponent of extent ∈ (0, 1] (−e − 1, one level coarser at exact powers of two: still sound).
           const double extent = t[a].y - t[a].x;
-          if (extent > 0.0) level = std::min(level, std::clamp(-std::ilogb(extent) - 1, 0, top));
+          if (extent > 0.0) {
+            const int e = static_cast<int>((std::bit_cast<std::uint64_t>(extent) >> 52) & 0x7ff) - 1023;
+            level = std::min(level, std::clamp(-e - 1, 0, top));
+          }
         }
         const int n = 1 << level;
         const std::size_t id = w.x + static_cast<std::size_t>(cells_.x) * (w.y + static_cast<std::size_t>(cells_.y) * w.z);

@@ -48,7 +48,7 @@ class SecondDerivativeBounds {
   // also halved (de Casteljau, all three axes) up to 4 times, as long as the sub-boxes of all levels number at most
   // `max_sub_boxes`, and bounded per sub-box: the second derivatives of a small triangle are bounded over the part of
   // the cell it lies in, not the whole cell (the bounds follow a local bump instead of spreading it over its cell).
-  explicit SecondDerivativeBounds(const TrivariateBSpline<glm::dvec3>& F, std::size_t max_sub_boxes = 1u << 15);
+  explicit SecondDerivativeBounds(const TrivariateBSpline<glm::dvec3>& F, std::size_t max_sub_boxes = 8192);
 
   // M (symmetric 3 × 3: M[a][b] ≥ sup ‖∂²F/∂a∂b‖) over the box lo…hi (parameters, clamped to the domain): the finest
   // sub-boxes of every cell meeting it.
@@ -73,6 +73,7 @@ class SecondDerivativeBounds {
 
  private:
   std::array<std::vector<double>, 3> breaks_;  // distinct knots per axis: cell i of an axis is [breaks[i], breaks[i+1]]
+  std::array<std::vector<double>, 3> inv_size_;  // 1 / (breaks[i+1] − breaks[i])
   glm::ivec3 cells_{0};
   glm::bvec3 c0_{false};                        // order-2 axes
   // The cell of x along axis a (upper: a point on a knot plane counts for the cell above); on a periodic axis an
