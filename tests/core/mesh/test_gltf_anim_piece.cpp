@@ -56,8 +56,11 @@ std::string bytes(const fs::path& p) {
 
 class AnimationPieces : public ::testing::Test {
  protected:
-  fs::path dir = fs::path(TRISPLINE_BINARY_DIR) / "test_out" / "gltf_anim_piece";
+  // A folder per test: ctest runs the tests of this file in parallel processes.
+  fs::path dir;
   void SetUp() override {
+    dir = fs::path(TRISPLINE_BINARY_DIR) / "test_out" / "gltf_anim_piece" /
+          ::testing::UnitTest::GetInstance()->current_test_info()->name();
     fs::remove_all(dir);
     fs::create_directories(dir);
   }
