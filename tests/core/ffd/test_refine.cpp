@@ -217,8 +217,9 @@ TEST(Refine, CertifiedBestSplitUsesFewerTrianglesThanTheMidpointSplit) {
     int tolerances = 0;
     for (int i = 0; i <= 12; ++i) {
       const double tol = 0.08 * std::pow(0.5, i / 3.0);
-      std::size_t count[3];
+      std::size_t count[3] = {0, 0, 0};
       for (RefineCriterion c : {RefineCriterion::Midpoint, RefineCriterion::Greville, RefineCriterion::Best}) {
+        if (c == RefineCriterion::Greville && i % 4 != 0) continue;  // the slowest rule, not compared: a few suffice
         RefineOptions o;
         o.tolerance = tol;
         o.criterion = c;
