@@ -16,7 +16,7 @@ TEST(BoundsBench, ShortSweepIsSoundAndComplete) {
   o.lattices = 96;
   o.mesh_path = "no-such-mesh.obj";  // the generated sphere, unrefined
   o.subdivision_level = 0;
-  o.soundness_triangles = 20000;
+  o.soundness_triangles = 6000;
   const nlohmann::json r = core::run_bounds_benchmark(o);
   ASSERT_EQ(r.at("certificate").size(), 6u);
   for (const auto& c : r.at("certificate")) {
@@ -38,7 +38,7 @@ TEST(BoundsBench, ShortSweepIsSoundAndComplete) {
   EXPECT_GT(t.at("max_bound").get<double>(), 0.0);
   EXPECT_TRUE(std::isfinite(t.at("max_bound").get<double>())) << "a cubic lattice bounds every triangle";
   const auto& s = r.at("soundness");
-  EXPECT_EQ(s.at("triangles").get<std::size_t>(), 20000u);
+  EXPECT_EQ(s.at("triangles").get<std::size_t>(), 6000u);
   for (const char* m : {"right_triangle", "circumcircle", "enclosing_circle", "best", "normal"}) {
     EXPECT_EQ(s.at("methods").at(m).at("exceeded"), 0) << m;
     EXPECT_GE(s.at("methods").at(m).at("tightness").at("median").get<double>(), 1.0) << m;
