@@ -388,9 +388,10 @@ int App::run() {
   auto last = Clock::now();
   while (true) {
     if (work_.run_ready(messages_)) idle_frames_ = 0;  // its "Working…" frame was on screen
-    // Volumes: a load or a silhouette extraction running, or a volume preview being refined, keeps frames coming.
+    // Volumes: a load or a silhouette extraction running, or a volume preview being refined, keeps frames coming; so
+    // does a guarantees computation (its result is drawn the frame it is ready).
     const bool busy = !work_.empty() || ImGui::GetIO().MouseDown[0] || ImGui::GetIO().MouseDown[2] || animating() ||
-                      volumes_.busy() || (renderer_ && renderer_->last_stats().volume_refining);
+                      volumes_.busy() || guarantees_.busy() || (renderer_ && renderer_->last_stats().volume_refining);
     if (busy || !options_.screenshot.empty())
       gpu::Window::poll_events();
     else
@@ -401,8 +402,8 @@ int App::run() {
       request(Pending::Quit);
     }
     frame();
-    if (volumes_.busy() || (renderer_ && renderer_->last_stats().volume_refining))
-      idle_frames_ = 0;  // a screenshot waits for loads, silhouettes and full-resolution volumes
+    if (volumes_.busy() || guarantees_.busy() || (renderer_ && renderer_->last_stats().volume_refining))
+      idle_frames_ = 0;  // a screenshot waits for loads, silhouettes, guarantees and full-resolution volumes
     if (!options_.screenshot.empty() && work_.empty() && ++idle_frames_ >= kScreenshotFrames)
       return write_screenshot(options_.screenshot);
     if (std::exchange(screenshot_requested_, false))

@@ -40,77 +40,56 @@ ImU32 to_imgui(const glm::vec4& c) { return ImGui::ColorConvertFloat4ToU32(ImVec
 
 }  // namespace
 
-void GuaranteesView::update(const core::Scene& scene, const std::string& object,
-                            const std::shared_ptr<const core::TrivariateBSpline<glm::dvec3>>& lattice,
-                            bool error_bounds, bool certificate) {
-  const core::SceneObject* o = (error_bounds || certificate) ? scene.find(object) : nullptr;
-  if (!o || !o->ffd || !o->rest_mesh || o->ffd->params.size() != o->rest_mesh->positions.size()) {
-    const std::size_t updates = updates_;
-    *this = GuaranteesView{};
-    updates_ = updates;
-    return;
-  }
-  // The lattice shown: the preview's, else the object's own (aliasing the binding keeps it alive).
-  const std::shared_ptr<const core::TrivariateBSpline<glm::dvec3>> F =
-      lattice ? lattice : std::shared_ptr<const core::TrivariateBSpline<glm::dvec3>>(o->ffd, &o->ffd->lattice);
-  const glm::dvec3 offset = o->offset_at(0.0);
-  const bool same_input = object_ == object && lattice_.get() == F.get() && rest_ == o->rest_mesh && offset_ == offset;
-  const bool need_bounds = error_bounds && (!same_input || !shown_bounds_);
-  const bool need_certificate = certificate && (!same_input || !shown_certificate_);
-  if (!same_input) error_.clear();
-  object_ = object;
-  live_ = lattice != nullptr;
-  if (need_bounds || need_certificate) ++updates_;
-  lattice_ = F;
-  rest_ = o->rest_mesh;
-  offset_ = offset;
-  shown_bounds_ = error_bounds;
-  shown_certificate_ = certificate;
-  if (!error_bounds) corners_.reset(), colors_.reset();
-  if (!certificate) certificate_.reset(), cell_ends_.clear(), cell_colors_.clear();
+GuaranteesView::~GuaranteesView() {
+  if (job_.valid()) job_.wait();
+}
 
+GuaranteesView::Result GuaranteesView::compute(const Input& in) {
+  Result r;
+  r.input = in;
+  const core::TrivariateBSpline<glm::dvec3>& F = *in.lattice;
+  const core::TriMesh& rest = *in.rest;
   try {
-    if (need_bounds) {
+    if (in.bounds) {
       const auto t0 = Clock::now();
-      const core::SecondDerivativeBounds bounds(*F);
-      const std::vector<double> b = core::triangle_error_bounds(bounds, o->ffd->params, rest_->triangles, offset);
-      std::vector<glm::dvec3> params = o->ffd->params, deformed;
-      for (glm::dvec3& p : params) p += offset;
-      core::ffd_evaluate(*F, params, deformed);
-      triangles_ = b.size();
-      unbounded_ = 0;
+      const core::SecondDerivativeBounds bounds(F);
+      const std::vector<double> b = core::triangle_error_bounds(bounds, in.binding->params, rest.triangles, in.offset);
+      std::vector<glm::dvec3> params = in.binding->params, deformed;
+      for (glm::dvec3& p : params) p += in.offset;
+      core::ffd_evaluate(F, params, deformed);
+      r.triangles = b.size();
       std::vector<double> finite;
       finite.reserve(b.size());
       for (double x : b) {
         if (std::isfinite(x)) finite.push_back(x);
-        else ++unbounded_;
+        else ++r.unbounded;
       }
-      max_bound_ = finite.empty() ? 0.0 : *std::max_element(finite.begin(), finite.end());
+      r.max_bound = finite.empty() ? 0.0 : *std::max_element(finite.begin(), finite.end());
       if (!finite.empty()) {
         std::nth_element(finite.begin(), finite.begin() + finite.size() / 2, finite.end());
-        median_bound_ = finite[finite.size() / 2];
+        r.median_bound = finite[finite.size() / 2];
       }
       auto corners = std::make_shared<std::vector<glm::vec3>>();
       auto colors = std::make_shared<std::vector<glm::vec4>>();
       corners->reserve(3 * b.size());
       colors->reserve(3 * b.size());
       for (std::size_t f = 0; f < b.size(); ++f) {
-        const glm::vec4 c = std::isfinite(b[f]) ? ramp(ramp_position(b[f], max_bound_)) : kUnbounded;
+        const glm::vec4 c = std::isfinite(b[f]) ? ramp(ramp_position(b[f], r.max_bound)) : kUnbounded;
         for (int k = 0; k < 3; ++k) {
-          corners->push_back(glm::vec3(deformed[rest_->triangles[f][k]]));
+          corners->push_back(glm::vec3(deformed[rest.triangles[f][k]]));
           colors->push_back(c);
         }
       }
-      corners_ = std::move(corners);
-      colors_ = std::move(colors);
-      bounds_ms_ = ms_since(t0);
+      r.corners = std::move(corners);
+      r.colors = std::move(colors);
+      r.bounds_ms = ms_since(t0);
     }
-    if (need_certificate) {
+    if (in.certificate) {
       const auto t0 = Clock::now();
-      certificate_ = core::certify_fold_free(*F);
-      certificate_ms_ = ms_since(t0);
+      r.certificate = core::certify_fold_free(F);
+      r.certificate_ms = ms_since(t0);
       // The Bézier cells' edges through F, each segment in the worst verdict of the cells sharing it.
-      const core::TrivariateBSpline<glm::dvec3> U = F->periodic_unwrapped();
+      const core::TrivariateBSpline<glm::dvec3> U = F.periodic_unwrapped();
       std::array<std::vector<double>, 3> breaks;
       for (int a = 0; a < 3; ++a) {
         const core::KnotVector& k = U.knots(a);
@@ -119,13 +98,11 @@ void GuaranteesView::update(const core::Scene& scene, const std::string& object,
             breaks[a].push_back(t);
       }
       const glm::ivec3 cells(int(breaks[0].size()) - 1, int(breaks[1].size()) - 1, int(breaks[2].size()) - 1);
-      cell_ends_.clear();
-      cell_colors_.clear();
-      if (static_cast<std::size_t>(cells.x) * cells.y * cells.z == certificate_->cells) {
-        std::vector<unsigned char> verdict(certificate_->cells, 0);  // 0 certified, 1 undecided, 2 fold
+      if (static_cast<std::size_t>(cells.x) * cells.y * cells.z == r.certificate->cells) {
+        std::vector<unsigned char> verdict(r.certificate->cells, 0);  // 0 certified, 1 undecided, 2 fold
         auto id = [&](const glm::ivec3& c) { return c.x + std::size_t(cells.x) * (c.y + std::size_t(cells.y) * c.z); };
-        for (const glm::ivec3& c : certificate_->undecided_cells) verdict[id(c)] = 1;
-        for (const glm::ivec3& c : certificate_->fold_cells) verdict[id(c)] = 2;
+        for (const glm::ivec3& c : r.certificate->undecided_cells) verdict[id(c)] = 1;
+        for (const glm::ivec3& c : r.certificate->fold_cells) verdict[id(c)] = 2;
         constexpr int kPieces = 6;
         for (int a = 0; a < 3; ++a) {
           const int b = (a + 1) % 3, c = (a + 2) % 3;
@@ -148,70 +125,121 @@ void GuaranteesView::update(const core::Scene& scene, const std::string& object,
                 t[c] = breaks[c][k];
                 for (int p = 0; p < kPieces; ++p) {
                   t[a] = breaks[a][i] + (breaks[a][i + 1] - breaks[a][i]) * p / kPieces;
-                  cell_ends_.push_back(F->eval(t));
+                  r.cell_ends.push_back(F.eval(t));
                   t[a] = breaks[a][i] + (breaks[a][i + 1] - breaks[a][i]) * (p + 1) / kPieces;
-                  cell_ends_.push_back(F->eval(t));
-                  cell_colors_.push_back(colour);
+                  r.cell_ends.push_back(F.eval(t));
+                  r.cell_colors.push_back(colour);
                 }
               }
         }
       }
     }
   } catch (const std::exception& e) {
-    error_ = e.what();
-    corners_.reset();
-    colors_.reset();
-    certificate_.reset();
-    cell_ends_.clear();
-    cell_colors_.clear();
+    r = Result{};
+    r.input = in;
+    r.error = e.what();
   }
+  return r;
 }
 
+bool GuaranteesView::Input::same(const Input& o) const {
+  return object == o.object && lattice == o.lattice && rest == o.rest && binding == o.binding && offset == o.offset &&
+         bounds == o.bounds && certificate == o.certificate;
+}
+
+void GuaranteesView::update(const core::Scene& scene, const std::string& object,
+                            const std::shared_ptr<const core::TrivariateBSpline<glm::dvec3>>& lattice,
+                            bool error_bounds, bool certificate) {
+  // The newest finished computation is shown (a stale one until then, as the live silhouettes are).
+  if (job_.valid() && job_.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+    Result r = job_.get();
+    // Shown if it is still of the object and views wanted, even for an older lattice (a drag moves on meanwhile).
+    if (wanted_ && r.input.object == wanted_->object && r.input.bounds == wanted_->bounds &&
+        r.input.certificate == wanted_->certificate)
+      shown_ = std::move(r), ++updates_;
+  }
+  const core::SceneObject* o = (error_bounds || certificate) ? scene.find(object) : nullptr;
+  if (!o || !o->ffd || !o->rest_mesh || o->ffd->params.size() != o->rest_mesh->positions.size()) {
+    wanted_.reset();
+    shown_.reset();
+    return;
+  }
+  Input in;
+  in.object = object;
+  // The lattice shown: the preview's, else the object's own (aliasing the binding keeps it alive).
+  in.lattice = lattice ? lattice : std::shared_ptr<const core::TrivariateBSpline<glm::dvec3>>(o->ffd, &o->ffd->lattice);
+  in.binding = o->ffd;
+  in.rest = o->rest_mesh;
+  in.offset = o->offset_at(0.0);
+  in.live = lattice != nullptr;
+  in.bounds = error_bounds;
+  in.certificate = certificate;
+  wanted_ = in;
+  if (shown_ && !(shown_->input.object == in.object && shown_->input.bounds == in.bounds &&
+                  shown_->input.certificate == in.certificate))
+    shown_.reset();  // another object or other views: nothing stale of the wrong kind
+  const bool current = shown_ && shown_->input.same(in);
+  if (!current && !job_.valid()) job_ = std::async(std::launch::async, [in] { return compute(in); });
+}
+
+bool GuaranteesView::busy() const { return job_.valid(); }
+
 void GuaranteesView::decorate(gpu::ViewOptions& options) const {
-  if (shown_bounds_ && corners_) options.overlays.colored_triangles.push_back({corners_, colors_});
-  if (shown_certificate_ && !cell_ends_.empty()) options.overlays.colored_lines.push_back({cell_ends_, cell_colors_});
-  if (shown_certificate_ && certificate_ && !certificate_->fold_points.empty())
-    options.overlays.points.push_back({certificate_->fold_points, kFold, options.style.fold_point_px});
+  if (!shown_) return;
+  const Result& r = *shown_;
+  if (r.corners) options.overlays.colored_triangles.push_back({r.corners, r.colors});
+  if (!r.cell_ends.empty()) options.overlays.colored_lines.push_back({r.cell_ends, r.cell_colors});
+  if (r.certificate && !r.certificate->fold_points.empty())
+    options.overlays.points.push_back({r.certificate->fold_points, kFold, options.style.fold_point_px});
 }
 
 std::string GuaranteesView::summary() const {
-  if (object_.empty() || (!shown_bounds_ && !shown_certificate_)) return {};
+  if (!shown_) return busy() ? "computing" : "";
+  const Result& r = *shown_;
   char line[200];
   std::string s;
-  if (shown_bounds_ && corners_) {
-    std::snprintf(line, sizeof line, "bounds %.1f ms (%zu tris, max %.3g)", bounds_ms_, triangles_, max_bound_);
+  if (r.corners) {
+    std::snprintf(line, sizeof line, "bounds %.1f ms (%zu tris, max %.3g)", r.bounds_ms, r.triangles, r.max_bound);
     s += line;
   }
-  if (shown_certificate_ && certificate_) {
-    std::snprintf(line, sizeof line, "%scertificate %.1f ms (%s, %zu cells)", s.empty() ? "" : "; ", certificate_ms_,
-                  core::fold_verdict_name(certificate_->verdict), certificate_->cells);
+  if (r.certificate) {
+    std::snprintf(line, sizeof line, "%scertificate %.1f ms (%s, %zu cells)", s.empty() ? "" : "; ", r.certificate_ms,
+                  core::fold_verdict_name(r.certificate->verdict), r.certificate->cells);
     s += line;
   }
+  if (busy()) s += "; computing";
   return s;
 }
 
 nlohmann::json GuaranteesView::probe() const {
-  nlohmann::json p = {{"object", object_}, {"live", live_}, {"updates", updates_},
-                      {"error_bounds", shown_bounds_ && corners_ != nullptr},
-                      {"certificate", nullptr}, {"error", error_}};
-  if (shown_bounds_ && corners_) {
-    p["triangles"] = triangles_;
-    p["max_bound"] = max_bound_;
-    p["median_bound"] = median_bound_;
-    p["unbounded"] = unbounded_;
+  nlohmann::json p = {{"object", shown_ ? shown_->input.object : std::string()},
+                      {"live", shown_ && shown_->input.live},
+                      {"updates", updates_},
+                      {"busy", busy()},
+                      {"error_bounds", shown_ && shown_->corners != nullptr},
+                      {"certificate", nullptr},
+                      {"error", shown_ ? shown_->error : std::string()}};
+  if (!shown_) return p;
+  const Result& r = *shown_;
+  if (r.corners) {
+    p["triangles"] = r.triangles;
+    p["max_bound"] = r.max_bound;
+    p["median_bound"] = r.median_bound;
+    p["unbounded"] = r.unbounded;
   }
-  if (shown_certificate_ && certificate_) {
-    p["certificate"] = core::fold_verdict_name(certificate_->verdict);
-    p["cells"] = certificate_->cells;
-    p["fold_cells"] = certificate_->fold_cells.size();
-    p["undecided_cells"] = certificate_->undecided_cells.size();
-    p["cell_segments"] = cell_colors_.size();
+  if (r.certificate) {
+    p["certificate"] = core::fold_verdict_name(r.certificate->verdict);
+    p["cells"] = r.certificate->cells;
+    p["fold_cells"] = r.certificate->fold_cells.size();
+    p["undecided_cells"] = r.certificate->undecided_cells.size();
+    p["cell_segments"] = r.cell_colors.size();
   }
   return p;
 }
 
 void GuaranteesView::draw_legend(const ui::Rect& viewport) const {
-  if (object_.empty() || (!shown_bounds_ && !shown_certificate_)) return;
+  if (!shown_) return;
+  const Result& r = *shown_;
   constexpr int flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
                         ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
                         ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoMove;
@@ -226,9 +254,9 @@ void GuaranteesView::draw_legend(const ui::Rect& viewport) const {
     ImGui::End();
     return;
   }
-  ImGui::Text("%s", object_.c_str());
-  if (!error_.empty()) ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.35f, 1.0f), "%s", error_.c_str());
-  if (shown_bounds_ && corners_) {
+  ImGui::Text("%s%s", r.input.object.c_str(), busy() ? "  (updating...)" : "");
+  if (!r.error.empty()) ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.35f, 1.0f), "%s", r.error.c_str());
+  if (r.corners) {
     ImGui::TextUnformatted("Certified error bound (world units)");
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip("Per triangle: an upper bound on the distance between the true deformed surface F(T) and\n"
@@ -245,26 +273,26 @@ void GuaranteesView::draw_legend(const ui::Rect& viewport) const {
                                   to_imgui(ramp(double(i + 1) / kSteps)), to_imgui(ramp(double(i) / kSteps)));
     ImGui::Dummy(ImVec2(w, h));
     char lo[32], mid[32], hi[32];
-    std::snprintf(lo, sizeof lo, "%.2g", max_bound_ * std::pow(10.0, -kDecades));
-    std::snprintf(mid, sizeof mid, "%.2g", max_bound_ * std::pow(10.0, -kDecades / 2));
-    std::snprintf(hi, sizeof hi, "%.3g", max_bound_);
+    std::snprintf(lo, sizeof lo, "%.2g", r.max_bound * std::pow(10.0, -kDecades));
+    std::snprintf(mid, sizeof mid, "%.2g", r.max_bound * std::pow(10.0, -kDecades / 2));
+    std::snprintf(hi, sizeof hi, "%.3g", r.max_bound);
     const float x0 = ImGui::GetCursorPosX();
     ImGui::TextUnformatted(lo);
     ImGui::SameLine(x0 + 0.5f * w - 0.5f * ImGui::CalcTextSize(mid).x);
     ImGui::TextUnformatted(mid);
     ImGui::SameLine(x0 + w - ImGui::CalcTextSize(hi).x);
     ImGui::TextUnformatted(hi);
-    ImGui::Text("median %.3g, %zu triangles", median_bound_, triangles_);
-    if (unbounded_ > 0) {
-      ImGui::TextColored(ImVec4(kUnbounded.x, kUnbounded.y, kUnbounded.z, 1.0f), "%zu unbounded", unbounded_);
+    ImGui::Text("median %.3g, %zu triangles", r.median_bound, r.triangles);
+    if (r.unbounded > 0) {
+      ImGui::TextColored(ImVec4(kUnbounded.x, kUnbounded.y, kUnbounded.z, 1.0f), "%zu unbounded", r.unbounded);
       if (ImGui::IsItemHovered())
         ImGui::SetTooltip("Triangles crossing a C0 knot plane (order 2) or leaving the lattice's domain: F is not\n"
                           "smooth across them, so no bound holds. Refine (mesh.refine) to split them there.");
     }
   }
-  if (shown_certificate_ && certificate_) {
-    if (shown_bounds_) ImGui::Separator();
-    const core::FoldCertificate& c = *certificate_;
+  if (r.certificate) {
+    if (r.corners) ImGui::Separator();
+    const core::FoldCertificate& c = *r.certificate;
     const glm::vec4 colour = c.verdict == core::FoldVerdict::fold      ? kFold
                              : c.verdict == core::FoldVerdict::undecided ? kUndecided
                                                                           : kCertified;
@@ -279,7 +307,7 @@ void GuaranteesView::draw_legend(const ui::Rect& viewport) const {
       ImGui::SetTooltip("det J of the lattice as an exact Bernstein polynomial per Bezier cell, subdivided:\n"
                         "green cells are certified det J > 0 (no fold), red cells fold (det J <= 0 at the red\n"
                         "points), grey cells are undecided after 6 halvings. %.1f ms.",
-                        certificate_ms_);
+                        r.certificate_ms);
   }
   ImGui::End();
 }
