@@ -14,6 +14,7 @@
 
 #include "core/commands/codecs.h"
 #include "editor/session.h"
+#include "gpu/gl_context.h"
 #include "ui/ddm_anim_panel.h"
 #include "ui/gui_probe.h"
 #include "ui/number_field.h"
@@ -402,6 +403,32 @@ void DdmPaintTool::draw_estimate(const core::SceneObject* o) {
   ui::probe::value("ddm.estimate_error", estimate_error_);
 }
 
+void DdmPaintTool::draw_fill_prompt(ToolContext& ctx) {
+  const char* id = "Large fill";
+  if (!ImGui::IsPopupOpen(id)) ImGui::OpenPopup(id);
+  ui::probe::value("ddm.fill_prompt", "open");
+  if (ImGui::BeginPopupModal(id, nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings)) {
+    ImGui::Text("Fill makes %s%zu tiles, %zu tile vertices.", estimate_.upper_bound ? "up to " : "", estimate_.cells,
+                estimate_.tile_vertices);
+    ImGui::TextColored(ui::colors::dim, "More than %zu on this renderer: drawing may be slow. A larger tile size "
+                       "makes fewer.", ask_budget_);
+    ImGui::Spacing();
+    bool done = false;
+    if (ImGui::Button("Fill anyway", ImVec2(120, 0))) fill(ctx), done = true;
+    ui::probe::item("ddm.fill_anyway");
+    ImGui::SameLine();
+    if (ImGui::Button("Cancel", ImVec2(120, 0)) || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false))
+      done = true;
+    ui::probe::item("ddm.fill_cancel");
+    if (done) {
+      ask_budget_ = 0;
+      ui::probe::value("ddm.fill_prompt", "");
+      ImGui::CloseCurrentPopup();
+    }
+    ImGui::EndPopup();
+  }
+}
+
 void DdmPaintTool::draw_panel(ToolContext& ctx) {
   follow_selection(ctx);
   const core::Scene& scene = ctx.session.scene();
@@ -457,11 +484,21 @@ void DdmPaintTool::draw_panel(ToolContext& ctx) {
 
   ImGui::Spacing();
   ImGui::BeginDisabled(!target(ctx));
-  if (ImGui::Button("Fill")) fill(ctx);
+  if (ImGui::Button("Fill")) {
+    // Above the budget, ask first (the renderer is asked only then: tests without a GL context never get here).
+    const std::size_t n = estimate_error_.empty() ? estimate_.tile_vertices : 0;
+    const std::size_t budget =
+        n <= kAskFillVerticesSoftware ? 0 : gpu::is_software_renderer() ? kAskFillVerticesSoftware : kAskFillVertices;
+    if (budget > 0 && n > budget)
+      ask_budget_ = budget;
+    else
+      fill(ctx);
+  }
   ui::probe::item("ddm.fill");
   fill_rect_ = last_item_rect();
   ui::tooltip("Cover the whole surface with the layer settings above: one ddm.fill (replaces a layer of that name)");
   ImGui::EndDisabled();
+  if (ask_budget_ > 0) draw_fill_prompt(ctx);
   ImGui::SameLine();
   ImGui::BeginDisabled(!target(ctx) || new_layer(ctx));
   if (ImGui::Button("Bake")) bake(ctx);

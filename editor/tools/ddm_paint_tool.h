@@ -52,6 +52,9 @@ nlohmann::json ddm_fill_line(const std::string& object, const DdmPaintToolParams
 class DdmPaintTool : public Tool {
  public:
   static constexpr double kMinRadiusPx = 2.0, kMaxRadiusPx = 500.0;
+  // Fill asks first above this many tile vertices (the estimate): a software GL (llvmpipe) draws ~1 M tile vertices
+  // at a few frames per second, a GPU several times more.
+  static constexpr std::size_t kAskFillVertices = 4'000'000, kAskFillVerticesSoftware = 1'000'000;
 
   ui::ToolEntry entry() const override;
   void activate(ToolContext& ctx) override;
@@ -100,6 +103,7 @@ class DdmPaintTool : public Tool {
   void draw_layer_color(ToolContext& ctx, const core::SceneObject& o, const core::DdmLayer& layer);
   void apply_object_defaults(const core::SceneObject* o);  // base and tile size for a newly chosen object
   void draw_estimate(const core::SceneObject* o);          // what Fill would make (ddm_fill_estimate), cached
+  void draw_fill_prompt(ToolContext& ctx);                 // "Fill anyway?" above the vertex budget
 
   DdmPaintToolParams params_;
   std::string object_;
@@ -111,6 +115,7 @@ class DdmPaintTool : public Tool {
   std::string estimate_key_;        // object, mesh and fill line the estimate below is for
   core::DdmFillEstimate estimate_;
   std::string estimate_error_;      // why there is no estimate (the error Fill would report)
+  std::size_t ask_budget_ = 0;      // the budget the open "Fill anyway?" prompt was asked against (0: none open)
 
   std::optional<glm::dvec2> hover_;
   StrokeGesture gesture_;  // the drag under way, in the view at mouse-down
