@@ -101,6 +101,9 @@ ParamSchema<S> make_layer_schema(bool fill) {
       .help("Cells per chart n × m (the seed's parametric layouts); not with tile_size")
       .field("tile_size", &S::tile_size).above(0).unit("world units")
       .help("Tile width in object space: every chart gets the cells that make its tiles this size (not with counts)")
+      .field("max_vertices", &S::max_vertices).range(1, double(kMaxTileVertices)).unit("tile vertices")
+      .default_text("10000000")
+      .help("Refuse a layer of more tile vertices than this, counted before it is built (ddm.paint: after the stroke)")
       .field("height", &S::height).required(fill).above(0).unit("world units")
       .help("World units (object space) per tile unit of w, along the base normal")
       .choice("base", &S::base, {"limit", "teapot_body", "uv", "auto_uv"}).write_unless_default()
@@ -263,14 +266,16 @@ std::vector<glm::ivec2> ddm_fill_chart_counts(const DdmLayerSpec& spec, DdmBaseK
   std::size_t cells = 0;
   for (const glm::ivec2& c : counts) cells += ddm_layout_cell_count(spec.layout, c);
   const std::size_t per_tile = std::max<std::size_t>(tile_vertices, 1);
-  if (cells > kMaxTileVertices / per_tile) {
+  const std::size_t limit = spec.max_vertices ? static_cast<std::size_t>(*spec.max_vertices) : kMaxTileVertices;
+  if (cells > limit / per_tile) {
     char size[80] = "";
     if (spec.tile_size) std::snprintf(size, sizeof size, "tiles %g world units across make ", *spec.tile_size);
     const std::string count = tile_vertices == 0
                                   ? std::to_string(cells) + " cells to paint (at most "
                                   : std::to_string(cells) + " tiles × " + std::to_string(per_tile) +
                                         " vertices = " + std::to_string(cells * per_tile) + " tile vertices (at most ";
-    throw CommandError("field '" + std::string(field) + "': " + size + count + std::to_string(kMaxTileVertices) + ")",
+    throw CommandError("field '" + std::string(field) + "': " + size + count + std::to_string(limit) +
+                           (spec.max_vertices ? ", max_vertices)" : ")"),
                        field);
   }
   return counts;

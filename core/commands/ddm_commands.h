@@ -66,6 +66,7 @@ struct DdmLayerSpec {
   DdmLayout layout = DdmLayout::rect;
   std::optional<glm::ivec2> counts;  // cells per chart; unset: from tile_size, or [1, 1] without it
   std::optional<double> tile_size;   // world units: cells per chart from each chart's world size (not with counts)
+  std::optional<std::int64_t> max_vertices;  // refuse more tile vertices than this; unset = kMaxDdmLayerVertices
   double height = 0.1;
   DdmBaseKind base = DdmBaseKind::limit;
   std::optional<glm::ivec2> map_resolution;  // unset = the base's default
@@ -96,7 +97,8 @@ std::shared_ptr<DdmLayer> make_ddm_layer(const SceneObject& object, const std::s
 // ddm_counts_for_size of each chart's world size — ddm_limit_chart_sizes(base_mesh) for a limit base,
 // ddm_uv_chart_size(base_mesh) for uv and auto_uv (the unwrapped mesh), ddm_chart_size(*surface) otherwise. Throws
 // CommandError ("tile_size", or "counts" without it): cells × `tile_vertices` (the largest tile's vertex count) over
-// kMaxDdmLayerVertices — counted before any cell is made, the message giving both numbers. `tile_vertices` = 0 (a
+// spec.max_vertices (default and at most kMaxDdmLayerVertices) — counted before any cell is made, the message giving
+// both numbers. `tile_vertices` = 0 (a
 // layer ddm.paint makes: its cells are candidates, tiles come only where painted) weighs the cells alone.
 std::vector<glm::ivec2> ddm_fill_chart_counts(const DdmLayerSpec& spec, DdmBaseKind base, const TriMesh& base_mesh,
                                               const DdmBase* surface, int charts, std::size_t tile_vertices);

@@ -299,9 +299,12 @@ std::optional<SceneObject> DdmPaintCommand::build(const Scene& scene) {
     for (const DdmInstance& c : instances)
       if (c.tile >= 0 && c.tile < static_cast<int>(layer.tiles.size()))
         vertices += layer.tiles[static_cast<std::size_t>(c.tile)].mesh.vertex_count();
-    if (vertices > kMaxTileVertices)
+    const std::size_t limit =
+        p_.spec.max_vertices ? static_cast<std::size_t>(*p_.spec.max_vertices) : kMaxTileVertices;
+    if (vertices > limit)
       throw CommandError("field 'stroke': the layer would hold " + std::to_string(vertices) +
-                             " tile vertices (at most " + std::to_string(kMaxTileVertices) + ")",
+                             " tile vertices (at most " + std::to_string(limit) +
+                             (p_.spec.max_vertices ? ", max_vertices)" : ")"),
                          "stroke");
     try {
       result = ddm_layer_with_instances(layer, std::move(instances));

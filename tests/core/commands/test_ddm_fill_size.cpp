@@ -126,6 +126,16 @@ TEST(DdmFillSize, BadSizesAreRefusedNamingTheField) {
       "tile_size", "tile vertices (at most 10000000)"));
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 2.0);
   EXPECT_TRUE(s.find("ball")->ddm_layers.empty()) << "the scene is unchanged";
+  // A line's own hard limit: refused above it with the count, naming the field that made the tiles.
+  EXPECT_TRUE(test::throws_command_error(
+      [&] {
+        DdmFillCommand::parse(json::parse(R"({"cmd":"ddm.fill","object":"ball","layer":"x","tile":"thorn",
+            "layout":"rect","height":0.1,"counts":[1,1],"max_vertices":100000})"), {})->redo(s);
+      },
+      "counts", "tile vertices (at most 100000, max_vertices)"));
+  EXPECT_EQ(field(R"(,"counts":[1,1],"max_vertices":0)"), "max_vertices");
+  EXPECT_EQ(field(R"(,"counts":[1,1],"max_vertices":20000000)"), "max_vertices");  // above the layer budget
+  EXPECT_EQ(field(R"(,"counts":[1,1],"max_vertices":10000000)"), "(accepted)");
   DdmLayerSpec spec;
   spec.tile_size = 1e-7;
   EXPECT_TRUE(
