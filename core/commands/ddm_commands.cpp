@@ -4,12 +4,17 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
+#include <deque>
+#include <mutex>
 #include <cmath>
 #include <memory>
 #include <random>
 #include <stdexcept>
 
 #include "core/commands/codecs.h"
+#include "core/ddm/ddm_auto_uv.h"
+#include "core/ddm/ddm_chart_size.h"
 #include "core/mesh/mesh_io.h"
 #include "core/scene/primitives.h"
 
@@ -92,26 +97,44 @@ ParamSchema<S> make_layer_schema(bool fill) {
       .field("seed", &S::seed).write_unless_default().write_if(several).help("Seed of random's mt19937")
       .choice("layout", &S::layout, {"rect", "hex", "brick"}).required(fill)
       .help("Cells per chart: rect n × m; hex and brick shift odd rows (n ≥ 2)")
-      .field("counts", &S::counts).required(fill).help("Cells per chart n × m")
+      .field("counts", &S::counts).default_text(fill ? "required without tile_size" : "[1,1]")
+      .help("Cells per chart n × m (the seed's parametric layouts); not with tile_size")
+      .field("tile_size", &S::tile_size).above(0).unit("world units")
+      .help("Tile width in object space: every chart gets the cells that make its tiles this size (not with counts)")
+      .field("max_vertices", &S::max_vertices).range(1, double(kMaxTileVertices)).unit("tile vertices")
+      .default_text("10000000")
+      .help("Refuse a layer of more tile vertices than this, counted before it is built (ddm.paint: after the stroke)")
       .field("height", &S::height).required(fill).above(0).unit("world units")
       .help("World units (object space) per tile unit of w, along the base normal")
-      .choice("base", &S::base, {"limit", "teapot_body", "uv"}).write_unless_default()
+      .choice("base", &S::base, {"limit", "teapot_body", "uv", "auto_uv"}).write_unless_default()
       .help("limit: Loop limit surface, three charts per triangle; teapot_body: the teapot's body patches as one "
-            "chart; uv: the mesh's texture coordinates")
+            "chart; uv: the mesh's texture coordinates; auto_uv: automatic ones (seams, CGAL LSCM, even density)")
       .custom("map_resolution", read_map_resolution, write_map_resolution).type_text("integer or [a,b]")
-      .default_text("[9,9] limit, [513,257] teapot_body, [1025,1025] uv").range(2, 4097)
+      .default_text("[9,9] limit, [513,257] teapot_body, [1025,1025] uv and auto_uv").range(2, 4097)
       .unit("samples per chart edge").help("P/N map samples per chart edge; square for uv")
       .embed(&S::transform, tile_transform_schema())
       .field("color", &S::color).type_text("[r,g,b]").range(0, 1).unit("linear RGB").default_text("the object's")
       .help("The layer's own colour")
-      .check([](S& s) {  // the layout's own checks, before anything is built
+      .check([fill](S& s) {  // the layout's own checks, before anything is built
+        if (s.counts && s.tile_size)
+          params::fail("tile_size", "give tile_size (world units) or counts (cells per chart), not both");
+        if (fill && !s.counts && !s.tile_size) params::fail("counts", "ddm.fill needs counts or tile_size");
+        if (s.tile_size) return;
         try {
-          (void)ddm_layout_cells(s.layout, s.counts, 1);
+          (void)ddm_layout_cells(s.layout, s.counts.value_or(glm::ivec2(1)), 1);
         } catch (const std::invalid_argument& e) {
           const std::string msg = e.what();  // "counts: …"
           params::fail("counts", msg.substr(msg.find(':') + 2));
         }
       });
+}
+
+// The teapot primitive's body patches as one chart, periodic round the pot; CommandError ("base") on another object.
+std::shared_ptr<DdmBase> teapot_body_base(const SceneObject& object) {
+  if (object.source != "primitive:teapot")
+    throw CommandError("field 'base': teapot_body needs the teapot primitive; '" + object.name + "' is " +
+                           object.source, "base");
+  return std::make_shared<DdmSplineBase>(teapot_body_patches(), glm::ivec2(4, 2), glm::bvec2(true, false));
 }
 
 }  // namespace
@@ -153,27 +176,27 @@ std::shared_ptr<DdmLayer> make_ddm_layer(const SceneObject& object, const std::s
     layer->tiles.push_back(
         load_ddm_tile(spec.tiles[i], ddm_tile_file(spec.tiles, spec.tile_paths, i), i == 0 ? "tile" : "tiles"));
   layer->layout = spec.layout;
-  layer->counts = spec.counts;
+  layer->counts = spec.counts.value_or(glm::ivec2(1));
+  layer->tile_size = spec.tile_size;
   layer->height = spec.height;
   layer->transform = spec.transform;
   layer->color = spec.color;
   glm::ivec2 resolution{9, 9};
   int charts = 1;
+  std::shared_ptr<const TriMesh> base_mesh = object.rest_mesh;  // the mesh the base is made from
   try {
     if (spec.base == DdmBaseKind::teapot_body) {
-      if (object.source != "primitive:teapot")
-        throw CommandError("field 'base': teapot_body needs the teapot primitive; '" + object.name + "' is " +
-                               object.source, "base");
       layer->base = DdmBaseKind::teapot_body;
-      layer->surface = std::make_shared<DdmSplineBase>(teapot_body_patches(), glm::ivec2(4, 2), glm::bvec2(true, false));
+      layer->surface = teapot_body_base(object);
       resolution = {513, 257};
-    } else if (spec.base == DdmBaseKind::uv) {
-      layer->base = DdmBaseKind::uv;
+    } else if (ddm_base_is_uv(spec.base)) {
+      layer->base = spec.base;
       resolution = {1025, 1025};
       if (spec.map_resolution && spec.map_resolution->x != spec.map_resolution->y)
         throw CommandError("field 'map_resolution': a uv base is square ([R, R])", "map_resolution");
+      if (spec.base == DdmBaseKind::auto_uv) base_mesh = ddm_auto_uv_mesh(object.rest_mesh);
       layer->maps = std::make_shared<const DdmMaps>(
-          ddm_rasterize_uv_maps(*object.rest_mesh, spec.map_resolution.value_or(resolution).x));
+          ddm_rasterize_uv_maps(*base_mesh, spec.map_resolution.value_or(resolution).x));
     } else {
       layer->base = DdmBaseKind::limit;
       layer->surface = std::make_shared<DdmSubdivBase>(*object.rest_mesh);
@@ -182,16 +205,14 @@ std::shared_ptr<DdmLayer> make_ddm_layer(const SceneObject& object, const std::s
   } catch (const std::invalid_argument& e) {
     throw CommandError("field 'base': '" + object.name + "': " + e.what(), "base");
   }
+  std::size_t largest = 0;
+  for (const DdmTile& t : layer->tiles) largest = std::max(largest, t.mesh.vertex_count());
+  // Checked before any cell is made: cells per chart × charts × tile vertices.
+  std::vector<glm::ivec2> chart_counts =
+      ddm_fill_chart_counts(spec, layer->base, *base_mesh, layer->surface.get(), charts, fill ? largest : 0);
+  if (spec.tile_size) layer->counts = chart_counts.front();
   if (fill) {
-    // Checked before any cell is made: cells per chart × charts × tile vertices.
-    std::size_t largest = 0;
-    for (const DdmTile& t : layer->tiles) largest = std::max(largest, t.mesh.vertex_count());
-    const std::size_t tiles = ddm_layout_cells(layer->layout, spec.counts, 1).size() * static_cast<std::size_t>(charts);
-    if (tiles * largest > kMaxTileVertices)
-      throw CommandError("field 'counts': " + std::to_string(tiles) + " tiles × " + std::to_string(largest) +
-                             " vertices = " + std::to_string(tiles * largest) + " tile vertices (at most " +
-                             std::to_string(kMaxTileVertices) + ")", "counts");
-    layer->instances = ddm_layout_cells(layer->layout, spec.counts, charts);
+    layer->instances = ddm_layout_cells(layer->layout, chart_counts);
     if (layer->tiles.size() > 1) {
       std::mt19937 rng(static_cast<std::uint32_t>(spec.seed));
       const std::size_t k = layer->tiles.size();
@@ -205,6 +226,7 @@ std::shared_ptr<DdmLayer> make_ddm_layer(const SceneObject& object, const std::s
       }
     }
   }
+  if (spec.tile_size) layer->chart_counts = std::move(chart_counts);
   try {
     ddm_layer_finish(*layer, spec.map_resolution.value_or(resolution));
   } catch (const std::invalid_argument& e) {
@@ -214,6 +236,112 @@ std::shared_ptr<DdmLayer> make_ddm_layer(const SceneObject& object, const std::s
                        res ? "map_resolution" : "base");
   }
   return layer;
+}
+
+std::vector<glm::ivec2> ddm_fill_chart_counts(const DdmLayerSpec& spec, DdmBaseKind base, const TriMesh& base_mesh,
+                                              const DdmBase* surface, int charts, std::size_t tile_vertices) {
+  const char* field = spec.tile_size ? "tile_size" : "counts";
+  std::vector<glm::ivec2> counts;
+  try {
+    if (!spec.tile_size) {
+      counts.assign(static_cast<std::size_t>(charts), spec.counts.value_or(glm::ivec2(1)));
+    } else {
+      std::vector<glm::dvec2> sizes;
+      if (base == DdmBaseKind::limit) sizes = ddm_limit_chart_sizes(base_mesh);
+      else if (!surface) sizes.assign(1, ddm_uv_chart_size(base_mesh));
+      else
+        for (int c = 0; c < charts; ++c) sizes.push_back(ddm_chart_size(*surface, c));
+      if (static_cast<int>(sizes.size()) != charts)
+        throw std::invalid_argument("base: " + std::to_string(sizes.size()) + " chart sizes for " +
+                                    std::to_string(charts) + " charts");
+      counts.reserve(sizes.size());
+      for (const glm::dvec2& size : sizes) counts.push_back(ddm_counts_for_size(spec.layout, size, *spec.tile_size));
+    }
+  } catch (const std::invalid_argument& e) {
+    const std::string msg = e.what();
+    const bool sized = msg.rfind("tile_size", 0) == 0;
+    const char* blamed = sized ? "tile_size" : "base";
+    throw CommandError("field '" + std::string(blamed) + "': " + msg, blamed);
+  }
+  std::size_t cells = 0;
+  for (const glm::ivec2& c : counts) cells += ddm_layout_cell_count(spec.layout, c);
+  const std::size_t per_tile = std::max<std::size_t>(tile_vertices, 1);
+  const std::size_t limit = spec.max_vertices ? static_cast<std::size_t>(*spec.max_vertices) : kMaxTileVertices;
+  if (cells > limit / per_tile) {
+    char size[80] = "";
+    if (spec.tile_size) std::snprintf(size, sizeof size, "tiles %g world units across make ", *spec.tile_size);
+    const std::string count = tile_vertices == 0
+                                  ? std::to_string(cells) + " cells to paint (at most "
+                                  : std::to_string(cells) + " tiles × " + std::to_string(per_tile) +
+                                        " vertices = " + std::to_string(cells * per_tile) + " tile vertices (at most ";
+    throw CommandError("field '" + std::string(field) + "': " + size + count + std::to_string(limit) +
+                           (spec.max_vertices ? ", max_vertices)" : ")"),
+                       field);
+  }
+  return counts;
+}
+
+std::shared_ptr<const TriMesh> ddm_auto_uv_mesh(const std::shared_ptr<const TriMesh>& mesh, DdmAutoUvStats* stats) {
+  struct Entry {
+    std::weak_ptr<const TriMesh> mesh;
+    std::shared_ptr<const TriMesh> unwrapped;
+    DdmAutoUvStats stats;
+  };
+  static std::mutex mutex;
+  static std::deque<Entry> cache;  // the last few meshes unwrapped (the panel's estimate, then Fill, then undo/redo)
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    for (const Entry& e : cache)
+      if (e.mesh.lock() == mesh) {
+        if (stats) *stats = e.stats;
+        return e.unwrapped;
+      }
+  }
+  DdmAutoUvStats st;
+  auto unwrapped = std::make_shared<const TriMesh>(ddm_auto_uv(*mesh, &st));
+  const std::lock_guard<std::mutex> lock(mutex);
+  cache.push_front({mesh, unwrapped, st});
+  if (cache.size() > 4) cache.pop_back();
+  if (stats) *stats = st;
+  return unwrapped;
+}
+
+DdmBaseKind ddm_default_base(const SceneObject& object) {
+  if (object.source == "primitive:teapot") return DdmBaseKind::teapot_body;
+  const TriMesh* mesh = object.rest_mesh.get();
+  if (mesh && !mesh->empty() && mesh->uvs.size() == mesh->vertex_count()) return DdmBaseKind::uv;
+  return DdmBaseKind::auto_uv;
+}
+
+DdmFillEstimate ddm_fill_estimate(const SceneObject& object, const DdmLayerSpec& spec) {
+  if (!object.rest_mesh) throw CommandError("field 'object': '" + object.name + "' has no mesh", "object");
+  std::size_t largest = 0;
+  for (std::size_t i = 0; i < spec.tiles.size(); ++i)
+    largest = std::max(largest, load_ddm_tile(spec.tiles[i], ddm_tile_file(spec.tiles, spec.tile_paths, i),
+                                              i == 0 ? "tile" : "tiles").mesh.vertex_count());
+  std::shared_ptr<DdmBase> surface;
+  int charts = 1;
+  if (spec.base == DdmBaseKind::teapot_body) {
+    surface = teapot_body_base(object);
+  } else if (spec.base == DdmBaseKind::limit) {
+    charts = static_cast<int>(3 * object.rest_mesh->triangle_count());
+  }
+  std::shared_ptr<const TriMesh> base_mesh = object.rest_mesh;
+  if (spec.base == DdmBaseKind::auto_uv) {
+    try {
+      base_mesh = ddm_auto_uv_mesh(object.rest_mesh);
+    } catch (const std::invalid_argument& e) {
+      throw CommandError("field 'base': '" + object.name + "': " + e.what(), "base");
+    }
+  }
+  DdmFillEstimate e;
+  const std::vector<glm::ivec2> counts =
+      ddm_fill_chart_counts(spec, spec.base, *base_mesh, surface.get(), charts, largest);
+  e.charts = counts.size();
+  for (const glm::ivec2& c : counts) e.cells += ddm_layout_cell_count(spec.layout, c);
+  e.tile_vertices = e.cells * largest;
+  e.upper_bound = ddm_base_is_uv(spec.base);
+  return e;
 }
 
 SceneObject with_ddm_layer(const SceneObject& object, std::shared_ptr<const DdmLayer> layer) {
@@ -265,6 +393,12 @@ std::optional<SceneObject> DdmFillCommand::build(const Scene& scene) {
             {"vertices", layer->mesh->vertex_count()},
             {"map_samples", layer->maps->slot_count() * layer->maps->samples_per_slot()},
             {"ms", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count()}};
+  if (layer->base == DdmBaseKind::auto_uv) {  // the unwrap is cached: its figures for the report
+    DdmAutoUvStats uv;
+    (void)ddm_auto_uv_mesh(object->rest_mesh, &uv);
+    stats_["uv_charts"] = uv.charts;
+    stats_["uv_area_distortion_p95"] = uv.area_distortion_p95;
+  }
   return with_ddm_layer(*object, std::move(layer));
 }
 

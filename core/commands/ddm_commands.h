@@ -2,8 +2,8 @@
 //
 // `ddm.fill` — a whole-surface layer (the painting tool's fill click):
 //   {"cmd":"ddm.fill","object":"ID","layer":"NAME","tile":"PATH|thorn|chain|hex|flower","layout":"rect|hex|brick",
-//    "counts":[n,m],"height":h}
-//   optional (DdmLayerSpec): "base":"limit|teapot_body|uv" (default "limit"), "tiles":[more tiles …] with
+//    "counts":[n,m] | "tile_size":s,"height":h}
+//   optional (DdmLayerSpec): "base":"limit|teapot_body|uv|auto_uv" (default "limit"), "tiles":[more tiles …] with
 //   "choice":"pattern|random" and "seed":s, "map_resolution":[Ru,Rv] (or one number), "tile_scale":[sx,sy] (or one
 //   number), "tile_rotate_deg":r, "tile_shift":[dx,dy].
 //   tile    a generated tile (ddm_tile.h) or a mesh file (OBJ/PLY/glTF, relative to the log's folder; logged absolute,
@@ -13,8 +13,11 @@
 //   base    limit: the Loop limit surface of the object's rest mesh (OpenSubdiv Bfr), three charts per triangle;
 //           teapot_body: the teapot primitive's 8 Bézier body patches as one chart, periodic around the pot;
 //           uv: the rest mesh rasterised in its texture coordinates (one chart; tiles wholly outside the UV islands
-//           are pruned);
+//           are pruned); auto_uv: the same in automatic texture coordinates (ddm_auto_uv; tiles whose centre lies
+//           between its charts are pruned too);
 //   layout, counts: cells per chart (ddm_layout_cells): n × m, n ≥ 1 (≥ 2 for hex / brick), m ≥ 1;
+//   tile_size  world units (object space), instead of counts: every chart gets ddm_counts_for_size of its world size
+//           (ddm_fill_chart_counts), so tiles are of even size across charts; with counts an error ("tile_size");
 //   height  world units (object space) per tile unit of w, along the base normal, > 0;
 //   map_resolution  P/N map samples per chart edge (DdmMaps), default [9,9] (limit), [513,257] (teapot_body),
 //           [1025,1025] (uv); tile_* the layer's DdmTileTransform (scale > 0, degrees, cell units).
@@ -22,7 +25,8 @@
 //   draws) and stored on the object (SceneObject::ddm_layers); a layer of the same name is replaced. Objects with an
 //   FFD lattice, a DFFD rig or a glTF clip are refused (the tiles would not follow the deformation). At most
 //   50,000,000 tile vertices.
-//   report.json: charts, tiles, tile_vertices, vertices, map_samples, ms.
+//   report.json: charts, tiles, tile_vertices, vertices, map_samples, ms; auto_uv adds uv_charts and
+//   uv_area_distortion_p95 (DdmAutoUvStats).
 // `ddm.bake` — a layer as an ordinary mesh object (for export and for use elsewhere):
 //   {"cmd":"ddm.bake","object":"ID","layer":"NAME","name":"NEW_ID"}
 //   optional "frame":F (default: the layer at scene time 0) — the layer's animation at that timeline frame.
@@ -31,7 +35,8 @@
 //   report.json: vertices, triangles.
 // Errors (CommandError, field named; the scene is unchanged): unknown object / deformed object / a base the mesh
 // cannot give (non-manifold, no triangles, no uvs) ("object" / "base"); unknown tile, unreadable or bad tile file
-// ("tile" / "tiles"); bad layout ("layout"); counts out of range or too many vertices ("counts"); height ≤ 0 or not
+// ("tile" / "tiles"); bad layout ("layout"); counts out of range or too many vertices ("counts"); tile_size ≤ 0, with
+// counts, or too many vertices ("tile_size"); neither counts nor tile_size on ddm.fill ("counts"); height ≤ 0 or not
 // finite ("height"); teapot_body on another object ("base"); no such layer ("layer"); name empty or taken ("name").
 #pragma once
 
@@ -44,6 +49,7 @@
 
 #include "core/commands/declared_command.h"
 #include "core/commands/snapshot_command.h"
+#include "core/ddm/ddm_auto_uv.h"
 #include "core/ddm/ddm_layer.h"
 
 namespace trispline::core {
@@ -58,7 +64,9 @@ struct DdmLayerSpec {
   std::string choice = "pattern";  // with several tiles: "pattern" | "random"
   std::int64_t seed = 0;           // "random"'s mt19937 seed
   DdmLayout layout = DdmLayout::rect;
-  glm::ivec2 counts{1, 1};
+  std::optional<glm::ivec2> counts;  // cells per chart; unset: from tile_size, or [1, 1] without it
+  std::optional<double> tile_size;   // world units: cells per chart from each chart's world size (not with counts)
+  std::optional<std::int64_t> max_vertices;  // refuse more tile vertices than this; unset = kMaxDdmLayerVertices
   double height = 0.1;
   DdmBaseKind base = DdmBaseKind::limit;
   std::optional<glm::ivec2> map_resolution;  // unset = the base's default
@@ -66,7 +74,8 @@ struct DdmLayerSpec {
   std::optional<glm::vec3> color;            // the layer's linear RGB in [0, 1]; unset = the object's
 };
 
-// DdmLayerSpec's fields, declared once: `fill` = ddm.fill's (tile, layout, counts and height required), else
+// DdmLayerSpec's fields, declared once: `fill` = ddm.fill's (tile, layout, height and counts or tile_size required),
+// else
 // ddm.paint's (every field optional, with the defaults above).
 const ParamSchema<DdmLayerSpec>& ddm_layer_schema(bool fill);
 
@@ -83,6 +92,38 @@ DdmTile load_ddm_tile(const std::string& name, const std::filesystem::path& path
 // cell filled (`fill`) or none, maps sampled, mesh evaluated. Throws CommandError naming the field (see ddm.fill).
 std::shared_ptr<DdmLayer> make_ddm_layer(const SceneObject& object, const std::string& name, const DdmLayerSpec& spec,
                                          bool fill);
+
+// The cells per chart a layer of `spec` gets on a base of `charts` charts: `counts` on every chart, or with tile_size
+// ddm_counts_for_size of each chart's world size — ddm_limit_chart_sizes(base_mesh) for a limit base,
+// ddm_uv_chart_size(base_mesh) for uv and auto_uv (the unwrapped mesh), ddm_chart_size(*surface) otherwise. Throws
+// CommandError ("tile_size", or "counts" without it): cells × `tile_vertices` (the largest tile's vertex count) over
+// spec.max_vertices (default and at most kMaxDdmLayerVertices) — counted before any cell is made, the message giving
+// both numbers. `tile_vertices` = 0 (a
+// layer ddm.paint makes: its cells are candidates, tiles come only where painted) weighs the cells alone.
+std::vector<glm::ivec2> ddm_fill_chart_counts(const DdmLayerSpec& spec, DdmBaseKind base, const TriMesh& base_mesh,
+                                              const DdmBase* surface, int charts, std::size_t tile_vertices);
+
+// The base a new layer on `object` starts from in the editor: the teapot primitive's body patches (teapot_body), the
+// mesh's own texture coordinates when every vertex has one (uv), else automatic ones (auto_uv); limit on request.
+// (The commands' own default stays "limit": logs that omit "base" replay as they were written.)
+DdmBaseKind ddm_default_base(const SceneObject& object);
+
+// ddm_auto_uv of `mesh` (the auto_uv base), kept for the last few meshes (a mesh is immutable and shared between
+// undo states, so its pointer is its identity): the panel's estimate and the Fill after it unwrap once. Thread-safe.
+// Throws as ddm_auto_uv.
+std::shared_ptr<const TriMesh> ddm_auto_uv_mesh(const std::shared_ptr<const TriMesh>& mesh,
+                                                DdmAutoUvStats* stats = nullptr);
+
+// What ddm.fill of `spec` on `object` would make, from the same layout code without sampling maps or evaluating tiles
+// (the Tile Paint panel shows it before Fill): charts, cells, and tile vertices = cells × the largest tile's vertex
+// count (exact for one tile). For uv and auto_uv bases the cells are counted before pruning (cells outside the UV
+// islands are dropped when the maps exist), so `upper_bound` is set. Throws CommandError as ddm.fill ("tile", "base",
+// "tile_size", "counts").
+struct DdmFillEstimate {
+  std::size_t charts = 0, cells = 0, tile_vertices = 0;
+  bool upper_bound = false;
+};
+DdmFillEstimate ddm_fill_estimate(const SceneObject& object, const DdmLayerSpec& spec);
 
 // `object` with `layer` added, or replacing the layer of the same name.
 SceneObject with_ddm_layer(const SceneObject& object, std::shared_ptr<const DdmLayer> layer);

@@ -112,14 +112,23 @@ std::vector<DdmInstance> ddm_paint_cells(const Scene& scene, const SceneObject& 
     if (!layer.maps) throw std::invalid_argument("layer: '" + layer.name + "' has neither a surface nor maps");
     base = std::make_shared<DdmMapsBase>(layer.maps);
   }
-  const bool check_valid = layer.base == DdmBaseKind::uv && layer.maps;
+  const bool check_valid = ddm_base_is_uv(layer.base) && layer.maps;
   const int charts = base->chart_count();
-  std::vector<DdmInstance> cells = ddm_layout_cells(layer.layout, layer.counts, 1);
+  if (!layer.chart_counts.empty() && static_cast<int>(layer.chart_counts.size()) != charts)
+    throw std::invalid_argument("layer: '" + layer.name + "' has counts for " +
+                                std::to_string(layer.chart_counts.size()) + " charts, its base " +
+                                std::to_string(charts));
   const int tile_count = std::max<int>(1, static_cast<int>(layer.tiles.size()));
-  for (std::size_t i = 0, row = 0; i < cells.size(); ++i) {  // rows: runs of equal origin.y (ddm_layout_cells' order)
-    if (i > 0 && cells[i].origin.y != cells[i - 1].origin.y) ++row;
-    cells[i].tile = ddm_paint_tile_index(static_cast<int>(i), static_cast<int>(row), tile_count);
-  }
+  // One chart's layout cells, each with the tile a pattern fill gives it.
+  const auto cells_of = [&](glm::ivec2 counts) {
+    std::vector<DdmInstance> cells = ddm_layout_cells(layer.layout, counts, 1);
+    for (std::size_t i = 0, row = 0; i < cells.size(); ++i) {  // rows: runs of equal origin.y (ddm_layout_cells' order)
+      if (i > 0 && cells[i].origin.y != cells[i - 1].origin.y) ++row;
+      cells[i].tile = ddm_paint_tile_index(static_cast<int>(i), static_cast<int>(row), tile_count);
+    }
+    return cells;
+  };
+  const std::vector<DdmInstance> uniform_cells = cells_of(layer.counts);
 
   const glm::dmat4 m = object.transform.matrix();
   const glm::dmat3 normal_matrix = glm::transpose(glm::inverse(glm::dmat3(m)));
@@ -138,10 +147,14 @@ std::vector<DdmInstance> ddm_paint_cells(const Scene& scene, const SceneObject& 
   std::vector<std::vector<Candidate>> per_chart(static_cast<std::size_t>(charts));
   tbb::parallel_for(tbb::blocked_range<int>(0, charts, 64), [&](const tbb::blocked_range<int>& r) {
     for (int c = r.begin(); c != r.end(); ++c) {
+      const std::vector<DdmInstance> own = layer.chart_counts.empty()
+                                               ? std::vector<DdmInstance>()
+                                               : cells_of(layer.chart_counts[static_cast<std::size_t>(c)]);
+      const std::vector<DdmInstance>& cells = layer.chart_counts.empty() ? uniform_cells : own;
       for (std::size_t i = 0; i < cells.size(); ++i) {
         DdmInstance cell = cells[i];
         cell.chart = c;
-        if (check_valid && !ddm_cell_valid(*layer.maps, cell)) continue;
+        if (check_valid && !ddm_uv_cell_kept(layer.base, *layer.maps, cell)) continue;
         const glm::dvec2 uv = cell.origin + 0.5 * cell.size;
         const DdmSurfacePoint s = base->eval(c, uv.x, uv.y);
         const glm::dvec3 p = glm::dvec3(m * glm::dvec4(s.p, 1.0));
@@ -286,9 +299,12 @@ std::optional<SceneObject> DdmPaintCommand::build(const Scene& scene) {
     for (const DdmInstance& c : instances)
       if (c.tile >= 0 && c.tile < static_cast<int>(layer.tiles.size()))
         vertices += layer.tiles[static_cast<std::size_t>(c.tile)].mesh.vertex_count();
-    if (vertices > kMaxTileVertices)
+    const std::size_t limit =
+        p_.spec.max_vertices ? static_cast<std::size_t>(*p_.spec.max_vertices) : kMaxTileVertices;
+    if (vertices > limit)
       throw CommandError("field 'stroke': the layer would hold " + std::to_string(vertices) +
-                             " tile vertices (at most " + std::to_string(kMaxTileVertices) + ")",
+                             " tile vertices (at most " + std::to_string(limit) +
+                             (p_.spec.max_vertices ? ", max_vertices)" : ")"),
                          "stroke");
     try {
       result = ddm_layer_with_instances(layer, std::move(instances));

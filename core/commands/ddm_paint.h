@@ -3,8 +3,9 @@
 //   optional: "camera" (as place.sketch / incision.draw: the view the stroke was drawn in; else the scene's camera,
 //   the last camera.set).
 // `stroke` is #S × 2 viewport pixels (top-left origin), S ≥ 1; `radius_px` the brush radius in the same pixels.
-// The candidate cells are every cell of the layer's layout (ddm_layout_cells(layout, counts, #charts)) on every
-// chart of its base (uv bases: cells without a valid sample are skipped). A cell is touched when its centre — the
+// The candidate cells are every cell of the layer's layout (ddm_layout_cells(layout, counts, #charts), or each chart's
+// own counts for a layer laid by tile_size, DdmLayer::chart_counts) on every chart of its base (uv bases: cells the
+// fill would prune are skipped, ddm_uv_cell_kept). A cell is touched when its centre — the
 // base point S(chart, cell centre) (w = 0), through the object's transform — (1) projects within radius_px of the
 // stroke polyline, (2) lies in front of the eye with its normal facing the camera and (3) is not occluded: the first
 // hit of the eye ray towards it among the visible objects' world meshes is none, lies within a tolerance of it
@@ -17,9 +18,9 @@
 // extended, mesh re-evaluated); undo restores the previous layer pointer (the instance set exactly).
 // When the object has no layer of that name, painting creates it (empty, then painted) from ddm.fill's fields, all
 // optional here (DdmLayerSpec, ddm_commands.h): "tile" (default "thorn"), "tiles", "choice", "seed", "layout"
-// ("rect"), "counts" ([1,1]), "height" (0.1), "base" ("limit"), "map_resolution", "tile_scale", "tile_rotate_deg",
-// "tile_shift", "color"; they are ignored when the layer exists (it keeps its own) and logged back only when the line
-// named any of them. Erasing needs the layer.
+// ("rect"), "counts" ([1,1]) or "tile_size" (not both), "height" (0.1), "base" ("limit"), "map_resolution",
+// "tile_scale", "tile_rotate_deg", "tile_shift", "color"; they are ignored when the layer exists (it keeps its own)
+// and logged back only when the line named any of them. Erasing needs the layer.
 // report.json stats: created (the layer was made by this stroke), touched, cells_added, cells_removed, tiles
 // (instances after), vertices (the layer's mesh), ms.
 // Errors (CommandError, field named; the scene is unchanged): unknown object, or one with an FFD / DFFD / clip

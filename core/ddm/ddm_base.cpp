@@ -97,7 +97,13 @@ glm::dmat2 DdmTileTransform::linear() const {
 }
 
 const char* ddm_base_name(DdmBaseKind k) {
-  return k == DdmBaseKind::teapot_body ? "teapot_body" : k == DdmBaseKind::uv ? "uv" : "limit";
+  switch (k) {
+    case DdmBaseKind::teapot_body: return "teapot_body";
+    case DdmBaseKind::uv: return "uv";
+    case DdmBaseKind::auto_uv: return "auto_uv";
+    case DdmBaseKind::limit: break;
+  }
+  return "limit";
 }
 
 const char* ddm_layout_name(DdmLayout l) {
@@ -127,6 +133,34 @@ std::vector<DdmInstance> ddm_layout_cells(DdmLayout layout, glm::ivec2 counts, i
         cells.push_back({c, {(i + (shifted ? 0.5 : 0.0)) * w, j * pitch}, {w, h}});
     }
   return cells;
+}
+
+std::vector<DdmInstance> ddm_layout_cells(DdmLayout layout, const std::vector<glm::ivec2>& chart_counts) {
+  std::vector<DdmInstance> cells;
+  for (std::size_t c = 0; c < chart_counts.size(); ++c) {
+    std::vector<DdmInstance> one = ddm_layout_cells(layout, chart_counts[c], 1);
+    for (DdmInstance& i : one) i.chart = static_cast<int>(c);
+    cells.insert(cells.end(), one.begin(), one.end());
+  }
+  return cells;
+}
+
+std::size_t ddm_layout_cell_count(DdmLayout layout, glm::ivec2 counts) {
+  const auto n = static_cast<std::size_t>(std::max(counts.x, 0)), m = static_cast<std::size_t>(std::max(counts.y, 0));
+  if (layout == DdmLayout::rect) return n * m;
+  return (m + 1) / 2 * n + m / 2 * (n > 0 ? n - 1 : 0);  // even rows n cells, odd rows n − 1
+}
+
+glm::ivec2 ddm_counts_for_size(DdmLayout layout, glm::dvec2 chart_size, double tile_size) {
+  if (!std::isfinite(tile_size) || !(tile_size > 0.0))
+    throw std::invalid_argument("tile_size: must be finite and > 0, got " + std::to_string(tile_size));
+  constexpr double kMaxPerAxis = 1 << 20;
+  const auto count = [&](double x, double lowest) {
+    return static_cast<int>(std::clamp(std::isfinite(x) ? std::round(x) : lowest, lowest, kMaxPerAxis));
+  };
+  const glm::dvec2 across = chart_size / tile_size;
+  const double rows = layout == DdmLayout::hex ? (across.y - 1.0) / 0.75 + 1.0 : across.y;
+  return {count(across.x, layout == DdmLayout::rect ? 1.0 : 2.0), count(rows, 1.0)};
 }
 
 TriMesh ddm_evaluate(const DdmBase& base, const std::vector<DdmTile>& tiles, const std::vector<DdmInstance>& instances,

@@ -115,6 +115,19 @@ const char* ddm_layout_name(DdmLayout l);  // "rect" | "hex" | "brick"
 // Throws std::invalid_argument ("counts: …") when n or m < 1 (or n < 2 for brick / hex, whose odd rows would be
 // empty), or chart_count < 1.
 std::vector<DdmInstance> ddm_layout_cells(DdmLayout layout, glm::ivec2 counts, int chart_count);
+// The same layouts with counts of their own per chart: chart c gets chart_counts[c] (the order above). Throws as
+// above for any chart's counts.
+std::vector<DdmInstance> ddm_layout_cells(DdmLayout layout, const std::vector<glm::ivec2>& chart_counts);
+// How many cells ddm_layout_cells makes on one chart with `counts` (valid counts), without making them.
+std::size_t ddm_layout_cell_count(DdmLayout layout, glm::ivec2 counts);
+
+// Counts on one chart of world size `chart_size` (its mean world length along u and v, world units) whose cells are
+// `tile_size` world units across: n = round(size.x / tile_size); m = round(size.y / tile_size) for rect and brick, and
+// for hex the m whose rows (0.75 of a cell apart, ddm_layout_cells) give cells tile_size high,
+// m = round((size.y / tile_size − 1) / 0.75) + 1. At least 1 (n ≥ 2 for hex and brick), at most 2²⁰ per axis (the
+// caller weighs the product against its budget). Throws std::invalid_argument ("tile_size: …") for tile_size not
+// finite or ≤ 0.
+glm::ivec2 ddm_counts_for_size(DdmLayout layout, glm::dvec2 chart_size, double tile_size);
 
 // The reference evaluation (seed Eq. 5.1–5.2): every instance's copy of its tile (tiles[instance.tile]), instances
 // one after another, each in its tile's vertex order (#V = Σ #tile vertices; triangles offset per instance; what

@@ -54,10 +54,11 @@ std::vector<int> charts_of(const std::vector<DdmInstance>& instances) {
 }  // namespace
 
 void ddm_layer_finish(DdmLayer& layer, glm::ivec2 map_resolution) {
-  if (layer.base == DdmBaseKind::uv) {
+  if (ddm_base_is_uv(layer.base)) {
     if (!layer.maps) throw std::invalid_argument("base: a uv layer needs its rasterised maps");
     // The validity bitmap prunes tiles lying wholly outside the UV islands (seed §5.4.1).
-    std::erase_if(layer.instances, [&](const DdmInstance& c) { return !ddm_cell_valid(*layer.maps, c); });
+    // Automatic atlases also drop cells whose centre lies between charts (ddm_cell_centre_valid).
+    std::erase_if(layer.instances, [&](const DdmInstance& c) { return !ddm_uv_cell_kept(layer.base, *layer.maps, c); });
   } else {
     if (!layer.surface) throw std::invalid_argument("base: the layer has no surface");
     layer.maps =

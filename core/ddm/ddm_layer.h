@@ -22,8 +22,16 @@ enum class DdmBaseKind {
   limit,        // the Loop limit surface of the object's rest mesh, three charts per triangle (DdmSubdivBase)
   teapot_body,  // the teapot primitive's 8 Bézier body patches as one chart, periodic around (DdmSplineBase grid)
   uv,           // the rest mesh rasterised in its texture coordinates (ddm_rasterize_uv_maps), one chart
+  auto_uv,      // as uv, in automatic texture coordinates (ddm_auto_uv: seams, CGAL LSCM, even texel density)
 };
-const char* ddm_base_name(DdmBaseKind k);  // "limit" | "teapot_body" | "uv"
+const char* ddm_base_name(DdmBaseKind k);  // "limit" | "teapot_body" | "uv" | "auto_uv"
+// uv and auto_uv: the maps are the base (rasterised in texture space, invalid texels pruned).
+inline bool ddm_base_is_uv(DdmBaseKind k) { return k == DdmBaseKind::uv || k == DdmBaseKind::auto_uv; }
+// Whether a cell of a uv-based layer holds a tile: a valid sample in the cell (uv, seed §5.4.1), and for auto_uv
+// also at its centre (ddm_cell_centre_valid).
+inline bool ddm_uv_cell_kept(DdmBaseKind k, const DdmMaps& maps, const DdmInstance& cell) {
+  return ddm_cell_valid(maps, cell) && (k != DdmBaseKind::auto_uv || ddm_cell_centre_valid(maps, cell));
+}
 
 // Tile vertices one layer may hold (ddm.fill, ddm.paint refuse more before evaluating anything). Measured at peak
 // (`replay` of a full layer writing scene.glb): ~255 bytes a vertex across the double-precision mesh, its triangles,
@@ -37,7 +45,9 @@ struct DdmLayer {
   std::vector<DdmTile> tiles;             // ≥ 1, canonical tile space (ddm_tile.h)
   DdmBaseKind base = DdmBaseKind::limit;
   DdmLayout layout = DdmLayout::rect;
-  glm::ivec2 counts{1, 1};   // cells per chart (n along u, m along v)
+  glm::ivec2 counts{1, 1};   // cells per chart (n along u, m along v) when chart_counts is empty
+  std::optional<double> tile_size;         // world units: the size the chart counts were derived from (unset: counts)
+  std::vector<glm::ivec2> chart_counts;    // empty, or per chart of the base: its own counts (layers laid by size)
   double height = 0.1;       // world units per tile unit of w, along the base normal
   std::optional<glm::vec3> color;          // the tiles' linear RGB in [0,1]³; unset: the object's colour
   DdmTileTransform transform;              // in the tile's texture space

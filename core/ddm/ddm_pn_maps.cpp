@@ -143,4 +143,17 @@ bool ddm_cell_valid(const DdmMaps& maps, const DdmInstance& cell) {
   return false;
 }
 
+bool ddm_cell_centre_valid(const DdmMaps& maps, const DdmInstance& cell) {
+  if (cell.chart < 0 || cell.chart >= static_cast<int>(maps.slot_of_chart.size())) return false;
+  const int slot = maps.slot_of_chart[static_cast<std::size_t>(cell.chart)];
+  if (slot < 0) return false;
+  if (maps.valid.empty()) return true;
+  const glm::dvec2 c = cell.origin + 0.5 * cell.size;
+  const int i = std::clamp(static_cast<int>(std::lround(std::clamp(c.x, 0.0, 1.0) * (maps.resolution.x - 1))), 0,
+                           maps.resolution.x - 1);
+  const int j = std::clamp(static_cast<int>(std::lround(std::clamp(c.y, 0.0, 1.0) * (maps.resolution.y - 1))), 0,
+                           maps.resolution.y - 1);
+  return maps.valid[(static_cast<std::size_t>(slot) * maps.resolution.y + j) * maps.resolution.x + i] != 0;
+}
+
 }  // namespace trispline::core

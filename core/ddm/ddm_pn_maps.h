@@ -75,5 +75,9 @@ DdmMaps ddm_rasterize_uv_maps(const TriMesh& mesh, int resolution);
 // True when a tile cell [origin, origin + size] of `chart` holds at least one valid sample (always true for maps
 // without a validity bitmap; false for a chart without a slot).
 bool ddm_cell_valid(const DdmMaps& maps, const DdmInstance& cell);
+// True when the sample nearest the cell's centre is valid (always true for maps without a validity bitmap; false for a
+// chart without a slot): the stricter pruning of automatic UV atlases, whose many small charts leave many cells
+// mostly in the gaps between them, drawn over diffused samples.
+bool ddm_cell_centre_valid(const DdmMaps& maps, const DdmInstance& cell);
 
 }  // namespace trispline::core

@@ -14,7 +14,9 @@
 
 #include "core/commands/codecs.h"
 #include "editor/session.h"
+#include "gpu/gl_context.h"
 #include "ui/ddm_anim_panel.h"
+#include "ui/gui_probe.h"
 #include "ui/number_field.h"
 #include "ui/theme.h"
 
@@ -38,6 +40,18 @@ constexpr const char* kTileTips[] = {
 
 
 bool deformed(const core::SceneObject& o) { return o.ffd || o.dffd || o.clip; }
+
+// A first tile size for an object: a tenth of its rest mesh's bounding-box diagonal, to two significant figures
+// (1 without an object).
+double ddm_default_tile_size(const core::SceneObject* o) {
+  if (!o || !o->rest_mesh || o->rest_mesh->empty()) return 1.0;
+  glm::dvec3 lo(1e300), hi(-1e300);
+  for (const glm::dvec3& p : o->rest_mesh->positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  const double d = 0.1 * glm::length(hi - lo);
+  if (!(d > 0.0) || !std::isfinite(d)) return 1.0;
+  const double unit = std::pow(10.0, std::floor(std::log10(d)) - 1.0);
+  return std::round(d / unit) * unit;
+}
 
 bool is_generated(const std::string& tile) {
   return std::find(kGeneratedTiles.begin(), kGeneratedTiles.end(), tile) != kGeneratedTiles.end();
@@ -297,9 +311,30 @@ void DdmPaintTool::draw_new_layer_fields(const core::SceneObject* o) {
   ui::tooltip(
       "Cells per chart: rect n x m; hex rows 0.75 apart, odd rows shifted (seed Fig. 5.11); brick odd rows "
       "shifted by half a cell (Fig. 5.12). hex and brick need n >= 2");
-  int counts[2] = {spec.counts.x, spec.counts.y};
-  if (ImGui::InputInt2("Counts", counts)) spec.counts = glm::max(glm::ivec2(counts[0], counts[1]), glm::ivec2(1));
-  ui::tooltip("Cells along u and v of every chart (a polygonal base has three charts per triangle)");
+  int by_size = spec.counts ? 0 : 1;
+  if (ImGui::Combo("Tiles by", &by_size, "counts\0size\0")) {
+    if (by_size) {
+      counts_ = spec.counts.value_or(counts_), spec.counts.reset();
+      spec.tile_size = tile_size_ > 0.0 ? tile_size_ : ddm_default_tile_size(o);
+    } else {
+      tile_size_ = spec.tile_size.value_or(tile_size_), spec.tile_size.reset();
+      spec.counts = counts_;
+    }
+  }
+  ui::tooltip("size: tiles of one world size over the whole surface (each chart gets as many as fit); counts: the "
+              "same n x m cells on every chart (the seed's parametric layouts)");
+  if (spec.counts) {
+    int counts[2] = {spec.counts->x, spec.counts->y};
+    if (ImGui::InputInt2("Counts", counts)) spec.counts = glm::max(glm::ivec2(counts[0], counts[1]), glm::ivec2(1));
+    ui::tooltip("Cells along u and v of every chart (a limit base has three charts per triangle)");
+  } else {
+    if (!spec.tile_size) spec.tile_size = ddm_default_tile_size(o);
+    const double s_min = 1e-6, s_max = 1e6;
+    ui::drag_scalar("Tile size", ImGuiDataType_Double, &*spec.tile_size, 0.002f, &s_min, &s_max, "%.4g",
+                    ImGuiSliderFlags_AlwaysClamp | ImGuiSliderFlags_Logarithmic);
+    ui::probe::item("ddm.tile_size");
+    ui::tooltip("Width of a tile in world units (object space); the count below is what Fill makes");
+  }
   const double h_min = 1e-6, h_max = 10.0;
   ui::drag_scalar("Height", ImGuiDataType_Double, &spec.height, 0.001f, &h_min, &h_max, "%.4g",
                     ImGuiSliderFlags_AlwaysClamp);
@@ -314,6 +349,9 @@ void DdmPaintTool::draw_new_layer_fields(const core::SceneObject* o) {
     if (teapot) ui::tooltip("The teapot's 8 Bezier body patches as one chart around the pot");
     if (uvs && ImGui::Selectable("uv", spec.base == Base::uv)) spec.base = Base::uv;
     if (uvs) ui::tooltip("The mesh's texture coordinates (one chart, the UV square; the seed's way)");
+    if (ImGui::Selectable("auto_uv", spec.base == Base::auto_uv)) spec.base = Base::auto_uv;
+    ui::tooltip("Automatic texture coordinates: charts cut at seams and flattened (CGAL LSCM) at one texel density, "
+                "so tiles come out of even size on any mesh");
     ImGui::EndCombo();
   }
   ImGui::Checkbox("Own colour", &params_.own_color);
@@ -322,6 +360,72 @@ void DdmPaintTool::draw_new_layer_fields(const core::SceneObject* o) {
     ImGui::SameLine();
     ImGui::ColorEdit3("##tile colour", &params_.color.x, ImGuiColorEditFlags_NoInputs);
     ui::tooltip("The layer's colour (linear RGB), used by the viewport, scene.glb and ddm.bake");
+  }
+}
+
+void DdmPaintTool::apply_object_defaults(const core::SceneObject* o) {
+  if (!o || defaults_for_ == "\x01given" || defaults_for_ == o->name) return;
+  defaults_for_ = o->name;
+  core::DdmLayerSpec& spec = params_.paint.spec;
+  spec.base = core::ddm_default_base(*o);
+  if (!spec.counts) spec.tile_size = ddm_default_tile_size(o);
+}
+
+void DdmPaintTool::draw_estimate(const core::SceneObject* o) {
+  if (!o || !o->rest_mesh) return;
+  core::DdmFillParams f{o->name, params_.paint.layer, params_.paint.spec};
+  char mesh[32];
+  std::snprintf(mesh, sizeof mesh, "%p", static_cast<const void*>(o->rest_mesh.get()));
+  const std::string key = o->name + mesh + core::DdmFillCommand::schema().to_json(f).dump();
+  if (key != estimate_key_) {  // only when a field, the object or its mesh changed: a few ms on large meshes
+    estimate_key_ = key;
+    estimate_error_.clear();
+    try {
+      estimate_ = core::ddm_fill_estimate(*o, params_.paint.spec);
+    } catch (const std::exception& e) {
+      estimate_ = {};
+      estimate_error_ = e.what();
+    }
+  }
+  ImGui::PushTextWrapPos(0.0f);
+  if (!estimate_error_.empty()) {
+    ImGui::TextColored(ui::colors::warning, "%s", estimate_error_.c_str());
+  } else {
+    ImGui::TextColored(ui::colors::dim, "Fill: %s%zu tiles, %zu tile vertices (%zu charts)",
+                       estimate_.upper_bound ? "up to " : "", estimate_.cells, estimate_.tile_vertices,
+                       estimate_.charts);
+    ui::tooltip(estimate_.upper_bound ? "Counted from the layout before the tiles outside the UV islands are pruned"
+                                      : "Counted from the layout Fill uses");
+  }
+  ImGui::PopTextWrapPos();
+  ui::probe::value("ddm.estimate_tiles", estimate_error_.empty() ? std::to_string(estimate_.cells) : "");
+  ui::probe::value("ddm.estimate_vertices", estimate_error_.empty() ? std::to_string(estimate_.tile_vertices) : "");
+  ui::probe::value("ddm.estimate_error", estimate_error_);
+}
+
+void DdmPaintTool::draw_fill_prompt(ToolContext& ctx) {
+  const char* id = "Large fill";
+  if (!ImGui::IsPopupOpen(id)) ImGui::OpenPopup(id);
+  ui::probe::value("ddm.fill_prompt", "open");
+  if (ImGui::BeginPopupModal(id, nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings)) {
+    ImGui::Text("Fill makes %s%zu tiles, %zu tile vertices.", estimate_.upper_bound ? "up to " : "", estimate_.cells,
+                estimate_.tile_vertices);
+    ImGui::TextColored(ui::colors::dim, "More than %zu on this renderer: drawing may be slow. A larger tile size "
+                       "makes fewer.", ask_budget_);
+    ImGui::Spacing();
+    bool done = false;
+    if (ImGui::Button("Fill anyway", ImVec2(120, 0))) fill(ctx), done = true;
+    ui::probe::item("ddm.fill_anyway");
+    ImGui::SameLine();
+    if (ImGui::Button("Cancel", ImVec2(120, 0)) || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false))
+      done = true;
+    ui::probe::item("ddm.fill_cancel");
+    if (done) {
+      ask_budget_ = 0;
+      ui::probe::value("ddm.fill_prompt", "");
+      ImGui::CloseCurrentPopup();
+    }
+    ImGui::EndPopup();
   }
 }
 
@@ -339,6 +443,7 @@ void DdmPaintTool::draw_panel(ToolContext& ctx) {
   if (o && deformed(*o))
     ImGui::TextColored(ui::colors::warning, "%s is deformed (lattice, split or clip): tiles need an undeformed object.",
                        object_.c_str());
+  apply_object_defaults(o);
   draw_layer_combo(ctx, o);
 
   ImGui::Separator();
@@ -348,16 +453,23 @@ void DdmPaintTool::draw_panel(ToolContext& ctx) {
     const core::SceneObject& obj = *o;
     for (const auto& l : obj.ddm_layers)
       if (l->name == params_.paint.layer) {
-        ImGui::TextColored(ui::colors::dim, "%s: %s, %s %dx%d, height %.3g, %s base", l->name.c_str(),
+        char cells[64];
+        if (l->tile_size)
+          std::snprintf(cells, sizeof cells, "tile size %.3g", *l->tile_size);
+        else
+          std::snprintf(cells, sizeof cells, "%dx%d", l->counts.x, l->counts.y);
+        ImGui::TextColored(ui::colors::dim, "%s: %s, %s %s, %zu tiles, height %.3g, %s base", l->name.c_str(),
                            l->tile_sources.empty() ? "?" : l->tile_sources.front().c_str(),
-                           core::ddm_layout_name(l->layout), l->counts.x, l->counts.y, l->height,
+                           core::ddm_layout_name(l->layout), cells, l->instances.size(), l->height,
                            core::ddm_base_name(l->base));
+        ui::probe::value("ddm.layer_tiles", std::to_string(l->instances.size()));
         draw_layer_color(ctx, obj, *l);
       }
     ImGui::TextColored(ui::colors::dim, "The brush keeps the layer's own; these apply to Fill (which replaces it).");
     ImGui::PopTextWrapPos();
   }
   draw_new_layer_fields(o);
+  draw_estimate(o);
 
   ImGui::Separator();
   ImGui::TextUnformatted("Brush");
@@ -372,10 +484,21 @@ void DdmPaintTool::draw_panel(ToolContext& ctx) {
 
   ImGui::Spacing();
   ImGui::BeginDisabled(!target(ctx));
-  if (ImGui::Button("Fill")) fill(ctx);
+  if (ImGui::Button("Fill")) {
+    // Above the budget, ask first (the renderer is asked only then: tests without a GL context never get here).
+    const std::size_t n = estimate_error_.empty() ? estimate_.tile_vertices : 0;
+    const std::size_t budget =
+        n <= kAskFillVerticesSoftware ? 0 : gpu::is_software_renderer() ? kAskFillVerticesSoftware : kAskFillVertices;
+    if (budget > 0 && n > budget)
+      ask_budget_ = budget;
+    else
+      fill(ctx);
+  }
+  ui::probe::item("ddm.fill");
   fill_rect_ = last_item_rect();
   ui::tooltip("Cover the whole surface with the layer settings above: one ddm.fill (replaces a layer of that name)");
   ImGui::EndDisabled();
+  if (ask_budget_ > 0) draw_fill_prompt(ctx);
   ImGui::SameLine();
   ImGui::BeginDisabled(!target(ctx) || new_layer(ctx));
   if (ImGui::Button("Bake")) bake(ctx);

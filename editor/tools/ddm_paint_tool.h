@@ -6,7 +6,8 @@
 // "camera". A click is a dab (a one-point stroke). Ctrl held at mouse-down erases (Blender's invert), as does the
 // panel's Erase toggle (Ctrl then paints).
 // The panel picks the object (follows the selection), the layer (one of the object's layers, or a new one, made by
-// the first stroke or by Fill with the panel's tile / layout / counts / height / base), the brush radius and the
+// the first stroke or by Fill with the panel's tile / layout / tile size or counts / height / base — base and tile size
+// defaulting per object, ddm_default_base), the tiles and tile vertices Fill would make, the brush radius and the
 // erase toggle; Fill submits `ddm.fill` for the whole surface, Bake `ddm.bake` (a mesh object named
 // "<object>.<layer>"). Commands run through ToolContext::defer (a "Working…" frame first: a large layer takes a
 // while to re-evaluate); errors go to the Log panel and leave the scene as it was.
@@ -51,6 +52,9 @@ nlohmann::json ddm_fill_line(const std::string& object, const DdmPaintToolParams
 class DdmPaintTool : public Tool {
  public:
   static constexpr double kMinRadiusPx = 2.0, kMaxRadiusPx = 500.0;
+  // Fill asks first above this many tile vertices (the estimate): a software GL (llvmpipe) draws ~1 M tile vertices
+  // at a few frames per second, a GPU several times more.
+  static constexpr std::size_t kAskFillVertices = 4'000'000, kAskFillVerticesSoftware = 1'000'000;
 
   ui::ToolEntry entry() const override;
   void activate(ToolContext& ctx) override;
@@ -63,7 +67,8 @@ class DdmPaintTool : public Tool {
   bool owns_mouse() const override { return gesture_.drawing(); }
 
   const DdmPaintToolParams& params() const { return params_; }
-  void set_params(const DdmPaintToolParams& p) { params_ = p; }
+  // Sets the panel's values; they then stay as given (no per-object defaults when the object changes).
+  void set_params(const DdmPaintToolParams& p) { params_ = p, defaults_for_ = "\x01given"; }
   void set_object(const std::string& name) { object_ = followed_selection_ = name; }
   const std::string& object() const { return object_; }
   // True when the object has no layer called params().layer (the next stroke or Fill makes it).
@@ -96,11 +101,21 @@ class DdmPaintTool : public Tool {
   void draw_layer_combo(ToolContext& ctx, const core::SceneObject* o);
   void draw_new_layer_fields(const core::SceneObject* o);
   void draw_layer_color(ToolContext& ctx, const core::SceneObject& o, const core::DdmLayer& layer);
+  void apply_object_defaults(const core::SceneObject* o);  // base and tile size for a newly chosen object
+  void draw_estimate(const core::SceneObject* o);          // what Fill would make (ddm_fill_estimate), cached
+  void draw_fill_prompt(ToolContext& ctx);                 // "Fill anyway?" above the vertex budget
 
   DdmPaintToolParams params_;
   std::string object_;
   std::string followed_selection_;  // selection the Object combo last followed
   std::string file_tile_;           // the path typed for a file tile
+  std::string defaults_for_;        // the object whose defaults the panel holds ("\x01given": set_params' own)
+  glm::ivec2 counts_{4, 4};         // the Counts field's value while tiles are laid by size
+  double tile_size_ = 0.0;          // the Tile size field's value while tiles are laid by counts (0: none yet)
+  std::string estimate_key_;        // object, mesh and fill line the estimate below is for
+  core::DdmFillEstimate estimate_;
+  std::string estimate_error_;      // why there is no estimate (the error Fill would report)
+  std::size_t ask_budget_ = 0;      // the budget the open "Fill anyway?" prompt was asked against (0: none open)
 
   std::optional<glm::dvec2> hover_;
   StrokeGesture gesture_;  // the drag under way, in the view at mouse-down

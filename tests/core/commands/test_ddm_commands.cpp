@@ -248,10 +248,13 @@ TEST(DdmCommands, LayerFieldsAreWrittenBackAsDeclared) {
             json::parse(R"({"cmd":"ddm.paint","object":"ball","layer":"t","stroke":[[1,2]],"radius_px":3,
                 "erase":false})"));
   json named = paint;
-  named["color"] = {0.5, 0.25, 1};  // any layer field: the new layer's fields are logged back
+  named["color"] = {0.5, 0.25, 1};  // any layer field: the new layer's fields are logged back (counts and tile_size
+                                    // only when given: unset, the layer takes counts [1,1])
   EXPECT_EQ(DdmPaintCommand::parse(named, ctx)->to_json(),
             json::parse(R"({"cmd":"ddm.paint","object":"ball","layer":"t","stroke":[[1,2]],"radius_px":3,
-                "erase":false,"tile":"thorn","layout":"rect","counts":[1,1],"height":0.1,"color":[0.5,0.25,1]})"));
+                "erase":false,"tile":"thorn","layout":"rect","height":0.1,"color":[0.5,0.25,1]})"));
+  named["tile_size"] = 0.25;
+  EXPECT_EQ(DdmPaintCommand::parse(named, ctx)->to_json()["tile_size"], 0.25);
 }
 
 }  // namespace
