@@ -24,7 +24,7 @@
 //   The layer is sampled into P/N maps and evaluated over them on the CPU reference (ddm_layer_mesh: what the GPU
 //   draws) and stored on the object (SceneObject::ddm_layers); a layer of the same name is replaced. Objects with an
 //   FFD lattice, a DFFD rig or a glTF clip are refused (the tiles would not follow the deformation). At most
-//   50,000,000 tile vertices.
+//   max_vertices tile vertices (default and at most 10,000,000), refused with the count before anything is built.
 //   report.json: charts, tiles, tile_vertices, vertices, map_samples, ms; auto_uv adds uv_charts and
 //   uv_area_distortion_p95 (DdmAutoUvStats).
 // `ddm.bake` — a layer as an ordinary mesh object (for export and for use elsewhere):

@@ -27,7 +27,7 @@
 // ("object"); empty layer name, erasing from a layer that does not exist ("layer"); the new layer's fields as
 // ddm.fill ("tile", "counts", "base", …); no points, non-finite points, a stroke that touches no
 // visible cell ("stroke"); radius_px ≤ 0 or not finite ("radius_px"); no camera.set and no "camera" ("camera");
-// more than 50,000,000 tile vertices ("stroke").
+// more than max_vertices tile vertices (default and at most 10,000,000; "stroke").
 #pragma once
 
 #include <glm/glm.hpp>
