@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/type_ptr.hpp>
+#include <cstring>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -24,6 +26,17 @@ struct InstanceRecord {
   float size[2];
 };
 static_assert(sizeof(InstanceRecord) == 20);
+
+// One instance's follow data as the FOLLOW variant reads it (attributes 7–12 with divisor 1): host map columns and
+// shift, parameter box.
+struct FollowRecord {
+  float c0[3], c1[3], c2[3], shift[3], lo[3], hi[3];
+};
+static_assert(sizeof(FollowRecord) == 72);
+
+void put3(float* dst, const glm::dvec3& v) {
+  for (int i = 0; i < 3; ++i) dst[i] = static_cast<float>(v[i]);
+}
 
 std::vector<float> to_float(const std::vector<glm::dvec3>& v) {
   std::vector<float> out(3 * v.size());
@@ -78,6 +91,8 @@ struct DdmGl::LayerGl {
   std::vector<TileGl> tiles;                    // per layer tile
   std::vector<std::size_t> grouped;             // position in the instance buffer → index in layer.instances
   std::size_t vertices = 0;                     // Σ instances × tile vertices
+  Buffer follow;                                // FollowRecord per instance (grouped order), when drawn following
+  std::vector<FollowRecord> follow_uploaded;    // what `follow` holds
 };
 
 DdmGl::DdmGl(std::shared_ptr<FfdProgramCache> programs)
@@ -234,14 +249,66 @@ void DdmGl::set_uniforms(const ShaderProgram& p, const core::DdmLayer& layer, co
   p.set("u_normal_matrix", glm::mat3(glm::inverseTranspose(glm::dmat3(model))));
 }
 
+void DdmGl::bind_follow(LayerGl& g, const ShaderProgram& p, const DdmFollow& follow) {
+  const core::DdmLayerDeformation& d = *follow.deformation;
+  const glm::dvec3 inf(std::numeric_limits<double>::infinity());
+  std::vector<FollowRecord> records(g.grouped.size());
+  for (std::size_t r = 0; r < g.grouped.size(); ++r) {
+    const std::size_t k = g.grouped[r];
+    const core::DdmHostMap h = d.hosts().empty() ? core::DdmHostMap{} : d.hosts()[k];
+    FollowRecord& f = records[r];
+    put3(f.c0, h.linear[0]), put3(f.c1, h.linear[1]), put3(f.c2, h.linear[2]), put3(f.shift, h.shift);
+    put3(f.lo, d.param_lo().empty() ? -inf : d.param_lo()[k]);
+    put3(f.hi, d.param_hi().empty() ? inf : d.param_hi()[k]);
+  }
+  const bool same = records.size() == g.follow_uploaded.size() &&
+                    std::equal(records.begin(), records.end(), g.follow_uploaded.begin(),
+                               [](const FollowRecord& a, const FollowRecord& b) {
+                                 return std::memcmp(&a, &b, sizeof(FollowRecord)) == 0;
+                               });
+  if (!same) {
+    glBindVertexArray(0);
+    if (!g.follow) g.follow = Buffer::create();
+    glBindBuffer(GL_ARRAY_BUFFER, g.follow.id());
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(std::max<std::size_t>(records.size(), 1) * sizeof(FollowRecord)),
+                 records.empty() ? nullptr : records.data(), GL_DYNAMIC_DRAW);
+    for (const LayerGl::TileGl& t : g.tiles) {
+      if (!t.vao) continue;
+      glBindVertexArray(t.vao.id());
+      glBindBuffer(GL_ARRAY_BUFFER, g.follow.id());
+      for (GLuint a = 0; a < 6; ++a) {
+        glEnableVertexAttribArray(7 + a);
+        glVertexAttribPointer(7 + a, 3, GL_FLOAT, GL_FALSE, sizeof(FollowRecord),
+                              reinterpret_cast<const void*>(a * 3 * sizeof(float)));
+        glVertexAttribDivisor(7 + a, 1);
+      }
+      glBindVertexArray(0);
+    }
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    g.follow_uploaded = std::move(records);
+  }
+  if (d.lattice()) {
+    if (!follow.lattice) throw std::invalid_argument("DdmGl: a following layer with a lattice needs its buffers");
+    const core::Embedding& e = d.embedding();
+    glUniformMatrix3fv(p.uniform("u_embed_linear"), 1, GL_FALSE, glm::value_ptr(glm::mat3(e.linear)));
+    p.set("u_embed_shift", glm::vec3(e.offset));
+    glUniformMatrix3fv(p.uniform("u_embed_inverse"), 1, GL_FALSE,
+                       glm::value_ptr(glm::mat3(glm::inverse(e.linear))));
+    p.set("u_param_offset", glm::vec3(d.offset()));
+    glUniform1i(p.uniform("u_identity_outside"), d.identity_outside() ? 1 : 0);
+    follow.lattice->bind();
+  }
+}
+
 std::size_t DdmGl::draw(const std::shared_ptr<const core::DdmLayer>& layer, const DdmPose& pose,
-                        const glm::dmat4& model, const ShaderProgram& program) {
+                        const glm::dmat4& model, const ShaderProgram& program, const DdmFollow* follow) {
   constexpr const char* where = "DdmGl::draw";
   if (!layer) throw std::invalid_argument(std::string(where) + ": no layer");
   LayerGl& g = layer_for(layer);
   if (g.vertices == 0) return 0;
   const MapsGl& maps = maps_for(layer->maps);
-  set_uniforms(program, *layer, pose, model);
+  set_uniforms(program, *layer, pose, follow ? follow->deformation->model() : model);
+  if (follow) bind_follow(g, program, *follow);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kMapsBinding, maps.samples.id());
   for (const LayerGl::TileGl& t : g.tiles) {
     if (t.instance_count == 0 || t.index_count == 0) continue;
@@ -255,14 +322,18 @@ std::size_t DdmGl::draw(const std::shared_ptr<const core::DdmLayer>& layer, cons
   return g.vertices;
 }
 
-DdmCapture DdmGl::capture(const std::shared_ptr<const core::DdmLayer>& layer, const DdmPose& pose) {
+DdmCapture DdmGl::capture(const std::shared_ptr<const core::DdmLayer>& layer, const DdmPose& pose,
+                          const DdmFollow* follow) {
   constexpr const char* where = "DdmGl::capture";
   if (!layer) throw std::invalid_argument(std::string(where) + ": no layer");
   LayerGl& g = layer_for(layer);
   DdmCapture out;
   if (g.vertices == 0) return out;
   const MapsGl& maps = maps_for(layer->maps);
-  const ShaderProgram& prog = programs_->get({"ddm.vert.glsl"}, {}, {"v_world", "v_normal"});
+  ShaderDefines defines;
+  if (follow) defines.push_back({"FOLLOW", ""});
+  if (follow && follow->deformation->lattice()) defines.push_back({"FFD", ""});
+  const ShaderProgram& prog = programs_->get({"ddm.vert.glsl"}, defines, {"v_world", "v_normal"});
   if (g.vertices > capture_capacity_) {
     const auto bytes = GLsizeiptr(g.vertices * 3 * sizeof(float));
     capture_positions_ = upload_array(GL_TRANSFORM_FEEDBACK_BUFFER, nullptr, std::size_t(bytes));
@@ -272,7 +343,8 @@ DdmCapture DdmGl::capture(const std::shared_ptr<const core::DdmLayer>& layer, co
   const GLint previous_fbo = bind_complete_draw_framebuffer(fallback_fbo_, fallback_rb_);  // surfaceless EGL
   prog.use();
   prog.set("u_view_proj", glm::mat4(1.0f));
-  set_uniforms(prog, *layer, pose, glm::dmat4(1.0));
+  set_uniforms(prog, *layer, pose, follow ? follow->deformation->model() : glm::dmat4(1.0));
+  if (follow) bind_follow(g, prog, *follow);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kMapsBinding, maps.samples.id());
   glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, capture_positions_.id());
   glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 1, capture_normals_.id());

@@ -27,6 +27,8 @@
 #include <vector>
 
 #include "core/ddm/ddm_layer.h"
+#include "core/scene/ddm_follow.h"
+#include "gpu/ffd_gl_lattice.h"
 #include "gpu/ffd_gl.h"
 #include "gpu/gl_resource.h"
 #include "gpu/shader_program.h"
@@ -44,6 +46,14 @@ struct DdmPose {
 
 // Positions and normals of every instance's vertices, instances one after another in layer.instances order, each in
 // its tile's vertex order (the order of core::ddm_evaluate and ddm.bake). Object units; unit normals.
+// How a layer follows its object's deformation (core::DdmLayerDeformation, in float): the host maps and parameter
+// boxes per instance and, with a lattice, its buffers (uploaded by the caller from the deformation's lattice and
+// embedding). Draw with program({{"FOLLOW", ""}}) or, with a lattice, program({{"FOLLOW", ""}, {"FFD", ""}}).
+struct DdmFollow {
+  const core::DdmLayerDeformation* deformation = nullptr;  // non-null
+  const FfdLatticeBuffers* lattice = nullptr;              // non-null iff deformation->lattice()
+};
+
 struct DdmCapture {
   std::vector<glm::vec3> positions;  // #V × 3, #V = Σ over instances of the tile's vertex count
   std::vector<glm::vec3> normals;    // #V × 3
@@ -67,13 +77,17 @@ class DdmGl {
   // use, from program()) and object → world matrix `model` (normals by its inverse transpose). Uploads what is not
   // cached yet. Returns the vertices drawn (Σ instances × tile vertices). A layer without instances draws nothing.
   // Throws std::invalid_argument (see check below), GlError.
+  // With `follow`, the FOLLOW (+ FFD) variant: `model` is ignored (the deformation's model() is used) and the
+  // per-instance host maps / parameter boxes are uploaded when they changed.
   std::size_t draw(const std::shared_ptr<const core::DdmLayer>& layer, const DdmPose& pose, const glm::dmat4& model,
-                   const ShaderProgram& program);
+                   const ShaderProgram& program, const DdmFollow* follow = nullptr);
 
   // The same vertex shader with transform feedback and GL_RASTERIZER_DISCARD (a private 1×1 framebuffer when the
   // bound one is incomplete, as on surfaceless EGL): positions / normals in object space, in ddm_evaluate's order.
   // Waits for the GPU. Throws as draw, ShaderError.
-  DdmCapture capture(const std::shared_ptr<const core::DdmLayer>& layer, const DdmPose& pose);
+  // With `follow`: world units through the deformation (the parity test of core::DdmLayerDeformation::apply).
+  DdmCapture capture(const std::shared_ptr<const core::DdmLayer>& layer, const DdmPose& pose,
+                     const DdmFollow* follow = nullptr);
 
   // Forgets layers not in `live` and maps no live layer uses.
   void release_unused(const std::unordered_set<const core::DdmLayer*>& live);
@@ -94,6 +108,9 @@ class DdmGl {
   LayerGl& layer_for(const std::shared_ptr<const core::DdmLayer>& layer);
   void set_uniforms(const ShaderProgram& p, const core::DdmLayer& layer, const DdmPose& pose,
                     const glm::dmat4& model) const;
+  // Uploads the follow records (grouped order) when changed, points attributes 7–12 at them, sets the FFD uniforms
+  // and binds the lattice.
+  void bind_follow(LayerGl& g, const ShaderProgram& p, const DdmFollow& follow);
 
   std::shared_ptr<FfdProgramCache> programs_;
   std::unordered_map<const core::DdmMaps*, std::unique_ptr<MapsGl>> maps_;

@@ -3,13 +3,17 @@
 // alpha_at(t), offset = offset_at(t)), in object space through the object's transform (Transform::matrix(); normals
 // by its inverse transpose), shaded like the object (its colour, studio shading of mesh.frag.glsl), and in the
 // wireframe overlay and the selection outline. GPU copies are cached per layer / maps pointer (DdmGl) and dropped
-// in release_unused. Internal to the renderer (renderer.cpp); not a public API.
+// in release_unused. Layers of an object whose deformation carries them (core/scene/ddm_follow.h: FFD, DFFD, clip,
+// morph, a moved host surface) are drawn with DdmGl's FOLLOW (+ FFD) variant: host maps per instance, the object's
+// lattice at ViewOptions::time_s (its buffers cached per lattice). Internal to the renderer (renderer.cpp); not a
+// public API.
 #pragma once
 
 #include <cstddef>
 #include <glm/glm.hpp>
 #include <memory>
 #include <string>
+#include <unordered_map>
 
 #include "core/scene/scene.h"
 #include "gpu/ddm_gl.h"
@@ -39,7 +43,19 @@ class DdmDisplay {
   DdmGl& gl() { return gl_; }
 
  private:
+  // Draws `object`'s layers with `variant`'s programs (plus FOLLOW / FFD where they follow); `setup` sets the
+  // program's pass uniforms whenever a program is first used. Returns what was drawn.
+  template <class Setup>
+  DdmDrawn draw_object(const core::SceneObject& object, double time_s, const ShaderDefines& variant,
+                       const Setup& setup);
+  const FfdLatticeBuffers& lattice_buffers(const core::DdmLayerDeformation& d);
+
   DdmGl gl_;
+  struct LatticeGl {
+    std::shared_ptr<const void> owner;  // the FfdBinding / DffdRig holding the lattice (address kept)
+    std::unique_ptr<FfdLatticeBuffers> buffers;
+  };
+  std::unordered_map<const void*, LatticeGl> lattices_;  // by lattice address
 };
 
 }  // namespace trispline::gpu::detail

@@ -148,7 +148,6 @@ std::string AnimClipCommand::label() const {
 
 std::optional<SceneObject> AnimClipCommand::build(const Scene& scene) {
   const SceneObject* target = &require_object(scene, p_.object);
-  if (!p_.remove) require_no_tile_layers(*target, "a glTF clip");
   SceneObject out = *target;
   if (p_.remove) {
     if (!target->clip) throw CommandError("field 'object': object '" + p_.object + "' has no clip", "object");

@@ -2,6 +2,8 @@
 // Source: seed ch. 5 (Eq. 5.1–5.2, §5.3, Fig. 5.11–5.12).
 #include "core/commands/ddm_commands.h"
 
+#include "core/scene/ddm_follow.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -164,11 +166,6 @@ DdmTile load_ddm_tile(const std::string& name, const std::filesystem::path& path
 
 std::shared_ptr<DdmLayer> make_ddm_layer(const SceneObject& object, const std::string& name, const DdmLayerSpec& spec,
                                          bool fill) {
-  const char* deformed = object.ffd ? "an FFD lattice" : object.dffd ? "a DFFD split" : object.clip ? "a glTF clip"
-                                                                                                    : nullptr;
-  if (deformed)
-    throw CommandError("field 'object': '" + object.name + "' has " + deformed +
-                           "; tiles sit on the rest surface and would not follow it", "object");
   auto layer = std::make_shared<DdmLayer>();
   layer->name = name;
   layer->tile_sources = spec.tiles;
@@ -181,6 +178,7 @@ std::shared_ptr<DdmLayer> make_ddm_layer(const SceneObject& object, const std::s
   layer->height = spec.height;
   layer->transform = spec.transform;
   layer->color = spec.color;
+  layer->host_mesh = object.rest_mesh;  // tiles follow this surface where the object's own surface moves
   glm::ivec2 resolution{9, 9};
   int charts = 1;
   std::shared_ptr<const TriMesh> base_mesh = object.rest_mesh;  // the mesh the base is made from
@@ -430,8 +428,14 @@ std::optional<SceneObject> DdmBakeCommand::build(const Scene& scene) {
   baked.name = p_.name;
   baked.source = "ddm.bake:" + p_.object + "/" + p_.layer;
   baked.color = layer->color.value_or(object->color);
-  const TriMesh mesh = p_.frame ? ddm_layer_mesh(*layer, scene.timeline.time_of_frame(*p_.frame)) : *layer->mesh;
-  baked.rest_mesh = std::make_shared<const TriMesh>(transformed(mesh, object->transform));
+  // In world units where the object's deformation carries the tiles at that time (ddm_follow.h).
+  const double t = p_.frame ? scene.timeline.time_of_frame(*p_.frame) : 0.0;
+  const TriMesh mesh = p_.frame ? ddm_layer_mesh(*layer, t) : *layer->mesh;
+  try {
+    baked.rest_mesh = std::make_shared<const TriMesh>(ddm_layer_world_mesh(*object, *layer, mesh, t));
+  } catch (const std::invalid_argument& e) {
+    throw CommandError("field 'layer': " + std::string(e.what()), "layer");
+  }
   baked.refresh();
   stats_ = {{"vertices", baked.rest_mesh->vertex_count()}, {"triangles", baked.rest_mesh->triangle_count()}};
   return baked;

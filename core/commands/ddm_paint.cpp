@@ -17,6 +17,7 @@
 #include "core/commands/ddm_commands.h"
 #include "core/ddm/ddm_layer.h"
 #include "core/raycast/ray_caster.h"
+#include "core/scene/ddm_follow.h"
 
 namespace trispline::core {
 namespace {
@@ -131,9 +132,10 @@ std::vector<DdmInstance> ddm_paint_cells(const Scene& scene, const SceneObject& 
   const std::vector<DdmInstance> uniform_cells = cells_of(layer.counts);
 
   const glm::dmat4 m = object.transform.matrix();
-  const glm::dmat3 normal_matrix = glm::transpose(glm::inverse(glm::dmat3(m)));
   const TriMesh& rest = *object.rest_mesh;
-  const bool limit_faces = layer.base == DdmBaseKind::limit && charts == 3 * static_cast<int>(rest.triangle_count());
+  // (The occlusion test's own-face exception needs the world mesh's triangles to be the rest mesh's: not on a split.)
+  const bool limit_faces = layer.base == DdmBaseKind::limit && charts == 3 * static_cast<int>(rest.triangle_count()) &&
+                           object.world_mesh && object.world_mesh->triangle_count() == rest.triangle_count();
   Aabb box;
   if (object.world_mesh)
     for (const glm::dvec3& p : object.world_mesh->positions) box.extend(p);
@@ -143,8 +145,13 @@ std::vector<DdmInstance> ddm_paint_cells(const Scene& scene, const SceneObject& 
   for (const glm::dvec2& q : stroke_px) lo = glm::min(lo, q), hi = glm::max(hi, q);
   lo -= radius_px, hi += radius_px;
 
-  // 1. Cell centres within the brush, in front of the eye, facing it (per chart: deterministic order).
-  std::vector<std::vector<Candidate>> per_chart(static_cast<std::size_t>(charts));
+  // 1. Every layout cell's centre on the base (per chart: deterministic order), object space.
+  struct Centre {
+    DdmInstance cell;
+    DdmSurfacePoint s;
+    glm::dvec3 flat{0.0};  // limit base: the flat face's point under the cell centre, object units
+  };
+  std::vector<std::vector<Centre>> per_chart_centres(static_cast<std::size_t>(charts));
   tbb::parallel_for(tbb::blocked_range<int>(0, charts, 64), [&](const tbb::blocked_range<int>& r) {
     for (int c = r.begin(); c != r.end(); ++c) {
       const std::vector<DdmInstance> own = layer.chart_counts.empty()
@@ -156,20 +163,48 @@ std::vector<DdmInstance> ddm_paint_cells(const Scene& scene, const SceneObject& 
         cell.chart = c;
         if (check_valid && !ddm_uv_cell_kept(layer.base, *layer.maps, cell)) continue;
         const glm::dvec2 uv = cell.origin + 0.5 * cell.size;
-        const DdmSurfacePoint s = base->eval(c, uv.x, uv.y);
-        const glm::dvec3 p = glm::dvec3(m * glm::dvec4(s.p, 1.0));
-        const glm::dvec3 q = camera.project(p);
-        if (!(q.z > 0.0) || q.x < lo.x || q.y < lo.y || q.x > hi.x || q.y > hi.y) continue;
-        if (distance_to_polyline(glm::dvec2(q), stroke_px) > radius_px) continue;
-        if (!(glm::dot(normal_matrix * s.n, camera.eye - p) > 0.0)) continue;
-        double tol = kOtherBaseTolerance * diag;
-        if (limit_faces)
-          tol =
-              1e-6 * diag + kLimitGapFactor * glm::length(p - glm::dvec3(m * glm::dvec4(flat_point(rest, c, uv), 1.0)));
-        per_chart[static_cast<std::size_t>(c)].push_back({cell, p, tol});
+        Centre k{cell, base->eval(c, uv.x, uv.y)};
+        if (limit_faces) k.flat = flat_point(rest, c, uv);
+        per_chart_centres[static_cast<std::size_t>(c)].push_back(k);
       }
     }
   });
+  std::vector<Centre> centres;
+  for (auto& v : per_chart_centres) centres.insert(centres.end(), v.begin(), v.end());
+  if (centres.empty()) return {};
+  // World centres and normals: through the transform, or — on an object whose deformation carries its tiles (FFD,
+  // DFFD, clip, morph) — through that deformation at time 0 (what world_mesh shows), each centre as a one-vertex tile.
+  std::vector<glm::dvec3> world_p(centres.size()), world_n(centres.size());
+  {
+    DdmLayer probe = layer;
+    probe.tiles.assign(1, DdmTile{"centre", TriMesh{}});
+    probe.tiles[0].mesh.positions.assign(1, glm::dvec3(0.0));
+    probe.instances.resize(centres.size());
+    TriMesh points;
+    points.positions.resize(centres.size());
+    points.normals.resize(centres.size());
+    for (std::size_t i = 0; i < centres.size(); ++i) {
+      probe.instances[i] = centres[i].cell, probe.instances[i].tile = 0;
+      points.positions[i] = centres[i].s.p, points.normals[i] = centres[i].s.n;
+    }
+    probe.offset_keys.clear(), probe.offset_velocity = glm::dvec2(0.0);
+    const DdmLayerDeformation deform(object, probe, 0.0);
+    const TriMesh mapped = deform.rigid() ? transformed(points, object.transform) : deform.apply(points);
+    world_p = mapped.positions, world_n = mapped.normals;
+  }
+  // 2. Within the brush, in front of the eye, facing it.
+  std::vector<std::vector<Candidate>> per_chart(static_cast<std::size_t>(charts));
+  for (std::size_t i = 0; i < centres.size(); ++i) {
+    const glm::dvec3 p = world_p[i];
+    const glm::dvec3 q = camera.project(p);
+    if (!(q.z > 0.0) || q.x < lo.x || q.y < lo.y || q.x > hi.x || q.y > hi.y) continue;
+    if (distance_to_polyline(glm::dvec2(q), stroke_px) > radius_px) continue;
+    if (!(glm::dot(world_n[i], camera.eye - p) > 0.0)) continue;
+    double tol = kOtherBaseTolerance * diag;
+    if (limit_faces)
+      tol = 1e-6 * diag + kLimitGapFactor * glm::length(p - glm::dvec3(m * glm::dvec4(centres[i].flat, 1.0)));
+    per_chart[static_cast<std::size_t>(centres[i].cell.chart)].push_back({centres[i].cell, p, tol});
+  }
   std::vector<Candidate> candidates;
   for (auto& v : per_chart) candidates.insert(candidates.end(), v.begin(), v.end());
   if (candidates.empty()) return {};
@@ -241,15 +276,6 @@ std::string DdmPaintCommand::label() const {
 std::optional<SceneObject> DdmPaintCommand::build(const Scene& scene) {
   const auto t0 = std::chrono::steady_clock::now();
   const SceneObject* object = &require_object(scene, p_.object);
-  const char* deformed = object->ffd    ? "an FFD lattice"
-                         : object->dffd ? "a DFFD split"
-                         : object->clip ? "a glTF clip"
-                                        : nullptr;
-  if (deformed)
-    throw CommandError(
-        "field 'object': '" + p_.object + "' has " + deformed +
-            "; tiles sit on the rest surface and would not follow it",
-        "object");
   const Camera& camera = stroke_camera(scene, p_.camera);
   std::shared_ptr<const DdmLayer> existing;
   for (const auto& l : object->ddm_layers)

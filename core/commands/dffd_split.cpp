@@ -77,7 +77,6 @@ std::string DffdSplitCommand::label() const {
 
 std::optional<SceneObject> DffdSplitCommand::build(const Scene& scene) {
   const SceneObject* object = &require_object(scene, p_.object);
-  require_no_tile_layers(*object, "a split");
   if (object->ffd)
     throw CommandError("field 'object': '" + p_.object + "' is deformed by an FFD lattice; dffd.split builds its own "
                        "lattice around the obstacles (split an undeformed object)", "object");

@@ -71,7 +71,6 @@ std::string IncisionDrawCommand::label() const {
 
 std::optional<SceneObject> IncisionDrawCommand::build(const Scene& scene) {
   const SceneObject* object = &require_object(scene, p_.object);
-  require_no_tile_layers(*object, "an incision");
   if (object->ffd || object->dffd || object->clip)
     throw CommandError("field 'object': '" + p_.object +
                            "' is deformed (FFD, DFFD or clip); incisions cut "

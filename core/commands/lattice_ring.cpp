@@ -41,7 +41,6 @@ const ParamSchema<LatticeRingParams>& LatticeRingCommand::schema() {
 
 std::optional<SceneObject> LatticeRingCommand::build(const Scene& scene) {
   const SceneObject* target = &require_object(scene, p_.object);
-  require_no_tile_layers(*target, "a ring lattice");
   using Clock = std::chrono::steady_clock;
   const auto ms = [](Clock::time_point a, Clock::time_point b) {
     return std::chrono::duration<double, std::milli>(b - a).count();
@@ -51,10 +50,13 @@ std::optional<SceneObject> LatticeRingCommand::build(const Scene& scene) {
   EmbeddingAxes axes;
   axes.length_axis = axis_index(p_.length_axis);
   axes.up_axis = axis_index(p_.up_axis);
-  Embedding e = embed_bounding_box(rest.positions, axes);
+  // With tile layers the box holds the tiles too (ddm_follow.h: they ride on the ring after the DDM).
+  const std::vector<glm::dvec3> held =
+      target->ddm_layers.empty() ? rest.positions : positions_with_tile_layers(*target, rest);
+  Embedding e = embed_bounding_box(held, axes);
   const int across_axis = 3 - axes.length_axis - axes.up_axis;
   glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
-  for (const glm::dvec3& q : rest.positions) {
+  for (const glm::dvec3& q : held) {
     lo = glm::min(lo, q);
     hi = glm::max(hi, q);
   }

@@ -96,7 +96,6 @@ const ParamSchema<PlaceSketchParams>& PlaceSketchCommand::schema() {
 
 std::optional<SceneObject> PlaceSketchCommand::build(const Scene& scene) {
   const SceneObject* target = &require_object(scene, p_.object);
-  require_no_tile_layers(*target, "an FFD placement");
 
   const auto t0 = std::chrono::steady_clock::now();
   RayCaster rays;
@@ -127,7 +126,10 @@ std::optional<SceneObject> PlaceSketchCommand::build(const Scene& scene) {
   const TriMesh rest = target->world_rest_mesh();
   SketchPlacementResult r = [&] {
     try {
-      return place_along_stroke(rays, sp, rest.positions);
+      // With tile layers the box embeds the tiles too (their tips rest on the contact surface); the binding's
+      // parameters are then re-embedded for the mesh's own vertices below.
+      return place_along_stroke(rays, sp,
+                                target->ddm_layers.empty() ? rest.positions : positions_with_tile_layers(*target, rest));
     } catch (const PlacementError& e) {
       // Map the placement's parameter names onto the log's field names.
       const std::string f = e.field() == "axes" ? "up_axis" : e.field();
@@ -138,10 +140,10 @@ std::optional<SceneObject> PlaceSketchCommand::build(const Scene& scene) {
     }
   }();
 
-  if (target->clip || p_.extent != 1.0) {
+  if (target->clip || p_.extent != 1.0 || !target->ddm_layers.empty()) {
     FfdBinding& b = r.binding;
     if (target->clip) {  // embed the box of every pose, so the walking object stays inside the lattice
-      std::vector<glm::dvec3> span = rest.positions;
+      std::vector<glm::dvec3> span = positions_with_tile_layers(*target, rest);
       const ClipBinding& cb = *target->clip;
       std::vector<glm::dvec3> pos, nrm;
       for (int s = 0; s < 64; ++s) {

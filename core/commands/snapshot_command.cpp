@@ -29,6 +29,15 @@ const SceneObject& require_deformed_object(const Scene& scene, const std::string
   return *o;
 }
 
+std::vector<glm::dvec3> positions_with_tile_layers(const SceneObject& object, const TriMesh& world_rest) {
+  std::vector<glm::dvec3> out = world_rest.positions;
+  const glm::dmat4 m = object.transform.matrix();
+  for (const auto& layer : object.ddm_layers)
+    if (layer && layer->mesh)
+      for (const glm::dvec3& p : layer->mesh->positions) out.push_back(glm::dvec3(m * glm::dvec4(p, 1.0)));
+  return out;
+}
+
 void require_no_tile_layers(const SceneObject& object, const std::string& change) {
   if (object.ddm_layers.empty()) return;
   std::string names;

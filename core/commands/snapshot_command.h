@@ -92,5 +92,9 @@ const SceneObject& require_deformed_object(const Scene& scene, const std::string
 // on its undeformed rest surface and would not follow `change` (e.g. "an FFD lattice", "an incision"); the message
 // names the layers and says to bake (ddm.bake) or remove (ddm.remove) them first.
 void require_no_tile_layers(const SceneObject& object, const std::string& change);
+// The world positions an FFD made for `object` must hold inside its box: its transformed rest mesh, then the vertices
+// of every tile layer through the object's transform (tiles ride on the deformation after the DDM, ddm_follow.h, so
+// thorns sticking out of the surface must be embedded too, not clamped flat against the box).
+std::vector<glm::dvec3> positions_with_tile_layers(const SceneObject& object, const TriMesh& world_rest);
 
 }  // namespace trispline::core

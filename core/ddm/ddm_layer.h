@@ -68,6 +68,11 @@ struct DdmLayer {
 
   // The layer at scene time 0 evaluated on the CPU reference over `maps` (what the GPU draws, object space).
   std::shared_ptr<const TriMesh> mesh;
+  // The object's rest mesh (object space) the layer was laid on; null for layers of older logs' objects. When the
+  // object's surface later moves away from it — a glTF clip poses it, an incision cuts and opens it — every tile
+  // follows the triangle of this mesh under its root (core/scene/ddm_follow.h). Its vertex indices must survive
+  // those changes (clips pose vertices in place; incisions keep the input vertices first).
+  std::shared_ptr<const TriMesh> host_mesh;
 
   double alpha_at(double time_s) const;
   glm::dvec2 offset_at(double time_s) const;

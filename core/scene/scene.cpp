@@ -46,12 +46,32 @@ TriMesh SceneObject::world_rest_mesh() const {
   return transformed(*rest_mesh, transform);
 }
 
+TriMesh morphed(const TriMesh& rest, const MorphChannel& morph, double s) {
+  if (!std::isfinite(s)) throw std::invalid_argument("morph weight is not finite");
+  if (morph.base_positions.size() != rest.positions.size() ||
+      (!morph.base_normals.empty() && morph.base_normals.size() != rest.positions.size()))
+    throw std::invalid_argument("morph: " + std::to_string(morph.base_positions.size()) + " base positions for " +
+                                std::to_string(rest.positions.size()) + " vertices");
+  TriMesh out = rest;
+  if (s == 1.0) return out;
+  const double k = s - 1.0;
+  for (std::size_t v = 0; v < out.positions.size(); ++v)
+    out.positions[v] = rest.positions[v] + k * (rest.positions[v] - morph.base_positions[v]);
+  if (!morph.base_normals.empty() && rest.normals.size() == rest.positions.size())
+    for (std::size_t v = 0; v < out.normals.size(); ++v) {
+      const glm::dvec3 n = rest.normals[v] + k * (rest.normals[v] - morph.base_normals[v]);
+      const double len = glm::length(n);
+      if (len > 0.0) out.normals[v] = n / len;
+    }
+  return out;
+}
+
 namespace {
 SceneObject posed_by_clip(const SceneObject& object, double time_s);
 }  // namespace
 
 void SceneObject::refresh() {
-  if (clip) {  // the clip's pose at scene time 0, so world_mesh always equals scene_at_time(·, 0)'s
+  if (clip || morph) {  // the pose at scene time 0, so world_mesh always equals scene_at_time(·, 0)'s
     SceneObject posed = posed_by_clip(*this, 0.0);
     posed.refresh();
     world_mesh = std::move(posed.world_mesh);
@@ -89,18 +109,28 @@ void SceneObject::refresh() {
 }
 
 namespace {
-// `object` (with a clip) posed at `time_s`: the clip's positions/normals as rest mesh, FFD parameters re-embedded with
-// the same embedding, clip removed. world_mesh is not refreshed.
+// `object` (with a clip or a morph) posed at `time_s`: the clip's positions/normals (or the morph at its weight) as
+// rest mesh, FFD parameters re-embedded with the same embedding, clip and morph removed. world_mesh is not refreshed.
 SceneObject posed_by_clip(const SceneObject& object, double time_s) {
   SceneObject moved = object;
-  TriMesh posed = *object.rest_mesh;  // topology, uvs and names kept; positions and normals from the clip
-  object.clip->clip->pose(object.clip->clip_time(time_s), posed.positions, posed.normals);
-  if (posed.positions.size() != object.rest_mesh->positions.size())
-    throw std::invalid_argument("object '" + object.name + "': clip '" + object.clip->clip->name() + "' poses " +
-                                std::to_string(posed.positions.size()) + " vertices, the mesh has " +
-                                std::to_string(object.rest_mesh->positions.size()));
+  TriMesh posed;
+  if (object.clip) {
+    posed = *object.rest_mesh;  // topology, uvs and names kept; positions and normals from the clip
+    object.clip->clip->pose(object.clip->clip_time(time_s), posed.positions, posed.normals);
+    if (posed.positions.size() != object.rest_mesh->positions.size())
+      throw std::invalid_argument("object '" + object.name + "': clip '" + object.clip->clip->name() + "' poses " +
+                                  std::to_string(posed.positions.size()) + " vertices, the mesh has " +
+                                  std::to_string(object.rest_mesh->positions.size()));
+  } else {
+    try {
+      posed = morphed(*object.rest_mesh, *object.morph, object.morph->weight_at(time_s));
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("object '" + object.name + "': " + e.what());
+    }
+  }
   moved.rest_mesh = std::make_shared<const TriMesh>(std::move(posed));
   moved.clip = nullptr;
+  moved.morph = nullptr;
   if (object.ffd) {  // same lattice and embedding, parameters of the posed vertices
     auto binding = std::make_shared<FfdBinding>(*object.ffd);
     binding->params = embed_points(binding->embedding, moved.world_rest_mesh().positions);
@@ -146,7 +176,7 @@ Scene scene_at_time(const Scene& scene, double time_s) {
       if (pose_ddm_layers(posed, time_s)) out.replace(std::move(posed));
       continue;
     }
-    SceneObject moved = object.clip ? posed_by_clip(object, time_s) : object;
+    SceneObject moved = object.clip || object.morph ? posed_by_clip(object, time_s) : object;
     pose_ddm_layers(moved, time_s);
     freeze_offset(moved, object, time_s);
     moved.refresh();
@@ -160,7 +190,7 @@ Scene scene_with_posed_clips(const Scene& scene, double time_s) {
   Scene out = scene;
   for (const SceneObject& object : scene.objects()) {
     if (!object.cpu_animated()) continue;
-    SceneObject moved = object.clip ? posed_by_clip(object, time_s) : object;
+    SceneObject moved = object.clip || object.morph ? posed_by_clip(object, time_s) : object;
     if (object.dffd_animated()) freeze_offset(moved, object, time_s);  // a still at time_s, like scene_at_time
     moved.refresh();
     out.replace(std::move(moved));

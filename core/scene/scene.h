@@ -71,6 +71,21 @@ struct ClipBinding {
   }
 };
 
+// A per-vertex morph channel of an object's rest mesh (an incision's opening keyed on the timeline, incision.animate):
+// at weight s the surface is rest + (s − 1)·(rest − base): `base` at s = 0 (the cut closed), the rest mesh itself at
+// s = 1 (bit for bit), extrapolated outside [0,1]. Normals interpolated the same way and renormalised.
+struct MorphChannel {
+  std::vector<glm::dvec3> base_positions;  // #V × 3, object space: the surface at weight 0
+  std::vector<glm::dvec3> base_normals;    // #V × 3, unit (or empty: normals kept)
+  std::vector<OffsetKey> weight_keys;      // sorted by time; the weight is .offset.x (evaluate_offset_keys); ≥ 1 key
+  std::string what;                        // what it animates, for labels ("incision opening")
+  double weight_at(double time_s) const { return evaluate_offset_keys(weight_keys, time_s).x; }
+  bool animated() const { return weight_keys.size() >= 2; }
+};
+
+// The rest mesh morphed to weight `s` (MorphChannel). Throws std::invalid_argument: base not #V, non-finite s.
+TriMesh morphed(const TriMesh& rest, const MorphChannel& morph, double s);
+
 struct SceneObject {
   std::string name;                          // stable id used by commands
   std::string source;                        // file path or "primitive:<kind>"
@@ -100,6 +115,8 @@ struct SceneObject {
   std::vector<OffsetKey> offset_keys;
   // glTF clip posing the rest mesh over time (anim.clip); null = none. rest_mesh is then the clip's rest pose.
   std::shared_ptr<const ClipBinding> clip;
+  // Per-vertex morph of the rest mesh over time (incision.animate); null = none, never together with a clip.
+  std::shared_ptr<const MorphChannel> morph;
   // (offset_keys.empty() ? param_offset : evaluate_offset_keys(offset_keys, time_s)) + offset_velocity·time_s.
   glm::dvec3 offset_at(double time_s) const {
     return (offset_keys.empty() ? param_offset : evaluate_offset_keys(offset_keys, time_s)) +
@@ -109,8 +126,9 @@ struct SceneObject {
   bool offset_animated() const {
     return ffd && (offset_velocity != glm::dvec3(0.0) || offset_keys.size() >= 2);
   }
-  // The rest mesh itself changes with time (a clip): every frame needs a new pose (CPU) before the FFD.
-  bool clip_animated() const { return clip != nullptr; }
+  // The rest mesh itself changes with time (a clip or an animated morph): every frame needs a new pose (CPU) before
+  // the FFD.
+  bool clip_animated() const { return clip != nullptr || (morph && morph->animated()); }
   // A DFFD object whose offset changes with time: every frame is split and evaluated again on the CPU.
   bool dffd_animated() const {
     return dffd && (offset_velocity != glm::dvec3(0.0) || offset_keys.size() >= 2);

@@ -1,6 +1,7 @@
 // Scene export nodes. See scene_export.h.
 #include "core/scene/scene_export.h"
 
+#include "core/scene/ddm_follow.h"
 #include "core/volume/silhouette_export.h"
 
 namespace trispline::core {
@@ -11,7 +12,7 @@ SceneExport scene_export_nodes(const Scene& scene) {
     if (o.world_mesh) out.nodes.push_back({o.name, o.world_mesh.get(), o.color, o.inside_color});
     for (const auto& layer : o.ddm_layers) {
       if (!layer->mesh) continue;
-      auto world = std::make_shared<const TriMesh>(transformed(*layer->mesh, o.transform));
+      auto world = std::make_shared<const TriMesh>(ddm_layer_world_mesh(o, *layer, *layer->mesh, 0.0));
       out.nodes.push_back({o.name + "/" + layer->name, world.get(), layer->color.value_or(o.color), o.inside_color});
       out.owned.push_back(std::move(world));
     }

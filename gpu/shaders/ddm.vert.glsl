@@ -12,6 +12,11 @@
 // N_v (core::DdmMaps). Bilinear interpolation with float weights from texelFetch-like reads — never the texture
 // unit's GL_LINEAR, whose fixed-point weights (8 bits on NVIDIA) would break CPU/GPU parity (docs/decisions.md).
 // Variant OUTLINE: pushed out along the screen-space normal by u_outline_px (the selection outline, as mesh.vert).
+// Variant FOLLOW: the tiles follow their object's deformation (core::DdmLayerDeformation, core/scene/ddm_follow.h):
+// per instance a host map of object space (attributes 7–9 the columns of its linear part, 10 its shift; normals by its
+// cofactor), then u_model, then — with FFD — the object's lattice (ffd_eval.glsl, SSBOs 4/5) at
+// p = A·x + b + u_param_offset clamped per instance to [11, 12] (a DFFD's sides), or E⁻¹(p) outside [0,1]³ when
+// u_identity_outside (the global DFFD).
 layout(location = 0) in vec3 a_tile_position;
 layout(location = 1) in vec3 a_tile_normal;
 layout(location = 2) in vec3 a_morph_position;
@@ -21,6 +26,23 @@ layout(location = 5) in vec2 a_origin;
 layout(location = 6) in vec2 a_size;
 
 layout(std430, binding = 6) readonly buffer DdmMapSamples { float ddm_samples[]; };
+#ifdef FOLLOW
+layout(location = 7) in vec3 a_host_c0;
+layout(location = 8) in vec3 a_host_c1;
+layout(location = 9) in vec3 a_host_c2;
+layout(location = 10) in vec3 a_host_shift;
+layout(location = 11) in vec3 a_param_lo;
+layout(location = 12) in vec3 a_param_hi;
+#ifdef FFD
+#define FFD_NORMALS
+#include "ffd_eval.glsl"
+uniform mat3 u_embed_linear;        // A (world → parameters)
+uniform vec3 u_embed_shift;         // b
+uniform mat3 u_embed_inverse;       // A⁻¹
+uniform vec3 u_param_offset;        // parameter units (seed §4.5 animation)
+uniform int u_identity_outside;     // 1: outside [0,1]³ map by E⁻¹ (global DFFD)
+#endif
+#endif
 
 uniform ivec2 u_resolution;   // samples per chart along u, v (≥ 2)
 uniform ivec2 u_periodic;     // 1: the axis wraps modulo 1 (fract), 0: clamped to [0,1]
@@ -88,10 +110,28 @@ void main() {
   vec3 m = cross(J1, J2) * tn.x + cross(J2, J0) * tn.y + cross(J0, J1) * tn.z;
   float ml = length(m);
   vec3 normal = ml > 0.0 ? m / ml : n;
+#ifdef FOLLOW
+  mat3 H = mat3(a_host_c0, a_host_c1, a_host_c2);
+  position = H * position + a_host_shift;
+  vec3 hn = cross(H[1], H[2]) * normal.x + cross(H[2], H[0]) * normal.y + cross(H[0], H[1]) * normal.z;
+  float hl = length(hn);
+  normal = hl > 0.0 ? hn / hl : normal;
+#endif
   vec3 world = (u_model * vec4(position, 1.0)).xyz;
   vec3 wn = u_normal_matrix * normal;
   float wl = length(wn);
   vec3 world_normal = wl > 0.0 ? wn / wl : normal;
+#if defined(FOLLOW) && defined(FFD)
+  vec3 p = clamp(u_embed_linear * world + u_embed_shift + u_param_offset, a_param_lo, a_param_hi);
+  if (u_identity_outside != 0 && (any(lessThan(p, vec3(0.0))) || any(greaterThan(p, vec3(1.0))))) {
+    world = u_embed_inverse * (p - u_embed_shift);
+  } else {
+    vec3 fp, fn;
+    ffd_eval(p, world_normal, fp, fn);
+    world = fp;
+    world_normal = fn;
+  }
+#endif
   vec4 clip = u_view_proj * vec4(world, 1.0);
 #ifdef OUTLINE
   clip = outline_push(clip, u_view_proj, world_normal);

@@ -11,6 +11,7 @@
 #include "core/scene/primitives.h"
 #include "gl_test.h"
 #include "gpu/ddm_gl.h"
+#include "tests/ddm_follow_cases.h"
 
 namespace trispline::gpu::test {
 namespace {
@@ -228,4 +229,48 @@ TEST_F(DdmGlTest, RendererDrawsLiveLayersThroughTheObjectTransform) {
 }
 
 }  // namespace
+}  // namespace trispline::gpu::test
+
+namespace trispline::gpu::test {
+
+// Tiles following their object (core::DdmLayerDeformation, the FOLLOW / FFD variants of ddm.vert.glsl): an FFD with
+// a parameter offset, moved host triangles, a DFFD's opened break — captured in world units against the CPU
+// reference apply(). Positions ≤ 1e-5 × the object's size (its world box diagonal), normals ≤ 1e-4.
+namespace follow {
+void expect_follow_parity(DdmGl& gl, const core::SceneObject& o, const char* what) {
+  const auto& layer = o.ddm_layers.front();
+  const core::DdmLayerDeformation d(o, *layer, 0.0);
+  ASSERT_FALSE(d.rigid()) << what;
+  std::unique_ptr<FfdLatticeBuffers> lattice;
+  if (d.lattice()) {
+    lattice = std::make_unique<FfdLatticeBuffers>();
+    lattice->upload(core::FfdPackedLattice::build(*d.lattice(), d.embedding()));
+  }
+  const DdmFollow f{&d, lattice.get()};
+  const DdmCapture gpu = gl.capture(layer, DdmPose::at(*layer, 0.0), &f);
+  const core::TriMesh ref = d.apply(*layer->mesh);
+  ASSERT_EQ(gpu.positions.size(), ref.vertex_count()) << what;
+  core::Aabb box;
+  for (const glm::dvec3& p : ref.positions) box.extend(p);
+  double worst_p = 0.0, worst_n = 0.0;
+  for (std::size_t i = 0; i < ref.vertex_count(); ++i) {
+    const double dp = glm::length(glm::dvec3(gpu.positions[i]) - ref.positions[i]);
+    if (!(dp <= worst_p)) worst_p = dp;
+    const double dn = glm::length(glm::dvec3(gpu.normals[i]) - ref.normals[i]);
+    if (!(dn <= worst_n)) worst_n = dn;
+  }
+  std::printf("[ddm follow parity] %-12s %8zu vertices: max |Δp| = %.3g (%.3g × size %.3g), max |Δn| = %.3g\n", what,
+              ref.vertex_count(), worst_p, worst_p / box.diagonal(), box.diagonal(), worst_n);
+  EXPECT_LE(worst_p, 1e-5 * box.diagonal()) << what;
+  EXPECT_LE(worst_n, 1e-4) << what;
+}
+}  // namespace follow
+
+TEST_F(DdmGlTest, FollowingLayersMatchTheCpuReference) {
+  DdmGl gl;
+  follow::expect_follow_parity(gl, trispline::test::ffd_case(), "ffd");
+  follow::expect_follow_parity(gl, trispline::test::host_case(), "host maps");
+  follow::expect_follow_parity(gl, trispline::test::dffd_case(), "dffd");
+}
+
 }  // namespace trispline::gpu::test
