@@ -9,6 +9,7 @@
 #include "core/commands/anim_record.h"
 #include "core/commands/camera_set.h"
 #include "core/commands/dffd_cut.h"
+#include "core/commands/incision_animate.h"
 #include "core/commands/incision_draw.h"
 #include "core/commands/dffd_split.h"
 #include "core/commands/lattice_animate_offset.h"
@@ -87,6 +88,7 @@ const CommandRegistry& CommandRegistry::builtin() {
     r.add<core::AnimClipCommand>();
     r.add<core::DffdCutCommand>();
     r.add<core::IncisionDrawCommand>();
+    r.add<core::IncisionAnimateCommand>();
     r.add<core::DffdSplitCommand>();
     r.add<core::PlaceArrayCommand>();
     r.add<core::AnimRecordCommand>();

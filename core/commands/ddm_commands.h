@@ -22,8 +22,9 @@
 //   map_resolution  P/N map samples per chart edge (DdmMaps), default [9,9] (limit), [513,257] (teapot_body),
 //           [1025,1025] (uv); tile_* the layer's DdmTileTransform (scale > 0, degrees, cell units).
 //   The layer is sampled into P/N maps and evaluated over them on the CPU reference (ddm_layer_mesh: what the GPU
-//   draws) and stored on the object (SceneObject::ddm_layers); a layer of the same name is replaced. Objects with an
-//   FFD lattice, a DFFD rig or a glTF clip are refused (the tiles would not follow the deformation). At most
+//   draws) and stored on the object (SceneObject::ddm_layers); a layer of the same name is replaced. The layer is laid
+//   on the object's rest surface and carried by whatever deforms the object — FFD, DFFD rig, glTF clip, incision,
+//   morph — after the DDM (core/scene/ddm_follow.h; the layer keeps the rest mesh as its host_mesh). At most
 //   max_vertices tile vertices (default and at most 10,000,000), refused with the count before anything is built.
 //   report.json: charts, tiles, tile_vertices, vertices, map_samples, ms; auto_uv adds uv_charts and
 //   uv_area_distortion_p95 (DdmAutoUvStats).
@@ -33,7 +34,7 @@
 //   The new object's mesh is the layer's in world units (the object's transform applied), identity transform, the
 //   object's colour; instances one after another, each in the tile's own vertex order. scene.glb then holds it.
 //   report.json: vertices, triangles.
-// Errors (CommandError, field named; the scene is unchanged): unknown object / deformed object / a base the mesh
+// Errors (CommandError, field named; the scene is unchanged): unknown object / a base the mesh
 // cannot give (non-manifold, no triangles, no uvs) ("object" / "base"); unknown tile, unreadable or bad tile file
 // ("tile" / "tiles"); bad layout ("layout"); counts out of range or too many vertices ("counts"); tile_size ≤ 0, with
 // counts, or too many vertices ("tile_size"); neither counts nor tile_size on ddm.fill ("counts"); height ≤ 0 or not

@@ -71,6 +71,9 @@ std::string IncisionDrawCommand::label() const {
 
 std::optional<SceneObject> IncisionDrawCommand::build(const Scene& scene) {
   const SceneObject* object = &require_object(scene, p_.object);
+  if (object->morph && object->morph->animated())
+    throw CommandError("field 'object': '" + p_.object + "' has an animated incision opening; clear it first "
+                       "(incision.animate with \"clear\":true) and cut again", "object");
   if (object->ffd || object->dffd || object->clip)
     throw CommandError("field 'object': '" + p_.object +
                            "' is deformed (FFD, DFFD or clip); incisions cut "
@@ -126,10 +129,21 @@ std::optional<SceneObject> IncisionDrawCommand::build(const Scene& scene) {
   }
   if (flip)
     for (auto& f : out.triangles) std::swap(f.y, f.z);
+  // The opening's morph channel (incision.animate): the cut without its opening, in object space as above; shown
+  // fully open (weight 1) until keyed. A new cut replaces the previous incision's channel (that one stays open).
+  auto morph = std::make_shared<MorphChannel>();
+  morph->what = "incision opening";
+  morph->weight_keys = {OffsetKey{0.0, glm::dvec3(1.0, 0.0, 0.0), KeyInterpolation::constant}};
+  morph->base_positions = std::move(r.closed);
+  for (std::size_t v = 0; !identity && v < morph->base_positions.size(); ++v)
+    morph->base_positions[v] = v < rest.positions.size() && !r.moved[v]
+                                   ? rest.positions[v]
+                                   : glm::dvec3(inv * glm::dvec4(morph->base_positions[v], 1.0));
 
   SceneObject cut = *object;
   const std::size_t before = rest.positions.size();
   cut.rest_mesh = std::make_shared<const TriMesh>(std::move(out));
+  if (morph->base_positions.size() == cut.rest_mesh->positions.size()) cut.morph = std::move(morph);
   cut.refresh();
   stats_ = {{"hits", frame->hits.size()},
             {"embedded_vertices", r.embedded_vertices},

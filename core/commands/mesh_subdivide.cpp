@@ -33,7 +33,7 @@ std::string MeshSubdivideCommand::label() const {
 
 std::optional<SceneObject> MeshSubdivideCommand::build(const Scene& scene) {
   const SceneObject* object = &require_object(scene, p_.object);
-  require_no_tile_layers(*object, "a new mesh");
+  require_no_tile_layers(*object, "a subdivision");
   const char* deformed = object->ffd ? "an FFD lattice" : object->dffd ? "a DFFD split" : object->clip ? "a glTF clip"
                                                                                                       : nullptr;
   if (deformed)

@@ -43,8 +43,8 @@ void require_no_tile_layers(const SceneObject& object, const std::string& change
   std::string names;
   for (const auto& layer : object.ddm_layers) names += (names.empty() ? "" : ", ") + layer->name;
   throw CommandError("field 'object': '" + object.name + "' holds tile layers (" + names +
-                         ") that sit on its undeformed surface and would not follow " + change +
-                         "; bake them (ddm.bake) or remove them (ddm.remove) first",
+                         ") laid on its current mesh, which " + change +
+                         " would replace; bake them (ddm.bake) or remove them (ddm.remove) first",
                      "object");
 }
 

@@ -88,9 +88,9 @@ const SceneObject& require_object(const Scene& scene, const std::string& name, c
 // no such object, or no lattice (place it with place.sketch or lattice.ring first).
 const SceneObject& require_deformed_object(const Scene& scene, const std::string& name);
 
-// Throws CommandError (field 'object') when `object` holds tile layers (SceneObject::ddm_layers, seed ch. 5): they sit
-// on its undeformed rest surface and would not follow `change` (e.g. "an FFD lattice", "an incision"); the message
-// names the layers and says to bake (ddm.bake) or remove (ddm.remove) them first.
+// Throws CommandError (field 'object') when `object` holds tile layers (SceneObject::ddm_layers, seed ch. 5) and
+// `change` (e.g. "a subdivision") would replace the mesh they are laid on — not a deformation, which carries them
+// (ddm_follow.h); the message names the layers and says to bake (ddm.bake) or remove (ddm.remove) them first.
 void require_no_tile_layers(const SceneObject& object, const std::string& change);
 // The world positions an FFD made for `object` must hold inside its box: its transformed rest mesh, then the vertices
 // of every tile layer through the object's transform (tiles ride on the deformation after the DDM, ddm_follow.h, so

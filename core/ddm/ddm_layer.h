@@ -28,9 +28,10 @@ const char* ddm_base_name(DdmBaseKind k);  // "limit" | "teapot_body" | "uv" | "
 // uv and auto_uv: the maps are the base (rasterised in texture space, invalid texels pruned).
 inline bool ddm_base_is_uv(DdmBaseKind k) { return k == DdmBaseKind::uv || k == DdmBaseKind::auto_uv; }
 // Whether a cell of a uv-based layer holds a tile: a valid sample in the cell (uv, seed §5.4.1), and for auto_uv
-// also at its centre (ddm_cell_centre_valid).
+// also at its centre (ddm_cell_centre_valid) and no seam across it (ddm_cell_continuous).
 inline bool ddm_uv_cell_kept(DdmBaseKind k, const DdmMaps& maps, const DdmInstance& cell) {
-  return ddm_cell_valid(maps, cell) && (k != DdmBaseKind::auto_uv || ddm_cell_centre_valid(maps, cell));
+  return ddm_cell_valid(maps, cell) &&
+         (k != DdmBaseKind::auto_uv || (ddm_cell_centre_valid(maps, cell) && ddm_cell_continuous(maps, cell)));
 }
 
 // Tile vertices one layer may hold (ddm.fill, ddm.paint refuse more before evaluating anything). Measured at peak

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <vector>
 #include <stdexcept>
 #include <string>
 
@@ -154,6 +156,36 @@ bool ddm_cell_centre_valid(const DdmMaps& maps, const DdmInstance& cell) {
   const int j = std::clamp(static_cast<int>(std::lround(std::clamp(c.y, 0.0, 1.0) * (maps.resolution.y - 1))), 0,
                            maps.resolution.y - 1);
   return maps.valid[(static_cast<std::size_t>(slot) * maps.resolution.y + j) * maps.resolution.x + i] != 0;
+}
+
+}  // namespace trispline::core
+
+namespace trispline::core {
+
+bool ddm_cell_continuous(const DdmMaps& maps, const DdmInstance& cell) {
+  if (cell.chart < 0 || cell.chart >= static_cast<int>(maps.slot_of_chart.size()) ||
+      maps.slot_of_chart[static_cast<std::size_t>(cell.chart)] < 0)
+    return false;
+  const auto maps_ptr = std::shared_ptr<const DdmMaps>(&maps, [](const DdmMaps*) {});  // not owned
+  const DdmMapsBase base(maps_ptr);
+  constexpr int n = 5;  // n × n points over the cell
+  const glm::dvec2 centre = cell.origin + 0.5 * cell.size;
+  const DdmSurfacePoint c = base.eval(cell.chart, centre.x, centre.y);
+  // The steps the centre's derivatives predict (the atlas has one texel density and low distortion).
+  const double step_u = glm::length(c.du) * cell.size.x / (n - 1), step_v = glm::length(c.dv) * cell.size.y / (n - 1);
+  glm::dvec3 p[n][n];
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const glm::dvec2 uv = cell.origin + cell.size * glm::dvec2(i, j) / double(n - 1);
+      p[j][i] = base.eval(cell.chart, uv.x, uv.y).p;
+    }
+  const double slack = 1e-12 * maps.base_size;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      if (i + 1 < n && glm::length(p[j][i + 1] - p[j][i]) > 2.0 * step_u + slack) return false;
+      if (j + 1 < n && glm::length(p[j + 1][i] - p[j][i]) > 2.0 * step_v + slack) return false;
+    }
+  return true;
 }
 
 }  // namespace trispline::core

@@ -108,7 +108,8 @@ struct Incisor {
   void split_faces();
   void split_face(std::size_t f);
   void open();
-  int add_wall_vertex(const glm::dvec3& p, const glm::dvec2& uv, const glm::dvec3& n);
+  // `closed`: where the vertex is without the opening (IncisionResult::closed).
+  int add_wall_vertex(const glm::dvec3& p, const glm::dvec2& uv, const glm::dvec3& n, const glm::dvec3& closed);
   const Column& column(int ref);
   void build_walls();
   void store_faces();
@@ -278,6 +279,7 @@ void Incisor::open() {
     const std::uint32_t v = cand[c];
     if (emb[v]) disp[v] = opening(prm[v]);
   });
+  res.closed = out.positions;  // input vertices at their input positions, cut vertices at their crossings
   for (std::uint32_t v : cand)
     if (disp[v] != glm::dvec3(0.0)) out.positions[v] += disp[v], res.moved[v] = 1;
   const double eps = params.eps;
@@ -288,8 +290,10 @@ void Incisor::open() {
   for (std::size_t v = V; v < V1; ++v) res.moved[v] = 1;
 }
 
-int Incisor::add_wall_vertex(const glm::dvec3& p, const glm::dvec2& uv, const glm::dvec3& n) {
+int Incisor::add_wall_vertex(const glm::dvec3& p, const glm::dvec2& uv, const glm::dvec3& n,
+                             const glm::dvec3& closed) {
   out.positions.push_back(p);
+  res.closed.push_back(closed);
   if (has_n) out.normals.push_back(n);
   if (has_uv) out.uvs.push_back(uv);
   res.moved.push_back(1);
@@ -311,8 +315,8 @@ const Column& Incisor::column(int ref) {
       col.push_back(t.vertex);
       for (int r = 1; r <= R; ++r) {
         const glm::dvec3 q(0.5, t.param.y, t.param.z + (L.bottom_w - t.param.z) * r / R);
-        col.push_back(add_wall_vertex(t.position + incision_detail::eval_base(L, q) - base, uv,
-                                      unit(L.n_hat->eval(t.param.y))));
+        const glm::dvec3 p = t.position + incision_detail::eval_base(L, q) - base;
+        col.push_back(add_wall_vertex(p, uv, unit(L.n_hat->eval(t.param.y)), p));
       }
     }
     return col;
@@ -327,13 +331,14 @@ const Column& Incisor::column(int ref) {
     col.push_back(top);
     for (int r = 1; r < R; ++r) {
       const glm::dvec3 q(u, c.param.y, c.param.z + (L.bottom_w - c.param.z) * r / R);
-      col.push_back(add_wall_vertex(c.position + incision_detail::eval_base(L, q) - base + opening(q), uv,
-                                    (cr.side ? 1.0 : -1.0) * unit(L.s_hat->eval(c.param.y))));
+      const glm::dvec3 closed = c.position + incision_detail::eval_base(L, q) - base;
+      col.push_back(add_wall_vertex(closed + opening(q), uv, (cr.side ? 1.0 : -1.0) * unit(L.s_hat->eval(c.param.y)),
+                                    closed));
     }
     if (bottom[cr.index] < 0) {  // D = 0 at the bottom: one vertex for both sides
       const glm::dvec3 q(0.5, c.param.y, L.bottom_w);
-      bottom[cr.index] =
-          add_wall_vertex(c.position + incision_detail::eval_base(L, q) - base, uv, unit(L.n_hat->eval(c.param.y)));
+      const glm::dvec3 p = c.position + incision_detail::eval_base(L, q) - base;
+      bottom[cr.index] = add_wall_vertex(p, uv, unit(L.n_hat->eval(c.param.y)), p);
     }
     col.push_back(bottom[cr.index]);
   }
@@ -416,6 +421,7 @@ IncisionResult incise(const TriMesh& surface, const IncisionFrame& frame, const 
     k.res.mesh = surface;
     k.res.split_faces = 0;
     k.res.moved.assign(k.V, 0);
+    k.res.closed = surface.positions;
     return std::move(k.res);
   }
   k.open();

@@ -85,6 +85,10 @@ struct IncisionResult {
   double bottom_w = 0.0;            // parameter w of the cut's bottom (the depth) on the lattice
   glm::ivec3 controls{0};           // (l, m, n) used, before knot insertion
   std::vector<std::uint8_t> moved;  // #V' : 1 where the vertex is new or its position changed, else 0
+  // #V' × 3: every vertex of `mesh` with the opening left out (the cut made, nothing moved apart: input vertices at
+  // their input positions, cut and wall vertices where opening 0 puts them) — the base of the opening's morph channel
+  // (incision.animate: positions are closed + s·(mesh − closed)).
+  std::vector<glm::dvec3> closed;
 };
 // Wall faces of a construction: wall_faces = 4 · wall_rows · split_faces when walls are on (each split face gives one
 // rim edge per side; each rim edge gets a strip of wall_rows quads = 2·wall_rows triangles on its side).

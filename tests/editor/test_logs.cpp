@@ -45,7 +45,7 @@ INSTANTIATE_TEST_SUITE_P(
                       BadLogCase{"bad_ddm_fill_counts.jsonl", 2, "counts", "empty rect layout"},
                       BadLogCase{"bad_ddm_paint_radius.jsonl", 3, "radius_px", "(0, 16384]"},
                       BadLogCase{"bad_ddm_paint_miss.jsonl", 4, "stroke", "touches no visible cell"},
-                      BadLogCase{"bad_ddm_layers_deform.jsonl", 5, "object", "holds tile layers (spots)"},
+                      BadLogCase{"bad_ddm_layers_deform.jsonl", 7, "object", "holds tile layers (spots)"},
                       BadLogCase{"bad_ddm_remove_layer.jsonl", 5, "layer", "spots"},
                       BadLogCase{"bad_undo_nothing.jsonl", 1, "cmd", "nothing to undo"},
                       BadLogCase{"bad_stroke_one_point.jsonl", 4, "stroke", "2"},

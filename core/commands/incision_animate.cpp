@@ -1,0 +1,64 @@
+// incision.animate. See incision_animate.h. Source: seed §6.4 (the opening of an incision).
+#include "core/commands/incision_animate.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/commands/anim_commands.h"
+
+namespace trispline::core {
+
+const ParamSchema<IncisionAnimateParams>& IncisionAnimateCommand::schema() {
+  using P = IncisionAnimateParams;
+  static const ParamSchema<P> s =
+      ParamSchema<P>("incision.animate", "Key an incision's opening on the timeline: 0 closed, 1 as drawn (seed §6.4)")
+          .field("object", &P::object).required().help("An object cut by incision.draw")
+          .field("clear", &P::clear).write_unless_default().help("Remove the keys: the incision shows fully open")
+          .field("opening_keys", &P::opening_keys).type_text("[[frame,s],…]").default_text("kept")
+          .help("[timeline frame, s] keys: s = fraction of the drawn opening (0 closed, 1 as drawn)")
+          .choice("interpolation", &P::interpolation, {"linear", "constant", "smooth"}).write_unless_default()
+          .help("How this line's keys move to the next key")
+          .check([](const P& p) {
+            if (!p.clear && (!p.opening_keys || p.opening_keys->empty()))
+              params::fail("opening_keys", "give at least one [frame, s] key (or \"clear\":true)");
+            if (p.opening_keys)
+              for (const glm::dvec2& k : *p.opening_keys)
+                if (!std::isfinite(k.x) || !std::isfinite(k.y)) params::fail("opening_keys", "keys must be finite");
+          });
+  return s;
+}
+
+std::string IncisionAnimateCommand::label() const {
+  return p_.clear && !p_.opening_keys ? "Open incision of '" + p_.object + "'" : "Animate incision of '" + p_.object + "'";
+}
+
+std::optional<SceneObject> IncisionAnimateCommand::build(const Scene& scene) {
+  const SceneObject& object = require_object(scene, p_.object);
+  if (!object.morph)
+    throw CommandError("field 'object': '" + p_.object + "' has no incision to animate (cut it with incision.draw)",
+                       "object");
+  if (object.ffd || object.dffd)
+    throw CommandError("field 'object': '" + p_.object + "' is deformed (FFD or DFFD); key the incision before placing",
+                       "object");
+  auto morph = std::make_shared<MorphChannel>(*object.morph);
+  morph->weight_keys = {OffsetKey{0.0, glm::dvec3(1.0, 0.0, 0.0), KeyInterpolation::constant}};
+  if (p_.opening_keys) {
+    const KeyInterpolation interpolation = interpolation_of(p_.interpolation);
+    std::vector<OffsetKey> keys;
+    for (const glm::dvec2& k : *p_.opening_keys)
+      keys.push_back({scene.timeline.time_of_frame(k.x), glm::dvec3(k.y, 0.0, 0.0), interpolation});
+    std::sort(keys.begin(), keys.end(), [](const OffsetKey& a, const OffsetKey& b) { return a.time_s < b.time_s; });
+    for (std::size_t i = 1; i < keys.size(); ++i)
+      if (keys[i].time_s == keys[i - 1].time_s)
+        throw CommandError("field 'opening_keys': two keys on frame " +
+                               std::to_string(scene.timeline.frame_of_time(keys[i].time_s)), "opening_keys");
+    morph->weight_keys = std::move(keys);
+  }
+  SceneObject out = object;
+  out.morph = std::move(morph);
+  out.refresh();
+  stats_ = {{"keys", out.morph->weight_keys.size()}, {"opening_at_start", out.morph->weight_at(0.0)}};
+  return out;
+}
+
+}  // namespace trispline::core
