@@ -31,6 +31,23 @@ bool triangle_frame(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& 
   return true;
 }
 
+// The nearest similarity (uniform scale × rotation) to m: the orthogonal polar factor R (Higham's iteration
+// R ← ½(R + R⁻ᵀ)) times |det m|^⅓. A triangle stretched or sheared moves its tiles rigidly with it (scaled by its
+// size change), so tiles keep their shape; m itself when it is singular or mirrors.
+glm::dmat3 similarity_part(const glm::dmat3& m) {
+  const double det = glm::determinant(m);
+  if (!(det > 0.0) || !std::isfinite(det)) return m;
+  glm::dmat3 r = m;
+  for (int it = 0; it < 30; ++it) {
+    const glm::dmat3 next = 0.5 * (r + glm::transpose(glm::inverse(r)));
+    double change = 0.0;
+    for (int c = 0; c < 3; ++c) change = std::max(change, glm::length(next[c] - r[c]));
+    r = next;
+    if (change < 1e-15) break;
+  }
+  return std::cbrt(det) * r;
+}
+
 // The base point at every instance's cell centre (object space, at the layer's texture offset `offset`).
 std::vector<DdmSurfacePoint> instance_roots(const DdmLayer& layer, glm::dvec2 offset) {
   const DdmMapsBase base(layer.maps);
@@ -172,8 +189,14 @@ DdmLayerDeformation::DdmLayerDeformation(const SceneObject& object, const DdmLay
       glm::dmat3 f0, f1;
       if (!triangle_frame(a0, b0, c0, f0)) continue;
       DdmHostMap& h = maps[i];
-      if (triangle_frame(a1, b1, c1, f1)) h.linear = f1 * glm::inverse(f0);  // else translated only
-      h.shift = a1 - h.linear * a0;
+      if (triangle_frame(a1, b1, c1, f1)) h.linear = similarity_part(f1 * glm::inverse(f0));  // else translated only
+      // Anchored at the triangle's vertex nearest the root: a tile whose triangle a cut tears apart rides with the
+      // side its nearest vertex is on.
+      const glm::dvec3 r = roots[i].p;
+      const int k = glm::length(a0 - r) <= glm::length(b0 - r) ? (glm::length(a0 - r) <= glm::length(c0 - r) ? 0 : 2)
+                                                               : (glm::length(b0 - r) <= glm::length(c0 - r) ? 1 : 2);
+      const glm::dvec3 v0 = k == 0 ? a0 : k == 1 ? b0 : c0, v1 = k == 0 ? a1 : k == 1 ? b1 : c1;
+      h.shift = v1 - h.linear * v0;
       any = true;
     }
     if (any) hosts_ = std::move(maps);

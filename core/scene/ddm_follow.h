@@ -4,10 +4,11 @@
 //
 //   1. host map H_i (per instance i, object space): where the rest surface itself has moved — a glTF clip posing the
 //      mesh, an incision cutting and opening it, the opening's morph — the tile follows the triangle of the layer's
-//      host mesh (DdmLayer::host_mesh) under its root (the base point at the cell centre): H_i is the affine map
-//      taking that triangle's rest frame [e₁, e₂, n̂·√|e₁×e₂|] at its first vertex to its current one. Rigid motions of
-//      the triangle move the tile rigidly; stretching it stretches the tile; H_i = I exactly where the triangle has
-//      not moved.
+//      host mesh (DdmLayer::host_mesh) under its root (the base point at the cell centre): H_i is the similarity
+//      (rotation × uniform scale: the polar factor of the map taking the triangle's rest frame [e₁, e₂, n̂·√|e₁×e₂|]
+//      to its current one, scaled by its size change) anchored at the triangle's vertex nearest the root. Tiles keep
+//      their shape; a tile whose triangle a cut tears apart rides with its nearest vertex's side; H_i = I exactly
+//      where the triangle has not moved.
 //   2. the object's transform M (object → world units);
 //   3. the object's FFD F (placement, pressing, ring; seed Eq. 2.1) or DFFD rig (seed ch. 6): p = E(x) + offset(t),
 //      x' = F(p), normals through cof(J_F·A) (seed §4.3) — the composed Jacobian of F∘E∘M∘H_i∘T acting on the tile's
