@@ -368,7 +368,7 @@ const ParamSchema<DdmFillParams>& DdmFillCommand::schema() {
   static const ParamSchema<P> s =
       ParamSchema<P>("ddm.fill", "Cover an object's surface with a layer of geometric tiles (DDM, seed ch. 5)")
           .field("object", &P::object).required()
-          .help("An object without an FFD lattice, DFFD split or glTF clip (tiles sit on the rest surface)")
+          .help("The object; tiles lie on its rest surface and ride on its deformation (FFD, DFFD, clip, incision)")
           .field("layer", &P::layer).required().help("Name of the layer; a layer of that name is replaced")
           .check([](const P& p) { check_ddm_layer_name(p.layer); })
           .embed(&P::spec, ddm_layer_schema(true));

@@ -249,7 +249,7 @@ const ParamSchema<DdmPaintParams>& DdmPaintCommand::schema() {
       ParamSchema<P>("ddm.paint",
                      "Paint (or erase) tiles of a layer with a brush stroke in the viewport (DDM, seed ch. 5)")
           .field("object", &P::object).required()
-          .help("An object without an FFD lattice, DFFD split or glTF clip (tiles sit on the rest surface)")
+          .help("The object; tiles lie on its rest surface and ride on its deformation (FFD, DFFD, clip, incision)")
           .field("layer", &P::layer).required()
           .help("The layer painted on; a new one is made from the fields below (ddm.fill's, all optional)")
           .check([](const P& p) { check_ddm_layer_name(p.layer); })

@@ -210,7 +210,9 @@ TEST(DdmFillSize, EvenTilesOnTheBunnyWithAutomaticUvs) {
                                                             std::to_string(tile) + "}"));
   const DdmLayer& layer = *s.find("bunny")->ddm_layers.at(0);
   EXPECT_LE(layer.instances.size(), e.cells);
-  EXPECT_GT(layer.instances.size(), e.cells / 4);
+  // Coverage: cells straddling a seam of the atlas are pruned (ddm_cell_continuous), the rest cover most of the
+  // surface: at least 60 % of the ~1,500 tiles its area holds.
+  EXPECT_GT(double(layer.instances.size()), 0.6 * 1500.0);
   const DdmMapsBase base(layer.maps);
   std::vector<double> areas;
   for (const DdmInstance& i : layer.instances) areas.push_back(cell_world_area(base, i));
