@@ -14,6 +14,7 @@
 #include "core/mesh/image_io.h"
 #include "core/volume/volume_io.h"
 #include "editor/animation_ui.h"
+#include "editor/background_command.h"
 #include "editor/gui_probe.h"
 #include "editor/guarantees_view.h"
 #include "editor/navigation.h"
@@ -108,6 +109,7 @@ class App {
   std::string gl_renderer_;
   ui::MessageLog messages_;
   EditorSession session_;
+  BackgroundCommand background_{session_};  // Fill / Bake on a worker thread (destroyed before the session)
   Navigator nav_;
   core::Camera view_;
 

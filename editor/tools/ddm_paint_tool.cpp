@@ -163,9 +163,10 @@ void DdmPaintTool::fill(ToolContext& ctx) {
     return;
   }
   const nlohmann::json line = ddm_fill_line(o->name, params_);
+  const std::string what = "Filling " + o->name + " with " + params_.paint.spec.tiles.front();
+  if (ctx.background) return ctx.background(line, what, "Fill");
   EditorSession& session = ctx.session;
-  ctx.defer("Filling " + o->name + " with " + params_.paint.spec.tiles.front(),
-            [&session, line]() { session.execute(line); });
+  ctx.defer(what, [&session, line]() { session.execute(line); });
 }
 
 void DdmPaintTool::bake(ToolContext& ctx) {
@@ -177,8 +178,10 @@ void DdmPaintTool::bake(ToolContext& ctx) {
   const std::string name = ctx.session.scene().unique_name(o->name + "." + params_.paint.layer);
   const nlohmann::json line =
       core::DdmBakeCommand::schema().to_json({o->name, params_.paint.layer, name, std::nullopt});
+  const std::string what = "Baking " + o->name + "/" + params_.paint.layer;
+  if (ctx.background) return ctx.background(line, what, "Bake");
   EditorSession& session = ctx.session;
-  ctx.defer("Baking " + o->name + "/" + params_.paint.layer, [&session, line]() { session.execute(line); });
+  ctx.defer(what, [&session, line]() { session.execute(line); });
 }
 
 void DdmPaintTool::remove_layer(ToolContext& ctx) {

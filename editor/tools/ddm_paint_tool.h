@@ -9,8 +9,9 @@
 // the first stroke or by Fill with the panel's tile / layout / tile size or counts / height / base — base and tile size
 // defaulting per object, ddm_default_base), the tiles and tile vertices Fill would make, the brush radius and the
 // erase toggle; Fill submits `ddm.fill` for the whole surface, Bake `ddm.bake` (a mesh object named
-// "<object>.<layer>"). Commands run through ToolContext::defer (a "Working…" frame first: a large layer takes a
-// while to re-evaluate); errors go to the Log panel and leave the scene as it was.
+// "<object>.<layer>"). Fill and Bake are built on a worker thread behind a progress bar with Cancel
+// (ToolContext::background); strokes run through ToolContext::defer (a "Working…" frame first); errors go to the Log
+// panel and leave the scene as it was.
 #pragma once
 
 #include "ui/ddm_anim_panel.h"
