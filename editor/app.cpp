@@ -123,6 +123,11 @@ void App::render_view() {
   vo.selected = selected_;
   vo.time_s = anim_.time_s();
   vo.volume_budget_ms = kVolumeBudgetMs;
+  if (!core::same_view(view_, moved_view_) || view_.near_plane != moved_view_.near_plane)
+    moved_view_ = view_, moved_at_ = Clock::now();
+  vo.ddm.cull = toggles_.fast_tiles;
+  vo.ddm.moving = toggles_.fast_tiles && Clock::now() - moved_at_ < std::chrono::duration<double>(kMotionHoldSeconds);
+  vo.ddm.motion_budget_vertices = gpu::is_software_renderer() ? kMotionBudgetVerticesSoftware : kMotionBudgetVertices;
   tools_.decorate(vo);
   volumes_.decorate(vo);
   if (const core::SceneObject* o = session_.scene().find(selected_); o && o->ffd && control_point_.highlight &&
@@ -378,6 +383,13 @@ void App::record_frame_timings(Clock::time_point start, Clock::time_point end, C
     ctx.silhouette_points = volumes_.last_points();
     ctx.silhouette_running = volumes_.extracting();
   }
+  if (renderer_) {
+    const gpu::RenderStats& rs = renderer_->last_stats();
+    ctx.ddm_instances = rs.ddm_instances;
+    ctx.ddm_drawn = rs.ddm_instances_drawn;
+    ctx.ddm_culled = rs.ddm_instances_culled;
+    ctx.ddm_keep = rs.ddm_keep;
+  }
   ctx.bounds_ms = guarantees_.bounds_ms();
   ctx.certificate_ms = guarantees_.certificate_ms();
   ctx.guarantees = guarantees_.summary();
@@ -412,6 +424,7 @@ int App::run() {
     // does a guarantees computation (its result is drawn the frame it is ready).
     const bool busy = !work_.empty() || ImGui::GetIO().MouseDown[0] || ImGui::GetIO().MouseDown[2] || animating() ||
                       background_.running() || volumes_.busy() || guarantees_.busy() ||
+                      (renderer_ && renderer_->last_stats().ddm_keep < 1.0) ||  // full detail once it stops
                       (renderer_ && renderer_->last_stats().volume_refining);
     if (busy || !options_.screenshot.empty())
       gpu::Window::poll_events();
