@@ -127,7 +127,8 @@ void App::render_view() {
     moved_view_ = view_, moved_at_ = Clock::now();
   vo.ddm.cull = toggles_.fast_tiles;
   vo.ddm.moving = toggles_.fast_tiles && Clock::now() - moved_at_ < std::chrono::duration<double>(kMotionHoldSeconds);
-  vo.ddm.motion_budget_vertices = gpu::is_software_renderer() ? kMotionBudgetVerticesSoftware : kMotionBudgetVertices;
+  vo.ddm.motion_budget_vertices = gpu::is_software_renderer() ? gpu::kDdmMotionBudgetVerticesSoftware
+                                                                 : gpu::kDdmMotionBudgetVertices;
   tools_.decorate(vo);
   volumes_.decorate(vo);
   if (const core::SceneObject* o = session_.scene().find(selected_); o && o->ffd && control_point_.highlight &&

@@ -65,11 +65,9 @@ inline const std::vector<std::string> kLogExtensions = {".jsonl"};
 inline const std::vector<std::string> kVolumeExtensions = {".nii", ".nii.gz", ".inv3", ".dcm"};  // and folders
 // Milliseconds a frame may spend ray casting volumes; longer casts show a preview refined over the next frames.
 inline constexpr double kVolumeBudgetMs = 150.0;
-// Tile layers while the view moves (gpu::DdmViewOptions): how long after the last camera change the view still counts
-// as moving, and the tile vertices a moving frame draws at most — on a software renderer (llvmpipe, ~10 fps at this
-// budget on 2 cores: docs/performance.md) and on a GPU.
+// How long after the last camera change the view still counts as moving (the tile layers' motion LOD,
+// gpu::DdmViewOptions; its budgets are gpu::kDdmMotionBudgetVertices*).
 inline constexpr double kMotionHoldSeconds = 0.25;
-inline constexpr std::size_t kMotionBudgetVertices = 4'000'000, kMotionBudgetVerticesSoftware = 400'000;
 inline constexpr int kScreenshotFrames = 5;  // frames rendered after the start-up work before the capture
 
 enum class FilePurpose { None, LoadMesh, OpenLog, SaveLog, ExportVolume };

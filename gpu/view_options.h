@@ -191,6 +191,10 @@ struct DdmViewOptions {
   std::size_t motion_budget_vertices = 0;
 };
 
+// The editor's motion budgets (DdmViewOptions::motion_budget_vertices): tile vertices a moving frame draws at most on a
+// software renderer (llvmpipe: above 10 fps on 2 cores, docs/performance.md) and on a GPU.
+inline constexpr std::size_t kDdmMotionBudgetVerticesSoftware = 100'000, kDdmMotionBudgetVertices = 4'000'000;
+
 struct ViewOptions : DisplaySwitches {
   std::string selected;  // highlighted object name (outline colour)
   // The scene time in seconds (a deformed object shows F(E(x) + param_offset + offset_velocity·time_s)).

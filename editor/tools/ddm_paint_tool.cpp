@@ -41,8 +41,8 @@ constexpr const char* kTileTips[] = {
 
 bool deformed(const core::SceneObject& o) { return o.ffd || o.dffd || o.clip; }
 
-// A first tile size for an object: a tenth of its rest mesh's bounding-box diagonal, to two significant figures
-// (1 without an object).
+}  // namespace
+
 double ddm_default_tile_size(const core::SceneObject* o) {
   if (!o || !o->rest_mesh || o->rest_mesh->empty()) return 1.0;
   glm::dvec3 lo(1e300), hi(-1e300);
@@ -52,6 +52,8 @@ double ddm_default_tile_size(const core::SceneObject* o) {
   const double unit = std::pow(10.0, std::floor(std::log10(d)) - 1.0);
   return std::round(d / unit) * unit;
 }
+
+namespace {
 
 bool is_generated(const std::string& tile) {
   return std::find(kGeneratedTiles.begin(), kGeneratedTiles.end(), tile) != kGeneratedTiles.end();

@@ -47,6 +47,9 @@ struct DdmPaintToolParams {
 nlohmann::json ddm_paint_line(const std::string& object, const std::vector<glm::dvec2>& stroke_px,
                               const DdmPaintToolParams& params, bool erase, bool new_layer,
                               const std::optional<core::Camera>& view = std::nullopt);
+// The panel's first tile size for an object: a tenth of its rest mesh's bounding-box diagonal, to two significant
+// figures (1 without an object), world units.
+double ddm_default_tile_size(const core::SceneObject* o);
 // The ddm.fill line of the panel's values (the whole surface; a layer of that name is replaced).
 nlohmann::json ddm_fill_line(const std::string& object, const DdmPaintToolParams& params);
 

@@ -132,7 +132,9 @@ TEST_F(DdmCullTest, CulledAndThinnedRendersMatchTheFullOne) {
     EXPECT_EQ(count_different(a, b), 0) << "frustum culling draws the same pixels";
     EXPECT_LE(count_different(a, c), pixels / 1000) << "the facing-away cone leaves out hidden tiles only";
     EXPECT_LE(cs.ddm_instances_drawn, fs.ddm_instances_drawn);
-    if (cam.eye.y < 0) EXPECT_LT(cs.ddm_instances_drawn, fs.ddm_instances_drawn) << "from below the top faces away";
+    if (cam.eye.y < 0) {
+      EXPECT_LT(cs.ddm_instances_drawn, fs.ddm_instances_drawn) << "from below the top faces away";
+    }
     left_out += instances - cs.ddm_instances_drawn;
   }
   EXPECT_GT(left_out, instances) << "culling left tiles out";
