@@ -114,8 +114,9 @@ bool BackgroundCommand::finish() {
 
 void BackgroundCommand::draw_progress(const ui::Rect& viewport) {
   if (!job_) return;
-  ImGui::SetNextWindowPos(ImVec2(viewport.pos.x + viewport.size.x * 0.5f, viewport.pos.y + 12.0f), ImGuiCond_Always,
-                          ImVec2(0.5f, 0.0f));
+  // Bottom centre of the viewport: the timing overlay holds its top left.
+  ImGui::SetNextWindowPos(ImVec2(viewport.pos.x + viewport.size.x * 0.5f, viewport.pos.y + viewport.size.y - 12.0f),
+                          ImGuiCond_Always, ImVec2(0.5f, 1.0f));
   ImGui::SetNextWindowBgAlpha(0.92f);
   const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
                                  ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoMove |

@@ -9,7 +9,7 @@
 //              swaps the built object in, so the session log gets the one line and the scene the bits a synchronous
 //              execute gives. A cancel (even one that arrives after the build finished) or a failure changes nothing:
 //              no history entry, no log line, the Log says "<verb> cancelled" or the error
-//   progress   a small window over the top of the viewport (not modal: the view keeps orbiting): what, a bar, Cancel
+//   progress   a small window at the bottom of the viewport (not modal: the view keeps orbiting): what, a bar, Cancel
 // A line whose command is not preparable runs at once, as EditorSession::execute.
 #pragma once
 
