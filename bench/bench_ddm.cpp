@@ -17,9 +17,11 @@
 #include "core/scene/primitives.h"
 #include "core/scene/scene.h"
 #include "bench/bench_place.h"
+#include "editor/command_registry.h"
 #include "editor/history.h"
 #include "editor/render_scene.h"
 #include "editor/replay.h"
+#include "editor/tools/ddm_paint_tool.h"
 #include "gpu/gl_context.h"
 #include "gpu/renderer.h"
 
@@ -28,6 +30,8 @@ namespace {
 using json = nlohmann::json;
 
 const std::vector<std::string> kCases = {"thorns_face", "thorns_teapot", "chains_1m", "chains_3m"};
+const std::vector<std::string> kOrbitCases = {"orbit_default", "orbit_fine"};
+const std::filesystem::path kDefaultScene = "assets/scenes/default.jsonl";
 // The face case replays the shipped scene (seed Table 5.1's first row); it needs the repository's assets.
 const std::filesystem::path kFaceScene = "assets/scenes/face_thorns.jsonl";
 const std::filesystem::path kFaceMesh = "assets/data/nefertiti.off";
@@ -178,6 +182,72 @@ json run_case(Case& c, const BenchDdmOptions& o, gpu::Renderer& renderer, gpu::O
   return r;
 }
 
+// The default scene with its teapot filled by the Tile Paint panel's defaults (tile size × `tile_scale`).
+json run_orbit(const std::string& name, const BenchDdmOptions& o, gpu::Renderer& renderer,
+               gpu::OffscreenTarget& target, std::ostream& err) {
+  core::Scene scene;
+  History history(scene);
+  const ReplayResult r = replay_lines(history, kDefaultScene);
+  if (!r.ok) throw std::runtime_error("bench ddm: " + name + ": " + r.error);
+  const core::SceneObject* pot = scene.find("teapot");
+  if (!pot) throw std::runtime_error("bench ddm: " + name + ": default.jsonl has no teapot");
+  DdmPaintToolParams params;
+  params.paint.spec.base = core::ddm_default_base(*pot);
+  params.paint.spec.tile_size = ddm_default_tile_size(pot) * (name == "orbit_fine" ? 0.25 : 1.0);
+  const nlohmann::json line = ddm_fill_line("teapot", params);
+  const core::CommandContext ctx{std::filesystem::current_path(), {}};
+  const double fill_ms = bench_ms([&] { history.execute(CommandRegistry::builtin().parse(line, ctx)); });
+  const core::DdmLayer& layer = *scene.find("teapot")->ddm_layers.front();
+  const std::size_t vertices = layer.mesh->vertex_count();
+  err << "bench ddm: " << name << ": " << layer.instances.size() << " tiles, " << vertices << " tile vertices\n"
+      << std::flush;
+  const core::Camera home = scene.camera_set ? scene.camera : render_camera(scene, o.width, o.height);
+  core::Camera cam = home;
+  cam.viewport = {o.width, o.height};
+  const auto orbit = [&](int f) {  // 3° per frame round the target's vertical axis
+    const double a = glm::radians(3.0 * f);
+    const glm::dvec3 d = home.eye - home.target;
+    cam.eye = home.target + glm::dvec3(std::cos(a) * d.x + std::sin(a) * d.z, d.y, -std::sin(a) * d.x + std::cos(a) * d.z);
+  };
+  const bool software = gpu::is_software_renderer();
+  json modes = json::array();
+  for (const std::string mode : {"rest", "orbit_all", "orbit_cull", "orbit_lod"}) {
+    gpu::ViewOptions view;
+    view.ddm.cull = mode == "orbit_cull" || mode == "orbit_lod";
+    view.ddm.moving = mode == "orbit_lod";
+    view.ddm.motion_budget_vertices = software ? gpu::kDdmMotionBudgetVerticesSoftware : gpu::kDdmMotionBudgetVertices;
+    target.bind();
+    std::vector<double> frame_ms, drawn, culled, keep;
+    for (int f = -2; f < o.frames; ++f) {
+      orbit(mode == "rest" ? 0 : f);
+      const double ms = bench_ms([&] {
+        renderer.draw(scene, cam, view);
+        glFinish();
+      });
+      if (f < 0) continue;  // warm-up
+      const gpu::RenderStats& s = renderer.last_stats();
+      frame_ms.push_back(ms);
+      drawn.push_back(double(s.ddm_instances_drawn));
+      culled.push_back(double(s.ddm_instances_culled));
+      keep.push_back(s.ddm_keep);
+    }
+    modes.push_back({{"mode", mode},
+                     {"frame_ms", stats_of(frame_ms)},
+                     {"fps", 1000.0 / bench_median(frame_ms)},
+                     {"drawn_median", bench_median(drawn)},
+                     {"culled_median", bench_median(culled)},
+                     {"keep_median", bench_median(keep)}});
+  }
+  renderer.release_unused(core::Scene{});
+  return {{"name", name},
+          {"tile_size", *params.paint.spec.tile_size},
+          {"base", core::ddm_base_name(params.paint.spec.base)},
+          {"instances", layer.instances.size()},
+          {"vertices", vertices},
+          {"fill_ms", fill_ms},
+          {"modes", modes}};
+}
+
 std::string cell(const json& v, int digits) { return v.is_number() ? bench_fixed(v.get<double>(), digits) : "-"; }
 
 void print_table(const json& j, std::ostream& out) {
@@ -199,17 +269,41 @@ void print_table(const json& j, std::ostream& out) {
         << std::setw(13) << cell(c["cpu_reference_ms"], 1) << "\n";
   }
   out << "\n(ddm GPU ms: the layer pass, RenderStats::ddm_ms; frame ms: draw() + glFinish, wall clock; medians)\n";
+  if (!j.contains("orbit") || j["orbit"].empty()) return;
+  out << "\norbit: default.jsonl, the teapot filled by the Tile Paint panel's defaults, 3 deg per frame, "
+      << j["orbit_samples"] << " sample(s)\n";
+  out << std::left << std::setw(15) << "case" << std::setw(12) << "mode" << std::right << std::setw(11) << "frame ms"
+      << std::setw(9) << "fps" << std::setw(10) << "drawn" << std::setw(10) << "culled" << std::setw(8) << "share"
+      << "\n";
+  for (const json& c : j["orbit"]) {
+    out << c["name"].get<std::string>() << ": tile size " << c["tile_size"] << ", " << c["instances"] << " tiles, "
+        << c["vertices"] << " tile vertices, fill " << bench_fixed(c["fill_ms"].get<double>(), 0) << " ms\n";
+    for (const json& m : c["modes"])
+      out << std::left << std::setw(15) << "" << std::setw(12) << m["mode"].get<std::string>() << std::right
+          << std::setw(11) << cell(m["frame_ms"]["median"], 1) << std::setw(9) << cell(m["fps"], 1) << std::setw(10)
+          << cell(m["drawn_median"], 0) << std::setw(10) << cell(m["culled_median"], 0) << std::setw(8)
+          << cell(m["keep_median"], 3) << "\n";
+  }
 }
 
 }  // namespace
 
 int run_bench_ddm(const BenchDdmOptions& options, std::ostream& out, std::ostream& err) {
   std::vector<std::string> names = options.cases.empty() ? kCases : options.cases;
+  if (options.cases.empty()) names.insert(names.end(), kOrbitCases.begin(), kOrbitCases.end());
+  std::vector<std::string> orbits;
   for (const std::string& n : names)
-    if (std::find(kCases.begin(), kCases.end(), n) == kCases.end()) {
-      err << "bench ddm: unknown case '" << n << "' (thorns_face, thorns_teapot, chains_1m, chains_3m)\n";
+    if (std::find(kOrbitCases.begin(), kOrbitCases.end(), n) != kOrbitCases.end()) orbits.push_back(n);
+    else if (std::find(kCases.begin(), kCases.end(), n) == kCases.end()) {
+      err << "bench ddm: unknown case '" << n
+          << "' (thorns_face, thorns_teapot, chains_1m, chains_3m, orbit_default, orbit_fine)\n";
       return 1;
     }
+  std::erase_if(names, [&](const std::string& n) { return std::find(orbits.begin(), orbits.end(), n) != orbits.end(); });
+  if (!orbits.empty() && !std::filesystem::exists(kDefaultScene)) {
+    err << "bench ddm: the orbit cases need " << kDefaultScene.string() << " (run the bench from the repository root)\n";
+    return 1;
+  }
   const bool have_face = std::filesystem::exists(kFaceScene) && std::filesystem::exists(kFaceMesh);
   if (!have_face) {
     const std::string why = "needs " + kFaceScene.string() + " and " + kFaceMesh.string() +
@@ -252,7 +346,22 @@ int run_bench_ddm(const BenchDdmOptions& options, std::ostream& out, std::ostrea
     result["timer_mode"] = renderer.last_stats().timer_mode;
     renderer.release_unused(core::Scene{});  // free this case's buffers before the next
   }
-  return bench_emit(result, options.json, out, print_table);
+  if (!orbits.empty()) {
+    // As the editor's window: no MSAA on a software renderer (editor/app.cpp's make_window).
+    const int samples = gpu::is_software_renderer() ? 1 : options.samples;
+    gpu::OffscreenTarget orbit_target(options.width, options.height, samples);
+    result["orbit_samples"] = orbit_target.samples();
+    result["orbit"] = json::array();
+    for (const std::string& n : orbits) {
+      try {
+        result["orbit"].push_back(run_orbit(n, options, renderer, orbit_target, err));
+      } catch (const std::exception& e) {
+        err << e.what() << "\n";
+        return 1;
+      }
+    }
+  }
+    return bench_emit(result, options.json, out, print_table);
 }
 
 }  // namespace trispline::editor

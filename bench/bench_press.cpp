@@ -202,7 +202,8 @@ ToolRuns run_press_tool(EditorSession& session, const ui::MessageLog& messages, 
   std::set<std::string> hidden;
   double command_ms = 0;
   ToolContext ctx{session, view, selected, hidden,
-                  [&command_ms](std::string, std::function<void()> work) { command_ms = bench_ms(work); }};
+                  [&command_ms](std::string, std::function<void()> work) { command_ms = bench_ms(work); },
+                  nullptr};
   PressTool tool;
   tool.activate(ctx);
   tool.set_object("bunny");

@@ -28,7 +28,10 @@ App::App(const AppOptions& options)
       gl_renderer_(gpu::current_gl_renderer()),
       session_(messages_),
       tool_ctx_{session_, view_, selected_, hidden_,
-                [this](std::string what, std::function<void()> work) { work_.push(std::move(what), std::move(work)); }},
+                [this](std::string what, std::function<void()> work) { work_.push(std::move(what), std::move(work)); },
+                [this](const nlohmann::json& line, std::string what, std::string verb) {
+                  background_.start(line, std::move(what), std::move(verb));
+                }},
       tools_(tool_ctx_) {
   try {
     renderer_ = std::make_unique<gpu::Renderer>();
@@ -59,7 +62,8 @@ bool App::transform_input() {
   const std::vector<ui::KeyPress>& keys = ui::ImGuiHost::key_presses();
   std::size_t first = 0;
   if (!transform_.active()) {
-    if (io.WantCaptureKeyboard || io.WantTextInput || !work_.empty() || anim_.recording() || tools_.owns_mouse() ||
+    if (io.WantCaptureKeyboard || io.WantTextInput || !work_.empty() || background_.running() || anim_.recording() ||
+        tools_.owns_mouse() ||
         file_dialog_.is_open() || recovery_ || prompt_for_ != Pending::None)
       return false;
     const core::SceneObject* o = session_.scene().find(selected_);
@@ -91,6 +95,11 @@ void App::viewport_input() {
     return;
   }
   const NavInput nav = nav_input_from_imgui();
+  if (background_.running()) {  // a command is being built: the view navigates, the tools wait (they would edit)
+    nav_.update(nav, view_.viewport);
+    tools_.mouse_away();
+    return;
+  }
   if (tools_.owns_mouse()) {  // a stroke is being drawn: its pixels belong to the view at mouse-down, keep it
     tools_.handle_mouse(nav.mouse_px);
     return;
@@ -114,6 +123,12 @@ void App::render_view() {
   vo.selected = selected_;
   vo.time_s = anim_.time_s();
   vo.volume_budget_ms = kVolumeBudgetMs;
+  if (!core::same_view(view_, moved_view_) || view_.near_plane != moved_view_.near_plane)
+    moved_view_ = view_, moved_at_ = Clock::now();
+  vo.ddm.cull = toggles_.fast_tiles;
+  vo.ddm.moving = toggles_.fast_tiles && Clock::now() - moved_at_ < std::chrono::duration<double>(kMotionHoldSeconds);
+  vo.ddm.motion_budget_vertices = gpu::is_software_renderer() ? gpu::kDdmMotionBudgetVerticesSoftware
+                                                                 : gpu::kDdmMotionBudgetVertices;
   tools_.decorate(vo);
   volumes_.decorate(vo);
   if (const core::SceneObject* o = session_.scene().find(selected_); o && o->ffd && control_point_.highlight &&
@@ -172,6 +187,7 @@ void App::frame() {
   nav_.follow(session_.scene().camera, session_.scene().camera_set, window_->framebuffer_size());
   const ImGuiIO& io = ImGui::GetIO();
   view_ = nav_.camera(window_->framebuffer_size());
+  background_.finish();  // a Fill / Bake built on its worker: applied (one history entry) or reported
   if (const std::string loaded = volumes_.finish_load(); !loaded.empty()) {
     selected_ = loaded;
     frame_selected();  // a volume in millimetres would otherwise fill or vanish from the view
@@ -186,7 +202,8 @@ void App::frame() {
   ui::MenuAction key = ui::poll_shortcuts();
   if (transform_frame_ && key != ui::MenuAction::Screenshot) key = ui::MenuAction::None;
   handle_menu(key == ui::MenuAction::Screenshot || (work_.empty() && !anim_.recording()) ? key : ui::MenuAction::None);
-  if (!transform_frame_ && work_.empty() && !anim_.recording() && !tools_.owns_mouse())  // tool keys (K: Incision)
+  if (!transform_frame_ && work_.empty() && !background_.running() && !anim_.recording() &&
+      !tools_.owns_mouse())  // tool keys (K: Incision)
     if (const std::string k = ui::poll_tool_key(); !k.empty()) tools_.activate_shortcut(k);
 
   // The Timeline spans the window's width above the status bar (Blender); the other panels share the rest.
@@ -201,6 +218,9 @@ void App::frame() {
   }
   toggles_.play_animation = anim_.playback().playing;  // the Play button
   control_point_.highlight = false;  // set again while the Control point section is hovered
+  // While a command is built on its worker the panels that edit the document are greyed (the session refuses
+  // changes anyway); the view, the timeline's playback and the Log stay live.
+  ImGui::BeginDisabled(background_.running());
   if (toggles_.show_tool_panel) {
     // A selected volume's panel takes the lower part of the Tool column (the tools work on meshes).
     const core::VolumeObject* volume = session_.scene().find_volume(selected_);
@@ -221,6 +241,7 @@ void App::frame() {
     if (hr.undo) session_.undo();
     if (hr.redo) session_.redo();
   }
+  ImGui::EndDisabled();
   if (toggles_.show_log_panel) log_panel_.draw(layout.log, messages_);
 
   ui::StatusInfo st = session_.status();
@@ -229,6 +250,7 @@ void App::frame() {
 
   if (auto chosen = file_dialog_.draw()) handle_file(*chosen);
   volumes_.draw_load_progress();
+  background_.draw_progress(layout.viewport);
   anim_.draw_record_ui([this] { window_->make_current(); });
   ui::draw_about_window(&show_about_, gl_renderer_);
   ui::draw_keys_window(&show_keys_);
@@ -311,6 +333,10 @@ void App::write_probe() {
   p["current_frame"] = anim_.playback().frame;
   p["transform"] = transform_.active() ? nlohmann::json(transform_.header()) : nlohmann::json(nullptr);
   p["guarantees"] = guarantees_.probe();
+  p["command"] = background_.running() ? nlohmann::json{{"what", background_.what()},
+                                                          {"progress", background_.progress()},
+                                                          {"cancelling", background_.cancelling()}}
+                                       : nlohmann::json(nullptr);
   p["volume_refining"] = renderer_ && renderer_->last_stats().volume_refining;  // the last frame drawn's
   const nlohmann::json volumes = volumes_.probe(session_.scene());
   for (auto it = volumes.begin(); it != volumes.end(); ++it) p[it.key()] = it.value();
@@ -358,6 +384,13 @@ void App::record_frame_timings(Clock::time_point start, Clock::time_point end, C
     ctx.silhouette_points = volumes_.last_points();
     ctx.silhouette_running = volumes_.extracting();
   }
+  if (renderer_) {
+    const gpu::RenderStats& rs = renderer_->last_stats();
+    ctx.ddm_instances = rs.ddm_instances;
+    ctx.ddm_drawn = rs.ddm_instances_drawn;
+    ctx.ddm_culled = rs.ddm_instances_culled;
+    ctx.ddm_keep = rs.ddm_keep;
+  }
   ctx.bounds_ms = guarantees_.bounds_ms();
   ctx.certificate_ms = guarantees_.certificate_ms();
   ctx.guarantees = guarantees_.summary();
@@ -391,7 +424,9 @@ int App::run() {
     // Volumes: a load or a silhouette extraction running, or a volume preview being refined, keeps frames coming; so
     // does a guarantees computation (its result is drawn the frame it is ready).
     const bool busy = !work_.empty() || ImGui::GetIO().MouseDown[0] || ImGui::GetIO().MouseDown[2] || animating() ||
-                      volumes_.busy() || guarantees_.busy() || (renderer_ && renderer_->last_stats().volume_refining);
+                      background_.running() || volumes_.busy() || guarantees_.busy() ||
+                      (renderer_ && renderer_->last_stats().ddm_keep < 1.0) ||  // full detail once it stops
+                      (renderer_ && renderer_->last_stats().volume_refining);
     if (busy || !options_.screenshot.empty())
       gpu::Window::poll_events();
     else
@@ -402,7 +437,8 @@ int App::run() {
       request(Pending::Quit);
     }
     frame();
-    if (volumes_.busy() || guarantees_.busy() || (renderer_ && renderer_->last_stats().volume_refining))
+    if (background_.running() || volumes_.busy() || guarantees_.busy() ||
+        (renderer_ && renderer_->last_stats().volume_refining))
       idle_frames_ = 0;  // a screenshot waits for loads, silhouettes, guarantees and full-resolution volumes
     if (!options_.screenshot.empty() && work_.empty() && ++idle_frames_ >= kScreenshotFrames)
       return write_screenshot(options_.screenshot);

@@ -3,6 +3,7 @@
 set(TRISPLINE_EDITOR_APP_SOURCES
     app.cpp
     app_requests.cpp
+    background_command.cpp
     gui_probe.cpp
     guarantees_view.cpp
     animation_ui.cpp

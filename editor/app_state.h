@@ -14,6 +14,7 @@
 #include "core/mesh/image_io.h"
 #include "core/volume/volume_io.h"
 #include "editor/animation_ui.h"
+#include "editor/background_command.h"
 #include "editor/gui_probe.h"
 #include "editor/guarantees_view.h"
 #include "editor/navigation.h"
@@ -64,6 +65,9 @@ inline const std::vector<std::string> kLogExtensions = {".jsonl"};
 inline const std::vector<std::string> kVolumeExtensions = {".nii", ".nii.gz", ".inv3", ".dcm"};  // and folders
 // Milliseconds a frame may spend ray casting volumes; longer casts show a preview refined over the next frames.
 inline constexpr double kVolumeBudgetMs = 150.0;
+// How long after the last camera change the view still counts as moving (the tile layers' motion LOD,
+// gpu::DdmViewOptions; its budgets are gpu::kDdmMotionBudgetVertices*).
+inline constexpr double kMotionHoldSeconds = 0.25;
 inline constexpr int kScreenshotFrames = 5;  // frames rendered after the start-up work before the capture
 
 enum class FilePurpose { None, LoadMesh, OpenLog, SaveLog, ExportVolume };
@@ -108,8 +112,11 @@ class App {
   std::string gl_renderer_;
   ui::MessageLog messages_;
   EditorSession session_;
+  BackgroundCommand background_{session_};  // Fill / Bake on a worker thread (destroyed before the session)
   Navigator nav_;
   core::Camera view_;
+  core::Camera moved_view_;        // the view when it last changed
+  Clock::time_point moved_at_{};   // when it last changed (the tile layers' motion LOD)
 
   std::string selected_;
   std::set<std::string> hidden_;

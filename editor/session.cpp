@@ -215,25 +215,48 @@ core::Scene EditorSession::shown_scene(const std::set<std::string>& hidden) cons
   return shown;
 }
 
+std::string command_error_text(const std::string& id, const core::CommandError& e) {
+  const std::string what = e.what(), field = "field '" + e.field() + "'";
+  const bool named = e.field().empty() || what.find(field) != std::string::npos;  // message names it already
+  return id + ": " + (named ? "" : field + ": ") + what;
+}
+
+bool EditorSession::refused(const char* change) const {
+  if (busy_.empty()) return false;
+  messages_.warning(std::string(change) + " refused: " + busy_ + " (wait for it or cancel it)");
+  return true;
+}
+
 bool EditorSession::execute(const nlohmann::json& line, const fs::path& base_dir) {
+  const std::string id = line.contains("cmd") && line["cmd"].is_string() ? line["cmd"].get<std::string>() : "?";
+  if (refused(id.c_str())) return false;
   try {
     core::CommandContext ctx;
     std::error_code ec;
     ctx.base_dir = base_dir.empty() ? fs::current_path(ec) : base_dir;
-    core::CommandPtr cmd = CommandRegistry::builtin().parse(line, ctx);
+    return execute(CommandRegistry::builtin().parse(line, ctx));
+  } catch (const core::CommandError& e) {
+    messages_.error(command_error_text(id, e));
+  } catch (const std::exception& e) {
+    messages_.error(std::string("command failed: ") + e.what());
+  }
+  return false;
+}
+
+bool EditorSession::execute(core::CommandPtr cmd, double prepared_ms) {
+  const std::string id = cmd->id();
+  if (refused(id.c_str())) return false;
+  try {
     const ExecutionRecord rec = history_.execute(std::move(cmd));
     const std::string label = history_.last_executed().label();
-    last_ms_ = rec.milliseconds;
+    last_ms_ = prepared_ms + rec.milliseconds;
     last_label_ = label;
     char ms[32];
-    std::snprintf(ms, sizeof ms, "%.1f", rec.milliseconds);
+    std::snprintf(ms, sizeof ms, "%.1f", last_ms_);
     messages_.info(label + " (" + ms + " ms)");
     return true;
   } catch (const core::CommandError& e) {
-    const std::string cmd = line.contains("cmd") && line["cmd"].is_string() ? line["cmd"].get<std::string>() : "?";
-    const std::string what = e.what(), field = "field '" + e.field() + "'";
-    const bool named = e.field().empty() || what.find(field) != std::string::npos;  // message names it already
-    messages_.error(cmd + ": " + (named ? "" : field + ": ") + what);
+    messages_.error(command_error_text(id, e));
   } catch (const std::exception& e) {
     messages_.error(std::string("command failed: ") + e.what());
   }
@@ -245,6 +268,7 @@ bool EditorSession::redo() { return step_history(true); }
 
 bool EditorSession::step_history(bool forward) {
   if (forward ? !history_.can_redo() : !history_.can_undo()) return false;
+  if (refused(forward ? "Redo" : "Undo")) return false;
   const char* verb = forward ? "Redo" : "Undo";
   try {
     const std::string label = history_.at(forward ? history_.applied() : history_.applied() - 1).label();
@@ -258,6 +282,7 @@ bool EditorSession::step_history(bool forward) {
 }
 
 bool EditorSession::jump_to(std::size_t applied_count) {
+  if (refused("History jump")) return false;
   try {
     history_.jump_to(applied_count);
     return true;
@@ -268,6 +293,7 @@ bool EditorSession::jump_to(std::size_t applied_count) {
 }
 
 void EditorSession::new_document() {
+  if (refused("New")) return;
   history_.clear();
   scene_.clear();
   scene_.camera_set = false;
@@ -299,6 +325,7 @@ bool EditorSession::replay_into(const fs::path& log, const char* what) {
 }
 
 bool EditorSession::open(const fs::path& log) {
+  if (refused("Open")) return false;
   std::error_code ec;
   if (!fs::exists(log, ec)) {
     messages_.error("cannot open " + log.string() + ": no such file");
@@ -358,6 +385,7 @@ bool EditorSession::save(const fs::path& path, const core::Camera& view) {
 }
 
 bool EditorSession::recover(const RecoveryOffer& offer) {
+  if (refused("Recover")) return false;
   const bool ok = replay_into(offer.log, "Recovered");
   std::error_code ec;  // answered only now: a crash during the replay asks again
   fs::remove(dir_ / "session.recover-pending", ec);
@@ -394,8 +422,8 @@ ui::StatusInfo EditorSession::status() const {
 
 ui::MenuState EditorSession::menu_state() const {
   ui::MenuState m;
-  m.can_undo = history_.can_undo();
-  m.can_redo = history_.can_redo();
+  m.can_undo = history_.can_undo() && busy_.empty();
+  m.can_redo = history_.can_redo() && busy_.empty();
   if (m.can_undo) m.undo_label = history_.at(history_.applied() - 1).label();
   if (m.can_redo) m.redo_label = history_.at(history_.applied()).label();
   m.has_document_path = !document_.empty();

@@ -43,6 +43,9 @@ struct RecoveryOffer {
   std::size_t commands = 0;   // lines in it (edit.undo / edit.redo included)
 };
 
+// The Log's text of a failed command: "ddm.fill: field 'tile': <message>" (the field named once).
+std::string command_error_text(const std::string& id, const core::CommandError& e);
+
 // A camera.set log line for `camera` (eye, target, up, fov_deg, viewport).
 nlohmann::json camera_line(const core::Camera& camera);
 
@@ -61,12 +64,15 @@ class EditorSession {
   // Parses `line` with the command registry and executes it (relative paths against base_dir, default: the
   // current folder). Errors go to the Log in red; the scene is then unchanged. Returns success.
   bool execute(const nlohmann::json& line, const std::filesystem::path& base_dir = {});
+  // Executes a parsed command (prepared or not: Command::prepare) like execute(line); the Log's time adds
+  // `prepared_ms`, the time its preparation took elsewhere. Returns success.
+  bool execute(core::CommandPtr cmd, double prepared_ms = 0.0);
   bool undo();
   bool redo();
   bool jump_to(std::size_t applied_count);
 
   // Empty scene and history; restarts the session log (the old one is renamed to <log>.prev.jsonl, not lost).
-  void new_document();
+  void new_document();  // refused while busy(), like every change below
   // A transaction: replays the log into a fresh scene (each line one undoable step) and swaps it in only when every
   // line succeeded; otherwise the error (LOG:LINE: ...) goes to the Log and the current scene, history, title and
   // session log are kept as they were. On success the session log restarts with the opened history.
@@ -74,6 +80,12 @@ class EditorSession {
   bool save(const std::filesystem::path& path, const core::Camera& view);  // applied lines + camera.set, atomic
   bool recover(const RecoveryOffer& offer);  // new_document() + replay of the offer's log; then closes the question
   void discard(const RecoveryOffer& offer);                                // keeps the file, says so
+
+  // While a command is prepared on a worker thread over a copy of the scene (editor/background_command.h) the
+  // document must stay as that copy: `what` ("Filling teapot with thorn") makes execute, undo, redo, jump_to,
+  // new_document, open and recover refuse with a Log warning naming it (nothing is queued). Empty: not busy.
+  void set_busy(std::string what) { busy_ = std::move(what); }
+  const std::string& busy() const { return busy_; }
 
   core::Scene& scene() { return scene_; }
   const core::Scene& scene() const { return scene_; }
@@ -104,6 +116,7 @@ class EditorSession {
   std::filesystem::path pending_log() const;                    // the log the open recovery question is about
   void open_session_log(bool keep_old);                        // keep_old: rename the current log aside first
   std::pair<std::size_t, const core::Command*> marker() const;
+  bool refused(const char* change) const;  // busy(): says so in the Log and returns true
 
   ui::MessageLog& messages_;
   core::Scene scene_;
@@ -115,6 +128,7 @@ class EditorSession {
   double last_ms_ = -1;
   std::string last_label_;
   std::uint64_t changes_ = 0;
+  std::string busy_;
 };
 
 }  // namespace trispline::editor

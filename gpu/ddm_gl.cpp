@@ -77,22 +77,64 @@ struct DdmGl::MapsGl {
   Buffer samples;                             // #slots × R_v × R_u × 18 floats
 };
 
+namespace {
+// A tile's buffers: positions, normals, its partner's (the tile's own without one), indices.
+struct TileBuffers {
+  GLuint positions, normals, morph_positions, morph_normals, indices;
+};
+
+// The tile's vertex attributes 0–3 and index buffer, and the per-instance attributes 4–6 from `instances`, recorded in
+// `vao`.
+void record_tile_vao(const TileBuffers& tile, GLuint vao, GLuint instances) {
+  glBindVertexArray(vao);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, tile.indices);
+  vec3_attribute(0, tile.positions);
+  vec3_attribute(1, tile.normals);
+  vec3_attribute(2, tile.morph_positions);
+  vec3_attribute(3, tile.morph_normals);
+  glBindBuffer(GL_ARRAY_BUFFER, instances);
+  const GLsizei stride = sizeof(InstanceRecord);
+  glEnableVertexAttribArray(4);
+  glVertexAttribIPointer(4, 1, GL_INT, stride, reinterpret_cast<const void*>(offsetof(InstanceRecord, slot)));
+  glEnableVertexAttribArray(5);
+  glVertexAttribPointer(5, 2, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<const void*>(offsetof(InstanceRecord, origin)));
+  glEnableVertexAttribArray(6);
+  glVertexAttribPointer(6, 2, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<const void*>(offsetof(InstanceRecord, size)));
+  for (GLuint a = 4; a <= 6; ++a) glVertexAttribDivisor(a, 1);
+  glBindVertexArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+}
+}  // namespace
+
 struct DdmGl::LayerGl {
   // One tile mesh of the layer and the instances that use it (a contiguous run of the instance buffer).
   struct TileGl {
     Buffer positions, normals, morph_positions, morph_normals, indices;
     VertexArray vao;
+    VertexArray selected_vao;  // the same attributes with the instances from `selected` (made at first use)
     GLsizei vertex_count = 0, index_count = 0;
     GLuint first_instance = 0;
     GLsizei instance_count = 0;
+    GLuint selected_first = 0;  // the tile's run in `selected`
+    GLsizei selected_count = 0;
   };
   std::shared_ptr<const core::DdmLayer> layer;  // held so the address cannot be reused
   Buffer instances;                             // InstanceRecord per instance, grouped by tile (stable)
+  std::vector<InstanceRecord> records;          // its contents (the source of `selected`)
   std::vector<TileGl> tiles;                    // per layer tile
   std::vector<std::size_t> grouped;             // position in the instance buffer → index in layer.instances
   std::size_t vertices = 0;                     // Σ instances × tile vertices
   Buffer follow;                                // FollowRecord per instance (grouped order), when drawn following
   std::vector<FollowRecord> follow_uploaded;    // what `follow` holds
+  Buffer selected;                              // the instances of the last DdmSelection, grouped by tile
+  std::uint64_t selected_version = 0;           // its version (0: none uploaded yet)
+  std::size_t selected_vertices = 0;
+
+  // Without a partner the tile itself (drawn with α = 0, so V = V1 exactly).
+  static TileBuffers buffers(const TileGl& t) {
+    return {t.positions.id(), t.normals.id(), t.morph_positions ? t.morph_positions.id() : t.positions.id(),
+            t.morph_normals ? t.morph_normals.id() : t.normals.id(), t.indices.id()};
+  }
 };
 
 DdmGl::DdmGl(std::shared_ptr<FfdProgramCache> programs)
@@ -200,31 +242,13 @@ DdmGl::LayerGl& DdmGl::layer_for(const std::shared_ptr<const core::DdmLayer>& la
     std::vector<std::uint32_t> idx(3 * mesh.triangle_count());
     for (std::size_t f = 0; f < mesh.triangle_count(); ++f)
       for (int c = 0; c < 3; ++c) idx[3 * f + std::size_t(c)] = mesh.triangles[f][c];
+    // Uploaded through GL_ARRAY_BUFFER (no vertex array's index binding touched), then recorded in the tile's VAO.
+    tile.indices = upload_array(GL_ARRAY_BUFFER, idx.empty() ? nullptr : idx.data(),
+                                std::max<std::size_t>(idx.size(), 1) * sizeof(std::uint32_t));
     tile.vao = VertexArray::create();
-    glBindVertexArray(tile.vao.id());
-    tile.indices = Buffer::create();
-    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, tile.indices.id());  // recorded in the tile's VAO
-    glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(std::max<std::size_t>(idx.size(), 1) * sizeof(std::uint32_t)),
-                 idx.empty() ? nullptr : idx.data(), GL_STATIC_DRAW);
-    vec3_attribute(0, tile.positions.id());
-    vec3_attribute(1, tile.normals.id());
-    // Without a partner the tile itself (drawn with α = 0, so V = V1 exactly).
-    vec3_attribute(2, tile.morph_positions ? tile.morph_positions.id() : tile.positions.id());
-    vec3_attribute(3, tile.morph_normals ? tile.morph_normals.id() : tile.normals.id());
-    glBindBuffer(GL_ARRAY_BUFFER, g->instances.id());
-    const GLsizei stride = sizeof(InstanceRecord);
-    glEnableVertexAttribArray(4);
-    glVertexAttribIPointer(4, 1, GL_INT, stride, reinterpret_cast<const void*>(offsetof(InstanceRecord, slot)));
-    glEnableVertexAttribArray(5);
-    glVertexAttribPointer(5, 2, GL_FLOAT, GL_FALSE, stride,
-                          reinterpret_cast<const void*>(offsetof(InstanceRecord, origin)));
-    glEnableVertexAttribArray(6);
-    glVertexAttribPointer(6, 2, GL_FLOAT, GL_FALSE, stride,
-                          reinterpret_cast<const void*>(offsetof(InstanceRecord, size)));
-    for (GLuint a = 4; a <= 6; ++a) glVertexAttribDivisor(a, 1);
-    glBindVertexArray(0);
-    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    record_tile_vao(LayerGl::buffers(tile), tile.vao.id(), g->instances.id());
   }
+  g->records = std::move(records);
   ++uploads_;
   check_gl_error("DdmGl: layer upload");
   return *layers_.emplace(layer.get(), std::move(g)).first->second;
@@ -300,26 +324,61 @@ void DdmGl::bind_follow(LayerGl& g, const ShaderProgram& p, const DdmFollow& fol
   }
 }
 
+void DdmGl::select(LayerGl& g, const DdmSelection& selection) {
+  if (selection.version == g.selected_version && g.selected) return;
+  const core::DdmLayer& l = *g.layer;
+  if (selection.drawn.size() != l.instances.size())
+    throw layer_error(l, "a selection of " + std::to_string(selection.drawn.size()) + " flags for " +
+                             std::to_string(l.instances.size()) + " instances");
+  std::vector<InstanceRecord> kept;
+  kept.reserve(g.records.size());
+  g.selected_vertices = 0;
+  for (LayerGl::TileGl& t : g.tiles) {
+    t.selected_first = GLuint(kept.size());
+    for (GLuint pos = t.first_instance; pos < t.first_instance + GLuint(t.instance_count); ++pos)
+      if (selection.drawn[g.grouped[pos]]) kept.push_back(g.records[pos]);
+    t.selected_count = GLsizei(kept.size() - t.selected_first);
+    g.selected_vertices += std::size_t(t.selected_count) * std::size_t(t.vertex_count);
+  }
+  glBindVertexArray(0);
+  if (!g.selected) g.selected = Buffer::create();
+  glBindBuffer(GL_ARRAY_BUFFER, g.selected.id());
+  glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(std::max<std::size_t>(kept.size(), 1) * sizeof(InstanceRecord)),
+               kept.empty() ? nullptr : kept.data(), GL_STREAM_DRAW);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  for (LayerGl::TileGl& t : g.tiles)
+    if (t.instance_count > 0 && !t.selected_vao) {
+      t.selected_vao = VertexArray::create();
+      record_tile_vao(LayerGl::buffers(t), t.selected_vao.id(), g.selected.id());
+    }
+  g.selected_version = selection.version;
+  check_gl_error("DdmGl: selection upload");
+}
+
 std::size_t DdmGl::draw(const std::shared_ptr<const core::DdmLayer>& layer, const DdmPose& pose,
-                        const glm::dmat4& model, const ShaderProgram& program, const DdmFollow* follow) {
+                        const glm::dmat4& model, const ShaderProgram& program, const DdmFollow* follow,
+                        const DdmSelection* selection) {
+  if (follow) selection = nullptr;  // follow records are per instance of the whole layer
   constexpr const char* where = "DdmGl::draw";
   if (!layer) throw std::invalid_argument(std::string(where) + ": no layer");
   LayerGl& g = layer_for(layer);
   if (g.vertices == 0) return 0;
+  if (selection) select(g, *selection);
   const MapsGl& maps = maps_for(layer->maps);
   set_uniforms(program, *layer, pose, follow ? follow->deformation->model() : model);
   if (follow) bind_follow(g, program, *follow);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kMapsBinding, maps.samples.id());
   for (const LayerGl::TileGl& t : g.tiles) {
-    if (t.instance_count == 0 || t.index_count == 0) continue;
-    glBindVertexArray(t.vao.id());
-    glDrawElementsInstancedBaseInstance(GL_TRIANGLES, t.index_count, GL_UNSIGNED_INT, nullptr, t.instance_count,
-                                        t.first_instance);
+    const GLsizei count = selection ? t.selected_count : t.instance_count;
+    if (count == 0 || t.index_count == 0) continue;
+    glBindVertexArray(selection ? t.selected_vao.id() : t.vao.id());
+    glDrawElementsInstancedBaseInstance(GL_TRIANGLES, t.index_count, GL_UNSIGNED_INT, nullptr, count,
+                                        selection ? t.selected_first : t.first_instance);
   }
   glBindVertexArray(0);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kMapsBinding, 0);
   check_gl_error(where);
-  return g.vertices;
+  return selection ? g.selected_vertices : g.vertices;
 }
 
 DdmCapture DdmGl::capture(const std::shared_ptr<const core::DdmLayer>& layer, const DdmPose& pose,

@@ -20,6 +20,7 @@
 #include <epoxy/gl.h>
 
 #include <cstddef>
+#include <cstdint>
 #include <glm/glm.hpp>
 #include <memory>
 #include <unordered_map>
@@ -59,6 +60,14 @@ struct DdmCapture {
   std::vector<glm::vec3> normals;    // #V × 3
 };
 
+// Which of a layer's instances DdmGl::draw draws (the editor's culling and motion LOD, gpu/ddm_cull.h): a flag per
+// instance in the layer's instance order (#I; nonzero = drawn) and a version that names the flags (the same version
+// again = the same flags: the compacted instance buffer is uploaded once per version, then shared by every pass).
+struct DdmSelection {
+  std::vector<std::uint8_t> drawn;
+  std::uint64_t version = 0;
+};
+
 class DdmGl {
  public:
   // `programs`: where compiled programs are kept (shared with the renderer's FFD programs); null = a private cache.
@@ -78,9 +87,12 @@ class DdmGl {
   // cached yet. Returns the vertices drawn (Σ instances × tile vertices). A layer without instances draws nothing.
   // Throws std::invalid_argument (see check below), GlError.
   // With `follow`, the FOLLOW (+ FFD) variant: `model` is ignored (the deformation's model() is used) and the
-  // per-instance host maps / parameter boxes are uploaded when they changed.
+  // per-instance host maps / parameter boxes are uploaded when they changed; `selection` is then ignored (every
+  // instance is drawn). With `selection` (#I flags) only the flagged instances: their instance records compacted into
+  // a second buffer read through the same attributes (the vertex shader is the same), the vertices returned are theirs.
   std::size_t draw(const std::shared_ptr<const core::DdmLayer>& layer, const DdmPose& pose, const glm::dmat4& model,
-                   const ShaderProgram& program, const DdmFollow* follow = nullptr);
+                   const ShaderProgram& program, const DdmFollow* follow = nullptr,
+                   const DdmSelection* selection = nullptr);
 
   // The same vertex shader with transform feedback and GL_RASTERIZER_DISCARD (a private 1×1 framebuffer when the
   // bound one is incomplete, as on surfaceless EGL): positions / normals in object space, in ddm_evaluate's order.
@@ -106,6 +118,7 @@ class DdmGl {
   struct LayerGl;
   MapsGl& maps_for(const std::shared_ptr<const core::DdmMaps>& maps);
   LayerGl& layer_for(const std::shared_ptr<const core::DdmLayer>& layer);
+  void select(LayerGl& g, const DdmSelection& selection);  // uploads the compacted instances of a new version
   void set_uniforms(const ShaderProgram& p, const core::DdmLayer& layer, const DdmPose& pose,
                     const glm::dmat4& model) const;
   // Uploads the follow records (grouped order) when changed, points attributes 7–12 at them, sets the FFD uniforms

@@ -271,9 +271,13 @@ void Renderer::Impl::pass_ddm_layers(const Frame& f, std::optional<GpuTimer::Sco
   {
     GpuTimer::Scope ddm_scope(ddm_timer);
     const detail::DdmDrawn drawn = ddm.draw_shaded(f.scene, f.options.time_s, f.view_proj, f.eye, f.key,
-                                                   f.options.selected);
+                                                   f.options.selected, f.options.ddm);
     stats.ddm_layers_drawn = drawn.layers;
     stats.ddm_vertices = drawn.vertices;
+    stats.ddm_instances = drawn.instances;
+    stats.ddm_instances_drawn = drawn.instances_drawn;
+    stats.ddm_instances_culled = drawn.instances_culled;
+    stats.ddm_keep = drawn.keep;
   }
   stats.ddm_ms = ddm_timer.last_ms();
   draw_scope.emplace(draw_timer_b);

@@ -60,6 +60,10 @@ struct RenderStats {
   int ddm_layers_drawn = 0;
   std::size_t ddm_vertices = 0;
   double ddm_ms = 0.0;
+  // With ViewOptions::ddm: the instances of the drawn layers, those drawn, those culled (outside the view or facing
+  // away), and the motion LOD's share of the rest (1 = full detail, 0.25 = one in four).
+  std::size_t ddm_instances = 0, ddm_instances_drawn = 0, ddm_instances_culled = 0;
+  double ddm_keep = 1.0;
   // Volumes (core::Scene::volumes(), renderer_volume.h): visible volumes drawn, ray casters (re)uploaded during this
   // draw and held after it, the iso-surface ray casting pass (GpuTimer ms, 0 without volumes, -1 while the timer has
   // no result yet; not part of draw_ms), and the silhouette points drawn.

@@ -71,7 +71,7 @@ DdmDrawn DdmDisplay::draw_object(const core::SceneObject& o, double time_s, cons
     }
     const ShaderProgram& p = use(variant);
     setup.layer(p, *layer);
-    drawn.vertices += gl_.draw(layer, pose, model, p);
+    drawn.vertices += gl_.draw(layer, pose, model, p, nullptr, selection(layer.get()));
     ++drawn.layers;
   }
   return drawn;
@@ -108,9 +108,82 @@ struct FlatSetup {
 }  // namespace
 
 DdmDrawn DdmDisplay::draw_shaded(const core::Scene& scene, double time_s, const glm::mat4& view_proj,
-                                 const glm::vec3& eye, const glm::vec3& key_dir, const std::string& selected) {
+                                 const glm::vec3& eye, const glm::vec3& key_dir, const std::string& selected,
+                                 const DdmViewOptions& view) {
   DdmDrawn drawn;
+  ++frame_;
   if (!any_visible(scene)) return drawn;
+  const bool thin = view.moving && view.motion_budget_vertices > 0;
+  if (view.cull || thin) {
+    // 1. Cull: per layer the instances in the view (objects without a deformation), and the vertices they make.
+    std::size_t kept_vertices = 0;
+    std::vector<std::pair<const core::SceneObject*, LayerView*>> chosen;
+    for (const core::SceneObject& o : scene.objects()) {
+      if (!o.visible) continue;
+      const bool deformed = follows(o);  // drawn where the layer's own mesh is not: never culled
+      for (const auto& layer : o.ddm_layers) {
+        if (!has_instances(layer)) continue;
+        LayerView& v = views_[layer.get()];
+        v.layer = layer;
+        if (view.cull && !deformed && !v.bounded) v.bounds = ddm_instance_bounds(*layer), v.bounded = true;
+        chosen.push_back({&o, &v});
+        drawn.instances += layer->instances.size();
+      }
+    }
+    // 2. Thin: the power-of-two share of the kept vertices that fits the motion budget.
+    const auto cull_view = [&](const core::SceneObject& o, const LayerView& v, double keep) {
+      DdmCullView cv;
+      cv.view_proj = glm::dmat4(view_proj);
+      cv.model = o.transform.matrix();
+      cv.eye = glm::dvec3(eye);
+      cv.frustum = view.cull && !v.bounds.empty();
+      cv.backface_margin_deg = cv.frustum ? view.backface_margin_deg : -1.0;
+      cv.keep = keep;
+      return cv;
+    };
+    const auto choose = [&](const core::SceneObject& o, LayerView& v, double keep) {
+      const DdmCullView cv = cull_view(o, v, keep);
+      const bool cull = cv.frustum;
+      if (v.key_view_proj == cv.view_proj && v.key_model == cv.model && v.key_keep == keep && v.key_cull == cull &&
+          v.key_margin == cv.backface_margin_deg && v.selection.drawn.size() == v.layer->instances.size()) {
+        v.frame = frame_;
+        return;
+      }
+      const core::DdmLayer& l = *v.layer;
+      std::vector<std::uint8_t> flags(l.instances.size(), 1);
+      std::size_t culled = 0;
+      if (cull || keep < 1.0) {
+        static const DdmInstanceBounds none;
+        const DdmCuller culler(cull ? v.bounds : none, cv);
+        for (std::size_t k = 0; k < flags.size(); ++k) {
+          const DdmCullReason r = cull ? culler.test(k) : (ddm_lod_rank(k) < keep ? DdmCullReason::kept
+                                                                                  : DdmCullReason::thinned);
+          flags[k] = r == DdmCullReason::kept;
+          culled += r == DdmCullReason::outside || r == DdmCullReason::facing_away;
+        }
+      }
+      if (flags != v.selection.drawn) v.selection.drawn = std::move(flags), v.selection.version = ++versions_;
+      v.culled = culled;
+      v.key_view_proj = cv.view_proj, v.key_model = cv.model, v.key_keep = keep, v.key_cull = cull;
+      v.key_margin = cv.backface_margin_deg;
+      v.frame = frame_;
+    };
+    for (auto& [o, v] : chosen) {
+      choose(*o, *v, 1.0);
+      for (std::size_t k = 0; k < v->selection.drawn.size(); ++k)
+        if (v->selection.drawn[k])
+          kept_vertices += v->layer->tiles[std::size_t(v->layer->instances[k].tile)].mesh.vertex_count();
+    }
+    if (thin)
+      while (drawn.keep > 1.0 / 256.0 && double(kept_vertices) * drawn.keep > double(view.motion_budget_vertices))
+        drawn.keep *= 0.5;
+    if (drawn.keep < 1.0)
+      for (auto& [o, v] : chosen) choose(*o, *v, drawn.keep);
+    for (auto& [o, v] : chosen) {
+      drawn.instances_culled += v->culled;
+      for (std::uint8_t f : v->selection.drawn) drawn.instances_drawn += f;
+    }
+  }
   for (const core::SceneObject& o : scene.objects()) {
     if (!o.visible || o.ddm_layers.empty()) continue;
     const bool is_selected = !selected.empty() && o.name == selected;
@@ -120,7 +193,19 @@ DdmDrawn DdmDisplay::draw_shaded(const core::Scene& scene, double time_s, const 
     drawn.layers += d.layers;
     drawn.vertices += d.vertices;
   }
+  if (!view.cull && !thin) {
+    for (const core::SceneObject& o : scene.objects())
+      if (o.visible)
+        for (const auto& layer : o.ddm_layers)
+          if (has_instances(layer)) drawn.instances += layer->instances.size();
+    drawn.instances_drawn = drawn.instances;
+  }
   return drawn;
+}
+
+const DdmSelection* DdmDisplay::selection(const core::DdmLayer* layer) const {
+  const auto it = views_.find(layer);
+  return it != views_.end() && it->second.frame == frame_ ? &it->second.selection : nullptr;
 }
 
 void DdmDisplay::draw_flat(const core::Scene& scene, double time_s, const glm::mat4& view_proj,
@@ -145,6 +230,7 @@ void DdmDisplay::release_unused(const core::Scene& scene) {
     for (const auto& l : o.ddm_layers)
       if (l) live.insert(l.get());
   gl_.release_unused(live);
+  std::erase_if(views_, [&](const auto& kv) { return !live.count(kv.first); });
   std::unordered_set<const void*> lattices;
   for (const core::SceneObject& o : scene.objects()) {
     if (o.ffd) lattices.insert(&o.ffd->lattice);

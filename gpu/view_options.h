@@ -179,6 +179,22 @@ struct DisplaySwitches {
   core::FfdBackend ffd_backend = core::FfdBackend::glsl_compute;
 };
 
+// The editor's interactive drawing of large tile layers (gpu/renderer_ddm.h, gpu/ddm_cull.h). All off — the
+// default: replay, recordings and tests — draws every instance of every layer.
+struct DdmViewOptions {
+  // Leave out instances wholly outside the view frustum or facing away (objects without an FFD, DFFD or clip only).
+  bool cull = false;
+  double backface_margin_deg = 30.0;  // the facing-away test's margin beyond 90°, degrees; < 0: frustum only
+  // While `moving` (the view changed within the last ~0.25 s) draw at most about this many tile vertices: the kept
+  // instances thinned to a power-of-two share (1/2, 1/4, …) of them. 0: never thinned.
+  bool moving = false;
+  std::size_t motion_budget_vertices = 0;
+};
+
+// The editor's motion budgets (DdmViewOptions::motion_budget_vertices): tile vertices a moving frame draws at most on a
+// software renderer (llvmpipe: above 10 fps on 2 cores, docs/performance.md) and on a GPU.
+inline constexpr std::size_t kDdmMotionBudgetVerticesSoftware = 100'000, kDdmMotionBudgetVertices = 4'000'000;
+
 struct ViewOptions : DisplaySwitches {
   std::string selected;  // highlighted object name (outline colour)
   // The scene time in seconds (a deformed object shows F(E(x) + param_offset + offset_velocity·time_s)).
@@ -187,6 +203,7 @@ struct ViewOptions : DisplaySwitches {
   // milliseconds one frame may spend casting; a longer cast is shown first at a lower resolution and refined over the
   // next frames (RenderStats::volume_refining). ≤ 0: every cast whole at full resolution (replay, recordings, tests).
   double volume_budget_ms = 0.0;
+  DdmViewOptions ddm;
   ViewStyle style;
   Overlays overlays;
 

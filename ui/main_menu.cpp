@@ -122,6 +122,11 @@ MenuAction draw_main_menu(ViewToggles& view, const MenuState& state) {
     picked |= menu_item("Contact surface", nullptr, &view.show_contact_surface);
     picked |= menu_item("Grid", nullptr, &view.show_grid);
     picked |= menu_item("Wireframe", nullptr, &view.wireframe);
+    picked |= menu_item("Fast tiles", nullptr, &view.fast_tiles);
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("Large tile layers: leave out the tiles outside the view or facing away, and while the view\n"
+                        "moves draw only a share of them (full detail within a quarter second of stopping).\n"
+                        "Off: every tile in every frame, as replay and recordings draw them.");
     picked |= menu_item("Error bounds", nullptr, &view.show_error_bounds);
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip("Colour the selected deformed object's triangles by their certified deformation-error bound\n"

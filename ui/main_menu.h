@@ -20,6 +20,9 @@ struct ViewToggles : gpu::DisplaySwitches {
   bool show_log_panel = true;
   bool show_error_bounds = false;      // View > Error bounds: the certified deformation-error heat map
   bool show_fold_certificate = false;  // View > Fold certificate: the lattice's cells by their det J certificate
+  // View > Fast tiles: cull tile instances out of view or facing away, thin them while the view moves
+  // (gpu::DdmViewOptions; the editor fills the motion budget)
+  bool fast_tiles = true;
 };
 
 // The renderer's options for these toggles (selection and stroke are filled in by the editor).

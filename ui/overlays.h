@@ -45,7 +45,15 @@ struct TimingContext {
   double bounds_ms = -1;
   double certificate_ms = -1;
   std::string guarantees;
+  // Live tile layers (gpu::RenderStats): instances of the drawn layers, those drawn, those culled, and the motion
+  // LOD's share of the rest (1 = full detail).
+  std::size_t ddm_instances = 0, ddm_drawn = 0, ddm_culled = 0;
+  double ddm_keep = 1.0;
 };
+
+// The overlay's tile line: "tiles 5,120 of 20,480 drawn (moving: 1/4, culled 9,800)"; the parts in brackets only
+// when they apply; "" without tile instances.
+std::string ddm_tiles_text(const TimingContext& context);
 
 class TimingOverlay {
  public:

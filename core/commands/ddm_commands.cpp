@@ -165,7 +165,8 @@ DdmTile load_ddm_tile(const std::string& name, const std::filesystem::path& path
 }
 
 std::shared_ptr<DdmLayer> make_ddm_layer(const SceneObject& object, const std::string& name, const DdmLayerSpec& spec,
-                                         bool fill) {
+                                         bool fill, const ProgressSink* progress) {
+  check_progress(progress, 0.0);
   auto layer = std::make_shared<DdmLayer>();
   layer->name = name;
   layer->tile_sources = spec.tiles;
@@ -225,8 +226,9 @@ std::shared_ptr<DdmLayer> make_ddm_layer(const SceneObject& object, const std::s
     }
   }
   if (spec.tile_size) layer->chart_counts = std::move(chart_counts);
+  const ProgressSink finishing = progress_range(progress, 0.05, 1.0);  // tiles, base and layout: the first 5 %
   try {
-    ddm_layer_finish(*layer, spec.map_resolution.value_or(resolution));
+    ddm_layer_finish(*layer, spec.map_resolution.value_or(resolution), progress ? &finishing : nullptr);
   } catch (const std::invalid_argument& e) {
     const std::string msg = e.what();
     const bool res = msg.rfind("map_resolution", 0) == 0;
@@ -382,7 +384,7 @@ std::string DdmFillCommand::label() const {
 std::optional<SceneObject> DdmFillCommand::build(const Scene& scene) {
   const auto t0 = std::chrono::steady_clock::now();
   const SceneObject* object = &require_object(scene, p_.object);
-  std::shared_ptr<const DdmLayer> layer = make_ddm_layer(*object, p_.layer, p_.spec, true);
+  std::shared_ptr<const DdmLayer> layer = make_ddm_layer(*object, p_.layer, p_.spec, true, progress());
   std::size_t tile_vertices = 0;
   for (const DdmTile& t : layer->tiles) tile_vertices = std::max(tile_vertices, t.mesh.vertex_count());
   stats_ = {{"charts", layer->maps->slot_of_chart.size()},
@@ -428,14 +430,18 @@ std::optional<SceneObject> DdmBakeCommand::build(const Scene& scene) {
   baked.name = p_.name;
   baked.source = "ddm.bake:" + p_.object + "/" + p_.layer;
   baked.color = layer->color.value_or(object->color);
-  // In world units where the object's deformation carries the tiles at that time (ddm_follow.h).
+  // In world units where the object's deformation carries the tiles at that time (ddm_follow.h). The evaluation
+  // (a frame of the animation) or the copy takes the first 80 %, the deformation the rest.
   const double t = p_.frame ? scene.timeline.time_of_frame(*p_.frame) : 0.0;
-  const TriMesh mesh = p_.frame ? ddm_layer_mesh(*layer, t) : *layer->mesh;
+  const ProgressSink evaluation = progress_range(progress(), 0.0, 0.8);
+  const TriMesh mesh = p_.frame ? ddm_layer_mesh(*layer, t, progress() ? &evaluation : nullptr) : *layer->mesh;
+  check_progress(progress(), 0.8);
   try {
     baked.rest_mesh = std::make_shared<const TriMesh>(ddm_layer_world_mesh(*object, *layer, mesh, t));
   } catch (const std::invalid_argument& e) {
     throw CommandError("field 'layer': " + std::string(e.what()), "layer");
   }
+  check_progress(progress(), 0.95);
   baked.refresh();
   stats_ = {{"vertices", baked.rest_mesh->vertex_count()}, {"triangles", baked.rest_mesh->triangle_count()}};
   return baked;

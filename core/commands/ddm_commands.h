@@ -90,9 +90,11 @@ std::filesystem::path resolve_ddm_tile(const std::string& name, const CommandCon
 DdmTile load_ddm_tile(const std::string& name, const std::filesystem::path& path, const char* field);
 
 // A new layer `name` from `spec` on `object` (its rest mesh, object space): tiles loaded, base built, every layout
-// cell filled (`fill`) or none, maps sampled, mesh evaluated. Throws CommandError naming the field (see ddm.fill).
+// cell filled (`fill`) or none, maps sampled, mesh evaluated. `progress` (may be null) is reported in [0, 1] and
+// checked between chunks of the evaluation. Throws CommandError naming the field (see ddm.fill); OperationCancelled
+// through `progress`.
 std::shared_ptr<DdmLayer> make_ddm_layer(const SceneObject& object, const std::string& name, const DdmLayerSpec& spec,
-                                         bool fill);
+                                         bool fill, const ProgressSink* progress = nullptr);
 
 // The cells per chart a layer of `spec` gets on a base of `charts` charts: `counts` on every chart, or with tile_size
 // ddm_counts_for_size of each chart's world size — ddm_limit_chart_sizes(base_mesh) for a limit base,
@@ -144,6 +146,7 @@ class DdmFillCommand : public ObjectSnapshotCommand<DdmFillCommand, DdmFillParam
   using ObjectSnapshotCommand::ObjectSnapshotCommand;
   static const ParamSchema<DdmFillParams>& schema();
   std::string label() const override;
+  bool preparable() const override { return true; }  // the editor builds a fill on a worker thread
 
  protected:
   std::optional<SceneObject> build(const Scene& scene) override;
@@ -161,6 +164,7 @@ class DdmBakeCommand : public DeclaredCommand<DdmBakeCommand, DdmBakeParams, Sna
   using DeclaredCommand::DeclaredCommand;
   static const ParamSchema<DdmBakeParams>& schema();
   std::string label() const override;
+  bool preparable() const override { return true; }  // the editor bakes on a worker thread
 
  protected:
   std::string target() const override { return p_.name; }

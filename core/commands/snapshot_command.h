@@ -36,18 +36,20 @@ struct SnapshotSlots<VolumeObject> {
 template <class T>
 class BasicSnapshotCommand : public Command {
  public:
+  void prepare(const Scene& scene, const ProgressSink& progress) final {
+    if (!preparable() || built_) return;
+    progress_ = &progress;
+    try {
+      run_build(scene);
+    } catch (...) {
+      progress_ = nullptr;
+      throw;
+    }
+    progress_ = nullptr;
+  }
   void redo(Scene& scene) final {
     using Slots = SnapshotSlots<T>;
-    if (!built_) {
-      try {
-        after_ = build(scene);
-      } catch (const CommandError&) {
-        throw;
-      } catch (const std::exception& e) {
-        throw CommandError(e.what(), failure_field());
-      }
-      built_ = true;
-    }
+    if (!built_) run_build(scene);
     index_ = Slots::index_of(scene, target());
     if (index_ >= 0) before_ = Slots::at(scene, index_);
     else before_.reset();
@@ -70,11 +72,28 @@ class BasicSnapshotCommand : public Command {
   virtual std::optional<T> build(const Scene& scene) = 0;
   // Field to blame when build() throws something that is not a CommandError (e.g. "path" for I/O errors).
   virtual std::string failure_field() const { return {}; }
+  // While prepare() runs build(): its progress sink (report, cancel flag), for build to pass down; else null.
+  const ProgressSink* progress() const { return progress_; }
 
   nlohmann::json stats_ = nlohmann::json::object();  // what build() measured (counts, milliseconds)
 
  private:
+  // build() once; its errors as CommandError (OperationCancelled passes through).
+  void run_build(const Scene& scene) {
+    try {
+      after_ = build(scene);
+    } catch (const CommandError&) {
+      throw;
+    } catch (const OperationCancelled&) {
+      throw;
+    } catch (const std::exception& e) {
+      throw CommandError(e.what(), failure_field());
+    }
+    built_ = true;
+  }
+
   bool built_ = false;
+  const ProgressSink* progress_ = nullptr;
   std::optional<T> before_, after_;
   int index_ = -1;
 };

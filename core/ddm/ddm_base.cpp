@@ -164,7 +164,8 @@ glm::ivec2 ddm_counts_for_size(DdmLayout layout, glm::dvec2 chart_size, double t
 }
 
 TriMesh ddm_evaluate(const DdmBase& base, const std::vector<DdmTile>& tiles, const std::vector<DdmInstance>& instances,
-                     double height, const DdmTileTransform& transform, glm::dvec2 offset) {
+                     double height, const DdmTileTransform& transform, glm::dvec2 offset,
+                     const ProgressSink* progress) {
   if (!std::isfinite(height) || !(height > 0.0))
     throw std::invalid_argument("height: must be finite and > 0, got " + std::to_string(height));
   if (tiles.empty()) throw std::invalid_argument("tile: a layer needs at least one tile");
@@ -194,29 +195,37 @@ TriMesh ddm_evaluate(const DdmBase& base, const std::vector<DdmTile>& tiles, con
   for (std::size_t k = 0; k < instances.size(); ++k)
     first_tri[k + 1] = first_tri[k] + tiles[static_cast<std::size_t>(instances[k].tile)].mesh.triangle_count();
   out.triangles.resize(first_tri.back());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, instances.size(), 16), [&](const auto& range) {
-    for (std::size_t k = range.begin(); k != range.end(); ++k) {
-      const DdmInstance& inst = instances[k];
-      const TriMesh& tm = tiles[static_cast<std::size_t>(inst.tile)].mesh;
-      const glm::dvec2 cx = inst.size.x * glm::dvec2(L[0][0], L[1][0]);  // ∂u/∂(x, y)
-      const glm::dvec2 cy = inst.size.y * glm::dvec2(L[0][1], L[1][1]);  // ∂v/∂(x, y)
-      for (std::size_t v = 0; v < tm.vertex_count(); ++v) {
-        const glm::dvec3& t = tm.positions[v];
-        const glm::dvec2 uv = inst.origin + inst.size * transform.apply({t.x, t.y}) + offset;
-        const DdmSurfacePoint s = base.eval(inst.chart, uv.x, uv.y);
-        const double wh = t.z * height;
-        out.positions[first[k] + v] = s.p + wh * s.n;  // seed Eq. 5.2
-        const glm::dvec3 Tu = s.du + wh * s.dn_du, Tv = s.dv + wh * s.dn_dv;
-        const glm::dmat3 J(Tu * cx.x + Tv * cy.x, Tu * cx.y + Tv * cy.y, height * s.n);
-        const glm::dmat3 cof(glm::cross(J[1], J[2]), glm::cross(J[2], J[0]), glm::cross(J[0], J[1]));
-        const glm::dvec3 n = cof * tm.normals[v];
-        const double len = glm::length(n);
-        out.normals[first[k] + v] = len > 0.0 && std::isfinite(len) ? n / len : s.n;
+  // Chunks of instances, so a cancel is seen within one chunk's time; each instance is evaluated alone, so the
+  // chunking never changes a bit of the result.
+  const std::size_t count = instances.size();
+  const std::size_t chunk = progress ? std::max<std::size_t>(1024, count / 100 + 1) : std::max<std::size_t>(count, 1);
+  for (std::size_t c0 = 0; c0 < count; c0 += chunk) {
+    check_progress(progress, static_cast<double>(c0) / static_cast<double>(count));
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(c0, std::min(count, c0 + chunk), 16), [&](const auto& range) {
+      for (std::size_t k = range.begin(); k != range.end(); ++k) {
+        const DdmInstance& inst = instances[k];
+        const TriMesh& tm = tiles[static_cast<std::size_t>(inst.tile)].mesh;
+        const glm::dvec2 cx = inst.size.x * glm::dvec2(L[0][0], L[1][0]);  // ∂u/∂(x, y)
+        const glm::dvec2 cy = inst.size.y * glm::dvec2(L[0][1], L[1][1]);  // ∂v/∂(x, y)
+        for (std::size_t v = 0; v < tm.vertex_count(); ++v) {
+          const glm::dvec3& t = tm.positions[v];
+          const glm::dvec2 uv = inst.origin + inst.size * transform.apply({t.x, t.y}) + offset;
+          const DdmSurfacePoint s = base.eval(inst.chart, uv.x, uv.y);
+          const double wh = t.z * height;
+          out.positions[first[k] + v] = s.p + wh * s.n;  // seed Eq. 5.2
+          const glm::dvec3 Tu = s.du + wh * s.dn_du, Tv = s.dv + wh * s.dn_dv;
+          const glm::dmat3 J(Tu * cx.x + Tv * cy.x, Tu * cx.y + Tv * cy.y, height * s.n);
+          const glm::dmat3 cof(glm::cross(J[1], J[2]), glm::cross(J[2], J[0]), glm::cross(J[0], J[1]));
+          const glm::dvec3 n = cof * tm.normals[v];
+          const double len = glm::length(n);
+          out.normals[first[k] + v] = len > 0.0 && std::isfinite(len) ? n / len : s.n;
+        }
+        const auto off = static_cast<unsigned>(first[k]);
+        for (std::size_t f = 0; f < tm.triangle_count(); ++f) out.triangles[first_tri[k] + f] = tm.triangles[f] + glm::uvec3(off);
       }
-      const auto off = static_cast<unsigned>(first[k]);
-      for (std::size_t f = 0; f < tm.triangle_count(); ++f) out.triangles[first_tri[k] + f] = tm.triangles[f] + glm::uvec3(off);
-    }
-  });
+    });
+  }
+  check_progress(progress, 1.0);
   return out;
 }
 

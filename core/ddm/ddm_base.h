@@ -14,6 +14,7 @@
 #include "core/ddm/ddm_tile.h"
 #include "core/mesh/tri_mesh.h"
 #include "core/spline/bspline_surface.h"
+#include "core/spline/progress.h"
 
 namespace trispline::core {
 
@@ -135,10 +136,12 @@ glm::ivec2 ddm_counts_for_size(DdmLayout layout, glm::dvec2 chart_size, double t
 // DdmTileTransform above. Normals: the tile's normal through the cofactor of T's Jacobian
 //   J = [S'_u, S'_v] · diag(size) · L | h·n],  S'_· = S_· + w·h·n_·,  L = transform.linear()
 // (exact, seed §5.3.2 last paragraph, without its ε trick), renormalised. TBB over instances; deterministic.
-// Throws std::invalid_argument: height not finite or ≤ 0, a chart or tile index out of range, a tile without
-// normals (#V), no tiles.
+// `progress` (may be null) is checked between chunks of instances (reported in [0, 1], on the calling thread): the
+// chunks change nothing in the result. Throws std::invalid_argument: height not finite or ≤ 0, a chart or tile index
+// out of range, a tile without normals (#V), no tiles; OperationCancelled through `progress`.
 TriMesh ddm_evaluate(const DdmBase& base, const std::vector<DdmTile>& tiles, const std::vector<DdmInstance>& instances,
-                     double height, const DdmTileTransform& transform = {}, glm::dvec2 offset = glm::dvec2(0.0));
+                     double height, const DdmTileTransform& transform = {}, glm::dvec2 offset = glm::dvec2(0.0),
+                     const ProgressSink* progress = nullptr);
 // One tile for every instance (instance.tile ignored).
 TriMesh ddm_evaluate(const DdmBase& base, const DdmTile& tile, const std::vector<DdmInstance>& instances,
                      double height);

@@ -36,10 +36,10 @@ std::vector<DdmTile> DdmLayer::tiles_at(double a) const {
   return out;
 }
 
-TriMesh ddm_layer_mesh(const DdmLayer& layer, double time_s) {
+TriMesh ddm_layer_mesh(const DdmLayer& layer, double time_s, const ProgressSink* progress) {
   if (!layer.maps) throw std::invalid_argument("layer '" + layer.name + "': no maps");
   return ddm_evaluate(DdmMapsBase(layer.maps), layer.tiles_at(layer.alpha_at(time_s)), layer.instances, layer.height,
-                      layer.transform, layer.offset_at(time_s));
+                      layer.transform, layer.offset_at(time_s), progress);
 }
 
 namespace {
@@ -53,7 +53,8 @@ std::vector<int> charts_of(const std::vector<DdmInstance>& instances) {
 }
 }  // namespace
 
-void ddm_layer_finish(DdmLayer& layer, glm::ivec2 map_resolution) {
+void ddm_layer_finish(DdmLayer& layer, glm::ivec2 map_resolution, const ProgressSink* progress) {
+  check_progress(progress, 0.0);
   if (ddm_base_is_uv(layer.base)) {
     if (!layer.maps) throw std::invalid_argument("base: a uv layer needs its rasterised maps");
     // The validity bitmap prunes tiles lying wholly outside the UV islands (seed §5.4.1).
@@ -64,7 +65,8 @@ void ddm_layer_finish(DdmLayer& layer, glm::ivec2 map_resolution) {
     layer.maps =
         std::make_shared<const DdmMaps>(ddm_sample_maps(*layer.surface, charts_of(layer.instances), map_resolution));
   }
-  layer.mesh = std::make_shared<const TriMesh>(ddm_layer_mesh(layer, 0.0));
+  const ProgressSink evaluation = progress_range(progress, 0.1, 1.0);  // the maps take a small part of the time
+  layer.mesh = std::make_shared<const TriMesh>(ddm_layer_mesh(layer, 0.0, progress ? &evaluation : nullptr));
 }
 
 namespace {

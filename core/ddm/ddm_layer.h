@@ -83,8 +83,8 @@ struct DdmLayer {
 };
 
 // The layer's mesh at scene time `time_s`: ddm_evaluate over DdmMapsBase(maps) with tiles_at(alpha_at(t)), transform
-// and offset_at(t). Object space, #V = Σ instance tile vertex counts. Deterministic.
-TriMesh ddm_layer_mesh(const DdmLayer& layer, double time_s);
+// and offset_at(t). Object space, #V = Σ instance tile vertex counts. Deterministic. `progress` as ddm_evaluate's.
+TriMesh ddm_layer_mesh(const DdmLayer& layer, double time_s, const ProgressSink* progress = nullptr);
 
 // A copy of `layer` with `instances` (maps extended to the charts they reach, mesh at time 0): what ddm.paint makes.
 // Only instances `layer` does not hold are evaluated; the vertices of those it holds (matched in order, as painting
@@ -93,7 +93,9 @@ TriMesh ddm_layer_mesh(const DdmLayer& layer, double time_s);
 std::shared_ptr<DdmLayer> ddm_layer_with_instances(const DdmLayer& layer, std::vector<DdmInstance> instances);
 
 // Sets maps (every chart of `instances`, at `map_resolution`; a uv layer keeps its maps) and mesh of a layer whose
-// other fields are set. Throws as ddm_sample_maps and ddm_evaluate.
-void ddm_layer_finish(DdmLayer& layer, glm::ivec2 map_resolution);
+// other fields are set. `progress` (may be null): the maps, then the evaluation, reported in [0, 1] on the calling
+// thread. Throws as ddm_sample_maps and ddm_evaluate; OperationCancelled through `progress` (the layer is then
+// half-made: drop it).
+void ddm_layer_finish(DdmLayer& layer, glm::ivec2 map_resolution, const ProgressSink* progress = nullptr);
 
 }  // namespace trispline::core

@@ -150,10 +150,6 @@ std::unique_ptr<Leaf> sample_block(const Sampling& g, int bx, int by, int bz) {
   return leaf;
 }
 
-void check_progress(const ProgressSink* progress, double fraction) {
-  if (progress) progress->check(fraction);
-}
-
 // Builds the sparse grid of φ: sampled leaves, inside tiles, background elsewhere.
 openvdb::FloatGrid::Ptr sample_grid(const Sampling& g, const IsoMeshOptions& opt, const ProgressSink* progress,
                                     IsoMeshStats& st) {

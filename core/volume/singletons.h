@@ -27,6 +27,7 @@
 
 #include <glm/glm.hpp>
 
+#include "core/spline/progress.h"
 #include "core/volume/volume_spline.h"
 
 namespace trispline::core {
@@ -36,22 +37,6 @@ struct Singleton {
   float lo = 0.0f, hi = 0.0f;       // min / max of D over the cell (from its Bézier coefficients)
   float axis[3] = {0.0f, 0.0f, 0.0f};  // unit cone axis (zero when the cone is the whole sphere)
   float sin_half = 1.0f;            // sin α when α ≤ 90°, else 1: a direction ⊥ w is in the cone iff |axis·ŵ| ≤ sin_half
-};
-
-// Thrown by long operations when their cancel flag is set; nothing they were building is kept.
-struct OperationCancelled : std::runtime_error {
-  OperationCancelled() : std::runtime_error("cancelled") {}
-};
-
-// Progress of a long operation: report(fraction in [0,1]) is called from the calling thread now and then (may be
-// empty); when *cancel becomes true the operation throws OperationCancelled (cancel may be null).
-struct ProgressSink {
-  std::function<void(double)> report;
-  const std::atomic<bool>* cancel = nullptr;
-  void check(double fraction) const {
-    if (cancel && cancel->load(std::memory_order_relaxed)) throw OperationCancelled();
-    if (report) report(fraction);
-  }
 };
 
 class SingletonTable {

@@ -41,8 +41,8 @@ constexpr const char* kTileTips[] = {
 
 bool deformed(const core::SceneObject& o) { return o.ffd || o.dffd || o.clip; }
 
-// A first tile size for an object: a tenth of its rest mesh's bounding-box diagonal, to two significant figures
-// (1 without an object).
+}  // namespace
+
 double ddm_default_tile_size(const core::SceneObject* o) {
   if (!o || !o->rest_mesh || o->rest_mesh->empty()) return 1.0;
   glm::dvec3 lo(1e300), hi(-1e300);
@@ -52,6 +52,8 @@ double ddm_default_tile_size(const core::SceneObject* o) {
   const double unit = std::pow(10.0, std::floor(std::log10(d)) - 1.0);
   return std::round(d / unit) * unit;
 }
+
+namespace {
 
 bool is_generated(const std::string& tile) {
   return std::find(kGeneratedTiles.begin(), kGeneratedTiles.end(), tile) != kGeneratedTiles.end();
@@ -163,9 +165,10 @@ void DdmPaintTool::fill(ToolContext& ctx) {
     return;
   }
   const nlohmann::json line = ddm_fill_line(o->name, params_);
+  const std::string what = "Filling " + o->name + " with " + params_.paint.spec.tiles.front();
+  if (ctx.background) return ctx.background(line, what, "Fill");
   EditorSession& session = ctx.session;
-  ctx.defer("Filling " + o->name + " with " + params_.paint.spec.tiles.front(),
-            [&session, line]() { session.execute(line); });
+  ctx.defer(what, [&session, line]() { session.execute(line); });
 }
 
 void DdmPaintTool::bake(ToolContext& ctx) {
@@ -177,8 +180,10 @@ void DdmPaintTool::bake(ToolContext& ctx) {
   const std::string name = ctx.session.scene().unique_name(o->name + "." + params_.paint.layer);
   const nlohmann::json line =
       core::DdmBakeCommand::schema().to_json({o->name, params_.paint.layer, name, std::nullopt});
+  const std::string what = "Baking " + o->name + "/" + params_.paint.layer;
+  if (ctx.background) return ctx.background(line, what, "Bake");
   EditorSession& session = ctx.session;
-  ctx.defer("Baking " + o->name + "/" + params_.paint.layer, [&session, line]() { session.execute(line); });
+  ctx.defer(what, [&session, line]() { session.execute(line); });
 }
 
 void DdmPaintTool::remove_layer(ToolContext& ctx) {

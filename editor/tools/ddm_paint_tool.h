@@ -9,8 +9,9 @@
 // the first stroke or by Fill with the panel's tile / layout / tile size or counts / height / base — base and tile size
 // defaulting per object, ddm_default_base), the tiles and tile vertices Fill would make, the brush radius and the
 // erase toggle; Fill submits `ddm.fill` for the whole surface, Bake `ddm.bake` (a mesh object named
-// "<object>.<layer>"). Commands run through ToolContext::defer (a "Working…" frame first: a large layer takes a
-// while to re-evaluate); errors go to the Log panel and leave the scene as it was.
+// "<object>.<layer>"). Fill and Bake are built on a worker thread behind a progress bar with Cancel
+// (ToolContext::background); strokes run through ToolContext::defer (a "Working…" frame first); errors go to the Log
+// panel and leave the scene as it was.
 #pragma once
 
 #include "ui/ddm_anim_panel.h"
@@ -46,6 +47,9 @@ struct DdmPaintToolParams {
 nlohmann::json ddm_paint_line(const std::string& object, const std::vector<glm::dvec2>& stroke_px,
                               const DdmPaintToolParams& params, bool erase, bool new_layer,
                               const std::optional<core::Camera>& view = std::nullopt);
+// The panel's first tile size for an object: a tenth of its rest mesh's bounding-box diagonal, to two significant
+// figures (1 without an object), world units.
+double ddm_default_tile_size(const core::SceneObject* o);
 // The ddm.fill line of the panel's values (the whole surface; a layer of that name is replaced).
 nlohmann::json ddm_fill_line(const std::string& object, const DdmPaintToolParams& params);
 

@@ -8,6 +8,7 @@
 #include "ui/tool_panel.h"
 
 #include <glm/glm.hpp>
+#include <nlohmann/json.hpp>
 
 #include <functional>
 #include <memory>
@@ -36,6 +37,10 @@ struct ToolContext {
   const std::set<std::string>& hidden;  // objects hidden in the viewport
   // Runs `work` after one frame showing "Working… <what>" (long synchronous commands).
   std::function<void(std::string what, std::function<void()> work)> defer;
+  // Builds a long command (`line`: ddm.fill, ddm.bake) on a worker thread behind a progress bar with Cancel
+  // (editor/background_command.h); `what` is the bar's text, `verb` the Log's "<verb> cancelled". Unset (tool tests):
+  // the tools run the line through defer.
+  std::function<void(const nlohmann::json& line, std::string what, std::string verb)> background;
 };
 
 class Tool {

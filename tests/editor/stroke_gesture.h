@@ -23,9 +23,8 @@ inline std::vector<glm::dvec2> shallow_arc(double from) {
 // with `hidden` hidden; deferred work runs at once.
 struct SketchToolRig {
   SketchToolRig(editor::EditorSession& s, core::Camera& view, std::set<std::string> hidden_objects = {})
-      : hidden(std::move(hidden_objects)), ctx{s, view, selected, hidden, [](std::string, std::function<void()> work) {
-                                                 work();
-                                               }} {
+      : hidden(std::move(hidden_objects)), ctx{s, view, selected, hidden,
+                                                 [](std::string, std::function<void()> work) { work(); }, nullptr} {
     tool.activate(ctx);
   }
   // Left button down at (330, 330).

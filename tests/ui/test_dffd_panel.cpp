@@ -135,7 +135,8 @@ TEST(DffdSplitTool, SplitIsOneUndoableCommand) {
   core::Camera view;
   std::string selected = "ball";
   std::set<std::string> hidden;
-  editor::ToolContext ctx{s, view, selected, hidden, [](std::string, std::function<void()> work) { work(); }};
+  editor::ToolContext ctx{s, view, selected, hidden, [](std::string, std::function<void()> work) { work(); },
+                          nullptr};
   editor::Toolbox box(ctx);
   box.set_active(editor::Toolbox::kDffdSplit);
   auto& tool = dynamic_cast<editor::DffdTool&>(box.tool());

@@ -221,3 +221,17 @@ TEST(TimingOverlay, DrawsAWindowInTheViewportCornerOnlyWhenShown) {
     EXPECT_GT(dd.TotalVtxCount, 1000) << "text, graph lines and the background box";
   }
 }
+
+TEST(TimingOverlay, TileLineSaysWhatIsDrawn) {
+  ui::TimingContext c;
+  EXPECT_EQ(ui::ddm_tiles_text(c), "") << "no tile layers: no line";
+  c.ddm_instances = 20480;
+  c.ddm_drawn = 20480;
+  EXPECT_EQ(ui::ddm_tiles_text(c), "tiles 20,480 of 20,480 drawn");
+  c.ddm_drawn = 5120;
+  c.ddm_culled = 9800;
+  c.ddm_keep = 0.25;
+  EXPECT_EQ(ui::ddm_tiles_text(c), "tiles 5,120 of 20,480 drawn (moving: 1/4, culled 9,800)");
+  c.ddm_keep = 1.0;
+  EXPECT_EQ(ui::ddm_tiles_text(c), "tiles 5,120 of 20,480 drawn (culled 9,800)");
+}

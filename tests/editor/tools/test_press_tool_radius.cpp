@@ -19,7 +19,8 @@ TEST(PressToolRadius, DefaultRadiusFollowsTheWorldMeshThroughPressUndoRedo) {
   core::Camera view;
   std::string selected = "t";
   std::set<std::string> hidden;
-  editor::ToolContext ctx{s, view, selected, hidden, [](std::string, std::function<void()> work) { work(); }};
+  editor::ToolContext ctx{s, view, selected, hidden, [](std::string, std::function<void()> work) { work(); },
+                          nullptr};
   editor::PressTool tool;
   tool.activate(ctx);
   const auto expected = [&] { return 0.1 * editor::bounds_of(*s.scene().find("t")->world_mesh).diagonal(); };

@@ -106,7 +106,8 @@ class ToolTest : public ::testing::Test {
   core::Camera view;
   std::string selected;
   std::set<std::string> hidden;
-  editor::ToolContext ctx{s, view, selected, hidden, [](std::string, std::function<void()> work) { work(); }};
+  editor::ToolContext ctx{s, view, selected, hidden, [](std::string, std::function<void()> work) { work(); },
+                          nullptr};  // no background builds: Fill and Bake run through defer
   T tool;
   editor::ToolInput in;
 };

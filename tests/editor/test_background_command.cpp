@@ -1,0 +1,156 @@
+// Fill built on a worker thread (editor/background_command.h): a cancelled fill leaves the scene, the history and the
+// session log untouched and says "Fill cancelled"; other changes are refused while it builds; a finished one is one
+// history entry whose log line and resulting layer are bit for bit those of the same line executed synchronously
+// (what replay does). No timing is asserted: a cancel that arrives after the build finished drops it all the same.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <fstream>
+#include <string>
+
+#include "core/commands/ddm_commands.h"
+#include "editor/background_command.h"
+#include "editor/command_registry.h"
+#include "session_test_util.h"
+
+namespace fs = std::filesystem;
+using namespace trispline;
+
+namespace {
+
+// ddm.fill of the teapot's body with thorns 0.08 world units across (~450 tiles, ~280 K tile vertices: a few
+// progress steps, short enough for a test).
+nlohmann::json fill_line() {
+  core::DdmFillParams p;
+  p.object = "teapot";
+  p.layer = "tiles";
+  p.spec.tiles = {"thorn"};
+  p.spec.tile_size = 0.08;
+  p.spec.height = 0.1;
+  p.spec.base = core::DdmBaseKind::teapot_body;
+  return core::DdmFillCommand::schema().to_json(p);
+}
+
+std::string last_line(const fs::path& log) {
+  std::ifstream in(log);
+  std::string line, last;
+  while (std::getline(in, line))
+    if (!line.empty()) last = line;
+  return last;
+}
+
+template <class T>
+bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
+}
+
+class BackgroundCommandTest : public test::StateDirTest {};
+
+TEST_F(BackgroundCommandTest, CancelledFillChangesNothingAndIsNotLogged) {
+  editor::EditorSession s(messages_);
+  s.start(false);
+  ASSERT_TRUE(s.execute(test::kTeapot));
+  const std::size_t lines = test::line_count(dir_ / "session.jsonl");
+  const core::SceneObject before = *s.scene().find("teapot");
+  {
+    editor::BackgroundCommand bg(s);
+    ASSERT_TRUE(bg.start(fill_line(), "Filling teapot with thorn", "Fill"));
+    EXPECT_TRUE(bg.running());
+    // The document is frozen while it builds: commands and undo are refused, not queued.
+    EXPECT_FALSE(s.execute(test::kBox));
+    EXPECT_FALSE(s.undo());
+    EXPECT_TRUE(logged("refused: Filling teapot with thorn"));
+    EXPECT_FALSE(bg.start(fill_line(), "Filling again", "Fill")) << "one build at a time";
+    bg.cancel();
+    EXPECT_TRUE(bg.cancelling());
+    bg.wait();
+    EXPECT_FALSE(bg.finish());
+    EXPECT_FALSE(bg.running());
+  }
+  EXPECT_TRUE(logged("Fill cancelled"));
+  EXPECT_TRUE(s.busy().empty());
+  EXPECT_EQ(s.history().size(), 1u);
+  EXPECT_EQ(test::line_count(dir_ / "session.jsonl"), lines) << "nothing logged";
+  const core::SceneObject& after = *s.scene().find("teapot");
+  EXPECT_TRUE(after.ddm_layers.empty());
+  EXPECT_EQ(after.world_mesh, before.world_mesh);
+  EXPECT_EQ(s.scene().objects().size(), 1u) << "the refused crate was not queued";
+  EXPECT_TRUE(s.execute(test::kBox)) << "changes are accepted again";
+}
+
+TEST_F(BackgroundCommandTest, BackgroundFillIsBitForBitTheSynchronousOne) {
+  editor::EditorSession s(messages_);
+  s.start(false);
+  ASSERT_TRUE(s.execute(test::kTeapot));
+  editor::BackgroundCommand bg(s);
+  ASSERT_TRUE(bg.start(fill_line(), "Filling teapot with thorn", "Fill"));
+  bg.wait();
+  EXPECT_GE(bg.progress(), 0.9) << "the build reported its progress";
+  ASSERT_TRUE(bg.finish());
+  EXPECT_FALSE(bg.running());
+  ASSERT_EQ(s.history().size(), 2u);
+  EXPECT_EQ(s.history().at(1).id(), "ddm.fill");
+
+  // The same lines run synchronously, as replay runs them.
+  core::Scene sync;
+  editor::History history(sync);
+  const core::CommandContext ctx{fs::current_path(), {}};
+  history.execute(editor::CommandRegistry::builtin().parse(test::kTeapot, ctx));
+  history.execute(editor::CommandRegistry::builtin().parse(fill_line(), ctx));
+  EXPECT_EQ(s.history().at(1).to_json().dump(), history.at(1).to_json().dump());
+  EXPECT_EQ(nlohmann::json::parse(last_line(dir_ / "session.jsonl")), history.at(1).to_json())
+      << "one log line, the same";
+
+  const core::DdmLayer& a = *s.scene().find("teapot")->ddm_layers.at(0);
+  const core::DdmLayer& b = *sync.find("teapot")->ddm_layers.at(0);
+  EXPECT_GT(a.instances.size(), 300u);
+  EXPECT_EQ(a.instances, b.instances);
+  EXPECT_TRUE(same_bits(a.maps->samples, b.maps->samples));
+  EXPECT_TRUE(same_bits(a.mesh->positions, b.mesh->positions));
+  EXPECT_TRUE(same_bits(a.mesh->normals, b.mesh->normals));
+  EXPECT_TRUE(same_bits(a.mesh->triangles, b.mesh->triangles));
+
+  // Undo and redo move it as one step.
+  const auto layer = s.scene().find("teapot")->ddm_layers.at(0);
+  ASSERT_TRUE(s.undo());
+  EXPECT_TRUE(s.scene().find("teapot")->ddm_layers.empty());
+  ASSERT_TRUE(s.redo());
+  EXPECT_EQ(s.scene().find("teapot")->ddm_layers.at(0), layer);
+}
+
+TEST_F(BackgroundCommandTest, FailingAndNonPreparableLinesReportAsExecuteDoes) {
+  editor::EditorSession s(messages_);
+  s.start(false);
+  ASSERT_TRUE(s.execute(test::kTeapot));
+  editor::BackgroundCommand bg(s);
+  nlohmann::json bad = fill_line();
+  bad["object"] = "nothing";
+  ASSERT_TRUE(bg.start(bad, "Filling nothing", "Fill"));  // fails on its worker
+  bg.wait();
+  EXPECT_FALSE(bg.finish());
+  EXPECT_TRUE(logged("ddm.fill: field 'object'"));
+  EXPECT_EQ(s.history().size(), 1u);
+  EXPECT_TRUE(bg.start(test::kBox, "Adding a box", "Add")) << "not preparable: runs at once";
+  EXPECT_FALSE(bg.running());
+  EXPECT_EQ(s.history().size(), 2u);
+}
+
+// The command layer alone: a prepare whose cancel flag is set throws OperationCancelled and prepares nothing; redo
+// then builds it as if prepare had never run.
+TEST(DdmFillPrepare, CancelledPrepareThrowsAndRedoStillBuilds) {
+  core::Scene scene;
+  editor::History history(scene);
+  const core::CommandContext ctx{fs::current_path(), {}};
+  history.execute(editor::CommandRegistry::builtin().parse(test::kTeapot, ctx));
+  core::CommandPtr cmd = editor::CommandRegistry::builtin().parse(fill_line(), ctx);
+  ASSERT_TRUE(cmd->preparable());
+  std::atomic<bool> cancel{true};
+  core::ProgressSink sink;
+  sink.cancel = &cancel;
+  EXPECT_THROW(cmd->prepare(scene, sink), core::OperationCancelled);
+  EXPECT_TRUE(scene.find("teapot")->ddm_layers.empty());
+  history.execute(std::move(cmd));
+  EXPECT_FALSE(scene.find("teapot")->ddm_layers.empty());
+}
+
+}  // namespace
