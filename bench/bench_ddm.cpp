@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <iomanip>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -20,6 +21,7 @@
 #include "editor/command_registry.h"
 #include "editor/history.h"
 #include "editor/render_scene.h"
+#include "core/scene/ddm_follow.h"
 #include "editor/replay.h"
 #include "editor/tools/ddm_paint_tool.h"
 #include "gpu/gl_context.h"
@@ -31,6 +33,9 @@ using json = nlohmann::json;
 
 const std::vector<std::string> kCases = {"thorns_face", "thorns_teapot", "chains_1m", "chains_3m"};
 const std::vector<std::string> kOrbitCases = {"orbit_default", "orbit_fine"};
+const std::vector<std::string> kFollowCases = {"follow_bunny"};
+const std::filesystem::path kFollowScene = "assets/scenes/thorny_walk.jsonl";
+constexpr double kFollowTileSize = 0.058;  // object units: about 1 M tile vertices on the bunny
 const std::filesystem::path kDefaultScene = "assets/scenes/default.jsonl";
 // The face case replays the shipped scene (seed Table 5.1's first row); it needs the repository's assets.
 const std::filesystem::path kFaceScene = "assets/scenes/face_thorns.jsonl";
@@ -269,7 +274,18 @@ void print_table(const json& j, std::ostream& out) {
         << std::setw(13) << cell(c["cpu_reference_ms"], 1) << "\n";
   }
   out << "\n(ddm GPU ms: the layer pass, RenderStats::ddm_ms; frame ms: draw() + glFinish, wall clock; medians)\n";
-  if (!j.contains("orbit") || j["orbit"].empty()) return;
+  if (j.contains("follow")) {
+    const json& f = j["follow"];
+    out << "\nfollow_bunny: " << f["instances"] << " thorns, " << f["vertices"]
+        << " tile vertices carried by the placement's FFD, per frame (median ms)\n"
+        << "  cpu_ref (double, DDM cached):      " << cell(f["cpu_reference_ms"]["median"], 1) << "\n"
+        << "  cpu_fast (float, positions+normals): " << cell(f["cpu_fast_frame_ms"]["median"], 1) << "  (bind "
+        << cell(f["cpu_fast_bind_ms"], 0) << " ms once; max error " << f["cpu_fast_max_error_rel"].get<double>()
+        << " × size)\n"
+        << "  DDM stage (an animated layer adds): " << cell(f["ddm_stage_ms"]["median"], 1) << "\n"
+        << "  GLSL FOLLOW+FFD: frame " << cell(f["glsl_frame_ms"]["median"], 1) << ", layer pass "
+        << cell(f["glsl_layer_ms"]["median"], 1) << "\n";
+  }  if (!j.contains("orbit") || j["orbit"].empty()) return;
   out << "\norbit: default.jsonl, the teapot filled by the Tile Paint panel's defaults, 3 deg per frame, "
       << j["orbit_samples"] << " sample(s)\n";
   out << std::left << std::setw(15) << "case" << std::setw(12) << "mode" << std::right << std::setw(11) << "frame ms"
@@ -284,6 +300,88 @@ void print_table(const json& j, std::ostream& out) {
           << cell(m["drawn_median"], 0) << std::setw(10) << cell(m["culled_median"], 0) << std::setw(8)
           << cell(m["keep_median"], 3) << "\n";
   }
+
+}
+
+// The thorny bunny walking over the teapot (assets/scenes/thorny_walk.jsonl without its recording, thorns at
+// kFollowTileSize): the tile layer carried by the placement's FFD every frame, three ways.
+json run_follow(const BenchDdmOptions& o, gpu::Renderer& renderer, gpu::OffscreenTarget& target, std::ostream& err) {
+  // The log with absolute data paths (it is written elsewhere) and the finer tiles.
+  std::ifstream in(kFollowScene);
+  const std::filesystem::path tmp = std::filesystem::temp_directory_path() / "trispline_bench_follow.jsonl";
+  {
+    std::ofstream log(tmp);
+    const std::string data =
+        std::filesystem::weakly_canonical(std::filesystem::absolute(kFollowScene).parent_path() / "../data").string() +
+        "/";
+    for (std::string line; std::getline(in, line);) {
+      if (line.find("\"anim.record\"") != std::string::npos) continue;
+      if (const std::size_t at = line.find("../data/"); at != std::string::npos) line.replace(at, 8, data);
+      const std::string size_field = "\"tile_size\":0.1";
+      if (const std::size_t at = line.find(size_field); at != std::string::npos)
+        line.replace(at, size_field.size(), "\"tile_size\":" + std::to_string(kFollowTileSize));
+      log << line << "\n";
+    }
+  }
+  core::Scene scene;
+  History history(scene);
+  const ReplayResult r = replay_lines(history, tmp);
+  std::filesystem::remove(tmp);
+  if (!r.ok) throw std::runtime_error("bench ddm: follow_bunny: " + r.error);
+  const core::SceneObject& bunny = *scene.find("bunny");
+  const core::DdmLayer& layer = *bunny.ddm_layers.front();
+  const std::size_t vertices = layer.mesh->vertex_count();
+  err << "bench ddm: follow_bunny: " << layer.instances.size() << " tiles, " << vertices << " tile vertices\n"
+      << std::flush;
+  const auto time_of = [&](int f) { return scene.timeline.time_of_frame(scene.timeline.frame_start + f % 24); };
+  // CPU reference (double) and the DDM stage alone (what an animated layer adds), 3 frames each.
+  std::vector<double> reference_ms, ddm_ms;
+  core::TriMesh reference;
+  for (int f = 0; f < 3; ++f) {
+    reference_ms.push_back(bench_ms([&] { reference = core::ddm_layer_world_mesh(bunny, layer, *layer.mesh, time_of(f)); }));
+    ddm_ms.push_back(bench_ms([&] { (void)core::ddm_layer_mesh(layer, time_of(f)); }));
+  }
+  // cpu_fast: bound once, evaluated per frame with normals.
+  core::DdmFastFollower fast;
+  const double bind_ms = bench_ms([&] { fast.bind(bunny, *layer.mesh); });
+  std::vector<glm::vec3> p, n;
+  std::vector<double> fast_ms;
+  for (int f = -2; f < o.frames; ++f) {
+    const double ms = bench_ms([&] { fast.evaluate(bunny.offset_at(time_of(std::max(f, 0))), p, n); });
+    if (f >= 0) fast_ms.push_back(ms);
+  }
+  fast.evaluate(bunny.offset_at(time_of(2)), p, n);  // the reference's last frame
+  core::Aabb box;
+  for (const glm::dvec3& q : reference.positions) box.extend(q);
+  double worst = 0.0;
+  for (std::size_t v = 0; v < p.size(); ++v) worst = std::max(worst, glm::length(glm::dvec3(p[v]) - reference.positions[v]));
+  // GLSL: the renderer's FOLLOW + FFD variant (the whole frame, and the layer pass alone).
+  core::Camera cam = scene.camera;
+  cam.viewport = {o.width, o.height};
+  target.bind();
+  std::vector<double> frame_ms, layer_ms;
+  for (int f = -2; f < o.frames; ++f) {
+    gpu::ViewOptions view;
+    view.time_s = time_of(std::max(f, 0));
+    const double ms = bench_ms([&] {
+      renderer.draw(scene, cam, view);
+      glFinish();
+    });
+    if (f < 0) continue;
+    frame_ms.push_back(ms);
+    layer_ms.push_back(renderer.last_stats().ddm_ms);
+  }
+  return {{"name", "follow_bunny"},
+          {"tile_size", kFollowTileSize},
+          {"instances", layer.instances.size()},
+          {"vertices", vertices},
+          {"cpu_reference_ms", stats_of(reference_ms)},
+          {"ddm_stage_ms", stats_of(ddm_ms)},
+          {"cpu_fast_bind_ms", bind_ms},
+          {"cpu_fast_frame_ms", stats_of(fast_ms)},
+          {"cpu_fast_max_error_rel", worst / box.diagonal()},
+          {"glsl_frame_ms", stats_of(frame_ms)},
+          {"glsl_layer_ms", stats_of(layer_ms)}};
 }
 
 }  // namespace
@@ -291,15 +389,28 @@ void print_table(const json& j, std::ostream& out) {
 int run_bench_ddm(const BenchDdmOptions& options, std::ostream& out, std::ostream& err) {
   std::vector<std::string> names = options.cases.empty() ? kCases : options.cases;
   if (options.cases.empty()) names.insert(names.end(), kOrbitCases.begin(), kOrbitCases.end());
+  if (options.cases.empty()) names.insert(names.end(), kFollowCases.begin(), kFollowCases.end());
   std::vector<std::string> orbits;
+  bool follow = false;
   for (const std::string& n : names)
     if (std::find(kOrbitCases.begin(), kOrbitCases.end(), n) != kOrbitCases.end()) orbits.push_back(n);
+    else if (n == "follow_bunny") follow = true;
     else if (std::find(kCases.begin(), kCases.end(), n) == kCases.end()) {
       err << "bench ddm: unknown case '" << n
-          << "' (thorns_face, thorns_teapot, chains_1m, chains_3m, orbit_default, orbit_fine)\n";
+          << "' (thorns_face, thorns_teapot, chains_1m, chains_3m, orbit_default, orbit_fine, follow_bunny)\n";
       return 1;
     }
-  std::erase_if(names, [&](const std::string& n) { return std::find(orbits.begin(), orbits.end(), n) != orbits.end(); });
+  std::erase_if(names, [&](const std::string& n) {
+    return n == "follow_bunny" || std::find(orbits.begin(), orbits.end(), n) != orbits.end();
+  });
+  if (follow && !std::filesystem::exists(kFollowScene)) {
+    if (!options.cases.empty()) {
+      err << "bench ddm: follow_bunny needs " << kFollowScene.string() << " (run the bench from the repository root)\n";
+      return 1;
+    }
+    err << "bench ddm: skipping follow_bunny: it needs " << kFollowScene.string() << "\n";
+    follow = false;
+  }
   if (!orbits.empty() && !std::filesystem::exists(kDefaultScene)) {
     err << "bench ddm: the orbit cases need " << kDefaultScene.string() << " (run the bench from the repository root)\n";
     return 1;
@@ -361,7 +472,15 @@ int run_bench_ddm(const BenchDdmOptions& options, std::ostream& out, std::ostrea
       }
     }
   }
-    return bench_emit(result, options.json, out, print_table);
+  if (follow) {
+    try {
+      result["follow"] = run_follow(options, renderer, target, err);
+    } catch (const std::exception& e) {
+      err << e.what() << "\n";
+      return 1;
+    }
+  }
+  return bench_emit(result, options.json, out, print_table);
 }
 
 }  // namespace trispline::editor

@@ -270,8 +270,8 @@ void add_bench(CLI::App& app, CliRequest& o) {
   o.ddm_cmd->add_option("--samples", o.ddm.samples, "MSAA samples")->check(CLI::Range(1, 16));
   o.ddm_cmd
       ->add_option("--case", o.ddm.cases,
-                   "Cases: thorns_face, thorns_teapot, chains_1m, chains_3m, orbit_default, orbit_fine (default all)")
-      ->check(CLI::IsMember({"thorns_face", "thorns_teapot", "chains_1m", "chains_3m", "orbit_default", "orbit_fine"}));
+                   "Cases: thorns_face, thorns_teapot, chains_1m, chains_3m, orbit_default, orbit_fine, follow_bunny (default all)")
+      ->check(CLI::IsMember({"thorns_face", "thorns_teapot", "chains_1m", "chains_3m", "orbit_default", "orbit_fine", "follow_bunny"}));
   o.ddm_cmd->add_flag("!--no-cpu", o.ddm.cpu_reference, "Do not time the CPU reference evaluation");
   o.silhouettes_cmd = bench->add_subcommand(
       "silhouettes", "Silhouettes of a CT/MRI iso-surface (seed ch. 7): singleton preprocessing, then ms per view "

@@ -13,6 +13,7 @@
 #include <stdexcept>
 
 #include "core/ddm/ddm_pn_maps.h"
+#include "core/ffd/ffd_fast.h"
 #include "core/raycast/ray_caster.h"
 
 namespace trispline::core {
@@ -284,6 +285,31 @@ TriMesh DdmLayerDeformation::apply(const TriMesh& layer_mesh) const {
     for (auto& f : out.triangles) std::swap(f.y, f.z);
   return out;
 }
+
+DdmFastFollower::DdmFastFollower() = default;
+DdmFastFollower::~DdmFastFollower() = default;
+
+void DdmFastFollower::bind(const SceneObject& object, const TriMesh& layer_mesh) {
+  if (!object.ffd) throw std::invalid_argument("object '" + object.name + "' has no FFD lattice");
+  if (object.dffd || object.clip || object.morph)
+    throw std::invalid_argument("object '" + object.name + "': host maps or DFFD sides need the reference path");
+  if (layer_mesh.normals.size() != layer_mesh.positions.size())
+    throw std::invalid_argument("layer mesh has " + std::to_string(layer_mesh.normals.size()) + " normals for " +
+                                std::to_string(layer_mesh.positions.size()) + " vertices");
+  const TriMesh world = transformed(layer_mesh, object.transform);
+  ffd_ = std::make_unique<FfdFastEvaluator>();
+  ffd_->set_lattice(object.ffd->lattice, object.ffd->embedding);
+  ffd_->bind_vertices(embed_points(object.ffd->embedding, world.positions), world.normals);
+}
+
+void DdmFastFollower::evaluate(const glm::dvec3& offset, std::vector<glm::vec3>& positions,
+                               std::vector<glm::vec3>& normals) {
+  if (!ffd_) throw std::invalid_argument("DdmFastFollower: nothing bound");
+  ffd_->evaluate(offset);
+  ffd_->read_results_float(positions, normals);
+}
+
+std::size_t DdmFastFollower::vertex_count() const { return ffd_ ? ffd_->vertex_count() : 0; }
 
 TriMesh ddm_layer_world_mesh(const SceneObject& object, const DdmLayer& layer, const TriMesh& layer_mesh,
                              double time_s) {

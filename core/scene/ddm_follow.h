@@ -30,6 +30,8 @@
 
 namespace trispline::core {
 
+class FfdFastEvaluator;
+
 // An affine map of object space: x ↦ linear·x + shift; normals by cof(linear) (= det·linear⁻ᵀ), renormalised.
 struct DdmHostMap {
   glm::dmat3 linear{1.0};
@@ -78,6 +80,26 @@ class DdmLayerDeformation {
   std::vector<glm::dvec3> lo_, hi_;
   glm::dmat4 model_{1.0};
   bool flip_ = false;
+};
+
+// The CPU fast path of a layer carried by an FFD (placement, pressing, ring, offset animation), frame after frame: the
+// tiles' parameters E(M·x) and world normals are bound once to a cpu_fast evaluator (float, vectorised; ffd_fast.h);
+// each frame evaluates F at parameter offset `offset` with normals. Matches DdmLayerDeformation::apply to the
+// cpu_fast tolerance (1e-5 × the lattice size). Host maps and DFFD sides are not handled (the reference path is).
+// Not thread-safe: one per layer and thread.
+class DdmFastFollower {
+ public:
+  DdmFastFollower();
+  ~DdmFastFollower();
+  // Binds the layer mesh (object space, ddm_layer_mesh or layer.mesh; #V × 3 positions and normals) of `object` (with
+  // an FFD). Throws std::invalid_argument: no FFD, host maps or DFFD needed (use the reference), normals not #V.
+  void bind(const SceneObject& object, const TriMesh& layer_mesh);
+  // World positions and unit normals (#V × 3 each, float) of the bound tiles at the object's parameter offset.
+  void evaluate(const glm::dvec3& offset, std::vector<glm::vec3>& positions, std::vector<glm::vec3>& normals);
+  std::size_t vertex_count() const;
+
+ private:
+  std::unique_ptr<FfdFastEvaluator> ffd_;
 };
 
 // The layer in world units at `time_s` as everything exports and records it: DdmLayerDeformation(object, layer,

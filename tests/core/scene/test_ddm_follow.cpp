@@ -189,6 +189,32 @@ TEST(DdmFollow, ExportAndStillsCarryTheLayers) {
   EXPECT_GT(moved, 0.01);
 }
 
+// The cpu_fast path of an FFD-carried layer against the reference, at two offsets (1e-5 × the layer's size; normals
+// 1e-4).
+TEST(DdmFollow, FastFollowerMatchesTheReference) {
+  SceneObject o = ffd_case();
+  const DdmLayer& layer = *o.ddm_layers.front();
+  DdmFastFollower fast;
+  fast.bind(o, *layer.mesh);
+  ASSERT_EQ(fast.vertex_count(), layer.mesh->vertex_count());
+  for (const glm::dvec3 offset : {glm::dvec3(0.02, 0.0, -0.01), glm::dvec3(-0.05, 0.03, 0.0)}) {
+    o.param_offset = offset;
+    const TriMesh ref = DdmLayerDeformation(o, layer, 0.0).apply(*layer.mesh);
+    std::vector<glm::vec3> p, n;
+    fast.evaluate(offset, p, n);
+    Aabb box;
+    for (const glm::dvec3& q : ref.positions) box.extend(q);
+    double worst_p = 0.0, worst_n = 0.0;
+    for (std::size_t v = 0; v < p.size(); ++v) {
+      worst_p = std::max(worst_p, glm::length(glm::dvec3(p[v]) - ref.positions[v]));
+      worst_n = std::max(worst_n, glm::length(glm::dvec3(n[v]) - ref.normals[v]));
+    }
+    EXPECT_LT(worst_p, 1e-5 * box.diagonal());
+    EXPECT_LT(worst_n, 1e-4);
+  }
+  EXPECT_THROW(DdmFastFollower().bind(host_case(), *host_case().ddm_layers.front()->mesh), std::invalid_argument);
+}
+
 TEST(DdmFollow, BadInputIsRefused) {
   SceneObject o = ffd_case();
   EXPECT_THROW(DdmLayerDeformation(o, *o.ddm_layers.front(), std::nan("")), std::invalid_argument);
