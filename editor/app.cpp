@@ -338,6 +338,11 @@ void App::write_probe() {
                                                           {"cancelling", background_.cancelling()}}
                                        : nlohmann::json(nullptr);
   p["volume_refining"] = renderer_ && renderer_->last_stats().volume_refining;  // the last frame drawn's
+  if (renderer_) {
+    const gpu::RenderStats& rs = renderer_->last_stats();
+    p["tiles"] = {{"layers", rs.ddm_layers_drawn}, {"following", rs.ddm_layers_following},
+                  {"vertices", rs.ddm_vertices}};
+  }
   const nlohmann::json volumes = volumes_.probe(session_.scene());
   for (auto it = volumes.begin(); it != volumes.end(); ++it) p[it.key()] = it.value();
   write_probe_file(options_.gui_probe, p);

@@ -273,6 +273,7 @@ void Renderer::Impl::pass_ddm_layers(const Frame& f, std::optional<GpuTimer::Sco
     const detail::DdmDrawn drawn = ddm.draw_shaded(f.scene, f.options.time_s, f.view_proj, f.eye, f.key,
                                                    f.options.selected, f.options.ddm);
     stats.ddm_layers_drawn = drawn.layers;
+    stats.ddm_layers_following = drawn.following;
     stats.ddm_vertices = drawn.vertices;
     stats.ddm_instances = drawn.instances;
     stats.ddm_instances_drawn = drawn.instances_drawn;

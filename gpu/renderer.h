@@ -58,6 +58,7 @@ struct RenderStats {
   // (Σ instances × tile vertices, evaluated by the vertex shader every draw), and the shaded layer pass: GpuTimer
   // ms, 0 without layers, -1 while the timer has no result yet (not part of draw_ms).
   int ddm_layers_drawn = 0;
+  int ddm_layers_following = 0;  // of those, carried by their object's deformation (FOLLOW variant, ddm_follow.h)
   std::size_t ddm_vertices = 0;
   double ddm_ms = 0.0;
   // With ViewOptions::ddm: the instances of the drawn layers, those drawn, those culled (outside the view or facing

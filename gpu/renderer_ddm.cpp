@@ -66,6 +66,7 @@ DdmDrawn DdmDisplay::draw_object(const core::SceneObject& o, double time_s, cons
         const DdmFollow f{&d, d.lattice() ? &lattice_buffers(d) : nullptr};
         drawn.vertices += gl_.draw(layer, pose, model, p, &f);
         ++drawn.layers;
+        ++drawn.following;
         continue;
       }
     }
@@ -191,6 +192,7 @@ DdmDrawn DdmDisplay::draw_shaded(const core::Scene& scene, double time_s, const 
     const DdmDrawn d =
         draw_object(o, time_s, {}, ShadedSetup{view_proj, eye, key_dir, o.color, is_selected ? 1.0f : 0.0f});
     drawn.layers += d.layers;
+    drawn.following += d.following;
     drawn.vertices += d.vertices;
   }
   if (!view.cull && !thin) {
