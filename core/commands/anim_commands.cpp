@@ -67,6 +67,20 @@ KeyInterpolation interpolation_of(const std::string& name) {
                             : KeyInterpolation::linear;
 }
 
+std::vector<OffsetKey> keys_from_frames(const std::vector<glm::dvec3>& rows, bool two, const Timeline& timeline,
+                                        KeyInterpolation interpolation, const char* field) {
+  std::vector<OffsetKey> keys;
+  for (const glm::dvec3& r : rows)
+    keys.push_back({timeline.time_of_frame(r.x), two ? glm::dvec3(r.y, r.z, 0.0) : glm::dvec3(r.y, 0.0, 0.0),
+                    interpolation});
+  std::sort(keys.begin(), keys.end(), [](const OffsetKey& a, const OffsetKey& b) { return a.time_s < b.time_s; });
+  for (std::size_t i = 1; i < keys.size(); ++i)
+    if (keys[i].time_s == keys[i - 1].time_s)
+      throw CommandError(std::string("field '") + field + "': two keys on frame " +
+                             std::to_string(timeline.frame_of_time(keys[i].time_s)), field);
+  return keys;
+}
+
 const ParamSchema<AnimKeyframeParams>& AnimKeyframeCommand::schema() {
   using P = AnimKeyframeParams;
   static const ParamSchema<P> s =

@@ -90,4 +90,10 @@ class AnimClipCommand : public ObjectSnapshotCommand<AnimClipCommand, AnimClipPa
 const char* interpolation_name(KeyInterpolation k);
 KeyInterpolation interpolation_of(const std::string& name);
 
+// Keys from (timeline frame, value…) rows (ddm.animate's and incision.animate's key lists): each row's frame becomes
+// its scene time with `timeline`, its values the key's .offset (x, y; `two` = false: x only), sorted by time. Throws
+// CommandError (field `field`) when two keys fall on one frame.
+std::vector<OffsetKey> keys_from_frames(const std::vector<glm::dvec3>& rows, bool two, const Timeline& timeline,
+                                        KeyInterpolation interpolation, const char* field);
+
 }  // namespace trispline::core

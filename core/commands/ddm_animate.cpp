@@ -9,21 +9,6 @@
 namespace trispline::core {
 namespace {
 
-// Keys from (frame, value) rows, sorted by time; two keys on one frame are an error.
-std::vector<OffsetKey> keys_of(const std::vector<glm::dvec3>& rows, bool two, const Timeline& timeline,
-                               KeyInterpolation interpolation, const char* field) {
-  std::vector<OffsetKey> keys;
-  for (const glm::dvec3& r : rows)
-    keys.push_back({timeline.time_of_frame(r.x), two ? glm::dvec3(r.y, r.z, 0.0) : glm::dvec3(r.y, 0.0, 0.0),
-                    interpolation});
-  std::sort(keys.begin(), keys.end(), [](const OffsetKey& a, const OffsetKey& b) { return a.time_s < b.time_s; });
-  for (std::size_t i = 1; i < keys.size(); ++i)
-    if (keys[i].time_s == keys[i - 1].time_s)
-      throw CommandError(std::string("field '") + field + "': two keys on frame " +
-                             std::to_string(timeline.frame_of_time(keys[i].time_s)), field);
-  return keys;
-}
-
 using P = DdmAnimateParams;
 using Field = ParamSchema<P>::Field;
 
@@ -111,9 +96,9 @@ std::optional<SceneObject> DdmAnimateCommand::build(const Scene& scene) {
   if (p_.alpha_keys) {
     std::vector<glm::dvec3> rows;
     for (const glm::dvec2& r : *p_.alpha_keys) rows.push_back({r.x, r.y, 0.0});
-    layer->alpha_keys = keys_of(rows, false, scene.timeline, interpolation, "alpha_keys");
+    layer->alpha_keys = keys_from_frames(rows, false, scene.timeline, interpolation, "alpha_keys");
   }
-  if (p_.offset_keys) layer->offset_keys = keys_of(*p_.offset_keys, true, scene.timeline, interpolation, "offset_keys");
+  if (p_.offset_keys) layer->offset_keys = keys_from_frames(*p_.offset_keys, true, scene.timeline, interpolation, "offset_keys");
   if (p_.offset_velocity) layer->offset_velocity = *p_.offset_velocity;
   if (p_.alpha) layer->alpha = *p_.alpha;
   if (layer->morph_tiles.empty() && (!layer->alpha_keys.empty() || layer->alpha != 0.0))

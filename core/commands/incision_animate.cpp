@@ -44,14 +44,9 @@ std::optional<SceneObject> IncisionAnimateCommand::build(const Scene& scene) {
   morph->weight_keys = {OffsetKey{0.0, glm::dvec3(1.0, 0.0, 0.0), KeyInterpolation::constant}};
   if (p_.opening_keys) {
     const KeyInterpolation interpolation = interpolation_of(p_.interpolation);
-    std::vector<OffsetKey> keys;
-    for (const glm::dvec2& k : *p_.opening_keys)
-      keys.push_back({scene.timeline.time_of_frame(k.x), glm::dvec3(k.y, 0.0, 0.0), interpolation});
-    std::sort(keys.begin(), keys.end(), [](const OffsetKey& a, const OffsetKey& b) { return a.time_s < b.time_s; });
-    for (std::size_t i = 1; i < keys.size(); ++i)
-      if (keys[i].time_s == keys[i - 1].time_s)
-        throw CommandError("field 'opening_keys': two keys on frame " +
-                               std::to_string(scene.timeline.frame_of_time(keys[i].time_s)), "opening_keys");
+    std::vector<glm::dvec3> rows;
+    for (const glm::dvec2& k : *p_.opening_keys) rows.push_back({k.x, k.y, 0.0});
+    std::vector<OffsetKey> keys = keys_from_frames(rows, false, scene.timeline, interpolation, "opening_keys");
     morph->weight_keys = std::move(keys);
   }
   SceneObject out = object;
