@@ -8,6 +8,8 @@
 #include "tests/core/commands/placed_crate.h"
 #include "core/commands/anim_commands.h"
 #include "core/commands/mesh_refine.h"
+#include "core/commands/ddm_commands.h"
+#include "core/scene/scene_export.h"
 
 namespace trispline::core {
 namespace {
@@ -179,6 +181,32 @@ TEST(AnimClipReal, MorphCubeWalksAndMorphsUnderThePlacement) {
   run(s, json::parse(R"({"cmd":"anim.clip","object":"cube","remove":true})"));
   EXPECT_EQ(s.find("cube")->clip, nullptr);
   EXPECT_EQ(loaded.find("cube")->rest_mesh, s.find("cube")->rest_mesh);
+}
+
+// A tile layer laid before the clip rides on every pose (host triangles, core/scene/ddm_follow.h): it moves with the
+// clip, stays finite, and the same time gives the same tiles bit for bit.
+TEST(AnimClipReal, TilesRideOnTheClip) {
+  Scene s;
+  CommandContext ctx;
+  SceneLoadCommand::parse(json{{"cmd", "scene.load"}, {"path", kData + "AnimatedMorphCube/AnimatedMorphCube.gltf"},
+                               {"name", "cube"}, {"scale", 4.0}},
+                          ctx)
+      ->redo(s);
+  DdmFillCommand::parse(json::parse(R"({"cmd":"ddm.fill","object":"cube","layer":"t","tile":"thorn","layout":"rect",
+      "counts":[1,1],"height":0.05})"), ctx)->redo(s);
+  AnimClipCommand::parse(
+      json{{"cmd", "anim.clip"}, {"object", "cube"}, {"path", kData + "AnimatedMorphCube/AnimatedMorphCube.gltf"}},
+      ctx)->redo(s);
+  const double duration = s.find("cube")->clip->clip->duration_s();
+  const auto tiles = [&](double t) {
+    const SceneExport ex = scene_export_nodes(scene_at_time(s, t));
+    EXPECT_EQ(ex.nodes.size(), 2u);
+    return ex.nodes.back().mesh->positions;
+  };
+  const std::vector<glm::dvec3> a = tiles(0.25 * duration), b = tiles(0.5 * duration);
+  EXPECT_NE(a, b);
+  EXPECT_EQ(a, tiles(0.25 * duration));
+  for (const glm::dvec3& p : b) ASSERT_TRUE(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z));
 }
 
 TEST(AnimClipReal, VertexCountMismatchIsRejected) {
