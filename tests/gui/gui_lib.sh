@@ -193,3 +193,18 @@ gui_pass() {
 }
 
 trap 'gui_kill' EXIT
+
+# The default scene open (gui_start'ed with assets/scenes/default.jsonl): selects the teapot in the Scene panel, puts
+# the pointer over it and picks the Tile Paint tool (T), waiting until the panel shows its Fill estimate.
+gui_teapot_tile_paint() {
+  gui_wait '(.history.labels | length) >= 4' "the default scene is open"
+  gui_click_item scene.object.teapot
+  gui_wait '.selected == "teapot"' "teapot selected"
+  local x y
+  x="$(gui_q '.object_px.teapot[0] | floor')"; y="$(gui_q '.object_px.teapot[1] | floor')"
+  gui_move "$x" "$y"
+  gui_frames 1
+  gui_key t
+  gui_wait '.tool == "Tile Paint"' "T picks the Tile Paint tool"
+  gui_wait '.values["ddm.estimate_tiles"] != null and .values["ddm.estimate_tiles"] != ""' "an estimate is shown"
+}

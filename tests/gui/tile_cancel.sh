@@ -9,15 +9,7 @@ source "$(dirname "$0")/gui_lib.sh"
 gui_start "$GUI_ROOT/assets/scenes/default.jsonl"
 # One core for the editor's threads: the fill below then takes a few seconds on any machine, time to click Cancel.
 taskset -a -p -c 0 "$GUI_PID" >/dev/null || gui_fail "taskset could not pin the editor to one core"
-gui_wait '(.history.labels | length) >= 4' "the default scene is open"
-gui_click_item scene.object.teapot
-gui_wait '.selected == "teapot"' "teapot selected"
-x="$(gui_q '.object_px.teapot[0] | floor')"; y="$(gui_q '.object_px.teapot[1] | floor')"
-gui_move "$x" "$y"
-gui_frames 1
-gui_key t
-gui_wait '.tool == "Tile Paint"' "T picks the Tile Paint tool"
-gui_wait '.values["ddm.estimate_tiles"] != null and .values["ddm.estimate_tiles"] != ""' "an estimate is shown"
+gui_teapot_tile_paint
 
 # Thorns 0.014 across on the teapot body: about 9 M tile vertices (under the 10 M limit), seconds of building.
 gui_click_item ddm.tile_size

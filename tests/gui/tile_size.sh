@@ -4,15 +4,7 @@
 # that many tiles, logged with the typed tile_size; above the vertex budget Fill asks first (Cancel, Fill anyway).
 source "$(dirname "$0")/gui_lib.sh"
 gui_start "$GUI_ROOT/assets/scenes/default.jsonl"
-gui_wait '(.history.labels | length) >= 4' "the default scene is open"
-gui_click_item scene.object.teapot
-gui_wait '.selected == "teapot"' "teapot selected"
-x="$(gui_q '.object_px.teapot[0] | floor')"; y="$(gui_q '.object_px.teapot[1] | floor')"
-gui_move "$x" "$y"
-gui_frames 1
-gui_key t
-gui_wait '.tool == "Tile Paint"' "T picks the Tile Paint tool"
-gui_wait '.values["ddm.estimate_tiles"] != null and .values["ddm.estimate_tiles"] != ""' "an estimate is shown"
+gui_teapot_tile_paint
 first="$(gui_q '.values["ddm.estimate_tiles"]')"
 gui_log "estimate at the default tile size: $first tiles"
 
