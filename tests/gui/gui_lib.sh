@@ -37,16 +37,7 @@ gui_fail() {
   echo "FAIL: $GUI_TEST: $*" >&2
   echo "$*" >"$GUI_DIR/failure.txt"
   if gui_alive; then
-    local before shot
-    before="$(find "$GUI_WORK" -maxdepth 1 -name 'trispline-screenshot-*.png' | wc -l)"
-    xdotool key F12 2>/dev/null
-    for _ in $(seq 1 30); do
-      [ "$(find "$GUI_WORK" -maxdepth 1 -name 'trispline-screenshot-*.png' | wc -l)" -gt "$before" ] && break
-      sleep 0.2
-    done
-    shot="$(find "$GUI_WORK" -maxdepth 1 -name 'trispline-screenshot-*.png' | sort | tail -1)"
-    sleep 0.5
-    [ -n "$shot" ] && cp "$shot" "$GUI_DIR/failure.png" && echo "  screenshot: $GUI_DIR/failure.png" >&2
+    gui_screenshot failure 6 && echo "  screenshot: $GUI_DIR/failure.png" >&2
   else
     echo "  the editor is not running (exit status ${GUI_EXIT:-?})" >&2
   fi
@@ -55,6 +46,24 @@ gui_fail() {
   echo "  editor output: $GUI_DIR/editor.log" >&2
   gui_kill
   exit 1
+}
+
+# The editor's finished F12 screenshots in $GUI_WORK (it writes NAME.tmp.png, then renames it).
+gui_screenshots() { find "$GUI_WORK" -maxdepth 1 -name 'trispline-screenshot-*.png' ! -name '*.tmp*'; }
+
+# gui_screenshot NAME [SECONDS]: presses F12, waits (default 20 s) for the editor to finish writing the new
+# screenshot and copies it to $GUI_DIR/NAME.png. Returns 1 when none appears.
+gui_screenshot() {
+  local before newest tries=$(( ${2:-20} * 5 ))
+  before="$(gui_screenshots | wc -l)"
+  xdotool key F12 2>/dev/null || return 1
+  for _ in $(seq 1 "$tries"); do
+    [ "$(gui_screenshots | wc -l)" -gt "$before" ] && break
+    sleep 0.2
+  done
+  [ "$(gui_screenshots | wc -l)" -gt "$before" ] || return 1
+  newest="$(gui_screenshots | sort -V | tail -1)"
+  cp "$newest" "$GUI_DIR/$1.png"
 }
 
 gui_alive() { [ -n "$GUI_PID" ] && kill -0 "$GUI_PID" 2>/dev/null; }

@@ -26,10 +26,8 @@ gui_wait '.items["command.cancel"] != null and .values["command.progress"] != nu
 gui_log "progress: $(gui_q '.values["command.progress"]') ($(gui_q '.command.what'))"
 gui_check '.command != null' "still building when Cancel is clicked"
 gui_click_item command.cancel
-xdotool key F12  # a screenshot of the bar (cancelling), kept with the test's output
+gui_screenshot progress && gui_log "screenshot of the bar: $GUI_DIR/progress.png"
 gui_wait '.command == null' "Cancel ends the build" 60
-shot="$(find "$GUI_WORK" -maxdepth 1 -name 'trispline-screenshot-*.png' | sort | tail -1)"
-[ -n "$shot" ] && cp "$shot" "$GUI_DIR/progress.png" && gui_log "screenshot: $GUI_DIR/progress.png"
 gui_wait '.log | map(select(test("Fill cancelled"))) | length > 0' "the Log says Fill cancelled"
 gui_check "(.history.labels | length) == $n" "Cancel added no history entry"
 [ "$(gui_session_count '.cmd == "ddm.fill"')" = 0 ] || gui_fail "a cancelled fill was logged"

@@ -8,20 +8,7 @@ gui_start "$GUI_ROOT/tests/logs/ddm_follow.jsonl"
 gui_wait '(.objects | length) == 6' "the log opens with its six objects"
 gui_wait '.tiles.layers == 4 and .tiles.following == 4 and .tiles.vertices > 100000' \
   "all four layers drawn through their objects' deformations"
-shot() {  # shot NAME: the editor's own screenshot of this frame, copied to $GUI_DIR/NAME.png
-  local before
-  before=$(find "$GUI_WORK" -maxdepth 1 -name 'trispline-screenshot-*.png' | wc -l)
-  xdotool key F12
-  for _ in $(seq 1 50); do
-    [ "$(find "$GUI_WORK" -maxdepth 1 -name 'trispline-screenshot-*.png' | wc -l)" -gt "$before" ] && break
-    sleep 0.2
-  done
-  local newest
-  newest=$(find "$GUI_WORK" -maxdepth 1 -name 'trispline-screenshot-*.png' -printf '%T@ %p\n' | sort -n | tail -1)
-  [ -n "$newest" ] || gui_fail "no screenshot written for $1"
-  sleep 0.5  # the file is complete once written; give the writer a moment
-  cp "${newest#* }" "$GUI_DIR/$1.png"
-}
+shot() { gui_screenshot "$1" || gui_fail "no screenshot written for $1"; }
 gui_frames 2
 shot frame1
 gui_click_item timeline.frame

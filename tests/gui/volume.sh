@@ -25,19 +25,9 @@ load() {
 
 # shot NAME: the editor's own screenshot (F12) once the volume is drawn at full resolution, as $GUI_DIR/NAME.png.
 shot() {
-  local before newest
   gui_wait '.volume_refining == false and (.volumes | map(.extracting) | any | not)' "the view settles before $1" 60
   gui_frames 2
-  shots() { find "$GUI_WORK" -maxdepth 1 -name 'trispline-screenshot-*.png' ! -name '*.tmp*'; }  # written, renamed
-  before="$(shots | wc -l)"
-  gui_key F12
-  for _ in $(seq 1 100); do
-    [ "$(shots | wc -l)" -gt "$before" ] && break
-    sleep 0.2
-  done
-  newest="$(shots | sort -V | tail -1)"
-  [ -n "$newest" ] || gui_fail "no screenshot for $1"
-  cp "$newest" "$GUI_DIR/$1.png"
+  gui_screenshot "$1" || gui_fail "no screenshot for $1"
   gui_log "screenshot: $GUI_DIR/$1.png"
 }
 
