@@ -10,6 +10,7 @@
 #include "core/commands/camera_set.h"
 #include "core/commands/dffd_cut.h"
 #include "core/commands/incision_animate.h"
+#include "core/commands/dffd_animate.h"
 #include "core/commands/incision_draw.h"
 #include "core/commands/dffd_split.h"
 #include "core/commands/lattice_animate_offset.h"
@@ -90,6 +91,7 @@ const CommandRegistry& CommandRegistry::builtin() {
     r.add<core::IncisionDrawCommand>();
     r.add<core::IncisionAnimateCommand>();
     r.add<core::DffdSplitCommand>();
+    r.add<core::DffdAnimateCommand>();
     r.add<core::PlaceArrayCommand>();
     r.add<core::AnimRecordCommand>();
     r.add<core::VolumeLoadCommand>();

@@ -96,6 +96,12 @@ SceneObject object_with_transform(const SceneObject& object, const Transform& t,
   if (object.dffd) {
     auto rig = std::make_shared<DffdRig>(*object.dffd);
     map_control_points(rig->lattice, a);
+    if (rig->seam) {
+      auto seam = std::make_shared<DffdSeam>(*rig->seam);
+      for (glm::dvec3& p : seam->open_points) p = a.apply(p);
+      for (glm::dvec3& p : seam->stitched_points) p = a.apply(p);
+      rig->seam = std::move(seam);
+    }
     rig->embedding = mapped(rig->embedding, a);
     for (glm::dvec3& p : rig->fold_points) p = a.apply(p);
     out.dffd = std::move(rig);

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <string>
 
 #include "core/raycast/ray_caster.h"
@@ -336,7 +337,11 @@ void embed_and_stitch(GlobalDffd& out, const TriMesh& object_world, const std::v
   const auto to_world = [&](const glm::dvec3& uvw) { return A_inv * (uvw - rig.embedding.offset); };
   // --- parameters of the object, 7. stitching -------------------------------------------------------------------
   rig.params = embed_points(rig.embedding, object_world.positions);
-  if (p.openings == DffdOpenings::stitch) {
+  // Both seam states are kept with capped or stitched openings (dffd.animate keys the seam between them); the rig's
+  // lattice is the one `openings` asks for.
+  if (p.openings != DffdOpenings::open) {
+    auto seam = std::make_shared<DffdSeam>();
+    seam->open_points = F.control_points();
     std::vector<glm::dvec3> shifted = rig.params;
     for (glm::dvec3& q : shifted) q += p.offset;
     for (const Discontinuity& d : rig.discontinuities) {
@@ -355,7 +360,7 @@ void embed_and_stitch(GlobalDffd& out, const TriMesh& object_world, const std::v
           ++count;
         }
       const double ws = std::clamp(sum / double(count), 0.0, 1.0);
-      out.w_s.push_back(ws);
+      if (p.openings == DffdOpenings::stitch) out.w_s.push_back(ws);
       const double world_w = to_world({0.0, 0.0, ws})[w_ax];
       // Only the rows the obstacle opened: elsewhere F⁻ = F⁺ already closes the seam, and flattening those rows
       // too would pinch the object's whole cross-section to one curve (see docs/decisions.md).
@@ -367,6 +372,9 @@ void embed_and_stitch(GlobalDffd& out, const TriMesh& object_world, const std::v
           F.control_point(d.plus_plane, j, k)[w_ax] = world_w;
         }
     }
+    seam->stitched_points = F.control_points();
+    if (p.openings == DffdOpenings::cap) F.control_points() = seam->open_points;
+    rig.seam = std::move(seam);
   }
 }
 

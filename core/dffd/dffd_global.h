@@ -21,7 +21,8 @@
 //     (coincident F⁻/F⁺ allowed); then det J > 0. Violations are rejected (or reported, fold = warn).
 //  7. Stitching (openings = stitch, §6.3.2): the control points of both discontinuity planes in the rows the
 //     obstacle opened move to the level w = w_s, the mean w of the object's vertices on the cut (at the given
-//     offset); the other rows are closed already (F⁻ = F⁺).
+//     offset); the other rows are closed already (F⁻ = F⁺). With openings cap or stitch both lattices are kept in
+//     rig.seam (dffd.animate keys the seam between them); rig.lattice is the one `openings` names.
 #pragma once
 
 #include <cstddef>

@@ -30,6 +30,31 @@ const char* dffd_openings_name(DffdOpenings o) {
   return "open";
 }
 
+double dffd_stitch_at(const DffdRig& rig, double time_s) {
+  if (rig.stitch_keys.empty()) return rig.openings == DffdOpenings::stitch ? 1.0 : 0.0;
+  return evaluate_offset_keys(rig.stitch_keys, time_s).x;
+}
+
+void dffd_set_stitch(DffdRig& rig, double s) {
+  if (!rig.seam) throw std::invalid_argument("the DFFD has no seam to stitch (its openings are open)");
+  if (!std::isfinite(s)) throw std::invalid_argument("the stitch weight is not finite");
+  std::vector<glm::dvec3>& cps = rig.lattice.control_points();
+  const std::vector<glm::dvec3>& a = rig.seam->open_points;
+  const std::vector<glm::dvec3>& b = rig.seam->stitched_points;
+  if (a.size() != cps.size() || b.size() != cps.size())
+    throw std::invalid_argument("the DFFD seam has " + std::to_string(a.size()) + " / " + std::to_string(b.size()) +
+                                " control points for a lattice of " + std::to_string(cps.size()));
+  for (std::size_t i = 0; i < cps.size(); ++i) cps[i] = (1.0 - s) * a[i] + s * b[i];
+}
+
+std::shared_ptr<const DffdRig> dffd_rig_at(const std::shared_ptr<const DffdRig>& rig, double time_s) {
+  if (!rig || rig->stitch_keys.empty()) return rig;
+  auto still = std::make_shared<DffdRig>(*rig);
+  dffd_set_stitch(*still, dffd_stitch_at(*rig, time_s));
+  still->stitch_keys.clear();
+  return still;
+}
+
 void dffd_split(const DffdRig& rig, const TriMesh& rest_world, const glm::dvec3& offset, MeshSplit& out,
                 DffdApplyStats* stats) {
   const std::size_t nv = rest_world.vertex_count();

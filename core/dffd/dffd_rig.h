@@ -13,10 +13,15 @@
 //      the two agree on the box's faces), normals mapped through cof(J_F·A) (as ffd_apply) or kept outside.
 // openings = stitch differs from cap only in the lattice (dffd.split moved the F⁻/F⁺ control points to the
 // stitching level w_s, seed §6.3.2), so the caps it adds are flattened onto the seam: watertight and closed-looking.
+// Because the two share the split and the caps, the seam can be keyed between them (dffd.animate, DffdSeam): at
+// stitch weight s the control points are (1 − s)·open + s·stitched, so every vertex moves on the straight line
+// between its capped and its stitched position (F is linear in its control points) — a per-vertex morph of one
+// topology, exact at s = 0 and s = 1.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <glm/glm.hpp>
 #include <string>
 #include <utility>
@@ -25,6 +30,7 @@
 #include "core/dffd/dffd.h"
 #include "core/ffd/ffd.h"
 #include "core/mesh/tri_mesh.h"
+#include "core/spline/keyframes.h"
 #include "core/spline/trivariate_bspline.h"
 
 namespace trispline::core {
@@ -32,6 +38,14 @@ namespace trispline::core {
 // How the openings left by the splits are treated (dffd.split "openings").
 enum class DffdOpenings { open, stitch, cap };
 const char* dffd_openings_name(DffdOpenings o);  // "open" | "stitch" | "cap"
+
+// The two lattices a keyed seam blends (seed §6.3.2): every control point with the openings as the obstacles left
+// them (capped, s = 0) and with the opened rows of both discontinuity planes moved to the stitching level w_s
+// (s = 1). World units, n_u·n_v·n_w points each in the lattice's order (TrivariateBSpline::control_points()).
+struct DffdSeam {
+  std::vector<glm::dvec3> open_points;
+  std::vector<glm::dvec3> stitched_points;
+};
 
 struct DffdRig {
   TrivariateBSpline<glm::dvec3> lattice;       // world units; knots hold the C⁻¹ breaks (multiplicity = order)
@@ -45,7 +59,27 @@ struct DffdRig {
   std::vector<std::string> obstacles;          // obstacle object ids (dffd.split)
   std::vector<glm::dvec3> fold_points;         // world positions of control points that broke u-monotonicity
                                                // (seed Theorem 6) when dffd.split ran with "fold":"warn"
+  // The keyed seam (dffd.animate; scene_at_time freezes it with dffd_rig_at). Both seam states: openings cap or
+  // stitch; null with open (there the caps are missing: another topology).
+  std::shared_ptr<const DffdSeam> seam;
+  // The stitch weight s over scene time (dffd.animate; .offset.x, 0 capped open, 1 stitched), sorted by time. Empty:
+  // the lattice as built. With keys the lattice is the blend at scene time 0 (what world_mesh shows).
+  std::vector<OffsetKey> stitch_keys;
+  bool stitch_animated() const { return stitch_keys.size() >= 2; }
 };
+
+// The stitch weight at `time_s`: the keys' value, or the built state (1 for openings = stitch, 0 otherwise) without
+// keys.
+double dffd_stitch_at(const DffdRig& rig, double time_s);
+
+// Sets rig.lattice's control points to the seam blended at weight s: (1 − s)·open + s·stitched (exactly the open
+// points at s = 0 and the stitched ones at s = 1; s outside [0, 1] extrapolates). Keys are kept.
+// Throws std::invalid_argument: no seam (openings = open), seam sizes not the lattice's, non-finite s.
+void dffd_set_stitch(DffdRig& rig, double s);
+
+// `rig` as a still at `time_s`: the same pointer when its seam is not keyed, else a copy with the lattice blended at
+// dffd_stitch_at(time_s) and no keys. Same errors as dffd_set_stitch.
+std::shared_ptr<const DffdRig> dffd_rig_at(const std::shared_ptr<const DffdRig>& rig, double time_s);
 
 // What one evaluation did.
 struct DffdApplyStats {

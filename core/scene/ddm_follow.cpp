@@ -211,8 +211,9 @@ DdmLayerDeformation::DdmLayerDeformation(const SceneObject& object, const DdmLay
     keep_ = object.ffd;
     embedding_ = object.ffd->embedding;
   } else {
-    lattice_ = &object.dffd->lattice;
-    keep_ = object.dffd;
+    const std::shared_ptr<const DffdRig> rig = dffd_rig_at(object.dffd, time_s);  // a keyed seam at time_s
+    lattice_ = &rig->lattice;
+    keep_ = rig;
     embedding_ = object.dffd->embedding;
     identity_outside_ = object.dffd->identity_outside;
   }

@@ -88,7 +88,7 @@ void SceneObject::refresh() {
     if (dffd->params.size() != rest.positions.size())
       throw std::invalid_argument("object '" + name + "': DFFD binding has " + std::to_string(dffd->params.size()) +
                                   " parameters for " + std::to_string(rest.positions.size()) + " vertices");
-    world_mesh = std::make_shared<const TriMesh>(dffd_apply(*dffd, rest, offset_at(0.0)));
+    world_mesh = std::make_shared<const TriMesh>(dffd_apply(*dffd_rig_at(dffd, 0.0), rest, offset_at(0.0)));
   } else if (ffd) {
     if (ffd->params.size() != rest.positions.size())
       throw std::invalid_argument("object '" + name + "': FFD binding has " + std::to_string(ffd->params.size()) +
@@ -159,11 +159,13 @@ bool pose_ddm_layers(SceneObject& object, double time_s) {
   return any;
 }
 
-// `moved` (a copy of `object`) with its parameter offset fixed at `time_s`: no keys, no velocity.
+// `moved` (a copy of `object`) with its parameter offset (and a DFFD's keyed seam) fixed at `time_s`: no keys, no
+// velocity.
 void freeze_offset(SceneObject& moved, const SceneObject& object, double time_s) {
   moved.param_offset = object.offset_at(time_s);
   moved.offset_keys.clear();
   moved.offset_velocity = glm::dvec3(0.0);
+  if (object.dffd) moved.dffd = dffd_rig_at(object.dffd, time_s);
 }
 }  // namespace
 

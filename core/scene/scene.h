@@ -129,9 +129,9 @@ struct SceneObject {
   // The rest mesh itself changes with time (a clip or an animated morph): every frame needs a new pose (CPU) before
   // the FFD.
   bool clip_animated() const { return clip != nullptr || (morph && morph->animated()); }
-  // A DFFD object whose offset changes with time: every frame is split and evaluated again on the CPU.
+  // A DFFD object whose offset or keyed seam changes with time: every frame is split and evaluated again on the CPU.
   bool dffd_animated() const {
-    return dffd && (offset_velocity != glm::dvec3(0.0) || offset_keys.size() >= 2);
+    return dffd && (offset_velocity != glm::dvec3(0.0) || offset_keys.size() >= 2 || dffd->stitch_animated());
   }
   // The object must be re-evaluated on the CPU for each scene time (clip poses, DFFD splits).
   bool cpu_animated() const { return clip_animated() || dffd_animated(); }

@@ -1,0 +1,60 @@
+// dffd.animate. See dffd_animate.h. Source: seed §6.3.2 (openings and stitching of a discontinuous FFD).
+#include "core/commands/dffd_animate.h"
+
+#include <cmath>
+
+#include "core/commands/anim_commands.h"
+
+namespace trispline::core {
+
+const ParamSchema<DffdAnimateParams>& DffdAnimateCommand::schema() {
+  using P = DffdAnimateParams;
+  static const ParamSchema<P> s =
+      ParamSchema<P>("dffd.animate",
+                     "Key a DFFD's seam on the timeline: 0 the openings capped, 1 stitched (seed §6.3.2)")
+          .field("object", &P::object).required().help("An object split by dffd.split with openings cap or stitch")
+          .field("clear", &P::clear).write_unless_default().help("Remove the keys: the seam as dffd.split built it")
+          .field("stitch_keys", &P::stitch_keys).type_text("[[frame,s],…]").default_text("kept")
+          .help("[timeline frame, s] keys: s = 0 the openings as the obstacles leave them, 1 stitched at w_s")
+          .choice("interpolation", &P::interpolation, {"linear", "constant", "smooth"}).write_unless_default()
+          .help("How this line's keys move to the next key")
+          .check([](const P& p) {
+            if (!p.clear && (!p.stitch_keys || p.stitch_keys->empty()))
+              params::fail("stitch_keys", "give at least one [frame, s] key (or \"clear\":true)");
+            if (p.stitch_keys)
+              for (const glm::dvec2& k : *p.stitch_keys)
+                if (!std::isfinite(k.x) || !std::isfinite(k.y)) params::fail("stitch_keys", "keys must be finite");
+          });
+  return s;
+}
+
+std::string DffdAnimateCommand::label() const {
+  return p_.clear && !p_.stitch_keys ? "Reset seam of '" + p_.object + "'" : "Animate seam of '" + p_.object + "'";
+}
+
+std::optional<SceneObject> DffdAnimateCommand::build(const Scene& scene) {
+  const SceneObject& object = require_object(scene, p_.object);
+  if (!object.dffd)
+    throw CommandError("field 'object': '" + p_.object + "' is not split by a DFFD (split it with dffd.split)",
+                       "object");
+  if (!object.dffd->seam)
+    throw CommandError("field 'object': '" + p_.object + "' was split with \"openings\":\"open\": its openings have no "
+                       "caps, so there is no seam to stitch (split it with openings cap or stitch)", "object");
+  auto rig = std::make_shared<DffdRig>(*object.dffd);
+  rig->stitch_keys.clear();
+  if (p_.stitch_keys) {
+    const KeyInterpolation interpolation = interpolation_of(p_.interpolation);
+    std::vector<glm::dvec3> rows;
+    for (const glm::dvec2& k : *p_.stitch_keys) rows.push_back({k.x, k.y, 0.0});
+    rig->stitch_keys = keys_from_frames(rows, false, scene.timeline, interpolation, "stitch_keys");
+  }
+  const double start = dffd_stitch_at(*rig, 0.0);
+  dffd_set_stitch(*rig, start);  // the lattice shows scene time 0 (the built state after a clear)
+  SceneObject out = object;
+  out.dffd = std::move(rig);
+  out.refresh();
+  stats_ = {{"keys", out.dffd->stitch_keys.size()}, {"stitch_at_start", start}};
+  return out;
+}
+
+}  // namespace trispline::core

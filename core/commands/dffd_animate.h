@@ -1,0 +1,47 @@
+// `dffd.animate` — a DFFD's seam keyed on the timeline between its capped openings and its stitched seam (seed §6.3.2,
+// Fig. 6.3 / 6.7b: the openings an obstacle leaves behind it, and their stitching at the level w_s). At stitch weight
+// s the lattice is (1 − s)·open + s·stitched (DffdSeam), so each vertex moves on the straight line between its capped
+// and its stitched position: the per-vertex morph of one topology (the split and its caps do not change with s).
+//
+//   {"cmd":"dffd.animate","object":"ID","stitch_keys":[[F,s],...],"interpolation":"linear|constant|smooth"}
+//   {"cmd":"dffd.animate","object":"ID","clear":true}    back to the state dffd.split built, no keys
+//   stitch_keys  [timeline frame, s] pairs (frames converted with the current timeline, like anim.keyframe); s = 0 the
+//                openings as the obstacles leave them (capped), 1 stitched; finite, any real (outside [0, 1]
+//                extrapolates). One key holds that state at every time.
+//   The object's world mesh is re-evaluated at scene time 0; scene_at_time evaluates it at any time (replay --time,
+//   anim.record, animation.glb), the editor plays it on the CPU with the walk (its u offset keys). Tile layers on the
+//   object follow (ddm_follow.h).
+// Errors (CommandError, field named; the scene is unchanged): unknown object, an object without a DFFD rig, a rig split
+// with "openings":"open" (no caps: the stitched state has another topology) ("object"); keys that are not [F, s] pairs,
+// non-finite, none, or two on one frame ("stitch_keys").
+// report.json: keys, stitch_at_start.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/commands/declared_command.h"
+#include "core/commands/snapshot_command.h"
+
+namespace trispline::core {
+
+struct DffdAnimateParams {
+  std::string object;
+  bool clear = false;
+  std::optional<std::vector<glm::dvec2>> stitch_keys;  // (frame, s)
+  std::string interpolation = "linear";                 // "linear" | "constant" | "smooth"
+};
+
+class DffdAnimateCommand : public ObjectSnapshotCommand<DffdAnimateCommand, DffdAnimateParams> {
+ public:
+  using ObjectSnapshotCommand::ObjectSnapshotCommand;
+  static const ParamSchema<DffdAnimateParams>& schema();
+  std::string label() const override;
+
+ protected:
+  std::optional<SceneObject> build(const Scene& scene) override;
+  std::string failure_field() const override { return "stitch_keys"; }
+};
+
+}  // namespace trispline::core
