@@ -313,6 +313,10 @@ void App::write_probe() {
   }
   p["objects"] = objects;
   p["object_px"] = object_px;
+  nlohmann::json animated = nlohmann::json::array();  // objects whose shape changes with the scene time
+  for (const core::SceneObject& o : session_.scene().objects())
+    if (o.animated()) animated.push_back(o.name);
+  p["animated"] = animated;
   p["selected"] = selected_;
   p["tool"] = tools_.tool().entry().name;
   const auto& oc = overlay_counts_;

@@ -2,6 +2,7 @@
 
 #include "core/commands/lattice_set_point.h"
 
+#include "ui/gui_probe.h"
 #include "ui/number_field.h"
 #include "ui/theme.h"
 
@@ -13,11 +14,14 @@ namespace trispline::ui {
 
 bool begin_tool_panel(const Rect& rect, const std::vector<ToolEntry>& tools, int* active) {
   if (!begin_docked("Tool", rect)) return false;
+  const ImVec2 pos = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+  probe::rect("panel.tool", pos, ImVec2(pos.x + size.x, pos.y + size.y));
   const float w = ImGui::GetContentRegionAvail().x;
   for (int i = 0; i < int(tools.size()); ++i) {
     const bool on = i == *active;
     if (on) ImGui::PushStyleColor(ImGuiCol_Button, ImGui::GetStyleColorVec4(ImGuiCol_HeaderActive));
     if (ImGui::Button(tools[i].name.c_str(), ImVec2(w, 0))) *active = i;
+    probe::item("tool." + tools[i].name);
     if (on) ImGui::PopStyleColor();
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s (%s)", tools[i].tooltip.c_str(), tools[i].shortcut.c_str());
   }

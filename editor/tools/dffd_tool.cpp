@@ -2,9 +2,11 @@
 
 #include <imgui.h>
 
+#include "core/commands/dffd_animate.h"
 #include "editor/navigation.h"
 #include "editor/session.h"
 #include "editor/tools/select_tool.h"
+#include "ui/gui_probe.h"
 #include "ui/theme.h"
 
 namespace trispline::editor {
@@ -37,11 +39,48 @@ void DffdTool::split(ToolContext& ctx, const nlohmann::json& line) {
   ctx.defer("Splitting " + line.value("object", std::string()), [&session, line]() { session.execute(line); });
 }
 
+void DffdTool::draw_seam_section(ToolContext& ctx, const std::string& object) {
+  if (!ImGui::CollapsingHeader("Seam over time", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  ui::probe::item("dffd_anim.header");
+  const core::Scene& scene = ctx.session.scene();
+  const core::SceneObject* sel = scene.find(object);
+  if (stitch_keys_.frame_to < 0)
+    stitch_keys_.frame_from = scene.timeline.frame_start, stitch_keys_.frame_to = scene.timeline.frame_end;
+  std::string unavailable;
+  if (!sel) unavailable = "select an object split by Split (DFFD)";
+  else if (!sel->dffd) unavailable = "'" + sel->name + "' is not split yet: tick obstacles, then Split";
+  else if (!sel->dffd->seam) unavailable = "'" + sel->name + "' was split with open openings (no caps): split it "
+                                           "with openings cap or stitch to key its seam";
+  const ui::KeyPairSpec spec{"dffd_anim", "Stitch",
+                             "0: the openings as the obstacles leave them (capped); 1: stitched behind them at the "
+                             "level w_s (seed section 6.3.2); other values extrapolate",
+                             "Key the seam at the two frames (one undoable dffd.animate); it plays with the walk",
+                             "Remove the keys: the seam as the split built it"};
+  const bool keyed = sel && sel->dffd && !sel->dffd->stitch_keys.empty();
+  const ui::KeyPairResult k = ui::draw_key_pair_panel(stitch_keys_, spec, unavailable, keyed);
+  if (!k.animate && !k.clear) return;
+  core::DffdAnimateParams a;
+  a.object = sel->name;
+  a.clear = k.clear;
+  if (k.animate) a.stitch_keys = ui::key_pair_keys(stitch_keys_), a.interpolation = stitch_keys_.interpolation;
+  const nlohmann::json line = core::DffdAnimateCommand::schema().to_json(a);
+  EditorSession& session = ctx.session;
+  ctx.defer("Animating the seam of " + sel->name, [&session, line]() { session.execute(line); });
+}
+
 void DffdTool::draw_panel(ToolContext& ctx) {
   const std::string object = ctx.session.scene().find(ctx.selected) ? ctx.selected : std::string();
+  // A split object shows its seam first (what is left to do with it); otherwise the split's parameters lead.
+  const core::SceneObject* sel = ctx.session.scene().find(object);
+  const bool split_already = sel && sel->dffd;
+  if (split_already) {
+    draw_seam_section(ctx, object);
+    ImGui::Spacing();
+  }
   const ui::DffdPanelResult r = ui::draw_dffd_panel(params_, object, candidates(ctx, object));
   if (r.line) split(ctx, *r.line);
   ImGui::Spacing();
+  if (!split_already) draw_seam_section(ctx, object);
   ImGui::Separator();
   ImGui::TextWrapped(
       "The lattice spans the obstacles' bounding box grown to hold the part of the object that must split; "

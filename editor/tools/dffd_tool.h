@@ -11,6 +11,7 @@
 
 #include "editor/tools/select_tool.h"
 #include "ui/dffd_panel.h"
+#include "ui/key_pair_panel.h"
 
 namespace trispline::editor {
 
@@ -27,9 +28,12 @@ class DffdTool : public SelectTool {
   std::vector<ui::DffdObstacleInfo> candidates(const ToolContext& ctx, const std::string& object) const;
   // What the Split button does: executes `line` (a dffd.split) through the session, after one "Working…" frame.
   void split(ToolContext& ctx, const nlohmann::json& line);
+  // The "Seam over time" section for `object` (dffd.animate keys at two frames).
+  void draw_seam_section(ToolContext& ctx, const std::string& object);
 
  private:
   core::DffdSplitParams params_;
+  ui::KeyPairParams stitch_keys_{1, -1, 0.0, 1.0, "smooth"};  // frame_to < 0: the timeline's end when first shown
   // Bounding-box extent per object, cached on its world_mesh (an O(#V) pass each panel frame otherwise).
   mutable std::map<std::string, std::pair<std::weak_ptr<const core::TriMesh>, glm::dvec3>> extents_;
 };

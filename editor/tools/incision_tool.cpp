@@ -6,10 +6,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/commands/incision_animate.h"
 #include "editor/command_registry.h"
 #include "editor/navigation.h"
 #include "editor/session.h"
 #include "editor/tools/select_tool.h"
+#include "ui/gui_probe.h"
 #include "ui/number_field.h"
 #include "ui/theme.h"
 
@@ -223,6 +225,33 @@ void IncisionTool::draw_panel(ToolContext& ctx) {
   ui::tooltip(ui::param_tooltip(schema.find("kernel")->doc).c_str());
 
   ImGui::Spacing();
+  if (ImGui::CollapsingHeader("Opening over time", ImGuiTreeNodeFlags_DefaultOpen)) {
+    ui::probe::item("incision_anim.header");
+    const core::Scene& scene = ctx.session.scene();
+    if (opening_keys_.frame_to < 0)
+      opening_keys_.frame_from = scene.timeline.frame_start, opening_keys_.frame_to = scene.timeline.frame_end;
+    std::string unavailable;
+    if (!sel) unavailable = "select an object cut by an incision";
+    else if (!sel->morph) unavailable = "'" + sel->name + "' has no incision: cut one first (drag across it)";
+    else if (sel->ffd || sel->dffd) unavailable = "'" + sel->name + "' is deformed; key the opening before placing it";
+    const ui::KeyPairSpec spec{"incision_anim", "Opening",
+                               "Fraction of the opening as drawn: 0 closed (the cut faces touch), 1 as drawn; other "
+                               "values extrapolate",
+                               "Key the incision's opening at the two frames (one undoable incision.animate); press "
+                               "Space to play it",
+                               "Remove the keys: the incision shows fully open"};
+    const bool keyed = sel && sel->morph && (sel->morph->animated() || sel->morph->weight_at(0.0) != 1.0);
+    const ui::KeyPairResult r = ui::draw_key_pair_panel(opening_keys_, spec, unavailable, keyed);
+    if (r.animate || r.clear) {
+      core::IncisionAnimateParams a;
+      a.object = sel->name;
+      a.clear = r.clear;
+      if (r.animate) a.opening_keys = ui::key_pair_keys(opening_keys_), a.interpolation = opening_keys_.interpolation;
+      const nlohmann::json line = core::IncisionAnimateCommand::schema().to_json(a);
+      EditorSession& session = ctx.session;
+      ctx.defer("Animating the incision of " + sel->name, [&session, line]() { session.execute(line); });
+    }
+  }
   ImGui::Separator();
   if (gesture_.drawing() && !preview_error_.empty())
     ImGui::TextColored(ui::colors::warning, "Preview: %s", preview_error_.c_str());

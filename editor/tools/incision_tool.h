@@ -22,6 +22,7 @@
 #include "core/commands/incision_draw.h"
 #include "editor/tools/stroke_gesture.h"
 #include "editor/tools/tool.h"
+#include "ui/key_pair_panel.h"
 
 namespace trispline::editor {
 
@@ -74,6 +75,7 @@ class IncisionTool : public Tool {
   void clear_preview();
 
   core::IncisionParams params_ = incision_tool_defaults();
+  ui::KeyPairParams opening_keys_{1, -1, 0.0, 1.0, "smooth"};  // frame_to < 0: the timeline's end when first shown
   StrokeGesture gesture_;
   std::string target_;
 

@@ -148,6 +148,19 @@ gui_item_center() {
 }
 
 gui_move() { xdotool mousemove --window "$GUI_WID" "$1" "$2"; }
+# gui_scroll_into_view NAME [PANEL]: turns the mouse wheel over the docked panel (default the Tool panel,
+# "panel.tool") holding the named widget until the widget lies inside the panel's visible part, as a user scrolls.
+gui_scroll_into_view() {
+  local key=".items[\"$1\"]" panel=".items[\"${2:-panel.tool}\"]" i
+  gui_wait "$key != null and $panel != null" "widget $1 and its panel on screen"
+  for ((i = 0; i < 20; ++i)); do
+    [ "$(gui_q "$key[3] < $panel[3] - 4")" = true ] && return 0
+    gui_move "$(gui_q "(($panel[0] + $panel[2]) / 2) | floor")" "$(gui_q "(($panel[1] + $panel[3]) / 2) | floor")"
+    xdotool click 5 click 5
+    gui_frames 2
+  done
+  gui_fail "widget $1 stays below the panel's visible part"
+}
 # gui_click X Y [BUTTON]: moves there, lets one frame see the hover, clicks.
 gui_click() {
   gui_move "$1" "$2"
