@@ -90,6 +90,10 @@ class AnimClipCommand : public ObjectSnapshotCommand<AnimClipCommand, AnimClipPa
 const char* interpolation_name(KeyInterpolation k);
 KeyInterpolation interpolation_of(const std::string& name);
 
+// Largest |s| of a keyed blend weight (incision.animate's opening, dffd.animate's stitch): 1 is the state as built, so
+// ±100 leaves room for any deliberate exaggeration while keeping the extrapolated surface finite.
+inline constexpr double kMaxKeyedWeight = 100.0;
+
 // Keys from (timeline frame, value…) rows (ddm.animate's and incision.animate's key lists): each row's frame becomes
 // its scene time with `timeline`, its values the key's .offset (x, y; `two` = false: x only), sorted by time. Throws
 // CommandError (field `field`) when two keys fall on one frame.

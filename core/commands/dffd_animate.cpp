@@ -23,7 +23,9 @@ const ParamSchema<DffdAnimateParams>& DffdAnimateCommand::schema() {
               params::fail("stitch_keys", "give at least one [frame, s] key (or \"clear\":true)");
             if (p.stitch_keys)
               for (const glm::dvec2& k : *p.stitch_keys)
-                if (!std::isfinite(k.x) || !std::isfinite(k.y)) params::fail("stitch_keys", "keys must be finite");
+                if (!std::isfinite(k.x) || !std::isfinite(k.y) || std::abs(k.y) > kMaxKeyedWeight)
+                  params::fail("stitch_keys", "keys must be finite with s within ±100 (s = 1 is the stitched seam as built; "
+                                             "beyond ±100 the extrapolated surface leaves any sensible range)");
           });
   return s;
 }

@@ -7,13 +7,13 @@
 //   {"cmd":"dffd.animate","object":"ID","clear":true}    back to the state dffd.split built, no keys
 //   stitch_keys  [timeline frame, s] pairs (frames converted with the current timeline, like anim.keyframe); s = 0 the
 //                openings as the obstacles leave them (capped), 1 stitched; finite, any real (outside [0, 1]
-//                extrapolates). One key holds that state at every time.
+//                extrapolates; at most ±100). One key holds that state at every time.
 //   The object's world mesh is re-evaluated at scene time 0; scene_at_time evaluates it at any time (replay --time,
 //   anim.record, animation.glb), the editor plays it on the CPU with the walk (its u offset keys). Tile layers on the
 //   object follow (ddm_follow.h).
 // Errors (CommandError, field named; the scene is unchanged): unknown object, an object without a DFFD rig, a rig split
 // with "openings":"open" (no caps: the stitched state has another topology) ("object"); keys that are not [F, s] pairs,
-// non-finite, none, or two on one frame ("stitch_keys").
+// non-finite or beyond ±100 (kMaxKeyedWeight), none, or two on one frame ("stitch_keys").
 // report.json: keys, stitch_at_start.
 #pragma once
 

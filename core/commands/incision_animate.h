@@ -10,7 +10,8 @@
 //   The object's world mesh is re-evaluated at scene time 0; scene_at_time evaluates it at any time (replay --time,
 //   anim.record, animation.glb), the editor plays it on the CPU. Tile layers on the object follow (ddm_follow.h).
 // Errors (CommandError, field named; the scene is unchanged): unknown object, an object without an incision's channel
-// or with an FFD / DFFD ("object"), keys that are not [F, s] pairs, non-finite, none, or two on one frame
+// or with an FFD / DFFD ("object"), keys that are not [F, s] pairs, non-finite or |s| > 100, none, or two on
+// one frame
 // ("opening_keys").
 // report.json: keys, opening_at_start.
 #pragma once

@@ -129,6 +129,8 @@ TEST(DffdAnimate, ErrorsNameTheirFieldAndChangeNothing) {
                                    "stitch_keys", "two keys"));
   EXPECT_TRUE(throws_command_error(run(s, R"({"cmd":"dffd.animate","object":"ball","stitch_keys":[[2,0],[3]]})"),
                                    "stitch_keys", ""));
+  EXPECT_TRUE(throws_command_error(run(s, R"({"cmd":"dffd.animate","object":"ball","stitch_keys":[[1,0],[9,1e300]]})"),
+                                   "stitch_keys", "100"));
   test::expect_same_meshes(s, before);
   EXPECT_TRUE(s.find("ball")->dffd->stitch_keys.empty());
 }

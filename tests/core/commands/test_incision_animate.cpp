@@ -75,6 +75,8 @@ TEST(IncisionAnimate, ErrorsNameTheirField) {
   EXPECT_TRUE(throws_command_error(run(R"({"cmd":"incision.animate","object":"ball"})"), "opening_keys", "key"));
   EXPECT_TRUE(throws_command_error(run(R"({"cmd":"incision.animate","object":"ball","opening_keys":[[2,0],[2,1]]})"),
                                    "opening_keys", "two keys"));
+  EXPECT_TRUE(throws_command_error(
+      run(R"({"cmd":"incision.animate","object":"ball","opening_keys":[[1,0],[9,-1e300]]})"), "opening_keys", "100"));
   // An animated opening refuses a new cut until cleared.
   run_line<IncisionAnimateCommand>(s, json::parse(R"({"cmd":"incision.animate","object":"ball","opening_keys":[[1,0],[9,1]]})"));
   EXPECT_TRUE(throws_command_error(
