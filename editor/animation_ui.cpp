@@ -38,7 +38,7 @@ bool AnimationUi::handle_action(ui::MenuAction action, glm::ivec2 viewport) {
       if (auto line = ui::insert_key_request(object_, playback_, panel_))
         insert_key(*line);
       else
-        messages_.warning("Insert keyframe: select an object with a lattice (placed or ring) first");
+        messages_.warning("Insert keyframe: select an object with a lattice (placed, ring or split) first");
       break;
     case A::DeleteKeyframe:
       if (auto line = ui::delete_key_request(object_, playback_))

@@ -39,7 +39,7 @@ TimelineObject timeline_object(const core::Scene& scene, const std::string& name
   const core::SceneObject* so = name.empty() ? nullptr : scene.find(name);
   if (!so) return o;
   o.name = so->name;
-  o.keyable = so->ffd != nullptr;
+  o.keyable = so->ffd != nullptr || so->dffd != nullptr;  // anim.keyframe walks an FFD or a DFFD split
   for (const core::OffsetKey& k : so->offset_keys) o.key_frames.push_back(scene.timeline.frame_of_time(k.time_s));
   const double t = scene.timeline.time_of_frame(frame);
   o.offset = so->offset_keys.empty() ? so->param_offset : core::evaluate_offset_keys(so->offset_keys, t);

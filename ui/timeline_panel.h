@@ -39,7 +39,7 @@ bool advance_playback(Playback& p, const core::Timeline& timeline, double dt_s);
 // The selected object as the timeline sees it (filled by the editor from the scene).
 struct TimelineObject {
   std::string name;                // "" = nothing selected
-  bool keyable = false;            // has an FFD lattice (anim.keyframe needs one)
+  bool keyable = false;            // has an FFD lattice or a DFFD rig (anim.keyframe needs one)
   std::vector<double> key_frames;  // timeline frames of its offset keys (frame_of_time of each key), sorted
   glm::dvec3 offset{0.0};          // its keyed offset at the current frame (param_offset without keys), parameter units
   std::string source;              // file it was loaded from ("" for primitives): the default clip file

@@ -221,6 +221,20 @@ TEST_F(TimelineUi, InsertKeyWithoutALatticeIssuesNothing) {
   EXPECT_TRUE(logged("select an object with a lattice"));
 }
 
+TEST_F(TimelineUi, ADffdSplitObjectIsKeyedLikeAPlacedOne) {
+  ASSERT_TRUE(s.execute(nlohmann::json::parse(R"({"cmd":"scene.primitive","kind":"sphere","name":"ball"})")));
+  ASSERT_TRUE(s.execute(nlohmann::json::parse(R"({"cmd":"scene.primitive","kind":"cylinder","name":"tool",
+      "scale":[0.3,1.6,0.3],"translate":[0.013,0,0.017]})")));
+  ASSERT_TRUE(s.execute(nlohmann::json::parse(R"({"cmd":"dffd.split","object":"ball","obstacles":["tool"],
+      "controls":[16,12,12],"kernel_width":0.7})")));
+  const std::size_t applied = s.history().applied();
+  anim.begin_frame("ball", false);
+  EXPECT_TRUE(anim.timeline_object().keyable) << "the Timeline keys a split object's walk (anim.keyframe)";
+  anim.handle_action(ui::MenuAction::InsertKeyframe, {800, 600});
+  EXPECT_EQ(s.history().applied(), applied + 1);
+  EXPECT_EQ(s.scene().find("ball")->offset_keys.size(), 1u);
+}
+
 TEST_F(TimelineUi, RecordDialogDefaultsAndShortRecordingStepsOncePerUiFrame) {
   anim.begin_frame("t", false);
   ASSERT_TRUE(anim.handle_action(ui::MenuAction::RecordAnimation, {640, 360}));
