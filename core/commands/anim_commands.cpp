@@ -67,6 +67,24 @@ KeyInterpolation interpolation_of(const std::string& name) {
                             : KeyInterpolation::linear;
 }
 
+void check_weight_keys(const std::optional<std::vector<glm::dvec2>>& keys, bool clear, const char* field,
+                       const char* built) {
+  if (!clear && (!keys || keys->empty())) params::fail(field, "give at least one [frame, s] key (or \"clear\":true)");
+  if (keys)
+    for (const glm::dvec2& k : *keys)
+      if (!std::isfinite(k.x) || !std::isfinite(k.y) || std::abs(k.y) > kMaxKeyedWeight)
+        params::fail(field, std::string("keys must be finite with s within ±100 (s = 1 is the ") + built +
+                                " as built; beyond ±100 the extrapolated surface leaves any sensible range)");
+}
+
+std::vector<OffsetKey> weight_keys_from_frames(const std::vector<glm::dvec2>& keys, const Timeline& timeline,
+                                               KeyInterpolation interpolation, const char* field) {
+  std::vector<glm::dvec3> rows;
+  rows.reserve(keys.size());
+  for (const glm::dvec2& k : keys) rows.push_back({k.x, k.y, 0.0});
+  return keys_from_frames(rows, false, timeline, interpolation, field);
+}
+
 std::vector<OffsetKey> keys_from_frames(const std::vector<glm::dvec3>& rows, bool two, const Timeline& timeline,
                                         KeyInterpolation interpolation, const char* field) {
   std::vector<OffsetKey> keys;

@@ -18,15 +18,7 @@ const ParamSchema<DffdAnimateParams>& DffdAnimateCommand::schema() {
           .help("[timeline frame, s] keys: s = 0 the openings as the obstacles leave them, 1 stitched at w_s")
           .choice("interpolation", &P::interpolation, {"linear", "constant", "smooth"}).write_unless_default()
           .help("How this line's keys move to the next key")
-          .check([](const P& p) {
-            if (!p.clear && (!p.stitch_keys || p.stitch_keys->empty()))
-              params::fail("stitch_keys", "give at least one [frame, s] key (or \"clear\":true)");
-            if (p.stitch_keys)
-              for (const glm::dvec2& k : *p.stitch_keys)
-                if (!std::isfinite(k.x) || !std::isfinite(k.y) || std::abs(k.y) > kMaxKeyedWeight)
-                  params::fail("stitch_keys", "keys must be finite with s within ±100 (s = 1 is the stitched seam as built; "
-                                             "beyond ±100 the extrapolated surface leaves any sensible range)");
-          });
+          .check([](const P& p) { check_weight_keys(p.stitch_keys, p.clear, "stitch_keys", "stitched seam"); });
   return s;
 }
 
@@ -46,9 +38,7 @@ std::optional<SceneObject> DffdAnimateCommand::build(const Scene& scene) {
   rig->stitch_keys.clear();
   if (p_.stitch_keys) {
     const KeyInterpolation interpolation = interpolation_of(p_.interpolation);
-    std::vector<glm::dvec3> rows;
-    for (const glm::dvec2& k : *p_.stitch_keys) rows.push_back({k.x, k.y, 0.0});
-    rig->stitch_keys = keys_from_frames(rows, false, scene.timeline, interpolation, "stitch_keys");
+    rig->stitch_keys = weight_keys_from_frames(*p_.stitch_keys, scene.timeline, interpolation, "stitch_keys");
   }
   const double start = dffd_stitch_at(*rig, 0.0);
   dffd_set_stitch(*rig, start);  // the lattice shows scene time 0 (the built state after a clear)

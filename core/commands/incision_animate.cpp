@@ -18,15 +18,7 @@ const ParamSchema<IncisionAnimateParams>& IncisionAnimateCommand::schema() {
           .help("[timeline frame, s] keys: s = fraction of the drawn opening (0 closed, 1 as drawn)")
           .choice("interpolation", &P::interpolation, {"linear", "constant", "smooth"}).write_unless_default()
           .help("How this line's keys move to the next key")
-          .check([](const P& p) {
-            if (!p.clear && (!p.opening_keys || p.opening_keys->empty()))
-              params::fail("opening_keys", "give at least one [frame, s] key (or \"clear\":true)");
-            if (p.opening_keys)
-              for (const glm::dvec2& k : *p.opening_keys)
-                if (!std::isfinite(k.x) || !std::isfinite(k.y) || std::abs(k.y) > kMaxKeyedWeight)
-                  params::fail("opening_keys", "keys must be finite with s within ±100 (s = 1 is the opening as built; "
-                                             "beyond ±100 the extrapolated surface leaves any sensible range)");
-          });
+          .check([](const P& p) { check_weight_keys(p.opening_keys, p.clear, "opening_keys", "opening"); });
   return s;
 }
 
@@ -46,10 +38,7 @@ std::optional<SceneObject> IncisionAnimateCommand::build(const Scene& scene) {
   morph->weight_keys = {OffsetKey{0.0, glm::dvec3(1.0, 0.0, 0.0), KeyInterpolation::constant}};
   if (p_.opening_keys) {
     const KeyInterpolation interpolation = interpolation_of(p_.interpolation);
-    std::vector<glm::dvec3> rows;
-    for (const glm::dvec2& k : *p_.opening_keys) rows.push_back({k.x, k.y, 0.0});
-    std::vector<OffsetKey> keys = keys_from_frames(rows, false, scene.timeline, interpolation, "opening_keys");
-    morph->weight_keys = std::move(keys);
+    morph->weight_keys = weight_keys_from_frames(*p_.opening_keys, scene.timeline, interpolation, "opening_keys");
   }
   SceneObject out = object;
   out.morph = std::move(morph);
