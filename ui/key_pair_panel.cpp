@@ -23,22 +23,20 @@ KeyPairResult draw_key_pair_panel(KeyPairParams& p, const KeyPairSpec& spec, con
   KeyPairResult r;
   const std::string id = spec.id;
   ImGui::PushID(spec.id);
-  row_label("From frame");
-  drag_int("##frame_from", &p.frame_from, 0.5f, 0, 100000);
-  probe::item(id + ".frame_from");
-  tooltip("Timeline frame of the first key");
-  row_label(spec.value_label);
-  drag_scalar("##value_from", ImGuiDataType_Double, &p.value_from, 0.01f, nullptr, nullptr, "%.3f");
-  probe::item(id + ".value_from");
-  tooltip(spec.value_tooltip);
-  row_label("To frame");
-  drag_int("##frame_to", &p.frame_to, 0.5f, 0, 100000);
-  probe::item(id + ".frame_to");
-  tooltip("Timeline frame of the second key");
-  row_label(spec.value_label);
-  drag_scalar("##value_to", ImGuiDataType_Double, &p.value_to, 0.01f, nullptr, nullptr, "%.3f");
-  probe::item(id + ".value_to");
-  tooltip(spec.value_tooltip);
+  // One key: its frame and its value, each a named field ("<id>.frame_<which>", "<id>.value_<which>").
+  const auto key_rows = [&](const char* which, const char* frame_label, int* frame, double* value) {
+    const std::string f = std::string("frame_") + which, v = std::string("value_") + which;
+    row_label(frame_label);
+    drag_int(("##" + f).c_str(), frame, 0.5f, 0, 100000);
+    probe::item(id + "." + f);
+    tooltip(which == std::string("from") ? "Timeline frame of the first key" : "Timeline frame of the second key");
+    row_label(spec.value_label);
+    drag_scalar(("##" + v).c_str(), ImGuiDataType_Double, value, 0.01f, nullptr, nullptr, "%.3f");
+    probe::item(id + "." + v);
+    tooltip(spec.value_tooltip);
+  };
+  key_rows("from", "From frame", &p.frame_from, &p.value_from);
+  key_rows("to", "To frame", &p.frame_to, &p.value_to);
   row_label("Easing");
   if (ImGui::BeginCombo("##interp", p.interpolation.c_str())) {
     for (const char* name : {"linear", "constant", "smooth"})

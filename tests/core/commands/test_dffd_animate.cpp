@@ -93,8 +93,11 @@ TEST(DffdAnimate, ComposesWithTheWalk) {
     const TriMesh& walk = mesh_of(walk_at);
     ASSERT_EQ(keyed.triangles, walk.triangles) << t;  // the split follows the offset only
     const double weight = s.find("ball")->dffd->stitch_keys.empty() ? -1.0 : dffd_stitch_at(*s.find("ball")->dffd, t);
-    if (t == 0.0) EXPECT_EQ(keyed.positions, walk.positions);  // s = 0 at the first key
-    if (t > 0.0) EXPECT_GT(weight, 0.0);
+    if (t == 0.0) {
+      EXPECT_EQ(keyed.positions, walk.positions);  // s = 0 at the first key
+    } else {
+      EXPECT_GT(weight, 0.0);
+    }
   }
   // The same times twice give the same meshes, bit for bit (determinism).
   EXPECT_EQ(mesh_of(scene_at_time(s, 0.5)).positions, mesh_of(scene_at_time(s, 0.5)).positions);
