@@ -1,12 +1,11 @@
+// `trispline farm submit|batch|status|resume`: the plan written and submitted, what a farm folder holds now, and
+// what to run again. The plan is checked whenever it is read (farm_plan.h); a chunk counts as done only when its
+// files match what its task recorded (farm_verify.cpp).
 #include "editor/farm.h"
 
-#include <signal.h>
-
 #include <algorithm>
-#include <cerrno>
 #include <cstdio>
 #include <fstream>
-#include <iomanip>
 #include <iostream>
 #include <iterator>
 #include <map>
@@ -26,90 +25,34 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A word for bash: single-quoted, a single quote as '\''.
-std::string shell_quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
+constexpr std::streamsize kTaskLogWindow = 64 << 10;
+
+// The first and the last 64 KiB of a task log (the whole of a shorter one): where its "farm:" lines are.
+std::string task_log_ends(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (!in) return "";
+  const std::streamsize size = in.tellg();
+  auto read_at = [&](std::streamoff at, std::streamsize n) {
+    std::string s(static_cast<std::size_t>(n), '\0');
+    in.seekg(at);
+    in.read(s.data(), n);
+    s.resize(static_cast<std::size_t>(std::max<std::streamsize>(0, in.gcount())));
+    return s;
+  };
+  if (size <= 2 * kTaskLogWindow) return read_at(0, size);
+  return read_at(0, kTaskLogWindow) + "\n" + read_at(size - kTaskLogWindow, kTaskLogWindow);
 }
 
-void write_text_atomically(const fs::path& path, const std::string& text, bool executable) {
-  const fs::path tmp = path.string() + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out << text;
-    out.flush();
-    if (!out) throw std::runtime_error("cannot write " + tmp.string());
-  }
-  if (executable)
-    fs::permissions(tmp, fs::perms::owner_exec | fs::perms::group_exec | fs::perms::others_exec, fs::perm_options::add);
-  fs::rename(tmp, path);
-}
-
-// The #SBATCH lines both scripts share.
-std::string sbatch_header(const FarmPlan& plan, const std::string& name, const fs::path& log) {
-  std::string h = "#SBATCH --job-name=" + name + "\n#SBATCH --output=" + log.string() + "\n";
-  if (!plan.partition.empty()) h += "#SBATCH --partition=" + plan.partition + "\n";
-  if (!plan.time_limit.empty()) h += "#SBATCH --time=" + plan.time_limit + "\n";
-  return h;
-}
-
-std::string task_script(const FarmPlan& plan) {
-  const std::string exe = shell_quote(plan.trispline.string());
-  std::ostringstream s;
-  s << "#!/bin/bash\n"
-    << "# trispline farm: one array task (SLURM_ARRAY_TASK_ID) of " << plan.dir.string()
-    << "; written by `trispline farm " << (plan.kind == "batch" ? "batch" : "submit") << "`.\n"
-    << sbatch_header(plan, "trispline-farm", plan.dir / "logs" / "task_%4a.log") << "#SBATCH --cpus-per-task=1\n"
-    << "set -u\n"
-    << "task=${SLURM_ARRAY_TASK_ID:?run by sbatch --array or by trispline farm --engine local}\n"
-    << "# llvmpipe draws with the CPUs the task was given, not every CPU of the node\n"
-    << "export LP_NUM_THREADS=${LP_NUM_THREADS:-${SLURM_CPUS_PER_TASK:-1}}\n";
-  if (plan.kind == "batch") {
-    s << "logs=(";
-    for (const FarmTask& t : plan.tasks) s << "\n  " << shell_quote(t.log.string());
-    s << "\n)\nnames=(";
-    for (const FarmTask& t : plan.tasks) s << " " << shell_quote(t.name);
-    s << " )\n"
-      << "out=" << shell_quote((plan.dir / "runs").string()) << "/${names[$task]}\n"
-      << "echo \"farm: task $task log ${logs[$task]} start $(date +%s.%N) on $(hostname)\"\n"
-      << exe << " replay \"${logs[$task]}\" --out \"$out\"";
-  } else {
-    s << "first=$((" << plan.frame_first << " + task * " << plan.chunk << "))\n"
-      << "last=$((first + " << plan.chunk - 1 << "))\n"
-      << "if ((last > " << plan.frame_last << ")); then last=" << plan.frame_last << "; fi\n"
-      << "out=" << shell_quote((plan.dir / "chunks").string()) << "/$(printf %04d \"$task\")\n"
-      << "echo \"farm: task $task frames $first-$last start $(date +%s.%N) on $(hostname)\"\n"
-      << exe << " replay " << shell_quote(plan.log.string())
-      << " --frames \"$first-$last\" --out \"$out\" --no-render --format " << plan.format << " --piece-base "
-      << plan.frame_first;
-  }
-  if (plan.width > 0) s << " --width " << plan.width << " --height " << plan.height;
-  s << "\nstatus=$?\n"
-    << "echo \"farm: task $task exit $status end $(date +%s.%N)\"\n"
-    << "exit $status\n";
-  return s.str();
-}
-
-std::string assemble_script(const FarmPlan& plan) {
-  std::ostringstream s;
-  s << "#!/bin/bash\n"
-    << "# trispline farm: the assemble step of " << plan.dir.string() << ", after every task.\n"
-    << sbatch_header(plan, "trispline-farm-assemble", plan.dir / "logs" / "assemble.log")
-    << "#SBATCH --cpus-per-task=1\n"
-    << "exec " << shell_quote(plan.trispline.string()) << " farm assemble " << shell_quote(plan.dir.string()) << "\n";
-  return s.str();
-}
-
-// A task log's "farm: task K … start T" and "farm: task K exit S end T" lines.
+// Task `st.index`'s "farm: task K start T" and "farm: task K exit S end T" lines (other tasks' lines are ignored).
 void read_task_log(const fs::path& log, FarmTaskState& st) {
-  std::ifstream in(log);
+  std::istringstream in(task_log_ends(log));
+  const std::string prefix = "farm: task " + std::to_string(st.index) + " ";
   std::string line;
   while (std::getline(in, line)) {
-    if (line.rfind("farm: task ", 0) != 0) continue;
+    if (line.rfind(prefix, 0) != 0) continue;
     std::istringstream words(line);
     std::vector<std::string> w{std::istream_iterator<std::string>(words), std::istream_iterator<std::string>()};
-    for (std::size_t i = 0; i + 1 < w.size(); ++i) {
+    for (std::size_t i = 0; i + 1 < w.size() && i < 16; ++i) {
       try {
         if (w[i] == "start") st.start_s = std::stod(w[i + 1]);
         if (w[i] == "end") st.end_s = std::stod(w[i + 1]);
@@ -119,8 +62,6 @@ void read_task_log(const fs::path& log, FarmTaskState& st) {
     }
   }
 }
-
-bool process_alive(long pid) { return pid > 0 && (::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM); }
 
 // Replays the plan's log (no rendering) and checks the frame range against its timeline: "" when it fits.
 std::string check_range(const FarmPlan& plan, core::Scene& scene) {
@@ -133,13 +74,74 @@ std::string check_range(const FarmPlan& plan, core::Scene& scene) {
              : "--frames " + std::to_string(plan.frame_first) + "-" + std::to_string(plan.frame_last) + ": " + err;
 }
 
+// Slurm keeps a job's working folder on one line of squeue: a folder name with a control character cannot be one.
+std::string slurm_folder_error(const FarmPlan& plan) {
+  if (plan.engine != "slurm") return "";
+  for (const char c : plan.dir.string())
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F)
+      return "--out '" + plan.dir.string() + "' holds a control character: Slurm's job records (squeue) hold the "
+             "farm folder on one line; rename it, or use --engine local";
+  return "";
+}
+
+// Tasks a job of this folder still has queued or running: squeue, or a local pool holding the folder's lock.
+std::set<int> queued_tasks(const FarmPlan& plan) {
+  std::set<int> queued;
+  if (local_pool_running(plan.dir))
+    for (auto job = plan.jobs.rbegin(); job != plan.jobs.rend(); ++job)
+      if (job->engine == "local") {
+        queued.insert(job->tasks.begin(), job->tasks.end());
+        break;
+      }
+  for (const std::string& id : slurm_active_jobs(plan)) {
+    const std::size_t us = id.find('_');
+    if (us == std::string::npos || id.size() - us > 7) continue;  // the assemble job, or not a task number
+    const std::string digits = id.substr(us + 1);
+    if (!digits.empty() && digits.find_first_not_of("0123456789") == std::string::npos) queued.insert(std::stoi(digits));
+  }
+  return queued;
+}
+
+// Every frame in DIR and DIR/animation.glb are what the last assembly wrote (its report.json).
+bool assembly_matches(const FarmPlan& plan) {
+  const fs::path report_path = plan.dir / "report.json";
+  std::error_code ec;
+  if (!fs::is_regular_file(fs::symlink_status(report_path, ec)) || fs::file_size(report_path, ec) > (256u << 20))
+    return false;
+  nlohmann::json report;
+  try {
+    std::ifstream in(report_path, std::ios::binary);
+    report = nlohmann::json::parse(in);
+    const nlohmann::json& r = report.at("record");
+    const std::optional<FileSum> glb = file_sum(plan.dir / "animation.glb", 1ull << 40);
+    if (!glb || r.at("glb_bytes").get<std::uint64_t>() != glb->bytes ||
+        r.at("glb_crc32").get<std::uint64_t>() != glb->crc32 ||
+        r.at("log_crc32").get<std::uint64_t>() != plan.log_crc32)
+      return false;
+  } catch (const std::exception&) {
+    return false;
+  }
+  for (const FarmTask& t : plan.tasks)
+    for (int f = t.first; f <= t.last; ++f) {
+      const fs::path in_dir = plan.dir / frame_file_name(f, plan.format);
+      const fs::path in_chunk = plan.dir / "chunks" / farm_task_name(t.index) / frame_file_name(f, plan.format);
+      if (!fs::is_regular_file(fs::symlink_status(in_dir, ec))) return false;
+      if (fs::equivalent(in_dir, in_chunk, ec)) continue;
+      const std::optional<FileSum> a = file_sum(in_dir, 1ull << 40), b = file_sum(in_chunk, 1ull << 40);
+      if (!a || !b || !(*a == *b)) return false;
+    }
+  return true;
+}
+
 // Runs `tasks` with the plan's engine, records the job in farm.json and prints what happened.
 int run_engine(FarmPlan& plan, const std::vector<int>& tasks, std::ostream& out) {
   std::string list;
   for (int t : tasks) list += (list.empty() ? "" : ",") + std::to_string(t);
   if (plan.engine == "slurm") {
+    const std::vector<std::string> active = slurm_active_jobs(plan);
     for (const FarmJob& old : plan.jobs)  // an assembly still waiting on a failed array would never start
-      if (old.engine == "slurm" && !old.assemble_id.empty()) cancel_slurm_job(old.assemble_id);
+      if (old.engine == "slurm" && std::count(active.begin(), active.end(), old.assemble_id))
+        cancel_slurm_job(old.assemble_id);
     FarmJob job = submit_slurm(plan, tasks);
     plan.jobs.push_back(job);
     write_plan(plan);
@@ -153,137 +155,22 @@ int run_engine(FarmPlan& plan, const std::vector<int>& tasks, std::ostream& out)
       << " at once\n";
   bool started = false;
   const int rc = run_local(plan, tasks, out, [&](const FarmJob& job) {
-    plan.jobs.push_back(job);
+    if (started)
+      plan.jobs.back() = job;
+    else
+      plan.jobs.push_back(job);
     write_plan(plan);
     started = true;
   });
   if (started) {
     plan.jobs.back().pool_pid = 0;  // the pool has finished
+    plan.jobs.back().task_pids.clear();
     write_plan(plan);
   }
   return rc;
 }
 
 }  // namespace
-
-std::string farm_task_name(int index) {
-  char buf[16];
-  std::snprintf(buf, sizeof buf, "%04d", index);
-  return buf;
-}
-
-namespace {
-
-// Every field of farm.json once, for writing and reading: visit(name, member) per field, tasks and jobs included.
-template <class Plan, class Visit>
-void visit_plan_fields(Plan& p, Visit&& visit) {
-  visit("kind", p.kind);
-  visit("dir", p.dir);
-  visit("trispline", p.trispline);
-  visit("log", p.log);
-  visit("frame_first", p.frame_first);
-  visit("frame_last", p.frame_last);
-  visit("chunk", p.chunk);
-  visit("format", p.format);
-  visit("width", p.width);
-  visit("height", p.height);
-  visit("fps", p.fps);
-  visit("frame_width", p.frame_width);
-  visit("frame_height", p.frame_height);
-  visit("engine", p.engine);
-  visit("max_parallel", p.max_parallel);
-  visit("partition", p.partition);
-  visit("time", p.time_limit);
-  visit("tasks", p.tasks);
-  visit("jobs", p.jobs);
-}
-
-}  // namespace
-
-// farm.json's "tasks" and "jobs" entries (found by the plan's conversions through ADL).
-NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(FarmTask, index, first, last, log, name)
-NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(FarmJob, engine, array_id, assemble_id, pool_pid, tasks)
-
-nlohmann::json FarmPlan::to_json() const {
-  nlohmann::json j = nlohmann::json::object();
-  visit_plan_fields(*this, [&](const char* name, const auto& value) { j[name] = value; });
-  return j;
-}
-
-FarmPlan FarmPlan::from_json(const nlohmann::json& j) {
-  FarmPlan p;
-  std::string field;
-  try {
-    visit_plan_fields(p, [&](const char* name, auto& value) {
-      field = name;
-      j.at(name).get_to(value);
-    });
-  } catch (const nlohmann::json::exception& e) {
-    throw std::runtime_error("farm.json: field '" + field + "': " + e.what());
-  }
-  return p;
-}
-
-std::vector<FarmTask> plan_frames(int first, int last, int chunk) {
-  if (chunk <= 0) throw std::invalid_argument("--chunk must be at least 1 frame, got " + std::to_string(chunk));
-  if (first < 0 || first > last)
-    throw std::invalid_argument("frame range " + std::to_string(first) + "-" + std::to_string(last) +
-                                " is empty or negative");
-  std::vector<FarmTask> tasks;
-  for (long a = first; a <= last; a += chunk) {
-    FarmTask t;
-    t.index = static_cast<int>(tasks.size());
-    t.first = static_cast<int>(a);
-    t.last = static_cast<int>(std::min<long>(last, a + chunk - 1));
-    tasks.push_back(t);
-  }
-  return tasks;
-}
-
-std::vector<FarmTask> plan_batch(const fs::path& folder) {
-  std::error_code ec;
-  if (!fs::is_directory(folder, ec)) throw std::invalid_argument("no folder '" + folder.string() + "'");
-  std::vector<fs::path> logs;
-  for (const auto& e : fs::directory_iterator(folder))
-    if (e.is_regular_file() && e.path().extension() == ".jsonl") logs.push_back(fs::absolute(e.path()));
-  if (logs.empty()) throw std::invalid_argument("'" + folder.string() + "' holds no command log (*.jsonl)");
-  std::sort(logs.begin(), logs.end());
-  std::vector<FarmTask> tasks;
-  std::set<std::string> names;
-  for (const fs::path& log : logs) {
-    FarmTask t;
-    t.index = static_cast<int>(tasks.size());
-    t.log = log;
-    t.name = log.stem().string();
-    for (int k = 2; names.count(t.name); ++k) t.name = log.stem().string() + "_" + std::to_string(k);
-    names.insert(t.name);
-    tasks.push_back(t);
-  }
-  return tasks;
-}
-
-FarmPlan read_plan(const fs::path& dir) {
-  const fs::path path = dir / "farm.json";
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error("no farm in '" + dir.string() + "' (" + path.string() + " is missing)");
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception& e) {
-    throw std::runtime_error(path.string() + ": " + e.what());
-  }
-  return FarmPlan::from_json(j);
-}
-
-void write_plan(const FarmPlan& plan) {
-  write_text_atomically(plan.dir / "farm.json", plan.to_json().dump(2) + "\n", false);
-}
-
-void write_job_scripts(const FarmPlan& plan) {
-  fs::create_directories(plan.dir / "logs");
-  write_text_atomically(plan.dir / "farm_task.sh", task_script(plan), true);
-  write_text_atomically(plan.dir / "farm_assemble.sh", assemble_script(plan), true);
-}
 
 nlohmann::json FarmStatus::to_json() const {
   nlohmann::json tasks_j = nlohmann::json::array();
@@ -297,45 +184,33 @@ nlohmann::json FarmStatus::to_json() const {
                        {"exit", t.exit_status},
                        {"start_s", t.start_s},
                        {"end_s", t.end_s},
-                       {"missing_frames", t.missing_frames}});
+                       {"missing_frames", t.missing_frames},
+                       {"problem", t.problem}});
   }
   nlohmann::json j = {{"tasks", tasks_j}, {"missing_frames", missing}, {"assembled", assembled}};
+  j["log_changed"] = log_changed.empty() ? nlohmann::json(nullptr) : nlohmann::json(log_changed);
   for (const auto& [name, n] : counts) j[name] = n;
   return j;
 }
 
 FarmStatus farm_status(const fs::path& dir) {
   const FarmPlan plan = read_plan(dir);
-  std::set<int> queued;  // tasks a Slurm job or the local pool still runs
-  for (const FarmJob& job : plan.jobs) {
-    if (job.engine == "local" && process_alive(job.pool_pid)) queued.insert(job.tasks.begin(), job.tasks.end());
-    if (job.engine != "slurm") continue;
-    for (const std::string& id : slurm_active_tasks(job)) {
-      const std::size_t us = id.find('_');
-      if (us == std::string::npos) continue;
-      try {
-        queued.insert(std::stoi(id.substr(us + 1)));
-      } catch (const std::exception&) {
-      }
-    }
-  }
+  const std::set<int> queued = queued_tasks(plan);
   FarmStatus status;
+  if (plan.kind == "frames") status.log_changed = log_change(plan.log, plan.log_crc32, plan.log_bytes);
   std::error_code ec;
-  bool all_frames_in_dir = true;
   for (const FarmTask& t : plan.tasks) {
     FarmTaskState st;
     st.index = t.index;
-    read_task_log(dir / "logs" / ("task_" + farm_task_name(t.index) + ".log"), st);
+    read_task_log(plan.dir / "logs" / ("task_" + farm_task_name(t.index) + ".log"), st);
     bool output = true;
     if (plan.kind == "batch") {
-      output = fs::is_regular_file(dir / "runs" / t.name / "report.json", ec);
+      output = fs::is_regular_file(plan.dir / "runs" / t.name / "report.json", ec);
     } else {
-      const fs::path chunk = dir / "chunks" / farm_task_name(t.index);
-      for (int f = t.first; f <= t.last; ++f) {
-        if (!fs::is_regular_file(chunk / frame_file_name(f, plan.format), ec)) st.missing_frames.push_back(f);
-        all_frames_in_dir = all_frames_in_dir && fs::is_regular_file(dir / frame_file_name(f, plan.format), ec);
-      }
-      output = st.missing_frames.empty() && fs::is_regular_file(chunk / "animation.piece", ec);
+      const ChunkCheck c = check_chunk(plan, t, false);
+      output = c.done;
+      st.missing_frames = c.bad_frames;
+      st.problem = c.problem;
     }
     const bool ended = st.end_s > 0;
     if (queued.count(t.index))
@@ -345,16 +220,15 @@ FarmStatus farm_status(const fs::path& dir) {
     else if (output)
       st.state = "done";
     else if (st.start_s > 0 && !ended)
-      st.state = "failed";  // started, never ended and no longer queued: killed (time limit, node lost)
+      st.state = "failed";  // started, never ended and no longer queued: killed (time limit, node lost, pool killed)
     else
       st.state = "missing";
     status.tasks.push_back(st);
   }
   const bool all_done =
       std::all_of(status.tasks.begin(), status.tasks.end(), [](const FarmTaskState& t) { return t.state == "done"; });
-  status.assembled = plan.kind == "batch"
-                         ? fs::is_regular_file(dir / "summary.json", ec)
-                         : all_done && all_frames_in_dir && fs::is_regular_file(dir / "animation.glb", ec);
+  status.assembled = plan.kind == "batch" ? fs::is_regular_file(plan.dir / "summary.json", ec)
+                                          : all_done && status.log_changed.empty() && assembly_matches(plan);
   return status;
 }
 
@@ -374,11 +248,17 @@ void print_farm_status(const FarmPlan& plan, const FarmStatus& status, std::ostr
     out << ", frames " << plan.frame_first << "-" << plan.frame_last << " in chunks of " << plan.chunk << "\n";
   for (const FarmJob& job : plan.jobs)
     if (job.engine == "slurm") out << "  job " << job.array_id << " (assemble " << job.assemble_id << ")\n";
+  if (!status.log_changed.empty()) out << "  " << status.log_changed << "\n";
   out << "  done " << j["done"] << ", running " << j["running"] << ", pending " << j["pending"] << ", failed "
       << j["failed"] << ", missing " << j["missing"] << "; frames missing " << j["missing_frames"].size()
       << "; assembled " << (status.assembled ? "yes" : "no") << "\n";
+  int shown = 0;
   for (const FarmTaskState& t : status.tasks) {
     if (t.state == "done") continue;
+    if (++shown > 50) {
+      out << "  …\n";
+      break;
+    }
     out << "  task " << t.index << ": " << t.state;
     if (t.exit_status >= 0) out << " (exit " << t.exit_status << ")";
     if (!t.missing_frames.empty()) {
@@ -386,36 +266,42 @@ void print_farm_status(const FarmPlan& plan, const FarmStatus& status, std::ostr
       for (std::size_t k = 0; k < t.missing_frames.size() && k < 10; ++k) out << " " << t.missing_frames[k];
       if (t.missing_frames.size() > 10) out << " …";
     }
+    if (!t.problem.empty() && t.state != "missing") out << " (" << t.problem << ")";
     out << "\n";
   }
 }
 
 int farm_submit(FarmPlan plan, std::ostream& out, std::ostream& err) {
   bool planned = false;  // farm.json written
+  const std::string what = plan.kind == "batch" ? "farm batch: " : "farm submit: ";
   try {
     plan.dir = fs::absolute(plan.dir).lexically_normal();
+    if (plan.dir.filename().empty()) plan.dir = plan.dir.parent_path();
+    if (const std::string bad = slurm_folder_error(plan); !bad.empty()) throw std::invalid_argument(bad);
     if (plan.kind == "frames") {
       plan.log = fs::absolute(plan.log).lexically_normal();
+      const std::optional<FileSum> sum = file_sum(plan.log, kFarmMaxLogBytes, true);
+      if (!sum) throw std::invalid_argument("cannot read the log '" + plan.log.string() + "' (or it is over 1 GiB)");
+      plan.log_crc32 = sum->crc32;
+      plan.log_bytes = sum->bytes;
       plan.tasks = plan_frames(plan.frame_first, plan.frame_last, plan.chunk);
       core::Scene scene;
       const std::string bad = check_range(plan, scene);
-      if (!bad.empty()) {
-        err << "farm submit: " << bad << " (nothing submitted)\n";
-        return 2;
-      }
+      if (!bad.empty()) throw std::invalid_argument(bad);
       plan.fps = scene.timeline.fps;
       const core::Camera camera = render_camera(scene, plan.width, plan.height);
       plan.frame_width = camera.viewport.x;
       plan.frame_height = camera.viewport.y;
     }
+    check_farm_plan(plan);
     std::error_code ec;
-    if (fs::is_regular_file(plan.dir / "farm.json", ec)) {
-      err << "farm submit: " << plan.dir.string()
+    if (fs::exists(fs::symlink_status(plan.dir / "farm.json", ec))) {
+      err << what << plan.dir.string()
           << " already holds a farm: `trispline farm resume` it, or choose another --out (nothing submitted)\n";
       return 2;
     }
     if (plan.engine == "slurm" && find_on_path("sbatch").empty()) {
-      err << "farm submit: sbatch not found on PATH: install Slurm's client commands (Debian: slurm-client, part of "
+      err << what << "sbatch not found on PATH: install Slurm's client commands (Debian: slurm-client, part of "
              "slurm-wlm) or use --engine local (nothing submitted)\n";
       return 2;
     }
@@ -427,12 +313,15 @@ int farm_submit(FarmPlan plan, std::ostream& out, std::ostream& err) {
     for (const FarmTask& t : plan.tasks) all.push_back(t.index);
     return run_engine(plan, all, out);
   } catch (const std::invalid_argument& e) {
-    err << "farm submit: " << e.what() << " (nothing submitted)\n";
+    err << what << e.what() << " (nothing submitted)\n";
+    return 2;
+  } catch (const FarmPlanError& e) {
+    err << what << e.what() << " (nothing submitted)\n";
     return 2;
   } catch (const std::exception& e) {
-    err << "farm submit: " << e.what() << "\n";
+    err << what << e.what() << "\n";
     if (planned)
-      err << "farm submit: the plan and job scripts stay in " << plan.dir.string() << ": `trispline farm resume "
+      err << what << "the plan and job scripts stay in " << plan.dir.string() << ": `trispline farm resume "
           << plan.dir.string() << "` submits them\n";
     return 3;
   }
@@ -440,9 +329,31 @@ int farm_submit(FarmPlan plan, std::ostream& out, std::ostream& err) {
 
 int farm_resume(const fs::path& dir_in, std::ostream& out, std::ostream& err) {
   try {
-    const fs::path dir = fs::absolute(dir_in).lexically_normal();
-    FarmPlan plan = read_plan(dir);
-    const FarmStatus status = farm_status(dir);
+    FarmPlan plan = read_plan(dir_in);
+    if (plan.kind == "frames")
+      if (const std::string changed = log_change(plan.log, plan.log_crc32, plan.log_bytes); !changed.empty()) {
+        err << "farm resume: " << changed << " (nothing resubmitted)\n";
+        return 2;
+      }
+    if (const std::string bad = slurm_folder_error(plan); !bad.empty()) {
+      err << "farm resume: " << bad << "\n";
+      return 2;
+    }
+    if (local_pool_running(plan.dir)) {
+      err << "farm resume: a local pool still runs in " << plan.dir.string() << ": wait for it or stop it first\n";
+      return 2;
+    }
+    if (const int stopped = stop_stale_local_tasks(plan); stopped > 0)
+      out << "farm resume: stopped " << stopped << " processes a killed local pool left running\n";
+    bool stale = false;
+    for (FarmJob& job : plan.jobs)
+      if (job.engine == "local" && (job.pool_pid != 0 || !job.task_pids.empty())) {
+        job.pool_pid = 0;
+        job.task_pids.clear();
+        stale = true;
+      }
+    if (stale) write_plan(plan);
+    const FarmStatus status = farm_status(plan.dir);
     for (const FarmTaskState& t : status.tasks)
       if (t.state == "running" || t.state == "pending") {
         err << "farm resume: task " << t.index << " is still " << t.state
@@ -457,13 +368,20 @@ int farm_resume(const fs::path& dir_in, std::ostream& out, std::ostream& err) {
         return 0;
       }
       out << "; assembling\n";
-      return farm_assemble(dir, out, err) == 0 ? 0 : 1;
+      return farm_assemble(plan.dir, out, err) == 0 ? 0 : 1;
     }
     if (plan.engine == "slurm" && find_on_path("sbatch").empty()) {
       err << "farm resume: sbatch not found on PATH: install Slurm's client commands (Debian: slurm-client, part of "
              "slurm-wlm)\n";
       return 2;
     }
+    // The scripts are written again, by this build for this build: the folder's own copies are not trusted (a
+    // shared farm may hold edited ones), and the executable may have moved since submission.
+    std::error_code ec;
+    if (const fs::path self = fs::read_symlink("/proc/self/exe", ec); !ec && self.is_absolute()) plan.trispline = self;
+    check_farm_plan(plan);
+    write_job_scripts(plan);
+    write_plan(plan);
     return run_engine(plan, tasks, out);
   } catch (const std::exception& e) {
     err << "farm resume: " << e.what() << "\n";

@@ -1,6 +1,7 @@
-// `trispline farm assemble DIR`: after every task of a farm. Frames: the chunks' frames linked into DIR, their
-// animation.piece files joined into DIR/animation.glb (the bytes one `replay --frames A-B` writes), the MP4, and
-// DIR/report.json. Batch: every run's report.json collected into DIR/summary.json.
+// `trispline farm assemble DIR`: after every task of a farm. Frames: the log and every chunk checked (its record,
+// every frame decoded), the chunks' frames linked into DIR, their animation.piece files joined into DIR/animation.glb
+// (the bytes one `replay --frames A-B` writes), the MP4, and DIR/report.json. Batch: every run's report.json
+// collected into DIR/summary.json.
 #include <chrono>
 #include <cstdio>
 #include <fstream>
@@ -19,6 +20,8 @@ namespace fs = std::filesystem;
 namespace {
 
 nlohmann::json read_json_or_null(const fs::path& path) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec) || fs::file_size(path, ec) > (64u << 20)) return nullptr;
   std::ifstream in(path);
   if (!in) return nullptr;
   try {
@@ -29,14 +32,7 @@ nlohmann::json read_json_or_null(const fs::path& path) {
 }
 
 void write_json(const fs::path& path, const nlohmann::json& j) {
-  const fs::path tmp = path.string() + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
-    out.flush();
-    if (!out) throw std::runtime_error("cannot write " + tmp.string());
-  }
-  fs::rename(tmp, path);
+  write_file_atomically(path, j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
 }
 
 // dst becomes the same file as src: a hard link (a copy where the filesystem has none), made under a temporary name
@@ -85,17 +81,32 @@ void pose_animation_glb(const FarmPlan& plan) {
                                      .mp4 = false});
 }
 
+// Every chunk checked against its record, every frame decoded: "" when all hold, else the first problem.
+std::string check_chunks(const FarmPlan& plan, int& bad_frames) {
+  std::string first;
+  bad_frames = 0;
+  for (const FarmTask& t : plan.tasks) {
+    const ChunkCheck c = check_chunk(plan, t, true);
+    if (c.done) continue;
+    bad_frames += static_cast<int>(c.bad_frames.size());
+    if (first.empty()) first = "chunk " + farm_task_name(t.index) + ": " + c.problem;
+  }
+  return first;
+}
+
 int assemble_frames(const FarmPlan& plan, std::ostream& out, std::ostream& err) {
   const auto t0 = std::chrono::steady_clock::now();
   std::error_code ec;
-  std::vector<int> missing;
-  for (const FarmTask& t : plan.tasks)
-    for (int f = t.first; f <= t.last; ++f)
-      if (!fs::is_regular_file(plan.dir / "chunks" / farm_task_name(t.index) / frame_file_name(f, plan.format), ec))
-        missing.push_back(f);
-  if (!missing.empty()) {
-    err << "farm assemble: " << missing.size() << " frames missing (first: " << missing.front()
-        << "); nothing assembled: trispline farm resume " << plan.dir.string() << "\n";
+  // A failed or refused assembly must not leave the outputs of an earlier one looking current.
+  for (const char* name : {"report.json", "animation.glb", "animation.mp4"}) fs::remove(plan.dir / name, ec);
+  if (const std::string changed = log_change(plan.log, plan.log_crc32, plan.log_bytes); !changed.empty()) {
+    err << "farm assemble: " << changed << "; nothing assembled\n";
+    return 2;
+  }
+  int bad_frames = 0;
+  if (const std::string bad = check_chunks(plan, bad_frames); !bad.empty()) {
+    err << "farm assemble: " << bad << " (" << bad_frames << " frames not verified); nothing assembled: "
+        << "trispline farm resume " << plan.dir.string() << "\n";
     return 2;
   }
   nlohmann::json chunks = nlohmann::json::array();
@@ -128,9 +139,16 @@ int assemble_frames(const FarmPlan& plan, std::ostream& out, std::ostream& err) 
     return 3;
   }
   const int frames = plan.frame_last - plan.frame_first + 1;
+  const std::optional<FileSum> glb = file_sum(plan.dir / "animation.glb", 1ull << 40);
+  if (!glb) {
+    err << "farm assemble: animation.glb was not written\n";
+    return 3;
+  }
   nlohmann::json record = {{"frames_written", frames},      {"frame_first", plan.frame_first},
                            {"frame_last", plan.frame_last}, {"glb", (plan.dir / "animation.glb").string()},
-                           {"glb_source", glb_source},      {"mp4", nullptr}};
+                           {"glb_bytes", glb->bytes},       {"glb_crc32", glb->crc32},
+                           {"log_crc32", plan.log_crc32},   {"glb_source", glb_source},
+                           {"mp4", nullptr}};
   if (plan.format == "png") {
     const std::string note =
         write_mp4(plan.dir, plan.frame_first, frames, plan.fps, plan.frame_width, plan.frame_height);
@@ -160,6 +178,8 @@ int assemble_batch(const FarmPlan& plan, std::ostream& out, std::ostream& err) {
   nlohmann::json runs = nlohmann::json::array();
   int ok = 0;
   nlohmann::json failed = nlohmann::json::array();
+  std::error_code ec;
+  fs::remove(plan.dir / "summary.json", ec);
   for (const FarmTask& t : plan.tasks) {
     const nlohmann::json report = read_json_or_null(plan.dir / "runs" / t.name / "report.json");
     const bool run_ok = report.is_object() && report.value("ok", false);
@@ -194,7 +214,12 @@ int farm_assemble(const fs::path& dir, std::ostream& out, std::ostream& err) {
     err << "farm assemble: " << e.what() << "\n";
     return 2;
   }
-  return plan.kind == "batch" ? assemble_batch(plan, out, err) : assemble_frames(plan, out, err);
+  try {
+    return plan.kind == "batch" ? assemble_batch(plan, out, err) : assemble_frames(plan, out, err);
+  } catch (const std::exception& e) {
+    err << "farm assemble: " << e.what() << "\n";
+    return 3;
+  }
 }
 
 }  // namespace trispline::editor

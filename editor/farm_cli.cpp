@@ -15,11 +15,13 @@ void add_engine_options(CLI::App* cmd, FarmCli& o) {
       ->check(CLI::IsMember({"slurm", "local"}));
   cmd->add_option("--max-parallel", o.plan.max_parallel,
                   "Tasks running at once (Slurm: --array=…%N; 0 = no limit, local: the number of CPUs)")
-      ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--partition", o.plan.partition, "Slurm partition (default: the cluster's default)");
+      ->check(CLI::Range(0, kFarmMaxParallel));
+  cmd->add_option("--partition", o.plan.partition, "Slurm partition (default: the cluster's default)")
+      ->check([](const std::string& p) { return check_sbatch_value("--partition", p); }, "NAME");
   cmd->add_option("--time", o.plan.time_limit, "Slurm time limit per task, HH:MM:SS")
       ->check(
           [](const std::string& t) -> std::string {
+            if (const std::string bad = check_sbatch_value("--time", t); !bad.empty()) return bad;
             const bool ok = t.size() >= 5 && t.find_first_not_of("0123456789:-") == std::string::npos;
             return ok ? "" : "--time needs HH:MM:SS (or Slurm's D-HH:MM:SS), got '" + t + "'";
           },
@@ -79,6 +81,13 @@ void add_farm_commands(CLI::App& app, FarmCli& o) {
   o.assemble = farm->add_subcommand(
       "assemble", "The assemble step (the job scripts run it): check the frames, join animation.glb, MP4, report");
   o.assemble->add_option("dir", o.dir, "Farm folder")->required()->check(CLI::ExistingDirectory);
+
+  o.task = farm->add_subcommand(
+      "task", "One array task (what farm_task.sh runs): check the plan and the log, replay task K, record its files");
+  o.task->add_option("dir", o.dir, "Farm folder")->required()->check(CLI::ExistingDirectory);
+  o.task->add_option("index", o.task_index, "Task number (SLURM_ARRAY_TASK_ID)")
+      ->required()
+      ->check(CLI::Range(0, kFarmMaxFrame));
 }
 
 int run_farm_command(FarmCli& o) {
@@ -116,6 +125,7 @@ int run_farm_command(FarmCli& o) {
   }
   if (*o.resume) return farm_resume(o.dir, std::cout, std::cerr);
   if (*o.assemble) return farm_assemble(o.dir, std::cout, std::cerr);
+  if (*o.task) return farm_task(o.dir, o.task_index, std::cout, std::cerr);
   return -1;
 }
 

@@ -1,4 +1,5 @@
-// `trispline farm submit|batch|status|resume|assemble` on the command line (CLI11); editor/farm.h does the work.
+// `trispline farm submit|batch|status|resume|assemble|task` on the command line (CLI11); editor/farm.h does the work.
+// A bad value of any farm subcommand exits 2 (editor/cli.cpp maps CLI11's parse errors for `farm`).
 #pragma once
 
 #include "editor/farm.h"
@@ -16,7 +17,9 @@ struct FarmCli {
   std::filesystem::path batch_folder;  // farm batch FOLDER
   std::filesystem::path dir;           // status / resume / assemble DIR
   bool json = false;                   // status --json
-  CLI::App *submit = nullptr, *batch = nullptr, *status = nullptr, *resume = nullptr, *assemble = nullptr;
+  int task_index = 0;                  // task DIR K
+  CLI::App *submit = nullptr, *batch = nullptr, *status = nullptr, *resume = nullptr, *assemble = nullptr,
+           *task = nullptr;
 };
 
 // Adds `farm` and its subcommands to `app`.

@@ -1,5 +1,8 @@
 // The Slurm engine of `trispline farm`: sbatch of the array job and of the assembly depending on it, squeue and
-// scancel. Only Slurm's client commands are needed on the submitting machine (Debian: slurm-client).
+// scancel. Only Slurm's client commands are needed on the submitting machine (Debian: slurm-client). Jobs run in the
+// farm folder (--chdir, given at each submission: the scripts hold no path of it), and a job counts as this
+// folder's only when squeue shows that folder as its working folder.
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -9,6 +12,13 @@
 
 namespace trispline::editor {
 namespace {
+
+// The farm folder as Slurm records it: absolute, symlinks resolved (as squeue's %Z prints it).
+std::string farm_workdir(const std::filesystem::path& dir) {
+  std::error_code ec;
+  const std::filesystem::path c = std::filesystem::canonical(dir, ec);
+  return (ec ? dir : c).string();
+}
 
 std::string trimmed(std::string s) {
   while (!s.empty() && (s.back() == '\n' || s.back() == '\r' || s.back() == ' ')) s.pop_back();
@@ -37,24 +47,37 @@ FarmJob submit_slurm(const FarmPlan& plan, const std::vector<int>& tasks) {
   FarmJob job;
   job.engine = "slurm";
   job.tasks = tasks;
-  job.array_id = sbatch({"--array=" + list, (plan.dir / "farm_task.sh").string()}, "array job");
+  const std::string chdir = "--chdir=" + farm_workdir(plan.dir);
+  job.array_id = sbatch({chdir, "--array=" + list, (plan.dir / "farm_task.sh").string()}, "array job");
   const std::string dependency = plan.kind == "batch" ? "afterany" : "afterok";
-  job.assemble_id = sbatch(
-      {"--dependency=" + dependency + ":" + job.array_id, (plan.dir / "farm_assemble.sh").string()}, "assemble job");
+  job.assemble_id = sbatch({chdir, "--dependency=" + dependency + ":" + job.array_id,
+                            (plan.dir / "farm_assemble.sh").string()},
+                           "assemble job");
   return job;
 }
 
-std::vector<std::string> slurm_active_tasks(const FarmJob& job) {
-  if (job.array_id.empty() || find_on_path("squeue").empty()) return {};
-  // --array lists every task of the array on its own line ("123_4"), pending ones included.
-  const ProcessOutput c =
-      run_process_output({"squeue", "--noheader", "--array", "--jobs=" + job.array_id, "--format=%i"});
+std::vector<std::string> slurm_active_jobs(const FarmPlan& plan) {
+  std::set<std::string> ours;  // this plan's job ids
+  for (const FarmJob& job : plan.jobs)
+    if (job.engine == "slurm")
+      for (const std::string& id : {job.array_id, job.assemble_id})
+        if (!id.empty()) ours.insert(id);
+  if (ours.empty() || find_on_path("squeue").empty()) return {};
+  // One call for every job: --array lists each task of an array on its own line ("123_4"), pending ones included;
+  // %Z is the job's working folder.
+  const ProcessOutput c = run_process_output({"squeue", "--noheader", "--me", "--array", "--format=%i %Z"});
   std::vector<std::string> ids;
-  if (c.status != 0) return ids;  // the job has left the queue (squeue: "Invalid job id specified")
+  if (c.status != 0) return ids;
+  const std::string dir = farm_workdir(plan.dir);
   std::istringstream lines(c.text);
   std::string line;
-  while (std::getline(lines, line))
-    if (!trimmed(line).empty()) ids.push_back(trimmed(line));
+  while (std::getline(lines, line)) {
+    line = trimmed(line);
+    const std::size_t space = line.find(' ');
+    if (space == std::string::npos || line.substr(space + 1) != dir) continue;
+    const std::string id = line.substr(0, space);
+    if (ours.count(id.substr(0, id.find('_')))) ids.push_back(id);
+  }
   return ids;
 }
 
