@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <limits>
 #include <new>
@@ -56,16 +57,79 @@ std::uint64_t checked_voxel_count(const std::filesystem::path& path, const std::
   return n * static_cast<std::uint64_t>(dims[2]);
 }
 
-void check_budget(const std::filesystem::path& path, std::uint64_t voxels, std::uint64_t buffer_bytes,
-                  const VolumeLoadOptions& options) {
+namespace {
+
+// a + b and a · b, saturating at the largest uint64 (budget arithmetic on header values).
+std::uint64_t sat_add(std::uint64_t a, std::uint64_t b) {
+  return a > std::numeric_limits<std::uint64_t>::max() - b ? std::numeric_limits<std::uint64_t>::max() : a + b;
+}
+std::uint64_t sat_mul(std::uint64_t a, std::uint64_t b) {
+  return b != 0 && a > std::numeric_limits<std::uint64_t>::max() / b ? std::numeric_limits<std::uint64_t>::max()
+                                                                       : a * b;
+}
+
+std::string shape_text(const std::array<std::int64_t, 3>& dims) {
+  return std::to_string(dims[0]) + "×" + std::to_string(dims[1]) + "×" + std::to_string(dims[2]);
+}
+
+}  // namespace
+
+std::uint64_t budget_left(std::uint64_t voxels, const VolumeLoadOptions& options) {
+  const std::uint64_t held = sat_mul(voxels, sat_add(4, options.extra_bytes_per_voxel));
+  return held >= options.memory_budget_bytes ? 0 : options.memory_budget_bytes - held;
+}
+
+void check_budget(const std::filesystem::path& path, const std::array<std::int64_t, 3>& dims, std::uint64_t voxels,
+                  std::uint64_t buffer_bytes, const VolumeLoadOptions& options) {
   const std::uint64_t limit = options.memory_budget_bytes;
-  if (voxels > limit / 4 || buffer_bytes > limit - voxels * 4) {
-    const std::uint64_t float_bytes =
-        voxels > std::numeric_limits<std::uint64_t>::max() / 4 ? std::numeric_limits<std::uint64_t>::max() : voxels * 4;
-    fail(path, std::to_string(voxels) + " samples need " + format_bytes(float_bytes) + " as float plus " +
-                   format_bytes(buffer_bytes) + " of file buffers: over the memory budget of " + format_bytes(limit));
+  const std::uint64_t float_bytes = sat_mul(voxels, 4);
+  const std::uint64_t extra_bytes = sat_mul(voxels, options.extra_bytes_per_voxel);
+  const std::uint64_t total = sat_add(sat_add(float_bytes, extra_bytes), buffer_bytes);
+  if (total > limit) {
+    std::string parts = format_bytes(float_bytes) + " as float";
+    if (options.extra_bytes_per_voxel > 0)
+      parts += " + " + format_bytes(extra_bytes) + " (" + std::to_string(options.extra_bytes_per_voxel) +
+               " bytes a voxel) for what follows the load";
+    parts += " + " + format_bytes(buffer_bytes) + " of file buffers";
+    fail(path, "the volume is " + shape_text(dims) + " samples (" + std::to_string(voxels) + "): it needs " + parts +
+                   " = " + format_bytes(total) + " (" + std::to_string(total) + " bytes), over the memory budget of " +
+                   format_bytes(limit) + " (" + std::to_string(limit) + " bytes)");
   }
   if (voxels > std::vector<float>().max_size()) fail(path, std::to_string(voxels) + " samples: too many to hold");
+}
+
+void check_index_to_world(const std::filesystem::path& path, const std::array<int, 3>& dims,
+                          const glm::dmat4& index_to_world, const std::string& field) {
+  const glm::dmat4& m = index_to_world;
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 3; ++r)
+      if (!std::isfinite(m[c][r]))
+        fail(path, field + ": the voxel-to-world matrix holds " + format_number(m[c][r]) +
+                       " (column " + std::to_string(c) + ", row " + std::to_string(r) + " in millimetres): not finite");
+  const glm::dmat3 a(m);
+  // Singular relative to the axes' own lengths (a volume of 1 × 1000 × 1 mm voxels is not near singular).
+  const double volume = glm::length(a[0]) * glm::length(a[1]) * glm::length(a[2]);
+  const double det = glm::determinant(a);
+  if (!std::isfinite(det) || !(volume > 0.0) || !(std::abs(det) > 1e-12 * volume))
+    fail(path, field + ": the voxel-to-world matrix is singular (determinant " + format_number(det) +
+                   "; a zero or repeated voxel axis)");
+  for (int c = 0; c < 3; ++c) {
+    const double spacing = glm::length(a[c]);
+    if (!(spacing >= kMinVoxelSpacingMillimetres && spacing <= kMaxVoxelSpacingMillimetres))
+      fail(path, field + ": the voxel axis " + "ijk"[c] + " is " + format_number(spacing) +
+                     " mm long, outside the " + format_number(kMinVoxelSpacingMillimetres) + " to " +
+                     format_number(kMaxVoxelSpacingMillimetres) + " mm a voxel may span");
+  }
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::dvec3 ijk((corner & 1) ? dims[0] - 1 : 0, (corner & 2) ? dims[1] - 1 : 0, (corner & 4) ? dims[2] - 1 : 0);
+    const glm::dvec3 w(m * glm::dvec4(ijk, 1.0));
+    for (int r = 0; r < 3; ++r)
+      if (!(std::abs(w[r]) <= kMaxVolumeWorldMillimetres))
+        fail(path, field + ": voxel (" + format_number(ijk.x) + ", " + format_number(ijk.y) + ", " +
+                       format_number(ijk.z) + ") lies at " + format_number(w.x) + ", " + format_number(w.y) + ", " +
+                       format_number(w.z) + " mm, beyond ±" + format_number(kMaxVolumeWorldMillimetres) +
+                       " mm (1000 km) from the origin");
+  }
 }
 
 }  // namespace volume_io

@@ -1,7 +1,8 @@
 // Private to load_volume (core/volume/volume_io.cpp): one reader per format and the checks they share.
 //
 //   load_nifti  volume_io_nifti.cpp   .nii / .nii.gz through niftilib
-//   load_dicom  volume_io_dicom.cpp   a DICOM series (folder or one .dcm file) through GDCM
+//   load_dicom  volume_io_dicom.cpp   a DICOM series (folder or one .dcm file) through GDCM, each file walked
+//                                     first by walk_dicom_file (volume_io_dicom_walk.h)
 //   load_inv3   volume_io_inv3.cpp    an InVesalius .inv3 project through libarchive + tinyxml2
 //
 // Each returns a volume with dims, values, index_to_world, units and modality set, or throws VolumeLoadError via
@@ -13,6 +14,9 @@
 #include <filesystem>
 #include <limits>
 #include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
 
 #include "core/volume/scalar_volume.h"
 #include "core/volume/volume_io.h"
@@ -46,12 +50,28 @@ std::string format_bytes(std::uint64_t bytes);
 // nx·ny·nz after checking each is ≥ 2 (fail: "<what> is a×b×c: at least 2 samples per axis are needed").
 std::uint64_t checked_voxel_count(const std::filesystem::path& path, const std::array<std::int64_t, 3>& dims);
 
-// Fails unless voxels·4 (the float samples) + buffer_bytes fits options.memory_budget_bytes; names both.
-void check_budget(const std::filesystem::path& path, std::uint64_t voxels, std::uint64_t buffer_bytes,
-                  const VolumeLoadOptions& options);
+// Fails unless voxels·(4 + options.extra_bytes_per_voxel) + buffer_bytes fits options.memory_budget_bytes; the
+// message names the dimensions, each part, the sum and the budget. `dims` are x, y, z samples (voxels = their product,
+// from checked_voxel_count).
+void check_budget(const std::filesystem::path& path, const std::array<std::int64_t, 3>& dims, std::uint64_t voxels,
+                  std::uint64_t buffer_bytes, const VolumeLoadOptions& options);
+
+// Bytes of options.memory_budget_bytes left after `voxels` samples (4 + extra_bytes_per_voxel each), 0 when none.
+std::uint64_t budget_left(std::uint64_t voxels, const VolumeLoadOptions& options);
+
+// Fails unless `index_to_world` (millimetres, affine) for a dims[0]×dims[1]×dims[2] volume is finite, non-singular,
+// has voxel axes from kMinVoxelSpacingMillimetres to kMaxVoxelSpacingMillimetres long, and puts the 8 corner voxels
+// within ±kMaxVolumeWorldMillimetres. `field` names where the matrix came from ("the sform (srow_x/y/z)").
+void check_index_to_world(const std::filesystem::path& path, const std::array<int, 3>& dims,
+                          const glm::dmat4& index_to_world, const std::string& field);
 
 ScalarVolume load_nifti(const std::filesystem::path& path, const VolumeLoadOptions& options);
 ScalarVolume load_dicom(const std::filesystem::path& path, const VolumeLoadOptions& options);
 ScalarVolume load_inv3(const std::filesystem::path& path, const VolumeLoadOptions& options);
+
+// One DICOM image file on its own, through the checks and decoding a series' slice goes through (walk, header tags,
+// pixel format, decode): rows·columns floats, rescaled, row by row. load_volume needs two slices; the DICOM fuzz
+// target runs this on its one input as well. Throws VolumeLoadError.
+std::vector<float> load_dicom_slice(const std::filesystem::path& file, const VolumeLoadOptions& options);
 
 }  // namespace trispline::core::volume_io

@@ -9,7 +9,8 @@
 // The matrix file is a raw numpy array of that shape in C order (x fastest), little-endian, exactly
 // z·y·x·2 bytes. Nothing is extracted to disk: main.plist is read into memory (at most kMaxPlistBytes) and the
 // matrix converted to float block by block as libarchive decompresses it. Older InVesalius writes main.plist first,
-// newer last; when the matrix comes first the archive is read a second time.
+// newer last; when the matrix comes first the archive is read a second time. The spacing and the shape are checked
+// (geometry bounds, the memory budget) as soon as main.plist is read, before a byte of the matrix is inflated.
 #include <archive.h>
 #include <archive_entry.h>
 #include <tinyxml2.h>
@@ -218,7 +219,12 @@ ScalarVolume load_inv3(const std::filesystem::path& path, const VolumeLoadOption
         have_plist = true;
         matrix_entry = folder_of(name) + header.matrix_file;
         voxels = checked_voxel_count(path, header.dims);
-        check_budget(path, voxels, kStreamBlockBytes + kMaxPlistBytes, options);
+        v.dims = {static_cast<int>(header.dims[0]), static_cast<int>(header.dims[1]),
+                  static_cast<int>(header.dims[2])};
+        v.index_to_world = glm::dmat4(1.0);
+        for (int a = 0; a < 3; ++a) v.index_to_world[a][a] = header.spacing[a];
+        check_index_to_world(path, v.dims, v.index_to_world, "main.plist's spacing (x, y, z millimetres)");
+        check_budget(path, header.dims, voxels, kStreamBlockBytes + kMaxPlistBytes, options);
       } else if (have_plist && !have_matrix && name == matrix_entry) {
         const std::uint64_t expected = voxels * 2;
         if (!sized || size != expected)
@@ -235,11 +241,6 @@ ScalarVolume load_inv3(const std::filesystem::path& path, const VolumeLoadOption
   if (!have_matrix)
     fail(path, "the project's image '" + matrix_entry + "' (named in main.plist) is not in the archive");
 
-  v.dims = {static_cast<int>(header.dims[0]), static_cast<int>(header.dims[1]), static_cast<int>(header.dims[2])};
-  v.index_to_world = glm::dmat4(1.0);
-  v.index_to_world[0][0] = header.spacing.x;
-  v.index_to_world[1][1] = header.spacing.y;
-  v.index_to_world[2][2] = header.spacing.z;
   v.modality = header.modality.empty() ? "CT" : header.modality;
   v.units = v.modality == "CT" ? "HU" : "";
   return v;

@@ -1,14 +1,18 @@
 // NIfTI-1 single files (.nii, .nii.gz) through niftilib.
 //
-// The 348-byte header is read through niftilib's znzlib stream (gzip or plain) and checked here before niftilib
-// converts it (nifti_convert_nhdr2nim: byte order, the qform quaternion, the sform rows): niftilib would otherwise
-// turn a zero dimension into 1, clamp a short vox_offset, and follow an ANALYZE or two-file header to a second file.
+// The file is read through zlib's gz stream (.nii.gz) or stdio (.nii). The 348-byte header is checked here before
+// niftilib converts it (nifti_convert_nhdr2nim: byte order, the qform quaternion, the sform rows): niftilib would
+// otherwise turn a zero dimension into 1, clamp a short vox_offset, follow an ANALYZE or two-file header to a second
+// file, replace a zero or NaN pixdim by 1, and normalise a quaternion longer than 1. The geometry and the memory
+// budget are checked on the header before a sample is read or inflated.
 // The samples are read here too, in blocks, not by nifti_image_load: niftilib's reader replaces NaN and Inf floats
 // by 0 without telling, and a volume with non-finite samples must be refused.
 #include <nifti1_io.h>
+#include <zlib.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <memory>
@@ -20,13 +24,73 @@ namespace trispline::core::volume_io {
 
 namespace {
 
-struct ZnzCloser {
-  void operator()(znzptr* f) const {
-    znzFile file = f;
-    znzclose(file);
+// The file's bytes in order: a gzip stream through zlib (.nii.gz) or the plain file (.nii).
+class NiftiStream {
+ public:
+  NiftiStream(const std::filesystem::path& path, bool gz) : path_(path), gz_(gz) {
+    if (gz_)
+      gz_file_ = gzopen(path.c_str(), "rb");
+    else
+      plain_ = std::fopen(path.c_str(), "rb");
+    if (gz_ ? gz_file_ == nullptr : plain_ == nullptr) fail(path, "cannot open the file");
+    if (gz_) gzbuffer(gz_file_, 128 * 1024);
   }
+  ~NiftiStream() {
+    if (gz_file_) gzclose(gz_file_);
+    if (plain_) std::fclose(plain_);
+  }
+  NiftiStream(const NiftiStream&) = delete;
+  NiftiStream& operator=(const NiftiStream&) = delete;
+
+  // Up to `size` bytes (≤ kStreamBlockBytes); fewer only at the end of the data. A damaged gzip stream (bad data, a
+  // CRC or length that does not match) fails naming zlib's reason and how far the bytes were good; `what` says what
+  // was being read ("the samples").
+  std::size_t read(void* out, std::size_t size, const std::string& what) {
+    if (!gz_) return std::fread(out, 1, size, plain_);
+    const int got = gzread(gz_file_, out, static_cast<unsigned>(size));
+    if (got < 0) {
+      int code = Z_OK;
+      std::string reason = gzerror(gz_file_, &code);
+      const std::string prefix = path_.string() + ": ";  // zlib starts its message with the file name
+      if (reason.rfind(prefix, 0) == 0) reason.erase(0, prefix.size());
+      fail(path_, "the gzip stream is damaged in " + what + " (zlib: " + reason + "; " + std::to_string(done_) +
+                      " bytes decompressed before the call that failed)");
+    }
+    done_ += static_cast<std::uint64_t>(got);
+    return static_cast<std::size_t>(got);
+  }
+
+  // Skips forward to byte `offset` of the (decompressed) data; false past its end.
+  bool seek(std::uint64_t offset) {
+    if (!gz_) return fseeko(plain_, static_cast<off_t>(offset), SEEK_SET) == 0;
+    std::vector<unsigned char> scratch(kStreamBlockBytes);
+    while (done_ < offset) {
+      const std::size_t want = static_cast<std::size_t>(std::min<std::uint64_t>(scratch.size(), offset - done_));
+      if (read(scratch.data(), want, "the bytes before vox_offset") != want) return false;
+    }
+    return true;
+  }
+
+  // For a gzip stream: reads on past the samples (at most kStreamBlockBytes) so that zlib checks the stream's CRC and
+  // length.
+  void check_gzip_trailer() {
+    if (!gz_) return;
+    std::vector<unsigned char> scratch(64 * 1024);
+    std::uint64_t after = 0;  // bytes after the samples: a few are harmless, a long tail is not inflated
+    while (after < kStreamBlockBytes) {
+      const std::size_t got = read(scratch.data(), scratch.size(), "the end of the stream");
+      if (got == 0) break;
+      after += got;
+    }
+  }
+
+ private:
+  std::filesystem::path path_;
+  bool gz_;
+  gzFile gz_file_ = nullptr;
+  std::FILE* plain_ = nullptr;
+  std::uint64_t done_ = 0;  // decompressed bytes read so far (gzip)
 };
-using ZnzPtr = std::unique_ptr<znzptr, ZnzCloser>;
 
 struct NiftiImageFree {
   void operator()(nifti_image* nim) const { nifti_image_free(nim); }
@@ -100,21 +164,57 @@ double millimetres_per_unit(int xyzt_units) {
   }
 }
 
+// The header's voxel-to-world matrix in millimetres, after refusing what niftilib would repair silently: a pixdim
+// that is zero, negative or not finite where it is used (the qform's scales, or diag(pixdim)), a quaternion that is
+// not finite or longer than 1, a qfac (pixdim[0]) or qoffset that is not finite. `h` is in this machine's byte order,
+// `raw` as read (niftilib converts it again).
+glm::dmat4 nifti_index_to_world(const std::filesystem::path& path, const nifti_1_header& h, const nifti_1_header& raw,
+                                const std::array<int, 3>& dims) {
+  const bool sform = h.sform_code > 0, qform = !sform && h.qform_code > 0;
+  std::string field = sform ? "the sform (srow_x, srow_y, srow_z; sform_code " + std::to_string(h.sform_code) + ")"
+                      : qform ? "the qform (quatern_b/c/d, qoffset_x/y/z, pixdim; qform_code " +
+                                    std::to_string(h.qform_code) + ")"
+                              : "pixdim[1..3] (no sform or qform)";
+  if (!sform) {
+    for (int d = 1; d <= 3; ++d)
+      if (!(std::isfinite(h.pixdim[d]) && h.pixdim[d] > 0.0f))
+        fail(path, "pixdim[" + std::to_string(d) + "] is " + format_number(h.pixdim[d]) + " in " + field +
+                       ": a voxel size must be a positive finite number");
+  }
+  if (qform) {
+    const double b = h.quatern_b, c = h.quatern_c, d = h.quatern_d;
+    if (!std::isfinite(b) || !std::isfinite(c) || !std::isfinite(d) || b * b + c * c + d * d > 1.0 + 1e-5)
+      fail(path, "the qform quaternion (quatern_b, quatern_c, quatern_d) = (" + format_number(b) + ", " +
+                     format_number(c) + ", " + format_number(d) + ") is not part of a unit quaternion");
+    if (!std::isfinite(h.qoffset_x) || !std::isfinite(h.qoffset_y) || !std::isfinite(h.qoffset_z))
+      fail(path, "the qform offset (qoffset_x, qoffset_y, qoffset_z) is not finite");
+    if (!std::isfinite(h.pixdim[0])) fail(path, "pixdim[0] (the qform's qfac) is not finite");
+  }
+  // niftilib's reading of the header: byte order, qform (quaternion, qfac), sform.
+  std::unique_ptr<nifti_image, NiftiImageFree> nim(nifti_convert_nhdr2nim(raw, nullptr));
+  if (!nim) fail(path, "niftilib cannot convert the header");
+  const mat44& m = sform ? nim->sto_xyz : nim->qto_xyz;  // qto_xyz is diag(pixdim) when qform_code ≤ 0
+  const double mm = millimetres_per_unit(h.xyzt_units);
+  glm::dmat4 index_to_world(1.0);
+  for (int col = 0; col < 4; ++col)
+    for (int r = 0; r < 3; ++r) index_to_world[col][r] = static_cast<double>(m.m[r][col]) * mm;
+  if (mm != 1.0) field += " in " + std::string(mm > 1.0 ? "metres" : "microns") + " (xyzt_units)";
+  check_index_to_world(path, dims, index_to_world, field);
+  return index_to_world;
+}
+
 }  // namespace
 
 ScalarVolume load_nifti(const std::filesystem::path& path, const VolumeLoadOptions& options) {
-  const std::string name = path.string();
   const bool gz = name_ends_with_gz(path);
   std::error_code ec;
   const std::uintmax_t file_size = std::filesystem::file_size(path, ec);
   if (ec) fail(path, "cannot read the file size: " + ec.message());
-
-  ZnzPtr file(znzopen(name.c_str(), "rb", gz ? 1 : 0));
-  if (!file) fail(path, "cannot open the file");
+  NiftiStream file(path, gz);
 
   nifti_1_header raw;
   static_assert(sizeof raw == 348, "the NIfTI-1 header is 348 bytes");
-  const std::size_t got = znzread(&raw, 1, sizeof raw, file.get());
+  const std::size_t got = file.read(&raw, sizeof raw, "the header");
   if (got < sizeof raw)
     fail(path, "truncated: " + std::to_string(got) + " bytes" + (gz ? " after decompression" : "") +
                    ", less than a NIfTI-1 header (348 bytes)");
@@ -146,7 +246,8 @@ ScalarVolume load_nifti(const std::filesystem::path& path, const VolumeLoadOptio
     if (h.dim[d] != 1)
       fail(path, "dim[" + std::to_string(d) + "] is " + std::to_string(h.dim[d]) +
                      ": a time series or vector volume, only one 3-D volume is read");
-  const std::uint64_t voxels = checked_voxel_count(path, {h.dim[1], h.dim[2], h.dim[3]});
+  const std::array<std::int64_t, 3> dims{h.dim[1], h.dim[2], h.dim[3]};
+  const std::uint64_t voxels = checked_voxel_count(path, dims);
 
   const int nbyper = bytes_per_sample(h.datatype);
   if (nbyper == 0)
@@ -167,8 +268,10 @@ ScalarVolume load_nifti(const std::filesystem::path& path, const VolumeLoadOptio
   if (!std::isfinite(slope) || (slope != 0.0 && !std::isfinite(inter)))
     fail(path, "scl_slope / scl_inter are not finite numbers");
 
-  check_budget(path, voxels, kStreamBlockBytes, options);
-  if (voxels > std::numeric_limits<std::uint64_t>::max() / 8) fail(path, "too many samples");
+  ScalarVolume v;
+  v.dims = {h.dim[1], h.dim[2], h.dim[3]};
+  v.index_to_world = nifti_index_to_world(path, h, raw, v.dims);
+  check_budget(path, dims, voxels, kStreamBlockBytes, options);
   const std::uint64_t data_bytes = voxels * static_cast<std::uint64_t>(nbyper);
   if (!gz) {
     if (file_size < data_offset)
@@ -181,29 +284,17 @@ ScalarVolume load_nifti(const std::filesystem::path& path, const VolumeLoadOptio
                      nifti_datatype_string(h.datatype));
   }
 
-  // niftilib's reading of the header: byte order, qform (quaternion, qfac), sform, pixdim.
-  std::unique_ptr<nifti_image, NiftiImageFree> nim(nifti_convert_nhdr2nim(raw, nullptr));
-  if (!nim) fail(path, "niftilib cannot convert the header");
-  const mat44& m = h.sform_code > 0 ? nim->sto_xyz : nim->qto_xyz;  // qto_xyz is diag(pixdim) when qform_code ≤ 0
-  const double mm = millimetres_per_unit(h.xyzt_units);
-
-  ScalarVolume v;
-  v.dims = {h.dim[1], h.dim[2], h.dim[3]};
-  for (int c = 0; c < 4; ++c)
-    for (int r = 0; r < 3; ++r) v.index_to_world[c][r] = static_cast<double>(m.m[r][c]) * mm;
-  v.index_to_world[0][3] = v.index_to_world[1][3] = v.index_to_world[2][3] = 0.0;
-  v.index_to_world[3][3] = 1.0;
-
-  // Samples, streamed in blocks from vox_offset (znzseek on a gzip stream decompresses up to it).
-  if (znzseek(file.get(), static_cast<long>(data_offset), SEEK_SET) < 0)
-    fail(path, "vox_offset " + std::to_string(data_offset) + " is past the end of the file");
+  // Samples, streamed in blocks from vox_offset (on a gzip stream, seeking decompresses up to it).
+  if (!file.seek(data_offset))
+    fail(path, "vox_offset " + std::to_string(data_offset) + " is past the end of the file" +
+                   (gz ? " (decompressed)" : ""));
   v.values.reserve(voxels);
   const std::size_t block = kStreamBlockBytes / static_cast<std::size_t>(nbyper) * static_cast<std::size_t>(nbyper);
   std::vector<unsigned char> buffer(static_cast<std::size_t>(std::min<std::uint64_t>(block, data_bytes)));
   std::uint64_t done = 0;
   while (done < data_bytes) {
     const std::size_t want = static_cast<std::size_t>(std::min<std::uint64_t>(buffer.size(), data_bytes - done));
-    const std::size_t read = znzread(buffer.data(), 1, want, file.get());
+    const std::size_t read = file.read(buffer.data(), want, "the samples");
     if (read != want)
       fail(path, "truncated: the samples end after " + std::to_string(done + read) + " of " +
                      std::to_string(data_bytes) + " bytes" + (gz ? " (decompressed)" : ""));
@@ -214,6 +305,7 @@ ScalarVolume load_nifti(const std::filesystem::path& path, const VolumeLoadOptio
     }
     done += want;
   }
+  file.check_gzip_trailer();
   return v;
 }
 

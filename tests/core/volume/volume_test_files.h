@@ -1,5 +1,7 @@
-// Volume files the loader test writes itself: NIfTI through niftilib, DICOM slices through GDCM, InVesalius .inv3
-// projects (tar / tar.gz through libarchive, main.plist as text), and a temporary folder per test.
+// Volume files the loader tests write themselves: NIfTI through niftilib, DICOM slices through GDCM or byte by byte
+// (DicomBytes: what GDCM would not write), InVesalius .inv3 projects (tar / tar.gz through libarchive, main.plist as
+// text), deflate bombs streamed through zlib (write_deflated), a temporary folder per test, and the checks the
+// hostile-file tests share (volume_load_error, peak_rss_bytes).
 #pragma once
 
 #include <archive.h>
@@ -16,8 +18,11 @@
 #include <gdcmWriter.h>
 #include <gtest/gtest.h>
 #include <nifti1_io.h>
+#include <sys/resource.h>
 #include <unistd.h>
+#include <zlib.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <cstring>
@@ -26,10 +31,13 @@
 #include <functional>
 #include <glm/glm.hpp>
 #include <iterator>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "core/volume/volume_io.h"
 
 namespace trispline::test {
 
@@ -69,6 +77,61 @@ inline void write_bytes(const std::filesystem::path& p, const void* data, std::s
 
 inline void write_bytes(const std::filesystem::path& p, const std::vector<unsigned char>& bytes) {
   write_bytes(p, bytes.data(), bytes.size());
+}
+
+// The message of the VolumeLoadError load_volume throws (a test failure if it loads or throws something else); it
+// must name the file or folder.
+inline std::string volume_load_error(const std::filesystem::path& p,
+                                     const trispline::core::VolumeLoadOptions& options = {}) {
+  try {
+    const trispline::core::ScalarVolume v = trispline::core::load_volume(p, options);
+    ADD_FAILURE() << p << " loaded as " << v.dims[0] << "×" << v.dims[1] << "×" << v.dims[2];
+  } catch (const trispline::core::VolumeLoadError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(p.filename().string()), std::string::npos) << "the message must name the file: " << what;
+    return what;
+  }
+  return {};
+}
+
+// The process's peak resident set so far (getrusage), bytes.
+inline std::uint64_t peak_rss_bytes() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<std::uint64_t>(usage.ru_maxrss) * 1024;
+}
+
+// Deflates `head` followed by `zeros` zero bytes into `p`, streaming (nothing of that size is held): gzip framing
+// when `gzip`, else a raw deflate stream (DICOM's deflated transfer syntax) appended after `prefix`.
+inline void write_deflated(const std::filesystem::path& p, const std::vector<unsigned char>& prefix,
+                           const std::vector<unsigned char>& head, std::uint64_t zeros, bool gzip,
+                           const std::vector<unsigned char>& tail = {}) {
+  std::ofstream out(p, std::ios::binary | std::ios::trunc);
+  out.write(reinterpret_cast<const char*>(prefix.data()), static_cast<std::streamsize>(prefix.size()));
+  z_stream z{};
+  if (deflateInit2(&z, 6, Z_DEFLATED, gzip ? 31 : -15, 9, Z_DEFAULT_STRATEGY) != Z_OK)
+    throw std::runtime_error("deflateInit2 failed");
+  std::vector<unsigned char> block(1 << 20), compressed(1 << 20);
+  const auto pump = [&](const unsigned char* data, std::size_t size, int flush) {
+    z.next_in = const_cast<unsigned char*>(data);
+    z.avail_in = static_cast<uInt>(size);
+    do {
+      z.next_out = compressed.data();
+      z.avail_out = static_cast<uInt>(compressed.size());
+      deflate(&z, flush);
+      out.write(reinterpret_cast<const char*>(compressed.data()),
+                static_cast<std::streamsize>(compressed.size() - z.avail_out));
+    } while (z.avail_out == 0);
+  };
+  pump(head.data(), head.size(), Z_NO_FLUSH);
+  for (std::uint64_t left = zeros; left > 0;) {
+    const std::size_t n = static_cast<std::size_t>(std::min<std::uint64_t>(left, block.size()));
+    pump(block.data(), n, Z_NO_FLUSH);
+    left -= n;
+  }
+  pump(tail.data(), tail.size(), Z_FINISH);
+  deflateEnd(&z);
+  if (!out) throw std::runtime_error("cannot write " + p.string());
 }
 
 // ---------------------------------------------------------------------------------------------------------- NIfTI
@@ -254,6 +317,133 @@ inline void patch_file_text(const std::filesystem::path& p, const std::string& f
 inline std::string new_series_uid() {
   gdcm::UIDGenerator g;
   return g.Generate();
+}
+
+// A DICOM file written byte by byte (PS3.10: preamble, "DICM", group 0002 in explicit VR little endian, then the data
+// set), so a test can write what GDCM would not: a declared length larger than the file, an unclosed sequence, short
+// pixel data, a chosen transfer syntax. Elements are appended in the order given (callers keep tags ascending).
+class DicomBytes {
+ public:
+  enum class Syntax { kExplicitLittle, kImplicitLittle, kExplicitBig };
+  explicit DicomBytes(Syntax syntax = Syntax::kExplicitLittle) : syntax_(syntax) {}
+
+  // An element; `length` overrides the value's length in the header (0xFFFFFFFF: undefined). Strings are padded to
+  // an even length (UI with a NUL, others with a space).
+  DicomBytes& element(std::uint16_t group, std::uint16_t elem, const char* vr, std::vector<unsigned char> value,
+                      std::optional<std::uint32_t> length = std::nullopt) {
+    header(group, elem, vr, length.value_or(static_cast<std::uint32_t>(value.size())));
+    bytes_.insert(bytes_.end(), value.begin(), value.end());
+    return *this;
+  }
+  DicomBytes& text(std::uint16_t group, std::uint16_t elem, const char* vr, std::string value) {
+    if (value.size() % 2) value.push_back(std::string(vr) == "UI" ? '\0' : ' ');
+    return element(group, elem, vr, {value.begin(), value.end()});
+  }
+  DicomBytes& us(std::uint16_t group, std::uint16_t elem, std::uint16_t v) {
+    return element(group, elem, "US", big() ? std::vector<unsigned char>{static_cast<unsigned char>(v >> 8),
+                                                                         static_cast<unsigned char>(v & 0xFF)}
+                                            : std::vector<unsigned char>{static_cast<unsigned char>(v & 0xFF),
+                                                                         static_cast<unsigned char>(v >> 8)});
+  }
+  // An item / delimiter tag (FFFE,eeee) with its 4-byte length.
+  DicomBytes& item_tag(std::uint16_t elem, std::uint32_t length) {
+    put16(0xFFFE), put16(elem), put32(length);
+    return *this;
+  }
+  DicomBytes& raw(const std::vector<unsigned char>& b) {
+    bytes_.insert(bytes_.end(), b.begin(), b.end());
+    return *this;
+  }
+  const std::vector<unsigned char>& data_set() const { return bytes_; }
+  std::string transfer_syntax() const {
+    return syntax_ == Syntax::kImplicitLittle ? "1.2.840.10008.1.2"
+           : syntax_ == Syntax::kExplicitBig  ? "1.2.840.10008.1.2.2"
+                                              : "1.2.840.10008.1.2.1";
+  }
+
+  // The whole file: preamble, meta header naming `ts` (default: this builder's syntax), the data set as given.
+  std::vector<unsigned char> file(const std::string& ts = {}, const std::vector<unsigned char>* data_set = nullptr) const {
+    DicomBytes meta;
+    meta.element(0x0002, 0x0001, "OB", {0, 1});
+    meta.text(0x0002, 0x0002, "UI", "1.2.840.10008.5.1.4.1.1.2");
+    meta.text(0x0002, 0x0003, "UI", "1.2.3.4.5");
+    meta.text(0x0002, 0x0010, "UI", ts.empty() ? transfer_syntax() : ts);
+    DicomBytes group_length;
+    const auto n = static_cast<std::uint32_t>(meta.bytes_.size());
+    group_length.element(0x0002, 0x0000, "UL",
+                         {static_cast<unsigned char>(n), static_cast<unsigned char>(n >> 8),
+                          static_cast<unsigned char>(n >> 16), static_cast<unsigned char>(n >> 24)});
+    std::vector<unsigned char> out(128, 0);
+    for (const char c : std::string("DICM")) out.push_back(static_cast<unsigned char>(c));
+    out.insert(out.end(), group_length.bytes_.begin(), group_length.bytes_.end());
+    out.insert(out.end(), meta.bytes_.begin(), meta.bytes_.end());
+    const std::vector<unsigned char>& ds = data_set ? *data_set : bytes_;
+    out.insert(out.end(), ds.begin(), ds.end());
+    return out;
+  }
+
+ private:
+  bool big() const { return syntax_ == Syntax::kExplicitBig; }
+  void put16(std::uint16_t v) {
+    if (big()) bytes_.push_back(static_cast<unsigned char>(v >> 8));
+    bytes_.push_back(static_cast<unsigned char>(v & 0xFF));
+    if (!big()) bytes_.push_back(static_cast<unsigned char>(v >> 8));
+  }
+  void put32(std::uint32_t v) {
+    if (big()) put16(static_cast<std::uint16_t>(v >> 16)), put16(static_cast<std::uint16_t>(v));
+    else put16(static_cast<std::uint16_t>(v)), put16(static_cast<std::uint16_t>(v >> 16));
+  }
+  void header(std::uint16_t group, std::uint16_t elem, const char* vr, std::uint32_t length) {
+    put16(group), put16(elem);
+    if (syntax_ == Syntax::kImplicitLittle && group != 0x0002) return put32(length);
+    bytes_.push_back(static_cast<unsigned char>(vr[0]));
+    bytes_.push_back(static_cast<unsigned char>(vr[1]));
+    const std::string v(vr);
+    if (v == "OB" || v == "OW" || v == "OF" || v == "SQ" || v == "UN" || v == "UT" || v == "OD" || v == "OL")
+      put16(0), put32(length);
+    else
+      put16(static_cast<std::uint16_t>(length));
+  }
+  Syntax syntax_;
+  std::vector<unsigned char> bytes_;
+};
+
+// The data set elements of one CT slice (rows×cols int16, Image Position (0, 0, z), axial, 1 mm pixels) up to and
+// excluding Pixel Data, with `extra` (group 0008 ≥ 0x1000 elements, e.g. a sequence) inserted after the modality.
+inline DicomBytes ct_slice_header(DicomBytes::Syntax syntax, const std::string& series_uid, double z, int rows = 3,
+                                  int cols = 4, int bits_stored = 16,
+                                  const std::function<void(DicomBytes&)>& extra = {}) {
+  DicomBytes d(syntax);
+  d.text(0x0008, 0x0016, "UI", "1.2.840.10008.5.1.4.1.1.2");
+  d.text(0x0008, 0x0018, "UI", series_uid + "." + std::to_string(static_cast<int>(z * 10 + 100)));
+  d.text(0x0008, 0x0060, "CS", "CT");
+  if (extra) extra(d);
+  d.text(0x0020, 0x000D, "UI", series_uid + ".1");
+  d.text(0x0020, 0x000E, "UI", series_uid);
+  d.text(0x0020, 0x0032, "DS", "0\\0\\" + std::to_string(z));
+  d.text(0x0020, 0x0037, "DS", "1\\0\\0\\0\\1\\0");
+  d.us(0x0028, 0x0002, 1);
+  d.text(0x0028, 0x0004, "CS", "MONOCHROME2");
+  d.us(0x0028, 0x0010, static_cast<std::uint16_t>(rows));
+  d.us(0x0028, 0x0011, static_cast<std::uint16_t>(cols));
+  d.text(0x0028, 0x0030, "DS", "1\\1");
+  d.us(0x0028, 0x0100, 16);
+  d.us(0x0028, 0x0101, static_cast<std::uint16_t>(bits_stored));
+  d.us(0x0028, 0x0102, static_cast<std::uint16_t>(bits_stored > 0 ? bits_stored - 1 : 0));
+  d.us(0x0028, 0x0103, 1);
+  return d;
+}
+
+// int16 samples as Pixel Data bytes in the builder's byte order.
+inline std::vector<unsigned char> pixel_bytes(const std::vector<std::int16_t>& samples, bool big = false) {
+  std::vector<unsigned char> b;
+  for (const std::int16_t s : samples) {
+    const auto u = static_cast<std::uint16_t>(s);
+    const unsigned char lo = static_cast<unsigned char>(u & 0xFF), hi = static_cast<unsigned char>(u >> 8);
+    if (big) b.push_back(hi), b.push_back(lo);
+    else b.push_back(lo), b.push_back(hi);
+  }
+  return b;
 }
 
 // ---------------------------------------------------------------------------------------------------- InVesalius

@@ -1,0 +1,251 @@
+// One DICOM slice: its header tags checked, its pixel data decoded through gdcm::ImageReader.
+#include "core/volume/volume_io_dicom_slice.h"
+
+#include <gdcmImage.h>
+#include <gdcmImageReader.h>
+#include <gdcmPixelFormat.h>
+#include <gdcmTrace.h>
+#include <gdcmUIDs.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+
+#include "core/volume/volume_io_dicom_walk.h"
+#include "core/volume/volume_io_formats.h"
+
+namespace trispline::core::volume_io {
+
+namespace {
+
+// Stored sample i of a decoded slice (GDCM hands it over in this machine's byte order) as its integer value: bits
+// above Bits Stored dropped, sign-extended when signed.
+struct SampleDecoder {
+  int bytes = 2;
+  bool is_signed = false;
+  int bits_stored = 16;
+
+  double operator()(const char* buffer, std::size_t i) const {
+    const char* p = buffer + i * static_cast<std::size_t>(bytes);
+    std::uint32_t raw = 0;
+    if (bytes == 1) {
+      raw = static_cast<unsigned char>(*p);
+    } else if (bytes == 2) {
+      std::uint16_t v;
+      std::memcpy(&v, p, sizeof v);
+      raw = v;
+    } else {
+      std::memcpy(&raw, p, sizeof raw);
+    }
+    const std::uint32_t mask = bits_stored >= 32 ? 0xFFFFFFFFu : ((1u << bits_stored) - 1u);
+    raw &= mask;
+    if (is_signed && bits_stored < 32 && ((raw >> (bits_stored - 1)) & 1u)) raw |= ~mask;
+    return is_signed ? static_cast<double>(static_cast<std::int32_t>(raw)) : static_cast<double>(raw);
+  }
+};
+
+// An IS value as an integer in [lo, hi]; false when absent, unreadable or outside.
+bool parse_integer(const char* s, int lo, int hi, int* out) {
+  double v = 0.0;
+  if (!parse_numbers(s, 1, &v) || v != std::floor(v) || v < lo || v > hi) return false;
+  *out = static_cast<int>(v);
+  return true;
+}
+
+}  // namespace
+
+namespace {
+
+const gdcm::Tag* const kSliceTags[] = {
+    &kTransferSyntax, &kModality,     &kSeriesDescription, &kSeriesUid,      &kPosition,           &kOrientation,
+    &kSamplesPerPixel, &kPhotometric, &kFrames,            &kRows,           &kColumns,            &kPixelSpacing,
+    &kBitsAllocated,  &kBitsStored,   &kPixelRepresentation, &kRescaleIntercept, &kRescaleSlope};
+
+}  // namespace
+
+void add_slice_tags(gdcm::Scanner& scanner) {
+  for (const gdcm::Tag* t : kSliceTags) scanner.AddTag(*t);
+}
+
+std::vector<std::uint32_t> slice_tag_keys() {
+  std::vector<std::uint32_t> keys;
+  for (const gdcm::Tag* t : kSliceTags) keys.push_back(std::uint32_t{t->GetGroup()} << 16 | t->GetElement());
+  return keys;
+}
+
+const char* TagTable::get(const std::string& file, const gdcm::Tag& tag) const {
+  const auto it = walked_.find(file);
+  if (it == walked_.end()) return scanner_.GetValue(file.c_str(), tag);
+  const auto v = it->second.find(std::uint32_t{tag.GetGroup()} << 16 | tag.GetElement());
+  return v == it->second.end() ? nullptr : v->second.c_str();
+}
+
+std::string trimmed(const char* s) {
+  if (!s) return {};
+  std::string t(s);
+  const auto keep = [](char c) { return c != ' ' && c != '\0' && c != '\t' && c != '\r' && c != '\n'; };
+  const auto b = std::find_if(t.begin(), t.end(), keep);
+  const auto e = std::find_if(t.rbegin(), t.rend(), keep).base();
+  return b < e ? std::string(b, e) : std::string();
+}
+
+bool parse_numbers(const char* s, std::size_t count, double* out) {
+  const std::string text = trimmed(s);
+  if (text.empty()) return false;
+  std::size_t n = 0, start = 0;
+  while (true) {
+    const std::size_t end = std::min(text.find('\\', start), text.size());
+    const std::string part = trimmed(text.substr(start, end - start).c_str());
+    if (part.empty() || n == count) return false;
+    char* stop = nullptr;
+    const double value = std::strtod(part.c_str(), &stop);
+    if (stop != part.c_str() + part.size() || !std::isfinite(value)) return false;
+    out[n++] = value;
+    if (end == text.size()) break;
+    start = end + 1;
+  }
+  return n == count;
+}
+
+std::string transfer_syntax_text(const char* uid_value) {
+  const std::string uid = trimmed(uid_value);
+  if (uid.empty()) return "transfer syntax not given";
+  gdcm::UIDs known;
+  const bool named = known.SetFromUID(uid.c_str()) && known.GetName();
+  return "transfer syntax " + uid + (named ? std::string(" (") + known.GetName() + ")" : std::string());
+}
+
+std::string file_name(const std::string& file) { return std::filesystem::path(file).filename().string(); }
+
+SliceHeader read_slice_header(const TagTable& tags, const std::string& file, const std::filesystem::path& report) {
+  const auto value = [&](const gdcm::Tag& t) { return tags.get(file, t); };
+  SliceHeader h;
+  h.file = file;
+  h.name = file_name(file);
+  h.transfer_syntax = transfer_syntax_text(value(kTransferSyntax));
+  if (!parse_integer(value(kRows), 1, 65535, &h.rows) || !parse_integer(value(kColumns), 1, 65535, &h.columns))
+    fail(report, h.name + ": Rows / Columns (" + trimmed(value(kRows)) + ", " + trimmed(value(kColumns)) +
+                     ") are not whole numbers from 1 to 65535");
+  double frames = 1.0;
+  if (value(kFrames) && parse_numbers(value(kFrames), 1, &frames) && frames > 1.0)
+    fail(report, h.name + ": a multi-frame image (" + trimmed(value(kFrames)) +
+                     " frames): only series of single-frame slices are read");
+  const std::string samples = trimmed(value(kSamplesPerPixel));
+  const std::string photometric = trimmed(value(kPhotometric));
+  if ((!samples.empty() && samples != "1") ||
+      (!photometric.empty() && photometric != "MONOCHROME1" && photometric != "MONOCHROME2"))
+    fail(report,
+         h.name + ": a colour image (" + photometric + ", " + samples + " samples per pixel): grey levels expected");
+  if (!parse_integer(value(kBitsAllocated), 8, 32, &h.bits_allocated) ||
+      (h.bits_allocated != 8 && h.bits_allocated != 16 && h.bits_allocated != 32))
+    fail(report, h.name + ": Bits Allocated (0028,0100) is '" + trimmed(value(kBitsAllocated)) +
+                     "': 8, 16 or 32 are read");
+  if (!parse_integer(value(kBitsStored), 1, h.bits_allocated, &h.bits_stored))
+    fail(report, h.name + ": Bits Stored (0028,0101) is '" + trimmed(value(kBitsStored)) + "': from 1 to Bits Allocated (" +
+                     std::to_string(h.bits_allocated) + ") expected");
+  int representation = 0;
+  if (value(kPixelRepresentation) && !parse_integer(value(kPixelRepresentation), 0, 1, &representation))
+    fail(report, h.name + ": Pixel Representation (0028,0103) is '" + trimmed(value(kPixelRepresentation)) +
+                     "': 0 (unsigned) or 1 (signed) expected");
+  h.is_signed = representation == 1;
+  if (value(kRescaleSlope) && !parse_numbers(value(kRescaleSlope), 1, &h.slope))
+    fail(report, h.name + ": unreadable Rescale Slope " + trimmed(value(kRescaleSlope)));
+  if (value(kRescaleIntercept) && !parse_numbers(value(kRescaleIntercept), 1, &h.intercept))
+    fail(report, h.name + ": unreadable Rescale Intercept " + trimmed(value(kRescaleIntercept)));
+  return h;
+}
+
+void decode_slice(const SliceHeader& slice, const std::filesystem::path& report, std::vector<float>& values) {
+  gdcm::ImageReader reader;
+  reader.SetFileName(slice.file.c_str());
+  bool read = false;
+  try {
+    read = reader.Read();
+  } catch (const std::exception& e) {
+    fail(report, slice.name + ": GDCM cannot read the image (" + slice.transfer_syntax + "): " + e.what());
+  }
+  if (!read) fail(report, slice.name + ": GDCM cannot read the image (" + slice.transfer_syntax + ")");
+  const gdcm::Image& image = reader.GetImage();
+  const unsigned ndims = image.GetNumberOfDimensions();
+  const std::string size_text = std::to_string(slice.columns) + "×" + std::to_string(slice.rows);
+  if (image.GetColumns() != static_cast<unsigned>(slice.columns) ||
+      image.GetRows() != static_cast<unsigned>(slice.rows) || (ndims == 3 && image.GetDimension(2) != 1))
+    fail(report, slice.name + ": the pixel data is not one " + size_text + " slice");
+  const gdcm::PixelFormat& pf = image.GetPixelFormat();
+  // Bits Stored is the header's, checked there (GDCM replaces a Bits Stored of 0 by Bits Allocated).
+  if (pf.GetSamplesPerPixel() != 1 || pf.GetBitsAllocated() != slice.bits_allocated)
+    fail(report, slice.name + ": GDCM decodes " + std::to_string(pf.GetBitsAllocated()) + " bits allocated, " +
+                     std::to_string(pf.GetSamplesPerPixel()) + " samples per pixel, where the header says " +
+                     std::to_string(slice.bits_allocated) + " allocated, 1 sample");
+  const SampleDecoder decode{slice.bits_allocated / 8, slice.is_signed, slice.bits_stored};
+  const std::size_t per_slice = static_cast<std::size_t>(slice.rows) * static_cast<std::size_t>(slice.columns);
+  const std::size_t expected = per_slice * static_cast<std::size_t>(decode.bytes);
+  const gdcm::DataElement& pixel_data = image.GetDataElement();
+  if (!pixel_data.GetSequenceOfFragments()) {  // native (not encapsulated): its length is the samples'
+    const gdcm::ByteValue* stored = pixel_data.GetByteValue();
+    const std::size_t length = stored ? static_cast<std::size_t>(stored->GetLength()) : 0;
+    if (length < expected)
+      fail(report, slice.name + ": Pixel Data (7FE0,0010) holds " + std::to_string(length) + " bytes, " +
+                       std::to_string(length / static_cast<std::size_t>(decode.bytes)) + " samples of the " +
+                       size_text + " = " + std::to_string(per_slice) + " the slice needs");
+  }
+  if (image.GetBufferLength() != expected)
+    fail(report, slice.name + ": " + std::to_string(image.GetBufferLength()) + " bytes of pixel data, " +
+                     std::to_string(expected) + " expected");
+  std::vector<char> buffer(expected);  // this slice's own: nothing of another slice can show through
+  bool decoded = false;
+  try {
+    decoded = image.GetBuffer(buffer.data());
+  } catch (const std::exception&) {
+  }
+  if (!decoded) fail(report, slice.name + ": GDCM cannot decode its pixel data (" + slice.transfer_syntax + ")");
+  for (std::size_t i = 0; i < per_slice; ++i)
+    values.push_back(to_float(decode(buffer.data(), i) * slice.slope + slice.intercept));
+}
+
+std::vector<float> load_dicom_slice(const std::filesystem::path& file, const VolumeLoadOptions& options) {
+  gdcm::Trace::WarningOff();
+  gdcm::Trace::ErrorOff();
+  const std::string name = file_name(file.string());
+  DicomWalkLimits limits;
+  limits.inflate_cap = std::min(options.memory_budget_bytes, kMaxDicomHeaderBytes);
+  limits.stop_at_pixel_data = true;
+  limits.capture = slice_tag_keys();
+  const std::optional<DicomWalk> walk = walk_dicom_file(file, limits, file, name);
+  if (!walk) fail(file, "not a DICOM file GDCM can read");
+  gdcm::Scanner scanner;
+  add_slice_tags(scanner);
+  TagTable tags(scanner);
+  if (walk->deflated) {
+    tags.add(file.string(), walk->values);
+  } else {
+    bool scanned = false;
+    try {
+      scanned = scanner.Scan({file.string()});
+    } catch (const std::exception& e) {
+      fail(file, std::string("GDCM cannot scan the file: ") + e.what());
+    }
+    if (!scanned) fail(file, "GDCM cannot scan the file");
+  }
+  if (!tags.has(file.string()) || !tags.get(file.string(), kRows)) fail(file, "not a DICOM image GDCM can read");
+  const SliceHeader header = read_slice_header(tags, file.string(), file);
+  const std::uint64_t voxels = std::uint64_t(header.rows) * std::uint64_t(header.columns);
+  const std::array<std::int64_t, 3> dims{header.columns, header.rows, 1};
+  check_budget(file, dims, voxels, walk->data_set_bytes + 2 * header.pixel_bytes(), options);
+  std::uint64_t data_set_bytes = walk->data_set_bytes;
+  if (walk->deflated) {
+    limits.stop_at_pixel_data = false;
+    const std::uint64_t decode_bytes = 2 * header.pixel_bytes(), left = budget_left(voxels, options);
+    limits.inflate_cap = std::min(left > decode_bytes ? left - decode_bytes : 0, header.pixel_bytes() + kMaxDicomHeaderBytes);
+    data_set_bytes = walk_dicom_file(file, limits, file, name)->data_set_bytes;
+  }
+  check_budget(file, dims, voxels, data_set_bytes + 2 * header.pixel_bytes(), options);
+  std::vector<float> values;
+  values.reserve(voxels);
+  decode_slice(header, file, values);
+  return values;
+}
+
+}  // namespace trispline::core::volume_io
