@@ -266,7 +266,7 @@ void print_farm_status(const FarmPlan& plan, const FarmStatus& status, std::ostr
       for (std::size_t k = 0; k < t.missing_frames.size() && k < 10; ++k) out << " " << t.missing_frames[k];
       if (t.missing_frames.size() > 10) out << " …";
     }
-    if (!t.problem.empty() && t.state != "missing") out << " (" << t.problem << ")";
+    if (!t.problem.empty()) out << " (" << t.problem << ")";
     out << "\n";
   }
 }

@@ -197,23 +197,32 @@ int stop_stale_local_tasks(const FarmPlan& plan) {
   std::error_code ec;
   const fs::path dir = fs::canonical(plan.dir, ec);
   if (ec) return 0;
-  std::vector<pid_t> stopped;
+  // A recorded group is ours when one of its members is a task of this folder (cwd and command line): a group id is
+  // not reused while the group has members, so its other members (date, hostname, the replay) are the task's too.
+  std::set<long> ours;
+  std::vector<std::pair<pid_t, long>> members;  // (pid, group) of every process in a recorded group
   for (const auto& entry : fs::directory_iterator("/proc", ec)) {
     const std::string name = entry.path().filename().string();
-    if (name.empty() || name.find_first_not_of("0123456789") != std::string::npos) continue;
-    if (!groups.count(process_group(entry.path()))) continue;
-    std::error_code ec2;
-    if (fs::read_symlink(entry.path() / "cwd", ec2) != dir || ec2) continue;  // another folder's (a copy's) task
-    if (!is_task_command(read_small(entry.path() / "cmdline"))) continue;
+    if (name.empty() || name.find_first_not_of("0123456789") != std::string::npos || name.size() > 9) continue;
+    const long group = process_group(entry.path());
+    if (!groups.count(group)) continue;
     const pid_t pid = static_cast<pid_t>(std::stol(name));
-    if (::kill(pid, SIGKILL) == 0) stopped.push_back(pid);
+    members.emplace_back(pid, group);
+    std::error_code ec2;
+    if (fs::read_symlink(entry.path() / "cwd", ec2) == dir && !ec2 && is_task_command(read_small(entry.path() / "cmdline")))
+      ours.insert(group);  // another folder's (a copy's) task has another cwd
   }
-  for (const pid_t pid : stopped)  // until the kernel has removed them (bounded: SIGKILL cannot be caught)
-    for (int k = 0; k < 500 && fs::exists("/proc/" + std::to_string(pid) + "/cmdline", ec) &&
-                    read_small("/proc/" + std::to_string(pid) + "/cmdline") != "";
-         ++k)
+  int stopped = 0;
+  for (const long group : ours)
+    if (::kill(static_cast<pid_t>(-group), SIGKILL) == 0)
+      for (const auto& [pid, g] : members) stopped += g == group;
+  for (const auto& [pid, group] : members) {  // until the kernel has removed them (SIGKILL cannot be caught)
+    if (!ours.count(group)) continue;
+    const std::string proc = "/proc/" + std::to_string(pid);
+    for (int k = 0; k < 500 && fs::exists(proc, ec) && !read_small(proc + "/cmdline").empty(); ++k)
       std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  return static_cast<int>(stopped.size());
+  }
+  return stopped;
 }
 
 }  // namespace trispline::editor

@@ -266,10 +266,14 @@ void check_jobs(const FarmPlan& p) {
     if (job.pool_pid < 0 || job.pool_pid > (1 << 22)) fail(key + ".pool_pid", "must be a process id or 0");
     if (job.tasks.size() > p.tasks.size() || job.task_pids.size() > p.tasks.size())
       fail(key + ".tasks", "names more tasks than the plan holds");
-    for (const int t : job.tasks)
-      if (t < 0 || t >= n) fail(key + ".tasks", "task " + std::to_string(t) + " is not in the plan");
-    for (const auto& [t, pid] : job.task_pids)
-      if (t < 0 || t >= n || pid < 1 || pid > (1 << 22)) fail(key + ".task_pids", "holds a bad [task, pid] pair");
+    for (std::size_t i = 0; i < job.tasks.size(); ++i)
+      if (job.tasks[i] < 0 || job.tasks[i] >= n)
+        fail(key + ".tasks[" + std::to_string(i) + "]", "task " + std::to_string(job.tasks[i]) + " is not in the plan");
+    for (std::size_t i = 0; i < job.task_pids.size(); ++i) {
+      const auto& [t, pid] = job.task_pids[i];
+      if (t < 0 || t >= n || pid < 1 || pid > (1 << 22))
+        fail(key + ".task_pids[" + std::to_string(i) + "]", "is not a [task, process id] pair of this plan");
+    }
   }
 }
 
@@ -334,7 +338,7 @@ FarmPlan parse_farm_plan(const std::string& text, const fs::path& dir) {
     p.tasks.push_back(read_task(tasks[k], "tasks[" + std::to_string(k) + "]", p.kind));
   const json& jobs = read_array(j, "jobs", kFarmMaxJobs);
   for (std::size_t k = 0; k < jobs.size(); ++k)
-    p.jobs.push_back(read_job(jobs[k], "jobs[" + std::to_string(k) + "]", static_cast<int>(p.tasks.size())));
+    p.jobs.push_back(read_job(jobs[k], "jobs[" + std::to_string(k) + "]", kFarmMaxFrame + 1));  // checked below
   check_farm_plan(p);
   return p;
 }

@@ -124,7 +124,9 @@ ChunkCheck check_chunk(const FarmPlan& plan, const FarmTask& task, bool decode_p
     c.problem = why;
     return c;
   };
-  if (!fs::is_directory(fs::symlink_status(dir, ec))) return all_bad(dir.string() + " is not a folder");
+  const fs::file_status dir_status = fs::symlink_status(dir, ec);
+  if (!fs::exists(dir_status)) return all_bad("no output yet (" + dir.string() + " does not exist)");
+  if (!fs::is_directory(dir_status)) return all_bad(dir.string() + " is not a folder (a symlink or a file)");
   const fs::path record_path = dir / "chunk.json";
   const std::uintmax_t size = fs::file_size(record_path, ec);
   if (ec || !fs::is_regular_file(fs::symlink_status(record_path, ec)))

@@ -5,8 +5,10 @@
 # animation.glb equal one `replay --frames 1-16`'s bytes, two chunks overlapped in time and never more than 2 ran at
 # once (task logs), `farm resume` after deleting one chunk's frames re-renders only that chunk, a failed chunk leaves
 # the others intact and resume reruns it alone, a batch of three logs (one bad) is summarised into summary.json;
-# local also: bad input is refused with nothing written, and a DFFD walk (topology changes) assembles exactly. A
-# Slurm daemon that does not start fails the test with its log.
+# a copy of the farm resumes into the copy, leaving the original untouched, and a batch log writing outside its run
+# folder is that log's failure; local also: bad input is refused with nothing written, and a DFFD walk (topology
+# changes) assembles exactly. A Slurm daemon that does not start fails the test with its log. Hostile farm folders
+# and values: farm_hostile.sh.
 # Usage: farm.sh slurm|local (TRISPLINE, TRISPLINE_SOURCE, FARM_OUT from ctest).
 set -euo pipefail
 engine=${1:?usage: farm.sh slurm|local}
@@ -163,9 +165,29 @@ cmp -s "$out/before.txt" "$out/after.txt" || fail "resume touched the frames or 
 check_frames_and_glb
 "$exe" farm resume "$farm" | grep -q "nothing to do" || fail "a second resume found something to do"
 
+# A copy of the farm resumes into the copy (the scripts run in their folder; Slurm: sbatch --chdir of the copy), and
+# the original is not touched.
+stamp_farm() { find "$farm" -type f -printf '%P %i %s %T@\n' | sort; }
+stamp_farm > "$out/before_copy.txt"
+cp -r "$farm" "$out/copy"
+rm "$out/copy"/chunks/0001/frame_*.png
+"$exe" farm resume "$out/copy" > "$out/resume_copy.txt" || { cat "$out/resume_copy.txt"; fail "the copy's resume failed"; }
+wait_farm
+[ "$("$exe" farm status "$out/copy" --json | jq -r .assembled)" = true ] || fail "the copy is not assembled"
+for f in "$out"/ref/frame_*.png; do
+  cmp -s "$f" "$out/copy/$(basename "$f")" || fail "the copy's $(basename "$f") differs from the reference"
+done
+stamp_farm > "$out/after_copy.txt"
+cmp -s "$out/before_copy.txt" "$out/after_copy.txt" || fail "resuming the copy touched the original farm"
+echo "copied farm resumed at $((SECONDS - t0)) s"
+
 # A batch: one task per log of a folder, every report.json in one summary (a failing log is a result: afterany).
 mkdir -p "$out/library"
 cp "$TRISPLINE_SOURCE"/tests/logs/{ring_animate,undo_redo,bad_unknown_command}.jsonl "$out/library/"
+# A shared log that writes outside its run folder: refused by replay's output containment, a failure of that log.
+printf '%s\n' '{"cmd":"volume.load","analytic":"sphere","name":"ball"}' \
+  '{"cmd":"volume.export","object":"ball","what":"silhouettes","path":"../../../escaped_by_log.svg"}' \
+  > "$out/library/escape.jsonl"
 rc=0
 "$exe" farm batch "$out/library" --out "$out/batch" --engine "$engine" --max-parallel 2 "${size[@]}" \
   > "$out/batch.txt" || rc=$?
@@ -177,9 +199,12 @@ else
     fail "farm batch did not submit an afterany assembly: $(cat "$out/batch.txt")"
   wait_farm
 fi
-jq -e '.logs == 3 and .ok == 2 and .failed == ["bad_unknown_command"] and
-       ([.runs[] | select(.ok) | .report.final_png] | length == 2)' "$out/batch/summary.json" > /dev/null ||
-  { cat "$out/batch/summary.json" "$out/batch/logs/assemble.log" >&2; fail "the batch summary is not 3 logs, 2 ok"; }
+jq -e '.logs == 4 and .ok == 2 and .failed == ["bad_unknown_command", "escape"] and
+       ([.runs[] | select(.ok) | .report.final_png] | length == 2) and
+       ([.runs[] | select(.name == "escape") | .error | test("output folder")] == [true])' \
+  "$out/batch/summary.json" > /dev/null ||
+  { cat "$out/batch/summary.json" "$out/batch/logs/assemble.log" >&2; fail "the batch summary is not 4 logs, 2 ok"; }
+[ -z "$(find "$(dirname "$out")" -name 'escaped_by_log*')" ] || fail "a batch log wrote outside its run folder"
 [ -f "$out/batch/runs/ring_animate/final.png" ] || fail "the batch did not render ring_animate"
 echo "batch done at $((SECONDS - t0)) s"
 
