@@ -32,7 +32,14 @@ const ParamSchema<VolumeLoadParams>& VolumeLoadCommand::schema() {
 
 std::optional<VolumeObject> VolumeLoadCommand::build(const Scene& scene) {
   const std::string source = p_.analytic.empty() ? p_.path : "analytic:" + p_.analytic;
-  const PreparedVolume pv = prepare_volume(source, p_.order, p_.interpolate);
+  PreparedVolume pv;
+  try {
+    pv = prepare_volume(source, p_.order, p_.interpolate);
+  } catch (const PreparationBudgetError& e) {  // the dimensions leave no room for the spline and its table
+    throw CommandError(std::string("field 'path': ") + e.what(), "path");
+  } catch (const VolumeLoadError& e) {  // missing, truncated, over the budget from the header, ...
+    throw CommandError(std::string("field 'path': ") + e.what(), "path");
+  }
   if (p_.name.empty()) {
     std::filesystem::path stem =
         p_.analytic.empty() ? std::filesystem::path(p_.path).filename() : std::filesystem::path(p_.analytic);

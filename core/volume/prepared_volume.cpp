@@ -6,7 +6,6 @@
 #include <mutex>
 
 #include "core/volume/analytic_volumes.h"
-#include "core/volume/volume_io.h"
 
 namespace trispline::core {
 
@@ -45,8 +44,17 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
 
 }  // namespace
 
+VolumeLoadOptions preparation_load_options() {
+  VolumeLoadOptions options;
+  options.memory_budget_bytes = kPreparedVolumeBudget;
+  options.extra_bytes_per_voxel = kPreparationBytesPerVoxel;
+  return options;
+}
+
 PreparedVolume prepare_volume(const std::filesystem::path& path, int order, bool interpolate,
                               const ProgressSink& progress) {
+  if (order < 2 || order > 4)
+    throw std::invalid_argument("volume spline order must be 2, 3 or 4 (degree + 1), got " + std::to_string(order));
   const Key key = key_of(path, order, interpolate);
   {
     std::lock_guard<std::mutex> lock(cache_mutex);
@@ -64,19 +72,12 @@ PreparedVolume prepare_volume(const std::filesystem::path& path, int order, bool
   if (name.rfind(prefix, 0) == 0 && parse_analytic_volume(name.substr(prefix.size()), kind))
     volume = make_analytic_volume(kind, 96);
   else
-    volume = load_volume(path);
+    volume = load_volume(path, preparation_load_options());
   out.load_ms = ms_since(t0);
   progress.check(0.0);
   t0 = std::chrono::steady_clock::now();
-  // The table needs a Singleton and a bin entry per cell besides the spline's control points: refuse before
-  // allocating when that exceeds the budget.
-  const double table_bytes = static_cast<double>(volume.voxel_count()) * (sizeof(Singleton) + 2 * sizeof(float));
-  if (table_bytes > kPreparedVolumeBudget)
-    throw std::invalid_argument(path.string() + ": a volume of " + std::to_string(volume.dims[0]) + "×" +
-                                std::to_string(volume.dims[1]) + "×" + std::to_string(volume.dims[2]) +
-                                " samples needs " + std::to_string(static_cast<long long>(table_bytes / 1048576.0)) +
-                                " MiB for its singletons (the budget is " +
-                                std::to_string(kPreparedVolumeBudget >> 20) + " MiB); crop or resample it first");
+  // Samples, control points and the table, from the dimensions and order, before the spline is made.
+  check_preparation_budget(path.string(), {volume.dims[0], volume.dims[1], volume.dims[2]}, order);
   out.units = volume.units, out.modality = volume.modality, out.source = volume.source;
   out.default_iso = default_iso_level(volume);
   auto spline = std::make_shared<const VolumeSpline>(volume, order, interpolate);

@@ -12,13 +12,12 @@
 #include <memory>
 #include <string>
 
+#include "core/volume/preparation_budget.h"
 #include "core/volume/singletons.h"
+#include "core/volume/volume_io.h"
 #include "core/volume/volume_spline.h"
 
 namespace trispline::core {
-
-// Memory a prepared volume's spline and singleton table may take (bytes): 6 GiB, ~200 M voxels (a 585³ CT).
-inline constexpr std::uint64_t kPreparedVolumeBudget = 6ull << 30;
 
 struct PreparedVolume {
   std::shared_ptr<const VolumeSpline> spline;   // non-null
@@ -29,11 +28,18 @@ struct PreparedVolume {
   double load_ms = 0.0, prep_ms = 0.0;          // reading the file; spline + singletons (or reading the cache)
 };
 
-// Reads `path` (load_volume; "analytic:sphere|torus|sines" makes an analytic volume of 96 samples a side), builds the
-// spline of `order` (2…4; interpolating or not) and its singleton table. A second call with the same path, file size,
-// modification time, order and mode returns the session's copy. Throws what load_volume throws (VolumeLoadError),
-// std::invalid_argument on a bad order or a volume whose table would exceed kPreparedVolumeBudget (checked before it
-// is built), OperationCancelled through `progress`.
+// The loader options of a volume about to be prepared: the whole kPreparedVolumeBudget, and
+// kPreparationBytesPerVoxel as extra_bytes_per_voxel, so the loader refuses a file whose header dimensions leave no
+// room for the spline and its table before it inflates a byte.
+VolumeLoadOptions preparation_load_options();
+
+// Reads `path` (load_volume with preparation_load_options(); "analytic:sphere|torus|sines" makes an analytic volume
+// of 96 samples a side), builds the spline of `order` (2…4; interpolating or not) and its singleton table (from the
+// disk cache when it holds a valid entry). A second call with the same path, file size, modification time, order
+// and mode returns the session's copy. Throws std::invalid_argument on a bad order (before reading), what
+// load_volume throws (VolumeLoadError, among others over the budget from the header's dimensions),
+// PreparationBudgetError when samples, spline and table would exceed kPreparedVolumeBudget (checked from the
+// dimensions and order before the spline is made), OperationCancelled through `progress`.
 PreparedVolume prepare_volume(const std::filesystem::path& path, int order, bool interpolate,
                               const ProgressSink& progress = {});
 

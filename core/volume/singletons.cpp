@@ -6,9 +6,9 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
 #include <numeric>
 
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 namespace trispline::core {
@@ -96,15 +96,29 @@ int nearest_column(const std::vector<glm::vec3>& axes, const glm::vec3& d) {
   return best;
 }
 
+// An unsigned integer whose ascending order is the descending order of the finite float v (−0 and +0 equal).
+std::uint32_t descending_order_bits(float v) {
+  if (v == 0.0f) v = 0.0f;
+  std::uint32_t bits;
+  std::memcpy(&bits, &v, sizeof(bits));
+  const std::uint32_t ascending = (bits & 0x80000000u) ? ~bits : (bits | 0x80000000u);
+  return ~ascending;
+}
+
 double angle_between(const glm::dvec3& a, const glm::dvec3& b) {
   return std::acos(std::clamp(glm::dot(a, b) / (glm::length(a) * glm::length(b)), -1.0, 1.0));
 }
 
 }  // namespace
 
+Singleton singleton_of_cell(const VolumeSpline& spline, int a, int b, int c) { return bound_cell(spline, a, b, c); }
+
 SingletonTable build_singleton_table(const VolumeSpline& spline, const ProgressSink& progress, int rows,
                                      int columns) {
-  if (rows < 1 || columns < 1) throw std::invalid_argument("singleton table needs at least one row and one column");
+  if (rows < 1 || rows > kSingletonTableMaxRows || columns < 1 || columns > kSingletonTableMaxColumns)
+    throw std::invalid_argument("singleton table needs 1…" + std::to_string(kSingletonTableMaxRows) + " rows and 1…" +
+                                std::to_string(kSingletonTableMaxColumns) + " columns, got " + std::to_string(rows) +
+                                " × " + std::to_string(columns));
   SingletonTable t;
   for (int a = 0; a < 3; ++a) t.cells_[a] = spline.span_count(a);
   const std::size_t slab = static_cast<std::size_t>(t.cells_[0]) * t.cells_[1];
@@ -126,18 +140,21 @@ SingletonTable build_singleton_table(const VolumeSpline& spline, const ProgressS
   }
   progress.check(0.95);
   t.rows_ = rows;
-  t.column_axes_ = fibonacci_sphere(columns);
-  // Column radius: the largest angle from a sphere point to its nearest axis, measured on a fine Fibonacci set and
-  // widened by that set's own spacing (so it bounds every point of the sphere).
-  const int probes = 20000;
-  const auto probe = fibonacci_sphere(probes);
-  double radius = 0.0;
-  for (const glm::vec3& d : probe)
-    radius = std::max(radius, angle_between(glm::dvec3(d), glm::dvec3(t.column_axes_[nearest_column(t.column_axes_, d)])));
-  t.column_radius_ = radius + 2.0 * std::sqrt(4.0 * kPi / probes);
+  t.set_columns(columns);
   t.file_bins();
   progress.check(1.0);
   return t;
+}
+
+void SingletonTable::set_columns(int columns) {
+  column_axes_ = fibonacci_sphere(columns);
+  // Column radius: the largest angle from a sphere point to its nearest axis, measured on a fine Fibonacci set and
+  // widened by that set's own spacing (so it bounds every point of the sphere).
+  const auto probe = fibonacci_sphere(kSingletonColumnProbes);
+  double radius = 0.0;
+  for (const glm::vec3& d : probe)
+    radius = std::max(radius, angle_between(glm::dvec3(d), glm::dvec3(column_axes_[nearest_column(column_axes_, d)])));
+  column_radius_ = radius + 2.0 * std::sqrt(4.0 * kPi / kSingletonColumnProbes);
 }
 
 void SingletonTable::file_bins() {
@@ -151,34 +168,57 @@ void SingletonTable::file_bins() {
     if (!(span > 0.0)) return 0;
     return std::clamp(static_cast<int>(std::floor((v - range_min_) / span * rows_)), 0, rows_ - 1);
   };
-  std::vector<std::uint32_t> bin_of(singletons_.size(), UINT32_MAX);
+  // Each non-constant singleton's bin (row of its lo, column nearest its cone axis), in parallel; per-thread counts and
+  // widened cones, merged (sums and maxima: the same for any thread count).
+  const std::size_t n = singletons_.size();
+  std::vector<std::uint32_t> bin_of(n, UINT32_MAX);
+  struct Partial {
+    std::vector<std::uint32_t> counts;
+    std::vector<float> half_angle;
+  };
+  tbb::enumerable_thread_specific<Partial> partials(
+      [bins] { return Partial{std::vector<std::uint32_t>(bins, 0), std::vector<float>(bins, 0.0f)}; });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+    Partial& p = partials.local();
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      const Singleton& s = singletons_[i];
+      if (!(s.hi > s.lo)) continue;  // constant: holds one level, and no silhouette (∇D = 0)
+      const glm::vec3 axis(s.axis[0], s.axis[1], s.axis[2]);
+      const bool full = half_angle(s) >= kPi;
+      const int col = full ? 0 : nearest_column(column_axes_, axis);
+      const std::uint32_t bin = static_cast<std::uint32_t>(row_of(s.lo) * cols + col);
+      bin_of[i] = bin;
+      ++p.counts[bin];
+      const double widened =
+          full ? kPi : angle_between(glm::dvec3(axis), glm::dvec3(column_axes_[col])) + half_angle(s) + 1e-6;
+      p.half_angle[bin] = std::max(p.half_angle[bin], static_cast<float>(widened));
+    }
+  });
   std::vector<std::uint32_t> counts(bins, 0);
   bin_half_angle_.assign(bins, 0.0f);
-  for (std::size_t i = 0; i < singletons_.size(); ++i) {
-    const Singleton& s = singletons_[i];
-    if (!(s.hi > s.lo)) continue;  // constant: holds one level, and no silhouette (∇D = 0)
-    const glm::vec3 axis(s.axis[0], s.axis[1], s.axis[2]);
-    const bool full = half_angle(s) >= kPi;
-    const int col = full ? 0 : nearest_column(column_axes_, axis);
-    const std::uint32_t bin = static_cast<std::uint32_t>(row_of(s.lo) * cols + col);
-    bin_of[i] = bin;
-    ++counts[bin];
-    const double widened =
-        full ? kPi : angle_between(glm::dvec3(axis), glm::dvec3(column_axes_[col])) + half_angle(s) + 1e-6;
-    bin_half_angle_[bin] = std::max(bin_half_angle_[bin], static_cast<float>(widened));
-  }
+  for (const Partial& p : partials)
+    for (std::size_t b = 0; b < bins; ++b)
+      counts[b] += p.counts[b], bin_half_angle_[b] = std::max(bin_half_angle_[b], p.half_angle[b]);
   bin_begin_.assign(bins + 1, 0);
   for (std::size_t b = 0; b < bins; ++b) bin_begin_[b + 1] = bin_begin_[b] + counts[b];
   bin_cells_.assign(bin_begin_[bins], 0);
   std::vector<std::uint32_t> fill(bin_begin_.begin(), bin_begin_.end() - 1);
-  for (std::size_t i = 0; i < singletons_.size(); ++i)
+  for (std::size_t i = 0; i < n; ++i)
     if (bin_of[i] != UINT32_MAX) bin_cells_[fill[bin_of[i]]++] = static_cast<std::uint32_t>(i);
+  std::vector<std::uint32_t>().swap(bin_of);  // freed before the sort keys are made
+  // Within a bin: hi descending, then cell ascending. Sorted as 64-bit keys (hi's order bits, cell) gathered once per
+  // bin, not as cells compared through their scattered singletons: the keys stay in cache. Keys take 8 bytes per
+  // cell of the bins being sorted at once (at worst every filed cell, when one bin holds them all).
   tbb::parallel_for(std::size_t(0), bins, [&](std::size_t b) {
-    std::sort(bin_cells_.begin() + bin_begin_[b], bin_cells_.begin() + bin_begin_[b + 1],
-              [&](std::uint32_t x, std::uint32_t y) {
-                const float hx = singletons_[x].hi, hy = singletons_[y].hi;
-                return hx != hy ? hx > hy : x < y;
-              });
+    const std::uint32_t first = bin_begin_[b], count = bin_begin_[b + 1] - first;
+    if (count < 2) return;
+    std::vector<std::uint64_t> keys(count);
+    for (std::uint32_t j = 0; j < count; ++j) {
+      const std::uint32_t cell = bin_cells_[first + j];
+      keys[j] = (static_cast<std::uint64_t>(descending_order_bits(singletons_[cell].hi)) << 32) | cell;
+    }
+    std::sort(keys.begin(), keys.end());
+    for (std::uint32_t j = 0; j < count; ++j) bin_cells_[first + j] = static_cast<std::uint32_t>(keys[j]);
   });
   // Macro-cells.
   for (int a = 0; a < 3; ++a) macro_dims_[a] = (cells_[a] + kMacro - 1) / kMacro;
@@ -249,134 +289,6 @@ std::vector<std::uint32_t> SingletonTable::cells_holding(double iso, const glm::
 std::size_t SingletonTable::memory_bytes() const {
   return singletons_.size() * sizeof(Singleton) + bin_begin_.size() * 4 + bin_cells_.size() * 4 +
          bin_half_angle_.size() * 4 + macro_range_.size() * sizeof(glm::vec2) + column_axes_.size() * sizeof(glm::vec3);
-}
-
-// ---- the on-disk cache ----------------------------------------------------------------------------------------------
-
-std::uint64_t singleton_cache_key(const VolumeSpline& spline) {
-  std::uint64_t h = 1469598103934665603ull;
-  auto mix = [&h](const void* data, std::size_t n) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (std::size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 1099511628211ull;
-  };
-  const std::int32_t head[6] = {spline.dims()[0], spline.dims()[1], spline.dims()[2], spline.order(),
-                                spline.interpolating() ? 1 : 0, 1 /* bound_cell version */};
-  mix(head, sizeof(head));
-  mix(spline.control_points().data(), spline.control_points().size() * sizeof(float));
-  return h;
-}
-
-std::filesystem::path singleton_cache_dir() {
-  if (const char* d = std::getenv("TRISPLINE_CACHE_DIR"); d && *d) return std::filesystem::path(d);
-  if (const char* d = std::getenv("XDG_CACHE_HOME"); d && *d) return std::filesystem::path(d) / "trispline" / "volumes";
-  if (const char* d = std::getenv("HOME"); d && *d)
-    return std::filesystem::path(d) / ".cache" / "trispline" / "volumes";
-  return std::filesystem::temp_directory_path() / "trispline-cache" / "volumes";
-}
-
-namespace {
-
-constexpr char kMagic[8] = {'T', 'S', 'P', 'L', 'S', 'N', 'G', '1'};
-
-struct CacheHead {
-  char magic[8];
-  std::uint64_t key;
-  std::int32_t cells[3];
-  std::int32_t rows, columns, macro[3];
-  double range_min, range_max, column_radius;
-  std::uint64_t singletons, bin_cells;
-};
-
-template <class T>
-void put(std::ofstream& f, const std::vector<T>& v) {
-  f.write(reinterpret_cast<const char*>(v.data()), static_cast<std::streamsize>(v.size() * sizeof(T)));
-}
-
-template <class T>
-bool get(std::ifstream& f, std::vector<T>& v, std::uint64_t n) {
-  v.resize(n);
-  f.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(n * sizeof(T)));
-  return static_cast<std::uint64_t>(f.gcount()) == n * sizeof(T);
-}
-
-}  // namespace
-
-void write_singleton_cache(const SingletonTable& t, const std::filesystem::path& path, std::uint64_t key) {
-  CacheHead h{};
-  std::memcpy(h.magic, kMagic, 8);
-  h.key = key;
-  for (int a = 0; a < 3; ++a) h.cells[a] = t.cells_[a], h.macro[a] = t.macro_dims_[a];
-  h.rows = t.rows_;
-  h.columns = t.columns();
-  h.range_min = t.range_min_, h.range_max = t.range_max_, h.column_radius = t.column_radius_;
-  h.singletons = t.singletons_.size();
-  h.bin_cells = t.bin_cells_.size();
-  std::filesystem::create_directories(path.parent_path());
-  const std::filesystem::path tmp = path.string() + ".tmp";
-  {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    if (!f) throw std::runtime_error("cannot write the singleton cache " + tmp.string());
-    f.write(reinterpret_cast<const char*>(&h), sizeof(h));
-    put(f, t.singletons_), put(f, t.column_axes_), put(f, t.bin_begin_), put(f, t.bin_cells_);
-    put(f, t.bin_half_angle_), put(f, t.macro_range_);
-    if (!f) throw std::runtime_error("cannot write the singleton cache " + tmp.string());
-  }
-  std::filesystem::rename(tmp, path);
-}
-
-bool read_singleton_cache(const std::filesystem::path& path, std::uint64_t key, SingletonTable& out) {
-  std::error_code ec;
-  const std::uintmax_t size = std::filesystem::file_size(path, ec);
-  if (ec || size < sizeof(CacheHead)) return false;
-  std::ifstream f(path, std::ios::binary);
-  CacheHead h{};
-  if (!f.read(reinterpret_cast<char*>(&h), sizeof(h)) || std::memcmp(h.magic, kMagic, 8) != 0 || h.key != key)
-    return false;
-  for (int a = 0; a < 3; ++a)
-    if (h.cells[a] < 1 || h.macro[a] != (h.cells[a] + SingletonTable::kMacro - 1) / SingletonTable::kMacro) return false;
-  if (h.rows < 1 || h.rows > (1 << 16) || h.columns < 1 || h.columns > (1 << 16)) return false;
-  const std::uint64_t cells = std::uint64_t(h.cells[0]) * h.cells[1] * h.cells[2];
-  const std::uint64_t bins = std::uint64_t(h.rows) * h.columns;
-  const std::uint64_t macros = std::uint64_t(h.macro[0]) * h.macro[1] * h.macro[2];
-  if (h.singletons != cells || h.bin_cells > cells) return false;
-  const std::uint64_t expected = sizeof(CacheHead) + cells * sizeof(Singleton) + h.columns * sizeof(glm::vec3) +
-                                 (bins + 1) * 4 + h.bin_cells * 4 + bins * 4 + macros * sizeof(glm::vec2);
-  if (size != expected) return false;  // sizes checked against the file before anything is allocated
-  SingletonTable t;
-  for (int a = 0; a < 3; ++a) t.cells_[a] = h.cells[a], t.macro_dims_[a] = h.macro[a];
-  t.rows_ = h.rows;
-  t.range_min_ = h.range_min, t.range_max_ = h.range_max, t.column_radius_ = h.column_radius;
-  if (!get(f, t.singletons_, cells) || !get(f, t.column_axes_, h.columns) || !get(f, t.bin_begin_, bins + 1) ||
-      !get(f, t.bin_cells_, h.bin_cells) || !get(f, t.bin_half_angle_, bins) || !get(f, t.macro_range_, macros))
-    return false;
-  if (t.bin_begin_.front() != 0 || t.bin_begin_.back() != h.bin_cells) return false;
-  for (std::uint64_t b = 0; b < bins; ++b)
-    if (t.bin_begin_[b] > t.bin_begin_[b + 1]) return false;
-  for (std::uint32_t c : t.bin_cells_)
-    if (c >= cells) return false;
-  out = std::move(t);
-  return true;
-}
-
-SingletonTable cached_singleton_table(const VolumeSpline& spline, const ProgressSink& progress, bool* from_cache) {
-  const std::uint64_t key = singleton_cache_key(spline);
-  char name[32];
-  std::snprintf(name, sizeof(name), "%016llx.singletons", static_cast<unsigned long long>(key));
-  const std::filesystem::path path = singleton_cache_dir() / name;
-  SingletonTable t;
-  if (read_singleton_cache(path, key, t)) {
-    if (from_cache) *from_cache = true;
-    progress.check(1.0);
-    return t;
-  }
-  t = build_singleton_table(spline, progress);
-  if (from_cache) *from_cache = false;
-  try {
-    write_singleton_cache(t, path, key);
-  } catch (const std::exception&) {
-    // The cache is an optimisation: a read-only or full disk only costs the next load its preprocessing.
-  }
-  return t;
 }
 
 }  // namespace trispline::core

@@ -28,6 +28,7 @@
 #include <glm/glm.hpp>
 
 #include "core/spline/progress.h"
+#include "core/volume/preparation_budget.h"
 #include "core/volume/volume_spline.h"
 
 namespace trispline::core {
@@ -38,6 +39,12 @@ struct Singleton {
   float axis[3] = {0.0f, 0.0f, 0.0f};  // unit cone axis (zero when the cone is the whole sphere)
   float sin_half = 1.0f;            // sin α when α ≤ 90°, else 1: a direction ⊥ w is in the cone iff |axis·ŵ| ≤ sin_half
 };
+
+// The lookup table's default shape and bounds: rows (iso bins) and columns (direction cones), and the Fibonacci
+// directions sampled to measure the column radius.
+inline constexpr int kSingletonTableRows = 256, kSingletonTableColumns = 64;
+inline constexpr int kSingletonTableMaxRows = 4096, kSingletonTableMaxColumns = 1024;
+inline constexpr int kSingletonColumnProbes = 20000;
 
 class SingletonTable {
  public:
@@ -78,9 +85,9 @@ class SingletonTable {
 
  private:
   friend SingletonTable build_singleton_table(const VolumeSpline&, const ProgressSink&, int, int);
-  friend void write_singleton_cache(const SingletonTable&, const std::filesystem::path&, std::uint64_t);
-  friend bool read_singleton_cache(const std::filesystem::path&, std::uint64_t, SingletonTable&);
-  void file_bins();  // rows, columns and bins from singletons_
+  friend bool read_singleton_cache(const std::filesystem::path&, std::uint64_t, SingletonTable&, std::uint64_t);
+  void set_columns(int columns);  // column axes and radius
+  void file_bins();               // range, bins and macro-cells from singletons_, rows_ and the columns
 
   std::array<int, 3> cells_{0, 0, 0};
   std::vector<Singleton> singletons_;
@@ -95,24 +102,50 @@ class SingletonTable {
   std::vector<glm::vec2> macro_range_;         // (min lo, max hi) per macro-cell
 };
 
+// The bounds of cell (a, b, c) of `spline` (0 ≤ a < span_count(0), …), as build_singleton_table files them.
+Singleton singleton_of_cell(const VolumeSpline& spline, int a, int b, int c);
+
 // Preprocesses `spline` into singletons and their table (tbb-parallel over z-slabs; deterministic). rows: iso bins
-// (≥ 1), columns: direction cones (≥ 1). Throws OperationCancelled through `progress`.
-SingletonTable build_singleton_table(const VolumeSpline& spline, const ProgressSink& progress = {}, int rows = 256,
-                                     int columns = 64);
+// (1…kSingletonTableMaxRows), columns: direction cones (1…kSingletonTableMaxColumns); std::invalid_argument outside.
+// Throws OperationCancelled through `progress`.
+SingletonTable build_singleton_table(const VolumeSpline& spline, const ProgressSink& progress = {},
+                                     int rows = kSingletonTableRows, int columns = kSingletonTableColumns);
+
+// ---- the on-disk cache (singleton_cache.cpp) ----
+// A file per spline content, named <key as 16 hex digits>.singletons: a 48-byte header (magic "TSPLSNG2", key, cells
+// per axis, rows, columns, CRC-32 of the whole file, singleton count) and the singletons. Bins, macro-cells and
+// column cones are filed again on read (deterministic: the table equals a fresh build bit for bit).
 
 // Content key of a spline for the on-disk cache: FNV-1a 64 over its dims, order, mode and control points.
 std::uint64_t singleton_cache_key(const VolumeSpline& spline);
 // The cache folder: $TRISPLINE_CACHE_DIR, else $XDG_CACHE_HOME/trispline/volumes, else ~/.cache/trispline/volumes.
 std::filesystem::path singleton_cache_dir();
-// Writes the table to `path` (a temporary file, then rename: a crash leaves no half file). Throws std::runtime_error
-// on I/O failure.
+// The cache folder's size limit (bytes): $TRISPLINE_CACHE_MAX_MB mebibytes (decimal digits only, ≤ 2^20; 0 turns
+// the disk cache off: nothing is read or written), else kSingletonCacheDefaultMiB MiB. Another value of the variable
+// is ignored (the default applies).
+std::uint64_t singleton_cache_limit_bytes();
+inline constexpr std::uint64_t kSingletonCacheDefaultMiB = 2048;
+// Bytes the cache file of `table` takes.
+std::uint64_t singleton_cache_file_bytes(const SingletonTable& table);
+// Removes cache entries of `dir` (files named <16 hex digits>.singletons, and leftover temporaries of writes) least
+// recently used first (oldest modification time; a read touches its file) until they take at most `limit_bytes`.
+// Other files are never touched. Returns the bytes the entries take afterwards. I/O errors are ignored (the entry
+// stays and counts).
+std::uint64_t evict_singleton_cache(const std::filesystem::path& dir, std::uint64_t limit_bytes);
+// Writes the table to `path` (a temporary file in the same folder, then rename: a crash leaves no half file).
+// Throws std::runtime_error on I/O failure.
 void write_singleton_cache(const SingletonTable& table, const std::filesystem::path& path, std::uint64_t key);
-// Reads a table written by write_singleton_cache for `key`; false (and `out` untouched) when the file is missing,
-// of another key or version, truncated or inconsistent — a bad cache file is rebuilt, never trusted.
-bool read_singleton_cache(const std::filesystem::path& path, std::uint64_t key, SingletonTable& out);
+// Reads a table written by write_singleton_cache for `key`; false (and `out` untouched) when the file is missing, of
+// another key or version, of a size other than its header's counts imply, over `memory_budget_bytes`, with a CRC-32
+// that does not match its contents, or with values a build cannot give (non-finite or lo > hi, rows or columns out
+// of range). Sizes are checked against the file and the budget before anything is allocated.
+bool read_singleton_cache(const std::filesystem::path& path, std::uint64_t key, SingletonTable& out,
+                          std::uint64_t memory_budget_bytes = kPreparedVolumeBudget);
 
-// The table for `spline`: from the cache when a valid file exists, else built and written (cache write failures are
-// ignored: the cache is an optimisation). `from_cache` (may be null) says which.
+// The table for `spline`: from the cache when a valid file exists (one that also matches the spline's cells, the
+// default rows and columns, and a rebuild of a sample of its cells), else built, the folder evicted down to its limit
+// and the table written, replacing a bad file (cache write failures are ignored: the cache is an optimisation). With
+// the limit 0 nothing is read or written. `from_cache` (may be null) says which.
 SingletonTable cached_singleton_table(const VolumeSpline& spline, const ProgressSink& progress = {},
                                       bool* from_cache = nullptr);
 
