@@ -227,13 +227,14 @@ bool EditorSession::refused(const char* change) const {
   return true;
 }
 
-bool EditorSession::execute(const nlohmann::json& line, const fs::path& base_dir) {
+bool EditorSession::execute(const nlohmann::json& line, const fs::path& base_dir, const fs::path& output_dir) {
   const std::string id = line.contains("cmd") && line["cmd"].is_string() ? line["cmd"].get<std::string>() : "?";
   if (refused(id.c_str())) return false;
   try {
     core::CommandContext ctx;
     std::error_code ec;
     ctx.base_dir = base_dir.empty() ? fs::current_path(ec) : base_dir;
+    ctx.output_dir = output_dir;
     return execute(CommandRegistry::builtin().parse(line, ctx));
   } catch (const core::CommandError& e) {
     messages_.error(command_error_text(id, e));

@@ -62,8 +62,10 @@ class EditorSession {
   void finish();  // clean exit: closes the log and removes the lock
 
   // Parses `line` with the command registry and executes it (relative paths against base_dir, default: the
-  // current folder). Errors go to the Log in red; the scene is then unchanged. Returns success.
-  bool execute(const nlohmann::json& line, const std::filesystem::path& base_dir = {});
+  // current folder; files the command writes under output_dir, default: base_dir — the folder the user chose in a
+  // dialog). Errors go to the Log in red; the scene is then unchanged. Returns success.
+  bool execute(const nlohmann::json& line, const std::filesystem::path& base_dir = {},
+               const std::filesystem::path& output_dir = {});
   // Executes a parsed command (prepared or not: Command::prepare) like execute(line); the Log's time adds
   // `prepared_ms`, the time its preparation took elsewhere. Returns success.
   bool execute(core::CommandPtr cmd, double prepared_ms = 0.0);

@@ -263,9 +263,11 @@ bool VolumeUi::export_volume(const std::string& volume, const ui::VolumeExportKi
   core::VolumeExportParams p;
   p.object = volume;
   p.what = what;
-  p.path = path.string();
+  // The user chose the file in a dialog: its folder is the output folder, and the line names the file in it.
+  path = fs::absolute(path);
+  p.path = path.filename().string();
   if (what == "silhouettes") p.camera = view;  // the view the user sees
-  if (!session_.execute(core::VolumeExportCommand::schema().to_json(p))) return false;
+  if (!session_.execute(core::VolumeExportCommand::schema().to_json(p), {}, path.parent_path())) return false;
   messages_.info("exported the " + std::string(what == "iso" ? "iso-surface" : "silhouettes") + " of " + volume +
                  " to " + path.string());
   return true;

@@ -38,11 +38,15 @@ class CommandError : public std::runtime_error {
 // What a command needs from outside the scene while parsing/executing.
 struct CommandContext {
   std::filesystem::path base_dir;  // relative paths in a log are relative to the log's folder
-  // Where relative paths of files a command writes (volume.export) go: replay's --out folder; empty = base_dir.
+  // The folder every file a command writes (volume.export) must stay in: replay's --out folder, the folder the
+  // editor's user chose in a dialog; empty = base_dir.
   std::filesystem::path output_dir;
   std::filesystem::path resolve(const std::string& path) const;
-  // An output path: absolute as given, else under output_dir (base_dir when empty).
-  std::filesystem::path resolve_output(const std::string& path) const;
+  // An output path of a log (`path`, as written in the line, named `field` in errors) resolved under output_dir
+  // (base_dir when empty): the absolute, canonical file path, with `..` and every existing symlink resolved.
+  // Throws CommandError(field) when `path` is empty, absolute, holds a control character, names a folder, or
+  // resolves outside the output folder (a log is shared input: it must not write where its reader did not ask).
+  std::filesystem::path resolve_output(const std::string& path, const char* field = "path") const;
 };
 
 class Command {

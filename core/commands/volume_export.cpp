@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "core/commands/codecs.h"
+#include "core/scene/scene_check.h"
 #include "core/mesh/gltf_io.h"
 #include "core/volume/iso_mesh.h"
 #include "core/volume/silhouette_export.h"
@@ -17,6 +18,18 @@ std::string lower_extension(const std::string& path) {
   return e;
 }
 
+// Refuses a result holding a non-finite coordinate or one beyond kMaxWorldCoordinate, before a file is written.
+template <class Points>
+void require_finite_points(const Points& points, const char* what) {
+  for (std::size_t i = 0; i < points.size(); ++i)
+    for (int a = 0; a < 3; ++a)
+      if (!(std::abs(double(points[i][a])) <= kMaxWorldCoordinate))
+        throw CommandError("field 'object': " + std::string(what) + " " + std::to_string(i) +
+                               " is not finite or out of range (" + params::format_number(points[i][a]) +
+                               "): the volume's geometry is degenerate; nothing written",
+                           "object");
+}
+
 }  // namespace
 
 const ParamSchema<VolumeExportParams>& VolumeExportCommand::schema() {
@@ -28,7 +41,8 @@ const ParamSchema<VolumeExportParams>& VolumeExportCommand::schema() {
           .help("silhouettes: for the current camera, as .svg or .glb line strips; iso: the surface D = iso as a "
                 "triangle mesh, .glb/.obj/.ply")
           .field("path", &P::path).required()
-          .help("Output file; a relative path goes under replay's --out folder, else the log's folder")
+          .help("Output file, relative to the output folder (replay's --out, else the log's folder); absolute paths "
+                "and paths that leave the folder are refused")
           .field("samples_per_voxel", &P::samples_per_voxel).range(1, 4).write_unless_default()
           .help("iso: grid samples per voxel and axis before meshing (1 = at the control points)")
           .object("camera", &P::camera, camera_schema())
@@ -45,17 +59,15 @@ const ParamSchema<VolumeExportParams>& VolumeExportCommand::schema() {
 
 CommandPtr VolumeExportCommand::parse(const nlohmann::json& line, const CommandContext& ctx) {
   VolumeExportParams p = schema().parse(line, ctx);
-  if (p.path.empty()) params::fail("path", "must not be empty");
-  p.path = ctx.resolve_output(p.path).lexically_normal().string();
-  return std::make_unique<VolumeExportCommand>(std::move(p));
+  std::filesystem::path file = ctx.resolve_output(p.path, "path");
+  return std::make_unique<VolumeExportCommand>(std::move(p), std::move(file));
 }
 
 std::optional<VolumeObject> VolumeExportCommand::build(const Scene& scene) {
   const VolumeObject& before = require_volume(scene, p_.object);
   const auto t0 = std::chrono::steady_clock::now();
   VolumeObject v = before;
-  if (const auto parent = std::filesystem::path(p_.path).parent_path(); !parent.empty())
-    std::filesystem::create_directories(parent);
+  const std::string file = file_.string();
   if (p_.what == "silhouettes") {
     // The view, its far plane beyond the volume (the SVG's projection clips to it; camera.set carries none).
     Camera cam = p_.camera ? *p_.camera : scene.camera;
@@ -65,33 +77,42 @@ std::optional<VolumeObject> VolumeExportCommand::build(const Scene& scene) {
     v = volume_with_silhouettes(v, cam, &stats_);
     v.silhouette.enabled = before.silhouette.enabled;
     const auto& polylines = v.silhouettes->polylines;
-    if (lower_extension(p_.path) == ".svg") {
+    for (const SilhouettePolyline& pl : polylines) require_finite_points(pl.points, "silhouette point");
+    std::filesystem::create_directories(file_.parent_path());
+    if (lower_extension(file) == ".svg") {
       SvgStyle style;
       style.stroke = v.silhouette.style;  // hue | glyphs | width | plain
       style.hidden = v.silhouette.hidden == "dashed" ? "dashed" : "remove";
       std::vector<SilhouettePolyline> drawn = polylines;
       if (v.silhouette.hidden == "show")
         for (auto& pl : drawn) std::fill(pl.visible.begin(), pl.visible.end(), 1);
-      write_silhouettes_svg(p_.path, drawn, cam.projection_matrix() * cam.view_matrix(), cam.viewport, style);
+      write_silhouettes_svg(file, drawn, cam.projection_matrix() * cam.view_matrix(), cam.viewport, style);
     } else {
       const auto strips = silhouette_line_strips(polylines, v.silhouette.hidden != "remove");
       GltfNode node;
       node.name = p_.object + "/silhouettes";
       node.line_strips = &strips;
       node.color = glm::vec3(0.0f);
-      write_glb(p_.path, {node});
+      write_glb(file, {node});
     }
   } else {
+    if (!(v.iso >= v.table->range_min() && v.iso <= v.table->range_max()))
+      throw CommandError("field 'object': the iso-level " + params::format_number(v.iso) + " of '" + p_.object +
+                             "' lies outside its values [" + params::format_number(v.table->range_min()) + ", " +
+                             params::format_number(v.table->range_max()) + "]: no surface to export (volume.iso sets it)",
+                         "object");
     IsoMeshOptions opt;
     opt.samples_per_voxel = p_.samples_per_voxel;
     IsoMeshStats ms;
     auto mesh = std::make_shared<const TriMesh>(extract_iso_mesh(*v.spline, v.iso, opt, nullptr, &ms));
-    write_iso_mesh(p_.path, *mesh);
+    require_finite_points(mesh->positions, "iso-surface vertex");
+    std::filesystem::create_directories(file_.parent_path());
+    write_iso_mesh(file, *mesh);
     stats_["vertices"] = mesh->positions.size();
     stats_["triangles"] = mesh->triangles.size();
     v.iso_mesh = std::move(mesh);
   }
-  stats_["path"] = p_.path;
+  stats_["path"] = file;
   stats_["ms"] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return v;
 }

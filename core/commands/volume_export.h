@@ -7,9 +7,12 @@
 // what = iso: the surface D = iso as a triangle mesh (OpenVDB volume-to-mesh on the sampled spline, vertices projected
 // onto D = iso: iso_mesh.h) written as .glb, .obj or .ply (world millimetres); the volume keeps it (scene.glb node
 // "<id>/iso").
-// path: a relative path goes under the replay's --out folder (CommandContext::output_dir), else the log's folder; the
-// logged line holds the absolute path. Undo forgets what the volume kept (the file stays). stats(): what was written
-// (points/polylines or vertices/triangles) and ms.
+// path: relative to the output folder (CommandContext::output_dir: replay's --out, the folder chosen in the editor's
+// export dialog; else the log's folder) and resolved inside it (CommandContext::resolve_output: absolute paths and
+// paths that leave it through `..` or a symlink are refused); the logged line keeps the relative path. The result is
+// checked before anything is written: non-finite points or vertices fail the command (field "object"), no file.
+// Undo forgets what the volume kept (the file stays). stats(): what was written (points/polylines or
+// vertices/triangles), the file and ms.
 #pragma once
 
 #include "core/commands/declared_command.h"
@@ -27,7 +30,9 @@ struct VolumeExportParams {
 
 class VolumeExportCommand : public DeclaredCommand<VolumeExportCommand, VolumeExportParams, VolumeSnapshotCommand> {
  public:
-  using DeclaredCommand::DeclaredCommand;
+  // `file`: p.path resolved by CommandContext::resolve_output (absolute, inside the output folder).
+  VolumeExportCommand(VolumeExportParams p, std::filesystem::path file)
+      : DeclaredCommand(std::move(p)), file_(std::move(file)) {}
   static const ParamSchema<VolumeExportParams>& schema();
   // As DeclaredCommand::parse, with `path` resolved by CommandContext::resolve_output.
   static CommandPtr parse(const nlohmann::json& line, const CommandContext& ctx);
@@ -37,6 +42,9 @@ class VolumeExportCommand : public DeclaredCommand<VolumeExportCommand, VolumeEx
   std::string target() const override { return p_.object; }
   std::optional<VolumeObject> build(const Scene& scene) override;
   std::string failure_field() const override { return "path"; }
+
+ private:
+  std::filesystem::path file_;
 };
 
 }  // namespace trispline::core

@@ -187,6 +187,9 @@ TEST_F(VolumeUiTest, ExportWritesTheViewsSilhouettesAndTheIsoSurface) {
   ASSERT_GE(n, 2u);
   EXPECT_EQ(session.history().at(n - 1).id(), "volume.export");  // one step: the view travels in its camera field
   EXPECT_NE(session.history().at(n - 2).id(), "camera.set");
+  // The user chose the file in a dialog: its folder is the output folder and the logged line names the file in it,
+  // so a replay of the session writes under its own output folder, never at this absolute path.
+  EXPECT_EQ(session.history().at(n - 1).to_json()["path"], "torus.svg");
   EXPECT_FALSE(core::same_view(session.scene().camera, view)) << "the scene camera is left alone";
   std::ifstream svg(dir_ / "torus.svg");
   std::stringstream text;

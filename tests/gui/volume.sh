@@ -91,7 +91,8 @@ svg="$GUI_WORK/brain.svg"
 for _ in $(seq 1 150); do [ -f "$svg" ] && break; sleep 0.2; done
 [ -f "$svg" ] || gui_fail "the SVG was not written to $svg"
 [ "$(grep -c '<path' "$svg")" -ge 1 ] || gui_fail "the SVG holds no <path element"
-gui_wait_logged '.cmd == "volume.export" and .what == "silhouettes" and (.path | endswith("brain.svg"))' "volume.export logged"
+gui_wait_logged '.cmd == "volume.export" and .what == "silhouettes" and .path == "brain.svg"' \
+  "volume.export logged with the file's name in the folder chosen in the dialog (a replay writes under its own --out)"
 gui_wait_logged '.cmd == "volume.export" and .camera != null' "the export carries the view it was made for"
 
 # 7. A CT whose preprocessing is cancelled: the progress window's Cancel; nothing added.

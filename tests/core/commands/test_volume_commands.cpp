@@ -22,8 +22,8 @@ namespace {
 using nlohmann::json;
 
 template <class C>
-CommandPtr parse(const std::string& line) {
-  return C::parse(json::parse(line), {});
+CommandPtr parse(const std::string& line, const CommandContext& ctx = {}) {
+  return C::parse(json::parse(line), ctx);
 }
 
 class VolumeCommands : public ::testing::Test {
@@ -46,6 +46,12 @@ class VolumeCommands : public ::testing::Test {
                                 "viewport":[320,240]})")->redo(s);
     parse<VolumeLoadCommand>(R"({"cmd":"volume.load","analytic":"torus","name":"torus","iso":0})")->redo(s);
     return s;
+  }
+  // Outputs go under dir_ (a replay's --out).
+  CommandContext out_ctx() const { return CommandContext{dir_, dir_}; }
+  CommandPtr export_line(json line) const {
+    line["cmd"] = "volume.export";
+    return VolumeExportCommand::parse(line, out_ctx());
   }
   std::filesystem::path dir_;
 };
@@ -156,18 +162,16 @@ TEST_F(VolumeCommands, ErrorsNameTheFieldAndChangeNothing) {
 
 TEST_F(VolumeCommands, ExportWritesSvgGlbAndIsoMeshAndSceneGlbHoldsThem) {
   Scene s = torus_scene();
-  const auto svg = dir_ / "torus.svg", lines = dir_ / "torus_lines.glb", mesh = dir_ / "torus.ply";
-  auto e1 = parse<VolumeExportCommand>(json({{"cmd", "volume.export"}, {"object", "torus"}, {"path", svg.string()}}).dump());
+  const auto svg = dir_ / "torus.svg", lines = dir_ / "torus_lines.glb";
+  auto e1 = export_line({{"object", "torus"}, {"path", "torus.svg"}});
   e1->redo(s);
   std::stringstream text;
   text << std::ifstream(svg).rdbuf();
   EXPECT_NE(text.str().find("<path"), std::string::npos);
   EXPECT_GT(e1->stats()["points"].get<std::size_t>(), 100u);
-  parse<VolumeExportCommand>(json({{"cmd", "volume.export"}, {"object", "torus"}, {"path", lines.string()}}).dump())
-      ->redo(s);
+  export_line({{"object", "torus"}, {"path", "torus_lines.glb"}})->redo(s);
   EXPECT_GT(std::filesystem::file_size(lines), 1000u);
-  auto e3 = parse<VolumeExportCommand>(
-      json({{"cmd", "volume.export"}, {"object", "torus"}, {"what", "iso"}, {"path", mesh.string()}}).dump());
+  auto e3 = export_line({{"object", "torus"}, {"what", "iso"}, {"path", "torus.ply"}});
   e3->redo(s);
   EXPECT_GT(e3->stats()["triangles"].get<std::size_t>(), 1000u);
   ASSERT_TRUE(s.find_volume("torus")->iso_mesh);
@@ -205,10 +209,8 @@ TEST_F(VolumeCommands, ExportTakesTheViewFromItsCameraField) {
   const auto a = dir_ / "a.svg", b = dir_ / "b.svg";
   const json cam = {{"eye", {0, -150, 60}}, {"target", {0, 0, 0}}, {"up", {0, 0, 1}}, {"viewport", {320, 240}}};
   // The same view as the scene camera, given in the line: the same drawing.
-  parse<VolumeExportCommand>(json({{"cmd", "volume.export"}, {"object", "torus"}, {"path", a.string()}}).dump())->redo(s);
-  parse<VolumeExportCommand>(
-      json({{"cmd", "volume.export"}, {"object", "torus"}, {"path", b.string()}, {"camera", cam}}).dump())
-      ->redo(s);
+  export_line({{"object", "torus"}, {"path", "a.svg"}})->redo(s);
+  export_line({{"object", "torus"}, {"path", "b.svg"}, {"camera", cam}})->redo(s);
   std::stringstream ta, tb;
   ta << std::ifstream(a).rdbuf();
   tb << std::ifstream(b).rdbuf();
@@ -217,13 +219,57 @@ TEST_F(VolumeCommands, ExportTakesTheViewFromItsCameraField) {
   json top = cam;
   top["eye"] = {0, 0, 200};
   top["up"] = {0, 1, 0};
-  parse<VolumeExportCommand>(
-      json({{"cmd", "volume.export"}, {"object", "torus"}, {"path", b.string()}, {"camera", top}}).dump())
-      ->redo(s);
+  export_line({{"object", "torus"}, {"path", "b.svg"}, {"camera", top}})->redo(s);
   std::stringstream tc;
   tc << std::ifstream(b).rdbuf();
   EXPECT_NE(ta.str(), tc.str());
   EXPECT_EQ(s.camera.eye, glm::dvec3(0, -150, 60));
+}
+
+TEST_F(VolumeCommands, ExportStaysInsideTheOutputFolder) {
+  Scene s = torus_scene();
+  const std::filesystem::path out = dir_ / "out";
+  std::filesystem::create_directories(out / "sub");
+  std::filesystem::create_directories(dir_ / "outside");
+  std::filesystem::create_directory_symlink(dir_ / "outside", out / "link");
+  const CommandContext ctx{dir_ / "log", out};
+  const auto refused = [&](const std::string& path) {
+    try {
+      VolumeExportCommand::parse(json{{"cmd", "volume.export"}, {"object", "torus"}, {"path", path}}, ctx);
+      ADD_FAILURE() << "accepted " << path;
+    } catch (const CommandError& e) {
+      EXPECT_EQ(e.field(), "path") << e.what();
+    }
+  };
+  for (const std::string& bad : std::vector<std::string>{"../../x.svg", "a/b/c/../../../../x.ply", "/tmp/x.glb", (dir_ / "out/x.svg").string(),
+                                "link/x.svg", "link/../../x.svg", "sub", "..", ".", "x\nrm.svg", "../out2/x.svg"})
+    refused(bad);
+  // Nothing was written anywhere by the refusals.
+  EXPECT_TRUE(std::filesystem::is_empty(dir_ / "outside"));
+  // Inside: plain, in a subfolder, with a `..` that stays inside, and a new subfolder.
+  for (const std::string good : {"x.svg", "sub/x.svg", "sub/../y.svg", "new/deeper/z.svg"}) {
+    auto c = VolumeExportCommand::parse(json{{"cmd", "volume.export"}, {"object", "torus"}, {"path", good}}, ctx);
+    c->redo(s);
+    EXPECT_TRUE(std::filesystem::is_regular_file(out / good)) << good;
+    EXPECT_EQ(c->to_json()["path"], good);  // the line keeps the relative path: a replay writes under its own --out
+  }
+  // A symlinked file that points outside is refused too (the link would carry the write out).
+  std::filesystem::create_symlink(dir_ / "outside" / "victim.svg", out / "victim.svg");
+  refused("victim.svg");
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "outside" / "victim.svg"));
+}
+
+TEST_F(VolumeCommands, ExportOfAnIsoOutsideTheValuesNamesTheLevelAndWritesNothing) {
+  Scene s = torus_scene();
+  parse<VolumeIsoCommand>(R"({"cmd":"volume.iso","object":"torus","level":1e30})")->redo(s);
+  try {
+    export_line({{"object", "torus"}, {"what", "iso"}, {"path", "far.ply"}})->redo(s);
+    ADD_FAILURE() << "an iso-level of 1e30 was exported";
+  } catch (const CommandError& e) {
+    EXPECT_EQ(e.field(), "object");
+    EXPECT_NE(std::string(e.what()).find("1e30"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "far.ply"));
 }
 
 }  // namespace
