@@ -122,12 +122,19 @@ ParamSchema<S> make_layer_schema(bool fill) {
           params::fail("tile_size", "give tile_size (world units) or counts (cells per chart), not both");
         if (fill && !s.counts && !s.tile_size) params::fail("counts", "ddm.fill needs counts or tile_size");
         if (s.tile_size) return;
+        const glm::ivec2 counts = s.counts.value_or(glm::ivec2(1));
         try {
-          (void)ddm_layout_cells(s.layout, s.counts.value_or(glm::ivec2(1)), 1);
+          ddm_check_layout_counts(s.layout, counts);
         } catch (const std::invalid_argument& e) {
           const std::string msg = e.what();  // "counts: …"
           params::fail("counts", msg.substr(msg.find(':') + 2));
         }
+        // One chart's cells, before any is made: each tile has a vertex at least, so more cells than the layer's
+        // vertex budget can never be a layer (ddm.fill and ddm.paint weigh the charts together later).
+        if (const std::size_t cells = ddm_layout_cell_count(s.layout, counts); cells > kMaxTileVertices)
+          params::fail("counts", "[" + std::to_string(counts.x) + ", " + std::to_string(counts.y) + "] makes " +
+                                     std::to_string(cells) + " cells on one chart, over the layer budget of " +
+                                     std::to_string(kMaxTileVertices) + " tile vertices");
       });
 }
 

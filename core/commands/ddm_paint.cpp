@@ -119,6 +119,20 @@ std::vector<DdmInstance> ddm_paint_cells(const Scene& scene, const SceneObject& 
     throw std::invalid_argument("layer: '" + layer.name + "' has counts for " +
                                 std::to_string(layer.chart_counts.size()) + " charts, its base " +
                                 std::to_string(charts));
+  // Every candidate cell is evaluated on the base and kept with its point (~250 bytes): weighed before any is made.
+  std::size_t layout_cells = 0;
+  if (layer.chart_counts.empty())
+    layout_cells = static_cast<std::size_t>(charts) * ddm_layout_cell_count(layer.layout, layer.counts);
+  else
+    for (const glm::ivec2& c : layer.chart_counts) layout_cells += ddm_layout_cell_count(layer.layout, c);
+  if (layout_cells > kMaxDdmPaintCandidates) {
+    const char* field = layer.tile_size ? "tile_size" : "counts";
+    throw CommandError("field '" + std::string(field) + "': the layout of layer '" + layer.name + "' has " +
+                           std::to_string(layout_cells) + " cells on " + std::to_string(charts) +
+                           " charts for the brush to choose from, over the painting budget of " +
+                           std::to_string(kMaxDdmPaintCandidates) + " (fewer cells per chart, larger tiles)",
+                       field);
+  }
   const int tile_count = std::max<int>(1, static_cast<int>(layer.tiles.size()));
   // One chart's layout cells, each with the tile a pattern fill gives it.
   const auto cells_of = [&](glm::ivec2 counts) {

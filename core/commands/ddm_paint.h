@@ -5,7 +5,8 @@
 // `stroke` is #S × 2 viewport pixels (top-left origin), S ≥ 1; `radius_px` the brush radius in the same pixels.
 // The candidate cells are every cell of the layer's layout (ddm_layout_cells(layout, counts, #charts), or each chart's
 // own counts for a layer laid by tile_size, DdmLayer::chart_counts) on every chart of its base (uv bases: cells the
-// fill would prune are skipped, ddm_uv_cell_kept). A cell is touched when its centre — the
+// fill would prune are skipped, ddm_uv_cell_kept); at most kMaxDdmPaintCandidates of them in all, weighed from the
+// counts before any is made (else CommandError "counts" or "tile_size"). A cell is touched when its centre — the
 // base point S(chart, cell centre) (w = 0), through the object's transform — (1) projects within radius_px of the
 // stroke polyline, (2) lies in front of the eye with its normal facing the camera and (3) is not occluded: the first
 // hit of the eye ray towards it among the visible objects' world meshes is none, lies within a tolerance of it
@@ -39,6 +40,10 @@
 #include "core/scene/camera.h"
 
 namespace trispline::core {
+
+// Cells of a layer's layout (all charts) a ddm.paint stroke may choose from: each is evaluated on the base and kept
+// with its point and normal (~250 bytes), so 2 M cost ~0.5 GB and a few seconds; more is refused before any is made.
+inline constexpr std::size_t kMaxDdmPaintCandidates = 2'000'000;
 
 // The cells of `layer` (on `object`, in `scene`) that a stroke touches, as described above: layout cells in chart /
 // layout order, each with tile = ddm_paint_tile_index(its index and row in its chart, #tiles). Pure; TBB over charts

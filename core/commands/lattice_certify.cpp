@@ -11,7 +11,9 @@ const ParamSchema<LatticeCertifyParams>& LatticeCertifyCommand::schema() {
       ParamSchema<P>("lattice.certify", "Certify that a deformed object's lattice does not fold (det J > 0 everywhere)")
           .field("object", &P::object).required().help("A deformed object (with an FFD)")
           .field("max_depth", &P::max_depth).range(0, 12)
-          .help("Halvings of a Bézier cell before a box that is neither certified nor folded is called undecided");
+          .help("Halvings of a Bézier cell before a box that is neither certified nor folded is called undecided; "
+                "the work is also bounded by 512 K Bernstein boxes, what is left after every cell's first box shared out "
+                "over the cells still mixed (a cell that spends its share is undecided, counted in budget_cells)");
   return s;
 }
 
@@ -59,6 +61,7 @@ void LatticeCertifyCommand::redo(Scene& scene) {
             {"undecided_cells", undecided},
             {"cells", certificate_.cells},
             {"boxes", certificate_.boxes},
+            {"budget_cells", certificate_.budget_cells},
             {"min_det_coefficient", certificate_.min_det_coefficient},
             {"ms", ms}};
 }

@@ -48,6 +48,19 @@ std::optional<SceneObject> MeshRefineCommand::build(const Scene& scene) {
     throw CommandError("field 'max_triangles': " + std::to_string(opts.max_triangles) + " is below the " +
                            std::to_string(target->rest_mesh->triangles.size()) + " triangles of '" + p_.object + "'",
                        "max_triangles");
+  {
+    // A tolerance below float32's resolution at the object's size cannot be met in scene.glb nor seen; only the
+    // triangle budget would stop it (tolerance 1e-300: every round splits every triangle).
+    Aabb box;
+    if (target->world_mesh)
+      for (const glm::dvec3& p : target->world_mesh->positions) box.extend(p);
+    const double floor = kMinRefineTolerance * box.diagonal();
+    if (opts.tolerance < floor)
+      throw CommandError("field 'tolerance': " + params::format_number(opts.tolerance) + " world units is below " +
+                             params::format_number(floor) + " (1e-7 × the size of '" + p_.object +
+                             "', float32's resolution there): no refinement can meet it",
+                         "tolerance");
+  }
   if (target->clip)
     throw CommandError("field 'object': '" + p_.object + "' plays a glTF clip that animates its vertices; refining would "
                        "break the clip's vertex correspondence (remove the clip with anim.clip \"remove\":true first)",

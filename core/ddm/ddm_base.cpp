@@ -115,12 +115,17 @@ const char* ddm_layout_name(DdmLayout l) {
   return "rect";
 }
 
-std::vector<DdmInstance> ddm_layout_cells(DdmLayout layout, glm::ivec2 counts, int chart_count) {
+void ddm_check_layout_counts(DdmLayout layout, glm::ivec2 counts) {
   const int n = counts.x, m = counts.y;
   const int min_n = layout == DdmLayout::rect ? 1 : 2;
   if (n < min_n || m < 1)
     throw std::invalid_argument("counts: [" + std::to_string(n) + ", " + std::to_string(m) + "] gives an empty " +
                                 ddm_layout_name(layout) + " layout (need n ≥ " + std::to_string(min_n) + ", m ≥ 1)");
+}
+
+std::vector<DdmInstance> ddm_layout_cells(DdmLayout layout, glm::ivec2 counts, int chart_count) {
+  ddm_check_layout_counts(layout, counts);
+  const int n = counts.x, m = counts.y;
   if (chart_count < 1) throw std::invalid_argument("base: no chart to lay tiles on");
   std::vector<DdmInstance> cells;
   const double w = 1.0 / n;
@@ -156,7 +161,8 @@ glm::ivec2 ddm_counts_for_size(DdmLayout layout, glm::dvec2 chart_size, double t
     throw std::invalid_argument("tile_size: must be finite and > 0, got " + std::to_string(tile_size));
   constexpr double kMaxPerAxis = 1 << 20;
   const auto count = [&](double x, double lowest) {
-    return static_cast<int>(std::clamp(std::isfinite(x) ? std::round(x) : lowest, lowest, kMaxPerAxis));
+    // +inf (a tile_size far below the chart, 5e-324) is the most tiles, not the fewest: the caller's budget refuses it.
+    return static_cast<int>(std::isnan(x) ? lowest : std::clamp(std::round(x), lowest, kMaxPerAxis));
   };
   const glm::dvec2 across = chart_size / tile_size;
   const double rows = layout == DdmLayout::hex ? (across.y - 1.0) / 0.75 + 1.0 : across.y;

@@ -116,6 +116,8 @@ const char* ddm_layout_name(DdmLayout l);  // "rect" | "hex" | "brick"
 // Throws std::invalid_argument ("counts: …") when n or m < 1 (or n < 2 for brick / hex, whose odd rows would be
 // empty), or chart_count < 1.
 std::vector<DdmInstance> ddm_layout_cells(DdmLayout layout, glm::ivec2 counts, int chart_count);
+// The counts check of ddm_layout_cells alone, without making any cell (a log's counts may ask for 10¹⁰).
+void ddm_check_layout_counts(DdmLayout layout, glm::ivec2 counts);
 // The same layouts with counts of their own per chart: chart c gets chart_counts[c] (the order above). Throws as
 // above for any chart's counts.
 std::vector<DdmInstance> ddm_layout_cells(DdmLayout layout, const std::vector<glm::ivec2>& chart_counts);

@@ -190,11 +190,17 @@ struct CellVerdict {
   double det = 0.0;
   double min_coefficient = 0.0;
   std::size_t boxes = 0;
+  std::size_t max_boxes = 0;  // this cell's share of FoldCertificateOptions::max_boxes
+  bool budget = false;        // the share ran out
 };
 
 // Judges the box [lo, lo + size]³ (local coordinates) whose det J is b.
 FoldVerdict judge(const Bernstein<double>& b, const glm::dvec3& lo, double size, int depth, int max_depth,
                   CellVerdict& out) {
+  if (out.boxes >= out.max_boxes) {
+    out.budget = true;
+    return FoldVerdict::undecided;
+  }
   ++out.boxes;
   const double mn = *std::min_element(b.c.begin(), b.c.end());
   if (mn > 0.0) return FoldVerdict::fold_free;
@@ -247,6 +253,7 @@ const char* fold_verdict_name(FoldVerdict v) {
 FoldCertificate certify_fold_free(const TrivariateBSpline<glm::dvec3>& F, const FoldCertificateOptions& options) {
   if (options.max_depth < 0 || options.max_depth > 12)
     throw std::invalid_argument("max_depth must be 0…12 halvings, got " + std::to_string(options.max_depth));
+  if (options.max_boxes == 0) throw std::invalid_argument("max_boxes must be at least 1");
   for (int a = 0; a < 3; ++a)
     if (F.knots(a).order() < 2)
       throw std::invalid_argument("a fold-free certificate needs order ≥ 2 on every axis (a constant axis has det J = 0)");
@@ -264,26 +271,49 @@ FoldCertificate certify_fold_free(const TrivariateBSpline<glm::dvec3>& F, const 
       if (breaks[a].empty() || breaks[a].back() != t) breaks[a].push_back(t);
   const std::size_t count = static_cast<std::size_t>(cells.x) * cells.y * cells.z;
   std::vector<CellVerdict> verdicts(count);
-  tbb::parallel_for(std::size_t(0), count, [&](std::size_t cell) {
-    const glm::ivec3 c(static_cast<int>(cell % cells.x), static_cast<int>((cell / cells.x) % cells.y),
-                       static_cast<int>(cell / (static_cast<std::size_t>(cells.x) * cells.y)));
-    std::vector<glm::dvec3> P;
-    P.reserve(static_cast<std::size_t>(deg.x + 1) * (deg.y + 1) * (deg.z + 1));
-    for (int k = 0; k <= deg.z; ++k)
-      for (int j = 0; j <= deg.y; ++j)
-        for (int i = 0; i <= deg.x; ++i)
-          P.push_back(E.control_point(c.x * (deg.x + 1) + i, c.y * (deg.y + 1) + j, c.z * (deg.z + 1) + k));
-    CellVerdict& v = verdicts[cell];
-    if (options.quick_test && quick_fold_free(P, deg)) {
-      v.quick = true;
-      v.min_coefficient = INFINITY;
+  // Pass 1: each cell's quick test and its whole-cell box (a share of 1). Pass 2: the cells still mixed share what
+  // is left of max_boxes evenly, so a big lattice with a few hard cells gives them the budget (both passes decide
+  // from the cell alone: the same verdicts for any thread count).
+  const auto judge_cells = [&](const std::vector<std::size_t>& which, bool first) {
+    tbb::parallel_for(std::size_t(0), which.size(), [&](std::size_t n) {
+      const std::size_t cell = which[n];
+      const glm::ivec3 c(static_cast<int>(cell % cells.x), static_cast<int>((cell / cells.x) % cells.y),
+                         static_cast<int>(cell / (static_cast<std::size_t>(cells.x) * cells.y)));
+      std::vector<glm::dvec3> P;
+      P.reserve(static_cast<std::size_t>(deg.x + 1) * (deg.y + 1) * (deg.z + 1));
+      for (int k = 0; k <= deg.z; ++k)
+        for (int j = 0; j <= deg.y; ++j)
+          for (int i = 0; i <= deg.x; ++i)
+            P.push_back(E.control_point(c.x * (deg.x + 1) + i, c.y * (deg.y + 1) + j, c.z * (deg.z + 1) + k));
+      CellVerdict& v = verdicts[cell];
+      if (first && options.quick_test && quick_fold_free(P, deg)) {
+        v.quick = true;
+        v.min_coefficient = INFINITY;
+        v.boxes = 0;
+        return;
+      }
+      const Bernstein<double> det = det_jacobian(P, deg);
+      v.min_coefficient = *std::min_element(det.c.begin(), det.c.end());
       v.boxes = 0;
-      return;
-    }
-    const Bernstein<double> det = det_jacobian(P, deg);
-    v.min_coefficient = *std::min_element(det.c.begin(), det.c.end());
-    v.verdict = judge(det, glm::dvec3(0.0), 1.0, 0, options.max_depth, v);
-  });
+      v.budget = false;
+      v.verdict = judge(det, glm::dvec3(0.0), 1.0, 0, options.max_depth, v);
+    });
+  };
+  std::vector<std::size_t> all(count);
+  for (std::size_t cell = 0; cell < count; ++cell) all[cell] = cell, verdicts[cell].max_boxes = 1;
+  judge_cells(all, true);
+  std::vector<std::size_t> mixed;
+  std::size_t used = 0;
+  for (std::size_t cell = 0; cell < count; ++cell) {
+    if (verdicts[cell].budget) mixed.push_back(cell);
+    else used += verdicts[cell].boxes;
+  }
+  if (!mixed.empty()) {
+    const std::size_t left = options.max_boxes > used ? options.max_boxes - used : 0;
+    const std::size_t share = std::max<std::size_t>(left / mixed.size(), 1);
+    for (std::size_t cell : mixed) verdicts[cell].max_boxes = share;
+    judge_cells(mixed, false);
+  }
   FoldCertificate out;
   out.cells = count;
   out.min_det_coefficient = INFINITY;
@@ -297,6 +327,7 @@ FoldCertificate certify_fold_free(const TrivariateBSpline<glm::dvec3>& F, const 
                        static_cast<int>(cell / (static_cast<std::size_t>(cells.x) * cells.y)));
     if (v.verdict == FoldVerdict::undecided) {
       undecided = true;
+      out.budget_cells += v.budget ? 1 : 0;
       out.undecided_cells.push_back(c);
     } else if (v.verdict == FoldVerdict::fold) {
       glm::dvec3 t, scale;

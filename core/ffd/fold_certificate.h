@@ -37,6 +37,12 @@ struct FoldCertificateOptions {
   int max_depth = 6;
   // Try the quick sufficient test (first differences, Gershgorin) before the exact Bernstein form.
   bool quick_test = true;
+  // The work budget: Bernstein boxes judged in all. Every cell first gets its quick test and its whole-cell box; the
+  // cells still mixed then share what is left evenly (at least 1 each). A box tangent to det J = 0 splits into 4^d boxes at depth d, so without it
+  // max_depth 12 on one tangent cell is 16.7 M boxes (minutes); a cell that spends its share is undecided. The share
+  // is per cell, so the verdicts do not depend on the thread count. 512 K tri-cubic boxes (729 coefficients, ~11 µs
+  // each on one core of the machine in docs/performance.md) take ~6 s on one core.
+  std::size_t max_boxes = std::size_t(1) << 19;
 };
 
 struct FoldCertificate {
@@ -47,7 +53,8 @@ struct FoldCertificate {
   std::vector<glm::dvec3> fold_params;
   std::vector<glm::dvec3> fold_points;
   std::vector<double> fold_det;
-  std::vector<glm::ivec3> undecided_cells;  // cells with a box still mixed at max_depth
+  std::vector<glm::ivec3> undecided_cells;  // cells with a box still mixed at max_depth or when their share ran out
+  std::size_t budget_cells = 0;             // undecided cells among them that spent their share of max_boxes
   std::size_t cells = 0;                    // Bézier cells judged
   std::size_t quick_cells = 0;              // cells certified by the quick test alone
   std::size_t boxes = 0;                    // Bernstein boxes judged (cells plus their sub-boxes)
@@ -56,7 +63,7 @@ struct FoldCertificate {
 };
 
 // Judges F (orders ≥ 2 per axis; periodic axes are unwrapped to their period). Throws std::invalid_argument: an order
-// below 2, max_depth outside 0…12, non-finite control points.
+// below 2, max_depth outside 0…12, max_boxes 0, non-finite control points.
 FoldCertificate certify_fold_free(const TrivariateBSpline<glm::dvec3>& F, const FoldCertificateOptions& options = {});
 
 }  // namespace trispline::core

@@ -56,11 +56,35 @@ INSTANTIATE_TEST_SUITE_P(
                       HostileCase{"fps_tiny.jsonl", 1, "fps", "[0.01, 240]"},
                       HostileCase{"paint_radius.jsonl", 3, "radius_px", "(0, 16384]"},
                       HostileCase{"refine_tol.jsonl", 3, "max_triangles", "[1, 8e6]"},
-                      HostileCase{"record_big.jsonl", 4, "width", "megapixels"}),
+                      HostileCase{"record_big.jsonl", 4, "width", "megapixels"},
+                      HostileCase{"export_escape.jsonl", 2, "path", "leaves the output folder"},
+                      HostileCase{"export_absolute.jsonl", 2, "path", "is absolute"},
+                      HostileCase{"refine_tiny.jsonl", 3, "tolerance", "float32"},
+                      HostileCase{"fill_counts.jsonl", 2, "counts", "cells on one chart"},
+                      HostileCase{"fill_tile_size.jsonl", 2, "tile_size", "tile vertices"},
+                      HostileCase{"paint_counts.jsonl", 3, "counts", "painting budget"}),
     [](const auto& info) {
       const std::string n = info.param.file;
       return n.substr(0, n.size() - 6);
     });
+
+TEST(HostileLogText, ExportsThatLeaveTheOutputFolderWriteNothing) {
+  const fs::path escaped = fs::weakly_canonical(test::logs_dir() / ".." / "escaped_by_log.svg");
+  const fs::path absolute = "/tmp/trispline_escaped_by_log.glb";
+  fs::remove(escaped);
+  fs::remove(absolute);
+  for (const char* file : {"export_escape.jsonl", "export_absolute.jsonl"}) {
+    core::Scene scene;
+    editor::History history(scene);
+    EXPECT_FALSE(editor::replay_lines(history, hostile_dir() / file).ok) << file;
+    // Replayed with an --out folder too: the output folder moves, the refusal does not.
+    core::Scene again;
+    editor::History history2(again);
+    EXPECT_FALSE(editor::replay_lines(history2, hostile_dir() / file, {}, scratch("export_out")).ok) << file;
+  }
+  EXPECT_FALSE(fs::exists(escaped)) << escaped;
+  EXPECT_FALSE(fs::exists(absolute)) << absolute;
+}
 
 TEST(HostileLogText, DeepNestingIsRefusedBeforeParsing) {
   const fs::path log = scratch("deep.jsonl");

@@ -194,6 +194,14 @@ TEST(DdmCommands, BadInputIsRefusedAndTheSceneIsUnchanged) {
       "counts":[1,1],"height":0.1,"base":"teapot_body"})", s), "base");
   EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","object":"ball","layer":"x","tile":"thorn","layout":"rect",
       "counts":[400,400],"height":0.1})", s), "counts");  // too many tile vertices
+  // Counts that would make 10¹⁰ cells are refused from the numbers, before a cell is made (once a bare bad_alloc).
+  EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","object":"ball","layer":"x","tile":"thorn","layout":"hex",
+      "counts":[100000,100000],"height":0.1})", s), "counts");
+  // A tile size far below the ball is the most tiles, not the fewest (5e-324 once laid one tile per chart).
+  EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","object":"ball","layer":"x","tile":"thorn","layout":"rect",
+      "tile_size":5e-324,"height":0.1})", s), "tile_size");
+  EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","object":"ball","layer":"x","tile":"thorn","layout":"rect",
+      "base":"auto_uv","tile_size":1e-300,"height":0.1})", s), "tile_size");
   EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","object":"ball","layer":"x","tile":"thorn","layout":"rect",
       "counts":[1,1],"height":0.1,"color":[0.5,1.5,0]})", s), "color");
   // A non-manifold base.

@@ -106,6 +106,11 @@ TEST(MeshRefineCommand, BadParametersNameTheirField) {
   EXPECT_EQ(field_of(R"({"cmd":"mesh.refine","object":"cube","tolerance":0.01,"max_iterations":-2})"),
             "max_iterations");
   EXPECT_EQ(field_of(R"({"cmd":"mesh.refine","object":"cube","tolerance":0.01,"max_triangles":5})"), "max_triangles");
+  // Below float32's resolution at the cube's size: refused before any round (1e-300 once ran to the triangle budget).
+  for (const char* tiny : {R"({"cmd":"mesh.refine","object":"cube","tolerance":1e-300})",
+                           R"({"cmd":"mesh.refine","object":"cube","tolerance":5e-324,"error":"bound"})",
+                           R"({"cmd":"mesh.refine","object":"cube","tolerance":1e-12,"max_triangles":8000000})"})
+    EXPECT_EQ(field_of(tiny), "tolerance") << tiny;
   EXPECT_EQ(s.find("cube")->rest_mesh->triangles.size(), 12u);  // untouched
   trispline::test::expect_same_meshes(s, before);
 }

@@ -164,5 +164,42 @@ TEST(FoldCertificate, RefusesWhatItCannotJudge) {
   EXPECT_THROW(certify_fold_free(TrivariateBSpline<glm::dvec3>(k1, k3, k3, P)), std::invalid_argument);
 }
 
+// x(u) = (u − 1/3)³ along u (Bernstein controls −1/27, 2/27, −4/27, 8/27), identity along v and w: det J = 3(u − 1/3)²
+// ≥ 0, zero on the plane u = 1/3, which no dyadic split reaches. Every box across that plane stays mixed, so each
+// level of subdivision judges 4× more boxes (2^d × 2^d across the plane).
+TrivariateBSpline<glm::dvec3> tangent_lattice() {
+  const KnotVector ku = KnotVector::clamped_uniform(4, 4), kl = KnotVector::clamped_uniform(2, 2);
+  const double xu[4] = {-1.0 / 27, 2.0 / 27, -4.0 / 27, 8.0 / 27};
+  std::vector<glm::dvec3> P;
+  for (int k = 0; k < 2; ++k)
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i < 4; ++i) P.emplace_back(xu[i], j, k);
+  return TrivariateBSpline<glm::dvec3>(ku, kl, kl, std::move(P));
+}
+
+TEST(FoldCertificate, TheBoxBudgetBoundsATangentLattice) {
+  const auto F = tangent_lattice();
+  EXPECT_NEAR(jacobian_determinant(F, glm::dvec3(1.0 / 3, 0.5, 0.5)), 0.0, 1e-12);
+  EXPECT_GT(sampled_min_det(F, 24), 0.0) << "tangent, not folded";
+  FoldCertificateOptions o;
+  o.max_depth = 4;
+  const FoldCertificate shallow = certify_fold_free(F, o);
+  EXPECT_EQ(shallow.verdict, FoldVerdict::undecided);
+  EXPECT_EQ(shallow.budget_cells, 0u) << "depth 4 is within the default budget";
+  EXPECT_GE(shallow.boxes, std::size_t(1 + 8 + 4 * 8 + 16 * 8 + 64 * 8) / 2) << "the boxes grow by 4 a level";
+  // Depth 12 would judge ~4^12 = 16.7 M boxes; the budget stops the cell at its share and calls it undecided.
+  o.max_depth = 12;
+  o.max_boxes = 20000;
+  const FoldCertificate deep = certify_fold_free(F, o);
+  EXPECT_EQ(deep.verdict, FoldVerdict::undecided);
+  EXPECT_EQ(deep.budget_cells, 1u);
+  EXPECT_LE(deep.boxes, o.max_boxes);
+  EXPECT_EQ(deep.boxes, o.max_boxes) << "the whole share was spent";
+  // The same budget on the same lattice gives the same boxes (deterministic, per cell).
+  EXPECT_EQ(certify_fold_free(F, o).boxes, deep.boxes);
+  o.max_boxes = 0;
+  EXPECT_THROW(certify_fold_free(F, o), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace trispline::core
