@@ -359,7 +359,9 @@ int run_cli(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // CLI11 prints the message (or the help); its own codes (104 conversion, 105 validation, …) become the documented
+    // 2 for bad input, so scripts and the farm see one code for every bad value.
+    return app.exit(e) == 0 ? 0 : 2;
   }
 
   try {
