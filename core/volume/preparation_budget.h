@@ -11,7 +11,7 @@
 // 8-byte sort key (when one bin holds every cell) — 40 bytes. The loader's float samples (4) are freed once the
 // spline holds its control points, and the loader's own file buffers before that, so the budget charges 4 (what the
 // loader counts) + kPreparationBytesPerVoxel (36) = 40 bytes per sample, plus the fixed arrays. Reading a cached
-// table peaks the same (its singletons, then the same filing). Measured on the Cranium CT (7.08 M samples): 38.5
+// table peaks the same (its singletons, then the same filing). Measured on the Cranium CT (7.08 M samples): 35.1
 // bytes per sample of peak resident memory above an empty replay (docs/decisions.md, "The preparation budget").
 #pragma once
 

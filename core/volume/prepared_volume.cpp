@@ -26,6 +26,11 @@ std::mutex cache_mutex;
 std::list<std::pair<Key, PreparedVolume>> cache;  // most recent first
 constexpr std::size_t kCacheEntries = 3;
 
+// Bytes a prepared volume holds: control points and singleton table.
+std::uint64_t held_bytes(const PreparedVolume& v) {
+  return v.spline->control_points().size() * sizeof(float) + v.table->memory_bytes();
+}
+
 Key key_of(const std::filesystem::path& path, int order, bool interpolate) {
   Key k;
   k.path = path.string();
@@ -81,13 +86,23 @@ PreparedVolume prepare_volume(const std::filesystem::path& path, int order, bool
   out.units = volume.units, out.modality = volume.modality, out.source = volume.source;
   out.default_iso = default_iso_level(volume);
   auto spline = std::make_shared<const VolumeSpline>(volume, order, interpolate);
-  volume.values = {};  // the spline holds its own control points
+  std::vector<float>().swap(volume.values);  // freed (not only cleared): the spline holds its own control points
   out.table = std::make_shared<const SingletonTable>(cached_singleton_table(*spline, progress, &out.table_from_disk));
   out.spline = std::move(spline);
   out.prep_ms = ms_since(t0);
   std::lock_guard<std::mutex> lock(cache_mutex);
   cache.emplace_front(key, out);
-  if (cache.size() > kCacheEntries) cache.pop_back();
+  // At most three, and the older ones only while all together stay within one preparation budget.
+  std::uint64_t total = 0;
+  std::size_t kept = 0;
+  for (auto it = cache.begin(); it != cache.end();) {
+    const std::uint64_t bytes = held_bytes(it->second);
+    if (kept == 0 || (kept < kCacheEntries && total + bytes <= kPreparedVolumeBudget)) {
+      total += bytes, ++kept, ++it;
+    } else {
+      it = cache.erase(it);
+    }
+  }
   return out;
 }
 

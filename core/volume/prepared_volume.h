@@ -36,7 +36,8 @@ VolumeLoadOptions preparation_load_options();
 // Reads `path` (load_volume with preparation_load_options(); "analytic:sphere|torus|sines" makes an analytic volume
 // of 96 samples a side), builds the spline of `order` (2…4; interpolating or not) and its singleton table (from the
 // disk cache when it holds a valid entry). A second call with the same path, file size, modification time, order
-// and mode returns the session's copy. Throws std::invalid_argument on a bad order (before reading), what
+// and mode returns the session's copy (the session keeps the last three, older ones only while all of them hold
+// less than kPreparedVolumeBudget). Throws std::invalid_argument on a bad order (before reading), what
 // load_volume throws (VolumeLoadError, among others over the budget from the header's dimensions),
 // PreparationBudgetError when samples, spline and table would exceed kPreparedVolumeBudget (checked from the
 // dimensions and order before the spline is made), OperationCancelled through `progress`.
