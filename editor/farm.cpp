@@ -278,6 +278,9 @@ int farm_submit(FarmPlan plan, std::ostream& out, std::ostream& err) {
     plan.dir = fs::absolute(plan.dir).lexically_normal();
     if (plan.dir.filename().empty()) plan.dir = plan.dir.parent_path();
     if (const std::string bad = slurm_folder_error(plan); !bad.empty()) throw std::invalid_argument(bad);
+    std::error_code ec;
+    if (fs::exists(plan.dir, ec) && !fs::is_directory(plan.dir, ec))
+      throw std::invalid_argument("--out '" + plan.dir.string() + "' is a file, not a folder");
     if (plan.kind == "frames") {
       plan.log = fs::absolute(plan.log).lexically_normal();
       const std::optional<FileSum> sum = file_sum(plan.log, kFarmMaxLogBytes, true);
@@ -294,7 +297,6 @@ int farm_submit(FarmPlan plan, std::ostream& out, std::ostream& err) {
       plan.frame_height = camera.viewport.y;
     }
     check_farm_plan(plan);
-    std::error_code ec;
     if (fs::exists(fs::symlink_status(plan.dir / "farm.json", ec))) {
       err << what << plan.dir.string()
           << " already holds a farm: `trispline farm resume` it, or choose another --out (nothing submitted)\n";

@@ -56,6 +56,8 @@ expect_exit 2 "chunk" "$exe" farm submit "$log" --frames 1-2 --chunk 99999999999
 expect_exit 2 "width" "$exe" farm submit "$log" --frames 1-2 --chunk 2 --out "$out/p" --width 0 --height 24
 expect_exit 2 "engine" "$exe" farm submit "$log" --frames 1-2 --chunk 2 --out "$out/p" --engine pbs
 expect_exit 2 "dir" "$exe" farm status "$out/none"
+touch "$out/a_file"
+expect_exit 2 "is a file" "$exe" farm submit "$log" --frames 1-2 --chunk 2 --out "$out/a_file" --engine local
 expect_exit 2 "index" "$exe" farm task "$out" 999999
 echo "script values and CLI values refused at $((SECONDS - t0)) s"
 
