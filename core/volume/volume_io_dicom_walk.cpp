@@ -2,6 +2,7 @@
 // inflation of a deflated data set counted and dropped as it goes).
 #include "core/volume/volume_io_dicom_walk.h"
 
+#include <gdcmTransferSyntax.h>
 #include <zlib.h>
 
 #include <algorithm>
@@ -176,7 +177,14 @@ std::uint32_t u32(const unsigned char* p, bool big) {
              : (std::uint32_t{p[3]} << 24 | std::uint32_t{p[2]} << 16 | std::uint32_t{p[1]} << 8 | p[0]);
 }
 
-bool is_vr(const unsigned char* p) { return p[0] >= 'A' && p[0] <= 'Z' && p[1] >= 'A' && p[1] <= 'Z'; }
+// One of the value representations of PS3.5 Table 6.2-1 (GDCM stops on an assertion at an unknown one in the meta
+// header).
+bool is_vr(const unsigned char* p) {
+  static const char* const kVrs[] = {"AE", "AS", "AT", "CS", "DA", "DS", "DT", "FD", "FL", "IS", "LO",
+                                     "LT", "OB", "OD", "OF", "OL", "OV", "OW", "PN", "SH", "SL", "SQ",
+                                     "SS", "ST", "SV", "TM", "UC", "UI", "UL", "UN", "UR", "US", "UT", "UV"};
+  return std::any_of(std::begin(kVrs), std::end(kVrs), [&](const char* v) { return p[0] == v[0] && p[1] == v[1]; });
+}
 
 // Explicit VRs with a 2-byte reserved field and a 4-byte length (PS3.5 Table 7.1-1).
 bool has_long_length(const unsigned char* vr) {
@@ -305,7 +313,8 @@ class Walker {
       length = u32(b, false);
     } else {
       if (src_.read(vr, 2) != 2) throw WalkError{"the data ends inside an element header", at};
-      if (!is_vr(vr)) throw WalkError{"element " + tag_text(group, element) + " has no value representation", at};
+      if (!is_vr(vr))
+        throw WalkError{"element " + tag_text(group, element) + " has no known value representation", at};
       if (has_long_length(vr)) {
         if (src_.read(b, 6) != 6) throw WalkError{"the data ends inside an element header", at};
         length = u32(b + 2, big);
@@ -370,10 +379,12 @@ std::string trimmed_uid(const unsigned char* p, std::size_t n) {
   return s;
 }
 
-// The group 0002 meta header (explicit VR little endian) from the current position; returns the transfer syntax.
+// The group 0002 meta header (explicit VR little endian) from the current position; returns the transfer syntax,
+// which a meta header must hold, and checks the elements end where the group length says.
 std::string walk_meta(FileSource& src) {
   std::string uid;
   const std::uint64_t start = src.position();
+  std::optional<std::uint64_t> group_end;
   unsigned char tag[4];
   while (src.peek(tag, 4) && u16(tag, false) == 0x0002) {
     const std::uint64_t at = src.position();
@@ -382,7 +393,8 @@ std::string walk_meta(FileSource& src) {
     unsigned char h[8];
     if (src.read(h, 8) != 8) throw WalkError{"the data ends inside a meta header element", at};
     const std::uint16_t element = u16(h + 2, false);
-    if (!is_vr(h + 4)) throw WalkError{"meta header element " + tag_text(2, element) + " has no value representation", at};
+    if (!is_vr(h + 4))
+      throw WalkError{"meta header element " + tag_text(2, element) + " has no known value representation", at};
     std::uint32_t length = u16(h + 6, false);
     if (has_long_length(h + 4)) {
       unsigned char l[4];
@@ -393,7 +405,11 @@ std::string walk_meta(FileSource& src) {
       throw WalkError{"meta header element " + tag_text(2, element) + " declares " + std::to_string(length) +
                           " bytes; " + std::to_string(*src.left()) + " are left of the file",
                       at};
-    if (element == 0x0010 && length <= 64) {
+    if (element == 0x0000 && length == 4) {  // File Meta Information Group Length: the bytes after it
+      unsigned char l[4];
+      src.read(l, 4);
+      group_end = src.position() + u32(l, false);
+    } else if (element == 0x0010 && length <= 64) {
       unsigned char value[64];
       src.read(value, length);
       uid = trimmed_uid(value, length);
@@ -401,6 +417,16 @@ std::string walk_meta(FileSource& src) {
       throw WalkError{"meta header element " + tag_text(2, element) + " is cut short", at};
     }
   }
+  // GDCM reads the meta header by its group length where the elements disagree with it: they must agree.
+  if (group_end && src.position() != *group_end)
+    throw WalkError{"the meta header's group length (0002,0000) ends it at byte " + std::to_string(*group_end) +
+                        ", its elements at byte " + std::to_string(src.position()),
+                    src.position()};
+  if (src.position() > start && uid.empty())
+    throw WalkError{"the meta header has no Transfer Syntax UID (0002,0010)", src.position()};
+  // GDCM stops on an assertion reading a data set in a transfer syntax it does not know.
+  if (!uid.empty() && gdcm::TransferSyntax::GetTSType(uid.c_str()) == gdcm::TransferSyntax::TS_END)
+    throw WalkError{"the transfer syntax '" + uid + "' (0002,0010) is not a known DICOM transfer syntax", src.position()};
   return uid;
 }
 
@@ -451,11 +477,12 @@ std::optional<DicomWalk> walk_dicom_file(const std::filesystem::path& file, cons
     walk.complete = walker.walk(guess_syntax(src, declared), false);
     walk.data_set_bytes = size;
     if (!dicm && elements == 0) return std::nullopt;  // an empty file
+    if (elements == 0) throw WalkError{"no data set after the meta header", src.position()};
     return walk;
   } catch (const WalkError& e) {
     if (!dicm && elements < 2) return std::nullopt;  // no preamble and no element structure: not DICOM
-    fail(report, name + ": " + e.what + " at byte " + std::to_string(e.offset) + where +
-                     " (its DICOM structure is broken; GDCM is not asked to read it)");
+    fail(report, name + ": at byte " + std::to_string(e.offset) + where + ", " + e.what +
+                     ": a broken DICOM structure (GDCM is not asked to read it)");
   }
 }
 

@@ -45,8 +45,8 @@ struct DicomWalkLimits {
 };
 
 // Walks `file`. Returns nullopt when it is not DICOM at all (no "DICM" at byte 128 and no element structure from
-// byte 0: a text file, noise); throws VolumeLoadError "'<report>': <name>: <what is wrong> at byte <offset>" when it
-// is DICOM but an element does not fit. A plain (not deflated) data set is always walked whole.
+// byte 0: a text file, noise); throws VolumeLoadError "'<report>': <name>: at byte <offset> of the file, <what is
+// wrong>: ..." when it is DICOM but an element does not fit. A plain (not deflated) data set is always walked whole.
 std::optional<DicomWalk> walk_dicom_file(const std::filesystem::path& file, const DicomWalkLimits& limits,
                                          const std::filesystem::path& report, const std::string& name);
 

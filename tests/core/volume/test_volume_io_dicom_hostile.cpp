@@ -153,6 +153,39 @@ TEST(DicomHostile, UnclosedOrDeepSequencesAreRefused) {
   EXPECT_THAT(volume_load_error(dir.path()), AllOf(HasSubstr("s1.dcm"), HasSubstr("closes nothing")));
 }
 
+// What GDCM 3.0 stops on with an assertion (found by fuzz_volume_dicom) is refused by the walk first: an unknown
+// transfer syntax, an unknown VR in the meta header, a meta header whose elements overrun its group length, no data
+// set after the meta header.
+TEST(DicomHostile, MetaHeadersGdcmWouldAssertOnAreRefused) {
+  TempFolder dir;
+  write_byte_series(dir.path(), "s", 3);
+  const DicomBytes slice = ct_slice_header(Syntax::kExplicitLittle, new_series_uid(), 9.0);
+  write_bytes(dir / "s1.dcm", slice.file("1.2.84"));
+  EXPECT_THAT(volume_load_error(dir.path()), AllOf(HasSubstr("s1.dcm"), HasSubstr("not a known DICOM transfer syntax")));
+  const std::vector<unsigned char> none;
+  write_bytes(dir / "s1.dcm", slice.file({}, &none));
+  EXPECT_THAT(volume_load_error(dir.path()), AllOf(HasSubstr("s1.dcm"), HasSubstr("no data set")));
+  std::vector<unsigned char> bytes = slice.file();
+  const std::string text(bytes.begin(), bytes.end());
+  bytes[text.find("UI", 132)] = 'X';  // (0002,0002) "XI"
+  write_bytes(dir / "s1.dcm", bytes);
+  EXPECT_THAT(volume_load_error(dir.path()), AllOf(HasSubstr("s1.dcm"), HasSubstr("no known value representation")));
+  bytes = slice.file();
+  bytes[132 + 8] += 2;  // the group length says 2 bytes more than the elements take
+  write_bytes(dir / "s1.dcm", bytes);
+  EXPECT_THAT(volume_load_error(dir.path()), AllOf(HasSubstr("s1.dcm"), HasSubstr("group length")));
+  // The inputs that stopped GDCM in the fuzzer.
+  const fs::path regressions = fs::path(TRISPLINE_SOURCE_DIR) / "tests/fuzz/regressions/fuzz_volume_dicom";
+  int n = 0;
+  for (const auto& entry : fs::directory_iterator(regressions)) {
+    TempFolder one;
+    fs::copy_file(entry.path(), one / "input.dcm");
+    EXPECT_THAT(volume_load_error(one / "input.dcm"), HasSubstr("input.dcm")) << entry.path();
+    ++n;
+  }
+  EXPECT_EQ(n, 3);
+}
+
 // ------------------------------------------------------------------------------------------- budgets, deflate
 
 namespace {

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/volume/volume_io.h"
+#include "core/volume/volume_io_formats.h"
 #include "tests/core/volume/volume_test_files.h"
 
 namespace fs = std::filesystem;
@@ -224,4 +225,38 @@ TEST(VolumeMessages, DamagedGzipNamesZlibsReason) {
   bytes[bytes.size() / 2] ^= 0x55;  // inside the deflate data
   write_bytes(p, bytes);
   EXPECT_THAT(volume_load_error(p), AllOf(Not(HasSubstr("18446744073709551615")), HasSubstr("small.nii.gz")));
+}
+
+// ------------------------------------------------------------------------------------------------ fuzz seeds
+
+// The fuzz targets' seeds (tests/fuzz/corpus/fuzz_volume_*): valid files load (mutations start from volumes that
+// load), and the hostile ones (named hostile_*: bombs, absurd geometry, broken DICOM structure) are refused. A DICOM
+// seed is one slice: load_volume refuses a series of one, so its slice is decoded on its own (load_dicom_slice).
+TEST(VolumeFuzzSeeds, ValidSeedsLoadHostileSeedsAreRefused) {
+  const fs::path corpus = fs::path(TRISPLINE_SOURCE_DIR) / "tests" / "fuzz" / "corpus";
+  int valid = 0, hostile = 0;
+  VolumeLoadOptions fuzz_budget;
+  fuzz_budget.memory_budget_bytes = std::uint64_t{256} << 20;  // what the fuzz targets load under
+  for (const auto& [target, ext] : {std::pair{"fuzz_volume_nii", ".nii"}, std::pair{"fuzz_volume_nii_gz", ".nii.gz"},
+                                    std::pair{"fuzz_volume_inv3", ".inv3"}, std::pair{"fuzz_volume_dicom", ".dcm"}}) {
+    for (const auto& entry : fs::directory_iterator(corpus / target)) {
+      TempFolder dir;
+      const fs::path copy = dir / (std::string("input") + ext);  // the name the fuzz target gives it
+      fs::copy_file(entry.path(), copy);
+      const bool is_hostile = entry.path().filename().string().rfind("hostile_", 0) == 0;
+      const auto load = [&] {
+        if (std::string(ext) == ".dcm") return static_cast<std::size_t>(volume_io::load_dicom_slice(copy, fuzz_budget).size());
+        return load_volume(copy, fuzz_budget).voxel_count();
+      };
+      if (is_hostile) {
+        ++hostile;
+        EXPECT_THROW(load(), VolumeLoadError) << entry.path();
+      } else {
+        ++valid;
+        EXPECT_NO_THROW(load()) << entry.path();
+      }
+    }
+  }
+  EXPECT_EQ(valid, 16);
+  EXPECT_EQ(hostile, 14);
 }
