@@ -66,7 +66,8 @@ void read_task_log(const fs::path& log, FarmTaskState& st) {
 // Replays the plan's log (no rendering) and checks the frame range against its timeline: "" when it fits.
 std::string check_range(const FarmPlan& plan, core::Scene& scene) {
   History history(scene);
-  const ReplayResult r = replay_lines(history, plan.log);
+  const ScratchFolder scratch;  // what the log exports goes there, not next to the log
+  const ReplayResult r = replay_lines(history, plan.log, {}, scratch.path());
   if (!r.ok) return "the log does not replay: " + r.error;
   const std::string err = core::frame_range_error(scene.timeline, plan.frame_first, plan.frame_last);
   return err.empty()

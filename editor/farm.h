@@ -45,6 +45,20 @@ namespace trispline::editor {
 // std::runtime_error naming the file when it cannot be written.
 void write_file_atomically(const std::filesystem::path& path, const std::string& text, bool executable = false);
 
+// A folder of its own under the system's temporary folder, removed with everything in it when the object goes: where
+// the files a log writes (volume.export) go when the farm replays it only to check its range or to pose frames.
+class ScratchFolder {
+ public:
+  ScratchFolder();
+  ~ScratchFolder();
+  ScratchFolder(const ScratchFolder&) = delete;
+  ScratchFolder& operator=(const ScratchFolder&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
 // The plan stored in DIR/farm.json, checked (parse_farm_plan), its dir the absolute DIR. Throws FarmPlanError naming
 // the key when it is not a usable plan, std::runtime_error when DIR holds no farm.json or it cannot be read.
 FarmPlan read_plan(const std::filesystem::path& dir);
@@ -119,7 +133,8 @@ FarmStatus farm_status(const std::filesystem::path& dir);
 // The tasks whose output is not complete and that are not queued or running: what farm_resume resubmits.
 std::vector<int> tasks_to_resume(const FarmStatus& status);
 
-// Replays the plan's log to check the range against its timeline, writes DIR/farm.json and the scripts, submits.
+// Records the log's size and CRC-32, replays it (its exports into a ScratchFolder) to check the range against its
+// timeline, checks the plan (check_farm_plan), writes DIR/farm.json and the scripts, submits.
 // Returns the exit code: 0 submitted (local: every task and the assembly succeeded), 1 a task or the assembly
 // failed (local), 2 bad input (nothing submitted), 3 sbatch refused or a file could not be written (the plan, once
 // written, stays for `farm resume`). Messages go to `out` / `err`; never throws.

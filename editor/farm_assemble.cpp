@@ -69,7 +69,8 @@ std::optional<core::MorphAnimationBuilder> join_pieces(const FarmPlan& plan) {
 void pose_animation_glb(const FarmPlan& plan) {
   core::Scene scene;
   History history(scene);
-  const ReplayResult r = replay_lines(history, plan.log);
+  const ScratchFolder scratch;  // what the log exports goes there, not next to the log
+  const ReplayResult r = replay_lines(history, plan.log, {}, scratch.path());
   if (!r.ok) throw std::runtime_error("the log does not replay: " + r.error);
   record_frames(scene, RecordOptions{.out_dir = plan.dir,
                                      .format = plan.format,

@@ -1,6 +1,8 @@
 // The job scripts of a farm (farm_task.sh, farm_assemble.sh) and farm.json on disk. The scripts hold no path of the
 // farm folder: they run in it, so a copied or moved farm runs where it is. Values in shell lines are single-quoted;
 // values in #SBATCH lines (not shell-parsed: nothing can be quoted there) are checked, and refused, before writing.
+#include <stdlib.h>
+
 #include <algorithm>
 #include <fstream>
 #include <set>
@@ -68,6 +70,17 @@ std::string assemble_script(const FarmPlan& plan) {
 }
 
 }  // namespace
+
+ScratchFolder::ScratchFolder() {
+  std::string pattern = (fs::temp_directory_path() / "trispline-farm-XXXXXX").string();
+  if (!::mkdtemp(pattern.data())) throw std::runtime_error("cannot make a temporary folder in " + pattern);
+  path_ = pattern;
+}
+
+ScratchFolder::~ScratchFolder() {
+  std::error_code ec;
+  fs::remove_all(path_, ec);
+}
 
 void write_file_atomically(const fs::path& path, const std::string& text, bool executable) {
   const fs::path tmp = path.string() + ".tmp";
