@@ -34,7 +34,7 @@ class PoolLock {
  public:
   explicit PoolLock(const fs::path& dir) {
     const fs::path path = dir / "logs" / "pool.lock";
-    fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
     if (fd_ < 0) throw std::runtime_error("cannot open " + path.string());
     if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
       ::close(fd_);
@@ -74,7 +74,7 @@ pid_t spawn_script(const fs::path& dir, const std::string& script, int task, int
     ::setpgid(0, 0);
     ::prctl(PR_SET_PDEATHSIG, SIGKILL);
     if (::getppid() != parent) ::_exit(127);  // the pool died before prctl took effect
-    const int out = ::open(log_s.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int out = ::open(log_s.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW, 0644);  // never through a link
     const int in = ::open("/dev/null", O_RDONLY);
     if (out < 0 || in < 0 || ::chdir(dir_s.c_str()) != 0) ::_exit(127);
     ::dup2(in, 0);
@@ -123,6 +123,9 @@ bool is_task_command(const std::string& cmdline) {
 
 int run_local(const FarmPlan& plan, const std::vector<int>& tasks, std::ostream& out,
               const std::function<void(const FarmJob&)>& on_change) {
+  std::error_code ec;
+  if (fs::is_symlink(fs::symlink_status(plan.dir / "logs", ec)))
+    throw std::runtime_error((plan.dir / "logs").string() + " is a symlink: the pool writes only inside the farm");
   fs::create_directories(plan.dir / "logs");
   const PoolLock lock(plan.dir);
   const int cpus = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));

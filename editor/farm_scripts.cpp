@@ -122,6 +122,10 @@ void write_plan(const FarmPlan& plan) {
 
 void write_job_scripts(const FarmPlan& plan) {
   const std::string task = task_script(plan), assemble = assemble_script(plan);  // may refuse a value
+  std::error_code ec;
+  if (fs::is_symlink(fs::symlink_status(plan.dir / "logs", ec)))
+    throw std::invalid_argument((plan.dir / "logs").string() +
+                                " is a symlink: the task logs are written only inside the farm folder");
   fs::create_directories(plan.dir / "logs");
   write_file_atomically(plan.dir / "farm_task.sh", task, true);
   write_file_atomically(plan.dir / "farm_assemble.sh", assemble, true);
@@ -148,6 +152,9 @@ std::vector<FarmTask> plan_batch(const fs::path& folder) {
     if (!sum) throw std::invalid_argument("cannot read the log '" + log.string() + "' (or it is over 1 GiB)");
     t.log_crc32 = sum->crc32;
     t.log_bytes = sum->bytes;
+    for (const char c : log.string())
+      if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F)
+        throw std::invalid_argument("the log '" + log.string() + "' has a control character in its path: rename it");
     t.name = log.stem().string();
     for (int k = 2; names.count(t.name); ++k) t.name = log.stem().string() + "_" + std::to_string(k);
     names.insert(t.name);

@@ -130,7 +130,21 @@ rm "$out/moved"/chunks/0001/frame_*.png
 "$exe" farm resume "$out/moved" > "$out/moved.txt" 2>&1 || { cat "$out/moved.txt" >&2; fail "the moved farm's resume failed"; }
 assembled "$out/moved" || fail "the moved farm is not assembled"
 [ ! -e "$out/to_move" ] || fail "resume wrote into the farm's old folder"
-echo "moved farm at $((SECONDS - t0)) s"
+# Symlinks planted in a farm folder are not written through: a logs folder elsewhere is refused, a chunk folder
+# elsewhere makes its task fail without writing there.
+cp -r "$farm" "$out/linked"
+mkdir "$out/elsewhere" "$out/elsewhere_chunk"
+echo keep > "$out/elsewhere/task_0001.log"
+rm -r "$out/linked/logs" "$out/linked/chunks/0001"
+ln -s "$out/elsewhere" "$out/linked/logs"
+ln -s "$out/elsewhere_chunk" "$out/linked/chunks/0001"
+expect_exit 2 "symlink" "$exe" farm resume "$out/linked"
+[ "$(cat "$out/elsewhere/task_0001.log")" = keep ] || fail "resume wrote through a symlinked logs folder"
+rm "$out/linked/logs" && mkdir "$out/linked/logs"
+"$exe" farm resume "$out/linked" > "$out/linked.txt" 2>&1 && fail "a task wrote into a symlinked chunk folder"
+grep -q "is a symlink" "$out/linked/logs/task_0001.log" || { cat "$out/linked/logs/task_0001.log" >&2; fail "no symlink message"; }
+[ -z "$(ls -A "$out/elsewhere_chunk")" ] || fail "a task wrote through a symlinked chunk folder"
+echo "moved farm, planted symlinks at $((SECONDS - t0)) s"
 
 # A SIGKILLed pool: its tasks die with it (PR_SET_PDEATHSIG), resume runs each unfinished chunk once.
 killed=$out/killed
