@@ -11,7 +11,8 @@
 // object keeps its transform, lattice and embedding and gets a new binding with the interpolated parameters. Splits
 // account for the object's param_offset (the shown pose). Undo restores the object as it was.
 // Errors (CommandError, field named): unknown object / object without an FFD ("object"), tolerance ≤ 0 or not
-// finite or below kMinRefineTolerance × the object's size ("tolerance"), unknown criterion ("criterion"), limits out of range ("max_iterations", "max_triangles").
+// finite or below kMinRefineTolerance × the object's size ("tolerance"), unknown criterion ("criterion"), limits out of
+// range ("max_iterations", "max_triangles").
 #pragma once
 
 #include "core/commands/declared_command.h"
