@@ -172,7 +172,8 @@ TEST(VolumeGeometry, NiftiPixdimAndQuaternionAreRefusedNotRepaired) {
     h.pixdim[1] = 0.0f;
   });
   EXPECT_NO_THROW(load_volume(p));
-  for (const auto& [b, c, d] : {std::tuple{nan, 0.0f, 0.0f}, std::tuple{0.9f, 0.9f, 0.0f}}) {
+  for (const auto& [qb, qc, qd] : {std::tuple{nan, 0.0f, 0.0f}, std::tuple{0.9f, 0.9f, 0.0f}}) {
+    const float b = qb, c = qc, d = qd;  // clang 14 cannot capture structured bindings
     write_bytes(p, good);
     patch_nifti_header(p, [&](nifti_1_header& h) {
       h.qform_code = 1;
@@ -237,15 +238,17 @@ TEST(VolumeFuzzSeeds, ValidSeedsLoadHostileSeedsAreRefused) {
   int valid = 0, hostile = 0;
   VolumeLoadOptions fuzz_budget;
   fuzz_budget.memory_budget_bytes = std::uint64_t{256} << 20;  // what the fuzz targets load under
-  for (const auto& [target, ext] : {std::pair{"fuzz_volume_nii", ".nii"}, std::pair{"fuzz_volume_nii_gz", ".nii.gz"},
-                                    std::pair{"fuzz_volume_inv3", ".inv3"}, std::pair{"fuzz_volume_dicom", ".dcm"}}) {
+  for (const auto& [target, extension] :
+       {std::pair{"fuzz_volume_nii", ".nii"}, std::pair{"fuzz_volume_nii_gz", ".nii.gz"},
+        std::pair{"fuzz_volume_inv3", ".inv3"}, std::pair{"fuzz_volume_dicom", ".dcm"}}) {
+    const std::string ext = extension;  // clang 14 cannot capture structured bindings
     for (const auto& entry : fs::directory_iterator(corpus / target)) {
       TempFolder dir;
       const fs::path copy = dir / (std::string("input") + ext);  // the name the fuzz target gives it
       fs::copy_file(entry.path(), copy);
       const bool is_hostile = entry.path().filename().string().rfind("hostile_", 0) == 0;
       const auto load = [&] {
-        if (std::string(ext) == ".dcm") return static_cast<std::size_t>(volume_io::load_dicom_slice(copy, fuzz_budget).size());
+        if (ext == ".dcm") return static_cast<std::size_t>(volume_io::load_dicom_slice(copy, fuzz_budget).size());
         return load_volume(copy, fuzz_budget).voxel_count();
       };
       if (is_hostile) {
