@@ -48,14 +48,14 @@ void MeshBuffers::upload(const core::TriMesh& mesh) {
                                 " entries for " + std::to_string(mesh.triangles.size()) + " triangles");
   // Stable material order: surface triangles first, then the inside ones, each in mesh order.
   std::size_t inside = 0;
-  for (std::uint8_t m : mesh.face_material) inside += m != core::kMaterialSurface ? 1 : 0;
+  for (core::MaterialSlot m : mesh.face_material) inside += m == core::kMaterialInside ? 1 : 0;
   std::vector<glm::uvec3> ordered;
   if (inside > 0) {
     ordered.reserve(mesh.triangles.size());
     for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
-      if (mesh.face_material[f] == core::kMaterialSurface) ordered.push_back(mesh.triangles[f]);
+      if (mesh.face_material[f] != core::kMaterialInside) ordered.push_back(mesh.triangles[f]);
     for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
-      if (mesh.face_material[f] != core::kMaterialSurface) ordered.push_back(mesh.triangles[f]);
+      if (mesh.face_material[f] == core::kMaterialInside) ordered.push_back(mesh.triangles[f]);
   }
   const std::vector<glm::uvec3>& tris = inside > 0 ? ordered : mesh.triangles;
   if (!vao_) {

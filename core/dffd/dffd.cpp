@@ -122,7 +122,7 @@ class Splitter {
     const std::size_t nf = m.triangles.size();
     const bool with_materials = !m.face_material.empty();
     std::vector<glm::uvec3> extra;
-    std::vector<std::uint8_t> extra_material;
+    std::vector<MaterialSlot> extra_material;
     cuts_.reserve(1024);
     for (std::size_t f = 0; f < nf; ++f) {
       const glm::uvec3 t = m.triangles[f];
@@ -262,7 +262,7 @@ class Splitter {
   const TriMesh& in_;  // = out_.mesh: input vertices keep their indices and values while cut vertices are appended
   int axis_;
   double u0_, eps_;
-  std::uint8_t material_ = kMaterialSurface;  // material of the input triangle being split
+  MaterialSlot material_ = kMaterialSurface;  // material of the input triangle being split
   std::vector<std::int8_t> cls_;          // -1 / 0 (on plane) / +1 per input vertex
   std::unordered_map<unsigned, std::array<int, 2>> copy_;  // on-plane vertex → index used on the minus / plus side
   std::vector<glm::uvec3> pieces_;  // the pieces of the triangle being split

@@ -242,7 +242,7 @@ std::vector<bool> unclosed_loops(const std::vector<std::vector<std::uint32_t>>& 
 
 }  // namespace
 
-CapStats cap_split_openings(MeshSplit& split, int axis, double u0, double eps, std::uint8_t material) {
+CapStats cap_split_openings(MeshSplit& split, int axis, double u0, double eps, MaterialSlot material) {
   TriMesh& mesh = split.mesh;
   const std::size_t nv = mesh.vertex_count(), nf = mesh.triangle_count();
   if (axis < 0 || axis > 2)

@@ -47,6 +47,6 @@ struct CapStats {
 // params.size() != #V, side.size() != #V, a touched triangle ≥ #F or with an index ≥ #V, a cut vertex ≥ #V,
 // face_material neither empty nor #F; `split` is then unchanged.
 CapStats cap_split_openings(MeshSplit& split, int axis, double u0, double eps,
-                            std::uint8_t material = kMaterialInside);
+                            MaterialSlot material = kMaterialInside);
 
 }  // namespace trispline::core

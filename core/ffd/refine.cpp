@@ -315,7 +315,7 @@ void split_faces(TriMesh& m, const std::vector<std::uint32_t>& tri_split, const 
                  std::size_t next_tris) {
   std::vector<glm::uvec3> tris;
   tris.reserve(next_tris);
-  std::vector<std::uint8_t> mats;  // face_material of the pieces: each keeps its triangle's slot
+  std::vector<MaterialSlot> mats;  // face_material of the pieces: each keeps its triangle's slot
   if (!m.face_material.empty()) mats.reserve(next_tris);
   for (std::size_t f = 0; f < m.triangles.size(); ++f) {
     if (!m.face_material.empty() && f > 0) mats.resize(tris.size(), m.face_material[f - 1]);

@@ -64,7 +64,7 @@ struct Incisor {
   std::unordered_map<std::uint64_t, int> edge_id;  // (lo << 32 | hi) → index into crossings, −1 = not cut
   std::vector<Crossing> crossings;
   std::vector<glm::uvec3> tris;
-  std::vector<std::uint8_t> mats;
+  std::vector<MaterialSlot> mats;
   std::vector<Tip> tips;
   std::vector<RimEdge> rim[2];
   std::vector<ColRef> colrefs;
@@ -179,7 +179,7 @@ int Incisor::crossing_of(std::uint32_t a, std::uint32_t b, glm::dvec3* param_out
 // before the walls); rim edges per side for the walls.
 void Incisor::split_faces() {
   tris = surface.triangles;
-  mats = surface.face_material.empty() ? std::vector<std::uint8_t>(surface.triangles.size(), 0)
+  mats = surface.face_material.empty() ? std::vector<MaterialSlot>(surface.triangles.size(), 0)
                                        : surface.face_material;
   for (std::size_t f = 0; f < surface.triangles.size(); ++f) split_face(f);
   res.cut_edges = crossings.size();
@@ -188,7 +188,7 @@ void Incisor::split_faces() {
 
 void Incisor::split_face(std::size_t f) {
   const std::vector<glm::uvec3>& F = surface.triangles;
-  const std::uint8_t mat = surface.material(f);
+  const MaterialSlot mat = surface.material(f);
   const std::uint32_t t3[3] = {F[f].x, F[f].y, F[f].z};
   if (!(has[t3[0]] || has[t3[1]] || has[t3[2]])) return;
   near_faces.push_back(static_cast<std::uint32_t>(f));
@@ -391,7 +391,7 @@ void Incisor::recompute_normals() {
     const glm::uvec3 t = out.triangles[f];
     if (!(res.moved[t.x] || res.moved[t.y] || res.moved[t.z])) return;
     const glm::dvec3 fn = glm::cross(out.positions[t.y] - out.positions[t.x], out.positions[t.z] - out.positions[t.x]);
-    const bool surf = out.material(f) == kMaterialSurface;
+    const bool surf = out.material(f) != kMaterialInside;
     std::vector<glm::dvec3>& acc = surf ? ns : ni;
     std::vector<double>& area = surf ? as : ai;
     const double a = glm::length(fn);

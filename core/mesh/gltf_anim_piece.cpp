@@ -1,8 +1,8 @@
 // Pieces of an animated-GLB recording split by frames: MorphAnimationBuilder::write_piece, read_piece, append_piece
 // (core/mesh/gltf_anim_io.h). The file is the builder's state, little-endian as the machine writes it:
-//   "TSPIECE1", fps (f64), first_frame (i32), frames (i32), objects (u32), then per object: name (u32 length +
+//   "TSPIECE2", fps (f64), first_frame (i32), frames (i32), objects (u32), then per object: name (u32 length +
 //   bytes), colour (3 × f32), segments (u32), per segment: first, frames (i32), changed (u8), the base mesh
-//   (positions, normals, uvs as f64 arrays, triangles as u32, face materials as u8; each an u64 count first), and per
+//   (positions, normals, uvs as f64 arrays, triangles as u32, face materials as u16; each an u64 count first), and per
 //   following frame the position and normal deltas (u64 count + f32; count 0 = all zero).
 #include <cmath>
 #include <cstdint>
@@ -16,7 +16,7 @@
 namespace trispline::core {
 namespace {
 
-constexpr char kMagic[8] = {'T', 'S', 'P', 'I', 'E', 'C', 'E', '1'};
+constexpr char kMagic[8] = {'T', 'S', 'P', 'I', 'E', 'C', 'E', '2'};
 // Larger counts mean a corrupt file: no recording holds that many values in one array.
 constexpr std::uint64_t kMaxCount = std::uint64_t(1) << 34;
 
@@ -94,7 +94,7 @@ TriMesh read_mesh(Reader& r) {
   m.normals = r.array<glm::dvec3>();
   m.uvs = r.array<glm::dvec2>();
   m.triangles = r.array<glm::uvec3>();
-  m.face_material = r.array<std::uint8_t>();
+  m.face_material = r.array<MaterialSlot>();
   return m;
 }
 
@@ -151,7 +151,7 @@ MorphAnimationBuilder MorphAnimationBuilder::read_piece(const std::filesystem::p
   Reader r(in, path);
   char magic[sizeof kMagic];
   in.read(magic, sizeof magic);
-  if (!in || std::memcmp(magic, kMagic, sizeof kMagic) != 0) r.fail("no TSPIECE1 header");
+  if (!in || std::memcmp(magic, kMagic, sizeof kMagic) != 0) r.fail("no TSPIECE2 header");
   const double fps = r.value<double>();
   if (!(fps > 0) || !std::isfinite(fps)) r.fail("fps");
   MorphAnimationBuilder b(fps, r.value<std::int32_t>());

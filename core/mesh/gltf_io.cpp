@@ -297,7 +297,7 @@ std::vector<GltfObject> read_gltf_objects(const std::filesystem::path& path) {
     obj.name = name.empty() ? gm.name : name;
     bool normals_ok = true;
     SharedVertices shared;
-    std::vector<std::uint8_t> slots;  // per triangle
+    std::vector<MaterialSlot> slots;  // per triangle
     bool any_inside = false;
     int color_material = -1;
     for (std::size_t p = 0; p < gm.primitives.size(); ++p) {
@@ -449,7 +449,7 @@ void write_glb(const std::filesystem::path& path, const std::vector<GltfNode>& n
         std::vector<std::uint32_t> idx;
         idx.reserve(m.triangles.size() * 3);
         for (std::size_t f = 0; f < m.triangles.size(); ++f)
-          if (!two_slots || (m.material(f) != kMaterialSurface) == inside)
+          if (!two_slots || (m.material(f) == kMaterialInside) == inside)
             for (int c = 0; c < 3; ++c) idx.push_back(m.triangles[f][c]);
         if (idx.empty()) return -1;
         return add_accessor(model, add_view(model, idx.data(), idx.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),

@@ -45,7 +45,7 @@ TriMesh loop_subdivide(const TriMesh& mesh, int levels) {
   for (std::size_t v = 0; v < nv; ++v) pos[v].p = mesh.positions[v];
   std::vector<Point2> uv(mesh.uvs.size());
   for (std::size_t v = 0; v < uv.size(); ++v) uv[v].p = mesh.uvs[v];
-  std::vector<std::uint8_t> mat = mesh.face_material;
+  std::vector<MaterialSlot> mat = mesh.face_material;
   for (int l = 1; l <= levels; ++l) {
     const Far::TopologyLevel& child = refiner->GetLevel(l);
     std::vector<Point3> pos_next(child.GetNumVertices());
@@ -57,7 +57,7 @@ TriMesh loop_subdivide(const TriMesh& mesh, int levels) {
       uv = std::move(uv_next);
     }
     if (!mat.empty()) {
-      std::vector<std::uint8_t> mat_next(child.GetNumFaces());
+      std::vector<MaterialSlot> mat_next(child.GetNumFaces());
       primvar.InterpolateFaceUniform(l, mat, mat_next);
       mat = std::move(mat_next);
     }

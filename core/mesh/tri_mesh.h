@@ -4,8 +4,9 @@
 //   normals    #V × 3   unit vertex normals, empty or #V
 //   uvs        #V × 2   texture coordinates, empty or #V
 //   triangles  #F × 3   vertex indices, counter-clockwise seen from outside
-//   face_material #F    per-triangle material slot, empty or #F: 0 = the object's surface colour, 1 = its inside
-//                       colour (cut surfaces: DFFD caps and incision walls, SceneObject::inside_color)
+//   face_material #F    per-triangle material slot, empty or #F: an index into the object's MaterialSet
+//                       (core/mesh/material.h; 0 = the object's colour when it has none), or kMaterialInside for
+//                       its inside colour (cut surfaces: DFFD caps and incision walls, SceneObject::inside_color)
 //
 // Vertex order is the order of the source file; operations that add vertices append them.
 #pragma once
@@ -18,25 +19,27 @@
 
 namespace trispline::core {
 
-// Material slots of TriMesh::face_material.
-inline constexpr std::uint8_t kMaterialSurface = 0;  // the object's colour
-inline constexpr std::uint8_t kMaterialInside = 1;   // cut surfaces (caps, incision walls): the inside colour
+// Material slots of TriMesh::face_material: an index into the object's materials, or kMaterialInside.
+using MaterialSlot = std::uint16_t;
+inline constexpr MaterialSlot kMaterialSurface = 0;       // the object's first material (its colour when it has none)
+inline constexpr MaterialSlot kMaterialInside = 0xFFFF;   // cut surfaces (caps, incision walls): the inside colour
+inline constexpr std::size_t kMaxMaterialsPerMesh = 0xFFFE;  // material indices below kMaterialInside
 
 struct TriMesh {
   std::vector<glm::dvec3> positions;  // #V × 3
   std::vector<glm::dvec3> normals;    // #V × 3 or empty
   std::vector<glm::dvec2> uvs;        // #V × 2 or empty
   std::vector<glm::uvec3> triangles;  // #F × 3
-  std::vector<std::uint8_t> face_material;  // #F or empty (= all 0); kMaterialSurface / kMaterialInside
+  std::vector<MaterialSlot> face_material;  // #F or empty (= all 0); material index or kMaterialInside
 
   std::size_t vertex_count() const { return positions.size(); }
   std::size_t triangle_count() const { return triangles.size(); }
   bool empty() const { return positions.empty() || triangles.empty(); }
   // Material slot of triangle f (kMaterialSurface when face_material is empty).
-  std::uint8_t material(std::size_t f) const { return face_material.empty() ? kMaterialSurface : face_material[f]; }
+  MaterialSlot material(std::size_t f) const { return face_material.empty() ? kMaterialSurface : face_material[f]; }
   bool has_inside_faces() const {
-    for (std::uint8_t m : face_material)
-      if (m != kMaterialSurface) return true;
+    for (MaterialSlot m : face_material)
+      if (m == kMaterialInside) return true;
     return false;
   }
 };

@@ -8,6 +8,7 @@
 #include "core/ddm/ddm_layer.h"
 #include "core/dffd/dffd_rig.h"
 #include "core/ffd/ffd.h"
+#include "core/mesh/material.h"
 #include "core/mesh/mesh_clip.h"
 #include "core/mesh/tri_mesh.h"
 #include "core/scene/camera.h"
@@ -93,7 +94,13 @@ struct SceneObject {
   Transform transform;
   glm::vec3 color{0.8f, 0.8f, 0.8f};         // linear RGB
   glm::vec3 inside_color{0.62f, 0.10f, 0.08f};  // linear RGB of kMaterialInside faces (caps, incision walls: "flesh")
-  bool visible = true;
+  // The file's materials, indexed by the meshes' face_material (null or empty: Solid colour only, as primitives).
+  // Shared by every mesh derived from rest_mesh (FFD, DFFD, incisions, refinement keep face_material and uvs).
+  std::shared_ptr<const MaterialSet> materials;
+  // The file's nodes when it had several (rest_mesh holds them all, node transforms applied); empty otherwise.
+  std::vector<MeshPart> parts;
+  bool visible = true;          // shown in the viewport (Blender's hide_viewport); object.visibility
+  bool render_visible = true;   // in recordings, animation.glb, scene.glb and farm frames (hide_render)
   std::shared_ptr<const FfdBinding> ffd;     // null unless deformed; binding over the *transformed* rest mesh
   std::shared_ptr<const PlacementRecord> placement;  // null unless placed by place.sketch
   // Discontinuous FFD (dffd.split, seed §6.3): null unless split around obstacles; never together with `ffd`. The
@@ -164,7 +171,8 @@ struct VolumeObject {
   std::shared_ptr<const VolumeSpline> spline;         // non-null
   std::shared_ptr<const SingletonTable> table;        // non-null, built from `spline`
   double iso = 0.0;                                   // iso-level c of D = c, in `units`
-  bool visible = true;
+  bool visible = true;                                // shown in the viewport; object.visibility
+  bool render_visible = true;                         // in recordings and exports; a hidden volume costs nothing there
   bool show_surface = true;                           // draw the iso-surface (GPU ray casting)
   glm::vec3 color{0.93f, 0.89f, 0.80f};               // linear RGB of the iso-surface
   VolumeSilhouetteSettings silhouette;

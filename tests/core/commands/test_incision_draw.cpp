@@ -232,7 +232,7 @@ TEST(IncisionDraw, VenusThreeIncisionsOnTheNeck) {
     EXPECT_EQ(t.openmesh_rejected, t0.openmesh_rejected);
   }
   std::size_t inside = 0;
-  for (std::uint8_t m : s.find("venus")->rest_mesh->face_material) inside += m == kMaterialInside;
+  for (MaterialSlot m : s.find("venus")->rest_mesh->face_material) inside += m == kMaterialInside;
   EXPECT_EQ(inside, walls);
   for (auto it = done.rbegin(); it != done.rend(); ++it) (*it)->undo(s);
   EXPECT_TRUE(same_mesh(*s.find("venus")->rest_mesh, input));

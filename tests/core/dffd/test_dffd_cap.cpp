@@ -229,7 +229,7 @@ TEST(DffdCap, MaterialsAndDeterminism) {
   MeshSplit a = split_mesh_at_parameter(sphere, params, 1, 0.61, 1e-8);
   MeshSplit b = split_mesh_at_parameter(sphere, params, 1, 0.61, 1e-8);
   const std::size_t n0 = a.mesh.triangle_count();
-  const std::vector<std::uint8_t> mat0 = a.mesh.face_material;
+  const std::vector<MaterialSlot> mat0 = a.mesh.face_material;
   const CapStats sa = cap_split_openings(a, 1, 0.61, 1e-8, 7);
   const CapStats sb = cap_split_openings(b, 1, 0.61, 1e-8, 7);
   EXPECT_GT(sa.triangles, 0u);

@@ -261,7 +261,7 @@ TEST(Incision, VenusThreeIncisionsComposeAndStayManifold) {
     m = r.mesh;
   }
   std::size_t inside = 0;
-  for (std::uint8_t mat : m.face_material) inside += mat == kMaterialInside;
+  for (MaterialSlot mat : m.face_material) inside += mat == kMaterialInside;
   EXPECT_EQ(inside, walls);
 }
 #endif

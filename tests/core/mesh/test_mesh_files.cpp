@@ -174,7 +174,7 @@ TEST(MeshFiles, RepeatedTrianglesAreRemovedAndCountedTheOtherSideIsKept) {
   direct.triangles = {{0, 1, 2}, {1, 2, 0}, {0, 2, 1}};
   direct.face_material = {kMaterialSurface, kMaterialInside, kMaterialInside};
   EXPECT_EQ(remove_duplicate_triangles(direct), 1u);
-  EXPECT_EQ(direct.face_material, (std::vector<std::uint8_t>{kMaterialSurface, kMaterialInside}));
+  EXPECT_EQ(direct.face_material, (std::vector<MaterialSlot>{kMaterialSurface, kMaterialInside}));
 }
 
 TEST(MeshFiles, PlyFaceListsOfFewerThanThreeCornersNeverReachTheTriangulator) {
