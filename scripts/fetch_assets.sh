@@ -14,6 +14,10 @@
 #   corpus/cgal/      CGAL's data/meshes (libcgal-demo): ~150 OFF/PLY/OBJ/STL meshes, polygonal, coloured, broken;
 #   corpus/assimp/    assimp's own test models (assimp-testmodels) for OBJ, PLY, OFF, STL, invalid files included;
 #   corpus/geomview/  Geomview's sample OFF files (geomview): per-face colours, COFF, comments, 4OFF.
+# Textured models for materials (tests/core/mesh/test_qt3d_assets.cpp), Qt 3D's example assets (qt3d5-examples, 266 MB
+# download, 67 MB kept) → qt3d/: gltf/wine/ (wine.dae: Collada, 3 JPEG textures; wine.gltf is glTF 1.0),
+#   gltf/2.0/RiggedFigure/ and RiggedSimple/ (glTF 2.0 skins), obj/ (toyplane.obj, ball.obj, trefoil.obj, …),
+#   test_scene.dae (Collada, two materials), textures/ (PBR PNG sets up to 4 K), cubemaps/, envmaps/.
 # Uses `apt-get download` + `dpkg-deb -x`: nothing is installed. Idempotent: does nothing when the files exist.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -79,4 +83,5 @@ fi
 models=usr/share/assimp/models
 fetch_tree assimp-testmodels corpus/assimp $models/OBJ $models/PLY $models/OFF $models/STL
 fetch_tree geomview corpus/geomview usr/share/geomview/geom
+fetch_tree qt3d5-examples qt3d usr/lib/x86_64-linux-gnu/qt5/examples/qt3d/exampleresources/assets/.
 echo "assets: $(ls "$data" | tr '\n' ' ')in assets/data/"
