@@ -1,8 +1,9 @@
 // A DICOM series through GDCM. Every file of the folder must resolve inside the folder; each is walked
-// (walk_dicom_file: element lengths and nesting against the file) before gdcm::Scanner reads its header tags (it
-// stops before the pixel data; a deflated file's tags are the walk's, up to its Pixel Data); the series is chosen, its geometry and the memory budget checked on the header
-// values; a deflated slice is then inflated once more, counted, to bound its data set; and gdcm::ImageReader decodes
-// one slice at a time. The slice order and spacing are checked here rather than by gdcm::IPPSorter, which only says
+// (walk_dicom_file: element lengths and nesting against the file) before gdcm::Scanner reads its header tags (it stops
+// before the pixel data; a deflated file's tags are the walk's, up to its Pixel Data); the series is chosen, its
+// geometry and the memory budget checked on the header values; a deflated slice is then inflated once more, counted, to
+// bound its data set; and GDCM decodes one slice at a time (decode_slice: the image built from the checked header, not
+// by gdcm::ImageReader). The slice order and spacing are checked here rather than by gdcm::IPPSorter, which only says
 // yes or no: a refused series names the slices that disagree.
 #include <gdcmTrace.h>
 

@@ -3,7 +3,8 @@
 //
 //   kSliceTags          the tags every file is scanned for
 //   read_slice_header   Rows, Columns, Bits Allocated / Stored, Pixel Representation, colour, frames, rescale
-//   decode_slice        gdcm::ImageReader on one file → rows·columns floats appended to a volume
+//   decode_slice        one file's Pixel Data (gdcm::Reader) decoded by GDCM's codecs into an image built from the
+//                       checked header → rows·columns floats appended to a volume
 #pragma once
 
 #include <gdcmScanner.h>
@@ -73,6 +74,7 @@ struct SliceHeader {
   int rows = 0, columns = 0;              // 1…65535
   int bits_allocated = 16, bits_stored = 16;
   bool is_signed = false;                 // Pixel Representation 1
+  bool monochrome1 = false;               // Photometric Interpretation MONOCHROME1 (else MONOCHROME2 or absent)
   double slope = 1.0, intercept = 0.0;    // Rescale Slope / Intercept (1, 0 when absent)
   std::string transfer_syntax;            // for messages
 
@@ -88,9 +90,11 @@ SliceHeader read_slice_header(const TagTable& tags, const std::string& file,
                               const std::filesystem::path& report);
 
 // Decodes `slice` (its header as checked above) and appends rows·columns floats (stored value, bits above Bits
-// Stored dropped, sign-extended, × slope + intercept) to `values`. Refused, naming the slice: a file GDCM cannot
-// read or decode, pixel data of another size or format than the header's, native Pixel Data holding fewer bytes
-// than rows·columns samples. Each slice is decoded into a buffer of its own.
+// Stored dropped, sign-extended, × slope + intercept) to `values`. The image is built from `slice` (GDCM's
+// ImageReader is not used: it asserts on header values a hostile file can hold). Refused, naming the slice: a file
+// GDCM cannot read or decode, no Pixel Data, encapsulated Pixel Data under a native transfer syntax or the reverse,
+// decoded pixel data of another size than the header's, native Pixel Data holding fewer bytes than rows·columns
+// samples. Each slice is decoded into a buffer of its own.
 void decode_slice(const SliceHeader& slice, const std::filesystem::path& report, std::vector<float>& values);
 
 }  // namespace trispline::core::volume_io
