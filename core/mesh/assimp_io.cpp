@@ -1,18 +1,24 @@
 #include "core/mesh/assimp_io.h"
 
+#include <assimp/MemoryIOWrapper.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
-
-#include <assimp/MemoryIOWrapper.h>
 
 #include <assimp/DefaultLogger.hpp>
 #include <assimp/IOSystem.hpp>
 #include <assimp/Importer.hpp>
 #include <assimp/LogStream.hpp>
 #include <cstring>
+#include <fstream>
+#include <map>
 #include <mutex>
 #include <unordered_map>
 #include <vector>
+
+#include "core/mesh/assimp_material.h"
+#include "core/mesh/file_check.h"
+#include "core/mesh/mesh_precheck.h"
+#include "core/mesh/model_load.h"
 
 namespace trispline::core {
 namespace {
@@ -50,25 +56,31 @@ bool is_repair(const std::string& w) {
   return false;
 }
 
-// The only file an import may open: the bytes already read (and checked), under one name. Every other name does not
-// exist, so an OBJ's `mtllib` and the material file assimp falls back to are never opened. (assimp's own
+// The only files an import may open: the bytes already read (and checked), under one name, and for an OBJ read with
+// materials its checked material libraries under kServedMtlName. Every other name does not exist, so the material
+// file assimp falls back to is never opened, and the model is never read as its own material library. (assimp's own
 // ReadFileFromMemory serves its buffer for every name that starts with its magic name, so the OBJ importer's
 // fallback "<name>.mtl" read the OBJ itself as a material library, whose parser then wrote through a null material:
 // a crash found by fuzz_mesh_obj.)
-class OneFileIOSystem : public Assimp::IOSystem {
+class ServedFilesIOSystem : public Assimp::IOSystem {
  public:
-  OneFileIOSystem(std::string name, const std::vector<unsigned char>& bytes) : name_(std::move(name)), bytes_(bytes) {}
-  bool Exists(const char* file) const override { return file && name_ == file; }
+  ServedFilesIOSystem(std::string name, const std::vector<unsigned char>& bytes, const std::string* mtl)
+      : name_(std::move(name)), bytes_(bytes), mtl_(mtl) {}
+  bool Exists(const char* file) const override {
+    return file && (name_ == file || (mtl_ && std::strcmp(file, kServedMtlName) == 0));
+  }
   char getOsSeparator() const override { return '/'; }
   Assimp::IOStream* Open(const char* file, const char* mode) override {
     if (!Exists(file) || !mode || std::strchr(mode, 'w') || std::strchr(mode, 'a')) return nullptr;
-    return new Assimp::MemoryIOStream(bytes_.data(), bytes_.size(), false);
+    if (name_ == file) return new Assimp::MemoryIOStream(bytes_.data(), bytes_.size(), false);
+    return new Assimp::MemoryIOStream(reinterpret_cast<const std::uint8_t*>(mtl_->data()), mtl_->size(), false);
   }
   void Close(Assimp::IOStream* stream) override { delete stream; }
 
  private:
   std::string name_;
   const std::vector<unsigned char>& bytes_;
+  const std::string* mtl_;  // null: no material library is served
 };
 
 // One vertex of the joined mesh as the file gave it: position, normal, uv (unused parts zero). Welding compares the
@@ -118,6 +130,7 @@ glm::dmat4 to_glm(const aiMatrix4x4& m) {  // assimp is row-major (a1..a4 the fi
 struct Placed {
   const aiMesh* mesh;
   glm::dmat4 world;
+  const aiNode* node;  // null for a mesh held by no node
 };
 void collect(const aiScene& scene, const aiNode* node, const glm::dmat4& parent, int depth, std::vector<Placed>& out,
              std::vector<bool>& used, const std::filesystem::path& path) {
@@ -126,17 +139,67 @@ void collect(const aiScene& scene, const aiNode* node, const glm::dmat4& parent,
   for (unsigned i = 0; i < node->mNumMeshes; ++i) {
     const unsigned m = node->mMeshes[i];
     if (m >= scene.mNumMeshes) throw MeshIoError(quoted(path) + ": node refers to a missing mesh");
-    out.push_back({scene.mMeshes[m], world});
+    out.push_back({scene.mMeshes[m], world, node});
     used[m] = true;
   }
   for (unsigned c = 0; c < node->mNumChildren; ++c)
     collect(scene, node->mChildren[c], world, depth + 1, out, used, path);
 }
 
+// The OBJ's material libraries (names as written after `mtllib`) read from its folder, each checked and rewritten
+// (check_mtl_text), joined; a library that cannot be read is left out and named in `warnings`.
+std::string served_mtl(const std::filesystem::path& path, const std::vector<std::string>& names,
+                       std::vector<std::string>& warnings) {
+  std::string joined;
+  for (const std::string& name : names) {
+    std::vector<unsigned char> bytes;
+    try {
+      bytes = read_model_side_file(path, name, kMaxMtlFileBytes);
+    } catch (const MeshIoError& e) {
+      warnings.push_back(std::string("material library ") + e.what() + " (its materials are left at their defaults)");
+      continue;
+    }
+    joined += check_mtl_text(path.parent_path() / name, {reinterpret_cast<const char*>(bytes.data()), bytes.size()});
+  }
+  return joined;
+}
+
 }  // namespace
 
-TriMesh read_assimp_mesh(const std::filesystem::path& path, const std::string& ext,
-                         const std::vector<unsigned char>& bytes, MeshLoadReport& report) {
+bool is_assimp_extension(const std::string& e) {
+  return e == ".obj" || e == ".ply" || e == ".off" || e == ".stl" || e == ".dae" || e == ".fbx";
+}
+
+AssimpModel read_assimp_file(const std::filesystem::path& path, const std::string& ext, const MeshLoadOptions& options,
+                             MeshLoadReport& report, bool materials) {
+  report.loader = "assimp";
+  check_input_file(path, kMaxMeshFileBytes, "mesh files");
+  {  // what the size and the head tell, before the whole file is read
+    std::ifstream in(path, std::ios::binary);
+    std::vector<unsigned char> head(kMeshHeadBytes);
+    in.read(reinterpret_cast<char*>(head.data()), static_cast<std::streamsize>(head.size()));
+    head.resize(static_cast<std::size_t>(in.gcount()));
+    std::error_code ec;
+    const std::uintmax_t size = std::filesystem::file_size(path, ec);
+    if (ec) throw MeshIoError(quoted(path) + ": cannot access: " + ec.message());
+    precheck_mesh_head(path, ext, head, size);
+  }
+  std::vector<unsigned char> bytes = read_input_file(path, kMaxMeshFileBytes, "mesh files");
+  std::vector<std::string> mtllibs;
+  prepare_mesh_bytes(path, ext, bytes, materials && ext == ".obj" ? &mtllibs : nullptr);
+  precheck_mesh_file(path, ext, bytes);
+  AssimpModel m = read_assimp_mesh(path, ext, bytes, report, materials, &mtllibs);
+  if ((report.ignored_points || report.ignored_lines) && !options.ignore_loose)
+    throw MeshIoError(quoted(path) + ": holds " + std::to_string(report.ignored_points) + " point and " +
+                      std::to_string(report.ignored_lines) + " line elements besides its " +
+                      std::to_string(report.faces) +
+                      " faces; trispline loads surfaces only (delete the loose geometry, or load with "
+                      "\"loose\":\"ignore\" to leave it out)");
+  return m;
+}
+AssimpModel read_assimp_mesh(const std::filesystem::path& path, const std::string& ext,
+                             const std::vector<unsigned char>& bytes, MeshLoadReport& report, bool materials,
+                             const std::vector<std::string>* mtllibs) {
   Assimp::Importer importer;
   install_warning_sink();
   std::vector<std::string> warnings;
@@ -148,7 +211,11 @@ TriMesh read_assimp_mesh(const std::filesystem::path& path, const std::string& e
   // disagree with its faces (a PLY face list of 0, 1 or 2 corners), and aiProcess_Triangulate then fails an
   // ai_assert, which aborts the process. Between the steps the flags are set from the faces themselves.
   const std::string name = "mesh" + ext;
-  importer.SetIOHandler(new OneFileIOSystem(name, bytes));  // the importer owns it
+  AssimpModel result;
+  std::string mtl;
+  const bool serve_mtl = materials && ext == ".obj" && mtllibs && !mtllibs->empty();
+  if (serve_mtl) mtl = served_mtl(path, *mtllibs, result.warnings);
+  importer.SetIOHandler(new ServedFilesIOSystem(name, bytes, serve_mtl ? &mtl : nullptr));  // the importer owns it
   const aiScene* scene = importer.ReadFile(name, aiProcess_ValidateDataStructure);
   auto refuse_if_repaired = [&] {
     for (const std::string& w : warnings)
@@ -172,25 +239,35 @@ TriMesh read_assimp_mesh(const std::filesystem::path& path, const std::string& e
     for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
       const unsigned n = mesh.mFaces[f].mNumIndices;
       if (n == 0) throw MeshIoError(quoted(path) + ": cannot parse " + ext.substr(1) + " file: a face with no corners");
-      types |= n == 1 ? aiPrimitiveType_POINT : n == 2 ? aiPrimitiveType_LINE
-                                              : n == 3 ? aiPrimitiveType_TRIANGLE : aiPrimitiveType_POLYGON;
+      types |= n == 1   ? aiPrimitiveType_POINT
+               : n == 2 ? aiPrimitiveType_LINE
+               : n == 3 ? aiPrimitiveType_TRIANGLE
+                        : aiPrimitiveType_POLYGON;
     }
     mesh.mPrimitiveTypes = types;
   }
-  unsigned flags = aiProcess_Triangulate;
+  unsigned flags = aiProcess_Triangulate | aiProcess_FlipUVs;  // uvs: glTF's convention (model_load.h)
   if (ext == ".stl") {  // per-face normals: dropped, so the corners weld into a connected mesh
     importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS, aiComponent_NORMALS);
     flags |= aiProcess_RemoveComponent;
   }
   scene = importer.ApplyPostProcessing(flags);
-  if (!scene) throw MeshIoError(quoted(path) + ": cannot parse " + ext.substr(1) + " file: " + importer.GetErrorString());
+  if (!scene)
+    throw MeshIoError(quoted(path) + ": cannot parse " + ext.substr(1) + " file: " + importer.GetErrorString());
   refuse_if_repaired();
 
   std::vector<Placed> placed;
   std::vector<bool> used(scene->mNumMeshes, false);
   collect(*scene, scene->mRootNode, glm::dmat4(1.0), 0, placed, used, path);
   for (unsigned m = 0; m < scene->mNumMeshes; ++m)
-    if (!used[m]) placed.push_back({scene->mMeshes[m], glm::dmat4(1.0)});
+    if (!used[m]) placed.push_back({scene->mMeshes[m], glm::dmat4(1.0), nullptr});
+
+  // Parts: one per mesh node (consecutive entries of `placed` share their node), for scene formats only.
+  const bool scene_format = ext == ".dae" || ext == ".fbx";
+  std::size_t mesh_nodes = 0;
+  for (std::size_t i = 0; i < placed.size(); ++i)
+    mesh_nodes += i == 0 || placed[i].node != placed[i - 1].node || !placed[i].node;
+  const bool with_parts = scene_format && mesh_nodes > 1;
 
   Joiner join;
   join.normals = !placed.empty();
@@ -203,9 +280,50 @@ TriMesh read_assimp_mesh(const std::filesystem::path& path, const std::string& e
   for (const Placed& pm : placed)
     for (unsigned f = 0; f < pm.mesh->mNumFaces; ++f) triangles += pm.mesh->mFaces[f].mNumIndices == 3;
   join.out.triangles.reserve(triangles);
+  if (materials) join.out.face_material.reserve(triangles);
 
-  for (const Placed& pm : placed) {
+  std::vector<unsigned> slots_used;             // scene material index of slot k
+  std::map<unsigned, MaterialSlot> slot_of;     // scene material index → slot
+  std::map<std::vector<unsigned>, int> shapes;  // a node's mesh list → MeshPart::mesh_index (instances share it)
+  for (std::size_t i = 0; i < placed.size(); ++i) {
+    const Placed& pm = placed[i];
+    const bool new_part = i == 0 || pm.node != placed[i - 1].node || !pm.node;
+    if (with_parts && new_part) {
+      if (!result.parts.empty()) {
+        MeshPart& last = result.parts.back();
+        last.vertex_count = static_cast<std::uint32_t>(join.out.positions.size()) - last.first_vertex;
+        last.triangle_count = static_cast<std::uint32_t>(join.out.triangles.size()) - last.first_triangle;
+      }
+      join.index.clear();  // welded within a part only
+      MeshPart part;
+      std::vector<unsigned> shape;
+      if (pm.node) {
+        part.name = pm.node->mName.C_Str();
+        shape.assign(pm.node->mMeshes, pm.node->mMeshes + pm.node->mNumMeshes);
+      } else {
+        shape.push_back(static_cast<unsigned>(std::find(scene->mMeshes, scene->mMeshes + scene->mNumMeshes, pm.mesh) -
+                                              scene->mMeshes) |
+                        0x80000000u);
+      }
+      part.mesh_index = shapes.try_emplace(shape, static_cast<int>(shapes.size())).first->second;
+      part.world = pm.world;
+      part.first_vertex = static_cast<std::uint32_t>(join.out.positions.size());
+      part.first_triangle = static_cast<std::uint32_t>(join.out.triangles.size());
+      result.parts.push_back(std::move(part));
+    }
     const aiMesh& m = *pm.mesh;
+    MaterialSlot slot = 0;
+    bool has_triangles = false;
+    for (unsigned f = 0; f < m.mNumFaces && !has_triangles; ++f) has_triangles = m.mFaces[f].mNumIndices == 3;
+    if (materials && has_triangles) {
+      const auto [it, fresh] = slot_of.try_emplace(m.mMaterialIndex, static_cast<MaterialSlot>(slots_used.size()));
+      if (fresh) {
+        if (slots_used.size() >= kMaxMaterialsPerMesh)
+          throw MeshIoError(quoted(path) + ": more than " + std::to_string(kMaxMaterialsPerMesh) + " materials");
+        slots_used.push_back(m.mMaterialIndex);
+      }
+      slot = it->second;
+    }
     const glm::dmat3 normal_matrix = glm::transpose(glm::inverse(glm::dmat3(pm.world)));
     std::vector<unsigned> ids(m.mNumVertices, ~0u);  // file corner → joined vertex, made on first use
     auto vertex = [&](unsigned i) {
@@ -234,18 +352,32 @@ TriMesh read_assimp_mesh(const std::filesystem::path& path, const std::string& e
           if (face.mIndices[k] >= m.mNumVertices)
             throw MeshIoError(quoted(path) + ": vertex index out of range in face " + std::to_string(f));
         join.out.triangles.push_back({vertex(face.mIndices[0]), vertex(face.mIndices[1]), vertex(face.mIndices[2])});
+        if (materials) join.out.face_material.push_back(slot);
       } else {  // aiProcess_Triangulate leaves nothing larger; refuse rather than drop if it ever does
         throw MeshIoError(quoted(path) + ": a face of " + std::to_string(face.mNumIndices) +
                           " corners was not triangulated");
       }
     }
   }
+  if (!result.parts.empty()) {
+    MeshPart& last = result.parts.back();
+    last.vertex_count = static_cast<std::uint32_t>(join.out.positions.size()) - last.first_vertex;
+    last.triangle_count = static_cast<std::uint32_t>(join.out.triangles.size()) - last.first_triangle;
+    // Nodes that only held points or lines are no parts.
+    std::erase_if(result.parts, [](const MeshPart& p) { return p.triangle_count == 0; });
+    if (result.parts.size() < 2) result.parts.clear();
+  }
   report.faces = join.out.triangles.size();
   if (join.out.triangles.empty()) {
     throw MeshIoError(quoted(path) + ": empty mesh (no triangles): only " + std::to_string(report.ignored_points) +
                       " points and " + std::to_string(report.ignored_lines) + " lines (trispline loads surfaces)");
   }
-  return std::move(join.out);
+  if (materials) {
+    result.materials = convert_assimp_materials(*scene, slots_used, path);
+    if (!result.materials) join.out.face_material.clear();
+  }
+  result.mesh = std::move(join.out);
+  return result;
 }
 
 }  // namespace trispline::core

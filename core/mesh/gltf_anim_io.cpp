@@ -6,9 +6,6 @@
 // macros and never define TINYGLTF_IMPLEMENTATION.
 #include <tiny_gltf.h>
 
-#include "core/mesh/gltf_model.h"
-#include "core/mesh/gltf_read.h"
-
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -16,6 +13,10 @@
 #include <limits>
 #include <map>
 #include <stdexcept>
+
+#include "core/mesh/gltf_materials.h"
+#include "core/mesh/gltf_model.h"
+#include "core/mesh/gltf_read.h"
 
 namespace trispline::core {
 namespace {
@@ -118,6 +119,7 @@ void MorphAnimationBuilder::add_frame(const std::vector<GltfNode>& nodes) {
       Object o;
       o.name = n.name;
       o.color = n.color;
+      o.materials = n.materials;
       if (n.mesh && !n.mesh->empty()) {
         validate_mesh(*n.mesh, "object '" + n.name + "'");
         o.segments.push_back(Segment{0, 1, *n.mesh, {}, {}, false});
@@ -195,6 +197,39 @@ tinygltf::Primitive add_primitive(tinygltf::Model& model, const TriMesh& m, cons
   return prim;
 }
 
+// `prim` (all faces of `m`, with its targets) as one primitive per material slot the faces use, in slot order, then
+// one of the kMaterialInside faces, appended to `mesh`: same attributes and targets, their own indices.
+void split_by_material(tinygltf::Model& model, gltf_materials::GltfMaterialWriter& writer, const std::string& name,
+                       const glm::vec3& color, const std::shared_ptr<const MaterialSet>& set, const TriMesh& m,
+                       const tinygltf::Primitive& prim, tinygltf::Mesh& mesh) {
+  std::map<MaterialSlot, std::vector<std::uint32_t>> faces;  // slot → indices, in face order
+  for (std::size_t f = 0; f < m.triangles.size(); ++f) {
+    std::vector<std::uint32_t>& idx = faces[m.material(f)];
+    for (int c = 0; c < 3; ++c) idx.push_back(m.triangles[f][c]);
+  }
+  const std::vector<int>& materials = writer.materials(set);
+  int fallback = -1;
+  for (const auto& [slot, idx] : faces) {
+    tinygltf::Primitive p = prim;
+    tinygltf::Accessor ia;
+    ia.bufferView = add_view(model, idx.data(), idx.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+    ia.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+    ia.type = TINYGLTF_TYPE_SCALAR;
+    ia.count = idx.size();
+    model.accessors.push_back(ia);
+    p.indices = static_cast<int>(model.accessors.size()) - 1;
+    if (slot == kMaterialInside) {
+      p.material = gltf_model::add_material(model, name + ".inside", glm::vec3(0.62f, 0.10f, 0.08f));
+    } else if (slot < materials.size()) {
+      p.material = materials[slot];
+    } else {
+      if (fallback < 0) fallback = gltf_model::add_material(model, name, color);
+      p.material = fallback;
+    }
+    mesh.primitives.push_back(std::move(p));
+  }
+}
+
 }  // namespace
 
 void MorphAnimationBuilder::write_glb(const std::filesystem::path& path) const {
@@ -204,6 +239,7 @@ void MorphAnimationBuilder::write_glb(const std::filesystem::path& path) const {
   model.asset.generator = "trispline";
   model.buffers.resize(1);
   tinygltf::Scene scene;
+  gltf_materials::GltfMaterialWriter writer(model);
   std::vector<float> times(frames_);
   for (int k = 0; k < frames_; ++k) times[k] = static_cast<float>(k / fps_);
   tinygltf::Animation anim;
@@ -264,7 +300,10 @@ void MorphAnimationBuilder::write_glb(const std::filesystem::path& path) const {
         weights[static_cast<std::size_t>(k) * targets + (k - seg.first - 1)] = 1.0f;
       add_channel(node, "weights", weights, TINYGLTF_TYPE_SCALAR, 1);
     }
-    mesh.primitives.push_back(std::move(prim));
+    if (o.materials && !o.materials->empty())
+      split_by_material(model, writer, o.name, o.color, o.materials, seg.base, prim, mesh);
+    else
+      mesh.primitives.push_back(std::move(prim));
     model.meshes.push_back(std::move(mesh));
     return static_cast<int>(model.meshes.size()) - 1;
   };
@@ -294,8 +333,8 @@ void MorphAnimationBuilder::write_glb(const std::filesystem::path& path) const {
       const bool shown_first = seg.first == 0;
       if (!shown_first) model.nodes[child].scale = {0.0, 0.0, 0.0};
       tinygltf::Value::Object extras;
-      extras["frames"] = tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(first_frame_ + seg.first),
-                                                                tinygltf::Value(first_frame_ + seg.first + seg.frames - 1)});
+      extras["frames"] = tinygltf::Value(tinygltf::Value::Array{
+          tinygltf::Value(first_frame_ + seg.first), tinygltf::Value(first_frame_ + seg.first + seg.frames - 1)});
       model.nodes[child].extras = tinygltf::Value(std::move(extras));
       std::vector<float> scale(static_cast<std::size_t>(frames_) * 3, 0.0f);
       for (int k = seg.first; k < seg.first + seg.frames; ++k)

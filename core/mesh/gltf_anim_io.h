@@ -9,6 +9,9 @@
 // Layout of the file (Blender's glTF importer turns it into shape keys with keyed values):
 //   * per object one node (named by the object id, no transform: positions are world units) and one mesh with one
 //     TRIANGLES primitive; its POSITION / NORMAL / TEXCOORD_0 / indices are the FIRST frame's mesh (as write_glb);
+//     an object with materials (GltfNode::materials) gets one primitive per material slot its faces use instead (and
+//     one for its kMaterialInside faces), sharing the vertex accessors and morph targets, with the materials, their
+//     textures and images written as write_glb writes them (pieces, write_piece, do not keep materials);
 //   * an object whose geometry changes in any frame gets one morph target per following frame (#frames − 1 targets,
 //     POSITION and NORMAL deltas relative to the first frame, float32; a frame equal to the first has zero deltas),
 //     mesh.weights all 0 and mesh.extras.targetNames = ["frame_NNNN", ...] (Blender names the shape keys so);
@@ -26,6 +29,7 @@
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -78,7 +82,8 @@ class MorphAnimationBuilder {
   struct Object {
     std::string name;
     glm::vec3 color{0.8f};
-    std::vector<Segment> segments;  // empty: no mesh
+    std::shared_ptr<const MaterialSet> materials;  // the first frame's GltfNode::materials (null: `color`)
+    std::vector<Segment> segments;                 // empty: no mesh
   };
   double fps_;
   int first_frame_;

@@ -20,6 +20,7 @@
 #include <tuple>
 #include <utility>
 
+#include "core/mesh/gltf_materials.h"
 #include "core/mesh/gltf_model.h"
 #include "core/mesh/gltf_read.h"
 
@@ -284,10 +285,18 @@ bool finite_matrix(const glm::dmat4& m) {
 
 }  // namespace
 
-std::vector<GltfObject> read_gltf_objects(const std::filesystem::path& path) {
+GltfFile read_gltf_file(const std::filesystem::path& path, bool materials) {
   const tinygltf::Model model = gltf_read::read_model(path);  // checked: indices in range, nodes a forest
+  gltf_materials::ReadMaterials mats;
+  if (materials) {
+    mats = gltf_materials::read_gltf_materials(model, path);
+  } else {  // the legacy slots: "*.inside" materials → kMaterialInside, every other → kMaterialSurface
+    for (const tinygltf::Material& m : model.materials) mats.slot.push_back(ends_with(m.name, ".inside") ? -1 : 0);
+  }
+  int default_slot = -1;  // the glTF default material, appended for the first primitive without one
 
-  std::vector<GltfObject> out;
+  GltfFile file;
+  std::vector<GltfObject>& out = file.objects;
   Totals totals;
   auto emit = [&](const std::string& name, int mesh_index, const glm::dmat4& xf) {
     if (mesh_index < 0 || mesh_index >= static_cast<int>(model.meshes.size()))
@@ -295,6 +304,8 @@ std::vector<GltfObject> read_gltf_objects(const std::filesystem::path& path) {
     const auto& gm = model.meshes[mesh_index];
     GltfObject obj;
     obj.name = name.empty() ? gm.name : name;
+    obj.mesh_index = mesh_index;
+    obj.world = xf;
     bool normals_ok = true;
     SharedVertices shared;
     std::vector<MaterialSlot> slots;  // per triangle
@@ -308,7 +319,20 @@ std::vector<GltfObject> read_gltf_objects(const std::filesystem::path& path) {
       const std::string where = "mesh " + std::to_string(mesh_index) + " primitive " + std::to_string(p);
       const std::size_t added =
           append_primitive(model, prim, xf, obj.mesh, normals_ok, shared, inside, totals, where, path);
-      slots.insert(slots.end(), added, inside ? kMaterialInside : kMaterialSurface);
+      MaterialSlot slot = kMaterialInside;
+      if (!inside && mat >= 0) {
+        slot = static_cast<MaterialSlot>(mats.slot[mat]);
+      } else if (!inside && added > 0) {
+        if (default_slot < 0) {
+          if (mats.set.materials.size() >= kMaxMaterialsPerMesh)
+            throw MeshIoError(quoted(path) + ": more materials than the " + std::to_string(kMaxMaterialsPerMesh) +
+                              " an object may have");
+          default_slot = static_cast<int>(mats.set.materials.size());
+          mats.set.materials.push_back(gltf_materials::default_material());
+        }
+        slot = static_cast<MaterialSlot>(default_slot);
+      }
+      slots.insert(slots.end(), added, slot);
       any_inside = any_inside || (inside && added > 0);
       if (inside && mat >= 0) obj.inside_color = base_color(model.materials[mat], obj.inside_color);
       if (!inside && color_material < 0) color_material = mat;
@@ -316,7 +340,9 @@ std::vector<GltfObject> read_gltf_objects(const std::filesystem::path& path) {
     // A mesh of points or lines only (e.g. a volume's silhouettes in scene.glb) is no surface object.
     if (obj.mesh.triangles.empty() && obj.mesh.positions.empty()) return;
     if (!normals_ok) obj.mesh.normals.clear();
-    if (any_inside) obj.mesh.face_material = std::move(slots);
+    // All slot 0 is what an empty face_material says.
+    if (std::any_of(slots.begin(), slots.end(), [](MaterialSlot m) { return m != kMaterialSurface; }))
+      obj.mesh.face_material = std::move(slots);
     if (color_material < 0 && !gm.primitives.empty() && !any_inside) color_material = gm.primitives.front().material;
     if (color_material >= 0 && color_material < static_cast<int>(model.materials.size()))
       obj.color = base_color(model.materials[color_material], obj.color);
@@ -351,206 +377,62 @@ std::vector<GltfObject> read_gltf_objects(const std::filesystem::path& path) {
   }
   check_budgets(model, uses, path);
   for (const MeshUse& u : uses) emit(u.name, u.mesh, u.world);
+  // Only the materials of a file that names some (other than write_glb's "*.inside") make a MaterialSet.
+  const bool named = materials && std::any_of(mats.slot.begin(), mats.slot.end(), [](int s) { return s >= 0; });
+  if (named) {
+    file.materials = std::make_shared<const MaterialSet>(std::move(mats.set));
+    file.warnings = std::move(mats.warnings);
+  } else {
+    for (GltfObject& o : out)  // default-material slots of a file without materials: slot 0, the object colour
+      for (MaterialSlot& m : o.mesh.face_material)
+        if (m != kMaterialInside) m = kMaterialSurface;
+  }
+  return file;
+}
+
+std::vector<GltfObject> read_gltf_objects(const std::filesystem::path& path) {
+  return read_gltf_file(path, /*materials=*/false).objects;
+}
+
+GltfModel read_gltf_model(const std::filesystem::path& path) {
+  GltfFile file = read_gltf_file(path, /*materials=*/true);
+  GltfModel out;
+  TriMesh& mesh = out.mesh;
+  bool all_normals = true, any_uvs = false, any_slots = false;
+  for (const auto& obj : file.objects) {
+    all_normals = all_normals && !obj.mesh.normals.empty();
+    any_uvs = any_uvs || !obj.mesh.uvs.empty();
+    any_slots = any_slots || !obj.mesh.face_material.empty();
+  }
+  for (const auto& obj : file.objects) {
+    MeshPart part;
+    part.name = obj.name;
+    part.mesh_index = obj.mesh_index;
+    part.world = obj.world;
+    part.first_vertex = static_cast<std::uint32_t>(mesh.positions.size());
+    part.vertex_count = static_cast<std::uint32_t>(obj.mesh.positions.size());
+    part.first_triangle = static_cast<std::uint32_t>(mesh.triangles.size());
+    part.triangle_count = static_cast<std::uint32_t>(obj.mesh.triangles.size());
+    mesh.positions.insert(mesh.positions.end(), obj.mesh.positions.begin(), obj.mesh.positions.end());
+    if (all_normals) mesh.normals.insert(mesh.normals.end(), obj.mesh.normals.begin(), obj.mesh.normals.end());
+    if (any_uvs) {
+      mesh.uvs.insert(mesh.uvs.end(), obj.mesh.uvs.begin(), obj.mesh.uvs.end());
+      mesh.uvs.resize(mesh.positions.size(), glm::dvec2(0.0));  // nodes without TEXCOORD_0 get (0,0)
+    }
+    for (const auto& t : obj.mesh.triangles) mesh.triangles.push_back(t + glm::uvec3(part.first_vertex));
+    if (any_slots) {
+      if (obj.mesh.face_material.empty())
+        mesh.face_material.resize(mesh.triangles.size(), kMaterialSurface);
+      else
+        mesh.face_material.insert(mesh.face_material.end(), obj.mesh.face_material.begin(),
+                                  obj.mesh.face_material.end());
+    }
+    out.parts.push_back(std::move(part));
+  }
+  if (out.parts.size() < 2) out.parts.clear();
+  out.materials = std::move(file.materials);
+  out.warnings = std::move(file.warnings);
   return out;
 }
 
-namespace {
-
-using gltf_model::add_view;
-
-int add_accessor(tinygltf::Model& model, int view, int ctype, int type, std::size_t count) {
-  tinygltf::Accessor acc;
-  acc.bufferView = view;
-  acc.componentType = ctype;
-  acc.type = type;
-  acc.count = count;
-  model.accessors.push_back(acc);
-  return static_cast<int>(model.accessors.size()) - 1;
-}
-
-// A float32 vertex attribute of N components (TINYGLTF_TYPE_VEC`N` given as `type`) from `values` (#V × N doubles).
-template <int N, class V>
-int add_float_attribute(tinygltf::Model& model, const std::vector<V>& values, int type) {
-  std::vector<float> f(values.size() * N);
-  for (std::size_t i = 0; i < values.size(); ++i)
-    for (int c = 0; c < N; ++c) f[N * i + c] = static_cast<float>(values[i][c]);
-  return add_accessor(model, add_view(model, f.data(), f.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER),
-                      TINYGLTF_COMPONENT_TYPE_FLOAT, type, values.size());
-}
-
-// The node's line strips as LINE_STRIP primitives appended to `mesh`, sharing one unlit material.
-void add_line_strips(tinygltf::Model& model, const GltfNode& gn, tinygltf::Mesh& mesh) {
-  int material = -1;
-  for (const std::vector<glm::vec3>& strip : *gn.line_strips) {
-    if (strip.size() < 2) continue;
-    std::vector<double> lo(3, std::numeric_limits<double>::infinity()), hi(3, -std::numeric_limits<double>::infinity());
-    for (const glm::vec3& p : strip)
-      for (int c = 0; c < 3; ++c) {
-        if (!std::isfinite(p[c])) throw MeshIoError("object '" + gn.name + "': a line strip has a non-finite point");
-        lo[c] = std::min(lo[c], double(p[c]));
-        hi[c] = std::max(hi[c], double(p[c]));
-      }
-    if (material < 0) {
-      const bool has_triangles = !mesh.primitives.empty();
-      material = gltf_model::add_material(model, has_triangles ? gn.name + ".lines" : gn.name, gn.color);
-      model.materials[material].extensions["KHR_materials_unlit"] = tinygltf::Value(tinygltf::Value::Object());
-      if (std::find(model.extensionsUsed.begin(), model.extensionsUsed.end(), "KHR_materials_unlit") ==
-          model.extensionsUsed.end())
-        model.extensionsUsed.push_back("KHR_materials_unlit");
-    }
-    tinygltf::Primitive prim;
-    prim.mode = TINYGLTF_MODE_LINE_STRIP;
-    const int pa = add_float_attribute<3>(model, strip, TINYGLTF_TYPE_VEC3);
-    model.accessors[pa].minValues = lo;
-    model.accessors[pa].maxValues = hi;
-    prim.attributes["POSITION"] = pa;
-    prim.material = material;
-    mesh.primitives.push_back(prim);
-  }
-}
-
-}  // namespace
-
-void write_glb(const std::filesystem::path& path, const std::vector<GltfNode>& nodes) {
-  tinygltf::Model model;
-  model.asset.version = "2.0";
-  model.asset.generator = "trispline";
-  model.buffers.resize(1);
-  tinygltf::Scene scene;
-  for (const auto& gn : nodes) {
-    tinygltf::Node node;
-    node.name = gn.name;
-    if (gn.mesh && !gn.mesh->empty()) {
-      const TriMesh& m = *gn.mesh;
-      validate_mesh(m, "object '" + gn.name + "'");
-      const std::size_t nv = m.positions.size();
-      std::vector<double> lo(3, std::numeric_limits<double>::infinity()),
-          hi(3, -std::numeric_limits<double>::infinity());
-      for (const glm::dvec3& p : m.positions)
-        for (int c = 0; c < 3; ++c) {  // bounds of the float positions written
-          lo[c] = std::min(lo[c], double(static_cast<float>(p[c])));
-          hi[c] = std::max(hi[c], double(static_cast<float>(p[c])));
-        }
-      tinygltf::Primitive prim;
-      prim.mode = TINYGLTF_MODE_TRIANGLES;
-      const int pa = add_float_attribute<3>(model, m.positions, TINYGLTF_TYPE_VEC3);
-      model.accessors[pa].minValues = lo;
-      model.accessors[pa].maxValues = hi;
-      prim.attributes["POSITION"] = pa;
-      if (m.normals.size() == nv)
-        prim.attributes["NORMAL"] = add_float_attribute<3>(model, m.normals, TINYGLTF_TYPE_VEC3);
-      if (m.uvs.size() == nv) prim.attributes["TEXCOORD_0"] = add_float_attribute<2>(model, m.uvs, TINYGLTF_TYPE_VEC2);
-      if (!m.face_material.empty() && m.face_material.size() != m.triangles.size())
-        throw MeshIoError("object '" + gn.name + "': face_material has " + std::to_string(m.face_material.size()) +
-                          " entries for " + std::to_string(m.triangles.size()) + " triangles");
-      // Faces of one slot (inside: any non-surface slot), in face order, as a uint32 index accessor.
-      const bool two_slots = m.has_inside_faces();
-      auto index_accessor = [&](bool inside) {
-        std::vector<std::uint32_t> idx;
-        idx.reserve(m.triangles.size() * 3);
-        for (std::size_t f = 0; f < m.triangles.size(); ++f)
-          if (!two_slots || (m.material(f) == kMaterialInside) == inside)
-            for (int c = 0; c < 3; ++c) idx.push_back(m.triangles[f][c]);
-        if (idx.empty()) return -1;
-        return add_accessor(model, add_view(model, idx.data(), idx.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
-                            TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, idx.size());
-      };
-
-      tinygltf::Mesh mesh;
-      mesh.name = gn.name;
-      prim.indices = index_accessor(false);
-      if (prim.indices >= 0) {
-        prim.material = gltf_model::add_material(model, gn.name, gn.color);
-        mesh.primitives.push_back(prim);
-      }
-      if (two_slots) {  // the cut surfaces: same vertex accessors, their own material
-        tinygltf::Primitive inside = prim;
-        inside.indices = index_accessor(true);
-        inside.material = gltf_model::add_material(model, gn.name + ".inside", gn.inside_color);
-        mesh.primitives.push_back(inside);
-      }
-      if (gn.line_strips) add_line_strips(model, gn, mesh);
-      model.meshes.push_back(mesh);
-      node.mesh = static_cast<int>(model.meshes.size()) - 1;
-    } else if (gn.line_strips) {
-      tinygltf::Mesh mesh;
-      mesh.name = gn.name;
-      add_line_strips(model, gn, mesh);
-      if (!mesh.primitives.empty()) {
-        model.meshes.push_back(mesh);
-        node.mesh = static_cast<int>(model.meshes.size()) - 1;
-      }
-    }
-    model.nodes.push_back(node);
-    scene.nodes.push_back(static_cast<int>(model.nodes.size()) - 1);
-  }
-  model.scenes.push_back(scene);
-  model.defaultScene = 0;
-  gltf_model::write_glb_atomically(model, path);
-}
-
-namespace gltf_model {
-
-int add_view(tinygltf::Model& model, const void* data, std::size_t bytes, int target) {
-  auto& buf = model.buffers[0].data;
-  while (buf.size() % 4) buf.push_back(0);
-  tinygltf::BufferView view;
-  view.buffer = 0;
-  view.byteOffset = buf.size();
-  view.byteLength = bytes;
-  view.target = target;
-  const auto* p = static_cast<const unsigned char*>(data);
-  buf.insert(buf.end(), p, p + bytes);
-  model.bufferViews.push_back(view);
-  return static_cast<int>(model.bufferViews.size()) - 1;
-}
-
-int add_material(tinygltf::Model& model, const std::string& name, const glm::vec3& rgb) {
-  tinygltf::Material mat;
-  mat.name = name;
-  mat.pbrMetallicRoughness.baseColorFactor = {rgb.x, rgb.y, rgb.z, 1.0};
-  mat.pbrMetallicRoughness.metallicFactor = 0.0;
-  mat.pbrMetallicRoughness.roughnessFactor = 0.6;
-  mat.doubleSided = true;
-  model.materials.push_back(mat);
-  return static_cast<int>(model.materials.size()) - 1;
-}
-
-std::vector<int> root_nodes(const tinygltf::Model& model) {
-  std::vector<int> roots;
-  if (model.defaultScene >= 0 && model.defaultScene < static_cast<int>(model.scenes.size())) {
-    roots = model.scenes[model.defaultScene].nodes;
-  } else {
-    for (const auto& s : model.scenes) roots.insert(roots.end(), s.nodes.begin(), s.nodes.end());
-  }
-  if (roots.empty() && model.scenes.empty()) {  // no scene: every node that is nobody's child is a root
-    std::vector<char> is_child(model.nodes.size(), 0);
-    for (const auto& n : model.nodes)
-      for (int c : n.children)
-        if (c >= 0 && c < static_cast<int>(is_child.size())) is_child[c] = 1;
-    for (std::size_t i = 0; i < model.nodes.size(); ++i)
-      if (!is_child[i]) roots.push_back(static_cast<int>(i));
-  }
-  return roots;
-}
-
-void write_glb_atomically(tinygltf::Model& model, const std::filesystem::path& path) {
-  if (!model.buffers.empty() && model.buffers[0].data.empty()) model.buffers.clear();  // a buffer must not be empty
-  const std::filesystem::path tmp = path.string() + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw MeshIoError(quoted(path) + ": cannot open '" + tmp.string() + "' for writing");
-    tinygltf::TinyGLTF writer;
-    if (!writer.WriteGltfSceneToStream(&model, out, /*prettyPrint=*/false, /*writeBinary=*/true) || !out.flush())
-      throw MeshIoError(quoted(path) + ": writing glb failed");
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::filesystem::remove(tmp, ec);
-    throw MeshIoError(quoted(path) + ": cannot rename temporary file: " + ec.message());
-  }
-}
-
-}  // namespace gltf_model
 }  // namespace trispline::core

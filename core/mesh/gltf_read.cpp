@@ -10,6 +10,7 @@
 
 #include "core/mesh/file_check.h"
 #include "core/mesh/mesh_io.h"
+#include "core/mesh/model_load.h"
 
 namespace trispline::core::gltf_read {
 namespace {
@@ -137,6 +138,19 @@ std::string uri_scheme(const std::string& uri) {
   return "";
 }
 
+// The decoded form of an external file's `uri` (a buffer's or an image's), refused with `label` when it holds a NUL
+// byte, is absolute or has a scheme: a glTF file may refer only to files in its own folder or below.
+std::string relative_uri(const std::string& uri, const std::string& label) {
+  const std::string decoded = url_decode(uri);
+  if (decoded.find('\0') != std::string::npos) throw MeshIoError(label + " contains a NUL byte");
+  if (!decoded.empty() && decoded[0] == '/')
+    throw MeshIoError(label + " is an absolute path; a glTF file may refer only to files in its own folder or below");
+  if (const std::string scheme = uri_scheme(uri); !scheme.empty())
+    throw MeshIoError(label + " has the scheme '" + scheme +
+                      "'; only embedded data: URIs and relative paths to files in the glTF file's folder are read");
+  return decoded;
+}
+
 struct ExternalBuffer {
   int index = 0;                 // first buffer with this URI, for messages
   std::uintmax_t max_bytes = 0;  // its byteLength (the largest, if several buffers share the file)
@@ -172,17 +186,7 @@ std::map<std::string, ExternalBuffer> scan_json(std::string_view json, bool bina
       continue;
     }
     if (tinygltf::IsDataURI(b.uri)) continue;  // decoded from the JSON text itself
-    const std::string decoded = url_decode(b.uri);
-    const std::string uri_label = label + " URI '" + b.uri + "'";
-    if (decoded.find('\0') != std::string::npos) throw MeshIoError(uri_label + " contains a NUL byte");
-    if (!decoded.empty() && decoded[0] == '/')
-      throw MeshIoError(uri_label +
-                        " is an absolute path; a glTF file may refer only to files in its own folder "
-                        "or below");
-    if (const std::string scheme = uri_scheme(b.uri); !scheme.empty())
-      throw MeshIoError(uri_label + " has the scheme '" + scheme +
-                        "'; only embedded data: URIs and relative paths "
-                        "to files in the glTF file's folder are read");
+    const std::string decoded = relative_uri(b.uri, label + " URI '" + b.uri + "'");
     auto [it, fresh] = external.try_emplace(decoded, ExternalBuffer{static_cast<int>(i), 0});
     if (b.byte_length > 0)
       it->second.max_bytes = std::max(it->second.max_bytes, static_cast<std::uintmax_t>(std::min(b.byte_length, 1e18)));
@@ -250,8 +254,14 @@ bool write_file(std::string* err, const std::string&, const std::vector<unsigned
   return false;
 }
 
-bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
-  return true;  // images are neither decoded nor kept: no mesh reader uses them
+// Images are not decoded here (OpenImageIO does it, material_image.h). A data: URI image keeps its bytes in
+// Image::image; a buffer view image keeps nothing (tinygltf passes its bytes before the view is checked, so they are
+// taken from the checked view later, image_bytes); external image files are never read by tinygltf (read_file).
+bool keep_image_bytes(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
+                      const unsigned char* bytes, int size, void*) {
+  if (image->bufferView < 0 && bytes && size > 0) image->image.assign(bytes, bytes + size);
+  image->width = image->height = -1;
+  return true;
 }
 
 // ---- 4. the model ---------------------------------------------------------------------------------------------------
@@ -445,7 +455,7 @@ tinygltf::Model read_model(const fs::path& path) {
   tinygltf::Model model;
   tinygltf::TinyGLTF loader;
   loader.SetFsCallbacks({&file_exists, &expand_path, &read_file, &write_file, &ctx});  // check 3
-  loader.SetImageLoader(&skip_image, nullptr);
+  loader.SetImageLoader(&keep_image_bytes, nullptr);
   std::string err, warn;
   const std::string base = ctx.folder.string();
   bool ok = false;
@@ -572,6 +582,18 @@ std::vector<std::uint32_t> read_indices(const tinygltf::Model& model, int index,
   std::vector<std::uint32_t> out(l.count);
   for (std::size_t i = 0; i < l.count; ++i) out[i] = index_value(l.data + l.stride * i, l.component_type);
   return out;
+}
+
+std::vector<std::uint8_t> external_image_bytes(const fs::path& gltf, const std::string& uri, std::uintmax_t max_bytes) {
+  return read_model_side_file(gltf, relative_uri(uri, "image URI '" + uri + "'"), max_bytes);
+}
+
+std::vector<std::uint8_t> image_bytes(const tinygltf::Model& model, int image, const fs::path& path) {
+  const tinygltf::Image& im = model.images.at(static_cast<std::size_t>(image));
+  if (im.bufferView < 0) return {im.image.begin(), im.image.end()};
+  const auto& view = checked_view(model, im.bufferView, "image " + std::to_string(image), path);
+  const unsigned char* p = model.buffers[view.buffer].data.data() + view.byteOffset;
+  return {p, p + view.byteLength};
 }
 
 }  // namespace trispline::core::gltf_read

@@ -5,6 +5,7 @@
 //   accessor_layout  where an accessor's elements are, after checking them against the actual bytes
 //   read_accessor    accessor → #count × comps doubles, at most a caller-given number of elements
 //   read_indices     index accessor → #count uint32
+//   image_bytes      a data: URI or buffer view image's encoded bytes; external_image_bytes an image file's
 //
 // Checks, in order:
 //   1. the file: a regular file (no directory, FIFO, device) of at most kMaxMeshFileBytes (file_check.h), read once;
@@ -13,7 +14,8 @@
 //      buffer of a GLB without a uri, buffer URIs relative paths without a scheme (data: URIs excepted);
 //   3. external buffers (tinygltf::FsCallbacks): a URI must resolve (after "..", symlinks: weakly_canonical) inside
 //      the folder of the glTF file (the folder as named, its own symlinks resolved) or below, to a regular file of at
-//      most its buffer's byteLength; image files are never read and images never decoded;
+//      most its buffer's byteLength; image files are not read here and images never decoded (data: URI images keep
+//      their bytes in Image::image; external_image_bytes reads an image file under the same folder rule);
 //   4. the model: every buffer view inside its buffer, every accessor (and sparse part) inside its buffer view with
 //      overflow-safe arithmetic and a known component type and type, every index (mesh, node, skin, accessor, sampler,
 //      scene) in range, nodes a forest (one parent at most, no cycle).
@@ -85,5 +87,20 @@ std::vector<double> read_accessor(const tinygltf::Model& model, int index, int c
 // #count values. Throws MeshIoError as read_accessor.
 std::vector<std::uint32_t> read_indices(const tinygltf::Model& model, int index, const std::filesystem::path& path,
                                         std::size_t max_count);
+
+// Largest texture image file read (external file, data: URI or buffer view alike), bytes.
+inline constexpr std::uintmax_t kMaxImageFileBytes = std::uintmax_t(256) << 20;
+
+// The encoded bytes of image `image` (index checked by the caller): its data: URI's bytes, or its buffer view's (the
+// view checked first), empty for an external file. Throws MeshIoError as accessor_layout for a bad view.
+std::vector<std::uint8_t> image_bytes(const tinygltf::Model& model, int image, const std::filesystem::path& path);
+
+// The bytes of the external image file `uri` (as written in the glTF, %-encoded) of the glTF file `gltf`, under the
+// rule for buffer files: a relative path without a scheme that resolves (after "..", symlinks) inside the glTF file's
+// folder or below, a regular file of at most `max_bytes` (read_model_side_file). Throws MeshIoError "'../x.png':
+// resolves to '/a/x.png', outside the folder '/a/b' of the model …" / "… file not found" (without the glTF file's
+// name: the caller keeps it as the image's error and the object still loads).
+std::vector<std::uint8_t> external_image_bytes(const std::filesystem::path& gltf, const std::string& uri,
+                                               std::uintmax_t max_bytes = kMaxImageFileBytes);
 
 }  // namespace trispline::core::gltf_read

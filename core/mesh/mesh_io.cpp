@@ -13,7 +13,6 @@
 #include "core/mesh/assimp_io.h"
 #include "core/mesh/file_check.h"
 #include "core/mesh/gltf_io.h"
-#include "core/mesh/mesh_precheck.h"
 
 namespace trispline::core {
 namespace {
@@ -28,7 +27,6 @@ using PolyMesh = OpenMesh::PolyMesh_ArrayKernelT<DoubleTraits>;
 
 std::string quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
 
-bool is_assimp_ext(const std::string& e) { return e == ".obj" || e == ".ply" || e == ".off" || e == ".stl"; }
 bool is_gltf_ext(const std::string& e) { return e == ".gltf" || e == ".glb"; }
 
 // OpenMesh (the OBJ/PLY writer) prints complaints to its own log streams; we only use its return value.
@@ -84,9 +82,9 @@ std::string lower_extension(const std::filesystem::path& path) {
 
 TriMesh load_mesh(const std::filesystem::path& path, const MeshLoadOptions& options, MeshLoadReport* report) {
   const std::string ext = lower_extension(path);
-  if (!is_assimp_ext(ext) && !is_gltf_ext(ext))
+  if (!is_assimp_extension(ext) && !is_gltf_ext(ext))
     throw MeshIoError(quoted(path) + ": unsupported extension '" + ext +
-                      "' (supported: .obj .ply .off .stl .gltf .glb)");
+                      "' (supported: .obj .ply .off .stl .dae .fbx .gltf .glb)");
   MeshLoadReport local;
   MeshLoadReport& r = report ? *report : local;
   r = {};
@@ -96,27 +94,7 @@ TriMesh load_mesh(const std::filesystem::path& path, const MeshLoadOptions& opti
     m = load_gltf(path);
     r.faces = m.triangles.size();
   } else {
-    r.loader = "assimp";
-    check_input_file(path, kMaxMeshFileBytes, "mesh files");
-    {  // what the size and the head tell, before the whole file is read
-      std::ifstream in(path, std::ios::binary);
-      std::vector<unsigned char> head(kMeshHeadBytes);
-      in.read(reinterpret_cast<char*>(head.data()), static_cast<std::streamsize>(head.size()));
-      head.resize(static_cast<std::size_t>(in.gcount()));
-      std::error_code ec;
-      const std::uintmax_t size = std::filesystem::file_size(path, ec);
-      if (ec) throw MeshIoError(quoted(path) + ": cannot access: " + ec.message());
-      precheck_mesh_head(path, ext, head, size);
-    }
-    std::vector<unsigned char> bytes = read_input_file(path, kMaxMeshFileBytes, "mesh files");
-    prepare_mesh_bytes(path, ext, bytes);
-    precheck_mesh_file(path, ext, bytes);
-    m = read_assimp_mesh(path, ext, bytes, r);
-    if ((r.ignored_points || r.ignored_lines) && !options.ignore_loose)
-      throw MeshIoError(quoted(path) + ": holds " + std::to_string(r.ignored_points) + " point and " +
-                        std::to_string(r.ignored_lines) + " line elements besides its " + std::to_string(r.faces) +
-                        " faces; trispline loads surfaces only (delete the loose geometry, or load with "
-                        "\"loose\":\"ignore\" to leave it out)");
+    m = std::move(read_assimp_file(path, ext, options, r, false).mesh);
   }
   validate_mesh(m, quoted(path));
   r.duplicate_faces = remove_duplicate_triangles(m);
@@ -182,7 +160,7 @@ void save_mesh(const std::filesystem::path& path, const TriMesh& mesh) {
     const auto& p = mesh.positions[i];
     vh.push_back(pm.add_vertex({p.x, p.y, p.z}));
     if (has_n) pm.set_normal(vh.back(), {mesh.normals[i].x, mesh.normals[i].y, mesh.normals[i].z});
-    if (has_uv) pm.set_texcoord2D(vh.back(), {mesh.uvs[i].x, mesh.uvs[i].y});
+    if (has_uv) pm.set_texcoord2D(vh.back(), {mesh.uvs[i].x, 1.0 - mesh.uvs[i].y});  // v up in OBJ and PLY
   }
   // Faces OpenMesh rejects (non-manifold) are added on duplicated vertices by OpenMesh's importer, not here: write
   // through the low-level add_face and report failures instead of changing the vertex order silently.

@@ -1,6 +1,7 @@
 // trispline::core mesh files — loading and saving TriMesh, plus the checks every loaded mesh goes through.
 //
-//   load_mesh               OBJ, PLY, OFF, STL (assimp) and glTF 2.0 .gltf/.glb (tinygltf) → TriMesh, whole or refused
+//   load_mesh               OBJ, PLY, OFF, STL, Collada, FBX (assimp) and glTF 2.0 .gltf/.glb (tinygltf) → TriMesh,
+//                           whole or refused (model_load.h: the same with materials and parts)
 //   save_mesh               TriMesh → OBJ or PLY (OpenMesh)
 //   validate_mesh           finite positions, non-empty, indices in range; throws MeshIoError
 //   compute_vertex_normals  area-weighted vertex normals
@@ -42,10 +43,12 @@ struct MeshLoadOptions {
 // Loads a triangle mesh, units as in the file: all of it, or nothing (MeshIoError).
 // Before any parser runs, the path must be a regular file (not a directory, FIFO or device) of at most
 // kMaxMeshFileBytes, and the file must pass mesh_precheck's size/header checks against kMeshLoadMemoryBudget.
-//   .obj .ply .off .stl  through assimp (aiProcess_Triangulate: polygons ear-clipped into #faces − 2 triangles each);
+//   .obj .ply .off .stl .dae .fbx
+//                        through assimp (aiProcess_Triangulate: polygons ear-clipped into #faces − 2 triangles each);
 //                        meshes joined, vertices equal in every attribute welded, in order of first use (see
 //                        core/mesh/assimp_io.h). Normals and texture coordinates are kept when every mesh has them
-//                        per vertex (STL normals are per face and dropped). 4-D OFF, binary OFF, files with no
+//                        per vertex (STL normals are per face and dropped); uvs flipped to glTF's v-down convention
+//                        (model_load.h). Collada and FBX meshes are placed by their node transforms. 4-D OFF, binary OFF, files with no
 //                        faces, 2-corner OBJ faces and truncated OBJ vertex lines are refused.
 //   .gltf .glb           every TRIANGLES primitive of every node of the default scene (all root nodes of all scenes
 //                        if none is marked default; all meshes untransformed if there are no nodes), each with its
@@ -58,7 +61,7 @@ TriMesh load_mesh(const std::filesystem::path& path, const MeshLoadOptions& opti
                   MeshLoadReport* report = nullptr);
 
 // Writes .obj or .ply (ASCII for OBJ, binary little-endian for PLY) through OpenMesh, with normals when present and
-// texture coordinates when present. Throws MeshIoError on an unsupported extension or a failed write.
+// texture coordinates when present (v flipped back to the formats' v-up convention). Throws MeshIoError on an unsupported extension or a failed write.
 void save_mesh(const std::filesystem::path& path, const TriMesh& mesh);
 
 // Throws MeshIoError "<what>: ..." if the mesh has no vertices or no triangles, a non-finite position, an index

@@ -123,6 +123,23 @@ void check_stl(const std::filesystem::path& path, std::string_view text, std::ui
   check_no_nul(path, text, 0, "STL");
 }
 
+// Collada is XML: text starting with '<' (after a byte order mark or white space).
+void check_dae(const std::filesystem::path& path, std::string_view text, std::uintmax_t file_size) {
+  check_text_budget(path, file_size, "Collada");
+  std::size_t first = 0;
+  if (text.substr(0, 3) == "\xEF\xBB\xBF") first = 3;
+  while (first < text.size() && (is_space(text[first]) || text[first] == '\n')) ++first;
+  if (first >= text.size() || text[first] != '<') fail(path, "not a Collada file (XML starts with '<')");
+  check_no_nul(path, text, 0, "Collada");
+}
+
+// FBX: binary ("Kaydara FBX Binary  \0") or ASCII (assimp reads both); within the text budget either way.
+void check_fbx(const std::filesystem::path& path, std::string_view text, std::uintmax_t file_size) {
+  check_text_budget(path, file_size, "FBX");
+  if (text.substr(0, 18) == "Kaydara FBX Binary") return;
+  check_no_nul(path, text, 0, "FBX");
+}
+
 // Text in UTF-16/32 with a byte order mark → UTF-8, through glibc's iconv (the BOM picks the byte order).
 std::vector<unsigned char> to_utf8(const std::filesystem::path& path, std::vector<unsigned char>& in,
                                    const char* from) {
@@ -146,7 +163,8 @@ bool starts_with(const std::vector<unsigned char>& b, std::initializer_list<unsi
 
 }  // namespace
 
-void prepare_mesh_bytes(const std::filesystem::path& path, const std::string& ext, std::vector<unsigned char>& bytes) {
+void prepare_mesh_bytes(const std::filesystem::path& path, const std::string& ext, std::vector<unsigned char>& bytes,
+                        std::vector<std::string>* mtllibs) {
   if (ext == ".stl") return;  // binary STL may start with any bytes; ASCII STL is plain ASCII
   const bool utf32 = starts_with(bytes, {0xFF, 0xFE, 0x00, 0x00}) || starts_with(bytes, {0x00, 0x00, 0xFE, 0xFF});
   const bool utf16 = !utf32 && (starts_with(bytes, {0xFF, 0xFE}) || starts_with(bytes, {0xFE, 0xFF}));
@@ -166,14 +184,31 @@ void prepare_mesh_bytes(const std::filesystem::path& path, const std::string& ex
     // Material libraries are never read (trispline keeps no OBJ materials): each `mtllib` line becomes a comment,
     // same length, so line numbers hold. assimp opens the library by the name the line gives, and a line naming the
     // served file itself had the OBJ parsed as a material library, which writes through a null material (SEGV).
+    // With `mtllibs`, the names are collected and the first `mtllib` line names kServedMtlName instead (the same
+    // line, so line numbers hold): assimp is then given the checked libraries under that one name.
     std::size_t start = 0;
+    std::size_t served_line = std::string::npos, served_end = 0;
     while (start < bytes.size()) {
       std::size_t end = start;
       while (end < bytes.size() && bytes[end] != '\n') ++end;
       std::string_view line(reinterpret_cast<const char*>(bytes.data()) + start, end - start);
       std::string_view rest = line;
-      if (next_token(rest) == "mtllib") bytes[start + line.find("mtllib")] = '#';
+      if (next_token(rest) == "mtllib") {
+        if (mtllibs) {
+          while (!rest.empty() && is_space(rest.front())) rest.remove_prefix(1);
+          while (!rest.empty() && is_space(rest.back())) rest.remove_suffix(1);
+          if (!rest.empty()) mtllibs->emplace_back(rest);
+          if (served_line == std::string::npos) served_line = start, served_end = end;
+        }
+        bytes[start + line.find("mtllib")] = '#';
+      }
       start = end + 1;
+    }
+    if (served_line != std::string::npos) {
+      const std::string served = std::string("mtllib ") + kServedMtlName;
+      bytes.erase(bytes.begin() + static_cast<std::ptrdiff_t>(served_line),
+                  bytes.begin() + static_cast<std::ptrdiff_t>(served_end));
+      bytes.insert(bytes.begin() + static_cast<std::ptrdiff_t>(served_line), served.begin(), served.end());
     }
     return;
   }
@@ -210,6 +245,8 @@ void precheck_mesh_head(const std::filesystem::path& path, const std::string& ex
   if (ext == ".off") check_off(path, text, file_size);
   if (ext == ".ply") check_ply(path, text, file_size, false);
   if (ext == ".stl") check_stl(path, text, file_size);
+  if (ext == ".dae") check_dae(path, text, file_size);
+  if (ext == ".fbx") check_fbx(path, text, file_size);
 }
 
 void precheck_mesh_file(const std::filesystem::path& path, const std::string& ext,
@@ -222,6 +259,40 @@ void precheck_mesh_file(const std::filesystem::path& path, const std::string& ex
     check_off_faces(path, text);
   }
   if (ext == ".stl") check_stl(path, text, text.size());
+  if (ext == ".dae") check_dae(path, text, text.size());
+  if (ext == ".fbx") check_fbx(path, text, text.size());
+}
+
+std::string check_mtl_text(const std::filesystem::path& mtl, std::string_view text) {
+  if (text.size() > kMaxMtlFileBytes)
+    refuse(mtl, format_bytes(text.size()) + " is over the " + format_bytes(kMaxMtlFileBytes) + " limit for MTL files");
+  check_no_nul(mtl, text, 0, "MTL");
+  // The statements assimp's MTL reader takes that trispline maps (assimp_material.h); the others are dropped.
+  static const char* const kKept[] = {"newmtl", "Ka",   "Kd",       "Ks",       "Ke",     "Tf",     "Tr",     "d",
+                                      "Ns",     "Ni",   "illum",    "map_Ka",   "map_Kd", "map_Ks", "map_Ke", "map_d",
+                                      "map_Ns", "bump", "map_bump", "map_Bump", "norm",   "Pr",     "Pm"};
+  std::string out;
+  out.reserve(text.size());
+  bool in_material = false;
+  for_each_line(text, [&](long long number, std::string_view line) {
+    if (const auto hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
+    std::string_view rest = line;
+    const std::string_view keyword = next_token(rest);
+    if (keyword.empty()) return;
+    if (std::find(std::begin(kKept), std::end(kKept), keyword) == std::end(kKept)) return;
+    if (keyword == "newmtl") {
+      in_material = true;
+    } else if (!in_material) {
+      fail(mtl, "line " + std::to_string(number) + ": '" + std::string(keyword) + "' before any newmtl");
+    }
+    out += keyword;
+    for (std::string_view tok = next_token(rest); !tok.empty(); tok = next_token(rest)) {
+      out += ' ';
+      out += tok;
+    }
+    out += '\n';
+  });
+  return out;
 }
 
 }  // namespace trispline::core

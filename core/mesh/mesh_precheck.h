@@ -1,4 +1,5 @@
-// Internal to trispline_mesh: what an OBJ, PLY, OFF or STL file must satisfy before assimp parses it.
+// Internal to trispline_mesh: what an OBJ (and its MTL), PLY, OFF, STL, Collada or FBX file must satisfy before assimp
+// parses it.
 //
 // assimp reads every well-formed file of these formats, but it trusts counts in headers (a PLY or OFF header that
 // claims 10⁹ vertices in a 100-byte file is allocated, not refused), keeps a PLY in a DOM of ~40 bytes a value, and
@@ -13,11 +14,16 @@
 //     the memory budget; with the whole file, the body walked as assimp reads it (ASCII: an element a line; binary:
 //     byte by byte), every list count non-negative and within what is left of its line or of the body;
 //   * STL: binary (84 + 50·n bytes exactly) or ASCII ("solid").
+//   * Collada: text (no NUL byte) within the text budget, starting with '<' (XML); FBX: binary ("Kaydara FBX
+//     Binary") or ASCII FBX, within the text budget (assimp's FBX DOM costs about as much per byte).
+//   * MTL (check_mtl_text): text, every statement after a `newmtl` (assimp 5.2's MTL reader writes a statement before
+//     the first `newmtl` through a null material), rewritten one statement a line with the keywords trispline maps.
 #pragma once
 
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace trispline::core {
@@ -39,10 +45,23 @@ void precheck_mesh_head(const std::filesystem::path& path, const std::string& ex
 // mark becomes UTF-8 (glibc iconv; assimp 5.2's own conversion loses every face of a UTF-16 BE file) and a UTF-8 byte
 // order mark is dropped; OFF comments ('#' to the end of a line, which the OFF format allows anywhere and assimp's
 // reader skips only before the header) are removed; an OBJ's `mtllib` lines become comments (no material library is
-// ever read); a PLY file is checked whole and written back as check_ply walked it (its header one line per format,
-// element and property; only the mesh's elements; the ASCII body one element a line), so assimp reads the layout and
-// values the walk checked. Throws MeshIoError on invalid UTF-16/32 or a PLY file check_ply refuses.
-void prepare_mesh_bytes(const std::filesystem::path& path, const std::string& ext, std::vector<unsigned char>& bytes);
+// ever read, or with `mtllibs` the first one names kServedMtlName and the names are collected); a PLY file is checked
+// whole and written back as check_ply walked it (its header one line per format, element and property; only the mesh's
+// elements; the ASCII body one element a line), so assimp reads the layout and values the walk checked. Throws
+// MeshIoError on invalid UTF-16/32 or a PLY file check_ply refuses.
+void prepare_mesh_bytes(const std::filesystem::path& path, const std::string& ext, std::vector<unsigned char>& bytes,
+                        std::vector<std::string>* mtllibs = nullptr);
+
+// The one material library name assimp is given for an OBJ read with materials: the checked MTL files, joined.
+inline constexpr const char* kServedMtlName = "materials.mtl";
+
+// Largest MTL file, bytes.
+inline constexpr std::uintmax_t kMaxMtlFileBytes = std::uintmax_t(64) << 20;
+
+// `text` (an MTL file named `mtl`) as assimp is given it: one statement a line, keyword and arguments separated by
+// one space, comments and statements trispline does not map dropped. Throws MeshIoError "'MTL': cannot parse: line
+// 3: 'Kd' before any newmtl" / "… binary data (a NUL byte) …".
+std::string check_mtl_text(const std::filesystem::path& mtl, std::string_view text);
 
 // Throws MeshIoError "'PATH': <reason>" when `bytes` (the whole file, after prepare_mesh_bytes) is not acceptable for
 // extension `ext` (".obj" ".off" ".stl"; a PLY file was checked whole by prepare_mesh_bytes).
