@@ -199,9 +199,8 @@ ToolRuns run_press_tool(EditorSession& session, const ui::MessageLog& messages, 
                         const std::vector<glm::dvec2>& drag, int runs) {
   ToolRuns t;
   std::string selected = "bunny";
-  std::set<std::string> hidden;
   double command_ms = 0;
-  ToolContext ctx{session, view, selected, hidden,
+  ToolContext ctx{session, view, selected,
                   [&command_ms](std::string, std::function<void()> work) { command_ms = bench_ms(work); },
                   nullptr};
   PressTool tool;

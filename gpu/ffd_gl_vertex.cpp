@@ -73,8 +73,8 @@ const ShaderProgram& GlslVertexFfdEvaluator::draw_program(const ShaderDefines& v
   return programs_->get({"mesh.vert.glsl", "mesh.frag.glsl"}, d);
 }
 
-void GlslVertexFfdEvaluator::draw(const ShaderProgram& program, const MeshBuffers& mesh,
-                                  const glm::dvec3& param_offset, std::optional<TriangleRange> range) {
+void GlslVertexFfdEvaluator::draw(const ShaderProgram& program, const MeshBuffers& mesh, const glm::dvec3& param_offset,
+                                  std::optional<TriangleRange> range) {
   constexpr const char* where = "GlslVertexFfdEvaluator::draw";
   require_ready(where);
   if (mesh.vertex_count() != vertex_count_)
@@ -88,6 +88,7 @@ void GlslVertexFfdEvaluator::draw(const ShaderProgram& program, const MeshBuffer
   program.set("u_param_offset", shader_offset(param_offset));
   lattice_.bind();
   glBindVertexArray(vao_.id());
+  mesh.bind_uvs_to_bound_vao();  // texture coordinates ride along with the evaluated positions
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mesh.index_buffer());  // VAO state: the mesh's triangles
   glDrawElements(GL_TRIANGLES, GLsizei(r.count * 3), GL_UNSIGNED_INT,
                  reinterpret_cast<const void*>(r.first * sizeof(glm::uvec3)));

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace trispline::gpu {
@@ -46,22 +47,35 @@ void MeshBuffers::upload(const core::TriMesh& mesh) {
   if (!mesh.face_material.empty() && mesh.face_material.size() != mesh.triangles.size())
     throw std::invalid_argument("MeshBuffers::upload: face_material has " + std::to_string(mesh.face_material.size()) +
                                 " entries for " + std::to_string(mesh.triangles.size()) + " triangles");
-  // Stable material order: surface triangles first, then the inside ones, each in mesh order.
+  // Stable order by material slot (kMaterialInside, the largest, last): a counting sort over the slots present.
   std::size_t inside = 0;
-  for (core::MaterialSlot m : mesh.face_material) inside += m == core::kMaterialInside ? 1 : 0;
+  std::vector<MaterialRange> ranges;
   std::vector<glm::uvec3> ordered;
-  if (inside > 0) {
-    ordered.reserve(mesh.triangles.size());
-    for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
-      if (mesh.face_material[f] != core::kMaterialInside) ordered.push_back(mesh.triangles[f]);
-    for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
-      if (mesh.face_material[f] == core::kMaterialInside) ordered.push_back(mesh.triangles[f]);
+  if (!mesh.face_material.empty()) {
+    std::vector<std::size_t> count(std::size_t(core::kMaterialInside) + 1, 0);
+    for (core::MaterialSlot m : mesh.face_material) ++count[m];
+    std::vector<std::size_t> start(count.size(), 0);
+    std::size_t at = 0;
+    for (std::size_t m = 0; m < count.size(); ++m) {
+      start[m] = at;
+      if (count[m] > 0) ranges.push_back({core::MaterialSlot(m), {at, count[m]}});
+      at += count[m];
+    }
+    inside = count[core::kMaterialInside];
+    if (ranges.size() > 1) {
+      ordered.resize(mesh.triangles.size());
+      for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
+        ordered[start[mesh.face_material[f]]++] = mesh.triangles[f];
+    }
+  } else if (!mesh.triangles.empty()) {
+    ranges.push_back({core::MaterialSlot(0), {0, mesh.triangles.size()}});
   }
-  const std::vector<glm::uvec3>& tris = inside > 0 ? ordered : mesh.triangles;
+  const std::vector<glm::uvec3>& tris = ordered.empty() ? mesh.triangles : ordered;
   if (!vao_) {
     vao_ = VertexArray::create();
     positions_ = Buffer::create();
     normals_ = Buffer::create();
+    uvs_ = Buffer::create();
     indices_ = Buffer::create();
   }
   std::vector<float> pos = to_float3(mesh.positions);
@@ -86,6 +100,17 @@ void MeshBuffers::upload(const core::TriMesh& mesh) {
   glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(nrm.size() * sizeof(float)), nrm.data(), GL_DYNAMIC_DRAW);
   glEnableVertexAttribArray(1);
   glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
+  has_uvs_ = nv > 0 && mesh.uvs.size() == nv;
+  if (has_uvs_) {
+    std::vector<float> uv(nv * 2);
+    for (std::size_t i = 0; i < nv; ++i) {
+      uv[2 * i + 0] = float(mesh.uvs[i].x);
+      uv[2 * i + 1] = float(mesh.uvs[i].y);
+    }
+    glBindBuffer(GL_ARRAY_BUFFER, uvs_.id());
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(uv.size() * sizeof(float)), uv.data(), GL_STATIC_DRAW);
+  }
+  bind_uvs_to_bound_vao();
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, indices_.id());  // recorded in the VAO
   glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(tris.size() * sizeof(glm::uvec3)), tris.data(), GL_STATIC_DRAW);
   glBindVertexArray(0);
@@ -93,6 +118,18 @@ void MeshBuffers::upload(const core::TriMesh& mesh) {
   vertex_count_ = nv;
   triangle_count_ = mesh.triangles.size();
   inside_count_ = inside;
+  material_ranges_ = std::move(ranges);
+}
+
+void MeshBuffers::bind_uvs_to_bound_vao() const {
+  if (has_uvs_) {
+    glBindBuffer(GL_ARRAY_BUFFER, uvs_.id());
+    glEnableVertexAttribArray(3);
+    glVertexAttribPointer(3, 2, GL_FLOAT, GL_FALSE, 2 * sizeof(float), nullptr);
+  } else {
+    glDisableVertexAttribArray(3);
+    glVertexAttrib2f(3, 0.0f, 0.0f);
+  }
 }
 
 void MeshBuffers::update_vertices(const std::vector<glm::dvec3>& positions, const std::vector<glm::dvec3>& normals) {

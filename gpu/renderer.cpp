@@ -5,6 +5,7 @@
 #include <glm/gtc/matrix_inverse.hpp>
 #include <unordered_set>
 
+#include "core/mesh/mesh_io.h"
 #include "gpu/renderer_impl.h"
 
 namespace trispline::gpu {
@@ -20,8 +21,8 @@ const std::shared_ptr<const core::TriMesh>& shown_mesh(const core::SceneObject& 
 namespace {
 
 using detail::Frame;
-using detail::SelectedObject;
 using detail::rgba;
+using detail::SelectedObject;
 
 // Power of ten a tenth of the scene's size: minor grid cell, world units.
 float grid_cell_for(const core::Scene& scene) {
@@ -42,6 +43,8 @@ detail::CachedMesh& Renderer::Impl::cached(const std::shared_ptr<const core::Tri
   if (inserted) {
     it->second.mesh = m;
     it->second.buffers.upload(*m);
+    const core::Aabb box = core::mesh_bounds(*m);
+    if (box.valid()) it->second.center = glm::vec3(box.center());
     it->second.generation = ++generation;
     ++stats.uploads;
   }
@@ -60,7 +63,7 @@ void Renderer::Impl::prepare_ffd(const core::Scene& scene, const ViewOptions& o,
     for (std::size_t i = 0; i < objects.size(); ++i) {
       const core::SceneObject& obj = objects[i];
       if (!obj.visible || !obj.ffd || !obj.world_mesh || obj.world_mesh->empty()) continue;
-      if (detail::shown_mesh(obj, o) != obj.world_mesh) continue;  // a mesh in its place: drawn as it is
+      if (detail::shown_mesh(obj, o) != obj.world_mesh) continue;                // a mesh in its place: drawn as it is
       if (obj.ffd->params.size() != obj.world_mesh->positions.size()) continue;  // inconsistent: draw world_mesh
       detail::CachedMesh& c = cached(obj.world_mesh);
       const auto* in_place = o.overlays.lattice_for(obj.name);
@@ -84,6 +87,7 @@ void Renderer::release_unused(const core::Scene& scene) {
   impl_->ffd.release_unused(scene);
   impl_->ddm.release_unused(scene);
   impl_->volumes.release_unused(scene);
+  impl_->textures.release_unused(scene);
   std::unordered_set<const core::TriMesh*> live;
   for (const core::SceneObject& o : scene.objects())
     if (o.world_mesh) live.insert(o.world_mesh.get());
@@ -109,7 +113,8 @@ void Renderer::Impl::pass_clear(const Frame& f) {
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   glDepthMask(GL_TRUE);
   glStencilMask(0xFF);
-  glClearColor(options.style.background_bottom.x, options.style.background_bottom.y, options.style.background_bottom.z, 1.0f);
+  glClearColor(options.style.background_bottom.x, options.style.background_bottom.y, options.style.background_bottom.z,
+               1.0f);
   glClearDepth(1.0);
   glClearStencil(0);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
@@ -142,6 +147,7 @@ SelectedObject Renderer::Impl::pass_objects(const Frame& f) {
   glEnable(GL_STENCIL_TEST);
   glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
   d.mesh.use();
+  d.blended.clear();
   SelectedObject sel;
   if (options.wireframe) {
     glEnable(GL_POLYGON_OFFSET_FILL);
@@ -170,12 +176,19 @@ SelectedObject Renderer::Impl::pass_objects(const Frame& f) {
       };
     };
     const MeshBuffers& b = d.buffers(shown);
-    d.draw_object(shown, plans[i], d.mesh, {}, shaded(o.color, 0), b.surface_range());
-    if (b.inside_range().count > 0)
-      d.draw_object(shown, plans[i], d.mesh, {}, shaded(o.inside_color, 1), b.inside_range());
+    if (f.material && o.materials && !o.materials->empty()) {
+      d.draw_materials(f, o, i, shown, is_selected);
+    } else {
+      d.draw_object(shown, plans[i], d.mesh, {}, shaded(o.color, 0), b.surface_range());
+      if (b.inside_range().count > 0)
+        d.draw_object(shown, plans[i], d.mesh, {}, shaded(o.inside_color, 1), b.inside_range());
+    }
     ++d.stats.objects_drawn;
     d.stats.triangles += b.triangle_count();
   }
+  d.textures.unbind();
+  // Whatever is drawn over the selected object later (tiles, iso-surfaces) takes its pixels out of the mask.
+  glStencilFunc(GL_ALWAYS, 0, 0xFF);
   return sel;
 }
 
@@ -242,25 +255,22 @@ void Renderer::Impl::pass_selection_outline(const Frame& f, const SelectedObject
   const ViewOptions& options = f.options;
   const glm::ivec2 vp = f.vp;
   const glm::mat4& view_proj = f.view_proj;
-  const std::vector<detail::FfdPlan>& plans = f.plans;
-  // 4. Selection outline: the enlarged silhouette where the object itself is not (stencil != 1), on top.
+  // 4. Selection outline: the enlarged silhouette where the object itself is not (stencil != 1) and where nothing
+  // nearer is (depth test, no depth write) — a ring round its visible silhouette, never a fill over objects in front
+  // of it (they cleared its stencil).
   if (sel.object) {
     glEnable(GL_STENCIL_TEST);
     glStencilFunc(GL_NOTEQUAL, 1, 0xFF);
     glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
-    glDisable(GL_DEPTH_TEST);
-    d.outline.use();
-    d.draw_object(detail::shown_mesh(*sel.object, options), plans[sel.index], d.outline, {{"OUTLINE", ""}, {"FLAT_COLOR", ""}},
-                  [&](const ShaderProgram& p) {
-                    p.set("u_view_proj", view_proj);
-                    p.set("u_viewport", glm::vec2(vp));
-                    p.set("u_outline_px", options.style.outline_px);
-                    p.set("u_flat_color", rgba(options.style.selection_color));
-                  });
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LEQUAL);
+    glDepthMask(GL_FALSE);
+    d.draw_outline(f, *sel.object, sel.index);
     d.ddm.draw_outline(*sel.object, options.time_s, view_proj, glm::vec2(vp), options.style.outline_px,
                        rgba(options.style.selection_color));
+    glDepthMask(GL_TRUE);
+    glDepthFunc(GL_LESS);
     glDisable(GL_STENCIL_TEST);
-    glEnable(GL_DEPTH_TEST);
   }
 }
 
@@ -270,8 +280,8 @@ void Renderer::Impl::pass_ddm_layers(const Frame& f, std::optional<GpuTimer::Sco
   draw_scope.reset();
   {
     GpuTimer::Scope ddm_scope(ddm_timer);
-    const detail::DdmDrawn drawn = ddm.draw_shaded(f.scene, f.options.time_s, f.view_proj, f.eye, f.key,
-                                                   f.options.selected, f.options.ddm);
+    const detail::DdmDrawn drawn =
+        ddm.draw_shaded(f.scene, f.options.time_s, f.view_proj, f.eye, f.key, f.options.selected, f.options.ddm);
     stats.ddm_layers_drawn = drawn.layers;
     stats.ddm_layers_following = drawn.following;
     stats.ddm_vertices = drawn.vertices;
@@ -288,11 +298,16 @@ void Renderer::draw(const core::Scene& scene, const core::Camera& camera, const 
   Impl& d = *impl_;
   d.stats = RenderStats{};
   d.stats.timer_mode = d.draw_timer.mode_description();
-  Frame f{scene, camera, options, camera.viewport, glm::mat4(camera.projection_matrix() * camera.view_matrix()),
+  Frame f{scene,
+          camera,
+          options,
+          camera.viewport,
+          glm::mat4(camera.projection_matrix() * camera.view_matrix()),
           glm::vec3(camera.eye),
           // Key light: from the camera, raised a little and from the left, so forms read better than a headlight.
           glm::normalize(glm::vec3(-camera.forward() + 0.35 * camera.true_up() - 0.25 * camera.right())),
-          {}};
+          {},
+          material_shading(scene, options.shading)};
 
   // 0. FFD evaluation of deformed objects (timed on its own), before any drawing.
   d.meshes_in_place.clear();
@@ -309,6 +324,7 @@ void Renderer::draw(const core::Scene& scene, const core::Camera& camera, const 
   const SelectedObject sel = d.pass_objects(f);
   d.pass_ddm_layers(f, draw_scope);
   d.pass_volumes(f, draw_scope, any_ddm ? d.draw_timer_c : d.draw_timer_b);
+  d.pass_blended(f, sel);
   d.pass_wireframe(f);
   d.pass_grid(f);
   d.pass_selection_outline(f, sel);

@@ -8,6 +8,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "gpu/material_textures.h"
 #include "gpu/overlay_geometry.h"
 #include "gpu/renderer.h"
 #include "gpu/renderer_ddm.h"
@@ -23,6 +24,14 @@ struct CachedMesh {
   MeshBuffers buffers;
   std::uint64_t generation = 0;  // changes whenever the buffers' contents change (upload, FFD write)
   bool overwritten = false;      // the buffers hold an FFD evaluation rather than world_mesh
+  glm::vec3 center{0.0f};        // centre of the mesh's bounds, world units (orders blended objects)
+};
+
+// A BLEND material's triangles of one object, drawn after the opaque scene (back to front by `distance`).
+struct BlendedRange {
+  std::size_t object = 0;  // index into Scene::objects()
+  MaterialRange range;
+  float distance = 0.0f;  // eye to the object's mesh centre, world units
 };
 
 // A growable stream buffer for per-frame overlay geometry (small: lattices, contact grids, strokes).
@@ -59,11 +68,12 @@ struct Frame {
   const core::Scene& scene;
   const core::Camera& camera;
   const ViewOptions& options;
-  glm::ivec2 vp;        // viewport, pixels
-  glm::mat4 view_proj;  // world → clip
-  glm::vec3 eye;        // world units
-  glm::vec3 key;        // unit key-light direction
+  glm::ivec2 vp;               // viewport, pixels
+  glm::mat4 view_proj;         // world → clip
+  glm::vec3 eye;               // world units
+  glm::vec3 key;               // unit key-light direction
   std::vector<FfdPlan> plans;  // per scene object
+  bool material = false;       // Material shading (ViewOptions::shading, material_shading())
 
   const ViewStyle& style() const { return options.style; }
 };
@@ -91,8 +101,9 @@ struct Renderer::Impl {
   void pass_ddm_layers(const detail::Frame& f, std::optional<GpuTimer::Scope>& draw_scope);  // 2a. live DDM layers
   // 2a'. iso-surfaces, timed by volume_timer; the draw timer resumes with `resume`
   void pass_volumes(const detail::Frame& f, std::optional<GpuTimer::Scope>& draw_scope, GpuTimer& resume);
-  void pass_wireframe(const detail::Frame& f);                  // 2b. dark edges over the shaded surfaces
-  void pass_grid(const detail::Frame& f);                       // 3. the ground grid
+  void pass_blended(const detail::Frame& f, const detail::SelectedObject& sel);  // 2a''. BLEND materials, sorted
+  void pass_wireframe(const detail::Frame& f);  // 2b. dark edges over the shaded surfaces
+  void pass_grid(const detail::Frame& f);       // 3. the ground grid
   void pass_selection_outline(const detail::Frame& f, const detail::SelectedObject& sel);  // 4. selection outline
   void pass_volume_silhouettes(const detail::Frame& f);     // 4b. volume silhouettes; the selected volume's box
   void pass_lattices_and_contacts(const detail::Frame& f);  // 5. contact surfaces, lattices, contact samples
@@ -104,6 +115,9 @@ struct Renderer::Impl {
   ShaderProgram mesh{{"mesh.vert.glsl", "mesh.frag.glsl"}};
   ShaderProgram flat{{"mesh.vert.glsl", "mesh.frag.glsl"}, {{"FLAT_COLOR", ""}}};
   ShaderProgram outline{{"mesh.vert.glsl", "mesh.frag.glsl"}, {{"OUTLINE", ""}, {"FLAT_COLOR", ""}}};
+  ShaderProgram material{{"mesh.vert.glsl", "mesh.frag.glsl"}, {{"MATERIAL", ""}}};
+  ShaderProgram outline_mask{{"mesh.vert.glsl", "mesh.frag.glsl"},
+                             {{"OUTLINE", ""}, {"FLAT_COLOR", ""}, {"MATERIAL", ""}, {"ALPHA_MASK", ""}}};
   ShaderProgram grid{{"grid.vert.glsl", "grid.frag.glsl"}};
   ShaderProgram lines{{"lines.vert.glsl", "lines.frag.glsl"}};
   ShaderProgram points{{"lines.vert.glsl", "lines.frag.glsl"}, {{"ROUND_POINTS", ""}}};
@@ -115,6 +129,8 @@ struct Renderer::Impl {
   VertexArray empty_vao = VertexArray::create();  // attribute-less full-screen passes
   detail::StreamBuffer world_stream, screen_stream;
   std::unordered_map<const core::TriMesh*, detail::CachedMesh> cache;
+  MaterialTextures textures;
+  std::vector<detail::BlendedRange> blended;  // filled by pass_objects, drawn by pass_blended
   std::unordered_map<const core::FfdBinding*, detail::CachedContactSurface> contact_cache;
   std::unordered_map<const std::vector<glm::vec3>*, detail::CachedColoredTriangles> colored_cache;
   std::shared_ptr<FfdProgramCache> ffd_programs = std::make_shared<FfdProgramCache>();
@@ -123,7 +139,7 @@ struct Renderer::Impl {
   GpuTimer ddm_timer, draw_timer_b;  // the DDM pass; the drawing passes after it (timers cannot nest)
   detail::VolumeDisplay volumes{ffd_programs};
   GpuTimer volume_timer, draw_timer_c;  // the iso-surface pass; the drawing passes after it (after DDM: timer c)
-  std::uint64_t generation = 0;      // source of CachedMesh::generation values
+  std::uint64_t generation = 0;         // source of CachedMesh::generation values
   GpuTimer ffd_timer, draw_timer;
   RenderStats stats;
   // The meshes drawn in place of objects during the current draw (kept cached while they are shown).
@@ -159,6 +175,17 @@ struct Renderer::Impl {
     plan.vertex->draw(p, b, plan.offset, range);
     base.use();
   }
+
+  // Material shading of object `i` (`o`, drawing `shown`): one draw per material range — opaque and MASK ones now,
+  // BLEND ones queued in `blended`, cut surfaces and slots without a material in the Solid look. Leaves `mesh` in use.
+  void draw_materials(const detail::Frame& f, const core::SceneObject& o, std::size_t i,
+                      const std::shared_ptr<const core::TriMesh>& shown, bool selected);
+  // One material range of object `i` with the MATERIAL program (textures bound, culled unless double sided).
+  void draw_material_range(const detail::Frame& f, const core::SceneObject& o, std::size_t i,
+                           const std::shared_ptr<const core::TriMesh>& shown, const core::Material& m,
+                           TriangleRange range, bool selected);
+  // The selection outline of `o`'s shown mesh: the enlarged silhouette, its MASK ranges cut out by their alpha.
+  void draw_outline(const detail::Frame& f, const core::SceneObject& o, std::size_t i);
 
   detail::CachedContactSurface& contact_surface(const std::shared_ptr<const core::FfdBinding>& ffd,
                                                 const ViewStyle& style);

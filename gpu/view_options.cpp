@@ -1,5 +1,7 @@
 #include "gpu/view_options.h"
 
+#include "core/scene/scene.h"
+
 namespace trispline::gpu {
 
 const std::shared_ptr<const core::TriMesh>* Overlays::mesh_for(const std::string& object) const {
@@ -19,6 +21,13 @@ const VolumeInPlace* Overlays::volume_for(const std::string& volume) const {
   for (const VolumeInPlace& v : volumes_in_place)
     if (v.volume == volume) return &v;
   return nullptr;
+}
+
+bool material_shading(const core::Scene& scene, Shading shading) {
+  if (shading != Shading::automatic) return shading == Shading::material;
+  for (const core::SceneObject& o : scene.objects())
+    if (o.visible && o.materials && o.materials->has_textures()) return true;
+  return false;
 }
 
 ScreenStroke& ViewOptions::add_stroke(std::vector<glm::dvec2> px) {

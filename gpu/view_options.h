@@ -19,6 +19,10 @@
 #include "core/spline/trivariate_bspline.h"
 #include "core/volume/silhouettes.h"
 
+namespace trispline::core {
+class Scene;
+}
+
 namespace trispline::gpu {
 
 // Colours and sizes of everything the renderer draws on its own (background, grid, selection, lattices, contact
@@ -138,8 +142,8 @@ struct ColoredTrianglesOverlay {
 
 // Segments with a colour each, drawn x-ray like lattices (faint where hidden): e.g. the cells of a fold certificate.
 struct ColoredLinesOverlay {
-  std::vector<glm::dvec3> ends;    // #2S, world units
-  std::vector<glm::vec4> colors;   // #S, display values with alpha
+  std::vector<glm::dvec3> ends;   // #2S, world units
+  std::vector<glm::vec4> colors;  // #S, display values with alpha
 };
 
 // The overlays of one frame, drawn after the scene in this order: spheres, coloured triangles, coloured lines,
@@ -164,11 +168,19 @@ struct Overlays {
   const VolumeInPlace* volume_for(const std::string& volume) const;
 };
 
+// Viewport shading (Blender's Solid / Material Preview, chosen per view in View ▸ Shading). Solid: every object in
+// its colour (SceneObject::color), cut surfaces in its inside colour. Material: objects with a MaterialSet drawn with
+// their glTF materials (textures, alpha MASK cut-out, BLEND sorted back to front, normal maps;
+// gpu/material_textures.h); objects without one stay in their colour. Automatic: Material when a visible object has a
+// textured material.
+enum class Shading { automatic, solid, material };
+
 // The display switches a user toggles (the editor's View menu keeps them as they are).
 struct DisplaySwitches {
-  bool show_lattice = false;          // control lattices of deformed objects (points + polylines)
-  bool show_contact_surface = false;  // S(u,v) = F(u,v,0) of deformed objects + contact samples of placed ones
-  bool show_grid = true;              // ground grid on y = 0
+  Shading shading = Shading::automatic;  // View ▸ Shading
+  bool show_lattice = false;             // control lattices of deformed objects (points + polylines)
+  bool show_contact_surface = false;     // S(u,v) = F(u,v,0) of deformed objects + contact samples of placed ones
+  bool show_grid = true;                 // ground grid on y = 0
   bool wireframe = false;
   // DFFD display (seed §6.3): the discontinuity planes of DFFD objects are drawn when this is on and either
   // show_lattice is on (every DFFD object) or the object is selected (its planes only). The rig's fold points are
@@ -194,6 +206,9 @@ struct DdmViewOptions {
 // The editor's motion budgets (DdmViewOptions::motion_budget_vertices): tile vertices a moving frame draws at most on a
 // software renderer (llvmpipe: above 10 fps on 2 cores, docs/performance.md) and on a GPU.
 inline constexpr std::size_t kDdmMotionBudgetVerticesSoftware = 100'000, kDdmMotionBudgetVertices = 4'000'000;
+
+// True when `shading` draws `scene` with Material shading (Shading::automatic: a visible object has textures).
+bool material_shading(const core::Scene& scene, Shading shading);
 
 struct ViewOptions : DisplaySwitches {
   std::string selected;  // highlighted object name (outline colour)

@@ -113,6 +113,17 @@ MenuAction draw_main_menu(ViewToggles& view, const MenuState& state) {
     end_menu(action != MenuAction::None || picked);
   }
   if (begin_menu("View")) {
+    if (begin_menu("Shading")) {
+      // Blender's Solid / Material Preview; until picked, Material when the scene has textures (state says which).
+      const bool material = state.material_shading;
+      if (menu_item("Solid", nullptr, !material)) view.shading = gpu::Shading::solid, picked = true;
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("Every object in its colour, cut surfaces in its inside colour.");
+      if (menu_item("Material", nullptr, material)) view.shading = gpu::Shading::material, picked = true;
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("Objects with materials (glTF, OBJ/MTL, ...) drawn with their textures, alpha cut-outs,\n"
+                          "blending and normal maps; objects without one stay in their colour.");
+      end_menu(picked);
+    }
     picked |= menu_item("Lattice", nullptr, &view.show_lattice);
     picked |= menu_item("Discontinuities", nullptr, &view.show_discontinuities);
     if (ImGui::IsItemHovered())

@@ -61,6 +61,7 @@ struct MenuState {
   bool can_undo = false, can_redo = false;
   std::string undo_label, redo_label;  // label of the command undo/redo would affect
   bool has_document_path = false;      // Save writes without asking
+  bool material_shading = false;       // the viewport draws Material shading (View > Shading shows it checked)
 };
 
 // Draws the main menu bar; height via ImGui::GetFrameHeight().

@@ -10,6 +10,8 @@
 // parameters a_param (location 2) and its rest normal (location 1, world rest space) through the control lattice
 // in SSBOs 4/5 (ffd_eval.glsl; ORDER_U/V/W, FFD_NORMALS), at a_param + u_param_offset (seed §4.5 animation).
 // gpu::GlslVertexFfdEvaluator draws with it, and captures v_world / v_normal by transform feedback for read-back.
+// Variant MATERIAL (Material shading): the texture coordinate a_uv (location 3; TriMesh::uvs, (0,0) without) is
+// passed on unchanged — it rides along whatever deformation moved the position.
 layout(location = 0) in vec3 a_position;  // world units (unused by FFD)
 layout(location = 1) in vec3 a_normal;    // unit (FFD: the rest normal)
 #ifdef FFD
@@ -20,6 +22,10 @@ uniform vec3 u_param_offset;           // parameter units
 uniform mat4 u_view_proj;
 out vec3 v_world;
 out vec3 v_normal;
+#ifdef MATERIAL
+layout(location = 3) in vec2 a_uv;
+out vec2 v_uv;
+#endif
 #ifdef OUTLINE
 #include "outline.glsl"
 #endif
@@ -45,5 +51,8 @@ void main() {
 #endif
   v_world = position;
   v_normal = normal;
+#ifdef MATERIAL
+  v_uv = a_uv;
+#endif
   gl_Position = clip;
 }
