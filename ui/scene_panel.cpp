@@ -1,12 +1,12 @@
 #include "ui/scene_panel.h"
 
-#include "ui/gui_probe.h"
-#include "ui/theme.h"
-
 #include <imgui.h>
 
 #include <algorithm>
 #include <cmath>
+
+#include "ui/gui_probe.h"
+#include "ui/theme.h"
 
 namespace trispline::ui {
 
@@ -30,6 +30,47 @@ bool eye_button(const char* id, bool visible) {
     dl->AddLine(ImVec2(c.x - h * 0.3f, c.y), ImVec2(c.x + h * 0.3f, c.y), col, 1.5f);
   }
   return clicked;
+}
+
+// A small camera (in renders) or the same camera struck through (out of renders); returns true when clicked.
+bool camera_button(const char* id, bool rendered) {
+  const float h = ImGui::GetFrameHeight();
+  const ImVec2 p = ImGui::GetCursorScreenPos();
+  const bool clicked = ImGui::InvisibleButton(id, ImVec2(h, h));
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  const bool hovered = ImGui::IsItemHovered();
+  const ImU32 col = ImGui::GetColorU32(hovered || rendered ? ImGuiCol_Text : ImGuiCol_TextDisabled,
+                                       rendered && !hovered ? 0.6f : 1.0f);
+  const ImVec2 c(p.x + h * 0.5f, p.y + h * 0.5f);
+  const float w = h * 0.30f, t = h * 0.18f;  // body half-width and half-height
+  dl->AddRect(ImVec2(c.x - w, c.y - t + 1.0f), ImVec2(c.x + w, c.y + t + 1.0f), col, 2.0f, 0, 1.5f);
+  dl->AddRectFilled(ImVec2(c.x - w * 0.4f, c.y - t - 2.0f), ImVec2(c.x + w * 0.2f, c.y - t + 1.0f), col);
+  dl->AddCircle(ImVec2(c.x, c.y + 1.0f), t * 0.6f, col, 10, 1.5f);
+  if (!rendered) dl->AddLine(ImVec2(c.x - w, c.y + t + 2.0f), ImVec2(c.x + w, c.y - t - 2.0f), col, 1.5f);
+  return clicked;
+}
+
+// The eye and camera cells of a row (object or volume `name`): a click requests object.visibility with that flag
+// flipped. Returns true when one of them is hovered (the row's own tooltip is then not shown).
+bool draw_visibility_cells(const std::string& name, bool visible, bool rendered, SceneRequest& req) {
+  ImGui::TableNextColumn();
+  if (eye_button("##eye", visible)) req = {SceneRequest::Kind::ToggleVisible, name};
+  probe::item("scene.eye." + name);
+  bool hovered = ImGui::IsItemHovered();
+  if (hovered)
+    ImGui::SetTooltip(visible ? "Hide in viewport (object.visibility viewport false)\n"
+                                "Still recorded and exported unless its camera is off"
+                              : "Show in viewport (object.visibility viewport true)");
+  ImGui::TableNextColumn();
+  if (camera_button("##render", rendered)) req = {SceneRequest::Kind::ToggleRender, name};
+  probe::item("scene.render." + name);
+  if (ImGui::IsItemHovered()) {
+    hovered = true;
+    ImGui::SetTooltip(rendered ? "Leave out of renders (object.visibility render false): recordings, animation.glb,\n"
+                                 "scene.glb and farm frames skip it; a volume then costs nothing there"
+                               : "Include in renders (object.visibility render true)");
+  }
+  return hovered;
 }
 
 // Object colours are linear RGB; ImGui draws sRGB-ish values.
@@ -82,11 +123,8 @@ void draw_transform_fields(const core::SceneObject& o, TransformFields& f, Scene
 void draw_volume_row(const core::VolumeObject& v, const ScenePanelState& state, SceneRequest& req) {
   ImGui::PushID(("volume:" + v.name).c_str());
   ImGui::TableNextRow();
-  ImGui::TableNextColumn();
-  const bool visible = v.visible && !state.hidden.count(v.name);
-  if (eye_button("##eye", visible)) req = {SceneRequest::Kind::ToggleVisible, v.name};
-  const bool eye_hovered = ImGui::IsItemHovered();
-  if (eye_hovered) ImGui::SetTooltip(visible ? "Hide in viewport" : "Show in viewport");
+  const bool visible = v.visible;
+  const bool eye_hovered = draw_visibility_cells(v.name, v.visible, v.render_visible, req);
   ImGui::TableNextColumn();
   ImGui::ColorButton("##swatch", to_display(v.color), ImGuiColorEditFlags_NoTooltip | ImGuiColorEditFlags_NoDragDrop,
                      ImVec2(ImGui::GetTextLineHeight(), ImGui::GetTextLineHeight()));
@@ -141,18 +179,16 @@ SceneRequest draw_scene_panel(const Rect& rect, const core::Scene& scene, const 
     const ImGuiStyle& style = ImGui::GetStyle();
     const float reserve = show_transform ? 4 * ImGui::GetFrameHeightWithSpacing() + style.ItemSpacing.y : 0.0f;
     const int flags = ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY | ImGuiTableFlags_BordersInnerV;
-    if (ImGui::BeginTable("##objects", 3, flags, ImVec2(0.0f, -reserve))) {
+    if (ImGui::BeginTable("##objects", 4, flags, ImVec2(0.0f, -reserve))) {
       ImGui::TableSetupColumn("##eye", ImGuiTableColumnFlags_WidthFixed, ImGui::GetFrameHeight());
+      ImGui::TableSetupColumn("##render", ImGuiTableColumnFlags_WidthFixed, ImGui::GetFrameHeight());
       ImGui::TableSetupColumn("Object", ImGuiTableColumnFlags_WidthStretch);
       ImGui::TableSetupColumn("Vertices", ImGuiTableColumnFlags_WidthFixed, 70.0f);
       for (const core::SceneObject& o : scene.objects()) {
         ImGui::PushID(o.name.c_str());
         ImGui::TableNextRow();
-        ImGui::TableNextColumn();
-        const bool visible = o.visible && !state.hidden.count(o.name);
-        if (eye_button("##eye", visible)) req = {SceneRequest::Kind::ToggleVisible, o.name};
-        const bool eye_hovered = ImGui::IsItemHovered();
-        if (eye_hovered) ImGui::SetTooltip(visible ? "Hide in viewport" : "Show in viewport");
+        const bool visible = o.visible;
+        const bool eye_hovered = draw_visibility_cells(o.name, o.visible, o.render_visible, req);
         ImGui::TableNextColumn();
         ImGui::ColorButton("##swatch", to_display(o.color),
                            ImGuiColorEditFlags_NoTooltip | ImGuiColorEditFlags_NoDragDrop,

@@ -22,8 +22,7 @@ std::string DffdTool::hint() const {
 std::vector<ui::DffdObstacleInfo> DffdTool::candidates(const ToolContext& ctx, const std::string& object) const {
   std::vector<ui::DffdObstacleInfo> out;
   for (const core::SceneObject& o : ctx.session.scene().objects()) {
-    if (o.name == object || !o.visible || ctx.hidden.count(o.name) || !o.world_mesh || o.world_mesh->empty())
-      continue;
+    if (o.name == object || !o.visible || !o.world_mesh || o.world_mesh->empty()) continue;
     auto& cached = extents_[o.name];
     if (cached.first.lock() != o.world_mesh) {
       const core::Aabb box = bounds_of(*o.world_mesh);

@@ -107,7 +107,7 @@ void IncisionTool::handle_input(const ToolInput& in, ToolContext& ctx) {
 
 std::optional<std::string> IncisionTool::pick(const ToolContext& ctx, glm::dvec2 px) const {
   try {
-    return pick_object(ctx.session.scene(), ctx.view, px, ctx.hidden);
+    return pick_object(ctx.session.scene(), ctx.view, px);
   } catch (const std::exception& e) {  // non-finite mesh positions
     ctx.session.messages().error(std::string("incision: picking failed: ") + e.what());
     return std::nullopt;
@@ -118,7 +118,7 @@ void IncisionTool::update_preview(const ToolContext& ctx) {
   if (gesture_.points().size() < 2 || gesture_.points().size() == previewed_points_) return;
   previewed_points_ = gesture_.points().size();
   const core::SceneObject* o = object(ctx);
-  if (!o || !o->visible || ctx.hidden.count(o->name)) {
+  if (!o || !o->visible) {
     curve_.clear();
     preview_mesh_.reset();
     preview_lattice_.reset();

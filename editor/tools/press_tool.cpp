@@ -102,7 +102,7 @@ std::unique_ptr<core::RayCaster> build_caster(std::shared_ptr<const core::TriMes
 
 std::optional<glm::dvec3> PressTool::cast(const ToolContext& ctx, glm::dvec2 px, bool need_current) {
   const core::SceneObject* o = target(ctx);
-  if (!o || !o->visible || ctx.hidden.count(o->name) || o->world_mesh->empty()) return std::nullopt;
+  if (!o || !o->visible || o->world_mesh->empty()) return std::nullopt;
   if (caster_mesh_ != o->world_mesh) {
     // The mesh changed (a press, undo): build the new BVH on a worker thread and keep hovering over the previous
     // one meanwhile (a 1 M-vertex mesh takes most of a second); a drag waits for the current one.

@@ -11,12 +11,11 @@
 
 namespace trispline::editor {
 
-std::optional<std::string> pick_object(const core::Scene& scene, const core::Camera& camera, glm::dvec2 px,
-                                       const std::set<std::string>& hidden) {
+std::optional<std::string> pick_object(const core::Scene& scene, const core::Camera& camera, glm::dvec2 px) {
   core::RayCaster caster;
   std::vector<std::string> names;
   for (const core::SceneObject& o : scene.objects()) {
-    if (!o.visible || hidden.count(o.name) || !o.world_mesh || o.world_mesh->empty()) continue;
+    if (!o.visible || !o.world_mesh || o.world_mesh->empty()) continue;
     caster.add_mesh(*o.world_mesh);
     names.push_back(o.name);
   }
@@ -30,7 +29,7 @@ std::optional<std::string> pick_object(const core::Scene& scene, const core::Cam
   }
   // Volumes: the first crossing of their iso-surface D = iso along the same ray (the CPU reference of the drawn one).
   for (const core::VolumeObject& v : scene.volumes()) {
-    if (!v.visible || hidden.count(v.name) || !v.spline || !v.show_surface) continue;
+    if (!v.visible || !v.spline || !v.show_surface) continue;
     const core::IsoHit hit = core::iso_ray_hit(*v.spline, v.iso, camera.eye, dir, 0.25, nearest);
     if (hit.hit && hit.t < nearest) picked = v.name, nearest = hit.t;
   }
@@ -48,7 +47,7 @@ void SelectTool::handle_input(const ToolInput& in, ToolContext& ctx) {
     pressed_ = false;
     if (glm::length(in.mouse_px - press_px_) > 4.0) return;  // a drag, not a click
     try {
-      const auto name = pick_object(ctx.session.scene(), ctx.view, in.mouse_px, ctx.hidden);
+      const auto name = pick_object(ctx.session.scene(), ctx.view, in.mouse_px);
       ctx.selected = name.value_or("");
     } catch (const std::exception& e) {
       ctx.session.messages().error(std::string("pick failed: ") + e.what());

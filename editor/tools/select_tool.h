@@ -12,10 +12,9 @@
 
 namespace trispline::editor {
 
-// Name of the first visible object or volume (its iso-surface, core::iso_ray_hit) hit by the ray through viewport
-// pixel `px`, if any.
-std::optional<std::string> pick_object(const core::Scene& scene, const core::Camera& camera, glm::dvec2 px,
-                                       const std::set<std::string>& hidden = {});
+// Name of the first viewport-visible object or volume (its iso-surface, core::iso_ray_hit) hit by the ray through
+// viewport pixel `px`, if any.
+std::optional<std::string> pick_object(const core::Scene& scene, const core::Camera& camera, glm::dvec2 px);
 
 class SelectTool : public Tool {
  public:

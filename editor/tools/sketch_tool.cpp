@@ -41,11 +41,8 @@ void SketchTool::handle_input(const ToolInput& in, ToolContext& ctx) {
       ctx.session.messages().error("place.sketch: choose the object to place in the Tool panel first");
       return;
     }
-    // The rays pass through what the viewport hides, as picking does.
-    std::vector<std::string> ignore;
-    for (const std::string& name : ctx.hidden)
-      if (name != params_.object && ctx.session.scene().find(name)) ignore.push_back(name);
-    place(ctx, std::move(stroke), gesture_.view(), std::move(ignore));
+    // The rays pass through what the viewport hides (object.visibility), as picking does: place.sketch skips it.
+    place(ctx, std::move(stroke), gesture_.view(), {});
   }
 }
 

@@ -1,8 +1,8 @@
 // trispline::editor::SketchTool — Sketch placement (seed §2.3.1): choose the object to place, left-drag a stroke
 // over the scene; on mouse-up the tool executes one `place.sketch` command (docs/commands.md) carrying the
 // stroke (viewport pixels, top-left origin), the parameters, the view at mouse-down ("camera"; the editor does not
-// move the camera while a stroke is drawn) and the objects hidden in the viewport ("ignore", the rays pass through
-// them as picking does), so the log line is self-contained.
+// move the camera while a stroke is drawn), so the log line is self-contained; objects hidden in the viewport
+// (object.visibility, in the log) let the rays pass, as picking does.
 //
 // Changing a parameter after a placement re-runs it as ONE undoable step: when the tool's last place.sketch is
 // still the top applied command, it is undone and the edited command executed in its place (if that fails the

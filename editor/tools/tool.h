@@ -34,7 +34,6 @@ struct ToolContext {
   EditorSession& session;
   const core::Camera& view;             // the current view; viewport = window framebuffer size
   std::string& selected;                // selected object name ("" = none)
-  const std::set<std::string>& hidden;  // objects hidden in the viewport
   // Runs `work` after one frame showing "Working… <what>" (long synchronous commands).
   std::function<void(std::string what, std::function<void()> work)> defer;
   // Builds a long command (`line`: ddm.fill, ddm.bake) on a worker thread behind a progress bar with Cancel

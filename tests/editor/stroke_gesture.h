@@ -19,12 +19,11 @@ inline std::vector<glm::dvec2> shallow_arc(double from) {
   return px;
 }
 
-// The Sketch tool, active in `s` over `view` (held by reference: a test may move it mid-stroke), placing the crate,
-// with `hidden` hidden; deferred work runs at once.
+// The Sketch tool, active in `s` over `view` (held by reference: a test may move it mid-stroke), placing the crate;
+// deferred work runs at once.
 struct SketchToolRig {
-  SketchToolRig(editor::EditorSession& s, core::Camera& view, std::set<std::string> hidden_objects = {})
-      : hidden(std::move(hidden_objects)), ctx{s, view, selected, hidden,
-                                                 [](std::string, std::function<void()> work) { work(); }, nullptr} {
+  SketchToolRig(editor::EditorSession& s, core::Camera& view)
+      : ctx{s, view, selected, [](std::string, std::function<void()> work) { work(); }, nullptr} {
     tool.activate(ctx);
   }
   // Left button down at (330, 330).
@@ -35,7 +34,6 @@ struct SketchToolRig {
   void release_stroke() { release(tool, ctx, in); }
 
   std::string selected = "crate";
-  std::set<std::string> hidden;
   editor::ToolContext ctx;
   editor::SketchTool tool;
   editor::ToolInput in;

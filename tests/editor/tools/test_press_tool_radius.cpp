@@ -18,8 +18,7 @@ TEST(PressToolRadius, DefaultRadiusFollowsTheWorldMeshThroughPressUndoRedo) {
       {{"cmd", "lattice.ring"}, {"object", "t"}, {"radius", 1.2}, {"controls", {16, 3, 4}}, {"order", {4, 3, 2}}}));
   core::Camera view;
   std::string selected = "t";
-  std::set<std::string> hidden;
-  editor::ToolContext ctx{s, view, selected, hidden, [](std::string, std::function<void()> work) { work(); },
+  editor::ToolContext ctx{s, view, selected, [](std::string, std::function<void()> work) { work(); },
                           nullptr};
   editor::PressTool tool;
   tool.activate(ctx);

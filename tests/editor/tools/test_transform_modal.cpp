@@ -301,7 +301,7 @@ class PanelFields : public Modal {
   ui::SceneRequest frame(test::HeadlessImGui& gui, ImVec2 mouse, bool down) {
     ui::SceneRequest req;
     gui.step(mouse, down, [&] {
-      ui::ScenePanelState st{"b", {}, true, &fields};
+      ui::ScenePanelState st{"b", true, &fields};
       const ui::SceneRequest r = ui::draw_scene_panel({{0, 0}, {400, 600}}, s.scene(), st);
       if (r.kind != ui::SceneRequest::Kind::None) req = r;
     });

@@ -1,5 +1,5 @@
-// The fixture every tool test drives a tool through: an editor session with its Log, the view, selection and hidden
-// set, the ToolContext over them (deferred work runs at once), the tool, and what a test asks afterwards; and the
+// The fixture every tool test drives a tool through: an editor session with its Log, the view and selection, the
+// ToolContext over them (deferred work runs at once), the tool, and what a test asks afterwards; and the
 // mouse gestures (press, move, release, drag) every tool test makes.
 #pragma once
 
@@ -105,8 +105,7 @@ class ToolTest : public ::testing::Test {
   editor::EditorSession s{messages};
   core::Camera view;
   std::string selected;
-  std::set<std::string> hidden;
-  editor::ToolContext ctx{s, view, selected, hidden, [](std::string, std::function<void()> work) { work(); },
+  editor::ToolContext ctx{s, view, selected, [](std::string, std::function<void()> work) { work(); },
                           nullptr};  // no background builds: Fill and Bake run through defer
   T tool;
   editor::ToolInput in;

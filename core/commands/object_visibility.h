@@ -1,0 +1,35 @@
+// `object.visibility` — shows or hides an object or a volume in the viewport and in renders (Blender's hide_viewport
+// and hide_render; the Scene panel's eye and camera icons).
+//   {"cmd":"object.visibility","object":"ID","viewport":true|false,"render":true|false}
+// `object` names a mesh object or a volume. `viewport` sets SceneObject::visible / VolumeObject::visible: drawn in the
+// viewport, picked by tools and place.sketch's rays, framed by Home (Scene::bounds). `render` sets render_visible: in
+// recordings (frames, animation.glb, farm chunks), scene.glb and headless images (render_visible_scene); a volume out of
+// renders costs nothing there (no ray casting, no silhouette extraction). Either field may be left out (unchanged), not
+// both. Undo restores both flags.
+// Errors (CommandError, field named, scene untouched): unknown object or volume (`object`); neither field given
+// (`viewport`).
+#pragma once
+
+#include "core/commands/declared_command.h"
+
+namespace trispline::core {
+
+struct ObjectVisibilityParams {
+  std::string object;
+  std::optional<bool> viewport, render;  // unset = unchanged
+};
+
+class ObjectVisibilityCommand : public DeclaredCommand<ObjectVisibilityCommand, ObjectVisibilityParams> {
+ public:
+  using DeclaredCommand::DeclaredCommand;
+  static const ParamSchema<ObjectVisibilityParams>& schema();
+
+  std::string label() const override;
+  void redo(Scene& scene) override;
+  void undo(Scene& scene) override;
+
+ private:
+  bool viewport_before_ = true, render_before_ = true;  // the flags redo replaced
+};
+
+}  // namespace trispline::core
