@@ -1,8 +1,10 @@
 #include "editor/history.h"
 
-#include "core/scene/scene_check.h"
-
+#include <algorithm>
 #include <chrono>
+
+#include "core/commands/file_output.h"
+#include "core/scene/scene_check.h"
 
 namespace trispline::editor {
 
@@ -23,18 +25,29 @@ ExecutionRecord History::execute(core::CommandPtr cmd) {
   rec.line = cmd->to_json();
   rec.stats = cmd->stats();
   if (!cmd->undoable()) {  // logged for replays; the undo stack and its redo tail stay as they are
-    transient_ = std::move(cmd);
-    last_executed_ = transient_.get();
+    HistoryOutput out;
+    out.after = applied_;
+    if (const core::FileOutput* f = core::file_output(*cmd); f && !f->files_written())
+      out.scene = std::make_shared<const core::Scene>(scene_);  // shallow: meshes and tables are shared pointers
+    out.command = std::move(cmd);
+    outputs_.push_back(std::move(out));
+    last_executed_ = outputs_.back().command.get();
     log(rec.line);
+    if (on_change) on_change();
     return rec;
   }
-  commands_.resize(applied_);
+  drop_redo_tail();
   commands_.push_back(std::move(cmd));
   applied_ = commands_.size();
   last_executed_ = commands_.back().get();
   log(rec.line);
   if (on_change) on_change();
   return rec;
+}
+
+void History::drop_redo_tail() {
+  commands_.resize(applied_);
+  std::erase_if(outputs_, [this](const HistoryOutput& o) { return o.after > applied_; });
 }
 
 void History::undo() {
@@ -68,19 +81,27 @@ void History::jump_to(std::size_t applied_count) {
 void History::adopt(History& other) {
   commands_ = std::move(other.commands_);
   applied_ = other.applied_;
-  transient_ = std::move(other.transient_);
-  last_executed_ = other.last_executed_;  // owned by commands_ or transient_ now
+  outputs_ = std::move(other.outputs_);
+  last_executed_ = other.last_executed_;  // owned by commands_ or outputs_ now
   other.commands_.clear();
+  other.outputs_.clear();
   other.applied_ = 0;
   other.last_executed_ = nullptr;
-  for (const auto& c : commands_) log(c->to_json());
+  std::stable_sort(outputs_.begin(), outputs_.end(),  // by place (one may have run after an undo)
+                   [](const HistoryOutput& a, const HistoryOutput& b) { return a.after < b.after; });
+  std::size_t next_output = 0;
+  for (std::size_t i = 0; i <= commands_.size(); ++i) {
+    for (; next_output < outputs_.size() && outputs_[next_output].after == i; ++next_output)
+      log(outputs_[next_output].command->to_json());
+    if (i < commands_.size()) log(commands_[i]->to_json());
+  }
   for (std::size_t i = applied_; i < commands_.size(); ++i) log({{"cmd", "edit.undo"}});
   if (on_change) on_change();
 }
 
 void History::clear() {
   commands_.clear();
-  transient_.reset();
+  outputs_.clear();
   last_executed_ = nullptr;
   applied_ = 0;
   if (on_change) on_change();

@@ -4,6 +4,9 @@
 // at once and reported as a CommandError; on success pushes it (dropping the redo tail) and appends its JSON line
 // to the log (flushed at once); a command that is not undoable() (anim.record) is run and logged, never pushed. On
 // failure the scene is unchanged, nothing is pushed, and the CommandError is rethrown for the caller to report.
+// A non-undoable command is kept as an Output after the commands applied when it ran (the History panel shows it
+// there), with a copy of the scene when its files were not written (core::FileOutput), so Run again can write them
+// from the scene it saw; outputs past the applied commands go with the redo tail.
 // undo()/redo() move through the stack and append {"cmd":"edit.undo"} / {"cmd":"edit.redo"} lines so a crash log
 // replays to the same state. jump_to(n) undoes/redoes until n commands are applied (History panel click).
 #pragma once
@@ -28,6 +31,13 @@ struct ExecutionRecord {      // one line of report.json
   int log_line = 0;           // 1-based line in the replayed log (0 when not replayed)
 };
 
+// An action that is no undo step (anim.record), kept where it ran for the History panel and Run again.
+struct HistoryOutput {
+  std::size_t after = 0;  // it ran with commands [0, after) applied
+  core::CommandPtr command;
+  std::shared_ptr<const core::Scene> scene;  // the scene it ran on; kept only when its files were not written
+};
+
 class History {
  public:
   explicit History(core::Scene& scene);
@@ -40,14 +50,18 @@ class History {
   void redo();  // no-op when nothing to redo
   void jump_to(std::size_t applied_count);
   void clear();  // forgets the stack (the scene is not touched)
-  // Takes over `other`'s stack (other is left empty), for a scene that was built by `other` and has just been moved
-  // into this history's scene (Open as a transaction). Writes the stack to the log as lines that replay to it: every
-  // command, then one edit.undo per command of the redo tail.
+  // Takes over `other`'s stack and outputs (other is left empty), for a scene that was built by `other` and has just
+  // been moved into this history's scene (Open as a transaction). Writes the stack to the log as lines that replay to
+  // it: every command with the outputs in their places, then one edit.undo per command of the redo tail.
   void adopt(History& other);
 
   std::size_t size() const { return commands_.size(); }
   std::size_t applied() const { return applied_; }  // commands [0, applied) are in effect
   const core::Command& at(std::size_t i) const { return *commands_[i]; }
+  core::Command& at(std::size_t i) { return *commands_[i]; }
+  // Non-undoable commands that ran (oldest first), each after the commands applied when it ran.
+  const std::vector<HistoryOutput>& outputs() const { return outputs_; }
+  HistoryOutput& output(std::size_t k) { return outputs_[k]; }
   // The command the last successful execute() ran (the top of the stack, or a non-undoable one such as anim.record);
   // valid right after it, until the next execute() or clear().
   const core::Command& last_executed() const { return *last_executed_; }
@@ -68,11 +82,12 @@ class History {
   core::Scene& scene_;
   std::vector<core::CommandPtr> commands_;
   std::size_t applied_ = 0;
-  core::CommandPtr transient_;                   // the last non-undoable command executed
+  std::vector<HistoryOutput> outputs_;            // see outputs()
   const core::Command* last_executed_ = nullptr;  // see last_executed()
   CommandLog* log_ = nullptr;
   bool log_error_reported_ = false;
   void log(const nlohmann::json& line);
+  void drop_redo_tail();  // commands past applied_ and the outputs that ran after them
 };
 
 }  // namespace trispline::editor

@@ -1,6 +1,7 @@
 #include "editor/session.h"
 
 #include "core/commands/camera_set.h"
+#include "core/commands/file_output.h"
 
 #include "editor/command_registry.h"
 #include "editor/replay.h"
@@ -202,19 +203,6 @@ bool EditorSession::has_command(const std::string& id) const {
   return false;
 }
 
-core::Scene EditorSession::shown_scene(const std::set<std::string>& hidden) const {
-  core::Scene shown = scene_;
-  for (const std::string& name : hidden) {
-    if (core::SceneObject* o = shown.find(name)) o->visible = false;
-    if (const core::VolumeObject* v = shown.find_volume(name); v && v->visible) {
-      core::VolumeObject hidden_volume = *v;
-      hidden_volume.visible = false;
-      shown.replace_volume(std::move(hidden_volume));
-    }
-  }
-  return shown;
-}
-
 std::string command_error_text(const std::string& id, const core::CommandError& e) {
   const std::string what = e.what(), field = "field '" + e.field() + "'";
   const bool named = e.field().empty() || what.find(field) != std::string::npos;  // message names it already
@@ -293,6 +281,46 @@ bool EditorSession::jump_to(std::size_t applied_count) {
   return false;
 }
 
+namespace {
+
+// Writes `command`'s files (a FileOutput that writes itself and has not written them); the Log says what happened.
+bool write_again(core::Command& command, ui::MessageLog& messages) {
+  core::FileOutput* out = core::file_output(command);
+  if (!out || !out->writes_itself()) {
+    messages.warning(command.label() + ": nothing to run again here");
+    return false;
+  }
+  try {
+    out->write_files();
+    messages.info(command.label() + ": wrote " + out->output_path().string());
+    return true;
+  } catch (const core::CommandError& e) {
+    messages.error(command_error_text(command.id(), e));
+  } catch (const std::exception& e) {
+    messages.error(command.label() + ": " + e.what());
+  }
+  return false;
+}
+
+}  // namespace
+
+bool EditorSession::run_again(std::size_t i) {
+  if (i >= history_.size() || refused("Run again")) return false;
+  const bool ok = write_again(history_.at(i), messages_);
+  if (ok) ++changes_;
+  return ok;
+}
+
+bool EditorSession::run_again_output(std::size_t k) {
+  if (k >= history_.outputs().size() || refused("Run again")) return false;
+  const bool ok = write_again(*history_.output(k).command, messages_);
+  if (ok) {
+    history_.output(k).scene.reset();
+    ++changes_;
+  }
+  return ok;
+}
+
 void EditorSession::new_document() {
   if (refused("New")) return;
   history_.clear();
@@ -308,7 +336,7 @@ void EditorSession::new_document() {
 
 bool EditorSession::replay_into(const fs::path& log, const char* what) {
   new_document();
-  const ReplayResult r = replay_lines(history_, log);
+  const ReplayResult r = replay_lines(history_, log, {}, {}, FileWrites::skip);
   std::size_t ok = 0;
   double ms = 0;
   for (const ExecutionRecord& rec : r.records) {
@@ -338,7 +366,7 @@ bool EditorSession::open(const fs::path& log) {
   History fresh_history(fresh);
   ReplayResult r;
   try {
-    r = replay_lines(fresh_history, log);
+    r = replay_lines(fresh_history, log, {}, {}, FileWrites::skip);  // opening never writes files
   } catch (const std::exception& e) {  // replay_lines reports line errors itself; this is memory and the like
     r.ok = false;
     r.error = log.string() + ": " + e.what();
@@ -436,7 +464,22 @@ ui::HistoryView EditorSession::history_view() const {
   v.applied = history_.applied();
   v.can_undo = history_.can_undo();
   v.can_redo = history_.can_redo();
-  for (std::size_t i = 0; i < history_.size(); ++i) v.labels.push_back(history_.at(i).label());
+  for (std::size_t i = 0; i < history_.size(); ++i) {
+    v.labels.push_back(history_.at(i).label());
+    const core::FileOutput* out = core::file_output(history_.at(i));
+    v.not_written.push_back(out && !out->files_written());
+    v.paths.push_back(out ? out->output_path().string() : std::string());
+  }
+  for (const HistoryOutput& o : history_.outputs()) {
+    ui::HistoryOutputRow row;
+    row.after = o.after;
+    row.label = o.command->label();
+    const core::FileOutput* out = core::file_output(*o.command);
+    row.not_written = out && !out->files_written();
+    row.can_run_again = out && (out->writes_itself() || o.scene);
+    row.path = out ? out->output_path().string() : std::string();
+    v.outputs.push_back(std::move(row));
+  }
   return v;
 }
 

@@ -72,15 +72,22 @@ class EditorSession {
   bool undo();
   bool redo();
   bool jump_to(std::size_t applied_count);
+  // History's "Run again" of command i, a core::FileOutput replayed without writing (Open, recovery): writes its files
+  // from the result it kept (the scene as it was at that step), no new history step. Errors go to the Log.
+  bool run_again(std::size_t i);
+  // The same for outputs()[k] whose command writes itself; anim.record is recorded by AnimationUi::record_again.
+  bool run_again_output(std::size_t k);
 
   // Empty scene and history; restarts the session log (the old one is renamed to <log>.prev.jsonl, not lost).
   void new_document();  // refused while busy(), like every change below
   // A transaction: replays the log into a fresh scene (each line one undoable step) and swaps it in only when every
-  // line succeeded; otherwise the error (LOG:LINE: ...) goes to the Log and the current scene, history, title and
-  // session log are kept as they were. On success the session log restarts with the opened history.
+  // line succeeded; it writes no file (FileWrites::skip: volume.export, anim.record are History entries "not written
+  // again", with Run again); otherwise the error (LOG:LINE: ...) goes to the Log and the current scene, history, title
+  // and session log are kept as they were. On success the session log restarts with the opened history.
   bool open(const std::filesystem::path& log);
   bool save(const std::filesystem::path& path, const core::Camera& view);  // applied lines + camera.set, atomic
-  bool recover(const RecoveryOffer& offer);  // new_document() + replay of the offer's log; then closes the question
+  // new_document() + replay of the offer's log (writing no file, like open()); then closes the question.
+  bool recover(const RecoveryOffer& offer);
   void discard(const RecoveryOffer& offer);                                // keeps the file, says so
 
   // While a command is prepared on a worker thread over a copy of the scene (editor/background_command.h) the
@@ -95,9 +102,6 @@ class EditorSession {
   const History& history() const { return history_; }
   ui::MessageLog& messages() { return messages_; }
   bool has_command(const std::string& id) const;  // registered in the command registry
-  // The scene as drawn with the objects and volumes in `hidden` invisible (hiding is view state, not a command): a
-  // shallow copy, the meshes, splines and tables are shared pointers.
-  core::Scene shown_scene(const std::set<std::string>& hidden) const;
 
   const std::filesystem::path& document() const { return document_; }  // last opened/saved log ("" = untitled)
   bool modified() const;

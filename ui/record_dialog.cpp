@@ -1,16 +1,16 @@
 #include "ui/record_dialog.h"
 
-#include "core/commands/anim_record.h"
-#include "ui/param_widgets.h"
-
-#include "ui/number_field.h"
-#include "ui/theme.h"
-
 #include <imgui.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
+
+#include "core/commands/anim_record.h"
+#include "ui/gui_probe.h"
+#include "ui/number_field.h"
+#include "ui/param_widgets.h"
+#include "ui/theme.h"
 
 namespace trispline::ui {
 
@@ -19,7 +19,11 @@ constexpr const char* kRecordTitle = "Record animation";
 constexpr const char* kProgressTitle = "Recording";
 }  // namespace
 
-void open_record_dialog(RecordDialogState& s, const core::Timeline& t, int viewport_w, int viewport_h) {
+void open_record_dialog(RecordDialogState& s, const core::Timeline& t, int viewport_w, int viewport_h,
+                        const core::Scene& scene, const core::Camera& view) {
+  s.scene_camera_set = scene.camera_set;
+  s.view = view;
+  if (s.camera < 0) s.camera = scene.camera_set ? kSceneCamera : kCurrentView;
   s.frames[0] = t.frame_start;
   s.frames[1] = t.frame_end;
   if (viewport_w > 0 && viewport_h > 0) {
@@ -38,6 +42,7 @@ nlohmann::json record_line(const RecordDialogState& s) {
   p.mp4 = s.mp4;
   p.width = s.size[0];
   p.height = s.size[1];
+  if (s.camera == kCurrentView) p.camera = s.view;
   return core::AnimRecordCommand::schema().to_json(p);
 }
 
@@ -62,6 +67,21 @@ std::optional<nlohmann::json> draw_record_dialog(RecordDialogState& s, const cor
   ImGui::SetNextItemWidth(200);
   drag_int_n("Size", s.size, 2, 1.0f, 16, 8192, "%d px", ImGuiSliderFlags_AlwaysClamp);
   tooltip("Image width and height in pixels (default: the viewport)");
+  ImGui::TextUnformatted("Camera");
+  ImGui::SameLine();
+  ImGui::RadioButton("Scene camera", &s.camera, kSceneCamera);
+  probe::item("record.camera.scene");
+  tooltip(s.scene_camera_set ? "The scene's camera: the log's last camera.set (File > Save sets it to the view)"
+                             : "The scene has no camera (no camera.set): one framing every object, as replay uses");
+  ImGui::SameLine();
+  ImGui::RadioButton("Current view", &s.camera, kCurrentView);
+  probe::item("record.camera.view");
+  tooltip("The viewport's view as it is now; the recording keeps it in the log (anim.record's camera)");
+  ImGui::TextColored(colors::dim, "Records %s",
+                     s.camera == kCurrentView ? "the current view"
+                     : s.scene_camera_set     ? "the scene camera (the log's camera.set)"
+                                              : "the scene camera (none set: framing the whole scene)");
+  probe::value("record.camera", s.camera == kCurrentView ? "view" : "scene");
   ImGui::Checkbox("Animated GLB", &s.glb);
   tooltip("animation.glb: one mesh per object with a morph target per frame (Blender imports shape keys)");
   ImGui::SameLine();
@@ -71,7 +91,9 @@ std::optional<nlohmann::json> draw_record_dialog(RecordDialogState& s, const cor
   ImGui::Separator();
   const bool can = !s.out_dir.empty();
   ImGui::BeginDisabled(!can);
-  if (ImGui::Button("Record", ImVec2(120, 0))) {
+  const bool pressed = ImGui::Button("Record", ImVec2(120, 0));
+  probe::item("record.ok");
+  if (pressed) {
     line = record_line(s);
     s.open = false;
     ImGui::CloseCurrentPopup();

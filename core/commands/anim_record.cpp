@@ -1,5 +1,6 @@
 #include "core/commands/anim_record.h"
 
+#include "core/commands/codecs.h"
 
 namespace trispline::core {
 
@@ -31,6 +32,8 @@ const ParamSchema<AnimRecordParams>& AnimRecordCommand::schema() {
           .help("Frame width; give width and height together")
           .field("height", &P::height).range(1, 16384).unit("pixels").default_text("the camera's viewport")
           .help("Frame height")
+          .object("camera", &P::camera, camera_schema()).default_text("the scene camera")
+          .help("The view every frame is rendered from (camera.set's fields; the Record dialog's \"Current view\")")
           .check([](const P& p) {
             if (p.width.has_value() != p.height.has_value()) {
               const char* missing = p.width ? "height" : "width";
@@ -63,6 +66,7 @@ AnimRecordCommand::AnimRecordCommand(AnimRecordParams p, const std::filesystem::
   r.mp4 = p_.mp4;
   r.width = p_.width.value_or(0);
   r.height = p_.height.value_or(0);
+  r.camera = p_.camera;
 }
 
 CommandPtr AnimRecordCommand::parse(const nlohmann::json& line, const CommandContext& ctx) {
@@ -82,6 +86,7 @@ void AnimRecordCommand::redo(Scene& scene) {
   if (!err.empty()) throw CommandError("field 'frames': " + err, "frames");
   request_.frame_first = first;
   request_.frame_last = last;
+  if (writes_files()) mark_written();  // the caller records it
 }
 
 nlohmann::json AnimRecordCommand::stats() const {

@@ -4,11 +4,15 @@
 // format "png" (8-bit RGBA) or "exr" (half RGBA, linear); frames [A, B] timeline frame numbers, inclusive (default:
 // the whole timeline); glb/mp4 (default true): also write animation.glb / animation.mp4; width/height pixels in
 // [1, 16384], both or neither, at most kMaxRecordPixels in all (default: the camera's viewport); the recorder also
-// checks the size against the GL implementation's limits (GL_MAX_RENDERBUFFER_SIZE, GL_MAX_VIEWPORT_DIMS).
+// checks the size against the GL implementation's limits (GL_MAX_RENDERBUFFER_SIZE, GL_MAX_VIEWPORT_DIMS);
+// camera (camera.set's fields, default: the scene camera — the last camera.set, else one framing the scene) the view
+// every frame is rendered from (the Record dialog's "Current view").
 //
 // The command does not change the scene: redo() checks the request against the scene's timeline and keeps it
 // (request()), and whoever executed it (the editor's Record button, replay) runs editor::Recorder with it. Undo is a
-// no-op; the command is in the log so that replaying a session records what the artist recorded.
+// no-op; the command is in the log so that replaying a session records what the artist recorded. A FileOutput
+// (core/commands/file_output.h): whoever executes it records only when writes_files() (Open and crash recovery
+// replay it without recording; headless replay records under --out).
 // Errors (CommandError, field named): frames outside the timeline or A > B ("frames"), unknown format ("format"),
 // bad size ("width"/"height"), wrong field types.
 #pragma once
@@ -17,6 +21,7 @@
 #include <optional>
 
 #include "core/commands/declared_command.h"
+#include "core/commands/file_output.h"
 
 namespace trispline::core {
 
@@ -31,7 +36,8 @@ struct RecordRequest {
   int frame_first = 0, frame_last = 0;  // inclusive timeline frames (after redo: never 0/0 unless the timeline is)
   bool frames_given = false;            // "frames" was in the line (else: the whole timeline at redo time)
   bool glb = true, mp4 = true;
-  int width = 0, height = 0;  // pixels, 0 = the camera's viewport
+  int width = 0, height = 0;     // pixels, 0 = the camera's viewport
+  std::optional<Camera> camera;  // the view recorded; unset = the scene camera
 };
 
 // "" when [first, last] is a valid range of `timeline`, else the reason ("frames 100–130 lie outside the timeline
@@ -40,14 +46,15 @@ std::string frame_range_error(const Timeline& timeline, int first, int last);
 
 // The fields of an anim.record line.
 struct AnimRecordParams {
-  std::string out;                  // folder, as written in the log ("" = the caller's default)
-  std::string format = "png";       // png | exr
+  std::string out;                   // folder, as written in the log ("" = the caller's default)
+  std::string format = "png";        // png | exr
   std::optional<glm::ivec2> frames;  // inclusive timeline frames; unset = the whole timeline at redo time
   bool glb = true, mp4 = true;
   std::optional<int> width, height;  // pixels; unset = the camera's viewport
+  std::optional<Camera> camera;      // the view recorded (camera.set's fields); unset = the scene camera
 };
 
-class AnimRecordCommand : public DeclaredCommand<AnimRecordCommand, AnimRecordParams> {
+class AnimRecordCommand : public DeclaredCommand<AnimRecordCommand, AnimRecordParams>, public FileOutput {
  public:
   explicit AnimRecordCommand(AnimRecordParams p, const std::filesystem::path& base_dir = {});
   static const ParamSchema<AnimRecordParams>& schema();
@@ -55,10 +62,12 @@ class AnimRecordCommand : public DeclaredCommand<AnimRecordCommand, AnimRecordPa
   static CommandPtr parse(const nlohmann::json& line, const CommandContext& ctx);
 
   std::string label() const override;
-  void redo(Scene& scene) override;  // validates against scene.timeline; the scene is not modified
+  // Validates against scene.timeline (the scene is not modified); files_written() from then on when writes_files().
+  void redo(Scene& scene) override;
   void undo(Scene&) override {}
   bool undoable() const override { return false; }  // logged for replays, never an undo step
   nlohmann::json stats() const override;
+  std::filesystem::path output_path() const override { return request_.out_dir; }  // "" = the caller's default
 
   // The request; frame_first/frame_last are resolved by the last redo() (the whole timeline when not given).
   const RecordRequest& request() const { return request_; }

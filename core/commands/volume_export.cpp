@@ -78,23 +78,31 @@ std::optional<VolumeObject> VolumeExportCommand::build(const Scene& scene) {
     v.silhouette.enabled = before.silhouette.enabled;
     const auto& polylines = v.silhouettes->polylines;
     for (const SilhouettePolyline& pl : polylines) require_finite_points(pl.points, "silhouette point");
-    std::filesystem::create_directories(file_.parent_path());
-    if (lower_extension(file) == ".svg") {
-      SvgStyle style;
-      style.stroke = v.silhouette.style;  // hue | glyphs | width | plain
-      style.hidden = v.silhouette.hidden == "dashed" ? "dashed" : "remove";
-      std::vector<SilhouettePolyline> drawn = polylines;
-      if (v.silhouette.hidden == "show")
-        for (auto& pl : drawn) std::fill(pl.visible.begin(), pl.visible.end(), 1);
-      write_silhouettes_svg(file, drawn, cam.projection_matrix() * cam.view_matrix(), cam.viewport, style);
-    } else {
-      const auto strips = silhouette_line_strips(polylines, v.silhouette.hidden != "remove");
-      GltfNode node;
-      node.name = p_.object + "/silhouettes";
-      node.line_strips = &strips;
-      node.color = glm::vec3(0.0f);
-      write_glb(file, {node});
-    }
+    // The file is written from these (shared, immutable) results, now or later (write_files: History's Run again).
+    const std::shared_ptr<const SilhouetteResult> result = v.silhouettes;
+    const glm::dmat4 view_projection = cam.projection_matrix() * cam.view_matrix();
+    const glm::ivec2 viewport = cam.viewport;
+    const VolumeSilhouetteSettings look = v.silhouette;
+    const std::string name = p_.object + "/silhouettes";
+    writer_ = [result, view_projection, viewport, look, name](const std::filesystem::path& out) {
+      std::filesystem::create_directories(out.parent_path());
+      if (lower_extension(out.string()) == ".svg") {
+        SvgStyle style;
+        style.stroke = look.style;  // hue | glyphs | width | plain
+        style.hidden = look.hidden == "dashed" ? "dashed" : "remove";
+        std::vector<SilhouettePolyline> drawn = result->polylines;
+        if (look.hidden == "show")
+          for (auto& pl : drawn) std::fill(pl.visible.begin(), pl.visible.end(), 1);
+        write_silhouettes_svg(out, drawn, view_projection, viewport, style);
+      } else {
+        const auto strips = silhouette_line_strips(result->polylines, look.hidden != "remove");
+        GltfNode node;
+        node.name = name;
+        node.line_strips = &strips;
+        node.color = glm::vec3(0.0f);
+        write_glb(out, {node});
+      }
+    };
   } else {
     if (!(v.iso >= v.table->range_min() && v.iso <= v.table->range_max()))
       throw CommandError("field 'object': the iso-level " + params::format_number(v.iso) + " of '" + p_.object +
@@ -106,15 +114,33 @@ std::optional<VolumeObject> VolumeExportCommand::build(const Scene& scene) {
     IsoMeshStats ms;
     auto mesh = std::make_shared<const TriMesh>(extract_iso_mesh(*v.spline, v.iso, opt, nullptr, &ms));
     require_finite_points(mesh->positions, "iso-surface vertex");
-    std::filesystem::create_directories(file_.parent_path());
-    write_iso_mesh(file, *mesh);
+    writer_ = [mesh](const std::filesystem::path& out) {
+      std::filesystem::create_directories(out.parent_path());
+      write_iso_mesh(out, *mesh);
+    };
     stats_["vertices"] = mesh->positions.size();
     stats_["triangles"] = mesh->triangles.size();
     v.iso_mesh = std::move(mesh);
   }
+  if (writes_files()) {
+    writer_(file_);
+    mark_written();
+  }
   stats_["path"] = file;
   stats_["ms"] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return v;
+}
+
+void VolumeExportCommand::write_files() {
+  if (!writer_) throw CommandError("'" + p_.object + "' was not exported yet: nothing to write", "object");
+  try {
+    writer_(file_);
+  } catch (const CommandError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw CommandError(std::string("cannot write ") + file_.string() + ": " + e.what(), "path");
+  }
+  mark_written();
 }
 
 }  // namespace trispline::core

@@ -1,9 +1,10 @@
 // `volume.export` — writes a volume's silhouettes or iso-surface to a file.
 //   {"cmd":"volume.export","object":"ID","what":"silhouettes","path":"skull.svg"}
 //   {"cmd":"volume.export","object":"ID","what":"iso","path":"skull.glb","samples_per_voxel":1}
-// what = silhouettes: extracted for `camera` (camera.set's fields; default: the scene camera) (the volume's style, hidden-line mode and projection) and written
-// as SVG (.svg: a line drawing for illustrations, the camera's viewport in pixels) or glTF line strips (.glb: world
-// millimetres, a node "<id>/silhouettes"); the volume keeps them (scene.glb exports them too).
+// what = silhouettes: extracted for `camera` (camera.set's fields; default: the scene camera) (the volume's style,
+// hidden-line mode and projection) and written as SVG (.svg: a line drawing for illustrations, the camera's viewport
+// in pixels) or glTF line strips (.glb: world millimetres, a node "<id>/silhouettes"); the volume keeps them
+// (scene.glb exports them too).
 // what = iso: the surface D = iso as a triangle mesh (OpenVDB volume-to-mesh on the sampled spline, vertices projected
 // onto D = iso: iso_mesh.h) written as .glb, .obj or .ply (world millimetres); the volume keeps it (scene.glb node
 // "<id>/iso").
@@ -13,9 +14,14 @@
 // checked before anything is written: non-finite points or vertices fail the command (field "object"), no file.
 // Undo forgets what the volume kept (the file stays). stats(): what was written (points/polylines or
 // vertices/triangles), the file and ms.
+// A FileOutput (core/commands/file_output.h): with set_writes_files(false) (Open, crash recovery) the volume keeps
+// the same result and no file is written; write_files() writes it later (History's Run again), the same bytes.
 #pragma once
 
+#include <functional>
+
 #include "core/commands/declared_command.h"
+#include "core/commands/file_output.h"
 #include "core/commands/volume_snapshot.h"
 
 namespace trispline::core {
@@ -24,11 +30,12 @@ struct VolumeExportParams {
   std::string object;
   std::string what = "silhouettes";  // silhouettes | iso
   std::string path;
-  int samples_per_voxel = 1;         // iso: IsoMeshOptions::samples_per_voxel
-  std::optional<Camera> camera;      // silhouettes: the view (camera.set's fields); default: the scene camera
+  int samples_per_voxel = 1;     // iso: IsoMeshOptions::samples_per_voxel
+  std::optional<Camera> camera;  // silhouettes: the view (camera.set's fields); default: the scene camera
 };
 
-class VolumeExportCommand : public DeclaredCommand<VolumeExportCommand, VolumeExportParams, VolumeSnapshotCommand> {
+class VolumeExportCommand : public DeclaredCommand<VolumeExportCommand, VolumeExportParams, VolumeSnapshotCommand>,
+                            public FileOutput {
  public:
   // `file`: p.path resolved by CommandContext::resolve_output (absolute, inside the output folder).
   VolumeExportCommand(VolumeExportParams p, std::filesystem::path file)
@@ -37,6 +44,9 @@ class VolumeExportCommand : public DeclaredCommand<VolumeExportCommand, VolumeEx
   // As DeclaredCommand::parse, with `path` resolved by CommandContext::resolve_output.
   static CommandPtr parse(const nlohmann::json& line, const CommandContext& ctx);
   std::string label() const override { return "Export " + p_.what + " of '" + p_.object + "'"; }
+  std::filesystem::path output_path() const override { return file_; }
+  bool writes_itself() const override { return true; }
+  void write_files() override;  // throws CommandError (field "path": cannot write; "object": no redo yet)
 
  protected:
   std::string target() const override { return p_.object; }
@@ -45,6 +55,7 @@ class VolumeExportCommand : public DeclaredCommand<VolumeExportCommand, VolumeEx
 
  private:
   std::filesystem::path file_;
+  std::function<void(const std::filesystem::path&)> writer_;  // writes the first redo's result to a file
 };
 
 }  // namespace trispline::core

@@ -1,8 +1,8 @@
 // The editor session's log and crash recovery, and the Sketch tool's stroke in a session: New/Open keep the crash
 // log aside and never drop the scene for a malformed file, crash recovery never loses the only copy of a log and
 // asks until it is answered, a crashed second editor is offered recovery (a live one is left alone), log write
-// failures are reported, a stroke uses the camera at mouse-down, and hidden objects do not catch placement rays
-// (place.sketch's "ignore").
+// failures are reported, a stroke uses the camera at mouse-down, and objects hidden in the viewport (object.visibility)
+// do not catch placement rays.
 #include "core/commands/place_sketch.h"
 #include "core/commands/codecs.h"
 #include "editor/command_registry.h"
@@ -207,14 +207,16 @@ TEST_F(SessionRecovery, SessionWarnsWhenItsLogFails) {
   s.finish();
 }
 
-// The stroke uses the camera at mouse-down, and hidden objects are listed in "ignore".
+// The stroke uses the camera at mouse-down, and an object hidden in the viewport lets the rays pass (the hiding is in
+// the log, so the line needs no "ignore").
 TEST_F(SessionRecovery, StrokeKeepsItsMouseDownCameraAndIgnoresHidden) {
   editor::EditorSession s(messages_);
   ASSERT_TRUE(test::start_with(s, {kTeapot, kBox}));
   ASSERT_TRUE(s.execute({{"cmd", "scene.primitive"}, {"kind", "box"}, {"name", "veil"}, {"translate", {0, 0, 3}}}));
   core::Camera view = test::framed_view(s.scene(), "teapot");
+  ASSERT_TRUE(s.execute({{"cmd", "object.visibility"}, {"object", "veil"}, {"viewport", false}}));
   const core::Camera at_press = view;
-  test::SketchToolRig rig(s, view, {"veil"});
+  test::SketchToolRig rig(s, view);
   editor::SketchTool& tool = rig.tool;
   rig.press_stroke();
   EXPECT_TRUE(tool.owns_mouse()) << "the editor must not navigate while a stroke is drawn";
@@ -222,18 +224,22 @@ TEST_F(SessionRecovery, StrokeKeepsItsMouseDownCameraAndIgnoresHidden) {
   view.eye += glm::dvec3(0.5, 0.3, 0.0);  // the view changes before mouse-up (resize, follow, ...)
   rig.release_stroke();
   EXPECT_FALSE(tool.owns_mouse());
-  ASSERT_EQ(s.history().applied(), 4u) << (messages_.messages().empty() ? "" : messages_.messages().back().text);
-  const nlohmann::json line = s.history().at(3).to_json();
+  ASSERT_EQ(s.history().applied(), 5u) << (messages_.messages().empty() ? "" : messages_.messages().back().text);
+  const nlohmann::json line = s.history().at(4).to_json();
   const core::Camera used = core::camera_schema().parse(line.at("camera"));
   EXPECT_EQ(used.eye, at_press.eye) << "the stroke's pixels belong to the view at mouse-down";
-  ASSERT_TRUE(line.contains("ignore"));
-  EXPECT_EQ(line["ignore"], nlohmann::json::array({"veil"}));
+  EXPECT_FALSE(line.contains("ignore"));
+  const core::Aabb veil = editor::bounds_of(*s.scene().find("veil")->world_mesh);
+  const core::PlacementRecord& placed = *s.scene().find("crate")->placement;
+  for (const glm::dvec3& p : placed.contact_points)
+    EXPECT_FALSE(glm::all(glm::greaterThan(p, veil.lo - 1e-9)) && glm::all(glm::lessThan(p, veil.hi + 1e-9)))
+        << "a placement ray stopped on the hidden veil";
 
   // A parameter re-run keeps both.
   core::PlaceSketchParams p = tool.params();
   p.height *= 2;
   tool.set_params(p, rig.ctx);
-  const nlohmann::json rerun = s.history().at(3).to_json();
+  const nlohmann::json rerun = s.history().at(4).to_json();
   EXPECT_EQ(rerun["ignore"], line["ignore"]);
   EXPECT_EQ(rerun["camera"], line["camera"]);
   s.finish();
