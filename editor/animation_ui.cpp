@@ -3,6 +3,8 @@
 #include <cmath>
 #include <filesystem>
 
+#include "core/commands/anim_record.h"
+
 namespace fs = std::filesystem;
 
 namespace trispline::editor {
@@ -54,15 +56,10 @@ bool AnimationUi::handle_action(ui::MenuAction action, glm::ivec2 viewport) {
     case A::RecordAnimation:
       if (recorder_) break;
       if (dialog_.out_dir.empty() || dialog_.out_dir == default_out_) {  // the artist's own choice stays
-        // Beside the scene file, like Blender's //render: <scene dir>/<scene stem>_frames/ (untitled: ./frames/).
-        const fs::path doc = session_.document();
-        std::error_code ec;
-        const fs::path out =
-            doc.empty() ? fs::current_path(ec) / "frames" : doc.parent_path() / (doc.stem().string() + "_frames");
-        default_out_ = out.string();
+        default_out_ = default_folder().string();
         dialog_.out_dir = default_out_;
       }
-      ui::open_record_dialog(dialog_, t, viewport.x, viewport.y);
+      ui::open_record_dialog(dialog_, t, viewport.x, viewport.y, session_.scene(), view_);
       break;
     default: return false;
   }
@@ -96,28 +93,71 @@ void AnimationUi::advance(double dt_s) {
   if (!recorder_) ui::advance_playback(playback_, session_.scene().timeline, dt_s);
 }
 
-bool AnimationUi::start_recording(const nlohmann::json& line, const std::function<void()>& restore_context) {
-  if (recorder_ || !session_.execute(line)) return false;  // anim.record validates range, format and size
+namespace {
+
+// The Recorder's options for an executed anim.record (out_dir: `fallback` when the line gave none).
+RecordOptions record_options(const core::RecordRequest& r, const fs::path& fallback) {
   RecordOptions ro;
+  ro.out_dir = r.out_dir.empty() ? fallback : r.out_dir;
+  ro.format = r.format;
+  ro.frame_first = r.frame_first;
+  ro.frame_last = r.frame_last;
+  ro.width = r.width;
+  ro.height = r.height;
+  ro.glb = r.glb;
+  ro.mp4 = r.mp4;
+  ro.camera = r.camera;
+  return ro;
+}
+
+}  // namespace
+
+bool AnimationUi::start_recording(const nlohmann::json& line, const std::function<void()>& restore_context) {
+  if (recorder_ || !session_.execute(line)) return false;  // anim.record validates range, format, size and camera
+  const auto* cmd = dynamic_cast<const core::AnimRecordCommand*>(&session_.history().last_executed());
+  if (cmd) begin_recording(session_.scene(), record_options(cmd->request(), default_folder()));
+  if (restore_context) restore_context();
+  return recorder_ != nullptr;
+}
+
+bool AnimationUi::run_again(std::size_t k, const std::function<void()>& restore_context) {
+  if (k >= session_.history().outputs().size()) return false;
+  HistoryOutput& o = session_.history().output(k);
+  auto* cmd = dynamic_cast<core::AnimRecordCommand*>(o.command.get());
+  if (!cmd) return session_.run_again_output(k);
+  if (recorder_ || !session_.busy().empty()) {
+    messages_.warning("Run again refused: " + (recorder_ ? std::string("a recording runs") : session_.busy()));
+    return false;
+  }
+  if (!o.scene) {
+    messages_.warning(cmd->label() + ": nothing to run again (its frames were recorded)");
+    return false;
+  }
+  // The frames as they were recorded at that step: the scene it ran on, its request (range resolved then).
+  begin_recording(*o.scene, record_options(cmd->request(), default_folder()));
+  if (recorder_) {
+    cmd->mark_written();
+    o.scene.reset();
+  }
+  if (restore_context) restore_context();
+  return recorder_ != nullptr;
+}
+
+void AnimationUi::begin_recording(const core::Scene& scene, const RecordOptions& ro) {
   try {
-    ro.out_dir = line.at("out").get<std::string>();
-    ro.format = line.value("format", std::string("png"));
-    if (line.contains("frames")) {
-      ro.frame_first = line["frames"].at(0).get<int>();
-      ro.frame_last = line["frames"].at(1).get<int>();
-    }
-    ro.width = line.value("width", 0);
-    ro.height = line.value("height", 0);
-    ro.glb = line.value("glb", true);
-    ro.mp4 = line.value("mp4", true);
-    recorder_ = std::make_unique<Recorder>(session_.scene(), ro);
+    recorder_ = std::make_unique<Recorder>(scene, ro);
     record_out_ = ro.out_dir.string();
     messages_.info("recording " + std::to_string(recorder_->frames_total()) + " frames into " + record_out_);
   } catch (const std::exception& e) {
     messages_.error(std::string("cannot record: ") + e.what());
   }
-  if (restore_context) restore_context();
-  return recorder_ != nullptr;
+}
+
+fs::path AnimationUi::default_folder() const {
+  // Beside the scene file, like Blender's //render: <scene dir>/<scene stem>_frames/ (untitled: ./frames/).
+  const fs::path doc = session_.document();
+  std::error_code ec;
+  return doc.empty() ? fs::current_path(ec) / "frames" : doc.parent_path() / (doc.stem().string() + "_frames");
 }
 
 void AnimationUi::draw_record_ui(const std::function<void()>& restore_context) {
@@ -153,27 +193,19 @@ void AnimationUi::draw_record_ui(const std::function<void()>& restore_context) {
   if (restore_context) restore_context();
 }
 
-const core::Scene& AnimationUi::drawn_scene(const std::set<std::string>& hidden) {
+const core::Scene& AnimationUi::drawn_scene() {
   const core::Scene& doc = session_.scene();
-  bool clips = false;
-  for (const core::SceneObject& o : doc.objects()) clips = clips || (o.cpu_animated() && !hidden.count(o.name));
-  if (!clips && hidden.empty()) {
+  bool clips = false;  // a clip object hidden in the viewport is not posed
+  for (const core::SceneObject& o : doc.objects()) clips = clips || (o.cpu_animated() && o.visible);
+  if (!clips) {
     drawn_.reset();
     return doc;
   }
-  const bool fresh = drawn_ && drawn_posed_ == clips && drawn_changes_ == session_.change_count() &&
-                     drawn_hidden_ == hidden && (!clips || drawn_frame_ == playback_.frame);
-  if (!fresh) {
-    if (clips) {
-      drawn_ = core::scene_with_posed_clips(hidden.empty() ? doc : session_.shown_scene(hidden), time_s());
-      ++poses_computed_;
-    } else {
-      drawn_ = session_.shown_scene(hidden);
-    }
-    drawn_posed_ = clips;
+  if (!drawn_ || drawn_changes_ != session_.change_count() || drawn_frame_ != playback_.frame) {
+    drawn_ = core::scene_with_posed_clips(doc, time_s());
+    ++poses_computed_;
     drawn_frame_ = playback_.frame;
     drawn_changes_ = session_.change_count();
-    drawn_hidden_ = hidden;
   }
   return *drawn_;
 }

@@ -7,18 +7,18 @@
 // Split from editor/app.cpp so tests drive it with a session and a headless Dear ImGui frame (no window).
 #pragma once
 
-#include "editor/record.h"
-#include "editor/session.h"
-#include "ui/main_menu.h"
-#include "ui/record_dialog.h"
-#include "ui/timeline_panel.h"
-
 #include <cstdint>
 #include <functional>
 #include <memory>
 #include <optional>
 #include <set>
 #include <string>
+
+#include "editor/record.h"
+#include "editor/session.h"
+#include "ui/main_menu.h"
+#include "ui/record_dialog.h"
+#include "ui/timeline_panel.h"
 
 namespace trispline::editor {
 
@@ -42,10 +42,15 @@ class AnimationUi {
 
   // Executes an anim.record line and starts the Recorder; false (message logged) when either fails.
   bool start_recording(const nlohmann::json& line, const std::function<void()>& restore_context = {});
+  // History's "Run again" of outputs()[k]: an anim.record replayed without recording (Open, recovery) is recorded
+  // from the scene it ran on, no new log line; any other output goes to EditorSession::run_again_output.
+  bool run_again(std::size_t k, const std::function<void()>& restore_context = {});
+  // The current view (the Record dialog offers it as the recorded camera); set every frame by the editor.
+  void set_view(const core::Camera& view) { view_ = view; }
 
-  // The document as drawn at the current frame: hidden objects left out; with clip objects, a posed copy that is
-  // recomputed only when the frame, the document or the hidden set changed. Valid until the next call.
-  const core::Scene& drawn_scene(const std::set<std::string>& hidden);
+  // The document as drawn at the current frame: itself, or with viewport-visible clip objects a posed copy that is
+  // recomputed only when the frame or the document changed. Valid until the next call.
+  const core::Scene& drawn_scene();
 
   ui::Playback& playback() { return playback_; }
   const ui::Playback& playback() const { return playback_; }
@@ -66,13 +71,14 @@ class AnimationUi {
   ui::RecordDialogState dialog_;
   std::unique_ptr<Recorder> recorder_;
   std::string record_out_;
-  std::string default_out_;  // the Record dialog's last default output folder
+  std::string default_out_;                     // the Record dialog's last default output folder
   bool insert_key(const nlohmann::json& line);  // executes an anim.keyframe unless that key exists already
-  std::optional<core::Scene> drawn_;  // a copy when hidden objects or clips make one necessary
-  bool drawn_posed_ = false;
+  void begin_recording(const core::Scene& scene, const RecordOptions& options);  // errors to the Log
+  std::filesystem::path default_folder() const;  // <scene dir>/<scene stem>_frames, untitled: ./frames
+  core::Camera view_;
+  std::optional<core::Scene> drawn_;  // a posed copy when visible clip objects make one necessary
   int drawn_frame_ = 0;
   std::uint64_t drawn_changes_ = 0;
-  std::set<std::string> drawn_hidden_;
   std::uint64_t poses_computed_ = 0;
 };
 

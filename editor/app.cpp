@@ -27,7 +27,7 @@ App::App(const AppOptions& options)
       host_(window_->native(), std::string()),  // fixed docked layout: nothing worth an imgui.ini
       gl_renderer_(gpu::current_gl_renderer()),
       session_(messages_),
-      tool_ctx_{session_, view_, selected_, hidden_,
+      tool_ctx_{session_, view_, selected_,
                 [this](std::string what, std::function<void()> work) { work_.push(std::move(what), std::move(work)); },
                 [this](const nlohmann::json& line, std::string what, std::string verb) {
                   background_.start(line, std::move(what), std::move(verb));
@@ -67,7 +67,7 @@ bool App::transform_input() {
         file_dialog_.is_open() || recovery_ || prompt_for_ != Pending::None)
       return false;
     const core::SceneObject* o = session_.scene().find(selected_);
-    if (!o || !o->world_mesh || hidden_.count(selected_)) return false;
+    if (!o || !o->world_mesh || !o->visible) return false;
     const auto start = std::find_if(keys.begin(), keys.end(), [](const ui::KeyPress& k) {
       return TransformModal::start_key(k).has_value();
     });
@@ -110,7 +110,7 @@ void App::viewport_input() {
 }
 
 void App::render_view() {
-  volumes_.update(anim_.drawn_scene(hidden_), view_);  // live silhouettes for this view, on a worker thread
+  volumes_.update(anim_.drawn_scene(), view_);  // live silhouettes for this view, on a worker thread
   const glm::ivec2 fb = window_->framebuffer_size();
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   glViewport(0, 0, fb.x, fb.y);
@@ -152,11 +152,11 @@ void App::render_view() {
                      ov.lattices.size(), ov.spheres.size(), ov.points.size()};
   try {
     if (transform_.active()) {  // the live preview: a shallow copy with the object moved, the document untouched
-      core::Scene shown = anim_.drawn_scene(hidden_);
+      core::Scene shown = anim_.drawn_scene();
       if (shown.find(transform_.object())) shown.replace(transform_.preview_object());
       renderer_->draw(shown, view_, vo);
     } else {
-      renderer_->draw(anim_.drawn_scene(hidden_), view_, vo);
+      renderer_->draw(anim_.drawn_scene(), view_, vo);
     }
   } catch (const std::exception& e) {
     if (vo.ffd_backend != core::FfdBackend::cpu_ref) {
@@ -195,7 +195,9 @@ void App::frame() {
   }
   if (!session_.scene().find(selected_) && !session_.scene().find_volume(selected_)) selected_.clear();
 
-  handle_menu(ui::draw_main_menu(toggles_, session_.menu_state()));
+  ui::MenuState menu = session_.menu_state();
+  menu.material_shading = gpu::material_shading(session_.scene(), toggles_.shading);
+  handle_menu(ui::draw_main_menu(toggles_, menu));
   // The modal transform (G / R / S) takes every key while it runs: X is then an axis, not Delete.
   transform_frame_ = transform_input();
   // While working or recording only F12 (screenshot) is taken from the keyboard.
@@ -208,6 +210,7 @@ void App::frame() {
 
   // The Timeline spans the window's width above the status bar (Blender); the other panels share the rest.
   anim_.begin_frame(selected_, toggles_.play_animation);
+  anim_.set_view(view_);
   const float timeline_h = toggles_.show_timeline ? ui::timeline_panel_height() : 0.0f;
   layout_ = ui::compute_layout(io.DisplaySize, ImGui::GetFrameHeight(), ui::status_bar_height() + timeline_h, {},
                                toggles_.show_tool_panel, toggles_.show_side_panels, toggles_.show_log_panel);
@@ -234,12 +237,14 @@ void App::frame() {
       }
   }
   if (toggles_.show_side_panels) {
-    ui::ScenePanelState sps{selected_, hidden_, session_.has_command("scene.remove"), &transform_fields_};
+    ui::ScenePanelState sps{selected_, session_.has_command("scene.remove"), &transform_fields_};
     handle_scene(ui::draw_scene_panel(layout.scene, session_.scene(), sps));
     const ui::HistoryPanelResult hr = ui::draw_history_panel(layout.history, session_.history_view());
     if (hr.jump_to) session_.jump_to(*hr.jump_to);
     if (hr.undo) session_.undo();
     if (hr.redo) session_.redo();
+    if (hr.run_again) session_.run_again(*hr.run_again);  // a file an opened log did not write
+    if (hr.run_again_output) anim_.run_again(*hr.run_again_output, [this] { window_->make_current(); });
   }
   ImGui::EndDisabled();
   if (toggles_.show_log_panel) log_panel_.draw(layout.log, messages_);
@@ -302,7 +307,10 @@ void App::write_probe() {
   p["document"] = session_.document().string();
   p["modified"] = session_.modified();
   const ui::HistoryView hv = session_.history_view();
-  p["history"] = {{"labels", hv.labels}, {"applied", hv.applied}};
+  p["history"] = {{"labels", hv.labels}, {"applied", hv.applied}, {"not_written", hv.not_written}};
+  p["history"]["outputs"] = nlohmann::json::array();
+  for (const ui::HistoryOutputRow& o : hv.outputs)
+    p["history"]["outputs"].push_back({{"after", o.after}, {"label", o.label}, {"not_written", o.not_written}});
   const glm::dvec2 scale(ImGui::GetIO().DisplayFramebufferScale.x, ImGui::GetIO().DisplayFramebufferScale.y);
   nlohmann::json objects = nlohmann::json::array(), object_px = nlohmann::json::object();
   for (const core::SceneObject& o : session_.scene().objects()) {
@@ -317,6 +325,15 @@ void App::write_probe() {
   for (const core::SceneObject& o : session_.scene().objects())
     if (o.animated()) animated.push_back(o.name);
   p["animated"] = animated;
+  nlohmann::json hidden = nlohmann::json::array(), render_hidden = nlohmann::json::array();  // object.visibility
+  auto add_hidden = [&](const std::string& name, bool visible, bool rendered) {
+    if (!visible) hidden.push_back(name);
+    if (!rendered) render_hidden.push_back(name);
+  };
+  for (const core::SceneObject& o : session_.scene().objects()) add_hidden(o.name, o.visible, o.render_visible);
+  for (const core::VolumeObject& v : session_.scene().volumes()) add_hidden(v.name, v.visible, v.render_visible);
+  p["hidden"] = hidden;
+  p["render_hidden"] = render_hidden;
   p["selected"] = selected_;
   p["tool"] = tools_.tool().entry().name;
   const auto& oc = overlay_counts_;

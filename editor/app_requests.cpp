@@ -1,5 +1,6 @@
 #include "editor/app_state.h"
 
+#include "core/commands/object_visibility.h"
 #include "core/commands/volume_remove.h"
 
 namespace trispline::editor {
@@ -14,7 +15,6 @@ void App::open_later(const fs::path& log) {
     session_.open(log);
     if (session_.change_count() == before) return;  // rejected before anything changed: the scene is kept
     selected_.clear();
-    hidden_.clear();
     // The log's last camera.set is the view it was saved with: shown as it is (even when the same log is opened
     // again after orbiting); a log without one is framed.
     if (session_.scene().camera_set)
@@ -68,7 +68,6 @@ void App::go_on(Pending what) {
   if (what == Pending::New) {
     session_.new_document();
     selected_.clear();
-    hidden_.clear();
   }
   if (what == Pending::Open) ask_file(FilePurpose::OpenLog);
 }
@@ -145,7 +144,14 @@ void App::handle_scene(const ui::SceneRequest& r) {
   using K = ui::SceneRequest::Kind;
   if (r.kind == K::Select || r.kind == K::Frame) selected_ = r.name;
   if (r.kind == K::Frame) frame_selected();
-  if (r.kind == K::ToggleVisible && !hidden_.erase(r.name)) hidden_.insert(r.name);
+  if (r.kind == K::ToggleVisible || r.kind == K::ToggleRender) {  // the eye or camera icon: one step in the log
+    const core::SceneObject* o = session_.scene().find(r.name);
+    const core::VolumeObject* v = session_.scene().find_volume(r.name);
+    core::ObjectVisibilityParams p{r.name, {}, {}};
+    if (r.kind == K::ToggleVisible && (o || v)) p.viewport = !(o ? o->visible : v->visible);
+    if (r.kind == K::ToggleRender && (o || v)) p.render = !(o ? o->render_visible : v->render_visible);
+    if (p.viewport || p.render) session_.execute(core::ObjectVisibilityCommand::schema().to_json(p));
+  }
   if (r.kind == K::Load) ask_file(FilePurpose::LoadMesh);
   if (r.kind == K::Transform) {  // one Scene panel field left after an edit: one step
     core::ObjectTransformParams p{r.name, {}, {}, {}};

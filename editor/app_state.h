@@ -119,7 +119,6 @@ class App {
   Clock::time_point moved_at_{};   // when it last changed (the tile layers' motion LOD)
 
   std::string selected_;
-  std::set<std::string> hidden_;
   ui::ViewToggles toggles_;
   ToolContext tool_ctx_;
   Toolbox tools_;

@@ -21,6 +21,7 @@
 #include "core/commands/mesh_refine.h"
 #include "core/commands/mesh_subdivide.h"
 #include "core/commands/object_transform.h"
+#include "core/commands/object_visibility.h"
 #include "core/commands/ddm_animate.h"
 #include "core/commands/ddm_commands.h"
 #include "core/commands/ddm_paint.h"
@@ -68,6 +69,7 @@ const CommandRegistry& CommandRegistry::builtin() {
     r.add<core::ScenePrimitiveCommand>();
     r.add<core::SceneRemoveCommand>();
     r.add<core::ObjectTransformCommand>();
+    r.add<core::ObjectVisibilityCommand>();
     r.add<core::CameraSetCommand>();
     r.add<core::PlaceSketchCommand>();
     r.add<core::LatticeRingCommand>();

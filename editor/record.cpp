@@ -17,8 +17,8 @@
 
 #include "core/commands/anim_record.h"
 #include "core/mesh/gltf_anim_io.h"
-#include "core/scene/scene_export.h"
 #include "core/mesh/image_io.h"
+#include "core/scene/scene_export.h"
 #include "editor/process.h"
 #include "editor/render_scene.h"
 
@@ -172,11 +172,13 @@ struct Recorder::Impl {
 Recorder::Recorder(const core::Scene& scene, RecordOptions options) : impl_(std::make_unique<Impl>()) {
   validate_record_options(scene, options);
   Impl& d = *impl_;
-  d.scene = scene;
+  d.scene = core::render_visible_scene(scene);  // render-hidden objects and volumes cost nothing below
   d.options = std::move(options);
   std::tie(d.first, d.last) = record_range(d.scene, d.options);
   d.next = d.first;
-  d.camera = d.scene.camera_set ? d.scene.camera : framing_camera(d.scene, d.options.width, d.options.height);
+  d.camera = d.options.camera     ? *d.options.camera
+             : d.scene.camera_set ? d.scene.camera
+                                  : framing_camera(d.scene, d.options.width, d.options.height);
   if (d.options.width > 0) d.camera.viewport = {d.options.width, d.options.height};
   if (d.options.images) {
     d.renderer = std::make_unique<HeadlessRenderer>();

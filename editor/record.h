@@ -1,7 +1,8 @@
 // trispline::editor recording — renders a range of timeline frames to numbered images, an animated GLB and an MP4
 // (seed §2.4.3 animation sequences; the anim.record command, the editor's Record button, replay --frames).
 //
-// Every frame is rendered from core::scene_at_time(scene, timeline.time_of_frame(f)) by one persistent headless
+// Every frame is rendered from core::scene_at_time(s, timeline.time_of_frame(f)), s = core::render_visible_scene(scene)
+// (objects and volumes out of renders are left out before anything is posed or drawn), by one persistent headless
 // renderer (EGL surfaceless; llvmpipe when there is no GPU), at a fixed size, with the scene's camera. A frame
 // depends only on the scene and its frame number — never on the frames rendered before it — so any split of a
 // range (a render farm) writes the same bytes per frame as a full recording.
@@ -26,6 +27,7 @@
 #include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -48,6 +50,7 @@ struct RecordOptions {
   int piece_base = -1;
   bool mp4 = true;             // write animation.mp4 when ffmpeg is available (reported when it is not)
   core::FfdBackend ffd_backend = core::FfdBackend::cpu_ref;  // geometry path (cpu_ref: bit-exact frames)
+  std::optional<core::Camera> camera;  // the view every frame is rendered from (anim.record's camera); unset: below
 };
 
 // What a recording produced (report.json "record", the editor's message log).
@@ -74,8 +77,9 @@ void validate_record_options(const core::Scene& scene, const RecordOptions& opti
 // GL context: when a context is current on the calling thread at construction (the editor's window), the recorder
 // draws with it into its own offscreen target — step() and the destructor must then run with that context current
 // (it restores the framebuffer binding and viewport after each frame); otherwise it makes a private EGL context.
-// The camera is the scene's (framing_camera of the un-posed scene when none was set), fixed for all frames; clip
-// planes are fitted to each posed frame. The viewport's ground grid is not drawn.
+// The camera is options.camera, else the scene's (framing_camera of the un-posed scene when none was set), fixed for
+// all frames (its viewport replaced by width × height when given); clip planes are fitted to each posed frame. The
+// viewport's ground grid is not drawn.
 class Recorder {
  public:
   Recorder(const core::Scene& scene, RecordOptions options);

@@ -1,6 +1,7 @@
 #include "editor/render_scene.h"
 
 #include "core/commands/anim_record.h"
+#include "core/scene/scene_export.h"
 
 #include <algorithm>
 #include <chrono>
@@ -191,10 +192,11 @@ bool HeadlessRenderer::owns_context() const { return impl_->context.has_value();
 
 RenderedImage render_scene_headless(const core::Scene& document, int width, int height,
                                     const RenderSettings& settings) {
+  const core::Scene rendered = core::render_visible_scene(document);  // what renders show (object.visibility)
   // Objects the renderer cannot animate (glTF clips, DFFD splits) are evaluated on the CPU at the requested time.
   bool cpu_animated = false;
-  for (const core::SceneObject& o : document.objects()) cpu_animated = cpu_animated || o.cpu_animated();
-  const core::Scene scene = cpu_animated ? core::scene_with_posed_clips(document, settings.time_s) : document;
+  for (const core::SceneObject& o : rendered.objects()) cpu_animated = cpu_animated || o.cpu_animated();
+  const core::Scene scene = cpu_animated ? core::scene_with_posed_clips(rendered, settings.time_s) : rendered;
   HeadlessRenderer headless;
   const core::Camera cam = render_camera(scene, width, height);
   auto draw = [&] { return headless.draw(scene, cam, settings); };

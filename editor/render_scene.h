@@ -88,7 +88,8 @@ class HeadlessRenderer {
   std::unique_ptr<Impl> impl_;
 };
 
-// Renders with the scene's camera (or framing_camera when none was set). width/height 0 = the camera's viewport;
+// Renders the render-visible objects and volumes (core::render_visible_scene: object.visibility's `render`) with the
+// scene's camera (or framing_camera of them when none was set). width/height 0 = the camera's viewport;
 // otherwise the camera's viewport is replaced (aspect follows). Throws gpu::GlContextError / std::runtime_error.
 // Three frames are drawn: timings.ffd_* are those of a frame that uploads and evaluates with shader programs already
 // built (as the editor's first frame after a command), draw_ms that of a steady frame; the image is the last frame.

@@ -1,6 +1,7 @@
 #include "editor/replay.h"
 
 #include "core/commands/anim_record.h"
+#include "core/commands/file_output.h"
 #include "core/mesh/gltf_io.h"
 #include "core/scene/scene_export.h"
 #include "core/mesh/image_io.h"
@@ -136,6 +137,7 @@ int run_recordings(const core::Scene& scene, const std::vector<PendingRecording>
       ro.height = p.request.height;
       ro.glb = p.request.glb;
       ro.mp4 = p.request.mp4;
+      ro.camera = p.request.camera;
       nlohmann::json j = record_into(p.scene, ro).to_json();
       j["line"] = p.line;
       all.push_back(j);
@@ -153,7 +155,7 @@ int run_recordings(const core::Scene& scene, const std::vector<PendingRecording>
 }  // namespace
 
 ReplayResult replay_lines(History& history, const std::filesystem::path& log_path, const ReplayHook& on_executed,
-                          const std::filesystem::path& output_dir) {
+                          const std::filesystem::path& output_dir, FileWrites writes) {
   ReplayResult result;
   std::vector<LogLine> lines;
   try {
@@ -197,7 +199,9 @@ ReplayResult replay_lines(History& history, const std::filesystem::path& log_pat
         undo ? history.undo() : history.redo();
         rec.milliseconds = ms_since(t0);
       } else {
-        rec = history.execute(registry.parse(line.json, ctx));
+        core::CommandPtr cmd = registry.parse(line.json, ctx);
+        if (core::FileOutput* out = core::file_output(*cmd)) out->set_writes_files(writes == FileWrites::write);
+        rec = history.execute(std::move(cmd));
         rec.log_line = line.number;
         if (on_executed) on_executed(history.last_executed(), line.number);
       }
@@ -240,7 +244,7 @@ int run_replay(const ReplayOptions& options) {
   std::vector<PendingRecording> pending;  // the log's anim.record lines, with the scene as it was at each
   const ReplayHook hook = [&](const core::Command& command, int line) {
     if (options.frames_given || options.out_dir.empty()) return;
-    if (const auto* rec = dynamic_cast<const core::AnimRecordCommand*>(&command))
+    if (const auto* rec = dynamic_cast<const core::AnimRecordCommand*>(&command); rec && rec->writes_files())
       pending.push_back({line, scene, rec->request()});
   };
   ReplayResult result = replay_lines(history, options.log, hook, options.out_dir);

@@ -61,10 +61,17 @@ struct ReplayResult {
 // held by the history) and its 1-based log line; the history's scene is in the state right after it.
 using ReplayHook = std::function<void(const core::Command& command, int log_line)>;
 
+// Whether a replay writes the files of the commands that write files (core::FileOutput: volume.export, anim.record).
+enum class FileWrites {
+  write,  // headless replay: under its --out folder
+  skip,   // the editor's Open and crash recovery: the scene is re-created, no file is written (History: Run again)
+};
+
 // Replays `lines` of a log into `history` (and its scene). Stops at the first failing line. Relative paths of files
-// the log's commands write (volume.export) go under `output_dir` (empty: the log's folder).
-ReplayResult replay_lines(History& history, const std::filesystem::path& log_path,
-                          const ReplayHook& on_executed = {}, const std::filesystem::path& output_dir = {});
+// the log's commands write (volume.export) go under `output_dir` (empty: the log's folder); with FileWrites::skip
+// none is written.
+ReplayResult replay_lines(History& history, const std::filesystem::path& log_path, const ReplayHook& on_executed = {},
+                          const std::filesystem::path& output_dir = {}, FileWrites writes = FileWrites::write);
 // "A-B" (or "A" for one frame): non-negative frame numbers, A ≤ B; nullopt for anything else.
 std::optional<std::pair<int, int>> parse_frame_range(const std::string& text);
 

@@ -1,8 +1,10 @@
 // `scene.load` — adds a mesh file as a new object.
 //   {"cmd":"scene.load","path":"PATH","name":"ID","translate":[x,y,z],"rotate_deg":[x,y,z],"scale":s|[sx,sy,sz],
 //    "color":[r,g,b],"loose":"refuse"|"ignore"}
-// path: OBJ, PLY, OFF, STL (assimp) or glTF/GLB (tinygltf), relative to the log's folder unless absolute; the file
-// loads whole or the command fails (core::load_mesh).
+// path: OBJ, PLY, OFF, STL, Collada, FBX (assimp) or glTF/GLB (tinygltf), relative to the log's folder unless
+// absolute; the file loads whole or the command fails (core::load_model): the object keeps the file's materials, their
+// images and its parts (SceneObject::materials, ::parts). A texture that cannot be read does not fail the command:
+// stats() names it under "texture_errors" (and a material library left out under "warnings").
 // loose: what to do with point and line elements beside the faces: "refuse" (default: the command fails naming their
 // counts) or "ignore" (they are left out; stats() counts them as ignored_points / ignored_lines).
 // The command's own log line (to_json) holds the absolute path, so session logs replay from any folder.
@@ -12,7 +14,7 @@
 
 #include "core/commands/add_object_command.h"
 #include "core/commands/declared_command.h"
-#include "core/mesh/mesh_io.h"
+#include "core/mesh/model_load.h"
 
 namespace trispline::core {
 
@@ -32,6 +34,7 @@ class SceneLoadCommand : public DeclaredCommand<SceneLoadCommand, SceneLoadParam
  protected:
   ObjectFields& object_fields() override { return p_.object; }
   TriMesh make_mesh() const override;
+  std::optional<SceneObject> build(const Scene& scene) override;
   std::string default_name() const override { return std::filesystem::path(p_.path).stem().string(); }
   std::string source() const override { return p_.path; }
   std::string failure_field() const override { return "path"; }
@@ -39,6 +42,7 @@ class SceneLoadCommand : public DeclaredCommand<SceneLoadCommand, SceneLoadParam
 
  private:
   mutable MeshLoadReport report_;  // of the last make_mesh()
+  mutable LoadedModel loaded_;     // the last make_mesh()'s materials, parts and warnings (its mesh moved out)
 };
 
 }  // namespace trispline::core

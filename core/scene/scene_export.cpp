@@ -9,7 +9,19 @@ namespace trispline::core {
 SceneExport scene_export_nodes(const Scene& scene) {
   SceneExport out;
   for (const SceneObject& o : scene.objects()) {
-    if (o.world_mesh) out.nodes.push_back({o.name, o.world_mesh.get(), o.color, o.inside_color});
+    if (!o.render_visible) continue;
+    if (o.world_mesh) {
+      GltfNode node{o.name, o.world_mesh.get(), o.color, o.inside_color};
+      node.materials = o.materials;
+      // An undeformed object loaded from a file of several nodes writes the file's node tree back (write_glb checks
+      // that the parts still cover its rest mesh exactly).
+      if (!o.parts.empty() && !o.ffd && !o.dffd && !o.clip && !o.morph) {
+        node.parts = &o.parts;
+        node.rest_mesh = o.rest_mesh.get();
+        node.object_to_world = o.transform.matrix();
+      }
+      out.nodes.push_back(node);
+    }
     for (const auto& layer : o.ddm_layers) {
       if (!layer->mesh) continue;
       auto world = std::make_shared<const TriMesh>(ddm_layer_world_mesh(o, *layer, *layer->mesh, 0.0));
@@ -18,6 +30,7 @@ SceneExport scene_export_nodes(const Scene& scene) {
     }
   }
   for (const VolumeObject& v : scene.volumes()) {
+    if (!v.render_visible) continue;
     if (v.iso_mesh) out.nodes.push_back({v.name + "/iso", v.iso_mesh.get(), v.color, v.color});
     if (!v.silhouette.enabled) continue;
     // The silhouettes of the scene's current camera (extracted again when the stored ones are for another view).
@@ -36,6 +49,26 @@ SceneExport scene_export_nodes(const Scene& scene) {
     node.line_strips = strips.get();
     out.nodes.push_back(node);
     out.owned_strips.push_back(std::move(strips));
+  }
+  return out;
+}
+
+Scene render_visible_scene(const Scene& scene) {
+  Scene out = scene;
+  for (const SceneObject& o : scene.objects()) {
+    if (!o.render_visible)
+      out.remove(o.name);
+    else if (!o.visible)
+      out.find(o.name)->visible = true;
+  }
+  for (const VolumeObject& v : scene.volumes()) {
+    if (!v.render_visible) {
+      out.remove_volume(v.name);
+    } else if (!v.visible) {
+      VolumeObject shown = v;
+      shown.visible = true;
+      out.replace_volume(std::move(shown));
+    }
   }
   return out;
 }

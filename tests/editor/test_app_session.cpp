@@ -200,7 +200,8 @@ TEST(AppPick, PicksTheObjectUnderTheCursor) {
   const core::Camera c = nav.camera({400, 300});
   EXPECT_EQ(editor::pick_object(s.scene(), c, {200, 150}).value_or(""), "teapot");
   EXPECT_FALSE(editor::pick_object(s.scene(), c, {2, 2}));
-  EXPECT_FALSE(editor::pick_object(s.scene(), c, {200, 150}, {"teapot"})) << "hidden objects are not picked";
+  ASSERT_TRUE(s.execute({{"cmd", "object.visibility"}, {"object", "teapot"}, {"viewport", false}}));
+  EXPECT_FALSE(editor::pick_object(s.scene(), c, {200, 150})) << "hidden objects are not picked";
 }
 
 TEST(AppNavigation, OrbitPanZoomFrame) {

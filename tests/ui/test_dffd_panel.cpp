@@ -134,8 +134,7 @@ TEST(DffdSplitTool, SplitIsOneUndoableCommand) {
                          {"scale", {0.2, 0.9, 0.2}}}));
   core::Camera view;
   std::string selected = "ball";
-  std::set<std::string> hidden;
-  editor::ToolContext ctx{s, view, selected, hidden, [](std::string, std::function<void()> work) { work(); },
+  editor::ToolContext ctx{s, view, selected, [](std::string, std::function<void()> work) { work(); },
                           nullptr};
   editor::Toolbox box(ctx);
   box.set_active(editor::Toolbox::kDffdSplit);
@@ -145,9 +144,9 @@ TEST(DffdSplitTool, SplitIsOneUndoableCommand) {
   ASSERT_EQ(candidates.size(), 1u) << "the other visible objects";
   EXPECT_EQ(candidates[0].name, "bar");
   EXPECT_NEAR(candidates[0].extent.x, 0.4, 1e-9);
-  hidden.insert("bar");
+  ASSERT_TRUE(s.execute({{"cmd", "object.visibility"}, {"object", "bar"}, {"viewport", false}}));
   EXPECT_TRUE(tool.candidates(ctx, "ball").empty()) << "hidden objects are not offered";
-  hidden.clear();
+  ASSERT_TRUE(s.undo());
 
   core::DffdSplitParams& p = tool.params();
   p.obstacles = {"bar"};

@@ -187,27 +187,30 @@ TEST_F(TimelineUi, AnimatePopupLinesAddCopiesAndReportClipErrors) {
 }
 
 TEST_F(TimelineUi, ClipObjectsAreDrawnPosedAtTheFrameAndCachedPerFrame) {
-  EXPECT_EQ(&anim.drawn_scene({}), &s.scene()) << "no clip, nothing hidden: the document itself";
+  EXPECT_EQ(&anim.drawn_scene(), &s.scene()) << "no clip: the document itself";
   ASSERT_TRUE(s.open(logs_dir() / "clip_walk.jsonl"));
   anim.begin_frame("cube", false);
-  const core::Scene& a = anim.drawn_scene({});
+  const core::Scene& a = anim.drawn_scene();
   EXPECT_EQ(anim.poses_computed(), 1u);
   const std::vector<glm::dvec3> rest_1 = a.find("cube")->rest_mesh->positions;
-  anim.drawn_scene({});
+  anim.drawn_scene();
   EXPECT_EQ(anim.poses_computed(), 1u) << "same frame, same document: the cached pose";
   anim.playback().frame = 13;
   anim.begin_frame("cube", false);
-  const core::Scene& b = anim.drawn_scene({});
+  const core::Scene& b = anim.drawn_scene();
   EXPECT_EQ(anim.poses_computed(), 2u);
   EXPECT_NE(b.find("cube")->rest_mesh->positions, rest_1) << "the clip poses the rest mesh at the frame's time";
   const core::Scene expected = core::scene_with_posed_clips(s.scene(), s.scene().timeline.time_of_frame(13));
   EXPECT_EQ(b.find("cube")->rest_mesh->positions, expected.find("cube")->rest_mesh->positions);
   EXPECT_FALSE(b.find("cube")->offset_keys.empty()) << "offset keys stay for the renderer to play";
-  anim.drawn_scene({"teapot"});
-  EXPECT_EQ(anim.poses_computed(), 3u) << "another hidden set";
-  EXPECT_FALSE(anim.drawn_scene({"teapot"}).find("teapot")->visible);
+  ASSERT_TRUE(s.execute({{"cmd", "object.visibility"}, {"object", "teapot"}, {"viewport", false}}));
+  EXPECT_FALSE(anim.drawn_scene().find("teapot")->visible);
+  EXPECT_EQ(anim.poses_computed(), 3u) << "the document changed (the teapot hidden)";
+  ASSERT_TRUE(s.execute({{"cmd", "object.visibility"}, {"object", "cube"}, {"viewport", false}}));
+  EXPECT_EQ(&anim.drawn_scene(), &s.scene()) << "the clip object hidden in the viewport: nothing posed";
+  EXPECT_EQ(anim.poses_computed(), 3u);
   ASSERT_TRUE(s.undo());
-  anim.drawn_scene({"teapot"});
+  anim.drawn_scene();
   EXPECT_EQ(anim.poses_computed(), 4u) << "the document changed";
 }
 
