@@ -122,11 +122,14 @@ void MaterialTextures::bind(const core::Material& m, const core::MaterialSet& se
   const TextureColorSpace spaces[kUnits] = {TextureColorSpace::srgb, TextureColorSpace::linear,
                                             TextureColorSpace::linear, TextureColorSpace::linear,
                                             TextureColorSpace::srgb};
+  // Every texture is resolved (created and uploaded on first use, which binds it on the active unit) before any
+  // unit is bound, so no upload replaces a unit's binding.
+  GLuint tex[kUnits];
+  for (int u = 0; u < kUnits; ++u)
+    tex[u] = texture_or_default(*slots[u], set, spaces[u], u == 2 ? flat_normal() : white());
   for (int u = 0; u < kUnits; ++u) {
-    const GLuint fallback = u == 2 ? flat_normal() : white();
-    const GLuint tex = texture_or_default(*slots[u], set, spaces[u], fallback);
     glActiveTexture(GLenum(GL_TEXTURE0 + u));
-    glBindTexture(GL_TEXTURE_2D, tex);
+    glBindTexture(GL_TEXTURE_2D, tex[u]);
     glBindSampler(GLuint(u), sampler(slots[u]->present() ? slots[u]->sampler : core::TextureSampler{}));
   }
   glActiveTexture(GL_TEXTURE0);

@@ -99,10 +99,11 @@ struct FlatSetup {
   glm::vec2 viewport{0.0f};
   float outline_px = 0.0f;
   bool outline = false;
+  glm::vec3 outline_center{0.0f};  // world units
   void operator()(const ShaderProgram& p) const {
     p.set("u_view_proj", view_proj);
     p.set("u_flat_color", color);
-    if (outline) p.set("u_viewport", viewport), p.set("u_outline_px", outline_px);
+    if (outline) p.set("u_viewport", viewport), p.set("u_outline_px", outline_px), p.set("u_outline_center", outline_center);
   }
   void layer(const ShaderProgram&, const core::DdmLayer&) const {}
 };
@@ -218,12 +219,13 @@ void DdmDisplay::draw_flat(const core::Scene& scene, double time_s, const glm::m
 }
 
 void DdmDisplay::draw_outline(const core::SceneObject& object, double time_s, const glm::mat4& view_proj,
-                              const glm::vec2& viewport, float outline_px, const glm::vec4& color) {
+                              const glm::vec2& viewport, float outline_px, const glm::vec4& color,
+                              const glm::vec3& center) {
   bool any = false;
   for (const auto& layer : object.ddm_layers) any = any || has_instances(layer);
   if (!object.visible || !any) return;
   draw_object(object, time_s, {{"OUTLINE", ""}, {"FLAT_COLOR", ""}},
-              FlatSetup{view_proj, color, viewport, outline_px, true});
+              FlatSetup{view_proj, color, viewport, outline_px, true, center});
 }
 
 void DdmDisplay::release_unused(const core::Scene& scene) {

@@ -44,9 +44,10 @@ class DdmDisplay {
                        const glm::vec3& key_dir, const std::string& selected, const DdmViewOptions& view = {});
   // Wireframe overlay pass (polygon mode GL_LINE set by the caller): every visible object's layers in `color`.
   void draw_flat(const core::Scene& scene, double time_s, const glm::mat4& view_proj, const glm::vec4& color);
-  // Selection outline of `object`'s layers (the caller set stencil and depth state, as for the object's outline).
+  // Selection outline of `object`'s layers (the caller set stencil and depth state, as for the object's outline);
+  // `center`: the object's centre, world units (outline.glsl pushes tiles seen face-on away from it).
   void draw_outline(const core::SceneObject& object, double time_s, const glm::mat4& view_proj,
-                    const glm::vec2& viewport, float outline_px, const glm::vec4& color);
+                    const glm::vec2& viewport, float outline_px, const glm::vec4& color, const glm::vec3& center);
   void release_unused(const core::Scene& scene);
   DdmGl& gl() { return gl_; }
 

@@ -116,6 +116,7 @@ void Renderer::Impl::draw_outline(const Frame& f, const core::SceneObject& o, st
     p.set("u_viewport", glm::vec2(f.vp));
     p.set("u_outline_px", f.options.style.outline_px);
     p.set("u_flat_color", detail::rgba(f.options.style.selection_color));
+    p.set("u_outline_center", cached(shown).center);
   };
   const ShaderDefines plain{{"OUTLINE", ""}, {"FLAT_COLOR", ""}};
   if (!has_material(f, o)) {

@@ -1,6 +1,7 @@
 #include "core/mesh/assimp_io.h"
 
 #include <assimp/MemoryIOWrapper.h>
+#include <assimp/config.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
@@ -216,6 +217,8 @@ AssimpModel read_assimp_mesh(const std::filesystem::path& path, const std::strin
   const bool serve_mtl = materials && ext == ".obj" && mtllibs && !mtllibs->empty();
   if (serve_mtl) mtl = served_mtl(path, *mtllibs, result.warnings);
   importer.SetIOHandler(new ServedFilesIOSystem(name, bytes, serve_mtl ? &mtl : nullptr));  // the importer owns it
+  // Collada nodes keep their `name` attribute (as Blender's importer does), not their `id`.
+  importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_USE_COLLADA_NAMES, true);
   const aiScene* scene = importer.ReadFile(name, aiProcess_ValidateDataStructure);
   auto refuse_if_repaired = [&] {
     for (const std::string& w : warnings)

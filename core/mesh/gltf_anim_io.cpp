@@ -240,6 +240,7 @@ void MorphAnimationBuilder::write_glb(const std::filesystem::path& path) const {
   model.buffers.resize(1);
   tinygltf::Scene scene;
   gltf_materials::GltfMaterialWriter writer(model);
+  scene.name = "Scene";  // named, so a scene without nodes is still written as an object (tinygltf drops `{}`)
   std::vector<float> times(frames_);
   for (int k = 0; k < frames_; ++k) times[k] = static_cast<float>(k / fps_);
   tinygltf::Animation anim;

@@ -284,6 +284,7 @@ void write_glb(const std::filesystem::path& path, const std::vector<GltfNode>& n
   model.buffers.resize(1);
   gltf_materials::GltfMaterialWriter writer(model);
   tinygltf::Scene scene;
+  scene.name = "Scene";  // named, so a scene without nodes is still written as an object (tinygltf drops `{}`)
   for (const auto& gn : nodes) {
     tinygltf::Node node;
     node.name = gn.name;

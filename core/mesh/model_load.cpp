@@ -2,6 +2,8 @@
 #include "core/mesh/model_load.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <set>
 
 #include "core/mesh/assimp_io.h"
 #include "core/mesh/file_check.h"
@@ -15,6 +17,27 @@ namespace fs = std::filesystem;
 bool inside(const fs::path& p, const fs::path& folder) {
   const fs::path rel = p.lexically_relative(folder);
   return !rel.empty() && *rel.begin() != ".." && rel != ".";
+}
+
+// Part names made unique as Blender names objects: a second "bottle" becomes "bottle.001" (a Collada rack names
+// every instance of a bottle alike; exported nodes are `<object>/<part>` and importers key objects by name). A
+// name no later part holds is taken; an empty name becomes "part".
+void make_part_names_unique(std::vector<MeshPart>& parts) {
+  std::set<std::string> original, used;
+  for (const MeshPart& p : parts) original.insert(p.name.empty() ? "part" : p.name);
+  for (MeshPart& p : parts) {
+    if (p.name.empty()) p.name = "part";
+    if (used.insert(p.name).second) continue;
+    for (int k = 1;; ++k) {
+      char suffix[16];
+      std::snprintf(suffix, sizeof suffix, ".%03d", k);
+      const std::string candidate = p.name + suffix;
+      if (!original.count(candidate) && used.insert(candidate).second) {
+        p.name = candidate;
+        break;
+      }
+    }
+  }
 }
 
 }  // namespace
@@ -69,6 +92,7 @@ std::size_t finish_loaded_mesh(TriMesh& mesh, std::vector<MeshPart>& parts, cons
       kept_before += kept;
     }
   }
+  make_part_names_unique(parts);
   if (mesh.normals.empty()) compute_vertex_normals(mesh);
   return removed;
 }

@@ -48,7 +48,8 @@ LoadedModel load_model(const std::filesystem::path& path, const MeshLoadOptions&
                        MeshLoadReport* report = nullptr);
 
 // Removes repeated triangles (remove_duplicate_triangles) keeping `parts`' triangle ranges consistent, checks the
-// mesh (validate_mesh) and computes missing normals: what every loader does last. Returns the number removed.
+// mesh (validate_mesh), makes part names unique (Blender's ".001" suffixes; an unnamed part is "part") and computes
+// missing normals: what every loader does last. Returns the number removed.
 std::size_t finish_loaded_mesh(TriMesh& mesh, std::vector<MeshPart>& parts, const std::string& what);
 
 // The bytes of the file `relative` names (as written in the model: '/' or '\' separators) under the folder of

@@ -173,8 +173,7 @@ void decode_slice(const SliceHeader& slice, const std::filesystem::path& report,
   const gdcm::File& file = reader.GetFile();
   const gdcm::DataSet& data_set = file.GetDataSet();
   const gdcm::Tag pixel_tag(0x7FE0, 0x0010);
-  if (!data_set.FindDataElement(pixel_tag) || data_set.GetDataElement(pixel_tag).IsEmpty())
-    fail(report, slice.name + ": no Pixel Data (7FE0,0010)");
+  if (!data_set.FindDataElement(pixel_tag)) fail(report, slice.name + ": no Pixel Data (7FE0,0010)");
   const gdcm::TransferSyntax syntax = file.GetHeader().GetDataSetTransferSyntax();
   if (!syntax.IsValid()) fail(report, slice.name + ": unknown " + slice.transfer_syntax);
   gdcm::Image image;

@@ -248,7 +248,14 @@ TEST_F(TimelineUi, RecordDialogDefaultsAndShortRecordingStepsOncePerUiFrame) {
   EXPECT_EQ(d.frames[1], 120);
   EXPECT_EQ(d.size[0], 640);
   EXPECT_EQ(d.size[1], 360);
-  EXPECT_EQ(ui::record_line(d).dump(),
+  // No camera.set in this scene: the dialog presets the current view, which the line carries as its camera.
+  EXPECT_FALSE(d.scene_camera_set);
+  EXPECT_EQ(d.camera, ui::kCurrentView);
+  nlohmann::json line = ui::record_line(d);
+  ASSERT_TRUE(line.contains("camera"));
+  EXPECT_EQ(line["camera"]["viewport"], nlohmann::json({d.view.viewport.x, d.view.viewport.y}));
+  line.erase("camera");
+  EXPECT_EQ(line.dump(),
             nlohmann::json({{"cmd", "anim.record"}, {"out", d.out_dir}, {"format", "png"}, {"frames", {1, 120}},
                             {"glb", true}, {"mp4", true}, {"width", 640}, {"height", 360}})
                 .dump());
