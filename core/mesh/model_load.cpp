@@ -102,28 +102,23 @@ LoadedModel load_model(const fs::path& path, const MeshLoadOptions& options, Mes
   MeshLoadReport local;
   MeshLoadReport& r = report ? *report : local;
   LoadedModel out;
-  if (ext == ".gltf" || ext == ".glb") {  // tinygltf (gltf_io.h read_gltf_model): materials, images, parts
-    r = {};
-    r.loader = "tinygltf";
-    GltfModel g = read_gltf_model(path);
-    out.mesh = std::move(g.mesh);
-    out.materials = std::move(g.materials);
-    out.parts = std::move(g.parts);
-    out.warnings = std::move(g.warnings);
-    r.duplicate_faces = finish_loaded_mesh(out.mesh, out.parts, "'" + path.string() + "'");
-    r.faces = out.mesh.triangles.size();
-    return out;
-  }
-  if (!is_assimp_extension(ext)) {  // the refusals of unknown extensions
+  if (ext != ".gltf" && ext != ".glb" && !is_assimp_extension(ext)) {  // the refusals of unknown extensions
     out.mesh = load_mesh(path, options, &r);
     return out;
   }
   r = {};
-  AssimpModel m = read_assimp_file(path, ext, options, r, true);
-  out.mesh = std::move(m.mesh);
-  out.materials = std::move(m.materials);
-  out.parts = std::move(m.parts);
-  out.warnings = std::move(m.warnings);
+  auto take = [&out](auto&& model) {  // GltfModel or AssimpModel: the same four members
+    out.mesh = std::move(model.mesh);
+    out.materials = std::move(model.materials);
+    out.parts = std::move(model.parts);
+    out.warnings = std::move(model.warnings);
+  };
+  if (ext == ".gltf" || ext == ".glb") {  // tinygltf (gltf_io.h read_gltf_model): materials, images, parts
+    r.loader = "tinygltf";
+    take(read_gltf_model(path));
+  } else {
+    take(read_assimp_file(path, ext, options, r, true));
+  }
   r.duplicate_faces = finish_loaded_mesh(out.mesh, out.parts, "'" + path.string() + "'");
   r.faces = out.mesh.triangles.size();
   return out;

@@ -57,39 +57,18 @@ printf '{"cmd":"scene.load","path":"%s","name":"cube"}\n' "$GUI_WORK/cube.gltf" 
 
 # colours PNG: how many of the texture's four colours cover at least 300 pixels (dominant channel by 60 levels).
 colours() {
-  python3 - "$1" <<'EOF'
-import struct, sys, zlib
-data = open(sys.argv[1], "rb").read()
-pos, idat, w = 8, b"", 0
-while pos < len(data):
-    n, t = struct.unpack(">I4s", data[pos:pos + 8])
-    body = data[pos + 8:pos + 8 + n]
-    if t == b"IHDR":
-        w, h, depth, ctype = struct.unpack(">IIBB", body[:10])
-        assert depth == 8 and ctype in (2, 6), "8-bit RGB(A) PNG expected"
-        bpp = 4 if ctype == 6 else 3
-    elif t == b"IDAT":
-        idat += body
-    pos += 12 + n
-raw, stride, prev, counts = zlib.decompress(idat), w * bpp, bytearray(w * bpp), [0, 0, 0, 0]
-for y in range(h):
-    f, line = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
-    for i in range(stride):
-        a = line[i - bpp] if i >= bpp else 0
-        b, c = prev[i], prev[i - bpp] if i >= bpp else 0
-        if f == 1: line[i] = (line[i] + a) & 255
-        elif f == 2: line[i] = (line[i] + b) & 255
-        elif f == 3: line[i] = (line[i] + (a + b) // 2) & 255
-        elif f == 4:
-            p = a + b - c; pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
-            line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
-    for x in range(0, stride, bpp):
-        r, g, b = line[x], line[x + 1], line[x + 2]
+  python3 - "$1" "$(dirname "$0")" <<'EOF'
+import sys
+sys.path.insert(0, sys.argv[2])
+from textured_pixels import read_png
+w, h, rows = read_png(sys.argv[1])
+counts = [0, 0, 0, 0]
+for row in rows:
+    for r, g, b in row:
         if r > g + 60 and r > b + 60: counts[0] += 1
         elif g > r + 60 and g > b + 60: counts[1] += 1
         elif b > r + 60 and b > g + 60: counts[2] += 1
         elif r > b + 60 and g > b + 60 and abs(r - g) < 70: counts[3] += 1
-    prev = line
 print(sum(c >= 300 for c in counts), counts, file=sys.stderr)
 print(sum(c >= 300 for c in counts))
 EOF

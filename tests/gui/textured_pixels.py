@@ -5,7 +5,8 @@ Compares a Material and a Solid screenshot of one view in the 400 × 300 px box 
 in pixels, from the GUI probe). Of the pixels that differ between the two (by more than 60 in R+G+B), Solid draws
 most in one 30° hue sector: the object colour. Where Material draws the object's textures, almost none of those
 pixels keep that hue. Prints "changed solid_share material_share" (the shares of Solid's dominant sector, in %).
-Reads 8-bit RGB(A) PNGs (what the editor's F12 writes) with the standard library only.
+Reads 8-bit RGB(A) PNGs (what the editor's F12 writes) with the standard library only; read_png is shared with
+the other GUI tests that look at pixels (shading.sh).
 """
 import colorsys
 import struct
