@@ -13,12 +13,12 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "bench/bench_place.h"
 #include "core/ffd/ffd_evaluator.h"
 #include "core/mesh/bilinear_subdivision.h"
 #include "core/mesh/mesh_io.h"
 #include "core/mesh/uv_sphere.h"
 #include "core/raycast/ray_caster.h"
-#include "bench/bench_place.h"
 #include "editor/command_registry.h"
 #include "editor/session.h"
 #include "editor/tools/press_tool.h"
@@ -92,7 +92,8 @@ void print_table(const json& r, std::ostream& os) {
   if (m.at("fallback").get<bool>()) os << "NOTE: " << m.at("note").get<std::string>() << "\n\n";
   os << "Press tool as it is (editor/tools/press_tool.cpp): per mouse move "
      << bench_fixed(t.at("move_median_ms").get<double>(), 3) << " ms median, "
-     << bench_fixed(t.at("move_max_ms").get<double>(), 2) << " ms max (ray cast + path; the live preview is drawn once per frame: rows (a)+(b) below)\n"
+     << bench_fixed(t.at("move_max_ms").get<double>(), 2)
+     << " ms max (ray cast + path; the live preview is drawn once per frame: rows (a)+(b) below)\n"
      << "  first hover on the object (BVH build over world_mesh): "
      << bench_fixed(t.at("first_hover_ms").get<double>(), 1) << " ms; "
      << "first hover after a release (BVH rebuilt): " << bench_fixed(t.at("hover_after_release_ms").get<double>(), 1)
@@ -201,8 +202,7 @@ ToolRuns run_press_tool(EditorSession& session, const ui::MessageLog& messages, 
   std::string selected = "bunny";
   double command_ms = 0;
   ToolContext ctx{session, view, selected,
-                  [&command_ms](std::string, std::function<void()> work) { command_ms = bench_ms(work); },
-                  nullptr};
+                  [&command_ms](std::string, std::function<void()> work) { command_ms = bench_ms(work); }, nullptr};
   PressTool tool;
   tool.activate(ctx);
   tool.set_object("bunny");
@@ -393,8 +393,9 @@ int run_bench_press(const BenchPressOptions& o, std::ostream& out, std::ostream&
   const core::SceneObject& obj = *session.scene().find("bunny");
   std::vector<std::size_t> prefixes;
   for (int i = 0; i < o.runs; ++i)
-    prefixes.push_back(o.runs == 1 ? t.path.size()
-                                   : 1 + std::size_t(std::lround(double(i) * double(t.path.size() - 1) / (o.runs - 1))));
+    prefixes.push_back(o.runs == 1
+                           ? t.path.size()
+                           : 1 + std::size_t(std::lround(double(i) * double(t.path.size() - 1) / (o.runs - 1))));
   progress("lattice.press on the proxy (" + std::to_string(prefixes.size()) + " prefixes)");
   std::vector<double> lattice_ms;
   const auto lattices = pressed_lattices(obj, t.path, prefixes, t.radius, lattice_ms);

@@ -20,8 +20,7 @@ void AnimationUi::begin_frame(const std::string& selected, bool playing) {
 double AnimationUi::time_s() const { return session_.scene().timeline.time_of_frame(playback_.frame); }
 
 void AnimationUi::draw_timeline(const ui::Rect& rect, glm::ivec2 viewport) {
-  const ui::TimelineRequest r =
-      ui::draw_timeline_panel(rect, session_.scene().timeline, playback_, object_, panel_);
+  const ui::TimelineRequest r = ui::draw_timeline_panel(rect, session_.scene().timeline, playback_, object_, panel_);
   const bool keying = r.command && r.command->value("cmd", "") == "anim.keyframe" && !r.command->contains("remove");
   if (r.command && (keying ? insert_key(*r.command) : session_.execute(*r.command)))
     object_ = ui::timeline_object(session_.scene(), selected_, playback_.frame);
@@ -49,10 +48,18 @@ bool AnimationUi::handle_action(ui::MenuAction action, glm::ivec2 viewport) {
         messages_.warning("Delete keyframe: the selected object has no key at frame " +
                           std::to_string(playback_.frame));
       break;
-    case A::FramePrev: go(playback_.frame - 1); break;
-    case A::FrameNext: go(playback_.frame + 1); break;
-    case A::FrameStart: go(t.frame_start); break;
-    case A::FrameEnd: go(t.frame_end); break;
+    case A::FramePrev:
+      go(playback_.frame - 1);
+      break;
+    case A::FrameNext:
+      go(playback_.frame + 1);
+      break;
+    case A::FrameStart:
+      go(t.frame_start);
+      break;
+    case A::FrameEnd:
+      go(t.frame_end);
+      break;
     case A::RecordAnimation:
       if (recorder_) break;
       if (dialog_.out_dir.empty() || dialog_.out_dir == default_out_) {  // the artist's own choice stays
@@ -61,7 +68,8 @@ bool AnimationUi::handle_action(ui::MenuAction action, glm::ivec2 viewport) {
       }
       ui::open_record_dialog(dialog_, t, viewport.x, viewport.y, session_.scene(), view_);
       break;
-    default: return false;
+    default:
+      return false;
   }
   object_ = ui::timeline_object(session_.scene(), selected_, playback_.frame);
   return true;
@@ -79,7 +87,7 @@ bool AnimationUi::insert_key(const nlohmann::json& line) {
     for (const core::OffsetKey& k : o->offset_keys) {
       const char* name = k.interpolation == core::KeyInterpolation::constant ? "constant"
                          : k.interpolation == core::KeyInterpolation::smooth ? "smooth"
-                                                                               : "linear";
+                                                                             : "linear";
       if (std::abs(k.time_s - time) < 1e-9 && k.offset == offset && interp == name) {
         messages_.info("'" + o->name + "' already has this key at frame " + std::to_string(line.value("frame", 0)));
         return false;
@@ -179,9 +187,9 @@ void AnimationUi::draw_record_ui(const std::function<void()>& restore_context) {
       std::string files;
       for (const fs::path& f : res.files)
         if (f.extension() != ".png" && f.extension() != ".exr") files += " " + f.string();
-      messages_.info((res.cancelled ? "recording cancelled after " : "recorded ") +
-                     std::to_string(res.frames_written) + " frames (" + std::to_string(res.frame_first) + "-" +
-                     std::to_string(res.frame_last) + ") into " + record_out_ + (files.empty() ? "" : ":" + files));
+      messages_.info((res.cancelled ? "recording cancelled after " : "recorded ") + std::to_string(res.frames_written) +
+                     " frames (" + std::to_string(res.frame_first) + "-" + std::to_string(res.frame_last) + ") into " +
+                     record_out_ + (files.empty() ? "" : ":" + files));
       if (!res.cancelled && !res.mp4_note.empty()) messages_.warning("no MP4: " + res.mp4_note);
     } catch (const std::exception& e) {
       messages_.error(std::string("recording failed: ") + e.what());

@@ -63,14 +63,12 @@ bool App::transform_input() {
   std::size_t first = 0;
   if (!transform_.active()) {
     if (io.WantCaptureKeyboard || io.WantTextInput || !work_.empty() || background_.running() || anim_.recording() ||
-        tools_.owns_mouse() ||
-        file_dialog_.is_open() || recovery_ || prompt_for_ != Pending::None)
+        tools_.owns_mouse() || file_dialog_.is_open() || recovery_ || prompt_for_ != Pending::None)
       return false;
     const core::SceneObject* o = session_.scene().find(selected_);
     if (!o || !o->world_mesh || !o->visible) return false;
-    const auto start = std::find_if(keys.begin(), keys.end(), [](const ui::KeyPress& k) {
-      return TransformModal::start_key(k).has_value();
-    });
+    const auto start = std::find_if(keys.begin(), keys.end(),
+                                    [](const ui::KeyPress& k) { return TransformModal::start_key(k).has_value(); });
     if (start == keys.end()) return false;
     transform_.begin(*TransformModal::start_key(*start), *o, view_, nav_input_from_imgui().mouse_px);
     first = std::size_t(start - keys.begin()) + 1;  // the keys typed after G in the same frame belong to it
@@ -105,8 +103,10 @@ void App::viewport_input() {
     return;
   }
   const bool nav_owns_left = nav_.update(nav, view_.viewport);
-  if (!nav_owns_left && !(io.KeyAlt && io.MouseClicked[0])) tools_.handle_mouse(nav.mouse_px);
-  else tools_.mouse_away();
+  if (!nav_owns_left && !(io.KeyAlt && io.MouseClicked[0]))
+    tools_.handle_mouse(nav.mouse_px);
+  else
+    tools_.mouse_away();
 }
 
 void App::render_view() {
@@ -127,12 +127,12 @@ void App::render_view() {
     moved_view_ = view_, moved_at_ = Clock::now();
   vo.ddm.cull = toggles_.fast_tiles;
   vo.ddm.moving = toggles_.fast_tiles && Clock::now() - moved_at_ < std::chrono::duration<double>(kMotionHoldSeconds);
-  vo.ddm.motion_budget_vertices = gpu::is_software_renderer() ? gpu::kDdmMotionBudgetVerticesSoftware
-                                                                 : gpu::kDdmMotionBudgetVertices;
+  vo.ddm.motion_budget_vertices =
+      gpu::is_software_renderer() ? gpu::kDdmMotionBudgetVerticesSoftware : gpu::kDdmMotionBudgetVertices;
   tools_.decorate(vo);
   volumes_.decorate(vo);
-  if (const core::SceneObject* o = session_.scene().find(selected_); o && o->ffd && control_point_.highlight &&
-                                                                      vo.overlays.spheres.empty()) {
+  if (const core::SceneObject* o = session_.scene().find(selected_);
+      o && o->ffd && control_point_.highlight && vo.overlays.spheres.empty()) {
     // The control point edited in the Tool panel: a small sphere at P_ijk, 2 % of the lattice's extent.
     const auto& lattice = o->ffd->lattice;
     core::Aabb box;
@@ -148,7 +148,7 @@ void App::render_view() {
   if (live_preview_) vo.overlays.lattices_in_place.push_back({live_preview_->object, live_preview_->lattice});
   guarantees_.decorate(vo);
   const gpu::Overlays& ov = vo.overlays;
-  overlay_counts_ = {ov.strokes.size(), ov.curves.size(), ov.meshes.size(),
+  overlay_counts_ = {ov.strokes.size(),  ov.curves.size(),  ov.meshes.size(),
                      ov.lattices.size(), ov.spheres.size(), ov.points.size()};
   try {
     if (transform_.active()) {  // the live preview: a shallow copy with the object moved, the document untouched
@@ -220,7 +220,7 @@ void App::frame() {
     anim_.draw_timeline(rect, view_.viewport);
   }
   toggles_.play_animation = anim_.playback().playing;  // the Play button
-  control_point_.highlight = false;  // set again while the Control point section is hovered
+  control_point_.highlight = false;                    // set again while the Control point section is hovered
   // While a command is built on its worker the panels that edit the document are greyed (the session refuses
   // changes anyway); the view, the timeline's playback and the Log stay live.
   ImGui::BeginDisabled(background_.running());
@@ -337,7 +337,7 @@ void App::write_probe() {
   p["selected"] = selected_;
   p["tool"] = tools_.tool().entry().name;
   const auto& oc = overlay_counts_;
-  p["overlays"] = {{"strokes", oc[0]}, {"curves", oc[1]}, {"meshes", oc[2]},
+  p["overlays"] = {{"strokes", oc[0]},  {"curves", oc[1]},  {"meshes", oc[2]},
                    {"lattices", oc[3]}, {"spheres", oc[4]}, {"points", oc[5]}};
   nlohmann::json log = nlohmann::json::array();
   const auto& m = messages_.messages();
@@ -355,14 +355,14 @@ void App::write_probe() {
   p["transform"] = transform_.active() ? nlohmann::json(transform_.header()) : nlohmann::json(nullptr);
   p["guarantees"] = guarantees_.probe();
   p["command"] = background_.running() ? nlohmann::json{{"what", background_.what()},
-                                                          {"progress", background_.progress()},
-                                                          {"cancelling", background_.cancelling()}}
+                                                        {"progress", background_.progress()},
+                                                        {"cancelling", background_.cancelling()}}
                                        : nlohmann::json(nullptr);
   p["volume_refining"] = renderer_ && renderer_->last_stats().volume_refining;  // the last frame drawn's
   if (renderer_) {
     const gpu::RenderStats& rs = renderer_->last_stats();
-    p["tiles"] = {{"layers", rs.ddm_layers_drawn}, {"following", rs.ddm_layers_following},
-                  {"vertices", rs.ddm_vertices}};
+    p["tiles"] = {
+        {"layers", rs.ddm_layers_drawn}, {"following", rs.ddm_layers_following}, {"vertices", rs.ddm_vertices}};
   }
   const nlohmann::json volumes = volumes_.probe(session_.scene());
   for (auto it = volumes.begin(); it != volumes.end(); ++it) p[it.key()] = it.value();
@@ -473,8 +473,8 @@ int App::run() {
                        std::to_string(++screenshots_) + ".png");
     window_->swap();
     if (options_.max_fps > 0.0)  // GUI tests: software-GL frame rates on any machine
-      std::this_thread::sleep_until(start + std::chrono::duration_cast<Clock::duration>(
-                                                std::chrono::duration<double>(1.0 / options_.max_fps)));
+      std::this_thread::sleep_until(
+          start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / options_.max_fps)));
     const auto end = Clock::now();
     record_frame_timings(start, end, last);
     // Playback: real time × fps, whole frames, looping at frame_end (a stall shows at most 0.1 s of it).

@@ -1,7 +1,6 @@
-#include "editor/app_state.h"
-
 #include "core/commands/object_visibility.h"
 #include "core/commands/volume_remove.h"
+#include "editor/app_state.h"
 
 namespace trispline::editor {
 
@@ -48,14 +47,16 @@ void App::showcase() {
 void App::frame_selected() {
   const core::SceneObject* o = session_.scene().find(selected_);
   const core::VolumeObject* v = session_.scene().find_volume(selected_);
-  nav_.frame(o && o->world_mesh ? bounds_of(*o->world_mesh) : v ? v->world_bounds() : session_.scene().bounds(),
+  nav_.frame(o && o->world_mesh ? bounds_of(*o->world_mesh)
+             : v                ? v->world_bounds()
+                                : session_.scene().bounds(),
              view_.viewport);
 }
 
 void App::request(Pending what) {
   if (prompt_for_ != Pending::None && what != Pending::Quit) return;  // a question is open already
-  const bool ask = what == Pending::Quit ? session_.modified() && session_.history().applied() > 0
-                                         : session_.modified();
+  const bool ask =
+      what == Pending::Quit ? session_.modified() && session_.history().applied() > 0 : session_.modified();
   if (ask)
     prompt_for_ = what;
   else

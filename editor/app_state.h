@@ -3,9 +3,18 @@
 // dialog, "Save changes?"). Internal to editor/: only run_editor() (editor/app.h) is public.
 #pragma once
 
-#include "editor/app.h"
+#include <epoxy/gl.h>
+#include <imgui.h>
 
+#include <algorithm>
 #include <array>
+#include <chrono>
+#include <cstdlib>
+#include <ctime>
+#include <iostream>
+#include <memory>
+#include <thread>
+#include <utility>
 
 #include "core/commands/object_transform.h"
 #include "core/commands/scene_load.h"
@@ -14,9 +23,10 @@
 #include "core/mesh/image_io.h"
 #include "core/volume/volume_io.h"
 #include "editor/animation_ui.h"
+#include "editor/app.h"
 #include "editor/background_command.h"
-#include "editor/gui_probe.h"
 #include "editor/guarantees_view.h"
+#include "editor/gui_probe.h"
 #include "editor/navigation.h"
 #include "editor/session.h"
 #include "editor/tools/toolbox.h"
@@ -41,19 +51,6 @@
 #include "ui/timeline_panel.h"
 #include "ui/tool_panel.h"
 #include "ui/window_capture.h"
-
-#include <array>
-#include <epoxy/gl.h>
-#include <imgui.h>
-
-#include <algorithm>
-#include <chrono>
-#include <ctime>
-#include <cstdlib>
-#include <iostream>
-#include <memory>
-#include <thread>
-#include <utility>
 
 namespace trispline::editor {
 
@@ -90,15 +87,15 @@ class App {
   void viewport_input();
   bool transform_input();  // G / R / S: starts or feeds the modal transform; true while it has the keyboard
   void render_view();
-  bool animating() const;  // the timeline is playing
+  bool animating() const;     // the timeline is playing
   void draw_control_point();  // the "Control point" section appended to the Tool panel
-  void render_ui();        // ImGui's draw data into the window, timed by ui_timer_
+  void render_ui();           // ImGui's draw data into the window, timed by ui_timer_
   void record_frame_timings(Clock::time_point start, Clock::time_point end, Clock::time_point last);
   void frame_selected();
   void open_later(const fs::path& log);  // replays `log` after a "Working…" frame
   void showcase();                       // screenshot mode: select the placed (or tiled) object, show its tool
-  void request(Pending what);  // Quit / New / Open: asks "Save changes?" first when the document is modified
-  void go_on(Pending what);    // does it (the question, if any, is answered)
+  void request(Pending what);            // Quit / New / Open: asks "Save changes?" first when the document is modified
+  void go_on(Pending what);              // does it (the question, if any, is answered)
   bool save_or_ask();
   void ask_file(FilePurpose purpose);  // opens the file dialog for `purpose`
   int write_screenshot(const fs::path& path);
@@ -115,17 +112,17 @@ class App {
   BackgroundCommand background_{session_};  // Fill / Bake on a worker thread (destroyed before the session)
   Navigator nav_;
   core::Camera view_;
-  core::Camera moved_view_;        // the view when it last changed
-  Clock::time_point moved_at_{};   // when it last changed (the tile layers' motion LOD)
+  core::Camera moved_view_;       // the view when it last changed
+  Clock::time_point moved_at_{};  // when it last changed (the tile layers' motion LOD)
 
   std::string selected_;
   ui::ViewToggles toggles_;
   ToolContext tool_ctx_;
   Toolbox tools_;
   TransformModal transform_;
-  ui::TransformFields transform_fields_;  // the Scene panel's Location / Rotation / Scale while edited
-  GuaranteesView guarantees_;                         // View > Error bounds / Fold certificate
-  std::optional<Tool::LivePreview> live_preview_;     // this frame's tool preview (the Press tool's lattice)
+  ui::TransformFields transform_fields_;           // the Scene panel's Location / Rotation / Scale while edited
+  GuaranteesView guarantees_;                      // View > Error bounds / Fold certificate
+  std::optional<Tool::LivePreview> live_preview_;  // this frame's tool preview (the Press tool's lattice)
   bool transform_frame_ = false;  // the modal transform had the input this frame (the viewport ignores it)
 
   ui::LogPanel log_panel_;
@@ -133,7 +130,7 @@ class App {
   bool load_ignore_loose_ = false;  // the Load dialog's "Leave out points and lines", kept between loads
   FilePurpose file_purpose_ = FilePurpose::None;
   ui::TimingOverlay timing_;
-  ui::DockLayout layout_;  // this frame's panel rectangles
+  ui::DockLayout layout_;                  // this frame's panel rectangles
   AnimationUi anim_{session_, messages_};  // timeline, playback clock, keys, recording
   ui::ControlPointState control_point_;
   std::array<std::size_t, 6> overlay_counts_{};  // the last drawn frame's overlays, by kind (for the GUI probe)

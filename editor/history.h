@@ -11,24 +11,24 @@
 // replays to the same state. jump_to(n) undoes/redoes until n commands are applied (History panel click).
 #pragma once
 
-#include "core/commands/command.h"
-#include "editor/command_log.h"
-
 #include <functional>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "core/commands/command.h"
+#include "editor/command_log.h"
+
 namespace trispline::editor {
 
-struct ExecutionRecord {      // one line of report.json
-  std::string cmd;            // command id
-  nlohmann::json line;        // the JSON line as executed
+struct ExecutionRecord {  // one line of report.json
+  std::string cmd;        // command id
+  nlohmann::json line;    // the JSON line as executed
   bool ok = true;
-  std::string error;          // message when !ok
-  double milliseconds = 0;    // wall time of redo()
-  nlohmann::json stats;       // Command::stats() after redo
-  int log_line = 0;           // 1-based line in the replayed log (0 when not replayed)
+  std::string error;        // message when !ok
+  double milliseconds = 0;  // wall time of redo()
+  nlohmann::json stats;     // Command::stats() after redo
+  int log_line = 0;         // 1-based line in the replayed log (0 when not replayed)
 };
 
 // An action that is no undo step (anim.record), kept where it ran for the History panel and Run again.

@@ -19,9 +19,6 @@
 //   animation.mp4                     (mp4 = true, only when `ffmpeg` is on PATH) H.264, yuv420p, timeline fps
 #pragma once
 
-#include "core/ffd/ffd_evaluator.h"
-#include "core/scene/scene.h"
-
 #include <chrono>
 #include <filesystem>
 #include <functional>
@@ -32,15 +29,18 @@
 #include <utility>
 #include <vector>
 
+#include "core/ffd/ffd_evaluator.h"
+#include "core/scene/scene.h"
+
 namespace trispline::editor {
 
 struct RecordOptions {
   std::filesystem::path out_dir;  // required (created if missing)
-  std::string format = "png";  // "png" | "exr"
-  int frame_first = 0;         // inclusive, timeline frame numbers; both 0 = the whole timeline
+  std::string format = "png";     // "png" | "exr"
+  int frame_first = 0;            // inclusive, timeline frame numbers; both 0 = the whole timeline
   int frame_last = 0;
-  int width = 0, height = 0;   // pixels in [1, 16384], both or neither; 0 = the camera's viewport (default 1280×720)
-  bool glb = true;             // write animation.glb
+  int width = 0, height = 0;  // pixels in [1, 16384], both or neither; 0 = the camera's viewport (default 1280×720)
+  bool glb = true;            // write animation.glb
   // false: render nothing and write no frame files, only pose every frame for animation.glb (and make the MP4 from
   // the frame_NNNN.png files already in out_dir): a render farm's assemble step. No GL context is needed.
   bool images = true;
@@ -48,7 +48,7 @@ struct RecordOptions {
   // the pose of this timeline frame (posed, not rendered, when it is before frame_first): one chunk of a render
   // farm's range, joined exactly by `trispline farm assemble`. Must lie in [timeline start, frame_first].
   int piece_base = -1;
-  bool mp4 = true;             // write animation.mp4 when ffmpeg is available (reported when it is not)
+  bool mp4 = true;  // write animation.mp4 when ffmpeg is available (reported when it is not)
   core::FfdBackend ffd_backend = core::FfdBackend::cpu_ref;  // geometry path (cpu_ref: bit-exact frames)
   std::optional<core::Camera> camera;  // the view every frame is rendered from (anim.record's camera); unset: below
 };
@@ -59,10 +59,10 @@ struct RecordResult {
   int frame_first = 0, frame_last = 0;
   bool cancelled = false;
   std::vector<std::filesystem::path> files;  // every file written, in order
-  std::string glb;                            // path, or "" when not written
-  std::string mp4;                            // path, or "" when not written
-  std::string mp4_note;                       // why there is no MP4 ("ffmpeg not found on PATH", ffmpeg's error)
-  double ms = 0;                              // wall time
+  std::string glb;                           // path, or "" when not written
+  std::string mp4;                           // path, or "" when not written
+  std::string mp4_note;                      // why there is no MP4 ("ffmpeg not found on PATH", ffmpeg's error)
+  double ms = 0;                             // wall time
   nlohmann::json to_json() const;
 };
 

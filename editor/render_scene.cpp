@@ -1,17 +1,17 @@
 #include "editor/render_scene.h"
 
-#include "core/commands/anim_record.h"
-#include "core/scene/scene_export.h"
+#include <epoxy/egl.h>
+#include <epoxy/gl.h>
 
 #include <algorithm>
 #include <chrono>
-#include <map>
 #include <cmath>
+#include <map>
 #include <memory>
 #include <optional>
 
-#include <epoxy/egl.h>
-#include <epoxy/gl.h>
+#include "core/commands/anim_record.h"
+#include "core/scene/scene_export.h"
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 

@@ -2,14 +2,14 @@
 // the deformed geometry as a chosen FFD backend computes it (replay --ffd-backend: scene.glb from the GPU path).
 #pragma once
 
-#include "core/ffd/ffd_evaluator.h"
-#include "core/scene/scene.h"
-#include "gpu/renderer.h"
-
 #include <cstddef>
 #include <memory>
 #include <string>
 #include <vector>
+
+#include "core/ffd/ffd_evaluator.h"
+#include "core/scene/scene.h"
+#include "gpu/renderer.h"
 
 namespace trispline::editor {
 

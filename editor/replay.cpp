@@ -1,22 +1,22 @@
 #include "editor/replay.h"
 
-#include "core/commands/anim_record.h"
-#include "core/commands/file_output.h"
-#include "core/mesh/gltf_io.h"
-#include "core/scene/scene_export.h"
-#include "core/mesh/image_io.h"
-#include "editor/command_log.h"
-#include "editor/command_registry.h"
-#include "editor/record.h"
-#include "editor/render_scene.h"
-#include "ui/frame_timings.h"
-
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <optional>
+
+#include "core/commands/anim_record.h"
+#include "core/commands/file_output.h"
+#include "core/mesh/gltf_io.h"
+#include "core/mesh/image_io.h"
+#include "core/scene/scene_export.h"
+#include "editor/command_log.h"
+#include "editor/command_registry.h"
+#include "editor/record.h"
+#include "editor/render_scene.h"
+#include "ui/frame_timings.h"
 
 namespace trispline::editor {
 namespace {
@@ -42,8 +42,8 @@ nlohmann::json command_timings(const std::vector<ExecutionRecord>& records) {
     if (r.cmd.empty()) continue;  // a line that did not parse
     nlohmann::json stages = nlohmann::json::object();
     for (const ui::StageTiming& st : ui::stage_timings(r.stats)) stages[st.name] = st.ms;
-    out.push_back({{"line", r.log_line}, {"cmd", r.cmd}, {"ok", r.ok}, {"total_ms", r.milliseconds},
-                   {"stages_ms", stages}});
+    out.push_back(
+        {{"line", r.log_line}, {"cmd", r.cmd}, {"ok", r.ok}, {"total_ms", r.milliseconds}, {"stages_ms", stages}});
   }
   return out;
 }
@@ -103,15 +103,15 @@ struct PendingRecording {
 RecordResult record_into(const core::Scene& scene, RecordOptions ro) {
   ro.ffd_backend = core::FfdBackend::cpu_ref;  // frames are the authoritative geometry, bit-exact
   RecordResult r = record_frames(scene, ro);
-  std::cout << "recorded:       frames " << r.frame_first << "-" << r.frame_last << " (" << r.frames_written
-            << ") in " << ro.out_dir.string() << "\n";
+  std::cout << "recorded:       frames " << r.frame_first << "-" << r.frame_last << " (" << r.frames_written << ") in "
+            << ro.out_dir.string() << "\n";
   if (!r.mp4_note.empty()) std::cout << "mp4:            " << r.mp4_note << "\n";
   return r;
 }
 
 // --frames, or the log's anim.record lines: writes report["record"] (and "records"); returns the new exit code.
-int run_recordings(const core::Scene& scene, const std::vector<PendingRecording>& pending,
-                   const ReplayOptions& options, nlohmann::json& report, int exit_code) {
+int run_recordings(const core::Scene& scene, const std::vector<PendingRecording>& pending, const ReplayOptions& options,
+                   nlohmann::json& report, int exit_code) {
   try {
     if (options.frames_given) {
       RecordOptions ro;

@@ -20,16 +20,16 @@
 // the chunk writes animation.piece (morph targets relative to frame F) instead, for `trispline farm assemble`.
 #pragma once
 
-#include "core/ffd/ffd_evaluator.h"
-#include "core/scene/scene.h"
-#include "editor/history.h"
-
 #include <filesystem>
 #include <functional>
 #include <optional>
-#include <utility>
 #include <string>
+#include <utility>
 #include <vector>
+
+#include "core/ffd/ffd_evaluator.h"
+#include "core/scene/scene.h"
+#include "editor/history.h"
 
 namespace trispline::editor {
 
@@ -52,7 +52,7 @@ struct ReplayOptions {
 
 struct ReplayResult {
   bool ok = true;
-  std::string error;   // "LOG:LINE: field 'x': message" when !ok
+  std::string error;  // "LOG:LINE: field 'x': message" when !ok
   int failed_line = 0;
   std::vector<ExecutionRecord> records;
 };

@@ -1,11 +1,5 @@
 #include "editor/session.h"
 
-#include "core/commands/camera_set.h"
-#include "core/commands/file_output.h"
-
-#include "editor/command_registry.h"
-#include "editor/replay.h"
-
 #include <signal.h>
 #include <unistd.h>
 
@@ -14,6 +8,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+
+#include "core/commands/camera_set.h"
+#include "core/commands/file_output.h"
+#include "editor/command_registry.h"
+#include "editor/replay.h"
 
 namespace fs = std::filesystem;
 

@@ -17,6 +17,13 @@
 // like session.lock.
 #pragma once
 
+#include <filesystem>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <set>
+#include <string>
+
 #include "core/scene/scene.h"
 #include "editor/command_log.h"
 #include "editor/history.h"
@@ -24,14 +31,6 @@
 #include "ui/main_menu.h"
 #include "ui/message_log.h"
 #include "ui/status_bar.h"
-
-#include <nlohmann/json.hpp>
-
-#include <filesystem>
-#include <memory>
-#include <optional>
-#include <set>
-#include <string>
 
 namespace trispline::editor {
 
@@ -88,7 +87,7 @@ class EditorSession {
   bool save(const std::filesystem::path& path, const core::Camera& view);  // applied lines + camera.set, atomic
   // new_document() + replay of the offer's log (writing no file, like open()); then closes the question.
   bool recover(const RecoveryOffer& offer);
-  void discard(const RecoveryOffer& offer);                                // keeps the file, says so
+  void discard(const RecoveryOffer& offer);  // keeps the file, says so
 
   // While a command is prepared on a worker thread over a copy of the scene (editor/background_command.h) the
   // document must stay as that copy: `what` ("Filling teapot with thorn") makes execute, undo, redo, jump_to,
@@ -119,7 +118,7 @@ class EditorSession {
   // could not be written (then `log` must be left alone).
   std::optional<RecoveryOffer> keep_unfinished(bool ask, const std::filesystem::path& log, bool* kept);
   std::optional<RecoveryOffer> keep_dead_instances(bool ask);  // session-<pid>.lock files whose pid is dead
-  std::filesystem::path pending_log() const;                    // the log the open recovery question is about
+  std::filesystem::path pending_log() const;                   // the log the open recovery question is about
   void open_session_log(bool keep_old);                        // keep_old: rename the current log aside first
   std::pair<std::size_t, const core::Command*> marker() const;
   bool refused(const char* change) const;  // busy(): says so in the Log and returns true

@@ -267,8 +267,7 @@ void Renderer::Impl::pass_selection_outline(const Frame& f, const SelectedObject
     glDepthMask(GL_FALSE);
     d.draw_outline(f, *sel.object, sel.index);
     d.ddm.draw_outline(*sel.object, options.time_s, view_proj, glm::vec2(vp), options.style.outline_px,
-                       rgba(options.style.selection_color),
-                       d.cached(detail::shown_mesh(*sel.object, options)).center);
+                       rgba(options.style.selection_color), d.cached(detail::shown_mesh(*sel.object, options)).center);
     glDepthMask(GL_TRUE);
     glDepthFunc(GL_LESS);
     glDisable(GL_STENCIL_TEST);

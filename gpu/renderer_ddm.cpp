@@ -103,7 +103,8 @@ struct FlatSetup {
   void operator()(const ShaderProgram& p) const {
     p.set("u_view_proj", view_proj);
     p.set("u_flat_color", color);
-    if (outline) p.set("u_viewport", viewport), p.set("u_outline_px", outline_px), p.set("u_outline_center", outline_center);
+    if (outline)
+      p.set("u_viewport", viewport), p.set("u_outline_px", outline_px), p.set("u_outline_center", outline_center);
   }
   void layer(const ShaderProgram&, const core::DdmLayer&) const {}
 };
@@ -158,8 +159,8 @@ DdmDrawn DdmDisplay::draw_shaded(const core::Scene& scene, double time_s, const 
         static const DdmInstanceBounds none;
         const DdmCuller culler(cull ? v.bounds : none, cv);
         for (std::size_t k = 0; k < flags.size(); ++k) {
-          const DdmCullReason r = cull ? culler.test(k) : (ddm_lod_rank(k) < keep ? DdmCullReason::kept
-                                                                                  : DdmCullReason::thinned);
+          const DdmCullReason r =
+              cull ? culler.test(k) : (ddm_lod_rank(k) < keep ? DdmCullReason::kept : DdmCullReason::thinned);
           flags[k] = r == DdmCullReason::kept;
           culled += r == DdmCullReason::outside || r == DdmCullReason::facing_away;
         }

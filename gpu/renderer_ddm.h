@@ -29,7 +29,7 @@ struct DdmDrawn {
   int following = 0;         // of those, drawn through their object's deformation (FOLLOW)
   std::size_t vertices = 0;  // Σ drawn instances × tile vertices
   std::size_t instances = 0, instances_drawn = 0, instances_culled = 0;  // see RenderStats
-  double keep = 1.0;                                                       // the motion LOD's share
+  double keep = 1.0;                                                     // the motion LOD's share
 };
 
 class DdmDisplay {

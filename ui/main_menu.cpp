@@ -1,9 +1,9 @@
 #include "ui/main_menu.h"
 
+#include <imgui.h>
+
 #include "ui/frame_timings.h"
 #include "ui/gui_probe.h"
-
-#include <imgui.h>
 
 namespace trispline::ui {
 
@@ -120,43 +120,50 @@ MenuAction draw_main_menu(ViewToggles& view, const MenuState& state) {
       if (ImGui::IsItemHovered()) ImGui::SetTooltip("Every object in its colour, cut surfaces in its inside colour.");
       if (menu_item("Material", nullptr, material)) view.shading = gpu::Shading::material, picked = true;
       if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("Objects with materials (glTF, OBJ/MTL, ...) drawn with their textures, alpha cut-outs,\n"
-                          "blending and normal maps; objects without one stay in their colour.");
+        ImGui::SetTooltip(
+            "Objects with materials (glTF, OBJ/MTL, ...) drawn with their textures, alpha cut-outs,\n"
+            "blending and normal maps; objects without one stay in their colour.");
       end_menu(picked);
     }
     picked |= menu_item("Lattice", nullptr, &view.show_lattice);
     picked |= menu_item("Discontinuities", nullptr, &view.show_discontinuities);
     if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("C-1 breaks of discontinuous FFD lattices and of the incision preview's cut lattice:\n"
-                        "the F- plane's control points in red-orange, F+ in cyan (coincident until opened),\n"
-                        "for every DFFD object with Lattice on, else for the selected one.");
+      ImGui::SetTooltip(
+          "C-1 breaks of discontinuous FFD lattices and of the incision preview's cut lattice:\n"
+          "the F- plane's control points in red-orange, F+ in cyan (coincident until opened),\n"
+          "for every DFFD object with Lattice on, else for the selected one.");
     picked |= menu_item("Contact surface", nullptr, &view.show_contact_surface);
     picked |= menu_item("Grid", nullptr, &view.show_grid);
     picked |= menu_item("Wireframe", nullptr, &view.wireframe);
     picked |= menu_item("Fast tiles", nullptr, &view.fast_tiles);
     if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("Large tile layers: leave out the tiles outside the view or facing away, and while the view\n"
-                        "moves draw only a share of them (full detail within a quarter second of stopping).\n"
-                        "Off: every tile in every frame, as replay and recordings draw them.");
+      ImGui::SetTooltip(
+          "Large tile layers: leave out the tiles outside the view or facing away, and while the view\n"
+          "moves draw only a share of them (full detail within a quarter second of stopping).\n"
+          "Off: every tile in every frame, as replay and recordings draw them.");
     picked |= menu_item("Error bounds", nullptr, &view.show_error_bounds);
     if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("Colour the selected deformed object's triangles by their certified deformation-error bound\n"
-                        "(how far the true deformed surface can be from the drawn triangle, world units; seed ch. 3),\n"
-                        "with a legend; follows a Press drag live.");
+      ImGui::SetTooltip(
+          "Colour the selected deformed object's triangles by their certified deformation-error bound\n"
+          "(how far the true deformed surface can be from the drawn triangle, world units; seed ch. 3),\n"
+          "with a legend; follows a Press drag live.");
     picked |= menu_item("Fold certificate", nullptr, &view.show_fold_certificate);
     if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("Draw the selected deformed object's lattice cells by their fold-free certificate:\n"
-                        "green certified det J > 0, red folding (red points: where), grey undecided.");
+      ImGui::SetTooltip(
+          "Draw the selected deformed object's lattice cells by their fold-free certificate:\n"
+          "green certified det J > 0, red folding (red points: where), grey undecided.");
     ImGui::Separator();
     picked |= menu_item("Timing overlay", "F7", &view.timing_overlay);
     if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("Frame time and FPS, FFD / render / UI pass times, FFD vertices per second, a 5 s graph\n"
-                        "and the last command's time per stage, in the viewport's corner.");
+      ImGui::SetTooltip(
+          "Frame time and FPS, FFD / render / UI pass times, FFD vertices per second, a 5 s graph\n"
+          "and the last command's time per stage, in the viewport's corner.");
     picked |= ffd_backend_combo(view.ffd_backend);
     picked |= menu_item("Play animation", "Space", &view.play_animation);
     if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("Play the timeline: the frame advances at the timeline's fps and loops at its end frame;\n"
-                        "animated objects (keys, lattice.animate_offset, glTF clips) move.");
+      ImGui::SetTooltip(
+          "Play the timeline: the frame advances at the timeline's fps and loops at its end frame;\n"
+          "animated objects (keys, lattice.animate_offset, glTF clips) move.");
     picked |= menu_item("Tool panel", nullptr, &view.show_tool_panel);
     picked |= menu_item("Scene & History panels", nullptr, &view.show_side_panels);
     picked |= menu_item("Log panel", nullptr, &view.show_log_panel);

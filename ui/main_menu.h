@@ -2,19 +2,19 @@
 // The View toggles are edited in place (they are view state, not document changes).
 #pragma once
 
+#include <string>
+
 #include "core/ffd/ffd_evaluator.h"
 #include "gpu/renderer.h"
-
-#include <string>
 
 namespace trispline::ui {
 
 // The View menu's state: the renderer's display switches (View > Lattice, Contact surface, Grid, Wireframe,
 // Discontinuities, FFD evaluator: they change live) and the editor's own.
 struct ViewToggles : gpu::DisplaySwitches {
-  bool timing_overlay = true;  // View > Timing overlay, F7
+  bool timing_overlay = true;   // View > Timing overlay, F7
   bool play_animation = false;  // View > Play animation, Space: the timeline plays (Blender starts paused)
-  bool show_timeline = true;     // View > Timeline panel
+  bool show_timeline = true;    // View > Timeline panel
   bool show_tool_panel = true;
   bool show_side_panels = true;  // Scene + History
   bool show_log_panel = true;
@@ -52,9 +52,9 @@ enum class MenuAction {
   DeleteKeyframe,       // Alt+I: delete its key at the current frame
   FramePrev,            // Left / Right: one frame back / forward
   FrameNext,
-  FrameStart,           // Shift+Left / Shift+Right: first / last frame of the timeline
+  FrameStart,  // Shift+Left / Shift+Right: first / last frame of the timeline
   FrameEnd,
-  RecordAnimation       // File > Record animation..., Ctrl+F12 (Blender's Render Animation)
+  RecordAnimation  // File > Record animation..., Ctrl+F12 (Blender's Render Animation)
 };
 
 struct MenuState {

@@ -4,12 +4,11 @@
 // bar shown while the editor's Recorder renders one frame per UI frame.
 #pragma once
 
-#include "core/scene/scene.h"
-
 #include <nlohmann/json.hpp>
-
 #include <optional>
 #include <string>
+
+#include "core/scene/scene.h"
 
 namespace trispline::ui {
 
@@ -42,11 +41,11 @@ nlohmann::json record_line(const RecordDialogState& state);
 std::optional<nlohmann::json> draw_record_dialog(RecordDialogState& state, const core::Timeline& timeline);
 
 struct RecordProgress {
-  int done = 0, total = 0;      // frames
-  double seconds_left = -1.0;   // < 0: unknown yet
-  int frame = 0;                // the frame being rendered
+  int done = 0, total = 0;     // frames
+  double seconds_left = -1.0;  // < 0: unknown yet
+  int frame = 0;               // the frame being rendered
   std::string out_dir;
-  bool close = false;           // the recording ended: close the modal this frame
+  bool close = false;  // the recording ended: close the modal this frame
 };
 
 // Draws the modal "Recording…" progress bar; returns true when Cancel was pressed.

@@ -15,24 +15,38 @@ std::string frame_range_error(const Timeline& timeline, int first, int last) {
 const ParamSchema<AnimRecordParams>& AnimRecordCommand::schema() {
   using P = AnimRecordParams;
   static const ParamSchema<P> s =
-      ParamSchema<P>("anim.record", "Record timeline frames to PNG/EXR images, an animated glb and an MP4 (seed §2.4.3)")
-          .field("out", &P::out).write_unless_default().default_text("the caller's")
+      ParamSchema<P>("anim.record",
+                     "Record timeline frames to PNG/EXR images, an animated glb and an MP4 (seed §2.4.3)")
+          .field("out", &P::out)
+          .write_unless_default()
+          .default_text("the caller's")
           .help("Output folder, relative to the log's folder")
-          .choice("format", &P::format, {"png", "exr"}).help("png: 8-bit sRGB; exr: half float, linear")
-          .field("frames", &P::frames).default_text("the whole timeline")
+          .choice("format", &P::format, {"png", "exr"})
+          .help("png: 8-bit sRGB; exr: half float, linear")
+          .field("frames", &P::frames)
+          .default_text("the whole timeline")
           .help("First and last timeline frame, inclusive, inside the timeline")
           .check([](const P& p) {
             if (p.frames && p.frames->x > p.frames->y)
               params::fail("frames", "first frame " + std::to_string(p.frames->x) + " is after the last frame " +
                                          std::to_string(p.frames->y));
           })
-          .field("glb", &P::glb).help("Write animation.glb (one mesh per frame, shown in turn)")
-          .field("mp4", &P::mp4).help("Write animation.mp4 when ffmpeg is installed")
-          .field("width", &P::width).range(1, 16384).unit("pixels").default_text("the camera's viewport")
+          .field("glb", &P::glb)
+          .help("Write animation.glb (one mesh per frame, shown in turn)")
+          .field("mp4", &P::mp4)
+          .help("Write animation.mp4 when ffmpeg is installed")
+          .field("width", &P::width)
+          .range(1, 16384)
+          .unit("pixels")
+          .default_text("the camera's viewport")
           .help("Frame width; give width and height together")
-          .field("height", &P::height).range(1, 16384).unit("pixels").default_text("the camera's viewport")
+          .field("height", &P::height)
+          .range(1, 16384)
+          .unit("pixels")
+          .default_text("the camera's viewport")
           .help("Frame height")
-          .object("camera", &P::camera, camera_schema()).default_text("the scene camera")
+          .object("camera", &P::camera, camera_schema())
+          .default_text("the scene camera")
           .help("The view every frame is rendered from (camera.set's fields; the Record dialog's \"Current view\")")
           .check([](const P& p) {
             if (p.width.has_value() != p.height.has_value()) {
@@ -55,7 +69,8 @@ AnimRecordCommand::AnimRecordCommand(AnimRecordParams p, const std::filesystem::
     : DeclaredCommand(std::move(p)) {
   RecordRequest& r = request_;
   r.out = p_.out;
-  if (!r.out.empty()) r.out_dir = std::filesystem::absolute(CommandContext{base_dir, {}}.resolve(r.out)).lexically_normal();
+  if (!r.out.empty())
+    r.out_dir = std::filesystem::absolute(CommandContext{base_dir, {}}.resolve(r.out)).lexically_normal();
   r.format = p_.format;
   if (p_.frames) {
     r.frame_first = p_.frames->x;

@@ -33,10 +33,14 @@ const ParamSchema<ObjectVisibilityParams>& ObjectVisibilityCommand::schema() {
   using P = ObjectVisibilityParams;
   static const ParamSchema<P> s =
       ParamSchema<P>("object.visibility", "Show or hide an object or a volume in the viewport and in renders")
-          .field("object", &P::object).required().help("Object or volume id")
-          .field("viewport", &P::viewport).default_text("unchanged")
+          .field("object", &P::object)
+          .required()
+          .help("Object or volume id")
+          .field("viewport", &P::viewport)
+          .default_text("unchanged")
           .help("Shown in the viewport, picked by tools, framed by Home (Blender's hide_viewport, inverted)")
-          .field("render", &P::render).default_text("unchanged")
+          .field("render", &P::render)
+          .default_text("unchanged")
           .help("In recordings, animation.glb, scene.glb and rendered images (Blender's hide_render, inverted)")
           .check([](P& p) {
             if (!p.viewport && !p.render)
@@ -56,8 +60,6 @@ void ObjectVisibilityCommand::redo(Scene& scene) {
   std::tie(viewport_before_, render_before_) = set_flags(scene, p_.object, p_.viewport, p_.render);
 }
 
-void ObjectVisibilityCommand::undo(Scene& scene) {
-  set_flags(scene, p_.object, viewport_before_, render_before_);
-}
+void ObjectVisibilityCommand::undo(Scene& scene) { set_flags(scene, p_.object, viewport_before_, render_before_); }
 
 }  // namespace trispline::core

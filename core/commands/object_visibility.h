@@ -3,10 +3,10 @@
 //   {"cmd":"object.visibility","object":"ID","viewport":true|false,"render":true|false}
 // `object` names a mesh object or a volume. `viewport` sets SceneObject::visible / VolumeObject::visible: drawn in the
 // viewport, picked by tools and place.sketch's rays, framed by Home (Scene::bounds). `render` sets render_visible: in
-// recordings (frames, animation.glb, farm chunks), scene.glb and headless images (render_visible_scene); a volume out of
-// renders costs nothing there (no ray casting, no silhouette extraction). Either field may be left out (unchanged), not
-// both. Undo restores both flags.
-// Errors (CommandError, field named, scene untouched): unknown object or volume (`object`); neither field given
+// recordings (frames, animation.glb, farm chunks), scene.glb and headless images (render_visible_scene); a volume out
+// of renders costs nothing there (no ray casting, no silhouette extraction). Either field may be left out (unchanged),
+// not both. Undo restores both flags. Errors (CommandError, field named, scene untouched): unknown object or volume
+// (`object`); neither field given
 // (`viewport`).
 #pragma once
 

@@ -19,8 +19,8 @@
 namespace trispline::core {
 
 struct SceneLoadParams {
-  std::string path;               // absolute and normalised once parsed
-  std::string loose = "refuse";   // refuse | ignore
+  std::string path;              // absolute and normalised once parsed
+  std::string loose = "refuse";  // refuse | ignore
   ObjectFields object;
 };
 

@@ -3,8 +3,8 @@
 #include <chrono>
 
 #include "core/commands/codecs.h"
-#include "core/scene/scene_check.h"
 #include "core/mesh/gltf_io.h"
+#include "core/scene/scene_check.h"
 #include "core/volume/iso_mesh.h"
 #include "core/volume/silhouette_export.h"
 
@@ -36,14 +36,21 @@ const ParamSchema<VolumeExportParams>& VolumeExportCommand::schema() {
   using P = VolumeExportParams;
   static const ParamSchema<P> s =
       ParamSchema<P>("volume.export", "Export a volume's silhouettes (SVG, glTF lines) or its iso-surface mesh")
-          .field("object", &P::object).required().help("A volume")
+          .field("object", &P::object)
+          .required()
+          .help("A volume")
           .choice("what", &P::what, {"silhouettes", "iso"})
-          .help("silhouettes: for the current camera, as .svg or .glb line strips; iso: the surface D = iso as a "
-                "triangle mesh, .glb/.obj/.ply")
-          .field("path", &P::path).required()
-          .help("Output file, relative to the output folder (replay's --out, else the log's folder); absolute paths "
-                "and paths that leave the folder are refused")
-          .field("samples_per_voxel", &P::samples_per_voxel).range(1, 4).write_unless_default()
+          .help(
+              "silhouettes: for the current camera, as .svg or .glb line strips; iso: the surface D = iso as a "
+              "triangle mesh, .glb/.obj/.ply")
+          .field("path", &P::path)
+          .required()
+          .help(
+              "Output file, relative to the output folder (replay's --out, else the log's folder); absolute paths "
+              "and paths that leave the folder are refused")
+          .field("samples_per_voxel", &P::samples_per_voxel)
+          .range(1, 4)
+          .write_unless_default()
           .help("iso: grid samples per voxel and axis before meshing (1 = at the control points)")
           .object("camera", &P::camera, camera_schema())
           .help("silhouettes: the view they are taken for (camera.set's fields); default: the scene camera")
@@ -107,7 +114,8 @@ std::optional<VolumeObject> VolumeExportCommand::build(const Scene& scene) {
     if (!(v.iso >= v.table->range_min() && v.iso <= v.table->range_max()))
       throw CommandError("field 'object': the iso-level " + params::format_number(v.iso) + " of '" + p_.object +
                              "' lies outside its values [" + params::format_number(v.table->range_min()) + ", " +
-                             params::format_number(v.table->range_max()) + "]: no surface to export (volume.iso sets it)",
+                             params::format_number(v.table->range_max()) +
+                             "]: no surface to export (volume.iso sets it)",
                          "object");
     IsoMeshOptions opt;
     opt.samples_per_voxel = p_.samples_per_voxel;

@@ -6,9 +6,9 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <unordered_map>
 #include <stdexcept>
 #include <string>
+#include <unordered_map>
 #include <utility>
 
 namespace trispline::core {
@@ -149,7 +149,6 @@ class Splitter {
  private:
   static int side_slot(int s) { return s < 0 ? 0 : 1; }
 
-
   // Index of vertex v as used on side s (-1/+1); on-plane vertices get their per-side copy.
   unsigned vert(unsigned v, int s) {
     if (cls_[v] != 0) return v;
@@ -262,10 +261,10 @@ class Splitter {
   const TriMesh& in_;  // = out_.mesh: input vertices keep their indices and values while cut vertices are appended
   int axis_;
   double u0_, eps_;
-  MaterialSlot material_ = kMaterialSurface;  // material of the input triangle being split
-  std::vector<std::int8_t> cls_;          // -1 / 0 (on plane) / +1 per input vertex
+  MaterialSlot material_ = kMaterialSurface;               // material of the input triangle being split
+  std::vector<std::int8_t> cls_;                           // -1 / 0 (on plane) / +1 per input vertex
   std::unordered_map<unsigned, std::array<int, 2>> copy_;  // on-plane vertex → index used on the minus / plus side
-  std::vector<glm::uvec3> pieces_;  // the pieces of the triangle being split
+  std::vector<glm::uvec3> pieces_;                         // the pieces of the triangle being split
   std::unordered_map<std::uint64_t, std::array<unsigned, 2>> cuts_;  // edge (lo << 32 | hi) → (minus, plus) vertex
 };
 

@@ -46,7 +46,6 @@ struct CapStats {
 // Deterministic: the same input gives the same triangles in the same order. Throws std::invalid_argument: bad axis,
 // params.size() != #V, side.size() != #V, a touched triangle ≥ #F or with an index ≥ #V, a cut vertex ≥ #V,
 // face_material neither empty nor #F; `split` is then unchanged.
-CapStats cap_split_openings(MeshSplit& split, int axis, double u0, double eps,
-                            MaterialSlot material = kMaterialInside);
+CapStats cap_split_openings(MeshSplit& split, int axis, double u0, double eps, MaterialSlot material = kMaterialInside);
 
 }  // namespace trispline::core

@@ -1,17 +1,17 @@
 #include "core/ffd/refine.h"
 
-#include "core/ffd/deformation_bounds.h"
-
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <optional>
 #include <cmath>
 #include <cstdint>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 #include <unordered_map>
+
+#include "core/ffd/deformation_bounds.h"
 
 namespace trispline::core {
 namespace {
@@ -166,7 +166,8 @@ void validate(const TriMesh& rest, const FfdBinding& binding, const RefineOption
                                 std::to_string(nv) + " vertices");
   if (!rest.normals.empty() && rest.normals.size() != nv)
     throw std::invalid_argument("refine: normals count differs from vertex count");
-  if (!rest.uvs.empty() && rest.uvs.size() != nv) throw std::invalid_argument("refine: uv count differs from vertex count");
+  if (!rest.uvs.empty() && rest.uvs.size() != nv)
+    throw std::invalid_argument("refine: uv count differs from vertex count");
   for (const glm::uvec3& t : rest.triangles)
     if (t.x >= nv || t.y >= nv || t.z >= nv) throw std::invalid_argument("refine: triangle index out of range");
   if (!(o.tolerance > 0.0) || !std::isfinite(o.tolerance))
@@ -178,8 +179,9 @@ void validate(const TriMesh& rest, const FfdBinding& binding, const RefineOption
   for (int a = 0; a < 3; ++a)
     if (!std::isfinite(o.param_offset[a])) throw std::invalid_argument("refine: parameter offset is not finite");
   if (o.criterion == RefineCriterion::Best && o.error != RefineError::bound)
-    throw std::invalid_argument("refine: criterion 'best' chooses each triangle's split by its certified bound; use it "
-                                "with error 'bound'");
+    throw std::invalid_argument(
+        "refine: criterion 'best' chooses each triangle's split by its certified bound; use it "
+        "with error 'bound'");
 }
 
 // A triangle's split in certified refinement: which of its edges (bit k: edge v_k → v_{k+1}) and at which points.
@@ -226,9 +228,12 @@ RefineCriterion parse_refine_criterion(const std::string& name) {
 
 const char* refine_criterion_name(RefineCriterion c) {
   switch (c) {
-    case RefineCriterion::Midpoint: return "midpoint";
-    case RefineCriterion::Greville: return "greville";
-    case RefineCriterion::Best: return "best";
+    case RefineCriterion::Midpoint:
+      return "midpoint";
+    case RefineCriterion::Greville:
+      return "greville";
+    case RefineCriterion::Best:
+      return "best";
   }
   return "?";
 }
@@ -381,7 +386,8 @@ RefineResult refine_for_ffd(const TriMesh& rest, const FfdBinding& binding, cons
   std::vector<glm::dvec3> fpos(m.positions.size());
   auto evaluate_from = [&](std::size_t first) {
     fpos.resize(m.positions.size());
-    parallel_each(m.positions.size() - first, [&](std::size_t i) { fpos[first + i] = F.eval(params[first + i] + o.param_offset); });
+    parallel_each(m.positions.size() - first,
+                  [&](std::size_t i) { fpos[first + i] = F.eval(params[first + i] + o.param_offset); });
   };
   evaluate_from(0);
 
@@ -406,9 +412,7 @@ RefineResult refine_for_ffd(const TriMesh& rest, const FfdBinding& binding, cons
         tri_pedge[f * 3 + k] = it->second;
       }
   };
-  auto ends = [&](const PEdge& e) {
-    return std::pair{params[e.a] + o.param_offset, params[e.b] + o.param_offset};
-  };
+  auto ends = [&](const PEdge& e) { return std::pair{params[e.a] + o.param_offset, params[e.b] + o.param_offset}; };
 
   std::optional<SecondDerivativeBounds> second;
   if (o.error == RefineError::bound) second.emplace(F);

@@ -91,7 +91,7 @@ struct Incisor {
       res.lattice.control_points()[c] += L.offset.control_points()[c];
   }
 
-  int side(std::uint32_t v) const { return prm[v].x < 0.5 ? 0 : 1; }  // 0 = minus, 1 = plus
+  int side(std::uint32_t v) const { return prm[v].x < 0.5 ? 0 : 1; }          // 0 = minus, 1 = plus
   glm::dvec3 opening(const glm::dvec3& q) const { return L.offset.eval(q); }  // D(q) = F_open − F
 
   void cull_and_invert();
@@ -179,8 +179,7 @@ int Incisor::crossing_of(std::uint32_t a, std::uint32_t b, glm::dvec3* param_out
 // before the walls); rim edges per side for the walls.
 void Incisor::split_faces() {
   tris = surface.triangles;
-  mats = surface.face_material.empty() ? std::vector<MaterialSlot>(surface.triangles.size(), 0)
-                                       : surface.face_material;
+  mats = surface.face_material.empty() ? std::vector<MaterialSlot>(surface.triangles.size(), 0) : surface.face_material;
   for (std::size_t f = 0; f < surface.triangles.size(); ++f) split_face(f);
   res.cut_edges = crossings.size();
   res.tips = tips.size();
@@ -290,8 +289,7 @@ void Incisor::open() {
   for (std::size_t v = V; v < V1; ++v) res.moved[v] = 1;
 }
 
-int Incisor::add_wall_vertex(const glm::dvec3& p, const glm::dvec2& uv, const glm::dvec3& n,
-                             const glm::dvec3& closed) {
+int Incisor::add_wall_vertex(const glm::dvec3& p, const glm::dvec2& uv, const glm::dvec3& n, const glm::dvec3& closed) {
   out.positions.push_back(p);
   res.closed.push_back(closed);
   if (has_n) out.normals.push_back(n);
@@ -332,8 +330,8 @@ const Column& Incisor::column(int ref) {
     for (int r = 1; r < R; ++r) {
       const glm::dvec3 q(u, c.param.y, c.param.z + (L.bottom_w - c.param.z) * r / R);
       const glm::dvec3 closed = c.position + incision_detail::eval_base(L, q) - base;
-      col.push_back(add_wall_vertex(closed + opening(q), uv, (cr.side ? 1.0 : -1.0) * unit(L.s_hat->eval(c.param.y)),
-                                    closed));
+      col.push_back(
+          add_wall_vertex(closed + opening(q), uv, (cr.side ? 1.0 : -1.0) * unit(L.s_hat->eval(c.param.y)), closed));
     }
     if (bottom[cr.index] < 0) {  // D = 0 at the bottom: one vertex for both sides
       const glm::dvec3 q(0.5, c.param.y, L.bottom_w);

@@ -13,9 +13,8 @@
 // Sources: Khronos glTF 2.0 specification §3.9 (materials), §3.8 (textures, images, samplers).
 #pragma once
 
-#include <glm/glm.hpp>
-
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <memory>
 #include <string>
 #include <vector>
@@ -24,9 +23,9 @@ namespace trispline::core {
 
 // A decoded or unreadable image of a material texture.
 struct MaterialImage {
-  std::string name;       // glTF image name, or the file name; may be empty
-  std::string uri;        // the file it came from, relative to the model's folder ("" when embedded)
-  std::string mime_type;  // "image/png", "image/jpeg", ... of `encoded` ("" when unreadable)
+  std::string name;                   // glTF image name, or the file name; may be empty
+  std::string uri;                    // the file it came from, relative to the model's folder ("" when embedded)
+  std::string mime_type;              // "image/png", "image/jpeg", ... of `encoded` ("" when unreadable)
   std::vector<std::uint8_t> encoded;  // the source file's bytes, as read (empty when unreadable)
   int width = 0, height = 0;          // pixels of `rgba8` (0 when unreadable)
   std::vector<std::uint8_t> rgba8;    // width × height × 4, rows top to bottom, sRGB-encoded colour, straight alpha
@@ -56,10 +55,10 @@ struct TextureSampler {
 
 // A material's use of an image. `image` < 0: no texture.
 struct MaterialTexture {
-  int image = -1;          // index into MaterialSet::images
-  int texcoord = 0;        // TEXCOORD_n set; trispline meshes carry one set (TriMesh::uvs), so 0
+  int image = -1;    // index into MaterialSet::images
+  int texcoord = 0;  // TEXCOORD_n set; trispline meshes carry one set (TriMesh::uvs), so 0
   TextureSampler sampler;
-  double scale = 1.0;      // normalTexture.scale, occlusionTexture.strength; 1 for the others
+  double scale = 1.0;  // normalTexture.scale, occlusionTexture.strength; 1 for the others
   bool present() const { return image >= 0; }
 };
 
@@ -69,17 +68,17 @@ enum class AlphaMode { Opaque, Mask, Blend };
 // sRGB-encoded and multiplied after decoding, glTF 2.0 §3.9.2).
 struct Material {
   std::string name;
-  glm::dvec4 base_color{1.0};              // baseColorFactor, linear RGBA
-  MaterialTexture base_color_texture;      // sRGB RGBA
-  double metallic = 1.0;                   // metallicFactor
-  double roughness = 1.0;                  // roughnessFactor
+  glm::dvec4 base_color{1.0};                  // baseColorFactor, linear RGBA
+  MaterialTexture base_color_texture;          // sRGB RGBA
+  double metallic = 1.0;                       // metallicFactor
+  double roughness = 1.0;                      // roughnessFactor
   MaterialTexture metallic_roughness_texture;  // B = metallic, G = roughness
-  MaterialTexture normal_texture;          // tangent-space normal map; scale = normalTexture.scale
-  MaterialTexture occlusion_texture;       // R = occlusion; scale = strength
-  glm::dvec3 emissive{0.0};                // emissiveFactor, linear RGB
-  MaterialTexture emissive_texture;        // sRGB RGB
+  MaterialTexture normal_texture;              // tangent-space normal map; scale = normalTexture.scale
+  MaterialTexture occlusion_texture;           // R = occlusion; scale = strength
+  glm::dvec3 emissive{0.0};                    // emissiveFactor, linear RGB
+  MaterialTexture emissive_texture;            // sRGB RGB
   AlphaMode alpha_mode = AlphaMode::Opaque;
-  double alpha_cutoff = 0.5;               // AlphaMode::Mask only
+  double alpha_cutoff = 0.5;  // AlphaMode::Mask only
   bool double_sided = false;
 };
 
@@ -99,10 +98,10 @@ struct MaterialSet {
 // its node's world transform applied. Parts let an export write the file's node tree back while the object is not
 // deformed; instances (nodes sharing one mesh) share `mesh_index`.
 struct MeshPart {
-  std::string name;           // node name ("" → the object's name alone on export)
-  int mesh_index = 0;         // the file's mesh this node draws (instances share it)
-  glm::dmat4 world{1.0};      // node world transform in the file (object space of the rest mesh)
-  std::uint32_t first_vertex = 0, vertex_count = 0;      // its vertices in the rest mesh
+  std::string name;                                  // node name ("" → the object's name alone on export)
+  int mesh_index = 0;                                // the file's mesh this node draws (instances share it)
+  glm::dmat4 world{1.0};                             // node world transform in the file (object space of the rest mesh)
+  std::uint32_t first_vertex = 0, vertex_count = 0;  // its vertices in the rest mesh
   std::uint32_t first_triangle = 0, triangle_count = 0;  // its triangles in the rest mesh
 };
 

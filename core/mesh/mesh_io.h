@@ -27,11 +27,11 @@ class MeshIoError : public std::runtime_error {
 
 // What a load met besides the triangles it returns.
 struct MeshLoadReport {
-  std::size_t faces = 0;           // triangles loaded (#T), after triangulating the file's polygons
-  std::size_t ignored_points = 0;  // point elements left out (only with MeshLoadOptions::ignore_loose)
-  std::size_t ignored_lines = 0;   // line elements left out (only with MeshLoadOptions::ignore_loose)
-  std::size_t duplicate_faces = 0; // repeated triangles removed (remove_duplicate_triangles); faces excludes them
-  std::string loader;              // "assimp" or "tinygltf"
+  std::size_t faces = 0;            // triangles loaded (#T), after triangulating the file's polygons
+  std::size_t ignored_points = 0;   // point elements left out (only with MeshLoadOptions::ignore_loose)
+  std::size_t ignored_lines = 0;    // line elements left out (only with MeshLoadOptions::ignore_loose)
+  std::size_t duplicate_faces = 0;  // repeated triangles removed (remove_duplicate_triangles); faces excludes them
+  std::string loader;               // "assimp" or "tinygltf"
 };
 
 struct MeshLoadOptions {
@@ -48,8 +48,8 @@ struct MeshLoadOptions {
 //                        meshes joined, vertices equal in every attribute welded, in order of first use (see
 //                        core/mesh/assimp_io.h). Normals and texture coordinates are kept when every mesh has them
 //                        per vertex (STL normals are per face and dropped); uvs flipped to glTF's v-down convention
-//                        (model_load.h). Collada and FBX meshes are placed by their node transforms. 4-D OFF, binary OFF, files with no
-//                        faces, 2-corner OBJ faces and truncated OBJ vertex lines are refused.
+//                        (model_load.h). Collada and FBX meshes are placed by their node transforms. 4-D OFF, binary
+//                        OFF, files with no faces, 2-corner OBJ faces and truncated OBJ vertex lines are refused.
 //   .gltf .glb           every TRIANGLES primitive of every node of the default scene (all root nodes of all scenes
 //                        if none is marked default; all meshes untransformed if there are no nodes), each with its
 //                        node's world transform; POSITION, NORMAL, TEXCOORD_0; indices of any unsigned type.
@@ -61,7 +61,8 @@ TriMesh load_mesh(const std::filesystem::path& path, const MeshLoadOptions& opti
                   MeshLoadReport* report = nullptr);
 
 // Writes .obj or .ply (ASCII for OBJ, binary little-endian for PLY) through OpenMesh, with normals when present and
-// texture coordinates when present (v flipped back to the formats' v-up convention). Throws MeshIoError on an unsupported extension or a failed write.
+// texture coordinates when present (v flipped back to the formats' v-up convention). Throws MeshIoError on an
+// unsupported extension or a failed write.
 void save_mesh(const std::filesystem::path& path, const TriMesh& mesh);
 
 // Throws MeshIoError "<what>: ..." if the mesh has no vertices or no triangles, a non-finite position, an index

@@ -11,9 +11,8 @@
 // Vertex order is the order of the source file; operations that add vertices append them.
 #pragma once
 
-#include <glm/glm.hpp>
-
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <string>
 #include <vector>
 
@@ -21,15 +20,15 @@ namespace trispline::core {
 
 // Material slots of TriMesh::face_material: an index into the object's materials, or kMaterialInside.
 using MaterialSlot = std::uint16_t;
-inline constexpr MaterialSlot kMaterialSurface = 0;       // the object's first material (its colour when it has none)
-inline constexpr MaterialSlot kMaterialInside = 0xFFFF;   // cut surfaces (caps, incision walls): the inside colour
+inline constexpr MaterialSlot kMaterialSurface = 0;      // the object's first material (its colour when it has none)
+inline constexpr MaterialSlot kMaterialInside = 0xFFFF;  // cut surfaces (caps, incision walls): the inside colour
 inline constexpr std::size_t kMaxMaterialsPerMesh = 0xFFFE;  // material indices below kMaterialInside
 
 struct TriMesh {
-  std::vector<glm::dvec3> positions;  // #V × 3
-  std::vector<glm::dvec3> normals;    // #V × 3 or empty
-  std::vector<glm::dvec2> uvs;        // #V × 2 or empty
-  std::vector<glm::uvec3> triangles;  // #F × 3
+  std::vector<glm::dvec3> positions;        // #V × 3
+  std::vector<glm::dvec3> normals;          // #V × 3 or empty
+  std::vector<glm::dvec2> uvs;              // #V × 2 or empty
+  std::vector<glm::uvec3> triangles;        // #F × 3
   std::vector<MaterialSlot> face_material;  // #F or empty (= all 0); material index or kMaterialInside
 
   std::size_t vertex_count() const { return positions.size(); }
@@ -48,7 +47,10 @@ struct TriMesh {
 struct Aabb {
   glm::dvec3 lo{1e300};
   glm::dvec3 hi{-1e300};
-  void extend(const glm::dvec3& p) { lo = glm::min(lo, p); hi = glm::max(hi, p); }
+  void extend(const glm::dvec3& p) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
   bool valid() const { return lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z; }
   glm::dvec3 size() const { return hi - lo; }
   glm::dvec3 center() const { return 0.5 * (lo + hi); }

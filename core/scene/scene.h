@@ -5,6 +5,12 @@
 // Object order is insertion order (it is the export order of scene.glb).
 #pragma once
 
+#include <glm/glm.hpp>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
 #include "core/ddm/ddm_layer.h"
 #include "core/dffd/dffd_rig.h"
 #include "core/ffd/ffd.h"
@@ -16,12 +22,6 @@
 #include "core/volume/silhouettes.h"
 #include "core/volume/singletons.h"
 #include "core/volume/volume_spline.h"
-
-#include <glm/glm.hpp>
-#include <memory>
-#include <optional>
-#include <string>
-#include <vector>
 
 namespace trispline::core {
 
@@ -39,19 +39,19 @@ TriMesh transformed(const TriMesh& mesh, const Transform& t);
 
 // Placement record kept with a placed object, for display (contact surface, stroke) and the report.
 struct PlacementRecord {
-  std::vector<glm::dvec2> stroke_px;        // #S × 2, viewport pixels
-  int samples_u = 0, samples_v = 0;         // contact sampling grid (nu × nv)
-  std::vector<glm::dvec3> contact_points;   // #(nu·nv) × 3 ray hits (filled where missed), u fastest
-  std::vector<unsigned char> contact_hit;   // #(nu·nv): 1 = real hit, 0 = filled from neighbours
+  std::vector<glm::dvec2> stroke_px;       // #S × 2, viewport pixels
+  int samples_u = 0, samples_v = 0;        // contact sampling grid (nu × nv)
+  std::vector<glm::dvec3> contact_points;  // #(nu·nv) × 3 ray hits (filled where missed), u fastest
+  std::vector<unsigned char> contact_hit;  // #(nu·nv): 1 = real hit, 0 = filled from neighbours
 };
 
 // The scene's timeline (Blender's Output ▸ Frame Range and Frame Rate): frames frame_start..frame_end inclusive at
 // `fps` frames per second. Frame f is shown at scene time (f − frame_start)/fps seconds; scene time is the single
 // clock every animation reads (offset keys and velocities, glTF clips), so recordings are exact per frame.
 struct Timeline {
-  double fps = 24;       // frames per second, in [0.01, 240]
-  int frame_start = 1;   // first frame number (≥ 0)
-  int frame_end = 120;   // last frame number, inclusive (≥ frame_start, ≤ 100000)
+  double fps = 24;      // frames per second, in [0.01, 240]
+  int frame_start = 1;  // first frame number (≥ 0)
+  int frame_end = 120;  // last frame number, inclusive (≥ frame_start, ≤ 100000)
   double time_of_frame(double frame) const { return (frame - frame_start) / fps; }  // seconds
   double frame_of_time(double time_s) const { return frame_start + time_s * fps; }
   int frame_count() const { return frame_end - frame_start + 1; }
@@ -64,12 +64,10 @@ struct Timeline {
 // A glTF clip attached to an object (anim.clip): the object's rest mesh is posed by it at every scene time.
 struct ClipBinding {
   std::shared_ptr<const MeshClip> clip;  // non-null
-  double speed = 1.0;    // clip seconds per scene second (> 0)
-  double start_s = 0.0;  // scene time at which the clip is at its time 0, seconds
-  bool loop = true;      // wrap (true) or hold the last pose (false)
-  double clip_time(double time_s) const {
-    return wrap_clip_time(time_s, start_s, speed, clip->duration_s(), loop);
-  }
+  double speed = 1.0;                    // clip seconds per scene second (> 0)
+  double start_s = 0.0;                  // scene time at which the clip is at its time 0, seconds
+  bool loop = true;                      // wrap (true) or hold the last pose (false)
+  double clip_time(double time_s) const { return wrap_clip_time(time_s, start_s, speed, clip->duration_s(), loop); }
 };
 
 // A per-vertex morph channel of an object's rest mesh (an incision's opening keyed on the timeline, incision.animate):
@@ -92,16 +90,16 @@ struct SceneObject {
   std::string source;                        // file path or "primitive:<kind>"
   std::shared_ptr<const TriMesh> rest_mesh;  // object space, as loaded (with normals)
   Transform transform;
-  glm::vec3 color{0.8f, 0.8f, 0.8f};         // linear RGB
+  glm::vec3 color{0.8f, 0.8f, 0.8f};            // linear RGB
   glm::vec3 inside_color{0.62f, 0.10f, 0.08f};  // linear RGB of kMaterialInside faces (caps, incision walls: "flesh")
   // The file's materials, indexed by the meshes' face_material (null or empty: Solid colour only, as primitives).
   // Shared by every mesh derived from rest_mesh (FFD, DFFD, incisions, refinement keep face_material and uvs).
   std::shared_ptr<const MaterialSet> materials;
   // The file's nodes when it had several (rest_mesh holds them all, node transforms applied); empty otherwise.
   std::vector<MeshPart> parts;
-  bool visible = true;          // shown in the viewport (Blender's hide_viewport); object.visibility
-  bool render_visible = true;   // in recordings, animation.glb, scene.glb and farm frames (hide_render)
-  std::shared_ptr<const FfdBinding> ffd;     // null unless deformed; binding over the *transformed* rest mesh
+  bool visible = true;                    // shown in the viewport (Blender's hide_viewport); object.visibility
+  bool render_visible = true;             // in recordings, animation.glb, scene.glb and farm frames (hide_render)
+  std::shared_ptr<const FfdBinding> ffd;  // null unless deformed; binding over the *transformed* rest mesh
   std::shared_ptr<const PlacementRecord> placement;  // null unless placed by place.sketch
   // Discontinuous FFD (dffd.split, seed §6.3): null unless split around obstacles; never together with `ffd`. The
   // mesh is split at the rig's breaks when evaluated (dffd_apply), so world_mesh has more vertices than rest_mesh
@@ -110,8 +108,9 @@ struct SceneObject {
   // Tile layers over the object's surface (DDM, seed ch. 5; ddm.fill / ddm.paint), in the order they were made. Their
   // meshes are in object space, drawn with the object's transform.
   std::vector<std::shared_ptr<const DdmLayer>> ddm_layers;
-  std::shared_ptr<const TriMesh> world_mesh;  // evaluated at scene time 0: ffd ? F(E(T(rest)) + offset_at(0)) : T(rest),
-                                              // rest posed by the clip at time 0 when there is one; see refresh()
+  std::shared_ptr<const TriMesh>
+      world_mesh;  // evaluated at scene time 0: ffd ? F(E(T(rest)) + offset_at(0)) : T(rest),
+                   // rest posed by the clip at time 0 when there is one; see refresh()
   // Parameter offset added to every vertex's (u,v,w) before F is evaluated (seed §4.5 animation offset), parameter
   // units; on a periodic axis an offset of 1 is one full turn. Ignored without ffd.
   glm::dvec3 param_offset{0.0};
@@ -126,13 +125,10 @@ struct SceneObject {
   std::shared_ptr<const MorphChannel> morph;
   // (offset_keys.empty() ? param_offset : evaluate_offset_keys(offset_keys, time_s)) + offset_velocity·time_s.
   glm::dvec3 offset_at(double time_s) const {
-    return (offset_keys.empty() ? param_offset : evaluate_offset_keys(offset_keys, time_s)) +
-           offset_velocity * time_s;
+    return (offset_keys.empty() ? param_offset : evaluate_offset_keys(offset_keys, time_s)) + offset_velocity * time_s;
   }
   // The FFD offset changes with time (velocity or ≥ 2 keys); the renderer can play it in the vertex shader.
-  bool offset_animated() const {
-    return ffd && (offset_velocity != glm::dvec3(0.0) || offset_keys.size() >= 2);
-  }
+  bool offset_animated() const { return ffd && (offset_velocity != glm::dvec3(0.0) || offset_keys.size() >= 2); }
   // The rest mesh itself changes with time (a clip or an animated morph): every frame needs a new pose (CPU) before
   // the FFD.
   bool clip_animated() const { return clip != nullptr || (morph && morph->animated()); }
@@ -153,28 +149,29 @@ struct SceneObject {
 
 // How a volume's silhouettes are extracted and stroked (volume.silhouettes; seed §7.3.3–7.3.4).
 struct VolumeSilhouetteSettings {
-  bool enabled = false;              // extracted for the current view (live in the editor, at export and in replay)
-  std::string style = "hue";         // hue (hue by |∇D|) | glyphs (short strokes ⊥ the projected gradient) |
-                                     // width (stroke width and grey by |∇D|) | plain (black)
-  std::string hidden = "remove";     // remove | dashed | show: what is done with parts hidden by the iso-surface
+  bool enabled = false;           // extracted for the current view (live in the editor, at export and in replay)
+  std::string style = "hue";      // hue (hue by |∇D|) | glyphs (short strokes ⊥ the projected gradient) |
+                                  // width (stroke width and grey by |∇D|) | plain (black)
+  std::string hidden = "remove";  // remove | dashed | show: what is done with parts hidden by the iso-surface
   std::string projection = "perspective";  // perspective (G·(P − eye) = 0) | orthographic (G·forward = 0)
-  SilhouetteParams params;           // subdivision, accuracy (hidden_test follows `hidden`)
+  SilhouetteParams params;                 // subdivision, accuracy (hidden_test follows `hidden`)
 };
 
-// A CT/MRI volume as a scalar trivariate B-spline D (seed ch. 7): its samples' spline, the singleton table, the iso-level
-// shown, and the silhouettes last extracted for the scene camera. World units: millimetres of the file's space.
+// A CT/MRI volume as a scalar trivariate B-spline D (seed ch. 7): its samples' spline, the singleton table, the
+// iso-level shown, and the silhouettes last extracted for the scene camera. World units: millimetres of the file's
+// space.
 struct VolumeObject {
-  std::string name;                                   // stable id (shares the namespace of SceneObject names)
-  std::string source;                                 // the file or folder it was read from
-  std::string units;                                  // value units ("HU" for CT, "" unknown)
-  std::string modality;                               // "CT", "MR", ... or ""
-  std::shared_ptr<const VolumeSpline> spline;         // non-null
-  std::shared_ptr<const SingletonTable> table;        // non-null, built from `spline`
-  double iso = 0.0;                                   // iso-level c of D = c, in `units`
-  bool visible = true;                                // shown in the viewport; object.visibility
-  bool render_visible = true;                         // in recordings and exports; a hidden volume costs nothing there
-  bool show_surface = true;                           // draw the iso-surface (GPU ray casting)
-  glm::vec3 color{0.93f, 0.89f, 0.80f};               // linear RGB of the iso-surface
+  std::string name;                             // stable id (shares the namespace of SceneObject names)
+  std::string source;                           // the file or folder it was read from
+  std::string units;                            // value units ("HU" for CT, "" unknown)
+  std::string modality;                         // "CT", "MR", ... or ""
+  std::shared_ptr<const VolumeSpline> spline;   // non-null
+  std::shared_ptr<const SingletonTable> table;  // non-null, built from `spline`
+  double iso = 0.0;                             // iso-level c of D = c, in `units`
+  bool visible = true;                          // shown in the viewport; object.visibility
+  bool render_visible = true;                   // in recordings and exports; a hidden volume costs nothing there
+  bool show_surface = true;                     // draw the iso-surface (GPU ray casting)
+  glm::vec3 color{0.93f, 0.89f, 0.80f};         // linear RGB of the iso-surface
   VolumeSilhouetteSettings silhouette;
   // Silhouettes of D = iso for `silhouette_camera` (null until extracted, or when disabled).
   std::shared_ptr<const SilhouetteResult> silhouettes;

@@ -236,8 +236,8 @@ ScalarVolume load_dicom(const std::filesystem::path& path, const VolumeLoadOptio
     if (walk.deflated) tags.add(f, std::move(walk.values));
   const std::vector<std::string> chosen = choose_series(tags, files, dicom_files, path, opened);
   if (chosen.size() < 2)
-    fail(path, "the series " + trimmed(tags.get(chosen.front(), kSeriesUid)) + " has " +
-                   std::to_string(chosen.size()) + " slice: a volume needs at least 2");
+    fail(path, "the series " + trimmed(tags.get(chosen.front(), kSeriesUid)) + " has " + std::to_string(chosen.size()) +
+                   " slice: a volume needs at least 2");
 
   std::vector<Slice> slices;
   const SeriesGeometry g = series_geometry(tags, chosen, path, slices);

@@ -2,8 +2,8 @@
 #include "core/volume/volume_io_dicom_slice.h"
 
 #include <gdcmImage.h>
-#include <gdcmReader.h>
 #include <gdcmPixelFormat.h>
+#include <gdcmReader.h>
 #include <gdcmTrace.h>
 #include <gdcmUIDs.h>
 
@@ -59,9 +59,10 @@ bool parse_integer(const char* s, int lo, int hi, int* out) {
 namespace {
 
 const gdcm::Tag* const kSliceTags[] = {
-    &kTransferSyntax, &kModality,     &kSeriesDescription, &kSeriesUid,      &kPosition,           &kOrientation,
-    &kSamplesPerPixel, &kPhotometric, &kFrames,            &kRows,           &kColumns,            &kPixelSpacing,
-    &kBitsAllocated,  &kBitsStored,   &kPixelRepresentation, &kRescaleIntercept, &kRescaleSlope};
+    &kTransferSyntax,   &kModality,        &kSeriesDescription, &kSeriesUid,  &kPosition,
+    &kOrientation,      &kSamplesPerPixel, &kPhotometric,       &kFrames,     &kRows,
+    &kColumns,          &kPixelSpacing,    &kBitsAllocated,     &kBitsStored, &kPixelRepresentation,
+    &kRescaleIntercept, &kRescaleSlope};
 
 }  // namespace
 
@@ -140,11 +141,11 @@ SliceHeader read_slice_header(const TagTable& tags, const std::string& file, con
          h.name + ": a colour image (" + photometric + ", " + samples + " samples per pixel): grey levels expected");
   if (!parse_integer(value(kBitsAllocated), 8, 32, &h.bits_allocated) ||
       (h.bits_allocated != 8 && h.bits_allocated != 16 && h.bits_allocated != 32))
-    fail(report, h.name + ": Bits Allocated (0028,0100) is '" + trimmed(value(kBitsAllocated)) +
-                     "': 8, 16 or 32 are read");
+    fail(report,
+         h.name + ": Bits Allocated (0028,0100) is '" + trimmed(value(kBitsAllocated)) + "': 8, 16 or 32 are read");
   if (!parse_integer(value(kBitsStored), 1, h.bits_allocated, &h.bits_stored))
-    fail(report, h.name + ": Bits Stored (0028,0101) is '" + trimmed(value(kBitsStored)) + "': from 1 to Bits Allocated (" +
-                     std::to_string(h.bits_allocated) + ") expected");
+    fail(report, h.name + ": Bits Stored (0028,0101) is '" + trimmed(value(kBitsStored)) +
+                     "': from 1 to Bits Allocated (" + std::to_string(h.bits_allocated) + ") expected");
   int representation = 0;
   if (value(kPixelRepresentation) && !parse_integer(value(kPixelRepresentation), 0, 1, &representation))
     fail(report, h.name + ": Pixel Representation (0028,0103) is '" + trimmed(value(kPixelRepresentation)) +
@@ -182,8 +183,7 @@ void decode_slice(const SliceHeader& slice, const std::filesystem::path& report,
   image.SetDimension(1, static_cast<unsigned>(slice.rows));
   image.SetPixelFormat(gdcm::PixelFormat(1, static_cast<unsigned short>(slice.bits_allocated),
                                          static_cast<unsigned short>(slice.bits_stored),
-                                         static_cast<unsigned short>(slice.bits_stored - 1),
-                                         slice.is_signed ? 1 : 0));
+                                         static_cast<unsigned short>(slice.bits_stored - 1), slice.is_signed ? 1 : 0));
   image.SetPhotometricInterpretation(slice.monochrome1 ? gdcm::PhotometricInterpretation::MONOCHROME1
                                                        : gdcm::PhotometricInterpretation::MONOCHROME2);
   image.SetTransferSyntax(syntax);
@@ -253,7 +253,8 @@ std::vector<float> load_dicom_slice(const std::filesystem::path& file, const Vol
   if (walk->deflated) {
     limits.stop_at_pixel_data = false;
     const std::uint64_t decode_bytes = 2 * header.pixel_bytes(), left = budget_left(voxels, options);
-    limits.inflate_cap = std::min(left > decode_bytes ? left - decode_bytes : 0, header.pixel_bytes() + kMaxDicomHeaderBytes);
+    limits.inflate_cap =
+        std::min(left > decode_bytes ? left - decode_bytes : 0, header.pixel_bytes() + kMaxDicomHeaderBytes);
     data_set_bytes = walk_dicom_file(file, limits, file, name)->data_set_bytes;
   }
   check_budget(file, dims, voxels, data_set_bytes + 2 * header.pixel_bytes(), options);

@@ -70,15 +70,15 @@ std::string transfer_syntax_text(const char* uid_value);
 std::string file_name(const std::string& file);
 
 struct SliceHeader {
-  std::string file, name;                 // full path, file name (messages)
-  int rows = 0, columns = 0;              // 1…65535
+  std::string file, name;     // full path, file name (messages)
+  int rows = 0, columns = 0;  // 1…65535
   int bits_allocated = 16, bits_stored = 16;
-  bool is_signed = false;                 // Pixel Representation 1
-  bool monochrome1 = false;               // Photometric Interpretation MONOCHROME1 (else MONOCHROME2 or absent)
-  double slope = 1.0, intercept = 0.0;    // Rescale Slope / Intercept (1, 0 when absent)
-  std::string transfer_syntax;            // for messages
+  bool is_signed = false;               // Pixel Representation 1
+  bool monochrome1 = false;             // Photometric Interpretation MONOCHROME1 (else MONOCHROME2 or absent)
+  double slope = 1.0, intercept = 0.0;  // Rescale Slope / Intercept (1, 0 when absent)
+  std::string transfer_syntax;          // for messages
 
-  std::uint64_t pixel_bytes() const {     // rows · columns · bits_allocated / 8: one decoded slice
+  std::uint64_t pixel_bytes() const {  // rows · columns · bits_allocated / 8: one decoded slice
     return std::uint64_t(rows) * std::uint64_t(columns) * std::uint64_t(bits_allocated / 8);
   }
 };
@@ -86,8 +86,7 @@ struct SliceHeader {
 // The header of `file` from the table; fails (naming the file) on unreadable or out-of-range Rows / Columns, Bits
 // Allocated other than 8, 16, 32, Bits Stored 0 or above Bits Allocated, Pixel Representation other than 0 / 1,
 // multi-frame or colour images, unreadable rescale values. `report` is the path messages start with.
-SliceHeader read_slice_header(const TagTable& tags, const std::string& file,
-                              const std::filesystem::path& report);
+SliceHeader read_slice_header(const TagTable& tags, const std::string& file, const std::filesystem::path& report);
 
 // Decodes `slice` (its header as checked above) and appends rows·columns floats (stored value, bits above Bits
 // Stored dropped, sign-extended, × slope + intercept) to `values`. The image is built from `slice` (GDCM's

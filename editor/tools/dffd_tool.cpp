@@ -15,9 +15,7 @@ ui::ToolEntry DffdTool::entry() const {
   return {"Split (DFFD)", "", "Split the selected object around obstacles: it wraps around them and re-forms behind"};
 }
 
-std::string DffdTool::hint() const {
-  return "Click: select   Tool panel: tick obstacles, then Split";
-}
+std::string DffdTool::hint() const { return "Click: select   Tool panel: tick obstacles, then Split"; }
 
 std::vector<ui::DffdObstacleInfo> DffdTool::candidates(const ToolContext& ctx, const std::string& object) const {
   std::vector<ui::DffdObstacleInfo> out;
@@ -46,10 +44,14 @@ void DffdTool::draw_seam_section(ToolContext& ctx, const std::string& object) {
   if (stitch_keys_.frame_to < 0)
     stitch_keys_.frame_from = scene.timeline.frame_start, stitch_keys_.frame_to = scene.timeline.frame_end;
   std::string unavailable;
-  if (!sel) unavailable = "select an object split by Split (DFFD)";
-  else if (!sel->dffd) unavailable = "'" + sel->name + "' is not split yet: tick obstacles, then Split";
-  else if (!sel->dffd->seam) unavailable = "'" + sel->name + "' was split with open openings (no caps): split it "
-                                           "with openings cap or stitch to key its seam";
+  if (!sel)
+    unavailable = "select an object split by Split (DFFD)";
+  else if (!sel->dffd)
+    unavailable = "'" + sel->name + "' is not split yet: tick obstacles, then Split";
+  else if (!sel->dffd->seam)
+    unavailable = "'" + sel->name +
+                  "' was split with open openings (no caps): split it "
+                  "with openings cap or stitch to key its seam";
   const ui::KeyPairSpec spec{"dffd_anim", "Stitch",
                              "0: the openings as the obstacles leave them (capped); 1: stitched behind them at the "
                              "level w_s (seed section 6.3.2); other values extrapolate",

@@ -1,5 +1,4 @@
 #include "editor/tools/incision_tool.h"
-#include "ui/param_widgets.h"
 
 #include <imgui.h>
 
@@ -13,12 +12,13 @@
 #include "editor/tools/select_tool.h"
 #include "ui/gui_probe.h"
 #include "ui/number_field.h"
+#include "ui/param_widgets.h"
 #include "ui/theme.h"
 
 namespace trispline::editor {
 
 namespace {
-constexpr int kCurveSamples = 64;           // G(v) samples shown while dragging
+constexpr int kCurveSamples = 64;  // G(v) samples shown while dragging
 constexpr double kDefaultWidth = 0.02, kDefaultDepth = 0.02, kDefaultOpening = 0.006;  // × bounding-box diagonal
 }  // namespace
 
@@ -183,28 +183,26 @@ void IncisionTool::draw_panel(ToolContext& ctx) {
   const core::SceneObject* sel = ctx.session.scene().find(ctx.selected.empty() ? target_ : ctx.selected);
   const core::IncisionParams shown = resolved(sel);
   auto format = [&](bool unset, double value) { return !unset ? "%.4g" : value > 0.0 ? "%.4g (auto)" : "auto"; };
-  const double diag = sel && sel->world_mesh && !sel->world_mesh->empty() ? bounds_of(*sel->world_mesh).diagonal()
-                                                                          : 1.0;
+  const double diag =
+      sel && sel->world_mesh && !sel->world_mesh->empty() ? bounds_of(*sel->world_mesh).diagonal() : 1.0;
   const float speed = float(std::max(diag, 1e-6) * 1e-3);
   const double lo = 1e-6;
 
   double width = shown.width, depth = shown.depth, opening = shown.opening;
-  if (ui::drag_scalar("Width", ImGuiDataType_Double, &width, speed, &lo, nullptr,
-                        format(params_.width <= 0.0, width)))
+  if (ui::drag_scalar("Width", ImGuiDataType_Double, &width, speed, &lo, nullptr, format(params_.width <= 0.0, width)))
     params_.width = std::max(width, lo);
   ui::tooltip(
       "alpha: half-extent of the cutting lattice across the cut, world units (seed Eq. 6.2: P_ijk = G_j +\n"
       "(l/2 - i) alpha S_j + (n/2 - k) beta N_j). Sets how far to each side the surface is pushed apart.\n"
       "Default: 0.02 x the selected object's bounding-box diagonal");
-  if (ui::drag_scalar("Depth", ImGuiDataType_Double, &depth, speed, &lo, nullptr,
-                        format(params_.depth <= 0.0, depth)))
+  if (ui::drag_scalar("Depth", ImGuiDataType_Double, &depth, speed, &lo, nullptr, format(params_.depth <= 0.0, depth)))
     params_.depth = std::max(depth, lo);
   ui::tooltip(
       "beta: how deep below the surface the cut goes (along -N), world units (seed Eq. 6.2).\n"
       "Default: 0.02 x the bounding-box diagonal");
   const double zero = 0.0;
   if (ui::drag_scalar("Opening", ImGuiDataType_Double, &opening, speed, &zero, nullptr,
-                        format(params_.opening < 0.0, opening)))
+                      format(params_.opening < 0.0, opening)))
     params_.opening = std::max(opening, 0.0);
   ui::tooltip(
       "kappa: gap between the two cut faces at the surface in the middle of the stroke, world units; it tapers to\n"
@@ -231,9 +229,12 @@ void IncisionTool::draw_panel(ToolContext& ctx) {
     if (opening_keys_.frame_to < 0)
       opening_keys_.frame_from = scene.timeline.frame_start, opening_keys_.frame_to = scene.timeline.frame_end;
     std::string unavailable;
-    if (!sel) unavailable = "select an object cut by an incision";
-    else if (!sel->morph) unavailable = "'" + sel->name + "' has no incision: cut one first (drag across it)";
-    else if (sel->ffd || sel->dffd) unavailable = "'" + sel->name + "' is deformed; key the opening before placing it";
+    if (!sel)
+      unavailable = "select an object cut by an incision";
+    else if (!sel->morph)
+      unavailable = "'" + sel->name + "' has no incision: cut one first (drag across it)";
+    else if (sel->ffd || sel->dffd)
+      unavailable = "'" + sel->name + "' is deformed; key the opening before placing it";
     const ui::KeyPairSpec spec{"incision_anim", "Opening",
                                "Fraction of the opening as drawn: 0 closed (the cut faces touch), 1 as drawn; other "
                                "values extrapolate",
@@ -266,8 +267,8 @@ namespace {
 // C⁻¹ break at u = 1/2 marked as a discontinuity when the knots hold one there.
 gpu::LatticeOverlay incision_lattice_overlay(std::shared_ptr<const core::TrivariateBSpline<glm::dvec3>> lattice,
                                              const gpu::ViewStyle& style) {
-  gpu::LatticeOverlay overlay{std::move(lattice), {}, {0.45f, 0.78f, 1.0f, 0.6f}, {0.92f, 0.96f, 1.0f, 0.8f},
-                              0.7f * style.lattice_point_px};
+  gpu::LatticeOverlay overlay{
+      std::move(lattice), {}, {0.45f, 0.78f, 1.0f, 0.6f}, {0.92f, 0.96f, 1.0f, 0.8f}, 0.7f * style.lattice_point_px};
   const core::KnotVector& u = overlay.lattice->knots(0);
   const std::vector<double>& U = u.knots();
   const auto first = std::find(U.begin(), U.end(), 0.5);

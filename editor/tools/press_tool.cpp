@@ -1,7 +1,5 @@
 #include "editor/tools/press_tool.h"
 
-#include "core/commands/lattice_press.h"
-
 #include <imgui.h>
 
 #include <chrono>
@@ -9,6 +7,7 @@
 #include <future>
 #include <iterator>
 
+#include "core/commands/lattice_press.h"
 #include "editor/navigation.h"
 #include "editor/session.h"
 #include "ui/gui_probe.h"
@@ -158,8 +157,8 @@ std::optional<Tool::LivePreview> PressTool::live_preview(const ToolContext& ctx)
       try {
         if (keep_fold_free_) {
           try {
-            core::FoldFreePress press = core::press_lattice_fold_free(o->ffd->lattice, path_, hover_radius_,
-                                                                      signed_strength(ctx), falloff_);
+            core::FoldFreePress press =
+                core::press_lattice_fold_free(o->ffd->lattice, path_, hover_radius_, signed_strength(ctx), falloff_);
             preview_strength_ = press.limited ? std::abs(press.strength) : -1.0;
             preview_ = std::make_shared<const core::TrivariateBSpline<glm::dvec3>>(std::move(press.lattice));
           } catch (const std::invalid_argument&) {  // not certified before the press: the command will refuse
@@ -238,13 +237,14 @@ void PressTool::draw_panel(ToolContext& ctx) {
 
   const double s_min = 0.0, s_max = diag > 0.0 ? diag : 10.0;
   double s = strength_ > 0.0 ? strength_ : kDefaultStrengthFraction * r;
-  if (ui::drag_scalar("Strength", ImGuiDataType_Double, &s, float(std::max(s_max, 1e-3) * 1e-3), &s_min, &s_max,
-                      "%.4g", ImGuiSliderFlags_AlwaysClamp))
+  if (ui::drag_scalar("Strength", ImGuiDataType_Double, &s, float(std::max(s_max, 1e-3) * 1e-3), &s_min, &s_max, "%.4g",
+                      ImGuiSliderFlags_AlwaysClamp))
     strength_ = std::max(s, 1e-12);
   ui::probe::item("press.strength");
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("How far a control point at the sphere's centre moves along its column, world units\n"
-                      "(default: a quarter of the radius)");
+    ImGui::SetTooltip(
+        "How far a control point at the sphere's centre moves along its column, world units\n"
+        "(default: a quarter of the radius)");
 
   const std::string current(core::to_string(falloff_));
   if (ImGui::BeginCombo("Falloff", current.c_str())) {
@@ -262,9 +262,10 @@ void PressTool::draw_panel(ToolContext& ctx) {
   ui::probe::value("press.keep_fold_free", keep_fold_free_ ? "1" : "0");
   ui::probe::value("press.strength", std::to_string(s));
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("Limit each press's strength (bisection) so that the lattice stays certified fold-free:\n"
-                      "det J > 0 everywhere, proven by its Bernstein coefficients (View > Fold certificate shows it).\n"
-                      "A lattice that is not certified before the press is refused.");
+    ImGui::SetTooltip(
+        "Limit each press's strength (bisection) so that the lattice stays certified fold-free:\n"
+        "det J > 0 everywhere, proven by its Bernstein coefficients (View > Fold certificate shows it).\n"
+        "A lattice that is not certified before the press is refused.");
   if (keep_fold_free_ && pressing_) {
     if (std::isnan(preview_strength_))
       ImGui::TextColored(ui::colors::dim, "The lattice is not certified fold-free: the press will be refused.");
@@ -289,7 +290,8 @@ void PressTool::decorate(gpu::ViewOptions& options) const {
     options.overlays.spheres.push_back(sphere);
   }
   // The sphere centres sampled along the drag.
-  if (!path_.empty()) options.overlays.points.push_back({path_, {1.0f, 0.85f, 0.3f, 1.0f}, options.style.contact_point_px});
+  if (!path_.empty())
+    options.overlays.points.push_back({path_, {1.0f, 0.85f, 0.3f, 1.0f}, options.style.contact_point_px});
 }
 
 }  // namespace trispline::editor

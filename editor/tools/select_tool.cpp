@@ -1,13 +1,13 @@
 #include "editor/tools/select_tool.h"
 
+#include <imgui.h>
+
+#include <limits>
+
 #include "core/raycast/ray_caster.h"
 #include "core/volume/iso_raycast.h"
 #include "editor/session.h"
 #include "ui/theme.h"
-
-#include <imgui.h>
-
-#include <limits>
 
 namespace trispline::editor {
 

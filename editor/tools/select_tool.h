@@ -3,12 +3,12 @@
 // a command (as in Blender's viewport, it is not in the command log).
 #pragma once
 
-#include "core/scene/scene.h"
-#include "editor/tools/tool.h"
-
 #include <optional>
 #include <set>
 #include <string>
+
+#include "core/scene/scene.h"
+#include "editor/tools/tool.h"
 
 namespace trispline::editor {
 

@@ -1,9 +1,9 @@
 #include "editor/tools/sketch_tool.h"
 
+#include <imgui.h>
+
 #include "editor/session.h"
 #include "ui/theme.h"
-
-#include <imgui.h>
 
 namespace trispline::editor {
 
@@ -23,9 +23,7 @@ void SketchTool::activate(ToolContext& ctx) {
   if (!ctx.selected.empty()) params_.object = followed_selection_ = ctx.selected;
 }
 
-void SketchTool::deactivate(ToolContext&) {
-  gesture_.cancel();
-}
+void SketchTool::deactivate(ToolContext&) { gesture_.cancel(); }
 
 std::string SketchTool::hint() const {
   if (gesture_.drawing()) return "Release to place";
@@ -113,7 +111,7 @@ void SketchTool::adopt_top(const ToolContext& ctx) {
   last_stroke_ = p.stroke;
   last_ignore_ = p.ignore;
   last_view_ = p.camera ? *p.camera : ctx.session.scene().camera;  // a camera-less line used the scene camera
-  const std::string object = params_.object;  // the combo keeps the user's choice
+  const std::string object = params_.object;                       // the combo keeps the user's choice
   params_ = p;
   params_.object = object;
   panel_ = ui::PlacementPanelState::from(p);

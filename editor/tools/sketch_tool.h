@@ -11,15 +11,14 @@
 // like Blender's "Adjust Last Operation" panel: its parameters fill the panel and edits re-run it.
 #pragma once
 
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <vector>
+
 #include "editor/history.h"
 #include "editor/tools/stroke_gesture.h"
 #include "editor/tools/tool.h"
 #include "ui/placement_panel.h"
-
-#include <nlohmann/json.hpp>
-
-#include <optional>
-#include <vector>
 
 namespace trispline::editor {
 

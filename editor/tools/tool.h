@@ -3,18 +3,17 @@
 // (e.g. the stroke being sketched) and changes the document only by executing commands through the session.
 #pragma once
 
-#include "core/scene/camera.h"
-#include "gpu/renderer.h"
-#include "ui/tool_panel.h"
-
-#include <glm/glm.hpp>
-#include <nlohmann/json.hpp>
-
 #include <functional>
+#include <glm/glm.hpp>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
 #include <string>
+
+#include "core/scene/camera.h"
+#include "gpu/renderer.h"
+#include "ui/tool_panel.h"
 
 namespace trispline::editor {
 
@@ -32,8 +31,8 @@ struct ToolInput {
 
 struct ToolContext {
   EditorSession& session;
-  const core::Camera& view;             // the current view; viewport = window framebuffer size
-  std::string& selected;                // selected object name ("" = none)
+  const core::Camera& view;  // the current view; viewport = window framebuffer size
+  std::string& selected;     // selected object name ("" = none)
   // Runs `work` after one frame showing "Working… <what>" (long synchronous commands).
   std::function<void(std::string what, std::function<void()> work)> defer;
   // Builds a long command (`line`: ddm.fill, ddm.bake) on a worker thread behind a progress bar with Cancel

@@ -1,17 +1,17 @@
 // The interactive editor's logic without a window: session log + lock + crash recovery (editor/session.h),
 // Save/Open round trip, the Sketch placement tool's "parameter change = one undoable re-run", picking, and the
 // navigation maths (editor/navigation.h). The window itself is checked by the xvfb screenshot test.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <fstream>
+
 #include "editor/navigation.h"
 #include "editor/session.h"
 #include "editor/tools/select_tool.h"
 #include "editor/tools/sketch_tool.h"
 #include "session_test_util.h"
 #include "stroke_gesture.h"
-
-#include <gtest/gtest.h>
-
-#include <cstdlib>
-#include <fstream>
 
 namespace fs = std::filesystem;
 using namespace trispline;
@@ -124,8 +124,10 @@ TEST_F(AppSession, OpenOfALogThatFailsHalfwayKeepsTheCurrentDocument) {
   const fs::path bad = dir_ / "bad.jsonl";
   {
     std::ofstream out(bad);
-    out << R"({"cmd":"scene.primitive","kind":"sphere","name":"ball"})" << "\n";
-    out << R"({"cmd":"scene.load","path":"does_not_exist.obj","name":"m"})" << "\n";
+    out << R"({"cmd":"scene.primitive","kind":"sphere","name":"ball"})"
+        << "\n";
+    out << R"({"cmd":"scene.load","path":"does_not_exist.obj","name":"m"})"
+        << "\n";
   }
   const std::size_t log_lines = line_count(dir_ / "session.jsonl");
   const std::size_t applied = s.history().applied();
@@ -139,7 +141,8 @@ TEST_F(AppSession, OpenOfALogThatFailsHalfwayKeepsTheCurrentDocument) {
   EXPECT_TRUE(s.modified());
   EXPECT_EQ(line_count(dir_ / "session.jsonl"), log_lines) << "the session log must not be restarted";
   ASSERT_FALSE(messages_.messages().empty());
-  EXPECT_NE(messages_.messages().back().text.find("bad.jsonl:2:"), std::string::npos) << messages_.messages().back().text;
+  EXPECT_NE(messages_.messages().back().text.find("bad.jsonl:2:"), std::string::npos)
+      << messages_.messages().back().text;
   EXPECT_NE(messages_.messages().back().text.find("current scene is kept"), std::string::npos);
 
   // A good Open then replaces the document, and the session log replays to it (crash recovery stays exact).

@@ -3,22 +3,21 @@
 // asks until it is answered, a crashed second editor is offered recovery (a live one is left alone), log write
 // failures are reported, a stroke uses the camera at mouse-down, and objects hidden in the viewport (object.visibility)
 // do not catch placement rays.
-#include "core/commands/place_sketch.h"
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <fstream>
+
 #include "core/commands/codecs.h"
+#include "core/commands/place_sketch.h"
 #include "editor/command_registry.h"
 #include "editor/navigation.h"
 #include "editor/session.h"
 #include "editor/tools/sketch_tool.h"
 #include "session_test_util.h"
 #include "stroke_gesture.h"
-
-#include <gtest/gtest.h>
-
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <cstdlib>
-#include <fstream>
 
 namespace fs = std::filesystem;
 using namespace trispline;
@@ -247,8 +246,8 @@ TEST_F(SessionRecovery, StrokeKeepsItsMouseDownCameraAndIgnoresHidden) {
 
 // "ignore" parses, round-trips only when non-empty, and names the field in its errors.
 TEST(PlaceSketchIgnore, ParseAndSerialise) {
-  nlohmann::json j = {{"cmd", "place.sketch"}, {"object", "a"}, {"stroke", {{0, 0}, {10, 0}}},
-                      {"width", 0.1},           {"height", 0.1}};
+  nlohmann::json j = {
+      {"cmd", "place.sketch"}, {"object", "a"}, {"stroke", {{0, 0}, {10, 0}}}, {"width", 0.1}, {"height", 0.1}};
   core::CommandContext ctx;
   EXPECT_FALSE(core::PlaceSketchCommand::parse(j, ctx)->to_json().contains("ignore"));
   j["ignore"] = {"b", "c"};

@@ -134,8 +134,7 @@ TEST(DffdSplitTool, SplitIsOneUndoableCommand) {
                          {"scale", {0.2, 0.9, 0.2}}}));
   core::Camera view;
   std::string selected = "ball";
-  editor::ToolContext ctx{s, view, selected, [](std::string, std::function<void()> work) { work(); },
-                          nullptr};
+  editor::ToolContext ctx{s, view, selected, [](std::string, std::function<void()> work) { work(); }, nullptr};
   editor::Toolbox box(ctx);
   box.set_active(editor::Toolbox::kDffdSplit);
   auto& tool = dynamic_cast<editor::DffdTool&>(box.tool());
@@ -155,8 +154,7 @@ TEST(DffdSplitTool, SplitIsOneUndoableCommand) {
   const auto before = s.scene().find("ball")->world_mesh;
   const std::size_t applied = s.history().applied();
   tool.split(ctx, line);
-  ASSERT_EQ(s.history().applied(), applied + 1)
-      << (messages.messages().empty() ? "" : messages.messages().back().text);
+  ASSERT_EQ(s.history().applied(), applied + 1) << (messages.messages().empty() ? "" : messages.messages().back().text);
   EXPECT_EQ(s.history().at(applied).id(), "dffd.split");
   EXPECT_EQ(s.history().at(applied).to_json()["obstacles"], nlohmann::json::parse(R"(["bar"])"));
   EXPECT_GT(s.scene().find("ball")->world_mesh->vertex_count(), before->vertex_count()) << "the mesh is split";

@@ -60,7 +60,7 @@ TEST(Playback, AdvancesWholeFramesAtFpsAndLoopsAtTheEnd) {
   EXPECT_EQ(p.frame, 1);
   p.playing = true;
   EXPECT_TRUE(ui::advance_playback(p, t, 0.5));
-  EXPECT_EQ(p.frame, 13);  // 0.5 s × 24 fps = 12 frames
+  EXPECT_EQ(p.frame, 13);                          // 0.5 s × 24 fps = 12 frames
   EXPECT_FALSE(ui::advance_playback(p, t, 0.03));  // 0.72 of a frame: carried, not shown
   EXPECT_TRUE(ui::advance_playback(p, t, 0.03));   // 1.44: one frame shown, 0.44 carried
   EXPECT_EQ(p.frame, 14);
@@ -86,8 +86,8 @@ TEST_F(TimelineUi, ScrubbingThePanelSetsTheFrameAndTheSceneTime) {
   const ui::Rect rect{{0, 720 - h}, {1280, h}};
   const ImGuiStyle& st = ImGui::GetStyle();
   // The scrub bar: second row of the panel, full content width, 8 px inner margin (ui/timeline_panel.cpp).
-  const float y = rect.pos.y + st.WindowPadding.y + ImGui::GetFrameHeight() + st.ItemSpacing.y +
-                  ImGui::GetFrameHeight() * 0.8f;
+  const float y =
+      rect.pos.y + st.WindowPadding.y + ImGui::GetFrameHeight() + st.ItemSpacing.y + ImGui::GetFrameHeight() * 0.8f;
   const float x0 = st.WindowPadding.x + 8.0f, x1 = 1280 - st.WindowPadding.x - 8.0f;
   auto x_of = [&](double f) { return x0 + float(f / 100.0) * (x1 - x0); };
   auto draw = [&] {
@@ -255,10 +255,15 @@ TEST_F(TimelineUi, RecordDialogDefaultsAndShortRecordingStepsOncePerUiFrame) {
   ASSERT_TRUE(line.contains("camera"));
   EXPECT_EQ(line["camera"]["viewport"], nlohmann::json({d.view.viewport.x, d.view.viewport.y}));
   line.erase("camera");
-  EXPECT_EQ(line.dump(),
-            nlohmann::json({{"cmd", "anim.record"}, {"out", d.out_dir}, {"format", "png"}, {"frames", {1, 120}},
-                            {"glb", true}, {"mp4", true}, {"width", 640}, {"height", 360}})
-                .dump());
+  EXPECT_EQ(line.dump(), nlohmann::json({{"cmd", "anim.record"},
+                                         {"out", d.out_dir},
+                                         {"format", "png"},
+                                         {"frames", {1, 120}},
+                                         {"glb", true},
+                                         {"mp4", true},
+                                         {"width", 640},
+                                         {"height", 360}})
+                             .dump());
 
   ui::RecordDialogState small;
   small.out_dir = (dir_ / "rec").string();
@@ -268,7 +273,8 @@ TEST_F(TimelineUi, RecordDialogDefaultsAndShortRecordingStepsOncePerUiFrame) {
   small.size[1] = 32;
   small.glb = small.mp4 = false;
   const std::size_t applied = s.history().applied();
-  ASSERT_TRUE(anim.start_recording(ui::record_line(small))) << (messages_.messages().empty() ? "" : messages_.messages().back().text);
+  ASSERT_TRUE(anim.start_recording(ui::record_line(small)))
+      << (messages_.messages().empty() ? "" : messages_.messages().back().text);
   EXPECT_EQ(s.history().applied(), applied) << "anim.record is logged for replays but never an undo step";
   EXPECT_EQ(s.history().size(), applied);
   HeadlessImGui gui;
@@ -279,7 +285,8 @@ TEST_F(TimelineUi, RecordDialogDefaultsAndShortRecordingStepsOncePerUiFrame) {
   }
   EXPECT_FALSE(anim.recording());
   EXPECT_EQ(ui_frames, 3) << "one recorded frame per UI frame";
-  for (const char* f : {"frame_0001.png", "frame_0002.png", "frame_0003.png"}) EXPECT_TRUE(fs::exists(dir_ / "rec" / f)) << f;
+  for (const char* f : {"frame_0001.png", "frame_0002.png", "frame_0003.png"})
+    EXPECT_TRUE(fs::exists(dir_ / "rec" / f)) << f;
   EXPECT_TRUE(logged("recorded 3 frames"));
 }
 

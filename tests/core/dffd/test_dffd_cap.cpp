@@ -2,10 +2,7 @@
 // constrained Delaunay caps (seed §6.3.2, Fig. 6.2b). Topology is checked with OpenMesh.
 #include <gtest/gtest.h>
 
-#include "tests/test_shapes.h"
-
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
-
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -16,6 +13,7 @@
 #include "core/dffd/dffd_cap.h"
 #include "core/mesh/mesh_io.h"
 #include "core/scene/primitives.h"
+#include "tests/test_shapes.h"
 
 namespace trispline::core {
 namespace {

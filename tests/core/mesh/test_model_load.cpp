@@ -4,8 +4,8 @@
 #include <gtest/gtest.h>
 
 #include "core/mesh/material_image.h"
-#include "mesh_test_util.h"
 #include "core/mesh/model_load.h"
+#include "mesh_test_util.h"
 
 namespace trispline::core {
 namespace {
@@ -85,8 +85,8 @@ TEST(ModelLoad, ObjMtlMaterialsTexturesAndAlpha) {
   const MaterialImage& combined = *m.materials->images[std::size_t(leaf.base_color_texture.image)];
   ASSERT_TRUE(combined.readable());
   EXPECT_EQ(combined.width, 2);
-  EXPECT_EQ(combined.rgba8[3], 0);     // alpha from the mask (all 0)
-  EXPECT_EQ(combined.rgba8[4], 40);    // red of leaf.png's pixel (1, 0)
+  EXPECT_EQ(combined.rgba8[3], 0);   // alpha from the mask (all 0)
+  EXPECT_EQ(combined.rgba8[4], 40);  // red of leaf.png's pixel (1, 0)
   EXPECT_FALSE(combined.encoded.empty());
   EXPECT_TRUE(m.texture_errors().empty());
   EXPECT_TRUE(m.warnings.empty());

@@ -46,8 +46,8 @@ TEST(Qt3dAssets, WineRackColladaKeepsMaterialsTexturesAndParts) {
   for (const MeshPart& p : m.parts) names.insert(p.name);
   EXPECT_EQ(names.size(), m.parts.size());
   EXPECT_TRUE(names.count("bottle.001") || std::any_of(names.begin(), names.end(), [](const std::string& n) {
-    return n.size() > 4 && n.compare(n.size() - 4, 4, ".001") == 0;
-  }));
+                return n.size() > 4 && n.compare(n.size() - 4, 4, ".001") == 0;
+              }));
   std::uint32_t triangles = 0;
   for (const MeshPart& p : m.parts) {
     EXPECT_EQ(p.first_triangle, triangles);

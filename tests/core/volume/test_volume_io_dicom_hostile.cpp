@@ -37,8 +37,7 @@ void write_byte_series(const fs::path& dir, const std::string& prefix, int n, Sy
   const std::string uid = new_series_uid();
   for (int k = 0; k < n; ++k) {
     DicomBytes d = ct_slice_header(syntax, uid, k, 3, 4, 16, k == 1 ? extra_in_slice_1 : nullptr);
-    d.element(0x7FE0, 0x0010, "OW",
-              pixels ? pixels(k) : pixel_bytes(ramp(12, k), syntax == Syntax::kExplicitBig));
+    d.element(0x7FE0, 0x0010, "OW", pixels ? pixels(k) : pixel_bytes(ramp(12, k), syntax == Syntax::kExplicitBig));
     write_bytes(dir / (prefix + std::to_string(k) + ".dcm"), d.file());
   }
 }
@@ -161,7 +160,8 @@ TEST(DicomHostile, MetaHeadersGdcmWouldAssertOnAreRefused) {
   write_byte_series(dir.path(), "s", 3);
   const DicomBytes slice = ct_slice_header(Syntax::kExplicitLittle, new_series_uid(), 9.0);
   write_bytes(dir / "s1.dcm", slice.file("1.2.84"));
-  EXPECT_THAT(volume_load_error(dir.path()), AllOf(HasSubstr("s1.dcm"), HasSubstr("not a known DICOM transfer syntax")));
+  EXPECT_THAT(volume_load_error(dir.path()),
+              AllOf(HasSubstr("s1.dcm"), HasSubstr("not a known DICOM transfer syntax")));
   const std::vector<unsigned char> none;
   write_bytes(dir / "s1.dcm", slice.file({}, &none));
   EXPECT_THAT(volume_load_error(dir.path()), AllOf(HasSubstr("s1.dcm"), HasSubstr("no data set")));
@@ -279,9 +279,9 @@ TEST(DicomHostile, AbsurdSpacingOrPositionIsRefused) {
     s.series_uid = new_series_uid();
     return s;
   }();
-  for (const auto& [spacing, gap, field] : {std::tuple{1e300, 1.0, "Pixel Spacing"},
-                                            std::tuple{1.0, 5e8, "Image Position"},
-                                            std::tuple{1e-9, 1.0, "Pixel Spacing"}}) {
+  for (const auto& [spacing, gap, field] :
+       {std::tuple{1e300, 1.0, "Pixel Spacing"}, std::tuple{1.0, 5e8, "Image Position"},
+        std::tuple{1e-9, 1.0, "Pixel Spacing"}}) {
     TempFolder dir;
     for (int k = 0; k < 3; ++k) {
       DicomSlice s = base;

@@ -18,8 +18,7 @@ TEST(PressToolRadius, DefaultRadiusFollowsTheWorldMeshThroughPressUndoRedo) {
       {{"cmd", "lattice.ring"}, {"object", "t"}, {"radius", 1.2}, {"controls", {16, 3, 4}}, {"order", {4, 3, 2}}}));
   core::Camera view;
   std::string selected = "t";
-  editor::ToolContext ctx{s, view, selected, [](std::string, std::function<void()> work) { work(); },
-                          nullptr};
+  editor::ToolContext ctx{s, view, selected, [](std::string, std::function<void()> work) { work(); }, nullptr};
   editor::PressTool tool;
   tool.activate(ctx);
   const auto expected = [&] { return 0.1 * editor::bounds_of(*s.scene().find("t")->world_mesh).diagonal(); };

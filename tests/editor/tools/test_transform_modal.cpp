@@ -9,8 +9,8 @@
 #include "editor/navigation.h"
 #include "editor/session.h"
 #include "editor/tools/transform_modal.h"
-#include "tests/ui/headless_imgui.h"
 #include "tests/editor/session_test_util.h"
+#include "tests/ui/headless_imgui.h"
 #include "ui/scene_panel.h"
 
 #define GLFW_INCLUDE_NONE
