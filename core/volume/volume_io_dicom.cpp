@@ -1,10 +1,10 @@
-// A DICOM series through GDCM. Every file of the folder must resolve inside the folder; each is walked
-// (walk_dicom_file: element lengths and nesting against the file) before gdcm::Scanner reads its header tags (it stops
-// before the pixel data; a deflated file's tags are the walk's, up to its Pixel Data); the series is chosen, its
-// geometry and the memory budget checked on the header values; a deflated slice is then inflated once more, counted, to
-// bound its data set; and GDCM decodes one slice at a time (decode_slice: the image built from the checked header, not
-// by gdcm::ImageReader). The slice order and spacing are checked here rather than by gdcm::IPPSorter, which only says
-// yes or no: a refused series names the slices that disagree.
+// A DICOM series. Every file of the folder must resolve inside the folder; each is walked (walk_dicom_file, the only
+// parser of the files' bytes: element lengths and nesting against the file, the header tags kept; a deflated file up
+// to its Pixel Data); the series is chosen, its geometry and the memory budget checked on the header values; then one
+// slice at a time is walked again keeping its Pixel Data and decoded (decode_slice: native samples directly,
+// compressed fragments by GDCM's codecs in an image built from the checked header). The slice order and spacing are
+// checked here rather than by gdcm::IPPSorter, which only says yes or no: a refused series names the slices that
+// disagree.
 #include <gdcmTrace.h>
 
 #include <algorithm>
@@ -204,36 +204,24 @@ ScalarVolume load_dicom(const std::filesystem::path& path, const VolumeLoadOptio
   const std::filesystem::path opened = is_folder ? std::filesystem::path() : folder / path.filename();
   const std::vector<std::string> files = folder_files(folder, opened, path);
 
-  // Element structure first: GDCM reads only files whose lengths fit. A deflated file is walked up to its Pixel Data
-  // here, its header tags kept from the walk: GDCM's scanner would inflate it whole.
+  // Element structure and header tags from the walk; a deflated file is walked up to its Pixel Data only.
   DicomWalkLimits header_limits;
   header_limits.inflate_cap = std::min(options.memory_budget_bytes, kMaxDicomHeaderBytes);
   header_limits.stop_at_pixel_data = true;
   header_limits.capture = slice_tag_keys();
   std::map<std::string, DicomWalk> walks;
-  std::vector<std::string> dicom_files, plain_files;
+  std::vector<std::string> dicom_files;
   for (const std::string& f : files) {
     std::optional<DicomWalk> walk = walk_dicom_file(f, header_limits, path, file_name(f));
     if (!walk) {
       if (f == opened.string()) fail(path, "not a DICOM file GDCM can read");
       continue;
     }
-    if (!walk->deflated) plain_files.push_back(f);
     dicom_files.push_back(f);
     walks[f] = std::move(*walk);
   }
-  gdcm::Scanner scanner;
-  add_slice_tags(scanner);
-  bool scanned = true;
-  try {
-    scanned = plain_files.empty() || scanner.Scan(plain_files);
-  } catch (const std::exception& e) {
-    fail(path, std::string("GDCM cannot scan the folder: ") + e.what());
-  }
-  if (!scanned) fail(path, "GDCM cannot scan the folder");
-  TagTable tags(scanner);
-  for (auto& [f, walk] : walks)
-    if (walk.deflated) tags.add(f, std::move(walk.values));
+  TagTable tags;
+  for (auto& [f, walk] : walks) tags.add(f, std::move(walk.values));
   const std::vector<std::string> chosen = choose_series(tags, files, dicom_files, path, opened);
   if (chosen.size() < 2)
     fail(path, "the series " + trimmed(tags.get(chosen.front(), kSeriesUid)) + " has " + std::to_string(chosen.size()) +
@@ -244,7 +232,8 @@ ScalarVolume load_dicom(const std::filesystem::path& path, const VolumeLoadOptio
   const SliceHeader& first = slices.front().header;
   const std::array<std::int64_t, 3> dims{first.columns, first.rows, static_cast<std::int64_t>(slices.size())};
   const std::uint64_t voxels = checked_voxel_count(path, dims);
-  // Held at once besides the floats: one slice's data set (GDCM's copy) and two decoded slices (GDCM's, ours).
+  // Held at once besides the floats: one slice's Pixel Data as stored (at most its data set) and its decoded copy,
+  // with room for a codec's own output buffer.
   std::uint64_t largest_data_set = 0;
   for (const Slice& s : slices) largest_data_set = std::max(largest_data_set, walks[s.header.file].data_set_bytes);
   check_budget(path, dims, voxels, largest_data_set + 2 * first.pixel_bytes(), options);
@@ -278,7 +267,7 @@ ScalarVolume load_dicom(const std::filesystem::path& path, const VolumeLoadOptio
   check_budget(path, dims, voxels, largest_data_set + decode_bytes, options);
 
   v.values.reserve(voxels);
-  for (const Slice& s : slices) decode_slice(s.header, path, v.values);
+  for (const Slice& s : slices) decode_slice(s.header, data_limits, path, v.values);
   return v;
 }
 

@@ -1,9 +1,10 @@
-// One DICOM slice: its header tags checked, its pixel data decoded by GDCM's codecs into an image built from them.
+// One DICOM slice: its header tags checked, its Pixel Data as the walk kept it decoded (native samples here, compressed
+// fragments by GDCM's codecs into an image built from the checked header).
 #include "core/volume/volume_io_dicom_slice.h"
 
 #include <gdcmImage.h>
 #include <gdcmPixelFormat.h>
-#include <gdcmReader.h>
+#include <gdcmSequenceOfFragments.h>
 #include <gdcmTrace.h>
 #include <gdcmUIDs.h>
 
@@ -66,10 +67,6 @@ const gdcm::Tag* const kSliceTags[] = {
 
 }  // namespace
 
-void add_slice_tags(gdcm::Scanner& scanner) {
-  for (const gdcm::Tag* t : kSliceTags) scanner.AddTag(*t);
-}
-
 std::vector<std::uint32_t> slice_tag_keys() {
   std::vector<std::uint32_t> keys;
   for (const gdcm::Tag* t : kSliceTags) keys.push_back(std::uint32_t{t->GetGroup()} << 16 | t->GetElement());
@@ -78,7 +75,7 @@ std::vector<std::uint32_t> slice_tag_keys() {
 
 const char* TagTable::get(const std::string& file, const gdcm::Tag& tag) const {
   const auto it = walked_.find(file);
-  if (it == walked_.end()) return scanner_.GetValue(file.c_str(), tag);
+  if (it == walked_.end()) return nullptr;
   const auto v = it->second.find(std::uint32_t{tag.GetGroup()} << 16 | tag.GetElement());
   return v == it->second.end() ? nullptr : v->second.c_str();
 }
@@ -159,63 +156,80 @@ SliceHeader read_slice_header(const TagTable& tags, const std::string& file, con
   return h;
 }
 
-void decode_slice(const SliceHeader& slice, const std::filesystem::path& report, std::vector<float>& values) {
-  // gdcm::Reader parses the data set only; the image is built here from the header as checked. GDCM's ImageReader
-  // would interpret the header itself, and asserts (aborts) on values a hostile file can hold.
-  gdcm::Reader reader;
-  reader.SetFileName(slice.file.c_str());
-  bool read = false;
-  try {
-    read = reader.Read();
-  } catch (const std::exception& e) {
-    fail(report, slice.name + ": GDCM cannot read the file (" + slice.transfer_syntax + "): " + e.what());
-  }
-  if (!read) fail(report, slice.name + ": GDCM cannot read the file (" + slice.transfer_syntax + ")");
-  const gdcm::File& file = reader.GetFile();
-  const gdcm::DataSet& data_set = file.GetDataSet();
-  const gdcm::Tag pixel_tag(0x7FE0, 0x0010);
-  if (!data_set.FindDataElement(pixel_tag)) fail(report, slice.name + ": no Pixel Data (7FE0,0010)");
-  const gdcm::TransferSyntax syntax = file.GetHeader().GetDataSetTransferSyntax();
+void decode_slice(const SliceHeader& slice, const DicomWalkLimits& limits, const std::filesystem::path& report,
+                  std::vector<float>& values) {
+  DicomWalkLimits keep = limits;
+  keep.keep_pixel_data = true;
+  keep.stop_at_pixel_data = false;
+  keep.capture.clear();
+  const std::optional<DicomWalk> walk = walk_dicom_file(slice.file, keep, report, slice.name);
+  if (!walk) fail(report, slice.name + ": not a DICOM file");
+  const DicomPixelData& pixels = walk->pixel_data;
+  if (!pixels.found) fail(report, slice.name + ": no Pixel Data (7FE0,0010)");
+  // No meta header: implicit VR little endian, as GDCM assumes.
+  const std::string uid = walk->transfer_syntax.empty() ? "1.2.840.10008.1.2" : walk->transfer_syntax;
+  const gdcm::TransferSyntax syntax = gdcm::TransferSyntax::GetTSType(uid.c_str());
   if (!syntax.IsValid()) fail(report, slice.name + ": unknown " + slice.transfer_syntax);
-  gdcm::Image image;
-  image.SetNumberOfDimensions(2);
-  image.SetDimension(0, static_cast<unsigned>(slice.columns));
-  image.SetDimension(1, static_cast<unsigned>(slice.rows));
-  image.SetPixelFormat(gdcm::PixelFormat(1, static_cast<unsigned short>(slice.bits_allocated),
-                                         static_cast<unsigned short>(slice.bits_stored),
-                                         static_cast<unsigned short>(slice.bits_stored - 1), slice.is_signed ? 1 : 0));
-  image.SetPhotometricInterpretation(slice.monochrome1 ? gdcm::PhotometricInterpretation::MONOCHROME1
-                                                       : gdcm::PhotometricInterpretation::MONOCHROME2);
-  image.SetTransferSyntax(syntax);
-  image.SetNeedByteSwap(syntax == gdcm::TransferSyntax::ImplicitVRBigEndianPrivateGE);
-  image.SetDataElement(data_set.GetDataElement(pixel_tag));
+  if (syntax.IsEncapsulated() != pixels.encapsulated)
+    fail(report, slice.name + ": Pixel Data (7FE0,0010) is " +
+                     (syntax.IsEncapsulated() ? "not encapsulated" : "encapsulated") + " under its " +
+                     slice.transfer_syntax);
   const std::string size_text = std::to_string(slice.columns) + "×" + std::to_string(slice.rows);
   const SampleDecoder decode{slice.bits_allocated / 8, slice.is_signed, slice.bits_stored};
   const std::size_t per_slice = static_cast<std::size_t>(slice.rows) * static_cast<std::size_t>(slice.columns);
   const std::size_t expected = per_slice * static_cast<std::size_t>(decode.bytes);
-  const gdcm::DataElement& pixel_data = image.GetDataElement();
-  if (syntax.IsEncapsulated() != (pixel_data.GetSequenceOfFragments() != nullptr))
-    fail(report, slice.name + ": Pixel Data (7FE0,0010) is " +
-                     (syntax.IsEncapsulated() ? "not encapsulated" : "encapsulated") + " under its " +
-                     slice.transfer_syntax);
-  if (!pixel_data.GetSequenceOfFragments()) {  // native (not encapsulated): its length is the samples'
-    const gdcm::ByteValue* stored = pixel_data.GetByteValue();
-    const std::size_t length = stored ? static_cast<std::size_t>(stored->GetLength()) : 0;
+  std::vector<char> buffer;  // this slice's own: nothing of another slice can show through
+  if (!pixels.encapsulated) {
+    const std::size_t length = pixels.value.size();
     if (length < expected)
       fail(report, slice.name + ": Pixel Data (7FE0,0010) holds " + std::to_string(length) + " bytes, " +
                        std::to_string(length / static_cast<std::size_t>(decode.bytes)) + " samples of the " +
                        size_text + " = " + std::to_string(per_slice) + " the slice needs");
+    buffer.assign(pixels.value.begin(), pixels.value.begin() + static_cast<std::ptrdiff_t>(expected));
+    // Big-endian samples (explicit VR big endian; GE's private implicit syntax) into this machine's order.
+    if (syntax.GetSwapCode() == gdcm::SwapCode::BigEndian ||
+        syntax == gdcm::TransferSyntax::ImplicitVRBigEndianPrivateGE)
+      for (std::size_t i = 0; i + decode.bytes <= buffer.size(); i += static_cast<std::size_t>(decode.bytes))
+        std::reverse(buffer.begin() + static_cast<std::ptrdiff_t>(i),
+                     buffer.begin() + static_cast<std::ptrdiff_t>(i) + decode.bytes);
+  } else {
+    // GDCM's codec decodes the fragments in memory into an image built from the checked header (its ImageReader
+    // would interpret the header itself, and asserts on values a hostile file can hold).
+    if (pixels.fragments.size() < 2)
+      fail(report, slice.name + ": encapsulated Pixel Data (7FE0,0010) holds no fragment after its offset table");
+    gdcm::SmartPointer<gdcm::SequenceOfFragments> fragments = new gdcm::SequenceOfFragments;
+    const std::vector<char>& table = pixels.fragments.front();
+    fragments->GetTable().SetByteValue(table.data(), static_cast<std::uint32_t>(table.size()));
+    for (std::size_t k = 1; k < pixels.fragments.size(); ++k) {
+      gdcm::Fragment fragment;
+      fragment.SetByteValue(pixels.fragments[k].data(), static_cast<std::uint32_t>(pixels.fragments[k].size()));
+      fragments->AddFragment(fragment);
+    }
+    gdcm::DataElement pixel_data(gdcm::Tag(0x7FE0, 0x0010));
+    pixel_data.SetVR(gdcm::VR::OB);
+    pixel_data.SetValue(*fragments);  // a sequence of fragments: undefined length
+    gdcm::Image image;
+    image.SetNumberOfDimensions(2);
+    image.SetDimension(0, static_cast<unsigned>(slice.columns));
+    image.SetDimension(1, static_cast<unsigned>(slice.rows));
+    image.SetPixelFormat(gdcm::PixelFormat(
+        1, static_cast<unsigned short>(slice.bits_allocated), static_cast<unsigned short>(slice.bits_stored),
+        static_cast<unsigned short>(slice.bits_stored - 1), slice.is_signed ? 1 : 0));
+    image.SetPhotometricInterpretation(slice.monochrome1 ? gdcm::PhotometricInterpretation::MONOCHROME1
+                                                         : gdcm::PhotometricInterpretation::MONOCHROME2);
+    image.SetTransferSyntax(syntax);
+    image.SetDataElement(pixel_data);
+    if (image.GetBufferLength() != expected)
+      fail(report, slice.name + ": " + std::to_string(image.GetBufferLength()) + " bytes of pixel data, " +
+                       std::to_string(expected) + " expected");
+    buffer.resize(expected);
+    bool decoded = false;
+    try {
+      decoded = image.GetBuffer(buffer.data());
+    } catch (const std::exception&) {
+    }
+    if (!decoded) fail(report, slice.name + ": GDCM cannot decode its pixel data (" + slice.transfer_syntax + ")");
   }
-  if (image.GetBufferLength() != expected)
-    fail(report, slice.name + ": " + std::to_string(image.GetBufferLength()) + " bytes of pixel data, " +
-                     std::to_string(expected) + " expected");
-  std::vector<char> buffer(expected);  // this slice's own: nothing of another slice can show through
-  bool decoded = false;
-  try {
-    decoded = image.GetBuffer(buffer.data());
-  } catch (const std::exception&) {
-  }
-  if (!decoded) fail(report, slice.name + ": GDCM cannot decode its pixel data (" + slice.transfer_syntax + ")");
   for (std::size_t i = 0; i < per_slice; ++i)
     values.push_back(to_float(decode(buffer.data(), i) * slice.slope + slice.intercept));
 }
@@ -230,37 +244,23 @@ std::vector<float> load_dicom_slice(const std::filesystem::path& file, const Vol
   limits.capture = slice_tag_keys();
   const std::optional<DicomWalk> walk = walk_dicom_file(file, limits, file, name);
   if (!walk) fail(file, "not a DICOM file GDCM can read");
-  gdcm::Scanner scanner;
-  add_slice_tags(scanner);
-  TagTable tags(scanner);
-  if (walk->deflated) {
-    tags.add(file.string(), walk->values);
-  } else {
-    bool scanned = false;
-    try {
-      scanned = scanner.Scan({file.string()});
-    } catch (const std::exception& e) {
-      fail(file, std::string("GDCM cannot scan the file: ") + e.what());
-    }
-    if (!scanned) fail(file, "GDCM cannot scan the file");
-  }
+  TagTable tags;
+  tags.add(file.string(), walk->values);
   if (!tags.has(file.string()) || !tags.get(file.string(), kRows)) fail(file, "not a DICOM image GDCM can read");
   const SliceHeader header = read_slice_header(tags, file.string(), file);
   const std::uint64_t voxels = std::uint64_t(header.rows) * std::uint64_t(header.columns);
   const std::array<std::int64_t, 3> dims{header.columns, header.rows, 1};
   check_budget(file, dims, voxels, walk->data_set_bytes + 2 * header.pixel_bytes(), options);
-  std::uint64_t data_set_bytes = walk->data_set_bytes;
-  if (walk->deflated) {
-    limits.stop_at_pixel_data = false;
-    const std::uint64_t decode_bytes = 2 * header.pixel_bytes(), left = budget_left(voxels, options);
-    limits.inflate_cap =
-        std::min(left > decode_bytes ? left - decode_bytes : 0, header.pixel_bytes() + kMaxDicomHeaderBytes);
-    data_set_bytes = walk_dicom_file(file, limits, file, name)->data_set_bytes;
-  }
-  check_budget(file, dims, voxels, data_set_bytes + 2 * header.pixel_bytes(), options);
+  // What decoding holds besides the floats: the Pixel Data as stored (no more than the data set) and the decoded
+  // slice. A deflated data set's size is known only inflated: bounded by what the budget leaves and the pixels' size
+  // plus kMaxDicomHeaderBytes.
+  DicomWalkLimits data_limits;
+  const std::uint64_t decode_bytes = 2 * header.pixel_bytes(), left = budget_left(voxels, options);
+  data_limits.inflate_cap =
+      std::min(left > decode_bytes ? left - decode_bytes : 0, header.pixel_bytes() + kMaxDicomHeaderBytes);
   std::vector<float> values;
   values.reserve(voxels);
-  decode_slice(header, file, values);
+  decode_slice(header, data_limits, file, values);
   return values;
 }
 

@@ -1,13 +1,13 @@
 // Private to the DICOM reader (volume_io_dicom.cpp, volume_io_dicom_slice.cpp): one slice file's header tags as
-// gdcm::Scanner read them, checked, and its pixel data decoded.
+// walk_dicom_file captured them, checked, and its Pixel Data decoded.
 //
 //   kSliceTags          the tags every file is scanned for
 //   read_slice_header   Rows, Columns, Bits Allocated / Stored, Pixel Representation, colour, frames, rescale
-//   decode_slice        one file's Pixel Data (gdcm::Reader) decoded by GDCM's codecs into an image built from the
-//                       checked header → rows·columns floats appended to a volume
+//   decode_slice        one file's Pixel Data as the walk keeps it: native samples read here, compressed fragments
+//                       decoded by GDCM's codecs into an image built from the checked header → rows·columns floats
+//                       appended to a volume
 #pragma once
 
-#include <gdcmScanner.h>
 #include <gdcmTag.h>
 
 #include <cstdint>
@@ -16,6 +16,8 @@
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "core/volume/volume_io_dicom_walk.h"
 
 namespace trispline::core::volume_io {
 
@@ -37,24 +39,18 @@ inline const gdcm::Tag kPixelRepresentation(0x0028, 0x0103);
 inline const gdcm::Tag kRescaleIntercept(0x0028, 0x1052);
 inline const gdcm::Tag kRescaleSlope(0x0028, 0x1053);
 
-// A scanner set up with every tag the reader uses.
-void add_slice_tags(gdcm::Scanner& scanner);
-
 // Those tags as group << 16 | element, for walk_dicom_file's capture.
 std::vector<std::uint32_t> slice_tag_keys();
 
-// Header tag values of a folder's files: gdcm::Scanner's for plain files, walk_dicom_file's captures for deflated
-// ones (GDCM's scanner inflates a deflated data set whole, pixel data included, before the budget is checked).
+// Header tag values of a folder's files, as walk_dicom_file captured them (text as stored, US as a decimal number).
 class TagTable {
  public:
-  explicit TagTable(const gdcm::Scanner& scanner) : scanner_(scanner) {}
   void add(const std::string& file, std::map<std::uint32_t, std::string> values) { walked_[file] = std::move(values); }
-  bool has(const std::string& file) const { return walked_.count(file) || scanner_.IsKey(file.c_str()); }
+  bool has(const std::string& file) const { return walked_.count(file) != 0; }
   // The value, or nullptr when the file does not have the tag.
   const char* get(const std::string& file, const gdcm::Tag& tag) const;
 
  private:
-  const gdcm::Scanner& scanner_;
   std::map<std::string, std::map<std::uint32_t, std::string>> walked_;
 };
 
@@ -89,11 +85,13 @@ struct SliceHeader {
 SliceHeader read_slice_header(const TagTable& tags, const std::string& file, const std::filesystem::path& report);
 
 // Decodes `slice` (its header as checked above) and appends rows·columns floats (stored value, bits above Bits
-// Stored dropped, sign-extended, × slope + intercept) to `values`. The image is built from `slice` (GDCM's
-// ImageReader is not used: it asserts on header values a hostile file can hold). Refused, naming the slice: a file
-// GDCM cannot read or decode, no Pixel Data, encapsulated Pixel Data under a native transfer syntax or the reverse,
-// decoded pixel data of another size than the header's, native Pixel Data holding fewer bytes than rows·columns
-// samples. Each slice is decoded into a buffer of its own.
-void decode_slice(const SliceHeader& slice, const std::filesystem::path& report, std::vector<float>& values);
+// Stored dropped, sign-extended, × slope + intercept) to `values`. The file is walked again keeping its Pixel Data
+// (`limits.inflate_cap` bounds a deflated data set); compressed fragments go to GDCM's codecs in an image built from
+// `slice`. Refused (VolumeLoadError naming the slice): a broken structure, no Pixel Data, encapsulated Pixel Data
+// under a native transfer syntax or the reverse, native Pixel Data holding fewer bytes than rows·columns samples,
+// fragments GDCM cannot decode or that decode to another size than the header's. Each slice is decoded into a buffer
+// of its own.
+void decode_slice(const SliceHeader& slice, const DicomWalkLimits& limits, const std::filesystem::path& report,
+                  std::vector<float>& values);
 
 }  // namespace trispline::core::volume_io

@@ -99,9 +99,7 @@ class FileSource : public ByteSource {
   }
 
  protected:
-  std::size_t refill(unsigned char* out, std::size_t capacity) override {
-    return std::fread(out, 1, capacity, file_);
-  }
+  std::size_t refill(unsigned char* out, std::size_t capacity) override { return std::fread(out, 1, capacity, file_); }
 
  private:
   std::FILE* file_;
@@ -152,7 +150,8 @@ class InflateSource : public ByteSource {
     if (total_ > cap_)
       throw WalkError{"the deflated data set inflates to more than " + format_bytes(cap_) +
                           " (its bound: what the memory budget leaves for one slice file, and no more than its pixels "
-                          "plus " + format_bytes(kMaxDicomHeaderBytes) + " of other elements)",
+                          "plus " +
+                          format_bytes(kMaxDicomHeaderBytes) + " of other elements)",
                       pos_};
     return got;
   }
@@ -180,9 +179,9 @@ std::uint32_t u32(const unsigned char* p, bool big) {
 // One of the value representations of PS3.5 Table 6.2-1 (GDCM stops on an assertion at an unknown one in the meta
 // header).
 bool is_vr(const unsigned char* p) {
-  static const char* const kVrs[] = {"AE", "AS", "AT", "CS", "DA", "DS", "DT", "FD", "FL", "IS", "LO",
-                                     "LT", "OB", "OD", "OF", "OL", "OV", "OW", "PN", "SH", "SL", "SQ",
-                                     "SS", "ST", "SV", "TM", "UC", "UI", "UL", "UN", "UR", "US", "UT", "UV"};
+  static const char* const kVrs[] = {"AE", "AS", "AT", "CS", "DA", "DS", "DT", "FD", "FL", "IS", "LO", "LT",
+                                     "OB", "OD", "OF", "OL", "OV", "OW", "PN", "SH", "SL", "SQ", "SS", "ST",
+                                     "SV", "TM", "UC", "UI", "UL", "UN", "UR", "US", "UT", "UV"};
   return std::any_of(std::begin(kVrs), std::end(kVrs), [&](const char* v) { return p[0] == v[0] && p[1] == v[1]; });
 }
 
@@ -201,9 +200,10 @@ std::string tag_text(std::uint16_t group, std::uint16_t element) {
 // The element structure of one data set, depth first, without recursion.
 class Walker {
  public:
+  // `pixels`: where to keep the top-level Pixel Data, or nullptr to skip it.
   Walker(ByteSource& src, std::uint64_t& elements, const std::vector<std::uint32_t>& capture,
-         std::map<std::uint32_t, std::string>& values)
-      : src_(src), elements_(elements), capture_(capture), values_(values) {}
+         std::map<std::uint32_t, std::string>& values, DicomPixelData* pixels)
+      : src_(src), elements_(elements), capture_(capture), values_(values), pixels_(pixels) {}
 
   // Walks the data set to its end (true) or, with stop_at_pixel_data, to the top-level Pixel Data tag (false).
   bool walk(Syntax syntax, bool stop_at_pixel_data) {
@@ -243,6 +243,7 @@ class Walker {
     Kind kind;
     std::optional<std::uint64_t> end;  // where a defined-length frame ends
     Syntax syntax;
+    bool keep = false;  // the top-level Pixel Data's fragments, kept
   };
 
   static std::string kind_name(Kind k) {
@@ -265,12 +266,26 @@ class Walker {
       }
   }
 
-  void push(Kind kind, std::optional<std::uint64_t> length, Syntax syntax, std::uint64_t at) {
+  void push(Kind kind, std::optional<std::uint64_t> length, Syntax syntax, std::uint64_t at, bool keep = false) {
     if (static_cast<int>(stack_.size()) > kMaxDicomNesting)
       throw WalkError{"sequences nested more than " + std::to_string(kMaxDicomNesting) + " deep", at};
     std::optional<std::uint64_t> end;
     if (length) end = src_.position() + *length;
-    stack_.push_back(Frame{kind, end, syntax});
+    stack_.push_back(Frame{kind, end, syntax, keep});
+  }
+
+  // Reads a value of `length` bytes (already checked to fit) onto the end of `out`, 1 MiB at a time: memory grows
+  // with the bytes that really arrive, never ahead of them from the declared length.
+  void read_into(std::vector<char>& out, std::uint64_t length, std::uint64_t at, const std::string& what) {
+    constexpr std::uint64_t kStep = 1u << 20;
+    while (length > 0) {
+      const std::size_t n = static_cast<std::size_t>(std::min(length, kStep));
+      const std::size_t old = out.size();
+      out.resize(old + n);
+      if (src_.read(reinterpret_cast<unsigned char*>(out.data() + old), n) != n)
+        throw WalkError{what + " is cut short: the data ends inside its value (truncated)", at};
+      length -= n;
+    }
   }
 
   void skip(std::uint64_t length, std::uint64_t at, const std::string& what) {
@@ -286,7 +301,10 @@ class Walker {
       if (f.kind == Kind::kFragments) {
         if (length == kUndefinedLength) throw WalkError{"an encapsulated pixel data fragment of undefined length", at};
         check_fits(length, at, "a pixel data fragment");
-        skip(length, at, "a pixel data fragment");
+        if (f.keep)
+          read_into(pixels_->fragments.emplace_back(), length, at, "a pixel data fragment");
+        else
+          skip(length, at, "a pixel data fragment");
       } else if (f.kind == Kind::kSequence) {
         if (length != kUndefinedLength) check_fits(length, at, "an item");
         push(Kind::kItem, length == kUndefinedLength ? std::nullopt : std::optional<std::uint64_t>(length), f.syntax,
@@ -313,8 +331,7 @@ class Walker {
       length = u32(b, false);
     } else {
       if (src_.read(vr, 2) != 2) throw WalkError{"the data ends inside an element header", at};
-      if (!is_vr(vr))
-        throw WalkError{"element " + tag_text(group, element) + " has no known value representation", at};
+      if (!is_vr(vr)) throw WalkError{"element " + tag_text(group, element) + " has no known value representation", at};
       if (has_long_length(vr)) {
         if (src_.read(b, 6) != 6) throw WalkError{"the data ends inside an element header", at};
         length = u32(b + 2, big);
@@ -327,9 +344,15 @@ class Walker {
     const bool pixel_data = group == 0x7FE0 && element == 0x0010;
     const bool explicit_vr = f.syntax != Syntax::kImplicitLittle;
     const bool sq = explicit_vr && vr[0] == 'S' && vr[1] == 'Q', un = explicit_vr && vr[0] == 'U' && vr[1] == 'N';
+    const bool keep = pixel_data && pixels_ && stack_.size() == 1;
+    if (keep) {
+      if (pixels_->found) throw WalkError{"a second Pixel Data (7FE0,0010)", at};
+      pixels_->found = true;
+      pixels_->encapsulated = length == kUndefinedLength;
+    }
     if (length == kUndefinedLength) {
       if (pixel_data && (!explicit_vr || vr[0] == 'O'))
-        push(Kind::kFragments, std::nullopt, f.syntax, at);
+        push(Kind::kFragments, std::nullopt, f.syntax, at, keep);
       else if (!explicit_vr || sq || un)
         push(Kind::kSequence, std::nullopt, un ? Syntax::kImplicitLittle : f.syntax, at);
       else
@@ -342,7 +365,9 @@ class Walker {
     const bool item_first = (!explicit_vr || un) && !pixel_data && length >= 8 && src_.peek(first, 4) &&
                             u16(first, big) == 0xFFFE && u16(first + 2, big) == 0xE000;
     const std::uint32_t key = std::uint32_t{group} << 16 | element;
-    if (sq || item_first)
+    if (keep)
+      read_into(pixels_->value, length, at, what);
+    else if (sq || item_first)
       push(Kind::kSequence, length, sq ? f.syntax : Syntax::kImplicitLittle, at);
     else if (stack_.size() == 1 && length <= 1024 && std::find(capture_.begin(), capture_.end(), key) != capture_.end())
       capture(group, element, explicit_vr ? vr : nullptr, length, big, at);
@@ -369,6 +394,7 @@ class Walker {
   std::uint64_t& elements_;
   const std::vector<std::uint32_t>& capture_;
   std::map<std::uint32_t, std::string>& values_;
+  DicomPixelData* pixels_;
   std::vector<Frame> stack_;
 };
 
@@ -426,7 +452,8 @@ std::string walk_meta(FileSource& src) {
     throw WalkError{"the meta header has no Transfer Syntax UID (0002,0010)", src.position()};
   // GDCM stops on an assertion reading a data set in a transfer syntax it does not know.
   if (!uid.empty() && gdcm::TransferSyntax::GetTSType(uid.c_str()) == gdcm::TransferSyntax::TS_END)
-    throw WalkError{"the transfer syntax '" + uid + "' (0002,0010) is not a known DICOM transfer syntax", src.position()};
+    throw WalkError{"the transfer syntax '" + uid + "' (0002,0010) is not a known DICOM transfer syntax",
+                    src.position()};
   return uid;
 }
 
@@ -465,7 +492,8 @@ std::optional<DicomWalk> walk_dicom_file(const std::filesystem::path& file, cons
         fail(report, name + ": cannot read the file");
       InflateSource inflated(handle.get(), limits.inflate_cap);
       where = inflated.where();
-      Walker walker(inflated, elements, limits.capture, walk.values);
+      Walker walker(inflated, elements, limits.capture, walk.values,
+                    limits.keep_pixel_data ? &walk.pixel_data : nullptr);
       walk.complete = walker.walk(Syntax::kExplicitLittle, limits.stop_at_pixel_data);
       walk.data_set_bytes = inflated.inflated();
       return walk;
@@ -473,7 +501,7 @@ std::optional<DicomWalk> walk_dicom_file(const std::filesystem::path& file, cons
     const Syntax declared = ts == "1.2.840.10008.1.2"     ? Syntax::kImplicitLittle
                             : ts == "1.2.840.10008.1.2.2" ? Syntax::kExplicitBig
                                                           : Syntax::kExplicitLittle;
-    Walker walker(src, elements, limits.capture, walk.values);
+    Walker walker(src, elements, limits.capture, walk.values, limits.keep_pixel_data ? &walk.pixel_data : nullptr);
     walk.complete = walker.walk(guess_syntax(src, declared), false);
     walk.data_set_bytes = size;
     if (!dicm && elements == 0) return std::nullopt;  // an empty file
@@ -481,8 +509,7 @@ std::optional<DicomWalk> walk_dicom_file(const std::filesystem::path& file, cons
     return walk;
   } catch (const WalkError& e) {
     if (!dicm && elements < 2) return std::nullopt;  // no preamble and no element structure: not DICOM
-    fail(report, name + ": at byte " + std::to_string(e.offset) + where + ", " + e.what +
-                     ": a broken DICOM structure (GDCM is not asked to read it)");
+    fail(report, name + ": at byte " + std::to_string(e.offset) + where + ", " + e.what + ": a broken DICOM structure");
   }
 }
 
