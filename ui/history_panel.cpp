@@ -77,11 +77,21 @@ HistoryPanelResult draw_history_panel(const Rect& rect, const HistoryView& view)
         ImGui::PushID(static_cast<int>(view.labels.size() + 1 + k));
         ImGui::Indent();
         const std::string label = o.not_written ? not_written_label(o.label) : o.label;
-        ImGui::TextColored(undone ? ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled) : colors::dim, "%s", label.c_str());
+        const bool with_button = o.not_written && o.can_run_again;
+        // The label is clipped where the button begins, so the button always stays inside the panel.
+        const ImVec2 at = ImGui::GetCursorScreenPos();
+        const float width = with_button ? row_width(true) : ImGui::GetContentRegionAvail().x;
+        const ImVec2 end(at.x + width, at.y + ImGui::GetTextLineHeight());
+        ImGui::Dummy(ImVec2(width, ImGui::GetTextLineHeight()));
+        ImDrawList* draw = ImGui::GetWindowDrawList();
+        draw->PushClipRect(at, end, true);
+        draw->AddText(at, ImGui::GetColorU32(undone ? ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled) : colors::dim),
+                      label.c_str());
+        draw->PopClipRect();
         probe::item("history.output." + std::to_string(k));
-        if (ImGui::IsItemHovered()) ImGui::SetTooltip("Not an undo step: it writes files (%s)", o.path.c_str());
-        if (o.not_written && o.can_run_again &&
-            run_again_button("history.output_run_again." + std::to_string(k), o.path))
+        if (ImGui::IsItemHovered())
+          ImGui::SetTooltip("%s\nNot an undo step: it writes files (%s)", label.c_str(), o.path.c_str());
+        if (with_button && run_again_button("history.output_run_again." + std::to_string(k), o.path))
           result.run_again_output = k;
         ImGui::Unindent();
         ImGui::PopID();

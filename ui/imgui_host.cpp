@@ -8,6 +8,8 @@
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
 
+#include <cstdio>
+#include <filesystem>
 #include <stdexcept>
 
 namespace trispline::ui {
@@ -22,6 +24,24 @@ void record_key(GLFWwindow*, int key, int, int action, int mods) {
   const bool repeats = action == GLFW_REPEAT && (key == GLFW_KEY_LEFT || key == GLFW_KEY_RIGHT);
   if (action == GLFW_PRESS || repeats) g_pending.push_back({key, mods});
 }
+
+// The default font (ProggyClean, 13 px) holds ASCII and Latin-1 only; labels also use dashes, ellipses, arrows, math
+// signs and Greek letters ("Record frames 1-1 — not written again", "Working…", the α keys). Those glyphs are merged
+// from DejaVu Sans Mono (Debian's fonts-dejavu-core) at the same size; without it they show as '?'.
+void load_fonts(ImGuiIO& io) {
+  io.Fonts->AddFontDefault();
+  static const ImWchar extra[] = {0x0370, 0x03FF, 0x2010, 0x205E, 0x2190, 0x21FF, 0x2200, 0x22FF, 0x25A0, 0x25FF, 0};
+  const char* path = "/usr/share/fonts/truetype/dejavu/DejaVuSansMono.ttf";
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    std::fprintf(stderr, "trispline: %s not found (package fonts-dejavu-core): dashes and arrows show as '?'\n", path);
+    return;
+  }
+  ImFontConfig merge;
+  merge.MergeMode = true;
+  merge.PixelSnapH = true;
+  io.Fonts->AddFontFromFileTTF(path, 13.0f, &merge, extra);
+}
 }  // namespace
 
 const std::vector<KeyPress>& ImGuiHost::key_presses() { return g_frame; }
@@ -33,6 +53,7 @@ ImGuiHost::ImGuiHost(GLFWwindow* window, const std::string& ini_path, float ui_s
   ImGuiIO& io = ImGui::GetIO();
   io.IniFilename = ini_path_.empty() ? nullptr : ini_path_.c_str();
   io.ConfigWindowsMoveFromTitleBarOnly = true;
+  load_fonts(io);
   apply_dark_theme(ui_scale);
   glfwSetKeyCallback(window, record_key);
   if (!ImGui_ImplGlfw_InitForOpenGL(window, true)) {

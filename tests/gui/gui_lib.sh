@@ -168,9 +168,12 @@ gui_click() {
   xdotool click "${3:-1}"
 }
 gui_click_item() {
-  local xy
+  local xy x y
   xy="$(gui_item_center "$1")"
   gui_log "click $1 at $xy"
+  # A user cannot click what lies outside the window (a widget pushed past a panel's edge).
+  read -r x y <<<"$xy"
+  ((x >= 0 && x < 1280 && y >= 0 && y < 800)) || gui_fail "widget $1 is outside the 1280×800 window (centre $xy)"
   # shellcheck disable=SC2086
   gui_click $xy "${2:-1}"
 }
