@@ -16,6 +16,9 @@ endfunction()
 function(trispline_test name)
   cmake_parse_arguments(ARG "" "" "SOURCES;DEPS;LABELS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
+  # Unity batches: a suite's files share one parse of GoogleTest and the project headers (about half the tests'
+  # compile time on 2 cores). Helpers in different files of a suite must not share a name, as in any unity build.
+  set_target_properties(${name} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE 8)
   target_compile_options(${name} PRIVATE ${TRISPLINE_WARNINGS})
   target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gtest_main GTest::gmock)
   target_compile_definitions(${name} PRIVATE TRISPLINE_SOURCE_DIR="${PROJECT_SOURCE_DIR}"

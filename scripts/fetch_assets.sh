@@ -19,9 +19,27 @@
 #   gltf/2.0/RiggedFigure/ and RiggedSimple/ (glTF 2.0 skins), obj/ (toyplane.obj, ball.obj, trefoil.obj, …),
 #   test_scene.dae (Collada, two materials), textures/ (PBR PNG sets up to 4 K), cubemaps/, envmaps/.
 # Uses `apt-get download` + `dpkg-deb -x`: nothing is installed. Idempotent: does nothing when the files exist.
+# Usage: scripts/fetch_assets.sh [--editor | --check]
+#   --editor  only what the default scene needs (bunny.obj, 1 MB): scripts/start.sh; the rest comes with the tests
+#   --check   says which assets are missing, fetching nothing; exit 1 if any
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 data="$root/assets/data"
+mode="${1:-all}"
+if [ "$mode" = --check ]; then
+  missing=()
+  for f in bunny.obj venus.obj AnimatedMorphCube/AnimatedMorphCube.gltf simple_skin/simple_skin.gltf Cranium.inv3 \
+           KmeansTest_T1UCharRaw.nii.gz nefertiti.off corpus/cgal/.complete corpus/assimp/.complete \
+           corpus/geomview/.complete qt3d/.complete; do
+    [ -e "$data/$f" ] || missing+=("$f")
+  done
+  if ((${#missing[@]})); then
+    echo "assets: missing in assets/data/ (scripts/fetch_assets.sh fetches them): ${missing[*]}"
+    exit 1
+  fi
+  echo "assets: all present in assets/data/"
+  exit 0
+fi
 mkdir -p "$data"
 
 fetch() {  # fetch PACKAGE PATH_IN_PACKAGE TARGET_NAME [PATH_IN_PACKAGE TARGET_NAME]...  (one download per call)
@@ -45,6 +63,7 @@ fetch() {  # fetch PACKAGE PATH_IN_PACKAGE TARGET_NAME [PATH_IN_PACKAGE TARGET_N
 }
 
 fetch glmark2-data usr/share/glmark2/models/bunny.obj bunny.obj
+[ "$mode" = --editor ] && exit 0
 fetch gem-doc usr/share/gem/examples/data/venus.obj venus.obj
 gltf2=usr/share/assimp/models/glTF2
 fetch assimp-testmodels \

@@ -3,17 +3,19 @@
 #   1. builds core, the command layer, their tests and the libFuzzer targets with clang under AddressSanitizer +
 #      UndefinedBehaviorSanitizer into build-asan/ (no GUI: the GL layers run in the plain build's tests);
 #   2. runs the core and command tests and every fuzz target's seeds and regression files once (ctest);
-#   3. fuzzes each target for TRISPLINE_FUZZ_SECONDS (default 60; at most a target's own SECONDS when
-#      tests/fuzz/CMakeLists.txt gives one; seed TRISPLINE_FUZZ_SEED, default 1), two at a time. A crash fails the run
+#   3. fuzzes the targets two at a time within one shared budget, TRISPLINE_FUZZ_BUDGET seconds of wall time (default
+#      240: each target gets budget × jobs / targets seconds, 36 s for 13 targets on 2 cores), or each for
+#      TRISPLINE_FUZZ_SECONDS when set (at most a target's own SECONDS when tests/fuzz/CMakeLists.txt gives one; seed
+#      TRISPLINE_FUZZ_SEED, default 1). A crash fails the run
 #      and leaves the input in build-asan/fuzz/<target>/crashes/; add it to tests/fuzz/regressions/<target>/ with the
 #      fix.
-# Usage: scripts/sanitize.sh [--no-fuzz | --fuzz-only]   (run scripts/setup.sh --no-build first on a fresh machine)
+# Usage: scripts/sanitize.sh [--no-fuzz | --fuzz-only]   (run scripts/setup.sh --tests --no-build first on a fresh machine)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
 export CCACHE_BASEDIR="$root" CCACHE_NOHASHDIR=1  # hits across clones and worktrees
 build=build-asan
-seconds="${TRISPLINE_FUZZ_SECONDS:-60}"
+budget="${TRISPLINE_FUZZ_BUDGET:-240}"
 # A fixed seed by default: CI explores the same mutations each run, so a red run is a regression, not luck; 0 = a
 # random seed per run (longer local runs: TRISPLINE_FUZZ_SEED=0 TRISPLINE_FUZZ_SECONDS=3600).
 fuzz_seed="${TRISPLINE_FUZZ_SEED:-1}"
@@ -64,6 +66,7 @@ fuzz_one() {
   fi
 }
 mapfile -t targets < "$build/fuzz_targets.txt"
+seconds="${TRISPLINE_FUZZ_SECONDS:-$((budget * jobs / ${#targets[@]}))}"
 status=0
 pids=()
 for t in "${targets[@]}"; do

@@ -4,7 +4,13 @@
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
-scripts/setup.sh
+start=$SECONDS
+scripts/setup.sh --tests
 scripts/test_tools.sh
+echo "test: set up and built in $((SECONDS - start)) s"
 export MESA_SHADER_CACHE_DIR="${MESA_SHADER_CACHE_DIR:-$root/build/mesa_shader_cache}"
-ctest --test-dir build --output-on-failure -j"$(nproc)" --timeout 600
+start=$SECONDS
+status=0
+ctest --test-dir build --output-on-failure -j"$(nproc)" --timeout 600 || status=$?
+echo "test: ctest in $((SECONDS - start)) s"
+exit "$status"

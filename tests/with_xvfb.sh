@@ -6,7 +6,7 @@
 # loaded 2-core machine a fresh server on the lowest free display (`-displayfd`) now and then refused every client
 # (server alive, socket present; a server of an earlier run that was still going away held the display's socket):
 # a server that takes no client within 10 s is replaced by one on another display, up to 5 times. The ctest entries
-# that use it are also RUN_SERIAL, so no other GL test loads the machine meanwhile.
+# that use it share the RESOURCE_LOCK "display": one window test at a time, beside at most one non-window test.
 set -euo pipefail
 screen="$1"; shift
 xvfb_pid=""
