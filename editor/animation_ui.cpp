@@ -141,6 +141,25 @@ bool AnimationUi::run_again(std::size_t k, const std::function<void()>& restore_
     messages_.warning(cmd->label() + ": nothing to run again (its frames were recorded)");
     return false;
   }
+  // An opened log is shared input: Run again records only under the scene's folder (`..` and symlinks resolved).
+  // Elsewhere, the artist chooses the folder in the Record dialog.
+  const fs::path out = cmd->request().out_dir.empty() ? default_folder() : cmd->request().out_dir;
+  const fs::path doc = session_.document();
+  std::error_code ec;
+  const fs::path root =
+      fs::weakly_canonical(fs::absolute(doc.empty() ? fs::current_path(ec) : doc.parent_path(), ec), ec);
+  const fs::path target = fs::weakly_canonical(fs::absolute(out, ec), ec);
+  auto t = target.begin();
+  bool inside = !ec;
+  for (auto r = root.begin(); inside && r != root.end() && !r->empty(); ++r, ++t)
+    inside = t != target.end() && *t == *r;
+  if (!inside) {
+    messages_.warning("Run again refused: the log records into '" + out.string() + "', outside the scene's folder '" +
+                      root.string() +
+                      "' (a shared log must not write where you did not choose); use File ▸ Record "
+                      "animation… to choose a folder");
+    return false;
+  }
   // The frames as they were recorded at that step: the scene it ran on, its request (range resolved then).
   begin_recording(*o.scene, record_options(cmd->request(), default_folder()));
   if (recorder_) {

@@ -14,6 +14,7 @@
 #include "bench/bench_ddm.h"
 #include "bench/bench_dffd.h"
 #include "bench/bench_place.h"
+#include "core/commands/anim_record.h"
 #include "bench/bounds_bench.h"
 #include "bench/silhouette_bench.h"
 #include "editor/command_docs.h"
@@ -96,6 +97,10 @@ void add_replay(CLI::App& app, CliRequest& o) {
       o.replay_cmd->add_option("--height", o.replay.height, "final.png height in pixels")->check(CLI::Range(1, 16384));
   rw->needs(rh);
   rh->needs(rw);
+  o.replay_cmd->parse_complete_callback([&o] {  // the frame budget of anim.record, before the log is replayed
+    if (const std::string problem = core::frame_budget_problem(o.replay.width, o.replay.height); !problem.empty())
+      throw CLI::ValidationError("--width", problem);
+  });
   o.replay_cmd->add_flag("!--no-render", o.replay.render, "Skip final.png (no GL context needed)");
   o.replay_cmd
       ->add_option_function<std::string>(

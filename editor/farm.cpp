@@ -198,7 +198,8 @@ FarmStatus farm_status(const fs::path& dir) {
   const FarmPlan plan = read_plan(dir);
   const std::set<int> queued = queued_tasks(plan);
   FarmStatus status;
-  if (plan.kind == "frames") status.log_changed = log_change(plan.log, plan.log_crc32, plan.log_bytes);
+  status.log_changed =
+      plan.kind == "frames" ? log_change(plan.log, plan.log_crc32, plan.log_bytes) : batch_logs_changed(plan);
   std::error_code ec;
   for (const FarmTask& t : plan.tasks) {
     FarmTaskState st;
@@ -206,7 +207,9 @@ FarmStatus farm_status(const fs::path& dir) {
     read_task_log(plan.dir / "logs" / ("task_" + farm_task_name(t.index) + ".log"), st);
     bool output = true;
     if (plan.kind == "batch") {
-      output = fs::is_regular_file(plan.dir / "runs" / t.name / "report.json", ec);
+      output = batch_report_valid(plan, t);
+      if (!output && fs::exists(plan.dir / "runs" / t.name / "report.json", ec))
+        st.problem = "runs/" + t.name + "/report.json is not a replay's report";
     } else {
       const ChunkCheck c = check_chunk(plan, t, false);
       output = c.done;
@@ -228,8 +231,9 @@ FarmStatus farm_status(const fs::path& dir) {
   }
   const bool all_done =
       std::all_of(status.tasks.begin(), status.tasks.end(), [](const FarmTaskState& t) { return t.state == "done"; });
-  status.assembled = plan.kind == "batch" ? fs::is_regular_file(plan.dir / "summary.json", ec)
-                                          : all_done && status.log_changed.empty() && assembly_matches(plan);
+  status.assembled =
+      all_done && status.log_changed.empty() &&
+      (plan.kind == "batch" ? fs::is_regular_file(plan.dir / "summary.json", ec) : assembly_matches(plan));
   return status;
 }
 

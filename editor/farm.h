@@ -87,6 +87,11 @@ std::optional<FileSum> file_sum(const std::filesystem::path& path, std::uint64_t
                                 bool follow_symlink = false);
 // "" when the log at `log` still has the size and CRC-32 it had at submission, else why not (named by path).
 std::string log_change(const std::filesystem::path& log, std::uint32_t crc32, std::uint64_t bytes);
+// A batch: "" when every task's log still has the size and CRC-32 it had at submission, else the first change and
+// how many logs changed.
+std::string batch_logs_changed(const FarmPlan& plan);
+// A batch task's runs/<name>/report.json is a replay's report: a JSON object (at most 64 MiB) with a boolean "ok".
+bool batch_report_valid(const FarmPlan& plan, const FarmTask& task);
 
 // What the task recorded in chunks/NNNN/chunk.json when it finished, checked against the files.
 struct ChunkCheck {

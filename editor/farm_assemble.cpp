@@ -181,12 +181,20 @@ int assemble_batch(const FarmPlan& plan, std::ostream& out, std::ostream& err) {
   nlohmann::json failed = nlohmann::json::array();
   std::error_code ec;
   fs::remove(plan.dir / "summary.json", ec);
+  if (const std::string changed = batch_logs_changed(plan); !changed.empty()) {
+    err << "farm assemble: " << changed << "; nothing assembled\n";
+    return 2;
+  }
   for (const FarmTask& t : plan.tasks) {
-    const nlohmann::json report = read_json_or_null(plan.dir / "runs" / t.name / "report.json");
-    const bool run_ok = report.is_object() && report.value("ok", false);
+    const bool valid = batch_report_valid(plan, t);
+    const nlohmann::json report = valid ? read_json_or_null(plan.dir / "runs" / t.name / "report.json") : nullptr;
+    const bool run_ok = valid && report["ok"].get<bool>();
     nlohmann::json r = {{"name", t.name}, {"log", t.log.string()}, {"ok", run_ok}, {"report", report}};
     if (report.is_null())
-      r["error"] = "no report.json (the task did not run to the end: logs/task_" + farm_task_name(t.index) + ".log)";
+      r["error"] = "no replay report in runs/" + t.name +
+                   "/report.json (the task did not run to the end, or the file "
+                   "is not a report: logs/task_" +
+                   farm_task_name(t.index) + ".log)";
     else if (!run_ok)
       r["error"] = report.value("error", std::string("an output could not be written"));
     ok += run_ok;

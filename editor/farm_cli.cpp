@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 
+#include "core/commands/anim_record.h"
 #include "editor/replay.h"
 
 namespace trispline::editor {
@@ -31,6 +32,11 @@ void add_engine_options(CLI::App* cmd, FarmCli& o) {
   auto* h = cmd->add_option("--height", o.plan.height, "Frame height in pixels")->check(CLI::Range(1, 16384));
   w->needs(h);
   h->needs(w);
+  // The frame budget of anim.record, checked before farm.json is written (a bad value exits 2).
+  cmd->parse_complete_callback([&o] {
+    if (const std::string problem = core::frame_budget_problem(o.plan.width, o.plan.height); !problem.empty())
+      throw CLI::ValidationError("--width", problem);
+  });
 }
 
 std::filesystem::path own_executable() {

@@ -8,6 +8,8 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "core/commands/anim_record.h"
+
 namespace trispline::editor {
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -216,10 +218,14 @@ void check_frames_plan(const FarmPlan& p) {
   if (p.width < 0 || p.width > kFarmMaxSize) fail("width", "must be 0 or in [1, 16384], got " + std::to_string(p.width));
   if (p.height < 0 || p.height > kFarmMaxSize)
     fail("height", "must be 0 or in [1, 16384], got " + std::to_string(p.height));
+  if (const std::string problem = core::frame_budget_problem(p.width, p.height); !problem.empty())
+    fail("width", problem);
   if (p.frame_width < 1 || p.frame_width > kFarmMaxSize)
     fail("frame_width", "must be in [1, 16384], got " + std::to_string(p.frame_width));
   if (p.frame_height < 1 || p.frame_height > kFarmMaxSize)
     fail("frame_height", "must be in [1, 16384], got " + std::to_string(p.frame_height));
+  if (const std::string problem = core::frame_budget_problem(p.frame_width, p.frame_height); !problem.empty())
+    fail("frame_width", problem);
   if (!std::isfinite(p.fps) || p.fps < 0.01 || p.fps > 240) fail("fps", "must be in [0.01, 240] frames per second");
   const std::vector<FarmTask> want = plan_frames(p.frame_first, p.frame_last, p.chunk);
   if (p.tasks.size() != want.size())

@@ -97,6 +97,32 @@ std::string log_change(const fs::path& log, std::uint32_t crc32, std::uint64_t b
   return "";
 }
 
+std::string batch_logs_changed(const FarmPlan& plan) {
+  std::string first;
+  int changed = 0;
+  for (const FarmTask& t : plan.tasks)
+    if (std::string why = log_change(t.log, t.log_crc32, t.log_bytes); !why.empty()) {
+      if (changed++ == 0) first = std::move(why);
+    }
+  if (changed > 1) first += " (and " + std::to_string(changed - 1) + " other logs of the batch)";
+  return first;
+}
+
+bool batch_report_valid(const FarmPlan& plan, const FarmTask& task) {
+  const fs::path path = plan.dir / "runs" / task.name / "report.json";
+  std::error_code ec;
+  if (fs::is_symlink(fs::symlink_status(path, ec)) || !fs::is_regular_file(path, ec) ||
+      fs::file_size(path, ec) > (64u << 20))
+    return false;
+  std::ifstream in(path);
+  try {
+    const nlohmann::json r = nlohmann::json::parse(in);
+    return r.is_object() && r.contains("ok") && r["ok"].is_boolean();
+  } catch (const nlohmann::json::exception&) {
+    return false;
+  }
+}
+
 void seal_chunk(const FarmPlan& plan, const FarmTask& task) {
   const fs::path dir = chunk_dir(plan, task);
   json frames = json::array();

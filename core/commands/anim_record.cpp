@@ -53,14 +53,8 @@ const ParamSchema<AnimRecordParams>& AnimRecordCommand::schema() {
               const char* missing = p.width ? "height" : "width";
               params::fail(missing, "give width and height together");
             }
-            const std::int64_t w = p.width.value_or(0), h = p.height.value_or(0);
-            if (w * h > kMaxRecordPixels)
-              params::fail("width", "a frame of " + std::to_string(w) + "×" + std::to_string(h) +
-                                        " pixels is over the budget of " +
-                                        std::to_string(kMaxRecordPixels / (1 << 20)) +
-                                        " megapixels (8192×8192): its 4× multisampled colour and depth alone would "
-                                        "need " +
-                                        std::to_string(w * h * 32 >> 30) + " GiB");
+            const std::string problem = frame_budget_problem(p.width.value_or(0), p.height.value_or(0));
+            if (!problem.empty()) params::fail("width", problem);
           });
   return s;
 }

@@ -19,6 +19,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <string>
 
 #include "core/commands/declared_command.h"
 #include "core/commands/file_output.h"
@@ -27,6 +28,17 @@ namespace trispline::core {
 
 // Pixels a recorded frame may have (8192 × 8192): 4× MSAA colour + depth take 32 bytes a pixel (2 GiB here).
 inline constexpr std::int64_t kMaxRecordPixels = std::int64_t(8192) * 8192;
+
+// "" when a width × height frame (pixels) is within kMaxRecordPixels; else the refusal, naming the sizes and the
+// memory they would take (for anim.record, replay's and farm's --width / --height, farm.json). Inline: the farm's
+// plan reader links no command.
+inline std::string frame_budget_problem(std::int64_t width, std::int64_t height) {
+  if (width * height <= kMaxRecordPixels) return {};
+  return "a frame of " + std::to_string(width) + "×" + std::to_string(height) + " pixels is over the budget of " +
+         std::to_string(kMaxRecordPixels / (1 << 20)) +
+         " megapixels (8192×8192): its 4× multisampled colour and depth alone would need " +
+         std::to_string(width * height * 32 >> 30) + " GiB";
+}
 
 // What anim.record asks for, with the frame range resolved against the timeline by redo().
 struct RecordRequest {

@@ -86,6 +86,13 @@ const ParamSchema<PlaceSketchParams>& PlaceSketchCommand::schema() {
           .check([](const P& p) {
             if (p.length_axis == p.up_axis)
               params::fail("up_axis", "must differ from length_axis ('" + p.length_axis + "')");
+            // Each contact sample is a ray, a mass-spring node and a row of the volume's fit: 2²⁰ (1024 × 1024) is
+            // far beyond what the seed's figures use (32 × 8) and bounds the work to about a second.
+            const std::int64_t rays = std::int64_t(p.samples.x) * p.samples.y;
+            if (rays > kMaxContactSamples)
+              params::fail("samples", std::to_string(p.samples.x) + " × " + std::to_string(p.samples.y) + " = " +
+                                          std::to_string(rays) + " contact samples: at most " +
+                                          std::to_string(kMaxContactSamples) + " (1024 × 1024)");
           })
           .object("camera", &P::camera, camera_schema())
           .help("The view the stroke was drawn in (camera.set's fields); default: the last camera.set")

@@ -16,6 +16,7 @@
 // again from its undeformed (transformed) rest mesh. Undo restores the object as it was.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 
 #include "core/commands/declared_command.h"
@@ -23,6 +24,9 @@
 #include "core/placement/contact_springs.h"
 
 namespace trispline::core {
+
+// Contact samples (rays) a placement may ask for, samples[0] × samples[1]: refused above, naming `samples`.
+inline constexpr std::int64_t kMaxContactSamples = std::int64_t(1) << 20;
 
 struct PlaceSketchParams {
   std::string object;

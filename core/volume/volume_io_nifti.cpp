@@ -53,6 +53,14 @@ class NiftiStream {
       std::string reason = gzerror(gz_file_, &code);
       const std::string prefix = path_.string() + ": ";  // zlib starts its message with the file name
       if (reason.rfind(prefix, 0) == 0) reason.erase(0, prefix.size());
+      // zlib checks the trailer as soon as its buffer reaches the end, which for a small file is the first read.
+      const bool trailer = reason.find("incorrect data check") != std::string::npos ||
+                           reason.find("incorrect length check") != std::string::npos;
+      if (trailer)
+        fail(path_,
+             "the gzip stream's check at its end (CRC-32 and length) does not match its data: the file is "
+             "damaged (zlib: " +
+                 reason + ")");
       fail(path_, "the gzip stream is damaged in " + what + " (zlib: " + reason + "; " + std::to_string(done_) +
                       " bytes decompressed before the call that failed)");
     }

@@ -48,6 +48,8 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(HostileCase{"utf8.jsonl", 2, "", "invalid UTF-8 at byte"},
                       HostileCase{"scale_huge.jsonl", 1, "", "not finite or out of range"},
                       HostileCase{"translate_huge.jsonl", 1, "", "not finite or out of range"},
+                                           HostileCase{"sketch_samples.jsonl", 4, "samples",
+                                                       "contact samples: at most 1048576"},
                       HostileCase{"press_huge.jsonl", 3, "", "not finite or out of range"},
                       HostileCase{"pull_huge.jsonl", 3, "", "not finite or out of range"},
                       HostileCase{"sketch_height.jsonl", 4, "", "height"},

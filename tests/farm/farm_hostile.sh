@@ -6,7 +6,9 @@
 # no crash, status bounded); an empty, garbage or swapped frame and a patched animation.piece are never "assembled"
 # and resume re-renders only that chunk; a log edited after submission is refused by status, assemble and resume; a
 # copied farm resumes into the copy (the original untouched) and a moved farm resumes where it is; a SIGKILLed pool's
-# replays die with it and resume runs each chunk once; resume stops a task a killed pool left running.
+# replays die with it and resume runs each chunk once; resume stops a task a killed pool left running; a frame over
+# the 64-megapixel budget exits 2 before anything is written; a batch's tampered report is not a run and its logs
+# edited after submission are refused.
 # Usage: farm_hostile.sh (TRISPLINE, TRISPLINE_SOURCE, FARM_OUT from ctest).
 set -euo pipefail
 exe=${TRISPLINE:?path of the trispline executable}
@@ -56,6 +58,12 @@ expect_exit 2 "chunk" "$exe" farm submit "$log" --frames 1-2 --chunk 99999999999
 expect_exit 2 "width" "$exe" farm submit "$log" --frames 1-2 --chunk 2 --out "$out/p" --width 0 --height 24
 expect_exit 2 "engine" "$exe" farm submit "$log" --frames 1-2 --chunk 2 --out "$out/p" --engine pbs
 expect_exit 2 "dir" "$exe" farm status "$out/none"
+# A frame over the 64-megapixel budget of anim.record: refused before farm.json is written, as by replay.
+expect_exit 2 "megapixels" "$exe" farm submit "$log" --frames 1-2 --chunk 1 --out "$out/big" --engine local \
+  --width 16384 --height 16384
+[ ! -e "$out/big/farm.json" ] || fail "a frame over the budget wrote farm.json"
+expect_exit 2 "megapixels" "$exe" replay "$log" --out "$out/big_replay" --width 16384 --height 16384
+[ ! -e "$out/big_replay/report.json" ] || fail "replay ran with a frame over the budget"
 touch "$out/a_file"
 expect_exit 2 "is a file" "$exe" farm submit "$log" --frames 1-2 --chunk 2 --out "$out/a_file" --engine local
 expect_exit 2 "index" "$exe" farm task "$out" 999999
@@ -204,5 +212,24 @@ status_of "$farm" | jq -e '.assembled == false and (.log_changed | test("changed
   fail "status does not say the log changed, or says assembled"
 expect_exit 2 "changed since submission" "$exe" farm assemble "$farm"
 expect_exit 2 "changed since submission" "$exe" farm resume "$farm"
+
+# A batch: a tampered report is not a finished run, and a log edited after submission is refused by status and
+# assemble, as for frames.
+mkdir -p "$out/library"
+printf '%s\n' '{"cmd":"scene.primitive","kind":"box","name":"crate"}' > "$out/library/one.jsonl"
+printf '%s\n' '{"cmd":"scene.primitive","kind":"sphere","name":"ball"}' > "$out/library/two.jsonl"
+"$exe" farm batch "$out/library" --out "$out/batch" --engine local > "$out/batch.txt" 2>&1 ||
+  { cat "$out/batch.txt" >&2; fail "the batch failed"; }
+assembled "$out/batch" || fail "the batch is not assembled"
+cp "$out/batch/runs/one/report.json" "$out/one_report.json"
+echo '{}' > "$out/batch/runs/one/report.json"
+status_of "$out/batch" | jq -e '.assembled == false' > /dev/null || fail "a tampered batch report counts as a run"
+cp "$out/one_report.json" "$out/batch/runs/one/report.json"
+assembled "$out/batch" || fail "the batch with its report restored is not assembled"
+echo '{"cmd":"scene.primitive","kind":"teapot","name":"pot"}' >> "$out/library/two.jsonl"
+status_of "$out/batch" | jq -e '.assembled == false and (.log_changed | test("changed since submission"))' \
+  > /dev/null || fail "status does not say a batch log changed, or says assembled"
+expect_exit 2 "changed since submission" "$exe" farm assemble "$out/batch"
+echo "batch at $((SECONDS - t0)) s"
 
 echo "PASS farm.hostile in $((SECONDS - t0)) s"

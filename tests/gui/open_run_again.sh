@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Opening a log never writes files (docs/decisions.md): the editor opens a log that exports a torus volume's
 # silhouettes (volume.export) and records frames (anim.record); neither the SVG nor the frames are written, the History
-# says "not written again", and its Run again buttons (real clicks) write the SVG and record the frame. Then the
+# says "not written again", and its Run again buttons (real clicks) write the SVG and record the frame, but refuse a
+# recording whose folder is outside the scene's (a shared log must not write there). Then the
 # Record dialog (File ▸ Record animation...) offers the scene camera (the log has a camera.set) and, clicked, the
 # current view: the anim.record line carries that view's camera and the frame is recorded.
 source "$(dirname "$0")/gui_lib.sh"
@@ -13,6 +14,7 @@ cat >"$log" <<'LOG'
 {"cmd":"volume.export","object":"torus","what":"silhouettes","path":"torus.svg"}
 {"cmd":"anim.timeline","fps":24,"start":1,"end":1}
 {"cmd":"anim.record","out":"opened_frames","format":"png","frames":[1,1],"glb":false,"mp4":false,"width":48,"height":32}
+{"cmd":"anim.record","out":"../outside_frames","format":"png","frames":[1,1],"glb":false,"mp4":false,"width":48,"height":32}
 LOG
 svg="$GUI_WORK/torus.svg"
 GUI_TIMEOUT=40
@@ -21,8 +23,8 @@ gui_start "$log"
 # 1. Opened: five history steps, the export not written, the recording a row after them, not recorded.
 gui_wait '(.history.labels | length) == 5 and .history.applied == 5' "the log opens with five steps"
 gui_check '.history.not_written == [false, false, false, true, false]' "the export is marked not written again"
-gui_check '(.history.outputs | length) == 1 and .history.outputs[0].not_written and .history.outputs[0].after == 5' \
-  "the recording is shown after the last step, not recorded"
+gui_check '(.history.outputs | length) == 2 and .history.outputs[0].not_written and .history.outputs[0].after == 5' \
+  "the recordings are shown after the last step, not recorded"
 gui_frames 3
 [ -e "$svg" ] && gui_fail "Open wrote $svg"
 [ -e "$GUI_WORK/opened_frames" ] && gui_fail "Open recorded into opened_frames"
@@ -51,6 +53,14 @@ for _ in $(seq 1 150); do [ -f "$frame" ] && break; sleep 0.2; done
 [ -f "$frame" ] || gui_fail "Run again did not record $frame"
 gui_wait '.history.outputs[0].not_written == false' "the recording is no longer marked"
 gui_wait '.popups | length == 0' "the recording's progress closes" 60
+
+# 4b. A shared log's recording outside the scene's folder: Run again refuses it and records nothing.
+gui_click_item history.output_run_again.1
+gui_wait '.log | map(test("Run again refused: the log records into .*outside_frames")) | any' \
+  "Run again refuses a folder outside the scene's"
+gui_frames 3
+[ -e "$GUI_WORK/../outside_frames" ] && gui_fail "Run again recorded outside the scene's folder"
+gui_check '.history.outputs[1].not_written' "the refused recording stays marked"
 
 # 5. The Record dialog says which camera it records and lets the artist choose the current view.
 n="$(gui_session_count '.cmd == "anim.record"')"

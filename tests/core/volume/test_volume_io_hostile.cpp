@@ -107,8 +107,9 @@ TEST(VolumeBombs, Inv3RefusedOnItsPlistShape) {
   VolumeLoadOptions options;
   options.memory_budget_bytes = std::uint64_t{1} << 30;
   options.extra_bytes_per_voxel = 4;
-  EXPECT_THAT(volume_load_error(p, options),
-              AllOf(HasSubstr("600×600×600"), HasSubstr("over the memory budget of 1.0 GiB"), HasSubstr("4 bytes a voxel")));
+  EXPECT_THAT(
+      volume_load_error(p, options),
+      AllOf(HasSubstr("600×600×600"), HasSubstr("over the memory budget of 1.0 GiB"), HasSubstr("4 bytes a voxel")));
   EXPECT_LT(peak_rss_bytes() - before, std::uint64_t{100} << 20);
 }
 
@@ -218,8 +219,8 @@ TEST(VolumeMessages, DamagedGzipNamesZlibsReason) {
     bytes[bytes.size() - from_end] ^= 0xFF;
     write_bytes(p, bytes);
     const std::string why = volume_load_error(p);
-    EXPECT_THAT(why, AllOf(HasSubstr("gzip stream is damaged"), HasSubstr("zlib: "),
-                           Not(HasSubstr("18446744073709551615"))))
+    EXPECT_THAT(why, AllOf(HasSubstr("check at its end (CRC-32 and length) does not match"), HasSubstr("zlib: "),
+                           Not(HasSubstr("in the header")), Not(HasSubstr("18446744073709551615"))))
         << from_end;
   }
   std::vector<unsigned char> bytes = good;
