@@ -5,18 +5,18 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <iostream>
+#include <sstream>
 
-#include "core/ffd/ffd_evaluator.h"
-#include "editor/app.h"
-#include "bench/bench_ffd.h"
 #include "bench/bench_ddm.h"
 #include "bench/bench_dffd.h"
+#include "bench/bench_ffd.h"
 #include "bench/bench_place.h"
-#include "core/commands/anim_record.h"
 #include "bench/bounds_bench.h"
 #include "bench/silhouette_bench.h"
+#include "core/commands/anim_record.h"
+#include "core/ffd/ffd_evaluator.h"
+#include "editor/app.h"
 #include "editor/command_docs.h"
 #include "editor/command_registry.h"
 #include "editor/farm_cli.h"
@@ -42,7 +42,6 @@ int rewrite_command_docs(const std::string& path, const CommandRegistry& registr
   std::cout << (updated == text.str() ? "unchanged: " : "updated: ") << path << "\n";
   return 0;
 }
-
 
 // What the command line asked for: each subcommand's options, and the subcommand objects to test which one ran.
 struct CliRequest {
@@ -167,14 +166,15 @@ void print_silhouette_table(const nlohmann::json& r, std::ostream& out) {
       << "  view  extract_ms  hidden_ms  points  polylines  length_mm\n";
   for (const auto& v : r["per_view"])
     out << "  " << std::setw(4) << bench_fixed(v["azimuth_deg"].get<double>(), 0) << std::setw(12)
-        << bench_fixed(v["extract_ms"].get<double>(), 1) << std::setw(11) << bench_fixed(v["hidden_ms"].get<double>(), 1)
-        << std::setw(8) << v["points"].get<std::size_t>() << std::setw(11) << v["polylines"].get<std::size_t>()
-        << std::setw(11) << bench_fixed(v["length_mm"].get<double>(), 0) << "\n";
+        << bench_fixed(v["extract_ms"].get<double>(), 1) << std::setw(11)
+        << bench_fixed(v["hidden_ms"].get<double>(), 1) << std::setw(8) << v["points"].get<std::size_t>()
+        << std::setw(11) << v["polylines"].get<std::size_t>() << std::setw(11)
+        << bench_fixed(v["length_mm"].get<double>(), 0) << "\n";
   out << "  median view " << bench_fixed(r["median_view_ms"].get<double>(), 1) << " ms (extract "
       << bench_fixed(r["median_extract_ms"].get<double>(), 1) << " + hidden "
-      << bench_fixed(r["median_hidden_ms"].get<double>(), 1) << "), max " << bench_fixed(r["max_view_ms"].get<double>(), 1)
-      << " ms; residuals |D-c|/range " << r["max_value_residual"].get<double>() << ", |G.V| "
-      << r["max_dot_residual"].get<double>() << "\n";
+      << bench_fixed(r["median_hidden_ms"].get<double>(), 1) << "), max "
+      << bench_fixed(r["max_view_ms"].get<double>(), 1) << " ms; residuals |D-c|/range "
+      << r["max_value_residual"].get<double>() << ", |G.V| " << r["max_dot_residual"].get<double>() << "\n";
 }
 
 // `trispline bench bounds`: certificate times per lattice, then the soundness sweep's counts.
@@ -197,13 +197,13 @@ void print_bounds_table(const nlohmann::json& r, std::ostream& out) {
   out << "per-triangle error bounds: " << t["triangles"].get<std::size_t>() << " triangles ("
       << t["vertices"].get<std::size_t>() << " vertices, " << t["mesh"]["source"].get<std::string>()
       << ") in a perturbed tri-cubic 8^3 lattice: " << bench_fixed(t["ms"].get<double>(), 1) << " ms (cell bounds "
-      << bench_fixed(t["prepare_ms"].get<double>(), 2) << " ms), " << bench_fixed(t["per_second"].get<double>() / 1e6, 1)
-      << " M triangles/s; bound median " << t["median_bound"].get<double>() << ", max " << t["max_bound"].get<double>()
-      << " world units\n";
+      << bench_fixed(t["prepare_ms"].get<double>(), 2) << " ms), "
+      << bench_fixed(t["per_second"].get<double>() / 1e6, 1) << " M triangles/s; bound median "
+      << t["median_bound"].get<double>() << ", max " << t["max_bound"].get<double>() << " world units\n";
   const auto& s = r["soundness"];
-  out << "bound soundness: " << s["triangles"].get<std::size_t>() << " triangles in " << s["lattices"].get<std::size_t>()
-      << " random lattices (" << s["unbounded"].get<std::size_t>() << " unbounded), "
-      << bench_fixed(s["ms"].get<double>() / 1000.0, 1) << " s\n"
+  out << "bound soundness: " << s["triangles"].get<std::size_t>() << " triangles in "
+      << s["lattices"].get<std::size_t>() << " random lattices (" << s["unbounded"].get<std::size_t>()
+      << " unbounded), " << bench_fixed(s["ms"].get<double>() / 1000.0, 1) << " s\n"
       << "  method             exceeded   tightness median    worst\n";
   for (const auto& [name, m] : s["methods"].items())
     out << "  " << std::setw(18) << std::left << name << std::right << std::setw(9) << m["exceeded"].get<std::size_t>()
@@ -225,25 +225,30 @@ void add_bench(CLI::App& app, CliRequest& o) {
   auto* bench = app.add_subcommand("bench", "Benchmarks that print figures (never assert timings)");
   bench->require_subcommand(1);
   o.ffd_cmd = bench->add_subcommand(
-      "ffd", "FFD throughput of every evaluator backend (CPU reference/fast, GLSL compute/vertex) on the bunny "
-             "subdivided to ~0.8 M vertices, 4^3 and 8^3 lattices, orders 3 and 4");
+      "ffd",
+      "FFD throughput of every evaluator backend (CPU reference/fast, GLSL compute/vertex) on the bunny "
+      "subdivided to ~0.8 M vertices, 4^3 and 8^3 lattices, orders 3 and 4");
   o.ffd_cmd->add_flag("--json", o.ffd.json, "Print one JSON object instead of a table");
-  o.ffd_cmd->add_option("--mesh", o.ffd.mesh_path,
-                        "Benchmark this mesh's vertices instead (OBJ/PLY/OFF/STL/glTF; default: the bunny)")
+  o.ffd_cmd
+      ->add_option("--mesh", o.ffd.mesh_path,
+                   "Benchmark this mesh's vertices instead (OBJ/PLY/OFF/STL/glTF; default: the bunny)")
       ->check(CLI::ExistingFile);
-  o.ffd_cmd->add_option("--subdiv", o.ffd.subdivision,
-                        "OpenSubdiv bilinear subdivision levels (default 2 for the bunny, 0 for --mesh)")
+  o.ffd_cmd
+      ->add_option("--subdiv", o.ffd.subdivision,
+                   "OpenSubdiv bilinear subdivision levels (default 2 for the bunny, 0 for --mesh)")
       ->check(CLI::Range(0, 6));
   o.ffd_cmd->add_option("--runs", o.ffd.runs, "Timed runs per case; the median is reported")
       ->check(CLI::Range(1, 1000));
   o.ffd_cmd->add_flag("!--cpu-only", o.ffd.gpu, "Skip the GLSL backends (no GL context)");
-  o.ffd_cmd->add_option("--gpu-shaders", o.ffd.gpu_shaders,
-                        "How GLSL shaders get the orders: auto (generic on software renderers), specialised, generic")
+  o.ffd_cmd
+      ->add_option("--gpu-shaders", o.ffd.gpu_shaders,
+                   "How GLSL shaders get the orders: auto (generic on software renderers), specialised, generic")
       ->check(CLI::IsMember({"auto", "specialised", "generic"}));
 
   o.place_cmd = bench->add_subcommand(
-      "place", "place.sketch end to end (stroke -> placed bunny over the teapot and the terrain), ms per stage, "
-               "mass-spring contact surface on and off");
+      "place",
+      "place.sketch end to end (stroke -> placed bunny over the teapot and the terrain), ms per stage, "
+      "mass-spring contact surface on and off");
   o.place_cmd->add_flag("--json", o.place.json, "Print one JSON object instead of a table");
   o.place_cmd->add_option("--runs", o.place.runs, "Timed runs per case after one warm-up; the median is reported")
       ->check(CLI::Range(1, 1000));
@@ -275,15 +280,19 @@ void add_bench(CLI::App& app, CliRequest& o) {
   o.ddm_cmd->add_option("--samples", o.ddm.samples, "MSAA samples")->check(CLI::Range(1, 16));
   o.ddm_cmd
       ->add_option("--case", o.ddm.cases,
-                   "Cases: thorns_face, thorns_teapot, chains_1m, chains_3m, orbit_default, orbit_fine, follow_bunny (default all)")
-      ->check(CLI::IsMember({"thorns_face", "thorns_teapot", "chains_1m", "chains_3m", "orbit_default", "orbit_fine", "follow_bunny"}));
+                   "Cases: thorns_face, thorns_teapot, chains_1m, chains_3m, orbit_default, orbit_fine, follow_bunny "
+                   "(default all)")
+      ->check(CLI::IsMember(
+          {"thorns_face", "thorns_teapot", "chains_1m", "chains_3m", "orbit_default", "orbit_fine", "follow_bunny"}));
   o.ddm_cmd->add_flag("!--no-cpu", o.ddm.cpu_reference, "Do not time the CPU reference evaluation");
   o.silhouettes_cmd = bench->add_subcommand(
-      "silhouettes", "Silhouettes of a CT/MRI iso-surface (seed ch. 7): singleton preprocessing, then ms per view "
-                     "around the volume (default: the Cranium CT at 226 HU, 36 views)");
+      "silhouettes",
+      "Silhouettes of a CT/MRI iso-surface (seed ch. 7): singleton preprocessing, then ms per view "
+      "around the volume (default: the Cranium CT at 226 HU, 36 views)");
   o.silhouettes_cmd->add_flag("--json", o.silhouettes_json, "Print one JSON object instead of a table");
-  o.silhouettes_cmd->add_option("--volume", o.silhouettes.volume_path,
-                                "Volume file (NIfTI, DICOM folder, .inv3) or analytic:sphere|torus|sines")
+  o.silhouettes_cmd
+      ->add_option("--volume", o.silhouettes.volume_path,
+                   "Volume file (NIfTI, DICOM folder, .inv3) or analytic:sphere|torus|sines")
       ->default_str("assets/data/Cranium.inv3");
   o.silhouettes_cmd->add_option("--iso", o.silhouettes.iso, "Iso-level, the volume's units (HU for CT)")
       ->default_str("226");
@@ -295,25 +304,29 @@ void add_bench(CLI::App& app, CliRequest& o) {
       ->check(CLI::Range(1, 4));
   o.silhouettes_cmd->add_flag("!--no-hidden", o.silhouettes.hidden, "Skip the hidden-line test");
   o.bounds_cmd = bench->add_subcommand(
-      "bounds", "Guarantees: the fold-free certificate's time on 4^3, 8^3, 16^3 lattices (orders 3, 4) and a soundness "
-                "sweep over random lattices against dense sampling of det J; per-triangle error bounds on the 836K-vertex "
-                "bunny, their soundness and tightness against the measured error, certified refinement of the seed's "
-                "cube");
+      "bounds",
+      "Guarantees: the fold-free certificate's time on 4^3, 8^3, 16^3 lattices (orders 3, 4) and a soundness "
+      "sweep over random lattices against dense sampling of det J; per-triangle error bounds on the 836K-vertex "
+      "bunny, their soundness and tightness against the measured error, certified refinement of the seed's "
+      "cube");
   o.bounds_cmd->add_flag("--json", o.bounds_json, "Print one JSON object instead of a table");
   o.bounds_cmd->add_option("--repeats", o.bounds.repeats, "Certificate timings: best of this many runs")
       ->check(CLI::Range(1, 1000));
   o.bounds_cmd->add_option("--lattices", o.bounds.lattices, "Random lattices in the soundness sweep")
       ->check(CLI::Range(0, 10000000));
-  o.bounds_cmd->add_option("--soundness-triangles", o.bounds.soundness_triangles,
-                           "Triangles (of the bunny, in random lattices) whose bounds are checked against the measured "
-                           "error")
+  o.bounds_cmd
+      ->add_option("--soundness-triangles", o.bounds.soundness_triangles,
+                   "Triangles (of the bunny, in random lattices) whose bounds are checked against the measured "
+                   "error")
       ->check(CLI::Range(0, 100000000));
   o.press_cmd = bench->add_subcommand(
-      "press", "A pressing drag on a ~1 M-vertex object: Press tool per mouse move, pressed lattice, cpu_fast / GLSL "
-               "re-evaluation per drag sample, and the lattice.press command at release");
+      "press",
+      "A pressing drag on a ~1 M-vertex object: Press tool per mouse move, pressed lattice, cpu_fast / GLSL "
+      "re-evaluation per drag sample, and the lattice.press command at release");
   o.press_cmd->add_flag("--json", o.press.json, "Print one JSON object instead of a table");
-  o.press_cmd->add_option("--vertices", o.press.vertices,
-                          "Target vertex count: the bunny's subdivision level closest to it (default 1000000)")
+  o.press_cmd
+      ->add_option("--vertices", o.press.vertices,
+                   "Target vertex count: the bunny's subdivision level closest to it (default 1000000)")
       ->check(CLI::Range(8, 100000000));
   o.press_cmd->add_option("--runs", o.press.runs, "Drags, timed updates and command runs (median)")
       ->check(CLI::Range(1, 1000));
@@ -326,8 +339,9 @@ void add_bench(CLI::App& app, CliRequest& o) {
 void add_commands(CLI::App& app, CliRequest& o) {
   o.commands_cmd = app.add_subcommand("commands", "List the commands a log may contain");
   o.commands_cmd->add_option("id", o.command_id, "Show this command's parameters as a Markdown table");
-  o.commands_cmd->add_option("--docs", o.docs_file,
-                       "Rewrite the generated parameter tables (<!-- params: ID --> blocks) of this Markdown file");
+  o.commands_cmd->add_option(
+      "--docs", o.docs_file,
+      "Rewrite the generated parameter tables (<!-- params: ID --> blocks) of this Markdown file");
 }
 
 // Lists the commands, one command's parameters, or rewrites a Markdown file's generated tables.
@@ -340,7 +354,8 @@ int run_commands(const CliRequest& o) {
       std::cerr << "trispline commands: no command '" << o.command_id << "' (trispline commands lists them)\n";
       return 2;
     }
-    std::cout << "# " << o.command_id << "\n" << registry.summary(o.command_id) << "\n\n"
+    std::cout << "# " << o.command_id << "\n"
+              << registry.summary(o.command_id) << "\n\n"
               << params_table(registry, o.command_id);
     return 0;
   }

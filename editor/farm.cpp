@@ -80,7 +80,8 @@ std::string slurm_folder_error(const FarmPlan& plan) {
   if (plan.engine != "slurm") return "";
   for (const char c : plan.dir.string())
     if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F)
-      return "--out '" + plan.dir.string() + "' holds a control character: Slurm's job records (squeue) hold the "
+      return "--out '" + plan.dir.string() +
+             "' holds a control character: Slurm's job records (squeue) hold the "
              "farm folder on one line; rename it, or use --engine local";
   return "";
 }
@@ -98,7 +99,8 @@ std::set<int> queued_tasks(const FarmPlan& plan) {
     const std::size_t us = id.find('_');
     if (us == std::string::npos || id.size() - us > 7) continue;  // the assemble job, or not a task number
     const std::string digits = id.substr(us + 1);
-    if (!digits.empty() && digits.find_first_not_of("0123456789") == std::string::npos) queued.insert(std::stoi(digits));
+    if (!digits.empty() && digits.find_first_not_of("0123456789") == std::string::npos)
+      queued.insert(std::stoi(digits));
   }
   return queued;
 }
@@ -308,7 +310,8 @@ int farm_submit(FarmPlan plan, std::ostream& out, std::ostream& err) {
       return 2;
     }
     if (plan.engine == "slurm" && find_on_path("sbatch").empty()) {
-      err << what << "sbatch not found on PATH: install Slurm's client commands (Debian: slurm-client, part of "
+      err << what
+          << "sbatch not found on PATH: install Slurm's client commands (Debian: slurm-client, part of "
              "slurm-wlm) or use --engine local (nothing submitted)\n";
       return 2;
     }

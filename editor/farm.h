@@ -95,9 +95,9 @@ bool batch_report_valid(const FarmPlan& plan, const FarmTask& task);
 
 // What the task recorded in chunks/NNNN/chunk.json when it finished, checked against the files.
 struct ChunkCheck {
-  bool done = false;                // every frame and the piece match the record (and decode)
-  std::vector<int> bad_frames;      // frames missing, not matching the record, or not decoding at the plan's size
-  std::string problem;              // why not done ("" when done)
+  bool done = false;            // every frame and the piece match the record (and decode)
+  std::vector<int> bad_frames;  // frames missing, not matching the record, or not decoding at the plan's size
+  std::string problem;          // why not done ("" when done)
 };
 // Records every frame's and the piece's size and CRC-32 in chunks/NNNN/chunk.json (written last, renamed into
 // place). Throws std::runtime_error when a frame or the piece is missing or the record cannot be written.
@@ -124,8 +124,8 @@ struct FarmTaskState {
 
 struct FarmStatus {
   std::vector<FarmTaskState> tasks;
-  bool assembled = false;  // frames: every task done, the log unchanged, DIR/report.json's animation.glb and every
-                           // frame in DIR matching; batch: summary.json
+  bool assembled = false;   // frames: every task done, the log unchanged, DIR/report.json's animation.glb and every
+                            // frame in DIR matching; batch: summary.json
   std::string log_changed;  // why the log (frames) is not the one submitted; "" when unchanged
   nlohmann::json to_json() const;
 };

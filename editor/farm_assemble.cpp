@@ -145,10 +145,14 @@ int assemble_frames(const FarmPlan& plan, std::ostream& out, std::ostream& err) 
     err << "farm assemble: animation.glb was not written\n";
     return 3;
   }
-  nlohmann::json record = {{"frames_written", frames},      {"frame_first", plan.frame_first},
-                           {"frame_last", plan.frame_last}, {"glb", (plan.dir / "animation.glb").string()},
-                           {"glb_bytes", glb->bytes},       {"glb_crc32", glb->crc32},
-                           {"log_crc32", plan.log_crc32},   {"glb_source", glb_source},
+  nlohmann::json record = {{"frames_written", frames},
+                           {"frame_first", plan.frame_first},
+                           {"frame_last", plan.frame_last},
+                           {"glb", (plan.dir / "animation.glb").string()},
+                           {"glb_bytes", glb->bytes},
+                           {"glb_crc32", glb->crc32},
+                           {"log_crc32", plan.log_crc32},
+                           {"glb_source", glb_source},
                            {"mp4", nullptr}};
   if (plan.format == "png") {
     const std::string note =

@@ -81,8 +81,8 @@ void check_component(const std::string& key, const std::string& name) {
 const json& read_array(const json& j, const char* name, std::size_t max_size) {
   const json& v = member(j, "", name);
   if (!v.is_array()) fail(name, "must be an array");
-  if (v.size() > max_size) fail(name, "holds " + std::to_string(v.size()) + " entries, at most " +
-                                          std::to_string(max_size) + " allowed");
+  if (v.size() > max_size)
+    fail(name, "holds " + std::to_string(v.size()) + " entries, at most " + std::to_string(max_size) + " allowed");
   return v;
 }
 
@@ -114,7 +114,8 @@ FarmJob read_job(const json& jj, const std::string& key, int task_count) {
   if (!tasks.is_array() || tasks.size() > static_cast<std::size_t>(task_count))
     fail(p + "tasks", "must be an array of at most " + std::to_string(task_count) + " task numbers");
   for (std::size_t k = 0; k < tasks.size(); ++k)
-    job.tasks.push_back(static_cast<int>(int_value(tasks[k], p + "tasks[" + std::to_string(k) + "]", 0, task_count - 1)));
+    job.tasks.push_back(
+        static_cast<int>(int_value(tasks[k], p + "tasks[" + std::to_string(k) + "]", 0, task_count - 1)));
   const json& pids = member(jj, p, "task_pids");
   if (!pids.is_array() || pids.size() > static_cast<std::size_t>(task_count))
     fail(p + "task_pids", "must be an array of at most " + std::to_string(task_count) + " [task, pid] pairs");
@@ -190,16 +191,26 @@ json FarmPlan::to_json() const {
                       {"tasks", job.tasks},
                       {"task_pids", pids}});
   }
-  return {{"version", version},         {"kind", kind},
-          {"trispline", trispline.string()}, {"log", log.string()},
-          {"log_crc32", log_crc32},     {"log_bytes", log_bytes},
-          {"frame_first", frame_first}, {"frame_last", frame_last},
-          {"chunk", chunk},             {"format", format},
-          {"width", width},             {"height", height},
-          {"fps", fps},                 {"frame_width", frame_width},
-          {"frame_height", frame_height}, {"engine", engine},
-          {"max_parallel", max_parallel}, {"partition", partition},
-          {"time", time_limit},         {"tasks", tasks_j},
+  return {{"version", version},
+          {"kind", kind},
+          {"trispline", trispline.string()},
+          {"log", log.string()},
+          {"log_crc32", log_crc32},
+          {"log_bytes", log_bytes},
+          {"frame_first", frame_first},
+          {"frame_last", frame_last},
+          {"chunk", chunk},
+          {"format", format},
+          {"width", width},
+          {"height", height},
+          {"fps", fps},
+          {"frame_width", frame_width},
+          {"frame_height", frame_height},
+          {"engine", engine},
+          {"max_parallel", max_parallel},
+          {"partition", partition},
+          {"time", time_limit},
+          {"tasks", tasks_j},
           {"jobs", jobs_j}};
 }
 
@@ -210,12 +221,13 @@ void check_frames_plan(const FarmPlan& p) {
   if (p.frame_first < 0 || p.frame_first > kFarmMaxFrame)
     fail("frame_first", "must be in [0, " + std::to_string(kFarmMaxFrame) + "], got " + std::to_string(p.frame_first));
   if (p.frame_last < p.frame_first || p.frame_last > kFarmMaxFrame)
-    fail("frame_last", "must be in [frame_first, " + std::to_string(kFarmMaxFrame) + "], got " +
-                           std::to_string(p.frame_last));
+    fail("frame_last",
+         "must be in [frame_first, " + std::to_string(kFarmMaxFrame) + "], got " + std::to_string(p.frame_last));
   if (p.chunk < 1 || p.chunk > kFarmMaxFrame + 1)
     fail("chunk", "must be in [1, " + std::to_string(kFarmMaxFrame + 1) + "] frames, got " + std::to_string(p.chunk));
   if ((p.width == 0) != (p.height == 0)) fail("height", "width and height are both 0 or both given");
-  if (p.width < 0 || p.width > kFarmMaxSize) fail("width", "must be 0 or in [1, 16384], got " + std::to_string(p.width));
+  if (p.width < 0 || p.width > kFarmMaxSize)
+    fail("width", "must be 0 or in [1, 16384], got " + std::to_string(p.width));
   if (p.height < 0 || p.height > kFarmMaxSize)
     fail("height", "must be 0 or in [1, 16384], got " + std::to_string(p.height));
   if (const std::string problem = core::frame_budget_problem(p.width, p.height); !problem.empty())
@@ -229,8 +241,8 @@ void check_frames_plan(const FarmPlan& p) {
   if (!std::isfinite(p.fps) || p.fps < 0.01 || p.fps > 240) fail("fps", "must be in [0.01, 240] frames per second");
   const std::vector<FarmTask> want = plan_frames(p.frame_first, p.frame_last, p.chunk);
   if (p.tasks.size() != want.size())
-    fail("tasks", "holds " + std::to_string(p.tasks.size()) + " tasks; frames " + std::to_string(p.frame_first) +
-                      "-" + std::to_string(p.frame_last) + " in chunks of " + std::to_string(p.chunk) + " are " +
+    fail("tasks", "holds " + std::to_string(p.tasks.size()) + " tasks; frames " + std::to_string(p.frame_first) + "-" +
+                      std::to_string(p.frame_last) + " in chunks of " + std::to_string(p.chunk) + " are " +
                       std::to_string(want.size()));
   for (std::size_t k = 0; k < want.size(); ++k) {
     const FarmTask& t = p.tasks[k];
@@ -243,8 +255,8 @@ void check_frames_plan(const FarmPlan& p) {
 
 void check_batch_plan(const FarmPlan& p) {
   if (p.tasks.empty() || p.tasks.size() > static_cast<std::size_t>(kFarmMaxBatchLogs))
-    fail("tasks", "a batch holds 1 to " + std::to_string(kFarmMaxBatchLogs) + " logs, got " +
-                      std::to_string(p.tasks.size()));
+    fail("tasks",
+         "a batch holds 1 to " + std::to_string(kFarmMaxBatchLogs) + " logs, got " + std::to_string(p.tasks.size()));
   std::set<std::string> names;
   for (std::size_t k = 0; k < p.tasks.size(); ++k) {
     const FarmTask& t = p.tasks[k];
@@ -294,8 +306,8 @@ void check_farm_plan(const FarmPlan& p) {
   if (p.format != "png" && p.format != "exr") fail("format", "must be png or exr, got '" + p.format + "'");
   check_absolute("trispline", p.trispline);
   if (p.max_parallel < 0 || p.max_parallel > kFarmMaxParallel)
-    fail("max_parallel", "must be in [0, " + std::to_string(kFarmMaxParallel) + "], got " +
-                             std::to_string(p.max_parallel));
+    fail("max_parallel",
+         "must be in [0, " + std::to_string(kFarmMaxParallel) + "], got " + std::to_string(p.max_parallel));
   if (const std::string bad = check_sbatch_value("--partition", p.partition); !bad.empty()) fail("partition", bad);
   if (const std::string bad = check_sbatch_value("--time", p.time_limit); !bad.empty()) fail("time", bad);
   if (p.kind == "frames")

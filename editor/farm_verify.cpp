@@ -1,8 +1,7 @@
 // What a farm checks instead of trusting its folder: sizes and CRC-32s (zlib) of the logs and of every chunk's
 // files, recorded by the task that wrote them (chunks/NNNN/chunk.json), and frames that decode (OpenImageIO).
-#include <zlib.h>
-
 #include <OpenImageIO/imageio.h>
+#include <zlib.h>
 
 #include <cmath>
 #include <fstream>
@@ -28,8 +27,7 @@ fs::path chunk_dir(const FarmPlan& plan, const FarmTask& task) {
 
 // A frame file's upper bound: RGBA float pixels and 1 MiB of headers (PNG's and EXR's worst cases are below).
 std::uint64_t max_frame_bytes(const FarmPlan& plan) {
-  return static_cast<std::uint64_t>(plan.frame_width) * static_cast<std::uint64_t>(plan.frame_height) * 16 +
-         (1u << 20);
+  return static_cast<std::uint64_t>(plan.frame_width) * static_cast<std::uint64_t>(plan.frame_height) * 16 + (1u << 20);
 }
 
 json sum_json(const FileSum& s) { return {{"bytes", s.bytes}, {"crc32", s.crc32}}; }
@@ -55,7 +53,8 @@ std::string check_image(const fs::path& path, int width, int height, bool pixels
   if (!pixels) return "";
   std::vector<float> row(static_cast<std::size_t>(width) * 4);
   for (int y = 0; y < height; ++y) {
-    if (!in->read_scanline(y, 0, OIIO::TypeDesc::FLOAT, row.data())) return "row " + std::to_string(y) + " does not decode: " + in->geterror();
+    if (!in->read_scanline(y, 0, OIIO::TypeDesc::FLOAT, row.data()))
+      return "row " + std::to_string(y) + " does not decode: " + in->geterror();
     for (const float v : row)
       if (!std::isfinite(v)) return "row " + std::to_string(y) + " holds a non-finite value";
   }
@@ -91,9 +90,9 @@ std::string log_change(const fs::path& log, std::uint32_t crc32, std::uint64_t b
   const std::optional<FileSum> now = file_sum(log, kFarmMaxLogBytes, true);
   if (!now) return "the log '" + log.string() + "' is gone or unreadable since submission";
   if (now->bytes != bytes || now->crc32 != crc32)
-    return "the log '" + log.string() + "' changed since submission (" + std::to_string(now->bytes) + " bytes, CRC-32 " +
-           std::to_string(now->crc32) + "; submitted: " + std::to_string(bytes) + " bytes, CRC-32 " +
-           std::to_string(crc32) + "): submit it again into a new folder";
+    return "the log '" + log.string() + "' changed since submission (" + std::to_string(now->bytes) +
+           " bytes, CRC-32 " + std::to_string(now->crc32) + "; submitted: " + std::to_string(bytes) +
+           " bytes, CRC-32 " + std::to_string(crc32) + "): submit it again into a new folder";
   return "";
 }
 
@@ -135,7 +134,7 @@ void seal_chunk(const FarmPlan& plan, const FarmTask& task) {
   }
   const std::optional<FileSum> piece = file_sum(dir / "animation.piece", kMaxPieceBytes);
   if (!piece) throw std::runtime_error("animation.piece is missing from " + dir.string());
-  const json record = {{"task", task.index},        {"first", task.first}, {"last", task.last},
+  const json record = {{"task", task.index},          {"first", task.first}, {"last", task.last},
                        {"log_crc32", plan.log_crc32}, {"frames", frames},    {"piece", sum_json(*piece)}};
   write_file_atomically(dir / "chunk.json", record.dump(1) + "\n");
 }
@@ -167,8 +166,8 @@ ChunkCheck check_chunk(const FarmPlan& plan, const FarmTask& task, bool decode_p
   }
   const std::size_t n = static_cast<std::size_t>(task.last - task.first + 1);
   if (!r.is_object() || r.value("task", json()) != task.index || r.value("first", json()) != task.first ||
-      r.value("last", json()) != task.last || r.value("log_crc32", json()) != plan.log_crc32 ||
-      !r.contains("frames") || !r["frames"].is_array() || r["frames"].size() != n)
+      r.value("last", json()) != task.last || r.value("log_crc32", json()) != plan.log_crc32 || !r.contains("frames") ||
+      !r["frames"].is_array() || r["frames"].size() != n)
     return all_bad("chunk.json is not the record of task " + std::to_string(task.index) + " of this plan");
   for (std::size_t k = 0; k < n; ++k) {
     const int f = task.first + static_cast<int>(k);

@@ -30,20 +30,20 @@ inline constexpr std::int64_t kMaxContactSamples = std::int64_t(1) << 20;
 
 struct PlaceSketchParams {
   std::string object;
-  std::vector<glm::dvec2> stroke;  // #S × 2 pixels
-  double width = 0.15;             // half-width d, world units
-  double height = 0.2;             // h, world units
-  double extent = 1.0;             // fraction of the path (u) the object covers, (0, 1]; < 1 leaves room to walk
-  std::vector<double> width_profile;                // d(u) factors over u (seed Eq. 2.5); empty = constant
+  std::vector<glm::dvec2> stroke;     // #S × 2 pixels
+  double width = 0.15;                // half-width d, world units
+  double height = 0.2;                // h, world units
+  double extent = 1.0;                // fraction of the path (u) the object covers, (0, 1]; < 1 leaves room to walk
+  std::vector<double> width_profile;  // d(u) factors over u (seed Eq. 2.5); empty = constant
   std::vector<std::vector<double>> height_profile;  // h(u) or h(u,v) factors: rows over v; empty = constant
   std::optional<SpringParams> springs;              // mass-spring contact surface (seed §2.3.2); unset = off
-  glm::ivec2 samples{32, 8};       // contact sampling nu × nv rays
-  std::string volume = "extrude";  // extrude (F1, Eq. 2.3) | offset (F2, Eq. 2.4)
-  glm::ivec3 order{4, 4, 3};       // per axis, degree + 1
-  glm::ivec3 controls{10, 4, 3};   // control points per axis
+  glm::ivec2 samples{32, 8};                        // contact sampling nu × nv rays
+  std::string volume = "extrude";                   // extrude (F1, Eq. 2.3) | offset (F2, Eq. 2.4)
+  glm::ivec3 order{4, 4, 3};                        // per axis, degree + 1
+  glm::ivec3 controls{10, 4, 3};                    // control points per axis
   std::string length_axis = "x";
   std::string up_axis = "y";
-  std::optional<Camera> camera;  // view the stroke was drawn in (else the scene camera)
+  std::optional<Camera> camera;     // view the stroke was drawn in (else the scene camera)
   std::vector<std::string> ignore;  // objects the rays pass through (hidden in the editor's view)
 };
 

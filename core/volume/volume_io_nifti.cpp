@@ -179,10 +179,10 @@ double millimetres_per_unit(int xyzt_units) {
 glm::dmat4 nifti_index_to_world(const std::filesystem::path& path, const nifti_1_header& h, const nifti_1_header& raw,
                                 const std::array<int, 3>& dims) {
   const bool sform = h.sform_code > 0, qform = !sform && h.qform_code > 0;
-  std::string field = sform ? "the sform (srow_x, srow_y, srow_z; sform_code " + std::to_string(h.sform_code) + ")"
-                      : qform ? "the qform (quatern_b/c/d, qoffset_x/y/z, pixdim; qform_code " +
-                                    std::to_string(h.qform_code) + ")"
-                              : "pixdim[1..3] (no sform or qform)";
+  std::string field =
+      sform   ? "the sform (srow_x, srow_y, srow_z; sform_code " + std::to_string(h.sform_code) + ")"
+      : qform ? "the qform (quatern_b/c/d, qoffset_x/y/z, pixdim; qform_code " + std::to_string(h.qform_code) + ")"
+              : "pixdim[1..3] (no sform or qform)";
   if (!sform) {
     for (int d = 1; d <= 3; ++d)
       if (!(std::isfinite(h.pixdim[d]) && h.pixdim[d] > 0.0f))
@@ -294,8 +294,8 @@ ScalarVolume load_nifti(const std::filesystem::path& path, const VolumeLoadOptio
 
   // Samples, streamed in blocks from vox_offset (on a gzip stream, seeking decompresses up to it).
   if (!file.seek(data_offset))
-    fail(path, "vox_offset " + std::to_string(data_offset) + " is past the end of the file" +
-                   (gz ? " (decompressed)" : ""));
+    fail(path,
+         "vox_offset " + std::to_string(data_offset) + " is past the end of the file" + (gz ? " (decompressed)" : ""));
   v.values.reserve(voxels);
   const std::size_t block = kStreamBlockBytes / static_cast<std::size_t>(nbyper) * static_cast<std::size_t>(nbyper);
   std::vector<unsigned char> buffer(static_cast<std::size_t>(std::min<std::uint64_t>(block, data_bytes)));

@@ -39,36 +39,33 @@ void expect_failure(const fs::path& log, const HostileCase& c) {
 
 class HostileLog : public ::testing::TestWithParam<HostileCase> {};
 
-TEST_P(HostileLog, EndsWithAClearErrorAndAFiniteScene) {
-  expect_failure(hostile_dir() / GetParam().file, GetParam());
-}
+TEST_P(HostileLog, EndsWithAClearErrorAndAFiniteScene) { expect_failure(hostile_dir() / GetParam().file, GetParam()); }
 
-INSTANTIATE_TEST_SUITE_P(
-    Corpus, HostileLog,
-    ::testing::Values(HostileCase{"utf8.jsonl", 2, "", "invalid UTF-8 at byte"},
-                      HostileCase{"scale_huge.jsonl", 1, "", "not finite or out of range"},
-                      HostileCase{"translate_huge.jsonl", 1, "", "not finite or out of range"},
+INSTANTIATE_TEST_SUITE_P(Corpus, HostileLog,
+                         ::testing::Values(HostileCase{"utf8.jsonl", 2, "", "invalid UTF-8 at byte"},
+                                           HostileCase{"scale_huge.jsonl", 1, "", "not finite or out of range"},
+                                           HostileCase{"translate_huge.jsonl", 1, "", "not finite or out of range"},
                                            HostileCase{"sketch_samples.jsonl", 4, "samples",
                                                        "contact samples: at most 1048576"},
-                      HostileCase{"press_huge.jsonl", 3, "", "not finite or out of range"},
-                      HostileCase{"pull_huge.jsonl", 3, "", "not finite or out of range"},
-                      HostileCase{"sketch_height.jsonl", 4, "", "height"},
-                      HostileCase{"name_nul.jsonl", 1, "name", "control characters"},
-                      HostileCase{"name_slash.jsonl", 1, "name", "'/'"},
-                      HostileCase{"fps_tiny.jsonl", 1, "fps", "[0.01, 240]"},
-                      HostileCase{"paint_radius.jsonl", 3, "radius_px", "(0, 16384]"},
-                      HostileCase{"refine_tol.jsonl", 3, "max_triangles", "[1, 8e6]"},
-                      HostileCase{"record_big.jsonl", 4, "width", "megapixels"},
-                      HostileCase{"export_escape.jsonl", 2, "path", "leaves the output folder"},
-                      HostileCase{"export_absolute.jsonl", 2, "path", "is absolute"},
-                      HostileCase{"refine_tiny.jsonl", 3, "tolerance", "float32"},
-                      HostileCase{"fill_counts.jsonl", 2, "counts", "cells on one chart"},
-                      HostileCase{"fill_tile_size.jsonl", 2, "tile_size", "tile vertices"},
-                      HostileCase{"paint_counts.jsonl", 3, "counts", "painting budget"}),
-    [](const auto& info) {
-      const std::string n = info.param.file;
-      return n.substr(0, n.size() - 6);
-    });
+                                           HostileCase{"press_huge.jsonl", 3, "", "not finite or out of range"},
+                                           HostileCase{"pull_huge.jsonl", 3, "", "not finite or out of range"},
+                                           HostileCase{"sketch_height.jsonl", 4, "", "height"},
+                                           HostileCase{"name_nul.jsonl", 1, "name", "control characters"},
+                                           HostileCase{"name_slash.jsonl", 1, "name", "'/'"},
+                                           HostileCase{"fps_tiny.jsonl", 1, "fps", "[0.01, 240]"},
+                                           HostileCase{"paint_radius.jsonl", 3, "radius_px", "(0, 16384]"},
+                                           HostileCase{"refine_tol.jsonl", 3, "max_triangles", "[1, 8e6]"},
+                                           HostileCase{"record_big.jsonl", 4, "width", "megapixels"},
+                                           HostileCase{"export_escape.jsonl", 2, "path", "leaves the output folder"},
+                                           HostileCase{"export_absolute.jsonl", 2, "path", "is absolute"},
+                                           HostileCase{"refine_tiny.jsonl", 3, "tolerance", "float32"},
+                                           HostileCase{"fill_counts.jsonl", 2, "counts", "cells on one chart"},
+                                           HostileCase{"fill_tile_size.jsonl", 2, "tile_size", "tile vertices"},
+                                           HostileCase{"paint_counts.jsonl", 3, "counts", "painting budget"}),
+                         [](const auto& info) {
+                           const std::string n = info.param.file;
+                           return n.substr(0, n.size() - 6);
+                         });
 
 TEST(HostileLogText, ExportsThatLeaveTheOutputFolderWriteNothing) {
   const fs::path escaped = fs::weakly_canonical(test::logs_dir() / ".." / "escaped_by_log.svg");
@@ -92,7 +89,8 @@ TEST(HostileLogText, DeepNestingIsRefusedBeforeParsing) {
   const fs::path log = scratch("deep.jsonl");
   {
     std::ofstream out(log);
-    out << R"({"cmd":"scene.primitive","kind":"sphere","name":"a"})" << "\n";
+    out << R"({"cmd":"scene.primitive","kind":"sphere","name":"a"})"
+        << "\n";
     out << R"({"cmd":"scene.primitive","kind":"sphere","name":"b","x":)" << std::string(100000, '[')
         << std::string(100000, ']') << "}\n";
   }
@@ -108,7 +106,8 @@ TEST(HostileLogText, AnOverlongLineIsRefusedWithoutHoldingIt) {
   const fs::path log = scratch("long.jsonl");
   {
     std::ofstream out(log);
-    out << R"({"cmd":"scene.primitive","kind":"sphere","name":"a"})" << "\n";
+    out << R"({"cmd":"scene.primitive","kind":"sphere","name":"a"})"
+        << "\n";
     out << R"({"cmd":"scene.primitive","kind":"sphere","name":"b","pad":")"
         << std::string(editor::log_limits().max_line_bytes + 10, 'x') << "\"}\n";
   }
@@ -132,9 +131,9 @@ TEST(HostileLogText, InvalidUtf8IsFoundAtItsByte) {
   EXPECT_EQ(editor::utf8_error("plain ascii"), "");
   EXPECT_EQ(editor::utf8_error("caf\xc3\xa9 \xe2\x82\xac \xf0\x9f\x98\x80"), "");
   EXPECT_EQ(editor::utf8_error("ab\xff"), "invalid UTF-8 at byte 3");
-  EXPECT_NE(editor::utf8_error("a\xc3"), "");                  // truncated
-  EXPECT_NE(editor::utf8_error("\xc0\xaf"), "");               // overlong '/'
-  EXPECT_NE(editor::utf8_error("\xed\xa0\x80"), "");           // a UTF-16 surrogate
+  EXPECT_NE(editor::utf8_error("a\xc3"), "");         // truncated
+  EXPECT_NE(editor::utf8_error("\xc0\xaf"), "");      // overlong '/'
+  EXPECT_NE(editor::utf8_error("\xed\xa0\x80"), "");  // a UTF-16 surrogate
 }
 
 TEST(HostileLogText, PathsThatAreNotRegularFilesAreNamed) {
@@ -181,10 +180,12 @@ long max_rss_mb() {
 void write_glb(const fs::path& path, std::string json, const std::string& bin) {
   while (json.size() % 4) json += ' ';
   auto u32 = [](std::uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); };
-  const std::uint32_t total = 12 + 8 + static_cast<std::uint32_t>(json.size()) + 8 + static_cast<std::uint32_t>(bin.size());
-  std::ofstream(path, std::ios::binary) << "glTF" << u32(2) << u32(total) << u32(static_cast<std::uint32_t>(json.size()))
-                                        << "JSON" << json << u32(static_cast<std::uint32_t>(bin.size())) << "BIN"
-                                        << std::string(1, '\0') << bin;
+  const std::uint32_t total =
+      12 + 8 + static_cast<std::uint32_t>(json.size()) + 8 + static_cast<std::uint32_t>(bin.size());
+  std::ofstream(path, std::ios::binary) << "glTF" << u32(2) << u32(total)
+                                        << u32(static_cast<std::uint32_t>(json.size())) << "JSON" << json
+                                        << u32(static_cast<std::uint32_t>(bin.size())) << "BIN" << std::string(1, '\0')
+                                        << bin;
 }
 
 TEST(HostileMeshFiles, EndAtTheirLineWithAClearErrorAndLittleMemory) {
@@ -192,11 +193,12 @@ TEST(HostileMeshFiles, EndAtTheirLineWithAClearErrorAndLittleMemory) {
   fs::remove_all(dir);
   fs::create_directories(dir);
   // A 128-byte GLB whose accessor claims 3e8 vertices (7 GB before its bounds error, as found).
-  write_glb(dir / "claims.glb",
-            R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":8}],"bufferViews":[{"buffer":0,"byteLength":8}],)"
-            R"("accessors":[{"bufferView":0,"componentType":5126,"count":300000000,"type":"VEC3"}],)"
-            R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],"nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}]})",
-            std::string(8, '\0'));
+  write_glb(
+      dir / "claims.glb",
+      R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":8}],"bufferViews":[{"buffer":0,"byteLength":8}],)"
+      R"("accessors":[{"bufferView":0,"componentType":5126,"count":300000000,"type":"VEC3"}],)"
+      R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],"nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}]})",
+      std::string(8, '\0'));
   // 2 GB sparse files (read whole, or hanging, before).
   std::ofstream(dir / "sparse.ply") << "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
                                        "property float y\nproperty float z\nend_header\n";
@@ -228,7 +230,9 @@ TEST(HostileMeshFiles, EndAtTheirLineWithAClearErrorAndLittleMemory) {
   const long rss_before = max_rss_mb();
   for (const Case& c : cases) {
     const fs::path log = dir / "case.jsonl";
-    std::ofstream(log) << R"({"cmd":"scene.primitive","kind":"sphere","name":"ball"})" << "\n" << c.line << "\n";
+    std::ofstream(log) << R"({"cmd":"scene.primitive","kind":"sphere","name":"ball"})"
+                       << "\n"
+                       << c.line << "\n";
     SCOPED_TRACE(c.line);
     core::Scene scene;
     editor::History history(scene);
@@ -237,7 +241,8 @@ TEST(HostileMeshFiles, EndAtTheirLineWithAClearErrorAndLittleMemory) {
     EXPECT_EQ(r.failed_line, 2) << r.error;
     EXPECT_NE(r.error.find(log.string() + ":2:"), std::string::npos) << r.error;
     EXPECT_NE(r.error.find(c.words), std::string::npos) << r.error;
-    EXPECT_EQ(r.error.find("root:"), std::string::npos) << "the bytes of a file outside the folder were read: " << r.error;
+    EXPECT_EQ(r.error.find("root:"), std::string::npos)
+        << "the bytes of a file outside the folder were read: " << r.error;
     EXPECT_EQ(history.applied(), 1u);
     EXPECT_EQ(scene.objects().size(), 1u);
     EXPECT_LT(max_rss_mb() - rss_before, 256) << "refusing the file cost more than 256 MB: " << r.error;
