@@ -11,7 +11,7 @@
 //     TRIANGLES primitive; its POSITION / NORMAL / TEXCOORD_0 / indices are the FIRST frame's mesh (as write_glb);
 //     an object with materials (GltfNode::materials) gets one primitive per material slot its faces use instead (and
 //     one for its kMaterialInside faces), sharing the vertex accessors and morph targets, with the materials, their
-//     textures and images written as write_glb writes them (pieces, write_piece, do not keep materials);
+//     textures and images written as write_glb writes them (pieces, write_piece, keep them too);
 //   * an object whose geometry changes in any frame gets one morph target per following frame (#frames − 1 targets,
 //     POSITION and NORMAL deltas relative to the first frame, float32; a frame equal to the first has zero deltas),
 //     mesh.weights all 0 and mesh.extras.targetNames = ["frame_NNNN", ...] (Blender names the shape keys so);

@@ -1,9 +1,15 @@
 // Pieces of an animated-GLB recording split by frames: MorphAnimationBuilder::write_piece, read_piece, append_piece
 // (core/mesh/gltf_anim_io.h). The file is the builder's state, little-endian as the machine writes it:
-//   "TSPIECE2", fps (f64), first_frame (i32), frames (i32), objects (u32), then per object: name (u32 length +
-//   bytes), colour (3 × f32), segments (u32), per segment: first, frames (i32), changed (u8), the base mesh
-//   (positions, normals, uvs as f64 arrays, triangles as u32, face materials as u16; each an u64 count first), and per
-//   following frame the position and normal deltas (u64 count + f32; count 0 = all zero).
+//   "TSPIECE3", fps (f64), first_frame (i32), frames (i32), objects (u32), then per object: name (u32 length +
+//   bytes), colour (3 × f32), its materials (below), segments (u32), per segment: first, frames (i32), changed (u8),
+//   the base mesh (positions, normals, uvs as f64 arrays, triangles as u32, face materials as u16; each an u64 count
+//   first), and per following frame the position and normal deltas (u64 count + f32; count 0 = all zero).
+// Materials: has_set (u8); with a set, images (u32) each as name, uri, mime type, error (texts) and its encoded bytes
+// (u64 count + u8) — decoded again on reading (OpenImageIO, deterministic), never stored as pixels — then materials
+// (u32) field by field as core/mesh/material.h declares them. So a farm-assembled animation.glb carries the
+// materials and images one recording writes, byte for byte.
+// Every count is checked against the bytes left in the file before anything is allocated (a farm folder is
+// untrusted input).
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -11,14 +17,13 @@
 #include <system_error>
 
 #include "core/mesh/gltf_anim_io.h"
+#include "core/mesh/material_image.h"
 #include "core/mesh/mesh_io.h"
 
 namespace trispline::core {
 namespace {
 
-constexpr char kMagic[8] = {'T', 'S', 'P', 'I', 'E', 'C', 'E', '2'};
-// Larger counts mean a corrupt file: no recording holds that many values in one array.
-constexpr std::uint64_t kMaxCount = std::uint64_t(1) << 34;
+constexpr char kMagic[8] = {'T', 'S', 'P', 'I', 'E', 'C', 'E', '3'};
 
 class Writer {
  public:
@@ -43,18 +48,23 @@ class Writer {
 
 class Reader {
  public:
-  Reader(std::ifstream& in, const std::filesystem::path& path) : in_(in), path_(path) {}
+  Reader(std::ifstream& in, const std::filesystem::path& path, std::uint64_t file_size)
+      : in_(in), path_(path), left_(file_size) {}
   template <class T>
   T value() {
     T v{};
+    take(sizeof v);
     in_.read(reinterpret_cast<char*>(&v), sizeof v);
     check();
     return v;
   }
+  // A count read from the file is checked against the bytes the file still holds before the vector is sized.
   template <class T>
   std::vector<T> array() {
     const auto n = value<std::uint64_t>();
-    if (n > kMaxCount) fail("array of " + std::to_string(n) + " values");
+    if (n > left_ / sizeof(T))
+      fail("an array of " + std::to_string(n) + " values in " + std::to_string(left_) + " bytes left");
+    take(n * sizeof(T));
     std::vector<T> v(n);
     in_.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(n * sizeof(T)));
     check();
@@ -62,7 +72,8 @@ class Reader {
   }
   std::string text() {
     const auto n = value<std::uint32_t>();
-    if (n > (1u << 20)) fail("name of " + std::to_string(n) + " bytes");
+    if (n > (1u << 20) || n > left_) fail("a name of " + std::to_string(n) + " bytes");
+    take(n);
     std::string s(n, '\0');
     in_.read(s.data(), n);
     check();
@@ -71,13 +82,19 @@ class Reader {
   [[noreturn]] void fail(const std::string& what) const {
     throw MeshIoError("'" + path_.string() + "': not an animation piece (" + what + ")");
   }
+  const std::filesystem::path& path() const { return path_; }
 
  private:
+  void take(std::uint64_t bytes) {
+    if (bytes > left_) fail("truncated");
+    left_ -= bytes;
+  }
   void check() const {
     if (!in_) fail("truncated");
   }
   std::ifstream& in_;
   std::filesystem::path path_;
+  std::uint64_t left_;  // bytes of the file not read yet
 };
 
 void write_mesh(Writer& w, const TriMesh& m) {
@@ -96,6 +113,118 @@ TriMesh read_mesh(Reader& r) {
   m.triangles = r.array<glm::uvec3>();
   m.face_material = r.array<MaterialSlot>();
   return m;
+}
+
+void write_texture(Writer& w, const MaterialTexture& t) {
+  w.value(static_cast<std::int32_t>(t.image));
+  w.value(static_cast<std::int32_t>(t.texcoord));
+  w.value(static_cast<std::int32_t>(t.sampler.wrap_s));
+  w.value(static_cast<std::int32_t>(t.sampler.wrap_t));
+  w.value(static_cast<std::int32_t>(t.sampler.mag_filter));
+  w.value(static_cast<std::int32_t>(t.sampler.min_filter));
+  w.value(t.scale);
+}
+
+MaterialTexture read_texture(Reader& r, std::size_t images) {
+  MaterialTexture t;
+  t.image = r.value<std::int32_t>();
+  t.texcoord = r.value<std::int32_t>();
+  const auto wrap = [&r](std::int32_t v) {
+    if (v != int(TextureWrap::Repeat) && v != int(TextureWrap::ClampToEdge) && v != int(TextureWrap::MirroredRepeat))
+      r.fail("texture wrap " + std::to_string(v));
+    return static_cast<TextureWrap>(v);
+  };
+  const auto filter = [&r](std::int32_t v) {
+    if (v != 0 && (v < int(TextureFilter::Nearest) || v > int(TextureFilter::Linear)) &&
+        (v < int(TextureFilter::NearestMipmapNearest) || v > int(TextureFilter::LinearMipmapLinear)))
+      r.fail("texture filter " + std::to_string(v));
+    return static_cast<TextureFilter>(v);
+  };
+  t.sampler.wrap_s = wrap(r.value<std::int32_t>());
+  t.sampler.wrap_t = wrap(r.value<std::int32_t>());
+  t.sampler.mag_filter = filter(r.value<std::int32_t>());
+  t.sampler.min_filter = filter(r.value<std::int32_t>());
+  t.scale = r.value<double>();
+  if (t.image < -1 || t.image >= static_cast<std::int64_t>(images) || t.texcoord < 0 || !std::isfinite(t.scale))
+    r.fail("texture");
+  return t;
+}
+
+void write_materials(Writer& w, const std::shared_ptr<const MaterialSet>& set) {
+  w.value(static_cast<std::uint8_t>(set != nullptr));
+  if (!set) return;
+  w.value(static_cast<std::uint32_t>(set->images.size()));
+  for (const auto& image : set->images) {
+    w.text(image->name);
+    w.text(image->uri);
+    w.text(image->mime_type);
+    w.text(image->error);
+    w.array(image->encoded);
+  }
+  w.value(static_cast<std::uint32_t>(set->materials.size()));
+  for (const Material& m : set->materials) {
+    w.text(m.name);
+    w.value(m.base_color);
+    write_texture(w, m.base_color_texture);
+    w.value(m.metallic);
+    w.value(m.roughness);
+    write_texture(w, m.metallic_roughness_texture);
+    write_texture(w, m.normal_texture);
+    write_texture(w, m.occlusion_texture);
+    w.value(m.emissive);
+    write_texture(w, m.emissive_texture);
+    w.value(static_cast<std::int32_t>(m.alpha_mode));
+    w.value(m.alpha_cutoff);
+    w.value(static_cast<std::uint8_t>(m.double_sided));
+  }
+}
+
+std::shared_ptr<const MaterialSet> read_materials(Reader& r) {
+  if (r.value<std::uint8_t>() == 0) return nullptr;
+  auto set = std::make_shared<MaterialSet>();
+  const auto images = r.value<std::uint32_t>();
+  for (std::uint32_t i = 0; i < images; ++i) {
+    std::string name = r.text(), uri = r.text(), mime = r.text(), error = r.text();
+    std::vector<std::uint8_t> encoded = r.array<std::uint8_t>();
+    MaterialImage image;
+    if (error.empty()) {
+      image = decode_material_image(std::move(encoded), mime, name, uri);
+      // The writer decoded these bytes once; failing now means the piece was altered.
+      if (!image.readable()) r.fail("image " + std::to_string(i) + ": " + image.error);
+    } else {
+      image.name = std::move(name);
+      image.uri = std::move(uri);
+      image.mime_type = std::move(mime);
+      image.encoded = std::move(encoded);
+      image.error = std::move(error);
+    }
+    set->images.push_back(std::make_shared<const MaterialImage>(std::move(image)));
+  }
+  const auto materials = r.value<std::uint32_t>();
+  if (materials > kMaxMaterialsPerMesh) r.fail(std::to_string(materials) + " materials");
+  for (std::uint32_t i = 0; i < materials; ++i) {
+    Material m;
+    m.name = r.text();
+    m.base_color = r.value<glm::dvec4>();
+    m.base_color_texture = read_texture(r, images);
+    m.metallic = r.value<double>();
+    m.roughness = r.value<double>();
+    m.metallic_roughness_texture = read_texture(r, images);
+    m.normal_texture = read_texture(r, images);
+    m.occlusion_texture = read_texture(r, images);
+    m.emissive = r.value<glm::dvec3>();
+    m.emissive_texture = read_texture(r, images);
+    const auto mode = r.value<std::int32_t>();
+    if (mode < 0 || mode > int(AlphaMode::Blend)) r.fail("alpha mode " + std::to_string(mode));
+    m.alpha_mode = static_cast<AlphaMode>(mode);
+    m.alpha_cutoff = r.value<double>();
+    m.double_sided = r.value<std::uint8_t>() != 0;
+    bool finite = std::isfinite(m.metallic) && std::isfinite(m.roughness) && std::isfinite(m.alpha_cutoff);
+    for (int k = 0; k < 4; ++k) finite = finite && std::isfinite(m.base_color[k]) && (k == 3 || std::isfinite(m.emissive[k]));
+    if (!finite) r.fail("material " + std::to_string(i) + ": a non-finite factor");
+    set->materials.push_back(std::move(m));
+  }
+  return set;
 }
 
 bool same_mesh(const TriMesh& a, const TriMesh& b) {
@@ -118,6 +247,7 @@ void MorphAnimationBuilder::write_piece(const std::filesystem::path& path) const
     for (const Object& o : objects_) {
       w.text(o.name);
       w.value(o.color);
+      write_materials(w, o.materials);
       w.value(static_cast<std::uint32_t>(o.segments.size()));
       for (const Segment& s : o.segments) {
         w.value(static_cast<std::int32_t>(s.first));
@@ -146,12 +276,14 @@ void MorphAnimationBuilder::write_piece(const std::filesystem::path& path) const
 }
 
 MorphAnimationBuilder MorphAnimationBuilder::read_piece(const std::filesystem::path& path) {
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw MeshIoError("'" + path.string() + "': cannot open the animation piece");
-  Reader r(in, path);
+  if (ec || !in) throw MeshIoError("'" + path.string() + "': cannot open the animation piece");
+  Reader r(in, path, size);
   char magic[sizeof kMagic];
-  in.read(magic, sizeof magic);
-  if (!in || std::memcmp(magic, kMagic, sizeof kMagic) != 0) r.fail("no TSPIECE2 header");
+  for (char& c : magic) c = static_cast<char>(r.value<std::uint8_t>());
+  if (std::memcmp(magic, kMagic, sizeof kMagic) != 0) r.fail("no TSPIECE3 header");
   const double fps = r.value<double>();
   if (!(fps > 0) || !std::isfinite(fps)) r.fail("fps");
   MorphAnimationBuilder b(fps, r.value<std::int32_t>());
@@ -162,6 +294,7 @@ MorphAnimationBuilder MorphAnimationBuilder::read_piece(const std::filesystem::p
     Object o;
     o.name = r.text();
     o.color = r.value<glm::vec3>();
+    o.materials = read_materials(r);
     const auto segments = r.value<std::uint32_t>();
     int covered = 0;
     for (std::uint32_t k = 0; k < segments; ++k) {
@@ -197,6 +330,7 @@ bool MorphAnimationBuilder::append_piece(const MorphAnimationBuilder& piece) {
   for (std::size_t i = 0; i < objects_.size(); ++i) {
     const Object &a = objects_[i], &b = piece.objects_[i];
     if (a.name != b.name || a.color != b.color || a.segments.size() != b.segments.size()) return false;
+    if ((a.materials == nullptr) != (b.materials == nullptr)) return false;
     if (a.segments.empty()) continue;
     if (a.segments.size() != 1 || !same_mesh(a.segments[0].base, b.segments[0].base)) return false;
   }

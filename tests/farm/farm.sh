@@ -7,8 +7,8 @@
 # the others intact and resume reruns it alone, a batch of three logs (one bad) is summarised into summary.json;
 # a copy of the farm resumes into the copy, leaving the original untouched, and a batch log writing outside its run
 # folder is that log's failure; local also: bad input is refused with nothing written, and a DFFD walk (topology
-# changes) assembles exactly. A Slurm daemon that does not start fails the test with its log. Hostile farm folders
-# and values: farm_hostile.sh.
+# changes) and a textured object (materials and images in the pieces) assemble exactly. A Slurm daemon that does not
+# start fails the test with its log. Hostile farm folders and values: farm_hostile.sh.
 # Usage: farm.sh slurm|local (TRISPLINE, TRISPLINE_SOURCE, FARM_OUT from ctest).
 set -euo pipefail
 engine=${1:?usage: farm.sh slurm|local}
@@ -90,6 +90,16 @@ if [ "$engine" = local ]; then
     cmp -s "$f" "$out/bars/$(basename "$f")" || fail "the DFFD walk's $(basename "$f") differs"
   done
   echo "topology change assembled at $((SECONDS - t0)) s"
+
+  # A textured object: the joined pieces carry its materials and images, byte for byte one replay's animation.glb.
+  crate=$TRISPLINE_SOURCE/tests/farm/logs/textured_crate.jsonl
+  "$exe" replay "$crate" --frames 1-4 --out "$out/crate_ref" --no-render --width 64 --height 36 > /dev/null
+  "$exe" farm submit "$crate" --frames 1-4 --chunk 2 --out "$out/crate" --engine local --width 64 --height 36 \
+    > "$out/crate.txt" || fail "the textured farm failed: $(cat "$out/crate.txt")"
+  jq -e '.record.glb_source == "pieces"' "$out/crate/report.json" > /dev/null || fail "the crate's GLB was not joined"
+  grep -qa '"image/png"' "$out/crate/animation.glb" || fail "the farm's animation.glb embeds no image"
+  cmp -s "$out/crate_ref/animation.glb" "$out/crate/animation.glb" || fail "the textured animation.glb differs"
+  echo "textured pieces assembled at $((SECONDS - t0)) s"
 fi
 
 # A chunk that fails (its folder cannot be made: a file is in the way) leaves the other chunks' frames intact, the

@@ -3,11 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 
 #include "core/mesh/gltf_anim_io.h"
+#include "core/mesh/material_image.h"
 #include "core/mesh/mesh_io.h"
 
 namespace trispline::core {
@@ -91,6 +93,86 @@ TEST_F(AnimationPieces, JoinedPiecesWriteTheSameGlbAsOneRecording) {
   ASSERT_GT(a.size(), 1000u);
   EXPECT_TRUE(a == b) << "joined animation.glb differs from one recording's (" << a.size() << " vs " << b.size()
                       << " bytes)";
+}
+
+// A textured object: a 4×2 PNG base colour texture, a mask material, and an image that could not be read.
+std::shared_ptr<const MaterialSet> textured_set() {
+  auto set = std::make_shared<MaterialSet>();
+  std::vector<std::uint8_t> rgba;
+  for (int i = 0; i < 4 * 2; ++i) rgba.insert(rgba.end(), {std::uint8_t(30 * i), 200, std::uint8_t(255 - 20 * i), 255});
+  set->images.push_back(
+      std::make_shared<const MaterialImage>(decode_material_image(encode_png_rgba8(4, 2, rgba), "", "bark", "bark.png")));
+  MaterialImage missing;
+  missing.uri = "leaves.png";
+  missing.error = "file not found";
+  set->images.push_back(std::make_shared<const MaterialImage>(missing));
+  Material bark;
+  bark.name = "bark";
+  bark.base_color = {0.9, 0.7, 0.5, 1.0};
+  bark.base_color_texture.image = 0;
+  bark.base_color_texture.sampler.wrap_s = TextureWrap::ClampToEdge;
+  bark.roughness = 0.4;
+  Material leaves;
+  leaves.name = "leaves";
+  leaves.base_color_texture.image = 1;
+  leaves.alpha_mode = AlphaMode::Mask;
+  leaves.alpha_cutoff = 0.3;
+  leaves.double_sided = true;
+  set->materials = {bark, leaves};
+  return set;
+}
+
+TEST_F(AnimationPieces, JoinedPiecesKeepMaterialsAndImagesByteForByte) {
+  const auto set = textured_set();
+  const auto textured = [&](int f) {
+    Frame fr = frame(f);
+    fr.moving.face_material.assign(fr.moving.triangles.size(), 0);
+    for (std::size_t t = 0; t < fr.moving.face_material.size(); t += 3) fr.moving.face_material[t] = 1;
+    return fr;
+  };
+  const auto nodes = [&](const Frame& fr) {
+    std::vector<GltfNode> n = fr.nodes();
+    n[0].materials = set;
+    return n;
+  };
+  MorphAnimationBuilder whole_range(24.0, 1);
+  for (int f = 1; f <= 6; ++f) whole_range.add_frame(nodes(textured(f)));
+  whole_range.write_glb(dir / "whole.glb");
+  const auto make_piece = [&](int a, int b) {
+    MorphAnimationBuilder p(24.0, 1);
+    if (a > 1) p.add_frame(nodes(textured(1)));
+    for (int f = a; f <= b; ++f) p.add_frame(nodes(textured(f)));
+    const fs::path path = dir / ("piece_" + std::to_string(a) + ".piece");
+    p.write_piece(path);
+    return MorphAnimationBuilder::read_piece(path);
+  };
+  MorphAnimationBuilder joined = make_piece(1, 3);
+  ASSERT_TRUE(joined.append_piece(make_piece(4, 6)));
+  joined.write_glb(dir / "joined.glb");
+  const std::string a = bytes(dir / "whole.glb"), b = bytes(dir / "joined.glb");
+  EXPECT_NE(a.find("\"bark\""), std::string::npos) << "the recording has no bark material";
+  EXPECT_NE(a.find("image/png"), std::string::npos) << "the recording embeds no image";
+  EXPECT_TRUE(a == b) << "joined animation.glb differs from one recording's (" << a.size() << " vs " << b.size()
+                      << " bytes)";
+}
+
+TEST_F(AnimationPieces, HugeCountsInAPieceAreRefusedBeforeAllocating) {
+  whole(1, 3, false).write_piece(dir / "p.piece");
+  std::string full = bytes(dir / "p.piece");
+  // The first object's name length (u32 after magic, fps, first, frames, objects), then its colour and the material
+  // flag; the first segment's header and the base mesh's positions count follow.
+  const std::size_t name_at = 8 + 8 + 4 + 4 + 4;
+  const std::size_t positions_at = name_at + 4 + std::string("moving").size() + 12 + 1 + 4 + 4 + 4 + 1;
+  std::string bad = full;
+  const std::uint64_t huge = std::uint64_t(1) << 40;
+  std::memcpy(bad.data() + positions_at, &huge, sizeof huge);
+  std::ofstream(dir / "huge.piece", std::ios::binary) << bad;
+  try {
+    MorphAnimationBuilder::read_piece(dir / "huge.piece");
+    FAIL() << "a piece declaring 2^40 positions was read";
+  } catch (const MeshIoError& e) {
+    EXPECT_NE(std::string(e.what()).find("bytes left"), std::string::npos) << e.what();
+  }
 }
 
 TEST_F(AnimationPieces, PieceRoundTripsLosslessly) {
