@@ -81,6 +81,7 @@ namespace {
 // A tile's buffers: positions, normals, its partner's (the tile's own without one), indices.
 struct TileBuffers {
   GLuint positions, normals, morph_positions, morph_normals, indices;
+  GLuint uvs = 0;  // 0: the tile has no texture coordinates (attribute 13 unused)
 };
 
 // The tile's vertex attributes 0–3 and index buffer, and the per-instance attributes 4–6 from `instances`, recorded in
@@ -92,6 +93,11 @@ void record_tile_vao(const TileBuffers& tile, GLuint vao, GLuint instances) {
   vec3_attribute(1, tile.normals);
   vec3_attribute(2, tile.morph_positions);
   vec3_attribute(3, tile.morph_normals);
+  if (tile.uvs) {
+    glBindBuffer(GL_ARRAY_BUFFER, tile.uvs);
+    glEnableVertexAttribArray(13);
+    glVertexAttribPointer(13, 2, GL_FLOAT, GL_FALSE, 2 * sizeof(float), nullptr);
+  }
   glBindBuffer(GL_ARRAY_BUFFER, instances);
   const GLsizei stride = sizeof(InstanceRecord);
   glEnableVertexAttribArray(4);
@@ -109,7 +115,13 @@ void record_tile_vao(const TileBuffers& tile, GLuint vao, GLuint instances) {
 struct DdmGl::LayerGl {
   // One tile mesh of the layer and the instances that use it (a contiguous run of the instance buffer).
   struct TileGl {
-    Buffer positions, normals, morph_positions, morph_normals, indices;
+    // A run of the tile's indices drawn with one material (texture-mapped tiles; one run of slot 0 otherwise).
+    struct SlotRange {
+      core::MaterialSlot slot;
+      GLsizei first, count;  // indices
+    };
+    Buffer positions, normals, morph_positions, morph_normals, indices, uvs;
+    std::vector<SlotRange> ranges;  // the index buffer grouped by the layer's material slot
     VertexArray vao;
     VertexArray selected_vao;  // the same attributes with the instances from `selected` (made at first use)
     GLsizei vertex_count = 0, index_count = 0;
@@ -119,6 +131,7 @@ struct DdmGl::LayerGl {
     GLsizei selected_count = 0;
   };
   std::shared_ptr<const core::DdmLayer> layer;  // held so the address cannot be reused
+  std::shared_ptr<const core::MaterialSet> materials;  // core::ddm_tile_materials(layer.tiles).set, or null
   Buffer instances;                             // InstanceRecord per instance, grouped by tile (stable)
   std::vector<InstanceRecord> records;          // its contents (the source of `selected`)
   std::vector<TileGl> tiles;                    // per layer tile
@@ -132,8 +145,12 @@ struct DdmGl::LayerGl {
 
   // Without a partner the tile itself (drawn with α = 0, so V = V1 exactly).
   static TileBuffers buffers(const TileGl& t) {
-    return {t.positions.id(), t.normals.id(), t.morph_positions ? t.morph_positions.id() : t.positions.id(),
-            t.morph_normals ? t.morph_normals.id() : t.normals.id(), t.indices.id()};
+    return {t.positions.id(),
+            t.normals.id(),
+            t.morph_positions ? t.morph_positions.id() : t.positions.id(),
+            t.morph_normals ? t.morph_normals.id() : t.normals.id(),
+            t.indices.id(),
+            t.uvs ? t.uvs.id() : 0};
   }
 };
 
@@ -204,6 +221,8 @@ DdmGl::LayerGl& DdmGl::layer_for(const std::shared_ptr<const core::DdmLayer>& la
   const core::DdmLayer& l = *layer;
   auto g = std::make_unique<LayerGl>();
   g->layer = layer;
+  const core::DdmTileMaterials materials = core::ddm_tile_materials(l.tiles);
+  g->materials = materials.set;
   // Instances grouped by tile, in layer order within a group (so each tile's run is one instanced draw).
   std::vector<InstanceRecord> records;
   records.reserve(l.instances.size());
@@ -239,9 +258,33 @@ DdmGl::LayerGl& DdmGl::layer_for(const std::shared_ptr<const core::DdmLayer>& la
       tile.morph_positions = upload_array(GL_ARRAY_BUFFER, mp.data(), mp.size() * sizeof(float));
       tile.morph_normals = upload_array(GL_ARRAY_BUFFER, mn.data(), mn.size() * sizeof(float));
     }
+    // Triangles grouped by the layer's material slot (stable; one group without materials), uvs beside.
+    std::vector<std::pair<core::MaterialSlot, std::uint32_t>> order(mesh.triangle_count());
+    const std::size_t own = l.tiles[t].materials ? l.tiles[t].materials->materials.size() : 0;
+    for (std::size_t f = 0; f < mesh.triangle_count(); ++f) {
+      const core::MaterialSlot local = f < mesh.face_material.size() ? mesh.face_material[f] : core::kMaterialSurface;
+      const core::MaterialSlot slot =
+          !g->materials || local == core::kMaterialInside
+              ? (g->materials ? local : core::kMaterialSurface)
+              : core::MaterialSlot(materials.first_slot[t] + (local < own ? local : 0));
+      order[f] = {slot, std::uint32_t(f)};
+    }
+    std::stable_sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
     std::vector<std::uint32_t> idx(3 * mesh.triangle_count());
-    for (std::size_t f = 0; f < mesh.triangle_count(); ++f)
-      for (int c = 0; c < 3; ++c) idx[3 * f + std::size_t(c)] = mesh.triangles[f][c];
+    for (std::size_t i = 0; i < order.size(); ++i) {
+      for (int c = 0; c < 3; ++c) idx[3 * i + std::size_t(c)] = mesh.triangles[order[i].second][c];
+      if (tile.ranges.empty() || tile.ranges.back().slot != order[i].first)
+        tile.ranges.push_back({order[i].first, GLsizei(3 * i), 0});
+      tile.ranges.back().count += 3;
+    }
+    if (g->materials) {
+      std::vector<float> uv(2 * mesh.vertex_count());
+      for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+        const glm::dvec2 q = mesh.uvs.size() == mesh.vertex_count() ? mesh.uvs[v] : glm::dvec2(mesh.positions[v]);
+        uv[2 * v] = float(q.x), uv[2 * v + 1] = float(q.y);
+      }
+      tile.uvs = upload_array(GL_ARRAY_BUFFER, uv.data(), std::max<std::size_t>(uv.size(), 1) * sizeof(float));
+    }
     // Uploaded through GL_ARRAY_BUFFER (no vertex array's index binding touched), then recorded in the tile's VAO.
     tile.indices = upload_array(GL_ARRAY_BUFFER, idx.empty() ? nullptr : idx.data(),
                                 std::max<std::size_t>(idx.size(), 1) * sizeof(std::uint32_t));
@@ -355,9 +398,14 @@ void DdmGl::select(LayerGl& g, const DdmSelection& selection) {
   check_gl_error("DdmGl: selection upload");
 }
 
+std::shared_ptr<const core::MaterialSet> DdmGl::materials(const std::shared_ptr<const core::DdmLayer>& layer) {
+  if (!layer) return nullptr;
+  return layer_for(layer).materials;
+}
+
 std::size_t DdmGl::draw(const std::shared_ptr<const core::DdmLayer>& layer, const DdmPose& pose,
                         const glm::dmat4& model, const ShaderProgram& program, const DdmFollow* follow,
-                        const DdmSelection* selection) {
+                        const DdmSelection* selection, const DdmMaterialBinder* bind_material) {
   if (follow) selection = nullptr;  // follow records are per instance of the whole layer
   constexpr const char* where = "DdmGl::draw";
   if (!layer) throw std::invalid_argument(std::string(where) + ": no layer");
@@ -372,8 +420,17 @@ std::size_t DdmGl::draw(const std::shared_ptr<const core::DdmLayer>& layer, cons
     const GLsizei count = selection ? t.selected_count : t.instance_count;
     if (count == 0 || t.index_count == 0) continue;
     glBindVertexArray(selection ? t.selected_vao.id() : t.vao.id());
-    glDrawElementsInstancedBaseInstance(GL_TRIANGLES, t.index_count, GL_UNSIGNED_INT, nullptr, count,
-                                        selection ? t.selected_first : t.first_instance);
+    const GLuint first = selection ? t.selected_first : t.first_instance;
+    if (!bind_material || !g.materials) {
+      glDrawElementsInstancedBaseInstance(GL_TRIANGLES, t.index_count, GL_UNSIGNED_INT, nullptr, count, first);
+      continue;
+    }
+    for (const LayerGl::TileGl::SlotRange& r : t.ranges) {
+      (*bind_material)(r.slot);
+      glDrawElementsInstancedBaseInstance(GL_TRIANGLES, r.count, GL_UNSIGNED_INT,
+                                          reinterpret_cast<const void*>(std::size_t(r.first) * sizeof(std::uint32_t)),
+                                          count, first);
+    }
   }
   glBindVertexArray(0);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kMapsBinding, 0);

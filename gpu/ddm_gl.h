@@ -12,7 +12,8 @@
 //
 // GPU resources: the maps are uploaded once per core::DdmMaps pointer (SSBO binding 6, std430 float[], 18 floats per
 // sample as DdmMaps::samples); per layer pointer one instance buffer (chart slot, origin, size; grouped by tile) and
-// each tile's positions / normals (+ its morph partner's) and indices. Layers and maps are immutable and shared, so
+// each tile's positions / normals (+ its morph partner's) and indices (grouped by material slot for texture-mapped
+// tiles, seed Fig. 5.12, with their uvs). Layers and maps are immutable and shared, so
 // a pointer names its contents; the cache holds the shared_ptr, so an address cannot be reused while cached.
 // All calls need the creating context (or one sharing with it) current; GL failures throw GlError.
 #pragma once
@@ -21,6 +22,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <glm/glm.hpp>
 #include <memory>
 #include <unordered_map>
@@ -68,6 +70,10 @@ struct DdmSelection {
   std::uint64_t version = 0;
 };
 
+// Called before each run of a texture-mapped layer's triangles that share a material (core::ddm_tile_materials'
+// slot, or core::kMaterialInside) with the program in use: binds that material's textures and sets its uniforms.
+using DdmMaterialBinder = std::function<void(core::MaterialSlot slot)>;
+
 class DdmGl {
  public:
   // `programs`: where compiled programs are kept (shared with the renderer's FFD programs); null = a private cache.
@@ -90,9 +96,15 @@ class DdmGl {
   // per-instance host maps / parameter boxes are uploaded when they changed; `selection` is then ignored (every
   // instance is drawn). With `selection` (#I flags) only the flagged instances: their instance records compacted into
   // a second buffer read through the same attributes (the vertex shader is the same), the vertices returned are theirs.
+  // With `bind_material` and a layer whose tiles carry materials (materials() not null), each tile is drawn in runs
+  // of one material slot, `bind_material` called before each (the MATERIAL variant reads the tile's uvs,
+  // attribute 13); otherwise one draw per tile as above.
   std::size_t draw(const std::shared_ptr<const core::DdmLayer>& layer, const DdmPose& pose, const glm::dmat4& model,
                    const ShaderProgram& program, const DdmFollow* follow = nullptr,
-                   const DdmSelection* selection = nullptr);
+                   const DdmSelection* selection = nullptr, const DdmMaterialBinder* bind_material = nullptr);
+  // The layer's tile materials as one set (core::ddm_tile_materials), null for untextured tiles. Uploads the layer
+  // when it is not cached yet (throws as draw).
+  std::shared_ptr<const core::MaterialSet> materials(const std::shared_ptr<const core::DdmLayer>& layer);
 
   // The same vertex shader with transform feedback and GL_RASTERIZER_DISCARD (a private 1×1 framebuffer when the
   // bound one is incomplete, as on surfaceless EGL): positions / normals in object space, in ddm_evaluate's order.

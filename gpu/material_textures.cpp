@@ -164,9 +164,15 @@ void MaterialTextures::unbind() {
 void MaterialTextures::release_unused(const core::Scene& scene) {
   if (textures_.empty()) return;
   std::unordered_set<const core::MaterialImage*> live;
-  for (const core::SceneObject& o : scene.objects())
+  for (const core::SceneObject& o : scene.objects()) {
     if (o.materials)
       for (const auto& image : o.materials->images) live.insert(image.get());
+    for (const auto& layer : o.ddm_layers)  // texture-mapped tiles
+      if (layer)
+        for (const core::DdmTile& t : layer->tiles)
+          if (t.materials)
+            for (const auto& image : t.materials->images) live.insert(image.get());
+  }
   std::erase_if(textures_, [&](const auto& kv) { return !live.count(kv.first.image); });
 }
 

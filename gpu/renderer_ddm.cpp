@@ -40,9 +40,37 @@ const FfdLatticeBuffers& DdmDisplay::lattice_buffers(const core::DdmLayerDeforma
   return *g.buffers;
 }
 
+namespace {
+
+// Binds material `slot` of `set` for the MATERIAL variant: face culling by double_sided (glTF 2.0 §3.9.6), blending
+// for BLEND, its textures and uniforms.
+void bind_tile_material(MaterialTextures& textures, const core::MaterialSet& set, core::MaterialSlot slot,
+                        const ShaderProgram& p) {
+  static const core::Material fallback;  // a slot without a material: the glTF default material
+  const core::Material& m = slot < set.materials.size() ? set.materials[slot] : fallback;
+  if (m.double_sided) {
+    glDisable(GL_CULL_FACE);
+  } else {
+    glEnable(GL_CULL_FACE);
+    glCullFace(GL_BACK);
+    glFrontFace(GL_CCW);
+  }
+  if (m.alpha_mode == core::AlphaMode::Blend) {
+    glEnable(GL_BLEND);
+    glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  } else {
+    glDisable(GL_BLEND);
+  }
+  textures.bind(m, set);
+  p.use();
+  MaterialTextures::set_uniforms(m, p);
+}
+
+}  // namespace
+
 template <class Setup>
 DdmDrawn DdmDisplay::draw_object(const core::SceneObject& o, double time_s, const ShaderDefines& variant,
-                                 const Setup& setup) {
+                                 const Setup& setup, MaterialTextures* textures) {
   DdmDrawn drawn;
   const bool follow = follows(o);
   const glm::dmat4 model = o.transform.matrix();
@@ -55,25 +83,32 @@ DdmDrawn DdmDisplay::draw_object(const core::SceneObject& o, double time_s, cons
   for (const auto& layer : o.ddm_layers) {
     if (!has_instances(layer)) continue;
     const DdmPose pose = DdmPose::at(*layer, time_s);
+    const std::shared_ptr<const core::MaterialSet> set = textures ? gl_.materials(layer) : nullptr;
+    ShaderDefines defines = variant;
+    if (set) defines.push_back({"MATERIAL", ""});
+    const ShaderProgram* program = nullptr;
+    const DdmMaterialBinder binder = [&](core::MaterialSlot slot) { bind_tile_material(*textures, *set, slot, *program); };
+    const DdmMaterialBinder* bind = set ? &binder : nullptr;
     if (follow) {
       const core::DdmLayerDeformation d(o, *layer, time_s);
       if (!d.rigid()) {
-        ShaderDefines defines = variant;
         defines.push_back({"FOLLOW", ""});
         if (d.lattice()) defines.push_back({"FFD", ""});
-        const ShaderProgram& p = use(defines);
-        setup.layer(p, *layer);
+        program = &use(defines);
+        setup.layer(*program, *layer);
         const DdmFollow f{&d, d.lattice() ? &lattice_buffers(d) : nullptr};
-        drawn.vertices += gl_.draw(layer, pose, model, p, &f);
+        drawn.vertices += gl_.draw(layer, pose, model, *program, &f, nullptr, bind);
         ++drawn.layers;
         ++drawn.following;
+        if (set) glDisable(GL_CULL_FACE), glDisable(GL_BLEND), textures->unbind();
         continue;
       }
     }
-    const ShaderProgram& p = use(variant);
-    setup.layer(p, *layer);
-    drawn.vertices += gl_.draw(layer, pose, model, p, nullptr, selection(layer.get()));
+    program = &use(defines);
+    setup.layer(*program, *layer);
+    drawn.vertices += gl_.draw(layer, pose, model, *program, nullptr, selection(layer.get()), bind);
     ++drawn.layers;
+    if (set) glDisable(GL_CULL_FACE), glDisable(GL_BLEND), textures->unbind();
   }
   return drawn;
 }
@@ -112,7 +147,7 @@ struct FlatSetup {
 
 DdmDrawn DdmDisplay::draw_shaded(const core::Scene& scene, double time_s, const glm::mat4& view_proj,
                                  const glm::vec3& eye, const glm::vec3& key_dir, const std::string& selected,
-                                 const DdmViewOptions& view) {
+                                 const DdmViewOptions& view, MaterialTextures* textures) {
   DdmDrawn drawn;
   ++frame_;
   if (!any_visible(scene)) return drawn;
@@ -191,8 +226,8 @@ DdmDrawn DdmDisplay::draw_shaded(const core::Scene& scene, double time_s, const 
     if (!o.visible || o.ddm_layers.empty()) continue;
     const bool is_selected = !selected.empty() && o.name == selected;
     glStencilFunc(GL_ALWAYS, is_selected ? 1 : 0, 0xFF);
-    const DdmDrawn d =
-        draw_object(o, time_s, {}, ShadedSetup{view_proj, eye, key_dir, o.color, is_selected ? 1.0f : 0.0f});
+    const DdmDrawn d = draw_object(o, time_s, {}, ShadedSetup{view_proj, eye, key_dir, o.color, is_selected ? 1.0f : 0.0f},
+                                   textures);
     drawn.layers += d.layers;
     drawn.following += d.following;
     drawn.vertices += d.vertices;

@@ -20,6 +20,7 @@
 #include "core/scene/scene.h"
 #include "gpu/ddm_cull.h"
 #include "gpu/ddm_gl.h"
+#include "gpu/material_textures.h"
 #include "gpu/view_options.h"
 
 namespace trispline::gpu::detail {
@@ -39,9 +40,12 @@ class DdmDisplay {
   static bool any_visible(const core::Scene& scene);
   // Shaded pass (inside the renderer's object pass: depth test on, stencil test on with GL_REPLACE): each visible
   // object's layers in its colour, writing stencil 1 for the object named `selected` (outline mask), 0 otherwise.
-  // `view`: what to leave out (ViewOptions::ddm); `view_proj` is also the culling's.
+  // `view`: what to leave out (ViewOptions::ddm); `view_proj` is also the culling's. With `textures` (Material
+  // shading) texture-mapped tiles are drawn with their own materials (MATERIAL variant, one draw per material run;
+  // BLEND runs blended in place, not sorted), the others in their colour as in Solid shading.
   DdmDrawn draw_shaded(const core::Scene& scene, double time_s, const glm::mat4& view_proj, const glm::vec3& eye,
-                       const glm::vec3& key_dir, const std::string& selected, const DdmViewOptions& view = {});
+                       const glm::vec3& key_dir, const std::string& selected, const DdmViewOptions& view = {},
+                       MaterialTextures* textures = nullptr);
   // Wireframe overlay pass (polygon mode GL_LINE set by the caller): every visible object's layers in `color`.
   void draw_flat(const core::Scene& scene, double time_s, const glm::mat4& view_proj, const glm::vec4& color);
   // Selection outline of `object`'s layers (the caller set stencil and depth state, as for the object's outline);
@@ -69,9 +73,10 @@ class DdmDisplay {
 
   // Draws `object`'s layers with `variant`'s programs (plus FOLLOW / FFD where they follow, else this frame's
   // selection); `setup` sets the program's pass uniforms whenever a program is first used. Returns what was drawn.
+  // With `textures`, texture-mapped layers use the MATERIAL variant and their materials.
   template <class Setup>
   DdmDrawn draw_object(const core::SceneObject& object, double time_s, const ShaderDefines& variant,
-                       const Setup& setup);
+                       const Setup& setup, MaterialTextures* textures = nullptr);
   const FfdLatticeBuffers& lattice_buffers(const core::DdmLayerDeformation& d);
 
   DdmGl gl_;

@@ -25,8 +25,14 @@ const VolumeInPlace* Overlays::volume_for(const std::string& volume) const {
 
 bool material_shading(const core::Scene& scene, Shading shading) {
   if (shading != Shading::automatic) return shading == Shading::material;
-  for (const core::SceneObject& o : scene.objects())
-    if (o.visible && o.materials && o.materials->has_textures()) return true;
+  for (const core::SceneObject& o : scene.objects()) {
+    if (!o.visible) continue;
+    if (o.materials && o.materials->has_textures()) return true;
+    for (const auto& layer : o.ddm_layers)  // texture-mapped tiles
+      if (layer)
+        for (const core::DdmTile& t : layer->tiles)
+          if (t.materials && t.materials->has_textures()) return true;
+  }
   return false;
 }
 

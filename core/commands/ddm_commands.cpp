@@ -18,6 +18,7 @@
 #include "core/ddm/ddm_auto_uv.h"
 #include "core/ddm/ddm_chart_size.h"
 #include "core/mesh/mesh_io.h"
+#include "core/mesh/model_load.h"
 #include "core/scene/primitives.h"
 
 namespace trispline::core {
@@ -165,7 +166,8 @@ std::filesystem::path resolve_ddm_tile(const std::string& name, const CommandCon
 DdmTile load_ddm_tile(const std::string& name, const std::filesystem::path& path, const char* field) {
   if (is_generated_ddm_tile(name)) return make_ddm_tile(name);
   try {
-    return canonical_ddm_tile(load_mesh(path), path.stem().string());
+    LoadedModel model = load_model(path);  // a textured tile keeps its materials (seed Fig. 5.12)
+    return canonical_ddm_tile(model.mesh, path.stem().string(), std::move(model.materials));
   } catch (const std::exception& e) {
     throw CommandError(std::string("field '") + field + "': " + e.what(), field);
   }
@@ -437,6 +439,7 @@ std::optional<SceneObject> DdmBakeCommand::build(const Scene& scene) {
   baked.name = p_.name;
   baked.source = "ddm.bake:" + p_.object + "/" + p_.layer;
   baked.color = layer->color.value_or(object->color);
+  baked.materials = ddm_tile_materials(layer->tiles).set;  // texture-mapped tiles keep their materials
   // In world units where the object's deformation carries the tiles at that time (ddm_follow.h). The evaluation
   // (a frame of the animation) or the copy takes the first 80 %, the deformation the rest.
   const double t = p_.frame ? scene.timeline.time_of_frame(*p_.frame) : 0.0;

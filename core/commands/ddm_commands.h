@@ -7,7 +7,8 @@
 //   "choice":"pattern|random" and "seed":s, "map_resolution":[Ru,Rv] (or one number), "tile_scale":[sx,sy] (or one
 //   number), "tile_rotate_deg":r, "tile_shift":[dx,dy].
 //   tile    a generated tile (ddm_tile.h) or a mesh file (OBJ/PLY/glTF, relative to the log's folder; logged absolute,
-//           relative again in saved logs, like scene.load's path), made canonical by its bounding box; "tiles" adds
+//           relative again in saved logs, like scene.load's path), made canonical by its bounding box, its materials
+//           and uvs kept (texture-mapped tiles, seed Fig. 5.12: ddm_tile_materials); "tiles" adds
 //           more (same rules): cell k of a chart gets tile (k + row) mod #tiles ("pattern", seed Fig. 5.12) or one
 //           drawn by a mt19937 seeded with `seed` ("random");
 //   base    limit: the Loop limit surface of the object's rest mesh (OpenSubdiv Bfr), three charts per triangle;

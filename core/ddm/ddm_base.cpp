@@ -169,6 +169,24 @@ glm::ivec2 ddm_counts_for_size(DdmLayout layout, glm::dvec2 chart_size, double t
   return {count(across.x, layout == DdmLayout::rect ? 1.0 : 2.0), count(rows, 1.0)};
 }
 
+namespace {
+
+// One instance's uvs and face materials: the tile's own (its (x, y) and the first slot without materials).
+void copy_tile_materials(const DdmTile& tile, MaterialSlot first_slot, TriMesh& out, std::size_t first_vertex,
+                         std::size_t first_triangle) {
+  const TriMesh& tm = tile.mesh;
+  const std::size_t own = tile.materials ? tile.materials->materials.size() : 0;
+  for (std::size_t v = 0; v < tm.vertex_count(); ++v)
+    out.uvs[first_vertex + v] = tm.uvs.size() == tm.vertex_count() ? tm.uvs[v] : glm::dvec2(tm.positions[v]);
+  for (std::size_t f = 0; f < tm.triangle_count(); ++f) {
+    const MaterialSlot local = f < tm.face_material.size() ? tm.face_material[f] : kMaterialSurface;
+    out.face_material[first_triangle + f] =
+        local == kMaterialInside ? kMaterialInside : static_cast<MaterialSlot>(first_slot + (local < own ? local : 0));
+  }
+}
+
+}  // namespace
+
 TriMesh ddm_evaluate(const DdmBase& base, const std::vector<DdmTile>& tiles, const std::vector<DdmInstance>& instances,
                      double height, const DdmTileTransform& transform, glm::dvec2 offset,
                      const ProgressSink* progress) {
@@ -201,6 +219,12 @@ TriMesh ddm_evaluate(const DdmBase& base, const std::vector<DdmTile>& tiles, con
   for (std::size_t k = 0; k < instances.size(); ++k)
     first_tri[k + 1] = first_tri[k] + tiles[static_cast<std::size_t>(instances[k].tile)].mesh.triangle_count();
   out.triangles.resize(first_tri.back());
+  // Texture-mapped tiles (seed Fig. 5.12): each copy keeps its tile's uvs and materials (slots of the layer's set).
+  const DdmTileMaterials materials = ddm_tile_materials(tiles);
+  if (materials.set) {
+    out.uvs.resize(first.back());
+    out.face_material.resize(first_tri.back());
+  }
   // Chunks of instances, so a cancel is seen within one chunk's time; each instance is evaluated alone, so the
   // chunking never changes a bit of the result.
   const std::size_t count = instances.size();
@@ -228,6 +252,8 @@ TriMesh ddm_evaluate(const DdmBase& base, const std::vector<DdmTile>& tiles, con
         }
         const auto off = static_cast<unsigned>(first[k]);
         for (std::size_t f = 0; f < tm.triangle_count(); ++f) out.triangles[first_tri[k] + f] = tm.triangles[f] + glm::uvec3(off);
+        if (materials.set) copy_tile_materials(tiles[std::size_t(inst.tile)], materials.first_slot[std::size_t(inst.tile)],
+                                               out, first[k], first_tri[k]);
       }
     });
   }
@@ -245,7 +271,7 @@ TriMesh ddm_evaluate(const DdmBase& base, const DdmTile& tile, const std::vector
 DdmTile ddm_morph(const DdmTile& a, const DdmTile& b, double alpha) {
   require_same_ddm_topology(a, b);
   if (!std::isfinite(alpha)) throw std::invalid_argument("alpha: must be finite");
-  DdmTile out{a.name + "→" + b.name, a.mesh};
+  DdmTile out{a.name + "→" + b.name, a.mesh, a.materials};
   for (std::size_t v = 0; v < out.mesh.positions.size(); ++v)
     out.mesh.positions[v] = a.mesh.positions[v] * (1.0 - alpha) + b.mesh.positions[v] * alpha;  // seed Eq. 5.3
   if (a.mesh.normals.size() == a.mesh.positions.size() && b.mesh.normals.size() == b.mesh.positions.size())

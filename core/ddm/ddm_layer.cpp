@@ -94,6 +94,9 @@ TriMesh mesh_reusing(const DdmLayer& layer, const DdmLayer& previous) {
   const std::size_t old_vertices = old_at.vertex.back();
   if (!previous.mesh || previous.mesh->vertex_count() != old_vertices || previous.mesh->normals.size() != old_vertices)
     return ddm_layer_mesh(layer, 0.0);
+  if (ddm_tile_materials(layer.tiles).set && (previous.mesh->uvs.size() != old_vertices ||
+                                             previous.mesh->face_material.size() != old_at.triangle.back()))
+    return ddm_layer_mesh(layer, 0.0);
   for (std::size_t c = 0; c < previous.maps->slot_of_chart.size(); ++c)
     if (previous.maps->slot_of_chart[c] >= 0 && layer.maps->slot_of_chart[c] != previous.maps->slot_of_chart[c])
       return ddm_layer_mesh(layer, 0.0);
@@ -126,6 +129,11 @@ TriMesh mesh_reusing(const DdmLayer& layer, const DdmLayer& previous) {
   out.positions.resize(at.vertex.back());
   out.normals.resize(at.vertex.back());
   out.triangles.resize(at.triangle.back());
+  const bool textured = ddm_tile_materials(layer.tiles).set != nullptr;  // uvs and face materials per copy
+  if (textured) {
+    out.uvs.resize(at.vertex.back());
+    out.face_material.resize(at.triangle.back());
+  }
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, layer.instances.size(), 64), [&](const auto& range) {
     for (std::size_t k = range.begin(); k != range.end(); ++k) {
       const bool from_old = reused[k] >= 0;
@@ -139,6 +147,11 @@ TriMesh mesh_reusing(const DdmLayer& layer, const DdmLayer& previous) {
       const glm::uvec3 back(static_cast<unsigned>(v0)), shift(static_cast<unsigned>(v));  // modulo 2³², exact
       for (std::size_t f = 0; f < nt; ++f)
         out.triangles[at.triangle[k] + f] = src.triangles[src_at.triangle[i] + f] - back + shift;
+      if (textured) {
+        std::copy_n(src.uvs.begin() + v0, nv, out.uvs.begin() + v);
+        std::copy_n(src.face_material.begin() + static_cast<std::ptrdiff_t>(src_at.triangle[i]), nt,
+                    out.face_material.begin() + static_cast<std::ptrdiff_t>(at.triangle[k]));
+      }
     }
   });
   return out;

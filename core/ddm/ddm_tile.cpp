@@ -156,7 +156,47 @@ DdmTile make_ddm_tile(const std::string& kind) {
   throw std::invalid_argument("tile: unknown generated tile '" + kind + "' (thorn, flower, chain, hex, or a mesh file)");
 }
 
-DdmTile canonical_ddm_tile(const TriMesh& mesh, const std::string& name) {
+DdmTileMaterials ddm_tile_materials(const std::vector<DdmTile>& tiles) {
+  DdmTileMaterials out;
+  out.first_slot.assign(tiles.size(), 0);
+  const MaterialSet* shared = nullptr;
+  bool any = false, one_set = true;
+  for (const DdmTile& t : tiles) {
+    if (t.materials && !t.materials->empty()) any = true;
+    if (!t.materials || t.materials->empty() || (shared && shared != t.materials.get())) one_set = false;
+    if (t.materials) shared = t.materials.get();
+  }
+  if (!any) return out;
+  if (one_set) {
+    out.set = tiles.front().materials;
+    return out;
+  }
+  auto set = std::make_shared<MaterialSet>();
+  for (std::size_t i = 0; i < tiles.size(); ++i) {
+    out.first_slot[i] = static_cast<MaterialSlot>(set->materials.size());
+    const std::shared_ptr<const MaterialSet>& own = tiles[i].materials;
+    if (!own || own->empty()) {
+      Material m;  // glTF 2.0 §3.9.6 default material
+      m.name = tiles[i].name;
+      set->materials.push_back(m);
+      continue;
+    }
+    const int image_base = static_cast<int>(set->images.size());
+    set->images.insert(set->images.end(), own->images.begin(), own->images.end());
+    for (Material m : own->materials) {
+      for (MaterialTexture* t : {&m.base_color_texture, &m.metallic_roughness_texture, &m.normal_texture,
+                                 &m.occlusion_texture, &m.emissive_texture})
+        if (t->present()) t->image += image_base;
+      set->materials.push_back(std::move(m));
+    }
+    if (set->materials.size() > kMaxMaterialsPerMesh)
+      throw std::invalid_argument("tiles: more than " + std::to_string(kMaxMaterialsPerMesh) + " materials");
+  }
+  out.set = std::move(set);
+  return out;
+}
+
+DdmTile canonical_ddm_tile(const TriMesh& mesh, const std::string& name, std::shared_ptr<const MaterialSet> materials) {
   if (mesh.triangles.empty()) throw std::invalid_argument("tile: '" + name + "' has no triangles");
   Aabb box;
   for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
@@ -172,7 +212,20 @@ DdmTile canonical_ddm_tile(const TriMesh& mesh, const std::string& name) {
   if (!(ext.x > 0.0) || !(ext.y > 0.0))
     throw std::invalid_argument("tile: '" + name + "' is flat across (zero x or y extent): nothing to lay out");
   const glm::dvec3 scale(1.0 / ext.x, 1.0 / ext.y, 1.0 / std::max(ext.x, ext.y));
-  DdmTile tile{name, mesh};
+  DdmTile tile{name, mesh, nullptr};
+  if (materials && !materials->empty()) {
+    tile.materials = std::move(materials);
+    if (tile.mesh.face_material.size() != tile.mesh.triangle_count())
+      tile.mesh.face_material.assign(tile.mesh.triangle_count(), kMaterialSurface);
+    if (tile.mesh.uvs.size() != tile.mesh.vertex_count()) {  // a planar projection from above: (x, y) of the tile
+      tile.mesh.uvs.resize(tile.mesh.vertex_count());
+      for (std::size_t v = 0; v < tile.mesh.vertex_count(); ++v)
+        tile.mesh.uvs[v] = (glm::dvec2(mesh.positions[v]) - glm::dvec2(box.lo)) * glm::dvec2(scale);
+    }
+  } else {
+    tile.mesh.uvs.clear();
+    tile.mesh.face_material.clear();
+  }
   for (glm::dvec3& p : tile.mesh.positions) p = (p - box.lo) * scale;
   if (tile.mesh.normals.size() == tile.mesh.positions.size()) {
     for (glm::dvec3& n : tile.mesh.normals) {  // inverse transpose of diag(scale) = diag(1 / scale)

@@ -6,16 +6,35 @@
 // A tile may reach a little outside [0,1]² (neighbouring cells then overlap, as the seed's interlocking chains do).
 #pragma once
 
+#include <memory>
 #include <string>
+#include <vector>
 
+#include "core/mesh/material.h"
 #include "core/mesh/tri_mesh.h"
 
 namespace trispline::core {
 
 struct DdmTile {
   std::string name;  // "thorn", "chain", "hex", "flower", or the source file's stem
-  TriMesh mesh;      // #V × 3 positions (x, y, w) in tile space, unit normals #V × 3 (tile space), #F × 3
+  TriMesh mesh;      // #V × 3 positions (x, y, w) in tile space, unit normals #V × 3 (tile space), #F × 3; a tile
+                     // from a textured file also keeps its own uvs (#V × 2) and face_material (#F)
+  // The tile file's materials (texture-mapped tiles, seed §5.4, Fig. 5.12), indexed by mesh.face_material; null for
+  // generated tiles and files without materials (the tiles then take the layer's colour).
+  std::shared_ptr<const MaterialSet> materials;
 };
+
+// The materials of a layer's tiles as one set (what its evaluated mesh's face_material indexes).
+struct DdmTileMaterials {
+  std::shared_ptr<const MaterialSet> set;  // null when no tile carries materials
+  std::vector<MaterialSlot> first_slot;    // per tile: the slot of its material 0 in `set`
+};
+
+// One set for `tiles`: null when none carries materials; the tiles' own set when they all share one (a single
+// textured tile: the same pointer, so nothing is copied); else the sets one after another (images re-indexed), a
+// tile without materials contributing the glTF default material (§3.9.6). Throws std::invalid_argument over
+// kMaxMaterialsPerMesh materials.
+DdmTileMaterials ddm_tile_materials(const std::vector<DdmTile>& tiles);
 
 // Generated tiles for tests and scenes (closed 2-manifolds, outward normals, w ≥ 0, x, y within [0,1]):
 //   "thorn"   a bent horn on a round foot, 24 segments × 26 rings (626 vertices, seed Fig. 5.9's ~670);
@@ -33,9 +52,12 @@ bool is_generated_ddm_tile(const std::string& kind);
 // Canonical tile from any mesh (OBJ/PLY/glTF as loaded, any units): its bounding box's x and y extents map onto
 // [0,1]² (each axis scaled on its own) and its z extent onto [0, h] with h = z-extent / max(x-extent, y-extent), so
 // the tile keeps its proportions across the larger of its two spans; normals follow the same scaling (inverse
-// transpose, renormalised) or are computed when missing.
+// transpose, renormalised) or are computed when missing. `materials` (the file's, may be null or empty) is kept with
+// the mesh's uvs (or, when it has none, the tile's (x, y) as uvs: a projection from above) and face_material (all
+// slot 0 when missing); without materials the tile keeps neither.
 // Throws std::invalid_argument: no triangles, a non-finite position, a triangle index ≥ #V, a zero x or y extent.
-DdmTile canonical_ddm_tile(const TriMesh& mesh, const std::string& name);
+DdmTile canonical_ddm_tile(const TriMesh& mesh, const std::string& name,
+                           std::shared_ptr<const MaterialSet> materials = nullptr);
 
 // Throws std::invalid_argument unless `a` and `b` have the same vertex count and the same triangles (the
 // metamorphosis of seed Eq. 5.3 interpolates vertex by vertex). The message names both tiles and the first mismatch.

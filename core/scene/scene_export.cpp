@@ -25,7 +25,9 @@ SceneExport scene_export_nodes(const Scene& scene) {
     for (const auto& layer : o.ddm_layers) {
       if (!layer->mesh) continue;
       auto world = std::make_shared<const TriMesh>(ddm_layer_world_mesh(o, *layer, *layer->mesh, 0.0));
-      out.nodes.push_back({o.name + "/" + layer->name, world.get(), layer->color.value_or(o.color), o.inside_color});
+      GltfNode node{o.name + "/" + layer->name, world.get(), layer->color.value_or(o.color), o.inside_color};
+      node.materials = ddm_tile_materials(layer->tiles).set;  // texture-mapped tiles (seed Fig. 5.12)
+      out.nodes.push_back(node);
       out.owned.push_back(std::move(world));
     }
   }

@@ -298,18 +298,25 @@ void DdmPaintTool::draw_new_layer_fields(const core::SceneObject* o) {
   core::DdmLayerSpec& spec = params_.paint.spec;
   std::string& tile = spec.tiles.front();  // the panel makes one-tile layers
   const bool generated = is_generated(tile);
-  if (ImGui::BeginCombo("Tile", generated ? tile.c_str() : "file")) {
+  const bool open = ImGui::BeginCombo("Tile", generated ? tile.c_str() : "file");
+  ui::probe::item("ddm.tile");
+  if (open) {
     for (std::size_t i = 0; i < kGeneratedTiles.size(); ++i) {
       if (ImGui::Selectable(kGeneratedTiles[i], tile == kGeneratedTiles[i])) tile = kGeneratedTiles[i];
+      ui::probe::item(std::string("ddm.tile.") + kGeneratedTiles[i]);
       ui::tooltip(kTileTips[i]);
     }
     if (ImGui::Selectable("file", !generated)) tile = file_tile_;
-    ui::tooltip("Any mesh (OBJ, PLY, glTF) as a tile, fitted into the cell by its bounding box");
+    ui::probe::item("ddm.tile.file");
+    ui::tooltip("Any mesh (OBJ, PLY, glTF, Collada, FBX) as a tile, fitted into the cell by its bounding box; a "
+                "textured file keeps its materials and textures on every tile (seed Fig. 5.12)");
     ImGui::EndCombo();
   }
   if (!is_generated(tile)) {
     if (ImGui::InputText("Tile file", &file_tile_)) tile = file_tile_;
-    ui::tooltip("Path of a mesh file (OBJ / PLY / glTF); x, y span the cell, z is the height");
+    ui::probe::item("ddm.tile_file");
+    ui::tooltip("Path of a mesh file (OBJ / PLY / glTF / Collada / FBX); x, y span the cell, z is the height; its "
+                "materials and textures come along");
   }
   int layout = static_cast<int>(spec.layout);
   if (ImGui::Combo("Layout", &layout, "rect\0hex\0brick\0")) spec.layout = static_cast<core::DdmLayout>(layout);

@@ -11,6 +11,7 @@
 // Maps: SSBO binding 6, std430 float[]: slot, row j (v), column i (u), 18 floats per sample: P, N, S_u, S_v, N_u,
 // N_v (core::DdmMaps). Bilinear interpolation with float weights from texelFetch-like reads — never the texture
 // unit's GL_LINEAR, whose fixed-point weights (8 bits on NVIDIA) would break CPU/GPU parity (docs/decisions.md).
+// Variant MATERIAL: the tile's uvs (attribute 13) passed on for mesh.frag.glsl's Material shading.
 // Variant OUTLINE: pushed out along the screen-space normal by u_outline_px (the selection outline, as mesh.vert).
 // Variant FOLLOW: the tiles follow their object's deformation (core::DdmLayerDeformation, core/scene/ddm_follow.h):
 // per instance a host map of object space (attributes 7–9 the columns of its linear part, 10 its shift; normals by its
@@ -26,6 +27,10 @@ layout(location = 5) in vec2 a_origin;
 layout(location = 6) in vec2 a_size;
 
 layout(std430, binding = 6) readonly buffer DdmMapSamples { float ddm_samples[]; };
+#ifdef MATERIAL
+layout(location = 13) in vec2 a_tile_uv;  // the tile's own texture coordinates (texture-mapped tiles, seed Fig. 5.12)
+out vec2 v_uv;
+#endif
 #ifdef FOLLOW
 layout(location = 7) in vec3 a_host_c0;
 layout(location = 8) in vec3 a_host_c1;
@@ -138,5 +143,8 @@ void main() {
 #endif
   v_world = world;
   v_normal = world_normal;
+#ifdef MATERIAL
+  v_uv = a_tile_uv;
+#endif
   gl_Position = clip;
 }

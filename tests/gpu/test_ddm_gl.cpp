@@ -228,6 +228,62 @@ TEST_F(DdmGlTest, RendererDrawsLiveLayersThroughTheObjectTransform) {
   EXPECT_EQ(count_different(without, again), 0);
 }
 
+// Texture-mapped tiles (seed Fig. 5.12): thorns whose uvs run along the tile's x over a 2 × 1 texture, red on the left
+// and green on the right. Capture is unchanged by the uvs (parity with the CPU reference); Material shading draws the
+// texture's red and green where Solid draws the object's blue, and automatic shading picks Material by itself.
+TEST_F(DdmGlTest, TextureMappedTilesShowTheirTextureInMaterialShading) {
+  const core::TriMesh sphere = core::make_sphere(8, 4);
+  core::SceneObject o = make_object("ball", sphere, {0.1f, 0.2f, 0.9f});
+  core::TriMesh thorn = core::make_ddm_tile("thorn").mesh;
+  thorn.uvs.resize(thorn.vertex_count());
+  for (std::size_t v = 0; v < thorn.vertex_count(); ++v) thorn.uvs[v] = {thorn.positions[v].x, 0.5};
+  auto set = std::make_shared<core::MaterialSet>();
+  auto image = std::make_shared<core::MaterialImage>();
+  image->width = 2, image->height = 1;
+  image->rgba8 = {255, 0, 0, 255, 0, 255, 0, 255};
+  set->images.push_back(image);
+  core::Material m;
+  m.name = "red_green";
+  m.base_color_texture.image = 0;
+  m.base_color_texture.sampler.mag_filter = core::TextureFilter::Nearest;
+  m.metallic = 0.0;
+  set->materials.push_back(m);
+  const core::DdmTile tile = core::canonical_ddm_tile(thorn, "painted", set);
+  ASSERT_TRUE(tile.materials);
+  const auto base = std::make_shared<const core::DdmSubdivBase>(sphere);
+  auto layer = make_layer("painted", {tile}, core::ddm_layout_cells(core::DdmLayout::rect, {1, 1}, base->chart_count()),
+                          core::ddm_sample_maps(*base, all_charts(base->chart_count()), {9, 9}), 0.35);
+  layer->surface = base;
+  DdmGl gl;
+  expect_parity(gl, layer, 0.0, "texture-mapped thorns");
+  EXPECT_EQ(gl.materials(layer).get(), set.get());
+  o.ddm_layers.push_back(layer);
+  core::Scene scene;
+  scene.insert(o);
+  EXPECT_TRUE(material_shading(scene, Shading::automatic)) << "a scene with texture-mapped tiles is a textured scene";
+
+  Renderer renderer;
+  const core::Camera cam = front_camera(160, 120);
+  ViewOptions solid, material;
+  solid.shading = Shading::solid;
+  material.shading = Shading::material;
+  const std::vector<unsigned char> a = render(renderer, scene, cam, solid), b = render(renderer, scene, cam, material);
+  const auto count = [](const std::vector<unsigned char>& px, int channel) {
+    int n = 0;  // pixels where `channel` clearly dominates the other two
+    for (std::size_t i = 0; i + 3 < px.size(); i += 4) {
+      const int c = px[i + std::size_t(channel)], o1 = px[i + std::size_t((channel + 1) % 3)],
+                o2 = px[i + std::size_t((channel + 2) % 3)];
+      n += c > 2 * o1 + 20 && c > 2 * o2 + 20;
+    }
+    return n;
+  };
+  std::printf("[ddm textured] solid: red %d green %d; material: red %d green %d\n", count(a, 0), count(a, 1),
+              count(b, 0), count(b, 1));
+  EXPECT_LT(count(a, 0) + count(a, 1), 20) << "Solid draws the tiles in the object's blue";
+  EXPECT_GT(count(b, 0), 150) << "Material draws the texture's red half";
+  EXPECT_GT(count(b, 1), 150) << "Material draws the texture's green half";
+}
+
 }  // namespace
 }  // namespace trispline::gpu::test
 

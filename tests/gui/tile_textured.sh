@@ -1,0 +1,83 @@
+#!/usr/bin/env bash
+# Texture-mapped tiles (seed Fig. 5.12) through the editor: Tile Paint on a blue ball, Tile ▸ file, the crate of
+# tests/clients typed into Tile file (an OBJ + MTL with PNG planks and a leaf cut-out), Fill by tile size; the scene
+# switches to Material shading by itself (a textured scene), where the tiles show the crate's textures — the ball's
+# blue of Solid replaced by the planks' colours (textured_pixels.py) — and ddm.fill is logged with the tile file;
+# Ctrl+S and the headless replay of that log export the tile layer with the crate's materials and images.
+source "$(dirname "$0")/gui_lib.sh"
+crate="$GUI_ROOT/tests/clients/data/crate/crate.obj"
+mkdir -p "$GUI_WORK/scenes"
+cat >"$GUI_WORK/scenes/ball.jsonl" <<'LOG'
+{"cmd":"scene.primitive","kind":"sphere","name":"ball","color":[0.15,0.3,0.95]}
+{"cmd":"camera.set","eye":[0,1.2,3.2],"target":[0,0,0],"up":[0,1,0],"fov_deg":38,"viewport":[1280,720]}
+LOG
+shot() { gui_screenshot "$1" || gui_fail "no screenshot written for $1"; }
+view_menu_shading() {
+  gui_click_item menu.View
+  gui_wait '.items["menu.Shading"] != null' "the View menu opens"
+  gui_click_item menu.Shading
+  gui_wait ".items[\"menu.$1\"] != null" "the Shading menu opens"
+  gui_click_item "menu.$1"
+  gui_wait '.popups | length == 0' "the menu closes after picking $1"
+  gui_frames 3
+}
+
+gui_start "$GUI_WORK/scenes/ball.jsonl"
+gui_wait '.objects == ["ball"]' "the ball is open"
+gui_click_item scene.object.ball
+gui_wait '.selected == "ball"' "the ball is selected"
+gui_move "$(gui_q '.object_px.ball[0] | floor')" "$(gui_q '.object_px.ball[1] | floor')"
+gui_frames 1
+gui_key t
+gui_wait '.tool == "Tile Paint"' "T picks the Tile Paint tool"
+
+gui_click_item ddm.tile
+gui_wait '.items["ddm.tile.file"] != null' "the Tile list opens"
+gui_click_item ddm.tile.file
+gui_wait '.items["ddm.tile_file"] != null' "Tile file appears"
+gui_click_item ddm.tile_file
+gui_wait '.typing' "one click on Tile file enters text editing"
+gui_type "$crate"
+gui_key Return
+gui_wait '.typing | not' "Enter leaves Tile file"
+gui_click_item ddm.tile_size
+gui_wait '.typing' "one click on Tile size enters text editing"
+gui_type "0.35"
+gui_key Return
+gui_wait '(.typing | not) and .values["ddm.estimate_error"] == "" and (.values["ddm.estimate_tiles"] | tonumber) > 20' \
+  "the estimate counts crate tiles" 60
+n="$(gui_q '.history.labels | length')"
+gui_click_item ddm.fill
+gui_wait "(.history.labels | length) == $((n + 1))" "Fill adds one history entry" 120
+gui_wait_logged '.cmd == "ddm.fill" and (.tile | endswith("crate.obj")) and ((.tile_size - 0.35) | fabs) < 1e-12' \
+  "ddm.fill logged with the crate tile and the typed size"
+
+# Material shading (automatic: the scene now has textures) against Solid, on the ball's pixels.
+gui_move 5 5
+gui_frames 3
+shot tiles_material
+view_menu_shading Solid
+shot tiles_solid
+cx="$(gui_q '.object_px.ball[0]')"; cy="$(gui_q '.object_px.ball[1]')"
+read -r -a r < <(python3 "$(dirname "$0")/textured_pixels.py" "$GUI_DIR/tiles_material.png" \
+  "$GUI_DIR/tiles_solid.png" "$cx" "$cy")
+gui_log "${r[0]} pixels differ; Solid's ball blue ${r[1]} % of them, Material ${r[2]} %"
+[ "${r[0]}" -ge 8000 ] && [ "${r[1]}" -ge 50 ] && [ "${r[2]}" -le 5 ] ||
+  gui_fail "the tiles are not drawn with the crate's textures in Material shading (${r[*]})"
+
+# The saved log replays headless into a scene.glb whose tile layer carries the crate's materials and images.
+gui_key ctrl+s
+gui_wait '.log | last | test("[Ss]aved")' "Ctrl+S saves the scene"
+"$TRISPLINE" replay "$GUI_WORK/scenes/ball.jsonl" --out "$GUI_WORK/replayed" --no-render > "$GUI_DIR/replay.txt" 2>&1 ||
+  gui_fail "the saved log does not replay: $(cat "$GUI_DIR/replay.txt")"
+python3 - "$GUI_WORK/replayed/scene.glb" <<'PY' || gui_fail "scene.glb's tile layer has no crate materials"
+import json, struct, sys
+data = open(sys.argv[1], "rb").read()
+doc = json.loads(data[20:20 + struct.unpack_from("<I", data, 12)[0]])
+mesh = next(m for m in doc["meshes"] if "/" in m["name"])
+used = {doc["materials"][p["material"]]["name"] for p in mesh["primitives"]}
+textured = [p for p in mesh["primitives"] if "TEXCOORD_0" in p["attributes"]]
+print(mesh["name"], sorted(used), len(doc.get("images", [])), "images")
+sys.exit(0 if {"wood", "leaf"} <= used and textured and len(doc.get("images", [])) >= 2 else 1)
+PY
+gui_pass
