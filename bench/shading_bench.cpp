@@ -4,6 +4,9 @@
 //   material whose base colour texture is a generated 2048² RGBA image (mipmapped, sRGB) and, on two of them, a
 //   2048² normal map; one of them alpha MASK. Camera framing all five, the ground grid on.
 // Per shading: 3 warm-up frames, then --frames frames each timed as draw + glFinish (wall clock), median and mean ms.
+// First, the load of one 4096² texture (a photo-like generated image, as PNG and as JPEG q90): the OpenImageIO decode
+// of the encoded bytes (core::decode_material_image, what scene.load does per image) and the GL upload with mipmaps
+// (the first Material frame's MaterialTextures::texture), each the median of 5.
 // Prints figures; never asserts timings.
 //   build/bench/bench_shading [--frames N] [--width W] [--height H] [--samples S]
 #include <epoxy/gl.h>
@@ -17,9 +20,14 @@
 #include <string>
 #include <vector>
 
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imageio.h>
+
+#include "core/mesh/material_image.h"
 #include "core/scene/camera.h"
 #include "core/scene/scene.h"
 #include "gpu/gl_context.h"
+#include "gpu/material_textures.h"
 #include "gpu/renderer.h"
 
 using namespace trispline;
@@ -71,6 +79,66 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
+double ms_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// A photo-like n² RGB image: smooth gradients with high-frequency texture (neither compresses to nothing).
+std::vector<std::uint8_t> photo_like(int n) {
+  std::vector<std::uint8_t> rgba(std::size_t(n) * std::size_t(n) * 4);
+  std::uint32_t noise = 12345;
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      noise = noise * 1664525u + 1013904223u;
+      std::uint8_t* p = &rgba[(std::size_t(y) * std::size_t(n) + std::size_t(x)) * 4];
+      const int grain = int(noise >> 28);
+      p[0] = std::uint8_t(std::clamp(int(128 + 100 * std::sin(x * 0.003) * std::cos(y * 0.002)) + grain, 0, 255));
+      p[1] = std::uint8_t(std::clamp(int(x * 200 / n) + grain, 0, 255));
+      p[2] = std::uint8_t(std::clamp(int(y * 180 / n + 30 * std::sin(x * 0.05)) + grain, 0, 255));
+      p[3] = 255;
+    }
+  return rgba;
+}
+
+std::vector<std::uint8_t> encode_jpeg(int n, const std::vector<std::uint8_t>& rgba) {
+  std::vector<std::uint8_t> out;
+  OIIO::Filesystem::IOVecOutput proxy(out);
+  auto jpg = OIIO::ImageOutput::create("image.jpg");
+  if (!jpg) throw std::runtime_error("no JPEG writer");
+  jpg->set_ioproxy(&proxy);
+  OIIO::ImageSpec spec(n, n, 3, OIIO::TypeDesc::UINT8);
+  spec.attribute("CompressionQuality", 90);
+  std::vector<std::uint8_t> rgb(std::size_t(n) * std::size_t(n) * 3);
+  for (std::size_t i = 0; i < rgb.size() / 3; ++i)
+    for (int c = 0; c < 3; ++c) rgb[3 * i + std::size_t(c)] = rgba[4 * i + std::size_t(c)];
+  if (!jpg->open("image.jpg", spec) || !jpg->write_image(OIIO::TypeDesc::UINT8, rgb.data()) || !jpg->close())
+    throw std::runtime_error("cannot encode JPEG");
+  return out;
+}
+
+// Decode and upload of one n² texture, PNG and JPEG: median ms of `runs` each.
+void texture_load(int n, int runs) {
+  const std::vector<std::uint8_t> rgba = photo_like(n);
+  const std::pair<const char*, std::vector<std::uint8_t>> files[] = {{"PNG", core::encode_png_rgba8(n, n, rgba)},
+                                                                      {"JPEG", encode_jpeg(n, rgba)}};
+  for (const auto& [kind, bytes] : files) {
+    std::vector<double> decode, upload;
+    for (int r = 0; r < runs; ++r) {
+      auto t0 = std::chrono::steady_clock::now();
+      auto image = std::make_shared<const core::MaterialImage>(core::decode_material_image(bytes, "", "bench", ""));
+      decode.push_back(ms_since(t0));
+      if (!image->readable()) throw std::runtime_error(std::string(kind) + ": " + image->error);
+      gpu::MaterialTextures textures;
+      t0 = std::chrono::steady_clock::now();
+      textures.texture(image, gpu::TextureColorSpace::srgb);
+      glFinish();
+      upload.push_back(ms_since(t0));
+    }
+    std::printf("texture %d² %-4s (%6.1f MB encoded): decode median %7.1f ms, GL upload + mipmaps median %7.1f ms\n",
+                n, kind, double(bytes.size()) / 1e6, median(decode), median(upload));
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -93,6 +161,7 @@ int main(int argc, char** argv) {
   }
   try {
     gpu::HeadlessContext ctx;
+    texture_load(4096, 5);
     core::Scene scene;
     auto set = std::make_shared<core::MaterialSet>();
     set->images = {checker(2048, false), checker(2048, true)};
