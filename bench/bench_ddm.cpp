@@ -255,7 +255,7 @@ json run_orbit(const std::string& name, const BenchDdmOptions& o, gpu::Renderer&
 
 std::string cell(const json& v, int digits) { return v.is_number() ? bench_fixed(v.get<double>(), digits) : "-"; }
 
-void print_table(const json& j, std::ostream& out) {
+void print_ddm_table(const json& j, std::ostream& out) {
   out << "bench ddm: live DDM layers, one instanced draw per tile mesh (seed §5.3.2)\n"
       << "renderer: " << j["renderer"].get<std::string>() << "  " << j["width"] << "x" << j["height"] << " x"
       << j["samples"] << " MSAA, " << j["frames"] << " frames per case\n"
@@ -480,7 +480,7 @@ int run_bench_ddm(const BenchDdmOptions& options, std::ostream& out, std::ostrea
       return 1;
     }
   }
-  return bench_emit(result, options.json, out, print_table);
+  return bench_emit(result, options.json, out, print_ddm_table);
 }
 
 }  // namespace trispline::editor

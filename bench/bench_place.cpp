@@ -104,7 +104,7 @@ ExecutionRecord execute(History& history, const json& line) {
   }
 }
 
-void print_table(const json& r, std::ostream& os) {
+void print_place_table(const json& r, std::ostream& os) {
   const json& m = r.at("mesh");
   os << "place.sketch end to end on " << r.at("cpu").get<std::string>() << " (" << r.at("threads") << " threads)\n"
      << "object: " << m.at("source").get<std::string>() << ", " << m.at("vertices") << " vertices; contact rays "
@@ -253,7 +253,7 @@ int run_bench_place(const BenchPlaceOptions& o, std::ostream& out, std::ostream&
     }
   }
   result["cases"] = cases;
-  return bench_emit(result, o.json, out, print_table);
+  return bench_emit(result, o.json, out, print_place_table);
 }
 
 }  // namespace trispline::editor

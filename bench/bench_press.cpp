@@ -76,7 +76,7 @@ json stage(const std::string& name, double ms) {
   return {{"stage", name}, {"median_ms", ms}, {"updates_per_s", rate}, {"interactive", rate >= kInteractive}};
 }
 
-void print_table(const json& r, std::ostream& os) {
+void print_press_table(const json& r, std::ostream& os) {
   const json& m = r.at("mesh");
   const json& d = r.at("drag");
   const json& t = r.at("tool");
@@ -429,7 +429,7 @@ int run_bench_press(const BenchPressOptions& o, std::ostream& out, std::ostream&
         {"ms_evaluate", bench_median(t.command_eval)},
         {"updates_per_s", 1000.0 / cmd},
         {"interactive", 1000.0 / cmd >= kInteractive}}}};
-  return bench_emit(result, o.json, out, print_table);
+  return bench_emit(result, o.json, out, print_press_table);
 }
 
 }  // namespace trispline::editor

@@ -1,4 +1,5 @@
 #include "editor/guarantees_view.h"
+#include "editor/elapsed.h"
 
 #include <imgui.h>
 
@@ -15,7 +16,6 @@ namespace trispline::editor {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 constexpr double kDecades = 3.0;  // the ramp spans max/1000 … max
 constexpr float kHeatAlpha = 0.82f;

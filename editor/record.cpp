@@ -1,4 +1,5 @@
 #include "editor/record.h"
+#include "editor/elapsed.h"
 
 #include <OpenImageIO/imageio.h>
 #include <sys/stat.h>
@@ -25,10 +26,6 @@
 namespace trispline::editor {
 namespace fs = std::filesystem;
 namespace {
-
-double ms_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
 
 // sRGB-encoded 8-bit value → linear (IEC 61966-2-1), for EXR frames.
 const std::array<float, 256>& srgb_to_linear_table() {

@@ -1,4 +1,5 @@
 #include "editor/replay.h"
+#include "editor/elapsed.h"
 
 #include <chrono>
 #include <cmath>
@@ -20,10 +21,6 @@
 
 namespace trispline::editor {
 namespace {
-
-double ms_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
 
 nlohmann::json record_json(const ExecutionRecord& r, int line) {
   nlohmann::json j = {{"line", line}, {"cmd", r.cmd}, {"ok", r.ok}, {"ms", r.milliseconds}};

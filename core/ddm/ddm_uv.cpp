@@ -12,7 +12,7 @@
 namespace trispline::core {
 namespace {
 
-constexpr int F = DdmMaps::kFloatsPerSample;
+constexpr int kF = DdmMaps::kFloatsPerSample;
 
 bool finite2(const glm::dvec2& v) { return std::isfinite(v.x) && std::isfinite(v.y); }
 bool finite3(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
@@ -47,7 +47,7 @@ DdmMaps ddm_rasterize_uv_maps(const TriMesh& mesh, int resolution) {
   maps.resolution = {R, R};
   maps.slot_of_chart = {0};
   maps.chart_of_slot = {0};
-  maps.samples.assign(count * F, 0.0f);
+  maps.samples.assign(count * kF, 0.0f);
   maps.valid.assign(count, 0);
   const std::vector<glm::dvec3> normals = vertex_normals(mesh);
   std::vector<glm::dvec3> P(count), N(count), Su(count), Sv(count);
@@ -116,7 +116,7 @@ DdmMaps ddm_rasterize_uv_maps(const TriMesh& mesh, int resolution) {
                             (double(R - 1) / (ir - il));
       const glm::dvec3 nv = (N[static_cast<std::size_t>(jr) * R + i] - N[static_cast<std::size_t>(jl) * R + i]) *
                             (double(R - 1) / (jr - jl));
-      float* s = maps.samples.data() + k * F;
+      float* s = maps.samples.data() + k * kF;
       const glm::dvec3 v6[6] = {P[k], N[k], Su[k], Sv[k], nu, nv};
       for (int m = 0; m < 6; ++m)
         for (int x = 0; x < 3; ++x) s[3 * m + x] = static_cast<float>(v6[m][x]);

@@ -14,13 +14,13 @@
 namespace trispline::core {
 namespace {
 
-std::string num(double x) {
+std::string num6(double x) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.6g", x);
   return buf;
 }
 
-std::string vec(const glm::dvec3& p) { return "(" + num(p.x) + ", " + num(p.y) + ", " + num(p.z) + ")"; }
+std::string vec(const glm::dvec3& p) { return "(" + num6(p.x) + ", " + num6(p.y) + ", " + num6(p.z) + ")"; }
 
 const char* axis_name(int a) { return a == 0 ? "x" : a == 1 ? "y" : "z"; }
 
@@ -75,7 +75,7 @@ Discontinuity find_discontinuity(const TrivariateBSpline<glm::dvec3>& F, int axi
   const std::vector<double>& U = kv.knots();
   const auto it = std::find(U.begin(), U.end(), u0);
   if (it == U.end() || kv.multiplicity(u0) < kv.order())
-    throw std::invalid_argument("find_discontinuity: u0 = " + num(u0) + " is not a C^-1 break of axis " +
+    throw std::invalid_argument("find_discontinuity: u0 = " + num6(u0) + " is not a C^-1 break of axis " +
                                 std::to_string(axis));
   const int r = static_cast<int>(it - U.begin());
   return {axis, u0, r - 1, r};
@@ -108,7 +108,7 @@ void validate(const TriMesh& object_world, const std::vector<DffdObstacle>& obst
                                std::to_string(p.controls[a]), "controls");
   }
   if (!(p.kernel_width > 0.0) || !std::isfinite(p.kernel_width))
-    throw DffdBuildError("kernel_width must be > 0 (world units), got " + num(p.kernel_width), "kernel_width");
+    throw DffdBuildError("kernel_width must be > 0 (world units), got " + num6(p.kernel_width), "kernel_width");
   if (!std::isfinite(p.margin)) throw DffdBuildError("margin must be finite", "margin");
   if (!(p.clearance >= 0.0) || !std::isfinite(p.clearance))
     throw DffdBuildError("clearance must be ≥ 0 (world units)", "clearance");
@@ -200,7 +200,7 @@ std::vector<PlacedBreak> insert_breaks(GlobalDffd& out, const std::vector<DffdOb
     const double u0 = rig.embedding.apply(centre_of_mass(obstacles[i].world_mesh))[0];
     if (!(u0 > 0.0 && u0 < 1.0))
       throw DffdBuildError("the centre of obstacle '" + obstacles[i].name + "' lies outside the lattice's domain (u = " +
-                               num(u0) + ")", "obstacles");
+                               num6(u0) + ")", "obstacles");
     for (const PlacedBreak& q : placed)
       if (std::abs(q.u0 - u0) < 1e-9)
         throw DffdBuildError("obstacles '" + obstacles[q.obstacle].name + "' and '" + obstacles[i].name +

@@ -1,4 +1,5 @@
 #include "core/mesh/assimp_io.h"
+#include "core/mesh/path_quote.h"
 
 #include <assimp/MemoryIOWrapper.h>
 #include <assimp/config.h>
@@ -23,8 +24,6 @@
 
 namespace trispline::core {
 namespace {
-
-std::string quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
 
 // assimp reports what it repaired only in its log: an OFF face index out of range is clamped to the last vertex with
 // a warning, for instance. Warnings and errors of the import running on this thread are collected here (assimp's

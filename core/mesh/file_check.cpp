@@ -1,4 +1,5 @@
 #include "core/mesh/file_check.h"
+#include "core/mesh/path_quote.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -12,13 +13,6 @@
 
 namespace trispline::core {
 namespace {
-
-std::string quoted(const std::filesystem::path& p) {
-  std::string q(1, '\'');
-  q += p.string();
-  q += '\'';
-  return q;
-}
 
 // Throws unless `st` describes a regular file within the budget.
 void check_stat(const std::filesystem::path& path, const struct stat& st, std::uintmax_t max_bytes,

@@ -1,4 +1,5 @@
 #include "core/mesh/gltf_anim_io.h"
+#include "core/mesh/path_quote.h"
 
 #include "core/mesh/mesh_io.h"
 
@@ -20,8 +21,6 @@
 
 namespace trispline::core {
 namespace {
-
-std::string quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
 
 std::string target_name(int frame) {
   char buf[32];

@@ -1,4 +1,5 @@
 #include "core/mesh/gltf_io.h"
+#include "core/mesh/path_quote.h"
 
 #include "core/mesh/mesh_io.h"
 
@@ -26,8 +27,6 @@
 
 namespace trispline::core {
 namespace {
-
-std::string quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
 
 bool ends_with(const std::string& s, const std::string& tail) {
   return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;

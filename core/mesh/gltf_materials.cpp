@@ -1,5 +1,6 @@
 // glTF materials ↔ MaterialSet. See gltf_materials.h.
 #include "core/mesh/gltf_materials.h"
+#include "core/mesh/path_quote.h"
 
 #include <algorithm>
 
@@ -13,8 +14,6 @@ namespace trispline::core::gltf_materials {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string quoted(const fs::path& p) { return "'" + p.string() + "'"; }
 
 bool ends_with(const std::string& s, const std::string& tail) {
   return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;

@@ -1,4 +1,5 @@
 #include "core/mesh/gltf_read.h"
+#include "core/mesh/path_quote.h"
 
 #include <algorithm>
 #include <cctype>
@@ -16,13 +17,6 @@ namespace trispline::core::gltf_read {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string quoted(const fs::path& p) {
-  std::string q(1, '\'');  // appended piecewise: GCC 12 warns (-Wrestrict, false positive) on "'" + s
-  q += p.string();
-  q += '\'';
-  return q;
-}
 
 std::string num(std::uintmax_t v) { return std::to_string(v); }
 

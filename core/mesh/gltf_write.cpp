@@ -8,14 +8,13 @@
 #include <map>
 
 #include "core/mesh/gltf_io.h"
+#include "core/mesh/path_quote.h"
 #include "core/mesh/gltf_materials.h"
 #include "core/mesh/gltf_model.h"
 #include "core/mesh/mesh_io.h"
 
 namespace trispline::core {
 namespace {
-
-std::string quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
 
 }  // namespace
 

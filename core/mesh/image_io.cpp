@@ -1,4 +1,5 @@
 #include "core/mesh/image_io.h"
+#include "core/mesh/path_quote.h"
 
 #include <OpenImageIO/imageio.h>
 
@@ -8,8 +9,6 @@
 
 namespace trispline::core {
 namespace {
-
-std::string quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
 
 std::string lower_ext(const std::filesystem::path& p) {
   std::string e = p.extension().string();

@@ -1,4 +1,5 @@
 #include "core/mesh/mesh_io.h"
+#include "core/mesh/path_quote.h"
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
@@ -24,8 +25,6 @@ struct DoubleTraits : public OpenMesh::DefaultTraits {
   using TexCoord2D = OpenMesh::Vec2d;
 };
 using PolyMesh = OpenMesh::PolyMesh_ArrayKernelT<DoubleTraits>;
-
-std::string quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
 
 bool is_gltf_ext(const std::string& e) { return e == ".gltf" || e == ".glb"; }
 

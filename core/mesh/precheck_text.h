@@ -11,6 +11,7 @@
 #include "core/mesh/file_check.h"
 #include "core/mesh/mesh_io.h"
 #include "core/mesh/mesh_precheck.h"
+#include "core/mesh/path_quote.h"
 
 namespace trispline::core::precheck {
 
@@ -20,7 +21,7 @@ inline constexpr std::uintmax_t kTextPeakPerByte = 12;
 // Peak bytes per value of a PLY file: assimp keeps every value of every element in a DOM node.
 inline constexpr std::uintmax_t kPlyPeakPerValue = 48;
 
-inline std::string quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
+using trispline::core::quoted;
 
 // A file that is not what its extension says: "cannot parse" (the word every mesh reader's parse error carries).
 [[noreturn]] inline void fail(const std::filesystem::path& path, const std::string& why) {

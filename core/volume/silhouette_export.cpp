@@ -17,7 +17,7 @@ namespace {
 
 constexpr int kHidden = -1;  // run key of hidden points; visible points use their |∇D| bin ≥ 0
 
-bool finite(const glm::dvec3& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
+bool finite_point(const glm::dvec3& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
 
 void check_input(const std::vector<SilhouettePolyline>& polylines, const glm::dmat4& vp, glm::ivec2 viewport,
                  const SvgStyle& style) {
@@ -29,7 +29,7 @@ void check_input(const std::vector<SilhouettePolyline>& polylines, const glm::dm
                                   std::to_string(pl.gradient_norm.size()) + " gradient norms and " +
                                   std::to_string(pl.visible.size()) + " visibility flags");
     for (std::size_t k = 0; k < pl.points.size(); ++k)
-      if (!finite(pl.points[k]) || !std::isfinite(pl.gradient_norm[k]))
+      if (!finite_point(pl.points[k]) || !std::isfinite(pl.gradient_norm[k]))
         throw std::invalid_argument("silhouette SVG: polyline " + std::to_string(i) + " point " + std::to_string(k) +
                                     " is not finite");
   }
