@@ -10,15 +10,15 @@ namespace trispline::core {
 namespace {
 
 using P = DdmAnimateParams;
-using Field = ParamSchema<P>::Field;
+using AnimateField = ParamSchema<P>::Field;
 
-void read_morph_tile(const Field& f, const nlohmann::json& v, P& p, const CommandContext& ctx) {
+void read_morph_tile(const AnimateField& f, const nlohmann::json& v, P& p, const CommandContext& ctx) {
   const std::string tile = params::Codec<std::string>::read(v, f.doc.name);
   p.morph = std::vector<std::string>{tile};
   p.morph_paths = {resolve_ddm_tile(tile, ctx)};
 }
 
-void read_morph_tiles(const Field& f, const nlohmann::json& v, P& p, const CommandContext& ctx) {
+void read_morph_tiles(const AnimateField& f, const nlohmann::json& v, P& p, const CommandContext& ctx) {
   const std::vector<std::string> tiles = params::Codec<std::vector<std::string>>::read(v, f.doc.name);
   if (tiles.empty()) params::fail(f.doc.name, "expected a list of tiles, one per layer tile");
   p.morph_paths.clear();
@@ -31,7 +31,7 @@ void read_morph_tiles(const Field& f, const nlohmann::json& v, P& p, const Comma
 }
 
 // One morph tile is logged as "morph_tile", several as "morph_tiles".
-void write_morph(const Field& f, const P& p, nlohmann::json& line) {
+void write_morph(const AnimateField& f, const P& p, nlohmann::json& line) {
   if (!p.morph || (p.morph->size() == 1) != (f.doc.name == "morph_tile")) return;
   nlohmann::json tiles = nlohmann::json::array();
   for (std::size_t i = 0; i < p.morph->size(); ++i) tiles.push_back(ddm_tile_file(*p.morph, p.morph_paths, i));

@@ -24,7 +24,6 @@
 namespace trispline::core {
 namespace {
 
-constexpr std::size_t kMaxTileVertices = kMaxDdmLayerVertices;
 
 using S = DdmLayerSpec;
 using Field = ParamSchema<S>::Field;
@@ -104,7 +103,7 @@ ParamSchema<S> make_layer_schema(bool fill) {
       .help("Cells per chart n × m (the seed's parametric layouts); not with tile_size")
       .field("tile_size", &S::tile_size).above(0).unit("world units")
       .help("Tile width in object space: every chart gets the cells that make its tiles this size (not with counts)")
-      .field("max_vertices", &S::max_vertices).range(1, double(kMaxTileVertices)).unit("tile vertices")
+      .field("max_vertices", &S::max_vertices).range(1, double(kMaxDdmLayerVertices)).unit("tile vertices")
       .default_text("10000000")
       .help("Refuse a layer of more tile vertices than this, counted before it is built (ddm.paint: after the stroke)")
       .field("height", &S::height).required(fill).above(0).unit("world units")
@@ -132,10 +131,10 @@ ParamSchema<S> make_layer_schema(bool fill) {
         }
         // One chart's cells, before any is made: each tile has a vertex at least, so more cells than the layer's
         // vertex budget can never be a layer (ddm.fill and ddm.paint weigh the charts together later).
-        if (const std::size_t cells = ddm_layout_cell_count(s.layout, counts); cells > kMaxTileVertices)
+        if (const std::size_t cells = ddm_layout_cell_count(s.layout, counts); cells > kMaxDdmLayerVertices)
           params::fail("counts", "[" + std::to_string(counts.x) + ", " + std::to_string(counts.y) + "] makes " +
                                      std::to_string(cells) + " cells on one chart, over the layer budget of " +
-                                     std::to_string(kMaxTileVertices) + " tile vertices");
+                                     std::to_string(kMaxDdmLayerVertices) + " tile vertices");
       });
 }
 
@@ -275,7 +274,7 @@ std::vector<glm::ivec2> ddm_fill_chart_counts(const DdmLayerSpec& spec, DdmBaseK
   std::size_t cells = 0;
   for (const glm::ivec2& c : counts) cells += ddm_layout_cell_count(spec.layout, c);
   const std::size_t per_tile = std::max<std::size_t>(tile_vertices, 1);
-  const std::size_t limit = spec.max_vertices ? static_cast<std::size_t>(*spec.max_vertices) : kMaxTileVertices;
+  const std::size_t limit = spec.max_vertices ? static_cast<std::size_t>(*spec.max_vertices) : kMaxDdmLayerVertices;
   if (cells > limit / per_tile) {
     char size[80] = "";
     if (spec.tile_size) std::snprintf(size, sizeof size, "tiles %g world units across make ", *spec.tile_size);

@@ -22,7 +22,6 @@
 namespace trispline::core {
 namespace {
 
-constexpr std::size_t kMaxTileVertices = kMaxDdmLayerVertices;
 constexpr double kMaxBrushRadiusPx = 16384.0;
 constexpr double kCullMarginPx = 2.0;                 // occluder triangles: projected bbox grown by this much
 constexpr double kLimitGapFactor = 2.0;               // limit base: tolerance = this × |S(cell) − mesh point|
@@ -340,7 +339,7 @@ std::optional<SceneObject> DdmPaintCommand::build(const Scene& scene) {
       if (c.tile >= 0 && c.tile < static_cast<int>(layer.tiles.size()))
         vertices += layer.tiles[static_cast<std::size_t>(c.tile)].mesh.vertex_count();
     const std::size_t limit =
-        p_.spec.max_vertices ? static_cast<std::size_t>(*p_.spec.max_vertices) : kMaxTileVertices;
+        p_.spec.max_vertices ? static_cast<std::size_t>(*p_.spec.max_vertices) : kMaxDdmLayerVertices;
     if (vertices > limit)
       throw CommandError("field 'stroke': the layer would hold " + std::to_string(vertices) +
                              " tile vertices (at most " + std::to_string(limit) +
