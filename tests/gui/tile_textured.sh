@@ -49,6 +49,8 @@ gui_wait '(.typing | not) and .values["ddm.estimate_error"] == "" and (.values["
 n="$(gui_q '.history.labels | length')"
 gui_click_item ddm.fill
 gui_wait "(.history.labels | length) == $((n + 1))" "Fill adds one history entry" 120
+# The typed 0.35 is logged as 0.35000000000000003 (one ulp; the Tile size field's text → double path), hence the
+# tolerance.
 gui_wait_logged '.cmd == "ddm.fill" and (.tile | endswith("crate.obj")) and ((.tile_size - 0.35) | fabs) < 1e-12' \
   "ddm.fill logged with the crate tile and the typed size"
 
