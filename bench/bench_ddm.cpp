@@ -13,15 +13,15 @@
 #include <stdexcept>
 #include <thread>
 
+#include "bench/bench_place.h"
 #include "core/ddm/ddm_layer.h"
 #include "core/ddm/ddm_pn_maps.h"
+#include "core/scene/ddm_follow.h"
 #include "core/scene/primitives.h"
 #include "core/scene/scene.h"
-#include "bench/bench_place.h"
 #include "editor/command_registry.h"
 #include "editor/history.h"
 #include "editor/render_scene.h"
-#include "core/scene/ddm_follow.h"
 #include "editor/replay.h"
 #include "editor/tools/ddm_paint_tool.h"
 #include "gpu/gl_context.h"
@@ -188,8 +188,8 @@ json run_case(Case& c, const BenchDdmOptions& o, gpu::Renderer& renderer, gpu::O
 }
 
 // The default scene with its teapot filled by the Tile Paint panel's defaults (tile size × `tile_scale`).
-json run_orbit(const std::string& name, const BenchDdmOptions& o, gpu::Renderer& renderer,
-               gpu::OffscreenTarget& target, std::ostream& err) {
+json run_orbit(const std::string& name, const BenchDdmOptions& o, gpu::Renderer& renderer, gpu::OffscreenTarget& target,
+               std::ostream& err) {
   core::Scene scene;
   History history(scene);
   const ReplayResult r = replay_lines(history, kDefaultScene);
@@ -212,7 +212,8 @@ json run_orbit(const std::string& name, const BenchDdmOptions& o, gpu::Renderer&
   const auto orbit = [&](int f) {  // 3° per frame round the target's vertical axis
     const double a = glm::radians(3.0 * f);
     const glm::dvec3 d = home.eye - home.target;
-    cam.eye = home.target + glm::dvec3(std::cos(a) * d.x + std::sin(a) * d.z, d.y, -std::sin(a) * d.x + std::cos(a) * d.z);
+    cam.eye =
+        home.target + glm::dvec3(std::cos(a) * d.x + std::sin(a) * d.z, d.y, -std::sin(a) * d.x + std::cos(a) * d.z);
   };
   const bool software = gpu::is_software_renderer();
   json modes = json::array();
@@ -285,7 +286,8 @@ void print_ddm_table(const json& j, std::ostream& out) {
         << "  DDM stage (an animated layer adds): " << cell(f["ddm_stage_ms"]["median"], 1) << "\n"
         << "  GLSL FOLLOW+FFD: frame " << cell(f["glsl_frame_ms"]["median"], 1) << ", layer pass "
         << cell(f["glsl_layer_ms"]["median"], 1) << "\n";
-  }  if (!j.contains("orbit") || j["orbit"].empty()) return;
+  }
+  if (!j.contains("orbit") || j["orbit"].empty()) return;
   out << "\norbit: default.jsonl, the teapot filled by the Tile Paint panel's defaults, 3 deg per frame, "
       << j["orbit_samples"] << " sample(s)\n";
   out << std::left << std::setw(15) << "case" << std::setw(12) << "mode" << std::right << std::setw(11) << "frame ms"
@@ -300,7 +302,6 @@ void print_ddm_table(const json& j, std::ostream& out) {
           << cell(m["drawn_median"], 0) << std::setw(10) << cell(m["culled_median"], 0) << std::setw(8)
           << cell(m["keep_median"], 3) << "\n";
   }
-
 }
 
 // The thorny bunny walking over the teapot (assets/scenes/thorny_walk.jsonl without its recording, thorns at
@@ -338,7 +339,8 @@ json run_follow(const BenchDdmOptions& o, gpu::Renderer& renderer, gpu::Offscree
   std::vector<double> reference_ms, ddm_ms;
   core::TriMesh reference;
   for (int f = 0; f < 3; ++f) {
-    reference_ms.push_back(bench_ms([&] { reference = core::ddm_layer_world_mesh(bunny, layer, *layer.mesh, time_of(f)); }));
+    reference_ms.push_back(
+        bench_ms([&] { reference = core::ddm_layer_world_mesh(bunny, layer, *layer.mesh, time_of(f)); }));
     ddm_ms.push_back(bench_ms([&] { (void)core::ddm_layer_mesh(layer, time_of(f)); }));
   }
   // cpu_fast: bound once, evaluated per frame with normals.
@@ -354,7 +356,8 @@ json run_follow(const BenchDdmOptions& o, gpu::Renderer& renderer, gpu::Offscree
   core::Aabb box;
   for (const glm::dvec3& q : reference.positions) box.extend(q);
   double worst = 0.0;
-  for (std::size_t v = 0; v < p.size(); ++v) worst = std::max(worst, glm::length(glm::dvec3(p[v]) - reference.positions[v]));
+  for (std::size_t v = 0; v < p.size(); ++v)
+    worst = std::max(worst, glm::length(glm::dvec3(p[v]) - reference.positions[v]));
   // GLSL: the renderer's FOLLOW + FFD variant (the whole frame, and the layer pass alone).
   core::Camera cam = scene.camera;
   cam.viewport = {o.width, o.height};
@@ -393,8 +396,10 @@ int run_bench_ddm(const BenchDdmOptions& options, std::ostream& out, std::ostrea
   std::vector<std::string> orbits;
   bool follow = false;
   for (const std::string& n : names)
-    if (std::find(kOrbitCases.begin(), kOrbitCases.end(), n) != kOrbitCases.end()) orbits.push_back(n);
-    else if (n == "follow_bunny") follow = true;
+    if (std::find(kOrbitCases.begin(), kOrbitCases.end(), n) != kOrbitCases.end())
+      orbits.push_back(n);
+    else if (n == "follow_bunny")
+      follow = true;
     else if (std::find(kCases.begin(), kCases.end(), n) == kCases.end()) {
       err << "bench ddm: unknown case '" << n
           << "' (thorns_face, thorns_teapot, chains_1m, chains_3m, orbit_default, orbit_fine, follow_bunny)\n";
@@ -412,7 +417,8 @@ int run_bench_ddm(const BenchDdmOptions& options, std::ostream& out, std::ostrea
     follow = false;
   }
   if (!orbits.empty() && !std::filesystem::exists(kDefaultScene)) {
-    err << "bench ddm: the orbit cases need " << kDefaultScene.string() << " (run the bench from the repository root)\n";
+    err << "bench ddm: the orbit cases need " << kDefaultScene.string()
+        << " (run the bench from the repository root)\n";
     return 1;
   }
   const bool have_face = std::filesystem::exists(kFaceScene) && std::filesystem::exists(kFaceMesh);

@@ -63,9 +63,11 @@ PlaceScene scene_lines(const std::string& name) {
   static const std::map<std::string, std::filesystem::path> kLogs = {
       {"teapot", "assets/scenes/default.jsonl"}, {"terrain", "tests/logs/real_mesh_on_terrain.jsonl"}};
   const auto log = kLogs.find(name);
-  if (log == kLogs.end()) throw std::invalid_argument("bench place: unknown scene '" + name + "' (use teapot or terrain)");
+  if (log == kLogs.end())
+    throw std::invalid_argument("bench place: unknown scene '" + name + "' (use teapot or terrain)");
   std::ifstream in(log->second);
-  if (!in) throw std::runtime_error("bench place: cannot read " + log->second.string() + " (run from the repository root)");
+  if (!in)
+    throw std::runtime_error("bench place: cannot read " + log->second.string() + " (run from the repository root)");
   PlaceScene s;
   for (std::string text; std::getline(in, text);) {
     if (text.empty() || text[0] == '#') continue;

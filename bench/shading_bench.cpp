@@ -9,6 +9,8 @@
 // (the first Material frame's MaterialTextures::texture), each the median of 5.
 // Prints figures; never asserts timings.
 //   build/bench/bench_shading [--frames N] [--width W] [--height H] [--samples S]
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imageio.h>
 #include <epoxy/gl.h>
 
 #include <algorithm>
@@ -19,9 +21,6 @@
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
 
 #include "core/mesh/material_image.h"
 #include "core/scene/camera.h"
@@ -120,7 +119,7 @@ std::vector<std::uint8_t> encode_jpeg(int n, const std::vector<std::uint8_t>& rg
 void texture_load(int n, int runs) {
   const std::vector<std::uint8_t> rgba = photo_like(n);
   const std::pair<const char*, std::vector<std::uint8_t>> files[] = {{"PNG", core::encode_png_rgba8(n, n, rgba)},
-                                                                      {"JPEG", encode_jpeg(n, rgba)}};
+                                                                     {"JPEG", encode_jpeg(n, rgba)}};
   for (const auto& [kind, bytes] : files) {
     std::vector<double> decode, upload;
     for (int r = 0; r < runs; ++r) {
@@ -134,8 +133,8 @@ void texture_load(int n, int runs) {
       glFinish();
       upload.push_back(ms_since(t0));
     }
-    std::printf("texture %d² %-4s (%6.1f MB encoded): decode median %7.1f ms, GL upload + mipmaps median %7.1f ms\n",
-                n, kind, double(bytes.size()) / 1e6, median(decode), median(upload));
+    std::printf("texture %d² %-4s (%6.1f MB encoded): decode median %7.1f ms, GL upload + mipmaps median %7.1f ms\n", n,
+                kind, double(bytes.size()) / 1e6, median(decode), median(upload));
   }
 }
 

@@ -1,5 +1,4 @@
 #include "editor/guarantees_view.h"
-#include "editor/elapsed.h"
 
 #include <imgui.h>
 
@@ -10,6 +9,7 @@
 
 #include "core/ffd/deformation_bounds.h"
 #include "core/ffd/ffd.h"
+#include "editor/elapsed.h"
 
 namespace trispline::editor {
 
@@ -20,12 +20,16 @@ using Clock = std::chrono::steady_clock;
 constexpr double kDecades = 3.0;  // the ramp spans max/1000 … max
 constexpr float kHeatAlpha = 0.82f;
 const glm::vec4 kUnbounded{0.92f, 0.25f, 0.92f, kHeatAlpha};
-const glm::vec4 kCertified{0.30f, 0.86f, 0.38f, 0.95f}, kFold{1.0f, 0.18f, 0.12f, 1.0f}, kUndecided{0.62f, 0.62f, 0.64f, 0.95f};
+const glm::vec4 kCertified{0.30f, 0.86f, 0.38f, 0.95f}, kFold{1.0f, 0.18f, 0.12f, 1.0f},
+    kUndecided{0.62f, 0.62f, 0.64f, 0.95f};
 
 // Display colour of t ∈ [0,1]: dark blue → blue → green → yellow → red.
 glm::vec4 ramp(double t) {
-  static const glm::vec3 stops[] = {{0.16f, 0.20f, 0.52f}, {0.14f, 0.52f, 0.86f}, {0.22f, 0.78f, 0.42f},
-                                    {0.96f, 0.84f, 0.20f}, {0.90f, 0.18f, 0.14f}};
+  static const glm::vec3 stops[] = {{0.16f, 0.20f, 0.52f},
+                                    {0.14f, 0.52f, 0.86f},
+                                    {0.22f, 0.78f, 0.42f},
+                                    {0.96f, 0.84f, 0.20f},
+                                    {0.90f, 0.18f, 0.14f}};
   t = std::clamp(t, 0.0, 1.0) * 4.0;
   const int i = std::min(static_cast<int>(t), 3);
   return {glm::mix(stops[i], stops[i + 1], static_cast<float>(t - i)), kHeatAlpha};
@@ -61,8 +65,10 @@ GuaranteesView::Result GuaranteesView::compute(const Input& in) {
       std::vector<double> finite;
       finite.reserve(b.size());
       for (double x : b) {
-        if (std::isfinite(x)) finite.push_back(x);
-        else ++r.unbounded;
+        if (std::isfinite(x))
+          finite.push_back(x);
+        else
+          ++r.unbounded;
       }
       r.max_bound = finite.empty() ? 0.0 : *std::max_element(finite.begin(), finite.end());
       if (!finite.empty()) {
@@ -259,10 +265,11 @@ void GuaranteesView::draw_legend(const ui::Rect& viewport) const {
   if (r.corners) {
     ImGui::TextUnformatted("Certified error bound (world units)");
     if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("Per triangle: an upper bound on the distance between the true deformed surface F(T) and\n"
-                        "the flat triangle drawn through its deformed corners (seed ch. 3: Filip et al.'s right-\n"
-                        "triangle bound and the smallest-enclosing-circle bound, from the lattice's second\n"
-                        "differences). Logarithmic colours over three decades below the largest bound.");
+      ImGui::SetTooltip(
+          "Per triangle: an upper bound on the distance between the true deformed surface F(T) and\n"
+          "the flat triangle drawn through its deformed corners (seed ch. 3: Filip et al.'s right-\n"
+          "triangle bound and the smallest-enclosing-circle bound, from the lattice's second\n"
+          "differences). Logarithmic colours over three decades below the largest bound.");
     const float w = 220.0f, h = 12.0f;
     const ImVec2 at = ImGui::GetCursorScreenPos();
     ImDrawList* dl = ImGui::GetWindowDrawList();
@@ -286,16 +293,17 @@ void GuaranteesView::draw_legend(const ui::Rect& viewport) const {
     if (r.unbounded > 0) {
       ImGui::TextColored(ImVec4(kUnbounded.x, kUnbounded.y, kUnbounded.z, 1.0f), "%zu unbounded", r.unbounded);
       if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("Triangles crossing a C0 knot plane (order 2) or leaving the lattice's domain: F is not\n"
-                          "smooth across them, so no bound holds. Refine (mesh.refine) to split them there.");
+        ImGui::SetTooltip(
+            "Triangles crossing a C0 knot plane (order 2) or leaving the lattice's domain: F is not\n"
+            "smooth across them, so no bound holds. Refine (mesh.refine) to split them there.");
     }
   }
   if (r.certificate) {
     if (r.corners) ImGui::Separator();
     const core::FoldCertificate& c = *r.certificate;
-    const glm::vec4 colour = c.verdict == core::FoldVerdict::fold      ? kFold
+    const glm::vec4 colour = c.verdict == core::FoldVerdict::fold        ? kFold
                              : c.verdict == core::FoldVerdict::undecided ? kUndecided
-                                                                          : kCertified;
+                                                                         : kCertified;
     const ImVec4 ic(colour.x, colour.y, colour.z, 1.0f);
     if (c.verdict == core::FoldVerdict::fold_free)
       ImGui::TextColored(ic, "Fold-free: certified (%zu cells)", c.cells);
@@ -304,10 +312,11 @@ void GuaranteesView::draw_legend(const ui::Rect& viewport) const {
     else
       ImGui::TextColored(ic, "Undecided in %zu of %zu cells", c.undecided_cells.size(), c.cells);
     if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("det J of the lattice as an exact Bernstein polynomial per Bezier cell, subdivided:\n"
-                        "green cells are certified det J > 0 (no fold), red cells fold (det J <= 0 at the red\n"
-                        "points), grey cells are undecided after 6 halvings. %.1f ms.",
-                        r.certificate_ms);
+      ImGui::SetTooltip(
+          "det J of the lattice as an exact Bernstein polynomial per Bezier cell, subdivided:\n"
+          "green cells are certified det J > 0 (no fold), red cells fold (det J <= 0 at the red\n"
+          "points), grey cells are undecided after 6 halvings. %.1f ms.",
+          r.certificate_ms);
   }
   ImGui::End();
 }

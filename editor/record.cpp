@@ -1,5 +1,4 @@
 #include "editor/record.h"
-#include "editor/elapsed.h"
 
 #include <OpenImageIO/imageio.h>
 #include <sys/stat.h>
@@ -20,6 +19,7 @@
 #include "core/mesh/gltf_anim_io.h"
 #include "core/mesh/image_io.h"
 #include "core/scene/scene_export.h"
+#include "editor/elapsed.h"
 #include "editor/process.h"
 #include "editor/render_scene.h"
 

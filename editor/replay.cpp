@@ -1,5 +1,4 @@
 #include "editor/replay.h"
-#include "editor/elapsed.h"
 
 #include <chrono>
 #include <cmath>
@@ -15,6 +14,7 @@
 #include "core/scene/scene_export.h"
 #include "editor/command_log.h"
 #include "editor/command_registry.h"
+#include "editor/elapsed.h"
 #include "editor/record.h"
 #include "editor/render_scene.h"
 #include "ui/frame_timings.h"

@@ -5,9 +5,9 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/type_ptr.hpp>
-#include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -103,9 +103,11 @@ void record_tile_vao(const TileBuffers& tile, GLuint vao, GLuint instances) {
   glEnableVertexAttribArray(4);
   glVertexAttribIPointer(4, 1, GL_INT, stride, reinterpret_cast<const void*>(offsetof(InstanceRecord, slot)));
   glEnableVertexAttribArray(5);
-  glVertexAttribPointer(5, 2, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<const void*>(offsetof(InstanceRecord, origin)));
+  glVertexAttribPointer(5, 2, GL_FLOAT, GL_FALSE, stride,
+                        reinterpret_cast<const void*>(offsetof(InstanceRecord, origin)));
   glEnableVertexAttribArray(6);
-  glVertexAttribPointer(6, 2, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<const void*>(offsetof(InstanceRecord, size)));
+  glVertexAttribPointer(6, 2, GL_FLOAT, GL_FALSE, stride,
+                        reinterpret_cast<const void*>(offsetof(InstanceRecord, size)));
   for (GLuint a = 4; a <= 6; ++a) glVertexAttribDivisor(a, 1);
   glBindVertexArray(0);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
@@ -130,17 +132,17 @@ struct DdmGl::LayerGl {
     GLuint selected_first = 0;  // the tile's run in `selected`
     GLsizei selected_count = 0;
   };
-  std::shared_ptr<const core::DdmLayer> layer;  // held so the address cannot be reused
+  std::shared_ptr<const core::DdmLayer> layer;         // held so the address cannot be reused
   std::shared_ptr<const core::MaterialSet> materials;  // core::ddm_tile_materials(layer.tiles).set, or null
-  Buffer instances;                             // InstanceRecord per instance, grouped by tile (stable)
-  std::vector<InstanceRecord> records;          // its contents (the source of `selected`)
-  std::vector<TileGl> tiles;                    // per layer tile
-  std::vector<std::size_t> grouped;             // position in the instance buffer → index in layer.instances
-  std::size_t vertices = 0;                     // Σ instances × tile vertices
-  Buffer follow;                                // FollowRecord per instance (grouped order), when drawn following
-  std::vector<FollowRecord> follow_uploaded;    // what `follow` holds
-  Buffer selected;                              // the instances of the last DdmSelection, grouped by tile
-  std::uint64_t selected_version = 0;           // its version (0: none uploaded yet)
+  Buffer instances;                                    // InstanceRecord per instance, grouped by tile (stable)
+  std::vector<InstanceRecord> records;                 // its contents (the source of `selected`)
+  std::vector<TileGl> tiles;                           // per layer tile
+  std::vector<std::size_t> grouped;                    // position in the instance buffer → index in layer.instances
+  std::size_t vertices = 0;                            // Σ instances × tile vertices
+  Buffer follow;                              // FollowRecord per instance (grouped order), when drawn following
+  std::vector<FollowRecord> follow_uploaded;  // what `follow` holds
+  Buffer selected;                            // the instances of the last DdmSelection, grouped by tile
+  std::uint64_t selected_version = 0;         // its version (0: none uploaded yet)
   std::size_t selected_vertices = 0;
 
   // Without a partner the tile itself (drawn with α = 0, so V = V1 exactly).
@@ -263,10 +265,9 @@ DdmGl::LayerGl& DdmGl::layer_for(const std::shared_ptr<const core::DdmLayer>& la
     const std::size_t own = l.tiles[t].materials ? l.tiles[t].materials->materials.size() : 0;
     for (std::size_t f = 0; f < mesh.triangle_count(); ++f) {
       const core::MaterialSlot local = f < mesh.face_material.size() ? mesh.face_material[f] : core::kMaterialSurface;
-      const core::MaterialSlot slot =
-          !g->materials || local == core::kMaterialInside
-              ? (g->materials ? local : core::kMaterialSurface)
-              : core::MaterialSlot(materials.first_slot[t] + (local < own ? local : 0));
+      const core::MaterialSlot slot = !g->materials || local == core::kMaterialInside
+                                          ? (g->materials ? local : core::kMaterialSurface)
+                                          : core::MaterialSlot(materials.first_slot[t] + (local < own ? local : 0));
       order[f] = {slot, std::uint32_t(f)};
     }
     std::stable_sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
@@ -359,8 +360,7 @@ void DdmGl::bind_follow(LayerGl& g, const ShaderProgram& p, const DdmFollow& fol
     const core::Embedding& e = d.embedding();
     glUniformMatrix3fv(p.uniform("u_embed_linear"), 1, GL_FALSE, glm::value_ptr(glm::mat3(e.linear)));
     p.set("u_embed_shift", glm::vec3(e.offset));
-    glUniformMatrix3fv(p.uniform("u_embed_inverse"), 1, GL_FALSE,
-                       glm::value_ptr(glm::mat3(glm::inverse(e.linear))));
+    glUniformMatrix3fv(p.uniform("u_embed_inverse"), 1, GL_FALSE, glm::value_ptr(glm::mat3(glm::inverse(e.linear))));
     p.set("u_param_offset", glm::vec3(d.offset()));
     glUniform1i(p.uniform("u_identity_outside"), d.identity_outside() ? 1 : 0);
     follow.lattice->bind();

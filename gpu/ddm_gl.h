@@ -31,8 +31,8 @@
 
 #include "core/ddm/ddm_layer.h"
 #include "core/scene/ddm_follow.h"
-#include "gpu/ffd_gl_lattice.h"
 #include "gpu/ffd_gl.h"
+#include "gpu/ffd_gl_lattice.h"
 #include "gpu/gl_resource.h"
 #include "gpu/shader_program.h"
 

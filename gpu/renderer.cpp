@@ -280,9 +280,8 @@ void Renderer::Impl::pass_ddm_layers(const Frame& f, std::optional<GpuTimer::Sco
   draw_scope.reset();
   {
     GpuTimer::Scope ddm_scope(ddm_timer);
-    const detail::DdmDrawn drawn =
-        ddm.draw_shaded(f.scene, f.options.time_s, f.view_proj, f.eye, f.key, f.options.selected, f.options.ddm,
-                        f.material ? &textures : nullptr);
+    const detail::DdmDrawn drawn = ddm.draw_shaded(f.scene, f.options.time_s, f.view_proj, f.eye, f.key,
+                                                   f.options.selected, f.options.ddm, f.material ? &textures : nullptr);
     stats.ddm_layers_drawn = drawn.layers;
     stats.ddm_layers_following = drawn.following;
     stats.ddm_vertices = drawn.vertices;

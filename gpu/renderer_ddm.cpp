@@ -87,7 +87,9 @@ DdmDrawn DdmDisplay::draw_object(const core::SceneObject& o, double time_s, cons
     ShaderDefines defines = variant;
     if (set) defines.push_back({"MATERIAL", ""});
     const ShaderProgram* program = nullptr;
-    const DdmMaterialBinder binder = [&](core::MaterialSlot slot) { bind_tile_material(*textures, *set, slot, *program); };
+    const DdmMaterialBinder binder = [&](core::MaterialSlot slot) {
+      bind_tile_material(*textures, *set, slot, *program);
+    };
     const DdmMaterialBinder* bind = set ? &binder : nullptr;
     if (follow) {
       const core::DdmLayerDeformation d(o, *layer, time_s);
@@ -226,8 +228,8 @@ DdmDrawn DdmDisplay::draw_shaded(const core::Scene& scene, double time_s, const 
     if (!o.visible || o.ddm_layers.empty()) continue;
     const bool is_selected = !selected.empty() && o.name == selected;
     glStencilFunc(GL_ALWAYS, is_selected ? 1 : 0, 0xFF);
-    const DdmDrawn d = draw_object(o, time_s, {}, ShadedSetup{view_proj, eye, key_dir, o.color, is_selected ? 1.0f : 0.0f},
-                                   textures);
+    const DdmDrawn d =
+        draw_object(o, time_s, {}, ShadedSetup{view_proj, eye, key_dir, o.color, is_selected ? 1.0f : 0.0f}, textures);
     drawn.layers += d.layers;
     drawn.following += d.following;
     drawn.vertices += d.vertices;

@@ -75,8 +75,8 @@ class DdmDisplay {
   // selection); `setup` sets the program's pass uniforms whenever a program is first used. Returns what was drawn.
   // With `textures`, texture-mapped layers use the MATERIAL variant and their materials.
   template <class Setup>
-  DdmDrawn draw_object(const core::SceneObject& object, double time_s, const ShaderDefines& variant,
-                       const Setup& setup, MaterialTextures* textures = nullptr);
+  DdmDrawn draw_object(const core::SceneObject& object, double time_s, const ShaderDefines& variant, const Setup& setup,
+                       MaterialTextures* textures = nullptr);
   const FfdLatticeBuffers& lattice_buffers(const core::DdmLayerDeformation& d);
 
   DdmGl gl_;

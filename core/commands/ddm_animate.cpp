@@ -44,22 +44,40 @@ const ParamSchema<DdmAnimateParams>& DdmAnimateCommand::schema() {
   static const ParamSchema<P> s =
       ParamSchema<P>("ddm.animate",
                      "Animate a tile layer: texture-space offset and metamorphosis to another tile (seed §5.4.2)")
-          .field("object", &P::object).required().help("The object holding the layer")
-          .field("layer", &P::layer).required().help("The layer to animate")
-          .field("clear", &P::clear).write_unless_default()
+          .field("object", &P::object)
+          .required()
+          .help("The object holding the layer")
+          .field("layer", &P::layer)
+          .required()
+          .help("The layer to animate")
+          .field("clear", &P::clear)
+          .write_unless_default()
           .help("Remove the layer's animation first (the other fields of the line then apply)")
-          .custom("morph_tile", read_morph_tile, write_morph).type_text("string").default_text("kept")
+          .custom("morph_tile", read_morph_tile, write_morph)
+          .type_text("string")
+          .default_text("kept")
           .help("Metamorphosis partner of the layer's tile (as ddm.fill's tile), of the same topology; \"\" removes it")
-          .custom("morph_tiles", read_morph_tiles, write_morph).type_text("[string,…]").default_text("kept")
+          .custom("morph_tiles", read_morph_tiles, write_morph)
+          .type_text("[string,…]")
+          .default_text("kept")
           .help("One morph tile per tile of a several-tile layer (instead of morph_tile)")
-          .field("alpha_keys", &P::alpha_keys).type_text("[[frame,α],…]").default_text("kept")
+          .field("alpha_keys", &P::alpha_keys)
+          .type_text("[[frame,α],…]")
+          .default_text("kept")
           .help("[timeline frame, α] keys of the metamorphosis, V = V1·(1 − α) + V2·α (Eq. 5.3)")
-          .field("offset_keys", &P::offset_keys).type_text("[[frame,du,dv],…]").default_text("kept")
+          .field("offset_keys", &P::offset_keys)
+          .type_text("[[frame,du,dv],…]")
+          .default_text("kept")
           .help("[frame, du, dv] keys of the tiles' texture-space offset, chart parameter units")
-          .field("offset_velocity", &P::offset_velocity).type_text("[du,dv]").default_text("kept")
+          .field("offset_velocity", &P::offset_velocity)
+          .type_text("[du,dv]")
+          .default_text("kept")
           .help("Offset added per second, chart parameter units")
-          .field("alpha", &P::alpha).default_text("kept").help("α shown when there are no alpha keys (0 at first)")
-          .choice("interpolation", &P::interpolation, {"linear", "constant", "smooth"}).write_unless_default()
+          .field("alpha", &P::alpha)
+          .default_text("kept")
+          .help("α shown when there are no alpha keys (0 at first)")
+          .choice("interpolation", &P::interpolation, {"linear", "constant", "smooth"})
+          .write_unless_default()
           .help("How this line's keys move to the next key");
   return s;
 }
@@ -80,7 +98,8 @@ std::optional<SceneObject> DdmAnimateCommand::build(const Scene& scene) {
     if (!remove) {
       if (p_.morph->size() != layer->tiles.size())
         throw CommandError("field 'morph_tile': the layer has " + std::to_string(layer->tiles.size()) +
-                               " tiles; give one morph tile per tile (morph_tiles)", "morph_tile");
+                               " tiles; give one morph tile per tile (morph_tiles)",
+                           "morph_tile");
       for (std::size_t i = 0; i < p_.morph->size(); ++i) {
         DdmTile partner = load_ddm_tile((*p_.morph)[i], ddm_tile_file(*p_.morph, p_.morph_paths, i), "morph_tile");
         try {
@@ -98,15 +117,18 @@ std::optional<SceneObject> DdmAnimateCommand::build(const Scene& scene) {
     for (const glm::dvec2& r : *p_.alpha_keys) rows.push_back({r.x, r.y, 0.0});
     layer->alpha_keys = keys_from_frames(rows, false, scene.timeline, interpolation, "alpha_keys");
   }
-  if (p_.offset_keys) layer->offset_keys = keys_from_frames(*p_.offset_keys, true, scene.timeline, interpolation, "offset_keys");
+  if (p_.offset_keys)
+    layer->offset_keys = keys_from_frames(*p_.offset_keys, true, scene.timeline, interpolation, "offset_keys");
   if (p_.offset_velocity) layer->offset_velocity = *p_.offset_velocity;
   if (p_.alpha) layer->alpha = *p_.alpha;
   if (layer->morph_tiles.empty() && (!layer->alpha_keys.empty() || layer->alpha != 0.0))
     throw CommandError("field 'alpha_keys': layer '" + p_.layer + "' has no morph tile to blend to (give morph_tile)",
                        "alpha_keys");
   layer->mesh = std::make_shared<const TriMesh>(ddm_layer_mesh(*layer, 0.0));
-  stats_ = {{"alpha_keys", layer->alpha_keys.size()}, {"offset_keys", layer->offset_keys.size()},
-            {"morph", !layer->morph_tiles.empty()}, {"vertices", layer->mesh->vertex_count()}};
+  stats_ = {{"alpha_keys", layer->alpha_keys.size()},
+            {"offset_keys", layer->offset_keys.size()},
+            {"morph", !layer->morph_tiles.empty()},
+            {"vertices", layer->mesh->vertex_count()}};
   return with_ddm_layer(*object, std::move(layer));
 }
 

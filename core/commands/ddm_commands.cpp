@@ -2,15 +2,13 @@
 // Source: seed ch. 5 (Eq. 5.1–5.2, §5.3, Fig. 5.11–5.12).
 #include "core/commands/ddm_commands.h"
 
-#include "core/scene/ddm_follow.h"
-
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <deque>
-#include <mutex>
-#include <cmath>
 #include <memory>
+#include <mutex>
 #include <random>
 #include <stdexcept>
 
@@ -19,11 +17,11 @@
 #include "core/ddm/ddm_chart_size.h"
 #include "core/mesh/mesh_io.h"
 #include "core/mesh/model_load.h"
+#include "core/scene/ddm_follow.h"
 #include "core/scene/primitives.h"
 
 namespace trispline::core {
 namespace {
-
 
 using S = DdmLayerSpec;
 using Field = ParamSchema<S>::Field;
@@ -77,11 +75,17 @@ const ParamSchema<DdmTileTransform>& tile_transform_schema() {
   using T = DdmTileTransform;
   static const ParamSchema<T> s =
       ParamSchema<T>("tile_transform", "A layer's transform in its tiles' texture space")
-          .field_as<UniformVec2Codec>("tile_scale", &T::scale).above(0).write_unless_default()
+          .field_as<UniformVec2Codec>("tile_scale", &T::scale)
+          .above(0)
+          .write_unless_default()
           .help("Tile units per cell along x, y (one number: both); 1 = the tile fills its cell")
-          .field("tile_rotate_deg", &T::rotate_deg).write_unless_default().unit("degrees")
+          .field("tile_rotate_deg", &T::rotate_deg)
+          .write_unless_default()
+          .unit("degrees")
           .help("Rotation of the tile in its cell, counter-clockwise")
-          .field_as<UniformVec2Codec>("tile_shift", &T::shift).write_unless_default().unit("cell units")
+          .field_as<UniformVec2Codec>("tile_shift", &T::shift)
+          .write_unless_default()
+          .unit("cell units")
           .help("Shift of the tile in its cell (one number: both)");
   return s;
 }
@@ -89,33 +93,61 @@ const ParamSchema<DdmTileTransform>& tile_transform_schema() {
 ParamSchema<S> make_layer_schema(bool fill) {
   const auto several = [](const S& s) { return s.tiles.size() > 1; };
   return ParamSchema<S>("ddm.layer", "The fields that make a tile layer")
-      .custom("tile", read_tile, write_tile).type_text("string").default_text("thorn").required(fill)
-      .help("A generated tile (thorn, chain, hex, flower) or a mesh file (OBJ/PLY/glTF) relative to the log's folder, "
-            "logged absolute")
-      .custom("tiles", read_more_tiles, write_more_tiles).type_text("[string,…]").default_text("[]")
+      .custom("tile", read_tile, write_tile)
+      .type_text("string")
+      .default_text("thorn")
+      .required(fill)
+      .help(
+          "A generated tile (thorn, chain, hex, flower) or a mesh file (OBJ/PLY/glTF) relative to the log's folder, "
+          "logged absolute")
+      .custom("tiles", read_more_tiles, write_more_tiles)
+      .type_text("[string,…]")
+      .default_text("[]")
       .help("More tiles for the layer (as tile), chosen per cell by choice")
-      .choice("choice", &S::choice, {"pattern", "random"}).write_if(several)
+      .choice("choice", &S::choice, {"pattern", "random"})
+      .write_if(several)
       .help("With several tiles: cell k of row r gets tile (k + r) mod #tiles, or one drawn with seed")
-      .field("seed", &S::seed).write_unless_default().write_if(several).help("Seed of random's mt19937")
-      .choice("layout", &S::layout, {"rect", "hex", "brick"}).required(fill)
+      .field("seed", &S::seed)
+      .write_unless_default()
+      .write_if(several)
+      .help("Seed of random's mt19937")
+      .choice("layout", &S::layout, {"rect", "hex", "brick"})
+      .required(fill)
       .help("Cells per chart: rect n × m; hex and brick shift odd rows (n ≥ 2)")
-      .field("counts", &S::counts).default_text(fill ? "required without tile_size" : "[1,1]")
+      .field("counts", &S::counts)
+      .default_text(fill ? "required without tile_size" : "[1,1]")
       .help("Cells per chart n × m (the seed's parametric layouts); not with tile_size")
-      .field("tile_size", &S::tile_size).above(0).unit("world units")
+      .field("tile_size", &S::tile_size)
+      .above(0)
+      .unit("world units")
       .help("Tile width in object space: every chart gets the cells that make its tiles this size (not with counts)")
-      .field("max_vertices", &S::max_vertices).range(1, double(kMaxDdmLayerVertices)).unit("tile vertices")
+      .field("max_vertices", &S::max_vertices)
+      .range(1, double(kMaxDdmLayerVertices))
+      .unit("tile vertices")
       .default_text("10000000")
       .help("Refuse a layer of more tile vertices than this, counted before it is built (ddm.paint: after the stroke)")
-      .field("height", &S::height).required(fill).above(0).unit("world units")
+      .field("height", &S::height)
+      .required(fill)
+      .above(0)
+      .unit("world units")
       .help("World units (object space) per tile unit of w, along the base normal")
-      .choice("base", &S::base, {"limit", "teapot_body", "uv", "auto_uv"}).write_unless_default()
-      .help("limit: Loop limit surface, three charts per triangle; teapot_body: the teapot's body patches as one "
-            "chart; uv: the mesh's texture coordinates; auto_uv: automatic ones (seams, CGAL LSCM, even density)")
-      .custom("map_resolution", read_map_resolution, write_map_resolution).type_text("integer or [a,b]")
-      .default_text("[9,9] limit, [513,257] teapot_body, [1025,1025] uv and auto_uv").range(2, 4097)
-      .unit("samples per chart edge").help("P/N map samples per chart edge; square for uv")
+      .choice("base", &S::base, {"limit", "teapot_body", "uv", "auto_uv"})
+      .write_unless_default()
+      .help(
+          "limit: Loop limit surface, three charts per triangle; teapot_body: the teapot's body patches as one "
+          "chart; uv: the mesh's texture coordinates; auto_uv: automatic ones (seams, CGAL LSCM, even density)")
+      .custom("map_resolution", read_map_resolution, write_map_resolution)
+      .type_text("integer or [a,b]")
+      .default_text("[9,9] limit, [513,257] teapot_body, [1025,1025] uv and auto_uv")
+      .range(2, 4097)
+      .unit("samples per chart edge")
+      .help("P/N map samples per chart edge; square for uv")
       .embed(&S::transform, tile_transform_schema())
-      .field("color", &S::color).type_text("[r,g,b]").range(0, 1).unit("linear RGB").default_text("the object's")
+      .field("color", &S::color)
+      .type_text("[r,g,b]")
+      .range(0, 1)
+      .unit("linear RGB")
+      .default_text("the object's")
       .help("The layer's own colour")
       .check([fill](S& s) {  // the layout's own checks, before anything is built
         if (s.counts && s.tile_size)
@@ -141,8 +173,8 @@ ParamSchema<S> make_layer_schema(bool fill) {
 // The teapot primitive's body patches as one chart, periodic round the pot; CommandError ("base") on another object.
 std::shared_ptr<DdmBase> teapot_body_base(const SceneObject& object) {
   if (object.source != "primitive:teapot")
-    throw CommandError("field 'base': teapot_body needs the teapot primitive; '" + object.name + "' is " +
-                           object.source, "base");
+    throw CommandError(
+        "field 'base': teapot_body needs the teapot primitive; '" + object.name + "' is " + object.source, "base");
   return std::make_shared<DdmSplineBase>(teapot_body_patches(), glm::ivec2(4, 2), glm::bvec2(true, false));
 }
 
@@ -255,8 +287,10 @@ std::vector<glm::ivec2> ddm_fill_chart_counts(const DdmLayerSpec& spec, DdmBaseK
       counts.assign(static_cast<std::size_t>(charts), spec.counts.value_or(glm::ivec2(1)));
     } else {
       std::vector<glm::dvec2> sizes;
-      if (base == DdmBaseKind::limit) sizes = ddm_limit_chart_sizes(base_mesh);
-      else if (!surface) sizes.assign(1, ddm_uv_chart_size(base_mesh));
+      if (base == DdmBaseKind::limit)
+        sizes = ddm_limit_chart_sizes(base_mesh);
+      else if (!surface)
+        sizes.assign(1, ddm_uv_chart_size(base_mesh));
       else
         for (int c = 0; c < charts; ++c) sizes.push_back(ddm_chart_size(*surface, c));
       if (static_cast<int>(sizes.size()) != charts)
@@ -325,8 +359,9 @@ DdmFillEstimate ddm_fill_estimate(const SceneObject& object, const DdmLayerSpec&
   if (!object.rest_mesh) throw CommandError("field 'object': '" + object.name + "' has no mesh", "object");
   std::size_t largest = 0;
   for (std::size_t i = 0; i < spec.tiles.size(); ++i)
-    largest = std::max(largest, load_ddm_tile(spec.tiles[i], ddm_tile_file(spec.tiles, spec.tile_paths, i),
-                                              i == 0 ? "tile" : "tiles").mesh.vertex_count());
+    largest = std::max(
+        largest, load_ddm_tile(spec.tiles[i], ddm_tile_file(spec.tiles, spec.tile_paths, i), i == 0 ? "tile" : "tiles")
+                     .mesh.vertex_count());
   std::shared_ptr<DdmBase> surface;
   int charts = 1;
   if (spec.base == DdmBaseKind::teapot_body) {
@@ -377,9 +412,12 @@ const ParamSchema<DdmFillParams>& DdmFillCommand::schema() {
   using P = DdmFillParams;
   static const ParamSchema<P> s =
       ParamSchema<P>("ddm.fill", "Cover an object's surface with a layer of geometric tiles (DDM, seed ch. 5)")
-          .field("object", &P::object).required()
+          .field("object", &P::object)
+          .required()
           .help("The object; tiles lie on its rest surface and ride on its deformation (FFD, DFFD, clip, incision)")
-          .field("layer", &P::layer).required().help("Name of the layer; a layer of that name is replaced")
+          .field("layer", &P::layer)
+          .required()
+          .help("Name of the layer; a layer of that name is replaced")
           .check([](const P& p) { check_ddm_layer_name(p.layer); })
           .embed(&P::spec, ddm_layer_schema(true));
   return s;
@@ -416,13 +454,20 @@ const ParamSchema<DdmBakeParams>& DdmBakeCommand::schema() {
   using P = DdmBakeParams;
   static const ParamSchema<P> s =
       ParamSchema<P>("ddm.bake", "Turn a tile layer into an ordinary mesh object (for export)")
-          .field("object", &P::object).required().help("The object holding the layer")
-          .field("layer", &P::layer).required().help("The layer to bake")
-          .field("name", &P::name).required().help("Id of the new object; an existing name is an error")
+          .field("object", &P::object)
+          .required()
+          .help("The object holding the layer")
+          .field("layer", &P::layer)
+          .required()
+          .help("The layer to bake")
+          .field("name", &P::name)
+          .required()
+          .help("Id of the new object; an existing name is an error")
           .check([](const P& p) {
             if (const std::string bad = object_name_error(p.name); !bad.empty()) params::fail("name", bad);
           })
-          .field("frame", &P::frame).default_text("scene time 0")
+          .field("frame", &P::frame)
+          .default_text("scene time 0")
           .help("Timeline frame of the layer's animation to bake");
   return s;
 }
@@ -432,8 +477,7 @@ std::string DdmBakeCommand::label() const { return "Bake " + p_.object + "/" + p
 std::optional<SceneObject> DdmBakeCommand::build(const Scene& scene) {
   const SceneObject* object = &require_object(scene, p_.object);
   const std::shared_ptr<const DdmLayer> layer = find_ddm_layer(*object, p_.layer);
-  if (scene.find(p_.name))
-    throw CommandError("field 'name': an object named '" + p_.name + "' already exists", "name");
+  if (scene.find(p_.name)) throw CommandError("field 'name': an object named '" + p_.name + "' already exists", "name");
   SceneObject baked;
   baked.name = p_.name;
   baked.source = "ddm.bake:" + p_.object + "/" + p_.layer;
@@ -481,12 +525,19 @@ void write_layer_color(const ParamSchema<DdmColorParams>::Field& f, const DdmCol
 
 const ParamSchema<DdmColorParams>& DdmColorCommand::schema() {
   using P = DdmColorParams;
-  static const ParamSchema<P> s =
-      ParamSchema<P>("ddm.color", "Give a tile layer its own colour, or its object's again")
-          .field("object", &P::object).required().help("The object holding the layer")
-          .field("layer", &P::layer).required().help("The layer to colour")
-          .custom("color", read_layer_color, write_layer_color).required().type_text("[r,g,b] or null")
-          .range(0, 1).unit("linear RGB").help("The layer's own colour; null: its object's again");
+  static const ParamSchema<P> s = ParamSchema<P>("ddm.color", "Give a tile layer its own colour, or its object's again")
+                                      .field("object", &P::object)
+                                      .required()
+                                      .help("The object holding the layer")
+                                      .field("layer", &P::layer)
+                                      .required()
+                                      .help("The layer to colour")
+                                      .custom("color", read_layer_color, write_layer_color)
+                                      .required()
+                                      .type_text("[r,g,b] or null")
+                                      .range(0, 1)
+                                      .unit("linear RGB")
+                                      .help("The layer's own colour; null: its object's again");
   return s;
 }
 
@@ -505,8 +556,12 @@ std::optional<SceneObject> DdmColorCommand::build(const Scene& scene) {
 const ParamSchema<DdmRemoveParams>& DdmRemoveCommand::schema() {
   using P = DdmRemoveParams;
   static const ParamSchema<P> s = ParamSchema<P>("ddm.remove", "Delete a tile layer")
-                                      .field("object", &P::object).required().help("The object holding the layer")
-                                      .field("layer", &P::layer).required().help("The layer to delete");
+                                      .field("object", &P::object)
+                                      .required()
+                                      .help("The object holding the layer")
+                                      .field("layer", &P::layer)
+                                      .required()
+                                      .help("The layer to delete");
   return s;
 }
 

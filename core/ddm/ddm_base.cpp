@@ -3,21 +3,18 @@
 // Eq. 5.3 (metamorphosis), Fig. 5.11–5.12 (hexagonal and brick layouts).
 #include "core/ddm/ddm_base.h"
 
-#include "core/ddm/ddm_layer.h"
-
-#include <algorithm>
-#include <cmath>
-#include <stdexcept>
-#include <limits>
-#include <string>
-
+#include <opensubdiv/bfr/refinerSurfaceFactory.h>
+#include <opensubdiv/bfr/surface.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
 
-#include <opensubdiv/bfr/refinerSurfaceFactory.h>
-#include <opensubdiv/bfr/surface.h>
-
+#include "core/ddm/ddm_layer.h"
 #include "core/mesh/osd_topology.h"
 
 namespace trispline::core {
@@ -59,7 +56,8 @@ DdmSurfacePoint DdmSplineBase::eval(int chart, double u, double v) const {
   v = periodic_.y ? wrap01(v) : clamp01(v);
   if (grid_.x == 0) return eval_patch(chart, u, v);
   // One chart over the grid: patch (i, j) covers [i/c, (i+1)/c] × [j/r, (j+1)/r]; the chain rule scales by (c, r).
-  const int i = std::min(static_cast<int>(u * grid_.x), grid_.x - 1), j = std::min(static_cast<int>(v * grid_.y), grid_.y - 1);
+  const int i = std::min(static_cast<int>(u * grid_.x), grid_.x - 1),
+            j = std::min(static_cast<int>(v * grid_.y), grid_.y - 1);
   DdmSurfacePoint q = eval_patch(i + grid_.x * j, u * grid_.x - i, v * grid_.y - j);
   q.du *= grid_.x, q.dn_du *= grid_.x;
   q.dv *= grid_.y, q.dn_dv *= grid_.y;
@@ -71,9 +69,7 @@ DdmSurfacePoint DdmSplineBase::eval_patch(int patch, double u, double v) const {
   const KnotVector &ku = S.knots(0), &kv = S.knots(1);
   const double su = ku.domain_max() - ku.domain_min(), sv = kv.domain_max() - kv.domain_min();
   u = clamp01(u), v = clamp01(v);
-  auto at = [&](double a, double b) {
-    return S.eval_second(ku.domain_min() + su * a, kv.domain_min() + sv * b);
-  };
+  auto at = [&](double a, double b) { return S.eval_second(ku.domain_min() + su * a, kv.domain_min() + sv * b); };
   DdmSurfacePoint q;
   const auto d = at(u, v);
   q.p = d.value;
@@ -98,19 +94,26 @@ glm::dmat2 DdmTileTransform::linear() const {
 
 const char* ddm_base_name(DdmBaseKind k) {
   switch (k) {
-    case DdmBaseKind::teapot_body: return "teapot_body";
-    case DdmBaseKind::uv: return "uv";
-    case DdmBaseKind::auto_uv: return "auto_uv";
-    case DdmBaseKind::limit: break;
+    case DdmBaseKind::teapot_body:
+      return "teapot_body";
+    case DdmBaseKind::uv:
+      return "uv";
+    case DdmBaseKind::auto_uv:
+      return "auto_uv";
+    case DdmBaseKind::limit:
+      break;
   }
   return "limit";
 }
 
 const char* ddm_layout_name(DdmLayout l) {
   switch (l) {
-    case DdmLayout::rect: return "rect";
-    case DdmLayout::hex: return "hex";
-    case DdmLayout::brick: return "brick";
+    case DdmLayout::rect:
+      return "rect";
+    case DdmLayout::hex:
+      return "hex";
+    case DdmLayout::brick:
+      return "brick";
   }
   return "rect";
 }
@@ -251,9 +254,11 @@ TriMesh ddm_evaluate(const DdmBase& base, const std::vector<DdmTile>& tiles, con
           out.normals[first[k] + v] = len > 0.0 && std::isfinite(len) ? n / len : s.n;
         }
         const auto off = static_cast<unsigned>(first[k]);
-        for (std::size_t f = 0; f < tm.triangle_count(); ++f) out.triangles[first_tri[k] + f] = tm.triangles[f] + glm::uvec3(off);
-        if (materials.set) copy_tile_materials(tiles[std::size_t(inst.tile)], materials.first_slot[std::size_t(inst.tile)],
-                                               out, first[k], first_tri[k]);
+        for (std::size_t f = 0; f < tm.triangle_count(); ++f)
+          out.triangles[first_tri[k] + f] = tm.triangles[f] + glm::uvec3(off);
+        if (materials.set)
+          copy_tile_materials(tiles[std::size_t(inst.tile)], materials.first_slot[std::size_t(inst.tile)], out,
+                              first[k], first_tri[k]);
       }
     });
   }
@@ -287,7 +292,7 @@ DdmTile ddm_morph(const DdmTile& a, const DdmTile& b, double alpha) {
 
 struct DdmSubdivBase::Impl {
   std::vector<OpenSubdiv::Bfr::Surface<double>> surfaces;  // per face
-  std::vector<std::vector<double>> patch_points;             // per face, 3 doubles per patch point
+  std::vector<std::vector<double>> patch_points;           // per face, 3 doubles per patch point
 };
 
 DdmSubdivBase::DdmSubdivBase(const TriMesh& mesh) : impl_(std::make_unique<Impl>()) {
@@ -365,8 +370,8 @@ DdmSurfacePoint DdmSubdivBase::eval(int chart, double u, double v) const {
   const glm::dvec2 quv = A - B + C - D;  // q_uu = q_vv = 0 (bilinear)
   const double st[2] = {q.x, q.y};
   double P[3], Ds[3], Dt[3], Dss[3], Dst[3], Dtt[3];
-  impl_->surfaces[f].Evaluate(st, impl_->patch_points[f].data(),
-                              OpenSubdiv::Bfr::Surface<double>::PointDescriptor(3), P, Ds, Dt, Dss, Dst, Dtt);
+  impl_->surfaces[f].Evaluate(st, impl_->patch_points[f].data(), OpenSubdiv::Bfr::Surface<double>::PointDescriptor(3),
+                              P, Ds, Dt, Dss, Dst, Dtt);
   const glm::dvec3 Ss(Ds[0], Ds[1], Ds[2]), St(Dt[0], Dt[1], Dt[2]), Sss(Dss[0], Dss[1], Dss[2]),
       Sst(Dst[0], Dst[1], Dst[2]), Stt(Dtt[0], Dtt[1], Dtt[2]);
   DdmSurfacePoint out;

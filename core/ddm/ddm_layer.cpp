@@ -94,8 +94,8 @@ TriMesh mesh_reusing(const DdmLayer& layer, const DdmLayer& previous) {
   const std::size_t old_vertices = old_at.vertex.back();
   if (!previous.mesh || previous.mesh->vertex_count() != old_vertices || previous.mesh->normals.size() != old_vertices)
     return ddm_layer_mesh(layer, 0.0);
-  if (ddm_tile_materials(layer.tiles).set && (previous.mesh->uvs.size() != old_vertices ||
-                                             previous.mesh->face_material.size() != old_at.triangle.back()))
+  if (ddm_tile_materials(layer.tiles).set &&
+      (previous.mesh->uvs.size() != old_vertices || previous.mesh->face_material.size() != old_at.triangle.back()))
     return ddm_layer_mesh(layer, 0.0);
   for (std::size_t c = 0; c < previous.maps->slot_of_chart.size(); ++c)
     if (previous.maps->slot_of_chart[c] >= 0 && layer.maps->slot_of_chart[c] != previous.maps->slot_of_chart[c])

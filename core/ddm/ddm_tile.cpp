@@ -73,7 +73,7 @@ void append_link(TriMesh& m, const glm::dvec3& centre, const glm::dvec3& along, 
   const auto base = static_cast<unsigned>(m.positions.size());
   for (int i = 0; i < kLine; ++i) {
     double d = total * i / kLine;  // arc length along the centre line
-    glm::dvec3 c, radial;           // centre-line point and its in-plane outward direction
+    glm::dvec3 c, radial;          // centre-line point and its in-plane outward direction
     if (d < straight) {
       c = centre + (d - half_len) * along - bend * across, radial = -across;
     } else if ((d -= straight) < arc) {
@@ -153,7 +153,8 @@ DdmTile make_ddm_tile(const std::string& kind) {
   if (kind == "flower") return {kind, flower_mesh()};
   if (kind == "chain") return {kind, chain_mesh()};
   if (kind == "hex") return {kind, hex_mesh()};
-  throw std::invalid_argument("tile: unknown generated tile '" + kind + "' (thorn, flower, chain, hex, or a mesh file)");
+  throw std::invalid_argument("tile: unknown generated tile '" + kind +
+                              "' (thorn, flower, chain, hex, or a mesh file)");
 }
 
 DdmTileMaterials ddm_tile_materials(const std::vector<DdmTile>& tiles) {

@@ -62,8 +62,10 @@ DdmMaps ddm_rasterize_uv_maps(const TriMesh& mesh, int resolution) {
     const glm::dvec3 d1 = mesh.positions[t[1]] - mesh.positions[t[0]], d2 = mesh.positions[t[2]] - mesh.positions[t[0]];
     const glm::dvec3 su = (d1 * e2.y - d2 * e1.y) / det, sv = (d2 * e1.x - d1 * e2.x) / det;
     const glm::dvec2 lo = glm::min(a, glm::min(b, c)) * double(R - 1), hi = glm::max(a, glm::max(b, c)) * double(R - 1);
-    const int i0 = std::max(0, static_cast<int>(std::ceil(lo.x - 1e-9))), i1 = std::min(R - 1, static_cast<int>(std::floor(hi.x + 1e-9)));
-    const int j0 = std::max(0, static_cast<int>(std::ceil(lo.y - 1e-9))), j1 = std::min(R - 1, static_cast<int>(std::floor(hi.y + 1e-9)));
+    const int i0 = std::max(0, static_cast<int>(std::ceil(lo.x - 1e-9))),
+              i1 = std::min(R - 1, static_cast<int>(std::floor(hi.x + 1e-9)));
+    const int j0 = std::max(0, static_cast<int>(std::ceil(lo.y - 1e-9))),
+              j1 = std::min(R - 1, static_cast<int>(std::floor(hi.y + 1e-9)));
     for (int j = j0; j <= j1; ++j)
       for (int i = i0; i <= i1; ++i) {
         const glm::dvec2 q = glm::dvec2(i, j) / double(R - 1) - a;
@@ -111,7 +113,8 @@ DdmMaps ddm_rasterize_uv_maps(const TriMesh& mesh, int resolution) {
   for (int j = 0; j < R; ++j)
     for (int i = 0; i < R; ++i) {
       const std::size_t k = static_cast<std::size_t>(j) * R + i;
-      const int il = std::max(i - 1, 0), ir = std::min(i + 1, R - 1), jl = std::max(j - 1, 0), jr = std::min(j + 1, R - 1);
+      const int il = std::max(i - 1, 0), ir = std::min(i + 1, R - 1), jl = std::max(j - 1, 0),
+                jr = std::min(j + 1, R - 1);
       const glm::dvec3 nu = (N[static_cast<std::size_t>(j) * R + ir] - N[static_cast<std::size_t>(j) * R + il]) *
                             (double(R - 1) / (ir - il));
       const glm::dvec3 nv = (N[static_cast<std::size_t>(jr) * R + i] - N[static_cast<std::size_t>(jl) * R + i]) *

@@ -105,7 +105,8 @@ void validate(const TriMesh& object_world, const std::vector<DffdObstacle>& obst
       throw DffdBuildError("order must be 2..6 per axis, got " + std::to_string(p.order[a]), "order");
     if (p.controls[a] < p.order[a] || p.controls[a] > 64)
       throw DffdBuildError("controls must be between the order (" + std::to_string(p.order[a]) + ") and 64, got " +
-                               std::to_string(p.controls[a]), "controls");
+                               std::to_string(p.controls[a]),
+                           "controls");
   }
   if (!(p.kernel_width > 0.0) || !std::isfinite(p.kernel_width))
     throw DffdBuildError("kernel_width must be > 0 (world units), got " + num6(p.kernel_width), "kernel_width");
@@ -130,8 +131,8 @@ std::vector<Aabb> obstacle_boxes(const std::vector<DffdObstacle>& obstacles, Aab
 }
 
 // Step 1: the lattice box B, given (p.box, every obstacle inside it) or grown from the obstacles and the object.
-Aabb lattice_box(const TriMesh& object_world, const std::vector<DffdObstacle>& obstacles,
-                 const std::vector<Aabb>& obox, const Aabb& all, const GlobalDffdParams& p, const LatticeAxes& ax) {
+Aabb lattice_box(const TriMesh& object_world, const std::vector<DffdObstacle>& obstacles, const std::vector<Aabb>& obox,
+                 const Aabb& all, const GlobalDffdParams& p, const LatticeAxes& ax) {
   const int u_ax = ax.u, v_ax = ax.v, w_ax = ax.w;
   // --- 1. the lattice box B ------------------------------------------------------------------------------------
   Aabb box;
@@ -143,8 +144,8 @@ Aabb lattice_box(const TriMesh& object_world, const std::vector<DffdObstacle>& o
       for (int a = 0; a < 3; ++a)
         if (obox[i].lo[a] < box.lo[a] || obox[i].hi[a] > box.hi[a])
           throw DffdBuildError("obstacle '" + obstacles[i].name + "' " + vec(obox[i].lo) + "–" + vec(obox[i].hi) +
-                                   " is larger than the lattice box " + vec(box.lo) + "–" + vec(box.hi) +
-                                   " (along " + axis_name(a) + "): grow the box or drop the obstacle",
+                                   " is larger than the lattice box " + vec(box.lo) + "–" + vec(box.hi) + " (along " +
+                                   axis_name(a) + "): grow the box or drop the obstacle",
                                "box");
   } else {
     const Aabb ob = bounds_of(object_world);
@@ -178,8 +179,7 @@ GlobalDffd identity_lattice(const Aabb& box, const GlobalDffdParams& p, const La
   for (int k = 0; k < p.controls[2]; ++k)
     for (int j = 0; j < p.controls[1]; ++j)
       for (int i = 0; i < p.controls[0]; ++i) cps.push_back(to_world({g[0][i], g[1][j], g[2][k]}));
-  GlobalDffd out{DffdRig{TrivariateBSpline<glm::dvec3>(kv[0], kv[1], kv[2], std::move(cps)), embedding},
-                 box};
+  GlobalDffd out{DffdRig{TrivariateBSpline<glm::dvec3>(kv[0], kv[1], kv[2], std::move(cps)), embedding}, box};
   DffdRig& rig = out.rig;
   rig.openings = p.openings;
   rig.eps = p.eps;
@@ -199,8 +199,9 @@ std::vector<PlacedBreak> insert_breaks(GlobalDffd& out, const std::vector<DffdOb
   for (std::size_t i = 0; i < obstacles.size(); ++i) {
     const double u0 = rig.embedding.apply(centre_of_mass(obstacles[i].world_mesh))[0];
     if (!(u0 > 0.0 && u0 < 1.0))
-      throw DffdBuildError("the centre of obstacle '" + obstacles[i].name + "' lies outside the lattice's domain (u = " +
-                               num6(u0) + ")", "obstacles");
+      throw DffdBuildError(
+          "the centre of obstacle '" + obstacles[i].name + "' lies outside the lattice's domain (u = " + num6(u0) + ")",
+          "obstacles");
     for (const PlacedBreak& q : placed)
       if (std::abs(q.u0 - u0) < 1e-9)
         throw DffdBuildError("obstacles '" + obstacles[q.obstacle].name + "' and '" + obstacles[i].name +
@@ -269,8 +270,8 @@ std::vector<std::vector<char>> open_around_obstacles(GlobalDffd& out, const std:
         const auto hp = caster.intersect(from_plus, -dir);
         if (!hm || !hp) continue;
         const double cm = hm->position[u_ax] - p.clearance, cp = hp->position[u_ax] + p.clearance;
-        const double vm = cm - pm[u_ax];                                               // V⁻ (F⁻ moves back)
-        const double vp = cp - original[F.index(d.plus_plane, j, k)][u_ax];            // V⁺ (F⁺ moves ahead)
+        const double vm = cm - pm[u_ax];                                     // V⁻ (F⁻ moves back)
+        const double vp = cp - original[F.index(d.plus_plane, j, k)][u_ax];  // V⁺ (F⁺ moves ahead)
         out.projected_points += 2;
         opened[di][std::size_t(j)] = 1;
         out.max_displacement = std::max({out.max_displacement, std::abs(vm), std::abs(vp)});
@@ -317,8 +318,9 @@ void check_folds(GlobalDffd& out, const GlobalDffdParams& p, const LatticeAxes& 
     const DffdFold& f = out.folds.front();
     throw DffdBuildError("fold-over: " + std::to_string(out.folds.size()) +
                              " control point pair(s) break the u-order of the lattice (seed Theorem 6, det J ≤ 0), "
-                             "first at (i,j,k) = (" + std::to_string(f.index.x) + "," + std::to_string(f.index.y) +
-                             "," + std::to_string(f.index.z) + "), world " + vec(f.position) +
+                             "first at (i,j,k) = (" +
+                             std::to_string(f.index.x) + "," + std::to_string(f.index.y) + "," +
+                             std::to_string(f.index.z) + "), world " + vec(f.position) +
                              ": widen kernel_width, add controls along u, or pass \"fold\":\"warn\" to keep it",
                          "kernel_width");
   }

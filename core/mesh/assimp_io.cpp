@@ -1,5 +1,4 @@
 #include "core/mesh/assimp_io.h"
-#include "core/mesh/path_quote.h"
 
 #include <assimp/MemoryIOWrapper.h>
 #include <assimp/config.h>
@@ -21,6 +20,7 @@
 #include "core/mesh/file_check.h"
 #include "core/mesh/mesh_precheck.h"
 #include "core/mesh/model_load.h"
+#include "core/mesh/path_quote.h"
 
 namespace trispline::core {
 namespace {

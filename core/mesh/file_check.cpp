@@ -1,5 +1,4 @@
 #include "core/mesh/file_check.h"
-#include "core/mesh/path_quote.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -10,6 +9,7 @@
 #include <cstring>
 
 #include "core/mesh/mesh_io.h"
+#include "core/mesh/path_quote.h"
 
 namespace trispline::core {
 namespace {

@@ -1,7 +1,7 @@
 #include "core/mesh/gltf_anim_io.h"
-#include "core/mesh/path_quote.h"
 
 #include "core/mesh/mesh_io.h"
+#include "core/mesh/path_quote.h"
 
 // As gltf_io.cpp: the Debian tinygltf library is built with its defaults; include the header without configuration
 // macros and never define TINYGLTF_IMPLEMENTATION.

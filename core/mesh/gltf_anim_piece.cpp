@@ -220,7 +220,8 @@ std::shared_ptr<const MaterialSet> read_materials(Reader& r) {
     m.alpha_cutoff = r.value<double>();
     m.double_sided = r.value<std::uint8_t>() != 0;
     bool finite = std::isfinite(m.metallic) && std::isfinite(m.roughness) && std::isfinite(m.alpha_cutoff);
-    for (int k = 0; k < 4; ++k) finite = finite && std::isfinite(m.base_color[k]) && (k == 3 || std::isfinite(m.emissive[k]));
+    for (int k = 0; k < 4; ++k)
+      finite = finite && std::isfinite(m.base_color[k]) && (k == 3 || std::isfinite(m.emissive[k]));
     if (!finite) r.fail("material " + std::to_string(i) + ": a non-finite factor");
     set->materials.push_back(std::move(m));
   }

@@ -1,7 +1,7 @@
 #include "core/mesh/gltf_io.h"
-#include "core/mesh/path_quote.h"
 
 #include "core/mesh/mesh_io.h"
+#include "core/mesh/path_quote.h"
 
 // The Debian package ships tinygltf as a shared library built with its default options (stb_image, stb_image_write,
 // nlohmann json, file system callbacks): include the header with no configuration macros so the declarations match

@@ -1,6 +1,5 @@
 // glTF materials ↔ MaterialSet. See gltf_materials.h.
 #include "core/mesh/gltf_materials.h"
-#include "core/mesh/path_quote.h"
 
 #include <algorithm>
 
@@ -9,6 +8,7 @@
 #include "core/mesh/gltf_read.h"
 #include "core/mesh/material_image.h"
 #include "core/mesh/mesh_io.h"
+#include "core/mesh/path_quote.h"
 
 namespace trispline::core::gltf_materials {
 namespace {

@@ -1,5 +1,4 @@
 #include "core/mesh/gltf_read.h"
-#include "core/mesh/path_quote.h"
 
 #include <algorithm>
 #include <cctype>
@@ -12,6 +11,7 @@
 #include "core/mesh/file_check.h"
 #include "core/mesh/mesh_io.h"
 #include "core/mesh/model_load.h"
+#include "core/mesh/path_quote.h"
 
 namespace trispline::core::gltf_read {
 namespace {

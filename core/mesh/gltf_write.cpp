@@ -8,15 +8,13 @@
 #include <map>
 
 #include "core/mesh/gltf_io.h"
-#include "core/mesh/path_quote.h"
 #include "core/mesh/gltf_materials.h"
 #include "core/mesh/gltf_model.h"
 #include "core/mesh/mesh_io.h"
+#include "core/mesh/path_quote.h"
 
 namespace trispline::core {
-namespace {
-
-}  // namespace
+namespace {}  // namespace
 
 namespace {
 

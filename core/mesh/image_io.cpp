@@ -1,11 +1,12 @@
 #include "core/mesh/image_io.h"
-#include "core/mesh/path_quote.h"
 
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
 #include <cctype>
 #include <string>
+
+#include "core/mesh/path_quote.h"
 
 namespace trispline::core {
 namespace {

@@ -1,5 +1,4 @@
 #include "core/mesh/mesh_io.h"
-#include "core/mesh/path_quote.h"
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
@@ -14,6 +13,7 @@
 #include "core/mesh/assimp_io.h"
 #include "core/mesh/file_check.h"
 #include "core/mesh/gltf_io.h"
+#include "core/mesh/path_quote.h"
 
 namespace trispline::core {
 namespace {

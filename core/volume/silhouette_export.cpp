@@ -39,7 +39,8 @@ void check_input(const std::vector<SilhouettePolyline>& polylines, const glm::dm
   if (viewport.x < 1 || viewport.y < 1 || viewport.x > 65536 || viewport.y > 65536)
     throw std::invalid_argument("silhouette SVG: the viewport must be 1…65536 pixels per side");
   if (style.stroke != "hue" && style.stroke != "width" && style.stroke != "plain" && style.stroke != "glyphs")
-    throw std::invalid_argument("silhouette SVG: unknown stroke style '" + style.stroke + "' (hue, glyphs, width or plain)");
+    throw std::invalid_argument("silhouette SVG: unknown stroke style '" + style.stroke +
+                                "' (hue, glyphs, width or plain)");
   if (style.hidden != "dashed" && style.hidden != "remove")
     throw std::invalid_argument("silhouette SVG: unknown hidden mode '" + style.hidden + "' (dashed or remove)");
   if (style.bins < 1 || style.bins > 256) throw std::invalid_argument("silhouette SVG: bins must be 1…256");
@@ -240,7 +241,8 @@ void write_silhouettes_svg(const std::filesystem::path& path, const std::vector<
         const glm::dvec3 prev = k > 0 ? pl.points[k - 1] : wrap ? pl.points[n - 1] : pl.points[k];
         const glm::dvec3 next = k + 1 < n ? pl.points[k + 1] : wrap ? pl.points[0] : pl.points[k];
         const double f = 0.15 + 0.3 * (lo < hi ? std::clamp((pl.gradient_norm[k] - lo) / (hi - lo), 0.0, 1.0) : 0.5);
-        writer.append(paths[key[k]], {pl.points[k] + f * (prev - pl.points[k]), pl.points[k] + f * (next - pl.points[k])});
+        writer.append(paths[key[k]],
+                      {pl.points[k] + f * (prev - pl.points[k]), pl.points[k] + f * (next - pl.points[k])});
       }
       if (keep_hidden)
         for_each_run(pl, key, [&](int k, const std::vector<glm::dvec3>& run) {

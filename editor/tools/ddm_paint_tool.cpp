@@ -1,8 +1,9 @@
 #include "editor/tools/ddm_paint_tool.h"
-#include "ui/param_widgets.h"
 
 #include <imgui.h>
 #include <imgui_stdlib.h>
+
+#include "ui/param_widgets.h"
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
@@ -29,7 +30,7 @@ glm::vec4 last_item_rect() {
   return {lo.x, lo.y, hi.x, hi.y};
 }
 
-constexpr double kRadiusStep = 1.15;        // [ and ] scale the brush radius by this
+constexpr double kRadiusStep = 1.15;  // [ and ] scale the brush radius by this
 constexpr std::array<const char*, 4> kGeneratedTiles = {"thorn", "chain", "hex", "flower"};
 constexpr const char* kTileTips[] = {
     "A bent horn on a round foot (626 vertices; seed Fig. 5.9)",
@@ -37,7 +38,6 @@ constexpr const char* kTileTips[] = {
     "A hexagonal slab filling its cell: use the hex layout (seed Fig. 5.11)",
     "A five-petal flower with the thorn's topology: the thorn's metamorphosis partner (seed Eq. 5.3)",
 };
-
 
 bool deformed(const core::SceneObject& o) { return o.ffd || o.dffd || o.clip; }
 
@@ -214,7 +214,8 @@ void DdmPaintTool::draw_brush() const {
   const ImU32 swath = erase ? IM_COL32(255, 95, 80, 45) : IM_COL32(255, 205, 90, 45);
   const float r = float(params_.paint.radius_px) / sx;
   ImDrawList* dl = ImGui::GetBackgroundDrawList();
-  if (gesture_.drawing() && !gesture_.points().empty()) {  // what the stroke covers so far: a disc per sample, a band per segment
+  if (gesture_.drawing() &&
+      !gesture_.points().empty()) {  // what the stroke covers so far: a disc per sample, a band per segment
     // Not a polyline 2r thick: ImGui mitres its joints, and where a stroke turns sharply the mitre shoots far out of
     // the swath as a big translucent quad.
     dl->AddCircleFilled(screen(gesture_.points().front()), r, swath, 32);
@@ -223,8 +224,8 @@ void DdmPaintTool::draw_brush() const {
       const float dx = b.x - a.x, dy = b.y - a.y, len = std::sqrt(dx * dx + dy * dy);
       if (len > 0.5f) {
         const ImVec2 n(-dy / len * r, dx / len * r);
-        const ImVec2 quad[4] = {{a.x + n.x, a.y + n.y}, {b.x + n.x, b.y + n.y}, {b.x - n.x, b.y - n.y},
-                                {a.x - n.x, a.y - n.y}};
+        const ImVec2 quad[4] = {
+            {a.x + n.x, a.y + n.y}, {b.x + n.x, b.y + n.y}, {b.x - n.x, b.y - n.y}, {a.x - n.x, a.y - n.y}};
         dl->AddConvexPolyFilled(quad, 4, swath);
       }
       dl->AddCircleFilled(b, r, swath, 32);
@@ -277,8 +278,9 @@ void DdmPaintTool::draw_layer_color(ToolContext& ctx, const core::SceneObject& o
   if (!color_editing_) layer_color_ = l.color.value_or(o.color);  // follows undo / redo unless being dragged
   ImGui::ColorEdit3("Layer colour", &layer_color_.x, ImGuiColorEditFlags_NoInputs);
   color_editing_ = ImGui::IsItemActive();
-  ui::tooltip(l.color ? "The layer's own colour: one ddm.color when you let go" : "The object's colour; edit to give the "
-                                                                                "layer its own (one ddm.color)");
+  ui::tooltip(l.color ? "The layer's own colour: one ddm.color when you let go"
+                      : "The object's colour; edit to give the "
+                        "layer its own (one ddm.color)");
   if (ImGui::IsItemDeactivatedAfterEdit()) set_layer_color(ctx, layer_color_);
   if (l.color) {
     ImGui::SameLine();
@@ -308,15 +310,17 @@ void DdmPaintTool::draw_new_layer_fields(const core::SceneObject* o) {
     }
     if (ImGui::Selectable("file", !generated)) tile = file_tile_;
     ui::probe::item("ddm.tile.file");
-    ui::tooltip("Any mesh (OBJ, PLY, glTF, Collada, FBX) as a tile, fitted into the cell by its bounding box; a "
-                "textured file keeps its materials and textures on every tile (seed Fig. 5.12)");
+    ui::tooltip(
+        "Any mesh (OBJ, PLY, glTF, Collada, FBX) as a tile, fitted into the cell by its bounding box; a "
+        "textured file keeps its materials and textures on every tile (seed Fig. 5.12)");
     ImGui::EndCombo();
   }
   if (!is_generated(tile)) {
     if (ImGui::InputText("Tile file", &file_tile_)) tile = file_tile_;
     ui::probe::item("ddm.tile_file");
-    ui::tooltip("Path of a mesh file (OBJ / PLY / glTF / Collada / FBX); x, y span the cell, z is the height; its "
-                "materials and textures come along");
+    ui::tooltip(
+        "Path of a mesh file (OBJ / PLY / glTF / Collada / FBX); x, y span the cell, z is the height; its "
+        "materials and textures come along");
   }
   int layout = static_cast<int>(spec.layout);
   if (ImGui::Combo("Layout", &layout, "rect\0hex\0brick\0")) spec.layout = static_cast<core::DdmLayout>(layout);
@@ -333,8 +337,9 @@ void DdmPaintTool::draw_new_layer_fields(const core::SceneObject* o) {
       spec.counts = counts_;
     }
   }
-  ui::tooltip("size: tiles of one world size over the whole surface (each chart gets as many as fit); counts: the "
-              "same n x m cells on every chart (the seed's parametric layouts)");
+  ui::tooltip(
+      "size: tiles of one world size over the whole surface (each chart gets as many as fit); counts: the "
+      "same n x m cells on every chart (the seed's parametric layouts)");
   if (spec.counts) {
     int counts[2] = {spec.counts->x, spec.counts->y};
     if (ImGui::InputInt2("Counts", counts)) spec.counts = glm::max(glm::ivec2(counts[0], counts[1]), glm::ivec2(1));
@@ -349,7 +354,7 @@ void DdmPaintTool::draw_new_layer_fields(const core::SceneObject* o) {
   }
   const double h_min = 1e-6, h_max = 10.0;
   ui::drag_scalar("Height", ImGuiDataType_Double, &spec.height, 0.001f, &h_min, &h_max, "%.4g",
-                    ImGuiSliderFlags_AlwaysClamp);
+                  ImGuiSliderFlags_AlwaysClamp);
   ui::tooltip("World units per tile unit of height, along the surface normal");
   const bool teapot = o && o->source == "primitive:teapot";
   const bool uvs = o && o->rest_mesh && !o->rest_mesh->uvs.empty();
@@ -362,8 +367,9 @@ void DdmPaintTool::draw_new_layer_fields(const core::SceneObject* o) {
     if (uvs && ImGui::Selectable("uv", spec.base == Base::uv)) spec.base = Base::uv;
     if (uvs) ui::tooltip("The mesh's texture coordinates (one chart, the UV square; the seed's way)");
     if (ImGui::Selectable("auto_uv", spec.base == Base::auto_uv)) spec.base = Base::auto_uv;
-    ui::tooltip("Automatic texture coordinates: charts cut at seams and flattened (CGAL LSCM) at one texel density, "
-                "so tiles come out of even size on any mesh");
+    ui::tooltip(
+        "Automatic texture coordinates: charts cut at seams and flattened (CGAL LSCM) at one texel density, "
+        "so tiles come out of even size on any mesh");
     ImGui::EndCombo();
   }
   ImGui::Checkbox("Own colour", &params_.own_color);
@@ -422,8 +428,10 @@ void DdmPaintTool::draw_fill_prompt(ToolContext& ctx) {
   if (ImGui::BeginPopupModal(id, nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings)) {
     ImGui::Text("Fill makes %s%zu tiles, %zu tile vertices.", estimate_.upper_bound ? "up to " : "", estimate_.cells,
                 estimate_.tile_vertices);
-    ImGui::TextColored(ui::colors::dim, "More than %zu on this renderer: drawing may be slow. A larger tile size "
-                       "makes fewer.", ask_budget_);
+    ImGui::TextColored(ui::colors::dim,
+                       "More than %zu on this renderer: drawing may be slow. A larger tile size "
+                       "makes fewer.",
+                       ask_budget_);
     ImGui::Spacing();
     bool done = false;
     if (ImGui::Button("Fill anyway", ImVec2(120, 0))) fill(ctx), done = true;
@@ -499,8 +507,9 @@ void DdmPaintTool::draw_panel(ToolContext& ctx) {
   if (ImGui::Button("Fill")) {
     // Above the budget, ask first (the renderer is asked only then: tests without a GL context never get here).
     const std::size_t n = estimate_error_.empty() ? estimate_.tile_vertices : 0;
-    const std::size_t budget =
-        n <= kAskFillVerticesSoftware ? 0 : gpu::is_software_renderer() ? kAskFillVerticesSoftware : kAskFillVertices;
+    const std::size_t budget = n <= kAskFillVerticesSoftware ? 0
+                               : gpu::is_software_renderer() ? kAskFillVerticesSoftware
+                                                             : kAskFillVertices;
     if (budget > 0 && n > budget)
       ask_budget_ = budget;
     else

@@ -90,14 +90,14 @@ TEST(DdmTileMaterials, EveryCopyCarriesItsTilesUvsAndSlotsAndPaintingReusesThemE
   ASSERT_EQ(m.uvs.size(), m.vertex_count());
   ASSERT_EQ(m.face_material.size(), m.triangle_count());
   for (std::size_t v = 0; v < nv; ++v) {
-    ASSERT_EQ(m.uvs[v], hex.mesh.uvs[v]);                     // first copy
-    ASSERT_EQ(m.uvs[nv + thorn_v + v], hex.mesh.uvs[v]);      // third copy
+    ASSERT_EQ(m.uvs[v], hex.mesh.uvs[v]);                 // first copy
+    ASSERT_EQ(m.uvs[nv + thorn_v + v], hex.mesh.uvs[v]);  // third copy
   }
   for (std::size_t f = 0; f < nf; ++f) ASSERT_EQ(m.face_material[f], hex.mesh.face_material[f]);
   for (std::size_t f = 0; f < thorn_f; ++f) ASSERT_EQ(m.face_material[nf + f], 2) << "the thorn's default material";
   // Painting one more instance reuses the copies and evaluates the new one: bit for bit a full evaluation.
-  const auto grown = ddm_layer_with_instances(layer, {{0, {0, 0}, {1, 1}, 0}, {3, {0, 0}, {1, 1}, 1},
-                                                      {5, {0, 0}, {1, 1}, 0}, {7, {0, 0}, {1, 1}, 0}});
+  const auto grown = ddm_layer_with_instances(
+      layer, {{0, {0, 0}, {1, 1}, 0}, {3, {0, 0}, {1, 1}, 1}, {5, {0, 0}, {1, 1}, 0}, {7, {0, 0}, {1, 1}, 0}});
   const TriMesh full = ddm_layer_mesh(*grown, 0.0);
   EXPECT_EQ(grown->mesh->uvs, full.uvs);
   EXPECT_EQ(grown->mesh->face_material, full.face_material);

@@ -100,8 +100,8 @@ std::shared_ptr<const MaterialSet> textured_set() {
   auto set = std::make_shared<MaterialSet>();
   std::vector<std::uint8_t> rgba;
   for (int i = 0; i < 4 * 2; ++i) rgba.insert(rgba.end(), {std::uint8_t(30 * i), 200, std::uint8_t(255 - 20 * i), 255});
-  set->images.push_back(
-      std::make_shared<const MaterialImage>(decode_material_image(encode_png_rgba8(4, 2, rgba), "", "bark", "bark.png")));
+  set->images.push_back(std::make_shared<const MaterialImage>(
+      decode_material_image(encode_png_rgba8(4, 2, rgba), "", "bark", "bark.png")));
   MaterialImage missing;
   missing.uri = "leaves.png";
   missing.error = "file not found";
