@@ -66,6 +66,20 @@ gui_screenshot() {
   cp "$newest" "$GUI_DIR/$1.png"
 }
 
+# gui_shot NAME: an F12 screenshot copied to $GUI_DIR/NAME.png, or the test fails.
+gui_shot() { gui_screenshot "$1" || gui_fail "no screenshot written for $1"; }
+
+# gui_view_shading Solid|Material|Automatic: View ▸ Shading ▸ that mode through the menus, then 3 frames.
+gui_view_shading() {
+  gui_click_item menu.View
+  gui_wait '.items["menu.Shading"] != null' "the View menu opens"
+  gui_click_item menu.Shading
+  gui_wait ".items[\"menu.$1\"] != null" "the Shading menu opens"
+  gui_click_item "menu.$1"
+  gui_wait '.popups | length == 0' "the menu closes after picking $1"
+  gui_frames 3
+}
+
 gui_alive() { [ -n "$GUI_PID" ] && kill -0 "$GUI_PID" 2>/dev/null; }
 
 gui_kill() {

@@ -75,12 +75,11 @@ print(sum(c >= 300 for c in counts), counts, file=sys.stderr)
 print(sum(c >= 300 for c in counts))
 EOF
 }
-shot() { gui_screenshot "$1" || gui_fail "no screenshot written for $1"; }
 
 gui_start "$GUI_WORK/cube.jsonl"
 gui_wait '.objects == ["cube"]' "the textured cube is open" 60
 gui_frames 3
-shot material
+gui_shot material
 n="$(colours "$GUI_DIR/material.png")"
 [ "$n" -ge 3 ] || gui_fail "Material shading (the default for a textured scene) shows $n of the texture's 4 colours"
 
@@ -91,7 +90,7 @@ gui_wait '.items["menu.Solid"] != null' "the Shading menu opens"
 gui_click_item menu.Solid
 gui_wait '.popups | length == 0' "the menu closes after picking Solid"
 gui_frames 3
-shot solid
+gui_shot solid
 n="$(colours "$GUI_DIR/solid.png")"
 [ "$n" -le 1 ] || gui_fail "Solid shading still shows $n of the texture's colours"
 
@@ -102,7 +101,7 @@ gui_wait '.items["menu.Material"] != null' "the Shading menu opens again"
 gui_click_item menu.Material
 gui_wait '.popups | length == 0' "the menu closes after picking Material"
 gui_frames 3
-shot material_again
+gui_shot material_again
 n="$(colours "$GUI_DIR/material_again.png")"
 [ "$n" -ge 3 ] || gui_fail "View ▸ Shading ▸ Material shows $n of the texture's 4 colours"
 gui_alive || gui_fail "the editor died"

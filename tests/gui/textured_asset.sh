@@ -15,16 +15,6 @@ cat >"$GUI_WORK/scenes/textured.jsonl" <<'LOG'
 {"cmd":"scene.primitive","kind":"sphere","name":"ball","scale":10,"translate":[80,60,0]}
 LOG
 
-shot() { gui_screenshot "$1" || gui_fail "no screenshot written for $1"; }
-view_menu_shading() {
-  gui_click_item menu.View
-  gui_wait '.items["menu.Shading"] != null' "the View menu opens"
-  gui_click_item menu.Shading
-  gui_wait ".items[\"menu.$1\"] != null" "the Shading menu opens"
-  gui_click_item "menu.$1"
-  gui_wait '.popups | length == 0' "the menu closes after picking $1"
-  gui_frames 3
-}
 
 gui_start "$GUI_WORK/scenes/textured.jsonl"
 gui_wait '.objects == ["ground", "ball"]' "the ground and the ball are open"
@@ -46,10 +36,10 @@ gui_wait_logged ".cmd == \"scene.load\" and .loose == \"ignore\"" "scene.load of
 check_textured() {
   local cx cy r
   gui_frames 3
-  shot "$1_material"
-  view_menu_shading Solid
-  shot "$1_solid"
-  view_menu_shading Material
+  gui_shot "$1_material"
+  gui_view_shading Solid
+  gui_shot "$1_solid"
+  gui_view_shading Material
   cx="$(gui_q ".object_px[\"$rack\"][0]")"; cy="$(gui_q ".object_px[\"$rack\"][1]")"
   read -r -a r < <(python3 "$(dirname "$0")/textured_pixels.py" "$GUI_DIR/$1_material.png" "$GUI_DIR/$1_solid.png" \
     "$cx" "$cy")

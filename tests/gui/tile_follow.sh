@@ -8,9 +8,8 @@ gui_start "$GUI_ROOT/tests/logs/ddm_follow.jsonl"
 gui_wait '(.objects | length) == 6' "the log opens with its six objects"
 gui_wait '.tiles.layers == 4 and .tiles.following == 4 and .tiles.vertices > 100000' \
   "all four layers drawn through their objects' deformations"
-shot() { gui_screenshot "$1" || gui_fail "no screenshot written for $1"; }
 gui_frames 2
-shot frame1
+gui_shot frame1
 gui_click_item timeline.frame
 gui_wait '.typing' "one click on the frame field enters text editing"
 gui_type "20"
@@ -18,6 +17,6 @@ gui_key Return
 gui_wait '.current_frame == 20 and (.typing | not)' "typing 20 + Enter sets frame 20"
 gui_frames 3
 gui_wait '.tiles.following == 4' "still drawn following at frame 20"
-shot frame20
+gui_shot frame20
 cmp -s "$GUI_DIR/frame1.png" "$GUI_DIR/frame20.png" && gui_fail "frames 1 and 20 look the same: nothing moved"
 gui_pass

@@ -11,16 +11,6 @@ cat >"$GUI_WORK/scenes/ball.jsonl" <<'LOG'
 {"cmd":"scene.primitive","kind":"sphere","name":"ball","color":[0.15,0.3,0.95]}
 {"cmd":"camera.set","eye":[0,1.2,3.2],"target":[0,0,0],"up":[0,1,0],"fov_deg":38,"viewport":[1280,720]}
 LOG
-shot() { gui_screenshot "$1" || gui_fail "no screenshot written for $1"; }
-view_menu_shading() {
-  gui_click_item menu.View
-  gui_wait '.items["menu.Shading"] != null' "the View menu opens"
-  gui_click_item menu.Shading
-  gui_wait ".items[\"menu.$1\"] != null" "the Shading menu opens"
-  gui_click_item "menu.$1"
-  gui_wait '.popups | length == 0' "the menu closes after picking $1"
-  gui_frames 3
-}
 
 gui_start "$GUI_WORK/scenes/ball.jsonl"
 gui_wait '.objects == ["ball"]' "the ball is open"
@@ -57,9 +47,9 @@ gui_wait_logged '.cmd == "ddm.fill" and (.tile | endswith("crate.obj")) and ((.t
 # Material shading (automatic: the scene now has textures) against Solid, on the ball's pixels.
 gui_move 5 5
 gui_frames 3
-shot tiles_material
-view_menu_shading Solid
-shot tiles_solid
+gui_shot tiles_material
+gui_view_shading Solid
+gui_shot tiles_solid
 cx="$(gui_q '.object_px.ball[0]')"; cy="$(gui_q '.object_px.ball[1]')"
 read -r -a r < <(python3 "$(dirname "$0")/textured_pixels.py" "$GUI_DIR/tiles_material.png" \
   "$GUI_DIR/tiles_solid.png" "$cx" "$cy")
