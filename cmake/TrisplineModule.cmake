@@ -4,13 +4,11 @@
 # Unity batches of 8 files: a module's files share one parse of the project's and libraries' headers (the build is
 # CPU-bound on 2 cores, so fewer parses is less time: the editor's cold build 594 → 477 s, docs/performance.md).
 # Files compiled with options of their own (the FFD kernels' instruction sets) are built alone; file-local helpers
-# must have distinct names across a module, as in any unity build. The sanitizer build keeps one object per file.
+# must have distinct names across a module, as in any unity build. The sanitizer build is batched the same way.
 function(trispline_module name)
   cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
   add_library(trispline_${name} STATIC ${ARG_SOURCES})
-  if(NOT TRISPLINE_SANITIZE)
-    set_target_properties(trispline_${name} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE 8)
-  endif()
+  set_target_properties(trispline_${name} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE 8)
   target_include_directories(trispline_${name} PUBLIC ${PROJECT_SOURCE_DIR})
   target_compile_options(trispline_${name} PRIVATE ${TRISPLINE_WARNINGS})
   target_compile_definitions(trispline_${name} PUBLIC GLM_FORCE_XYZW_ONLY GLM_ENABLE_EXPERIMENTAL)
@@ -19,7 +17,7 @@ function(trispline_module name)
 endfunction()
 
 # trispline_test(<name> SOURCES <files...> DEPS <targets...> [LABELS <labels>])
-# One GoogleTest executable registered with ctest through gtest_discover_tests.
+# One GoogleTest executable; each of its suites is one ctest test (cmake/TrisplineGtestSuites.cmake, run after linking).
 function(trispline_test name)
   cmake_parse_arguments(ARG "" "" "SOURCES;DEPS;LABELS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
@@ -30,6 +28,12 @@ function(trispline_test name)
   target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gtest_main GTest::gmock)
   target_compile_definitions(${name} PRIVATE TRISPLINE_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
                                              TRISPLINE_BINARY_DIR="${PROJECT_BINARY_DIR}")
-  include(GoogleTest)
-  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS "${ARG_LABELS}")
+  string(REPLACE ";" "," labels "${ARG_LABELS}")
+  set(ctest_file "${CMAKE_CURRENT_BINARY_DIR}/${name}_suites.cmake")
+  add_custom_command(TARGET ${name} POST_BUILD
+    COMMAND "${CMAKE_COMMAND}" "-DTEST_EXECUTABLE=$<TARGET_FILE:${name}>" "-DTEST_WORKING_DIR=${CMAKE_CURRENT_BINARY_DIR}"
+            "-DTEST_LABELS=${labels}" "-DCTEST_FILE=${ctest_file}" -P "${PROJECT_SOURCE_DIR}/cmake/TrisplineGtestSuites.cmake"
+    BYPRODUCTS "${ctest_file}"
+    VERBATIM)
+  set_property(DIRECTORY APPEND PROPERTY TEST_INCLUDE_FILES "${ctest_file}")
 endfunction()

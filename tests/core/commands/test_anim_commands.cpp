@@ -12,7 +12,7 @@
 #include "core/scene/scene_export.h"
 
 namespace trispline::core {
-namespace {
+namespace anim_commands_test {
 
 using nlohmann::json;
 
@@ -122,12 +122,12 @@ TEST(AnimClip, MissingFileIsAClearErrorAndChangesNothing) {
                CommandError);
 }
 
-}  // namespace
+}  // namespace anim_commands_test
 }  // namespace trispline::core
 
 #ifdef TRISPLINE_HAVE_CLIP_ASSETS
 namespace trispline::core {
-namespace {
+namespace anim_commands_test {
 
 const std::string kData = std::string(TRISPLINE_SOURCE_DIR) + "/assets/data/";
 
@@ -220,6 +220,6 @@ TEST(AnimClipReal, VertexCountMismatchIsRejected) {
   expect_same_meshes(s, before);
 }
 
-}  // namespace
+}  // namespace anim_commands_test
 }  // namespace trispline::core
 #endif

@@ -11,7 +11,7 @@
 
 using namespace trispline;
 
-namespace {
+namespace anim_record_test {
 
 using nlohmann::json;
 
@@ -105,4 +105,4 @@ TEST(AnimRecord, FieldErrorsNameTheField) {
   test::expect_same_meshes(s, before);
 }
 
-}  // namespace
+}  // namespace anim_record_test

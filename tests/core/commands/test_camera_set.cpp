@@ -6,7 +6,7 @@
 #include "tests/core/commands/placed_crate.h"
 
 namespace trispline::core {
-namespace {
+namespace camera_set_test {
 
 using nlohmann::json;
 
@@ -74,5 +74,5 @@ TEST(CameraSet, BadFieldsAreNamedAndTheCameraIsUntouched) {
   expect_same_camera(s.camera, before);
 }
 
-}  // namespace
+}  // namespace camera_set_test
 }  // namespace trispline::core

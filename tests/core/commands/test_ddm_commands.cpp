@@ -16,7 +16,7 @@
 #include "tests/test_shapes.h"
 
 namespace trispline::core {
-namespace {
+namespace ddm_commands_test {
 
 using nlohmann::json;
 
@@ -177,7 +177,7 @@ TEST(DdmCommands, TileFromAFileRelativeToTheLog) {
 
 TEST(DdmCommands, BadInputIsRefusedAndTheSceneIsUnchanged) {
   auto field_of = [](const char* line, Scene& s) {
-    return test::command_field_of<DdmFillCommand>(s, json::parse(line));
+    return trispline::test::command_field_of<DdmFillCommand>(s, json::parse(line));
   };
   Scene s = ball_scene();
   EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","object":"ball","layer":"x","tile":"thorn","layout":"rect","counts":[0,2],
@@ -221,17 +221,17 @@ TEST(DdmCommands, BadInputIsRefusedAndTheSceneIsUnchanged) {
   // Bake: unknown layer, taken name.
   DdmFillCommand::parse(json::parse(R"({"cmd":"ddm.fill","object":"ball","layer":"ok","tile":"hex","layout":"rect",
       "counts":[1,1],"height":0.1})"), {})->redo(s);
-  auto bake_field = [&](const char* line) { return test::command_field_of<DdmBakeCommand>(s, json::parse(line)); };
+  auto bake_field = [&](const char* line) { return trispline::test::command_field_of<DdmBakeCommand>(s, json::parse(line)); };
   EXPECT_EQ(bake_field(R"({"cmd":"ddm.bake","object":"ball","layer":"missing","name":"b"})"), "layer");
   EXPECT_EQ(bake_field(R"({"cmd":"ddm.bake","object":"ball","layer":"ok","name":"fin"})"), "name");
   EXPECT_EQ(s.objects().size(), 2u);
 }
 
-}  // namespace
+}  // namespace ddm_commands_test
 }  // namespace trispline::core
 
 namespace trispline::core {
-namespace {
+namespace ddm_commands_test {
 
 // The layer fields are declared once (ddm_layer_schema) and written back as the lines had them: several tiles bring
 // choice (and a non-zero seed), tile files are resolved against the log's folder, defaults stay out of the line;
@@ -265,5 +265,5 @@ TEST(DdmCommands, LayerFieldsAreWrittenBackAsDeclared) {
   EXPECT_EQ(DdmPaintCommand::parse(named, ctx)->to_json()["tile_size"], 0.25);
 }
 
-}  // namespace
+}  // namespace ddm_commands_test
 }  // namespace trispline::core

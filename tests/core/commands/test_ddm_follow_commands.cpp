@@ -13,7 +13,7 @@
 #include "tests/test_paths.h"
 
 namespace trispline::core {
-namespace {
+namespace ddm_follow_commands_test {
 
 void replay(editor::History& history) {
   const CommandContext ctx{test::logs_dir(), {}};
@@ -76,5 +76,5 @@ TEST(DdmFollowCommands, ReplayStillsAndUndoRedoAreBitForBit) {
   EXPECT_EQ(exported(a, 0.37), before);
 }
 
-}  // namespace
+}  // namespace ddm_follow_commands_test
 }  // namespace trispline::core

@@ -13,7 +13,7 @@
 #include "tests/core/commands/command_test_util.h"
 
 namespace trispline::core {
-namespace {
+namespace dffd_animate_test {
 
 using nlohmann::json;
 using test::run_line;
@@ -138,5 +138,5 @@ TEST(DffdAnimate, ErrorsNameTheirFieldAndChangeNothing) {
   EXPECT_TRUE(s.find("ball")->dffd->stitch_keys.empty());
 }
 
-}  // namespace
+}  // namespace dffd_animate_test
 }  // namespace trispline::core

@@ -11,7 +11,7 @@
 #include "core/commands/scene_primitive.h"
 
 namespace trispline::core {
-namespace {
+namespace dffd_cut_test {
 
 using nlohmann::json;
 
@@ -108,5 +108,5 @@ TEST(DffdCut, BadParametersNameTheFieldAndChangeNothing) {
   expect_field(R"({"cmd":"dffd.cut","object":"ball","axis":"q","at":0.3})", "axis");
 }
 
-}  // namespace
+}  // namespace dffd_cut_test
 }  // namespace trispline::core

@@ -8,7 +8,7 @@
 #include "core/commands/scene_primitive.h"
 
 namespace trispline::core {
-namespace {
+namespace dffd_split_test {
 
 using nlohmann::json;
 
@@ -105,5 +105,5 @@ TEST(DffdSplit, BadInputNamesTheFieldAndChangesNothing) {
   expect_field(box.dump(), "box");
 }
 
-}  // namespace
+}  // namespace dffd_split_test
 }  // namespace trispline::core

@@ -11,7 +11,7 @@
 #include "tests/core/commands/command_test_util.h"
 
 namespace trispline::core {
-namespace {
+namespace incision_animate_test {
 
 using nlohmann::json;
 using test::run_line;
@@ -87,5 +87,5 @@ TEST(IncisionAnimate, ErrorsNameTheirField) {
       "object", "animated incision opening"));
 }
 
-}  // namespace
+}  // namespace incision_animate_test
 }  // namespace trispline::core

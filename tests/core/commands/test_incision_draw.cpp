@@ -17,7 +17,7 @@
 #include "tests/test_shapes.h"
 
 namespace trispline::core {
-namespace {
+namespace incision_draw_test {
 
 using nlohmann::json;
 
@@ -239,5 +239,5 @@ TEST(IncisionDraw, VenusThreeIncisionsOnTheNeck) {
 }
 #endif
 
-}  // namespace
+}  // namespace incision_draw_test
 }  // namespace trispline::core

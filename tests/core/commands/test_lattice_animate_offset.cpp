@@ -11,7 +11,7 @@
 #include "tests/core/commands/command_test_util.h"
 
 namespace trispline::core {
-namespace {
+namespace lattice_animate_offset_test {
 
 using nlohmann::json;
 
@@ -90,5 +90,5 @@ TEST(LatticeAnimateOffset, BadFieldsAreNamedAndTheSceneIsUntouched) {
   EXPECT_EQ(s.find("t")->offset_velocity, glm::dvec3(0.0));
 }
 
-}  // namespace
+}  // namespace lattice_animate_offset_test
 }  // namespace trispline::core

@@ -11,7 +11,7 @@
 
 using namespace trispline;
 
-namespace {
+namespace lattice_certify_test {
 
 const nlohmann::json kTeapot = {{"cmd", "scene.primitive"}, {"kind", "teapot"}, {"name", "t"}, {"scale", 0.3}};
 const nlohmann::json kRing = {
@@ -117,4 +117,4 @@ TEST(LatticeCertify, ErrorsNameTheirField) {
       [&] { test::run(history, {{"cmd", "lattice.certify"}, {"object", "nope"}}); }, "object", "nope"));
 }
 
-}  // namespace
+}  // namespace lattice_certify_test

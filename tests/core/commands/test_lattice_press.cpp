@@ -11,7 +11,7 @@
 
 using namespace trispline;
 
-namespace {
+namespace lattice_press_test {
 
 using test::run;
 
@@ -119,4 +119,4 @@ TEST_F(Pressing, BadParametersFailWithTheirFieldAndChangeNothing) {
   expect_field(bad, "object");  // no lattice
 }
 
-}  // namespace
+}  // namespace lattice_press_test

@@ -12,7 +12,7 @@
 
 using namespace trispline;
 
-namespace {
+namespace lattice_ring_test {
 
 using test::run;
 
@@ -48,4 +48,4 @@ TEST_F(RingLattice, ObjectSitsOnTheRingAndKeepsItsHeight) {
   EXPECT_NEAR(mean_r, 1.2, 0.05 * 1.2);  // the object's middle follows the ring's centre line
 }
 
-}  // namespace
+}  // namespace lattice_ring_test

@@ -17,7 +17,7 @@
 namespace fs = std::filesystem;
 using namespace trispline;
 
-namespace {
+namespace lattice_set_point_test {
 
 const nlohmann::json kTeapot = {{"cmd", "scene.primitive"}, {"kind", "teapot"}, {"name", "t"}, {"scale", 0.3}};
 const nlohmann::json kRing = {
@@ -140,4 +140,4 @@ TEST(LatticeSetPoint, ErrorsNameTheObjectOrTheLatticeSize) {
   EXPECT_EQ(r.scene.find("t")->ffd, before.find("t")->ffd);
 }
 
-}  // namespace
+}  // namespace lattice_set_point_test

@@ -9,7 +9,7 @@
 #include "tests/core/ffd/ffd_test_util.h"
 
 namespace trispline::core {
-namespace {
+namespace mesh_refine_test {
 
 Scene cube_scene() {
   Scene s;
@@ -115,5 +115,5 @@ TEST(MeshRefineCommand, BadParametersNameTheirField) {
   trispline::test::expect_same_meshes(s, before);
 }
 
-}  // namespace
+}  // namespace mesh_refine_test
 }  // namespace trispline::core

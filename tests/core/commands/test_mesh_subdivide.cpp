@@ -16,7 +16,7 @@
 #include "tests/mesh_topology.h"
 
 namespace trispline::core {
-namespace {
+namespace mesh_subdivide_test {
 
 using nlohmann::json;
 
@@ -127,5 +127,5 @@ TEST(MeshSubdivide, BadInputNamesTheFieldAndChangesNothing) {
   }
 }
 
-}  // namespace
+}  // namespace mesh_subdivide_test
 }  // namespace trispline::core

@@ -17,7 +17,7 @@
 #include "tests/test_shapes.h"
 
 namespace trispline::core {
-namespace {
+namespace object_transform_test {
 
 using nlohmann::json;
 
@@ -104,7 +104,7 @@ TEST(ObjectTransform, RefusesAbsurdValuesNamingTheFieldAndLeavesTheSceneAlone) {
       {R"({"cmd":"object.transform","translate":[0,0,0]})", "object", "object"},
   };
   for (const BadCase& c : cases)
-    EXPECT_TRUE(test::throws_command_error([&] { parse(c.line); }, c.field, c.words)) << c.line;
+    EXPECT_TRUE(trispline::test::throws_command_error([&] { parse(c.line); }, c.field, c.words)) << c.line;
   // NaN cannot be written in JSON text but can be in a json value built in code.
   json nan_line = {{"cmd", "object.transform"},
                    {"object", "b"},
@@ -115,13 +115,13 @@ TEST(ObjectTransform, RefusesAbsurdValuesNamingTheFieldAndLeavesTheSceneAlone) {
   run(s, R"({"cmd":"scene.primitive","kind":"box","name":"b"})");
   const auto mesh = s.find("b")->world_mesh;
   auto unknown = parse(R"({"cmd":"object.transform","object":"nobody","translate":[1,0,0]})");
-  EXPECT_TRUE(test::throws_command_error([&] { unknown->redo(s); }, "object", "nobody"));
+  EXPECT_TRUE(trispline::test::throws_command_error([&] { unknown->redo(s); }, "object", "nobody"));
   EXPECT_EQ(s.find("b")->world_mesh, mesh);
   EXPECT_EQ(s.find("b")->transform.translate, glm::dvec3(0.0));
 }
 
 TEST(ObjectTransform, PlacedObjectMovesWithItsLattice) {
-  Scene s = test::placed_crate();
+  Scene s = trispline::test::placed_crate();
   const SceneObject before = *s.find("crate");
   ASSERT_TRUE(before.ffd);
   ASSERT_TRUE(before.placement);
@@ -161,7 +161,7 @@ TEST(ObjectTransform, PlacedObjectMovesWithItsLattice) {
 }
 
 TEST(ObjectTransform, PreviewIsTheAffineImageOfTheCurrentEvaluation) {
-  Scene s = test::placed_crate();
+  Scene s = trispline::test::placed_crate();
   const SceneObject& crate = *s.find("crate");
   Transform t = crate.transform;
   t.translate += glm::dvec3(1, 0, 0);
@@ -175,10 +175,10 @@ TEST(ObjectTransform, PreviewIsTheAffineImageOfTheCurrentEvaluation) {
 }
 
 TEST(ObjectTransform, MirroredLatticeObjectKeepsItsSigns) {
-  Scene s = test::placed_crate(1.0, {-0.5, 0.2, 0.2});
+  Scene s = trispline::test::placed_crate(1.0, {-0.5, 0.2, 0.2});
   const auto mesh = s.find("crate")->world_mesh;
   auto c = parse(R"({"cmd":"object.transform","object":"crate","scale":1})");
-  EXPECT_TRUE(test::throws_command_error([&] { c->redo(s); }, "scale", "mirror")) << "mirroring a lattice";
+  EXPECT_TRUE(trispline::test::throws_command_error([&] { c->redo(s); }, "scale", "mirror")) << "mirroring a lattice";
   EXPECT_EQ(s.find("crate")->world_mesh, mesh);
   // Moving it is fine; its negative scale is kept.
   parse(R"({"cmd":"object.transform","object":"crate","translate":[0,1,0]})")->redo(s);
@@ -212,7 +212,7 @@ TEST(ObjectTransform, DffdRigMovesWithTheObject) {
 
 TEST(ObjectTransform, TileLayersFollowInObjectSpace) {
   Scene s;
-  s.insert(test::sphere_object("ball", 8, 4, {0, 0, 0}));
+  s.insert(trispline::test::sphere_object("ball", 8, 4, {0, 0, 0}));
   run(s, R"({"cmd":"ddm.fill","object":"ball","layer":"spikes","tile":"thorn","layout":"rect","counts":[1,1],
              "height":0.2})");
   const auto layer = s.find("ball")->ddm_layers.at(0);
@@ -223,5 +223,5 @@ TEST(ObjectTransform, TileLayersFollowInObjectSpace) {
   EXPECT_EQ(ball.transform.scale, glm::dvec3(0.5));
 }
 
-}  // namespace
+}  // namespace object_transform_test
 }  // namespace trispline::core

@@ -15,7 +15,7 @@
 #include "tests/core/commands/command_test_util.h"
 
 namespace trispline::core {
-namespace {
+namespace object_visibility_test {
 
 using nlohmann::json;
 
@@ -118,5 +118,5 @@ TEST(ObjectVisibility, RefusedLinesChangeNothing) {
   for (const SceneObject& o : s.objects()) EXPECT_TRUE(o.visible && o.render_visible) << o.name;
 }
 
-}  // namespace
+}  // namespace object_visibility_test
 }  // namespace trispline::core

@@ -4,7 +4,7 @@
 #include "tests/core/commands/placed_crate.h"
 
 namespace trispline::core {
-namespace {
+namespace place_array_test {
 
 using nlohmann::json;
 
@@ -37,5 +37,5 @@ TEST(PlaceArray, CopiesTrailAlongThePathAndUndoRemovesThem) {
   EXPECT_EQ(s.objects().size(), n);
 }
 
-}  // namespace
+}  // namespace place_array_test
 }  // namespace trispline::core

@@ -13,7 +13,7 @@
 
 using namespace trispline;
 
-namespace {
+namespace place_sketch_test {
 
 using test::run;
 
@@ -53,10 +53,10 @@ TEST(Bridging, SpringsKeepTheContactSurfaceUpAcrossTheGap) {
   EXPECT_GT(bridged.min_y, -1e-6);
 }
 
-}  // namespace
+}  // namespace place_sketch_test
 
 namespace trispline::core {
-namespace {
+namespace place_sketch_test {
 
 using nlohmann::json;
 using test::place_line;
@@ -77,5 +77,5 @@ TEST(PlaceSketchExtent, ObjectCoversTheGivenFractionOfTheDomain) {
   EXPECT_THROW(PlaceSketchCommand::parse(bad, ctx), CommandError);
 }
 
-}  // namespace
+}  // namespace place_sketch_test
 }  // namespace trispline::core

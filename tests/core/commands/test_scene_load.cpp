@@ -9,7 +9,7 @@
 #include "tests/core/mesh/mesh_test_util.h"
 
 namespace trispline::core {
-namespace {
+namespace scene_load_test {
 
 using nlohmann::json;
 using test::TempDir;
@@ -89,5 +89,5 @@ TEST(SceneLoad, BadFieldsAreNamedAndTheSceneIsUntouched) {
   trispline::test::expect_same_meshes(s, before);
 }
 
-}  // namespace
+}  // namespace scene_load_test
 }  // namespace trispline::core

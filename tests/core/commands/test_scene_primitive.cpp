@@ -7,7 +7,7 @@
 #include "tests/core/commands/command_test_util.h"
 
 namespace trispline::core {
-namespace {
+namespace scene_primitive_test {
 
 using nlohmann::json;
 
@@ -56,7 +56,7 @@ TEST(ScenePrimitive, RedoThenUndoLeavesTheSceneAsBefore) {
   const std::vector<glm::dvec3> added = s.find("hills")->world_mesh->positions;
   EXPECT_EQ(s.find("hills")->color, glm::vec3(glm::dvec3(0.2, 0.4, 0.6)));
   c->undo(s);
-  test::expect_same_meshes(s, before);
+  trispline::test::expect_same_meshes(s, before);
   EXPECT_EQ(s.find("hills"), nullptr);
   c->redo(s);
   EXPECT_EQ(s.find("hills")->world_mesh->positions, added) << "redo is deterministic";
@@ -67,7 +67,7 @@ TEST(ScenePrimitive, BadFieldsAreNamedAndTheSceneIsUntouched) {
   parse(R"({"cmd":"scene.primitive","kind":"box","name":"b"})")->redo(s);
   const Scene before = s;
   const auto field_of = [&](const char* line) {
-    return test::command_field_of<ScenePrimitiveCommand>(s, json::parse(line));
+    return trispline::test::command_field_of<ScenePrimitiveCommand>(s, json::parse(line));
   };
   EXPECT_EQ(field_of(R"({"cmd":"scene.primitive","kind":"torus"})"), "kind");
   EXPECT_EQ(field_of(R"({"cmd":"scene.primitive"})"), "kind");
@@ -75,12 +75,12 @@ TEST(ScenePrimitive, BadFieldsAreNamedAndTheSceneIsUntouched) {
   EXPECT_EQ(field_of(R"({"cmd":"scene.primitive","kind":"box","translate":[1,2]})"), "translate");
   EXPECT_EQ(field_of(R"({"cmd":"scene.primitive","kind":"box","color":[0.5,1.5,0]})"), "color");
   EXPECT_EQ(field_of(R"({"cmd":"scene.primitive","kind":"box","name":"b"})"), "name");  // taken
-  EXPECT_TRUE(test::throws_command_error(
+  EXPECT_TRUE(trispline::test::throws_command_error(
       [&] { parse(R"({"cmd":"scene.primitive","kind":"box","name":"b"})")->redo(s); }, "name", "already exists"));
-  EXPECT_TRUE(test::throws_command_error([&] { parse(R"({"cmd":"scene.primitive","kind":"torus"})"); }, "kind",
+  EXPECT_TRUE(trispline::test::throws_command_error([&] { parse(R"({"cmd":"scene.primitive","kind":"torus"})"); }, "kind",
                                          "field 'kind'"));
-  test::expect_same_meshes(s, before);
+  trispline::test::expect_same_meshes(s, before);
 }
 
-}  // namespace
+}  // namespace scene_primitive_test
 }  // namespace trispline::core

@@ -6,7 +6,7 @@
 #include "tests/core/commands/placed_crate.h"
 
 namespace trispline::core {
-namespace {
+namespace scene_remove_test {
 
 using nlohmann::json;
 
@@ -44,5 +44,5 @@ TEST(SceneRemove, UnknownOrMissingNameIsRefusedAndTheSceneIsUntouched) {
   test::expect_same_meshes(s, before);
 }
 
-}  // namespace
+}  // namespace scene_remove_test
 }  // namespace trispline::core
