@@ -9,7 +9,8 @@
 #      TRISPLINE_FUZZ_SEED, default 1). A crash fails the run
 #      and leaves the input in build-asan/fuzz/<target>/crashes/; add it to tests/fuzz/regressions/<target>/ with the
 #      fix.
-# Usage: scripts/sanitize.sh [--no-fuzz | --fuzz-only]   (run scripts/setup.sh --tests --no-build first on a fresh machine)
+# Usage: scripts/sanitize.sh [--build] [--test] [--fuzz]   (all three when none is given; --no-fuzz = --build --test,
+#        --fuzz-only = --fuzz; run scripts/setup.sh --tests --no-build first on a fresh machine)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
@@ -21,28 +22,42 @@ budget="${TRISPLINE_FUZZ_BUDGET:-240}"
 fuzz_seed="${TRISPLINE_FUZZ_SEED:-1}"
 jobs="$(nproc)"
 
+do_build=0 do_test=0 do_fuzz=0
+for arg in "$@"; do
+  case "$arg" in
+    --build) do_build=1 ;;
+    --test) do_test=1 ;;
+    --fuzz | --fuzz-only) do_fuzz=1 ;;
+    --no-fuzz) do_build=1 do_test=1 ;;
+    *) echo "sanitize: unknown option '$arg' (--build, --test, --fuzz, --no-fuzz, --fuzz-only)" >&2; exit 2 ;;
+  esac
+done
+((do_build || do_test || do_fuzz)) || do_build=1 do_test=1 do_fuzz=1
+
 log="$build/sanitize-build.log"
 mkdir -p "$build"
 start=$SECONDS
-cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Sanitize \
-  -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14 \
-  -DCMAKE_CXX_FLAGS_SANITIZE="-O1 -gline-tables-only" -DCMAKE_C_FLAGS_SANITIZE="-O1 -gline-tables-only" \
-  -DTRISPLINE_BUILD_GUI=OFF -DTRISPLINE_FUZZ=ON > "$log" 2>&1 || { cat "$log"; exit 1; }
-echo "sanitize: building ($build/, ASan + UBSan + libFuzzer coverage, $jobs jobs)…"
-cmake --build "$build" -j"$jobs" >> "$log" 2>&1 || { tail -n 60 "$log"; exit 1; }
-echo "sanitize: built in $((SECONDS - start)) s"
+if ((do_build)); then
+  cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Sanitize \
+    -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14 \
+    -DCMAKE_CXX_FLAGS_SANITIZE="-O1 -gline-tables-only" -DCMAKE_C_FLAGS_SANITIZE="-O1 -gline-tables-only" \
+    -DTRISPLINE_BUILD_GUI=OFF -DTRISPLINE_FUZZ=ON > "$log" 2>&1 || { cat "$log"; exit 1; }
+  echo "sanitize: building ($build/, ASan + UBSan + libFuzzer coverage, $jobs jobs)…"
+  cmake --build "$build" -j"$jobs" >> "$log" 2>&1 || { tail -n 60 "$log"; exit 1; }
+  echo "sanitize: built in $((SECONDS - start)) s"
+fi
 
 # abort_on_error: a finding ends the test with a signal; detect_leaks: leaks are findings too.
 export ASAN_OPTIONS="abort_on_error=1:detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 export LSAN_OPTIONS="suppressions=$root/tests/fuzz/lsan.supp:print_suppressions=0"  # third-party leaks, each explained
-if [ "${1:-}" != "--fuzz-only" ]; then
+if ((do_test)); then
   start=$SECONDS
   ctest --test-dir "$build" --output-on-failure -j"$jobs" --timeout 900 -L 'core|fuzz-regress'
   echo "sanitize: core, command and fuzz-regression tests in $((SECONDS - start)) s"
 fi
 
-[ "${1:-}" = "--no-fuzz" ] && exit 0
+((do_fuzz)) || exit 0
 
 # Each target fuzzes from a fresh working corpus seeded by its seed folders (the seeds themselves are never written).
 start=$SECONDS

@@ -5,8 +5,8 @@
 # (:100–:899, one without a lock file), and the command starts only once an X client has connected to it. On a
 # loaded 2-core machine a fresh server on the lowest free display (`-displayfd`) now and then refused every client
 # (server alive, socket present; a server of an earlier run that was still going away held the display's socket):
-# a server that takes no client within 10 s is replaced by one on another display, up to 5 times. The ctest entries
-# that use it share the RESOURCE_LOCK "display": one window test at a time, beside at most one non-window test.
+# a server that takes no client within 10 s is replaced by one on another display, up to 5 times. The GUI tests take
+# RESOURCE_LOCK display_0 or display_1 in turn (tests/gui/CMakeLists.txt): at most two windows at a time.
 set -euo pipefail
 screen="$1"; shift
 xvfb_pid=""
