@@ -69,8 +69,12 @@ if ((build)); then
   # on later (scripts/test.sh) adds targets and rebuilds none of the editor's objects.
   build_tests=OFF
   if ((tests)) || grep -q '^TRISPLINE_BUILD_TESTS:BOOL=ON' build/CMakeCache.txt 2>/dev/null; then build_tests=ON; fi
+  # The core tests run in the sanitizer build (scripts/test.sh); build/ keeps the FFD kernel tests only, unless the
+  # folder was configured otherwise (-DTRISPLINE_BUILD_CORE_TESTS=ON: every test in build/ as well).
+  core_tests=()
+  grep -q '^TRISPLINE_BUILD_CORE_TESTS:' build/CMakeCache.txt 2>/dev/null || core_tests=(-DTRISPLINE_BUILD_CORE_TESTS=OFF)
   cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE="$build_type" -DTRISPLINE_BUILD_TESTS="$build_tests" \
-    > build.log.tmp 2>&1 || { cat build.log.tmp; rm -f build.log.tmp; exit 1; }
+    "${core_tests[@]}" > build.log.tmp 2>&1 || { cat build.log.tmp; rm -f build.log.tmp; exit 1; }
   rm -f build.log.tmp
   phase_done "configured"
   target=(); ((tests)) || target=(--target trispline)
