@@ -13,6 +13,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <string>
+#include <vector>
 
 #include "core/volume/volume_io_dicom_walk.h"
 #include "core/volume/volume_io_formats.h"
@@ -53,6 +55,51 @@ bool parse_integer(const char* s, int lo, int hi, int* out) {
   if (!parse_numbers(s, 1, &v) || v != std::floor(v) || v < lo || v > hi) return false;
   *out = static_cast<int>(v);
   return true;
+}
+
+// Why an RLE Lossless frame (DICOM PS3.5 Annex G) cannot be decoded to `segment_count` segments of `segment_bytes`
+// each, or "" when it can. GDCM's RLE decoder trusts the frame's 64-byte header (a segment count of 0 divides by
+// zero, one above 15 reads past its offset table) and copies a short result as if it were whole, so the frame is
+// walked here first, run by run as that decoder reads it: the count and offsets from the header, every segment
+// decoding to exactly its bytes inside the frame.
+std::string rle_frame_problem(const std::vector<char>& frame, std::size_t segment_count, std::size_t segment_bytes) {
+  auto u32 = [&](std::size_t at) {
+    std::uint32_t v = 0;
+    for (int b = 3; b >= 0; --b) v = v << 8 | static_cast<unsigned char>(frame[at + static_cast<std::size_t>(b)]);
+    return v;
+  };
+  if (frame.size() < 64) return "an RLE frame of " + std::to_string(frame.size()) + " bytes has no 64-byte header";
+  const std::uint32_t count = u32(0);
+  if (count != segment_count)
+    return "its RLE header declares " + std::to_string(count) + " segments, the pixel format needs " +
+           std::to_string(segment_count);
+  auto name = [&](std::size_t s) {
+    return "RLE segment " + std::to_string(s + 1) + " of " + std::to_string(segment_count);
+  };
+  std::vector<std::size_t> starts(segment_count + 1, frame.size());  // segment s spans [starts[s], starts[s + 1])
+  for (std::size_t s = 0; s < segment_count; ++s) {
+    starts[s] = u32(4 + 4 * s);
+    if (s == 0 ? starts[s] != 64 : starts[s] <= starts[s - 1] || starts[s] >= frame.size())
+      return name(s) + " starts at byte " + std::to_string(starts[s]) + " of a " + std::to_string(frame.size()) +
+             "-byte frame";
+  }
+  for (std::size_t s = 0; s < segment_count; ++s) {
+    std::size_t at = starts[s], out = 0;
+    const std::size_t end = starts[s + 1];
+    while (out < segment_bytes) {
+      if (at >= end) break;
+      const int n = static_cast<signed char>(frame[at++]);  // n ≥ 0: n + 1 literal bytes; -127..-1: 1 - n copies
+      const std::size_t run = n >= 0 ? static_cast<std::size_t>(n) + 1 : n == -128 ? 0 : static_cast<std::size_t>(1 - n);
+      const std::size_t read = n >= 0 ? run : n == -128 ? 0 : 1;
+      if (read > end - at) break;
+      at += read;
+      out += run;
+    }
+    if (out != segment_bytes)
+      return name(s) + " decodes to " + std::string(out < segment_bytes ? "only " : "") + std::to_string(out) +
+             " bytes, not " + std::to_string(segment_bytes);
+  }
+  return "";
 }
 
 }  // namespace
@@ -197,6 +244,13 @@ void decode_slice(const SliceHeader& slice, const DicomWalkLimits& limits, const
     // would interpret the header itself, and asserts on values a hostile file can hold).
     if (pixels.fragments.size() < 2)
       fail(report, slice.name + ": encapsulated Pixel Data (7FE0,0010) holds no fragment after its offset table");
+    if (syntax == gdcm::TransferSyntax::RLELossless) {
+      std::vector<char> frame;  // a 2-D image: GDCM decodes its fragments as one stream
+      for (std::size_t k = 1; k < pixels.fragments.size(); ++k)
+        frame.insert(frame.end(), pixels.fragments[k].begin(), pixels.fragments[k].end());
+      const std::string problem = rle_frame_problem(frame, static_cast<std::size_t>(decode.bytes), per_slice);
+      if (!problem.empty()) fail(report, slice.name + ": " + problem);
+    }
     gdcm::SmartPointer<gdcm::SequenceOfFragments> fragments = new gdcm::SequenceOfFragments;
     const std::vector<char>& table = pixels.fragments.front();
     fragments->GetTable().SetByteValue(table.data(), static_cast<std::uint32_t>(table.size()));

@@ -185,7 +185,7 @@ TEST(DicomHostile, MetaHeadersGdcmWouldAssertOnAreRefused) {
     EXPECT_THAT(volume_load_error(one / "input.dcm"), HasSubstr("input.dcm")) << entry.path();
     ++n;
   }
-  EXPECT_EQ(n, 5);
+  EXPECT_EQ(n, 6);  // the RLE frame whose segment count GDCM trusted among them
   EXPECT_LT(peak_rss_bytes() - before, std::uint64_t{100} << 20);
 }
 
@@ -295,5 +295,73 @@ TEST(DicomHostile, AbsurdSpacingOrPositionIsRefused) {
     }
     EXPECT_THAT(volume_load_error(dir.path()), AllOf(HasSubstr(field), Not(HasSubstr("loaded"))))
         << spacing << " " << gap;
+  }
+}
+
+// ------------------------------------------------------------------------------------------------- RLE frames
+
+namespace {
+
+// One RLE Lossless frame (PS3.5 Annex G) of 4×3 int16 samples: a 64-byte header (segment count, offsets), then
+// segment 1 (the samples' high bytes) and segment 2 (their low bytes), each one literal run of 12 bytes.
+std::vector<unsigned char> rle_frame(const std::vector<std::int16_t>& samples) {
+  std::vector<unsigned char> high{11}, low{11};
+  for (const std::int16_t v : samples) {
+    high.push_back(static_cast<unsigned char>(static_cast<std::uint16_t>(v) >> 8));
+    low.push_back(static_cast<unsigned char>(static_cast<std::uint16_t>(v) & 0xFF));
+  }
+  std::vector<unsigned char> frame(64, 0);
+  const std::uint32_t header[3] = {2, 64, static_cast<std::uint32_t>(64 + high.size())};
+  for (int i = 0; i < 3; ++i)
+    for (int b = 0; b < 4; ++b) frame[static_cast<std::size_t>(4 * i + b)] = static_cast<unsigned char>(header[i] >> (8 * b));
+  frame.insert(frame.end(), high.begin(), high.end());
+  frame.insert(frame.end(), low.begin(), low.end());
+  return frame;
+}
+
+// n 4×3 slices in RLE Lossless, slice k's frame given by `frame(k)`, as one fragment after an empty offset table.
+void write_rle_series(const fs::path& dir, int n, const std::function<std::vector<unsigned char>(int)>& frame) {
+  const std::string uid = new_series_uid();
+  for (int k = 0; k < n; ++k) {
+    DicomBytes d = ct_slice_header(Syntax::kExplicitLittle, uid, k, 3, 4, 16);
+    std::vector<unsigned char> f = frame(k);
+    if (f.size() % 2) f.push_back(0);
+    d.element(0x7FE0, 0x0010, "OB", {}, 0xFFFFFFFFu).item_tag(0xE000, 0);
+    d.item_tag(0xE000, static_cast<std::uint32_t>(f.size())).raw(f).item_tag(0xE0DD, 0);
+    write_bytes(dir / ("s" + std::to_string(k) + ".dcm"), d.file("1.2.840.10008.1.2.5"));
+  }
+}
+
+}  // namespace
+
+// GDCM's RLE decoder trusts the frame's header and copies a short result as if whole: a segment count of 0 or above
+// 15 crashed it (found by fuzz_volume_dicom). The frame is walked before GDCM sees it.
+TEST(DicomHostile, RleFramesAreCheckedBeforeGdcmDecodesThem) {
+  {
+    TempFolder dir;
+    write_rle_series(dir.path(), 3, [](int k) { return rle_frame(ramp(12, k)); });
+    const ScalarVolume v = load_volume(dir.path());
+    ASSERT_EQ(v.dims, (std::array<int, 3>{4, 3, 3}));
+    EXPECT_EQ(v.at(3, 2, 2), 11.0f + 200.0f);
+  }
+  const std::vector<std::pair<std::function<void(std::vector<unsigned char>&)>, std::string>> cases{
+      {[](auto& f) { f[0] = 0; }, "declares 0 segments, the pixel format needs 2"},
+      {[](auto& f) { f[0] = 16; }, "declares 16 segments"},
+      {[](auto& f) { f[8] = 200; }, "RLE segment 2 of 2 starts at byte 200 of a 90-byte frame"},
+      {[](auto& f) { f[8] = 60; }, "RLE segment 2 of 2 starts at byte 60"},
+      {[](auto& f) { f[4] = 66; }, "RLE segment 1 of 2 starts at byte 66"},
+      {[](auto& f) { f[64] = 12; }, "RLE segment 1 of 2 decodes to only 0 bytes, not 12"},
+      {[](auto& f) { f[64] = static_cast<unsigned char>(-12); }, "RLE segment 1 of 2 decodes to 13 bytes, not 12"},
+      {[](auto& f) { f.resize(80); }, "RLE segment 2 of 2 decodes to only 0 bytes"},
+      {[](auto& f) { f.resize(40); }, "an RLE frame of 40 bytes has no 64-byte header"},
+  };
+  for (const auto& c : cases) {
+    TempFolder dir;
+    write_rle_series(dir.path(), 3, [&](int k) {
+      std::vector<unsigned char> f = rle_frame(ramp(12, k));
+      if (k == 2) c.first(f);
+      return f;
+    });
+    EXPECT_THAT(volume_load_error(dir.path()), AllOf(HasSubstr("s2.dcm"), HasSubstr(c.second))) << c.second;
   }
 }
