@@ -88,9 +88,14 @@ std::string rle_frame_problem(const std::vector<char>& frame, std::size_t segmen
     const std::size_t end = starts[s + 1];
     while (out < segment_bytes) {
       if (at >= end) break;
-      const int n = static_cast<signed char>(frame[at++]);  // n ≥ 0: n + 1 literal bytes; -127..-1: 1 - n copies
-      const std::size_t run = n >= 0 ? static_cast<std::size_t>(n) + 1 : n == -128 ? 0 : static_cast<std::size_t>(1 - n);
-      const std::size_t read = n >= 0 ? run : n == -128 ? 0 : 1;
+      const int n = static_cast<signed char>(frame[at++]);
+      std::size_t run = 0, read = 0;  // n ≥ 0: n + 1 literal bytes; -127..-1: 1 - n copies of one byte; -128: none
+      if (n >= 0) {
+        run = read = static_cast<std::size_t>(n) + 1;
+      } else if (n != -128) {
+        run = static_cast<std::size_t>(1 - n);
+        read = 1;
+      }
       if (read > end - at) break;
       at += read;
       out += run;

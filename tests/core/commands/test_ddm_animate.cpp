@@ -52,7 +52,9 @@ TEST(DdmAnimate, MorphAndOffsetPlayOverTimeAndUndo) {
 TEST(DdmAnimate, BadInputIsRefusedAndTheSceneIsUnchanged) {
   Scene s = pot_with_thorns();
   const auto before = s.find("pot")->ddm_layers.at(0);
-  auto field_of = [&](const char* line) { return trispline::test::command_field_of<DdmAnimateCommand>(s, json::parse(line)); };
+  auto field_of = [&](const char* line) {
+    return trispline::test::command_field_of<DdmAnimateCommand>(s, json::parse(line));
+  };
   EXPECT_EQ(field_of(R"({"cmd":"ddm.animate","object":"pot","layer":"t","morph_tile":"chain"})"), "morph_tile");
   EXPECT_EQ(field_of(R"({"cmd":"ddm.animate","object":"pot","layer":"t","alpha_keys":[[1,0],[9,1]]})"), "alpha_keys");
   EXPECT_EQ(field_of(R"({"cmd":"ddm.animate","object":"pot","layer":"t","morph_tile":"flower",

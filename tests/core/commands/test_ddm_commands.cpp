@@ -221,7 +221,9 @@ TEST(DdmCommands, BadInputIsRefusedAndTheSceneIsUnchanged) {
   // Bake: unknown layer, taken name.
   DdmFillCommand::parse(json::parse(R"({"cmd":"ddm.fill","object":"ball","layer":"ok","tile":"hex","layout":"rect",
       "counts":[1,1],"height":0.1})"), {})->redo(s);
-  auto bake_field = [&](const char* line) { return trispline::test::command_field_of<DdmBakeCommand>(s, json::parse(line)); };
+  auto bake_field = [&](const char* line) {
+    return trispline::test::command_field_of<DdmBakeCommand>(s, json::parse(line));
+  };
   EXPECT_EQ(bake_field(R"({"cmd":"ddm.bake","object":"ball","layer":"missing","name":"b"})"), "layer");
   EXPECT_EQ(bake_field(R"({"cmd":"ddm.bake","object":"ball","layer":"ok","name":"fin"})"), "name");
   EXPECT_EQ(s.objects().size(), 2u);

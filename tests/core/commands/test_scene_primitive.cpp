@@ -77,8 +77,8 @@ TEST(ScenePrimitive, BadFieldsAreNamedAndTheSceneIsUntouched) {
   EXPECT_EQ(field_of(R"({"cmd":"scene.primitive","kind":"box","name":"b"})"), "name");  // taken
   EXPECT_TRUE(trispline::test::throws_command_error(
       [&] { parse(R"({"cmd":"scene.primitive","kind":"box","name":"b"})")->redo(s); }, "name", "already exists"));
-  EXPECT_TRUE(trispline::test::throws_command_error([&] { parse(R"({"cmd":"scene.primitive","kind":"torus"})"); }, "kind",
-                                         "field 'kind'"));
+  EXPECT_TRUE(trispline::test::throws_command_error([&] { parse(R"({"cmd":"scene.primitive","kind":"torus"})"); },
+                                                    "kind", "field 'kind'"));
   trispline::test::expect_same_meshes(s, before);
 }
 

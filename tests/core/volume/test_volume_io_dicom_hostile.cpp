@@ -313,7 +313,8 @@ std::vector<unsigned char> rle_frame(const std::vector<std::int16_t>& samples) {
   std::vector<unsigned char> frame(64, 0);
   const std::uint32_t header[3] = {2, 64, static_cast<std::uint32_t>(64 + high.size())};
   for (int i = 0; i < 3; ++i)
-    for (int b = 0; b < 4; ++b) frame[static_cast<std::size_t>(4 * i + b)] = static_cast<unsigned char>(header[i] >> (8 * b));
+    for (int b = 0; b < 4; ++b)
+      frame[static_cast<std::size_t>(4 * i + b)] = static_cast<unsigned char>(header[i] >> (8 * b));
   frame.insert(frame.end(), high.begin(), high.end());
   frame.insert(frame.end(), low.begin(), low.end());
   return frame;
