@@ -187,8 +187,9 @@ bool read_singleton_cache(const fs::path& path, std::uint64_t key, SingletonTabl
   std::uint64_t cells = 1, macros = 1;
   for (int a = 0; a < 3; ++a) {
     if (h.cells[a] < 1) return false;
-    cells = checked_mul(cells, static_cast<std::uint64_t>(h.cells[a]), overflow);
-    macros = checked_mul(macros, (h.cells[a] + SingletonTable::kMacro - 1ull) / SingletonTable::kMacro, overflow);
+    const auto n = static_cast<std::uint64_t>(h.cells[a]);  // in 64 bits before the rounding up: INT32_MAX cells
+    cells = checked_mul(cells, n, overflow);
+    macros = checked_mul(macros, (n + SingletonTable::kMacro - 1) / SingletonTable::kMacro, overflow);
   }
   if (overflow || h.singletons != cells || cells >= std::numeric_limits<std::uint32_t>::max()) return false;
   if (size != sizeof(CacheHead) + cells * sizeof(Singleton)) return false;
