@@ -1,8 +1,6 @@
 // The singleton table's on-disk cache (singletons.h): bounded (a size limit, least recently used evicted first, 0 =
 // off) and verified (header counts against the file size and the memory budget before allocating, CRC-32 of the whole
 // file through zlib, value checks, a rebuild of a sample of cells); a bad entry is rebuilt and replaced, never used.
-#include "core/volume/singletons.h"
-
 #include <unistd.h>
 #include <zlib.h>
 
@@ -14,6 +12,8 @@
 #include <fstream>
 #include <limits>
 
+#include "core/volume/singletons.h"
+
 namespace trispline::core {
 
 std::uint64_t singleton_cache_key(const VolumeSpline& spline) {
@@ -22,8 +22,12 @@ std::uint64_t singleton_cache_key(const VolumeSpline& spline) {
     const auto* p = static_cast<const unsigned char*>(data);
     for (std::size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 1099511628211ull;
   };
-  const std::int32_t head[6] = {spline.dims()[0], spline.dims()[1], spline.dims()[2], spline.order(),
-                                spline.interpolating() ? 1 : 0, 1 /* bound_cell version */};
+  const std::int32_t head[6] = {spline.dims()[0],
+                                spline.dims()[1],
+                                spline.dims()[2],
+                                spline.order(),
+                                spline.interpolating() ? 1 : 0,
+                                1 /* bound_cell version */};
   mix(head, sizeof(head));
   mix(spline.control_points().data(), spline.control_points().size() * sizeof(float));
   return h;
@@ -77,9 +81,8 @@ std::uint32_t file_crc(CacheHead head, const Singleton* singletons, std::uint64_
 }
 
 bool is_hex16(const std::string& s) {
-  return s.size() >= 16 && std::all_of(s.begin(), s.begin() + 16, [](char c) {
-           return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f');
-         });
+  return s.size() >= 16 && std::all_of(s.begin(), s.begin() + 16,
+                                       [](char c) { return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'); });
 }
 
 // A cache entry "<16 hex>.singletons" or a write's temporary "<16 hex>.singletons.<pid>.tmp".
@@ -126,9 +129,8 @@ std::uint64_t evict_singleton_cache(const fs::path& dir, std::uint64_t limit_byt
     const fs::file_time_type used = fs::last_write_time(it->path(), e);
     entries.push_back({e ? fs::file_time_type::min() : used, name, bytes});
   }
-  std::sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
-    return a.used != b.used ? a.used < b.used : a.name < b.name;
-  });
+  std::sort(entries.begin(), entries.end(),
+            [](const Entry& a, const Entry& b) { return a.used != b.used ? a.used < b.used : a.name < b.name; });
   std::uint64_t total = 0;
   for (const Entry& e : entries) total += e.bytes;
   for (const Entry& e : entries) {

@@ -1,15 +1,16 @@
-// Animation commands: anim.timeline, anim.keyframe, anim.clip, and the offset keys they drive (core::evaluate_offset_keys, core::scene_at_time). Commands run through parse + redo/undo on a real scene
-// (a crate placed over a plane by place.sketch), as the editor's history runs them.
+// Animation commands: anim.timeline, anim.keyframe, anim.clip, and the offset keys they drive
+// (core::evaluate_offset_keys, core::scene_at_time). Commands run through parse + redo/undo on a real scene (a crate
+// placed over a plane by place.sketch), as the editor's history runs them.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
+#include "core/commands/anim_commands.h"
+#include "core/commands/ddm_commands.h"
+#include "core/commands/mesh_refine.h"
+#include "core/scene/scene_export.h"
 #include "tests/core/commands/command_test_util.h"
 #include "tests/core/commands/placed_crate.h"
-#include "core/commands/anim_commands.h"
-#include "core/commands/mesh_refine.h"
-#include "core/commands/ddm_commands.h"
-#include "core/scene/scene_export.h"
 
 namespace trispline::core {
 namespace anim_commands_test {
@@ -34,7 +35,7 @@ TEST(OffsetKeys, InterpolationModesAndHolds) {
   EXPECT_LT(evaluate_offset_keys(keys, 1.1).x, 1.1 * 2 - 1.0);  // eases out of the key (slower than linear)
   EXPECT_DOUBLE_EQ(evaluate_offset_keys(keys, 2.9).x, 3.0);     // constant holds
   EXPECT_DOUBLE_EQ(evaluate_offset_keys(keys, 3.0).x, 5.0);
-  EXPECT_DOUBLE_EQ(evaluate_offset_keys(keys, 9.0).x, 5.0);     // held after the last key
+  EXPECT_DOUBLE_EQ(evaluate_offset_keys(keys, 9.0).x, 5.0);  // held after the last key
   EXPECT_THROW(evaluate_offset_keys({}, 0.0), std::invalid_argument);
 }
 
@@ -92,7 +93,8 @@ TEST(AnimKeyframe, RemoveAndErrorsLeaveTheSceneUnchanged) {
   auto remove_missing = AnimKeyframeCommand::parse(
       json::parse(R"({"cmd":"anim.keyframe","object":"crate","frame":11,"remove":true})"), ctx);
   EXPECT_THROW(remove_missing->redo(s), CommandError);
-  auto undeformed = AnimKeyframeCommand::parse(json::parse(R"({"cmd":"anim.keyframe","object":"ground","frame":1,"u":0})"), ctx);
+  auto undeformed =
+      AnimKeyframeCommand::parse(json::parse(R"({"cmd":"anim.keyframe","object":"ground","frame":1,"u":0})"), ctx);
   EXPECT_THROW(undeformed->redo(s), CommandError);
   EXPECT_THROW(AnimKeyframeCommand::parse(json::parse(R"({"cmd":"anim.keyframe","object":"crate","frame":1})"), ctx),
                CommandError);
@@ -113,13 +115,12 @@ TEST(AnimClip, MissingFileIsAClearErrorAndChangesNothing) {
   CommandContext ctx;
   auto c = AnimClipCommand::parse(
       json::parse(R"({"cmd":"anim.clip","object":"crate","path":"/nonexistent/walk.gltf"})"), ctx);
-  EXPECT_TRUE(test::throws_command_error([&] { c->redo(s); }, "path", "walk.gltf"))
-      << "missing clip file accepted";
+  EXPECT_TRUE(test::throws_command_error([&] { c->redo(s); }, "path", "walk.gltf")) << "missing clip file accepted";
   expect_same_meshes(s, before);
   EXPECT_EQ(s.find("crate")->clip, nullptr);
-  EXPECT_THROW(AnimClipCommand::parse(json::parse(R"({"cmd":"anim.clip","object":"crate","path":"x.gltf","speed":0})"),
-                                      ctx),
-               CommandError);
+  EXPECT_THROW(
+      AnimClipCommand::parse(json::parse(R"({"cmd":"anim.clip","object":"crate","path":"x.gltf","speed":0})"), ctx),
+      CommandError);
 }
 
 }  // namespace anim_commands_test
@@ -136,8 +137,10 @@ TEST(AnimClipReal, MorphCubeWalksAndMorphsUnderThePlacement) {
   Scene s;
   CommandContext ctx;
   run(s, json::parse(R"({"cmd":"scene.primitive","kind":"plane","name":"ground","scale":3})"));
-  SceneLoadCommand::parse(json{{"cmd", "scene.load"}, {"path", kData + "AnimatedMorphCube/AnimatedMorphCube.gltf"},
-                               {"name", "cube"}, {"scale", 4.0}},
+  SceneLoadCommand::parse(json{{"cmd", "scene.load"},
+                               {"path", kData + "AnimatedMorphCube/AnimatedMorphCube.gltf"},
+                               {"name", "cube"},
+                               {"scale", 4.0}},
                           ctx)
       ->redo(s);
   const Scene loaded = s;
@@ -188,15 +191,19 @@ TEST(AnimClipReal, MorphCubeWalksAndMorphsUnderThePlacement) {
 TEST(AnimClipReal, TilesRideOnTheClip) {
   Scene s;
   CommandContext ctx;
-  SceneLoadCommand::parse(json{{"cmd", "scene.load"}, {"path", kData + "AnimatedMorphCube/AnimatedMorphCube.gltf"},
-                               {"name", "cube"}, {"scale", 4.0}},
+  SceneLoadCommand::parse(json{{"cmd", "scene.load"},
+                               {"path", kData + "AnimatedMorphCube/AnimatedMorphCube.gltf"},
+                               {"name", "cube"},
+                               {"scale", 4.0}},
                           ctx)
       ->redo(s);
   DdmFillCommand::parse(json::parse(R"({"cmd":"ddm.fill","object":"cube","layer":"t","tile":"thorn","layout":"rect",
-      "counts":[1,1],"height":0.05})"), ctx)->redo(s);
+      "counts":[1,1],"height":0.05})"),
+                        ctx)
+      ->redo(s);
   AnimClipCommand::parse(
-      json{{"cmd", "anim.clip"}, {"object", "cube"}, {"path", kData + "AnimatedMorphCube/AnimatedMorphCube.gltf"}},
-      ctx)->redo(s);
+      json{{"cmd", "anim.clip"}, {"object", "cube"}, {"path", kData + "AnimatedMorphCube/AnimatedMorphCube.gltf"}}, ctx)
+      ->redo(s);
   const double duration = s.find("cube")->clip->clip->duration_s();
   const auto tiles = [&](double t) {
     const SceneExport ex = scene_export_nodes(scene_at_time(s, t));

@@ -16,7 +16,9 @@ Scene pot_with_thorns() {
   Scene s;
   ScenePrimitiveCommand::parse(json::parse(R"({"cmd":"scene.primitive","kind":"teapot","name":"pot"})"), {})->redo(s);
   DdmFillCommand::parse(json::parse(R"({"cmd":"ddm.fill","object":"pot","layer":"t","tile":"thorn","layout":"rect",
-      "counts":[8,2],"height":0.05,"base":"teapot_body","map_resolution":[65,33]})"), {})->redo(s);
+      "counts":[8,2],"height":0.05,"base":"teapot_body","map_resolution":[65,33]})"),
+                        {})
+      ->redo(s);
   return s;
 }
 
@@ -24,7 +26,8 @@ TEST(DdmAnimate, MorphAndOffsetPlayOverTimeAndUndo) {
   Scene s = pot_with_thorns();
   const auto before = s.find("pot")->ddm_layers.at(0);
   auto cmd = DdmAnimateCommand::parse(json::parse(R"({"cmd":"ddm.animate","object":"pot","layer":"t",
-      "morph_tile":"flower","alpha_keys":[[1,0],[25,1]],"offset_keys":[[1,0,0],[25,0.25,0]]})"), {});
+      "morph_tile":"flower","alpha_keys":[[1,0],[25,1]],"offset_keys":[[1,0,0],[25,0.25,0]]})"),
+                                      {});
   cmd->redo(s);
   const DdmLayer& layer = *s.find("pot")->ddm_layers.at(0);
   ASSERT_TRUE(layer.animated());
@@ -58,7 +61,8 @@ TEST(DdmAnimate, BadInputIsRefusedAndTheSceneIsUnchanged) {
   EXPECT_EQ(field_of(R"({"cmd":"ddm.animate","object":"pot","layer":"t","morph_tile":"chain"})"), "morph_tile");
   EXPECT_EQ(field_of(R"({"cmd":"ddm.animate","object":"pot","layer":"t","alpha_keys":[[1,0],[9,1]]})"), "alpha_keys");
   EXPECT_EQ(field_of(R"({"cmd":"ddm.animate","object":"pot","layer":"t","morph_tile":"flower",
-      "alpha_keys":[[1,0],[1,1]]})"), "alpha_keys");  // two keys on one frame
+      "alpha_keys":[[1,0],[1,1]]})"),
+            "alpha_keys");  // two keys on one frame
   EXPECT_EQ(field_of(R"({"cmd":"ddm.animate","object":"pot","layer":"t","offset_keys":[[1,0]]})"), "offset_keys");
   EXPECT_EQ(field_of(R"({"cmd":"ddm.animate","object":"pot","layer":"nope","alpha":0.5})"), "layer");
   EXPECT_EQ(field_of(R"({"cmd":"ddm.animate","object":"nope","layer":"t"})"), "object");

@@ -30,7 +30,8 @@ TEST(DdmCommands, FillThenBakeOnALimitSurface) {
   Scene s = ball_scene();
   const TriMesh rest = *s.find("ball")->rest_mesh;
   auto fill = DdmFillCommand::parse(json::parse(R"({"cmd":"ddm.fill","object":"ball","layer":"spikes","tile":"thorn",
-      "layout":"rect","counts":[1,1],"height":0.2})"), {});
+      "layout":"rect","counts":[1,1],"height":0.2})"),
+                                    {});
   EXPECT_EQ(fill->to_json()["counts"], json::parse("[1,1]"));
   fill->redo(s);
   const SceneObject& ball = *s.find("ball");
@@ -46,7 +47,8 @@ TEST(DdmCommands, FillThenBakeOnALimitSurface) {
   EXPECT_LT(far, 1.18);
 
   auto bake = DdmBakeCommand::parse(json::parse(R"({"cmd":"ddm.bake","object":"ball","layer":"spikes",
-      "name":"spikes.baked"})"), {});
+      "name":"spikes.baked"})"),
+                                    {});
   bake->redo(s);
   const SceneObject* baked = s.find("spikes.baked");
   ASSERT_TRUE(baked);
@@ -65,7 +67,8 @@ TEST(DdmCommands, FillThenBakeOnALimitSurface) {
 TEST(DdmCommands, ALayersOwnColourIsDrawnBakedAndExported) {
   Scene s = ball_scene();
   auto fill = DdmFillCommand::parse(json::parse(R"({"cmd":"ddm.fill","object":"ball","layer":"gold","tile":"hex",
-      "layout":"rect","counts":[1,1],"height":0.05,"color":[0.9,0.6,0.1]})"), {});
+      "layout":"rect","counts":[1,1],"height":0.05,"color":[0.9,0.6,0.1]})"),
+                                    {});
   EXPECT_EQ(fill->to_json()["color"].size(), 3u);  // logged back
   fill->redo(s);
   const glm::vec3 gold(0.9f, 0.6f, 0.1f);
@@ -81,7 +84,8 @@ TEST(DdmCommands, ALayersOwnColourIsDrawnBakedAndExported) {
   // ddm.color recolours the layer alone (tiles, maps and mesh shared); null gives it the object's again; undo.
   const auto before = s.find("ball")->ddm_layers.at(0);
   auto blue = DdmColorCommand::parse(json::parse(R"({"cmd":"ddm.color","object":"ball","layer":"gold",
-      "color":[0.1,0.2,0.9]})"), {});
+      "color":[0.1,0.2,0.9]})"),
+                                     {});
   blue->redo(s);
   const auto after = s.find("ball")->ddm_layers.at(0);
   EXPECT_EQ(*after->color, glm::vec3(0.1f, 0.2f, 0.9f));
@@ -90,20 +94,28 @@ TEST(DdmCommands, ALayersOwnColourIsDrawnBakedAndExported) {
   blue->undo(s);
   EXPECT_EQ(s.find("ball")->ddm_layers.at(0), before);
   auto clear = DdmColorCommand::parse(json::parse(R"({"cmd":"ddm.color","object":"ball","layer":"gold",
-      "color":null})"), {});
+      "color":null})"),
+                                      {});
   EXPECT_TRUE(clear->to_json()["color"].is_null());
   clear->redo(s);
   EXPECT_FALSE(s.find("ball")->ddm_layers.at(0)->color.has_value());
   clear->undo(s);
   EXPECT_THROW(DdmColorCommand::parse(json::parse(R"({"cmd":"ddm.color","object":"ball","layer":"gold",
-      "color":[2,0,0]})"), {}), CommandError);
+      "color":[2,0,0]})"),
+                                      {}),
+               CommandError);
   EXPECT_THROW(DdmColorCommand::parse(json::parse(R"({"cmd":"ddm.color","object":"ball","layer":"gold"})"), {}),
                CommandError);
   EXPECT_THROW(DdmColorCommand::parse(json::parse(R"({"cmd":"ddm.color","object":"ball","layer":"nope",
-      "color":null})"), {})->redo(s), CommandError);
+      "color":null})"),
+                                      {})
+                   ->redo(s),
+               CommandError);
   // Without "color" the layer takes the object's colour everywhere.
   DdmFillCommand::parse(json::parse(R"({"cmd":"ddm.fill","object":"ball","layer":"plain","tile":"hex",
-      "layout":"rect","counts":[1,1],"height":0.05})"), {})->redo(s);
+      "layout":"rect","counts":[1,1],"height":0.05})"),
+                        {})
+      ->redo(s);
   EXPECT_FALSE(s.find("ball")->ddm_layers.at(1)->color.has_value());
   DdmBakeCommand::parse(json::parse(R"({"cmd":"ddm.bake","object":"ball","layer":"plain","name":"p"})"), {})->redo(s);
   EXPECT_EQ(s.find("p")->color, s.find("ball")->color);
@@ -112,7 +124,9 @@ TEST(DdmCommands, ALayersOwnColourIsDrawnBakedAndExported) {
 TEST(DdmCommands, RemoveALayerAndCommandsThatWouldLeaveTilesBehindAreRefused) {
   Scene s = ball_scene();
   DdmFillCommand::parse(json::parse(R"({"cmd":"ddm.fill","object":"ball","layer":"spots","tile":"hex",
-      "layout":"rect","counts":[1,1],"height":0.05})"), {})->redo(s);
+      "layout":"rect","counts":[1,1],"height":0.05})"),
+                        {})
+      ->redo(s);
   const auto layer = s.find("ball")->ddm_layers.at(0);
   // A new mesh would leave the tiles on the old surface: refused, naming the layer; the object is unchanged.
   auto subdivide = MeshSubdivideCommand::parse(json::parse(R"({"cmd":"mesh.subdivide","object":"ball"})"), {});
@@ -161,8 +175,10 @@ TEST(DdmCommands, TeapotBodyLayerAndReplacingALayer) {
 TEST(DdmCommands, TileFromAFileRelativeToTheLog) {
   CommandContext ctx;
   ctx.base_dir = std::filesystem::path(TRISPLINE_SOURCE_DIR) / "tests" / "logs";
-  auto fill = DdmFillCommand::parse(json::parse(R"({"cmd":"ddm.fill","object":"ball","layer":"t","tile":"data/brick.obj",
-      "layout":"rect","counts":[1,1],"height":0.1})"), ctx);
+  auto fill =
+      DdmFillCommand::parse(json::parse(R"({"cmd":"ddm.fill","object":"ball","layer":"t","tile":"data/brick.obj",
+      "layout":"rect","counts":[1,1],"height":0.1})"),
+                            ctx);
   EXPECT_TRUE(std::filesystem::path(fill->to_json().at("tile").get<std::string>()).is_absolute());
   Scene s = ball_scene();
   fill->redo(s);
@@ -181,29 +197,51 @@ TEST(DdmCommands, BadInputIsRefusedAndTheSceneIsUnchanged) {
   };
   Scene s = ball_scene();
   EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","object":"ball","layer":"x","tile":"thorn","layout":"rect","counts":[0,2],
-      "height":0.1})", s), "counts");
+      "height":0.1})",
+                     s),
+            "counts");
   EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","object":"ball","layer":"x","tile":"thorn","layout":"rect","counts":[1,1],
-      "height":0})", s), "height");
+      "height":0})",
+                     s),
+            "height");
   EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","object":"ball","layer":"x","tile":"spiral.obj","layout":"rect",
-      "counts":[1,1],"height":0.1})", s), "tile");
+      "counts":[1,1],"height":0.1})",
+                     s),
+            "tile");
   EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","object":"ball","layer":"x","tile":"thorn","layout":"zigzag",
-      "counts":[1,1],"height":0.1})", s), "layout");
+      "counts":[1,1],"height":0.1})",
+                     s),
+            "layout");
   EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","object":"nope","layer":"x","tile":"thorn","layout":"rect",
-      "counts":[1,1],"height":0.1})", s), "object");
+      "counts":[1,1],"height":0.1})",
+                     s),
+            "object");
   EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","object":"ball","layer":"x","tile":"thorn","layout":"rect",
-      "counts":[1,1],"height":0.1,"base":"teapot_body"})", s), "base");
+      "counts":[1,1],"height":0.1,"base":"teapot_body"})",
+                     s),
+            "base");
   EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","object":"ball","layer":"x","tile":"thorn","layout":"rect",
-      "counts":[400,400],"height":0.1})", s), "counts");  // too many tile vertices
+      "counts":[400,400],"height":0.1})",
+                     s),
+            "counts");  // too many tile vertices
   // Counts that would make 10¹⁰ cells are refused from the numbers, before a cell is made (once a bare bad_alloc).
   EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","object":"ball","layer":"x","tile":"thorn","layout":"hex",
-      "counts":[100000,100000],"height":0.1})", s), "counts");
+      "counts":[100000,100000],"height":0.1})",
+                     s),
+            "counts");
   // A tile size far below the ball is the most tiles, not the fewest (5e-324 once laid one tile per chart).
   EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","object":"ball","layer":"x","tile":"thorn","layout":"rect",
-      "tile_size":5e-324,"height":0.1})", s), "tile_size");
+      "tile_size":5e-324,"height":0.1})",
+                     s),
+            "tile_size");
   EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","object":"ball","layer":"x","tile":"thorn","layout":"rect",
-      "base":"auto_uv","tile_size":1e-300,"height":0.1})", s), "tile_size");
+      "base":"auto_uv","tile_size":1e-300,"height":0.1})",
+                     s),
+            "tile_size");
   EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","object":"ball","layer":"x","tile":"thorn","layout":"rect",
-      "counts":[1,1],"height":0.1,"color":[0.5,1.5,0]})", s), "color");
+      "counts":[1,1],"height":0.1,"color":[0.5,1.5,0]})",
+                     s),
+            "color");
   // A non-manifold base.
   SceneObject fin;
   fin.name = "fin";
@@ -214,13 +252,19 @@ TEST(DdmCommands, BadInputIsRefusedAndTheSceneIsUnchanged) {
   fin.refresh();
   s.insert(fin);
   EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","object":"fin","layer":"x","tile":"thorn","layout":"rect",
-      "counts":[1,1],"height":0.1})", s), "base");
+      "counts":[1,1],"height":0.1})",
+                     s),
+            "base");
   EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","object":"fin","layer":"x","tile":"thorn","layout":"rect",
-      "counts":[1,1],"height":0.1,"base":"uv"})", s), "base");  // no texture coordinates
+      "counts":[1,1],"height":0.1,"base":"uv"})",
+                     s),
+            "base");  // no texture coordinates
   for (const SceneObject& o : s.objects()) EXPECT_TRUE(o.ddm_layers.empty()) << o.name;
   // Bake: unknown layer, taken name.
   DdmFillCommand::parse(json::parse(R"({"cmd":"ddm.fill","object":"ball","layer":"ok","tile":"hex","layout":"rect",
-      "counts":[1,1],"height":0.1})"), {})->redo(s);
+      "counts":[1,1],"height":0.1})"),
+                        {})
+      ->redo(s);
   auto bake_field = [&](const char* line) {
     return trispline::test::command_field_of<DdmBakeCommand>(s, json::parse(line));
   };

@@ -50,9 +50,9 @@ TEST(DffdAnimate, TheSeamMovesFromCappedToStitched) {
   EXPECT_EQ(c->stats().at("keys"), 2);
   EXPECT_EQ(c->stats().at("stitch_at_start"), 0.0);
   const Scene at0 = scene_at_time(s, 0.0), at1 = scene_at_time(s, 1.0), mid = scene_at_time(s, 0.5);
-  EXPECT_EQ(mesh_of(at0).positions, mesh_of(capped).positions);  // s = 0: the capped split, bit for bit
+  EXPECT_EQ(mesh_of(at0).positions, mesh_of(capped).positions);    // s = 0: the capped split, bit for bit
   EXPECT_EQ(mesh_of(at1).positions, mesh_of(stitched).positions);  // s = 1: the stitched split, bit for bit
-  EXPECT_EQ(mesh_of(s).positions, mesh_of(at0).positions);          // world_mesh is scene time 0
+  EXPECT_EQ(mesh_of(s).positions, mesh_of(at0).positions);         // world_mesh is scene time 0
   ASSERT_EQ(mesh_of(mid).positions.size(), mesh_of(capped).positions.size());
   double worst = 0.0;  // halfway in time, halfway between the two states, vertex by vertex
   for (std::size_t v = 0; v < mesh_of(mid).positions.size(); ++v) {
@@ -82,8 +82,10 @@ TEST(DffdAnimate, AStitchedSplitOpensAndOneKeyHolds) {
 
 TEST(DffdAnimate, ComposesWithTheWalk) {
   Scene s = split_ball("cap");
-  run_line<AnimKeyframeCommand>(s, json::parse(R"({"cmd":"anim.keyframe","object":"ball","frame":1,"offset":[-0.3,0,0]})"));
-  run_line<AnimKeyframeCommand>(s, json::parse(R"({"cmd":"anim.keyframe","object":"ball","frame":25,"offset":[0.3,0,0]})"));
+  run_line<AnimKeyframeCommand>(
+      s, json::parse(R"({"cmd":"anim.keyframe","object":"ball","frame":1,"offset":[-0.3,0,0]})"));
+  run_line<AnimKeyframeCommand>(
+      s, json::parse(R"({"cmd":"anim.keyframe","object":"ball","frame":25,"offset":[0.3,0,0]})"));
   const Scene walk_only = s;
   run_line<DffdAnimateCommand>(s, json::parse(R"({"cmd":"dffd.animate","object":"ball","stitch_keys":[[1,0],[25,1]],
       "interpolation":"smooth"})"));
@@ -105,7 +107,8 @@ TEST(DffdAnimate, ComposesWithTheWalk) {
 
 TEST(DffdAnimate, AMovedObjectKeepsBothSeamStates) {
   Scene s = split_ball("cap");
-  run_line<DffdAnimateCommand>(s, json::parse(R"({"cmd":"dffd.animate","object":"ball","stitch_keys":[[1,0],[25,1]]})"));
+  run_line<DffdAnimateCommand>(s,
+                               json::parse(R"({"cmd":"dffd.animate","object":"ball","stitch_keys":[[1,0],[25,1]]})"));
   const TriMesh before = mesh_of(scene_at_time(s, 1.0));
   run_line<ObjectTransformCommand>(s, json::parse(R"({"cmd":"object.transform","object":"ball","translate":[0,0,2]})"));
   const TriMesh after = mesh_of(scene_at_time(s, 1.0));
@@ -123,10 +126,10 @@ TEST(DffdAnimate, ErrorsNameTheirFieldAndChangeNothing) {
   };
   EXPECT_TRUE(throws_command_error(run(open, R"({"cmd":"dffd.animate","object":"ball","stitch_keys":[[1,0]]})"),
                                    "object", "open"));
-  EXPECT_TRUE(throws_command_error(run(s, R"({"cmd":"dffd.animate","object":"tool","stitch_keys":[[1,0]]})"),
-                                   "object", "not split"));
-  EXPECT_TRUE(throws_command_error(run(s, R"({"cmd":"dffd.animate","object":"nope","stitch_keys":[[1,0]]})"),
-                                   "object", "nope"));
+  EXPECT_TRUE(throws_command_error(run(s, R"({"cmd":"dffd.animate","object":"tool","stitch_keys":[[1,0]]})"), "object",
+                                   "not split"));
+  EXPECT_TRUE(throws_command_error(run(s, R"({"cmd":"dffd.animate","object":"nope","stitch_keys":[[1,0]]})"), "object",
+                                   "nope"));
   EXPECT_TRUE(throws_command_error(run(s, R"({"cmd":"dffd.animate","object":"ball"})"), "stitch_keys", "key"));
   EXPECT_TRUE(throws_command_error(run(s, R"({"cmd":"dffd.animate","object":"ball","stitch_keys":[[2,0],[2,1]]})"),
                                    "stitch_keys", "two keys"));

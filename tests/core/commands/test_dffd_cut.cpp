@@ -20,13 +20,16 @@ void run(Scene& s, CommandPtr c) { c->redo(s); }
 Scene placed_ball() {
   Scene s;
   CommandContext ctx;
-  run(s, ScenePrimitiveCommand::parse(json::parse(R"({"cmd":"scene.primitive","kind":"plane","name":"ground","scale":3})"), ctx));
+  run(s, ScenePrimitiveCommand::parse(
+             json::parse(R"({"cmd":"scene.primitive","kind":"plane","name":"ground","scale":3})"), ctx));
   run(s, ScenePrimitiveCommand::parse(
              json::parse(R"({"cmd":"scene.primitive","kind":"sphere","name":"ball","scale":[0.5,0.2,0.2]})"), ctx));
   run(s, CameraSetCommand::parse(json::parse(R"({"cmd":"camera.set","eye":[0,3,3],"target":[0,0,0],"up":[0,1,0],
-                                                 "fov_deg":45,"viewport":[800,600]})"), ctx));
+                                                 "fov_deg":45,"viewport":[800,600]})"),
+                                 ctx));
   run(s, PlaceSketchCommand::parse(json::parse(R"({"cmd":"place.sketch","stroke":[[250,360],[400,350],[550,360]],
-      "object":"ball","width":0.3,"height":0.3,"samples":[24,8],"order":[4,4,3],"controls":[8,4,3]})"), ctx));
+      "object":"ball","width":0.3,"height":0.3,"samples":[24,8],"order":[4,4,3],"controls":[8,4,3]})"),
+                                   ctx));
   return s;
 }
 
@@ -34,7 +37,8 @@ TEST(DffdCut, HalvesSeparateByTheGapAndOnlyTheCutIsOpen) {
   Scene s = placed_ball();
   const Scene before = s;
   CommandContext ctx;
-  auto cut = DffdCutCommand::parse(json::parse(R"({"cmd":"dffd.cut","object":"ball","axis":"u","at":0.5,"gap":0.3})"), ctx);
+  auto cut =
+      DffdCutCommand::parse(json::parse(R"({"cmd":"dffd.cut","object":"ball","axis":"u","at":0.5,"gap":0.3})"), ctx);
   cut->redo(s);
   const SceneObject& ball = *s.find("ball");
   const std::size_t nv = ball.rest_mesh->positions.size();
@@ -47,8 +51,10 @@ TEST(DffdCut, HalvesSeparateByTheGapAndOnlyTheCutIsOpen) {
   double minus_max = -1e9, plus_min = 1e9;
   for (std::size_t v = 0; v < nv; ++v) {
     const double x = ball.world_mesh->positions[v].x;
-    if (ball.ffd->params[v].x < 0.5) minus_max = std::max(minus_max, x);
-    else plus_min = std::min(plus_min, x);
+    if (ball.ffd->params[v].x < 0.5)
+      minus_max = std::max(minus_max, x);
+    else
+      plus_min = std::min(plus_min, x);
   }
   EXPECT_GT(plus_min - minus_max, 0.15) << minus_max << " " << plus_min;
   // Boundary edges (one face) exist only at the cut: both ends at u = 0.5 ∓ eps.
@@ -73,8 +79,10 @@ TEST(DffdCut, HalvesSeparateByTheGapAndOnlyTheCutIsOpen) {
   double m0 = -1e9, p0 = 1e9;
   for (std::size_t v = 0; v < closed.find("ball")->ffd->params.size(); ++v) {
     const double x = closed.find("ball")->world_mesh->positions[v].x;
-    if (closed.find("ball")->ffd->params[v].x < 0.5) m0 = std::max(m0, x);
-    else p0 = std::min(p0, x);
+    if (closed.find("ball")->ffd->params[v].x < 0.5)
+      m0 = std::max(m0, x);
+    else
+      p0 = std::min(p0, x);
   }
   EXPECT_LT(std::abs(p0 - m0), 0.05);
   cut->undo(s);
@@ -100,9 +108,9 @@ TEST(DffdCut, BadParametersNameTheFieldAndChangeNothing) {
     EXPECT_EQ(s.find("ball")->ffd, once.find("ball")->ffd);
     EXPECT_EQ(s.find("ball")->rest_mesh, once.find("ball")->rest_mesh);
   };
-  expect_field(R"({"cmd":"dffd.cut","object":"ball","at":1.5})", "at");           // outside the domain
-  expect_field(R"({"cmd":"dffd.cut","object":"ball","at":0.5})", "at");           // already a discontinuity
-  expect_field(R"({"cmd":"dffd.cut","object":"ground","at":0.5})", "object");     // no lattice
+  expect_field(R"({"cmd":"dffd.cut","object":"ball","at":1.5})", "at");        // outside the domain
+  expect_field(R"({"cmd":"dffd.cut","object":"ball","at":0.5})", "at");        // already a discontinuity
+  expect_field(R"({"cmd":"dffd.cut","object":"ground","at":0.5})", "object");  // no lattice
   expect_field(R"({"cmd":"dffd.cut","object":"ball","at":0.3,"gap":1e9})", "gap");
   expect_field(R"({"cmd":"dffd.cut","object":"ball","at":0.3,"eps":0})", "eps");
   expect_field(R"({"cmd":"dffd.cut","object":"ball","axis":"q","at":0.3})", "axis");

@@ -17,9 +17,13 @@ Scene ball_and_tool() {
   CommandContext ctx;
   ScenePrimitiveCommand::parse(json::parse(R"({"cmd":"scene.primitive","kind":"sphere","name":"ball"})"), ctx)->redo(s);
   ScenePrimitiveCommand::parse(json::parse(R"({"cmd":"scene.primitive","kind":"cylinder","name":"tool",
-      "scale":[0.3,1.6,0.3],"translate":[0.013,0,0.017]})"), ctx)->redo(s);
+      "scale":[0.3,1.6,0.3],"translate":[0.013,0,0.017]})"),
+                               ctx)
+      ->redo(s);
   ScenePrimitiveCommand::parse(json::parse(R"({"cmd":"scene.primitive","kind":"box","name":"huge",
-      "scale":[0.2,5,0.2],"translate":[0.5,0,0]})"), ctx)->redo(s);
+      "scale":[0.2,5,0.2],"translate":[0.5,0,0]})"),
+                               ctx)
+      ->redo(s);
   return s;
 }
 
@@ -50,9 +54,11 @@ TEST(DffdSplit, SplitsCapsReportsAndUndoesBitForBit) {
   EXPECT_EQ(again, c->to_json());
   // Walk: keys on the offset (anim.keyframe accepts DFFD objects).
   AnimKeyframeCommand::parse(json::parse(R"({"cmd":"anim.keyframe","object":"ball","frame":1,"offset":[-1.5,0,0]})"),
-                             ctx)->redo(s);
+                             ctx)
+      ->redo(s);
   AnimKeyframeCommand::parse(json::parse(R"({"cmd":"anim.keyframe","object":"ball","frame":49,"offset":[1.5,0,0]})"),
-                             ctx)->redo(s);
+                             ctx)
+      ->redo(s);
   EXPECT_TRUE(s.find("ball")->dffd_animated());
   EXPECT_EQ(s.find("ball")->world_mesh->vertex_count(), before.find("ball")->world_mesh->vertex_count());
   // Undo (of the split, after undoing the keys): the object is exactly what it was.

@@ -4,9 +4,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/commands/camera_set.h"
 #include "core/commands/incision_animate.h"
 #include "core/commands/incision_draw.h"
-#include "core/commands/camera_set.h"
 #include "core/commands/scene_primitive.h"
 #include "tests/core/commands/command_test_util.h"
 
@@ -58,7 +58,8 @@ TEST(IncisionAnimate, TheChannelClosesAndOpensTheCut) {
   }
   c->undo(s);
   EXPECT_FALSE(s.find("ball")->morph->animated());
-  run_line<IncisionAnimateCommand>(s, json::parse(R"({"cmd":"incision.animate","object":"ball","opening_keys":[[3,0.5]]})"));
+  run_line<IncisionAnimateCommand>(
+      s, json::parse(R"({"cmd":"incision.animate","object":"ball","opening_keys":[[3,0.5]]})"));
   EXPECT_FALSE(s.find("ball")->animated());
   EXPECT_NE(s.find("ball")->world_mesh->positions, cut.rest_mesh->positions);  // held half open
   run_line<IncisionAnimateCommand>(s, json::parse(R"({"cmd":"incision.animate","object":"ball","clear":true})"));
@@ -67,7 +68,9 @@ TEST(IncisionAnimate, TheChannelClosesAndOpensTheCut) {
 
 TEST(IncisionAnimate, ErrorsNameTheirField) {
   Scene s = cut_sphere();
-  const auto run = [&](const char* line) { return [&s, line] { run_line<IncisionAnimateCommand>(s, json::parse(line)); }; };
+  const auto run = [&](const char* line) {
+    return [&s, line] { run_line<IncisionAnimateCommand>(s, json::parse(line)); };
+  };
   EXPECT_TRUE(throws_command_error(run(R"({"cmd":"incision.animate","object":"plain","opening_keys":[[1,0]]})"),
                                    "object", "no incision"));
   EXPECT_TRUE(throws_command_error(run(R"({"cmd":"incision.animate","object":"nope","opening_keys":[[1,0]]})"),
@@ -78,7 +81,8 @@ TEST(IncisionAnimate, ErrorsNameTheirField) {
   EXPECT_TRUE(throws_command_error(
       run(R"({"cmd":"incision.animate","object":"ball","opening_keys":[[1,0],[9,-1e300]]})"), "opening_keys", "100"));
   // An animated opening refuses a new cut until cleared.
-  run_line<IncisionAnimateCommand>(s, json::parse(R"({"cmd":"incision.animate","object":"ball","opening_keys":[[1,0],[9,1]]})"));
+  run_line<IncisionAnimateCommand>(
+      s, json::parse(R"({"cmd":"incision.animate","object":"ball","opening_keys":[[1,0],[9,1]]})"));
   EXPECT_TRUE(throws_command_error(
       [&] {
         run_line<IncisionDrawCommand>(s, json::parse(R"({"cmd":"incision.draw","object":"ball",

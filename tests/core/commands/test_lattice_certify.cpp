@@ -59,8 +59,8 @@ TEST(LatticeCertify, AFoldIsFoundWhereDetJIsNonPositive) {
   test::run(history, kRing);
   // Drag one inner control point across the ring to the far side: the lattice turns over there.
   const glm::dvec3 p = scene.find("t")->ffd->lattice.control_point(4, 1, 1);
-  test::run(history, {{"cmd", "lattice.set_point"}, {"object", "t"}, {"index", {4, 1, 1}},
-                      {"position", {-p.x, p.y, -p.z}}});
+  test::run(history,
+            {{"cmd", "lattice.set_point"}, {"object", "t"}, {"index", {4, 1, 1}}, {"position", {-p.x, p.y, -p.z}}});
   const auto& F = scene.find("t")->ffd->lattice;
   ASSERT_LT(sampled_min_det(F, 24), 0.0) << "the drag folds the lattice";
   const nlohmann::json stats = run_stats(history, kCertify);
@@ -82,8 +82,8 @@ TEST(LatticeCertify, KeepFoldFreeLimitsAPressThatWouldFold) {
   editor::History history(scene);
   test::run(history, kTeapot);
   test::run(history, kRing);
-  nlohmann::json press = {{"cmd", "lattice.press"}, {"object", "t"}, {"path", {{1.2, 0.3, 0.0}}},
-                          {"radius", 0.6}, {"strength", 3.0}, {"falloff", "smooth"}};
+  nlohmann::json press = {{"cmd", "lattice.press"}, {"object", "t"},   {"path", {{1.2, 0.3, 0.0}}},
+                          {"radius", 0.6},          {"strength", 3.0}, {"falloff", "smooth"}};
   ASSERT_EQ(run_stats(history, kCertify).at("certificate"), "fold_free");
   test::run(history, press);
   ASSERT_EQ(run_stats(history, kCertify).at("certificate"), "fold") << "the plain press folds the ring";
@@ -98,8 +98,8 @@ TEST(LatticeCertify, KeepFoldFreeLimitsAPressThatWouldFold) {
   EXPECT_EQ(run_stats(history, kCertify).at("certificate"), "fold_free");
   // Folded already: nothing to keep.
   const glm::dvec3 p = scene.find("t")->ffd->lattice.control_point(4, 1, 1);
-  test::run(history, {{"cmd", "lattice.set_point"}, {"object", "t"}, {"index", {4, 1, 1}},
-                      {"position", {-p.x, p.y, -p.z}}});
+  test::run(history,
+            {{"cmd", "lattice.set_point"}, {"object", "t"}, {"index", {4, 1, 1}}, {"position", {-p.x, p.y, -p.z}}});
   const auto before = scene.find("t")->ffd;
   EXPECT_TRUE(test::throws_command_error([&] { test::run(history, press); }, "keep_fold_free", "fold"));
   EXPECT_EQ(scene.find("t")->ffd, before) << "refused: the scene is untouched";
@@ -112,9 +112,15 @@ TEST(LatticeCertify, ErrorsNameTheirField) {
   EXPECT_TRUE(test::throws_command_error([&] { test::run(history, kCertify); }, "object", "lattice"));
   test::run(history, kRing);
   EXPECT_TRUE(test::throws_command_error(
-      [&] { test::run(history, {{"cmd", "lattice.certify"}, {"object", "t"}, {"max_depth", 13}}); }, "max_depth", ""));
+      [&] {
+        test::run(history, {{"cmd", "lattice.certify"}, {"object", "t"}, {"max_depth", 13}});
+      },
+      "max_depth", ""));
   EXPECT_TRUE(test::throws_command_error(
-      [&] { test::run(history, {{"cmd", "lattice.certify"}, {"object", "nope"}}); }, "object", "nope"));
+      [&] {
+        test::run(history, {{"cmd", "lattice.certify"}, {"object", "nope"}});
+      },
+      "object", "nope"));
 }
 
 }  // namespace lattice_certify_test

@@ -20,11 +20,8 @@ class Pressing : public ::testing::Test {
   void SetUp() override {
     run(history, {{"cmd", "scene.primitive"}, {"kind", "teapot"}, {"name", "t"}, {"scale", 0.3}});
     // A ring lattice with 4 control points per column (order 2 in w): columns are vertical, V_P = +y.
-    run(history, {{"cmd", "lattice.ring"},
-                  {"object", "t"},
-                  {"radius", 1.2},
-                  {"controls", {16, 3, 4}},
-                  {"order", {4, 3, 2}}});
+    run(history,
+        {{"cmd", "lattice.ring"}, {"object", "t"}, {"radius", 1.2}, {"controls", {16, 3, 4}}, {"order", {4, 3, 2}}});
   }
   const core::TrivariateBSpline<glm::dvec3>& lattice() const { return scene.find("t")->ffd->lattice; }
   core::Scene scene;
@@ -98,7 +95,7 @@ TEST_F(Pressing, BadParametersFailWithTheirFieldAndChangeNothing) {
     }
     EXPECT_EQ(lattice().control_points(), before);
   };
-  const nlohmann::json press = {{"cmd", "lattice.press"}, {"object", "t"}, {"path", {{0, 0, 0}}},
+  const nlohmann::json press = {{"cmd", "lattice.press"}, {"object", "t"},   {"path", {{0, 0, 0}}},
                                 {"radius", 0.3},          {"strength", 0.1}, {"falloff", "smooth"}};
   nlohmann::json bad = press;
   bad["radius"] = -0.3;

@@ -69,8 +69,9 @@ TEST(MeshRefineCommand, RefinesInObjectSpaceAndUndoRestoresExactly) {
 TEST(MeshRefineCommand, CertifiedRefinementBoundsEveryTriangle) {
   for (const char* criterion : {"midpoint", "greville", "best"}) {
     Scene s = cube_scene();
-    auto cmd = parse(std::string(R"({"cmd":"mesh.refine","object":"cube","tolerance":0.02,"error":"bound","criterion":")") +
-                     criterion + R"(","max_iterations":32})");
+    auto cmd =
+        parse(std::string(R"({"cmd":"mesh.refine","object":"cube","tolerance":0.02,"error":"bound","criterion":")") +
+              criterion + R"(","max_iterations":32})");
     cmd->redo(s);
     const nlohmann::json st = cmd->stats();
     EXPECT_EQ(st.at("stopped_by"), "converged") << criterion;

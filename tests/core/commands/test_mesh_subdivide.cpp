@@ -99,9 +99,13 @@ TEST(MeshSubdivide, BadInputNamesTheFieldAndChangesNothing) {
   run(s, R"({"cmd":"scene.primitive","kind":"plane","name":"ground","scale":3})");
   run(s, R"({"cmd":"scene.primitive","kind":"sphere","name":"ball","scale":[0.5,0.2,0.2]})");
   CameraSetCommand::parse(json::parse(R"({"cmd":"camera.set","eye":[0,3,3],"target":[0,0,0],"up":[0,1,0],
-                                          "fov_deg":45,"viewport":[800,600]})"), {})->redo(s);
+                                          "fov_deg":45,"viewport":[800,600]})"),
+                          {})
+      ->redo(s);
   PlaceSketchCommand::parse(json::parse(R"({"cmd":"place.sketch","stroke":[[250,360],[400,350],[550,360]],
-      "object":"ball","width":0.3,"height":0.3,"samples":[24,8],"order":[4,4,3],"controls":[8,4,3]})"), {})->redo(s);
+      "object":"ball","width":0.3,"height":0.3,"samples":[24,8],"order":[4,4,3],"controls":[8,4,3]})"),
+                            {})
+      ->redo(s);
   const Scene before = s;
   auto expect_field = [&](const char* line, const char* field) {
     try {
