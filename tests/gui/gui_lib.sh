@@ -17,6 +17,10 @@ set -euo pipefail
 : "${GUI_OUT:?set GUI_OUT to a folder for failure artefacts}"
 GUI_FPS="${GUI_FPS:-3}"
 GUI_TIMEOUT="${GUI_TIMEOUT:-20}"  # seconds a gui_wait may take by default
+# Seconds for the window and its first frames: an editor opening a log replays it before its next frame, and the
+# first frames compile the shaders on llvmpipe — 8 s for tests/logs/ddm_follow.jsonl on an idle 2-core machine,
+# 22 s beside four busy processes (ctest runs the farm tests and another window test next to it).
+GUI_START_TIMEOUT="${GUI_START_TIMEOUT:-90}"
 GUI_TEST="$(basename "${0%.sh}")"
 GUI_DIR="$GUI_OUT/$GUI_TEST"
 rm -rf "$GUI_DIR"
@@ -97,7 +101,7 @@ gui_start() {
   GUI_PID=$!
   gui_log "editor pid $GUI_PID at $GUI_FPS fps: $*"
   local i
-  for i in $(seq 1 $((GUI_TIMEOUT * 10))); do
+  for i in $(seq 1 $((GUI_START_TIMEOUT * 10))); do
     GUI_WID="$(xdotool search --pid "$GUI_PID" --name trispline 2>/dev/null | head -1 || true)"
     [ -n "$GUI_WID" ] && [ -f "$GUI_PROBE" ] && break
     if ! gui_alive; then
@@ -109,10 +113,10 @@ gui_start() {
     fi
     sleep 0.1
   done
-  [ -n "$GUI_WID" ] || gui_fail "no editor window after ${GUI_TIMEOUT}s"
+  [ -n "$GUI_WID" ] || gui_fail "no editor window after ${GUI_START_TIMEOUT}s"
   xdotool windowmove "$GUI_WID" 0 0 2>/dev/null || true
   xdotool windowfocus "$GUI_WID" 2>/dev/null || true
-  gui_wait '.frame >= 3' "the editor draws frames"
+  gui_wait '.frame >= 3' "the editor draws frames" "$GUI_START_TIMEOUT"
 }
 
 # gui_q JQ: the jq expression evaluated on the current probe (raw output).
