@@ -82,32 +82,41 @@ DdmMaps ddm_rasterize_uv_maps(const TriMesh& mesh, int resolution) {
   if (std::find(maps.valid.begin(), maps.valid.end(), 1) == maps.valid.end())
     throw std::invalid_argument("base: no sample of the " + std::to_string(R) + "² UV map is covered by a triangle");
   // Diffusion fill (seed §5.4.1): ring by ring, an empty sample takes the mean of its filled 8-neighbours of the
-  // previous ring (Jacobi order: deterministic).
+  // previous ring (Jacobi order: deterministic). A ring's candidates are the empty neighbours of the previous ring
+  // (of the covered samples for the first), so a pass costs the ring's size, not R².
   std::vector<std::uint8_t> filled = maps.valid;
-  for (bool any = true; any;) {
-    any = false;
-    std::vector<std::size_t> ring;
-    for (int j = 0; j < R; ++j)
-      for (int i = 0; i < R; ++i) {
-        const std::size_t k = static_cast<std::size_t>(j) * R + i;
-        if (filled[k]) continue;
-        glm::dvec3 p(0.0), n(0.0), su(0.0), sv(0.0);
-        int c = 0;
-        for (int dj = -1; dj <= 1; ++dj)
-          for (int di = -1; di <= 1; ++di) {
-            const int x = i + di, y = j + dj;
-            if ((di == 0 && dj == 0) || x < 0 || y < 0 || x >= R || y >= R) continue;
-            const std::size_t q = static_cast<std::size_t>(y) * R + x;
-            if (filled[q] != 1) continue;
-            p += P[q], n += N[q], su += Su[q], sv += Sv[q], ++c;
-          }
-        if (c == 0) continue;
-        P[k] = p / double(c), N[k] = glm::length(n) > 0.0 ? glm::normalize(n) : glm::dvec3(0, 0, 1);
-        Su[k] = su / double(c), Sv[k] = sv / double(c);
-        ring.push_back(k);
+  auto for_neighbours = [R](std::size_t k, auto&& f) {
+    const int i = static_cast<int>(k % R), j = static_cast<int>(k / R);
+    for (int dj = -1; dj <= 1; ++dj)
+      for (int di = -1; di <= 1; ++di) {
+        const int x = i + di, y = j + dj;
+        if ((di == 0 && dj == 0) || x < 0 || y < 0 || x >= R || y >= R) continue;
+        f(static_cast<std::size_t>(y) * R + x);
       }
-    for (std::size_t k : ring) filled[k] = 1;  // usable from the next ring on
-    any = !ring.empty();
+  };
+  std::vector<std::size_t> ring;  // the samples filled by the last pass
+  for (std::size_t k = 0; k < count; ++k)
+    if (filled[k]) ring.push_back(k);
+  std::vector<std::uint8_t> queued(count, 0);
+  while (!ring.empty()) {
+    std::vector<std::size_t> next;
+    for (const std::size_t k : ring)
+      for_neighbours(k, [&](std::size_t q) {
+        if (!filled[q] && !queued[q]) queued[q] = 1, next.push_back(q);
+      });
+    std::sort(next.begin(), next.end());
+    for (const std::size_t k : next) {
+      glm::dvec3 p(0.0), n(0.0), su(0.0), sv(0.0);
+      int c = 0;
+      for_neighbours(k, [&](std::size_t q) {
+        if (filled[q] != 1) return;
+        p += P[q], n += N[q], su += Su[q], sv += Sv[q], ++c;
+      });
+      P[k] = p / double(c), N[k] = glm::length(n) > 0.0 ? glm::normalize(n) : glm::dvec3(0, 0, 1);
+      Su[k] = su / double(c), Sv[k] = sv / double(c);
+    }
+    for (const std::size_t k : next) filled[k] = 1;  // usable from the next ring on
+    ring = std::move(next);
   }
   // N_u, N_v by central differences of the N map (one-sided on the border), per parameter unit.
   for (int j = 0; j < R; ++j)
