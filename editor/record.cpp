@@ -204,7 +204,8 @@ bool Recorder::step() {
   const auto t0 = std::chrono::steady_clock::now();
   const int frame = d.next;
   // Everything below depends on the frame number only: the pose is evaluated from the document on the CPU
-  // reference path, and the renderer's caches are dropped so nothing drawn before can show through.
+  // reference path. The renderer keeps the GPU copies of what this frame shares with the last one (immutable data,
+  // cached by address and held while cached: tile maps, meshes, textures) and drops the rest in its draw.
   const core::Scene posed = core::scene_at_time(d.scene, d.scene.timeline.time_of_frame(frame));
   if (d.renderer) {
     core::Camera cam = d.camera;
@@ -213,7 +214,6 @@ bool Recorder::step() {
     settings.ffd_backend = d.options.ffd_backend;
     settings.time_s = 0;  // posed is a still: its offsets already are those of `frame`
     settings.show_grid = false;
-    d.renderer->forget_caches();
     d.renderer->draw(posed, cam, settings);
     const RenderedImage image = d.renderer->read_image();
     const fs::path file = d.options.out_dir / frame_file_name(frame, d.options.format);
