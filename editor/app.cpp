@@ -443,6 +443,22 @@ int App::write_screenshot(const fs::path& path) {
   }
 }
 
+void App::wait_for_change(bool busy) {
+  // A key tapped between two frames is held down for one more frame (ui::ImGuiHost): its release needs that frame.
+  const bool input = ui::ImGuiHost::take_input();
+  if (input) last_input_ = Clock::now();
+  const double since_input = ms_between(last_input_, Clock::now()) * 1e-3;
+  if (busy || !options_.screenshot.empty() || input)
+    gpu::Window::poll_events();
+  else if (since_input < kSettleSeconds)  // hover highlights and tooltips (ImGui's hover delays) appear
+    gpu::Window::wait_events(0.1);
+  else if (options_.idle_fps > 0.0)
+    gpu::Window::wait_events(1.0 / options_.idle_fps);
+  else
+    gpu::Window::wait_events();  // nothing changes until an event arrives
+  if (ui::ImGuiHost::take_input() || window_->take_damage()) last_input_ = Clock::now();
+}
+
 int App::run() {
   auto last = Clock::now();
   while (true) {
@@ -453,10 +469,7 @@ int App::run() {
                       background_.running() || volumes_.busy() || guarantees_.busy() ||
                       (renderer_ && renderer_->last_stats().ddm_keep < 1.0) ||  // full detail once it stops
                       (renderer_ && renderer_->last_stats().volume_refining);
-    if (busy || !options_.screenshot.empty())
-      gpu::Window::poll_events();
-    else
-      gpu::Window::wait_events(0.25);
+    wait_for_change(busy);
     const auto start = Clock::now();
     if (window_->should_close()) {
       window_->set_should_close(false);

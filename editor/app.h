@@ -20,6 +20,9 @@ struct AppOptions {
   std::filesystem::path gui_probe;
   // > 0: at most this many frames per second (GUI tests reproduce software-GL frame rates, e.g. 3).
   double max_fps = 0.0;
+  // Frames a second while nothing changes (0: an idle editor draws nothing until an event, a background result or
+  // playback wakes it). GUI tests pass their frame rate: their waits count frames.
+  double idle_fps = 0.0;
 };
 
 // Runs the editor. Returns the exit code: 0 on a normal quit (or a written screenshot), 1 if the screenshot

@@ -65,7 +65,10 @@ inline constexpr double kVolumeBudgetMs = 150.0;
 // How long after the last camera change the view still counts as moving (the tile layers' motion LOD,
 // gpu::DdmViewOptions; its budgets are gpu::kDdmMotionBudgetVertices*).
 inline constexpr double kMotionHoldSeconds = 0.25;
-inline constexpr int kScreenshotFrames = 5;  // frames rendered after the start-up work before the capture
+inline constexpr int kScreenshotFrames = 5;
+// How long after the last input (or the window's damage) frames still come without further events, at most 10 a
+// second: hover highlights and tooltips (ImGui's hover delays, ≤ 0.4 s) appear. Then an idle editor draws nothing.
+inline constexpr double kSettleSeconds = 1.0;  // frames rendered after the start-up work before the capture
 
 enum class FilePurpose { None, LoadMesh, OpenLog, SaveLog, ExportVolume };
 // What waits for the "Save changes?" answer (the document was modified).
@@ -91,6 +94,9 @@ class App {
   void draw_control_point();  // the "Control point" section appended to the Tool panel
   void render_ui();           // ImGui's draw data into the window, timed by ui_timer_
   void record_frame_timings(Clock::time_point start, Clock::time_point end, Clock::time_point last);
+  // Handles the window's events: polls while `busy` (work, playback, loads, a drag), waits up to 0.1 s within
+  // kSettleSeconds of the last input, then sleeps until an event (or AppOptions::idle_fps).
+  void wait_for_change(bool busy);
   void frame_selected();
   void open_later(const fs::path& log);  // replays `log` after a "Working…" frame
   void showcase();                       // screenshot mode: select the placed (or tiled) object, show its tool
@@ -148,6 +154,7 @@ class App {
   bool screenshot_requested_ = false;      // F12: written after this frame is drawn
   int screenshots_ = 0, idle_frames_ = 0;  // F12 count; frames since the last deferred work (screenshot mode)
   std::uint64_t frames_ = 0;               // frames drawn (the probe's "frame")
+  Clock::time_point last_input_ = Clock::now();  // the last input event or window damage (wait_for_change)
 };
 
 }  // namespace trispline::editor

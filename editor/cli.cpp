@@ -80,6 +80,10 @@ void add_edit(CLI::App& app, CliRequest& o) {
                    "Write widget rectangles, popups, history and log as JSON to this file every frame (GUI tests)");
   edit->add_option("--max-fps", o.edit.max_fps, "Draw at most this many frames per second (GUI tests: 3)")
       ->check(CLI::NonNegativeNumber);
+  edit->add_option("--idle-fps", o.edit.idle_fps,
+                   "Redraw this many times a second while nothing changes (default 0: an idle editor draws nothing; "
+                   "GUI tests: 3)")
+      ->check(CLI::NonNegativeNumber);
   edit->add_flag("!--no-recover", o.edit.recover_prompt, "Do not offer to recover an unfinished session");
 }
 

@@ -20,7 +20,10 @@ nlohmann::json imgui_probe_fields() {
   for (const auto& [name, r] : ui::probe::items()) items[name] = {r.min.x, r.min.y, r.max.x, r.max.y};
   nlohmann::json values = nlohmann::json::object();
   for (const auto& [name, text] : ui::probe::values()) values[name] = text;
+  bool tooltip = false;  // a tooltip is drawn this frame
+  for (const ImGuiWindow* w : g.Windows) tooltip = tooltip || ((w->Flags & ImGuiWindowFlags_Tooltip) && w->Active);
   return {{"popups", popups},
+          {"tooltip", tooltip},
           {"typing", ImGui::GetIO().WantTextInput},
           {"active", ui::probe::active()},
           {"items", items},

@@ -3,6 +3,7 @@
 //   frame              frames drawn so far
 //   popups             names of the open ImGui popups (menus, modals), innermost last; [] when none
 //   typing             a text field has the keyboard (io.WantTextInput)
+//   tooltip            a tooltip is drawn this frame
 //   items              {"name": [x0, y0, x1, y1]} screen rectangles of the widgets named with ui::probe::item()
 //   values             {"name": "text"} of ui::probe::value() (e.g. the file dialog's path field)
 //   the editor's part  document, modified, history {labels, applied}, objects, object_px (each object's bounds
@@ -20,7 +21,7 @@
 
 namespace trispline::editor {
 
-nlohmann::json imgui_probe_fields();  // popups, typing, items (call after the frame's widgets, before Render)
+nlohmann::json imgui_probe_fields();  // popups, tooltip, typing, items (call after the frame's widgets, before Render)
 void write_probe_file(const std::filesystem::path& path, const nlohmann::json& probe);  // atomic; errors ignored
 
 }  // namespace trispline::editor

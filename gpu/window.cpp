@@ -10,6 +10,7 @@
 #include <mutex>
 #include <stdexcept>
 #include <thread>
+#include <utility>
 
 namespace trispline::gpu {
 namespace {
@@ -65,6 +66,12 @@ Window::Window(const std::string& title, int width, int height, const WindowOpti
     throw GlContextError("cannot open a window with an OpenGL 4.3 core context: " + err);
   }
   ++g_windows;
+  glfwSetWindowUserPointer(window_, this);
+  auto damage = [](GLFWwindow* w) { static_cast<Window*>(glfwGetWindowUserPointer(w))->damaged_ = true; };
+  glfwSetWindowRefreshCallback(window_, damage);
+  glfwSetFramebufferSizeCallback(window_, [](GLFWwindow* w, int, int) {
+    static_cast<Window*>(glfwGetWindowUserPointer(w))->damaged_ = true;
+  });
   glfwMakeContextCurrent(window_);
   glfwSwapInterval(options.vsync ? 1 : 0);
 }
@@ -82,6 +89,8 @@ void Window::set_should_close(bool close) { glfwSetWindowShouldClose(window_, cl
 void Window::swap() { glfwSwapBuffers(window_); }
 void Window::poll_events() { glfwPollEvents(); }
 void Window::wait_events(double timeout_s) { glfwWaitEventsTimeout(timeout_s); }
+void Window::wait_events() { glfwWaitEvents(); }
+bool Window::take_damage() { return std::exchange(damaged_, false); }
 void Window::set_title(const std::string& title) { glfwSetWindowTitle(window_, title.c_str()); }
 
 glm::ivec2 Window::framebuffer_size() const {

@@ -35,6 +35,10 @@ class Window {
   void swap();                                // swap buffers (vsync per WindowOptions)
   static void poll_events();                  // glfwPollEvents
   static void wait_events(double timeout_s);  // glfwWaitEventsTimeout: idle without spinning
+  static void wait_events();                  // glfwWaitEvents: sleeps until an event arrives
+  // True once after the window's contents were lost or its framebuffer resized (GLFW's refresh and framebuffer-size
+  // callbacks): an editor that draws only on change must draw again.
+  bool take_damage();
   glm::ivec2 framebuffer_size() const;        // pixels (differs from window_size() on HiDPI)
   glm::ivec2 window_size() const;             // screen coordinates
   void set_title(const std::string& title);
@@ -42,6 +46,7 @@ class Window {
 
  private:
   GLFWwindow* window_ = nullptr;
+  bool damaged_ = true;  // set by the callbacks (glfwSetWindowUserPointer)
 };
 
 }  // namespace trispline::gpu

@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <stdexcept>
+#include <utility>
 
 namespace trispline::ui {
 
@@ -18,8 +19,18 @@ namespace {
 std::vector<KeyPress> g_pending, g_frame;  // one editor window per process
 std::vector<int> g_forced;                 // keys held down artificially for one frame (see new_frame)
 
-// Installed before ImGui's own callbacks, which chain to it.
+bool g_input = false;  // input since the last take_input()
+
+// Installed before ImGui's own callbacks, which chain to them (the backend of ImGui 1.86 polls the pointer position,
+// so the cursor-position callback is ours alone).
+void note_button(GLFWwindow*, int, int, int) { g_input = true; }
+void note_scroll(GLFWwindow*, double, double) { g_input = true; }
+void note_char(GLFWwindow*, unsigned) { g_input = true; }
+void note_focus(GLFWwindow*, int) { g_input = true; }
+void note_cursor(GLFWwindow*, double, double) { g_input = true; }
+
 void record_key(GLFWwindow*, int key, int, int action, int mods) {
+  g_input = true;
   // Held Left / Right repeat (stepping frames, as in Blender); every other shortcut fires once per press.
   const bool repeats = action == GLFW_REPEAT && (key == GLFW_KEY_LEFT || key == GLFW_KEY_RIGHT);
   if (action == GLFW_PRESS || repeats) g_pending.push_back({key, mods});
@@ -46,6 +57,8 @@ void load_fonts(ImGuiIO& io) {
 
 const std::vector<KeyPress>& ImGuiHost::key_presses() { return g_frame; }
 
+bool ImGuiHost::take_input() { return std::exchange(g_input, false) || !g_forced.empty() || !g_pending.empty(); }
+
 ImGuiHost::ImGuiHost(GLFWwindow* window, const std::string& ini_path, float ui_scale)
     : window_(window), ini_path_(ini_path) {
   IMGUI_CHECKVERSION();
@@ -56,6 +69,12 @@ ImGuiHost::ImGuiHost(GLFWwindow* window, const std::string& ini_path, float ui_s
   load_fonts(io);
   apply_dark_theme(ui_scale);
   glfwSetKeyCallback(window, record_key);
+  glfwSetMouseButtonCallback(window, note_button);
+  glfwSetScrollCallback(window, note_scroll);
+  glfwSetCharCallback(window, note_char);
+  glfwSetWindowFocusCallback(window, note_focus);
+  glfwSetCursorEnterCallback(window, [](GLFWwindow*, int) { g_input = true; });
+  glfwSetCursorPosCallback(window, note_cursor);
   if (!ImGui_ImplGlfw_InitForOpenGL(window, true)) {
     ImGui::DestroyContext();
     throw std::runtime_error("Dear ImGui: GLFW backend failed to initialise");

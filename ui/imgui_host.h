@@ -30,6 +30,10 @@ class ImGuiHost {
   // Key presses since the previous new_frame(). ImGui 1.86 samples key state once per frame, so a press and
   // release between two frames (a quick tap on a slow frame) never shows in ImGui::IsKeyPressed; these do.
   static const std::vector<KeyPress>& key_presses();
+  // True once after input arrived (keys, characters, mouse buttons, motion, wheel, focus, the pointer entering or
+  // leaving), or while a key tapped between two frames is still held down for ImGui: the next frame has input to
+  // handle. An editor that draws only on change asks this after waiting for events.
+  static bool take_input();
 
  private:
   GLFWwindow* window_;

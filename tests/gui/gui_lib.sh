@@ -16,6 +16,9 @@ set -euo pipefail
 : "${TRISPLINE:?set TRISPLINE to the trispline executable}"
 : "${GUI_OUT:?set GUI_OUT to a folder for failure artefacts}"
 GUI_FPS="${GUI_FPS:-3}"
+# Frames a second while nothing changes: the waits below count frames, so the tests keep the editor drawing
+# (tests/gui/idle.sh sets 0, the editor's default, and checks that an idle editor draws nothing).
+GUI_IDLE_FPS="${GUI_IDLE_FPS:-$GUI_FPS}"
 GUI_TIMEOUT="${GUI_TIMEOUT:-20}"  # seconds a gui_wait may take by default
 # Seconds for the window and its first frames: an editor opening a log replays it before its next frame, and the
 # first frames compile the shaders on llvmpipe — 8 s for tests/logs/ddm_follow.jsonl on an idle 2-core machine,
@@ -96,7 +99,7 @@ gui_kill() {
 # ($GUI_ROOT is the repository root).
 gui_start() {
   (cd "$GUI_WORK" && exec env TRISPLINE_STATE_DIR="$GUI_STATE" \
-     "$TRISPLINE" edit --no-recover --gui-probe "$GUI_PROBE" --max-fps "$GUI_FPS" --width 1280 --height 800 "$@" \
+     "$TRISPLINE" edit --no-recover --gui-probe "$GUI_PROBE" --max-fps "$GUI_FPS" --idle-fps "$GUI_IDLE_FPS" --width 1280 --height 800 "$@" \
      >"$GUI_DIR/editor.log" 2>&1) &
   GUI_PID=$!
   gui_log "editor pid $GUI_PID at $GUI_FPS fps: $*"
