@@ -45,6 +45,7 @@ App::App(const AppOptions& options)
   }
   messages_.info("OpenGL renderer: " + gl_renderer_);
   ui::probe::set_enabled(!options.gui_probe.empty());
+  ui::ImGuiHost::set_batch_end(ui::ends_key_batch);  // shortcuts pressed during a slow frame run one a frame, in order
   if (gpu::is_software_renderer()) {
     // On a software rasteriser the CPU fast path evaluates FFDs ~20× faster than GLSL (docs/performance.md): the
     // Press tool's live preview then stays interactive. View ▸ FFD evaluator switches back.

@@ -19,7 +19,8 @@ namespace {
 std::vector<KeyPress> g_pending, g_frame;  // one editor window per process
 std::vector<int> g_forced;                 // keys held down artificially for one frame (see new_frame)
 
-bool g_input = false;  // input since the last take_input()
+bool g_input = false;                                // input since the last take_input()
+bool (*g_ends_batch)(const KeyPress&) = nullptr;  // ImGuiHost::set_batch_end
 
 // Installed before ImGui's own callbacks, which chain to them (the backend of ImGui 1.86 polls the pointer position,
 // so the cursor-position callback is ours alone).
@@ -33,6 +34,8 @@ void record_key(GLFWwindow*, int key, int, int action, int mods) {
   g_input = true;
   // Held Left / Right repeat (stepping frames, as in Blender); every other shortcut fires once per press.
   const bool repeats = action == GLFW_REPEAT && (key == GLFW_KEY_LEFT || key == GLFW_KEY_RIGHT);
+  // A repeat of the key already waiting is dropped: a key held through slow frames must not leave a backlog.
+  if (repeats && !g_pending.empty() && g_pending.back().key == key) return;
   if (action == GLFW_PRESS || repeats) g_pending.push_back({key, mods});
 }
 
@@ -56,6 +59,8 @@ void load_fonts(ImGuiIO& io) {
 }  // namespace
 
 const std::vector<KeyPress>& ImGuiHost::key_presses() { return g_frame; }
+
+void ImGuiHost::set_batch_end(bool (*ends_batch)(const KeyPress&)) { g_ends_batch = ends_batch; }
 
 bool ImGuiHost::take_input() { return std::exchange(g_input, false) || !g_forced.empty() || !g_pending.empty(); }
 
@@ -93,8 +98,15 @@ ImGuiHost::~ImGuiHost() {
 }
 
 void ImGuiHost::new_frame() {
-  g_frame.swap(g_pending);
-  g_pending.clear();
+  std::size_t take = g_pending.size();
+  if (g_ends_batch && !ImGui::GetIO().WantTextInput)  // the last frame's answer: whether a text field types
+    for (std::size_t i = 0; i < g_pending.size(); ++i)
+      if (g_ends_batch(g_pending[i])) {
+        take = i + 1;
+        break;
+      }
+  g_frame.assign(g_pending.begin(), g_pending.begin() + std::ptrdiff_t(take));
+  g_pending.erase(g_pending.begin(), g_pending.begin() + std::ptrdiff_t(take));
   ImGui_ImplOpenGL3_NewFrame();
   ImGui_ImplGlfw_NewFrame();
   // ImGui 1.86 reads io.KeysDown once per frame: a key pressed and released since the last frame (a quick tap on a

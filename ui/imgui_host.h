@@ -30,6 +30,11 @@ class ImGuiHost {
   // Key presses since the previous new_frame(). ImGui 1.86 samples key state once per frame, so a press and
   // release between two frames (a quick tap on a slow frame) never shows in ImGui::IsKeyPressed; these do.
   static const std::vector<KeyPress>& key_presses();
+  // Presses for which `ends_batch` is true end a frame's share of the queued presses: the presses after one wait for
+  // the next frame (which follows at once), never dropped. So a shortcut pressed many times during a slow frame runs
+  // as many times, in order, each on the state the one before left. Not while a text field has the keyboard (its
+  // characters arrive apart from the key queue). Held-key repeats coalesce instead of queueing.
+  static void set_batch_end(bool (*ends_batch)(const KeyPress&));
   // True once after input arrived (keys, characters, mouse buttons, motion, wheel, focus, the pointer entering or
   // leaving), or while a key tapped between two frames is still held down for ImGui: the next frame has input to
   // handle. An editor that draws only on change asks this after waiting for events.

@@ -53,6 +53,10 @@ std::string poll_tool_key() {
   return {};
 }
 
+bool ends_key_batch(const KeyPress& k) {
+  return k.key == GLFW_KEY_F12 || shortcut_action(k) != MenuAction::None || !tool_key(k).empty();
+}
+
 MenuAction poll_shortcuts() {
   const ImGuiIO& io = ImGui::GetIO();
   const bool typing = io.WantCaptureKeyboard || io.WantTextInput;

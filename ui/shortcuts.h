@@ -12,6 +12,9 @@ namespace trispline::ui {
 
 // The action whose shortcut was pressed this frame, or MenuAction::None.
 MenuAction poll_shortcuts();
+// True for a press that acts on its own (a shortcut, F12, a tool letter): ImGuiHost::set_batch_end hands out one of
+// them per frame, so presses queued during a slow frame run in order.
+bool ends_key_batch(const KeyPress& k);
 
 // A letter key ("K") pressed this frame without modifiers that no MenuAction is bound to, for tools that declare
 // it as their shortcut (ToolEntry::shortcut, e.g. the Incision tool's K, Blender's Knife); "" if none or typing.

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# I twice at one frame keys once (one history entry); Ctrl+Z / Ctrl+Shift+Z undo and redo it.
+# I twice at one frame keys once (one history entry); Ctrl+Z / Ctrl+Shift+Z undo and redo it; shortcuts pressed
+# faster than the frames come are each applied, in order.
 source "$(dirname "$0")/gui_lib.sh"
 gui_start "$GUI_ROOT/assets/scenes/default.jsonl"
 gui_wait '(.history.labels | length) >= 4' "the default scene is open"
@@ -17,4 +18,9 @@ gui_key ctrl+z
 gui_wait ".history.applied == $n" "Ctrl+Z undoes the key"
 gui_key ctrl+shift+z
 gui_wait ".history.applied == $((n + 1))" "Ctrl+Shift+Z redoes it"
+# Presses typed faster than frames are drawn (three within one 0.33 s frame) all act, in order.
+gui_key ctrl+z ctrl+z ctrl+z
+gui_wait ".history.applied == $((n - 2))" "three quick Ctrl+Z undo three steps"
+gui_key ctrl+shift+z ctrl+shift+z ctrl+shift+z
+gui_wait ".history.applied == $((n + 1))" "three quick Ctrl+Shift+Z redo them"
 gui_pass
