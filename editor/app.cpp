@@ -183,6 +183,8 @@ void App::draw_control_point() {
 }
 
 void App::frame() {
+  // Shortcuts pressed while a job runs wait in order for its end (an undo typed during a slow redo follows it).
+  ui::ImGuiHost::hold_batches(background_.running());
   host_.new_frame();
   ui::probe::begin_frame();
   nav_.follow(session_.scene().camera, session_.scene().camera_set, window_->framebuffer_size());
@@ -241,9 +243,11 @@ void App::frame() {
     ui::ScenePanelState sps{selected_, session_.has_command("scene.remove"), &transform_fields_};
     handle_scene(ui::draw_scene_panel(layout.scene, session_.scene(), sps));
     const ui::HistoryPanelResult hr = ui::draw_history_panel(layout.history, session_.history_view());
-    if (hr.jump_to) session_.jump_to(*hr.jump_to);
-    if (hr.undo) session_.undo();
-    if (hr.redo) session_.redo();
+    // Undo, redo and jumps walk the history on a worker (a redo may load a volume or fill a mesh again).
+    const std::size_t at = session_.history().applied();
+    if (hr.jump_to) background_.start_history(*hr.jump_to);
+    if (hr.undo && at > 0) background_.start_history(at - 1);
+    if (hr.redo) background_.start_history(at + 1);
     if (hr.run_again) session_.run_again(*hr.run_again);  // a file an opened log did not write
     if (hr.run_again_output) anim_.run_again(*hr.run_again_output, [this] { window_->make_current(); });
   }

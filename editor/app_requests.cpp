@@ -116,8 +116,8 @@ void App::handle_menu(ui::MenuAction action) {
     case A::Save: save_or_ask(); break;
     case A::SaveAs: ask_file(FilePurpose::SaveLog); break;
     case A::Quit: request(Pending::Quit); break;
-    case A::Undo: session_.undo(); break;
-    case A::Redo: session_.redo(); break;
+    case A::Undo: if (session_.history().can_undo()) background_.start_history(session_.history().applied() - 1); break;
+    case A::Redo: background_.start_history(session_.history().applied() + 1); break;
     case A::FrameSelected: if (!tools_.owns_mouse()) frame_selected(); break;
     case A::FrameAll: if (!tools_.owns_mouse()) nav_.frame(session_.scene().bounds(), view_.viewport); break;
     case A::About: show_about_ = true; break;

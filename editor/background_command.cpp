@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "editor/command_registry.h"
+#include "editor/history.h"
 #include "editor/session.h"
 #include "ui/gui_probe.h"
 #include "ui/param_widgets.h"
@@ -82,6 +83,42 @@ bool BackgroundCommand::start(const nlohmann::json& line, std::string what, std:
   return true;
 }
 
+bool BackgroundCommand::start_history(std::size_t target) {
+  History& history = session_.history();
+  target = std::min(target, history.size());
+  const std::size_t from = history.applied();
+  if (target == from) return false;
+  const char* verb = target + 1 == from ? "Undo" : target == from + 1 ? "Redo" : "History jump";
+  std::string what = target + 1 == from   ? "Undo " + history.at(target).label()
+                     : target == from + 1 ? "Redo " + history.at(from).label()
+                     : target == 0        ? std::string("History: back to the initial state")
+                                          : "History: to step " + std::to_string(target);
+  if (job_ || !session_.busy().empty()) {
+    session_.messages().warning(what + " refused: " + (job_ ? job_->what : session_.busy()) +
+                                " (wait for it or cancel it)");
+    return false;
+  }
+  auto job = std::make_unique<Job>();
+  job->what = std::move(what);
+  job->verb = verb;
+  job->target = target;
+  job->changes = session_.change_count();
+  job->started = std::chrono::steady_clock::now();
+  Job* j = job.get();
+  // The history's commands are walked over a copy: the UI thread keeps drawing session_.scene(), and the session
+  // refuses every other change (set_busy) until finish().
+  job->future = std::async(std::launch::async, [j, &history, scene = session_.scene()]() mutable {
+    history.walk(scene, *j->target, [j](std::size_t done, std::size_t total) {
+      if (j->cancel) throw core::OperationCancelled();
+      j->progress = double(done) / double(std::max<std::size_t>(total, 1));
+    });
+    j->walked = std::move(scene);
+  });
+  session_.set_busy(job->what);
+  job_ = std::move(job);
+  return true;
+}
+
 bool BackgroundCommand::finish() {
   if (!job_ || !ready(job_->future)) return false;
   const std::unique_ptr<Job> job = std::move(job_);
@@ -95,10 +132,11 @@ bool BackgroundCommand::finish() {
     log.info(job->verb + " cancelled: the scene is unchanged");
     return false;
   } catch (const core::CommandError& e) {
-    log.error(command_error_text(job->command->id(), e));
+    log.error(job->target ? job->what + " failed: " + e.what() + " (the scene is unchanged)"
+                          : command_error_text(job->command->id(), e));
     return false;
   } catch (const std::exception& e) {
-    log.error(job->command->id() + " failed: " + e.what() + " (the scene is unchanged)");
+    log.error((job->target ? job->what : job->command->id()) + " failed: " + e.what() + " (the scene is unchanged)");
     return false;
   }
   if (job->cancel) {  // Cancel pressed after the last progress check: the built result is dropped all the same
@@ -109,6 +147,7 @@ bool BackgroundCommand::finish() {
     log.error(job->what + ": the scene changed while it was built; nothing was applied");
     return false;
   }
+  if (job->target) return session_.settle_history(std::move(*job->walked), *job->target);
   return session_.execute(std::move(job->command), ms);
 }
 

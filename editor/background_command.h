@@ -11,6 +11,9 @@
 //              no history entry, no log line, the Log says "<verb> cancelled" or the error
 //   progress   a small window at the bottom of the viewport (not modal: the view keeps orbiting): what, a bar, Cancel
 // A line whose command is not preparable runs at once, as EditorSession::execute.
+// Undo, redo and History jumps go the same way (start_history): the steps run over a copy of the scene on the worker
+// (History::walk: a redo of a heavy command — a volume load, a fill — takes its time there), and finish() makes the
+// walked copy the document in one go (EditorSession::settle_history). A cancel or a failing step changes nothing.
 #pragma once
 
 #include <atomic>
@@ -18,9 +21,11 @@
 #include <future>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
 #include "core/commands/command.h"
+#include "core/scene/scene.h"
 #include "ui/layout.h"
 
 namespace trispline::editor {
@@ -39,6 +44,10 @@ class BackgroundCommand {
   // A parse error goes to the Log (false); a command that is not preparable runs at once (its success). False with a
   // Log warning while another build runs or the session is busy.
   bool start(const nlohmann::json& line, std::string what, std::string verb);
+  // Moves the session's history to position `target` (clamped to its size; EditorSession::jump_to's meaning): undo
+  // is target = applied − 1, redo applied + 1. False when there is nothing to move, or with a Log warning while
+  // another job runs or the session is busy.
+  bool start_history(std::size_t target);
   bool running() const { return job_ != nullptr; }
   double progress() const;  // [0, 1] of the build under way (0 when none)
   const std::string& what() const;  // the build under way's text ("" when none)
@@ -64,6 +73,8 @@ class BackgroundCommand {
     std::atomic<double> progress{0.0};
     std::chrono::steady_clock::time_point started;
     std::future<void> future;
+    std::optional<std::size_t> target;  // a history move (start_history) rather than a command
+    std::optional<core::Scene> walked;  // its scene, set by the worker
   };
   EditorSession& session_;
   std::unique_ptr<Job> job_;

@@ -78,6 +78,29 @@ void History::jump_to(std::size_t applied_count) {
   while (applied_ < applied_count) redo();
 }
 
+void History::walk(core::Scene& scene, std::size_t target,
+                   const std::function<void(std::size_t, std::size_t)>& step) {
+  target = std::min(target, commands_.size());
+  const std::size_t total = target > applied_ ? target - applied_ : applied_ - target;
+  std::size_t done = 0;
+  for (std::size_t a = applied_; a > target; --a) {
+    step(done++, total);
+    commands_[a - 1]->undo(scene);
+  }
+  for (std::size_t a = applied_; a < target; ++a) {
+    step(done++, total);
+    commands_[a]->redo(scene);
+  }
+}
+
+void History::settle(core::Scene&& scene, std::size_t target) {
+  target = std::min(target, commands_.size());
+  scene_ = std::move(scene);
+  for (; applied_ > target; --applied_) log({{"cmd", "edit.undo"}});
+  for (; applied_ < target; ++applied_) log({{"cmd", "edit.redo"}});
+  if (on_change) on_change();
+}
+
 void History::adopt(History& other) {
   commands_ = std::move(other.commands_);
   applied_ = other.applied_;

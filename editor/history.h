@@ -49,6 +49,15 @@ class History {
   void undo();  // no-op when nothing to undo
   void redo();  // no-op when nothing to redo
   void jump_to(std::size_t applied_count);
+  // A move of the position in two parts, for a worker thread (editor/background_command.h). walk() takes `scene` — a
+  // copy of the document — through the steps from applied() to `target` (clamped to size()): undo or redo each, in
+  // order, without touching the document, the position or the log; `step(done, total)` runs before each step and
+  // may throw to stop (a cancel). It throws what a step throws; `scene` is then half-way and must be dropped. While
+  // it runs nothing may execute, undo, redo or clear here. settle() makes the walked `scene` the document, moves the
+  // position to `target` and logs one edit.undo / edit.redo line a step, as jump_to() would.
+  void walk(core::Scene& scene, std::size_t target,
+            const std::function<void(std::size_t done, std::size_t total)>& step);
+  void settle(core::Scene&& scene, std::size_t target);
   void clear();  // forgets the stack (the scene is not touched)
   // Takes over `other`'s stack and outputs (other is left empty), for a scene that was built by `other` and has just
   // been moved into this history's scene (Open as a transaction). Writes the stack to the log as lines that replay to

@@ -269,6 +269,22 @@ bool EditorSession::step_history(bool forward) {
   return false;
 }
 
+bool EditorSession::settle_history(core::Scene&& scene, std::size_t target) {
+  const std::size_t from = history_.applied();
+  target = std::min(target, history_.size());
+  std::string what;
+  if (target + 1 == from)
+    what = "Undo " + history_.at(target).label();
+  else if (target == from + 1)
+    what = "Redo " + history_.at(from).label();
+  else
+    what = "History: " + std::to_string(target > from ? target - from : from - target) + " steps " +
+           (target > from ? "forward" : "back");
+  history_.settle(std::move(scene), target);
+  messages_.info(what);
+  return true;
+}
+
 bool EditorSession::jump_to(std::size_t applied_count) {
   if (refused("History jump")) return false;
   try {

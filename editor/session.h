@@ -71,6 +71,10 @@ class EditorSession {
   bool undo();
   bool redo();
   bool jump_to(std::size_t applied_count);
+  // The UI thread's end of a move of the history walked on a worker (History::walk, editor/background_command.h):
+  // `scene` becomes the document at position `target`; the Log says what moved ("Undo X", "Redo X", "History: N
+  // steps back"). Returns success.
+  bool settle_history(core::Scene&& scene, std::size_t target);
   // History's "Run again" of command i, a core::FileOutput replayed without writing (Open, recovery): writes its files
   // from the result it kept (the scene as it was at that step), no new history step. Errors go to the Log.
   bool run_again(std::size_t i);

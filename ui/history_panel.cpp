@@ -41,6 +41,8 @@ std::string not_written_label(const std::string& label) { return label + " \xE2\
 HistoryPanelResult draw_history_panel(const Rect& rect, const HistoryView& view) {
   HistoryPanelResult result;
   if (begin_docked("History", rect)) {
+    const ImVec2 pos = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+    probe::rect("panel.history", pos, ImVec2(pos.x + size.x, pos.y + size.y));
     ImGui::BeginDisabled(!view.can_undo);
     if (ImGui::Button("Undo")) result.undo = true;
     ImGui::EndDisabled();

@@ -21,6 +21,7 @@ std::vector<int> g_forced;                 // keys held down artificially for on
 
 bool g_input = false;                                // input since the last take_input()
 bool (*g_ends_batch)(const KeyPress&) = nullptr;  // ImGuiHost::set_batch_end
+bool g_hold = false;                              // ImGuiHost::hold_batches
 
 // Installed before ImGui's own callbacks, which chain to them (the backend of ImGui 1.86 polls the pointer position,
 // so the cursor-position callback is ours alone).
@@ -61,6 +62,7 @@ void load_fonts(ImGuiIO& io) {
 const std::vector<KeyPress>& ImGuiHost::key_presses() { return g_frame; }
 
 void ImGuiHost::set_batch_end(bool (*ends_batch)(const KeyPress&)) { g_ends_batch = ends_batch; }
+void ImGuiHost::hold_batches(bool hold) { g_hold = hold; }
 
 bool ImGuiHost::take_input() { return std::exchange(g_input, false) || !g_forced.empty() || !g_pending.empty(); }
 
@@ -102,7 +104,7 @@ void ImGuiHost::new_frame() {
   if (g_ends_batch && !ImGui::GetIO().WantTextInput)  // the last frame's answer: whether a text field types
     for (std::size_t i = 0; i < g_pending.size(); ++i)
       if (g_ends_batch(g_pending[i])) {
-        take = i + 1;
+        take = g_hold ? i : i + 1;
         break;
       }
   g_frame.assign(g_pending.begin(), g_pending.begin() + std::ptrdiff_t(take));

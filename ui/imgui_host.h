@@ -35,6 +35,8 @@ class ImGuiHost {
   // as many times, in order, each on the state the one before left. Not while a text field has the keyboard (its
   // characters arrive apart from the key queue). Held-key repeats coalesce instead of queueing.
   static void set_batch_end(bool (*ends_batch)(const KeyPress&));
+  // While held, new_frame() hands out only the presses before the first batch-ending one: the rest wait, in order.
+  static void hold_batches(bool hold);
   // True once after input arrived (keys, characters, mouse buttons, motion, wheel, focus, the pointer entering or
   // leaving), or while a key tapped between two frames is still held down for ImGui: the next frame has input to
   // handle. An editor that draws only on change asks this after waiting for events.

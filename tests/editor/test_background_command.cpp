@@ -2,6 +2,7 @@
 // session log untouched and says "Fill cancelled"; other changes are refused while it builds; a finished one is one
 // history entry whose log line and resulting layer are bit for bit those of the same line executed synchronously
 // (what replay does). No timing is asserted: a cancel that arrives after the build finished drops it all the same.
+// Undo, redo and History jumps walked on the worker end where the synchronous ones do.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -133,6 +134,70 @@ TEST_F(BackgroundCommandTest, FailingAndNonPreparableLinesReportAsExecuteDoes) {
   EXPECT_TRUE(bg.start(test::kBox, "Adding a box", "Add")) << "not preparable: runs at once";
   EXPECT_FALSE(bg.running());
   EXPECT_EQ(s.history().size(), 2u);
+}
+
+// Undo, redo and jumps walked on the worker: the document the session ends with is the one the synchronous
+// History::jump_to gives (same objects, same mesh bits), the session log gets one edit.undo / edit.redo line a step,
+// the Log names the move; a cancelled walk changes nothing, and other changes are refused while it runs.
+TEST_F(BackgroundCommandTest, HistoryMovesOnTheWorkerAreTheSynchronousOnes) {
+  editor::EditorSession s(messages_);
+  s.start(false);
+  ASSERT_TRUE(s.execute(test::kTeapot));
+  ASSERT_TRUE(s.execute(test::kBox));
+  editor::BackgroundCommand bg(s);
+  ASSERT_TRUE(bg.start(fill_line(), "Filling teapot with thorn", "Fill"));
+  bg.wait();
+  ASSERT_TRUE(bg.finish());
+  ASSERT_EQ(s.history().applied(), 3u);
+  const auto layer = s.scene().find("teapot")->ddm_layers.at(0);
+
+  ASSERT_TRUE(bg.start_history(0));
+  EXPECT_TRUE(bg.running());
+  EXPECT_FALSE(s.execute(test::kBox)) << "refused while the history moves";
+  EXPECT_FALSE(bg.start_history(1)) << "one move at a time";
+  bg.wait();
+  ASSERT_TRUE(bg.finish());
+  EXPECT_EQ(s.history().applied(), 0u);
+  EXPECT_TRUE(s.scene().objects().empty());
+  EXPECT_TRUE(logged("History: 3 steps back"));
+  EXPECT_EQ(last_line(dir_ / "session.jsonl"), R"({"cmd":"edit.undo"})");
+
+  ASSERT_TRUE(bg.start_history(1));  // a redo
+  bg.wait();
+  ASSERT_TRUE(bg.finish());
+  EXPECT_TRUE(logged("Redo "));
+  ASSERT_TRUE(bg.start_history(3));
+  bg.wait();
+  ASSERT_TRUE(bg.finish());
+  ASSERT_EQ(s.history().applied(), 3u);
+  EXPECT_EQ(s.scene().find("teapot")->ddm_layers.at(0), layer) << "the redo swaps the built layer back in";
+
+  core::Scene sync;
+  editor::History history(sync);
+  const core::CommandContext ctx{fs::current_path(), {}};
+  for (const nlohmann::json& l : {test::kTeapot, test::kBox, fill_line()})
+    history.execute(editor::CommandRegistry::builtin().parse(l, ctx));
+  history.jump_to(0);
+  history.jump_to(3);
+  ASSERT_EQ(s.scene().objects().size(), sync.objects().size());
+  for (std::size_t i = 0; i < sync.objects().size(); ++i) {
+    const core::SceneObject& a = s.scene().objects()[i];
+    const core::SceneObject& b = sync.objects()[i];
+    EXPECT_EQ(a.name, b.name);
+    EXPECT_TRUE(same_bits(a.world_mesh->positions, b.world_mesh->positions)) << a.name;
+  }
+
+  // A cancel (before or after the walk finished) keeps the document, the position and the log as they were.
+  const std::size_t lines = test::line_count(dir_ / "session.jsonl");
+  ASSERT_TRUE(bg.start_history(0));
+  bg.cancel();
+  bg.wait();
+  EXPECT_FALSE(bg.finish());
+  EXPECT_EQ(s.history().applied(), 3u);
+  EXPECT_EQ(s.scene().objects().size(), 2u);
+  EXPECT_EQ(test::line_count(dir_ / "session.jsonl"), lines);
+  EXPECT_TRUE(logged("History jump cancelled: the scene is unchanged"));
+  EXPECT_FALSE(bg.start_history(3)) << "nothing to move";
 }
 
 // The command layer alone: a prepare whose cancel flag is set throws OperationCancelled and prepares nothing; redo
