@@ -474,7 +474,17 @@ ui::MenuState EditorSession::menu_state() const {
   return m;
 }
 
+void EditorSession::set_busy(std::string what) {
+  if (!what.empty() && busy_.empty()) busy_view_ = history_view();
+  busy_ = std::move(what);
+}
+
 ui::HistoryView EditorSession::history_view() const {
+  if (!busy_.empty()) {
+    ui::HistoryView v = busy_view_;
+    v.can_undo = v.can_redo = false;  // nothing moves while busy
+    return v;
+  }
   ui::HistoryView v;
   v.applied = history_.applied();
   v.can_undo = history_.can_undo();

@@ -96,7 +96,9 @@ class EditorSession {
   // While a command is prepared on a worker thread over a copy of the scene (editor/background_command.h) the
   // document must stay as that copy: `what` ("Filling teapot with thorn") makes execute, undo, redo, jump_to,
   // new_document, open and recover refuse with a Log warning naming it (nothing is queued). Empty: not busy.
-  void set_busy(std::string what) { busy_ = std::move(what); }
+  // history_view() answers from a copy taken when the session became busy: a worker may be walking the history's
+  // commands (BackgroundCommand::start_history), and a label can read what a redo writes (a press's limit).
+  void set_busy(std::string what);
   const std::string& busy() const { return busy_; }
 
   core::Scene& scene() { return scene_; }
@@ -112,7 +114,7 @@ class EditorSession {
   const std::string& last_label() const { return last_label_; }
   std::uint64_t change_count() const { return changes_; }  // bumped on every history change
   ui::StatusInfo status() const;         // for the status bar (document, counts, last command; no hint)
-  ui::HistoryView history_view() const;  // for the History panel
+  ui::HistoryView history_view() const;  // for the History panel (the copy taken by set_busy while busy)
   ui::MenuState menu_state() const;      // undo/redo availability and labels for the Edit menu
 
  private:
@@ -138,6 +140,7 @@ class EditorSession {
   std::string last_label_;
   std::uint64_t changes_ = 0;
   std::string busy_;
+  ui::HistoryView busy_view_;  // history_view() while busy (set_busy)
 };
 
 }  // namespace trispline::editor
