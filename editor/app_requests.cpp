@@ -9,10 +9,8 @@ const char* doing(Pending p) {
 }
 
 void App::open_later(const fs::path& log) {
-  tool_ctx_.defer("Opening " + log.filename().string(), [this, log] {
-    const std::uint64_t before = session_.change_count();
-    session_.open(log);
-    if (session_.change_count() == before) return;  // rejected before anything changed: the scene is kept
+  // Replayed on a worker (progress bar, Cancel) while the view keeps drawing the current document.
+  background_.start_open(log, [this] {
     selected_.clear();
     // The log's last camera.set is the view it was saved with: shown as it is (even when the same log is opened
     // again after orbiting); a log without one is framed.

@@ -98,7 +98,7 @@ class App {
   // kSettleSeconds of the last input, then sleeps until an event (or AppOptions::idle_fps).
   void wait_for_change(bool busy);
   void frame_selected();
-  void open_later(const fs::path& log);  // replays `log` after a "Working…" frame
+  void open_later(const fs::path& log);  // replays `log` on a worker (BackgroundCommand::start_open)
   void showcase();                       // screenshot mode: select the placed (or tiled) object, show its tool
   void request(Pending what);            // Quit / New / Open: asks "Save changes?" first when the document is modified
   void go_on(Pending what);              // does it (the question, if any, is answered)

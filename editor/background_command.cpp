@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 #include "editor/command_registry.h"
 #include "editor/history.h"
@@ -119,6 +121,33 @@ bool BackgroundCommand::start_history(std::size_t target) {
   return true;
 }
 
+bool BackgroundCommand::start_open(const std::filesystem::path& log, std::function<void()> opened) {
+  std::string what = "Opening " + log.filename().string();
+  if (job_ || !session_.busy().empty()) {
+    session_.messages().warning(what + " refused: " + (job_ ? job_->what : session_.busy()) +
+                                " (wait for it or cancel it)");
+    return false;
+  }
+  std::size_t lines = 0;  // for the progress bar: the log's lines, comments included
+  if (std::ifstream in(log); in) lines = std::size_t(std::count(std::istreambuf_iterator<char>(in), {}, '\n'));
+  auto job = std::make_unique<Job>();
+  job->what = std::move(what);
+  job->verb = "Open";
+  job->after_open = std::move(opened);
+  job->changes = session_.change_count();
+  job->started = std::chrono::steady_clock::now();
+  Job* j = job.get();
+  job->future = std::async(std::launch::async, [j, log, lines] {
+    j->opened = EditorSession::prepare_open(log, [j, lines](const core::Command&, int line) {
+      if (j->cancel) throw core::OperationCancelled();
+      j->progress = std::min(1.0, double(line) / double(std::max<std::size_t>(lines, 1)));
+    });
+  });
+  session_.set_busy(job->what);
+  job_ = std::move(job);
+  return true;
+}
+
 bool BackgroundCommand::finish() {
   if (!job_ || !ready(job_->future)) return false;
   const std::unique_ptr<Job> job = std::move(job_);
@@ -132,11 +161,11 @@ bool BackgroundCommand::finish() {
     log.info(job->verb + " cancelled: the scene is unchanged");
     return false;
   } catch (const core::CommandError& e) {
-    log.error(job->target ? job->what + " failed: " + e.what() + " (the scene is unchanged)"
-                          : command_error_text(job->command->id(), e));
+    log.error(job->command ? command_error_text(job->command->id(), e)
+                           : job->what + " failed: " + e.what() + " (the scene is unchanged)");
     return false;
   } catch (const std::exception& e) {
-    log.error((job->target ? job->what : job->command->id()) + " failed: " + e.what() + " (the scene is unchanged)");
+    log.error((job->command ? job->command->id() : job->what) + " failed: " + e.what() + " (the scene is unchanged)");
     return false;
   }
   if (job->cancel) {  // Cancel pressed after the last progress check: the built result is dropped all the same
@@ -148,6 +177,11 @@ bool BackgroundCommand::finish() {
     return false;
   }
   if (job->target) return session_.settle_history(std::move(*job->walked), *job->target);
+  if (job->opened) {
+    if (!session_.commit_open(std::move(job->opened))) return false;
+    if (job->after_open) job->after_open();
+    return true;
+  }
   return session_.execute(std::move(job->command), ms);
 }
 

@@ -18,6 +18,8 @@
 
 #include <atomic>
 #include <chrono>
+#include <filesystem>
+#include <functional>
 #include <future>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -26,11 +28,11 @@
 
 #include "core/commands/command.h"
 #include "core/scene/scene.h"
+#include "editor/session.h"
 #include "ui/layout.h"
 
 namespace trispline::editor {
 
-class EditorSession;
 
 class BackgroundCommand {
  public:
@@ -48,6 +50,10 @@ class BackgroundCommand {
   // is target = applied − 1, redo applied + 1. False when there is nothing to move, or with a Log warning while
   // another job runs or the session is busy.
   bool start_history(std::size_t target);
+  // Opens `log` (EditorSession::open) with its replay on the worker: progress by log line, Cancel between lines;
+  // `opened` runs on the UI thread after the document became the opened log. False with a Log warning while another
+  // job runs or the session is busy.
+  bool start_open(const std::filesystem::path& log, std::function<void()> opened);
   bool running() const { return job_ != nullptr; }
   double progress() const;  // [0, 1] of the build under way (0 when none)
   const std::string& what() const;  // the build under way's text ("" when none)
@@ -75,6 +81,8 @@ class BackgroundCommand {
     std::future<void> future;
     std::optional<std::size_t> target;  // a history move (start_history) rather than a command
     std::optional<core::Scene> walked;  // its scene, set by the worker
+    std::unique_ptr<EditorSession::OpenedLog> opened;  // an Open (start_open), set by the worker
+    std::function<void()> after_open;
   };
   EditorSession& session_;
   std::unique_ptr<Job> job_;

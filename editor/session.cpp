@@ -370,21 +370,40 @@ bool EditorSession::replay_into(const fs::path& log, const char* what) {
 
 bool EditorSession::open(const fs::path& log) {
   if (refused("Open")) return false;
-  std::error_code ec;
-  if (!fs::exists(log, ec)) {
-    messages_.error("cannot open " + log.string() + ": no such file");
-    return false;
-  }
+  return commit_open(prepare_open(log));
+}
+
+std::unique_ptr<EditorSession::OpenedLog> EditorSession::prepare_open(const fs::path& log,
+                                                                      const ReplayHook& on_executed) {
   // A transaction: the log is replayed into a scene of its own, which replaces the document only when every line
   // succeeded. Otherwise the current scene, its history, its title and its session log stay as they were.
-  core::Scene fresh;
-  History fresh_history(fresh);
-  ReplayResult r;
+  auto opened = std::make_unique<OpenedLog>();
+  opened->log = log;
+  ReplayResult& r = opened->result;
+  std::error_code ec;
+  if (!fs::exists(log, ec)) {
+    r.ok = false;
+    opened->missing = true;
+    return opened;
+  }
   try {
-    r = replay_lines(fresh_history, log, {}, {}, FileWrites::skip);  // opening never writes files
+    r = replay_lines(opened->history, log, on_executed, {}, FileWrites::skip);  // opening never writes files
   } catch (const std::exception& e) {  // replay_lines reports line errors itself; this is memory and the like
     r.ok = false;
     r.error = log.string() + ": " + e.what();
+  }
+  return opened;
+}
+
+bool EditorSession::commit_open(std::unique_ptr<OpenedLog> opened) {
+  const fs::path& log = opened->log;
+  const ReplayResult& r = opened->result;
+  std::error_code ec;
+  core::Scene& fresh = opened->scene;
+  History& fresh_history = opened->history;
+  if (opened->missing) {
+    messages_.error("cannot open " + log.string() + ": no such file");
+    return false;
   }
   if (!r.ok) {
     messages_.error("Open failed, the current scene is kept: " + r.error);

@@ -27,6 +27,7 @@
 #include "core/scene/scene.h"
 #include "editor/command_log.h"
 #include "editor/history.h"
+#include "editor/replay.h"
 #include "ui/history_panel.h"
 #include "ui/main_menu.h"
 #include "ui/message_log.h"
@@ -88,6 +89,19 @@ class EditorSession {
   // again", with Run again); otherwise the error (LOG:LINE: ...) goes to the Log and the current scene, history, title
   // and session log are kept as they were. On success the session log restarts with the opened history.
   bool open(const std::filesystem::path& log);
+  // open() in two parts, for a worker thread (editor/background_command.h): prepare_open() replays `log` into a scene
+  // and history of their own and touches nothing of the session (`on_executed` runs after each line: progress, and
+  // a throw there stops the replay); commit_open() is open()'s second half on the UI thread — the document becomes
+  // the replayed one when every line succeeded, else the Log says why and nothing changes. Returns success.
+  struct OpenedLog {
+    std::filesystem::path log;
+    core::Scene scene;
+    History history{scene};
+    ReplayResult result;
+    bool missing = false;  // no such file
+  };
+  static std::unique_ptr<OpenedLog> prepare_open(const std::filesystem::path& log, const ReplayHook& on_executed = {});
+  bool commit_open(std::unique_ptr<OpenedLog> opened);
   bool save(const std::filesystem::path& path, const core::Camera& view);  // applied lines + camera.set, atomic
   // new_document() + replay of the offer's log (writing no file, like open()); then closes the question.
   bool recover(const RecoveryOffer& offer);

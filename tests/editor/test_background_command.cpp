@@ -10,6 +10,7 @@
 #include <string>
 
 #include "core/commands/ddm_commands.h"
+#include "tests/test_paths.h"
 #include "editor/background_command.h"
 #include "editor/command_registry.h"
 #include "session_test_util.h"
@@ -198,6 +199,57 @@ TEST_F(BackgroundCommandTest, HistoryMovesOnTheWorkerAreTheSynchronousOnes) {
   EXPECT_EQ(test::line_count(dir_ / "session.jsonl"), lines);
   EXPECT_TRUE(logged("History jump cancelled: the scene is unchanged"));
   EXPECT_FALSE(bg.start_history(3)) << "nothing to move";
+}
+
+// Open with its replay on the worker: the document becomes the opened log exactly as the synchronous Open makes it
+// (same history, same meshes), the callback runs after; a cancel, a failing log and a missing file keep the document.
+TEST_F(BackgroundCommandTest, OpenOnTheWorkerIsTheSynchronousOpen) {
+  const fs::path log = test::log_path("ddm_follow.jsonl");
+  editor::EditorSession sync(messages_);
+  sync.start(false);
+  ASSERT_TRUE(sync.open(log));
+
+  editor::EditorSession s(messages_);
+  s.start(false);
+  ASSERT_TRUE(s.execute(test::kTeapot));
+  editor::BackgroundCommand bg(s);
+  bool called = false;
+  ASSERT_TRUE(bg.start_open(log, [&] { called = true; }));
+  EXPECT_FALSE(s.execute(test::kBox)) << "refused while the log opens";
+  bg.wait();
+  EXPECT_GE(bg.progress(), 0.8) << "progress by log line";
+  ASSERT_TRUE(bg.finish());
+  EXPECT_TRUE(called);
+  EXPECT_EQ(s.document(), sync.document());
+  ASSERT_EQ(s.history().size(), sync.history().size());
+  for (std::size_t i = 0; i < s.history().size(); ++i)
+    EXPECT_EQ(s.history().at(i).to_json().dump(), sync.history().at(i).to_json().dump());
+  ASSERT_EQ(s.scene().objects().size(), sync.scene().objects().size());
+  for (std::size_t i = 0; i < s.scene().objects().size(); ++i)
+    EXPECT_TRUE(same_bits(s.scene().objects()[i].world_mesh->positions, sync.scene().objects()[i].world_mesh->positions))
+        << s.scene().objects()[i].name;
+
+  // Cancelled, failing, missing: the document stays.
+  s.new_document();
+  ASSERT_TRUE(s.execute(test::kTeapot));
+  ASSERT_TRUE(bg.start_open(log, [&] { ADD_FAILURE() << "a cancelled Open calls back"; }));
+  bg.cancel();
+  bg.wait();
+  EXPECT_FALSE(bg.finish());
+  EXPECT_TRUE(logged("Open cancelled: the scene is unchanged"));
+  ASSERT_EQ(s.scene().objects().size(), 1u);
+  const fs::path bad = dir_ / "bad.jsonl";
+  std::ofstream(bad) << test::kBox.dump() << "\n{\"cmd\":\"scene.primitive\",\"kind\":\"nothing\"}\n";
+  ASSERT_TRUE(bg.start_open(bad, [] {}));
+  bg.wait();
+  EXPECT_FALSE(bg.finish());
+  EXPECT_TRUE(logged("Open failed, the current scene is kept"));
+  ASSERT_TRUE(bg.start_open(dir_ / "missing.jsonl", [] {}));
+  bg.wait();
+  EXPECT_FALSE(bg.finish());
+  EXPECT_TRUE(logged("no such file"));
+  EXPECT_EQ(s.scene().objects().size(), 1u);
+  EXPECT_EQ(s.scene().objects()[0].name, "teapot");
 }
 
 // The command layer alone: a prepare whose cancel flag is set throws OperationCancelled and prepares nothing; redo
