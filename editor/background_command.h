@@ -33,7 +33,6 @@
 
 namespace trispline::editor {
 
-
 class BackgroundCommand {
  public:
   explicit BackgroundCommand(EditorSession& session);
@@ -79,8 +78,8 @@ class BackgroundCommand {
     std::atomic<double> progress{0.0};
     std::chrono::steady_clock::time_point started;
     std::future<void> future;
-    std::optional<std::size_t> target;  // a history move (start_history) rather than a command
-    std::optional<core::Scene> walked;  // its scene, set by the worker
+    std::optional<std::size_t> target;                 // a history move (start_history) rather than a command
+    std::optional<core::Scene> walked;                 // its scene, set by the worker
     std::unique_ptr<EditorSession::OpenedLog> opened;  // an Open (start_open), set by the worker
     std::function<void()> after_open;
   };

@@ -78,8 +78,7 @@ void History::jump_to(std::size_t applied_count) {
   while (applied_ < applied_count) redo();
 }
 
-void History::walk(core::Scene& scene, std::size_t target,
-                   const std::function<void(std::size_t, std::size_t)>& step) {
+void History::walk(core::Scene& scene, std::size_t target, const std::function<void(std::size_t, std::size_t)>& step) {
   target = std::min(target, commands_.size());
   const std::size_t total = target > applied_ ? target - applied_ : applied_ - target;
   std::size_t done = 0;

@@ -69,9 +69,8 @@ Window::Window(const std::string& title, int width, int height, const WindowOpti
   glfwSetWindowUserPointer(window_, this);
   auto damage = [](GLFWwindow* w) { static_cast<Window*>(glfwGetWindowUserPointer(w))->damaged_ = true; };
   glfwSetWindowRefreshCallback(window_, damage);
-  glfwSetFramebufferSizeCallback(window_, [](GLFWwindow* w, int, int) {
-    static_cast<Window*>(glfwGetWindowUserPointer(w))->damaged_ = true;
-  });
+  glfwSetFramebufferSizeCallback(
+      window_, [](GLFWwindow* w, int, int) { static_cast<Window*>(glfwGetWindowUserPointer(w))->damaged_ = true; });
   glfwMakeContextCurrent(window_);
   glfwSwapInterval(options.vsync ? 1 : 0);
 }

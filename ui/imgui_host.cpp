@@ -19,7 +19,7 @@ namespace {
 std::vector<KeyPress> g_pending, g_frame;  // one editor window per process
 std::vector<int> g_forced;                 // keys held down artificially for one frame (see new_frame)
 
-bool g_input = false;                                // input since the last take_input()
+bool g_input = false;                             // input since the last take_input()
 bool (*g_ends_batch)(const KeyPress&) = nullptr;  // ImGuiHost::set_batch_end
 bool g_hold = false;                              // ImGuiHost::hold_batches
 

@@ -10,10 +10,10 @@
 #include <string>
 
 #include "core/commands/ddm_commands.h"
-#include "tests/test_paths.h"
 #include "editor/background_command.h"
 #include "editor/command_registry.h"
 #include "session_test_util.h"
+#include "tests/test_paths.h"
 
 namespace fs = std::filesystem;
 using namespace trispline;
@@ -226,7 +226,8 @@ TEST_F(BackgroundCommandTest, OpenOnTheWorkerIsTheSynchronousOpen) {
     EXPECT_EQ(s.history().at(i).to_json().dump(), sync.history().at(i).to_json().dump());
   ASSERT_EQ(s.scene().objects().size(), sync.scene().objects().size());
   for (std::size_t i = 0; i < s.scene().objects().size(); ++i)
-    EXPECT_TRUE(same_bits(s.scene().objects()[i].world_mesh->positions, sync.scene().objects()[i].world_mesh->positions))
+    EXPECT_TRUE(
+        same_bits(s.scene().objects()[i].world_mesh->positions, sync.scene().objects()[i].world_mesh->positions))
         << s.scene().objects()[i].name;
 
   // Cancelled, failing, missing: the document stays.

@@ -20,9 +20,10 @@ GUI_FPS="${GUI_FPS:-3}"
 # (tests/gui/idle.sh sets 0, the editor's default, and checks that an idle editor draws nothing).
 GUI_IDLE_FPS="${GUI_IDLE_FPS:-$GUI_FPS}"
 GUI_TIMEOUT="${GUI_TIMEOUT:-20}"  # seconds a gui_wait may take by default
-# Seconds for the window and its first frames: an editor opening a log replays it before its next frame, and the
-# first frames compile the shaders on llvmpipe — 8 s for tests/logs/ddm_follow.jsonl on an idle 2-core machine,
-# 22 s beside four busy processes (ctest runs the farm tests and another window test next to it).
+# Seconds for the window and its first frames: the first frames compile the shaders on llvmpipe, and the log being
+# opened replays on a worker beside them — 8 s to frame 3 with tests/logs/ddm_follow.jsonl on an idle 2-core machine
+# when Open still replayed on the UI thread, 22 s beside four busy processes (ctest runs the farm tests and another
+# window test next to it).
 GUI_START_TIMEOUT="${GUI_START_TIMEOUT:-90}"
 GUI_TEST="$(basename "${0%.sh}")"
 GUI_DIR="$GUI_OUT/$GUI_TEST"
