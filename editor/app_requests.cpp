@@ -10,15 +10,19 @@ const char* doing(Pending p) {
 
 void App::open_later(const fs::path& log) {
   // Replayed on a worker (progress bar, Cancel) while the view keeps drawing the current document.
-  background_.start_open(log, [this] {
+  background_.start_open(log, [this, name = log.filename().string()] {
     selected_.clear();
-    // The log's last camera.set is the view it was saved with: shown as it is (even when the same log is opened
-    // again after orbiting); a log without one is framed.
-    if (session_.scene().camera_set)
-      nav_.adopt(session_.scene().camera, window_->framebuffer_size());
-    else
-      nav_.frame(session_.scene().bounds(), view_.viewport);
-    if (!options_.screenshot.empty()) showcase();
+    // The view is set after a frame of the opened document: a log opened at start-up may be ready before the first
+    // frame has laid out the panels that framing avoids.
+    tool_ctx_.defer("Showing " + name, [this] {
+      // The log's last camera.set is the view it was saved with: shown as it is (even when the same log is opened
+      // again after orbiting); a log without one is framed.
+      if (session_.scene().camera_set)
+        nav_.adopt(session_.scene().camera, window_->framebuffer_size());
+      else
+        nav_.frame(session_.scene().bounds(), view_.viewport);
+      if (!options_.screenshot.empty()) showcase();
+    });
   });
 }
 
