@@ -151,9 +151,9 @@ class App {
   std::optional<RecoveryOffer> recovery_;
   Pending prompt_for_ = Pending::None;  // the "Save changes?" question is open for this
   bool show_about_ = false, show_keys_ = false, quit_ = false;
-  bool screenshot_requested_ = false;      // F12: written after this frame is drawn
-  int screenshots_ = 0, idle_frames_ = 0;  // F12 count; frames since the last deferred work (screenshot mode)
-  std::uint64_t frames_ = 0;               // frames drawn (the probe's "frame")
+  bool screenshot_requested_ = false;            // F12: written after this frame is drawn
+  int screenshots_ = 0, idle_frames_ = 0;        // F12 count; frames since the last deferred work (screenshot mode)
+  std::uint64_t frames_ = 0;                     // frames drawn (the probe's "frame")
   Clock::time_point last_input_ = Clock::now();  // the last input event or window damage (wait_for_change)
 };
 

@@ -153,8 +153,7 @@ bool BackgroundCommand::finish() {
   const std::unique_ptr<Job> job = std::move(job_);
   session_.set_busy({});
   ui::MessageLog& log = session_.messages();
-  const double ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - job->started).count();
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - job->started).count();
   try {
     job->future.get();
   } catch (const core::OperationCancelled&) {

@@ -54,7 +54,7 @@ class BackgroundCommand {
   // job runs or the session is busy.
   bool start_open(const std::filesystem::path& log, std::function<void()> opened);
   bool running() const { return job_ != nullptr; }
-  double progress() const;  // [0, 1] of the build under way (0 when none)
+  double progress() const;          // [0, 1] of the build under way (0 when none)
   const std::string& what() const;  // the build under way's text ("" when none)
   // Asks the build to stop: its worker throws core::OperationCancelled at its next progress check, and finish()
   // discards whatever it made.

@@ -1,12 +1,12 @@
 #include "editor/gui_probe.h"
 
-#include "ui/gui_probe.h"
-
 #include <imgui.h>
 #include <imgui_internal.h>
 
 #include <fstream>
 #include <system_error>
+
+#include "ui/gui_probe.h"
 
 namespace fs = std::filesystem;
 

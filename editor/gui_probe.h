@@ -15,9 +15,8 @@
 // Written to FILE.tmp and renamed, so a reader never sees half a file.
 #pragma once
 
-#include <nlohmann/json.hpp>
-
 #include <filesystem>
+#include <nlohmann/json.hpp>
 
 namespace trispline::editor {
 

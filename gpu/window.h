@@ -39,8 +39,8 @@ class Window {
   // True once after the window's contents were lost or its framebuffer resized (GLFW's refresh and framebuffer-size
   // callbacks): an editor that draws only on change must draw again.
   bool take_damage();
-  glm::ivec2 framebuffer_size() const;        // pixels (differs from window_size() on HiDPI)
-  glm::ivec2 window_size() const;             // screen coordinates
+  glm::ivec2 framebuffer_size() const;  // pixels (differs from window_size() on HiDPI)
+  glm::ivec2 window_size() const;       // screen coordinates
   void set_title(const std::string& title);
   GLFWwindow* native() const { return window_; }  // for ImGui_ImplGlfw_InitForOpenGL
 

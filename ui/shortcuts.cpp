@@ -1,8 +1,8 @@
 #include "ui/shortcuts.h"
 
-#include "ui/imgui_host.h"
-
 #include <imgui.h>
+
+#include "ui/imgui_host.h"
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 

@@ -3,10 +3,10 @@
 // (typing in a field).
 #pragma once
 
+#include <string>
+
 #include "ui/imgui_host.h"
 #include "ui/main_menu.h"
-
-#include <string>
 
 namespace trispline::ui {
 

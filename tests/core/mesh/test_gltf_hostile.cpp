@@ -16,8 +16,8 @@
 #include <cstring>
 #include <fstream>
 #include <functional>
-#include <set>
 #include <nlohmann/json.hpp>
+#include <set>
 
 #include "core/mesh/file_check.h"
 #include "core/mesh/gltf_io.h"
@@ -99,7 +99,8 @@ std::string error_of(const std::function<void()>& load) {
                                   const fs::path& cleanup = {}) {
   std::uintmax_t pages = 0;
   std::ifstream("/proc/self/statm") >> pages;
-  const rlim_t cap = static_cast<rlim_t>(pages * static_cast<std::uintmax_t>(::sysconf(_SC_PAGESIZE))) + (rlim_t(1) << 30);
+  const rlim_t cap =
+      static_cast<rlim_t>(pages * static_cast<std::uintmax_t>(::sysconf(_SC_PAGESIZE))) + (rlim_t(1) << 30);
   const rlimit rl{cap, cap};
   ::setrlimit(RLIMIT_AS, &rl);
   ::alarm(300);  // a hang guard only: no wall-time limit is asserted (a loaded sanitizer run takes 10 s for a refusal)
@@ -120,13 +121,14 @@ std::string error_of(const std::function<void()>& load) {
   std::_Exit(message.find(expected) != std::string::npos && mb < 200 ? 0 : 1);
 }
 
-#define EXPECT_REFUSED_IN_CHILD(load_statement, expected, cleanup)                      \
-  do {                                                                                \
-    GTEST_FLAG_SET(death_test_style, "threadsafe");                                   \
+#define EXPECT_REFUSED_IN_CHILD(load_statement, expected, cleanup)                                              \
+  do {                                                                                                          \
+    GTEST_FLAG_SET(death_test_style, "threadsafe");                                                             \
     EXPECT_EXIT(refuse_in_child([&] { load_statement; }, expected, cleanup), ::testing::ExitedWithCode(0), ""); \
   } while (0)
 
-// ---- the fixtures (tests/core/mesh/data/hostile, written by make_hostile.py) -----------------------------------------
+// ---- the fixtures (tests/core/mesh/data/hostile, written by make_hostile.py)
+// -----------------------------------------
 
 enum class Reader { Objects, Clip };
 
@@ -137,8 +139,9 @@ struct Fixture {
 };
 
 const Fixture kFixtureTable[] = {
-    {"accessor_huge_count.glb", "accessor 0 (count 300000000, byteOffset 0, 12-byte elements, stride 12) runs past "
-                                "the end of buffer view 0 (36 bytes)"},
+    {"accessor_huge_count.glb",
+     "accessor 0 (count 300000000, byteOffset 0, 12-byte elements, stride 12) runs past "
+     "the end of buffer view 0 (36 bytes)"},
     {"accessor_stride_overflow.gltf", "runs past the end of buffer view 0"},
     {"accessor_no_view_huge_count.gltf", "more than 20000000 vertices"},
     {"sparse_huge_count.gltf", "sparse count of 2147483647"},
@@ -200,8 +203,8 @@ TEST(GltfHostile, FixtureMessagesNameTheFile) {  // in-process: these fixtures a
     const std::string name = f.file;
     if (name == "accessor_no_view_huge_count.gltf" || name == "node_dag.gltf") continue;  // checked in children only
     const fs::path p = kFixtures / f.file;
-    const std::string msg = f.reader == Reader::Clip ? error_of([&] { MeshClip::load(p); })
-                                                     : error_of([&] { read_gltf_objects(p); });
+    const std::string msg =
+        f.reader == Reader::Clip ? error_of([&] { MeshClip::load(p); }) : error_of([&] { read_gltf_objects(p); });
     EXPECT_NE(msg.find("'" + p.string() + "'"), std::string::npos) << msg;
     EXPECT_NE(msg.find(f.expected), std::string::npos) << msg;
   }
@@ -247,8 +250,7 @@ TEST(GltfHostile, SparseAccessorWithHugeCountIsRefused) {
   j["accessors"].push_back(json::parse(R"({"componentType":5126,"count":300000000,"type":"VEC3",
       "sparse":{"count":300000000,"indices":{"bufferView":1,"componentType":5123},"values":{"bufferView":0}}})"));
   write_glb(dir / "sp.glb", j, triangle_bin());
-  EXPECT_REFUSED_IN_CHILD(read_gltf_objects(dir / "sp.glb"), "accessor 2 sparse indices (count 300000000",
-                          dir.path());
+  EXPECT_REFUSED_IN_CHILD(read_gltf_objects(dir / "sp.glb"), "accessor 2 sparse indices (count 300000000", dir.path());
 }
 
 TEST(GltfHostile, JsonWithTooManyValuesIsRefusedBeforeParsing) {
@@ -336,8 +338,9 @@ TEST(GltfHostile, SymlinkToDevZeroIsRefused) {
   EscapeSetup s;
   fs::create_symlink("/dev/zero", s.folder / "zero.bin");
   write_gltf(s.folder / "m.gltf", triangle_json(), "zero.bin");
-  EXPECT_NE(error_of([&] { read_gltf_objects(s.folder / "m.gltf"); })
-                .find("URI 'zero.bin' resolves to '/dev/zero', outside the folder"),
+  EXPECT_NE(error_of([&] {
+              read_gltf_objects(s.folder / "m.gltf");
+            }).find("URI 'zero.bin' resolves to '/dev/zero', outside the folder"),
             std::string::npos);
 }
 
@@ -346,8 +349,7 @@ TEST(GltfHostile, BufferFifoIsRefusedWithoutBlocking) {
   ASSERT_EQ(::mkfifo((s.folder / "pipe.bin").c_str(), 0600), 0);
   write_gltf(s.folder / "m.gltf", triangle_json(), "pipe.bin");
   EXPECT_REFUSED_IN_CHILD(read_gltf_objects(s.folder / "m.gltf"), "URI 'pipe.bin': '", s.dir.path());
-  EXPECT_NE(error_of([&] { read_gltf_objects(s.folder / "m.gltf"); }).find("pipe.bin': is a FIFO"),
-            std::string::npos);
+  EXPECT_NE(error_of([&] { read_gltf_objects(s.folder / "m.gltf"); }).find("pipe.bin': is a FIFO"), std::string::npos);
 }
 
 TEST(GltfHostile, BufferDirectoryAndMissingFileAreNamed) {
@@ -355,8 +357,7 @@ TEST(GltfHostile, BufferDirectoryAndMissingFileAreNamed) {
   fs::create_directories(s.folder / "sub");
   write_gltf(s.folder / "d.gltf", triangle_json(), "sub");
   EXPECT_NE(error_of([&] { read_gltf_objects(s.folder / "d.gltf"); }).find("URI 'sub': '"), std::string::npos);
-  EXPECT_NE(error_of([&] { read_gltf_objects(s.folder / "d.gltf"); }).find("sub': is a directory"),
-            std::string::npos);
+  EXPECT_NE(error_of([&] { read_gltf_objects(s.folder / "d.gltf"); }).find("sub': is a directory"), std::string::npos);
   write_gltf(s.folder / "n.gltf", triangle_json(), "nope.bin");
   EXPECT_NE(error_of([&] { read_gltf_objects(s.folder / "n.gltf"); }).find("URI 'nope.bin': '"), std::string::npos);
   EXPECT_NE(error_of([&] { read_gltf_objects(s.folder / "n.gltf"); }).find("nope.bin': file not found"),
@@ -367,8 +368,9 @@ TEST(GltfHostile, BufferFileLargerThanItsByteLengthIsNotRead) {
   EscapeSetup s;
   write_bytes(s.folder / "big.bin", triangle_bin() + std::string(1 << 20, '\0'));
   write_gltf(s.folder / "m.gltf", triangle_json(), "big.bin");
-  EXPECT_NE(error_of([&] { read_gltf_objects(s.folder / "m.gltf"); })
-                .find("1.0 MiB (1048620 bytes) is over the 44 bytes limit for this buffer (its byteLength)"),
+  EXPECT_NE(error_of([&] {
+              read_gltf_objects(s.folder / "m.gltf");
+            }).find("1.0 MiB (1048620 bytes) is over the 44 bytes limit for this buffer (its byteLength)"),
             std::string::npos);
 }
 
@@ -407,7 +409,8 @@ TEST(GltfHostile, ImagesAreNeitherReadNorDecoded) {
       ::testing::ExitedWithCode(0), "");
 }
 
-// ---- the main file ---------------------------------------------------------------------------------------------------
+// ---- the main file
+// ---------------------------------------------------------------------------------------------------
 
 TEST(GltfHostile, MainFileMustBeARegularFileWithinTheBudget) {
   TempDir dir;
@@ -422,15 +425,14 @@ TEST(GltfHostile, MainFileMustBeARegularFileWithinTheBudget) {
   EXPECT_NE(error_of([&] { read_gltf_objects(dir / "missing.glb"); }).find("missing.glb': file not found"),
             std::string::npos);
   // A sparse file one byte over the budget: refused by its size, never read.
-  {
-    std::ofstream(dir / "big.glb").put('g');
-  }
+  { std::ofstream(dir / "big.glb").put('g'); }
   fs::resize_file(dir / "big.glb", kMaxMeshFileBytes + 1);
   EXPECT_REFUSED_IN_CHILD(read_gltf_objects(dir / "big.glb"), "big.glb': 2.0 GiB (2147483649 bytes) is over the 2 GiB",
                           dir.path());
 }
 
-// ---- node graphs, indices, values ------------------------------------------------------------------------------------
+// ---- node graphs, indices, values
+// ------------------------------------------------------------------------------------
 
 TEST(GltfHostile, NodeGraphsThatAreNotForestsEndAtOnce) {
   TempDir dir;
@@ -476,7 +478,8 @@ TEST(GltfHostile, NonFiniteNodeTransformsAreRefused) {
             std::string::npos);
 }
 
-// ---- clips ------------------------------------------------------------------------------------------------------------
+// ---- clips
+// ------------------------------------------------------------------------------------------------------------
 
 TEST(GltfHostile, ManyChannelsOnOneBigSamplerAreChargedEachTime) {
   // 60 translation channels sharing one sampler of 500,000 keys: 60 × 2 M numbers decoded, over the clip budget.
@@ -499,7 +502,8 @@ TEST(GltfHostile, ManyChannelsOnOneBigSamplerAreChargedEachTime) {
                           dir.path());
 }
 
-// ---- the library ------------------------------------------------------------------------------------------------------
+// ---- the library
+// ------------------------------------------------------------------------------------------------------
 
 TEST(GltfHostile, TinygltfIsDebiansLibraryNotACopyInsideAnother) {
   // libdraco (a dependency of assimp) exports its own, incompatible tinygltf; if the link order let it win, TinyGLTF
