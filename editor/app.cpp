@@ -471,7 +471,7 @@ int App::run() {
     // Volumes: a load or a silhouette extraction running, or a volume preview being refined, keeps frames coming; so
     // does a guarantees computation (its result is drawn the frame it is ready).
     const bool busy = !work_.empty() || ImGui::GetIO().MouseDown[0] || ImGui::GetIO().MouseDown[2] || animating() ||
-                      background_.running() || volumes_.busy() || guarantees_.busy() ||
+                      anim_.recording() || background_.running() || volumes_.busy() || guarantees_.busy() ||
                       (renderer_ && renderer_->last_stats().ddm_keep < 1.0) ||  // full detail once it stops
                       (renderer_ && renderer_->last_stats().volume_refining);
     wait_for_change(busy);
