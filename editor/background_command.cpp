@@ -47,15 +47,15 @@ void BackgroundCommand::wait() const {
   if (job_ && job_->future.valid()) job_->future.wait();
 }
 
+bool BackgroundCommand::refused(const std::string& what) const {
+  if (!job_ && session_.busy().empty()) return false;
+  session_.messages().warning(what + " refused: " + (job_ ? job_->what : session_.busy()) +
+                              " (wait for it or cancel it)");
+  return true;
+}
+
 bool BackgroundCommand::start(const nlohmann::json& line, std::string what, std::string verb) {
-  if (job_) {
-    session_.messages().warning(what + " refused: " + job_->what + " (wait for it or cancel it)");
-    return false;
-  }
-  if (!session_.busy().empty()) {
-    session_.messages().warning(what + " refused: " + session_.busy() + " (wait for it or cancel it)");
-    return false;
-  }
+  if (refused(what)) return false;
   core::CommandPtr cmd;
   try {
     core::CommandContext ctx;
@@ -95,11 +95,7 @@ bool BackgroundCommand::start_history(std::size_t target) {
                      : target == from + 1 ? "Redo " + history.at(from).label()
                      : target == 0        ? std::string("History: back to the initial state")
                                           : "History: to step " + std::to_string(target);
-  if (job_ || !session_.busy().empty()) {
-    session_.messages().warning(what + " refused: " + (job_ ? job_->what : session_.busy()) +
-                                " (wait for it or cancel it)");
-    return false;
-  }
+  if (refused(what)) return false;
   auto job = std::make_unique<Job>();
   job->what = std::move(what);
   job->verb = verb;
@@ -123,11 +119,7 @@ bool BackgroundCommand::start_history(std::size_t target) {
 
 bool BackgroundCommand::start_open(const std::filesystem::path& log, std::function<void()> opened) {
   std::string what = "Opening " + log.filename().string();
-  if (job_ || !session_.busy().empty()) {
-    session_.messages().warning(what + " refused: " + (job_ ? job_->what : session_.busy()) +
-                                " (wait for it or cancel it)");
-    return false;
-  }
+  if (refused(what)) return false;
   std::size_t lines = 0;  // for the progress bar: the log's lines, comments included
   if (std::ifstream in(log); in) lines = std::size_t(std::count(std::istreambuf_iterator<char>(in), {}, '\n'));
   auto job = std::make_unique<Job>();

@@ -83,6 +83,8 @@ class BackgroundCommand {
     std::unique_ptr<EditorSession::OpenedLog> opened;  // an Open (start_open), set by the worker
     std::function<void()> after_open;
   };
+  // True, with a Log warning naming what `what` waits for, while a job runs or the session is busy.
+  bool refused(const std::string& what) const;
   EditorSession& session_;
   std::unique_ptr<Job> job_;
 };
