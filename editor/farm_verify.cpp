@@ -1,6 +1,5 @@
 // What a farm checks instead of trusting its folder: sizes and CRC-32s (zlib) of the logs and of every chunk's
 // files, recorded by the task that wrote them (chunks/NNNN/chunk.json), and frames that decode (OpenImageIO).
-#include <OpenImageIO/imageio.h>
 #include <zlib.h>
 
 #include <cmath>
@@ -9,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/mesh/image_codec.h"
 #include "editor/farm.h"
 #include "editor/record.h"
 
@@ -42,19 +42,23 @@ std::optional<FileSum> sum_from_json(const json& j) {
 
 // "" when `path` is an RGBA image of width × height (and, when `pixels`, every scanline decodes to finite values).
 std::string check_image(const fs::path& path, int width, int height, bool pixels) {
-  namespace OIIO = OIIO_NAMESPACE;
-  auto in = OIIO::ImageInput::open(path.string());
-  if (!in) return "does not decode: " + OIIO::geterror();
-  const OIIO::ImageSpec spec = in->spec();
-  if (spec.width != width || spec.height != height || spec.nchannels != 4 || spec.depth != 1)
+  std::string err;
+  std::unique_ptr<core::ImageReader> in;
+  try {
+    in = core::image_codec().open_file(path.string(), false, err);
+  } catch (const std::exception& e) {
+    return std::string("cannot be checked: ") + e.what();
+  }
+  if (!in) return "does not decode: " + err;
+  const core::ImageHeader& spec = in->header();
+  if (spec.width != width || spec.height != height || spec.channels != 4 || spec.depth != 1)
     return "is " + std::to_string(spec.width) + "×" + std::to_string(spec.height) + " with " +
-           std::to_string(spec.nchannels) + " channels, not the farm's " + std::to_string(width) + "×" +
+           std::to_string(spec.channels) + " channels, not the farm's " + std::to_string(width) + "×" +
            std::to_string(height) + " RGBA";
   if (!pixels) return "";
   std::vector<float> row(static_cast<std::size_t>(width) * 4);
   for (int y = 0; y < height; ++y) {
-    if (!in->read_scanline(y, 0, OIIO::TypeDesc::FLOAT, row.data()))
-      return "row " + std::to_string(y) + " does not decode: " + in->geterror();
+    if (!in->read_row_float(y, row.data())) return "row " + std::to_string(y) + " does not decode: " + in->error();
     for (const float v : row)
       if (!std::isfinite(v)) return "row " + std::to_string(y) + " holds a non-finite value";
   }

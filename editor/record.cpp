@@ -1,6 +1,5 @@
 #include "editor/record.h"
 
-#include <OpenImageIO/imageio.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -17,6 +16,7 @@
 
 #include "core/commands/anim_record.h"
 #include "core/mesh/gltf_anim_io.h"
+#include "core/mesh/image_codec.h"
 #include "core/mesh/image_io.h"
 #include "core/scene/scene_export.h"
 #include "editor/elapsed.h"
@@ -42,26 +42,22 @@ const std::array<float, 256>& srgb_to_linear_table() {
 
 // Half-float RGBA EXR, linear: colour channels decoded from sRGB, alpha as is. "<stem>.tmp.exr" then renamed.
 void write_exr_linear(const fs::path& path, int width, int height, const std::vector<unsigned char>& rgba) {
-  namespace OIIO = OIIO_NAMESPACE;
   const auto& lut = srgb_to_linear_table();
   std::vector<float> px(rgba.size());
   for (std::size_t i = 0; i < rgba.size(); ++i) px[i] = (i % 4 == 3) ? rgba[i] / 255.0f : lut[rgba[i]];
   const fs::path tmp = path.parent_path() / (path.stem().string() + ".tmp.exr");
-  auto out = OIIO::ImageOutput::create(tmp.string());
-  if (!out) throw std::runtime_error("'" + path.string() + "': no EXR writer: " + OIIO::geterror());
-  OIIO::ImageSpec spec(width, height, 4, OIIO::TypeDesc::HALF);
-  spec.attribute("compression", "zip");
+  core::ImageWriteSpec spec;
+  spec.width = width;
+  spec.height = height;
+  spec.stored = core::PixelType::kHalf;
   // OpenImageIO stamps EXRs with the current time (capDate) unless DateTime is set: frames must not vary by run.
-  spec.attribute("DateTime", "");
-  bool ok = out->open(tmp.string(), spec);
-  ok = ok && out->write_image(OIIO::TypeDesc::FLOAT, px.data());
-  const std::string err = ok ? std::string() : out->geterror();
-  ok = out->close() && ok;
+  spec.text_attributes = {{"compression", "zip"}, {"DateTime", ""}};
+  const std::string err = core::image_codec().write_file(tmp.string(), spec, core::PixelType::kFloat, px.data());
   std::error_code ec;
-  if (ok) fs::rename(tmp, path, ec);
-  if (!ok || ec) {
+  if (err.empty()) fs::rename(tmp, path, ec);
+  if (!err.empty() || ec) {
     fs::remove(tmp, ec);
-    throw std::runtime_error("'" + path.string() + "': cannot write EXR: " + (err.empty() ? out->geterror() : err));
+    throw std::runtime_error("'" + path.string() + "': cannot write EXR: " + (err.empty() ? ec.message() : err));
   }
 }
 

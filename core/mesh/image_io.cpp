@@ -1,11 +1,10 @@
 #include "core/mesh/image_io.h"
 
-#include <OpenImageIO/imageio.h>
-
 #include <algorithm>
 #include <cctype>
 #include <string>
 
+#include "core/mesh/image_codec.h"
 #include "core/mesh/path_quote.h"
 
 namespace trispline::core {
@@ -21,7 +20,6 @@ std::string lower_ext(const std::filesystem::path& p) {
 
 void write_image_rgba8(const std::filesystem::path& path, int width, int height,
                        const std::vector<unsigned char>& rgba) {
-  namespace OIIO = OIIO_NAMESPACE;
   const std::string ext = lower_ext(path);
   if (ext != ".png" && ext != ".exr")
     throw ImageIoError(quoted(path) + ": unsupported image extension '" + ext + "' (supported: .png .exr)");
@@ -31,18 +29,16 @@ void write_image_rgba8(const std::filesystem::path& path, int width, int height,
                        std::to_string(rgba.size()));
   // The temporary keeps the real extension last so OpenImageIO picks the right writer.
   const std::filesystem::path tmp = path.parent_path() / (path.stem().string() + ".tmp" + ext);
-  auto out = OIIO::ImageOutput::create(tmp.string());
-  if (!out) throw ImageIoError(quoted(path) + ": no image writer: " + OIIO::geterror());
-  OIIO::ImageSpec spec(width, height, 4, ext == ".exr" ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::UINT8);
-  spec.attribute("oiio:UnassociatedAlpha", 1);
-  bool ok = out->open(tmp.string(), spec);
-  ok = ok && out->write_image(OIIO::TypeDesc::UINT8, rgba.data());
-  const std::string err = ok ? std::string() : out->geterror();
-  ok = out->close() && ok;
-  if (!ok) {
+  ImageWriteSpec spec;
+  spec.width = width;
+  spec.height = height;
+  spec.stored = ext == ".exr" ? PixelType::kHalf : PixelType::kUint8;
+  spec.int_attributes = {{"oiio:UnassociatedAlpha", 1}};
+  const std::string err = image_codec().write_file(tmp.string(), spec, PixelType::kUint8, rgba.data());
+  if (!err.empty()) {
     std::error_code ec;
     std::filesystem::remove(tmp, ec);
-    throw ImageIoError(quoted(path) + ": cannot write image: " + (err.empty() ? out->geterror() : err));
+    throw ImageIoError(quoted(path) + ": cannot write image: " + err);
   }
   std::error_code ec;
   std::filesystem::rename(tmp, path, ec);
@@ -53,23 +49,19 @@ void write_image_rgba8(const std::filesystem::path& path, int width, int height,
 }
 
 ImageRgba8 read_image_rgba8(const std::filesystem::path& path) {
-  namespace OIIO = OIIO_NAMESPACE;
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw ImageIoError(quoted(path) + ": file not found");
   // Keep alpha unassociated (as PNG stores it); by default OpenImageIO premultiplies on read.
-  OIIO::ImageSpec config;
-  config.attribute("oiio:UnassociatedAlpha", 1);
-  auto in = OIIO::ImageInput::open(path.string(), &config);
-  if (!in) throw ImageIoError(quoted(path) + ": cannot read image: " + OIIO::geterror());
-  const OIIO::ImageSpec& spec = in->spec();
-  const int w = spec.width, h = spec.height, nc = spec.nchannels;
-  if (w < 1 || h < 1 || nc < 1) throw ImageIoError(quoted(path) + ": image has no pixels");
+  std::string err;
+  auto in = image_codec().open_file(path.string(), true, err);
+  if (!in) throw ImageIoError(quoted(path) + ": cannot read image: " + err);
+  const ImageHeader& spec = in->header();
+  if (spec.width < 1 || spec.height < 1 || spec.channels < 1)
+    throw ImageIoError(quoted(path) + ": image has no pixels");
+  const int w = static_cast<int>(spec.width), h = static_cast<int>(spec.height), nc = spec.channels;
   std::vector<unsigned char> src(static_cast<std::size_t>(w) * h * nc);
-  if (!in->read_image(0, 0, 0, nc, OIIO::TypeDesc::UINT8, src.data())) {
-    const std::string err = in->geterror();
-    throw ImageIoError(quoted(path) + ": cannot decode image: " + err);
-  }
-  in->close();
+  if (!in->read_uint8(nc, src.data())) throw ImageIoError(quoted(path) + ": cannot decode image: " + in->error());
+  in.reset();
   ImageRgba8 img;
   img.width = w;
   img.height = h;

@@ -1,8 +1,5 @@
-// Material images through OpenImageIO, in memory. See material_image.h.
+// Material images through OpenImageIO (image_codec.h), in memory. See material_image.h.
 #include "core/mesh/material_image.h"
-
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
 
 #include <algorithm>
 #include <cctype>
@@ -11,10 +8,10 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "core/mesh/image_codec.h"
+
 namespace trispline::core {
 namespace {
-
-namespace OIIO = OIIO_NAMESPACE;
 
 bool starts_with(const std::vector<std::uint8_t>& b, std::initializer_list<int> magic) {
   if (b.size() < magic.size()) return false;
@@ -100,19 +97,22 @@ MaterialImage decode_material_image(std::vector<std::uint8_t> encoded, const std
     return img;
   }
   const std::string format = format_of_extension(ext);
-  OIIO::Filesystem::IOMemReader proxy(img.encoded.data(), img.encoded.size());
-  OIIO::ImageSpec config;
-  config.attribute("oiio:UnassociatedAlpha", 1);  // PNG stores straight alpha; OpenImageIO premultiplies by default
-  void* proxy_ptr = &proxy;
-  config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy_ptr);  // read from memory, never from a file
-  auto in = OIIO::ImageInput::open("image" + ext, &config);
-  if (!in) {
-    img.error = "cannot decode " + format + ": " + OIIO::geterror();
+  std::string err;
+  const ImageCodec* codec = nullptr;
+  try {
+    codec = &image_codec();
+  } catch (const std::exception& e) {  // an installation without the plugin: the texture is left out, as unreadable
+    img.error = e.what();
     return img;
   }
-  const OIIO::ImageSpec spec = in->spec();
+  auto in = codec->open_memory(img.encoded.data(), img.encoded.size(), ext, err);
+  if (!in) {
+    img.error = "cannot decode " + format + ": " + err;
+    return img;
+  }
+  const ImageHeader spec = in->header();
   const long long w = spec.width, h = spec.height;
-  const int nc = spec.nchannels;
+  const int nc = spec.channels;
   if (w < 1 || h < 1 || nc < 1 || spec.depth > 1) {
     img.error = format + " image has no pixels (" + std::to_string(w) + " × " + std::to_string(h) + ")";
     return img;
@@ -127,11 +127,11 @@ MaterialImage decode_material_image(std::vector<std::uint8_t> encoded, const std
   const int used = std::min(nc, 4);
   const std::size_t pixels = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
   std::vector<std::uint8_t> src(pixels * used);
-  if (!in->read_image(0, 0, 0, used, OIIO::TypeDesc::UINT8, src.data())) {
-    img.error = "cannot decode " + format + ": " + in->geterror();
+  if (!in->read_uint8(used, src.data())) {
+    img.error = "cannot decode " + format + ": " + in->error();
     return img;
   }
-  in->close();
+  in.reset();
   img.rgba8.resize(pixels * 4);
   for (std::size_t i = 0; i < pixels; ++i) {
     const std::uint8_t* s = &src[i * used];
@@ -152,17 +152,13 @@ std::vector<std::uint8_t> encode_png_rgba8(int width, int height, const std::vec
   if (width < 1 || height < 1 || rgba.size() != static_cast<std::size_t>(width) * height * 4)
     throw std::runtime_error("encode_png_rgba8: " + std::to_string(rgba.size()) + " bytes for " +
                              std::to_string(width) + " × " + std::to_string(height) + " RGBA pixels");
+  ImageWriteSpec spec;
+  spec.width = width;
+  spec.height = height;
+  spec.int_attributes = {{"oiio:UnassociatedAlpha", 1}};
   std::vector<std::uint8_t> out;
-  OIIO::Filesystem::IOVecOutput proxy(out);
-  auto png = OIIO::ImageOutput::create("image.png");
-  if (!png) throw std::runtime_error("no PNG writer: " + OIIO::geterror());
-  png->set_ioproxy(&proxy);
-  OIIO::ImageSpec spec(width, height, 4, OIIO::TypeDesc::UINT8);
-  spec.attribute("oiio:UnassociatedAlpha", 1);
-  bool ok = png->open("image.png", spec) && png->write_image(OIIO::TypeDesc::UINT8, rgba.data());
-  const std::string err = ok ? std::string() : png->geterror();
-  ok = png->close() && ok;
-  if (!ok) throw std::runtime_error("cannot encode PNG: " + err);
+  const std::string err = image_codec().encode(out, ".png", spec, PixelType::kUint8, rgba.data());
+  if (!err.empty()) throw std::runtime_error("cannot encode PNG: " + err);
   return out;
 }
 

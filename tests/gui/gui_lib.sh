@@ -33,6 +33,8 @@ GUI_STATE="$GUI_DIR/state"   # TRISPLINE_STATE_DIR: session.jsonl lands here
 GUI_WORK="$GUI_DIR/work"     # the editor's current folder (F12 screenshots land here)
 GUI_PROBE="$GUI_DIR/probe.json"
 mkdir -p "$GUI_STATE" "$GUI_WORK"
+# Debian's Python (python3-numpy, python3-pil from scripts/test_packages.txt), whatever python3 comes first on PATH.
+GUI_PYTHON="${GUI_PYTHON:-/usr/bin/python3}"
 GUI_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 GUI_PID=""
 GUI_WID=""

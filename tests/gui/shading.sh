@@ -58,19 +58,19 @@ printf '{"cmd":"scene.load","path":"%s","name":"cube"}\n' "$GUI_WORK/cube.gltf" 
 # colours PNG: how many of the texture's four colours cover at least 300 pixels (dominant channel by 60 levels) in
 # the 180 × 180 px box around the cube's centre on screen (the probe's object_px; the panels and axis lines outside).
 colours() {
-  python3 - "$1" "$(dirname "$0")" "$(gui_q '.object_px.cube[0]')" "$(gui_q '.object_px.cube[1]')" <<'EOF'
+  "$GUI_PYTHON" - "$1" "$(dirname "$0")" "$(gui_q '.object_px.cube[0]')" "$(gui_q '.object_px.cube[1]')" <<'EOF'
 import sys
 sys.path.insert(0, sys.argv[2])
-from textured_pixels import read_png
-w, h, rows = read_png(sys.argv[1])
+from textured_pixels import read_rgb
+rgb = read_rgb(sys.argv[1])
 cx, cy = int(float(sys.argv[3])), int(float(sys.argv[4]))
-counts = [0, 0, 0, 0]
-for row in rows[max(0, cy - 90):cy + 90]:
-    for r, g, b in row[max(0, cx - 90):cx + 90]:
-        if r > g + 60 and r > b + 60: counts[0] += 1
-        elif g > r + 60 and g > b + 60: counts[1] += 1
-        elif b > r + 60 and b > g + 60: counts[2] += 1
-        elif r > b + 60 and g > b + 60 and abs(r - g) < 70: counts[3] += 1
+box = rgb[max(0, cy - 90):cy + 90, max(0, cx - 90):cx + 90].reshape(-1, 3)
+r, g, b = box[:, 0], box[:, 1], box[:, 2]
+red = (r > g + 60) & (r > b + 60)
+green = ~red & (g > r + 60) & (g > b + 60)
+blue = ~red & ~green & (b > r + 60) & (b > g + 60)
+yellow = ~red & ~green & ~blue & (r > b + 60) & (g > b + 60) & (abs(r - g) < 70)
+counts = [int(m.sum()) for m in (red, green, blue, yellow)]
 print(sum(c >= 300 for c in counts), counts, file=sys.stderr)
 print(sum(c >= 300 for c in counts))
 EOF

@@ -41,7 +41,7 @@ check_textured() {
   gui_shot "$1_solid"
   gui_view_shading Material
   cx="$(gui_q ".object_px[\"$rack\"][0]")"; cy="$(gui_q ".object_px[\"$rack\"][1]")"
-  read -r -a r < <(python3 "$(dirname "$0")/textured_pixels.py" "$GUI_DIR/$1_material.png" "$GUI_DIR/$1_solid.png" \
+  read -r -a r < <("$GUI_PYTHON" "$(dirname "$0")/textured_pixels.py" "$GUI_DIR/$1_material.png" "$GUI_DIR/$1_solid.png" \
     "$cx" "$cy")
   gui_log "$1: ${r[0]} pixels differ; Solid's object colour ${r[1]} % of them, Material ${r[2]} %"
   [ "${r[0]}" -ge 8000 ] && [ "${r[1]}" -ge 50 ] && [ "${r[2]}" -le 5 ] ||

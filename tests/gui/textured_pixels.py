@@ -5,69 +5,50 @@ Compares a Material and a Solid screenshot of one view in the 400 × 300 px box 
 in pixels, from the GUI probe). Of the pixels that differ between the two (by more than 60 in R+G+B), Solid draws
 most in one 30° hue sector: the object colour. Where Material draws the object's textures, almost none of those
 pixels keep that hue. Prints "changed solid_share material_share" (the shares of Solid's dominant sector, in %).
-Reads 8-bit RGB(A) PNGs (what the editor's F12 writes) with the standard library only; read_png is shared with
-the other GUI tests that look at pixels (shading.sh).
+Reads the PNGs with Pillow into NumPy arrays (read_rgb is shared with the other GUI tests that look at pixels:
+shading.sh).
 """
-import colorsys
-import struct
 import sys
-import zlib
+
+import numpy as np
+from PIL import Image
 
 
-def read_png(path):
-    data = open(path, "rb").read()
-    pos, idat = 8, b""
-    while pos < len(data):
-        n, t = struct.unpack(">I4s", data[pos:pos + 8])
-        body = data[pos + 8:pos + 8 + n]
-        if t == b"IHDR":
-            w, h, depth, ctype = struct.unpack(">IIBB", body[:10])
-            assert depth == 8 and ctype in (2, 6), "8-bit RGB(A) PNG expected"
-            bpp = 4 if ctype == 6 else 3
-        elif t == b"IDAT":
-            idat += body
-        pos += 12 + n
-    raw, stride, prev, rows = zlib.decompress(idat), w * bpp, bytearray(w * bpp), []
-    for y in range(h):
-        f, line = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
-        for i in range(stride):
-            a = line[i - bpp] if i >= bpp else 0
-            b, c = prev[i], prev[i - bpp] if i >= bpp else 0
-            if f == 1:
-                line[i] = (line[i] + a) & 255
-            elif f == 2:
-                line[i] = (line[i] + b) & 255
-            elif f == 3:
-                line[i] = (line[i] + (a + b) // 2) & 255
-            elif f == 4:
-                p = a + b - c
-                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
-                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
-        rows.append([tuple(line[x:x + 3]) for x in range(0, stride, bpp)])
-        prev = line
-    return w, h, rows
+def read_rgb(path):
+    """The PNG at PATH as an H × W × 3 int32 array (8-bit R, G, B; alpha dropped)."""
+    with Image.open(path) as im:
+        return np.asarray(im.convert("RGB"), dtype=np.int32)
 
 
-def sector(p):
-    hue, s, v = colorsys.rgb_to_hsv(p[0] / 255, p[1] / 255, p[2] / 255)
-    return min(11, int(hue * 12)) if s >= 0.15 and v >= 0.1 else -1
+def sectors(rgb):
+    """The 30° hue sector (0-11) of each pixel of an N × 3 array; -1 where saturation < 0.15 or value < 0.1
+    (colorsys.rgb_to_hsv's hue, vectorised)."""
+    c = rgb.astype(np.float64) / 255
+    r, g, b = c[:, 0], c[:, 1], c[:, 2]
+    mx, mn = c.max(axis=1), c.min(axis=1)
+    span = np.where(mx > mn, mx - mn, 1)
+    rc, gc, bc = (mx - r) / span, (mx - g) / span, (mx - b) / span
+    hue = np.where(r == mx, bc - gc, np.where(g == mx, 2.0 + rc - bc, 4.0 + gc - rc))
+    hue = np.where(mx > mn, (hue / 6.0) % 1.0, 0.0)
+    s = np.where(mx > 0, (mx - mn) / np.where(mx > 0, mx, 1), 0.0)
+    sec = np.minimum(11, (hue * 12).astype(np.int64))
+    return np.where((s >= 0.15) & (mx >= 0.1), sec, -1)
 
 
 def main():
-    (w, h, mat), (_, _, sol) = read_png(sys.argv[1]), read_png(sys.argv[2])
+    mat, sol = read_rgb(sys.argv[1]), read_rgb(sys.argv[2])
+    h, w = mat.shape[:2]
     cx, cy = int(float(sys.argv[3])), int(float(sys.argv[4]))
-    pairs = [(mat[y][x], sol[y][x]) for y in range(max(0, cy - 150), min(h, cy + 150))
-             for x in range(max(0, cx - 200), min(w, cx + 200))
-             if sum(abs(mat[y][x][k] - sol[y][x][k]) for k in range(3)) > 60]
-    sol_bins, mat_bins = [0] * 12, [0] * 12
-    for m, s in pairs:
-        if sector(s) >= 0:
-            sol_bins[sector(s)] += 1
-        if sector(m) >= 0:
-            mat_bins[sector(m)] += 1
-    dom = max(range(12), key=lambda k: sol_bins[k])
-    n = max(1, len(pairs))
-    print(len(pairs), 100 * sol_bins[dom] // n, 100 * mat_bins[dom] // n)
+    box = (slice(max(0, cy - 150), min(h, cy + 150)), slice(max(0, cx - 200), min(w, cx + 200)))
+    m, s = mat[box].reshape(-1, 3), sol[box].reshape(-1, 3)
+    changed = np.abs(m - s).sum(axis=1) > 60
+    m, s = m[changed], s[changed]
+    sol_sec, mat_sec = sectors(s), sectors(m)
+    sol_bins = np.bincount(sol_sec[sol_sec >= 0], minlength=12)
+    mat_bins = np.bincount(mat_sec[mat_sec >= 0], minlength=12)
+    dom = int(np.argmax(sol_bins))
+    n = max(1, len(m))
+    print(len(m), 100 * int(sol_bins[dom]) // n, 100 * int(mat_bins[dom]) // n)
 
 
 if __name__ == "__main__":

@@ -51,7 +51,7 @@ gui_shot tiles_material
 gui_view_shading Solid
 gui_shot tiles_solid
 cx="$(gui_q '.object_px.ball[0]')"; cy="$(gui_q '.object_px.ball[1]')"
-read -r -a r < <(python3 "$(dirname "$0")/textured_pixels.py" "$GUI_DIR/tiles_material.png" \
+read -r -a r < <("$GUI_PYTHON" "$(dirname "$0")/textured_pixels.py" "$GUI_DIR/tiles_material.png" \
   "$GUI_DIR/tiles_solid.png" "$cx" "$cy")
 gui_log "${r[0]} pixels differ; Solid's ball blue ${r[1]} % of them, Material ${r[2]} %"
 [ "${r[0]}" -ge 8000 ] && [ "${r[1]}" -ge 50 ] && [ "${r[2]}" -le 5 ] ||
