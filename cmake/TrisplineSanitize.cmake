@@ -23,5 +23,6 @@ if(TRISPLINE_SANITIZE)
   if(TRISPLINE_FUZZ)
     add_compile_options(-fsanitize=fuzzer-no-link)
   endif()
+  set(TRISPLINE_SANITIZE_O2_MODULES spline ffd ddm ddm_auto_uv)  # trispline_module() compiles these at -O2
   message(STATUS "trispline: AddressSanitizer + UBSan on every target (libFuzzer coverage: ${TRISPLINE_FUZZ})")
 endif()
