@@ -2,10 +2,10 @@
 // iso-level set, silhouettes extracted for the scene camera and exported; undo restores the scene before each step;
 // the same lines give the same silhouettes bit for bit; bad fields are named and change nothing.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <fstream>
 #include <sstream>
-#include <unistd.h>
 
 #include "core/commands/camera_set.h"
 #include "core/commands/volume_export.h"
@@ -51,7 +51,8 @@ class VolumeCommands : public ::testing::Test {
   Scene torus_scene() {
     Scene s;
     parse<CameraSetCommand>(R"({"cmd":"camera.set","eye":[0,-150,60],"target":[0,0,0],"up":[0,0,1],
-                                "viewport":[320,240]})")->redo(s);
+                                "viewport":[320,240]})")
+        ->redo(s);
     parse<VolumeLoadCommand>(R"({"cmd":"volume.load","analytic":"torus","name":"torus","iso":0})")->redo(s);
     return s;
   }
@@ -98,9 +99,9 @@ TEST_F(VolumeCommands, LoadRefusesBadInputAndChangesNothing) {
     }
     EXPECT_EQ(s.volumes().size(), 1u);
   };
-  expect_field(R"({"cmd":"volume.load","analytic":"sphere","name":"a"})", "name");        // taken
+  expect_field(R"({"cmd":"volume.load","analytic":"sphere","name":"a"})", "name");  // taken
   expect_field(R"({"cmd":"volume.load","analytic":"sphere","order":5})", "order");
-  expect_field(R"({"cmd":"volume.load"})", "path");                                         // neither
+  expect_field(R"({"cmd":"volume.load"})", "path");  // neither
   expect_field(R"({"cmd":"volume.load","analytic":"cube"})", "analytic");
   const auto missing = dir_ / "missing.nii.gz";
   expect_field(json({{"cmd", "volume.load"}, {"path", missing.string()}}).dump(), "path");
@@ -163,8 +164,7 @@ TEST_F(VolumeCommands, ErrorsNameTheFieldAndChangeNothing) {
                CommandError);
   EXPECT_THROW(parse<VolumeSilhouettesCommand>(R"({"cmd":"volume.silhouettes","object":"torus","subdivision":9})"),
                CommandError);
-  EXPECT_THROW(parse<VolumeExportCommand>(R"({"cmd":"volume.export","object":"torus","path":"a.png"})"),
-               CommandError);
+  EXPECT_THROW(parse<VolumeExportCommand>(R"({"cmd":"volume.export","object":"torus","path":"a.png"})"), CommandError);
   EXPECT_THROW(parse<VolumeExportCommand>(R"({"cmd":"volume.export","object":"torus","what":"iso","path":"a.svg"})"),
                CommandError);
 }
@@ -250,11 +250,18 @@ TEST_F(VolumeCommands, ExportStaysInsideTheOutputFolder) {
       EXPECT_EQ(e.field(), "path") << e.what();
     }
   };
-  const std::vector<std::string> bad_paths = {"../../x.svg", "a/b/c/../../../../x.ply", "/tmp/x.glb",
-                                              (dir_ / "out/x.svg").string(), "link/x.svg", "link/../../x.svg", "sub",
-                                              "..", ".", "x\nrm.svg", "../out2/x.svg"};
-  for (const std::string& bad : bad_paths)
-    refused(bad);
+  const std::vector<std::string> bad_paths = {"../../x.svg",
+                                              "a/b/c/../../../../x.ply",
+                                              "/tmp/x.glb",
+                                              (dir_ / "out/x.svg").string(),
+                                              "link/x.svg",
+                                              "link/../../x.svg",
+                                              "sub",
+                                              "..",
+                                              ".",
+                                              "x\nrm.svg",
+                                              "../out2/x.svg"};
+  for (const std::string& bad : bad_paths) refused(bad);
   // Nothing was written anywhere by the refusals.
   EXPECT_TRUE(std::filesystem::is_empty(dir_ / "outside"));
   // Inside: plain, in a subfolder, with a `..` that stays inside, and a new subfolder.
