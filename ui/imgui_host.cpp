@@ -101,7 +101,12 @@ ImGuiHost::~ImGuiHost() {
 
 void ImGuiHost::new_frame() {
   std::size_t take = g_pending.size();
-  if (g_ends_batch && !ImGui::GetIO().WantTextInput)  // the last frame's answer: whether a text field types
+  // A widget still held from a click (on a slow frame a click's press and release arrive together, and the widget
+  // stays active into the next frame) makes ImGui capture the keyboard: presses made meanwhile wait for its release
+  // instead of being lost. Both answers are the last frame's; a text field typing takes its keys at once.
+  if (ImGui::IsAnyItemActive() && !ImGui::GetIO().WantTextInput)
+    take = 0;
+  else if (g_ends_batch && !ImGui::GetIO().WantTextInput)  // the last frame's answer: whether a text field types
     for (std::size_t i = 0; i < g_pending.size(); ++i)
       if (g_ends_batch(g_pending[i])) {
         take = g_hold ? i : i + 1;

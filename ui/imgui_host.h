@@ -33,7 +33,8 @@ class ImGuiHost {
   // Presses for which `ends_batch` is true end a frame's share of the queued presses: the presses after one wait for
   // the next frame (which follows at once), never dropped. So a shortcut pressed many times during a slow frame runs
   // as many times, in order, each on the state the one before left. Not while a text field has the keyboard (its
-  // characters arrive apart from the key queue). Held-key repeats coalesce instead of queueing.
+  // characters arrive apart from the key queue). Held-key repeats coalesce instead of queueing. While a widget is held
+  // by the mouse (ImGui then captures the keyboard), every press waits for its release.
   static void set_batch_end(bool (*ends_batch)(const KeyPress&));
   // While held, new_frame() hands out only the presses before the first batch-ending one: the rest wait, in order.
   static void hold_batches(bool hold);
