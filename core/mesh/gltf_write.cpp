@@ -364,8 +364,103 @@ std::vector<int> root_nodes(const tinygltf::Model& model) {
   return roots;
 }
 
+namespace {
+
+// `text` with every byte that does not start or continue a well-formed UTF-8 sequence (RFC 3629: no overlong forms,
+// no surrogates, at most U+10FFFF) replaced by U+FFFD.
+std::string utf8_repaired(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  const auto* p = reinterpret_cast<const unsigned char*>(text.data());
+  const std::size_t n = text.size();
+  for (std::size_t i = 0; i < n;) {
+    const unsigned char c = p[i];
+    int len = 0;
+    unsigned char lo = 0x80, hi = 0xBF;  // the second byte's range
+    if (c < 0x80)
+      len = 1;
+    else if (c >= 0xC2 && c <= 0xDF)
+      len = 2;
+    else if (c == 0xE0)
+      len = 3, lo = 0xA0;
+    else if (c == 0xED)
+      len = 3, hi = 0x9F;
+    else if (c >= 0xE1 && c <= 0xEF)
+      len = 3;
+    else if (c == 0xF0)
+      len = 4, lo = 0x90;
+    else if (c == 0xF4)
+      len = 4, hi = 0x8F;
+    else if (c >= 0xF1 && c <= 0xF3)
+      len = 4;
+    bool ok = len > 0 && i + std::size_t(len) <= n;
+    for (int k = 1; ok && k < len; ++k) ok = k == 1 ? p[i + 1] >= lo && p[i + 1] <= hi : (p[i + k] & 0xC0) == 0x80;
+    if (ok) {
+      out.append(text, i, std::size_t(len));
+      i += std::size_t(len);
+    } else {
+      out += "\xEF\xBF\xBD";
+      ++i;
+    }
+  }
+  return out;
+}
+
+tinygltf::Value utf8_repaired(const tinygltf::Value& v) {
+  if (v.IsString()) return tinygltf::Value(utf8_repaired(v.Get<std::string>()));
+  if (v.IsArray()) {
+    tinygltf::Value::Array a;
+    for (std::size_t i = 0; i < v.ArrayLen(); ++i) a.push_back(utf8_repaired(v.Get(static_cast<int>(i))));
+    return tinygltf::Value(std::move(a));
+  }
+  if (v.IsObject()) {
+    tinygltf::Value::Object o;
+    for (const std::string& key : v.Keys()) o[utf8_repaired(key)] = utf8_repaired(v.Get(key));
+    return tinygltf::Value(std::move(o));
+  }
+  return v;
+}
+
+void repair_utf8(tinygltf::ExtensionMap& extensions) {
+  tinygltf::ExtensionMap out;
+  for (const auto& [key, value] : extensions) out[utf8_repaired(key)] = utf8_repaired(value);
+  extensions = std::move(out);
+}
+
+template <class Items>
+void repair_utf8(Items& items) {
+  for (auto& item : items) {
+    item.name = utf8_repaired(item.name);
+    item.extras = utf8_repaired(item.extras);
+    repair_utf8(item.extensions);
+  }
+}
+
+// Every string of `model` made valid UTF-8. Names come from the user's files (an OBJ group in Latin-1, a piece file
+// someone else wrote), and tinygltf's JSON writer (nlohmann::json) throws on invalid UTF-8 where it cannot be caught.
+void repair_utf8(tinygltf::Model& model) {
+  repair_utf8(model.accessors), repair_utf8(model.animations), repair_utf8(model.buffers);
+  repair_utf8(model.bufferViews), repair_utf8(model.materials), repair_utf8(model.meshes), repair_utf8(model.nodes);
+  repair_utf8(model.textures), repair_utf8(model.images), repair_utf8(model.skins), repair_utf8(model.samplers);
+  repair_utf8(model.cameras), repair_utf8(model.scenes), repair_utf8(model.lights);
+  for (tinygltf::Image& image : model.images)
+    image.uri = utf8_repaired(image.uri), image.mimeType = utf8_repaired(image.mimeType);
+  for (tinygltf::Buffer& buffer : model.buffers) buffer.uri = utf8_repaired(buffer.uri);
+  for (tinygltf::Material& m : model.materials) m.alphaMode = utf8_repaired(m.alphaMode);
+  for (std::string* text :
+       {&model.asset.generator, &model.asset.version, &model.asset.copyright, &model.asset.minVersion})
+    *text = utf8_repaired(*text);
+  model.asset.extras = utf8_repaired(model.asset.extras);
+  model.extras = utf8_repaired(model.extras);
+  for (auto* names : {&model.extensionsUsed, &model.extensionsRequired})
+    for (std::string& name : *names) name = utf8_repaired(name);
+}
+
+}  // namespace
+
 void write_glb_atomically(tinygltf::Model& model, const std::filesystem::path& path) {
   if (!model.buffers.empty() && model.buffers[0].data.empty()) model.buffers.clear();  // a buffer must not be empty
+  repair_utf8(model);
   const std::filesystem::path tmp = path.string() + ".tmp";
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);

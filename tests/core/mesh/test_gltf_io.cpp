@@ -1,10 +1,9 @@
 // scene.glb export: what write_glb writes, read back, is what was given (float32 positions, order, names, colours).
-#include "core/mesh/gltf_io.h"
-
 #include <algorithm>
 #include <fstream>
 #include <iterator>
 
+#include "core/mesh/gltf_io.h"
 #include "core/mesh/mesh_io.h"
 #include "mesh_test_util.h"
 
@@ -71,6 +70,26 @@ TEST(GltfIo, OverwritesAtomicallyAndIsDeterministic) {
   const std::string second((std::istreambuf_iterator<char>(f2)), {});
   EXPECT_EQ(first, second);
   EXPECT_EQ(first.substr(0, 4), "glTF");
+}
+
+// Object names come from the user's files in any encoding (an OBJ group in Latin-1, a truncated multi-byte name):
+// glTF's JSON needs UTF-8, so each bad byte becomes U+FFFD and well-formed names stay as they are.
+TEST(GltfIo, NamesThatAreNotUtf8AreRepairedNotFatal) {
+  TempDir dir;
+  const TriMesh a = grid_mesh(2, 0.0);
+  const std::string latin1 = "caf\xE9", truncated = "\xE2\x82", surrogate = "\xED\xA0\x80x",
+                    fine = "na\xC3\xAFve \xF0\x9F\x90\x9C";
+  write_glb(dir / "s.glb", {{latin1, &a, glm::vec3(1)},
+                            {truncated, &a, glm::vec3(1)},
+                            {surrogate, &a, glm::vec3(1)},
+                            {fine, &a, glm::vec3(1)}});
+  const auto objects = read_gltf_objects(dir / "s.glb");
+  ASSERT_EQ(objects.size(), 4u);
+  const std::string bad = "\xEF\xBF\xBD";
+  EXPECT_EQ(objects[0].name, "caf" + bad);
+  EXPECT_EQ(objects[1].name, bad + bad);
+  EXPECT_EQ(objects[2].name, bad + bad + bad + "x");
+  EXPECT_EQ(objects[3].name, fine);
 }
 
 TEST(GltfIo, EmptyObjectsBecomeMeshlessNodesAndBadMeshesThrow) {
