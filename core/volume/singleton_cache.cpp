@@ -27,7 +27,7 @@ std::uint64_t singleton_cache_key(const VolumeSpline& spline) {
                                 spline.dims()[2],
                                 spline.order(),
                                 spline.interpolating() ? 1 : 0,
-                                1 /* bound_cell version */};
+                                2 /* bound_cell version */};
   mix(head, sizeof(head));
   mix(spline.control_points().data(), spline.control_points().size() * sizeof(float));
   return h;

@@ -1,12 +1,16 @@
 #include "core/volume/singletons.h"
 
-#include "core/volume/bezier_cell.h"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <numeric>
+
+#include "core/volume/bezier_cell.h"
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -21,11 +25,27 @@ constexpr double kPi = 3.14159265358979323846;
 template <int K>
 Singleton bound_cell(const VolumeSpline& spline, int a, int b, int c) {
   constexpr int n = K * K * K;
+  constexpr int padded = (n + 3) / 4 * 4;  // whole groups of four for the vector loops
   double bez[n];
   spline.bezier_coefficients(a, b, c, bez);
   Singleton s;
   double lo = bez[0], hi = bez[0];
-  for (int m = 1; m < n; ++m) lo = std::min(lo, bez[m]), hi = std::max(hi, bez[m]);
+  int m0 = 1;
+#if defined(__SSE2__)
+  {  // four independent minimum and maximum chains instead of one long one
+    __m128d lo2[2] = {_mm_set1_pd(lo), _mm_set1_pd(lo)}, hi2[2] = {lo2[0], lo2[0]};
+    for (m0 = 0; m0 + 4 <= n; m0 += 4) {
+      const __m128d v0 = _mm_loadu_pd(bez + m0), v1 = _mm_loadu_pd(bez + m0 + 2);
+      lo2[0] = _mm_min_pd(lo2[0], v0), lo2[1] = _mm_min_pd(lo2[1], v1);
+      hi2[0] = _mm_max_pd(hi2[0], v0), hi2[1] = _mm_max_pd(hi2[1], v1);
+    }
+    alignas(16) double low[2], high[2];
+    _mm_store_pd(low, _mm_min_pd(lo2[0], lo2[1]));
+    _mm_store_pd(high, _mm_max_pd(hi2[0], hi2[1]));
+    lo = std::min(low[0], low[1]), hi = std::max(high[0], high[1]);
+  }
+#endif
+  for (int m = m0; m < n; ++m) lo = std::min(lo, bez[m]), hi = std::max(hi, bez[m]);
   s.lo = static_cast<float>(lo);
   s.hi = static_cast<float>(hi);
   // Round outwards so the float range still holds every double value.
@@ -33,29 +53,76 @@ Singleton bound_cell(const VolumeSpline& spline, int a, int b, int c) {
   if (double(s.hi) < hi) s.hi = std::nextafter(s.hi, INFINITY);
   if (!(hi > lo)) return s;  // constant cell: no gradient, whole-sphere cone
   // Gradient coefficients: derivative along one axis (degree p − 1 there), raised back to degree p, so all three
-  // components share the K³ Bernstein positions and each position holds a vector.
-  double g[3][64];
+  // components share the K³ Bernstein positions and each position holds a vector. The padding repeats vector 0 (it
+  // changes neither the hull nor its cone).
+  alignas(16) double g[3][64];
   bezier_cell::gradient_vectors<K>(bez, g);
-  double inv_len[n];
-  double sx = 0.0, sy = 0.0, sz = 0.0;
-  for (int m = 0; m < n; ++m) {
-    const double len2 = g[0][m] * g[0][m] + g[1][m] * g[1][m] + g[2][m] * g[2][m];
-    if (!(len2 > 0.0)) return s;  // a zero vector in the hull: any direction
-    inv_len[m] = 1.0 / std::sqrt(len2);
-    sx += g[0][m] * inv_len[m], sy += g[1][m] * inv_len[m], sz += g[2][m] * inv_len[m];
-  }
-  const double sum_len = std::sqrt(sx * sx + sy * sy + sz * sz);
-  if (!(sum_len > 0.0)) return s;
-  sx /= sum_len, sy /= sum_len, sz /= sum_len;
-  double cos_min = 1.0;
+  alignas(16) double len2[64];
+  for (int m = 0; m < n; ++m) len2[m] = g[0][m] * g[0][m] + g[1][m] * g[1][m] + g[2][m] * g[2][m];
+  for (int m = n; m < padded; ++m) g[0][m] = g[0][0], g[1][m] = g[1][0], g[2][m] = g[2][0], len2[m] = len2[0];
   for (int m = 0; m < n; ++m)
-    cos_min = std::min(cos_min, (sx * g[0][m] + sy * g[1][m] + sz * g[2][m]) * inv_len[m]);
+    if (!(len2[m] > 0.0)) return s;  // a zero vector in the hull (or a non-finite one): any direction
+  // The cone's axis: the sum of the vectors scaled to about unit length. Any axis gives a valid cone — its width is
+  // measured against the axis exactly below — so the weights are float reciprocal square roots, four at a time (the
+  // double ones took most of a cell's time); IEEE sqrt and division, so every machine files the same axis.
+  double sum[3] = {0.0, 0.0, 0.0};
+#if defined(__SSE2__)
+  __m128d acc[3] = {_mm_setzero_pd(), _mm_setzero_pd(), _mm_setzero_pd()};
+  const __m128 one = _mm_set1_ps(1.0f);
+  for (int m = 0; m < padded; m += 4) {
+    const __m128 l = _mm_movelh_ps(_mm_cvtpd_ps(_mm_load_pd(len2 + m)), _mm_cvtpd_ps(_mm_load_pd(len2 + m + 2)));
+    const __m128 w = _mm_div_ps(one, _mm_sqrt_ps(l));
+    const __m128d w01 = _mm_cvtps_pd(w), w23 = _mm_cvtps_pd(_mm_movehl_ps(w, w));
+    for (int axis = 0; axis < 3; ++axis) {
+      acc[axis] = _mm_add_pd(acc[axis], _mm_mul_pd(_mm_load_pd(g[axis] + m), w01));
+      acc[axis] = _mm_add_pd(acc[axis], _mm_mul_pd(_mm_load_pd(g[axis] + m + 2), w23));
+    }
+  }
+  for (int axis = 0; axis < 3; ++axis) {
+    alignas(16) double pair[2];
+    _mm_store_pd(pair, acc[axis]);
+    sum[axis] = pair[0] + pair[1];
+  }
+#else
+  for (int m = 0; m < padded; ++m) {
+    const double w = 1.0f / std::sqrt(static_cast<float>(len2[m]));
+    for (int axis = 0; axis < 3; ++axis) sum[axis] += g[axis][m] * w;
+  }
+#endif
+  const double sum_len = std::sqrt(sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]);
+  if (!(sum_len > 0.0) || !std::isfinite(sum_len)) return s;  // no usable axis: the whole sphere is still a bound
+  const double sx = sum[0] / sum_len, sy = sum[1] / sum_len, sz = sum[2] / sum_len;
+  // Width: cos α = min over m of (axis·g_m) / |g_m|. When every dot is positive that is the square root of the least
+  // dot² / |g_m|², so the loop needs no square root; any dot ≤ 0 means α ≥ 90°.
+  double min_dot = INFINITY, min_cos2 = INFINITY;
+#if defined(__SSE2__)
+  const __m128d ax = _mm_set1_pd(sx), ay = _mm_set1_pd(sy), az = _mm_set1_pd(sz);
+  __m128d dot_lo = _mm_set1_pd(INFINITY), cos2_lo = _mm_set1_pd(INFINITY);
+  for (int m = 0; m < padded; m += 2) {
+    const __m128d d =
+        _mm_add_pd(_mm_add_pd(_mm_mul_pd(ax, _mm_load_pd(g[0] + m)), _mm_mul_pd(ay, _mm_load_pd(g[1] + m))),
+                   _mm_mul_pd(az, _mm_load_pd(g[2] + m)));
+    dot_lo = _mm_min_pd(dot_lo, d);
+    cos2_lo = _mm_min_pd(cos2_lo, _mm_div_pd(_mm_mul_pd(d, d), _mm_load_pd(len2 + m)));
+  }
+  alignas(16) double pair[2];
+  _mm_store_pd(pair, dot_lo);
+  min_dot = std::min(pair[0], pair[1]);
+  _mm_store_pd(pair, cos2_lo);
+  min_cos2 = std::min(pair[0], pair[1]);
+#else
+  for (int m = 0; m < padded; ++m) {
+    const double d = sx * g[0][m] + sy * g[1][m] + sz * g[2][m];
+    min_dot = std::min(min_dot, d);
+    min_cos2 = std::min(min_cos2, d * d / len2[m]);
+  }
+#endif
   s.axis[0] = static_cast<float>(sx), s.axis[1] = static_cast<float>(sy), s.axis[2] = static_cast<float>(sz);
-  if (cos_min <= 0.0) {
+  if (!(min_dot > 0.0)) {
     s.sin_half = 1.0f;  // α ≥ 90°: every plane through the origin meets the cone
   } else {
     // Widen slightly: float storage and the rounding of the test must not lose a direction.
-    const double sin_half = std::sqrt(std::max(0.0, 1.0 - cos_min * cos_min));
+    const double sin_half = std::sqrt(std::max(0.0, 1.0 - std::min(1.0, min_cos2)));
     s.sin_half = static_cast<float>(std::min(1.0, sin_half * (1.0 + 1e-6) + 1e-6));
   }
   return s;
@@ -63,9 +130,12 @@ Singleton bound_cell(const VolumeSpline& spline, int a, int b, int c) {
 
 Singleton bound_cell(const VolumeSpline& spline, int a, int b, int c) {
   switch (spline.order()) {
-    case 2: return bound_cell<2>(spline, a, b, c);
-    case 3: return bound_cell<3>(spline, a, b, c);
-    default: return bound_cell<4>(spline, a, b, c);
+    case 2:
+      return bound_cell<2>(spline, a, b, c);
+    case 3:
+      return bound_cell<3>(spline, a, b, c);
+    default:
+      return bound_cell<4>(spline, a, b, c);
   }
 }
 
@@ -113,8 +183,7 @@ double angle_between(const glm::dvec3& a, const glm::dvec3& b) {
 
 Singleton singleton_of_cell(const VolumeSpline& spline, int a, int b, int c) { return bound_cell(spline, a, b, c); }
 
-SingletonTable build_singleton_table(const VolumeSpline& spline, const ProgressSink& progress, int rows,
-                                     int columns) {
+SingletonTable build_singleton_table(const VolumeSpline& spline, const ProgressSink& progress, int rows, int columns) {
   if (rows < 1 || rows > kSingletonTableMaxRows || columns < 1 || columns > kSingletonTableMaxColumns)
     throw std::invalid_argument("singleton table needs 1…" + std::to_string(kSingletonTableMaxRows) + " rows and 1…" +
                                 std::to_string(kSingletonTableMaxColumns) + " columns, got " + std::to_string(rows) +
@@ -159,7 +228,8 @@ void SingletonTable::set_columns(int columns) {
 
 void SingletonTable::file_bins() {
   range_min_ = INFINITY, range_max_ = -INFINITY;
-  for (const Singleton& s : singletons_) range_min_ = std::min(range_min_, double(s.lo)), range_max_ = std::max(range_max_, double(s.hi));
+  for (const Singleton& s : singletons_)
+    range_min_ = std::min(range_min_, double(s.lo)), range_max_ = std::max(range_max_, double(s.hi));
   if (singletons_.empty()) range_min_ = range_max_ = 0.0;
   const int cols = columns();
   const std::size_t bins = static_cast<std::size_t>(rows_) * cols;
@@ -176,8 +246,9 @@ void SingletonTable::file_bins() {
     std::vector<std::uint32_t> counts;
     std::vector<float> half_angle;
   };
-  tbb::enumerable_thread_specific<Partial> partials(
-      [bins] { return Partial{std::vector<std::uint32_t>(bins, 0), std::vector<float>(bins, 0.0f)}; });
+  tbb::enumerable_thread_specific<Partial> partials([bins] {
+    return Partial{std::vector<std::uint32_t>(bins, 0), std::vector<float>(bins, 0.0f)};
+  });
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
     Partial& p = partials.local();
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
@@ -256,7 +327,8 @@ std::vector<std::uint32_t> query(const std::vector<Singleton>& singletons, const
       // Sorted by hi, largest first: the cells with hi ≥ iso are a prefix. A row below the level's row holds only
       // cells with lo < iso (rows are filed by lo with the same monotone formula), so only the level's row tests lo.
       const auto first = cells.begin() + begin[bin], last = cells.begin() + begin[bin + 1];
-      const auto end = std::partition_point(first, last, [&](std::uint32_t cell) { return double(singletons[cell].hi) >= iso; });
+      const auto end =
+          std::partition_point(first, last, [&](std::uint32_t cell) { return double(singletons[cell].hi) >= iso; });
       if (r < last_row) {
         out.insert(out.end(), first, end);
       } else {
@@ -271,8 +343,8 @@ std::vector<std::uint32_t> query(const std::vector<Singleton>& singletons, const
 }  // namespace
 
 std::vector<std::uint32_t> SingletonTable::cells_holding(double iso) const {
-  return query(singletons_, bin_begin_, bin_cells_, rows_, columns(), range_min_, range_max_, iso,
-               CellOrder::ascending, [](std::size_t, int) { return true; });
+  return query(singletons_, bin_begin_, bin_cells_, rows_, columns(), range_min_, range_max_, iso, CellOrder::ascending,
+               [](std::size_t, int) { return true; });
 }
 
 std::vector<std::uint32_t> SingletonTable::cells_holding(double iso, const glm::dvec3& w_axis, double w_half_angle,
