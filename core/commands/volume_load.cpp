@@ -9,19 +9,31 @@ namespace trispline::core {
 const ParamSchema<VolumeLoadParams>& VolumeLoadCommand::schema() {
   using P = VolumeLoadParams;
   static const ParamSchema<P> s =
-      ParamSchema<P>("volume.load", "Load a CT/MRI volume (NIfTI, DICOM series, InVesalius .inv3) as a trivariate "
-                                    "B-spline (seed ch. 7)")
-          .field("path", &P::path).path().write_unless_default()
-          .help("NIfTI (.nii, .nii.gz), a DICOM series folder or .dcm file, or an InVesalius .inv3 project; relative "
-                "to the log's folder")
-          .choice("analytic", &P::analytic, {"", "sphere", "torus", "sines"}).write_unless_default()
+      ParamSchema<P>("volume.load",
+                     "Load a CT/MRI volume (NIfTI, DICOM series, InVesalius .inv3) as a trivariate "
+                     "B-spline (seed ch. 7)")
+          .field("path", &P::path)
+          .path()
+          .write_unless_default()
+          .help(
+              "NIfTI (.nii, .nii.gz), a DICOM series folder or .dcm file, or an InVesalius .inv3 project; relative "
+              "to the log's folder")
+          .choice("analytic", &P::analytic, {"", "sphere", "torus", "sines"})
+          .write_unless_default()
           .help("Instead of a file: an analytic test volume (96 samples a side; known silhouettes)")
-          .field("name", &P::name).write_unless_default().help("Object id (default: the file name, made unique)")
-          .field("order", &P::order).range(2, 4).help("Spline order per axis (degree + 1): 2 linear, 3 quadratic, 4 cubic")
-          .field("interpolate", &P::interpolate).write_unless_default()
-          .help("false: the samples are the control points (the seed; smooths noise); true: D passes through every "
-                "sample (B-spline prefilter)")
-          .field("iso", &P::iso).unit("volume units")
+          .field("name", &P::name)
+          .write_unless_default()
+          .help("Object id (default: the file name, made unique)")
+          .field("order", &P::order)
+          .range(2, 4)
+          .help("Spline order per axis (degree + 1): 2 linear, 3 quadratic, 4 cubic")
+          .field("interpolate", &P::interpolate)
+          .write_unless_default()
+          .help(
+              "false: the samples are the control points (the seed; smooths noise); true: D passes through every "
+              "sample (B-spline prefilter)")
+          .field("iso", &P::iso)
+          .unit("volume units")
           .help("First iso-level (default: 226 HU for CT, else Otsu's threshold of the samples)")
           .check([](const P& p) {
             if (p.path.empty() == p.analytic.empty())
@@ -46,7 +58,8 @@ std::optional<VolumeObject> VolumeLoadCommand::build(const Scene& scene) {
     while (stem.has_extension()) stem = stem.stem();  // Cranium.inv3 → Cranium, brain.nii.gz → brain
     p_.name = scene.unique_name(sanitized_object_name(stem.string()));
   }
-  if (const std::string bad = object_name_error(p_.name); !bad.empty()) throw CommandError("field 'name': " + bad, "name");
+  if (const std::string bad = object_name_error(p_.name); !bad.empty())
+    throw CommandError("field 'name': " + bad, "name");
   if (scene.index_of(p_.name) >= 0 || scene.volume_index_of(p_.name) >= 0)
     throw CommandError("field 'name': an object named '" + p_.name + "' already exists", "name");
   VolumeObject v;
@@ -65,7 +78,6 @@ std::optional<VolumeObject> VolumeLoadCommand::build(const Scene& scene) {
             {"units", pv.units},
             {"iso", v.iso},
             {"value_range", {pv.table->range_min(), pv.table->range_max()}},
-            {"from_cache", pv.table_from_disk},
             {"load_ms", pv.load_ms},
             {"prep_ms", pv.prep_ms},
             {"table_mb", pv.table->memory_bytes() / 1048576.0}};

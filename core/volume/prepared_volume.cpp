@@ -87,7 +87,7 @@ PreparedVolume prepare_volume(const std::filesystem::path& path, int order, bool
   out.default_iso = default_iso_level(volume);
   auto spline = std::make_shared<const VolumeSpline>(volume, order, interpolate);
   std::vector<float>().swap(volume.values);  // freed (not only cleared): the spline holds its own control points
-  out.table = std::make_shared<const SingletonTable>(cached_singleton_table(*spline, progress, &out.table_from_disk));
+  out.table = std::make_shared<const SingletonTable>(build_singleton_table(*spline, progress));
   out.spline = std::move(spline);
   out.prep_ms = ms_since(t0);
   std::lock_guard<std::mutex> lock(cache_mutex);
@@ -118,8 +118,7 @@ double default_iso_level(const ScalarVolume& volume) {
   if (!(hi > lo)) return lo;
   constexpr int bins = 256;
   std::vector<double> hist(bins, 0.0);
-  for (float v : volume.values)
-    ++hist[std::min(bins - 1, static_cast<int>((v - lo) / (hi - lo) * bins))];
+  for (float v : volume.values) ++hist[std::min(bins - 1, static_cast<int>((v - lo) / (hi - lo) * bins))];
   const double total = static_cast<double>(volume.values.size());
   double sum_all = 0.0;
   for (int i = 0; i < bins; ++i) sum_all += i * hist[i];

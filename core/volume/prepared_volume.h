@@ -1,14 +1,15 @@
 // trispline::core prepared volumes: a volume file read, made into its spline D and preprocessed into singletons —
-// everything volume.load needs, computed once per file content and kept (in memory for the session, on disk across
-// sessions: singletons.h cached_singleton_table).
+// everything volume.load needs, computed once per file content and kept in memory for the session. Nothing is kept on
+// disk: preparing takes about a second per 3.5 M samples on 2 cores, less than reading back and checking a table that
+// takes 24 bytes a sample (docs/decisions.md, Caches).
 //
 // The editor prepares a volume on a worker thread (progress bar, Cancel) and then runs volume.load, which finds the
 // prepared volume in the session cache and returns at once; a replay prepares it inside the command. Either way the
 // command's result is the same (deterministic preprocessing).
 #pragma once
 
-#include <filesystem>
 #include <cstdint>
+#include <filesystem>
 #include <memory>
 #include <string>
 
@@ -24,8 +25,7 @@ struct PreparedVolume {
   std::shared_ptr<const SingletonTable> table;  // non-null
   std::string units, modality, source;          // as ScalarVolume
   double default_iso = 0.0;                     // default_iso_level of the samples
-  bool table_from_disk = false;                 // the singleton table came from the disk cache
-  double load_ms = 0.0, prep_ms = 0.0;          // reading the file; spline + singletons (or reading the cache)
+  double load_ms = 0.0, prep_ms = 0.0;          // reading the file; spline + singletons
 };
 
 // The loader options of a volume about to be prepared: the whole kPreparedVolumeBudget, and
@@ -34,13 +34,12 @@ struct PreparedVolume {
 VolumeLoadOptions preparation_load_options();
 
 // Reads `path` (load_volume with preparation_load_options(); "analytic:sphere|torus|sines" makes an analytic volume
-// of 96 samples a side), builds the spline of `order` (2…4; interpolating or not) and its singleton table (from the
-// disk cache when it holds a valid entry). A second call with the same path, file size, modification time, order
-// and mode returns the session's copy (the session keeps the last three, older ones only while all of them hold
-// less than kPreparedVolumeBudget). Throws std::invalid_argument on a bad order (before reading), what
-// load_volume throws (VolumeLoadError, among others over the budget from the header's dimensions),
-// PreparationBudgetError when samples, spline and table would exceed kPreparedVolumeBudget (checked from the
-// dimensions and order before the spline is made), OperationCancelled through `progress`.
+// of 96 samples a side), builds the spline of `order` (2…4; interpolating or not) and its singleton table. A second
+// call with the same path, file size, modification time, order and mode returns the session's copy (the session keeps
+// the last three, older ones only while all of them hold less than kPreparedVolumeBudget). Throws std::invalid_argument
+// on a bad order (before reading), what load_volume throws (VolumeLoadError, among others over the budget from the
+// header's dimensions), PreparationBudgetError when samples, spline and table would exceed kPreparedVolumeBudget
+// (checked from the dimensions and order before the spline is made), OperationCancelled through `progress`.
 PreparedVolume prepare_volume(const std::filesystem::path& path, int order, bool interpolate,
                               const ProgressSink& progress = {});
 

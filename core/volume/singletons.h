@@ -21,11 +21,10 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <glm/glm.hpp>
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "core/spline/progress.h"
 #include "core/volume/preparation_budget.h"
@@ -35,9 +34,9 @@ namespace trispline::core {
 
 // A singleton's bounds (24 bytes): value range and gradient cone, index space.
 struct Singleton {
-  float lo = 0.0f, hi = 0.0f;       // min / max of D over the cell (from its Bézier coefficients)
+  float lo = 0.0f, hi = 0.0f;          // min / max of D over the cell (from its Bézier coefficients)
   float axis[3] = {0.0f, 0.0f, 0.0f};  // unit cone axis (zero when the cone is the whole sphere)
-  float sin_half = 1.0f;            // sin α when α ≤ 90°, else 1: a direction ⊥ w is in the cone iff |axis·ŵ| ≤ sin_half
+  float sin_half = 1.0f;  // sin α when α ≤ 90°, else 1: a direction ⊥ w is in the cone iff |axis·ŵ| ≤ sin_half
 };
 
 // The lookup table's default shape and bounds: rows (iso bins) and columns (direction cones), and the Fibonacci
@@ -53,8 +52,8 @@ class SingletonTable {
   const std::array<int, 3>& cells() const { return cells_; }  // span counts per axis
   std::size_t cell_count() const { return singletons_.size(); }
   std::size_t cell_index(int a, int b, int c) const {
-    return static_cast<std::size_t>(a) +
-           static_cast<std::size_t>(cells_[0]) * (static_cast<std::size_t>(b) + static_cast<std::size_t>(cells_[1]) * c);
+    return static_cast<std::size_t>(a) + static_cast<std::size_t>(cells_[0]) *
+                                             (static_cast<std::size_t>(b) + static_cast<std::size_t>(cells_[1]) * c);
   }
   const std::vector<Singleton>& singletons() const { return singletons_; }
   double range_min() const { return range_min_; }  // smallest lo
@@ -85,7 +84,6 @@ class SingletonTable {
 
  private:
   friend SingletonTable build_singleton_table(const VolumeSpline&, const ProgressSink&, int, int);
-  friend bool read_singleton_cache(const std::filesystem::path&, std::uint64_t, SingletonTable&, std::uint64_t);
   void set_columns(int columns);  // column axes and radius
   void file_bins();               // range, bins and macro-cells from singletons_, rows_ and the columns
 
@@ -94,12 +92,12 @@ class SingletonTable {
   double range_min_ = 0.0, range_max_ = 0.0;
   int rows_ = 0;
   std::vector<glm::vec3> column_axes_;
-  double column_radius_ = 0.0;                 // radians
-  std::vector<std::uint32_t> bin_begin_;       // rows·columns + 1 offsets into bin_cells_
-  std::vector<std::uint32_t> bin_cells_;       // cell indices, per bin sorted by hi descending
-  std::vector<float> bin_half_angle_;          // rows·columns, radians: widened cone of the bin (≥ π/2 = any)
+  double column_radius_ = 0.0;            // radians
+  std::vector<std::uint32_t> bin_begin_;  // rows·columns + 1 offsets into bin_cells_
+  std::vector<std::uint32_t> bin_cells_;  // cell indices, per bin sorted by hi descending
+  std::vector<float> bin_half_angle_;     // rows·columns, radians: widened cone of the bin (≥ π/2 = any)
   std::array<int, 3> macro_dims_{0, 0, 0};
-  std::vector<glm::vec2> macro_range_;         // (min lo, max hi) per macro-cell
+  std::vector<glm::vec2> macro_range_;  // (min lo, max hi) per macro-cell
 };
 
 // The bounds of cell (a, b, c) of `spline` (0 ≤ a < span_count(0), …), as build_singleton_table files them.
@@ -110,43 +108,5 @@ Singleton singleton_of_cell(const VolumeSpline& spline, int a, int b, int c);
 // Throws OperationCancelled through `progress`.
 SingletonTable build_singleton_table(const VolumeSpline& spline, const ProgressSink& progress = {},
                                      int rows = kSingletonTableRows, int columns = kSingletonTableColumns);
-
-// ---- the on-disk cache (singleton_cache.cpp) ----
-// A file per spline content, named <key as 16 hex digits>.singletons: a 48-byte header (magic "TSPLSNG2", key, cells
-// per axis, rows, columns, CRC-32 of the whole file, singleton count) and the singletons. Bins, macro-cells and
-// column cones are filed again on read (deterministic: the table equals a fresh build bit for bit).
-
-// Content key of a spline for the on-disk cache: FNV-1a 64 over its dims, order, mode and control points.
-std::uint64_t singleton_cache_key(const VolumeSpline& spline);
-// The cache folder: $TRISPLINE_CACHE_DIR, else $XDG_CACHE_HOME/trispline/volumes, else ~/.cache/trispline/volumes.
-std::filesystem::path singleton_cache_dir();
-// The cache folder's size limit (bytes): $TRISPLINE_CACHE_MAX_MB mebibytes (decimal digits only, ≤ 2^20; 0 turns
-// the disk cache off: nothing is read or written), else kSingletonCacheDefaultMiB MiB. Another value of the variable
-// is ignored (the default applies).
-std::uint64_t singleton_cache_limit_bytes();
-inline constexpr std::uint64_t kSingletonCacheDefaultMiB = 2048;
-// Bytes the cache file of `table` takes.
-std::uint64_t singleton_cache_file_bytes(const SingletonTable& table);
-// Removes cache entries of `dir` (files named <16 hex digits>.singletons, and leftover temporaries of writes) least
-// recently used first (oldest modification time; a read touches its file) until they take at most `limit_bytes`.
-// Other files are never touched. Returns the bytes the entries take afterwards. I/O errors are ignored (the entry
-// stays and counts).
-std::uint64_t evict_singleton_cache(const std::filesystem::path& dir, std::uint64_t limit_bytes);
-// Writes the table to `path` (a temporary file in the same folder, then rename: a crash leaves no half file).
-// Throws std::runtime_error on I/O failure.
-void write_singleton_cache(const SingletonTable& table, const std::filesystem::path& path, std::uint64_t key);
-// Reads a table written by write_singleton_cache for `key`; false (and `out` untouched) when the file is missing, of
-// another key or version, of a size other than its header's counts imply, over `memory_budget_bytes`, with a CRC-32
-// that does not match its contents, or with values a build cannot give (non-finite or lo > hi, rows or columns out
-// of range). Sizes are checked against the file and the budget before anything is allocated.
-bool read_singleton_cache(const std::filesystem::path& path, std::uint64_t key, SingletonTable& out,
-                          std::uint64_t memory_budget_bytes = kPreparedVolumeBudget);
-
-// The table for `spline`: from the cache when a valid file exists (one that also matches the spline's cells, the
-// default rows and columns, and a rebuild of a sample of its cells), else built, the folder evicted down to its limit
-// and the table written, replacing a bad file (cache write failures are ignored: the cache is an optimisation). With
-// the limit 0 nothing is read or written. `from_cache` (may be null) says which.
-SingletonTable cached_singleton_table(const VolumeSpline& spline, const ProgressSink& progress = {},
-                                      bool* from_cache = nullptr);
 
 }  // namespace trispline::core

@@ -93,20 +93,7 @@ TEST(RecordVisibility, RenderHiddenObjectIsAbsentFromFramesAndGlb) {
   EXPECT_EQ(mesh_names(ro.out_dir / "scene.glb"), std::vector<std::string>{"ground"});
 }
 
-class RecordVolumeVisibility : public ::testing::Test {
- protected:
-  void SetUp() override {
-    cache_ = fs::temp_directory_path() / ("trispline_record_visibility_" + std::to_string(::getpid()));
-    setenv("TRISPLINE_CACHE_DIR", cache_.c_str(), 1);
-  }
-  void TearDown() override {
-    unsetenv("TRISPLINE_CACHE_DIR");
-    fs::remove_all(cache_);
-  }
-  fs::path cache_;
-};
-
-TEST_F(RecordVolumeVisibility, RenderHiddenVolumeIsNeitherCastNorExtracted) {
+TEST(RecordVolumeVisibility, RenderHiddenVolumeIsNeitherCastNorExtracted) {
   using nlohmann::json;
   core::Scene empty;
   core::CameraSetCommand::parse(json::parse(R"({"cmd":"camera.set","eye":[0,-150,60],"target":[0,0,0],"up":[0,0,1],

@@ -29,13 +29,9 @@ class VolumeUiTest : public test::StateDirTest {
  protected:
   void SetUp() override {
     StateDirTest::SetUp();
-    ::setenv("TRISPLINE_CACHE_DIR", (dir_ / "cache").c_str(), 1);
     core::clear_prepared_volumes();
   }
-  void TearDown() override {
-    ::unsetenv("TRISPLINE_CACHE_DIR");
-    StateDirTest::TearDown();
-  }
+  void TearDown() override { StateDirTest::TearDown(); }
   // Deferred work runs at once.
   static editor::VolumeUi::Defer now() {
     return [](std::string, std::function<void()> work) { work(); };

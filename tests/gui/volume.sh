@@ -10,7 +10,6 @@ mri="$GUI_ROOT/assets/data/KmeansTest_T1UCharRaw.nii.gz"
 ct="$GUI_ROOT/assets/data/Cranium.inv3"
 [ -f "$mri" ] || gui_fail "missing $mri (scripts/fetch_assets.sh fetches it)"
 [ -f "$ct" ] || gui_fail "missing $ct (scripts/fetch_assets.sh fetches it)"
-export TRISPLINE_CACHE_DIR="$GUI_DIR/cache"  # a fresh singleton cache: every load preprocesses
 head -c 3000 "$mri" >"$GUI_WORK/truncated.nii.gz"
 name=KmeansTest_T1UCharRaw
 GUI_TIMEOUT=40

@@ -76,9 +76,6 @@ TEST(ObjectVisibility, RenderFlagLeavesExportsAndRenderScene) {
 }
 
 TEST(ObjectVisibility, BothFlagsOnAVolume) {
-  const std::filesystem::path cache =
-      std::filesystem::temp_directory_path() / ("trispline_visibility_cache_" + std::to_string(::getpid()));
-  setenv("TRISPLINE_CACHE_DIR", cache.c_str(), 1);  // the singleton table's disk cache, not the user's
   Scene s;
   VolumeLoadCommand::parse(json::parse(R"({"cmd":"volume.load","analytic":"sphere","name":"vol"})"), {})->redo(s);
   ASSERT_TRUE(s.bounds().valid());
@@ -95,8 +92,6 @@ TEST(ObjectVisibility, BothFlagsOnAVolume) {
   EXPECT_TRUE(s.find_volume("vol")->visible);
   EXPECT_TRUE(s.find_volume("vol")->render_visible);
   EXPECT_EQ(render_visible_scene(s).volumes().size(), 1u);
-  unsetenv("TRISPLINE_CACHE_DIR");
-  std::filesystem::remove_all(cache);
 }
 
 TEST(ObjectVisibility, RefusedLinesChangeNothing) {

@@ -28,16 +28,15 @@ CommandPtr parse(const std::string& line, const CommandContext& ctx = {}) {
 
 class VolumeCommands : public ::testing::Test {
  protected:
-  // The suite shares one cache folder and the session's prepared volumes: each analytic volume is prepared once per
-  // process (~5 s under ASan), as in an editor session; test_prepared_volume.cpp covers preparation and its caches.
+  // The suite shares the session's prepared volumes: each analytic volume is prepared once per
+  // process (~5 s under ASan), as in an editor session; test_prepared_volume.cpp covers preparation and the session
+  // cache.
   static void SetUpTestSuite() {
     suite_dir_ = std::filesystem::temp_directory_path() / ("trispline_volume_cmd_" + std::to_string(::getpid()));
     std::filesystem::create_directories(suite_dir_);
-    setenv("TRISPLINE_CACHE_DIR", (suite_dir_ / "cache").c_str(), 1);
     clear_prepared_volumes();
   }
   static void TearDownTestSuite() {
-    unsetenv("TRISPLINE_CACHE_DIR");
     clear_prepared_volumes();
     std::filesystem::remove_all(suite_dir_);
   }

@@ -1,11 +1,10 @@
 // Singletons (soundness of ranges and cones), the lookup table, Newton convergence and silhouette accuracy on analytic
 // volumes whose silhouettes are known circles.
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <cmath>
 #include <random>
-
-#include <tbb/global_control.h>
 
 #include "core/volume/analytic_volumes.h"
 #include "core/volume/silhouettes.h"
@@ -112,37 +111,6 @@ TEST(Singletons, TableFindsExactlyTheCellsHoldingALevel) {
   }
 }
 
-TEST(Singletons, CacheRoundTripsAndRejectsOtherKeysAndTruncation) {
-  const ScalarVolume v = make_analytic_volume(AnalyticVolume::sphere, 12);
-  const VolumeSpline s(v, 4);
-  const SingletonTable t = build_singleton_table(s);
-  const auto dir = std::filesystem::temp_directory_path() / ("trispline_cache_test_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  const auto path = dir / "a.singletons";
-  const std::uint64_t key = singleton_cache_key(s);
-  write_singleton_cache(t, path, key);
-  SingletonTable r;
-  ASSERT_TRUE(read_singleton_cache(path, key, r));
-  EXPECT_EQ(r.cells_holding(0.0), t.cells_holding(0.0));
-  EXPECT_FALSE(read_singleton_cache(path, key + 1, r));
-  std::filesystem::resize_file(path, std::filesystem::file_size(path) - 7);
-  EXPECT_FALSE(read_singleton_cache(path, key, r));
-  // Keys depend on the content and on the order.
-  EXPECT_NE(singleton_cache_key(VolumeSpline(v, 3)), key);
-  ScalarVolume w = v;
-  w.values[5] += 1.0f;
-  EXPECT_NE(singleton_cache_key(VolumeSpline(w, 4)), key);
-  // cached_singleton_table: a miss builds and writes, a hit reads.
-  setenv("TRISPLINE_CACHE_DIR", dir.c_str(), 1);
-  bool hit = true;
-  cached_singleton_table(s, {}, &hit);
-  EXPECT_FALSE(hit);
-  cached_singleton_table(s, {}, &hit);
-  EXPECT_TRUE(hit);
-  unsetenv("TRISPLINE_CACHE_DIR");
-  std::filesystem::remove_all(dir);
-}
-
 TEST(Singletons, CancelThrowsAndProgressIsReported) {
   const ScalarVolume v = make_analytic_volume(AnalyticVolume::sphere, 40);
   const VolumeSpline s(v, 4);
@@ -180,8 +148,8 @@ struct Circle {
 };
 
 glm::dvec3 circle_point(const Circle& c, double angle) {
-  const glm::dvec3 a = glm::normalize(glm::cross(c.normal, std::abs(c.normal.x) < 0.9 ? glm::dvec3(1, 0, 0)
-                                                                                        : glm::dvec3(0, 1, 0)));
+  const glm::dvec3 a =
+      glm::normalize(glm::cross(c.normal, std::abs(c.normal.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
   const glm::dvec3 b = glm::cross(c.normal, a);
   return c.centre + c.radius * (std::cos(angle) * a + std::sin(angle) * b);
 }
