@@ -100,14 +100,24 @@ TEST(Singletons, RangesAndConesHoldEverySample) {
 TEST(Singletons, TableFindsExactlyTheCellsHoldingALevel) {
   const ScalarVolume v = make_analytic_volume(AnalyticVolume::sines, 18);
   const VolumeSpline s(v, 4);
-  const SingletonTable t = build_singleton_table(s, {}, 32, 16);
-  for (double iso : {-0.5, 0.0, 0.31, 0.9}) {
-    std::vector<std::uint32_t> expected;
-    for (std::size_t i = 0; i < t.cell_count(); ++i) {
-      const Singleton& sg = t.singletons()[i];
-      if (sg.hi > sg.lo && sg.lo <= iso && iso <= sg.hi) expected.push_back(static_cast<std::uint32_t>(i));
+  // 32 × 16 bins of a few cells each (sorted as 64-bit keys), and one bin of all 4,913 cells (the radix sort).
+  for (const auto [rows, columns] : {std::pair{32, 16}, std::pair{1, 1}}) {
+    const SingletonTable t = build_singleton_table(s, {}, rows, columns);
+    for (double iso : {-0.5, 0.0, 0.31, 0.9}) {
+      std::vector<std::uint32_t> expected;
+      for (std::size_t i = 0; i < t.cell_count(); ++i) {
+        const Singleton& sg = t.singletons()[i];
+        if (sg.hi > sg.lo && sg.lo <= iso && iso <= sg.hi) expected.push_back(static_cast<std::uint32_t>(i));
+      }
+      EXPECT_EQ(t.cells_holding(iso), expected) << iso << " in " << rows << " × " << columns << " bins";
+      // The table's own order: by bin, within a bin hi descending and then cell ascending.
+      const auto by_bin = t.cells_holding(iso, glm::dvec3(0.0, 0.0, 1.0), 3.2, SingletonTable::CellOrder::by_bin);
+      if (rows == 1)
+        for (std::size_t k = 1; k < by_bin.size(); ++k) {
+          const float h0 = t.singletons()[by_bin[k - 1]].hi, h1 = t.singletons()[by_bin[k]].hi;
+          ASSERT_TRUE(h0 > h1 || (h0 == h1 && by_bin[k - 1] < by_bin[k])) << k;
+        }
     }
-    EXPECT_EQ(t.cells_holding(iso), expected) << iso;
   }
 }
 
