@@ -1,6 +1,7 @@
 #include "core/volume/singletons.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -15,6 +16,7 @@
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 namespace trispline::core {
 
@@ -24,11 +26,9 @@ constexpr double kPi = 3.14159265358979323846;
 
 // Bounds of one cell from its Bézier form: the value range and the cone of the degree-raised gradient coefficients.
 template <int K>
-Singleton bound_cell(const VolumeSpline& spline, int a, int b, int c) {
+Singleton bound_bezier(const double* bez) {
   constexpr int n = K * K * K;
   constexpr int padded = (n + 3) / 4 * 4;  // whole groups of four for the vector loops
-  double bez[n];
-  spline.bezier_coefficients(a, b, c, bez);
   Singleton s;
   double lo = bez[0], hi = bez[0];
   int m0 = 1;
@@ -127,6 +127,80 @@ Singleton bound_cell(const VolumeSpline& spline, int a, int b, int c) {
     s.sin_half = static_cast<float>(std::min(1.0, sin_half * (1.0 + 1e-6) + 1e-6));
   }
   return s;
+}
+
+template <int K>
+Singleton bound_cell(const VolumeSpline& spline, int a, int b, int c) {
+  double bez[K * K * K];
+  spline.bezier_coefficients(a, b, c, bez);
+  return bound_bezier<K>(bez);
+}
+
+// The singletons of z-slabs [z0, z1) into out (cell index order), as bound_cell gives them, bit for bit: the knot
+// insertion along the first axis (VolumeSpline::bezier_coefficients' first stage, the same products and sums) is made
+// once per control row and cell column and shared by the K × K cells that use the row, instead of once per cell.
+template <int K>
+void bound_slabs(const VolumeSpline& spline, int z0, int z1, Singleton* out) {
+  const std::array<int, 3>& dims = spline.dims();
+  const int cx = spline.span_count(0), cy = spline.span_count(1);
+  bezier_cell::Matrix<K> m;
+  for (int i = 0; i < K; ++i)
+    for (int r = 0; r < K; ++r) m[i][r] = spline.to_bezier()[i * K + r];
+  auto clamped = [&](int axis, int s, int r) { return std::clamp(spline.first_control(s) + r, 0, dims[axis] - 1); };
+  const float* cp = spline.control_points().data();
+  const std::size_t nx = dims[0], nxy = nx * dims[1];
+  // first[zp][(y · cx + a) · K + i]: coefficient i of cell column a along x, control row y of control plane zp.
+  std::vector<std::vector<double>> first(dims[2]);
+  auto plane = [&](int zp) -> const std::vector<double>& {
+    std::vector<double>& f = first[zp];
+    if (!f.empty()) return f;
+    f.resize(static_cast<std::size_t>(dims[1]) * cx * K);
+    for (int y = 0; y < dims[1]; ++y) {
+      const float* row = cp + zp * nxy + static_cast<std::size_t>(y) * nx;
+      for (int a = 0; a < cx; ++a) {
+        double v[K];
+        for (int r = 0; r < K; ++r) v[r] = row[clamped(0, a, r)];
+        double* o = f.data() + (static_cast<std::size_t>(y) * cx + a) * K;
+        for (int i = 0; i < K; ++i) {
+          double sum = 0.0;
+          for (int r = 0; r < K; ++r) sum += m[i][r] * v[r];
+          o[i] = sum;
+        }
+      }
+    }
+    return f;
+  };
+  for (int c = z0; c < z1; ++c) {
+    const std::vector<double>* planes[K];
+    for (int k = 0; k < K; ++k) planes[k] = &plane(clamped(2, c, k));
+    for (int zp = 0; zp < clamped(2, c, 0); ++zp) std::vector<double>().swap(first[zp]);  // no later slab needs it
+    for (int b = 0; b < cy; ++b) {
+      int rows[K];
+      for (int j = 0; j < K; ++j) rows[j] = clamped(1, b, j);
+      for (int a = 0; a < cx; ++a) {
+        double tmp[K * K * K], in[K * K * K], bez[K * K * K];
+        for (int k = 0; k < K; ++k)
+          for (int j = 0; j < K; ++j) {
+            const double* src = planes[k]->data() + (static_cast<std::size_t>(rows[j]) * cx + a) * K;
+            for (int i = 0; i < K; ++i) tmp[i + K * (j + K * k)] = src[i];
+          }
+        bezier_cell::apply_axis<K, 1>(m, tmp, in);
+        bezier_cell::apply_axis<K, 2>(m, in, bez);
+        out[(static_cast<std::size_t>(c - z0) * cy + b) * cx + a] = bound_bezier<K>(bez);
+      }
+    }
+  }
+}
+
+void bound_slabs(const VolumeSpline& spline, int z0, int z1, Singleton* out) {
+  switch (spline.order()) {
+    case 2:
+      return bound_slabs<2>(spline, z0, z1, out);
+    case 3:
+      return bound_slabs<3>(spline, z0, z1, out);
+    default:
+      return bound_slabs<4>(spline, z0, z1, out);
+  }
 }
 
 Singleton bound_cell(const VolumeSpline& spline, int a, int b, int c) {
@@ -244,20 +318,17 @@ SingletonTable build_singleton_table(const VolumeSpline& spline, const ProgressS
   for (int a = 0; a < 3; ++a) t.cells_[a] = spline.span_count(a);
   const std::size_t slab = static_cast<std::size_t>(t.cells_[0]) * t.cells_[1];
   t.singletons_.resize(slab * t.cells_[2]);
+  // Runs of slabs in parallel (each run shares its first-axis stage between neighbouring slabs), a few runs per
+  // thread at a time so the progress moves.
   const int nz = t.cells_[2];
-  const int chunk = std::max(1, nz / 50);
-  for (int z0 = 0; z0 < nz; z0 += chunk) {
+  const int run = std::max(1, std::min(8, nz / 64));
+  const int batch = run * 2 * static_cast<int>(std::max<std::size_t>(1, tbb::this_task_arena::max_concurrency()));
+  for (int z0 = 0; z0 < nz; z0 += batch) {
     progress.check(0.95 * double(z0) / nz);
-    const int z1 = std::min(nz, z0 + chunk);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(z0 * slab, z1 * slab, 4096),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                        for (std::size_t i = r.begin(); i != r.end(); ++i) {
-                          const int a = static_cast<int>(i % t.cells_[0]);
-                          const int b = static_cast<int>((i / t.cells_[0]) % t.cells_[1]);
-                          const int c = static_cast<int>(i / slab);
-                          t.singletons_[i] = bound_cell(spline, a, b, c);
-                        }
-                      });
+    const int z1 = std::min(nz, z0 + batch);
+    tbb::parallel_for(tbb::blocked_range<int>(z0, z1, run), [&](const tbb::blocked_range<int>& r) {
+      bound_slabs(spline, r.begin(), r.end(), t.singletons_.data() + static_cast<std::size_t>(r.begin()) * slab);
+    });
   }
   progress.check(0.95);
   t.rows_ = rows;
