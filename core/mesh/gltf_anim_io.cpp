@@ -231,8 +231,29 @@ void split_by_material(tinygltf::Model& model, gltf_materials::GltfMaterialWrite
 
 }  // namespace
 
+std::uint64_t MorphAnimationBuilder::glb_data_bytes() const {
+  const std::uint64_t frames = static_cast<std::uint64_t>(frames_);
+  std::uint64_t bytes = 4 * frames;  // key times
+  for (const Object& o : objects_)
+    for (const Segment& seg : o.segments) {
+      const std::uint64_t nv = seg.base.positions.size(), nt = seg.base.triangles.size();
+      const bool normals = seg.base.normals.size() == nv;
+      // positions, normals, uvs and the indices (twice when split by material)
+      bytes += nv * (12 + (normals ? 12 : 0) + (seg.base.uvs.size() == nv ? 8 : 0)) + nt * 12 * 2;
+      const std::uint64_t targets = static_cast<std::uint64_t>(seg.frames - 1);
+      if (seg.changed && targets > 0) bytes += targets * nv * (normals ? 24 : 12) + frames * targets * 4;
+      if (o.segments.size() > 1) bytes += frames * 12;  // scale keys
+    }
+  return bytes;
+}
+
 void MorphAnimationBuilder::write_glb(const std::filesystem::path& path) const {
   if (frames_ == 0) throw MeshIoError(quoted(path) + ": no frames recorded");
+  if (const std::uint64_t bytes = glb_data_bytes(); bytes > kMaxAnimationGlbBytes)
+    throw MeshIoError(quoted(path) + ": an animation of " + std::to_string(frames_) + " frames would take " +
+                      std::to_string(bytes >> 20) + " MiB, over the " + std::to_string(kMaxAnimationGlbBytes >> 20) +
+                      " MiB an animation.glb may take (morph targets grow with the square of the frames): record a "
+                      "shorter range, or fewer changing objects");
   tinygltf::Model model;
   model.asset.version = "2.0";
   model.asset.generator = "trispline";

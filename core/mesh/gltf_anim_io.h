@@ -28,6 +28,7 @@
 // Memory: the builder keeps each segment's first mesh and per following frame 6 floats per vertex.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -37,6 +38,13 @@
 #include "core/mesh/tri_mesh.h"
 
 namespace trispline::core {
+
+// Frames one recording may hold: a timeline runs from frame 0 to at most 100000 (anim.timeline).
+inline constexpr int kMaxRecordedFrames = 100001;
+// Bytes an animation.glb may take. A morphing object writes #frames − 1 targets of 24 bytes a vertex and #frames ×
+// (#frames − 1) weights, so the file grows with the square of the frames; write_glb refuses past this (the .glb
+// header counts in 32 bits, and tinygltf holds the file about three times over while writing it).
+inline constexpr std::uint64_t kMaxAnimationGlbBytes = std::uint64_t(1) << 30;
 
 class MorphAnimationBuilder {
  public:
@@ -55,13 +63,18 @@ class MorphAnimationBuilder {
   // Segments (runs of frames with one topology) of `object` so far; 0 for an unknown object or one without a mesh.
   int segment_count(const std::string& object) const;
 
-  // Writes the .glb ("<path>.tmp" then renamed). Throws MeshIoError when no frame was added or the write fails.
+  // Writes the .glb ("<path>.tmp" then renamed). Throws MeshIoError when no frame was added, when the file would
+  // take more than kMaxAnimationGlbBytes (checked before anything is built; the message gives both sizes), or when
+  // the write fails.
   void write_glb(const std::filesystem::path& path) const;
+  // The bytes of binary data write_glb would write (vertices, indices, targets, keys; not the JSON or images).
+  std::uint64_t glb_data_bytes() const;
 
   // Pieces of one recording split by frames (gltf_anim_piece.cpp). A piece is a builder whose first frame is the
   // whole range's first frame (the base) followed by the frames of one chunk, so its morph targets are the deltas one
   // builder over the whole range computes, bit for bit. write_piece stores the builder losslessly (base meshes in
-  // double; "<path>.tmp" then renamed); read_piece reads it back. Both throw MeshIoError (a bad or truncated file).
+  // double; "<path>.tmp" then renamed); read_piece reads it back. Both throw MeshIoError (a bad or truncated file,
+  // or one whose first frame and frame count leave the timeline's 0..kMaxRecordedFrames − 1).
   void write_piece(const std::filesystem::path& path) const;
   static MorphAnimationBuilder read_piece(const std::filesystem::path& path);
   // Appends the frames of `piece` after its first. Joinable when the piece has the same fps and first frame number,

@@ -288,8 +288,10 @@ MorphAnimationBuilder MorphAnimationBuilder::read_piece(const std::filesystem::p
   const double fps = r.value<double>();
   if (!(fps > 0) || !std::isfinite(fps)) r.fail("fps");
   MorphAnimationBuilder b(fps, r.value<std::int32_t>());
+  if (b.first_frame_ < 0 || b.first_frame_ >= kMaxRecordedFrames) r.fail("first frame outside the timeline");
   b.frames_ = r.value<std::int32_t>();
   if (b.frames_ < 1) r.fail("no frames");
+  if (b.frames_ > kMaxRecordedFrames - b.first_frame_) r.fail("frames beyond the timeline's last frame");
   const auto objects = r.value<std::uint32_t>();
   for (std::uint32_t i = 0; i < objects; ++i) {
     Object o;

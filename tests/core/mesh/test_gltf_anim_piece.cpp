@@ -175,6 +175,45 @@ TEST_F(AnimationPieces, HugeCountsInAPieceAreRefusedBeforeAllocating) {
   }
 }
 
+TEST_F(AnimationPieces, FrameCountsBeyondTheTimelineAreRefused) {
+  // A piece without objects costs nothing per frame, so only the timeline bounds its frames (the key times alone
+  // of 700 M frames would take 2.8 GB).
+  MorphAnimationBuilder(24.0, 0).write_piece(dir / "empty.piece");  // no frames: refused on reading
+  std::string full = bytes(dir / "empty.piece");
+  const std::size_t first_at = 8 + 8, frames_at = first_at + 4;
+  auto with = [&](std::int32_t first, std::int32_t frames) {
+    std::string s = full;
+    std::memcpy(s.data() + first_at, &first, 4);
+    std::memcpy(s.data() + frames_at, &frames, 4);
+    std::ofstream(dir / "x.piece", std::ios::binary | std::ios::trunc) << s;
+    return dir / "x.piece";
+  };
+  EXPECT_EQ(MorphAnimationBuilder::read_piece(with(0, kMaxRecordedFrames)).frame_count(), kMaxRecordedFrames);
+  EXPECT_THROW(MorphAnimationBuilder::read_piece(with(0, 700'000'000)), MeshIoError);
+  EXPECT_THROW(MorphAnimationBuilder::read_piece(with(10, kMaxRecordedFrames - 9)), MeshIoError);
+  EXPECT_THROW(MorphAnimationBuilder::read_piece(with(-5, 3)), MeshIoError);
+  EXPECT_THROW(MorphAnimationBuilder::read_piece(with(kMaxRecordedFrames, 1)), MeshIoError);
+}
+
+TEST_F(AnimationPieces, AnAnimationOverTheGlbBudgetIsRefusedBeforeBuilding) {
+  // 20 K frames of one moving quad: the weights alone are 20 K × 20 K floats (1.6 GB).
+  TriMesh quad = strip(1, 0.0);
+  MorphAnimationBuilder b(24.0, 0);
+  for (int f = 0; f < 20000; ++f) {
+    quad.positions[0].x = f * 1e-3;
+    b.add_frame({GltfNode{"quad", &quad}});
+  }
+  EXPECT_GT(b.glb_data_bytes(), kMaxAnimationGlbBytes);
+  try {
+    b.write_glb(dir / "big.glb");
+    FAIL() << "a 1.6 GB animation was written";
+  } catch (const MeshIoError& e) {
+    EXPECT_NE(std::string(e.what()).find("MiB"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(dir / "big.glb"));
+  EXPECT_LT(whole(1, 5, false).glb_data_bytes(), kMaxAnimationGlbBytes);
+}
+
 TEST_F(AnimationPieces, PieceRoundTripsLosslessly) {
   const MorphAnimationBuilder b = whole(1, 5, false);
   b.write_piece(dir / "p.piece");
