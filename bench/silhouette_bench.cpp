@@ -1,13 +1,12 @@
 #include "bench/silhouette_bench.h"
 
 #include <sys/resource.h>
+#include <tbb/info.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
-
-#include <tbb/info.h>
 
 #include "core/volume/analytic_volumes.h"
 #include "core/volume/silhouettes.h"
@@ -53,7 +52,7 @@ nlohmann::json run_silhouette_benchmark(const SilhouetteBenchOptions& o) {
   t0 = std::chrono::steady_clock::now();
   const SingletonTable table = build_singleton_table(spline);
   const double prep_s = seconds_since(t0);
-  const double rss = peak_rss_mb();
+  const double prep_rss = peak_rss_mb();
 
   const glm::dvec3 hi(volume.dims[0] - 1, volume.dims[1] - 1, volume.dims[2] - 1);
   const glm::dvec3 centre = volume.world(hi * 0.5);
@@ -106,7 +105,8 @@ nlohmann::json run_silhouette_benchmark(const SilhouetteBenchOptions& o) {
           {"load_s", load_s},
           {"prep_s", prep_s},
           {"table_mb", table.memory_bytes() / 1048576.0},
-          {"peak_rss_mb", rss},
+          {"prep_rss_mb", prep_rss},
+          {"peak_rss_mb", peak_rss_mb()},
           {"views", o.views},
           {"median_view_ms", median(view_ms)},
           {"max_view_ms", *std::max_element(view_ms.begin(), view_ms.end())},

@@ -1,8 +1,8 @@
 // trispline::core silhouette benchmark — the figures behind `trispline bench silhouettes` (docs/performance.md).
 //
 // Loads a volume (default: InVesalius' Cranium CT, assets/data/Cranium.inv3, at 226 HU), makes the tri-cubic spline
-// D (control points = the samples, seed §7.3.1), preprocesses its singletons and lookup table (timed without the disk
-// cache; peak resident memory of the process after it), then extracts the silhouettes of D = iso for `views`
+// D (control points = the samples, seed §7.3.1), preprocesses its singletons and lookup table (timed; the
+// process's peak resident memory after it and after the views), then extracts the silhouettes of D = iso for `views`
 // perspective views evenly spaced on a circle around the volume (about its z axis, 20° above its equator, at 2.2×
 // its half-diagonal from its centre; the views' up is +z) — per view the milliseconds of the extraction (candidates,
 // Newton, polylines) and of the hidden-line test, the points, the polyline length and the Newton residuals. Prints
@@ -28,7 +28,8 @@ struct SilhouetteBenchOptions {
 //          table_mb, peak_rss_mb, views, median_view_ms, max_view_ms, median_extract_ms, median_hidden_ms,
 //          points_per_view (median), candidates_per_view (median), seeds_per_view (median), length_mm_per_view
 //          (median), max_value_residual, max_dot_residual, per_view [{azimuth_deg, extract_ms, hidden_ms, points,
-//          polylines, length_mm}]}.
+//          polylines, length_mm}]}. peak_rss_mb: the process's peak after the last view; prep_rss_mb: after
+//          preprocessing.
 // Throws std::invalid_argument on bad options and what load_volume throws on a bad file.
 nlohmann::json run_silhouette_benchmark(const SilhouetteBenchOptions& options);
 
