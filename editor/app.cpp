@@ -54,7 +54,8 @@ App::App(const AppOptions& options)
   }
   view_ = nav_.camera(window_->framebuffer_size());
 
-  if (options.screenshot.empty()) recovery_ = session_.start(options.recover_prompt);
+  if (!options.bench_out.empty()) bench_.emplace();
+  if (options.screenshot.empty() && !bench_) recovery_ = session_.start(options.recover_prompt);
   if (!options.open_log.empty() && !recovery_) open_later(options.open_log);
 }
 
@@ -473,13 +474,14 @@ int App::run() {
     const bool busy = !work_.empty() || ImGui::GetIO().MouseDown[0] || ImGui::GetIO().MouseDown[2] || animating() ||
                       anim_.recording() || background_.running() || volumes_.busy() || guarantees_.busy() ||
                       (renderer_ && renderer_->last_stats().ddm_keep < 1.0) ||  // full detail once it stops
-                      (renderer_ && renderer_->last_stats().volume_refining);
+                      (renderer_ && renderer_->last_stats().volume_refining) || bench_;
     wait_for_change(busy);
     const auto start = Clock::now();
     if (window_->should_close()) {
       window_->set_should_close(false);
       request(Pending::Quit);
     }
+    if (bench_) bench_before_frame();
     frame();
     if (background_.running() || volumes_.busy() || guarantees_.busy() ||
         (renderer_ && renderer_->last_stats().volume_refining))
@@ -490,6 +492,8 @@ int App::run() {
       write_screenshot("trispline-screenshot-" + std::to_string(std::time(nullptr)) + "-" +
                        std::to_string(++screenshots_) + ".png");
     window_->swap();
+    if (bench_)
+      if (const int code = bench_after_frame(start); code >= 0) return code;
     if (options_.max_fps > 0.0)  // GUI tests: software-GL frame rates on any machine
       std::this_thread::sleep_until(
           start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / options_.max_fps)));

@@ -23,6 +23,14 @@ struct AppOptions {
   // Frames a second while nothing changes (0: an idle editor draws nothing until an event, a background result or
   // playback wakes it). GUI tests pass their frame rate: their waits count frames.
   double idle_fps = 0.0;
+  // `trispline bench editor`: if set, open_log is replayed and, once it is loaded and the view has settled, the
+  // editor draws `bench_frames` frames with nothing changed (idle: what a redraw costs) and as many orbiting the view
+  // 3° a frame about its pivot, writes the frame times to this path as JSON and exits (no session log is written):
+  //   {"idle_ms":[…], "orbit_ms":[…], "viewport":[w, h] (pixels), "gl_renderer":"…",
+  //    "silhouette_ms":[…] (the extractions that finished while orbiting, each its own duration)}
+  // A frame is timed from its start to the end of glFinish after the swap, milliseconds.
+  std::filesystem::path bench_out;
+  int bench_frames = 30;
 };
 
 // Runs the editor. Returns the exit code: 0 on a normal quit (or a written screenshot), 1 if the screenshot

@@ -2,6 +2,7 @@
 # They need trispline_ui (ImGui panels), trispline_gpu (window, renderer) and core; the editor target links them.
 set(TRISPLINE_EDITOR_APP_SOURCES
     app.cpp
+    app_bench.cpp
     app_requests.cpp
     background_command.cpp
     gui_probe.cpp

@@ -106,6 +106,11 @@ class App {
   void ask_file(FilePurpose purpose);  // opens the file dialog for `purpose`
   int write_screenshot(const fs::path& path);
   void write_probe();  // --gui-probe: this frame's state for GUI tests (editor/gui_probe.h)
+  // Bench mode (AppOptions::bench_out, app_bench.cpp): before a frame, orbits the view when the orbit phase runs;
+  // after it, counts settling frames or keeps the frame's time. bench_after_frame returns the exit code once the
+  // figures are written, else −1.
+  void bench_before_frame();
+  int bench_after_frame(Clock::time_point start);
 
   const AppOptions options_;
   std::unique_ptr<gpu::Window> window_;
@@ -155,6 +160,12 @@ class App {
   int screenshots_ = 0, idle_frames_ = 0;        // F12 count; frames since the last deferred work (screenshot mode)
   std::uint64_t frames_ = 0;                     // frames drawn (the probe's "frame")
   Clock::time_point last_input_ = Clock::now();  // the last input event or window damage (wait_for_change)
+  struct Bench {
+    int settled = 0;  // quiet frames in a row before the idle phase
+    std::vector<double> idle_ms, orbit_ms, silhouette_ms;
+    std::size_t silhouettes_seen = 0;  // VolumeUi::finished() when the orbit began
+  };
+  std::optional<Bench> bench_;
 };
 
 }  // namespace trispline::editor

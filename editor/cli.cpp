@@ -17,6 +17,7 @@
 #include "core/commands/anim_record.h"
 #include "core/ffd/ffd_evaluator.h"
 #include "editor/app.h"
+#include "editor/bench_editor.h"
 #include "editor/command_docs.h"
 #include "editor/command_registry.h"
 #include "editor/farm_cli.h"
@@ -59,6 +60,9 @@ struct CliRequest {
   core::SilhouetteBenchOptions silhouettes;
   bool silhouettes_json = false;
   CLI::App* silhouettes_cmd = nullptr;
+  EditorBenchOptions editor_bench;
+  bool editor_bench_json = false;
+  CLI::App* editor_bench_cmd = nullptr;
   core::BoundsBenchOptions bounds;
   bool bounds_json = false;
   CLI::App* bounds_cmd = nullptr;
@@ -85,6 +89,11 @@ void add_edit(CLI::App& app, CliRequest& o) {
                    "GUI tests: 3)")
       ->check(CLI::NonNegativeNumber);
   edit->add_flag("!--no-recover", o.edit.recover_prompt, "Do not offer to recover an unfinished session");
+  edit->add_option("--bench-out", o.edit.bench_out,
+                   "Once the log is loaded, time idle and orbiting frames, write them as JSON here and exit "
+                   "(`trispline bench editor` runs this)");
+  edit->add_option("--bench-frames", o.edit.bench_frames, "Idle frames and orbiting frames --bench-out times")
+      ->check(CLI::Range(1, 100000));
 }
 
 // `trispline replay LOG --out DIR [--frames A-B] ...`.
@@ -179,6 +188,29 @@ void print_silhouette_table(const nlohmann::json& r, std::ostream& out) {
       << bench_fixed(r["median_hidden_ms"].get<double>(), 1) << "), max "
       << bench_fixed(r["max_view_ms"].get<double>(), 1) << " ms; residuals |D-c|/range "
       << r["max_value_residual"].get<double>() << ", |G.V| " << r["max_dot_residual"].get<double>() << "\n";
+}
+
+// `trispline bench editor`: per scene the editor's and Blender's frame times, then the recording ratio.
+void print_editor_bench_table(const nlohmann::json& r, std::ostream& out) {
+  out << "editor frames (" << r["frames"].get<int>() << " idle, " << r["frames"].get<int>()
+      << " orbiting 3 deg a frame), window " << r["window"].dump() << ", " << r.value("gl_renderer", "") << "\n"
+      << "  scene     idle ms  orbit ms (median / p95)  Blender idle / orbit ms\n";
+  for (const auto& s : r["scenes"]) {
+    out << "  " << std::left << std::setw(8) << s["name"].get<std::string>() << std::right << std::setw(9)
+        << bench_fixed(s["idle_median_ms"].get<double>(), 1) << std::setw(10)
+        << bench_fixed(s["orbit_median_ms"].get<double>(), 1) << " / " << std::setw(7)
+        << bench_fixed(s["orbit_p95_ms"].get<double>(), 1);
+    if (s.contains("blender_redraw_ms"))
+      out << std::setw(14) << bench_fixed(s["blender_redraw_ms"].get<double>(), 1) << " / "
+          << bench_fixed(s["blender_orbit_median_ms"].get<double>(), 1);
+    if (s.contains("silhouette_median_ms"))
+      out << "  (silhouettes " << bench_fixed(s["silhouette_median_ms"].get<double>(), 0) << " ms each, "
+          << s["silhouette_results"].get<std::size_t>() << " while orbiting)";
+    out << "\n";
+  }
+  out << "  recording with a render-hidden volume: " << bench_fixed(r["record_hidden_volume_ratio"].get<double>(), 2)
+      << "x the frame time without (" << bench_fixed(r["record_ms_per_frame"]["with_hidden_volume"].get<double>(), 0)
+      << " / " << bench_fixed(r["record_ms_per_frame"]["without"].get<double>(), 0) << " ms)\n";
 }
 
 // `trispline bench bounds`: certificate times per lattice, then the soundness sweep's counts.
@@ -307,6 +339,23 @@ void add_bench(CLI::App& app, CliRequest& o) {
   o.silhouettes_cmd->add_option("--subdivision", o.silhouettes.subdivision, "Newton seeds per singleton axis")
       ->check(CLI::Range(1, 4));
   o.silhouettes_cmd->add_flag("!--no-hidden", o.silhouettes.hidden, "Skip the hidden-line test");
+  o.editor_bench_cmd = bench->add_subcommand(
+      "editor",
+      "The editor's frame times (idle, orbiting) on the default scene, a tiled teapot and a volume with silhouettes, "
+      "beside Blender's viewport redraw of the same meshes, and the cost of recording with a hidden volume (needs X: "
+      "tests/with_xvfb.sh 1280x800x24 ...)");
+  o.editor_bench_cmd->add_flag("--json", o.editor_bench_json, "Print one JSON object instead of a table");
+  o.editor_bench_cmd->add_option("--frames", o.editor_bench.frames, "Idle and orbiting frames per scene")
+      ->check(CLI::Range(1, 10000));
+  o.editor_bench_cmd->add_option("--assets", o.editor_bench.assets, "The project's assets folder")
+      ->capture_default_str();
+  o.editor_bench_cmd->add_option("--volume", o.editor_bench.volume_path, "The volume scene's volume")
+      ->capture_default_str();
+  o.editor_bench_cmd->add_option("--iso", o.editor_bench.iso, "Its iso-level, the volume's units")
+      ->capture_default_str();
+  o.editor_bench_cmd->add_option("--work", o.editor_bench.work,
+                                 "Folder for the logs, outputs and child logs (default: a new temporary folder)");
+  o.editor_bench_cmd->add_flag("!--no-blender", o.editor_bench.blender, "Do not time Blender");
   o.bounds_cmd = bench->add_subcommand(
       "bounds",
       "Guarantees: the fold-free certificate's time on 4^3, 8^3, 16^3 lattices (orders 3, 4) and a soundness "
@@ -400,6 +449,8 @@ int run_cli(int argc, char** argv) {
     if (*o.dffd_cmd) return run_bench_dffd(o.dffd, std::cout, std::cerr);
     if (*o.ddm_cmd) return run_bench_ddm(o.ddm, std::cout, std::cerr);
     if (*o.press_cmd) return run_bench_press(o.press, std::cout, std::cerr);
+    if (*o.editor_bench_cmd)
+      return bench_emit(run_editor_benchmark(o.editor_bench), o.editor_bench_json, std::cout, print_editor_bench_table);
     if (*o.silhouettes_cmd)
       return bench_emit(core::run_silhouette_benchmark(o.silhouettes), o.silhouettes_json, std::cout,
                         print_silhouette_table);

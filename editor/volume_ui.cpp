@@ -170,6 +170,7 @@ void VolumeUi::update(const core::Scene& shown, const core::Camera& view) {
       Extracted e = job->future.get();
       live.result = std::move(e.result);
       live.ms = last_ms_ = e.ms;
+      ++finished_;
       last_points_ = live.result->points;
     } catch (const std::exception& e) {
       messages_.error("silhouettes of '" + job->volume + "' for this view failed: " + e.what());

@@ -69,6 +69,7 @@ class VolumeUi {
   ui::VolumeLiveInfo live_info(const std::string& volume) const;
   double last_extract_ms() const { return last_ms_; }  // the last extraction's wall time, ms (< 0: none yet)
   std::size_t last_points() const { return last_points_; }
+  std::size_t finished() const { return finished_; }  // extractions finished so far (bench mode counts them)
   // The live iso-level of `volume` while its field is dragged or its line has not run yet.
   std::optional<double> preview_iso(const std::string& volume) const;
 
@@ -134,6 +135,7 @@ class VolumeUi {
   bool panel_drawn_ = false;  // draw_panel ran since the last update()
   core::Camera last_view_;    // the view of the last update()
   double last_ms_ = -1.0;
+  std::size_t finished_ = 0;
   std::size_t last_points_ = 0;
 };
 
