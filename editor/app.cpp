@@ -131,6 +131,7 @@ void App::render_view() {
   vo.ddm.moving = toggles_.fast_tiles && Clock::now() - moved_at_ < std::chrono::duration<double>(kMotionHoldSeconds);
   vo.ddm.motion_budget_vertices =
       gpu::is_software_renderer() ? gpu::kDdmMotionBudgetVerticesSoftware : gpu::kDdmMotionBudgetVertices;
+  if (toggles_.fast_tiles) vo.ddm.pixels_per_unit = view_.projection_matrix()[1][1] * view_.viewport.y * 0.5;
   tools_.decorate(vo);
   volumes_.decorate(vo);
   if (const core::SceneObject* o = session_.scene().find(selected_);

@@ -41,10 +41,12 @@ DdmInstanceBounds ddm_instance_bounds(const core::DdmLayer& layer) {
   b.normals.resize(n);
   for (std::size_t k = 0; k < n; ++k) {
     glm::dvec3 a(std::numeric_limits<double>::max()), z(-std::numeric_limits<double>::max());
-    for (std::size_t v = first[k]; v < first[k + 1]; ++v) a = glm::min(a, mesh.positions[v]), z = glm::max(z, mesh.positions[v]);
+    for (std::size_t v = first[k]; v < first[k + 1]; ++v)
+      a = glm::min(a, mesh.positions[v]), z = glm::max(z, mesh.positions[v]);
     const glm::dvec3 c = first[k + 1] > first[k] ? 0.5 * (a + z) : glm::dvec3(0.0);
     double r2 = 0.0;
-    for (std::size_t v = first[k]; v < first[k + 1]; ++v) r2 = std::max(r2, glm::dot(mesh.positions[v] - c, mesh.positions[v] - c));
+    for (std::size_t v = first[k]; v < first[k + 1]; ++v)
+      r2 = std::max(r2, glm::dot(mesh.positions[v] - c, mesh.positions[v] - c));
     b.spheres[k] = glm::vec4(glm::vec3(c), static_cast<float>(std::sqrt(r2) * (1.0 + 1e-6) + slack));
     b.lo = k == 0 ? c - double(b.spheres[k].w) : glm::min(b.lo, c - double(b.spheres[k].w));
     b.hi = k == 0 ? c + double(b.spheres[k].w) : glm::max(b.hi, c + double(b.spheres[k].w));
@@ -101,6 +103,18 @@ DdmCullReason DdmCuller::test(std::size_t k) const {
   }
   if (view_.keep < 1.0 && ddm_lod_rank(k) >= view_.keep) return DdmCullReason::thinned;
   return DdmCullReason::kept;
+}
+
+int DdmCuller::level(std::size_t k) const {
+  if (!(view_.pixels_per_unit > 0.0)) return 0;
+  const glm::vec4 s = bounds_.spheres[k];
+  const glm::dvec4 clip = view_.view_proj * (view_.model * glm::dvec4(s.x, s.y, s.z, 1.0));
+  const double r = s.w * scale_;
+  if (!(clip.w > 0.0)) return 0;  // reaching behind the eye: full detail
+  const double px = 2.0 * r * view_.pixels_per_unit / clip.w;
+  int l = 0;
+  while (l < 2 && px < kDdmLodPixels[l]) ++l;
+  return l;
 }
 
 }  // namespace trispline::gpu

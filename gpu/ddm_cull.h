@@ -3,7 +3,8 @@
 //   DdmInstanceBounds   per instance: a sphere enclosing its vertices and its root normal
 //   ddm_lod_rank        per instance: its place in the motion LOD's order
 //   DdmCullView         the view a frame is drawn in and what to leave out
-//   ddm_instance_kept   the per-instance test: the view frustum, facing away, the motion LOD's share
+//   ddm_instance_kept   the per-instance test: the view frustum, facing away, the motion LOD's share; the level of
+//                       detail by size on screen
 // Frustum culling is exact up to the sphere (an instance with a vertex inside the view is never left out); the
 // back-facing test is a conservative cone on the base normal at the cell centre (docs/decisions.md: the margin);
 // the motion LOD keeps the instances whose fixed pseudo-random rank is below a power-of-two share, so a thinned view
@@ -39,16 +40,23 @@ DdmInstanceBounds ddm_instance_bounds(const core::DdmLayer& layer);
 
 // The view of one frame and what to leave out.
 struct DdmCullView {
-  glm::dmat4 view_proj{1.0};   // world → clip (OpenGL, depth in [-1, 1])
-  glm::dmat4 model{1.0};       // object → world (Transform::matrix())
-  glm::dvec3 eye{0.0};         // world units
-  bool frustum = true;         // leave out instances wholly outside the view frustum
+  glm::dmat4 view_proj{1.0};  // world → clip (OpenGL, depth in [-1, 1])
+  glm::dmat4 model{1.0};      // object → world (Transform::matrix())
+  glm::dvec3 eye{0.0};        // world units
+  bool frustum = true;        // leave out instances wholly outside the view frustum
   // ≥ 0: leave out instances whose root normal faces away from the eye by more than 90° + this many degrees, seen from
   // anywhere in their sphere — the base is taken to hide them, as it does seen from outside; so never with the eye
   // inside the layer's box (from inside a pot the outside tiles show over its rim). < 0: no back-facing test.
   double backface_margin_deg = -1.0;
   double keep = 1.0;  // the motion LOD's share in (0, 1]: instances whose ddm_lod_rank ≥ keep are left out
+  // Screen-size LOD: pixels one world unit spans at clip w = 1 (projection[1][1] × viewport height ÷ 2); 0 = off
+  // (every kept instance at level 0).
+  double pixels_per_unit = 0.0;
 };
+
+// The screen-size LOD's thresholds: an instance whose sphere is at least kDdmLodPixels[k] pixels across is drawn at
+// level k or finer (gpu/ddm_gl.h: level k has about 1/4^k of the tile's vertices); smaller ones at the coarsest.
+inline constexpr double kDdmLodPixels[2] = {64.0, 16.0};
 
 // The six planes of `view_proj` (left, right, bottom, top, near, far) as (n, d) with unit n pointing inside: a point
 // x is inside when dot(n, x) + d ≥ 0 for all six (Gribb & Hartmann).
@@ -64,13 +72,16 @@ class DdmCuller {
  public:
   DdmCuller(const DdmInstanceBounds& bounds, const DdmCullView& view);
   DdmCullReason test(std::size_t instance) const;  // instance < bounds.spheres.size()
+  // The level of detail of a kept instance: 0 without pixels_per_unit, else by its sphere's size on screen
+  // (kDdmLodPixels); 0 for a sphere whose centre is behind the eye.
+  int level(std::size_t instance) const;
 
  private:
   const DdmInstanceBounds& bounds_;
   DdmCullView view_;
   std::array<glm::dvec4, 6> planes_;
   glm::dmat3 normal_matrix_;
-  double scale_ = 1.0;  // largest axis scale of the model: object radius → world radius
+  double scale_ = 1.0;    // largest axis scale of the model: object radius → world radius
   double margin_ = -1.0;  // backface_margin_deg in radians; < 0: no back-facing test
 };
 

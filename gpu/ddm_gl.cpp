@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/mesh/mesh_decimate.h"
 #include "gpu/ffd_gl_lattice.h"
 
 namespace trispline::gpu {
@@ -129,8 +130,13 @@ struct DdmGl::LayerGl {
     GLsizei vertex_count = 0, index_count = 0;
     GLuint first_instance = 0;
     GLsizei instance_count = 0;
-    GLuint selected_first = 0;  // the tile's run in `selected`
-    GLsizei selected_count = 0;
+    // Levels of detail (kDdmLodLevels; `levels` of them present): each a run of the index buffer after the full
+    // list (level 0 = [0, index_count)) and the vertices it uses.
+    int levels = 1;
+    GLsizei level_first[kDdmLodLevels] = {}, level_count[kDdmLodLevels] = {};
+    std::size_t level_vertices[kDdmLodLevels] = {};
+    GLuint selected_first[kDdmLodLevels] = {};  // the tile's runs in `selected`, one per level
+    GLsizei selected_count[kDdmLodLevels] = {};
   };
   std::shared_ptr<const core::DdmLayer> layer;         // held so the address cannot be reused
   std::shared_ptr<const core::MaterialSet> materials;  // core::ddm_tile_materials(layer.tiles).set, or null
@@ -278,6 +284,21 @@ DdmGl::LayerGl& DdmGl::layer_for(const std::shared_ptr<const core::DdmLayer>& la
         tile.ranges.push_back({order[i].first, GLsizei(3 * i), 0});
       tile.ranges.back().count += 3;
     }
+    tile.level_count[0] = tile.index_count;
+    tile.level_vertices[0] = std::size_t(tile.vertex_count);
+    // Coarser levels after the full list (untextured tiles; a morph partner takes the same triangles).
+    for (int k = 1; k < kDdmLodLevels && !g->materials; ++k) {
+      const std::size_t target = std::max(kDdmLodMinVertices, mesh.vertex_count() >> (2 * k));
+      if (target >= tile.level_vertices[tile.levels - 1]) break;
+      const std::vector<glm::uvec3> coarse = core::decimated_triangles(mesh, target);
+      const std::size_t used = core::used_vertex_count(coarse, mesh.vertex_count());
+      if (used >= tile.level_vertices[tile.levels - 1]) break;
+      tile.level_first[k] = GLsizei(idx.size());
+      tile.level_count[k] = GLsizei(3 * coarse.size());
+      tile.level_vertices[k] = used;
+      for (const glm::uvec3& t : coarse) idx.insert(idx.end(), {t.x, t.y, t.z});
+      tile.levels = k + 1;
+    }
     if (g->materials) {
       std::vector<float> uv(2 * mesh.vertex_count());
       for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
@@ -376,13 +397,18 @@ void DdmGl::select(LayerGl& g, const DdmSelection& selection) {
   std::vector<InstanceRecord> kept;
   kept.reserve(g.records.size());
   g.selected_vertices = 0;
-  for (LayerGl::TileGl& t : g.tiles) {
-    t.selected_first = GLuint(kept.size());
-    for (GLuint pos = t.first_instance; pos < t.first_instance + GLuint(t.instance_count); ++pos)
-      if (selection.drawn[g.grouped[pos]]) kept.push_back(g.records[pos]);
-    t.selected_count = GLsizei(kept.size() - t.selected_first);
-    g.selected_vertices += std::size_t(t.selected_count) * std::size_t(t.vertex_count);
-  }
+  for (LayerGl::TileGl& t : g.tiles)
+    for (int k = 0; k < kDdmLodLevels; ++k) {
+      // Level k's run: the instances flagged 1 + k (or finer than the tile has, at its coarsest level).
+      t.selected_first[k] = GLuint(kept.size());
+      if (k < t.levels)
+        for (GLuint pos = t.first_instance; pos < t.first_instance + GLuint(t.instance_count); ++pos) {
+          const int flag = selection.drawn[g.grouped[pos]];
+          if (flag > 0 && std::min(flag - 1, t.levels - 1) == k) kept.push_back(g.records[pos]);
+        }
+      t.selected_count[k] = GLsizei(kept.size() - t.selected_first[k]);
+      g.selected_vertices += std::size_t(t.selected_count[k]) * t.level_vertices[k];
+    }
   glBindVertexArray(0);
   if (!g.selected) g.selected = Buffer::create();
   glBindBuffer(GL_ARRAY_BUFFER, g.selected.id());
@@ -417,14 +443,23 @@ std::size_t DdmGl::draw(const std::shared_ptr<const core::DdmLayer>& layer, cons
   if (follow) bind_follow(g, program, *follow);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kMapsBinding, maps.samples.id());
   for (const LayerGl::TileGl& t : g.tiles) {
-    const GLsizei count = selection ? t.selected_count : t.instance_count;
-    if (count == 0 || t.index_count == 0) continue;
+    if (t.index_count == 0 || t.instance_count == 0) continue;
     glBindVertexArray(selection ? t.selected_vao.id() : t.vao.id());
-    const GLuint first = selection ? t.selected_first : t.first_instance;
     if (!bind_material || !g.materials) {
-      glDrawElementsInstancedBaseInstance(GL_TRIANGLES, t.index_count, GL_UNSIGNED_INT, nullptr, count, first);
+      for (int k = 0; k < (selection ? t.levels : 1); ++k) {
+        const GLsizei count = selection ? t.selected_count[k] : t.instance_count;
+        if (count == 0) continue;
+        glDrawElementsInstancedBaseInstance(
+            GL_TRIANGLES, t.level_count[k], GL_UNSIGNED_INT,
+            reinterpret_cast<const void*>(std::size_t(t.level_first[k]) * sizeof(std::uint32_t)), count,
+            selection ? t.selected_first[k] : t.first_instance);
+      }
       continue;
     }
+    // Texture-mapped tiles have level 0 only.
+    const GLsizei count = selection ? t.selected_count[0] : t.instance_count;
+    const GLuint first = selection ? t.selected_first[0] : t.first_instance;
+    if (count == 0) continue;
     for (const LayerGl::TileGl::SlotRange& r : t.ranges) {
       (*bind_material)(r.slot);
       glDrawElementsInstancedBaseInstance(GL_TRIANGLES, r.count, GL_UNSIGNED_INT,

@@ -62,9 +62,17 @@ struct DdmCapture {
   std::vector<glm::vec3> normals;    // #V × 3
 };
 
-// Which of a layer's instances DdmGl::draw draws (the editor's culling and motion LOD, gpu/ddm_cull.h): a flag per
-// instance in the layer's instance order (#I; nonzero = drawn) and a version that names the flags (the same version
-// again = the same flags: the compacted instance buffer is uploaded once per version, then shared by every pass).
+// Levels of detail of a tile mesh (the editor's screen-size LOD, gpu/ddm_cull.h): level 0 is the tile itself, level
+// k ≥ 1 a decimated copy with about 1/4^k of its vertices (core::decimated_triangles; at least
+// kDdmLodMinVertices), drawn with the same vertex buffers. Texture-mapped tiles have level 0 only.
+inline constexpr int kDdmLodLevels = 3;
+inline constexpr std::size_t kDdmLodMinVertices = 12;
+
+// Which of a layer's instances DdmGl::draw draws, and at which level of detail (the editor's culling, motion LOD and
+// screen-size LOD, gpu/ddm_cull.h): per instance in the layer's instance order (#I) 0 = not drawn, 1 + k = drawn at
+// level k (k < kDdmLodLevels; a tile without level k draws its coarsest), and a version that names the flags (the
+// same version again = the same flags: the compacted instance buffer is uploaded once per version, then shared by
+// every pass).
 struct DdmSelection {
   std::vector<std::uint8_t> drawn;
   std::uint64_t version = 0;

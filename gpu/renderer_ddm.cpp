@@ -179,13 +179,15 @@ DdmDrawn DdmDisplay::draw_shaded(const core::Scene& scene, double time_s, const 
       cv.frustum = view.cull && !v.bounds.empty();
       cv.backface_margin_deg = cv.frustum ? view.backface_margin_deg : -1.0;
       cv.keep = keep;
+      cv.pixels_per_unit = cv.frustum ? view.pixels_per_unit : 0.0;
       return cv;
     };
     const auto choose = [&](const core::SceneObject& o, LayerView& v, double keep) {
       const DdmCullView cv = cull_view(o, v, keep);
       const bool cull = cv.frustum;
       if (v.key_view_proj == cv.view_proj && v.key_model == cv.model && v.key_keep == keep && v.key_cull == cull &&
-          v.key_margin == cv.backface_margin_deg && v.selection.drawn.size() == v.layer->instances.size()) {
+          v.key_margin == cv.backface_margin_deg && v.key_pixels == cv.pixels_per_unit &&
+          v.selection.drawn.size() == v.layer->instances.size()) {
         v.frame = frame_;
         return;
       }
@@ -198,21 +200,21 @@ DdmDrawn DdmDisplay::draw_shaded(const core::Scene& scene, double time_s, const 
         for (std::size_t k = 0; k < flags.size(); ++k) {
           const DdmCullReason r =
               cull ? culler.test(k) : (ddm_lod_rank(k) < keep ? DdmCullReason::kept : DdmCullReason::thinned);
-          flags[k] = r == DdmCullReason::kept;
+          flags[k] = r == DdmCullReason::kept ? std::uint8_t(1 + (cull ? culler.level(k) : 0)) : 0;
           culled += r == DdmCullReason::outside || r == DdmCullReason::facing_away;
         }
       }
       if (flags != v.selection.drawn) v.selection.drawn = std::move(flags), v.selection.version = ++versions_;
       v.culled = culled;
       v.key_view_proj = cv.view_proj, v.key_model = cv.model, v.key_keep = keep, v.key_cull = cull;
-      v.key_margin = cv.backface_margin_deg;
+      v.key_margin = cv.backface_margin_deg, v.key_pixels = cv.pixels_per_unit;
       v.frame = frame_;
     };
     for (auto& [o, v] : chosen) {
       choose(*o, *v, 1.0);
       for (std::size_t k = 0; k < v->selection.drawn.size(); ++k)
-        if (v->selection.drawn[k])
-          kept_vertices += v->layer->tiles[std::size_t(v->layer->instances[k].tile)].mesh.vertex_count();
+        if (const int f = v->selection.drawn[k])  // level f − 1 draws about 1/4^(f − 1) of the tile's vertices
+          kept_vertices += v->layer->tiles[std::size_t(v->layer->instances[k].tile)].mesh.vertex_count() >> (2 * (f - 1));
     }
     if (thin)
       while (drawn.keep > 1.0 / 256.0 && double(kept_vertices) * drawn.keep > double(view.motion_budget_vertices))
@@ -221,7 +223,7 @@ DdmDrawn DdmDisplay::draw_shaded(const core::Scene& scene, double time_s, const 
       for (auto& [o, v] : chosen) choose(*o, *v, drawn.keep);
     for (auto& [o, v] : chosen) {
       drawn.instances_culled += v->culled;
-      for (std::uint8_t f : v->selection.drawn) drawn.instances_drawn += f;
+      for (std::uint8_t f : v->selection.drawn) drawn.instances_drawn += f != 0;
     }
   }
   for (const core::SceneObject& o : scene.objects()) {

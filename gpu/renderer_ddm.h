@@ -64,7 +64,7 @@ class DdmDisplay {
     DdmSelection selection;
     std::size_t culled = 0;
     glm::dmat4 key_view_proj{0.0}, key_model{0.0};  // what `selection` was made for
-    double key_keep = -1.0, key_margin = 0.0;
+    double key_keep = -1.0, key_margin = 0.0, key_pixels = -1.0;
     bool key_cull = false;
     std::uint64_t frame = 0;  // the frame it is valid for
   };

@@ -201,6 +201,10 @@ struct DdmViewOptions {
   // instances thinned to a power-of-two share (1/2, 1/4, …) of them. 0: never thinned.
   bool moving = false;
   std::size_t motion_budget_vertices = 0;
+  // With `cull`, the screen-size LOD: pixels one world unit spans at clip w = 1 (projection[1][1] × viewport height
+  // ÷ 2), so a tile a few dozen pixels across is drawn from a decimated copy (gpu/ddm_cull.h kDdmLodPixels,
+  // gpu/ddm_gl.h kDdmLodLevels). 0: every drawn tile at full detail.
+  double pixels_per_unit = 0.0;
 };
 
 // The editor's motion budgets (DdmViewOptions::motion_budget_vertices): tile vertices a moving frame draws at most on a

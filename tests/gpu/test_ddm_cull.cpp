@@ -4,6 +4,8 @@
 // one (frustum: pixel for pixel; with the facing-away cone: within a few pixels), the thinned one draws a power-of-two
 // share under the budget, and the stats count what was left out.
 #include <cstdio>
+#include <cstdlib>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "core/commands/ddm_commands.h"
 #include "core/scene/primitives.h"
@@ -37,17 +39,26 @@ core::Camera camera(glm::dvec3 eye, glm::dvec3 target, int w = 320, int h = 240)
 
 std::vector<core::Camera> views() {
   // The teapot primitive spans about [-0.9, 0.9] × [0, 0.8] × [-0.6, 0.6].
-  return {camera({0, 1, 3}, {0, 0.4, 0}),          // the whole pot
-          camera({2, 1.2, 1.5}, {0, 0.4, 0}),      // from the side, above
+  return {camera({0, 1, 3}, {0, 0.4, 0}),           // the whole pot
+          camera({2, 1.2, 1.5}, {0, 0.4, 0}),       // from the side, above
           camera({0.5, 0.6, 1.0}, {0.6, 0.45, 0}),  // close: most of the pot out of view
-          camera({0, 0.5, 0.1}, {1, 0.4, 0}),      // inside the pot, looking at its wall
-          camera({0, -1.5, 1}, {0, 0.4, 0})};      // from below
+          camera({0, 0.5, 0.1}, {1, 0.4, 0}),       // inside the pot, looking at its wall
+          camera({0, -1.5, 1}, {0, 0.4, 0})};       // from below
 }
 
 int count_different(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b) {
   int n = 0;
   for (std::size_t i = 0; i + 3 < a.size() && i + 3 < b.size(); i += 4)
     n += a[i] != b[i] || a[i + 1] != b[i + 1] || a[i + 2] != b[i + 2];
+  return n;
+}
+
+// Pixels whose colour differs by more than `tolerance` (of 255) in some channel.
+int count_different_by(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b, int tolerance) {
+  int n = 0;
+  for (std::size_t i = 0; i + 3 < a.size() && i + 3 < b.size(); i += 4)
+    n += std::abs(a[i] - b[i]) > tolerance || std::abs(a[i + 1] - b[i + 1]) > tolerance ||
+         std::abs(a[i + 2] - b[i + 2]) > tolerance;
   return n;
 }
 
@@ -123,9 +134,10 @@ TEST_F(DdmCullTest, CulledAndThinnedRendersMatchTheFullOne) {
     const std::vector<unsigned char> c = render(renderer, scene, cam, culled);
     const RenderStats cs = renderer.last_stats();
     const int pixels = cam.viewport.x * cam.viewport.y;
-    std::printf("[ddm cull render] eye (%g, %g, %g): frustum drew %zu, +facing away %zu of %zu; %d / %d pixels differ\n",
-                cam.eye.x, cam.eye.y, cam.eye.z, fs.ddm_instances_drawn, cs.ddm_instances_drawn, instances,
-                count_different(a, b), count_different(a, c));
+    std::printf(
+        "[ddm cull render] eye (%g, %g, %g): frustum drew %zu, +facing away %zu of %zu; %d / %d pixels differ\n",
+        cam.eye.x, cam.eye.y, cam.eye.z, fs.ddm_instances_drawn, cs.ddm_instances_drawn, instances,
+        count_different(a, b), count_different(a, c));
     EXPECT_EQ(fs.ddm_instances, instances);
     EXPECT_EQ(fs.ddm_instances_drawn + fs.ddm_instances_culled, instances);
     EXPECT_EQ(fs.ddm_vertices, fs.ddm_instances_drawn * tile_vertices);
@@ -152,6 +164,51 @@ TEST_F(DdmCullTest, CulledAndThinnedRendersMatchTheFullOne) {
   render(renderer, scene, cam, culled);
   EXPECT_EQ(renderer.last_stats().ddm_keep, 1.0);
   EXPECT_GT(renderer.last_stats().ddm_instances_drawn, ms.ddm_instances_drawn);
+}
+
+TEST(DdmCull, LevelOfDetailFollowsTheSizeOnScreen) {
+  // Spheres 10 units in front of the eye, 100, 30 and 10 pixels across with 100 pixels per unit at w = 1.
+  DdmInstanceBounds b;
+  for (double px : {100.0, 30.0, 10.0}) b.spheres.push_back({0.0f, 0.0f, -10.0f, float(px * 10.0 / 200.0)});
+  b.normals.assign(3, {0.0f, 0.0f, 1.0f});
+  b.lo = glm::dvec3(-6.0, -6.0, -16.0), b.hi = glm::dvec3(6.0, 6.0, -4.0);
+  DdmCullView v;
+  v.view_proj = glm::perspective(glm::radians(60.0), 1.0, 0.1, 100.0);
+  v.frustum = false;
+  DdmCuller off(b, v);
+  for (std::size_t k = 0; k < 3; ++k) EXPECT_EQ(off.level(k), 0) << "no screen-size LOD without pixels_per_unit";
+  v.pixels_per_unit = 100.0;
+  DdmCuller lod(b, v);
+  EXPECT_EQ(lod.level(0), 0);  // 100 px ≥ kDdmLodPixels[0]
+  EXPECT_EQ(lod.level(1), 1);  // 30 px
+  EXPECT_EQ(lod.level(2), 2);  // 10 px
+}
+
+TEST_F(DdmCullTest, ScreenSizeLodDrawsFewerVerticesAndTheSamePicture) {
+  core::Scene scene;
+  scene.insert(thorny_teapot());
+  Renderer renderer;
+  ViewOptions culled;
+  culled.ddm.cull = true;
+  for (const int height : {240, 960}) {
+    const core::Camera cam = camera({0, 1, 3}, {0, 0.4, 0}, height * 4 / 3, height);
+    ViewOptions lod = culled;
+    lod.ddm.pixels_per_unit = cam.projection_matrix()[1][1] * height * 0.5;
+    const std::vector<unsigned char> a = render(renderer, scene, cam, culled);
+    const RenderStats full = renderer.last_stats();
+    const std::vector<unsigned char> b = render(renderer, scene, cam, lod);
+    const RenderStats coarse = renderer.last_stats();
+    const int pixels = cam.viewport.x * cam.viewport.y;
+    std::printf(
+        "[ddm screen lod] %d px high: %zu → %zu tile vertices for %zu tiles; of %d pixels %d differ, %d by more than "
+        "16, %d by more than 64 levels\n",
+        height, full.ddm_vertices, coarse.ddm_vertices, coarse.ddm_instances_drawn, pixels, count_different(a, b),
+        count_different_by(a, b, 16), count_different_by(a, b, 64));
+    EXPECT_EQ(coarse.ddm_instances_drawn, full.ddm_instances_drawn) << "the same tiles, coarser";
+    // 240 pixels high: the thorns are 5–20 pixels across (level 1 and 2); 960: most are over 64 (level 0).
+    EXPECT_LT(coarse.ddm_vertices, height == 240 ? full.ddm_vertices / 4 : full.ddm_vertices);
+    EXPECT_LE(count_different_by(a, b, 64), pixels / 200) << "a coarser tile only where it is small on screen";
+  }
 }
 
 }  // namespace
