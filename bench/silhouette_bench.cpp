@@ -91,34 +91,70 @@ nlohmann::json run_silhouette_benchmark(const SilhouetteBenchOptions& o) {
                         {"polylines", r.polylines.size()},
                         {"length_mm", r.length_mm}});
   }
+  nlohmann::json orbit;
+  if (o.orbit) {
+    SilhouetteParams editor = params;
+    editor.hidden_test = true;
+    editor.seed_hidden = false;
+    std::vector<double> ms;
+    std::vector<std::size_t> pts, visible_pts;
+    nlohmann::json views = nlohmann::json::array();
+    for (int v = 0; v < 36; ++v) {
+      const double az = 10.0 * v * 3.14159265358979323846 / 180.0;
+      SilhouetteView view;
+      view.eye = centre + 2.2 * radius *
+                              glm::dvec3(std::cos(elevation) * std::cos(az), std::cos(elevation) * std::sin(az),
+                                         std::sin(elevation));
+      const SilhouetteResult r = extract_silhouettes(spline, table, o.iso, view, editor);
+      std::size_t seen = 0;
+      for (const SilhouettePolyline& pl : r.polylines)
+        for (unsigned char f : pl.visible) seen += f;
+      ms.push_back(r.extract_ms + r.hidden_ms);
+      pts.push_back(r.points);
+      visible_pts.push_back(seen);
+      views.push_back({{"azimuth_deg", 10.0 * v},
+                       {"view_ms", ms.back()},
+                       {"points", r.points},
+                       {"visible_points", seen},
+                       {"polylines", r.polylines.size()},
+                       {"hidden_cells", r.hidden_cells}});
+    }
+    orbit = {{"orbit_median_view_ms", median(ms)},
+             {"orbit_max_view_ms", *std::max_element(ms.begin(), ms.end())},
+             {"orbit_points_per_view", median(pts)},
+             {"orbit_visible_points_per_view", median(visible_pts)},
+             {"orbit_views", views}};
+  }
   glm::dvec3 spacing;
   for (int a = 0; a < 3; ++a) spacing[a] = glm::length(glm::dvec3(volume.index_to_world[a]));
-  return {{"bench", "silhouettes"},
-          {"volume", o.volume_path},
-          {"iso", o.iso},
-          {"order", o.order},
-          {"subdivision", o.subdivision},
-          {"accuracy", o.accuracy},
-          {"dims", {volume.dims[0], volume.dims[1], volume.dims[2]}},
-          {"spacing_mm", {spacing.x, spacing.y, spacing.z}},
-          {"threads", tbb::info::default_concurrency()},
-          {"load_s", load_s},
-          {"prep_s", prep_s},
-          {"table_mb", table.memory_bytes() / 1048576.0},
-          {"prep_rss_mb", prep_rss},
-          {"peak_rss_mb", peak_rss_mb()},
-          {"views", o.views},
-          {"median_view_ms", median(view_ms)},
-          {"max_view_ms", *std::max_element(view_ms.begin(), view_ms.end())},
-          {"median_extract_ms", median(extract_ms)},
-          {"median_hidden_ms", median(hidden_ms)},
-          {"points_per_view", median(points)},
-          {"candidates_per_view", median(candidates)},
-          {"seeds_per_view", median(seeds)},
-          {"length_mm_per_view", median(length)},
-          {"max_value_residual", max_value},
-          {"max_dot_residual", max_dot},
-          {"per_view", per_view}};
+  nlohmann::json out = {{"bench", "silhouettes"},
+                        {"volume", o.volume_path},
+                        {"iso", o.iso},
+                        {"order", o.order},
+                        {"subdivision", o.subdivision},
+                        {"accuracy", o.accuracy},
+                        {"dims", {volume.dims[0], volume.dims[1], volume.dims[2]}},
+                        {"spacing_mm", {spacing.x, spacing.y, spacing.z}},
+                        {"threads", tbb::info::default_concurrency()},
+                        {"load_s", load_s},
+                        {"prep_s", prep_s},
+                        {"table_mb", table.memory_bytes() / 1048576.0},
+                        {"prep_rss_mb", prep_rss},
+                        {"peak_rss_mb", peak_rss_mb()},
+                        {"views", o.views},
+                        {"median_view_ms", median(view_ms)},
+                        {"max_view_ms", *std::max_element(view_ms.begin(), view_ms.end())},
+                        {"median_extract_ms", median(extract_ms)},
+                        {"median_hidden_ms", median(hidden_ms)},
+                        {"points_per_view", median(points)},
+                        {"candidates_per_view", median(candidates)},
+                        {"seeds_per_view", median(seeds)},
+                        {"length_mm_per_view", median(length)},
+                        {"max_value_residual", max_value},
+                        {"max_dot_residual", max_dot},
+                        {"per_view", per_view}};
+  if (o.orbit) out.update(orbit);
+  return out;
 }
 
 }  // namespace trispline::core

@@ -22,14 +22,19 @@ struct SilhouetteBenchOptions {
   int subdivision = 1;                                   // SilhouetteParams::subdivision
   double accuracy = 1e-7;                                // SilhouetteParams::accuracy
   bool hidden = true;                                    // time the hidden-line test too
+  // Also orbit as the editor does with Hidden lines "remove": 36 views 10° apart on the same circle, hidden cells
+  // seeding nothing (SilhouetteParams::seed_hidden = false).
+  bool orbit = false;
 };
 
 // Result: {bench:"silhouettes", volume, iso, order, dims [nx,ny,nz], spacing_mm [..], threads, load_s, prep_s,
 //          table_mb, peak_rss_mb, views, median_view_ms, max_view_ms, median_extract_ms, median_hidden_ms,
 //          points_per_view (median), candidates_per_view (median), seeds_per_view (median), length_mm_per_view
 //          (median), max_value_residual, max_dot_residual, per_view [{azimuth_deg, extract_ms, hidden_ms, points,
-//          polylines, length_mm}]}. peak_rss_mb: the process's peak after the last view; prep_rss_mb: after
-//          preprocessing.
+//          polylines, length_mm}]}; with `orbit` also orbit_median_view_ms, orbit_max_view_ms,
+//          orbit_points_per_view, orbit_visible_points_per_view (medians) and orbit_views [{azimuth_deg, view_ms,
+//          points, visible_points, polylines, hidden_cells}]. peak_rss_mb: the process's peak after the last view;
+//          prep_rss_mb: after preprocessing.
 // Throws std::invalid_argument on bad options and what load_volume throws on a bad file.
 nlohmann::json run_silhouette_benchmark(const SilhouetteBenchOptions& options);
 

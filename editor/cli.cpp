@@ -188,6 +188,16 @@ void print_silhouette_table(const nlohmann::json& r, std::ostream& out) {
       << bench_fixed(r["median_hidden_ms"].get<double>(), 1) << "), max "
       << bench_fixed(r["max_view_ms"].get<double>(), 1) << " ms; residuals |D-c|/range "
       << r["max_value_residual"].get<double>() << ", |G.V| " << r["max_dot_residual"].get<double>() << "\n";
+  if (!r.contains("orbit_views")) return;
+  out << "  orbit, 36 views 10 deg apart, hidden cells seeding nothing (Hidden lines \"remove\")\n"
+      << "  view  view_ms  points  visible  polylines  hidden_cells\n";
+  for (const auto& v : r["orbit_views"])
+    out << "  " << std::setw(4) << bench_fixed(v["azimuth_deg"].get<double>(), 0) << std::setw(9)
+        << bench_fixed(v["view_ms"].get<double>(), 1) << std::setw(8) << v["points"].get<std::size_t>() << std::setw(9)
+        << v["visible_points"].get<std::size_t>() << std::setw(11) << v["polylines"].get<std::size_t>()
+        << std::setw(14) << v["hidden_cells"].get<std::size_t>() << "\n";
+  out << "  orbit median view " << bench_fixed(r["orbit_median_view_ms"].get<double>(), 1) << " ms, max "
+      << bench_fixed(r["orbit_max_view_ms"].get<double>(), 1) << " ms\n";
 }
 
 // `trispline bench editor`: per scene the editor's and Blender's frame times, then the recording ratio.
@@ -339,6 +349,9 @@ void add_bench(CLI::App& app, CliRequest& o) {
   o.silhouettes_cmd->add_option("--subdivision", o.silhouettes.subdivision, "Newton seeds per singleton axis")
       ->check(CLI::Range(1, 4));
   o.silhouettes_cmd->add_flag("!--no-hidden", o.silhouettes.hidden, "Skip the hidden-line test");
+  o.silhouettes_cmd->add_flag("--orbit", o.silhouettes.orbit,
+                              "Also orbit as the editor does with hidden lines removed: 36 views 10 degrees apart, "
+                              "hidden cells seeding nothing");
   o.editor_bench_cmd = bench->add_subcommand(
       "editor",
       "The editor's frame times (idle, orbiting) on the default scene, a tiled teapot and a volume with silhouettes, "

@@ -195,6 +195,9 @@ void VolumeUi::update(const core::Scene& shown, const core::Camera& view) {
     }
     core::SilhouetteParams params = v.silhouette.params;
     params.hidden_test = v.silhouette.hidden != "show";
+    // Hidden parts removed: cells behind the surface seed nothing (the same visible curves, a third of the time on
+    // a noisy MRI; docs/decisions.md). Exports and replays keep the complete extraction.
+    params.seed_hidden = v.silhouette.hidden != "remove";
     auto job = std::make_unique<Job>();
     job->volume = v.name;
     job->key = key;

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <vector>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -53,6 +54,8 @@ inline IndexView index_view(const VolumeSpline& spline, const SilhouetteView& vi
   return iv;
 }
 
+class HiddenCells;
+
 // What every solve needs: the spline, the level, the view and the stopping accuracy.
 struct Problem {
   const VolumeSpline& spline;
@@ -62,6 +65,71 @@ struct Problem {
   double range = 1.0;  // range(D) for the relative value residual
   double accuracy = 1e-7;
   glm::dmat3 to_world{1.0};  // linear part of index_to_world
+  // SilhouetteParams::seed_hidden false: the cells the surface hides (they seed nothing, and a trace ends there).
+  const HiddenCells* hidden = nullptr;
+};
+
+// The first crossing of D = iso along from + t·dir, t in [t, t_end] (dir unit, index space), marched in steps of 0.4
+// index units through the cells that can hold the level (the table's macro-cells and singletons skip the rest): the
+// parameter of the first sample past the crossing (so at or beyond it), or −1 when there is none.
+double first_crossing(const VolumeSpline& spline, const SingletonTable& table, double iso, const glm::dvec3& from,
+                      const glm::dvec3& dir, double t, double t_end);
+
+// The cells the iso-surface hides from the eye (SilhouetteParams::seed_hidden = false): the first crossing of
+// D = iso along kN × kN rays — perspective: from the eye over the cone (axis, half-angle < 90°) that holds the grid
+// box; orthographic: parallel to the view over the disc that holds it — and a cell is hidden when its nearest point
+// lies more than kMargin beyond the farthest crossing over the map pixels its bounding sphere covers, plus one pixel
+// around (a ray that misses counts as infinitely far).
+class HiddenCells {
+ public:
+  static constexpr int kN = 192;
+  static constexpr double kMargin = 4.0;  // index units
+
+  // The map for `pb`'s view; `axis`, `half_angle`: the cone of directions from the eye that holds the grid box
+  // (perspective; a half-angle near 90° or more, the eye inside or beside the box, makes no map: usable() false).
+  HiddenCells(const Problem& pb, const glm::dvec3& axis, double half_angle);
+
+  bool usable() const { return !depth_.empty(); }
+
+  // Cells first…last − 1 per axis (a cell, or a block of them).
+  bool hides(const glm::ivec3& first, const glm::ivec3& last) const {
+    const glm::dvec3 lo(pb_.spline.span_begin(first.x), pb_.spline.span_begin(first.y), pb_.spline.span_begin(first.z));
+    const glm::dvec3 size(last - first);
+    return hides(lo + 0.5 * size, 0.5 * glm::length(size));
+  }
+
+  // The ball of radius r (index units) around c.
+  bool hides(const glm::dvec3& c, double r) const {
+    const glm::dvec3 d = c - origin_;
+    const double s = glm::dot(d, a_);
+    double px, py, pr, near;
+    if (pb_.view.perspective) {
+      if (!(s > 2.0 * r + 1.0)) return false;
+      px = glm::dot(d, u_) / s, py = glm::dot(d, v_) / s;
+      // The sphere's footprint in the tangent plane: its angular radius, widened by the plane's stretch off axis.
+      pr = r / (s - r) * (1.0 + px * px + py * py);
+      near = glm::length(d) - r;
+    } else {
+      px = glm::dot(d, u_), py = glm::dot(d, v_), pr = r, near = s - r;
+    }
+    const double to_pixel = 0.5 * kN / scale_;
+    const int i0 = int(std::floor((px - pr) * to_pixel + 0.5 * kN)) - 1,
+              i1 = int(std::floor((px + pr) * to_pixel + 0.5 * kN)) + 1;
+    const int j0 = int(std::floor((py - pr) * to_pixel + 0.5 * kN)) - 1,
+              j1 = int(std::floor((py + pr) * to_pixel + 0.5 * kN)) + 1;
+    if (i0 < 0 || j0 < 0 || i1 >= kN || j1 >= kN) return false;  // at the map's edge: seen, for all we know
+    double farthest = 0.0;
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) farthest = std::max(farthest, depth_[std::size_t(j) * kN + std::size_t(i)]);
+    // Perspective rays measure distance from the eye; orthographic ones depth along the view from the origin plane.
+    return near > farthest + kMargin;
+  }
+
+ private:
+  const Problem& pb_;
+  glm::dvec3 a_{0.0}, u_{0.0}, v_{0.0}, origin_{0.0};
+  double scale_ = 1.0;         // tangent (perspective) or distance (orthographic) at the map's edge
+  std::vector<double> depth_;  // kN × kN first crossings, row j then column i; +∞: none
 };
 
 struct CurvePoint {
@@ -84,7 +152,7 @@ struct NoAbort {
 
 template <class Abort = NoAbort>
 inline bool solve_point(const Problem& pb, glm::dvec3 x, const glm::dvec3& lo, const glm::dvec3& hi, int iterations,
-                 CurvePoint& out, int plane_axis = -1, Abort&& abort = {}) {
+                        CurvePoint& out, int plane_axis = -1, Abort&& abort = {}) {
   const IndexView& view = pb.view;
   double last_step = INFINITY;
   for (int it = 0; it <= iterations; ++it) {
@@ -148,7 +216,7 @@ inline bool cones_admit_orthogonal(const Singleton& s, const glm::dvec3& w, doub
   const double sa = s.sin_half;
   if (sa >= 1.0) return true;
   const double ca = std::sqrt(std::max(0.0, 1.0 - sa * sa));
-  const double sin_sum = sa * c_w + ca * s_w;  // sin(α + γ)
+  const double sin_sum = sa * c_w + ca * s_w;   // sin(α + γ)
   if (ca * c_w - sa * s_w <= 0.0) return true;  // α + γ ≥ 90°
   const double d = std::abs(double(s.axis[0]) * w.x + double(s.axis[1]) * w.y + double(s.axis[2]) * w.z);
   return d <= sin_sum;
@@ -183,12 +251,14 @@ inline bool dot_range_holds_zero(const double* coefs, const glm::dvec3& centre, 
 // the Bézier coefficients (the knot-insertion matrix along each axis), the gradient's raised vector coefficients and
 // their dot products with w, four coefficients (one x-row) at a time. Float rounding is covered by a margin of
 // 1e-4·max|P|·|w|₁ (P the control points), ten times the rounding these few dozen operations can make on the
-// raised derivative coefficients (≲ 12 ulp of max|P| per coefficient, times 6 for the differences), so a cell it rejects would be rejected in
-// double precision too; a cell it passes goes on to the exact tests.
+// raised derivative coefficients (≲ 12 ulp of max|P| per coefficient, times 6 for the differences), so a cell it
+// rejects would be rejected in double precision too; a cell it passes goes on to the exact tests.
 class CubicHullTest {
  public:
   CubicHullTest(const VolumeSpline& spline, const IndexView& view)
-      : spline_(spline), view_(view), max_abs_(std::max(std::abs(spline.control_min()), std::abs(spline.control_max()))) {
+      : spline_(spline),
+        view_(view),
+        max_abs_(std::max(std::abs(spline.control_min()), std::abs(spline.control_max()))) {
     const auto& m = spline.to_bezier();
     for (int a = 0; a < 4; ++a)
       for (int r = 0; r < 4; ++r) m_[a][r] = static_cast<float>(m[a * 4 + r]);
@@ -221,7 +291,8 @@ class CubicHullTest {
     for (int z = 0; z < 4; ++z)
       for (int y = 0; y < 4; ++y) p[z][y] = along_x(p[z][y]);
     // Raised derivative vectors e_k = k·Δ_{k−1} + (3 − k)·Δ_k along each axis, dotted with w.
-    const glm::dvec3 wc = view_.w(glm::dvec3(spline_.span_begin(a), spline_.span_begin(b), spline_.span_begin(c)) + 0.5);
+    const glm::dvec3 wc =
+        view_.w(glm::dvec3(spline_.span_begin(a), spline_.span_begin(b), spline_.span_begin(c)) + 0.5);
     const __m128 wx = _mm_set1_ps(static_cast<float>(wc.x)), wy = _mm_set1_ps(static_cast<float>(wc.y)),
                  wz = _mm_set1_ps(static_cast<float>(wc.z));
     const __m128 up = _mm_setr_ps(0.f, 1.f, 2.f, 3.f), down = _mm_setr_ps(3.f, 2.f, 1.f, 0.f);
@@ -253,11 +324,10 @@ class CubicHullTest {
   }
   // The knot-insertion matrix applied inside one x-row: out[a] = Σ_r m[a][r]·v[r].
   __m128 along_x(__m128 v) const {
-    return _mm_add_ps(
-        _mm_add_ps(_mm_mul_ps(_mm_shuffle_ps(v, v, _MM_SHUFFLE(0, 0, 0, 0)), column_[0]),
-                   _mm_mul_ps(_mm_shuffle_ps(v, v, _MM_SHUFFLE(1, 1, 1, 1)), column_[1])),
-        _mm_add_ps(_mm_mul_ps(_mm_shuffle_ps(v, v, _MM_SHUFFLE(2, 2, 2, 2)), column_[2]),
-                   _mm_mul_ps(_mm_shuffle_ps(v, v, _MM_SHUFFLE(3, 3, 3, 3)), column_[3])));
+    return _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_shuffle_ps(v, v, _MM_SHUFFLE(0, 0, 0, 0)), column_[0]),
+                                 _mm_mul_ps(_mm_shuffle_ps(v, v, _MM_SHUFFLE(1, 1, 1, 1)), column_[1])),
+                      _mm_add_ps(_mm_mul_ps(_mm_shuffle_ps(v, v, _MM_SHUFFLE(2, 2, 2, 2)), column_[2]),
+                                 _mm_mul_ps(_mm_shuffle_ps(v, v, _MM_SHUFFLE(3, 3, 3, 3)), column_[3])));
   }
   // e_k along y (rows[k]) and z (p[k][y]) with k the row's index: k·(r_k − r_{k−1}) + (3 − k)·(r_{k+1} − r_k).
   static __m128 raised(const __m128* rows, int k) {
@@ -332,16 +402,22 @@ inline void seed_cell(const Problem& pb, int a, int b, int c, int subdivision, b
   };
   double zslab[n], yrow[n], sub[n];
   for (int sz = 0; sz < s; ++sz) {
-    if (s > 1) bezier_cell::apply<K>(restrict[sz], bez, zslab, 2);
-    else std::copy(bez, bez + n, zslab);
+    if (s > 1)
+      bezier_cell::apply<K>(restrict[sz], bez, zslab, 2);
+    else
+      std::copy(bez, bez + n, zslab);
     if (s > 1 && !holds_iso(zslab)) continue;
     for (int sy = 0; sy < s; ++sy) {
-      if (s > 1) bezier_cell::apply<K>(restrict[sy], zslab, yrow, 1);
-      else std::copy(zslab, zslab + n, yrow);
+      if (s > 1)
+        bezier_cell::apply<K>(restrict[sy], zslab, yrow, 1);
+      else
+        std::copy(zslab, zslab + n, yrow);
       if (s > 1 && !holds_iso(yrow)) continue;
       for (int sx = 0; sx < s; ++sx) {
-        if (s > 1) bezier_cell::apply<K>(restrict[sx], yrow, sub, 0);
-        else std::copy(yrow, yrow + n, sub);
+        if (s > 1)
+          bezier_cell::apply<K>(restrict[sx], yrow, sub, 0);
+        else
+          std::copy(yrow, yrow + n, sub);
         if (!holds_iso(sub)) continue;
         const glm::dvec3 centre = origin + glm::dvec3(sx + 0.5, sy + 0.5, sz + 0.5) * h;
         if (s > 1 && !dot_range_holds_zero<K>(sub, centre, pb.view)) continue;
@@ -354,9 +430,12 @@ inline void seed_cell(const Problem& pb, int a, int b, int c, int subdivision, b
 template <class Seed>
 inline void seed_cell(const Problem& pb, int a, int b, int c, int subdivision, bool whole_cell_tested, Seed&& seed) {
   switch (pb.spline.order()) {
-    case 2: return seed_cell<2>(pb, a, b, c, subdivision, whole_cell_tested, seed);
-    case 3: return seed_cell<3>(pb, a, b, c, subdivision, whole_cell_tested, seed);
-    default: return seed_cell<4>(pb, a, b, c, subdivision, whole_cell_tested, seed);
+    case 2:
+      return seed_cell<2>(pb, a, b, c, subdivision, whole_cell_tested, seed);
+    case 3:
+      return seed_cell<3>(pb, a, b, c, subdivision, whole_cell_tested, seed);
+    default:
+      return seed_cell<4>(pb, a, b, c, subdivision, whole_cell_tested, seed);
   }
 }
 

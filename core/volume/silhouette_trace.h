@@ -3,9 +3,8 @@
 #pragma once
 
 #include <cstdint>
-#include <vector>
-
 #include <glm/glm.hpp>
+#include <vector>
 
 #include "core/volume/silhouette_seeds.h"
 
@@ -27,9 +26,10 @@ struct BlockScratch {
     std::int32_t trace, next;
     std::int32_t order;  // the point's number in its trace (in the order traced)
   };
-  std::vector<std::int32_t> head;       // per local cell: first Entry of the cell, −1 none
-  std::vector<unsigned char> visited;   // per local cell: a trace crossed it
-  std::vector<std::uint32_t> touched;   // local cells to reset
+  std::vector<std::int32_t> head;      // per local cell: first Entry of the cell, −1 none
+  std::vector<unsigned char> visited;  // per local cell: a trace crossed it
+  std::vector<unsigned char> hidden;   // per local cell: 0 not asked yet, 1 seen, 2 hidden (Problem::hidden)
+  std::vector<std::uint32_t> touched;  // local cells to reset
   std::vector<Entry> entries;
   void reset() {
     for (std::uint32_t c : touched) head[c] = -1, visited[c] = 0;
@@ -53,12 +53,21 @@ class BlockTracer {
     const std::size_t cells = static_cast<std::size_t>(kBlock) * kBlock * kBlock;
     if (s_.head.size() != cells) s_.head.assign(cells, -1), s_.visited.assign(cells, 0);
     s_.reset();
+    if (pb.hidden) s_.hidden.assign(cells, 0);
   }
   ~BlockTracer() { s_.reset(); }
 
   std::vector<Trace> traces;
 
   bool visited(const glm::ivec3& cell) const { return s_.visited[local(cell)] != 0; }
+
+  // Whether Problem::hidden hides `cell` (a cell of this block; asked once per cell and block). False without it.
+  bool hidden(const glm::ivec3& cell) {
+    if (!pb_.hidden) return false;
+    unsigned char& h = s_.hidden[local(cell)];
+    if (h == 0) h = pb_.hidden->hides(cell, cell + 1) ? 2 : 1;
+    return h == 2;
+  }
 
   // A traced point within r (≤ 1) index units of x — of another trace than `own`, or of trace `own` numbered below
   // `own_before` — or null.
@@ -87,8 +96,7 @@ class BlockTracer {
   glm::ivec3 cell_of(const glm::dvec3& x) const {
     glm::ivec3 c;
     const double shift = pb_.spline.span_begin(0);
-    for (int a = 0; a < 3; ++a)
-      c[a] = std::clamp(static_cast<int>(std::floor(x[a] - shift)), first_[a], last_[a] - 1);
+    for (int a = 0; a < 3; ++a) c[a] = std::clamp(static_cast<int>(std::floor(x[a] - shift)), first_[a], last_[a] - 1);
     return c;
   }
 
@@ -212,6 +220,8 @@ class BlockTracer {
         }
         return End::joined;
       }
+      // Behind the surface (Problem::hidden): the curve is not drawn from here on, so it is not traced further.
+      if (hidden(cell_of(q.x))) return End::failed;
       visit_segment(x, q.x);
       add_point(q.x, id);
       out.push_back(q);

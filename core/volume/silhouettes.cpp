@@ -1,14 +1,14 @@
 #include "core/volume/silhouettes.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <optional>
 #include <stdexcept>
-
-#include <tbb/blocked_range.h>
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
 
 #include "core/volume/silhouette_seeds.h"
 #include "core/volume/silhouette_trace.h"
@@ -40,6 +40,52 @@ void check_params(double iso, const SilhouetteView& view, const SilhouetteParams
 
 }  // namespace
 
+namespace silhouette_detail {
+
+HiddenCells::HiddenCells(const Problem& pb, const glm::dvec3& axis, double half_angle) : pb_(pb) {
+  const glm::dvec3 hi(pb.spline.dims()[0] - 1, pb.spline.dims()[1] - 1, pb.spline.dims()[2] - 1);
+  const glm::dvec3 centre = 0.5 * hi;
+  const double radius = 0.5 * glm::length(hi) + 1.0;
+  a_ = pb.view.perspective ? axis : pb.view.v;
+  const glm::dvec3 other = std::abs(a_.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+  u_ = glm::normalize(glm::cross(a_, other));
+  v_ = glm::cross(a_, u_);
+  if (pb.view.perspective) {
+    if (!(half_angle < 0.45 * kPi)) return;  // the eye inside or next to the box: no map
+    scale_ = std::tan(half_angle);
+    origin_ = pb.view.eye;
+  } else {
+    scale_ = radius;
+    origin_ = centre - (radius + 1.0) * a_;
+  }
+  depth_.assign(std::size_t(kN) * kN, INFINITY);
+  tbb::parallel_for(0, kN, [&](int j) {
+    for (int i = 0; i < kN; ++i) {
+      const double x = ((i + 0.5) / kN * 2.0 - 1.0) * scale_, y = ((j + 0.5) / kN * 2.0 - 1.0) * scale_;
+      glm::dvec3 from = origin_, dir = a_;
+      if (pb_.view.perspective)
+        dir = glm::normalize(a_ + x * u_ + y * v_);
+      else
+        from = origin_ + x * u_ + y * v_;
+      // The ray's span inside the grid box (slabs).
+      double t0 = 0.0, t1 = INFINITY;
+      for (int c = 0; c < 3; ++c) {
+        if (dir[c] == 0.0) {
+          if (from[c] < 0.0 || from[c] > hi[c]) t1 = -1.0;
+          continue;
+        }
+        const double ta = (0.0 - from[c]) / dir[c], tb = (hi[c] - from[c]) / dir[c];
+        t0 = std::max(t0, std::min(ta, tb)), t1 = std::min(t1, std::max(ta, tb));
+      }
+      if (!(t0 < t1)) continue;
+      const double t = first_crossing(pb_.spline, pb_.table, pb_.iso, from, dir, t0, t1);
+      if (t >= 0.0) depth_[std::size_t(j) * kN + std::size_t(i)] = t;
+    }
+  });
+}
+
+}  // namespace silhouette_detail
+
 SilhouetteResult extract_silhouettes(const VolumeSpline& spline, const SingletonTable& table, double iso,
                                      const SilhouetteView& view, const SilhouetteParams& params) {
   check_params(iso, view, params);
@@ -48,13 +94,13 @@ SilhouetteResult extract_silhouettes(const VolumeSpline& spline, const Singleton
       throw std::invalid_argument("the singleton table was built for another volume spline");
   const auto t0 = std::chrono::steady_clock::now();
   SilhouetteResult result;
-  const Problem pb{spline,
-                   table,
-                   index_view(spline, view),
-                   iso,
-                   std::max(spline.control_max() - spline.control_min(), 1e-30),
-                   params.accuracy,
-                   glm::dmat3(spline.index_to_world())};
+  Problem pb{spline,
+             table,
+             index_view(spline, view),
+             iso,
+             std::max(spline.control_max() - spline.control_min(), 1e-30),
+             params.accuracy,
+             glm::dmat3(spline.index_to_world())};
   const IndexView& iv = pb.view;
   // The directions w can take over the grid box: one cone (axis, half-angle) for the bin filter.
   glm::dvec3 w_axis = iv.v;
@@ -67,6 +113,14 @@ SilhouetteResult extract_silhouettes(const VolumeSpline& spline, const Singleton
     const double dist = glm::length(d);
     w_axis = dist > 0.0 ? d / dist : glm::dvec3(0.0, 0.0, 1.0);
     w_half = dist > radius ? std::asin(radius / dist) : kPi;
+  }
+  std::optional<HiddenCells> hidden;
+  if (!params.seed_hidden) {
+    hidden.emplace(pb, w_axis, w_half);
+    if (hidden->usable())
+      pb.hidden = &*hidden;
+    else
+      hidden.reset();
   }
   const std::vector<std::uint32_t> bins = table.cells_holding(iso, w_axis, w_half, SingletonTable::CellOrder::by_bin);
   // The candidates by block (in the table's order within a block: the bucketing is stable).
@@ -83,20 +137,39 @@ SilhouetteResult extract_silhouettes(const VolumeSpline& spline, const Singleton
            blocks.x * (static_cast<std::size_t>(c.y / kBlock) + blocks.y * static_cast<std::size_t>(c.z / kBlock));
   };
   std::vector<std::uint32_t> block_begin(block_count + 1, 0), by_block(bins.size()), block_id(bins.size());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, bins.size(), 4096), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t e = r.begin(); e != r.end(); ++e) block_id[e] = static_cast<std::uint32_t>(block_of(cell_coords(bins[e])));
-  });
-  for (std::uint32_t b : block_id) ++block_begin[b + 1];
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, bins.size(), 4096),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t e = r.begin(); e != r.end(); ++e)
+                        block_id[e] = static_cast<std::uint32_t>(block_of(cell_coords(bins[e])));
+                    });
+  // Blocks wholly behind the surface (seed_hidden false) take no candidates.
+  std::vector<unsigned char> block_hidden(block_count, 0);
+  if (hidden)
+    tbb::parallel_for(std::size_t(0), block_count, [&](std::size_t blk) {
+      const glm::ivec3 bc(static_cast<int>(blk % blocks.x), static_cast<int>((blk / blocks.x) % blocks.y),
+                          static_cast<int>(blk / (static_cast<std::size_t>(blocks.x) * blocks.y)));
+      const glm::ivec3 first = bc * kBlock;
+      block_hidden[blk] = hidden->hides(first, glm::min(first + kBlock, glm::ivec3(dims[0], dims[1], dims[2])));
+    });
+  std::size_t in_hidden_blocks = 0;
+  for (std::uint32_t b : block_id) {
+    if (block_hidden[b]) {
+      ++in_hidden_blocks;
+      continue;
+    }
+    ++block_begin[b + 1];
+  }
   for (std::size_t b = 0; b < block_count; ++b) block_begin[b + 1] += block_begin[b];
   {
     std::vector<std::uint32_t> fill(block_begin.begin(), block_begin.end() - 1);
-    for (std::size_t e = 0; e < bins.size(); ++e) by_block[fill[block_id[e]]++] = bins[e];
+    for (std::size_t e = 0; e < bins.size(); ++e)
+      if (!block_hidden[block_id[e]]) by_block[fill[block_id[e]]++] = bins[e];
   }
   // Each block: the exact per-singleton cone test (cell-sized view cone in perspective), then seeds, Newton and
   // tracing, skipping cells a trace has already crossed. Blocks write to their own slots (deterministic for any
   // thread count).
   std::vector<std::vector<Trace>> block_traces(block_count);
-  std::vector<std::size_t> cand(block_count, 0), seeds(block_count, 0);
+  std::vector<std::size_t> cand(block_count, 0), seeds(block_count, 0), hidden_cells(block_count, 0);
   const auto& singles = table.singletons();
   tbb::enumerable_thread_specific<BlockScratch> scratch;
 #if defined(__SSE2__)
@@ -133,6 +206,10 @@ SilhouetteResult extract_silhouettes(const VolumeSpline& spline, const Singleton
         }
       }
       if (s_w < 1.0 && !cones_admit_orthogonal(s, w, s_w, c_w)) continue;
+      if (tracer.hidden(c)) {
+        ++hidden_cells[blk];
+        continue;
+      }
       ++cand[blk];
       const glm::dvec3 cell_lo(spline.span_begin(c.x), spline.span_begin(c.y), spline.span_begin(c.z));
       bool whole_cell_tested = false;
@@ -161,8 +238,10 @@ SilhouetteResult extract_silhouettes(const VolumeSpline& spline, const Singleton
   for (std::size_t b = 0; b < block_count; ++b) {
     result.candidates += cand[b];
     result.seeds += seeds[b];
+    result.hidden_cells += hidden_cells[b];
     for (Trace& t : block_traces[b]) traces.push_back(std::move(t));
   }
+  result.hidden_cells += in_hidden_blocks;
   for (const Chain& chain : join_traces(traces)) {
     SilhouettePolyline pl;
     std::vector<const CurvePoint*> pts;
@@ -200,6 +279,7 @@ SilhouetteResult extract_silhouettes(const VolumeSpline& spline, const Singleton
     constexpr std::size_t kStride = 4;
     auto occluded = [&](const SilhouettePolyline& pl, std::size_t i) {
       const glm::dvec3 x(spline.world_to_index() * glm::dvec4(pl.points[i], 1.0));
+      if (hidden && hidden->hides(x, 0.0)) return 0;  // well behind the map's first crossings
       return iso_occluded(spline, table, iso, view, x) ? 0 : 1;
     };
     // The tested points of all polylines as one list (a few polylines hold most points: splitting by polyline would
@@ -210,20 +290,21 @@ SilhouetteResult extract_silhouettes(const VolumeSpline& spline, const Singleton
       for (std::size_t i = 0; i < n; i += kStride) tested.emplace_back(std::uint32_t(k), std::uint32_t(i));
       if ((n - 1) % kStride != 0) tested.emplace_back(std::uint32_t(k), std::uint32_t(n - 1));
     }
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tested.size(), 64), [&](const tbb::blocked_range<std::size_t>& r) {
-      for (std::size_t e = r.begin(); e != r.end(); ++e) {
-        SilhouettePolyline& pl = result.polylines[tested[e].first];
-        pl.visible[tested[e].second] = static_cast<unsigned char>(occluded(pl, tested[e].second));
-      }
-    });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tested.size(), 64),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t e = r.begin(); e != r.end(); ++e) {
+                          SilhouettePolyline& pl = result.polylines[tested[e].first];
+                          pl.visible[tested[e].second] = static_cast<unsigned char>(occluded(pl, tested[e].second));
+                        }
+                      });
     tbb::parallel_for(std::size_t(0), result.polylines.size(), [&](std::size_t k) {
       SilhouettePolyline& pl = result.polylines[k];
       const std::size_t n = pl.points.size();
       for (std::size_t prev = 0; prev + 1 < n;) {
         const std::size_t next = std::min(prev + kStride, n - 1);
         for (std::size_t i = prev + 1; i < next; ++i)
-          pl.visible[i] = pl.visible[prev] == pl.visible[next] ? pl.visible[prev]
-                                                                : static_cast<unsigned char>(occluded(pl, i));
+          pl.visible[i] =
+              pl.visible[prev] == pl.visible[next] ? pl.visible[prev] : static_cast<unsigned char>(occluded(pl, i));
         prev = next;
       }
     });
@@ -232,22 +313,12 @@ SilhouetteResult extract_silhouettes(const VolumeSpline& spline, const Singleton
   return result;
 }
 
-bool iso_occluded(const VolumeSpline& spline, const SingletonTable& table, double iso, const SilhouetteView& view,
-                  const glm::dvec3& from, double skip) {
-  const IndexView iv = index_view(spline, view);
-  glm::dvec3 dir = iv.perspective ? iv.eye - from : -iv.v;
-  double t_end = iv.perspective ? glm::length(dir) : INFINITY;
-  if (!(glm::length(dir) > 0.0)) return false;
-  dir /= glm::length(dir);
-  // Clip to the grid box.
-  const glm::dvec3 hi(spline.dims()[0] - 1, spline.dims()[1] - 1, spline.dims()[2] - 1);
-  for (int a = 0; a < 3; ++a) {
-    if (dir[a] > 0.0) t_end = std::min(t_end, (hi[a] - from[a]) / dir[a]);
-    else if (dir[a] < 0.0) t_end = std::min(t_end, (0.0 - from[a]) / dir[a]);
-  }
+namespace silhouette_detail {
+
+double first_crossing(const VolumeSpline& spline, const SingletonTable& table, double iso, const glm::dvec3& from,
+                      const glm::dvec3& dir, double t, double t_end) {
   const double step = 0.4;
-  double t = skip;
-  if (!(t < t_end)) return false;
+  if (!(t < t_end)) return -1.0;
   double prev = spline.value(from + t * dir) - iso;
   const auto& md = table.macro_cells();
   const auto& cells = table.cells();
@@ -257,8 +328,10 @@ bool iso_occluded(const VolumeSpline& spline, const SingletonTable& table, doubl
     double exit = INFINITY;
     for (int a = 0; a < 3; ++a) {
       const double lo = first[a] * size + shift, up = lo + size;
-      if (dir[a] > 0.0) exit = std::min(exit, (up - from[a]) / dir[a]);
-      else if (dir[a] < 0.0) exit = std::min(exit, (lo - from[a]) / dir[a]);
+      if (dir[a] > 0.0)
+        exit = std::min(exit, (up - from[a]) / dir[a]);
+      else if (dir[a] < 0.0)
+        exit = std::min(exit, (lo - from[a]) / dir[a]);
     }
     return exit;
   };
@@ -285,12 +358,32 @@ bool iso_occluded(const VolumeSpline& spline, const SingletonTable& table, doubl
     }
     const double tn = std::min(t + step, t_end);
     const double f = spline.value(from + tn * dir) - iso;
-    if ((prev < 0.0) != (f < 0.0)) return true;
+    if ((prev < 0.0) != (f < 0.0)) return tn;
     prev = f;
     t = tn;
     if (tn >= t_end) break;
   }
-  return false;
+  return -1.0;
+}
+
+}  // namespace silhouette_detail
+
+bool iso_occluded(const VolumeSpline& spline, const SingletonTable& table, double iso, const SilhouetteView& view,
+                  const glm::dvec3& from, double skip) {
+  const IndexView iv = index_view(spline, view);
+  glm::dvec3 dir = iv.perspective ? iv.eye - from : -iv.v;
+  double t_end = iv.perspective ? glm::length(dir) : INFINITY;
+  if (!(glm::length(dir) > 0.0)) return false;
+  dir /= glm::length(dir);
+  // Clip to the grid box.
+  const glm::dvec3 hi(spline.dims()[0] - 1, spline.dims()[1] - 1, spline.dims()[2] - 1);
+  for (int a = 0; a < 3; ++a) {
+    if (dir[a] > 0.0)
+      t_end = std::min(t_end, (hi[a] - from[a]) / dir[a]);
+    else if (dir[a] < 0.0)
+      t_end = std::min(t_end, (0.0 - from[a]) / dir[a]);
+  }
+  return first_crossing(spline, table, iso, from, dir, skip, t_end) >= 0.0;
 }
 
 }  // namespace trispline::core

@@ -16,11 +16,10 @@
 
 #include <atomic>
 #include <functional>
+#include <glm/glm.hpp>
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "core/volume/singletons.h"
 #include "core/volume/volume_spline.h"
@@ -30,7 +29,7 @@ namespace trispline::core {
 // The view a silhouette is taken for, in world units (millimetres).
 struct SilhouetteView {
   bool perspective = true;
-  glm::dvec3 eye{0.0};        // perspective: the eye position
+  glm::dvec3 eye{0.0};                   // perspective: the eye position
   glm::dvec3 direction{0.0, 0.0, -1.0};  // orthographic: the viewing direction (need not be unit)
 };
 
@@ -43,27 +42,35 @@ struct SilhouetteParams {
   double accuracy = 1e-7;
   // Test every point for occlusion by the iso-surface (SilhouettePolyline::visible); false leaves every point visible.
   bool hidden_test = true;
+  // false: cells the iso-surface hides from the eye seed nothing, for views that drop hidden parts (the editor with
+  // Hidden lines "remove"). A curve is then traced only when some cell of it may be seen; once seeded it is traced
+  // whole and tested as usual. Hidden means: the cell's nearest point lies more than 4 index units beyond the
+  // farthest first crossing of D = iso over the rays of a coarse 192 × 192 map from the eye around its footprint —
+  // conservative but for openings narrower than the map's spacing (about 1/192 of the volume's extent on screen).
+  // With the eye inside the grid box every cell seeds.
+  bool seed_hidden = true;
 };
 
 // One connected piece of silhouette, world units. The arrays have one entry per point.
 struct SilhouettePolyline {
-  std::vector<glm::dvec3> points;        // #P × 3, millimetres (world)
-  std::vector<float> gradient_norm;      // #P, |∇D| per millimetre (the seed's stroke styles shade by it)
-  std::vector<unsigned char> visible;    // #P, 1 = seen from the eye, 0 = hidden behind the iso-surface
-  bool closed = false;                   // the last point joins the first
+  std::vector<glm::dvec3> points;      // #P × 3, millimetres (world)
+  std::vector<float> gradient_norm;    // #P, |∇D| per millimetre (the seed's stroke styles shade by it)
+  std::vector<unsigned char> visible;  // #P, 1 = seen from the eye, 0 = hidden behind the iso-surface
+  bool closed = false;                 // the last point joins the first
 };
 
 struct SilhouetteResult {
   std::vector<SilhouettePolyline> polylines;
   // Figures of this extraction.
-  std::size_t candidates = 0;         // singletons that passed the range and cone tests
-  std::size_t seeds = 0;              // sub-cells that seeded Newton (traced cells seed nothing)
-  std::size_t points = 0;             // converged points kept (= Σ polyline sizes)
-  double max_value_residual = 0.0;    // max |D − c| / range(D) over the points
-  double max_dot_residual = 0.0;      // max |Ĝ·V̂| over the points (world-space unit vectors)
-  double length_mm = 0.0;             // total polyline length, millimetres
-  double extract_ms = 0.0;            // wall-clock: candidates + seeds + tracing + joining
-  double hidden_ms = 0.0;             // wall-clock: the occlusion test
+  std::size_t candidates = 0;       // singletons that passed the range and cone tests
+  std::size_t seeds = 0;            // sub-cells that seeded Newton (traced cells seed nothing)
+  std::size_t points = 0;           // converged points kept (= Σ polyline sizes)
+  std::size_t hidden_cells = 0;     // candidates that seeded nothing as hidden (SilhouetteParams::seed_hidden)
+  double max_value_residual = 0.0;  // max |D − c| / range(D) over the points
+  double max_dot_residual = 0.0;    // max |Ĝ·V̂| over the points (world-space unit vectors)
+  double length_mm = 0.0;           // total polyline length, millimetres
+  double extract_ms = 0.0;          // wall-clock: candidates + seeds + tracing + joining
+  double hidden_ms = 0.0;           // wall-clock: the occlusion test
 };
 
 // Silhouette of D = `iso` (the volume's units) for `view`. `table` must have been built from `spline`

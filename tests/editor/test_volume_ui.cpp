@@ -144,7 +144,13 @@ TEST_F(VolumeUiTest, LiveSilhouettesFollowTheViewOnAWorker) {
   const auto first = o.overlays.volumes_in_place[0].silhouettes;
   ASSERT_NE(first, nullptr);
   const core::VolumeObject& v = *session.scene().find_volume("torus");
-  const core::SilhouetteResult direct = core::extract_silhouettes(*v.spline, *v.table, v.iso, v.silhouette_view(a));
+  // The command's extraction for this view, with the live view's seeding: hidden lines removed, so hidden cells
+  // seed nothing.
+  core::SilhouetteParams live;
+  live.seed_hidden = v.silhouette.hidden != "remove";
+  EXPECT_FALSE(live.seed_hidden);
+  const core::SilhouetteResult direct =
+      core::extract_silhouettes(*v.spline, *v.table, v.iso, v.silhouette_view(a), live);
   EXPECT_EQ(first->points, direct.points) << "the same extraction as the command's, for this view";
   // Orbit: a new extraction starts; the previous silhouettes are drawn until it is done.
   const core::Camera b = view_from({80.0, -80.0, 70.0});
