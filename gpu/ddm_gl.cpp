@@ -150,6 +150,7 @@ struct DdmGl::LayerGl {
   Buffer selected;                            // the instances of the last DdmSelection, grouped by tile
   std::uint64_t selected_version = 0;         // its version (0: none uploaded yet)
   std::size_t selected_vertices = 0;
+  bool levels_made = false;  // ensure_levels ran (the tiles' `levels` are final)
 
   // Without a partner the tile itself (drawn with α = 0, so V = V1 exactly).
   static TileBuffers buffers(const TileGl& t) {
@@ -286,19 +287,6 @@ DdmGl::LayerGl& DdmGl::layer_for(const std::shared_ptr<const core::DdmLayer>& la
     }
     tile.level_count[0] = tile.index_count;
     tile.level_vertices[0] = std::size_t(tile.vertex_count);
-    // Coarser levels after the full list (untextured tiles; a morph partner takes the same triangles).
-    for (int k = 1; k < kDdmLodLevels && !g->materials; ++k) {
-      const std::size_t target = std::max(kDdmLodMinVertices, mesh.vertex_count() >> (2 * k));
-      if (target >= tile.level_vertices[tile.levels - 1]) break;
-      const std::vector<glm::uvec3> coarse = core::decimated_triangles(mesh, target);
-      const std::size_t used = core::used_vertex_count(coarse, mesh.vertex_count());
-      if (used >= tile.level_vertices[tile.levels - 1]) break;
-      tile.level_first[k] = GLsizei(idx.size());
-      tile.level_count[k] = GLsizei(3 * coarse.size());
-      tile.level_vertices[k] = used;
-      for (const glm::uvec3& t : coarse) idx.insert(idx.end(), {t.x, t.y, t.z});
-      tile.levels = k + 1;
-    }
     if (g->materials) {
       std::vector<float> uv(2 * mesh.vertex_count());
       for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
@@ -388,7 +376,45 @@ void DdmGl::bind_follow(LayerGl& g, const ShaderProgram& p, const DdmFollow& fol
   }
 }
 
+void DdmGl::ensure_levels(LayerGl& g) {
+  if (g.levels_made) return;
+  g.levels_made = true;
+  if (g.materials) return;  // texture-mapped tiles draw their material runs at level 0
+  glBindVertexArray(0);
+  const core::DdmLayer& l = *g.layer;
+  for (std::size_t t = 0; t < l.tiles.size(); ++t) {
+    LayerGl::TileGl& tile = g.tiles[t];
+    if (tile.instance_count == 0 || tile.index_count == 0) continue;
+    const core::TriMesh& mesh = l.tiles[t].mesh;
+    // Untextured: the full list is the tile's triangles in order (one material run). A morph partner takes the
+    // same triangles.
+    std::vector<std::uint32_t> idx;
+    idx.reserve(std::size_t(tile.index_count) * 3 / 2);
+    for (const glm::uvec3& f : mesh.triangles) idx.insert(idx.end(), {f.x, f.y, f.z});
+    for (int k = 1; k < kDdmLodLevels; ++k) {
+      const std::size_t target = std::max(kDdmLodMinVertices, mesh.vertex_count() >> (2 * k));
+      if (target >= tile.level_vertices[tile.levels - 1]) break;
+      const std::vector<glm::uvec3> coarse = core::decimated_triangles(mesh, target);
+      const std::size_t used = core::used_vertex_count(coarse, mesh.vertex_count());
+      if (used >= tile.level_vertices[tile.levels - 1]) break;
+      tile.level_first[k] = GLsizei(idx.size());
+      tile.level_count[k] = GLsizei(3 * coarse.size());
+      tile.level_vertices[k] = used;
+      for (const glm::uvec3& f : coarse) idx.insert(idx.end(), {f.x, f.y, f.z});
+      tile.levels = k + 1;
+    }
+    if (tile.levels == 1) continue;
+    // The same buffer (the tile's vertex arrays keep it as their element buffer), through GL_ARRAY_BUFFER.
+    glBindBuffer(GL_ARRAY_BUFFER, tile.indices.id());
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(idx.size() * sizeof(std::uint32_t)), idx.data(), GL_STATIC_DRAW);
+  }
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  g.selected_version = 0;  // the runs per level are made again
+  check_gl_error("DdmGl: tile levels upload");
+}
+
 void DdmGl::select(LayerGl& g, const DdmSelection& selection) {
+  ensure_levels(g);
   if (selection.version == g.selected_version && g.selected) return;
   const core::DdmLayer& l = *g.layer;
   if (selection.drawn.size() != l.instances.size())

@@ -139,6 +139,9 @@ class DdmGl {
   MapsGl& maps_for(const std::shared_ptr<const core::DdmMaps>& maps);
   LayerGl& layer_for(const std::shared_ptr<const core::DdmLayer>& layer);
   void select(LayerGl& g, const DdmSelection& selection);  // uploads the compacted instances of a new version
+  // The coarser levels of g's untextured tiles, made and uploaded (after each tile's full index list) the first time
+  // a selection asks for them: replays and recordings, which draw whole layers, never pay for the decimation.
+  void ensure_levels(LayerGl& g);
   void set_uniforms(const ShaderProgram& p, const core::DdmLayer& layer, const DdmPose& pose,
                     const glm::dmat4& model) const;
   // Uploads the follow records (grouped order) when changed, points attributes 7–12 at them, sets the FFD uniforms
