@@ -194,8 +194,8 @@ void print_silhouette_table(const nlohmann::json& r, std::ostream& out) {
   for (const auto& v : r["orbit_views"])
     out << "  " << std::setw(4) << bench_fixed(v["azimuth_deg"].get<double>(), 0) << std::setw(9)
         << bench_fixed(v["view_ms"].get<double>(), 1) << std::setw(8) << v["points"].get<std::size_t>() << std::setw(9)
-        << v["visible_points"].get<std::size_t>() << std::setw(11) << v["polylines"].get<std::size_t>()
-        << std::setw(14) << v["hidden_cells"].get<std::size_t>() << "\n";
+        << v["visible_points"].get<std::size_t>() << std::setw(11) << v["polylines"].get<std::size_t>() << std::setw(14)
+        << v["hidden_cells"].get<std::size_t>() << "\n";
   out << "  orbit median view " << bench_fixed(r["orbit_median_view_ms"].get<double>(), 1) << " ms, max "
       << bench_fixed(r["orbit_max_view_ms"].get<double>(), 1) << " ms\n";
 }

@@ -214,7 +214,8 @@ DdmDrawn DdmDisplay::draw_shaded(const core::Scene& scene, double time_s, const 
       choose(*o, *v, 1.0);
       for (std::size_t k = 0; k < v->selection.drawn.size(); ++k)
         if (const int f = v->selection.drawn[k])  // level f − 1 draws about 1/4^(f − 1) of the tile's vertices
-          kept_vertices += v->layer->tiles[std::size_t(v->layer->instances[k].tile)].mesh.vertex_count() >> (2 * (f - 1));
+          kept_vertices +=
+              v->layer->tiles[std::size_t(v->layer->instances[k].tile)].mesh.vertex_count() >> (2 * (f - 1));
     }
     if (thin)
       while (drawn.keep > 1.0 / 256.0 && double(kept_vertices) * drawn.keep > double(view.motion_budget_vertices))
