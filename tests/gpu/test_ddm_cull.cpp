@@ -46,13 +46,6 @@ std::vector<core::Camera> views() {
           camera({0, -1.5, 1}, {0, 0.4, 0})};       // from below
 }
 
-int count_different(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b) {
-  int n = 0;
-  for (std::size_t i = 0; i + 3 < a.size() && i + 3 < b.size(); i += 4)
-    n += a[i] != b[i] || a[i + 1] != b[i + 1] || a[i + 2] != b[i + 2];
-  return n;
-}
-
 // Pixels whose colour differs by more than `tolerance` (of 255) in some channel.
 int count_different_by(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b, int tolerance) {
   int n = 0;
@@ -60,6 +53,10 @@ int count_different_by(const std::vector<unsigned char>& a, const std::vector<un
     n += std::abs(a[i] - b[i]) > tolerance || std::abs(a[i + 1] - b[i + 1]) > tolerance ||
          std::abs(a[i + 2] - b[i + 2]) > tolerance;
   return n;
+}
+
+int count_different(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b) {
+  return count_different_by(a, b, 0);
 }
 
 class DdmCullTest : public GlTest {};
