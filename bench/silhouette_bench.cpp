@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
+#include <unordered_map>
 
 #include "core/volume/analytic_volumes.h"
 #include "core/volume/silhouettes.h"
@@ -26,6 +27,39 @@ double peak_rss_mb() {
   rusage u{};
   getrusage(RUSAGE_SELF, &u);
   return u.ru_maxrss / 1024.0;  // Linux: kilobytes
+}
+
+// The fraction of `full`'s visible points within `tol_mm` of a visible point of `r` (1 when `full` has none).
+double visible_coverage(const SilhouetteResult& full, const SilhouetteResult& r, double tol_mm) {
+  std::unordered_map<std::uint64_t, std::vector<glm::dvec3>> grid;
+  auto key = [&](const glm::ivec3& c) {
+    return (std::uint64_t(std::uint32_t(c.x)) * 0x9E3779B97F4A7C15ull) ^
+           (std::uint64_t(std::uint32_t(c.y)) * 0xC2B2AE3D27D4EB4Full) ^
+           (std::uint64_t(std::uint32_t(c.z)) * 0x165667B19E3779F9ull);
+  };
+  auto cell = [&](const glm::dvec3& x) { return glm::ivec3(glm::floor(x / tol_mm)); };
+  for (const SilhouettePolyline& pl : r.polylines)
+    for (std::size_t i = 0; i < pl.points.size(); ++i)
+      if (pl.visible[i]) grid[key(cell(pl.points[i]))].push_back(pl.points[i]);
+  std::size_t seen = 0, found = 0;
+  for (const SilhouettePolyline& pl : full.polylines)
+    for (std::size_t i = 0; i < pl.points.size(); ++i) {
+      if (!pl.visible[i]) continue;
+      ++seen;
+      const glm::ivec3 c = cell(pl.points[i]);
+      bool near = false;
+      for (int dz = -1; dz <= 1 && !near; ++dz)
+        for (int dy = -1; dy <= 1 && !near; ++dy)
+          for (int dx = -1; dx <= 1 && !near; ++dx)
+            if (const auto it = grid.find(key(c + glm::ivec3(dx, dy, dz))); it != grid.end())
+              for (const glm::dvec3& y : it->second)
+                if (glm::length(y - pl.points[i]) <= tol_mm) {
+                  near = true;
+                  break;
+                }
+      found += near;
+    }
+  return seen ? double(found) / double(seen) : 1.0;
 }
 
 template <class T>
@@ -93,19 +127,35 @@ nlohmann::json run_silhouette_benchmark(const SilhouetteBenchOptions& o) {
   }
   nlohmann::json orbit;
   if (o.orbit) {
+    // As the editor's live view: a SilhouetteSequence, hidden cells seeding nothing, the density of a 1280 × 720
+    // viewport at a 45° field of view. Each view is checked against the full extraction of the same view (no
+    // sequence, no screen): the visible length the sequence finds over the visible length there is.
     SilhouetteParams editor = params;
     editor.hidden_test = true;
     editor.seed_hidden = false;
-    std::vector<double> ms;
+    double cell_mm = 0.0;
+    for (int a = 0; a < 3; ++a) cell_mm = std::max(cell_mm, glm::length(glm::dvec3(volume.index_to_world[a])));
+    SilhouetteParams full = editor;
+    full.pixel_step = 0.0;
+    SilhouetteSequence sequence(std::shared_ptr<const VolumeSpline>(&spline, [](const VolumeSpline*) {}),
+                                std::shared_ptr<const SingletonTable>(&table, [](const SingletonTable*) {}));
+    std::vector<double> ms, coverage;
     std::vector<std::size_t> pts, visible_pts;
     nlohmann::json views = nlohmann::json::array();
-    for (int v = 0; v < 36; ++v) {
+    auto orbit_view = [&](int v) {
       const double az = 10.0 * v * 3.14159265358979323846 / 180.0;
       SilhouetteView view;
       view.eye = centre + 2.2 * radius *
                               glm::dvec3(std::cos(elevation) * std::cos(az), std::cos(elevation) * std::sin(az),
                                          std::sin(elevation));
-      const SilhouetteResult r = extract_silhouettes(spline, table, o.iso, view, editor);
+      view.pixel_size = 2.0 * std::tan(22.5 * 3.14159265358979323846 / 180.0) / 720.0;
+      return view;
+    };
+    // The orbit first, timed alone (as the editor runs it), then the full extractions it is checked against.
+    std::vector<SilhouetteResult> results;
+    for (int v = 0; v < 36; ++v) {
+      results.push_back(sequence.next(o.iso, orbit_view(v), editor));
+      const SilhouetteResult& r = results.back();
       std::size_t seen = 0;
       for (const SilhouettePolyline& pl : r.polylines)
         for (unsigned char f : pl.visible) seen += f;
@@ -114,15 +164,30 @@ nlohmann::json run_silhouette_benchmark(const SilhouetteBenchOptions& o) {
       visible_pts.push_back(seen);
       views.push_back({{"azimuth_deg", 10.0 * v},
                        {"view_ms", ms.back()},
+                       {"extract_ms", r.extract_ms},
+                       {"hidden_ms", r.hidden_ms},
                        {"points", r.points},
                        {"visible_points", seen},
                        {"polylines", r.polylines.size()},
+                       {"traced_from_previous", r.traced_from_previous},
+                       {"candidates", r.candidates},
+                       {"seeds", r.seeds},
                        {"hidden_cells", r.hidden_cells}});
+    }
+    for (int v = 0; v < 36; ++v) {
+      SilhouetteView whole = orbit_view(v);
+      // Found: within a cell and 2 pixels (at the volume's centre) of a visible point of the orbit's view.
+      const double tol_mm = cell_mm + 2.0 * whole.pixel_size * glm::length(centre - whole.eye);
+      whole.pixel_size = 0.0;
+      coverage.push_back(visible_coverage(extract_silhouettes(spline, table, o.iso, whole, full), results[v], tol_mm));
+      views[v]["coverage"] = coverage.back();
     }
     orbit = {{"orbit_median_view_ms", median(ms)},
              {"orbit_max_view_ms", *std::max_element(ms.begin(), ms.end())},
              {"orbit_points_per_view", median(pts)},
              {"orbit_visible_points_per_view", median(visible_pts)},
+             {"orbit_median_coverage", median(coverage)},
+             {"orbit_min_coverage", *std::min_element(coverage.begin(), coverage.end())},
              {"orbit_views", views}};
   }
   glm::dvec3 spacing;

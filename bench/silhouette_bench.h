@@ -22,8 +22,9 @@ struct SilhouetteBenchOptions {
   int subdivision = 1;                                   // SilhouetteParams::subdivision
   double accuracy = 1e-7;                                // SilhouetteParams::accuracy
   bool hidden = true;                                    // time the hidden-line test too
-  // Also orbit as the editor does with Hidden lines "remove": 36 views 10° apart on the same circle, hidden cells
-  // seeding nothing (SilhouetteParams::seed_hidden = false).
+  // Also orbit as the editor does with Hidden lines "remove": 36 views 10° apart on the same circle as one
+  // SilhouetteSequence (each view seeded from the previous one's curves), hidden cells seeding nothing, at the density
+  // of a 1280 × 720 screen with a 45° field of view; then each view's complete extraction, to check the coverage.
   bool orbit = false;
 };
 
@@ -32,9 +33,11 @@ struct SilhouetteBenchOptions {
 //          points_per_view (median), candidates_per_view (median), seeds_per_view (median), length_mm_per_view
 //          (median), max_value_residual, max_dot_residual, per_view [{azimuth_deg, extract_ms, hidden_ms, points,
 //          polylines, length_mm}]}; with `orbit` also orbit_median_view_ms, orbit_max_view_ms,
-//          orbit_points_per_view, orbit_visible_points_per_view (medians) and orbit_views [{azimuth_deg, view_ms,
-//          points, visible_points, polylines, hidden_cells}]. peak_rss_mb: the process's peak after the last view;
-//          prep_rss_mb: after preprocessing.
+//          orbit_points_per_view, orbit_visible_points_per_view (medians), orbit_median_coverage and
+//          orbit_min_coverage (the share of the complete extraction's visible points within a cell and 2 pixels of a
+//          visible point of the orbit's view) and orbit_views [{azimuth_deg, view_ms, extract_ms, hidden_ms, points,
+//          visible_points, polylines, traced_from_previous, candidates, seeds, hidden_cells, coverage}]. peak_rss_mb:
+//          the process's peak after the last view; prep_rss_mb: after preprocessing.
 // Throws std::invalid_argument on bad options and what load_volume throws on a bad file.
 nlohmann::json run_silhouette_benchmark(const SilhouetteBenchOptions& options);
 

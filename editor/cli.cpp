@@ -189,15 +189,19 @@ void print_silhouette_table(const nlohmann::json& r, std::ostream& out) {
       << bench_fixed(r["max_view_ms"].get<double>(), 1) << " ms; residuals |D-c|/range "
       << r["max_value_residual"].get<double>() << ", |G.V| " << r["max_dot_residual"].get<double>() << "\n";
   if (!r.contains("orbit_views")) return;
-  out << "  orbit, 36 views 10 deg apart, hidden cells seeding nothing (Hidden lines \"remove\")\n"
-      << "  view  view_ms  points  visible  polylines  hidden_cells\n";
+  out << "  orbit, 36 views 10 deg apart as the editor's live view (each from the previous one's curves, hidden cells "
+         "seeding nothing, a 1280x720 screen's density)\n"
+      << "  view  view_ms  points  visible  polylines  from_prev  coverage\n";
   for (const auto& v : r["orbit_views"])
     out << "  " << std::setw(4) << bench_fixed(v["azimuth_deg"].get<double>(), 0) << std::setw(9)
         << bench_fixed(v["view_ms"].get<double>(), 1) << std::setw(8) << v["points"].get<std::size_t>() << std::setw(9)
-        << v["visible_points"].get<std::size_t>() << std::setw(11) << v["polylines"].get<std::size_t>() << std::setw(14)
-        << v["hidden_cells"].get<std::size_t>() << "\n";
+        << v["visible_points"].get<std::size_t>() << std::setw(11) << v["polylines"].get<std::size_t>() << std::setw(11)
+        << v["traced_from_previous"].get<std::size_t>() << std::setw(9)
+        << bench_fixed(100.0 * v["coverage"].get<double>(), 1) << "%\n";
   out << "  orbit median view " << bench_fixed(r["orbit_median_view_ms"].get<double>(), 1) << " ms, max "
-      << bench_fixed(r["orbit_max_view_ms"].get<double>(), 1) << " ms\n";
+      << bench_fixed(r["orbit_max_view_ms"].get<double>(), 1) << " ms; coverage of the complete extraction's visible "
+      << "points " << bench_fixed(100.0 * r["orbit_median_coverage"].get<double>(), 1) << "% (median), "
+      << bench_fixed(100.0 * r["orbit_min_coverage"].get<double>(), 1) << "% (worst view)\n";
 }
 
 // `trispline bench editor`: per scene the editor's and Blender's frame times, then the recording ratio.
@@ -350,8 +354,8 @@ void add_bench(CLI::App& app, CliRequest& o) {
       ->check(CLI::Range(1, 4));
   o.silhouettes_cmd->add_flag("!--no-hidden", o.silhouettes.hidden, "Skip the hidden-line test");
   o.silhouettes_cmd->add_flag("--orbit", o.silhouettes.orbit,
-                              "Also orbit as the editor does with hidden lines removed: 36 views 10 degrees apart, "
-                              "hidden cells seeding nothing");
+                              "Also orbit as the editor's live view does with hidden lines removed: 36 views 10 "
+                              "degrees apart, each seeded from the previous one, checked against complete extractions");
   o.editor_bench_cmd = bench->add_subcommand(
       "editor",
       "The editor's frame times (idle, orbiting) on the default scene, a tiled teapot and a volume with silhouettes, "

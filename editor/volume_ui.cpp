@@ -148,8 +148,9 @@ VolumeUi::LiveKey VolumeUi::wanted_key(const core::VolumeObject& v, const core::
   k.projection = v.silhouette.projection;
   k.subdivision = v.silhouette.params.subdivision;
   k.accuracy = v.silhouette.params.accuracy;
-  const core::SilhouetteView sv = v.silhouette_view(view);
+  const core::SilhouetteView sv = v.screen_silhouette_view(view);
   (sv.perspective ? k.eye : k.direction) = sv.perspective ? sv.eye : sv.direction;
+  k.pixel_size = sv.pixel_size;
   return k;
 }
 
@@ -181,6 +182,11 @@ void VolumeUi::update(const core::Scene& shown, const core::Camera& view) {
     const core::VolumeObject* v = shown.find_volume(kv.first);
     return !v || !v->silhouette.enabled;
   });
+  if (!job_)
+    std::erase_if(sequences_, [&](const auto& kv) {
+      const core::VolumeObject* v = shown.find_volume(kv.first);
+      return !v || !v->silhouette.enabled;
+    });
   if (job_) return;
   for (const core::VolumeObject& v : shown.volumes()) {
     if (!v.visible || !v.silhouette.enabled || !v.spline || !v.table) continue;
@@ -198,17 +204,21 @@ void VolumeUi::update(const core::Scene& shown, const core::Camera& view) {
     // Hidden parts removed: cells behind the surface seed nothing (the same visible curves, a third of the time on
     // a noisy MRI; docs/decisions.md). Exports and replays keep the complete extraction.
     params.seed_hidden = v.silhouette.hidden != "remove";
+    // The live view follows the camera: each extraction starts from the curves of the one before, at the screen's
+    // density (exports and replays extract each view whole).
+    std::shared_ptr<core::SilhouetteSequence>& sequence = sequences_[v.name];
+    if (!sequence || &sequence->spline() != v.spline.get() || &sequence->table() != v.table.get())
+      sequence = std::make_shared<core::SilhouetteSequence>(v.spline, v.table);
     auto job = std::make_unique<Job>();
     job->volume = v.name;
     job->key = key;
-    job->future = std::async(std::launch::async, [spline = v.spline, table = v.table, iso = key.iso,
-                                                  sv = v.silhouette_view(view), params] {
-      const auto t0 = std::chrono::steady_clock::now();
-      auto r =
-          std::make_shared<const core::SilhouetteResult>(core::extract_silhouettes(*spline, *table, iso, sv, params));
-      return Extracted{std::move(r),
-                       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count()};
-    });
+    job->future =
+        std::async(std::launch::async, [sequence, iso = key.iso, sv = v.screen_silhouette_view(view), params] {
+          const auto t0 = std::chrono::steady_clock::now();
+          auto r = std::make_shared<const core::SilhouetteResult>(sequence->next(iso, sv, params));
+          return Extracted{std::move(r),
+                           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count()};
+        });
     job_ = std::move(job);
     break;
   }

@@ -95,10 +95,11 @@ class VolumeUi {
     int subdivision = 0;
     double accuracy = 0.0;
     glm::dvec3 eye{0.0}, direction{0.0};  // perspective: eye only; orthographic: direction only
+    double pixel_size = 0.0;              // core::SilhouetteView::pixel_size (the screen's density)
     bool operator==(const LiveKey& o) const {
       return spline == o.spline && table == o.table && iso == o.iso && hidden == o.hidden &&
              projection == o.projection && subdivision == o.subdivision && accuracy == o.accuracy && eye == o.eye &&
-             direction == o.direction;
+             pixel_size == o.pixel_size && direction == o.direction;
     }
   };
   struct Live {
@@ -129,6 +130,9 @@ class VolumeUi {
   std::unique_ptr<LoadJob> load_;
   std::unique_ptr<Job> job_;
   std::map<std::string, Live> live_;
+  // Per volume: the run of views the live silhouettes follow (seeded from the previous view's curves). Used by one
+  // job at a time.
+  std::map<std::string, std::shared_ptr<core::SilhouetteSequence>> sequences_;
   std::optional<std::pair<std::string, double>> preview_;  // (volume, level) of the iso field being dragged
   std::optional<std::pair<std::string, double>> held_;     // (volume, level) of a volume.iso line not run yet
   ui::VolumePanelState panel_;

@@ -1,11 +1,10 @@
 #include "core/scene/scene.h"
 
-#include <glm/gtc/matrix_inverse.hpp>
-#include <glm/gtc/matrix_transform.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 #include <stdexcept>
 
 namespace trispline::core {
@@ -330,6 +329,14 @@ SilhouetteView VolumeObject::silhouette_view(const Camera& camera) const {
   v.perspective = silhouette.projection != "orthographic";
   v.eye = camera.eye;
   v.direction = camera.forward();
+  return v;
+}
+
+SilhouetteView VolumeObject::screen_silhouette_view(const Camera& camera) const {
+  SilhouetteView v = silhouette_view(camera);
+  const double at_unit = 2.0 * std::tan(glm::radians(camera.fov_deg) * 0.5) / std::max(camera.viewport.y, 1);
+  // Orthographic silhouettes of a perspective camera: the pixel size at the target.
+  v.pixel_size = v.perspective ? at_unit : at_unit * glm::length(camera.target - camera.eye);
   return v;
 }
 

@@ -183,6 +183,8 @@ struct VolumeObject {
   Aabb world_bounds() const;
   // The silhouette view of `camera` under this volume's projection setting.
   SilhouetteView silhouette_view(const Camera& camera) const;
+  // The same with the camera's pixel size (SilhouetteView::pixel_size): the density a screen shows, for live views.
+  SilhouetteView screen_silhouette_view(const Camera& camera) const;
 };
 
 class Scene;

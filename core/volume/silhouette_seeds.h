@@ -29,6 +29,20 @@ constexpr double kStepMax = 0.5, kStepMin = 1.0 / 128.0, kMaxTurnDeg = 25.0;
 // A march stops where it comes within kJoinRadius index units of a point already traced (a point on a chord of length
 // kStepMax is within kStepMax/2 of one of its ends).
 constexpr double kJoinRadius = 0.75 * kStepMax;
+// Where a cell covers only a few pixels (SilhouetteParams::pixel_step): steps of up to a cell that turn by up to 60°.
+constexpr double kCoarseStepMax = 1.0, kCoarseTurnDeg = 60.0;
+
+// How finely one block is traced: the longest step and the turn allowed in a step, and the radius (≤ 1, index units)
+// within which a march meets a point already traced.
+struct TraceLimits {
+  double step_max = kStepMax;
+  double min_turn_cos = std::cos(kMaxTurnDeg * kPi / 180.0);
+  double join_radius = kJoinRadius;
+
+  static TraceLimits coarse() {
+    return {kCoarseStepMax, std::cos(kCoarseTurnDeg * kPi / 180.0), 0.75 * kCoarseStepMax};
+  }
+};
 constexpr int kCorrectorIterations = 8, kSeedIterations = 6, kMaxSteps = 1 << 16;
 // Cells per block axis: blocks are traced independently (in parallel) and their traces joined at the block faces.
 constexpr int kBlock = 16;
@@ -55,6 +69,7 @@ inline IndexView index_view(const VolumeSpline& spline, const SilhouetteView& vi
 }
 
 class HiddenCells;
+class LevelSides;
 
 // What every solve needs: the spline, the level, the view and the stopping accuracy.
 struct Problem {
@@ -67,13 +82,34 @@ struct Problem {
   glm::dmat3 to_world{1.0};  // linear part of index_to_world
   // SilhouetteParams::seed_hidden false: the cells the surface hides (they seed nothing, and a trace ends there).
   const HiddenCells* hidden = nullptr;
+  const LevelSides* sides = nullptr;  // the cells' sides of `iso` (SilhouetteSequence), for the rays
 };
 
 // The first crossing of D = iso along from + t·dir, t in [t, t_end] (dir unit, index space), marched in steps of 0.4
 // index units through the cells that can hold the level (the table's macro-cells and singletons skip the rest): the
 // parameter of the first sample past the crossing (so at or beyond it), or −1 when there is none.
+// `sides`, when given, holds the table's cells' sides of this level (LevelSides): the same answers from 1/96 of the
+// memory the singletons take, so a ray's cell tests hit the cache.
 double first_crossing(const VolumeSpline& spline, const SingletonTable& table, double iso, const glm::dvec3& from,
-                      const glm::dvec3& dir, double t, double t_end);
+                      const glm::dvec3& dir, double t, double t_end, const LevelSides* sides = nullptr);
+
+// Whether the segment from `from` towards the eye crosses D = iso past `skip` index units (iso_occluded in index
+// space).
+bool occluded(const VolumeSpline& spline, const SingletonTable& table, double iso, const IndexView& iv,
+              const glm::dvec3& from, double skip, const LevelSides* sides);
+
+// Where each cell's value range lies with respect to one level: 2 bits a cell, x fastest (table.cell_index order).
+class LevelSides {
+ public:
+  enum Side : unsigned { holds = 0, below = 1, above = 2 };
+  LevelSides(const SingletonTable& table, double iso);
+  double iso() const { return iso_; }
+  Side side(std::size_t cell) const { return Side((bits_[cell >> 2] >> ((cell & 3) * 2)) & 3u); }
+
+ private:
+  double iso_;
+  std::vector<std::uint8_t> bits_;
+};
 
 // The cells the iso-surface hides from the eye (SilhouetteParams::seed_hidden = false): the first crossing of
 // D = iso along kN × kN rays — perspective: from the eye over the cone (axis, half-angle < 90°) that holds the grid
@@ -82,7 +118,7 @@ double first_crossing(const VolumeSpline& spline, const SingletonTable& table, d
 // around (a ray that misses counts as infinitely far).
 class HiddenCells {
  public:
-  static constexpr int kN = 192;
+  static constexpr int kN = 128;
   static constexpr double kMargin = 4.0;  // index units
 
   // The map for `pb`'s view; `axis`, `half_angle`: the cone of directions from the eye that holds the grid box

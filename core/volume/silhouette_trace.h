@@ -42,8 +42,9 @@ struct BlockScratch {
 // until the curve closes, leaves the block, runs into another trace or cannot be followed).
 class BlockTracer {
  public:
-  BlockTracer(const Problem& pb, const glm::ivec3& first, const glm::ivec3& last, BlockScratch& scratch)
-      : pb_(pb), first_(first), last_(last), s_(scratch) {
+  BlockTracer(const Problem& pb, const glm::ivec3& first, const glm::ivec3& last, BlockScratch& scratch,
+              const TraceLimits& limits = {})
+      : pb_(pb), first_(first), last_(last), limits_(limits), s_(scratch) {
     const auto& dims = pb.spline.dims();
     for (int a = 0; a < 3; ++a) {
       extent_[a] = last[a] - first[a];
@@ -58,6 +59,8 @@ class BlockTracer {
   ~BlockTracer() { s_.reset(); }
 
   std::vector<Trace> traces;
+
+  const TraceLimits& limits() const { return limits_; }
 
   bool visited(const glm::ivec3& cell) const { return s_.visited[local(cell)] != 0; }
 
@@ -161,11 +164,11 @@ class BlockTracer {
   // comes back to *close_to (may be null) after going some way.
   End march(const CurvePoint& start, double sign, std::int32_t id, const glm::dvec3* close_to,
             std::vector<CurvePoint>& out) {
-    const double min_turn_cos = std::cos(kMaxTurnDeg * kPi / 180.0);
+    const double min_turn_cos = limits_.min_turn_cos;
     const glm::dvec3 margin(1.0);
     glm::dvec3 x = start.x, t = sign * start.tangent;
     glm::dvec3 bend(0.0);  // dt/ds from the last step: the predictor follows the curve's bending
-    double h = kStepMax, travelled = 0.0;
+    double h = limits_.step_max, travelled = 0.0;
     int easy = 0;
     // A curve in one block is far shorter than kMaxSteps steps; the bound only stops a runaway march.
     for (int n = 0; n < kMaxSteps; ++n) {
@@ -213,7 +216,7 @@ class BlockTracer {
       }
       // Another trace, or this one (not its last few points): the curve is known from here on. Back at close_to, the
       // curve is a closed loop.
-      if (const BlockScratch::Entry* en = near_trace(q.x, kJoinRadius, id, next_order_ - 8)) {
+      if (const BlockScratch::Entry* en = near_trace(q.x, limits_.join_radius, id, next_order_ - 8)) {
         if (close_to && en->trace == id && en->x == *close_to) {
           visit_segment(x, *close_to);
           return End::closed;
@@ -228,13 +231,14 @@ class BlockTracer {
       travelled += dl;
       bend = (q.tangent - t) / dl;
       x = q.x, t = q.tangent;
-      if (q.iterations <= 3 && ++easy >= 2) h = std::min(kStepMax, 1.5 * h);
+      if (q.iterations <= 3 && ++easy >= 2) h = std::min(limits_.step_max, 1.5 * h);
     }
     return End::failed;
   }
 
   const Problem& pb_;
   glm::ivec3 first_, last_;  // cells first…last − 1 per axis
+  TraceLimits limits_;
   glm::ivec3 extent_{0};
   glm::dvec3 lo_{0.0}, hi_{0.0};  // the block's box in index space, clipped to the domain
   std::int32_t next_order_ = 0;   // number of the next point of the trace being traced

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <optional>
 #include <stdexcept>
+#include <utility>
 
 #include "core/volume/silhouette_seeds.h"
 #include "core/volume/silhouette_trace.h"
@@ -30,6 +31,10 @@ void check_params(double iso, const SilhouetteView& view, const SilhouetteParams
                                 std::to_string(params.subdivision));
   if (!(params.accuracy >= 1e-12 && params.accuracy <= 1e-2))
     throw std::invalid_argument("accuracy must be in [1e-12, 1e-2], got " + std::to_string(params.accuracy));
+  if (!(params.pixel_step >= 0.0 && params.pixel_step <= 16.0))
+    throw std::invalid_argument("pixel_step must be in [0, 16] pixels, got " + std::to_string(params.pixel_step));
+  if (!(view.pixel_size >= 0.0) || !std::isfinite(view.pixel_size))
+    throw std::invalid_argument("the pixel size must be a finite number ≥ 0 (0: not on a screen)");
   if (view.perspective) {
     if (!std::isfinite(view.eye.x) || !std::isfinite(view.eye.y) || !std::isfinite(view.eye.z))
       throw std::invalid_argument("the eye position must be finite");
@@ -78,7 +83,7 @@ HiddenCells::HiddenCells(const Problem& pb, const glm::dvec3& axis, double half_
         t0 = std::max(t0, std::min(ta, tb)), t1 = std::min(t1, std::max(ta, tb));
       }
       if (!(t0 < t1)) continue;
-      const double t = first_crossing(pb_.spline, pb_.table, pb_.iso, from, dir, t0, t1);
+      const double t = first_crossing(pb_.spline, pb_.table, pb_.iso, from, dir, t0, t1, pb_.sides);
       if (t >= 0.0) depth_[std::size_t(j) * kN + std::size_t(i)] = t;
     }
   });
@@ -86,8 +91,74 @@ HiddenCells::HiddenCells(const Problem& pb, const glm::dvec3& axis, double half_
 
 }  // namespace silhouette_detail
 
-SilhouetteResult extract_silhouettes(const VolumeSpline& spline, const SingletonTable& table, double iso,
-                                     const SilhouetteView& view, const SilhouetteParams& params) {
+namespace {
+
+// Cells filed by block of kBlock³: cells[begin[b] … begin[b + 1]) in the order given (a stable counting sort).
+struct BlockCells {
+  glm::ivec3 blocks{0};
+  std::vector<std::uint32_t> begin, cells;
+};
+
+glm::ivec3 block_grid(const SingletonTable& table) {
+  const auto& dims = table.cells();
+  return {(dims[0] + kBlock - 1) / kBlock, (dims[1] + kBlock - 1) / kBlock, (dims[2] + kBlock - 1) / kBlock};
+}
+
+glm::ivec3 cell_coords(const SingletonTable& table, std::uint32_t cell) {
+  const auto& dims = table.cells();
+  return {static_cast<int>(cell % dims[0]), static_cast<int>((cell / dims[0]) % dims[1]),
+          static_cast<int>(cell / (static_cast<std::size_t>(dims[0]) * dims[1]))};
+}
+
+std::size_t block_of(const glm::ivec3& blocks, const glm::ivec3& c) {
+  return static_cast<std::size_t>(c.x / kBlock) +
+         blocks.x * (static_cast<std::size_t>(c.y / kBlock) + blocks.y * static_cast<std::size_t>(c.z / kBlock));
+}
+
+BlockCells file_by_block(const SingletonTable& table, const std::vector<std::uint32_t>& cells) {
+  BlockCells out;
+  out.blocks = block_grid(table);
+  const std::size_t block_count = static_cast<std::size_t>(out.blocks.x) * out.blocks.y * out.blocks.z;
+  std::vector<std::uint32_t> block_id(cells.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells.size(), 4096),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t e = r.begin(); e != r.end(); ++e)
+                        block_id[e] = static_cast<std::uint32_t>(block_of(out.blocks, cell_coords(table, cells[e])));
+                    });
+  out.begin.assign(block_count + 1, 0);
+  for (std::uint32_t b : block_id) ++out.begin[b + 1];
+  for (std::size_t b = 0; b < block_count; ++b) out.begin[b + 1] += out.begin[b];
+  out.cells.resize(cells.size());
+  std::vector<std::uint32_t> fill(out.begin.begin(), out.begin.end() - 1);
+  for (std::size_t e = 0; e < cells.size(); ++e) out.cells[fill[block_id[e]]++] = cells[e];
+  return out;
+}
+
+// The view cone of the grid box: the directions w takes over it (axis, half-angle; orthographic: the view, 0).
+std::pair<glm::dvec3, double> view_cone(const VolumeSpline& spline, const IndexView& iv) {
+  if (!iv.perspective) return {iv.v, 0.0};
+  const glm::dvec3 hi(spline.dims()[0] - 1, spline.dims()[1] - 1, spline.dims()[2] - 1);
+  const glm::dvec3 d = hi * 0.5 - iv.eye;
+  const double radius = glm::length(hi) * 0.5 + 1.0, dist = glm::length(d);
+  return {dist > 0.0 ? d / dist : glm::dvec3(0.0, 0.0, 1.0), dist > radius ? std::asin(radius / dist) : kPi};
+}
+
+// Pixels a cell covers at `distance` millimetres from the eye (orthographic: anywhere); +∞ without a pixel size.
+struct ScreenScale {
+  double cell_mm = 0.0;     // the longest cell edge, millimetres
+  double pixel_size = 0.0;  // SilhouetteView::pixel_size
+  bool perspective = true;
+  bool on_screen() const { return pixel_size > 0.0; }
+  double pixels(double mm, double distance) const {
+    return mm / (pixel_size * (perspective ? std::max(distance, 1e-9) : 1.0));
+  }
+};
+
+// One extraction; `filed`: the candidate cells by block (null: the table's query for this view), `previous`: points
+// (index space) of curves to trace first.
+SilhouetteResult extract(const VolumeSpline& spline, const SingletonTable& table, double iso,
+                         const SilhouetteView& view, const SilhouetteParams& params, const BlockCells* filed,
+                         const std::vector<glm::dvec3>* previous, const LevelSides* sides) {
   check_params(iso, view, params);
   for (int a = 0; a < 3; ++a)
     if (table.cells()[a] != spline.span_count(a))
@@ -101,19 +172,9 @@ SilhouetteResult extract_silhouettes(const VolumeSpline& spline, const Singleton
              std::max(spline.control_max() - spline.control_min(), 1e-30),
              params.accuracy,
              glm::dmat3(spline.index_to_world())};
+  if (sides && sides->iso() == iso) pb.sides = sides;
   const IndexView& iv = pb.view;
-  // The directions w can take over the grid box: one cone (axis, half-angle) for the bin filter.
-  glm::dvec3 w_axis = iv.v;
-  double w_half = 0.0;
-  if (iv.perspective) {
-    const glm::dvec3 hi(spline.dims()[0] - 1, spline.dims()[1] - 1, spline.dims()[2] - 1);
-    const glm::dvec3 centre = hi * 0.5;
-    const double radius = glm::length(hi) * 0.5 + 1.0;
-    const glm::dvec3 d = centre - iv.eye;
-    const double dist = glm::length(d);
-    w_axis = dist > 0.0 ? d / dist : glm::dvec3(0.0, 0.0, 1.0);
-    w_half = dist > radius ? std::asin(radius / dist) : kPi;
-  }
+  const auto [w_axis, w_half] = view_cone(spline, iv);
   std::optional<HiddenCells> hidden;
   if (!params.seed_hidden) {
     hidden.emplace(pb, w_axis, w_half);
@@ -122,54 +183,52 @@ SilhouetteResult extract_silhouettes(const VolumeSpline& spline, const Singleton
     else
       hidden.reset();
   }
-  const std::vector<std::uint32_t> bins = table.cells_holding(iso, w_axis, w_half, SingletonTable::CellOrder::by_bin);
-  // The candidates by block (in the table's order within a block: the bucketing is stable).
   const auto& dims = table.cells();
-  const glm::ivec3 blocks((dims[0] + kBlock - 1) / kBlock, (dims[1] + kBlock - 1) / kBlock,
-                          (dims[2] + kBlock - 1) / kBlock);
+  // The candidates by block (in the table's order within a block).
+  BlockCells own;
+  if (!filed) {
+    own = file_by_block(table, table.cells_holding(iso, w_axis, w_half, SingletonTable::CellOrder::by_bin));
+    filed = &own;
+  }
+  const glm::ivec3 blocks = filed->blocks;
   const std::size_t block_count = static_cast<std::size_t>(blocks.x) * blocks.y * blocks.z;
-  auto cell_coords = [&](std::uint32_t cell) {
-    return glm::ivec3(static_cast<int>(cell % dims[0]), static_cast<int>((cell / dims[0]) % dims[1]),
-                      static_cast<int>(cell / (static_cast<std::size_t>(dims[0]) * dims[1])));
+  auto block_box = [&](std::size_t blk) {
+    const glm::ivec3 bc(static_cast<int>(blk % blocks.x), static_cast<int>((blk / blocks.x) % blocks.y),
+                        static_cast<int>(blk / (static_cast<std::size_t>(blocks.x) * blocks.y)));
+    const glm::ivec3 first = bc * kBlock;
+    return std::pair{first, glm::min(first + kBlock, glm::ivec3(dims[0], dims[1], dims[2]))};
   };
-  auto block_of = [&](const glm::ivec3& c) {
-    return static_cast<std::size_t>(c.x / kBlock) +
-           blocks.x * (static_cast<std::size_t>(c.y / kBlock) + blocks.y * static_cast<std::size_t>(c.z / kBlock));
-  };
-  std::vector<std::uint32_t> block_begin(block_count + 1, 0), by_block(bins.size()), block_id(bins.size());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, bins.size(), 4096),
-                    [&](const tbb::blocked_range<std::size_t>& r) {
-                      for (std::size_t e = r.begin(); e != r.end(); ++e)
-                        block_id[e] = static_cast<std::uint32_t>(block_of(cell_coords(bins[e])));
-                    });
-  // Blocks wholly behind the surface (seed_hidden false) take no candidates.
-  std::vector<unsigned char> block_hidden(block_count, 0);
-  if (hidden)
-    tbb::parallel_for(std::size_t(0), block_count, [&](std::size_t blk) {
-      const glm::ivec3 bc(static_cast<int>(blk % blocks.x), static_cast<int>((blk / blocks.x) % blocks.y),
-                          static_cast<int>(blk / (static_cast<std::size_t>(blocks.x) * blocks.y)));
-      const glm::ivec3 first = bc * kBlock;
-      block_hidden[blk] = hidden->hides(first, glm::min(first + kBlock, glm::ivec3(dims[0], dims[1], dims[2])));
-    });
-  std::size_t in_hidden_blocks = 0;
-  for (std::uint32_t b : block_id) {
-    if (block_hidden[b]) {
-      ++in_hidden_blocks;
-      continue;
+  // The previous curves' points by block.
+  std::vector<std::uint32_t> seed_begin(block_count + 1, 0);
+  std::vector<glm::dvec3> seed_points;
+  if (previous) {
+    const double shift = spline.span_begin(0);
+    std::vector<std::uint32_t> seed_block;
+    seed_block.reserve(previous->size());
+    for (const glm::dvec3& x : *previous) {
+      glm::ivec3 c;
+      for (int a = 0; a < 3; ++a) c[a] = std::clamp(static_cast<int>(std::floor(x[a] - shift)), 0, dims[a] - 1);
+      seed_block.push_back(static_cast<std::uint32_t>(block_of(blocks, c)));
+      ++seed_begin[seed_block.back() + 1];
     }
-    ++block_begin[b + 1];
+    for (std::size_t b = 0; b < block_count; ++b) seed_begin[b + 1] += seed_begin[b];
+    seed_points.resize(previous->size());
+    std::vector<std::uint32_t> fill(seed_begin.begin(), seed_begin.end() - 1);
+    for (std::size_t e = 0; e < previous->size(); ++e) seed_points[fill[seed_block[e]]++] = (*previous)[e];
   }
-  for (std::size_t b = 0; b < block_count; ++b) block_begin[b + 1] += block_begin[b];
-  {
-    std::vector<std::uint32_t> fill(block_begin.begin(), block_begin.end() - 1);
-    for (std::size_t e = 0; e < bins.size(); ++e)
-      if (!block_hidden[block_id[e]]) by_block[fill[block_id[e]]++] = bins[e];
+  // The screen density: blocks whose cells cover fewer than pixel_step pixels are traced coarsely.
+  ScreenScale screen;
+  screen.perspective = iv.perspective;
+  if (params.pixel_step > 0.0 && view.pixel_size > 0.0 && std::isfinite(view.pixel_size)) {
+    screen.pixel_size = view.pixel_size;
+    for (int a = 0; a < 3; ++a) screen.cell_mm = std::max(screen.cell_mm, glm::length(pb.to_world[a]));
   }
-  // Each block: the exact per-singleton cone test (cell-sized view cone in perspective), then seeds, Newton and
-  // tracing, skipping cells a trace has already crossed. Blocks write to their own slots (deterministic for any
-  // thread count).
+  // Each block: the previous curves, then the exact per-singleton cone test (cell-sized view cone in perspective),
+  // seeds, Newton and tracing, skipping cells a trace has already crossed. Blocks wholly behind the surface
+  // (seed_hidden false) do nothing. Blocks write to their own slots (deterministic for any thread count).
   std::vector<std::vector<Trace>> block_traces(block_count);
-  std::vector<std::size_t> cand(block_count, 0), seeds(block_count, 0), hidden_cells(block_count, 0);
+  std::vector<std::size_t> cand(block_count, 0), seeds(block_count, 0), hidden_cells(block_count, 0),
+      from_previous(block_count, 0);
   const auto& singles = table.singletons();
   tbb::enumerable_thread_specific<BlockScratch> scratch;
 #if defined(__SSE2__)
@@ -177,17 +236,43 @@ SilhouetteResult extract_silhouettes(const VolumeSpline& spline, const Singleton
   if (spline.order() == 4) cubic.emplace(spline, iv);
 #endif
   tbb::parallel_for(std::size_t(0), block_count, [&](std::size_t blk) {
-    if (block_begin[blk] == block_begin[blk + 1]) return;
-    const glm::ivec3 bc(static_cast<int>(blk % blocks.x), static_cast<int>((blk / blocks.x) % blocks.y),
-                        static_cast<int>(blk / (static_cast<std::size_t>(blocks.x) * blocks.y)));
-    const glm::ivec3 first = bc * kBlock;
-    const glm::ivec3 last = glm::min(first + kBlock, glm::ivec3(dims[0], dims[1], dims[2]));
-    BlockTracer tracer(pb, first, last, scratch.local());
-    for (std::uint32_t e = block_begin[blk]; e < block_begin[blk + 1]; ++e) {
+    const std::uint32_t cells_begin = filed->begin[blk], cells_end = filed->begin[blk + 1];
+    if (cells_begin == cells_end) return;
+
+    const auto [first, last] = block_box(blk);
+    if (hidden && hidden->hides(first, last)) {
+      hidden_cells[blk] = cells_end - cells_begin;
+      return;
+    }
+    TraceLimits limits;
+    if (screen.on_screen()) {
+      const glm::dvec3 lo(spline.span_begin(first.x), spline.span_begin(first.y), spline.span_begin(first.z));
+      const glm::dvec3 hi = lo + glm::dvec3(last - first);
+      const double nearest = glm::length(pb.to_world * (glm::clamp(iv.eye, lo, hi) - iv.eye));
+      if (screen.pixels(screen.cell_mm, nearest) < params.pixel_step) limits = TraceLimits::coarse();
+    }
+    BlockTracer tracer(pb, first, last, scratch.local(), limits);
+    // A point heading into a cell a trace has crossed is given up early (what it would find there is known).
+    auto known = [&](const glm::dvec3& x) { return tracer.inside(x) && tracer.visited(tracer.cell_of(x)); };
+    auto trace_new = [&](const CurvePoint& p) {
+      if (!tracer.inside(p.x) || tracer.visited(tracer.cell_of(p.x)) || tracer.near_trace(p.x, limits.join_radius))
+        return false;
+      tracer.trace_from(p);
+      return true;
+    };
+    for (std::uint32_t e = seed_begin[blk]; e < seed_begin[blk + 1]; ++e) {
+      const glm::dvec3& x = seed_points[e];
+      const glm::ivec3 c = tracer.cell_of(x);
+      if (tracer.visited(c) || tracer.hidden(c)) continue;
+      CurvePoint p;
+      if (!solve_point(pb, x, x - 1.5, x + 1.5, kCorrectorIterations, p, -1, known)) continue;
+      from_previous[blk] += trace_new(p);
+    }
+    for (std::uint32_t e = cells_begin; e < cells_end; ++e) {
       // The singletons are read in bin order, far apart in memory: fetch a few ahead.
-      if (e + 8 < block_begin[blk + 1]) __builtin_prefetch(&singles[by_block[e + 8]]);
-      const std::uint32_t cell = by_block[e];
-      const glm::ivec3 c = cell_coords(cell);
+      if (e + 8 < cells_end) __builtin_prefetch(&singles[filed->cells[e + 8]]);
+      const std::uint32_t cell = filed->cells[e];
+      const glm::ivec3 c = cell_coords(table, cell);
       if (tracer.visited(c)) continue;
       const Singleton& s = singles[cell];
       glm::dvec3 w = iv.v;
@@ -222,13 +307,9 @@ SilhouetteResult extract_silhouettes(const VolumeSpline& spline, const Singleton
       seed_cell(pb, c.x, c.y, c.z, params.subdivision, whole_cell_tested, [&](const glm::dvec3& centre) {
         ++seeds[blk];
         CurvePoint p;
-        // A seed heading into a cell a trace has crossed is given up early (what it would find there is known).
-        auto known = [&](const glm::dvec3& x) { return tracer.inside(x) && tracer.visited(tracer.cell_of(x)); };
         if (!solve_point(pb, centre, cell_lo - 0.5, cell_lo + 1.5, kSeedIterations, p, -1, known)) return false;
         // A converged point anywhere in the block starts a trace, unless a trace already passed there.
-        if (!tracer.inside(p.x) || tracer.visited(tracer.cell_of(p.x)) || tracer.near_trace(p.x, kJoinRadius))
-          return false;
-        tracer.trace_from(p);
+        if (!trace_new(p)) return false;
         return tracer.visited(c);  // this cell is covered: its other seeds would find the same curve
       });
     }
@@ -239,9 +320,10 @@ SilhouetteResult extract_silhouettes(const VolumeSpline& spline, const Singleton
     result.candidates += cand[b];
     result.seeds += seeds[b];
     result.hidden_cells += hidden_cells[b];
+    result.traced_from_previous += from_previous[b];
     for (Trace& t : block_traces[b]) traces.push_back(std::move(t));
   }
-  result.hidden_cells += in_hidden_blocks;
+  const glm::dvec3 eye_world = view.eye;
   for (const Chain& chain : join_traces(traces)) {
     SilhouettePolyline pl;
     std::vector<const CurvePoint*> pts;
@@ -259,15 +341,22 @@ SilhouetteResult extract_silhouettes(const VolumeSpline& spline, const Singleton
     pl.gradient_norm.reserve(n);
     for (std::size_t i = 0; i < n; ++i) {
       const CurvePoint& p = *pts[i];
-      pl.points.push_back(glm::dvec3(spline.index_to_world() * glm::dvec4(p.x, 1.0)));
+      const glm::dvec3 x(spline.index_to_world() * glm::dvec4(p.x, 1.0));
+      // On a screen, a point within a pixel of the last one kept is merged into it (never the first or last).
+      if (screen.on_screen() && i > 0 && i + 1 < n &&
+          screen.pixels(glm::length(x - pl.points.back()), glm::length(x - eye_world)) < 1.0)
+        continue;
+      pl.points.push_back(x);
       pl.gradient_norm.push_back(p.gradient_norm);
       result.max_value_residual = std::max(result.max_value_residual, p.value_residual);
       result.max_dot_residual = std::max(result.max_dot_residual, p.dot_residual);
-      if (i > 0) result.length_mm += glm::length(pl.points[i] - pl.points[i - 1]);
     }
+    const std::size_t kept = pl.points.size();
+    for (std::size_t i = 1; i < kept; ++i) result.length_mm += glm::length(pl.points[i] - pl.points[i - 1]);
+    if (pl.closed && kept < 3) pl.closed = false;
     if (pl.closed) result.length_mm += glm::length(pl.points.front() - pl.points.back());
-    pl.visible.assign(n, 1);
-    result.points += n;
+    pl.visible.assign(kept, 1);
+    result.points += kept;
     result.polylines.push_back(std::move(pl));
   }
   result.extract_ms = ms_since(t0);
@@ -277,10 +366,10 @@ SilhouetteResult extract_silhouettes(const VolumeSpline& spline, const Singleton
     // those between two that differ are tested one by one. A visibility change is located exactly; only a hidden
     // stretch shorter than 4 points between two visible ones (or the reverse) could be missed.
     constexpr std::size_t kStride = 4;
-    auto occluded = [&](const SilhouettePolyline& pl, std::size_t i) {
+    auto seen_from_eye = [&](const SilhouettePolyline& pl, std::size_t i) {
       const glm::dvec3 x(spline.world_to_index() * glm::dvec4(pl.points[i], 1.0));
       if (hidden && hidden->hides(x, 0.0)) return 0;  // well behind the map's first crossings
-      return iso_occluded(spline, table, iso, view, x) ? 0 : 1;
+      return occluded(spline, table, iso, iv, x, 1.5, pb.sides) ? 0 : 1;
     };
     // The tested points of all polylines as one list (a few polylines hold most points: splitting by polyline would
     // leave one thread with the longest), then the stretches between two tested points that differ, per polyline.
@@ -290,21 +379,21 @@ SilhouetteResult extract_silhouettes(const VolumeSpline& spline, const Singleton
       for (std::size_t i = 0; i < n; i += kStride) tested.emplace_back(std::uint32_t(k), std::uint32_t(i));
       if ((n - 1) % kStride != 0) tested.emplace_back(std::uint32_t(k), std::uint32_t(n - 1));
     }
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tested.size(), 64),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                        for (std::size_t e = r.begin(); e != r.end(); ++e) {
-                          SilhouettePolyline& pl = result.polylines[tested[e].first];
-                          pl.visible[tested[e].second] = static_cast<unsigned char>(occluded(pl, tested[e].second));
-                        }
-                      });
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, tested.size(), 64), [&](const tbb::blocked_range<std::size_t>& r) {
+          for (std::size_t e = r.begin(); e != r.end(); ++e) {
+            SilhouettePolyline& pl = result.polylines[tested[e].first];
+            pl.visible[tested[e].second] = static_cast<unsigned char>(seen_from_eye(pl, tested[e].second));
+          }
+        });
     tbb::parallel_for(std::size_t(0), result.polylines.size(), [&](std::size_t k) {
       SilhouettePolyline& pl = result.polylines[k];
       const std::size_t n = pl.points.size();
       for (std::size_t prev = 0; prev + 1 < n;) {
         const std::size_t next = std::min(prev + kStride, n - 1);
         for (std::size_t i = prev + 1; i < next; ++i)
-          pl.visible[i] =
-              pl.visible[prev] == pl.visible[next] ? pl.visible[prev] : static_cast<unsigned char>(occluded(pl, i));
+          pl.visible[i] = pl.visible[prev] == pl.visible[next] ? pl.visible[prev]
+                                                               : static_cast<unsigned char>(seen_from_eye(pl, i));
         prev = next;
       }
     });
@@ -313,12 +402,85 @@ SilhouetteResult extract_silhouettes(const VolumeSpline& spline, const Singleton
   return result;
 }
 
+// Points of `r`'s curves about every `spacing` index units (index space): the next view's first seeds.
+std::vector<glm::dvec3> curve_samples(const VolumeSpline& spline, const SilhouetteResult& r, double spacing) {
+  std::vector<glm::dvec3> out;
+  for (const SilhouettePolyline& pl : r.polylines) {
+    double since = spacing;  // the first point seeds
+    glm::dvec3 last(0.0);
+    for (std::size_t i = 0; i < pl.points.size(); ++i) {
+      const glm::dvec3 x(spline.world_to_index() * glm::dvec4(pl.points[i], 1.0));
+      if (i > 0) since += glm::length(x - last);
+      last = x;
+      if (since >= spacing) out.push_back(x), since = 0.0;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+SilhouetteResult extract_silhouettes(const VolumeSpline& spline, const SingletonTable& table, double iso,
+                                     const SilhouetteView& view, const SilhouetteParams& params) {
+  return extract(spline, table, iso, view, params, nullptr, nullptr, nullptr);
+}
+
+struct SilhouetteSequence::Filed {
+  Filed(const SingletonTable& table, double iso)
+      : iso(iso), cells(file_by_block(table, table.cells_holding(iso))), sides(table, iso) {}
+  double iso;
+  BlockCells cells;
+  LevelSides sides;
+};
+
+SilhouetteSequence::SilhouetteSequence(std::shared_ptr<const VolumeSpline> spline,
+                                       std::shared_ptr<const SingletonTable> table)
+    : spline_(std::move(spline)), table_(std::move(table)) {
+  if (!spline_ || !table_) throw std::invalid_argument("a silhouette sequence needs a volume spline and its table");
+  for (int a = 0; a < 3; ++a)
+    if (table_->cells()[a] != spline_->span_count(a))
+      throw std::invalid_argument("the singleton table was built for another volume spline");
+}
+
+SilhouetteSequence::~SilhouetteSequence() = default;
+
+void SilhouetteSequence::restart() { previous_.clear(); }
+
+SilhouetteResult SilhouetteSequence::next(double iso, const SilhouetteView& view, const SilhouetteParams& params) {
+  check_params(iso, view, params);
+  if (!filed_ || filed_->iso != iso) {
+    filed_ = std::make_unique<Filed>(*table_, iso);
+    previous_.clear();
+  }
+  SilhouetteResult r = extract(*spline_, *table_, iso, view, params, &filed_->cells, &previous_, &filed_->sides);
+  previous_ = curve_samples(*spline_, r, 2.0);
+  return r;
+}
+
 namespace silhouette_detail {
 
+LevelSides::LevelSides(const SingletonTable& table, double iso) : iso_(iso) {
+  const auto& singles = table.singletons();
+  bits_.assign((singles.size() + 3) / 4, 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, bits_.size(), 1 << 14),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t byte = r.begin(); byte != r.end(); ++byte) {
+                        std::uint8_t b = 0;
+                        for (std::size_t k = 0; k < 4 && 4 * byte + k < singles.size(); ++k) {
+                          const Singleton& sg = singles[4 * byte + k];
+                          const unsigned side = double(sg.hi) < iso ? below : (double(sg.lo) > iso ? above : holds);
+                          b |= static_cast<std::uint8_t>(side << (2 * k));
+                        }
+                        bits_[byte] = b;
+                      }
+                    });
+}
+
 double first_crossing(const VolumeSpline& spline, const SingletonTable& table, double iso, const glm::dvec3& from,
-                      const glm::dvec3& dir, double t, double t_end) {
+                      const glm::dvec3& dir, double t, double t_end, const LevelSides* sides) {
   const double step = 0.4;
   if (!(t < t_end)) return -1.0;
+  if (sides && sides->iso() != iso) sides = nullptr;
   double prev = spline.value(from + t * dir) - iso;
   const auto& md = table.macro_cells();
   const auto& cells = table.cells();
@@ -350,10 +512,17 @@ double first_crossing(const VolumeSpline& spline, const SingletonTable& table, d
       prev = double(r.y) < iso ? -1.0 : 1.0;
       continue;
     }
-    const Singleton& sg = table.singletons()[table.cell_index(c[0], c[1], c[2])];
-    if (!(double(sg.lo) <= iso && iso <= double(sg.hi))) {
+    const std::size_t cell = table.cell_index(c[0], c[1], c[2]);
+    LevelSides::Side side;
+    if (sides) {
+      side = sides->side(cell);
+    } else {
+      const Singleton& sg = table.singletons()[cell];
+      side = double(sg.hi) < iso ? LevelSides::below : (double(sg.lo) > iso ? LevelSides::above : LevelSides::holds);
+    }
+    if (side != LevelSides::holds) {
       t = std::max(exit_of(c, 1.0) + 1e-6, t + 1e-6);
-      prev = double(sg.hi) < iso ? -1.0 : 1.0;
+      prev = side == LevelSides::below ? -1.0 : 1.0;
       continue;
     }
     const double tn = std::min(t + step, t_end);
@@ -366,11 +535,8 @@ double first_crossing(const VolumeSpline& spline, const SingletonTable& table, d
   return -1.0;
 }
 
-}  // namespace silhouette_detail
-
-bool iso_occluded(const VolumeSpline& spline, const SingletonTable& table, double iso, const SilhouetteView& view,
-                  const glm::dvec3& from, double skip) {
-  const IndexView iv = index_view(spline, view);
+bool occluded(const VolumeSpline& spline, const SingletonTable& table, double iso, const IndexView& iv,
+              const glm::dvec3& from, double skip, const LevelSides* sides) {
   glm::dvec3 dir = iv.perspective ? iv.eye - from : -iv.v;
   double t_end = iv.perspective ? glm::length(dir) : INFINITY;
   if (!(glm::length(dir) > 0.0)) return false;
@@ -383,7 +549,14 @@ bool iso_occluded(const VolumeSpline& spline, const SingletonTable& table, doubl
     else if (dir[a] < 0.0)
       t_end = std::min(t_end, (0.0 - from[a]) / dir[a]);
   }
-  return first_crossing(spline, table, iso, from, dir, skip, t_end) >= 0.0;
+  return first_crossing(spline, table, iso, from, dir, skip, t_end, sides) >= 0.0;
+}
+
+}  // namespace silhouette_detail
+
+bool iso_occluded(const VolumeSpline& spline, const SingletonTable& table, double iso, const SilhouetteView& view,
+                  const glm::dvec3& from, double skip) {
+  return silhouette_detail::occluded(spline, table, iso, index_view(spline, view), from, skip, nullptr);
 }
 
 }  // namespace trispline::core

@@ -12,6 +12,12 @@
 // traced in blocks of 32³ cells in parallel; a trace ends on a block face at the exact crossing of the curve with the
 // face plane, where the neighbour block's trace of the same curve ends too, and the pieces are joined there. Each
 // point knows whether the iso-surface hides it from the eye.
+//
+// A view with a pixel size limits the density to what the screen shows: where a cell covers fewer than
+// SilhouetteParams::pixel_step pixels, the trace takes steps of up to a cell that turn by up to 60° (half a cell and
+// 25° otherwise), and points closer than a pixel on screen to the last one kept are merged. SilhouetteSequence serves
+// a run of nearby views (an orbit): it files the cells holding the level once, and seeds each view from the previous
+// view's curves before the table (Burns et al. 2005, seed-and-traverse).
 #pragma once
 
 #include <atomic>
@@ -31,6 +37,9 @@ struct SilhouetteView {
   bool perspective = true;
   glm::dvec3 eye{0.0};                   // perspective: the eye position
   glm::dvec3 direction{0.0, 0.0, -1.0};  // orthographic: the viewing direction (need not be unit)
+  // The size of a pixel, millimetres: perspective, at unit distance from the eye (2·tan(fov/2) ÷ viewport height);
+  // orthographic, anywhere (view height ÷ viewport height). 0: not on a screen — no density limit (exports).
+  double pixel_size = 0.0;
 };
 
 // The seed's two operational parameters (§7.3.3) and the hidden-line mode.
@@ -45,10 +54,13 @@ struct SilhouetteParams {
   // false: cells the iso-surface hides from the eye seed nothing, for views that drop hidden parts (the editor with
   // Hidden lines "remove"). A curve is then traced only when some cell of it may be seen; once seeded it is traced
   // whole and tested as usual. Hidden means: the cell's nearest point lies more than 4 index units beyond the
-  // farthest first crossing of D = iso over the rays of a coarse 192 × 192 map from the eye around its footprint —
-  // conservative but for openings narrower than the map's spacing (about 1/192 of the volume's extent on screen).
+  // farthest first crossing of D = iso over the rays of a coarse 128 × 128 map from the eye around its footprint —
+  // conservative but for openings narrower than the map's spacing (about 1/128 of the volume's extent on screen).
   // With the eye inside the grid box every cell seeds.
   bool seed_hidden = true;
+  // Screen density, pixels (views with SilhouetteView::pixel_size; 0 = off, up to 16): where a cell covers fewer
+  // than this many pixels the trace takes coarser steps, and points closer than a pixel on screen are merged.
+  double pixel_step = 2.0;
 };
 
 // One connected piece of silhouette, world units. The arrays have one entry per point.
@@ -62,15 +74,16 @@ struct SilhouettePolyline {
 struct SilhouetteResult {
   std::vector<SilhouettePolyline> polylines;
   // Figures of this extraction.
-  std::size_t candidates = 0;       // singletons that passed the range and cone tests
-  std::size_t seeds = 0;            // sub-cells that seeded Newton (traced cells seed nothing)
-  std::size_t points = 0;           // converged points kept (= Σ polyline sizes)
-  std::size_t hidden_cells = 0;     // candidates that seeded nothing as hidden (SilhouetteParams::seed_hidden)
-  double max_value_residual = 0.0;  // max |D − c| / range(D) over the points
-  double max_dot_residual = 0.0;    // max |Ĝ·V̂| over the points (world-space unit vectors)
-  double length_mm = 0.0;           // total polyline length, millimetres
-  double extract_ms = 0.0;          // wall-clock: candidates + seeds + tracing + joining
-  double hidden_ms = 0.0;           // wall-clock: the occlusion test
+  std::size_t candidates = 0;            // singletons that passed the range and cone tests
+  std::size_t seeds = 0;                 // sub-cells that seeded Newton (traced cells seed nothing)
+  std::size_t points = 0;                // converged points kept (= Σ polyline sizes)
+  std::size_t hidden_cells = 0;          // candidates that seeded nothing as hidden (SilhouetteParams::seed_hidden)
+  std::size_t traced_from_previous = 0;  // traces started from the previous view's curves (SilhouetteSequence)
+  double max_value_residual = 0.0;       // max |D − c| / range(D) over the points
+  double max_dot_residual = 0.0;         // max |Ĝ·V̂| over the points (world-space unit vectors)
+  double length_mm = 0.0;                // total polyline length, millimetres
+  double extract_ms = 0.0;               // wall-clock: candidates + seeds + tracing + joining
+  double hidden_ms = 0.0;                // wall-clock: the occlusion test
 };
 
 // Silhouette of D = `iso` (the volume's units) for `view`. `table` must have been built from `spline`
@@ -79,6 +92,34 @@ struct SilhouetteResult {
 // write to disjoint slots, results are ordered by cell).
 SilhouetteResult extract_silhouettes(const VolumeSpline& spline, const SingletonTable& table, double iso,
                                      const SilhouetteView& view, const SilhouetteParams& params = {});
+
+// Silhouettes of one volume over a run of nearby views (the editor's orbit; `bench silhouettes --orbit`). The cells
+// whose value range holds the level are filed by block once per level; each view then traces first from the previous
+// view's curves — a point every 2 index units, Newton for the new view from it (Burns et al. 2005) — and falls back
+// to the table for the curves the previous view did not have (every candidate cell no trace has crossed). The result
+// for a view depends on the views before it (which curves are traced first decides where joined pieces begin), so
+// exports and replays use extract_silhouettes. Holds the spline and table alive; not thread-safe (one view at a time).
+class SilhouetteSequence {
+ public:
+  SilhouetteSequence(std::shared_ptr<const VolumeSpline> spline, std::shared_ptr<const SingletonTable> table);
+  ~SilhouetteSequence();
+  SilhouetteSequence(const SilhouetteSequence&) = delete;
+  SilhouetteSequence& operator=(const SilhouetteSequence&) = delete;
+
+  // As extract_silhouettes for the next view. Throws as it does; a throw leaves the sequence as it was.
+  SilhouetteResult next(double iso, const SilhouetteView& view, const SilhouetteParams& params = {});
+  // Forget the previous view (the next one seeds from the table alone).
+  void restart();
+  const VolumeSpline& spline() const { return *spline_; }
+  const SingletonTable& table() const { return *table_; }
+
+ private:
+  struct Filed;
+  std::shared_ptr<const VolumeSpline> spline_;
+  std::shared_ptr<const SingletonTable> table_;
+  std::unique_ptr<Filed> filed_;      // the cells holding the last view's level, by block
+  std::vector<glm::dvec3> previous_;  // index space: the previous view's curves, a point every 2 index units
+};
 
 // Whether the segment from index-space point `from` towards the eye (perspective: to `view.eye`; orthographic:
 // against `view.direction` to the volume's boundary) crosses D = iso, ignoring the first `skip` index units (the

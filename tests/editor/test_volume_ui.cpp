@@ -144,14 +144,16 @@ TEST_F(VolumeUiTest, LiveSilhouettesFollowTheViewOnAWorker) {
   const auto first = o.overlays.volumes_in_place[0].silhouettes;
   ASSERT_NE(first, nullptr);
   const core::VolumeObject& v = *session.scene().find_volume("torus");
-  // The command's extraction for this view, with the live view's seeding: hidden lines removed, so hidden cells
-  // seed nothing.
+  // The live view's extraction: a run of views at the screen's density, hidden lines removed (hidden cells seed
+  // nothing) — the same as a sequence of its own over the same views.
   core::SilhouetteParams live;
   live.seed_hidden = v.silhouette.hidden != "remove";
   EXPECT_FALSE(live.seed_hidden);
-  const core::SilhouetteResult direct =
-      core::extract_silhouettes(*v.spline, *v.table, v.iso, v.silhouette_view(a), live);
-  EXPECT_EQ(first->points, direct.points) << "the same extraction as the command's, for this view";
+  EXPECT_GT(v.screen_silhouette_view(a).pixel_size, 0.0);
+  core::SilhouetteSequence sequence(v.spline, v.table);
+  const core::SilhouetteResult direct = sequence.next(v.iso, v.screen_silhouette_view(a), live);
+  EXPECT_EQ(first->points, direct.points) << "the same extraction as a sequence's, for this view";
+  EXPECT_EQ(first->polylines.size(), direct.polylines.size());
   // Orbit: a new extraction starts; the previous silhouettes are drawn until it is done.
   const core::Camera b = view_from({80.0, -80.0, 70.0});
   ui.update(session.scene(), b);
@@ -166,6 +168,11 @@ TEST_F(VolumeUiTest, LiveSilhouettesFollowTheViewOnAWorker) {
   gpu::ViewOptions fresh;
   ui.decorate(fresh);
   EXPECT_NE(fresh.overlays.volumes_in_place.at(0).silhouettes, first);
+  // Seeded from view a's curves, as the sequence's second view is.
+  const core::SilhouetteResult then = sequence.next(v.iso, v.screen_silhouette_view(b), live);
+  EXPECT_GT(then.traced_from_previous, 0u);
+  EXPECT_EQ(fresh.overlays.volumes_in_place.at(0).silhouettes->points, then.points);
+  EXPECT_EQ(fresh.overlays.volumes_in_place.at(0).silhouettes->traced_from_previous, then.traced_from_previous);
   // The same view again: nothing to do. Silhouettes off: nothing drawn, nothing extracted.
   ui.update(session.scene(), b);
   EXPECT_FALSE(ui.extracting());
