@@ -247,7 +247,7 @@ json run_orbit(const std::string& name, const BenchDdmOptions& o, gpu::Renderer&
   renderer.release_unused(core::Scene{});
   return {{"name", name},
           {"tile_size", *params.paint.spec.tile_size},
-          {"base", core::ddm_base_name(params.paint.spec.base)},
+          {"base", core::ddm_base_name(*params.paint.spec.base)},
           {"instances", layer.instances.size()},
           {"vertices", vertices},
           {"fill_ms", fill_ms},

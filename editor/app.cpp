@@ -319,15 +319,22 @@ void App::write_probe() {
   for (const ui::HistoryOutputRow& o : hv.outputs)
     p["history"]["outputs"].push_back({{"after", o.after}, {"label", o.label}, {"not_written", o.not_written}});
   const glm::dvec2 scale(ImGui::GetIO().DisplayFramebufferScale.x, ImGui::GetIO().DisplayFramebufferScale.y);
-  nlohmann::json objects = nlohmann::json::array(), object_px = nlohmann::json::object();
+  nlohmann::json objects = nlohmann::json::array(), object_px = nlohmann::json::object(),
+                 centroid_px = nlohmann::json::object();
   for (const core::SceneObject& o : session_.scene().objects()) {
     objects.push_back(o.name);
-    if (!o.world_mesh) continue;
+    if (!o.world_mesh || o.world_mesh->positions.empty()) continue;
     const glm::dvec3 c = view_.project(bounds_of(*o.world_mesh).center());
     object_px[o.name] = {c.x / scale.x, c.y / scale.y};
+    // The mean of the vertices: on the body of an object whose box centre thin parts (ears, handles) pull aside.
+    glm::dvec3 mean(0.0);
+    for (const glm::dvec3& x : o.world_mesh->positions) mean += x;
+    const glm::dvec3 m = view_.project(mean / double(o.world_mesh->positions.size()));
+    centroid_px[o.name] = {m.x / scale.x, m.y / scale.y};
   }
   p["objects"] = objects;
   p["object_px"] = object_px;
+  p["object_centroid_px"] = centroid_px;
   nlohmann::json animated = nlohmann::json::array();  // objects whose shape changes with the scene time
   for (const core::SceneObject& o : session_.scene().objects())
     if (o.animated()) animated.push_back(o.name);

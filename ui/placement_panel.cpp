@@ -45,6 +45,7 @@ PlacementPanelResult draw_placement_panel(core::PlaceSketchParams& p, PlacementP
   field("width");
   field("height");
   field("volume");
+  field("fit");
   field("extent");
 
   ImGui::Spacing();

@@ -67,6 +67,20 @@ void read_map_resolution(const Field& f, const nlohmann::json& v, S& s, const Co
   s.map_resolution = glm::ivec2(r);
 }
 
+void read_base(const Field& f, const nlohmann::json& v, S& s, const CommandContext&) {
+  const std::string name = params::Codec<std::string>::read(v, f.doc.name);
+  for (DdmBaseKind k : {DdmBaseKind::limit, DdmBaseKind::teapot_body, DdmBaseKind::uv, DdmBaseKind::auto_uv})
+    if (name == ddm_base_name(k)) {
+      s.base = k;
+      return;
+    }
+  params::fail(f.doc.name, "'" + name + "' is not one of limit|teapot_body|uv|auto_uv");
+}
+
+void write_base(const Field& f, const S& s, nlohmann::json& line) {
+  if (s.base) line[f.doc.name] = ddm_base_name(*s.base);
+}
+
 void write_map_resolution(const Field& f, const S& s, nlohmann::json& line) {
   if (s.map_resolution) line[f.doc.name] = params::Codec<glm::ivec2>::write(*s.map_resolution);
 }
@@ -131,8 +145,9 @@ ParamSchema<S> make_layer_schema(bool fill) {
       .above(0)
       .unit("world units")
       .help("World units (object space) per tile unit of w, along the base normal")
-      .choice("base", &S::base, {"limit", "teapot_body", "uv", "auto_uv"})
-      .write_unless_default()
+      .custom("base", read_base, write_base)
+      .type_text("limit|teapot_body|uv|auto_uv")
+      .default_text("the object's: teapot_body (teapot primitive), uv (texture coordinates), else auto_uv")
       .help(
           "limit: Loop limit surface, three charts per triangle; teapot_body: the teapot's body patches as one "
           "chart; uv: the mesh's texture coordinates; auto_uv: automatic ones (seams, CGAL LSCM, even density)")
@@ -223,17 +238,18 @@ std::shared_ptr<DdmLayer> make_ddm_layer(const SceneObject& object, const std::s
   glm::ivec2 resolution{9, 9};
   int charts = 1;
   std::shared_ptr<const TriMesh> base_mesh = object.rest_mesh;  // the mesh the base is made from
+  const DdmBaseKind base = spec.base.value_or(ddm_default_base(object));
   try {
-    if (spec.base == DdmBaseKind::teapot_body) {
+    if (base == DdmBaseKind::teapot_body) {
       layer->base = DdmBaseKind::teapot_body;
       layer->surface = teapot_body_base(object);
       resolution = {513, 257};
-    } else if (ddm_base_is_uv(spec.base)) {
-      layer->base = spec.base;
+    } else if (ddm_base_is_uv(base)) {
+      layer->base = base;
       resolution = {1025, 1025};
       if (spec.map_resolution && spec.map_resolution->x != spec.map_resolution->y)
         throw CommandError("field 'map_resolution': a uv base is square ([R, R])", "map_resolution");
-      if (spec.base == DdmBaseKind::auto_uv) base_mesh = ddm_auto_uv_mesh(object.rest_mesh);
+      if (base == DdmBaseKind::auto_uv) base_mesh = ddm_auto_uv_mesh(object.rest_mesh);
       layer->maps = std::make_shared<const DdmMaps>(
           ddm_rasterize_uv_maps(*base_mesh, spec.map_resolution.value_or(resolution).x));
     } else {
@@ -364,13 +380,14 @@ DdmFillEstimate ddm_fill_estimate(const SceneObject& object, const DdmLayerSpec&
                      .mesh.vertex_count());
   std::shared_ptr<DdmBase> surface;
   int charts = 1;
-  if (spec.base == DdmBaseKind::teapot_body) {
+  const DdmBaseKind base = spec.base.value_or(ddm_default_base(object));
+  if (base == DdmBaseKind::teapot_body) {
     surface = teapot_body_base(object);
-  } else if (spec.base == DdmBaseKind::limit) {
+  } else if (base == DdmBaseKind::limit) {
     charts = static_cast<int>(3 * object.rest_mesh->triangle_count());
   }
   std::shared_ptr<const TriMesh> base_mesh = object.rest_mesh;
-  if (spec.base == DdmBaseKind::auto_uv) {
+  if (base == DdmBaseKind::auto_uv) {
     try {
       base_mesh = ddm_auto_uv_mesh(object.rest_mesh);
     } catch (const std::invalid_argument& e) {
@@ -378,12 +395,11 @@ DdmFillEstimate ddm_fill_estimate(const SceneObject& object, const DdmLayerSpec&
     }
   }
   DdmFillEstimate e;
-  const std::vector<glm::ivec2> counts =
-      ddm_fill_chart_counts(spec, spec.base, *base_mesh, surface.get(), charts, largest);
+  const std::vector<glm::ivec2> counts = ddm_fill_chart_counts(spec, base, *base_mesh, surface.get(), charts, largest);
   e.charts = counts.size();
   for (const glm::ivec2& c : counts) e.cells += ddm_layout_cell_count(spec.layout, c);
   e.tile_vertices = e.cells * largest;
-  e.upper_bound = ddm_base_is_uv(spec.base);
+  e.upper_bound = ddm_base_is_uv(base);
   return e;
 }
 
@@ -433,7 +449,8 @@ std::optional<SceneObject> DdmFillCommand::build(const Scene& scene) {
   std::shared_ptr<const DdmLayer> layer = make_ddm_layer(*object, p_.layer, p_.spec, true, progress());
   std::size_t tile_vertices = 0;
   for (const DdmTile& t : layer->tiles) tile_vertices = std::max(tile_vertices, t.mesh.vertex_count());
-  stats_ = {{"charts", layer->maps->slot_of_chart.size()},
+  stats_ = {{"base", ddm_base_name(layer->base)},
+            {"charts", layer->maps->slot_of_chart.size()},
             {"tiles", layer->instances.size()},
             {"tile_vertices", tile_vertices},
             {"vertices", layer->mesh->vertex_count()},

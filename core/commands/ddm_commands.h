@@ -3,7 +3,8 @@
 // `ddm.fill` — a whole-surface layer (the painting tool's fill click):
 //   {"cmd":"ddm.fill","object":"ID","layer":"NAME","tile":"PATH|thorn|chain|hex|flower","layout":"rect|hex|brick",
 //    "counts":[n,m] | "tile_size":s,"height":h}
-//   optional (DdmLayerSpec): "base":"limit|teapot_body|uv|auto_uv" (default "limit"), "tiles":[more tiles …] with
+//   optional (DdmLayerSpec): "base":"limit|teapot_body|uv|auto_uv" (default: the object's, ddm_default_base — what
+//   the Tile Paint panel starts from), "tiles":[more tiles …] with
 //   "choice":"pattern|random" and "seed":s, "map_resolution":[Ru,Rv] (or one number), "tile_scale":[sx,sy] (or one
 //   number), "tile_rotate_deg":r, "tile_shift":[dx,dy].
 //   tile    a generated tile (ddm_tile.h) or a mesh file (OBJ/PLY/glTF, relative to the log's folder; logged absolute,
@@ -27,8 +28,8 @@
 //   on the object's rest surface and carried by whatever deforms the object — FFD, DFFD rig, glTF clip, incision,
 //   morph — after the DDM (core/scene/ddm_follow.h; the layer keeps the rest mesh as its host_mesh). At most
 //   max_vertices tile vertices (default and at most 10,000,000), refused with the count before anything is built.
-//   report.json: charts, tiles, tile_vertices, vertices, map_samples, ms; auto_uv adds uv_charts and
-//   uv_area_distortion_p95 (DdmAutoUvStats).
+//   report.json: base (the one used), charts, tiles, tile_vertices, vertices, map_samples, ms; auto_uv adds uv_charts
+//   and uv_area_distortion_p95 (DdmAutoUvStats).
 // `ddm.bake` — a layer as an ordinary mesh object (for export and for use elsewhere):
 //   {"cmd":"ddm.bake","object":"ID","layer":"NAME","name":"NEW_ID"}
 //   optional "frame":F (default: the layer at scene time 0) — the layer's animation at that timeline frame.
@@ -70,7 +71,8 @@ struct DdmLayerSpec {
   std::optional<double> tile_size;   // world units: cells per chart from each chart's world size (not with counts)
   std::optional<std::int64_t> max_vertices;  // refuse more tile vertices than this; unset = kMaxDdmLayerVertices
   double height = 0.1;
-  DdmBaseKind base = DdmBaseKind::limit;
+  // unset: the object's own (ddm_default_base), the base the Tile Paint panel starts from
+  std::optional<DdmBaseKind> base;
   std::optional<glm::ivec2> map_resolution;  // unset = the base's default
   DdmTileTransform transform;                // "tile_scale", "tile_rotate_deg", "tile_shift"
   std::optional<glm::vec3> color;            // the layer's linear RGB in [0, 1]; unset = the object's
@@ -107,9 +109,9 @@ std::shared_ptr<DdmLayer> make_ddm_layer(const SceneObject& object, const std::s
 std::vector<glm::ivec2> ddm_fill_chart_counts(const DdmLayerSpec& spec, DdmBaseKind base, const TriMesh& base_mesh,
                                               const DdmBase* surface, int charts, std::size_t tile_vertices);
 
-// The base a new layer on `object` starts from in the editor: the teapot primitive's body patches (teapot_body), the
+// The base a layer on `object` gets when its line names none, and the Tile Paint panel's first choice: the teapot
+// primitive's body patches (teapot_body), the
 // mesh's own texture coordinates when every vertex has one (uv), else automatic ones (auto_uv); limit on request.
-// (The commands' own default stays "limit": logs that omit "base" replay as they were written.)
 DdmBaseKind ddm_default_base(const SceneObject& object);
 
 // ddm_auto_uv of `mesh` (the auto_uv base), kept for the last few meshes (a mesh is immutable and shared between

@@ -361,6 +361,7 @@ std::optional<SceneObject> DdmPaintCommand::build(const Scene& scene) {
   }
   const DdmLayer& now = *result;
   stats_ = {{"created", !existing},
+            {"base", ddm_base_name(now.base)},
             {"touched", touched.size()},
             {"cells_added", added},
             {"cells_removed", removed},

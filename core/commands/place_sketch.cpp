@@ -98,12 +98,20 @@ const ParamSchema<PlaceSketchParams>& PlaceSketchCommand::schema() {
           .label("Height")
           .ui(0.002, "%.3f")
           .help("h: height of the deformation volume above the contact surface")
+          .choice("fit", &P::fit, {"keep", "stretch"})
+          .write_unless_default()
+          .label("Fit")
+          .help(
+              "keep: the object keeps its proportions along the stroke (its length scaled as its height is, at most "
+              "Extent of the path); stretch: it covers Extent of the path, however long")
           .field("extent", &P::extent)
           .range(0, 1, true, false)
           .write_unless_default()
           .label("Extent")
           .ui(0.005, "%.3f")
-          .help("Fraction of the path (u) the object covers; below 1 it leaves room to walk along the path (§2.4.3)")
+          .help(
+              "Fraction of the path (u) the object covers (stretch), or at most covers (keep); below 1 it leaves room "
+              "to walk along the path (§2.4.3)")
           .object("springs", &P::springs, spring_schema())
           .help("Relax the contact surface as a mass-spring net before the volume is built (§2.3.2)")
           .field("width_profile", &P::width_profile)
@@ -206,7 +214,43 @@ std::optional<SceneObject> PlaceSketchCommand::build(const Scene& scene) {
     }
   }();
 
-  if (target->clip || p_.extent != 1.0 || !target->ddm_layers.empty()) {
+  // The fraction of the path the object covers (seed Eq. 2.3–2.5 map u ∈ [0, 1] onto the whole contact curve).
+  double extent = p_.extent;
+  if (p_.fit == "keep") {
+    const int a = sp.axes.length_axis, w = sp.axes.up_axis;
+    double lo_a = INFINITY, hi_a = -INFINITY, lo_w = INFINITY, hi_w = -INFINITY;
+    for (const glm::dvec3& x : rest.positions)
+      lo_a = std::min(lo_a, x[a]), hi_a = std::max(hi_a, x[a]), lo_w = std::min(lo_w, x[w]),
+      hi_w = std::max(hi_w, x[w]);
+    // The contact curve F(u, ½, 0) by arc length (the lattice's speed along u is not uniform near its ends).
+    constexpr int kSamples = 1024;
+    std::vector<double> arc(kSamples + 1, 0.0);
+    glm::dvec3 last = r.binding.lattice.eval({0.0, 0.5, 0.0});
+    for (int i = 1; i <= kSamples; ++i) {
+      const glm::dvec3 x = r.binding.lattice.eval({double(i) / kSamples, 0.5, 0.0});
+      arc[i] = arc[i - 1] + glm::length(x - last);
+      last = x;
+    }
+    const double path = arc[kSamples];
+    const double object_height = hi_w - lo_w, object_length = hi_a - lo_a;
+    if (object_height > 0.0 && object_length > 0.0 && path > 0.0 && std::isfinite(path)) {
+      // The u where the arc length reaches the object's length scaled as its height is.
+      const double length = object_length * (p_.height / object_height);
+      const auto it = std::lower_bound(arc.begin(), arc.end(), length);
+      double u = 1.0;
+      if (it != arc.end()) {
+        const std::size_t i = std::max<std::size_t>(1, std::size_t(it - arc.begin()));
+        const double span = arc[i] - arc[i - 1];
+        u = (double(i - 1) + (span > 0.0 ? (length - arc[i - 1]) / span : 1.0)) / kSamples;
+      }
+      extent = std::min(extent, u);
+    }
+    if (!(extent > 0.0) || !std::isfinite(extent))
+      throw CommandError("field 'fit': the object's proportions give no length along the stroke", "fit");
+    fit_path_length_ = path;
+  }
+  applied_extent_ = extent;
+  if (target->clip || extent != 1.0 || !target->ddm_layers.empty()) {
     FfdBinding& b = r.binding;
     if (target->clip) {  // embed the box of every pose, so the walking object stays inside the lattice
       std::vector<glm::dvec3> span = positions_with_tile_layers(*target, rest);
@@ -221,8 +265,8 @@ std::optional<SceneObject> PlaceSketchCommand::build(const Scene& scene) {
       }
       b.embedding = embed_bounding_box(span, sp.axes);
     }
-    for (int c = 0; c < 3; ++c) b.embedding.linear[c][0] *= p_.extent;  // u' = e·u: the object covers [0, e]
-    b.embedding.offset.x *= p_.extent;
+    for (int c = 0; c < 3; ++c) b.embedding.linear[c][0] *= extent;  // u' = e·u: the object covers [0, e]
+    b.embedding.offset.x *= extent;
     b.params = embed_points(b.embedding, rest.positions);
   }
   SceneObject placed = *target;
@@ -258,6 +302,9 @@ std::optional<SceneObject> PlaceSketchCommand::build(const Scene& scene) {
                          {"dt", st.springs.dt},
                          {"active", st.springs.active},
                          {"floors", st.springs.floors}};
+  stats_["fit"] = p_.fit;
+  stats_["extent"] = applied_extent_;
+  if (p_.fit == "keep") stats_["path_length"] = fit_path_length_;
   stats_["bvh_ms"] = bvh_ms;
   stats_["evaluate_ms"] = eval_ms;
   stats_["vertices"] = placed.world_mesh->vertex_count();

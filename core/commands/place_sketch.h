@@ -8,8 +8,12 @@
 // scales h along u (one list) or over (u,v) (rows over v): factors > 0, piecewise linear (seed Eq. 2.5).
 // Optional "springs":{"stiffness":k,"damping":ρ,"mass":M,"threshold_deg":a,"neighbourhood":n,"max_steps":s,
 // "rest_length":"zero|initial"} relaxes the contact surface as a mass-spring net before the volume is built.
-// Optional "extent":e in (0,1] (default 1): the object covers u ∈ [0, e] of the path instead of all of it, so an
-// offset along u (anim.keyframe) walks it along the stroke (seed §2.4.3). An object with a glTF clip (anim.clip) is
+// Optional "fit":"keep|stretch" (default keep) and "extent":e in (0,1] (default 1). stretch: the object covers
+// u ∈ [0, e] of the path (e = 1: the whole stroke, however long). keep: it keeps its proportions — its length is
+// scaled by the factor its height is (h ÷ the object's height along up_axis), so it covers u ∈ [0, min(e, u_L)] with
+// u_L where the contact curve F(u, ½, 0) has run that length (by arc length: the lattice's speed along u is not
+// uniform near its ends). Below the whole path an offset along u (anim.keyframe) walks the object along the stroke (seed §2.4.3).
+// The report gives the extent used ("extent") and the fit. An object with a glTF clip (anim.clip) is
 // embedded by the bounding box of its poses over the clip (64 samples), so no pose leaves the lattice.
 // The rays see every visible object except the one being placed and those listed in "ignore" (optional; the
 // editor lists the objects hidden in its viewport). Re-placing an already placed object starts
@@ -33,7 +37,8 @@ struct PlaceSketchParams {
   std::vector<glm::dvec2> stroke;     // #S × 2 pixels
   double width = 0.15;                // half-width d, world units
   double height = 0.2;                // h, world units
-  double extent = 1.0;                // fraction of the path (u) the object covers, (0, 1]; < 1 leaves room to walk
+  std::string fit = "keep";           // keep (the object's proportions) | stretch (the extent as given)
+  double extent = 1.0;                // stretch: fraction of the path (u) the object covers, (0, 1]; keep: at most
   std::vector<double> width_profile;  // d(u) factors over u (seed Eq. 2.5); empty = constant
   std::vector<std::vector<double>> height_profile;  // h(u) or h(u,v) factors: rows over v; empty = constant
   std::optional<SpringParams> springs;              // mass-spring contact surface (seed §2.3.2); unset = off
@@ -59,6 +64,10 @@ class PlaceSketchCommand : public ObjectSnapshotCommand<PlaceSketchCommand, Plac
 
  protected:
   std::optional<SceneObject> build(const Scene& scene) override;
+
+ private:
+  double applied_extent_ = 1.0;   // the extent used (report.json "extent")
+  double fit_path_length_ = 0.0;  // keep: the contact curve's length, world units
 };
 
 }  // namespace trispline::core

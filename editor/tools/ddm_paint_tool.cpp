@@ -359,7 +359,7 @@ void DdmPaintTool::draw_new_layer_fields(const core::SceneObject* o) {
   const bool teapot = o && o->source == "primitive:teapot";
   const bool uvs = o && o->rest_mesh && !o->rest_mesh->uvs.empty();
   using Base = core::DdmBaseKind;
-  if (ImGui::BeginCombo("Base", core::ddm_base_name(spec.base))) {
+  if (ImGui::BeginCombo("Base", spec.base ? core::ddm_base_name(*spec.base) : "(the object's)")) {
     if (ImGui::Selectable("limit", spec.base == Base::limit)) spec.base = Base::limit;
     ui::tooltip("The Loop limit surface of the mesh, three charts per triangle: tiles cross faces without cracks");
     if (teapot && ImGui::Selectable("teapot_body", spec.base == Base::teapot_body)) spec.base = Base::teapot_body;

@@ -224,7 +224,7 @@ TEST(HostileMeshFiles, EndAtTheirLineWithAClearErrorAndLittleMemory) {
       {R"({"cmd":"scene.load","path":"sparse.obj"})", "memory budget"},
       {R"({"cmd":"scene.load","path":"escape.gltf"})", "outside"},
       {R"({"cmd":"scene.load","path":"zero.obj"})", "is a character device"},
-      {R"({"cmd":"ddm.fill","object":"ball","layer":"l","tile":"zero.obj","layout":"rect","counts":[1,1],"height":0.05})",
+      {R"({"cmd":"ddm.fill","base":"limit","object":"ball","layer":"l","tile":"zero.obj","layout":"rect","counts":[1,1],"height":0.05})",
        "is a character device"},
   };
   const long rss_before = max_rss_mb();

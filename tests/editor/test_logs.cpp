@@ -99,8 +99,8 @@ TEST(Registry, UnknownAndMissingCmd) {
   EXPECT_THROW(reg.parse({{"name", "x"}}, ctx), core::CommandError);
   EXPECT_THROW(reg.parse({{"cmd", 3}}, ctx), core::CommandError);
   EXPECT_THROW(reg.parse(nlohmann::json::array(), ctx), core::CommandError);
-  for (const char* id : {"scene.load", "scene.primitive", "scene.remove", "camera.set", "place.sketch",
-                         "lattice.ring", "lattice.animate_offset", "object.transform"})
+  for (const char* id : {"scene.load", "scene.primitive", "scene.remove", "camera.set", "place.sketch", "lattice.ring",
+                         "lattice.animate_offset", "object.transform"})
     EXPECT_NE(std::find(reg.ids().begin(), reg.ids().end(), id), reg.ids().end()) << id;
 }
 
@@ -124,8 +124,10 @@ TEST(CommandLog, LoadLinesCarryAbsolutePathsAndSaveMakesThemRelative) {
 
   // ddm.fill's tile file likewise; a generated tile is a name and stays as it is.
   const auto fill = editor::CommandRegistry::builtin().parse(
-      nlohmann::json::parse(R"({"cmd":"ddm.fill","object":"o","layer":"l","tile":"data/brick.obj","layout":"rect",
-                                "counts":[1,1],"height":0.1})"), ctx);
+      nlohmann::json::parse(
+          R"({"cmd":"ddm.fill","base":"limit","object":"o","layer":"l","tile":"data/brick.obj","layout":"rect",
+                                "counts":[1,1],"height":0.1})"),
+      ctx);
   EXPECT_TRUE(fs::path(fill->to_json().at("tile").get<std::string>()).is_absolute());
   std::vector<nlohmann::json> fills = {fill->to_json(), fill->to_json()};
   fills[1]["tile"] = "thorn";

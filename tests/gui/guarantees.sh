@@ -21,7 +21,7 @@ gui_wait '.guarantees.certificate == "fold_free" and .guarantees.cell_segments >
   "the placed bunny's lattice is certified fold-free and its cells are drawn" 60
 
 # The Press tool with Keep fold-free and a strength far beyond what the lattice takes.
-x="$(gui_q '.object_px.bunny[0] | floor')"; y="$(gui_q '.object_px.bunny[1] | floor')"
+x="$(gui_q '.object_centroid_px.bunny[0] | floor')"; y="$(gui_q '.object_centroid_px.bunny[1] | floor')"
 gui_move "$x" "$y"
 gui_frames 1
 gui_key e

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The Sketch tool's panel draws place.sketch's declared parameters: typing a half-width into its field re-runs the
-# adopted placement as one undoable step with that width, and the Type combo switches the volume to "offset".
+# adopted placement as one undoable step with that width, the Type combo switches the volume to "extrude", and the Fit
+# combo (keep by default: the line carries no "fit") switches to "stretch".
 source "$(dirname "$0")/gui_lib.sh"
 gui_start "$GUI_ROOT/assets/scenes/default.jsonl"
 gui_wait '(.history.labels | length) >= 4' "the default scene is open"
@@ -16,10 +17,30 @@ gui_key Return
 gui_wait '.typing | not' "Enter leaves the field"
 gui_wait_logged '.cmd == "place.sketch" and .width == 0.25 and .object == "bunny"' "a place.sketch with width 0.25"
 
+# The default scene's placement is an offset volume: the Type combo switches it to extrude.
+gui_check '.items["place.sketch.volume"] != null' "the panel shows the Type combo"
 gui_click_item place.sketch.volume
 gui_wait '.popups | length > 0' "the Type combo opens"
-gui_click_item place.sketch.volume.offset
-gui_wait_logged '.cmd == "place.sketch" and .volume == "offset" and .width == 0.25' \
-  "choosing offset in the Type combo logs a place.sketch with volume offset"
+gui_click_item place.sketch.volume.extrude
+gui_wait_logged '.cmd == "place.sketch" and .volume == "extrude" and .width == 0.25' \
+  "choosing extrude in the Type combo logs a place.sketch with volume extrude"
+gui_wait '.popups | length == 0' "the Type combo closed"
+
+gui_wait '.items["place.sketch.fit"] != null' "the panel shows the Fit combo"
+gui_click_item place.sketch.fit
+gui_wait '.popups | length > 0' "the Fit combo opens"
+gui_click_item place.sketch.fit.stretch
+gui_wait_logged '.cmd == "place.sketch" and .fit == "stretch" and .volume == "extrude"' \
+  "choosing stretch in the Fit combo logs a place.sketch with fit stretch"
+gui_wait '.popups | length == 0' "the Fit combo closed"
+gui_click_item place.sketch.fit
+gui_wait '.popups | length > 0' "the Fit combo opens again"
+gui_click_item place.sketch.fit.keep
+keep_line='.cmd == "place.sketch" and (has("fit") | not) and .volume == "extrude" and .width == 0.25'
+for ((i = 0; i < 60; ++i)); do
+  [ "$(gui_session_count "$keep_line")" -ge 2 ] && break
+  gui_frames 1
+done
+gui_check "$(gui_session_count "$keep_line") >= 2" "back to keep: a second extrude line that leaves fit to its default"
 gui_check "(.history.labels | length) == $n" "each edit replaced the placement: one history entry"
 gui_pass

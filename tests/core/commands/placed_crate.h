@@ -27,9 +27,10 @@ inline core::CommandPtr run_crate_line(Scene& scene, const json& line) {
                   PlaceArrayCommand, AnimClipCommand>(scene, line);
 }
 
+// The crate along a curved stroke, covering `extent` of it ("fit":"stretch": the extent as given).
 inline json place_line(double extent) {
   json j = json::parse(R"({"cmd":"place.sketch","stroke":[[250,380],[330,340],[400,330],[470,340],[550,380]],
-    "object":"crate","width":0.3,"height":0.2,"samples":[24,8],"order":[4,4,3],"controls":[8,4,3]})");
+    "object":"crate","width":0.3,"height":0.2,"samples":[24,8],"order":[4,4,3],"controls":[8,4,3],"fit":"stretch"})");
   if (extent != 1.0) j["extent"] = extent;
   return j;
 }

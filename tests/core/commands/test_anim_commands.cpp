@@ -197,9 +197,10 @@ TEST(AnimClipReal, TilesRideOnTheClip) {
                                {"scale", 4.0}},
                           ctx)
       ->redo(s);
-  DdmFillCommand::parse(json::parse(R"({"cmd":"ddm.fill","object":"cube","layer":"t","tile":"thorn","layout":"rect",
+  DdmFillCommand::parse(
+      json::parse(R"({"cmd":"ddm.fill","base":"limit","object":"cube","layer":"t","tile":"thorn","layout":"rect",
       "counts":[1,1],"height":0.05})"),
-                        ctx)
+      ctx)
       ->redo(s);
   AnimClipCommand::parse(
       json{{"cmd", "anim.clip"}, {"object", "cube"}, {"path", kData + "AnimatedMorphCube/AnimatedMorphCube.gltf"}}, ctx)

@@ -29,9 +29,10 @@ Scene ball_scene() {
 TEST(DdmCommands, FillThenBakeOnALimitSurface) {
   Scene s = ball_scene();
   const TriMesh rest = *s.find("ball")->rest_mesh;
-  auto fill = DdmFillCommand::parse(json::parse(R"({"cmd":"ddm.fill","object":"ball","layer":"spikes","tile":"thorn",
+  auto fill = DdmFillCommand::parse(
+      json::parse(R"({"cmd":"ddm.fill","base":"limit","object":"ball","layer":"spikes","tile":"thorn",
       "layout":"rect","counts":[1,1],"height":0.2})"),
-                                    {});
+      {});
   EXPECT_EQ(fill->to_json()["counts"], json::parse("[1,1]"));
   fill->redo(s);
   const SceneObject& ball = *s.find("ball");
@@ -66,9 +67,10 @@ TEST(DdmCommands, FillThenBakeOnALimitSurface) {
 
 TEST(DdmCommands, ALayersOwnColourIsDrawnBakedAndExported) {
   Scene s = ball_scene();
-  auto fill = DdmFillCommand::parse(json::parse(R"({"cmd":"ddm.fill","object":"ball","layer":"gold","tile":"hex",
+  auto fill =
+      DdmFillCommand::parse(json::parse(R"({"cmd":"ddm.fill","base":"limit","object":"ball","layer":"gold","tile":"hex",
       "layout":"rect","counts":[1,1],"height":0.05,"color":[0.9,0.6,0.1]})"),
-                                    {});
+                            {});
   EXPECT_EQ(fill->to_json()["color"].size(), 3u);  // logged back
   fill->redo(s);
   const glm::vec3 gold(0.9f, 0.6f, 0.1f);
@@ -112,7 +114,7 @@ TEST(DdmCommands, ALayersOwnColourIsDrawnBakedAndExported) {
                    ->redo(s),
                CommandError);
   // Without "color" the layer takes the object's colour everywhere.
-  DdmFillCommand::parse(json::parse(R"({"cmd":"ddm.fill","object":"ball","layer":"plain","tile":"hex",
+  DdmFillCommand::parse(json::parse(R"({"cmd":"ddm.fill","base":"limit","object":"ball","layer":"plain","tile":"hex",
       "layout":"rect","counts":[1,1],"height":0.05})"),
                         {})
       ->redo(s);
@@ -123,7 +125,7 @@ TEST(DdmCommands, ALayersOwnColourIsDrawnBakedAndExported) {
 
 TEST(DdmCommands, RemoveALayerAndCommandsThatWouldLeaveTilesBehindAreRefused) {
   Scene s = ball_scene();
-  DdmFillCommand::parse(json::parse(R"({"cmd":"ddm.fill","object":"ball","layer":"spots","tile":"hex",
+  DdmFillCommand::parse(json::parse(R"({"cmd":"ddm.fill","base":"limit","object":"ball","layer":"spots","tile":"hex",
       "layout":"rect","counts":[1,1],"height":0.05})"),
                         {})
       ->redo(s);
@@ -175,10 +177,10 @@ TEST(DdmCommands, TeapotBodyLayerAndReplacingALayer) {
 TEST(DdmCommands, TileFromAFileRelativeToTheLog) {
   CommandContext ctx;
   ctx.base_dir = std::filesystem::path(TRISPLINE_SOURCE_DIR) / "tests" / "logs";
-  auto fill =
-      DdmFillCommand::parse(json::parse(R"({"cmd":"ddm.fill","object":"ball","layer":"t","tile":"data/brick.obj",
+  auto fill = DdmFillCommand::parse(
+      json::parse(R"({"cmd":"ddm.fill","base":"limit","object":"ball","layer":"t","tile":"data/brick.obj",
       "layout":"rect","counts":[1,1],"height":0.1})"),
-                            ctx);
+      ctx);
   EXPECT_TRUE(std::filesystem::path(fill->to_json().at("tile").get<std::string>()).is_absolute());
   Scene s = ball_scene();
   fill->redo(s);
@@ -196,23 +198,28 @@ TEST(DdmCommands, BadInputIsRefusedAndTheSceneIsUnchanged) {
     return trispline::test::command_field_of<DdmFillCommand>(s, json::parse(line));
   };
   Scene s = ball_scene();
-  EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","object":"ball","layer":"x","tile":"thorn","layout":"rect","counts":[0,2],
+  EXPECT_EQ(
+      field_of(
+          R"({"cmd":"ddm.fill","base":"limit","object":"ball","layer":"x","tile":"thorn","layout":"rect","counts":[0,2],
       "height":0.1})",
-                     s),
-            "counts");
-  EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","object":"ball","layer":"x","tile":"thorn","layout":"rect","counts":[1,1],
+          s),
+      "counts");
+  EXPECT_EQ(
+      field_of(
+          R"({"cmd":"ddm.fill","base":"limit","object":"ball","layer":"x","tile":"thorn","layout":"rect","counts":[1,1],
       "height":0})",
-                     s),
-            "height");
-  EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","object":"ball","layer":"x","tile":"spiral.obj","layout":"rect",
+          s),
+      "height");
+  EXPECT_EQ(
+      field_of(R"({"cmd":"ddm.fill","base":"limit","object":"ball","layer":"x","tile":"spiral.obj","layout":"rect",
       "counts":[1,1],"height":0.1})",
-                     s),
-            "tile");
-  EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","object":"ball","layer":"x","tile":"thorn","layout":"zigzag",
+               s),
+      "tile");
+  EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","base":"limit","object":"ball","layer":"x","tile":"thorn","layout":"zigzag",
       "counts":[1,1],"height":0.1})",
                      s),
             "layout");
-  EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","object":"nope","layer":"x","tile":"thorn","layout":"rect",
+  EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","base":"limit","object":"nope","layer":"x","tile":"thorn","layout":"rect",
       "counts":[1,1],"height":0.1})",
                      s),
             "object");
@@ -220,17 +227,17 @@ TEST(DdmCommands, BadInputIsRefusedAndTheSceneIsUnchanged) {
       "counts":[1,1],"height":0.1,"base":"teapot_body"})",
                      s),
             "base");
-  EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","object":"ball","layer":"x","tile":"thorn","layout":"rect",
+  EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","base":"limit","object":"ball","layer":"x","tile":"thorn","layout":"rect",
       "counts":[400,400],"height":0.1})",
                      s),
             "counts");  // too many tile vertices
   // Counts that would make 10¹⁰ cells are refused from the numbers, before a cell is made (once a bare bad_alloc).
-  EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","object":"ball","layer":"x","tile":"thorn","layout":"hex",
+  EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","base":"limit","object":"ball","layer":"x","tile":"thorn","layout":"hex",
       "counts":[100000,100000],"height":0.1})",
                      s),
             "counts");
   // A tile size far below the ball is the most tiles, not the fewest (5e-324 once laid one tile per chart).
-  EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","object":"ball","layer":"x","tile":"thorn","layout":"rect",
+  EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","base":"limit","object":"ball","layer":"x","tile":"thorn","layout":"rect",
       "tile_size":5e-324,"height":0.1})",
                      s),
             "tile_size");
@@ -238,7 +245,7 @@ TEST(DdmCommands, BadInputIsRefusedAndTheSceneIsUnchanged) {
       "base":"auto_uv","tile_size":1e-300,"height":0.1})",
                      s),
             "tile_size");
-  EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","object":"ball","layer":"x","tile":"thorn","layout":"rect",
+  EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","base":"limit","object":"ball","layer":"x","tile":"thorn","layout":"rect",
       "counts":[1,1],"height":0.1,"color":[0.5,1.5,0]})",
                      s),
             "color");
@@ -251,7 +258,7 @@ TEST(DdmCommands, BadInputIsRefusedAndTheSceneIsUnchanged) {
   fin.rest_mesh = std::make_shared<const TriMesh>(m);
   fin.refresh();
   s.insert(fin);
-  EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","object":"fin","layer":"x","tile":"thorn","layout":"rect",
+  EXPECT_EQ(field_of(R"({"cmd":"ddm.fill","base":"limit","object":"fin","layer":"x","tile":"thorn","layout":"rect",
       "counts":[1,1],"height":0.1})",
                      s),
             "base");
@@ -261,9 +268,10 @@ TEST(DdmCommands, BadInputIsRefusedAndTheSceneIsUnchanged) {
             "base");  // no texture coordinates
   for (const SceneObject& o : s.objects()) EXPECT_TRUE(o.ddm_layers.empty()) << o.name;
   // Bake: unknown layer, taken name.
-  DdmFillCommand::parse(json::parse(R"({"cmd":"ddm.fill","object":"ball","layer":"ok","tile":"hex","layout":"rect",
+  DdmFillCommand::parse(
+      json::parse(R"({"cmd":"ddm.fill","base":"limit","object":"ball","layer":"ok","tile":"hex","layout":"rect",
       "counts":[1,1],"height":0.1})"),
-                        {})
+      {})
       ->redo(s);
   auto bake_field = [&](const char* line) {
     return trispline::test::command_field_of<DdmBakeCommand>(s, json::parse(line));
@@ -285,9 +293,11 @@ namespace ddm_commands_test {
 TEST(DdmCommands, LayerFieldsAreWrittenBackAsDeclared) {
   CommandContext ctx;
   ctx.base_dir = "/logs";
-  const json fill = json::parse(R"({"cmd":"ddm.fill","object":"ball","layer":"t","tile":"thorn","tiles":["m.obj"],
+  const json fill =
+      json::parse(R"({"cmd":"ddm.fill","base":"limit","object":"ball","layer":"t","tile":"thorn","tiles":["m.obj"],
       "seed":7,"layout":"brick","counts":[4,2],"height":0.5,"map_resolution":9.0,"tile_scale":2,"tile_shift":[0,0]})");
-  EXPECT_EQ(DdmFillCommand::parse(fill, ctx)->to_json(), json::parse(R"({"cmd":"ddm.fill","object":"ball","layer":"t",
+  EXPECT_EQ(DdmFillCommand::parse(fill, ctx)->to_json(),
+            json::parse(R"({"cmd":"ddm.fill","base":"limit","object":"ball","layer":"t",
       "tile":"thorn","tiles":["/logs/m.obj"],"choice":"pattern","seed":7,"layout":"brick","counts":[4,2],
       "height":0.5,"map_resolution":[9,9],"tile_scale":[2.0,2.0]})"));
   json one = fill;

@@ -47,10 +47,12 @@ TEST(DdmFillSize, TilesOfEvenWorldSizeOnALimitBase) {
   const double tile = smallest / 3.0;  // ≥ 3 tiles across every chart: rounding moves a width by ≤ 1/6
 
   DdmLayerSpec spec;
+  spec.base = DdmBaseKind::limit;
   spec.tiles = {"hex"};
   spec.tile_size = tile;
   const DdmFillEstimate estimate = ddm_fill_estimate(*s.find("ball"), spec);
-  json line = json::parse(R"({"cmd":"ddm.fill","object":"ball","layer":"even","tile":"hex","layout":"rect",
+  json line =
+      json::parse(R"({"cmd":"ddm.fill","base":"limit","object":"ball","layer":"even","tile":"hex","layout":"rect",
       "height":0.01})");
   line["tile_size"] = tile;
   auto fill = test::run_line<DdmFillCommand>(s, line);
@@ -68,7 +70,8 @@ TEST(DdmFillSize, TilesOfEvenWorldSizeOnALimitBase) {
   // The same cell count per chart everywhere (counts) spreads the widths by the charts' own spread.
   Scene t;
   t.insert(test::sphere_object("ball", 12, 6, glm::dvec3(0.0)));
-  test::run_line<DdmFillCommand>(t, json::parse(R"({"cmd":"ddm.fill","object":"ball","layer":"c","tile":"hex",
+  test::run_line<DdmFillCommand>(
+      t, json::parse(R"({"cmd":"ddm.fill","base":"limit","object":"ball","layer":"c","tile":"hex",
       "layout":"rect","counts":[4,4],"height":0.01})"));
   const double by_counts = spread(cell_world_sizes(*t.find("ball")->ddm_layers.at(0), charts));
   const double by_size = spread(cell_world_sizes(layer, charts));
@@ -107,8 +110,10 @@ TEST(DdmFillSize, BadSizesAreRefusedNamingTheField) {
   s.insert(test::sphere_object("ball", 16, 8, glm::dvec3(0.0)));
   auto field = [&](const std::string& extra) {
     return test::command_field_of<DdmFillCommand>(
-        s, json::parse(R"({"cmd":"ddm.fill","object":"ball","layer":"x","tile":"thorn","layout":"rect","height":0.1)" +
-                       extra + "}"));
+        s,
+        json::parse(
+            R"({"cmd":"ddm.fill","base":"limit","object":"ball","layer":"x","tile":"thorn","layout":"rect","height":0.1)" +
+            extra + "}"));
   };
   EXPECT_EQ(field(R"(,"tile_size":0.1,"counts":[2,2])"), "tile_size");  // not both
   EXPECT_EQ(field(""), "counts");                                       // neither
@@ -118,9 +123,10 @@ TEST(DdmFillSize, BadSizesAreRefusedNamingTheField) {
   const auto t0 = std::chrono::steady_clock::now();
   EXPECT_TRUE(test::throws_command_error(
       [&] {
-        DdmFillCommand::parse(json::parse(R"({"cmd":"ddm.fill","object":"ball","layer":"x","tile":"thorn",
+        DdmFillCommand::parse(
+            json::parse(R"({"cmd":"ddm.fill","base":"limit","object":"ball","layer":"x","tile":"thorn",
             "layout":"rect","height":0.1,"tile_size":1e-7})"),
-                              {})
+            {})
             ->redo(s);
       },
       "tile_size", "tile vertices (at most 10000000)"));
@@ -129,17 +135,56 @@ TEST(DdmFillSize, BadSizesAreRefusedNamingTheField) {
   // A line's own hard limit: refused above it with the count, naming the field that made the tiles.
   EXPECT_TRUE(test::throws_command_error(
       [&] {
-        DdmFillCommand::parse(json::parse(R"({"cmd":"ddm.fill","object":"ball","layer":"x","tile":"thorn",
-            "layout":"rect","height":0.1,"counts":[1,1],"max_vertices":100000})"), {})->redo(s);
+        DdmFillCommand::parse(
+            json::parse(R"({"cmd":"ddm.fill","base":"limit","object":"ball","layer":"x","tile":"thorn",
+            "layout":"rect","height":0.1,"counts":[1,1],"max_vertices":100000})"),
+            {})
+            ->redo(s);
       },
       "counts", "tile vertices (at most 100000, max_vertices)"));
   EXPECT_EQ(field(R"(,"counts":[1,1],"max_vertices":0)"), "max_vertices");
   EXPECT_EQ(field(R"(,"counts":[1,1],"max_vertices":20000000)"), "max_vertices");  // above the layer budget
   EXPECT_EQ(field(R"(,"counts":[1,1],"max_vertices":10000000)"), "(accepted)");
   DdmLayerSpec spec;
+  spec.base = DdmBaseKind::limit;
   spec.tile_size = 1e-7;
   EXPECT_TRUE(
       test::throws_command_error([&] { (void)ddm_fill_estimate(*s.find("ball"), spec); }, "tile_size", "tiles ×"));
+}
+
+// A line without "base" means what the Tile Paint panel shows: the object's own base (ddm_default_base), named in
+// the report — on the teapot primitive its body patches, on a mesh without texture coordinates automatic ones.
+TEST(DdmFillSize, ALineWithoutBaseGetsTheObjectsBaseAsThePanelDoes) {
+  Scene s;
+  ScenePrimitiveCommand::parse(json::parse(R"({"cmd":"scene.primitive","kind":"teapot","name":"pot"})"), {})->redo(s);
+  s.insert(test::sphere_object("ball", 16, 8, glm::dvec3(3.0, 0.0, 0.0)));
+  ASSERT_TRUE(s.find("ball")->rest_mesh->uvs.empty());
+  for (const char* object : {"pot", "ball"}) {
+    SCOPED_TRACE(object);
+    const DdmBaseKind panel = ddm_default_base(*s.find(object));
+    auto fill = test::run_line<DdmFillCommand>(
+        s, json::parse(std::string(R"({"cmd":"ddm.fill","layer":"a","tile":"hex","layout":"rect","tile_size":0.2,
+            "height":0.02,"object":")") +
+                       object + "\"}"));
+    EXPECT_EQ(fill->stats().at("base"), ddm_base_name(panel)) << "report.json says which base it chose";
+    const DdmLayer& by_default = *s.find(object)->ddm_layers.at(0);
+    EXPECT_EQ(by_default.base, panel);
+    const std::size_t tiles = by_default.instances.size();
+    // The same line naming the panel's base: the same layer.
+    auto named = test::run_line<DdmFillCommand>(
+        s, json::parse(std::string(R"({"cmd":"ddm.fill","layer":"a","tile":"hex","layout":"rect","tile_size":0.2,
+            "height":0.02,"base":")") +
+                       ddm_base_name(panel) + R"(","object":")" + object + "\"}"));
+    EXPECT_EQ(s.find(object)->ddm_layers.at(0)->instances.size(), tiles);
+    // limit, the old default, lays three charts per triangle: many more tiles at the same size.
+    auto limit = test::run_line<DdmFillCommand>(
+        s, json::parse(std::string(R"({"cmd":"ddm.fill","layer":"a","tile":"hex","layout":"rect","tile_size":0.2,
+            "height":0.02,"base":"limit","object":")") +
+                       object + "\"}"));
+    EXPECT_GT(s.find(object)->ddm_layers.at(0)->instances.size(), tiles);
+  }
+  EXPECT_EQ(ddm_default_base(*s.find("pot")), DdmBaseKind::teapot_body);
+  EXPECT_EQ(ddm_default_base(*s.find("ball")), DdmBaseKind::auto_uv);
 }
 
 TEST(DdmFillSize, PaintingALayerLaidBySize) {
@@ -147,7 +192,8 @@ TEST(DdmFillSize, PaintingALayerLaidBySize) {
   s.insert(test::sphere_object("ball", 16, 8, glm::dvec3(0.0)));
   s.camera = test::front_camera(4.0, 40.0, {400, 400});
   s.camera_set = true;
-  auto paint = test::run_line<DdmPaintCommand>(s, json::parse(R"({"cmd":"ddm.paint","object":"ball","layer":"p",
+  auto paint =
+      test::run_line<DdmPaintCommand>(s, json::parse(R"({"cmd":"ddm.paint","base":"limit","object":"ball","layer":"p",
       "tile":"hex","tile_size":0.05,"height":0.01,"stroke":[[200,200]],"radius_px":30})"));
   EXPECT_DOUBLE_EQ(paint->to_json()["tile_size"].get<double>(), 0.05);
   const DdmLayer& layer = *s.find("ball")->ddm_layers.at(0);
@@ -163,8 +209,11 @@ TEST(DdmFillSize, PaintingALayerLaidBySize) {
   // A new layer's candidate cells are weighed too: a tile size far too small is refused, naming it.
   EXPECT_TRUE(test::throws_command_error(
       [&] {
-        DdmPaintCommand::parse(json::parse(R"({"cmd":"ddm.paint","object":"ball","layer":"q","tile_size":1e-6,
-            "stroke":[[200,200]],"radius_px":30})"), {})->redo(s);
+        DdmPaintCommand::parse(
+            json::parse(R"({"cmd":"ddm.paint","base":"limit","object":"ball","layer":"q","tile_size":1e-6,
+            "stroke":[[200,200]],"radius_px":30})"),
+            {})
+            ->redo(s);
       },
       "tile_size", "cells to paint (at most 10000000)"));
 }

@@ -10,14 +10,14 @@
 #include <set>
 #include <tuple>
 
-#include "tests/core/commands/command_test_util.h"
-#include "tests/test_shapes.h"
-#include "core/commands/codecs.h"
 #include "core/commands/camera_set.h"
+#include "core/commands/codecs.h"
 #include "core/commands/ddm_commands.h"
 #include "core/commands/ddm_paint.h"
 #include "core/raycast/ray_caster.h"
 #include "core/scene/primitives.h"
+#include "tests/core/commands/command_test_util.h"
+#include "tests/test_shapes.h"
 
 namespace trispline::core {
 namespace {
@@ -62,8 +62,9 @@ json stroke_json(const std::vector<glm::dvec2>& pts) {
 
 json paint_line(const std::string& layer, bool erase = false, const std::vector<glm::dvec2>& stroke = kStroke,
                 double radius = kRadius) {
+  // A limit base (three charts per triangle: the cells the tests count), named as the old default was.
   return {{"cmd", "ddm.paint"},  {"object", "ball"}, {"layer", layer}, {"stroke", stroke_json(stroke)},
-          {"radius_px", radius}, {"erase", erase}};
+          {"radius_px", radius}, {"erase", erase},   {"base", "limit"}};
 }
 
 CommandPtr run(Scene& s, const json& line) {
@@ -224,7 +225,7 @@ TEST(DdmPaint, SeveralTilesFollowFillsPattern) {
   Scene s = ball_scene();
   const json spec = {
       {"tile", "thorn"}, {"tiles", {"flower"}}, {"layout", "brick"}, {"counts", {3, 2}}, {"height", 0.05}};
-  json fill = {{"cmd", "ddm.fill"}, {"object", "ball"}, {"layer", "all"}};
+  json fill = {{"cmd", "ddm.fill"}, {"object", "ball"}, {"layer", "all"}, {"base", "limit"}};
   fill.update(spec);
   DdmFillCommand::parse(fill, {})->redo(s);
   json line = paint_line("some");

@@ -28,7 +28,7 @@ Scene placed_ball() {
                                                  "fov_deg":45,"viewport":[800,600]})"),
                                  ctx));
   run(s, PlaceSketchCommand::parse(json::parse(R"({"cmd":"place.sketch","stroke":[[250,360],[400,350],[550,360]],
-      "object":"ball","width":0.3,"height":0.3,"samples":[24,8],"order":[4,4,3],"controls":[8,4,3]})"),
+      "object":"ball","width":0.3,"height":0.3,"samples":[24,8],"order":[4,4,3],"controls":[8,4,3],"fit":"stretch"})"),
                                    ctx));
   return s;
 }

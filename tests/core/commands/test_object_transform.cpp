@@ -213,7 +213,8 @@ TEST(ObjectTransform, DffdRigMovesWithTheObject) {
 TEST(ObjectTransform, TileLayersFollowInObjectSpace) {
   Scene s;
   s.insert(trispline::test::sphere_object("ball", 8, 4, {0, 0, 0}));
-  run(s, R"({"cmd":"ddm.fill","object":"ball","layer":"spikes","tile":"thorn","layout":"rect","counts":[1,1],
+  run(s,
+      R"({"cmd":"ddm.fill","base":"limit","object":"ball","layer":"spikes","tile":"thorn","layout":"rect","counts":[1,1],
              "height":0.2})");
   const auto layer = s.find("ball")->ddm_layers.at(0);
   run(s, R"({"cmd":"object.transform","object":"ball","translate":[2,0,0],"scale":0.5})");

@@ -77,5 +77,68 @@ TEST(PlaceSketchExtent, ObjectCoversTheGivenFractionOfTheDomain) {
   EXPECT_THROW(PlaceSketchCommand::parse(bad, ctx), CommandError);
 }
 
+// The placed mesh's extent along x (the stroke) and y (up), world units.
+glm::dvec2 length_and_height(const Scene& s) {
+  const TriMesh& m = *s.find("crate")->world_mesh;
+  glm::dvec3 lo(1e9), hi(-1e9);
+  for (const glm::dvec3& p : m.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  return {hi.x - lo.x, hi.y - lo.y};
+}
+
+// A 1.0 × 0.4 × 0.4 crate over flat ground along a long straight stroke drawn looking straight down (so the band's
+// width does not skew it along the stroke, as a perspective view of the ground would), placed with `fit`.
+Scene crate_on_a_long_stroke(const std::string& fit, json* report = nullptr) {
+  Scene s;
+  test::run_crate_line(s, json::parse(R"({"cmd":"scene.primitive","kind":"plane","name":"ground","scale":4})"));
+  test::run_crate_line(s,
+                       json::parse(R"({"cmd":"scene.primitive","kind":"box","name":"crate","scale":[0.5,0.2,0.2]})"));
+  test::run_crate_line(s, json::parse(R"({"cmd":"camera.set","eye":[0,5,0],"target":[0,0,0],"up":[0,0,-1],
+                         "fov_deg":45,"viewport":[800,600]})"));
+  json line = json::parse(R"({"cmd":"place.sketch","stroke":[[100,330],[400,330],[700,330]],"object":"crate",
+    "width":0.3,"height":0.2,"samples":[32,8],"order":[4,4,3],"controls":[8,4,3],"volume":"offset"})");
+  if (!fit.empty()) line["fit"] = fit;
+  const CommandPtr cmd = test::run_crate_line(s, line);
+  if (report) *report = cmd->stats();
+  return s;
+}
+
+TEST(PlaceSketchFit, KeepHoldsTheObjectsProportionsOnALongStraightStroke) {
+  json report;
+  const Scene keep = crate_on_a_long_stroke("", &report);  // keep is the default
+  const glm::dvec2 k = length_and_height(keep);
+
+  const double original = 1.0 / 0.4;
+  EXPECT_NEAR(k.x / k.y, original, 0.1 * original) << "length " << k.x << ", height " << k.y;
+  EXPECT_NEAR(k.y, 0.2, 0.02) << "the height is the placement's h";
+  // The report says what was chosen: the part of the path that holds the object's length scaled as its height
+  // (1.0 · 0.2 / 0.4 = 0.5 of a path over 2).
+  EXPECT_EQ(report.at("fit"), "keep");
+  ASSERT_GT(report.at("path_length").get<double>(), 2.0) << "a long stroke";
+  EXPECT_GT(report.at("extent").get<double>(), 0.0);
+  EXPECT_LT(report.at("extent").get<double>(), 0.5);
+  // stretch: today's behaviour, the crate smeared along the whole stroke.
+  json stretched_report;
+  const glm::dvec2 st = length_and_height(crate_on_a_long_stroke("stretch", &stretched_report));
+  EXPECT_GT(st.x / st.y, 2.0 * original);
+  EXPECT_EQ(stretched_report.at("extent").get<double>(), 1.0);
+}
+
+TEST(PlaceSketchFit, KeepIsCappedByExtentAndUnknownFitsAreRefused) {
+  CommandContext ctx;
+  json line = test::place_line(1.0);
+  line["fit"] = "squash";
+  EXPECT_THROW(PlaceSketchCommand::parse(line, ctx), CommandError);
+  // A short stroke: keep would make the crate longer than the path, so it covers the whole of it (extent 1).
+  Scene s;
+  test::run_crate_line(s, json::parse(R"({"cmd":"scene.primitive","kind":"plane","name":"ground","scale":4})"));
+  test::run_crate_line(s,
+                       json::parse(R"({"cmd":"scene.primitive","kind":"box","name":"crate","scale":[0.5,0.2,0.2]})"));
+  test::run_crate_line(s, json::parse(R"({"cmd":"camera.set","eye":[0,3,3],"target":[0,0,0],"up":[0,1,0],
+                         "fov_deg":45,"viewport":[800,600]})"));
+  const CommandPtr cmd = test::run_crate_line(s, json::parse(R"({"cmd":"place.sketch","stroke":[[380,330],[420,330]],
+    "object":"crate","width":0.3,"height":0.2,"samples":[16,8],"order":[4,4,3],"controls":[8,4,3]})"));
+  EXPECT_EQ(cmd->stats().at("extent").get<double>(), 1.0);
+}
+
 }  // namespace place_sketch_test
 }  // namespace trispline::core

@@ -37,6 +37,7 @@ class DdmPaintTool : public test::ToolTest<editor::DdmPaintTool> {
     p.paint.spec.tiles = {"hex"};
     p.paint.spec.counts = {1, 1};
     p.paint.spec.height = 0.03;
+    p.paint.spec.base = core::DdmBaseKind::limit;  // a cell per limit chart: three per triangle
     p.paint.radius_px = 30;
     tool.set_params(p);
     tool.activate(ctx);
@@ -245,7 +246,8 @@ TEST_F(DdmPaintTool, FillAndBakeButtons) {
 
 TEST_F(DdmPaintTool, SelectingAnObjectWithLayersBringsUpItsLastLayer) {
   ASSERT_TRUE(s.execute({{"cmd", "scene.primitive"}, {"kind", "sphere"}, {"name", "t"}, {"translate", {3, 0, 0}}}));
-  ASSERT_TRUE(s.execute(nlohmann::json::parse(R"({"cmd":"ddm.fill","object":"t","layer":"dots","tile":"hex",
+  ASSERT_TRUE(
+      s.execute(nlohmann::json::parse(R"({"cmd":"ddm.fill","base":"limit","object":"t","layer":"dots","tile":"hex",
       "layout":"rect","counts":[1,1],"height":0.02})")));
   EXPECT_EQ(tool.params().paint.layer, "spots");  // "s" has no layers: the panel keeps the new layer's name
   selected = "t";
