@@ -2,8 +2,10 @@
 
 #include <imgui.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <future>
 #include <iterator>
 
@@ -223,28 +225,79 @@ void PressTool::draw_panel(ToolContext& ctx) {
   if (o && !o->ffd)
     ImGui::TextColored(ui::colors::dim, "%s has no FFD lattice: bind one first (e.g. lattice.ring).", object_.c_str());
 
+  // Radius and strength: drag, or one click and type. A value outside what the object takes is limited, and the
+  // field says so (amber, the reason in its tooltip) and the Log once.
   double r = radius(ctx);
   const double r_min = diag > 0.0 ? 0.005 * diag : 1e-3, r_max = diag > 0.0 ? 0.5 * diag : 10.0;
   if (r <= 0.0) r = diag > 0.0 ? kDefaultRadiusFraction * diag : 0.1;
-  if (ImGui::SliderScalar("Radius", ImGuiDataType_Double, &r, &r_min, &r_max, "%.4g", ImGuiSliderFlags_Logarithmic))
-    radius_ = std::max(r, 1e-9);
+  const bool radius_limited = !radius_limit_.empty();
+  if (radius_limited) ui::push_limited_frame();
+  double typed_r = r;
+  const bool radius_changed = ui::drag_scalar("Radius", ImGuiDataType_Double, &typed_r, float(std::max(r, 1e-6) * 0.01),
+                                              nullptr, nullptr, "%.4g");
+  const bool radius_done = ImGui::IsItemDeactivatedAfterEdit();
+  if (radius_limited) ui::pop_limited_frame();
+  ui::probe::item("press.radius");
+  ui::probe::value("press.radius", std::to_string(r));
+  ui::probe::value("press.radius.limited", radius_limit_);
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("Sphere radius, world units (default: 0.1 x the object's bounding-box diagonal)");
+    ImGui::SetTooltip("Sphere radius, world units (default: 0.1 x the object's bounding-box diagonal)%s%s",
+                      radius_limited ? "\n" : "", radius_limit_.c_str());
+  // While typing each keystroke applies (limited); the reason is given once the edit is done.
+  if (radius_changed && std::isfinite(typed_r)) {
+    radius_typed_ = typed_r;
+    radius_ = std::max(std::clamp(typed_r, r_min, r_max), 1e-9);
+  }
+  if (radius_done) {
+    const double limited = std::clamp(radius_typed_, r_min, r_max);
+    radius_limit_.clear();
+    if (limited != radius_typed_) {
+      char why[200];
+      std::snprintf(why, sizeof why, "Limited to %.4g: the radius is %s (%s the object's diagonal)", limited,
+                    limited == r_max ? "at most half" : "at least 0.005 x", limited == r_max ? "half" : "0.005 x");
+      radius_limit_ = why;
+      ctx.session.messages().warning("Press radius " + ui::short_number(radius_typed_) + ": " + radius_limit_);
+    }
+  }
   if (radius_ > 0.0 && o) {
     ImGui::SameLine();
-    if (ImGui::SmallButton("Default")) radius_ = 0.0;
+    if (ImGui::SmallButton("Default")) radius_ = 0.0, radius_limit_.clear();
   }
 
   const double s_min = 0.0, s_max = diag > 0.0 ? diag : 10.0;
   double s = strength_ > 0.0 ? strength_ : kDefaultStrengthFraction * r;
-  if (ui::drag_scalar("Strength", ImGuiDataType_Double, &s, float(std::max(s_max, 1e-3) * 1e-3), &s_min, &s_max, "%.4g",
-                      ImGuiSliderFlags_AlwaysClamp))
-    strength_ = std::max(s, 1e-12);
+  const bool strength_limited = !strength_limit_.empty();
+  if (strength_limited) ui::push_limited_frame();
+  double typed_s = s;
+  const bool strength_changed = ui::drag_scalar("Strength", ImGuiDataType_Double, &typed_s,
+                                                float(std::max(s_max, 1e-3) * 1e-3), nullptr, nullptr, "%.4g");
+  const bool strength_done = ImGui::IsItemDeactivatedAfterEdit();
+  if (strength_limited) ui::pop_limited_frame();
   ui::probe::item("press.strength");
+  ui::probe::value("press.strength.limited", strength_limit_);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip(
         "How far a control point at the sphere's centre moves along its column, world units\n"
-        "(default: a quarter of the radius)");
+        "(default: a quarter of the radius)%s%s",
+        strength_limited ? "\n" : "", strength_limit_.c_str());
+  if (strength_changed && std::isfinite(typed_s)) {
+    strength_typed_ = typed_s;
+    strength_ = std::max(std::clamp(typed_s, s_min, s_max), 1e-12), s = strength_;
+  }
+  if (strength_done) {
+    const double limited = std::clamp(strength_typed_, s_min, s_max);
+    strength_limit_.clear();
+    if (limited != strength_typed_) {
+      char why[200];
+      if (limited == s_min)
+        std::snprintf(why, sizeof why, "Limited to 0: the strength is a distance (≥ 0)");
+      else
+        std::snprintf(why, sizeof why, "Limited to %.4g: a press moves a control point at most the object's diagonal",
+                      limited);
+      strength_limit_ = why;
+      ctx.session.messages().warning("Press strength " + ui::short_number(strength_typed_) + ": " + strength_limit_);
+    }
+  }
 
   const std::string current(core::to_string(falloff_));
   if (ImGui::BeginCombo("Falloff", current.c_str())) {

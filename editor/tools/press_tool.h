@@ -59,16 +59,18 @@ class PressTool : public Tool {
   const std::vector<glm::dvec3>& path() const { return path_; }      // centres of the drag under way
 
  private:
-  const core::SceneObject* target(const ToolContext& ctx) const;          // object_ if it exists and has a lattice
+  const core::SceneObject* target(const ToolContext& ctx) const;  // object_ if it exists and has a lattice
   // First hit on the target's world_mesh; may use the previous mesh's BVH while the new one builds, unless
   // need_current (a drag presses what is shown).
   std::optional<glm::dvec3> cast(const ToolContext& ctx, glm::dvec2 px, bool need_current = false);
   void commit(ToolContext& ctx);
 
   std::string object_;
-  std::string followed_selection_;  // selection the combo last followed
-  double radius_ = 0.0;             // ≤ 0: default from the object's size
-  double strength_ = 0.0;            // ≤ 0: default from the radius
+  std::string followed_selection_;                    // selection the combo last followed
+  double radius_ = 0.0;                               // ≤ 0: default from the object's size
+  double strength_ = 0.0;                             // ≤ 0: default from the radius
+  std::string radius_limit_, strength_limit_;         // why the last typed value was limited ("" = it was not)
+  double radius_typed_ = 0.0, strength_typed_ = 0.0;  // the values as typed or dragged, before the limits
   core::Falloff falloff_ = core::Falloff::smooth;
   bool keep_fold_free_ = false;
   // Keep fold-free during a drag: the strength the preview could use (negative: the whole strength; NaN: the lattice

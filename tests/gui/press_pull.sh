@@ -5,7 +5,7 @@ gui_start "$GUI_ROOT/assets/scenes/default.jsonl"
 gui_wait '(.history.labels | length) >= 4' "the default scene is open"
 gui_click_item scene.object.bunny
 gui_wait '.selected == "bunny"' "bunny selected"
-x="$(gui_q '.object_px.bunny[0] | floor')"; y="$(gui_q '.object_px.bunny[1] | floor')"
+x="$(gui_q '.object_centroid_px.bunny[0] | floor')"; y="$(gui_q '.object_centroid_px.bunny[1] | floor')"
 gui_move "$x" "$y"
 gui_frames 1
 gui_key e
