@@ -1,18 +1,17 @@
 #include "ui/timeline_panel.h"
 
-#include "core/commands/anim_commands.h"
-#include "core/commands/place_array.h"
-#include "ui/param_widgets.h"
-
-#include "ui/gui_probe.h"
-#include "ui/number_field.h"
-#include "ui/theme.h"
-
 #include <imgui.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+
+#include "core/commands/anim_commands.h"
+#include "core/commands/place_array.h"
+#include "ui/gui_probe.h"
+#include "ui/number_field.h"
+#include "ui/param_widgets.h"
+#include "ui/theme.h"
 
 namespace trispline::ui {
 
@@ -41,6 +40,16 @@ TimelineObject timeline_object(const core::Scene& scene, const std::string& name
   o.name = so->name;
   o.keyable = so->ffd != nullptr || so->dffd != nullptr;  // anim.keyframe walks an FFD or a DFFD split
   for (const core::OffsetKey& k : so->offset_keys) o.key_frames.push_back(scene.timeline.frame_of_time(k.time_s));
+  auto channel = [&](const std::vector<core::OffsetKey>& keys, const std::string& what) {
+    for (const core::OffsetKey& k : keys) o.channel_keys.emplace_back(scene.timeline.frame_of_time(k.time_s), what);
+  };
+  if (so->morph) channel(so->morph->weight_keys, so->morph->what.empty() ? "morph" : so->morph->what);
+  if (so->dffd) channel(so->dffd->stitch_keys, "seam");
+  for (const auto& layer : so->ddm_layers) {
+    channel(layer->offset_keys, "tiles '" + layer->name + "' offset");
+    channel(layer->alpha_keys, "tiles '" + layer->name + "' morph");
+  }
+  std::sort(o.channel_keys.begin(), o.channel_keys.end());
   const double t = scene.timeline.time_of_frame(frame);
   o.offset = so->offset_keys.empty() ? so->param_offset : core::evaluate_offset_keys(so->offset_keys, t);
   if (so->source.rfind("primitive:", 0) != 0) o.source = so->source;
@@ -101,7 +110,6 @@ float timeline_panel_height() {
 
 namespace {
 
-
 // A transport button of a fixed width; returns true on click.
 bool transport(const char* label, const char* tip) {
   const bool clicked = ImGui::Button(label, ImVec2(ImGui::GetFrameHeight() * 1.6f, 0));
@@ -148,7 +156,8 @@ bool scrub_bar(const core::Timeline& t, Playback& p, const TimelineObject& objec
     dl->AddLine(ImVec2(x, pos.y + size.y * 0.55f), ImVec2(x, pos.y + size.y), tick);
     char label[16];
     std::snprintf(label, sizeof label, "%d", f);
-    if (x + 2.0f + ImGui::CalcTextSize(label).x < pos.x + size.x) dl->AddText(ImVec2(x + 2.0f, pos.y + 1.0f), tick, label);
+    if (x + 2.0f + ImGui::CalcTextSize(label).x < pos.x + size.x)
+      dl->AddText(ImVec2(x + 2.0f, pos.y + 1.0f), tick, label);
   }
   // Keys of the selected object (Blender draws them as diamonds).
   const float r = size.y * 0.18f, ky = pos.y + size.y * 0.72f;
@@ -160,6 +169,20 @@ bool scrub_bar(const core::Timeline& t, Playback& p, const TimelineObject& objec
                       here ? IM_COL32(255, 235, 140, 255) : IM_COL32(230, 180, 40, 255));
     dl->AddQuad(ImVec2(x, ky - r), ImVec2(x + r, ky), ImVec2(x, ky + r), ImVec2(x - r, ky), IM_COL32(0, 0, 0, 200));
   }
+  // The other channels' keys, a little lower, in teal (Blender draws keys of other channels in the summary row). The
+  // one under the mouse names its channel.
+  const float rc = size.y * 0.14f, cy = pos.y + size.y * 0.90f;
+  const ImVec2 mouse = ImGui::GetIO().MousePos;
+  for (const auto& [f, what] : object.channel_keys) {
+    if (f < t.frame_start - 1e-9 || f > t.frame_end + 1e-9) continue;
+    const float x = x_of(f);
+    dl->AddQuadFilled(ImVec2(x, cy - rc), ImVec2(x + rc, cy), ImVec2(x, cy + rc), ImVec2(x - rc, cy),
+                      IM_COL32(90, 200, 190, 255));
+    dl->AddQuad(ImVec2(x, cy - rc), ImVec2(x + rc, cy), ImVec2(x, cy + rc), ImVec2(x - rc, cy), IM_COL32(0, 0, 0, 200));
+    if (std::abs(mouse.x - x) <= rc + 1.0f && std::abs(mouse.y - cy) <= rc + 1.0f)
+      ImGui::SetTooltip("%s key at frame %g", what.c_str(), f);
+  }
+  probe::value("timeline.channel_keys", std::to_string(object.channel_keys.size()));
   // Current frame: Blender's blue line with the number on top.
   const ImU32 blue = ImGui::GetColorU32(colors::accent);
   const float cx = x_of(p.frame);
@@ -212,9 +235,10 @@ void range_fields(const core::Timeline& t, TimelinePanelState& st, float num_w, 
 void key_fields(const TimelineObject& object, const Playback& p, TimelinePanelState& st, float num_w,
                 TimelineRequest& r) {
   if (object.name.empty() || !object.keyable) {
-    ImGui::TextColored(colors::dim, object.name.empty() ? "Select a placed object to key its offset"
-                                                        : "'%s' has no lattice: nothing to key",
-                       object.name.c_str());
+    ImGui::TextColored(
+        colors::dim,
+        object.name.empty() ? "Select a placed object to key its offset" : "'%s' has no lattice: nothing to key",
+        object.name.c_str());
   } else {
     ImGui::Text("%s offset", object.name.c_str());
     ImGui::SameLine();
@@ -248,8 +272,9 @@ void animate_popup(const TimelineObject& object, TimelinePanelState& st, float n
       std::snprintf(st.clip_path, sizeof st.clip_path, "%s", object.source.c_str());
     ImGui::OpenPopup("animate_popup");
   }
-  tooltip("Copies in a row along the path (place.array, the seed's ants) and a glTF clip played under the FFD\n"
-          "(anim.clip: morph targets and skins, the seed's two-level animation)");
+  tooltip(
+      "Copies in a row along the path (place.array, the seed's ants) and a glTF clip played under the FFD\n"
+      "(anim.clip: morph targets and skins, the seed's two-level animation)");
   if (ImGui::BeginPopup("animate_popup")) {
     ImGui::TextUnformatted("Row of copies along the path");
     ImGui::BeginDisabled(!object.keyable);
@@ -259,8 +284,9 @@ void animate_popup(const TimelineObject& object, TimelinePanelState& st, float n
     tooltip("Number of copies (1-64): they share the lattice, keys and clip");
     ImGui::SetNextItemWidth(num_w * 2);
     ImGui::InputDouble("Spacing (u)", &st.array_spacing, 0.01, 0.05, "%.3f");
-    tooltip("Copy k trails the object by k x spacing along u (parameter units; >= the Sketch tool's Extent keeps\n"
-            "them apart). Key the leader to start at u >= count x spacing.");
+    tooltip(
+        "Copy k trails the object by k x spacing along u (parameter units; >= the Sketch tool's Extent keeps\n"
+        "them apart). Key the leader to start at u >= count x spacing.");
     if (ImGui::Button("Add copies")) {
       r.command = array_line(object.name, st.array_count, st.array_spacing);
       ImGui::CloseCurrentPopup();

@@ -8,24 +8,23 @@
 // (Playback): not undoable, not logged. Scene time = timeline.time_of_frame(Playback::frame).
 #pragma once
 
-#include "core/scene/scene.h"
-#include "ui/layout.h"
-
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
-
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "core/scene/scene.h"
+#include "ui/layout.h"
 
 namespace trispline::ui {
 
 // The playback clock (view state). Frames are whole numbers, as in Blender; real time accumulates in `carry`.
 struct Playback {
-  int frame = 1;        // current timeline frame
+  int frame = 1;  // current timeline frame
   bool playing = false;
   bool scrubbing = false;  // the scrub bar is being dragged: playback does not advance meanwhile
-  double carry = 0.0;   // fraction of a frame of real time not shown yet, in [0, 1)
+  double carry = 0.0;      // fraction of a frame of real time not shown yet, in [0, 1)
 };
 
 // frame clamped into [frame_start, frame_end].
@@ -41,9 +40,12 @@ struct TimelineObject {
   std::string name;                // "" = nothing selected
   bool keyable = false;            // has an FFD lattice or a DFFD rig (anim.keyframe needs one)
   std::vector<double> key_frames;  // timeline frames of its offset keys (frame_of_time of each key), sorted
-  glm::dvec3 offset{0.0};          // its keyed offset at the current frame (param_offset without keys), parameter units
-  std::string source;              // file it was loaded from ("" for primitives): the default clip file
-  std::string clip;                // name of its glTF clip ("" = none)
+  // Its other keyed channels' keys: an incision's opening (incision.animate), a DFFD seam (dffd.animate), its tile
+  // layers' offset and morph keys (ddm.animate) — drawn as diamonds of their own colour (frame, channel), sorted.
+  std::vector<std::pair<double, std::string>> channel_keys;
+  glm::dvec3 offset{0.0};  // its keyed offset at the current frame (param_offset without keys), parameter units
+  std::string source;      // file it was loaded from ("" for primitives): the default clip file
+  std::string clip;        // name of its glTF clip ("" = none)
 };
 
 // The selected object's timeline view from the scene at `frame` (object "" or unknown: an empty TimelineObject).

@@ -8,6 +8,7 @@
 #include <imgui.h>
 
 #include <cmath>
+#include <fstream>
 #include <functional>
 
 #include "core/commands/command.h"
@@ -433,4 +434,43 @@ TEST_F(TimelineUi, ControlPointSectionIssuesOneSetPointPerDrag) {
   EXPECT_EQ(teapot().ffd->lattice.control_point(2, 1, 3), p);
   ASSERT_TRUE(s.undo());
   EXPECT_EQ(teapot().ffd->lattice.control_point(2, 1, 3), before);
+}
+
+namespace {
+
+// The scene a shipped log builds (every line through the registry), or the test fails.
+core::Scene replay_scene(const std::string& log) {
+  core::Scene scene;
+  core::CommandContext ctx;
+  ctx.base_dir = fs::path(TRISPLINE_SOURCE_DIR) / "assets" / "scenes";
+  std::ifstream in(ctx.base_dir / log);
+  std::string text;
+  while (std::getline(in, text)) {
+    if (text.empty() || text[0] == '#') continue;
+    const nlohmann::json line = nlohmann::json::parse(text);
+    if (line.value("cmd", "") == "anim.record") continue;
+    editor::CommandRegistry::builtin().parse(line, ctx)->redo(scene);
+  }
+  return scene;
+}
+
+}  // namespace
+
+// Every kind of key shows on the Timeline: an incision's opening, a DFFD seam and a tile layer's offset and morph
+// keys are diamonds of their own beside the offset keys.
+TEST(TimelineChannels, IncisionSeamAndTileKeysAreDiamonds) {
+  const ui::TimelineObject venus = ui::timeline_object(replay_scene("incision_opening.jsonl"), "venus", 1);
+  ASSERT_EQ(venus.channel_keys.size(), 2u);
+  EXPECT_NEAR(venus.channel_keys[0].first, 1.0, 1e-9);
+  EXPECT_NEAR(venus.channel_keys[1].first, 24.0, 1e-9);
+  EXPECT_EQ(venus.channel_keys[0].second, "incision opening");
+  EXPECT_TRUE(venus.key_frames.empty()) << "not offset keys: Insert / Delete key leave them alone";
+  const ui::TimelineObject bunny = ui::timeline_object(replay_scene("seam_stitch.jsonl"), "bunny", 1);
+  ASSERT_EQ(bunny.channel_keys.size(), 2u);
+  EXPECT_EQ(bunny.channel_keys[1].second, "seam");
+  EXPECT_NEAR(bunny.channel_keys[1].first, 24.0, 1e-9);
+  const ui::TimelineObject pot = ui::timeline_object(replay_scene("teapot_morph.jsonl"), "pot", 1);
+  ASSERT_EQ(pot.channel_keys.size(), 4u);
+  EXPECT_NEAR(pot.channel_keys.back().first, 96.0, 1e-9);
+  EXPECT_EQ(pot.channel_keys.back().second, "tiles 'thorns' offset");
 }
