@@ -53,6 +53,12 @@ double ddm_default_tile_size(const core::SceneObject* o) {
   return std::round(d / unit) * unit;
 }
 
+double ddm_default_tile_height(const core::SceneObject* o) {
+  const double h = ddm_default_tile_size(o) / 3.0;
+  const double unit = std::pow(10.0, std::floor(std::log10(h)) - 1.0);
+  return std::round(h / unit) * unit;
+}
+
 namespace {
 
 bool is_generated(const std::string& tile) {
@@ -347,15 +353,24 @@ void DdmPaintTool::draw_new_layer_fields(const core::SceneObject* o) {
   } else {
     if (!spec.tile_size) spec.tile_size = ddm_default_tile_size(o);
     const double s_min = 1e-6, s_max = 1e6;
-    ui::drag_scalar("Tile size", ImGuiDataType_Double, &*spec.tile_size, 0.002f, &s_min, &s_max, "%.4g",
-                    ImGuiSliderFlags_AlwaysClamp | ImGuiSliderFlags_Logarithmic);
+    if (ui::drag_scalar("Tile size", ImGuiDataType_Double, &*spec.tile_size, 0.002f, &s_min, &s_max, "%.4g",
+                        ImGuiSliderFlags_AlwaysClamp | ImGuiSliderFlags_Logarithmic) &&
+        o)
+      typed_tile_size_[o->name] = *spec.tile_size;  // the user's value for this object, kept when it is reselected
     ui::probe::item("ddm.tile_size");
+    ui::probe::value("ddm.tile_size", std::to_string(*spec.tile_size));
     ui::tooltip("Width of a tile in world units (object space); the count below is what Fill makes");
   }
   const double h_min = 1e-6, h_max = 10.0;
-  ui::drag_scalar("Height", ImGuiDataType_Double, &spec.height, 0.001f, &h_min, &h_max, "%.4g",
-                  ImGuiSliderFlags_AlwaysClamp);
-  ui::tooltip("World units per tile unit of height, along the surface normal");
+  if (ui::drag_scalar("Height", ImGuiDataType_Double, &spec.height, 0.001f, &h_min, &h_max, "%.4g",
+                      ImGuiSliderFlags_AlwaysClamp) &&
+      o)
+    typed_height_[o->name] = spec.height;
+  ui::probe::item("ddm.height");
+  ui::probe::value("ddm.height", std::to_string(spec.height));
+  ui::tooltip(
+      "World units per tile unit of height, along the surface normal (default: a third of the default tile size, "
+      "from the object's size)");
   const bool teapot = o && o->source == "primitive:teapot";
   const bool uvs = o && o->rest_mesh && !o->rest_mesh->uvs.empty();
   using Base = core::DdmBaseKind;
@@ -386,7 +401,12 @@ void DdmPaintTool::apply_object_defaults(const core::SceneObject* o) {
   defaults_for_ = o->name;
   core::DdmLayerSpec& spec = params_.paint.spec;
   spec.base = core::ddm_default_base(*o);
-  if (!spec.counts) spec.tile_size = ddm_default_tile_size(o);
+  // Sizes follow the object (a teapot's tiles would be spikes on an apple), unless the user typed them for it.
+  const double tile = ddm_default_tile_size(o);
+  const auto typed_tile = typed_tile_size_.find(o->name);
+  if (!spec.counts) spec.tile_size = typed_tile != typed_tile_size_.end() ? typed_tile->second : tile;
+  const auto typed_height = typed_height_.find(o->name);
+  spec.height = typed_height != typed_height_.end() ? typed_height->second : ddm_default_tile_height(o);
 }
 
 void DdmPaintTool::draw_estimate(const core::SceneObject* o) {
@@ -460,9 +480,11 @@ void DdmPaintTool::draw_panel(ToolContext& ctx) {
     ImGui::EndCombo();
   }
   const core::SceneObject* o = scene.find(object_);
+  ImGui::PushTextWrapPos(0.0f);  // long warnings wrap inside the panel instead of running off its edge
   if (o && deformed(*o))
     ImGui::TextColored(ui::colors::warning, "%s is deformed (lattice, split or clip): tiles need an undeformed object.",
                        object_.c_str());
+  ImGui::PopTextWrapPos();
   apply_object_defaults(o);
   draw_layer_combo(ctx, o);
 

@@ -14,8 +14,7 @@
 // panel and leave the scene as it was.
 #pragma once
 
-#include "ui/ddm_anim_panel.h"
-
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -24,6 +23,7 @@
 #include "core/commands/ddm_paint.h"
 #include "editor/tools/stroke_gesture.h"
 #include "editor/tools/tool.h"
+#include "ui/ddm_anim_panel.h"
 
 namespace trispline::editor {
 
@@ -50,6 +50,8 @@ nlohmann::json ddm_paint_line(const std::string& object, const std::vector<glm::
 // The panel's first tile size for an object: a tenth of its rest mesh's bounding-box diagonal, to two significant
 // figures (1 without an object), world units.
 double ddm_default_tile_size(const core::SceneObject* o);
+// The Height field's default for `o`: a third of ddm_default_tile_size, to two significant digits (world units).
+double ddm_default_tile_height(const core::SceneObject* o);
 // The ddm.fill line of the panel's values (the whole surface; a layer of that name is replaced).
 nlohmann::json ddm_fill_line(const std::string& object, const DdmPaintToolParams& params);
 
@@ -81,8 +83,8 @@ class DdmPaintTool : public Tool {
   void scale_radius(double factor);
 
   const std::vector<glm::dvec2>& stroke() const { return gesture_.points(); }  // pixels of the drag under way
-  bool erasing() const { return erasing_; }                          // the drag under way erases
-  const std::optional<glm::dvec2>& hover() const { return hover_; }  // brush centre, viewport pixels
+  bool erasing() const { return erasing_; }                                    // the drag under way erases
+  const std::optional<glm::dvec2>& hover() const { return hover_; }            // brush centre, viewport pixels
   // Draws the brush circle (and the swath of the drag under way) into ImGui's background draw list, over the 3-D
   // view and under the panels; called from handle_input while an ImGui frame is open.
   void draw_brush() const;
@@ -116,10 +118,12 @@ class DdmPaintTool : public Tool {
   std::string defaults_for_;        // the object whose defaults the panel holds ("\x01given": set_params' own)
   glm::ivec2 counts_{4, 4};         // the Counts field's value while tiles are laid by size
   double tile_size_ = 0.0;          // the Tile size field's value while tiles are laid by counts (0: none yet)
-  std::string estimate_key_;        // object, mesh and fill line the estimate below is for
+  // Sizes the user typed, per object: kept when the object is chosen again; others follow the object's size.
+  std::map<std::string, double> typed_tile_size_, typed_height_;
+  std::string estimate_key_;  // object, mesh and fill line the estimate below is for
   core::DdmFillEstimate estimate_;
-  std::string estimate_error_;      // why there is no estimate (the error Fill would report)
-  std::size_t ask_budget_ = 0;      // the budget the open "Fill anyway?" prompt was asked against (0: none open)
+  std::string estimate_error_;  // why there is no estimate (the error Fill would report)
+  std::size_t ask_budget_ = 0;  // the budget the open "Fill anyway?" prompt was asked against (0: none open)
 
   std::optional<glm::dvec2> hover_;
   StrokeGesture gesture_;  // the drag under way, in the view at mouse-down
