@@ -70,7 +70,8 @@ bool VolumeUi::start_load(const fs::path& path) {
     core::ProgressSink sink;
     sink.report = [j](double f) { j->progress = std::clamp(f, 0.0, 1.0); };
     sink.cancel = &j->cancel;
-    core::prepare_volume(j->path, core::VolumeLoadParams{}.order, core::VolumeLoadParams{}.interpolate, sink);
+    const core::VolumeLoadParams defaults;  // what the volume.load line after it asks for: the cache serves it
+    core::prepare_volume(j->path, defaults.order, defaults.interpolate, sink, defaults.axes == "superior_up");
   });
   messages_.info("Loading " + display_name(job->path) + " (reading the file, making its spline and singletons)");
   load_ = std::move(job);

@@ -32,6 +32,11 @@ const ParamSchema<VolumeLoadParams>& VolumeLoadCommand::schema() {
           .help(
               "false: the samples are the control points (the seed; smooths noise); true: D passes through every "
               "sample (B-spline prefilter)")
+          .choice("axes", &P::axes, {"superior_up", "file"})
+          .help(
+              "superior_up: the world is turned so that the patient's superior axis is +Y (anterior +Z, right −X) in "
+              "this Y-up editor, for files that name their patient frame (NIfTI RAS, DICOM LPS); file: the file's own "
+              "axes")
           .field("iso", &P::iso)
           .unit("volume units")
           .help("First iso-level (default: 226 HU for CT, else Otsu's threshold of the samples)")
@@ -42,11 +47,22 @@ const ParamSchema<VolumeLoadParams>& VolumeLoadCommand::schema() {
   return s;
 }
 
+namespace {
+
+// A 4 × 4 affine as four rows (the report's form of a transform).
+nlohmann::json index_to_world_rows(const glm::dmat4& m) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (int r = 0; r < 4; ++r) rows.push_back({m[0][r], m[1][r], m[2][r], m[3][r]});
+  return rows;
+}
+
+}  // namespace
+
 std::optional<VolumeObject> VolumeLoadCommand::build(const Scene& scene) {
   const std::string source = p_.analytic.empty() ? p_.path : "analytic:" + p_.analytic;
   PreparedVolume pv;
   try {
-    pv = prepare_volume(source, p_.order, p_.interpolate);
+    pv = prepare_volume(source, p_.order, p_.interpolate, {}, p_.axes == "superior_up");
   } catch (const PreparationBudgetError& e) {  // the dimensions leave no room for the spline and its table
     throw CommandError(std::string("field 'path': ") + e.what(), "path");
   } catch (const VolumeLoadError& e) {  // missing, truncated, over the budget from the header, ...
@@ -76,6 +92,9 @@ std::optional<VolumeObject> VolumeLoadCommand::build(const Scene& scene) {
   stats_ = {{"dims", {d[0], d[1], d[2]}},
             {"order", p_.order},
             {"units", pv.units},
+            {"frame", pv.frame},
+            {"index_to_world", index_to_world_rows(pv.spline->index_to_world())},
+            {"axes", pv.superior_up ? "superior_up" : "file"},
             {"iso", v.iso},
             {"value_range", {pv.table->range_min(), pv.table->range_max()}},
             {"load_ms", pv.load_ms},

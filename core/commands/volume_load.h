@@ -4,12 +4,12 @@
 // path: NIfTI (.nii, .nii.gz), a DICOM series folder or one of its .dcm files, an InVesalius .inv3 project; relative to
 // the log's folder unless absolute; loads whole or fails. A volume whose samples, spline and singleton table would
 // exceed kPreparedVolumeBudget (preparation_budget.h: 40 bytes per sample) is refused from its header's dimensions,
-// before the file is inflated (CommandError, field 'path', naming the dimensions, the bytes and the budget). analytic: a test volume with known silhouettes instead.
-// order: 2…4 per axis (degree + 1; default 4, tri-cubic). interpolate: control points = the samples (false, the seed)
-// or the interpolating spline's coefficients (true). iso: the first iso-level in the volume's units (default:
-// default_iso_level — 226 HU for CT, else Otsu's threshold).
-// World units are the file's millimetres. The singleton table is read from the disk cache when the same content was
-// preprocessed before (prepared_volume.h). stats(): dims, order, units, iso, from_cache, load_ms, prep_ms, table_mb.
+// before the file is inflated (CommandError, field 'path', naming the dimensions, the bytes and the budget). analytic:
+// a test volume with known silhouettes instead. order: 2…4 per axis (degree + 1; default 4, tri-cubic). interpolate:
+// control points = the samples (false, the seed) or the interpolating spline's coefficients (true). iso: the first
+// iso-level in the volume's units (default: default_iso_level — 226 HU for CT, else Otsu's threshold). World units are
+// the file's millimetres. The singleton table is read from the disk cache when the same content was preprocessed before
+// (prepared_volume.h). stats(): dims, order, units, iso, from_cache, load_ms, prep_ms, table_mb.
 #pragma once
 
 #include <optional>
@@ -22,10 +22,11 @@ namespace trispline::core {
 struct VolumeLoadParams {
   std::string path;      // a volume file, or
   std::string analytic;  // an analytic test volume: sphere | torus | sines
-  std::string name;  // default: the file stem made unique
+  std::string name;      // default: the file stem made unique
   int order = 4;
   bool interpolate = false;
   std::optional<double> iso;
+  std::string axes = "superior_up";  // superior_up: the patient's superior axis is +Y | file: the file's own axes
 };
 
 class VolumeLoadCommand : public DeclaredCommand<VolumeLoadCommand, VolumeLoadParams, VolumeSnapshotCommand> {

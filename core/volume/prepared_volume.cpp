@@ -17,8 +17,10 @@ struct Key {
   std::int64_t mtime = 0;
   int order = 0;
   bool interpolate = false;
+  bool superior_up = false;
   bool operator==(const Key& o) const {
-    return path == o.path && size == o.size && mtime == o.mtime && order == o.order && interpolate == o.interpolate;
+    return path == o.path && size == o.size && mtime == o.mtime && order == o.order && interpolate == o.interpolate &&
+           superior_up == o.superior_up;
   }
 };
 
@@ -56,11 +58,22 @@ VolumeLoadOptions preparation_load_options() {
   return options;
 }
 
+glm::dmat4 superior_up_rotation(const std::string& frame) {
+  glm::dmat4 r(1.0);
+  if (frame == "RAS") {  // (x, y, z) → (−x, z, y)
+    r[0] = glm::dvec4(-1, 0, 0, 0), r[1] = glm::dvec4(0, 0, 1, 0), r[2] = glm::dvec4(0, 1, 0, 0);
+  } else if (frame == "LPS") {  // L = −R, P = −A: (x, y, z) → (x, z, −y)
+    r[0] = glm::dvec4(1, 0, 0, 0), r[1] = glm::dvec4(0, 0, -1, 0), r[2] = glm::dvec4(0, 1, 0, 0);
+  }
+  return r;
+}
+
 PreparedVolume prepare_volume(const std::filesystem::path& path, int order, bool interpolate,
-                              const ProgressSink& progress) {
+                              const ProgressSink& progress, bool superior_up) {
   if (order < 2 || order > 4)
     throw std::invalid_argument("volume spline order must be 2, 3 or 4 (degree + 1), got " + std::to_string(order));
-  const Key key = key_of(path, order, interpolate);
+  Key key = key_of(path, order, interpolate);
+  key.superior_up = superior_up;
   {
     std::lock_guard<std::mutex> lock(cache_mutex);
     for (auto it = cache.begin(); it != cache.end(); ++it)
@@ -83,7 +96,11 @@ PreparedVolume prepare_volume(const std::filesystem::path& path, int order, bool
   t0 = std::chrono::steady_clock::now();
   // Samples, control points and the table, from the dimensions and order, before the spline is made.
   check_preparation_budget(path.string(), {volume.dims[0], volume.dims[1], volume.dims[2]}, order);
-  out.units = volume.units, out.modality = volume.modality, out.source = volume.source;
+  out.units = volume.units, out.modality = volume.modality, out.source = volume.source, out.frame = volume.frame;
+  if (superior_up && !volume.frame.empty()) {
+    volume.index_to_world = superior_up_rotation(volume.frame) * volume.index_to_world;
+    out.superior_up = true;
+  }
   out.default_iso = default_iso_level(volume);
   auto spline = std::make_shared<const VolumeSpline>(volume, order, interpolate);
   std::vector<float>().swap(volume.values);  // freed (not only cleared): the spline holds its own control points

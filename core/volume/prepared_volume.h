@@ -23,7 +23,8 @@ namespace trispline::core {
 struct PreparedVolume {
   std::shared_ptr<const VolumeSpline> spline;   // non-null
   std::shared_ptr<const SingletonTable> table;  // non-null
-  std::string units, modality, source;          // as ScalarVolume
+  std::string units, modality, source, frame;   // as ScalarVolume
+  bool superior_up = false;                     // the world was turned so that superior is +Y (prepare_volume)
   double default_iso = 0.0;                     // default_iso_level of the samples
   double load_ms = 0.0, prep_ms = 0.0;          // reading the file; spline + singletons
 };
@@ -41,7 +42,11 @@ VolumeLoadOptions preparation_load_options();
 // header's dimensions), PreparationBudgetError when samples, spline and table would exceed kPreparedVolumeBudget
 // (checked from the dimensions and order before the spline is made), OperationCancelled through `progress`.
 PreparedVolume prepare_volume(const std::filesystem::path& path, int order, bool interpolate,
-                              const ProgressSink& progress = {});
+                              const ProgressSink& progress = {}, bool superior_up = false);
+
+// The rotation that turns a patient frame ("RAS" or "LPS") into the editor's Y-up world: superior → +Y, anterior →
+// +Z (facing a camera on +Z), the patient's right → −X (the viewer's left); identity for any other frame.
+glm::dmat4 superior_up_rotation(const std::string& frame);
 
 // Forgets the session's prepared volumes (tests; memory).
 void clear_prepared_volumes();

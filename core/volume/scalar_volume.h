@@ -9,20 +9,22 @@
 
 #include <array>
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 namespace trispline::core {
 
 struct ScalarVolume {
   std::array<int, 3> dims{0, 0, 0};  // nx, ny, nz (samples per axis, each ≥ 2 for a usable volume)
   std::vector<float> values;         // nx·ny·nz samples, x fastest, in `units`
-  glm::dmat4 index_to_world{1.0};    // voxel index (i, j, k, 1) → world position, millimetres (affine: last row 0 0 0 1)
-  std::string units;                 // value units: "HU" for CT, "" when the file says nothing
-  std::string modality;              // "CT", "MR", ... or "" (DICOM 0008,0060; NIfTI and .inv3: guessed or "")
-  std::string source;                // the file or folder it was read from
+  glm::dmat4 index_to_world{1.0};  // voxel index (i, j, k, 1) → world position, millimetres (affine: last row 0 0 0 1)
+  std::string units;               // value units: "HU" for CT, "" when the file says nothing
+  std::string modality;            // "CT", "MR", ... or "" (DICOM 0008,0060; NIfTI and .inv3: guessed or "")
+  std::string source;              // the file or folder it was read from
+  // The patient axes of the world frame: "RAS" (NIfTI: +x right, +y anterior, +z superior), "LPS" (DICOM), or ""
+  // when the file gives none (.inv3, analytic volumes).
+  std::string frame;
 
   std::size_t voxel_count() const {
     return static_cast<std::size_t>(dims[0]) * static_cast<std::size_t>(dims[1]) * static_cast<std::size_t>(dims[2]);

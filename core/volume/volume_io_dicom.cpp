@@ -246,6 +246,7 @@ ScalarVolume load_dicom(const std::filesystem::path& path, const VolumeLoadOptio
   v.index_to_world[1] = glm::dvec4(g.col_dir * g.spacing[0], 0.0);  // j: down a column, the row spacing
   v.index_to_world[2] = glm::dvec4(step, 0.0);
   v.index_to_world[3] = glm::dvec4(slices.front().position, 1.0);
+  v.frame = "LPS";  // DICOM's patient coordinate system
   check_index_to_world(path, v.dims, v.index_to_world,
                        "Pixel Spacing (0028,0030) and Image Position (Patient) (0020,0032) of the slices");
   v.modality = trimmed(tags.get(first.file, kModality));

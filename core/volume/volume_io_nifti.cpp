@@ -279,6 +279,7 @@ ScalarVolume load_nifti(const std::filesystem::path& path, const VolumeLoadOptio
   ScalarVolume v;
   v.dims = {h.dim[1], h.dim[2], h.dim[3]};
   v.index_to_world = nifti_index_to_world(path, h, raw, v.dims);
+  v.frame = "RAS";  // NIfTI's world is RAS+ whether sform or qform gives it
   check_budget(path, dims, voxels, kStreamBlockBytes, options);
   const std::uint64_t data_bytes = voxels * static_cast<std::uint64_t>(nbyper);
   if (!gz) {

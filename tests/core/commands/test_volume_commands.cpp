@@ -85,6 +85,44 @@ TEST_F(VolumeCommands, LoadAddsAVolumeAndUndoRemovesIt) {
   EXPECT_EQ(s.volumes().size(), 1u);
 }
 
+// A NIfTI head (RAS+) lies in the Y-up editor with its superior axis along +Y (anterior +Z, right −X): the world is
+// the file's turned by that rotation, named in the report; "axes":"file" keeps the file's own world.
+TEST_F(VolumeCommands, ANiftiHeadStandsUpUnlessTheFilesAxesAreAsked) {
+  const std::string path =
+      (std::filesystem::path(TRISPLINE_SOURCE_DIR) / "assets/data/KmeansTest_T1UCharRaw.nii.gz").string();
+  Scene up, file;
+  auto a = VolumeLoadCommand::parse(json{{"cmd", "volume.load"}, {"path", path}, {"name", "up"}}, {});
+  a->redo(up);
+  auto b =
+      VolumeLoadCommand::parse(json{{"cmd", "volume.load"}, {"path", path}, {"name", "file"}, {"axes", "file"}}, {});
+  b->redo(file);
+  EXPECT_EQ(a->stats()["axes"], "superior_up");
+  EXPECT_EQ(a->stats()["frame"], "RAS");
+  EXPECT_EQ(b->stats()["axes"], "file");
+  EXPECT_EQ(a->to_json()["axes"], "superior_up") << "the log says which axes it used";
+  const glm::dmat4& m_up = up.volumes()[0].spline->index_to_world();
+  const glm::dmat4& m_file = file.volumes()[0].spline->index_to_world();
+  const glm::dmat4 expected = superior_up_rotation("RAS") * m_file;
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) EXPECT_NEAR(m_up[c][r], expected[c][r], 1e-12);
+  // RAS superior (world +z of the file) is +Y now; anterior (+y) is +Z; right (+x) is −X.
+  const glm::dmat4 rot = superior_up_rotation("RAS");
+  EXPECT_EQ(glm::dvec3(rot * glm::dvec4(0, 0, 1, 0)), glm::dvec3(0, 1, 0));
+  EXPECT_EQ(glm::dvec3(rot * glm::dvec4(0, 1, 0, 0)), glm::dvec3(0, 0, 1));
+  EXPECT_EQ(glm::dvec3(rot * glm::dvec4(1, 0, 0, 0)), glm::dvec3(-1, 0, 0));
+  EXPECT_NEAR(glm::determinant(glm::dmat3(rot)), 1.0, 1e-15) << "a rotation: nothing mirrored";
+  // DICOM's LPS: superior +Y as well, anterior (−P) +Z.
+  const glm::dmat4 lps = superior_up_rotation("LPS");
+  EXPECT_EQ(glm::dvec3(lps * glm::dvec4(0, 0, 1, 0)), glm::dvec3(0, 1, 0));
+  EXPECT_EQ(glm::dvec3(lps * glm::dvec4(0, -1, 0, 0)), glm::dvec3(0, 0, 1));
+  EXPECT_NEAR(glm::determinant(glm::dmat3(lps)), 1.0, 1e-15);
+  // A file without a patient frame (an analytic volume, .inv3) keeps its axes.
+  Scene analytic;
+  auto c = parse<VolumeLoadCommand>(R"({"cmd":"volume.load","analytic":"sphere"})");
+  c->redo(analytic);
+  EXPECT_EQ(c->stats()["axes"], "file");
+}
+
 TEST_F(VolumeCommands, LoadRefusesBadInputAndChangesNothing) {
   Scene s;
   parse<VolumeLoadCommand>(R"({"cmd":"volume.load","analytic":"sphere","name":"a"})")->redo(s);
