@@ -39,10 +39,12 @@ updates="$(gui_q '.guarantees.updates')"
 gui_move "$x" "$y"
 gui_frames 1
 xdotool mousedown 1
-gui_frames 2
+gui_frames 3
+# Three moves down and to the left, away from the timing overlay above (a release over it would go to the overlay,
+# not to the tool), two frames each: on a loaded machine X events that arrive within one frame are one move.
 for i in 1 2 3; do
-  gui_move $((x + 4 * i)) $((y - 2 * i))
-  gui_frames 1
+  gui_move $((x - 4 * i)) $((y + 2 * i))
+  gui_frames 2
 done
 gui_wait ".guarantees.live == true and .guarantees.updates > $updates and .guarantees.certificate == \"fold_free\"" \
   "during the drag the view shows the pressed (limited, still certified) lattice" 60

@@ -12,7 +12,7 @@ gui_key e
 gui_wait '.tool == "Press"' "E picks the Press tool"
 n="$(gui_q '.history.labels | length')"
 gui_frames 3
-gui_drag "$x" "$y" $((x + 12)) $((y - 6)) ctrl
+gui_drag "$x" "$y" $((x - 12)) $((y + 6)) ctrl  # down-left: away from the timing overlay above
 gui_wait "(.history.labels | length) == $((n + 1))" "one history entry for the drag" 60
 gui_check '.history.labels | last | startswith("Pull")' "the Ctrl+drag is labelled Pull"
 gui_pass
