@@ -1,12 +1,12 @@
 #include "ui/placement_panel.h"
 
-#include "ui/gui_probe.h"
-#include "ui/param_widgets.h"
-#include "ui/theme.h"
-
 #include <imgui.h>
 
 #include <algorithm>
+
+#include "ui/gui_probe.h"
+#include "ui/param_widgets.h"
+#include "ui/theme.h"
 
 namespace trispline::ui {
 

@@ -12,8 +12,8 @@
 // u ∈ [0, e] of the path (e = 1: the whole stroke, however long). keep: it keeps its proportions — its length is
 // scaled by the factor its height is (h ÷ the object's height along up_axis), so it covers u ∈ [0, min(e, u_L)] with
 // u_L where the contact curve F(u, ½, 0) has run that length (by arc length: the lattice's speed along u is not
-// uniform near its ends). Below the whole path an offset along u (anim.keyframe) walks the object along the stroke (seed §2.4.3).
-// The report gives the extent used ("extent") and the fit. An object with a glTF clip (anim.clip) is
+// uniform near its ends). Below the whole path an offset along u (anim.keyframe) walks the object along the stroke
+// (seed §2.4.3). The report gives the extent used ("extent") and the fit. An object with a glTF clip (anim.clip) is
 // embedded by the bounding box of its poses over the clip (64 samples), so no pose leaves the lattice.
 // The rays see every visible object except the one being placed and those listed in "ignore" (optional; the
 // editor lists the objects hidden in its viewport). Re-placing an already placed object starts
