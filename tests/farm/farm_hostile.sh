@@ -189,8 +189,8 @@ done
 rm "$killed/chunks/0000/chunk.json"
 (cd "$killed" && SLURM_ARRAY_TASK_ID=0 exec setsid bash ./farm_task.sh > /dev/null 2>&1) &
 stale=$!
-for _ in $(seq 200); do  # until it is the job script, leading its own group
-  tr '\0' ' ' < "/proc/$stale/cmdline" 2>/dev/null | grep -q 'farm_task.sh' && break
+for _ in $(seq 500); do  # until it is the job script (past setsid's own exec), leading its own group
+  [ "$(tr '\0' ' ' < "/proc/$stale/cmdline" 2>/dev/null)" = "bash ./farm_task.sh " ] && break
   sleep 0.01
 done
 kill -STOP -- "-$stale" || fail "the stale task's process group did not start"
