@@ -29,18 +29,25 @@ constexpr double kStepMax = 0.5, kStepMin = 1.0 / 128.0, kMaxTurnDeg = 25.0;
 // A march stops where it comes within kJoinRadius index units of a point already traced (a point on a chord of length
 // kStepMax is within kStepMax/2 of one of its ends).
 constexpr double kJoinRadius = 0.75 * kStepMax;
-// Where a cell covers only a few pixels (SilhouetteParams::pixel_step): steps of up to a cell that turn by up to 60°.
-constexpr double kCoarseStepMax = 1.0, kCoarseTurnDeg = 60.0;
+// A corrected point farther than kPredictorReach·h from the predicted one may lie on a neighbouring branch: the step
+// is retried at h/2.
+constexpr double kPredictorReach = 0.35;
+// Where a cell covers only a few pixels (SilhouetteParams::pixel_step): steps of up to a cell that turn by up to 60°,
+// and a corrected point may lie up to h/2 from the predicted one (a neighbouring branch that close is within a pixel
+// or two on the screen; 0.35 rejected a third of the steps there).
+constexpr double kCoarseStepMax = 1.0, kCoarseTurnDeg = 60.0, kCoarsePredictorReach = 0.5;
 
-// How finely one block is traced: the longest step and the turn allowed in a step, and the radius (≤ 1, index units)
-// within which a march meets a point already traced.
+// How finely one block is traced: the longest step and the turn allowed in a step, the radius (≤ 1, index units)
+// within which a march meets a point already traced, and how far (a fraction of the step) the corrector may move the
+// predicted point.
 struct TraceLimits {
   double step_max = kStepMax;
   double min_turn_cos = std::cos(kMaxTurnDeg * kPi / 180.0);
   double join_radius = kJoinRadius;
+  double predictor_reach = kPredictorReach;
 
   static TraceLimits coarse() {
-    return {kCoarseStepMax, std::cos(kCoarseTurnDeg * kPi / 180.0), 0.75 * kCoarseStepMax};
+    return {kCoarseStepMax, std::cos(kCoarseTurnDeg * kPi / 180.0), 0.75 * kCoarseStepMax, kCoarsePredictorReach};
   }
 };
 constexpr int kCorrectorIterations = 8, kSeedIterations = 6, kMaxSteps = 1 << 16;
@@ -89,7 +96,7 @@ struct Problem {
 // index units through the cells that can hold the level (the table's macro-cells and singletons skip the rest): the
 // parameter of the first sample past the crossing (so at or beyond it), or −1 when there is none.
 // `sides`, when given, holds the table's cells' sides of this level (LevelSides): the same answers from 1/96 of the
-// memory the singletons take, so a ray's cell tests hit the cache.
+// memory the singletons take, so a ray's cell tests hit the cache, and tiles of cells on one side are skipped whole.
 double first_crossing(const VolumeSpline& spline, const SingletonTable& table, double iso, const glm::dvec3& from,
                       const glm::dvec3& dir, double t, double t_end, const LevelSides* sides = nullptr);
 
@@ -98,17 +105,39 @@ double first_crossing(const VolumeSpline& spline, const SingletonTable& table, d
 bool occluded(const VolumeSpline& spline, const SingletonTable& table, double iso, const IndexView& iv,
               const glm::dvec3& from, double skip, const LevelSides* sides);
 
-// Where each cell's value range lies with respect to one level: 2 bits a cell, x fastest (table.cell_index order).
+// Where each cell's value range lies with respect to one level: 2 bits a cell, filed by tiles of 4³ cells (a tile is
+// two 64-bit words), so that a ray in any direction finds its next cells in the cache line it has just read, and a
+// tile whose cells all lie on one side is crossed in one step.
 class LevelSides {
  public:
   enum Side : unsigned { holds = 0, below = 1, above = 2 };
+  static constexpr int kTile = 4;  // cells per tile axis
+
   LevelSides(const SingletonTable& table, double iso);
   double iso() const { return iso_; }
-  Side side(std::size_t cell) const { return Side((bits_[cell >> 2] >> ((cell & 3) * 2)) & 3u); }
+  // Cell (x, y, z), each within the table's cell counts.
+  Side side(int x, int y, int z) const {
+    const std::size_t t = tile_of(x, y, z);
+    const unsigned k = unsigned(x & 3) + 4u * (unsigned(y & 3) + 4u * unsigned(z & 3));
+    return Side((words_[2 * t + (k >> 5)] >> (2 * (k & 31))) & 3u);
+  }
+  // The side all cells of the tile holding cell (x, y, z) lie on, or holds when they differ (or some cell holds).
+  Side tile_side(int x, int y, int z) const {
+    const std::size_t t = tile_of(x, y, z);
+    const std::uint64_t a = words_[2 * t], b = words_[2 * t + 1];
+    if (a == kAllBelow && b == kAllBelow) return below;
+    if (a == kAllAbove && b == kAllAbove) return above;
+    return holds;
+  }
 
  private:
+  static constexpr std::uint64_t kAllBelow = 0x5555555555555555ull, kAllAbove = 0xAAAAAAAAAAAAAAAAull;
+  std::size_t tile_of(int x, int y, int z) const {
+    return std::size_t(x >> 2) + tiles_[0] * (std::size_t(y >> 2) + tiles_[1] * std::size_t(z >> 2));
+  }
   double iso_;
-  std::vector<std::uint8_t> bits_;
+  std::size_t tiles_[3] = {0, 0, 0};
+  std::vector<std::uint64_t> words_;  // per tile: cells k = x + 4y + 16z (local), k < 32 in the first word
 };
 
 // The cells the iso-surface hides from the eye (SilhouetteParams::seed_hidden = false): the first crossing of

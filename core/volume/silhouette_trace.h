@@ -181,7 +181,8 @@ class BlockTracer {
         dl = glm::length(d);
         // A step goes forward by about h, lands near the predictor (not on a neighbouring branch) and turns little.
         ok = dl >= 0.25 * h && dl <= 2.0 * h && glm::dot(d, t) >= 0.5 * dl &&
-             glm::length(q.x - predicted) <= 0.35 * h && std::abs(glm::dot(q.tangent, t)) >= min_turn_cos;
+             glm::length(q.x - predicted) <= limits_.predictor_reach * h &&
+             std::abs(glm::dot(q.tangent, t)) >= min_turn_cos;
       }
       if (!ok) {
         h *= 0.5, easy = 0;

@@ -461,19 +461,26 @@ namespace silhouette_detail {
 
 LevelSides::LevelSides(const SingletonTable& table, double iso) : iso_(iso) {
   const auto& singles = table.singletons();
-  bits_.assign((singles.size() + 3) / 4, 0);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, bits_.size(), 1 << 14),
-                    [&](const tbb::blocked_range<std::size_t>& r) {
-                      for (std::size_t byte = r.begin(); byte != r.end(); ++byte) {
-                        std::uint8_t b = 0;
-                        for (std::size_t k = 0; k < 4 && 4 * byte + k < singles.size(); ++k) {
-                          const Singleton& sg = singles[4 * byte + k];
-                          const unsigned side = double(sg.hi) < iso ? below : (double(sg.lo) > iso ? above : holds);
-                          b |= static_cast<std::uint8_t>(side << (2 * k));
-                        }
-                        bits_[byte] = b;
-                      }
-                    });
+  const auto& dims = table.cells();
+  for (int a = 0; a < 3; ++a) tiles_[a] = static_cast<std::size_t>((dims[a] + kTile - 1) / kTile);
+  words_.assign(2 * tiles_[0] * tiles_[1] * tiles_[2], 0);
+  // Cells past the grid's end (in its last tiles) repeat the last cell's side: a tile is uniform as its cells are.
+  tbb::parallel_for(std::size_t(0), tiles_[2], [&](std::size_t tz) {
+    for (std::size_t ty = 0; ty < tiles_[1]; ++ty)
+      for (std::size_t tx = 0; tx < tiles_[0]; ++tx) {
+        std::uint64_t w[2] = {0, 0};
+        for (unsigned k = 0; k < 64; ++k) {
+          const int x = std::min(int(4 * tx + (k & 3)), dims[0] - 1),
+                    y = std::min(int(4 * ty + ((k >> 2) & 3)), dims[1] - 1),
+                    z = std::min(int(4 * tz + (k >> 4)), dims[2] - 1);
+          const Singleton& sg = singles[table.cell_index(x, y, z)];
+          const std::uint64_t side = double(sg.hi) < iso ? below : (double(sg.lo) > iso ? above : holds);
+          w[k >> 5] |= side << (2 * (k & 31));
+        }
+        const std::size_t t = tx + tiles_[0] * (ty + tiles_[1] * tz);
+        words_[2 * t] = w[0], words_[2 * t + 1] = w[1];
+      }
+  });
 }
 
 double first_crossing(const VolumeSpline& spline, const SingletonTable& table, double iso, const glm::dvec3& from,
@@ -512,12 +519,17 @@ double first_crossing(const VolumeSpline& spline, const SingletonTable& table, d
       prev = double(r.y) < iso ? -1.0 : 1.0;
       continue;
     }
-    const std::size_t cell = table.cell_index(c[0], c[1], c[2]);
     LevelSides::Side side;
     if (sides) {
-      side = sides->side(cell);
+      if (const LevelSides::Side whole = sides->tile_side(c[0], c[1], c[2]); whole != LevelSides::holds) {
+        const int tile[3] = {c[0] / LevelSides::kTile, c[1] / LevelSides::kTile, c[2] / LevelSides::kTile};
+        t = std::max(exit_of(tile, LevelSides::kTile) + 1e-6, t + 1e-6);
+        prev = whole == LevelSides::below ? -1.0 : 1.0;
+        continue;
+      }
+      side = sides->side(c[0], c[1], c[2]);
     } else {
-      const Singleton& sg = table.singletons()[cell];
+      const Singleton& sg = table.singletons()[table.cell_index(c[0], c[1], c[2])];
       side = double(sg.hi) < iso ? LevelSides::below : (double(sg.lo) > iso ? LevelSides::above : LevelSides::holds);
     }
     if (side != LevelSides::holds) {
@@ -525,12 +537,16 @@ double first_crossing(const VolumeSpline& spline, const SingletonTable& table, d
       prev = side == LevelSides::below ? -1.0 : 1.0;
       continue;
     }
-    const double tn = std::min(t + step, t_end);
-    const double f = spline.value(from + tn * dir) - iso;
-    if ((prev < 0.0) != (f < 0.0)) return tn;
-    prev = f;
-    t = tn;
-    if (tn >= t_end) break;
+    // Through this cell in steps of `step`, its lookups made once (the last step may end in the next cell).
+    const double cell_end = std::min(exit_of(c, 1.0), t_end);
+    do {
+      const double tn = std::min(t + step, t_end);
+      const double f = spline.value(from + tn * dir) - iso;
+      if ((prev < 0.0) != (f < 0.0)) return tn;
+      prev = f;
+      t = tn;
+    } while (t < cell_end);
+    if (t >= t_end) break;
   }
   return -1.0;
 }
