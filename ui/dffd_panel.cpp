@@ -1,19 +1,18 @@
 #include "ui/dffd_panel.h"
-#include "core/commands/codecs.h"
-#include "ui/param_widgets.h"
 
 #include <imgui.h>
 
 #include <algorithm>
 
+#include "core/commands/codecs.h"
+#include "ui/gui_probe.h"
 #include "ui/number_field.h"
+#include "ui/param_widgets.h"
 #include "ui/theme.h"
 
 namespace trispline::ui {
 
 namespace {
-
-
 
 // A combo over `names` (#N) choosing `value`; per-item tooltips `tips` (#N or empty). True when changed.
 // A combo over the enumerators of E named `names` (#N), with per-item tooltips `tips` (#N). True when changed.
@@ -81,8 +80,10 @@ DffdPanelResult draw_dffd_panel(core::DffdSplitParams& params, const std::string
       ticked.push_back(c.name);
   p.obstacles = std::move(ticked);
 
-  if (object.empty()) ImGui::TextColored(colors::dim, "Select the object to split.");
-  else ImGui::Text("Split %s around:", object.c_str());
+  if (object.empty())
+    ImGui::TextColored(colors::dim, "Select the object to split.");
+  else
+    ImGui::Text("Split %s around:", object.c_str());
 
   ImGui::TextColored(colors::dim, "Obstacles");
   ImGui::Separator();
@@ -98,9 +99,13 @@ DffdPanelResult draw_dffd_panel(core::DffdSplitParams& params, const std::string
           next.push_back(d.name);
       p.obstacles = std::move(next);
     }
+    probe::item("dffd.obstacle." + c.name);
     tooltip("A scene object the split object must open around (its bounding box shapes the lattice, seed Fig. 6.4)");
   }
   if (!any) ImGui::TextColored(colors::dim, "(no other visible object)");
+  std::string ticked_names;
+  for (const std::string& o : p.obstacles) ticked_names += (ticked_names.empty() ? "" : ",") + o;
+  probe::value("dffd.obstacles", ticked_names);
 
   ImGui::Spacing();
   ImGui::TextColored(colors::dim, "Lattice");
@@ -124,11 +129,14 @@ DffdPanelResult draw_dffd_panel(core::DffdSplitParams& params, const std::string
   double kw = g.kernel_width > 0.0 ? g.kernel_width : auto_kw;
   const double kw_min = 1e-6;
   row_label(schema.find("kernel_width")->label.c_str());
-  if (drag_scalar("##kernel_width", ImGuiDataType_Double, &kw, float(std::max(auto_kw, 1.0) * 1e-3), &kw_min,
-                  nullptr, g.kernel_width > 0.0 ? "%.4g" : auto_kw > 0.0 ? "%.4g (auto)" : "auto"))
+  if (drag_scalar("##kernel_width", ImGuiDataType_Double, &kw, float(std::max(auto_kw, 1.0) * 1e-3), &kw_min, nullptr,
+                  g.kernel_width > 0.0 ? "%.4g"
+                  : auto_kw > 0.0      ? "%.4g (auto)"
+                                       : "auto"))
     g.kernel_width = std::max(kw, kw_min);
   tooltip((param_tooltip(schema.find("kernel_width")->doc) +
-           "\nAuto: 2 x the largest ticked obstacle's extent along the axis").c_str());
+           "\nAuto: 2 x the largest ticked obstacle's extent along the axis")
+              .c_str());
   if (g.kernel_width > 0.0) {
     if (ImGui::SmallButton("Auto##kw")) g.kernel_width = 0.0;
     tooltip("Back to 2 x the largest obstacle extent along the axis");
@@ -144,12 +152,14 @@ DffdPanelResult draw_dffd_panel(core::DffdSplitParams& params, const std::string
                   g.margin > 0.0 ? "%.4g" : "%.4g (default)"))
     g.margin = margin > 0.0 ? margin : core::GlobalDffdParams{}.margin;
   tooltip(param_tooltip(schema.find("margin")->doc).c_str());
+  param_widget(schema, "clearance", g);
 
   ImGui::Spacing();
   const std::string blocked = dffd_split_blocked(object, p);
   ImGui::BeginDisabled(!blocked.empty());
   const bool clicked = ImGui::Button("Split", ImVec2(-1, 0));
   ImGui::EndDisabled();
+  probe::item("dffd.split");
   const ImVec2 mn = ImGui::GetItemRectMin(), mx = ImGui::GetItemRectMax();
   r.button_min = {mn.x, mn.y};
   r.button_max = {mx.x, mx.y};

@@ -2,20 +2,52 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <memory>
+#include <optional>
 
 #include "core/commands/codecs.h"
+#include "core/dffd/obstacle_interior.h"
 
 namespace trispline::core {
 
 namespace {
+
+constexpr int kClearanceRounds = 4, kKernelWidenings = 3;
+
+struct SplitAttempt {
+  explicit SplitAttempt(GlobalDffd b) : built(std::move(b)) {}
+  GlobalDffd built;
+  std::shared_ptr<const DffdRig> rig;
+  TriMesh mesh;
+  DffdApplyStats st;
+  ObstacleIntrusion intrusion;             // the state the line asks for
+  std::optional<ObstacleIntrusion> other;  // the seam's other state (cap ↔ stitch)
+  // How deep the deepest vertex inside an obstacle is, over both states.
+  double max_depth() const { return std::max(intrusion.max_depth, other ? other->max_depth : 0.0); }
+};
+
+std::string short_number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", v);
+  return buf;
+}
+
 double ms_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
 const ParamSchema<Aabb>& box_schema() {
   static const ParamSchema<Aabb> s = ParamSchema<Aabb>("box", "An axis-aligned box")
-                                         .field("lo", &Aabb::lo).required().unit("world units").help("Lowest corner")
-                                         .field("hi", &Aabb::hi).required().unit("world units").help("Highest corner");
+                                         .field("lo", &Aabb::lo)
+                                         .required()
+                                         .unit("world units")
+                                         .help("Lowest corner")
+                                         .field("hi", &Aabb::hi)
+                                         .required()
+                                         .unit("world units")
+                                         .help("Highest corner");
   return s;
 }
 
@@ -25,37 +57,75 @@ const ParamSchema<GlobalDffdParams>& global_dffd_schema() {
   using G = GlobalDffdParams;
   static const ParamSchema<G> s =
       ParamSchema<G>("dffd", "The lattice of a global DFFD")
-          .choice("axis", &G::axis, axis_names()).label("Axis (u)").help("World axis of the lattice's u: the travel direction")
-          .choice("w_axis", &G::w_axis, axis_names()).label("W axis (w)")
+          .choice("axis", &G::axis, axis_names())
+          .label("Axis (u)")
+          .help("World axis of the lattice's u: the travel direction")
+          .choice("w_axis", &G::w_axis, axis_names())
+          .label("W axis (w)")
           .help("World axis of the lattice's w: the slicing planes W_k are orthogonal to it")
           .check([](const G& g) {
             if (g.axis == g.w_axis) params::fail("w_axis", "must differ from 'axis'");
           })
-          .field("order", &G::order).range(2, 6).label("Order").ui(0.05).help("Order (= degree + 1) per lattice axis u, v, w")
-          .field("controls", &G::controls).range(2, 64).label("Controls").ui(0.1).help("Control points per lattice axis before knot insertion, ≥ order")
-          .choice("kernel", &G::kernel, {"gaussian", "bspline"}).label("Kernel").help("κ: truncated Gaussian or quadratic B-spline")
-          .field("kernel_width", &G::kernel_width).required().label("Kernel width").above(0).unit("world units")
+          .field("order", &G::order)
+          .range(2, 6)
+          .label("Order")
+          .ui(0.05)
+          .help("Order (= degree + 1) per lattice axis u, v, w")
+          .field("controls", &G::controls)
+          .range(2, 64)
+          .label("Controls")
+          .ui(0.1)
+          .help("Control points per lattice axis before knot insertion, ≥ order")
+          .choice("kernel", &G::kernel, {"gaussian", "bspline"})
+          .label("Kernel")
+          .help("κ: truncated Gaussian or quadratic B-spline")
+          .field("kernel_width", &G::kernel_width)
+          .required()
+          .label("Kernel width")
+          .above(0)
+          .unit("world units")
           .help("κ's reach along axis (the opening's propagation)")
-          .choice("openings", &G::openings, {"open", "stitch", "cap"}).label("Openings")
+          .choice("openings", &G::openings, {"open", "stitch", "cap"})
+          .label("Openings")
           .help("open: holes; stitch: re-joined behind the obstacle; cap: closed by CGAL-triangulated caps")
-          .choice("fold", &G::reject_fold, {"warn", "reject"}).label("Fold-over").help("A fold-over (seed Theorem 6) fails or only warns")
-          .field("margin", &G::margin).at_least(0).label("Margin").write_unless_default().unit("world units")
-          .default_text("1.05 × kernel_width").help("Lattice growth beyond the obstacles along axis")
-          .field("clearance", &G::clearance).at_least(0).unit("world units")
-          .help("Kept between the wrapped object and the obstacle")
-          .field("eps", &G::eps).range(0, 1e-3, true, false).unit("parameter units")
+          .choice("fold", &G::reject_fold, {"warn", "reject"})
+          .label("Fold-over")
+          .help("A fold-over (seed Theorem 6) fails or only warns")
+          .field("margin", &G::margin)
+          .at_least(0)
+          .label("Margin")
+          .write_unless_default()
+          .unit("world units")
+          .default_text("1.05 × kernel_width")
+          .help("Lattice growth beyond the obstacles along axis")
+          .field("clearance", &G::clearance)
+          .at_least(0)
+          .label("Clearance")
+          .unit("world units")
+          .help(
+              "Kept between the wrapped object and the obstacle; where vertices would still lie inside an obstacle "
+              "the split raises it and refines the lattice by itself (report.json: clearance_used)")
+          .field("eps", &G::eps)
+          .range(0, 1e-3, true, false)
+          .unit("parameter units")
           .help("Cut vertices sit at u0 ∓ eps")
-          .object("box", &G::box, box_schema()).help("The lattice box; every obstacle must lie inside it");
+          .object("box", &G::box, box_schema())
+          .help("The lattice box; every obstacle must lie inside it");
   return s;
 }
 
 const ParamSchema<DffdSplitParams>& DffdSplitCommand::schema() {
   using P = DffdSplitParams;
   static const ParamSchema<P> s =
-      ParamSchema<P>("dffd.split", "Split an object around obstacles with a global discontinuous FFD; open, stitched "
-                                   "or capped openings (seed §6.3)")
-          .field("object", &P::object).required().help("An undeformed object without a glTF clip")
-          .field("obstacles", &P::obstacles).required().help("Ids of other objects (static)")
+      ParamSchema<P>("dffd.split",
+                     "Split an object around obstacles with a global discontinuous FFD; open, stitched "
+                     "or capped openings (seed §6.3)")
+          .field("object", &P::object)
+          .required()
+          .help("An undeformed object without a glTF clip")
+          .field("obstacles", &P::obstacles)
+          .required()
+          .help("Ids of other objects (static)")
           .check([](const P& p) {
             if (p.obstacles.empty()) params::fail("obstacles", "expected a non-empty array of object ids");
             for (std::size_t i = 0; i < p.obstacles.size(); ++i) {
@@ -78,12 +148,15 @@ std::string DffdSplitCommand::label() const {
 std::optional<SceneObject> DffdSplitCommand::build(const Scene& scene) {
   const SceneObject* object = &require_object(scene, p_.object);
   if (object->ffd)
-    throw CommandError("field 'object': '" + p_.object + "' is deformed by an FFD lattice; dffd.split builds its own "
-                       "lattice around the obstacles (split an undeformed object)", "object");
+    throw CommandError("field 'object': '" + p_.object +
+                           "' is deformed by an FFD lattice; dffd.split builds its own "
+                           "lattice around the obstacles (split an undeformed object)",
+                       "object");
   if (object->clip)
-    throw CommandError("field 'object': '" + p_.object + "' plays a glTF clip; splitting would break its vertex "
-                       "correspondence (remove the clip first)", "object");
-  const auto t0 = std::chrono::steady_clock::now();
+    throw CommandError("field 'object': '" + p_.object +
+                           "' plays a glTF clip; splitting would break its vertex "
+                           "correspondence (remove the clip first)",
+                       "object");
   std::vector<DffdObstacle> obstacles;
   for (const std::string& id : p_.obstacles) {
     const SceneObject* o = &require_object(scene, id, "obstacles");
@@ -92,27 +165,89 @@ std::optional<SceneObject> DffdSplitCommand::build(const Scene& scene) {
     obstacles.push_back({id, *o->world_mesh});
   }
   const TriMesh rest = object->world_rest_mesh();
+  std::vector<std::string> names;
+  std::vector<const TriMesh*> meshes;
+  for (const DffdObstacle& o : obstacles) names.push_back(o.name), meshes.push_back(&o.world_mesh);
+  const ObstacleInterior interior(names, meshes);
   GlobalDffdParams p = p_.dffd;
   p.offset = object->offset_at(0.0);
-  GlobalDffd built = [&] {
-    try {
-      return build_global_dffd(rest, obstacles, p);
-    } catch (const DffdBuildError& e) {
-      throw CommandError("field '" + e.field + "': " + e.what(), e.field);
+  double build_ms = 0.0, eval_ms = 0.0;
+  auto attempt = [&](const GlobalDffdParams& q) {
+    const auto t0 = std::chrono::steady_clock::now();
+    SplitAttempt a([&] {
+      try {
+        return build_global_dffd(rest, obstacles, q);
+      } catch (const DffdBuildError& e) {
+        throw CommandError("field '" + e.field + "': " + e.what(), e.field);
+      }
+    }());
+    build_ms += ms_since(t0);
+    const auto t1 = std::chrono::steady_clock::now();
+    a.rig = std::make_shared<const DffdRig>(std::move(a.built.rig));
+    a.mesh = dffd_apply(*a.rig, rest, q.offset, &a.st);
+    eval_ms += ms_since(t1);
+    a.intrusion = interior.intrusion(a.mesh.positions);
+    if (a.rig->seam) {  // the state dffd.animate may key the seam to
+      DffdRig other = *a.rig;
+      dffd_set_stitch(other, q.openings == DffdOpenings::stitch ? 0.0 : 1.0);
+      a.other = interior.intrusion(dffd_apply(other, rest, q.offset).positions);
     }
-  }();
-  const double build_ms = ms_since(t0);
+    return a;
+  };
+  // Clearance: vertices the split leaves inside an obstacle (the lattice's rows fit the cross-section only at their
+  // own v and w; between them the spline cuts a chord into it) are cleared in rounds: the controls in v and w doubled
+  // (shorter chords) and the clearance raised by 1.5× the deepest one's depth. A round whose larger displacement
+  // folds the lattice (seed Theorem 6) is retried with κ 1.5× wider. With a seam (cap, stitch) its other state is
+  // cleared too while the rounds help it, so the two splits of one line refine alike; it cannot always be (an
+  // obstacle that ends inside the object holds the stitching level) and is then only reported.
+  SplitAttempt a = attempt(p);
+  if (a.st.open_chains > 0 && p.openings != DffdOpenings::open)
+    throw CommandError(
+        "field 'openings': '" + p_.object + "' is not closed where it is cut (" + std::to_string(a.st.open_chains) +
+            " open boundary chain(s) on the discontinuity planes), so "
+            "its openings cannot be " +
+            (p.openings == DffdOpenings::cap ? "capped" : "stitched") + "; use \"openings\":\"open\" or close the mesh",
+        "openings");
+  const std::size_t inside_before = a.intrusion.inside;
+  std::size_t other_before = SIZE_MAX;
+  auto other_helped = [&] { return a.other && a.other->inside > 0 && a.other->inside < other_before; };
+  int rounds = 0;
+  for (; rounds < kClearanceRounds && (a.intrusion.inside > 0 || other_helped()); ++rounds) {
+    GlobalDffdParams q = p;
+    q.clearance += 1.5 * (other_helped() ? a.max_depth() : a.intrusion.max_depth);
+    q.controls.y = std::min(64, 2 * q.controls.y), q.controls.z = std::min(64, 2 * q.controls.z);
+    other_before = a.other ? a.other->inside : 0;
+    for (int widened = 0;; ++widened) {
+      try {
+        a = attempt(q);
+        break;
+      } catch (const CommandError& e) {
+        if (e.field() == "kernel_width" && widened < kKernelWidenings) {
+          q.kernel_width *= 1.5;
+          continue;
+        }
+        throw CommandError("field 'clearance': " + std::to_string(a.intrusion.inside) + " vertices of '" + p_.object +
+                               "' lie inside '" + a.intrusion.deepest_obstacle + "' (up to " +
+                               short_number(a.intrusion.max_depth) + " world units deep), and refining the " +
+                               "lattice to clear them failed: " + e.what() + "; give a clearance or more controls",
+                           "clearance");
+      }
+    }
+    p = q;
+  }
+  if (a.intrusion.inside > 0)
+    throw CommandError("field 'clearance': " + std::to_string(a.intrusion.inside) + " vertices of '" + p_.object +
+                           "' stay inside '" + a.intrusion.deepest_obstacle + "' (up to " +
+                           short_number(a.intrusion.max_depth) + " world units deep) after " +
+                           std::to_string(kClearanceRounds) + " refinements (clearance " + short_number(p.clearance) +
+                           ", controls [" + std::to_string(p.controls.x) + "," + std::to_string(p.controls.y) + "," +
+                           std::to_string(p.controls.z) + "]); give a larger clearance or more controls",
+                       "clearance");
+  const GlobalDffd& built = a.built;
+  const DffdApplyStats& st = a.st;
   SceneObject out = *object;
-  out.dffd = std::make_shared<const DffdRig>(std::move(built.rig));
-  const auto t1 = std::chrono::steady_clock::now();
-  DffdApplyStats st;
-  out.world_mesh = std::make_shared<const TriMesh>(dffd_apply(*out.dffd, rest, p.offset, &st));
-  const double eval_ms = ms_since(t1);
-  if (st.open_chains > 0 && p.openings != DffdOpenings::open)
-    throw CommandError("field 'openings': '" + p_.object + "' is not closed where it is cut (" +
-                       std::to_string(st.open_chains) + " open boundary chain(s) on the discontinuity planes), so "
-                       "its openings cannot be " + (p.openings == DffdOpenings::cap ? "capped" : "stitched") +
-                       "; use \"openings\":\"open\" or close the mesh", "openings");
+  out.dffd = a.rig;
+  out.world_mesh = std::make_shared<const TriMesh>(std::move(a.mesh));
   stats_ = {{"discontinuities", out.dffd->discontinuities.size()},
             {"v_knots", built.v_knots},
             {"projected_points", built.projected_points},
@@ -126,6 +261,14 @@ std::optional<SceneObject> DffdSplitCommand::build(const Scene& scene) {
             {"outside_vertices", st.outside_vertices},
             {"vertices_before", rest.vertex_count()},
             {"vertices_after", out.world_mesh->vertex_count()},
+            {"inside_obstacle", a.intrusion.inside},
+            {"inside_obstacle_other_state", a.other ? nlohmann::json(a.other->inside) : nlohmann::json()},
+            {"inside_before_refinement", inside_before},
+            {"refinement_rounds", rounds},
+            {"clearance_used", p.clearance},
+            {"controls_used", {p.controls.x, p.controls.y, p.controls.z}},
+            {"kernel_width_used", p.kernel_width},
+            {"unchecked_obstacles", interior.unchecked()},
             {"build_ms", build_ms},
             {"eval_ms", eval_ms}};
   return out;

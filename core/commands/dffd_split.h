@@ -10,12 +10,21 @@
 // core::build_global_dffd (dffd_global.h); the object keeps its rest mesh and gets a DffdRig, evaluated (split,
 // capped, deformed) at every scene time, so animating its parameter offset along u (anim.keyframe) walks it through
 // the obstacles. Running it again on a split object replaces its rig. Undo restores the object bit for bit.
+// Clearance: no vertex may stay inside an obstacle (ObstacleInterior, CGAL). Where the construction leaves some
+// (its rows fit the cross-section only at their own v and w), the split refines in up to 4 rounds: controls in v and
+// w doubled, clearance raised by 1.5× the deepest one's depth, κ widened 1.5× when a round folds. A seam's other
+// state (cap ↔ stitch) is cleared too while that helps, and reported. The log line keeps the user's values (a replay
+// refines the same way).
 // report.json: discontinuities, v_knots, projected_points, max_displacement, fold_overs, w_s, cut_edges, cap_loops,
-// open_chains, cap_triangles, outside_vertices, vertices_before, vertices_after, build_ms, eval_ms.
+// open_chains, cap_triangles, outside_vertices, vertices_before, vertices_after, inside_obstacle (0),
+// inside_obstacle_other_state (null without a seam), inside_before_refinement, refinement_rounds, clearance_used,
+// controls_used, kernel_width_used, unchecked_obstacles (obstacles that bound no volume: open or non-manifold meshes,
+// not checked), build_ms, eval_ms.
 // Errors (CommandError, field named): unknown object, an FFD or clip object ("object"); unknown / repeated /
 // self / empty obstacle ("obstacles"); axes equal ("w_axis"); order / controls out of range; kernel_width ≤ 0 or
 // a fold-over with fold = reject ("kernel_width": count, first (i,j,k), world position); obstacle larger than the
-// given box ("box"); caps asked for a mesh that is not closed at a cut ("openings").
+// given box ("box"); caps asked for a mesh that is not closed at a cut ("openings"); vertices still inside an
+// obstacle after the refinements, or a refinement that fails ("clearance": how many, how deep, what was tried).
 #pragma once
 
 #include <optional>

@@ -2,6 +2,8 @@
 
 #include <imgui.h>
 
+#include <cstdio>
+
 #include "core/commands/dffd_animate.h"
 #include "editor/navigation.h"
 #include "editor/session.h"
@@ -33,7 +35,23 @@ std::vector<ui::DffdObstacleInfo> DffdTool::candidates(const ToolContext& ctx, c
 
 void DffdTool::split(ToolContext& ctx, const nlohmann::json& line) {
   EditorSession& session = ctx.session;  // outlives the deferred work; ctx may not
-  ctx.defer("Splitting " + line.value("object", std::string()), [&session, line]() { session.execute(line); });
+  ctx.defer("Splitting " + line.value("object", std::string()), [&session, line]() {
+    if (!session.execute(line)) return;
+    // The split refined its lattice to clear the obstacles: say by how much (the log line stays as typed).
+    const nlohmann::json st = session.history().last_executed().stats();
+    if (st.value("refinement_rounds", 0) > 0) {
+      const auto& c = st.at("controls_used");
+      char clearance[32];
+      std::snprintf(clearance, sizeof clearance, "%.3g", st.value("clearance_used", 0.0));
+      session.messages().info(line.value("object", std::string()) + ": " +
+                              std::to_string(st.value("inside_before_refinement", 0)) +
+                              " vertices were inside an obstacle; the lattice was refined to clear them (clearance " +
+                              clearance + ", controls " + c.dump() + ")");
+    }
+    for (const auto& name : st.value("unchecked_obstacles", nlohmann::json::array()))
+      session.messages().warning("'" + name.get<std::string>() +
+                                 "' does not bound a volume (open or non-manifold): its clearance was not checked");
+  });
 }
 
 void DffdTool::draw_seam_section(ToolContext& ctx, const std::string& object) {

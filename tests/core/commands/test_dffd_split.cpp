@@ -1,10 +1,12 @@
 // dffd.split (core/commands/dffd_split.h): a sphere split around a cylinder — the command keeps the rest mesh and
 // adds a rig, the world mesh is split and capped, stats report the construction, anim.keyframe walks it, undo
-// restores the object bit for bit, bad input names the field and changes nothing.
+// restores the object bit for bit, bad input names the field and changes nothing; no vertex is left inside an
+// obstacle (the real mushroom of CGAL's data around a bar when the asset corpus is there).
 #include <gtest/gtest.h>
 
 #include "core/commands/anim_commands.h"
 #include "core/commands/dffd_split.h"
+#include "core/commands/scene_load.h"
 #include "core/commands/scene_primitive.h"
 
 namespace trispline::core {
@@ -110,6 +112,95 @@ TEST(DffdSplit, BadInputNamesTheFieldAndChangesNothing) {
   box["box"] = {{"lo", {-1.5, -1.2, -1.2}}, {"hi", {1.5, 1.2, 1.2}}};
   expect_field(box.dump(), "box");
 }
+
+// Vertices strictly inside the tool cylinder of ball_and_tool (its 64-gon's inscribed circle, with a margin).
+std::size_t inside_tool(const TriMesh& m) {
+  const double inscribed = 0.3 * std::cos(3.14159265358979323846 / 64.0) - 1e-9;
+  std::size_t n = 0;
+  for (const glm::dvec3& p : m.positions)
+    n += std::abs(p.y) < 1.6 && glm::length(glm::dvec2(p.x - 0.013, p.z - 0.017)) < inscribed;
+  return n;
+}
+
+TEST(DffdSplit, NoVertexStaysInsideTheObstacle) {
+  for (const char* openings : {"open", "stitch", "cap"}) {
+    Scene s = ball_and_tool();
+    json line = json::parse(kSplit);
+    line["openings"] = openings;
+    CommandContext ctx;
+    auto c = DffdSplitCommand::parse(line, ctx);
+    c->redo(s);
+    const json st = c->stats();
+    // The seed's construction fits the rows to the cross-section only at their own v and w: it leaves vertices
+    // inside, and the command refines until none is.
+    EXPECT_GT(st.at("inside_before_refinement").get<int>(), 0) << openings;
+    EXPECT_GE(st.at("refinement_rounds").get<int>(), 1) << openings;
+    EXPECT_EQ(st.at("inside_obstacle"), 0) << openings;
+    EXPECT_GT(st.at("clearance_used").get<double>(), 0.0) << openings;
+    EXPECT_TRUE(st.at("unchecked_obstacles").empty());
+    EXPECT_EQ(inside_tool(*s.find("ball")->world_mesh), 0u) << openings;  // checked apart from CGAL
+    // The log line is the user's: replaying it refines the same way, bit for bit.
+    EXPECT_EQ(c->to_json().at("controls"), json::array({16, 12, 12}));
+    Scene again = ball_and_tool();
+    DffdSplitCommand::parse(c->to_json(), ctx)->redo(again);
+    EXPECT_EQ(again.find("ball")->world_mesh->positions, s.find("ball")->world_mesh->positions);
+  }
+  // The seam's two states clear the tool alike: a capped and a stitched split refine the same lattice.
+  Scene cap = ball_and_tool(), stitch = ball_and_tool();
+  CommandContext ctx;
+  json line = json::parse(kSplit);
+  auto c1 = DffdSplitCommand::parse(line, ctx);
+  c1->redo(cap);
+  line["openings"] = "stitch";
+  auto c2 = DffdSplitCommand::parse(line, ctx);
+  c2->redo(stitch);
+  EXPECT_EQ(c1->stats().at("controls_used"), c2->stats().at("controls_used"));
+  EXPECT_EQ(c1->stats().at("clearance_used"), c2->stats().at("clearance_used"));
+}
+
+TEST(DffdSplit, AnObstacleThatBoundsNoVolumeIsListedUnchecked) {
+  Scene s = ball_and_tool();
+  CommandContext ctx;
+  ScenePrimitiveCommand::parse(json::parse(R"({"cmd":"scene.primitive","kind":"plane","name":"sheet",
+      "scale":[0.3,1,0.3],"rotate_deg":[0,0,90]})"),
+                               ctx)
+      ->redo(s);
+  json line = json::parse(kSplit);
+  line["obstacles"] = json::array({"sheet"});
+  line["openings"] = "open";
+  auto c = DffdSplitCommand::parse(line, ctx);
+  c->redo(s);
+  EXPECT_EQ(c->stats().at("unchecked_obstacles"), json::array({"sheet"}));
+  EXPECT_EQ(c->stats().at("inside_obstacle"), 0);
+  EXPECT_EQ(c->stats().at("refinement_rounds"), 0);
+}
+
+#if defined(TRISPLINE_HAVE_CORPUS)
+// A real mushroom (CGAL's data/meshes/mushroom.off, an open surface: openings open) split around a bar with a
+// 12 × 8 × 6 lattice: the seed's construction leaves vertices inside the bar.
+TEST(DffdSplit, TheRealMushroomClearsTheBar) {
+  Scene s;
+  CommandContext ctx;
+  json load = {{"cmd", "scene.load"},
+               {"name", "mushroom"},
+               {"path", std::string(TRISPLINE_SOURCE_DIR) + "/assets/data/corpus/cgal/mushroom.off"}};
+  SceneLoadCommand::parse(load, ctx)->redo(s);
+  ScenePrimitiveCommand::parse(json::parse(R"({"cmd":"scene.primitive","kind":"box","name":"bar",
+      "scale":[0.05,0.05,0.5],"translate":[0,0.1,0]})"),
+                               ctx)
+      ->redo(s);
+  auto c = DffdSplitCommand::parse(json::parse(R"({"cmd":"dffd.split","object":"mushroom","obstacles":["bar"],
+      "axis":"x","w_axis":"y","order":[3,3,3],"controls":[12,8,6],"kernel_width":0.3,"openings":"open"})"),
+                                   ctx);
+  c->redo(s);
+  EXPECT_GT(c->stats().at("inside_before_refinement").get<int>(), 0);
+  EXPECT_EQ(c->stats().at("inside_obstacle"), 0);
+  std::size_t inside = 0;
+  for (const glm::dvec3& p : s.find("mushroom")->world_mesh->positions)
+    inside += std::abs(p.x) < 0.05 - 1e-9 && std::abs(p.y - 0.1) < 0.05 - 1e-9 && std::abs(p.z) < 0.5 - 1e-9;
+  EXPECT_EQ(inside, 0u);
+}
+#endif
 
 }  // namespace dffd_split_test
 }  // namespace trispline::core
