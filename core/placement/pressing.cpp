@@ -1,12 +1,13 @@
 // Pressing a lattice with a swept sphere. See pressing.h. Source: seed §2.4.1 (Fig. 2.7, 2.8; Eq. 2.3, 2.4).
 #include "core/placement/pressing.h"
 
-#include "core/ffd/fold_certificate.h"
-
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
+
+#include "core/ffd/fold_certificate.h"
 
 namespace trispline::core {
 namespace {
@@ -47,7 +48,8 @@ TrivariateBSpline<glm::dvec3> press_lattice(const TrivariateBSpline<glm::dvec3>&
       for (int k = 0; k < c.z; ++k) {
         const glm::dvec3& p = before.control_point(i, j, k);
         double w = 0.0;
-        for (const glm::dvec3& centre : path) w = std::max(w, falloff_weight(falloff, glm::length(p - centre) / radius));
+        for (const glm::dvec3& centre : path)
+          w = std::max(w, falloff_weight(falloff, glm::length(p - centre) / radius));
         if (w <= 0.0) continue;
         after.control_point(i, j, k) = p - strength * w * vp;
         ++r.moved;
@@ -67,28 +69,60 @@ FoldFreePress press_lattice_fold_free(const TrivariateBSpline<glm::dvec3>& befor
   ++out.certificates;
   if (start.verdict != FoldVerdict::fold_free)
     throw std::invalid_argument(std::string("the lattice is not certified fold-free before the press (") +
-                                (start.verdict == FoldVerdict::fold ? "it folds in " + std::to_string(start.fold_cells.size()) + " cells"
-                                                                    : "undecided in " + std::to_string(start.undecided_cells.size()) + " cells") +
+                                (start.verdict == FoldVerdict::fold
+                                     ? "it folds in " + std::to_string(start.fold_cells.size()) + " cells"
+                                     : "undecided in " + std::to_string(start.undecided_cells.size()) + " cells") +
                                 "): there is nothing to keep");
-  auto attempt = [&](double s, FoldFreePress& into) {
+  // A verdict left undecided at max_depth (det J touching 0 inside a box, as it does right after a limited press) is
+  // asked again 3 halvings deeper before the strength counts as uncertified.
+  FoldCertificateOptions deeper = options;
+  deeper.max_depth = std::min(12, max_depth + 3);
+  FoldCertificate refused;  // the certificate of the smallest strength that was not certified
+  double refused_at = 1.0;
+  auto attempt = [&](double fraction, FoldFreePress& into) {
     PressResult r;
-    TrivariateBSpline<glm::dvec3> after = press_lattice(before, path, radius, s, falloff, &r);
+    TrivariateBSpline<glm::dvec3> after = press_lattice(before, path, radius, fraction * strength, falloff, &r);
     ++out.certificates;
-    if (certify_fold_free(after, options).verdict != FoldVerdict::fold_free) return false;
+    FoldCertificate c = certify_fold_free(after, options);
+    if (c.verdict == FoldVerdict::undecided && deeper.max_depth > options.max_depth) {
+      ++out.certificates;
+      c = certify_fold_free(after, deeper);
+    }
+    if (c.verdict != FoldVerdict::fold_free) {
+      if (fraction <= refused_at) refused = std::move(c), refused_at = fraction;
+      return false;
+    }
     into.lattice = std::move(after);
-    into.strength = s;
+    into.strength = fraction * strength;
     into.result = r;
     return true;
   };
-  if (attempt(strength, out)) return out;
+  if (attempt(1.0, out)) return out;
   out.limited = true;
   double lo = 0.0, hi = 1.0;  // fractions of the strength: lo certified (0 = the lattice before), hi not
   for (int step = 0; step < 10; ++step) {
     const double mid = 0.5 * (lo + hi);
-    if (attempt(mid * strength, out)) lo = mid;
-    else hi = mid;
+    if (attempt(mid, out))
+      lo = mid;
+    else
+      hi = mid;
   }
-  if (lo == 0.0) out.lattice = before, out.strength = 0.0, out.result = {};
+  // Less than kMinMovableFraction of the strength is no visible change: the lattice cannot move this way.
+  if (lo < kMinMovableFraction) {
+    const bool folds = refused.verdict == FoldVerdict::fold;
+    std::string where;
+    const std::vector<glm::ivec3>& cells = folds ? refused.fold_cells : refused.undecided_cells;
+    if (!cells.empty())
+      where = " in cell (" + std::to_string(cells[0].x) + "," + std::to_string(cells[0].y) + "," +
+              std::to_string(cells[0].z) + ")";
+    char amount[64];
+    std::snprintf(amount, sizeof amount, "%.3g", std::abs(refused_at * strength));
+    throw std::invalid_argument(std::string("the lattice cannot move this way and stay certified fold-free: a ") +
+                                (strength < 0 ? "pull" : "press") + " of " + amount + " already " +
+                                (folds ? "folds it" : "cannot be certified") + where +
+                                " (it is at the edge of folding there); press elsewhere, with a larger radius or a "
+                                "smooth falloff, or without Keep fold-free");
+  }
   return out;
 }
 

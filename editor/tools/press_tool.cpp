@@ -163,8 +163,9 @@ std::optional<Tool::LivePreview> PressTool::live_preview(const ToolContext& ctx)
                 core::press_lattice_fold_free(o->ffd->lattice, path_, hover_radius_, signed_strength(ctx), falloff_);
             preview_strength_ = press.limited ? std::abs(press.strength) : -1.0;
             preview_ = std::make_shared<const core::TrivariateBSpline<glm::dvec3>>(std::move(press.lattice));
-          } catch (const std::invalid_argument&) {  // not certified before the press: the command will refuse
+          } catch (const std::invalid_argument& e) {  // not certified, or cannot move: the command will refuse
             preview_strength_ = std::nan("");
+            preview_refusal_ = e.what();
             preview_.reset();
           }
         } else {
@@ -320,9 +321,12 @@ void PressTool::draw_panel(ToolContext& ctx) {
         "det J > 0 everywhere, proven by its Bernstein coefficients (View > Fold certificate shows it).\n"
         "A lattice that is not certified before the press is refused.");
   if (keep_fold_free_ && pressing_) {
-    if (std::isnan(preview_strength_))
-      ImGui::TextColored(ui::colors::dim, "The lattice is not certified fold-free: the press will be refused.");
-    else if (preview_strength_ >= 0.0)
+    if (std::isnan(preview_strength_)) {
+      ImGui::PushStyleColor(ImGuiCol_Text, ui::colors::warning);
+      ImGui::TextWrapped("The press will be refused: %s", preview_refusal_.c_str());
+      ImGui::PopStyleColor();
+      ui::probe::value("press.refusal", preview_refusal_);
+    } else if (preview_strength_ >= 0.0)
       ImGui::TextColored(ui::colors::dim, "Limited to strength %.4g to stay fold-free", preview_strength_);
   }
 

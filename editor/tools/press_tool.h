@@ -76,6 +76,7 @@ class PressTool : public Tool {
   // Keep fold-free during a drag: the strength the preview could use (negative: the whole strength; NaN: the lattice
   // is not certified before the press, so the command will refuse).
   double preview_strength_ = -1.0;
+  std::string preview_refusal_;  // why the command will refuse the press being dragged (preview_strength_ NaN)
 
   std::optional<glm::dvec3> hover_;
   double hover_radius_ = 0.0;  // radius at the last hover (decorate has no context)

@@ -3,6 +3,8 @@
 // neighbours makes it fold, and the reported points really fold; the query leaves the scene and the undo stack alone.
 #include <gtest/gtest.h>
 
+#include "core/placement/pressing.h"
+
 #include "core/commands/lattice_certify.h"
 #include "editor/command_registry.h"
 #include "editor/history.h"
@@ -103,6 +105,41 @@ TEST(LatticeCertify, KeepFoldFreeLimitsAPressThatWouldFold) {
   const auto before = scene.find("t")->ffd;
   EXPECT_TRUE(test::throws_command_error([&] { test::run(history, press); }, "keep_fold_free", "fold"));
   EXPECT_EQ(scene.find("t")->ffd, before) << "refused: the scene is untouched";
+}
+
+// A limited press leaves the lattice at the edge of folding. The same press again finds a smaller certified strength;
+// when less than kMinMovableFraction of it can be certified the lattice cannot move that way: refused with the cell,
+// scene untouched. A pull the other way still moves it, by its whole strength or the largest certified part.
+TEST(LatticeCertify, KeepFoldFreeSaysWhenTheLatticeCannotMove) {
+  core::Scene scene;
+  editor::History history(scene);
+  test::run(history, kTeapot);
+  test::run(history, kRing);
+  nlohmann::json press = {{"cmd", "lattice.press"}, {"object", "t"},   {"path", {{1.2, 0.3, 0.0}}},
+                          {"radius", 0.6},          {"strength", 3.0}, {"falloff", "sharp"},
+                          {"keep_fold_free", true}};
+  std::vector<double> used;
+  std::string refusal;
+  for (int k = 0; k < 8 && refusal.empty(); ++k) {
+    const auto before = scene.find("t")->ffd;
+    try {
+      used.push_back(run_stats(history, press).at("strength_used").get<double>());
+      EXPECT_GE(used.back(), 3.0 * core::kMinMovableFraction) << "never a press that changes nothing visible";
+      EXPECT_EQ(run_stats(history, kCertify).at("certificate"), "fold_free");
+    } catch (const core::CommandError& e) {
+      refusal = e.what();
+      EXPECT_EQ(e.field(), "keep_fold_free");
+      EXPECT_EQ(scene.find("t")->ffd, before) << "refused: the scene is untouched";
+    }
+  }
+  ASSERT_FALSE(used.empty());
+  EXPECT_NE(refusal.find("cannot move this way"), std::string::npos) << refusal;
+  EXPECT_NE(refusal.find("in cell ("), std::string::npos) << refusal;
+  nlohmann::json pull = press;
+  pull["strength"] = -1.0;
+  const nlohmann::json st = run_stats(history, pull);
+  EXPECT_LT(st.at("strength_used").get<double>(), -1.0 * core::kMinMovableFraction);
+  EXPECT_EQ(run_stats(history, kCertify).at("certificate"), "fold_free");
 }
 
 TEST(LatticeCertify, ErrorsNameTheirField) {
