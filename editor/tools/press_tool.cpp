@@ -305,10 +305,13 @@ void PressTool::draw_panel(ToolContext& ctx) {
     for (std::size_t i = 0; i < core::kFalloffNames.size(); ++i) {
       const std::string name(core::kFalloffNames[i]);
       if (ImGui::Selectable(name.c_str(), i == std::size_t(falloff_))) falloff_ = core::Falloff(i);
+      ui::probe::item("press.falloff." + name);
       if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", kFalloffTips[i]);
     }
     ImGui::EndCombo();
   }
+  ui::probe::item("press.falloff");
+  ui::probe::value("press.falloff", current);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", kFalloffTips[std::size_t(falloff_)]);
 
   ImGui::Checkbox("Keep fold-free", &keep_fold_free_);

@@ -54,4 +54,47 @@ gui_wait_logged '.cmd == "lattice.press" and .keep_fold_free == true and .streng
   "lattice.press logged with keep_fold_free and the typed strength"
 gui_wait '.guarantees.live == false and .guarantees.certificate == "fold_free"' \
   "after the press the bunny's own lattice is shown, certified fold-free" 60
+
+# A sharp falloff, strength 0.6 and radius 0.3, the same drag again and again: each press is limited further, until the
+# lattice cannot move that way any more and the press is refused (the panel says why during the drag, the Log at
+# release), never applied as an invisible one.
+gui_click_item press.falloff
+gui_click_item press.falloff.sharp
+gui_wait '.values["press.falloff"] == "sharp"' "the sharp falloff is picked"
+gui_click_item press.strength
+gui_wait '.typing' "one click on Strength enters text editing"
+gui_type "0.6"
+gui_key Return
+gui_wait '(.typing | not) and (.values["press.strength"] | tonumber) == 0.6' "strength 0.6 typed"
+gui_click_item press.radius
+gui_wait '.typing' "one click on Radius enters text editing"
+gui_type "0.3"
+gui_key Return
+gui_wait '(.typing | not) and (.values["press.radius"] | tonumber) == 0.3' "radius 0.3 typed"
+refused=""
+for k in 1 2 3 4 5 6; do
+  n="$(gui_q '.history.applied')"
+  gui_move "$x" "$y"
+  gui_frames 1
+  xdotool mousedown 1
+  gui_frames 3
+  for i in 1 2 3; do
+    gui_move $((x - 4 * i)) $((y + 2 * i))
+    gui_frames 2
+  done
+  gui_frames 3
+  during="$(gui_q '.values["press.refusal"] // ""')"
+  xdotool mouseup 1
+  gui_frames 6
+  if [ "$(gui_q '.log | map(select(test("cannot move this way"))) | length')" -ge 1 ]; then
+    refused=$k
+    [ -n "$during" ] || gui_fail "the panel did not say during the drag why the press would be refused"
+    [ "$(gui_q '.history.applied')" = "$n" ] || gui_fail "a refused press added a history entry"
+    break
+  fi
+  gui_wait ".history.applied == $((n + 1))" "drag $k: one more limited press" 90
+done
+[ -n "$refused" ] || gui_fail "six repeated Keep fold-free presses were never refused"
+gui_log "ok: the press was refused at drag $refused, and the panel said why during the drag"
+gui_shot refused
 gui_pass
