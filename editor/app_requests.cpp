@@ -82,12 +82,15 @@ bool App::save_or_ask() {
 }
 
 void App::ask_file(FilePurpose purpose) {
-  const fs::path folder = session_.document().parent_path();
+  std::error_code ec;
+  const fs::path folder = !last_folder_.empty()                              ? last_folder_
+                          : document_chosen_ && !session_.document().empty() ? session_.document().parent_path()
+                                                                             : fs::current_path(ec);
   file_purpose_ = purpose;
   if (purpose == FilePurpose::LoadMesh) {
     std::vector<std::string> extensions = kMeshExtensions;
     extensions.insert(extensions.end(), kVolumeExtensions.begin(), kVolumeExtensions.end());
-    file_dialog_.open("Load a mesh or a CT/MRI volume", ui::FileDialog::Mode::Open, extensions);
+    file_dialog_.open("Load a mesh or a CT/MRI volume", ui::FileDialog::Mode::Open, extensions, last_folder_);
     file_dialog_.set_option("Leave out points and lines",
                             "Meshes: a file with point or line elements beside its faces is refused (nothing of a file "
                             "is dropped silently). On: only the faces load; the Log says how many elements were left "
@@ -105,8 +108,12 @@ void App::ask_file(FilePurpose purpose) {
   } else if (purpose == FilePurpose::OpenLog)
     file_dialog_.open("Open a command log (.jsonl): it is replayed", ui::FileDialog::Mode::Open, kLogExtensions,
                       folder);
-  else
+  else {
     file_dialog_.open("Save the scene as a command log (.jsonl)", ui::FileDialog::Mode::Save, kLogExtensions, folder);
+    // The document's own name (a command log's extension), or "untitled.jsonl".
+    const fs::path doc = session_.document();
+    file_dialog_.set_name((doc.empty() ? std::string("untitled") : doc.stem().string()) + ".jsonl");
+  }
 }
 
 void App::handle_menu(ui::MenuAction action) {
@@ -181,6 +188,11 @@ void App::handle_scene(const ui::SceneRequest& r) {
 
 void App::handle_file(const fs::path& chosen) {
   fs::path path = chosen;
+  {
+    std::error_code ec;
+    last_folder_ = fs::is_directory(chosen, ec) ? chosen : chosen.parent_path();
+  }
+  if (file_purpose_ == FilePurpose::OpenLog || file_purpose_ == FilePurpose::SaveLog) document_chosen_ = true;
   switch (std::exchange(file_purpose_, FilePurpose::None)) {  // reset first: go_on(Open) asks for a file again
     case FilePurpose::LoadMesh: {
       load_ignore_loose_ = file_dialog_.option();

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "ui/gui_probe.h"
+#include "ui/imgui_host.h"
 #include "ui/theme.h"
 
 namespace fs = std::filesystem;
@@ -33,6 +34,8 @@ void FileDialog::open(std::string title, Mode mode, std::vector<std::string> ext
   open_ = true;
   option_label_.clear();
   folder_label_.clear();
+  name_.clear();  // Save: set_name() after open() gives the name; never the last dialog's
+  error_.clear();
 }
 
 void FileDialog::set_folder_choice(std::string label, std::string tooltip) {
@@ -118,8 +121,20 @@ std::optional<fs::path> FileDialog::draw() {
   if (!error_.empty()) ImGui::TextColored(colors::error, "%s", error_.c_str());
   probe::value("file.error", error_);
 
+  // The buttons row: the extension filter at its left, on a line of its own when both do not fit (a long filter
+  // must not push Open past the dialog's edge).
+  std::string filter;
+  for (const std::string& e : extensions_) filter += (filter.empty() ? "" : " ") + std::string("*") + e;
+  const ImGuiStyle& style = ImGui::GetStyle();
+  const float folder_w =
+      folder_label_.empty() ? 0.0f : ImGui::CalcTextSize(folder_label_.c_str()).x + 2 * style.FramePadding.x;
+  const float buttons_w = 2 * 80.0f + style.ItemSpacing.x + (folder_w > 0 ? folder_w + style.ItemSpacing.x : 0.0f);
+  const float row_w = ImGui::GetContentRegionAvail().x;
+  const bool filter_own_line =
+      !filter.empty() && ImGui::CalcTextSize(filter.c_str()).x + style.ItemSpacing.x + buttons_w > row_w;
   const float footer =
-      ImGui::GetFrameHeightWithSpacing() * ((mode_ == Mode::Save ? 2.6f : 1.6f) + (option_label_.empty() ? 0 : 1));
+      ImGui::GetFrameHeightWithSpacing() *
+      ((mode_ == Mode::Save ? 2.6f : 1.6f) + (option_label_.empty() ? 0 : 1) + (filter_own_line ? 1 : 0));
   ImGui::BeginChild("##listing", ImVec2(0, -footer), true);
   for (const fs::path& d : dirs_) {
     const std::string label = d.filename().string() + "/";
@@ -132,7 +147,7 @@ std::optional<fs::path> FileDialog::draw() {
                           ImGuiSelectableFlags_DontClosePopups | ImGuiSelectableFlags_AllowDoubleClick)) {
       path_text_ = f.string();
       name_ = f.filename().string();
-      if (ImGui::IsMouseDoubleClicked(0)) accept = true;
+      if (ImGui::IsMouseDoubleClicked(0) || ImGuiHost::click_count() >= 2) accept = true;
     }
     probe::item("file.entry." + f.filename().string());
   }
@@ -161,14 +176,12 @@ std::optional<fs::path> FileDialog::draw() {
       ImGui::EndTooltip();
     }
   }
-  if (!extensions_.empty()) {
-    std::string filter;
-    for (const std::string& e : extensions_) filter += (filter.empty() ? "" : " ") + std::string("*") + e;
+  if (!filter.empty()) {
+    ImGui::PushTextWrapPos(0.0f);
     ImGui::TextColored(colors::dim, "%s", filter.c_str());
-    ImGui::SameLine();
+    ImGui::PopTextWrapPos();
+    if (!filter_own_line) ImGui::SameLine();
   }
-  const float folder_w = folder_label_.empty() ? 0.0f : ImGui::CalcTextSize(folder_label_.c_str()).x + 24.0f;
-  const float buttons_w = 170.0f + folder_w;
   ImGui::SetCursorPosX(std::max(ImGui::GetCursorPosX(), ImGui::GetWindowContentRegionMax().x - buttons_w));
   if (!folder_label_.empty()) {
     if (ImGui::Button(folder_label_.c_str())) {
@@ -186,6 +199,13 @@ std::optional<fs::path> FileDialog::draw() {
   const bool cancel = ImGui::Button("Cancel", ImVec2(80, 0));
   probe::item("file.cancel");
   if (cancel || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false)) ImGui::CloseCurrentPopup();
+  // Enter with no field typing (after a click on a file in the list): the entry shown in the path field, as Open.
+  if (!ImGui::IsAnyItemActive() && (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Enter), false) ||
+                                    ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_KeyPadEnter), false)))
+    (mode_ == Mode::Save ? accept_name : accept) = true;
+  const ImVec2 window_min = ImGui::GetWindowPos();
+  probe::rect("file.dialog", window_min,
+              ImVec2(window_min.x + ImGui::GetWindowSize().x, window_min.y + ImGui::GetWindowSize().y));
 
   if (accept || accept_name) {
     std::error_code ec;

@@ -8,6 +8,7 @@
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <stdexcept>
@@ -25,7 +26,19 @@ bool g_hold = false;                              // ImGuiHost::hold_batches
 
 // Installed before ImGui's own callbacks, which chain to them (the backend of ImGui 1.86 polls the pointer position,
 // so the cursor-position callback is ours alone).
-void note_button(GLFWwindow*, int, int, int) { g_input = true; }
+// Left presses in a row: a press within max(0.3 s, 2.5 frame periods) of the one before continues it (a double-click
+// at 2 fps still counts, whether its two presses arrive in one frame or in two). A period of a second or more is an
+// idle editor waiting for events, not a frame: it is not counted.
+int g_click_run = 0;
+double g_last_press = -1e9, g_last_frame = -1e9, g_frame_seconds = 0.0;
+double click_window() { return std::max(0.3, 2.5 * g_frame_seconds); }
+void note_button(GLFWwindow*, int button, int action, int) {
+  g_input = true;
+  if (button != GLFW_MOUSE_BUTTON_LEFT || action != GLFW_PRESS) return;
+  const double now = glfwGetTime();
+  g_click_run = now - g_last_press <= click_window() ? g_click_run + 1 : 1;
+  g_last_press = now;
+}
 void note_scroll(GLFWwindow*, double, double) { g_input = true; }
 void note_char(GLFWwindow*, unsigned) { g_input = true; }
 void note_focus(GLFWwindow*, int) { g_input = true; }
@@ -60,6 +73,8 @@ void load_fonts(ImGuiIO& io) {
 }  // namespace
 
 const std::vector<KeyPress>& ImGuiHost::key_presses() { return g_frame; }
+
+int ImGuiHost::click_count() { return glfwGetTime() - g_last_press <= click_window() ? g_click_run : 0; }
 
 void ImGuiHost::set_batch_end(bool (*ends_batch)(const KeyPress&)) { g_ends_batch = ends_batch; }
 void ImGuiHost::hold_batches(bool hold) { g_hold = hold; }
@@ -100,6 +115,9 @@ ImGuiHost::~ImGuiHost() {
 }
 
 void ImGuiHost::new_frame() {
+  const double now = glfwGetTime();
+  if (now - g_last_frame < 1.0) g_frame_seconds = now - g_last_frame;
+  g_last_frame = now;
   std::size_t take = g_pending.size();
   // A widget still held from a click (on a slow frame a click's press and release arrive together, and the widget
   // stays active into the next frame) makes ImGui capture the keyboard: presses made meanwhile wait for its release

@@ -42,6 +42,11 @@ class ImGuiHost {
   // leaving), or while a key tapped between two frames is still held down for ImGui: the next frame has input to
   // handle. An editor that draws only on change asks this after waiting for events.
   static bool take_input();
+  // The left button's presses in a row, while the last one is recent (2: a double-click): a press within
+  // max(0.3 s, 2.5 frame periods) of the one before continues the row, and the count holds for that long after it (the
+  // widget reports its click a frame or two after the presses). ImGui 1.86 measures double-clicks in frame time and
+  // sees one press per frame, so at software-GL frame rates it never reports one; this does. 0 without a recent press.
+  static int click_count();
 
  private:
   GLFWwindow* window_;
