@@ -62,6 +62,12 @@ const core::SceneObject* IncisionTool::object(const ToolContext& ctx) const {
 
 core::IncisionParams IncisionTool::resolved(const core::SceneObject* o) const {
   core::IncisionParams p = params_;
+  if (o)
+    if (const auto it = typed_.find(o->name); it != typed_.end()) {
+      if (it->second.width > 0.0) p.width = it->second.width;
+      if (it->second.depth > 0.0) p.depth = it->second.depth;
+      if (it->second.opening >= 0.0) p.opening = it->second.opening;
+    }
   const double diag = o && o->world_mesh && !o->world_mesh->empty() ? bounds_of(*o->world_mesh).diagonal() : 0.0;
   if (diag > 0.0) {
     if (p.width <= 0.0) p.width = kDefaultWidth * diag;
@@ -168,9 +174,47 @@ void IncisionTool::commit(ToolContext& ctx) {
   }
   const nlohmann::json line = incision_draw_line(o->name, stroke, resolved(o), view);
   EditorSession& session = ctx.session;  // outlives the deferred work; ctx may not
-  ctx.defer("Cutting " + o->name, [&session, line]() {
-    session.execute(line);  // errors go to the Log panel; the scene stays as it was
+  const TypedSizes typed = typed_.count(o->name) ? typed_.at(o->name) : TypedSizes{};
+  ctx.defer("Cutting " + o->name, [this, &session, line, name = o->name, stroke, view, typed]() {
+    if (!session.execute(line)) return;  // errors go to the Log panel; the scene stays as it was
+    const History& h = session.history();
+    last_object_ = name, last_stroke_ = stroke, last_view_ = view, last_typed_ = typed;
+    last_applied_ = h.applied();
+    last_command_ = &h.at(h.applied() - 1);
   });
+}
+
+bool IncisionTool::last_is_top(const History& h) const {
+  if (!last_command_ || h.applied() != last_applied_ || h.applied() == 0) return false;
+  const core::Command& top = h.at(h.applied() - 1);
+  if (&top != last_command_ || top.id() != "incision.draw") return false;
+  // The address alone could be a new command reusing freed memory: check the content too.
+  const nlohmann::json j = top.to_json();
+  return j.value("object", "") == last_object_ && j.contains("stroke") && j["stroke"].size() == last_stroke_.size();
+}
+
+bool IncisionTool::rerun_last(ToolContext& ctx) {
+  if (!last_is_top(ctx.session.history())) {
+    if (!last_object_.empty())
+      ctx.session.messages().info("Incision sizes apply to the next cut: the cut on '" + last_object_ +
+                                  "' is not the latest step (undo what came after it to edit it)");
+    return false;
+  }
+  EditorSession& s = ctx.session;
+  ctx.defer("Re-cutting " + last_object_, [this, &s]() {
+    if (!last_is_top(s.history()) || !s.undo()) return;
+    const core::SceneObject* o = s.scene().find(last_object_);  // as it was before the cut
+    if (!o || !s.execute(incision_draw_line(last_object_, last_stroke_, resolved(o), last_view_))) {
+      s.redo();  // the edited cut failed (the Log says why): put the previous one back, and its sizes in the panel
+      typed_[last_object_] = last_typed_;
+      return;
+    }
+    last_typed_ = typed_[last_object_];
+    const History& h = s.history();
+    last_applied_ = h.applied();
+    last_command_ = &h.at(h.applied() - 1);
+  });
+  return true;
 }
 
 std::string IncisionTool::hint() const {
@@ -188,32 +232,53 @@ void IncisionTool::draw_panel(ToolContext& ctx) {
   const float speed = float(std::max(diag, 1e-6) * 1e-3);
   const double lo = 1e-6;
 
+  // Each object keeps the sizes typed for it; others follow their own size until typed.
+  TypedSizes no_object;
+  TypedSizes& typed = sel ? typed_[sel->name] : no_object;
+  const bool width_set = typed.width > 0.0 || params_.width > 0.0, depth_set = typed.depth > 0.0 || params_.depth > 0.0,
+             opening_set = typed.opening >= 0.0 || params_.opening >= 0.0;
+  bool edited = false;
   double width = shown.width, depth = shown.depth, opening = shown.opening;
-  if (ui::drag_scalar("Width", ImGuiDataType_Double, &width, speed, &lo, nullptr, format(params_.width <= 0.0, width)))
-    params_.width = std::max(width, lo);
+  if (ui::drag_scalar("Width", ImGuiDataType_Double, &width, speed, &lo, nullptr, format(!width_set, width)))
+    typed.width = std::max(width, lo);
+  ui::probe::item("incision.width");
+  edited |= ImGui::IsItemDeactivatedAfterEdit();
   ui::tooltip(
       "alpha: half-extent of the cutting lattice across the cut, world units (seed Eq. 6.2: P_ijk = G_j +\n"
       "(l/2 - i) alpha S_j + (n/2 - k) beta N_j). Sets how far to each side the surface is pushed apart.\n"
       "Default: 0.02 x the selected object's bounding-box diagonal");
-  if (ui::drag_scalar("Depth", ImGuiDataType_Double, &depth, speed, &lo, nullptr, format(params_.depth <= 0.0, depth)))
-    params_.depth = std::max(depth, lo);
+  if (ui::drag_scalar("Depth", ImGuiDataType_Double, &depth, speed, &lo, nullptr, format(!depth_set, depth)))
+    typed.depth = std::max(depth, lo);
+  ui::probe::item("incision.depth");
+  edited |= ImGui::IsItemDeactivatedAfterEdit();
   ui::tooltip(
       "beta: how deep below the surface the cut goes (along -N), world units (seed Eq. 6.2).\n"
       "Default: 0.02 x the bounding-box diagonal");
   const double zero = 0.0;
-  if (ui::drag_scalar("Opening", ImGuiDataType_Double, &opening, speed, &zero, nullptr,
-                      format(params_.opening < 0.0, opening)))
-    params_.opening = std::max(opening, 0.0);
+  if (ui::drag_scalar("Opening", ImGuiDataType_Double, &opening, speed, &zero, nullptr, format(!opening_set, opening)))
+    typed.opening = std::max(opening, 0.0);
+  ui::probe::item("incision.opening");
+  ui::probe::value("incision.opening", std::to_string(resolved(sel).opening));
+  edited |= ImGui::IsItemDeactivatedAfterEdit();
   ui::tooltip(
       "kappa: gap between the two cut faces at the surface in the middle of the stroke, world units; it tapers to\n"
       "zero at the cut's bottom and at both ends of the stroke (seed section 6.4). Default: 0.006 x the diagonal");
-  if (params_.width > 0 || params_.depth > 0 || params_.opening >= 0) {
+  if (width_set || depth_set || opening_set) {
     if (ImGui::SmallButton("Defaults")) {
       params_.width = params_.depth = 0.0;
       params_.opening = incision_tool_defaults().opening;
+      typed = TypedSizes{};
+      edited = true;
     }
     ui::tooltip("Back to sizes relative to the object (width, depth, opening)");
   }
+  // An edited size re-runs the last cut when it is the newest step (one undoable step), else applies to the next.
+  if (edited && sel && sel->name == last_object_)
+    rerun_last(ctx);
+  else if (edited && !last_object_.empty() && sel && sel->name != last_object_)
+    ctx.session.messages().info("Incision sizes for '" + sel->name + "' apply to its next cut");
+  if (last_is_top(ctx.session.history()) && sel && sel->name == last_object_)
+    ImGui::TextColored(ui::colors::accent, "Editing the last cut of %s: size changes re-cut it", last_object_.c_str());
   const core::ParamSchema<core::IncisionParams>& schema = core::incision_schema();
   ui::param_widget(schema, "walls", params_);
   ui::param_widget(schema, "order", params_);

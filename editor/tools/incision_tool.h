@@ -11,15 +11,17 @@
 #pragma once
 
 #include <chrono>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "core/commands/incision_draw.h"
 #include "core/incision/incision.h"
 #include "core/raycast/ray_caster.h"
-#include "core/commands/incision_draw.h"
+#include "editor/history.h"
 #include "editor/tools/stroke_gesture.h"
 #include "editor/tools/tool.h"
 #include "ui/key_pair_panel.h"
@@ -51,16 +53,23 @@ class IncisionTool : public Tool {
 
   const core::IncisionParams& params() const { return params_; }
   void set_params(const core::IncisionParams& p) { params_ = p; }
-  // The parameters with unset width / depth / opening replaced by 0.02 / 0.02 / 0.006 × the bounding-box diagonal of
-  // `object`'s world_mesh (unchanged when it has none).
+  // The parameters with the sizes typed in the panel for `object` (each object keeps its own), and unset width /
+  // depth / opening replaced by 0.02 / 0.02 / 0.006 × the bounding-box diagonal of `object`'s world_mesh (unchanged
+  // when it has none).
   core::IncisionParams resolved(const core::SceneObject* object) const;
+  // Whether the last cut this tool made is the newest step of the history: a size edited in the panel then re-runs
+  // it (undo + incision.draw with the new sizes, one undoable step); otherwise the Log says the sizes apply to the
+  // next cut.
+  bool can_rerun(const ToolContext& ctx) const { return last_is_top(ctx.session.history()); }
+  // Re-runs the last cut with the panel's sizes (see can_rerun); false, with the reason in the Log, when it cannot.
+  bool rerun_last(ToolContext& ctx);
   // Minimum time between two previews while dragging (0: after every new stroke point; tests use 0).
   void set_preview_interval_ms(double ms) { preview_interval_ms_ = ms; }
 
   // The preview of the drag under way (empty when not dragging or when the stroke misses the surface).
-  const std::string& target() const { return target_; }                  // object being cut
-  const std::vector<glm::dvec2>& stroke() const { return gesture_.points(); }      // pixels so far
-  const std::vector<glm::dvec3>& preview_curve() const { return curve_; }  // G(v) sampled, world units
+  const std::string& target() const { return target_; }                        // object being cut
+  const std::vector<glm::dvec2>& stroke() const { return gesture_.points(); }  // pixels so far
+  const std::vector<glm::dvec3>& preview_curve() const { return curve_; }      // G(v) sampled, world units
   const std::shared_ptr<const core::TriMesh>& preview_mesh() const { return preview_mesh_; }  // the cut surface
   // The preview's opened cut lattice (seed Eq. 6.2, C⁻¹ at u = 1/2), world units; null without a preview.
   const std::shared_ptr<const core::TrivariateBSpline<glm::dvec3>>& preview_lattice() const { return preview_lattice_; }
@@ -69,10 +78,24 @@ class IncisionTool : public Tool {
  private:
   const core::SceneObject* object(const ToolContext& ctx) const;
   std::optional<std::string> pick(const ToolContext& ctx, glm::dvec2 px) const;  // object under pixel px
-  const core::RayCaster* caster_for(const core::SceneObject& o);  // cached per world_mesh
+  const core::RayCaster* caster_for(const core::SceneObject& o);                 // cached per world_mesh
   void update_preview(const ToolContext& ctx);
   void commit(ToolContext& ctx);
   void clear_preview();
+  bool last_is_top(const History& h) const;
+
+  // Sizes typed in the panel for one object (≤ 0, opening < 0: not typed, relative to the object).
+  struct TypedSizes {
+    double width = 0.0, depth = 0.0, opening = -1.0;
+  };
+  std::map<std::string, TypedSizes> typed_;
+  // The last cut this tool made (for re-running it when a size is edited).
+  std::string last_object_;
+  std::vector<glm::dvec2> last_stroke_;
+  core::Camera last_view_;
+  TypedSizes last_typed_;  // the sizes typed for last_object_ when that cut was made
+  const core::Command* last_command_ = nullptr;
+  std::size_t last_applied_ = 0;
 
   core::IncisionParams params_ = incision_tool_defaults();
   ui::KeyPairParams opening_keys_{1, -1, 0.0, 1.0, "smooth"};  // frame_to < 0: the timeline's end when first shown
