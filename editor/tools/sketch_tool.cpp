@@ -2,7 +2,11 @@
 
 #include <imgui.h>
 
+#include <cmath>
+
+#include "editor/navigation.h"
 #include "editor/session.h"
+#include "ui/gui_probe.h"
 #include "ui/theme.h"
 
 namespace trispline::editor {
@@ -71,8 +75,12 @@ bool SketchTool::last_is_top(const History& h) const {
 }
 
 void SketchTool::replace_last(ToolContext& ctx) {
-  if (!last_is_top(ctx.session.history()))
-    return;  // nothing of ours to re-run: the new values apply to the next stroke
+  if (!last_is_top(ctx.session.history())) {  // nothing of ours to re-run: the new values apply to the next stroke
+    if (!last_object_.empty())
+      ctx.session.messages().info("Sketch values apply to the next stroke: the placement of '" + last_object_ +
+                                  "' is not the latest step (undo what came after it to edit it)");
+    return;
+  }
   core::PlaceSketchParams p = params_;
   p.object = last_object_;
   const nlohmann::json line = place_sketch_line(p, last_stroke_, last_view_, last_ignore_);
@@ -107,6 +115,7 @@ void SketchTool::adopt_top(const ToolContext& ctx) {
   const auto* placed = dynamic_cast<const core::PlaceSketchCommand*>(&top);
   if (!placed) return;
   const core::PlaceSketchParams& p = placed->params();
+  typed_sizes_[p.object] = {p.width, p.height};  // the sizes that placement used belong to its object
   last_object_ = p.object;
   last_stroke_ = p.stroke;
   last_ignore_ = p.ignore;
@@ -119,6 +128,25 @@ void SketchTool::adopt_top(const ToolContext& ctx) {
   last_command_ = &top;
 }
 
+void SketchTool::apply_object_sizes(const ToolContext& ctx) {
+  if (params_.object == sized_for_) return;
+  sized_for_ = params_.object;
+  if (const auto it = typed_sizes_.find(params_.object); it != typed_sizes_.end()) {
+    params_.width = it->second.first, params_.height = it->second.second;
+    return;
+  }
+  const core::SceneObject* o = ctx.session.scene().find(params_.object);
+  if (!o || !o->rest_mesh || o->rest_mesh->empty()) return;
+  const core::Aabb box = bounds_of(o->world_rest_mesh());
+  const glm::dvec3 extent = box.hi - box.lo;
+  auto axis = [](const std::string& a) { return a == "x" ? 0 : a == "y" ? 1 : 2; };
+  const int length = axis(params_.length_axis), up = axis(params_.up_axis);
+  if (length == up) return;
+  const int across = 3 - length - up;
+  if (extent[across] > 0.0 && extent[up] > 0.0 && std::isfinite(extent[across]) && std::isfinite(extent[up]))
+    params_.width = 0.5 * extent[across], params_.height = extent[up];
+}
+
 void SketchTool::draw_panel(ToolContext& ctx) {
   adopt_top(ctx);
   // The combo follows the selection until the user picks another object there.
@@ -126,7 +154,20 @@ void SketchTool::draw_panel(ToolContext& ctx) {
   std::vector<std::string> names;
   for (const core::SceneObject& o : ctx.session.scene().objects()) names.push_back(o.name);
 
+  apply_object_sizes(ctx);
+  ui::probe::value("sketch.width", std::to_string(params_.width));
+  ui::probe::value("sketch.height", std::to_string(params_.height));
+  const double width_before = params_.width, height_before = params_.height;
   const ui::PlacementPanelResult r = ui::draw_placement_panel(params_, panel_, names);
+  if (r.reset) {
+    typed_sizes_.erase(params_.object);
+    sized_for_.clear();
+    apply_object_sizes(ctx);
+  } else if (params_.width != width_before || params_.height != height_before) {
+    // With no object chosen the values edit the adopted placement: they are its object's.
+    typed_sizes_[params_.object.empty() ? last_object_ : params_.object] = {params_.width, params_.height};
+  }
+  if (r.object_changed) apply_object_sizes(ctx);
   if (r.committed) set_params(params_, ctx);
 
   ImGui::Spacing();

@@ -11,6 +11,7 @@
 // like Blender's "Adjust Last Operation" panel: its parameters fill the panel and edits re-run it.
 #pragma once
 
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <vector>
@@ -51,10 +52,15 @@ class SketchTool : public Tool {
   void replace_last(ToolContext& ctx);  // parameter change after a placement
   bool last_is_top(const History& history) const;
   void adopt_top(const ToolContext& ctx);  // a place.sketch from elsewhere on top of the history
+  // When the object to place changes: its own typed (or adopted) width and height, else sizes from its rest bounds
+  // (half-width: half its extent across the stroke; height: its extent along up_axis), so it keeps its size.
+  void apply_object_sizes(const ToolContext& ctx);
 
   core::PlaceSketchParams params_;  // the next placement's parameters; object = the object to place
   ui::PlacementPanelState panel_;
-  std::string followed_selection_;  // selection the combo last followed
+  std::string followed_selection_;                                // selection the combo last followed
+  std::map<std::string, std::pair<double, double>> typed_sizes_;  // per object: width, height typed or adopted
+  std::string sized_for_;                                         // the object whose sizes params_ holds
   StrokeGesture gesture_;
 
   // The tool's last successful placement (for re-running with new parameters).
