@@ -83,14 +83,16 @@ bool App::save_or_ask() {
 
 void App::ask_file(FilePurpose purpose) {
   std::error_code ec;
-  const fs::path folder = !last_folder_.empty()                              ? last_folder_
+  const bool writes = purpose == FilePurpose::SaveLog || purpose == FilePurpose::ExportVolume;
+  const fs::path& last = writes ? last_write_folder_ : last_read_folder_;
+  const fs::path folder = !last.empty()                                      ? last
                           : document_chosen_ && !session_.document().empty() ? session_.document().parent_path()
                                                                              : fs::current_path(ec);
   file_purpose_ = purpose;
   if (purpose == FilePurpose::LoadMesh) {
     std::vector<std::string> extensions = kMeshExtensions;
     extensions.insert(extensions.end(), kVolumeExtensions.begin(), kVolumeExtensions.end());
-    file_dialog_.open("Load a mesh or a CT/MRI volume", ui::FileDialog::Mode::Open, extensions, last_folder_);
+    file_dialog_.open("Load a mesh or a CT/MRI volume", ui::FileDialog::Mode::Open, extensions, folder);
     file_dialog_.set_option("Leave out points and lines",
                             "Meshes: a file with point or line elements beside its faces is refused (nothing of a file "
                             "is dropped silently). On: only the faces load; the Log says how many elements were left "
@@ -190,7 +192,8 @@ void App::handle_file(const fs::path& chosen) {
   fs::path path = chosen;
   {
     std::error_code ec;
-    last_folder_ = fs::is_directory(chosen, ec) ? chosen : chosen.parent_path();
+    const bool writes = file_purpose_ == FilePurpose::SaveLog || file_purpose_ == FilePurpose::ExportVolume;
+    (writes ? last_write_folder_ : last_read_folder_) = fs::is_directory(chosen, ec) ? chosen : chosen.parent_path();
   }
   if (file_purpose_ == FilePurpose::OpenLog || file_purpose_ == FilePurpose::SaveLog) document_chosen_ = true;
   switch (std::exchange(file_purpose_, FilePurpose::None)) {  // reset first: go_on(Open) asks for a file again

@@ -140,10 +140,11 @@ class App {
   ui::FileDialog file_dialog_;
   bool load_ignore_loose_ = false;  // the Load dialog's "Leave out points and lines", kept between loads
   FilePurpose file_purpose_ = FilePurpose::None;
-  // The folder of the last file (or folder) a file dialog chose this session: where the next dialog starts. Empty
-  // until then: the document's folder when the user opened or saved it, else the folder the editor started in (never
-  // the shipped scenes' folder of a document given on the command line).
-  std::filesystem::path last_folder_;
+  // The folders of the last file (or folder) a file dialog chose this session, for reading (Load, Open) and for
+  // writing (Save As, exports): where the next dialog of that kind starts. Empty until then: the document's folder
+  // when the user opened or saved it, else the folder the editor started in (never the shipped scenes' folder of a
+  // document given on the command line, nor the folder a mesh was loaded from).
+  std::filesystem::path last_read_folder_, last_write_folder_;
   bool document_chosen_ = false;  // the document was opened or saved through a dialog (not given at start)
   ui::TimingOverlay timing_;
   ui::DockLayout layout_;                  // this frame's panel rectangles
