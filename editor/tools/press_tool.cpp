@@ -49,7 +49,7 @@ ui::ToolEntry PressTool::entry() const {
 }
 
 void PressTool::activate(ToolContext& ctx) {
-  if (!ctx.selected.empty()) object_ = followed_selection_ = ctx.selected;
+  if (!ctx.selected.empty()) follow_object(followed_selection_ = ctx.selected);
 }
 
 void PressTool::deactivate(ToolContext&) {
@@ -201,6 +201,16 @@ void PressTool::commit(ToolContext& ctx) {
   ctx.defer((pull_ ? "Pulling " : "Pressing ") + object_, [&session, line]() { session.execute(line); });
 }
 
+void PressTool::follow_object(const std::string& name) {
+  if (name == object_) return;
+  if (!object_.empty()) typed_[object_] = {radius_, strength_};  // kept for when that object comes back
+  object_ = name;
+  const auto it = typed_.find(name);
+  radius_ = it != typed_.end() ? it->second.first : 0.0;  // unset: from the object's size
+  strength_ = it != typed_.end() ? it->second.second : 0.0;
+  radius_limit_.clear(), strength_limit_.clear();
+}
+
 std::string PressTool::hint() const {
   if (pressing_)
     return pull_ ? "Release to pull the lattice" : "Release to press the lattice (Ctrl at mouse-down pulls)";
@@ -210,12 +220,12 @@ std::string PressTool::hint() const {
 
 void PressTool::draw_panel(ToolContext& ctx) {
   // The combo follows the selection until the user picks another object there.
-  if (!ctx.selected.empty() && ctx.selected != followed_selection_) object_ = followed_selection_ = ctx.selected;
+  if (!ctx.selected.empty() && ctx.selected != followed_selection_) follow_object(followed_selection_ = ctx.selected);
   const core::Scene& scene = ctx.session.scene();
   if (ImGui::BeginCombo("Object", object_.empty() ? "(none)" : object_.c_str())) {
     for (const core::SceneObject& o : scene.objects()) {
       const std::string label = o.ffd ? o.name : o.name + "  (no lattice)";
-      if (ImGui::Selectable(label.c_str(), o.name == object_)) object_ = o.name;
+      if (ImGui::Selectable(label.c_str(), o.name == object_)) follow_object(o.name);
     }
     ImGui::EndCombo();
   }

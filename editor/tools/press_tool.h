@@ -11,6 +11,7 @@
 #pragma once
 
 #include <future>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -66,11 +67,14 @@ class PressTool : public Tool {
   void commit(ToolContext& ctx);
 
   std::string object_;
-  std::string followed_selection_;                    // selection the combo last followed
-  double radius_ = 0.0;                               // ≤ 0: default from the object's size
-  double strength_ = 0.0;                             // ≤ 0: default from the radius
-  std::string radius_limit_, strength_limit_;         // why the last typed value was limited ("" = it was not)
-  double radius_typed_ = 0.0, strength_typed_ = 0.0;  // the values as typed or dragged, before the limits
+  std::string followed_selection_;  // selection the combo last followed
+  // Makes `name` the object to press: its own typed radius and strength (kept per object), else unset.
+  void follow_object(const std::string& name);
+  std::map<std::string, std::pair<double, double>> typed_;  // per object: radius_, strength_ when it was left
+  double radius_ = 0.0;                                     // ≤ 0: default from the object's size
+  double strength_ = 0.0;                                   // ≤ 0: default from the radius
+  std::string radius_limit_, strength_limit_;               // why the last typed value was limited ("" = it was not)
+  double radius_typed_ = 0.0, strength_typed_ = 0.0;        // the values as typed or dragged, before the limits
   core::Falloff falloff_ = core::Falloff::smooth;
   bool keep_fold_free_ = false;
   // Keep fold-free during a drag: the strength the preview could use (negative: the whole strength; NaN: the lattice

@@ -48,4 +48,15 @@ gui_type "0.02"
 gui_key Return
 gui_wait '(.typing | not) and .values["press.strength.limited"] == "" and (.values["press.strength"] | tonumber) == 0.02' \
   "a strength in range clears the warning"
+
+# Radius and strength are the object's: the teapot gets its own (from its size), the bunny gets back what was typed.
+r_bunny="$(gui_q '.values["press.radius"]')"
+gui_click_item scene.object.teapot
+gui_wait '.selected == "teapot"' "the teapot is selected"
+gui_wait "(.values[\"press.radius\"] | tonumber) != ($r_bunny | tonumber) and (.values[\"press.strength\"] | tonumber) != 0.02" \
+  "the teapot's radius and strength come from its own size"
+gui_click_item scene.object.bunny
+gui_wait '.selected == "bunny"' "the bunny is selected again"
+gui_wait "(.values[\"press.radius\"] | tonumber) == ($r_bunny | tonumber) and (.values[\"press.strength\"] | tonumber) == 0.02" \
+  "the bunny keeps the radius and strength typed for it"
 gui_pass
