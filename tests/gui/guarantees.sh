@@ -36,16 +36,21 @@ gui_wait '(.typing | not) and (.values["press.strength"] | tonumber) == 0.4' "st
 
 n="$(gui_q '.history.labels | length')"
 updates="$(gui_q '.guarantees.updates')"
-gui_move "$x" "$y"
-gui_frames 1
-xdotool mousedown 1
-gui_frames 3
-# Three moves down and to the left, away from the timing overlay above (a release over it would go to the overlay,
-# not to the tool), two frames each: on a loaded machine X events that arrive within one frame are one move.
-for i in 1 2 3; do
-  gui_move $((x - 4 * i)) $((y + 2 * i))
-  gui_frames 2
-done
+# press_down_left: the mouse down on the bunny, then three moves down and to the left, away from the timing overlay
+# above (a release over it would go to the overlay, not to the tool), two frames each: on a loaded machine X events
+# that arrive within one frame are one move. The button stays down.
+press_down_left() {
+  local i
+  gui_move "$x" "$y"
+  gui_frames 1
+  xdotool mousedown 1
+  gui_frames 3
+  for i in 1 2 3; do
+    gui_move $((x - 4 * i)) $((y + 2 * i))
+    gui_frames 2
+  done
+}
+press_down_left
 gui_wait ".guarantees.live == true and .guarantees.updates > $updates and .guarantees.certificate == \"fold_free\"" \
   "during the drag the view shows the pressed (limited, still certified) lattice" 60
 xdotool mouseup 1
@@ -74,14 +79,7 @@ gui_wait '(.typing | not) and (.values["press.radius"] | tonumber) == 0.3' "radi
 refused=""
 for k in 1 2 3 4 5 6; do
   n="$(gui_q '.history.applied')"
-  gui_move "$x" "$y"
-  gui_frames 1
-  xdotool mousedown 1
-  gui_frames 3
-  for i in 1 2 3; do
-    gui_move $((x - 4 * i)) $((y + 2 * i))
-    gui_frames 2
-  done
+  press_down_left
   gui_frames 3
   during="$(gui_q '.values["press.refusal"] // ""')"
   xdotool mouseup 1

@@ -3,9 +3,8 @@
 // neighbours makes it fold, and the reported points really fold; the query leaves the scene and the undo stack alone.
 #include <gtest/gtest.h>
 
-#include "core/placement/pressing.h"
-
 #include "core/commands/lattice_certify.h"
+#include "core/placement/pressing.h"
 #include "editor/command_registry.h"
 #include "editor/history.h"
 #include "tests/core/commands/command_test_util.h"
@@ -115,9 +114,8 @@ TEST(LatticeCertify, KeepFoldFreeSaysWhenTheLatticeCannotMove) {
   editor::History history(scene);
   test::run(history, kTeapot);
   test::run(history, kRing);
-  nlohmann::json press = {{"cmd", "lattice.press"}, {"object", "t"},   {"path", {{1.2, 0.3, 0.0}}},
-                          {"radius", 0.6},          {"strength", 3.0}, {"falloff", "sharp"},
-                          {"keep_fold_free", true}};
+  nlohmann::json press = {{"cmd", "lattice.press"}, {"object", "t"},      {"path", {{1.2, 0.3, 0.0}}}, {"radius", 0.6},
+                          {"strength", 3.0},        {"falloff", "sharp"}, {"keep_fold_free", true}};
   std::vector<double> used;
   std::string refusal;
   for (int k = 0; k < 8 && refusal.empty(); ++k) {
