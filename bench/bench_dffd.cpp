@@ -1,21 +1,22 @@
 #include "bench/bench_dffd.h"
 
+#include <tbb/info.h>
+
 #include <algorithm>
 #include <filesystem>
 #include <iomanip>
 #include <nlohmann/json.hpp>
 #include <ostream>
 #include <thread>
-#include <tbb/info.h>
 
-#include "core/dffd/dffd_cap.h"
+#include "bench/bench_place.h"
 #include "core/commands/incision_draw.h"
-#include "core/mesh/loop_subdivision.h"
+#include "core/dffd/dffd_cap.h"
 #include "core/dffd/dffd_rig.h"
 #include "core/incision/incision.h"
+#include "core/mesh/loop_subdivision.h"
 #include "core/mesh/mesh_io.h"
 #include "core/raycast/ray_caster.h"
-#include "bench/bench_place.h"
 #include "editor/command_log.h"
 #include "editor/command_registry.h"
 #include "editor/history.h"
@@ -50,7 +51,7 @@ json bench_incision(int runs) {
     stroke.push_back({a.x + t * (b.x - a.x), a.y + t * (b.y - a.y)});
   }
   const json line = {{"cmd", "incision.draw"}, {"object", "surface"}, {"stroke", stroke}, {"width", 0.06},
-                     {"depth", 0.05}, {"opening", 0.02}, {"walls", true}};
+                     {"depth", 0.05},          {"opening", 0.02},     {"walls", true}};
   std::vector<double> command_ms, incise_ms;
   json stats;
   for (int r = 0; r < runs + 1; ++r) {
@@ -86,7 +87,8 @@ json bench_incision(int runs) {
 }  // namespace
 
 int run_bench_dffd(const BenchDffdOptions& options, std::ostream& out, std::ostream& err) {
-  const std::filesystem::path path = options.scene_path.empty() ? default_scene() : std::filesystem::path(options.scene_path);
+  const std::filesystem::path path =
+      options.scene_path.empty() ? default_scene() : std::filesystem::path(options.scene_path);
   core::Scene scene;
   History history(scene);
   try {
@@ -111,7 +113,8 @@ int run_bench_dffd(const BenchDffdOptions& options, std::ostream& out, std::ostr
   json rows = json::array();
   std::vector<double> all_total;
   for (int f = 0; f < frames; ++f) {
-    const double frame = tl.frame_start + (frames == 1 ? 0.0 : double(f) * (tl.frame_end - tl.frame_start) / (frames - 1));
+    const double frame =
+        tl.frame_start + (frames == 1 ? 0.0 : double(f) * (tl.frame_end - tl.frame_start) / (frames - 1));
     const glm::dvec3 offset = object->offset_at(tl.time_of_frame(frame));
     // Split with caps and deform timed apart (dffd_split, dffd_deform on kept buffers); the warm per-frame path
     // (DffdFrameEvaluator: buffers kept, input vertices deformed while the split runs); and the cold dffd_apply
@@ -145,34 +148,35 @@ int run_bench_dffd(const BenchDffdOptions& options, std::ostream& out, std::ostr
                     {"split_cap_deform_ms", bench_median(total_ms)},
                     {"cold_apply_ms", bench_median(cold_ms)}});
   }
-  const json result = {{"scene", path.string()},
-                       {"object", object->name},
-                       {"rest_vertices", rest.vertex_count()},
-                       {"discontinuities", rig.discontinuities.size()},
-                       {"openings", core::dffd_openings_name(rig.openings)},
-                       {"lattice_controls", {rig.lattice.control_counts().x, rig.lattice.control_counts().y,
-                                             rig.lattice.control_counts().z}},
-                       {"cpu", bench_cpu_model()},
-                       {"threads", tbb::info::default_concurrency()},
-                       {"runs", runs},
-                       {"frames", rows},
-                       {"max_frame_ms", *std::max_element(all_total.begin(), all_total.end())},
-                       {"median_frame_ms", bench_median(all_total)},
-                       {"incision", bench_incision(runs)}};
+  const json result = {
+      {"scene", path.string()},
+      {"object", object->name},
+      {"rest_vertices", rest.vertex_count()},
+      {"discontinuities", rig.discontinuities.size()},
+      {"openings", core::dffd_openings_name(rig.openings)},
+      {"lattice_controls",
+       {rig.lattice.control_counts().x, rig.lattice.control_counts().y, rig.lattice.control_counts().z}},
+      {"cpu", bench_cpu_model()},
+      {"threads", tbb::info::default_concurrency()},
+      {"runs", runs},
+      {"frames", rows},
+      {"max_frame_ms", *std::max_element(all_total.begin(), all_total.end())},
+      {"median_frame_ms", bench_median(all_total)},
+      {"incision", bench_incision(runs)}};
   if (options.json) {
     out << result.dump(2) << "\n";
     return 0;
   }
   out << "DFFD walk: " << result["object"].get<std::string>() << " (" << rest.vertex_count() << " vertices), "
-      << rig.discontinuities.size() << " discontinuities, openings " << result["openings"].get<std::string>()
-      << ", " << result["threads"] << " threads, " << result["cpu"].get<std::string>() << "\n";
+      << rig.discontinuities.size() << " discontinuities, openings " << result["openings"].get<std::string>() << ", "
+      << result["threads"] << " threads, " << result["cpu"].get<std::string>() << "\n";
   out << "   frame  offset_u  cut_edges  cap_tris  vertices  split+cap ms  deform ms  frame ms  cold dffd_apply ms\n";
   for (const json& r : rows)
     out << std::setw(8) << bench_fixed(r["frame"].get<double>(), 1) << std::setw(10)
         << bench_fixed(r["offset_u"].get<double>(), 3) << std::setw(11) << r["cut_edges"].get<std::size_t>()
-        << std::setw(10) << r["cap_triangles"].get<std::size_t>() << std::setw(10)
-        << r["vertices"].get<std::size_t>() << std::setw(14) << bench_fixed(r["split_cap_ms"].get<double>(), 2)
-        << std::setw(11) << bench_fixed(r["deform_ms"].get<double>(), 2) << std::setw(10)
+        << std::setw(10) << r["cap_triangles"].get<std::size_t>() << std::setw(10) << r["vertices"].get<std::size_t>()
+        << std::setw(14) << bench_fixed(r["split_cap_ms"].get<double>(), 2) << std::setw(11)
+        << bench_fixed(r["deform_ms"].get<double>(), 2) << std::setw(10)
         << bench_fixed(r["split_cap_deform_ms"].get<double>(), 2) << std::setw(20)
         << bench_fixed(r["cold_apply_ms"].get<double>(), 2) << "\n";
   out << "median frame " << bench_fixed(result["median_frame_ms"].get<double>(), 2) << " ms, max frame "
@@ -180,9 +184,9 @@ int run_bench_dffd(const BenchDffdOptions& options, std::ostream& out, std::ostr
       << runs << " runs each)\n";
   const json& inc = result["incision"];
   out << "incision.draw on " << inc["surface_vertices"] << " vertices (bunny, Loop x1): command "
-      << bench_fixed(inc["command_ms"].get<double>(), 2) << " ms, incise() " << bench_fixed(inc["incise_ms"].get<double>(), 2)
-      << " ms (median of " << runs << "); " << inc["stats"].value("cut_edges", 0) << " cut edges, "
-      << inc["stats"].value("wall_faces", 0) << " wall faces\n";
+      << bench_fixed(inc["command_ms"].get<double>(), 2) << " ms, incise() "
+      << bench_fixed(inc["incise_ms"].get<double>(), 2) << " ms (median of " << runs << "); "
+      << inc["stats"].value("cut_edges", 0) << " cut edges, " << inc["stats"].value("wall_faces", 0) << " wall faces\n";
   return 0;
 }
 

@@ -8,11 +8,11 @@
 namespace trispline::editor {
 
 struct BenchFfdOptions {
-  std::string mesh_path;   // empty: assets/data/bunny.obj, subdivided to level 2 (~0.8 M vertices)
-  int subdivision = -1;    // OpenSubdiv bilinear levels; -1 = 2 for the default mesh, 0 for --mesh
-  int runs = 5;            // timed runs per case (median)
-  bool json = false;       // one JSON object on `out` instead of a table
-  bool gpu = true;         // add glsl_compute and glsl_vertex (needs a GL 4.3 context)
+  std::string mesh_path;             // empty: assets/data/bunny.obj, subdivided to level 2 (~0.8 M vertices)
+  int subdivision = -1;              // OpenSubdiv bilinear levels; -1 = 2 for the default mesh, 0 for --mesh
+  int runs = 5;                      // timed runs per case (median)
+  bool json = false;                 // one JSON object on `out` instead of a table
+  bool gpu = true;                   // add glsl_compute and glsl_vertex (needs a GL 4.3 context)
   std::string gpu_shaders = "auto";  // "auto" | "specialised" | "generic" (gpu::FfdOrderMode)
 };
 

@@ -79,7 +79,8 @@ double bench_median(std::vector<double> values);    // of a non-empty list
 using core::bench_cpu_model;                        // "model name" of /proc/cpuinfo, or "unknown"
 double bench_ms(const std::function<void()>& fn);   // wall time of one call, milliseconds
 std::string bench_fixed(double value, int digits);  // std::fixed with `digits` decimals
-// Writes a benchmark's result: one JSON line with `json`, else `table`'s human-readable form. Returns 0 (the exit code).
+// Writes a benchmark's result: one JSON line with `json`, else `table`'s human-readable form. Returns 0 (the exit
+// code).
 int bench_emit(const nlohmann::json& result, bool json, std::ostream& out,
                void (*table)(const nlohmann::json&, std::ostream&));
 

@@ -1,17 +1,16 @@
 #include "bench/bounds_bench.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <filesystem>
 #include <random>
 #include <stdexcept>
-
-#include <tbb/blocked_range.h>
-#include <tbb/global_control.h>
-#include <tbb/info.h>
-
-#include <tbb/parallel_for.h>
 
 #include "bench/ffd_bench.h"
 #include "core/ffd/deformation_bounds.h"
@@ -28,8 +27,10 @@ namespace trispline::core {
 namespace {
 
 // The identity map on [0,1]³ (controls at the Greville abscissae), each control point displaced by N(0, sigma²).
-TrivariateBSpline<glm::dvec3> displaced_lattice(int order, const glm::ivec3& controls, double sigma, std::mt19937& rng) {
-  const KnotVector ku = KnotVector::clamped_uniform(order, controls.x), kv = KnotVector::clamped_uniform(order, controls.y),
+TrivariateBSpline<glm::dvec3> displaced_lattice(int order, const glm::ivec3& controls, double sigma,
+                                                std::mt19937& rng) {
+  const KnotVector ku = KnotVector::clamped_uniform(order, controls.x),
+                   kv = KnotVector::clamped_uniform(order, controls.y),
                    kw = KnotVector::clamped_uniform(order, controls.z);
   const auto gu = ku.greville(), gv = kv.greville(), gw = kw.greville();
   std::normal_distribution<double> noise(0.0, sigma);
@@ -109,7 +110,10 @@ nlohmann::json bound_soundness(const TriMesh& mesh, std::size_t target) {
   for (int m = 0; m <= kMethods; ++m)
     per_method[m == kMethods ? "normal" : error_bound_name(methods[m])] = {{"exceeded", exceeded[m].load()},
                                                                            {"tightness", spread(ratios[m])}};
-  return {{"triangles", checked}, {"lattices", lattices}, {"unbounded", unbounded}, {"methods", per_method},
+  return {{"triangles", checked},
+          {"lattices", lattices},
+          {"unbounded", unbounded},
+          {"methods", per_method},
           {"ms", ms_since(t0)}};
 }
 
@@ -135,8 +139,8 @@ nlohmann::json cube_refinement() {
                                          {"stopped_by", r.stats.stopped_by},
                                          {"ms", ms_since(t0)}};
       }
-      row["best_over_midpoint"] = double(row["best"]["triangles"].get<std::size_t>()) /
-                                  double(row["midpoint"]["triangles"].get<std::size_t>());
+      row["best_over_midpoint"] =
+          double(row["best"]["triangles"].get<std::size_t>()) / double(row["midpoint"]["triangles"].get<std::size_t>());
       rows.push_back(row);
     }
   return rows;
@@ -195,7 +199,8 @@ nlohmann::json run_bounds_benchmark(const BoundsBenchOptions& options) {
     for (int k = 0; k < kGrid; ++k)
       for (int j = 0; j < kGrid; ++j)
         for (int i = 0; i < kGrid; ++i)
-          mn = std::min(mn, jacobian_determinant(F, glm::dvec3((i + 0.5) / kGrid, (j + 0.5) / kGrid, (k + 0.5) / kGrid)));
+          mn = std::min(mn,
+                        jacobian_determinant(F, glm::dvec3((i + 0.5) / kGrid, (j + 0.5) / kGrid, (k + 0.5) / kGrid)));
     if (mn <= 0.0) {
       ++sampled_folds;
       if (c.verdict == FoldVerdict::fold_free) ++unsound;
@@ -249,9 +254,11 @@ nlohmann::json run_bounds_benchmark(const BoundsBenchOptions& options) {
   // The soundness sweep runs on the unrefined mesh (its own triangles, many lattices).
   TriMesh sweep_mesh = std::filesystem::exists(options.mesh_path) ? load_mesh(options.mesh_path) : mesh;
   out["soundness"] = bound_soundness(sweep_mesh, static_cast<std::size_t>(options.soundness_triangles));
-  out["soundness"]["mesh"] = std::filesystem::exists(options.mesh_path) ? nlohmann::json(options.mesh_path) : mj["source"];
+  out["soundness"]["mesh"] =
+      std::filesystem::exists(options.mesh_path) ? nlohmann::json(options.mesh_path) : mj["source"];
   out["refinement"] = cube_refinement();
-  out["refinement_seed"] = {{"midpoint", 360}, {"greville", 308},
+  out["refinement_seed"] = {{"midpoint", 360},
+                            {"greville", 308},
                             {"note", "the seed's cube (Fig. 3.5) with its own lattice and error estimate"}};
   return out;
 }

@@ -20,8 +20,8 @@
 namespace trispline::core {
 
 struct BoundsBenchOptions {
-  int repeats = 5;      // ≥ 1: timings are the best of these
-  int lattices = 1000;  // ≥ 0: random lattices in the soundness sweep
+  int repeats = 5;                                  // ≥ 1: timings are the best of these
+  int lattices = 1000;                              // ≥ 0: random lattices in the soundness sweep
   std::string mesh_path = "assets/data/bunny.obj";  // the per-triangle bounds' mesh (a sphere when absent)
   int subdivision_level = 2;                        // its bilinear refinement level
   int soundness_triangles = 1'000'000;              // ≥ 0: triangles of the unrefined mesh checked in random lattices

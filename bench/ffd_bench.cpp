@@ -71,7 +71,7 @@ struct Reference {
 };
 
 struct Errors {
-  double rel = 0.0;        // max position error ÷ diagonal
+  double rel = 0.0;         // max position error ÷ diagonal
   double normal_rad = 0.0;  // max angle between normals
 };
 
@@ -84,8 +84,8 @@ Errors compare(const Reference& ref, const std::vector<glm::dvec3>& p, const std
   if (!ref.normals.empty()) {
     if (n.size() != ref.normals.size()) return {e.rel, std::numeric_limits<double>::infinity()};
     for (std::size_t i = 0; i < n.size(); ++i)  // atan2(|a×b|, a·b): accurate for tiny angles, unlike acos(a·b)
-      e.normal_rad =
-          std::max(e.normal_rad, std::atan2(glm::length(glm::cross(ref.normals[i], n[i])), glm::dot(ref.normals[i], n[i])));
+      e.normal_rad = std::max(
+          e.normal_rad, std::atan2(glm::length(glm::cross(ref.normals[i], n[i])), glm::dot(ref.normals[i], n[i])));
   }
   return e;
 }
@@ -241,8 +241,8 @@ nlohmann::json run_ffd_benchmark(const FfdBenchOptions& o) {
 void print_ffd_benchmark(const nlohmann::json& r, std::ostream& os) {
   const auto& m = r.at("mesh");
   os << "FFD benchmark on " << r.value("cpu", std::string("?")) << " (" << r.at("threads_all")
-     << " threads, cpu_fast kernel: " << r.value("simd", std::string("?")) << "), GL: "
-     << r.value("renderer", std::string("none")) << "\n";
+     << " threads, cpu_fast kernel: " << r.value("simd", std::string("?"))
+     << "), GL: " << r.value("renderer", std::string("none")) << "\n";
   if (m.at("fallback").get<bool>()) os << "NOTE: " << m.at("note").get<std::string>() << "\n";
   os << "mesh: " << m.at("source").get<std::string>() << ", " << m.at("base_vertices") << " vertices -> "
      << m.at("vertices") << " vertices, " << m.at("triangles") << " triangles (OpenSubdiv bilinear level "

@@ -34,17 +34,17 @@ struct FfdBenchBackend {
 };
 
 struct FfdBenchOptions {
-  std::string mesh_path = "assets/data/bunny.obj";  // any load_mesh format; a sphere is generated if absent
-  int subdivision_level = 2;                        // OpenSubdiv bilinear uniform refinement level (0 = none)
-  std::vector<int> lattices{4, 8};                  // control points per axis (L×L×L lattices)
-  std::vector<int> orders{3, 4};                    // orders (= degree + 1) to measure; each ≤ every lattice size
-  double perturbation = 0.15;                       // random control displacement, fraction of the lattice cell
-  std::uint32_t seed = 1;                           // std::mt19937 seed for the perturbation
-  int runs = 5;                                     // timed runs per configuration (median reported), ≥ 1
-  int threads = 0;                                  // "all threads" count; 0 = tbb default concurrency
-  std::string renderer = "none";                    // GL_RENDERER of the GPU backends' context, or why there is none
-  std::string gpu_shaders;                          // how the GPU backends' shaders get the orders (reported)
-  std::vector<FfdBenchBackend> gpu_backends;        // measured after the CPU backends
+  std::string mesh_path = "assets/data/bunny.obj";   // any load_mesh format; a sphere is generated if absent
+  int subdivision_level = 2;                         // OpenSubdiv bilinear uniform refinement level (0 = none)
+  std::vector<int> lattices{4, 8};                   // control points per axis (L×L×L lattices)
+  std::vector<int> orders{3, 4};                     // orders (= degree + 1) to measure; each ≤ every lattice size
+  double perturbation = 0.15;                        // random control displacement, fraction of the lattice cell
+  std::uint32_t seed = 1;                            // std::mt19937 seed for the perturbation
+  int runs = 5;                                      // timed runs per configuration (median reported), ≥ 1
+  int threads = 0;                                   // "all threads" count; 0 = tbb default concurrency
+  std::string renderer = "none";                     // GL_RENDERER of the GPU backends' context, or why there is none
+  std::string gpu_shaders;                           // how the GPU backends' shaders get the orders (reported)
+  std::vector<FfdBenchBackend> gpu_backends;         // measured after the CPU backends
   std::function<void(const std::string&)> progress;  // called before each case (a line of text); may be empty
 };
 

@@ -23,8 +23,8 @@ std::string params_table(const CommandRegistry& registry, const std::string& id)
   std::string out = "| field | type | default | range | unit | meaning |\n|---|---|---|---|---|---|\n";
   for (const core::ParamDoc& d : registry.params(id)) {
     const bool code_default = d.default_text != "required" && d.default_text != "unset";
-    out += "| " + cell(d.name, true) + " | " + cell(d.type, true) + " | " + cell(d.default_text, code_default) +
-           " | " + cell(d.range) + " | " + cell(d.unit) + " | " + cell(d.help) + " |\n";
+    out += "| " + cell(d.name, true) + " | " + cell(d.type, true) + " | " + cell(d.default_text, code_default) + " | " +
+           cell(d.range) + " | " + cell(d.unit) + " | " + cell(d.help) + " |\n";
   }
   return out;
 }

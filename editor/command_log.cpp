@@ -4,8 +4,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <cerrno>
 #include <algorithm>
+#include <cerrno>
 #include <cstring>
 #include <fstream>
 #include <memory>
@@ -24,14 +24,22 @@ std::string describe(const std::filesystem::path& file, int line, const std::str
 std::string describe_file_type(const std::filesystem::path& path) {
   std::error_code ec;
   switch (std::filesystem::status(path, ec).type()) {
-    case std::filesystem::file_type::not_found: return "no such file";
-    case std::filesystem::file_type::directory: return "it is a directory";
-    case std::filesystem::file_type::fifo: return "it is a FIFO (named pipe)";
-    case std::filesystem::file_type::character: return "it is a character device";
-    case std::filesystem::file_type::block: return "it is a block device";
-    case std::filesystem::file_type::socket: return "it is a socket";
-    case std::filesystem::file_type::regular: return "a regular file";
-    default: return ec ? ec.message() : "not a regular file";
+    case std::filesystem::file_type::not_found:
+      return "no such file";
+    case std::filesystem::file_type::directory:
+      return "it is a directory";
+    case std::filesystem::file_type::fifo:
+      return "it is a FIFO (named pipe)";
+    case std::filesystem::file_type::character:
+      return "it is a character device";
+    case std::filesystem::file_type::block:
+      return "it is a block device";
+    case std::filesystem::file_type::socket:
+      return "it is a socket";
+    case std::filesystem::file_type::regular:
+      return "a regular file";
+    default:
+      return ec ? ec.message() : "not a regular file";
   }
 }
 
@@ -123,8 +131,9 @@ std::vector<LogLine> read_log_text(const std::filesystem::path& path) {
   }
   if (std::uintmax_t(st.st_size) > limits.max_file_bytes) {
     ::close(fd);
-    throw LogError(path, 0, "", "the file is " + std::to_string(st.st_size) + " bytes, over the " +
-                                    std::to_string(limits.max_file_bytes) + "-byte limit of a command log");
+    throw LogError(path, 0, "",
+                   "the file is " + std::to_string(st.st_size) + " bytes, over the " +
+                       std::to_string(limits.max_file_bytes) + "-byte limit of a command log");
   }
   std::FILE* file = ::fdopen(fd, "rb");
   if (!file) {
@@ -151,8 +160,9 @@ std::vector<LogLine> read_log_text(const std::filesystem::path& path) {
       text.push_back(char(c));
     }
     if (too_long)
-      throw LogError(path, number, "", "line longer than " + std::to_string(limits.max_line_bytes) +
-                                           " bytes (the limit of a command log line)");
+      throw LogError(
+          path, number, "",
+          "line longer than " + std::to_string(limits.max_line_bytes) + " bytes (the limit of a command log line)");
     const auto first = text.find_first_not_of(" \t\r");
     if (first == std::string::npos || text[first] == '#' || text.compare(first, 2, "//") == 0) continue;
     if (lines.size() >= limits.max_lines)
@@ -165,8 +175,9 @@ std::vector<LogLine> read_log_text(const std::filesystem::path& path) {
 void parse_log_line(const std::filesystem::path& path, LogLine& line) {
   if (const std::string bad = utf8_error(line.text); !bad.empty()) throw LogError(path, line.number, "", bad);
   if (const int depth = json_nesting_depth(line.text); depth > log_limits().max_depth)
-    throw LogError(path, line.number, "", "JSON nested " + std::to_string(depth) + " levels deep (the limit is " +
-                                              std::to_string(log_limits().max_depth) + ")");
+    throw LogError(path, line.number, "",
+                   "JSON nested " + std::to_string(depth) + " levels deep (the limit is " +
+                       std::to_string(log_limits().max_depth) + ")");
   try {
     line.json = nlohmann::json::parse(line.text);
   } catch (const nlohmann::json::exception& e) {  // parse errors, and numbers out of range such as 1e999

@@ -10,12 +10,11 @@
 //  * write_log_atomic(): Save — writes to PATH.tmp, fsyncs, renames over PATH, fsyncs PATH's folder.
 #pragma once
 
-#include <nlohmann/json.hpp>
-
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <stdexcept>
-#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -51,8 +50,8 @@ std::string utf8_error(std::string_view text);
 int json_nesting_depth(std::string_view text);
 
 struct LogLine {
-  int number = 0;     // 1-based line number in the file
-  std::string text;   // the line as written
+  int number = 0;    // 1-based line number in the file
+  std::string text;  // the line as written
   nlohmann::json json;
 };
 

@@ -3,13 +3,13 @@
 // History panel and replay share one source of truth.
 #pragma once
 
-#include "core/commands/command.h"
-#include "core/commands/params.h"
-
 #include <functional>
 #include <map>
 #include <string>
 #include <vector>
+
+#include "core/commands/command.h"
+#include "core/commands/params.h"
 
 namespace trispline::editor {
 

@@ -212,7 +212,8 @@ int stop_stale_local_tasks(const FarmPlan& plan) {
     const pid_t pid = static_cast<pid_t>(std::stol(name));
     members.emplace_back(pid, group);
     std::error_code ec2;
-    if (fs::read_symlink(entry.path() / "cwd", ec2) == dir && !ec2 && is_task_command(read_small(entry.path() / "cmdline")))
+    if (fs::read_symlink(entry.path() / "cwd", ec2) == dir && !ec2 &&
+        is_task_command(read_small(entry.path() / "cmdline")))
       ours.insert(group);  // another folder's (a copy's) task has another cwd
   }
   int stopped = 0;

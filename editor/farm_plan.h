@@ -33,7 +33,7 @@ inline constexpr int kFarmMaxParallel = 100000;         // --max-parallel
 inline constexpr int kFarmMaxSize = 16384;              // --width / --height, pixels
 inline constexpr std::size_t kFarmMaxPathBytes = 4096;  // a path in farm.json
 inline constexpr std::uintmax_t kFarmMaxPlanBytes = 64u << 20;  // farm.json itself
-inline constexpr std::uint64_t kFarmMaxLogBytes = 1ull << 30;    // a command log a farm replays
+inline constexpr std::uint64_t kFarmMaxLogBytes = 1ull << 30;   // a command log a farm replays
 inline constexpr int kFarmPlanVersion = 2;
 
 // A plan that cannot be used. key(): the farm.json key at fault ("" when the file as a whole is bad).
@@ -49,11 +49,11 @@ class FarmPlanError : public std::runtime_error {
 // One array task: a chunk of frames (kind "frames") or one log (kind "batch").
 struct FarmTask {
   int index = 0;
-  int first = 0, last = 0;        // timeline frames, inclusive (frames); 0 (batch)
-  std::filesystem::path log;      // batch: the log this task replays (absolute)
-  std::uint32_t log_crc32 = 0;    // batch: its CRC-32 (zlib) at submission
-  std::uint64_t log_bytes = 0;    // batch: its size at submission
-  std::string name;               // batch: its output folder under runs/ (one path component: the log's stem, unique)
+  int first = 0, last = 0;      // timeline frames, inclusive (frames); 0 (batch)
+  std::filesystem::path log;    // batch: the log this task replays (absolute)
+  std::uint32_t log_crc32 = 0;  // batch: its CRC-32 (zlib) at submission
+  std::uint64_t log_bytes = 0;  // batch: its size at submission
+  std::string name;             // batch: its output folder under runs/ (one path component: the log's stem, unique)
 };
 
 // A submitted job: Slurm job ids, or the local pool's process and its tasks' process ids.
@@ -69,12 +69,12 @@ struct FarmJob {
 
 struct FarmPlan {
   int version = kFarmPlanVersion;
-  std::string kind = "frames";      // "frames" | "batch"
-  std::filesystem::path dir;        // the farm folder (absolute): where farm.json was read, never stored in it
-  std::filesystem::path trispline;  // absolute path of the executable the scripts run
-  std::filesystem::path log;        // frames: the command log (absolute)
-  std::uint32_t log_crc32 = 0;      // frames: the log's CRC-32 (zlib) at submission: a changed log is refused
-  std::uint64_t log_bytes = 0;      // frames: the log's size at submission
+  std::string kind = "frames";            // "frames" | "batch"
+  std::filesystem::path dir;              // the farm folder (absolute): where farm.json was read, never stored in it
+  std::filesystem::path trispline;        // absolute path of the executable the scripts run
+  std::filesystem::path log;              // frames: the command log (absolute)
+  std::uint32_t log_crc32 = 0;            // frames: the log's CRC-32 (zlib) at submission: a changed log is refused
+  std::uint64_t log_bytes = 0;            // frames: the log's size at submission
   int frame_first = 0, frame_last = 0;    // inclusive, in [0, kFarmMaxFrame]
   int chunk = 0;                          // frames per task, ≥ 1
   std::string format = "png";             // "png" | "exr"

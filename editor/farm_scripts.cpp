@@ -39,7 +39,8 @@ std::string sbatch_header(const FarmPlan& plan, const std::string& name, const s
 // run by hand or by the local pool, the script's own folder is the farm folder.
 const char* kEnterFarm =
     "if [ -f \"$(dirname -- \"$0\")/farm.json\" ]; then cd -- \"$(dirname -- \"$0\")\" || exit 2; fi\n"
-    "[ -f farm.json ] || { echo \"farm: $(pwd) holds no farm.json: run this script in its farm folder\" >&2; exit 2; }\n";
+    "[ -f farm.json ] || { echo \"farm: $(pwd) holds no farm.json: run this script in its farm folder\" >&2; exit 2; "
+    "}\n";
 
 std::string task_script(const FarmPlan& plan) {
   std::ostringstream s;
@@ -47,8 +48,7 @@ std::string task_script(const FarmPlan& plan) {
     << "# trispline farm: one array task (SLURM_ARRAY_TASK_ID); written by `trispline farm "
     << (plan.kind == "batch" ? "batch" : "submit") << "`. Paths are relative to the farm folder.\n"
     << sbatch_header(plan, "trispline-farm", "logs/task_%4a.log") << "set -u\n"
-    << kEnterFarm
-    << "task=${SLURM_ARRAY_TASK_ID:?run by sbatch --array or by trispline farm --engine local}\n"
+    << kEnterFarm << "task=${SLURM_ARRAY_TASK_ID:?run by sbatch --array or by trispline farm --engine local}\n"
     << "case $task in '' | *[!0-9]*) echo \"farm: SLURM_ARRAY_TASK_ID is not a task number\" >&2; exit 2 ;; esac\n"
     << "# llvmpipe draws with the CPUs the task was given, not every CPU of the node\n"
     << "export LP_NUM_THREADS=${LP_NUM_THREADS:-${SLURM_CPUS_PER_TASK:-1}}\n"
@@ -64,8 +64,8 @@ std::string assemble_script(const FarmPlan& plan) {
   std::ostringstream s;
   s << "#!/bin/bash\n"
     << "# trispline farm: the assemble step, after every task. Paths are relative to the farm folder.\n"
-    << sbatch_header(plan, "trispline-farm-assemble", "logs/assemble.log") << kEnterFarm
-    << "exec " << shell_quote(plan.trispline.string()) << " farm assemble .\n";
+    << sbatch_header(plan, "trispline-farm-assemble", "logs/assemble.log") << kEnterFarm << "exec "
+    << shell_quote(plan.trispline.string()) << " farm assemble .\n";
   return s.str();
 }
 
@@ -104,8 +104,8 @@ FarmPlan read_plan(const fs::path& dir_in) {
     throw std::runtime_error("no farm in '" + dir.string() + "' (" + path.string() + " is missing)");
   const std::uintmax_t size = fs::file_size(path, ec);
   if (ec || size > kFarmMaxPlanBytes)
-    throw FarmPlanError("", "is " + std::to_string(size) + " bytes, at most " + std::to_string(kFarmMaxPlanBytes) +
-                                " allowed");
+    throw FarmPlanError(
+        "", "is " + std::to_string(size) + " bytes, at most " + std::to_string(kFarmMaxPlanBytes) + " allowed");
   std::ifstream in(path, std::ios::binary);
   std::string text(static_cast<std::size_t>(size), '\0');
   if (!in.read(text.data(), static_cast<std::streamsize>(size)))
@@ -139,8 +139,8 @@ std::vector<FarmTask> plan_batch(const fs::path& folder) {
     if (e.is_regular_file() && e.path().extension() == ".jsonl") logs.push_back(fs::absolute(e.path()));
   if (logs.empty()) throw std::invalid_argument("'" + folder.string() + "' holds no command log (*.jsonl)");
   if (logs.size() > static_cast<std::size_t>(kFarmMaxBatchLogs))
-    throw std::invalid_argument("'" + folder.string() + "' holds " + std::to_string(logs.size()) +
-                                " logs, at most " + std::to_string(kFarmMaxBatchLogs) + " in one batch");
+    throw std::invalid_argument("'" + folder.string() + "' holds " + std::to_string(logs.size()) + " logs, at most " +
+                                std::to_string(kFarmMaxBatchLogs) + " in one batch");
   std::sort(logs.begin(), logs.end());
   std::vector<FarmTask> tasks;
   std::set<std::string> names;

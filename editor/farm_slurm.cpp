@@ -50,9 +50,9 @@ FarmJob submit_slurm(const FarmPlan& plan, const std::vector<int>& tasks) {
   const std::string chdir = "--chdir=" + farm_workdir(plan.dir);
   job.array_id = sbatch({chdir, "--array=" + list, (plan.dir / "farm_task.sh").string()}, "array job");
   const std::string dependency = plan.kind == "batch" ? "afterany" : "afterok";
-  job.assemble_id = sbatch({chdir, "--dependency=" + dependency + ":" + job.array_id,
-                            (plan.dir / "farm_assemble.sh").string()},
-                           "assemble job");
+  job.assemble_id =
+      sbatch({chdir, "--dependency=" + dependency + ":" + job.array_id, (plan.dir / "farm_assemble.sh").string()},
+             "assemble job");
   return job;
 }
 

@@ -58,8 +58,8 @@ int farm_task(const fs::path& dir, int index, std::ostream& out, std::ostream& e
   const bool batch = plan.kind == "batch";
   ReplayOptions o;
   o.log = batch ? task.log : plan.log;
-  const std::string changed =
-      batch ? log_change(task.log, task.log_crc32, task.log_bytes) : log_change(plan.log, plan.log_crc32, plan.log_bytes);
+  const std::string changed = batch ? log_change(task.log, task.log_crc32, task.log_bytes)
+                                    : log_change(plan.log, plan.log_crc32, plan.log_bytes);
   if (!changed.empty()) {
     err << "farm task " << index << ": " << changed << "\n";
     return 2;

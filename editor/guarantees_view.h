@@ -13,11 +13,10 @@
 
 #include <future>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "core/ffd/fold_certificate.h"
 #include "core/scene/scene.h"
@@ -81,10 +80,10 @@ class GuaranteesView {
   };
   static Result compute(const Input& in);
 
-  std::optional<Input> wanted_;   // the last update's input
-  std::optional<Result> shown_;   // the newest finished computation for it (possibly of an older lattice)
-  std::future<Result> job_;       // the running computation
-  std::size_t updates_ = 0;       // computations adopted (a test sees the view follow a drag)
+  std::optional<Input> wanted_;  // the last update's input
+  std::optional<Result> shown_;  // the newest finished computation for it (possibly of an older lattice)
+  std::future<Result> job_;      // the running computation
+  std::size_t updates_ = 0;      // computations adopted (a test sees the view follow a drag)
 };
 
 }  // namespace trispline::editor

@@ -9,10 +9,10 @@
 // The app feeds it a NavInput built from ImGui's IO only when ImGui does not want the mouse/keyboard.
 #pragma once
 
+#include <glm/glm.hpp>
+
 #include "core/mesh/tri_mesh.h"
 #include "core/scene/camera.h"
-
-#include <glm/glm.hpp>
 
 namespace trispline::editor {
 

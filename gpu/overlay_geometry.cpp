@@ -72,10 +72,9 @@ void append_contact_surface(const core::PlacementRecord& placement, const glm::v
     }
 }
 
-ContactSurfaceTessellation tessellate_contact_surface(const core::TrivariateBSpline<glm::dvec3>& lattice,
-                                                      int cells_u, int cells_v) {
-  if (cells_u < 1 || cells_v < 1)
-    throw std::invalid_argument("tessellate_contact_surface: cell counts must be >= 1");
+ContactSurfaceTessellation tessellate_contact_surface(const core::TrivariateBSpline<glm::dvec3>& lattice, int cells_u,
+                                                      int cells_v) {
+  if (cells_u < 1 || cells_v < 1) throw std::invalid_argument("tessellate_contact_surface: cell counts must be >= 1");
   ContactSurfaceTessellation t;
   t.vertices_u = cells_u + 1;
   t.vertices_v = cells_v + 1;
@@ -113,8 +112,8 @@ ContactSurfaceTessellation tessellate_contact_surface(const core::TrivariateBSpl
   return t;
 }
 
-void append_contact_iso_lines(const ContactSurfaceTessellation& t, int every_u, int every_v,
-                              const glm::vec4& color, std::vector<OverlayVertex>& lines) {
+void append_contact_iso_lines(const ContactSurfaceTessellation& t, int every_u, int every_v, const glm::vec4& color,
+                              std::vector<OverlayVertex>& lines) {
   const int nu = t.vertices_u, nv = t.vertices_v;
   if (nu < 2 || nv < 2 || t.mesh.positions.size() != std::size_t(nu) * std::size_t(nv)) return;
   every_u = std::max(every_u, 1);

@@ -27,7 +27,8 @@ void append_lattice(const core::TrivariateBSpline<glm::dvec3>& lattice, const gl
 // Appends the two control planes of every discontinuity in `discs` (seed §6.3.1 Def. 6): the control points of
 // F⁻ (index d.minus_plane along d.axis) to `minus_points` in `minus_color` and those of F⁺ (d.plus_plane) to
 // `plus_points` in `plus_color`, and each plane's polylines along its two other axes (GL_LINES pairs, in the
-// plane's colour) to `lines`. Points in lattice storage order (the lower of the two other axes fastest). A discontinuity whose axis or plane indices do not fit the lattice is left out.
+// plane's colour) to `lines`. Points in lattice storage order (the lower of the two other axes fastest). A
+// discontinuity whose axis or plane indices do not fit the lattice is left out.
 void append_discontinuity_planes(const core::TrivariateBSpline<glm::dvec3>& lattice,
                                  const std::vector<core::Discontinuity>& discs, const glm::vec4& minus_color,
                                  const glm::vec4& plus_color, std::vector<OverlayVertex>& lines,
@@ -57,8 +58,8 @@ ContactSurfaceTessellation tessellate_contact_surface(const core::TrivariateBSpl
 
 // Appends iso-parameter lines of `t` (GL_LINES pairs along the grid edges): every `every_u`-th line of constant
 // u and every `every_v`-th line of constant v, the boundary lines always.
-void append_contact_iso_lines(const ContactSurfaceTessellation& t, int every_u, int every_v,
-                              const glm::vec4& color, std::vector<OverlayVertex>& lines);
+void append_contact_iso_lines(const ContactSurfaceTessellation& t, int every_u, int every_v, const glm::vec4& color,
+                              std::vector<OverlayVertex>& lines);
 
 // Triangle list (GL_TRIANGLES, pixel coordinates) of a polyline `px` (#S×2 viewport pixels) drawn `width_px`
 // wide with round joins and caps (`segments` triangles per disc). Empty for < 1 point; a single point is a disc.

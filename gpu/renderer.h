@@ -51,9 +51,9 @@ struct RenderStats {
   int ffd_objects = 0;              // visible deformed objects drawn through the FFD display path
   std::size_t ffd_vertices = 0;     // vertices evaluated during this draw (0 when every result was cached; the
                                     // vertex path evaluates all of its objects' vertices every draw)
-  double ffd_ms = 0.0;    // FFD pass (dispatches, uploads, CPU evaluations; the vertex path's evaluation is part of
-                          // draw_ms): GpuTimer ms (+ CPU evaluation ms in query mode); 0 without deformed objects,
-                          // -1 while the timer has no result yet
+  double ffd_ms = 0.0;  // FFD pass (dispatches, uploads, CPU evaluations; the vertex path's evaluation is part of
+                        // draw_ms): GpuTimer ms (+ CPU evaluation ms in query mode); 0 without deformed objects,
+                        // -1 while the timer has no result yet
   // Live DDM layers (SceneObject::ddm_layers, renderer_ddm.h): layers drawn (with ≥ 1 instance), their vertices
   // (Σ instances × tile vertices, evaluated by the vertex shader every draw), and the shaded layer pass: GpuTimer
   // ms, 0 without layers, -1 while the timer has no result yet (not part of draw_ms).
@@ -77,7 +77,7 @@ struct RenderStats {
                                  // again to refine it
   float volume_scale = 1.0f;     // resolution of the volume layer's unrefined part (1 = full)
   std::size_t silhouette_points = 0;
-  double draw_ms = -1.0;  // the drawing passes (GpuTimer; -1 while unavailable)
+  double draw_ms = -1.0;        // the drawing passes (GpuTimer; -1 while unavailable)
   const char* timer_mode = "";  // GpuTimer::mode_description() of the timers above
 };
 

@@ -48,15 +48,15 @@ FfdPlan FfdDisplay::prepare(const core::SceneObject& object, const DisplayBuffer
   const glm::dvec3 offset = object.offset_at(time_s);
   core::FfdBackend eff = backend;
   // The compute path writes the buffers once per change; an offset that moves every frame is the vertex path's job.
-  if (eff == core::FfdBackend::glsl_compute && object.offset_animated())
-    eff = core::FfdBackend::glsl_vertex;
+  if (eff == core::FfdBackend::glsl_compute && object.offset_animated()) eff = core::FfdBackend::glsl_vertex;
   // The float backends take orders 2..4; any other lattice is shown by the CPU reference.
   const glm::ivec3 orders = object.ffd->lattice.orders();
   if (glm::any(glm::lessThan(orders, glm::ivec3(2))) || glm::any(glm::greaterThan(orders, glm::ivec3(4))))
     eff = core::FfdBackend::cpu_ref;
   if (eff == core::FfdBackend::cpu_ref && live_lattice) eff = core::FfdBackend::cpu_fast;  // world_mesh is stale
   if (eff == core::FfdBackend::cpu_ref && offset == object.offset_at(0.0)) {
-    // world_mesh (the t = 0 pose) already is the CPU reference at this offset: draw it, restoring it if a backend overwrote it.
+    // world_mesh (the t = 0 pose) already is the CPU reference at this offset: draw it, restoring it if a backend
+    // overwrote it.
     if (*target.overwritten) {
       target.buffers->upload(*target.mesh);
       *target.overwritten = false;
@@ -89,8 +89,8 @@ FfdPlan FfdDisplay::prepare(const core::SceneObject& object, const DisplayBuffer
     *vertices += nv;  // evaluated while drawing
     return {static_cast<GlslVertexFfdEvaluator*>(s.evaluator.get()), offset};
   }
-  if (s.written_generation == *target.generation && s.written_lattice == &lattice &&
-      s.written_offset == offset && s.written_backend == eff)
+  if (s.written_generation == *target.generation && s.written_lattice == &lattice && s.written_offset == offset &&
+      s.written_backend == eff)
     return {};  // the buffers already hold this evaluation
   if (eff == core::FfdBackend::glsl_compute) {
     static_cast<GlslComputeFfdEvaluator*>(s.evaluator.get())->evaluate_into(*target.buffers, offset);

@@ -49,8 +49,8 @@ class FfdDisplay {
   // `live_lattice` (optional): a lattice to evaluate instead of object.ffd->lattice (same control counts, orders and
   // knots), e.g. the Press tool's drag preview; the binding's parameters stay bound.
   FfdPlan prepare(const core::SceneObject& object, const DisplayBuffers& target, core::FfdBackend backend,
-                  double time_s, std::uint64_t& generation_counter, std::size_t* vertices, double* cpu_ms,
-                  int* uploads, std::shared_ptr<const core::TrivariateBSpline<glm::dvec3>> live_lattice = nullptr);
+                  double time_s, std::uint64_t& generation_counter, std::size_t* vertices, double* cpu_ms, int* uploads,
+                  std::shared_ptr<const core::TrivariateBSpline<glm::dvec3>> live_lattice = nullptr);
   // Drops the state of objects that are gone or no longer deformed.
   void release_unused(const core::Scene& scene);
   std::size_t cached() const { return states_.size(); }
@@ -63,11 +63,11 @@ class FfdDisplay {
     std::vector<glm::dvec3> rest_normals;  // #V × 3 world rest space, unit
     core::FfdBackend backend = core::FfdBackend::cpu_ref;
     std::unique_ptr<core::FfdEvaluator> evaluator;
-    bool bound = false;                            // evaluator has the binding's params
+    bool bound = false;                // evaluator has the binding's params
     const void* lattice_of = nullptr;  // lattice the evaluator holds (the binding's, or a live override)
     // The live override last used, held so its address cannot be reused by a newer one (lattice_of compares addresses).
     std::shared_ptr<const core::TrivariateBSpline<glm::dvec3>> live_hold;
-    std::uint64_t written_generation = 0;          // buffers' generation after our last write (0 = none)
+    std::uint64_t written_generation = 0;  // buffers' generation after our last write (0 = none)
     const void* written_lattice = nullptr;
     glm::dvec3 written_offset{0.0};
     core::FfdBackend written_backend = core::FfdBackend::cpu_ref;

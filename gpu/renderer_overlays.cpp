@@ -18,7 +18,8 @@ void detail::StreamBuffer::init(bool screen_space) {
   glEnableVertexAttribArray(0);
   glVertexAttribPointer(0, screen_space ? 2 : 3, GL_FLOAT, GL_FALSE, stride, nullptr);
   glEnableVertexAttribArray(1);
-  glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<const void*>(offsetof(OverlayVertex, color)));
+  glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, stride,
+                        reinterpret_cast<const void*>(offsetof(OverlayVertex, color)));
   glBindVertexArray(0);
 }
 

@@ -47,16 +47,15 @@ inline core::FfdBinding identity_binding(const core::SceneObject& o, glm::ivec3 
   const glm::dmat4 m = o.transform.matrix();
   for (const auto& l : o.ddm_layers)
     for (const glm::dvec3& p : l->mesh->positions) pts.push_back(glm::dvec3(m * glm::dvec4(p, 1.0)));
-  core::FfdBinding b{core::TrivariateBSpline<glm::dvec3>(core::KnotVector::clamped_uniform(3, controls.x),
-                                                         core::KnotVector::clamped_uniform(3, controls.y),
-                                                         core::KnotVector::clamped_uniform(3, controls.z),
-                                                         std::vector<glm::dvec3>(std::size_t(controls.x) *
-                                                                                 controls.y * controls.z)),
-                     core::embed_bounding_box(pts, {0, 1}),
-                     {}};
+  core::FfdBinding b{
+      core::TrivariateBSpline<glm::dvec3>(core::KnotVector::clamped_uniform(3, controls.x),
+                                          core::KnotVector::clamped_uniform(3, controls.y),
+                                          core::KnotVector::clamped_uniform(3, controls.z),
+                                          std::vector<glm::dvec3>(std::size_t(controls.x) * controls.y * controls.z)),
+      core::embed_bounding_box(pts, {0, 1}),
+      {}};
   const glm::dmat3 inv = glm::inverse(b.embedding.linear);
-  const auto gu = b.lattice.knots(0).greville(), gv = b.lattice.knots(1).greville(),
-             gw = b.lattice.knots(2).greville();
+  const auto gu = b.lattice.knots(0).greville(), gv = b.lattice.knots(1).greville(), gw = b.lattice.knots(2).greville();
   for (int k = 0; k < controls.z; ++k)
     for (int j = 0; j < controls.y; ++j)
       for (int i = 0; i < controls.x; ++i)
@@ -86,7 +85,8 @@ inline core::SceneObject ffd_case() {
 inline core::SceneObject host_case() {
   core::SceneObject o = thorny_sphere();
   core::TriMesh warped = *o.rest_mesh;
-  for (glm::dvec3& p : warped.positions) p = glm::dvec3(p.x * 1.3 + 0.2 * p.y * p.y, p.y + 0.3 * std::sin(2 * p.x), p.z);
+  for (glm::dvec3& p : warped.positions)
+    p = glm::dvec3(p.x * 1.3 + 0.2 * p.y * p.y, p.y + 0.3 * std::sin(2 * p.x), p.z);
   o.rest_mesh = std::make_shared<const core::TriMesh>(std::move(warped));  // the layer keeps the old one as host
   o.refresh();
   return o;
@@ -96,7 +96,8 @@ inline core::SceneObject host_case() {
 inline core::SceneObject dffd_case() {
   core::SceneObject o = thorny_sphere();
   const core::FfdBinding b = identity_binding(o);
-  auto rig = std::make_shared<core::DffdRig>(core::DffdRig{b.lattice, b.embedding, b.params, {}, core::DffdOpenings::open, 1e-6, true, {}, {}});
+  auto rig = std::make_shared<core::DffdRig>(
+      core::DffdRig{b.lattice, b.embedding, b.params, {}, core::DffdOpenings::open, 1e-6, true, {}, {}});
   const core::Discontinuity d = core::insert_discontinuity(rig->lattice, 0, 0.5);
   core::open_discontinuity(rig->lattice, d, {-0.3, 0.0, 0.0}, {0.3, 0.1, 0.0});
   rig->discontinuities = {d};

@@ -3,9 +3,9 @@
 // (faces its add_face refuses at complex edges or vertices, non-manifold vertices, boundary loops).
 #pragma once
 
-#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <gtest/gtest.h>
 
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <algorithm>
 #include <array>
 #include <map>
@@ -18,14 +18,14 @@
 namespace trispline::core::test {
 
 struct Topology {
-  std::size_t nonmanifold_edges = 0;              // undirected edges with > 2 faces
-  std::size_t boundary_edges = 0;                 // undirected edges with exactly one face
-  std::size_t repeated_halfedges = 0;             // directed edges used twice (orientation broken)
-  std::size_t duplicate_faces = 0;                // same vertex set twice
-  std::size_t degenerate_faces = 0;               // a repeated vertex index
-  std::size_t openmesh_rejected = 0;              // faces OpenMesh's add_face refuses (complex edge / vertex)
-  std::size_t openmesh_nonmanifold_vertices = 0;  // vertices OpenMesh sees as not manifold
-  std::size_t boundary_loops = 0;                 // boundary loops of the OpenMesh halfedge structure
+  std::size_t nonmanifold_edges = 0;                    // undirected edges with > 2 faces
+  std::size_t boundary_edges = 0;                       // undirected edges with exactly one face
+  std::size_t repeated_halfedges = 0;                   // directed edges used twice (orientation broken)
+  std::size_t duplicate_faces = 0;                      // same vertex set twice
+  std::size_t degenerate_faces = 0;                     // a repeated vertex index
+  std::size_t openmesh_rejected = 0;                    // faces OpenMesh's add_face refuses (complex edge / vertex)
+  std::size_t openmesh_nonmanifold_vertices = 0;        // vertices OpenMesh sees as not manifold
+  std::size_t boundary_loops = 0;                       // boundary loops of the OpenMesh halfedge structure
   std::vector<std::pair<unsigned, unsigned>> boundary;  // the boundary edges (lower index first), sorted
 };
 
@@ -90,12 +90,10 @@ inline void expect_closed_manifold(const TriMesh& m) {
 // Success when `t` has no non-manifold edge or vertex, repeated half-edge, duplicate or degenerate face, and
 // OpenMesh accepts every face; else a failure naming each non-zero count.
 inline ::testing::AssertionResult is_manifold(const Topology& t) {
-  const std::pair<const char*, std::size_t> counts[] = {{"nonmanifold_edges", t.nonmanifold_edges},
-                                                        {"repeated_halfedges", t.repeated_halfedges},
-                                                        {"duplicate_faces", t.duplicate_faces},
-                                                        {"degenerate_faces", t.degenerate_faces},
-                                                        {"openmesh_rejected", t.openmesh_rejected},
-                                                        {"openmesh_nonmanifold_vertices", t.openmesh_nonmanifold_vertices}};
+  const std::pair<const char*, std::size_t> counts[] = {
+      {"nonmanifold_edges", t.nonmanifold_edges}, {"repeated_halfedges", t.repeated_halfedges},
+      {"duplicate_faces", t.duplicate_faces},     {"degenerate_faces", t.degenerate_faces},
+      {"openmesh_rejected", t.openmesh_rejected}, {"openmesh_nonmanifold_vertices", t.openmesh_nonmanifold_vertices}};
   ::testing::AssertionResult r = ::testing::AssertionSuccess();
   bool ok = true;
   for (const auto& [name, n] : counts)

@@ -1,12 +1,12 @@
 #include "ui/curve_editor.h"
 
-#include "ui/theme.h"
-
 #include <imgui.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+
+#include "ui/theme.h"
 
 namespace trispline::ui {
 
@@ -83,8 +83,8 @@ bool curve_editor(const char* id, std::vector<CurvePoint>& pts, const char* tip,
   };
   const ImVec2 m = ImGui::GetIO().MousePos;
   const double mu = std::clamp(double(m.x - lo.x) / double(hi.x - lo.x), 0.0, 1.0);
-  const double mf = std::clamp(double(hi.y - m.y) / double(hi.y - lo.y) * kCurveMaxFactor, kCurveMinFactor,
-                               kCurveMaxFactor);
+  const double mf =
+      std::clamp(double(hi.y - m.y) / double(hi.y - lo.y) * kCurveMaxFactor, kCurveMinFactor, kCurveMaxFactor);
 
   // The point under the cursor (within 8 px), and the one being dragged (kept in ImGui's state storage).
   ImGuiStorage* storage = ImGui::GetStateStorage();
@@ -100,7 +100,7 @@ bool curve_editor(const char* id, std::vector<CurvePoint>& pts, const char* tip,
   int dragged = storage->GetInt(drag_key, -1);
   if (active && ImGui::IsMouseDown(ImGuiMouseButton_Left) && dragged >= 0 && dragged < int(pts.size())) {
     CurvePoint& p = pts[dragged];
-    p.f = std::round(mf * 100.0) / 100.0;  // 0.01 steps: readable numbers in the log
+    p.f = std::round(mf * 100.0) / 100.0;                // 0.01 steps: readable numbers in the log
     if (dragged > 0 && dragged + 1 < int(pts.size())) {  // inner points move in u too, between their neighbours
       const double u = std::round(mu * kCurveGrid) / kCurveGrid;
       const double step = 1.0 / kCurveGrid;
@@ -136,7 +136,8 @@ bool curve_editor(const char* id, std::vector<CurvePoint>& pts, const char* tip,
     dl->AddLine(to_px(pts[i - 1].u, pts[i - 1].f), to_px(pts[i].u, pts[i].f), ImGui::GetColorU32(colors::accent), 2.0f);
   for (int i = 0; i < int(pts.size()); ++i) {
     const bool hot = i == dragged || (hovered && i == near);
-    dl->AddCircleFilled(to_px(pts[i].u, pts[i].f), hot ? 5.0f : 3.5f, hot ? IM_COL32_WHITE : IM_COL32(200, 200, 200, 255));
+    dl->AddCircleFilled(to_px(pts[i].u, pts[i].f), hot ? 5.0f : 3.5f,
+                        hot ? IM_COL32_WHITE : IM_COL32(200, 200, 200, 255));
   }
   if (hovered || dragged >= 0) {
     const int shown = dragged >= 0 ? dragged : near;

@@ -1,13 +1,12 @@
 #include "ui/ddm_anim_panel.h"
-#include "ui/param_widgets.h"
-
-#include "ui/number_field.h"
 
 #include <imgui.h>
 
 #include <algorithm>
 
 #include "core/commands/ddm_animate.h"
+#include "ui/number_field.h"
+#include "ui/param_widgets.h"
 
 namespace trispline::ui {
 
@@ -65,8 +64,9 @@ DdmAnimPanelResult draw_ddm_anim_panel(DdmAnimParams& p, std::string& layer, con
     }
     ImGui::EndCombo();
   }
-  tooltip("Metamorphosis partner (seed Eq. 5.3): V = V1(1 - alpha) + V2 alpha, normals renormalised. It needs the "
-          "tile's topology: thorn and flower are partners.");
+  tooltip(
+      "Metamorphosis partner (seed Eq. 5.3): V = V1(1 - alpha) + V2 alpha, normals renormalised. It needs the "
+      "tile's topology: thorn and flower are partners.");
   ImGui::BeginDisabled(p.morph_tile.empty());
   row_label("Frames");
   int frames[2] = {p.frame_from, p.frame_to};
@@ -82,8 +82,9 @@ DdmAnimPanelResult draw_ddm_anim_panel(DdmAnimParams& p, std::string& layer, con
   double speed[2] = {p.speed_u, p.speed_v};
   if (drag_scalar_n("##speed", ImGuiDataType_Double, speed, 2, 0.001f, nullptr, nullptr, "%.3f /s"))
     p.speed_u = speed[0], p.speed_v = speed[1];
-  tooltip("Texture-space offset of every tile, chart units per second (seed section 5.4.2). On the teapot body, "
-          "u = 1 is one turn round the pot.");
+  tooltip(
+      "Texture-space offset of every tile, chart units per second (seed section 5.4.2). On the teapot body, "
+      "u = 1 is one turn round the pot.");
   row_label("Easing");
   if (ImGui::BeginCombo("##interp", p.interpolation.c_str())) {
     for (const std::string& name : core::DdmAnimateCommand::schema().find("interpolation")->choices)

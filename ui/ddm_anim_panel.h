@@ -15,8 +15,8 @@ namespace trispline::ui {
 // What the panel shows about a layer (read from core::DdmLayer by the caller).
 struct DdmLayerInfo {
   std::string name;
-  std::string tile;        // first tile's source ("thorn", a file, …)
-  std::size_t tiles = 0;   // instances
+  std::string tile;       // first tile's source ("thorn", a file, …)
+  std::size_t tiles = 0;  // instances
   std::size_t vertices = 0;
   bool animated = false;
 };
@@ -24,8 +24,8 @@ struct DdmLayerInfo {
 // The panel's values: a metamorphosis over two α keys and an offset speed, which ddm_animate_line turns into
 // ddm.animate's params (core::DdmAnimateParams).
 struct DdmAnimParams {
-  std::string morph_tile = "flower";  // generated tile or file; "" = no metamorphosis (offset only)
-  int frame_from = 1, frame_to = 96;  // α runs alpha_from → alpha_to between these timeline frames
+  std::string morph_tile = "flower";        // generated tile or file; "" = no metamorphosis (offset only)
+  int frame_from = 1, frame_to = 96;        // α runs alpha_from → alpha_to between these timeline frames
   double alpha_from = 0.0, alpha_to = 1.0;  // may leave [0, 1] (extrapolation, Eq. 5.3)
   double speed_u = 0.0, speed_v = 0.0;      // texture-space offset velocity, chart units per second
   std::string interpolation = "smooth";     // one of ddm.animate's "interpolation" choices (smooth: ease in/out)

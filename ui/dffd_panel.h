@@ -6,13 +6,13 @@
 //    "fold":"reject|warn"[,"margin":m]}
 #pragma once
 
-#include "core/commands/dffd_split.h"
-
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "core/commands/dffd_split.h"
 
 namespace trispline::ui {
 
@@ -34,7 +34,7 @@ nlohmann::json dffd_split_line(const std::string& object, const core::DffdSplitP
                                const std::vector<DffdObstacleInfo>& candidates);
 
 struct DffdPanelResult {
-  std::optional<nlohmann::json> line;  // the Split button was clicked: the dffd.split line to execute
+  std::optional<nlohmann::json> line;            // the Split button was clicked: the dffd.split line to execute
   glm::vec2 button_min{0.0f}, button_max{0.0f};  // the Split button's screen rectangle (tests click it)
 };
 

@@ -1,8 +1,8 @@
 #include "ui/dialogs.h"
 
-#include "ui/theme.h"
-
 #include <imgui.h>
+
+#include "ui/theme.h"
 
 namespace trispline::ui {
 

@@ -10,7 +10,7 @@ namespace trispline::ui {
 namespace {
 
 // place.sketch's pipeline order (core/commands/place_sketch.cpp); anything else sorts after these by name.
-constexpr std::array<std::string_view, 9> kStageOrder = {"bvh",   "fit",      "rays",    "surface", "springs",
+constexpr std::array<std::string_view, 9> kStageOrder = {"bvh",    "fit",   "rays",     "surface", "springs",
                                                          "volume", "embed", "evaluate", "total"};
 
 std::size_t rank(const std::string& name) {

@@ -7,13 +7,12 @@
 //   ffd_backend_label/_tooltip()   the names the FFD evaluator setting shows
 #pragma once
 
-#include "core/ffd/ffd_evaluator.h"
-
-#include <nlohmann/json.hpp>
-
 #include <cstddef>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include "core/ffd/ffd_evaluator.h"
 
 namespace trispline::ui {
 

@@ -17,8 +17,8 @@ struct ItemRect {
 
 void set_enabled(bool on);
 bool enabled();
-void begin_frame();                    // forgets the previous frame's items
-void item(const std::string& name);    // the last submitted ImGui item's rectangle, under `name` (last one wins)
+void begin_frame();                  // forgets the previous frame's items
+void item(const std::string& name);  // the last submitted ImGui item's rectangle, under `name` (last one wins)
 void rect(const std::string& name, ImVec2 min, ImVec2 max);    // a rectangle ImGui's last item does not give
 void value(const std::string& name, const std::string& text);  // a value a test reads (a text field's content)
 const std::map<std::string, ItemRect>& items();

@@ -43,8 +43,9 @@ KeyPairResult draw_key_pair_panel(KeyPairParams& p, const KeyPairSpec& spec, con
       if (ImGui::Selectable(name, p.interpolation == name)) p.interpolation = name;
     ImGui::EndCombo();
   }
-  tooltip("How the value moves from the first key to the second (Blender's keyframe interpolation; smooth eases in "
-          "and out)");
+  tooltip(
+      "How the value moves from the first key to the second (Blender's keyframe interpolation; smooth eases in "
+      "and out)");
   const std::string blocked = key_pair_blocked(p, unavailable);
   ImGui::BeginDisabled(!blocked.empty());
   if (ImGui::Button("Animate")) r.animate = blocked.empty();

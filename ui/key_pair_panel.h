@@ -12,9 +12,9 @@
 namespace trispline::ui {
 
 struct KeyPairParams {
-  int frame_from = 1, frame_to = 24;          // timeline frames of the two keys
-  double value_from = 0.0, value_to = 1.0;    // the keyed value there (any real: outside [0, 1] extrapolates)
-  std::string interpolation = "smooth";       // linear | constant | smooth (Blender's keyframe interpolation)
+  int frame_from = 1, frame_to = 24;        // timeline frames of the two keys
+  double value_from = 0.0, value_to = 1.0;  // the keyed value there (any real: outside [0, 1] extrapolates)
+  std::string interpolation = "smooth";     // linear | constant | smooth (Blender's keyframe interpolation)
 };
 
 // What the panel says about its value (labels and tooltips; the tool's words).

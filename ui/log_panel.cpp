@@ -1,10 +1,10 @@
 #include "ui/log_panel.h"
 
-#include "ui/theme.h"
-
 #include <imgui.h>
 
 #include <cstring>
+
+#include "ui/theme.h"
 
 namespace trispline::ui {
 

@@ -1,13 +1,13 @@
 #include "ui/overlays.h"
-#include "ui/param_widgets.h"
-
-#include "ui/theme.h"
 
 #include <imgui.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+
+#include "ui/param_widgets.h"
+#include "ui/theme.h"
 
 namespace trispline::ui {
 
@@ -144,7 +144,6 @@ double nice_ceiling(double v) {
     if (m * p >= v) return m * p;
   return 10 * p;
 }
-
 
 // A coloured legend square on the current line.
 void swatch(ImU32 color) {
@@ -346,16 +345,18 @@ void TimingOverlay::draw(const Rect& viewport) const {
       ImGui::TextColored(colors::dim, "(%zu points%s)", context_.silhouette_points,
                          context_.silhouette_running ? ", updating" : "");
     }
-    tooltip("Silhouettes of the volumes for the current view (seed section 7.3.3): CPU wall time of the last\n"
-            "extraction on a worker thread (singleton lookup, Newton steps, polylines, occlusion test). The view\n"
-            "stays interactive: a changed view or iso-level is extracted when the last extraction is done.");
+    tooltip(
+        "Silhouettes of the volumes for the current view (seed section 7.3.3): CPU wall time of the last\n"
+        "extraction on a worker thread (singleton lookup, Newton steps, polylines, occlusion test). The view\n"
+        "stays interactive: a changed view or iso-level is extracted when the last extraction is done.");
   }
 
   if (const std::string tiles = ddm_tiles_text(context_); !tiles.empty()) {
     ImGui::TextUnformatted(tiles.c_str());
-    tooltip("Tile layers drawn by GPU instancing: instances left out because they lie outside the view or face\n"
-            "away (objects without a deformation), and while the view moves only a share of the rest, so orbiting\n"
-            "stays fluid (full detail at rest; replay and recordings always draw every tile).");
+    tooltip(
+        "Tile layers drawn by GPU instancing: instances left out because they lie outside the view or face\n"
+        "away (objects without a deformation), and while the view moves only a share of the rest, so orbiting\n"
+        "stays fluid (full detail at rest; replay and recordings always draw every tile).");
   }
 
   if (context_.bounds_ms >= 0 || context_.certificate_ms >= 0) {
@@ -363,9 +364,10 @@ void TimingOverlay::draw(const Rect& viewport) const {
     ImGui::Text("guarantees  %8s", ms);
     ImGui::SameLine();
     ImGui::TextColored(colors::dim, "(%s)", context_.guarantees.c_str());
-    tooltip("View > Error bounds and Fold certificate (seed ch. 3): CPU wall time of the last computation for the\n"
-            "object shown — per-triangle certified error bounds (with the FFD of its vertices) and the lattice's\n"
-            "fold-free certificate. Recomputed only when the lattice changes (every step of a press drag).");
+    tooltip(
+        "View > Error bounds and Fold certificate (seed ch. 3): CPU wall time of the last computation for the\n"
+        "object shown — per-triangle certified error bounds (with the FFD of its vertices) and the lattice's\n"
+        "fold-free certificate. Recomputed only when the lattice changes (every step of a press drag).");
   }
 
   draw_graph(kGraphWidth, kGraphHeight);

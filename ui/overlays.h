@@ -7,14 +7,14 @@
 //  * draw_working_overlay(): the "Working..." box shown for one frame before a long synchronous command runs.
 #pragma once
 
-#include "ui/frame_timings.h"
-#include "ui/layout.h"
-
 #include <cstddef>
 #include <deque>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "ui/frame_timings.h"
+#include "ui/layout.h"
 
 namespace trispline::ui {
 

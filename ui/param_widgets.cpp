@@ -1,13 +1,13 @@
 #include "ui/param_widgets.h"
 
-#include "ui/gui_probe.h"
-#include "ui/number_field.h"
-
 #include <imgui.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+
+#include "ui/gui_probe.h"
+#include "ui/number_field.h"
 
 namespace trispline::ui {
 
@@ -105,9 +105,12 @@ bool param_widget(const ParamWidget& w, void* value) {
           const bool picked = ImGui::Selectable(choices[i].c_str(), int(i) == index);
           probe::item(w.scope + "." + w.doc->name + "." + choices[i]);
           if (picked && int(i) != index) {
-            if (w.choice_member == 0) *static_cast<std::string*>(value) = choices[i];
-            else if (w.choice_member == 1) *static_cast<int*>(value) = int(i);
-            else *static_cast<bool*>(value) = i == 1;
+            if (w.choice_member == 0)
+              *static_cast<std::string*>(value) = choices[i];
+            else if (w.choice_member == 1)
+              *static_cast<int*>(value) = int(i);
+            else
+              *static_cast<bool*>(value) = i == 1;
             committed = true;
           }
         }

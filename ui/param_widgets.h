@@ -37,8 +37,8 @@ template <class P>
 bool param_widget(const core::ParamSchema<P>& schema, const std::string& name, P& params) {
   const auto* f = schema.find(name);
   if (!f || !f->member) return false;
-  ParamWidget w{schema.id(), &f->doc, f->label, f->kind, f->range, &f->choices, int(f->choice_member), f->ui_step,
-                f->ui_format};
+  ParamWidget w{schema.id(),           &f->doc,    f->label,    f->kind, f->range, &f->choices,
+                int(f->choice_member), f->ui_step, f->ui_format};
   return param_widget(w, f->member(params));
 }
 

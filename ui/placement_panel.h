@@ -4,11 +4,11 @@
 // switch). The tool decides what a committed edit means.
 #pragma once
 
-#include "core/commands/place_sketch.h"
-#include "ui/curve_editor.h"
-
 #include <string>
 #include <vector>
+
+#include "core/commands/place_sketch.h"
+#include "ui/curve_editor.h"
 
 namespace trispline::ui {
 

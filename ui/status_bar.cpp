@@ -1,10 +1,10 @@
 #include "ui/status_bar.h"
 
-#include "ui/theme.h"
-
 #include <imgui.h>
 
 #include <algorithm>
+
+#include "ui/theme.h"
 
 namespace trispline::ui {
 

@@ -1,14 +1,13 @@
 #include "ui/tool_panel.h"
 
-#include "core/commands/lattice_set_point.h"
-
-#include "ui/gui_probe.h"
-#include "ui/number_field.h"
-#include "ui/theme.h"
-
 #include <imgui.h>
 
 #include <algorithm>
+
+#include "core/commands/lattice_set_point.h"
+#include "ui/gui_probe.h"
+#include "ui/number_field.h"
+#include "ui/theme.h"
 
 namespace trispline::ui {
 
@@ -34,8 +33,8 @@ bool begin_tool_panel(const Rect& rect, const std::vector<ToolEntry>& tools, int
 void end_tool_panel() { ImGui::End(); }
 
 nlohmann::json set_point_line(const std::string& object, const int index[3], const double position[3]) {
-  return core::LatticeSetPointCommand::schema().to_json(core::LatticeSetPointParams{
-      object, {index[0], index[1], index[2]}, {position[0], position[1], position[2]}});
+  return core::LatticeSetPointCommand::schema().to_json(
+      core::LatticeSetPointParams{object, {index[0], index[1], index[2]}, {position[0], position[1], position[2]}});
 }
 
 std::optional<nlohmann::json> draw_control_point_section(const core::SceneObject& object, ControlPointState& st) {

@@ -2,14 +2,13 @@
 // it, the active tool's own parameters (drawn by the tool between begin_tool_panel() and end_tool_panel()).
 #pragma once
 
-#include "core/scene/scene.h"
-#include "ui/layout.h"
-
 #include <nlohmann/json.hpp>
-
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "core/scene/scene.h"
+#include "ui/layout.h"
 
 namespace trispline::ui {
 

@@ -10,9 +10,12 @@ namespace trispline::core {
 
 const char* interpolation_name(KeyInterpolation k) {
   switch (k) {
-    case KeyInterpolation::constant: return "constant";
-    case KeyInterpolation::smooth: return "smooth";
-    case KeyInterpolation::linear: break;
+    case KeyInterpolation::constant:
+      return "constant";
+    case KeyInterpolation::smooth:
+      return "smooth";
+    case KeyInterpolation::linear:
+      break;
   }
   return "linear";
 }
@@ -24,9 +27,16 @@ const ParamSchema<AnimTimelineParams>& AnimTimelineCommand::schema() {
   static const ParamSchema<P> s =
       ParamSchema<P>("anim.timeline", "Set the timeline's frame range and frame rate")
           // At least one frame per 100 s: below that, frame times overflow long before a timeline ends (1e-320 fps).
-          .field("fps", &P::fps).range(0.01, 240).unit("frames per second").help("Frame rate")
-          .field("start", &P::start).range(0, 100000).help("First frame")
-          .field("end", &P::end).range(0, 100000).help("Last frame, ≥ start")
+          .field("fps", &P::fps)
+          .range(0.01, 240)
+          .unit("frames per second")
+          .help("Frame rate")
+          .field("start", &P::start)
+          .range(0, 100000)
+          .help("First frame")
+          .field("end", &P::end)
+          .range(0, 100000)
+          .help("Last frame, ≥ start")
           .check([](const P& p) {
             if (!p.fps && !p.start && !p.end) params::fail("fps", "give at least one of fps, start, end");
           });
@@ -35,7 +45,8 @@ const ParamSchema<AnimTimelineParams>& AnimTimelineCommand::schema() {
 
 std::string AnimTimelineCommand::label() const {
   std::string s = "Timeline";
-  if (p_.start || p_.end) s += " frames " + (p_.start ? std::to_string(*p_.start) : "…") + "-" + (p_.end ? std::to_string(*p_.end) : "…");
+  if (p_.start || p_.end)
+    s += " frames " + (p_.start ? std::to_string(*p_.start) : "…") + "-" + (p_.end ? std::to_string(*p_.end) : "…");
   if (p_.fps) {
     char buf[32];
     std::snprintf(buf, sizeof buf, " at %g fps", *p_.fps);
@@ -50,8 +61,8 @@ void AnimTimelineCommand::redo(Scene& scene) {
   if (p_.start) t.frame_start = *p_.start;
   if (p_.end) t.frame_end = *p_.end;
   if (t.frame_end < t.frame_start)
-    throw CommandError("field 'end': the last frame (" + std::to_string(t.frame_end) +
-                           ") is before the first frame (" + std::to_string(t.frame_start) + ")",
+    throw CommandError("field 'end': the last frame (" + std::to_string(t.frame_end) + ") is before the first frame (" +
+                           std::to_string(t.frame_start) + ")",
                        p_.end ? "end" : "start");
   before_ = scene.timeline;
   scene.timeline = t;
@@ -89,13 +100,14 @@ std::vector<OffsetKey> keys_from_frames(const std::vector<glm::dvec3>& rows, boo
                                         KeyInterpolation interpolation, const char* field) {
   std::vector<OffsetKey> keys;
   for (const glm::dvec3& r : rows)
-    keys.push_back({timeline.time_of_frame(r.x), two ? glm::dvec3(r.y, r.z, 0.0) : glm::dvec3(r.y, 0.0, 0.0),
-                    interpolation});
+    keys.push_back(
+        {timeline.time_of_frame(r.x), two ? glm::dvec3(r.y, r.z, 0.0) : glm::dvec3(r.y, 0.0, 0.0), interpolation});
   std::sort(keys.begin(), keys.end(), [](const OffsetKey& a, const OffsetKey& b) { return a.time_s < b.time_s; });
   for (std::size_t i = 1; i < keys.size(); ++i)
     if (keys[i].time_s == keys[i - 1].time_s)
       throw CommandError(std::string("field '") + field + "': two keys on frame " +
-                             std::to_string(timeline.frame_of_time(keys[i].time_s)), field);
+                             std::to_string(timeline.frame_of_time(keys[i].time_s)),
+                         field);
   return keys;
 }
 
@@ -104,16 +116,30 @@ const ParamSchema<AnimKeyframeParams>& AnimKeyframeCommand::schema() {
   static const ParamSchema<P> s =
       ParamSchema<P>("anim.keyframe",
                      "Key (or delete a key of) an object's parameter offset along its path at a frame (seed §2.4.3)")
-          .field("object", &P::object).required().help("A deformed object (FFD or DFFD)")
-          .field("frame", &P::frame).required().magnitude_at_most(1e6).help("Timeline frame (may be fractional)")
-          .field("remove", &P::remove).write_unless_default().help("Delete the key at this frame instead")
+          .field("object", &P::object)
+          .required()
+          .help("A deformed object (FFD or DFFD)")
+          .field("frame", &P::frame)
+          .required()
+          .magnitude_at_most(1e6)
+          .help("Timeline frame (may be fractional)")
+          .field("remove", &P::remove)
+          .write_unless_default()
+          .help("Delete the key at this frame instead")
           .stop_if([](const P& p) { return p.remove; })
-          .field("offset", &P::offset).magnitude_at_most(1e6).unit("parameter units")
+          .field("offset", &P::offset)
+          .magnitude_at_most(1e6)
+          .unit("parameter units")
           .help("Parameter offset [du,dv,dw] at the key (or give \"u\")")
-          .field("u", &P::u).magnitude_at_most(1e6).unit("parameter units").help("The u offset alone")
+          .field("u", &P::u)
+          .magnitude_at_most(1e6)
+          .unit("parameter units")
+          .help("The u offset alone")
           .check([](P& p) {
-            if (p.offset) p.u.reset();  // "offset" wins
-            else if (!p.u) params::fail("offset", "missing (give \"offset\":[du,dv,dw] or \"u\":du)");
+            if (p.offset)
+              p.u.reset();  // "offset" wins
+            else if (!p.u)
+              params::fail("offset", "missing (give \"offset\":[du,dv,dw] or \"u\":du)");
           })
           .choice("interpolation", &P::interpolation, {"linear", "constant", "smooth"})
           .help("How the offset goes from this key to the next");
@@ -136,20 +162,21 @@ std::optional<SceneObject> AnimKeyframeCommand::build(const Scene& scene) {
   auto same = std::find_if(keys.begin(), keys.end(), [&](const OffsetKey& k) { return std::abs(k.time_s - t) < 1e-6; });
   if (p_.remove) {
     if (same == keys.end())
-      throw CommandError("field 'frame': object '" + p_.object + "' has no keyframe at frame " +
-                             std::to_string(p_.frame), "frame");
+      throw CommandError(
+          "field 'frame': object '" + p_.object + "' has no keyframe at frame " + std::to_string(p_.frame), "frame");
     keys.erase(same);
   } else if (same != keys.end()) {
     same->offset = p_.key_offset();
     same->interpolation = interpolation_of(p_.interpolation);
   } else {
-    const auto at = std::upper_bound(keys.begin(), keys.end(), t,
-                                     [](double x, const OffsetKey& k) { return x < k.time_s; });
+    const auto at =
+        std::upper_bound(keys.begin(), keys.end(), t, [](double x, const OffsetKey& k) { return x < k.time_s; });
     keys.insert(at, OffsetKey{t, p_.key_offset(), interpolation_of(p_.interpolation)});
   }
   const auto t0 = std::chrono::steady_clock::now();
   out.refresh();  // the t = 0 pose follows the keys
-  stats_ = {{"keys", keys.size()}, {"time_s", t},
+  stats_ = {{"keys", keys.size()},
+            {"time_s", t},
             {"ms_evaluate", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count()}};
   return out;
 }
@@ -161,21 +188,35 @@ const ParamSchema<AnimClipParams>& AnimClipCommand::schema() {
   static const ParamSchema<P> s =
       ParamSchema<P>("anim.clip",
                      "Attach a glTF animation clip (morph targets, skin) played before the FFD (two-level animation)")
-          .field("object", &P::object).required().help("Object loaded from the same file as the clip")
-          .field("remove", &P::remove).write_unless_default().help("Detach the object's clip instead")
+          .field("object", &P::object)
+          .required()
+          .help("Object loaded from the same file as the clip")
+          .field("remove", &P::remove)
+          .write_unless_default()
+          .help("Detach the object's clip instead")
           .stop_if([](const P& p) { return p.remove; })
-          .field("path", &P::path).required().path().help("glTF/GLB file holding the clip")
-          .field("clip", &P::clip).default_text("the first").help("Name of the clip in the file")
-          .field("speed", &P::speed).range(0, 100, true, false).help("Playback speed factor")
-          .field("start_frame", &P::start_frame).magnitude_at_most(1e6)
+          .field("path", &P::path)
+          .required()
+          .path()
+          .help("glTF/GLB file holding the clip")
+          .field("clip", &P::clip)
+          .default_text("the first")
+          .help("Name of the clip in the file")
+          .field("speed", &P::speed)
+          .range(0, 100, true, false)
+          .help("Playback speed factor")
+          .field("start_frame", &P::start_frame)
+          .magnitude_at_most(1e6)
           .help("Frame the clip starts at; default: the timeline's first frame")
-          .field("loop", &P::loop).help("Play the clip again after its end");
+          .field("loop", &P::loop)
+          .help("Play the clip again after its end");
   return s;
 }
 
 std::string AnimClipCommand::label() const {
   if (p_.remove) return "Remove clip from '" + p_.object + "'";
-  return "Clip '" + (p_.clip.empty() ? std::filesystem::path(p_.path).filename().string() : p_.clip) + "' on '" + p_.object + "'";
+  return "Clip '" + (p_.clip.empty() ? std::filesystem::path(p_.path).filename().string() : p_.clip) + "' on '" +
+         p_.object + "'";
 }
 
 std::optional<SceneObject> AnimClipCommand::build(const Scene& scene) {

@@ -49,9 +49,9 @@ class AnimTimelineCommand : public DeclaredCommand<AnimTimelineCommand, AnimTime
 struct AnimKeyframeParams {
   std::string object;
   double frame = 0;
-  bool remove = false;                // delete the key at `frame` instead
-  std::optional<glm::dvec3> offset;   // parameter units
-  std::optional<double> u;            // the u offset alone (kept as "u" in the log)
+  bool remove = false;               // delete the key at `frame` instead
+  std::optional<glm::dvec3> offset;  // parameter units
+  std::optional<double> u;           // the u offset alone (kept as "u" in the log)
   std::string interpolation = "linear";
   glm::dvec3 key_offset() const { return offset ? *offset : glm::dvec3(u ? *u : 0.0, 0.0, 0.0); }
 };

@@ -31,7 +31,7 @@ struct DdmAnimateParams {
   bool clear = false;  // remove the layer's animation before the fields below apply
   // "morph_tile" (one) or "morph_tiles" (one per tile) as given; {""} removes the metamorphosis; unset = kept.
   std::optional<std::vector<std::string>> morph;
-  std::vector<std::filesystem::path> morph_paths;   // per morph tile: the resolved file (parse), empty if none
+  std::vector<std::filesystem::path> morph_paths;      // per morph tile: the resolved file (parse), empty if none
   std::optional<std::vector<glm::dvec2>> alpha_keys;   // (frame, α)
   std::optional<std::vector<glm::dvec3>> offset_keys;  // (frame, du, dv)
   std::optional<glm::dvec2> offset_velocity;           // chart units per second

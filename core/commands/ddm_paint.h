@@ -60,12 +60,12 @@ int ddm_paint_tile_index(int cell_index, int row, int tile_count);
 
 struct DdmPaintParams {
   std::string object, layer;
-  DdmLayerSpec spec;                // the layer to create when the object has none of that name
-  bool spec_named = false;          // the line named any of spec's fields (they are logged back only then)
-  std::vector<glm::dvec2> stroke;   // #S × 2 viewport pixels
+  DdmLayerSpec spec;               // the layer to create when the object has none of that name
+  bool spec_named = false;         // the line named any of spec's fields (they are logged back only then)
+  std::vector<glm::dvec2> stroke;  // #S × 2 viewport pixels
   double radius_px = 0.0;
   bool erase = false;
-  std::optional<Camera> camera;     // the view the stroke was drawn in; unset = the scene's camera
+  std::optional<Camera> camera;  // the view the stroke was drawn in; unset = the scene's camera
 };
 
 class DdmPaintCommand : public ObjectSnapshotCommand<DdmPaintCommand, DdmPaintParams> {

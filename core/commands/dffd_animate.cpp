@@ -12,11 +12,18 @@ const ParamSchema<DffdAnimateParams>& DffdAnimateCommand::schema() {
   static const ParamSchema<P> s =
       ParamSchema<P>("dffd.animate",
                      "Key a DFFD's seam on the timeline: 0 the openings capped, 1 stitched (seed §6.3.2)")
-          .field("object", &P::object).required().help("An object split by dffd.split with openings cap or stitch")
-          .field("clear", &P::clear).write_unless_default().help("Remove the keys: the seam as dffd.split built it")
-          .field("stitch_keys", &P::stitch_keys).type_text("[[frame,s],…]").default_text("kept")
+          .field("object", &P::object)
+          .required()
+          .help("An object split by dffd.split with openings cap or stitch")
+          .field("clear", &P::clear)
+          .write_unless_default()
+          .help("Remove the keys: the seam as dffd.split built it")
+          .field("stitch_keys", &P::stitch_keys)
+          .type_text("[[frame,s],…]")
+          .default_text("kept")
           .help("[timeline frame, s] keys: s = 0 the openings as the obstacles leave them, 1 stitched at w_s")
-          .choice("interpolation", &P::interpolation, {"linear", "constant", "smooth"}).write_unless_default()
+          .choice("interpolation", &P::interpolation, {"linear", "constant", "smooth"})
+          .write_unless_default()
           .help("How this line's keys move to the next key")
           .check([](const P& p) { check_weight_keys(p.stitch_keys, p.clear, "stitch_keys", "stitched seam"); });
   return s;
@@ -32,8 +39,10 @@ std::optional<SceneObject> DffdAnimateCommand::build(const Scene& scene) {
     throw CommandError("field 'object': '" + p_.object + "' is not split by a DFFD (split it with dffd.split)",
                        "object");
   if (!object.dffd->seam)
-    throw CommandError("field 'object': '" + p_.object + "' was split with \"openings\":\"open\": its openings have no "
-                       "caps, so there is no seam to stitch (split it with openings cap or stitch)", "object");
+    throw CommandError("field 'object': '" + p_.object +
+                           "' was split with \"openings\":\"open\": its openings have no "
+                           "caps, so there is no seam to stitch (split it with openings cap or stitch)",
+                       "object");
   auto rig = std::make_shared<DffdRig>(*object.dffd);
   rig->stitch_keys.clear();
   if (p_.stitch_keys) {

@@ -30,7 +30,7 @@ struct DffdAnimateParams {
   std::string object;
   bool clear = false;
   std::optional<std::vector<glm::dvec2>> stitch_keys;  // (frame, s)
-  std::string interpolation = "linear";                 // "linear" | "constant" | "smooth"
+  std::string interpolation = "linear";                // "linear" | "constant" | "smooth"
 };
 
 class DffdAnimateCommand : public ObjectSnapshotCommand<DffdAnimateCommand, DffdAnimateParams> {

@@ -33,12 +33,22 @@ const ParamSchema<DffdCutParams>& DffdCutCommand::schema() {
   static const ParamSchema<P> s =
       ParamSchema<P>("dffd.cut",
                      "Cut a deformed object at a lattice parameter: C⁻¹ knots, exact mesh split, opening (seed §6.3)")
-          .field("object", &P::object).required().help("A deformed object (with an FFD), without a glTF clip")
-          .choice("axis", &P::axis, {"u", "v", "w"}).help("Lattice axis the cut plane is orthogonal to")
-          .field("at", &P::at).required().unit("parameter units").help("Parameter of the cut, inside the domain")
-          .field("gap", &P::gap).magnitude_at_most(100).unit("world units")
+          .field("object", &P::object)
+          .required()
+          .help("A deformed object (with an FFD), without a glTF clip")
+          .choice("axis", &P::axis, {"u", "v", "w"})
+          .help("Lattice axis the cut plane is orthogonal to")
+          .field("at", &P::at)
+          .required()
+          .unit("parameter units")
+          .help("Parameter of the cut, inside the domain")
+          .field("gap", &P::gap)
+          .magnitude_at_most(100)
+          .unit("world units")
           .help("How far the two sides move apart across the cut")
-          .field("eps", &P::eps).range(0, 1e-3, true, false).unit("parameter units")
+          .field("eps", &P::eps)
+          .range(0, 1e-3, true, false)
+          .unit("parameter units")
           .help("Cut vertices sit at at ∓ eps");
   return s;
 }
@@ -52,8 +62,10 @@ std::string DffdCutCommand::label() const {
 std::optional<SceneObject> DffdCutCommand::build(const Scene& scene) {
   const SceneObject& object = require_deformed_object(scene, p_.object);
   if (object.clip)
-    throw CommandError("field 'object': '" + p_.object + "' plays a glTF clip; cutting would break its vertex "
-                       "correspondence (remove the clip first)", "object");
+    throw CommandError("field 'object': '" + p_.object +
+                           "' plays a glTF clip; cutting would break its vertex "
+                           "correspondence (remove the clip first)",
+                       "object");
   const auto t0 = std::chrono::steady_clock::now();
   auto binding = std::make_shared<FfdBinding>(*object.ffd);
   Discontinuity disc;
@@ -70,7 +82,8 @@ std::optional<SceneObject> DffdCutCommand::build(const Scene& scene) {
     const double len = glm::length(b - a);
     if (!(len > 0.0))
       throw CommandError("field 'at': the lattice has no extent along " + std::string(kAxisNames[p_.axis]) +
-                         " at the cut, so the opening has no direction", "at");
+                             " at the cut, so the opening has no direction",
+                         "at");
     const glm::dvec3 d = (b - a) / len;
     open_discontinuity(binding->lattice, disc, -0.5 * p_.gap * d, 0.5 * p_.gap * d);
   }

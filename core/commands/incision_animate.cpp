@@ -12,18 +12,26 @@ const ParamSchema<IncisionAnimateParams>& IncisionAnimateCommand::schema() {
   using P = IncisionAnimateParams;
   static const ParamSchema<P> s =
       ParamSchema<P>("incision.animate", "Key an incision's opening on the timeline: 0 closed, 1 as drawn (seed §6.4)")
-          .field("object", &P::object).required().help("An object cut by incision.draw")
-          .field("clear", &P::clear).write_unless_default().help("Remove the keys: the incision shows fully open")
-          .field("opening_keys", &P::opening_keys).type_text("[[frame,s],…]").default_text("kept")
+          .field("object", &P::object)
+          .required()
+          .help("An object cut by incision.draw")
+          .field("clear", &P::clear)
+          .write_unless_default()
+          .help("Remove the keys: the incision shows fully open")
+          .field("opening_keys", &P::opening_keys)
+          .type_text("[[frame,s],…]")
+          .default_text("kept")
           .help("[timeline frame, s] keys: s = fraction of the drawn opening (0 closed, 1 as drawn)")
-          .choice("interpolation", &P::interpolation, {"linear", "constant", "smooth"}).write_unless_default()
+          .choice("interpolation", &P::interpolation, {"linear", "constant", "smooth"})
+          .write_unless_default()
           .help("How this line's keys move to the next key")
           .check([](const P& p) { check_weight_keys(p.opening_keys, p.clear, "opening_keys", "opening"); });
   return s;
 }
 
 std::string IncisionAnimateCommand::label() const {
-  return p_.clear && !p_.opening_keys ? "Open incision of '" + p_.object + "'" : "Animate incision of '" + p_.object + "'";
+  return p_.clear && !p_.opening_keys ? "Open incision of '" + p_.object + "'"
+                                      : "Animate incision of '" + p_.object + "'";
 }
 
 std::optional<SceneObject> IncisionAnimateCommand::build(const Scene& scene) {

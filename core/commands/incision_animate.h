@@ -29,7 +29,7 @@ struct IncisionAnimateParams {
   std::string object;
   bool clear = false;
   std::optional<std::vector<glm::dvec2>> opening_keys;  // (frame, s)
-  std::string interpolation = "linear";                  // "linear" | "constant" | "smooth"
+  std::string interpolation = "linear";                 // "linear" | "constant" | "smooth"
 };
 
 class IncisionAnimateCommand : public ObjectSnapshotCommand<IncisionAnimateCommand, IncisionAnimateParams> {

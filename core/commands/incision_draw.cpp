@@ -1,11 +1,10 @@
 #include "core/commands/incision_draw.h"
 
-#include "core/commands/codecs.h"
-
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 
+#include "core/commands/codecs.h"
 #include "core/raycast/ray_caster.h"
 
 namespace trispline::core {
@@ -14,19 +13,34 @@ const ParamSchema<IncisionParams>& incision_schema() {
   using I = IncisionParams;
   static const ParamSchema<I> s =
       ParamSchema<I>("incision", "The shape of an incision (seed §6.4, Eq. 6.2)")
-          .field("width", &I::width).required().above(0).unit("world units")
+          .field("width", &I::width)
+          .required()
+          .above(0)
+          .unit("world units")
           .help("How far the opening reaches across the cut (the lattice spans ±width)")
-          .field("depth", &I::depth).required().above(0).unit("world units")
+          .field("depth", &I::depth)
+          .required()
+          .above(0)
+          .unit("world units")
           .help("How deep below the surface the cut goes (along −N)")
-          .field("opening", &I::opening).at_least(0).unit("world units")
+          .field("opening", &I::opening)
+          .at_least(0)
+          .unit("world units")
           .help("Gap between the two cut faces at the surface, mid-stroke")
-          .field("walls", &I::walls).label("Walls")
+          .field("walls", &I::walls)
+          .label("Walls")
           .help("Build cut-depth walls (inside colour) so the surface stays closed; false leaves the cut open")
-          .field("order", &I::order).range(2, 4).label("Order").ui(0.05)
+          .field("order", &I::order)
+          .range(2, 4)
+          .label("Order")
+          .ui(0.05)
           .help("Order (= degree + 1) of the cutting lattice in u, v, w; order knots at u = 1/2 make the cut")
-          .choice("kernel", &I::kernel, {"gaussian", "bspline"}).label("Kernel")
+          .choice("kernel", &I::kernel, {"gaussian", "bspline"})
+          .label("Kernel")
           .help("κ: how the planes next to the cut follow it: truncated Gaussian or quadratic B-spline (§6.3.1)")
-          .field("wall_rows", &I::wall_rows).range(1, 32).help("Rows of wall quads from each rim to the bottom");
+          .field("wall_rows", &I::wall_rows)
+          .range(1, 32)
+          .help("Rows of wall quads from each rim to the bottom");
   return s;
 }
 
@@ -34,15 +48,21 @@ const ParamSchema<IncisionDrawParams>& IncisionDrawCommand::schema() {
   using P = IncisionDrawParams;
   static const ParamSchema<P> s =
       ParamSchema<P>("incision.draw", "Cut an incision drawn on a surface: width, depth, opening, walls (seed §6.4)")
-          .field("object", &P::object).required().help("An undeformed object (no ffd, dffd or clip)")
-          .field("stroke", &P::stroke).required().unit("pixels")
+          .field("object", &P::object)
+          .required()
+          .help("An undeformed object (no ffd, dffd or clip)")
+          .field("stroke", &P::stroke)
+          .required()
+          .unit("pixels")
           .help("Viewport points of the line's camera (else the scene camera), ≥ 2; each ray hits this object only")
           .check([](const P& p) {
             if (p.stroke.size() < 2) params::fail("stroke", "needs at least 2 points");
           })
-          .object("camera", &P::camera, camera_schema()).help("The view the stroke was drawn in (camera.set's fields)")
+          .object("camera", &P::camera, camera_schema())
+          .help("The view the stroke was drawn in (camera.set's fields)")
           .embed(&P::incision, incision_schema())
-          .field("controls", &P::controls).default_text("[7, clamp(#hits/3, order, 24), 5]")
+          .field("controls", &P::controls)
+          .default_text("[7, clamp(#hits/3, order, 24), 5]")
           .help("[l, m, n] before knot insertion: l, n odd in max(3, order)..31, m in order..64")
           .check([](const P& p) {
             if (!p.controls) return;
@@ -72,8 +92,10 @@ std::string IncisionDrawCommand::label() const {
 std::optional<SceneObject> IncisionDrawCommand::build(const Scene& scene) {
   const SceneObject* object = &require_object(scene, p_.object);
   if (object->morph && object->morph->animated())
-    throw CommandError("field 'object': '" + p_.object + "' has an animated incision opening; clear it first "
-                       "(incision.animate with \"clear\":true) and cut again", "object");
+    throw CommandError("field 'object': '" + p_.object +
+                           "' has an animated incision opening; clear it first "
+                           "(incision.animate with \"clear\":true) and cut again",
+                       "object");
   if (object->ffd || object->dffd || object->clip)
     throw CommandError("field 'object': '" + p_.object +
                            "' is deformed (FFD, DFFD or clip); incisions cut "

@@ -20,23 +20,22 @@
 // wall_rows outside 1..32 ("wall_rows").
 #pragma once
 
-#include <optional>
-
 #include <glm/glm.hpp>
+#include <optional>
 #include <vector>
 
 #include "core/commands/declared_command.h"
 #include "core/commands/snapshot_command.h"
-#include "core/scene/camera.h"
 #include "core/incision/incision.h"
+#include "core/scene/camera.h"
 
 namespace trispline::core {
 
 struct IncisionDrawParams {
   std::string object;
-  std::vector<glm::dvec2> stroke;     // #S × 2 viewport pixels
-  std::optional<Camera> camera;       // the view the stroke was drawn in; unset = the scene's camera
-  IncisionParams incision;            // width and depth are required in a line
+  std::vector<glm::dvec2> stroke;      // #S × 2 viewport pixels
+  std::optional<Camera> camera;        // the view the stroke was drawn in; unset = the scene's camera
+  IncisionParams incision;             // width and depth are required in a line
   std::optional<glm::ivec3> controls;  // (l, m, n) before knot insertion; unset = the defaults of IncisionParams
 };
 

@@ -1,8 +1,8 @@
 #include "core/commands/lattice_press.h"
 
 #include <chrono>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 namespace trispline::core {
@@ -27,15 +27,27 @@ const ParamSchema<LatticePressParams>& LatticePressCommand::schema() {
   static const ParamSchema<P> s =
       ParamSchema<P>("lattice.press",
                      "Press a placed object's lattice with a sphere swept along a path (seed §2.4.1, Fig. 2.7)")
-          .field("object", &P::object).required().help("A deformed object (with an FFD)")
-          .field("path", &P::path).required().unit("world units").help("Sphere centres along the sweep, ≥ 1")
+          .field("object", &P::object)
+          .required()
+          .help("A deformed object (with an FFD)")
+          .field("path", &P::path)
+          .required()
+          .unit("world units")
+          .help("Sphere centres along the sweep, ≥ 1")
           .check([](const P& p) {
             if (p.path.empty()) params::fail("path", "expected a non-empty array of [x,y,z] sphere centres");
           })
-          .field("radius", &P::radius).required().above(0).unit("world units").help("Sphere radius")
-          .field("strength", &P::strength).required().unit("world units")
+          .field("radius", &P::radius)
+          .required()
+          .above(0)
+          .unit("world units")
+          .help("Sphere radius")
+          .field("strength", &P::strength)
+          .required()
+          .unit("world units")
           .help("How far the contact points under the centre move along their columns; < 0 pulls")
-          .choice("falloff", &P::falloff, falloffs).help("Weight over the distance from the path, 1 at 0, 0 at radius")
+          .choice("falloff", &P::falloff, falloffs)
+          .help("Weight over the distance from the path, 1 at 0, 0 at radius")
           .field("keep_fold_free", &P::keep_fold_free)
           .help("Limit the strength (bisection) so that the pressed lattice stays certified fold-free (det J > 0)");
   return s;
@@ -88,9 +100,16 @@ const ParamSchema<LatticePullColumnParams>& LatticePullColumnCommand::schema() {
   static const ParamSchema<P> s =
       ParamSchema<P>("lattice.pull_column",
                      "Pull or push one contact control point and its column along V_P (seed §2.4.1)")
-          .field("object", &P::object).required().help("A deformed object (with an FFD)")
-          .field("column", &P::column).required().help("(i, j) of the contact control point")
-          .field("distance", &P::distance).required().unit("world units").help("Move along V_P; < 0 pushes");
+          .field("object", &P::object)
+          .required()
+          .help("A deformed object (with an FFD)")
+          .field("column", &P::column)
+          .required()
+          .help("(i, j) of the contact control point")
+          .field("distance", &P::distance)
+          .required()
+          .unit("world units")
+          .help("Move along V_P; < 0 pushes");
   return s;
 }
 

@@ -1,35 +1,54 @@
 #include "core/commands/lattice_ring.h"
 
-#include "core/commands/codecs.h"
-
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
 
+#include "core/commands/codecs.h"
 #include "core/mesh/tri_mesh.h"
 #include "core/spline/bspline_basis.h"
 
 namespace trispline::core {
 
-
 const ParamSchema<LatticeRingParams>& LatticeRingCommand::schema() {
   using P = LatticeRingParams;
   static const ParamSchema<P> s =
       ParamSchema<P>("lattice.ring", "Bind an object to a ring-shaped lattice, periodic along u (seed §4.5, Fig. 4.5)")
-          .field("object", &P::object).required().help("Object to bind; any previous FFD is replaced")
-          .field("center", &P::center).unit("world units").help("Centre of the ring, in the plane y = center.y")
-          .field("radius", &P::radius).required().above(0).unit("world units")
+          .field("object", &P::object)
+          .required()
+          .help("Object to bind; any previous FFD is replaced")
+          .field("center", &P::center)
+          .unit("world units")
+          .help("Centre of the ring, in the plane y = center.y")
+          .field("radius", &P::radius)
+          .required()
+          .above(0)
+          .unit("world units")
           .help("Radius of the ring's centre line; more than half the width")
-          .field("width", &P::width).at_least(0).unit("world units")
+          .field("width", &P::width)
+          .at_least(0)
+          .unit("world units")
           .help("Lattice size across the ring; 0 = the object's extent")
-          .field("height", &P::height).at_least(0).unit("world units").help("Lattice size up; 0 = the object's extent")
-          .field("span", &P::span).range(0, 1, false, true)
+          .field("height", &P::height)
+          .at_least(0)
+          .unit("world units")
+          .help("Lattice size up; 0 = the object's extent")
+          .field("span", &P::span)
+          .range(0, 1, false, true)
           .help("Fraction of the turn the object covers; 0 = its length / (2π·radius)")
-          .field("phase", &P::phase).unit("parameter units").help("u where the object starts (one turn = 1)")
-          .field("controls", &P::controls).range(2, 256).help("Control points per axis; u periodic, ≥ order")
-          .field("order", &P::order).range(2, 4).help("Order (= degree + 1) per axis")
-          .choice("length_axis", &P::length_axis, axis_names()).help("The object's axis laid along the ring (u)")
-          .choice("up_axis", &P::up_axis, axis_names()).help("The object's axis that points up (w)")
+          .field("phase", &P::phase)
+          .unit("parameter units")
+          .help("u where the object starts (one turn = 1)")
+          .field("controls", &P::controls)
+          .range(2, 256)
+          .help("Control points per axis; u periodic, ≥ order")
+          .field("order", &P::order)
+          .range(2, 4)
+          .help("Order (= degree + 1) per axis")
+          .choice("length_axis", &P::length_axis, axis_names())
+          .help("The object's axis laid along the ring (u)")
+          .choice("up_axis", &P::up_axis, axis_names())
+          .help("The object's axis that points up (w)")
           .check([](const P& p) {
             if (p.length_axis == p.up_axis)
               params::fail("up_axis", "must differ from length_axis ('" + p.length_axis + "')");

@@ -3,14 +3,14 @@
 //   {"cmd":"lattice.ring","object":"ID","center":[x,y,z],"radius":R,"width":W,"height":H,"span":s,"phase":u0,
 //    "controls":[nu,nv,nw],"order":[ou,ov,ow],"length_axis":"x|y|z","up_axis":"x|y|z"}
 // The ring lies in the plane y = center.y around the vertical axis through `center`; u runs from +x towards +z
-// (clockwise seen from +y), v outwards across the ring, w up (so det J > 0 and the object keeps its orientation). radius (world units) is the ring's centre line; width and height
-// (world units, default: the object's extents across / up) size the lattice. The object's length (its bounding box
-// along length_axis) covers u ∈ [phase, phase + span]; span defaults to length / (2π·radius), so the object keeps
-// its proportions. Knot vectors: u periodic uniform with nu control points (one period = one turn), v and w clamped
-// uniform. Orders = degree + 1 per axis (2..4: every FFD backend). Replaces any previous FFD of the object and
-// resets its parameter offset and offset velocity. Undo restores the object as it was.
-// Errors (CommandError, field named): unknown object, radius ≤ width/2 (the inner edge would cross the axis),
-// span ≥ 1 (longer than the ring), orders outside 2..4, controls < order, non-positive sizes.
+// (clockwise seen from +y), v outwards across the ring, w up (so det J > 0 and the object keeps its orientation).
+// radius (world units) is the ring's centre line; width and height (world units, default: the object's extents across /
+// up) size the lattice. The object's length (its bounding box along length_axis) covers u ∈ [phase, phase + span]; span
+// defaults to length / (2π·radius), so the object keeps its proportions. Knot vectors: u periodic uniform with nu
+// control points (one period = one turn), v and w clamped uniform. Orders = degree + 1 per axis (2..4: every FFD
+// backend). Replaces any previous FFD of the object and resets its parameter offset and offset velocity. Undo restores
+// the object as it was. Errors (CommandError, field named): unknown object, radius ≤ width/2 (the inner edge would
+// cross the axis), span ≥ 1 (longer than the ring), orders outside 2..4, controls < order, non-positive sizes.
 #pragma once
 
 #include "core/commands/declared_command.h"
@@ -22,11 +22,11 @@ namespace trispline::core {
 struct LatticeRingParams {
   std::string object;
   glm::dvec3 center{0.0};
-  double radius = 1.0;          // world units
-  double width = 0.0;           // world units; 0 = the object's extent across the ring
-  double height = 0.0;          // world units; 0 = the object's extent up
-  double span = 0.0;            // fraction of the turn covered by the object; 0 = length / (2π·radius)
-  double phase = 0.0;           // u where the object starts, parameter units (one turn = 1)
+  double radius = 1.0;  // world units
+  double width = 0.0;   // world units; 0 = the object's extent across the ring
+  double height = 0.0;  // world units; 0 = the object's extent up
+  double span = 0.0;    // fraction of the turn covered by the object; 0 = length / (2π·radius)
+  double phase = 0.0;   // u where the object starts, parameter units (one turn = 1)
   glm::ivec3 controls{16, 2, 2};
   glm::ivec3 order{4, 2, 2};
   std::string length_axis = "x";

@@ -16,7 +16,7 @@ namespace trispline::core {
 
 struct LatticeSetPointParams {
   std::string object;
-  glm::ivec3 index{0};      // (i, j, k) of the control point
+  glm::ivec3 index{0};       // (i, j, k) of the control point
   glm::dvec3 position{0.0};  // world units
 };
 

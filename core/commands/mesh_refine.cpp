@@ -1,10 +1,9 @@
 #include "core/commands/mesh_refine.h"
 
-#include "core/ffd/deformation_bounds.h"
-
 #include <chrono>
 #include <cmath>
 
+#include "core/ffd/deformation_bounds.h"
 
 namespace trispline::core {
 
@@ -12,22 +11,33 @@ const ParamSchema<MeshRefineParams>& MeshRefineCommand::schema() {
   using P = MeshRefineParams;
   static const ParamSchema<P> s =
       ParamSchema<P>("mesh.refine", "Refine a deformed object's mesh until its edges follow the FFD (seed §2.4.2)")
-          .field("object", &P::object).required().help("A deformed object (with an FFD), without a glTF clip")
-          .field("tolerance", &P::tolerance).required().above(0).unit("world units")
+          .field("object", &P::object)
+          .required()
+          .help("A deformed object (with an FFD), without a glTF clip")
+          .field("tolerance", &P::tolerance)
+          .required()
+          .above(0)
+          .unit("world units")
           .help("Largest distance of a deformed edge from its straight chord")
           .choice("criterion", &P::criterion, {"midpoint", "greville", "best"})
-          .help("midpoint: the seed's Eq. 2.6 estimate at edge midpoints; greville: a bound from the edge curve's "
-                "control points, split at the farthest one; best (with error bound): each triangle takes the split "
-                "(1 → 4, or its longest edge halved) whose children need the fewest triangles")
+          .help(
+              "midpoint: the seed's Eq. 2.6 estimate at edge midpoints; greville: a bound from the edge curve's "
+              "control points, split at the farthest one; best (with error bound): each triangle takes the split "
+              "(1 → 4, or its longest edge halved) whose children need the fewest triangles")
           .choice("error", &P::error, {"edge", "bound"})
-          .help("edge: hold each edge's measure (the criterion's) to the tolerance; bound: hold each triangle's "
-                "certified deformation-error bound (seed §3.2) to it, splitting where the criterion says")
-          .field("max_iterations", &P::max_iterations).range(0, 64).help("Split rounds at most")
+          .help(
+              "edge: hold each edge's measure (the criterion's) to the tolerance; bound: hold each triangle's "
+              "certified deformation-error bound (seed §3.2) to it, splitting where the criterion says")
+          .field("max_iterations", &P::max_iterations)
+          .range(0, 64)
+          .help("Split rounds at most")
           // A refined triangle costs ~400 bytes across the mesh, its FFD parameters, the evaluated copy and the edge
           // tables: 8 M triangles stay near 3 GiB (50 M reached 7 GB).
-          .field("max_triangles", &P::max_triangles).range(1, 8'000'000)
-          .help("The memory budget of a refinement: a round that would exceed it is not applied; ≥ the input's "
-                "triangles");
+          .field("max_triangles", &P::max_triangles)
+          .range(1, 8'000'000)
+          .help(
+              "The memory budget of a refinement: a round that would exceed it is not applied; ≥ the input's "
+              "triangles");
   return s;
 }
 
@@ -62,13 +72,16 @@ std::optional<SceneObject> MeshRefineCommand::build(const Scene& scene) {
                          "tolerance");
   }
   if (target->clip)
-    throw CommandError("field 'object': '" + p_.object + "' plays a glTF clip that animates its vertices; refining would "
-                       "break the clip's vertex correspondence (remove the clip with anim.clip \"remove\":true first)",
-                       "object");
+    throw CommandError(
+        "field 'object': '" + p_.object +
+            "' plays a glTF clip that animates its vertices; refining would "
+            "break the clip's vertex correspondence (remove the clip with anim.clip \"remove\":true first)",
+        "object");
   if (opts.criterion == RefineCriterion::Best && opts.error != RefineError::bound)
-    throw CommandError("field 'criterion': \"best\" chooses each split by the certified bound: use it with "
-                       "\"error\":\"bound\"",
-                       "criterion");
+    throw CommandError(
+        "field 'criterion': \"best\" chooses each split by the certified bound: use it with "
+        "\"error\":\"bound\"",
+        "criterion");
   if (opts.error == RefineError::bound) {
     try {
       SecondDerivativeBounds check(target->ffd->lattice);

@@ -21,30 +21,40 @@ const ParamSchema<MeshSubdivideParams>& MeshSubdivideCommand::schema() {
   static const ParamSchema<P> s =
       ParamSchema<P>("mesh.subdivide",
                      "Subdivide an object's rest mesh uniformly (Loop, OpenSubdiv), before deforming it")
-          .field("object", &P::object).required().help("An undeformed object without tile layers")
-          .field("levels", &P::levels).range(1, kMaxLevels).help("Subdivision levels; each quadruples the triangles")
-          .choice("scheme", &P::scheme, {"loop"}).help("Loop subdivision of the triangles (OpenSubdiv Far)");
+          .field("object", &P::object)
+          .required()
+          .help("An undeformed object without tile layers")
+          .field("levels", &P::levels)
+          .range(1, kMaxLevels)
+          .help("Subdivision levels; each quadruples the triangles")
+          .choice("scheme", &P::scheme, {"loop"})
+          .help("Loop subdivision of the triangles (OpenSubdiv Far)");
   return s;
 }
 
 std::string MeshSubdivideCommand::label() const {
-  return "Subdivide '" + p_.object + "' (Loop, " + std::to_string(p_.levels) + (p_.levels == 1 ? " level)" : " levels)");
+  return "Subdivide '" + p_.object + "' (Loop, " + std::to_string(p_.levels) +
+         (p_.levels == 1 ? " level)" : " levels)");
 }
 
 std::optional<SceneObject> MeshSubdivideCommand::build(const Scene& scene) {
   const SceneObject* object = &require_object(scene, p_.object);
   require_no_tile_layers(*object, "a subdivision");
-  const char* deformed = object->ffd ? "an FFD lattice" : object->dffd ? "a DFFD split" : object->clip ? "a glTF clip"
-                                                                                                      : nullptr;
+  const char* deformed = object->ffd    ? "an FFD lattice"
+                         : object->dffd ? "a DFFD split"
+                         : object->clip ? "a glTF clip"
+                                        : nullptr;
   if (deformed)
     throw CommandError("field 'object': '" + p_.object + "' has " + deformed + " bound to its vertices; subdivide " +
                            "before deforming (mesh.subdivide first, then place.sketch / lattice.ring / dffd.* / " +
-                           "anim.clip)", "object");
+                           "anim.clip)",
+                       "object");
   const TriMesh& rest = *object->rest_mesh;
   const std::size_t tris = rest.triangle_count() << (2 * p_.levels);
   if (tris > kMaxTriangles)
     throw CommandError("field 'levels': " + std::to_string(p_.levels) + " levels would make " + std::to_string(tris) +
-                           " triangles (at most " + std::to_string(kMaxTriangles) + ")", "levels");
+                           " triangles (at most " + std::to_string(kMaxTriangles) + ")",
+                       "levels");
   const auto t0 = std::chrono::steady_clock::now();
   TriMesh sub;
   try {

@@ -122,12 +122,22 @@ const ParamSchema<ObjectTransformParams>& ObjectTransformCommand::schema() {
   using P = ObjectTransformParams;
   static const ParamSchema<P> s =
       ParamSchema<P>("object.transform", "Set an object's location, rotation and scale (its lattice moves with it)")
-          .field("object", &P::object).required().help("Object id")
-          .field("translate", &P::translate).magnitude_at_most(kMaxTranslate).unit("world units")
-          .default_text("unchanged").help("Absolute location")
-          .field("rotate_deg", &P::rotate_deg).magnitude_at_most(kMaxRotateDeg).unit("degrees")
-          .default_text("unchanged").help("Absolute rotation about x, then y, then z (R = Rz·Ry·Rx)")
-          .field_as<ScaleCodec>("scale", &P::scale).range(0, kMaxScale, true, false).default_text("unchanged")
+          .field("object", &P::object)
+          .required()
+          .help("Object id")
+          .field("translate", &P::translate)
+          .magnitude_at_most(kMaxTranslate)
+          .unit("world units")
+          .default_text("unchanged")
+          .help("Absolute location")
+          .field("rotate_deg", &P::rotate_deg)
+          .magnitude_at_most(kMaxRotateDeg)
+          .unit("degrees")
+          .default_text("unchanged")
+          .help("Absolute rotation about x, then y, then z (R = Rz·Ry·Rx)")
+          .field_as<ScaleCodec>("scale", &P::scale)
+          .range(0, kMaxScale, true, false)
+          .default_text("unchanged")
           .help("Absolute scale per axis; an object with a lattice keeps the signs of its scale");
   return s;
 }
@@ -142,7 +152,8 @@ std::optional<SceneObject> ObjectTransformCommand::build(const Scene& scene) {
   if (p_.translate) t.translate = *p_.translate;
   if (p_.rotate_deg) t.rotate_deg = *p_.rotate_deg;
   if (p_.scale) t.scale = *p_.scale;
-  check_transform(Transform{t.translate, t.rotate_deg, p_.scale ? *p_.scale : glm::dvec3(1.0)});  // kept scales may be < 0
+  check_transform(
+      Transform{t.translate, t.rotate_deg, p_.scale ? *p_.scale : glm::dvec3(1.0)});  // kept scales may be < 0
   const auto t0 = std::chrono::steady_clock::now();
   SceneObject out = object_with_transform(*object, t);
   for (const glm::dvec3& p : out.world_mesh->positions)

@@ -2,10 +2,9 @@
 // value with the field named in its errors and writing it back; components() gives the numbers a range checks.
 #pragma once
 
+#include <cstdint>
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
-
-#include <cstdint>
 #include <string>
 #include <vector>
 

@@ -173,7 +173,8 @@ std::vector<glm::dvec3> Codec<std::vector<glm::dvec3>>::read(const nlohmann::jso
       pts.push_back(Codec<glm::dvec3>::read(v[i], field));
     } catch (const CommandError& e) {
       const std::string what = e.what(), prefix = "field '" + field + "': ";
-      fail(field, "point " + std::to_string(i) + ": " + (what.rfind(prefix, 0) == 0 ? what.substr(prefix.size()) : what));
+      fail(field,
+           "point " + std::to_string(i) + ": " + (what.rfind(prefix, 0) == 0 ? what.substr(prefix.size()) : what));
     }
   }
   return pts;

@@ -18,13 +18,12 @@
 // nested ParamSchema objects.
 #pragma once
 
-#include <glm/glm.hpp>
-#include <nlohmann/json.hpp>
-
 #include <cstdint>
 #include <functional>
-#include <memory>
+#include <glm/glm.hpp>
 #include <limits>
+#include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <type_traits>
@@ -65,7 +64,7 @@ std::string choices_text(const std::vector<std::string>& choices);  // "x|y|z"
 // "must be in [2, 8] (pixels)", "must be > 0", "|value| must be ≤ 100 (degrees)"; for one of several components
 // "component y = -1: must be ...".
 std::string range_error(const ParamRange& r, const std::string& unit, double value, int component, int components);
-std::string format_number(double x);                                // shortest text that reads back the same
+std::string format_number(double x);  // shortest text that reads back the same
 // A path field's value made absolute against the log's folder; throws for an empty path.
 std::string resolve_path(const std::string& path, const std::string& field, const CommandContext& ctx);
 
@@ -105,9 +104,9 @@ class ParamSchema {
  public:
   struct Field {
     ParamDoc doc;
-    std::string label;  // widget label ("Half-width"); empty = not shown by generic widgets
-    double ui_step = 0.0;     // drag speed per pixel; 0 = from the range
-    std::string ui_format;    // printf format of the widget ("%.3f"); empty = ImGui's
+    std::string label;      // widget label ("Half-width"); empty = not shown by generic widgets
+    double ui_step = 0.0;   // drag speed per pixel; 0 = from the range
+    std::string ui_format;  // printf format of the widget ("%.3f"); empty = ImGui's
     ParamKind kind = ParamKind::Other;
     ParamRange range;
     std::vector<std::string> choices;  // ParamKind::Choice: the allowed strings
@@ -116,12 +115,12 @@ class ParamSchema {
     ParamWrite write_mode = ParamWrite::Always;
     std::function<void(const Field&, const nlohmann::json&, P&, const CommandContext&)> read;  // value present
     std::function<void(const Field&, const P&, nlohmann::json&)> write;
-    std::function<void*(P&)> member;  // for widgets; null for composite fields
-    std::function<void(P&)> check;        // a check over several fields (no JSON field of its own); may normalise
-    std::function<bool(const P&)> stop;   // parse and to_json end here when it holds (e.g. "remove": true)
+    std::function<void*(P&)> member;         // for widgets; null for composite fields
+    std::function<void(P&)> check;           // a check over several fields (no JSON field of its own); may normalise
+    std::function<bool(const P&)> stop;      // parse and to_json end here when it holds (e.g. "remove": true)
     std::function<bool(const P&)> write_if;  // to_json writes the field only when this holds (null: always)
-    bool resolve_path = false;            // a string field holding a file path (see Ref::path())
-    std::vector<ParamDoc> nested_docs;    // a nested object's fields
+    bool resolve_path = false;               // a string field holding a file path (see Ref::path())
+    std::vector<ParamDoc> nested_docs;       // a nested object's fields
   };
 
   // Chained settings of the field just declared.
@@ -159,13 +158,21 @@ class ParamSchema {
     Ref& write_if(std::function<bool(const P&)> cond) { return f().write_if = std::move(cond), *this; }
     // Chains a declaration of the next field.
     template <class T>
-    Ref field(const std::string& name, T P::*m) { return s_.field(name, m); }
+    Ref field(const std::string& name, T P::*m) {
+      return s_.field(name, m);
+    }
     template <class Codec, class T>
-    Ref field_as(const std::string& name, T P::*m) { return s_.template field_as<Codec>(name, m); }
+    Ref field_as(const std::string& name, T P::*m) {
+      return s_.template field_as<Codec>(name, m);
+    }
     template <class Q>
-    Ref embed(Q P::*m, const ParamSchema<Q>& sub) { return s_.embed(m, sub); }
+    Ref embed(Q P::*m, const ParamSchema<Q>& sub) {
+      return s_.embed(m, sub);
+    }
     template <class Q>
-    Ref embed_named(Q P::*m, const ParamSchema<Q>& sub, bool P::*named) { return s_.embed_named(m, sub, named); }
+    Ref embed_named(Q P::*m, const ParamSchema<Q>& sub, bool P::*named) {
+      return s_.embed_named(m, sub, named);
+    }
     template <class T>
     Ref choice(const std::string& name, T P::*m, std::vector<std::string> choices) {
       return s_.choice(name, m, std::move(choices));
@@ -209,8 +216,10 @@ class ParamSchema {
   // A field of one of the supported types (see the header), or std::optional of one.
   template <class T>
   Ref field(const std::string& name, T P::*m) {
-    if constexpr (params::is_optional<T>::value) return field_as<params::Codec<typename T::value_type>>(name, m);
-    else return field_as<params::Codec<T>>(name, m);
+    if constexpr (params::is_optional<T>::value)
+      return field_as<params::Codec<typename T::value_type>>(name, m);
+    else
+      return field_as<params::Codec<T>>(name, m);
   }
 
   // A field read and written by `Codec` (read(json, field) → V, write(V) → json, type(), kind) instead of the
@@ -255,9 +264,9 @@ class ParamSchema {
   // A string field holding one of `choices` (the error lists them), or an int member holding the choice's index.
   template <class T>
   Ref choice(const std::string& name, T P::*m, std::vector<std::string> choices) {
-    static_assert(std::is_same_v<T, std::string> || std::is_same_v<T, int> || std::is_same_v<T, bool> ||
-                      std::is_enum_v<T>,
-                  "a choice fills a string, an index, an enum (choice i = enumerator i) or a bool (second = true)");
+    static_assert(
+        std::is_same_v<T, std::string> || std::is_same_v<T, int> || std::is_same_v<T, bool> || std::is_enum_v<T>,
+        "a choice fills a string, an index, an enum (choice i = enumerator i) or a bool (second = true)");
     Field f;
     f.doc.name = name;
     f.doc.type = params::choices_text(choices);
@@ -281,8 +290,10 @@ class ParamSchema {
       const std::string s = params::Codec<std::string>::read(v, self.doc.name);
       for (std::size_t i = 0; i < self.choices.size(); ++i) {
         if (self.choices[i] != s) continue;
-        if constexpr (std::is_same_v<T, std::string>) p.*m = s;
-        else p.*m = T(i);
+        if constexpr (std::is_same_v<T, std::string>)
+          p.*m = s;
+        else
+          p.*m = T(i);
         return;
       }
       params::fail(self.doc.name, "'" + s + "' is not one of " + params::choices_text(self.choices));
@@ -343,7 +354,8 @@ class ParamSchema {
         f.read = [m, shared](const Field&, const nlohmann::json& v, P& p, const CommandContext& ctx) {
           shared->read(*shared, v, p.*m, ctx);
         };
-      if (sf.write) f.write = [m, shared](const Field&, const P& p, nlohmann::json& line) { shared->write(*shared, p.*m, line); };
+      if (sf.write)
+        f.write = [m, shared](const Field&, const P& p, nlohmann::json& line) { shared->write(*shared, p.*m, line); };
       if (sf.member) f.member = [m, shared](P& p) { return shared->member(p.*m); };
       if (sf.check) f.check = [m, shared](P& p) { shared->check(p.*m); };
       if (sf.stop) f.stop = [m, shared](const P& p) { return shared->stop(p.*m); };

@@ -9,10 +9,10 @@
 // spacing not finite or |s| > 10 ("spacing"), non-finite clip_phase_s ("clip_phase_s").
 #pragma once
 
-#include "core/commands/declared_command.h"
-#include "core/commands/command.h"
-
 #include <vector>
+
+#include "core/commands/command.h"
+#include "core/commands/declared_command.h"
 
 namespace trispline::core {
 

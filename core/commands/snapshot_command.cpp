@@ -17,7 +17,8 @@ std::filesystem::path CommandContext::resolve_output(const std::string& path, co
     if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F) refuse("an output path must not hold control characters");
   const fs::path p(path);
   if (p.is_absolute())
-    refuse("'" + path + "' is absolute: a log writes only under its output folder (replay's --out, the scene's "
+    refuse("'" + path +
+           "' is absolute: a log writes only under its output folder (replay's --out, the scene's "
            "folder), so an output path is relative to it");
   std::error_code ec;
   const fs::path& dir = output_dir.empty() ? base_dir : output_dir;
@@ -38,7 +39,8 @@ std::filesystem::path CommandContext::resolve_output(const std::string& path, co
   fs::path prefix = root;
   for (; t != target.end(); ++t)
     if (prefix /= *t; fs::is_symlink(fs::symlink_status(prefix, ec)))
-      refuse("'" + path + "' goes through the dangling symlink '" + prefix.string() + "': a log writes only under its "
+      refuse("'" + path + "' goes through the dangling symlink '" + prefix.string() +
+             "': a log writes only under its "
              "output folder");
   return target;
 }
@@ -52,9 +54,9 @@ const SceneObject& require_object(const Scene& scene, const std::string& name, c
 const SceneObject& require_deformed_object(const Scene& scene, const std::string& name) {
   const SceneObject* o = &require_object(scene, name);
   if (!o->ffd)
-    throw CommandError("field 'object': '" + name +
-                           "' has no FFD lattice (place it with place.sketch or lattice.ring first)",
-                       "object");
+    throw CommandError(
+        "field 'object': '" + name + "' has no FFD lattice (place it with place.sketch or lattice.ring first)",
+        "object");
   return *o;
 }
 

@@ -51,11 +51,16 @@ class BasicSnapshotCommand : public Command {
     using Slots = SnapshotSlots<T>;
     if (!built_) run_build(scene);
     index_ = Slots::index_of(scene, target());
-    if (index_ >= 0) before_ = Slots::at(scene, index_);
-    else before_.reset();
-    if (after_ && before_) Slots::replace(scene, *after_);
-    else if (after_) Slots::insert(scene, *after_, -1);
-    else if (before_) Slots::remove(scene, target());
+    if (index_ >= 0)
+      before_ = Slots::at(scene, index_);
+    else
+      before_.reset();
+    if (after_ && before_)
+      Slots::replace(scene, *after_);
+    else if (after_)
+      Slots::insert(scene, *after_, -1);
+    else if (before_)
+      Slots::remove(scene, target());
   }
   void undo(Scene& scene) final {
     using Slots = SnapshotSlots<T>;

@@ -6,11 +6,16 @@ namespace trispline::core {
 
 const ParamSchema<VolumeIsoParams>& VolumeIsoCommand::schema() {
   using P = VolumeIsoParams;
-  static const ParamSchema<P> s =
-      ParamSchema<P>("volume.iso", "Set a volume's iso-level (the surface D = level)")
-          .field("object", &P::object).required().help("A volume")
-          .field("level", &P::level).required().magnitude_at_most(1e30).unit("volume units")
-          .label("Iso-level").help("Iso-level in the volume's units (HU for CT)");
+  static const ParamSchema<P> s = ParamSchema<P>("volume.iso", "Set a volume's iso-level (the surface D = level)")
+                                      .field("object", &P::object)
+                                      .required()
+                                      .help("A volume")
+                                      .field("level", &P::level)
+                                      .required()
+                                      .magnitude_at_most(1e30)
+                                      .unit("volume units")
+                                      .label("Iso-level")
+                                      .help("Iso-level in the volume's units (HU for CT)");
   return s;
 }
 

@@ -6,10 +6,9 @@
 // Conventions: chart parameters (u, v) ∈ [0,1]² (clamped); world units for S and height; tile space as ddm_tile.h.
 #pragma once
 
+#include <glm/glm.hpp>
 #include <memory>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "core/ddm/ddm_tile.h"
 #include "core/mesh/tri_mesh.h"
@@ -97,9 +96,9 @@ struct DdmInstance {
 //   (x', y') = R(rotate_deg) · diag(scale) · ((x, y) − ½) + ½ + shift,
 // then (u, v) = origin + size ⊙ (x', y') + offset (offset: the layer's texture-space animation, seed §5.4.2).
 struct DdmTileTransform {
-  glm::dvec2 scale{1.0};   // tile units per cell (1 = the tile fills its cell)
-  double rotate_deg = 0;   // degrees, counter-clockwise in (u, v)
-  glm::dvec2 shift{0.0};   // cell units
+  glm::dvec2 scale{1.0};      // tile units per cell (1 = the tile fills its cell)
+  double rotate_deg = 0;      // degrees, counter-clockwise in (u, v)
+  glm::dvec2 shift{0.0};      // cell units
   glm::dmat2 linear() const;  // R · diag(scale)
   glm::dvec2 apply(glm::dvec2 xy) const { return linear() * (xy - 0.5) + 0.5 + shift; }
   bool is_identity() const { return scale == glm::dvec2(1.0) && rotate_deg == 0 && shift == glm::dvec2(0.0); }

@@ -46,10 +46,10 @@ struct DdmLayer {
   std::vector<DdmTile> tiles;             // ≥ 1, canonical tile space (ddm_tile.h)
   DdmBaseKind base = DdmBaseKind::limit;
   DdmLayout layout = DdmLayout::rect;
-  glm::ivec2 counts{1, 1};   // cells per chart (n along u, m along v) when chart_counts is empty
+  glm::ivec2 counts{1, 1};                 // cells per chart (n along u, m along v) when chart_counts is empty
   std::optional<double> tile_size;         // world units: the size the chart counts were derived from (unset: counts)
   std::vector<glm::ivec2> chart_counts;    // empty, or per chart of the base: its own counts (layers laid by size)
-  double height = 0.1;       // world units per tile unit of w, along the base normal
+  double height = 0.1;                     // world units per tile unit of w, along the base normal
   std::optional<glm::vec3> color;          // the tiles' linear RGB in [0,1]³; unset: the object's colour
   DdmTileTransform transform;              // in the tile's texture space
   std::vector<DdmInstance> instances;      // the cells that hold a tile (order: as filled / painted)
@@ -88,8 +88,9 @@ TriMesh ddm_layer_mesh(const DdmLayer& layer, double time_s, const ProgressSink*
 
 // A copy of `layer` with `instances` (maps extended to the charts they reach, mesh at time 0): what ddm.paint makes.
 // Only instances `layer` does not hold are evaluated; the vertices of those it holds (matched in order, as painting
-// appends and erasing removes) are copied from its mesh — bit for bit what ddm_layer_mesh(result, 0) gives. Throws std::invalid_argument: an instance on a chart out of range or with a tile index out of range,
-// no surface to sample new charts from (uv layers are sampled whole).
+// appends and erasing removes) are copied from its mesh — bit for bit what ddm_layer_mesh(result, 0) gives. Throws
+// std::invalid_argument: an instance on a chart out of range or with a tile index out of range, no surface to sample
+// new charts from (uv layers are sampled whole).
 std::shared_ptr<DdmLayer> ddm_layer_with_instances(const DdmLayer& layer, std::vector<DdmInstance> instances);
 
 // Sets maps (every chart of `instances`, at `map_resolution`; a uv layer keeps its maps) and mesh of a layer whose

@@ -3,15 +3,15 @@
 // §5.4.1 (UV-space rasterisation, the 8-neighbour diffusion fill and the validity bitmap).
 #include "core/ddm/ddm_pn_maps.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <memory>
-#include <vector>
 #include <stdexcept>
 #include <string>
-
-#include <tbb/parallel_for.h>
+#include <vector>
 
 namespace trispline::core {
 namespace {
@@ -88,7 +88,8 @@ DdmMaps ddm_sample_maps(const DdmBase& base, const std::vector<int>& charts, glm
     const std::size_t slot = first_slot + k;
     for (int j = 0; j < rv; ++j)
       for (int i = 0; i < ru; ++i) {
-        const DdmSurfacePoint q = base.eval(fresh[k], static_cast<double>(i) / (ru - 1), static_cast<double>(j) / (rv - 1));
+        const DdmSurfacePoint q =
+            base.eval(fresh[k], static_cast<double>(i) / (ru - 1), static_cast<double>(j) / (rv - 1));
         float* s = maps.samples.data() + ((slot * rv + j) * ru + i) * F;
         put(s, 0, q.p), put(s, 1, q.n), put(s, 2, q.du), put(s, 3, q.dv), put(s, 4, q.dn_du), put(s, 5, q.dn_dv);
       }

@@ -11,10 +11,9 @@
 #pragma once
 
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <memory>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "core/ddm/ddm_base.h"
 #include "core/mesh/tri_mesh.h"
@@ -79,9 +78,9 @@ bool ddm_cell_valid(const DdmMaps& maps, const DdmInstance& cell);
 // chart without a slot): the stricter pruning of automatic UV atlases, whose many small charts leave many cells
 // mostly in the gaps between them, drawn over diffused samples.
 // True when the surface is continuous over the cell: P sampled at 5 × 5 points of it has no step between neighbours
-// above twice the step S_u·Δu (S_v·Δv) at the cell's centre predicts. A cell of an automatic UV atlas that straddles a seam (its charts' neighbours in UV
-// space are far apart on the surface) fails: its tile's vertices would land on two distant parts of the surface.
-// False for a chart without a slot.
+// above twice the step S_u·Δu (S_v·Δv) at the cell's centre predicts. A cell of an automatic UV atlas that straddles a
+// seam (its charts' neighbours in UV space are far apart on the surface) fails: its tile's vertices would land on two
+// distant parts of the surface. False for a chart without a slot.
 bool ddm_cell_continuous(const DdmMaps& maps, const DdmInstance& cell);
 bool ddm_cell_centre_valid(const DdmMaps& maps, const DdmInstance& cell);
 

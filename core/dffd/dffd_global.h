@@ -50,29 +50,29 @@ enum class DffdKernel { gaussian, bspline };
 double dffd_kernel(DffdKernel kernel, double d, double width);
 
 struct DffdObstacle {
-  std::string name;   // scene object id (messages, display)
-  TriMesh world_mesh; // world units, closed for exact cross-sections
+  std::string name;    // scene object id (messages, display)
+  TriMesh world_mesh;  // world units, closed for exact cross-sections
 };
 
 struct GlobalDffdParams {
-  int axis = 0;                     // world axis (0 = x, 1 = y, 2 = z) of the lattice's u: the travel direction
-  int w_axis = 1;                   // world axis of the lattice's w (the slicing planes W_k are orthogonal to it)
-  glm::ivec3 order{3, 3, 3};        // order (= degree + 1) per lattice axis u, v, w; 2..6
-  glm::ivec3 controls{12, 8, 8};    // control points per lattice axis before knot insertion; order..64
+  int axis = 0;                   // world axis (0 = x, 1 = y, 2 = z) of the lattice's u: the travel direction
+  int w_axis = 1;                 // world axis of the lattice's w (the slicing planes W_k are orthogonal to it)
+  glm::ivec3 order{3, 3, 3};      // order (= degree + 1) per lattice axis u, v, w; 2..6
+  glm::ivec3 controls{12, 8, 8};  // control points per lattice axis before knot insertion; order..64
   DffdKernel kernel = DffdKernel::gaussian;
-  double kernel_width = 0.0;        // world units, > 0 (the propagation reach along u)
+  double kernel_width = 0.0;  // world units, > 0 (the propagation reach along u)
   DffdOpenings openings = DffdOpenings::cap;
-  bool reject_fold = true;          // false: keep a folding lattice and report where (fold = warn)
-  double margin = -1.0;             // world units along u on both sides of the obstacles; < 0: 1.05 × kernel_width
-  double clearance = 0.0;           // world units kept between the wrapped object and the obstacle, ≥ 0
-  double eps = 1e-6;                // parameter units, cut vertices at u0 ∓ eps
-  std::optional<Aabb> box;          // explicit lattice box (world); every obstacle must lie inside it
-  glm::dvec3 offset{0.0};           // the object's parameter offset at t = 0 (for w_s)
+  bool reject_fold = true;  // false: keep a folding lattice and report where (fold = warn)
+  double margin = -1.0;     // world units along u on both sides of the obstacles; < 0: 1.05 × kernel_width
+  double clearance = 0.0;   // world units kept between the wrapped object and the obstacle, ≥ 0
+  double eps = 1e-6;        // parameter units, cut vertices at u0 ∓ eps
+  std::optional<Aabb> box;  // explicit lattice box (world); every obstacle must lie inside it
+  glm::dvec3 offset{0.0};   // the object's parameter offset at t = 0 (for w_s)
 };
 
 // A control point that breaks u-monotonicity: P(i+1, j, k).u ≤ P(i, j, k).u (seed Theorem 6).
 struct DffdFold {
-  glm::ivec3 index{0};   // (i, j, k) of the first of the pair
+  glm::ivec3 index{0};       // (i, j, k) of the first of the pair
   glm::dvec3 position{0.0};  // world position of P(i, j, k)
 };
 

@@ -23,9 +23,12 @@ bool inside_unit_box(const glm::dvec3& p) {
 
 const char* dffd_openings_name(DffdOpenings o) {
   switch (o) {
-    case DffdOpenings::open: return "open";
-    case DffdOpenings::stitch: return "stitch";
-    case DffdOpenings::cap: return "cap";
+    case DffdOpenings::open:
+      return "open";
+    case DffdOpenings::stitch:
+      return "stitch";
+    case DffdOpenings::cap:
+      return "cap";
   }
   return "open";
 }
@@ -59,8 +62,8 @@ void dffd_split(const DffdRig& rig, const TriMesh& rest_world, const glm::dvec3&
                 DffdApplyStats* stats) {
   const std::size_t nv = rest_world.vertex_count();
   if (rig.params.size() != nv)
-    throw std::invalid_argument("dffd_apply: the rig has " + std::to_string(rig.params.size()) +
-                                " parameters for " + std::to_string(nv) + " vertices");
+    throw std::invalid_argument("dffd_apply: the rig has " + std::to_string(rig.params.size()) + " parameters for " +
+                                std::to_string(nv) + " vertices");
   if (!std::isfinite(offset.x) || !std::isfinite(offset.y) || !std::isfinite(offset.z))
     throw std::invalid_argument("dffd_apply: parameter offset is not finite");
   if (!rest_world.normals.empty() && rest_world.normals.size() != nv)
@@ -146,8 +149,8 @@ void dffd_deform(const DffdRig& rig, MeshSplit& split, TriMesh& out, DffdApplySt
   const std::vector<glm::dvec3>& rest_nrm = split.mesh.normals;
   std::size_t outside = 0;
   if (rig.identity_outside) {
-    outside = ffd_evaluate_identity_outside(rig.lattice, rig.embedding, split.params, rest_nrm, out.positions,
-                                            out.normals);
+    outside =
+        ffd_evaluate_identity_outside(rig.lattice, rig.embedding, split.params, rest_nrm, out.positions, out.normals);
   } else if (!rest_nrm.empty()) {
     ffd_evaluate(rig.lattice, rig.embedding, split.params, rest_nrm, out.positions, out.normals);
   } else {
@@ -174,8 +177,8 @@ const TriMesh& DffdFrameEvaluator::evaluate(const DffdRig& rig, const TriMesh& r
   }
   const std::size_t nv = rest_world.vertex_count();
   if (rig.params.size() != nv)
-    throw std::invalid_argument("dffd_apply: the rig has " + std::to_string(rig.params.size()) +
-                                " parameters for " + std::to_string(nv) + " vertices");
+    throw std::invalid_argument("dffd_apply: the rig has " + std::to_string(rig.params.size()) + " parameters for " +
+                                std::to_string(nv) + " vertices");
   const bool with_normals = !rest_world.normals.empty();
   if (with_normals && rest_world.normals.size() != nv)
     throw std::invalid_argument("dffd_apply: normals must be empty or #V");
@@ -233,8 +236,8 @@ const TriMesh& DffdFrameEvaluator::evaluate(const DffdRig& rig, const TriMesh& r
   mesh_.face_material.swap(split_.mesh.face_material);
   mesh_.uvs.swap(split_.mesh.uvs);
   if (!with_normals) compute_vertex_normals(mesh_);
-  st.outside_vertices = static_cast<std::size_t>(std::count_if(split_.params.begin(), split_.params.end(),
-                                                               [](const glm::dvec3& p) { return !inside_unit_box(p); }));
+  st.outside_vertices = static_cast<std::size_t>(std::count_if(
+      split_.params.begin(), split_.params.end(), [](const glm::dvec3& p) { return !inside_unit_box(p); }));
   if (stats) *stats = st;
   return mesh_;
 }

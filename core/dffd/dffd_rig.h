@@ -21,8 +21,8 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <memory>
 #include <glm/glm.hpp>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -53,12 +53,12 @@ struct DffdRig {
   std::vector<glm::dvec3> params;              // #V × 3: E(world rest position) of every rest vertex
   std::vector<Discontinuity> discontinuities;  // applied in this order (dffd.split: sorted by u0)
   DffdOpenings openings = DffdOpenings::open;
-  double eps = 1e-6;                           // parameter units: cut vertices sit at u0 ∓ eps
-  bool identity_outside = true;                // outside [0,1]³ map by E⁻¹ instead of clamping
+  double eps = 1e-6;             // parameter units: cut vertices sit at u0 ∓ eps
+  bool identity_outside = true;  // outside [0,1]³ map by E⁻¹ instead of clamping
   // Display and report (not used by the evaluation):
-  std::vector<std::string> obstacles;          // obstacle object ids (dffd.split)
-  std::vector<glm::dvec3> fold_points;         // world positions of control points that broke u-monotonicity
-                                               // (seed Theorem 6) when dffd.split ran with "fold":"warn"
+  std::vector<std::string> obstacles;   // obstacle object ids (dffd.split)
+  std::vector<glm::dvec3> fold_points;  // world positions of control points that broke u-monotonicity
+                                        // (seed Theorem 6) when dffd.split ran with "fold":"warn"
   // The keyed seam (dffd.animate; scene_at_time freezes it with dffd_rig_at). Both seam states: openings cap or
   // stitch; null with open (there the caps are missing: another topology).
   std::shared_ptr<const DffdSeam> seam;
@@ -83,9 +83,9 @@ std::shared_ptr<const DffdRig> dffd_rig_at(const std::shared_ptr<const DffdRig>&
 
 // What one evaluation did.
 struct DffdApplyStats {
-  std::size_t cut_edges = 0;         // input edges cut, all discontinuities together
-  std::size_t cap_loops = 0;         // cross-section loops capped
-  std::size_t open_chains = 0;       // chains left uncapped (mesh not closed at a cut)
+  std::size_t cut_edges = 0;    // input edges cut, all discontinuities together
+  std::size_t cap_loops = 0;    // cross-section loops capped
+  std::size_t open_chains = 0;  // chains left uncapped (mesh not closed at a cut)
   std::size_t cap_triangles = 0;
   std::size_t outside_vertices = 0;  // vertices mapped by the identity (outside [0,1]³)
 };

@@ -1,14 +1,14 @@
 #include "core/ffd/deformation_bounds.h"
 
-#include <algorithm>
-#include <bit>
-#include <cstdint>
-#include <cmath>
-#include <stdexcept>
-#include <utility>
-
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+#include <utility>
 
 namespace trispline::core {
 
@@ -177,7 +177,8 @@ SecondDerivativeBounds::SecondDerivativeBounds(const TrivariateBSpline<glm::dvec
     for (double t : E.knots(a).knots())
       if (breaks_[a].empty() || breaks_[a].back() != t) breaks_[a].push_back(t);
   for (int a = 0; a < 3; ++a)
-    for (std::size_t i = 0; i + 1 < breaks_[a].size(); ++i) inv_size_[a].push_back(1.0 / (breaks_[a][i + 1] - breaks_[a][i]));
+    for (std::size_t i = 0; i + 1 < breaks_[a].size(); ++i)
+      inv_size_[a].push_back(1.0 / (breaks_[a][i + 1] - breaks_[a][i]));
   const std::size_t cells = cell_count();
   // Sub-levels: as many halvings (≤ 4) as the budget of sub-boxes over all levels allows.
   int top = 0;
@@ -196,7 +197,8 @@ SecondDerivativeBounds::SecondDerivativeBounds(const TrivariateBSpline<glm::dvec
     Net P(static_cast<std::size_t>(deg.x + 1) * (deg.y + 1) * (deg.z + 1));
     for (int k = 0; k <= deg.z; ++k)
       for (int j = 0; j <= deg.y; ++j)
-        for (int i = 0; i <= deg.x; ++i) P[net_index(deg, i, j, k)] = E.control_point(base.x + i, base.y + j, base.z + k);
+        for (int i = 0; i <= deg.x; ++i)
+          P[net_index(deg, i, j, k)] = E.control_point(base.x + i, base.y + j, base.z + k);
     glm::dvec3 size;
     for (int a = 0; a < 3; ++a) size[a] = breaks_[a][c[a] + 1] - breaks_[a][c[a]];
     // Breadth-first: the nets of level l, sub-box index sx + n (sy + n sz).
@@ -272,7 +274,7 @@ void SecondDerivativeBounds::for_boxes(const glm::dvec3& lo, const glm::dvec3& h
   for (c.z = first.z; c.z <= last.z; ++c.z)
     for (c.y = first.y; c.y <= last.y; ++c.y)
       for (c.x = first.x; c.x <= last.x; ++c.x) {
-        glm::ivec3 w;  // the stored cell
+        glm::ivec3 w;     // the stored cell
         glm::dvec2 t[3];  // the box in the cell's local [0,1] coordinates
         int level = top;
         for (int a = 0; a < 3; ++a) {
@@ -290,7 +292,8 @@ void SecondDerivativeBounds::for_boxes(const glm::dvec3& lo, const glm::dvec3& h
           }
         }
         const int n = 1 << level;
-        const std::size_t id = w.x + static_cast<std::size_t>(cells_.x) * (w.y + static_cast<std::size_t>(cells_.y) * w.z);
+        const std::size_t id =
+            w.x + static_cast<std::size_t>(cells_.x) * (w.y + static_cast<std::size_t>(cells_.y) * w.z);
         glm::ivec3 s0, s1;
         for (int a = 0; a < 3; ++a) {
           s0[a] = std::min(static_cast<int>(t[a].x * n), n - 1);
@@ -299,7 +302,8 @@ void SecondDerivativeBounds::for_boxes(const glm::dvec3& lo, const glm::dvec3& h
         for (int sz = s0.z; sz <= s1.z; ++sz)
           for (int sy = s0.y; sy <= s1.y; ++sy)
             for (int sx = s0.x; sx <= s1.x; ++sx)
-              fn(level, (id << (3 * level)) + sx + static_cast<std::size_t>(n) * (sy + static_cast<std::size_t>(n) * sz));
+              fn(level,
+                 (id << (3 * level)) + sx + static_cast<std::size_t>(n) * (sy + static_cast<std::size_t>(n) * sz));
       }
 }
 
@@ -312,7 +316,8 @@ glm::dmat3 SecondDerivativeBounds::over_box(const glm::dvec3& lo, const glm::dve
   return glm::dmat3(m[0], m[3], m[4], m[3], m[1], m[5], m[4], m[5], m[2]);
 }
 
-glm::dmat3 SecondDerivativeBounds::over_box_along(const glm::dvec3& lo, const glm::dvec3& hi, const glm::dvec3& n) const {
+glm::dmat3 SecondDerivativeBounds::over_box_along(const glm::dvec3& lo, const glm::dvec3& hi,
+                                                  const glm::dvec3& n) const {
   const glm::dvec3 an = glm::abs(n);
   std::array<double, 6> m{};
   for_boxes(lo, hi, [&](int level, std::size_t at) {
@@ -373,10 +378,14 @@ std::vector<double> triangle_error_bounds(const SecondDerivativeBounds& bounds, 
 
 const char* error_bound_name(ErrorBound m) {
   switch (m) {
-    case ErrorBound::right_triangle: return "right_triangle";
-    case ErrorBound::circumcircle: return "circumcircle";
-    case ErrorBound::enclosing_circle: return "enclosing_circle";
-    case ErrorBound::best: return "best";
+    case ErrorBound::right_triangle:
+      return "right_triangle";
+    case ErrorBound::circumcircle:
+      return "circumcircle";
+    case ErrorBound::enclosing_circle:
+      return "enclosing_circle";
+    case ErrorBound::best:
+      return "best";
   }
   return "?";
 }

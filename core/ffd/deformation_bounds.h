@@ -29,9 +29,8 @@
 #pragma once
 
 #include <array>
-#include <vector>
-
 #include <glm/glm.hpp>
+#include <vector>
 
 #include "core/spline/trivariate_bspline.h"
 
@@ -75,7 +74,7 @@ class SecondDerivativeBounds {
   std::array<std::vector<double>, 3> breaks_;  // distinct knots per axis: cell i of an axis is [breaks[i], breaks[i+1]]
   std::array<std::vector<double>, 3> inv_size_;  // 1 / (breaks[i+1] − breaks[i])
   glm::ivec3 cells_{0};
-  glm::bvec3 c0_{false};                        // order-2 axes
+  glm::bvec3 c0_{false};  // order-2 axes
   // The cell of x along axis a (upper: a point on a knot plane counts for the cell above); on a periodic axis an
   // unrolled index (cell + period · cells).
   int cell_index(int a, double x, bool upper) const;

@@ -36,13 +36,17 @@ struct AxisBasis {
   // Span search table (non-periodic axes): bucket b of the domain → the span at its lower end; find() then walks
   // at most a few knots, instead of a binary search per point (its branches mispredict on scattered points).
   const double* U = nullptr;
-  int last_span = 0;     // n − 1
+  int last_span = 0;  // n − 1
   double lo = 0.0, hi = 0.0, inv_width = 0.0;
   std::vector<int> bucket_span;
 
   explicit AxisBasis(const KnotVector& k)
-      : kv(&k), order(k.order()), period(k.period()), contiguous(k.period() == 0),
-        storage(2 * static_cast<std::size_t>(k.order())), index(k.order()) {
+      : kv(&k),
+        order(k.order()),
+        period(k.period()),
+        contiguous(k.period() == 0),
+        storage(2 * static_cast<std::size_t>(k.order())),
+        index(k.order()) {
     N = storage.data();
     dN = N + order;
     idx = index.data();
@@ -303,7 +307,6 @@ void for_each_chunk(const TrivariateBSpline<glm::dvec3>& F, std::size_t n, const
   });
 }
 
-
 }  // namespace
 
 Embedding embed_bounding_box(const std::vector<glm::dvec3>& rest_positions, const EmbeddingAxes& axes) {
@@ -404,10 +407,11 @@ std::size_t ffd_evaluate_identity_outside(const TrivariateBSpline<glm::dvec3>& F
                                 " normals for " + std::to_string(params.size()) + " parameters");
   out_positions.resize(params.size());
   if (with_normals) out_normals.resize(params.size());
-  ffd_evaluate_identity_outside(F, embedding, params.size(), params.data(), with_normals ? rest_normals.data() : nullptr,
-                                out_positions.data(), with_normals ? out_normals.data() : nullptr);
-  return static_cast<std::size_t>(std::count_if(params.begin(), params.end(),
-                                                [](const glm::dvec3& p) { return !inside_unit_cube(p); }));
+  ffd_evaluate_identity_outside(F, embedding, params.size(), params.data(),
+                                with_normals ? rest_normals.data() : nullptr, out_positions.data(),
+                                with_normals ? out_normals.data() : nullptr);
+  return static_cast<std::size_t>(
+      std::count_if(params.begin(), params.end(), [](const glm::dvec3& p) { return !inside_unit_cube(p); }));
 }
 
 TriMesh ffd_apply(const FfdBinding& binding, const TriMesh& rest_world) {

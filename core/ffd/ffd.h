@@ -8,11 +8,11 @@
 // Source: Sederberg & Parry 1986 (FFD); seed Eq. 2.1 (lattice), seed §4.3 (normals through the Jacobian).
 #pragma once
 
-#include "core/mesh/tri_mesh.h"
-#include "core/spline/trivariate_bspline.h"
-
 #include <glm/glm.hpp>
 #include <vector>
+
+#include "core/mesh/tri_mesh.h"
+#include "core/spline/trivariate_bspline.h"
 
 namespace trispline::core {
 
@@ -67,8 +67,7 @@ void ffd_evaluate(const TrivariateBSpline<glm::dvec3>& F, const Embedding& embed
 std::size_t ffd_evaluate_identity_outside(const TrivariateBSpline<glm::dvec3>& F, const Embedding& embedding,
                                           const std::vector<glm::dvec3>& params,
                                           const std::vector<glm::dvec3>& rest_normals,
-                                          std::vector<glm::dvec3>& out_positions,
-                                          std::vector<glm::dvec3>& out_normals);
+                                          std::vector<glm::dvec3>& out_positions, std::vector<glm::dvec3>& out_normals);
 
 // The same on raw arrays of `count` points (a sub-range of a mesh, arrays already sized by the caller):
 // params / out_positions count × 3; rest_normals and out_normals count × 3, or both null (positions only).

@@ -39,7 +39,7 @@ template <class T>
 using AVec = std::vector<T, Aligned64<T>>;
 
 constexpr std::size_t kChunkVertices = 8192;  // vertices binned together (a task; its outputs stay in L2)
-constexpr std::size_t kGatherGrain = 2048;  // vertices per task in gather mode
+constexpr std::size_t kGatherGrain = 2048;    // vertices per task in gather mode
 
 bool same_knots(const KnotVector& a, const KnotVector& b) {
   return a.order() == b.order() && a.period() == b.period() && a.knots() == b.knots();
@@ -206,7 +206,8 @@ void FfdFastEvaluator::Impl::build_tables(const TrivariateBSpline<glm::dvec3>& F
         for (int j = 0; j < o.y; ++j)
           for (int k = 0; k < o.z; ++k) {
             glm::dvec3 sum(0.0);
-            for (int i = 0; i < o.x; ++i) sum += C[0][a * o.x + i] * (P[F.index(idx[0][i], idx[1][j], idx[2][k])] - centre_d);
+            for (int i = 0; i < o.x; ++i)
+              sum += C[0][a * o.x + i] * (P[F.index(idx[0][i], idx[1][j], idx[2][k])] - centre_d);
             t1[a][j][k] = sum;
           }
       for (int a = 0; a < o.x; ++a)
@@ -309,9 +310,17 @@ void FfdFastEvaluator::evaluate(const glm::dvec3& param_offset) {
   const Outputs out{m.pos.data(), normals ? m.nrm.data() : nullptr};
   if (m.tables) {
     if (!m.binned) m.bin();
-    const BlockArrays ba{m.xu.data(), m.xv.data(), m.xw.data(), m.pu.data(),    m.pv.data(),   m.pw.data(),
-                         normals ? m.bnx.data() : nullptr,      normals ? m.bny.data() : nullptr,
-                         normals ? m.bnz.data() : nullptr,      m.index.data(), m.cell.data()};
+    const BlockArrays ba{m.xu.data(),
+                         m.xv.data(),
+                         m.xw.data(),
+                         m.pu.data(),
+                         m.pv.data(),
+                         m.pw.data(),
+                         normals ? m.bnx.data() : nullptr,
+                         normals ? m.bny.data() : nullptr,
+                         normals ? m.bnz.data() : nullptr,
+                         m.index.data(),
+                         m.cell.data()};
     const glm::ivec3 o(m.packed.axes[0].order, m.packed.axes[1].order, m.packed.axes[2].order);
     const BlockKernel fn = active_kernels()->kernel[o.x - 2][o.y - 2][o.z - 2][normals ? 1 : 0];
     const CellTables& ct = m.ct;

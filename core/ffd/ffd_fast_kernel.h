@@ -14,7 +14,7 @@
 namespace trispline::core {
 struct FfdPackedLattice;
 struct FfdPackedAxis;
-}
+}  // namespace trispline::core
 
 namespace trispline::core::ffd_fast_detail {
 

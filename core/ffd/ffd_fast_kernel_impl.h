@@ -130,7 +130,8 @@ inline void eval_jacobian(const float* C, vf x, vf y, vf z, vf P[3], vf Du[3], v
 
 // n' = cof(J_x)·m with m = N·n (N: the cell's normal matrix, row-major), normalised; the rest normal where
 // |n'| is 0 or not finite. cof(J_x) = [Dv×Dw, Dw×Du, Du×Dv] (columns).
-[[gnu::always_inline]] inline void map_normal(const float* N, const vf n[3], const vf Du[3], const vf Dv[3], const vf Dw[3], vf out[3]) {
+[[gnu::always_inline]] inline void map_normal(const float* N, const vf n[3], const vf Du[3], const vf Dv[3],
+                                              const vf Dw[3], vf out[3]) {
   const vf mx = N[0] * n[0] + N[1] * n[1] + N[2] * n[2];
   const vf my = N[3] * n[0] + N[4] * n[1] + N[5] * n[2];
   const vf mz = N[6] * n[0] + N[7] * n[1] + N[8] * n[2];
@@ -267,8 +268,8 @@ struct AxisLanes {
   if (a.uniform) {
     s = __builtin_convertvector((t - a.domain_min) * a.inv_uniform_len, vi);  // ≥ 0: truncation = floor
     s = s < S - 1 ? s : S - 1;
-    s += t < L.begin(s);                             // comparison lanes are −1 where true
-    s -= (s + 1 < S) & (t >= L.begin(s + 1));        // span_begin has S + 1 entries
+    s += t < L.begin(s);                       // comparison lanes are −1 where true
+    s -= (s + 1 < S) & (t >= L.begin(s + 1));  // span_begin has S + 1 entries
   } else {
     s = vi{};
     int step = 1;

@@ -41,8 +41,8 @@ FfdPackedLattice FfdPackedLattice::build(const TrivariateBSpline<glm::dvec3>& la
   const std::size_t expected =
       static_cast<std::size_t>(p.axes[0].count) * p.axes[1].count * static_cast<std::size_t>(p.axes[2].count);
   if (cps.size() != expected)
-    throw std::invalid_argument("FfdPackedLattice: " + std::to_string(cps.size()) + " control points, the knot vectors need " +
-                                std::to_string(expected));
+    throw std::invalid_argument("FfdPackedLattice: " + std::to_string(cps.size()) +
+                                " control points, the knot vectors need " + std::to_string(expected));
   Aabb box;
   for (const auto& q : cps) box.extend(q);
   p.bbox_min = box.lo;

@@ -1,10 +1,10 @@
 #include "core/ffd/fold_certificate.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
-
-#include <tbb/parallel_for.h>
 
 namespace trispline::core {
 
@@ -17,9 +17,11 @@ struct Bernstein {
   glm::ivec3 n{0};
   std::vector<T> c;
   Bernstein() = default;
-  explicit Bernstein(const glm::ivec3& degree) : n(degree), c(static_cast<std::size_t>(degree.x + 1) * (degree.y + 1) * (degree.z + 1)) {}
+  explicit Bernstein(const glm::ivec3& degree)
+      : n(degree), c(static_cast<std::size_t>(degree.x + 1) * (degree.y + 1) * (degree.z + 1)) {}
   std::size_t at(int i, int j, int k) const {
-    return static_cast<std::size_t>(i) + (n.x + 1) * (static_cast<std::size_t>(j) + (n.y + 1) * static_cast<std::size_t>(k));
+    return static_cast<std::size_t>(i) +
+           (n.x + 1) * (static_cast<std::size_t>(j) + (n.y + 1) * static_cast<std::size_t>(k));
   }
 };
 
@@ -54,7 +56,8 @@ Bernstein<R> convolve(const Bernstein<A>& a, const Bernstein<B>& b, Op op) {
         const A& x = a.c[a.at(i1, j1, k1)];
         for (int k2 = 0; k2 <= b.n.z; ++k2)
           for (int j2 = 0; j2 <= b.n.y; ++j2)
-            for (int i2 = 0; i2 <= b.n.x; ++i2) out.c[out.at(i1 + i2, j1 + j2, k1 + k2)] += op(x, b.c[b.at(i2, j2, k2)]);
+            for (int i2 = 0; i2 <= b.n.x; ++i2)
+              out.c[out.at(i1 + i2, j1 + j2, k1 + k2)] += op(x, b.c[b.at(i2, j2, k2)]);
       }
   return out;
 }
@@ -171,8 +174,8 @@ bool quick_fold_free(const std::vector<glm::dvec3>& P, const glm::ivec3& deg) {
   glm::dmat3 absM;
   for (int c = 0; c < 3; ++c) absM[c] = glm::abs(M[c]);
   for (int a = 0; a < 3; ++a) {
-    const glm::dvec3 mid = M * centre[a];                      // ≈ e_a
-    const glm::dvec3 rad = absM * (0.5 * (hi[a] - lo[a]));     // interval radius of column a of M·J
+    const glm::dvec3 mid = M * centre[a];                   // ≈ e_a
+    const glm::dvec3 rad = absM * (0.5 * (hi[a] - lo[a]));  // interval radius of column a of M·J
     // Outward slack for rounding in M and the products.
     const double slack = 1e-12 * (glm::length(mid) + glm::length(rad) + 1.0);
     double off = 0.0;
@@ -244,9 +247,12 @@ FoldVerdict judge(const Bernstein<double>& b, const glm::dvec3& lo, double size,
 
 const char* fold_verdict_name(FoldVerdict v) {
   switch (v) {
-    case FoldVerdict::fold_free: return "fold_free";
-    case FoldVerdict::fold: return "fold";
-    default: return "undecided";
+    case FoldVerdict::fold_free:
+      return "fold_free";
+    case FoldVerdict::fold:
+      return "fold";
+    default:
+      return "undecided";
   }
 }
 
@@ -256,7 +262,8 @@ FoldCertificate certify_fold_free(const TrivariateBSpline<glm::dvec3>& F, const 
   if (options.max_boxes == 0) throw std::invalid_argument("max_boxes must be at least 1");
   for (int a = 0; a < 3; ++a)
     if (F.knots(a).order() < 2)
-      throw std::invalid_argument("a fold-free certificate needs order ≥ 2 on every axis (a constant axis has det J = 0)");
+      throw std::invalid_argument(
+          "a fold-free certificate needs order ≥ 2 on every axis (a constant axis has det J = 0)");
   for (const glm::dvec3& p : F.control_points())
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
       throw std::invalid_argument("the control lattice has a non-finite control point");
@@ -305,8 +312,10 @@ FoldCertificate certify_fold_free(const TrivariateBSpline<glm::dvec3>& F, const 
   std::vector<std::size_t> mixed;
   std::size_t used = 0;
   for (std::size_t cell = 0; cell < count; ++cell) {
-    if (verdicts[cell].budget) mixed.push_back(cell);
-    else used += verdicts[cell].boxes;
+    if (verdicts[cell].budget)
+      mixed.push_back(cell);
+    else
+      used += verdicts[cell].boxes;
   }
   if (!mixed.empty()) {
     const std::size_t left = options.max_boxes > used ? options.max_boxes - used : 0;
@@ -344,7 +353,9 @@ FoldCertificate certify_fold_free(const TrivariateBSpline<glm::dvec3>& F, const 
     }
   }
   if (!std::isfinite(out.min_det_coefficient)) out.min_det_coefficient = 0.0;  // no cell needed the Bernstein test
-  out.verdict = !out.fold_cells.empty() ? FoldVerdict::fold : undecided ? FoldVerdict::undecided : FoldVerdict::fold_free;
+  out.verdict = !out.fold_cells.empty() ? FoldVerdict::fold
+                : undecided             ? FoldVerdict::undecided
+                                        : FoldVerdict::fold_free;
   return out;
 }
 

@@ -20,10 +20,9 @@
 #pragma once
 
 #include <cstddef>
+#include <glm/glm.hpp>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "core/spline/trivariate_bspline.h"
 
@@ -38,10 +37,10 @@ struct FoldCertificateOptions {
   // Try the quick sufficient test (first differences, Gershgorin) before the exact Bernstein form.
   bool quick_test = true;
   // The work budget: Bernstein boxes judged in all. Every cell first gets its quick test and its whole-cell box; the
-  // cells still mixed then share what is left evenly (at least 1 each). A box tangent to det J = 0 splits into 4^d boxes at depth d, so without it
-  // max_depth 12 on one tangent cell is 16.7 M boxes (minutes); a cell that spends its share is undecided. The share
-  // is per cell, so the verdicts do not depend on the thread count. 512 K tri-cubic boxes (729 coefficients, ~11 µs
-  // each on one core of the machine in docs/performance.md) take ~6 s on one core.
+  // cells still mixed then share what is left evenly (at least 1 each). A box tangent to det J = 0 splits into 4^d
+  // boxes at depth d, so without it max_depth 12 on one tangent cell is 16.7 M boxes (minutes); a cell that spends its
+  // share is undecided. The share is per cell, so the verdicts do not depend on the thread count. 512 K tri-cubic boxes
+  // (729 coefficients, ~11 µs each on one core of the machine in docs/performance.md) take ~6 s on one core.
   std::size_t max_boxes = std::size_t(1) << 19;
 };
 

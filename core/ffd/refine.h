@@ -36,12 +36,12 @@
 // Deterministic: same input → same output, bit for bit (per-edge work is independent; order is triangle order).
 #pragma once
 
-#include "core/ffd/ffd.h"
-#include "core/mesh/tri_mesh.h"
-
 #include <cstddef>
 #include <string>
 #include <vector>
+
+#include "core/ffd/ffd.h"
+#include "core/mesh/tri_mesh.h"
 
 namespace trispline::core {
 
@@ -56,25 +56,26 @@ RefineCriterion parse_refine_criterion(const std::string& name);
 const char* refine_criterion_name(RefineCriterion c);
 
 struct RefineOptions {
-  double tolerance = 0.01;                  // world units, > 0 and finite
-  RefineCriterion criterion = RefineCriterion::Greville;  // where an edge is split (and, with RefineError::edge, what marks it)
+  double tolerance = 0.01;  // world units, > 0 and finite
+  RefineCriterion criterion =
+      RefineCriterion::Greville;  // where an edge is split (and, with RefineError::edge, what marks it)
   RefineError error = RefineError::edge;
-  int max_iterations = 16;                  // split rounds, ≥ 0
-  std::size_t max_triangles = 2'000'000;    // a round that would exceed it is not applied; ≥ #F of the input
-  double min_split = 0.1;                   // Greville split parameter clamped to [min_split, 1 − min_split]; (0, 0.5]
-  glm::dvec3 param_offset{0.0};             // F is evaluated at params + param_offset (SceneObject::param_offset)
+  int max_iterations = 16;                // split rounds, ≥ 0
+  std::size_t max_triangles = 2'000'000;  // a round that would exceed it is not applied; ≥ #F of the input
+  double min_split = 0.1;                 // Greville split parameter clamped to [min_split, 1 − min_split]; (0, 0.5]
+  glm::dvec3 param_offset{0.0};           // F is evaluated at params + param_offset (SceneObject::param_offset)
 };
 
 struct RefineStats {
   std::size_t triangles_before = 0, triangles_after = 0;
   std::size_t vertices_before = 0, vertices_after = 0;
-  int iterations = 0;                 // split rounds applied
-  double max_midpoint_error = 0.0;    // Eq. 2.6 over the final edges, world units
-  double max_deviation_bound = 0.0;   // Greville measure (control points' distance from the chord), final edges
-  double max_triangle_bound = 0.0;    // RefineError::bound: the largest certified triangle bound, final triangles
-                                      // (+∞ where a triangle crosses a C⁰ knot plane); 0 otherwise
-  bool stopped_by_budget = false;     // edges were still over tolerance when a limit stopped the rounds
-  std::string stopped_by;             // "converged", "max_iterations" or "max_triangles"
+  int iterations = 0;                // split rounds applied
+  double max_midpoint_error = 0.0;   // Eq. 2.6 over the final edges, world units
+  double max_deviation_bound = 0.0;  // Greville measure (control points' distance from the chord), final edges
+  double max_triangle_bound = 0.0;   // RefineError::bound: the largest certified triangle bound, final triangles
+                                     // (+∞ where a triangle crosses a C⁰ knot plane); 0 otherwise
+  bool stopped_by_budget = false;    // edges were still over tolerance when a limit stopped the rounds
+  std::string stopped_by;            // "converged", "max_iterations" or "max_triangles"
 };
 
 struct RefineResult {

@@ -360,8 +360,8 @@ void ClipReader::read_instance(int node) {
     if (pos == prim.attributes.end()) throw MeshIoError(file + ": primitive without POSITION");
     const std::size_t n = gltf_read::accessor_layout(model, pos->second, "POSITION", path).count;
     if (n > gltf_read::kMaxMeshFileVertices - total_vertices)
-      throw MeshIoError(file + ": the file's meshes have more than " +
-                        std::to_string(gltf_read::kMaxMeshFileVertices) + " vertices (the limit for mesh files)");
+      throw MeshIoError(file + ": the file's meshes have more than " + std::to_string(gltf_read::kMaxMeshFileVertices) +
+                        " vertices (the limit for mesh files)");
     total_vertices += n;
     count += n;
   }

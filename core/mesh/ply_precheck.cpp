@@ -69,7 +69,7 @@ bool is_ply_number(std::string_view t, PlyKind kind) {
   const std::size_t dot = t.find('.');
   if (dot == std::string_view::npos) return all_digits(t);
   const std::string_view whole = t.substr(0, dot), fraction = t.substr(dot + 1);
-  if (whole.empty()) return all_digits(fraction);  // ".5"
+  if (whole.empty()) return all_digits(fraction);                          // ".5"
   return all_digits(whole) && (fraction.empty() || all_digits(fraction));  // "1." and "1.5"
 }
 
@@ -118,9 +118,9 @@ unsigned long long walk_ply_ascii(const std::filesystem::path& path, std::string
   auto value = [&](const PlyElement& e, unsigned long long i, PlyKind kind, bool first) {
     const std::string_view t = token();
     if (t.empty())
-      bad(e, i, "its line holds fewer values than the element's " + std::to_string(e.properties.size()) + " properties");
-    if (!is_ply_number(t, kind))
-      bad(e, i, "'" + std::string(t.substr(0, 24)) + "' is not " + kind_name(kind));
+      bad(e, i,
+          "its line holds fewer values than the element's " + std::to_string(e.properties.size()) + " properties");
+    if (!is_ply_number(t, kind)) bad(e, i, "'" + std::string(t.substr(0, 24)) + "' is not " + kind_name(kind));
     if (sink) {
       if (!first) sink->push_back(' ');
       sink->append(t);
@@ -176,8 +176,7 @@ unsigned long long walk_ply_ascii(const std::filesystem::path& path, std::string
 // With `out`, appends the bytes of the elements written back (written_back; anything after the last element is
 // not read).
 unsigned long long walk_ply_binary(const std::filesystem::path& path, std::string_view body,
-                                   const std::vector<PlyElement>& layout, const std::string& format,
-                                   std::string* out) {
+                                   const std::vector<PlyElement>& layout, const std::string& format, std::string* out) {
   const bool big = format == "binary_big_endian";
   std::size_t at = 0;
   unsigned long long values = 0;

@@ -1,14 +1,14 @@
 // Mass-spring relaxation of the contact surface (seed §2.3.2); see contact_springs.h for the model.
 #include "core/placement/contact_springs.h"
 
-#include "core/raycast/ray_caster.h"
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
 #include <string>
+
+#include "core/raycast/ray_caster.h"
 
 namespace trispline::core {
 
@@ -68,8 +68,7 @@ void validate_springs(const std::vector<glm::dvec3>& points, int l, int m, const
   require(std::isfinite(prm.mass) && prm.mass > 0.0, "mass must be positive");
   require(std::isfinite(prm.stiffness) && prm.stiffness > 0.0, "stiffness must be positive");
   require(std::isfinite(prm.damping) && prm.damping >= 0.0, "damping must be >= 0");
-  require(prm.angle_threshold_deg > 0.0 && prm.angle_threshold_deg < 180.0,
-          "angle_threshold_deg must be in (0, 180)");
+  require(prm.angle_threshold_deg > 0.0 && prm.angle_threshold_deg < 180.0, "angle_threshold_deg must be in (0, 180)");
   require(prm.max_steps >= 0, "max_steps must be >= 0");
   require(std::isfinite(prm.ray_height) && prm.ray_height > 0.0, "ray_height must be positive");
   for (size_t a = 0; a < N; ++a) {

@@ -38,8 +38,8 @@ void validate_profile_row(const std::vector<double>& row, const char* field) {
                                     std::to_string(row.size()) + ")");
   for (std::size_t i = 0; i < row.size(); ++i)
     if (!finite(row[i]) || row[i] <= 0.0)
-      throw PlacementError(field, "sample " + std::to_string(i) + " must be a finite factor > 0 (got " +
-                                      std::to_string(row[i]) + ")");
+      throw PlacementError(
+          field, "sample " + std::to_string(i) + " must be a finite factor > 0 (got " + std::to_string(row[i]) + ")");
 }
 
 // Piecewise-linear interpolation of samples taken uniformly over [0,1] (t clamped).

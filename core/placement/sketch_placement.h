@@ -43,16 +43,14 @@
 // the same inputs give bit-identical results.
 #pragma once
 
-#include <optional>
-
-#include "core/placement/contact_springs.h"
-
 #include <array>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "core/ffd/ffd.h"
+#include "core/placement/contact_springs.h"
 #include "core/raycast/ray_caster.h"
 #include "core/scene/camera.h"
 #include "core/scene/scene.h"
@@ -78,14 +76,14 @@ struct SketchPlacementParams {
   // contact_springs.h): each control point moves only along its column direction V_P (V for F1, the normal for F2)
   // and never below the scene under it, so the surface bridges gaps instead of sagging into them. Unset = off.
   std::optional<SpringParams> springs;
-  int samples_u = 32;                 // nu in [max(2, controls[0]), 4096]: contact samples along the stroke
-  int samples_v = 8;                  // nv in [max(2, controls[1]), 4096]: contact samples across the stroke
+  int samples_u = 32;  // nu in [max(2, controls[0]), 4096]: contact samples along the stroke
+  int samples_v = 8;   // nv in [max(2, controls[1]), 4096]: contact samples across the stroke
   PlacementVolume volume = PlacementVolume::Extrude;
   std::array<int, 3> order{4, 4, 2};     // per axis (u, v, w), = degree + 1, in [2, min(8, controls)]
   std::array<int, 3> controls{8, 4, 2};  // lattice control counts per axis (l, m, n), each in [2, 256]
   EmbeddingAxes axes;                    // object's length axis → u, up axis → w
-  bool evaluate_positions = true;  // false: leave SketchPlacementResult::positions empty (the caller evaluates,
-                                   // e.g. SceneObject::refresh with normals) instead of evaluating twice
+  bool evaluate_positions = true;        // false: leave SketchPlacementResult::positions empty (the caller evaluates,
+                                         // e.g. SceneObject::refresh with normals) instead of evaluating twice
 };
 
 struct PlacementStats {
@@ -127,8 +125,8 @@ class PlacementError : public std::runtime_error {
 // along params.stroke_px over the scene in `scene_rays` (committed; it must not contain the object itself).
 // Throws PlacementError for: stroke with < 2 points, zero length or non-finite points ("stroke"); an invalid camera
 // ("camera"); half_width or height ≤ 0 or non-finite ("width", "height"); samples < 2 or < controls in that axis
-// ("samples"); order outside [2, min(8, controls)], controls outside [2, 256] ("order", "controls"); bad axes ("axes"); empty or
-// non-finite positions ("object"); no ray hitting, or fewer than 50% ("stroke", with counts).
+// ("samples"); order outside [2, min(8, controls)], controls outside [2, 256] ("order", "controls"); bad axes ("axes");
+// empty or non-finite positions ("object"); no ray hitting, or fewer than 50% ("stroke", with counts).
 SketchPlacementResult place_along_stroke(const RayCaster& scene_rays, const SketchPlacementParams& params,
                                          const std::vector<glm::dvec3>& object_world_rest_positions);
 

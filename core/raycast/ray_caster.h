@@ -3,21 +3,21 @@
 // Deterministic: the same meshes and rays give the same hits.
 #pragma once
 
-#include "core/mesh/tri_mesh.h"
-
 #include <glm/glm.hpp>
 #include <memory>
 #include <optional>
 #include <vector>
 
+#include "core/mesh/tri_mesh.h"
+
 namespace trispline::core {
 
 struct RayHit {
-  double t = 0;             // distance along the (unit) direction, world units
-  glm::dvec3 position{0};   // world units
-  glm::dvec3 normal{0};     // unit geometric normal of the hit triangle, facing the ray origin
-  int geometry = -1;        // index of the mesh in the order it was added
-  int triangle = -1;        // triangle index within that mesh
+  double t = 0;            // distance along the (unit) direction, world units
+  glm::dvec3 position{0};  // world units
+  glm::dvec3 normal{0};    // unit geometric normal of the hit triangle, facing the ray origin
+  int geometry = -1;       // index of the mesh in the order it was added
+  int triangle = -1;       // triangle index within that mesh
 };
 
 // How much time Embree spends building the BVH: `high` (SAH with spatial splits; placement rays, the default) or

@@ -1,8 +1,7 @@
 #include "core/scene/camera.h"
 
-#include <glm/gtc/matrix_transform.hpp>
-
 #include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
 #include <stdexcept>
 
 namespace trispline::core {

@@ -8,8 +8,8 @@
 #include <cmath>
 #include <cstdint>
 #include <deque>
-#include <mutex>
 #include <limits>
+#include <mutex>
 #include <stdexcept>
 
 #include "core/ddm/ddm_pn_maps.h"
@@ -79,8 +79,10 @@ std::vector<int> host_triangles(const TriMesh& host, const std::vector<DdmSurfac
       const auto down = rays.intersect(p + reach * n, -n, 0.0, 2.0 * reach);
       const auto up = rays.intersect(p - reach * n, n, 0.0, 2.0 * reach);
       const double dd = down ? std::abs(down->t - reach) : 1e300, du = up ? std::abs(up->t - reach) : 1e300;
-      if (down && dd <= du) out[i] = down->triangle;
-      else if (up) out[i] = up->triangle;
+      if (down && dd <= du)
+        out[i] = down->triangle;
+      else if (up)
+        out[i] = up->triangle;
       else {  // nearest centroid (rare: a root further than 5 % of the diagonal from the mesh)
         double best = 1e300;
         for (std::size_t f = 0; f < host.triangles.size(); ++f) {
@@ -229,8 +231,10 @@ DdmLayerDeformation::DdmLayerDeformation(const SceneObject& object, const DdmLay
       if (!hosts_.empty()) x = hosts_[i].linear * x + hosts_[i].shift;
       const glm::dvec3 p = embedding_.apply(glm::dvec3(model_ * glm::dvec4(x, 1.0))) + offset_;
       for (const Discontinuity& d : object.dffd->discontinuities) {
-        if (p[d.axis] < d.u0) hi_[i][d.axis] = std::min(hi_[i][d.axis], d.u0 - eps);
-        else lo_[i][d.axis] = std::max(lo_[i][d.axis], d.u0 + eps);
+        if (p[d.axis] < d.u0)
+          hi_[i][d.axis] = std::min(hi_[i][d.axis], d.u0 - eps);
+        else
+          lo_[i][d.axis] = std::max(lo_[i][d.axis], d.u0 + eps);
       }
     }
   }
@@ -274,7 +278,8 @@ TriMesh DdmLayerDeformation::apply(const TriMesh& layer_mesh) const {
   });
   if (lattice_) {  // 3.
     std::vector<glm::dvec3> positions, mapped;
-    const std::vector<glm::dvec3> rest_normals = normals ? out.normals : std::vector<glm::dvec3>(n, glm::dvec3(0, 0, 1));
+    const std::vector<glm::dvec3> rest_normals =
+        normals ? out.normals : std::vector<glm::dvec3>(n, glm::dvec3(0, 0, 1));
     if (identity_outside_)
       ffd_evaluate_identity_outside(*lattice_, embedding_, params, rest_normals, positions, mapped);
     else

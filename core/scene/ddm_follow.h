@@ -53,13 +53,13 @@ class DdmLayerDeformation {
   const std::vector<DdmHostMap>& hosts() const { return hosts_; }
   // The lattice the tiles go through after the host maps and the transform (the object's FFD or DFFD lattice), or null.
   const TrivariateBSpline<glm::dvec3>* lattice() const { return lattice_; }
-  const Embedding& embedding() const { return embedding_; }  // world → parameter domain (with a lattice)
+  const Embedding& embedding() const { return embedding_; }    // world → parameter domain (with a lattice)
   glm::dvec3 offset() const { return offset_; }                // parameter units added after E (with a lattice)
   bool identity_outside() const { return identity_outside_; }  // DFFD: outside [0,1]³ map by E⁻¹
   // #instances parameter boxes [lo, hi] every vertex of the instance is clamped to (DFFD breaks), or empty.
   const std::vector<glm::dvec3>& param_lo() const { return lo_; }
   const std::vector<glm::dvec3>& param_hi() const { return hi_; }
-  const glm::dmat4& model() const { return model_; }          // the object's transform
+  const glm::dmat4& model() const { return model_; }  // the object's transform
   // The FfdBinding / DffdRig the lattice belongs to (null without a lattice): holding it keeps lattice() valid.
   const std::shared_ptr<const void>& lattice_owner() const { return keep_; }
 
@@ -73,7 +73,7 @@ class DdmLayerDeformation {
   std::vector<std::size_t> first_vertex_;  // #instances + 1: where each instance's vertices start in the layer mesh
   std::vector<DdmHostMap> hosts_;
   const TrivariateBSpline<glm::dvec3>* lattice_ = nullptr;
-  std::shared_ptr<const void> keep_;       // keeps the lattice's owner alive
+  std::shared_ptr<const void> keep_;  // keeps the lattice's owner alive
   Embedding embedding_;
   glm::dvec3 offset_{0.0};
   bool identity_outside_ = false;

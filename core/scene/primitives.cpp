@@ -299,7 +299,8 @@ std::vector<BSplineSurface<glm::dvec3>> teapot_body_patches() {
   // that of the patch corners; the same affine map applied to the control points moves the patches exactly.
   Aabb raw;  // Newell units, y up
   for (int p = 0; p < detail::kTeapotPatchCount; ++p)
-    for (int k : {0, 3, 12, 15}) raw.extend(glm::dvec3(0.0, detail::kTeapotVertices[detail::kTeapotPatches[p][k]][2], 0.0));
+    for (int k : {0, 3, 12, 15})
+      raw.extend(glm::dvec3(0.0, detail::kTeapotVertices[detail::kTeapotPatches[p][k]][2], 0.0));
   const double scale = 1.0 / raw.size().y;
   const KnotVector bezier(4, {0, 0, 0, 0, 1, 1, 1, 1});
   std::vector<BSplineSurface<glm::dvec3>> out;

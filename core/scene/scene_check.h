@@ -9,11 +9,11 @@
 // one pass over what the command actually built.
 #pragma once
 
-#include "core/scene/scene.h"
-
 #include <map>
 #include <set>
 #include <string>
+
+#include "core/scene/scene.h"
 
 namespace trispline::core {
 

@@ -2,10 +2,10 @@
 // Source: Piegl & Tiller ch. 3 (evaluation A3.1/A3.2), ch. 5 (knot insertion A5.1, Bézier decomposition A5.6).
 #pragma once
 
-#include "core/spline/knot_vector.h"
-
 #include <glm/glm.hpp>
 #include <vector>
+
+#include "core/spline/knot_vector.h"
 
 namespace trispline::core {
 
@@ -21,7 +21,7 @@ class BSplineCurve {
   const std::vector<T>& control_points() const { return cps_; }
   std::vector<T>& control_points() { return cps_; }
 
-  T eval(double t) const;                      // t clamped to the domain; throws std::invalid_argument if NaN
+  T eval(double t) const;  // t clamped to the domain; throws std::invalid_argument if NaN
   // out[d] = d-th derivative at t, d in [0, n_deriv]; out.size() == n_deriv + 1.
   std::vector<T> derivatives(double t, int n_deriv) const;
 

@@ -3,10 +3,10 @@
 // Source: Piegl & Tiller ch. 3.4 (A3.5, A3.6), ch. 5.3 (surface knot insertion).
 #pragma once
 
-#include "core/spline/knot_vector.h"
-
 #include <glm/glm.hpp>
 #include <vector>
+
+#include "core/spline/knot_vector.h"
 
 namespace trispline::core {
 
@@ -25,9 +25,13 @@ class BSplineSurface {
 
   // (u, v) are clamped to the domain; a NaN parameter throws std::invalid_argument.
   T eval(double u, double v) const;
-  struct FirstDerivatives { T value, du, dv; };
+  struct FirstDerivatives {
+    T value, du, dv;
+  };
   FirstDerivatives eval_first(double u, double v) const;
-  struct SecondDerivatives { T value, du, dv, duu, duv, dvv; };  // value and 1st/2nd partials
+  struct SecondDerivatives {
+    T value, du, dv, duu, duv, dvv;
+  };  // value and 1st/2nd partials
   SecondDerivatives eval_second(double u, double v) const;
   // Unit normal du × dv / |du × dv| (only for T = glm::dvec3, else throws std::logic_error); returns (0,0,0)
   // where the surface is degenerate.

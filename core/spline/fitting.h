@@ -2,10 +2,10 @@
 // Source: Piegl & Tiller ch. 9.4 (least-squares approximation); seed §2.3.1 (contact-surface re-fit).
 #pragma once
 
+#include <vector>
+
 #include "core/spline/bspline_curve.h"
 #include "core/spline/bspline_surface.h"
-
-#include <vector>
 
 namespace trispline::core {
 

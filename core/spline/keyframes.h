@@ -2,9 +2,8 @@
 // interpolation), shared by FFD parameter offsets (anim.keyframe) and DDM tile animation (ddm.animate).
 #pragma once
 
-#include <vector>
-
 #include <glm/glm.hpp>
+#include <vector>
 
 namespace trispline::core {
 
@@ -14,8 +13,8 @@ enum class KeyInterpolation { constant, linear, smooth };  // smooth = ease in/o
 // One keyframe of a keyed value: an object's parameter offset (anim.keyframe), a DDM layer's texture-space offset
 // or metamorphosis α (ddm.animate; α in offset.x). Keys are kept sorted by time, one per time.
 struct OffsetKey {
-  double time_s = 0;                 // scene time, seconds (anim.keyframe takes a frame and converts it)
-  glm::dvec3 offset{0.0};            // parameter units, like SceneObject::param_offset
+  double time_s = 0;       // scene time, seconds (anim.keyframe takes a frame and converts it)
+  glm::dvec3 offset{0.0};  // parameter units, like SceneObject::param_offset
   KeyInterpolation interpolation = KeyInterpolation::linear;
 };
 

@@ -46,7 +46,7 @@ SpanBasis<Real>::SpanBasis(const KnotVector& kv)
 template <class Real>
 int SpanBasis<Real>::locate(Real t, Real* x) const {
   if (period_ > 0) t -= std::floor(t);  // periodic: domain [0,1] is one period
-  t = t >= t0_ ? t : t0_;  // also maps NaN to t0
+  t = t >= t0_ ? t : t0_;               // also maps NaN to t0
   t = t <= t1_ ? t : t1_;
   int s;
   if (uniform_) {

@@ -49,7 +49,7 @@ class SpanBasis {
     return &dcoef_[static_cast<std::size_t>(slot) * order_ * order_];
   }
   int first_index(int slot) const { return first_[slot]; }
-  const std::vector<Real>& span_begins() const { return begin_; }          // #S + 1 (last = domain_max)
+  const std::vector<Real>& span_begins() const { return begin_; }         // #S + 1 (last = domain_max)
   const std::vector<Real>& inv_span_lengths() const { return inv_len_; }  // #S, 1 / span length
   const std::vector<int>& first_indices() const { return first_; }        // #S
   const std::vector<Real>& coefficient_table() const { return coef_; }    // #S·order·order, [slot][k][r]

@@ -9,11 +9,11 @@
 // Source: Piegl & Tiller ch. 3 generalised to three variables; knot insertion P&T A5.3 per axis.
 #pragma once
 
-#include "core/spline/knot_vector.h"
-
 #include <array>
 #include <glm/glm.hpp>
 #include <vector>
+
+#include "core/spline/knot_vector.h"
 
 namespace trispline::core {
 
@@ -25,8 +25,8 @@ class TrivariateBSpline {
   TrivariateBSpline(KnotVector ku, KnotVector kv, KnotVector kw, std::vector<T> control_points);
 
   const KnotVector& knots(int axis) const { return k_[axis]; }  // axis 0 = u, 1 = v, 2 = w
-  glm::ivec3 control_counts() const;                             // (l, m, n) stored (period on periodic axes)
-  glm::ivec3 orders() const;                                     // order per axis (= degree + 1)
+  glm::ivec3 control_counts() const;                            // (l, m, n) stored (period on periodic axes)
+  glm::ivec3 orders() const;                                    // order per axis (= degree + 1)
   std::size_t index(int i, int j, int k) const;
   const T& control_point(int i, int j, int k) const { return cps_[index(i, j, k)]; }
   T& control_point(int i, int j, int k) { return cps_[index(i, j, k)]; }

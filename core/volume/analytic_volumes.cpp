@@ -7,7 +7,8 @@ namespace trispline::core {
 
 double analytic_field(AnalyticVolume kind, const glm::dvec3& p, const AnalyticShape& s) {
   switch (kind) {
-    case AnalyticVolume::sphere: return s.sphere_radius - glm::length(p);
+    case AnalyticVolume::sphere:
+      return s.sphere_radius - glm::length(p);
     case AnalyticVolume::torus: {
       const double q = std::sqrt(p.x * p.x + p.y * p.y) - s.torus_major;
       return s.torus_minor - std::sqrt(q * q + p.z * p.z);
@@ -21,7 +22,8 @@ double analytic_field(AnalyticVolume kind, const glm::dvec3& p, const AnalyticSh
 }
 
 ScalarVolume make_analytic_volume(AnalyticVolume kind, int n, const AnalyticShape& shape) {
-  if (n < 4 || n > 1024) throw std::invalid_argument("analytic volume size must be 4…1024 samples, got " + std::to_string(n));
+  if (n < 4 || n > 1024)
+    throw std::invalid_argument("analytic volume size must be 4…1024 samples, got " + std::to_string(n));
   ScalarVolume v;
   v.dims = {n, n + n / 4, n - n / 5};
   v.values.resize(v.voxel_count());
@@ -41,9 +43,12 @@ ScalarVolume make_analytic_volume(AnalyticVolume kind, int n, const AnalyticShap
 
 const char* analytic_volume_name(AnalyticVolume kind) {
   switch (kind) {
-    case AnalyticVolume::sphere: return "sphere";
-    case AnalyticVolume::torus: return "torus";
-    case AnalyticVolume::sines: return "sines";
+    case AnalyticVolume::sphere:
+      return "sphere";
+    case AnalyticVolume::torus:
+      return "torus";
+    case AnalyticVolume::sines:
+      return "sines";
   }
   return "?";
 }

@@ -13,11 +13,11 @@ enum class AnalyticVolume { sphere, torus, sines };
 // Geometry of the analytic volumes in world millimetres. The grid spans the box [−extent, extent]³ with n, n + n/4 and
 // n − n/5 samples along x, y, z (anisotropic spacing on purpose), voxel (0,0,0) at the box's low corner.
 struct AnalyticShape {
-  double extent = 50.0;        // half-size of the sampled box, mm
+  double extent = 50.0;         // half-size of the sampled box, mm
   double sphere_radius = 30.0;  // sphere: D = radius − |p|, iso 0 is the sphere
   double torus_major = 28.0;    // torus about z: D = minor − dist(p, circle of `major` in z = 0)
   double torus_minor = 12.0;
-  double sines_period = 40.0;   // sines: D = sin(2πx/P)·sin(2πy/P)·sin(2πz/P)
+  double sines_period = 40.0;  // sines: D = sin(2πx/P)·sin(2πy/P)·sin(2πz/P)
 };
 
 // Samples the field on the grid (x fastest). Units "" (the values are mm for the distance fields). Throws

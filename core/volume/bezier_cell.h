@@ -31,9 +31,12 @@ inline void apply_axis(const Matrix<K>& m, const double* in, double* out) {
 
 template <int K>
 inline void apply(const Matrix<K>& m, const double* in, double* out, int axis) {
-  if (axis == 0) apply_axis<K, 0>(m, in, out);
-  else if (axis == 1) apply_axis<K, 1>(m, in, out);
-  else apply_axis<K, 2>(m, in, out);
+  if (axis == 0)
+    apply_axis<K, 0>(m, in, out);
+  else if (axis == 1)
+    apply_axis<K, 1>(m, in, out);
+  else
+    apply_axis<K, 2>(m, in, out);
 }
 
 // The same matrix along all three axes (tensor product): in → out (in may be overwritten).

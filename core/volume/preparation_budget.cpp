@@ -39,11 +39,11 @@ std::uint64_t preparation_bytes(const std::array<std::int64_t, 3>& dims, int ord
     longest = std::max(longest, n);
   }
   const std::uint64_t bins = static_cast<std::uint64_t>(kSingletonTableRows) * kSingletonTableColumns;
-  const std::uint64_t fixed = bins * 16 + 4 +               // bin offsets, counts, fill cursors, cone angles
-                              8 * bins * 8 +                // per-thread counts and cones while filing (8 threads)
+  const std::uint64_t fixed = bins * 16 + 4 +                // bin offsets, counts, fill cursors, cone angles
+                              8 * bins * 8 +                 // per-thread counts and cones while filing (8 threads)
                               kSingletonColumnProbes * 12 +  // the column radius' probe directions
-                              2 * 8 * longest +             // the prefilter's two line buffers (double)
-                              (1ull << 16);                 // histogram, column axes, headers
+                              2 * 8 * longest +              // the prefilter's two line buffers (double)
+                              (1ull << 16);                  // histogram, column axes, headers
   std::uint64_t total = mul(voxels, 4 + kPreparationBytesPerVoxel);
   total = add(total, mul(macros, 8));
   return add(total, fixed);
@@ -58,7 +58,8 @@ void check_preparation_budget(const std::string& source, const std::array<std::i
       std::to_string(dims[2]) + " samples needs " + mib(need) + " to prepare at order " + std::to_string(order) + " (" +
       std::to_string(4 + kPreparationBytesPerVoxel) +
       " bytes per sample: control point, singleton, lookup-table entry and its sort key), over the memory "
-      "budget of " + mib(budget_bytes) + "; crop or resample it first");
+      "budget of " +
+      mib(budget_bytes) + "; crop or resample it first");
 }
 
 }  // namespace trispline::core

@@ -12,7 +12,8 @@ std::vector<Chain> join_traces(const std::vector<Trace>& traces) {
   // the two solutions can differ by ~1e-5; distinct curves are never that close on a face at these residuals.
   constexpr double kCell = 1.0 / 256.0, kMatch = 1e-3;
   auto key_of = [](const glm::i64vec3& q) {
-    return static_cast<std::uint64_t>(q.x) * 0x9E3779B97F4A7C15ull ^ static_cast<std::uint64_t>(q.y) * 0xC2B2AE3D27D4EB4Full ^
+    return static_cast<std::uint64_t>(q.x) * 0x9E3779B97F4A7C15ull ^
+           static_cast<std::uint64_t>(q.y) * 0xC2B2AE3D27D4EB4Full ^
            static_cast<std::uint64_t>(q.z) * 0x165667B19E3779F9ull;
   };
   auto quantise = [](const glm::dvec3& x) {

@@ -65,7 +65,7 @@ std::uint64_t sat_add(std::uint64_t a, std::uint64_t b) {
 }
 std::uint64_t sat_mul(std::uint64_t a, std::uint64_t b) {
   return b != 0 && a > std::numeric_limits<std::uint64_t>::max() / b ? std::numeric_limits<std::uint64_t>::max()
-                                                                       : a * b;
+                                                                     : a * b;
 }
 
 std::string shape_text(const std::array<std::int64_t, 3>& dims) {
@@ -104,8 +104,8 @@ void check_index_to_world(const std::filesystem::path& path, const std::array<in
   for (int c = 0; c < 4; ++c)
     for (int r = 0; r < 3; ++r)
       if (!std::isfinite(m[c][r]))
-        fail(path, field + ": the voxel-to-world matrix holds " + format_number(m[c][r]) +
-                       " (column " + std::to_string(c) + ", row " + std::to_string(r) + " in millimetres): not finite");
+        fail(path, field + ": the voxel-to-world matrix holds " + format_number(m[c][r]) + " (column " +
+                       std::to_string(c) + ", row " + std::to_string(r) + " in millimetres): not finite");
   const glm::dmat3 a(m);
   // Singular relative to the axes' own lengths (a volume of 1 × 1000 × 1 mm voxels is not near singular).
   const double volume = glm::length(a[0]) * glm::length(a[1]) * glm::length(a[2]);
@@ -116,12 +116,13 @@ void check_index_to_world(const std::filesystem::path& path, const std::array<in
   for (int c = 0; c < 3; ++c) {
     const double spacing = glm::length(a[c]);
     if (!(spacing >= kMinVoxelSpacingMillimetres && spacing <= kMaxVoxelSpacingMillimetres))
-      fail(path, field + ": the voxel axis " + "ijk"[c] + " is " + format_number(spacing) +
-                     " mm long, outside the " + format_number(kMinVoxelSpacingMillimetres) + " to " +
-                     format_number(kMaxVoxelSpacingMillimetres) + " mm a voxel may span");
+      fail(path, field + ": the voxel axis " + "ijk"[c] + " is " + format_number(spacing) + " mm long, outside the " +
+                     format_number(kMinVoxelSpacingMillimetres) + " to " + format_number(kMaxVoxelSpacingMillimetres) +
+                     " mm a voxel may span");
   }
   for (int corner = 0; corner < 8; ++corner) {
-    const glm::dvec3 ijk((corner & 1) ? dims[0] - 1 : 0, (corner & 2) ? dims[1] - 1 : 0, (corner & 4) ? dims[2] - 1 : 0);
+    const glm::dvec3 ijk((corner & 1) ? dims[0] - 1 : 0, (corner & 2) ? dims[1] - 1 : 0,
+                         (corner & 4) ? dims[2] - 1 : 0);
     const glm::dvec3 w(m * glm::dvec4(ijk, 1.0));
     for (int r = 0; r < 3; ++r)
       if (!(std::abs(w[r]) <= kMaxVolumeWorldMillimetres))

@@ -12,11 +12,10 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <glm/glm.hpp>
 #include <limits>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "core/volume/scalar_volume.h"
 #include "core/volume/volume_io.h"

@@ -219,8 +219,7 @@ ScalarVolume load_inv3(const std::filesystem::path& path, const VolumeLoadOption
         have_plist = true;
         matrix_entry = folder_of(name) + header.matrix_file;
         voxels = checked_voxel_count(path, header.dims);
-        v.dims = {static_cast<int>(header.dims[0]), static_cast<int>(header.dims[1]),
-                  static_cast<int>(header.dims[2])};
+        v.dims = {static_cast<int>(header.dims[0]), static_cast<int>(header.dims[1]), static_cast<int>(header.dims[2])};
         v.index_to_world = glm::dmat4(1.0);
         for (int a = 0; a < 3; ++a) v.index_to_world[a][a] = header.spacing[a];
         check_index_to_world(path, v.dims, v.index_to_world, "main.plist's spacing (x, y, z millimetres)");

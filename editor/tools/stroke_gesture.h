@@ -5,7 +5,6 @@
 #pragma once
 
 #include <glm/glm.hpp>
-
 #include <vector>
 
 #include "core/scene/camera.h"
@@ -45,7 +44,7 @@ class StrokeGesture {
 
   bool drawing() const { return drawing_; }
   const std::vector<glm::dvec2>& points() const { return points_; }  // #S × 2 viewport pixels
-  const core::Camera& view() const { return view_; }                  // the view at mouse-down
+  const core::Camera& view() const { return view_; }                 // the view at mouse-down
   // The stroke, leaving the gesture empty.
   std::vector<glm::dvec2> take() {
     std::vector<glm::dvec2> out = std::move(points_);

@@ -1,5 +1,7 @@
 #include "editor/tools/toolbox.h"
 
+#include <imgui.h>
+
 #include "editor/tools/ddm_paint_tool.h"
 #include "editor/tools/dffd_tool.h"
 #include "editor/tools/incision_tool.h"
@@ -7,8 +9,6 @@
 #include "editor/tools/select_tool.h"
 #include "editor/tools/sketch_tool.h"
 #include "ui/tool_panel.h"
-
-#include <imgui.h>
 
 namespace trispline::editor {
 

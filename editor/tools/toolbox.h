@@ -3,11 +3,11 @@
 // viewport, view decorations and the status-bar hint.
 #pragma once
 
-#include "editor/tools/tool.h"
-#include "ui/layout.h"
-
 #include <memory>
 #include <vector>
+
+#include "editor/tools/tool.h"
+#include "ui/layout.h"
 
 namespace trispline::editor {
 
@@ -23,8 +23,8 @@ class Toolbox {
   Tool& tool() { return *tools_[active_]; }
   const Tool& tool() const { return *tools_[active_]; }
 
-  void draw_panel(const ui::Rect& rect);   // the docked Tool window
-  void handle_mouse(glm::dvec2 mouse_px);  // feeds ImGui's mouse state to the active tool
+  void draw_panel(const ui::Rect& rect);      // the docked Tool window
+  void handle_mouse(glm::dvec2 mouse_px);     // feeds ImGui's mouse state to the active tool
   void mouse_away() { tool().mouse_away(); }  // the viewport does not get the mouse this frame
   void decorate(gpu::ViewOptions& options) const { tool().decorate(options); }
   // The active tool's live lattice preview (Tool::live_preview), if any.

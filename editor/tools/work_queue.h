@@ -3,11 +3,11 @@
 // start of the next frame. Tools reach it through ToolContext::defer. Exceptions from an item go to the Log.
 #pragma once
 
-#include "ui/message_log.h"
-
 #include <deque>
 #include <functional>
 #include <string>
+
+#include "ui/message_log.h"
 
 namespace trispline::editor {
 

@@ -1,13 +1,13 @@
 // docs/commands.md's parameter tables are generated from the commands' declarations: the committed file must be
 // what `trispline commands --docs docs/commands.md` writes, and every declared command must have its table there.
-#include "editor/command_docs.h"
-#include "editor/command_registry.h"
-
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+
+#include "editor/command_docs.h"
+#include "editor/command_registry.h"
 
 namespace fs = std::filesystem;
 using namespace trispline;
@@ -50,9 +50,9 @@ TEST(CommandDocs, TableListsEachFieldWithDefaultRangeAndUnit) {
 TEST(CommandDocs, UnfinishedBlockIsAnError) {
   EXPECT_THROW(editor::with_generated_tables("<!-- params: camera.set -->\n", editor::CommandRegistry::builtin()),
                std::runtime_error);
-  EXPECT_THROW(editor::with_generated_tables("<!-- params: no.such -->\n<!-- /params -->",
-                                             editor::CommandRegistry::builtin()),
-               std::runtime_error);
+  EXPECT_THROW(
+      editor::with_generated_tables("<!-- params: no.such -->\n<!-- /params -->", editor::CommandRegistry::builtin()),
+      std::runtime_error);
 }
 
 }  // namespace

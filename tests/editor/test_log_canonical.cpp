@@ -2,9 +2,6 @@
 // error it raises), compared with tests/logs/canonical.txt. The file pins the log format: a change to a command's
 // fields, defaults, what to_json writes or an error message shows up here as a diff. After an intended change,
 // regenerate it with TRISPLINE_UPDATE_GOLDEN=1 and review the diff.
-#include "editor/command_log.h"
-#include "editor/command_registry.h"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,6 +10,9 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+
+#include "editor/command_log.h"
+#include "editor/command_registry.h"
 
 namespace fs = std::filesystem;
 using namespace trispline;
@@ -32,7 +32,8 @@ std::vector<fs::path> logs_in(const fs::path& dir) {
 // The source folder's absolute path is written as "$SRC", so the file does not depend on the checkout.
 std::string without_source_dir(std::string text) {
   const std::string src = fs::absolute(kSource).lexically_normal().string();
-  for (std::size_t at = text.find(src); at != std::string::npos; at = text.find(src, at)) text.replace(at, src.size(), "$SRC");
+  for (std::size_t at = text.find(src); at != std::string::npos; at = text.find(src, at))
+    text.replace(at, src.size(), "$SRC");
   return text;
 }
 
@@ -71,8 +72,11 @@ std::string mutated_lines() {
     where[cmd] = log.parent_path();
   });
   const std::vector<std::pair<const char*, nlohmann::json>> values = {
-      {"string", "x"}, {"-1", -1}, {"0", 0}, {"0.5", 0.5}, {"1e9", 1e9}, {"[]", nlohmann::json::array()},
-      {"[1,2]", {1, 2}}, {"{}", nlohmann::json::object()}, {"null", nullptr}, {"true", true}};
+      {"string", "x"},   {"-1", -1},
+      {"0", 0},          {"0.5", 0.5},
+      {"1e9", 1e9},      {"[]", nlohmann::json::array()},
+      {"[1,2]", {1, 2}}, {"{}", nlohmann::json::object()},
+      {"null", nullptr}, {"true", true}};
   std::ostringstream out;
   for (const auto& [cmd, line] : first) {
     const core::CommandContext ctx{where[cmd], {}};
@@ -103,7 +107,8 @@ std::string mutated_lines() {
 std::string canonical_lines() {
   std::ostringstream out;
   const editor::CommandRegistry& registry = editor::CommandRegistry::builtin();
-  for (const fs::path& dir : {kSource / "assets" / "scenes", kSource / "tests" / "logs", kSource / "tests" / "logs" / "hostile"}) {
+  for (const fs::path& dir :
+       {kSource / "assets" / "scenes", kSource / "tests" / "logs", kSource / "tests" / "logs" / "hostile"}) {
     for (const fs::path& log : logs_in(dir)) {
       const std::string name = fs::relative(log, kSource).generic_string();
       std::vector<editor::LogLine> lines;

@@ -1,14 +1,14 @@
 // `trispline replay LOG --out DIR` end to end on the default scene: final.png, scene.glb and report.json are
 // written, the glb holds every object's current mesh named by its id with the vertex order of the scene.
-#include "core/mesh/image_io.h"
-#include "editor/history.h"
-#include "editor/replay.h"
-
 #include <gtest/gtest.h>
 #include <tiny_gltf.h>
 
 #include <filesystem>
 #include <fstream>
+
+#include "core/mesh/image_io.h"
+#include "editor/history.h"
+#include "editor/replay.h"
 
 namespace fs = std::filesystem;
 using namespace trispline;
@@ -61,8 +61,8 @@ TEST(ReplayOutputs, DefaultSceneWritesPngGlbAndReport) {
     const auto& acc = model.accessors.at(prim.attributes.at("POSITION"));
     ASSERT_EQ(acc.count, obj.world_mesh->vertex_count()) << obj.name;
     const auto& view = model.bufferViews.at(acc.bufferView);
-    const float* p = reinterpret_cast<const float*>(model.buffers.at(view.buffer).data.data() + view.byteOffset +
-                                                    acc.byteOffset);
+    const float* p =
+        reinterpret_cast<const float*>(model.buffers.at(view.buffer).data.data() + view.byteOffset + acc.byteOffset);
     const std::size_t stride = view.byteStride ? view.byteStride / sizeof(float) : 3;
     for (std::size_t v = 0; v < acc.count; v += 997)  // vertex order preserved
       for (int k = 0; k < 3; ++k)

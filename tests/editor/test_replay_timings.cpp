@@ -2,11 +2,6 @@
 // final render's FFD / draw passes, the timer method), `--ffd-backend` renders and exports through the chosen
 // evaluator (a GLSL backend's scene.glb is read back from the GPU and must match the CPU reference), `--time`
 // moves animated objects, and bad options fail with a clear message. GL runs for real on llvmpipe (EGL).
-#include "core/mesh/gltf_io.h"
-#include "editor/cli.h"
-#include "editor/replay.h"
-#include "gpu/timer.h"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -16,6 +11,11 @@
 #include <map>
 #include <string>
 #include <vector>
+
+#include "core/mesh/gltf_io.h"
+#include "editor/cli.h"
+#include "editor/replay.h"
+#include "gpu/timer.h"
 
 namespace fs = std::filesystem;
 using namespace trispline;

@@ -4,9 +4,6 @@
 // JSON) and CommandRegistry::parse (every field's validation). A parsed command must describe itself as a line that
 // parses again to the same line (the log the editor writes must replay): a difference aborts, like a crash.
 // Nothing is executed: execution is covered by the replay tests of tests/logs/ and tests/logs/hostile/.
-#include "editor/command_log.h"
-#include "editor/command_registry.h"
-
 #include <unistd.h>
 
 #include <cstdint>
@@ -14,6 +11,9 @@
 #include <cstdlib>
 #include <filesystem>
 #include <string>
+
+#include "editor/command_log.h"
+#include "editor/command_registry.h"
 
 using namespace trispline;
 

@@ -3,12 +3,12 @@
 // naming a key; any other exception, a crash or a hang is a finding. A plan that is accepted must write itself as
 // farm.json text that reads back to the same text (what the farm writes, it must read), and its tasks must be the
 // bounded, consistent set the farm's status and assembly loop over.
-#include "editor/farm_plan.h"
-
 #include <cstdint>
 #include <cstdlib>
 #include <nlohmann/json.hpp>
 #include <string>
+
+#include "editor/farm_plan.h"
 
 using namespace trispline;
 

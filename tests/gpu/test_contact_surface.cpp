@@ -22,8 +22,7 @@ std::shared_ptr<const core::FfdBinding> sheet_binding(double bend = 0.25) {
         const double x = -1.6 + 3.2 * i / (n.x - 1), z = -0.9 + 1.8 * j / (n.y - 1);
         cps.push_back({x, -0.65 + bend * (x * x / 2.56 - 0.5) + 0.6 * k, z});
       }
-  core::TrivariateBSpline<glm::dvec3> lattice(KnotVector::clamped_uniform(4, n.x),
-                                              KnotVector::clamped_uniform(3, n.y),
+  core::TrivariateBSpline<glm::dvec3> lattice(KnotVector::clamped_uniform(4, n.x), KnotVector::clamped_uniform(3, n.y),
                                               KnotVector::clamped_uniform(2, n.z), cps);
   return std::make_shared<const core::FfdBinding>(core::FfdBinding{lattice, core::Embedding{}, {}});
 }
@@ -86,7 +85,7 @@ TEST_F(GlTest, ContactSurfaceIsDrawnWhereFOfUV0IsAndNowhereElse) {
   }
   ASSERT_GT(inside, 100);
   EXPECT_GT(changed_inside, inside * 3 / 4) << changed_inside << " of " << inside;  // the rest: behind the sphere
-  const glm::dvec3 left = cam.project(ffd.lattice.eval({0.08, 0.5, 0.0}));  // on the sheet, off the sphere
+  const glm::dvec3 left = cam.project(ffd.lattice.eval({0.08, 0.5, 0.0}));          // on the sheet, off the sphere
   const Rgba l0 = pixel(a, 160, int(left.x), int(left.y)), l1 = pixel(b, 160, int(left.x), int(left.y));
   EXPECT_GT((l1.g - l1.r) - (l0.g - l0.r), 25) << l0.r << "," << l0.g << " -> " << l1.r << "," << l1.g;
   EXPECT_GT(l1.g, l0.g + 25);

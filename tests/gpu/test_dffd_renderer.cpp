@@ -64,8 +64,8 @@ core::SceneObject dffd_ball(core::DffdOpenings openings = core::DffdOpenings::op
   core::TrivariateBSpline<glm::dvec3> F = identity_lattice(e);
   const core::Discontinuity d = core::insert_discontinuity(F, 0, 0.5);
   core::open_discontinuity(F, d, {-open, 0, 0}, {open, 0, 0});
-  o.dffd = std::make_shared<const core::DffdRig>(core::DffdRig{std::move(F), e, core::embed_points(e, rest), {d},
-                                                               openings, 1e-6, true, {}, {{0.0, 0.9, 0.9}}});
+  o.dffd = std::make_shared<const core::DffdRig>(
+      core::DffdRig{std::move(F), e, core::embed_points(e, rest), {d}, openings, 1e-6, true, {}, {{0.0, 0.9, 0.9}}});
   o.refresh();
   return o;
 }
@@ -177,8 +177,8 @@ TEST_F(GlTest, InsideFacesAreShadedWithTheirFaceNormal) {
 TEST_F(GlTest, DeformedObjectsDrawTheirInsideFacesUnderEveryBackend) {
   core::SceneObject o = two_material_object(sphere_with_front_cap());
   const std::vector<glm::dvec3> rest = o.world_rest_mesh().positions;
-  core::FfdBinding b{identity_lattice(core::embed_bounding_box(rest, {0, 1})), core::embed_bounding_box(rest, {0, 1}),
-                     {}};
+  core::FfdBinding b{
+      identity_lattice(core::embed_bounding_box(rest, {0, 1})), core::embed_bounding_box(rest, {0, 1}), {}};
   b.params = core::embed_points(b.embedding, rest);
   o.ffd = std::make_shared<const core::FfdBinding>(std::move(b));
   o.offset_velocity = {0.01, 0.0, 0.0};  // glsl_compute falls back to the vertex path
@@ -301,7 +301,8 @@ TEST_F(GlTest, IncisionPreviewMeshReplacesTheObjectsMesh) {
   opt = ViewOptions{};
   opt.show_grid = false;
   const auto none = render(r, scene, cam, opt);
-  core::TrivariateBSpline<glm::dvec3> cut(core::KnotVector::clamped_uniform(3, 4), core::KnotVector::clamped_uniform(2, 2),
+  core::TrivariateBSpline<glm::dvec3> cut(core::KnotVector::clamped_uniform(3, 4),
+                                          core::KnotVector::clamped_uniform(2, 2),
                                           core::KnotVector::clamped_uniform(2, 2), std::vector<glm::dvec3>(16));
   for (int k = 0; k < 2; ++k)
     for (int j = 0; j < 2; ++j)

@@ -19,8 +19,8 @@ core::TrivariateBSpline<glm::dvec3> bent_lattice() {
         cps.push_back({x + 0.05 * std::sin(3.0 * j + i), 0.3 * std::sin(1.3 * x) + 0.1 * z * x + 0.4 * k,
                        z + 0.07 * std::cos(2.0 * i - k)});
       }
-  return {KnotVector::clamped_uniform(4, n.x), KnotVector::clamped_uniform(3, n.y),
-          KnotVector::clamped_uniform(2, n.z), cps};
+  return {KnotVector::clamped_uniform(4, n.x), KnotVector::clamped_uniform(3, n.y), KnotVector::clamped_uniform(2, n.z),
+          cps};
 }
 
 }  // namespace
@@ -91,9 +91,9 @@ TEST(OverlayGeometry, ContactSurfaceTessellationLiesOnFOfUV0) {
     }
   // Triangles wind counter-clockwise about the normal.
   const glm::uvec3 f = m.triangles[0];
-  EXPECT_GT(glm::dot(glm::cross(m.positions[f.y] - m.positions[f.x], m.positions[f.z] - m.positions[f.x]),
-                     m.normals[f.x]),
-            0.0);
+  EXPECT_GT(
+      glm::dot(glm::cross(m.positions[f.y] - m.positions[f.x], m.positions[f.z] - m.positions[f.x]), m.normals[f.x]),
+      0.0);
   EXPECT_THROW(tessellate_contact_surface(F, 0, 4), std::invalid_argument);
 }
 

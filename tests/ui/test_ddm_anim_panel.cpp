@@ -18,7 +18,9 @@ core::Scene pot() {
   core::ScenePrimitiveCommand::parse(json::parse(R"({"cmd":"scene.primitive","kind":"teapot","name":"pot"})"), {})
       ->redo(s);
   core::DdmFillCommand::parse(json::parse(R"({"cmd":"ddm.fill","object":"pot","layer":"t","tile":"thorn",
-      "layout":"rect","counts":[8,2],"height":0.05,"base":"teapot_body","map_resolution":[33,17]})"), {})->redo(s);
+      "layout":"rect","counts":[8,2],"height":0.05,"base":"teapot_body","map_resolution":[33,17]})"),
+                              {})
+      ->redo(s);
   return s;
 }
 

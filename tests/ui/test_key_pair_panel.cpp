@@ -36,8 +36,8 @@ TEST(KeyPairPanel, AHeadlessFrameNamesItsWidgets) {
     EXPECT_FALSE(r.clear);
     ImGui::End();
   });
-  for (const char* name : {"seam.frame_from", "seam.frame_to", "seam.value_from", "seam.value_to", "seam.animate",
-                           "seam.clear"})
+  for (const char* name :
+       {"seam.frame_from", "seam.frame_to", "seam.value_from", "seam.value_to", "seam.animate", "seam.clear"})
     EXPECT_EQ(ui::probe::items().count(name), 1u) << name;
   ui::probe::set_enabled(false);
 }

@@ -1,18 +1,18 @@
 // The live timing overlay without a window: its key and menu toggle, the numbers it shows (means over the
 // last second, the 5 s graph window, vertices per second, idle detection), the stage timings it reads from a
 // command's stats(), and drawing it in a headless Dear ImGui frame (no GL needed: ImGui only builds draw lists).
-#include "headless_imgui.h"
+#include <gtest/gtest.h>
+#include <imgui.h>
+#include <imgui_internal.h>
+
 #include "core/commands/command.h"
 #include "editor/history.h"
 #include "editor/replay.h"
+#include "headless_imgui.h"
 #include "ui/frame_timings.h"
 #include "ui/main_menu.h"
 #include "ui/overlays.h"
 #include "ui/shortcuts.h"
-
-#include <gtest/gtest.h>
-#include <imgui.h>
-#include <imgui_internal.h>
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 

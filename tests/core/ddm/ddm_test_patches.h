@@ -1,9 +1,8 @@
 // Test patches shared by the DDM tests: a flat bilinear patch and a bicubic Bézier bump.
 #pragma once
 
-#include <vector>
-
 #include <glm/glm.hpp>
+#include <vector>
 
 #include "core/spline/bspline_surface.h"
 

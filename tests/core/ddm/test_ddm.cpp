@@ -87,7 +87,7 @@ TEST(DdmLayout, RectBrickAndHexCells) {
   ASSERT_EQ(hex.size(), 3u + 2u + 3u);
   const double h = hex[0].size.y;
   EXPECT_DOUBLE_EQ(h, 1.0 / 2.5);
-  EXPECT_DOUBLE_EQ(hex[3].origin.y, 0.75 * h);  // rows interlock by a quarter cell
+  EXPECT_DOUBLE_EQ(hex[3].origin.y, 0.75 * h);       // rows interlock by a quarter cell
   EXPECT_NEAR(hex.back().origin.y + h, 1.0, 1e-15);  // the last row ends on the chart's edge
   try {
     ddm_layout_cells(DdmLayout::rect, {0, 3}, 1);
@@ -169,8 +169,8 @@ TEST(DdmEvaluate, MetamorphosisEndsAreTheTilesAndBadInputIsRejected) {
   EXPECT_EQ(b.mesh.positions, flower.mesh.positions);
   const DdmTile mid = ddm_morph(thorn, flower, 0.5);
   EXPECT_EQ(mid.mesh.triangles, thorn.mesh.triangles);
-  EXPECT_NEAR(glm::length(mid.mesh.positions[10] - 0.5 * (thorn.mesh.positions[10] + flower.mesh.positions[10])),
-              0.0, 1e-15);
+  EXPECT_NEAR(glm::length(mid.mesh.positions[10] - 0.5 * (thorn.mesh.positions[10] + flower.mesh.positions[10])), 0.0,
+              1e-15);
   for (const glm::dvec3& n : ddm_morph(thorn, flower, 1.7).mesh.normals) EXPECT_NEAR(glm::length(n), 1.0, 1e-12);
   EXPECT_THROW(ddm_morph(thorn, make_ddm_tile("chain"), 0.5), std::invalid_argument);
   EXPECT_THROW(ddm_morph(thorn, flower, std::nan("")), std::invalid_argument);

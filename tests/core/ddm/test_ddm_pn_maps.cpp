@@ -1,5 +1,5 @@
-// DDM P/N maps (core/ddm/ddm_pn_maps.h, seed §5.3.1–5.3.2, §5.4.1) and layers (ddm_layer.h): the sampled base of a plane
-// is the plane, sampled bases converge to the exact base at second order, the teapot body is one periodic chart,
+// DDM P/N maps (core/ddm/ddm_pn_maps.h, seed §5.3.1–5.3.2, §5.4.1) and layers (ddm_layer.h): the sampled base of a
+// plane is the plane, sampled bases converge to the exact base at second order, the teapot body is one periodic chart,
 // the tile transform rotates tiles rigidly, UV rasterisation with its diffusion fill and validity bitmap, layers that
 // grow their maps when painted, several tiles per layer, texture-space offset animation.
 #include <gtest/gtest.h>
@@ -96,7 +96,8 @@ TEST(DdmMaps, TileTransformRotatesTheTileRigidly) {
   EXPECT_NEAR(small.positions[0].x, 0.25 + 0.5 * chain.mesh.positions[0].x, 1e-12);
 }
 
-// A plane 2 × 3 (x = 4u, y = 6v) with its uvs on [0, ½]²: the UV maps reproduce it where covered, fill the rest, prune outside cells.
+// A plane 2 × 3 (x = 4u, y = 6v) with its uvs on [0, ½]²: the UV maps reproduce it where covered, fill the rest, prune
+// outside cells.
 TEST(DdmMaps, UvRasterisationFillsAndPrunes) {
   TriMesh plane = make_plane(4);
   ASSERT_EQ(plane.uvs.size(), plane.vertex_count());
@@ -148,7 +149,8 @@ TEST(DdmLayer, PaintingGrowsTheMapsAndKeepsTheSampledCharts) {
   const auto grown = ddm_layer_with_instances(layer, {{0, {0, 0}, {1, 1}, 0}, {7, {0, 0}, {1, 1}, 1}});
   EXPECT_EQ(grown->maps->slot_count(), 2);
   EXPECT_EQ(grown->maps->chart_of_slot, (std::vector<int>{0, 7}));
-  for (std::size_t k = 0; k < layer.maps->samples.size(); ++k) ASSERT_EQ(grown->maps->samples[k], layer.maps->samples[k]);
+  for (std::size_t k = 0; k < layer.maps->samples.size(); ++k)
+    ASSERT_EQ(grown->maps->samples[k], layer.maps->samples[k]);
   EXPECT_EQ(grown->mesh->vertex_count(), 626u + make_ddm_tile("hex").mesh.vertex_count());
   for (std::size_t v = 0; v < 626; ++v) ASSERT_EQ(grown->mesh->positions[v], layer.mesh->positions[v]);
   EXPECT_THROW(ddm_layer_with_instances(layer, {{0, {0, 0}, {1, 1}, 2}}), std::invalid_argument);  // tile 2 of 2

@@ -2,10 +2,6 @@
 // parameter plane, and the two together through ffd_evaluate (seed §6.3.1 Def. 6, §6.3.2).
 #include <gtest/gtest.h>
 
-#include "tests/test_shapes.h"
-
-#include "tests/mesh_topology.h"
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -20,6 +16,8 @@
 #include "core/mesh/mesh_io.h"
 #include "core/scene/primitives.h"
 #include "tests/core/ffd/ffd_test_util.h"
+#include "tests/mesh_topology.h"
+#include "tests/test_shapes.h"
 
 namespace trispline::core {
 namespace {

@@ -146,7 +146,8 @@ TEST(DffdGlobal, CappedAndStitchedAreClosedTwoManifolds) {
   for (int j = 0; j < n.y; ++j) {
     bool opened = false;
     for (int k = 0; k < n.z; ++k)
-      opened = opened || c.rig.lattice.control_point(d.minus_plane, j, k).x != c.rig.lattice.control_point(d.plus_plane, j, k).x;
+      opened = opened ||
+               c.rig.lattice.control_point(d.minus_plane, j, k).x != c.rig.lattice.control_point(d.plus_plane, j, k).x;
     for (int k = 0; k < n.z; ++k) {
       const double ym = g.rig.lattice.control_point(d.minus_plane, j, k).y;
       const double yp = g.rig.lattice.control_point(d.plus_plane, j, k).y;

@@ -80,7 +80,7 @@ inline const char* name_of(KnotKind k) {
   return "?";
 }
 inline constexpr KnotKind kAllKnotKinds[] = {KnotKind::clamped_uniform, KnotKind::floating_uniform,
-                                            KnotKind::periodic_u, KnotKind::nonuniform_clamped};
+                                             KnotKind::periodic_u, KnotKind::nonuniform_clamped};
 
 // Knot vector of `kind` along `axis` (periodic only along u) with order + 2 stored controls (period 5 when
 // periodic); non-uniform: interior knots graded by a power law.

@@ -57,7 +57,8 @@ TEST(DeformationBounds, NeverBelowTheMeasuredErrorOnRandomLattices) {
   for (int trial = 0; trial < 24; ++trial) {
     const int order = 2 + trial % 3, n = order + 1 + trial % 3;
     std::normal_distribution<double> noise(0.0, 0.25 / n);
-    auto F = lattice_of(order, n, [&](const glm::dvec3& p) { return p + glm::dvec3(noise(rng), noise(rng), noise(rng)); });
+    auto F =
+        lattice_of(order, n, [&](const glm::dvec3& p) { return p + glm::dvec3(noise(rng), noise(rng), noise(rng)); });
     const SecondDerivativeBounds b(F);
     for (int t = 0; t < 12; ++t) {
       const glm::dvec3 c(u(rng), u(rng), u(rng));
@@ -65,8 +66,8 @@ TEST(DeformationBounds, NeverBelowTheMeasuredErrorOnRandomLattices) {
       const glm::dvec3 a = glm::clamp(c + size * glm::dvec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5), 0.0, 1.0);
       const glm::dvec3 bb = glm::clamp(c + size * glm::dvec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5), 0.0, 1.0);
       const double truth = triangle_error_sampled(F, a, bb, c, 12);
-      for (ErrorBound m : {ErrorBound::right_triangle, ErrorBound::circumcircle, ErrorBound::enclosing_circle,
-                           ErrorBound::best})
+      for (ErrorBound m :
+           {ErrorBound::right_triangle, ErrorBound::circumcircle, ErrorBound::enclosing_circle, ErrorBound::best})
         EXPECT_GE(triangle_error_bound(b, a, bb, c, m) * (1 + 1e-12) + 1e-15, truth)
             << "trial " << trial << " triangle " << t << " method " << int(m);
       const glm::dvec3 fn = glm::cross(F.eval(a) - F.eval(c), F.eval(bb) - F.eval(c));
@@ -251,7 +252,8 @@ TEST(DeformationBounds, PeriodicLatticeIsBoundedAcrossItsSeam) {
     for (int j = 0; j < 3; ++j)
       for (int i = 0; i < 6; ++i) {
         const double th = 2.0 * kPi * i / 6.0, r = 1.0 + 0.25 * j;
-        P.push_back(glm::dvec3(r * std::cos(th), r * std::sin(th), 0.5 * k) + glm::dvec3(jitter(rng), jitter(rng), jitter(rng)));
+        P.push_back(glm::dvec3(r * std::cos(th), r * std::sin(th), 0.5 * k) +
+                    glm::dvec3(jitter(rng), jitter(rng), jitter(rng)));
       }
   const TrivariateBSpline<glm::dvec3> F(kp, kv, kw, std::move(P));
   const SecondDerivativeBounds b(F);
@@ -261,7 +263,10 @@ TEST(DeformationBounds, PeriodicLatticeIsBoundedAcrossItsSeam) {
     // Parameters past the domain along u (an FFD wraps them), some triangles straddling u = 1 and u = 2.
     const glm::dvec3 c(0.8 + 1.4 * u(rng), u(rng), u(rng));
     const double size = 0.05 + 0.3 * u(rng);
-    auto corner = [&] { return glm::clamp(c + size * glm::dvec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5), glm::dvec3(-5, 0, 0), glm::dvec3(5, 1, 1)); };
+    auto corner = [&] {
+      return glm::clamp(c + size * glm::dvec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5), glm::dvec3(-5, 0, 0),
+                        glm::dvec3(5, 1, 1));
+    };
     const glm::dvec3 a = corner(), bb = corner();
     const double lo = std::min({a.x, bb.x, c.x}), hi = std::max({a.x, bb.x, c.x});
     across += std::floor(lo) != std::floor(hi);

@@ -180,10 +180,11 @@ TEST(Ffd, EveryEvaluatorPathMatchesTheSplineOnAndBetweenKnots) {
       const auto d = F.eval_first(params[i]);
       EXPECT_LT(glm::length(p[i] - d.value), 1e-12) << glm::to_string(orders) << " at " << glm::to_string(params[i]);
       EXPECT_EQ(p[i], q[i]);
-      const glm::dvec3 m = glm::dmat3(glm::cross(d.d[1], d.d[2]), glm::cross(d.d[2], d.d[0]),
-                                      glm::cross(d.d[0], d.d[1])) * normals[i];
+      const glm::dvec3 m =
+          glm::dmat3(glm::cross(d.d[1], d.d[2]), glm::cross(d.d[2], d.d[0]), glm::cross(d.d[0], d.d[1])) * normals[i];
       if (glm::length(m) > 1e-6) {
-        EXPECT_LT(glm::length(n[i] - glm::normalize(m)), 1e-9) << glm::to_string(orders) << " at " << glm::to_string(params[i]);
+        EXPECT_LT(glm::length(n[i] - glm::normalize(m)), 1e-9)
+            << glm::to_string(orders) << " at " << glm::to_string(params[i]);
       }
     }
   }

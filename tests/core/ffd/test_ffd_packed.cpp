@@ -22,8 +22,10 @@ int packed_basis(const FfdPackedAxis& a, float t, float* N, float* dN) {
   int s;
   if (a.uniform_spans) {
     s = std::clamp(static_cast<int>(std::floor((t - a.domain_min) * a.inv_uniform_len)), 0, S - 1);
-    if (t < a.span_begin[s]) --s;
-    else if (s + 1 < S && t >= a.span_begin[s + 1]) ++s;
+    if (t < a.span_begin[s])
+      --s;
+    else if (s + 1 < S && t >= a.span_begin[s + 1])
+      ++s;
   } else {
     s = 0;
     while (s + 1 < S && a.span_begin[s + 1] <= t) ++s;
@@ -102,8 +104,8 @@ TEST(FfdPacked, TablesEvaluateLikeTheReference) {
   const std::vector<glm::dvec3> box{{-1, 0, 2}, {3, 2, 3}};
   const Embedding e = embed_bounding_box(box, {0, 1});
   for (int o = 2; o <= 4; ++o) {
-    expect_packed_matches_reference(bent_lattice(e, KnotVector::clamped_uniform(o, 6), KnotVector::clamped_uniform(o, 5),
-                                                 KnotVector::clamped_uniform(o, 4)),
+    expect_packed_matches_reference(bent_lattice(e, KnotVector::clamped_uniform(o, 6),
+                                                 KnotVector::clamped_uniform(o, 5), KnotVector::clamped_uniform(o, 4)),
                                     e, "clamped uniform");
     expect_packed_matches_reference(
         bent_lattice(e, KnotVector::uniform(o, 6), KnotVector::uniform(o, 5), KnotVector::uniform(o, 7)), e,

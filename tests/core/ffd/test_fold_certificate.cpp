@@ -15,7 +15,8 @@ namespace {
 
 // The identity map on [0,1]³: control points at the Greville abscissae.
 TrivariateBSpline<glm::dvec3> identity_lattice(const glm::ivec3& order, const glm::ivec3& controls) {
-  const KnotVector ku = KnotVector::clamped_uniform(order.x, controls.x), kv = KnotVector::clamped_uniform(order.y, controls.y),
+  const KnotVector ku = KnotVector::clamped_uniform(order.x, controls.x),
+                   kv = KnotVector::clamped_uniform(order.y, controls.y),
                    kw = KnotVector::clamped_uniform(order.z, controls.z);
   const auto gu = ku.greville(), gv = kv.greville(), gw = kw.greville();
   std::vector<glm::dvec3> P;

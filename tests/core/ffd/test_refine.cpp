@@ -1,8 +1,5 @@
 // Adaptive refinement for FFD (seed §2.4.2): exact composed curve, conforming output, orientation, the bound,
 // the seed's cube example (Fig. 2.10), determinism (the mesh.refine command: tests/core/commands/test_mesh_refine.cpp).
-#include "core/ffd/refine.h"
-#include "ffd_test_util.h"
-
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
@@ -10,6 +7,9 @@
 #include <cstring>
 #include <map>
 #include <numbers>
+
+#include "core/ffd/refine.h"
+#include "ffd_test_util.h"
 
 namespace trispline::core {
 namespace {
@@ -21,8 +21,8 @@ TriMesh cube24() {
   for (std::size_t f = 0; f < c.triangles.size(); f += 2) {
     const auto base = static_cast<unsigned>(m.positions.size());
     const unsigned idx[4] = {c.triangles[f].x, c.triangles[f].y, c.triangles[f].z, c.triangles[f + 1].z};
-    const glm::dvec3 n = glm::normalize(glm::cross(c.positions[idx[1]] - c.positions[idx[0]],
-                                                   c.positions[idx[2]] - c.positions[idx[0]]));
+    const glm::dvec3 n = glm::normalize(
+        glm::cross(c.positions[idx[1]] - c.positions[idx[0]], c.positions[idx[2]] - c.positions[idx[0]]));
     for (int k = 0; k < 4; ++k) {
       m.positions.push_back(c.positions[idx[k]]);
       m.normals.push_back(n);
@@ -111,8 +111,8 @@ TEST(Refine, ComposedCurveBezierPiecesAreExact) {
   std::vector<glm::dvec3> ctrl;
   int d = 0;
   ffd_edge_bezier(b.lattice, pa, pb, breaks, ctrl, d);
-  EXPECT_EQ(d, 9);                   // 3(o − 1), o = 4
-  EXPECT_EQ(breaks.size(), 5u);      // one knot plane per axis crossed
+  EXPECT_EQ(d, 9);               // 3(o − 1), o = 4
+  EXPECT_EQ(breaks.size(), 5u);  // one knot plane per axis crossed
   for (std::size_t p = 0; p + 1 < breaks.size(); ++p)
     for (double s : {0.0, 0.137, 0.5, 0.81, 1.0}) {
       std::vector<glm::dvec3> c(ctrl.begin() + p * (d + 1), ctrl.begin() + (p + 1) * (d + 1));
@@ -174,8 +174,8 @@ TEST(Refine, SeedCubeConformingOrientedWithinTolerance) {
       EXPECT_LE(dev, 2.0 * tol);  // Eq. 2.6 only measures the midpoint
     }
     std::printf("[ cube     ] %s tol %.3g: 12 -> %zu triangles, %d rounds, max midpoint error %.3g, sampled dev %.3g\n",
-                refine_criterion_name(c), tol, r.stats.triangles_after, r.stats.iterations,
-                r.stats.max_midpoint_error, dev);
+                refine_criterion_name(c), tol, r.stats.triangles_after, r.stats.iterations, r.stats.max_midpoint_error,
+                dev);
   }
 }
 
@@ -191,8 +191,8 @@ TEST(Refine, SeedCubeCounts) {
       o.criterion = RefineCriterion::Greville;
       const auto gre = refine_for_ffd(mesh, b, o);
       std::printf("[ cube     ] %s tol %.3g: midpoint %zu, greville %zu triangles (sampled dev %.3g / %.3g)\n",
-                  def == 0 ? "bent+twisted" : "corner pull", tol, mid.stats.triangles_after,
-                  gre.stats.triangles_after, sampled_deviation(mid, b), sampled_deviation(gre, b));
+                  def == 0 ? "bent+twisted" : "corner pull", tol, mid.stats.triangles_after, gre.stats.triangles_after,
+                  sampled_deviation(mid, b), sampled_deviation(gre, b));
       EXPECT_LE(sampled_deviation(gre, b), tol);
       expect_conforming(gre.mesh);
       expect_conforming(mid.mesh);
@@ -243,7 +243,8 @@ TEST(Refine, CertifiedBestSplitUsesFewerTrianglesThanTheMidpointSplit) {
     }
     const double ratio = std::exp(log_ratio / tolerances);
     std::printf("[ certified] %s: best / midpoint %.1f %% (geometric mean)\n", name, 100.0 * ratio);
-    RecordProperty(def == 0 ? "best_over_midpoint_bend_twist" : "best_over_midpoint_corner_pull", std::to_string(ratio));
+    RecordProperty(def == 0 ? "best_over_midpoint_bend_twist" : "best_over_midpoint_corner_pull",
+                   std::to_string(ratio));
     EXPECT_LE(ratio, 0.85) << name;
   }
 }

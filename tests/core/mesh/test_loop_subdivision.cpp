@@ -60,7 +60,8 @@ TEST(LoopSubdivision, UvsLinearAndMaterialsInherited) {
     const glm::dmat2 T(plane.uvs[q[1]] - plane.uvs[q[0]], plane.uvs[q[2]] - plane.uvs[q[0]]);
     const glm::dmat2 A = T * glm::inverse(P);
     auto expected = [&](const glm::dvec3& p) { return plane.uvs[q[0]] + A * glm::dvec2(p.x - pa.x, p.z - pa.z); };
-    for (std::size_t v = 0; v < plane.vertex_count(); ++v) ASSERT_LT(glm::length(plane.uvs[v] - expected(plane.positions[v])), 1e-12);
+    for (std::size_t v = 0; v < plane.vertex_count(); ++v)
+      ASSERT_LT(glm::length(plane.uvs[v] - expected(plane.positions[v])), 1e-12);
     for (std::size_t v = 0; v < s.vertex_count(); ++v) {
       const glm::dvec3 p = s.positions[v];
       if (std::abs(p.x) < 0.5 || std::abs(p.z) < 0.5) {

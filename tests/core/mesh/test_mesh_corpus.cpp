@@ -105,8 +105,8 @@ TEST(MeshCorpus, EveryFileLoadsAllItsFacesOrIsRefusedClearly) {
       if (ref.faces >= 0) {
         EXPECT_EQ(static_cast<long long>(m.triangles.size() + report.duplicate_faces), ref.faces)
             << "faces lost or invented (" << ref.types << ")";
-        if (report.duplicate_faces) std::printf("%s: %zu repeated triangles removed\n", short_name(file).c_str(),
-                                                report.duplicate_faces);
+        if (report.duplicate_faces)
+          std::printf("%s: %zu repeated triangles removed\n", short_name(file).c_str(), report.duplicate_faces);
       }
       EXPECT_EQ(m.normals.size(), m.positions.size());
     } catch (const core::MeshIoError& e) {

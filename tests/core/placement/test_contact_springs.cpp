@@ -203,7 +203,8 @@ TEST(ContactSprings, DefaultParamsBridge) {
   double lo = 1e9;
   for (int j = 0; j < kM; ++j)
     for (int i = 0; i < kL; ++i) {
-      if (over_gap(i)) lo = std::min(lo, p[i + kL * j].y);
+      if (over_gap(i))
+        lo = std::min(lo, p[i + kL * j].y);
       else {
         EXPECT_NEAR(p[i + kL * j].y, kBoxTop, 1e-9);
       }

@@ -1,9 +1,9 @@
 // Camera pixel conventions and the Scene container.
+#include <gtest/gtest.h>
+
 #include "core/scene/camera.h"
 #include "core/scene/primitives.h"
 #include "core/scene/scene.h"
-
-#include <gtest/gtest.h>
 
 namespace trispline::core {
 namespace {

@@ -85,15 +85,14 @@ TEST(DdmFollow, NormalsAreThoseOfTheComposedMap) {
     for (std::size_t v = 0; v < out.positions.size(); ++v) {
       if (o.ffd) {
         const glm::dvec3 p = o.ffd->embedding.apply(world.positions[v]) + o.param_offset;
-        if (glm::any(glm::lessThan(p, glm::dvec3(1e-4))) || glm::any(glm::greaterThan(p, glm::dvec3(1 - 1e-4)))) continue;
+        if (glm::any(glm::lessThan(p, glm::dvec3(1e-4))) || glm::any(glm::greaterThan(p, glm::dvec3(1 - 1e-4))))
+          continue;
       }
       ++checked;
       glm::dmat3 J;
-      for (int k = 0; k < 3; ++k)
-        J[k] = (shifted[2 * k].positions[v] - shifted[2 * k + 1].positions[v]) / (2.0 * h);
-      const glm::dvec3 n = glm::normalize(glm::dmat3(glm::cross(J[1], J[2]), glm::cross(J[2], J[0]),
-                                                     glm::cross(J[0], J[1])) *
-                                          layer.mesh->normals[v]);
+      for (int k = 0; k < 3; ++k) J[k] = (shifted[2 * k].positions[v] - shifted[2 * k + 1].positions[v]) / (2.0 * h);
+      const glm::dvec3 n = glm::normalize(
+          glm::dmat3(glm::cross(J[1], J[2]), glm::cross(J[2], J[0]), glm::cross(J[0], J[1])) * layer.mesh->normals[v]);
       worst = std::max(worst, glm::length(n - out.normals[v]));
     }
     EXPECT_GT(checked, out.positions.size() / 2);
@@ -147,7 +146,8 @@ TEST(DdmFollow, DffdNeverTearsAnInstance) {
   // ≲ 0.5 across, their edges far shorter.
   double longest = 0.0;
   for (const glm::uvec3& t : out.triangles)
-    for (int c = 0; c < 3; ++c) longest = std::max(longest, glm::length(out.positions[t[c]] - out.positions[t[(c + 1) % 3]]));
+    for (int c = 0; c < 3; ++c)
+      longest = std::max(longest, glm::length(out.positions[t[c]] - out.positions[t[(c + 1) % 3]]));
   const TriMesh plain = transformed(*layer.mesh, o.transform);
   double longest_plain = 0.0;
   for (const glm::uvec3& t : plain.triangles)

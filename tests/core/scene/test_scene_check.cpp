@@ -1,10 +1,10 @@
 // core::SceneGuard / scene_value_error: what every command's result must satisfy, and object names.
-#include "core/scene/primitives.h"
-#include "core/scene/scene_check.h"
-
 #include <gtest/gtest.h>
 
 #include <limits>
+
+#include "core/scene/primitives.h"
+#include "core/scene/scene_check.h"
 
 using namespace trispline::core;
 

@@ -192,7 +192,6 @@ TEST(SilhouetteSvg, GlyphsAreOneShortStrokePerVisiblePoint) {
   EXPECT_EQ(strokes, pl.points.size() - 1);  // every visible point, none for the hidden one
 }
 
-
 TEST(SilhouetteSvg, HiddenRunsDashedOrRemoved) {
   TempDir dir;
   const std::vector<SilhouettePolyline> lines{circle(glm::dvec3(0.0)), circle(glm::dvec3(-5.0, 3.0, -4.0))};

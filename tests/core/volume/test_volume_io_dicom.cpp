@@ -21,7 +21,9 @@ using ::testing::HasSubstr;
 
 namespace {
 
-std::string load_error(const fs::path& p, const VolumeLoadOptions& options = {}) { return volume_load_error(p, options); }
+std::string load_error(const fs::path& p, const VolumeLoadOptions& options = {}) {
+  return volume_load_error(p, options);
+}
 
 void expect_column(const ScalarVolume& v, int c, glm::dvec3 expected, double tolerance = 1e-6) {
   for (int r = 0; r < 3; ++r)

@@ -340,10 +340,10 @@ class DicomBytes {
     return element(group, elem, vr, {value.begin(), value.end()});
   }
   DicomBytes& us(std::uint16_t group, std::uint16_t elem, std::uint16_t v) {
-    return element(group, elem, "US", big() ? std::vector<unsigned char>{static_cast<unsigned char>(v >> 8),
-                                                                         static_cast<unsigned char>(v & 0xFF)}
-                                            : std::vector<unsigned char>{static_cast<unsigned char>(v & 0xFF),
-                                                                         static_cast<unsigned char>(v >> 8)});
+    return element(
+        group, elem, "US",
+        big() ? std::vector<unsigned char>{static_cast<unsigned char>(v >> 8), static_cast<unsigned char>(v & 0xFF)}
+              : std::vector<unsigned char>{static_cast<unsigned char>(v & 0xFF), static_cast<unsigned char>(v >> 8)});
   }
   // An item / delimiter tag (FFFE,eeee) with its 4-byte length.
   DicomBytes& item_tag(std::uint16_t elem, std::uint32_t length) {
@@ -362,7 +362,8 @@ class DicomBytes {
   }
 
   // The whole file: preamble, meta header naming `ts` (default: this builder's syntax), the data set as given.
-  std::vector<unsigned char> file(const std::string& ts = {}, const std::vector<unsigned char>* data_set = nullptr) const {
+  std::vector<unsigned char> file(const std::string& ts = {},
+                                  const std::vector<unsigned char>* data_set = nullptr) const {
     DicomBytes meta;
     meta.element(0x0002, 0x0001, "OB", {0, 1});
     meta.text(0x0002, 0x0002, "UI", "1.2.840.10008.5.1.4.1.1.2");
@@ -390,8 +391,10 @@ class DicomBytes {
     if (!big()) bytes_.push_back(static_cast<unsigned char>(v >> 8));
   }
   void put32(std::uint32_t v) {
-    if (big()) put16(static_cast<std::uint16_t>(v >> 16)), put16(static_cast<std::uint16_t>(v));
-    else put16(static_cast<std::uint16_t>(v)), put16(static_cast<std::uint16_t>(v >> 16));
+    if (big())
+      put16(static_cast<std::uint16_t>(v >> 16)), put16(static_cast<std::uint16_t>(v));
+    else
+      put16(static_cast<std::uint16_t>(v)), put16(static_cast<std::uint16_t>(v >> 16));
   }
   void header(std::uint16_t group, std::uint16_t elem, const char* vr, std::uint32_t length) {
     put16(group), put16(elem);
@@ -440,8 +443,10 @@ inline std::vector<unsigned char> pixel_bytes(const std::vector<std::int16_t>& s
   for (const std::int16_t s : samples) {
     const auto u = static_cast<std::uint16_t>(s);
     const unsigned char lo = static_cast<unsigned char>(u & 0xFF), hi = static_cast<unsigned char>(u >> 8);
-    if (big) b.push_back(hi), b.push_back(lo);
-    else b.push_back(lo), b.push_back(hi);
+    if (big)
+      b.push_back(hi), b.push_back(lo);
+    else
+      b.push_back(lo), b.push_back(hi);
   }
   return b;
 }

@@ -37,7 +37,6 @@ class PressTool : public test::ToolTest<editor::PressTool> {
   std::vector<glm::dvec2> row;
 };
 
-
 }  // namespace
 
 TEST_F(PressTool, HoverPutsTheBrushSphereOnTheDeformedMesh) {

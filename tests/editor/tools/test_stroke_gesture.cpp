@@ -1,7 +1,7 @@
 // StrokeGesture: the press / drag / release every stroke tool shares.
-#include "editor/tools/stroke_gesture.h"
-
 #include <gtest/gtest.h>
+
+#include "editor/tools/stroke_gesture.h"
 
 using namespace trispline;
 
