@@ -77,8 +77,12 @@ void check_off(const std::filesystem::path& path, std::string_view text, std::ui
 }
 
 // The faces of an ASCII OFF body (comments already removed, the keyword written): assimp reads a face a line, its
-// corner count first, and took a count larger than the indices on the line as given (reading past the face it built:
-// a segfault found by fuzz_mesh_off). Every face line must hold its count's indices.
+// corner count first. It takes a count larger than the indices on the line as given (reading past the face it built),
+// and it drops a line whose count is 0 or over 9 without counting it as a face, so the next lines are read as faces
+// and its face count wraps below zero (both segfaults found by fuzz_mesh_off). Every face line must hold 1 to 9
+// corners and its count's indices; a larger polygon is refused rather than dropped.
+constexpr long long kMaxOffCorners = 9;
+
 void check_off_faces(const std::filesystem::path& path, std::string_view text) {
   std::vector<std::string_view> lines;
   for_each_line(text, [&](long long, std::string_view line) {
@@ -104,6 +108,11 @@ void check_off_faces(const std::filesystem::path& path, std::string_view text) {
       fail(path, "the OFF file ends after " + std::to_string(f) + " of its " + std::to_string(nf) + " faces");
     split(lines[at]);
     const long long n = parse_count(words[0]);
+    if (n == 0) fail(path, "OFF face " + std::to_string(f) + " has no corners");
+    if (n > kMaxOffCorners)
+      refuse(path, "OFF face " + std::to_string(f) + " has " + std::to_string(n) +
+                       " corners; assimp's OFF reader takes " + "at most " + std::to_string(kMaxOffCorners) +
+                       " and would drop it (triangulate the mesh, or " + "save it as OBJ, PLY or glTF)");
     if (n < 0 || static_cast<unsigned long long>(n) + 1 > words.size())
       fail(path, "OFF face " + std::to_string(f) + ": '" + std::string(lines[at].substr(0, 60)) +
                      "' does not hold the corner count and that many vertex indices");

@@ -106,6 +106,14 @@ TEST(MeshIoErrors, EmptyMeshes) {
   });
 }
 
+TEST(MeshIoErrors, OffFacesAssimpWouldDrop) {
+  // assimp drops an OFF face of 0 or more than 9 corners without counting it, so later lines would be read as faces.
+  expect_errors({
+      {"zero.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0\n3 0 1 2\n3 0 2 3\n", "face 0 has no corners"},
+      {"ten.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n10 0 1 2 3 0 1 2 3 0 1\n", "has 10 corners"},
+  });
+}
+
 TEST(MeshIoErrors, IndexOutOfRange) {
   expect_errors({
       {"oor.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n", "out of range"},
