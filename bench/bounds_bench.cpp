@@ -17,7 +17,7 @@
 #include "core/ffd/ffd.h"
 #include "core/ffd/fold_certificate.h"
 #include "core/ffd/refine.h"
-#include "core/ffd/seed_cube.h"
+#include "bench/seed_cube.h"
 #include "core/mesh/mesh_io.h"
 #include "core/spline/knot_vector.h"
 #include "core/spline/trivariate_bspline.h"

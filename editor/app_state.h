@@ -20,7 +20,7 @@
 #include "core/commands/scene_load.h"
 #include "core/commands/scene_primitive.h"
 #include "core/commands/scene_remove.h"
-#include "core/mesh/image_io.h"
+#include "core/image/image_io.h"
 #include "core/volume/volume_io.h"
 #include "editor/animation_ui.h"
 #include "editor/app.h"

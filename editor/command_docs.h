@@ -1,4 +1,4 @@
-// The parameter tables of docs/commands.md, generated from the commands' declarations (core/commands/params.h).
+// The parameter tables of docs/commands.md, generated from the commands' declarations (core/params/params.h).
 //  * params_table(): one command's fields as a Markdown table (field, type, default, range, unit, meaning).
 //  * with_generated_tables(): a document with every `<!-- params: ID -->` … `<!-- /params -->` block replaced by
 //    ID's table. `trispline commands --docs FILE` rewrites FILE so; a test fails when docs/commands.md differs.

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "core/commands/command.h"
-#include "core/commands/params.h"
+#include "core/params/params.h"
 
 namespace trispline::editor {
 

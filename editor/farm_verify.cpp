@@ -8,7 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "core/mesh/image_codec.h"
+#include "core/image/image_codec.h"
 #include "editor/farm.h"
 #include "editor/record.h"
 

@@ -16,8 +16,8 @@
 
 #include "core/commands/anim_record.h"
 #include "core/mesh/gltf_anim_io.h"
-#include "core/mesh/image_codec.h"
-#include "core/mesh/image_io.h"
+#include "core/image/image_codec.h"
+#include "core/image/image_io.h"
 #include "core/scene/scene_export.h"
 #include "editor/elapsed.h"
 #include "editor/process.h"

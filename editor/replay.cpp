@@ -10,7 +10,7 @@
 #include "core/commands/anim_record.h"
 #include "core/commands/file_output.h"
 #include "core/mesh/gltf_io.h"
-#include "core/mesh/image_io.h"
+#include "core/image/image_io.h"
 #include "core/scene/scene_export.h"
 #include "editor/command_log.h"
 #include "editor/command_registry.h"

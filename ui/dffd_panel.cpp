@@ -4,7 +4,7 @@
 
 #include <algorithm>
 
-#include "core/commands/codecs.h"
+#include "core/params/codecs.h"
 #include "ui/gui_probe.h"
 #include "ui/number_field.h"
 #include "ui/param_widgets.h"

@@ -1,4 +1,4 @@
-// trispline::ui::param_widget — draws one declared command parameter (core/commands/params.h) in a panel: the
+// trispline::ui::param_widget — draws one declared command parameter (core/params/params.h) in a panel: the
 // declaration's label in the left column, a widget for its type (drag field, combo, checkbox) limited to its range,
 // and a tooltip with its help, unit and range; the widget is named "<command>.<field>" for GUI tests (ui::probe).
 // Returns true when an edit is committed (the field was left after an edit, or a combo/checkbox changed): the
@@ -7,7 +7,7 @@
 
 #include <string>
 
-#include "core/commands/params.h"
+#include "core/params/params.h"
 
 namespace trispline::ui {
 

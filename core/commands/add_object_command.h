@@ -5,7 +5,7 @@
 
 #include <optional>
 
-#include "core/commands/codecs.h"
+#include "core/params/codecs.h"
 #include "core/commands/snapshot_command.h"
 
 namespace trispline::core {

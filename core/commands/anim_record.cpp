@@ -1,6 +1,6 @@
 #include "core/commands/anim_record.h"
 
-#include "core/commands/codecs.h"
+#include "core/params/codecs.h"
 
 namespace trispline::core {
 

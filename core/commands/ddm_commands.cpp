@@ -12,7 +12,7 @@
 #include <random>
 #include <stdexcept>
 
-#include "core/commands/codecs.h"
+#include "core/params/codecs.h"
 #include "core/ddm/ddm_auto_uv.h"
 #include "core/ddm/ddm_chart_size.h"
 #include "core/mesh/mesh_io.h"

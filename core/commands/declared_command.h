@@ -9,7 +9,7 @@
 #include <memory>
 #include <utility>
 
-#include "core/commands/params.h"
+#include "core/params/params.h"
 #include "core/commands/snapshot_command.h"
 
 namespace trispline::core {

@@ -7,7 +7,7 @@
 #include <memory>
 #include <optional>
 
-#include "core/commands/codecs.h"
+#include "core/params/codecs.h"
 #include "core/dffd/obstacle_interior.h"
 
 namespace trispline::core {

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/commands/codecs.h"
+#include "core/params/codecs.h"
 #include "core/raycast/ray_caster.h"
 
 namespace trispline::core {

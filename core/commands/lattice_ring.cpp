@@ -4,7 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "core/commands/codecs.h"
+#include "core/params/codecs.h"
 #include "core/mesh/tri_mesh.h"
 #include "core/spline/bspline_basis.h"
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <glm/gtc/matrix_inverse.hpp>
 
-#include "core/commands/codecs.h"
+#include "core/params/codecs.h"
 
 namespace trispline::core {
 

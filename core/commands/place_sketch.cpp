@@ -4,7 +4,7 @@
 #include <chrono>
 #include <cmath>
 
-#include "core/commands/codecs.h"
+#include "core/params/codecs.h"
 #include "core/placement/sketch_placement.h"
 #include "core/raycast/ray_caster.h"
 

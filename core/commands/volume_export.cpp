@@ -2,7 +2,7 @@
 
 #include <chrono>
 
-#include "core/commands/codecs.h"
+#include "core/params/codecs.h"
 #include "core/mesh/gltf_io.h"
 #include "core/scene/scene_check.h"
 #include "core/volume/iso_mesh.h"

@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "core/mesh/image_codec.h"
+#include "core/image/image_codec.h"
 
 namespace trispline::core {
 namespace {

@@ -13,7 +13,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/commands/codecs.h"
+#include "core/params/codecs.h"
 #include "editor/session.h"
 #include "gpu/gl_context.h"
 #include "ui/ddm_anim_panel.h"

@@ -15,7 +15,7 @@
 #include <set>
 
 #include "core/mesh/gltf_anim_io.h"
-#include "core/mesh/image_io.h"
+#include "core/image/image_io.h"
 #include "editor/history.h"
 #include "editor/record.h"
 #include "editor/replay.h"

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "core/mesh/image_io.h"
+#include "core/image/image_io.h"
 #include "editor/history.h"
 #include "editor/replay.h"
 

@@ -10,7 +10,7 @@
 #include <cstdlib>
 #include <fstream>
 
-#include "core/commands/codecs.h"
+#include "core/params/codecs.h"
 #include "core/commands/place_sketch.h"
 #include "editor/command_registry.h"
 #include "editor/navigation.h"

@@ -12,7 +12,7 @@
 #include <thread>
 
 #include "core/commands/volume_load.h"
-#include "core/mesh/image_io.h"
+#include "core/image/image_io.h"
 #include "core/volume/prepared_volume.h"
 #include "editor/volume_ui.h"
 #include "session_test_util.h"

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "core/mesh/image_io.h"
+#include "core/image/image_io.h"
 #include "gl_test.h"
 #include "gpu/overlay_geometry.h"
 

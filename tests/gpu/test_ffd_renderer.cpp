@@ -4,7 +4,7 @@
 
 #include <cstdio>
 
-#include "core/mesh/image_io.h"
+#include "core/image/image_io.h"
 #include "ffd_gl_test_util.h"
 #include "gl_test.h"
 #include "gpu/ffd_gl.h"

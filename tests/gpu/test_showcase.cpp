@@ -5,7 +5,7 @@
 
 #include <filesystem>
 
-#include "core/mesh/image_io.h"
+#include "core/image/image_io.h"
 #include "core/mesh/mesh_io.h"
 #include "core/placement/sketch_placement.h"
 #include "core/raycast/ray_caster.h"

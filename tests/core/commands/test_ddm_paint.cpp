@@ -11,7 +11,7 @@
 #include <tuple>
 
 #include "core/commands/camera_set.h"
-#include "core/commands/codecs.h"
+#include "core/params/codecs.h"
 #include "core/commands/ddm_commands.h"
 #include "core/commands/ddm_paint.h"
 #include "core/raycast/ray_caster.h"

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "core/ffd/ffd.h"
-#include "core/ffd/seed_cube.h"
+#include "bench/seed_cube.h"
 #include "core/mesh/uv_sphere.h"
 
 namespace trispline::core::test {
@@ -56,7 +56,7 @@ inline Aabb bounds_of(const std::vector<glm::dvec3>& pts) {
   return b;
 }
 
-// The seed's cube and its bend + twist (core/ffd/seed_cube.h).
+// The seed's cube and its bend + twist (bench/seed_cube.h).
 inline TriMesh cube12() { return seed_cube(); }
 inline FfdBinding bent_twisted_binding(const TriMesh& mesh) { return seed_cube_bend_twist(mesh); }
 

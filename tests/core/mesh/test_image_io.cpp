@@ -1,5 +1,5 @@
 // PNG and EXR through OpenImageIO: exact round trip for PNG, 8-bit-exact after half-float EXR.
-#include "core/mesh/image_io.h"
+#include "core/image/image_io.h"
 #include "mesh_test_util.h"
 
 namespace trispline::core {

@@ -1,4 +1,4 @@
-#include "core/commands/codecs.h"
+#include "core/params/codecs.h"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "core/ffd/seed_cube.h"
+#include "bench/seed_cube.h"
 
 #include <cmath>
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "core/commands/params.h"
+#include "core/params/params.h"
 #include "core/scene/camera.h"
 #include "core/scene/scene.h"
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "core/commands/command.h"
+#include "core/params/command_context.h"
 
 namespace trispline::core {
 

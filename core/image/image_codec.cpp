@@ -1,5 +1,5 @@
 // Loading the OpenImageIO plugin on first use. See image_codec.h.
-#include "core/mesh/image_codec.h"
+#include "core/image/image_codec.h"
 
 #include <dlfcn.h>
 
@@ -8,7 +8,7 @@
 #include <string>
 #include <system_error>
 
-#include "core/mesh/image_io.h"
+#include "core/image/image_io.h"
 
 #ifndef TRISPLINE_CODEC_BUILD_DIR
 #error "TRISPLINE_CODEC_BUILD_DIR: the folder the build writes libtrispline_oiio.so to (core/mesh/CMakeLists.txt)"

@@ -1,14 +1,16 @@
-#include "core/mesh/image_io.h"
+#include "core/image/image_io.h"
 
 #include <algorithm>
 #include <cctype>
 #include <string>
 
-#include "core/mesh/image_codec.h"
-#include "core/mesh/path_quote.h"
+#include "core/image/image_codec.h"
 
 namespace trispline::core {
+
 namespace {
+
+std::string quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
 
 std::string lower_ext(const std::filesystem::path& p) {
   std::string e = p.extension().string();

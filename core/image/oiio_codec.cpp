@@ -3,7 +3,7 @@
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
-#include "core/mesh/image_codec.h"
+#include "core/image/image_codec.h"
 
 namespace trispline::core {
 namespace {

@@ -30,8 +30,8 @@
 #include <utility>
 #include <vector>
 
-#include "core/commands/command.h"
-#include "core/commands/param_codecs.h"
+#include "core/params/command_context.h"
+#include "core/params/param_codecs.h"
 
 namespace trispline::core {
 

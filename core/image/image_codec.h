@@ -1,5 +1,5 @@
 // trispline::core image codec: the OpenImageIO calls of trispline behind one interface, implemented in a plugin
-// (libtrispline_oiio.so, core/mesh/oiio_codec.cpp) that is loaded on the first image read or write.
+// (libtrispline_oiio.so, core/image/oiio_codec.cpp) that is loaded on the first image read or write.
 //
 // Why a plugin: Debian's OpenImageIO maps ~260 shared libraries (OpenCV, GDAL, libheif, FFmpeg, …), ~0.45 s of CPU
 // at every process start (0.75 s under ASan). Most trispline processes never touch an image — `farm status`, a
@@ -79,7 +79,7 @@ class ImageCodec {
 };
 
 // The codec of this process: the plugin is looked for beside the executable's ../lib/trispline (an installed tree),
-// then in the build tree that compiled this file. Throws ImageIoError (core/mesh/image_io.h) naming the paths tried
+// then in the build tree that compiled this file. Throws ImageIoError (core/image/image_io.h) naming the paths tried
 // and dlerror()'s message when it cannot be loaded; later calls retry.
 const ImageCodec& image_codec();
 

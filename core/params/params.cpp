@@ -1,4 +1,4 @@
-#include "core/commands/params.h"
+#include "core/params/params.h"
 
 #include <charconv>
 #include <cmath>
