@@ -19,13 +19,13 @@
 #include "core/scene/ddm_follow.h"
 #include "core/scene/primitives.h"
 #include "core/scene/scene.h"
-#include "editor/command_registry.h"
-#include "editor/history.h"
-#include "editor/render_scene.h"
-#include "editor/replay.h"
+#include "editor/commands/command_registry.h"
+#include "editor/commands/history.h"
+#include "editor/replay/render_scene.h"
+#include "editor/replay/replay.h"
 #include "editor/tools/ddm_paint_tool.h"
-#include "gpu/gl_context.h"
-#include "gpu/renderer.h"
+#include "gpu/gl/gl_context.h"
+#include "gpu/render/renderer.h"
 
 namespace trispline::editor {
 namespace {

@@ -17,9 +17,9 @@
 #include "core/mesh/loop_subdivision.h"
 #include "core/mesh/mesh_io.h"
 #include "core/raycast/ray_caster.h"
-#include "editor/command_log.h"
-#include "editor/command_registry.h"
-#include "editor/history.h"
+#include "editor/commands/command_log.h"
+#include "editor/commands/command_registry.h"
+#include "editor/commands/history.h"
 
 namespace trispline::editor {
 namespace {

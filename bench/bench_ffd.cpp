@@ -6,8 +6,8 @@
 #include <memory>
 
 #include "bench/ffd_bench.h"
-#include "gpu/ffd_gl.h"
-#include "gpu/gl_context.h"
+#include "gpu/eval/ffd_gl.h"
+#include "gpu/gl/gl_context.h"
 
 namespace trispline::editor {
 

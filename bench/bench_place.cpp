@@ -14,8 +14,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "editor/command_registry.h"
-#include "editor/history.h"
+#include "editor/commands/command_registry.h"
+#include "editor/commands/history.h"
 #include "ui/frame_timings.h"
 
 namespace trispline::editor {

@@ -19,12 +19,12 @@
 #include "core/mesh/mesh_io.h"
 #include "core/mesh/uv_sphere.h"
 #include "core/raycast/ray_caster.h"
-#include "editor/command_registry.h"
-#include "editor/session.h"
+#include "editor/commands/command_registry.h"
+#include "editor/session/session.h"
 #include "editor/tools/press_tool.h"
-#include "gpu/ffd_gl.h"
-#include "gpu/gl_context.h"
-#include "gpu/mesh_buffers.h"
+#include "gpu/eval/ffd_gl.h"
+#include "gpu/gl/gl_context.h"
+#include "gpu/gl/mesh_buffers.h"
 #include "ui/message_log.h"
 
 namespace trispline::editor {

@@ -13,11 +13,11 @@
 #include <stdexcept>
 
 #include "bench/ffd_bench.h"
+#include "bench/seed_cube.h"
 #include "core/ffd/deformation_bounds.h"
 #include "core/ffd/ffd.h"
 #include "core/ffd/fold_certificate.h"
 #include "core/ffd/refine.h"
-#include "bench/seed_cube.h"
 #include "core/mesh/mesh_io.h"
 #include "core/spline/knot_vector.h"
 #include "core/spline/trivariate_bspline.h"

@@ -25,9 +25,9 @@
 #include "core/mesh/material_image.h"
 #include "core/scene/camera.h"
 #include "core/scene/scene.h"
-#include "gpu/gl_context.h"
-#include "gpu/material_textures.h"
-#include "gpu/renderer.h"
+#include "gpu/gl/gl_context.h"
+#include "gpu/render/material_textures.h"
+#include "gpu/render/renderer.h"
 
 using namespace trispline;
 

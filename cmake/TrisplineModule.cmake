@@ -1,6 +1,6 @@
 # trispline_module(<name> SOURCES <files...> DEPS <targets...>)
 # Makes static library trispline_<name> with the project's warnings and the repository root on the include path,
-# so every header is included as "core/spline/knot_vector.h", "gpu/renderer.h", ...
+# so every header is included as "core/spline/knot_vector.h", "gpu/render/renderer.h", ...
 # Unity batches of 8 files: a module's files share one parse of the project's and libraries' headers (the build is
 # CPU-bound on 2 cores, so fewer parses is less time: the editor's cold build 594 → 477 s, docs/performance.md).
 # Files compiled with options of their own (the FFD kernels' instruction sets) are built alone; file-local helpers

@@ -1,8 +1,8 @@
 // trispline::editor animation UI — the editor's side of the timeline (seed §2.4.3): the playback clock (current
 // frame and playing state: view state, never logged), the Timeline panel and its keys (I, Alt+I, arrows), the
-// Record dialog and the recording in progress (editor/record.h's Recorder, one frame per UI frame, modal progress),
-// and the scene as drawn at the current frame (glTF clips posed by core::scene_with_posed_clips, cached per frame).
-// Document changes go through the session as commands: anim.timeline, anim.keyframe, anim.record.
+// Record dialog and the recording in progress (editor/replay/record.h's Recorder, one frame per UI frame, modal
+// progress), and the scene as drawn at the current frame (glTF clips posed by core::scene_with_posed_clips, cached per
+// frame). Document changes go through the session as commands: anim.timeline, anim.keyframe, anim.record.
 //
 // Split from editor/app.cpp so tests drive it with a session and a headless Dear ImGui frame (no window).
 #pragma once
@@ -14,8 +14,8 @@
 #include <set>
 #include <string>
 
-#include "editor/record.h"
-#include "editor/session.h"
+#include "editor/replay/record.h"
+#include "editor/session/session.h"
 #include "ui/main_menu.h"
 #include "ui/record_dialog.h"
 #include "ui/timeline_panel.h"

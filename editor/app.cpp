@@ -403,7 +403,8 @@ void App::record_frame_timings(Clock::time_point start, Clock::time_point end, C
     sample.passes.draw_ms = rs.draw_ms;
     sample.passes.ffd_vertices = rs.ffd_vertices;
     sample.passes.volume_ms = rs.volumes_drawn > 0 ? rs.volume_ms : -1.0;
-    // The vertex-shader path evaluates while drawing; GLSL compute hands animated objects to it (gpu/renderer_ffd.h).
+    // The vertex-shader path evaluates while drawing; GLSL compute hands animated objects to it
+    // (gpu/render/renderer_ffd.h).
     const core::FfdBackend b = toggles_.ffd_backend;
     sample.passes.ffd_in_draw =
         b == core::FfdBackend::glsl_vertex || (b == core::FfdBackend::glsl_compute && any_animated);

@@ -2,7 +2,8 @@
 // 3-D viewport and runs until the user quits (`trispline`, `trispline edit [LOG]`).
 //
 // Panels: Scene (top right), History (bottom right), Tool (left), Log (bottom), main menu, status bar.
-// Every change goes through a command (History + session log, see editor/session.h); errors go to the Log panel.
+// Every change goes through a command (History + session log, see editor/session/session.h); errors go to the Log
+// panel.
 #pragma once
 
 #include <filesystem>

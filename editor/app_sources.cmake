@@ -4,12 +4,12 @@ set(TRISPLINE_EDITOR_APP_SOURCES
     app.cpp
     app_bench.cpp
     app_requests.cpp
-    background_command.cpp
+    session/background_command.cpp
     gui_probe.cpp
     guarantees_view.cpp
     animation_ui.cpp
-    navigation.cpp
-    session.cpp
+    session/navigation.cpp
+    session/session.cpp
     volume_ui.cpp
     tools/select_tool.cpp
     tools/toolbox.cpp

@@ -9,7 +9,7 @@
 
 #include "core/ffd/deformation_bounds.h"
 #include "core/ffd/ffd.h"
-#include "editor/elapsed.h"
+#include "editor/replay/elapsed.h"
 
 namespace trispline::editor {
 

@@ -20,7 +20,7 @@
 
 #include "core/ffd/fold_certificate.h"
 #include "core/scene/scene.h"
-#include "gpu/view_options.h"
+#include "gpu/view/view_options.h"
 #include "ui/layout.h"
 
 namespace trispline::editor {

@@ -9,7 +9,7 @@
 #include "core/commands/volume_export.h"
 #include "core/commands/volume_load.h"
 #include "core/volume/prepared_volume.h"
-#include "editor/session.h"
+#include "editor/session/session.h"
 #include "ui/gui_probe.h"
 #include "ui/param_widgets.h"
 #include "ui/theme.h"

@@ -25,7 +25,7 @@
 #include <string>
 
 #include "core/scene/scene.h"
-#include "gpu/view_options.h"
+#include "gpu/view/view_options.h"
 #include "ui/message_log.h"
 #include "ui/volume_panel.h"
 

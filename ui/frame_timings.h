@@ -1,5 +1,5 @@
 // trispline::ui frame timings — the plain data behind the live timing overlay (ui/overlays.h) and replay's
-// report.json "timings" object (editor/replay.cpp), so both show the same numbers.
+// report.json "timings" object (editor/replay/replay.cpp), so both show the same numbers.
 //   StageTiming, stage_timings()   a command's CPU time per stage, from its Command::stats() JSON
 //   PassTimings                    one frame's GPU passes: FFD evaluation, scene draw, iso ray casting, UI (ms;
 //                                  < 0 = unknown)

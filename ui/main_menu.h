@@ -5,7 +5,7 @@
 #include <string>
 
 #include "core/ffd/ffd_evaluator.h"
-#include "gpu/renderer.h"
+#include "gpu/render/renderer.h"
 
 namespace trispline::ui {
 

@@ -1,6 +1,6 @@
 // trispline::ui Record dialog and progress — the Timeline's Record button and File > Record animation...: a modal
 // asking where and what to record (output folder, PNG/EXR, frame range, size, GLB and MP4), which returns the
-// logged anim.record line for the editor to execute (editor/record.h does the rendering), and the modal progress
+// logged anim.record line for the editor to execute (editor/replay/record.h does the rendering), and the modal progress
 // bar shown while the editor's Recorder renders one frame per UI frame.
 #pragma once
 

@@ -5,8 +5,8 @@
 
 #include <optional>
 
-#include "core/params/codecs.h"
 #include "core/commands/snapshot_command.h"
+#include "core/params/codecs.h"
 
 namespace trispline::core {
 

@@ -12,11 +12,11 @@
 #include <random>
 #include <stdexcept>
 
-#include "core/params/codecs.h"
 #include "core/ddm/ddm_auto_uv.h"
 #include "core/ddm/ddm_chart_size.h"
 #include "core/mesh/mesh_io.h"
 #include "core/mesh/model_load.h"
+#include "core/params/codecs.h"
 #include "core/scene/ddm_follow.h"
 #include "core/scene/primitives.h"
 

@@ -13,9 +13,9 @@
 #include <stdexcept>
 #include <tuple>
 
-#include "core/params/codecs.h"
 #include "core/commands/ddm_commands.h"
 #include "core/ddm/ddm_layer.h"
+#include "core/params/codecs.h"
 #include "core/raycast/ray_caster.h"
 #include "core/scene/ddm_follow.h"
 

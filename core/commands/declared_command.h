@@ -9,8 +9,8 @@
 #include <memory>
 #include <utility>
 
-#include "core/params/params.h"
 #include "core/commands/snapshot_command.h"
+#include "core/params/params.h"
 
 namespace trispline::core {
 

@@ -7,8 +7,8 @@
 #include <memory>
 #include <optional>
 
-#include "core/params/codecs.h"
 #include "core/dffd/obstacle_interior.h"
+#include "core/params/codecs.h"
 
 namespace trispline::core {
 

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "core/params/codecs.h"
 #include "core/mesh/tri_mesh.h"
+#include "core/params/codecs.h"
 #include "core/spline/bspline_basis.h"
 
 namespace trispline::core {

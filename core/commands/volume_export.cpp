@@ -2,8 +2,8 @@
 
 #include <chrono>
 
-#include "core/params/codecs.h"
 #include "core/mesh/gltf_io.h"
+#include "core/params/codecs.h"
 #include "core/scene/scene_check.h"
 #include "core/volume/iso_mesh.h"
 #include "core/volume/silhouette_export.h"

@@ -16,9 +16,9 @@
 // Backends (identical signatures, as OpenSubdiv's Cpu*/GL* evaluators):
 //   cpu_ref       double precision reference (core/ffd/ffd.h), any order, deterministic for any thread count
 //   cpu_fast      float, oneTBB, vectorised across vertices (core/ffd/ffd_fast.h); orders 2..4
-//   glsl_compute  GLSL compute shader writing into GL buffers the renderer draws (gpu/ffd_gl.h); orders 2..4
+//   glsl_compute  GLSL compute shader writing into GL buffers the renderer draws (gpu/eval/ffd_gl.h); orders 2..4
 //   glsl_vertex   GLSL vertex-shader path (seed §4.2.1 single phase), evaluated while drawing; results for read-back
-//                 come through transform feedback of the same shader (gpu/ffd_gl.h); orders 2..4
+//                 come through transform feedback of the same shader (gpu/eval/ffd_gl.h); orders 2..4
 // Accuracy contract (tests): every backend within 1e-5 × lattice bounding-box diagonal of cpu_ref in position,
 // normals within 1e-4 rad.
 // Threads: CPU backends run on the calling thread's oneTBB arena (limit with tbb::global_control / task_arena).

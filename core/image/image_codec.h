@@ -10,8 +10,8 @@
 //   ImageCodec::open_memory  a reader of encoded bytes in memory, its format told by an extension (".png")
 //   ImageCodec::write_file   a file in the format of its extension, written in one go
 //   ImageCodec::encode       encoded bytes in memory in the format of an extension
-// The files and bytes are OpenImageIO's; callers (image_io.h, material_image.h, editor/record.h, the farm's frame
-// checks) keep their own size budgets and error messages. Errors cross the plugin boundary as strings, never as
+// The files and bytes are OpenImageIO's; callers (image_io.h, material_image.h, editor/replay/record.h, the farm's
+// frame checks) keep their own size budgets and error messages. Errors cross the plugin boundary as strings, never as
 // exceptions.
 #pragma once
 

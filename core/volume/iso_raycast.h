@@ -1,6 +1,6 @@
 // trispline::core iso-surface ray casting — the first crossing of D = c along a ray, on the spline itself (seed
 // §7.3: the iso-surface of the trivariate D is rendered exactly, no mesh). The CPU double reference of the GLSL ray
-// caster (gpu/volume_gl.h, shaders/volume_iso.frag.glsl), which implements the same steps in float.
+// caster (gpu/eval/volume_gl.h, shaders/volume_iso.frag.glsl), which implements the same steps in float.
 //
 //   VolumeRangeGrid / build_volume_range_grid   coarse min/max bricks for empty-space skipping (CPU and GPU)
 //   iso_ray_hit                                 one world ray → first crossing, index and world point, normal

@@ -14,8 +14,8 @@
 #include <cstdio>
 
 #include "core/params/codecs.h"
-#include "editor/session.h"
-#include "gpu/gl_context.h"
+#include "editor/session/session.h"
+#include "gpu/gl/gl_context.h"
 #include "ui/ddm_anim_panel.h"
 #include "ui/gui_probe.h"
 #include "ui/number_field.h"

@@ -5,8 +5,8 @@
 #include <cstdio>
 
 #include "core/commands/dffd_animate.h"
-#include "editor/navigation.h"
-#include "editor/session.h"
+#include "editor/session/navigation.h"
+#include "editor/session/session.h"
 #include "editor/tools/select_tool.h"
 #include "ui/gui_probe.h"
 #include "ui/theme.h"

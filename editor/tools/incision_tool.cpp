@@ -6,9 +6,9 @@
 #include <cmath>
 
 #include "core/commands/incision_animate.h"
-#include "editor/command_registry.h"
-#include "editor/navigation.h"
-#include "editor/session.h"
+#include "editor/commands/command_registry.h"
+#include "editor/session/navigation.h"
+#include "editor/session/session.h"
 #include "editor/tools/select_tool.h"
 #include "ui/gui_probe.h"
 #include "ui/number_field.h"

@@ -21,7 +21,7 @@
 #include "core/commands/incision_draw.h"
 #include "core/incision/incision.h"
 #include "core/raycast/ray_caster.h"
-#include "editor/history.h"
+#include "editor/commands/history.h"
 #include "editor/tools/stroke_gesture.h"
 #include "editor/tools/tool.h"
 #include "ui/key_pair_panel.h"

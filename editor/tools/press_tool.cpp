@@ -10,8 +10,8 @@
 #include <iterator>
 
 #include "core/commands/lattice_press.h"
-#include "editor/navigation.h"
-#include "editor/session.h"
+#include "editor/session/navigation.h"
+#include "editor/session/session.h"
 #include "ui/gui_probe.h"
 #include "ui/number_field.h"
 #include "ui/theme.h"

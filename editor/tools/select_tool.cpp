@@ -6,7 +6,7 @@
 
 #include "core/raycast/ray_caster.h"
 #include "core/volume/iso_raycast.h"
-#include "editor/session.h"
+#include "editor/session/session.h"
 #include "ui/theme.h"
 
 namespace trispline::editor {

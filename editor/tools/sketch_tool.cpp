@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "editor/navigation.h"
-#include "editor/session.h"
+#include "editor/session/navigation.h"
+#include "editor/session/session.h"
 #include "ui/gui_probe.h"
 #include "ui/theme.h"
 

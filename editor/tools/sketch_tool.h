@@ -16,7 +16,7 @@
 #include <optional>
 #include <vector>
 
-#include "editor/history.h"
+#include "editor/commands/history.h"
 #include "editor/tools/stroke_gesture.h"
 #include "editor/tools/tool.h"
 #include "ui/placement_panel.h"

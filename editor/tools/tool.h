@@ -12,7 +12,7 @@
 #include <string>
 
 #include "core/scene/camera.h"
-#include "gpu/renderer.h"
+#include "gpu/render/renderer.h"
 #include "ui/tool_panel.h"
 
 namespace trispline::editor {
@@ -36,8 +36,8 @@ struct ToolContext {
   // Runs `work` after one frame showing "Working… <what>" (long synchronous commands).
   std::function<void(std::string what, std::function<void()> work)> defer;
   // Builds a long command (`line`: ddm.fill, ddm.bake) on a worker thread behind a progress bar with Cancel
-  // (editor/background_command.h); `what` is the bar's text, `verb` the Log's "<verb> cancelled". Unset (tool tests):
-  // the tools run the line through defer.
+  // (editor/session/background_command.h); `what` is the bar's text, `verb` the Log's "<verb> cancelled". Unset (tool
+  // tests): the tools run the line through defer.
   std::function<void(const nlohmann::json& line, std::string what, std::string verb)> background;
 };
 

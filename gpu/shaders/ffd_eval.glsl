@@ -1,7 +1,7 @@
 #version 430 core
 // Trivariate B-spline FFD evaluation shared by ffd.comp.glsl (compute path) and mesh.vert.glsl [FFD] (vertex path,
 // seed §4.2.1). Included with `#include "ffd_eval.glsl"`; the tables are core::FfdPackedLattice uploaded by
-// gpu/ffd_gl_lattice.cpp, and the numerics follow its header comment step by step (core/ffd/ffd_packed.h):
+// gpu/eval/ffd_gl_lattice.cpp, and the numerics follow its header comment step by step (core/ffd/ffd_packed.h):
 //   wrap (periodic) or clamp t → span slot (O(1) for uniform spans, binary search otherwise) → local x → Horner in
 //   the power basis → control index first + r (mod count on a periodic axis) → tensor contraction k, j, i.
 // Normals: n' ∝ cof(J·A)·n with J = [∂F/∂u ∂F/∂v ∂F/∂w], A = embedding linear part (seed §4.3); the rest normal

@@ -4,7 +4,7 @@
 // only): as in mesh.vert.glsl, drawn moved towards the eye by the fraction u_depth_pull of its distance (same
 // pixel, nearer depth) — iso-lines of the contact surface lying on the object they were fitted to. Variant
 // SCREEN_DEPTH (with SCREEN_SPACE): a_position.z is the normalized device depth in [-1, 1], so thick strokes built in
-// pixels are depth-tested (volume silhouettes, gpu/silhouette_strokes.h).
+// pixels are depth-tested (volume silhouettes, gpu/view/silhouette_strokes.h).
 #if defined(SCREEN_SPACE) && defined(SCREEN_DEPTH)
 layout(location = 0) in vec3 a_position;  // pixels, NDC depth
 uniform vec2 u_viewport;                  // pixels

@@ -1,5 +1,5 @@
 #version 430 core
-// Composites the volumes' ray-cast layer (gpu/renderer_volume.h) into the frame, with background.vert.glsl's
+// Composites the volumes' ray-cast layer (gpu/render/renderer_volume.h) into the frame, with background.vert.glsl's
 // full-screen triangle: colour and depth of the full-resolution layer where it has been refined (window rows
 // gl_FragCoord.y ≥ u_refined_from), else of the low-resolution preview (nearest texel); pixels no ray hit (depth 1)
 // are discarded. The colours are the ray caster's sRGB-encoded output, copied as they are.

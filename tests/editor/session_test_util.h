@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "editor/history.h"
-#include "editor/replay.h"
-#include "editor/session.h"
+#include "editor/commands/history.h"
+#include "editor/replay/replay.h"
+#include "editor/session/session.h"
 #include "tests/test_paths.h"
 #include "ui/message_log.h"
 

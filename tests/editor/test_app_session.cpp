@@ -1,13 +1,13 @@
-// The interactive editor's logic without a window: session log + lock + crash recovery (editor/session.h),
+// The interactive editor's logic without a window: session log + lock + crash recovery (editor/session/session.h),
 // Save/Open round trip, the Sketch placement tool's "parameter change = one undoable re-run", picking, and the
-// navigation maths (editor/navigation.h). The window itself is checked by the xvfb screenshot test.
+// navigation maths (editor/session/navigation.h). The window itself is checked by the xvfb screenshot test.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
 #include <fstream>
 
-#include "editor/navigation.h"
-#include "editor/session.h"
+#include "editor/session/navigation.h"
+#include "editor/session/session.h"
 #include "editor/tools/select_tool.h"
 #include "editor/tools/sketch_tool.h"
 #include "session_test_util.h"

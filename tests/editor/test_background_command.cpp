@@ -1,6 +1,6 @@
-// Fill built on a worker thread (editor/background_command.h): a cancelled fill leaves the scene, the history and the
-// session log untouched and says "Fill cancelled"; other changes are refused while it builds; a finished one is one
-// history entry whose log line and resulting layer are bit for bit those of the same line executed synchronously
+// Fill built on a worker thread (editor/session/background_command.h): a cancelled fill leaves the scene, the history
+// and the session log untouched and says "Fill cancelled"; other changes are refused while it builds; a finished one is
+// one history entry whose log line and resulting layer are bit for bit those of the same line executed synchronously
 // (what replay does). No timing is asserted: a cancel that arrives after the build finished drops it all the same.
 // Undo, redo and History jumps walked on the worker end where the synchronous ones do.
 #include <gtest/gtest.h>
@@ -10,8 +10,8 @@
 #include <string>
 
 #include "core/commands/ddm_commands.h"
-#include "editor/background_command.h"
-#include "editor/command_registry.h"
+#include "editor/commands/command_registry.h"
+#include "editor/session/background_command.h"
 #include "session_test_util.h"
 #include "tests/test_paths.h"
 

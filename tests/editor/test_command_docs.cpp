@@ -6,8 +6,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "editor/command_docs.h"
-#include "editor/command_registry.h"
+#include "editor/commands/command_docs.h"
+#include "editor/commands/command_registry.h"
 
 namespace fs = std::filesystem;
 using namespace trispline;

@@ -16,8 +16,8 @@
 
 #include "core/ddm/ddm_layer.h"
 #include "core/mesh/gltf_anim_io.h"
-#include "editor/history.h"
-#include "editor/replay.h"
+#include "editor/commands/history.h"
+#include "editor/replay/replay.h"
 
 namespace fs = std::filesystem;
 using namespace trispline;

@@ -6,8 +6,8 @@
 
 #include <filesystem>
 
-#include "editor/history.h"
-#include "editor/replay.h"
+#include "editor/commands/history.h"
+#include "editor/replay/replay.h"
 #include "tests/editor/session_test_util.h"
 #include "tests/mesh_topology.h"
 

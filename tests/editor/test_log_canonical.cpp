@@ -11,8 +11,8 @@
 #include <map>
 #include <sstream>
 
-#include "editor/command_log.h"
-#include "editor/command_registry.h"
+#include "editor/commands/command_log.h"
+#include "editor/commands/command_registry.h"
 
 namespace fs = std::filesystem;
 using namespace trispline;

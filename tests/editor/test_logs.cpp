@@ -3,10 +3,10 @@
 
 #include <filesystem>
 
-#include "editor/command_log.h"
-#include "editor/command_registry.h"
-#include "editor/history.h"
-#include "editor/replay.h"
+#include "editor/commands/command_log.h"
+#include "editor/commands/command_registry.h"
+#include "editor/commands/history.h"
+#include "editor/replay/replay.h"
 #include "tests/editor/session_test_util.h"
 
 namespace fs = std::filesystem;

@@ -14,13 +14,13 @@
 #include <iterator>
 #include <set>
 
-#include "core/mesh/gltf_anim_io.h"
 #include "core/image/image_io.h"
-#include "editor/history.h"
-#include "editor/record.h"
-#include "editor/replay.h"
-#include "gpu/gl_context.h"
-#include "gpu/renderer.h"
+#include "core/mesh/gltf_anim_io.h"
+#include "editor/commands/history.h"
+#include "editor/replay/record.h"
+#include "editor/replay/replay.h"
+#include "gpu/gl/gl_context.h"
+#include "gpu/render/renderer.h"
 #include "tests/editor/session_test_util.h"
 
 namespace fs = std::filesystem;

@@ -15,8 +15,8 @@
 #include "core/commands/volume_load.h"
 #include "core/commands/volume_silhouettes.h"
 #include "core/mesh/gltf_anim_io.h"
-#include "editor/record.h"
-#include "editor/replay.h"
+#include "editor/replay/record.h"
+#include "editor/replay/replay.h"
 #include "tests/editor/session_test_util.h"
 
 namespace fs = std::filesystem;

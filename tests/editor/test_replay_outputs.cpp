@@ -7,8 +7,8 @@
 #include <fstream>
 
 #include "core/image/image_io.h"
-#include "editor/history.h"
-#include "editor/replay.h"
+#include "editor/commands/history.h"
+#include "editor/replay/replay.h"
 
 namespace fs = std::filesystem;
 using namespace trispline;

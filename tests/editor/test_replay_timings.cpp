@@ -13,9 +13,9 @@
 #include <vector>
 
 #include "core/mesh/gltf_io.h"
-#include "editor/cli.h"
-#include "editor/replay.h"
-#include "gpu/timer.h"
+#include "editor/cli/cli.h"
+#include "editor/replay/replay.h"
+#include "gpu/gl/timer.h"
 
 namespace fs = std::filesystem;
 using namespace trispline;

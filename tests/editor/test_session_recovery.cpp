@@ -10,11 +10,11 @@
 #include <cstdlib>
 #include <fstream>
 
-#include "core/params/codecs.h"
 #include "core/commands/place_sketch.h"
-#include "editor/command_registry.h"
-#include "editor/navigation.h"
-#include "editor/session.h"
+#include "core/params/codecs.h"
+#include "editor/commands/command_registry.h"
+#include "editor/session/navigation.h"
+#include "editor/session/session.h"
 #include "editor/tools/sketch_tool.h"
 #include "session_test_util.h"
 #include "stroke_gesture.h"

@@ -5,9 +5,9 @@
 #include <cstring>
 #include <filesystem>
 
-#include "editor/command_registry.h"
-#include "editor/history.h"
-#include "editor/replay.h"
+#include "editor/commands/command_registry.h"
+#include "editor/commands/history.h"
+#include "editor/replay/replay.h"
 #include "tests/test_paths.h"
 
 namespace fs = std::filesystem;

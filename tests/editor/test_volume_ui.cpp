@@ -2,8 +2,9 @@
 // scripts/fetch_assets.sh) prepared on a worker thread with progress, then one volume.load; a second load refused
 // while one runs; a cancelled and a truncated load leave the scene untouched and say so; live silhouettes extracted on
 // a worker for the current view, the stale ones drawn until the new ones arrive; an export of the view's silhouettes
-// (camera.set first) and of the iso-surface. And headless rendering (editor/render_scene.h through `replay`): a volume
-// and its silhouettes in final.png, extracted again for the render camera when the stored ones are for another view.
+// (camera.set first) and of the iso-surface. And headless rendering (editor/replay/render_scene.h through `replay`): a
+// volume and its silhouettes in final.png, extracted again for the render camera when the stored ones are for another
+// view.
 #include <gtest/gtest.h>
 
 #include <chrono>

@@ -1,12 +1,12 @@
-// farm.json's reader (editor/farm_plan.h) on the fuzz target's seeds: the valid plans of both kinds read back to the
-// same text, and every hostile one is refused with FarmPlanError naming the key at fault.
+// farm.json's reader (editor/farm/farm_plan.h) on the fuzz target's seeds: the valid plans of both kinds read back to
+// the same text, and every hostile one is refused with FarmPlanError naming the key at fault.
 #include <gtest/gtest.h>
 
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "editor/farm_plan.h"
+#include "editor/farm/farm_plan.h"
 
 namespace trispline::editor {
 namespace {

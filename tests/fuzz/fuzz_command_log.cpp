@@ -12,8 +12,8 @@
 #include <filesystem>
 #include <string>
 
-#include "editor/command_log.h"
-#include "editor/command_registry.h"
+#include "editor/commands/command_log.h"
+#include "editor/commands/command_registry.h"
 
 using namespace trispline;
 

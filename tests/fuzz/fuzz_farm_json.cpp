@@ -1,4 +1,4 @@
-// libFuzzer target: farm.json's reader and checks (editor/farm_plan.h), what `trispline farm status|resume|
+// libFuzzer target: farm.json's reader and checks (editor/farm/farm_plan.h), what `trispline farm status|resume|
 // assemble|task` run on a farm folder someone else wrote. Any input must either give a plan or throw FarmPlanError
 // naming a key; any other exception, a crash or a hang is a finding. A plan that is accepted must write itself as
 // farm.json text that reads back to the same text (what the farm writes, it must read), and its tasks must be the
@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "editor/farm_plan.h"
+#include "editor/farm/farm_plan.h"
 
 using namespace trispline;
 

@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "core/scene/scene.h"
-#include "gpu/gl_context.h"
-#include "gpu/renderer.h"
+#include "gpu/gl/gl_context.h"
+#include "gpu/render/renderer.h"
 
 namespace trispline::gpu::test {
 

@@ -6,7 +6,7 @@
 
 #include "core/image/image_io.h"
 #include "gl_test.h"
-#include "gpu/overlay_geometry.h"
+#include "gpu/view/overlay_geometry.h"
 
 namespace trispline::gpu::test {
 namespace {

@@ -1,4 +1,4 @@
-// Culling and thinning of live DDM layers (gpu/ddm_cull.h, the renderer's ViewOptions::ddm) on the teapot's body
+// Culling and thinning of live DDM layers (gpu/view/ddm_cull.h, the renderer's ViewOptions::ddm) on the teapot's body
 // covered with thorns: the frustum test never drops an instance with a vertex of the CPU reference mesh inside the
 // view (from views around, close to and inside the pot); rendered for real on llvmpipe, the culled image is the full
 // one (frustum: pixel for pixel; with the facing-away cone: within a few pixels), the thinned one draws a power-of-two
@@ -10,7 +10,7 @@
 #include "core/commands/ddm_commands.h"
 #include "core/scene/primitives.h"
 #include "gl_test.h"
-#include "gpu/ddm_cull.h"
+#include "gpu/view/ddm_cull.h"
 
 namespace trispline::gpu::test {
 namespace {

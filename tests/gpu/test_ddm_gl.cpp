@@ -1,4 +1,4 @@
-// Live DDM layers on the GPU (gpu/ddm_gl.h, shaders/ddm.vert.glsl, seed §5.3.2) against the CPU
+// Live DDM layers on the GPU (gpu/eval/ddm_gl.h, shaders/ddm.vert.glsl, seed §5.3.2) against the CPU
 // reference core::ddm_layer_mesh (ddm_evaluate over DdmMapsBase), for real on llvmpipe: every base kind (the
 // teapot's body patches as one periodic chart, the Loop limit surface of a polygonal sphere, a UV-mapped terrain),
 // with a tile-space transform, a texture-space offset (wrapping on the periodic chart, clamped elsewhere), several
@@ -10,7 +10,7 @@
 #include "core/ddm/ddm_pn_maps.h"
 #include "core/scene/primitives.h"
 #include "gl_test.h"
-#include "gpu/ddm_gl.h"
+#include "gpu/eval/ddm_gl.h"
 #include "tests/ddm_follow_cases.h"
 
 namespace trispline::gpu::test {

@@ -7,7 +7,7 @@
 #include "core/dffd/dffd.h"
 #include "core/dffd/dffd_rig.h"
 #include "gl_test.h"
-#include "gpu/ffd_gl.h"
+#include "gpu/eval/ffd_gl.h"
 
 namespace trispline::gpu::test {
 namespace {

@@ -1,4 +1,4 @@
-// GLSL FFD evaluators (gpu/ffd_gl.h) against the CPU double reference (core ffd_evaluate), for real on llvmpipe:
+// GLSL FFD evaluators (gpu/eval/ffd_gl.h) against the CPU double reference (core ffd_evaluate), for real on llvmpipe:
 // every order combination 2..4 × knot type (clamped uniform, floating uniform, periodic along u, non-uniform
 // clamped) with a parameter offset, the periodic return, the real bunny, and bad input.
 // Tolerances: positions ≤ 1e-5 × lattice bounding-box diagonal, normals ≤ 1e-4 rad.
@@ -11,7 +11,7 @@
 #include "core/mesh/mesh_io.h"
 #include "ffd_gl_test_util.h"
 #include "gl_test.h"
-#include "gpu/ffd_gl.h"
+#include "gpu/eval/ffd_gl.h"
 
 namespace trispline::gpu::test {
 namespace {

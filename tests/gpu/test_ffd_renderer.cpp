@@ -1,4 +1,4 @@
-// The renderer's FFD display (gpu/renderer_ffd.h): evaluate_into writes the buffers the renderer draws, the four
+// The renderer's FFD display (gpu/render/renderer_ffd.h): evaluate_into writes the buffers the renderer draws, the four
 // backends give the same picture (only speed differs), and nothing is re-evaluated when nothing changed.
 #include <epoxy/gl.h>
 
@@ -7,7 +7,7 @@
 #include "core/image/image_io.h"
 #include "ffd_gl_test_util.h"
 #include "gl_test.h"
-#include "gpu/ffd_gl.h"
+#include "gpu/eval/ffd_gl.h"
 
 namespace trispline::gpu::test {
 namespace {

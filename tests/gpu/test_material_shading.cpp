@@ -1,7 +1,7 @@
-// Material shading (ViewOptions::shading, gpu/material_textures.h) against Solid on llvmpipe: a textured quad shows
-// its texture's colours, an alpha-MASK cut-out shows the background, BLEND mixes with what is behind, an unreadable
-// image shows the magenta placeholder, textures follow the FFD on every backend; and the selection outline stays a
-// ring round the selected object's visible silhouette (objects in front of it keep their colour).
+// Material shading (ViewOptions::shading, gpu/render/material_textures.h) against Solid on llvmpipe: a textured quad
+// shows its texture's colours, an alpha-MASK cut-out shows the background, BLEND mixes with what is behind, an
+// unreadable image shows the magenta placeholder, textures follow the FFD on every backend; and the selection outline
+// stays a ring round the selected object's visible silhouette (objects in front of it keep their colour).
 #include <epoxy/gl.h>
 
 #include <algorithm>
@@ -9,7 +9,7 @@
 
 #include "core/ffd/ffd.h"
 #include "gl_test.h"
-#include "gpu/material_textures.h"
+#include "gpu/render/material_textures.h"
 
 namespace trispline::gpu::test {
 namespace {

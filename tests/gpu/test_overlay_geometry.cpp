@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "gpu/overlay_geometry.h"
+#include "gpu/view/overlay_geometry.h"
 
 namespace trispline::gpu {
 namespace {

@@ -3,8 +3,8 @@
 #include <set>
 
 #include "gl_test.h"
-#include "gpu/shader_program.h"
-#include "gpu/shader_sources.h"
+#include "gpu/gl/shader_program.h"
+#include "gpu/gl/shader_sources.h"
 
 namespace trispline::gpu::test {
 

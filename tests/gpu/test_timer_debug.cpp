@@ -5,8 +5,8 @@
 #include <thread>
 
 #include "gl_test.h"
-#include "gpu/gl_debug.h"
-#include "gpu/timer.h"
+#include "gpu/gl/gl_debug.h"
+#include "gpu/gl/timer.h"
 
 namespace trispline::gpu::test {
 

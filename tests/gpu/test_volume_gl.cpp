@@ -1,4 +1,4 @@
-// The GLSL iso-surface ray caster (gpu/volume_gl.h, shaders/volume_iso.frag.glsl) against the CPU reference
+// The GLSL iso-surface ray caster (gpu/eval/volume_gl.h, shaders/volume_iso.frag.glsl) against the CPU reference
 // core::render_iso_hits_cpu (core/volume/iso_raycast.h), for real on llvmpipe, pixel by pixel on the same rays: a
 // sphere and a torus signed distance field on oblique anisotropic grids (tests/core/volume/iso_test_volumes.h), orders
 // 4, 3 and 2, an eye inside the grid box, and the Cranium CT (assets/data) from the skull scene's three views. Hit/miss
@@ -18,9 +18,9 @@
 #include "core/volume/volume_io.h"
 #include "core/volume/volume_spline.h"
 #include "gl_test.h"
-#include "gpu/mesh_buffers.h"
-#include "gpu/shader_program.h"
-#include "gpu/volume_gl.h"
+#include "gpu/eval/volume_gl.h"
+#include "gpu/gl/mesh_buffers.h"
+#include "gpu/gl/shader_program.h"
 #include "tests/core/volume/iso_test_volumes.h"
 
 namespace trispline::gpu::test {

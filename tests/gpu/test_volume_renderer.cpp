@@ -1,9 +1,10 @@
-// Volumes in gpu::Renderer (gpu/renderer_volume.h) on llvmpipe: an analytic torus volume (core::make_analytic_volume)
-// drawn offscreen covers exactly the pixels the CPU reference core::render_iso_hits_cpu hits (but for a band on its
-// outline), combines by depth with meshes in front of and behind it, follows a live iso-level, keeps its ray caster
-// and its layer between frames (a frame whose view did not change casts nothing), refines a budgeted preview into the
-// same image as a whole cast; its silhouettes (core::extract_silhouettes for the camera) show as line pixels on the
-// outline in the plain and hue styles. The CPU stroke geometry (gpu/silhouette_strokes.h) is checked without GL.
+// Volumes in gpu::Renderer (gpu/render/renderer_volume.h) on llvmpipe: an analytic torus volume
+// (core::make_analytic_volume) drawn offscreen covers exactly the pixels the CPU reference core::render_iso_hits_cpu
+// hits (but for a band on its outline), combines by depth with meshes in front of and behind it, follows a live
+// iso-level, keeps its ray caster and its layer between frames (a frame whose view did not change casts nothing),
+// refines a budgeted preview into the same image as a whole cast; its silhouettes (core::extract_silhouettes for the
+// camera) show as line pixels on the outline in the plain and hue styles. The CPU stroke geometry
+// (gpu/view/silhouette_strokes.h) is checked without GL.
 #include <algorithm>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
@@ -12,7 +13,7 @@
 #include "core/volume/iso_raycast.h"
 #include "core/volume/silhouettes.h"
 #include "gl_test.h"
-#include "gpu/silhouette_strokes.h"
+#include "gpu/view/silhouette_strokes.h"
 
 namespace trispline::gpu::test {
 namespace {
@@ -278,7 +279,7 @@ TEST_F(VolumeRendererTest, SilhouettesShowAsLinesOnTheOutline) {
   EXPECT_EQ(draw(renderer, scene_with(v), cam, none), surface);
 }
 
-// ---- gpu/silhouette_strokes.h, no GL
+// ---- gpu/view/silhouette_strokes.h, no GL
 
 // A circle of n points in the plane z = 0, radius 20 mm, seen from above; the second half hidden.
 core::SilhouettePolyline half_hidden_circle(int n = 64) {

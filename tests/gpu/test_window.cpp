@@ -5,7 +5,7 @@
 
 #include <cstdlib>
 
-#include "gpu/window.h"
+#include "gpu/gl/window.h"
 
 namespace trispline::gpu {
 

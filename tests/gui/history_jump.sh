@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Undo, redo and History jumps walk the history on a worker (editor/background_command.h) while the view stays live:
+# Undo, redo and History jumps walk the history on a worker (editor/session/background_command.h) while the view stays live:
 # tests/logs/ddm_follow.jsonl opened (four tile fills, a DFFD split, a placement), a click on "(initial state)" undoes
 # every step in one jump, three quick Ctrl+Shift+Z redo three steps in order (keys typed while a move runs wait for
 # it), a click on the last row redoes the rest and the objects and their tile layers come back; the Log names each

@@ -3,8 +3,8 @@
 // or the axes coincide), and the tool executing the line as one undoable dffd.split (editor/tools/dffd_tool.h).
 #include <gtest/gtest.h>
 
-#include "editor/navigation.h"
-#include "editor/session.h"
+#include "editor/session/navigation.h"
+#include "editor/session/session.h"
 #include "editor/tools/dffd_tool.h"
 #include "editor/tools/toolbox.h"
 #include "headless_imgui.h"

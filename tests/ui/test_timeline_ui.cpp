@@ -13,8 +13,8 @@
 
 #include "core/commands/command.h"
 #include "editor/animation_ui.h"
-#include "editor/command_registry.h"
-#include "editor/history.h"
+#include "editor/commands/command_registry.h"
+#include "editor/commands/history.h"
 #include "editor/tools/sketch_tool.h"
 #include "headless_imgui.h"
 #include "tests/editor/session_test_util.h"

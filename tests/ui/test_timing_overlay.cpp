@@ -6,8 +6,8 @@
 #include <imgui_internal.h>
 
 #include "core/commands/command.h"
-#include "editor/history.h"
-#include "editor/replay.h"
+#include "editor/commands/history.h"
+#include "editor/replay/replay.h"
 #include "headless_imgui.h"
 #include "ui/frame_timings.h"
 #include "ui/main_menu.h"

@@ -4,8 +4,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "editor/command_registry.h"
-#include "editor/history.h"
+#include "editor/commands/command_registry.h"
+#include "editor/commands/history.h"
 
 namespace trispline::test {
 

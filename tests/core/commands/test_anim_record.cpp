@@ -4,8 +4,8 @@
 #include <gtest/gtest.h>
 
 #include "core/commands/anim_record.h"
-#include "editor/command_registry.h"
-#include "editor/history.h"
+#include "editor/commands/command_registry.h"
+#include "editor/commands/history.h"
 #include "tests/core/commands/command_test_util.h"
 #include "tests/core/commands/history_test_util.h"
 

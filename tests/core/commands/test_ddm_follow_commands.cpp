@@ -8,7 +8,7 @@
 
 #include "core/scene/ddm_follow.h"
 #include "core/scene/scene_export.h"
-#include "editor/command_log.h"
+#include "editor/commands/command_log.h"
 #include "tests/core/commands/history_test_util.h"
 #include "tests/test_paths.h"
 

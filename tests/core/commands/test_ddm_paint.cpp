@@ -11,9 +11,9 @@
 #include <tuple>
 
 #include "core/commands/camera_set.h"
-#include "core/params/codecs.h"
 #include "core/commands/ddm_commands.h"
 #include "core/commands/ddm_paint.h"
+#include "core/params/codecs.h"
 #include "core/raycast/ray_caster.h"
 #include "core/scene/primitives.h"
 #include "tests/core/commands/command_test_util.h"

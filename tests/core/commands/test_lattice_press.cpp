@@ -5,8 +5,8 @@
 
 #include "core/commands/lattice_press.h"
 #include "core/scene/scene.h"
-#include "editor/command_registry.h"
-#include "editor/history.h"
+#include "editor/commands/command_registry.h"
+#include "editor/commands/history.h"
 #include "tests/core/commands/history_test_util.h"
 
 using namespace trispline;

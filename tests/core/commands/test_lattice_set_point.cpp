@@ -7,9 +7,9 @@
 #include <filesystem>
 
 #include "core/commands/lattice_set_point.h"
-#include "editor/command_log.h"
-#include "editor/command_registry.h"
-#include "editor/history.h"
+#include "editor/commands/command_log.h"
+#include "editor/commands/command_registry.h"
+#include "editor/commands/history.h"
 #include "tests/core/commands/command_test_util.h"
 #include "tests/core/commands/history_test_util.h"
 #include "tests/test_paths.h"

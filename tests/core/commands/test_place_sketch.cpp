@@ -6,8 +6,8 @@
 #include <fstream>
 
 #include "core/scene/scene.h"
-#include "editor/command_registry.h"
-#include "editor/history.h"
+#include "editor/commands/command_registry.h"
+#include "editor/commands/history.h"
 #include "tests/core/commands/history_test_util.h"
 #include "tests/core/commands/placed_crate.h"
 

@@ -6,8 +6,8 @@
 #include <random>
 #include <vector>
 
-#include "core/ffd/ffd.h"
 #include "bench/seed_cube.h"
+#include "core/ffd/ffd.h"
 #include "core/mesh/uv_sphere.h"
 
 namespace trispline::core::test {

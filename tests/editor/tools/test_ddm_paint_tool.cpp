@@ -9,10 +9,10 @@
 
 #include <filesystem>
 
-#include "editor/history.h"
-#include "editor/navigation.h"
-#include "editor/replay.h"
-#include "editor/session.h"
+#include "editor/commands/history.h"
+#include "editor/replay/replay.h"
+#include "editor/session/navigation.h"
+#include "editor/session/session.h"
 #include "editor/tools/ddm_paint_tool.h"
 #include "editor/tools/select_tool.h"
 #include "editor/tools/toolbox.h"

@@ -6,8 +6,8 @@
 // scene unchanged.
 #include <gtest/gtest.h>
 
-#include "editor/navigation.h"
-#include "editor/session.h"
+#include "editor/session/navigation.h"
+#include "editor/session/session.h"
 #include "editor/tools/incision_tool.h"
 #include "editor/tools/select_tool.h"
 #include "editor/tools/toolbox.h"

@@ -3,8 +3,8 @@
 // touches the object issues nothing, Ctrl-drag pulls.
 #include <gtest/gtest.h>
 
-#include "editor/navigation.h"
-#include "editor/session.h"
+#include "editor/session/navigation.h"
+#include "editor/session/session.h"
 #include "editor/tools/press_tool.h"
 #include "editor/tools/select_tool.h"
 #include "tool_test.h"

@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "editor/navigation.h"
-#include "editor/session.h"
+#include "editor/session/navigation.h"
+#include "editor/session/session.h"
 #include "editor/tools/press_tool.h"
 
 using namespace trispline;

@@ -6,8 +6,8 @@
 #include <gtest/gtest.h>
 
 #include "core/commands/object_transform.h"
-#include "editor/navigation.h"
-#include "editor/session.h"
+#include "editor/session/navigation.h"
+#include "editor/session/session.h"
 #include "editor/tools/transform_modal.h"
 #include "tests/editor/session_test_util.h"
 #include "tests/ui/headless_imgui.h"

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "editor/navigation.h"
-#include "editor/session.h"
+#include "editor/session/navigation.h"
+#include "editor/session/session.h"
 #include "editor/tools/select_tool.h"
 #include "editor/tools/tool.h"
 

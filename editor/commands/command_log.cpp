@@ -1,0 +1,270 @@
+#include "editor/commands/command_log.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <memory>
+#include <sstream>
+
+namespace trispline::editor {
+namespace {
+
+std::string describe(const std::filesystem::path& file, int line, const std::string& field, const std::string& msg) {
+  std::string s = file.string() + ":" + std::to_string(line) + ": ";
+  if (!field.empty() && msg.find("field '" + field + "'") == std::string::npos) s += "field '" + field + "': ";
+  return s + msg;
+}
+
+// What a path that is not a regular file is, for error messages.
+std::string describe_file_type(const std::filesystem::path& path) {
+  std::error_code ec;
+  switch (std::filesystem::status(path, ec).type()) {
+    case std::filesystem::file_type::not_found:
+      return "no such file";
+    case std::filesystem::file_type::directory:
+      return "it is a directory";
+    case std::filesystem::file_type::fifo:
+      return "it is a FIFO (named pipe)";
+    case std::filesystem::file_type::character:
+      return "it is a character device";
+    case std::filesystem::file_type::block:
+      return "it is a block device";
+    case std::filesystem::file_type::socket:
+      return "it is a socket";
+    case std::filesystem::file_type::regular:
+      return "a regular file";
+    default:
+      return ec ? ec.message() : "not a regular file";
+  }
+}
+
+// "cmd" first, other keys in their (sorted) order: logs read naturally.
+// fsync that treats "this file cannot be synced" (a pipe, a character device) as success.
+bool sync_fd(int fd) { return ::fsync(fd) == 0 || errno == EINVAL || errno == EROFS; }
+
+std::string format_line(const nlohmann::json& line) {
+  nlohmann::ordered_json out;
+  if (line.contains("cmd")) out["cmd"] = line.at("cmd");
+  for (auto it = line.begin(); it != line.end(); ++it)
+    if (it.key() != "cmd") out[it.key()] = it.value();
+  return out.dump();
+}
+
+}  // namespace
+
+LogError::LogError(const std::filesystem::path& file, int line, const std::string& field, const std::string& message)
+    : std::runtime_error(describe(file, line, field, message)), file_(file), line_(line), field_(field) {}
+
+const LogLimits& log_limits() {
+  static const LogLimits limits;
+  return limits;
+}
+
+std::string utf8_error(std::string_view text) {
+  const auto* s = reinterpret_cast<const unsigned char*>(text.data());
+  const std::size_t n = text.size();
+  for (std::size_t i = 0; i < n;) {
+    const unsigned char c = s[i];
+    int extra = 0;
+    std::uint32_t min = 0, cp = 0;
+    if (c < 0x80) {
+      ++i;
+      continue;
+    } else if ((c & 0xE0) == 0xC0) {
+      extra = 1, min = 0x80, cp = c & 0x1F;
+    } else if ((c & 0xF0) == 0xE0) {
+      extra = 2, min = 0x800, cp = c & 0x0F;
+    } else if ((c & 0xF8) == 0xF0) {
+      extra = 3, min = 0x10000, cp = c & 0x07;
+    } else {
+      return "invalid UTF-8 at byte " + std::to_string(i + 1);
+    }
+    if (i + extra >= n) return "invalid UTF-8 at byte " + std::to_string(i + 1) + " (truncated sequence)";
+    for (int k = 1; k <= extra; ++k) {
+      if ((s[i + k] & 0xC0) != 0x80) return "invalid UTF-8 at byte " + std::to_string(i + 1);
+      cp = (cp << 6) | (s[i + k] & 0x3F);
+    }
+    if (cp < min || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF))
+      return "invalid UTF-8 at byte " + std::to_string(i + 1) + " (overlong or not a character)";
+    i += std::size_t(extra) + 1;
+  }
+  return {};
+}
+
+int json_nesting_depth(std::string_view text) {
+  int depth = 0, deepest = 0;
+  bool in_string = false, escaped = false;
+  for (const char c : text) {
+    if (in_string) {
+      if (escaped)
+        escaped = false;
+      else if (c == '\\')
+        escaped = true;
+      else if (c == '"')
+        in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      deepest = std::max(deepest, ++depth);
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+  return deepest;
+}
+
+std::vector<LogLine> read_log_text(const std::filesystem::path& path) {
+  const LogLimits& limits = log_limits();
+  // Opened without blocking and checked on the descriptor itself (a path can change between a check and an open):
+  // a FIFO or a device would never end, a directory reads as nothing.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) throw LogError(path, 0, "", "cannot open command log: " + std::string(std::strerror(errno)));
+  struct stat st {};
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+    ::close(fd);
+    throw LogError(path, 0, "", "not a command log: " + describe_file_type(path));
+  }
+  if (std::uintmax_t(st.st_size) > limits.max_file_bytes) {
+    ::close(fd);
+    throw LogError(path, 0, "",
+                   "the file is " + std::to_string(st.st_size) + " bytes, over the " +
+                       std::to_string(limits.max_file_bytes) + "-byte limit of a command log");
+  }
+  std::FILE* file = ::fdopen(fd, "rb");
+  if (!file) {
+    ::close(fd);
+    throw LogError(path, 0, "", "cannot read command log: " + std::string(std::strerror(errno)));
+  }
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> in(file, &std::fclose);
+  std::vector<LogLine> lines;
+  std::string text;
+  int number = 0;
+  std::uintmax_t read_total = 0;
+  for (int c = std::getc(in.get()); c != EOF; c = std::getc(in.get())) {
+    ++number;
+    text.clear();
+    // Reads one line but never holds more than max_line_bytes of it.
+    bool too_long = false;
+    for (; c != EOF && c != '\n'; c = std::getc(in.get())) {
+      if (++read_total > limits.max_file_bytes)
+        throw LogError(path, number, "", "the file grew past the limit of a command log while being read");
+      if (text.size() >= limits.max_line_bytes) {
+        too_long = true;
+        break;
+      }
+      text.push_back(char(c));
+    }
+    if (too_long)
+      throw LogError(
+          path, number, "",
+          "line longer than " + std::to_string(limits.max_line_bytes) + " bytes (the limit of a command log line)");
+    const auto first = text.find_first_not_of(" \t\r");
+    if (first == std::string::npos || text[first] == '#' || text.compare(first, 2, "//") == 0) continue;
+    if (lines.size() >= limits.max_lines)
+      throw LogError(path, number, "", "more than " + std::to_string(limits.max_lines) + " command lines");
+    lines.push_back(LogLine{number, text, {}});
+  }
+  return lines;
+}
+
+void parse_log_line(const std::filesystem::path& path, LogLine& line) {
+  if (const std::string bad = utf8_error(line.text); !bad.empty()) throw LogError(path, line.number, "", bad);
+  if (const int depth = json_nesting_depth(line.text); depth > log_limits().max_depth)
+    throw LogError(path, line.number, "",
+                   "JSON nested " + std::to_string(depth) + " levels deep (the limit is " +
+                       std::to_string(log_limits().max_depth) + ")");
+  try {
+    line.json = nlohmann::json::parse(line.text);
+  } catch (const nlohmann::json::exception& e) {  // parse errors, and numbers out of range such as 1e999
+    throw LogError(path, line.number, "", std::string("malformed JSON: ") + e.what());
+  }
+  if (!line.json.is_object()) throw LogError(path, line.number, "", "a log line must be a JSON object");
+}
+
+std::vector<LogLine> read_log(const std::filesystem::path& path) {
+  std::vector<LogLine> lines = read_log_text(path);
+  for (auto& l : lines) parse_log_line(path, l);
+  return lines;
+}
+
+void write_log_atomic(const std::filesystem::path& path, const std::vector<nlohmann::json>& lines) {
+  const std::filesystem::path tmp = path.string() + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::trunc);
+    if (!out) throw std::runtime_error("cannot write " + tmp.string());
+    for (const auto& l : lines) out << format_line(l) << '\n';
+    out.flush();
+    if (!out) throw std::runtime_error("write failed: " + tmp.string());
+  }
+  if (int fd = ::open(tmp.c_str(), O_RDONLY); fd >= 0) {
+    const bool synced = sync_fd(fd);
+    const int err = errno;
+    ::close(fd);
+    if (!synced) throw std::runtime_error("cannot fsync " + tmp.string() + ": " + std::strerror(err));
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) throw std::runtime_error("cannot rename " + tmp.string() + " to " + path.string() + ": " + ec.message());
+  // The rename itself lives in the folder: sync it so a power loss cannot bring the old file back.
+  const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+  if (int fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY); fd >= 0) {
+    sync_fd(fd);  // best effort: the file's content is safe already
+    ::close(fd);
+  }
+}
+
+void make_paths_relative(std::vector<nlohmann::json>& lines, const std::filesystem::path& dir) {
+  const std::filesystem::path base = std::filesystem::absolute(dir).lexically_normal();
+  auto relative = [&](nlohmann::json& value) {
+    if (!value.is_string()) return;
+    const std::filesystem::path p(value.get<std::string>());
+    if (!p.is_absolute()) return;  // generated tiles are names, and already relative paths stay
+    const std::filesystem::path rel = p.lexically_relative(base);
+    int ups = 0;
+    for (const auto& part : rel) ups += part == "..";
+    if (!rel.empty() && ups <= 2) value = rel.generic_string();  // farther away: a moved folder would break it
+  };
+  for (auto& l : lines) {
+    const std::string cmd = l.value("cmd", "");
+    if (cmd == "scene.load" || cmd == "anim.clip") {
+      if (auto it = l.find("path"); it != l.end()) relative(*it);
+    } else if (cmd.rfind("ddm.", 0) == 0) {  // tile files of ddm.fill / ddm.paint / ddm.animate
+      for (const char* field : {"tile", "morph_tile"})
+        if (auto it = l.find(field); it != l.end()) relative(*it);
+      for (const char* field : {"tiles", "morph_tiles"})
+        if (auto it = l.find(field); it != l.end() && it->is_array())
+          for (auto& t : *it) relative(t);
+    }
+  }
+}
+
+CommandLog::CommandLog(std::filesystem::path path, bool truncate) : path_(std::move(path)) {
+  if (path_.has_parent_path()) std::filesystem::create_directories(path_.parent_path());
+  file_ = std::fopen(path_.c_str(), truncate ? "w" : "a");
+  if (!file_) throw std::runtime_error("cannot open command log " + path_.string());
+}
+
+CommandLog::~CommandLog() {
+  if (file_) std::fclose(file_);
+}
+
+bool CommandLog::append(const nlohmann::json& line) {
+  const std::string s = format_line(line) + "\n";
+  auto fail = [&](const char* what) {
+    error_ = std::string(what) + " " + path_.string() + " failed: " + std::strerror(errno);
+    std::clearerr(file_);
+    return false;
+  };
+  errno = 0;
+  if (std::fwrite(s.data(), 1, s.size(), file_) != s.size()) return fail("writing to");
+  if (std::fflush(file_) != 0) return fail("flushing");
+  if (!sync_fd(::fileno(file_))) return fail("fsync of");  // a kill or a crash right after a command loses nothing
+  return true;
+}
+
+}  // namespace trispline::editor

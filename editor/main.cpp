@@ -1,3 +1,0 @@
-#include "editor/cli.h"
-
-int main(int argc, char** argv) { return trispline::editor::run_cli(argc, argv); }
