@@ -6,7 +6,10 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/commands/anim_commands.h"
+#include "core/commands/anim_clip.h"
+#include "core/commands/anim_keyframe.h"
+#include "core/commands/anim_keys.h"
+#include "core/commands/anim_timeline.h"
 #include "core/commands/place_array.h"
 #include "ui/gui_probe.h"
 #include "ui/number_field.h"

@@ -22,7 +22,9 @@
 // report.json: alpha_keys, offset_keys, morph (bool), vertices.
 #pragma once
 
-#include "core/commands/ddm_commands.h"
+#include "core/commands/ddm_layer_spec.h"
+#include "core/commands/declared_command.h"
+#include "core/commands/snapshot_command.h"
 
 namespace trispline::core {
 

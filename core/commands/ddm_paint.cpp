@@ -13,7 +13,7 @@
 #include <stdexcept>
 #include <tuple>
 
-#include "core/commands/ddm_commands.h"
+#include "core/commands/ddm_layer_spec.h"
 #include "core/ddm/ddm_layer.h"
 #include "core/params/codecs.h"
 #include "core/raycast/ray_caster.h"

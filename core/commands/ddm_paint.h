@@ -18,7 +18,7 @@
 // holds; cells already as asked change nothing (no error). The layer is rebuilt with ddm_layer_with_instances (maps
 // extended, mesh re-evaluated); undo restores the previous layer pointer (the instance set exactly).
 // When the object has no layer of that name, painting creates it (empty, then painted) from ddm.fill's fields, all
-// optional here (DdmLayerSpec, ddm_commands.h): "tile" (default "thorn"), "tiles", "choice", "seed", "layout"
+// optional here (DdmLayerSpec, ddm_layer_spec.h): "tile" (default "thorn"), "tiles", "choice", "seed", "layout"
 // ("rect"), "counts" ([1,1]) or "tile_size" (not both), "height" (0.1), "base" ("limit"), "map_resolution",
 // "tile_scale", "tile_rotate_deg", "tile_shift", "color"; they are ignored when the layer exists (it keeps its own)
 // and logged back only when the line named any of them. Erasing needs the layer.
@@ -35,7 +35,8 @@
 #include <optional>
 #include <vector>
 
-#include "core/commands/ddm_commands.h"
+#include "core/commands/ddm_layer_spec.h"
+#include "core/commands/declared_command.h"
 #include "core/commands/snapshot_command.h"
 #include "core/scene/camera.h"
 

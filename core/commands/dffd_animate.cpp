@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "core/commands/anim_commands.h"
+#include "core/commands/anim_keys.h"
 
 namespace trispline::core {
 

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/commands/anim_commands.h"
+#include "core/commands/anim_keys.h"
 
 namespace trispline::core {
 

@@ -7,20 +7,6 @@
 
 namespace trispline::core {
 
-namespace {
-
-// Rebuilds `object` with `lattice` (same embedding and parameters) and evaluates it; fills ms_evaluate.
-SceneObject with_lattice(const SceneObject& object, TrivariateBSpline<glm::dvec3> lattice, nlohmann::json& stats) {
-  SceneObject out = object;
-  out.ffd = std::make_shared<FfdBinding>(FfdBinding{std::move(lattice), object.ffd->embedding, object.ffd->params});
-  const auto t0 = std::chrono::steady_clock::now();
-  out.refresh();
-  stats["ms_evaluate"] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  return out;
-}
-
-}  // namespace
-
 const ParamSchema<LatticePressParams>& LatticePressCommand::schema() {
   using P = LatticePressParams;
   static const std::vector<std::string> falloffs(kFalloffNames.begin(), kFalloffNames.end());
@@ -92,46 +78,6 @@ std::optional<SceneObject> LatticePressCommand::build(const Scene& scene) {
     }
   }();
   stats_ = {{"moved", r.moved}, {"max_displacement", r.max_displacement}};
-  return with_lattice(object, std::move(after), stats_);
-}
-
-const ParamSchema<LatticePullColumnParams>& LatticePullColumnCommand::schema() {
-  using P = LatticePullColumnParams;
-  static const ParamSchema<P> s =
-      ParamSchema<P>("lattice.pull_column",
-                     "Pull or push one contact control point and its column along V_P (seed §2.4.1)")
-          .field("object", &P::object)
-          .required()
-          .help("A deformed object (with an FFD)")
-          .field("column", &P::column)
-          .required()
-          .help("(i, j) of the contact control point")
-          .field("distance", &P::distance)
-          .required()
-          .unit("world units")
-          .help("Move along V_P; < 0 pushes");
-  return s;
-}
-
-std::optional<SceneObject> LatticePullColumnCommand::build(const Scene& scene) {
-  const SceneObject& object = require_deformed_object(scene, p_.object);
-  TrivariateBSpline<glm::dvec3> after = object.ffd->lattice;
-  const glm::ivec3 counts = after.control_counts();
-  if (p_.column.x < 0 || p_.column.y < 0 || p_.column.x >= counts.x || p_.column.y >= counts.y)
-    throw CommandError("field 'column': (" + std::to_string(p_.column.x) + ", " + std::to_string(p_.column.y) +
-                           ") is outside the " + std::to_string(counts.x) + " x " + std::to_string(counts.y) +
-                           " columns of the lattice",
-                       "column");
-  const glm::dvec3 vp = [&] {
-    try {
-      return column_direction(after, p_.column.x, p_.column.y);
-    } catch (const std::invalid_argument& e) {  // every column of zero length
-      throw CommandError("field 'object': " + std::string(e.what()), "object");
-    }
-  }();
-  const int n = after.control_counts().z;
-  for (int k = 0; k < n; ++k) after.control_point(p_.column.x, p_.column.y, k) += p_.distance * vp;
-  stats_ = {{"moved", n}, {"max_displacement", std::abs(p_.distance)}};
   return with_lattice(object, std::move(after), stats_);
 }
 

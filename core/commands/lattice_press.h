@@ -11,13 +11,9 @@
 // the extrusion direction V for an extruded volume (F1), the contact surface's offset normal for F2 (seed Eq.
 // 2.3, 2.4). Positions before the command decide the weights and directions.
 //
-// `lattice.pull_column` — pulls (d > 0) or pushes (d < 0) a contact control point P_ij0 along V_P and moves its whole
-// column with it by the same vector:
-//   {"cmd":"lattice.pull_column","object":"ID","column":[i,j],"distance":d}      d world units
-//
-// Both need an object with an FFD lattice; errors (CommandError, field named): unknown object / no lattice
-// (`object`), empty or non-finite path (`path`), radius ≤ 0 (`radius`), non-finite strength (`strength`), unknown
-// falloff (`falloff`, lists the names), column outside the lattice (`column`), a column of zero length (`object`).
+// Needs an object with an FFD lattice; errors (CommandError, field named): unknown object / no lattice (`object`),
+// empty or non-finite path (`path`), radius ≤ 0 (`radius`), non-finite strength (`strength`), unknown falloff
+// (`falloff`, lists the names).
 // With "keep_fold_free": true the strength is limited (bisection) so that the pressed lattice stays certified
 // fold-free (core/ffd/fold_certificate.h); a lattice not certified before the press is refused (`keep_fold_free`).
 // stats(): moved (control points moved), max_displacement (world units), ms_evaluate; with keep_fold_free also
@@ -47,26 +43,6 @@ class LatticePressCommand : public ObjectSnapshotCommand<LatticePressCommand, La
 
   // A negative strength pulls (the Press tool's Ctrl+drag); a press limited to stay fold-free says to what.
   std::string label() const override;
-
- protected:
-  std::optional<SceneObject> build(const Scene& scene) override;
-};
-
-struct LatticePullColumnParams {
-  std::string object;
-  glm::ivec2 column{0, 0};  // (i, j) of the contact control point
-  double distance = 0.0;    // world units along V_P
-};
-
-class LatticePullColumnCommand : public ObjectSnapshotCommand<LatticePullColumnCommand, LatticePullColumnParams> {
- public:
-  using ObjectSnapshotCommand::ObjectSnapshotCommand;
-  static const ParamSchema<LatticePullColumnParams>& schema();
-
-  std::string label() const override {
-    return "Pull column (" + std::to_string(p_.column.x) + ", " + std::to_string(p_.column.y) + ") of '" + p_.object +
-           "'";
-  }
 
  protected:
   std::optional<SceneObject> build(const Scene& scene) override;

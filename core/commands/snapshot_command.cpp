@@ -1,5 +1,7 @@
 #include "core/commands/snapshot_command.h"
 
+#include <chrono>
+
 namespace trispline::core {
 
 const SceneObject& require_object(const Scene& scene, const std::string& name, const char* field) {
@@ -34,6 +36,15 @@ void require_no_tile_layers(const SceneObject& object, const std::string& change
                          ") laid on its current mesh, which " + change +
                          " would replace; bake them (ddm.bake) or remove them (ddm.remove) first",
                      "object");
+}
+
+SceneObject with_lattice(const SceneObject& object, TrivariateBSpline<glm::dvec3> lattice, nlohmann::json& stats) {
+  SceneObject out = object;
+  out.ffd = std::make_shared<FfdBinding>(FfdBinding{std::move(lattice), object.ffd->embedding, object.ffd->params});
+  const auto t0 = std::chrono::steady_clock::now();
+  out.refresh();
+  stats["ms_evaluate"] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return out;
 }
 
 }  // namespace trispline::core

@@ -112,6 +112,10 @@ const SceneObject& require_object(const Scene& scene, const std::string& name, c
 // no such object, or no lattice (place it with place.sketch or lattice.ring first).
 const SceneObject& require_deformed_object(const Scene& scene, const std::string& name);
 
+// `object` (deformed) rebuilt with `lattice` in place of its FFD lattice (same embedding and parameters) and
+// evaluated; stats["ms_evaluate"] gets the evaluation's milliseconds. For the commands that move control points.
+SceneObject with_lattice(const SceneObject& object, TrivariateBSpline<glm::dvec3> lattice, nlohmann::json& stats);
+
 // Throws CommandError (field 'object') when `object` holds tile layers (SceneObject::ddm_layers, seed ch. 5) and
 // `change` (e.g. "a subdivision") would replace the mesh they are laid on — not a deformation, which carries them
 // (ddm_follow.h); the message names the layers and says to bake (ddm.bake) or remove (ddm.remove) them first.

@@ -1,7 +1,7 @@
 // trispline::core::DdmLayer — one layer of tiles painted or filled over an object (seed ch. 5): its tiles, how their
 // instances are laid out on the object's base surface, the base's P/N maps, its animation, and the evaluated mesh.
 // Held by SceneObject::ddm_layers (immutable, shared between undo states); made by the ddm.* commands
-// (core/commands/ddm_commands.h) through ddm_layer_build / ddm_layer_with_instances.
+// (core/commands/ddm_layer_spec.h) through ddm_layer_build / ddm_layer_with_instances.
 #pragma once
 
 #include <memory>

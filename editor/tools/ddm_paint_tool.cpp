@@ -3,6 +3,10 @@
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
+#include "core/commands/ddm_bake.h"
+#include "core/commands/ddm_color.h"
+#include "core/commands/ddm_fill.h"
+#include "core/commands/ddm_remove.h"
 #include "ui/param_widgets.h"
 
 #define GLFW_INCLUDE_NONE

@@ -9,7 +9,10 @@
 #include <fstream>
 #include <string>
 
-#include "core/commands/ddm_commands.h"
+#include "core/commands/ddm_bake.h"
+#include "core/commands/ddm_color.h"
+#include "core/commands/ddm_fill.h"
+#include "core/commands/ddm_remove.h"
 #include "editor/commands/command_registry.h"
 #include "editor/session/background_command.h"
 #include "session_test_util.h"

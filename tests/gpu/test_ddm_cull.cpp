@@ -7,7 +7,10 @@
 #include <cstdlib>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "core/commands/ddm_commands.h"
+#include "core/commands/ddm_bake.h"
+#include "core/commands/ddm_color.h"
+#include "core/commands/ddm_fill.h"
+#include "core/commands/ddm_remove.h"
 #include "core/scene/primitives.h"
 #include "gl_test.h"
 #include "gpu/view/ddm_cull.h"

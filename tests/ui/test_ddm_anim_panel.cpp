@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "core/commands/ddm_animate.h"
+#include "core/commands/ddm_fill.h"
 #include "core/commands/scene_primitive.h"
 #include "headless_imgui.h"
 #include "ui/ddm_anim_panel.h"

@@ -6,7 +6,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/commands/anim_commands.h"
+#include "core/commands/anim_clip.h"
+#include "core/commands/anim_keyframe.h"
+#include "core/commands/anim_keys.h"
+#include "core/commands/anim_timeline.h"
 #include "core/commands/camera_set.h"
 #include "core/commands/place_array.h"
 #include "core/commands/place_sketch.h"

@@ -5,8 +5,14 @@
 
 #include <cmath>
 
-#include "core/commands/anim_commands.h"
-#include "core/commands/ddm_commands.h"
+#include "core/commands/anim_clip.h"
+#include "core/commands/anim_keyframe.h"
+#include "core/commands/anim_keys.h"
+#include "core/commands/anim_timeline.h"
+#include "core/commands/ddm_bake.h"
+#include "core/commands/ddm_color.h"
+#include "core/commands/ddm_fill.h"
+#include "core/commands/ddm_remove.h"
 #include "core/commands/mesh_refine.h"
 #include "core/scene/scene_export.h"
 #include "tests/core/commands/command_test_util.h"

@@ -1,13 +1,16 @@
-// ddm.fill / ddm.bake (core/commands/ddm_commands.h; seed ch. 5): a layer over a coarse sphere's limit surface and
-// over the teapot's body patches, the baked object (world units, instances contiguous in the tile's vertex order),
+// ddm.fill / ddm.bake (core/commands/ddm_fill.h, ddm_bake.h; seed ch. 5): a layer over a coarse sphere's limit surface
+// and over the teapot's body patches, the baked object (world units, instances contiguous in the tile's vertex order),
 // undo bit for bit, bad input refused with the scene unchanged.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
 
-#include "core/commands/ddm_commands.h"
+#include "core/commands/ddm_bake.h"
+#include "core/commands/ddm_color.h"
+#include "core/commands/ddm_fill.h"
 #include "core/commands/ddm_paint.h"
+#include "core/commands/ddm_remove.h"
 #include "core/commands/mesh_subdivide.h"
 #include "core/commands/scene_primitive.h"
 #include "core/scene/primitives.h"

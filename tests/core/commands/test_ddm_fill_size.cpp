@@ -1,4 +1,4 @@
-// ddm.fill / ddm.paint by tile size (core/commands/ddm_commands.h): cells per chart from each chart's world size, so
+// ddm.fill / ddm.paint by tile size (core/commands/ddm_layer_spec.h): cells per chart from each chart's world size, so
 // tiles come out of even world size where `counts` gives every chart the same cells; the panel's estimate is the
 // fill's count; tile_size with counts, and a tile size too small for the vertex budget, are refused naming the field
 // before anything is allocated; on the Stanford bunny (no UVs) with automatic UVs the tiles' world areas stay within
@@ -11,8 +11,11 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "core/commands/ddm_commands.h"
+#include "core/commands/ddm_bake.h"
+#include "core/commands/ddm_color.h"
+#include "core/commands/ddm_fill.h"
 #include "core/commands/ddm_paint.h"
+#include "core/commands/ddm_remove.h"
 #include "core/commands/scene_primitive.h"
 #include "core/ddm/ddm_chart_size.h"
 #include "core/mesh/mesh_io.h"

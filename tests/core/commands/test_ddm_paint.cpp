@@ -11,8 +11,11 @@
 #include <tuple>
 
 #include "core/commands/camera_set.h"
-#include "core/commands/ddm_commands.h"
+#include "core/commands/ddm_bake.h"
+#include "core/commands/ddm_color.h"
+#include "core/commands/ddm_fill.h"
 #include "core/commands/ddm_paint.h"
+#include "core/commands/ddm_remove.h"
 #include "core/params/codecs.h"
 #include "core/raycast/ray_caster.h"
 #include "core/scene/primitives.h"

@@ -5,7 +5,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/commands/anim_commands.h"
+#include "core/commands/anim_clip.h"
+#include "core/commands/anim_keyframe.h"
+#include "core/commands/anim_keys.h"
+#include "core/commands/anim_timeline.h"
 #include "core/commands/dffd_animate.h"
 #include "core/commands/dffd_split.h"
 #include "core/commands/object_transform.h"

@@ -4,7 +4,10 @@
 // obstacle (the real mushroom of CGAL's data around a bar when the asset corpus is there).
 #include <gtest/gtest.h>
 
-#include "core/commands/anim_commands.h"
+#include "core/commands/anim_clip.h"
+#include "core/commands/anim_keyframe.h"
+#include "core/commands/anim_keys.h"
+#include "core/commands/anim_timeline.h"
 #include "core/commands/dffd_split.h"
 #include "core/commands/scene_load.h"
 #include "core/commands/scene_primitive.h"

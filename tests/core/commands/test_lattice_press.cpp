@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "core/commands/lattice_press.h"
+#include "core/commands/lattice_pull_column.h"
 #include "core/scene/scene.h"
 #include "editor/commands/command_registry.h"
 #include "editor/commands/history.h"

@@ -7,7 +7,10 @@
 #include <limits>
 
 #include "core/commands/camera_set.h"
-#include "core/commands/ddm_commands.h"
+#include "core/commands/ddm_bake.h"
+#include "core/commands/ddm_color.h"
+#include "core/commands/ddm_fill.h"
+#include "core/commands/ddm_remove.h"
 #include "core/commands/dffd_split.h"
 #include "core/commands/object_transform.h"
 #include "core/commands/place_sketch.h"

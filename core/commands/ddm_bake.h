@@ -1,0 +1,42 @@
+// `ddm.bake` — a layer as an ordinary mesh object (for export and for use elsewhere):
+//   {"cmd":"ddm.bake","object":"ID","layer":"NAME","name":"NEW_ID"}
+//   optional "frame":F (default: the layer at scene time 0) — the layer's animation at that timeline frame.
+//   The new object's mesh is the layer's in world units (the object's transform applied), identity transform, the
+//   object's colour; instances one after another, each in the tile's own vertex order. scene.glb then holds it.
+//   report.json: vertices, triangles.
+// Errors (CommandError, field named; the scene is unchanged): unknown object ("object"), no such layer ("layer"),
+// name empty or taken ("name").
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "core/commands/ddm_layer_spec.h"
+#include "core/commands/declared_command.h"
+#include "core/commands/snapshot_command.h"
+
+namespace trispline::core {
+
+struct DdmBakeParams {
+  std::string object, layer;
+  std::string name;             // the new object
+  std::optional<double> frame;  // timeline frame of the layer's animation; unset = scene time 0
+};
+
+class DdmBakeCommand : public DeclaredCommand<DdmBakeCommand, DdmBakeParams, SnapshotCommand> {
+ public:
+  using DeclaredCommand::DeclaredCommand;
+  static const ParamSchema<DdmBakeParams>& schema();
+  std::string label() const override;
+  bool preparable() const override { return true; }  // the editor bakes on a worker thread
+
+ protected:
+  std::string target() const override { return p_.name; }
+  std::optional<SceneObject> build(const Scene& scene) override;
+};
+
+// {"cmd":"ddm.color","object":ID,"layer":NAME,"color":[r,g,b] | null}: sets a layer's own colour (linear RGB, each in
+// [0, 1]) or, with null, makes it take its object's colour again. Only the colour changes (the tiles are shared).
+// Errors (field named, scene unchanged): unknown object, no such layer, a colour out of range.
+
+}  // namespace trispline::core

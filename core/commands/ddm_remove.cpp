@@ -1,0 +1,28 @@
+#include "core/commands/ddm_remove.h"
+
+namespace trispline::core {
+
+const ParamSchema<DdmRemoveParams>& DdmRemoveCommand::schema() {
+  using P = DdmRemoveParams;
+  static const ParamSchema<P> s = ParamSchema<P>("ddm.remove", "Delete a tile layer")
+                                      .field("object", &P::object)
+                                      .required()
+                                      .help("The object holding the layer")
+                                      .field("layer", &P::layer)
+                                      .required()
+                                      .help("The layer to delete");
+  return s;
+}
+
+std::string DdmRemoveCommand::label() const { return "Remove tile layer " + p_.object + "/" + p_.layer; }
+
+std::optional<SceneObject> DdmRemoveCommand::build(const Scene& scene) {
+  const SceneObject* object = &require_object(scene, p_.object);
+  const std::shared_ptr<const DdmLayer> layer = find_ddm_layer(*object, p_.layer);
+  SceneObject out = *object;
+  std::erase(out.ddm_layers, layer);
+  stats_ = {{"tiles", layer->instances.size()}, {"vertices", layer->mesh ? layer->mesh->vertex_count() : 0}};
+  return out;
+}
+
+}  // namespace trispline::core

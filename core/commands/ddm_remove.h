@@ -1,0 +1,29 @@
+// `ddm.remove` — deletes a tile layer:
+//   {"cmd":"ddm.remove","object":"ID","layer":"NAME"}
+// report.json: tiles, vertices (of the removed layer). Errors: unknown object ("object"), no such layer ("layer").
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "core/commands/ddm_layer_spec.h"
+#include "core/commands/declared_command.h"
+#include "core/commands/snapshot_command.h"
+
+namespace trispline::core {
+
+struct DdmRemoveParams {
+  std::string object, layer;
+};
+
+class DdmRemoveCommand : public ObjectSnapshotCommand<DdmRemoveCommand, DdmRemoveParams> {
+ public:
+  using ObjectSnapshotCommand::ObjectSnapshotCommand;
+  static const ParamSchema<DdmRemoveParams>& schema();
+  std::string label() const override;
+
+ protected:
+  std::optional<SceneObject> build(const Scene& scene) override;
+};
+
+}  // namespace trispline::core

@@ -1,0 +1,38 @@
+// A pulling tool on a placed object's control lattice (seed §2.4.1).
+//
+// `lattice.pull_column` — pulls (d > 0) or pushes (d < 0) a contact control point P_ij0 along V_P and moves its whole
+// column with it by the same vector:
+//   {"cmd":"lattice.pull_column","object":"ID","column":[i,j],"distance":d}      d world units
+// Errors (CommandError, field named): unknown object / no lattice / a column of zero length (`object`), column
+// outside the lattice (`column`). stats(): moved, max_displacement (world units), ms_evaluate.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "core/commands/declared_command.h"
+#include "core/commands/snapshot_command.h"
+
+namespace trispline::core {
+
+struct LatticePullColumnParams {
+  std::string object;
+  glm::ivec2 column{0, 0};  // (i, j) of the contact control point
+  double distance = 0.0;    // world units along V_P
+};
+
+class LatticePullColumnCommand : public ObjectSnapshotCommand<LatticePullColumnCommand, LatticePullColumnParams> {
+ public:
+  using ObjectSnapshotCommand::ObjectSnapshotCommand;
+  static const ParamSchema<LatticePullColumnParams>& schema();
+
+  std::string label() const override {
+    return "Pull column (" + std::to_string(p_.column.x) + ", " + std::to_string(p_.column.y) + ") of '" + p_.object +
+           "'";
+  }
+
+ protected:
+  std::optional<SceneObject> build(const Scene& scene) override;
+};
+
+}  // namespace trispline::core
