@@ -19,6 +19,44 @@ double ms_between(Clock::time_point a, Clock::time_point b) {
   return std::chrono::duration<double, std::milli>(b - a).count();
 }
 
+// This frame's panel rectangles, the Timeline drawn: it spans the window's width above the status bar (Blender); the
+// other panels share the rest.
+ui::DockLayout layout_with_timeline(const ui::ViewToggles& toggles, const ImGuiIO& io, AnimationUi& anim,
+                                    const core::Camera& view) {
+  const float timeline_h = toggles.show_timeline ? ui::timeline_panel_height() : 0.0f;
+  ui::DockLayout layout =
+      ui::compute_layout(io.DisplaySize, ImGui::GetFrameHeight(), ui::status_bar_height() + timeline_h, {},
+                         toggles.show_tool_panel, toggles.show_side_panels, toggles.show_log_panel);
+  if (toggles.show_timeline) {
+    const ui::Rect rect{{0, io.DisplaySize.y - ui::status_bar_height() - timeline_h}, {io.DisplaySize.x, timeline_h}};
+    anim.draw_timeline(rect, view.viewport);
+  }
+  return layout;
+}
+
+// The History panel's requests: undo, redo and jumps walk the history on a worker (a redo may load a volume or fill a
+// mesh again); "Run again" writes a file an opened log did not write. restore_context makes the window's GL context
+// current again.
+void run_history_request(const ui::HistoryPanelResult& hr, EditorSession& session, BackgroundCommand& background,
+                         AnimationUi& anim, const std::function<void()>& restore_context) {
+  const std::size_t at = session.history().applied();
+  if (hr.jump_to) background.start_history(*hr.jump_to);
+  if (hr.undo && at > 0) background.start_history(at - 1);
+  if (hr.redo) background.start_history(at + 1);
+  if (hr.run_again) session.run_again(*hr.run_again);  // a file an opened log did not write
+  if (hr.run_again_output) anim.run_again(*hr.run_again_output, restore_context);
+}
+
+// The modal transform's state (`text`: its header) in a box at the bottom left of the viewport's free part `free`
+// (Blender: in its header); the timing overlay holds the top left.
+void draw_transform_header(const std::string& text, const ui::Rect& free) {
+  const ImVec2 size = ImGui::CalcTextSize(text.c_str());
+  const ImVec2 at(free.pos.x + 8.0f, free.pos.y + free.size.y - size.y - 8.0f);
+  ImDrawList* dl = ImGui::GetForegroundDrawList();
+  dl->AddRectFilled({at.x - 4, at.y - 2}, {at.x + size.x + 4, at.y + size.y + 2}, IM_COL32(20, 20, 22, 210), 3.0f);
+  dl->AddText(at, IM_COL32(255, 220, 120, 255), text.c_str());
+}
+
 }  // namespace
 
 App::App(const AppOptions& options)
@@ -216,14 +254,8 @@ void App::frame() {
   // The Timeline spans the window's width above the status bar (Blender); the other panels share the rest.
   anim_.begin_frame(selected_, toggles_.play_animation);
   anim_.set_view(view_);
-  const float timeline_h = toggles_.show_timeline ? ui::timeline_panel_height() : 0.0f;
-  layout_ = ui::compute_layout(io.DisplaySize, ImGui::GetFrameHeight(), ui::status_bar_height() + timeline_h, {},
-                               toggles_.show_tool_panel, toggles_.show_side_panels, toggles_.show_log_panel);
+  layout_ = layout_with_timeline(toggles_, io, anim_, view_);
   const ui::DockLayout& layout = layout_;
-  if (toggles_.show_timeline) {
-    const ui::Rect rect{{0, io.DisplaySize.y - ui::status_bar_height() - timeline_h}, {io.DisplaySize.x, timeline_h}};
-    anim_.draw_timeline(rect, view_.viewport);
-  }
   toggles_.play_animation = anim_.playback().playing;  // the Play button
   control_point_.highlight = false;                    // set again while the Control point section is hovered
   // While a command is built on its worker the panels that edit the document are greyed (the session refuses
@@ -245,13 +277,7 @@ void App::frame() {
     ui::ScenePanelState sps{selected_, session_.has_command("scene.remove"), &transform_fields_};
     handle_scene(ui::draw_scene_panel(layout.scene, session_.scene(), sps));
     const ui::HistoryPanelResult hr = ui::draw_history_panel(layout.history, session_.history_view());
-    // Undo, redo and jumps walk the history on a worker (a redo may load a volume or fill a mesh again).
-    const std::size_t at = session_.history().applied();
-    if (hr.jump_to) background_.start_history(*hr.jump_to);
-    if (hr.undo && at > 0) background_.start_history(at - 1);
-    if (hr.redo) background_.start_history(at + 1);
-    if (hr.run_again) session_.run_again(*hr.run_again);  // a file an opened log did not write
-    if (hr.run_again_output) anim_.run_again(*hr.run_again_output, [this] { window_->make_current(); });
+    run_history_request(hr, session_, background_, anim_, [this] { window_->make_current(); });
   }
   ImGui::EndDisabled();
   if (toggles_.show_log_panel) log_panel_.draw(layout.log, messages_);
@@ -294,14 +320,7 @@ void App::frame() {
   const ui::Rect& free = layout.viewport;  // what the panels leave visible: F / Home frame into it
   const glm::dvec2 s(io.DisplayFramebufferScale.x, io.DisplayFramebufferScale.y), lo(free.pos.x, free.pos.y);
   nav_.set_visible_rect(lo * s, (lo + glm::dvec2(free.size.x, free.size.y)) * s);
-  if (transform_.active()) {  // the modal's state on the viewport (Blender: in its header)
-    const std::string text = transform_.header();
-    const ImVec2 size = ImGui::CalcTextSize(text.c_str());  // bottom left: the timing overlay holds the top left
-    const ImVec2 at(free.pos.x + 8.0f, free.pos.y + free.size.y - size.y - 8.0f);
-    ImDrawList* dl = ImGui::GetForegroundDrawList();
-    dl->AddRectFilled({at.x - 4, at.y - 2}, {at.x + size.x + 4, at.y + size.y + 2}, IM_COL32(20, 20, 22, 210), 3.0f);
-    dl->AddText(at, IM_COL32(255, 220, 120, 255), text.c_str());
-  }
+  if (transform_.active()) draw_transform_header(transform_.header(), free);  // the modal's state on the viewport
   work_.draw_overlay();
   if (!options_.gui_probe.empty()) write_probe();
   render_view();

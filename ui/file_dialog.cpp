@@ -20,6 +20,48 @@ std::string lower(std::string s) {
   std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   return s;
 }
+
+// The path and name fields: Enter accepts, and a field that gets the keyboard selects its whole text (typing
+// replaces it).
+constexpr ImGuiInputTextFlags kFileDialogField =
+    ImGuiInputTextFlags_EnterReturnsTrue | ImGuiInputTextFlags_AutoSelectAll;
+
+// The buttons row below the listing: the extension filter ("*.obj *.ply"), the buttons' width and whether the filter
+// takes a line of its own (a long filter must not push Open past the dialog's edge); height: what the rows under the
+// listing take. Pixels.
+struct FileDialogFooter {
+  std::string filter;
+  float buttons_w = 0.0f;
+  bool filter_own_line = false;
+  float height = 0.0f;
+};
+
+// The footer's geometry in the current window: folder_label names the folder button (empty: none), option_label
+// the option checkbox (empty: none); save: the Save dialog's name row.
+FileDialogFooter file_dialog_footer(const std::vector<std::string>& extensions, const std::string& folder_label,
+                                    const std::string& option_label, bool save) {
+  FileDialogFooter f;
+  for (const std::string& e : extensions) f.filter += (f.filter.empty() ? "" : " ") + std::string("*") + e;
+  const ImGuiStyle& style = ImGui::GetStyle();
+  const float folder_w =
+      folder_label.empty() ? 0.0f : ImGui::CalcTextSize(folder_label.c_str()).x + 2 * style.FramePadding.x;
+  f.buttons_w = 2 * 80.0f + style.ItemSpacing.x + (folder_w > 0 ? folder_w + style.ItemSpacing.x : 0.0f);
+  const float row_w = ImGui::GetContentRegionAvail().x;
+  f.filter_own_line =
+      !f.filter.empty() && ImGui::CalcTextSize(f.filter.c_str()).x + style.ItemSpacing.x + f.buttons_w > row_w;
+  f.height = ImGui::GetFrameHeightWithSpacing() *
+             ((save ? 2.6f : 1.6f) + (option_label.empty() ? 0 : 1) + (f.filter_own_line ? 1 : 0));
+  return f;
+}
+
+// The extension filter at the buttons row's left, or on a line of its own above it.
+void draw_file_filter(const FileDialogFooter& f) {
+  if (f.filter.empty()) return;
+  ImGui::PushTextWrapPos(0.0f);
+  ImGui::TextColored(colors::dim, "%s", f.filter.c_str());
+  ImGui::PopTextWrapPos();
+  if (!f.filter_own_line) ImGui::SameLine();
+}
 }  // namespace
 
 void FileDialog::open(std::string title, Mode mode, std::vector<std::string> extensions, const fs::path& start_folder) {
@@ -87,25 +129,14 @@ fs::path FileDialog::save_target() const {
   return names_folder ? folder / "" : typed;
 }
 
-std::optional<fs::path> FileDialog::draw() {
-  std::optional<fs::path> chosen;
-  if (open_) {
-    ImGui::OpenPopup("###file_dialog");
-    open_ = false;
-  }
-  const ImVec2 display = ImGui::GetIO().DisplaySize;
-  ImGui::SetNextWindowSize(ImVec2(std::min(640.0f, display.x * 0.9f), std::min(480.0f, display.y * 0.8f)),
-                           ImGuiCond_Appearing);
-  ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f, display.y * 0.5f), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
-  visible_ = ImGui::BeginPopupModal((title_ + "###file_dialog").c_str(), nullptr, ImGuiWindowFlags_NoSavedSettings);
-  if (!visible_) return chosen;
-  auto enter = [&](const fs::path& dir) {
-    folder_ = dir.lexically_normal();
-    path_text_ = (folder_ / "").string();
-    list_folder();
-    refocus_ = mode_ == Mode::Open;  // the path field takes the keyboard again, its text selected
-  };
-  std::optional<fs::path> go_to;  // entered after the listing is drawn: enter() rebuilds dirs_
+void FileDialog::enter_folder(const fs::path& dir) {
+  folder_ = dir.lexically_normal();
+  path_text_ = (folder_ / "").string();
+  list_folder();
+  refocus_ = mode_ == Mode::Open;  // the path field takes the keyboard again, its text selected
+}
+
+bool FileDialog::draw_path_row(std::optional<fs::path>& go_to) {
   if (ImGui::Button("Up")) go_to = folder_.parent_path();
   ImGui::SameLine();
   ImGui::SetNextItemWidth(-1);
@@ -113,28 +144,15 @@ std::optional<fs::path> FileDialog::draw() {
   // the keyboard selects its whole text, so typing replaces it (Ctrl+A selects it again).
   if (mode_ == Mode::Open && (ImGui::IsWindowAppearing() || std::exchange(refocus_, false)))
     ImGui::SetKeyboardFocusHere();
-  constexpr ImGuiInputTextFlags kField = ImGuiInputTextFlags_EnterReturnsTrue | ImGuiInputTextFlags_AutoSelectAll;
-  bool accept = ImGui::InputText("##path", &path_text_, kField);
+  const bool accept = ImGui::InputText("##path", &path_text_, kFileDialogField);
   probe::item("file.path");
   probe::value("file.path", path_text_);
-  bool accept_name = false;
   if (!error_.empty()) ImGui::TextColored(colors::error, "%s", error_.c_str());
   probe::value("file.error", error_);
+  return accept;
+}
 
-  // The buttons row: the extension filter at its left, on a line of its own when both do not fit (a long filter
-  // must not push Open past the dialog's edge).
-  std::string filter;
-  for (const std::string& e : extensions_) filter += (filter.empty() ? "" : " ") + std::string("*") + e;
-  const ImGuiStyle& style = ImGui::GetStyle();
-  const float folder_w =
-      folder_label_.empty() ? 0.0f : ImGui::CalcTextSize(folder_label_.c_str()).x + 2 * style.FramePadding.x;
-  const float buttons_w = 2 * 80.0f + style.ItemSpacing.x + (folder_w > 0 ? folder_w + style.ItemSpacing.x : 0.0f);
-  const float row_w = ImGui::GetContentRegionAvail().x;
-  const bool filter_own_line =
-      !filter.empty() && ImGui::CalcTextSize(filter.c_str()).x + style.ItemSpacing.x + buttons_w > row_w;
-  const float footer =
-      ImGui::GetFrameHeightWithSpacing() *
-      ((mode_ == Mode::Save ? 2.6f : 1.6f) + (option_label_.empty() ? 0 : 1) + (filter_own_line ? 1 : 0));
+void FileDialog::draw_listing(float footer, std::optional<fs::path>& go_to, bool& accept) {
   ImGui::BeginChild("##listing", ImVec2(0, -footer), true);
   for (const fs::path& d : dirs_) {
     const std::string label = d.filename().string() + "/";
@@ -152,36 +170,34 @@ std::optional<fs::path> FileDialog::draw() {
     probe::item("file.entry." + f.filename().string());
   }
   ImGui::EndChild();
-  if (go_to) enter(*go_to);
+}
 
-  if (mode_ == Mode::Save) {
-    ImGui::AlignTextToFramePadding();
-    ImGui::TextUnformatted("Name");
-    ImGui::SameLine();
-    ImGui::SetNextItemWidth(-1);
-    if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
-    accept_name = ImGui::InputText("##name", &name_, kField);
-    probe::item("file.name");
-    probe::value("file.name", name_);
-  }
-  if (!option_label_.empty()) {
-    ImGui::Checkbox(option_label_.c_str(), &option_value_);
-    probe::item("file.option");
-    probe::value("file.option", option_value_ ? "on" : "off");
-    if (ImGui::IsItemHovered() && !option_tooltip_.empty()) {
-      ImGui::BeginTooltip();
-      ImGui::PushTextWrapPos(ImGui::GetFontSize() * 32.0f);  // a paragraph, not one screen-wide line
-      ImGui::TextUnformatted(option_tooltip_.c_str());
-      ImGui::PopTextWrapPos();
-      ImGui::EndTooltip();
-    }
-  }
-  if (!filter.empty()) {
-    ImGui::PushTextWrapPos(0.0f);
-    ImGui::TextColored(colors::dim, "%s", filter.c_str());
+bool FileDialog::draw_name_field() {
+  ImGui::AlignTextToFramePadding();
+  ImGui::TextUnformatted("Name");
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(-1);
+  if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
+  const bool accept_name = ImGui::InputText("##name", &name_, kFileDialogField);
+  probe::item("file.name");
+  probe::value("file.name", name_);
+  return accept_name;
+}
+
+void FileDialog::draw_option() {
+  ImGui::Checkbox(option_label_.c_str(), &option_value_);
+  probe::item("file.option");
+  probe::value("file.option", option_value_ ? "on" : "off");
+  if (ImGui::IsItemHovered() && !option_tooltip_.empty()) {
+    ImGui::BeginTooltip();
+    ImGui::PushTextWrapPos(ImGui::GetFontSize() * 32.0f);  // a paragraph, not one screen-wide line
+    ImGui::TextUnformatted(option_tooltip_.c_str());
     ImGui::PopTextWrapPos();
-    if (!filter_own_line) ImGui::SameLine();
+    ImGui::EndTooltip();
   }
+}
+
+void FileDialog::draw_buttons(float buttons_w, std::optional<fs::path>& chosen, bool& accept, bool& accept_name) {
   ImGui::SetCursorPosX(std::max(ImGui::GetCursorPosX(), ImGui::GetWindowContentRegionMax().x - buttons_w));
   if (!folder_label_.empty()) {
     if (ImGui::Button(folder_label_.c_str())) {
@@ -203,26 +219,54 @@ std::optional<fs::path> FileDialog::draw() {
   if (!ImGui::IsAnyItemActive() && (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Enter), false) ||
                                     ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_KeyPadEnter), false)))
     (mode_ == Mode::Save ? accept_name : accept) = true;
+}
+
+void FileDialog::accept_typed(bool accept_name, std::optional<fs::path>& chosen) {
+  std::error_code ec;
+  fs::path p = fs::absolute(accept_name ? save_target() : fs::path(path_text_), ec).lexically_normal();
+  if (!accept_name && fs::is_directory(p, ec)) {
+    enter_folder(p);
+  } else if (mode_ == Mode::Open && !fs::exists(p, ec)) {
+    error_ = "no such file: " + p.string();
+  } else if (mode_ == Mode::Save && !fs::is_directory(p.parent_path(), ec)) {
+    error_ = "no such folder: " + p.parent_path().string() + " (nothing saved)";
+  } else if (mode_ == Mode::Save && p.filename().empty()) {
+    error_ = "type a file name";
+  } else {
+    chosen = p;
+    ImGui::CloseCurrentPopup();
+  }
+}
+
+std::optional<fs::path> FileDialog::draw() {
+  std::optional<fs::path> chosen;
+  if (open_) {
+    ImGui::OpenPopup("###file_dialog");
+    open_ = false;
+  }
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowSize(ImVec2(std::min(640.0f, display.x * 0.9f), std::min(480.0f, display.y * 0.8f)),
+                           ImGuiCond_Appearing);
+  ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f, display.y * 0.5f), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+  visible_ = ImGui::BeginPopupModal((title_ + "###file_dialog").c_str(), nullptr, ImGuiWindowFlags_NoSavedSettings);
+  if (!visible_) return chosen;
+  std::optional<fs::path> go_to;  // entered after the listing is drawn: enter_folder() rebuilds dirs_
+  bool accept = draw_path_row(go_to);
+  bool accept_name = false;
+
+  const FileDialogFooter footer = file_dialog_footer(extensions_, folder_label_, option_label_, mode_ == Mode::Save);
+  draw_listing(footer.height, go_to, accept);
+  if (go_to) enter_folder(*go_to);
+
+  if (mode_ == Mode::Save) accept_name = draw_name_field();
+  if (!option_label_.empty()) draw_option();
+  draw_file_filter(footer);
+  draw_buttons(footer.buttons_w, chosen, accept, accept_name);
   const ImVec2 window_min = ImGui::GetWindowPos();
   probe::rect("file.dialog", window_min,
               ImVec2(window_min.x + ImGui::GetWindowSize().x, window_min.y + ImGui::GetWindowSize().y));
 
-  if (accept || accept_name) {
-    std::error_code ec;
-    fs::path p = fs::absolute(accept_name ? save_target() : fs::path(path_text_), ec).lexically_normal();
-    if (!accept_name && fs::is_directory(p, ec)) {
-      enter(p);
-    } else if (mode_ == Mode::Open && !fs::exists(p, ec)) {
-      error_ = "no such file: " + p.string();
-    } else if (mode_ == Mode::Save && !fs::is_directory(p.parent_path(), ec)) {
-      error_ = "no such folder: " + p.parent_path().string() + " (nothing saved)";
-    } else if (mode_ == Mode::Save && p.filename().empty()) {
-      error_ = "type a file name";
-    } else {
-      chosen = p;
-      ImGui::CloseCurrentPopup();
-    }
-  }
+  if (accept || accept_name) accept_typed(accept_name, chosen);
   ImGui::EndPopup();
   return chosen;
 }

@@ -35,6 +35,22 @@ class FileDialog {
   void list_folder();
   bool matches(const std::filesystem::path& p) const;
   std::filesystem::path save_target() const;  // Save: the folder typed in the path field / the name field
+  // Enters `dir`: lists it and shows it in the path field (Open: which takes the keyboard again).
+  void enter_folder(const std::filesystem::path& dir);
+  // "Up" and the path field, then the last error; sets go_to on Up; true when Enter was pressed in the field.
+  bool draw_path_row(std::optional<std::filesystem::path>& go_to);
+  // The folders and files of folder_, leaving `footer` pixels below: a clicked folder in go_to, a clicked file in
+  // the path (and name) field; a double click sets accept.
+  void draw_listing(float footer, std::optional<std::filesystem::path>& go_to, bool& accept);
+  bool draw_name_field();  // Save: the name field; true when Enter was pressed in it
+  void draw_option();      // the option checkbox and its tooltip
+  // The folder, Open / Save and Cancel buttons, right-aligned (buttons_w: their width, pixels): the folder button
+  // sets chosen; Open / Save and Enter outside a field set accept (Open) or accept_name (Save); Cancel and Escape
+  // close the dialog.
+  void draw_buttons(float buttons_w, std::optional<std::filesystem::path>& chosen, bool& accept, bool& accept_name);
+  // The path accepted from the path field (or, accept_name, from the name field): a folder is entered; a missing
+  // file (Open) or folder (Save), or no name (Save), sets error_; else it is chosen and the dialog closes.
+  void accept_typed(bool accept_name, std::optional<std::filesystem::path>& chosen);
 
   std::string title_;
   Mode mode_ = Mode::Open;

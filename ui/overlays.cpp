@@ -154,6 +154,133 @@ void swatch(ImU32 color) {
   ImGui::SameLine();
 }
 
+// The frame row (FPS, or idle, and the frame time) and one row per pass (FFD eval, render, iso ray with volumes, UI),
+// ms, each with its tooltip.
+void draw_overlay_pass_rows(const TimingOverlay::Summary& s) {
+  char ms[32];
+  format_ms(ms, sizeof ms, s.frame_ms);
+  swatch(pass_color(Pass::frame));
+  if (s.idle || s.fps < 0)
+    ImGui::Text("idle          frame %s", ms);
+  else
+    ImGui::Text("%5.0f FPS     frame %s", s.fps, ms);
+  tooltip(s.idle ? "The editor waits for input while nothing changes, so no FPS is shown.\n"
+                   "Frame: CPU wall time from handling events to the buffer swap, mean over the last second."
+                 : pass_tooltip(Pass::frame));
+
+  for (Pass p : {Pass::ffd, Pass::draw, Pass::volume, Pass::ui}) {
+    if (p == Pass::volume && s.volume_ms < 0) continue;  // no volume in the scene
+    const double v = p == Pass::ffd      ? s.ffd_ms
+                     : p == Pass::draw   ? s.draw_ms
+                     : p == Pass::volume ? s.volume_ms
+                                         : s.ui_ms;
+    format_ms(ms, sizeof ms, v);
+    swatch(pass_color(p));
+    ImGui::Text("%-9s %10s", pass_name(p), ms);
+    tooltip(pass_tooltip(p));
+    if (p == Pass::ffd && s.ffd_in_draw) {
+      ImGui::SameLine();
+      ImGui::TextColored(colors::dim, "+ in render");
+      tooltip("The vertex-shader path evaluates the deformation while drawing: its cost is part of 'render'.");
+    } else if (p == Pass::ffd && !s.ffd_recent && s.ffd_ms >= 0) {
+      ImGui::SameLine();
+      ImGui::TextColored(colors::dim, "(last)");
+      tooltip(
+          "Nothing was evaluated in the last second (results are cached until the deformation changes):\n"
+          "these are the figures of the last evaluation.");
+    }
+  }
+}
+
+// FFD throughput (vertices per second, vertices per evaluation), the FFD evaluator in use and the playback clock.
+void draw_overlay_ffd_rows(const TimingOverlay::Summary& s, const TimingContext& c) {
+  char line[160];
+  format_rate(line, sizeof line, s.vertices_per_second);
+  ImGui::Text("FFD  %s", line);
+  tooltip(s.ffd_in_draw
+              ? "FFD throughput of the vertex-shader path: vertices evaluated per second of render time (the\n"
+                "evaluation happens while drawing, so this is a lower bound)."
+              : "FFD throughput: vertices evaluated per second of FFD evaluation time, over the frames that\n"
+                "evaluated (GLSL compute and the CPU paths only evaluate when the deformation changes).");
+  if (s.ffd_vertices > 0) {
+    ImGui::SameLine();
+    ImGui::TextColored(colors::dim, "(%.0f k vertices)", s.ffd_vertices * 1e-3);
+    tooltip("Vertices of the deformed objects evaluated per evaluation.");
+  }
+  ImGui::Text("FFD evaluator: %s", c.ffd_backend.empty() ? "-" : c.ffd_backend.c_str());
+  tooltip(
+      "The backend that evaluates the deformation (View > FFD evaluator). Nothing visible changes between\n"
+      "backends except speed; export and tests always use the CPU reference.");
+  if (c.scene_time_s >= 0) {
+    ImGui::Text("playback %s t = %.2f s", c.playing ? "on " : "off", c.scene_time_s);
+    tooltip(
+        "Scene time of animated objects (lattice.animate_offset): each shows F(E(x) + offset + velocity * t).\n"
+        "Space (View > Play animation) starts and stops the clock.");
+  }
+}
+
+// Work beside the frame, each row only when it applies: the live silhouettes' extraction (ms, points), the tile layers
+// drawn, the guarantees' computation (ms).
+void draw_overlay_live_rows(const TimingContext& c) {
+  char ms[32];
+  if (c.silhouette_ms >= 0 || c.silhouette_running) {
+    format_ms(ms, sizeof ms, c.silhouette_ms);
+    ImGui::Text("silhouettes %8s", ms);
+    if (c.silhouette_ms >= 0) {
+      ImGui::SameLine();
+      ImGui::TextColored(colors::dim, "(%zu points%s)", c.silhouette_points, c.silhouette_running ? ", updating" : "");
+    }
+    tooltip(
+        "Silhouettes of the volumes for the current view (seed section 7.3.3): CPU wall time of the last\n"
+        "extraction on a worker thread (singleton lookup, Newton steps, polylines, occlusion test). The view\n"
+        "stays interactive: a changed view or iso-level is extracted when the last extraction is done.");
+  }
+
+  if (const std::string tiles = ddm_tiles_text(c); !tiles.empty()) {
+    ImGui::TextUnformatted(tiles.c_str());
+    tooltip(
+        "Tile layers drawn by GPU instancing: instances left out because they lie outside the view or face\n"
+        "away (objects without a deformation), and while the view moves only a share of the rest, so orbiting\n"
+        "stays fluid (full detail at rest; replay and recordings always draw every tile).");
+  }
+
+  if (c.bounds_ms >= 0 || c.certificate_ms >= 0) {
+    format_ms(ms, sizeof ms, std::max(c.bounds_ms, 0.0) + std::max(c.certificate_ms, 0.0));
+    ImGui::Text("guarantees  %8s", ms);
+    ImGui::SameLine();
+    ImGui::TextColored(colors::dim, "(%s)", c.guarantees.c_str());
+    tooltip(
+        "View > Error bounds and Fold certificate (seed ch. 3): CPU wall time of the last computation for the\n"
+        "object shown — per-triangle certified error bounds (with the FFD of its vertices) and the lattice's\n"
+        "fold-free certificate. Recomputed only when the lattice changes (every step of a press drag).");
+  }
+}
+
+// The command on top of the undo stack (none: nothing drawn): its wall time and a table of its stages' CPU times (ms).
+void draw_overlay_last_command(const TimingContext& c) {
+  if (c.last_command.empty()) return;
+  ImGui::Separator();
+  char total[32], ms[32];
+  format_ms(total, sizeof total, c.last_command_ms);
+  ImGui::Text("%s  %s", c.last_command.c_str(), total);
+  tooltip(
+      "The command on top of the undo stack and its wall time when it last ran (CPU). The rows below are its\n"
+      "stages (Command::stats(); the same figures as replay's report.json timings.commands).");
+  if (!c.last_stages.empty() &&
+      ImGui::BeginTable("##stages", 4, ImGuiTableFlags_SizingFixedFit, ImVec2(kGraphWidth, 0))) {
+    for (const StageTiming& st : c.last_stages) {
+      ImGui::TableNextColumn();
+      ImGui::TextColored(colors::dim, "%s", st.name.c_str());
+      tooltip("CPU wall time of this stage of the last command.");
+      ImGui::TableNextColumn();
+      format_ms(ms, sizeof ms, st.ms);
+      ImGui::TextUnformatted(ms);
+      tooltip("CPU wall time of this stage of the last command.");
+    }
+    ImGui::EndTable();
+  }
+}
+
 }  // namespace
 
 void TimingOverlay::add_frame(const FrameSample& sample) {
@@ -279,97 +406,9 @@ void TimingOverlay::draw(const Rect& viewport) const {
   }
   ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + kGraphWidth);
   const Summary s = summary();
-  char ms[32], line[160];
-
-  format_ms(ms, sizeof ms, s.frame_ms);
-  swatch(pass_color(Pass::frame));
-  if (s.idle || s.fps < 0)
-    ImGui::Text("idle          frame %s", ms);
-  else
-    ImGui::Text("%5.0f FPS     frame %s", s.fps, ms);
-  tooltip(s.idle ? "The editor waits for input while nothing changes, so no FPS is shown.\n"
-                   "Frame: CPU wall time from handling events to the buffer swap, mean over the last second."
-                 : pass_tooltip(Pass::frame));
-
-  for (Pass p : {Pass::ffd, Pass::draw, Pass::volume, Pass::ui}) {
-    if (p == Pass::volume && s.volume_ms < 0) continue;  // no volume in the scene
-    const double v = p == Pass::ffd      ? s.ffd_ms
-                     : p == Pass::draw   ? s.draw_ms
-                     : p == Pass::volume ? s.volume_ms
-                                         : s.ui_ms;
-    format_ms(ms, sizeof ms, v);
-    swatch(pass_color(p));
-    ImGui::Text("%-9s %10s", pass_name(p), ms);
-    tooltip(pass_tooltip(p));
-    if (p == Pass::ffd && s.ffd_in_draw) {
-      ImGui::SameLine();
-      ImGui::TextColored(colors::dim, "+ in render");
-      tooltip("The vertex-shader path evaluates the deformation while drawing: its cost is part of 'render'.");
-    } else if (p == Pass::ffd && !s.ffd_recent && s.ffd_ms >= 0) {
-      ImGui::SameLine();
-      ImGui::TextColored(colors::dim, "(last)");
-      tooltip(
-          "Nothing was evaluated in the last second (results are cached until the deformation changes):\n"
-          "these are the figures of the last evaluation.");
-    }
-  }
-
-  format_rate(line, sizeof line, s.vertices_per_second);
-  ImGui::Text("FFD  %s", line);
-  tooltip(s.ffd_in_draw
-              ? "FFD throughput of the vertex-shader path: vertices evaluated per second of render time (the\n"
-                "evaluation happens while drawing, so this is a lower bound)."
-              : "FFD throughput: vertices evaluated per second of FFD evaluation time, over the frames that\n"
-                "evaluated (GLSL compute and the CPU paths only evaluate when the deformation changes).");
-  if (s.ffd_vertices > 0) {
-    ImGui::SameLine();
-    ImGui::TextColored(colors::dim, "(%.0f k vertices)", s.ffd_vertices * 1e-3);
-    tooltip("Vertices of the deformed objects evaluated per evaluation.");
-  }
-  ImGui::Text("FFD evaluator: %s", context_.ffd_backend.empty() ? "-" : context_.ffd_backend.c_str());
-  tooltip(
-      "The backend that evaluates the deformation (View > FFD evaluator). Nothing visible changes between\n"
-      "backends except speed; export and tests always use the CPU reference.");
-  if (context_.scene_time_s >= 0) {
-    ImGui::Text("playback %s t = %.2f s", context_.playing ? "on " : "off", context_.scene_time_s);
-    tooltip(
-        "Scene time of animated objects (lattice.animate_offset): each shows F(E(x) + offset + velocity * t).\n"
-        "Space (View > Play animation) starts and stops the clock.");
-  }
-
-  if (context_.silhouette_ms >= 0 || context_.silhouette_running) {
-    format_ms(ms, sizeof ms, context_.silhouette_ms);
-    ImGui::Text("silhouettes %8s", ms);
-    if (context_.silhouette_ms >= 0) {
-      ImGui::SameLine();
-      ImGui::TextColored(colors::dim, "(%zu points%s)", context_.silhouette_points,
-                         context_.silhouette_running ? ", updating" : "");
-    }
-    tooltip(
-        "Silhouettes of the volumes for the current view (seed section 7.3.3): CPU wall time of the last\n"
-        "extraction on a worker thread (singleton lookup, Newton steps, polylines, occlusion test). The view\n"
-        "stays interactive: a changed view or iso-level is extracted when the last extraction is done.");
-  }
-
-  if (const std::string tiles = ddm_tiles_text(context_); !tiles.empty()) {
-    ImGui::TextUnformatted(tiles.c_str());
-    tooltip(
-        "Tile layers drawn by GPU instancing: instances left out because they lie outside the view or face\n"
-        "away (objects without a deformation), and while the view moves only a share of the rest, so orbiting\n"
-        "stays fluid (full detail at rest; replay and recordings always draw every tile).");
-  }
-
-  if (context_.bounds_ms >= 0 || context_.certificate_ms >= 0) {
-    format_ms(ms, sizeof ms, std::max(context_.bounds_ms, 0.0) + std::max(context_.certificate_ms, 0.0));
-    ImGui::Text("guarantees  %8s", ms);
-    ImGui::SameLine();
-    ImGui::TextColored(colors::dim, "(%s)", context_.guarantees.c_str());
-    tooltip(
-        "View > Error bounds and Fold certificate (seed ch. 3): CPU wall time of the last computation for the\n"
-        "object shown — per-triangle certified error bounds (with the FFD of its vertices) and the lattice's\n"
-        "fold-free certificate. Recomputed only when the lattice changes (every step of a press drag).");
-  }
-
+  draw_overlay_pass_rows(s);
+  draw_overlay_ffd_rows(s, context_);
+  draw_overlay_live_rows(context_);
   draw_graph(kGraphWidth, kGraphHeight);
 
   ImGui::TextColored(colors::dim, "%s", context_.timer_mode.empty() ? "GPU: not timed" : context_.timer_mode.c_str());
@@ -378,28 +417,7 @@ void TimingOverlay::draw(const Rect& viewport) const {
       "waiting. Software renderers (Mesa llvmpipe): their timer queries return wrong values, so each pass is\n"
       "bracketed by glFinish and timed with the wall clock (this slows the frame a little).");
 
-  if (!context_.last_command.empty()) {
-    ImGui::Separator();
-    char total[32];
-    format_ms(total, sizeof total, context_.last_command_ms);
-    ImGui::Text("%s  %s", context_.last_command.c_str(), total);
-    tooltip(
-        "The command on top of the undo stack and its wall time when it last ran (CPU). The rows below are its\n"
-        "stages (Command::stats(); the same figures as replay's report.json timings.commands).");
-    if (!context_.last_stages.empty() &&
-        ImGui::BeginTable("##stages", 4, ImGuiTableFlags_SizingFixedFit, ImVec2(kGraphWidth, 0))) {
-      for (const StageTiming& st : context_.last_stages) {
-        ImGui::TableNextColumn();
-        ImGui::TextColored(colors::dim, "%s", st.name.c_str());
-        tooltip("CPU wall time of this stage of the last command.");
-        ImGui::TableNextColumn();
-        format_ms(ms, sizeof ms, st.ms);
-        ImGui::TextUnformatted(ms);
-        tooltip("CPU wall time of this stage of the last command.");
-      }
-      ImGui::EndTable();
-    }
-  }
+  draw_overlay_last_command(context_);
   ImGui::PopTextWrapPos();
   ImGui::End();
 }

@@ -58,4 +58,30 @@ std::vector<OffsetKey> keys_from_frames(const std::vector<glm::dvec3>& rows, boo
   return keys;
 }
 
+ParamSchema<KeyedWeightParams> keyed_weight_schema(const KeyedWeightDoc& doc) {
+  using P = KeyedWeightParams;
+  const char* field = doc.keys_field;
+  const char* built = doc.built;
+  return ParamSchema<P>(doc.id, doc.summary)
+      .field("object", &P::object)
+      .required()
+      .help(doc.object_help)
+      .field("clear", &P::clear)
+      .write_unless_default()
+      .help(doc.clear_help)
+      .field(field, &P::keys)
+      .type_text("[[frame,s],…]")
+      .default_text("kept")
+      .help(doc.keys_help)
+      .choice("interpolation", &P::interpolation, {"linear", "constant", "smooth"})
+      .write_unless_default()
+      .help("How this line's keys move to the next key")
+      .check([field, built](const P& p) { check_weight_keys(p.keys, p.clear, field, built); });
+}
+
+std::vector<OffsetKey> keyed_weights(const KeyedWeightParams& p, const Timeline& timeline, const char* field) {
+  if (!p.keys) return {};
+  return weight_keys_from_frames(*p.keys, timeline, interpolation_of(p.interpolation), field);
+}
+
 }  // namespace trispline::core

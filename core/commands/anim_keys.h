@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/params/params.h"
 #include "core/scene/scene.h"
 #include "core/spline/keyframes.h"
 
@@ -35,5 +36,32 @@ std::vector<OffsetKey> weight_keys_from_frames(const std::vector<glm::dvec2>& ke
 // CommandError (field `field`) when two keys fall on one frame.
 std::vector<OffsetKey> keys_from_frames(const std::vector<glm::dvec3>& rows, bool two, const Timeline& timeline,
                                         KeyInterpolation interpolation, const char* field);
+
+// The line of a command that keys a blend weight s on the timeline (incision.animate's opening, dffd.animate's seam):
+// the object, "clear" (back to the state as built), the [frame, s] keys under the command's own field name, and the
+// interpolation of this line's keys.
+struct KeyedWeightParams {
+  std::string object;
+  bool clear = false;
+  std::optional<std::vector<glm::dvec2>> keys;  // (timeline frame, s)
+  std::string interpolation = "linear";         // "linear" | "constant" | "smooth"
+};
+
+// What differs between the keyed-weight commands' declarations.
+struct KeyedWeightDoc {
+  const char* id;           // "incision.animate"
+  const char* summary;      // the command's one line
+  const char* object_help;  // which objects it takes
+  const char* clear_help;   // what "clear" gives back
+  const char* keys_field;   // "opening_keys"
+  const char* keys_help;    // what s = 0 and s = 1 mean
+  const char* built;        // s = 1 in messages ("opening", "stitched seam")
+};
+
+// The declaration of a keyed-weight command's line (check_weight_keys on its keys).
+ParamSchema<KeyedWeightParams> keyed_weight_schema(const KeyedWeightDoc& doc);
+
+// The keys of a keyed-weight line on `timeline` (weight_keys_from_frames); empty without keys.
+std::vector<OffsetKey> keyed_weights(const KeyedWeightParams& p, const Timeline& timeline, const char* field);
 
 }  // namespace trispline::core

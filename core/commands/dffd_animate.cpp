@@ -8,29 +8,16 @@
 namespace trispline::core {
 
 const ParamSchema<DffdAnimateParams>& DffdAnimateCommand::schema() {
-  using P = DffdAnimateParams;
-  static const ParamSchema<P> s =
-      ParamSchema<P>("dffd.animate",
-                     "Key a DFFD's seam on the timeline: 0 the openings capped, 1 stitched (seed §6.3.2)")
-          .field("object", &P::object)
-          .required()
-          .help("An object split by dffd.split with openings cap or stitch")
-          .field("clear", &P::clear)
-          .write_unless_default()
-          .help("Remove the keys: the seam as dffd.split built it")
-          .field("stitch_keys", &P::stitch_keys)
-          .type_text("[[frame,s],…]")
-          .default_text("kept")
-          .help("[timeline frame, s] keys: s = 0 the openings as the obstacles leave them, 1 stitched at w_s")
-          .choice("interpolation", &P::interpolation, {"linear", "constant", "smooth"})
-          .write_unless_default()
-          .help("How this line's keys move to the next key")
-          .check([](const P& p) { check_weight_keys(p.stitch_keys, p.clear, "stitch_keys", "stitched seam"); });
+  static const ParamSchema<DffdAnimateParams> s = keyed_weight_schema(
+      {"dffd.animate", "Key a DFFD's seam on the timeline: 0 the openings capped, 1 stitched (seed §6.3.2)",
+       "An object split by dffd.split with openings cap or stitch", "Remove the keys: the seam as dffd.split built it",
+       "stitch_keys", "[timeline frame, s] keys: s = 0 the openings as the obstacles leave them, 1 stitched at w_s",
+       "stitched seam"});
   return s;
 }
 
 std::string DffdAnimateCommand::label() const {
-  return p_.clear && !p_.stitch_keys ? "Reset seam of '" + p_.object + "'" : "Animate seam of '" + p_.object + "'";
+  return p_.clear && !p_.keys ? "Reset seam of '" + p_.object + "'" : "Animate seam of '" + p_.object + "'";
 }
 
 std::optional<SceneObject> DffdAnimateCommand::build(const Scene& scene) {
@@ -44,11 +31,7 @@ std::optional<SceneObject> DffdAnimateCommand::build(const Scene& scene) {
                            "caps, so there is no seam to stitch (split it with openings cap or stitch)",
                        "object");
   auto rig = std::make_shared<DffdRig>(*object.dffd);
-  rig->stitch_keys.clear();
-  if (p_.stitch_keys) {
-    const KeyInterpolation interpolation = interpolation_of(p_.interpolation);
-    rig->stitch_keys = weight_keys_from_frames(*p_.stitch_keys, scene.timeline, interpolation, "stitch_keys");
-  }
+  rig->stitch_keys = keyed_weights(p_, scene.timeline, "stitch_keys");
   const double start = dffd_stitch_at(*rig, 0.0);
   dffd_set_stitch(*rig, start);  // the lattice shows scene time 0 (the built state after a clear)
   SceneObject out = object;

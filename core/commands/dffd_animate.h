@@ -21,17 +21,13 @@
 #include <string>
 #include <vector>
 
+#include "core/commands/anim_keys.h"
 #include "core/commands/declared_command.h"
 #include "core/commands/snapshot_command.h"
 
 namespace trispline::core {
 
-struct DffdAnimateParams {
-  std::string object;
-  bool clear = false;
-  std::optional<std::vector<glm::dvec2>> stitch_keys;  // (frame, s)
-  std::string interpolation = "linear";                // "linear" | "constant" | "smooth"
-};
+using DffdAnimateParams = KeyedWeightParams;  // keys: "stitch_keys"
 
 class DffdAnimateCommand : public ObjectSnapshotCommand<DffdAnimateCommand, DffdAnimateParams> {
  public:

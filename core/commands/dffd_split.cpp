@@ -51,6 +51,151 @@ const ParamSchema<Aabb>& box_schema() {
   return s;
 }
 
+// The object dffd.split may split: neither deformed by an FFD lattice nor playing a glTF clip (CommandError "object").
+void check_splittable(const SceneObject& object, const std::string& id) {
+  if (object.ffd)
+    throw CommandError("field 'object': '" + id +
+                           "' is deformed by an FFD lattice; dffd.split builds its own "
+                           "lattice around the obstacles (split an undeformed object)",
+                       "object");
+  if (object.clip)
+    throw CommandError("field 'object': '" + id +
+                           "' plays a glTF clip; splitting would break its vertex "
+                           "correspondence (remove the clip first)",
+                       "object");
+}
+
+// The obstacles' world meshes, in the order of `ids` (CommandError "obstacles": unknown id, or an object without a
+// mesh).
+std::vector<DffdObstacle> split_obstacles(const Scene& scene, const std::vector<std::string>& ids) {
+  std::vector<DffdObstacle> obstacles;
+  for (const std::string& id : ids) {
+    const SceneObject* o = &require_object(scene, id, "obstacles");
+    if (!o->world_mesh || o->world_mesh->empty())
+      throw CommandError("field 'obstacles': '" + id + "' has no mesh", "obstacles");
+    obstacles.push_back({id, *o->world_mesh});
+  }
+  return obstacles;
+}
+
+// One split with parameters q: the lattice (build_global_dffd; its DffdBuildError as a CommandError), the rig, the
+// split mesh and the vertices it leaves inside an obstacle, in the state the line asks for and, with a seam, in the
+// other one (the state dffd.animate may key it to). Adds the build and evaluation times to build_ms, eval_ms (ms).
+SplitAttempt attempt_split(const TriMesh& rest, const std::vector<DffdObstacle>& obstacles,
+                           const ObstacleInterior& interior, const GlobalDffdParams& q, double& build_ms,
+                           double& eval_ms) {
+  const auto t0 = std::chrono::steady_clock::now();
+  SplitAttempt a([&] {
+    try {
+      return build_global_dffd(rest, obstacles, q);
+    } catch (const DffdBuildError& e) {
+      throw CommandError("field '" + e.field + "': " + e.what(), e.field);
+    }
+  }());
+  build_ms += ms_since(t0);
+  const auto t1 = std::chrono::steady_clock::now();
+  a.rig = std::make_shared<const DffdRig>(std::move(a.built.rig));
+  a.mesh = dffd_apply(*a.rig, rest, q.offset, &a.st);
+  eval_ms += ms_since(t1);
+  a.intrusion = interior.intrusion(a.mesh.positions);
+  if (a.rig->seam) {  // the state dffd.animate may key the seam to
+    DffdRig other = *a.rig;
+    dffd_set_stitch(other, q.openings == DffdOpenings::stitch ? 0.0 : 1.0);
+    a.other = interior.intrusion(dffd_apply(other, rest, q.offset).positions);
+  }
+  return a;
+}
+
+// Caps and stitches need a mesh closed where it is cut (CommandError "openings": the open boundary chains).
+void check_openings_closed(const SplitAttempt& a, const GlobalDffdParams& p, const std::string& object) {
+  if (a.st.open_chains > 0 && p.openings != DffdOpenings::open)
+    throw CommandError(
+        "field 'openings': '" + object + "' is not closed where it is cut (" + std::to_string(a.st.open_chains) +
+            " open boundary chain(s) on the discontinuity planes), so "
+            "its openings cannot be " +
+            (p.openings == DffdOpenings::cap ? "capped" : "stitched") + "; use \"openings\":\"open\" or close the mesh",
+        "openings");
+}
+
+// The clearance rounds build() describes, at most kClearanceRounds, κ widened at most kKernelWidenings times a round:
+// `a` and `p` end as the last attempt and its parameters; returns the rounds run. CommandError "clearance" when a
+// round fails otherwise.
+template <class Attempt>
+int refine_clearance(SplitAttempt& a, GlobalDffdParams& p, const Attempt& attempt, const std::string& object) {
+  std::size_t other_before = SIZE_MAX;
+  auto other_helped = [&] { return a.other && a.other->inside > 0 && a.other->inside < other_before; };
+  int rounds = 0;
+  for (; rounds < kClearanceRounds && (a.intrusion.inside > 0 || other_helped()); ++rounds) {
+    GlobalDffdParams q = p;
+    q.clearance += 1.5 * (other_helped() ? a.max_depth() : a.intrusion.max_depth);
+    q.controls.y = std::min(64, 2 * q.controls.y), q.controls.z = std::min(64, 2 * q.controls.z);
+    other_before = a.other ? a.other->inside : 0;
+    for (int widened = 0;; ++widened) {
+      try {
+        a = attempt(q);
+        break;
+      } catch (const CommandError& e) {
+        if (e.field() == "kernel_width" && widened < kKernelWidenings) {
+          q.kernel_width *= 1.5;
+          continue;
+        }
+        throw CommandError("field 'clearance': " + std::to_string(a.intrusion.inside) + " vertices of '" + object +
+                               "' lie inside '" + a.intrusion.deepest_obstacle + "' (up to " +
+                               short_number(a.intrusion.max_depth) + " world units deep), and refining the " +
+                               "lattice to clear them failed: " + e.what() + "; give a clearance or more controls",
+                           "clearance");
+      }
+    }
+    p = q;
+  }
+  return rounds;
+}
+
+// No vertex may stay inside an obstacle after the rounds (CommandError "clearance": how many, how deep, what was
+// tried).
+void check_cleared(const SplitAttempt& a, const GlobalDffdParams& p, const std::string& object) {
+  if (a.intrusion.inside > 0)
+    throw CommandError("field 'clearance': " + std::to_string(a.intrusion.inside) + " vertices of '" + object +
+                           "' stay inside '" + a.intrusion.deepest_obstacle + "' (up to " +
+                           short_number(a.intrusion.max_depth) + " world units deep) after " +
+                           std::to_string(kClearanceRounds) + " refinements (clearance " + short_number(p.clearance) +
+                           ", controls [" + std::to_string(p.controls.x) + "," + std::to_string(p.controls.y) + "," +
+                           std::to_string(p.controls.z) + "]); give a larger clearance or more controls",
+                       "clearance");
+}
+
+// report.json of dffd.split (the keys and their order as the header lists them): the split `out` of `rest` by the
+// last attempt `a` with parameters `p`, after `rounds` clearance rounds; build_ms, eval_ms over every attempt.
+nlohmann::json dffd_split_report(const SplitAttempt& a, const SceneObject& out, const TriMesh& rest,
+                                 std::size_t inside_before, int rounds, const GlobalDffdParams& p,
+                                 const ObstacleInterior& interior, double build_ms, double eval_ms) {
+  const GlobalDffd& built = a.built;
+  const DffdApplyStats& st = a.st;
+  return {{"discontinuities", out.dffd->discontinuities.size()},
+          {"v_knots", built.v_knots},
+          {"projected_points", built.projected_points},
+          {"max_displacement", built.max_displacement},
+          {"fold_overs", built.folds.size()},
+          {"w_s", built.w_s},
+          {"cut_edges", st.cut_edges},
+          {"cap_loops", st.cap_loops},
+          {"open_chains", st.open_chains},
+          {"cap_triangles", st.cap_triangles},
+          {"outside_vertices", st.outside_vertices},
+          {"vertices_before", rest.vertex_count()},
+          {"vertices_after", out.world_mesh->vertex_count()},
+          {"inside_obstacle", a.intrusion.inside},
+          {"inside_obstacle_other_state", a.other ? nlohmann::json(a.other->inside) : nlohmann::json()},
+          {"inside_before_refinement", inside_before},
+          {"refinement_rounds", rounds},
+          {"clearance_used", p.clearance},
+          {"controls_used", {p.controls.x, p.controls.y, p.controls.z}},
+          {"kernel_width_used", p.kernel_width},
+          {"unchecked_obstacles", interior.unchecked()},
+          {"build_ms", build_ms},
+          {"eval_ms", eval_ms}};
+}
+
 }  // namespace
 
 const ParamSchema<GlobalDffdParams>& global_dffd_schema() {
@@ -147,23 +292,8 @@ std::string DffdSplitCommand::label() const {
 
 std::optional<SceneObject> DffdSplitCommand::build(const Scene& scene) {
   const SceneObject* object = &require_object(scene, p_.object);
-  if (object->ffd)
-    throw CommandError("field 'object': '" + p_.object +
-                           "' is deformed by an FFD lattice; dffd.split builds its own "
-                           "lattice around the obstacles (split an undeformed object)",
-                       "object");
-  if (object->clip)
-    throw CommandError("field 'object': '" + p_.object +
-                           "' plays a glTF clip; splitting would break its vertex "
-                           "correspondence (remove the clip first)",
-                       "object");
-  std::vector<DffdObstacle> obstacles;
-  for (const std::string& id : p_.obstacles) {
-    const SceneObject* o = &require_object(scene, id, "obstacles");
-    if (!o->world_mesh || o->world_mesh->empty())
-      throw CommandError("field 'obstacles': '" + id + "' has no mesh", "obstacles");
-    obstacles.push_back({id, *o->world_mesh});
-  }
+  check_splittable(*object, p_.object);
+  std::vector<DffdObstacle> obstacles = split_obstacles(scene, p_.obstacles);
   const TriMesh rest = object->world_rest_mesh();
   std::vector<std::string> names;
   std::vector<const TriMesh*> meshes;
@@ -173,26 +303,7 @@ std::optional<SceneObject> DffdSplitCommand::build(const Scene& scene) {
   p.offset = object->offset_at(0.0);
   double build_ms = 0.0, eval_ms = 0.0;
   auto attempt = [&](const GlobalDffdParams& q) {
-    const auto t0 = std::chrono::steady_clock::now();
-    SplitAttempt a([&] {
-      try {
-        return build_global_dffd(rest, obstacles, q);
-      } catch (const DffdBuildError& e) {
-        throw CommandError("field '" + e.field + "': " + e.what(), e.field);
-      }
-    }());
-    build_ms += ms_since(t0);
-    const auto t1 = std::chrono::steady_clock::now();
-    a.rig = std::make_shared<const DffdRig>(std::move(a.built.rig));
-    a.mesh = dffd_apply(*a.rig, rest, q.offset, &a.st);
-    eval_ms += ms_since(t1);
-    a.intrusion = interior.intrusion(a.mesh.positions);
-    if (a.rig->seam) {  // the state dffd.animate may key the seam to
-      DffdRig other = *a.rig;
-      dffd_set_stitch(other, q.openings == DffdOpenings::stitch ? 0.0 : 1.0);
-      a.other = interior.intrusion(dffd_apply(other, rest, q.offset).positions);
-    }
-    return a;
+    return attempt_split(rest, obstacles, interior, q, build_ms, eval_ms);
   };
   // Clearance: vertices the split leaves inside an obstacle (the lattice's rows fit the cross-section only at their
   // own v and w; between them the spline cuts a chord into it) are cleared in rounds: the controls in v and w doubled
@@ -201,76 +312,14 @@ std::optional<SceneObject> DffdSplitCommand::build(const Scene& scene) {
   // cleared too while the rounds help it, so the two splits of one line refine alike; it cannot always be (an
   // obstacle that ends inside the object holds the stitching level) and is then only reported.
   SplitAttempt a = attempt(p);
-  if (a.st.open_chains > 0 && p.openings != DffdOpenings::open)
-    throw CommandError(
-        "field 'openings': '" + p_.object + "' is not closed where it is cut (" + std::to_string(a.st.open_chains) +
-            " open boundary chain(s) on the discontinuity planes), so "
-            "its openings cannot be " +
-            (p.openings == DffdOpenings::cap ? "capped" : "stitched") + "; use \"openings\":\"open\" or close the mesh",
-        "openings");
+  check_openings_closed(a, p, p_.object);
   const std::size_t inside_before = a.intrusion.inside;
-  std::size_t other_before = SIZE_MAX;
-  auto other_helped = [&] { return a.other && a.other->inside > 0 && a.other->inside < other_before; };
-  int rounds = 0;
-  for (; rounds < kClearanceRounds && (a.intrusion.inside > 0 || other_helped()); ++rounds) {
-    GlobalDffdParams q = p;
-    q.clearance += 1.5 * (other_helped() ? a.max_depth() : a.intrusion.max_depth);
-    q.controls.y = std::min(64, 2 * q.controls.y), q.controls.z = std::min(64, 2 * q.controls.z);
-    other_before = a.other ? a.other->inside : 0;
-    for (int widened = 0;; ++widened) {
-      try {
-        a = attempt(q);
-        break;
-      } catch (const CommandError& e) {
-        if (e.field() == "kernel_width" && widened < kKernelWidenings) {
-          q.kernel_width *= 1.5;
-          continue;
-        }
-        throw CommandError("field 'clearance': " + std::to_string(a.intrusion.inside) + " vertices of '" + p_.object +
-                               "' lie inside '" + a.intrusion.deepest_obstacle + "' (up to " +
-                               short_number(a.intrusion.max_depth) + " world units deep), and refining the " +
-                               "lattice to clear them failed: " + e.what() + "; give a clearance or more controls",
-                           "clearance");
-      }
-    }
-    p = q;
-  }
-  if (a.intrusion.inside > 0)
-    throw CommandError("field 'clearance': " + std::to_string(a.intrusion.inside) + " vertices of '" + p_.object +
-                           "' stay inside '" + a.intrusion.deepest_obstacle + "' (up to " +
-                           short_number(a.intrusion.max_depth) + " world units deep) after " +
-                           std::to_string(kClearanceRounds) + " refinements (clearance " + short_number(p.clearance) +
-                           ", controls [" + std::to_string(p.controls.x) + "," + std::to_string(p.controls.y) + "," +
-                           std::to_string(p.controls.z) + "]); give a larger clearance or more controls",
-                       "clearance");
-  const GlobalDffd& built = a.built;
-  const DffdApplyStats& st = a.st;
+  const int rounds = refine_clearance(a, p, attempt, p_.object);
+  check_cleared(a, p, p_.object);
   SceneObject out = *object;
   out.dffd = a.rig;
   out.world_mesh = std::make_shared<const TriMesh>(std::move(a.mesh));
-  stats_ = {{"discontinuities", out.dffd->discontinuities.size()},
-            {"v_knots", built.v_knots},
-            {"projected_points", built.projected_points},
-            {"max_displacement", built.max_displacement},
-            {"fold_overs", built.folds.size()},
-            {"w_s", built.w_s},
-            {"cut_edges", st.cut_edges},
-            {"cap_loops", st.cap_loops},
-            {"open_chains", st.open_chains},
-            {"cap_triangles", st.cap_triangles},
-            {"outside_vertices", st.outside_vertices},
-            {"vertices_before", rest.vertex_count()},
-            {"vertices_after", out.world_mesh->vertex_count()},
-            {"inside_obstacle", a.intrusion.inside},
-            {"inside_obstacle_other_state", a.other ? nlohmann::json(a.other->inside) : nlohmann::json()},
-            {"inside_before_refinement", inside_before},
-            {"refinement_rounds", rounds},
-            {"clearance_used", p.clearance},
-            {"controls_used", {p.controls.x, p.controls.y, p.controls.z}},
-            {"kernel_width_used", p.kernel_width},
-            {"unchecked_obstacles", interior.unchecked()},
-            {"build_ms", build_ms},
-            {"eval_ms", eval_ms}};
+  stats_ = dffd_split_report(a, out, rest, inside_before, rounds, p, interior, build_ms, eval_ms);
   return out;
 }
 

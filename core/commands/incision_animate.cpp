@@ -9,29 +9,15 @@
 namespace trispline::core {
 
 const ParamSchema<IncisionAnimateParams>& IncisionAnimateCommand::schema() {
-  using P = IncisionAnimateParams;
-  static const ParamSchema<P> s =
-      ParamSchema<P>("incision.animate", "Key an incision's opening on the timeline: 0 closed, 1 as drawn (seed §6.4)")
-          .field("object", &P::object)
-          .required()
-          .help("An object cut by incision.draw")
-          .field("clear", &P::clear)
-          .write_unless_default()
-          .help("Remove the keys: the incision shows fully open")
-          .field("opening_keys", &P::opening_keys)
-          .type_text("[[frame,s],…]")
-          .default_text("kept")
-          .help("[timeline frame, s] keys: s = fraction of the drawn opening (0 closed, 1 as drawn)")
-          .choice("interpolation", &P::interpolation, {"linear", "constant", "smooth"})
-          .write_unless_default()
-          .help("How this line's keys move to the next key")
-          .check([](const P& p) { check_weight_keys(p.opening_keys, p.clear, "opening_keys", "opening"); });
+  static const ParamSchema<IncisionAnimateParams> s = keyed_weight_schema(
+      {"incision.animate", "Key an incision's opening on the timeline: 0 closed, 1 as drawn (seed §6.4)",
+       "An object cut by incision.draw", "Remove the keys: the incision shows fully open", "opening_keys",
+       "[timeline frame, s] keys: s = fraction of the drawn opening (0 closed, 1 as drawn)", "opening"});
   return s;
 }
 
 std::string IncisionAnimateCommand::label() const {
-  return p_.clear && !p_.opening_keys ? "Open incision of '" + p_.object + "'"
-                                      : "Animate incision of '" + p_.object + "'";
+  return p_.clear && !p_.keys ? "Open incision of '" + p_.object + "'" : "Animate incision of '" + p_.object + "'";
 }
 
 std::optional<SceneObject> IncisionAnimateCommand::build(const Scene& scene) {
@@ -44,10 +30,7 @@ std::optional<SceneObject> IncisionAnimateCommand::build(const Scene& scene) {
                        "object");
   auto morph = std::make_shared<MorphChannel>(*object.morph);
   morph->weight_keys = {OffsetKey{0.0, glm::dvec3(1.0, 0.0, 0.0), KeyInterpolation::constant}};
-  if (p_.opening_keys) {
-    const KeyInterpolation interpolation = interpolation_of(p_.interpolation);
-    morph->weight_keys = weight_keys_from_frames(*p_.opening_keys, scene.timeline, interpolation, "opening_keys");
-  }
+  if (p_.keys) morph->weight_keys = keyed_weights(p_, scene.timeline, "opening_keys");
   SceneObject out = object;
   out.morph = std::move(morph);
   out.refresh();

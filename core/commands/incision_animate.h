@@ -20,17 +20,13 @@
 #include <string>
 #include <vector>
 
+#include "core/commands/anim_keys.h"
 #include "core/commands/declared_command.h"
 #include "core/commands/snapshot_command.h"
 
 namespace trispline::core {
 
-struct IncisionAnimateParams {
-  std::string object;
-  bool clear = false;
-  std::optional<std::vector<glm::dvec2>> opening_keys;  // (frame, s)
-  std::string interpolation = "linear";                 // "linear" | "constant" | "smooth"
-};
+using IncisionAnimateParams = KeyedWeightParams;  // keys: "opening_keys"
 
 class IncisionAnimateCommand : public ObjectSnapshotCommand<IncisionAnimateCommand, IncisionAnimateParams> {
  public:

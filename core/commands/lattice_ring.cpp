@@ -74,11 +74,9 @@ std::optional<SceneObject> LatticeRingCommand::build(const Scene& scene) {
       target->ddm_layers.empty() ? rest.positions : positions_with_tile_layers(*target, rest);
   Embedding e = embed_bounding_box(held, axes);
   const int across_axis = 3 - axes.length_axis - axes.up_axis;
-  glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
-  for (const glm::dvec3& q : held) {
-    lo = glm::min(lo, q);
-    hi = glm::max(hi, q);
-  }
+  Aabb box;
+  for (const glm::dvec3& q : held) box.extend(q);
+  const glm::dvec3 lo = box.lo, hi = box.hi;
   const double length = hi[axes.length_axis] - lo[axes.length_axis];
   const double width = p_.width > 0.0 ? p_.width : std::max(hi[across_axis] - lo[across_axis], 1e-6);
   const double height = p_.height > 0.0 ? p_.height : std::max(hi[axes.up_axis] - lo[axes.up_axis], 1e-6);

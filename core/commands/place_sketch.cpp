@@ -30,6 +30,158 @@ void write_height_profile(const ParamSchema<PlaceSketchParams>::Field& f, const 
   if (p.height_profile.size() > 1) line[f.doc.name] = p.height_profile;
 }
 
+// The rays' scene, committed: the world meshes of the visible objects other than the one placed and those p.ignore
+// lists.
+void add_sketch_ray_meshes(RayCaster& rays, const Scene& scene, const PlaceSketchParams& p) {
+  for (const auto& o : scene.objects())
+    if (o.visible && o.name != p.object && o.world_mesh &&
+        std::find(p.ignore.begin(), p.ignore.end(), o.name) == p.ignore.end())
+      rays.add_mesh(*o.world_mesh);
+  rays.commit();
+}
+
+// The placement pipeline's parameters (sketch_placement.h) from the line's: the stroke in the view it was drawn in.
+SketchPlacementParams sketch_placement_params(const Scene& scene, const PlaceSketchParams& p) {
+  SketchPlacementParams sp;
+  sp.stroke_px = p.stroke;
+  sp.camera = stroke_camera(scene, p.camera);
+  sp.evaluate_positions = false;  // SceneObject::refresh() evaluates positions and normals in one pass
+  sp.half_width = p.width;
+  sp.height = p.height;
+  sp.width_profile = p.width_profile;
+  sp.height_profile = p.height_profile;
+  sp.springs = p.springs;
+  sp.samples_u = p.samples.x;
+  sp.samples_v = p.samples.y;
+  sp.volume = p.volume == "offset" ? PlacementVolume::Offset : PlacementVolume::Extrude;
+  sp.order = {p.order.x, p.order.y, p.order.z};
+  sp.controls = {p.controls.x, p.controls.y, p.controls.z};
+  sp.axes.length_axis = axis_index(p.length_axis);
+  sp.axes.up_axis = axis_index(p.up_axis);
+  return sp;
+}
+
+// place_along_stroke for `target` (world rest mesh `rest`); a PlacementError becomes a CommandError naming the
+// log's field.
+SketchPlacementResult place_sketch_or_throw(const RayCaster& rays, const SketchPlacementParams& sp,
+                                            const SceneObject& target, const TriMesh& rest) {
+  try {
+    // With tile layers the box embeds the tiles too (their tips rest on the contact surface); the binding's
+    // parameters are then re-embedded for the mesh's own vertices (reembed_for_extent).
+    return place_along_stroke(rays, sp,
+                              target.ddm_layers.empty() ? rest.positions : positions_with_tile_layers(target, rest));
+  } catch (const PlacementError& e) {
+    // Map the placement's parameter names onto the log's field names.
+    const std::string f = e.field() == "axes" ? "up_axis" : e.field();
+    std::string msg = e.what();
+    const std::string prefix = "place.sketch: " + e.field() + ": ";
+    if (msg.rfind(prefix, 0) == 0) msg = msg.substr(prefix.size());
+    throw CommandError("field '" + f + "': " + msg, f);
+  }
+}
+
+// fit "keep": the fraction of the path (at most `extent`) over which the object keeps its proportions — its length
+// scaled as its height is (height ÷ its extent along axes.up_axis) — measured along the contact curve F(u, ½, 0) by
+// arc length (the lattice's speed along u is not uniform near its ends). Sets path_length to the curve's length,
+// world units. Throws CommandError ("fit") when the proportions give no length along the stroke.
+double keep_fit_extent(const std::vector<glm::dvec3>& rest, const FfdBinding& binding, const EmbeddingAxes& axes,
+                       double height, double extent, double& path_length) {
+  const int a = axes.length_axis, w = axes.up_axis;
+  double lo_a = INFINITY, hi_a = -INFINITY, lo_w = INFINITY, hi_w = -INFINITY;
+  for (const glm::dvec3& x : rest)
+    lo_a = std::min(lo_a, x[a]), hi_a = std::max(hi_a, x[a]), lo_w = std::min(lo_w, x[w]), hi_w = std::max(hi_w, x[w]);
+  // The contact curve F(u, ½, 0) by arc length (the lattice's speed along u is not uniform near its ends).
+  constexpr int kSamples = 1024;
+  std::vector<double> arc(kSamples + 1, 0.0);
+  glm::dvec3 last = binding.lattice.eval({0.0, 0.5, 0.0});
+  for (int i = 1; i <= kSamples; ++i) {
+    const glm::dvec3 x = binding.lattice.eval({double(i) / kSamples, 0.5, 0.0});
+    arc[i] = arc[i - 1] + glm::length(x - last);
+    last = x;
+  }
+  const double path = arc[kSamples];
+  const double object_height = hi_w - lo_w, object_length = hi_a - lo_a;
+  if (object_height > 0.0 && object_length > 0.0 && path > 0.0 && std::isfinite(path)) {
+    // The u where the arc length reaches the object's length scaled as its height is.
+    const double length = object_length * (height / object_height);
+    const auto it = std::lower_bound(arc.begin(), arc.end(), length);
+    double u = 1.0;
+    if (it != arc.end()) {
+      const std::size_t i = std::max<std::size_t>(1, std::size_t(it - arc.begin()));
+      const double span = arc[i] - arc[i - 1];
+      u = (double(i - 1) + (span > 0.0 ? (length - arc[i - 1]) / span : 1.0)) / kSamples;
+    }
+    extent = std::min(extent, u);
+  }
+  if (!(extent > 0.0) || !std::isfinite(extent))
+    throw CommandError("field 'fit': the object's proportions give no length along the stroke", "fit");
+  path_length = path;
+  return extent;
+}
+
+// Re-embeds the object's rest positions for the extent used, u' = e·u (the object covers u ∈ [0, e]). An object with
+// a glTF clip is embedded by the box of its poses over the clip (64 samples, tile layers included).
+void reembed_for_extent(FfdBinding& b, const SceneObject& target, const TriMesh& rest, const EmbeddingAxes& axes,
+                        double extent) {
+  if (target.clip) {  // embed the box of every pose, so the walking object stays inside the lattice
+    std::vector<glm::dvec3> span = positions_with_tile_layers(target, rest);
+    const ClipBinding& cb = *target.clip;
+    std::vector<glm::dvec3> pos, nrm;
+    for (int s = 0; s < 64; ++s) {
+      cb.clip->pose(cb.clip->duration_s() * s / 63.0, pos, nrm);
+      TriMesh m = *target.rest_mesh;
+      m.positions = pos;
+      const TriMesh w = transformed(m, target.transform);
+      span.insert(span.end(), w.positions.begin(), w.positions.end());
+    }
+    b.embedding = embed_bounding_box(span, axes);
+  }
+  for (int c = 0; c < 3; ++c) b.embedding.linear[c][0] *= extent;  // u' = e·u: the object covers [0, e]
+  b.embedding.offset.x *= extent;
+  b.params = embed_points(b.embedding, rest.positions);
+}
+
+// report.json of place.sketch: the pipeline's figures (PlacementStats; the springs' only when they ran), the fit, the
+// extent used, the keep fit's path length (world units), the BVH build and evaluation times (ms), the placed
+// object's vertices and its length axis.
+nlohmann::json place_sketch_report(const PlaceSketchParams& p, const PlacementStats& st, double extent,
+                                   double path_length, double bvh_ms, double eval_ms, const SceneObject& placed,
+                                   int length_axis) {
+  nlohmann::json stats = {{"rays_total", st.rays_total},
+                          {"rays_hit", st.rays_hit},
+                          {"rays_filled", st.rays_filled},
+                          {"stroke_depth", st.stroke_depth},
+                          {"half_width_px", st.half_width_px},
+                          {"curve_order", st.curve_order},
+                          {"curve_controls", st.curve_controls},
+                          {"curve_fit_rms_px", st.curve_fit_rms_px},
+                          {"surface_fit_rms", st.surface_fit_rms},
+                          {"surface_fit_max", st.surface_fit_max},
+                          {"min_det_jacobian", st.min_det_jacobian},
+                          {"ms",
+                           {{"fit", st.ms_fit},
+                            {"rays", st.ms_rays},
+                            {"surface", st.ms_surface},
+                            {"volume", st.ms_volume},
+                            {"embed", st.ms_embed}}}};
+  if (p.springs) stats["ms"]["springs"] = st.ms_springs;  // a stage only when it ran
+  if (p.springs)
+    stats["springs"] = {{"steps", st.springs.steps},
+                        {"converged", st.springs.converged},
+                        {"max_displacement", st.springs.max_displacement},
+                        {"dt", st.springs.dt},
+                        {"active", st.springs.active},
+                        {"floors", st.springs.floors}};
+  stats["fit"] = p.fit;
+  stats["extent"] = extent;
+  if (p.fit == "keep") stats["path_length"] = path_length;
+  stats["bvh_ms"] = bvh_ms;
+  stats["evaluate_ms"] = eval_ms;
+  stats["vertices"] = placed.world_mesh->vertex_count();
+  stats["length_axis"] = axis_name(length_axis);
+  return stats;
+}
+
 }  // namespace
 
 const ParamSchema<SpringParams>& spring_schema() {
@@ -173,102 +325,20 @@ std::optional<SceneObject> PlaceSketchCommand::build(const Scene& scene) {
 
   const auto t0 = std::chrono::steady_clock::now();
   RayCaster rays;
-  for (const auto& o : scene.objects())
-    if (o.visible && o.name != p_.object && o.world_mesh &&
-        std::find(p_.ignore.begin(), p_.ignore.end(), o.name) == p_.ignore.end())
-      rays.add_mesh(*o.world_mesh);
-  rays.commit();
+  add_sketch_ray_meshes(rays, scene, p_);
   const double bvh_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 
-  SketchPlacementParams sp;
-  sp.stroke_px = p_.stroke;
-  sp.camera = stroke_camera(scene, p_.camera);
-  sp.evaluate_positions = false;  // refresh() below evaluates positions and normals in one pass
-  sp.half_width = p_.width;
-  sp.height = p_.height;
-  sp.width_profile = p_.width_profile;
-  sp.height_profile = p_.height_profile;
-  sp.springs = p_.springs;
-  sp.samples_u = p_.samples.x;
-  sp.samples_v = p_.samples.y;
-  sp.volume = p_.volume == "offset" ? PlacementVolume::Offset : PlacementVolume::Extrude;
-  sp.order = {p_.order.x, p_.order.y, p_.order.z};
-  sp.controls = {p_.controls.x, p_.controls.y, p_.controls.z};
-  sp.axes.length_axis = axis_index(p_.length_axis);
-  sp.axes.up_axis = axis_index(p_.up_axis);
-
+  const SketchPlacementParams sp = sketch_placement_params(scene, p_);
   const TriMesh rest = target->world_rest_mesh();
-  SketchPlacementResult r = [&] {
-    try {
-      // With tile layers the box embeds the tiles too (their tips rest on the contact surface); the binding's
-      // parameters are then re-embedded for the mesh's own vertices below.
-      return place_along_stroke(
-          rays, sp, target->ddm_layers.empty() ? rest.positions : positions_with_tile_layers(*target, rest));
-    } catch (const PlacementError& e) {
-      // Map the placement's parameter names onto the log's field names.
-      const std::string f = e.field() == "axes" ? "up_axis" : e.field();
-      std::string msg = e.what();
-      const std::string prefix = "place.sketch: " + e.field() + ": ";
-      if (msg.rfind(prefix, 0) == 0) msg = msg.substr(prefix.size());
-      throw CommandError("field '" + f + "': " + msg, f);
-    }
-  }();
+  SketchPlacementResult r = place_sketch_or_throw(rays, sp, *target, rest);
 
   // The fraction of the path the object covers (seed Eq. 2.3–2.5 map u ∈ [0, 1] onto the whole contact curve).
   double extent = p_.extent;
-  if (p_.fit == "keep") {
-    const int a = sp.axes.length_axis, w = sp.axes.up_axis;
-    double lo_a = INFINITY, hi_a = -INFINITY, lo_w = INFINITY, hi_w = -INFINITY;
-    for (const glm::dvec3& x : rest.positions)
-      lo_a = std::min(lo_a, x[a]), hi_a = std::max(hi_a, x[a]), lo_w = std::min(lo_w, x[w]),
-      hi_w = std::max(hi_w, x[w]);
-    // The contact curve F(u, ½, 0) by arc length (the lattice's speed along u is not uniform near its ends).
-    constexpr int kSamples = 1024;
-    std::vector<double> arc(kSamples + 1, 0.0);
-    glm::dvec3 last = r.binding.lattice.eval({0.0, 0.5, 0.0});
-    for (int i = 1; i <= kSamples; ++i) {
-      const glm::dvec3 x = r.binding.lattice.eval({double(i) / kSamples, 0.5, 0.0});
-      arc[i] = arc[i - 1] + glm::length(x - last);
-      last = x;
-    }
-    const double path = arc[kSamples];
-    const double object_height = hi_w - lo_w, object_length = hi_a - lo_a;
-    if (object_height > 0.0 && object_length > 0.0 && path > 0.0 && std::isfinite(path)) {
-      // The u where the arc length reaches the object's length scaled as its height is.
-      const double length = object_length * (p_.height / object_height);
-      const auto it = std::lower_bound(arc.begin(), arc.end(), length);
-      double u = 1.0;
-      if (it != arc.end()) {
-        const std::size_t i = std::max<std::size_t>(1, std::size_t(it - arc.begin()));
-        const double span = arc[i] - arc[i - 1];
-        u = (double(i - 1) + (span > 0.0 ? (length - arc[i - 1]) / span : 1.0)) / kSamples;
-      }
-      extent = std::min(extent, u);
-    }
-    if (!(extent > 0.0) || !std::isfinite(extent))
-      throw CommandError("field 'fit': the object's proportions give no length along the stroke", "fit");
-    fit_path_length_ = path;
-  }
+  if (p_.fit == "keep")
+    extent = keep_fit_extent(rest.positions, r.binding, sp.axes, p_.height, extent, fit_path_length_);
   applied_extent_ = extent;
-  if (target->clip || extent != 1.0 || !target->ddm_layers.empty()) {
-    FfdBinding& b = r.binding;
-    if (target->clip) {  // embed the box of every pose, so the walking object stays inside the lattice
-      std::vector<glm::dvec3> span = positions_with_tile_layers(*target, rest);
-      const ClipBinding& cb = *target->clip;
-      std::vector<glm::dvec3> pos, nrm;
-      for (int s = 0; s < 64; ++s) {
-        cb.clip->pose(cb.clip->duration_s() * s / 63.0, pos, nrm);
-        TriMesh m = *target->rest_mesh;
-        m.positions = pos;
-        const TriMesh w = transformed(m, target->transform);
-        span.insert(span.end(), w.positions.begin(), w.positions.end());
-      }
-      b.embedding = embed_bounding_box(span, sp.axes);
-    }
-    for (int c = 0; c < 3; ++c) b.embedding.linear[c][0] *= extent;  // u' = e·u: the object covers [0, e]
-    b.embedding.offset.x *= extent;
-    b.params = embed_points(b.embedding, rest.positions);
-  }
+  if (target->clip || extent != 1.0 || !target->ddm_layers.empty())
+    reembed_for_extent(r.binding, *target, rest, sp.axes, extent);
   SceneObject placed = *target;
   placed.ffd = std::make_shared<const FfdBinding>(std::move(r.binding));
   placed.placement = std::make_shared<const PlacementRecord>(std::move(r.record));
@@ -276,39 +346,8 @@ std::optional<SceneObject> PlaceSketchCommand::build(const Scene& scene) {
   placed.refresh();
   const double eval_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - te).count();
 
-  const PlacementStats& st = r.stats;
-  stats_ = {{"rays_total", st.rays_total},
-            {"rays_hit", st.rays_hit},
-            {"rays_filled", st.rays_filled},
-            {"stroke_depth", st.stroke_depth},
-            {"half_width_px", st.half_width_px},
-            {"curve_order", st.curve_order},
-            {"curve_controls", st.curve_controls},
-            {"curve_fit_rms_px", st.curve_fit_rms_px},
-            {"surface_fit_rms", st.surface_fit_rms},
-            {"surface_fit_max", st.surface_fit_max},
-            {"min_det_jacobian", st.min_det_jacobian},
-            {"ms",
-             {{"fit", st.ms_fit},
-              {"rays", st.ms_rays},
-              {"surface", st.ms_surface},
-              {"volume", st.ms_volume},
-              {"embed", st.ms_embed}}}};
-  if (p_.springs) stats_["ms"]["springs"] = st.ms_springs;  // a stage only when it ran
-  if (p_.springs)
-    stats_["springs"] = {{"steps", st.springs.steps},
-                         {"converged", st.springs.converged},
-                         {"max_displacement", st.springs.max_displacement},
-                         {"dt", st.springs.dt},
-                         {"active", st.springs.active},
-                         {"floors", st.springs.floors}};
-  stats_["fit"] = p_.fit;
-  stats_["extent"] = applied_extent_;
-  if (p_.fit == "keep") stats_["path_length"] = fit_path_length_;
-  stats_["bvh_ms"] = bvh_ms;
-  stats_["evaluate_ms"] = eval_ms;
-  stats_["vertices"] = placed.world_mesh->vertex_count();
-  stats_["length_axis"] = axis_name(sp.axes.length_axis);
+  stats_ =
+      place_sketch_report(p_, r.stats, applied_extent_, fit_path_length_, bvh_ms, eval_ms, placed, sp.axes.length_axis);
   return placed;
 }
 

@@ -219,10 +219,8 @@ class Unwrapper {
   std::vector<std::array<int, 3>> neighbours_;
 };
 
-}  // namespace
-
-TriMesh ddm_auto_uv(const TriMesh& mesh, DdmAutoUvStats* stats, double max_normal_deg) {
-  const auto t0 = std::chrono::steady_clock::now();
+// Refuses a normal bound outside (0°, 90°], a mesh without triangles, a triangle index ≥ #V and a non-finite position.
+void check_auto_uv_input(const TriMesh& mesh, double max_normal_deg) {
   if (!(max_normal_deg > 0.0 && max_normal_deg <= 90.0))
     throw std::invalid_argument("base: max_normal_deg must be in (0, 90], got " + std::to_string(max_normal_deg));
   if (mesh.triangles.empty()) throw std::invalid_argument("base: the mesh has no triangles");
@@ -234,9 +232,11 @@ TriMesh ddm_auto_uv(const TriMesh& mesh, DdmAutoUvStats* stats, double max_norma
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
       throw std::invalid_argument("base: non-finite position at vertex " + std::to_string(v));
   }
-  const Unwrapper unwrap(mesh, max_normal_deg);
-  DdmAutoUvStats st;
-  // Flatten every chart; one that is no disk or flips is halved (growth order) and its pieces queued again.
+}
+
+// Flattens every grown chart; one that is no disk or flips is halved (growth order) and its pieces queued again.
+// Adds the halvings to `splits`.
+std::vector<Chart> flatten_auto_uv_charts(const Unwrapper& unwrap, std::size_t& splits) {
   std::deque<std::vector<int>> queue;
   for (auto& c : unwrap.grow()) queue.push_back(std::move(c));
   std::vector<Chart> charts;
@@ -247,14 +247,19 @@ TriMesh ddm_auto_uv(const TriMesh& mesh, DdmAutoUvStats* stats, double max_norma
       charts.push_back({std::move(faces), std::move(*uv)});
       continue;
     }
-    ++st.splits;
+    ++splits;
     const std::size_t half = faces.size() / 2;
     const std::vector<int> first(faces.begin(), faces.begin() + static_cast<long>(half)),
         second(faces.begin() + static_cast<long>(half), faces.end());
     for (const std::vector<int>* part : {&first, &second})
       for (auto& piece : unwrap.components(*part)) queue.push_back(std::move(piece));
   }
-  // Even texel density: every chart scaled so its uv area equals its world area, moved to its box's origin.
+  return charts;
+}
+
+// Even texel density: every chart scaled so its uv area equals its world area, moved to its box's origin (Chart::hi:
+// the box's size). Returns the total box area (world units²).
+double scale_auto_uv_charts(std::vector<Chart>& charts, const Unwrapper& unwrap) {
   double box_area = 0.0;
   for (Chart& c : charts) {
     double world = 0.0, uv = 0.0;
@@ -269,7 +274,13 @@ TriMesh ddm_auto_uv(const TriMesh& mesh, DdmAutoUvStats* stats, double max_norma
     c.hi = hi - lo;
     box_area += std::max(c.hi.x, 1e-300) * std::max(c.hi.y, 1e-300);
   }
-  // Shelf packing, tallest first (ties: chart order), shelves about as wide as the square of the total box area.
+  return box_area;
+}
+
+// Shelf packing, tallest first (ties: chart order), shelves about as wide as the square of the total box area, with
+// gaps of kGapFactor × √`box_area`: sets each chart's offset (Chart::lo). Returns the scale that maps the packing into
+// [0,1]².
+double pack_auto_uv_charts(std::vector<Chart>& charts, double box_area) {
   const double gap = kGapFactor * std::sqrt(box_area);
   std::vector<std::size_t> order(charts.size());
   std::iota(order.begin(), order.end(), 0);
@@ -288,8 +299,12 @@ TriMesh ddm_auto_uv(const TriMesh& mesh, DdmAutoUvStats* stats, double max_norma
     extent = glm::max(extent, cursor + c.hi);
     cursor.x += c.hi.x + gap;
   }
-  const double scale = 1.0 / (std::max(extent.x, extent.y) + gap);
-  // The split mesh: chart by chart, each chart's vertices in first-use order.
+  return 1.0 / (std::max(extent.x, extent.y) + gap);
+}
+
+// The split mesh: chart by chart, each chart's vertices in first-use order, uv = (chart offset + corner uv) × `scale`;
+// the normals `mesh`'s own, or its area-weighted vertex normals when it has none.
+TriMesh auto_uv_split_mesh(const TriMesh& mesh, const std::vector<Chart>& charts, double scale) {
   std::vector<glm::dvec3> normals = mesh.normals;
   if (normals.size() != mesh.vertex_count()) {
     TriMesh with_normals = mesh;
@@ -317,7 +332,13 @@ TriMesh ddm_auto_uv(const TriMesh& mesh, DdmAutoUvStats* stats, double max_norma
     }
     for (std::uint32_t v : used) local[v] = -1;
   }
-  // Area distortion: σ = uv area / world area per triangle against the mean σ̄ (uv total / world total).
+  return out;
+}
+
+// Area distortion of `out`: σ = uv area / world area per triangle against the mean σ̄ (uv total / world total), into
+// st.area_distortion (max ÷ min) and st.area_distortion_p95 (between the area-weighted 2.5th and 97.5th
+// percentiles); both left as they are when no triangle has area.
+void measure_auto_uv_distortion(const TriMesh& out, DdmAutoUvStats& st) {
   std::vector<std::pair<double, double>> sigma;  // (σ/σ̄, world area)
   double world_total = 0.0, uv_total = 0.0;
   for (std::size_t f = 0; f < out.triangles.size(); ++f) {
@@ -332,21 +353,34 @@ TriMesh ddm_auto_uv(const TriMesh& mesh, DdmAutoUvStats* stats, double max_norma
       sigma.push_back({signed_area(out.uvs[t[0]], out.uvs[t[1]], out.uvs[t[2]]) / w * world_total / uv_total, w});
   }
   std::sort(sigma.begin(), sigma.end());
-  if (!sigma.empty()) {
-    st.area_distortion = sigma.back().first / sigma.front().first;
-    double lo = sigma.front().first, hi = sigma.back().first, acc = 0.0, total = 0.0;
-    for (const auto& s : sigma) total += s.second;
-    bool lo_set = false;
-    for (const auto& s : sigma) {
-      acc += s.second;
-      if (!lo_set && acc >= 0.025 * total) lo = s.first, lo_set = true;
-      if (acc >= 0.975 * total) {
-        hi = s.first;
-        break;
-      }
+  if (sigma.empty()) return;
+  st.area_distortion = sigma.back().first / sigma.front().first;
+  double lo = sigma.front().first, hi = sigma.back().first, acc = 0.0, total = 0.0;
+  for (const auto& s : sigma) total += s.second;
+  bool lo_set = false;
+  for (const auto& s : sigma) {
+    acc += s.second;
+    if (!lo_set && acc >= 0.025 * total) lo = s.first, lo_set = true;
+    if (acc >= 0.975 * total) {
+      hi = s.first;
+      break;
     }
-    st.area_distortion_p95 = hi / lo;
   }
+  st.area_distortion_p95 = hi / lo;
+}
+
+}  // namespace
+
+TriMesh ddm_auto_uv(const TriMesh& mesh, DdmAutoUvStats* stats, double max_normal_deg) {
+  const auto t0 = std::chrono::steady_clock::now();
+  check_auto_uv_input(mesh, max_normal_deg);
+  const Unwrapper unwrap(mesh, max_normal_deg);
+  DdmAutoUvStats st;
+  std::vector<Chart> charts = flatten_auto_uv_charts(unwrap, st.splits);
+  const double box_area = scale_auto_uv_charts(charts, unwrap);
+  const double scale = pack_auto_uv_charts(charts, box_area);
+  TriMesh out = auto_uv_split_mesh(mesh, charts, scale);
+  measure_auto_uv_distortion(out, st);
   st.charts = charts.size();
   st.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   if (stats) *stats = st;

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/ddm/ddm_pn_maps.h"
+#include "core/mesh/mesh_io.h"
 
 namespace trispline::core {
 namespace {
@@ -133,9 +134,7 @@ DdmMaps ddm_rasterize_uv_maps(const TriMesh& mesh, int resolution) {
       for (int m = 0; m < 6; ++m)
         for (int x = 0; x < 3; ++x) s[3 * m + x] = static_cast<float>(v6[m][x]);
     }
-  glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
-  for (const glm::dvec3& p : mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
-  maps.base_size = std::max(glm::length(hi - lo), 1e-12);
+  maps.base_size = std::max(mesh_bounds(mesh).diagonal(), 1e-12);
   return maps;
 }
 

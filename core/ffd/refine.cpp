@@ -363,170 +363,214 @@ void split_faces(TriMesh& m, const std::vector<std::uint32_t>& tri_split, const 
   m.triangles = std::move(tris);
 }
 
+// One refinement in progress: the mesh and its parameters, position ids, deformed positions, and the unique
+// position edges of the current round with their marks.
+class Refinement {
+ public:
+  Refinement(const TriMesh& rest, const FfdBinding& binding, const RefineOptions& o, RefineResult& res)
+      : o_(o), F_(binding.lattice), bi_(composed_degree(F_)), res_(res), m_(res.mesh), params_(res.params) {
+    m_ = rest;
+    params_ = binding.params;
+    has_n_ = !m_.normals.empty();
+    has_uv_ = !m_.uvs.empty();
+    // Position ids: vertices at bit-identical positions share an id (creases stored twice are one edge).
+    pid_ = position_ids(m_.positions, next_pid_);
+    if (o.error == RefineError::bound) second_.emplace(F_);
+    evaluate_from(0);
+  }
+
+  // One round: the edges to split marked (false: none, converged) and, unless a budget stops it (stats say which),
+  // split. Returns whether another round may follow.
+  bool round() {
+    collect_edges();
+    split_t_.assign(pedges_.size(), 0.5);
+    marked_.assign(pedges_.size(), 0);
+    if (second_ && o_.criterion != RefineCriterion::Best)
+      mark_triangles_over_tolerance();
+    else if (second_)
+      mark_chosen_splits();
+    measure_edges();
+    std::size_t any = 0;
+    for (unsigned char c : marked_) any += c;
+    if (any == 0) return false;
+    const std::size_t next_tris = triangles_after_split();
+    RefineStats& st = res_.stats;
+    if (st.iterations >= o_.max_iterations || next_tris > o_.max_triangles) {
+      st.stopped_by = st.iterations >= o_.max_iterations ? "max_iterations" : "max_triangles";
+      st.stopped_by_budget = true;
+      return false;
+    }
+    split(next_tris);
+    ++st.iterations;
+    return true;
+  }
+
+  // Final measures on the edges as they are now (after the last applied round).
+  void measure_result() {
+    collect_edges();
+    std::vector<double> mid_err(pedges_.size()), bound(pedges_.size());
+    parallel_each(pedges_.size(), [&](std::size_t i) {
+      const PEdge e = pedges_[i];
+      const auto [pa, pb] = ends(e);
+      mid_err[i] = midpoint_measure(F_, pa, pb, fpos_[e.a], fpos_[e.b]);
+      bound[i] = greville_measure(F_, bi_, pa, pb, fpos_[e.a], fpos_[e.b]).bound;
+    });
+    RefineStats& st = res_.stats;
+    for (std::size_t i = 0; i < pedges_.size(); ++i) {
+      st.max_midpoint_error = std::max(st.max_midpoint_error, mid_err[i]);
+      st.max_deviation_bound = std::max(st.max_deviation_bound, bound[i]);
+    }
+    if (second_) {
+      bound_triangles();
+      for (double b : tri_bound_) st.max_triangle_bound = std::max(st.max_triangle_bound, b);
+    }
+  }
+
+ private:
+  struct PEdge {
+    std::uint32_t a, b;  // representative ends, ordered by position id
+  };
+
+  void evaluate_from(std::size_t first) {
+    fpos_.resize(m_.positions.size());
+    parallel_each(m_.positions.size() - first,
+                  [&](std::size_t i) { fpos_[first + i] = F_.eval(params_[first + i] + o_.param_offset); });
+  }
+
+  // Unique position edges of the current mesh, in triangle order.
+  void collect_edges() {
+    pedges_.clear();
+    tri_pedge_.assign(m_.triangles.size() * 3, kNone);
+    std::unordered_map<std::uint64_t, std::uint32_t> index;
+    index.reserve(m_.triangles.size() * 2);
+    for (std::size_t f = 0; f < m_.triangles.size(); ++f)
+      for (int k = 0; k < 3; ++k) {
+        std::uint32_t u = m_.triangles[f][k], v = m_.triangles[f][(k + 1) % 3];
+        if (pid_[u] == pid_[v]) continue;  // degenerate edge: never split
+        if (pid_[u] > pid_[v]) std::swap(u, v);
+        const auto [it, fresh] = index.try_emplace(edge_key(pid_[u], pid_[v]), std::uint32_t(pedges_.size()));
+        if (fresh) pedges_.push_back({u, v});
+        tri_pedge_[f * 3 + k] = it->second;
+      }
+  }
+
+  std::pair<glm::dvec3, glm::dvec3> ends(const PEdge& e) const {
+    return {params_[e.a] + o_.param_offset, params_[e.b] + o_.param_offset};
+  }
+
+  void bound_triangles() {
+    tri_bound_.resize(m_.triangles.size());
+    parallel_each(m_.triangles.size(), [&](std::size_t f) {
+      const glm::uvec3 t = m_.triangles[f];
+      tri_bound_[f] = triangle_error_bound(*second_, params_[t.x] + o_.param_offset, params_[t.y] + o_.param_offset,
+                                           params_[t.z] + o_.param_offset);
+    });
+  }
+
+  // Every edge of a triangle over tolerance.
+  void mark_triangles_over_tolerance() {
+    bound_triangles();
+    for (std::size_t f = 0; f < m_.triangles.size(); ++f)
+      if (!(tri_bound_[f] <= o_.tolerance))
+        for (int k = 0; k < 3; ++k)
+          if (tri_pedge_[f * 3 + k] != kNone) marked_[tri_pedge_[f * 3 + k]] = 1;
+  }
+
+  // Each triangle over tolerance chooses its split (choose_split) at edge midpoints; the edges any of them wants are
+  // split, the rest of the mesh follows conformingly.
+  void mark_chosen_splits() {
+    bound_triangles();
+    std::vector<std::uint32_t> over;
+    for (std::size_t f = 0; f < m_.triangles.size(); ++f)
+      if (!(tri_bound_[f] <= o_.tolerance)) over.push_back(static_cast<std::uint32_t>(f));
+    std::vector<unsigned char> choice(over.size());
+    parallel_each(over.size(), [&](std::size_t j) {
+      const std::size_t f = over[j];
+      glm::dvec3 p[3];
+      bool splittable[3];
+      for (int k = 0; k < 3; ++k) {
+        p[k] = params_[m_.triangles[f][k]] + o_.param_offset;
+        splittable[k] = tri_pedge_[f * 3 + k] != kNone;
+      }
+      choice[j] = choose_split(*second_, p, splittable, o_.tolerance);
+    });
+    for (std::size_t j = 0; j < over.size(); ++j)
+      for (int k = 0; k < 3; ++k) {
+        const std::uint32_t pe = tri_pedge_[over[j] * 3 + k];
+        if ((choice[j] >> k & 1u) && pe != kNone) marked_[pe] = 1;
+      }
+  }
+
+  // The edge measures: without certified bounds they mark the edges (midpoint or Greville criterion); with them only
+  // the Greville criterion places the split parameter of the marked edges.
+  void measure_edges() {
+    parallel_each(pedges_.size(), [&](std::size_t i) {
+      const PEdge e = pedges_[i];
+      const auto [pa, pb] = ends(e);
+      if (second_ && (!marked_[i] || o_.criterion != RefineCriterion::Greville)) return;
+      if (o_.criterion == RefineCriterion::Midpoint) {
+        marked_[i] = midpoint_measure(F_, pa, pb, fpos_[e.a], fpos_[e.b]) > o_.tolerance;
+      } else {
+        const EdgeGreville g = greville_measure(F_, bi_, pa, pb, fpos_[e.a], fpos_[e.b]);
+        if (!second_) marked_[i] = g.bound > o_.tolerance;
+        split_t_[i] = std::clamp(g.t, o_.min_split, 1.0 - o_.min_split);
+      }
+    });
+  }
+
+  std::size_t triangles_after_split() const {
+    std::size_t next_tris = 0;
+    for (std::size_t f = 0; f < m_.triangles.size(); ++f) {
+      next_tris += 1;
+      for (int k = 0; k < 3; ++k)
+        if (tri_pedge_[f * 3 + k] != kNone && marked_[tri_pedge_[f * 3 + k]]) ++next_tris;
+    }
+    return next_tris;
+  }
+
+  // New vertices: one per marked (vertex, vertex) edge, interpolated from the lower position id's end; then the faces.
+  void split(std::size_t next_tris) {
+    std::vector<std::uint32_t> pedge_pid(pedges_.size(), kNone);
+    for (std::size_t i = 0; i < pedges_.size(); ++i)
+      if (marked_[i]) pedge_pid[i] = next_pid_++;
+    const std::size_t first_new = m_.positions.size();
+    const std::vector<std::uint32_t> tri_split =
+        add_split_vertices(m_, params_, pid_, tri_pedge_, marked_, split_t_, pedge_pid, has_n_, has_uv_);
+    evaluate_from(first_new);
+    split_faces(m_, tri_split, fpos_, next_tris);
+  }
+
+  const RefineOptions& o_;
+  const TrivariateBSpline<glm::dvec3>& F_;
+  const BezierInterp bi_;
+  RefineResult& res_;
+  TriMesh& m_;
+  std::vector<glm::dvec3>& params_;
+  bool has_n_ = false, has_uv_ = false;
+  std::uint32_t next_pid_ = 0;
+  std::vector<std::uint32_t> pid_;
+  std::vector<glm::dvec3> fpos_;
+  std::vector<PEdge> pedges_;
+  std::vector<std::uint32_t> tri_pedge_;
+  std::optional<SecondDerivativeBounds> second_;
+  std::vector<double> tri_bound_, split_t_;
+  std::vector<unsigned char> marked_;
+};
+
 }  // namespace
 
 RefineResult refine_for_ffd(const TriMesh& rest, const FfdBinding& binding, const RefineOptions& o) {
   validate(rest, binding, o);
-  const TrivariateBSpline<glm::dvec3>& F = binding.lattice;
-  const BezierInterp bi(composed_degree(F));
   RefineResult res;
-  TriMesh& m = res.mesh;
-  m = rest;
-  std::vector<glm::dvec3>& params = res.params;
-  params = binding.params;
-  const bool has_n = !m.normals.empty(), has_uv = !m.uvs.empty();
-  RefineStats& st = res.stats;
-  st.triangles_before = m.triangles.size();
-  st.vertices_before = m.positions.size();
-
-  // Position ids: vertices at bit-identical positions share an id (creases stored twice are one edge).
-  std::uint32_t next_pid = 0;
-  std::vector<std::uint32_t> pid = position_ids(m.positions, next_pid);
-
-  std::vector<glm::dvec3> fpos(m.positions.size());
-  auto evaluate_from = [&](std::size_t first) {
-    fpos.resize(m.positions.size());
-    parallel_each(m.positions.size() - first,
-                  [&](std::size_t i) { fpos[first + i] = F.eval(params[first + i] + o.param_offset); });
-  };
-  evaluate_from(0);
-
-  // Unique position edges of the current mesh, in triangle order; representative ends ordered by position id.
-  struct PEdge {
-    std::uint32_t a, b;
-  };
-  std::vector<PEdge> pedges;
-  std::vector<std::uint32_t> tri_pedge;
-  auto collect_edges = [&] {
-    pedges.clear();
-    tri_pedge.assign(m.triangles.size() * 3, kNone);
-    std::unordered_map<std::uint64_t, std::uint32_t> index;
-    index.reserve(m.triangles.size() * 2);
-    for (std::size_t f = 0; f < m.triangles.size(); ++f)
-      for (int k = 0; k < 3; ++k) {
-        std::uint32_t u = m.triangles[f][k], v = m.triangles[f][(k + 1) % 3];
-        if (pid[u] == pid[v]) continue;  // degenerate edge: never split
-        if (pid[u] > pid[v]) std::swap(u, v);
-        const auto [it, fresh] = index.try_emplace(edge_key(pid[u], pid[v]), std::uint32_t(pedges.size()));
-        if (fresh) pedges.push_back({u, v});
-        tri_pedge[f * 3 + k] = it->second;
-      }
-  };
-  auto ends = [&](const PEdge& e) { return std::pair{params[e.a] + o.param_offset, params[e.b] + o.param_offset}; };
-
-  std::optional<SecondDerivativeBounds> second;
-  if (o.error == RefineError::bound) second.emplace(F);
-  std::vector<double> tri_bound;
-  auto bound_triangles = [&] {
-    tri_bound.resize(m.triangles.size());
-    parallel_each(m.triangles.size(), [&](std::size_t f) {
-      const glm::uvec3 t = m.triangles[f];
-      tri_bound[f] = triangle_error_bound(*second, params[t.x] + o.param_offset, params[t.y] + o.param_offset,
-                                          params[t.z] + o.param_offset);
-    });
-  };
-
-  std::vector<double> split_t;
-  std::vector<unsigned char> marked;
-  st.stopped_by = "converged";
-  for (;;) {
-    collect_edges();
-    split_t.assign(pedges.size(), 0.5);
-    marked.assign(pedges.size(), 0);
-    if (second && o.criterion != RefineCriterion::Best) {
-      // Every edge of a triangle over tolerance.
-      bound_triangles();
-      for (std::size_t f = 0; f < m.triangles.size(); ++f)
-        if (!(tri_bound[f] <= o.tolerance))
-          for (int k = 0; k < 3; ++k)
-            if (tri_pedge[f * 3 + k] != kNone) marked[tri_pedge[f * 3 + k]] = 1;
-    } else if (second) {
-      // Each triangle over tolerance chooses its split (choose_split) at edge midpoints; the edges any of them wants
-      // are split, the rest of the mesh follows conformingly.
-      bound_triangles();
-      std::vector<std::uint32_t> over;
-      for (std::size_t f = 0; f < m.triangles.size(); ++f)
-        if (!(tri_bound[f] <= o.tolerance)) over.push_back(static_cast<std::uint32_t>(f));
-      std::vector<unsigned char> choice(over.size());
-      parallel_each(over.size(), [&](std::size_t j) {
-        const std::size_t f = over[j];
-        glm::dvec3 p[3];
-        bool splittable[3];
-        for (int k = 0; k < 3; ++k) {
-          p[k] = params[m.triangles[f][k]] + o.param_offset;
-          splittable[k] = tri_pedge[f * 3 + k] != kNone;
-        }
-        choice[j] = choose_split(*second, p, splittable, o.tolerance);
-      });
-      for (std::size_t j = 0; j < over.size(); ++j)
-        for (int k = 0; k < 3; ++k) {
-          const std::uint32_t pe = tri_pedge[over[j] * 3 + k];
-          if ((choice[j] >> k & 1u) && pe != kNone) marked[pe] = 1;
-        }
-    }
-    parallel_each(pedges.size(), [&](std::size_t i) {
-      const PEdge e = pedges[i];
-      const auto [pa, pb] = ends(e);
-      if (second && (!marked[i] || o.criterion != RefineCriterion::Greville)) return;
-      if (o.criterion == RefineCriterion::Midpoint) {
-        marked[i] = midpoint_measure(F, pa, pb, fpos[e.a], fpos[e.b]) > o.tolerance;
-      } else {
-        const EdgeGreville g = greville_measure(F, bi, pa, pb, fpos[e.a], fpos[e.b]);
-        if (!second) marked[i] = g.bound > o.tolerance;
-        split_t[i] = std::clamp(g.t, o.min_split, 1.0 - o.min_split);
-      }
-    });
-    std::size_t any = 0, next_tris = 0;
-    for (unsigned char c : marked) any += c;
-    if (any == 0) break;
-    for (std::size_t f = 0; f < m.triangles.size(); ++f) {
-      next_tris += 1;
-      for (int k = 0; k < 3; ++k)
-        if (tri_pedge[f * 3 + k] != kNone && marked[tri_pedge[f * 3 + k]]) ++next_tris;
-    }
-    if (st.iterations >= o.max_iterations) {
-      st.stopped_by = "max_iterations";
-      st.stopped_by_budget = true;
-      break;
-    }
-    if (next_tris > o.max_triangles) {
-      st.stopped_by = "max_triangles";
-      st.stopped_by_budget = true;
-      break;
-    }
-
-    // New vertices: one per marked (vertex, vertex) edge, interpolated from the lower position id's end.
-    std::vector<std::uint32_t> pedge_pid(pedges.size(), kNone);
-    for (std::size_t i = 0; i < pedges.size(); ++i)
-      if (marked[i]) pedge_pid[i] = next_pid++;
-    const std::size_t first_new = m.positions.size();
-    const std::vector<std::uint32_t> tri_split =
-        add_split_vertices(m, params, pid, tri_pedge, marked, split_t, pedge_pid, has_n, has_uv);
-    evaluate_from(first_new);
-
-    split_faces(m, tri_split, fpos, next_tris);
-    ++st.iterations;
+  res.stats.triangles_before = rest.triangles.size();
+  res.stats.vertices_before = rest.positions.size();
+  res.stats.stopped_by = "converged";
+  Refinement refinement(rest, binding, o, res);
+  while (refinement.round()) {
   }
-
-  // Final measures on the edges as they are now (after the last applied round).
-  collect_edges();
-  std::vector<double> mid_err(pedges.size()), bound(pedges.size());
-  parallel_each(pedges.size(), [&](std::size_t i) {
-    const PEdge e = pedges[i];
-    const auto [pa, pb] = ends(e);
-    mid_err[i] = midpoint_measure(F, pa, pb, fpos[e.a], fpos[e.b]);
-    bound[i] = greville_measure(F, bi, pa, pb, fpos[e.a], fpos[e.b]).bound;
-  });
-  for (std::size_t i = 0; i < pedges.size(); ++i) {
-    st.max_midpoint_error = std::max(st.max_midpoint_error, mid_err[i]);
-    st.max_deviation_bound = std::max(st.max_deviation_bound, bound[i]);
-  }
-  if (second) {
-    bound_triangles();
-    for (double b : tri_bound) st.max_triangle_bound = std::max(st.max_triangle_bound, b);
-  }
-  st.triangles_after = m.triangles.size();
-  st.vertices_after = m.positions.size();
+  refinement.measure_result();
+  res.stats.triangles_after = res.mesh.triangles.size();
+  res.stats.vertices_after = res.mesh.positions.size();
   return res;
 }
 

@@ -247,6 +247,165 @@ std::uint64_t MorphAnimationBuilder::glb_data_bytes() const {
   return bytes;
 }
 
+namespace {
+
+// An animation.glb being built (layout: gltf_anim_io.h): the model with its material writer and scene, the animation
+// "recording" whose STEP channels all share one input (the #frames key times k/fps seconds, written with the first
+// channel), and the node names used so far. The add_* members are templates over MorphAnimationBuilder's Object and
+// Segment, which are private to the builder.
+class MorphGlbModel {
+ public:
+  MorphGlbModel(int frames, double fps, int first_frame) : frames_(frames), first_frame_(first_frame), times_(frames) {
+    model_.asset.version = "2.0";
+    model_.asset.generator = "trispline";
+    model_.buffers.resize(1);
+    scene_.name = "Scene";  // named, so a scene without nodes is still written as an object (tinygltf drops `{}`)
+    for (int k = 0; k < frames; ++k) times_[k] = static_cast<float>(k / fps);
+    anim_.name = "recording";
+  }
+  MorphGlbModel(const MorphGlbModel&) = delete;
+  MorphGlbModel& operator=(const MorphGlbModel&) = delete;
+
+  // An object's node, named by the object: with one segment it holds the segment's mesh; otherwise (no mesh, or a
+  // topology that changed during the recording) none, but one child node per segment (run of frames with one
+  // topology).
+  template <class Object>
+  void add_object(const Object& o) {
+    const int index = static_cast<int>(model_.nodes.size());
+    model_.nodes.emplace_back();
+    model_.nodes[index].name = unique(o.name);
+    scene_.nodes.push_back(index);
+    if (o.segments.size() == 1) {
+      const int mesh = add_segment_mesh(o, o.segments[0], o.name, index);
+      model_.nodes[index].mesh = mesh;
+      return;
+    }
+    std::vector<int> children;
+    for (const auto& seg : o.segments) children.push_back(add_segment_node(o, seg));
+    model_.nodes[index].children = children;
+  }
+
+  // Adds the animation (when it has a channel) and the scene, then writes the .glb ("<path>.tmp" then renamed).
+  void write(const std::filesystem::path& path) {
+    if (!anim_.channels.empty()) model_.animations.push_back(std::move(anim_));
+    model_.scenes.push_back(scene_);
+    model_.defaultScene = 0;
+    gltf_model::write_glb_atomically(model_, path);
+  }
+
+ private:
+  // A STEP channel of `node`'s `path_name` ("weights", "scale") with `output` (#frames keys of `comps` floats).
+  void add_channel(int node, const char* path_name, const std::vector<float>& output, int type, int comps) {
+    if (times_accessor_ < 0) times_accessor_ = add_floats(model_, times_, TINYGLTF_TYPE_SCALAR, 1, 0, true);  // min/max
+    tinygltf::AnimationSampler sampler;
+    sampler.input = times_accessor_;
+    sampler.output = add_floats(model_, output, type, comps, 0, false);
+    sampler.interpolation = "STEP";
+    anim_.samplers.push_back(sampler);
+    tinygltf::AnimationChannel ch;
+    ch.sampler = static_cast<int>(anim_.samplers.size()) - 1;
+    ch.target_node = node;
+    ch.target_path = path_name;
+    anim_.channels.push_back(ch);
+  }
+
+  // Node names are unique in the file (a segment's "<object>/frames_NNNN-MMMM" cannot meet another name, but check):
+  // `name`, or `name` + ".k" with the first k ≥ 1 not used yet.
+  std::string unique(const std::string& name) {
+    std::string out = name;
+    for (int k = 1; used_.count(out); ++k) out = name + "." + std::to_string(k);
+    used_[out] = 1;
+    return out;
+  }
+
+  // A segment's child node "<object>/frames_NNNN-MMMM" (extras.frames = [NNNN, MMMM], timeline frames) with the
+  // segment's mesh, shown (scale 1) on its frames and hidden (scale 0) on the others by STEP scale keys, as Blender
+  // imports them; its rest scale is that of the recording's first frame. Returns the node index.
+  template <class Object, class Segment>
+  int add_segment_node(const Object& o, const Segment& seg) {
+    char range[64];
+    std::snprintf(range, sizeof range, "/frames_%04d-%04d", first_frame_ + seg.first,
+                  first_frame_ + seg.first + seg.frames - 1);
+    const int child = static_cast<int>(model_.nodes.size());
+    model_.nodes.emplace_back();
+    model_.nodes[child].name = unique(o.name + range);
+    const int mesh = add_segment_mesh(o, seg, model_.nodes[child].name, child);
+    model_.nodes[child].mesh = mesh;
+    const bool shown_first = seg.first == 0;
+    if (!shown_first) model_.nodes[child].scale = {0.0, 0.0, 0.0};
+    tinygltf::Value::Object extras;
+    extras["frames"] = tinygltf::Value(tinygltf::Value::Array{
+        tinygltf::Value(first_frame_ + seg.first), tinygltf::Value(first_frame_ + seg.first + seg.frames - 1)});
+    model_.nodes[child].extras = tinygltf::Value(std::move(extras));
+    std::vector<float> scale(static_cast<std::size_t>(frames_) * 3, 0.0f);
+    for (int k = seg.first; k < seg.first + seg.frames; ++k)
+      for (int c = 0; c < 3; ++c) scale[static_cast<std::size_t>(k) * 3 + c] = 1.0f;
+    add_channel(child, "scale", scale, TINYGLTF_TYPE_VEC3, 3);
+    return child;
+  }
+
+  // A segment as a mesh named `name` whose morph targets are its frames after the first (when any differs from its
+  // first), one primitive per material slot when the object has materials; `node` gets the weights channel. Returns
+  // the mesh index.
+  template <class Object, class Segment>
+  int add_segment_mesh(const Object& o, const Segment& seg, const std::string& name, int node) {
+    tinygltf::Primitive prim = add_primitive(model_, seg.base, o.name, o.color);
+    tinygltf::Mesh mesh;
+    mesh.name = name;
+    if (seg.changed && seg.frames - 1 > 0) add_morph_targets(seg, node, prim, mesh);
+    if (o.materials && !o.materials->empty())
+      split_by_material(model_, writer_, o.name, o.color, o.materials, seg.base, prim, mesh);
+    else
+      mesh.primitives.push_back(std::move(prim));
+    model_.meshes.push_back(std::move(mesh));
+    return static_cast<int>(model_.meshes.size()) - 1;
+  }
+
+  // The segment's #frames − 1 morph targets on `prim` (float POSITION and NORMAL deltas to its first frame, all
+  // zeros for a frame equal to it), their names "frame_NNNN" and zero weights on `mesh`, and `node`'s weights channel:
+  // at key k (of the recording) inside the segment target k − first − 1 weighs 1 and the others 0; elsewhere all 0.
+  template <class Segment>
+  void add_morph_targets(const Segment& seg, int node, tinygltf::Primitive& prim, tinygltf::Mesh& mesh) {
+    const int targets = seg.frames - 1;
+    const std::size_t nv = seg.base.positions.size();
+    const bool normals = seg.base.normals.size() == nv;
+    const std::vector<float> zeros(nv * 3, 0.0f);
+    tinygltf::Value::Array names;
+    for (int k = 0; k < targets; ++k) {
+      const std::vector<float>& dp = seg.pos_delta[k].empty() ? zeros : seg.pos_delta[k];
+      std::map<std::string, int> target;
+      // Morph target POSITION accessors need min/max (glTF 2.0 §3.7.2.2).
+      target["POSITION"] = add_floats(model_, dp, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, true);
+      if (normals) {
+        const std::vector<float>& dn = seg.nrm_delta[k].empty() ? zeros : seg.nrm_delta[k];
+        target["NORMAL"] = add_floats(model_, dn, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, false);
+      }
+      prim.targets.push_back(std::move(target));
+      names.emplace_back(target_name(first_frame_ + seg.first + k + 1));
+    }
+    mesh.weights.assign(targets, 0.0);
+    tinygltf::Value::Object extras;
+    extras["targetNames"] = tinygltf::Value(std::move(names));
+    mesh.extras = tinygltf::Value(std::move(extras));
+    std::vector<float> weights(static_cast<std::size_t>(frames_) * targets, 0.0f);
+    for (int k = seg.first + 1; k < seg.first + seg.frames; ++k)
+      weights[static_cast<std::size_t>(k) * targets + (k - seg.first - 1)] = 1.0f;
+    add_channel(node, "weights", weights, TINYGLTF_TYPE_SCALAR, 1);
+  }
+
+  int frames_;
+  int first_frame_;
+  tinygltf::Model model_;
+  gltf_materials::GltfMaterialWriter writer_{model_};
+  tinygltf::Scene scene_;
+  std::vector<float> times_;  // the key times, seconds
+  tinygltf::Animation anim_;
+  int times_accessor_ = -1;  // times_'s accessor once a channel was added
+  std::map<std::string, int> used_;
+};
+
+}  // namespace
+
 void MorphAnimationBuilder::write_glb(const std::filesystem::path& path) const {
   if (frames_ == 0) throw MeshIoError(quoted(path) + ": no frames recorded");
   if (const std::uint64_t bytes = glb_data_bytes(); bytes > kMaxAnimationGlbBytes)
@@ -254,122 +413,9 @@ void MorphAnimationBuilder::write_glb(const std::filesystem::path& path) const {
                       std::to_string(bytes >> 20) + " MiB, over the " + std::to_string(kMaxAnimationGlbBytes >> 20) +
                       " MiB an animation.glb may take (morph targets grow with the square of the frames): record a "
                       "shorter range, or fewer changing objects");
-  tinygltf::Model model;
-  model.asset.version = "2.0";
-  model.asset.generator = "trispline";
-  model.buffers.resize(1);
-  tinygltf::Scene scene;
-  gltf_materials::GltfMaterialWriter writer(model);
-  scene.name = "Scene";  // named, so a scene without nodes is still written as an object (tinygltf drops `{}`)
-  std::vector<float> times(frames_);
-  for (int k = 0; k < frames_; ++k) times[k] = static_cast<float>(k / fps_);
-  tinygltf::Animation anim;
-  anim.name = "recording";
-  int times_accessor = -1;
-  auto add_channel = [&](int node, const char* path_name, const std::vector<float>& output, int type, int comps) {
-    if (times_accessor < 0) times_accessor = add_floats(model, times, TINYGLTF_TYPE_SCALAR, 1, 0, true);  // min/max
-    tinygltf::AnimationSampler sampler;
-    sampler.input = times_accessor;
-    sampler.output = add_floats(model, output, type, comps, 0, false);
-    sampler.interpolation = "STEP";
-    anim.samplers.push_back(sampler);
-    tinygltf::AnimationChannel ch;
-    ch.sampler = static_cast<int>(anim.samplers.size()) - 1;
-    ch.target_node = node;
-    ch.target_path = path_name;
-    anim.channels.push_back(ch);
-  };
-  // Node names are unique in the file (a segment's "<object>/frames_NNNN-MMMM" cannot meet another name, but check).
-  std::map<std::string, int> used;
-  auto unique = [&](const std::string& name) {
-    std::string out = name;
-    for (int k = 1; used.count(out); ++k) out = name + "." + std::to_string(k);
-    used[out] = 1;
-    return out;
-  };
-
-  // A segment as a mesh whose morph targets are its frames after the first; returns the mesh index. Its weights key
-  // frame k (of the recording) to target k − first − 1 inside the segment, and to all zeros elsewhere.
-  auto add_segment_mesh = [&](const Object& o, const Segment& seg, const std::string& name, int node) {
-    tinygltf::Primitive prim = add_primitive(model, seg.base, o.name, o.color);
-    tinygltf::Mesh mesh;
-    mesh.name = name;
-    const int targets = seg.frames - 1;
-    if (seg.changed && targets > 0) {
-      const std::size_t nv = seg.base.positions.size();
-      const bool normals = seg.base.normals.size() == nv;
-      const std::vector<float> zeros(nv * 3, 0.0f);
-      tinygltf::Value::Array names;
-      for (int k = 0; k < targets; ++k) {
-        const std::vector<float>& dp = seg.pos_delta[k].empty() ? zeros : seg.pos_delta[k];
-        std::map<std::string, int> target;
-        // Morph target POSITION accessors need min/max (glTF 2.0 §3.7.2.2).
-        target["POSITION"] = add_floats(model, dp, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, true);
-        if (normals) {
-          const std::vector<float>& dn = seg.nrm_delta[k].empty() ? zeros : seg.nrm_delta[k];
-          target["NORMAL"] = add_floats(model, dn, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, false);
-        }
-        prim.targets.push_back(std::move(target));
-        names.emplace_back(target_name(first_frame_ + seg.first + k + 1));
-      }
-      mesh.weights.assign(targets, 0.0);
-      tinygltf::Value::Object extras;
-      extras["targetNames"] = tinygltf::Value(std::move(names));
-      mesh.extras = tinygltf::Value(std::move(extras));
-      std::vector<float> weights(static_cast<std::size_t>(frames_) * targets, 0.0f);
-      for (int k = seg.first + 1; k < seg.first + seg.frames; ++k)
-        weights[static_cast<std::size_t>(k) * targets + (k - seg.first - 1)] = 1.0f;
-      add_channel(node, "weights", weights, TINYGLTF_TYPE_SCALAR, 1);
-    }
-    if (o.materials && !o.materials->empty())
-      split_by_material(model, writer, o.name, o.color, o.materials, seg.base, prim, mesh);
-    else
-      mesh.primitives.push_back(std::move(prim));
-    model.meshes.push_back(std::move(mesh));
-    return static_cast<int>(model.meshes.size()) - 1;
-  };
-
-  for (const Object& o : objects_) {
-    const int index = static_cast<int>(model.nodes.size());
-    model.nodes.emplace_back();
-    model.nodes[index].name = unique(o.name);
-    scene.nodes.push_back(index);
-    if (o.segments.size() == 1) {
-      const int mesh = add_segment_mesh(o, o.segments[0], o.name, index);
-      model.nodes[index].mesh = mesh;
-      continue;
-    }
-    // The topology changed during the recording: one child node per run of frames with one topology, shown (scale 1)
-    // on its frames and hidden (scale 0) on the others by STEP scale keys, as Blender imports them.
-    std::vector<int> children;
-    for (const Segment& seg : o.segments) {
-      char range[64];
-      std::snprintf(range, sizeof range, "/frames_%04d-%04d", first_frame_ + seg.first,
-                    first_frame_ + seg.first + seg.frames - 1);
-      const int child = static_cast<int>(model.nodes.size());
-      model.nodes.emplace_back();
-      model.nodes[child].name = unique(o.name + range);
-      const int mesh = add_segment_mesh(o, seg, model.nodes[child].name, child);
-      model.nodes[child].mesh = mesh;
-      const bool shown_first = seg.first == 0;
-      if (!shown_first) model.nodes[child].scale = {0.0, 0.0, 0.0};
-      tinygltf::Value::Object extras;
-      extras["frames"] = tinygltf::Value(tinygltf::Value::Array{
-          tinygltf::Value(first_frame_ + seg.first), tinygltf::Value(first_frame_ + seg.first + seg.frames - 1)});
-      model.nodes[child].extras = tinygltf::Value(std::move(extras));
-      std::vector<float> scale(static_cast<std::size_t>(frames_) * 3, 0.0f);
-      for (int k = seg.first; k < seg.first + seg.frames; ++k)
-        for (int c = 0; c < 3; ++c) scale[static_cast<std::size_t>(k) * 3 + c] = 1.0f;
-      add_channel(child, "scale", scale, TINYGLTF_TYPE_VEC3, 3);
-      children.push_back(child);
-    }
-    model.nodes[index].children = children;
-  }
-
-  if (!anim.channels.empty()) model.animations.push_back(std::move(anim));
-  model.scenes.push_back(scene);
-  model.defaultScene = 0;
-  gltf_model::write_glb_atomically(model, path);
+  MorphGlbModel glb(frames_, fps_, first_frame_);
+  for (const Object& o : objects_) glb.add_object(o);
+  glb.write(path);
 }
 
 MorphAnimationInfo read_morph_animation_info(const std::filesystem::path& path) {

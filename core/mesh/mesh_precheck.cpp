@@ -108,14 +108,14 @@ void check_off_faces(const std::filesystem::path& path, std::string_view text) {
       fail(path, "the OFF file ends after " + std::to_string(f) + " of its " + std::to_string(nf) + " faces");
     split(lines[at]);
     const long long n = parse_count(words[0]);
-    if (n == 0) fail(path, "OFF face " + std::to_string(f) + " has no corners");
-    if (n > kMaxOffCorners)
-      refuse(path, "OFF face " + std::to_string(f) + " has " + std::to_string(n) +
-                       " corners; assimp's OFF reader takes " + "at most " + std::to_string(kMaxOffCorners) +
-                       " and would drop it (triangulate the mesh, or " + "save it as OBJ, PLY or glTF)");
     if (n < 0 || static_cast<unsigned long long>(n) + 1 > words.size())
       fail(path, "OFF face " + std::to_string(f) + ": '" + std::string(lines[at].substr(0, 60)) +
                      "' does not hold the corner count and that many vertex indices");
+    if (n == 0) fail(path, "OFF face " + std::to_string(f) + " has no corners");
+    if (n > kMaxOffCorners)
+      refuse(path, "OFF face " + std::to_string(f) + " has " + std::to_string(n) +
+                       " corners; assimp's OFF reader takes at most " + std::to_string(kMaxOffCorners) +
+                       " and would drop it (triangulate the mesh, or save it as OBJ, PLY or glTF)");
   }
 }
 

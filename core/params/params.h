@@ -99,28 +99,33 @@ enum class ParamWrite {
   Never,          // read only (a field the line may carry but the command does not keep)
 };
 
+// What a declared field is, whatever struct holds it: its docs, widget hints, kind, range and how it is written.
+struct ParamFieldInfo {
+  ParamDoc doc;
+  std::string label;      // widget label ("Half-width"); empty = not shown by generic widgets
+  double ui_step = 0.0;   // drag speed per pixel; 0 = from the range
+  std::string ui_format;  // printf format of the widget ("%.3f"); empty = ImGui's
+  ParamKind kind = ParamKind::Other;
+  ParamRange range;
+  std::vector<std::string> choices;  // ParamKind::Choice: the allowed strings
+  enum class ChoiceMember { String, Index, Bool } choice_member = ChoiceMember::String;  // what the member holds
+  bool required = false;
+  ParamWrite write_mode = ParamWrite::Always;
+  bool resolve_path = false;          // a string field holding a file path (see Ref::path())
+  std::vector<ParamDoc> nested_docs;  // a nested object's fields
+};
+
 template <class P>
 class ParamSchema {
  public:
-  struct Field {
-    ParamDoc doc;
-    std::string label;      // widget label ("Half-width"); empty = not shown by generic widgets
-    double ui_step = 0.0;   // drag speed per pixel; 0 = from the range
-    std::string ui_format;  // printf format of the widget ("%.3f"); empty = ImGui's
-    ParamKind kind = ParamKind::Other;
-    ParamRange range;
-    std::vector<std::string> choices;  // ParamKind::Choice: the allowed strings
-    enum class ChoiceMember { String, Index, Bool } choice_member = ChoiceMember::String;  // what the member holds
-    bool required = false;
-    ParamWrite write_mode = ParamWrite::Always;
+  // A field of P: what it is (ParamFieldInfo) and how it reads, writes and checks P.
+  struct Field : ParamFieldInfo {
     std::function<void(const Field&, const nlohmann::json&, P&, const CommandContext&)> read;  // value present
     std::function<void(const Field&, const P&, nlohmann::json&)> write;
     std::function<void*(P&)> member;         // for widgets; null for composite fields
     std::function<void(P&)> check;           // a check over several fields (no JSON field of its own); may normalise
     std::function<bool(const P&)> stop;      // parse and to_json end here when it holds (e.g. "remove": true)
     std::function<bool(const P&)> write_if;  // to_json writes the field only when this holds (null: always)
-    bool resolve_path = false;               // a string field holding a file path (see Ref::path())
-    std::vector<ParamDoc> nested_docs;       // a nested object's fields
   };
 
   // Chained settings of the field just declared.
@@ -338,18 +343,7 @@ class ParamSchema {
     for (const auto& sf : sub.fields()) {
       auto shared = std::make_shared<const typename ParamSchema<Q>::Field>(sf);
       Field f;
-      f.doc = sf.doc;
-      f.label = sf.label;
-      f.ui_step = sf.ui_step;
-      f.ui_format = sf.ui_format;
-      f.kind = sf.kind;
-      f.range = sf.range;
-      f.choices = sf.choices;
-      f.choice_member = static_cast<typename Field::ChoiceMember>(static_cast<int>(sf.choice_member));
-      f.required = sf.required;
-      f.write_mode = sf.write_mode;
-      f.resolve_path = sf.resolve_path;
-      f.nested_docs = sf.nested_docs;
+      static_cast<ParamFieldInfo&>(f) = sf;  // what it is; how it reads and writes P follows
       if (sf.read)
         f.read = [m, shared](const Field&, const nlohmann::json& v, P& p, const CommandContext& ctx) {
           shared->read(*shared, v, p.*m, ctx);

@@ -322,10 +322,7 @@ double project_vertex(const VolumeSpline& sp, double iso, const glm::dmat3& metr
   return std::abs(best_f);
 }
 
-}  // namespace
-
-TriMesh extract_iso_mesh(const VolumeSpline& spline, double iso, const IsoMeshOptions& opt,
-                         const ProgressSink* progress, IsoMeshStats* stats) {
+void check_options(const VolumeSpline& spline, double iso, const IsoMeshOptions& opt) {
   const double cmin = spline.control_min(), cmax = spline.control_max();
   if (!std::isfinite(iso) || !(iso > cmin && iso < cmax))
     throw std::invalid_argument("iso mesh: the iso-level " + std::to_string(iso) + " is outside the volume's range (" +
@@ -336,15 +333,13 @@ TriMesh extract_iso_mesh(const VolumeSpline& spline, double iso, const IsoMeshOp
     throw std::invalid_argument("iso mesh: adaptivity must be in [0, 1]");
   if (opt.max_newton_steps < 0 || opt.max_newton_steps > 100)
     throw std::invalid_argument("iso mesh: max_newton_steps must be 0…100");
-  initialize_openvdb();
+}
 
-  IsoMeshStats st;
+// Stage 1: the level set φ sampled on the grid, refused when no sample crosses the iso-level or when it would make
+// more triangles than the limit.
+openvdb::FloatGrid::Ptr sample_level_set(const Sampling& g, const IsoMeshOptions& opt, const ProgressSink* progress,
+                                         IsoMeshStats& st) {
   const auto t_sample = std::chrono::steady_clock::now();
-  Sampling g{spline, iso, opt.material_above ? -1.0 : 1.0, opt.samples_per_voxel, {}, {}};
-  for (int a = 0; a < 3; ++a) {
-    g.count[a] = g.s * (spline.dims()[a] - 1) + 1;
-    g.blocks[a] = (g.count[a] + kBlock - 1) / kBlock;
-  }
   openvdb::FloatGrid::Ptr grid = sample_grid(g, opt, progress, st);
   st.grid_bytes = grid->memUsage();
   st.crossing_edges = count_crossing_edges(*grid);
@@ -352,46 +347,53 @@ TriMesh extract_iso_mesh(const VolumeSpline& spline, double iso, const IsoMeshOp
   if (st.crossing_edges == 0)
     throw std::invalid_argument("iso mesh: no sample of the volume lies " +
                                 std::string(opt.material_above ? "above" : "below") + " the iso-level " +
-                                std::to_string(iso));
+                                std::to_string(g.iso));
   if (st.crossing_edges > opt.max_triangles / 2)
-    throw std::invalid_argument("iso mesh: the iso-level " + std::to_string(iso) + " would make " +
+    throw std::invalid_argument("iso mesh: the iso-level " + std::to_string(g.iso) + " would make " +
                                 std::to_string(2 * st.crossing_edges) + " triangles (" +
                                 std::to_string(st.sampled_voxels) + " sampled voxels), more than the limit of " +
                                 std::to_string(opt.max_triangles));
-  check_progress(progress, 0.55);
+  return grid;
+}
 
-  const auto t_mesh = std::chrono::steady_clock::now();
+constexpr unsigned kNoCorner = std::numeric_limits<unsigned>::max();
+using Polygon = std::array<unsigned, 4>;  // a triangle's fourth corner is kNoCorner
+int corners(const Polygon& p) { return p[3] == kNoCorner ? 3 : 4; }
+
+// The polygons OpenVDB made, over the vertices they use: x (index space) and the box faces each lies on.
+struct IsoPolygons {
+  std::vector<glm::dvec3> x;   // #used vertices, index space
+  std::vector<unsigned> mask;  // face_mask of each
+  std::vector<unsigned char> rim;
+  std::vector<Polygon> polys;  // corners index x
+};
+
+// Stage 2: OpenVDB's polygons of φ = 0 (the grid is released), caps dropped unless closed at the boundary, and the
+// vertices renumbered to those used. A cap vertex (on the box) next to a vertex off the box lies on a cap's rim.
+IsoPolygons mesh_level_set(openvdb::FloatGrid::Ptr grid, const Sampling& g, const IsoMeshOptions& opt) {
   std::vector<openvdb::Vec3s> points;
   std::vector<openvdb::Vec3I> tris;
   std::vector<openvdb::Vec4I> quads;
   openvdb::tools::volumeToMesh(*grid, points, tris, quads, 0.0, opt.adaptivity);
   grid.reset();
-  st.mesh_ms = ms_since(t_mesh);
-  check_progress(progress, 0.7);
-
-  // Vertices in index space, their face masks, and which are used.
-  const auto t_project = std::chrono::steady_clock::now();
   const std::size_t nv = points.size();
   std::vector<glm::dvec3> x(nv);
   std::vector<unsigned> mask(nv);
   for (std::size_t i = 0; i < nv; ++i) {
     x[i] = glm::dvec3(points[i].x(), points[i].y(), points[i].z()) / double(g.s);
-    mask[i] = face_mask(x[i], spline.dims());
+    mask[i] = face_mask(x[i], g.spline.dims());
   }
   std::vector<openvdb::Vec3s>().swap(points);
-  // Polygons as vertex lists (quads split later, once the vertices have moved).
-  std::vector<std::array<unsigned, 4>> polys;
+  IsoPolygons out;  // quads are split later, once the vertices have moved
+  std::vector<Polygon>& polys = out.polys;
   polys.reserve(quads.size() + tris.size());
   for (const auto& q : quads) polys.push_back({q[0], q[1], q[2], q[3]});
-  for (const auto& t : tris) polys.push_back({t[0], t[1], t[2], std::numeric_limits<unsigned>::max()});
+  for (const auto& t : tris) polys.push_back({t[0], t[1], t[2], kNoCorner});
   std::vector<openvdb::Vec4I>().swap(quads);
   std::vector<openvdb::Vec3I>().swap(tris);
-  auto corners = [](const std::array<unsigned, 4>& p) { return p[3] == std::numeric_limits<unsigned>::max() ? 3 : 4; };
 
-  // A cap vertex (on the box) next to a vertex off the box lies on a cap's rim: it is projected within its face(s).
-  // Cap vertices with only cap neighbours stay where they are.
-  std::vector<unsigned char> rim(nv, 0);
-  for (const auto& p : polys) {
+  std::vector<unsigned char> rim(nv, 0);  // cap vertices with only cap neighbours stay where they are
+  for (const Polygon& p : polys) {
     bool any_free = false, any_cap = false;
     for (int c = 0; c < corners(p); ++c) (mask[p[c]] ? any_cap : any_free) = true;
     if (any_free && any_cap)
@@ -399,77 +401,92 @@ TriMesh extract_iso_mesh(const VolumeSpline& spline, double iso, const IsoMeshOp
         if (mask[p[c]]) rim[p[c]] = 1;
   }
   if (!opt.close_at_boundary) {  // drop the caps: polygons all of whose corners lie on the box
-    std::erase_if(polys, [&](const std::array<unsigned, 4>& p) {
+    std::erase_if(polys, [&](const Polygon& p) {
       for (int c = 0; c < corners(p); ++c)
         if (!mask[p[c]]) return false;
       return true;
     });
   }
-  std::vector<unsigned> remap(nv, std::numeric_limits<unsigned>::max());
-  std::vector<unsigned> used;
-  for (auto& p : polys)
+  std::vector<unsigned> remap(nv, kNoCorner);
+  for (Polygon& p : polys)
     for (int c = 0; c < corners(p); ++c) {
-      if (remap[p[c]] == std::numeric_limits<unsigned>::max()) {
-        remap[p[c]] = static_cast<unsigned>(used.size());
-        used.push_back(p[c]);
+      if (remap[p[c]] == kNoCorner) {
+        remap[p[c]] = static_cast<unsigned>(out.x.size());
+        out.x.push_back(x[p[c]]);
+        out.mask.push_back(mask[p[c]]);
+        out.rim.push_back(rim[p[c]]);
       }
       p[c] = remap[p[c]];
     }
+  return out;
+}
 
-  TriMesh mesh;
-  const std::size_t n = used.size();
+// What placing the vertices found: per vertex, whether ∇D vanished there, whether Newton did not converge, and its
+// residual |D − iso|.
+struct Placement {
+  std::vector<unsigned char> no_normal, unconverged;
+  std::vector<double> residual;
+};
+
+// Stage 3: every vertex off the caps projected onto D = iso along ∇D (project_vertex) with the normal orient·∇D;
+// cap-interior vertices keep their place and get the box face's normal. World units out.
+Placement place_vertices(const VolumeSpline& spline, double iso, const IsoPolygons& poly, const IsoMeshOptions& opt,
+                         int s, const ProgressSink* progress, TriMesh& mesh) {
+  const std::size_t n = poly.x.size();
   mesh.positions.resize(n);
   mesh.normals.resize(n);
   const glm::dmat4& to_world = spline.index_to_world();
   const glm::dmat3 lin(to_world);
   const glm::dmat3 metric = glm::transpose(lin) * lin;
   const glm::dmat3 normal_map = glm::transpose(glm::inverse(lin));
-  const double tolerance = 1e-6 * (cmax - cmin);
+  const double tolerance = 1e-6 * (spline.control_max() - spline.control_min());
   const double orient = opt.material_above ? -1.0 : 1.0;  // normal = orient · ∇D
-  std::vector<unsigned char> no_normal(n, 0), unconverged(n, 0);
-  std::vector<double> residual(n, 0.0);
+  Placement out{std::vector<unsigned char>(n, 0), std::vector<unsigned char>(n, 0), std::vector<double>(n, 0.0)};
   constexpr std::size_t kChunk = 1 << 16;
   for (std::size_t c0 = 0; c0 < n; c0 += kChunk) {
     const std::size_t c1 = std::min(n, c0 + kChunk);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(c0, c1, 256), [&](const tbb::blocked_range<std::size_t>& r) {
       for (std::size_t i = r.begin(); i != r.end(); ++i) {
-        const unsigned v = used[i];
-        glm::dvec3 p = x[v];
-        const bool cap_interior = mask[v] && !rim[v];
-        if (cap_interior) {
+        glm::dvec3 p = poly.x[i];
+        const unsigned mask = poly.mask[i];
+        if (mask && !poly.rim[i]) {  // inside a cap
           glm::dvec3 nrm(0.0);
           for (int a = 0; a < 3; ++a) {
-            if (mask[v] & (1u << (2 * a))) nrm[a] -= 1.0;
-            if (mask[v] & (1u << (2 * a + 1))) nrm[a] += 1.0;
+            if (mask & (1u << (2 * a))) nrm[a] -= 1.0;
+            if (mask & (1u << (2 * a + 1))) nrm[a] += 1.0;
           }
           mesh.normals[i] = glm::normalize(normal_map * nrm);
         } else {
           if (opt.project_to_spline) {
-            residual[i] = project_vertex(spline, iso, metric, mask[v], opt.max_newton_steps, tolerance, 1.0 / g.s, p);
-            unconverged[i] = residual[i] > tolerance;
+            out.residual[i] = project_vertex(spline, iso, metric, mask, opt.max_newton_steps, tolerance, 1.0 / s, p);
+            out.unconverged[i] = out.residual[i] > tolerance;
           }
           const glm::dvec3 gw = spline.world_gradient(spline.jet(p).gradient);
           const double len = glm::length(gw);
           if (len > 0.0 && std::isfinite(len))
             mesh.normals[i] = (orient / len) * gw;
           else
-            no_normal[i] = 1;
+            out.no_normal[i] = 1;
         }
         mesh.positions[i] = glm::dvec3(to_world * glm::dvec4(p, 1.0));
       }
     });
     check_progress(progress, 0.7 + 0.28 * double(c1) / double(n));
   }
+  return out;
+}
 
-  // Triangles, counter-clockwise seen from outside: OpenVDB's polygons of a level set wind clockwise seen from
-  // outside (φ > 0) in grid space, and a mirroring index_to_world reverses that once more in world space. Quads split
-  // along their shorter diagonal.
-  const bool flip = glm::determinant(lin) > 0.0;
+// Stage 4: triangles, counter-clockwise seen from outside: OpenVDB's polygons of a level set wind clockwise seen from
+// outside (φ > 0) in grid space, and a mirroring index_to_world reverses that once more in world space. Quads split
+// along their shorter diagonal. Vertices where ∇D vanished get area-weighted face normals.
+void triangulate(const std::vector<Polygon>& polys, const glm::dmat4& index_to_world,
+                 const std::vector<unsigned char>& no_normal, TriMesh& mesh) {
+  const bool flip = glm::determinant(glm::dmat3(index_to_world)) > 0.0;
   auto add = [&](unsigned a, unsigned b, unsigned c) {
     mesh.triangles.push_back(flip ? glm::uvec3(a, c, b) : glm::uvec3(a, b, c));
   };
   mesh.triangles.reserve(2 * polys.size());
-  for (const auto& p : polys) {
+  for (const Polygon& p : polys) {
     if (corners(p) == 3) {
       add(p[0], p[1], p[2]);
       continue;
@@ -484,16 +501,42 @@ TriMesh extract_iso_mesh(const VolumeSpline& spline, double iso, const IsoMeshOp
     }
   }
   if (std::find(no_normal.begin(), no_normal.end(), 1) != no_normal.end()) {
-    TriMesh faces = mesh;  // area-weighted face normals where ∇D vanishes
+    TriMesh faces = mesh;
     compute_vertex_normals(faces);
-    for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t i = 0; i < no_normal.size(); ++i)
       if (no_normal[i]) mesh.normals[i] = faces.normals[i];
   }
+}
 
-  for (std::size_t i = 0; i < n; ++i) {
-    st.cap_vertices += mask[used[i]] != 0;
-    st.unconverged += unconverged[i];
-    st.max_residual = std::max(st.max_residual, residual[i] / (cmax - cmin));
+}  // namespace
+
+TriMesh extract_iso_mesh(const VolumeSpline& spline, double iso, const IsoMeshOptions& opt,
+                         const ProgressSink* progress, IsoMeshStats* stats) {
+  check_options(spline, iso, opt);
+  initialize_openvdb();
+  IsoMeshStats st;
+  Sampling g{spline, iso, opt.material_above ? -1.0 : 1.0, opt.samples_per_voxel, {}, {}};
+  for (int a = 0; a < 3; ++a) {
+    g.count[a] = g.s * (spline.dims()[a] - 1) + 1;
+    g.blocks[a] = (g.count[a] + kBlock - 1) / kBlock;
+  }
+  openvdb::FloatGrid::Ptr grid = sample_level_set(g, opt, progress, st);
+  check_progress(progress, 0.55);
+
+  const auto t_mesh = std::chrono::steady_clock::now();
+  const IsoPolygons poly = mesh_level_set(std::move(grid), g, opt);
+  st.mesh_ms = ms_since(t_mesh);
+  check_progress(progress, 0.7);
+
+  const auto t_project = std::chrono::steady_clock::now();
+  TriMesh mesh;
+  const Placement placed = place_vertices(spline, iso, poly, opt, g.s, progress, mesh);
+  triangulate(poly.polys, spline.index_to_world(), placed.no_normal, mesh);
+  const double range = spline.control_max() - spline.control_min();
+  for (std::size_t i = 0; i < poly.x.size(); ++i) {
+    st.cap_vertices += poly.mask[i] != 0;
+    st.unconverged += placed.unconverged[i];
+    st.max_residual = std::max(st.max_residual, placed.residual[i] / range);
   }
   st.vertices = mesh.vertex_count();
   st.triangles = mesh.triangle_count();

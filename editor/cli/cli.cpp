@@ -149,8 +149,8 @@ void add_replay(CLI::App& app, CliRequest& o) {
           [&o](const std::string& text) {
             const auto range = parse_frame_range(text);  // checked below
             o.replay.frames_given = true;
-            o.replay.frame_first = range->first;
-            o.replay.frame_last = range->second;
+            o.replay.frames.frame_first = range->first;
+            o.replay.frames.frame_last = range->second;
           },
           "Record timeline frames A-B (inclusive) of the final scene into --out: frame_NNNN.png|exr and "
           "animation.glb of that range (exit 2, nothing written, when the range lies outside the timeline)")
@@ -159,10 +159,11 @@ void add_replay(CLI::App& app, CliRequest& o) {
             return parse_frame_range(text) ? "" : "--frames needs A-B with 0 <= A <= B, got '" + text + "'";
           },
           "A-B");
-  o.replay_cmd->add_option("--format", o.replay.format, "Image format of --frames: png (8-bit) or exr (half, linear)")
+  o.replay_cmd
+      ->add_option("--format", o.replay.frames.format, "Image format of --frames: png (8-bit) or exr (half, linear)")
       ->check(CLI::IsMember({"png", "exr"}));
   o.replay_cmd
-      ->add_option("--piece-base", o.replay.piece_base,
+      ->add_option("--piece-base", o.replay.frames.piece_base,
                    "With --frames: write animation.piece, morph targets relative to this timeline frame (the farm's "
                    "range start), instead of animation.glb; `trispline farm assemble` joins the pieces")
       ->check(CLI::NonNegativeNumber)
@@ -270,11 +271,9 @@ void print_bounds_table(const nlohmann::json& r, std::ostream& out) {
         << bench_fixed(100.0 * row["best_over_midpoint"].get<double>(), 0) << " %\n";
 }
 
-// `trispline bench ffd|place|dffd|ddm|press|silhouettes|bounds`.
-void add_bench(CLI::App& app, CliRequest& o) {
-  auto* bench = app.add_subcommand("bench", "Benchmarks that print figures (never assert timings)");
-  bench->require_subcommand(1);
-  o.ffd_cmd = bench->add_subcommand(
+// `trispline bench ffd`: FFD throughput of every evaluator backend on a mesh's vertices.
+void add_bench_ffd(CLI::App& bench, CliRequest& o) {
+  o.ffd_cmd = bench.add_subcommand(
       "ffd",
       "FFD throughput of every evaluator backend (CPU reference/fast, GLSL compute/vertex) on the bunny "
       "subdivided to ~0.8 M vertices, 4^3 and 8^3 lattices, orders 3 and 4");
@@ -294,8 +293,11 @@ void add_bench(CLI::App& app, CliRequest& o) {
       ->add_option("--gpu-shaders", o.ffd.gpu_shaders,
                    "How GLSL shaders get the orders: auto (generic on software renderers), specialised, generic")
       ->check(CLI::IsMember({"auto", "specialised", "generic"}));
+}
 
-  o.place_cmd = bench->add_subcommand(
+// `trispline bench place`: place.sketch end to end, ms per stage, with and without the mass-spring contact surface.
+void add_bench_place(CLI::App& bench, CliRequest& o) {
+  o.place_cmd = bench.add_subcommand(
       "place",
       "place.sketch end to end (stroke -> placed bunny over the teapot and the terrain), ms per stage, "
       "mass-spring contact surface on and off");
@@ -312,15 +314,22 @@ void add_bench(CLI::App& app, CliRequest& o) {
       ->excludes(on_only);
   o.place_cmd->add_option("--scene", o.place.scenes, "Scenes: teapot, terrain (default both)")
       ->check(CLI::IsMember({"teapot", "terrain"}));
+}
 
-  o.dffd_cmd = bench->add_subcommand(
+// `trispline bench dffd`: discontinuous FFD per frame (split + cap + deform).
+void add_bench_dffd(CLI::App& bench, CliRequest& o) {
+  o.dffd_cmd = bench.add_subcommand(
       "dffd", "Discontinuous FFD per frame: split + cap + deform of the bunny walking through bars (seed §6.3)");
   o.dffd_cmd->add_flag("--json", o.dffd.json, "Print one JSON object instead of a table");
   o.dffd_cmd->add_option("--scene", o.dffd.scene_path, "Scene log with an animated dffd.split object")
       ->default_str("assets/scenes/bars_walk.jsonl");
   o.dffd_cmd->add_option("--runs", o.dffd.runs, "Timed evaluations per frame (median)")->check(CLI::PositiveNumber);
   o.dffd_cmd->add_option("--frames", o.dffd.frames, "Frames sampled over the walk")->check(CLI::PositiveNumber);
-  o.ddm_cmd = bench->add_subcommand(
+}
+
+// `trispline bench ddm`: live DDM layers drawn by GPU instancing, GPU ms per frame.
+void add_bench_ddm(CLI::App& bench, CliRequest& o) {
+  o.ddm_cmd = bench.add_subcommand(
       "ddm", "Live DDM layers drawn by GPU instancing: tile vertices, GPU ms per frame, fps (seed §5.3.2, Table 5.1)");
   o.ddm_cmd->add_flag("--json", o.ddm.json, "Print one JSON object instead of a table");
   o.ddm_cmd->add_option("--frames", o.ddm.frames, "Timed frames per case (after 2 warm-up frames)")
@@ -335,7 +344,11 @@ void add_bench(CLI::App& app, CliRequest& o) {
       ->check(CLI::IsMember(
           {"thorns_face", "thorns_teapot", "chains_1m", "chains_3m", "orbit_default", "orbit_fine", "follow_bunny"}));
   o.ddm_cmd->add_flag("!--no-cpu", o.ddm.cpu_reference, "Do not time the CPU reference evaluation");
-  o.silhouettes_cmd = bench->add_subcommand(
+}
+
+// `trispline bench silhouettes`: silhouettes of a CT/MRI iso-surface, ms per view.
+void add_bench_silhouettes(CLI::App& bench, CliRequest& o) {
+  o.silhouettes_cmd = bench.add_subcommand(
       "silhouettes",
       "Silhouettes of a CT/MRI iso-surface (seed ch. 7): singleton preprocessing, then ms per view "
       "around the volume (default: the Cranium CT at 226 HU, 36 views)");
@@ -356,7 +369,11 @@ void add_bench(CLI::App& app, CliRequest& o) {
   o.silhouettes_cmd->add_flag("--orbit", o.silhouettes.orbit,
                               "Also orbit as the editor's live view does with hidden lines removed: 36 views 10 "
                               "degrees apart, each seeded from the previous one, checked against complete extractions");
-  o.editor_bench_cmd = bench->add_subcommand(
+}
+
+// `trispline bench editor`: the editor's frame times beside Blender's, and recording with a hidden volume.
+void add_bench_editor(CLI::App& bench, CliRequest& o) {
+  o.editor_bench_cmd = bench.add_subcommand(
       "editor",
       "The editor's frame times (idle, orbiting) on the default scene, a tiled teapot and a volume with silhouettes, "
       "beside Blender's viewport redraw of the same meshes, and the cost of recording with a hidden volume (needs X: "
@@ -373,7 +390,11 @@ void add_bench(CLI::App& app, CliRequest& o) {
   o.editor_bench_cmd->add_option("--work", o.editor_bench.work,
                                  "Folder for the logs, outputs and child logs (default: a new temporary folder)");
   o.editor_bench_cmd->add_flag("!--no-blender", o.editor_bench.blender, "Do not time Blender");
-  o.bounds_cmd = bench->add_subcommand(
+}
+
+// `trispline bench bounds`: the fold-free certificate, per-triangle error bounds, certified refinement.
+void add_bench_bounds(CLI::App& bench, CliRequest& o) {
+  o.bounds_cmd = bench.add_subcommand(
       "bounds",
       "Guarantees: the fold-free certificate's time on 4^3, 8^3, 16^3 lattices (orders 3, 4) and a soundness "
       "sweep over random lattices against dense sampling of det J; per-triangle error bounds on the 836K-vertex "
@@ -389,7 +410,11 @@ void add_bench(CLI::App& app, CliRequest& o) {
                    "Triangles (of the bunny, in random lattices) whose bounds are checked against the measured "
                    "error")
       ->check(CLI::Range(0, 100000000));
-  o.press_cmd = bench->add_subcommand(
+}
+
+// `trispline bench press`: a pressing drag on a ~1 M-vertex object.
+void add_bench_press(CLI::App& bench, CliRequest& o) {
+  o.press_cmd = bench.add_subcommand(
       "press",
       "A pressing drag on a ~1 M-vertex object: Press tool per mouse move, pressed lattice, cpu_fast / GLSL "
       "re-evaluation per drag sample, and the lattice.press command at release");
@@ -403,6 +428,20 @@ void add_bench(CLI::App& app, CliRequest& o) {
   o.press_cmd->add_option("--mesh", o.press.mesh_path, "Use this mesh instead of assets/data/bunny.obj")
       ->check(CLI::ExistingFile);
   o.press_cmd->add_flag("!--cpu-only", o.press.gpu, "Skip glsl_compute (no GL context)");
+}
+
+// `trispline bench ffd|place|dffd|ddm|press|silhouettes|bounds`.
+void add_bench(CLI::App& app, CliRequest& o) {
+  auto* bench = app.add_subcommand("bench", "Benchmarks that print figures (never assert timings)");
+  bench->require_subcommand(1);
+  add_bench_ffd(*bench, o);
+  add_bench_place(*bench, o);
+  add_bench_dffd(*bench, o);
+  add_bench_ddm(*bench, o);
+  add_bench_silhouettes(*bench, o);
+  add_bench_editor(*bench, o);
+  add_bench_bounds(*bench, o);
+  add_bench_press(*bench, o);
 }
 
 // `trispline commands [ID] [--docs FILE]`.

@@ -76,10 +76,10 @@ int farm_task(const fs::path& dir, int index, std::ostream& out, std::ostream& e
       fs::remove(o.out_dir / "chunk.json");  // the record of an earlier run no longer holds
       o.render = false;
       o.frames_given = true;
-      o.frame_first = task.first;
-      o.frame_last = task.last;
-      o.format = plan.format;
-      o.piece_base = plan.frame_first;
+      o.frames.frame_first = task.first;
+      o.frames.frame_last = task.last;
+      o.frames.format = plan.format;
+      o.frames.piece_base = plan.frame_first;
     }
   } catch (const std::exception& e) {
     err << "farm task " << index << ": " << e.what() << "\n";

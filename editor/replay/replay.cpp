@@ -111,15 +111,11 @@ int run_recordings(const core::Scene& scene, const std::vector<PendingRecording>
                    nlohmann::json& report, int exit_code) {
   try {
     if (options.frames_given) {
-      RecordOptions ro;
+      RecordOptions ro = options.frames;
       ro.out_dir = options.out_dir;
-      ro.format = options.format;
-      ro.frame_first = options.frame_first;
-      ro.frame_last = options.frame_last;
       ro.width = options.width;
       ro.height = options.height;
       ro.mp4 = false;
-      ro.piece_base = options.piece_base;
       report["record"] = record_into(scene, ro).to_json();
       return exit_code;
     }
@@ -247,13 +243,14 @@ int run_replay(const ReplayOptions& options) {
   ReplayResult result = replay_lines(history, options.log, hook, options.out_dir);
   const double replay_ms = ms_since(t0);
   if (result.ok && options.frames_given) {
-    std::string err = core::frame_range_error(scene.timeline, options.frame_first, options.frame_last);
-    if (err.empty() && options.piece_base >= 0 &&
-        (options.piece_base < scene.timeline.frame_start || options.piece_base > options.frame_first))
-      err = "--piece-base " + std::to_string(options.piece_base) + " is not in [" +
-            std::to_string(scene.timeline.frame_start) + ", " + std::to_string(options.frame_first) + "]";
+    std::string err = core::frame_range_error(scene.timeline, options.frames.frame_first, options.frames.frame_last);
+    if (err.empty() && options.frames.piece_base >= 0 &&
+        (options.frames.piece_base < scene.timeline.frame_start ||
+         options.frames.piece_base > options.frames.frame_first))
+      err = "--piece-base " + std::to_string(options.frames.piece_base) + " is not in [" +
+            std::to_string(scene.timeline.frame_start) + ", " + std::to_string(options.frames.frame_first) + "]";
     if (!err.empty()) {
-      std::cerr << "replay: --frames " << options.frame_first << "-" << options.frame_last << ": " << err
+      std::cerr << "replay: --frames " << options.frames.frame_first << "-" << options.frames.frame_last << ": " << err
                 << " (nothing written)\n";
       return 2;
     }

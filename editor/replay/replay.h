@@ -30,6 +30,7 @@
 #include "core/ffd/ffd_evaluator.h"
 #include "core/scene/scene.h"
 #include "editor/commands/history.h"
+#include "editor/replay/record.h"
 
 namespace trispline::editor {
 
@@ -42,12 +43,11 @@ struct ReplayOptions {
   // GPU for GLSL backends, so the GPU path is tested end to end). cpu_ref: the authoritative CPU geometry.
   core::FfdBackend ffd_backend = core::FfdBackend::cpu_ref;
   double time_s = 0;  // scene time, seconds: animated objects (lattice.animate_offset) are shown and exported at it
-  // --frames A-B: record timeline frames [frame_first, frame_last] into out_dir (see above); --format png|exr.
+  // --frames A-B: record timeline frames [frames.frame_first, frames.frame_last] into out_dir at width × height
+  // (see above); --format png|exr (frames.format); --piece-base F (frames.piece_base): animation.piece relative to
+  // frame F instead of animation.glb (a farm chunk). out_dir, width and height come from the fields above; no MP4.
   bool frames_given = false;
-  int frame_first = 0, frame_last = 0;
-  std::string format = "png";
-  // --piece-base F (with --frames): animation.piece relative to frame F instead of animation.glb (a farm chunk).
-  int piece_base = -1;
+  RecordOptions frames;
 };
 
 struct ReplayResult {

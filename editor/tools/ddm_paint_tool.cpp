@@ -7,6 +7,7 @@
 #include "core/commands/ddm_color.h"
 #include "core/commands/ddm_fill.h"
 #include "core/commands/ddm_remove.h"
+#include "core/mesh/mesh_io.h"
 #include "ui/param_widgets.h"
 
 #define GLFW_INCLUDE_NONE
@@ -49,9 +50,7 @@ bool deformed(const core::SceneObject& o) { return o.ffd || o.dffd || o.clip; }
 
 double ddm_default_tile_size(const core::SceneObject* o) {
   if (!o || !o->rest_mesh || o->rest_mesh->empty()) return 1.0;
-  glm::dvec3 lo(1e300), hi(-1e300);
-  for (const glm::dvec3& p : o->rest_mesh->positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
-  const double d = 0.1 * glm::length(hi - lo);
+  const double d = 0.1 * core::mesh_bounds(*o->rest_mesh).diagonal();
   if (!(d > 0.0) || !std::isfinite(d)) return 1.0;
   const double unit = std::pow(10.0, std::floor(std::log10(d)) - 1.0);
   return std::round(d / unit) * unit;

@@ -81,7 +81,7 @@ void DffdTool::draw_seam_section(ToolContext& ctx, const std::string& object) {
   core::DffdAnimateParams a;
   a.object = sel->name;
   a.clear = k.clear;
-  if (k.animate) a.stitch_keys = ui::key_pair_keys(stitch_keys_), a.interpolation = stitch_keys_.interpolation;
+  if (k.animate) a.keys = ui::key_pair_keys(stitch_keys_), a.interpolation = stitch_keys_.interpolation;
   const nlohmann::json line = core::DffdAnimateCommand::schema().to_json(a);
   EditorSession& session = ctx.session;
   ctx.defer("Animating the seam of " + sel->name, [&session, line]() { session.execute(line); });

@@ -312,7 +312,7 @@ void IncisionTool::draw_panel(ToolContext& ctx) {
       core::IncisionAnimateParams a;
       a.object = sel->name;
       a.clear = r.clear;
-      if (r.animate) a.opening_keys = ui::key_pair_keys(opening_keys_), a.interpolation = opening_keys_.interpolation;
+      if (r.animate) a.keys = ui::key_pair_keys(opening_keys_), a.interpolation = opening_keys_.interpolation;
       const nlohmann::json line = core::IncisionAnimateCommand::schema().to_json(a);
       EditorSession& session = ctx.session;
       ctx.defer("Animating the incision of " + sel->name, [&session, line]() { session.execute(line); });

@@ -218,7 +218,8 @@ std::string PressTool::hint() const {
   return "Drag over " + object_ + " to press its lattice; Ctrl-drag pulls";
 }
 
-void PressTool::draw_panel(ToolContext& ctx) {
+// The Object combo; the object to press (null when none is chosen or it no longer exists).
+const core::SceneObject* PressTool::draw_object_combo(ToolContext& ctx) {
   // The combo follows the selection until the user picks another object there.
   if (!ctx.selected.empty() && ctx.selected != followed_selection_) follow_object(followed_selection_ = ctx.selected);
   const core::Scene& scene = ctx.session.scene();
@@ -230,14 +231,14 @@ void PressTool::draw_panel(ToolContext& ctx) {
     ImGui::EndCombo();
   }
   const core::SceneObject* o = scene.find(object_);
-  // Before an object is chosen the sizes follow the scene's, so the fields never start at a meaningless 0.001.
-  const core::Aabb scene_box = scene.bounds();
-  const double diag = o ? diagonal(*o) : scene_box.valid() ? scene_box.diagonal() : 0.0;
   if (o && !o->ffd)
     ImGui::TextColored(ui::colors::dim, "%s has no FFD lattice: bind one first (e.g. lattice.ring).", object_.c_str());
+  return o;
+}
 
-  // Radius and strength: drag, or one click and type. A value outside what the object takes is limited, and the
-  // field says so (amber, the reason in its tooltip) and the Log once.
+// Radius: drag, or one click and type. A value outside what the object takes is limited, and the field says so
+// (amber, the reason in its tooltip) and the Log once. Returns the radius shown, world units.
+double PressTool::draw_radius_field(ToolContext& ctx, const core::SceneObject* o, double diag) {
   double r = radius(ctx);
   const double r_min = diag > 0.0 ? 0.005 * diag : 1e-3, r_max = diag > 0.0 ? 0.5 * diag : 10.0;
   if (r <= 0.0) r = diag > 0.0 ? kDefaultRadiusFraction * diag : 0.1;
@@ -275,6 +276,11 @@ void PressTool::draw_panel(ToolContext& ctx) {
     if (ImGui::SmallButton("Default")) radius_ = 0.0, radius_limit_.clear();
   }
 
+  return r;
+}
+
+// Strength, limited as the radius is; `r` the radius shown. Returns the strength shown, world units.
+double PressTool::draw_strength_field(ToolContext& ctx, double diag, double r) {
   const double s_min = 0.0, s_max = diag > 0.0 ? diag : 10.0;
   double s = strength_ > 0.0 ? strength_ : kDefaultStrengthFraction * r;
   const bool strength_limited = !strength_limit_.empty();
@@ -310,6 +316,10 @@ void PressTool::draw_panel(ToolContext& ctx) {
     }
   }
 
+  return s;
+}
+
+void PressTool::draw_falloff_combo() {
   const std::string current(core::to_string(falloff_));
   if (ImGui::BeginCombo("Falloff", current.c_str())) {
     for (std::size_t i = 0; i < core::kFalloffNames.size(); ++i) {
@@ -323,7 +333,10 @@ void PressTool::draw_panel(ToolContext& ctx) {
   ui::probe::item("press.falloff");
   ui::probe::value("press.falloff", current);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", kFalloffTips[std::size_t(falloff_)]);
+}
 
+// Keep fold-free, and during a drag what it does to the press; `s` the strength shown.
+void PressTool::draw_fold_free(double s) {
   ImGui::Checkbox("Keep fold-free", &keep_fold_free_);
   ui::probe::item("press.keep_fold_free");
   ui::probe::value("press.keep_fold_free", keep_fold_free_ ? "1" : "0");
@@ -342,6 +355,17 @@ void PressTool::draw_panel(ToolContext& ctx) {
     } else if (preview_strength_ >= 0.0)
       ImGui::TextColored(ui::colors::dim, "Limited to strength %.4g to stay fold-free", preview_strength_);
   }
+}
+
+void PressTool::draw_panel(ToolContext& ctx) {
+  const core::SceneObject* o = draw_object_combo(ctx);
+  // Before an object is chosen the sizes follow the scene's, so the fields never start at a meaningless 0.001.
+  const core::Aabb scene_box = ctx.session.scene().bounds();
+  const double diag = o ? diagonal(*o) : scene_box.valid() ? scene_box.diagonal() : 0.0;
+  const double r = draw_radius_field(ctx, o, diag);
+  const double s = draw_strength_field(ctx, diag, r);
+  draw_falloff_combo();
+  draw_fold_free(s);
 
   ImGui::Spacing();
   ImGui::Separator();

@@ -65,6 +65,12 @@ class PressTool : public Tool {
   // need_current (a drag presses what is shown).
   std::optional<glm::dvec3> cast(const ToolContext& ctx, glm::dvec2 px, bool need_current = false);
   void commit(ToolContext& ctx);
+  // The panel's parts, top to bottom (draw_panel).
+  const core::SceneObject* draw_object_combo(ToolContext& ctx);
+  double draw_radius_field(ToolContext& ctx, const core::SceneObject* o, double diag);
+  double draw_strength_field(ToolContext& ctx, double diag, double r);
+  void draw_falloff_combo();
+  void draw_fold_free(double s);
 
   std::string object_;
   std::string followed_selection_;  // selection the combo last followed

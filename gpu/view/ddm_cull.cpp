@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "core/ddm/ddm_pn_maps.h"
+#include "core/mesh/mesh_io.h"
 
 namespace trispline::gpu {
 
@@ -32,9 +33,7 @@ DdmInstanceBounds ddm_instance_bounds(const core::DdmLayer& layer) {
   }
   const core::TriMesh& mesh = *layer.mesh;
   if (mesh.vertex_count() != first.back()) return b;
-  glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
-  for (const glm::dvec3& p : mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
-  const double slack = mesh.positions.empty() ? 0.0 : 1e-4 * glm::length(hi - lo);
+  const double slack = 1e-4 * core::mesh_bounds(mesh).diagonal();
   const core::DdmMapsBase base(layer.maps);
   const glm::dvec2 centre = layer.transform.apply({0.5, 0.5});
   b.spheres.resize(n);

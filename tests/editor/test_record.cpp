@@ -48,8 +48,8 @@ editor::ReplayOptions replay_frames(const char* log, const std::string& out, int
   ro.log = log_path(log);
   ro.out_dir = fresh_dir(out);
   ro.frames_given = true;
-  ro.frame_first = first;
-  ro.frame_last = last;
+  ro.frames.frame_first = first;
+  ro.frames.frame_last = last;
   return ro;
 }
 

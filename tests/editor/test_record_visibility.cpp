@@ -86,7 +86,7 @@ TEST(RecordVisibility, RenderHiddenObjectIsAbsentFromFramesAndGlb) {
   ro.log = test::log_path("object_visibility.jsonl");
   ro.out_dir = fresh_dir("replay");
   ro.frames_given = true;
-  ro.frame_first = ro.frame_last = 2;
+  ro.frames.frame_first = ro.frames.frame_last = 2;
   ASSERT_EQ(editor::run_replay(ro), 0);
   EXPECT_TRUE(bytes(ro.out_dir / "frame_0002.png") == bytes(removed / "frame_0002.png"));
   EXPECT_EQ(mesh_names(ro.out_dir / "animation.glb"), std::vector<std::string>{"ground"});
