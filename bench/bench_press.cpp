@@ -268,7 +268,7 @@ std::vector<core::TrivariateBSpline<glm::dvec3>> pressed_lattices(const core::Sc
   for (std::size_t k : prefixes) {
     const std::vector<glm::dvec3> prefix(path.begin(), path.begin() + std::ptrdiff_t(k));
     core::CommandPtr cmd = CommandRegistry::builtin().parse(
-        lattice_press_line("probe", prefix, radius, kStrength, core::Falloff::smooth), core::CommandContext{});
+        lattice_press_line({"probe", prefix, radius, kStrength, "smooth", false}), core::CommandContext{});
     const double ms = bench_ms([&] { cmd->redo(probe); });
     lattice_ms.push_back(std::max(0.0, ms - cmd->stats().value("ms_evaluate", 0.0)));
     lattices.push_back(probe.find("probe")->ffd->lattice);

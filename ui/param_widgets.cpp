@@ -3,11 +3,14 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "ui/gui_probe.h"
 #include "ui/number_field.h"
+#include "ui/theme.h"
 
 namespace trispline::ui {
 
@@ -48,6 +51,59 @@ void clamp_bounds(const core::ParamRange& r, T* lo, T* hi) {
 }
 
 }  // namespace
+
+std::string size_param_widget(const ParamWidget& w, const core::ParamFieldInfo& info, double* value, double diagonal,
+                              double shown_default, SizeFieldState& state, const std::string& probe) {
+  const core::ParamFieldInfo::ObjectSize& size = *info.object_size;
+  const bool object = diagonal > 0.0;
+  const double lo = object ? size.min_fraction * diagonal : size.min_fraction > 0.0 ? 1e-3 : 0.0;
+  const double hi = object ? size.max_fraction * diagonal : 10.0;
+  const double shown = *value > 0.0 ? *value : shown_default;
+  const bool limited = !state.limit.empty();
+  if (limited) push_limited_frame();
+  double typed = shown;
+  const float speed = info.ui_relative_step > 0.0 ? float(std::max(shown, 1e-6) * info.ui_relative_step)
+                      : w.step > 0.0              ? float(w.step)
+                                                  : float(std::max(hi, 1e-3) * 1e-3);
+  const std::string& label = w.label.empty() ? w.doc->name : w.label;
+  const bool changed = drag_scalar(label.c_str(), ImGuiDataType_Double, &typed, speed, nullptr, nullptr,
+                                   w.format.empty() ? "%.4g" : w.format.c_str());
+  const bool done = ImGui::IsItemDeactivatedAfterEdit();
+  if (limited) pop_limited_frame();
+  probe::item(probe);
+  probe::value(probe, std::to_string(shown));
+  probe::value(probe + ".limited", state.limit);
+  if (ImGui::IsItemHovered()) {
+    std::string tip = param_tooltip(*w.doc);
+    if (size.default_fraction > 0.0)
+      tip += "\nDefault: " + short_number(size.default_fraction) + " x the object's bounding-box diagonal";
+    if (limited) tip += "\n" + state.limit;
+    ImGui::SetTooltip("%s", tip.c_str());
+  }
+  // While typing each keystroke applies (limited); the reason is given once the edit is done.
+  if (changed && std::isfinite(typed)) {
+    state.typed = typed;
+    *value = std::max(std::clamp(typed, lo, hi), 1e-12);
+  }
+  if (!done) return {};
+  const double kept = std::clamp(state.typed, lo, hi);
+  state.limit.clear();
+  if (kept == state.typed) return {};
+  std::string name = label;
+  std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  char why[240];
+  if (kept == lo && size.min_fraction <= 0.0)
+    std::snprintf(why, sizeof why, "Limited to 0: the %s is a distance (>= 0)", name.c_str());
+  else if (!object)
+    std::snprintf(why, sizeof why, "Limited to %.4g: the %s is at most %.4g world units without an object", kept,
+                  name.c_str(), hi);
+  else
+    std::snprintf(why, sizeof why, "Limited to %.4g: the %s is at %s %s x the object's bounding-box diagonal", kept,
+                  name.c_str(), kept == hi ? "most" : "least",
+                  short_number(kept == hi ? size.max_fraction : size.min_fraction).c_str());
+  state.limit = why;
+  return state.limit;
+}
 
 bool param_widget(const ParamWidget& w, void* value) {
   using core::ParamKind;

@@ -32,6 +32,31 @@ struct ParamWidget {
 };
 bool param_widget(const ParamWidget& w, void* value);
 
+// A size field's state in a panel (ParamFieldInfo::object_size): the value as typed or dragged, before the limits, and
+// why it was limited ("" = it was not: the field is amber and its tooltip says why while this is set).
+struct SizeFieldState {
+  double typed = 0.0;
+  std::string limit;
+};
+
+// Draws a size field (a number declared with object_size): `*value` in world units, ≤ 0 = unset and shown as
+// `shown_default`; drag, or one click and type. Each edit is limited as it is typed to the declared fractions of
+// `diagonal` (the object's bounding-box diagonal, world units; ≤ 0 without an object: [1e-3 (0 for a minimum
+// fraction of 0), 10]). Returns the reason when an edit has just ended limited (for the Log), else "". `probe` names
+// the item for GUI tests, with the values "<probe>" (the value shown) and "<probe>.limited" (state.limit).
+std::string size_param_widget(const ParamWidget& w, const core::ParamFieldInfo& info, double* value, double diagonal,
+                              double shown_default, SizeFieldState& state, const std::string& probe);
+
+template <class P>
+std::string size_param_widget(const core::ParamSchema<P>& schema, const std::string& name, P& params, double diagonal,
+                              double shown_default, SizeFieldState& state, const std::string& probe) {
+  const auto* f = schema.find(name);
+  if (!f || !f->member || !f->object_size || f->kind != core::ParamKind::Number) return {};
+  ParamWidget w{schema.id(),           &f->doc,    f->label,    f->kind, f->range, &f->choices,
+                int(f->choice_member), f->ui_step, f->ui_format};
+  return size_param_widget(w, *f, static_cast<double*>(f->member(params)), diagonal, shown_default, state, probe);
+}
+
 // Draws field `name` of `params` as declared in `schema`. False (nothing drawn) for an undeclared or composite field.
 template <class P>
 bool param_widget(const core::ParamSchema<P>& schema, const std::string& name, P& params) {

@@ -113,6 +113,14 @@ struct ParamFieldInfo {
   ParamWrite write_mode = ParamWrite::Always;
   bool resolve_path = false;          // a string field holding a file path (see Ref::path())
   std::vector<ParamDoc> nested_docs;  // a nested object's fields
+  // A size that follows the object's (a panel's hint; the command takes the value as given): while the panel's value
+  // is unset (≤ 0) it shows default_fraction × the object's bounding-box diagonal, and it limits a typed value to
+  // [min_fraction, max_fraction] × that diagonal, saying why (ui::size_param_widget).
+  struct ObjectSize {
+    double default_fraction = 0.0, min_fraction = 0.0, max_fraction = 1.0;
+  };
+  std::optional<ObjectSize> object_size;
+  double ui_relative_step = 0.0;  // drag speed per pixel as a fraction of the value shown; 0 = ui_step
 };
 
 template <class P>
@@ -144,6 +152,13 @@ class ParamSchema {
     Ref& ui(double step, std::string format = {}) {
       f().ui_step = step;
       f().ui_format = std::move(format);
+      return *this;
+    }
+    // A size that follows the object's (ParamFieldInfo::ObjectSize): default and limits as fractions of its
+    // bounding-box diagonal; `relative_step`: the drag speed per pixel as a fraction of the value (0: `ui`'s step).
+    Ref& object_size(double default_fraction, double min_fraction, double max_fraction, double relative_step = 0.0) {
+      f().object_size = ParamFieldInfo::ObjectSize{default_fraction, min_fraction, max_fraction};
+      f().ui_relative_step = relative_step;
       return *this;
     }
     Ref& default_text(std::string t) { return f().doc.default_text = std::move(t), *this; }

@@ -38,10 +38,8 @@ static_assert(std::size(kFalloffTips) == core::kFalloffNames.size());
 
 }  // namespace
 
-nlohmann::json lattice_press_line(const std::string& object, const std::vector<glm::dvec3>& path, double radius,
-                                  double strength, core::Falloff falloff, bool keep_fold_free) {
-  return core::LatticePressCommand::schema().to_json(
-      core::LatticePressParams{object, path, radius, strength, std::string(core::to_string(falloff)), keep_fold_free});
+nlohmann::json lattice_press_line(const core::LatticePressParams& params) {
+  return core::LatticePressCommand::schema().to_json(params);
 }
 
 ui::ToolEntry PressTool::entry() const {
@@ -83,13 +81,13 @@ double PressTool::diagonal(const core::SceneObject& o) const {
 }
 
 double PressTool::radius(const ToolContext& ctx) const {
-  if (radius_ > 0.0) return radius_;
+  if (params_.radius > 0.0) return params_.radius;
   const core::SceneObject* o = target(ctx);
   return o ? kDefaultRadiusFraction * diagonal(*o) : 0.0;
 }
 
 double PressTool::strength(const ToolContext& ctx) const {
-  return strength_ > 0.0 ? strength_ : kDefaultStrengthFraction * radius(ctx);
+  return params_.strength > 0.0 ? params_.strength : kDefaultStrengthFraction * radius(ctx);
 }
 
 namespace {
@@ -157,10 +155,10 @@ std::optional<Tool::LivePreview> PressTool::live_preview(const ToolContext& ctx)
   if (pressing_ && !path_.empty()) {
     if (!preview_ || preview_base_ != o->ffd || preview_samples_ != path_.size()) {
       try {
-        if (keep_fold_free_) {
+        if (params_.keep_fold_free) {
           try {
             core::FoldFreePress press =
-                core::press_lattice_fold_free(o->ffd->lattice, path_, hover_radius_, signed_strength(ctx), falloff_);
+                core::press_lattice_fold_free(o->ffd->lattice, path_, hover_radius_, signed_strength(ctx), falloff());
             preview_strength_ = press.limited ? std::abs(press.strength) : -1.0;
             preview_ = std::make_shared<const core::TrivariateBSpline<glm::dvec3>>(std::move(press.lattice));
           } catch (const std::invalid_argument& e) {  // not certified, or cannot move: the command will refuse
@@ -170,7 +168,7 @@ std::optional<Tool::LivePreview> PressTool::live_preview(const ToolContext& ctx)
           }
         } else {
           preview_ = std::make_shared<const core::TrivariateBSpline<glm::dvec3>>(
-              core::press_lattice(o->ffd->lattice, path_, hover_radius_, signed_strength(ctx), falloff_));
+              core::press_lattice(o->ffd->lattice, path_, hover_radius_, signed_strength(ctx), falloff()));
         }
         preview_base_ = o->ffd;
         preview_samples_ = path_.size();
@@ -195,20 +193,24 @@ void PressTool::commit(ToolContext& ctx) {
     ctx.session.messages().error("lattice.press: choose an object with an FFD lattice in the Tool panel first");
     return;
   }
-  const nlohmann::json line =
-      lattice_press_line(object_, path, radius(ctx), signed_strength(ctx), falloff_, keep_fold_free_);
+  core::LatticePressParams p = params_;
+  p.object = object_;
+  p.path = std::move(path);
+  p.radius = radius(ctx);
+  p.strength = signed_strength(ctx);
+  const nlohmann::json line = lattice_press_line(p);
   EditorSession& session = ctx.session;  // outlives the deferred work; ctx may not
   ctx.defer((pull_ ? "Pulling " : "Pressing ") + object_, [&session, line]() { session.execute(line); });
 }
 
 void PressTool::follow_object(const std::string& name) {
   if (name == object_) return;
-  if (!object_.empty()) typed_[object_] = {radius_, strength_};  // kept for when that object comes back
+  if (!object_.empty()) typed_[object_] = {params_.radius, params_.strength};  // for when that object comes back
   object_ = name;
   const auto it = typed_.find(name);
-  radius_ = it != typed_.end() ? it->second.first : 0.0;  // unset: from the object's size
-  strength_ = it != typed_.end() ? it->second.second : 0.0;
-  radius_limit_.clear(), strength_limit_.clear();
+  params_.radius = it != typed_.end() ? it->second.first : 0.0;  // unset: from the object's size
+  params_.strength = it != typed_.end() ? it->second.second : 0.0;
+  radius_state_.limit.clear(), strength_state_.limit.clear();
 }
 
 std::string PressTool::hint() const {
@@ -240,91 +242,34 @@ const core::SceneObject* PressTool::draw_object_combo(ToolContext& ctx) {
 // (amber, the reason in its tooltip) and the Log once. Returns the radius shown, world units.
 double PressTool::draw_radius_field(ToolContext& ctx, const core::SceneObject* o, double diag) {
   double r = radius(ctx);
-  const double r_min = diag > 0.0 ? 0.005 * diag : 1e-3, r_max = diag > 0.0 ? 0.5 * diag : 10.0;
   if (r <= 0.0) r = diag > 0.0 ? kDefaultRadiusFraction * diag : 0.1;
-  const bool radius_limited = !radius_limit_.empty();
-  if (radius_limited) ui::push_limited_frame();
-  double typed_r = r;
-  const bool radius_changed = ui::drag_scalar("Radius", ImGuiDataType_Double, &typed_r, float(std::max(r, 1e-6) * 0.01),
-                                              nullptr, nullptr, "%.4g");
-  const bool radius_done = ImGui::IsItemDeactivatedAfterEdit();
-  if (radius_limited) ui::pop_limited_frame();
-  ui::probe::item("press.radius");
-  ui::probe::value("press.radius", std::to_string(r));
-  ui::probe::value("press.radius.limited", radius_limit_);
-  if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("Sphere radius, world units (default: 0.1 x the object's bounding-box diagonal)%s%s",
-                      radius_limited ? "\n" : "", radius_limit_.c_str());
-  // While typing each keystroke applies (limited); the reason is given once the edit is done.
-  if (radius_changed && std::isfinite(typed_r)) {
-    radius_typed_ = typed_r;
-    radius_ = std::max(std::clamp(typed_r, r_min, r_max), 1e-9);
-  }
-  if (radius_done) {
-    const double limited = std::clamp(radius_typed_, r_min, r_max);
-    radius_limit_.clear();
-    if (limited != radius_typed_) {
-      char why[200];
-      std::snprintf(why, sizeof why, "Limited to %.4g: the radius is %s (%s the object's diagonal)", limited,
-                    limited == r_max ? "at most half" : "at least 0.005 x", limited == r_max ? "half" : "0.005 x");
-      radius_limit_ = why;
-      ctx.session.messages().warning("Press radius " + ui::short_number(radius_typed_) + ": " + radius_limit_);
-    }
-  }
-  if (radius_ > 0.0 && o) {
+  const std::string limited = ui::size_param_widget(core::LatticePressCommand::schema(), "radius", params_, diag, r,
+                                                    radius_state_, "press.radius");
+  if (!limited.empty())
+    ctx.session.messages().warning("Press radius " + ui::short_number(radius_state_.typed) + ": " + limited);
+  if (params_.radius > 0.0 && o) {
     ImGui::SameLine();
-    if (ImGui::SmallButton("Default")) radius_ = 0.0, radius_limit_.clear();
+    if (ImGui::SmallButton("Default")) params_.radius = 0.0, radius_state_.limit.clear();
   }
-
   return r;
 }
 
 // Strength, limited as the radius is; `r` the radius shown. Returns the strength shown, world units.
 double PressTool::draw_strength_field(ToolContext& ctx, double diag, double r) {
-  const double s_min = 0.0, s_max = diag > 0.0 ? diag : 10.0;
-  double s = strength_ > 0.0 ? strength_ : kDefaultStrengthFraction * r;
-  const bool strength_limited = !strength_limit_.empty();
-  if (strength_limited) ui::push_limited_frame();
-  double typed_s = s;
-  const bool strength_changed = ui::drag_scalar("Strength", ImGuiDataType_Double, &typed_s,
-                                                float(std::max(s_max, 1e-3) * 1e-3), nullptr, nullptr, "%.4g");
-  const bool strength_done = ImGui::IsItemDeactivatedAfterEdit();
-  if (strength_limited) ui::pop_limited_frame();
-  ui::probe::item("press.strength");
-  ui::probe::value("press.strength.limited", strength_limit_);
-  if (ImGui::IsItemHovered())
-    ImGui::SetTooltip(
-        "How far a control point at the sphere's centre moves along its column, world units\n"
-        "(default: a quarter of the radius)%s%s",
-        strength_limited ? "\n" : "", strength_limit_.c_str());
-  if (strength_changed && std::isfinite(typed_s)) {
-    strength_typed_ = typed_s;
-    strength_ = std::max(std::clamp(typed_s, s_min, s_max), 1e-12), s = strength_;
-  }
-  if (strength_done) {
-    const double limited = std::clamp(strength_typed_, s_min, s_max);
-    strength_limit_.clear();
-    if (limited != strength_typed_) {
-      char why[200];
-      if (limited == s_min)
-        std::snprintf(why, sizeof why, "Limited to 0: the strength is a distance (≥ 0)");
-      else
-        std::snprintf(why, sizeof why, "Limited to %.4g: a press moves a control point at most the object's diagonal",
-                      limited);
-      strength_limit_ = why;
-      ctx.session.messages().warning("Press strength " + ui::short_number(strength_typed_) + ": " + strength_limit_);
-    }
-  }
-
-  return s;
+  const std::string limited = ui::size_param_widget(core::LatticePressCommand::schema(), "strength", params_, diag,
+                                                    kDefaultStrengthFraction * r, strength_state_, "press.strength");
+  if (!limited.empty())
+    ctx.session.messages().warning("Press strength " + ui::short_number(strength_state_.typed) + ": " + limited);
+  return params_.strength > 0.0 ? params_.strength : kDefaultStrengthFraction * r;
 }
 
 void PressTool::draw_falloff_combo() {
-  const std::string current(core::to_string(falloff_));
+  const core::Falloff chosen = falloff();
+  const std::string current(core::to_string(chosen));
   if (ImGui::BeginCombo("Falloff", current.c_str())) {
     for (std::size_t i = 0; i < core::kFalloffNames.size(); ++i) {
       const std::string name(core::kFalloffNames[i]);
-      if (ImGui::Selectable(name.c_str(), i == std::size_t(falloff_))) falloff_ = core::Falloff(i);
+      if (ImGui::Selectable(name.c_str(), i == std::size_t(chosen))) params_.falloff = name;
       ui::probe::item("press.falloff." + name);
       if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", kFalloffTips[i]);
     }
@@ -332,21 +277,21 @@ void PressTool::draw_falloff_combo() {
   }
   ui::probe::item("press.falloff");
   ui::probe::value("press.falloff", current);
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", kFalloffTips[std::size_t(falloff_)]);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", kFalloffTips[std::size_t(chosen)]);
 }
 
 // Keep fold-free, and during a drag what it does to the press; `s` the strength shown.
 void PressTool::draw_fold_free(double s) {
-  ImGui::Checkbox("Keep fold-free", &keep_fold_free_);
+  ImGui::Checkbox("Keep fold-free", &params_.keep_fold_free);
   ui::probe::item("press.keep_fold_free");
-  ui::probe::value("press.keep_fold_free", keep_fold_free_ ? "1" : "0");
+  ui::probe::value("press.keep_fold_free", params_.keep_fold_free ? "1" : "0");
   ui::probe::value("press.strength", std::to_string(s));
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip(
         "Limit each press's strength (bisection) so that the lattice stays certified fold-free:\n"
         "det J > 0 everywhere, proven by its Bernstein coefficients (View > Fold certificate shows it).\n"
         "A lattice that is not certified before the press is refused.");
-  if (keep_fold_free_ && pressing_) {
+  if (params_.keep_fold_free && pressing_) {
     if (std::isnan(preview_strength_)) {
       ImGui::PushStyleColor(ImGuiCol_Text, ui::colors::warning);
       ImGui::TextWrapped("The press will be refused: %s", preview_refusal_.c_str());

@@ -17,16 +17,16 @@
 #include <optional>
 #include <vector>
 
+#include "core/commands/lattice_press.h"
 #include "core/ffd/falloff.h"
 #include "core/raycast/ray_caster.h"
 #include "editor/tools/tool.h"
+#include "ui/param_widgets.h"
 
 namespace trispline::editor {
 
-// The lattice.press line (fields exactly as in core/commands/lattice_press.h): path #P×3 world units, radius and
-// strength world units.
-nlohmann::json lattice_press_line(const std::string& object, const std::vector<glm::dvec3>& path, double radius,
-                                  double strength, core::Falloff falloff, bool keep_fold_free = false);
+// The lattice.press line of `params` (core/commands/lattice_press.h): path #P×3, radius and strength world units.
+nlohmann::json lattice_press_line(const core::LatticePressParams& params);
 
 class PressTool : public Tool {
  public:
@@ -45,13 +45,15 @@ class PressTool : public Tool {
   std::optional<LivePreview> live_preview(const ToolContext& ctx) override;
 
   void set_object(const std::string& name) { object_ = name; }
-  void set_radius(double r) { radius_ = r; }  // world units; ≤ 0 = unset: 0.1 × the object's bounding-box diagonal
+  // World units; ≤ 0 = unset: the schema's object_size default (0.1 × the object's bounding-box diagonal).
+  void set_radius(double r) { params_.radius = r; }
   // World units, the magnitude (Ctrl-drag negates it); ≤ 0 = unset: a quarter of the radius, a dent that shows.
-  void set_strength(double s) { strength_ = s; }
-  void set_falloff(core::Falloff f) { falloff_ = f; }
+  void set_strength(double s) { params_.strength = s; }
+  void set_falloff(core::Falloff f) { params_.falloff = std::string(core::to_string(f)); }
+  core::Falloff falloff() const { return core::parse_falloff(params_.falloff).value_or(core::Falloff::smooth); }
   // Keep fold-free: every press is limited (lattice.press keep_fold_free) so that the lattice stays certified.
-  void set_keep_fold_free(bool on) { keep_fold_free_ = on; }
-  bool keep_fold_free() const { return keep_fold_free_; }
+  void set_keep_fold_free(bool on) { params_.keep_fold_free = on; }
+  bool keep_fold_free() const { return params_.keep_fold_free; }
   // Radius the next press uses for the current object (the default when unset); 0 without a target object.
   double radius(const ToolContext& ctx) const;
   double strength(const ToolContext& ctx) const;  // the magnitude the next press uses (the default when unset)
@@ -76,13 +78,11 @@ class PressTool : public Tool {
   std::string followed_selection_;  // selection the combo last followed
   // Makes `name` the object to press: its own typed radius and strength (kept per object), else unset.
   void follow_object(const std::string& name);
-  std::map<std::string, std::pair<double, double>> typed_;  // per object: radius_, strength_ when it was left
-  double radius_ = 0.0;                                     // ≤ 0: default from the object's size
-  double strength_ = 0.0;                                   // ≤ 0: default from the radius
-  std::string radius_limit_, strength_limit_;               // why the last typed value was limited ("" = it was not)
-  double radius_typed_ = 0.0, strength_typed_ = 0.0;        // the values as typed or dragged, before the limits
-  core::Falloff falloff_ = core::Falloff::smooth;
-  bool keep_fold_free_ = false;
+  std::map<std::string, std::pair<double, double>> typed_;  // per object: radius, strength when it was left
+  // The next press's line: radius and strength ≤ 0 = unset (from the object's size, from the radius); object and
+  // path are filled at mouse-up, the strength's sign by Ctrl.
+  core::LatticePressParams params_{{}, {}, 0.0, 0.0, "smooth", false};
+  ui::SizeFieldState radius_state_, strength_state_;  // as typed, and why limited
   // Keep fold-free during a drag: the strength the preview could use (negative: the whole strength; NaN: the lattice
   // is not certified before the press, so the command will refuse).
   double preview_strength_ = -1.0;
