@@ -1,23 +1,16 @@
-// Spherical pressing tools on a placed object's control lattice (seed §2.4.1, Fig. 2.7, 2.8).
-//
-// `lattice.press` — one drag of the pressing sphere = one command:
-//   {"cmd":"lattice.press","object":"ID","path":[[x,y,z],...],"radius":r,"strength":s,"falloff":"NAME"}
-// path: the sphere's centres sampled along the drag, world units (≥ 1 point); radius r > 0, world units;
-// strength s, world units: a control point P_ijk moves by −s·w·V_P, w = max over the path of
-// falloff(|P_ijk − c| / r) (falloff.h: gaussian, hat, box, smooth, sphere, root, sharp, constant), so a control
-// point is moved once by the strongest weight the swept sphere gave it — dragging over it twice in one stroke does
-// not press twice, and points outside every sphere do not move. s > 0 presses down into the volume, s < 0 pulls up.
-// V_P is the unit direction of the control point's column, from the contact control point P_ij0 to the top P_ij(n−1):
-// the extrusion direction V for an extruded volume (F1), the contact surface's offset normal for F2 (seed Eq.
-// 2.3, 2.4). Positions before the command decide the weights and directions.
-//
-// Needs an object with an FFD lattice; errors (CommandError, field named): unknown object / no lattice (`object`),
-// empty or non-finite path (`path`), radius ≤ 0 (`radius`), non-finite strength (`strength`), unknown falloff
-// (`falloff`, lists the names).
-// With "keep_fold_free": true the strength is limited (bisection) so that the pressed lattice stays certified
-// fold-free (core/ffd/fold_certificate.h); a lattice not certified before the press is refused (`keep_fold_free`).
-// stats(): moved (control points moved), max_displacement (world units), ms_evaluate; with keep_fold_free also
-// strength_used (world units), limited (bool), certificates, ms_certify.
+// `lattice.press` — one drag of the pressing sphere on a placed object's control lattice = one command (seed §2.4.1,
+// Fig. 2.7, 2.8). Fields: declared in lattice_press.cpp (ParamSchema), listed in docs/commands.md. The maths:
+// a control point P_ijk moves by −s·w·V_P with w = max over the path's centres c of falloff(|P_ijk − c| / r)
+// (falloff.h), so a control point is moved once by the strongest weight the swept sphere gave it — dragging over it
+// twice in one stroke does not press twice, and points outside every sphere do not move; s > 0 presses down into the
+// volume, s < 0 pulls up. V_P is the unit direction of the control point's column, from the contact control point
+// P_ij0 to the top P_ij(n−1): the extrusion direction V for an extruded volume (F1), the contact surface's offset
+// normal for F2 (seed Eq. 2.3, 2.4). Positions before the command decide the weights and directions. With
+// keep_fold_free the strength is limited (bisection) so that the pressed lattice stays certified fold-free
+// (core/ffd/fold_certificate.h); a lattice not certified before the press is refused (`keep_fold_free`).
+// Errors beyond the declared ranges (CommandError, field named): unknown object / no lattice (`object`), a column of
+// zero length (`object`). stats(): moved (control points moved), max_displacement (world units), ms_evaluate; with
+// keep_fold_free also strength_used (world units), limited (bool), certificates, ms_certify.
 #pragma once
 
 #include "core/commands/declared_command.h"

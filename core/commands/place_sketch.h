@@ -1,23 +1,17 @@
-// `place.sketch` — places an object along a stroke sketched over the scene (seed §2.3.1, Eq. 2.1–2.4).
-//   {"cmd":"place.sketch","object":"ID","stroke":[[px,py],...],"width":d,"height":h,"samples":[nu,nv],
-//    "volume":"extrude|offset","order":[ou,ov,ow],"controls":[nu,nv,nw],"length_axis":"x|y|z","up_axis":"x|y|z",
-//    "camera":{"eye":..,"target":..,"up":..,"fov_deg":..,"viewport":..},"ignore":["ID",...]}
-// stroke: viewport pixels (top-left origin) of the camera in "camera" (optional) or of the last camera.set.
-// width: half-width d of the volume across the stroke, world units. height: h, world units. order = degree + 1.
-// Optional "width_profile":[f0,f1,...] scales d along the stroke (u), "height_profile":[f0,...] or [[...],[...]]
-// scales h along u (one list) or over (u,v) (rows over v): factors > 0, piecewise linear (seed Eq. 2.5).
-// Optional "springs":{"stiffness":k,"damping":ρ,"mass":M,"threshold_deg":a,"neighbourhood":n,"max_steps":s,
-// "rest_length":"zero|initial"} relaxes the contact surface as a mass-spring net before the volume is built.
-// Optional "fit":"keep|stretch" (default keep) and "extent":e in (0,1] (default 1). stretch: the object covers
-// u ∈ [0, e] of the path (e = 1: the whole stroke, however long). keep: it keeps its proportions — its length is
-// scaled by the factor its height is (h ÷ the object's height along up_axis), so it covers u ∈ [0, min(e, u_L)] with
-// u_L where the contact curve F(u, ½, 0) has run that length (by arc length: the lattice's speed along u is not
-// uniform near its ends). Below the whole path an offset along u (anim.keyframe) walks the object along the stroke
-// (seed §2.4.3). The report gives the extent used ("extent") and the fit. An object with a glTF clip (anim.clip) is
-// embedded by the bounding box of its poses over the clip (64 samples), so no pose leaves the lattice.
-// The rays see every visible object except the one being placed and those listed in "ignore" (optional; the
-// editor lists the objects hidden in its viewport). Re-placing an already placed object starts
-// again from its undeformed (transformed) rest mesh. Undo restores the object as it was.
+// `place.sketch` — places an object along a stroke sketched over the scene (seed §2.3.1, Eq. 2.1–2.5). Fields:
+// declared in place_sketch.cpp (ParamSchema), listed in docs/commands.md. What the declaration cannot say:
+// the stroke is in viewport pixels (top-left origin) of the line's "camera", else of the last camera.set; the
+// profiles scale the half-width and height piecewise linearly along u (or over (u, v)) (seed Eq. 2.5); "springs"
+// relaxes the contact surface as a mass-spring net before the volume is built. fit stretch: the object covers
+// u ∈ [0, extent] of the path (extent 1: the whole stroke, however long). fit keep: it keeps its proportions — its
+// length is scaled by the factor its height is (h ÷ the object's height along up_axis), so it covers
+// u ∈ [0, min(extent, u_L)] with u_L where the contact curve F(u, ½, 0) has run that length (by arc length: the
+// lattice's speed along u is not uniform near its ends). Below the whole path an offset along u (anim.keyframe)
+// walks the object along the stroke (seed §2.4.3). The report gives the extent used ("extent") and the fit. An
+// object with a glTF clip (anim.clip) is embedded by the bounding box of its poses over the clip (64 samples), so no
+// pose leaves the lattice. The rays see every visible object except the one being placed and those listed in
+// "ignore" (the editor lists the objects hidden in its viewport). Re-placing an already placed object starts again
+// from its undeformed (transformed) rest mesh. Undo restores the object as it was.
 #pragma once
 
 #include <cstdint>
