@@ -356,24 +356,25 @@ void DdmPaintTool::draw_new_layer_fields(const core::SceneObject* o) {
   } else {
     if (!spec.tile_size) spec.tile_size = ddm_default_tile_size(o);
     const double s_min = 1e-6, s_max = 1e6;
-    if (ui::drag_scalar("Tile size", ImGuiDataType_Double, &*spec.tile_size, 0.002f, &s_min, &s_max, "%.4g",
-                        ImGuiSliderFlags_AlwaysClamp | ImGuiSliderFlags_Logarithmic) &&
+    const auto& size = *core::ddm_layer_schema(true).find("tile_size");
+    if (ui::drag_scalar(size.label.c_str(), ImGuiDataType_Double, &*spec.tile_size, float(size.ui_step), &s_min, &s_max,
+                        size.ui_format.c_str(), ImGuiSliderFlags_AlwaysClamp | ImGuiSliderFlags_Logarithmic) &&
         o)
       typed_tile_size_[o->name] = *spec.tile_size;  // the user's value for this object, kept when it is reselected
     ui::probe::item("ddm.tile_size");
     ui::probe::value("ddm.tile_size", std::to_string(*spec.tile_size));
-    ui::tooltip("Width of a tile in world units (object space); the count below is what Fill makes");
+    ui::tooltip((ui::param_tooltip(size.doc) + "\nThe count below is what Fill makes").c_str());
   }
   const double h_min = 1e-6, h_max = 10.0;
-  if (ui::drag_scalar("Height", ImGuiDataType_Double, &spec.height, 0.001f, &h_min, &h_max, "%.4g",
-                      ImGuiSliderFlags_AlwaysClamp) &&
+  const auto& height = *core::ddm_layer_schema(true).find("height");
+  if (ui::drag_scalar(height.label.c_str(), ImGuiDataType_Double, &spec.height, float(height.ui_step), &h_min, &h_max,
+                      height.ui_format.c_str(), ImGuiSliderFlags_AlwaysClamp) &&
       o)
     typed_height_[o->name] = spec.height;
   ui::probe::item("ddm.height");
   ui::probe::value("ddm.height", std::to_string(spec.height));
   ui::tooltip(
-      "World units per tile unit of height, along the surface normal (default: a third of the default tile size, "
-      "from the object's size)");
+      (ui::param_tooltip(height.doc) + "\nDefault: a third of the default tile size, from the object's size").c_str());
   const bool teapot = o && o->source == "primitive:teapot";
   const bool uvs = o && o->rest_mesh && !o->rest_mesh->uvs.empty();
   using Base = core::DdmBaseKind;
