@@ -1,8 +1,6 @@
-// `ddm.paint` — a brush stroke that adds tiles to (or erases them from) a DDM layer (seed ch. 5):
-//   {"cmd":"ddm.paint","object":"ID","layer":"NAME","stroke":[[px,py],...],"radius_px":r,"erase":false}
-//   optional: "camera" (as place.sketch / incision.draw: the view the stroke was drawn in; else the scene's camera,
-//   the last camera.set).
-// `stroke` is #S × 2 viewport pixels (top-left origin), S ≥ 1; `radius_px` the brush radius in the same pixels.
+// `ddm.paint` — a brush stroke that adds tiles to (or erases them from) a DDM layer (seed ch. 5). Fields: declared in
+// ddm_paint.cpp (ParamSchema), listed in docs/commands.md; the stroke and radius_px are viewport pixels (top-left
+// origin) of the line's "camera", else of the last camera.set.
 // The candidate cells are every cell of the layer's layout (ddm_layout_cells(layout, counts, #charts), or each chart's
 // own counts for a layer laid by tile_size, DdmLayer::chart_counts) on every chart of its base (uv bases: cells the
 // fill would prune are skipped, ddm_uv_cell_kept); at most kMaxDdmPaintCandidates of them in all, weighed from the
@@ -18,10 +16,8 @@
 // holds; cells already as asked change nothing (no error). The layer is rebuilt with ddm_layer_with_instances (maps
 // extended, mesh re-evaluated); undo restores the previous layer pointer (the instance set exactly).
 // When the object has no layer of that name, painting creates it (empty, then painted) from ddm.fill's fields, all
-// optional here (DdmLayerSpec, ddm_layer_spec.h): "tile" (default "thorn"), "tiles", "choice", "seed", "layout"
-// ("rect"), "counts" ([1,1]) or "tile_size" (not both), "height" (0.1), "base" ("limit"), "map_resolution",
-// "tile_scale", "tile_rotate_deg", "tile_shift", "color"; they are ignored when the layer exists (it keeps its own)
-// and logged back only when the line named any of them. Erasing needs the layer.
+// optional here (DdmLayerSpec, ddm_layer_spec.h); they are ignored when the layer exists (it keeps its own) and
+// logged back only when the line named any of them. Erasing needs the layer.
 // report.json stats: created (the layer was made by this stroke), touched, cells_added, cells_removed, tiles
 // (instances after), vertices (the layer's mesh), ms.
 // Errors (CommandError, field named; the scene is unchanged): unknown object, or one with an FFD / DFFD / clip

@@ -1,10 +1,7 @@
 // `dffd.split` — a global discontinuous FFD that splits an object around obstacles and re-forms it behind them
-// (seed §6.3.1–6.3.2, Fig. 6.1, 6.4, 6.7, 6.10, 6.11):
-//   {"cmd":"dffd.split","object":"ID","obstacles":["ID",...],"axis":"x|y|z","w_axis":"x|y|z","order":[o,o,o],
-//    "controls":[l,m,n],"kernel":"gaussian|bspline","kernel_width":k,"openings":"open|stitch|cap"}
-// optional: "fold":"reject|warn" (reject), "margin":world (1.05 × kernel_width), "clearance":world (0),
-//           "box":{"lo":[x,y,z],"hi":[x,y,z]} (the lattice box; default: obstacles grown by margin along axis and
-//           to contain the object across), "eps":param (1e-6).
+// (seed §6.3.1–6.3.2, Fig. 6.1, 6.4, 6.7, 6.10, 6.11). Fields: declared in dffd_split.cpp (ParamSchema), listed in
+// docs/commands.md; the lattice box defaults to the obstacles grown by margin along axis and to contain the object
+// across.
 // `axis` is the direction the object travels through the obstacles (the lattice's u), `w_axis` the lattice's w (the
 // slicing planes W_k are orthogonal to it; for vertical bars it is their length axis). The construction is
 // core::build_global_dffd (dffd_global.h); the object keeps its rest mesh and gets a DffdRig, evaluated (split,
