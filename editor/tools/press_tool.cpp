@@ -243,11 +243,17 @@ const core::SceneObject* PressTool::draw_object_combo(ToolContext& ctx) {
 double PressTool::draw_radius_field(ToolContext& ctx, const core::SceneObject* o, double diag) {
   double r = radius(ctx);
   if (r <= 0.0) r = diag > 0.0 ? kDefaultRadiusFraction * diag : 0.1;
+  const bool typed = params_.radius > 0.0 && o;  // a Default button follows the field: it narrows to leave room
+  if (typed) {
+    const ImGuiStyle& style = ImGui::GetStyle();
+    ImGui::SetNextItemWidth(ImGui::CalcItemWidth() - ImGui::CalcTextSize("Default").x - 2.0f * style.FramePadding.x -
+                            style.ItemSpacing.x);
+  }
   const std::string limited = ui::size_param_widget(core::LatticePressCommand::schema(), "radius", params_, diag, r,
                                                     radius_state_, "press.radius");
   if (!limited.empty())
     ctx.session.messages().warning("Press radius " + ui::short_number(radius_state_.typed) + ": " + limited);
-  if (params_.radius > 0.0 && o) {
+  if (typed) {
     ImGui::SameLine();
     if (ImGui::SmallButton("Default")) params_.radius = 0.0, radius_state_.limit.clear();
   }
