@@ -53,6 +53,8 @@ struct TraceLimits {
 constexpr int kCorrectorIterations = 8, kSeedIterations = 6, kMaxSteps = 1 << 16;
 // Cells per block axis: blocks are traced independently (in parallel) and their traces joined at the block faces.
 constexpr int kBlock = 16;
+// Cells per tile axis of the hidden-cell test's first answer (BlockTracer::hidden); divides kBlock.
+constexpr int kHiddenTile = 4;
 
 // The view in index space: the silhouette condition G·V = 0 in world coordinates is g·w = 0 with g the index-space
 // gradient and w = A⁻¹V (orthographic) or x − eye_index (perspective), A the linear part of index_to_world.

@@ -26,10 +26,11 @@ struct BlockScratch {
     std::int32_t trace, next;
     std::int32_t order;  // the point's number in its trace (in the order traced)
   };
-  std::vector<std::int32_t> head;      // per local cell: first Entry of the cell, −1 none
-  std::vector<unsigned char> visited;  // per local cell: a trace crossed it
-  std::vector<unsigned char> hidden;   // per local cell: 0 not asked yet, 1 seen, 2 hidden (Problem::hidden)
-  std::vector<std::uint32_t> touched;  // local cells to reset
+  std::vector<std::int32_t> head;          // per local cell: first Entry of the cell, −1 none
+  std::vector<unsigned char> visited;      // per local cell: a trace crossed it
+  std::vector<unsigned char> hidden;       // per local cell: 0 not asked yet, 1 seen, 2 hidden (Problem::hidden)
+  std::vector<unsigned char> hidden_tile;  // per local tile of kHiddenTile³ cells: as `hidden`, 2 = all its cells
+  std::vector<std::uint32_t> touched;      // local cells to reset
   std::vector<Entry> entries;
   void reset() {
     for (std::uint32_t c : touched) head[c] = -1, visited[c] = 0;
@@ -54,7 +55,11 @@ class BlockTracer {
     const std::size_t cells = static_cast<std::size_t>(kBlock) * kBlock * kBlock;
     if (s_.head.size() != cells) s_.head.assign(cells, -1), s_.visited.assign(cells, 0);
     s_.reset();
-    if (pb.hidden) s_.hidden.assign(cells, 0);
+    if (pb.hidden) {
+      constexpr int t = kBlock / kHiddenTile;
+      s_.hidden.assign(cells, 0);
+      s_.hidden_tile.assign(static_cast<std::size_t>(t) * t * t, 0);
+    }
   }
   ~BlockTracer() { s_.reset(); }
 
@@ -64,9 +69,25 @@ class BlockTracer {
 
   bool visited(const glm::ivec3& cell) const { return s_.visited[local(cell)] != 0; }
 
+  // Whether Problem::hidden hides the whole tile of kHiddenTile³ cells holding `cell` (asked once per tile and
+  // block). The ball holding the tile holds each cell's, so a hidden tile hides each of its cells (a nearer ball over
+  // more of the map); most cells of a view are decided so, before anything else is read about them.
+  bool tile_hidden(const glm::ivec3& cell) {
+    if (!pb_.hidden) return false;
+    constexpr int t = kBlock / kHiddenTile;
+    const glm::ivec3 tile = (cell - first_) / kHiddenTile;
+    unsigned char& ht = s_.hidden_tile[static_cast<std::size_t>(tile.x + t * (tile.y + t * tile.z))];
+    if (ht == 0) {
+      const glm::ivec3 lo = first_ + tile * kHiddenTile;
+      ht = pb_.hidden->hides(lo, glm::min(lo + kHiddenTile, last_)) ? 2 : 1;
+    }
+    return ht == 2;
+  }
+
   // Whether Problem::hidden hides `cell` (a cell of this block; asked once per cell and block). False without it.
   bool hidden(const glm::ivec3& cell) {
     if (!pb_.hidden) return false;
+    if (tile_hidden(cell)) return true;
     unsigned char& h = s_.hidden[local(cell)];
     if (h == 0) h = pb_.hidden->hides(cell, cell + 1) ? 2 : 1;
     return h == 2;

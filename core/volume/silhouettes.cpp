@@ -274,6 +274,11 @@ SilhouetteResult extract(const VolumeSpline& spline, const SingletonTable& table
       const std::uint32_t cell = filed->cells[e];
       const glm::ivec3 c = cell_coords(table, cell);
       if (tracer.visited(c)) continue;
+      // Behind the surface by its tile: decided before the singleton is read.
+      if (tracer.tile_hidden(c)) {
+        ++hidden_cells[blk];
+        continue;
+      }
       const Singleton& s = singles[cell];
       glm::dvec3 w = iv.v;
       double s_w = 0.0, c_w = 1.0;

@@ -77,7 +77,7 @@ struct SilhouetteResult {
   std::size_t candidates = 0;            // singletons that passed the range and cone tests
   std::size_t seeds = 0;                 // sub-cells that seeded Newton (traced cells seed nothing)
   std::size_t points = 0;                // converged points kept (= Σ polyline sizes)
-  std::size_t hidden_cells = 0;          // candidates that seeded nothing as hidden (SilhouetteParams::seed_hidden)
+  std::size_t hidden_cells = 0;          // cells holding the level that seeded nothing as hidden (seed_hidden false)
   std::size_t traced_from_previous = 0;  // traces started from the previous view's curves (SilhouetteSequence)
   double max_value_residual = 0.0;       // max |D − c| / range(D) over the points
   double max_dot_residual = 0.0;         // max |Ĝ·V̂| over the points (world-space unit vectors)
