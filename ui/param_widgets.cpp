@@ -66,9 +66,12 @@ std::string size_param_widget(const ParamWidget& w, const core::ParamFieldInfo& 
                       : w.step > 0.0              ? float(w.step)
                                                   : float(std::max(hi, 1e-3) * 1e-3);
   const std::string& label = w.label.empty() ? w.doc->name : w.label;
-  const bool changed = drag_scalar(label.c_str(), ImGuiDataType_Double, &typed, speed, nullptr, nullptr,
-                                   w.format.empty() ? "%.4g" : w.format.c_str());
+  std::string format = w.format.empty() ? "%.4g" : w.format;
+  if (!(*value > 0.0)) format += " (auto)";  // follows the object until typed
+  const bool changed =
+      drag_scalar(label.c_str(), ImGuiDataType_Double, &typed, speed, nullptr, nullptr, format.c_str());
   const bool done = ImGui::IsItemDeactivatedAfterEdit();
+  state.committed = done;
   if (limited) pop_limited_frame();
   probe::item(probe);
   probe::value(probe, std::to_string(shown));

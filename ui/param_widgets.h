@@ -37,13 +37,14 @@ bool param_widget(const ParamWidget& w, void* value);
 struct SizeFieldState {
   double typed = 0.0;
   std::string limit;
+  bool committed = false;  // an edit of the field ended this frame (the caller applies or re-runs then)
 };
 
 // Draws a size field (a number declared with object_size): `*value` in world units, ≤ 0 = unset and shown as
-// `shown_default`; drag, or one click and type. Each edit is limited as it is typed to the declared fractions of
-// `diagonal` (the object's bounding-box diagonal, world units; ≤ 0 without an object: [1e-3 (0 for a minimum
-// fraction of 0), 10]). Returns the reason when an edit has just ended limited (for the Log), else "". `probe` names
-// the item for GUI tests, with the values "<probe>" (the value shown) and "<probe>.limited" (state.limit).
+// `shown_default` (marked "auto"); drag, or one click and type. Each edit is limited as it is typed to the declared
+// fractions of `diagonal` (the object's bounding-box diagonal, world units; ≤ 0 without an object: [1e-3 (0 for a
+// minimum fraction of 0), 10]). Returns the reason when an edit has just ended limited (for the Log), else "". `probe`
+// names the item for GUI tests, with the values "<probe>" (the value shown) and "<probe>.limited" (state.limit).
 std::string size_param_widget(const ParamWidget& w, const core::ParamFieldInfo& info, double* value, double diagonal,
                               double shown_default, SizeFieldState& state, const std::string& probe);
 

@@ -19,7 +19,9 @@ namespace trispline::editor {
 
 namespace {
 constexpr int kCurveSamples = 64;  // G(v) samples shown while dragging
-constexpr double kDefaultWidth = 0.02, kDefaultDepth = 0.02, kDefaultOpening = 0.006;  // × bounding-box diagonal
+
+// The declared default of a size field of incision.draw, a fraction of the object's bounding-box diagonal.
+double default_fraction(const char* name) { return core::incision_schema().find(name)->object_size->default_fraction; }
 }  // namespace
 
 core::IncisionParams incision_tool_defaults() {
@@ -66,13 +68,13 @@ core::IncisionParams IncisionTool::resolved(const core::SceneObject* o) const {
     if (const auto it = typed_.find(o->name); it != typed_.end()) {
       if (it->second.width > 0.0) p.width = it->second.width;
       if (it->second.depth > 0.0) p.depth = it->second.depth;
-      if (it->second.opening >= 0.0) p.opening = it->second.opening;
+      if (it->second.opening > 0.0) p.opening = it->second.opening > 1e-9 ? it->second.opening : 0.0;  // typed 0
     }
   const double diag = o && o->world_mesh && !o->world_mesh->empty() ? bounds_of(*o->world_mesh).diagonal() : 0.0;
   if (diag > 0.0) {
-    if (p.width <= 0.0) p.width = kDefaultWidth * diag;
-    if (p.depth <= 0.0) p.depth = kDefaultDepth * diag;
-    if (p.opening < 0.0) p.opening = kDefaultOpening * diag;
+    if (p.width <= 0.0) p.width = default_fraction("width") * diag;
+    if (p.depth <= 0.0) p.depth = default_fraction("depth") * diag;
+    if (p.opening < 0.0) p.opening = default_fraction("opening") * diag;
   }
   return p;
 }
@@ -207,6 +209,7 @@ bool IncisionTool::rerun_last(ToolContext& ctx) {
     if (!o || !s.execute(incision_draw_line(last_object_, last_stroke_, resolved(o), last_view_))) {
       s.redo();  // the edited cut failed (the Log says why): put the previous one back, and its sizes in the panel
       typed_[last_object_] = last_typed_;
+      width_state_.limit.clear(), depth_state_.limit.clear(), opening_state_.limit.clear();  // not what is shown now
       return;
     }
     last_typed_ = typed_[last_object_];
@@ -223,51 +226,36 @@ std::string IncisionTool::hint() const {
 }
 
 void IncisionTool::draw_panel(ToolContext& ctx) {
-  // Sizes shown for the selected object (else the last one cut); unset ones are marked "auto".
+  // Sizes shown for the selected object (else the last one cut): incision.draw's declared size fields, each object
+  // with its own; unset ones follow the object ("auto"). A value outside what the object takes is limited, and the
+  // field says so (amber, the reason in its tooltip) and the Log once.
   const core::SceneObject* sel = ctx.session.scene().find(ctx.selected.empty() ? target_ : ctx.selected);
   const core::IncisionParams shown = resolved(sel);
-  auto format = [&](bool unset, double value) { return !unset ? "%.4g" : value > 0.0 ? "%.4g (auto)" : "auto"; };
   const double diag =
-      sel && sel->world_mesh && !sel->world_mesh->empty() ? bounds_of(*sel->world_mesh).diagonal() : 1.0;
-  const float speed = float(std::max(diag, 1e-6) * 1e-3);
-  const double lo = 1e-6;
-
-  // Each object keeps the sizes typed for it; others follow their own size until typed.
+      sel && sel->world_mesh && !sel->world_mesh->empty() ? bounds_of(*sel->world_mesh).diagonal() : 0.0;
   TypedSizes no_object;
   TypedSizes& typed = sel ? typed_[sel->name] : no_object;
-  const bool width_set = typed.width > 0.0 || params_.width > 0.0, depth_set = typed.depth > 0.0 || params_.depth > 0.0,
-             opening_set = typed.opening >= 0.0 || params_.opening >= 0.0;
+  const core::ParamSchema<core::IncisionParams>& schema = core::incision_schema();
   bool edited = false;
-  double width = shown.width, depth = shown.depth, opening = shown.opening;
-  if (ui::drag_scalar("Width", ImGuiDataType_Double, &width, speed, &lo, nullptr, format(!width_set, width)))
-    typed.width = std::max(width, lo);
-  ui::probe::item("incision.width");
-  edited |= ImGui::IsItemDeactivatedAfterEdit();
-  ui::tooltip(
-      "alpha: half-extent of the cutting lattice across the cut, world units (seed Eq. 6.2: P_ijk = G_j +\n"
-      "(l/2 - i) alpha S_j + (n/2 - k) beta N_j). Sets how far to each side the surface is pushed apart.\n"
-      "Default: 0.02 x the selected object's bounding-box diagonal");
-  if (ui::drag_scalar("Depth", ImGuiDataType_Double, &depth, speed, &lo, nullptr, format(!depth_set, depth)))
-    typed.depth = std::max(depth, lo);
-  ui::probe::item("incision.depth");
-  edited |= ImGui::IsItemDeactivatedAfterEdit();
-  ui::tooltip(
-      "beta: how deep below the surface the cut goes (along -N), world units (seed Eq. 6.2).\n"
-      "Default: 0.02 x the bounding-box diagonal");
-  const double zero = 0.0;
-  if (ui::drag_scalar("Opening", ImGuiDataType_Double, &opening, speed, &zero, nullptr, format(!opening_set, opening)))
-    typed.opening = std::max(opening, 0.0);
-  ui::probe::item("incision.opening");
-  ui::probe::value("incision.opening", std::to_string(resolved(sel).opening));
-  edited |= ImGui::IsItemDeactivatedAfterEdit();
-  ui::tooltip(
-      "kappa: gap between the two cut faces at the surface in the middle of the stroke, world units; it tapers to\n"
-      "zero at the cut's bottom and at both ends of the stroke (seed section 6.4). Default: 0.006 x the diagonal");
+  auto size_field = [&](const char* name, double shown_value, ui::SizeFieldState& state) {
+    const std::string limited =
+        ui::size_param_widget(schema, name, typed, diag, shown_value, state, std::string("incision.") + name);
+    if (!limited.empty())
+      ctx.session.messages().warning("Incision " + std::string(name) + " " + ui::short_number(state.typed) + ": " +
+                                     limited);
+    edited |= state.committed;
+  };
+  size_field("width", shown.width, width_state_);
+  size_field("depth", shown.depth, depth_state_);
+  size_field("opening", shown.opening, opening_state_);
+  const bool width_set = typed.width > 0.0 || params_.width > 0.0, depth_set = typed.depth > 0.0 || params_.depth > 0.0,
+             opening_set = typed.opening > 0.0 || params_.opening >= 0.0;
   if (width_set || depth_set || opening_set) {
     if (ImGui::SmallButton("Defaults")) {
       params_.width = params_.depth = 0.0;
       params_.opening = incision_tool_defaults().opening;
       typed = TypedSizes{};
+      width_state_.limit.clear(), depth_state_.limit.clear(), opening_state_.limit.clear();
       edited = true;
     }
     ui::tooltip("Back to sizes relative to the object (width, depth, opening)");
@@ -279,7 +267,6 @@ void IncisionTool::draw_panel(ToolContext& ctx) {
     ctx.session.messages().info("Incision sizes for '" + sel->name + "' apply to its next cut");
   if (last_is_top(ctx.session.history()) && sel && sel->name == last_object_)
     ImGui::TextColored(ui::colors::accent, "Editing the last cut of %s: size changes re-cut it", last_object_.c_str());
-  const core::ParamSchema<core::IncisionParams>& schema = core::incision_schema();
   ui::param_widget(schema, "walls", params_);
   ui::param_widget(schema, "order", params_);
   ui::row_label(schema.find("kernel")->label.c_str());

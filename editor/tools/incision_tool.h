@@ -25,6 +25,7 @@
 #include "editor/tools/stroke_gesture.h"
 #include "editor/tools/tool.h"
 #include "ui/key_pair_panel.h"
+#include "ui/param_widgets.h"
 
 namespace trispline::editor {
 
@@ -54,8 +55,8 @@ class IncisionTool : public Tool {
   const core::IncisionParams& params() const { return params_; }
   void set_params(const core::IncisionParams& p) { params_ = p; }
   // The parameters with the sizes typed in the panel for `object` (each object keeps its own), and unset width /
-  // depth / opening replaced by 0.02 / 0.02 / 0.006 × the bounding-box diagonal of `object`'s world_mesh (unchanged
-  // when it has none).
+  // depth / opening replaced by their declared object_size defaults (incision_schema: 0.02 / 0.02 / 0.006 × the
+  // bounding-box diagonal of `object`'s world_mesh; unchanged when it has none).
   core::IncisionParams resolved(const core::SceneObject* object) const;
   // Whether the last cut this tool made is the newest step of the history: a size edited in the panel then re-runs
   // it (undo + incision.draw with the new sizes, one undoable step); otherwise the Log says the sizes apply to the
@@ -84,11 +85,11 @@ class IncisionTool : public Tool {
   void clear_preview();
   bool last_is_top(const History& h) const;
 
-  // Sizes typed in the panel for one object (≤ 0, opening < 0: not typed, relative to the object).
-  struct TypedSizes {
-    double width = 0.0, depth = 0.0, opening = -1.0;
-  };
+  // Sizes typed in the panel for one object: width, depth and opening of an IncisionParams drawn by
+  // ui::size_param_widget (≤ 0: not typed, relative to the object; an opening typed as 0 is kept as 1e-12).
+  using TypedSizes = core::IncisionParams;
   std::map<std::string, TypedSizes> typed_;
+  ui::SizeFieldState width_state_, depth_state_, opening_state_;  // as typed, and why limited
   // The last cut this tool made (for re-running it when a size is edited).
   std::string last_object_;
   std::vector<glm::dvec2> last_stroke_;

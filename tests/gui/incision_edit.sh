@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
-# Editing a drawn incision: after a cut, typing a new Width and Opening in the Incision panel re-runs the cut with
-# them as one undoable step (History keeps one entry, the session log gets the re-run line with the typed sizes); an
-# opening the width cannot hold leaves the cut as it was and the Log says why; Ctrl+Z then takes the whole cut back.
-# Another object keeps its own sizes.
+# Editing a drawn incision: after a cut, typing a new Width and Opening in the Incision panel (incision.draw's
+# declared size fields) re-runs the cut with them as one undoable step (History keeps one entry, the session log gets
+# the re-run line with the typed sizes); an opening the width cannot hold leaves the cut as it was and the Log says
+# why; Ctrl+Z then takes the whole cut back. Another object keeps its own sizes.
 source "$(dirname "$0")/gui_lib.sh"
 cat > "$GUI_DIR/spheres.jsonl" <<'LOG'
 {"cmd":"scene.primitive","kind":"sphere","name":"s"}
@@ -46,11 +46,14 @@ gui_key Return
 gui_wait_logged '.cmd == "incision.draw" and .object == "s" and .width == 0.3 and .opening == 0.05' \
   "the cut re-run with the typed opening, keeping the typed width" 60
 gui_wait ".history.applied == $((n + 1))" "still one history entry"
-# An opening the width cannot hold: the cut stays as it was and the Log says why.
+# An opening the width cannot hold (limited first to 0.2 × the sphere's diagonal): the cut stays as it was and the Log
+# says why.
 gui_click_item incision.opening
 gui_wait '.typing' "Opening again"
 gui_type "5"
 gui_key Return
+gui_wait '.log | map(select(test("Incision opening 5: Limited to [0-9.]+: the opening is at most 0.2 x"))) | length == 1' \
+  "the typed opening is limited to what the sphere takes (its declared object_size), and the Log says so"
 gui_wait '.log | map(select(test("too wide for width"))) | length == 1' "the Log says why the edit cannot re-run the cut" 60
 gui_wait ".history.applied == $((n + 1)) and (.history.labels[-1] | test(\"opening 0.05\"))" \
   "the previous cut is back (still one entry)"
