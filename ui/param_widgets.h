@@ -48,14 +48,25 @@ struct SizeFieldState {
 std::string size_param_widget(const ParamWidget& w, const core::ParamFieldInfo& info, double* value, double diagonal,
                               double shown_default, SizeFieldState& state, const std::string& probe);
 
+// As above for field `name` of `schema`, its value at `value` (the params struct's member, or a value held apart,
+// such as an optional field's). "" (nothing drawn) for an undeclared field or one without object_size.
+template <class P>
+std::string size_param_widget(const core::ParamSchema<P>& schema, const std::string& name, double* value,
+                              double diagonal, double shown_default, SizeFieldState& state, const std::string& probe) {
+  const auto* f = schema.find(name);
+  if (!f || !f->object_size) return {};
+  ParamWidget w{schema.id(),           &f->doc,    f->label,    f->kind, f->range, &f->choices,
+                int(f->choice_member), f->ui_step, f->ui_format};
+  return size_param_widget(w, *f, value, diagonal, shown_default, state, probe);
+}
+
 template <class P>
 std::string size_param_widget(const core::ParamSchema<P>& schema, const std::string& name, P& params, double diagonal,
                               double shown_default, SizeFieldState& state, const std::string& probe) {
   const auto* f = schema.find(name);
-  if (!f || !f->member || !f->object_size || f->kind != core::ParamKind::Number) return {};
-  ParamWidget w{schema.id(),           &f->doc,    f->label,    f->kind, f->range, &f->choices,
-                int(f->choice_member), f->ui_step, f->ui_format};
-  return size_param_widget(w, *f, static_cast<double*>(f->member(params)), diagonal, shown_default, state, probe);
+  if (!f || !f->member || f->kind != core::ParamKind::Number) return {};
+  return size_param_widget(schema, name, static_cast<double*>(f->member(params)), diagonal, shown_default, state,
+                           probe);
 }
 
 // Draws field `name` of `params` as declared in `schema`. False (nothing drawn) for an undeclared or composite field.

@@ -305,8 +305,27 @@ void DdmPaintTool::set_layer_color(ToolContext& ctx, std::optional<glm::vec3> co
   ctx.session.execute(line);  // undoable; errors go to the Log panel
 }
 
-void DdmPaintTool::draw_new_layer_fields(const core::SceneObject* o) {
+// Tile size or height: ddm.fill's declared size field (ui::size_param_widget); "auto" until typed for the object,
+// limited to what the object takes (amber, the reason in its tooltip and the Log). `*value`: the layer spec's.
+void DdmPaintTool::draw_size_field(ToolContext& ctx, const core::SceneObject* o, const char* name, double* value,
+                                   double diag, std::map<std::string, double>& typed, ui::SizeFieldState& state) {
+  const bool own = defaults_for_ == "\x01given" || (o && typed.count(o->name));
+  double field = own ? *value : 0.0;  // ≤ 0: follows the object, shown as *value
+  const double before = field;
+  const std::string limited = ui::size_param_widget(core::ddm_layer_schema(true), name, &field, diag, *value, state,
+                                                    std::string("ddm.") + name);
+  if (!limited.empty())
+    ctx.session.messages().warning(std::string(name == std::string("height") ? "Tile height " : "Tile size ") +
+                                   ui::short_number(state.typed) + ": " + limited);
+  if (field > 0.0 && field != before) {
+    *value = field;
+    if (o) typed[o->name] = field;  // the user's value for this object, kept when it is reselected
+  }
+}
+
+void DdmPaintTool::draw_new_layer_fields(ToolContext& ctx, const core::SceneObject* o) {
   core::DdmLayerSpec& spec = params_.paint.spec;
+  const double diag = o && o->rest_mesh && !o->rest_mesh->empty() ? core::mesh_bounds(*o->rest_mesh).diagonal() : 0.0;
   std::string& tile = spec.tiles.front();  // the panel makes one-tile layers
   const bool generated = is_generated(tile);
   const bool open = ImGui::BeginCombo("Tile", generated ? tile.c_str() : "file");
@@ -355,26 +374,9 @@ void DdmPaintTool::draw_new_layer_fields(const core::SceneObject* o) {
     ui::tooltip("Cells along u and v of every chart (a limit base has three charts per triangle)");
   } else {
     if (!spec.tile_size) spec.tile_size = ddm_default_tile_size(o);
-    const double s_min = 1e-6, s_max = 1e6;
-    const auto& size = *core::ddm_layer_schema(true).find("tile_size");
-    if (ui::drag_scalar(size.label.c_str(), ImGuiDataType_Double, &*spec.tile_size, float(size.ui_step), &s_min, &s_max,
-                        size.ui_format.c_str(), ImGuiSliderFlags_AlwaysClamp | ImGuiSliderFlags_Logarithmic) &&
-        o)
-      typed_tile_size_[o->name] = *spec.tile_size;  // the user's value for this object, kept when it is reselected
-    ui::probe::item("ddm.tile_size");
-    ui::probe::value("ddm.tile_size", std::to_string(*spec.tile_size));
-    ui::tooltip((ui::param_tooltip(size.doc) + "\nThe count below is what Fill makes").c_str());
+    draw_size_field(ctx, o, "tile_size", &*spec.tile_size, diag, typed_tile_size_, tile_size_state_);
   }
-  const double h_min = 1e-6, h_max = 10.0;
-  const auto& height = *core::ddm_layer_schema(true).find("height");
-  if (ui::drag_scalar(height.label.c_str(), ImGuiDataType_Double, &spec.height, float(height.ui_step), &h_min, &h_max,
-                      height.ui_format.c_str(), ImGuiSliderFlags_AlwaysClamp) &&
-      o)
-    typed_height_[o->name] = spec.height;
-  ui::probe::item("ddm.height");
-  ui::probe::value("ddm.height", std::to_string(spec.height));
-  ui::tooltip(
-      (ui::param_tooltip(height.doc) + "\nDefault: a third of the default tile size, from the object's size").c_str());
+  draw_size_field(ctx, o, "height", &spec.height, diag, typed_height_, height_state_);
   const bool teapot = o && o->source == "primitive:teapot";
   const bool uvs = o && o->rest_mesh && !o->rest_mesh->uvs.empty();
   using Base = core::DdmBaseKind;
@@ -514,7 +516,7 @@ void DdmPaintTool::draw_panel(ToolContext& ctx) {
     ImGui::TextColored(ui::colors::dim, "The brush keeps the layer's own; these apply to Fill (which replaces it).");
     ImGui::PopTextWrapPos();
   }
-  draw_new_layer_fields(o);
+  draw_new_layer_fields(ctx, o);
   draw_estimate(o);
 
   ImGui::Separator();

@@ -24,6 +24,7 @@
 #include "editor/tools/stroke_gesture.h"
 #include "editor/tools/tool.h"
 #include "ui/ddm_anim_panel.h"
+#include "ui/param_widgets.h"
 
 namespace trispline::editor {
 
@@ -105,7 +106,9 @@ class DdmPaintTool : public Tool {
   void follow_selection(const ToolContext& ctx);
   void commit(ToolContext& ctx);
   void draw_layer_combo(ToolContext& ctx, const core::SceneObject* o);
-  void draw_new_layer_fields(const core::SceneObject* o);
+  void draw_new_layer_fields(ToolContext& ctx, const core::SceneObject* o);
+  void draw_size_field(ToolContext& ctx, const core::SceneObject* o, const char* name, double* value, double diag,
+                       std::map<std::string, double>& typed, ui::SizeFieldState& state);
   void draw_layer_color(ToolContext& ctx, const core::SceneObject& o, const core::DdmLayer& layer);
   void apply_object_defaults(const core::SceneObject* o);  // base and tile size for a newly chosen object
   void draw_estimate(const core::SceneObject* o);          // what Fill would make (ddm_fill_estimate), cached
@@ -120,7 +123,8 @@ class DdmPaintTool : public Tool {
   double tile_size_ = 0.0;          // the Tile size field's value while tiles are laid by counts (0: none yet)
   // Sizes the user typed, per object: kept when the object is chosen again; others follow the object's size.
   std::map<std::string, double> typed_tile_size_, typed_height_;
-  std::string estimate_key_;  // object, mesh and fill line the estimate below is for
+  ui::SizeFieldState tile_size_state_, height_state_;  // as typed, and why limited
+  std::string estimate_key_;                           // object, mesh and fill line the estimate below is for
   core::DdmFillEstimate estimate_;
   std::string estimate_error_;  // why there is no estimate (the error Fill would report)
   std::size_t ask_budget_ = 0;  // the budget the open "Fill anyway?" prompt was asked against (0: none open)
