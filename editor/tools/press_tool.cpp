@@ -19,7 +19,10 @@
 namespace trispline::editor {
 
 namespace {
-constexpr double kDefaultRadiusFraction = 0.1;     // of the object's bounding-box diagonal
+// The radius's declared default (lattice.press's object_size), a fraction of the object's bounding-box diagonal.
+double default_radius_fraction() {
+  return core::LatticePressCommand::schema().find("radius")->object_size->default_fraction;
+}
 constexpr double kDefaultStrengthFraction = 0.25;  // of the radius: like a Blender brush, relative to its size
 constexpr double kMinSpacingFraction = 0.25;       // path samples closer than radius/4 to the previous one are dropped
 
@@ -83,7 +86,7 @@ double PressTool::diagonal(const core::SceneObject& o) const {
 double PressTool::radius(const ToolContext& ctx) const {
   if (params_.radius > 0.0) return params_.radius;
   const core::SceneObject* o = target(ctx);
-  return o ? kDefaultRadiusFraction * diagonal(*o) : 0.0;
+  return o ? default_radius_fraction() * diagonal(*o) : 0.0;
 }
 
 double PressTool::strength(const ToolContext& ctx) const {
@@ -242,7 +245,7 @@ const core::SceneObject* PressTool::draw_object_combo(ToolContext& ctx) {
 // (amber, the reason in its tooltip) and the Log once. Returns the radius shown, world units.
 double PressTool::draw_radius_field(ToolContext& ctx, const core::SceneObject* o, double diag) {
   double r = radius(ctx);
-  if (r <= 0.0) r = diag > 0.0 ? kDefaultRadiusFraction * diag : 0.1;
+  if (r <= 0.0) r = diag > 0.0 ? default_radius_fraction() * diag : 0.1;
   const bool typed = params_.radius > 0.0 && o;  // a Default button follows the field: it narrows to leave room
   if (typed) {
     const ImGuiStyle& style = ImGui::GetStyle();
