@@ -8,6 +8,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include "core/volume/bezier_cell.h"
 
@@ -336,38 +337,54 @@ double value_cubic_sse2(const VolumeSpline& s, const glm::dvec3& x) {
 
 #endif
 
-}  // namespace
-
-double VolumeSpline::value(const glm::dvec3& x) const {
-  switch (order_) {
+// Calls f(std::integral_constant<int, K>{}) for an order K of 2, 3 or 4 (the spline's order per axis).
+template <class F>
+decltype(auto) with_order(int order, F&& f) {
+  switch (order) {
     case 2:
-      return value_k<2>(*this, x);
+      return f(std::integral_constant<int, 2>{});
     case 3:
-      return value_k<3>(*this, x);
-#if defined(__SSE2__)
+      return f(std::integral_constant<int, 3>{});
     default:
-      return value_cubic_sse2(*this, x);
-#else
-    default:
-      return value_k<4>(*this, x);
-#endif
+      return f(std::integral_constant<int, 4>{});
   }
 }
 
-VolumeJet VolumeSpline::jet(const glm::dvec3& x) const {
-  switch (order_) {
-    case 2:
-      return jet_k<2>(*this, x);
-    case 3:
-      return jet_k<3>(*this, x);
+// The tri-cubic value and jet: in SSE2 pairs where the target has them.
+double value_cubic(const VolumeSpline& s, const glm::dvec3& x) {
 #if defined(__SSE2__)
-    default:
-      return jet_cubic_sse2(*this, x);
+  return value_cubic_sse2(s, x);
 #else
-    default:
-      return jet_k<4>(*this, x);
+  return value_k<4>(s, x);
 #endif
-  }
+}
+
+VolumeJet jet_cubic(const VolumeSpline& s, const glm::dvec3& x) {
+#if defined(__SSE2__)
+  return jet_cubic_sse2(s, x);
+#else
+  return jet_k<4>(s, x);
+#endif
+}
+
+}  // namespace
+
+double VolumeSpline::value(const glm::dvec3& x) const {
+  return with_order(order_, [&](auto k) {
+    if constexpr (k == 4)
+      return value_cubic(*this, x);
+    else
+      return value_k<k>(*this, x);
+  });
+}
+
+VolumeJet VolumeSpline::jet(const glm::dvec3& x) const {
+  return with_order(order_, [&](auto k) {
+    if constexpr (k == 4)
+      return jet_cubic(*this, x);
+    else
+      return jet_k<k>(*this, x);
+  });
 }
 
 glm::dvec3 VolumeSpline::world_gradient(const glm::dvec3& g) const { return gradient_to_world_ * g; }
@@ -400,14 +417,7 @@ void bezier_coefficients_k(const VolumeSpline& s, const std::array<double, 16>& 
 }  // namespace
 
 void VolumeSpline::bezier_coefficients(int s0, int s1, int s2, double* out) const {
-  switch (order_) {
-    case 2:
-      return bezier_coefficients_k<2>(*this, to_bezier_, s0, s1, s2, out);
-    case 3:
-      return bezier_coefficients_k<3>(*this, to_bezier_, s0, s1, s2, out);
-    default:
-      return bezier_coefficients_k<4>(*this, to_bezier_, s0, s1, s2, out);
-  }
+  with_order(order_, [&](auto k) { bezier_coefficients_k<k>(*this, to_bezier_, s0, s1, s2, out); });
 }
 
 }  // namespace trispline::core
