@@ -185,13 +185,7 @@ tinygltf::Primitive add_primitive(tinygltf::Model& model, const TriMesh& m, cons
   std::vector<std::uint32_t> idx(m.triangles.size() * 3);
   for (std::size_t f = 0; f < m.triangles.size(); ++f)
     for (int c = 0; c < 3; ++c) idx[3 * f + c] = m.triangles[f][c];
-  tinygltf::Accessor ia;
-  ia.bufferView = add_view(model, idx.data(), idx.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-  ia.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-  ia.type = TINYGLTF_TYPE_SCALAR;
-  ia.count = idx.size();
-  model.accessors.push_back(ia);
-  prim.indices = static_cast<int>(model.accessors.size()) - 1;
+  prim.indices = gltf_model::add_index_accessor(model, idx);
   prim.material = gltf_model::add_material(model, name, color);
   return prim;
 }
@@ -210,13 +204,7 @@ void split_by_material(tinygltf::Model& model, gltf_materials::GltfMaterialWrite
   int fallback = -1;
   for (const auto& [slot, idx] : faces) {
     tinygltf::Primitive p = prim;
-    tinygltf::Accessor ia;
-    ia.bufferView = add_view(model, idx.data(), idx.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-    ia.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-    ia.type = TINYGLTF_TYPE_SCALAR;
-    ia.count = idx.size();
-    model.accessors.push_back(ia);
-    p.indices = static_cast<int>(model.accessors.size()) - 1;
+    p.indices = gltf_model::add_index_accessor(model, idx);
     if (slot == kMaterialInside) {
       p.material = gltf_model::add_material(model, name + ".inside", glm::vec3(0.62f, 0.10f, 0.08f));
     } else if (slot < materials.size()) {

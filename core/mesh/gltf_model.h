@@ -4,6 +4,7 @@
 
 #include <tiny_gltf.h>
 
+#include <cstdint>
 #include <filesystem>
 #include <glm/glm.hpp>
 #include <string>
@@ -18,6 +19,10 @@ std::vector<int> root_nodes(const tinygltf::Model& model);
 // Appends raw bytes to buffer 0 (padded to 4-byte alignment first) as a new buffer view; returns its index.
 // target: GL buffer target (e.g. TINYGLTF_TARGET_ARRAY_BUFFER) or 0 for none.
 int add_view(tinygltf::Model& model, const void* data, std::size_t bytes, int target);
+
+// Appends `idx` (vertex indices, 3 per triangle) as a new element-array view and an unsigned-int scalar accessor over
+// it; returns the accessor's index (a primitive's `indices`).
+int add_index_accessor(tinygltf::Model& model, const std::vector<std::uint32_t>& idx);
 
 // Appends the project's material (PBR base colour `rgb` in linear [0,1], metallic 0, roughness 0.6, double-sided)
 // named `name`; returns its index.

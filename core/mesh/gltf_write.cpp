@@ -14,7 +14,6 @@
 #include "core/mesh/path_quote.h"
 
 namespace trispline::core {
-namespace {}  // namespace
 
 namespace {
 
@@ -116,11 +115,6 @@ tinygltf::Primitive vertex_primitive(tinygltf::Model& model, const TriMesh& m, c
   return prim;
 }
 
-int index_accessor(tinygltf::Model& model, const std::vector<std::uint32_t>& idx) {
-  return add_accessor(model, add_view(model, idx.data(), idx.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
-                      TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, idx.size());
-}
-
 // The faces of `faces` (indices into `src`'s vertices, which [first, first + count) holds) as primitives of `mesh`,
 // vertices through `xf`. Without materials: one "<name>" primitive of `color`, and "<name>.inside" for the
 // kMaterialInside faces, sharing the vertex accessors (as ever). With materials: one primitive per slot used, in the
@@ -177,7 +171,7 @@ void add_triangle_primitives(tinygltf::Model& model, gltf_materials::GltfMateria
                                                    ids.begin()));
       p = vertex_primitive(model, src, ids, xf);
     }
-    p.indices = index_accessor(model, idx);
+    p.indices = gltf_model::add_index_accessor(model, idx);
     if (slot == kMaterialInside) {
       p.material = gltf_model::add_material(model, gn.name + ".inside", gn.inside_color);
     } else if (gltf_material && slot < gltf_material->size()) {
@@ -333,6 +327,11 @@ int add_view(tinygltf::Model& model, const void* data, std::size_t bytes, int ta
   buf.insert(buf.end(), p, p + bytes);
   model.bufferViews.push_back(view);
   return static_cast<int>(model.bufferViews.size()) - 1;
+}
+
+int add_index_accessor(tinygltf::Model& model, const std::vector<std::uint32_t>& idx) {
+  return add_accessor(model, add_view(model, idx.data(), idx.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
+                      TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, idx.size());
 }
 
 int add_material(tinygltf::Model& model, const std::string& name, const glm::vec3& rgb) {
