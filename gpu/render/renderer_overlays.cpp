@@ -9,6 +9,27 @@ namespace trispline::gpu {
 
 using detail::Frame;
 
+namespace {
+
+// An overlay over the surface: depth-tested (ties drawn), no depth writes, both faces.
+void overlay_depth_state() {
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LEQUAL);
+  glDepthMask(GL_FALSE);
+  glDisable(GL_CULL_FACE);
+}
+
+// `program` (built with DEPTH_PULL) in use for the frame's view, pulled towards the eye by `depth_pull` (a fraction
+// of the eye distance) so that it is not lost in z-fighting with the surface under it.
+void use_pulled(ShaderProgram& program, const Frame& f, float depth_pull) {
+  program.use();
+  program.set("u_view_proj", f.view_proj);
+  program.set("u_eye", f.eye);
+  program.set("u_depth_pull", depth_pull);
+}
+
+}  // namespace
+
 void detail::StreamBuffer::init(bool screen_space) {
   vao = VertexArray::create();
   vbo = Buffer::create();
@@ -65,23 +86,14 @@ void Renderer::Impl::draw_contact_surfaces(const Frame& f) {
   for (const core::SceneObject& obj : f.scene.objects())
     if (obj.visible && obj.ffd) todo.push_back(&contact_surface(obj.ffd, f.style()));
   if (todo.empty()) return;
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LEQUAL);
-  glDepthMask(GL_FALSE);
-  glDisable(GL_CULL_FACE);
-  sheet.use();
-  sheet.set("u_view_proj", f.view_proj);
-  sheet.set("u_eye", f.eye);
-  sheet.set("u_depth_pull", kDepthPull);
+  overlay_depth_state();
+  use_pulled(sheet, f, kDepthPull);
   sheet.set("u_tint", f.style().contact_surface_color);
   for (detail::CachedContactSurface* c : todo) {
     c->surface.draw_triangles();
     ++stats.contact_surfaces_drawn;
   }
-  pulled_lines.use();
-  pulled_lines.set("u_view_proj", f.view_proj);
-  pulled_lines.set("u_eye", f.eye);
-  pulled_lines.set("u_depth_pull", kDepthPull);
+  use_pulled(pulled_lines, f, kDepthPull);
   pulled_lines.set("u_point_px", 1.0f);
   pulled_lines.set("u_alpha", 1.0f);
   for (detail::CachedContactSurface* c : todo) {
@@ -215,14 +227,8 @@ void Renderer::Impl::pass_world_overlays(const Frame& f) {
     constexpr float kDepthPull = 0.002f;  // fraction of the eye distance
     glEnable(GL_BLEND);
     glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LEQUAL);
-    glDepthMask(GL_FALSE);
-    glDisable(GL_CULL_FACE);
-    pulled_lines.use();
-    pulled_lines.set("u_view_proj", f.view_proj);
-    pulled_lines.set("u_eye", f.eye);
-    pulled_lines.set("u_depth_pull", kDepthPull);
+    overlay_depth_state();
+    use_pulled(pulled_lines, f, kDepthPull);
     pulled_lines.set("u_point_px", 1.0f);
     pulled_lines.set("u_alpha", 1.0f);
     for (const ColoredTrianglesOverlay& t : overlays.colored_triangles) {
