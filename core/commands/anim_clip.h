@@ -1,13 +1,11 @@
-// Animation commands (seed §2.4.3: objects walking along the sketched path; two-level animation with a glTF clip).
-//
-//   {"cmd":"anim.clip","object":"ID","path":"file.gltf","clip":"NAME|#i","speed":1,"start_frame":F,"loop":true}
-//       Attaches a glTF animation (core::MeshClip: morph targets, skins) to an object loaded from the same file (the
-//       vertex counts must agree): the clip poses the rest mesh at every scene time and the FFD warps each pose
-//       (two-level animation). clip "" or omitted = the file's first animation; speed > 0 (clip seconds per scene
-//       second); start_frame: the timeline frame at which the clip is at its time 0 (default: timeline start).
-//       {"cmd":"anim.clip","object":"ID","remove":true} detaches the clip.
-// Errors (CommandError, field named): unknown object, clip file without animations ("path"), unknown clip ("clip"),
-// vertex count mismatch ("path"), an object with a refined mesh.
+// `anim.clip` — attaches a glTF animation (core::MeshClip: morph targets, skins) to an object loaded from the same
+// file, or detaches it (seed §2.4.3: two-level animation with a glTF clip). Fields: declared in anim_clip.cpp
+// (ParamSchema), listed in docs/commands.md. The vertex counts must agree: the clip poses the rest mesh at every scene
+// time and the FFD warps each pose (two-level animation). `clip` names the clip, or gives its index as "#i"; speed is
+// clip seconds per scene second; start_frame is the timeline frame at which the clip is at its time 0.
+// Errors beyond the declared ranges (CommandError, field named): unknown object, a clip to remove that the object does
+// not have ("object"); clip file without animations ("path"), unknown clip ("clip"), vertex count mismatch, e.g. an
+// object with a refined mesh ("path").
 #pragma once
 
 #include <optional>

@@ -1,12 +1,10 @@
-// Animation commands (seed §2.4.3: objects walking along the sketched path; two-level animation with a glTF clip).
-//
-//   {"cmd":"anim.keyframe","object":"ID","frame":F,"offset":[du,dv,dw],"interpolation":"linear|constant|smooth"}
-//       Keys the object's FFD parameter offset (parameter units; du moves it along the stroke) at timeline frame F
-//       (converted to scene time with the current timeline: (F − start)/fps seconds; F may lie outside the range).
-//       "u":du may replace "offset" (v = w = 0). A key at the same time is replaced. interpolation (default linear)
-//       shapes the segment that starts at this key. {"cmd":"anim.keyframe","object":"ID","frame":F,"remove":true}
-//       deletes the key at F (error when there is none).
-// Errors (CommandError, field named): unknown object, object without an FFD, NaN offsets, no key to remove.
+// `anim.keyframe` — keys (or deletes a key of) an object's FFD parameter offset (seed §2.4.3: objects walking along
+// the sketched path). Fields: declared in anim_keyframe.cpp (ParamSchema), listed in docs/commands.md. du moves the
+// object along the stroke. The frame F is converted to scene time with the current timeline: (F − start)/fps seconds;
+// F may lie outside the range. "u" alone keys [u, 0, 0]; "offset" wins when both are given. A key at the same time
+// is replaced.
+// Errors beyond the declared ranges (CommandError, field named): unknown object, object without an FFD or DFFD
+// ("object"), no key to remove ("frame").
 #pragma once
 
 #include <optional>

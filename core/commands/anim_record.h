@@ -1,20 +1,16 @@
-// `anim.record` — asks for the timeline's frames to be recorded (seed §2.4.3 animation sequences):
-//   {"cmd":"anim.record","out":"DIR","format":"png|exr","frames":[A,B],"glb":true,"mp4":true,"width":W,"height":H}
-// Every field is optional: out "" = the caller's default folder (the editor's "<log stem>_record/", replay's --out);
-// format "png" (8-bit RGBA) or "exr" (half RGBA, linear); frames [A, B] timeline frame numbers, inclusive (default:
-// the whole timeline); glb/mp4 (default true): also write animation.glb / animation.mp4; width/height pixels in
-// [1, 16384], both or neither, at most kMaxRecordPixels in all (default: the camera's viewport); the recorder also
-// checks the size against the GL implementation's limits (GL_MAX_RENDERBUFFER_SIZE, GL_MAX_VIEWPORT_DIMS);
-// camera (camera.set's fields, default: the scene camera — the last camera.set, else one framing the scene) the view
-// every frame is rendered from (the Record dialog's "Current view").
+// `anim.record` — asks for the timeline's frames to be recorded (seed §2.4.3 animation sequences). Fields: declared
+// in anim_record.cpp (ParamSchema), listed in docs/commands.md. The caller's default folder is the editor's
+// "<log stem>_record/" or replay's --out; the scene camera is the last camera.set, else one framing the scene. Beyond
+// the declared sizes the recorder checks the frame against the GL implementation's limits (GL_MAX_RENDERBUFFER_SIZE,
+// GL_MAX_VIEWPORT_DIMS).
 //
 // The command does not change the scene: redo() checks the request against the scene's timeline and keeps it
 // (request()), and whoever executed it (the editor's Record button, replay) runs editor::Recorder with it. Undo is a
 // no-op; the command is in the log so that replaying a session records what the artist recorded. A FileOutput
 // (core/commands/file_output.h): whoever executes it records only when writes_files() (Open and crash recovery
 // replay it without recording; headless replay records under --out).
-// Errors (CommandError, field named): frames outside the timeline or A > B ("frames"), unknown format ("format"),
-// bad size ("width"/"height"), wrong field types.
+// Errors beyond the declared ranges (CommandError, field named): frames outside the timeline or A > B ("frames"),
+// width without height or the other way round ("width"/"height"), more than kMaxRecordPixels in all ("width").
 #pragma once
 
 #include <cstdint>

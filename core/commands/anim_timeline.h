@@ -1,9 +1,8 @@
-// Animation commands (seed §2.4.3: objects walking along the sketched path; two-level animation with a glTF clip).
-//
-//   {"cmd":"anim.timeline","fps":24,"start":1,"end":120}
-//       The scene's frame range and rate (core::Timeline). fps in [0.01, 240]; 0 ≤ start ≤ end ≤ 100000. Omitted fields
-//       keep their current value. Undo restores the previous timeline.
-// Errors (CommandError, field named): non-finite numbers, fps or range out of bounds.
+// `anim.timeline` — the scene's frame range and rate (core::Timeline; seed §2.4.3 animation sequences). Fields:
+// declared in anim_timeline.cpp (ParamSchema), listed in docs/commands.md. Omitted fields keep their current value.
+// Undo restores the previous timeline.
+// Errors beyond the declared ranges (CommandError, field named): none of fps, start, end given ("fps"); an end before
+// the start once the line is applied to the current timeline ("end", or "start" when only start is given).
 #pragma once
 
 #include <optional>

@@ -1,24 +1,16 @@
 // `ddm.animate` — a DDM layer's animation (seed §5.4.2): texture-space offset of its tiles and metamorphosis
 // between two tiles of the same topology (Eq. 5.3), played on the timeline and recorded like any animation.
-//
-//   {"cmd":"ddm.animate","object":"ID","layer":"NAME","morph_tile":"flower","alpha_keys":[[F,α],...],
-//    "offset_keys":[[F,du,dv],...],"offset_velocity":[du,dv],"alpha":a,"interpolation":"linear|constant|smooth"}
-//   Every field but object/layer is optional; a given field replaces that part of the layer's animation, the others
-//   are kept. {"cmd":"ddm.animate","object":"ID","layer":"NAME","clear":true} removes all of it.
-//   morph_tile   the partner of the layer's tile (a generated tile or a mesh file, as ddm.fill's "tile"; logged
-//                absolute, relative in saved logs); "morph_tiles":[…] gives one per tile of a several-tile layer;
-//                "" removes the metamorphosis. Each must have its tile's vertex count and triangles.
-//   alpha_keys   [timeline frame, α] pairs (frames converted with the current timeline, like anim.keyframe);
-//                V = V1·(1 − α) + V2·α with renormalised normals; α outside [0, 1] extrapolates. Without keys the
-//                layer shows `alpha` (default 0).
-//   offset_keys  [frame, du, dv]: the tiles' texture-space offset (chart parameter units; on the teapot body's
-//                periodic chart du = 1 is one turn round the pot), plus offset_velocity·t (units per second).
-//   interpolation  of the keys given in this line (default linear).
-//   The layer's mesh is re-evaluated at scene time 0; scene_at_time evaluates it at any time (replay --time,
-//   anim.record), the renderer plays it on the GPU.
-// Errors (CommandError, field named; the scene is unchanged): unknown object or layer, morph tile of another
-// topology or unreadable ("morph_tile"), alpha keys without a morph tile ("alpha_keys"), non-finite numbers, keys
-// that are not [F, α] / [F, du, dv] lists, two keys on one frame.
+// Fields: declared in ddm_animate.cpp (ParamSchema), listed in docs/commands.md. A field given replaces that part of
+// the layer's animation, the others are kept. Morph tiles are logged absolute, relative in saved logs; each must have
+// its tile's vertex count and triangles. The keys' frames are converted with the current timeline, like
+// anim.keyframe's. The metamorphosis is V = V1·(1 − α) + V2·α with renormalised normals; α outside [0, 1]
+// extrapolates. The offset at time t is the offset keys' value plus offset_velocity·t; on the teapot body's periodic
+// chart du = 1 is one turn round the pot.
+// The layer's mesh is re-evaluated at scene time 0; scene_at_time evaluates it at any time (replay --time,
+// anim.record), the renderer plays it on the GPU.
+// Errors beyond the declared ranges (CommandError, field named; the scene is unchanged): unknown object or layer,
+// morph tile of another topology, unreadable, or not one per tile of the layer ("morph_tile"), alpha keys without a
+// morph tile ("alpha_keys"), two keys on one frame.
 // report.json: alpha_keys, offset_keys, morph (bool), vertices.
 #pragma once
 

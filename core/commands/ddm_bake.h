@@ -1,11 +1,10 @@
-// `ddm.bake` — a layer as an ordinary mesh object (for export and for use elsewhere):
-//   {"cmd":"ddm.bake","object":"ID","layer":"NAME","name":"NEW_ID"}
-//   optional "frame":F (default: the layer at scene time 0) — the layer's animation at that timeline frame.
-//   The new object's mesh is the layer's in world units (the object's transform applied), identity transform, the
-//   object's colour; instances one after another, each in the tile's own vertex order. scene.glb then holds it.
-//   report.json: vertices, triangles.
-// Errors (CommandError, field named; the scene is unchanged): unknown object ("object"), no such layer ("layer"),
-// name empty or taken ("name").
+// `ddm.bake` — a layer as an ordinary mesh object (for export and for use elsewhere). Fields: declared in
+// ddm_bake.cpp (ParamSchema), listed in docs/commands.md.
+// The new object's mesh is the layer's (its animation at `frame`, else at scene time 0) in world units (the object's
+// transform applied), identity transform, the object's colour; instances one after another, each in the tile's own
+// vertex order. scene.glb then holds it. report.json: vertices, triangles.
+// Errors beyond the declared ranges (CommandError, field named; the scene is unchanged): unknown object ("object"),
+// no such layer ("layer"), name empty or taken ("name").
 #pragma once
 
 #include <optional>
@@ -34,9 +33,5 @@ class DdmBakeCommand : public DeclaredCommand<DdmBakeCommand, DdmBakeParams, Sna
   std::string target() const override { return p_.name; }
   std::optional<SceneObject> build(const Scene& scene) override;
 };
-
-// {"cmd":"ddm.color","object":ID,"layer":NAME,"color":[r,g,b] | null}: sets a layer's own colour (linear RGB, each in
-// [0, 1]) or, with null, makes it take its object's colour again. Only the colour changes (the tiles are shared).
-// Errors (field named, scene unchanged): unknown object, no such layer, a colour out of range.
 
 }  // namespace trispline::core

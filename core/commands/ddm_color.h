@@ -1,5 +1,5 @@
-// `ddm.color` — a tile layer's own colour, or its object's again:
-//   {"cmd":"ddm.color","object":"ID","layer":"NAME","color":[r,g,b] | null}   (linear RGB in [0, 1])
+// `ddm.color` — a tile layer's own colour, or its object's again. Fields: declared in ddm_color.cpp (ParamSchema),
+// listed in docs/commands.md.
 // Tiles, maps and mesh stay shared with the previous state. Errors: unknown object ("object"), no such layer ("layer").
 #pragma once
 
@@ -26,8 +26,5 @@ class DdmColorCommand : public ObjectSnapshotCommand<DdmColorCommand, DdmColorPa
  protected:
   std::optional<SceneObject> build(const Scene& scene) override;
 };
-
-// {"cmd":"ddm.remove","object":ID,"layer":NAME}: deletes a tile layer (its tiles, maps and animation); undo brings it
-// back as it was. Errors (field named, scene unchanged): unknown object, no such layer.
 
 }  // namespace trispline::core

@@ -1,5 +1,4 @@
-// `ddm.remove` — deletes a tile layer:
-//   {"cmd":"ddm.remove","object":"ID","layer":"NAME"}
+// `ddm.remove` — deletes a tile layer. Fields: declared in ddm_remove.cpp (ParamSchema), listed in docs/commands.md.
 // report.json: tiles, vertices (of the removed layer). Errors: unknown object ("object"), no such layer ("layer").
 #pragma once
 

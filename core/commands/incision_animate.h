@@ -1,18 +1,14 @@
 // `incision.animate` — an incision's opening keyed on the timeline (seed §6.4, Eq. 6.2's opening κ scaled over time),
 // through the object's per-vertex morph channel (SceneObject::morph, made by incision.draw): at opening s the surface
 // is closed + s·(cut − closed) — s = 0 the cut closed (the two faces touching), s = 1 the opening incision.draw made.
-//
-//   {"cmd":"incision.animate","object":"ID","opening_keys":[[F,s],...],"interpolation":"linear|constant|smooth"}
-//   {"cmd":"incision.animate","object":"ID","clear":true}    back to fully open, no keys
-//   opening_keys  [timeline frame, s] pairs (frames converted with the current timeline, like anim.keyframe); s is a
-//                 fraction of the drawn opening, finite, any real (outside [0, 1] extrapolates; below 0 the faces
-//                 pass through each other). One key holds that opening at every time.
-//   The object's world mesh is re-evaluated at scene time 0; scene_at_time evaluates it at any time (replay --time,
-//   anim.record, animation.glb), the editor plays it on the CPU. Tile layers on the object follow (ddm_follow.h).
-// Errors (CommandError, field named; the scene is unchanged): unknown object, an object without an incision's channel
-// or with an FFD / DFFD ("object"), keys that are not [F, s] pairs, non-finite or |s| > 100, none, or two on
-// one frame
-// ("opening_keys").
+// Fields: declared in incision_animate.cpp (ParamSchema, keyed_weight_schema in anim_keys.cpp), listed in
+// docs/commands.md. The keys' frames are converted with the current timeline, like anim.keyframe's; s outside [0, 1]
+// extrapolates (below 0 the faces pass through each other). One key holds that opening at every time.
+// The object's world mesh is re-evaluated at scene time 0; scene_at_time evaluates it at any time (replay --time,
+// anim.record, animation.glb), the editor plays it on the CPU. Tile layers on the object follow (ddm_follow.h).
+// Errors beyond the declared ranges (CommandError, field named; the scene is unchanged): unknown object, an object
+// without an incision's channel or with an FFD / DFFD ("object"); keys non-finite or |s| > 100, none, or two on one
+// frame ("opening_keys").
 // report.json: keys, opening_at_start.
 #pragma once
 

@@ -1,23 +1,18 @@
 // `incision.draw` — a cut of chosen shape, depth and opening drawn on an object's surface (seed §6.4, Eq. 6.2,
-// Fig. 6.5, 6.6, 6.8; core/incision/incision.h):
-//   {"cmd":"incision.draw","object":"ID","stroke":[[px,py],...],"width":a,"depth":b,"opening":c,"walls":true|false,
-//    "order":3,"controls":[l,m,n],"kernel":"gaussian|bspline","wall_rows":4}
-// `stroke` is in viewport pixels of the line's optional "camera" object (the same fields as camera.set; the editor's
-// Incision tool writes the view it was drawn in) or else of the scene's camera (the last camera.set), like
-// place.sketch; each pixel's ray
-// is cast against the object alone (misses dropped). width, depth, opening are world units; order, controls,
-// kernel and wall_rows are optional (defaults: 3; l = 7, m = clamp(#hits/3, order, 24), n = 5; gaussian; 4).
+// Fig. 6.5, 6.6, 6.8; core/incision/incision.h). Fields: declared in incision_draw.cpp (ParamSchema: incision_schema
+// for the cut's shape), listed in docs/commands.md.
+// The stroke is in viewport pixels of the line's "camera" (the editor's Incision tool writes the view it was drawn
+// in), else of the last camera.set, like place.sketch; each pixel's ray is cast against the object alone (misses
+// dropped).
 // The cut is computed on the object's world mesh (T(rest)) and mapped back to object space (positions by T⁻¹,
 // normals by the inverse transpose); vertices the cut does not move keep their rest values bit for bit.
 // walls = true adds kMaterialInside faces (the object's inside colour) so the result has no boundary edges;
 // walls = false leaves one new boundary loop per incision. Several incisions compose; undo restores bit for bit.
 // report.json stats: hits, embedded_vertices, newton_fallbacks, cut_edges, split_faces, tips, wall_faces,
 // vertices_before, vertices_after, ms.
-// Errors (CommandError, field named; the scene is unchanged): unknown object, or one with an FFD / DFFD / clip
-// ("object"); fewer than 2 stroke points, non-finite points, a stroke that misses the surface or cuts no edge
-// ("stroke"); no camera.set ("camera"); width ≤ 0 ("width"); depth ≤ 0 ("depth"); opening < 0 or so wide that
-// the lattice folds ("opening"); order outside 2..4 ("order"); bad controls ("controls"); bad kernel ("kernel");
-// wall_rows outside 1..32 ("wall_rows").
+// Errors beyond the declared ranges (CommandError, field named; the scene is unchanged): unknown object, or one with
+// an FFD / DFFD / clip ("object"); a stroke that misses the surface or cuts no edge ("stroke"); no camera.set
+// ("camera"); an opening so wide that the lattice folds ("opening").
 #pragma once
 
 #include <glm/glm.hpp>

@@ -3,9 +3,8 @@
 // one full turn, so the object travels around the ring forever; on other axes the parameters clamp at the domain's
 // ends. Playback evaluates the moving offset in the vertex shader (glsl_vertex path); the object's geometry for
 // export is the t = 0 pose (replay --time T exports the pose at T).
-//   {"cmd":"lattice.animate_offset","object":"ID","offset":[du,dv,dw],"velocity":[u/s,v/s,w/s]}
-// offset: parameter units (default [0,0,0]); velocity: parameter units per second (default [0,0,0] = still).
-// Errors (CommandError, field named): unknown object, object without an FFD, non-finite values, |velocity| > 100.
+// Fields: declared in lattice_animate_offset.cpp (ParamSchema), listed in docs/commands.md.
+// Errors beyond the declared ranges (CommandError, field named): unknown object, object without an FFD (`object`).
 #pragma once
 
 #include "core/commands/declared_command.h"

@@ -1,10 +1,8 @@
-// A pulling tool on a placed object's control lattice (seed §2.4.1).
-//
-// `lattice.pull_column` — pulls (d > 0) or pushes (d < 0) a contact control point P_ij0 along V_P and moves its whole
-// column with it by the same vector:
-//   {"cmd":"lattice.pull_column","object":"ID","column":[i,j],"distance":d}      d world units
-// Errors (CommandError, field named): unknown object / no lattice / a column of zero length (`object`), column
-// outside the lattice (`column`). stats(): moved, max_displacement (world units), ms_evaluate.
+// `lattice.pull_column` — a pulling tool on a placed object's control lattice (seed §2.4.1): pulls (d > 0) or pushes
+// (d < 0) a contact control point P_ij0 along V_P by d = distance and moves its whole column with it by the same
+// vector. Fields: declared in lattice_pull_column.cpp (ParamSchema), listed in docs/commands.md.
+// Errors beyond the declared ranges (CommandError, field named): unknown object / no lattice / a column of zero length
+// (`object`), column outside the lattice (`column`). stats(): moved, max_displacement (world units), ms_evaluate.
 #pragma once
 
 #include <optional>

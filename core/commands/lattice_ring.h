@@ -1,16 +1,14 @@
 // `lattice.ring` — binds an object to a ring-shaped control lattice that is periodic along u, so the object can
 // travel around the ring without a seam (seed §4.5, Fig. 4.5: whales swimming around a periodic deformation).
-//   {"cmd":"lattice.ring","object":"ID","center":[x,y,z],"radius":R,"width":W,"height":H,"span":s,"phase":u0,
-//    "controls":[nu,nv,nw],"order":[ou,ov,ow],"length_axis":"x|y|z","up_axis":"x|y|z"}
+// Fields: declared in lattice_ring.cpp (ParamSchema), listed in docs/commands.md.
 // The ring lies in the plane y = center.y around the vertical axis through `center`; u runs from +x towards +z
 // (clockwise seen from +y), v outwards across the ring, w up (so det J > 0 and the object keeps its orientation).
-// radius (world units) is the ring's centre line; width and height (world units, default: the object's extents across /
-// up) size the lattice. The object's length (its bounding box along length_axis) covers u ∈ [phase, phase + span]; span
-// defaults to length / (2π·radius), so the object keeps its proportions. Knot vectors: u periodic uniform with nu
-// control points (one period = one turn), v and w clamped uniform. Orders = degree + 1 per axis (2..4: every FFD
-// backend). Replaces any previous FFD of the object and resets its parameter offset and offset velocity. Undo restores
-// the object as it was. Errors (CommandError, field named): unknown object, radius ≤ width/2 (the inner edge would
-// cross the axis), span ≥ 1 (longer than the ring), orders outside 2..4, controls < order, non-positive sizes.
+// The object's length (its bounding box along length_axis) covers u ∈ [phase, phase + span]; the default span,
+// length / (2π·radius), keeps the object's proportions. Knot vectors: u periodic uniform with controls[0] control
+// points (one period = one turn), v and w clamped uniform. Replaces any previous FFD of the object and resets its
+// parameter offset and offset velocity. Undo restores the object as it was.
+// Errors beyond the declared ranges (CommandError, field named): unknown object; radius ≤ width/2 (the inner edge
+// would cross the axis) or an object longer than the ring (default span ≥ 1) ("radius").
 #pragma once
 
 #include "core/commands/declared_command.h"

@@ -1,11 +1,10 @@
 // `lattice.set_point` — moves one control point of a deformed object's FFD lattice to an exact position (the Tool
 // panel's "Control point" section: precise, undoable edits of P_ijk; seed §2.4.1 edits the lattice by hand too).
-//   {"cmd":"lattice.set_point","object":"ID","index":[i,j,k],"position":[x,y,z]}
-// index: control point indices along u, v, w, each in [0, control count of that axis); position: world units (the
-// lattice lives in world space). The object is re-evaluated with the same embedding and parameters; undo restores
-// the object bit for bit (SnapshotCommand).
-// Errors (CommandError, field named, scene untouched): unknown object / no lattice (`object`), index not 3 integers
-// or outside the lattice (`index`, names the counts), position not 3 finite numbers (`position`).
+// Fields: declared in lattice_set_point.cpp (ParamSchema), listed in docs/commands.md; the lattice lives in world
+// space. The object is re-evaluated with the same embedding and parameters; undo restores the object bit for bit
+// (SnapshotCommand).
+// Errors beyond the declared ranges (CommandError, field named, scene untouched): unknown object / no lattice
+// (`object`), index outside the lattice (`index`, names the counts).
 // stats(): moved (1, or 0 when the point already was there), displacement (world units), ms_evaluate.
 #pragma once
 

@@ -1,9 +1,9 @@
-// `mesh.subdivide` — uniform Loop subdivision of an object's rest mesh (OpenSubdiv Far, Loop 1987):
-//   {"cmd":"mesh.subdivide","object":"ID","levels":n,"scheme":"loop"}
-// levels: 1..4 (default 1); every level splits each triangle in four, so #F' = #F · 4^levels (at most 8,000,000:
-// else the command is refused). scheme: "loop" (the only one). Works in object space on rest_mesh, before any
-// deformation: objects with an FFD lattice (`ffd`), a DFFD rig (`dffd`) or a glTF clip (`clip`) are refused, since
-// the lattice parameters / clip targets are per vertex of the old mesh (subdivide first, then place or cut).
+// `mesh.subdivide` — uniform Loop subdivision of an object's rest mesh (OpenSubdiv Far, Loop 1987). Fields: declared
+// in mesh_subdivide.cpp (ParamSchema), listed in docs/commands.md.
+// Every level splits each triangle in four, so #F' = #F · 4^levels (at most 8,000,000: else the command is refused).
+// Works in object space on rest_mesh, before any deformation: objects with an FFD lattice (`ffd`), a DFFD rig (`dffd`)
+// or a glTF clip (`clip`) are refused, since the lattice parameters / clip targets are per vertex of the old mesh
+// (subdivide first, then place or cut).
 // Positions follow the Loop rules (smooth interior; boundaries as cubic B-spline curves with corners, i.e. boundary
 // vertices with one face, kept: Sdc VTX_BOUNDARY_EDGE_AND_CORNER);
 // uvs are interpolated linearly (vertex-varying, PrimvarRefiner::InterpolateVarying: the texture is not
@@ -12,8 +12,8 @@
 // edges such as the box primitive's) stay duplicated, so such edges are boundaries of Loop subdivision there.
 // Deterministic. Undo restores the object bit for bit.
 // report.json: levels, vertices_before, vertices_after, triangles_before, triangles_after, ms.
-// Errors (CommandError, field named): unknown object, an object with ffd / dffd / clip, a mesh OpenSubdiv rejects
-// ("object"); levels outside 1..4 or a result over 8,000,000 triangles ("levels"); another scheme ("scheme").
+// Errors beyond the declared ranges (CommandError, field named): unknown object, an object with ffd / dffd / clip, a
+// mesh OpenSubdiv rejects ("object"); a result over 8,000,000 triangles ("levels").
 #pragma once
 
 #include "core/commands/declared_command.h"

@@ -1,17 +1,14 @@
 // `object.transform` — sets an object's location, rotation and scale (Blender's Object ▸ Transform, the G / R / S
-// modal and the Scene panel's fields).
-//   {"cmd":"object.transform","object":"ID","translate":[x,y,z],"rotate_deg":[x,y,z],"scale":s|[sx,sy,sz]}
-// Absolute values in SceneObject::transform's terms (scale, then rotation about x, then y, then z, then translation):
-// translate in world units, rotate_deg in degrees, scale per axis. Every field but `object` is optional: a missing one
-// keeps its current value.
+// modal and the Scene panel's fields). Fields: declared in object_transform.cpp (ParamSchema), listed in
+// docs/commands.md. The values are absolute, in SceneObject::transform's terms (scale, then rotation about x, then y,
+// then z, then translation).
 // The object moves with everything it carries: an FFD lattice, a DFFD rig and a placement record are mapped by the
 // same affine change A = M(new)·M(old)⁻¹ (control points, embedding, contact samples; per-vertex parameters are kept),
 // so the deformed shape moves rigidly with the object; tile layers live in object space and follow by themselves.
 // Undo restores the object bit for bit (SnapshotCommand).
-// Errors (CommandError, field named, scene untouched): unknown object (`object`); a component that is not finite or
-// is absurd: |translate| > 1e9 (`translate`), |rotate_deg| > 1e6 (`rotate_deg`), scale ≤ 0 or > 1e6 (`scale`); a
-// lattice object whose scale would change sign (a mirrored lattice; `scale`); a result with non-finite vertices
-// (the field that changed most, `scale` if several).
+// Errors beyond the declared ranges (CommandError, field named, scene untouched): unknown object (`object`); a lattice
+// object whose scale would change sign (a mirrored lattice; `scale`); a result with non-finite vertices (the field that
+// changed most, `scale` if several).
 // stats(): vertices, lattice_moved (0/1), ms_evaluate.
 #pragma once
 

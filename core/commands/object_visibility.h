@@ -1,13 +1,11 @@
 // `object.visibility` — shows or hides an object or a volume in the viewport and in renders (Blender's hide_viewport
-// and hide_render; the Scene panel's eye and camera icons).
-//   {"cmd":"object.visibility","object":"ID","viewport":true|false,"render":true|false}
-// `object` names a mesh object or a volume. `viewport` sets SceneObject::visible / VolumeObject::visible: drawn in the
-// viewport, picked by tools and place.sketch's rays, framed by Home (Scene::bounds). `render` sets render_visible: in
+// and hide_render; the Scene panel's eye and camera icons). Fields: declared in object_visibility.cpp (ParamSchema),
+// listed in docs/commands.md. `viewport` sets SceneObject::visible / VolumeObject::visible: drawn in the viewport,
+// picked by tools and place.sketch's rays, framed by Home (Scene::bounds). `render` sets render_visible: in
 // recordings (frames, animation.glb, farm chunks), scene.glb and headless images (render_visible_scene); a volume out
-// of renders costs nothing there (no ray casting, no silhouette extraction). Either field may be left out (unchanged),
-// not both. Undo restores both flags. Errors (CommandError, field named, scene untouched): unknown object or volume
-// (`object`); neither field given
-// (`viewport`).
+// of renders costs nothing there (no ray casting, no silhouette extraction). Undo restores both flags.
+// Errors beyond the declared ranges (CommandError, field named, scene untouched): unknown object or volume (`object`);
+// neither field given (`viewport`).
 #pragma once
 
 #include "core/commands/declared_command.h"

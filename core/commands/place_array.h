@@ -1,12 +1,11 @@
 // `place.array` — a row of copies of a placed object walking the same path (seed §2.4.3, Fig. 2.11: the ants).
-//   {"cmd":"place.array","object":"ID","count":n,"spacing":s,"clip_phase_s":p}
-// Adds n copies named "<ID>.001", "<ID>.002", … (the next free names) right after the object. Copy k (1..n) shares
-// the object's lattice, embedding, clip and keys, and is shifted back along the path by k·s in u (parameter units;
+// Fields: declared in place_array.cpp (ParamSchema), listed in docs/commands.md.
+// Adds n = count copies named "<ID>.001", "<ID>.002", … (the next free names) right after the object. Copy k (1..n)
+// shares the object's lattice, embedding, clip and keys, and is shifted back along the path by k·s in u (s = spacing;
 // with place.sketch "extent":e the object covers u ∈ [0, e], so s ≥ e keeps the copies apart): its param_offset and
-// every offset key get −k·s in u. A clip starts k·p seconds later on copy k (p = clip_phase_s, default 0), so gaits
-// differ. Copies get the next palette colours. Undo removes the copies.
-// Errors (CommandError, field named): unknown or undeformed object ("object"), count outside [1, 64] ("count"),
-// spacing not finite or |s| > 10 ("spacing"), non-finite clip_phase_s ("clip_phase_s").
+// every offset key get −k·s in u. A clip starts k·p seconds later on copy k (p = clip_phase_s), so gaits differ.
+// Copies get the next palette colours. Undo removes the copies.
+// Errors beyond the declared ranges (CommandError, field named): unknown or undeformed object ("object").
 #pragma once
 
 #include <vector>

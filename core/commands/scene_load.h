@@ -1,15 +1,12 @@
-// `scene.load` — adds a mesh file as a new object.
-//   {"cmd":"scene.load","path":"PATH","name":"ID","translate":[x,y,z],"rotate_deg":[x,y,z],"scale":s|[sx,sy,sz],
-//    "color":[r,g,b],"loose":"refuse"|"ignore"}
-// path: OBJ, PLY, OFF, STL, Collada, FBX (assimp) or glTF/GLB (tinygltf), relative to the log's folder unless
-// absolute; the file loads whole or the command fails (core::load_model): the object keeps the file's materials, their
-// images and its parts (SceneObject::materials, ::parts). A texture that cannot be read does not fail the command:
-// stats() names it under "texture_errors" (and a material library left out under "warnings").
-// loose: what to do with point and line elements beside the faces: "refuse" (default: the command fails naming their
-// counts) or "ignore" (they are left out; stats() counts them as ignored_points / ignored_lines).
+// `scene.load` — adds a mesh file as a new object. Fields: declared in scene_load.cpp (ParamSchema; the name,
+// transform and colour in codecs.cpp object_fields_schema()), listed in docs/commands.md.
+// The file loads whole or the command fails (core::load_model): the object keeps the file's materials, their images
+// and its parts (SceneObject::materials, ::parts). A texture that cannot be read does not fail the command: stats()
+// names it under "texture_errors" (and a material library left out under "warnings"). With loose "ignore", stats()
+// counts the left-out point and line elements as ignored_points / ignored_lines.
 // The command's own log line (to_json) holds the absolute path, so session logs replay from any folder.
-// name: optional, defaults to the file stem made unique ("bunny.001"); an existing name is an error.
-// Transform: scale, then rotation (degrees about x, then y, then z), then translation; world units.
+// The default name is the file stem made unique ("bunny.001").
+// Transform: scale, then rotation (about x, then y, then z), then translation.
 #pragma once
 
 #include "core/commands/add_object_command.h"

@@ -1,8 +1,6 @@
-// `scene.primitive` — adds a generated object.
-//   {"cmd":"scene.primitive","kind":"teapot|plane|sphere|box|cylinder|terrain","name":"ID","translate":[..],
-//    "rotate_deg":[..],"scale":s|[..],"seed":n,"color":[r,g,b]}
-// Before the transform: plane 2×2 in xz, sphere radius 1, box 2×2×2, cylinder radius 1 height 2 along y (centred),
-// terrain 2×2 in xz with heights in [0,0.3] (seeded), teapot on y = 0 with height 1 (Newell's 32 Bézier patches).
+// `scene.primitive` — adds a generated object. Fields: declared in scene_primitive.cpp (ParamSchema; the name,
+// transform and colour in codecs.cpp object_fields_schema()), listed in docs/commands.md; the help of `kind` gives
+// each kind's size before the transform. The cylinder is centred; the teapot is Newell's 32 Bézier patches.
 #pragma once
 
 #include "core/commands/add_object_command.h"

@@ -1,4 +1,4 @@
-// `scene.remove` — removes an object.   {"cmd":"scene.remove","name":"ID"}
+// `scene.remove` — removes an object. Fields: declared in scene_remove.cpp (ParamSchema), listed in docs/commands.md.
 #pragma once
 
 #include "core/commands/declared_command.h"

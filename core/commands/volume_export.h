@@ -1,17 +1,15 @@
-// `volume.export` — writes a volume's silhouettes or iso-surface to a file.
-//   {"cmd":"volume.export","object":"ID","what":"silhouettes","path":"skull.svg"}
-//   {"cmd":"volume.export","object":"ID","what":"iso","path":"skull.glb","samples_per_voxel":1}
-// what = silhouettes: extracted for `camera` (camera.set's fields; default: the scene camera) (the volume's style,
-// hidden-line mode and projection) and written as SVG (.svg: a line drawing for illustrations, the camera's viewport
-// in pixels) or glTF line strips (.glb: world millimetres, a node "<id>/silhouettes"); the volume keeps them
-// (scene.glb exports them too).
+// `volume.export` — writes a volume's silhouettes or iso-surface to a file. Fields: declared in volume_export.cpp
+// (ParamSchema), listed in docs/commands.md.
+// what = silhouettes: extracted for the camera (the volume's style, hidden-line mode and projection) and written as
+// SVG (.svg: a line drawing for illustrations, the camera's viewport in pixels) or glTF line strips (.glb: world
+// millimetres, a node "<id>/silhouettes"); the volume keeps them (scene.glb exports them too).
 // what = iso: the surface D = iso as a triangle mesh (OpenVDB volume-to-mesh on the sampled spline, vertices projected
 // onto D = iso: iso_mesh.h) written as .glb, .obj or .ply (world millimetres); the volume keeps it (scene.glb node
 // "<id>/iso").
-// path: relative to the output folder (CommandContext::output_dir: replay's --out, the folder chosen in the editor's
-// export dialog; else the log's folder) and resolved inside it (CommandContext::resolve_output: absolute paths and
-// paths that leave it through `..` or a symlink are refused); the logged line keeps the relative path. The result is
-// checked before anything is written: non-finite points or vertices fail the command (field "object"), no file.
+// The output folder is CommandContext::output_dir (replay's --out, the folder chosen in the editor's export dialog;
+// else the log's folder); CommandContext::resolve_output resolves the path inside it (paths that leave it through `..`
+// or a symlink are refused); the logged line keeps the relative path. The result is checked before anything is
+// written: non-finite points or vertices fail the command (field "object"), no file.
 // Undo forgets what the volume kept (the file stays). stats(): what was written (points/polylines or
 // vertices/triangles), the file and ms.
 // A FileOutput (core/commands/file_output.h): with set_writes_files(false) (Open, crash recovery) the volume keeps

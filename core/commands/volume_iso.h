@@ -1,7 +1,6 @@
-// `volume.iso` — sets the iso-level c of a volume's surface D = c (seed Eq. 7.1).
-//   {"cmd":"volume.iso","object":"ID","level":226}
-// level: in the volume's units (HU for CT), finite; a level outside the values D takes is allowed (nothing is shown)
-// and reported (stats in_range = false). When the volume's silhouettes are enabled they are extracted again for the
+// `volume.iso` — sets the iso-level c of a volume's surface D = c (seed Eq. 7.1). Fields: declared in volume_iso.cpp
+// (ParamSchema), listed in docs/commands.md. A level outside the values D takes is allowed (nothing is shown) and
+// reported (stats in_range = false). When the volume's silhouettes are enabled they are extracted again for the
 // scene camera (the singleton table is reused: no new preprocessing). stats(): level, in_range, cells (singletons
 // holding the level), and the silhouette figures when enabled.
 #pragma once

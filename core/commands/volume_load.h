@@ -1,15 +1,11 @@
-// `volume.load` — adds a CT/MRI volume as a scalar trivariate B-spline D (seed ch. 7).
-//   {"cmd":"volume.load","path":"PATH","name":"ID","order":4,"interpolate":false,"iso":226}
-//   {"cmd":"volume.load","analytic":"sphere|torus|sines", ...}
-// path: NIfTI (.nii, .nii.gz), a DICOM series folder or one of its .dcm files, an InVesalius .inv3 project; relative to
-// the log's folder unless absolute; loads whole or fails. A volume whose samples, spline and singleton table would
-// exceed kPreparedVolumeBudget (preparation_budget.h: 40 bytes per sample) is refused from its header's dimensions,
-// before the file is inflated (CommandError, field 'path', naming the dimensions, the bytes and the budget). analytic:
-// a test volume with known silhouettes instead. order: 2…4 per axis (degree + 1; default 4, tri-cubic). interpolate:
-// control points = the samples (false, the seed) or the interpolating spline's coefficients (true). iso: the first
-// iso-level in the volume's units (default: default_iso_level — 226 HU for CT, else Otsu's threshold). World units are
-// the file's millimetres. The singleton table is read from the disk cache when the same content was preprocessed before
-// (prepared_volume.h). stats(): dims, order, units, iso, from_cache, load_ms, prep_ms, table_mb.
+// `volume.load` — adds a CT/MRI volume as a scalar trivariate B-spline D (seed ch. 7). Fields: declared in
+// volume_load.cpp (ParamSchema), listed in docs/commands.md.
+// The file loads whole or the command fails. A volume whose samples, spline and singleton table would exceed
+// kPreparedVolumeBudget (preparation_budget.h: 40 bytes per sample) is refused from its header's dimensions, before
+// the file is inflated (CommandError, field 'path', naming the dimensions, the bytes and the budget). The default
+// iso-level comes from default_iso_level. World units are the file's millimetres. The singleton table is read from
+// the disk cache when the same content was preprocessed before (prepared_volume.h). stats(): dims, order, units, iso,
+// from_cache, load_ms, prep_ms, table_mb.
 #pragma once
 
 #include <optional>

@@ -1,5 +1,5 @@
-// `volume.remove` — removes a volume (Scene panel ▸ Remove, the Delete key on a selected volume).
-//   {"cmd":"volume.remove","object":"ID"}
+// `volume.remove` — removes a volume (Scene panel ▸ Remove, the Delete key on a selected volume). Fields: declared in
+// volume_remove.cpp (ParamSchema), listed in docs/commands.md.
 // Undo puts it back where it was, with its iso-level, settings and silhouettes. Error (field `object`): no such volume.
 #pragma once
 
