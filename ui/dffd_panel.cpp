@@ -14,7 +14,6 @@ namespace trispline::ui {
 
 namespace {
 
-// A combo over `names` (#N) choosing `value`; per-item tooltips `tips` (#N or empty). True when changed.
 // A combo over the enumerators of E named `names` (#N), with per-item tooltips `tips` (#N). True when changed.
 template <class E>
 bool enum_combo(const char* id, E& value, const std::vector<const char*>& names, const std::vector<const char*>& tips) {

@@ -69,14 +69,19 @@ std::string size_param_widget(const core::ParamSchema<P>& schema, const std::str
                            probe);
 }
 
-// Draws field `name` of `params` as declared in `schema`. False (nothing drawn) for an undeclared or composite field.
+// Draws field `name` of `params` as declared in `schema` (an enum choice as a combo of its names). False (nothing
+// drawn) for an undeclared or composite field.
 template <class P>
 bool param_widget(const core::ParamSchema<P>& schema, const std::string& name, P& params) {
   const auto* f = schema.find(name);
-  if (!f || !f->member) return false;
+  if (!f || !(f->member || f->choice_index)) return false;
   ParamWidget w{schema.id(),           &f->doc,    f->label,    f->kind, f->range, &f->choices,
                 int(f->choice_member), f->ui_step, f->ui_format};
-  return param_widget(w, f->member(params));
+  if (f->member) return param_widget(w, f->member(params));
+  int index = f->choice_index(params);
+  const bool committed = param_widget(w, &index);
+  if (committed) f->set_choice_index(params, index);
+  return committed;
 }
 
 }  // namespace trispline::ui

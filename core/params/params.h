@@ -130,7 +130,10 @@ class ParamSchema {
   struct Field : ParamFieldInfo {
     std::function<void(const Field&, const nlohmann::json&, P&, const CommandContext&)> read;  // value present
     std::function<void(const Field&, const P&, nlohmann::json&)> write;
-    std::function<void*(P&)> member;         // for widgets; null for composite fields
+    std::function<void*(P&)> member;  // for widgets; null for composite fields and enum choices
+    // An enum choice's index (choice i = enumerator i), for widgets: read and set through these, not `member`.
+    std::function<int(const P&)> choice_index;
+    std::function<void(P&, int)> set_choice_index;
     std::function<void(P&)> check;           // a check over several fields (no JSON field of its own); may normalise
     std::function<bool(const P&)> stop;      // parse and to_json end here when it holds (e.g. "remove": true)
     std::function<bool(const P&)> write_if;  // to_json writes the field only when this holds (null: always)
@@ -295,7 +298,12 @@ class ParamSchema {
     f.choice_member = std::is_same_v<T, std::string> ? Field::ChoiceMember::String
                       : std::is_same_v<T, bool>      ? Field::ChoiceMember::Bool
                                                      : Field::ChoiceMember::Index;
-    if constexpr (!std::is_enum_v<T>) f.member = [m](P& p) -> void* { return &(p.*m); };
+    if constexpr (std::is_enum_v<T>) {
+      f.choice_index = [m](const P& p) { return int(p.*m); };
+      f.set_choice_index = [m](P& p, int i) { p.*m = T(i); };
+    } else {
+      f.member = [m](P& p) -> void* { return &(p.*m); };
+    }
     auto index_of = [](const Field& self, const T& x) -> int {
       if constexpr (std::is_same_v<T, std::string>) {
         for (std::size_t i = 0; i < self.choices.size(); ++i)
@@ -366,6 +374,10 @@ class ParamSchema {
       if (sf.write)
         f.write = [m, shared](const Field&, const P& p, nlohmann::json& line) { shared->write(*shared, p.*m, line); };
       if (sf.member) f.member = [m, shared](P& p) { return shared->member(p.*m); };
+      if (sf.choice_index) {
+        f.choice_index = [m, shared](const P& p) { return shared->choice_index(p.*m); };
+        f.set_choice_index = [m, shared](P& p, int i) { shared->set_choice_index(p.*m, i); };
+      }
       if (sf.check) f.check = [m, shared](P& p) { shared->check(p.*m); };
       if (sf.stop) f.stop = [m, shared](const P& p) { return shared->stop(p.*m); };
       if (sf.write_if) f.write_if = [m, shared](const P& p) { return shared->write_if(p.*m); };

@@ -269,10 +269,7 @@ void IncisionTool::draw_panel(ToolContext& ctx) {
     ImGui::TextColored(ui::colors::accent, "Editing the last cut of %s: size changes re-cut it", last_object_.c_str());
   ui::param_widget(schema, "walls", params_);
   ui::param_widget(schema, "order", params_);
-  ui::row_label(schema.find("kernel")->label.c_str());
-  int kernel = static_cast<int>(params_.kernel);
-  if (ImGui::Combo("##kernel", &kernel, "gaussian\0bspline\0")) params_.kernel = core::IncisionKernel(kernel);
-  ui::tooltip(ui::param_tooltip(schema.find("kernel")->doc).c_str());
+  ui::param_widget(schema, "kernel", params_);
 
   ImGui::Spacing();
   if (ImGui::CollapsingHeader("Opening over time", ImGuiTreeNodeFlags_DefaultOpen)) {
