@@ -259,7 +259,7 @@ nlohmann::json run_bounds_benchmark(const BoundsBenchOptions& options) {
   out["refinement"] = cube_refinement();
   out["refinement_seed"] = {{"midpoint", 360},
                             {"greville", 308},
-                            {"note", "the seed's cube (Fig. 3.5) with its own lattice and error estimate"}};
+                            {"note", "the seed's cube (Fig. 2.10) with its own lattice and error estimate"}};
   return out;
 }
 

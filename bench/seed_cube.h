@@ -1,6 +1,6 @@
-// trispline::core — the seed's cube example (seed §3.3, Fig. 3.5): a 12-triangle cube deformed by a tri-cubic lattice
-// and refined until its deformation error is within a tolerance. The seed does not give its lattice; these are the
-// deformations trispline compares refinement rules on (tests, `trispline bench bounds`, docs/performance.md).
+// trispline::core — the seed's cube example (seed §2.4.2, Fig. 2.10): a 12-triangle cube deformed by a tri-cubic
+// lattice and refined until its deformation error is within a tolerance. The seed does not give its lattice; these are
+// the deformations trispline compares refinement rules on (tests, `trispline bench bounds`, docs/performance.md).
 #pragma once
 
 #include "core/ffd/ffd.h"

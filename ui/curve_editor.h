@@ -1,6 +1,7 @@
 // trispline::ui curve editor — a small ImGui widget editing a piecewise-linear profile f(u) over u ∈ [0,1] with a
-// factor axis 0..3 (the Sketch tool's width profile d(u) and height profile h(u), seed Eq. 2.5): drag a point, double-
-// click to add one, right-click to remove one, Reset for the constant 1. The end points stay at u = 0 and u = 1.
+// factor axis 0..3 (the Sketch tool's width profile d(u) and height profile h(u), seed §2.4.1, Eq. 2.5): drag a
+// point, double-click to add one, right-click to remove one, Reset for the constant 1. The end points stay at u = 0
+// and u = 1.
 //
 // Points snap to u = i/32 so that the profile is exactly the piecewise-linear function through uniform samples
 // (profile_samples), which is what place.sketch's "width_profile"/"height_profile" take.

@@ -75,7 +75,7 @@ std::optional<nlohmann::json> draw_control_point_section(const core::SceneObject
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip(
         "World position of control point P_ijk, world units. Releasing the drag (or Enter) issues one\n"
-        "lattice.set_point: undoable, logged. The object follows the lattice (FFD, seed Eq. 2.2)");
+        "lattice.set_point: undoable, logged. The object follows the lattice (FFD, seed Eq. 2.1)");
   if (!active && !line) {
     const glm::dvec3 p = object.ffd->lattice.control_point(st.index[0], st.index[1], st.index[2]);
     st.position[0] = p.x, st.position[1] = p.y, st.position[2] = p.z;

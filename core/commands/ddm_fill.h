@@ -3,7 +3,7 @@
 // listed in docs/commands.md; what the declaration cannot say:
 //   tiles   a generated tile (ddm_tile.h) or a mesh file made canonical by its bounding box, its materials and uvs
 //           kept (texture-mapped tiles, seed Fig. 5.12: ddm_tile_materials); with several, cell k of a chart gets
-//           tile (k + row) mod #tiles ("pattern", seed Fig. 5.12) or one drawn by a mt19937 seeded with `seed`;
+//           tile (k + row) mod #tiles ("pattern") or one drawn by a mt19937 seeded with `seed` (seed Fig. 5.12);
 //   base    limit: the Loop limit surface of the rest mesh (OpenSubdiv Bfr), three charts per triangle; teapot_body:
 //           the teapot primitive's 8 Bézier body patches as one chart, periodic around the pot; uv: the rest mesh
 //           rasterised in its texture coordinates (one chart; tiles wholly outside the UV islands are pruned);

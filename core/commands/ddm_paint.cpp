@@ -1,4 +1,5 @@
-// ddm.paint. See ddm_paint.h. Source: seed ch. 5 (the painting of §5.4 / Fig. 5.10, here a brush over layout cells).
+// ddm.paint. See ddm_paint.h. Source: seed ch. 5 (non-covering tiles, §5.3.2 / Fig. 5.10; here a brush over layout
+// cells).
 #include "core/commands/ddm_paint.h"
 
 #include <tbb/blocked_range.h>

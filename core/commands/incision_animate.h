@@ -1,4 +1,4 @@
-// `incision.animate` — an incision's opening keyed on the timeline (seed §6.4, Eq. 6.2's opening κ scaled over time),
+// `incision.animate` — an incision's opening keyed on the timeline (seed §6.4: the kernel κ opening after Eq. 6.2),
 // through the object's per-vertex morph channel (SceneObject::morph, made by incision.draw): at opening s the surface
 // is closed + s·(cut − closed) — s = 0 the cut closed (the two faces touching), s = 1 the opening incision.draw made.
 // Fields: declared in incision_animate.cpp (ParamSchema, keyed_weight_schema in anim_keys.cpp), listed in

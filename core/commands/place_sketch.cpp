@@ -273,7 +273,7 @@ const ParamSchema<PlaceSketchParams>& PlaceSketchCommand::schema() {
           .custom("height_profile", read_height_profile, write_height_profile)
           .type_text("[number,…] or [[number,…],…]")
           .default_text("constant")
-          .help("Factors > 0 scaling h along u (one list) or over (u, v) (rows over v) (Eq. 2.5)")
+          .help("Factors > 0 scaling h along u (one list) or over (u, v) (rows over v) (§2.4.1)")
           .field("samples", &P::samples)
           .range(2, 4096)
           .label("Rays u x v")

@@ -1,8 +1,8 @@
 // `place.sketch` — places an object along a stroke sketched over the scene (seed §2.3.1, Eq. 2.1–2.5). Fields:
 // declared in place_sketch.cpp (ParamSchema), listed in docs/commands.md. What the declaration cannot say:
 // the stroke is in viewport pixels (top-left origin) of the line's "camera", else of the last camera.set; the
-// profiles scale the half-width and height piecewise linearly along u (or over (u, v)) (seed Eq. 2.5); "springs"
-// relaxes the contact surface as a mass-spring net before the volume is built. fit stretch: the object covers
+// profiles scale the half-width and height piecewise linearly along u (or over (u, v)) (seed §2.4.1, Eq. 2.5);
+// "springs" relaxes the contact surface as a mass-spring net before the volume is built. fit stretch: the object covers
 // u ∈ [0, extent] of the path (extent 1: the whole stroke, however long). fit keep: it keeps its proportions — its
 // length is scaled by the factor its height is (h ÷ the object's height along up_axis), so it covers
 // u ∈ [0, min(extent, u_L)] with u_L where the contact curve F(u, ½, 0) has run that length (by arc length: the

@@ -1,6 +1,6 @@
 // Automatic UV charts for DDM bases. See ddm_auto_uv.h. Sources: CGAL 5.5 Surface_mesh_parameterization
 // (LSCM_parameterizer_3: Lévy et al. 2002, least-squares conformal maps, free border with two pinned vertices);
-// seed §5.3.1 (c) / §5.4.1 for the use (UV-mapped bases, texels outside the charts diffused and pruned).
+// seed §5.3.1 / §5.4.1 for the use (UV-mapped bases, texels outside the charts diffused and pruned).
 #include "core/ddm/ddm_auto_uv.h"
 
 #include <CGAL/Simple_cartesian.h>

@@ -1,5 +1,5 @@
 // trispline::core automatic UV charts — texture coordinates for a mesh that has none, so it can take the UV base of
-// DDM tiles (seed §5.3.1 (c), §5.4.1: the base drawn into texture space). The surface is cut into charts that are
+// DDM tiles (seed §5.3.1, §5.4.1: the base drawn into texture space). The surface is cut into charts that are
 // topological disks with a bounded spread of normals; each chart is flattened by CGAL's least-squares conformal map
 // (Surface_mesh_parameterization::LSCM_parameterizer_3, free border); charts are scaled to the same texel density
 // (uv area ∝ world area) and packed into [0,1]², so a tile size in world units gives tiles of even world size.

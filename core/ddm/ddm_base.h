@@ -36,7 +36,7 @@ class DdmBase {
   virtual glm::bvec2 periodic() const { return {false, false}; }
 };
 
-// B-spline / Bézier patches as charts (seed §5.3.1 (a)): chart c is patches[c] with its domain mapped onto [0,1]².
+// B-spline / Bézier patches as charts (seed §5.3.1): chart c is patches[c] with its domain mapped onto [0,1]².
 // Where S_u × S_v vanishes (a collapsed patch edge, the teapot's bottom centre) n is taken a little inside the patch.
 // With grid = (c, r) (c·r = #patches) the patches instead form ONE chart: patch i + c·j covers
 // [i/c, (i+1)/c] × [j/r, (j+1)/r] (the teapot's body: 4 patches around × 2 high, periodic around, so tiles and
@@ -58,7 +58,7 @@ class DdmSplineBase final : public DdmBase {
   glm::bvec2 periodic_{false, false};
 };
 
-// The limit surface of a triangle mesh (Loop scheme, OpenSubdiv Bfr, double precision; seed §5.3.1 (b), without its
+// The limit surface of a triangle mesh (Loop scheme, OpenSubdiv Bfr, double precision; seed §5.4.1's base, without its
 // global parametrisation): chart 3f + k is the quad of face f at its corner k — corners (in the face's triangular
 // parameters) vertex k, the middle of edge (k, k+1), the face centre, the middle of edge (k+2, k) — mapped
 // bilinearly from [0,1]², u along edge (k, k+1), v along edge (k, k+2). Neighbouring charts meet along their shared

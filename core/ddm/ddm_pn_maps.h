@@ -63,7 +63,7 @@ class DdmMapsBase final : public DdmBase {
   std::shared_ptr<const DdmMaps> maps_;
 };
 
-// A mesh with texture coordinates as a base (seed §5.3.1 (c), §5.4.1): P and N rasterised in UV space into one chart
+// A mesh with texture coordinates as a base (seed §5.3.1, §5.4.1): P and N rasterised in UV space into one chart
 // of resolution R × R (sample (i, j) at uv = (i, j)/(R − 1)), S_u, S_v from each triangle's UV Jacobian, N_u, N_v by
 // central differences of the N map; samples no triangle covers are filled by the seed's 8-neighbour diffusion and
 // marked invalid (DdmMaps::valid). Where UV islands overlap the triangle drawn last wins.

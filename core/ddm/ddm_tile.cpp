@@ -1,5 +1,5 @@
 // DDM tiles: generated tiles (thorn, flower, chain, hex), canonical tiles from meshes, topology check. See ddm_tile.h.
-// Source: seed ch. 5 §5.2 (canonical tile space), Eq. 5.3 / Fig. 5.13 (metamorphosis needs equal topology).
+// Source: seed ch. 5 §5.2 (canonical tile space), Eq. 5.3 / Fig. 5.8 (metamorphosis needs equal topology).
 #include "core/ddm/ddm_tile.h"
 
 #include <algorithm>

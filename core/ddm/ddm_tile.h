@@ -1,5 +1,5 @@
 // trispline::core DDM tiles — the geometry D that a deformation displacement map places over a base surface
-// (seed ch. 5, §5.2: "D is an arbitrary geometric object defined in the canonical tile space").
+// (seed ch. 5: the arbitrary detail D of §5.2, uploaded "in a canonical coordinate system", §5.3.1).
 //
 // Canonical tile space: x, y ∈ [0,1]² span one layout cell across the surface, w = z ≥ 0 is the height above it
 // (tile units: a layer's `height` scales w into world units along the base surface's normal, seed Eq. 5.1–5.2).
@@ -19,7 +19,7 @@ struct DdmTile {
   std::string name;  // "thorn", "chain", "hex", "flower", or the source file's stem
   TriMesh mesh;      // #V × 3 positions (x, y, w) in tile space, unit normals #V × 3 (tile space), #F × 3; a tile
                      // from a textured file also keeps its own uvs (#V × 2) and face_material (#F)
-  // The tile file's materials (texture-mapped tiles, seed §5.4, Fig. 5.12), indexed by mesh.face_material; null for
+  // The tile file's materials (texture-mapped tiles, seed §5.5, Fig. 5.12), indexed by mesh.face_material; null for
   // generated tiles and files without materials (the tiles then take the layer's colour).
   std::shared_ptr<const MaterialSet> materials;
 };
@@ -37,9 +37,9 @@ struct DdmTileMaterials {
 DdmTileMaterials ddm_tile_materials(const std::vector<DdmTile>& tiles);
 
 // Generated tiles for tests and scenes (closed 2-manifolds, outward normals, w ≥ 0, x, y within [0,1]):
-//   "thorn"   a bent horn on a round foot, 24 segments × 26 rings (626 vertices, seed Fig. 5.9's ~670);
+//   "thorn"   a bent horn on a round foot, 24 segments × 26 rings (626 vertices, seed Fig. 5.6's 672);
 //   "flower"  the thorn's mesh (same vertex count and triangles) shaped as a five-petal flower on a stem: the
-//             metamorphosis partner of "thorn" (seed Eq. 5.3, Fig. 5.13);
+//             metamorphosis partner of "thorn" (seed Eq. 5.3, Fig. 5.8);
 //   "chain"   two interlocked stadium-shaped links, one lying and one standing, a tube of radius 0.06;
 //   "hex"     a hexagonal slab filling the cell (vertices on the cell's border at x = 0, ½, 1), height 0.15, for the
 //             hexagonal layout (seed Fig. 5.11).

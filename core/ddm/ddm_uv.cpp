@@ -1,5 +1,5 @@
 // UV-mapped DDM bases: P/N maps rasterised in texture space. See ddm_pn_maps.h (ddm_rasterize_uv_maps).
-// Source: seed §5.3.1 (c) and §5.4.1 — the base's positions and normals drawn into its own texture space, texels no
+// Source: seed §5.3.1 and §5.4.1 — the base's positions and normals drawn into its own texture space, texels no
 // triangle covers filled by repeated 8-neighbour averaging (the seed's diffusion), and a bitmap of the valid texels.
 #include <algorithm>
 #include <cmath>

@@ -15,7 +15,7 @@
 //   otherwise the cell is split in halves (de Casteljau, all three axes) and its eight children are judged the same
 //   way, down to `max_depth` splits; a box still mixed there is undecided.
 // This is the validity check of high-order finite elements (Johnen, Remacle & Geuzaine 2013) applied to FFD lattices;
-// the seed (§2.5) names injectivity as future work. Units: parameters in F's knot domain (an FFD's is [0,1]³), points
+// the seed (§2.6) names injectivity as future work. Units: parameters in F's knot domain (an FFD's is [0,1]³), points
 // in the control points' space. Deterministic; cells are judged in parallel and reported in cell order.
 #pragma once
 

@@ -21,7 +21,7 @@
 //     its line, which is ≥ and stays a bound): by the convex hull property every point of E_p lies within that
 //     distance of the deformed straight edge. The edge is split at the nodal value of the farthest control point,
 //     clamped to [min_split, 1 − min_split] (no sliver triangles).
-// Certified mode (RefineError::bound, seed §3.3 BoundMeshError): instead of measuring edges, every triangle gets its
+// Certified mode (RefineError::bound, seed §3.2.3 BoundMeshError): instead of measuring edges, every triangle gets its
 // certified deformation-error bound (deformation_bounds.h: the best of Theorem 4's right-triangle bound and the
 // smallest-enclosing-circle bound); each triangle over tolerance is split — Midpoint: the seed's RefineTriangle (all
 // three edges at their midpoints); Greville: all three at the Greville criterion's split points; Best: per triangle

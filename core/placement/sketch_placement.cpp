@@ -237,7 +237,7 @@ TrivariateBSpline<glm::dvec3> build_volume(BSplineSurface<glm::dvec3>& S, const 
   cps.reserve(static_cast<std::size_t>(l * m * n));
   for (int k = 0; k < n; ++k)
     for (int j = 0; j < m; ++j)
-      for (int i = 0; i < l; ++i) {  // h, or h(u) / h(u,v) at the contact control point's Greville abscissae (Eq. 2.5)
+      for (int i = 0; i < l; ++i) {  // h, or h(u) / h(u,v) at the contact control point's Greville abscissae (§2.4.1)
         const double h = p.height_profile.empty() ? p.height : p.height * profile_at(p.height_profile, gu[i], gv[j]);
         cps.push_back(S.control_point(i, j) + h * gw[k] * dir[i + l * j]);
       }

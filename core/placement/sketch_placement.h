@@ -64,8 +64,8 @@ struct SketchPlacementParams {
   Camera camera;                      // the camera the stroke was drawn with
   double half_width = 0.25;           // d, world units (> 0): offsets at ±d from the stroke, converted at its depth
   double height = 0.25;               // h, world units (> 0): extent of the volume in w
-  // Variable width and height (seed Eq. 2.5): scaling functions of d and h, piecewise linear through samples taken
-  // uniformly over the stroke's parameter u ∈ [0,1]. Empty = constant 1.
+  // Variable width and height (seed §2.4.1, Eq. 2.5): scaling functions of d and h, piecewise linear through samples
+  // taken uniformly over the stroke's parameter u ∈ [0,1]. Empty = constant 1.
   //   width_profile   #K factors (K ≥ 2, each finite and > 0): the offsets are C(u) ± d·width(u)·N(u)
   //   height_profile  #R rows × #K factors (R ≥ 1 rows over v ∈ [0,1], K ≥ 2 over u, each > 0): the column over the
   //                   contact control point at Greville abscissae (ξ_i, ξ_j) gets height h·height(ξ_i, ξ_j) —

@@ -14,7 +14,7 @@ void basis_functions(const KnotVector& kv, int span, double t, double* N);
 // degree are 0). ders must hold (n_deriv + 1) * order doubles.
 void basis_derivatives(const KnotVector& kv, int span, double t, int n_deriv, double* ders);
 
-// basis_derivatives with n_deriv = 1, the hot path of every Jacobian (FFD normals, seed Eq. 3.x): N[r] values and
+// basis_derivatives with n_deriv = 1, the hot path of every Jacobian (FFD normals, seed §4.3): N[r] values and
 // dN[r] first derivatives, r in [0, order); N and dN must hold order() doubles each. The same arithmetic as A2.3
 // restricted to k = 1 (N'_{i,p} = p·(N_{i,p−1}/(u_{i+p} − u_i) − N_{i+1,p−1}/(u_{i+p+1} − u_{i+1}))), so the results
 // are bit-identical to basis_derivatives(kv, span, t, 1, ·), without its (p+1)² table.

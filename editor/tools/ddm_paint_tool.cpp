@@ -38,7 +38,7 @@ glm::vec4 last_item_rect() {
 constexpr double kRadiusStep = 1.15;  // [ and ] scale the brush radius by this
 constexpr std::array<const char*, 4> kGeneratedTiles = {"thorn", "chain", "hex", "flower"};
 constexpr const char* kTileTips[] = {
-    "A bent horn on a round foot (626 vertices; seed Fig. 5.9)",
+    "A bent horn on a round foot (626 vertices; seed Fig. 5.6)",
     "Two interlocked chain links (neighbouring cells overlap, as the seed's chains)",
     "A hexagonal slab filling its cell: use the hex layout (seed Fig. 5.11)",
     "A five-petal flower with the thorn's topology: the thorn's metamorphosis partner (seed Eq. 5.3)",

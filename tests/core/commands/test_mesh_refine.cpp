@@ -64,8 +64,8 @@ TEST(MeshRefineCommand, RefinesInObjectSpaceAndUndoRestoresExactly) {
 }
 
 // "error":"bound": every final triangle's certified bound is within the tolerance (the refinement converged), for both
-// split rules; the counts are the seed's cube comparison (§3.3: midpoint vs Greville splits at the same certified
-// tolerance), reported as test properties.
+// split rules; the counts are the seed's cube comparison (§2.4.2, Fig. 2.10: midpoint vs Greville splits, here at the
+// same certified tolerance), reported as test properties.
 TEST(MeshRefineCommand, CertifiedRefinementBoundsEveryTriangle) {
   for (const char* criterion : {"midpoint", "greville", "best"}) {
     Scene s = cube_scene();

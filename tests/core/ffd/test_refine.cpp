@@ -202,7 +202,7 @@ TEST(Refine, SeedCubeCounts) {
     }
 }
 
-// Certified refinement (seed §3.3) on the seed's cube: every split converges to a mesh whose every triangle's bound
+// Certified refinement (seed §3.2.3) on the seed's cube: every split converges to a mesh whose every triangle's bound
 // is within the tolerance, conforming, its sampled deviation within it too. Choosing the split per triangle (best)
 // needs at most 85 % of the seed's midpoint RefineTriangle's triangles at the same certified tolerance — over a sweep
 // of tolerances a factor ∛2 apart (geometric mean: each rule's count steps with its own quantisation, so a single
