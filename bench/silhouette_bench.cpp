@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -234,6 +236,55 @@ nlohmann::json run_silhouette_orbit(const VolumeSpline& spline, const SingletonT
 
 }  // namespace
 
+namespace {
+
+// One camera of the views file (SilhouetteBenchOptions::views_out).
+nlohmann::json silhouette_view_camera(const std::string& name, double azimuth_deg, const glm::dvec3& eye,
+                                      const SilhouetteBenchCircle& circle) {
+  return {{"name", name},
+          {"azimuth_deg", azimuth_deg},
+          {"eye", {eye.x, eye.y, eye.z}},
+          {"target", {circle.centre.x, circle.centre.y, circle.centre.z}},
+          {"up", {0.0, 0.0, 1.0}},
+          {"fov_deg", 45.0},
+          {"viewport", {1280, 720}},
+          {"projection", "perspective"}};
+}
+
+// Writes the cameras of the timed views (and of the orbit's) to `path`, through "<path>.tmp" and a rename. Throws
+// std::runtime_error naming the file when it cannot be written.
+void write_silhouette_views(const std::filesystem::path& path, const SilhouetteBenchOptions& o,
+                            const SilhouetteBenchCircle& circle) {
+  nlohmann::json views = nlohmann::json::array(), orbit = nlohmann::json::array();
+  for (int v = 0; v < o.views; ++v) {
+    const double az = 2.0 * 3.14159265358979323846 * v / o.views;
+    views.push_back(silhouette_view_camera("view_" + std::to_string(v), az * 180.0 / 3.14159265358979323846,
+                                           circle.eye(az), circle));
+  }
+  if (o.orbit)
+    for (int v = 0; v < 36; ++v)
+      orbit.push_back(
+          silhouette_view_camera("orbit_" + std::to_string(v), 10.0 * v, silhouette_orbit_view(circle, v).eye, circle));
+  nlohmann::json out = {{"frame", "world millimetres of the volume file's own axes; up is the circle's axis"},
+                        {"volume", o.volume_path},
+                        {"views", views}};
+  if (o.orbit) out["orbit_views"] = orbit;
+  const std::filesystem::path tmp = path.string() + ".tmp";
+  {
+    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
+    f << out.dump(2) << "\n";
+    if (!f) throw std::runtime_error("cannot write the views file " + tmp.string());
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) {
+    std::filesystem::remove(tmp, ec);
+    throw std::runtime_error("cannot write the views file " + path.string());
+  }
+}
+
+}  // namespace
+
 nlohmann::json run_silhouette_benchmark(const SilhouetteBenchOptions& o) {
   if (o.views < 1) throw std::invalid_argument("--views must be at least 1");
   auto t0 = std::chrono::steady_clock::now();
@@ -246,6 +297,7 @@ nlohmann::json run_silhouette_benchmark(const SilhouetteBenchOptions& o) {
   const double prep_rss = peak_rss_mb();
 
   const SilhouetteBenchCircle circle = silhouette_bench_circle(volume);
+  if (!o.views_out.empty()) write_silhouette_views(o.views_out, o, circle);
   SilhouetteParams params;
   params.subdivision = o.subdivision;
   params.accuracy = o.accuracy;
@@ -282,6 +334,7 @@ nlohmann::json run_silhouette_benchmark(const SilhouetteBenchOptions& o) {
                         {"max_dot_residual", f.max_dot},
                         {"per_view", f.per_view}};
   if (o.orbit) out.update(orbit);
+  if (!o.views_out.empty()) out["views_out"] = o.views_out;
   return out;
 }
 

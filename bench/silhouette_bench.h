@@ -26,6 +26,12 @@ struct SilhouetteBenchOptions {
   // SilhouetteSequence (each view seeded from the previous one's curves), hidden cells seeding nothing, at the density
   // of a 1280 × 720 screen with a 45° field of view; then each view's complete extraction, to check the coverage.
   bool orbit = false;
+  // A JSON file to write the exact cameras of the views to, so that a peer renders the same ones ("" = none):
+  // {"frame", "views":[{"name", "azimuth_deg", "eye", "target", "up", "fov_deg", "viewport", "projection"}],
+  //  "orbit_views":[…] with `orbit`}; eye and target in world millimetres of the volume file's own frame, up +z
+  // (the circle's axis), fov_deg 45 and viewport [1280, 720] (the orbit's screen density; the timed views have no
+  // screen, and their silhouettes do not depend on the field of view).
+  std::string views_out;
 };
 
 // Result: {bench:"silhouettes", volume, iso, order, dims [nx,ny,nz], spacing_mm [..], threads, load_s, prep_s,
@@ -37,8 +43,10 @@ struct SilhouetteBenchOptions {
 //          orbit_min_coverage (the share of the complete extraction's visible points within a cell and 2 pixels of a
 //          visible point of the orbit's view) and orbit_views [{azimuth_deg, view_ms, extract_ms, hidden_ms, points,
 //          visible_points, polylines, traced_from_previous, candidates, seeds, hidden_cells, coverage}]. peak_rss_mb:
-//          the process's peak after the last view; prep_rss_mb: after preprocessing.
-// Throws std::invalid_argument on bad options and what load_volume throws on a bad file.
+//          the process's peak after the last view; prep_rss_mb: after preprocessing. With `views_out`, also
+//          views_out (the file written before the first view).
+// Throws std::invalid_argument on bad options, what load_volume throws on a bad file, and std::runtime_error when
+// the views file cannot be written.
 nlohmann::json run_silhouette_benchmark(const SilhouetteBenchOptions& options);
 
 }  // namespace trispline::core

@@ -369,6 +369,9 @@ void add_bench_silhouettes(CLI::App& bench, CliRequest& o) {
   o.silhouettes_cmd->add_flag("--orbit", o.silhouettes.orbit,
                               "Also orbit as the editor's live view does with hidden lines removed: 36 views 10 "
                               "degrees apart, each seeded from the previous one, checked against complete extractions");
+  o.silhouettes_cmd->add_option("--views-out", o.silhouettes.views_out,
+                                "Write the views' exact cameras (eye, target, up, fov, viewport; world mm) to this "
+                                "JSON file, so that a peer renders the same views");
 }
 
 // `trispline bench editor`: the editor's frame times beside Blender's, and recording with a hidden volume.
