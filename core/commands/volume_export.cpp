@@ -95,7 +95,7 @@ std::optional<VolumeObject> VolumeExportCommand::build(const Scene& scene) {
       std::filesystem::create_directories(out.parent_path());
       if (lower_extension(out.string()) == ".svg") {
         SvgStyle style;
-        style.stroke = look.style;  // hue | glyphs | width | plain
+        style.stroke = look.style;  // hue | glyphs | width | plain | chromadepth
         style.hidden = look.hidden == "dashed" ? "dashed" : "remove";
         std::vector<SilhouettePolyline> drawn = result->polylines;
         if (look.hidden == "show")

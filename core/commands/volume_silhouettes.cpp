@@ -11,11 +11,12 @@ const ParamSchema<VolumeSilhouettesParams>& VolumeSilhouettesCommand::schema() {
           .help("A volume")
           .field("enabled", &P::enabled)
           .help("Extract and draw the silhouettes (false hides them)")
-          .choice("style", &P::style, {"hue", "glyphs", "width", "plain"})
+          .choice("style", &P::style, {"hue", "glyphs", "width", "plain", "chromadepth"})
           .label("Style")
           .help(
               "hue: colour by gradient magnitude; glyphs: short strokes across the projected gradient; width: "
-              "stroke width and grey by gradient magnitude; plain: black lines")
+              "stroke width and grey by gradient magnitude; plain: black lines; chromadepth: colour by depth, red "
+              "nearest to blue farthest, for ChromaDepth glasses (Figs. 7.8–7.9)")
           .choice("hidden", &P::hidden, {"remove", "dashed", "show"})
           .label("Hidden lines")
           .help("Parts hidden behind the iso-surface: removed, dashed, or shown like the rest")

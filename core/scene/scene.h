@@ -151,7 +151,8 @@ struct SceneObject {
 struct VolumeSilhouetteSettings {
   bool enabled = false;           // extracted for the current view (live in the editor, at export and in replay)
   std::string style = "hue";      // hue (hue by |∇D|) | glyphs (short strokes ⊥ the projected gradient) |
-                                  // width (stroke width and grey by |∇D|) | plain (black)
+                                  // width (stroke width and grey by |∇D|) | plain (black) |
+                                  // chromadepth (hue by depth: red nearest, blue farthest)
   std::string hidden = "remove";  // remove | dashed | show: what is done with parts hidden by the iso-surface
   std::string projection = "perspective";  // perspective (G·(P − eye) = 0) | orthographic (G·forward = 0)
   SilhouetteParams params;                 // subdivision, accuracy (hidden_test follows `hidden`)

@@ -38,7 +38,8 @@ void check_input(const std::vector<SilhouettePolyline>& polylines, const glm::dm
       if (!std::isfinite(vp[c][r])) throw std::invalid_argument("silhouette SVG: the view-projection is not finite");
   if (viewport.x < 1 || viewport.y < 1 || viewport.x > 65536 || viewport.y > 65536)
     throw std::invalid_argument("silhouette SVG: the viewport must be 1…65536 pixels per side");
-  if (style.stroke != "hue" && style.stroke != "width" && style.stroke != "plain" && style.stroke != "glyphs")
+  if (style.stroke != "hue" && style.stroke != "width" && style.stroke != "plain" && style.stroke != "glyphs" &&
+      style.stroke != "chromadepth")
     throw std::invalid_argument("silhouette SVG: unknown stroke style '" + style.stroke +
                                 "' (hue, glyphs, width or plain)");
   if (style.hidden != "dashed" && style.hidden != "remove")
@@ -209,14 +210,21 @@ void write_silhouettes_svg(const std::filesystem::path& path, const std::vector<
   check_input(polylines, view_projection, viewport_px, style);
   const bool plain = style.stroke == "plain", keep_hidden = style.hidden == "dashed";
 
-  // The |∇D| ramp: the style's range, else the visible points' own.
-  double lo = style.gradient_min, hi = style.gradient_max;
+  // What the ramp follows: |∇D|, or for chromadepth the point's normalised device depth (red nearest, blue
+  // farthest: ChromaDepth glasses, seed Figs. 7.8–7.9).
+  const bool by_depth = style.stroke == "chromadepth";
+  auto quantity = [&](const SilhouettePolyline& pl, std::size_t k) {
+    if (!by_depth) return double(pl.gradient_norm[k]);
+    const glm::dvec4 c = view_projection * glm::dvec4(pl.points[k], 1.0);
+    return c.w > 0.0 ? c.z / c.w : 1.0;
+  };
+  // The ramp: the style's |∇D| range, else the visible points' own.
+  double lo = by_depth ? 0.0 : style.gradient_min, hi = by_depth ? 0.0 : style.gradient_max;
   if (!(lo < hi)) {
     lo = std::numeric_limits<double>::max(), hi = std::numeric_limits<double>::lowest();
     for (const auto& pl : polylines)
       for (std::size_t k = 0; k < pl.points.size(); ++k)
-        if (pl.visible[k])
-          lo = std::min(lo, double(pl.gradient_norm[k])), hi = std::max(hi, double(pl.gradient_norm[k]));
+        if (pl.visible[k]) lo = std::min(lo, quantity(pl, k)), hi = std::max(hi, quantity(pl, k));
   }
   const int bins = plain ? 1 : style.bins;
   auto bin_of = [&](double g) {
@@ -230,7 +238,7 @@ void write_silhouettes_svg(const std::filesystem::path& path, const std::vector<
   std::vector<int> key;
   for (const auto& pl : polylines) {
     key.resize(pl.points.size());
-    for (std::size_t k = 0; k < pl.points.size(); ++k) key[k] = pl.visible[k] ? bin_of(pl.gradient_norm[k]) : kHidden;
+    for (std::size_t k = 0; k < pl.points.size(); ++k) key[k] = pl.visible[k] ? bin_of(quantity(pl, k)) : kHidden;
     if (style.stroke == "glyphs") {
       // The seed's glyphs (§7.3.4): a short stroke at each visible point along the curve (orthogonal to the projected
       // gradient), longer where |∇D| is larger: from 0.15 to 0.45 of the way to each neighbour.
@@ -273,7 +281,7 @@ void write_silhouettes_svg(const std::filesystem::path& path, const std::vector<
     const double t = (k + 0.5) / bins;  // the bin's centre on the ramp
     glm::dvec3 colour(0.0);
     double width = style.width_px;
-    if (style.stroke == "hue") {
+    if (style.stroke == "hue" || style.stroke == "chromadepth") {
       colour = hsv(240.0 * t, 1.0, 0.9);
     } else if (style.stroke == "width") {
       colour = glm::dvec3(0.75 * (1.0 - t));
@@ -281,8 +289,8 @@ void write_silhouettes_svg(const std::filesystem::path& path, const std::vector<
     }
     std::string range;
     if (lo < hi)
-      range = " data-gradient=\"" + number(lo + (hi - lo) * k / bins) + " " + number(lo + (hi - lo) * (k + 1) / bins) +
-              "\"";
+      range = std::string(by_depth ? " data-depth=\"" : " data-gradient=\"") + number(lo + (hi - lo) * k / bins) + " " +
+              number(lo + (hi - lo) * (k + 1) / bins) + "\"";
     svg += "<path class=\"visible\"" + range + " stroke=\"" + hex(colour) + "\" stroke-width=\"" + number(width) +
            "\" stroke-linecap=\"round\" d=\"" + d + "\"/>\n";
   }

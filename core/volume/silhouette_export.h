@@ -19,7 +19,9 @@ namespace trispline::core {
 struct SvgStyle {
   // "hue": colour on an HSV hue ramp, red (hue 0°, low |∇D|) to blue (240°, high |∇D|), seed Fig. 7.10;
   // "width": high |∇D| thin and dark, low |∇D| thick and pale grey, seed Fig. 7.12; "plain": black; "glyphs": a
-  // short black stroke along the curve at each visible point, longer where |∇D| is larger (seed Fig. 7.11).
+  // short black stroke along the curve at each visible point, longer where |∇D| is larger (seed Fig. 7.11);
+  // "chromadepth": the hue ramp by depth instead of |∇D| (normalised device depth over the visible points), red
+  // nearest to blue farthest, for ChromaDepth glasses (seed Figs. 7.8–7.9); the bins' paths carry data-depth.
   std::string stroke = "hue";
   // "dashed": hidden runs drawn dashed in hidden_color under the visible ones; "remove": hidden runs left out.
   std::string hidden = "dashed";

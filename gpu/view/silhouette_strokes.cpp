@@ -117,8 +117,10 @@ class Builder {
 };
 
 void check(const std::vector<core::SilhouettePolyline>& polylines, const SilhouetteStrokeStyle& s) {
-  if (s.stroke != "hue" && s.stroke != "glyphs" && s.stroke != "width" && s.stroke != "plain")
-    throw std::invalid_argument("silhouette strokes: unknown style '" + s.stroke + "' (hue, glyphs, width or plain)");
+  if (s.stroke != "hue" && s.stroke != "glyphs" && s.stroke != "width" && s.stroke != "plain" &&
+      s.stroke != "chromadepth")
+    throw std::invalid_argument("silhouette strokes: unknown style '" + s.stroke +
+                                "' (hue, glyphs, width, plain or chromadepth)");
   if (s.hidden != "remove" && s.hidden != "dashed" && s.hidden != "show")
     throw std::invalid_argument("silhouette strokes: unknown hidden mode '" + s.hidden + "' (remove, dashed or show)");
   if (!(s.width_px > 0.0f) || !(s.max_width_px >= s.width_px))
@@ -139,7 +141,7 @@ void check(const std::vector<core::SilhouettePolyline>& polylines, const Silhoue
 
 glm::vec4 silhouette_color(const std::string& stroke, double t, const glm::vec4& plain) {
   t = std::clamp(std::isfinite(t) ? t : 0.5, 0.0, 1.0);
-  if (stroke == "hue") return glm::vec4(hsv(240.0 * t, 1.0, 0.9), 1.0f);
+  if (stroke == "hue" || stroke == "chromadepth") return glm::vec4(hsv(240.0 * t, 1.0, 0.9), 1.0f);
   if (stroke == "width") return glm::vec4(glm::vec3(float(0.75 * (1.0 - t))), 1.0f);
   return plain;
 }
@@ -150,16 +152,25 @@ SilhouetteStrokes build_silhouette_strokes(const std::vector<core::SilhouettePol
   check(polylines, style);
   SilhouetteStrokes out;
   const bool show = style.hidden == "show";
-  // The |∇D| ramp over the points drawn as visible (all of them when none is).
+  // What the ramp follows: |∇D|, or for chromadepth the point's depth (its distance from the eye: ChromaDepth
+  // glasses show red nearest and blue farthest, seed Figs. 7.8–7.9).
+  const bool by_depth = style.stroke == "chromadepth";
+  auto quantity = [&](const core::SilhouettePolyline& pl, std::size_t k) {
+    return by_depth ? glm::length(pl.points[k] - eye) : double(pl.gradient_norm[k]);
+  };
+  // The ramp over the points drawn as visible (all of them when none is).
   double lo = std::numeric_limits<double>::max(), hi = std::numeric_limits<double>::lowest();
   for (int pass = 0; pass < 2 && !(lo <= hi); ++pass)
     for (const core::SilhouettePolyline& pl : polylines)
       for (std::size_t k = 0; k < pl.points.size(); ++k)
-        if ((pass == 1 || show || pl.visible[k]) && std::isfinite(pl.gradient_norm[k]))
-          lo = std::min(lo, double(pl.gradient_norm[k])), hi = std::max(hi, double(pl.gradient_norm[k]));
+        if ((pass == 1 || show || pl.visible[k]) && std::isfinite(quantity(pl, k)))
+          lo = std::min(lo, quantity(pl, k)), hi = std::max(hi, quantity(pl, k));
   if (!(lo <= hi)) lo = hi = 0.0;
-  out.gradient_min = lo, out.gradient_max = hi;
-  auto ramp = [&](float g) { return lo < hi ? float(std::clamp((double(g) - lo) / (hi - lo), 0.0, 1.0)) : 0.5f; };
+  if (by_depth)
+    out.depth_min = lo, out.depth_max = hi;
+  else
+    out.gradient_min = lo, out.gradient_max = hi;
+  auto ramp = [&](double q) { return lo < hi ? float(std::clamp((q - lo) / (hi - lo), 0.0, 1.0)) : 0.5f; };
 
   const Builder b(view_proj, viewport, eye, style);
   const bool glyphs = style.stroke == "glyphs";
@@ -176,7 +187,7 @@ SilhouetteStrokes build_silhouette_strokes(const std::vector<core::SilhouettePol
       if (!b.pixel(pl.points[k], s.px)) continue;  // behind the eye: breaks the polyline
       valid[k] = 1;
       if (!visible && style.hidden == "remove") continue;  // kDropped: owns its half-segments, draws nothing
-      s.t = ramp(pl.gradient_norm[k]);
+      s.t = ramp(quantity(pl, k));
       s.list = visible && !show ? kTested : kOnTop;
       s.z = s.list == kTested ? b.depth(pl.points[k]) : 0.0f;
       if (!visible && !show) {

@@ -10,6 +10,8 @@
 //           0.8·t) with base one Newton sub-cell projected but at least 6 px; glyphs closer than 1.4 bases to the
 //           previous one drawn are left out, so they stay apart; hidden runs are lines as in the other styles
 //   plain   black lines
+//   chromadepth  lines on the hue ramp by depth (distance from the eye): red nearest → blue farthest, for ChromaDepth
+//           glasses, seed Figs. 7.8–7.9
 //
 // The same ramp as the SVG export (core/volume/silhouette_export.h): |∇D| mapped to t ∈ [0, 1] over the range of
 // the points drawn visible; hue = 240°·t at saturation 1, value 0.9; width style grey 0.75·(1 − t), width
@@ -30,7 +32,7 @@
 namespace trispline::gpu {
 
 struct SilhouetteStrokeStyle {
-  std::string stroke = "hue";     // hue | glyphs | width | plain (core::VolumeSilhouetteSettings::style)
+  std::string stroke = "hue";     // hue | glyphs | width | plain | chromadepth (VolumeSilhouetteSettings::style)
   std::string hidden = "remove";  // remove | dashed | show
   float width_px = 1.5f;          // lines of hue / plain / glyphs and hidden runs; the width style's thinnest
   float max_width_px = 4.0f;      // the width style's thickest (lowest |∇D|); ≥ width_px
@@ -47,7 +49,8 @@ struct SilhouetteStrokes {
   std::vector<OverlayVertex> depth_tested;        // visible runs ("remove", "dashed"): depth-tested against the scene
   std::vector<OverlayVertex> on_top;              // hidden runs ("dashed") and every run ("show"): no depth test
   std::size_t points = 0;                         // silhouette points drawn (in either list)
-  double gradient_min = 0.0, gradient_max = 0.0;  // |∇D| range of the ramp, per millimetre
+  double gradient_min = 0.0, gradient_max = 0.0;  // |∇D| range of the ramp, per millimetre (not chromadepth)
+  double depth_min = 0.0, depth_max = 0.0;        // chromadepth: the ramp's distances from the eye, millimetres
 };
 
 // Builds the strokes of `polylines` (world millimetres) for a camera with `view_proj` (world → OpenGL clip space),
@@ -58,8 +61,8 @@ SilhouetteStrokes build_silhouette_strokes(const std::vector<core::SilhouettePol
                                            const glm::dmat4& view_proj, glm::ivec2 viewport, const glm::dvec3& eye,
                                            const SilhouetteStrokeStyle& style);
 
-// The colour (sRGB, alpha 1) of a point at ramp position t ∈ [0, 1] (0 = lowest |∇D|) in `stroke` style: the hue
-// ramp, the width style's grey, else `plain` (plain, glyphs).
+// The colour (sRGB, alpha 1) of a point at ramp position t ∈ [0, 1] (0 = lowest |∇D|, or nearest for chromadepth) in
+// `stroke` style: the hue ramp (hue, chromadepth), the width style's grey, else `plain` (plain, glyphs).
 glm::vec4 silhouette_color(const std::string& stroke, double t, const glm::vec4& plain = {0.0f, 0.0f, 0.0f, 1.0f});
 
 }  // namespace trispline::gpu

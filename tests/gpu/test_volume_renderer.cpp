@@ -381,6 +381,33 @@ TEST(SilhouetteStrokes, StylesColourAndWidenByGradient) {
   EXPECT_GT(w.depth_tested[0].color.x, w.depth_tested[63 * 6].color.x) << "pale where low, dark where high";
 }
 
+// chromadepth: the hue ramp by distance from the eye instead of |∇D| — red nearest, blue farthest (ChromaDepth
+// glasses, seed Figs. 7.8–7.9): a circle tilted towards the eye is red where it is near and blue where it is far,
+// whatever its gradient.
+TEST(SilhouetteStrokes, ChromaDepthColoursByDistanceFromTheEye) {
+  const TopView v;
+  core::SilhouettePolyline pl = half_hidden_circle();
+  std::fill(pl.visible.begin(), pl.visible.end(), 1);
+  for (glm::dvec3& p : pl.points) p.z = 0.5 * p.y;  // +y half nearer the eye (at z = 100)
+  SilhouetteStrokeStyle s;
+  s.stroke = "chromadepth";
+  const SilhouetteStrokes c = build_silhouette_strokes({pl}, v.view_proj, {200, 200}, v.eye, s);
+  EXPECT_LT(c.depth_min, c.depth_max);
+  EXPECT_NEAR(c.depth_min, glm::length(v.eye - glm::dvec3(0.0, 20.0, 10.0)), 0.05);
+  EXPECT_NEAR(c.depth_max, glm::length(v.eye - glm::dvec3(0.0, -20.0, -10.0)), 0.05);
+  EXPECT_EQ(c.gradient_min, c.gradient_max) << "the gradient ramp is not used";
+  ASSERT_EQ(c.depth_tested.size(), 64u * 6u);
+  // Quad q starts at point q: point 16 (+y, nearest) is red, point 48 (−y, farthest) blue.
+  const glm::vec4 near = c.depth_tested[16 * 6].color, far = c.depth_tested[48 * 6].color;
+  EXPECT_GT(near.x, 0.8f);
+  EXPECT_LT(near.z, 0.1f);
+  EXPECT_GT(far.z, 0.8f);
+  EXPECT_LT(far.x, 0.1f);
+  s.stroke = "hue";  // the same circle by |∇D|: point 16 sits a quarter up the gradient ramp, yellow, not red
+  const SilhouetteStrokes h = build_silhouette_strokes({pl}, v.view_proj, {200, 200}, v.eye, s);
+  EXPECT_GT(h.depth_tested[16 * 6].color.y, near.y + 0.5f);
+}
+
 TEST(SilhouetteStrokes, GlyphsAreShortEdgesAlongTheSilhouetteLongerWhereTheGradientIs) {
   const TopView v;
   core::SilhouettePolyline pl = half_hidden_circle(16);  // sparse: one glyph per visible point

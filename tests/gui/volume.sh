@@ -80,7 +80,16 @@ gui_wait "(.camera.eye | map(floor) | tostring) != \"$eye_before\"" "the view or
 gui_wait '.volumes[0].live_current and .volumes[0].live_points > 100' "the silhouettes follow the orbit" 90
 shot orbited
 
-# 6. Export ▸ SVG: the view's silhouettes as <path> elements.
+# 5b. The Style combo: chromadepth colours the silhouettes by depth (red nearest, blue farthest; seed Figs. 7.8–7.9).
+gui_click_item volume.silhouettes.style
+gui_wait '.popups | length > 0' "the Style combo opens"
+gui_click_item volume.silhouettes.style.chromadepth
+gui_wait_logged '.cmd == "volume.silhouettes" and .style == "chromadepth"' "choosing chromadepth logs volume.silhouettes"
+gui_wait '.popups | length == 0' "the Style combo closed"
+gui_wait '.volumes[0].live_current and .volumes[0].live_points > 100' "the silhouettes are drawn in the new style" 90
+shot chromadepth
+
+# 6. Export ▸ SVG: the view's silhouettes as <path> elements, binned by depth in the chromadepth style.
 gui_click_item volume.export.svg
 gui_wait '(.popups | map(test("file_dialog")) | any) and .typing' "the Save dialog opens, its name field has the keyboard"
 gui_check ".values[\"file.name\"] == \"${name}_silhouettes.svg\"" "the file name is proposed"
@@ -90,6 +99,7 @@ svg="$GUI_WORK/brain.svg"
 for _ in $(seq 1 150); do [ -f "$svg" ] && break; sleep 0.2; done
 [ -f "$svg" ] || gui_fail "the SVG was not written to $svg"
 [ "$(grep -c '<path' "$svg")" -ge 1 ] || gui_fail "the SVG holds no <path element"
+[ "$(grep -c 'data-depth=' "$svg")" -ge 2 ] || gui_fail "the chromadepth SVG holds no depth bins"
 gui_wait_logged '.cmd == "volume.export" and .what == "silhouettes" and .path == "brain.svg"' \
   "volume.export logged with the file's name in the folder chosen in the dialog (a replay writes under its own --out)"
 gui_wait_logged '.cmd == "volume.export" and .camera != null' "the export carries the view it was made for"
@@ -121,6 +131,6 @@ gui_check '.volumes | length == 1' "the scene is unchanged after the folder"
 gui_alive || gui_fail "the editor died"
 
 [ "$(gui_session_count '.cmd == "volume.load"')" = 1 ] || gui_fail "one volume.load line in the session log"
-[ "$(gui_session_count '.cmd == "volume.silhouettes"')" = 1 ] || gui_fail "one volume.silhouettes line"
+[ "$(gui_session_count '.cmd == "volume.silhouettes"')" = 2 ] || gui_fail "two volume.silhouettes lines (on, style)"
 [ "$(gui_session_count '.cmd == "volume.export"')" = 1 ] || gui_fail "one volume.export line"
 gui_pass

@@ -192,6 +192,45 @@ TEST(SilhouetteSvg, GlyphsAreOneShortStrokePerVisiblePoint) {
   EXPECT_EQ(strokes, pl.points.size() - 1);  // every visible point, none for the hidden one
 }
 
+// chromadepth: bins by depth (data-depth), red where the curve is nearest the eye, blue where it is farthest.
+TEST(SilhouetteSvg, ChromaDepthBinsByDepthRedNearBlueFar) {
+  TempDir dir;
+  SilhouettePolyline pl = circle(glm::dvec3(0.0));
+  std::fill(pl.visible.begin(), pl.visible.end(), 1);
+  for (glm::dvec3& p : pl.points) p.z = 2.0 * p.x;  // +x nearer the eye (at z = 60)
+  SvgStyle style;
+  style.stroke = "chromadepth";
+  style.bins = 8;
+  const fs::path file = dir.path / "chromadepth.svg";
+  write_silhouettes_svg(file, {pl}, view_projection(), kViewport, style);
+  const std::string text = read_text(file);
+  EXPECT_NE(text.find("data-depth="), std::string::npos);
+  EXPECT_EQ(text.find("data-gradient="), std::string::npos);
+  const Svg svg = parse_svg(text);
+  ASSERT_EQ(svg.paths.size(), 8u);
+  // The nearest bin's path holds the +x end and is red; the farthest holds the −x end and is blue.
+  auto holds = [&](const SvgPath& path, const glm::dvec3& p) {
+    const glm::dvec2 want = to_pixel(p);
+    for (const auto& sub : path.subpaths)
+      for (const glm::dvec2& q : sub)
+        if (glm::length(q - want) < 0.5) return true;
+    return false;
+  };
+  const SvgPath* nearest = nullptr;
+  const SvgPath* farthest = nullptr;
+  for (const SvgPath& path : svg.paths) {
+    if (holds(path, pl.points[0])) nearest = &path;    // (10, 0, 20)
+    if (holds(path, pl.points[60])) farthest = &path;  // (−10, 0, −20)
+  }
+  ASSERT_NE(nearest, nullptr);
+  ASSERT_NE(farthest, nullptr);
+  // The bins' centres: hue 15° (#e63900) nearest, 225° (#0039e6) farthest.
+  EXPECT_EQ(nearest->stroke.substr(1, 2), "e6") << nearest->stroke;
+  EXPECT_EQ(nearest->stroke.substr(5, 2), "00") << nearest->stroke;
+  EXPECT_EQ(farthest->stroke.substr(1, 2), "00") << farthest->stroke;
+  EXPECT_EQ(farthest->stroke.substr(5, 2), "e6") << farthest->stroke;
+}
+
 TEST(SilhouetteSvg, HiddenRunsDashedOrRemoved) {
   TempDir dir;
   const std::vector<SilhouettePolyline> lines{circle(glm::dvec3(0.0)), circle(glm::dvec3(-5.0, 3.0, -4.0))};
