@@ -36,13 +36,14 @@ gui_wait '(.typing | not) and (.values["press.strength"] | tonumber) == 0.4' "st
 
 n="$(gui_q '.history.labels | length')"
 updates="$(gui_q '.guarantees.updates')"
-# press_down_left: the mouse down on the bunny, then three moves down and to the left, away from the timing overlay
-# above (a release over it would go to the overlay, not to the tool), two frames each: on a loaded machine X events
-# that arrive within one frame are one move. The button stays down.
+# press_down_left: the mouse down on the bunny (once the tool shows its brush there), then three moves down and to the
+# left, away from the timing overlay above (a release over it would go to the overlay, not to the tool), two frames
+# each: on a loaded machine X events that arrive within one frame are one move. The button stays down.
 press_down_left() {
   local i
   gui_move "$x" "$y"
   gui_frames 1
+  gui_wait '.overlays.spheres > 0' "the brush sphere shows over the bunny before the button goes down" 30
   xdotool mousedown 1
   gui_frames 3
   for i in 1 2 3; do
