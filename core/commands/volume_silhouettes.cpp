@@ -30,7 +30,7 @@ const ParamSchema<VolumeSilhouettesParams>& VolumeSilhouettesCommand::schema() {
           .field("accuracy", &P::accuracy)
           .range(1e-12, 1e-2)
           .label("Accuracy")
-          .help("Newton stops when |D − c| ≤ accuracy·range(D) and |Ĝ·V̂| ≤ accuracy");
+          .help("Newton stops when |D − c| ≤ accuracy·range(D) and |G·V| ≤ accuracy·|G|·|V|");
   return s;
 }
 
