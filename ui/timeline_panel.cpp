@@ -51,6 +51,9 @@ TimelineObject timeline_object(const core::Scene& scene, const std::string& name
   for (const auto& layer : so->ddm_layers) {
     channel(layer->offset_keys, "tiles '" + layer->name + "' offset");
     channel(layer->alpha_keys, "tiles '" + layer->name + "' morph");
+    channel(layer->rotate_keys, "tiles '" + layer->name + "' turn");
+    channel(layer->scale_keys, "tiles '" + layer->name + "' scale");
+    channel(layer->w_keys, "tiles '" + layer->name + "' w");
   }
   std::sort(o.channel_keys.begin(), o.channel_keys.end());
   const double t = scene.timeline.time_of_frame(frame);

@@ -1,4 +1,5 @@
-// ddm.animate. See ddm_animate.h. Sources: seed §5.4.2 (animated DDMs), Eq. 5.3 (metamorphosis).
+// ddm.animate. See ddm_animate.h. Sources: seed §5.4.2 (animated DDMs, texture-space transforms), Eq. 5.3
+// (metamorphosis).
 #include "core/commands/ddm_animate.h"
 
 #include <algorithm>
@@ -38,12 +39,36 @@ void write_morph(const AnimateField& f, const P& p, nlohmann::json& line) {
   line[f.doc.name] = tiles.size() == 1 ? tiles[0] : tiles;
 }
 
+// Largest |degrees| of a rotation key: a thousand turns, ample for a wheel spinning through a long shot.
+constexpr double kMaxKeyedDegrees = 360'000.0;
+
+// Every key of a [frame, value] list finite with its value in [lo, hi] (lo excluded when `above`).
+void check_keys(const std::optional<std::vector<glm::dvec2>>& keys, const char* field, double lo, double hi,
+                bool above) {
+  if (!keys) return;
+  for (std::size_t i = 0; i < keys->size(); ++i) {
+    const double v = (*keys)[i].y;
+    if (!std::isfinite((*keys)[i].x) || !std::isfinite(v) || v > hi || (above ? !(v > lo) : v < lo))
+      params::fail(field, "key " + std::to_string(i) + ": the value must be finite and in " + (above ? "(" : "[") +
+                              params::format_number(lo) + ", " + params::format_number(hi) + "]");
+  }
+}
+
+// Keys of one [frame, value] list (value in .offset.x).
+std::vector<OffsetKey> value_keys(const std::vector<glm::dvec2>& keys, const Timeline& timeline,
+                                  KeyInterpolation interpolation, const char* field) {
+  std::vector<glm::dvec3> rows;
+  rows.reserve(keys.size());
+  for (const glm::dvec2& r : keys) rows.push_back({r.x, r.y, 0.0});
+  return keys_from_frames(rows, false, timeline, interpolation, field);
+}
+
 }  // namespace
 
 const ParamSchema<DdmAnimateParams>& DdmAnimateCommand::schema() {
   static const ParamSchema<P> s =
       ParamSchema<P>("ddm.animate",
-                     "Animate a tile layer: texture-space offset and metamorphosis to another tile (seed §5.4.2)")
+                     "Animate a tile layer: texture-space offset, rotation, scale, w and metamorphosis (seed §5.4.2)")
           .field("object", &P::object)
           .required()
           .help("The object holding the layer")
@@ -73,6 +98,27 @@ const ParamSchema<DdmAnimateParams>& DdmAnimateCommand::schema() {
           .type_text("[du,dv]")
           .default_text("kept")
           .help("Offset added per second, chart parameter units")
+          .field("rotate_keys", &P::rotate_keys)
+          .type_text("[[frame,degrees],…]")
+          .default_text("kept")
+          .help(
+              "[frame, degrees] keys of the tiles' rotation in texture space about their cells' centres, added to the "
+              "layer's rotate_deg")
+          .field("scale_keys", &P::scale_keys)
+          .type_text("[[frame,s],…]")
+          .default_text("kept")
+          .help(
+              "[frame, s] keys of the tiles' texture-space scale about their cells' centres, s > 0 times the layer's "
+              "scale")
+          .field("w_keys", &P::w_keys)
+          .type_text("[[frame,w],…]")
+          .default_text("kept")
+          .help("[frame, w] keys of the tiles' height along the surface normal, w > 0 times the layer's height")
+          .check([](const P& p) {
+            check_keys(p.rotate_keys, "rotate_keys", -kMaxKeyedDegrees, kMaxKeyedDegrees, false);
+            check_keys(p.scale_keys, "scale_keys", 0.0, kMaxKeyedWeight, true);
+            check_keys(p.w_keys, "w_keys", 0.0, kMaxKeyedWeight, true);
+          })
           .field("alpha", &P::alpha)
           .default_text("kept")
           .help("α shown when there are no alpha keys (0 at first)")
@@ -90,6 +136,7 @@ std::optional<SceneObject> DdmAnimateCommand::build(const Scene& scene) {
   const KeyInterpolation interpolation = interpolation_of(p_.interpolation);
   if (p_.clear) {
     layer->morph_sources.clear(), layer->morph_tiles.clear(), layer->alpha_keys.clear(), layer->offset_keys.clear();
+    layer->rotate_keys.clear(), layer->scale_keys.clear(), layer->w_keys.clear();
     layer->alpha = 0.0, layer->offset_velocity = glm::dvec2(0.0);
   }
   if (p_.morph) {
@@ -112,11 +159,10 @@ std::optional<SceneObject> DdmAnimateCommand::build(const Scene& scene) {
       }
     }
   }
-  if (p_.alpha_keys) {
-    std::vector<glm::dvec3> rows;
-    for (const glm::dvec2& r : *p_.alpha_keys) rows.push_back({r.x, r.y, 0.0});
-    layer->alpha_keys = keys_from_frames(rows, false, scene.timeline, interpolation, "alpha_keys");
-  }
+  if (p_.alpha_keys) layer->alpha_keys = value_keys(*p_.alpha_keys, scene.timeline, interpolation, "alpha_keys");
+  if (p_.rotate_keys) layer->rotate_keys = value_keys(*p_.rotate_keys, scene.timeline, interpolation, "rotate_keys");
+  if (p_.scale_keys) layer->scale_keys = value_keys(*p_.scale_keys, scene.timeline, interpolation, "scale_keys");
+  if (p_.w_keys) layer->w_keys = value_keys(*p_.w_keys, scene.timeline, interpolation, "w_keys");
   if (p_.offset_keys)
     layer->offset_keys = keys_from_frames(*p_.offset_keys, true, scene.timeline, interpolation, "offset_keys");
   if (p_.offset_velocity) layer->offset_velocity = *p_.offset_velocity;
@@ -125,9 +171,9 @@ std::optional<SceneObject> DdmAnimateCommand::build(const Scene& scene) {
     throw CommandError("field 'alpha_keys': layer '" + p_.layer + "' has no morph tile to blend to (give morph_tile)",
                        "alpha_keys");
   layer->mesh = std::make_shared<const TriMesh>(ddm_layer_mesh(*layer, 0.0));
-  stats_ = {{"alpha_keys", layer->alpha_keys.size()},
-            {"offset_keys", layer->offset_keys.size()},
-            {"morph", !layer->morph_tiles.empty()},
+  stats_ = {{"alpha_keys", layer->alpha_keys.size()},   {"offset_keys", layer->offset_keys.size()},
+            {"rotate_keys", layer->rotate_keys.size()}, {"scale_keys", layer->scale_keys.size()},
+            {"w_keys", layer->w_keys.size()},           {"morph", !layer->morph_tiles.empty()},
             {"vertices", layer->mesh->vertex_count()}};
   return with_ddm_layer(*object, std::move(layer));
 }

@@ -16,7 +16,9 @@ const ParamSchema<LatticeAnimateOffsetParams>& LatticeAnimateOffsetCommand::sche
           .field("offset", &P::offset)
           .magnitude_at_most(1e6)
           .unit("parameter units")
-          .help("Added to the object's lattice parameters; on a periodic axis 1 is one turn")
+          .help(
+              "Added to the object's lattice parameters; on a periodic axis 1 is one period of the axis (one turn of "
+              "a ring, two on a half-twisted band)")
           .field("velocity", &P::velocity)
           .magnitude_at_most(100)
           .unit("parameter units per second")

@@ -1,8 +1,9 @@
 // `lattice.animate_offset` — moves a deformed object through its lattice's parameter domain (seed §4.5): the object
 // shows F(E(x) + offset + velocity·t) at scene time t (seconds). On a periodic axis (lattice.ring) an offset of 1 is
-// one full turn, so the object travels around the ring forever; on other axes the parameters clamp at the domain's
-// ends. Playback evaluates the moving offset in the vertex shader (glsl_vertex path); the object's geometry for
-// export is the t = 0 pose (replay --time T exports the pose at T).
+// one period of the axis — one turn of a ring, two turns of a half-twisted band (twist_deg 180) — so the object
+// travels around the ring forever; on other axes the parameters clamp at the domain's ends. Playback evaluates the
+// moving offset in the vertex shader (glsl_vertex path); the object's geometry for export is the t = 0 pose
+// (replay --time T exports the pose at T).
 // Fields: declared in lattice_animate_offset.cpp (ParamSchema), listed in docs/commands.md.
 // Errors beyond the declared ranges (CommandError, field named): unknown object, object without an FFD (`object`).
 #pragma once

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 #include "core/mesh/tri_mesh.h"
 #include "core/params/codecs.h"
@@ -13,7 +14,9 @@ namespace trispline::core {
 const ParamSchema<LatticeRingParams>& LatticeRingCommand::schema() {
   using P = LatticeRingParams;
   static const ParamSchema<P> s =
-      ParamSchema<P>("lattice.ring", "Bind an object to a ring-shaped lattice, periodic along u (seed §4.5, Fig. 4.5)")
+      ParamSchema<P>("lattice.ring",
+                     "Bind an object to a ring-shaped lattice, periodic along u, optionally twisted into a Möbius band "
+                     "(seed §4.5, Fig. 4.5, 4.6)")
           .field("object", &P::object)
           .required()
           .help("Object to bind; any previous FFD is replaced")
@@ -24,7 +27,7 @@ const ParamSchema<LatticeRingParams>& LatticeRingCommand::schema() {
           .required()
           .above(0)
           .unit("world units")
-          .help("Radius of the ring's centre line; more than half the width")
+          .help("Radius of the ring's centre line; more than half the width (twisted: than hypot(width/2, height))")
           .field("width", &P::width)
           .at_least(0)
           .unit("world units")
@@ -35,13 +38,22 @@ const ParamSchema<LatticeRingParams>& LatticeRingCommand::schema() {
           .help("Lattice size up; 0 = the object's extent")
           .field("span", &P::span)
           .range(0, 1, false, true)
-          .help("Fraction of the turn the object covers; 0 = its length / (2π·radius)")
+          .help("Fraction of the u period (laps turns) the object covers; 0 = its length / (2π·radius·laps)")
           .field("phase", &P::phase)
           .unit("parameter units")
-          .help("u where the object starts (one turn = 1)")
+          .help("u where the object starts (one period = 1 = laps turns: 1 untwisted, 2 with a half twist)")
+          .field("twist_deg", &P::twist_deg)
+          .range(-720, 720)
+          .unit("degrees")
+          .help(
+              "Turn of the cross-section about the ring's centre line (v = ½, w = 0) per turn of the ring, from "
+              "outwards towards up; a multiple of 90. 180 = a Möbius band: u's period spans 2 turns, the second "
+              "upside down beneath the first (seed Fig. 4.6); ±90 spans 4 turns, 360 one. Twisted rings want ≥ 12 "
+              "control points per turn")
           .field("controls", &P::controls)
           .range(2, 256)
-          .help("Control points per axis; u periodic, ≥ order")
+          .help(
+              "Control points per axis; u periodic, ≥ order; twisted: a multiple of the laps, ≥ 3 (better 12) per turn")
           .field("order", &P::order)
           .range(2, 4)
           .help("Order (= degree + 1) per axis")
@@ -54,6 +66,17 @@ const ParamSchema<LatticeRingParams>& LatticeRingCommand::schema() {
               params::fail("up_axis", "must differ from length_axis ('" + p.length_axis + "')");
             for (int a = 0; a < 3; ++a)
               if (p.controls[a] < p.order[a]) params::fail("controls", "need order ≤ controls ≤ 256 per axis");
+            if (std::fmod(p.twist_deg, 90.0) != 0.0)
+              params::fail("twist_deg",
+                           "must be a multiple of 90 degrees (the lattice closes after 1, 2 or 4 turns), got " +
+                               params::format_number(p.twist_deg));
+            if (p.twist_deg != 0.0) {
+              const int laps = ring_twist_laps(p.twist_deg);
+              if (p.controls.x % laps != 0 || p.controls.x < 3 * laps)
+                params::fail("controls", "a twist of " + params::format_number(p.twist_deg) + " degrees spans " +
+                                             std::to_string(laps) + " turns: controls[0] must be a multiple of " +
+                                             std::to_string(laps) + ", at least 3 (better 12) per turn");
+            }
           });
   return s;
 }
@@ -80,10 +103,19 @@ std::optional<SceneObject> LatticeRingCommand::build(const Scene& scene) {
   const double length = hi[axes.length_axis] - lo[axes.length_axis];
   const double width = p_.width > 0.0 ? p_.width : std::max(hi[across_axis] - lo[across_axis], 1e-6);
   const double height = p_.height > 0.0 ? p_.height : std::max(hi[axes.up_axis] - lo[axes.up_axis], 1e-6);
-  const double span = p_.span > 0.0 ? p_.span : length / (6.283185307179586 * p_.radius);
+  const int laps = [&] {
+    try {
+      return ring_twist_laps(p_.twist_deg);  // the schema checked it; params built in code may not have been
+    } catch (const std::invalid_argument& ex) {
+      throw CommandError("field 'twist_deg': " + std::string(ex.what()), "twist_deg");
+    }
+  }();
+  // One period of u is `laps` turns, 2π·radius·laps long.
+  const double span = p_.span > 0.0 ? p_.span : length / (6.283185307179586 * p_.radius * laps);
   if (!(span > 0.0) || span >= 1.0)
     throw CommandError("field 'radius': the object (length " + std::to_string(length) +
-                           ") does not fit around a ring of radius " + std::to_string(p_.radius),
+                           ") does not fit around a ring of radius " + std::to_string(p_.radius) +
+                           (laps > 1 ? " in " + std::to_string(laps) + " turns" : std::string()),
                        "radius");
   // u' = phase + span·u: scale the u row of the embedding.
   for (int c = 0; c < 3; ++c) e.linear[c][0] *= span;
@@ -94,9 +126,14 @@ std::optional<SceneObject> LatticeRingCommand::build(const Scene& scene) {
     throw CommandError("field 'radius': " + std::to_string(p_.radius) + " must exceed half the width (" +
                            std::to_string(0.5 * width) + ") or the inner edge crosses the ring's axis",
                        "radius");
+  if (p_.twist_deg != 0.0 && p_.radius <= std::hypot(0.5 * width, height))
+    throw CommandError("field 'radius': " + std::to_string(p_.radius) + " must exceed hypot(width / 2, height) = " +
+                           std::to_string(std::hypot(0.5 * width, height)) +
+                           " on a twisted ring, or the turning cross-section crosses the ring's axis",
+                       "radius");
   TrivariateBSpline<glm::dvec3> lattice = [&] {
     try {
-      return ring_lattice(p_.center, p_.radius, width, height, p_.controls, p_.order);
+      return ring_lattice(p_.center, p_.radius, width, height, p_.controls, p_.order, p_.twist_deg);
     } catch (const std::invalid_argument& ex) {
       throw CommandError("field 'object': " + std::string(ex.what()), "object");
     }
@@ -113,6 +150,7 @@ std::optional<SceneObject> LatticeRingCommand::build(const Scene& scene) {
   const auto t3 = Clock::now();
   stats_ = {{"vertices", rest.positions.size()},
             {"span", span},
+            {"laps", laps},
             {"width", width},
             {"height", height},
             {"ms_volume", ms(t0, t1)},  // rest mesh, bounding box, ring lattice

@@ -1,5 +1,5 @@
 // DdmLayer evaluation and editing. See ddm_layer.h. Sources: seed §5.3 (maps, instances), Eq. 5.3 (metamorphosis),
-// §5.4.2 (texture-space offset animation).
+// §5.4.2 (texture-space offset, rotation, scale and w animation).
 #include "core/ddm/ddm_layer.h"
 
 #include <tbb/blocked_range.h>
@@ -23,9 +23,20 @@ glm::dvec2 DdmLayer::offset_at(double time_s) const {
   return keyed + offset_velocity * time_s;
 }
 
+DdmTileTransform DdmLayer::transform_at(double time_s) const {
+  DdmTileTransform t = transform;
+  if (!rotate_keys.empty()) t.rotate_deg += evaluate_offset_keys(rotate_keys, time_s).x;
+  if (!scale_keys.empty()) t.scale *= evaluate_offset_keys(scale_keys, time_s).x;
+  return t;
+}
+
+double DdmLayer::height_at(double time_s) const {
+  return w_keys.empty() ? height : height * evaluate_offset_keys(w_keys, time_s).x;
+}
+
 bool DdmLayer::animated() const {
   return (!morph_tiles.empty() && alpha_keys.size() >= 2) || offset_keys.size() >= 2 ||
-         offset_velocity != glm::dvec2(0.0);
+         offset_velocity != glm::dvec2(0.0) || rotate_keys.size() >= 2 || scale_keys.size() >= 2 || w_keys.size() >= 2;
 }
 
 std::vector<DdmTile> DdmLayer::tiles_at(double a) const {
@@ -38,8 +49,8 @@ std::vector<DdmTile> DdmLayer::tiles_at(double a) const {
 
 TriMesh ddm_layer_mesh(const DdmLayer& layer, double time_s, const ProgressSink* progress) {
   if (!layer.maps) throw std::invalid_argument("layer '" + layer.name + "': no maps");
-  return ddm_evaluate(DdmMapsBase(layer.maps), layer.tiles_at(layer.alpha_at(time_s)), layer.instances, layer.height,
-                      layer.transform, layer.offset_at(time_s), progress);
+  return ddm_evaluate(DdmMapsBase(layer.maps), layer.tiles_at(layer.alpha_at(time_s)), layer.instances,
+                      layer.height_at(time_s), layer.transform_at(time_s), layer.offset_at(time_s), progress);
 }
 
 namespace {
@@ -119,8 +130,8 @@ TriMesh mesh_reusing(const DdmLayer& layer, const DdmLayer& previous) {
   }
   TriMesh added;
   if (!fresh.empty())
-    added = ddm_evaluate(DdmMapsBase(layer.maps), layer.tiles_at(layer.alpha_at(0.0)), fresh, layer.height,
-                         layer.transform, layer.offset_at(0.0));
+    added = ddm_evaluate(DdmMapsBase(layer.maps), layer.tiles_at(layer.alpha_at(0.0)), fresh, layer.height_at(0.0),
+                         layer.transform_at(0.0), layer.offset_at(0.0));
   const InstanceStarts fresh_at = instance_starts(layer.tiles, fresh);
   const InstanceStarts at = instance_starts(layer.tiles, layer.instances);
   if (at.vertex.back() > std::numeric_limits<std::uint32_t>::max())

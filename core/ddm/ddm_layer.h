@@ -66,6 +66,10 @@ struct DdmLayer {
   // zero, plus offset_velocity·t.
   std::vector<OffsetKey> offset_keys;
   glm::dvec2 offset_velocity{0.0};
+  // Keyed texture-space transform and w (seed §5.4.2), each in .offset.x, relative to the layer's own: rotate_keys
+  // add degrees to transform.rotate_deg, scale_keys multiply transform.scale, w_keys multiply height (the tile's w
+  // along the base normal). Empty = that part does not move.
+  std::vector<OffsetKey> rotate_keys, scale_keys, w_keys;
 
   // The layer at scene time 0 evaluated on the CPU reference over `maps` (what the GPU draws, object space).
   std::shared_ptr<const TriMesh> mesh;
@@ -77,13 +81,16 @@ struct DdmLayer {
 
   double alpha_at(double time_s) const;
   glm::dvec2 offset_at(double time_s) const;
-  bool animated() const;  // α or the offset changes with time
+  DdmTileTransform transform_at(double time_s) const;  // transform with rotate_keys and scale_keys applied
+  double height_at(double time_s) const;               // height · w(t), world units per tile unit of w
+  bool animated() const;                               // α, the offset, the rotation, the scale or w changes with time
   // The tiles at α (tiles themselves when there are no morph tiles).
   std::vector<DdmTile> tiles_at(double alpha) const;
 };
 
-// The layer's mesh at scene time `time_s`: ddm_evaluate over DdmMapsBase(maps) with tiles_at(alpha_at(t)), transform
-// and offset_at(t). Object space, #V = Σ instance tile vertex counts. Deterministic. `progress` as ddm_evaluate's.
+// The layer's mesh at scene time `time_s`: ddm_evaluate over DdmMapsBase(maps) with tiles_at(alpha_at(t)),
+// height_at(t), transform_at(t) and offset_at(t). Object space, #V = Σ instance tile vertex counts. Deterministic.
+// `progress` as ddm_evaluate's.
 TriMesh ddm_layer_mesh(const DdmLayer& layer, double time_s, const ProgressSink* progress = nullptr);
 
 // A copy of `layer` with `instances` (maps extended to the charts they reach, mesh at time 0): what ddm.paint makes.

@@ -559,9 +559,12 @@ void DdmPaintTool::draw_panel(ToolContext& ctx) {
   ui::tooltip("Delete the layer (tiles, maps and animation): one ddm.remove, Ctrl+Z brings it back");
   ImGui::EndDisabled();
 
-  // Animation of a layer (seed §5.4.2): metamorphosis keys and texture-space offset, one ddm.animate per click.
+  // Animation of a layer (seed §5.4.2): metamorphosis, turn, scale and w keys and texture-space offset, one
+  // ddm.animate per click.
   ImGui::Spacing();
-  if (ImGui::CollapsingHeader("Animation")) {
+  const bool animation_open = ImGui::CollapsingHeader("Animation");
+  ui::probe::item("ddm.animation");
+  if (animation_open) {
     const core::SceneObject* o = target(ctx);
     std::vector<ui::DdmLayerInfo> layers;
     if (o)

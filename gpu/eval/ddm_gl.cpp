@@ -70,7 +70,8 @@ std::invalid_argument layer_error(const core::DdmLayer& layer, const std::string
 }  // namespace
 
 DdmPose DdmPose::at(const core::DdmLayer& layer, double time_s) {
-  return {layer.morph_tiles.empty() ? 0.0 : layer.alpha_at(time_s), layer.offset_at(time_s)};
+  return {layer.morph_tiles.empty() ? 0.0 : layer.alpha_at(time_s), layer.offset_at(time_s), layer.transform_at(time_s),
+          layer.height_at(time_s)};
 }
 
 struct DdmGl::MapsGl {
@@ -312,10 +313,10 @@ void DdmGl::set_uniforms(const ShaderProgram& p, const core::DdmLayer& layer, co
   const core::DdmMaps& m = *layer.maps;
   glUniform2i(p.uniform("u_resolution"), m.resolution.x, m.resolution.y);
   glUniform2i(p.uniform("u_periodic"), m.periodic.x ? 1 : 0, m.periodic.y ? 1 : 0);
-  p.set("u_height", float(layer.height));
-  const glm::mat2 linear(layer.transform.linear());
+  p.set("u_height", float(pose.height));
+  const glm::mat2 linear(pose.transform.linear());
   glUniformMatrix2fv(p.uniform("u_tile_linear"), 1, GL_FALSE, glm::value_ptr(linear));
-  p.set("u_tile_shift", glm::vec2(layer.transform.shift));
+  p.set("u_tile_shift", glm::vec2(pose.transform.shift));
   // Reduced modulo 1 in double on periodic axes (the shader wraps anyway): keeps float precision for long animations.
   glm::dvec2 offset = pose.offset;
   if (m.periodic.x) offset.x -= std::floor(offset.x);

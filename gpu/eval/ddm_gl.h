@@ -5,7 +5,7 @@
 // computes (the CPU reference over core::DdmMapsBase), in float: tests hold positions to 1e-5 × maps.base_size and
 // normals to 1e-4.
 //
-//   DdmPose             α and texture-space offset of a layer at a scene time
+//   DdmPose             α, texture-space offset, tile transform and height of a layer at a scene time
 //   DdmGl::draw         draws a layer with a program from program() (shaded / FLAT_COLOR / OUTLINE variants)
 //   DdmGl::capture      the same vertex shader with transform feedback: positions and normals in object space
 //   DdmGl::release_unused  forgets GPU copies of layers and maps no longer shown
@@ -38,12 +38,14 @@
 
 namespace trispline::gpu {
 
-// What changes with time in a layer (seed §5.4.2): metamorphosis weight α (0 without morph tiles; any real) and the
-// texture-space offset (chart parameter units).
+// What changes with time in a layer (seed §5.4.2): metamorphosis weight α (0 without morph tiles; any real), the
+// texture-space offset (chart parameter units), the tile transform (rotation, scale) and the height (w).
 struct DdmPose {
   double alpha = 0.0;
   glm::dvec2 offset{0.0};
-  // layer.alpha_at(t) (0 when the layer has no morph tiles) and layer.offset_at(t).
+  core::DdmTileTransform transform;
+  double height = 0.1;  // world units per tile unit of w
+  // layer.alpha_at(t) (0 when the layer has no morph tiles), offset_at(t), transform_at(t) and height_at(t).
   static DdmPose at(const core::DdmLayer& layer, double time_s);
 };
 

@@ -1,9 +1,10 @@
 // Live DDM layers on the GPU (gpu/eval/ddm_gl.h, shaders/ddm.vert.glsl, seed §5.3.2) against the CPU
 // reference core::ddm_layer_mesh (ddm_evaluate over DdmMapsBase), for real on llvmpipe: every base kind (the
 // teapot's body patches as one periodic chart, the Loop limit surface of a polygonal sphere, a UV-mapped terrain),
-// with a tile-space transform, a texture-space offset (wrapping on the periodic chart, clamped elsewhere), several
-// tiles in one layer and the thorn → flower metamorphosis at α = 0.3. Tolerances (the DDM bars): positions ≤ 1e-5 ×
-// maps.base_size, normals ≤ 1e-4. Then the renderer: a layer is drawn (pixels change) and counted in RenderStats.
+// with a tile-space transform (fixed and keyed over time), a texture-space offset (wrapping on the periodic chart,
+// clamped elsewhere), several tiles in one layer and the thorn → flower metamorphosis at α = 0.3. Tolerances (the DDM
+// bars): positions ≤ 1e-5 × maps.base_size, normals ≤ 1e-4. Then the renderer: a layer is drawn (pixels change) and
+// counted in RenderStats.
 #include <cstdio>
 
 #include "core/ddm/ddm_layer.h"
@@ -83,13 +84,19 @@ TEST_F(DdmGlTest, SplineBaseMatchesTheCpuReference) {
   moved->offset_velocity = {0.41, 0.0};  // 0.41 · 2.5 s = 1.025 turns: wraps around the periodic chart
   expect_parity(gl, moved, 2.5, "teapot body, transform + offset");
 
+  auto keyed = std::make_shared<core::DdmLayer>(*moved);  // rotation, scale and w keyed (seed §5.4.2)
+  keyed->rotate_keys = {{0.0, glm::dvec3(0.0)}, {4.0, glm::dvec3(400.0, 0.0, 0.0)}};
+  keyed->scale_keys = {{0.0, glm::dvec3(1.0)}, {4.0, glm::dvec3(0.4, 0.0, 0.0)}};
+  keyed->w_keys = {{0.0, glm::dvec3(1.0), core::KeyInterpolation::smooth}, {4.0, glm::dvec3(3.0, 0.0, 0.0)}};
+  expect_parity(gl, keyed, 2.5, "teapot body, keyed rotate/scale/w");
+
   auto morph = std::make_shared<core::DdmLayer>(*moved);
   morph->morph_tiles = {core::make_ddm_tile("flower"), core::make_ddm_tile("hex")};
   morph->alpha = 0.3;
   EXPECT_GT(expect_parity(gl, morph, 2.5, "teapot body, thorn→flower α=0.3"), 0u);
   morph->alpha = 1.6;  // extrapolation is allowed (Eq. 5.3 with α outside [0,1])
   expect_parity(gl, morph, 0.0, "teapot body, α=1.6");
-  EXPECT_EQ(gl.cached_layers(), 3u);  // the α = 1.6 draw reused morph's upload (α is a uniform)
+  EXPECT_EQ(gl.cached_layers(), 4u);  // the α = 1.6 draw reused morph's upload (α is a uniform)
 }
 
 // The Loop limit surface of a polygonal sphere: three charts per triangle, one tile per chart, with a transform and a

@@ -46,6 +46,34 @@ TEST(DdmAnimPanel, LinesApplyToTheLayer) {
   EXPECT_FALSE(s.find("pot")->ddm_layers.at(0)->animated());
 }
 
+// Turn, scale and w over the panel's frames (seed §5.4.2): keys only for the values moved from rest, and a second
+// Animate with them back at rest removes those keys.
+TEST(DdmAnimPanel, TurnScaleAndWLinesKeyTheLayer) {
+  core::Scene s = pot();
+  ui::DdmAnimParams p;
+  p.morph_tile.clear();
+  p.frame_from = 1, p.frame_to = 25, p.interpolation = "linear";
+  EXPECT_NE(ui::ddm_animate_blocked("pot", "t", p).find("nothing to animate"), std::string::npos);
+  p.turn_to = 360.0, p.w_to = 2.0;
+  EXPECT_EQ(ui::ddm_animate_blocked("pot", "t", p), "");
+  const json line = ui::ddm_animate_line("pot", "t", p);
+  EXPECT_EQ(line["rotate_keys"], json::parse("[[1,0.0],[25,360.0]]"));
+  EXPECT_EQ(line["w_keys"], json::parse("[[1,1.0],[25,2.0]]"));
+  EXPECT_EQ(line["scale_keys"], json::array());
+  core::DdmAnimateCommand::parse(line, {})->redo(s);
+  const core::DdmLayer& l = *s.find("pot")->ddm_layers.at(0);
+  EXPECT_DOUBLE_EQ(l.transform_at(0.5).rotate_deg, 180.0);
+  EXPECT_DOUBLE_EQ(l.height_at(1.0), 0.1);
+  EXPECT_TRUE(l.scale_keys.empty());
+  p.scale_to = 0.0;
+  EXPECT_NE(ui::ddm_animate_blocked("pot", "t", p).find("scale"), std::string::npos);
+  p.scale_to = 1.0, p.turn_to = 0.0, p.w_to = 1.0, p.speed_u = 0.1;
+  core::DdmAnimateCommand::parse(ui::ddm_animate_line("pot", "t", p), {})->redo(s);
+  const core::DdmLayer& after = *s.find("pot")->ddm_layers.at(0);
+  EXPECT_TRUE(after.rotate_keys.empty() && after.w_keys.empty());
+  EXPECT_TRUE(after.animated());  // the offset speed alone
+}
+
 TEST(DdmAnimPanel, BlockedReasonsAndAHeadlessFrame) {
   ui::DdmAnimParams p;
   EXPECT_NE(ui::ddm_animate_blocked("", "t", p), "");

@@ -1,7 +1,10 @@
-// ddm.animate (core/commands/ddm_animate.h; seed §5.4.2, Eq. 5.3): metamorphosis keys and texture-space offset on a
-// layer, the scene at any time (scene_at_time) equal to the layer evaluated there, undo, bad input refused with the
-// scene unchanged, the log line round trip.
+// ddm.animate (core/commands/ddm_animate.h; seed §5.4.2, Eq. 5.3): metamorphosis keys, texture-space offset, keyed
+// rotation, scale and w on a layer, the scene at any time (scene_at_time) equal to the layer evaluated there, undo, bad
+// input refused with the scene unchanged, the log line round trip.
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
 
 #include "core/commands/ddm_animate.h"
 #include "core/commands/ddm_fill.h"
@@ -53,6 +56,51 @@ TEST(DdmAnimate, MorphAndOffsetPlayOverTimeAndUndo) {
   EXPECT_EQ(s.find("pot")->ddm_layers.at(0), before);
 }
 
+// Keyed rotation, scale and w are the layer's own transform and height moved over time: at 1 s the keyed layer is,
+// bit for bit, the same layer with rotate_deg + 90, scale × 0.5 and height × 2 set once.
+TEST(DdmAnimate, RotationScaleAndWKeysMoveTheLayersTransform) {
+  Scene s = pot_with_thorns();
+  const auto before = s.find("pot")->ddm_layers.at(0);
+  auto cmd = DdmAnimateCommand::parse(json::parse(R"({"cmd":"ddm.animate","object":"pot","layer":"t",
+      "rotate_keys":[[1,0],[25,90]],"scale_keys":[[1,1],[25,0.5]],"w_keys":[[1,1],[25,2]]})"),
+                                      {});
+  cmd->redo(s);
+  const DdmLayer& layer = *s.find("pot")->ddm_layers.at(0);
+  ASSERT_TRUE(layer.animated());
+  EXPECT_EQ(layer.mesh->positions, before->mesh->positions);   // the keys start at the layer's own transform
+  EXPECT_DOUBLE_EQ(layer.transform_at(0.5).rotate_deg, 45.0);  // frame 13 of 24 fps, linear
+  EXPECT_DOUBLE_EQ(layer.transform_at(1.0).scale.x, 0.5);
+  EXPECT_DOUBLE_EQ(layer.height_at(1.0), 0.1);
+  DdmLayer set_once = *before;
+  set_once.transform.rotate_deg += 90.0, set_once.transform.scale *= 0.5, set_once.height *= 2.0;
+  const TriMesh keyed = ddm_layer_mesh(layer, 1.0);
+  EXPECT_EQ(keyed.positions, ddm_layer_mesh(set_once, 0.0).positions);
+  EXPECT_EQ(keyed.normals, ddm_layer_mesh(set_once, 0.0).normals);
+  // Tiles taller by w: the farthest tile vertex from the pot's axis moves out.
+  auto reach = [](const TriMesh& m) {
+    double r = 0.0;
+    for (const glm::dvec3& p : m.positions) r = std::max(r, std::hypot(p.x, p.z));
+    return r;
+  };
+  EXPECT_GT(reach(keyed), reach(*layer.mesh) + 0.02);
+  // The scene at 1 s holds a still of that pose.
+  const Scene later = scene_at_time(s, 1.0);
+  const DdmLayer& still = *later.find("pot")->ddm_layers.at(0);
+  EXPECT_FALSE(still.animated());
+  EXPECT_EQ(still.mesh->positions, keyed.positions);
+  EXPECT_EQ(ddm_layer_mesh(still, 3.0).positions, keyed.positions);
+  // Round trip, clear, undo.
+  EXPECT_EQ(DdmAnimateCommand::parse(cmd->to_json(), {})->to_json(), cmd->to_json());
+  auto clear =
+      DdmAnimateCommand::parse(json::parse(R"({"cmd":"ddm.animate","object":"pot","layer":"t","clear":true})"), {});
+  clear->redo(s);
+  EXPECT_FALSE(s.find("pot")->ddm_layers.at(0)->animated());
+  EXPECT_EQ(s.find("pot")->ddm_layers.at(0)->mesh->positions, before->mesh->positions);
+  clear->undo(s);
+  cmd->undo(s);
+  EXPECT_EQ(s.find("pot")->ddm_layers.at(0), before);
+}
+
 TEST(DdmAnimate, BadInputIsRefusedAndTheSceneIsUnchanged) {
   Scene s = pot_with_thorns();
   const auto before = s.find("pot")->ddm_layers.at(0);
@@ -65,6 +113,12 @@ TEST(DdmAnimate, BadInputIsRefusedAndTheSceneIsUnchanged) {
       "alpha_keys":[[1,0],[1,1]]})"),
             "alpha_keys");  // two keys on one frame
   EXPECT_EQ(field_of(R"({"cmd":"ddm.animate","object":"pot","layer":"t","offset_keys":[[1,0]]})"), "offset_keys");
+  EXPECT_EQ(field_of(R"({"cmd":"ddm.animate","object":"pot","layer":"t","scale_keys":[[1,1],[9,0]]})"), "scale_keys");
+  EXPECT_EQ(field_of(R"({"cmd":"ddm.animate","object":"pot","layer":"t","w_keys":[[1,-1]]})"), "w_keys");
+  EXPECT_EQ(field_of(R"({"cmd":"ddm.animate","object":"pot","layer":"t","rotate_keys":[[1,1e9]]})"), "rotate_keys");
+  EXPECT_EQ(field_of(R"({"cmd":"ddm.animate","object":"pot","layer":"t","rotate_keys":[[3,0],[3,9]]})"),
+            "rotate_keys");  // two keys on one frame
+  EXPECT_EQ(field_of(R"({"cmd":"ddm.animate","object":"pot","layer":"t","w_keys":[[1,"x"]]})"), "w_keys");
   EXPECT_EQ(field_of(R"({"cmd":"ddm.animate","object":"pot","layer":"nope","alpha":0.5})"), "layer");
   EXPECT_EQ(field_of(R"({"cmd":"ddm.animate","object":"nope","layer":"t"})"), "object");
   EXPECT_EQ(s.find("pot")->ddm_layers.at(0), before);
