@@ -145,6 +145,7 @@ VolumeUi::LiveKey VolumeUi::wanted_key(const core::VolumeObject& v, const core::
   k.spline = v.spline;
   k.table = v.table;
   k.iso = preview_iso(v.name).value_or(v.iso);
+  for (const core::VolumeIsoLevel& l : v.more_levels) k.more_isos.push_back(l.iso);
   k.hidden = v.silhouette.hidden;
   k.projection = v.silhouette.projection;
   k.subdivision = v.silhouette.params.subdivision;
@@ -167,10 +168,11 @@ void VolumeUi::update(const core::Scene& shown, const core::Camera& view) {
   last_view_ = view;
   if (job_ && ready(job_->future)) {
     const std::unique_ptr<Job> job = std::move(job_);
-    Live live{job->key, nullptr, -1.0};
+    Live live{job->key, nullptr, -1.0, {}};
     try {
       Extracted e = job->future.get();
       live.result = std::move(e.result);
+      live.more = std::move(e.more);
       live.ms = last_ms_ = e.ms;
       ++finished_;
       last_points_ = live.result->points;
@@ -194,8 +196,13 @@ void VolumeUi::update(const core::Scene& shown, const core::Camera& view) {
     const LiveKey key = wanted_key(v, view);
     if (const auto it = live_.find(v.name); it != live_.end() && it->second.key == key) continue;
     // The volume's own silhouettes serve when they are for this eye, level and settings (after volume.export).
-    if (v.silhouettes && key.iso == v.iso && key == wanted_key(v, v.silhouette_camera) && !preview_iso(v.name)) {
-      live_[v.name] = {key, v.silhouettes, v.silhouettes->extract_ms + v.silhouettes->hidden_ms};
+    const bool own_levels = std::all_of(v.more_levels.begin(), v.more_levels.end(),
+                                        [](const core::VolumeIsoLevel& l) { return l.silhouettes != nullptr; });
+    if (v.silhouettes && own_levels && key.iso == v.iso && key == wanted_key(v, v.silhouette_camera) &&
+        !preview_iso(v.name)) {
+      Results more;
+      for (const core::VolumeIsoLevel& l : v.more_levels) more.push_back(l.silhouettes);
+      live_[v.name] = {key, v.silhouettes, v.silhouettes->extract_ms + v.silhouettes->hidden_ms, std::move(more)};
       last_ms_ = live_[v.name].ms;
       last_points_ = v.silhouettes->points;
       continue;
@@ -213,13 +220,19 @@ void VolumeUi::update(const core::Scene& shown, const core::Camera& view) {
     auto job = std::make_unique<Job>();
     job->volume = v.name;
     job->key = key;
-    job->future =
-        std::async(std::launch::async, [sequence, iso = key.iso, sv = v.screen_silhouette_view(view), params] {
-          const auto t0 = std::chrono::steady_clock::now();
-          auto r = std::make_shared<const core::SilhouetteResult>(sequence->next(iso, sv, params));
-          return Extracted{std::move(r),
-                           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count()};
-        });
+    // Further levels are extracted whole after the first (their curves change with the level: no sequence).
+    job->future = std::async(std::launch::async, [sequence, iso = key.iso, more_isos = key.more_isos,
+                                                  sv = v.screen_silhouette_view(view), params] {
+      const auto t0 = std::chrono::steady_clock::now();
+      auto r = std::make_shared<const core::SilhouetteResult>(sequence->next(iso, sv, params));
+      Results more;
+      for (double level : more_isos)
+        more.push_back(std::make_shared<const core::SilhouetteResult>(
+            core::extract_silhouettes(sequence->spline(), sequence->table(), level, sv, params)));
+      return Extracted{std::move(r),
+                       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count(),
+                       std::move(more)};
+    });
     job_ = std::move(job);
     break;
   }
@@ -228,7 +241,7 @@ void VolumeUi::update(const core::Scene& shown, const core::Camera& view) {
 void VolumeUi::decorate(gpu::ViewOptions& options) const {
   std::vector<std::string> named;
   for (const auto& [name, live] : live_) {
-    options.overlays.volumes_in_place.push_back({name, preview_iso(name), live.result});
+    options.overlays.volumes_in_place.push_back({name, preview_iso(name), live.result, live.more});
     named.push_back(name);
   }
   for (const auto* p : {&preview_, &held_})
@@ -293,7 +306,17 @@ nlohmann::json VolumeUi::probe(const core::Scene& scene) const {
   for (const core::VolumeObject& v : scene.volumes()) {
     const ui::VolumeLiveInfo live = live_info(v.name);
     const auto& d = v.spline->dims();
+    // The further levels: their values and the points of their live silhouettes (-1: none drawn).
+    nlohmann::json levels = nlohmann::json::array();
+    const auto it = live_.find(v.name);
+    for (std::size_t k = 0; k < v.more_levels.size(); ++k) {
+      const bool drawn = it != live_.end() && k < it->second.more.size() && it->second.more[k];
+      levels.push_back({{"iso", v.more_levels[k].iso},
+                        {"style", v.more_levels[k].style},
+                        {"live_points", drawn ? nlohmann::json(it->second.more[k]->points) : nlohmann::json(-1)}});
+    }
     volumes.push_back({{"name", v.name},
+                       {"more_levels", levels},
                        {"iso", v.iso},
                        {"preview_iso", preview_iso(v.name) ? nlohmann::json(*preview_iso(v.name)) : nlohmann::json()},
                        {"dims", {d[0], d[1], d[2]}},

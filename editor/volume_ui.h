@@ -6,10 +6,10 @@
 //                untouched and says so in the Log.
 //   Volume panel ui/volume_panel.h for the selected volume: its volume.iso / volume.silhouettes lines run through
 //                the editor's deferred work ("Working…"); the iso field's live level is drawn until its line ran
-//   live view    silhouettes of every visible volume whose silhouettes are on, extracted for the current view on a
-//                worker thread whenever the eye (the direction, for orthographic ones), the level (the live preview
-//                included) or the settings changed and no extraction is running; the latest result is drawn (a stale
-//                one until the next arrives), so the UI never waits for Newton
+//   live view    silhouettes of every visible volume whose silhouettes are on (every level), extracted for the
+//                current view on a worker thread whenever the eye (the direction, for orthographic ones), the level
+//                (the live preview included) or the settings changed and no extraction is running; the latest result is
+//                drawn (a stale one until the next arrives), so the UI never waits for Newton
 //   export       the Volume panel's Export buttons → the Save dialog → camera.set of the current view (when the scene
 //                camera differs: volume.export writes the scene camera's silhouettes) and volume.export
 #pragma once
@@ -96,20 +96,24 @@ class VolumeUi {
     double accuracy = 0.0;
     glm::dvec3 eye{0.0}, direction{0.0};  // perspective: eye only; orthographic: direction only
     double pixel_size = 0.0;              // core::SilhouetteView::pixel_size (the screen's density)
+    std::vector<double> more_isos;        // the further levels' (VolumeObject::more_levels)
     bool operator==(const LiveKey& o) const {
-      return spline == o.spline && table == o.table && iso == o.iso && hidden == o.hidden &&
+      return spline == o.spline && table == o.table && iso == o.iso && more_isos == o.more_isos && hidden == o.hidden &&
              projection == o.projection && subdivision == o.subdivision && accuracy == o.accuracy && eye == o.eye &&
              pixel_size == o.pixel_size && direction == o.direction;
     }
   };
+  using Results = std::vector<std::shared_ptr<const core::SilhouetteResult>>;
   struct Live {
     LiveKey key;
     std::shared_ptr<const core::SilhouetteResult> result;  // null after a failed extraction
     double ms = -1.0;
+    Results more;  // one per further level
   };
   struct Extracted {
     std::shared_ptr<const core::SilhouetteResult> result;
     double ms = 0.0;
+    Results more;
   };
   struct Job {
     std::string volume;

@@ -73,7 +73,84 @@ bool accuracy_combo(core::VolumeSilhouettesParams& p) {
   return changed;
 }
 
+// The Volume panel's further levels: level, style, colour and remove per level, then Add level.
+void more_levels_section(const core::VolumeObject& v, VolumePanelState& state, VolumePanelResult& r, double lo,
+                         double hi, double speed, const char* format) {
+  ImGui::Separator();
+  ImGui::TextColored(colors::dim, "More levels");
+  tooltip(
+      "Further iso-levels drawn as silhouettes only, each in its own style and colour (seed Figs. 7.4-7.6, 7.12: "
+      "skin and bone together). The surface is the first level's. Each change is one volume.iso with every level.");
+  const auto& styles = core::VolumeSilhouettesCommand::schema().find("style")->choices;
+  for (std::size_t i = 0; i < v.more_levels.size() && i < state.more_iso.size(); ++i) {
+    const core::VolumeIsoLevel& l = v.more_levels[i];
+    const std::string id = "volume.levels." + std::to_string(i + 1);
+    const int k = int(i);
+    ImGui::PushID(k);
+    row_label(("Level " + std::to_string(i + 2)).c_str());
+    drag_scalar("##level", ImGuiDataType_Double, &state.more_iso[i], float(speed), &lo, &hi, format,
+                ImGuiSliderFlags_AlwaysClamp);
+    probe::item(id);
+    tooltip("This level's value; release or Enter to apply");
+    if (ImGui::IsItemDeactivatedAfterEdit() && std::isfinite(state.more_iso[i]) && state.more_iso[i] != l.iso)
+      r.line = volume_levels_line(v, k, [level = state.more_iso[i]](core::VolumeLevelSpec& s) { s.level = level; });
+    row_label("");
+    const float square = ImGui::GetFrameHeight(), gap = ImGui::GetStyle().ItemInnerSpacing.x;
+    ImGui::SetNextItemWidth(std::max(ImGui::CalcItemWidth() - 2.0f * (square + gap) - ImGui::GetFontSize(), square));
+    if (ImGui::BeginCombo("##style", l.style.c_str())) {
+      for (const std::string& st : styles) {
+        if (ImGui::Selectable(st.c_str(), st == l.style) && st != l.style)
+          r.line = volume_levels_line(v, k, [st](core::VolumeLevelSpec& s) { s.style = st; });
+        probe::item(id + ".style." + st);
+      }
+      ImGui::EndCombo();
+    }
+    probe::item(id + ".style");
+    tooltip("This level's stroke style (as Style above; plain and width use the level's colour)");
+    ImGui::SameLine(0.0f, gap);
+    float color[3] = {l.color.x, l.color.y, l.color.z};
+    ImGui::ColorEdit3("##color", color, ImGuiColorEditFlags_NoInputs);
+    probe::item(id + ".color");
+    tooltip("This level's stroke colour (plain strokes; the darkest of width strokes)");
+    if (ImGui::IsItemDeactivatedAfterEdit())
+      r.line = volume_levels_line(
+          v, k, [c = glm::vec3(color[0], color[1], color[2])](core::VolumeLevelSpec& s) { s.color = c; });
+    ImGui::SameLine(0.0f, gap);
+    if (ImGui::Button("x", ImVec2(square, square))) r.line = volume_levels_line(v, k, nullptr, true);
+    probe::item(id + ".remove");
+    tooltip("Remove this level");
+    ImGui::PopID();
+  }
+  ImGui::BeginDisabled(1 + v.more_levels.size() >= core::kMaxVolumeLevels);
+  if (ImGui::Button("Add level")) {
+    // A quarter of the value range below the surface's level (towards soft tissue on CT), inside the range.
+    const double add = std::clamp(v.iso - 0.25 * (hi - lo), lo, hi);
+    r.line = volume_levels_line(v, -1, nullptr, false, add);
+  }
+  ImGui::EndDisabled();
+  probe::item("volume.levels.add");
+  tooltip("Add an iso-level whose silhouettes are drawn with the surface's (at most 8 levels); set its value after");
+}
+
 }  // namespace
+
+nlohmann::json volume_levels_line(const core::VolumeObject& v, int k,
+                                  const std::function<void(core::VolumeLevelSpec&)>& edit, bool remove,
+                                  std::optional<double> add) {
+  core::VolumeIsoParams p;
+  p.object = v.name;
+  p.level = v.iso;
+  std::vector<core::VolumeLevelSpec> levels{{v.iso, std::nullopt, std::nullopt}};
+  for (std::size_t i = 0; i < v.more_levels.size(); ++i) {
+    core::VolumeLevelSpec s{v.more_levels[i].iso, v.more_levels[i].style, v.more_levels[i].color};
+    if (int(i) == k && remove) continue;
+    if (int(i) == k && edit) edit(s);
+    levels.push_back(std::move(s));
+  }
+  if (add) levels.push_back({*add, std::nullopt, std::nullopt});
+  p.levels = std::move(levels);
+  return core::VolumeIsoCommand::schema().to_json(p);
+}
 
 std::string volume_spacing_text(const core::VolumeSpline& spline) {
   const glm::dmat4& m = spline.index_to_world();
@@ -89,12 +166,17 @@ VolumePanelResult draw_volume_panel(const Rect& rect, const core::VolumeObject& 
   if (state.volume != v.name) {
     state.volume = v.name;
     state.iso = state.seen_iso = v.iso;
+    state.more_iso.clear(), state.seen_more_iso.clear();
     take_settings(v, state);
   }
   if (v.iso != state.seen_iso) state.iso = state.seen_iso = v.iso;  // a command changed it (undo, a replayed log)
   if (!same_settings(v.silhouette, state.seen)) take_settings(v, state);
 
   if (begin_docked("Volume", rect)) {
+    {
+      const ImVec2 pos = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+      probe::rect("panel.volume", pos, ImVec2(pos.x + size.x, pos.y + size.y));
+    }
     ImGui::TextUnformatted(v.name.c_str());
     tooltip("The selected volume (its id in command lines)");
     if (!v.modality.empty()) {
@@ -139,6 +221,12 @@ VolumePanelResult draw_volume_panel(const Rect& rect, const core::VolumeObject& 
     if (ImGui::IsItemActive() && state.iso != v.iso) r.iso_preview = state.iso;
     if (ImGui::IsItemDeactivatedAfterEdit() && std::isfinite(state.iso) && state.iso != v.iso)
       r.line = core::VolumeIsoCommand::schema().to_json(core::VolumeIsoParams{v.name, state.iso});
+
+    // Further levels' fields follow the volume unless one is being edited.
+    std::vector<double> more;
+    for (const core::VolumeIsoLevel& l : v.more_levels) more.push_back(l.iso);
+    if (more != state.seen_more_iso && !ImGui::IsAnyItemActive()) state.more_iso = state.seen_more_iso = more;
+    more_levels_section(v, state, r, lo, hi, speed, format.c_str());
 
     ImGui::Separator();
     ImGui::TextColored(colors::dim, "Silhouettes");

@@ -8,14 +8,20 @@
 //                release (or Enter) one volume.iso line
 //   Silhouettes  on/off, style, hidden lines, projection, subdivision, accuracy: each change one volume.silhouettes
 //                line carrying all of them
+//   More levels  further iso-levels drawn as silhouettes only (seed Figs. 7.4–7.6, 7.12): level, style, colour,
+//                remove, Add level; each change one volume.iso line with every level
 //   Export       silhouettes as SVG or glTF lines, the iso-surface as GLB / OBJ / PLY
-// Widgets are named for GUI tests: "volume.iso", "volume.silhouettes.<field>", "volume.export.<kind>".
+// Widgets are named for GUI tests: "volume.iso", "volume.silhouettes.<field>", "volume.export.<kind>",
+// "volume.levels.add", "volume.levels.<k>" (k = 1, 2, … the further levels), "volume.levels.<k>.style",
+// "volume.levels.<k>.color", "volume.levels.<k>.remove".
 #pragma once
 
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 
+#include "core/commands/volume_iso.h"
 #include "core/commands/volume_silhouettes.h"
 #include "core/scene/scene.h"
 #include "ui/layout.h"
@@ -30,6 +36,8 @@ struct VolumePanelState {
   double seen_iso = 0.0;
   core::VolumeSilhouettesParams silhouettes;  // the silhouette section (object = volume)
   core::VolumeSilhouetteSettings seen;        // the volume's settings when last refreshed
+  std::vector<double> more_iso;               // the further levels' fields (VolumeObject::more_levels)
+  std::vector<double> seen_more_iso;
 };
 
 // What the live silhouettes are doing, for the panel's status line.
@@ -74,5 +82,11 @@ std::string volume_spacing_text(const core::VolumeSpline& spline);
 // Draws the panel as the docked window "Volume" in `rect` for volume `v`.
 VolumePanelResult draw_volume_panel(const Rect& rect, const core::VolumeObject& v, VolumePanelState& state,
                                     const VolumeLiveInfo& live);
+
+// The volume.iso line that sets `v`'s levels to its current ones with further level `k` (0-based) changed by `edit`
+// (null: unchanged), removed (`remove`), or a new level `add` appended.
+nlohmann::json volume_levels_line(const core::VolumeObject& v, int k,
+                                  const std::function<void(core::VolumeLevelSpec&)>& edit, bool remove = false,
+                                  std::optional<double> add = std::nullopt);
 
 }  // namespace trispline::ui

@@ -1,6 +1,7 @@
 #include "core/commands/volume_export.h"
 
 #include <chrono>
+#include <glm/gtc/color_space.hpp>
 
 #include "core/mesh/gltf_io.h"
 #include "core/params/codecs.h"
@@ -86,28 +87,52 @@ std::optional<VolumeObject> VolumeExportCommand::build(const Scene& scene) {
     const auto& polylines = v.silhouettes->polylines;
     for (const SilhouettePolyline& pl : polylines) require_finite_points(pl.points, "silhouette point");
     // The file is written from these (shared, immutable) results, now or later (write_files: History's Run again).
-    const std::shared_ptr<const SilhouetteResult> result = v.silhouettes;
+    // Every level: the first in the volume's style (black where the style has one colour), then each further level in
+    // its own style and colour.
+    struct Level {
+      std::shared_ptr<const SilhouetteResult> result;
+      std::string style;
+      glm::vec3 color;  // sRGB
+    };
+    std::vector<Level> levels{{v.silhouettes, v.silhouette.style, glm::vec3(0.0f)}};
+    for (const VolumeIsoLevel& l : v.more_levels) {
+      for (const SilhouettePolyline& pl : l.silhouettes->polylines)
+        require_finite_points(pl.points, "silhouette point");
+      levels.push_back({l.silhouettes, l.style, l.color});
+    }
     const glm::dmat4 view_projection = cam.projection_matrix() * cam.view_matrix();
     const glm::ivec2 viewport = cam.viewport;
-    const VolumeSilhouetteSettings look = v.silhouette;
-    const std::string name = p_.object + "/silhouettes";
-    writer_ = [result, view_projection, viewport, look, name](const std::filesystem::path& out) {
+    const std::string hidden = v.silhouette.hidden, name = p_.object + "/silhouettes";
+    writer_ = [levels, view_projection, viewport, hidden, name](const std::filesystem::path& out) {
       std::filesystem::create_directories(out.parent_path());
       if (lower_extension(out.string()) == ".svg") {
-        SvgStyle style;
-        style.stroke = look.style;  // hue | glyphs | width | plain | chromadepth
-        style.hidden = look.hidden == "dashed" ? "dashed" : "remove";
-        std::vector<SilhouettePolyline> drawn = result->polylines;
-        if (look.hidden == "show")
-          for (auto& pl : drawn) std::fill(pl.visible.begin(), pl.visible.end(), 1);
-        write_silhouettes_svg(out, drawn, view_projection, viewport, style);
+        std::vector<std::vector<SilhouettePolyline>> drawn;
+        for (const Level& l : levels) {
+          drawn.push_back(l.result->polylines);
+          if (hidden == "show")
+            for (auto& pl : drawn.back()) std::fill(pl.visible.begin(), pl.visible.end(), 1);
+        }
+        std::vector<SvgLayer> layers;
+        for (std::size_t i = 0; i < levels.size(); ++i) {
+          SvgLayer layer{&drawn[i], {}};
+          layer.style.stroke = levels[i].style;  // hue | glyphs | fans | width | plain | chromadepth
+          layer.style.hidden = hidden == "dashed" ? "dashed" : "remove";
+          layer.style.color = levels[i].color;
+          layers.push_back(layer);
+        }
+        write_silhouettes_svg(out, layers, view_projection, viewport);
       } else {
-        const auto strips = silhouette_line_strips(result->polylines, look.hidden != "remove");
-        GltfNode node;
-        node.name = name;
-        node.line_strips = &strips;
-        node.color = glm::vec3(0.0f);
-        write_glb(out, {node});
+        std::vector<std::vector<std::vector<glm::vec3>>> strips;
+        for (const Level& l : levels) strips.push_back(silhouette_line_strips(l.result->polylines, hidden != "remove"));
+        std::vector<GltfNode> nodes;
+        for (std::size_t i = 0; i < levels.size(); ++i) {
+          GltfNode node;
+          node.name = i == 0 ? name : name + "." + std::to_string(i);
+          node.line_strips = &strips[i];
+          node.color = glm::convertSRGBToLinear(levels[i].color);
+          nodes.push_back(node);
+        }
+        write_glb(out, nodes);
       }
     };
   } else {

@@ -11,12 +11,13 @@ const ParamSchema<VolumeSilhouettesParams>& VolumeSilhouettesCommand::schema() {
           .help("A volume")
           .field("enabled", &P::enabled)
           .help("Extract and draw the silhouettes (false hides them)")
-          .choice("style", &P::style, {"hue", "glyphs", "width", "plain", "chromadepth"})
+          .choice("style", &P::style, {"hue", "glyphs", "fans", "width", "plain", "chromadepth"})
           .label("Style")
           .help(
-              "hue: colour by gradient magnitude; glyphs: short strokes across the projected gradient; width: "
-              "stroke width and grey by gradient magnitude; plain: black lines; chromadepth: colour by depth, red "
-              "nearest to blue farthest, for ChromaDepth glasses (Figs. 7.8–7.9)")
+              "hue: colour by gradient magnitude; glyphs: short strokes along the curve, longer where the gradient "
+              "is larger; fans: fans across the curve, narrower and bluer where the gradient is larger (Fig. 7.11); "
+              "width: stroke width and grey by gradient magnitude; plain: black lines; chromadepth: colour by depth, "
+              "red nearest to blue farthest, for ChromaDepth glasses (Figs. 7.8–7.9)")
           .choice("hidden", &P::hidden, {"remove", "dashed", "show"})
           .label("Hidden lines")
           .help("Parts hidden behind the iso-surface: removed, dashed, or shown like the rest")

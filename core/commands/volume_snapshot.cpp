@@ -13,6 +13,7 @@ VolumeObject volume_with_silhouettes(const VolumeObject& volume, const Camera& c
   VolumeObject out = volume;
   if (!volume.silhouette.enabled) {
     out.silhouettes.reset();
+    for (VolumeIsoLevel& l : out.more_levels) l.silhouettes.reset();
     return out;
   }
   SilhouetteParams params = volume.silhouette.params;
@@ -31,6 +32,13 @@ VolumeObject volume_with_silhouettes(const VolumeObject& volume, const Camera& c
     (*stats)["max_dot_residual"] = r->max_dot_residual;
   }
   out.silhouettes = std::move(r);
+  std::size_t points = out.silhouettes->points;
+  for (VolumeIsoLevel& l : out.more_levels) {
+    l.silhouettes = std::make_shared<SilhouetteResult>(
+        extract_silhouettes(*volume.spline, *volume.table, l.iso, volume.silhouette_view(camera), params));
+    points += l.silhouettes->points;
+  }
+  if (stats && !out.more_levels.empty()) (*stats)["points_all_levels"] = points;
   out.silhouette_camera = camera;
   return out;
 }

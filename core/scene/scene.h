@@ -151,12 +151,26 @@ struct SceneObject {
 struct VolumeSilhouetteSettings {
   bool enabled = false;           // extracted for the current view (live in the editor, at export and in replay)
   std::string style = "hue";      // hue (hue by |∇D|) | glyphs (short strokes ⊥ the projected gradient) |
+                                  // fans (fans across the curve, opening and hue by |∇D|) |
                                   // width (stroke width and grey by |∇D|) | plain (black) |
                                   // chromadepth (hue by depth: red nearest, blue farthest)
   std::string hidden = "remove";  // remove | dashed | show: what is done with parts hidden by the iso-surface
   std::string projection = "perspective";  // perspective (G·(P − eye) = 0) | orthographic (G·forward = 0)
   SilhouetteParams params;                 // subdivision, accuracy (hidden_test follows `hidden`)
 };
+
+// A further iso-level of a volume (seed Figs. 7.4–7.6, 7.9, 7.12: skin and bone, or several grey levels, at once):
+// its silhouettes, stroked in a style and colour of their own, for the volume's silhouette camera and its silhouette
+// settings (hidden lines, projection, subdivision, accuracy). Only the volume's first level (VolumeObject::iso) is
+// ray cast as a surface; each level's hidden parts are those behind its own iso-surface.
+struct VolumeIsoLevel {
+  double iso = 0.0;             // iso-level c of D = c, in the volume's units
+  std::string style = "plain";  // as VolumeSilhouetteSettings::style
+  glm::vec3 color{0.0f};        // sRGB in [0,1]³: plain strokes' colour, the width style's darkest
+  std::shared_ptr<const SilhouetteResult> silhouettes;  // null until extracted, or when silhouettes are disabled
+};
+// The most iso-levels one volume holds (its first and the further ones): each costs a silhouette extraction a view.
+inline constexpr std::size_t kMaxVolumeLevels = 8;
 
 // A CT/MRI volume as a scalar trivariate B-spline D (seed ch. 7): its samples' spline, the singleton table, the
 // iso-level shown, and the silhouettes last extracted for the scene camera. World units: millimetres of the file's
@@ -177,6 +191,9 @@ struct VolumeObject {
   // Silhouettes of D = iso for `silhouette_camera` (null until extracted, or when disabled).
   std::shared_ptr<const SilhouetteResult> silhouettes;
   Camera silhouette_camera;
+  // Further iso-levels (volume.iso "levels"), at most kMaxVolumeLevels − 1; their silhouettes are for
+  // silhouette_camera too.
+  std::vector<VolumeIsoLevel> more_levels;
   // The iso-surface as a triangle mesh (volume.export of the surface), world millimetres; null until extracted.
   std::shared_ptr<const TriMesh> iso_mesh;
 

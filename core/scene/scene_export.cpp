@@ -1,6 +1,8 @@
 // Scene export nodes. See scene_export.h.
 #include "core/scene/scene_export.h"
 
+#include <glm/gtc/color_space.hpp>
+
 #include "core/scene/ddm_follow.h"
 #include "core/volume/silhouette_export.h"
 
@@ -35,22 +37,28 @@ SceneExport scene_export_nodes(const Scene& scene) {
     if (!v.render_visible) continue;
     if (v.iso_mesh) out.nodes.push_back({v.name + "/iso", v.iso_mesh.get(), v.color, v.color});
     if (!v.silhouette.enabled) continue;
-    // The silhouettes of the scene's current camera (extracted again when the stored ones are for another view).
-    std::shared_ptr<const SilhouetteResult> sil = v.silhouettes;
-    if (!sil || !same_view(v.silhouette_camera, scene.camera)) {
-      SilhouetteParams params = v.silhouette.params;
-      params.hidden_test = v.silhouette.hidden != "show";
-      sil = std::make_shared<const SilhouetteResult>(
-          extract_silhouettes(*v.spline, *v.table, v.iso, v.silhouette_view(scene.camera), params));
-    }
-    auto strips = std::make_shared<const std::vector<std::vector<glm::vec3>>>(
-        silhouette_line_strips(sil->polylines, v.silhouette.hidden != "remove"));
-    GltfNode node;
-    node.name = v.name + "/silhouettes";
-    node.color = glm::vec3(0.0f);
-    node.line_strips = strips.get();
-    out.nodes.push_back(node);
-    out.owned_strips.push_back(std::move(strips));
+    // The silhouettes of the scene's current camera (extracted again when the stored ones are for another view),
+    // every level's: "<volume>/silhouettes", then "<volume>/silhouettes.<k>" in the further level's colour.
+    const bool stored = v.silhouettes && same_view(v.silhouette_camera, scene.camera);
+    SilhouetteParams params = v.silhouette.params;
+    params.hidden_test = v.silhouette.hidden != "show";
+    auto level_node = [&](std::shared_ptr<const SilhouetteResult> sil, double iso, std::string name, glm::vec3 color) {
+      if (!sil || !stored)
+        sil = std::make_shared<const SilhouetteResult>(
+            extract_silhouettes(*v.spline, *v.table, iso, v.silhouette_view(scene.camera), params));
+      auto strips = std::make_shared<const std::vector<std::vector<glm::vec3>>>(
+          silhouette_line_strips(sil->polylines, v.silhouette.hidden != "remove"));
+      GltfNode node;
+      node.name = std::move(name);
+      node.color = color;
+      node.line_strips = strips.get();
+      out.nodes.push_back(node);
+      out.owned_strips.push_back(std::move(strips));
+    };
+    level_node(v.silhouettes, v.iso, v.name + "/silhouettes", glm::vec3(0.0f));
+    for (std::size_t k = 0; k < v.more_levels.size(); ++k)
+      level_node(v.more_levels[k].silhouettes, v.more_levels[k].iso, v.name + "/silhouettes." + std::to_string(k + 1),
+                 glm::convertSRGBToLinear(v.more_levels[k].color));
   }
   return out;
 }

@@ -39,9 +39,9 @@ void check_input(const std::vector<SilhouettePolyline>& polylines, const glm::dm
   if (viewport.x < 1 || viewport.y < 1 || viewport.x > 65536 || viewport.y > 65536)
     throw std::invalid_argument("silhouette SVG: the viewport must be 1…65536 pixels per side");
   if (style.stroke != "hue" && style.stroke != "width" && style.stroke != "plain" && style.stroke != "glyphs" &&
-      style.stroke != "chromadepth")
+      style.stroke != "fans" && style.stroke != "chromadepth")
     throw std::invalid_argument("silhouette SVG: unknown stroke style '" + style.stroke +
-                                "' (hue, glyphs, width or plain)");
+                                "' (hue, glyphs, fans, width, plain or chromadepth)");
   if (style.hidden != "dashed" && style.hidden != "remove")
     throw std::invalid_argument("silhouette SVG: unknown hidden mode '" + style.hidden + "' (dashed or remove)");
   if (style.bins < 1 || style.bins > 256) throw std::invalid_argument("silhouette SVG: bins must be 1…256");
@@ -50,8 +50,10 @@ void check_input(const std::vector<SilhouettePolyline>& polylines, const glm::dm
     throw std::invalid_argument("silhouette SVG: stroke widths must satisfy 0 < width_px ≤ max_width_px ≤ 1000");
   if (!std::isfinite(style.gradient_min) || !std::isfinite(style.gradient_max))
     throw std::invalid_argument("silhouette SVG: the gradient range is not finite");
-  for (float c : {style.hidden_color.x, style.hidden_color.y, style.hidden_color.z})
-    if (!(c >= 0.0f && c <= 1.0f)) throw std::invalid_argument("silhouette SVG: hidden_color must be in [0, 1]");
+  for (float c :
+       {style.hidden_color.x, style.hidden_color.y, style.hidden_color.z, style.color.x, style.color.y, style.color.z})
+    if (!(c >= 0.0f && c <= 1.0f))
+      throw std::invalid_argument("silhouette SVG: hidden_color and color must be in [0, 1]");
   if (style.dash.empty() || style.dash.find_first_not_of("0123456789. ,") != std::string::npos)
     throw std::invalid_argument("silhouette SVG: dash must be numbers separated by spaces or commas");
 }
@@ -128,6 +130,14 @@ class PathWriter {
     }
   }
 
+  // Pixel position of world point p (y down); false behind the eye or outside the viewport.
+  bool to_pixel(const glm::dvec3& p, glm::dvec2& px) const {
+    const glm::dvec4 c = vp_ * glm::dvec4(p, 1.0);
+    if (!(c.w > 0.0)) return false;
+    px = {(c.x / c.w * 0.5 + 0.5) * size_.x, (0.5 - c.y / c.w * 0.5) * size_.y};
+    return px.x >= 0.0 && px.y >= 0.0 && px.x <= size_.x && px.y <= size_.y;
+  }
+
  private:
   // "x y" in pixels, y down, clamped into the viewBox; empty when w ≤ 0.
   std::string pixel(const glm::dvec4& c) const {
@@ -182,6 +192,42 @@ void for_each_run(const SilhouettePolyline& pl, const std::vector<int>& key, Emi
   }
 }
 
+// Fan glyphs (seed Fig. 7.11): at visible points at least 1.4 radii apart on screen, a filled sector of kFanRadiusPx
+// with its apex on the curve, opening across it, kFanWidestDeg wide at ramp position 0 (lowest |∇D|) down to
+// kFanNarrowestDeg at 1, appended as a closed subpath to its bin's path in `fans`. `ramp(k)` gives point k's t.
+constexpr double kFanRadiusPx = 6.0, kFanWidestDeg = 150.0, kFanNarrowestDeg = 20.0;
+constexpr int kFanSegments = 6;
+
+template <class Ramp>
+void append_fans(const PathWriter& writer, const SilhouettePolyline& pl, Ramp&& ramp, const std::vector<int>& key,
+                 std::map<int, std::string>& fans) {
+  const std::size_t n = pl.points.size();
+  glm::dvec2 last(std::numeric_limits<double>::max());
+  for (std::size_t k = 0; k < n; ++k) {
+    if (!pl.visible[k] || key[k] < 0) continue;
+    const bool wrap = pl.closed && n > 2;
+    const std::size_t prev = k > 0 ? k - 1 : wrap ? n - 1 : k, next = k + 1 < n ? k + 1 : wrap ? 0 : k;
+    glm::dvec2 apex, a, b;
+    if (!writer.to_pixel(pl.points[k], apex) || !writer.to_pixel(pl.points[prev], a) ||
+        !writer.to_pixel(pl.points[next], b))
+      continue;
+    const glm::dvec2 tangent = b - a;
+    const double tl = glm::length(tangent);
+    if (!(tl > 1e-9) || glm::length(apex - last) < 1.4 * kFanRadiusPx) continue;
+    last = apex;
+    const glm::dvec2 axis(-tangent.y / tl, tangent.x / tl);
+    const double t = std::clamp(ramp(k), 0.0, 1.0);
+    const double opening = glm::radians(kFanWidestDeg + (kFanNarrowestDeg - kFanWidestDeg) * t);
+    std::string& d = fans[key[k]];
+    d += (d.empty() ? "M" : " M") + number(apex.x) + " " + number(apex.y);
+    for (int i = 0; i <= kFanSegments; ++i) {
+      const double an = opening * (double(i) / kFanSegments - 0.5), c = std::cos(an), s = std::sin(an);
+      const glm::dvec2 q = apex + kFanRadiusPx * glm::dvec2(axis.x * c - axis.y * s, axis.x * s + axis.y * c);
+      d += " " + number(q.x) + " " + number(q.y);  // implicit line-tos; the fill closes the sector
+    }
+  }
+}
+
 void write_atomically(const std::filesystem::path& path, const std::string& text) {
   const std::filesystem::path tmp = path.string() + ".tmp";
   {
@@ -205,9 +251,10 @@ void write_atomically(const std::filesystem::path& path, const std::string& text
 
 }  // namespace
 
-void write_silhouettes_svg(const std::filesystem::path& path, const std::vector<SilhouettePolyline>& polylines,
-                           const glm::dmat4& view_projection, glm::ivec2 viewport_px, const SvgStyle& style) {
-  check_input(polylines, view_projection, viewport_px, style);
+namespace {
+// One level's <g> element: its paths in `style`.
+std::string svg_group(const std::vector<SilhouettePolyline>& polylines, const glm::dmat4& view_projection,
+                      glm::ivec2 viewport_px, const SvgStyle& style) {
   const bool plain = style.stroke == "plain", keep_hidden = style.hidden == "dashed";
 
   // What the ramp follows: |∇D|, or for chromadepth the point's normalised device depth (red nearest, blue
@@ -234,11 +281,22 @@ void write_silhouettes_svg(const std::filesystem::path& path, const std::vector<
   };
 
   const PathWriter writer(view_projection, viewport_px);
-  std::map<int, std::string> paths;  // key → path data, hidden (−1) first
+  std::map<int, std::string> paths;      // key → path data, hidden (−1) first
+  std::map<int, std::string> fan_paths;  // fans: bin → filled sectors
   std::vector<int> key;
   for (const auto& pl : polylines) {
     key.resize(pl.points.size());
     for (std::size_t k = 0; k < pl.points.size(); ++k) key[k] = pl.visible[k] ? bin_of(quantity(pl, k)) : kHidden;
+    if (style.stroke == "fans") {
+      append_fans(
+          writer, pl, [&](std::size_t k) { return lo < hi ? (pl.gradient_norm[k] - lo) / (hi - lo) : 0.5; }, key,
+          fan_paths);
+      if (keep_hidden)
+        for_each_run(pl, key, [&](int k, const std::vector<glm::dvec3>& run) {
+          if (k == kHidden) writer.append(paths[k], run);
+        });
+      continue;
+    }
     if (style.stroke == "glyphs") {
       // The seed's glyphs (§7.3.4): a short stroke at each visible point along the curve (orthogonal to the projected
       // gradient), longer where |∇D| is larger: from 0.15 to 0.45 of the way to each neighbour.
@@ -264,13 +322,7 @@ void write_silhouettes_svg(const std::filesystem::path& path, const std::vector<
     });
   }
 
-  const std::string w = std::to_string(viewport_px.x), h = std::to_string(viewport_px.y);
-  std::string svg =
-      "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
-      "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"" +
-      w + "\" height=\"" + h + "\" viewBox=\"0 0 " + w + " " + h + "\">\n";
-  svg += "<rect x=\"0\" y=\"0\" width=\"" + w + "\" height=\"" + h + "\" fill=\"#ffffff\"/>\n";
-  svg += "<g fill=\"none\" stroke-linejoin=\"round\">\n";
+  std::string svg = "<g fill=\"none\" stroke-linejoin=\"round\">\n";
   for (const auto& [k, d] : paths) {
     if (d.empty()) continue;
     if (k == kHidden) {
@@ -279,12 +331,13 @@ void write_silhouettes_svg(const std::filesystem::path& path, const std::vector<
       continue;
     }
     const double t = (k + 0.5) / bins;  // the bin's centre on the ramp
-    glm::dvec3 colour(0.0);
+    const glm::dvec3 base(style.color);
+    glm::dvec3 colour = base;
     double width = style.width_px;
     if (style.stroke == "hue" || style.stroke == "chromadepth") {
       colour = hsv(240.0 * t, 1.0, 0.9);
     } else if (style.stroke == "width") {
-      colour = glm::dvec3(0.75 * (1.0 - t));
+      colour = base + (glm::dvec3(1.0) - base) * (0.75 * (1.0 - t));
       width = style.max_width_px + (style.width_px - style.max_width_px) * t;
     }
     std::string range;
@@ -294,8 +347,34 @@ void write_silhouettes_svg(const std::filesystem::path& path, const std::vector<
     svg += "<path class=\"visible\"" + range + " stroke=\"" + hex(colour) + "\" stroke-width=\"" + number(width) +
            "\" stroke-linecap=\"round\" d=\"" + d + "\"/>\n";
   }
-  svg += "</g>\n</svg>\n";
+  for (const auto& [k, d] : fan_paths)
+    svg += "<path class=\"fan\" fill=\"" + hex(hsv(240.0 * (k + 0.5) / bins, 1.0, 0.9)) + "\" stroke=\"none\" d=\"" +
+           d + "\"/>\n";
+  svg += "</g>\n";
+  return svg;
+}
+}  // namespace
+
+void write_silhouettes_svg(const std::filesystem::path& path, const std::vector<SvgLayer>& layers,
+                           const glm::dmat4& view_projection, glm::ivec2 viewport_px) {
+  for (const SvgLayer& layer : layers) {
+    if (!layer.polylines) throw std::invalid_argument("silhouette SVG: a layer without polylines");
+    check_input(*layer.polylines, view_projection, viewport_px, layer.style);
+  }
+  const std::string w = std::to_string(viewport_px.x), h = std::to_string(viewport_px.y);
+  std::string svg =
+      "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+      "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"" +
+      w + "\" height=\"" + h + "\" viewBox=\"0 0 " + w + " " + h + "\">\n";
+  svg += "<rect x=\"0\" y=\"0\" width=\"" + w + "\" height=\"" + h + "\" fill=\"#ffffff\"/>\n";
+  for (const SvgLayer& layer : layers) svg += svg_group(*layer.polylines, view_projection, viewport_px, layer.style);
+  svg += "</svg>\n";
   write_atomically(path, svg);
+}
+
+void write_silhouettes_svg(const std::filesystem::path& path, const std::vector<SilhouettePolyline>& polylines,
+                           const glm::dmat4& view_projection, glm::ivec2 viewport_px, const SvgStyle& style) {
+  write_silhouettes_svg(path, {SvgLayer{&polylines, style}}, view_projection, viewport_px);
 }
 
 std::vector<std::vector<glm::vec3>> silhouette_line_strips(const std::vector<SilhouettePolyline>& polylines,

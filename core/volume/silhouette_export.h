@@ -19,7 +19,9 @@ namespace trispline::core {
 struct SvgStyle {
   // "hue": colour on an HSV hue ramp, red (hue 0°, low |∇D|) to blue (240°, high |∇D|), seed Fig. 7.10;
   // "width": high |∇D| thin and dark, low |∇D| thick and pale grey, seed Fig. 7.12; "plain": black; "glyphs": a
-  // short black stroke along the curve at each visible point, longer where |∇D| is larger (seed Fig. 7.11);
+  // short black stroke along the curve at each visible point, longer where |∇D| is larger (seed Fig. 7.11); "fans":
+  // at visible points 8.4 px apart a filled fan (6 px, <path class="fan">) across the curve, 150° wide at low |∇D|
+  // down to 20° at high |∇D|, in the hue ramp's colour (seed Fig. 7.11);
   // "chromadepth": the hue ramp by depth instead of |∇D| (normalised device depth over the visible points), red
   // nearest to blue farthest, for ChromaDepth glasses (seed Figs. 7.8–7.9); the bins' paths carry data-depth.
   std::string stroke = "hue";
@@ -31,6 +33,7 @@ struct SvgStyle {
   double gradient_min = 0.0, gradient_max = 0.0;
   int bins = 16;                 // quantisation levels of |∇D| (1…256)
   glm::vec3 hidden_color{0.6f};  // sRGB in [0, 1] (SVG colours are sRGB)
+  glm::vec3 color{0.0f};         // sRGB in [0, 1]: "plain" and "glyphs" strokes; "width": the darkest, paled to white
   std::string dash = "4 3";      // SVG stroke-dasharray of hidden runs, pixels
 };
 
@@ -46,6 +49,15 @@ struct SvgStyle {
 // failure leaves no half file).
 void write_silhouettes_svg(const std::filesystem::path& path, const std::vector<SilhouettePolyline>& polylines,
                            const glm::dmat4& view_projection, glm::ivec2 viewport_px, const SvgStyle& style = {});
+
+// Several iso-levels' silhouettes in one SVG (seed Figs. 7.4–7.6, 7.12): one <g> per layer, in order (later layers
+// drawn over earlier ones), each as above in its own style. Throws as above, and for a layer without polylines.
+struct SvgLayer {
+  const std::vector<SilhouettePolyline>* polylines = nullptr;
+  SvgStyle style;
+};
+void write_silhouettes_svg(const std::filesystem::path& path, const std::vector<SvgLayer>& layers,
+                           const glm::dmat4& view_projection, glm::ivec2 viewport_px);
 
 // The polylines as line strips (world units, float): with include_hidden every polyline with ≥ 2 points is one strip
 // (a closed one repeats its first point at the end); without, each run of visible points with ≥ 2 points is one.

@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "core/commands/anim_record.h"
+#include "core/commands/volume_snapshot.h"
 #include "core/scene/scene_export.h"
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
@@ -66,11 +67,18 @@ struct ViewSilhouettes {
   core::VolumeSilhouetteSettings settings;
   core::Camera camera;
   std::shared_ptr<const core::SilhouetteResult> result;
+  std::vector<double> more_isos;                                    // the further levels'
+  std::vector<std::shared_ptr<const core::SilhouetteResult>> more;  // their silhouettes
 
+  static std::vector<double> isos_of(const core::VolumeObject& v) {
+    std::vector<double> isos;
+    for (const core::VolumeIsoLevel& l : v.more_levels) isos.push_back(l.iso);
+    return isos;
+  }
   bool serves(const core::VolumeObject& v, const core::Camera& cam) const {
     const auto& a = settings;
     const auto& b = v.silhouette;
-    return spline == v.spline && table == v.table && iso == v.iso && a.hidden == b.hidden &&
+    return spline == v.spline && table == v.table && iso == v.iso && more_isos == isos_of(v) && a.hidden == b.hidden &&
            a.projection == b.projection && a.params.subdivision == b.params.subdivision &&
            a.params.accuracy == b.params.accuracy && core::same_view(camera, cam);
   }
@@ -95,14 +103,12 @@ struct HeadlessRenderer::Impl {
       ViewSilhouettes& kept = silhouettes[v.name];
       if (!kept.result || !kept.serves(v, cam)) {
         const auto t0 = std::chrono::steady_clock::now();
-        core::SilhouetteParams params = v.silhouette.params;
-        params.hidden_test = v.silhouette.hidden != "show";
-        auto result = std::make_shared<const core::SilhouetteResult>(
-            core::extract_silhouettes(*v.spline, *v.table, v.iso, v.silhouette_view(cam), params));
-        kept = {v.spline, v.table, v.iso, v.silhouette, cam, std::move(result)};
+        const core::VolumeObject posed = core::volume_with_silhouettes(v, cam);  // every level's, for `cam`
+        kept = {v.spline, v.table, v.iso, v.silhouette, cam, posed.silhouettes, ViewSilhouettes::isos_of(v), {}};
+        for (const core::VolumeIsoLevel& l : posed.more_levels) kept.more.push_back(l.silhouettes);
         silhouette_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
       }
-      view.overlays.volumes_in_place.push_back({v.name, std::nullopt, kept.result});
+      view.overlays.volumes_in_place.push_back({v.name, std::nullopt, kept.result, kept.more});
     }
     std::erase_if(silhouettes, [&](const auto& kv) { return !scene.find_volume(kv.first); });
   }

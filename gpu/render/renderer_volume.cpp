@@ -14,11 +14,23 @@ namespace trispline::gpu {
 namespace detail {
 
 ShownVolume shown_volume(const core::VolumeObject& v, const ViewOptions& options) {
-  ShownVolume s{v.iso, v.silhouette.enabled ? v.silhouettes : nullptr};
+  ShownVolume s{v.iso, v.silhouette.enabled ? v.silhouettes : nullptr, {}};
+  if (v.silhouette.enabled)
+    for (const core::VolumeIsoLevel& l : v.more_levels) s.more_silhouettes.push_back(l.silhouettes);
   if (const VolumeInPlace* in = options.overlays.volume_for(v.name)) {
     if (in->iso) s.iso = *in->iso;
     if (in->silhouettes && v.silhouette.enabled) s.silhouettes = in->silhouettes;
+    if (v.silhouette.enabled && in->more_silhouettes.size() == v.more_levels.size())
+      s.more_silhouettes = in->more_silhouettes;
   }
+  return s;
+}
+
+SilhouetteStrokeStyle level_stroke_style(const core::VolumeObject& v, const core::VolumeIsoLevel& level,
+                                         const ViewStyle& style) {
+  SilhouetteStrokeStyle s = silhouette_stroke_style(v, style);
+  s.stroke = level.style;
+  s.plain_color = glm::vec4(level.color, 1.0f);
   return s;
 }
 
@@ -252,21 +264,29 @@ void Renderer::Impl::pass_volume_silhouettes(const Frame& f) {
       draw_xray(edges, {}, f.view_proj, 1.0f);
     }
     const detail::ShownVolume shown = detail::shown_volume(v, f.options);
-    if (!shown.silhouettes) continue;
-    const SilhouetteStrokes strokes = build_silhouette_strokes(
-        shown.silhouettes->polylines, view_proj, f.vp, f.camera.eye, detail::silhouette_stroke_style(v, f.style()));
-    stats.silhouette_points += strokes.points;
-    screen_depth.use();
-    screen_depth.set("u_viewport", glm::vec2(f.vp));
-    glDepthMask(GL_FALSE);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LEQUAL);
-    draw_overlay(strokes.depth_tested, GL_TRIANGLES, screen_depth, 1.0f);
-    glDisable(GL_DEPTH_TEST);
-    draw_overlay(strokes.on_top, GL_TRIANGLES, screen_depth, 1.0f);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
+    // Every level's strokes: the first level's in the volume's style, each further level's in its own.
+    std::vector<std::pair<const core::SilhouetteResult*, SilhouetteStrokeStyle>> levels;
+    if (shown.silhouettes) levels.emplace_back(shown.silhouettes.get(), detail::silhouette_stroke_style(v, f.style()));
+    for (std::size_t i = 0; i < shown.more_silhouettes.size() && i < v.more_levels.size(); ++i)
+      if (shown.more_silhouettes[i])
+        levels.emplace_back(shown.more_silhouettes[i].get(),
+                            detail::level_stroke_style(v, v.more_levels[i], f.style()));
+    for (const auto& [result, stroke_style] : levels) {
+      const SilhouetteStrokes strokes =
+          build_silhouette_strokes(result->polylines, view_proj, f.vp, f.camera.eye, stroke_style);
+      stats.silhouette_points += strokes.points;
+      screen_depth.use();
+      screen_depth.set("u_viewport", glm::vec2(f.vp));
+      glDepthMask(GL_FALSE);
+      glEnable(GL_DEPTH_TEST);
+      glDepthFunc(GL_LEQUAL);
+      draw_overlay(strokes.depth_tested, GL_TRIANGLES, screen_depth, 1.0f);
+      glDisable(GL_DEPTH_TEST);
+      draw_overlay(strokes.on_top, GL_TRIANGLES, screen_depth, 1.0f);
+      glEnable(GL_DEPTH_TEST);
+      glDepthFunc(GL_LESS);
+      glDepthMask(GL_TRUE);
+    }
   }
 }
 

@@ -25,8 +25,13 @@ namespace trispline::gpu::detail {
 struct ShownVolume {
   double iso = 0.0;
   std::shared_ptr<const core::SilhouetteResult> silhouettes;
+  // One per VolumeObject::more_levels entry (null entries draw nothing); empty when silhouettes are off.
+  std::vector<std::shared_ptr<const core::SilhouetteResult>> more_silhouettes;
 };
 ShownVolume shown_volume(const core::VolumeObject& v, const ViewOptions& options);
+// The stroke style of `v`'s further level `level` (its own style, and its colour for plain and width strokes).
+SilhouetteStrokeStyle level_stroke_style(const core::VolumeObject& v, const core::VolumeIsoLevel& level,
+                                         const ViewStyle& style);
 
 // The stroke style of `v`'s silhouettes: its style and hidden mode, ViewStyle's widths, dash and colours; glyphs one
 // Newton sub-cell long (a voxel / subdivision, seed §7.3.4), visible runs pulled towards the eye by

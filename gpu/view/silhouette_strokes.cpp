@@ -12,6 +12,10 @@ namespace {
 enum List { kDropped = -1, kTested = 0, kOnTop = 1 };
 
 constexpr float kGlyphMinPx = 6.0f;  // a glyph's edge at least this long, pixels
+constexpr int kFanSegments = 6;      // triangles of one fan glyph
+// A fan glyph's opening angle at the lowest and the highest |∇D| of the ramp, degrees (seed Fig. 7.11: "fans with
+// smaller opening angle correspond to higher gradient magnitudes").
+constexpr float kFanWidestDeg = 150.0f, kFanNarrowestDeg = 20.0f;
 
 // One silhouette point on screen.
 struct Sample {
@@ -73,6 +77,18 @@ class Builder {
     out.insert(out.end(), {a0, a1, b0, b0, a1, b1});
   }
 
+  // A filled fan (circular sector) with its apex at s, its axis along the unit `axis`, `opening` radians wide and
+  // `radius` pixels long, in s's colour: kFanSegments triangles.
+  static void fan(std::vector<OverlayVertex>& out, const Sample& s, glm::vec2 axis, float opening, float radius) {
+    const OverlayVertex apex{{s.px, s.z}, s.color};
+    auto rim = [&](int i) {
+      const float a = opening * (float(i) / kFanSegments - 0.5f), c = std::cos(a), si = std::sin(a);
+      const glm::vec2 d(axis.x * c - axis.y * si, axis.x * si + axis.y * c);
+      return OverlayVertex{{s.px + radius * d, s.z}, s.color};
+    };
+    for (int i = 0; i < kFanSegments; ++i) out.insert(out.end(), {apex, rim(i), rim(i + 1)});
+  }
+
   // A disc (round join) of the sample's width.
   static void disc(std::vector<OverlayVertex>& out, const Sample& s, int segments = 8) {
     const float r = 0.5f * s.width;
@@ -117,10 +133,10 @@ class Builder {
 };
 
 void check(const std::vector<core::SilhouettePolyline>& polylines, const SilhouetteStrokeStyle& s) {
-  if (s.stroke != "hue" && s.stroke != "glyphs" && s.stroke != "width" && s.stroke != "plain" &&
+  if (s.stroke != "hue" && s.stroke != "glyphs" && s.stroke != "fans" && s.stroke != "width" && s.stroke != "plain" &&
       s.stroke != "chromadepth")
     throw std::invalid_argument("silhouette strokes: unknown style '" + s.stroke +
-                                "' (hue, glyphs, width, plain or chromadepth)");
+                                "' (hue, glyphs, fans, width, plain or chromadepth)");
   if (s.hidden != "remove" && s.hidden != "dashed" && s.hidden != "show")
     throw std::invalid_argument("silhouette strokes: unknown hidden mode '" + s.hidden + "' (remove, dashed or show)");
   if (!(s.width_px > 0.0f) || !(s.max_width_px >= s.width_px))
@@ -141,8 +157,11 @@ void check(const std::vector<core::SilhouettePolyline>& polylines, const Silhoue
 
 glm::vec4 silhouette_color(const std::string& stroke, double t, const glm::vec4& plain) {
   t = std::clamp(std::isfinite(t) ? t : 0.5, 0.0, 1.0);
-  if (stroke == "hue" || stroke == "chromadepth") return glm::vec4(hsv(240.0 * t, 1.0, 0.9), 1.0f);
-  if (stroke == "width") return glm::vec4(glm::vec3(float(0.75 * (1.0 - t))), 1.0f);
+  if (stroke == "hue" || stroke == "fans" || stroke == "chromadepth") return glm::vec4(hsv(240.0 * t, 1.0, 0.9), 1.0f);
+  if (stroke == "width") {  // from `plain` (high |∇D|) towards white (low): grey 0.75·(1 − t) over black
+    const glm::dvec3 base(plain);
+    return glm::vec4(glm::vec3(base + (glm::dvec3(1.0) - base) * (0.75 * (1.0 - t))), 1.0f);
+  }
   return plain;
 }
 
@@ -173,7 +192,7 @@ SilhouetteStrokes build_silhouette_strokes(const std::vector<core::SilhouettePol
   auto ramp = [&](double q) { return lo < hi ? float(std::clamp((q - lo) / (hi - lo), 0.0, 1.0)) : 0.5f; };
 
   const Builder b(view_proj, viewport, eye, style);
-  const bool glyphs = style.stroke == "glyphs";
+  const bool fans = style.stroke == "fans", glyphs = style.stroke == "glyphs" || fans;
   std::vector<Sample> samples;
   std::vector<char> valid;
   for (const core::SilhouettePolyline& pl : polylines) {
@@ -227,10 +246,18 @@ SilhouetteStrokes build_silhouette_strokes(const std::vector<core::SilhouettePol
         const float base = std::max(projected, kGlyphMinPx);
         if (glm::length(glyph.px - last) < 1.4f * base) continue;
         last = glyph.px;
+        std::vector<OverlayVertex>& list = glyph.list == kTested ? out.depth_tested : out.on_top;
+        if (fans) {
+          // Fig. 7.11: a fan across the curve (along the projected gradient's line), wide where |∇D| is low and
+          // narrow where it is high, in the hue ramp's colour.
+          const float opening = glm::radians(kFanWidestDeg + (kFanNarrowestDeg - kFanWidestDeg) * glyph.t);
+          Builder::fan(list, glyph, glm::vec2(-dir.y, dir.x), opening, base);
+          continue;
+        }
         const float len = base * (0.6f + 0.8f * glyph.t);
         Sample p0 = glyph, p1 = glyph;
         p0.px = glyph.px - 0.5f * len * dir, p1.px = glyph.px + 0.5f * len * dir;
-        Builder::segment(glyph.list == kTested ? out.depth_tested : out.on_top, p0, p1);
+        Builder::segment(list, p0, p1);
       }
     }
 

@@ -9,6 +9,10 @@
 //           (the glyph's shape encodes the magnitude, seed Fig. 7.11), as the SVG export draws them: base × (0.6 +
 //           0.8·t) with base one Newton sub-cell projected but at least 6 px; glyphs closer than 1.4 bases to the
 //           previous one drawn are left out, so they stay apart; hidden runs are lines as in the other styles
+//   fans    per glyph position (as glyphs) a filled fan, apex on the curve, opening across it (along the projected
+//           gradient's line), 150° wide at the lowest |∇D| of the ramp down to 20° at the highest, radius the glyph
+//           base, coloured on the hue ramp: seed Fig. 7.11 ("fans with smaller opening angle correspond to higher
+//           gradient magnitudes ... the coloring scheme here is the same as in Figure 7.10")
 //   plain   black lines
 //   chromadepth  lines on the hue ramp by depth (distance from the eye): red nearest → blue farthest, for ChromaDepth
 //           glasses, seed Figs. 7.8–7.9
@@ -32,11 +36,11 @@
 namespace trispline::gpu {
 
 struct SilhouetteStrokeStyle {
-  std::string stroke = "hue";     // hue | glyphs | width | plain | chromadepth (VolumeSilhouetteSettings::style)
+  std::string stroke = "hue";     // hue | glyphs | fans | width | plain | chromadepth (VolumeSilhouetteSettings::style)
   std::string hidden = "remove";  // remove | dashed | show
   float width_px = 1.5f;          // lines of hue / plain / glyphs and hidden runs; the width style's thinnest
   float max_width_px = 4.0f;      // the width style's thickest (lowest |∇D|); ≥ width_px
-  glm::vec4 plain_color{0.0f, 0.0f, 0.0f, 1.0f};       // display (sRGB) values, alpha
+  glm::vec4 plain_color{0.0f, 0.0f, 0.0f, 1.0f};       // display (sRGB) values, alpha; plain, glyphs, width's darkest
   glm::vec4 hidden_color{0.55f, 0.55f, 0.58f, 0.85f};  // dashed hidden runs
   float dash_px = 5.0f, gap_px = 4.0f;                 // dash pattern of hidden runs, pixels along the line
   double glyph_mm = 1.0;       // glyphs: world length of a glyph's edge, millimetres (6 pixels at least)
@@ -62,7 +66,8 @@ SilhouetteStrokes build_silhouette_strokes(const std::vector<core::SilhouettePol
                                            const SilhouetteStrokeStyle& style);
 
 // The colour (sRGB, alpha 1) of a point at ramp position t ∈ [0, 1] (0 = lowest |∇D|, or nearest for chromadepth) in
-// `stroke` style: the hue ramp (hue, chromadepth), the width style's grey, else `plain` (plain, glyphs).
+// `stroke` style: the hue ramp (hue, fans, chromadepth), the width style's `plain` paled towards white by
+// 0.75·(1 − t) (grey on black), else `plain` (plain, glyphs).
 glm::vec4 silhouette_color(const std::string& stroke, double t, const glm::vec4& plain = {0.0f, 0.0f, 0.0f, 1.0f});
 
 }  // namespace trispline::gpu

@@ -131,6 +131,8 @@ struct VolumeInPlace {
   std::string volume;
   std::optional<double> iso;                                  // volume units; none = the volume's own iso
   std::shared_ptr<const core::SilhouetteResult> silhouettes;  // null = the volume's own `silhouettes`
+  // One per further level (VolumeObject::more_levels); empty (or another count) = the levels' own silhouettes.
+  std::vector<std::shared_ptr<const core::SilhouetteResult>> more_silhouettes;
 };
 
 // Triangles with a colour per corner, drawn over the shaded scene — depth-tested against it, pulled a little towards

@@ -443,6 +443,35 @@ TEST(SilhouetteStrokes, GlyphsAreShortEdgesAlongTheSilhouetteLongerWhereTheGradi
   EXPECT_LT(glyphs, 50u) << "about the circle's 345 px over 8.4 px";
 }
 
+// fans (seed Fig. 7.11): per glyph position a filled fan across the curve (its bisector along the circle's radius),
+// 150° wide where |∇D| is lowest down to 20° where it is highest, on the hue ramp (red → blue).
+TEST(SilhouetteStrokes, FansOpenWideWhereTheGradientIsLowAndNarrowWhereItIsHigh) {
+  const TopView v;
+  core::SilhouettePolyline pl = half_hidden_circle(16);
+  SilhouetteStrokeStyle s;
+  s.stroke = "fans";
+  s.glyph_mm = 4.0;
+  const SilhouetteStrokes f = build_silhouette_strokes({pl}, v.view_proj, {200, 200}, v.eye, s);
+  constexpr std::size_t kPerFan = 6 * 3;  // six triangles
+  ASSERT_EQ(f.depth_tested.size(), 8u * kPerFan) << "one fan per visible point";
+  EXPECT_TRUE(f.on_top.empty()) << "hidden points removed";
+  double first = 0.0, last = 0.0;
+  for (std::size_t k = 0; k < 8; ++k) {
+    const OverlayVertex* fan = &f.depth_tested[k * kPerFan];
+    const glm::vec2 apex(fan[0].position), r0 = glm::vec2(fan[1].position) - apex,
+                                           r6 = glm::vec2(fan[kPerFan - 1].position) - apex,
+                                           mid = glm::vec2(fan[3 * 3 + 1].position) - apex;
+    const double opening = glm::degrees(std::acos(glm::dot(r0, r6) / (glm::length(r0) * glm::length(r6))));
+    const glm::vec2 radial = glm::normalize(apex - glm::vec2(100.0f));
+    EXPECT_GT(std::abs(glm::dot(radial, glm::normalize(mid))), 0.99f) << "fan " << k << " opens across the curve";
+    (k == 0 ? first : last) = opening;
+  }
+  EXPECT_NEAR(first, 150.0, 1.0);
+  EXPECT_NEAR(last, 20.0, 1.0);
+  EXPECT_GT(f.depth_tested.front().color.x, 0.8f) << "red at the lowest |∇D|";
+  EXPECT_GT(f.depth_tested[7 * kPerFan].color.z, 0.8f) << "blue at the highest";
+}
+
 TEST(SilhouetteStrokes, PointsBehindTheEyeBreakTheLineAndBadInputThrows) {
   const TopView v;
   core::SilhouettePolyline pl;

@@ -89,7 +89,42 @@ gui_wait '.popups | length == 0' "the Style combo closed"
 gui_wait '.volumes[0].live_current and .volumes[0].live_points > 100' "the silhouettes are drawn in the new style" 90
 shot chromadepth
 
+# 5c. fans: fan glyphs whose opening and hue follow |∇D| (seed Fig. 7.11), then back to chromadepth for the export.
+pick_style() {
+  gui_click_item volume.silhouettes.style
+  gui_wait '.popups | length > 0' "the Style combo opens"
+  gui_click_item "volume.silhouettes.style.$1"
+  gui_wait_logged ".cmd == \"volume.silhouettes\" and .style == \"$1\"" "choosing $1 logs volume.silhouettes"
+  gui_wait '.popups | length == 0' "the Style combo closed"
+  gui_wait '.volumes[0].live_current and .volumes[0].live_points > 100' "the silhouettes are drawn as $1" 90
+}
+pick_style fans
+shot fans
+pick_style chromadepth
+
+# 5d. More levels (seed Figs. 7.4–7.6): Add level, type its value, pick its style: one volume.iso each, with every
+# level; the new level's silhouettes are drawn live beside the surface's.
+gui_scroll_into_view volume.levels.add panel.volume
+gui_click_item volume.levels.add
+gui_wait_logged '.cmd == "volume.iso" and (.levels | length) == 2' "Add level logs volume.iso with two levels"
+gui_wait '.volumes[0].more_levels | length == 1' "the volume has a second level"
+gui_scroll_into_view volume.levels.1 panel.volume
+gui_click_item volume.levels.1
+gui_wait '.typing' "one click on the level types a value"
+gui_type "40"
+gui_key Return
+gui_wait_logged '.cmd == "volume.iso" and (.levels | length) == 2 and ((.levels[1] | if type == "object" then .level else . end) == 40)' \
+  "the typed level is logged"
+gui_click_item volume.levels.1.style
+gui_wait '.popups | length > 0' "the level's style combo opens"
+gui_click_item volume.levels.1.style.width
+gui_wait_logged '.cmd == "volume.iso" and .levels[1].style == "width"' "the level's style is logged"
+gui_wait '.volumes[0].more_levels[0].iso == 40 and .volumes[0].more_levels[0].style == "width"' "the level is 40, width"
+gui_wait '.volumes[0].more_levels[0].live_points > 50' "the second level's silhouettes are drawn" 90
+shot levels
+
 # 6. Export ▸ SVG: the view's silhouettes as <path> elements, binned by depth in the chromadepth style.
+gui_scroll_into_view volume.export.svg panel.volume
 gui_click_item volume.export.svg
 gui_wait '(.popups | map(test("file_dialog")) | any) and .typing' "the Save dialog opens, its name field has the keyboard"
 gui_check ".values[\"file.name\"] == \"${name}_silhouettes.svg\"" "the file name is proposed"
@@ -131,6 +166,6 @@ gui_check '.volumes | length == 1' "the scene is unchanged after the folder"
 gui_alive || gui_fail "the editor died"
 
 [ "$(gui_session_count '.cmd == "volume.load"')" = 1 ] || gui_fail "one volume.load line in the session log"
-[ "$(gui_session_count '.cmd == "volume.silhouettes"')" = 2 ] || gui_fail "two volume.silhouettes lines (on, style)"
+[ "$(gui_session_count '.cmd == "volume.silhouettes"')" = 4 ] || gui_fail "four volume.silhouettes lines (on, chromadepth, fans, chromadepth)"
 [ "$(gui_session_count '.cmd == "volume.export"')" = 1 ] || gui_fail "one volume.export line"
 gui_pass

@@ -184,6 +184,63 @@ TEST_F(VolumeCommands, IsoAndSilhouettesAreUndoableAndDeterministic) {
   }
 }
 
+// Several iso-levels (seed Figs. 7.4–7.6, 7.12): the first is the surface, each further one gets its own silhouettes,
+// style and colour; a line without levels keeps them; undo restores; the line round-trips; bad levels name "levels"
+// or "level" and change nothing.
+TEST_F(VolumeCommands, FurtherLevelsHaveTheirOwnSilhouettesStyleAndColour) {
+  Scene s = torus_scene();
+  parse<VolumeSilhouettesCommand>(R"({"cmd":"volume.silhouettes","object":"torus"})")->redo(s);
+  const auto one_level = s.find_volume("torus")->silhouettes;
+  auto iso = parse<VolumeIsoCommand>(
+      R"({"cmd":"volume.iso","object":"torus","levels":[0,3,{"level":-2,"style":"width","color":[1,0,0]}]})");
+  iso->redo(s);
+  const VolumeObject& v = *s.find_volume("torus");
+  EXPECT_EQ(v.iso, 0.0);
+  ASSERT_EQ(v.more_levels.size(), 2u);
+  EXPECT_EQ(v.more_levels[0].iso, 3.0);
+  EXPECT_EQ(v.more_levels[0].style, "plain");
+  EXPECT_EQ(v.more_levels[1].style, "width");
+  EXPECT_EQ(v.more_levels[1].color, glm::vec3(1.0f, 0.0f, 0.0f));
+  EXPECT_NE(v.more_levels[0].color, v.more_levels[1].color);
+  ASSERT_TRUE(v.silhouettes && v.more_levels[0].silhouettes && v.more_levels[1].silhouettes);
+  // Each level's own curves: the first level's are those of the one-level volume, the thinner torus's shorter, the
+  // fatter one's longer.
+  EXPECT_EQ(v.silhouettes->points, one_level->points);
+  EXPECT_LT(v.more_levels[0].silhouettes->length_mm, v.silhouettes->length_mm);
+  EXPECT_GT(v.more_levels[1].silhouettes->length_mm, v.silhouettes->length_mm);
+  EXPECT_EQ(iso->stats()["levels"], 3);
+  EXPECT_EQ(iso->stats()["points_all_levels"].get<std::size_t>(),
+            v.silhouettes->points + v.more_levels[0].silhouettes->points + v.more_levels[1].silhouettes->points);
+  EXPECT_EQ(parse<VolumeIsoCommand>(iso->to_json().dump())->to_json(), iso->to_json());
+  // A level alone keeps the further levels (extracted again).
+  auto level_only = parse<VolumeIsoCommand>(R"({"cmd":"volume.iso","object":"torus","level":1})");
+  level_only->redo(s);
+  EXPECT_EQ(s.find_volume("torus")->more_levels.size(), 2u);
+  level_only->undo(s);
+  iso->undo(s);
+  EXPECT_TRUE(s.find_volume("torus")->more_levels.empty());
+  EXPECT_EQ(s.find_volume("torus")->silhouettes, one_level);
+  // Refusals, named.
+  auto field_of = [&](const char* line) {
+    try {
+      parse<VolumeIsoCommand>(line)->redo(s);
+    } catch (const CommandError& e) {
+      return e.field();
+    }
+    return std::string("(accepted)");
+  };
+  EXPECT_EQ(field_of(R"({"cmd":"volume.iso","object":"torus"})"), "level");
+  EXPECT_EQ(field_of(R"({"cmd":"volume.iso","object":"torus","level":1,"levels":[2]})"), "level");
+  EXPECT_EQ(field_of(R"({"cmd":"volume.iso","object":"torus","levels":[]})"), "levels");
+  EXPECT_EQ(field_of(R"({"cmd":"volume.iso","object":"torus","levels":[0,1,2,3,4,5,6,7,8]})"), "levels");
+  EXPECT_EQ(field_of(R"({"cmd":"volume.iso","object":"torus","levels":[0,{"level":1,"style":"neon"}]})"), "levels");
+  EXPECT_EQ(field_of(R"({"cmd":"volume.iso","object":"torus","levels":[0,{"level":1,"color":[2,0,0]}]})"), "levels");
+  EXPECT_EQ(field_of(R"({"cmd":"volume.iso","object":"torus","levels":[0,{"style":"plain"}]})"), "levels");
+  EXPECT_EQ(field_of(R"({"cmd":"volume.iso","object":"torus","levels":[0,"x"]})"), "levels");
+  EXPECT_EQ(field_of(R"({"cmd":"volume.iso","object":"torus","levels":[0,1e40]})"), "levels");
+  EXPECT_TRUE(s.find_volume("torus")->more_levels.empty());
+}
+
 TEST_F(VolumeCommands, ErrorsNameTheFieldAndChangeNothing) {
   Scene s = torus_scene();
   auto expect_field = [&](CommandPtr c, const std::string& field) {

@@ -42,7 +42,7 @@ std::string read_text(const fs::path& p) {
 
 // One <path> of the SVG: its attributes and its subpaths' points (pixels).
 struct SvgPath {
-  std::string cls, stroke, dash, gradient;
+  std::string cls, stroke, dash, gradient, fill;
   double width = 0.0;
   std::vector<std::vector<glm::dvec2>> subpaths;
 };
@@ -77,7 +77,9 @@ Svg parse_svg(const std::string& text) {
     p.stroke = attribute(tag, "stroke");
     p.dash = attribute(tag, "stroke-dasharray");
     p.gradient = attribute(tag, "data-gradient");
-    p.width = std::stod(attribute(tag, "stroke-width"));
+    const std::string width = attribute(tag, "stroke-width");
+    p.width = width.empty() ? 0.0 : std::stod(width);
+    p.fill = attribute(tag, "fill");
     std::istringstream d(attribute(tag, "d"));
     std::string tok;
     std::vector<double> nums;
@@ -190,6 +192,43 @@ TEST(SilhouetteSvg, GlyphsAreOneShortStrokePerVisiblePoint) {
     }
   }
   EXPECT_EQ(strokes, pl.points.size() - 1);  // every visible point, none for the hidden one
+}
+
+// fans (seed Fig. 7.11): filled sectors with the apex on a visible point, wide and red where |∇D| is low, narrow and
+// blue where it is high, at least 1.4 radii apart; none on the hidden point.
+TEST(SilhouetteSvg, FansOpenWideWhereTheGradientIsLowAndNarrowWhereItIsHigh) {
+  TempDir dir;
+  SilhouettePolyline pl = circle(glm::dvec3(0.0), 24);
+  std::fill(pl.visible.begin(), pl.visible.end(), 1);
+  SvgStyle style;
+  style.stroke = "fans";
+  style.hidden = "remove";
+  const fs::path file = dir.path / "fans.svg";
+  write_silhouettes_svg(file, {pl}, view_projection(), kViewport, style);
+  const Svg svg = parse_svg(read_text(file));
+  struct Fan {
+    double opening_deg;
+    std::string fill;
+  };
+  std::vector<Fan> fans;
+  for (const auto& path : svg.paths) {
+    if (path.cls != "fan") continue;
+    EXPECT_EQ(path.stroke, "none");
+    for (const auto& sub : path.subpaths) {
+      ASSERT_EQ(sub.size(), 8u) << "apex and seven rim points";
+      const glm::dvec2 a = sub[1] - sub[0], b = sub[7] - sub[0];
+      EXPECT_NEAR(glm::length(a), 6.0, 0.02);
+      fans.push_back({glm::degrees(std::acos(glm::dot(a, b) / (glm::length(a) * glm::length(b)))), path.fill});
+      for (const glm::dvec2& q : sub) EXPECT_TRUE(q.x >= 0.0 && q.y >= 0.0 && q.x <= 400.0 && q.y <= 300.0);
+    }
+  }
+  ASSERT_GE(fans.size(), 8u);
+  // Subpaths come bin by bin (|∇D| grows round the circle): the first fan is the widest and red, the last the
+  // narrowest and blue.
+  EXPECT_NEAR(fans.front().opening_deg, 150.0, 12.0);
+  EXPECT_NEAR(fans.back().opening_deg, 20.0, 12.0);
+  EXPECT_EQ(fans.front().fill.substr(0, 3), "#e6");  // hsv(≈0°, 1, 0.9): red
+  EXPECT_EQ(fans.back().fill.substr(5, 2), "e6");    // hsv(≈240°, 1, 0.9): blue
 }
 
 // chromadepth: bins by depth (data-depth), red where the curve is nearest the eye, blue where it is farthest.
