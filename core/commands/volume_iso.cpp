@@ -1,7 +1,9 @@
 #include "core/commands/volume_iso.h"
 
+#include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 
 #include "core/commands/volume_silhouettes.h"
 
@@ -56,6 +58,13 @@ void read_levels(const IsoField&, const nlohmann::json& v, P& p, const CommandCo
   p.levels = std::move(levels);
 }
 
+// The double with the fewest digits that reads back as `f` (0.1f is logged as 0.1, not 0.10000000149011612).
+double shortest(float f) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, f);
+  return std::strtod(std::string(buf, r.ptr).c_str(), nullptr);
+}
+
 // A level with neither style nor colour is logged as its number.
 void write_levels(const IsoField&, const P& p, nlohmann::json& line) {
   if (!p.levels) return;
@@ -67,7 +76,7 @@ void write_levels(const IsoField&, const P& p, nlohmann::json& line) {
     }
     nlohmann::json e = {{"level", l.level}};
     if (l.style) e["style"] = *l.style;
-    if (l.color) e["color"] = params::Codec<glm::vec3>::write(*l.color);
+    if (l.color) e["color"] = {shortest(l.color->x), shortest(l.color->y), shortest(l.color->z)};
     out.push_back(std::move(e));
   }
   line["levels"] = std::move(out);

@@ -24,6 +24,7 @@
 #include "core/commands/lattice_ring.h"
 #include "core/commands/lattice_set_point.h"
 #include "core/commands/mesh_refine.h"
+#include "core/commands/mesh_set.h"
 #include "core/commands/mesh_subdivide.h"
 #include "core/commands/object_transform.h"
 #include "core/commands/object_visibility.h"
@@ -87,6 +88,8 @@ const CommandRegistry& CommandRegistry::builtin() {
     r.add<core::LatticeCertifyCommand>();
     r.add<core::MeshRefineCommand>();
     r.add<core::MeshSubdivideCommand>();
+    r.add(core::MeshSetCommand::kId, "Replace an object's mesh with given vertices and triangles",
+          [](const nlohmann::json& line, const core::CommandContext&) { return core::MeshSetCommand::parse(line); });
     r.add<core::DdmFillCommand>();
     r.add<core::DdmPaintCommand>();
     r.add<core::DdmBakeCommand>();
