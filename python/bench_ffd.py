@@ -5,7 +5,8 @@ Both sides deform the same 1 M vertices (a UV sphere of --rows × --cols vertice
 `bench ffd --mesh FILE --subdiv 0` loads) through L×L×L lattices (L = 4, 8) of orders 3 and 4, randomly perturbed by
 15 % of a cell, positions only and positions + normals, on all threads (oneTBB default: every core). Columns:
   bench      `trispline bench ffd --cpu-only --json`, cpu_fast, all threads, "kernel" (evaluate() on bound vertices)
-  evaluator  trispline.FfdEvaluator.evaluate(): the same kernel plus the results copied into new NumPy arrays
+  evaluator  trispline.FfdEvaluator.evaluate(): the same kernel plus the results written into new NumPy arrays
+  out=       FfdEvaluator.evaluate(out=(P, N)): the same into arrays the caller keeps (an animation loop)
   one-shot   trispline.ffd_evaluate(lattice, points): embedding, binding (sort by cell), evaluation, results
 Median of --runs runs each, in M vertices / s. Usage:
   PYTHONPATH=build/python python3 python/bench_ffd.py [--trispline build/editor/trispline] [--runs 5]
@@ -94,12 +95,15 @@ def main():
         ev = trispline.FfdEvaluator(L, V, normals=N)
         ev.evaluate()  # warm-up (first binning), as the bench's evaluator is bound before timing
         ev_ms = median_ms(a.runs, ev.evaluate)
+        out = (np.empty((len(V), 3)), np.empty((len(V), 3)) if c["normals"] else None)
+        ev.evaluate(out=out)  # the out= arrays' pages touched once, as an animation loop's are
+        out_ms = median_ms(a.runs, lambda: ev.evaluate(out=out))
         one_ms = median_ms(a.runs, lambda: trispline.ffd_evaluate(L, V, normals=N))
         mv = len(V) / 1e3
         rows.append({"lattice": c["lattice"][0], "order": c["order"][0], "normals": c["normals"],
                      "vertices": len(V), "bench_mverts_s": c["mverts_per_s"], "evaluator_mverts_s": mv / ev_ms,
                      "one_shot_mverts_s": mv / one_ms, "bench_ms": c["median_ms"], "evaluator_ms": ev_ms,
-                     "one_shot_ms": one_ms})
+                     "one_shot_ms": one_ms, "out_ms": out_ms})
     result = {"cpu": bench["cpu"], "simd": bench["simd"], "threads": bench["threads_all"],
               "bench_vertices": bench["mesh"]["vertices"], "runs": a.runs, "cases": rows}
     if a.json:
@@ -108,11 +112,12 @@ def main():
     print(f"{result['cpu']}, {result['threads']} threads, {result['simd']}; {len(V):,} vertices "
           f"(bench: {result['bench_vertices']:,}); median of {a.runs} runs; M vertices/s (ms)")
     print(f"{'lattice':>8} {'order':>6} {'normals':>8} {'bench':>16} {'evaluator':>16} {'ratio':>6} "
-          f"{'one-shot':>16} {'ratio':>6}")
+          f"{'out=':>8} {'ratio':>6} {'one-shot':>16} {'ratio':>6}")
     for r in rows:
         print(f"{r['lattice']:>6}^3 {r['order']:>6} {str(r['normals']):>8} "
               f"{r['bench_mverts_s']:>8.1f} ({r['bench_ms']:5.1f}) {r['evaluator_mverts_s']:>8.1f} "
               f"({r['evaluator_ms']:5.1f}) {r['evaluator_ms'] / r['bench_ms']:>6.2f} "
+              f"{r['out_ms']:>8.1f} {r['out_ms'] / r['bench_ms']:>6.2f} "
               f"{r['one_shot_mverts_s']:>8.1f} ({r['one_shot_ms']:5.1f}) {r['one_shot_ms'] / r['bench_ms']:>6.2f}")
     return 0
 

@@ -2,6 +2,7 @@
 // The cpu_fast backend lives in ffd_fast.cpp (FfdFastEvaluator) and its kernels in ffd_fast_kernel_*.cpp.
 #include "core/ffd/ffd_evaluator.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -121,6 +122,13 @@ void FfdEvaluator::read_results_float(std::vector<glm::vec3>& positions, std::ve
   read_results(p, n);
   positions.assign(p.begin(), p.end());
   normals.assign(n.begin(), n.end());
+}
+
+void FfdEvaluator::read_results_into(double* positions, double* normals) {
+  std::vector<glm::dvec3> p, n;
+  read_results(p, n);
+  std::copy_n(&p[0].x, 3 * p.size(), positions);
+  if (normals && !n.empty()) std::copy_n(&n[0].x, 3 * n.size(), normals);
 }
 
 }  // namespace trispline::core

@@ -68,6 +68,10 @@ class FfdEvaluator {
   // read_results(); cpu_fast overrides it to skip the float → double → float round trip (half the cost of a live
   // preview on a 1 M-vertex object).
   virtual void read_results_float(std::vector<glm::vec3>& positions, std::vector<glm::vec3>& normals);
+  // The same into caller memory: `positions` #V × 3 doubles (world units), `normals` #V × 3 (unit; null, or ignored
+  // when bound without normals). No allocation: a caller that keeps its buffers (Python's out= arrays) pays only the
+  // copy. The default goes through read_results(); cpu_fast writes straight from its float results.
+  virtual void read_results_into(double* positions, double* normals);
 
   virtual std::size_t vertex_count() const = 0;
   virtual bool has_normals() const = 0;

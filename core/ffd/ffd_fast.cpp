@@ -373,6 +373,23 @@ void FfdFastEvaluator::read_results_float(std::vector<glm::vec3>& positions, std
   });
 }
 
+void FfdFastEvaluator::read_results_into(double* positions, double* normals) {
+  const Impl& m = *impl_;
+  if (!m.evaluated) throw std::logic_error("cpu_fast read_results_into: evaluate() has not run since bind_vertices");
+  const std::size_t V = m.params.size();
+  const bool with_normals = normals && !m.nrm.empty();
+  const glm::dvec3 c = m.centre;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, V, 16384), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      positions[3 * i] = c.x + double(m.pos[3 * i]);
+      positions[3 * i + 1] = c.y + double(m.pos[3 * i + 1]);
+      positions[3 * i + 2] = c.z + double(m.pos[3 * i + 2]);
+    }
+    if (with_normals)
+      for (std::size_t i = 3 * r.begin(); i != 3 * r.end(); ++i) normals[i] = double(m.nrm[i]);
+  });
+}
+
 std::size_t FfdFastEvaluator::vertex_count() const { return impl_->params.size(); }
 bool FfdFastEvaluator::has_normals() const { return !impl_->normals_f.empty(); }
 bool FfdFastEvaluator::uses_cell_tables() const { return impl_->tables; }

@@ -53,6 +53,7 @@ class FfdFastEvaluator final : public FfdEvaluator {
   void evaluate(const glm::dvec3& param_offset = glm::dvec3(0.0)) override;
   void read_results(std::vector<glm::dvec3>& positions, std::vector<glm::dvec3>& normals) override;
   void read_results_float(std::vector<glm::vec3>& positions, std::vector<glm::vec3>& normals) override;
+  void read_results_into(double* positions, double* normals) override;
   std::size_t vertex_count() const override;
   bool has_normals() const override;
 

@@ -133,18 +133,41 @@ std::unique_ptr<PyFfdEvaluator> make_evaluator(const PyLattice& L, const py::obj
   return out;
 }
 
-py::tuple evaluate(PyFfdEvaluator& e, const glm::dvec3& offset) {
-  std::vector<glm::dvec3> p, n;
-  bool with_normals = false;
+// A C-contiguous, writable float64 #V×3 array for results: `given` when it is one (out=), else a new one (not
+// zero-filled). Throws ValueError naming `what` for anything else.
+py::array_t<double> result_array(const py::object& given, std::size_t V, const char* what) {
+  if (given.is_none()) return py::array_t<double>({py::ssize_t(V), py::ssize_t(3)});
+  if (!py::isinstance<py::array_t<double>>(given))
+    throw py::value_error(std::string(what) + " must be a float64 NumPy array of shape (#V, 3)");
+  auto a = py::reinterpret_borrow<py::array_t<double>>(given);
+  if (a.ndim() != 2 || a.shape(0) != py::ssize_t(V) || a.shape(1) != 3 || !a.writeable() ||
+      !(a.flags() & py::array::c_style))
+    throw py::value_error(std::string(what) + " must be a writable C-contiguous float64 array of shape (" +
+                          std::to_string(V) + ", 3)");
+  return a;
+}
+
+py::tuple evaluate(PyFfdEvaluator& e, const glm::dvec3& offset, const py::object& out) {
+  const std::size_t V = e.ev->vertex_count();
+  const bool with_normals = e.ev->has_normals();
+  py::object out_p = py::none(), out_n = py::none();
+  if (!out.is_none()) {
+    const auto t = out.cast<py::tuple>();
+    if (t.size() != 2) throw py::value_error("out must be a pair (P, N) of arrays (N None without normals)");
+    out_p = t[0], out_n = t[1];
+  }
+  py::array_t<double> P = result_array(out_p, V, "out[0]");
+  py::object N = py::none();
+  if (with_normals) N = result_array(out_n, V, "out[1]");
+  double* p = P.mutable_data();
+  double* n = with_normals ? py::reinterpret_borrow<py::array_t<double>>(N).mutable_data() : nullptr;
   {
     py::gil_scoped_release nogil;
     std::lock_guard<std::mutex> lock(e.mutex);
     e.ev->evaluate(offset);
-    e.ev->read_results(p, n);
-    with_normals = e.ev->has_normals();
+    e.ev->read_results_into(p, n);
   }
-  py::object N = with_normals ? py::object(array_from_points(std::move(n))) : py::object(py::none());
-  return py::make_tuple(array_from_points(std::move(p)), N);
+  return py::make_tuple(P, N);
 }
 
 glm::dvec3 offset_of(const py::object& o) {
@@ -264,7 +287,7 @@ void init_kernels(py::module_& m) {
       [](const PyLattice& L, const py::object& points, const std::string& backend, const py::object& normals,
          const py::object& offset) {
         auto e = make_evaluator(L, points, normals, backend);
-        return evaluate(*e, offset_of(offset));
+        return evaluate(*e, offset_of(offset), py::none());
       },
       py::arg("lattice"), py::arg("points"), py::arg("backend") = "cpu_fast", py::arg("normals") = py::none(),
       py::arg("offset") = py::none(), R"doc(Deform points through a lattice: P = F(E(points) + offset).
@@ -300,9 +323,14 @@ FfdEvaluator(lattice, points, normals=None, backend="cpu_fast"): shapes and erro
           "Replace the lattice (same embedding expected: the points' parameters were bound with the first one's). "
           "O(#controls); ValueError for an order the backend cannot do.")
       .def(
-          "evaluate", [](PyFfdEvaluator& e, const py::object& offset) { return evaluate(e, offset_of(offset)); },
-          py::arg("offset") = py::none(),
-          "Evaluate every bound point (+ offset, parameter units): returns (P, N) as ffd_evaluate, new arrays.")
+          "evaluate",
+          [](PyFfdEvaluator& e, const py::object& offset, const py::object& out) {
+            return evaluate(e, offset_of(offset), out);
+          },
+          py::arg("offset") = py::none(), py::arg("out") = py::none(),
+          "Evaluate every bound point (+ offset, parameter units): returns (P, N) as ffd_evaluate. out=(P, N): "
+          "write into these writable C-contiguous float64 #V×3 arrays (N None without normals) instead of new ones "
+          "(an animation loop then allocates nothing); ValueError for another shape or dtype.")
       .def_property_readonly("vertex_count", [](const PyFfdEvaluator& e) { return e.ev->vertex_count(); })
       .def_property_readonly("backend", [](const PyFfdEvaluator& e) { return core::to_string(e.ev->backend()); });
 

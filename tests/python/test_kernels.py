@@ -78,6 +78,25 @@ def test_evaluator_binds_once_and_follows_the_lattice():
     assert not np.shares_memory(P0, P1) and np.abs(P1 - P0).max() > 1e-3
 
 
+def test_evaluator_writes_into_out_arrays():
+    L = trispline.Lattice.identity(bounds=(LO, HI), controls=(4, 4, 4), orders=(3, 3, 3))
+    pts = cloud(500)
+    normals = np.tile([[0.0, 1.0, 0.0]], (500, 1))
+    for backend in ("cpu_fast", "cpu_ref"):
+        ev = trispline.FfdEvaluator(bent(L), pts, backend=backend, normals=normals)
+        fresh_p, fresh_n = ev.evaluate()
+        P, N = np.full((500, 3), np.nan), np.full((500, 3), np.nan)
+        rp, rn = ev.evaluate(out=(P, N))
+        assert rp is P and rn is N
+        assert np.array_equal(P, fresh_p) and np.array_equal(N, fresh_n)
+        with pytest.raises(ValueError, match="shape"):
+            ev.evaluate(out=(np.zeros((499, 3)), N))
+        with pytest.raises(ValueError, match="float64"):
+            ev.evaluate(out=(np.zeros((500, 3), dtype=np.float32), N))
+        with pytest.raises(ValueError, match="C-contiguous"):
+            ev.evaluate(out=(np.zeros((3, 500)).T, N))
+
+
 def test_lattice_from_parameters_and_knots():
     cp = trispline.Lattice.identity(bounds=((0, 0, 0), (1, 1, 1)), controls=(3, 3, 3), orders=(3, 3, 3)).control_points
     knots = [np.array([0, 0, 0, 1, 1, 1.0])] * 3
