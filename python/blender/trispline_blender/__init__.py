@@ -36,6 +36,7 @@ import bpy
 
 _classes = (
     module.TrisplinePreferences,
+    ops_press.TrisplinePathPoint,
     ops_place.OBJECT_OT_trispline_place,
     ops_press.OBJECT_OT_trispline_press,
     ops_tiles.OBJECT_OT_trispline_tile_fill,

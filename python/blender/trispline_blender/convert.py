@@ -59,11 +59,28 @@ def evaluated_mesh_arrays(obj, depsgraph, world=True):
     return V, F
 
 
+def first_use_order(V, F):
+    """V and F renumbered so that vertices come in the order the triangles first use them (unused ones dropped): the
+    order the editor's mesh loader gives a file, so a mesh handed over here and the same mesh exported as OBJ and
+    loaded by scene.load are one mesh, vertex for vertex. Results that depend on the vertex order (ddm.fill's
+    auto_uv charts) then agree with `trispline replay` of the exported file."""
+    flat = F.ravel()
+    used, first = np.unique(flat, return_index=True)
+    order = used[np.argsort(first)]
+    remap = np.full(len(V), -1, dtype=np.int32)
+    remap[order] = np.arange(len(order), dtype=np.int32)
+    return V[order], remap[F]
+
+
 def add_mesh(scene, name, V, F):
     """Put a mesh (trispline world coordinates) into a trispline Scene as object `name`: a primitive whose mesh is
-    then replaced by `mesh.set` (docs/python.md, set_mesh), both through the scene's History."""
+    then replaced by `mesh.set` (docs/python.md, set_mesh), both through the scene's History. Positions are rounded
+    to float32, Blender's own precision and what a mesh file of them (OBJ, glTF) read by scene.load holds, so a
+    command gives here what `trispline replay` gives on the exported file (ddm.fill's automatic uvs can change
+    with the last bits of a position)."""
     scene.run({"cmd": "scene.primitive", "kind": "box", "name": name})
-    scene.set_mesh(name, np.ascontiguousarray(V, dtype=np.float64), np.ascontiguousarray(F, dtype=np.int32))
+    V32 = np.asarray(V, dtype=np.float32).astype(np.float64)
+    scene.set_mesh(name, np.ascontiguousarray(V32), np.ascontiguousarray(F, dtype=np.int32))
 
 
 def set_mesh_vertices(mesh, V_local):
