@@ -129,7 +129,12 @@ void App::viewport_input() {
     return;
   }
   if (io.WantCaptureMouse || !work_.empty()) {
-    if (!tools_.owns_mouse()) tools_.mouse_away();
+    // A drag that began in the view ends there too: ImGui wants the mouse again on the frame the button comes up over
+    // a panel or an overlay window, and that release must still reach the tool (else its stroke stays open).
+    if (tools_.owns_mouse() && work_.empty() && !background_.running())
+      tools_.handle_mouse(nav_input_from_imgui().mouse_px);
+    else if (!tools_.owns_mouse())
+      tools_.mouse_away();
     return;
   }
   const NavInput nav = nav_input_from_imgui();

@@ -4,12 +4,17 @@
 
 #include <cstring>
 
+#include "ui/gui_probe.h"
 #include "ui/theme.h"
 
 namespace trispline::ui {
 
 void LogPanel::draw(const Rect& rect, MessageLog& log) {
   if (begin_docked("Log", rect)) {
+    {
+      const ImVec2 pos = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+      probe::rect("panel.log", pos, ImVec2(pos.x + size.x, pos.y + size.y));
+    }
     if (ImGui::SmallButton("Clear")) log.clear();
     ImGui::SameLine();
     ImGui::Checkbox("Errors only", &errors_only_);

@@ -22,12 +22,16 @@ const ParamSchema<LatticeRingParams>& LatticeRingCommand::schema() {
           .help("Object to bind; any previous FFD is replaced")
           .field("center", &P::center)
           .unit("world units")
+          .label("Centre")
+          .ui(0.01, "%.3f")
           .help("Centre of the ring, in the plane y = center.y")
           .field("radius", &P::radius)
           .required()
           .above(0)
           .unit("world units")
           .help("Radius of the ring's centre line; more than half the width (twisted: than hypot(width/2, height))")
+          .label("Radius")
+          .ui(0.01, "%.4g")
           .field("width", &P::width)
           .at_least(0)
           .unit("world units")
@@ -42,9 +46,13 @@ const ParamSchema<LatticeRingParams>& LatticeRingCommand::schema() {
           .field("phase", &P::phase)
           .unit("parameter units")
           .help("u where the object starts (one period = 1 = laps turns: 1 untwisted, 2 with a half twist)")
+          .label("Phase")
+          .ui(0.005, "%.3f")
           .field("twist_deg", &P::twist_deg)
           .range(-720, 720)
           .unit("degrees")
+          .label("Twist")
+          .ui(1.0, "%.0f deg")
           .help(
               "Turn of the cross-section about the ring's centre line (v = ½, w = 0) per turn of the ring, from "
               "outwards towards up; a multiple of 90. 180 = a Möbius band: u's period spans 2 turns, the second "
@@ -52,6 +60,7 @@ const ParamSchema<LatticeRingParams>& LatticeRingCommand::schema() {
               "control points per turn")
           .field("controls", &P::controls)
           .range(2, 256)
+          .label("Controls")
           .help(
               "Control points per axis; u periodic, ≥ order; twisted: a multiple of the laps, ≥ 3 (better 12) per turn")
           .field("order", &P::order)

@@ -2,11 +2,15 @@
 
 #include <imgui.h>
 
+#include <cmath>
 #include <limits>
 
+#include "core/mesh/mesh_io.h"
 #include "core/raycast/ray_caster.h"
 #include "core/volume/iso_raycast.h"
 #include "editor/session/session.h"
+#include "ui/gui_probe.h"
+#include "ui/param_widgets.h"
 #include "ui/theme.h"
 
 namespace trispline::editor {
@@ -77,6 +81,40 @@ void SelectTool::draw_panel(ToolContext& ctx) {
   ImGui::Text("scale     %.3g %.3g %.3g", t.scale.x, t.scale.y, t.scale.z);
   if (o->ffd) ImGui::TextColored(ui::colors::accent, "Deformed by an FFD lattice");
   if (o->placement) ImGui::Text("Placed: %d x %d contact rays", o->placement->samples_u, o->placement->samples_v);
+  draw_ring_section(ctx, *o);
+}
+
+void SelectTool::draw_ring_section(ToolContext& ctx, const core::SceneObject& o) {
+  ImGui::Spacing();
+  const bool open = ImGui::CollapsingHeader("Ring lattice");
+  ui::probe::item("select.ring");
+  ui::tooltip(
+      "Bind the object to a ring-shaped lattice periodic around its axis, so that it can travel round without a seam "
+      "(seed section 4.5); a twist of 180 degrees makes a Moebius band (Fig. 4.6). One undoable lattice.ring.");
+  if (!open) return;
+  if (ring_.object != o.name) {
+    ring_ = core::LatticeRingParams{};
+    ring_.object = o.name;
+    // A ring twice the object's size across (its length fits a fraction of a turn), centred so that the object
+    // starts where it stands: u = 0 lies at +x from the centre, w = 0 on the plane y = center.y under the object.
+    const core::Aabb box = o.world_mesh ? core::mesh_bounds(*o.world_mesh) : core::Aabb{};
+    const double diagonal = box.valid() ? box.diagonal() : 0.0;
+    ring_.radius = std::isfinite(diagonal) && diagonal > 0.0 ? 2.0 * diagonal : 1.0;
+    if (std::isfinite(diagonal) && diagonal > 0.0)
+      ring_.center = glm::dvec3(box.center().x - ring_.radius, box.lo.y, box.center().z);
+  }
+  const auto& schema = core::LatticeRingCommand::schema();
+  for (const char* field : {"center", "radius", "twist_deg", "phase", "controls"})
+    ui::param_widget(schema, field, ring_);
+  if (ImGui::Button("Bind to ring")) {
+    const nlohmann::json line = schema.to_json(ring_);
+    EditorSession& session = ctx.session;
+    ctx.defer("Binding " + o.name + " to a ring", [&session, line]() { session.execute(line); });
+  }
+  ui::probe::item("select.ring.bind");
+  ui::tooltip(
+      "Replaces the object's FFD by the ring lattice; lattice.animate_offset (or anim.keyframe) then moves it round. "
+      "Errors (a radius the object does not fit, a twist that is not a multiple of 90) go to the Log.");
 }
 
 }  // namespace trispline::editor
