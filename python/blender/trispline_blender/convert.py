@@ -14,6 +14,12 @@ import bpy
 import numpy as np
 
 
+def active_mesh_in_object_mode(context):
+    """The operators that act on the active mesh: Object Mode, an active object that is a mesh."""
+    obj = context.active_object
+    return context.mode == "OBJECT" and obj is not None and obj.type == "MESH"
+
+
 def to_trispline(P):
     """#N×3 Blender points → trispline points (x, z, -y)."""
     P = np.asarray(P, dtype=np.float64).reshape(-1, 3)

@@ -65,8 +65,7 @@ class OBJECT_OT_trispline_tile_fill(bpy.types.Operator):
 
     @classmethod
     def poll(cls, context):
-        obj = context.active_object
-        return context.mode == "OBJECT" and obj is not None and obj.type == "MESH"
+        return convert.active_mesh_in_object_mode(context)
 
     def draw(self, context):
         layout = self.layout
