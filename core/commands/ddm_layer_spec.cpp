@@ -112,7 +112,8 @@ ParamSchema<S> make_layer_schema(bool fill) {
       .default_text("thorn")
       .required(fill)
       .help(
-          "A generated tile (thorn, chain, hex, flower) or a mesh file (OBJ/PLY/glTF) relative to the log's folder, "
+          "A generated tile (thorn, chain, hex, flower, hair) or a mesh file (OBJ/PLY/glTF) relative to the log's "
+          "folder, "
           "logged absolute")
       .custom("tiles", read_more_tiles, write_more_tiles)
       .type_text("[string,…]")

@@ -1,9 +1,10 @@
-// DDM tiles: generated tiles (thorn, flower, chain, hex), canonical tiles from meshes, topology check. See ddm_tile.h.
-// Source: seed ch. 5 §5.2 (canonical tile space), Eq. 5.3 / Fig. 5.8 (metamorphosis needs equal topology).
+// DDM tiles: generated tiles (thorn, flower, chain, hex, hair), canonical tiles from meshes, topology check. See
+// ddm_tile.h. Source: seed ch. 5 §5.2 (canonical tile space), Eq. 5.3 / Fig. 5.8 (metamorphosis needs equal topology).
 #include "core/ddm/ddm_tile.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <stdexcept>
 
@@ -142,10 +143,48 @@ TriMesh hex_mesh() {
   return m;
 }
 
+// A tuft of hair (seed Fig. 5.10, Table 5.1's horse): kHairStrands thin closed tubes rooted at jittered points of a
+// 6 × 6 grid in the cell, each kHairRings rings of kHairSegments points tapering to its tip, leaning and curling
+// towards +x by its own amount, 0.55–0.95 tile units long. The jitter is a fixed hash of the strand index, so the tile
+// is the same bit for bit everywhere.
+constexpr int kHairStrands = 32, kHairRings = 8, kHairSegments = 4;
+
+double hair_hash(unsigned i, unsigned salt) {  // [0, 1), SplitMix64's finaliser
+  std::uint64_t z = (std::uint64_t(i) << 8 | salt) + 0x9E3779B97F4A7C15ull;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return double((z ^ (z >> 31)) >> 11) / double(std::uint64_t{1} << 53);
+}
+
+TriMesh hair_mesh() {
+  TriMesh m;
+  for (unsigned i = 0; i < unsigned(kHairStrands); ++i) {
+    const unsigned cell = i % 36;
+    const glm::dvec2 root(0.14 + 0.12 * (cell % 6) + 0.08 * (hair_hash(i, 1) - 0.5),
+                          0.2 + 0.12 * (cell / 6) + 0.08 * (hair_hash(i, 2) - 0.5));
+    const double length = 0.55 + 0.4 * hair_hash(i, 3), lean = 0.1 + 0.15 * hair_hash(i, 4);
+    const double side = 0.08 * (hair_hash(i, 5) - 0.5), radius = 0.012;
+    const auto centre = [&](double t) {  // the strand's centre line: up, leaning (more towards the tip) to +x
+      return glm::dvec3(root.x + lean * t * t, root.y + side * t, length * t);
+    };
+    const auto ring = [&](int k, int seg) {
+      const double t = double(k) / kHairRings, a = 2.0 * kPi * seg / kHairSegments;
+      const double r = radius * (1.0 - 0.85 * t);
+      return centre(t) + r * glm::dvec3(std::cos(a), std::sin(a), 0.0);
+    };
+    TriMesh strand = ring_grid(kHairRings, kHairSegments, ring, centre(0.0), centre(1.0));
+    const auto base = static_cast<unsigned>(m.positions.size());
+    m.positions.insert(m.positions.end(), strand.positions.begin(), strand.positions.end());
+    m.normals.insert(m.normals.end(), strand.normals.begin(), strand.normals.end());
+    for (const glm::uvec3& t : strand.triangles) m.triangles.push_back(t + glm::uvec3(base));
+  }
+  return m;
+}
+
 }  // namespace
 
 bool is_generated_ddm_tile(const std::string& kind) {
-  return kind == "thorn" || kind == "flower" || kind == "chain" || kind == "hex";
+  return kind == "thorn" || kind == "flower" || kind == "chain" || kind == "hex" || kind == "hair";
 }
 
 DdmTile make_ddm_tile(const std::string& kind) {
@@ -153,8 +192,9 @@ DdmTile make_ddm_tile(const std::string& kind) {
   if (kind == "flower") return {kind, flower_mesh()};
   if (kind == "chain") return {kind, chain_mesh()};
   if (kind == "hex") return {kind, hex_mesh()};
+  if (kind == "hair") return {kind, hair_mesh()};
   throw std::invalid_argument("tile: unknown generated tile '" + kind +
-                              "' (thorn, flower, chain, hex, or a mesh file)");
+                              "' (thorn, flower, chain, hex, hair, or a mesh file)");
 }
 
 DdmTileMaterials ddm_tile_materials(const std::vector<DdmTile>& tiles) {

@@ -16,7 +16,7 @@
 namespace trispline::core {
 
 struct DdmTile {
-  std::string name;  // "thorn", "chain", "hex", "flower", or the source file's stem
+  std::string name;  // "thorn", "chain", "hex", "flower", "hair", or the source file's stem
   TriMesh mesh;      // #V × 3 positions (x, y, w) in tile space, unit normals #V × 3 (tile space), #F × 3; a tile
                      // from a textured file also keeps its own uvs (#V × 2) and face_material (#F)
   // The tile file's materials (texture-mapped tiles, seed §5.5, Fig. 5.12), indexed by mesh.face_material; null for
@@ -42,7 +42,9 @@ DdmTileMaterials ddm_tile_materials(const std::vector<DdmTile>& tiles);
 //             metamorphosis partner of "thorn" (seed Eq. 5.3, Fig. 5.8);
 //   "chain"   two interlocked stadium-shaped links, one lying and one standing, a tube of radius 0.06;
 //   "hex"     a hexagonal slab filling the cell (vertices on the cell's border at x = 0, ½, 1), height 0.15, for the
-//             hexagonal layout (seed Fig. 5.11).
+//             hexagonal layout (seed Fig. 5.11);
+//   "hair"    a tuft of 32 thin tapering strands leaning towards +x, 0.55–0.95 tall, 34 vertices each (1,088), for
+//             hairy surfaces (seed Fig. 5.10, Table 5.1's horse).
 // Throws std::invalid_argument for any other kind, naming the valid ones.
 DdmTile make_ddm_tile(const std::string& kind);
 

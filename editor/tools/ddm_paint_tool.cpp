@@ -36,7 +36,7 @@ glm::vec4 last_item_rect() {
 }
 
 constexpr double kRadiusStep = 1.15;  // [ and ] scale the brush radius by this
-constexpr std::array<const char*, 4> kGeneratedTiles = {"thorn", "chain", "hex", "flower"};
+constexpr std::array<const char*, 5> kGeneratedTiles = {"thorn", "chain", "hex", "flower", "hair"};
 constexpr const char* kTileTips[] = {
     "A bent horn on a round foot (626 vertices; seed Fig. 5.6)",
     "Two interlocked chain links (neighbouring cells overlap, as the seed's chains)",

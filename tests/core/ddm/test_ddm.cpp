@@ -20,7 +20,7 @@ using test::bump_patch;  // tests/core/ddm/ddm_test_patches.h
 using test::flat_patch;
 
 TEST(DdmTile, GeneratedTilesAreClosedManifoldsInTheCanonicalCell) {
-  for (const char* kind : {"thorn", "flower", "chain", "hex"}) {
+  for (const char* kind : {"thorn", "flower", "chain", "hex", "hair"}) {
     const DdmTile t = make_ddm_tile(kind);
     ASSERT_GT(t.mesh.triangle_count(), 0u) << kind;
     ASSERT_EQ(t.mesh.normals.size(), t.mesh.vertex_count()) << kind;
@@ -44,6 +44,15 @@ TEST(DdmTile, GeneratedTilesAreClosedManifoldsInTheCanonicalCell) {
     EXPECT_GT(vol, 0.0) << kind;
   }
   EXPECT_EQ(make_ddm_tile("thorn").mesh.vertex_count(), 626u);
+  // Hair (seed Fig. 5.10): 32 strands of 8 rings × 4 points plus a root and a tip, 0.55–0.95 tall, the same bit for
+  // bit each time it is made.
+  const DdmTile hair = make_ddm_tile("hair");
+  EXPECT_EQ(hair.mesh.vertex_count(), 32u * (8u * 4u + 2u));
+  Aabb hair_box;
+  for (const glm::dvec3& p : hair.mesh.positions) hair_box.extend(p);
+  EXPECT_GT(hair_box.hi.z, 0.55);
+  EXPECT_LE(hair_box.hi.z, 0.95 + 1e-12);
+  EXPECT_EQ(make_ddm_tile("hair").mesh.positions, hair.mesh.positions);
   EXPECT_NO_THROW(require_same_ddm_topology(make_ddm_tile("thorn"), make_ddm_tile("flower")));
   EXPECT_THROW(require_same_ddm_topology(make_ddm_tile("thorn"), make_ddm_tile("chain")), std::invalid_argument);
   EXPECT_THROW(make_ddm_tile("spiral"), std::invalid_argument);
