@@ -36,12 +36,17 @@ glm::vec4 last_item_rect() {
 }
 
 constexpr double kRadiusStep = 1.15;  // [ and ] scale the brush radius by this
-constexpr std::array<const char*, 5> kGeneratedTiles = {"thorn", "chain", "hex", "flower", "hair"};
-constexpr const char* kTileTips[] = {
-    "A bent horn on a round foot (626 vertices; seed Fig. 5.6)",
-    "Two interlocked chain links (neighbouring cells overlap, as the seed's chains)",
-    "A hexagonal slab filling its cell: use the hex layout (seed Fig. 5.11)",
-    "A five-petal flower with the thorn's topology: the thorn's metamorphosis partner (seed Eq. 5.3)",
+// The generated tiles (core::make_ddm_tile) the Tile list offers, each with its tooltip.
+struct GeneratedTile {
+  const char* name;
+  const char* tip;
+};
+constexpr GeneratedTile kGeneratedTiles[] = {
+    {"thorn", "A bent horn on a round foot (626 vertices; seed Fig. 5.6)"},
+    {"chain", "Two interlocked chain links (neighbouring cells overlap, as the seed's chains)"},
+    {"hex", "A hexagonal slab filling its cell: use the hex layout (seed Fig. 5.11)"},
+    {"flower", "A five-petal flower with the thorn's topology: the thorn's metamorphosis partner (seed Eq. 5.3)"},
+    {"hair", "A tuft of 32 thin strands leaning one way (1,088 vertices; seed Fig. 5.10)"},
 };
 
 bool deformed(const core::SceneObject& o) { return o.ffd || o.dffd || o.clip; }
@@ -65,7 +70,8 @@ double ddm_default_tile_height(const core::SceneObject* o) {
 namespace {
 
 bool is_generated(const std::string& tile) {
-  return std::find(kGeneratedTiles.begin(), kGeneratedTiles.end(), tile) != kGeneratedTiles.end();
+  return std::any_of(std::begin(kGeneratedTiles), std::end(kGeneratedTiles),
+                     [&](const GeneratedTile& g) { return tile == g.name; });
 }
 
 // The new layer's colour: the panel's swatch when "Own colour" is on.
@@ -331,10 +337,10 @@ void DdmPaintTool::draw_new_layer_fields(ToolContext& ctx, const core::SceneObje
   const bool open = ImGui::BeginCombo("Tile", generated ? tile.c_str() : "file");
   ui::probe::item("ddm.tile");
   if (open) {
-    for (std::size_t i = 0; i < kGeneratedTiles.size(); ++i) {
-      if (ImGui::Selectable(kGeneratedTiles[i], tile == kGeneratedTiles[i])) tile = kGeneratedTiles[i];
-      ui::probe::item(std::string("ddm.tile.") + kGeneratedTiles[i]);
-      ui::tooltip(kTileTips[i]);
+    for (const GeneratedTile& g : kGeneratedTiles) {
+      if (ImGui::Selectable(g.name, tile == g.name)) tile = g.name;
+      ui::probe::item(std::string("ddm.tile.") + g.name);
+      ui::tooltip(g.tip);
     }
     if (ImGui::Selectable("file", !generated)) tile = file_tile_;
     ui::probe::item("ddm.tile.file");
