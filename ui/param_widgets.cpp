@@ -54,7 +54,7 @@ void clamp_bounds(const core::ParamRange& r, T* lo, T* hi) {
 
 std::string size_param_widget(const ParamWidget& w, const core::ParamFieldInfo& info, double* value, double diagonal,
                               double shown_default, SizeFieldState& state, const std::string& probe) {
-  const core::ParamFieldInfo::ObjectSize& size = *info.object_size;
+  const core::ParamObjectSize& size = *info.object_size;
   const bool object = diagonal > 0.0;
   const double lo = object ? size.min_fraction * diagonal : size.min_fraction > 0.0 ? 1e-3 : 0.0;
   const double hi = object ? size.max_fraction * diagonal : 10.0;

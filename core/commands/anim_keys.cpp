@@ -3,21 +3,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/base/enum_names.h"
 #include "core/params/params.h"
 
 namespace trispline::core {
 
-const char* interpolation_name(KeyInterpolation k) {
-  switch (k) {
-    case KeyInterpolation::constant:
-      return "constant";
-    case KeyInterpolation::smooth:
-      return "smooth";
-    case KeyInterpolation::linear:
-      break;
-  }
-  return "linear";
-}
+const char* interpolation_name(KeyInterpolation k) { return enum_name(k, {"constant", "linear", "smooth"}, "linear"); }
 
 KeyInterpolation interpolation_of(const std::string& name) {
   return name == "constant" ? KeyInterpolation::constant
@@ -63,19 +54,11 @@ ParamSchema<KeyedWeightParams> keyed_weight_schema(const KeyedWeightDoc& doc) {
   const char* field = doc.keys_field;
   const char* built = doc.built;
   return ParamSchema<P>(doc.id, doc.summary)
-      .field("object", &P::object)
-      .required()
-      .help(doc.object_help)
-      .field("clear", &P::clear)
-      .write_unless_default()
-      .help(doc.clear_help)
-      .field(field, &P::keys)
-      .type_text("[[frame,s],…]")
-      .default_text("kept")
-      .help(doc.keys_help)
-      .choice("interpolation", &P::interpolation, {"linear", "constant", "smooth"})
-      .write_unless_default()
-      .help("How this line's keys move to the next key")
+      .field("object", &P::object, {.required = true, .help = doc.object_help})
+      .field("clear", &P::clear, {.write = ParamWrite::UnlessDefault, .help = doc.clear_help})
+      .field(field, &P::keys, {.default_text = "kept", .type_text = "[[frame,s],…]", .help = doc.keys_help})
+      .choice("interpolation", &P::interpolation, {"linear", "constant", "smooth"},
+              {.write = ParamWrite::UnlessDefault, .help = "How this line's keys move to the next key"})
       .check([field, built](const P& p) { check_weight_keys(p.keys, p.clear, field, built); });
 }
 

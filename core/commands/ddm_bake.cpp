@@ -10,21 +10,14 @@ const ParamSchema<DdmBakeParams>& DdmBakeCommand::schema() {
   using P = DdmBakeParams;
   static const ParamSchema<P> s =
       ParamSchema<P>("ddm.bake", "Turn a tile layer into an ordinary mesh object (for export)")
-          .field("object", &P::object)
-          .required()
-          .help("The object holding the layer")
-          .field("layer", &P::layer)
-          .required()
-          .help("The layer to bake")
-          .field("name", &P::name)
-          .required()
-          .help("Id of the new object; an existing name is an error")
+          .field("object", &P::object, {.required = true, .help = "The object holding the layer"})
+          .field("layer", &P::layer, {.required = true, .help = "The layer to bake"})
+          .field("name", &P::name, {.required = true, .help = "Id of the new object; an existing name is an error"})
           .check([](const P& p) {
             if (const std::string bad = object_name_error(p.name); !bad.empty()) params::fail("name", bad);
           })
-          .field("frame", &P::frame)
-          .default_text("scene time 0")
-          .help("Timeline frame of the layer's animation to bake");
+          .field("frame", &P::frame,
+                 {.default_text = "scene time 0", .help = "Timeline frame of the layer's animation to bake"});
   return s;
 }
 

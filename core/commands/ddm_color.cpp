@@ -27,19 +27,16 @@ void write_layer_color(const ParamSchema<DdmColorParams>::Field& f, const DdmCol
 
 const ParamSchema<DdmColorParams>& DdmColorCommand::schema() {
   using P = DdmColorParams;
-  static const ParamSchema<P> s = ParamSchema<P>("ddm.color", "Give a tile layer its own colour, or its object's again")
-                                      .field("object", &P::object)
-                                      .required()
-                                      .help("The object holding the layer")
-                                      .field("layer", &P::layer)
-                                      .required()
-                                      .help("The layer to colour")
-                                      .custom("color", read_layer_color, write_layer_color)
-                                      .required()
-                                      .type_text("[r,g,b] or null")
-                                      .range(0, 1)
-                                      .unit("linear RGB")
-                                      .help("The layer's own colour; null: its object's again");
+  static const ParamSchema<P> s =
+      ParamSchema<P>("ddm.color", "Give a tile layer its own colour, or its object's again")
+          .field("object", &P::object, {.required = true, .help = "The object holding the layer"})
+          .field("layer", &P::layer, {.required = true, .help = "The layer to colour"})
+          .custom("color", read_layer_color, write_layer_color,
+                  {.required = true,
+                   .range = ParamRange{0, 1},
+                   .unit = "linear RGB",
+                   .type_text = "[r,g,b] or null",
+                   .help = "The layer's own colour; null: its object's again"});
   return s;
 }
 

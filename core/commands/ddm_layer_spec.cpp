@@ -89,88 +89,85 @@ const ParamSchema<DdmTileTransform>& tile_transform_schema() {
   using T = DdmTileTransform;
   static const ParamSchema<T> s =
       ParamSchema<T>("tile_transform", "A layer's transform in its tiles' texture space")
-          .field_as<UniformVec2Codec>("tile_scale", &T::scale)
-          .above(0)
-          .write_unless_default()
-          .help("Tile units per cell along x, y (one number: both); 1 = the tile fills its cell")
-          .field("tile_rotate_deg", &T::rotate_deg)
-          .write_unless_default()
-          .unit("degrees")
-          .help("Rotation of the tile in its cell, counter-clockwise")
-          .field_as<UniformVec2Codec>("tile_shift", &T::shift)
-          .write_unless_default()
-          .unit("cell units")
-          .help("Shift of the tile in its cell (one number: both)");
+          .field_as<UniformVec2Codec>(
+              "tile_scale", &T::scale,
+              {.write = ParamWrite::UnlessDefault,
+               .range = ParamRange::above(0),
+               .help = "Tile units per cell along x, y (one number: both); 1 = the tile fills its cell"})
+          .field("tile_rotate_deg", &T::rotate_deg,
+                 {.write = ParamWrite::UnlessDefault,
+                  .unit = "degrees",
+                  .help = "Rotation of the tile in its cell, counter-clockwise"})
+          .field_as<UniformVec2Codec>("tile_shift", &T::shift,
+                                      {.write = ParamWrite::UnlessDefault,
+                                       .unit = "cell units",
+                                       .help = "Shift of the tile in its cell (one number: both)"});
   return s;
 }
 
 ParamSchema<S> make_layer_schema(bool fill) {
   const auto several = [](const S& s) { return s.tiles.size() > 1; };
   return ParamSchema<S>("ddm.layer", "The fields that make a tile layer")
-      .custom("tile", read_tile, write_tile)
-      .type_text("string")
-      .default_text("thorn")
-      .required(fill)
-      .help(
-          "A generated tile (thorn, chain, hex, flower, hair) or a mesh file (OBJ/PLY/glTF) relative to the log's "
-          "folder, "
-          "logged absolute")
-      .custom("tiles", read_more_tiles, write_more_tiles)
-      .type_text("[string,…]")
-      .default_text("[]")
-      .help("More tiles for the layer (as tile), chosen per cell by choice")
-      .choice("choice", &S::choice, {"pattern", "random"})
-      .write_if(several)
-      .help("With several tiles: cell k of row r gets tile (k + r) mod #tiles, or one drawn with seed")
-      .field("seed", &S::seed)
-      .write_unless_default()
-      .write_if(several)
-      .help("Seed of random's mt19937")
-      .choice("layout", &S::layout, {"rect", "hex", "brick"})
-      .required(fill)
-      .help("Cells per chart: rect n × m; hex and brick shift odd rows (n ≥ 2)")
-      .field("counts", &S::counts)
-      .default_text(fill ? "required without tile_size" : "[1,1]")
-      .help("Cells per chart n × m (the seed's parametric layouts); not with tile_size")
-      .field("tile_size", &S::tile_size)
-      .above(0)
-      .unit("world units")
-      .help("Tile width in object space: every chart gets the cells that make its tiles this size (not with counts)")
-      .label("Tile size")
-      .ui(0.002, "%.4g")
-      .object_size(0.1, 0.001, 1.0, 0.01)
-      .field("max_vertices", &S::max_vertices)
-      .range(1, double(kMaxDdmLayerVertices))
-      .unit("tile vertices")
-      .default_text("10000000")
-      .help("Refuse a layer of more tile vertices than this, counted before it is built (ddm.paint: after the stroke)")
-      .field("height", &S::height)
-      .required(fill)
-      .above(0)
-      .unit("world units")
-      .help("World units (object space) per tile unit of w, along the base normal")
-      .label("Height")
-      .ui(0.001, "%.4g")
-      .object_size(0.033, 0.0005, 1.0, 0.01)
-      .custom("base", read_base, write_base)
-      .type_text("limit|teapot_body|uv|auto_uv")
-      .default_text("the object's: teapot_body (teapot primitive), uv (texture coordinates), else auto_uv")
-      .help(
-          "limit: Loop limit surface, three charts per triangle; teapot_body: the teapot's body patches as one "
-          "chart; uv: the mesh's texture coordinates; auto_uv: automatic ones (seams, CGAL LSCM, even density)")
-      .custom("map_resolution", read_map_resolution, write_map_resolution)
-      .type_text("integer or [a,b]")
-      .default_text("[9,9] limit, [513,257] teapot_body, [1025,1025] uv and auto_uv")
-      .range(2, 4097)
-      .unit("samples per chart edge")
-      .help("P/N map samples per chart edge; square for uv")
+      .custom("tile", read_tile, write_tile,
+              {.required = fill,
+               .default_text = "thorn",
+               .type_text = "string",
+               .help = "A generated tile (thorn, chain, hex, flower, hair) or a mesh file (OBJ/PLY/glTF) relative to "
+                       "the log's folder, logged absolute"})
+      .custom("tiles", read_more_tiles, write_more_tiles,
+              {.default_text = "[]",
+               .type_text = "[string,…]",
+               .help = "More tiles for the layer (as tile), chosen per cell by choice"})
+      .choice("choice", &S::choice, {"pattern", "random"},
+              {.write_if = several,
+               .help = "With several tiles: cell k of row r gets tile (k + r) mod #tiles, or one drawn with seed"})
+      .field("seed", &S::seed,
+             {.write = ParamWrite::UnlessDefault, .write_if = several, .help = "Seed of random's mt19937"})
+      .choice("layout", &S::layout, {"rect", "hex", "brick"},
+              {.required = fill, .help = "Cells per chart: rect n × m; hex and brick shift odd rows (n ≥ 2)"})
+      .field("counts", &S::counts,
+             {.default_text = fill ? "required without tile_size" : "[1,1]",
+              .help = "Cells per chart n × m (the seed's parametric layouts); not with tile_size"})
+      .field("tile_size", &S::tile_size,
+             {.range = ParamRange::above(0),
+              .unit = "world units",
+              .ui = {"Tile size", 0.002, "%.4g"},
+              .object_size = ParamObjectSize{0.1, 0.001, 1.0, 0.01},
+              .help = "Tile width in object space: every chart gets the cells that make its tiles this size (not with "
+                      "counts)"})
+      .field("max_vertices", &S::max_vertices,
+             {.range = ParamRange{1, double(kMaxDdmLayerVertices)},
+              .unit = "tile vertices",
+              .default_text = "10000000",
+              .help = "Refuse a layer of more tile vertices than this, counted before it is built (ddm.paint: after "
+                      "the stroke)"})
+      .field("height", &S::height,
+             {.required = fill,
+              .range = ParamRange::above(0),
+              .unit = "world units",
+              .ui = {"Height", 0.001, "%.4g"},
+              .object_size = ParamObjectSize{0.033, 0.0005, 1.0, 0.01},
+              .help = "World units (object space) per tile unit of w, along the base normal"})
+      .custom(
+          "base", read_base, write_base,
+          {.default_text = "the object's: teapot_body (teapot primitive), uv (texture coordinates), else auto_uv",
+           .type_text = "limit|teapot_body|uv|auto_uv",
+           .help =
+               "limit: Loop limit surface, three charts per triangle; teapot_body: the teapot's body patches as one "
+               "chart; uv: the mesh's texture coordinates; auto_uv: automatic ones (seams, CGAL LSCM, even density)"})
+      .custom("map_resolution", read_map_resolution, write_map_resolution,
+              {.range = ParamRange{2, 4097},
+               .unit = "samples per chart edge",
+               .default_text = "[9,9] limit, [513,257] teapot_body, [1025,1025] uv and auto_uv",
+               .type_text = "integer or [a,b]",
+               .help = "P/N map samples per chart edge; square for uv"})
       .embed(&S::transform, tile_transform_schema())
-      .field("color", &S::color)
-      .type_text("[r,g,b]")
-      .range(0, 1)
-      .unit("linear RGB")
-      .default_text("the object's")
-      .help("The layer's own colour")
+      .field("color", &S::color,
+             {.range = ParamRange{0, 1},
+              .unit = "linear RGB",
+              .default_text = "the object's",
+              .type_text = "[r,g,b]",
+              .help = "The layer's own colour"})
       .check([fill](S& s) {  // the layout's own checks, before anything is built
         if (s.counts && s.tile_size)
           params::fail("tile_size", "give tile_size (world units) or counts (cells per chart), not both");

@@ -4,13 +4,10 @@ namespace trispline::core {
 
 const ParamSchema<DdmRemoveParams>& DdmRemoveCommand::schema() {
   using P = DdmRemoveParams;
-  static const ParamSchema<P> s = ParamSchema<P>("ddm.remove", "Delete a tile layer")
-                                      .field("object", &P::object)
-                                      .required()
-                                      .help("The object holding the layer")
-                                      .field("layer", &P::layer)
-                                      .required()
-                                      .help("The layer to delete");
+  static const ParamSchema<P> s =
+      ParamSchema<P>("ddm.remove", "Delete a tile layer")
+          .field("object", &P::object, {.required = true, .help = "The object holding the layer"})
+          .field("layer", &P::layer, {.required = true, .help = "The layer to delete"});
   return s;
 }
 

@@ -39,15 +39,10 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
 }
 
 const ParamSchema<Aabb>& box_schema() {
-  static const ParamSchema<Aabb> s = ParamSchema<Aabb>("box", "An axis-aligned box")
-                                         .field("lo", &Aabb::lo)
-                                         .required()
-                                         .unit("world units")
-                                         .help("Lowest corner")
-                                         .field("hi", &Aabb::hi)
-                                         .required()
-                                         .unit("world units")
-                                         .help("Highest corner");
+  static const ParamSchema<Aabb> s =
+      ParamSchema<Aabb>("box", "An axis-aligned box")
+          .field("lo", &Aabb::lo, {.required = true, .unit = "world units", .help = "Lowest corner"})
+          .field("hi", &Aabb::hi, {.required = true, .unit = "world units", .help = "Highest corner"});
   return s;
 }
 
@@ -202,60 +197,54 @@ const ParamSchema<GlobalDffdParams>& global_dffd_schema() {
   using G = GlobalDffdParams;
   static const ParamSchema<G> s =
       ParamSchema<G>("dffd", "The lattice of a global DFFD")
-          .choice("axis", &G::axis, axis_names())
-          .label("Axis (u)")
-          .help("World axis of the lattice's u: the travel direction")
-          .choice("w_axis", &G::w_axis, axis_names())
-          .label("W axis (w)")
-          .help("World axis of the lattice's w: the slicing planes W_k are orthogonal to it")
+          .choice("axis", &G::axis, axis_names(),
+                  {.ui = {"Axis (u)"}, .help = "World axis of the lattice's u: the travel direction"})
+          .choice("w_axis", &G::w_axis, axis_names(),
+                  {.ui = {"W axis (w)"},
+                   .help = "World axis of the lattice's w: the slicing planes W_k are orthogonal to it"})
           .check([](const G& g) {
             if (g.axis == g.w_axis) params::fail("w_axis", "must differ from 'axis'");
           })
-          .field("order", &G::order)
-          .range(2, 6)
-          .label("Order")
-          .ui(0.05)
-          .help("Order (= degree + 1) per lattice axis u, v, w")
-          .field("controls", &G::controls)
-          .range(2, 64)
-          .label("Controls")
-          .ui(0.1)
-          .help("Control points per lattice axis before knot insertion, ≥ order")
-          .choice("kernel", &G::kernel, {"gaussian", "bspline"})
-          .label("Kernel")
-          .help("κ: truncated Gaussian or quadratic B-spline")
-          .field("kernel_width", &G::kernel_width)
-          .required()
-          .label("Kernel width")
-          .above(0)
-          .unit("world units")
-          .help("κ's reach along axis (the opening's propagation)")
-          .choice("openings", &G::openings, {"open", "stitch", "cap"})
-          .label("Openings")
-          .help("open: holes; stitch: re-joined behind the obstacle; cap: closed by CGAL-triangulated caps")
-          .choice("fold", &G::reject_fold, {"warn", "reject"})
-          .label("Fold-over")
-          .help("A fold-over (seed Theorem 6) fails or only warns")
-          .field("margin", &G::margin)
-          .at_least(0)
-          .label("Margin")
-          .write_unless_default()
-          .unit("world units")
-          .default_text("1.05 × kernel_width")
-          .help("Lattice growth beyond the obstacles along axis")
-          .field("clearance", &G::clearance)
-          .at_least(0)
-          .label("Clearance")
-          .unit("world units")
-          .help(
-              "Kept between the wrapped object and the obstacle; where vertices would still lie inside an obstacle "
-              "the split raises it and refines the lattice by itself (report.json: clearance_used)")
-          .field("eps", &G::eps)
-          .range(0, 1e-3, true, false)
-          .unit("parameter units")
-          .help("Cut vertices sit at u0 ∓ eps")
-          .object("box", &G::box, box_schema())
-          .help("The lattice box; every obstacle must lie inside it");
+          .field("order", &G::order,
+                 {.range = ParamRange{2, 6},
+                  .ui = {"Order", 0.05},
+                  .help = "Order (= degree + 1) per lattice axis u, v, w"})
+          .field("controls", &G::controls,
+                 {.range = ParamRange{2, 64},
+                  .ui = {"Controls", 0.1},
+                  .help = "Control points per lattice axis before knot insertion, ≥ order"})
+          .choice("kernel", &G::kernel, {"gaussian", "bspline"},
+                  {.ui = {"Kernel"}, .help = "κ: truncated Gaussian or quadratic B-spline"})
+          .field("kernel_width", &G::kernel_width,
+                 {.required = true,
+                  .range = ParamRange::above(0),
+                  .unit = "world units",
+                  .ui = {"Kernel width"},
+                  .help = "κ's reach along axis (the opening's propagation)"})
+          .choice("openings", &G::openings, {"open", "stitch", "cap"},
+                  {.ui = {"Openings"},
+                   .help = "open: holes; stitch: re-joined behind the obstacle; cap: closed by CGAL-triangulated caps"})
+          .choice("fold", &G::reject_fold, {"warn", "reject"},
+                  {.ui = {"Fold-over"}, .help = "A fold-over (seed Theorem 6) fails or only warns"})
+          .field("margin", &G::margin,
+                 {.write = ParamWrite::UnlessDefault,
+                  .range = ParamRange::at_least(0),
+                  .unit = "world units",
+                  .default_text = "1.05 × kernel_width",
+                  .ui = {"Margin"},
+                  .help = "Lattice growth beyond the obstacles along axis"})
+          .field(
+              "clearance", &G::clearance,
+              {.range = ParamRange::at_least(0),
+               .unit = "world units",
+               .ui = {"Clearance"},
+               .help = "Kept between the wrapped object and the obstacle; where vertices would still lie inside an "
+                       "obstacle the split raises it and refines the lattice by itself (report.json: clearance_used)"})
+          .field("eps", &G::eps,
+                 {.range = ParamRange{0, 1e-3, true, false},
+                  .unit = "parameter units",
+                  .help = "Cut vertices sit at u0 ∓ eps"})
+          .object("box", &G::box, box_schema(), {.help = "The lattice box; every obstacle must lie inside it"});
   return s;
 }
 
@@ -265,12 +254,8 @@ const ParamSchema<DffdSplitParams>& DffdSplitCommand::schema() {
       ParamSchema<P>("dffd.split",
                      "Split an object around obstacles with a global discontinuous FFD; open, stitched "
                      "or capped openings (seed §6.3)")
-          .field("object", &P::object)
-          .required()
-          .help("An undeformed object without a glTF clip")
-          .field("obstacles", &P::obstacles)
-          .required()
-          .help("Ids of other objects (static)")
+          .field("object", &P::object, {.required = true, .help = "An undeformed object without a glTF clip"})
+          .field("obstacles", &P::obstacles, {.required = true, .help = "Ids of other objects (static)"})
           .check([](const P& p) {
             if (p.obstacles.empty()) params::fail("obstacles", "expected a non-empty array of object ids");
             for (std::size_t i = 0; i < p.obstacles.size(); ++i) {

@@ -13,47 +13,44 @@ const ParamSchema<IncisionParams>& incision_schema() {
   using I = IncisionParams;
   static const ParamSchema<I> s =
       ParamSchema<I>("incision", "The shape of an incision (seed §6.4, Eq. 6.2)")
-          .field("width", &I::width)
-          .required()
-          .above(0)
-          .unit("world units")
-          .help(
-              "α: how far the cut pushes the surface apart to each side (the lattice spans ±width across the cut; "
-              "Eq. 6.2)")
-          .label("Width")
-          .ui(0.0, "%.4g")
-          .object_size(0.02, 0.0005, 0.5, 0.01)
-          .field("depth", &I::depth)
-          .required()
-          .above(0)
-          .unit("world units")
-          .help("β: how deep below the surface the cut goes, along −N (Eq. 6.2)")
-          .label("Depth")
-          .ui(0.0, "%.4g")
-          .object_size(0.02, 0.0005, 0.5, 0.01)
-          .field("opening", &I::opening)
-          .at_least(0)
-          .unit("world units")
-          .help(
-              "Gap between the two cut faces at the surface, mid-stroke; it tapers to 0 at the cut's bottom and at "
-              "both ends of the stroke (§6.4)")
-          .label("Opening")
-          .ui(0.0, "%.4g")
-          .object_size(0.006, 0.0, 0.2, 0.01)
-          .field("walls", &I::walls)
-          .label("Walls")
-          .help("Build cut-depth walls (inside colour) so the surface stays closed; false leaves the cut open")
-          .field("order", &I::order)
-          .range(2, 4)
-          .label("Order")
-          .ui(0.05)
-          .help("Order (= degree + 1) of the cutting lattice in u, v, w; order knots at u = 1/2 make the cut")
-          .choice("kernel", &I::kernel, {"gaussian", "bspline"})
-          .label("Kernel")
-          .help("κ: how the planes next to the cut follow it: truncated Gaussian or quadratic B-spline (§6.3.1)")
-          .field("wall_rows", &I::wall_rows)
-          .range(1, 32)
-          .help("Rows of wall quads from each rim to the bottom");
+          .field("width", &I::width,
+                 {.required = true,
+                  .range = ParamRange::above(0),
+                  .unit = "world units",
+                  .ui = {"Width", 0.0, "%.4g"},
+                  .object_size = ParamObjectSize{0.02, 0.0005, 0.5, 0.01},
+                  .help = "α: how far the cut pushes the surface apart to each side (the lattice spans ±width across "
+                          "the cut; Eq. 6.2)"})
+          .field("depth", &I::depth,
+                 {.required = true,
+                  .range = ParamRange::above(0),
+                  .unit = "world units",
+                  .ui = {"Depth", 0.0, "%.4g"},
+                  .object_size = ParamObjectSize{0.02, 0.0005, 0.5, 0.01},
+                  .help = "β: how deep below the surface the cut goes, along −N (Eq. 6.2)"})
+          .field("opening", &I::opening,
+                 {.range = ParamRange::at_least(0),
+                  .unit = "world units",
+                  .ui = {"Opening", 0.0, "%.4g"},
+                  .object_size = ParamObjectSize{0.006, 0.0, 0.2, 0.01},
+                  .help = "Gap between the two cut faces at the surface, mid-stroke; it tapers to 0 at the cut's "
+                          "bottom and at both ends of the stroke (§6.4)"})
+          .field(
+              "walls", &I::walls,
+              {.ui = {"Walls"},
+               .help = "Build cut-depth walls (inside colour) so the surface stays closed; false leaves the cut open"})
+          .field(
+              "order", &I::order,
+              {.range = ParamRange{2, 4},
+               .ui = {"Order", 0.05},
+               .help = "Order (= degree + 1) of the cutting lattice in u, v, w; order knots at u = 1/2 make the cut"})
+          .choice(
+              "kernel", &I::kernel, {"gaussian", "bspline"},
+              {.ui = {"Kernel"},
+               .help =
+                   "κ: how the planes next to the cut follow it: truncated Gaussian or quadratic B-spline (§6.3.1)"})
+          .field("wall_rows", &I::wall_rows,
+                 {.range = ParamRange{1, 32}, .help = "Rows of wall quads from each rim to the bottom"});
   return s;
 }
 
@@ -61,22 +58,22 @@ const ParamSchema<IncisionDrawParams>& IncisionDrawCommand::schema() {
   using P = IncisionDrawParams;
   static const ParamSchema<P> s =
       ParamSchema<P>("incision.draw", "Cut an incision drawn on a surface: width, depth, opening, walls (seed §6.4)")
-          .field("object", &P::object)
-          .required()
-          .help("An undeformed object (no ffd, dffd or clip)")
-          .field("stroke", &P::stroke)
-          .required()
-          .unit("pixels")
-          .help("Viewport points of the line's camera (else the scene camera), ≥ 2; each ray hits this object only")
+          .field("object", &P::object, {.required = true, .help = "An undeformed object (no ffd, dffd or clip)"})
+          .field(
+              "stroke", &P::stroke,
+              {.required = true,
+               .unit = "pixels",
+               .help =
+                   "Viewport points of the line's camera (else the scene camera), ≥ 2; each ray hits this object only"})
           .check([](const P& p) {
             if (p.stroke.size() < 2) params::fail("stroke", "needs at least 2 points");
           })
-          .object("camera", &P::camera, camera_schema())
-          .help("The view the stroke was drawn in (camera.set's fields)")
+          .object("camera", &P::camera, camera_schema(),
+                  {.help = "The view the stroke was drawn in (camera.set's fields)"})
           .embed(&P::incision, incision_schema())
-          .field("controls", &P::controls)
-          .default_text("[7, clamp(#hits/3, order, 24), 5]")
-          .help("[l, m, n] before knot insertion: l, n odd in max(3, order)..31, m in order..64")
+          .field("controls", &P::controls,
+                 {.default_text = "[7, clamp(#hits/3, order, 24), 5]",
+                  .help = "[l, m, n] before knot insertion: l, n odd in max(3, order)..31, m in order..64"})
           .check([](const P& p) {
             if (!p.controls) return;
             const glm::ivec3 n = *p.controls;

@@ -10,19 +10,16 @@ const ParamSchema<LatticeAnimateOffsetParams>& LatticeAnimateOffsetCommand::sche
   static const ParamSchema<P> s =
       ParamSchema<P>("lattice.animate_offset",
                      "Move an object through its lattice over time: parameter offset and velocity")
-          .field("object", &P::object)
-          .required()
-          .help("A deformed object (with an FFD)")
-          .field("offset", &P::offset)
-          .magnitude_at_most(1e6)
-          .unit("parameter units")
-          .help(
-              "Added to the object's lattice parameters; on a periodic axis 1 is one period of the axis (one turn of "
-              "a ring, two on a half-twisted band)")
-          .field("velocity", &P::velocity)
-          .magnitude_at_most(100)
-          .unit("parameter units per second")
-          .help("Offset change per second of scene time ([0,0,0] = still)");
+          .field("object", &P::object, {.required = true, .help = "A deformed object (with an FFD)"})
+          .field("offset", &P::offset,
+                 {.range = ParamRange::magnitude_at_most(1e6),
+                  .unit = "parameter units",
+                  .help = "Added to the object's lattice parameters; on a periodic axis 1 is one period of the axis "
+                          "(one turn of a ring, two on a half-twisted band)"})
+          .field("velocity", &P::velocity,
+                 {.range = ParamRange::magnitude_at_most(100),
+                  .unit = "parameter units per second",
+                  .help = "Offset change per second of scene time ([0,0,0] = still)"});
   return s;
 }
 

@@ -13,35 +13,31 @@ const ParamSchema<LatticePressParams>& LatticePressCommand::schema() {
   static const ParamSchema<P> s =
       ParamSchema<P>("lattice.press",
                      "Press a placed object's lattice with a sphere swept along a path (seed §2.4.1, Fig. 2.7)")
-          .field("object", &P::object)
-          .required()
-          .help("A deformed object (with an FFD)")
-          .field("path", &P::path)
-          .required()
-          .unit("world units")
-          .help("Sphere centres along the sweep, ≥ 1")
+          .field("object", &P::object, {.required = true, .help = "A deformed object (with an FFD)"})
+          .field("path", &P::path,
+                 {.required = true, .unit = "world units", .help = "Sphere centres along the sweep, ≥ 1"})
           .check([](const P& p) {
             if (p.path.empty()) params::fail("path", "expected a non-empty array of [x,y,z] sphere centres");
           })
-          .field("radius", &P::radius)
-          .required()
-          .above(0)
-          .unit("world units")
-          .help("Sphere radius")
-          .label("Radius")
-          .ui(0.0, "%.4g")
-          .object_size(0.1, 0.005, 0.5, 0.01)
-          .field("strength", &P::strength)
-          .required()
-          .unit("world units")
-          .help("How far the contact points under the centre move along their columns; < 0 pulls")
-          .label("Strength")
-          .ui(0.0, "%.4g")
-          .object_size(0.0, 0.0, 1.0)
-          .choice("falloff", &P::falloff, falloffs)
-          .help("Weight over the distance from the path, 1 at 0, 0 at radius")
-          .field("keep_fold_free", &P::keep_fold_free)
-          .help("Limit the strength (bisection) so that the pressed lattice stays certified fold-free (det J > 0)");
+          .field("radius", &P::radius,
+                 {.required = true,
+                  .range = ParamRange::above(0),
+                  .unit = "world units",
+                  .ui = {"Radius", 0.0, "%.4g"},
+                  .object_size = ParamObjectSize{0.1, 0.005, 0.5, 0.01},
+                  .help = "Sphere radius"})
+          .field("strength", &P::strength,
+                 {.required = true,
+                  .unit = "world units",
+                  .ui = {"Strength", 0.0, "%.4g"},
+                  .object_size = ParamObjectSize{0.0, 0.0, 1.0},
+                  .help = "How far the contact points under the centre move along their columns; < 0 pulls"})
+          .choice("falloff", &P::falloff, falloffs,
+                  {.help = "Weight over the distance from the path, 1 at 0, 0 at radius"})
+          .field(
+              "keep_fold_free", &P::keep_fold_free,
+              {.help =
+                   "Limit the strength (bisection) so that the pressed lattice stays certified fold-free (det J > 0)"});
   return s;
 }
 

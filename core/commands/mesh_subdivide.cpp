@@ -21,14 +21,10 @@ const ParamSchema<MeshSubdivideParams>& MeshSubdivideCommand::schema() {
   static const ParamSchema<P> s =
       ParamSchema<P>("mesh.subdivide",
                      "Subdivide an object's rest mesh uniformly (Loop, OpenSubdiv), before deforming it")
-          .field("object", &P::object)
-          .required()
-          .help("An undeformed object without tile layers")
-          .field("levels", &P::levels)
-          .range(1, kMaxLevels)
-          .help("Subdivision levels; each quadruples the triangles")
-          .choice("scheme", &P::scheme, {"loop"})
-          .help("Loop subdivision of the triangles (OpenSubdiv Far)");
+          .field("object", &P::object, {.required = true, .help = "An undeformed object without tile layers"})
+          .field("levels", &P::levels,
+                 {.range = ParamRange{1, kMaxLevels}, .help = "Subdivision levels; each quadruples the triangles"})
+          .choice("scheme", &P::scheme, {"loop"}, {.help = "Loop subdivision of the triangles (OpenSubdiv Far)"});
   return s;
 }
 

@@ -188,40 +188,32 @@ const ParamSchema<SpringParams>& spring_schema() {
   using S = SpringParams;
   static const ParamSchema<S> s =
       ParamSchema<S>("springs", "Mass-spring contact surface (seed §2.3.2)")
-          .field("stiffness", &S::stiffness)
-          .above(0)
-          .label("Stiffness")
-          .ui(1.0, "%.1f")
-          .help("k: spring stiffness, force per world unit")
-          .field("damping", &S::damping)
-          .at_least(0)
-          .label("Damping")
-          .ui(0.5, "%.1f")
-          .help("ρ: damping, force per unit velocity; ρ ≥ √(8kM) is critically damped")
-          .field("mass", &S::mass)
-          .above(0)
-          .label("Mass")
-          .ui(0.01, "%.3f")
-          .help("M: mass of each control point")
-          .field("threshold_deg", &S::angle_threshold_deg)
-          .range(0, 180, true, true)
-          .unit("degrees")
-          .label("Threshold")
-          .ui(0.05, "%.2f deg")
-          .help("Roughness threshold: points whose neighbouring normals differ more move")
-          .field("neighbourhood", &S::neighbourhood)
-          .at_least(-1)
-          .label("Neighbourhood")
-          .ui(0.1)
-          .help("Grid steps around rough points that may move; -1 = every point moves")
-          .field("max_steps", &S::max_steps)
-          .range(0, 1000000)
-          .label("Max steps")
-          .ui(50)
-          .help("Integration steps at most")
-          .choice("rest_length", &S::rest_length_initial, {"zero", "initial"})
-          .label("Rest length")
-          .help("zero: springs pull neighbours together (the seed); initial: springs keep the starting distances");
+          .field("stiffness", &S::stiffness,
+                 {.range = ParamRange::above(0),
+                  .ui = {"Stiffness", 1.0, "%.1f"},
+                  .help = "k: spring stiffness, force per world unit"})
+          .field("damping", &S::damping,
+                 {.range = ParamRange::at_least(0),
+                  .ui = {"Damping", 0.5, "%.1f"},
+                  .help = "ρ: damping, force per unit velocity; ρ ≥ √(8kM) is critically damped"})
+          .field("mass", &S::mass,
+                 {.range = ParamRange::above(0), .ui = {"Mass", 0.01, "%.3f"}, .help = "M: mass of each control point"})
+          .field("threshold_deg", &S::angle_threshold_deg,
+                 {.range = ParamRange{0, 180, true, true},
+                  .unit = "degrees",
+                  .ui = {"Threshold", 0.05, "%.2f deg"},
+                  .help = "Roughness threshold: points whose neighbouring normals differ more move"})
+          .field("neighbourhood", &S::neighbourhood,
+                 {.range = ParamRange::at_least(-1),
+                  .ui = {"Neighbourhood", 0.1},
+                  .help = "Grid steps around rough points that may move; -1 = every point moves"})
+          .field("max_steps", &S::max_steps,
+                 {.range = ParamRange{0, 1000000}, .ui = {"Max steps", 50}, .help = "Integration steps at most"})
+          .choice(
+              "rest_length", &S::rest_length_initial, {"zero", "initial"},
+              {.ui = {"Rest length"},
+               .help =
+                   "zero: springs pull neighbours together (the seed); initial: springs keep the starting distances"});
   return s;
 }
 
@@ -229,77 +221,67 @@ const ParamSchema<PlaceSketchParams>& PlaceSketchCommand::schema() {
   using P = PlaceSketchParams;
   static const ParamSchema<P> s =
       ParamSchema<P>("place.sketch", "Place an object along a stroke sketched over the scene (seed §2.3.1)")
-          .field("object", &P::object)
-          .required()
-          .help("Id of the object to place; rays see every other visible object")
-          .field("stroke", &P::stroke)
-          .required()
-          .unit("pixels")
-          .help("Viewport points in drawing order, (0,0) top-left; at least 2 distinct points")
-          .field("width", &P::width)
-          .required()
-          .above(0)
-          .unit("world units")
-          .label("Half-width")
-          .ui(0.002, "%.3f")
-          .help("d: half-width of the band around the stroke, C(u) ± d N(u), at the median depth under the stroke")
-          .field("height", &P::height)
-          .required()
-          .above(0)
-          .unit("world units")
-          .label("Height")
-          .ui(0.002, "%.3f")
-          .help("h: height of the deformation volume above the contact surface")
-          .choice("fit", &P::fit, {"keep", "stretch"})
-          .write_unless_default()
-          .label("Fit")
-          .help(
-              "keep: the object keeps its proportions along the stroke (its length scaled as its height is, at most "
-              "Extent of the path); stretch: it covers Extent of the path, however long")
-          .field("extent", &P::extent)
-          .range(0, 1, true, false)
-          .write_unless_default()
-          .label("Extent")
-          .ui(0.005, "%.3f")
-          .help(
-              "Fraction of the path (u) the object covers (stretch), or at most covers (keep); below 1 it leaves room "
-              "to walk along the path (§2.4.3)")
-          .object("springs", &P::springs, spring_schema())
-          .help("Relax the contact surface as a mass-spring net before the volume is built (§2.3.2)")
-          .field("width_profile", &P::width_profile)
-          .write_unless_default()
-          .default_text("constant")
-          .help("Factors > 0 scaling d along u, piecewise linear (Eq. 2.5)")
-          .custom("height_profile", read_height_profile, write_height_profile)
-          .type_text("[number,…] or [[number,…],…]")
-          .default_text("constant")
-          .help("Factors > 0 scaling h along u (one list) or over (u, v) (rows over v) (§2.4.1)")
-          .field("samples", &P::samples)
-          .range(2, 4096)
-          .label("Rays u x v")
-          .ui(0.2)
-          .help("Contact rays along × across the stroke; each ≥ the control count in that axis")
-          .choice("volume", &P::volume, {"extrude", "offset"})
-          .label("Type")
-          .help(
-              "extrude: F1, contact surface extruded towards the viewer (Eq. 2.3); offset: F2, along its normals "
-              "(Eq. 2.4)")
-          .field("order", &P::order)
-          .range(2, 8)
-          .label("Order u v w")
-          .ui(0.05)
-          .help("B-spline order (= degree + 1) per axis; ≤ controls")
-          .field("controls", &P::controls)
-          .range(2, 256)
-          .label("Controls")
-          .ui(0.1)
-          .help("Control points per axis: u along the stroke, v across, w up")
-          .choice("length_axis", &P::length_axis, axis_names())
-          .label("Length axis")
-          .help("The object's axis laid along the stroke (u)")
-          .choice("up_axis", &P::up_axis, axis_names())
-          .label("Up axis")
-          .help("The object's axis that points away from the surface (w)")
+          .field("object", &P::object,
+                 {.required = true, .help = "Id of the object to place; rays see every other visible object"})
+          .field("stroke", &P::stroke,
+                 {.required = true,
+                  .unit = "pixels",
+                  .help = "Viewport points in drawing order, (0,0) top-left; at least 2 distinct points"})
+          .field(
+              "width", &P::width,
+              {.required = true,
+               .range = ParamRange::above(0),
+               .unit = "world units",
+               .ui = {"Half-width", 0.002, "%.3f"},
+               .help =
+                   "d: half-width of the band around the stroke, C(u) ± d N(u), at the median depth under the stroke"})
+          .field("height", &P::height,
+                 {.required = true,
+                  .range = ParamRange::above(0),
+                  .unit = "world units",
+                  .ui = {"Height", 0.002, "%.3f"},
+                  .help = "h: height of the deformation volume above the contact surface"})
+          .choice("fit", &P::fit, {"keep", "stretch"},
+                  {.write = ParamWrite::UnlessDefault,
+                   .ui = {"Fit"},
+                   .help = "keep: the object keeps its proportions along the stroke (its length scaled as its height "
+                           "is, at most Extent of the path); stretch: it covers Extent of the path, however long"})
+          .field("extent", &P::extent,
+                 {.write = ParamWrite::UnlessDefault,
+                  .range = ParamRange{0, 1, true, false},
+                  .ui = {"Extent", 0.005, "%.3f"},
+                  .help = "Fraction of the path (u) the object covers (stretch), or at most covers (keep); below 1 it "
+                          "leaves room to walk along the path (§2.4.3)"})
+          .object("springs", &P::springs, spring_schema(),
+                  {.help = "Relax the contact surface as a mass-spring net before the volume is built (§2.3.2)"})
+          .field("width_profile", &P::width_profile,
+                 {.write = ParamWrite::UnlessDefault,
+                  .default_text = "constant",
+                  .help = "Factors > 0 scaling d along u, piecewise linear (Eq. 2.5)"})
+          .custom("height_profile", read_height_profile, write_height_profile,
+                  {.default_text = "constant",
+                   .type_text = "[number,…] or [[number,…],…]",
+                   .help = "Factors > 0 scaling h along u (one list) or over (u, v) (rows over v) (§2.4.1)"})
+          .field("samples", &P::samples,
+                 {.range = ParamRange{2, 4096},
+                  .ui = {"Rays u x v", 0.2},
+                  .help = "Contact rays along × across the stroke; each ≥ the control count in that axis"})
+          .choice("volume", &P::volume, {"extrude", "offset"},
+                  {.ui = {"Type"},
+                   .help = "extrude: F1, contact surface extruded towards the viewer (Eq. 2.3); offset: F2, along its "
+                           "normals (Eq. 2.4)"})
+          .field("order", &P::order,
+                 {.range = ParamRange{2, 8},
+                  .ui = {"Order u v w", 0.05},
+                  .help = "B-spline order (= degree + 1) per axis; ≤ controls"})
+          .field("controls", &P::controls,
+                 {.range = ParamRange{2, 256},
+                  .ui = {"Controls", 0.1},
+                  .help = "Control points per axis: u along the stroke, v across, w up"})
+          .choice("length_axis", &P::length_axis, axis_names(),
+                  {.ui = {"Length axis"}, .help = "The object's axis laid along the stroke (u)"})
+          .choice("up_axis", &P::up_axis, axis_names(),
+                  {.ui = {"Up axis"}, .help = "The object's axis that points away from the surface (w)"})
           .check([](const P& p) {
             if (p.length_axis == p.up_axis)
               params::fail("up_axis", "must differ from length_axis ('" + p.length_axis + "')");
@@ -311,12 +293,12 @@ const ParamSchema<PlaceSketchParams>& PlaceSketchCommand::schema() {
                                           std::to_string(rays) + " contact samples: at most " +
                                           std::to_string(kMaxContactSamples) + " (1024 × 1024)");
           })
-          .object("camera", &P::camera, camera_schema())
-          .help("The view the stroke was drawn in (camera.set's fields); default: the last camera.set")
-          .field("ignore", &P::ignore)
-          .write_unless_default()
-          .default_text("[]")
-          .help("Ids of objects the rays pass through (the editor lists those hidden in its viewport)");
+          .object("camera", &P::camera, camera_schema(),
+                  {.help = "The view the stroke was drawn in (camera.set's fields); default: the last camera.set"})
+          .field("ignore", &P::ignore,
+                 {.write = ParamWrite::UnlessDefault,
+                  .default_text = "[]",
+                  .help = "Ids of objects the rays pass through (the editor lists those hidden in its viewport)"});
   return s;
 }
 

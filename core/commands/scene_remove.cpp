@@ -4,10 +4,9 @@ namespace trispline::core {
 
 const ParamSchema<SceneRemoveParams>& SceneRemoveCommand::schema() {
   using P = SceneRemoveParams;
-  static const ParamSchema<P> s = ParamSchema<P>("scene.remove", "Remove an object")
-                                      .field("name", &P::name)
-                                      .required()
-                                      .help("Id of the object to remove");
+  static const ParamSchema<P> s =
+      ParamSchema<P>("scene.remove", "Remove an object")
+          .field("name", &P::name, {.required = true, .help = "Id of the object to remove"});
   return s;
 }
 

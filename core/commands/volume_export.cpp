@@ -37,24 +37,20 @@ const ParamSchema<VolumeExportParams>& VolumeExportCommand::schema() {
   using P = VolumeExportParams;
   static const ParamSchema<P> s =
       ParamSchema<P>("volume.export", "Export a volume's silhouettes (SVG, glTF lines) or its iso-surface mesh")
-          .field("object", &P::object)
-          .required()
-          .help("A volume")
-          .choice("what", &P::what, {"silhouettes", "iso"})
-          .help(
-              "silhouettes: for the current camera, as .svg or .glb line strips; iso: the surface D = iso as a "
-              "triangle mesh, .glb/.obj/.ply")
-          .field("path", &P::path)
-          .required()
-          .help(
-              "Output file, relative to the output folder (replay's --out, else the log's folder); absolute paths "
-              "and paths that leave the folder are refused")
-          .field("samples_per_voxel", &P::samples_per_voxel)
-          .range(1, 4)
-          .write_unless_default()
-          .help("iso: grid samples per voxel and axis before meshing (1 = at the control points)")
-          .object("camera", &P::camera, camera_schema())
-          .help("silhouettes: the view they are taken for (camera.set's fields); default: the scene camera")
+          .field("object", &P::object, {.required = true, .help = "A volume"})
+          .choice("what", &P::what, {"silhouettes", "iso"},
+                  {.help = "silhouettes: for the current camera, as .svg or .glb line strips; iso: the surface D = iso "
+                           "as a triangle mesh, .glb/.obj/.ply"})
+          .field("path", &P::path,
+                 {.required = true,
+                  .help = "Output file, relative to the output folder (replay's --out, else the log's folder); "
+                          "absolute paths and paths that leave the folder are refused"})
+          .field("samples_per_voxel", &P::samples_per_voxel,
+                 {.write = ParamWrite::UnlessDefault,
+                  .range = ParamRange{1, 4},
+                  .help = "iso: grid samples per voxel and axis before meshing (1 = at the control points)"})
+          .object("camera", &P::camera, camera_schema(),
+                  {.help = "silhouettes: the view they are taken for (camera.set's fields); default: the scene camera"})
           .check([](const P& p) {
             const std::string e = lower_extension(p.path);
             if (p.what == "silhouettes" && e != ".svg" && e != ".glb")

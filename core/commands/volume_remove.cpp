@@ -4,8 +4,8 @@ namespace trispline::core {
 
 const ParamSchema<VolumeRemoveParams>& VolumeRemoveCommand::schema() {
   using P = VolumeRemoveParams;
-  static const ParamSchema<P> s =
-      ParamSchema<P>("volume.remove", "Remove a volume").field("object", &P::object).required().help("A volume");
+  static const ParamSchema<P> s = ParamSchema<P>("volume.remove", "Remove a volume")
+                                      .field("object", &P::object, {.required = true, .help = "A volume"});
   return s;
 }
 

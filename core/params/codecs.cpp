@@ -30,32 +30,24 @@ const ParamSchema<Camera>& camera_schema() {
   using C = Camera;
   static const ParamSchema<Camera> schema =
       ParamSchema<C>("camera", "A pinhole camera")
-          .field("eye", &C::eye)
-          .required()
-          .unit("world units")
-          .help("Position of the eye")
-          .field("target", &C::target)
-          .required()
-          .unit("world units")
-          .help("Point looked at; differs from eye")
+          .field("eye", &C::eye, {.required = true, .unit = "world units", .help = "Position of the eye"})
+          .field("target", &C::target,
+                 {.required = true, .unit = "world units", .help = "Point looked at; differs from eye"})
           .check([](const C& c) {
             if (c.eye == c.target) params::fail("target", "eye and target coincide");
           })
-          .field("up", &C::up)
-          .help("Up direction; need not be orthogonal to the view, must not be parallel to it")
+          .field("up", &C::up, {.help = "Up direction; need not be orthogonal to the view, must not be parallel to it"})
           .check([](const C& c) {
             if (glm::length(glm::cross(glm::normalize(c.target - c.eye), c.up)) < 1e-9)
               params::fail("up", "up is parallel to the view direction");
           })
-          .field("fov_deg", &C::fov_deg)
-          .range(0, 180, true, true)
-          .unit("degrees")
-          .label("FOV")
-          .help("Vertical field of view")
-          .field("viewport", &C::viewport)
-          .at_least(1)
-          .unit("pixels")
-          .help("Width and height of the image");
+          .field("fov_deg", &C::fov_deg,
+                 {.range = ParamRange{0, 180, true, true},
+                  .unit = "degrees",
+                  .ui = {"FOV"},
+                  .help = "Vertical field of view"})
+          .field("viewport", &C::viewport,
+                 {.range = ParamRange::at_least(1), .unit = "pixels", .help = "Width and height of the image"});
   return schema;
 }
 
@@ -86,34 +78,27 @@ glm::dvec2 UniformVec2Codec::read(const nlohmann::json& v, const std::string& fi
 
 const ParamSchema<Transform>& transform_schema() {
   using T = Transform;
-  static const ParamSchema<T> s = ParamSchema<T>("transform", "Location, rotation and scale")
-                                      .field("translate", &T::translate)
-                                      .unit("world units")
-                                      .help("Location")
-                                      .field("rotate_deg", &T::rotate_deg)
-                                      .unit("degrees")
-                                      .help("Rotation about x, then y, then z (R = Rz·Ry·Rx)")
-                                      .field_as<ScaleCodec>("scale", &T::scale)
-                                      .help("Scale per axis, applied first; non-zero");
+  static const ParamSchema<T> s =
+      ParamSchema<T>("transform", "Location, rotation and scale")
+          .field("translate", &T::translate, {.unit = "world units", .help = "Location"})
+          .field("rotate_deg", &T::rotate_deg,
+                 {.unit = "degrees", .help = "Rotation about x, then y, then z (R = Rz·Ry·Rx)"})
+          .field_as<ScaleCodec>("scale", &T::scale, {.help = "Scale per axis, applied first; non-zero"});
   return s;
 }
 
 const ParamSchema<ObjectFields>& object_fields_schema() {
   using O = ObjectFields;
-  static const ParamSchema<O> s = ParamSchema<O>("object", "An added object's name, transform and colour")
-                                      .field("name", &O::name)
-                                      .default_text("made unique from the source")
-                                      .help("Object id; an existing name is an error")
-                                      .check([](const O& o) {
-                                        if (o.name.empty()) return;
-                                        if (const std::string bad = object_name_error(o.name); !bad.empty())
-                                          params::fail("name", bad);
-                                      })
-                                      .embed(&O::transform, transform_schema())
-                                      .field("color", &O::color)
-                                      .range(0, 1)
-                                      .default_text("palette")
-                                      .help("Linear RGB");
+  static const ParamSchema<O> s =
+      ParamSchema<O>("object", "An added object's name, transform and colour")
+          .field("name", &O::name,
+                 {.default_text = "made unique from the source", .help = "Object id; an existing name is an error"})
+          .check([](const O& o) {
+            if (o.name.empty()) return;
+            if (const std::string bad = object_name_error(o.name); !bad.empty()) params::fail("name", bad);
+          })
+          .embed(&O::transform, transform_schema())
+          .field("color", &O::color, {.range = ParamRange{0, 1}, .default_text = "palette", .help = "Linear RGB"});
   return s;
 }
 

@@ -9,8 +9,9 @@
 //  * ui::param_widget() draws a field with its label, range and tooltip.
 //
 //   static const ParamSchema<P> s = ParamSchema<P>("mesh.refine", "Refine a deformed object's mesh ...")
-//       .field("object", &P::object).required().help("Object id")
-//       .field("tolerance", &P::tolerance).required().above(0).unit("world units").help("...");
+//       .field("object", &P::object, {.required = true, .help = "Object id"})
+//       .field("tolerance", &P::tolerance,
+//              {.required = true, .range = ParamRange::above(0), .unit = "world units", .help = "..."});
 //
 // Field types and their JSON: std::string, double (finite), int / std::int64_t (range-checked, no wrap-around),
 // bool, glm::dvec2 [x,y], glm::dvec3 / glm::vec3 [x,y,z], glm::ivec2 [a,b], glm::ivec3 [a,b,c], std::vector<glm::dvec2>
@@ -50,6 +51,10 @@ struct ParamRange {
   double lo = -std::numeric_limits<double>::infinity();
   double hi = std::numeric_limits<double>::infinity();
   bool lo_open = false, hi_open = false;
+  static ParamRange above(double lo) { return {lo, std::numeric_limits<double>::infinity(), true, false}; }
+  static ParamRange at_least(double lo) { return {lo, std::numeric_limits<double>::infinity()}; }
+  static ParamRange at_most(double hi) { return {-std::numeric_limits<double>::infinity(), hi}; }
+  static ParamRange magnitude_at_most(double m) { return {-m, m}; }
   bool bounded() const;
   bool contains(double x) const;
   std::string text() const;  // "> 0", "≥ 0", "[2, 64]", "(0, 1]", "≤ 100"
@@ -99,6 +104,22 @@ enum class ParamWrite {
   Never,          // read only (a field the line may carry but the command does not keep)
 };
 
+// A size that follows the object's (a panel's hint; the command takes the value as given): while the panel's value
+// is unset (≤ 0) it shows default_fraction × the object's bounding-box diagonal, and it limits a typed value to
+// [min_fraction, max_fraction] × that diagonal, saying why (ui::size_param_widget).
+struct ParamObjectSize {
+  double default_fraction = 0.0, min_fraction = 0.0, max_fraction = 1.0;
+  double relative_step = 0.0;  // drag speed per pixel as a fraction of the value shown; 0 = ParamUi::step
+};
+
+// How a panel shows a field: its widget label (empty = not shown by generic widgets), a drag field's speed per pixel
+// (0 = from the range) and its printf format ("%.3f"; empty = ImGui's).
+struct ParamUi {
+  std::string label;
+  double step = 0.0;
+  std::string format;
+};
+
 // What a declared field is, whatever struct holds it: its docs, widget hints, kind, range and how it is written.
 struct ParamFieldInfo {
   ParamDoc doc;
@@ -111,15 +132,9 @@ struct ParamFieldInfo {
   enum class ChoiceMember { String, Index, Bool } choice_member = ChoiceMember::String;  // what the member holds
   bool required = false;
   ParamWrite write_mode = ParamWrite::Always;
-  bool resolve_path = false;          // a string field holding a file path (see Ref::path())
+  bool resolve_path = false;          // a string field holding a file path (see Spec::path)
   std::vector<ParamDoc> nested_docs;  // a nested object's fields
-  // A size that follows the object's (a panel's hint; the command takes the value as given): while the panel's value
-  // is unset (≤ 0) it shows default_fraction × the object's bounding-box diagonal, and it limits a typed value to
-  // [min_fraction, max_fraction] × that diagonal, saying why (ui::size_param_widget).
-  struct ObjectSize {
-    double default_fraction = 0.0, min_fraction = 0.0, max_fraction = 1.0;
-  };
-  std::optional<ObjectSize> object_size;
+  std::optional<ParamObjectSize> object_size;
   double ui_relative_step = 0.0;  // drag speed per pixel as a fraction of the value shown; 0 = ui_step
 };
 
@@ -139,90 +154,22 @@ class ParamSchema {
     std::function<bool(const P&)> write_if;  // to_json writes the field only when this holds (null: always)
   };
 
-  // Chained settings of the field just declared.
-  class Ref {
-   public:
-    Ref(ParamSchema& s, std::size_t i) : s_(s), i_(i) {}
-    // required(false) leaves the field optional (a schema built for two commands that differ in this).
-    Ref& required(bool yes = true) {
-      if (yes) f().required = true, f().doc.default_text = "required";
-      return *this;
-    }
-    Ref& help(std::string text) { return f().doc.help = std::move(text), *this; }
-    Ref& unit(std::string u) { return f().doc.unit = std::move(u), *this; }
-    Ref& label(std::string l) { return f().label = std::move(l), *this; }
-    // How a panel's drag field moves: `step` per pixel dragged, `format` as printf shows the value.
-    Ref& ui(double step, std::string format = {}) {
-      f().ui_step = step;
-      f().ui_format = std::move(format);
-      return *this;
-    }
-    // A size that follows the object's (ParamFieldInfo::ObjectSize): default and limits as fractions of its
-    // bounding-box diagonal; `relative_step`: the drag speed per pixel as a fraction of the value (0: `ui`'s step).
-    Ref& object_size(double default_fraction, double min_fraction, double max_fraction, double relative_step = 0.0) {
-      f().object_size = ParamFieldInfo::ObjectSize{default_fraction, min_fraction, max_fraction};
-      f().ui_relative_step = relative_step;
-      return *this;
-    }
-    Ref& default_text(std::string t) { return f().doc.default_text = std::move(t), *this; }
-    Ref& type_text(std::string t) { return f().doc.type = std::move(t), *this; }
-    Ref& range(double lo, double hi, bool lo_open = false, bool hi_open = false) {
-      f().range = ParamRange{lo, hi, lo_open, hi_open};
-      f().doc.range = f().range.text();
-      return *this;
-    }
-    Ref& above(double lo) { return range(lo, std::numeric_limits<double>::infinity(), true, false); }
-    Ref& at_least(double lo) { return range(lo, std::numeric_limits<double>::infinity()); }
-    Ref& at_most(double hi) { return range(-std::numeric_limits<double>::infinity(), hi); }
-    Ref& magnitude_at_most(double m) { return range(-m, m); }
-    Ref& write(ParamWrite w) { return f().write_mode = w, *this; }
-    Ref& write_unless_default() { return write(ParamWrite::UnlessDefault); }
-    // Written back only when `cond` holds as well (a field that only matters when another one is set).
-    Ref& write_if(std::function<bool(const P&)> cond) { return f().write_if = std::move(cond), *this; }
-    // Chains a declaration of the next field.
-    template <class T>
-    Ref field(const std::string& name, T P::*m) {
-      return s_.field(name, m);
-    }
-    template <class Codec, class T>
-    Ref field_as(const std::string& name, T P::*m) {
-      return s_.template field_as<Codec>(name, m);
-    }
-    template <class Q>
-    Ref embed(Q P::*m, const ParamSchema<Q>& sub) {
-      return s_.embed(m, sub);
-    }
-    template <class Q>
-    Ref embed_named(Q P::*m, const ParamSchema<Q>& sub, bool P::*named) {
-      return s_.embed_named(m, sub, named);
-    }
-    template <class T>
-    Ref choice(const std::string& name, T P::*m, std::vector<std::string> choices) {
-      return s_.choice(name, m, std::move(choices));
-    }
-    template <class Q>
-    Ref object(const std::string& name, std::optional<Q> P::*m, const ParamSchema<Q>& sub) {
-      return s_.object(name, m, sub);
-    }
-    template <class Q>
-    Ref object(const std::string& name, Q P::*m, const ParamSchema<Q>& sub) {
-      return s_.object(name, m, sub);
-    }
-    Ref custom(const std::string& name, decltype(Field::read) read, decltype(Field::write) write) {
-      return s_.custom(name, std::move(read), std::move(write));
-    }
-    Ref check(std::function<void(P&)> fn) { return s_.check(std::move(fn)); }
-    Ref stop_if(std::function<bool(const P&)> fn) { return s_.stop_if(std::move(fn)); }
-    // A file path: must not be empty; relative paths are resolved against the log's folder (CommandContext) and
-    // kept absolute and normalised, so the logged line replays from anywhere.
-    Ref& path() { return f().resolve_path = true, *this; }
-    Ref include(const ParamSchema& other) { return s_.include(other); }
-    operator ParamSchema&&() { return std::move(s_); }
-
-   private:
-    Field& f() { return s_.fields_[i_]; }
-    ParamSchema& s_;
-    std::size_t i_;
+  // A field's settings, given with its declaration in designated-initialiser form:
+  //   .field("width", &P::width, {.required = true, .range = ParamRange::above(0), .unit = "world units",
+  //                               .help = "Half-width of the lattice"})
+  // Members left out keep what the field's type gives (its default, its type text, ParamWrite::Always).
+  struct Spec {
+    bool required = false;                   // the line must carry it; the docs' default reads "required"
+    std::optional<ParamWrite> write;         // how to_json writes it back
+    std::function<bool(const P&)> write_if;  // written back only when this holds as well (null: always)
+    bool path = false;  // a file path: not empty; resolved against the log's folder, logged absolute and normalised
+    std::optional<ParamRange> range;  // every number (every component of a vector) must lie in it
+    std::string unit;                 // "world units", "pixels", "degrees", ...
+    std::string default_text;         // the default as the docs show it, when the member's own does not say it
+    std::string type_text;            // the type as the docs show it (custom fields)
+    ParamUi ui;                       // label, drag speed and format in a panel
+    std::optional<ParamObjectSize> object_size;  // a size that follows the object's (ParamFieldInfo::object_size)
+    std::string help;                            // one line, for the docs and the tooltip
   };
 
   ParamSchema(std::string id, std::string summary) : id_(std::move(id)), summary_(std::move(summary)) {}
@@ -238,17 +185,17 @@ class ParamSchema {
 
   // A field of one of the supported types (see the header), or std::optional of one.
   template <class T>
-  Ref field(const std::string& name, T P::*m) {
+  ParamSchema& field(const std::string& name, T P::*m, const Spec& spec = {}) {
     if constexpr (params::is_optional<T>::value)
-      return field_as<params::Codec<typename T::value_type>>(name, m);
+      return field_as<params::Codec<typename T::value_type>>(name, m, spec);
     else
-      return field_as<params::Codec<T>>(name, m);
+      return field_as<params::Codec<T>>(name, m, spec);
   }
 
   // A field read and written by `Codec` (read(json, field) → V, write(V) → json, type(), kind) instead of the
   // default one for its type: e.g. a scale that is a number or [sx,sy,sz].
   template <class Codec, class T>
-  Ref field_as(const std::string& name, T P::*m) {
+  ParamSchema& field_as(const std::string& name, T P::*m, const Spec& spec = {}) {
     Field f;
     f.doc.name = name;
     if constexpr (params::is_optional<T>::value) {
@@ -281,12 +228,12 @@ class ParamSchema {
         line[self.doc.name] = Codec::write(p.*m);
       };
     }
-    return push(std::move(f));
+    return push(std::move(f), spec);
   }
 
   // A string field holding one of `choices` (the error lists them), or an int member holding the choice's index.
   template <class T>
-  Ref choice(const std::string& name, T P::*m, std::vector<std::string> choices) {
+  ParamSchema& choice(const std::string& name, T P::*m, std::vector<std::string> choices, const Spec& spec = {}) {
     static_assert(
         std::is_same_v<T, std::string> || std::is_same_v<T, int> || std::is_same_v<T, bool> || std::is_enum_v<T>,
         "a choice fills a string, an index, an enum (choice i = enumerator i) or a bool (second = true)");
@@ -330,12 +277,13 @@ class ParamSchema {
       if (self.write_mode == ParamWrite::UnlessDefault && p.*m == P{}.*m) return;
       line[self.doc.name] = self.choices.at(std::size_t(index_of(self, p.*m)));
     };
-    return push(std::move(f));
+    return push(std::move(f), spec);
   }
 
   // A nested object with its own schema; errors inside it name "<name>.<field>".
   template <class Q>
-  Ref object(const std::string& name, std::optional<Q> P::*m, const ParamSchema<Q>& sub) {
+  ParamSchema& object(const std::string& name, std::optional<Q> P::*m, const ParamSchema<Q>& sub,
+                      const Spec& spec = {}) {
     Field f = object_field(name, sub);
     f.doc.default_text = "unset";
     f.write_mode = ParamWrite::UnlessDefault;
@@ -345,10 +293,10 @@ class ParamSchema {
     f.write = [m, &sub](const Field& self, const P& p, nlohmann::json& line) {
       if (p.*m) line[self.doc.name] = sub.fields_json(*(p.*m));
     };
-    return push(std::move(f));
+    return push(std::move(f), spec);
   }
   template <class Q>
-  Ref object(const std::string& name, Q P::*m, const ParamSchema<Q>& sub) {
+  ParamSchema& object(const std::string& name, Q P::*m, const ParamSchema<Q>& sub, const Spec& spec = {}) {
     Field f = object_field(name, sub);
     f.read = [m, &sub](const Field& self, const nlohmann::json& v, P& p, const CommandContext& ctx) {
       p.*m = sub.parse_nested(v, self.doc.name, ctx);
@@ -356,13 +304,13 @@ class ParamSchema {
     f.write = [m, &sub](const Field& self, const P& p, nlohmann::json& line) {
       line[self.doc.name] = sub.fields_json(p.*m);
     };
-    return push(std::move(f));
+    return push(std::move(f), spec);
   }
 
   // The fields of `sub` at this level of the line, filling member `m` (a group of fields several commands share,
   // e.g. an added object's name, transform and colour).
   template <class Q>
-  Ref embed(Q P::*m, const ParamSchema<Q>& sub) {
+  ParamSchema& embed(Q P::*m, const ParamSchema<Q>& sub) {
     for (const auto& sf : sub.fields()) {
       auto shared = std::make_shared<const typename ParamSchema<Q>::Field>(sf);
       Field f;
@@ -383,13 +331,13 @@ class ParamSchema {
       if (sf.write_if) f.write_if = [m, shared](const P& p) { return shared->write_if(p.*m); };
       fields_.push_back(std::move(f));
     }
-    return Ref(*this, fields_.size() - 1);
+    return *this;
   }
 
   // As embed(), for a group of optional fields that matter together (the layer ddm.paint makes when there is none):
   // parse sets p.*named when the line has any of them, and to_json writes them back only when p.*named holds.
   template <class Q>
-  Ref embed_named(Q P::*m, const ParamSchema<Q>& sub, bool P::*named) {
+  ParamSchema& embed_named(Q P::*m, const ParamSchema<Q>& sub, bool P::*named) {
     const std::size_t first = fields_.size();
     embed(m, sub);
     for (std::size_t i = first; i < fields_.size(); ++i) {
@@ -403,38 +351,40 @@ class ParamSchema {
       if (f.write)
         f.write_if = [named, cond = std::move(f.write_if)](const P& p) { return p.*named && (!cond || cond(p)); };
     }
-    return Ref(*this, fields_.size() - 1);
+    return *this;
   }
 
-  // A field with its own reader and writer (a shape no codec covers). Set type_text/default_text for the docs.
-  Ref custom(const std::string& name, decltype(Field::read) read, decltype(Field::write) write) {
+  // A field with its own reader and writer (a shape no codec covers). Give spec.type_text and spec.default_text for
+  // the docs.
+  ParamSchema& custom(const std::string& name, decltype(Field::read) read, decltype(Field::write) write,
+                      const Spec& spec = {}) {
     Field f;
     f.doc.name = name;
     f.read = std::move(read);
     f.write = std::move(write);
-    return push(std::move(f));
+    return push(std::move(f), spec);
   }
 
   // Every field of `other` (a shared group of fields, e.g. camera_schema()), in its order.
-  Ref include(const ParamSchema& other) {
+  ParamSchema& include(const ParamSchema& other) {
     for (const Field& f : other.fields_) fields_.push_back(f);
-    return Ref(*this, fields_.size() - 1);
+    return *this;
   }
 
   // A check across fields, run after the fields declared before it; throws CommandError naming a field. It may
   // normalise the params (drop a field another one overrides).
-  Ref check(std::function<void(P&)> fn) {
+  ParamSchema& check(std::function<void(P&)> fn) {
     Field f;
     f.check = std::move(fn);
-    return push(std::move(f));
+    return push(std::move(f), {});
   }
 
   // The fields declared after this are neither read nor written when `fn` holds for those before it (a line that
   // removes something carries only what names it).
-  Ref stop_if(std::function<bool(const P&)> fn) {
+  ParamSchema& stop_if(std::function<bool(const P&)> fn) {
     Field f;
     f.stop = std::move(fn);
-    return push(std::move(f));
+    return push(std::move(f), {});
   }
 
   // The params of a log line. Throws CommandError naming the first bad field (missing, mistyped, out of range).
@@ -514,9 +464,24 @@ class ParamSchema {
     f.nested_docs = sub.docs();
     return f;
   }
-  Ref push(Field f) {
+  ParamSchema& push(Field f, const Spec& spec) {
+    // The type's default text first: a required field's docs read "required" whatever its member's default.
+    if (!spec.default_text.empty()) f.doc.default_text = spec.default_text;
+    if (spec.required) f.required = true, f.doc.default_text = "required";
+    if (spec.write) f.write_mode = *spec.write;
+    if (spec.write_if) f.write_if = spec.write_if;
+    f.resolve_path = spec.path;
+    if (spec.range) f.range = *spec.range, f.doc.range = f.range.text();
+    if (!spec.unit.empty()) f.doc.unit = spec.unit;
+    if (!spec.type_text.empty()) f.doc.type = spec.type_text;
+    f.label = spec.ui.label;
+    f.ui_step = spec.ui.step;
+    f.ui_format = spec.ui.format;
+    f.object_size = spec.object_size;
+    f.ui_relative_step = spec.object_size ? spec.object_size->relative_step : 0.0;
+    if (!spec.help.empty()) f.doc.help = spec.help;
     fields_.push_back(std::move(f));
-    return Ref(*this, fields_.size() - 1);
+    return *this;
   }
 
   std::string id_, summary_;
