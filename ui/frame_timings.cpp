@@ -5,6 +5,8 @@
 #include <cmath>
 #include <string_view>
 
+#include "core/base/enum_names.h"
+
 namespace trispline::ui {
 
 namespace {
@@ -52,17 +54,7 @@ double vertices_per_second(std::size_t vertices, double ms) {
 }
 
 const char* ffd_backend_label(core::FfdBackend b) {
-  switch (b) {
-    case core::FfdBackend::glsl_compute:
-      return "GLSL compute";
-    case core::FfdBackend::glsl_vertex:
-      return "GLSL vertex shader";
-    case core::FfdBackend::cpu_fast:
-      return "CPU fast";
-    case core::FfdBackend::cpu_ref:
-      return "CPU reference";
-  }
-  return "?";
+  return core::enum_name(b, {"CPU reference", "CPU fast", "GLSL compute", "GLSL vertex shader"});
 }
 
 const char* ffd_backend_tooltip(core::FfdBackend b) {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/base/enum_names.h"
 #include "ui/param_widgets.h"
 #include "ui/theme.h"
 
@@ -56,21 +57,7 @@ ImU32 pass_color(Pass p) {
   return IM_COL32_WHITE;
 }
 
-const char* pass_name(Pass p) {
-  switch (p) {
-    case Pass::frame:
-      return "frame";
-    case Pass::ffd:
-      return "FFD eval";
-    case Pass::draw:
-      return "render";
-    case Pass::volume:
-      return "iso ray";
-    case Pass::ui:
-      return "UI";
-  }
-  return "";
-}
+const char* pass_name(Pass p) { return core::enum_name(p, {"frame", "FFD eval", "render", "iso ray", "UI"}, ""); }
 
 const char* pass_tooltip(Pass p) {
   switch (p) {

@@ -14,6 +14,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/base/enum_names.h"
 #include "core/ddm/ddm_layer.h"
 #include "core/mesh/osd_topology.h"
 
@@ -106,17 +107,7 @@ const char* ddm_base_name(DdmBaseKind k) {
   return "limit";
 }
 
-const char* ddm_layout_name(DdmLayout l) {
-  switch (l) {
-    case DdmLayout::rect:
-      return "rect";
-    case DdmLayout::hex:
-      return "hex";
-    case DdmLayout::brick:
-      return "brick";
-  }
-  return "rect";
-}
+const char* ddm_layout_name(DdmLayout l) { return enum_name(l, {"rect", "hex", "brick"}, "rect"); }
 
 void ddm_check_layout_counts(DdmLayout layout, glm::ivec2 counts) {
   const int n = counts.x, m = counts.y;

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/base/enum_names.h"
 #include "core/dffd/dffd_cap.h"
 #include "core/mesh/mesh_io.h"
 
@@ -21,17 +22,7 @@ bool inside_unit_box(const glm::dvec3& p) {
 
 }  // namespace
 
-const char* dffd_openings_name(DffdOpenings o) {
-  switch (o) {
-    case DffdOpenings::open:
-      return "open";
-    case DffdOpenings::stitch:
-      return "stitch";
-    case DffdOpenings::cap:
-      return "cap";
-  }
-  return "open";
-}
+const char* dffd_openings_name(DffdOpenings o) { return enum_name(o, {"open", "stitch", "cap"}, "open"); }
 
 double dffd_stitch_at(const DffdRig& rig, double time_s) {
   if (rig.stitch_keys.empty()) return rig.openings == DffdOpenings::stitch ? 1.0 : 0.0;

@@ -10,6 +10,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "core/base/enum_names.h"
+
 namespace trispline::core {
 
 namespace {
@@ -377,17 +379,7 @@ std::vector<double> triangle_error_bounds(const SecondDerivativeBounds& bounds, 
 }
 
 const char* error_bound_name(ErrorBound m) {
-  switch (m) {
-    case ErrorBound::right_triangle:
-      return "right_triangle";
-    case ErrorBound::circumcircle:
-      return "circumcircle";
-    case ErrorBound::enclosing_circle:
-      return "enclosing_circle";
-    case ErrorBound::best:
-      return "best";
-  }
-  return "?";
+  return enum_name(m, {"right_triangle", "circumcircle", "enclosing_circle", "best"});
 }
 
 namespace {

@@ -7,22 +7,13 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/base/enum_names.h"
 #include "core/ffd/ffd_fast.h"
 
 namespace trispline::core {
 
 const char* to_string(FfdBackend backend) {
-  switch (backend) {
-    case FfdBackend::cpu_ref:
-      return "cpu_ref";
-    case FfdBackend::cpu_fast:
-      return "cpu_fast";
-    case FfdBackend::glsl_compute:
-      return "glsl_compute";
-    case FfdBackend::glsl_vertex:
-      return "glsl_vertex";
-  }
-  return "unknown";
+  return enum_name(backend, {"cpu_ref", "cpu_fast", "glsl_compute", "glsl_vertex"}, "unknown");
 }
 
 std::optional<FfdBackend> parse_ffd_backend(std::string_view name) {
@@ -129,6 +120,11 @@ void FfdEvaluator::read_results_into(double* positions, double* normals) {
   read_results(p, n);
   std::copy_n(&p[0].x, 3 * p.size(), positions);
   if (normals && !n.empty()) std::copy_n(&n[0].x, 3 * n.size(), normals);
+}
+
+void FfdEvaluator::evaluate_into(const glm::dvec3& param_offset, double* positions, double* normals) {
+  evaluate(param_offset);
+  read_results_into(positions, normals);
 }
 
 }  // namespace trispline::core

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/base/enum_names.h"
+
 namespace trispline::core {
 
 namespace {
@@ -245,16 +247,7 @@ FoldVerdict judge(const Bernstein<double>& b, const glm::dvec3& lo, double size,
 
 }  // namespace
 
-const char* fold_verdict_name(FoldVerdict v) {
-  switch (v) {
-    case FoldVerdict::fold_free:
-      return "fold_free";
-    case FoldVerdict::fold:
-      return "fold";
-    default:
-      return "undecided";
-  }
-}
+const char* fold_verdict_name(FoldVerdict v) { return enum_name(v, {"fold_free", "fold", "undecided"}, "undecided"); }
 
 FoldCertificate certify_fold_free(const TrivariateBSpline<glm::dvec3>& F, const FoldCertificateOptions& options) {
   if (options.max_depth < 0 || options.max_depth > 12)

@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "core/base/enum_names.h"
 #include "core/ffd/deformation_bounds.h"
 
 namespace trispline::core {
@@ -226,17 +227,7 @@ RefineCriterion parse_refine_criterion(const std::string& name) {
   throw std::invalid_argument("unknown refinement criterion '" + name + "' (valid: midpoint, greville, best)");
 }
 
-const char* refine_criterion_name(RefineCriterion c) {
-  switch (c) {
-    case RefineCriterion::Midpoint:
-      return "midpoint";
-    case RefineCriterion::Greville:
-      return "greville";
-    case RefineCriterion::Best:
-      return "best";
-  }
-  return "?";
-}
+const char* refine_criterion_name(RefineCriterion c) { return enum_name(c, {"midpoint", "greville", "best"}); }
 
 double ffd_edge_midpoint_error(const TrivariateBSpline<glm::dvec3>& F, const glm::dvec3& pa, const glm::dvec3& pb) {
   return midpoint_measure(F, pa, pb, F.eval(pa), F.eval(pb));

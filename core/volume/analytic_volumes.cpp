@@ -3,6 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/base/enum_names.h"
+
 namespace trispline::core {
 
 double analytic_field(AnalyticVolume kind, const glm::dvec3& p, const AnalyticShape& s) {
@@ -41,17 +43,7 @@ ScalarVolume make_analytic_volume(AnalyticVolume kind, int n, const AnalyticShap
   return v;
 }
 
-const char* analytic_volume_name(AnalyticVolume kind) {
-  switch (kind) {
-    case AnalyticVolume::sphere:
-      return "sphere";
-    case AnalyticVolume::torus:
-      return "torus";
-    case AnalyticVolume::sines:
-      return "sines";
-  }
-  return "?";
-}
+const char* analytic_volume_name(AnalyticVolume kind) { return enum_name(kind, {"sphere", "torus", "sines"}); }
 
 bool parse_analytic_volume(const std::string& name, AnalyticVolume& kind) {
   for (AnalyticVolume k : {AnalyticVolume::sphere, AnalyticVolume::torus, AnalyticVolume::sines})

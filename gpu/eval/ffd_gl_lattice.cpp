@@ -5,28 +5,21 @@
 #include <cstring>
 #include <string>
 
+#include "core/base/enum_names.h"
+
 namespace trispline::gpu {
 namespace {
 
 const char* gl_error_name(GLenum e) {
-  switch (e) {
-    case GL_INVALID_ENUM:
-      return "GL_INVALID_ENUM";
-    case GL_INVALID_VALUE:
-      return "GL_INVALID_VALUE";
-    case GL_INVALID_OPERATION:
-      return "GL_INVALID_OPERATION";
-    case GL_INVALID_FRAMEBUFFER_OPERATION:
-      return "GL_INVALID_FRAMEBUFFER_OPERATION";
-    case GL_OUT_OF_MEMORY:
-      return "GL_OUT_OF_MEMORY";
-    case GL_STACK_UNDERFLOW:
-      return "GL_STACK_UNDERFLOW";
-    case GL_STACK_OVERFLOW:
-      return "GL_STACK_OVERFLOW";
-    default:
-      return "unknown GL error";
-  }
+  return core::code_name<GLenum>(e,
+                                 {{GL_INVALID_ENUM, "GL_INVALID_ENUM"},
+                                  {GL_INVALID_VALUE, "GL_INVALID_VALUE"},
+                                  {GL_INVALID_OPERATION, "GL_INVALID_OPERATION"},
+                                  {GL_INVALID_FRAMEBUFFER_OPERATION, "GL_INVALID_FRAMEBUFFER_OPERATION"},
+                                  {GL_OUT_OF_MEMORY, "GL_OUT_OF_MEMORY"},
+                                  {GL_STACK_UNDERFLOW, "GL_STACK_UNDERFLOW"},
+                                  {GL_STACK_OVERFLOW, "GL_STACK_OVERFLOW"}},
+                                 "unknown GL error");
 }
 
 std::uint32_t bits(float f) {

@@ -12,47 +12,33 @@
 #include <string_view>
 #include <vector>
 
+#include "core/base/enum_names.h"
+
 namespace trispline::gpu {
 namespace {
 
 std::string egl_error_name(EGLint e) {
-  switch (e) {
-    case EGL_SUCCESS:
-      return "EGL_SUCCESS";
-    case EGL_NOT_INITIALIZED:
-      return "EGL_NOT_INITIALIZED";
-    case EGL_BAD_ACCESS:
-      return "EGL_BAD_ACCESS";
-    case EGL_BAD_ALLOC:
-      return "EGL_BAD_ALLOC";
-    case EGL_BAD_ATTRIBUTE:
-      return "EGL_BAD_ATTRIBUTE";
-    case EGL_BAD_CONFIG:
-      return "EGL_BAD_CONFIG";
-    case EGL_BAD_CONTEXT:
-      return "EGL_BAD_CONTEXT";
-    case EGL_BAD_CURRENT_SURFACE:
-      return "EGL_BAD_CURRENT_SURFACE";
-    case EGL_BAD_DISPLAY:
-      return "EGL_BAD_DISPLAY";
-    case EGL_BAD_MATCH:
-      return "EGL_BAD_MATCH";
-    case EGL_BAD_NATIVE_PIXMAP:
-      return "EGL_BAD_NATIVE_PIXMAP";
-    case EGL_BAD_NATIVE_WINDOW:
-      return "EGL_BAD_NATIVE_WINDOW";
-    case EGL_BAD_PARAMETER:
-      return "EGL_BAD_PARAMETER";
-    case EGL_BAD_SURFACE:
-      return "EGL_BAD_SURFACE";
-    case EGL_CONTEXT_LOST:
-      return "EGL_CONTEXT_LOST";
-    default: {
-      char buf[32];
-      std::snprintf(buf, sizeof buf, "EGL error 0x%x", unsigned(e));
-      return buf;
-    }
-  }
+  const char* name = core::code_name<EGLint>(e,
+                                             {{EGL_SUCCESS, "EGL_SUCCESS"},
+                                              {EGL_NOT_INITIALIZED, "EGL_NOT_INITIALIZED"},
+                                              {EGL_BAD_ACCESS, "EGL_BAD_ACCESS"},
+                                              {EGL_BAD_ALLOC, "EGL_BAD_ALLOC"},
+                                              {EGL_BAD_ATTRIBUTE, "EGL_BAD_ATTRIBUTE"},
+                                              {EGL_BAD_CONFIG, "EGL_BAD_CONFIG"},
+                                              {EGL_BAD_CONTEXT, "EGL_BAD_CONTEXT"},
+                                              {EGL_BAD_CURRENT_SURFACE, "EGL_BAD_CURRENT_SURFACE"},
+                                              {EGL_BAD_DISPLAY, "EGL_BAD_DISPLAY"},
+                                              {EGL_BAD_MATCH, "EGL_BAD_MATCH"},
+                                              {EGL_BAD_NATIVE_PIXMAP, "EGL_BAD_NATIVE_PIXMAP"},
+                                              {EGL_BAD_NATIVE_WINDOW, "EGL_BAD_NATIVE_WINDOW"},
+                                              {EGL_BAD_PARAMETER, "EGL_BAD_PARAMETER"},
+                                              {EGL_BAD_SURFACE, "EGL_BAD_SURFACE"},
+                                              {EGL_CONTEXT_LOST, "EGL_CONTEXT_LOST"}},
+                                             nullptr);
+  if (name) return name;
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "EGL error 0x%x", unsigned(e));
+  return buf;
 }
 
 std::string last_egl_error() { return egl_error_name(eglGetError()); }

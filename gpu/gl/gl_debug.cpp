@@ -1,46 +1,31 @@
 #include "gpu/gl/gl_debug.h"
 
+#include "core/base/enum_names.h"
+
 namespace trispline::gpu {
 namespace {
 
 const char* source_name(GLenum s) {
-  switch (s) {
-    case GL_DEBUG_SOURCE_API:
-      return "API";
-    case GL_DEBUG_SOURCE_WINDOW_SYSTEM:
-      return "window system";
-    case GL_DEBUG_SOURCE_SHADER_COMPILER:
-      return "shader compiler";
-    case GL_DEBUG_SOURCE_THIRD_PARTY:
-      return "third party";
-    case GL_DEBUG_SOURCE_APPLICATION:
-      return "application";
-    default:
-      return "other";
-  }
+  return core::code_name<GLenum>(s,
+                                 {{GL_DEBUG_SOURCE_API, "API"},
+                                  {GL_DEBUG_SOURCE_WINDOW_SYSTEM, "window system"},
+                                  {GL_DEBUG_SOURCE_SHADER_COMPILER, "shader compiler"},
+                                  {GL_DEBUG_SOURCE_THIRD_PARTY, "third party"},
+                                  {GL_DEBUG_SOURCE_APPLICATION, "application"}},
+                                 "other");
 }
 
 const char* type_name(GLenum t) {
-  switch (t) {
-    case GL_DEBUG_TYPE_ERROR:
-      return "error";
-    case GL_DEBUG_TYPE_DEPRECATED_BEHAVIOR:
-      return "deprecated";
-    case GL_DEBUG_TYPE_UNDEFINED_BEHAVIOR:
-      return "undefined behaviour";
-    case GL_DEBUG_TYPE_PORTABILITY:
-      return "portability";
-    case GL_DEBUG_TYPE_PERFORMANCE:
-      return "performance";
-    case GL_DEBUG_TYPE_MARKER:
-      return "marker";
-    case GL_DEBUG_TYPE_PUSH_GROUP:
-      return "push group";
-    case GL_DEBUG_TYPE_POP_GROUP:
-      return "pop group";
-    default:
-      return "other";
-  }
+  return core::code_name<GLenum>(t,
+                                 {{GL_DEBUG_TYPE_ERROR, "error"},
+                                  {GL_DEBUG_TYPE_DEPRECATED_BEHAVIOR, "deprecated"},
+                                  {GL_DEBUG_TYPE_UNDEFINED_BEHAVIOR, "undefined behaviour"},
+                                  {GL_DEBUG_TYPE_PORTABILITY, "portability"},
+                                  {GL_DEBUG_TYPE_PERFORMANCE, "performance"},
+                                  {GL_DEBUG_TYPE_MARKER, "marker"},
+                                  {GL_DEBUG_TYPE_PUSH_GROUP, "push group"},
+                                  {GL_DEBUG_TYPE_POP_GROUP, "pop group"}},
+                                 "other");
 }
 
 GlDebugMessage::Severity severity_of(GLenum s) {
