@@ -188,15 +188,27 @@ inline void axis_basis(const VolumeSpline& s, int axis, double t, bool derivativ
   }
 }
 
+// The three axes' bases at x and the control-point strides: where every tensor contraction starts.
+template <int K>
+struct TensorBasis {
+  TensorBasis(const VolumeSpline& s, const glm::dvec3& p, bool derivatives)
+      : nx(s.dims()[0]), nxy(nx * s.dims()[1]), cp(s.control_points().data()) {
+    axis_basis<K>(s, 0, p.x, derivatives, x);
+    axis_basis<K>(s, 1, p.y, derivatives, y);
+    axis_basis<K>(s, 2, p.z, derivatives, z);
+  }
+  AxisBasis<K> x, y, z;
+  std::size_t nx, nxy;
+  const float* cp;
+};
+
 // D at x with the order K a compile-time constant (the loops unroll).
 template <int K>
 double value_k(const VolumeSpline& s, const glm::dvec3& x) {
-  AxisBasis<K> bx, by, bz;
-  axis_basis<K>(s, 0, x.x, false, bx);
-  axis_basis<K>(s, 1, x.y, false, by);
-  axis_basis<K>(s, 2, x.z, false, bz);
-  const std::size_t nx = s.dims()[0], nxy = nx * s.dims()[1];
-  const float* cp = s.control_points().data();
+  const TensorBasis<K> t(s, x, false);
+  const AxisBasis<K>&bx = t.x, &by = t.y, &bz = t.z;
+  const std::size_t nx = t.nx, nxy = t.nxy;
+  const float* cp = t.cp;
   double sum = 0.0;
   for (int c = 0; c < K; ++c) {
     double sy = 0.0;
@@ -214,12 +226,10 @@ double value_k(const VolumeSpline& s, const glm::dvec3& x) {
 // D, ∇D and the Hessian at x: contract x first (value, d, d²), then y (six combinations), then z (ten results).
 template <int K>
 VolumeJet jet_k(const VolumeSpline& s, const glm::dvec3& x) {
-  AxisBasis<K> bx, by, bz;
-  axis_basis<K>(s, 0, x.x, true, bx);
-  axis_basis<K>(s, 1, x.y, true, by);
-  axis_basis<K>(s, 2, x.z, true, bz);
-  const std::size_t nx = s.dims()[0], nxy = nx * s.dims()[1];
-  const float* cp = s.control_points().data();
+  const TensorBasis<K> t(s, x, true);
+  const AxisBasis<K>&bx = t.x, &by = t.y, &bz = t.z;
+  const std::size_t nx = t.nx, nxy = t.nxy;
+  const float* cp = t.cp;
   double v = 0, dx = 0, dy = 0, dz = 0, dxx = 0, dyy = 0, dzz = 0, dxy = 0, dxz = 0, dyz = 0;
   for (int c = 0; c < K; ++c) {
     double yv = 0, yx = 0, yy = 0, yxx = 0, yyy = 0, yxy = 0;
