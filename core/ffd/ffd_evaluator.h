@@ -72,6 +72,10 @@ class FfdEvaluator {
   // when bound without normals). No allocation: a caller that keeps its buffers (Python's out= arrays) pays only the
   // copy. The default goes through read_results(); cpu_fast writes straight from its float results.
   virtual void read_results_into(double* positions, double* normals);
+  // evaluate(param_offset) with its results in caller memory, as read_results_into() would copy them, bit for bit
+  // (cpu_fast writes them from its kernels, without a float pass, and its read_results*() then throw
+  // std::logic_error until the next evaluate(): its own result buffers are not this evaluation's).
+  virtual void evaluate_into(const glm::dvec3& param_offset, double* positions, double* normals);
 
   virtual std::size_t vertex_count() const = 0;
   virtual bool has_normals() const = 0;

@@ -82,6 +82,7 @@ struct FfdFastEvaluator::Impl {
   AVec<float> pos, nrm;
 
   void bin();
+  void run(const glm::dvec3& param_offset, const Outputs& out);
   void build_tables(const TrivariateBSpline<glm::dvec3>& F, const Embedding& E);
 };
 
@@ -298,6 +299,39 @@ void FfdFastEvaluator::evaluate(const glm::dvec3& param_offset) {
   Impl& m = *impl_;
   if (!m.bound || !m.has_lattice)
     throw std::logic_error("cpu_fast evaluate: bind_vertices and set_lattice must be called first");
+  const std::size_t V = m.params.size();
+  m.pos.resize(3 * V);
+  m.nrm.resize(m.normals_f.empty() ? 0 : 3 * V);
+  m.run(param_offset, Outputs{m.pos.data(), m.nrm.empty() ? nullptr : m.nrm.data()});
+  m.centre = m.packed.centre;
+  m.evaluated = true;
+}
+
+void FfdFastEvaluator::evaluate_into(const glm::dvec3& param_offset, double* positions, double* normals) {
+  Impl& m = *impl_;
+  if (!m.bound || !m.has_lattice)
+    throw std::logic_error("cpu_fast evaluate_into: bind_vertices and set_lattice must be called first");
+  if (!m.tables) {  // the gather kernel writes floats only
+    evaluate(param_offset);
+    read_results_into(positions, normals);
+    return;
+  }
+  Outputs out;
+  out.positions64 = positions;
+  out.normals64 = m.normals_f.empty() ? nullptr : normals;
+  for (int a = 0; a < 3; ++a) out.centre[a] = m.packed.centre[a];
+  std::vector<double> discard;  // normals the caller does not want still have somewhere to go
+  if (!m.normals_f.empty() && !normals) {
+    discard.resize(3 * m.params.size());
+    out.normals64 = discard.data();
+  }
+  m.run(param_offset, out);
+  m.evaluated = false;  // the float results are not this evaluation's
+}
+
+// Runs the kernels at params + param_offset into `out` (its float arrays, or its double ones).
+void FfdFastEvaluator::Impl::run(const glm::dvec3& param_offset, const Outputs& out) {
+  Impl& m = *this;
   glm::dvec3 off = param_offset;
   for (int a = 0; a < 3; ++a)
     if (m.packed.axes[a].periodic) off[a] -= std::floor(off[a]);  // whole periods change nothing
@@ -305,9 +339,6 @@ void FfdFastEvaluator::evaluate(const glm::dvec3& param_offset) {
   const bool rest = off == glm::dvec3(0.0);
   const std::size_t V = m.params.size();
   const bool normals = !m.normals_f.empty();
-  m.pos.resize(3 * V);
-  m.nrm.resize(normals ? 3 * V : 0);
-  const Outputs out{m.pos.data(), normals ? m.nrm.data() : nullptr};
   if (m.tables) {
     if (!m.binned) m.bin();
     const BlockArrays ba{m.xu.data(),
@@ -338,8 +369,6 @@ void FfdFastEvaluator::evaluate(const glm::dvec3& param_offset) {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, V, kGatherGrain),
                       [&](const tbb::blocked_range<std::size_t>& r) { gather_evaluate(in, out, r.begin(), r.end()); });
   }
-  m.centre = m.packed.centre;
-  m.evaluated = true;
 }
 
 void FfdFastEvaluator::read_results(std::vector<glm::dvec3>& positions, std::vector<glm::dvec3>& normals) {

@@ -54,6 +54,8 @@ class FfdFastEvaluator final : public FfdEvaluator {
   void read_results(std::vector<glm::dvec3>& positions, std::vector<glm::dvec3>& normals) override;
   void read_results_float(std::vector<glm::vec3>& positions, std::vector<glm::vec3>& normals) override;
   void read_results_into(double* positions, double* normals) override;
+  // Block kernels write the doubles directly (no float pass); gather mode: evaluate() + read_results_into().
+  void evaluate_into(const glm::dvec3& param_offset, double* positions, double* normals) override;
   std::size_t vertex_count() const override;
   bool has_normals() const override;
 

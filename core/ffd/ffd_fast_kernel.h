@@ -55,6 +55,12 @@ struct BlockArrays {
 struct Outputs {
   float* positions = nullptr;  // #V × 3 (AoS), relative to the lattice centre
   float* normals = nullptr;    // #V × 3 (AoS), unit; null for positions only
+  // Set: the block kernels write here instead, in double (positions64 = centre + the float result, world units;
+  // normals64 = the float normal widened), the arithmetic of FfdFastEvaluator::read_results_into, so a caller that
+  // keeps float64 arrays skips the float pass. The gather kernel does not take them.
+  double* positions64 = nullptr;  // #V × 3 (AoS), world units
+  double* normals64 = nullptr;    // #V × 3 (AoS), unit; null for positions only
+  double centre[3] = {0, 0, 0};   // the lattice centre, world units
 };
 
 // Evaluates blocks [block_begin, block_end). offset: null for the rest path (cells and local coordinates from

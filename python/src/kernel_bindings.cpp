@@ -164,8 +164,7 @@ py::tuple evaluate(PyFfdEvaluator& e, const glm::dvec3& offset, const py::object
   {
     py::gil_scoped_release nogil;
     std::lock_guard<std::mutex> lock(e.mutex);
-    e.ev->evaluate(offset);
-    e.ev->read_results_into(p, n);
+    e.ev->evaluate_into(offset, p, n);
   }
   return py::make_tuple(P, N);
 }

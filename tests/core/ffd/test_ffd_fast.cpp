@@ -3,6 +3,7 @@
 // runs, at rest and with parameter offsets; periodic offsets; the gather kernel of huge lattices; re-binning.
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <string>
 
 #include "core/ffd/ffd_evaluator.h"
@@ -236,4 +237,39 @@ TEST(FfdFast, ManySpansInTheOffsetPath) {
       EXPECT_LE(max_angle(fast.normals, ref.normals), kNormalTol) << isa << " offset " << off.x;
     }
   }
+}
+
+TEST(FfdFast, EvaluateIntoEqualsReadResultsIntoBitForBit) {
+  // The double-writing kernels (Python's out= path) against evaluate + read_results_into: every instruction set, at
+  // rest and with an offset, with and without normals, and the gather kernel's fallback; read_results afterwards
+  // refuses, since the float buffers are not that evaluation's.
+  const Embedding e = test_embedding();
+  const auto F = random_lattice(KnotKind::nonuniform_clamped, {4, 3, 2}, 31);
+  const KnotVector big = KnotVector::clamped_uniform(4, 60);
+  const auto huge = bent_lattice(e, big, big, big);
+  const auto params = test_params(F, 4000, 32);
+  const auto normals = random_normals(params.size(), 33);
+  for (const auto* lattice : {&F, &huge})
+    for (bool with_normals : {true, false})
+      for (glm::dvec3 off : {glm::dvec3(0.0), glm::dvec3(0.13, -0.07, 0.02)})
+        for (const std::string& isa : lattice == &huge ? std::vector<std::string>{"auto"} : ffd_fast_available_isas()) {
+          IsaScope scope(isa);
+          FfdFastEvaluator fast;
+          fast.bind_vertices(params, with_normals ? normals : std::vector<glm::dvec3>{});
+          fast.set_lattice(*lattice, e);
+          std::vector<double> p0(3 * params.size()), n0(3 * params.size(), -7.0);
+          std::vector<double> p1(3 * params.size()), n1(3 * params.size(), -7.0);
+          fast.evaluate(off);
+          fast.read_results_into(p0.data(), n0.data());
+          fast.evaluate_into(off, p1.data(), n1.data());
+          const std::string what = isa + (with_normals ? " normals" : "") + (lattice == &huge ? " gather" : "");
+          EXPECT_EQ(std::memcmp(p0.data(), p1.data(), p0.size() * sizeof(double)), 0) << what;
+          EXPECT_EQ(std::memcmp(n0.data(), n1.data(), n0.size() * sizeof(double)), 0) << what;
+          if (fast.uses_cell_tables()) {
+            std::vector<glm::dvec3> rp, rn;
+            EXPECT_THROW(fast.read_results(rp, rn), std::logic_error) << what;
+          }
+          fast.evaluate_into(off, p1.data(), nullptr);  // normals not wanted
+          EXPECT_EQ(std::memcmp(p0.data(), p1.data(), p0.size() * sizeof(double)), 0) << what;
+        }
 }
