@@ -417,7 +417,8 @@ def finish():
     os._exit(1 if FAILURES else 0)  # with a window (--undo under Xvfb): leave without saving quit.blend
 
 
-if bpy.app.background:
-    finish()
-else:  # a window: run once the event loop is up, so that ed.undo has a screen
-    bpy.app.timers.register(lambda: finish() or None, first_interval=0.5)
+if __name__ == "__main__":  # (test_press_drag.py imports the helpers above)
+    if bpy.app.background:
+        finish()
+    else:  # a window: run once the event loop is up, so that ed.undo has a screen
+        bpy.app.timers.register(lambda: finish() or None, first_interval=0.5)

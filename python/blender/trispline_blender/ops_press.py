@@ -44,7 +44,8 @@ class OBJECT_OT_trispline_press(bpy.types.Operator):
     bl_label = "Press"
     bl_options = {"REGISTER", "UNDO"}
 
-    path: bpy.props.CollectionProperty(type=TrisplinePathPoint, name="Path",
+    # SKIP_SAVE: a drag's path is not remembered for the next call from the menu (which would press at once there).
+    path: bpy.props.CollectionProperty(type=TrisplinePathPoint, name="Path", options={"SKIP_SAVE"},
                                        description="Sphere centres along the sweep, world coordinates in metres")
     radius: bpy.props.FloatProperty(name="Radius (m)", default=0.2, min=1e-4, soft_max=10.0, unit="LENGTH",
                                     description="Sphere radius in metres")
