@@ -114,6 +114,38 @@ VolumeRangeGrid build_volume_range_grid(const VolumeSpline& spline, int brick) {
   return g;
 }
 
+GridRay clip_ray_to_grid(const VolumeSpline& spline, const glm::dvec3& world_origin, const glm::dvec3& world_dir,
+                         double t_max, const char* caller) {
+  const std::array<int, 3>& n = spline.dims();
+  const glm::dmat4& w2i = spline.world_to_index();
+  const glm::dvec3 o = glm::dvec3(w2i * glm::dvec4(world_origin, 1.0));
+  const glm::dvec3 d = glm::dmat3(w2i) * world_dir;
+  const double len = glm::length(d);
+  if (!(len > 0.0) || !std::isfinite(len)) throw std::invalid_argument(std::string(caller) + ": zero ray direction");
+  GridRay r;
+  r.u = d / len;
+  r.index_per_t = len;
+  // Clip s (index arc length from o) to the grid box and to t ∈ [0, t_max].
+  double s_lo = 0.0, s_hi = t_max * len;
+  for (int a = 0; a < 3; ++a) {
+    const double hi = n[a] - 1;
+    if (r.u[a] == 0.0) {
+      if (o[a] < 0.0 || o[a] > hi) return r;
+      continue;
+    }
+    double s0 = (0.0 - o[a]) / r.u[a], s1 = (hi - o[a]) / r.u[a];
+    if (s0 > s1) std::swap(s0, s1);
+    s_lo = std::max(s_lo, s0);
+    s_hi = std::min(s_hi, s1);
+  }
+  if (!(s_lo <= s_hi)) return r;
+  r.inside = true;
+  r.entry = o + s_lo * r.u;
+  r.length = s_hi - s_lo;
+  r.s_entry = s_lo;
+  return r;
+}
+
 IsoHit iso_ray_hit(const VolumeSpline& spline, double iso, const glm::dvec3& world_origin, const glm::dvec3& world_dir,
                    double step_index, double t_max, const VolumeRangeGrid* bricks) {
   if (!finite(world_origin) || !finite(world_dir))
@@ -129,29 +161,10 @@ IsoHit iso_ray_hit(const VolumeSpline& spline, double iso, const glm::dvec3& wor
           bricks->range.size() != count || bricks->slope.size() != count)
         throw std::invalid_argument("iso_ray_hit: the range grid was built for another volume size");
   }
-  const glm::dmat4& w2i = spline.world_to_index();
-  const glm::dvec3 o = glm::dvec3(w2i * glm::dvec4(world_origin, 1.0));
-  const glm::dvec3 d = glm::dmat3(w2i) * world_dir;
-  const double len = glm::length(d);
-  if (!(len > 0.0) || !std::isfinite(len)) throw std::invalid_argument("iso_ray_hit: zero ray direction");
-  const glm::dvec3 u = d / len;
-
-  // Clip s (index arc length from o) to the grid box and to t ∈ [0, t_max].
-  double s_lo = 0.0, s_hi = t_max * len;
-  for (int a = 0; a < 3; ++a) {
-    const double hi = n[a] - 1;
-    if (u[a] == 0.0) {
-      if (o[a] < 0.0 || o[a] > hi) return {};
-      continue;
-    }
-    double s0 = (0.0 - o[a]) / u[a], s1 = (hi - o[a]) / u[a];
-    if (s0 > s1) std::swap(s0, s1);
-    s_lo = std::max(s_lo, s0);
-    s_hi = std::min(s_hi, s1);
-  }
-  if (!(s_lo <= s_hi)) return {};
-  const glm::dvec3 entry = o + s_lo * u;
-  const double length = s_hi - s_lo;
+  const GridRay ray = clip_ray_to_grid(spline, world_origin, world_dir, t_max, "iso_ray_hit");
+  if (!ray.inside) return {};
+  const glm::dvec3 entry = ray.entry, u = ray.u;
+  const double length = ray.length, s_lo = ray.s_entry, len = ray.index_per_t;
   auto f = [&](double s) { return spline.value(entry + s * u) - iso; };
 
   // Samples s_m = m·step, m = 0…M−1, and s_M = length. The march keeps the sign of the previous sample m − 1 and its

@@ -57,6 +57,20 @@ struct VolumeRangeGrid {
 // Builds the grid in O(#controls) (separable sliding min / max). Throws std::invalid_argument when brick < 1.
 VolumeRangeGrid build_volume_range_grid(const VolumeSpline& spline, int brick = 4);
 
+// A world ray in the spline's index space, clipped to the grid box [0, n−1]³ and to t ∈ [0, t_max]: the march's
+// start and length (index units), `u` the unit index-space direction and `index_per_t` the index length of one unit
+// of t. inside is false when the ray misses the box (the other fields are then unset). Throws std::invalid_argument
+// ("<caller>: zero ray direction") for a zero or non-finite direction (the caller checks the origin). Shared by
+// iso_ray_hit and dvr_ray.
+struct GridRay {
+  bool inside = false;
+  glm::dvec3 entry{0.0}, u{0.0};
+  double length = 0.0, index_per_t = 0.0;
+  double s_entry = 0.0;  // index arc length from the origin to `entry`
+};
+GridRay clip_ray_to_grid(const VolumeSpline& spline, const glm::dvec3& world_origin, const glm::dvec3& world_dir,
+                         double t_max, const char* caller);
+
 // The first crossing along a ray. When hit is false the other fields are zero.
 struct IsoHit {
   bool hit = false;

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/volume/iso_raycast.h"
+#include "core/volume/volume_dvr.h"
 #include "gpu/eval/ffd_gl_lattice.h"
 
 namespace trispline::gpu {
@@ -199,20 +200,35 @@ void VolumeIsoRenderer::draw(const glm::dmat4& view, const glm::dmat4& projectio
   check_gl_error("VolumeIsoRenderer::draw");
 }
 
-IsoHitReadback VolumeIsoRenderer::read_hits(const glm::dmat4& view, const glm::dmat4& projection, int width, int height,
-                                            double iso) {
-  if (!has_volume()) throw std::logic_error("VolumeIsoRenderer::read_hits: no volume (call set_volume)");
+// The framebuffer bindings, viewport, depth function and depth mask of the caller, restored on scope exit.
+class TargetStateGuard {
+ public:
+  TargetStateGuard() {
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw_);
+    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read_);
+    glGetIntegerv(GL_VIEWPORT, viewport_);
+    glGetIntegerv(GL_DEPTH_FUNC, &depth_func_);
+    glGetBooleanv(GL_DEPTH_WRITEMASK, &depth_mask_);
+  }
+  ~TargetStateGuard() {
+    glDepthFunc(GLenum(depth_func_));
+    glDepthMask(depth_mask_);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(draw_));
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(read_));
+    glViewport(viewport_[0], viewport_[1], viewport_[2], viewport_[3]);
+  }
+  TargetStateGuard(const TargetStateGuard&) = delete;
+  TargetStateGuard& operator=(const TargetStateGuard&) = delete;
+
+ private:
+  GLint draw_ = 0, read_ = 0, viewport_[4] = {0, 0, 0, 0}, depth_func_ = GL_LESS;
+  GLboolean depth_mask_ = GL_TRUE;
+};
+
+void VolumeIsoRenderer::bind_readback_target(int width, int height, const char* what) {
   if (width <= 0 || height <= 0)
-    throw std::invalid_argument("VolumeIsoRenderer::read_hits: size must be positive, got " + std::to_string(width) +
-                                "x" + std::to_string(height));
-  const ShaderProgram& p = program(true);
-  GLint prev_draw = 0, prev_read = 0, prev_viewport[4] = {0, 0, 0, 0}, prev_depth_func = GL_LESS;
-  GLboolean prev_depth_mask = GL_TRUE;
-  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &prev_draw);
-  glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &prev_read);
-  glGetIntegerv(GL_VIEWPORT, prev_viewport);
-  glGetIntegerv(GL_DEPTH_FUNC, &prev_depth_func);
-  glGetBooleanv(GL_DEPTH_WRITEMASK, &prev_depth_mask);
+    throw std::invalid_argument(std::string(what) + ": size must be positive, got " + std::to_string(width) + "x" +
+                                std::to_string(height));
   if (!hits_fbo_ || hits_width_ != width || hits_height_ != height) {
     hits_position_ = make_texture_2d(GL_RGBA32F, width, height);
     hits_normal_ = make_texture_2d(GL_RGBA32F, width, height);
@@ -226,10 +242,8 @@ IsoHitReadback VolumeIsoRenderer::read_hits(const glm::dmat4& view, const glm::d
     glDrawBuffers(2, buffers);
     const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
     if (status != GL_FRAMEBUFFER_COMPLETE) {
-      glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(prev_draw));
-      glBindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(prev_read));
       hits_fbo_.reset();
-      throw GlError("VolumeIsoRenderer::read_hits: framebuffer incomplete (status " + std::to_string(status) + ")");
+      throw GlError(std::string(what) + ": framebuffer incomplete (status " + std::to_string(status) + ")");
     }
     hits_width_ = width, hits_height_ = height;
   }
@@ -241,33 +255,43 @@ IsoHitReadback VolumeIsoRenderer::read_hits(const glm::dmat4& view, const glm::d
   glClearBufferfv(GL_COLOR, 1, zero);
   glClearBufferfv(GL_DEPTH, 0, &one);
   glDepthFunc(GL_LESS);
-  {
-    DrawStateGuard guard;
-    p.use();
-    set_uniforms(p, view, projection, glm::ivec4(0, 0, width, height), iso);
-    draw_box(view, projection);
-  }
-  const std::size_t count = std::size_t(width) * std::size_t(height);
-  std::vector<glm::vec4> position(count), normal(count);
-  IsoHitReadback out;
-  out.width = width, out.height = height;
-  out.depth.resize(count);
+}
+
+std::vector<glm::vec4> VolumeIsoRenderer::read_attachment(int index) const {
+  std::vector<glm::vec4> out(std::size_t(hits_width_) * std::size_t(hits_height_));
   GLint prev_pack = 4;
   glGetIntegerv(GL_PACK_ALIGNMENT, &prev_pack);
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
   glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
-  glReadBuffer(GL_COLOR_ATTACHMENT0);
-  glReadPixels(0, 0, width, height, GL_RGBA, GL_FLOAT, position.data());
-  glReadBuffer(GL_COLOR_ATTACHMENT1);
-  glReadPixels(0, 0, width, height, GL_RGBA, GL_FLOAT, normal.data());
-  glReadPixels(0, 0, width, height, GL_DEPTH_COMPONENT, GL_FLOAT, out.depth.data());
+  glReadBuffer(GLenum(GL_COLOR_ATTACHMENT0 + index));
+  glReadPixels(0, 0, hits_width_, hits_height_, GL_RGBA, GL_FLOAT, out.data());
   glPixelStorei(GL_PACK_ALIGNMENT, prev_pack);
-  glDepthFunc(GLenum(prev_depth_func));
-  glDepthMask(prev_depth_mask);
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(prev_draw));
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(prev_read));
-  glViewport(prev_viewport[0], prev_viewport[1], prev_viewport[2], prev_viewport[3]);
+  return out;
+}
+
+IsoHitReadback VolumeIsoRenderer::read_hits(const glm::dmat4& view, const glm::dmat4& projection, int width, int height,
+                                            double iso) {
+  if (!has_volume()) throw std::logic_error("VolumeIsoRenderer::read_hits: no volume (call set_volume)");
+  const ShaderProgram& p = program(true);
+  IsoHitReadback out;
+  std::vector<glm::vec4> position, normal;
+  {
+    TargetStateGuard target;
+    bind_readback_target(width, height, "VolumeIsoRenderer::read_hits");
+    {
+      DrawStateGuard guard;
+      p.use();
+      set_uniforms(p, view, projection, glm::ivec4(0, 0, width, height), iso);
+      draw_box(view, projection);
+    }
+    position = read_attachment(0);
+    normal = read_attachment(1);
+    out.depth.resize(position.size());
+    glReadPixels(0, 0, width, height, GL_DEPTH_COMPONENT, GL_FLOAT, out.depth.data());
+  }
   check_gl_error("VolumeIsoRenderer::read_hits");
+  const std::size_t count = position.size();
+  out.width = width, out.height = height;
   out.hit.resize(count);
   out.world_point.resize(count);
   out.world_normal.resize(count);
@@ -276,6 +300,57 @@ IsoHitReadback VolumeIsoRenderer::read_hits(const glm::dmat4& view, const glm::d
     out.world_point[i] = glm::vec3(position[i]);
     out.world_normal[i] = glm::vec3(normal[i]);
   }
+  return out;
+}
+
+void VolumeIsoRenderer::draw_dvr(const glm::dmat4& view, const glm::dmat4& projection, const glm::ivec4& viewport,
+                                 const core::TransferFunction& transfer, double step_index, bool exact) {
+  if (!has_volume()) throw std::logic_error("VolumeIsoRenderer::draw_dvr: no volume (call set_volume)");
+  if (const std::string why = core::transfer_function_error(transfer); !why.empty())
+    throw std::invalid_argument("VolumeIsoRenderer::draw_dvr: transfer function: " + why);
+  if (!(std::isfinite(step_index) && step_index > 0.0 && step_index <= kMaxDvrStep))
+    throw std::invalid_argument("VolumeIsoRenderer::draw_dvr: step must be in (0, " + std::to_string(kMaxDvrStep) +
+                                "] index units, got " + std::to_string(step_index));
+  ShaderDefines defines{{"ORDER", std::to_string(order_)}};
+  if (exact) defines.push_back({"EXACT", ""});
+  const ShaderProgram& p = programs_->get({"volume_iso.vert.glsl", "volume_dvr.frag.glsl"}, defines);
+  DrawStateGuard guard;
+  p.use();
+  set_ivec3(p, "u_dims", dims_);
+  set_ivec3(p, "u_brick_dims", brick_dims_);
+  p.set("u_brick", brick_);
+  p.set("u_step", float(step_index));
+  p.set("u_opaque", float(core::kDvrOpaque));
+  p.set("u_viewport", glm::vec4(viewport));
+  p.set("u_inv_proj", to_float(glm::inverse(projection)));
+  p.set("u_view_to_index", to_float(world_to_index_ * glm::inverse(view)));
+  p.set("u_index_to_clip", to_float(projection * view * index_to_world_));
+  p.set("u_box_max", glm::vec3(dims_[0] - 1, dims_[1] - 1, dims_[2] - 1));
+  const int n = int(transfer.points.size());
+  std::vector<float> values(n);
+  std::vector<glm::vec4> rgba(n);
+  for (int i = 0; i < n; ++i) values[i] = float(transfer.points[i].value), rgba[i] = glm::vec4(transfer.points[i].rgba);
+  p.set("u_tf_count", n);
+  glUniform1fv(p.uniform("u_tf_value"), n, values.data());
+  glUniform4fv(p.uniform("u_tf_rgba"), n, &rgba[0].x);
+  draw_box(view, projection);
+  check_gl_error("VolumeIsoRenderer::draw_dvr");
+}
+
+std::vector<glm::vec4> VolumeIsoRenderer::read_dvr(const glm::dmat4& view, const glm::dmat4& projection, int width,
+                                                   int height, const core::TransferFunction& transfer,
+                                                   double step_index, bool exact) {
+  std::vector<glm::vec4> out;
+  {
+    TargetStateGuard target;
+    bind_readback_target(width, height, "VolumeIsoRenderer::read_dvr");
+    GLboolean blend = glIsEnabled(GL_BLEND);
+    glDisable(GL_BLEND);  // the cleared target: the fragment is the result
+    draw_dvr(view, projection, glm::ivec4(0, 0, width, height), transfer, step_index, exact);
+    if (blend) glEnable(GL_BLEND);
+    out = read_attachment(0);
+  }
+  check_gl_error("VolumeIsoRenderer::read_dvr");
   return out;
 }
 

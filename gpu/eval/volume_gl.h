@@ -17,6 +17,7 @@
 //   VolumeIsoRenderer::set_volume   uploads control points (3D R32F) and brick bounds (3D RGBA32F) once
 //   VolumeIsoRenderer::draw         shaded iso-surface into the bound framebuffer
 //   VolumeIsoRenderer::read_hits    world hit points, normals and depths per pixel (tests, picking)
+//   VolumeIsoRenderer::draw_dvr     direct volume rendering through a transfer function (seed §7.4, Fig. 7.7)
 //
 // Tests hold the hits to the CPU reference on llvmpipe: the same hit/miss per pixel but for a silhouette band, world
 // points within 1e-3 × the volume's size (tests/gpu/test_volume_gl.cpp); brick size and the fast path change no bit.
@@ -31,6 +32,7 @@
 #include <memory>
 #include <vector>
 
+#include "core/volume/volume_dvr.h"
 #include "core/volume/volume_spline.h"
 #include "gpu/eval/ffd_gl.h"
 #include "gpu/gl/gl_resource.h"
@@ -102,11 +104,30 @@ class VolumeIsoRenderer {
   // viewport. Throws as draw, std::invalid_argument for a non-positive size.
   IsoHitReadback read_hits(const glm::dmat4& view, const glm::dmat4& projection, int width, int height, double iso);
 
+  // Direct volume rendering (shaders/volume_dvr.frag.glsl; the march of core::dvr_ray, core/volume/volume_dvr.h):
+  // premultiplied RGBA with the colour sRGB-encoded, into the bound draw framebuffer, for blending with (ONE,
+  // ONE_MINUS_SRC_ALPHA) (the caller's blend state); gl_FragDepth is the depth of the first sample that added
+  // anything. `transfer`: as core::transfer_function_error accepts (values in the volume's units, opacity per index
+  // unit); step_index: segment length in index units, (0, kMaxDvrStep]; exact: D from ORDER³ texel fetches per sample
+  // instead of 2³ filtered ones (tests; about 8× slower). State as draw. Throws std::invalid_argument (transfer,
+  // step), and as draw.
+  void draw_dvr(const glm::dmat4& view, const glm::dmat4& projection, const glm::ivec4& viewport,
+                const core::TransferFunction& transfer, double step_index = 0.5, bool exact = false);
+  static constexpr double kMaxDvrStep = 4.0;
+  // draw_dvr into a private width × height RGBA32F framebuffer cleared to 0 (blending off), read back: width·height
+  // premultiplied RGBA, bottom row first. Restores the framebuffer binding and viewport. Throws as draw_dvr,
+  // std::invalid_argument for a non-positive size.
+  std::vector<glm::vec4> read_dvr(const glm::dmat4& view, const glm::dmat4& projection, int width, int height,
+                                  const core::TransferFunction& transfer, double step_index = 0.5, bool exact = false);
+
  private:
   const ShaderProgram& program(bool hits);
   void set_uniforms(const ShaderProgram& p, const glm::dmat4& view, const glm::dmat4& projection,
                     const glm::ivec4& viewport, double iso) const;
   void draw_box(const glm::dmat4& view, const glm::dmat4& projection) const;
+  // Binds the read-back framebuffer (created or resized to width × height), sets the viewport, clears it.
+  void bind_readback_target(int width, int height, const char* what);
+  std::vector<glm::vec4> read_attachment(int index) const;  // colour attachment `index` of it, RGBA float
 
   std::shared_ptr<FfdProgramCache> programs_;
   Texture controls_, bricks_;

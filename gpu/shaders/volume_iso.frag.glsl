@@ -30,18 +30,14 @@
 #define ORDER 4
 #endif
 #define WIN (ORDER + 1)  // window of the refinement, control points per axis
+#include "volume_spline.glsl"  // D (spline_value, fast_value), pixel_ray_in_grid, linear_to_srgb
 
-layout(binding = 0) uniform sampler3D u_controls;  // R32F, nx × ny × nz control points, texel (i, j, l); GL_LINEAR
 layout(binding = 1) uniform sampler3D u_bricks;    // RGBA32F per brick: min, max, slope (core::VolumeRangeGrid), 0
-uniform ivec3 u_dims;                // nx, ny, nz
 uniform int u_brick;                 // index units per brick axis
 uniform ivec3 u_brick_dims;          // bricks per axis
 uniform float u_iso;                 // iso-level, the volume's units
 uniform float u_step;                // march step, index units, ≤ 1
 uniform float u_filter_error;        // bound of GL_LINEAR's weight error per axis (2^-8: 8-bit fractions)
-uniform vec4 u_viewport;             // x, y, width, height (pixels) of the viewport the matrices map to
-uniform mat4 u_inv_proj;             // inverse(projection)
-uniform mat4 u_view_to_index;        // world_to_index · inverse(view)
 uniform mat4 u_index_to_clip;        // projection · view · index_to_world
 uniform mat4 u_index_to_world;       // millimetres
 uniform mat3 u_gradient_to_world;    // (A⁻¹)ᵀ, A = linear part of index_to_world
@@ -56,95 +52,6 @@ layout(location = 0) out vec4 o_color;
 
 const float kRefineTolerance = 1e-5;  // index units (float resolution of s over a few hundred voxels)
 const int kRefineIterations = 24;
-
-// Basis of one axis at index coordinate t: first (unclamped) control index, weights w[r] of control first + r and
-// their derivatives dw[r].
-void axis_basis(float t, int n, out int first, out float w[ORDER], out float dw[ORDER]) {
-  t = clamp(t, 0.0, float(n - 1));
-#if ORDER % 2 == 0
-  int span = clamp(int(floor(t)), 0, n - 2);
-  float x = t - float(span);
-#else
-  int span = clamp(int(floor(t + 0.5)), 0, n - 1);
-  float x = t - (float(span) - 0.5);
-#endif
-  first = span - (ORDER - 1) / 2;
-#if ORDER == 2
-  w[0] = 1.0 - x, w[1] = x;
-  dw[0] = -1.0, dw[1] = 1.0;
-#elif ORDER == 3
-  w[0] = 0.5 * (1.0 - x) * (1.0 - x), w[1] = 0.5 + x - x * x, w[2] = 0.5 * x * x;
-  dw[0] = x - 1.0, dw[1] = 1.0 - 2.0 * x, dw[2] = x;
-#else
-  float mx = 1.0 - x, x2 = x * x, x3 = x2 * x;
-  w[0] = mx * mx * mx / 6.0;
-  w[1] = (3.0 * x3 - 6.0 * x2 + 4.0) / 6.0;
-  w[2] = (-3.0 * x3 + 3.0 * x2 + 3.0 * x + 1.0) / 6.0;
-  w[3] = x3 / 6.0;
-  dw[0] = -0.5 * mx * mx, dw[1] = 1.5 * x2 - 2.0 * x, dw[2] = -1.5 * x2 + x + 0.5, dw[3] = 0.5 * x2;
-#endif
-}
-
-// Exact D at index point p: ORDER³ texelFetch.
-float spline_value(vec3 p) {
-  int fx, fy, fz;
-  float wx[ORDER], wy[ORDER], wz[ORDER], d[ORDER];
-  axis_basis(p.x, u_dims.x, fx, wx, d);
-  axis_basis(p.y, u_dims.y, fy, wy, d);
-  axis_basis(p.z, u_dims.z, fz, wz, d);
-  float sum = 0.0;
-  for (int c = 0; c < ORDER; ++c) {
-    int iz = clamp(fz + c, 0, u_dims.z - 1);
-    float sy = 0.0;
-    for (int b = 0; b < ORDER; ++b) {
-      int iy = clamp(fy + b, 0, u_dims.y - 1);
-      float sx = 0.0;
-      for (int a = 0; a < ORDER; ++a)
-        sx += wx[a] * texelFetch(u_controls, ivec3(clamp(fx + a, 0, u_dims.x - 1), iy, iz), 0).r;
-      sy += wy[b] * sx;
-    }
-    sum += wz[c] * sy;
-  }
-  return sum;
-}
-
-// Fast D at index point p from GL_LINEAR fetches (error bound in the header).
-#if ORDER == 2
-float fast_value(vec3 p) {
-  vec3 n = vec3(u_dims);
-  return textureLod(u_controls, (clamp(p, vec3(0.0), n - 1.0) + 0.5) / n, 0.0).r;
-}
-#else
-// One axis: weights g of the two fetches and their texture coordinates h.
-void fast_axis(float t, int n, out vec2 g, out vec2 h) {
-  int first;
-  float w[ORDER], dw[ORDER];
-  axis_basis(t, n, first, w, dw);
-#if ORDER == 3
-  g = vec2(w[0] + w[1], w[2]);
-  h = vec2(float(first) + w[1] / g.x, float(first + 2));
-#else
-  g = vec2(w[0] + w[1], w[2] + w[3]);
-  h = vec2(float(first) + w[1] / g.x, float(first + 2) + w[3] / g.y);
-#endif
-  h = (h + 0.5) / float(n);
-}
-
-float fast_value(vec3 p) {
-  vec2 gx, hx, gy, hy, gz, hz;
-  fast_axis(p.x, u_dims.x, gx, hx);
-  fast_axis(p.y, u_dims.y, gy, hy);
-  fast_axis(p.z, u_dims.z, gz, hz);
-  float sum = 0.0;
-  for (int c = 0; c < 2; ++c)
-    for (int b = 0; b < 2; ++b) {
-      float row = gx.x * textureLod(u_controls, vec3(hx.x, hy[b], hz[c]), 0.0).r +
-                  gx.y * textureLod(u_controls, vec3(hx.y, hy[b], hz[c]), 0.0).r;
-      sum += gz[c] * gy[b] * row;
-    }
-  return sum;
-}
-#endif
 
 // The refinement's window: control points g_window_first + (a, b, c), a, b, c < WIN (clamped indices).
 float g_window[WIN * WIN * WIN];
@@ -248,37 +155,11 @@ float refine_crossing(vec3 entry, vec3 u, float a, float b, float fa, float fb) 
   return 0.5 * (a + b);
 }
 
-#ifndef OUTPUT_HITS
-vec3 linear_to_srgb(vec3 c) {
-  c = clamp(c, 0.0, 1.0);
-  return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
-}
-#endif
-
 void main() {
-  // 1. The ray.
-  vec2 ndc = 2.0 * (gl_FragCoord.xy - u_viewport.xy) / u_viewport.zw - 1.0;
-  vec4 pn = u_inv_proj * vec4(ndc, -1.0, 1.0);
-  vec4 pm = u_inv_proj * vec4(ndc, 0.0, 1.0);
-  pn /= pn.w;
-  pm /= pm.w;
-  vec3 o = (u_view_to_index * vec4(pn.xyz, 1.0)).xyz;
-  vec3 u = normalize(mat3(u_view_to_index) * (pm.xyz - pn.xyz));
-  // 2. Clip to the grid box.
-  vec3 box = vec3(u_dims - 1);
-  float s_lo = 0.0, s_hi = 3.0e38;
-  for (int a = 0; a < 3; ++a) {
-    if (u[a] == 0.0) {
-      if (o[a] < 0.0 || o[a] > box[a]) discard;
-      continue;
-    }
-    float s0 = -o[a] / u[a], s1 = (box[a] - o[a]) / u[a];
-    s_lo = max(s_lo, min(s0, s1));
-    s_hi = min(s_hi, max(s0, s1));
-  }
-  if (!(s_lo <= s_hi)) discard;
-  vec3 entry = o + s_lo * u;
-  float len = s_hi - s_lo;
+  // 1.–2. The ray, clipped to the grid box.
+  vec3 entry, u;
+  float len;
+  if (!pixel_ray_in_grid(entry, u, len)) discard;
   // 3.–4. March: samples m = 0…last at s = m·u_step, the last at len.
   int last = int(ceil(len / u_step));
   float u_l1 = abs(u.x) + abs(u.y) + abs(u.z);

@@ -15,6 +15,7 @@
 #include <stdexcept>
 
 #include "core/volume/iso_raycast.h"
+#include "core/volume/volume_dvr.h"
 #include "core/volume/volume_io.h"
 #include "core/volume/volume_spline.h"
 #include "gl_test.h"
@@ -127,7 +128,80 @@ void expect_fast_march_exact(VolumeIsoRenderer& gpu, const View& v, int w, int h
   EXPECT_EQ(differ, 0u) << what;
 }
 
+// Direct volume rendering: GPU read_dvr against core::render_dvr_cpu on the same rays. Per pixel the largest channel
+// difference; `exact` (ORDER³ fetches, float vs double) must stay within 0.01 but for ≤ 0.5 % of the pixels (those
+// whose float and double samples fall on two sides of a brick skip or a transfer-function kink) and within 0.05 on
+// all; the fast path (2³ GL_LINEAR fetches) within 0.02 on average.
+struct DvrParity {
+  double mean = 0.0, worst = 0.0;
+  std::size_t over = 0, seen = 0;
+};
+DvrParity expect_dvr_parity(VolumeIsoRenderer& gpu, const core::VolumeSpline& spline, const core::TransferFunction& tf,
+                            const View& v, int w, int h, bool exact, const char* what) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::vector<glm::vec4> g = gpu.read_dvr(v.view, v.projection, w, h, tf, 0.5, exact);
+  const auto t1 = std::chrono::steady_clock::now();
+  const core::VolumeRangeGrid grid = core::build_volume_range_grid(spline);
+  const core::DvrImage c = core::render_dvr_cpu(spline, tf, v.view, v.projection, w, h, 0.5, &grid);
+  const auto t2 = std::chrono::steady_clock::now();
+  EXPECT_EQ(g.size(), c.rgba.size()) << what;
+  DvrParity r;
+  for (std::size_t i = 0; i < g.size() && i < c.rgba.size(); ++i) {
+    double d = 0.0;
+    for (int k = 0; k < 4; ++k) d = std::max(d, double(std::abs(g[i][k] - c.rgba[i][k])));
+    r.mean += d;
+    r.worst = std::max(r.worst, d);
+    r.over += d > 0.01;
+    r.seen += c.rgba[i].w > 0.05f;
+  }
+  r.mean /= double(std::max<std::size_t>(g.size(), 1));
+  std::printf(
+      "[volume dvr] %-34s %dx%d: %zu pixels seen, mean |Δ| %.2g, max |Δ| %.3g, %zu pixels over 0.01; GPU %.0f "
+      "ms, CPU %.0f ms\n",
+      what, w, h, r.seen, r.mean, r.worst, r.over, std::chrono::duration<double, std::milli>(t1 - t0).count(),
+      std::chrono::duration<double, std::milli>(t2 - t1).count());
+  if (exact) {
+    EXPECT_LE(double(r.over), 0.005 * w * h) << what;
+    EXPECT_LE(r.worst, 0.05) << what;
+  } else {
+    EXPECT_LE(r.mean, 0.02) << what;
+  }
+  EXPECT_GT(r.seen, std::size_t(w * h / 20)) << what;
+  return r;
+}
+
 class VolumeGlTest : public GlTest {};
+
+TEST_F(VolumeGlTest, DvrMatchesTheCpuReference) {
+  const auto sphere = sphere_volume({30, 30, 30});
+  const core::VolumeSpline spline(sphere.volume, 4, false);
+  VolumeIsoRenderer gpu;
+  gpu.set_volume(spline);
+  const core::TransferFunction tf{{{-1.0, {0, 0, 0, 0}}, {0.0, {1.0, 0.5, 0.1, 0.3}}, {4.0, {0.1, 0.3, 1.0, 0.8}}}};
+  const glm::dvec3 c = sphere.field.center;
+  const View v = look_at(c + glm::dvec3(10.0, 20.0, 45.0), c, 35.0);
+  expect_dvr_parity(gpu, spline, tf, v, 96, 96, true, "sphere, exact");
+  expect_dvr_parity(gpu, spline, tf, v, 96, 96, false, "sphere, fast");
+  // The sphere's inside seen from within the box.
+  expect_dvr_parity(gpu, spline, tf, look_at(c + glm::dvec3(2.0, 1.0, 6.0), c, 70.0), 64, 64, true,
+                    "sphere, eye inside");
+}
+
+TEST_F(VolumeGlTest, DvrOfTheCraniumMatchesTheCpuReference) {
+  const std::filesystem::path path = std::filesystem::path(TRISPLINE_SOURCE_DIR) / "assets/data/Cranium.inv3";
+  ASSERT_TRUE(std::filesystem::exists(path)) << path << " missing: run scripts/fetch_assets.sh";
+  const core::VolumeSpline spline(core::load_volume(path), 4, false);
+  VolumeIsoRenderer gpu;
+  gpu.set_volume(spline);
+  const glm::dvec3 target(122.0, 122.0, 80.0), eye(-330.0, 572.0, 140.0);
+  const double d = glm::length(eye - target);
+  const View v{glm::lookAt(eye, target, glm::dvec3(0.0, 0.0, 1.0)),
+               glm::perspective(glm::radians(30.0), 4.0 / 3.0, 0.01 * d, 10.0 * d)};
+  expect_dvr_parity(gpu, spline, core::ct_transfer_function(), v, 80, 60, true, "Cranium, CT preset, exact");
+  expect_dvr_parity(gpu, spline, core::ct_transfer_function(), v, 80, 60, false, "Cranium, CT preset, fast");
+  EXPECT_THROW(gpu.read_dvr(v.view, v.projection, 8, 8, core::TransferFunction{}, 0.5), std::invalid_argument);
+  EXPECT_THROW(gpu.read_dvr(v.view, v.projection, 8, 8, core::ct_transfer_function(), 0.0), std::invalid_argument);
+}
 
 TEST_F(VolumeGlTest, SphereHitsMatchTheCpuReference) {
   const auto s = sphere_volume();
