@@ -301,6 +301,14 @@ bool VolumeUi::export_volume(const std::string& volume, const ui::VolumeExportKi
   return true;
 }
 
+namespace {
+nlohmann::json transfer_values(const core::TransferFunction& tf) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const core::TransferPoint& p : tf.points) out.push_back(p.value);
+  return out;
+}
+}  // namespace
+
 nlohmann::json VolumeUi::probe(const core::Scene& scene) const {
   nlohmann::json volumes = nlohmann::json::array();
   for (const core::VolumeObject& v : scene.volumes()) {
@@ -322,6 +330,8 @@ nlohmann::json VolumeUi::probe(const core::Scene& scene) const {
                        {"dims", {d[0], d[1], d[2]}},
                        {"silhouettes", v.silhouette.enabled},
                        {"style", v.silhouette.style},
+                       {"render", v.render_mode == core::VolumeObject::RenderMode::dvr ? "dvr" : "iso"},
+                       {"transfer_values", transfer_values(v.transfer)},
                        {"live_points", live.points},
                        {"live_current", live.current},
                        {"extracting", live.extracting}});

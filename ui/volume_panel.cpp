@@ -73,6 +73,132 @@ bool accuracy_combo(core::VolumeSilhouettesParams& p) {
   return changed;
 }
 
+// The Render section's values from the volume: its mode, step and transfer function (the default one it would get
+// when it has none yet).
+void take_render(const core::VolumeObject& v, VolumePanelState& s) {
+  core::VolumeRenderParams& p = s.render;
+  p.object = v.name;
+  p.mode = v.render_mode;
+  p.transfer = v.transfer.points.empty() ? core::default_transfer_function(v) : v.transfer;
+  p.step = v.dvr_step;
+  s.seen_render = p;
+  s.seen_render.transfer = v.transfer;
+}
+
+bool same_render(const core::VolumeObject& v, const core::VolumeRenderParams& seen) {
+  return v.render_mode == seen.mode && v.dvr_step == seen.step && seen.transfer && v.transfer == *seen.transfer;
+}
+
+// Presets of the transfer function, in the Preset combo's order.
+struct TransferPreset {
+  const char* name;
+  const char* tooltip;
+  core::TransferFunction (*make)(const core::VolumeObject&);
+};
+constexpr TransferPreset kTransferPresets[] = {
+    {"CT: skin and bone",
+     "Hounsfield units: air transparent, skin and soft tissue a faint orange veil (-400 to 100 HU), bone opaque ivory "
+     "from 250 HU",
+     [](const core::VolumeObject&) { return core::ct_transfer_function(); }},
+    {"Ramp from the iso-level",
+     "Transparent at the iso-level, a faint warm tint a quarter of the way up, opaque white at the largest value",
+     [](const core::VolumeObject& v) {
+       core::VolumeObject plain = v;
+       plain.units.clear();  // not the CT preset
+       return core::default_transfer_function(plain);
+     }},
+};
+
+// The Render section: mode, and for direct volume rendering the transfer function and the step. True when a
+// volume.render line is to be executed (state.render holds it).
+bool render_section(const core::VolumeObject& v, VolumePanelState& state, double lo, double hi, double speed,
+                    const char* value_format) {
+  core::VolumeRenderParams& p = state.render;
+  const auto& schema = core::VolumeRenderCommand::schema();
+  bool commit = param_widget(schema, "mode", p);
+  if (p.mode != core::VolumeObject::RenderMode::dvr) return commit;
+  std::vector<core::TransferPoint>& pts = p.transfer->points;
+  ImGui::TextColored(colors::dim, "Transfer function");
+  if (const auto* f = schema.find("transfer")) tooltip(param_tooltip(f->doc).c_str());
+  int remove = -1;
+  if (ImGui::BeginTable("##transfer", 3, ImGuiTableFlags_SizingStretchProp)) {
+    for (int i = 0; i < int(pts.size()); ++i) {
+      ImGui::PushID(i);
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      // Each value stays between its neighbours (the function's values increase).
+      const double step = std::max(speed, 1e-9) * 1e-3;
+      const double min = i > 0 ? pts[i - 1].value + step : std::min(lo, pts[i].value);
+      const double max = i + 1 < int(pts.size()) ? pts[i + 1].value - step : std::max(hi, pts[i].value);
+      ImGui::SetNextItemWidth(-1.0f);
+      drag_scalar("##value", ImGuiDataType_Double, &pts[i].value, float(speed), &min, &max, value_format,
+                  ImGuiSliderFlags_AlwaysClamp);
+      probe::item("volume.transfer." + std::to_string(i));
+      tooltip("The value of D this point is at (the volume's units); drag, or click to type. Applied on release.");
+      commit |= ImGui::IsItemDeactivatedAfterEdit();
+      ImGui::TableNextColumn();
+      float rgba[4] = {float(pts[i].rgba.x), float(pts[i].rgba.y), float(pts[i].rgba.z), float(pts[i].rgba.w)};
+      if (ImGui::ColorEdit4("##rgba", rgba,
+                            ImGuiColorEditFlags_NoInputs | ImGuiColorEditFlags_AlphaBar |
+                                ImGuiColorEditFlags_AlphaPreviewHalf | ImGuiColorEditFlags_Float))
+        pts[i].rgba = glm::dvec4(rgba[0], rgba[1], rgba[2], rgba[3]);
+      probe::item("volume.transfer." + std::to_string(i) + ".color");
+      tooltip("Colour (linear RGB) and opacity per index unit of path (alpha) at this value; click to edit");
+      commit |= ImGui::IsItemDeactivatedAfterEdit();
+      ImGui::SameLine();
+      ImGui::Text("a %.3f", pts[i].rgba.w);
+      ImGui::TableNextColumn();
+      ImGui::BeginDisabled(pts.size() <= 2);
+      if (ImGui::SmallButton("x")) remove = i;
+      ImGui::EndDisabled();
+      probe::item("volume.transfer." + std::to_string(i) + ".remove");
+      tooltip("Remove this point (a transfer function keeps at least 2)");
+      ImGui::PopID();
+    }
+    ImGui::EndTable();
+  }
+  if (remove >= 0) {
+    pts.erase(pts.begin() + remove);
+    commit = true;
+  }
+  ImGui::BeginDisabled(pts.size() >= std::size_t(core::kMaxTransferPoints));
+  if (ImGui::Button("Add point")) {
+    // Halfway between the last two points, with their mean colour: the function does not change until edited.
+    const core::TransferPoint& a = pts[pts.size() - 2];
+    const core::TransferPoint& b = pts.back();
+    pts.insert(pts.end() - 1, core::TransferPoint{0.5 * (a.value + b.value), 0.5 * (a.rgba + b.rgba)});
+    commit = true;
+  }
+  ImGui::EndDisabled();
+  probe::item("volume.transfer.add");
+  tooltip("Add a point halfway between the last two (at most 16)");
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(-1.0f);
+  if (ImGui::BeginCombo("##preset", "Preset...")) {
+    for (const TransferPreset& preset : kTransferPresets) {
+      if (ImGui::Selectable(preset.name)) {
+        p.transfer = preset.make(v);
+        commit = true;
+      }
+      probe::item(std::string("volume.transfer.preset.") + preset.name);
+      tooltip(preset.tooltip);
+    }
+    ImGui::EndCombo();
+  }
+  probe::item("volume.transfer.preset");
+  tooltip("Replace the transfer function with a preset");
+  if (const auto* f = schema.find("step")) {
+    row_label(f->label.c_str());
+    const double min = f->range.lo, max = f->range.hi;
+    drag_scalar("##step", ImGuiDataType_Double, &p.step, float(f->ui_step), &min, &max, f->ui_format.c_str(),
+                ImGuiSliderFlags_AlwaysClamp | ImGuiSliderFlags_Logarithmic);
+    probe::item("volume.render.step");
+    tooltip(param_tooltip(f->doc).c_str());
+    commit |= ImGui::IsItemDeactivatedAfterEdit();
+  }
+  return commit;
+}
+
 // The Volume panel's further levels: level, style, colour and remove per level, then Add level.
 void more_levels_section(const core::VolumeObject& v, VolumePanelState& state, VolumePanelResult& r, double lo,
                          double hi, double speed, const char* format) {
@@ -165,12 +291,14 @@ VolumePanelResult draw_volume_panel(const Rect& rect, const core::VolumeObject& 
   VolumePanelResult r;
   if (state.volume != v.name) {
     state.volume = v.name;
+    take_render(v, state);
     state.iso = state.seen_iso = v.iso;
     state.more_iso.clear(), state.seen_more_iso.clear();
     take_settings(v, state);
   }
   if (v.iso != state.seen_iso) state.iso = state.seen_iso = v.iso;  // a command changed it (undo, a replayed log)
   if (!same_settings(v.silhouette, state.seen)) take_settings(v, state);
+  if (!same_render(v, state.seen_render) && !ImGui::IsAnyItemActive()) take_render(v, state);
 
   if (begin_docked("Volume", rect)) {
     {
@@ -227,6 +355,14 @@ VolumePanelResult draw_volume_panel(const Rect& rect, const core::VolumeObject& 
     for (const core::VolumeIsoLevel& l : v.more_levels) more.push_back(l.iso);
     if (more != state.seen_more_iso && !ImGui::IsAnyItemActive()) state.more_iso = state.seen_more_iso = more;
     more_levels_section(v, state, r, lo, hi, speed, format.c_str());
+
+    ImGui::Separator();
+    ImGui::TextColored(colors::dim, "Render");
+    tooltip(
+        "How the volume is drawn: its iso-surface, or direct volume rendering through a transfer function (seed "
+        "section 7.4)");
+    if (render_section(v, state, lo, hi, speed, format.c_str()))
+      r.line = core::VolumeRenderCommand::schema().to_json(state.render);
 
     ImGui::Separator();
     ImGui::TextColored(colors::dim, "Silhouettes");

@@ -10,10 +10,15 @@
 //                line carrying all of them
 //   More levels  further iso-levels drawn as silhouettes only (seed Figs. 7.4–7.6, 7.12): level, style, colour,
 //                remove, Add level; each change one volume.iso line with every level
+//   Render       iso-surface or direct volume rendering (seed §7.4, Fig. 7.7); for the latter the transfer function
+//                as a table (value, colour and opacity per point; remove, Add point, presets) and the step: each
+//                change one volume.render line with all of them (value drags on release)
 //   Export       silhouettes as SVG or glTF lines, the iso-surface as GLB / OBJ / PLY
 // Widgets are named for GUI tests: "volume.iso", "volume.silhouettes.<field>", "volume.export.<kind>",
 // "volume.levels.add", "volume.levels.<k>" (k = 1, 2, … the further levels), "volume.levels.<k>.style",
-// "volume.levels.<k>.color", "volume.levels.<k>.remove".
+// "volume.levels.<k>.color", "volume.levels.<k>.remove", "volume.render.mode", "volume.render.step",
+// "volume.transfer.<i>" (point i's value), "volume.transfer.<i>.color", "volume.transfer.<i>.remove",
+// "volume.transfer.add", "volume.transfer.preset".
 #pragma once
 
 #include <functional>
@@ -22,6 +27,7 @@
 #include <string>
 
 #include "core/commands/volume_iso.h"
+#include "core/commands/volume_render.h"
 #include "core/commands/volume_silhouettes.h"
 #include "core/scene/scene.h"
 #include "ui/layout.h"
@@ -38,6 +44,8 @@ struct VolumePanelState {
   core::VolumeSilhouetteSettings seen;        // the volume's settings when last refreshed
   std::vector<double> more_iso;               // the further levels' fields (VolumeObject::more_levels)
   std::vector<double> seen_more_iso;
+  core::VolumeRenderParams render;  // the Render section (object = volume; transfer always set)
+  core::VolumeRenderParams seen_render;
 };
 
 // What the live silhouettes are doing, for the panel's status line.
@@ -72,7 +80,7 @@ inline constexpr VolumeExportKind kVolumeExports[] = {
 
 struct VolumePanelResult {
   std::optional<double> iso_preview;              // the iso field is being dragged or typed: draw this level
-  std::optional<nlohmann::json> line;             // a volume.iso or volume.silhouettes line to execute
+  std::optional<nlohmann::json> line;             // a volume.iso, .silhouettes or .render line to execute
   const VolumeExportKind* export_kind = nullptr;  // an Export button was clicked
 };
 

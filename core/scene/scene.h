@@ -21,6 +21,7 @@
 #include "core/spline/keyframes.h"
 #include "core/volume/silhouettes.h"
 #include "core/volume/singletons.h"
+#include "core/volume/volume_dvr.h"
 #include "core/volume/volume_spline.h"
 
 namespace trispline::core {
@@ -185,8 +186,13 @@ struct VolumeObject {
   double iso = 0.0;                             // iso-level c of D = c, in `units`
   bool visible = true;                          // shown in the viewport; object.visibility
   bool render_visible = true;                   // in recordings and exports; a hidden volume costs nothing there
-  bool show_surface = true;                     // draw the iso-surface (GPU ray casting)
-  glm::vec3 color{0.93f, 0.89f, 0.80f};         // linear RGB of the iso-surface
+  bool show_surface = true;                     // draw the volume: its iso-surface, or through `transfer` (dvr)
+  // How the volume is drawn (volume.render): the iso-surface D = iso (ray cast), or direct volume rendering of D
+  // through `transfer` (seed §7.4, Fig. 7.7) with segments of dvr_step index units.
+  enum class RenderMode { iso, dvr } render_mode = RenderMode::iso;
+  TransferFunction transfer;             // values in `units`; empty until volume.render sets one
+  double dvr_step = 0.5;                 // index units
+  glm::vec3 color{0.93f, 0.89f, 0.80f};  // linear RGB of the iso-surface
   VolumeSilhouetteSettings silhouette;
   // Silhouettes of D = iso for `silhouette_camera` (null until extracted, or when disabled).
   std::shared_ptr<const SilhouetteResult> silhouettes;

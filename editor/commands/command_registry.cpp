@@ -37,6 +37,7 @@
 #include "core/commands/volume_iso.h"
 #include "core/commands/volume_load.h"
 #include "core/commands/volume_remove.h"
+#include "core/commands/volume_render.h"
 #include "core/commands/volume_silhouettes.h"
 
 namespace trispline::editor {
@@ -108,6 +109,7 @@ const CommandRegistry& CommandRegistry::builtin() {
     r.add<core::AnimRecordCommand>();
     r.add<core::VolumeLoadCommand>();
     r.add<core::VolumeIsoCommand>();
+    r.add<core::VolumeRenderCommand>();
     r.add<core::VolumeSilhouettesCommand>();
     r.add<core::VolumeExportCommand>();
     r.add<core::VolumeRemoveCommand>();

@@ -125,6 +125,13 @@ double VolumeDisplay::cast(Target& t, const std::vector<ShownSurface>& surfaces,
   glDepthFunc(GL_LESS);
   const glm::ivec4 viewport(0, 0, t.size.x, t.size.y);
   for (const ShownSurface& s : surfaces) {
+    if (s.dvr) {  // premultiplied, over what the layer holds
+      glEnable(GL_BLEND);
+      glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+      renderer_for(*s.volume, uploads).draw_dvr(view, projection, viewport, s.volume->transfer, s.volume->dvr_step);
+      glDisable(GL_BLEND);
+      continue;
+    }
     IsoStyle style;
     style.color = s.color;
     renderer_for(*s.volume, uploads).draw(view, projection, viewport, s.iso, style);
@@ -139,7 +146,10 @@ LayerUpdate VolumeDisplay::update_layer(const std::vector<ShownSurface>& surface
   LayerUpdate u;
   if (vp.x <= 0 || vp.y <= 0) return u;
   Key key{view, projection, vp, {}};
-  for (const ShownSurface& s : surfaces) key.surfaces.emplace_back(s.volume->spline.get(), s.iso, s.color);
+  for (const ShownSurface& s : surfaces) {
+    key.surfaces.emplace_back(s.volume->spline.get(), s.dvr ? 0.0 : s.iso, s.color);
+    key.dvr.emplace_back(s.dvr ? s.volume->transfer : core::TransferFunction{}, s.dvr ? s.volume->dvr_step : 0.0);
+  }
   // Per-pixel cost of the last cast: up at once, down by half at most (an empty band costs nearly nothing and must
   // not make the next one huge).
   auto measure = [&](double ms, std::size_t pixels) {
@@ -218,8 +228,9 @@ void Renderer::Impl::pass_volumes(const Frame& f, std::optional<GpuTimer::Scope>
     for (const core::VolumeObject& v : f.scene.volumes()) {
       if (!v.visible || !v.show_surface || !v.spline) continue;
       const bool selected = !f.options.selected.empty() && v.name == f.options.selected;
+      const bool dvr = v.render_mode == core::VolumeObject::RenderMode::dvr && !v.transfer.points.empty();
       surfaces.push_back(
-          {&v, detail::shown_volume(v, f.options).iso, selected ? glm::mix(v.color, tint, 0.125f) : v.color});
+          {&v, detail::shown_volume(v, f.options).iso, selected ? glm::mix(v.color, tint, 0.125f) : v.color, dvr});
     }
     const detail::LayerUpdate u = volumes.update_layer(surfaces, f.camera.view_matrix(), f.camera.projection_matrix(),
                                                        f.vp, f.options.volume_budget_ms, &stats.volume_uploads);
@@ -227,9 +238,12 @@ void Renderer::Impl::pass_volumes(const Frame& f, std::optional<GpuTimer::Scope>
     glBindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(read_fbo));
     glViewport(0, 0, f.vp.x, f.vp.y);
     glDisable(GL_STENCIL_TEST);
-    glDisable(GL_BLEND);
+    // The layer is premultiplied (iso-surfaces opaque, direct volume rendering translucent): over the frame.
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     volume_layer.use();
     volumes.composite(volume_layer, f.vp, empty_vao.id());
+    glDisable(GL_BLEND);
     stats.volumes_drawn = int(surfaces.size());
     stats.volume_cast_pixels = u.cast_pixels;
     stats.volume_refining = u.refining;

@@ -1,6 +1,7 @@
 // trispline::gpu::detail::VolumeDisplay — how the Renderer shows the scene's volumes (core::VolumeObject, seed ch. 7):
 // each visible volume's iso-surface D = iso ray cast on the spline by a VolumeIsoRenderer (gpu/eval/volume_gl.h; one
-// per spline, uploaded once and kept while some volume holds that spline), depth-combined with the meshes through
+// per spline, uploaded once and kept while some volume holds that spline) — or, in dvr mode (volume.render), its
+// direct volume rendering through its transfer function, premultiplied — depth-combined with the meshes through
 // gl_FragDepth; and its silhouettes (when its settings enable them) as thick screen-space strokes
 // (gpu/view/silhouette_strokes.h) in its style and hidden-line mode. ViewOptions::overlays.volumes_in_place replaces a
 // volume's iso-level (a live slider) or its silhouettes (extracted for the editor's current view). Internal to the
@@ -38,11 +39,12 @@ SilhouetteStrokeStyle level_stroke_style(const core::VolumeObject& v, const core
 // ViewStyle::silhouette_depth_pull × the volume's bounding-box diagonal.
 SilhouetteStrokeStyle silhouette_stroke_style(const core::VolumeObject& v, const ViewStyle& style);
 
-// One visible volume's iso-surface as drawn this frame.
+// One visible volume's iso-surface, or its direct volume rendering, as drawn this frame.
 struct ShownSurface {
   const core::VolumeObject* volume = nullptr;
   double iso = 0.0;       // volume units
   glm::vec3 color{1.0f};  // linear RGB (the selection tint included)
+  bool dvr = false;       // through volume->transfer instead of the iso-surface
 };
 
 // What VolumeDisplay::update_layer did.
@@ -91,8 +93,10 @@ class VolumeDisplay {
     glm::dmat4 view{1.0}, projection{1.0};
     glm::ivec2 viewport{0};
     std::vector<std::tuple<const core::VolumeSpline*, double, glm::vec3>> surfaces;
+    std::vector<std::pair<core::TransferFunction, double>> dvr;  // per surface: its transfer and step when dvr
     bool operator==(const Key& o) const {
-      return view == o.view && projection == o.projection && viewport == o.viewport && surfaces == o.surfaces;
+      return view == o.view && projection == o.projection && viewport == o.viewport && surfaces == o.surfaces &&
+             dvr == o.dvr;
     }
   };
   // Casts `surfaces` into `t` over rows [row0, row0 + rows) (GL rows, bottom up), cleared there first; returns the

@@ -58,6 +58,7 @@ INSTANTIATE_TEST_SUITE_P(
                       BadLogCase{"bad_negative_seed.jsonl", 1, "seed", "out of range"},
                       BadLogCase{"bad_camera_fov.jsonl", 2, "camera.fov_deg", "fov"},
                       BadLogCase{"bad_ring_radius.jsonl", 2, "radius", "half the width"},
+                      BadLogCase{"bad_volume_transfer.jsonl", 2, "transfer", "values must increase"},
                       BadLogCase{"bad_animate_no_ffd.jsonl", 2, "object", "no FFD lattice"},
                       BadLogCase{"bad_refine_tolerance.jsonl", 3, "tolerance", "> 0"},
                       BadLogCase{"bad_width_profile.jsonl", 4, "width_profile", "finite"},

@@ -1,6 +1,6 @@
-// volume.load / volume.iso / volume.silhouettes / volume.export (core/commands/volume_*.h): a volume is added, its
-// iso-level set, silhouettes extracted for the scene camera and exported; undo restores the scene before each step;
-// the same lines give the same silhouettes bit for bit; bad fields are named and change nothing.
+// volume.load / volume.iso / volume.silhouettes / volume.render / volume.export (core/commands/volume_*.h): a volume is
+// added, its iso-level set, silhouettes extracted for the scene camera and exported; undo restores the scene before
+// each step; the same lines give the same silhouettes bit for bit; bad fields are named and change nothing.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -12,6 +12,7 @@
 #include "core/commands/volume_iso.h"
 #include "core/commands/volume_load.h"
 #include "core/commands/volume_remove.h"
+#include "core/commands/volume_render.h"
 #include "core/commands/volume_silhouettes.h"
 #include "core/scene/scene_export.h"
 #include "core/volume/prepared_volume.h"
@@ -261,6 +262,68 @@ TEST_F(VolumeCommands, ErrorsNameTheFieldAndChangeNothing) {
   EXPECT_THROW(parse<VolumeExportCommand>(R"({"cmd":"volume.export","object":"torus","path":"a.png"})"), CommandError);
   EXPECT_THROW(parse<VolumeExportCommand>(R"({"cmd":"volume.export","object":"torus","what":"iso","path":"a.svg"})"),
                CommandError);
+}
+
+TEST_F(VolumeCommands, RenderSwitchesToDirectVolumeRenderingAndUndoRestores) {
+  Scene s = torus_scene();
+  const VolumeObject before = *s.find_volume("torus");
+  EXPECT_EQ(before.render_mode, VolumeObject::RenderMode::iso);
+  EXPECT_TRUE(before.transfer.points.empty());
+  // dvr without a transfer function: the default ramp (an analytic volume is not in HU), from the iso-level up.
+  auto c = parse<VolumeRenderCommand>(R"({"cmd":"volume.render","object":"torus","mode":"dvr"})");
+  c->redo(s);
+  const VolumeObject& v = *s.find_volume("torus");
+  EXPECT_EQ(v.render_mode, VolumeObject::RenderMode::dvr);
+  ASSERT_EQ(v.transfer.points.size(), 3u);
+  EXPECT_EQ(v.transfer.points.front().value, 0.0);  // the iso-level
+  EXPECT_EQ(v.transfer.points.front().rgba.w, 0.0);
+  EXPECT_EQ(transfer_function_error(v.transfer), "");
+  EXPECT_EQ(c->stats()["mode"], "dvr");
+  EXPECT_EQ(c->stats()["points"], 3);
+  EXPECT_EQ(v.dvr_step, 0.5);
+  // A transfer function and step given, then the mode back to iso keeps them.
+  auto t = parse<VolumeRenderCommand>(
+      R"({"cmd":"volume.render","object":"torus","mode":"dvr","transfer":[[-1,0,0,0,0],[2,1,0.5,0,0.4]],"step":0.25})");
+  t->redo(s);
+  EXPECT_EQ(s.find_volume("torus")->transfer.points.size(), 2u);
+  EXPECT_EQ(s.find_volume("torus")->dvr_step, 0.25);
+  EXPECT_EQ(t->to_json()["transfer"][1], json::parse("[2.0,1.0,0.5,0.0,0.4]"));
+  auto iso = parse<VolumeRenderCommand>(R"({"cmd":"volume.render","object":"torus","mode":"iso"})");
+  iso->redo(s);
+  EXPECT_EQ(s.find_volume("torus")->render_mode, VolumeObject::RenderMode::iso);
+  EXPECT_EQ(s.find_volume("torus")->transfer.points.size(), 2u);
+  iso->undo(s);
+  t->undo(s);
+  c->undo(s);
+  EXPECT_EQ(s.find_volume("torus")->render_mode, VolumeObject::RenderMode::iso);
+  EXPECT_TRUE(s.find_volume("torus")->transfer.points.empty());
+  // The default for a CT (HU) is the CT preset.
+  VolumeObject ct = before;
+  ct.units = "HU";
+  EXPECT_EQ(default_transfer_function(ct), ct_transfer_function());
+  // Refusals name the field and change nothing.
+  for (const char* bad :
+       {R"({"cmd":"volume.render","object":"torus","mode":"dvr","transfer":[[0,1,1,1,1]]})",
+        R"({"cmd":"volume.render","object":"torus","mode":"dvr","transfer":[[0,1,1,1,1],[0,1,1,1,1]]})",
+        R"({"cmd":"volume.render","object":"torus","mode":"dvr","transfer":[[0,1,1,1,1],[1,2,1,1,1]]})",
+        R"({"cmd":"volume.render","object":"torus","mode":"dvr","transfer":[[0,1,1,1],[1,1,1,1,1]]})",
+        R"({"cmd":"volume.render","object":"torus","mode":"dvr","transfer":"ct"})"}) {
+    try {
+      parse<VolumeRenderCommand>(bad);
+      ADD_FAILURE() << "accepted " << bad;
+    } catch (const CommandError& e) {
+      EXPECT_EQ(e.field(), "transfer") << e.what();
+    }
+  }
+  EXPECT_THROW(parse<VolumeRenderCommand>(R"({"cmd":"volume.render","object":"torus","mode":"mip"})"), CommandError);
+  EXPECT_THROW(parse<VolumeRenderCommand>(R"({"cmd":"volume.render","object":"torus","step":0})"), CommandError);
+  try {
+    parse<VolumeRenderCommand>(R"({"cmd":"volume.render","object":"nope","mode":"dvr"})")->redo(s);
+    ADD_FAILURE() << "rendered a missing volume";
+  } catch (const CommandError& e) {
+    EXPECT_EQ(e.field(), "object");
+  }
+  EXPECT_EQ(s.find_volume("torus")->render_mode, VolumeObject::RenderMode::iso);
 }
 
 TEST_F(VolumeCommands, ExportWritesSvgGlbAndIsoMeshAndSceneGlbHoldsThem) {
