@@ -11,6 +11,7 @@
 // depend on its block neighbours, the block partition or the thread count. FMA contraction is on in the wide ISAs
 // (-ffp-contract=fast), so results are bit-identical per ISA, not across ISAs.
 #include <cstring>
+#include <type_traits>
 
 #include "core/ffd/ffd_fast_kernel.h"
 
@@ -172,53 +173,39 @@ constexpr InterleaveMasks make_interleave_masks() {
 }
 constexpr InterleaveMasks kInterleave = make_interleave_masks();
 
-// out[3·index[l] + r] = v[r][l]: W vertices written in the caller's vertex order. A run of W consecutive indices
-// (common: binning keeps vertex order inside a cell) is interleaved in registers and stored as 3 full vectors.
-// Block invariant (binning): indices ascend within a block and only a padded tail repeats the last one, so the
-// run is consecutive iff it spans W − 1 and its last two lanes differ.
-[[gnu::always_inline]] inline void write3(float* out, const std::int32_t* index, const vf v[3]) {
-  if (index[W - 1] - index[0] == W - 1 && index[W - 1] != index[W - 2]) {
-    float* o = out + 3 * static_cast<std::size_t>(index[0]);
-#pragma GCC unroll 3
-    for (int k = 0; k < 3; ++k) {
-      const vi m1 = loadi(kInterleave.m[k][0]), m2 = loadi(kInterleave.m[k][1]);
-      store(o + k * W, permute2(permute2(v[0], v[1], m1), v[2], m2));
-    }
-    return;
-  }
-  float t[3][W];
-  for (int r = 0; r < 3; ++r) store(t[r], v[r]);
-#pragma GCC unroll 16
-  for (int l = 0; l < W; ++l) {
-    float* o = out + 3 * static_cast<std::size_t>(index[l]);
-    o[0] = t[0][l];
-    o[1] = t[1][l];
-    o[2] = t[2][l];
-  }
-}
-
 typedef double vd __attribute__((vector_size(8 * W)));
 
-// The double outputs (Outputs::positions64 / normals64) of one block range: out[3·index[l] + r] = centre[r] +
-// double(v[r][l]) for positions, double(v[r][l]) for normals (the arithmetic of read_results_into). A run of W
-// consecutive indices is interleaved in registers as write3 does, widened and stored as 3 double vectors; others lane
-// by lane.
-struct DoubleOut {
+// Where one block range's results go (Outputs): float positions / normals relative to the lattice centre, or the
+// double ones of Outputs::positions64 / normals64, positions with the centre added (the arithmetic of
+// read_results_into: centre[r] + double(value)).
+struct Writer {
+  const Outputs& O;
   vd centre[3];  // stream element k·W + j of a run: centre[(k·W + j) mod 3]
-  explicit DoubleOut(const Outputs& O) {
+  explicit Writer(const Outputs& o) : O(o) {
     for (int k = 0; k < 3; ++k)
       for (int j = 0; j < W; ++j) centre[k][j] = O.centre[(k * W + j) % 3];
   }
-  template <bool kAdd>
-  [[gnu::always_inline]] void write3(double* out, const std::int32_t* index, const vf v[3]) const {
+
+  // out[3·index[l] + r] = v[r][l] (+ centre[r] for double positions): W vertices written in the caller's vertex
+  // order. A run of W consecutive indices (common: binning keeps vertex order inside a cell) is interleaved in
+  // registers and stored as 3 full vectors (widened to double for double outputs). Block invariant (binning):
+  // indices ascend within a block and only a padded tail repeats the last one, so the run is consecutive iff it spans
+  // W − 1 and its last two lanes differ.
+  template <class T, bool kAdd>
+  [[gnu::always_inline]] void write3(T* out, const std::int32_t* index, const vf v[3]) const {
     if (index[W - 1] - index[0] == W - 1 && index[W - 1] != index[W - 2]) {
-      double* o = out + 3 * static_cast<std::size_t>(index[0]);
+      T* o = out + 3 * static_cast<std::size_t>(index[0]);
 #pragma GCC unroll 3
       for (int k = 0; k < 3; ++k) {
         const vi m1 = loadi(kInterleave.m[k][0]), m2 = loadi(kInterleave.m[k][1]);
-        vd d = __builtin_convertvector(permute2(permute2(v[0], v[1], m1), v[2], m2), vd);
-        if constexpr (kAdd) d = centre[k] + d;
-        std::memcpy(o + k * W, &d, sizeof d);
+        const vf f = permute2(permute2(v[0], v[1], m1), v[2], m2);
+        if constexpr (std::is_same_v<T, float>) {
+          store(o + k * W, f);
+        } else {
+          vd d = __builtin_convertvector(f, vd);
+          if constexpr (kAdd) d = centre[k] + d;
+          std::memcpy(o + k * W, &d, sizeof d);
+        }
       }
       return;
     }
@@ -226,30 +213,33 @@ struct DoubleOut {
     for (int r = 0; r < 3; ++r) store(t[r], v[r]);
 #pragma GCC unroll 16
     for (int l = 0; l < W; ++l) {
-      double* o = out + 3 * static_cast<std::size_t>(index[l]);
+      T* o = out + 3 * static_cast<std::size_t>(index[l]);
 #pragma GCC unroll 3
-      for (int r = 0; r < 3; ++r) o[r] = kAdd ? centre[0][r] + double(t[r][l]) : double(t[r][l]);
+      for (int r = 0; r < 3; ++r) {
+        if constexpr (std::is_same_v<T, float>)
+          o[r] = t[r][l];
+        else
+          o[r] = kAdd ? centre[0][r] + double(t[r][l]) : double(t[r][l]);
+      }
     }
   }
+  [[gnu::always_inline]] void positions(const std::int32_t* index, const vf P[3]) const {
+    if (O.positions64)
+      write3<double, true>(O.positions64, index, P);
+    else
+      write3<float, false>(O.positions, index, P);
+  }
+  [[gnu::always_inline]] void normals(const std::int32_t* index, const vf N[3]) const {
+    if (O.normals64)
+      write3<double, false>(O.normals64, index, N);
+    else
+      write3<float, false>(O.normals, index, N);
+  }
 };
-[[gnu::always_inline]] inline void write_positions(const Outputs& O, const DoubleOut& D, const std::int32_t* index,
-                                                   const vf P[3]) {
-  if (O.positions64)
-    D.write3<true>(O.positions64, index, P);
-  else
-    write3(O.positions, index, P);
-}
-[[gnu::always_inline]] inline void write_normals(const Outputs& O, const DoubleOut& D, const std::int32_t* index,
-                                                 const vf N[3]) {
-  if (O.normals64)
-    D.write3<false>(O.normals64, index, N);
-  else
-    write3(O.normals, index, N);
-}
 
 template <int OU, int OV, int OW, bool kNormals>
 void rest_blocks(const CellTables& T, const BlockArrays& B, const Outputs& O, std::size_t b0, std::size_t b1) {
-  const DoubleOut D(O);
+  const Writer out(O);
   for (std::size_t b = b0; b < b1; ++b) {
     const std::size_t cell = static_cast<std::size_t>(B.cell[b]);
     const float* C = T.coef + cell * static_cast<std::size_t>(T.stride);
@@ -262,11 +252,11 @@ void rest_blocks(const CellTables& T, const BlockArrays& B, const Outputs& O, st
         eval_jacobian<OU, OV, OW>(C, x, y, z, P, Du, Dv, Dw);
         const vf n[3] = {load(B.nx + base), load(B.ny + base), load(B.nz + base)};
         map_normal(T.normal_matrix + 9 * cell, n, Du, Dv, Dw, N);
-        write_normals(O, D, B.index + base, N);
+        out.normals(B.index + base, N);
       } else {
         eval_value<OU, OV, OW>(C, x, y, z, P);
       }
-      write_positions(O, D, B.index + base, P);
+      out.positions(B.index + base, P);
     }
   }
 }
@@ -341,7 +331,7 @@ template <int OU, int OV, int OW, bool kNormals>
 void offset_blocks(const CellTables& T, const BlockArrays& B, const Outputs& O, std::size_t b0, std::size_t b1,
                    const float* off) {
   const int Su = T.axis[0].span_count, Sv = T.axis[1].span_count;
-  const DoubleOut D(O);
+  const Writer out(O);
   const AxisLanes au(T.axis[0]), av(T.axis[1]), aw(T.axis[2]);
   for (std::size_t b = b0; b < b1; ++b) {
     for (int ch = 0; ch < kChunks; ++ch) {
@@ -375,8 +365,8 @@ void offset_blocks(const CellTables& T, const BlockArrays& B, const Outputs& O, 
         }
         for (int r = 0; r < 3; ++r) P[r] = select(mask, Pc[r], P[r]);
       }
-      write_positions(O, D, B.index + base, P);
-      if constexpr (kNormals) write_normals(O, D, B.index + base, N);
+      out.positions(B.index + base, P);
+      if constexpr (kNormals) out.normals(B.index + base, N);
     }
   }
 }
