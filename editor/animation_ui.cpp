@@ -103,19 +103,9 @@ void AnimationUi::advance(double dt_s) {
 
 namespace {
 
-// The Recorder's options for an executed anim.record (out_dir: `fallback` when the line gave none).
-RecordOptions record_options(const core::RecordRequest& r, const fs::path& fallback) {
-  RecordOptions ro;
-  ro.out_dir = r.out_dir.empty() ? fallback : r.out_dir;
-  ro.format = r.format;
-  ro.frame_first = r.frame_first;
-  ro.frame_last = r.frame_last;
-  ro.width = r.width;
-  ro.height = r.height;
-  ro.glb = r.glb;
-  ro.mp4 = r.mp4;
-  ro.camera = r.camera;
-  return ro;
+// Where an executed anim.record writes: the folder its line named, else `fallback`.
+fs::path out_dir_of(const core::RecordRequest& r, const fs::path& fallback) {
+  return r.out_dir.empty() ? fallback : r.out_dir;
 }
 
 }  // namespace
@@ -123,7 +113,8 @@ RecordOptions record_options(const core::RecordRequest& r, const fs::path& fallb
 bool AnimationUi::start_recording(const nlohmann::json& line, const std::function<void()>& restore_context) {
   if (recorder_ || !session_.execute(line)) return false;  // anim.record validates range, format, size and camera
   const auto* cmd = dynamic_cast<const core::AnimRecordCommand*>(&session_.history().last_executed());
-  if (cmd) begin_recording(session_.scene(), record_options(cmd->request(), default_folder()));
+  if (cmd)
+    begin_recording(session_.scene(), record_options(cmd->request(), out_dir_of(cmd->request(), default_folder())));
   if (restore_context) restore_context();
   return recorder_ != nullptr;
 }
@@ -161,7 +152,7 @@ bool AnimationUi::run_again(std::size_t k, const std::function<void()>& restore_
     return false;
   }
   // The frames as they were recorded at that step: the scene it ran on, its request (range resolved then).
-  begin_recording(*o.scene, record_options(cmd->request(), default_folder()));
+  begin_recording(*o.scene, record_options(cmd->request(), out_dir_of(cmd->request(), default_folder())));
   if (recorder_) {
     cmd->mark_written();
     o.scene.reset();

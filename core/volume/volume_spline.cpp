@@ -197,23 +197,32 @@ struct TensorBasis {
     axis_basis<K>(s, 1, p.y, derivatives, y);
     axis_basis<K>(s, 2, p.z, derivatives, z);
   }
+  // The x-row of control points used at y index b and z index c (indices into the axes' bases).
+  const float* row(int b, int c) const { return cp + z.idx[c] * nxy + y.idx[b] * nx; }
   AxisBasis<K> x, y, z;
   std::size_t nx, nxy;
   const float* cp;
 };
+
+VolumeJet make_jet(double v, double dx, double dy, double dz, double dxx, double dyy, double dzz, double dxy,
+                   double dxz, double dyz) {
+  VolumeJet j;
+  j.value = v;
+  j.gradient = {dx, dy, dz};
+  j.hessian = glm::dmat3(dxx, dxy, dxz, dxy, dyy, dyz, dxz, dyz, dzz);
+  return j;
+}
 
 // D at x with the order K a compile-time constant (the loops unroll).
 template <int K>
 double value_k(const VolumeSpline& s, const glm::dvec3& x) {
   const TensorBasis<K> t(s, x, false);
   const AxisBasis<K>&bx = t.x, &by = t.y, &bz = t.z;
-  const std::size_t nx = t.nx, nxy = t.nxy;
-  const float* cp = t.cp;
   double sum = 0.0;
   for (int c = 0; c < K; ++c) {
     double sy = 0.0;
     for (int b = 0; b < K; ++b) {
-      const float* row = cp + bz.idx[c] * nxy + by.idx[b] * nx;
+      const float* row = t.row(b, c);
       double sx = 0.0;
       for (int a = 0; a < K; ++a) sx += bx.w[a] * row[bx.idx[a]];
       sy += by.w[b] * sx;
@@ -228,13 +237,11 @@ template <int K>
 VolumeJet jet_k(const VolumeSpline& s, const glm::dvec3& x) {
   const TensorBasis<K> t(s, x, true);
   const AxisBasis<K>&bx = t.x, &by = t.y, &bz = t.z;
-  const std::size_t nx = t.nx, nxy = t.nxy;
-  const float* cp = t.cp;
   double v = 0, dx = 0, dy = 0, dz = 0, dxx = 0, dyy = 0, dzz = 0, dxy = 0, dxz = 0, dyz = 0;
   for (int c = 0; c < K; ++c) {
     double yv = 0, yx = 0, yy = 0, yxx = 0, yyy = 0, yxy = 0;
     for (int b = 0; b < K; ++b) {
-      const float* row = cp + bz.idx[c] * nxy + by.idx[b] * nx;
+      const float* row = t.row(b, c);
       double s0 = 0, s1 = 0, s2 = 0;
       for (int a = 0; a < K; ++a) {
         const double p = row[bx.idx[a]];
@@ -247,24 +254,23 @@ VolumeJet jet_k(const VolumeSpline& s, const glm::dvec3& x) {
     v += w * yv, dx += w * yx, dy += w * yy, dxx += w * yxx, dyy += w * yyy, dxy += w * yxy;
     dz += dw * yv, dxz += dw * yx, dyz += dw * yy, dzz += d2w * yv;
   }
-  VolumeJet j;
-  j.value = v;
-  j.gradient = {dx, dy, dz};
-  j.hessian = glm::dmat3(dxx, dxy, dxz, dxy, dyy, dyz, dxz, dyz, dzz);
-  return j;
+  return make_jet(v, dx, dy, dz, dxx, dyy, dzz, dxy, dxz, dyz);
 }
 
 #if defined(__SSE2__)
+// The four control points of the cubic x-row at (b, c), as floats.
+inline __m128 load_row4(const TensorBasis<4>& t, int b, int c) {
+  const float* row = t.row(b, c);
+  const AxisBasis<4>& bx = t.x;
+  if (bx.idx[3] - bx.idx[0] == 3) return _mm_loadu_ps(row + bx.idx[0]);
+  return _mm_setr_ps(row[bx.idx[0]], row[bx.idx[1]], row[bx.idx[2]], row[bx.idx[3]]);
+}
+
 // The cubic jet with SSE2 pairs of doubles: per x-row the pairs (Σ w·p, Σ w′·p) and Σ w″·p, then y and z with the
 // partial sums paired so that each multiply-add updates two results. Same operations as jet_k<4>, in another order.
 VolumeJet jet_cubic_sse2(const VolumeSpline& s, const glm::dvec3& x) {
-  AxisBasis<4> bx, by, bz;
-  axis_basis<4>(s, 0, x.x, true, bx);
-  axis_basis<4>(s, 1, x.y, true, by);
-  axis_basis<4>(s, 2, x.z, true, bz);
-  const std::size_t nx = s.dims()[0], nxy = nx * s.dims()[1];
-  const float* cp = s.control_points().data();
-  const bool contiguous = bx.idx[3] - bx.idx[0] == 3;
+  const TensorBasis<4> t(s, x, true);
+  const AxisBasis<4>&bx = t.x, &by = t.y, &bz = t.z;
   __m128d wdw[4];  // (w_a, w′_a)
   for (int a = 0; a < 4; ++a) wdw[a] = _mm_setr_pd(bx.w[a], bx.dw[a]);
   const __m128d d2w01 = _mm_setr_pd(bx.d2w[0], bx.d2w[1]), d2w23 = _mm_setr_pd(bx.d2w[2], bx.d2w[3]);
@@ -273,12 +279,7 @@ VolumeJet jet_cubic_sse2(const VolumeSpline& s, const glm::dvec3& x) {
   for (int c = 0; c < 4; ++c) {
     __m128d yv_yx = _mm_setzero_pd(), yy_yxy = _mm_setzero_pd(), yxx_yyy = _mm_setzero_pd();
     for (int b = 0; b < 4; ++b) {
-      const float* row = cp + bz.idx[c] * nxy + by.idx[b] * nx;
-      __m128 pf;
-      if (contiguous)
-        pf = _mm_loadu_ps(row + bx.idx[0]);
-      else
-        pf = _mm_setr_ps(row[bx.idx[0]], row[bx.idx[1]], row[bx.idx[2]], row[bx.idx[3]]);
+      const __m128 pf = load_row4(t, b, c);
       const __m128d p01 = _mm_cvtps_pd(pf), p23 = _mm_cvtps_pd(_mm_movehl_ps(pf, pf));
       // (s0, s1) = Σ_a p_a·(w_a, w′_a); s2 = Σ_a p_a·w″_a.
       const __m128d s01 = _mm_add_pd(
@@ -306,36 +307,21 @@ VolumeJet jet_cubic_sse2(const VolumeSpline& s, const glm::dvec3& x) {
   _mm_store_pd(r + 4, dxx_dyy);
   _mm_store_pd(r + 6, dz_dxz);
   _mm_store_pd(r + 8, dyz_dzz);
-  const double v = r[0], dx = r[1], dy = r[2], dxy = r[3], dxx = r[4], dyy = r[5], dz = r[6], dxz = r[7], dyz = r[8],
-               dzz = r[9];
-  VolumeJet j;
-  j.value = v;
-  j.gradient = {dx, dy, dz};
-  j.hessian = glm::dmat3(dxx, dxy, dxz, dxy, dyy, dyz, dxz, dyz, dzz);
-  return j;
+  // r: v, dx, dy, dxy, dxx, dyy, dz, dxz, dyz, dzz
+  return make_jet(r[0], r[1], r[2], r[6], r[4], r[5], r[9], r[3], r[7], r[8]);
 }
 
 // The cubic value with SSE2 pairs: each x-row's products summed in two lanes, which the y and z weights scale alike,
 // and the lanes added at the end. The same products as value_k<4>, summed in another order.
 double value_cubic_sse2(const VolumeSpline& s, const glm::dvec3& x) {
-  AxisBasis<4> bx, by, bz;
-  axis_basis<4>(s, 0, x.x, false, bx);
-  axis_basis<4>(s, 1, x.y, false, by);
-  axis_basis<4>(s, 2, x.z, false, bz);
-  const std::size_t nx = s.dims()[0], nxy = nx * s.dims()[1];
-  const float* cp = s.control_points().data();
-  const bool contiguous = bx.idx[3] - bx.idx[0] == 3;
+  const TensorBasis<4> t(s, x, false);
+  const AxisBasis<4>&bx = t.x, &by = t.y, &bz = t.z;
   const __m128d w01 = _mm_setr_pd(bx.w[0], bx.w[1]), w23 = _mm_setr_pd(bx.w[2], bx.w[3]);
   __m128d sum = _mm_setzero_pd();
   for (int c = 0; c < 4; ++c) {
     __m128d sy = _mm_setzero_pd();
     for (int b = 0; b < 4; ++b) {
-      const float* row = cp + bz.idx[c] * nxy + by.idx[b] * nx;
-      __m128 pf;
-      if (contiguous)
-        pf = _mm_loadu_ps(row + bx.idx[0]);
-      else
-        pf = _mm_setr_ps(row[bx.idx[0]], row[bx.idx[1]], row[bx.idx[2]], row[bx.idx[3]]);
+      const __m128 pf = load_row4(t, b, c);
       const __m128d sx =
           _mm_add_pd(_mm_mul_pd(_mm_cvtps_pd(pf), w01), _mm_mul_pd(_mm_cvtps_pd(_mm_movehl_ps(pf, pf)), w23));
       sy = _mm_add_pd(sy, _mm_mul_pd(_mm_set1_pd(by.w[b]), sx));

@@ -132,6 +132,20 @@ std::pair<int, int> record_range(const core::Scene& scene, const RecordOptions& 
   return {options.frame_first, options.frame_last};
 }
 
+RecordOptions record_options(const core::RecordRequest& request, std::filesystem::path out_dir) {
+  RecordOptions ro;
+  ro.out_dir = std::move(out_dir);
+  ro.format = request.format;
+  ro.frame_first = request.frame_first;
+  ro.frame_last = request.frame_last;
+  ro.width = request.width;
+  ro.height = request.height;
+  ro.glb = request.glb;
+  ro.mp4 = request.mp4;
+  ro.camera = request.camera;
+  return ro;
+}
+
 void validate_record_options(const core::Scene& scene, const RecordOptions& options) {
   if (options.out_dir.empty()) throw std::invalid_argument("no output folder given for the recording");
   if (options.format != "png" && options.format != "exr")

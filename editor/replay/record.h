@@ -32,6 +32,10 @@
 #include "core/ffd/ffd_evaluator.h"
 #include "core/scene/scene.h"
 
+namespace trispline::core {
+struct RecordRequest;
+}
+
 namespace trispline::editor {
 
 struct RecordOptions {
@@ -52,6 +56,10 @@ struct RecordOptions {
   core::FfdBackend ffd_backend = core::FfdBackend::cpu_ref;  // geometry path (cpu_ref: bit-exact frames)
   std::optional<core::Camera> camera;  // the view every frame is rendered from (anim.record's camera); unset: below
 };
+
+// The options of an executed anim.record (its resolved frames, size, format, outputs and camera), written into
+// `out_dir`.
+RecordOptions record_options(const core::RecordRequest& request, std::filesystem::path out_dir);
 
 // What a recording produced (report.json "record", the editor's message log).
 struct RecordResult {

@@ -121,17 +121,8 @@ int run_recordings(const core::Scene& scene, const std::vector<PendingRecording>
     }
     nlohmann::json all = nlohmann::json::array();
     for (const PendingRecording& p : pending) {
-      RecordOptions ro;
-      ro.out_dir = options.out_dir;  // headless replay writes under --out; the line's "out" was the editor's
-      ro.format = p.request.format;
-      ro.frame_first = p.request.frame_first;
-      ro.frame_last = p.request.frame_last;
-      ro.width = p.request.width;
-      ro.height = p.request.height;
-      ro.glb = p.request.glb;
-      ro.mp4 = p.request.mp4;
-      ro.camera = p.request.camera;
-      nlohmann::json j = record_into(p.scene, ro).to_json();
+      // Headless replay writes under --out; the line's "out" was the editor's.
+      nlohmann::json j = record_into(p.scene, record_options(p.request, options.out_dir)).to_json();
       j["line"] = p.line;
       all.push_back(j);
     }
