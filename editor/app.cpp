@@ -279,7 +279,7 @@ void App::frame() {
       }
   }
   if (toggles_.show_side_panels) {
-    ui::ScenePanelState sps{selected_, session_.has_command("scene.remove"), &transform_fields_};
+    ui::ScenePanelState sps{selected_, session_.has_command("scene.remove"), &transform_fields_, &text_params_};
     handle_scene(ui::draw_scene_panel(layout.scene, session_.scene(), sps));
     const ui::HistoryPanelResult hr = ui::draw_history_panel(layout.history, session_.history_view());
     run_history_request(hr, session_, background_, anim_, [this] { window_->make_current(); });

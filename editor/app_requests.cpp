@@ -179,6 +179,14 @@ void App::handle_scene(const ui::SceneRequest& r) {
       if (session_.execute(line)) selected_ = line["name"];
     });
   }
+  if (r.kind == K::AddText) {
+    core::SceneTextParams p = text_params_;
+    p.object.name = session_.scene().unique_name("text");
+    const nlohmann::json line = core::SceneTextCommand::schema().to_json(p);
+    tool_ctx_.defer("Adding text", [this, line] {
+      if (session_.execute(line)) selected_ = line["name"];
+    });
+  }
   if (r.kind == K::Remove && session_.scene().find_volume(r.name)) {
     if (session_.execute(core::VolumeRemoveCommand::schema().to_json({r.name}))) selected_.clear();
     return;

@@ -19,6 +19,7 @@
 #include "core/commands/object_transform.h"
 #include "core/commands/scene_load.h"
 #include "core/commands/scene_primitive.h"
+#include "core/commands/scene_text.h"
 #include "core/commands/scene_remove.h"
 #include "core/image/image_io.h"
 #include "core/volume/volume_io.h"
@@ -131,9 +132,10 @@ class App {
   ToolContext tool_ctx_;
   Toolbox tools_;
   TransformModal transform_;
-  ui::TransformFields transform_fields_;           // the Scene panel's Location / Rotation / Scale while edited
-  GuaranteesView guarantees_;                      // View > Error bounds / Fold certificate
-  std::optional<Tool::LivePreview> live_preview_;  // this frame's tool preview (the Press tool's lattice)
+  core::SceneTextParams text_params_{.text = "Text"};  // the Scene panel's Add ▸ Text… dialog
+  ui::TransformFields transform_fields_;               // the Scene panel's Location / Rotation / Scale while edited
+  GuaranteesView guarantees_;                          // View > Error bounds / Fold certificate
+  std::optional<Tool::LivePreview> live_preview_;      // this frame's tool preview (the Press tool's lattice)
   bool transform_frame_ = false;  // the modal transform had the input this frame (the viewport ignores it)
 
   ui::LogPanel log_panel_;

@@ -1,11 +1,13 @@
 #include "ui/scene_panel.h"
 
 #include <imgui.h>
+#include <imgui_stdlib.h>
 
 #include <algorithm>
 #include <cmath>
 
 #include "ui/gui_probe.h"
+#include "ui/param_widgets.h"
 #include "ui/theme.h"
 
 namespace trispline::ui {
@@ -146,6 +148,35 @@ void draw_volume_row(const core::VolumeObject& v, const ScenePanelState& state, 
   ImGui::PopID();
 }
 
+constexpr const char* kTextDialog = "Add text";
+
+// The Add ▸ Text… dialog: the text, its size and depth (scene.text's declared fields). True when Add was pressed.
+bool draw_text_dialog(core::SceneTextParams& p) {
+  bool add = false;
+  if (!ImGui::BeginPopupModal(kTextDialog, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return false;
+  const auto& schema = core::SceneTextCommand::schema();
+  row_label("Text");
+  if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
+  ImGui::SetNextItemWidth(280);
+  ImGui::InputText("##text", &p.text);
+  const bool entered = ImGui::IsItemDeactivated() && ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Enter), false);
+  probe::item("scene.text.text");
+  if (ImGui::IsItemHovered()) tooltip(param_tooltip(schema.find("text")->doc).c_str());
+  param_widget(schema, "size", p);
+  param_widget(schema, "depth", p);
+  ImGui::Spacing();
+  ImGui::BeginDisabled(p.text.empty());
+  add = ImGui::Button("Add", ImVec2(120, 0)) || (entered && !p.text.empty());
+  probe::item("scene.text.add");
+  ImGui::EndDisabled();
+  ImGui::SameLine();
+  if (ImGui::Button("Cancel", ImVec2(120, 0)) || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false))
+    ImGui::CloseCurrentPopup();
+  if (add) ImGui::CloseCurrentPopup();
+  ImGui::EndPopup();
+  return add;
+}
+
 }  // namespace
 
 SceneRequest draw_scene_panel(const Rect& rect, const core::Scene& scene, const ScenePanelState& state) {
@@ -160,12 +191,22 @@ SceneRequest draw_scene_panel(const Rect& rect, const core::Scene& scene, const 
           "B-spline whose iso-surface and silhouettes are drawn");
     ImGui::SameLine();
     if (ImGui::Button("Add")) ImGui::OpenPopup("##add_primitive");
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Add a primitive (scene.primitive)");
+    probe::item("scene.add");
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Add a primitive (scene.primitive) or a line of text (scene.text)");
+    bool open_text = false;
     if (ImGui::BeginPopup("##add_primitive")) {
       for (const char* kind : kPrimitiveKinds)
         if (ImGui::MenuItem(kind)) req = {SceneRequest::Kind::AddPrimitive, kind};
+      if (state.text) {
+        ImGui::Separator();
+        open_text = ImGui::MenuItem("Text...");
+        probe::item("scene.add.text");
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("A line of text as an extruded mesh (scene.text)");
+      }
       ImGui::EndPopup();
     }
+    if (open_text) ImGui::OpenPopup(kTextDialog);
+    if (state.text && draw_text_dialog(*state.text)) req.kind = SceneRequest::Kind::AddText;
     ImGui::SameLine();
     ImGui::BeginDisabled(state.selected.empty() || !state.can_remove || !scene.find(state.selected));
     if (ImGui::Button("Remove")) req = {SceneRequest::Kind::Remove, state.selected};

@@ -1,12 +1,14 @@
 // trispline::ui Scene panel — the objects of a core::Scene (viewport eye, render camera, colour swatch, name, vertex
 // count) and its volumes (same row, "volume" for the count; the Volume panel, ui/volume_panel.h, shows the selected
-// one), selection, the buttons that *request* changes: Load…, Add primitive, Remove, and the selected object's Location
+// one), selection, the buttons that *request* changes: Load…, Add (a primitive, or Text… through a dialog whose
+// fields are scene.text's), Remove, and the selected object's Location
 // / Rotation / Scale fields (typed values, one request when a field is left after an edit). The panel never edits the
 // scene: it returns a SceneRequest that the editor turns into a command.
 #pragma once
 
 #include <string>
 
+#include "core/commands/scene_text.h"
 #include "core/scene/scene.h"
 #include "ui/layout.h"
 
@@ -14,7 +16,7 @@ namespace trispline::ui {
 
 struct SceneRequest {
   // ToggleVisible / ToggleRender: the eye / camera icon was clicked (object.visibility with the flag flipped).
-  enum class Kind { None, Select, ToggleVisible, ToggleRender, Load, AddPrimitive, Remove, Frame, Transform };
+  enum class Kind { None, Select, ToggleVisible, ToggleRender, Load, AddPrimitive, AddText, Remove, Frame, Transform };
   Kind kind = Kind::None;
   std::string name;  // object or volume name, or the primitive kind (AddPrimitive)
   // Transform: the edited row as object.transform's field ("translate", "rotate_deg", "scale") and its new value.
@@ -36,6 +38,8 @@ struct ScenePanelState {
   std::string selected;                  // selected object name ("" = none)
   bool can_remove = true;                // false when no remove command is registered
   TransformFields* transform = nullptr;  // null: no Transform section
+  // The Add ▸ Text… dialog's fields (kept by the editor; AddText asks to run scene.text with them); null: no Text item.
+  core::SceneTextParams* text = nullptr;
 };
 
 // The primitive kinds of the scene.primitive command, in menu order.

@@ -58,7 +58,10 @@ TimelineObject timeline_object(const core::Scene& scene, const std::string& name
   std::sort(o.channel_keys.begin(), o.channel_keys.end());
   const double t = scene.timeline.time_of_frame(frame);
   o.offset = so->offset_keys.empty() ? so->param_offset : core::evaluate_offset_keys(so->offset_keys, t);
-  if (so->source.rfind("primitive:", 0) != 0) o.source = so->source;
+  // A file the object was loaded from (a generated object's source is "primitive:…", "text:…" or "ddm.bake:…").
+  const bool generated = so->source.rfind("primitive:", 0) == 0 || so->source.rfind("text:", 0) == 0 ||
+                         so->source.rfind("ddm.bake:", 0) == 0;
+  if (!generated) o.source = so->source;
   if (so->clip) o.clip = so->clip->clip->name();
   return o;
 }

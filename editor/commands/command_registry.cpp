@@ -33,6 +33,7 @@
 #include "core/commands/scene_load.h"
 #include "core/commands/scene_primitive.h"
 #include "core/commands/scene_remove.h"
+#include "core/commands/scene_text.h"
 #include "core/commands/volume_export.h"
 #include "core/commands/volume_iso.h"
 #include "core/commands/volume_load.h"
@@ -76,6 +77,7 @@ const CommandRegistry& CommandRegistry::builtin() {
     CommandRegistry r;
     r.add<core::SceneLoadCommand>();
     r.add<core::ScenePrimitiveCommand>();
+    r.add<core::SceneTextCommand>();
     r.add<core::SceneRemoveCommand>();
     r.add<core::ObjectTransformCommand>();
     r.add<core::ObjectVisibilityCommand>();
