@@ -137,6 +137,9 @@ std::optional<SceneObject> DdmAnimateCommand::build(const Scene& scene) {
     const bool remove = p_.morph->size() == 1 && p_.morph->front().empty();
     layer->morph_sources.clear(), layer->morph_tiles.clear();
     if (!remove) {
+      if (layer->tile_clip)
+        throw CommandError("field 'morph_tile': the layer's tile plays a clip (tile_clip); it cannot morph too",
+                           "morph_tile");
       if (p_.morph->size() != layer->tiles.size())
         throw CommandError("field 'morph_tile': the layer has " + std::to_string(layer->tiles.size()) +
                                " tiles; give one morph tile per tile (morph_tiles)",

@@ -118,6 +118,14 @@ ParamSchema<S> make_layer_schema(bool fill) {
               {.default_text = "[]",
                .type_text = "[string,…]",
                .help = "More tiles for the layer (as tile), chosen per cell by choice"})
+      .choice("tile_up", &S::tile_up, {"x", "y", "z"},
+              {.write = ParamWrite::UnlessDefault,
+               .help = "The tile files' axis that stands up from the surface (w): y for glTF figures, which stand on "
+                       "y; generated tiles stand on z"})
+      .field("tile_clip", &S::tile_clip,
+             {.type_text = "string",
+              .help = "An articulated tile (seed Fig. 5.13): every tile plays this animation of the glTF tile file "
+                      "(\"\" = its first), looping from time 0; one tile, no morph"})
       .choice("choice", &S::choice, {"pattern", "random"},
               {.write_if = several,
                .help = "With several tiles: cell k of row r gets tile (k + r) mod #tiles, or one drawn with seed"})
@@ -169,6 +177,8 @@ ParamSchema<S> make_layer_schema(bool fill) {
               .type_text = "[r,g,b]",
               .help = "The layer's own colour"})
       .check([fill](S& s) {  // the layout's own checks, before anything is built
+        if (s.tile_clip && (s.tiles.size() != 1 || is_generated_ddm_tile(s.tiles[0])))
+          params::fail("tile_clip", "plays an animation of the layer's one tile, a glTF file");
         if (s.counts && s.tile_size)
           params::fail("tile_size", "give tile_size (world units) or counts (cells per chart), not both");
         if (fill && !s.counts && !s.tile_size) params::fail("counts", "ddm.fill needs counts or tile_size");
@@ -213,15 +223,36 @@ std::filesystem::path resolve_ddm_tile(const std::string& name, const CommandCon
   return name.empty() || is_generated_ddm_tile(name) ? std::filesystem::path() : ctx.resolve(name);
 }
 
-DdmTile load_ddm_tile(const std::string& name, const std::filesystem::path& path, const char* field) {
+DdmTile load_ddm_tile(const std::string& name, const std::filesystem::path& path, const char* field, int up_axis) {
   if (is_generated_ddm_tile(name)) return make_ddm_tile(name);
   try {
     LoadedModel model = load_model(path);  // a textured tile keeps its materials (seed Fig. 5.12)
+    ddm_tile_up(model.mesh, up_axis);
     return canonical_ddm_tile(model.mesh, path.stem().string(), std::move(model.materials));
   } catch (const std::exception& e) {
     throw CommandError(std::string("field '") + field + "': " + e.what(), field);
   }
 }
+
+namespace {
+// The clip `clip` of the layer's one tile file, framed as its rest tile was (ddm_tile_up, canonical_ddm_tile_frame).
+// Throws CommandError (field "tile_clip").
+std::shared_ptr<const DdmTileClip> load_ddm_tile_clip(const DdmLayer& layer, const std::filesystem::path& path,
+                                                      const std::string& clip, int up_axis) {
+  try {
+    auto out = std::make_shared<DdmTileClip>();
+    out->clip = MeshClip::load(path, clip);
+    out->up_axis = up_axis;
+    TriMesh rest = load_model(path).mesh;
+    ddm_tile_up(rest, up_axis);
+    out->frame = canonical_ddm_tile_frame(rest, layer.tiles[0].name);
+    out->pose(layer.tiles[0], 0.0);  // the vertex counts agree and the first pose is finite
+    return out;
+  } catch (const std::exception& e) {
+    throw CommandError(std::string("field 'tile_clip': ") + e.what(), "tile_clip");
+  }
+}
+}  // namespace
 
 std::shared_ptr<DdmLayer> make_ddm_layer(const SceneObject& object, const std::string& name, const DdmLayerSpec& spec,
                                          bool fill, const ProgressSink* progress) {
@@ -229,9 +260,13 @@ std::shared_ptr<DdmLayer> make_ddm_layer(const SceneObject& object, const std::s
   auto layer = std::make_shared<DdmLayer>();
   layer->name = name;
   layer->tile_sources = spec.tiles;
+  const int up_axis = spec.tile_up == "x" ? 0 : spec.tile_up == "y" ? 1 : 2;
   for (std::size_t i = 0; i < spec.tiles.size(); ++i)
-    layer->tiles.push_back(
-        load_ddm_tile(spec.tiles[i], ddm_tile_file(spec.tiles, spec.tile_paths, i), i == 0 ? "tile" : "tiles"));
+    layer->tiles.push_back(load_ddm_tile(spec.tiles[i], ddm_tile_file(spec.tiles, spec.tile_paths, i),
+                                         i == 0 ? "tile" : "tiles", up_axis));
+  if (spec.tile_clip)
+    layer->tile_clip =
+        load_ddm_tile_clip(*layer, ddm_tile_file(spec.tiles, spec.tile_paths, 0), *spec.tile_clip, up_axis);
   layer->layout = spec.layout;
   layer->counts = spec.counts.value_or(glm::ivec2(1));
   layer->tile_size = spec.tile_size;

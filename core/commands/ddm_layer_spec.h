@@ -30,8 +30,10 @@ struct DdmLayerSpec {
   // Per tile: the file resolved against the log's folder by parse (lines are written back with it); empty for
   // generated tiles, and for tiles not read from a line (then the name is used as it is).
   std::vector<std::filesystem::path> tile_paths;
-  std::string choice = "pattern";  // with several tiles: "pattern" | "random"
-  std::int64_t seed = 0;           // "random"'s mt19937 seed
+  std::string tile_up = "z";             // the tile files' axis that stands up from the surface: "x" | "y" | "z"
+  std::optional<std::string> tile_clip;  // the glTF tile's animation to play (articulated); "" = its first
+  std::string choice = "pattern";        // with several tiles: "pattern" | "random"
+  std::int64_t seed = 0;                 // "random"'s mt19937 seed
   DdmLayout layout = DdmLayout::rect;
   std::optional<glm::ivec2> counts;  // cells per chart; unset: from tile_size, or [1, 1] without it
   std::optional<double> tile_size;   // world units: cells per chart from each chart's world size (not with counts)
@@ -55,8 +57,9 @@ std::string ddm_tile_file(const std::vector<std::string>& names, const std::vect
 // A tile a line names, resolved against the log's folder: empty for generated kinds and for "".
 std::filesystem::path resolve_ddm_tile(const std::string& name, const CommandContext& ctx);
 
-// Loads a tile: a generated kind or a mesh file made canonical. Throws CommandError (`field`) on failure.
-DdmTile load_ddm_tile(const std::string& name, const std::filesystem::path& path, const char* field);
+// Loads a tile: a generated kind or a mesh file turned so that its axis `up_axis` (0 x, 1 y, 2 z) is w, made
+// canonical. Throws CommandError (`field`) on failure.
+DdmTile load_ddm_tile(const std::string& name, const std::filesystem::path& path, const char* field, int up_axis = 2);
 
 // A new layer `name` from `spec` on `object` (its rest mesh, object space): tiles loaded, base built, every layout
 // cell filled (`fill`) or none, maps sampled, mesh evaluated. `progress` (may be null) is reported in [0, 1] and

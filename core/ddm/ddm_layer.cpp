@@ -36,7 +36,8 @@ double DdmLayer::height_at(double time_s) const {
 
 bool DdmLayer::animated() const {
   return (!morph_tiles.empty() && alpha_keys.size() >= 2) || offset_keys.size() >= 2 ||
-         offset_velocity != glm::dvec2(0.0) || rotate_keys.size() >= 2 || scale_keys.size() >= 2 || w_keys.size() >= 2;
+         offset_velocity != glm::dvec2(0.0) || rotate_keys.size() >= 2 || scale_keys.size() >= 2 ||
+         w_keys.size() >= 2 || tile_clip != nullptr;
 }
 
 std::vector<DdmTile> DdmLayer::tiles_at(double a) const {
@@ -47,10 +48,17 @@ std::vector<DdmTile> DdmLayer::tiles_at(double a) const {
   return out;
 }
 
+std::vector<DdmTile> DdmLayer::tiles_at_time(double time_s) const {
+  if (!tile_clip) return tiles_at(alpha_at(time_s));
+  if (tiles.size() != 1 || !morph_tiles.empty())
+    throw std::invalid_argument("layer '" + name + "': an articulated tile is the layer's only tile, without morph");
+  return {tile_clip->pose(tiles[0], time_s)};
+}
+
 TriMesh ddm_layer_mesh(const DdmLayer& layer, double time_s, const ProgressSink* progress) {
   if (!layer.maps) throw std::invalid_argument("layer '" + layer.name + "': no maps");
-  return ddm_evaluate(DdmMapsBase(layer.maps), layer.tiles_at(layer.alpha_at(time_s)), layer.instances,
-                      layer.height_at(time_s), layer.transform_at(time_s), layer.offset_at(time_s), progress);
+  return ddm_evaluate(DdmMapsBase(layer.maps), layer.tiles_at_time(time_s), layer.instances, layer.height_at(time_s),
+                      layer.transform_at(time_s), layer.offset_at(time_s), progress);
 }
 
 namespace {
@@ -130,7 +138,7 @@ TriMesh mesh_reusing(const DdmLayer& layer, const DdmLayer& previous) {
   }
   TriMesh added;
   if (!fresh.empty())
-    added = ddm_evaluate(DdmMapsBase(layer.maps), layer.tiles_at(layer.alpha_at(0.0)), fresh, layer.height_at(0.0),
+    added = ddm_evaluate(DdmMapsBase(layer.maps), layer.tiles_at_time(0.0), fresh, layer.height_at(0.0),
                          layer.transform_at(0.0), layer.offset_at(0.0));
   const InstanceStarts fresh_at = instance_starts(layer.tiles, fresh);
   const InstanceStarts at = instance_starts(layer.tiles, layer.instances);

@@ -70,6 +70,9 @@ struct DdmLayer {
   // add degrees to transform.rotate_deg, scale_keys multiply transform.scale, w_keys multiply height (the tile's w
   // along the base normal). Empty = that part does not move.
   std::vector<OffsetKey> rotate_keys, scale_keys, w_keys;
+  // Articulated tile (seed §5.5, Fig. 5.13): the layer's one tile plays this glTF clip (looping from scene time 0);
+  // null: the tile is still. Not with morph tiles.
+  std::shared_ptr<const DdmTileClip> tile_clip;
 
   // The layer at scene time 0 evaluated on the CPU reference over `maps` (what the GPU draws, object space).
   std::shared_ptr<const TriMesh> mesh;
@@ -83,12 +86,15 @@ struct DdmLayer {
   glm::dvec2 offset_at(double time_s) const;
   DdmTileTransform transform_at(double time_s) const;  // transform with rotate_keys and scale_keys applied
   double height_at(double time_s) const;               // height · w(t), world units per tile unit of w
-  bool animated() const;                               // α, the offset, the rotation, the scale or w changes with time
+  // α, the offset, the rotation, the scale or w changes with time, or the tile plays a clip
+  bool animated() const;
   // The tiles at α (tiles themselves when there are no morph tiles).
   std::vector<DdmTile> tiles_at(double alpha) const;
+  // The tiles at scene time `time_s`: the articulated tile posed (tile_clip), else tiles_at(alpha_at(time_s)).
+  std::vector<DdmTile> tiles_at_time(double time_s) const;
 };
 
-// The layer's mesh at scene time `time_s`: ddm_evaluate over DdmMapsBase(maps) with tiles_at(alpha_at(t)),
+// The layer's mesh at scene time `time_s`: ddm_evaluate over DdmMapsBase(maps) with tiles_at_time(t),
 // height_at(t), transform_at(t) and offset_at(t). Object space, #V = Σ instance tile vertex counts. Deterministic.
 // `progress` as ddm_evaluate's.
 TriMesh ddm_layer_mesh(const DdmLayer& layer, double time_s, const ProgressSink* progress = nullptr);

@@ -237,7 +237,7 @@ DdmTileMaterials ddm_tile_materials(const std::vector<DdmTile>& tiles) {
   return out;
 }
 
-DdmTile canonical_ddm_tile(const TriMesh& mesh, const std::string& name, std::shared_ptr<const MaterialSet> materials) {
+DdmTileFrame canonical_ddm_tile_frame(const TriMesh& mesh, const std::string& name) {
   if (mesh.triangles.empty()) throw std::invalid_argument("tile: '" + name + "' has no triangles");
   Aabb box;
   for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
@@ -252,7 +252,12 @@ DdmTile canonical_ddm_tile(const TriMesh& mesh, const std::string& name, std::sh
   const glm::dvec3 ext = box.size();
   if (!(ext.x > 0.0) || !(ext.y > 0.0))
     throw std::invalid_argument("tile: '" + name + "' is flat across (zero x or y extent): nothing to lay out");
-  const glm::dvec3 scale(1.0 / ext.x, 1.0 / ext.y, 1.0 / std::max(ext.x, ext.y));
+  return {box.lo, glm::dvec3(1.0 / ext.x, 1.0 / ext.y, 1.0 / std::max(ext.x, ext.y))};
+}
+
+DdmTile canonical_ddm_tile(const TriMesh& mesh, const std::string& name, std::shared_ptr<const MaterialSet> materials) {
+  const DdmTileFrame frame = canonical_ddm_tile_frame(mesh, name);
+  const glm::dvec3 &lo = frame.lo, &scale = frame.scale;
   DdmTile tile{name, mesh, nullptr};
   if (materials && !materials->empty()) {
     tile.materials = std::move(materials);
@@ -261,13 +266,13 @@ DdmTile canonical_ddm_tile(const TriMesh& mesh, const std::string& name, std::sh
     if (tile.mesh.uvs.size() != tile.mesh.vertex_count()) {  // a planar projection from above: (x, y) of the tile
       tile.mesh.uvs.resize(tile.mesh.vertex_count());
       for (std::size_t v = 0; v < tile.mesh.vertex_count(); ++v)
-        tile.mesh.uvs[v] = (glm::dvec2(mesh.positions[v]) - glm::dvec2(box.lo)) * glm::dvec2(scale);
+        tile.mesh.uvs[v] = (glm::dvec2(mesh.positions[v]) - glm::dvec2(lo)) * glm::dvec2(scale);
     }
   } else {
     tile.mesh.uvs.clear();
     tile.mesh.face_material.clear();
   }
-  for (glm::dvec3& p : tile.mesh.positions) p = (p - box.lo) * scale;
+  for (glm::dvec3& p : tile.mesh.positions) p = (p - lo) * scale;
   if (tile.mesh.normals.size() == tile.mesh.positions.size()) {
     for (glm::dvec3& n : tile.mesh.normals) {  // inverse transpose of diag(scale) = diag(1 / scale)
       const glm::dvec3 q = n / scale;
@@ -292,6 +297,40 @@ void require_same_ddm_topology(const DdmTile& a, const DdmTile& b) {
     if (a.mesh.triangles[f] != b.mesh.triangles[f])
       throw std::invalid_argument("tile: '" + a.name + "' and '" + b.name + "' differ at triangle " +
                                   std::to_string(f) + ": a metamorphosis needs the same topology");
+}
+
+glm::dvec3 ddm_tile_up(const glm::dvec3& p, int up_axis) {
+  if (up_axis == 1) return {p.z, p.x, p.y};
+  if (up_axis == 0) return {p.y, p.z, p.x};
+  return p;
+}
+
+void ddm_tile_up(TriMesh& mesh, int up_axis) {
+  for (glm::dvec3& p : mesh.positions) p = ddm_tile_up(p, up_axis);
+  for (glm::dvec3& n : mesh.normals) n = ddm_tile_up(n, up_axis);
+}
+
+DdmTile DdmTileClip::pose(const DdmTile& rest, double time_s) const {
+  if (!clip) return rest;
+  if (clip->vertex_count() != rest.mesh.vertex_count())
+    throw std::invalid_argument("tile '" + rest.name + "': its clip '" + clip->name() + "' moves " +
+                                std::to_string(clip->vertex_count()) + " vertices, the tile has " +
+                                std::to_string(rest.mesh.vertex_count()));
+  std::vector<glm::dvec3> positions, normals;
+  clip->pose(wrap_clip_time(time_s, 0.0, 1.0, clip->duration_s(), true), positions, normals);
+  DdmTile out = rest;
+  out.mesh.normals.resize(out.mesh.vertex_count());
+  for (std::size_t v = 0; v < positions.size(); ++v) {
+    const glm::dvec3 p = (ddm_tile_up(positions[v], up_axis) - frame.lo) * frame.scale;
+    const glm::dvec3 q = ddm_tile_up(normals[v], up_axis) / frame.scale;  // inverse transpose of diag(scale)
+    const double len = glm::length(q);
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z) || !(len > 0.0) || !std::isfinite(len))
+      throw std::invalid_argument("tile '" + rest.name + "': its clip's pose at " + std::to_string(time_s) +
+                                  " s is not finite at vertex " + std::to_string(v));
+    out.mesh.positions[v] = p;
+    out.mesh.normals[v] = q / len;
+  }
+  return out;
 }
 
 }  // namespace trispline::core

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/mesh/material.h"
+#include "core/mesh/mesh_clip.h"
 #include "core/mesh/tri_mesh.h"
 
 namespace trispline::core {
@@ -60,6 +61,30 @@ bool is_generated_ddm_tile(const std::string& kind);
 // Throws std::invalid_argument: no triangles, a non-finite position, a triangle index ≥ #V, a zero x or y extent.
 DdmTile canonical_ddm_tile(const TriMesh& mesh, const std::string& name,
                            std::shared_ptr<const MaterialSet> materials = nullptr);
+
+// The affine map canonical_ddm_tile applies to `mesh` (p ↦ (p − lo) · scale, componentwise). Throws as it does.
+struct DdmTileFrame {
+  glm::dvec3 lo{0.0}, scale{1.0};
+};
+DdmTileFrame canonical_ddm_tile_frame(const TriMesh& mesh, const std::string& name);
+
+// `p` turned so that the file's axis `up_axis` (0 x, 1 y, 2 z) becomes the tile's w (z): a cyclic permutation of the
+// coordinates, so no mirror (y up, as glTF files stand: (x, y, z) ↦ (z, x, y)). `mesh` turned in place, normals too.
+glm::dvec3 ddm_tile_up(const glm::dvec3& p, int up_axis);
+void ddm_tile_up(TriMesh& mesh, int up_axis);
+
+// An articulated tile (seed §5.5, Fig. 5.13: robots walking over the teapot): the tile plays a glTF clip. Its rest
+// mesh (the file's mesh, turned by up_axis) was made canonical with `frame`; every pose is turned and mapped by that
+// same frame, so the tile keeps its size and place in its cell while it moves. The clip loops from scene time 0.
+struct DdmTileClip {
+  std::shared_ptr<const MeshClip> clip;
+  int up_axis = 2;
+  DdmTileFrame frame;
+  // `rest` (the canonical rest tile: its triangles, uvs and materials kept) with the clip's positions and normals at
+  // scene time `time_s`. Deterministic. Throws std::invalid_argument when the clip's vertex count is not the tile's,
+  // or the pose is not finite.
+  DdmTile pose(const DdmTile& rest, double time_s) const;
+};
 
 // Throws std::invalid_argument unless `a` and `b` have the same vertex count and the same triangles (the
 // metamorphosis of seed Eq. 5.3 interpolates vertex by vertex). The message names both tiles and the first mismatch.

@@ -215,6 +215,7 @@ void require_finite(const std::vector<double>& v, const std::string& msg) {
 int pick_animation(const std::vector<std::string>& names, const std::string& clip, const std::string& file) {
   if (names.empty()) throw std::invalid_argument(file + ": the file has no animations");
   if (clip.empty()) return 0;
+  if (clip == kAllClips) return -1;
   if (clip[0] == '#' && clip.size() > 1 && clip.size() < 10 &&
       std::all_of(clip.begin() + 1, clip.end(), [](unsigned char c) { return std::isdigit(c); })) {
     const int i = std::stoi(clip.substr(1));
@@ -276,7 +277,7 @@ struct ClipReader {
   std::size_t read_primitive(const tinygltf::Mesh& gm, const tinygltf::Primitive& prim, Instance& in, std::size_t nt,
                              std::size_t count, std::size_t off);
   void bind_rest(const Pose& rest_pose);
-  double read_channels(int ai);
+  double read_channels(const std::vector<int>& ais);
 };
 
 // Nodes: rest TRS (or fixed matrix), parents, and an order with parents first.
@@ -471,9 +472,9 @@ void ClipReader::bind_rest(const Pose& rest_pose) {
   }
 }
 
-// Channels (§3.11) of animation ai: only translation/rotation/scale/weights; a channel without a node is ignored
-// (spec). Returns the clip's duration in seconds.
-double ClipReader::read_channels(int ai) {
+// Channels (§3.11) of the animations `ais`, one after another: only translation/rotation/scale/weights; a channel
+// without a node is ignored (spec). Returns the clip's duration in seconds.
+double ClipReader::read_channels(const std::vector<int>& ais) {
   const std::size_t nn = model.nodes.size();
   std::vector<char> moves(nn, 0), morphs(nn, 0);
   auto mark_up = [&](int n) {
@@ -486,60 +487,64 @@ double ClipReader::read_channels(int ai) {
     else
       for (int j : im.skins[in.skin].joints) mark_up(j);
   }
-  const auto& anim = model.animations[ai];
   bool animates_mesh = false;
   double duration = 0;
   // Each channel decodes its sampler (several may share one): the sum is checked before the first is read.
   std::size_t keys_and_values = 0;
-  for (const auto& ch : anim.channels) {
-    const std::string& p = ch.target_path;
-    if (ch.target_node < 0 || ch.sampler < 0 || ch.sampler >= static_cast<int>(anim.samplers.size()) ||
-        (p != "translation" && p != "rotation" && p != "scale" && p != "weights"))
-      continue;
-    const auto in = gltf_read::accessor_layout(model, anim.samplers[ch.sampler].input, "sampler input", path);
-    const auto out = gltf_read::accessor_layout(model, anim.samplers[ch.sampler].output, "sampler output", path);
-    keys_and_values += std::min(in.count, values_left + 1) + std::min(out.count, values_left + 1) * out.comps;
-    if (keys_and_values > values_left) throw over_budget("keys and other animation data");
-  }  // read_sampler takes them from values_left as it reads
-  for (std::size_t c = 0; c < anim.channels.size(); ++c) {
-    const auto& ch = anim.channels[c];
-    const std::string at = where + ": channel " + std::to_string(c);
-    Channel out;
-    out.node = ch.target_node;
-    const std::string& p = ch.target_path;
-    if (out.node < 0) continue;
-    if (out.node >= static_cast<int>(nn)) throw std::invalid_argument(at + " targets a missing node");
-    if (p == "translation")
-      out.path = Path::Translation;
-    else if (p == "rotation")
-      out.path = Path::Rotation;
-    else if (p == "scale")
-      out.path = Path::Scale;
-    else if (p == "weights")
-      out.path = Path::Weights;
-    else
-      continue;
-    if (out.path != Path::Weights && im.nodes[out.node].has_matrix)
-      throw std::invalid_argument(at + " animates a node that has a matrix (glTF 2.0 §3.5.3 forbids it)");
-    if (ch.sampler < 0 || ch.sampler >= static_cast<int>(anim.samplers.size()))
-      throw std::invalid_argument(at + " refers to a missing sampler");
-    const auto& as = anim.samplers[ch.sampler];
-    int width = out.path == Path::Rotation ? 4 : 3;
-    if (out.path == Path::Weights) {
-      const int m = model.nodes[out.node].mesh;
-      width = m >= 0 && m < static_cast<int>(model.meshes.size()) && !model.meshes[m].primitives.empty()
-                  ? static_cast<int>(model.meshes[m].primitives.front().targets.size())
-                  : 0;
-      if (width == 0) throw std::invalid_argument(at + " animates weights of a node without morph targets");
+  for (int ai : ais)
+    for (const auto& ch : model.animations[ai].channels) {
+      const auto& anim = model.animations[ai];
+      const std::string& p = ch.target_path;
+      if (ch.target_node < 0 || ch.sampler < 0 || ch.sampler >= static_cast<int>(anim.samplers.size()) ||
+          (p != "translation" && p != "rotation" && p != "scale" && p != "weights"))
+        continue;
+      const auto in = gltf_read::accessor_layout(model, anim.samplers[ch.sampler].input, "sampler input", path);
+      const auto out = gltf_read::accessor_layout(model, anim.samplers[ch.sampler].output, "sampler output", path);
+      keys_and_values += std::min(in.count, values_left + 1) + std::min(out.count, values_left + 1) * out.comps;
+      if (keys_and_values > values_left) throw over_budget("keys and other animation data");
+    }  // read_sampler takes them from values_left as it reads
+  for (int ai : ais)
+    for (std::size_t c = 0; c < model.animations[ai].channels.size(); ++c) {
+      const auto& anim = model.animations[ai];
+      const auto& ch = anim.channels[c];
+      const std::string at = where + ": " + (ais.size() > 1 ? "animation " + std::to_string(ai) + " " : std::string()) +
+                             "channel " + std::to_string(c);
+      Channel out;
+      out.node = ch.target_node;
+      const std::string& p = ch.target_path;
+      if (out.node < 0) continue;
+      if (out.node >= static_cast<int>(nn)) throw std::invalid_argument(at + " targets a missing node");
+      if (p == "translation")
+        out.path = Path::Translation;
+      else if (p == "rotation")
+        out.path = Path::Rotation;
+      else if (p == "scale")
+        out.path = Path::Scale;
+      else if (p == "weights")
+        out.path = Path::Weights;
+      else
+        continue;
+      if (out.path != Path::Weights && im.nodes[out.node].has_matrix)
+        throw std::invalid_argument(at + " animates a node that has a matrix (glTF 2.0 §3.5.3 forbids it)");
+      if (ch.sampler < 0 || ch.sampler >= static_cast<int>(anim.samplers.size()))
+        throw std::invalid_argument(at + " refers to a missing sampler");
+      const auto& as = anim.samplers[ch.sampler];
+      int width = out.path == Path::Rotation ? 4 : 3;
+      if (out.path == Path::Weights) {
+        const int m = model.nodes[out.node].mesh;
+        width = m >= 0 && m < static_cast<int>(model.meshes.size()) && !model.meshes[m].primitives.empty()
+                    ? static_cast<int>(model.meshes[m].primitives.front().targets.size())
+                    : 0;
+        if (width == 0) throw std::invalid_argument(at + " animates weights of a node without morph targets");
+      }
+      const int comps = out.path == Path::Weights ? 1 : width;
+      AnimSampler smp = read_sampler(model, as, width, comps, out.path == Path::Rotation, at, path, values_left);
+      duration = std::max(duration, smp.times.back());
+      animates_mesh = animates_mesh || (out.path == Path::Weights ? morphs[out.node] : moves[out.node]);
+      out.sampler = static_cast<int>(im.samplers.size());
+      im.samplers.push_back(std::move(smp));
+      im.channels.push_back(out);
     }
-    const int comps = out.path == Path::Weights ? 1 : width;
-    AnimSampler smp = read_sampler(model, as, width, comps, out.path == Path::Rotation, at, path, values_left);
-    duration = std::max(duration, smp.times.back());
-    animates_mesh = animates_mesh || (out.path == Path::Weights ? morphs[out.node] : moves[out.node]);
-    out.sampler = static_cast<int>(im.samplers.size());
-    im.samplers.push_back(std::move(smp));
-    im.channels.push_back(out);
-  }
   if (!animates_mesh) throw std::invalid_argument(where + ": the clip animates no mesh that load_mesh includes");
   return duration;
 }
@@ -552,7 +557,13 @@ std::shared_ptr<const MeshClip> MeshClip::load(const std::filesystem::path& path
   const std::string file = quoted_path(path);
   const std::vector<std::string> names = animation_names(model);
   const int ai = pick_animation(names, clip, file);
-  const std::string where = file + " clip '" + names[ai] + "'";
+  std::vector<int> ais{ai};
+  if (ai < 0) {  // every animation, played together
+    ais.resize(names.size());
+    for (std::size_t i = 0; i < ais.size(); ++i) ais[i] = static_cast<int>(i);
+  }
+  const std::string name = ai < 0 ? std::string(kAllClips) : names[ai];
+  const std::string where = file + " clip '" + name + "'";
   if (model.nodes.empty()) throw std::invalid_argument(where + ": the file has no nodes to animate");
 
   auto im = std::make_shared<Impl>();
@@ -566,7 +577,7 @@ std::shared_ptr<const MeshClip> MeshClip::load(const std::filesystem::path& path
   im->triangles = rest.triangles;
   const Pose rest_pose = im->rest_pose();
   reader.bind_rest(rest_pose);
-  const double duration = reader.read_channels(ai);
+  const double duration = reader.read_channels(ais);
 
   // Self-check: the rest pose must reproduce load_mesh (guards the two readers against drifting apart).
   std::vector<glm::dvec3> pos, nrm;
@@ -577,7 +588,7 @@ std::shared_ptr<const MeshClip> MeshClip::load(const std::filesystem::path& path
       throw MeshIoError(where + ": rest pose differs from load_mesh at vertex " + std::to_string(v));
 
   auto out = std::make_shared<MeshClip>();
-  out->name_ = names[ai];
+  out->name_ = name;
   out->path_ = path;
   out->duration_s_ = duration;
   out->rest_positions_ = rest.positions;

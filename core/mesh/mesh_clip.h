@@ -30,13 +30,18 @@
 
 namespace trispline::core {
 
+// MeshClip::load's name for every animation of a file played together.
+inline constexpr const char* kAllClips = "*";
+
 class MeshClip {
  public:
   // Names of the animations in a .gltf/.glb, in file order ("" for an unnamed one shows as "animation_<i>").
   // Throws MeshIoError on a missing or unparseable file.
   static std::vector<std::string> list(const std::filesystem::path& path);
 
-  // Loads animation `clip` of the file: its name (or "animation_<i>"), or "#<i>" for the i-th, or "" for the first.
+  // Loads animation `clip` of the file: its name (or "animation_<i>"), or "#<i>" for the i-th, or "" for the first, or
+  // kAllClips ("*") for all of them played together (files that keep one animation per joint); where two animate the
+  // same node property, the later one's channel wins.
   // The animation must drive a morph-weight channel of a mesh node that load_mesh(path) includes, or the transform
   // of such a node, of one of its ancestors, or of a joint (or a joint's ancestor) of its skin.
   // Throws MeshIoError (missing/unparseable file, bad accessors or hierarchy, what load_mesh throws) or

@@ -140,8 +140,8 @@ SceneObject posed_by_clip(const SceneObject& object, double time_s) {
 }  // namespace
 
 namespace {
-// The object's animated tile layers as stills at `time_s` (α, offset, transform and height fixed, mesh evaluated
-// there); false when none is animated.
+// The object's animated tile layers as stills at `time_s` (α, offset, transform, height and an articulated tile's
+// pose fixed, mesh evaluated there); false when none is animated.
 bool pose_ddm_layers(SceneObject& object, double time_s) {
   bool any = false;
   for (auto& layer : object.ddm_layers) {
@@ -153,6 +153,7 @@ bool pose_ddm_layers(SceneObject& object, double time_s) {
     still->offset_velocity = glm::dvec2(0.0);
     still->transform = layer->transform_at(time_s), still->height = layer->height_at(time_s);
     still->rotate_keys.clear(), still->scale_keys.clear(), still->w_keys.clear();
+    if (layer->tile_clip) still->tiles = layer->tiles_at_time(time_s), still->tile_clip = nullptr;  // posed, still
     still->mesh = std::make_shared<const TriMesh>(ddm_layer_mesh(*layer, time_s));
     layer = std::move(still);
     any = true;

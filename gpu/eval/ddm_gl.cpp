@@ -71,7 +71,7 @@ std::invalid_argument layer_error(const core::DdmLayer& layer, const std::string
 
 DdmPose DdmPose::at(const core::DdmLayer& layer, double time_s) {
   return {layer.morph_tiles.empty() ? 0.0 : layer.alpha_at(time_s), layer.offset_at(time_s), layer.transform_at(time_s),
-          layer.height_at(time_s)};
+          layer.height_at(time_s), time_s};
 }
 
 struct DdmGl::MapsGl {
@@ -152,6 +152,8 @@ struct DdmGl::LayerGl {
   std::uint64_t selected_version = 0;         // its version (0: none uploaded yet)
   std::size_t selected_vertices = 0;
   bool levels_made = false;  // ensure_levels ran (the tiles' `levels` are final)
+  // An articulated tile (core::DdmLayer::tile_clip): the scene time its buffers are posed at (NaN: the rest pose).
+  double posed_time = std::numeric_limits<double>::quiet_NaN();
 
   // Without a partner the tile itself (drawn with α = 0, so V = V1 exactly).
   static TileBuffers buffers(const TileGl& t) {
@@ -306,6 +308,18 @@ DdmGl::LayerGl& DdmGl::layer_for(const std::shared_ptr<const core::DdmLayer>& la
   ++uploads_;
   check_gl_error("DdmGl: layer upload");
   return *layers_.emplace(layer.get(), std::move(g)).first->second;
+}
+
+void DdmGl::pose_tiles(LayerGl& g, const core::DdmLayer& layer, double time_s) {
+  if (!layer.tile_clip || g.tiles.empty() || g.tiles[0].instance_count == 0 || g.posed_time == time_s) return;
+  const core::DdmTile posed = layer.tile_clip->pose(layer.tiles[0], time_s);
+  const std::vector<float> p = to_float(posed.mesh.positions), n = to_float(posed.mesh.normals);
+  glBindBuffer(GL_ARRAY_BUFFER, g.tiles[0].positions.id());
+  glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(p.size() * sizeof(float)), p.data());
+  glBindBuffer(GL_ARRAY_BUFFER, g.tiles[0].normals.id());
+  glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(n.size() * sizeof(float)), n.data());
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  g.posed_time = time_s;
 }
 
 void DdmGl::set_uniforms(const ShaderProgram& p, const core::DdmLayer& layer, const DdmPose& pose,
@@ -465,6 +479,7 @@ std::size_t DdmGl::draw(const std::shared_ptr<const core::DdmLayer>& layer, cons
   LayerGl& g = layer_for(layer);
   if (g.vertices == 0) return 0;
   if (selection) select(g, *selection);
+  pose_tiles(g, *layer, pose.time_s);
   const MapsGl& maps = maps_for(layer->maps);
   set_uniforms(program, *layer, pose, follow ? follow->deformation->model() : model);
   if (follow) bind_follow(g, program, *follow);
@@ -507,6 +522,7 @@ DdmCapture DdmGl::capture(const std::shared_ptr<const core::DdmLayer>& layer, co
   LayerGl& g = layer_for(layer);
   DdmCapture out;
   if (g.vertices == 0) return out;
+  pose_tiles(g, *layer, pose.time_s);
   const MapsGl& maps = maps_for(layer->maps);
   ShaderDefines defines;
   if (follow) defines.push_back({"FOLLOW", ""});

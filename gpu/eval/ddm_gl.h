@@ -45,7 +45,8 @@ struct DdmPose {
   glm::dvec2 offset{0.0};
   core::DdmTileTransform transform;
   double height = 0.1;  // world units per tile unit of w
-  // layer.alpha_at(t) (0 when the layer has no morph tiles), offset_at(t), transform_at(t) and height_at(t).
+  double time_s = 0.0;  // scene time, seconds: an articulated tile's pose (core::DdmLayer::tile_clip)
+  // layer.alpha_at(t) (0 when the layer has no morph tiles), offset_at(t), transform_at(t), height_at(t) and t.
   static DdmPose at(const core::DdmLayer& layer, double time_s);
 };
 
@@ -149,6 +150,8 @@ class DdmGl {
   // Uploads the follow records (grouped order) when changed, points attributes 7–12 at them, sets the FFD uniforms
   // and binds the lattice.
   void bind_follow(LayerGl& g, const ShaderProgram& p, const DdmFollow& follow);
+  // An articulated tile's buffers posed at `time_s` (core::DdmTileClip::pose), when they are not already.
+  static void pose_tiles(LayerGl& g, const core::DdmLayer& layer, double time_s);
 
   std::shared_ptr<FfdProgramCache> programs_;
   std::unordered_map<const core::DdmMaps*, std::unique_ptr<MapsGl>> maps_;

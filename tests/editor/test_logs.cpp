@@ -60,6 +60,7 @@ INSTANTIATE_TEST_SUITE_P(
                       BadLogCase{"bad_ring_radius.jsonl", 2, "radius", "half the width"},
                       BadLogCase{"bad_volume_transfer.jsonl", 2, "transfer", "values must increase"},
                       BadLogCase{"bad_text_font.jsonl", 2, "font", "brick.obj"},
+                      BadLogCase{"bad_tile_clip.jsonl", 2, "tile_clip", "a glTF file"},
                       BadLogCase{"bad_text_control.jsonl", 2, "text", "control character"},
                       BadLogCase{"bad_animate_no_ffd.jsonl", 2, "object", "no FFD lattice"},
                       BadLogCase{"bad_refine_tolerance.jsonl", 3, "tolerance", "> 0"},
