@@ -120,6 +120,7 @@ ParamSchema<S> make_layer_schema(bool fill) {
                .help = "More tiles for the layer (as tile), chosen per cell by choice"})
       .choice("tile_up", &S::tile_up, {"x", "y", "z"},
               {.write = ParamWrite::UnlessDefault,
+               .ui = {"Up axis"},
                .help = "The tile files' axis that stands up from the surface (w): y for glTF figures, which stand on "
                        "y; generated tiles stand on z"})
       .field("tile_clip", &S::tile_clip,

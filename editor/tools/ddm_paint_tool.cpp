@@ -7,6 +7,7 @@
 #include "core/commands/ddm_color.h"
 #include "core/commands/ddm_fill.h"
 #include "core/commands/ddm_remove.h"
+#include "core/mesh/mesh_clip.h"
 #include "core/mesh/mesh_io.h"
 #include "ui/param_widgets.h"
 
@@ -353,8 +354,22 @@ void DdmPaintTool::draw_new_layer_fields(ToolContext& ctx, const core::SceneObje
     if (ImGui::InputText("Tile file", &file_tile_)) tile = file_tile_;
     ui::probe::item("ddm.tile_file");
     ui::tooltip(
-        "Path of a mesh file (OBJ / PLY / glTF / Collada / FBX); x, y span the cell, z is the height; its "
-        "materials and textures come along");
+        "Path of a mesh file (OBJ / PLY / glTF / Collada / FBX); x, y span the cell, the up axis is the height; "
+        "its materials and textures come along");
+    ui::param_widget(core::ddm_layer_schema(true), "tile_up", spec);
+    bool play = spec.tile_clip.has_value();
+    if (ImGui::Checkbox("Play its animation", &play)) {
+      if (play)
+        spec.tile_clip = core::kAllClips;
+      else
+        spec.tile_clip.reset();
+    }
+    ui::probe::item("ddm.tile_clip");
+    ui::tooltip(
+        "Articulated tiles (seed Fig. 5.13): every tile plays the glTF file's animations (all of them together), "
+        "looping from time 0; press Play in the Timeline");
+  } else {
+    spec.tile_clip.reset();  // a generated tile has no clip
   }
   int layout = static_cast<int>(spec.layout);
   if (ImGui::Combo("Layout", &layout, "rect\0hex\0brick\0")) spec.layout = static_cast<core::DdmLayout>(layout);
