@@ -290,3 +290,24 @@ gui_teapot_tile_paint() {
   gui_wait '.tool == "Tile Paint"' "T picks the Tile Paint tool"
   gui_wait '.values["ddm.estimate_tiles"] != null and .values["ddm.estimate_tiles"] != ""' "an estimate is shown"
 }
+
+# Selects OBJECT, picks the Tile Paint tool with the mouse over it, and types FILE as its tile (Tile ▸ file, Tile file,
+# Enter).
+gui_tile_paint_file() {
+  local object="$1" file="$2"
+  gui_click_item "scene.object.$object"
+  gui_wait ".selected == \"$object\"" "$object is selected"
+  gui_move "$(gui_q ".object_px.$object[0] | floor")" "$(gui_q ".object_px.$object[1] | floor")"
+  gui_frames 1
+  gui_key t
+  gui_wait '.tool == "Tile Paint"' "T picks the Tile Paint tool"
+  gui_click_item ddm.tile
+  gui_wait '.items["ddm.tile.file"] != null' "the Tile list opens"
+  gui_click_item ddm.tile.file
+  gui_wait '.items["ddm.tile_file"] != null' "Tile file appears"
+  gui_click_item ddm.tile_file
+  gui_wait '.typing' "one click on Tile file enters text editing"
+  gui_type "$file"
+  gui_key Return
+  gui_wait '.typing | not' "Enter leaves Tile file"
+}

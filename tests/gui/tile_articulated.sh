@@ -12,22 +12,7 @@ cat >"$GUI_WORK/teapot.jsonl" <<'LOG'
 LOG
 gui_start "$GUI_WORK/teapot.jsonl"
 gui_wait '.objects == ["teapot"]' "the teapot is open"
-gui_click_item scene.object.teapot
-gui_wait '.selected == "teapot"' "the teapot is selected"
-gui_move "$(gui_q '.object_px.teapot[0] | floor')" "$(gui_q '.object_px.teapot[1] | floor')"
-gui_frames 1
-gui_key t
-gui_wait '.tool == "Tile Paint"' "T picks the Tile Paint tool"
-
-gui_click_item ddm.tile
-gui_wait '.items["ddm.tile.file"] != null' "the Tile list opens"
-gui_click_item ddm.tile.file
-gui_wait '.items["ddm.tile_file"] != null and .items["ddm.tile_clip"] != null' "Tile file, Up axis and Play appear"
-gui_click_item ddm.tile_file
-gui_wait '.typing' "one click on Tile file enters text editing"
-gui_type "$figure"
-gui_key Return
-gui_wait '.typing | not' "Enter leaves Tile file"
+gui_tile_paint_file teapot "$figure"
 gui_click_item ddm.layer.tile_up
 gui_wait '.items["ddm.layer.tile_up.y"] != null' "the Up axis list opens"
 gui_click_item ddm.layer.tile_up.y

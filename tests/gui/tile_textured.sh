@@ -14,22 +14,7 @@ LOG
 
 gui_start "$GUI_WORK/scenes/ball.jsonl"
 gui_wait '.objects == ["ball"]' "the ball is open"
-gui_click_item scene.object.ball
-gui_wait '.selected == "ball"' "the ball is selected"
-gui_move "$(gui_q '.object_px.ball[0] | floor')" "$(gui_q '.object_px.ball[1] | floor')"
-gui_frames 1
-gui_key t
-gui_wait '.tool == "Tile Paint"' "T picks the Tile Paint tool"
-
-gui_click_item ddm.tile
-gui_wait '.items["ddm.tile.file"] != null' "the Tile list opens"
-gui_click_item ddm.tile.file
-gui_wait '.items["ddm.tile_file"] != null' "Tile file appears"
-gui_click_item ddm.tile_file
-gui_wait '.typing' "one click on Tile file enters text editing"
-gui_type "$crate"
-gui_key Return
-gui_wait '.typing | not' "Enter leaves Tile file"
+gui_tile_paint_file ball "$crate"
 gui_click_item ddm.tile_size
 gui_wait '.typing' "one click on Tile size enters text editing"
 gui_type "0.35"

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 
 #include "core/commands/ddm_animate.h"
 #include "core/commands/ddm_fill.h"
@@ -54,6 +55,52 @@ TEST(DdmAnimate, MorphAndOffsetPlayOverTimeAndUndo) {
   EXPECT_EQ(DdmAnimateCommand::parse(cmd->to_json(), {})->to_json(), cmd->to_json());
   cmd->undo(s);
   EXPECT_EQ(s.find("pot")->ddm_layers.at(0), before);
+}
+
+// Articulated tiles (seed Fig. 5.13): ddm.fill with tile_clip makes an animated layer whose tile is the glTF figure
+// posed at each time; the scene at a time freezes that pose into a still; the line round-trips; a morph partner is
+// refused; undo removes the layer.
+TEST(DdmAnimate, ArticulatedTilesPlayTheirClipAndFreezeInStills) {
+  Scene s;
+  ScenePrimitiveCommand::parse(json::parse(R"({"cmd":"scene.primitive","kind":"teapot","name":"pot"})"), {})->redo(s);
+  CommandContext ctx;
+  ctx.base_dir = std::filesystem::path(TRISPLINE_SOURCE_DIR) / "assets" / "data";
+  auto fill = DdmFillCommand::parse(json::parse(R"({"cmd":"ddm.fill","object":"pot","layer":"robots",
+      "tile":"qt3d/gltf/2.0/RiggedFigure/RiggedFigure.gltf","tile_up":"y","tile_clip":"*","layout":"rect",
+      "counts":[8,2],"height":0.1,"base":"teapot_body","map_resolution":[65,33]})"),
+                                    ctx);
+  fill->redo(s);
+  const DdmLayer& layer = *s.find("pot")->ddm_layers.at(0);
+  ASSERT_TRUE(layer.tile_clip);
+  ASSERT_TRUE(layer.animated());
+  EXPECT_EQ(layer.tiles.at(0).mesh.vertex_count(), 370u);
+  // The tile stands on y: its w extent is its height, larger than its depth across the cell.
+  Aabb box;
+  for (const glm::dvec3& p : layer.tiles[0].mesh.positions) box.extend(p);
+  EXPECT_GT(box.size().z, 0.9);
+  const TriMesh at0 = ddm_layer_mesh(layer, 0.0), at06 = ddm_layer_mesh(layer, 0.6);
+  EXPECT_EQ(at0.positions, layer.mesh->positions);
+  double moved = 0.0;
+  for (std::size_t v = 0; v < at0.vertex_count(); ++v)
+    moved = std::max(moved, glm::length(at06.positions[v] - at0.positions[v]));
+  EXPECT_GT(moved, 1e-3) << "the figures move";
+  const Scene later = scene_at_time(s, 0.6);
+  const DdmLayer& still = *later.find("pot")->ddm_layers.at(0);
+  EXPECT_FALSE(still.animated());
+  EXPECT_EQ(still.mesh->positions, at06.positions);
+  EXPECT_EQ(ddm_layer_mesh(still, 0.0).positions, at06.positions);  // the pose is frozen
+  EXPECT_EQ(DdmFillCommand::parse(fill->to_json(), ctx)->to_json(), fill->to_json());
+  try {
+    DdmAnimateCommand::parse(json::parse(R"({"cmd":"ddm.animate","object":"pot","layer":"robots",
+        "morph_tile":"thorn"})"),
+                             {})
+        ->redo(s);
+    ADD_FAILURE() << "a morph partner of an articulated tile was accepted";
+  } catch (const CommandError& e) {
+    EXPECT_EQ(e.field(), "morph_tile");
+  }
+  fill->undo(s);
+  EXPECT_TRUE(s.find("pot")->ddm_layers.empty());
 }
 
 // Keyed rotation, scale and w are the layer's own transform and height moved over time: at 1 s the keyed layer is,

@@ -370,6 +370,28 @@ TEST(MeshClipAssets, SimpleSkin) {
   compute_vertex_normals(posed);
   EXPECT_EQ(max_dist(n, posed.normals), 0.0);
 }
+// Qt 3D's RiggedFigure keeps one animation per joint (19, two keys each): "*" plays them together, so the pose at
+// mid-clip moves more of the figure than any one animation does, and equals the rest at no time in between.
+TEST(MeshClipAssets, AllAnimationsOfAFilePlayTogether) {
+  const auto path = kData / "qt3d/gltf/2.0/RiggedFigure/RiggedFigure.gltf";
+  if (!std::filesystem::exists(path)) GTEST_FAIL() << "missing " << path << " (scripts/fetch_assets.sh)";
+  ASSERT_EQ(MeshClip::list(path).size(), 19u);
+  const auto all = MeshClip::load(path, kAllClips), one = MeshClip::load(path, "#0");
+  EXPECT_EQ(all->name(), "*");
+  EXPECT_NEAR(all->duration_s(), 1.25, 1e-6);
+  std::vector<glm::dvec3> pa, na, p1, n1;
+  all->pose(0.6, pa, na);
+  one->pose(0.6, p1, n1);
+  auto moved = [&](const std::vector<glm::dvec3>& p) {
+    std::size_t n = 0;
+    for (std::size_t v = 0; v < p.size(); ++v) n += glm::length(p[v] - all->rest_positions()[v]) > 1e-6;
+    return n;
+  };
+  EXPECT_GT(moved(pa), moved(p1)) << "every joint's animation moves more vertices than the first joint's alone";
+  EXPECT_GT(moved(pa), all->vertex_count() / 2);
+  EXPECT_THROW(MeshClip::load(path, "no such clip"), std::invalid_argument);
+}
+
 #endif
 
 }  // namespace
