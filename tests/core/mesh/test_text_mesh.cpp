@@ -46,7 +46,9 @@ bool front_covers(const TriMesh& m, double x, double y) {
   for (const glm::uvec3& t : m.triangles) {
     const glm::dvec3 &a = m.positions[t.x], &b = m.positions[t.y], &c = m.positions[t.z];
     if (a.z <= 0 || b.z <= 0 || c.z <= 0) continue;
-    auto side = [&](const glm::dvec3& p, const glm::dvec3& q) { return (q.x - p.x) * (y - p.y) - (q.y - p.y) * (x - p.x); };
+    auto side = [&](const glm::dvec3& p, const glm::dvec3& q) {
+      return (q.x - p.x) * (y - p.y) - (q.y - p.y) * (x - p.x);
+    };
     if (side(a, b) >= 0 && side(b, c) >= 0 && side(c, a) >= 0) return true;
   }
   return false;
