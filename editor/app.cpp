@@ -348,7 +348,7 @@ void App::write_probe() {
   for (const core::SceneObject& o : session_.scene().objects()) {
     objects.push_back(o.name);
     if (!o.world_mesh || o.world_mesh->positions.empty()) continue;
-    const glm::dvec3 c = view_.project(bounds_of(*o.world_mesh).center());
+    const glm::dvec3 c = view_.project(core::mesh_bounds(*o.world_mesh).center());
     object_px[o.name] = {c.x / scale.x, c.y / scale.y};
     // The mean of the vertices: on the body of an object whose box centre thin parts (ears, handles) pull aside.
     glm::dvec3 mean(0.0);

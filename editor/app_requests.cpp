@@ -49,7 +49,7 @@ void App::showcase() {
 void App::frame_selected() {
   const core::SceneObject* o = session_.scene().find(selected_);
   const core::VolumeObject* v = session_.scene().find_volume(selected_);
-  nav_.frame(o && o->world_mesh ? bounds_of(*o->world_mesh)
+  nav_.frame(o && o->world_mesh ? core::mesh_bounds(*o->world_mesh)
              : v                ? v->world_bounds()
                                 : session_.scene().bounds(),
              view_.viewport);

@@ -22,20 +22,14 @@ void read_morph_tile(const AnimateField& f, const nlohmann::json& v, P& p, const
 void read_morph_tiles(const AnimateField& f, const nlohmann::json& v, P& p, const CommandContext& ctx) {
   const std::vector<std::string> tiles = params::Codec<std::vector<std::string>>::read(v, f.doc.name);
   if (tiles.empty()) params::fail(f.doc.name, "expected a list of tiles, one per layer tile");
-  p.morph_paths.clear();
-  for (std::size_t i = 0; i < tiles.size(); ++i) {
-    if (tiles[i].empty())
-      params::fail(f.doc.name, "element " + std::to_string(i) + " is empty: every entry must be a tile name or file");
-    p.morph_paths.push_back(resolve_ddm_tile(tiles[i], ctx));
-  }
+  p.morph_paths = resolve_ddm_tiles(tiles, f.doc.name, ctx);
   p.morph = tiles;
 }
 
 // One morph tile is logged as "morph_tile", several as "morph_tiles".
 void write_morph(const AnimateField& f, const P& p, nlohmann::json& line) {
   if (!p.morph || (p.morph->size() == 1) != (f.doc.name == "morph_tile")) return;
-  nlohmann::json tiles = nlohmann::json::array();
-  for (std::size_t i = 0; i < p.morph->size(); ++i) tiles.push_back(ddm_tile_file(*p.morph, p.morph_paths, i));
+  const nlohmann::json tiles = ddm_tile_files(*p.morph, p.morph_paths, 0);
   line[f.doc.name] = tiles.size() == 1 ? tiles[0] : tiles;
 }
 

@@ -41,20 +41,14 @@ void write_tile(const Field& f, const S& s, nlohmann::json& line) {
 // "tiles": the tiles after the first, none empty.
 void read_more_tiles(const Field& f, const nlohmann::json& v, S& s, const CommandContext& ctx) {
   const std::vector<std::string> more = params::Codec<std::vector<std::string>>::read(v, f.doc.name);
+  const std::vector<std::filesystem::path> paths = resolve_ddm_tiles(more, f.doc.name, ctx);
   s.tile_paths.resize(s.tiles.size());
-  for (std::size_t i = 0; i < more.size(); ++i) {
-    if (more[i].empty())
-      params::fail(f.doc.name, "element " + std::to_string(i) + " is empty: every entry must be a tile name or file");
-    s.tiles.push_back(more[i]);
-    s.tile_paths.push_back(resolve_ddm_tile(more[i], ctx));
-  }
+  s.tiles.insert(s.tiles.end(), more.begin(), more.end());
+  s.tile_paths.insert(s.tile_paths.end(), paths.begin(), paths.end());
 }
 
 void write_more_tiles(const Field& f, const S& s, nlohmann::json& line) {
-  if (s.tiles.size() < 2) return;
-  nlohmann::json more = nlohmann::json::array();
-  for (std::size_t i = 1; i < s.tiles.size(); ++i) more.push_back(ddm_tile_file(s.tiles, s.tile_paths, i));
-  line[f.doc.name] = more;
+  if (s.tiles.size() >= 2) line[f.doc.name] = ddm_tile_files(s.tiles, s.tile_paths, 1);
 }
 
 // "map_resolution": a whole number R (read as [R, R]) or [Ru, Rv], whole numbers in the field's range (9.0 is 9).
@@ -222,6 +216,24 @@ std::string ddm_tile_file(const std::vector<std::string>& names, const std::vect
 
 std::filesystem::path resolve_ddm_tile(const std::string& name, const CommandContext& ctx) {
   return name.empty() || is_generated_ddm_tile(name) ? std::filesystem::path() : ctx.resolve(name);
+}
+
+nlohmann::json ddm_tile_files(const std::vector<std::string>& names, const std::vector<std::filesystem::path>& paths,
+                              std::size_t first) {
+  nlohmann::json files = nlohmann::json::array();
+  for (std::size_t i = first; i < names.size(); ++i) files.push_back(ddm_tile_file(names, paths, i));
+  return files;
+}
+
+std::vector<std::filesystem::path> resolve_ddm_tiles(const std::vector<std::string>& names, const std::string& field,
+                                                     const CommandContext& ctx) {
+  std::vector<std::filesystem::path> paths;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (names[i].empty())
+      params::fail(field, "element " + std::to_string(i) + " is empty: every entry must be a tile name or file");
+    paths.push_back(resolve_ddm_tile(names[i], ctx));
+  }
+  return paths;
 }
 
 DdmTile load_ddm_tile(const std::string& name, const std::filesystem::path& path, const char* field, int up_axis) {

@@ -56,6 +56,12 @@ std::string ddm_tile_file(const std::vector<std::string>& names, const std::vect
                           std::size_t i);
 // A tile a line names, resolved against the log's folder: empty for generated kinds and for "".
 std::filesystem::path resolve_ddm_tile(const std::string& name, const CommandContext& ctx);
+// Tiles from `first` on as a JSON array of ddm_tile_file's.
+nlohmann::json ddm_tile_files(const std::vector<std::string>& names, const std::vector<std::filesystem::path>& paths,
+                              std::size_t first);
+// A line's list of tiles resolved one by one; throws CommandError (`field`) naming an empty entry.
+std::vector<std::filesystem::path> resolve_ddm_tiles(const std::vector<std::string>& names, const std::string& field,
+                                                     const CommandContext& ctx);
 
 // Loads a tile: a generated kind or a mesh file turned so that its axis `up_axis` (0 x, 1 y, 2 z) is w, made
 // canonical. Throws CommandError (`field`) on failure.

@@ -24,12 +24,6 @@ std::string vec(const glm::dvec3& p) { return "(" + num6(p.x) + ", " + num6(p.y)
 
 const char* axis_name(int a) { return a == 0 ? "x" : a == 1 ? "y" : "z"; }
 
-Aabb bounds_of(const TriMesh& m) {
-  Aabb b;
-  for (const glm::dvec3& p : m.positions) b.extend(p);
-  return b;
-}
-
 // Centre of mass of a closed triangle mesh (divergence theorem); the bounding-box centre if its volume vanishes.
 glm::dvec3 centre_of_mass(const TriMesh& m) {
   double volume = 0.0;
@@ -40,7 +34,7 @@ glm::dvec3 centre_of_mass(const TriMesh& m) {
     volume += v;
     moment += v * (a + b + c) / 4.0;
   }
-  const Aabb box = bounds_of(m);
+  const Aabb box = mesh_bounds(m);
   if (!(std::abs(volume) > 1e-12 * std::pow(std::max(box.diagonal(), 1e-300), 3.0))) return box.center();
   return moment / volume;
 }
@@ -123,7 +117,7 @@ std::vector<Aabb> obstacle_boxes(const std::vector<DffdObstacle>& obstacles, Aab
   for (std::size_t i = 0; i < obstacles.size(); ++i) {
     if (obstacles[i].world_mesh.empty())
       throw DffdBuildError("obstacle '" + obstacles[i].name + "' has no triangles", "obstacles");
-    obox[i] = bounds_of(obstacles[i].world_mesh);
+    obox[i] = mesh_bounds(obstacles[i].world_mesh);
     all.extend(obox[i].lo);
     all.extend(obox[i].hi);
   }
@@ -148,7 +142,7 @@ Aabb lattice_box(const TriMesh& object_world, const std::vector<DffdObstacle>& o
                                    axis_name(a) + "): grow the box or drop the obstacle",
                                "box");
   } else {
-    const Aabb ob = bounds_of(object_world);
+    const Aabb ob = mesh_bounds(object_world);
     const double margin = p.margin >= 0.0 ? p.margin : 1.05 * p.kernel_width;
     box.lo[u_ax] = all.lo[u_ax] - margin;
     box.hi[u_ax] = all.hi[u_ax] + margin;

@@ -214,12 +214,6 @@ void compute_vertex_normals(TriMesh& mesh) {
   mesh.normals = std::move(acc);
 }
 
-Aabb mesh_bounds(const TriMesh& mesh) {
-  Aabb box;
-  for (const auto& p : mesh.positions) box.extend(p);
-  return box;
-}
-
 double signed_volume(const TriMesh& mesh) {
   double v = 0;
   for (const auto& t : mesh.triangles)

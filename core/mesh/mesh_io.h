@@ -5,7 +5,6 @@
 //   save_mesh               TriMesh → OBJ or PLY (OpenMesh)
 //   validate_mesh           finite positions, non-empty, indices in range; throws MeshIoError
 //   compute_vertex_normals  area-weighted vertex normals
-//   mesh_bounds             axis-aligned bounds of the positions
 //
 // Errors: every function here reports bad input by throwing MeshIoError (a std::runtime_error) whose message names
 // the file (or `what`) and the reason: "file not found", "unsupported extension", "cannot parse",
@@ -78,9 +77,6 @@ std::size_t remove_duplicate_triangles(TriMesh& mesh);
 // Replaces mesh.normals by area-weighted vertex normals (sum of unnormalised face normals (b−a)×(c−a), then
 // normalised). Vertices with no non-degenerate incident triangle get (0,1,0).
 void compute_vertex_normals(TriMesh& mesh);
-
-// Bounds of mesh.positions (invalid box if there are none).
-Aabb mesh_bounds(const TriMesh& mesh);
 
 // Signed volume enclosed by the triangles, world units³ (Σ a·(b×c)/6); > 0 for a closed mesh wound CCW seen from
 // outside.

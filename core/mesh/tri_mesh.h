@@ -57,4 +57,11 @@ struct Aabb {
   double diagonal() const { return valid() ? glm::length(hi - lo) : 0.0; }
 };
 
+// Bounds of mesh.positions, the mesh's units (an invalid box if there are none).
+inline Aabb mesh_bounds(const TriMesh& mesh) {
+  Aabb box;
+  for (const glm::dvec3& p : mesh.positions) box.extend(p);
+  return box;
+}
+
 }  // namespace trispline::core

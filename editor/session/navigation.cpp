@@ -31,12 +31,6 @@ NavInput nav_input_from_imgui() {
   return in;
 }
 
-core::Aabb bounds_of(const core::TriMesh& mesh) {
-  core::Aabb box;
-  for (const glm::dvec3& p : mesh.positions) box.extend(p);
-  return box;
-}
-
 void Navigator::set_from_camera(const core::Camera& c) {
   pivot_ = c.target;
   const glm::dvec3 d = c.eye - c.target;

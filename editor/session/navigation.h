@@ -28,8 +28,6 @@ struct NavInput {
 
 // The navigation input of this frame from Dear ImGui's IO (GLFW backend), in framebuffer pixels.
 NavInput nav_input_from_imgui();
-// Bounds of a mesh's positions (invalid for an empty mesh).
-core::Aabb bounds_of(const core::TriMesh& mesh);
 
 class Navigator {
  public:

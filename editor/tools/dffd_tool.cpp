@@ -25,7 +25,7 @@ std::vector<ui::DffdObstacleInfo> DffdTool::candidates(const ToolContext& ctx, c
     if (o.name == object || !o.visible || !o.world_mesh || o.world_mesh->empty()) continue;
     auto& cached = extents_[o.name];
     if (cached.first.lock() != o.world_mesh) {
-      const core::Aabb box = bounds_of(*o.world_mesh);
+      const core::Aabb box = core::mesh_bounds(*o.world_mesh);
       cached = {o.world_mesh, box.hi - box.lo};
     }
     out.push_back({o.name, cached.second});

@@ -70,7 +70,8 @@ core::IncisionParams IncisionTool::resolved(const core::SceneObject* o) const {
       if (it->second.depth > 0.0) p.depth = it->second.depth;
       if (it->second.opening > 0.0) p.opening = it->second.opening > 1e-9 ? it->second.opening : 0.0;  // typed 0
     }
-  const double diag = o && o->world_mesh && !o->world_mesh->empty() ? bounds_of(*o->world_mesh).diagonal() : 0.0;
+  const double diag =
+      o && o->world_mesh && !o->world_mesh->empty() ? core::mesh_bounds(*o->world_mesh).diagonal() : 0.0;
   if (diag > 0.0) {
     if (p.width <= 0.0) p.width = default_fraction("width") * diag;
     if (p.depth <= 0.0) p.depth = default_fraction("depth") * diag;
@@ -232,7 +233,7 @@ void IncisionTool::draw_panel(ToolContext& ctx) {
   const core::SceneObject* sel = ctx.session.scene().find(ctx.selected.empty() ? target_ : ctx.selected);
   const core::IncisionParams shown = resolved(sel);
   const double diag =
-      sel && sel->world_mesh && !sel->world_mesh->empty() ? bounds_of(*sel->world_mesh).diagonal() : 0.0;
+      sel && sel->world_mesh && !sel->world_mesh->empty() ? core::mesh_bounds(*sel->world_mesh).diagonal() : 0.0;
   TypedSizes no_object;
   TypedSizes& typed = sel ? typed_[sel->name] : no_object;
   const core::ParamSchema<core::IncisionParams>& schema = core::incision_schema();

@@ -77,7 +77,7 @@ const core::SceneObject* PressTool::target(const ToolContext& ctx) const {
 double PressTool::diagonal(const core::SceneObject& o) const {
   if (!o.world_mesh) return 0.0;
   if (diagonal_mesh_.lock() != o.world_mesh) {
-    diagonal_ = bounds_of(*o.world_mesh).diagonal();
+    diagonal_ = core::mesh_bounds(*o.world_mesh).diagonal();
     diagonal_mesh_ = o.world_mesh;
   }
   return diagonal_;

@@ -137,7 +137,7 @@ void SketchTool::apply_object_sizes(const ToolContext& ctx) {
   }
   const core::SceneObject* o = ctx.session.scene().find(params_.object);
   if (!o || !o->rest_mesh || o->rest_mesh->empty()) return;
-  const core::Aabb box = bounds_of(o->world_rest_mesh());
+  const core::Aabb box = core::mesh_bounds(o->world_rest_mesh());
   const glm::dvec3 extent = box.hi - box.lo;
   auto axis = [](const std::string& a) { return a == "x" ? 0 : a == "y" ? 1 : 2; };
   const int length = axis(params_.length_axis), up = axis(params_.up_axis);

@@ -228,7 +228,7 @@ TEST_F(SessionRecovery, StrokeKeepsItsMouseDownCameraAndIgnoresHidden) {
   const core::Camera used = core::camera_schema().parse(line.at("camera"));
   EXPECT_EQ(used.eye, at_press.eye) << "the stroke's pixels belong to the view at mouse-down";
   EXPECT_FALSE(line.contains("ignore"));
-  const core::Aabb veil = editor::bounds_of(*s.scene().find("veil")->world_mesh);
+  const core::Aabb veil = core::mesh_bounds(*s.scene().find("veil")->world_mesh);
   const core::PlacementRecord& placed = *s.scene().find("crate")->placement;
   for (const glm::dvec3& p : placed.contact_points)
     EXPECT_FALSE(glm::all(glm::greaterThan(p, veil.lo - 1e-9)) && glm::all(glm::lessThan(p, veil.hi + 1e-9)))

@@ -76,7 +76,7 @@ TEST_F(IncisionTool, LineCarriesStrokeAndParameters) {
 }
 
 TEST_F(IncisionTool, UnsetSizesFollowTheObjectAndExplicitOnesStay) {
-  const double diag = editor::bounds_of(*object().world_mesh).diagonal();
+  const double diag = core::mesh_bounds(*object().world_mesh).diagonal();
   const core::IncisionParams d = tool.resolved(&object());
   EXPECT_NEAR(d.width, 0.02 * diag, 1e-12);
   EXPECT_NEAR(d.depth, 0.02 * diag, 1e-12);

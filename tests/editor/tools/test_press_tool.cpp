@@ -26,7 +26,7 @@ class PressTool : public test::ToolTest<editor::PressTool> {
     ASSERT_GE(row.size(), 20u) << "the framed teapot must cover part of the middle row";
   }
   const core::SceneObject& object() const { return *s.scene().find("t"); }
-  double diagonal() const { return editor::bounds_of(*object().world_mesh).diagonal(); }
+  double diagonal() const { return core::mesh_bounds(*object().world_mesh).diagonal(); }
 
   void hover(glm::dvec2 px) {
     editor::ToolInput moved;

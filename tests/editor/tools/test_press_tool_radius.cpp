@@ -21,14 +21,14 @@ TEST(PressToolRadius, DefaultRadiusFollowsTheWorldMeshThroughPressUndoRedo) {
   editor::ToolContext ctx{s, view, selected, [](std::string, std::function<void()> work) { work(); }, nullptr};
   editor::PressTool tool;
   tool.activate(ctx);
-  const auto expected = [&] { return 0.1 * editor::bounds_of(*s.scene().find("t")->world_mesh).diagonal(); };
+  const auto expected = [&] { return 0.1 * core::mesh_bounds(*s.scene().find("t")->world_mesh).diagonal(); };
 
   const double r0 = expected();
   EXPECT_DOUBLE_EQ(tool.radius(ctx), r0);
   EXPECT_DOUBLE_EQ(tool.radius(ctx), r0) << "asked again (cached)";
 
   // A press at the top of the bounding box, linear falloff: the top moves more than the bottom, the box changes.
-  const core::Aabb box = editor::bounds_of(*s.scene().find("t")->world_mesh);
+  const core::Aabb box = core::mesh_bounds(*s.scene().find("t")->world_mesh);
   const glm::dvec3 top(0.5 * (box.lo.x + box.hi.x), box.hi.y, 0.5 * (box.lo.z + box.hi.z));
   ASSERT_TRUE(s.execute({{"cmd", "lattice.press"},
                          {"object", "t"},

@@ -65,7 +65,7 @@ class Modal : public test::StateDirTest {
     ASSERT_TRUE(s.execute(
         {{"cmd", "scene.primitive"}, {"kind", "box"}, {"name", "b"}, {"translate", {1, 0, 0}}, {"scale", 0.5}}));
     editor::Navigator nav;
-    nav.frame(editor::bounds_of(*object().world_mesh), {800, 600});
+    nav.frame(core::mesh_bounds(*object().world_mesh), {800, 600});
     view = nav.camera({800, 600});
   }
   const core::SceneObject& object() const { return *s.scene().find("b"); }
@@ -278,7 +278,7 @@ TEST_F(Modal, PlacedObjectTurnsAboutItsShapeAndItsLatticeFollows) {
   ASSERT_TRUE(s.execute(nlohmann::json::parse(R"({"cmd":"place.sketch","stroke":[[250,380],[400,330],[550,380]],
       "object":"crate","width":0.3,"height":0.2,"samples":[24,8],"controls":[8,4,3]})")));
   const core::SceneObject before = *s.scene().find("crate");
-  const glm::dvec3 centre = editor::bounds_of(*before.world_mesh).center();
+  const glm::dvec3 centre = core::mesh_bounds(*before.world_mesh).center();
   modal.begin(editor::TransformMode::rotate, before, view, {400, 300});
   editor::TransformModalInput in;
   in.keys = keys("y90");
@@ -289,7 +289,7 @@ TEST_F(Modal, PlacedObjectTurnsAboutItsShapeAndItsLatticeFollows) {
   ASSERT_TRUE(s.execute(modal.confirmed_line()));
   const core::SceneObject& after = *s.scene().find("crate");
   // The shape turned about its own centre (it stays there) and the preview was what the command made.
-  EXPECT_LT(glm::length(editor::bounds_of(*after.world_mesh).center() - centre), 1e-6);
+  EXPECT_LT(glm::length(core::mesh_bounds(*after.world_mesh).center() - centre), 1e-6);
   ASSERT_EQ(preview.world_mesh->positions.size(), after.world_mesh->positions.size());
   for (std::size_t v = 0; v < after.world_mesh->positions.size(); ++v)
     ASSERT_LT(glm::length(preview.world_mesh->positions[v] - after.world_mesh->positions[v]), 1e-9);

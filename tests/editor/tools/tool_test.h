@@ -54,7 +54,7 @@ inline void drag(editor::Tool& tool, editor::ToolContext& ctx, editor::ToolInput
 // A view of 800 × 600 pixels framing `object` of `scene`, as F does.
 inline core::Camera framed_view(const core::Scene& scene, const std::string& object) {
   editor::Navigator nav;
-  nav.frame(editor::bounds_of(*scene.find(object)->world_mesh), {800, 600});
+  nav.frame(core::mesh_bounds(*scene.find(object)->world_mesh), {800, 600});
   return nav.camera({800, 600});
 }
 
