@@ -31,7 +31,8 @@ std::optional<SceneObject> DdmBakeCommand::build(const Scene& scene) {
   baked.name = p_.name;
   baked.source = "ddm.bake:" + p_.object + "/" + p_.layer;
   baked.color = layer->color.value_or(object->color);
-  baked.materials = ddm_tile_materials(layer->tiles).set;  // texture-mapped tiles keep their materials
+  // Texture-mapped tiles keep their materials; plain ones among them take the layer's colour.
+  baked.materials = ddm_tile_materials(layer->tiles, glm::dvec3(baked.color)).set;
   // In world units where the object's deformation carries the tiles at that time (ddm_follow.h). The evaluation
   // (a frame of the animation) or the copy takes the first 80 %, the deformation the rest.
   const double t = p_.frame ? scene.timeline.time_of_frame(*p_.frame) : 0.0;

@@ -231,6 +231,7 @@ TriMesh ddm_evaluate(const DdmBase& base, const std::vector<DdmTile>& tiles, con
         const TriMesh& tm = tiles[static_cast<std::size_t>(inst.tile)].mesh;
         const glm::dvec2 cx = inst.size.x * glm::dvec2(L[0][0], L[1][0]);  // ∂u/∂(x, y)
         const glm::dvec2 cy = inst.size.y * glm::dvec2(L[0][1], L[1][1]);  // ∂v/∂(x, y)
+        std::size_t reversed = 0;  // vertices where T reverses orientation (a mirrored chart: det J < 0)
         for (std::size_t v = 0; v < tm.vertex_count(); ++v) {
           const glm::dvec3& t = tm.positions[v];
           const glm::dvec2 uv = inst.origin + inst.size * transform.apply({t.x, t.y}) + offset;
@@ -240,13 +241,20 @@ TriMesh ddm_evaluate(const DdmBase& base, const std::vector<DdmTile>& tiles, con
           const glm::dvec3 Tu = s.du + wh * s.dn_du, Tv = s.dv + wh * s.dn_dv;
           const glm::dmat3 J(Tu * cx.x + Tv * cy.x, Tu * cx.y + Tv * cy.y, height * s.n);
           const glm::dmat3 cof(glm::cross(J[1], J[2]), glm::cross(J[2], J[0]), glm::cross(J[0], J[1]));
-          const glm::dvec3 n = cof * tm.normals[v];
+          // cof(J)·n = det(J)·J⁻ᵀ·n: turned back where det J < 0, so normals point out of the copy either way.
+          const bool mirrored = glm::dot(J[2], cof[2]) < 0.0;
+          reversed += mirrored;
+          const glm::dvec3 n = (mirrored ? -1.0 : 1.0) * (cof * tm.normals[v]);
           const double len = glm::length(n);
           out.normals[first[k] + v] = len > 0.0 && std::isfinite(len) ? n / len : s.n;
         }
+        // A copy mostly on a mirrored chart is wound the other way, so its faces stay counter-clockwise from outside.
+        const bool flip = 2 * reversed > tm.vertex_count();
         const auto off = static_cast<unsigned>(first[k]);
-        for (std::size_t f = 0; f < tm.triangle_count(); ++f)
-          out.triangles[first_tri[k] + f] = tm.triangles[f] + glm::uvec3(off);
+        for (std::size_t f = 0; f < tm.triangle_count(); ++f) {
+          const glm::uvec3 t = tm.triangles[f] + glm::uvec3(off);
+          out.triangles[first_tri[k] + f] = flip ? glm::uvec3(t.x, t.z, t.y) : t;
+        }
         if (materials.set)
           copy_tile_materials(tiles[std::size_t(inst.tile)], materials.first_slot[std::size_t(inst.tile)], out,
                               first[k], first_tri[k]);

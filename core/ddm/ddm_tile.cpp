@@ -197,7 +197,7 @@ DdmTile make_ddm_tile(const std::string& kind) {
                               "' (thorn, flower, chain, hex, hair, or a mesh file)");
 }
 
-DdmTileMaterials ddm_tile_materials(const std::vector<DdmTile>& tiles) {
+DdmTileMaterials ddm_tile_materials(const std::vector<DdmTile>& tiles, const glm::dvec3& untextured_color) {
   DdmTileMaterials out;
   out.first_slot.assign(tiles.size(), 0);
   const MaterialSet* shared = nullptr;
@@ -217,8 +217,11 @@ DdmTileMaterials ddm_tile_materials(const std::vector<DdmTile>& tiles) {
     out.first_slot[i] = static_cast<MaterialSlot>(set->materials.size());
     const std::shared_ptr<const MaterialSet>& own = tiles[i].materials;
     if (!own || own->empty()) {
-      Material m;  // glTF 2.0 §3.9.6 default material
+      Material m;  // as the tile looks in an untextured layer: its colour, metallic 0, roughness 0.6 (gltf_io.h)
       m.name = tiles[i].name;
+      m.base_color = glm::dvec4(untextured_color, 1.0);
+      m.metallic = 0.0;
+      m.roughness = 0.6;
       set->materials.push_back(m);
       continue;
     }

@@ -33,9 +33,11 @@ struct DdmTileMaterials {
 
 // One set for `tiles`: null when none carries materials; the tiles' own set when they all share one (a single
 // textured tile: the same pointer, so nothing is copied); else the sets one after another (images re-indexed), a
-// tile without materials contributing the glTF default material (§3.9.6). Throws std::invalid_argument over
-// kMaxMaterialsPerMesh materials.
-DdmTileMaterials ddm_tile_materials(const std::vector<DdmTile>& tiles);
+// tile without materials contributing a material in `untextured_color` (linear RGB [0,1]³: the layer's colour),
+// metallic 0 and roughness 0.6, so that it looks as in an untextured layer. Throws
+// std::invalid_argument over kMaxMaterialsPerMesh materials.
+DdmTileMaterials ddm_tile_materials(const std::vector<DdmTile>& tiles,
+                                    const glm::dvec3& untextured_color = glm::dvec3(1.0));
 
 // Generated tiles for tests and scenes (closed 2-manifolds, outward normals, w ≥ 0, x, y within [0,1]):
 //   "thorn"   a bent horn on a round foot, 24 segments × 26 rings (626 vertices, seed Fig. 5.6's 672);

@@ -28,7 +28,8 @@ SceneExport scene_export_nodes(const Scene& scene) {
       if (!layer->mesh) continue;
       auto world = std::make_shared<const TriMesh>(ddm_layer_world_mesh(o, *layer, *layer->mesh, 0.0));
       GltfNode node{o.name + "/" + layer->name, world.get(), layer->color.value_or(o.color), o.inside_color};
-      node.materials = ddm_tile_materials(layer->tiles).set;  // texture-mapped tiles (seed Fig. 5.12)
+      // Texture-mapped tiles (seed Fig. 5.12); plain ones among them in the layer's colour.
+      node.materials = ddm_tile_materials(layer->tiles, glm::dvec3(node.color)).set;
       out.nodes.push_back(node);
       out.owned.push_back(std::move(world));
     }

@@ -140,7 +140,8 @@ struct DdmGl::LayerGl {
     GLsizei selected_count[kDdmLodLevels] = {};
   };
   std::shared_ptr<const core::DdmLayer> layer;         // held so the address cannot be reused
-  std::shared_ptr<const core::MaterialSet> materials;  // core::ddm_tile_materials(layer.tiles).set, or null
+  std::shared_ptr<const core::MaterialSet> materials;  // core::ddm_tile_materials(layer.tiles, ...).set, or null
+  glm::dvec3 materials_color{1.0};                     // the untextured tiles' colour in `materials`
   Buffer instances;                                    // InstanceRecord per instance, grouped by tile (stable)
   std::vector<InstanceRecord> records;                 // its contents (the source of `selected`)
   std::vector<TileGl> tiles;                           // per layer tile
@@ -465,9 +466,15 @@ void DdmGl::select(LayerGl& g, const DdmSelection& selection) {
   check_gl_error("DdmGl: selection upload");
 }
 
-std::shared_ptr<const core::MaterialSet> DdmGl::materials(const std::shared_ptr<const core::DdmLayer>& layer) {
+std::shared_ptr<const core::MaterialSet> DdmGl::materials(const std::shared_ptr<const core::DdmLayer>& layer,
+                                                          const glm::dvec3& untextured_color) {
   if (!layer) return nullptr;
-  return layer_for(layer).materials;
+  LayerGl& g = layer_for(layer);
+  if (g.materials && g.materials_color != untextured_color) {  // the same slots; images shared, not re-read
+    g.materials = core::ddm_tile_materials(layer->tiles, untextured_color).set;
+    g.materials_color = untextured_color;
+  }
+  return g.materials;
 }
 
 std::size_t DdmGl::draw(const std::shared_ptr<const core::DdmLayer>& layer, const DdmPose& pose,

@@ -113,9 +113,11 @@ class DdmGl {
   std::size_t draw(const std::shared_ptr<const core::DdmLayer>& layer, const DdmPose& pose, const glm::dmat4& model,
                    const ShaderProgram& program, const DdmFollow* follow = nullptr,
                    const DdmSelection* selection = nullptr, const DdmMaterialBinder* bind_material = nullptr);
-  // The layer's tile materials as one set (core::ddm_tile_materials), null for untextured tiles. Uploads the layer
-  // when it is not cached yet (throws as draw).
-  std::shared_ptr<const core::MaterialSet> materials(const std::shared_ptr<const core::DdmLayer>& layer);
+  // The layer's tile materials as one set (core::ddm_tile_materials, tiles without materials in `untextured_color`,
+  // linear RGB: the layer's colour), null for untextured tiles. Uploads the layer when it is not cached yet (throws
+  // as draw).
+  std::shared_ptr<const core::MaterialSet> materials(const std::shared_ptr<const core::DdmLayer>& layer,
+                                                     const glm::dvec3& untextured_color);
 
   // The same vertex shader with transform feedback and GL_RASTERIZER_DISCARD (a private 1×1 framebuffer when the
   // bound one is incomplete, as on surfaceless EGL): positions / normals in object space, in ddm_evaluate's order.

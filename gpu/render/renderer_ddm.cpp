@@ -42,19 +42,14 @@ const FfdLatticeBuffers& DdmDisplay::lattice_buffers(const core::DdmLayerDeforma
 
 namespace {
 
-// Binds material `slot` of `set` for the MATERIAL variant: face culling by double_sided (glTF 2.0 §3.9.6), blending
-// for BLEND, its textures and uniforms.
+// Binds material `slot` of `set` for the MATERIAL variant: blending for BLEND, its textures and uniforms. No face
+// culling, whatever double_sided says: the GPU draws every copy with its tile's winding, and a copy on a mirrored
+// chart (det J < 0: a uv base whose S_u × S_v points against N) is wound the other way round.
 void bind_tile_material(MaterialTextures& textures, const core::MaterialSet& set, core::MaterialSlot slot,
                         const ShaderProgram& p) {
   static const core::Material fallback;  // a slot without a material: the glTF default material
   const core::Material& m = slot < set.materials.size() ? set.materials[slot] : fallback;
-  if (m.double_sided) {
-    glDisable(GL_CULL_FACE);
-  } else {
-    glEnable(GL_CULL_FACE);
-    glCullFace(GL_BACK);
-    glFrontFace(GL_CCW);
-  }
+  glDisable(GL_CULL_FACE);
   if (m.alpha_mode == core::AlphaMode::Blend) {
     glEnable(GL_BLEND);
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
@@ -83,7 +78,8 @@ DdmDrawn DdmDisplay::draw_object(const core::SceneObject& o, double time_s, cons
   for (const auto& layer : o.ddm_layers) {
     if (!has_instances(layer)) continue;
     const DdmPose pose = DdmPose::at(*layer, time_s);
-    const std::shared_ptr<const core::MaterialSet> set = textures ? gl_.materials(layer) : nullptr;
+    const glm::dvec3 colour(layer->color.value_or(o.color));  // of the plain tiles among texture-mapped ones
+    const std::shared_ptr<const core::MaterialSet> set = textures ? gl_.materials(layer, colour) : nullptr;
     ShaderDefines defines = variant;
     if (set) defines.push_back({"MATERIAL", ""});
     const ShaderProgram* program = nullptr;

@@ -112,7 +112,9 @@ void main() {
   vec3 J0 = Tu * cx.x + Tv * cy.x;
   vec3 J1 = Tu * cx.y + Tv * cy.y;
   vec3 J2 = u_height * n;
+  // cof(J)·n = det(J)·J⁻ᵀ·n: turned back where J reverses orientation (a mirrored chart, det J < 0).
   vec3 m = cross(J1, J2) * tn.x + cross(J2, J0) * tn.y + cross(J0, J1) * tn.z;
+  if (dot(cross(J0, J1), J2) < 0.0) m = -m;
   float ml = length(m);
   vec3 normal = ml > 0.0 ? m / ml : n;
 #ifdef FOLLOW

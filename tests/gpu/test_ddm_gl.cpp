@@ -293,7 +293,7 @@ TEST_F(DdmGlTest, TextureMappedTilesShowTheirTextureInMaterialShading) {
   layer->surface = base;
   DdmGl gl;
   expect_parity(gl, layer, 0.0, "texture-mapped thorns");
-  EXPECT_EQ(gl.materials(layer).get(), set.get());
+  EXPECT_EQ(gl.materials(layer, glm::dvec3(1.0)).get(), set.get());
   o.ddm_layers.push_back(layer);
   core::Scene scene;
   scene.insert(o);

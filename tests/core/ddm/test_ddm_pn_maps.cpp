@@ -167,6 +167,47 @@ void expect_same_bits(const TriMesh& a, const TriMesh& b) {
   for (std::size_t f = 0; f < a.triangle_count(); ++f) ASSERT_EQ(a.triangles[f], b.triangles[f]) << f;
 }
 
+// A chart whose S_u × S_v points against N (texture coordinates mirrored on the surface, as the plane primitive's
+// are: u along x, v along z, N = +y) maps tiles with det J < 0: the copies still stand on the side N points to, wound
+// counter-clockwise from outside, their normals pointing out — as on the same plane with unmirrored coordinates.
+TEST(DdmMaps, TilesOnAMirroredChartAreNotInsideOut) {
+  TriMesh plane = make_plane(4);
+  for (std::size_t v = 0; v < plane.vertex_count(); ++v) {
+    plane.positions[v] = {plane.uvs[v].x, 0.0, plane.uvs[v].y};
+    plane.normals[v] = {0, 1, 0};
+  }
+  const DdmTile hex = make_ddm_tile("hex");
+  for (const bool mirrored : {true, false}) {
+    TriMesh base_mesh = plane;
+    if (!mirrored)
+      for (glm::dvec2& uv : base_mesh.uvs) uv.y = 1.0 - uv.y;
+    const DdmMapsBase base(std::make_shared<const DdmMaps>(ddm_rasterize_uv_maps(base_mesh, 33)));
+    ASSERT_EQ(glm::dot(glm::cross(base.eval(0, 0.5, 0.5).du, base.eval(0, 0.5, 0.5).dv), glm::dvec3(0, 1, 0)) < 0,
+              mirrored);
+    const TriMesh out = ddm_evaluate(base, hex, {{0, {0.25, 0.25}, {0.5, 0.5}}}, 0.2);
+    double lowest = 1e300, up_area = 0.0;
+    for (std::size_t f = 0; f < out.triangle_count(); ++f) {
+      const glm::uvec3 t = out.triangles[f];
+      const glm::dvec3 a = out.positions[t.x], b = out.positions[t.y], c = out.positions[t.z];
+      const glm::dvec3 face = glm::cross(b - a, c - a);
+      const glm::dvec3 n = out.normals[t.x] + out.normals[t.y] + out.normals[t.z];
+      if (glm::length(face) > 1e-12) EXPECT_GT(glm::dot(face, n), 0.0) << "face " << f << " mirrored " << mirrored;
+      up_area += face.y;  // Σ of the faces' y-components: the projected area seen from above, > 0 when outward
+      lowest = std::min({lowest, a.y, b.y, c.y});
+    }
+    EXPECT_GE(lowest, -1e-9) << "the copy stands above the plane, mirrored " << mirrored;
+    EXPECT_NEAR(up_area, 0.0, 1e-9) << "a closed tile's projected areas cancel";
+    double top = 0.0;  // the faces at the copy's top face up
+    for (std::size_t f = 0; f < out.triangle_count(); ++f) {
+      const glm::uvec3 t = out.triangles[f];
+      const double y = (out.positions[t.x].y + out.positions[t.y].y + out.positions[t.z].y) / 3.0;
+      if (y > 0.5 * 0.2 * 0.1)
+        top += glm::cross(out.positions[t.y] - out.positions[t.x], out.positions[t.z] - out.positions[t.x]).y;
+    }
+    EXPECT_GT(top, 0.0) << "mirrored " << mirrored;
+  }
+}
+
 TEST(DdmLayer, PaintAndEraseReuseTheHeldTilesBitForBit) {
   // Strokes evaluate only the cells they add; the copied vertices must be exactly those a whole evaluation gives, on
   // a layer with two tiles, a metamorphosis at α(0) = 0.3, an offset and a texture-space transform.

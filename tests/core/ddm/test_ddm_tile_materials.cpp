@@ -53,7 +53,7 @@ TEST(DdmTileMaterials, ATextureMappedTileKeepsItsUvsAndMaterials) {
   }
 }
 
-TEST(DdmTileMaterials, SetsJoinWithImagesReindexedAndPlainTilesGetTheDefaultMaterial) {
+TEST(DdmTileMaterials, SetsJoinWithImagesReindexedAndPlainTilesGetTheLayersColour) {
   const DdmTile a = textured_hex(), b = textured_hex();
   const DdmTileMaterials one = ddm_tile_materials({a});
   EXPECT_EQ(one.set.get(), a.materials.get()) << "a single textured tile's set is used as it is";
@@ -63,6 +63,12 @@ TEST(DdmTileMaterials, SetsJoinWithImagesReindexedAndPlainTilesGetTheDefaultMate
   EXPECT_EQ(joined.first_slot, (std::vector<MaterialSlot>{0, 2, 3}));
   ASSERT_EQ(joined.set->materials.size(), 5u);
   EXPECT_EQ(joined.set->materials[2].name, "thorn");
+  EXPECT_EQ(joined.set->materials[2].base_color, glm::dvec4(1.0)) << "white unless a colour is given";
+  EXPECT_EQ(joined.set->materials[2].metallic, 0.0) << "plain tiles are not metal";
+  const glm::dvec3 brick(0.7, 0.3, 0.22);
+  const DdmTileMaterials coloured = ddm_tile_materials({a, make_ddm_tile("thorn"), b}, brick);
+  EXPECT_EQ(coloured.set->materials[2].base_color, glm::dvec4(brick, 1.0)) << "a plain tile shows the layer's colour";
+  EXPECT_EQ(coloured.set->materials[0].base_color, joined.set->materials[0].base_color) << "textured ones keep theirs";
   EXPECT_EQ(joined.set->images.size(), 2u);
   EXPECT_EQ(joined.set->materials[0].base_color_texture.image, 0);
   EXPECT_EQ(joined.set->materials[3].base_color_texture.image, 1);
