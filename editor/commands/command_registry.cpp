@@ -9,6 +9,7 @@
 #include "core/commands/ddm_animate.h"
 #include "core/commands/ddm_bake.h"
 #include "core/commands/ddm_color.h"
+#include "core/commands/ddm_export.h"
 #include "core/commands/ddm_fill.h"
 #include "core/commands/ddm_paint.h"
 #include "core/commands/ddm_remove.h"
@@ -99,6 +100,7 @@ const CommandRegistry& CommandRegistry::builtin() {
     r.add<core::DdmRemoveCommand>();
     r.add<core::DdmColorCommand>();
     r.add<core::DdmAnimateCommand>();
+    r.add<core::DdmExportCommand>();
     r.add<core::AnimTimelineCommand>();
     r.add<core::AnimKeyframeCommand>();
     r.add<core::AnimClipCommand>();

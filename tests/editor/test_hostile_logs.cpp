@@ -41,31 +41,32 @@ class HostileLog : public ::testing::TestWithParam<HostileCase> {};
 
 TEST_P(HostileLog, EndsWithAClearErrorAndAFiniteScene) { expect_failure(hostile_dir() / GetParam().file, GetParam()); }
 
-INSTANTIATE_TEST_SUITE_P(Corpus, HostileLog,
-                         ::testing::Values(HostileCase{"utf8.jsonl", 2, "", "invalid UTF-8 at byte"},
-                                           HostileCase{"scale_huge.jsonl", 1, "", "not finite or out of range"},
-                                           HostileCase{"translate_huge.jsonl", 1, "", "not finite or out of range"},
-                                           HostileCase{"sketch_samples.jsonl", 4, "samples",
-                                                       "contact samples: at most 1048576"},
-                                           HostileCase{"press_huge.jsonl", 3, "", "not finite or out of range"},
-                                           HostileCase{"pull_huge.jsonl", 3, "", "not finite or out of range"},
-                                           HostileCase{"sketch_height.jsonl", 4, "", "height"},
-                                           HostileCase{"name_nul.jsonl", 1, "name", "control characters"},
-                                           HostileCase{"name_slash.jsonl", 1, "name", "'/'"},
-                                           HostileCase{"fps_tiny.jsonl", 1, "fps", "[0.01, 240]"},
-                                           HostileCase{"paint_radius.jsonl", 3, "radius_px", "(0, 16384]"},
-                                           HostileCase{"refine_tol.jsonl", 3, "max_triangles", "[1, 8e6]"},
-                                           HostileCase{"record_big.jsonl", 4, "width", "megapixels"},
-                                           HostileCase{"export_escape.jsonl", 2, "path", "leaves the output folder"},
-                                           HostileCase{"export_absolute.jsonl", 2, "path", "is absolute"},
-                                           HostileCase{"refine_tiny.jsonl", 3, "tolerance", "float32"},
-                                           HostileCase{"fill_counts.jsonl", 2, "counts", "cells on one chart"},
-                                           HostileCase{"fill_tile_size.jsonl", 2, "tile_size", "tile vertices"},
-                                           HostileCase{"paint_counts.jsonl", 3, "counts", "painting budget"}),
-                         [](const auto& info) {
-                           const std::string n = info.param.file;
-                           return n.substr(0, n.size() - 6);
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    Corpus, HostileLog,
+    ::testing::Values(HostileCase{"utf8.jsonl", 2, "", "invalid UTF-8 at byte"},
+                      HostileCase{"scale_huge.jsonl", 1, "", "not finite or out of range"},
+                      HostileCase{"translate_huge.jsonl", 1, "", "not finite or out of range"},
+                      HostileCase{"sketch_samples.jsonl", 4, "samples", "contact samples: at most 1048576"},
+                      HostileCase{"press_huge.jsonl", 3, "", "not finite or out of range"},
+                      HostileCase{"pull_huge.jsonl", 3, "", "not finite or out of range"},
+                      HostileCase{"sketch_height.jsonl", 4, "", "height"},
+                      HostileCase{"name_nul.jsonl", 1, "name", "control characters"},
+                      HostileCase{"name_slash.jsonl", 1, "name", "'/'"},
+                      HostileCase{"fps_tiny.jsonl", 1, "fps", "[0.01, 240]"},
+                      HostileCase{"paint_radius.jsonl", 3, "radius_px", "(0, 16384]"},
+                      HostileCase{"refine_tol.jsonl", 3, "max_triangles", "[1, 8e6]"},
+                      HostileCase{"record_big.jsonl", 4, "width", "megapixels"},
+                      HostileCase{"export_escape.jsonl", 2, "path", "leaves the output folder"},
+                      HostileCase{"export_absolute.jsonl", 2, "path", "is absolute"},
+                      HostileCase{"ddm_export_escape.jsonl", 3, "path", "leaves the output folder"},
+                      HostileCase{"refine_tiny.jsonl", 3, "tolerance", "float32"},
+                      HostileCase{"fill_counts.jsonl", 2, "counts", "cells on one chart"},
+                      HostileCase{"fill_tile_size.jsonl", 2, "tile_size", "tile vertices"},
+                      HostileCase{"paint_counts.jsonl", 3, "counts", "painting budget"}),
+    [](const auto& info) {
+      const std::string n = info.param.file;
+      return n.substr(0, n.size() - 6);
+    });
 
 TEST(HostileLogText, ExportsThatLeaveTheOutputFolderWriteNothing) {
   const fs::path escaped = fs::weakly_canonical(test::logs_dir() / ".." / "escaped_by_log.svg");

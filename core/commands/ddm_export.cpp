@@ -1,0 +1,82 @@
+#include "core/commands/ddm_export.h"
+
+#include <chrono>
+#include <memory>
+
+#include "core/commands/ddm_layer_spec.h"
+#include "core/ddm/ddm_map_image.h"
+#include "core/image/image_io.h"
+
+namespace trispline::core {
+
+const ParamSchema<DdmExportParams>& DdmExportCommand::schema() {
+  using P = DdmExportParams;
+  static const ParamSchema<P> s =
+      ParamSchema<P>("ddm.export",
+                     "Export a tile layer's sampled position or normal map as a picture (seed Figs. 5.3, 5.5)")
+          .field("object", &P::object, {.required = true, .help = "The object holding the layer"})
+          .field("layer", &P::layer, {.required = true, .help = "The tile layer whose maps are written"})
+          .choice("what", &P::what, {"positions", "normals"},
+                  {.help = "positions: P(u, v), x y z as red green blue over the surface's bounding box; normals: "
+                           "N(u, v) as (n + 1) / 2. One pixel per sample, charts side by side, v upwards; alpha 96 "
+                           "where a UV-mapped base's diffusion filled the sample"})
+          .field("path", &P::path,
+                 {.required = true,
+                  .help = "Output .png, relative to the output folder (replay's --out, else the log's folder); "
+                          "absolute paths and paths that leave the folder are refused"})
+          .check([](const P& p) {
+            std::string e = std::filesystem::path(p.path).extension().string();
+            for (char& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+            if (e != ".png") params::fail("path", "a map is written as .png, not '" + e + "'");
+          });
+  return s;
+}
+
+CommandPtr DdmExportCommand::parse(const nlohmann::json& line, const CommandContext& ctx) {
+  DdmExportParams p = schema().parse(line, ctx);
+  std::filesystem::path file = ctx.resolve_output(p.path, "path");
+  return std::make_unique<DdmExportCommand>(std::move(p), std::move(file));
+}
+
+std::optional<SceneObject> DdmExportCommand::build(const Scene& scene) {
+  const SceneObject& object = require_object(scene, p_.object);
+  const std::shared_ptr<const DdmLayer> layer = find_ddm_layer(object, p_.layer);
+  if (!layer->maps) throw CommandError("field 'layer': '" + p_.layer + "' holds no sampled maps", "layer");
+  const auto t0 = std::chrono::steady_clock::now();
+  std::shared_ptr<const DdmMapImage> image;
+  try {
+    image = std::make_shared<const DdmMapImage>(
+        ddm_map_image(*layer->maps, p_.what == "normals" ? DdmMapQuantity::normals : DdmMapQuantity::positions));
+  } catch (const std::invalid_argument& e) {
+    throw CommandError(std::string("field 'layer': ") + e.what(), "layer");
+  }
+  writer_ = [image](const std::filesystem::path& out) {
+    std::filesystem::create_directories(out.parent_path());
+    write_image_rgba8(out, image->width, image->height, image->rgba);
+  };
+  if (writes_files()) {
+    writer_(file_);
+    mark_written();
+  }
+  stats_["width"] = image->width;
+  stats_["height"] = image->height;
+  stats_["charts"] = layer->maps->slot_count();
+  stats_["path"] = file_.string();
+  stats_["ms"] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return object;
+}
+
+void DdmExportCommand::write_files() {
+  if (!writer_)
+    throw CommandError("'" + p_.object + "/" + p_.layer + "' was not exported yet: nothing to write", "object");
+  try {
+    writer_(file_);
+  } catch (const CommandError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw CommandError(std::string("cannot write ") + file_.string() + ": " + e.what(), "path");
+  }
+  mark_written();
+}
+
+}  // namespace trispline::core

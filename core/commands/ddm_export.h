@@ -1,0 +1,47 @@
+// `ddm.export` — writes a tile layer's sampled position or normal map as a PNG picture (core/ddm/ddm_map_image.h:
+// seed Figs. 5.3 and 5.5). Fields: declared in ddm_export.cpp (ParamSchema), listed in docs/commands.md.
+// The output folder and path checks are volume.export's (CommandContext::resolve_output: paths that leave the output
+// folder are refused); the picture is made before anything is written, and the scene does not change (undo has
+// nothing to restore; the file stays). stats(): width, height, charts and the file.
+// A FileOutput (core/commands/file_output.h): Open and crash recovery write nothing; History's Run again writes the
+// same bytes later.
+#pragma once
+
+#include <functional>
+
+#include "core/commands/declared_command.h"
+#include "core/commands/file_output.h"
+#include "core/commands/snapshot_command.h"
+
+namespace trispline::core {
+
+struct DdmExportParams {
+  std::string object, layer;
+  std::string what = "positions";  // positions | normals
+  std::string path;
+};
+
+class DdmExportCommand : public DeclaredCommand<DdmExportCommand, DdmExportParams, SnapshotCommand>, public FileOutput {
+ public:
+  // `file`: p.path resolved by CommandContext::resolve_output (absolute, inside the output folder).
+  DdmExportCommand(DdmExportParams p, std::filesystem::path file)
+      : DeclaredCommand(std::move(p)), file_(std::move(file)) {}
+  static const ParamSchema<DdmExportParams>& schema();
+  // As DeclaredCommand::parse, with `path` resolved by CommandContext::resolve_output.
+  static CommandPtr parse(const nlohmann::json& line, const CommandContext& ctx);
+  std::string label() const override { return "Export the " + p_.what + " map of " + p_.object + "/" + p_.layer; }
+  std::filesystem::path output_path() const override { return file_; }
+  bool writes_itself() const override { return true; }
+  void write_files() override;  // throws CommandError (field "path": cannot write; "object": no redo yet)
+
+ protected:
+  std::string target() const override { return p_.object; }
+  std::optional<SceneObject> build(const Scene& scene) override;
+  std::string failure_field() const override { return "path"; }
+
+ private:
+  std::filesystem::path file_;
+  std::function<void(const std::filesystem::path&)> writer_;  // writes the first redo's picture to a file
+};
+
+}  // namespace trispline::core
