@@ -34,11 +34,11 @@ using json = nlohmann::json;
 const std::vector<std::string> kCases = {"thorns_face", "thorns_teapot", "chains_1m", "chains_3m"};
 const std::vector<std::string> kOrbitCases = {"orbit_default", "orbit_fine"};
 const std::vector<std::string> kFollowCases = {"follow_bunny"};
-const std::filesystem::path kFollowScene = "assets/scenes/thorny_walk.jsonl";
+const std::filesystem::path kFollowScene = "assets/scenes/seed/thorny_walk.jsonl";
 constexpr double kFollowTileSize = 0.058;  // object units: about 1 M tile vertices on the bunny
 const std::filesystem::path kDefaultScene = "assets/scenes/default.jsonl";
 // The face case replays the shipped scene (seed Table 5.1's first row); it needs the repository's assets.
-const std::filesystem::path kFaceScene = "assets/scenes/face_thorns.jsonl";
+const std::filesystem::path kFaceScene = "assets/scenes/seed/face_thorns.jsonl";
 const std::filesystem::path kFaceMesh = "assets/data/nefertiti.off";
 
 struct Case {
@@ -304,7 +304,7 @@ void print_ddm_table(const json& j, std::ostream& out) {
   }
 }
 
-// The thorny bunny walking over the teapot (assets/scenes/thorny_walk.jsonl without its recording, thorns at
+// The thorny bunny walking over the teapot (assets/scenes/seed/thorny_walk.jsonl without its recording, thorns at
 // kFollowTileSize): the tile layer carried by the placement's FFD every frame, three ways.
 json run_follow(const BenchDdmOptions& o, gpu::Renderer& renderer, gpu::OffscreenTarget& target, std::ostream& err) {
   // The log with absolute data paths (it is written elsewhere) and the finer tiles.
@@ -313,11 +313,14 @@ json run_follow(const BenchDdmOptions& o, gpu::Renderer& renderer, gpu::Offscree
   {
     std::ofstream log(tmp);
     const std::string data =
-        std::filesystem::weakly_canonical(std::filesystem::absolute(kFollowScene).parent_path() / "../data").string() +
+        std::filesystem::weakly_canonical(std::filesystem::absolute(kFollowScene).parent_path() / "../../data")
+            .string() +
         "/";
     for (std::string line; std::getline(in, line);) {
       if (line.find("\"anim.record\"") != std::string::npos) continue;
-      if (const std::size_t at = line.find("../data/"); at != std::string::npos) line.replace(at, 8, data);
+      const std::string relative_data = "../../data/";  // the scene's data paths, relative to assets/scenes/seed/
+      if (const std::size_t at = line.find(relative_data); at != std::string::npos)
+        line.replace(at, relative_data.size(), data);
       const std::string size_field = "\"tile_size\":0.1";
       if (const std::size_t at = line.find(size_field); at != std::string::npos)
         line.replace(at, size_field.size(), "\"tile_size\":" + std::to_string(kFollowTileSize));

@@ -2,7 +2,7 @@
 // §5.3.2, Table 5.1) in an offscreen target: per case the tile vertices, the GPU time of the layer pass
 // (RenderStats::ddm_ms, GpuTimer: GL_TIME_ELAPSED queries on GPUs, glFinish + wall clock on llvmpipe), the whole
 // frame (draw + glFinish, wall clock) and frames per second. Cases (like the seed's table, with our tiles):
-//   thorns_face      assets/scenes/face_thorns.jsonl replayed: 645 thorns painted on the Loop limit surface of
+//   thorns_face      assets/scenes/seed/face_thorns.jsonl replayed: 645 thorns painted on the Loop limit surface of
 //                    CGAL's Nefertiti face mask, ≈ 0.40 M vertices (needs the repository's assets: run from its root
 //                    after scripts/fetch_assets.sh; skipped with a note otherwise, an error when asked for by name)
 //   thorns_teapot    640 thorns (626 vertices each) on the teapot's body patches, ≈ 0.40 M vertices

@@ -25,7 +25,7 @@ namespace trispline::editor {
 namespace {
 using json = nlohmann::json;
 
-std::filesystem::path default_scene() { return "assets/scenes/bars_walk.jsonl"; }  // run from the repository root
+std::filesystem::path default_scene() { return "assets/scenes/seed/bars_walk.jsonl"; }  // run from the repository root
 
 // incision.draw on the bunny Loop-subdivided once (139K vertices): a stroke across its flank (two surface points
 // projected through a camera facing it), the command end to end through History, and incise() alone.

@@ -17,7 +17,7 @@ while (($#)); do
     *) exe=$1; shift ;;
   esac
 done
-log=$root/assets/scenes/walk.jsonl
+log=$root/assets/scenes/seed/walk.jsonl
 out=$root/build/bench_farm
 rm -rf "$out"
 mkdir -p "$out"

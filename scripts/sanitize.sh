@@ -4,7 +4,7 @@
 #      UndefinedBehaviorSanitizer into build-asan/ (no GUI: the GL layers run in the plain build's tests);
 #   2. runs the core and command tests and every fuzz target's seeds and regression files once (ctest);
 #   3. fuzzes the targets two at a time within one shared budget, TRISPLINE_FUZZ_BUDGET seconds of wall time (default
-#      240: each target gets budget × jobs / targets seconds, 36 s for 13 targets on 2 cores), or each for
+#      160: each target gets budget × jobs / targets seconds, 24 s for 13 targets on 2 cores), or each for
 #      TRISPLINE_FUZZ_SECONDS when set (at most a target's own SECONDS when tests/fuzz/CMakeLists.txt gives one; seed
 #      TRISPLINE_FUZZ_SEED, default 1). A crash fails the run
 #      and leaves the input in build-asan/fuzz/<target>/crashes/; add it to tests/fuzz/regressions/<target>/ with the
@@ -16,7 +16,7 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
 export CCACHE_BASEDIR="$root" CCACHE_NOHASHDIR=1  # hits across clones and worktrees
 build=build-asan
-budget="${TRISPLINE_FUZZ_BUDGET:-240}"
+budget="${TRISPLINE_FUZZ_BUDGET:-160}"
 # A fixed seed by default: CI explores the same mutations each run, so a red run is a regression, not luck; 0 = a
 # random seed per run (longer local runs: TRISPLINE_FUZZ_SEED=0 TRISPLINE_FUZZ_SECONDS=3600).
 fuzz_seed="${TRISPLINE_FUZZ_SEED:-1}"

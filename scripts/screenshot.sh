@@ -4,7 +4,7 @@
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
-xvfb-run -a -s "-screen 0 1600x900x24" build/editor/trispline edit assets/scenes/walk.jsonl --no-recover \
+xvfb-run -a -s "-screen 0 1600x900x24" build/editor/trispline edit assets/scenes/seed/walk.jsonl --no-recover \
   --screenshot docs/images/editor.png
 build/editor/trispline replay assets/scenes/default.jsonl --out out/readme --width 960 --height 540 >/dev/null
 cp out/readme/final.png docs/images/default_scene.png

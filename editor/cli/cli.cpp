@@ -322,7 +322,7 @@ void add_bench_dffd(CLI::App& bench, CliRequest& o) {
       "dffd", "Discontinuous FFD per frame: split + cap + deform of the bunny walking through bars (seed §6.3)");
   o.dffd_cmd->add_flag("--json", o.dffd.json, "Print one JSON object instead of a table");
   o.dffd_cmd->add_option("--scene", o.dffd.scene_path, "Scene log with an animated dffd.split object")
-      ->default_str("assets/scenes/bars_walk.jsonl");
+      ->default_str("assets/scenes/seed/bars_walk.jsonl");
   o.dffd_cmd->add_option("--runs", o.dffd.runs, "Timed evaluations per frame (median)")->check(CLI::PositiveNumber);
   o.dffd_cmd->add_option("--frames", o.dffd.frames, "Frames sampled over the walk")->check(CLI::PositiveNumber);
 }

@@ -41,7 +41,8 @@ std::string without_source_dir(std::string text) {
 // malformed on purpose are passed over).
 template <class Fn>
 void for_each_readable_line(Fn fn) {
-  for (const fs::path& dir : {kSource / "assets" / "scenes", kSource / "tests" / "logs"}) {
+  for (const fs::path& dir :
+       {kSource / "assets" / "scenes", kSource / "assets" / "scenes" / "seed", kSource / "tests" / "logs"}) {
     for (const fs::path& log : logs_in(dir)) {
       std::vector<editor::LogLine> lines;
       try {
@@ -107,8 +108,8 @@ std::string mutated_lines() {
 std::string canonical_lines() {
   std::ostringstream out;
   const editor::CommandRegistry& registry = editor::CommandRegistry::builtin();
-  for (const fs::path& dir :
-       {kSource / "assets" / "scenes", kSource / "tests" / "logs", kSource / "tests" / "logs" / "hostile"}) {
+  for (const fs::path& dir : {kSource / "assets" / "scenes", kSource / "assets" / "scenes" / "seed",
+                              kSource / "tests" / "logs", kSource / "tests" / "logs" / "hostile"}) {
     for (const fs::path& log : logs_in(dir)) {
       const std::string name = fs::relative(log, kSource).generic_string();
       std::vector<editor::LogLine> lines;

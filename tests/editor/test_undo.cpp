@@ -119,10 +119,10 @@ TEST(Determinism, TwoReplaysGiveIdenticalMeshes) {
   }
 }
 
-// The shipped guarantees scene (assets/scenes/guarantees.jsonl): its statistics say what the commands certify, and
+// The shipped guarantees scene (assets/scenes/seed/guarantees.jsonl): its statistics say what the commands certify, and
 // it is deterministic: two replays, and undoing every command then redoing them, give bit-identical meshes.
 TEST(Determinism, GuaranteesSceneCertifiesAndReplaysBitForBit) {
-  const fs::path log = fs::path(TRISPLINE_SOURCE_DIR) / "assets" / "scenes" / "guarantees.jsonl";
+  const fs::path log = fs::path(TRISPLINE_SOURCE_DIR) / "assets" / "scenes" / "seed" / "guarantees.jsonl";
   core::Scene a, b;
   editor::History ha(a), hb(b);
   const editor::ReplayResult r = editor::replay_lines(ha, log);

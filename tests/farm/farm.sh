@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# `trispline farm` for real: a 4-chunk array over assets/scenes/walk.jsonl (frames 1-16 at 320×180, at most 2 tasks
+# `trispline farm` for real: a 4-chunk array over assets/scenes/seed/walk.jsonl (frames 1-16 at 320×180, at most 2 tasks
 # at once) on ENGINE = slurm (a single-node Slurm started here: slurmctld + slurmd from Debian's slurm-wlm, auth/none,
 # state and spool under the test's folder, stopped by PID on exit) or local (the pool). Asserts: every frame and
 # animation.glb equal one `replay --frames 1-16`'s bytes, two chunks overlapped in time and never more than 2 ran at
@@ -13,7 +13,7 @@
 set -euo pipefail
 engine=${1:?usage: farm.sh slurm|local}
 exe=${TRISPLINE:?path of the trispline executable}
-log=${TRISPLINE_SOURCE:?source tree}/assets/scenes/walk.jsonl
+log=${TRISPLINE_SOURCE:?source tree}/assets/scenes/seed/walk.jsonl
 out=${FARM_OUT:?output folder}/$engine
 rm -rf "$out"
 mkdir -p "$out"
@@ -80,7 +80,7 @@ if [ "$engine" = local ]; then
   echo "bad input refused at $((SECONDS - t0)) s"
 
   # The DFFD walk's bunny changes topology from frame 25: its pieces cannot be joined, the assembly poses every frame.
-  bars=$TRISPLINE_SOURCE/assets/scenes/bars_walk.jsonl
+  bars=$TRISPLINE_SOURCE/assets/scenes/seed/bars_walk.jsonl
   "$exe" replay "$bars" --frames 21-28 --out "$out/bars_ref" --no-render --width 64 --height 36 > /dev/null
   "$exe" farm submit "$bars" --frames 21-28 --chunk 4 --out "$out/bars" --engine local --width 64 --height 36 \
     > "$out/bars.txt" || fail "the DFFD walk's farm failed: $(cat "$out/bars.txt")"

@@ -285,7 +285,7 @@ TEST_F(VolumeGlTest, FastMarchChangesNothing) {
 }
 
 // The real CT: InVesalius' Cranium (256 × 256 × 108, HU) as the skull scene loads it (tri-cubic, approximating, bone
-// at 226 HU), from its three views (assets/scenes/skull.jsonl) on 4:3 images: thin bone, noise, a head rest.
+// at 226 HU), from its three views (assets/scenes/seed/skull.jsonl) on 4:3 images: thin bone, noise, a head rest.
 TEST_F(VolumeGlTest, CraniumMatchesTheCpuReference) {
   const std::filesystem::path path = std::filesystem::path(TRISPLINE_SOURCE_DIR) / "assets/data/Cranium.inv3";
   ASSERT_TRUE(std::filesystem::exists(path)) << path << " missing: run scripts/fetch_assets.sh";

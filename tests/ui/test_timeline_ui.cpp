@@ -442,7 +442,7 @@ namespace {
 core::Scene replay_scene(const std::string& log) {
   core::Scene scene;
   core::CommandContext ctx;
-  ctx.base_dir = fs::path(TRISPLINE_SOURCE_DIR) / "assets" / "scenes";
+  ctx.base_dir = fs::path(TRISPLINE_SOURCE_DIR) / "assets" / "scenes" / "seed";
   std::ifstream in(ctx.base_dir / log);
   std::string text;
   while (std::getline(in, text)) {
