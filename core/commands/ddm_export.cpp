@@ -32,12 +32,6 @@ const ParamSchema<DdmExportParams>& DdmExportCommand::schema() {
   return s;
 }
 
-CommandPtr DdmExportCommand::parse(const nlohmann::json& line, const CommandContext& ctx) {
-  DdmExportParams p = schema().parse(line, ctx);
-  std::filesystem::path file = ctx.resolve_output(p.path, "path");
-  return std::make_unique<DdmExportCommand>(std::move(p), std::move(file));
-}
-
 std::optional<SceneObject> DdmExportCommand::build(const Scene& scene) {
   const SceneObject& object = require_object(scene, p_.object);
   const std::shared_ptr<const DdmLayer> layer = find_ddm_layer(object, p_.layer);
@@ -50,33 +44,16 @@ std::optional<SceneObject> DdmExportCommand::build(const Scene& scene) {
   } catch (const std::invalid_argument& e) {
     throw CommandError(std::string("field 'layer': ") + e.what(), "layer");
   }
-  writer_ = [image](const std::filesystem::path& out) {
+  keep_writer([image](const std::filesystem::path& out) {
     std::filesystem::create_directories(out.parent_path());
     write_image_rgba8(out, image->width, image->height, image->rgba);
-  };
-  if (writes_files()) {
-    writer_(file_);
-    mark_written();
-  }
+  });
   stats_["width"] = image->width;
   stats_["height"] = image->height;
   stats_["charts"] = layer->maps->slot_count();
-  stats_["path"] = file_.string();
+  stats_["path"] = output_path().string();
   stats_["ms"] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return object;
-}
-
-void DdmExportCommand::write_files() {
-  if (!writer_)
-    throw CommandError("'" + p_.object + "/" + p_.layer + "' was not exported yet: nothing to write", "object");
-  try {
-    writer_(file_);
-  } catch (const CommandError&) {
-    throw;
-  } catch (const std::exception& e) {
-    throw CommandError(std::string("cannot write ") + file_.string() + ": " + e.what(), "path");
-  }
-  mark_written();
 }
 
 }  // namespace trispline::core

@@ -7,8 +7,6 @@
 // same bytes later.
 #pragma once
 
-#include <functional>
-
 #include "core/commands/declared_command.h"
 #include "core/commands/file_output.h"
 #include "core/commands/snapshot_command.h"
@@ -21,27 +19,21 @@ struct DdmExportParams {
   std::string path;
 };
 
-class DdmExportCommand : public DeclaredCommand<DdmExportCommand, DdmExportParams, SnapshotCommand>, public FileOutput {
+class DdmExportCommand : public DeclaredCommand<DdmExportCommand, DdmExportParams, SnapshotCommand>, public FileExport {
  public:
   // `file`: p.path resolved by CommandContext::resolve_output (absolute, inside the output folder).
   DdmExportCommand(DdmExportParams p, std::filesystem::path file)
-      : DeclaredCommand(std::move(p)), file_(std::move(file)) {}
+      : DeclaredCommand(std::move(p)), FileExport(std::move(file)) {}
   static const ParamSchema<DdmExportParams>& schema();
-  // As DeclaredCommand::parse, with `path` resolved by CommandContext::resolve_output.
-  static CommandPtr parse(const nlohmann::json& line, const CommandContext& ctx);
+  static CommandPtr parse(const nlohmann::json& line, const CommandContext& ctx) {
+    return parse_with_output<DdmExportCommand>(line, ctx);
+  }
   std::string label() const override { return "Export the " + p_.what + " map of " + p_.object + "/" + p_.layer; }
-  std::filesystem::path output_path() const override { return file_; }
-  bool writes_itself() const override { return true; }
-  void write_files() override;  // throws CommandError (field "path": cannot write; "object": no redo yet)
 
  protected:
   std::string target() const override { return p_.object; }
   std::optional<SceneObject> build(const Scene& scene) override;
   std::string failure_field() const override { return "path"; }
-
- private:
-  std::filesystem::path file_;
-  std::function<void(const std::filesystem::path&)> writer_;  // writes the first redo's picture to a file
 };
 
 }  // namespace trispline::core

@@ -10,9 +10,14 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
 #include <vector>
 
 #include "core/commands/command.h"
+#include "core/params/command_context.h"
 
 namespace trispline::core {
 
@@ -39,6 +44,52 @@ class FileOutput {
  protected:
   bool writes_files_ = true;
   bool written_ = false;
+};
+
+// A FileOutput that writes one file itself from what its redo computed (volume.export, ddm.export): the redo hands
+// keep_writer() a function that writes that result to a path; it runs then when writes_files(), and write_files()
+// runs it again later (the same bytes).
+class FileExport : public FileOutput {
+ public:
+  // `file`: the line's path resolved by CommandContext::resolve_output (absolute, inside the output folder).
+  explicit FileExport(std::filesystem::path file) : file_(std::move(file)) {}
+  std::filesystem::path output_path() const override { return file_; }
+  bool writes_itself() const override { return true; }
+  // Throws CommandError: field "object" before a redo, "path" when the file cannot be written.
+  void write_files() override {
+    if (!writer_) throw CommandError(file_.filename().string() + " was not exported yet: nothing to write", "object");
+    try {
+      writer_(file_);
+    } catch (const CommandError&) {
+      throw;
+    } catch (const std::exception& e) {
+      throw CommandError(std::string("cannot write ") + file_.string() + ": " + e.what(), "path");
+    }
+    mark_written();
+  }
+
+  // Parses `line` as command C, whose params P have a `path`, resolved by CommandContext::resolve_output (throws
+  // CommandError "path" when it leaves the output folder).
+  template <class C>
+  static CommandPtr parse_with_output(const nlohmann::json& line, const CommandContext& ctx) {
+    auto p = C::schema().parse(line, ctx);
+    std::filesystem::path file = ctx.resolve_output(p.path, "path");
+    return std::make_unique<C>(std::move(p), std::move(file));
+  }
+
+ protected:
+  using Writer = std::function<void(const std::filesystem::path&)>;
+  // Keeps `writer` (it creates the file's folder and writes the result) and writes the file now when writes_files().
+  void keep_writer(Writer writer) {
+    writer_ = std::move(writer);
+    if (!writes_files()) return;
+    writer_(file_);
+    mark_written();
+  }
+
+ private:
+  std::filesystem::path file_;
+  Writer writer_;
 };
 
 // `command` as a FileOutput, or null when it writes no files.

@@ -61,17 +61,11 @@ const ParamSchema<VolumeExportParams>& VolumeExportCommand::schema() {
   return s;
 }
 
-CommandPtr VolumeExportCommand::parse(const nlohmann::json& line, const CommandContext& ctx) {
-  VolumeExportParams p = schema().parse(line, ctx);
-  std::filesystem::path file = ctx.resolve_output(p.path, "path");
-  return std::make_unique<VolumeExportCommand>(std::move(p), std::move(file));
-}
-
 std::optional<VolumeObject> VolumeExportCommand::build(const Scene& scene) {
   const VolumeObject& before = require_volume(scene, p_.object);
   const auto t0 = std::chrono::steady_clock::now();
   VolumeObject v = before;
-  const std::string file = file_.string();
+  const std::string file = output_path().string();
   if (p_.what == "silhouettes") {
     // The view, its far plane beyond the volume (the SVG's projection clips to it; camera.set carries none).
     Camera cam = p_.camera ? *p_.camera : scene.camera;
@@ -99,7 +93,7 @@ std::optional<VolumeObject> VolumeExportCommand::build(const Scene& scene) {
     const glm::dmat4 view_projection = cam.projection_matrix() * cam.view_matrix();
     const glm::ivec2 viewport = cam.viewport;
     const std::string hidden = v.silhouette.hidden, name = p_.object + "/silhouettes";
-    writer_ = [levels, view_projection, viewport, hidden, name](const std::filesystem::path& out) {
+    Writer writer = [levels, view_projection, viewport, hidden, name](const std::filesystem::path& out) {
       std::filesystem::create_directories(out.parent_path());
       if (lower_extension(out.string()) == ".svg") {
         std::vector<std::vector<SilhouettePolyline>> drawn;
@@ -131,6 +125,7 @@ std::optional<VolumeObject> VolumeExportCommand::build(const Scene& scene) {
         write_glb(out, nodes);
       }
     };
+    keep_writer(std::move(writer));
   } else {
     if (!(v.iso >= v.table->range_min() && v.iso <= v.table->range_max()))
       throw CommandError("field 'object': the iso-level " + params::format_number(v.iso) + " of '" + p_.object +
@@ -143,33 +138,17 @@ std::optional<VolumeObject> VolumeExportCommand::build(const Scene& scene) {
     IsoMeshStats ms;
     auto mesh = std::make_shared<const TriMesh>(extract_iso_mesh(*v.spline, v.iso, opt, nullptr, &ms));
     require_finite_points(mesh->positions, "iso-surface vertex");
-    writer_ = [mesh](const std::filesystem::path& out) {
+    keep_writer([mesh](const std::filesystem::path& out) {
       std::filesystem::create_directories(out.parent_path());
       write_iso_mesh(out, *mesh);
-    };
+    });
     stats_["vertices"] = mesh->positions.size();
     stats_["triangles"] = mesh->triangles.size();
     v.iso_mesh = std::move(mesh);
   }
-  if (writes_files()) {
-    writer_(file_);
-    mark_written();
-  }
   stats_["path"] = file;
   stats_["ms"] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return v;
-}
-
-void VolumeExportCommand::write_files() {
-  if (!writer_) throw CommandError("'" + p_.object + "' was not exported yet: nothing to write", "object");
-  try {
-    writer_(file_);
-  } catch (const CommandError&) {
-    throw;
-  } catch (const std::exception& e) {
-    throw CommandError(std::string("cannot write ") + file_.string() + ": " + e.what(), "path");
-  }
-  mark_written();
 }
 
 }  // namespace trispline::core

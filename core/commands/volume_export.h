@@ -16,8 +16,6 @@
 // the same result and no file is written; write_files() writes it later (History's Run again), the same bytes.
 #pragma once
 
-#include <functional>
-
 #include "core/commands/declared_command.h"
 #include "core/commands/file_output.h"
 #include "core/commands/volume_snapshot.h"
@@ -33,27 +31,21 @@ struct VolumeExportParams {
 };
 
 class VolumeExportCommand : public DeclaredCommand<VolumeExportCommand, VolumeExportParams, VolumeSnapshotCommand>,
-                            public FileOutput {
+                            public FileExport {
  public:
   // `file`: p.path resolved by CommandContext::resolve_output (absolute, inside the output folder).
   VolumeExportCommand(VolumeExportParams p, std::filesystem::path file)
-      : DeclaredCommand(std::move(p)), file_(std::move(file)) {}
+      : DeclaredCommand(std::move(p)), FileExport(std::move(file)) {}
   static const ParamSchema<VolumeExportParams>& schema();
-  // As DeclaredCommand::parse, with `path` resolved by CommandContext::resolve_output.
-  static CommandPtr parse(const nlohmann::json& line, const CommandContext& ctx);
+  static CommandPtr parse(const nlohmann::json& line, const CommandContext& ctx) {
+    return parse_with_output<VolumeExportCommand>(line, ctx);
+  }
   std::string label() const override { return "Export " + p_.what + " of '" + p_.object + "'"; }
-  std::filesystem::path output_path() const override { return file_; }
-  bool writes_itself() const override { return true; }
-  void write_files() override;  // throws CommandError (field "path": cannot write; "object": no redo yet)
 
  protected:
   std::string target() const override { return p_.object; }
   std::optional<VolumeObject> build(const Scene& scene) override;
   std::string failure_field() const override { return "path"; }
-
- private:
-  std::filesystem::path file_;
-  std::function<void(const std::filesystem::path&)> writer_;  // writes the first redo's result to a file
 };
 
 }  // namespace trispline::core
