@@ -21,7 +21,8 @@ gui_wait '.guarantees.certificate == "fold_free" and .guarantees.cell_segments >
   "the placed bunny's lattice is certified fold-free and its cells are drawn" 60
 
 # The Press tool with Keep fold-free and a strength far beyond what the lattice takes.
-x="$(gui_q '.object_centroid_px.bunny[0] | floor')"; y="$(gui_q '.object_centroid_px.bunny[1] | floor')"
+x0="$(gui_q '.object_centroid_px.bunny[0] | floor')"; y0="$(gui_q '.object_centroid_px.bunny[1] | floor')"
+x="$x0"; y="$y0"
 gui_move "$x" "$y"
 gui_frames 1
 gui_key e
@@ -36,13 +37,20 @@ gui_wait '(.typing | not) and (.values["press.strength"] | tonumber) == 0.4' "st
 
 n="$(gui_q '.history.labels | length')"
 updates="$(gui_q '.guarantees.updates')"
-# press_down_left: the mouse down on the bunny (once the tool shows its brush there), then three moves down and to the
-# left, away from the timing overlay above (a release over it would go to the overlay, not to the tool), two frames
-# each: on a loaded machine X events that arrive within one frame are one move. The button stays down.
+# press_down_left: the mouse down on the bunny once the tool shows its brush there — over its centroid or, where a
+# window covers that (the timing overlay grows and shrinks with the lines of its figures), over the first point near
+# it where the brush shows — then three moves down and to the left, away from the timing overlay above (a release over
+# it would go to the overlay, not to the tool), two frames each: on a loaded machine X events that arrive within one
+# frame are one move. The button stays down.
 press_down_left() {
-  local i
-  gui_move "$x" "$y"
-  gui_frames 1
+  local i d dx dy
+  for d in "0 0" "0 25" "-25 25" "0 45" "-30 0" "0 -25"; do
+    read -r dx dy <<<"$d"
+    x=$((x0 + dx)) y=$((y0 + dy))
+    gui_move "$x" "$y"
+    gui_frames 2
+    [ "$(gui_q '.overlays.spheres > 0')" = true ] && break
+  done
   gui_wait '.overlays.spheres > 0' "the brush sphere shows over the bunny before the button goes down" 30
   xdotool mousedown 1
   gui_frames 3
