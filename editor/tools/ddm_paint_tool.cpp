@@ -8,17 +8,16 @@
 #include "core/commands/ddm_fill.h"
 #include "core/commands/ddm_remove.h"
 #include "core/mesh/mesh_clip.h"
-#include "core/mesh/mesh_io.h"
 #include "ui/param_widgets.h"
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdio>
 
+#include "core/ddm/ddm_tile.h"
 #include "core/params/codecs.h"
 #include "editor/session/session.h"
 #include "gpu/gl/gl_context.h"
@@ -39,8 +38,7 @@ glm::vec4 last_item_rect() {
 constexpr double kRadiusStep = 1.15;  // [ and ] scale the brush radius by this
 // The generated tiles (core::make_ddm_tile) the Tile list offers, each with its tooltip.
 struct GeneratedTile {
-  const char* name;
-  const char* tip;
+  const char *name, *tip;
 };
 constexpr GeneratedTile kGeneratedTiles[] = {
     {"thorn", "A bent horn on a round foot (626 vertices; seed Fig. 5.6)"},
@@ -51,6 +49,11 @@ constexpr GeneratedTile kGeneratedTiles[] = {
 };
 
 bool deformed(const core::SceneObject& o) { return o.ffd || o.dffd || o.clip; }
+
+// The new layer's colour: the panel's swatch when "Own colour" is on.
+std::optional<glm::vec3> layer_color(const DdmPaintToolParams& p) {
+  return p.own_color ? std::optional<glm::vec3>(p.color) : std::nullopt;
+}
 
 }  // namespace
 
@@ -67,19 +70,6 @@ double ddm_default_tile_height(const core::SceneObject* o) {
   const double unit = std::pow(10.0, std::floor(std::log10(h)) - 1.0);
   return std::round(h / unit) * unit;
 }
-
-namespace {
-
-bool is_generated(const std::string& tile) {
-  return std::any_of(std::begin(kGeneratedTiles), std::end(kGeneratedTiles),
-                     [&](const GeneratedTile& g) { return tile == g.name; });
-}
-
-// The new layer's colour: the panel's swatch when "Own colour" is on.
-std::optional<glm::vec3> layer_color(const DdmPaintToolParams& p) {
-  return p.own_color ? std::optional<glm::vec3>(p.color) : std::nullopt;
-}
-}  // namespace
 
 nlohmann::json ddm_paint_line(const std::string& object, const std::vector<glm::dvec2>& stroke_px,
                               const DdmPaintToolParams& params, bool erase, bool new_layer,
@@ -334,7 +324,7 @@ void DdmPaintTool::draw_new_layer_fields(ToolContext& ctx, const core::SceneObje
   core::DdmLayerSpec& spec = params_.paint.spec;
   const double diag = o && o->rest_mesh && !o->rest_mesh->empty() ? core::mesh_bounds(*o->rest_mesh).diagonal() : 0.0;
   std::string& tile = spec.tiles.front();  // the panel makes one-tile layers
-  const bool generated = is_generated(tile);
+  const bool generated = core::is_generated_ddm_tile(tile);
   const bool open = ImGui::BeginCombo("Tile", generated ? tile.c_str() : "file");
   ui::probe::item("ddm.tile");
   if (open) {
@@ -350,7 +340,7 @@ void DdmPaintTool::draw_new_layer_fields(ToolContext& ctx, const core::SceneObje
         "textured file keeps its materials and textures on every tile (seed Fig. 5.12)");
     ImGui::EndCombo();
   }
-  if (!is_generated(tile)) {
+  if (!core::is_generated_ddm_tile(tile)) {
     if (ImGui::InputText("Tile file", &file_tile_)) tile = file_tile_;
     ui::probe::item("ddm.tile_file");
     ui::tooltip(

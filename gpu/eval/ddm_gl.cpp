@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <cstring>
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/type_ptr.hpp>
 #include <limits>
@@ -470,10 +469,8 @@ std::shared_ptr<const core::MaterialSet> DdmGl::materials(const std::shared_ptr<
                                                           const glm::dvec3& untextured_color) {
   if (!layer) return nullptr;
   LayerGl& g = layer_for(layer);
-  if (g.materials && g.materials_color != untextured_color) {  // the same slots; images shared, not re-read
-    g.materials = core::ddm_tile_materials(layer->tiles, untextured_color).set;
-    g.materials_color = untextured_color;
-  }
+  if (g.materials && g.materials_color != untextured_color)  // the same slots; images shared, not re-read
+    g.materials = core::ddm_tile_materials(layer->tiles, untextured_color).set, g.materials_color = untextured_color;
   return g.materials;
 }
 
