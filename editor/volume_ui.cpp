@@ -6,6 +6,7 @@
 #include <cctype>
 #include <chrono>
 
+#include "core/base/text.h"
 #include "core/commands/volume_export.h"
 #include "core/commands/volume_load.h"
 #include "core/volume/prepared_volume.h"
@@ -35,11 +36,6 @@ std::string stem_of(const fs::path& path) {
   fs::path stem(display_name(path));
   while (stem.has_extension()) stem = stem.stem();
   return stem.string();
-}
-
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  return s;
 }
 
 }  // namespace
@@ -286,7 +282,7 @@ const ui::VolumeExportKind* VolumeUi::draw_panel(const ui::Rect& rect, const cor
 
 bool VolumeUi::export_volume(const std::string& volume, const ui::VolumeExportKind& kind, fs::path path,
                              const core::Camera& view) {
-  if (!lower(path.filename().string()).ends_with(kind.extension)) path += kind.extension;
+  if (!core::has_extension(path, kind.extension)) path += kind.extension;
   const std::string what = kind.what;
   core::VolumeExportParams p;
   p.object = volume;

@@ -7,6 +7,7 @@
 #include <cctype>
 #include <utility>
 
+#include "core/base/text.h"
 #include "ui/gui_probe.h"
 #include "ui/imgui_host.h"
 #include "ui/theme.h"
@@ -16,10 +17,6 @@ namespace fs = std::filesystem;
 namespace trispline::ui {
 
 namespace {
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  return s;
-}
 
 // The path and name fields: Enter accepts, and a field that gets the keyboard selects its whole text (typing
 // replaces it).
@@ -93,7 +90,7 @@ void FileDialog::set_option(std::string label, std::string tooltip, bool value) 
 
 bool FileDialog::matches(const fs::path& p) const {
   if (extensions_.empty()) return true;
-  const std::string name = lower(p.filename().string());
+  const std::string name = core::ascii_lower(p.filename().string());
   return std::any_of(extensions_.begin(), extensions_.end(), [&](const std::string& e) { return name.ends_with(e); });
 }
 

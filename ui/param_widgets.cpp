@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <limits>
 
+#include "core/base/text.h"
 #include "ui/gui_probe.h"
 #include "ui/number_field.h"
 #include "ui/theme.h"
@@ -92,8 +93,7 @@ std::string size_param_widget(const ParamWidget& w, const core::ParamFieldInfo& 
   const double kept = std::clamp(state.typed, lo, hi);
   state.limit.clear();
   if (kept == state.typed) return {};
-  std::string name = label;
-  std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  const std::string name = core::ascii_lower(label);
   char why[240];
   if (kept == lo && size.min_fraction <= 0.0)
     std::snprintf(why, sizeof why, "Limited to 0: the %s is a distance (>= 0)", name.c_str());

@@ -6,22 +6,21 @@
 
 namespace trispline::core {
 
-const ParamSchema<AnimClipParams>& AnimClipCommand::schema() {
+ParamSchema<AnimClipParams> AnimClipCommand::declare() {
   using P = AnimClipParams;
-  static const ParamSchema<P> s =
-      ParamSchema<P>("anim.clip",
-                     "Attach a glTF animation clip (morph targets, skin) played before the FFD (two-level animation)")
-          .field("object", &P::object, {.required = true, .help = "Object loaded from the same file as the clip"})
-          .field("remove", &P::remove, {.write = ParamWrite::UnlessDefault, .help = "Detach the object's clip instead"})
-          .stop_if([](const P& p) { return p.remove; })
-          .field("path", &P::path, {.required = true, .path = true, .help = "glTF/GLB file holding the clip"})
-          .field("clip", &P::clip, {.default_text = "the first", .help = "Name of the clip in the file"})
-          .field("speed", &P::speed, {.range = ParamRange{0, 100, true, false}, .help = "Playback speed factor"})
-          .field("start_frame", &P::start_frame,
-                 {.range = ParamRange::magnitude_at_most(1e6),
-                  .help = "Frame the clip starts at; default: the timeline's first frame"})
-          .field("loop", &P::loop, {.help = "Play the clip again after its end"});
-  return s;
+  return ParamSchema<P>(
+             "anim.clip",
+             "Attach a glTF animation clip (morph targets, skin) played before the FFD (two-level animation)")
+      .field("object", &P::object, {.required = true, .help = "Object loaded from the same file as the clip"})
+      .field("remove", &P::remove, {.write = ParamWrite::UnlessDefault, .help = "Detach the object's clip instead"})
+      .stop_if([](const P& p) { return p.remove; })
+      .field("path", &P::path, {.required = true, .path = true, .help = "glTF/GLB file holding the clip"})
+      .field("clip", &P::clip, {.default_text = "the first", .help = "Name of the clip in the file"})
+      .field("speed", &P::speed, {.range = ParamRange{0, 100, true, false}, .help = "Playback speed factor"})
+      .field("start_frame", &P::start_frame,
+             {.range = ParamRange::magnitude_at_most(1e6),
+              .help = "Frame the clip starts at; default: the timeline's first frame"})
+      .field("loop", &P::loop, {.help = "Play the clip again after its end"});
 }
 
 std::string AnimClipCommand::label() const {

@@ -30,7 +30,7 @@ struct AnimClipParams {
 class AnimClipCommand : public ObjectSnapshotCommand<AnimClipCommand, AnimClipParams> {
  public:
   using ObjectSnapshotCommand::ObjectSnapshotCommand;
-  static const ParamSchema<AnimClipParams>& schema();
+  static ParamSchema<AnimClipParams> declare();
 
   std::string label() const override;
 

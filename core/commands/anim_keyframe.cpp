@@ -4,34 +4,30 @@
 
 namespace trispline::core {
 
-const ParamSchema<AnimKeyframeParams>& AnimKeyframeCommand::schema() {
+ParamSchema<AnimKeyframeParams> AnimKeyframeCommand::declare() {
   using P = AnimKeyframeParams;
-  static const ParamSchema<P> s =
-      ParamSchema<P>("anim.keyframe",
-                     "Key (or delete a key of) an object's parameter offset along its path at a frame (seed §2.4.3)")
-          .field("object", &P::object, {.required = true, .help = "A deformed object (FFD or DFFD)"})
-          .field("frame", &P::frame,
-                 {.required = true,
-                  .range = ParamRange::magnitude_at_most(1e6),
-                  .help = "Timeline frame (may be fractional)"})
-          .field("remove", &P::remove,
-                 {.write = ParamWrite::UnlessDefault, .help = "Delete the key at this frame instead"})
-          .stop_if([](const P& p) { return p.remove; })
-          .field("offset", &P::offset,
-                 {.range = ParamRange::magnitude_at_most(1e6),
-                  .unit = "parameter units",
-                  .help = "Parameter offset [du,dv,dw] at the key (or give \"u\")"})
-          .field("u", &P::u,
-                 {.range = ParamRange::magnitude_at_most(1e6), .unit = "parameter units", .help = "The u offset alone"})
-          .check([](P& p) {
-            if (p.offset)
-              p.u.reset();  // "offset" wins
-            else if (!p.u)
-              params::fail("offset", "missing (give \"offset\":[du,dv,dw] or \"u\":du)");
-          })
-          .choice("interpolation", &P::interpolation, {"linear", "constant", "smooth"},
-                  {.help = "How the offset goes from this key to the next"});
-  return s;
+  return ParamSchema<P>("anim.keyframe",
+                        "Key (or delete a key of) an object's parameter offset along its path at a frame (seed §2.4.3)")
+      .field("object", &P::object, {.required = true, .help = "A deformed object (FFD or DFFD)"})
+      .field(
+          "frame", &P::frame,
+          {.required = true, .range = ParamRange::magnitude_at_most(1e6), .help = "Timeline frame (may be fractional)"})
+      .field("remove", &P::remove, {.write = ParamWrite::UnlessDefault, .help = "Delete the key at this frame instead"})
+      .stop_if([](const P& p) { return p.remove; })
+      .field("offset", &P::offset,
+             {.range = ParamRange::magnitude_at_most(1e6),
+              .unit = "parameter units",
+              .help = "Parameter offset [du,dv,dw] at the key (or give \"u\")"})
+      .field("u", &P::u,
+             {.range = ParamRange::magnitude_at_most(1e6), .unit = "parameter units", .help = "The u offset alone"})
+      .check([](P& p) {
+        if (p.offset)
+          p.u.reset();  // "offset" wins
+        else if (!p.u)
+          params::fail("offset", "missing (give \"offset\":[du,dv,dw] or \"u\":du)");
+      })
+      .choice("interpolation", &P::interpolation, {"linear", "constant", "smooth"},
+              {.help = "How the offset goes from this key to the next"});
 }
 
 std::string AnimKeyframeCommand::label() const {

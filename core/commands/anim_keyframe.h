@@ -30,7 +30,7 @@ struct AnimKeyframeParams {
 class AnimKeyframeCommand : public ObjectSnapshotCommand<AnimKeyframeCommand, AnimKeyframeParams> {
  public:
   using ObjectSnapshotCommand::ObjectSnapshotCommand;
-  static const ParamSchema<AnimKeyframeParams>& schema();
+  static ParamSchema<AnimKeyframeParams> declare();
 
   std::string label() const override;
 

@@ -12,50 +12,47 @@ std::string frame_range_error(const Timeline& timeline, int first, int last) {
   return {};
 }
 
-const ParamSchema<AnimRecordParams>& AnimRecordCommand::schema() {
+ParamSchema<AnimRecordParams> AnimRecordCommand::declare() {
   using P = AnimRecordParams;
-  static const ParamSchema<P> s =
-      ParamSchema<P>("anim.record",
-                     "Record timeline frames to PNG/EXR images, an animated glb and an MP4 (seed §2.4.3)")
-          .field("out", &P::out,
-                 {.write = ParamWrite::UnlessDefault,
-                  .default_text = "the caller's",
-                  .help = "Output folder, relative to the log's folder"})
-          .choice("format", &P::format, {"png", "exr"}, {.help = "png: 8-bit sRGB; exr: half float, linear"})
-          .field("frames", &P::frames,
-                 {.default_text = "the whole timeline",
-                  .help = "First and last timeline frame, inclusive, inside the timeline"})
-          .check([](const P& p) {
-            if (p.frames && p.frames->x > p.frames->y)
-              params::fail("frames", "first frame " + std::to_string(p.frames->x) + " is after the last frame " +
-                                         std::to_string(p.frames->y));
-          })
-          .field("glb", &P::glb, {.help = "Write animation.glb (one mesh per frame, shown in turn)"})
-          .field("mp4", &P::mp4, {.help = "Write animation.mp4 when ffmpeg is installed"})
-          .field("width", &P::width,
-                 {.range = ParamRange{1, 16384},
-                  .unit = "pixels",
-                  .default_text = "the camera's viewport",
-                  .help = "Frame width; give width and height together"})
-          .field("height", &P::height,
-                 {.range = ParamRange{1, 16384},
-                  .unit = "pixels",
-                  .default_text = "the camera's viewport",
-                  .help = "Frame height"})
-          .object(
-              "camera", &P::camera, camera_schema(),
-              {.default_text = "the scene camera",
-               .help =
-                   "The view every frame is rendered from (camera.set's fields; the Record dialog's \"Current view\")"})
-          .check([](const P& p) {
-            if (p.width.has_value() != p.height.has_value()) {
-              const char* missing = p.width ? "height" : "width";
-              params::fail(missing, "give width and height together");
-            }
-            const std::string problem = frame_budget_problem(p.width.value_or(0), p.height.value_or(0));
-            if (!problem.empty()) params::fail("width", problem);
-          });
-  return s;
+  return ParamSchema<P>("anim.record",
+                        "Record timeline frames to PNG/EXR images, an animated glb and an MP4 (seed §2.4.3)")
+      .field("out", &P::out,
+             {.write = ParamWrite::UnlessDefault,
+              .default_text = "the caller's",
+              .help = "Output folder, relative to the log's folder"})
+      .choice("format", &P::format, {"png", "exr"}, {.help = "png: 8-bit sRGB; exr: half float, linear"})
+      .field("frames", &P::frames,
+             {.default_text = "the whole timeline",
+              .help = "First and last timeline frame, inclusive, inside the timeline"})
+      .check([](const P& p) {
+        if (p.frames && p.frames->x > p.frames->y)
+          params::fail("frames", "first frame " + std::to_string(p.frames->x) + " is after the last frame " +
+                                     std::to_string(p.frames->y));
+      })
+      .field("glb", &P::glb, {.help = "Write animation.glb (one mesh per frame, shown in turn)"})
+      .field("mp4", &P::mp4, {.help = "Write animation.mp4 when ffmpeg is installed"})
+      .field("width", &P::width,
+             {.range = ParamRange{1, 16384},
+              .unit = "pixels",
+              .default_text = "the camera's viewport",
+              .help = "Frame width; give width and height together"})
+      .field("height", &P::height,
+             {.range = ParamRange{1, 16384},
+              .unit = "pixels",
+              .default_text = "the camera's viewport",
+              .help = "Frame height"})
+      .object(
+          "camera", &P::camera, camera_schema(),
+          {.default_text = "the scene camera",
+           .help = "The view every frame is rendered from (camera.set's fields; the Record dialog's \"Current view\")"})
+      .check([](const P& p) {
+        if (p.width.has_value() != p.height.has_value()) {
+          const char* missing = p.width ? "height" : "width";
+          params::fail(missing, "give width and height together");
+        }
+        const std::string problem = frame_budget_problem(p.width.value_or(0), p.height.value_or(0));
+        if (!problem.empty()) params::fail("width", problem);
+      });
 }
 
 AnimRecordCommand::AnimRecordCommand(AnimRecordParams p, const std::filesystem::path& base_dir)

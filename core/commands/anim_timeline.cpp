@@ -4,18 +4,16 @@
 
 namespace trispline::core {
 
-const ParamSchema<AnimTimelineParams>& AnimTimelineCommand::schema() {
+ParamSchema<AnimTimelineParams> AnimTimelineCommand::declare() {
   using P = AnimTimelineParams;
-  static const ParamSchema<P> s =
-      ParamSchema<P>("anim.timeline", "Set the timeline's frame range and frame rate")
-          // At least one frame per 100 s: below that, frame times overflow long before a timeline ends (1e-320 fps).
-          .field("fps", &P::fps, {.range = ParamRange{0.01, 240}, .unit = "frames per second", .help = "Frame rate"})
-          .field("start", &P::start, {.range = ParamRange{0, 100000}, .help = "First frame"})
-          .field("end", &P::end, {.range = ParamRange{0, 100000}, .help = "Last frame, ≥ start"})
-          .check([](const P& p) {
-            if (!p.fps && !p.start && !p.end) params::fail("fps", "give at least one of fps, start, end");
-          });
-  return s;
+  return ParamSchema<P>("anim.timeline", "Set the timeline's frame range and frame rate")
+      // At least one frame per 100 s: below that, frame times overflow long before a timeline ends (1e-320 fps).
+      .field("fps", &P::fps, {.range = ParamRange{0.01, 240}, .unit = "frames per second", .help = "Frame rate"})
+      .field("start", &P::start, {.range = ParamRange{0, 100000}, .help = "First frame"})
+      .field("end", &P::end, {.range = ParamRange{0, 100000}, .help = "Last frame, ≥ start"})
+      .check([](const P& p) {
+        if (!p.fps && !p.start && !p.end) params::fail("fps", "give at least one of fps, start, end");
+      });
 }
 
 std::string AnimTimelineCommand::label() const {

@@ -22,7 +22,7 @@ struct AnimTimelineParams {
 class AnimTimelineCommand : public DeclaredCommand<AnimTimelineCommand, AnimTimelineParams> {
  public:
   using DeclaredCommand::DeclaredCommand;
-  static const ParamSchema<AnimTimelineParams>& schema();
+  static ParamSchema<AnimTimelineParams> declare();
 
   std::string label() const override;
   void redo(Scene& scene) override;

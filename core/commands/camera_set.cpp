@@ -4,11 +4,9 @@
 
 namespace trispline::core {
 
-const ParamSchema<Camera>& CameraSetCommand::schema() {
-  static const ParamSchema<Camera> s =
-      ParamSchema<Camera>("camera.set", "Set the view (eye, target, up, field of view, viewport)")
-          .include(camera_schema());
-  return s;
+ParamSchema<Camera> CameraSetCommand::declare() {
+  return ParamSchema<Camera>("camera.set", "Set the view (eye, target, up, field of view, viewport)")
+      .include(camera_schema());
 }
 
 void CameraSetCommand::redo(Scene& scene) {

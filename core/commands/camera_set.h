@@ -9,7 +9,7 @@ namespace trispline::core {
 class CameraSetCommand : public DeclaredCommand<CameraSetCommand, Camera> {
  public:
   using DeclaredCommand::DeclaredCommand;
-  static const ParamSchema<Camera>& schema();
+  static ParamSchema<Camera> declare();
 
   std::string label() const override { return "Set camera"; }
   void redo(Scene& scene) override;

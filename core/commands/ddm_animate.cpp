@@ -59,61 +59,56 @@ std::vector<OffsetKey> value_keys(const std::vector<glm::dvec2>& keys, const Tim
 
 }  // namespace
 
-const ParamSchema<DdmAnimateParams>& DdmAnimateCommand::schema() {
-  static const ParamSchema<P> s =
-      ParamSchema<P>("ddm.animate",
-                     "Animate a tile layer: texture-space offset, rotation, scale, w and metamorphosis (seed §5.4.2)")
-          .field("object", &P::object, {.required = true, .help = "The object holding the layer"})
-          .field("layer", &P::layer, {.required = true, .help = "The layer to animate"})
-          .field("clear", &P::clear,
-                 {.write = ParamWrite::UnlessDefault,
-                  .help = "Remove the layer's animation first (the other fields of the line then apply)"})
-          .custom("morph_tile", read_morph_tile, write_morph,
-                  {.default_text = "kept",
-                   .type_text = "string",
-                   .help = "Metamorphosis partner of the layer's tile (as ddm.fill's tile), of the same topology; "
-                           "\"\" removes it"})
-          .custom("morph_tiles", read_morph_tiles, write_morph,
-                  {.default_text = "kept",
-                   .type_text = "[string,…]",
-                   .help = "One morph tile per tile of a several-tile layer (instead of morph_tile)"})
-          .field("alpha_keys", &P::alpha_keys,
-                 {.default_text = "kept",
-                  .type_text = "[[frame,α],…]",
-                  .help = "[timeline frame, α] keys of the metamorphosis, V = V1·(1 − α) + V2·α (Eq. 5.3)"})
-          .field("offset_keys", &P::offset_keys,
-                 {.default_text = "kept",
-                  .type_text = "[[frame,du,dv],…]",
-                  .help = "[frame, du, dv] keys of the tiles' texture-space offset, chart parameter units"})
-          .field("offset_velocity", &P::offset_velocity,
-                 {.default_text = "kept",
-                  .type_text = "[du,dv]",
-                  .help = "Offset added per second, chart parameter units"})
-          .field("rotate_keys", &P::rotate_keys,
-                 {.default_text = "kept",
-                  .type_text = "[[frame,degrees],…]",
-                  .help = "[frame, degrees] keys of the tiles' rotation in texture space about their cells' centres, "
-                          "added to the layer's rotate_deg"})
-          .field("scale_keys", &P::scale_keys,
-                 {.default_text = "kept",
-                  .type_text = "[[frame,s],…]",
-                  .help = "[frame, s] keys of the tiles' texture-space scale about their cells' centres, s > 0 times "
-                          "the layer's scale"})
-          .field(
-              "w_keys", &P::w_keys,
+ParamSchema<DdmAnimateParams> DdmAnimateCommand::declare() {
+  return ParamSchema<P>(
+             "ddm.animate",
+             "Animate a tile layer: texture-space offset, rotation, scale, w and metamorphosis (seed §5.4.2)")
+      .field("object", &P::object, {.required = true, .help = "The object holding the layer"})
+      .field("layer", &P::layer, {.required = true, .help = "The layer to animate"})
+      .field("clear", &P::clear,
+             {.write = ParamWrite::UnlessDefault,
+              .help = "Remove the layer's animation first (the other fields of the line then apply)"})
+      .custom("morph_tile", read_morph_tile, write_morph,
               {.default_text = "kept",
-               .type_text = "[[frame,w],…]",
-               .help = "[frame, w] keys of the tiles' height along the surface normal, w > 0 times the layer's height"})
-          .check([](const P& p) {
-            check_keys(p.rotate_keys, "rotate_keys", -kMaxKeyedDegrees, kMaxKeyedDegrees, false);
-            check_keys(p.scale_keys, "scale_keys", 0.0, kMaxKeyedWeight, true);
-            check_keys(p.w_keys, "w_keys", 0.0, kMaxKeyedWeight, true);
-          })
-          .field("alpha", &P::alpha,
-                 {.default_text = "kept", .help = "α shown when there are no alpha keys (0 at first)"})
-          .choice("interpolation", &P::interpolation, {"linear", "constant", "smooth"},
-                  {.write = ParamWrite::UnlessDefault, .help = "How this line's keys move to the next key"});
-  return s;
+               .type_text = "string",
+               .help = "Metamorphosis partner of the layer's tile (as ddm.fill's tile), of the same topology; "
+                       "\"\" removes it"})
+      .custom("morph_tiles", read_morph_tiles, write_morph,
+              {.default_text = "kept",
+               .type_text = "[string,…]",
+               .help = "One morph tile per tile of a several-tile layer (instead of morph_tile)"})
+      .field("alpha_keys", &P::alpha_keys,
+             {.default_text = "kept",
+              .type_text = "[[frame,α],…]",
+              .help = "[timeline frame, α] keys of the metamorphosis, V = V1·(1 − α) + V2·α (Eq. 5.3)"})
+      .field("offset_keys", &P::offset_keys,
+             {.default_text = "kept",
+              .type_text = "[[frame,du,dv],…]",
+              .help = "[frame, du, dv] keys of the tiles' texture-space offset, chart parameter units"})
+      .field("offset_velocity", &P::offset_velocity,
+             {.default_text = "kept", .type_text = "[du,dv]", .help = "Offset added per second, chart parameter units"})
+      .field("rotate_keys", &P::rotate_keys,
+             {.default_text = "kept",
+              .type_text = "[[frame,degrees],…]",
+              .help = "[frame, degrees] keys of the tiles' rotation in texture space about their cells' centres, "
+                      "added to the layer's rotate_deg"})
+      .field("scale_keys", &P::scale_keys,
+             {.default_text = "kept",
+              .type_text = "[[frame,s],…]",
+              .help = "[frame, s] keys of the tiles' texture-space scale about their cells' centres, s > 0 times "
+                      "the layer's scale"})
+      .field("w_keys", &P::w_keys,
+             {.default_text = "kept",
+              .type_text = "[[frame,w],…]",
+              .help = "[frame, w] keys of the tiles' height along the surface normal, w > 0 times the layer's height"})
+      .check([](const P& p) {
+        check_keys(p.rotate_keys, "rotate_keys", -kMaxKeyedDegrees, kMaxKeyedDegrees, false);
+        check_keys(p.scale_keys, "scale_keys", 0.0, kMaxKeyedWeight, true);
+        check_keys(p.w_keys, "w_keys", 0.0, kMaxKeyedWeight, true);
+      })
+      .field("alpha", &P::alpha, {.default_text = "kept", .help = "α shown when there are no alpha keys (0 at first)"})
+      .choice("interpolation", &P::interpolation, {"linear", "constant", "smooth"},
+              {.write = ParamWrite::UnlessDefault, .help = "How this line's keys move to the next key"});
 }
 
 std::string DdmAnimateCommand::label() const { return "Animate tiles " + p_.object + "/" + p_.layer; }

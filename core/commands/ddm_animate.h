@@ -41,7 +41,7 @@ struct DdmAnimateParams {
 class DdmAnimateCommand : public ObjectSnapshotCommand<DdmAnimateCommand, DdmAnimateParams> {
  public:
   using ObjectSnapshotCommand::ObjectSnapshotCommand;
-  static const ParamSchema<DdmAnimateParams>& schema();
+  static ParamSchema<DdmAnimateParams> declare();
   std::string label() const override;
 
  protected:

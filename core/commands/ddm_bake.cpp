@@ -6,19 +6,17 @@
 
 namespace trispline::core {
 
-const ParamSchema<DdmBakeParams>& DdmBakeCommand::schema() {
+ParamSchema<DdmBakeParams> DdmBakeCommand::declare() {
   using P = DdmBakeParams;
-  static const ParamSchema<P> s =
-      ParamSchema<P>("ddm.bake", "Turn a tile layer into an ordinary mesh object (for export)")
-          .field("object", &P::object, {.required = true, .help = "The object holding the layer"})
-          .field("layer", &P::layer, {.required = true, .help = "The layer to bake"})
-          .field("name", &P::name, {.required = true, .help = "Id of the new object; an existing name is an error"})
-          .check([](const P& p) {
-            if (const std::string bad = object_name_error(p.name); !bad.empty()) params::fail("name", bad);
-          })
-          .field("frame", &P::frame,
-                 {.default_text = "scene time 0", .help = "Timeline frame of the layer's animation to bake"});
-  return s;
+  return ParamSchema<P>("ddm.bake", "Turn a tile layer into an ordinary mesh object (for export)")
+      .field("object", &P::object, {.required = true, .help = "The object holding the layer"})
+      .field("layer", &P::layer, {.required = true, .help = "The layer to bake"})
+      .field("name", &P::name, {.required = true, .help = "Id of the new object; an existing name is an error"})
+      .check([](const P& p) {
+        if (const std::string bad = object_name_error(p.name); !bad.empty()) params::fail("name", bad);
+      })
+      .field("frame", &P::frame,
+             {.default_text = "scene time 0", .help = "Timeline frame of the layer's animation to bake"});
 }
 
 std::string DdmBakeCommand::label() const { return "Bake " + p_.object + "/" + p_.layer + " as '" + p_.name + "'"; }

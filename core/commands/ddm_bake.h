@@ -25,7 +25,7 @@ struct DdmBakeParams {
 class DdmBakeCommand : public DeclaredCommand<DdmBakeCommand, DdmBakeParams, SnapshotCommand> {
  public:
   using DeclaredCommand::DeclaredCommand;
-  static const ParamSchema<DdmBakeParams>& schema();
+  static ParamSchema<DdmBakeParams> declare();
   std::string label() const override;
   bool preparable() const override { return true; }  // the editor bakes on a worker thread
 

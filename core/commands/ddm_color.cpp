@@ -25,19 +25,17 @@ void write_layer_color(const ParamSchema<DdmColorParams>::Field& f, const DdmCol
 
 }  // namespace
 
-const ParamSchema<DdmColorParams>& DdmColorCommand::schema() {
+ParamSchema<DdmColorParams> DdmColorCommand::declare() {
   using P = DdmColorParams;
-  static const ParamSchema<P> s =
-      ParamSchema<P>("ddm.color", "Give a tile layer its own colour, or its object's again")
-          .field("object", &P::object, {.required = true, .help = "The object holding the layer"})
-          .field("layer", &P::layer, {.required = true, .help = "The layer to colour"})
-          .custom("color", read_layer_color, write_layer_color,
-                  {.required = true,
-                   .range = ParamRange{0, 1},
-                   .unit = "linear RGB",
-                   .type_text = "[r,g,b] or null",
-                   .help = "The layer's own colour; null: its object's again"});
-  return s;
+  return ParamSchema<P>("ddm.color", "Give a tile layer its own colour, or its object's again")
+      .field("object", &P::object, {.required = true, .help = "The object holding the layer"})
+      .field("layer", &P::layer, {.required = true, .help = "The layer to colour"})
+      .custom("color", read_layer_color, write_layer_color,
+              {.required = true,
+               .range = ParamRange{0, 1},
+               .unit = "linear RGB",
+               .type_text = "[r,g,b] or null",
+               .help = "The layer's own colour; null: its object's again"});
 }
 
 std::string DdmColorCommand::label() const { return "Colour of tile layer " + p_.object + "/" + p_.layer; }

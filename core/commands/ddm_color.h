@@ -20,7 +20,7 @@ struct DdmColorParams {
 class DdmColorCommand : public ObjectSnapshotCommand<DdmColorCommand, DdmColorParams> {
  public:
   using ObjectSnapshotCommand::ObjectSnapshotCommand;
-  static const ParamSchema<DdmColorParams>& schema();
+  static ParamSchema<DdmColorParams> declare();
   std::string label() const override;
 
  protected:

@@ -3,33 +3,31 @@
 #include <chrono>
 #include <memory>
 
+#include "core/base/text.h"
 #include "core/commands/ddm_layer_spec.h"
 #include "core/ddm/ddm_map_image.h"
 #include "core/image/image_io.h"
 
 namespace trispline::core {
 
-const ParamSchema<DdmExportParams>& DdmExportCommand::schema() {
+ParamSchema<DdmExportParams> DdmExportCommand::declare() {
   using P = DdmExportParams;
-  static const ParamSchema<P> s =
-      ParamSchema<P>("ddm.export",
-                     "Export a tile layer's sampled position or normal map as a picture (seed Figs. 5.3, 5.5)")
-          .field("object", &P::object, {.required = true, .help = "The object holding the layer"})
-          .field("layer", &P::layer, {.required = true, .help = "The tile layer whose maps are written"})
-          .choice("what", &P::what, {"positions", "normals"},
-                  {.help = "positions: P(u, v), x y z as red green blue over the surface's bounding box; normals: "
-                           "N(u, v) as (n + 1) / 2. One pixel per sample, charts side by side, v upwards; alpha 96 "
-                           "where a UV-mapped base's diffusion filled the sample"})
-          .field("path", &P::path,
-                 {.required = true,
-                  .help = "Output .png, relative to the output folder (replay's --out, else the log's folder); "
-                          "absolute paths and paths that leave the folder are refused"})
-          .check([](const P& p) {
-            std::string e = std::filesystem::path(p.path).extension().string();
-            for (char& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-            if (e != ".png") params::fail("path", "a map is written as .png, not '" + e + "'");
-          });
-  return s;
+  return ParamSchema<P>("ddm.export",
+                        "Export a tile layer's sampled position or normal map as a picture (seed Figs. 5.3, 5.5)")
+      .field("object", &P::object, {.required = true, .help = "The object holding the layer"})
+      .field("layer", &P::layer, {.required = true, .help = "The tile layer whose maps are written"})
+      .choice("what", &P::what, {"positions", "normals"},
+              {.help = "positions: P(u, v), x y z as red green blue over the surface's bounding box; normals: "
+                       "N(u, v) as (n + 1) / 2. One pixel per sample, charts side by side, v upwards; alpha 96 "
+                       "where a UV-mapped base's diffusion filled the sample"})
+      .field("path", &P::path,
+             {.required = true,
+              .help = "Output .png, relative to the output folder (replay's --out, else the log's folder); "
+                      "absolute paths and paths that leave the folder are refused"})
+      .check([](const P& p) {
+        const std::string e = lower_extension(p.path);
+        if (e != ".png") params::fail("path", "a map is written as .png, not '" + e + "'");
+      });
 }
 
 std::optional<SceneObject> DdmExportCommand::build(const Scene& scene) {

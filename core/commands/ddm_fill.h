@@ -38,7 +38,7 @@ struct DdmFillParams {
 class DdmFillCommand : public ObjectSnapshotCommand<DdmFillCommand, DdmFillParams> {
  public:
   using ObjectSnapshotCommand::ObjectSnapshotCommand;
-  static const ParamSchema<DdmFillParams>& schema();
+  static ParamSchema<DdmFillParams> declare();
   std::string label() const override;
   bool preparable() const override { return true; }  // the editor builds a fill on a worker thread
 

@@ -257,39 +257,36 @@ std::vector<DdmInstance> ddm_paint_cells(const Scene& scene, const SceneObject& 
   return out;
 }
 
-const ParamSchema<DdmPaintParams>& DdmPaintCommand::schema() {
+ParamSchema<DdmPaintParams> DdmPaintCommand::declare() {
   using P = DdmPaintParams;
-  static const ParamSchema<P> s =
-      ParamSchema<P>("ddm.paint",
-                     "Paint (or erase) tiles of a layer with a brush stroke in the viewport (DDM, seed ch. 5)")
-          .field(
-              "object", &P::object,
-              {.required = true,
-               .help =
-                   "The object; tiles lie on its rest surface and ride on its deformation (FFD, DFFD, clip, incision)"})
-          .field("layer", &P::layer,
-                 {.required = true,
-                  .help = "The layer painted on; a new one is made from the fields below (ddm.fill's, all optional)"})
-          .check([](const P& p) { check_ddm_layer_name(p.layer); })
-          .embed_named(&P::spec, ddm_layer_schema(false), &P::spec_named)
-          .field("stroke", &P::stroke,
-                 {.required = true,
-                  .unit = "pixels",
-                  .help = "Viewport points in drawing order, (0,0) top-left; one point is a dab"})
-          .check([](const P& p) {
-            if (p.stroke.empty()) params::fail("stroke", "needs at least 1 point");
-          })
-          // A brush is at most as wide as a large viewport: larger radii select nothing more, and keep the maths
-          // finite.
-          .field("radius_px", &P::radius_px,
-                 {.required = true,
-                  .range = ParamRange{0, kMaxBrushRadiusPx, true, false},
-                  .unit = "pixels",
-                  .help = "Brush radius: cells whose centre projects this close to the stroke are touched"})
-          .field("erase", &P::erase, {.help = "Remove the touched cells instead of adding them"})
-          .object("camera", &P::camera, camera_schema(),
-                  {.help = "The view the stroke was drawn in (camera.set's fields); default: the last camera.set"});
-  return s;
+  return ParamSchema<P>("ddm.paint",
+                        "Paint (or erase) tiles of a layer with a brush stroke in the viewport (DDM, seed ch. 5)")
+      .field(
+          "object", &P::object,
+          {.required = true,
+           .help = "The object; tiles lie on its rest surface and ride on its deformation (FFD, DFFD, clip, incision)"})
+      .field("layer", &P::layer,
+             {.required = true,
+              .help = "The layer painted on; a new one is made from the fields below (ddm.fill's, all optional)"})
+      .check([](const P& p) { check_ddm_layer_name(p.layer); })
+      .embed_named(&P::spec, ddm_layer_schema(false), &P::spec_named)
+      .field("stroke", &P::stroke,
+             {.required = true,
+              .unit = "pixels",
+              .help = "Viewport points in drawing order, (0,0) top-left; one point is a dab"})
+      .check([](const P& p) {
+        if (p.stroke.empty()) params::fail("stroke", "needs at least 1 point");
+      })
+      // A brush is at most as wide as a large viewport: larger radii select nothing more, and keep the maths
+      // finite.
+      .field("radius_px", &P::radius_px,
+             {.required = true,
+              .range = ParamRange{0, kMaxBrushRadiusPx, true, false},
+              .unit = "pixels",
+              .help = "Brush radius: cells whose centre projects this close to the stroke are touched"})
+      .field("erase", &P::erase, {.help = "Remove the touched cells instead of adding them"})
+      .object("camera", &P::camera, camera_schema(),
+              {.help = "The view the stroke was drawn in (camera.set's fields); default: the last camera.set"});
 }
 
 std::string DdmPaintCommand::label() const {

@@ -68,7 +68,7 @@ struct DdmPaintParams {
 class DdmPaintCommand : public ObjectSnapshotCommand<DdmPaintCommand, DdmPaintParams> {
  public:
   using ObjectSnapshotCommand::ObjectSnapshotCommand;
-  static const ParamSchema<DdmPaintParams>& schema();
+  static ParamSchema<DdmPaintParams> declare();
   std::string label() const override;
 
  protected:

@@ -2,13 +2,11 @@
 
 namespace trispline::core {
 
-const ParamSchema<DdmRemoveParams>& DdmRemoveCommand::schema() {
+ParamSchema<DdmRemoveParams> DdmRemoveCommand::declare() {
   using P = DdmRemoveParams;
-  static const ParamSchema<P> s =
-      ParamSchema<P>("ddm.remove", "Delete a tile layer")
-          .field("object", &P::object, {.required = true, .help = "The object holding the layer"})
-          .field("layer", &P::layer, {.required = true, .help = "The layer to delete"});
-  return s;
+  return ParamSchema<P>("ddm.remove", "Delete a tile layer")
+      .field("object", &P::object, {.required = true, .help = "The object holding the layer"})
+      .field("layer", &P::layer, {.required = true, .help = "The layer to delete"});
 }
 
 std::string DdmRemoveCommand::label() const { return "Remove tile layer " + p_.object + "/" + p_.layer; }

@@ -18,7 +18,7 @@ struct DdmRemoveParams {
 class DdmRemoveCommand : public ObjectSnapshotCommand<DdmRemoveCommand, DdmRemoveParams> {
  public:
   using ObjectSnapshotCommand::ObjectSnapshotCommand;
-  static const ParamSchema<DdmRemoveParams>& schema();
+  static ParamSchema<DdmRemoveParams> declare();
   std::string label() const override;
 
  protected:

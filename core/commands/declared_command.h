@@ -1,8 +1,8 @@
 // trispline::core::DeclaredCommand — a command whose parameters are one params struct P declared by a ParamSchema.
 //
-// The derived class C defines `static const ParamSchema<P>& schema();` (in its .cpp) and the effect (redo/undo, or
-// build() for a SnapshotCommand); parsing, to_json() and id() come from the schema, so the id, every field's name,
-// default, range and help are written once. Register it with one line: `registry.add<C>();`.
+// The derived class C defines `static ParamSchema<P> declare();` (in its .cpp) and the effect (redo/undo, or build()
+// for a SnapshotCommand); schema() builds that once, and parsing, to_json() and id() come from it, so the id, every
+// field's name, default, range and help are written once. Register it with one line: `registry.add<C>();`.
 // ObjectSnapshotCommand<C, P> is the common case: a SnapshotCommand whose target is the params' `object` field.
 #pragma once
 
@@ -19,6 +19,12 @@ class DeclaredCommand : public Base {
  public:
   using Params = P;
   explicit DeclaredCommand(P p) : p_(std::move(p)) {}
+
+  // The command's schema: C::declare(), built on first use.
+  static const ParamSchema<P>& schema() {
+    static const ParamSchema<P> s = C::declare();
+    return s;
+  }
 
   // Throws CommandError naming the bad field.
   static CommandPtr parse(const nlohmann::json& line, const CommandContext& ctx) {

@@ -7,13 +7,12 @@
 
 namespace trispline::core {
 
-const ParamSchema<DffdAnimateParams>& DffdAnimateCommand::schema() {
-  static const ParamSchema<DffdAnimateParams> s = keyed_weight_schema(
+ParamSchema<DffdAnimateParams> DffdAnimateCommand::declare() {
+  return keyed_weight_schema(
       {"dffd.animate", "Key a DFFD's seam on the timeline: 0 the openings capped, 1 stitched (seed §6.3.2)",
        "An object split by dffd.split with openings cap or stitch", "Remove the keys: the seam as dffd.split built it",
        "stitch_keys", "[timeline frame, s] keys: s = 0 the openings as the obstacles leave them, 1 stitched at w_s",
        "stitched seam"});
-  return s;
 }
 
 std::string DffdAnimateCommand::label() const {

@@ -29,7 +29,7 @@ using DffdAnimateParams = KeyedWeightParams;  // keys: "stitch_keys"
 class DffdAnimateCommand : public ObjectSnapshotCommand<DffdAnimateCommand, DffdAnimateParams> {
  public:
   using ObjectSnapshotCommand::ObjectSnapshotCommand;
-  static const ParamSchema<DffdAnimateParams>& schema();
+  static ParamSchema<DffdAnimateParams> declare();
   std::string label() const override;
 
  protected:

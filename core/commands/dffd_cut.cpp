@@ -28,25 +28,23 @@ glm::dvec3 plane_centroid(const TrivariateBSpline<glm::dvec3>& F, int axis, int 
 }
 }  // namespace
 
-const ParamSchema<DffdCutParams>& DffdCutCommand::schema() {
+ParamSchema<DffdCutParams> DffdCutCommand::declare() {
   using P = DffdCutParams;
-  static const ParamSchema<P> s =
-      ParamSchema<P>("dffd.cut",
-                     "Cut a deformed object at a lattice parameter: C⁻¹ knots, exact mesh split, opening (seed §6.3)")
-          .field("object", &P::object,
-                 {.required = true, .help = "A deformed object (with an FFD), without a glTF clip"})
-          .choice("axis", &P::axis, {"u", "v", "w"}, {.help = "Lattice axis the cut plane is orthogonal to"})
-          .field("at", &P::at,
-                 {.required = true, .unit = "parameter units", .help = "Parameter of the cut, inside the domain"})
-          .field("gap", &P::gap,
-                 {.range = ParamRange::magnitude_at_most(100),
-                  .unit = "world units",
-                  .help = "How far the two sides move apart across the cut"})
-          .field("eps", &P::eps,
-                 {.range = ParamRange{0, 1e-3, true, false},
-                  .unit = "parameter units",
-                  .help = "Cut vertices sit at at ∓ eps"});
-  return s;
+  return ParamSchema<P>(
+             "dffd.cut",
+             "Cut a deformed object at a lattice parameter: C⁻¹ knots, exact mesh split, opening (seed §6.3)")
+      .field("object", &P::object, {.required = true, .help = "A deformed object (with an FFD), without a glTF clip"})
+      .choice("axis", &P::axis, {"u", "v", "w"}, {.help = "Lattice axis the cut plane is orthogonal to"})
+      .field("at", &P::at,
+             {.required = true, .unit = "parameter units", .help = "Parameter of the cut, inside the domain"})
+      .field("gap", &P::gap,
+             {.range = ParamRange::magnitude_at_most(100),
+              .unit = "world units",
+              .help = "How far the two sides move apart across the cut"})
+      .field("eps", &P::eps,
+             {.range = ParamRange{0, 1e-3, true, false},
+              .unit = "parameter units",
+              .help = "Cut vertices sit at at ∓ eps"});
 }
 
 std::string DffdCutCommand::label() const {

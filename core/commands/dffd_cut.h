@@ -29,7 +29,7 @@ struct DffdCutParams {
 class DffdCutCommand : public ObjectSnapshotCommand<DffdCutCommand, DffdCutParams> {
  public:
   using ObjectSnapshotCommand::ObjectSnapshotCommand;
-  static const ParamSchema<DffdCutParams>& schema();
+  static ParamSchema<DffdCutParams> declare();
 
   std::string label() const override;
 

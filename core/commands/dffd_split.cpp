@@ -248,26 +248,24 @@ const ParamSchema<GlobalDffdParams>& global_dffd_schema() {
   return s;
 }
 
-const ParamSchema<DffdSplitParams>& DffdSplitCommand::schema() {
+ParamSchema<DffdSplitParams> DffdSplitCommand::declare() {
   using P = DffdSplitParams;
-  static const ParamSchema<P> s =
-      ParamSchema<P>("dffd.split",
-                     "Split an object around obstacles with a global discontinuous FFD; open, stitched "
-                     "or capped openings (seed §6.3)")
-          .field("object", &P::object, {.required = true, .help = "An undeformed object without a glTF clip"})
-          .field("obstacles", &P::obstacles, {.required = true, .help = "Ids of other objects (static)"})
-          .check([](const P& p) {
-            if (p.obstacles.empty()) params::fail("obstacles", "expected a non-empty array of object ids");
-            for (std::size_t i = 0; i < p.obstacles.size(); ++i) {
-              const std::string& id = p.obstacles[i];
-              if (id == p.object) params::fail("obstacles", "'" + id + "' is the object being split");
-              if (std::find(p.obstacles.begin(), p.obstacles.begin() + std::ptrdiff_t(i), id) !=
-                  p.obstacles.begin() + std::ptrdiff_t(i))
-                params::fail("obstacles", "'" + id + "' is listed twice");
-            }
-          })
-          .embed(&P::dffd, global_dffd_schema());
-  return s;
+  return ParamSchema<P>("dffd.split",
+                        "Split an object around obstacles with a global discontinuous FFD; open, stitched "
+                        "or capped openings (seed §6.3)")
+      .field("object", &P::object, {.required = true, .help = "An undeformed object without a glTF clip"})
+      .field("obstacles", &P::obstacles, {.required = true, .help = "Ids of other objects (static)"})
+      .check([](const P& p) {
+        if (p.obstacles.empty()) params::fail("obstacles", "expected a non-empty array of object ids");
+        for (std::size_t i = 0; i < p.obstacles.size(); ++i) {
+          const std::string& id = p.obstacles[i];
+          if (id == p.object) params::fail("obstacles", "'" + id + "' is the object being split");
+          if (std::find(p.obstacles.begin(), p.obstacles.begin() + std::ptrdiff_t(i), id) !=
+              p.obstacles.begin() + std::ptrdiff_t(i))
+            params::fail("obstacles", "'" + id + "' is listed twice");
+        }
+      })
+      .embed(&P::dffd, global_dffd_schema());
 }
 
 std::string DffdSplitCommand::label() const {

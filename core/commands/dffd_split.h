@@ -45,7 +45,7 @@ const ParamSchema<GlobalDffdParams>& global_dffd_schema();
 class DffdSplitCommand : public ObjectSnapshotCommand<DffdSplitCommand, DffdSplitParams> {
  public:
   using ObjectSnapshotCommand::ObjectSnapshotCommand;
-  static const ParamSchema<DffdSplitParams>& schema();
+  static ParamSchema<DffdSplitParams> declare();
 
   std::string label() const override;
 

@@ -8,12 +8,11 @@
 
 namespace trispline::core {
 
-const ParamSchema<IncisionAnimateParams>& IncisionAnimateCommand::schema() {
-  static const ParamSchema<IncisionAnimateParams> s = keyed_weight_schema(
+ParamSchema<IncisionAnimateParams> IncisionAnimateCommand::declare() {
+  return keyed_weight_schema(
       {"incision.animate", "Key an incision's opening on the timeline: 0 closed, 1 as drawn (seed §6.4)",
        "An object cut by incision.draw", "Remove the keys: the incision shows fully open", "opening_keys",
        "[timeline frame, s] keys: s = fraction of the drawn opening (0 closed, 1 as drawn)", "opening"});
-  return s;
 }
 
 std::string IncisionAnimateCommand::label() const {

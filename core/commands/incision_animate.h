@@ -27,7 +27,7 @@ using IncisionAnimateParams = KeyedWeightParams;  // keys: "opening_keys"
 class IncisionAnimateCommand : public ObjectSnapshotCommand<IncisionAnimateCommand, IncisionAnimateParams> {
  public:
   using ObjectSnapshotCommand::ObjectSnapshotCommand;
-  static const ParamSchema<IncisionAnimateParams>& schema();
+  static ParamSchema<IncisionAnimateParams> declare();
   std::string label() const override;
 
  protected:

@@ -54,35 +54,31 @@ const ParamSchema<IncisionParams>& incision_schema() {
   return s;
 }
 
-const ParamSchema<IncisionDrawParams>& IncisionDrawCommand::schema() {
+ParamSchema<IncisionDrawParams> IncisionDrawCommand::declare() {
   using P = IncisionDrawParams;
-  static const ParamSchema<P> s =
-      ParamSchema<P>("incision.draw", "Cut an incision drawn on a surface: width, depth, opening, walls (seed §6.4)")
-          .field("object", &P::object, {.required = true, .help = "An undeformed object (no ffd, dffd or clip)"})
-          .field(
-              "stroke", &P::stroke,
-              {.required = true,
-               .unit = "pixels",
-               .help =
-                   "Viewport points of the line's camera (else the scene camera), ≥ 2; each ray hits this object only"})
-          .check([](const P& p) {
-            if (p.stroke.size() < 2) params::fail("stroke", "needs at least 2 points");
-          })
-          .object("camera", &P::camera, camera_schema(),
-                  {.help = "The view the stroke was drawn in (camera.set's fields)"})
-          .embed(&P::incision, incision_schema())
-          .field("controls", &P::controls,
-                 {.default_text = "[7, clamp(#hits/3, order, 24), 5]",
-                  .help = "[l, m, n] before knot insertion: l, n odd in max(3, order)..31, m in order..64"})
-          .check([](const P& p) {
-            if (!p.controls) return;
-            const glm::ivec3 n = *p.controls;
-            const int o = p.incision.order;
-            if (n.x % 2 == 0 || n.x < std::max(3, o) || n.x > 31 || n.y < o || n.y > 64 || n.z % 2 == 0 ||
-                n.z < std::max(3, o) || n.z > 31)
-              params::fail("controls", "[l, m, n] with l, n odd in max(3, order)..31 and m in order..64");
-          });
-  return s;
+  return ParamSchema<P>("incision.draw", "Cut an incision drawn on a surface: width, depth, opening, walls (seed §6.4)")
+      .field("object", &P::object, {.required = true, .help = "An undeformed object (no ffd, dffd or clip)"})
+      .field(
+          "stroke", &P::stroke,
+          {.required = true,
+           .unit = "pixels",
+           .help = "Viewport points of the line's camera (else the scene camera), ≥ 2; each ray hits this object only"})
+      .check([](const P& p) {
+        if (p.stroke.size() < 2) params::fail("stroke", "needs at least 2 points");
+      })
+      .object("camera", &P::camera, camera_schema(), {.help = "The view the stroke was drawn in (camera.set's fields)"})
+      .embed(&P::incision, incision_schema())
+      .field("controls", &P::controls,
+             {.default_text = "[7, clamp(#hits/3, order, 24), 5]",
+              .help = "[l, m, n] before knot insertion: l, n odd in max(3, order)..31, m in order..64"})
+      .check([](const P& p) {
+        if (!p.controls) return;
+        const glm::ivec3 n = *p.controls;
+        const int o = p.incision.order;
+        if (n.x % 2 == 0 || n.x < std::max(3, o) || n.x > 31 || n.y < o || n.y > 64 || n.z % 2 == 0 ||
+            n.z < std::max(3, o) || n.z > 31)
+          params::fail("controls", "[l, m, n] with l, n odd in max(3, order)..31 and m in order..64");
+      });
 }
 
 namespace {

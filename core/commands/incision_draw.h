@@ -40,7 +40,7 @@ const ParamSchema<IncisionParams>& incision_schema();
 class IncisionDrawCommand : public ObjectSnapshotCommand<IncisionDrawCommand, IncisionDrawParams> {
  public:
   using ObjectSnapshotCommand::ObjectSnapshotCommand;
-  static const ParamSchema<IncisionDrawParams>& schema();
+  static ParamSchema<IncisionDrawParams> declare();
 
   std::string label() const override;
 

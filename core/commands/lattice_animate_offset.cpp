@@ -5,22 +5,20 @@
 
 namespace trispline::core {
 
-const ParamSchema<LatticeAnimateOffsetParams>& LatticeAnimateOffsetCommand::schema() {
+ParamSchema<LatticeAnimateOffsetParams> LatticeAnimateOffsetCommand::declare() {
   using P = LatticeAnimateOffsetParams;
-  static const ParamSchema<P> s =
-      ParamSchema<P>("lattice.animate_offset",
-                     "Move an object through its lattice over time: parameter offset and velocity")
-          .field("object", &P::object, {.required = true, .help = "A deformed object (with an FFD)"})
-          .field("offset", &P::offset,
-                 {.range = ParamRange::magnitude_at_most(1e6),
-                  .unit = "parameter units",
-                  .help = "Added to the object's lattice parameters; on a periodic axis 1 is one period of the axis "
-                          "(one turn of a ring, two on a half-twisted band)"})
-          .field("velocity", &P::velocity,
-                 {.range = ParamRange::magnitude_at_most(100),
-                  .unit = "parameter units per second",
-                  .help = "Offset change per second of scene time ([0,0,0] = still)"});
-  return s;
+  return ParamSchema<P>("lattice.animate_offset",
+                        "Move an object through its lattice over time: parameter offset and velocity")
+      .field("object", &P::object, {.required = true, .help = "A deformed object (with an FFD)"})
+      .field("offset", &P::offset,
+             {.range = ParamRange::magnitude_at_most(1e6),
+              .unit = "parameter units",
+              .help = "Added to the object's lattice parameters; on a periodic axis 1 is one period of the axis "
+                      "(one turn of a ring, two on a half-twisted band)"})
+      .field("velocity", &P::velocity,
+             {.range = ParamRange::magnitude_at_most(100),
+              .unit = "parameter units per second",
+              .help = "Offset change per second of scene time ([0,0,0] = still)"});
 }
 
 std::optional<SceneObject> LatticeAnimateOffsetCommand::build(const Scene& scene) {

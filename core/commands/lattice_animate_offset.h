@@ -23,7 +23,7 @@ class LatticeAnimateOffsetCommand
     : public ObjectSnapshotCommand<LatticeAnimateOffsetCommand, LatticeAnimateOffsetParams> {
  public:
   using ObjectSnapshotCommand::ObjectSnapshotCommand;
-  static const ParamSchema<LatticeAnimateOffsetParams>& schema();
+  static ParamSchema<LatticeAnimateOffsetParams> declare();
 
   std::string label() const override { return "Animate offset of '" + p_.object + "'"; }
 

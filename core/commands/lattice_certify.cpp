@@ -5,18 +5,17 @@
 
 namespace trispline::core {
 
-const ParamSchema<LatticeCertifyParams>& LatticeCertifyCommand::schema() {
+ParamSchema<LatticeCertifyParams> LatticeCertifyCommand::declare() {
   using P = LatticeCertifyParams;
-  static const ParamSchema<P> s =
-      ParamSchema<P>("lattice.certify", "Certify that a deformed object's lattice does not fold (det J > 0 everywhere)")
-          .field("object", &P::object, {.required = true, .help = "A deformed object (with an FFD)"})
-          .field("max_depth", &P::max_depth,
-                 {.range = ParamRange{0, 12},
-                  .help = "Halvings of a Bézier cell before a box that is neither certified nor folded is called "
-                          "undecided; the work is also bounded by 512 K Bernstein boxes, what is left after every "
-                          "cell's first box shared out over the cells still mixed (a cell that spends its share is "
-                          "undecided, counted in budget_cells)"});
-  return s;
+  return ParamSchema<P>("lattice.certify",
+                        "Certify that a deformed object's lattice does not fold (det J > 0 everywhere)")
+      .field("object", &P::object, {.required = true, .help = "A deformed object (with an FFD)"})
+      .field("max_depth", &P::max_depth,
+             {.range = ParamRange{0, 12},
+              .help = "Halvings of a Bézier cell before a box that is neither certified nor folded is called "
+                      "undecided; the work is also bounded by 512 K Bernstein boxes, what is left after every "
+                      "cell's first box shared out over the cells still mixed (a cell that spends its share is "
+                      "undecided, counted in budget_cells)"});
 }
 
 std::string LatticeCertifyCommand::label() const { return "Certify lattice of '" + p_.object + "'"; }

@@ -22,7 +22,7 @@ struct LatticeCertifyParams {
 class LatticeCertifyCommand : public DeclaredCommand<LatticeCertifyCommand, LatticeCertifyParams> {
  public:
   using DeclaredCommand::DeclaredCommand;
-  static const ParamSchema<LatticeCertifyParams>& schema();
+  static ParamSchema<LatticeCertifyParams> declare();
 
   std::string label() const override;
   void redo(Scene& scene) override;  // computes the certificate; the scene is not modified

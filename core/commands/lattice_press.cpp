@@ -7,38 +7,33 @@
 
 namespace trispline::core {
 
-const ParamSchema<LatticePressParams>& LatticePressCommand::schema() {
+ParamSchema<LatticePressParams> LatticePressCommand::declare() {
   using P = LatticePressParams;
   static const std::vector<std::string> falloffs(kFalloffNames.begin(), kFalloffNames.end());
-  static const ParamSchema<P> s =
-      ParamSchema<P>("lattice.press",
-                     "Press a placed object's lattice with a sphere swept along a path (seed §2.4.1, Fig. 2.7)")
-          .field("object", &P::object, {.required = true, .help = "A deformed object (with an FFD)"})
-          .field("path", &P::path,
-                 {.required = true, .unit = "world units", .help = "Sphere centres along the sweep, ≥ 1"})
-          .check([](const P& p) {
-            if (p.path.empty()) params::fail("path", "expected a non-empty array of [x,y,z] sphere centres");
-          })
-          .field("radius", &P::radius,
-                 {.required = true,
-                  .range = ParamRange::above(0),
-                  .unit = "world units",
-                  .ui = {"Radius", 0.0, "%.4g"},
-                  .object_size = ParamObjectSize{0.1, 0.005, 0.5, 0.01},
-                  .help = "Sphere radius"})
-          .field("strength", &P::strength,
-                 {.required = true,
-                  .unit = "world units",
-                  .ui = {"Strength", 0.0, "%.4g"},
-                  .object_size = ParamObjectSize{0.0, 0.0, 1.0},
-                  .help = "How far the contact points under the centre move along their columns; < 0 pulls"})
-          .choice("falloff", &P::falloff, falloffs,
-                  {.help = "Weight over the distance from the path, 1 at 0, 0 at radius"})
-          .field(
-              "keep_fold_free", &P::keep_fold_free,
-              {.help =
-                   "Limit the strength (bisection) so that the pressed lattice stays certified fold-free (det J > 0)"});
-  return s;
+  return ParamSchema<P>("lattice.press",
+                        "Press a placed object's lattice with a sphere swept along a path (seed §2.4.1, Fig. 2.7)")
+      .field("object", &P::object, {.required = true, .help = "A deformed object (with an FFD)"})
+      .field("path", &P::path, {.required = true, .unit = "world units", .help = "Sphere centres along the sweep, ≥ 1"})
+      .check([](const P& p) {
+        if (p.path.empty()) params::fail("path", "expected a non-empty array of [x,y,z] sphere centres");
+      })
+      .field("radius", &P::radius,
+             {.required = true,
+              .range = ParamRange::above(0),
+              .unit = "world units",
+              .ui = {"Radius", 0.0, "%.4g"},
+              .object_size = ParamObjectSize{0.1, 0.005, 0.5, 0.01},
+              .help = "Sphere radius"})
+      .field("strength", &P::strength,
+             {.required = true,
+              .unit = "world units",
+              .ui = {"Strength", 0.0, "%.4g"},
+              .object_size = ParamObjectSize{0.0, 0.0, 1.0},
+              .help = "How far the contact points under the centre move along their columns; < 0 pulls"})
+      .choice("falloff", &P::falloff, falloffs, {.help = "Weight over the distance from the path, 1 at 0, 0 at radius"})
+      .field(
+          "keep_fold_free", &P::keep_fold_free,
+          {.help = "Limit the strength (bisection) so that the pressed lattice stays certified fold-free (det J > 0)"});
 }
 
 std::string LatticePressCommand::label() const {

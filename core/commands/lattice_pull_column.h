@@ -22,7 +22,7 @@ struct LatticePullColumnParams {
 class LatticePullColumnCommand : public ObjectSnapshotCommand<LatticePullColumnCommand, LatticePullColumnParams> {
  public:
   using ObjectSnapshotCommand::ObjectSnapshotCommand;
-  static const ParamSchema<LatticePullColumnParams>& schema();
+  static ParamSchema<LatticePullColumnParams> declare();
 
   std::string label() const override {
     return "Pull column (" + std::to_string(p_.column.x) + ", " + std::to_string(p_.column.y) + ") of '" + p_.object +

@@ -11,74 +11,71 @@
 
 namespace trispline::core {
 
-const ParamSchema<LatticeRingParams>& LatticeRingCommand::schema() {
+ParamSchema<LatticeRingParams> LatticeRingCommand::declare() {
   using P = LatticeRingParams;
-  static const ParamSchema<P> s =
-      ParamSchema<P>("lattice.ring",
-                     "Bind an object to a ring-shaped lattice, periodic along u, optionally twisted into a Möbius band "
-                     "(seed §4.5, Fig. 4.5, 4.6)")
-          .field("object", &P::object, {.required = true, .help = "Object to bind; any previous FFD is replaced"})
-          .field("center", &P::center,
-                 {.unit = "world units",
-                  .ui = {"Centre", 0.01, "%.3f"},
-                  .help = "Centre of the ring, in the plane y = center.y"})
-          .field(
-              "radius", &P::radius,
-              {.required = true,
-               .range = ParamRange::above(0),
-               .unit = "world units",
-               .ui = {"Radius", 0.01, "%.4g"},
-               .help =
-                   "Radius of the ring's centre line; more than half the width (twisted: than hypot(width/2, height))"})
-          .field("width", &P::width,
-                 {.range = ParamRange::at_least(0),
-                  .unit = "world units",
-                  .help = "Lattice size across the ring; 0 = the object's extent"})
-          .field("height", &P::height,
-                 {.range = ParamRange::at_least(0),
-                  .unit = "world units",
-                  .help = "Lattice size up; 0 = the object's extent"})
-          .field("span", &P::span,
-                 {.range = ParamRange{0, 1, false, true},
-                  .help = "Fraction of the u period (laps turns) the object covers; 0 = its length / (2π·radius·laps)"})
-          .field("phase", &P::phase,
-                 {.unit = "parameter units",
-                  .ui = {"Phase", 0.005, "%.3f"},
-                  .help = "u where the object starts (one period = 1 = laps turns: 1 untwisted, 2 with a half twist)"})
-          .field("twist_deg", &P::twist_deg,
-                 {.range = ParamRange{-720, 720},
-                  .unit = "degrees",
-                  .ui = {"Twist", 1.0, "%.0f deg"},
-                  .help = "Turn of the cross-section about the ring's centre line (v = ½, w = 0) per turn of the ring, "
-                          "from outwards towards up; a multiple of 90. 180 = a Möbius band: u's period spans 2 turns, "
-                          "the second upside down beneath the first (seed Fig. 4.6); ±90 spans 4 turns, 360 one. "
-                          "Twisted rings want ≥ 12 control points per turn"})
-          .field("controls", &P::controls,
-                 {.range = ParamRange{2, 256},
-                  .ui = {"Controls"},
-                  .help = "Control points per axis; u periodic, ≥ order; twisted: a multiple of the laps, ≥ 3 (better "
-                          "12) per turn"})
-          .field("order", &P::order, {.range = ParamRange{2, 4}, .help = "Order (= degree + 1) per axis"})
-          .choice("length_axis", &P::length_axis, axis_names(), {.help = "The object's axis laid along the ring (u)"})
-          .choice("up_axis", &P::up_axis, axis_names(), {.help = "The object's axis that points up (w)"})
-          .check([](const P& p) {
-            if (p.length_axis == p.up_axis)
-              params::fail("up_axis", "must differ from length_axis ('" + p.length_axis + "')");
-            for (int a = 0; a < 3; ++a)
-              if (p.controls[a] < p.order[a]) params::fail("controls", "need order ≤ controls ≤ 256 per axis");
-            if (std::fmod(p.twist_deg, 90.0) != 0.0)
-              params::fail("twist_deg",
-                           "must be a multiple of 90 degrees (the lattice closes after 1, 2 or 4 turns), got " +
-                               params::format_number(p.twist_deg));
-            if (p.twist_deg != 0.0) {
-              const int laps = ring_twist_laps(p.twist_deg);
-              if (p.controls.x % laps != 0 || p.controls.x < 3 * laps)
-                params::fail("controls", "a twist of " + params::format_number(p.twist_deg) + " degrees spans " +
-                                             std::to_string(laps) + " turns: controls[0] must be a multiple of " +
-                                             std::to_string(laps) + ", at least 3 (better 12) per turn");
-            }
-          });
-  return s;
+  return ParamSchema<P>(
+             "lattice.ring",
+             "Bind an object to a ring-shaped lattice, periodic along u, optionally twisted into a Möbius band "
+             "(seed §4.5, Fig. 4.5, 4.6)")
+      .field("object", &P::object, {.required = true, .help = "Object to bind; any previous FFD is replaced"})
+      .field("center", &P::center,
+             {.unit = "world units",
+              .ui = {"Centre", 0.01, "%.3f"},
+              .help = "Centre of the ring, in the plane y = center.y"})
+      .field(
+          "radius", &P::radius,
+          {.required = true,
+           .range = ParamRange::above(0),
+           .unit = "world units",
+           .ui = {"Radius", 0.01, "%.4g"},
+           .help = "Radius of the ring's centre line; more than half the width (twisted: than hypot(width/2, height))"})
+      .field("width", &P::width,
+             {.range = ParamRange::at_least(0),
+              .unit = "world units",
+              .help = "Lattice size across the ring; 0 = the object's extent"})
+      .field(
+          "height", &P::height,
+          {.range = ParamRange::at_least(0), .unit = "world units", .help = "Lattice size up; 0 = the object's extent"})
+      .field("span", &P::span,
+             {.range = ParamRange{0, 1, false, true},
+              .help = "Fraction of the u period (laps turns) the object covers; 0 = its length / (2π·radius·laps)"})
+      .field("phase", &P::phase,
+             {.unit = "parameter units",
+              .ui = {"Phase", 0.005, "%.3f"},
+              .help = "u where the object starts (one period = 1 = laps turns: 1 untwisted, 2 with a half twist)"})
+      .field("twist_deg", &P::twist_deg,
+             {.range = ParamRange{-720, 720},
+              .unit = "degrees",
+              .ui = {"Twist", 1.0, "%.0f deg"},
+              .help = "Turn of the cross-section about the ring's centre line (v = ½, w = 0) per turn of the ring, "
+                      "from outwards towards up; a multiple of 90. 180 = a Möbius band: u's period spans 2 turns, "
+                      "the second upside down beneath the first (seed Fig. 4.6); ±90 spans 4 turns, 360 one. "
+                      "Twisted rings want ≥ 12 control points per turn"})
+      .field("controls", &P::controls,
+             {.range = ParamRange{2, 256},
+              .ui = {"Controls"},
+              .help = "Control points per axis; u periodic, ≥ order; twisted: a multiple of the laps, ≥ 3 (better "
+                      "12) per turn"})
+      .field("order", &P::order, {.range = ParamRange{2, 4}, .help = "Order (= degree + 1) per axis"})
+      .choice("length_axis", &P::length_axis, axis_names(), {.help = "The object's axis laid along the ring (u)"})
+      .choice("up_axis", &P::up_axis, axis_names(), {.help = "The object's axis that points up (w)"})
+      .check([](const P& p) {
+        if (p.length_axis == p.up_axis)
+          params::fail("up_axis", "must differ from length_axis ('" + p.length_axis + "')");
+        for (int a = 0; a < 3; ++a)
+          if (p.controls[a] < p.order[a]) params::fail("controls", "need order ≤ controls ≤ 256 per axis");
+        if (std::fmod(p.twist_deg, 90.0) != 0.0)
+          params::fail("twist_deg",
+                       "must be a multiple of 90 degrees (the lattice closes after 1, 2 or 4 turns), got " +
+                           params::format_number(p.twist_deg));
+        if (p.twist_deg != 0.0) {
+          const int laps = ring_twist_laps(p.twist_deg);
+          if (p.controls.x % laps != 0 || p.controls.x < 3 * laps)
+            params::fail("controls", "a twist of " + params::format_number(p.twist_deg) + " degrees spans " +
+                                         std::to_string(laps) + " turns: controls[0] must be a multiple of " +
+                                         std::to_string(laps) + ", at least 3 (better 12) per turn");
+        }
+      });
 }
 
 std::optional<SceneObject> LatticeRingCommand::build(const Scene& scene) {

@@ -41,7 +41,7 @@ struct LatticeRingParams {
 class LatticeRingCommand : public ObjectSnapshotCommand<LatticeRingCommand, LatticeRingParams> {
  public:
   using ObjectSnapshotCommand::ObjectSnapshotCommand;
-  static const ParamSchema<LatticeRingParams>& schema();
+  static ParamSchema<LatticeRingParams> declare();
 
   std::string label() const override { return "Ring lattice for '" + p_.object + "'"; }
 

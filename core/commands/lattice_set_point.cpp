@@ -5,16 +5,14 @@
 
 namespace trispline::core {
 
-const ParamSchema<LatticeSetPointParams>& LatticeSetPointCommand::schema() {
+ParamSchema<LatticeSetPointParams> LatticeSetPointCommand::declare() {
   using P = LatticeSetPointParams;
-  static const ParamSchema<P> s =
-      ParamSchema<P>("lattice.set_point", "Move one control point of a deformed object's lattice to an exact position")
-          .field("object", &P::object, {.required = true, .help = "A deformed object (with an FFD)"})
-          .field("index", &P::index,
-                 {.required = true, .help = "(i, j, k) of the control point, each inside the lattice"})
-          .field("position", &P::position,
-                 {.required = true, .unit = "world units", .help = "Where the control point goes"});
-  return s;
+  return ParamSchema<P>("lattice.set_point",
+                        "Move one control point of a deformed object's lattice to an exact position")
+      .field("object", &P::object, {.required = true, .help = "A deformed object (with an FFD)"})
+      .field("index", &P::index, {.required = true, .help = "(i, j, k) of the control point, each inside the lattice"})
+      .field("position", &P::position,
+             {.required = true, .unit = "world units", .help = "Where the control point goes"});
 }
 
 std::string LatticeSetPointCommand::label() const {

@@ -22,7 +22,7 @@ struct LatticeSetPointParams {
 class LatticeSetPointCommand : public ObjectSnapshotCommand<LatticeSetPointCommand, LatticeSetPointParams> {
  public:
   using ObjectSnapshotCommand::ObjectSnapshotCommand;
-  static const ParamSchema<LatticeSetPointParams>& schema();
+  static ParamSchema<LatticeSetPointParams> declare();
 
   std::string label() const override;
 

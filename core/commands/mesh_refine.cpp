@@ -7,34 +7,29 @@
 
 namespace trispline::core {
 
-const ParamSchema<MeshRefineParams>& MeshRefineCommand::schema() {
+ParamSchema<MeshRefineParams> MeshRefineCommand::declare() {
   using P = MeshRefineParams;
-  static const ParamSchema<P> s =
-      ParamSchema<P>("mesh.refine", "Refine a deformed object's mesh until its edges follow the FFD (seed §2.4.2)")
-          .field("object", &P::object,
-                 {.required = true, .help = "A deformed object (with an FFD), without a glTF clip"})
-          .field("tolerance", &P::tolerance,
-                 {.required = true,
-                  .range = ParamRange::above(0),
-                  .unit = "world units",
-                  .help = "Largest distance of a deformed edge from its straight chord"})
-          .choice(
-              "criterion", &P::criterion, {"midpoint", "greville", "best"},
+  return ParamSchema<P>("mesh.refine", "Refine a deformed object's mesh until its edges follow the FFD (seed §2.4.2)")
+      .field("object", &P::object, {.required = true, .help = "A deformed object (with an FFD), without a glTF clip"})
+      .field("tolerance", &P::tolerance,
+             {.required = true,
+              .range = ParamRange::above(0),
+              .unit = "world units",
+              .help = "Largest distance of a deformed edge from its straight chord"})
+      .choice("criterion", &P::criterion, {"midpoint", "greville", "best"},
               {.help = "midpoint: the seed's Eq. 2.6 estimate at edge midpoints; greville: a bound from the edge "
                        "curve's control points, split at the farthest one; best (with error bound): each triangle "
                        "takes the split (1 → 4, or its longest edge halved) whose children need the fewest triangles"})
-          .choice(
-              "error", &P::error, {"edge", "bound"},
+      .choice("error", &P::error, {"edge", "bound"},
               {.help = "edge: hold each edge's measure (the criterion's) to the tolerance; bound: hold each triangle's "
                        "certified deformation-error bound (seed §3.2) to it, splitting where the criterion says"})
-          .field("max_iterations", &P::max_iterations, {.range = ParamRange{0, 64}, .help = "Split rounds at most"})
-          // A refined triangle costs ~400 bytes across the mesh, its FFD parameters, the evaluated copy and the edge
-          // tables: 8 M triangles stay near 3 GiB (50 M reached 7 GB).
-          .field("max_triangles", &P::max_triangles,
-                 {.range = ParamRange{1, 8'000'000},
-                  .help = "The memory budget of a refinement: a round that would exceed it is not applied; ≥ the "
-                          "input's triangles"});
-  return s;
+      .field("max_iterations", &P::max_iterations, {.range = ParamRange{0, 64}, .help = "Split rounds at most"})
+      // A refined triangle costs ~400 bytes across the mesh, its FFD parameters, the evaluated copy and the edge
+      // tables: 8 M triangles stay near 3 GiB (50 M reached 7 GB).
+      .field("max_triangles", &P::max_triangles,
+             {.range = ParamRange{1, 8'000'000},
+              .help = "The memory budget of a refinement: a round that would exceed it is not applied; ≥ the "
+                      "input's triangles"});
 }
 
 RefineOptions MeshRefineCommand::options() const {

@@ -34,7 +34,7 @@ struct MeshRefineParams {
 class MeshRefineCommand : public ObjectSnapshotCommand<MeshRefineCommand, MeshRefineParams> {
  public:
   using ObjectSnapshotCommand::ObjectSnapshotCommand;
-  static const ParamSchema<MeshRefineParams>& schema();
+  static ParamSchema<MeshRefineParams> declare();
 
   std::string label() const override { return "Refine '" + p_.object + "' for its FFD"; }
 

@@ -16,16 +16,14 @@ constexpr std::size_t kMaxTriangles = 8'000'000;
 
 }  // namespace
 
-const ParamSchema<MeshSubdivideParams>& MeshSubdivideCommand::schema() {
+ParamSchema<MeshSubdivideParams> MeshSubdivideCommand::declare() {
   using P = MeshSubdivideParams;
-  static const ParamSchema<P> s =
-      ParamSchema<P>("mesh.subdivide",
-                     "Subdivide an object's rest mesh uniformly (Loop, OpenSubdiv), before deforming it")
-          .field("object", &P::object, {.required = true, .help = "An undeformed object without tile layers"})
-          .field("levels", &P::levels,
-                 {.range = ParamRange{1, kMaxLevels}, .help = "Subdivision levels; each quadruples the triangles"})
-          .choice("scheme", &P::scheme, {"loop"}, {.help = "Loop subdivision of the triangles (OpenSubdiv Far)"});
-  return s;
+  return ParamSchema<P>("mesh.subdivide",
+                        "Subdivide an object's rest mesh uniformly (Loop, OpenSubdiv), before deforming it")
+      .field("object", &P::object, {.required = true, .help = "An undeformed object without tile layers"})
+      .field("levels", &P::levels,
+             {.range = ParamRange{1, kMaxLevels}, .help = "Subdivision levels; each quadruples the triangles"})
+      .choice("scheme", &P::scheme, {"loop"}, {.help = "Loop subdivision of the triangles (OpenSubdiv Far)"});
 }
 
 std::string MeshSubdivideCommand::label() const {

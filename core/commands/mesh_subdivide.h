@@ -31,7 +31,7 @@ struct MeshSubdivideParams {
 class MeshSubdivideCommand : public ObjectSnapshotCommand<MeshSubdivideCommand, MeshSubdivideParams> {
  public:
   using ObjectSnapshotCommand::ObjectSnapshotCommand;
-  static const ParamSchema<MeshSubdivideParams>& schema();
+  static ParamSchema<MeshSubdivideParams> declare();
 
   std::string label() const override;
 

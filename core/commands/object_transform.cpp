@@ -118,27 +118,24 @@ SceneObject object_with_transform(const SceneObject& object, const Transform& t,
   return out;
 }
 
-const ParamSchema<ObjectTransformParams>& ObjectTransformCommand::schema() {
+ParamSchema<ObjectTransformParams> ObjectTransformCommand::declare() {
   using P = ObjectTransformParams;
-  static const ParamSchema<P> s =
-      ParamSchema<P>("object.transform", "Set an object's location, rotation and scale (its lattice moves with it)")
-          .field("object", &P::object, {.required = true, .help = "Object id"})
-          .field("translate", &P::translate,
-                 {.range = ParamRange::magnitude_at_most(kMaxTranslate),
-                  .unit = "world units",
-                  .default_text = "unchanged",
-                  .help = "Absolute location"})
-          .field("rotate_deg", &P::rotate_deg,
-                 {.range = ParamRange::magnitude_at_most(kMaxRotateDeg),
-                  .unit = "degrees",
-                  .default_text = "unchanged",
-                  .help = "Absolute rotation about x, then y, then z (R = Rz·Ry·Rx)"})
-          .field_as<ScaleCodec>(
-              "scale", &P::scale,
-              {.range = ParamRange{0, kMaxScale, true, false},
-               .default_text = "unchanged",
-               .help = "Absolute scale per axis; an object with a lattice keeps the signs of its scale"});
-  return s;
+  return ParamSchema<P>("object.transform", "Set an object's location, rotation and scale (its lattice moves with it)")
+      .field("object", &P::object, {.required = true, .help = "Object id"})
+      .field("translate", &P::translate,
+             {.range = ParamRange::magnitude_at_most(kMaxTranslate),
+              .unit = "world units",
+              .default_text = "unchanged",
+              .help = "Absolute location"})
+      .field("rotate_deg", &P::rotate_deg,
+             {.range = ParamRange::magnitude_at_most(kMaxRotateDeg),
+              .unit = "degrees",
+              .default_text = "unchanged",
+              .help = "Absolute rotation about x, then y, then z (R = Rz·Ry·Rx)"})
+      .field_as<ScaleCodec>("scale", &P::scale,
+                            {.range = ParamRange{0, kMaxScale, true, false},
+                             .default_text = "unchanged",
+                             .help = "Absolute scale per axis; an object with a lattice keeps the signs of its scale"});
 }
 
 CommandPtr ObjectTransformCommand::make(const std::string& object, const Transform& t) {

@@ -29,23 +29,20 @@ std::pair<bool, bool> set_flags(Scene& scene, const std::string& name, std::opti
 
 }  // namespace
 
-const ParamSchema<ObjectVisibilityParams>& ObjectVisibilityCommand::schema() {
+ParamSchema<ObjectVisibilityParams> ObjectVisibilityCommand::declare() {
   using P = ObjectVisibilityParams;
-  static const ParamSchema<P> s =
-      ParamSchema<P>("object.visibility", "Show or hide an object or a volume in the viewport and in renders")
-          .field("object", &P::object, {.required = true, .help = "Object or volume id"})
-          .field("viewport", &P::viewport,
-                 {.default_text = "unchanged",
-                  .help = "Shown in the viewport, picked by tools, framed by Home (Blender's hide_viewport, inverted)"})
-          .field(
-              "render", &P::render,
-              {.default_text = "unchanged",
-               .help = "In recordings, animation.glb, scene.glb and rendered images (Blender's hide_render, inverted)"})
-          .check([](P& p) {
-            if (!p.viewport && !p.render)
-              throw CommandError("field 'viewport': give 'viewport', 'render' or both", "viewport");
-          });
-  return s;
+  return ParamSchema<P>("object.visibility", "Show or hide an object or a volume in the viewport and in renders")
+      .field("object", &P::object, {.required = true, .help = "Object or volume id"})
+      .field("viewport", &P::viewport,
+             {.default_text = "unchanged",
+              .help = "Shown in the viewport, picked by tools, framed by Home (Blender's hide_viewport, inverted)"})
+      .field("render", &P::render,
+             {.default_text = "unchanged",
+              .help = "In recordings, animation.glb, scene.glb and rendered images (Blender's hide_render, inverted)"})
+      .check([](P& p) {
+        if (!p.viewport && !p.render)
+          throw CommandError("field 'viewport': give 'viewport', 'render' or both", "viewport");
+      });
 }
 
 std::string ObjectVisibilityCommand::label() const {

@@ -20,7 +20,7 @@ struct ObjectVisibilityParams {
 class ObjectVisibilityCommand : public DeclaredCommand<ObjectVisibilityCommand, ObjectVisibilityParams> {
  public:
   using DeclaredCommand::DeclaredCommand;
-  static const ParamSchema<ObjectVisibilityParams>& schema();
+  static ParamSchema<ObjectVisibilityParams> declare();
 
   std::string label() const override;
   void redo(Scene& scene) override;

@@ -7,22 +7,21 @@
 
 namespace trispline::core {
 
-const ParamSchema<PlaceArrayParams>& PlaceArrayCommand::schema() {
+ParamSchema<PlaceArrayParams> PlaceArrayCommand::declare() {
   using P = PlaceArrayParams;
-  static const ParamSchema<P> s =
-      ParamSchema<P>("place.array", "Add copies of a placed object in a row along its path (seed Fig. 2.11, the ants)")
-          .field("object", &P::object, {.required = true, .help = "A placed object"})
-          .field("count", &P::count, {.range = ParamRange{1, 64}, .help = "Copies to add"})
-          .field("spacing", &P::spacing,
-                 {.range = ParamRange::magnitude_at_most(10),
-                  .unit = "parameter units",
-                  .help = "u offset between neighbouring copies"})
-          .field("clip_phase_s", &P::clip_phase_s,
-                 {.write = ParamWrite::UnlessDefault,
-                  .range = ParamRange::magnitude_at_most(1e4),
-                  .unit = "seconds",
-                  .help = "Each copy's glTF clip starts this much later than the one before"});
-  return s;
+  return ParamSchema<P>("place.array",
+                        "Add copies of a placed object in a row along its path (seed Fig. 2.11, the ants)")
+      .field("object", &P::object, {.required = true, .help = "A placed object"})
+      .field("count", &P::count, {.range = ParamRange{1, 64}, .help = "Copies to add"})
+      .field("spacing", &P::spacing,
+             {.range = ParamRange::magnitude_at_most(10),
+              .unit = "parameter units",
+              .help = "u offset between neighbouring copies"})
+      .field("clip_phase_s", &P::clip_phase_s,
+             {.write = ParamWrite::UnlessDefault,
+              .range = ParamRange::magnitude_at_most(1e4),
+              .unit = "seconds",
+              .help = "Each copy's glTF clip starts this much later than the one before"});
 }
 
 std::string PlaceArrayCommand::label() const {

@@ -25,7 +25,7 @@ struct PlaceArrayParams {
 class PlaceArrayCommand : public DeclaredCommand<PlaceArrayCommand, PlaceArrayParams> {
  public:
   using DeclaredCommand::DeclaredCommand;
-  static const ParamSchema<PlaceArrayParams>& schema();
+  static ParamSchema<PlaceArrayParams> declare();
 
   std::string label() const override;
   void redo(Scene& scene) override;

@@ -217,89 +217,86 @@ const ParamSchema<SpringParams>& spring_schema() {
   return s;
 }
 
-const ParamSchema<PlaceSketchParams>& PlaceSketchCommand::schema() {
+ParamSchema<PlaceSketchParams> PlaceSketchCommand::declare() {
   using P = PlaceSketchParams;
-  static const ParamSchema<P> s =
-      ParamSchema<P>("place.sketch", "Place an object along a stroke sketched over the scene (seed §2.3.1)")
-          .field("object", &P::object,
-                 {.required = true, .help = "Id of the object to place; rays see every other visible object"})
-          .field("stroke", &P::stroke,
-                 {.required = true,
-                  .unit = "pixels",
-                  .help = "Viewport points in drawing order, (0,0) top-left; at least 2 distinct points"})
-          .field(
-              "width", &P::width,
-              {.required = true,
-               .range = ParamRange::above(0),
-               .unit = "world units",
-               .ui = {"Half-width", 0.002, "%.3f"},
-               .help =
-                   "d: half-width of the band around the stroke, C(u) ± d N(u), at the median depth under the stroke"})
-          .field("height", &P::height,
-                 {.required = true,
-                  .range = ParamRange::above(0),
-                  .unit = "world units",
-                  .ui = {"Height", 0.002, "%.3f"},
-                  .help = "h: height of the deformation volume above the contact surface"})
-          .choice("fit", &P::fit, {"keep", "stretch"},
-                  {.write = ParamWrite::UnlessDefault,
-                   .ui = {"Fit"},
-                   .help = "keep: the object keeps its proportions along the stroke (its length scaled as its height "
-                           "is, at most Extent of the path); stretch: it covers Extent of the path, however long"})
-          .field("extent", &P::extent,
-                 {.write = ParamWrite::UnlessDefault,
-                  .range = ParamRange{0, 1, true, false},
-                  .ui = {"Extent", 0.005, "%.3f"},
-                  .help = "Fraction of the path (u) the object covers (stretch), or at most covers (keep); below 1 it "
-                          "leaves room to walk along the path (§2.4.3)"})
-          .object("springs", &P::springs, spring_schema(),
-                  {.help = "Relax the contact surface as a mass-spring net before the volume is built (§2.3.2)"})
-          .field("width_profile", &P::width_profile,
-                 {.write = ParamWrite::UnlessDefault,
-                  .default_text = "constant",
-                  .help = "Factors > 0 scaling d along u, piecewise linear (Eq. 2.5)"})
-          .custom("height_profile", read_height_profile, write_height_profile,
-                  {.default_text = "constant",
-                   .type_text = "[number,…] or [[number,…],…]",
-                   .help = "Factors > 0 scaling h along u (one list) or over (u, v) (rows over v) (§2.4.1)"})
-          .field("samples", &P::samples,
-                 {.range = ParamRange{2, 4096},
-                  .ui = {"Rays u x v", 0.2},
-                  .help = "Contact rays along × across the stroke; each ≥ the control count in that axis"})
-          .choice("volume", &P::volume, {"extrude", "offset"},
-                  {.ui = {"Type"},
-                   .help = "extrude: F1, contact surface extruded towards the viewer (Eq. 2.3); offset: F2, along its "
-                           "normals (Eq. 2.4)"})
-          .field("order", &P::order,
-                 {.range = ParamRange{2, 8},
-                  .ui = {"Order u v w", 0.05},
-                  .help = "B-spline order (= degree + 1) per axis; ≤ controls"})
-          .field("controls", &P::controls,
-                 {.range = ParamRange{2, 256},
-                  .ui = {"Controls", 0.1},
-                  .help = "Control points per axis: u along the stroke, v across, w up"})
-          .choice("length_axis", &P::length_axis, axis_names(),
-                  {.ui = {"Length axis"}, .help = "The object's axis laid along the stroke (u)"})
-          .choice("up_axis", &P::up_axis, axis_names(),
-                  {.ui = {"Up axis"}, .help = "The object's axis that points away from the surface (w)"})
-          .check([](const P& p) {
-            if (p.length_axis == p.up_axis)
-              params::fail("up_axis", "must differ from length_axis ('" + p.length_axis + "')");
-            // Each contact sample is a ray, a mass-spring node and a row of the volume's fit: 2²⁰ (1024 × 1024) is
-            // far beyond what the seed's figures use (32 × 8) and bounds the work to about a second.
-            const std::int64_t rays = std::int64_t(p.samples.x) * p.samples.y;
-            if (rays > kMaxContactSamples)
-              params::fail("samples", std::to_string(p.samples.x) + " × " + std::to_string(p.samples.y) + " = " +
-                                          std::to_string(rays) + " contact samples: at most " +
-                                          std::to_string(kMaxContactSamples) + " (1024 × 1024)");
-          })
-          .object("camera", &P::camera, camera_schema(),
-                  {.help = "The view the stroke was drawn in (camera.set's fields); default: the last camera.set"})
-          .field("ignore", &P::ignore,
-                 {.write = ParamWrite::UnlessDefault,
-                  .default_text = "[]",
-                  .help = "Ids of objects the rays pass through (the editor lists those hidden in its viewport)"});
-  return s;
+  return ParamSchema<P>("place.sketch", "Place an object along a stroke sketched over the scene (seed §2.3.1)")
+      .field("object", &P::object,
+             {.required = true, .help = "Id of the object to place; rays see every other visible object"})
+      .field("stroke", &P::stroke,
+             {.required = true,
+              .unit = "pixels",
+              .help = "Viewport points in drawing order, (0,0) top-left; at least 2 distinct points"})
+      .field(
+          "width", &P::width,
+          {.required = true,
+           .range = ParamRange::above(0),
+           .unit = "world units",
+           .ui = {"Half-width", 0.002, "%.3f"},
+           .help = "d: half-width of the band around the stroke, C(u) ± d N(u), at the median depth under the stroke"})
+      .field("height", &P::height,
+             {.required = true,
+              .range = ParamRange::above(0),
+              .unit = "world units",
+              .ui = {"Height", 0.002, "%.3f"},
+              .help = "h: height of the deformation volume above the contact surface"})
+      .choice("fit", &P::fit, {"keep", "stretch"},
+              {.write = ParamWrite::UnlessDefault,
+               .ui = {"Fit"},
+               .help = "keep: the object keeps its proportions along the stroke (its length scaled as its height "
+                       "is, at most Extent of the path); stretch: it covers Extent of the path, however long"})
+      .field("extent", &P::extent,
+             {.write = ParamWrite::UnlessDefault,
+              .range = ParamRange{0, 1, true, false},
+              .ui = {"Extent", 0.005, "%.3f"},
+              .help = "Fraction of the path (u) the object covers (stretch), or at most covers (keep); below 1 it "
+                      "leaves room to walk along the path (§2.4.3)"})
+      .object("springs", &P::springs, spring_schema(),
+              {.help = "Relax the contact surface as a mass-spring net before the volume is built (§2.3.2)"})
+      .field("width_profile", &P::width_profile,
+             {.write = ParamWrite::UnlessDefault,
+              .default_text = "constant",
+              .help = "Factors > 0 scaling d along u, piecewise linear (Eq. 2.5)"})
+      .custom("height_profile", read_height_profile, write_height_profile,
+              {.default_text = "constant",
+               .type_text = "[number,…] or [[number,…],…]",
+               .help = "Factors > 0 scaling h along u (one list) or over (u, v) (rows over v) (§2.4.1)"})
+      .field("samples", &P::samples,
+             {.range = ParamRange{2, 4096},
+              .ui = {"Rays u x v", 0.2},
+              .help = "Contact rays along × across the stroke; each ≥ the control count in that axis"})
+      .choice("volume", &P::volume, {"extrude", "offset"},
+              {.ui = {"Type"},
+               .help = "extrude: F1, contact surface extruded towards the viewer (Eq. 2.3); offset: F2, along its "
+                       "normals (Eq. 2.4)"})
+      .field("order", &P::order,
+             {.range = ParamRange{2, 8},
+              .ui = {"Order u v w", 0.05},
+              .help = "B-spline order (= degree + 1) per axis; ≤ controls"})
+      .field("controls", &P::controls,
+             {.range = ParamRange{2, 256},
+              .ui = {"Controls", 0.1},
+              .help = "Control points per axis: u along the stroke, v across, w up"})
+      .choice("length_axis", &P::length_axis, axis_names(),
+              {.ui = {"Length axis"}, .help = "The object's axis laid along the stroke (u)"})
+      .choice("up_axis", &P::up_axis, axis_names(),
+              {.ui = {"Up axis"}, .help = "The object's axis that points away from the surface (w)"})
+      .check([](const P& p) {
+        if (p.length_axis == p.up_axis)
+          params::fail("up_axis", "must differ from length_axis ('" + p.length_axis + "')");
+        // Each contact sample is a ray, a mass-spring node and a row of the volume's fit: 2²⁰ (1024 × 1024) is
+        // far beyond what the seed's figures use (32 × 8) and bounds the work to about a second.
+        const std::int64_t rays = std::int64_t(p.samples.x) * p.samples.y;
+        if (rays > kMaxContactSamples)
+          params::fail("samples", std::to_string(p.samples.x) + " × " + std::to_string(p.samples.y) + " = " +
+                                      std::to_string(rays) + " contact samples: at most " +
+                                      std::to_string(kMaxContactSamples) + " (1024 × 1024)");
+      })
+      .object("camera", &P::camera, camera_schema(),
+              {.help = "The view the stroke was drawn in (camera.set's fields); default: the last camera.set"})
+      .field("ignore", &P::ignore,
+             {.write = ParamWrite::UnlessDefault,
+              .default_text = "[]",
+              .help = "Ids of objects the rays pass through (the editor lists those hidden in its viewport)"});
 }
 
 std::optional<SceneObject> PlaceSketchCommand::build(const Scene& scene) {

@@ -52,7 +52,7 @@ const ParamSchema<SpringParams>& spring_schema();
 class PlaceSketchCommand : public ObjectSnapshotCommand<PlaceSketchCommand, PlaceSketchParams> {
  public:
   using ObjectSnapshotCommand::ObjectSnapshotCommand;
-  static const ParamSchema<PlaceSketchParams>& schema();
+  static ParamSchema<PlaceSketchParams> declare();
 
   std::string label() const override { return "Place '" + p_.object + "' along stroke"; }
 

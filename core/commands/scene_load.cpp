@@ -4,23 +4,21 @@
 
 namespace trispline::core {
 
-const ParamSchema<SceneLoadParams>& SceneLoadCommand::schema() {
+ParamSchema<SceneLoadParams> SceneLoadCommand::declare() {
   using P = SceneLoadParams;
-  static const ParamSchema<P> s =
-      ParamSchema<P>("scene.load", "Load a mesh file (OBJ, PLY, OFF, STL, Collada, FBX, glTF, GLB) as a new object")
-          // Logged with its absolute path so the session log replays from anywhere; Save makes it relative again
-          // (editor::make_paths_relative).
-          .field("path", &P::path,
-                 {.required = true,
-                  .path = true,
-                  .help = "OBJ, PLY, OFF, STL, DAE, FBX (assimp) or glTF/GLB (tinygltf), relative to the log's folder; "
-                          "loads whole or fails"})
-          .choice("loose", &P::loose, {"refuse", "ignore"},
-                  {.write = ParamWrite::UnlessDefault,
-                   .help = "Point and line elements beside the faces: fail naming their counts, or leave them out "
-                           "(counted in report.json)"})
-          .embed(&P::object, object_fields_schema());
-  return s;
+  return ParamSchema<P>("scene.load", "Load a mesh file (OBJ, PLY, OFF, STL, Collada, FBX, glTF, GLB) as a new object")
+      // Logged with its absolute path so the session log replays from anywhere; Save makes it relative again
+      // (editor::make_paths_relative).
+      .field("path", &P::path,
+             {.required = true,
+              .path = true,
+              .help = "OBJ, PLY, OFF, STL, DAE, FBX (assimp) or glTF/GLB (tinygltf), relative to the log's folder; "
+                      "loads whole or fails"})
+      .choice("loose", &P::loose, {"refuse", "ignore"},
+              {.write = ParamWrite::UnlessDefault,
+               .help = "Point and line elements beside the faces: fail naming their counts, or leave them out "
+                       "(counted in report.json)"})
+      .embed(&P::object, object_fields_schema());
 }
 
 TriMesh SceneLoadCommand::make_mesh() const {

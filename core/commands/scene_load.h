@@ -24,7 +24,7 @@ struct SceneLoadParams {
 class SceneLoadCommand : public DeclaredCommand<SceneLoadCommand, SceneLoadParams, AddObjectCommand> {
  public:
   using DeclaredCommand::DeclaredCommand;
-  static const ParamSchema<SceneLoadParams>& schema();
+  static ParamSchema<SceneLoadParams> declare();
 
   std::string label() const override { return "Load '" + p_.object.name + "'"; }
 

@@ -4,17 +4,15 @@
 
 namespace trispline::core {
 
-const ParamSchema<ScenePrimitiveParams>& ScenePrimitiveCommand::schema() {
+ParamSchema<ScenePrimitiveParams> ScenePrimitiveCommand::declare() {
   using P = ScenePrimitiveParams;
-  static const ParamSchema<P> s =
-      ParamSchema<P>("scene.primitive", "Add a teapot, plane, sphere, box, cylinder or terrain")
-          .choice("kind", &P::kind, {"teapot", "plane", "sphere", "box", "cylinder", "terrain"},
-                  {.required = true,
-                   .help = "plane 2×2 in xz, sphere radius 1, box 2×2×2, cylinder r 1 h 2 along y, terrain 2×2 with "
-                           "heights in [0, 0.3], teapot height 1 on y = 0 (Newell's patches)"})
-          .field("seed", &P::seed, {.help = "Terrain heights' random seed"})
-          .embed(&P::object, object_fields_schema());
-  return s;
+  return ParamSchema<P>("scene.primitive", "Add a teapot, plane, sphere, box, cylinder or terrain")
+      .choice("kind", &P::kind, {"teapot", "plane", "sphere", "box", "cylinder", "terrain"},
+              {.required = true,
+               .help = "plane 2×2 in xz, sphere radius 1, box 2×2×2, cylinder r 1 h 2 along y, terrain 2×2 with "
+                       "heights in [0, 0.3], teapot height 1 on y = 0 (Newell's patches)"})
+      .field("seed", &P::seed, {.help = "Terrain heights' random seed"})
+      .embed(&P::object, object_fields_schema());
 }
 
 TriMesh ScenePrimitiveCommand::make_mesh() const {

@@ -17,7 +17,7 @@ struct ScenePrimitiveParams {
 class ScenePrimitiveCommand : public DeclaredCommand<ScenePrimitiveCommand, ScenePrimitiveParams, AddObjectCommand> {
  public:
   using DeclaredCommand::DeclaredCommand;
-  static const ParamSchema<ScenePrimitiveParams>& schema();
+  static ParamSchema<ScenePrimitiveParams> declare();
 
   std::string label() const override { return "Add " + p_.kind + " '" + p_.object.name + "'"; }
 

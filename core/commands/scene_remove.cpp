@@ -2,12 +2,10 @@
 
 namespace trispline::core {
 
-const ParamSchema<SceneRemoveParams>& SceneRemoveCommand::schema() {
+ParamSchema<SceneRemoveParams> SceneRemoveCommand::declare() {
   using P = SceneRemoveParams;
-  static const ParamSchema<P> s =
-      ParamSchema<P>("scene.remove", "Remove an object")
-          .field("name", &P::name, {.required = true, .help = "Id of the object to remove"});
-  return s;
+  return ParamSchema<P>("scene.remove", "Remove an object")
+      .field("name", &P::name, {.required = true, .help = "Id of the object to remove"});
 }
 
 std::optional<SceneObject> SceneRemoveCommand::build(const Scene& scene) {

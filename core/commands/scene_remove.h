@@ -13,7 +13,7 @@ struct SceneRemoveParams {
 class SceneRemoveCommand : public DeclaredCommand<SceneRemoveCommand, SceneRemoveParams, SnapshotCommand> {
  public:
   using DeclaredCommand::DeclaredCommand;
-  static const ParamSchema<SceneRemoveParams>& schema();
+  static ParamSchema<SceneRemoveParams> declare();
 
   std::string label() const override { return "Remove '" + p_.name + "'"; }
 

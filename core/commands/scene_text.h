@@ -23,7 +23,7 @@ struct SceneTextParams {
 class SceneTextCommand : public DeclaredCommand<SceneTextCommand, SceneTextParams, AddObjectCommand> {
  public:
   using DeclaredCommand::DeclaredCommand;
-  static const ParamSchema<SceneTextParams>& schema();
+  static ParamSchema<SceneTextParams> declare();
   std::string label() const override { return "Add text '" + p_.text + "'"; }
 
  protected:

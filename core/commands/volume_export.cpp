@@ -3,6 +3,7 @@
 #include <chrono>
 #include <glm/gtc/color_space.hpp>
 
+#include "core/base/text.h"
 #include "core/mesh/gltf_io.h"
 #include "core/params/codecs.h"
 #include "core/scene/scene_check.h"
@@ -12,12 +13,6 @@
 namespace trispline::core {
 
 namespace {
-
-std::string lower_extension(const std::string& path) {
-  std::string e = std::filesystem::path(path).extension().string();
-  for (char& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return e;
-}
 
 // Refuses a result holding a non-finite coordinate or one beyond kMaxWorldCoordinate, before a file is written.
 template <class Points>
@@ -33,32 +28,30 @@ void require_finite_points(const Points& points, const char* what) {
 
 }  // namespace
 
-const ParamSchema<VolumeExportParams>& VolumeExportCommand::schema() {
+ParamSchema<VolumeExportParams> VolumeExportCommand::declare() {
   using P = VolumeExportParams;
-  static const ParamSchema<P> s =
-      ParamSchema<P>("volume.export", "Export a volume's silhouettes (SVG, glTF lines) or its iso-surface mesh")
-          .field("object", &P::object, {.required = true, .help = "A volume"})
-          .choice("what", &P::what, {"silhouettes", "iso"},
-                  {.help = "silhouettes: for the current camera, as .svg or .glb line strips; iso: the surface D = iso "
-                           "as a triangle mesh, .glb/.obj/.ply"})
-          .field("path", &P::path,
-                 {.required = true,
-                  .help = "Output file, relative to the output folder (replay's --out, else the log's folder); "
-                          "absolute paths and paths that leave the folder are refused"})
-          .field("samples_per_voxel", &P::samples_per_voxel,
-                 {.write = ParamWrite::UnlessDefault,
-                  .range = ParamRange{1, 4},
-                  .help = "iso: grid samples per voxel and axis before meshing (1 = at the control points)"})
-          .object("camera", &P::camera, camera_schema(),
-                  {.help = "silhouettes: the view they are taken for (camera.set's fields); default: the scene camera"})
-          .check([](const P& p) {
-            const std::string e = lower_extension(p.path);
-            if (p.what == "silhouettes" && e != ".svg" && e != ".glb")
-              params::fail("path", "silhouettes are written as .svg or .glb, not '" + e + "'");
-            if (p.what == "iso" && e != ".glb" && e != ".obj" && e != ".ply")
-              params::fail("path", "an iso-surface is written as .glb, .obj or .ply, not '" + e + "'");
-          });
-  return s;
+  return ParamSchema<P>("volume.export", "Export a volume's silhouettes (SVG, glTF lines) or its iso-surface mesh")
+      .field("object", &P::object, {.required = true, .help = "A volume"})
+      .choice("what", &P::what, {"silhouettes", "iso"},
+              {.help = "silhouettes: for the current camera, as .svg or .glb line strips; iso: the surface D = iso "
+                       "as a triangle mesh, .glb/.obj/.ply"})
+      .field("path", &P::path,
+             {.required = true,
+              .help = "Output file, relative to the output folder (replay's --out, else the log's folder); "
+                      "absolute paths and paths that leave the folder are refused"})
+      .field("samples_per_voxel", &P::samples_per_voxel,
+             {.write = ParamWrite::UnlessDefault,
+              .range = ParamRange{1, 4},
+              .help = "iso: grid samples per voxel and axis before meshing (1 = at the control points)"})
+      .object("camera", &P::camera, camera_schema(),
+              {.help = "silhouettes: the view they are taken for (camera.set's fields); default: the scene camera"})
+      .check([](const P& p) {
+        const std::string e = lower_extension(p.path);
+        if (p.what == "silhouettes" && e != ".svg" && e != ".glb")
+          params::fail("path", "silhouettes are written as .svg or .glb, not '" + e + "'");
+        if (p.what == "iso" && e != ".glb" && e != ".obj" && e != ".ply")
+          params::fail("path", "an iso-surface is written as .glb, .obj or .ply, not '" + e + "'");
+      });
 }
 
 std::optional<VolumeObject> VolumeExportCommand::build(const Scene& scene) {

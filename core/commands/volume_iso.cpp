@@ -84,29 +84,28 @@ void write_levels(const IsoField&, const P& p, nlohmann::json& line) {
 
 }  // namespace
 
-const ParamSchema<VolumeIsoParams>& VolumeIsoCommand::schema() {
-  static const ParamSchema<P> s =
-      ParamSchema<P>("volume.iso", "Set a volume's iso-level (the surface D = level) and further levels' silhouettes")
-          .field("object", &P::object, {.required = true, .help = "A volume"})
-          .field("level", &P::level,
-                 {.range = ParamRange::magnitude_at_most(1e30),
-                  .unit = "volume units",
-                  .default_text = "levels[0]",
-                  .ui = {"Iso-level"},
-                  .help = "Iso-level in the volume's units (HU for CT)"})
-          .custom("levels", read_levels, write_levels,
-                  {.default_text = "kept",
-                   .type_text = "[c,…] | [{level,style,color},…]",
-                   .help = "Every level, the first the ray-cast surface, the others drawn as silhouettes only (Figs. "
-                           "7.4–7.6, 7.12); an entry is a number or {\"level\":c,\"style\":S,\"color\":[r,g,b]} (sRGB "
-                           "in [0,1]), at most 8"})
-          .check([](P& p) {
-            if (!p.level && !p.levels) params::fail("level", "give level, or levels");
-            if (p.level && p.levels && *p.level != p.levels->front().level)
-              params::fail("level", "differs from levels[0]; give one of them");
-            if (!p.level) p.level = p.levels->front().level;
-          });
-  return s;
+ParamSchema<VolumeIsoParams> VolumeIsoCommand::declare() {
+  return ParamSchema<P>("volume.iso",
+                        "Set a volume's iso-level (the surface D = level) and further levels' silhouettes")
+      .field("object", &P::object, {.required = true, .help = "A volume"})
+      .field("level", &P::level,
+             {.range = ParamRange::magnitude_at_most(1e30),
+              .unit = "volume units",
+              .default_text = "levels[0]",
+              .ui = {"Iso-level"},
+              .help = "Iso-level in the volume's units (HU for CT)"})
+      .custom("levels", read_levels, write_levels,
+              {.default_text = "kept",
+               .type_text = "[c,…] | [{level,style,color},…]",
+               .help = "Every level, the first the ray-cast surface, the others drawn as silhouettes only (Figs. "
+                       "7.4–7.6, 7.12); an entry is a number or {\"level\":c,\"style\":S,\"color\":[r,g,b]} (sRGB "
+                       "in [0,1]), at most 8"})
+      .check([](P& p) {
+        if (!p.level && !p.levels) params::fail("level", "give level, or levels");
+        if (p.level && p.levels && *p.level != p.levels->front().level)
+          params::fail("level", "differs from levels[0]; give one of them");
+        if (!p.level) p.level = p.levels->front().level;
+      });
 }
 
 std::string VolumeIsoCommand::label() const {

@@ -34,7 +34,7 @@ struct VolumeIsoParams {
 class VolumeIsoCommand : public DeclaredCommand<VolumeIsoCommand, VolumeIsoParams, VolumeSnapshotCommand> {
  public:
   using DeclaredCommand::DeclaredCommand;
-  static const ParamSchema<VolumeIsoParams>& schema();
+  static ParamSchema<VolumeIsoParams> declare();
   std::string label() const override;
 
  protected:

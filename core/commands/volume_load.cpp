@@ -6,41 +6,38 @@
 
 namespace trispline::core {
 
-const ParamSchema<VolumeLoadParams>& VolumeLoadCommand::schema() {
+ParamSchema<VolumeLoadParams> VolumeLoadCommand::declare() {
   using P = VolumeLoadParams;
-  static const ParamSchema<P> s =
-      ParamSchema<P>("volume.load",
-                     "Load a CT/MRI volume (NIfTI, DICOM series, InVesalius .inv3) as a trivariate "
-                     "B-spline (seed ch. 7)")
-          .field("path", &P::path,
-                 {.write = ParamWrite::UnlessDefault,
-                  .path = true,
-                  .help = "NIfTI (.nii, .nii.gz), a DICOM series folder or .dcm file, or an InVesalius .inv3 project; "
-                          "relative to the log's folder"})
-          .choice("analytic", &P::analytic, {"", "sphere", "torus", "sines"},
-                  {.write = ParamWrite::UnlessDefault,
-                   .help = "Instead of a file: an analytic test volume (96 samples a side; known silhouettes)"})
-          .field("name", &P::name,
-                 {.write = ParamWrite::UnlessDefault, .help = "Object id (default: the file name, made unique)"})
-          .field(
-              "order", &P::order,
-              {.range = ParamRange{2, 4}, .help = "Spline order per axis (degree + 1): 2 linear, 3 quadratic, 4 cubic"})
-          .field("interpolate", &P::interpolate,
-                 {.write = ParamWrite::UnlessDefault,
-                  .help = "false: the samples are the control points (the seed; smooths noise); true: D passes through "
-                          "every sample (B-spline prefilter)"})
-          .choice("axes", &P::axes, {"superior_up", "file"},
-                  {.help = "superior_up: the world is turned so that the patient's superior axis is +Y (anterior +Z, "
-                           "right −X) in this Y-up editor, for files that name their patient frame (NIfTI RAS, DICOM "
-                           "LPS); file: the file's own axes"})
-          .field("iso", &P::iso,
-                 {.unit = "volume units",
-                  .help = "First iso-level (default: 226 HU for CT, else Otsu's threshold of the samples)"})
-          .check([](const P& p) {
-            if (p.path.empty() == p.analytic.empty())
-              params::fail("path", "give either a volume file ('path') or an analytic volume ('analytic')");
-          });
-  return s;
+  return ParamSchema<P>("volume.load",
+                        "Load a CT/MRI volume (NIfTI, DICOM series, InVesalius .inv3) as a trivariate "
+                        "B-spline (seed ch. 7)")
+      .field("path", &P::path,
+             {.write = ParamWrite::UnlessDefault,
+              .path = true,
+              .help = "NIfTI (.nii, .nii.gz), a DICOM series folder or .dcm file, or an InVesalius .inv3 project; "
+                      "relative to the log's folder"})
+      .choice("analytic", &P::analytic, {"", "sphere", "torus", "sines"},
+              {.write = ParamWrite::UnlessDefault,
+               .help = "Instead of a file: an analytic test volume (96 samples a side; known silhouettes)"})
+      .field("name", &P::name,
+             {.write = ParamWrite::UnlessDefault, .help = "Object id (default: the file name, made unique)"})
+      .field("order", &P::order,
+             {.range = ParamRange{2, 4}, .help = "Spline order per axis (degree + 1): 2 linear, 3 quadratic, 4 cubic"})
+      .field("interpolate", &P::interpolate,
+             {.write = ParamWrite::UnlessDefault,
+              .help = "false: the samples are the control points (the seed; smooths noise); true: D passes through "
+                      "every sample (B-spline prefilter)"})
+      .choice("axes", &P::axes, {"superior_up", "file"},
+              {.help = "superior_up: the world is turned so that the patient's superior axis is +Y (anterior +Z, "
+                       "right −X) in this Y-up editor, for files that name their patient frame (NIfTI RAS, DICOM "
+                       "LPS); file: the file's own axes"})
+      .field("iso", &P::iso,
+             {.unit = "volume units",
+              .help = "First iso-level (default: 226 HU for CT, else Otsu's threshold of the samples)"})
+      .check([](const P& p) {
+        if (p.path.empty() == p.analytic.empty())
+          params::fail("path", "give either a volume file ('path') or an analytic volume ('analytic')");
+      });
 }
 
 namespace {

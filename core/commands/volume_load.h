@@ -28,7 +28,7 @@ struct VolumeLoadParams {
 class VolumeLoadCommand : public DeclaredCommand<VolumeLoadCommand, VolumeLoadParams, VolumeSnapshotCommand> {
  public:
   using DeclaredCommand::DeclaredCommand;
-  static const ParamSchema<VolumeLoadParams>& schema();
+  static ParamSchema<VolumeLoadParams> declare();
   std::string label() const override { return "Load volume '" + p_.name + "'"; }
 
  protected:

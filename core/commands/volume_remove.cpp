@@ -2,11 +2,10 @@
 
 namespace trispline::core {
 
-const ParamSchema<VolumeRemoveParams>& VolumeRemoveCommand::schema() {
+ParamSchema<VolumeRemoveParams> VolumeRemoveCommand::declare() {
   using P = VolumeRemoveParams;
-  static const ParamSchema<P> s = ParamSchema<P>("volume.remove", "Remove a volume")
-                                      .field("object", &P::object, {.required = true, .help = "A volume"});
-  return s;
+  return ParamSchema<P>("volume.remove", "Remove a volume")
+      .field("object", &P::object, {.required = true, .help = "A volume"});
 }
 
 std::optional<VolumeObject> VolumeRemoveCommand::build(const Scene& scene) {

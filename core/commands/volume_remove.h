@@ -15,7 +15,7 @@ struct VolumeRemoveParams {
 class VolumeRemoveCommand : public DeclaredCommand<VolumeRemoveCommand, VolumeRemoveParams, VolumeSnapshotCommand> {
  public:
   using DeclaredCommand::DeclaredCommand;
-  static const ParamSchema<VolumeRemoveParams>& schema();
+  static ParamSchema<VolumeRemoveParams> declare();
   std::string label() const override { return "Remove volume '" + p_.object + "'"; }
 
  protected:

@@ -45,28 +45,26 @@ TransferFunction default_transfer_function(const VolumeObject& volume) {
   return {{{a, {0.90, 0.60, 0.45, 0.0}}, {a + 0.25 * (b - a), {0.95, 0.80, 0.60, 0.05}}, {b, {1.0, 1.0, 1.0, 0.6}}}};
 }
 
-const ParamSchema<VolumeRenderParams>& VolumeRenderCommand::schema() {
-  static const ParamSchema<P> s =
-      ParamSchema<P>("volume.render",
-                     "Draw a volume as its iso-surface or by direct volume rendering through a transfer function "
-                     "(seed §7.4, Fig. 7.7)")
-          .field("object", &P::object, {.required = true, .help = "A volume"})
-          .choice("mode", &P::mode, {"iso", "dvr"},
-                  {.ui = {"Render"},
-                   .help = "iso: the iso-surface D = iso-level, ray cast on the spline; dvr: emission and absorption "
-                           "along each ray through the transfer function"})
-          .custom("transfer", read_transfer, write_transfer,
-                  {.default_text = "kept",
-                   .type_text = "[[value,r,g,b,a],…]",
-                   .help = "dvr's transfer function: 2 to 16 points, values in the volume's units increasing, linear "
-                           "RGB and opacity per index unit in [0,1], linear between points"})
-          .field("step", &P::step,
-                 {.write = ParamWrite::UnlessDefault,
-                  .range = ParamRange{1.0 / 64.0, 4.0},
-                  .unit = "index units",
-                  .ui = {"Step", 0.01, "%.3f"},
-                  .help = "dvr's segment length along a ray; smaller is finer and slower"});
-  return s;
+ParamSchema<VolumeRenderParams> VolumeRenderCommand::declare() {
+  return ParamSchema<P>("volume.render",
+                        "Draw a volume as its iso-surface or by direct volume rendering through a transfer function "
+                        "(seed §7.4, Fig. 7.7)")
+      .field("object", &P::object, {.required = true, .help = "A volume"})
+      .choice("mode", &P::mode, {"iso", "dvr"},
+              {.ui = {"Render"},
+               .help = "iso: the iso-surface D = iso-level, ray cast on the spline; dvr: emission and absorption "
+                       "along each ray through the transfer function"})
+      .custom("transfer", read_transfer, write_transfer,
+              {.default_text = "kept",
+               .type_text = "[[value,r,g,b,a],…]",
+               .help = "dvr's transfer function: 2 to 16 points, values in the volume's units increasing, linear "
+                       "RGB and opacity per index unit in [0,1], linear between points"})
+      .field("step", &P::step,
+             {.write = ParamWrite::UnlessDefault,
+              .range = ParamRange{1.0 / 64.0, 4.0},
+              .unit = "index units",
+              .ui = {"Step", 0.01, "%.3f"},
+              .help = "dvr's segment length along a ray; smaller is finer and slower"});
 }
 
 std::string VolumeRenderCommand::label() const {

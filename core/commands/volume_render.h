@@ -30,7 +30,7 @@ TransferFunction default_transfer_function(const VolumeObject& volume);
 class VolumeRenderCommand : public DeclaredCommand<VolumeRenderCommand, VolumeRenderParams, VolumeSnapshotCommand> {
  public:
   using DeclaredCommand::DeclaredCommand;
-  static const ParamSchema<VolumeRenderParams>& schema();
+  static ParamSchema<VolumeRenderParams> declare();
   std::string label() const override;
 
  protected:

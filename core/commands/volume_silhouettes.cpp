@@ -2,34 +2,31 @@
 
 namespace trispline::core {
 
-const ParamSchema<VolumeSilhouettesParams>& VolumeSilhouettesCommand::schema() {
+ParamSchema<VolumeSilhouettesParams> VolumeSilhouettesCommand::declare() {
   using P = VolumeSilhouettesParams;
-  static const ParamSchema<P> s =
-      ParamSchema<P>("volume.silhouettes", "Show a volume's smooth silhouettes for the current view (seed §7.3)")
-          .field("object", &P::object, {.required = true, .help = "A volume"})
-          .field("enabled", &P::enabled, {.help = "Extract and draw the silhouettes (false hides them)"})
-          .choice(
-              "style", &P::style, {"hue", "glyphs", "fans", "width", "plain", "chromadepth"},
-              {.ui = {"Style"},
-               .help =
-                   "hue: colour by gradient magnitude; glyphs: short strokes along the curve, longer where the "
+  return ParamSchema<P>("volume.silhouettes", "Show a volume's smooth silhouettes for the current view (seed §7.3)")
+      .field("object", &P::object, {.required = true, .help = "A volume"})
+      .field("enabled", &P::enabled, {.help = "Extract and draw the silhouettes (false hides them)"})
+      .choice(
+          "style", &P::style, {"hue", "glyphs", "fans", "width", "plain", "chromadepth"},
+          {.ui = {"Style"},
+           .help = "hue: colour by gradient magnitude; glyphs: short strokes along the curve, longer where the "
                    "gradient is larger; fans: fans across the curve, narrower and bluer where the gradient is larger "
                    "(Fig. 7.11); width: stroke width and grey by gradient magnitude; plain: black lines; chromadepth: "
                    "colour by depth, red nearest to blue farthest, for ChromaDepth glasses (Figs. 7.8–7.9)"})
-          .choice("hidden", &P::hidden, {"remove", "dashed", "show"},
-                  {.ui = {"Hidden lines"},
-                   .help = "Parts hidden behind the iso-surface: removed, dashed, or shown like the rest"})
-          .choice("projection", &P::projection, {"perspective", "orthographic"},
-                  {.ui = {"Projection"}, .help = "perspective: G·(P − eye) = 0; orthographic: G·(view direction) = 0"})
-          .field("subdivision", &P::subdivision,
-                 {.range = ParamRange{1, 4},
-                  .ui = {"Subdivision"},
-                  .help = "Newton seeds per singleton axis (the seed's subdivision parameter)"})
-          .field("accuracy", &P::accuracy,
-                 {.range = ParamRange{1e-12, 1e-2},
-                  .ui = {"Accuracy"},
-                  .help = "Newton stops when |D − c| ≤ accuracy·range(D) and |G·V| ≤ accuracy·|G|·|V|"});
-  return s;
+      .choice("hidden", &P::hidden, {"remove", "dashed", "show"},
+              {.ui = {"Hidden lines"},
+               .help = "Parts hidden behind the iso-surface: removed, dashed, or shown like the rest"})
+      .choice("projection", &P::projection, {"perspective", "orthographic"},
+              {.ui = {"Projection"}, .help = "perspective: G·(P − eye) = 0; orthographic: G·(view direction) = 0"})
+      .field("subdivision", &P::subdivision,
+             {.range = ParamRange{1, 4},
+              .ui = {"Subdivision"},
+              .help = "Newton seeds per singleton axis (the seed's subdivision parameter)"})
+      .field("accuracy", &P::accuracy,
+             {.range = ParamRange{1e-12, 1e-2},
+              .ui = {"Accuracy"},
+              .help = "Newton stops when |D − c| ≤ accuracy·range(D) and |G·V| ≤ accuracy·|G|·|V|"});
 }
 
 std::optional<VolumeObject> VolumeSilhouettesCommand::build(const Scene& scene) {

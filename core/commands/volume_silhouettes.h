@@ -24,7 +24,7 @@ class VolumeSilhouettesCommand
     : public DeclaredCommand<VolumeSilhouettesCommand, VolumeSilhouettesParams, VolumeSnapshotCommand> {
  public:
   using DeclaredCommand::DeclaredCommand;
-  static const ParamSchema<VolumeSilhouettesParams>& schema();
+  static ParamSchema<VolumeSilhouettesParams> declare();
   std::string label() const override {
     return std::string(p_.enabled ? "Silhouettes of '" : "Hide silhouettes of '") + p_.object + "'";
   }

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <string>
 
+#include "core/base/text.h"
 #include "core/image/image_codec.h"
 
 namespace trispline::core {
@@ -12,17 +13,11 @@ namespace {
 
 std::string quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
 
-std::string lower_ext(const std::filesystem::path& p) {
-  std::string e = p.extension().string();
-  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return e;
-}
-
 }  // namespace
 
 void write_image_rgba8(const std::filesystem::path& path, int width, int height,
                        const std::vector<unsigned char>& rgba) {
-  const std::string ext = lower_ext(path);
+  const std::string ext = lower_extension(path);
   if (ext != ".png" && ext != ".exr")
     throw ImageIoError(quoted(path) + ": unsupported image extension '" + ext + "' (supported: .png .exr)");
   if (width < 1 || height < 1 || rgba.size() != static_cast<std::size_t>(width) * height * 4)

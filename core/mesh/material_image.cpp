@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "core/base/text.h"
 #include "core/image/image_codec.h"
 
 namespace trispline::core {
@@ -21,14 +22,9 @@ bool starts_with(const std::vector<std::uint8_t>& b, std::initializer_list<int> 
   return true;
 }
 
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return s;
-}
-
 // The extension OpenImageIO chooses its reader by, from a MIME type.
 std::string extension_of_mime(const std::string& mime) {
-  const std::string m = lower(mime);
+  const std::string m = ascii_lower(mime);
   if (m == "image/png") return ".png";
   if (m == "image/jpeg" || m == "image/jpg") return ".jpg";
   if (m == "image/bmp" || m == "image/x-bmp") return ".bmp";
@@ -83,8 +79,8 @@ MaterialImage decode_material_image(std::vector<std::uint8_t> encoded, const std
   img.name = name;
   img.uri = uri;
   std::string mime = sniff_image_mime(encoded);
-  if (mime.empty()) mime = extension_of_mime(mime_type).empty() ? "" : lower(mime_type);
-  if (mime.empty()) mime = mime_of_extension(lower(std::filesystem::path(uri).extension().string()));
+  if (mime.empty()) mime = extension_of_mime(mime_type).empty() ? "" : ascii_lower(mime_type);
+  if (mime.empty()) mime = mime_of_extension(lower_extension(uri));
   img.mime_type = mime.empty() ? mime_type : mime;
   img.encoded = std::move(encoded);
   if (img.encoded.empty()) {

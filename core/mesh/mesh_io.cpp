@@ -73,12 +73,6 @@ TriMesh load_gltf(const std::filesystem::path& path) {
 
 }  // namespace
 
-std::string lower_extension(const std::filesystem::path& path) {
-  std::string e = path.extension().string();
-  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return e;
-}
-
 TriMesh load_mesh(const std::filesystem::path& path, const MeshLoadOptions& options, MeshLoadReport* report) {
   const std::string ext = lower_extension(path);
   if (!is_assimp_extension(ext) && !is_gltf_ext(ext))

@@ -15,6 +15,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/base/text.h"
 #include "core/mesh/tri_mesh.h"
 
 namespace trispline::core {
@@ -81,8 +82,5 @@ void compute_vertex_normals(TriMesh& mesh);
 // Signed volume enclosed by the triangles, world units³ (Σ a·(b×c)/6); > 0 for a closed mesh wound CCW seen from
 // outside.
 double signed_volume(const TriMesh& mesh);
-
-// Lower-case extension with the dot, e.g. ".glb".
-std::string lower_extension(const std::filesystem::path& path);
 
 }  // namespace trispline::core

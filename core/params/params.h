@@ -8,7 +8,7 @@
 //  * docs() lists the fields for `trispline commands --markdown` and the tables in docs/commands.md;
 //  * ui::param_widget() draws a field with its label, range and tooltip.
 //
-//   static const ParamSchema<P> s = ParamSchema<P>("mesh.refine", "Refine a deformed object's mesh ...")
+//   return ParamSchema<P>("mesh.refine", "Refine a deformed object's mesh ...")  // a command's declare()
 //       .field("object", &P::object, {.required = true, .help = "Object id"})
 //       .field("tolerance", &P::tolerance,
 //              {.required = true, .range = ParamRange::above(0), .unit = "world units", .help = "..."});

@@ -10,6 +10,7 @@
 #include <system_error>
 #include <vector>
 
+#include "core/base/text.h"
 #include "core/volume/volume_io_formats.h"
 
 namespace trispline::core {
@@ -137,11 +138,6 @@ void check_index_to_world(const std::filesystem::path& path, const std::array<in
 
 namespace {
 
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return s;
-}
-
 bool ends_with(const std::string& s, const std::string& tail) {
   return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
 }
@@ -149,7 +145,7 @@ bool ends_with(const std::string& s, const std::string& tail) {
 enum class VolumeFormat { kNone, kNifti, kDicom, kInv3 };
 
 VolumeFormat format_of_name(const std::filesystem::path& p) {
-  const std::string name = lower(p.filename().string());
+  const std::string name = ascii_lower(p.filename().string());
   if (ends_with(name, ".nii") || ends_with(name, ".nii.gz")) return VolumeFormat::kNifti;
   if (ends_with(name, ".dcm")) return VolumeFormat::kDicom;
   if (ends_with(name, ".inv3")) return VolumeFormat::kInv3;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/base/enum_names.h"
+#include "core/base/text.h"
 
 namespace trispline::gpu {
 namespace {
@@ -211,8 +212,7 @@ std::string current_gl_renderer() {
 }
 
 bool is_software_renderer() {
-  std::string r = current_gl_renderer();
-  std::transform(r.begin(), r.end(), r.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  const std::string r = core::ascii_lower(current_gl_renderer());
   for (const char* name : {"llvmpipe", "softpipe", "swrast", "software rasterizer", "swiftshader"})
     if (r.find(name) != std::string::npos) return true;
   return false;
