@@ -65,10 +65,17 @@ App::App(const AppOptions& options)
       host_(window_->native(), std::string()),  // fixed docked layout: nothing worth an imgui.ini
       gl_renderer_(gpu::current_gl_renderer()),
       session_(messages_),
-      tool_ctx_{session_, view_, selected_,
+      tool_ctx_{session_,
+                view_,
+                selected_,
                 [this](std::string what, std::function<void()> work) { work_.push(std::move(what), std::move(work)); },
                 [this](const nlohmann::json& line, std::string what, std::string verb) {
                   background_.start(line, std::move(what), std::move(verb));
+                },
+                [this](std::string title, std::string extension, std::string name,
+                       std::function<void(const fs::path&)> chosen) {
+                  tool_save_ = {std::move(title), std::move(extension), std::move(name), std::move(chosen)};
+                  ask_file(FilePurpose::ToolSave);
                 }},
       tools_(tool_ctx_) {
   try {

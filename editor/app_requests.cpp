@@ -1,3 +1,4 @@
+#include "core/base/text.h"
 #include "core/commands/object_visibility.h"
 #include "core/commands/volume_remove.h"
 #include "editor/app_state.h"
@@ -83,7 +84,8 @@ bool App::save_or_ask() {
 
 void App::ask_file(FilePurpose purpose) {
   std::error_code ec;
-  const bool writes = purpose == FilePurpose::SaveLog || purpose == FilePurpose::ExportVolume;
+  const bool writes =
+      purpose == FilePurpose::SaveLog || purpose == FilePurpose::ExportVolume || purpose == FilePurpose::ToolSave;
   const fs::path& last = writes ? last_write_folder_ : last_read_folder_;
   const fs::path folder = !last.empty()                                      ? last
                           : document_chosen_ && !session_.document().empty() ? session_.document().parent_path()
@@ -107,6 +109,10 @@ void App::ask_file(FilePurpose purpose) {
                           export_request_.volume + " (" + k.extension + ")",
                       ui::FileDialog::Mode::Save, {k.extension}, folder);
     file_dialog_.set_name(export_request_.volume + (iso ? "_iso" : "_silhouettes") + k.extension);
+  } else if (purpose == FilePurpose::ToolSave) {
+    file_dialog_.open(tool_save_.title + " (" + tool_save_.extension + ")", ui::FileDialog::Mode::Save,
+                      {tool_save_.extension}, folder);
+    file_dialog_.set_name(tool_save_.name);
   } else if (purpose == FilePurpose::OpenLog)
     file_dialog_.open("Open a command log (.jsonl): it is replayed", ui::FileDialog::Mode::Open, kLogExtensions,
                       folder);
@@ -200,7 +206,8 @@ void App::handle_file(const fs::path& chosen) {
   fs::path path = chosen;
   {
     std::error_code ec;
-    const bool writes = file_purpose_ == FilePurpose::SaveLog || file_purpose_ == FilePurpose::ExportVolume;
+    const bool writes = file_purpose_ == FilePurpose::SaveLog || file_purpose_ == FilePurpose::ExportVolume ||
+                        file_purpose_ == FilePurpose::ToolSave;
     (writes ? last_write_folder_ : last_read_folder_) = fs::is_directory(chosen, ec) ? chosen : chosen.parent_path();
   }
   if (file_purpose_ == FilePurpose::OpenLog || file_purpose_ == FilePurpose::SaveLog) document_chosen_ = true;
@@ -246,6 +253,12 @@ void App::handle_file(const fs::path& chosen) {
         tool_ctx_.defer("Exporting " + path.filename().string(), [this, request = export_request_, path] {
           volumes_.export_volume(request.volume, *request.kind, path, view_);
         });
+      break;
+    case FilePurpose::ToolSave:
+      if (!tool_save_.chosen) break;
+      if (!core::has_extension(path, tool_save_.extension)) path += tool_save_.extension;
+      tool_ctx_.defer("Exporting " + path.filename().string(), [chosen = std::exchange(tool_save_.chosen, nullptr),
+                                                                path = fs::absolute(path)] { chosen(path); });
       break;
     case FilePurpose::None:
       break;

@@ -19,4 +19,5 @@ set(TRISPLINE_EDITOR_APP_SOURCES
     tools/incision_tool.cpp
     tools/dffd_tool.cpp
     tools/ddm_paint_tool.cpp
+    tools/ddm_paint_export.cpp
     tools/transform_modal.cpp)

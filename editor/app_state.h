@@ -71,7 +71,7 @@ inline constexpr int kScreenshotFrames = 5;
 // second: hover highlights and tooltips (ImGui's hover delays, ≤ 0.4 s) appear. Then an idle editor draws nothing.
 inline constexpr double kSettleSeconds = 1.0;  // frames rendered after the start-up work before the capture
 
-enum class FilePurpose { None, LoadMesh, OpenLog, SaveLog, ExportVolume };
+enum class FilePurpose { None, LoadMesh, OpenLog, SaveLog, ExportVolume, ToolSave };
 // What waits for the "Save changes?" answer (the document was modified).
 enum class Pending { None, Quit, New, Open };
 
@@ -161,6 +161,10 @@ class App {
     std::string volume;
     const ui::VolumeExportKind* kind = nullptr;
   } export_request_;  // the Volume panel's Export button waiting for the Save dialog
+  struct {
+    std::string title, extension, name;
+    std::function<void(const fs::path&)> chosen;
+  } tool_save_;  // a tool's export waiting for the Save dialog (ToolContext::save_file)
   std::optional<RecoveryOffer> recovery_;
   Pending prompt_for_ = Pending::None;  // the "Save changes?" question is open for this
   bool show_about_ = false, show_keys_ = false, quit_ = false;

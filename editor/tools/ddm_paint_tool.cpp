@@ -569,6 +569,7 @@ void DdmPaintTool::draw_panel(ToolContext& ctx) {
   remove_rect_ = last_item_rect();
   ui::tooltip("Delete the layer (tiles, maps and animation): one ddm.remove, Ctrl+Z brings it back");
   ImGui::EndDisabled();
+  draw_map_export(ctx);
 
   // Animation of a layer (seed §5.4.2): metamorphosis, turn, scale and w keys and texture-space offset, one
   // ddm.animate per click.
@@ -584,9 +585,7 @@ void DdmPaintTool::draw_panel(ToolContext& ctx) {
                           l->mesh ? l->mesh->vertex_count() : 0, l->animated()});
     const ui::DdmAnimPanelResult r = ui::draw_ddm_anim_panel(anim_params_, anim_layer_, o ? o->name : "", layers);
     if (r.line) {
-      EditorSession& session = ctx.session;
-      const nlohmann::json line = *r.line;
-      ctx.defer("Animating tiles of " + o->name, [&session, line]() { session.execute(line); });
+      ctx.defer("Animating tiles of " + o->name, [&session = ctx.session, line = *r.line]() { session.execute(line); });
     }
   }
 

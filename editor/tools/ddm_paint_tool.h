@@ -94,6 +94,10 @@ class DdmPaintTool : public Tool {
   void fill(ToolContext& ctx);
   void bake(ToolContext& ctx);
   void remove_layer(ToolContext& ctx);  // ddm.remove of the layer
+  // ddm.export of `object`'s `layer`: its "positions" or "normals" map as the PNG `file` (absolute; its folder is the
+  // output folder). Errors go to the Log. Returns success.
+  static bool export_map(EditorSession& session, const std::string& object, const std::string& layer,
+                         const std::string& what, const std::filesystem::path& file);
   // ddm.color of the layer: its own colour, or nullopt for the object's again.
   void set_layer_color(ToolContext& ctx, std::optional<glm::vec3> color);
   // Where the last draw_panel put the Fill and Bake buttons (ImGui screen coordinates: min x, min y, max x, max y).
@@ -113,6 +117,7 @@ class DdmPaintTool : public Tool {
   void apply_object_defaults(const core::SceneObject* o);  // base and tile size for a newly chosen object
   void draw_estimate(const core::SceneObject* o);          // what Fill would make (ddm_fill_estimate), cached
   void draw_fill_prompt(ToolContext& ctx);                 // "Fill anyway?" above the vertex budget
+  void draw_map_export(ToolContext& ctx);  // Export: Position map... / Normal map... (ddm_paint_export.cpp)
 
   DdmPaintToolParams params_;
   std::string object_;

@@ -3,6 +3,7 @@
 // (e.g. the stroke being sketched) and changes the document only by executing commands through the session.
 #pragma once
 
+#include <filesystem>
 #include <functional>
 #include <glm/glm.hpp>
 #include <memory>
@@ -39,6 +40,12 @@ struct ToolContext {
   // (editor/session/background_command.h); `what` is the bar's text, `verb` the Log's "<verb> cancelled". Unset (tool
   // tests): the tools run the line through defer.
   std::function<void(const nlohmann::json& line, std::string what, std::string verb)> background;
+  // Asks for a file to write in the editor's Save dialog: `title`, one `extension` (".png"), the proposed `name`;
+  // `chosen` runs with the absolute path (the extension added when missing) after the user confirms, nothing on
+  // Cancel. Unset (tool tests without the app): the tool's export buttons are disabled.
+  std::function<void(std::string title, std::string extension, std::string name,
+                     std::function<void(const std::filesystem::path&)> chosen)>
+      save_file;
 };
 
 class Tool {
