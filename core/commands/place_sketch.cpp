@@ -170,6 +170,7 @@ nlohmann::json place_sketch_report(const PlaceSketchParams& p, const PlacementSt
                         {"converged", st.springs.converged},
                         {"max_displacement", st.springs.max_displacement},
                         {"dt", st.springs.dt},
+                        {"candidates", st.springs.candidates},
                         {"active", st.springs.active},
                         {"floors", st.springs.floors}};
   stats["fit"] = p.fit;
