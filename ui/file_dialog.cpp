@@ -74,6 +74,7 @@ void FileDialog::open(std::string title, Mode mode, std::vector<std::string> ext
   option_label_.clear();
   folder_label_.clear();
   name_.clear();  // Save: set_name() after open() gives the name; never the last dialog's
+  replace_.clear();
   error_.clear();
 }
 
@@ -230,6 +231,20 @@ void FileDialog::accept_typed(bool accept_name, std::optional<fs::path>& chosen)
   } else if (mode_ == Mode::Save && p.filename().empty()) {
     error_ = "type a file name";
   } else {
+    if (mode_ == Mode::Save) {
+      // The file the caller will write: the one extension a Save dialog offers added when the name lacks it.
+      if (extensions_.size() == 1 && !core::has_extension(p, extensions_.front())) p += extensions_.front();
+      if (fs::is_directory(p, ec)) {
+        error_ = p.filename().string() + " is a folder (nothing saved)";
+        return;
+      }
+      // An existing file is replaced only when Save is asked twice for it (the second time confirms).
+      if (fs::exists(p, ec) && replace_ != p) {
+        replace_ = p;
+        error_ = p.filename().string() + " exists: Save again to replace it";
+        return;
+      }
+    }
     chosen = p;
     ImGui::CloseCurrentPopup();
   }

@@ -1,6 +1,8 @@
 // trispline::ui::FileDialog — a small modal file chooser (no native dialogs: GLFW has none): a path field, the
 // folders and matching files of the current folder, ".." to go up. Used for Load… (meshes, volumes: a DICOM folder
-// too), Open… and Save As… (command logs), and the Volume panel's exports.
+// too), Open… and Save As… (command logs), the Volume panel's and Tile Paint's exports. A Save dialog with one
+// extension returns the name with it added, and asks before replacing a file: the first Save of an existing name
+// says so, a second Save of the same name replaces it (as a desktop Save dialog's "Replace?").
 #pragma once
 
 #include <filesystem>
@@ -49,7 +51,8 @@ class FileDialog {
   // close the dialog.
   void draw_buttons(float buttons_w, std::optional<std::filesystem::path>& chosen, bool& accept, bool& accept_name);
   // The path accepted from the path field (or, accept_name, from the name field): a folder is entered; a missing
-  // file (Open) or folder (Save), or no name (Save), sets error_; else it is chosen and the dialog closes.
+  // file (Open) or folder (Save), or no name (Save), sets error_; so does an existing file (Save) the first time it
+  // is accepted; else it is chosen and the dialog closes.
   void accept_typed(bool accept_name, std::optional<std::filesystem::path>& chosen);
 
   std::string title_;
@@ -60,9 +63,10 @@ class FileDialog {
   std::string name_;       // Save: file name in folder_
   std::vector<std::filesystem::path> dirs_, files_;
   std::string error_;
-  bool open_ = false;     // open() called, popup not yet opened
-  bool visible_ = false;  // popup showing
-  bool refocus_ = false;  // Open: give the path field the keyboard on the next draw (a folder was entered)
+  std::filesystem::path replace_;  // Save: the existing file the user was asked about (a second Save replaces it)
+  bool open_ = false;              // open() called, popup not yet opened
+  bool visible_ = false;           // popup showing
+  bool refocus_ = false;           // Open: give the path field the keyboard on the next draw (a folder was entered)
   std::string option_label_, option_tooltip_;
   std::string folder_label_, folder_tooltip_;
   bool option_value_ = false;

@@ -446,9 +446,9 @@ void DdmPaintTool::draw_estimate(const core::SceneObject* o) {
   if (!estimate_error_.empty()) {
     ImGui::TextColored(ui::colors::warning, "%s", estimate_error_.c_str());
   } else {
-    ImGui::TextColored(ui::colors::dim, "Fill: %s%zu tiles, %zu tile vertices (%zu charts)",
+    ImGui::TextColored(ui::colors::dim, "Fill: %s%zu tiles, %zu tile vertices (%zu chart%s)",
                        estimate_.upper_bound ? "up to " : "", estimate_.cells, estimate_.tile_vertices,
-                       estimate_.charts);
+                       estimate_.charts, estimate_.charts == 1 ? "" : "s");
     ui::tooltip(estimate_.upper_bound ? "Counted from the layout before the tiles outside the UV islands are pruned"
                                       : "Counted from the layout Fill uses");
   }

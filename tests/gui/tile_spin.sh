@@ -3,7 +3,7 @@
 # morph tile, type a turn of 0 → 360 degrees and a height of 1 → 2.5 over the frames, Animate: one ddm.animate in
 # History and the session log with those rotate and w keys. Then Export ▸ Position map... / Normal map... (seed Figs.
 # 5.3, 5.5): the Save dialog proposes a name, the typed one is written as a PNG holding the layer's maps, one ddm.export
-# each in the session log; Esc in the dialog writes nothing.
+# each in the session log; Esc in the dialog writes nothing; an existing name is replaced only on a second Save.
 source "$(dirname "$0")/gui_lib.sh"
 gui_start "$GUI_ROOT/assets/scenes/default.jsonl"
 gui_teapot_tile_paint
@@ -93,4 +93,21 @@ gui_key Return
 check_map "$GUI_WORK/teapot_n.png" normals
 gui_wait_logged '.cmd == "ddm.export" and .what == "normals" and .path == "teapot_n.png"' "the normal map's ddm.export"
 [ "$(gui_session_count '.cmd == "ddm.export"')" = 2 ] || gui_fail "two ddm.export lines in the session log"
+
+# The same name again: the dialog says the file exists and stays open; a second Enter replaces it.
+before="$(stat -c %Y.%s "$GUI_WORK/teapot_n.png")"
+gui_click_item ddm.export.normals
+gui_wait '(.popups | map(test("file_dialog")) | any) and .typing' "the Save dialog opens a third time"
+gui_type teapot_n
+gui_key Return
+gui_wait '.values["file.error"] == "teapot_n.png exists: Save again to replace it"' "the dialog asks before replacing"
+gui_check '.popups | map(test("file_dialog")) | any' "the dialog stays open"
+[ "$(stat -c %Y.%s "$GUI_WORK/teapot_n.png")" = "$before" ] || gui_fail "the file changed before the second Save"
+[ "$(gui_session_count '.cmd == "ddm.export"')" = 2 ] || gui_fail "the first Save of an existing name logged a line"
+gui_key Return
+gui_wait '.popups | length == 0' "a second Enter confirms"
+for _ in $(seq 1 100); do [ "$(gui_session_count '.cmd == "ddm.export"')" = 3 ] && break; sleep 0.2; done
+[ "$(gui_session_count '.cmd == "ddm.export"')" = 3 ] || gui_fail "three ddm.export lines after the replace"
+[ "$(stat -c %Y.%s "$GUI_WORK/teapot_n.png")" != "$before" ] || [ "$(gui_q '.log | map(test("saved the normals map of teapot/.* to .*teapot_n.png")) | length')" = 2 ] ||
+  gui_fail "the second Save did not write the file again"
 gui_pass
