@@ -6,11 +6,9 @@
 
 namespace trispline::core {
 
-ParamSchema<AnimClipParams> AnimClipCommand::declare() {
-  using P = AnimClipParams;
-  return ParamSchema<P>(
-             "anim.clip",
-             "Attach a glTF animation clip (morph targets, skin) played before the FFD (two-level animation)")
+auto AnimClipCommand::declare() -> Schema {
+  return Schema("anim.clip",
+                "Attach a glTF animation clip (morph targets, skin) played before the FFD (two-level animation)")
       .field("object", &P::object, {.required = true, .help = "Object loaded from the same file as the clip"})
       .field("remove", &P::remove, {.write = ParamWrite::UnlessDefault, .help = "Detach the object's clip instead"})
       .stop_if([](const P& p) { return p.remove; })

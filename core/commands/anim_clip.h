@@ -29,8 +29,7 @@ struct AnimClipParams {
 
 class AnimClipCommand : public ObjectSnapshotCommand<AnimClipCommand, AnimClipParams> {
  public:
-  using ObjectSnapshotCommand::ObjectSnapshotCommand;
-  static ParamSchema<AnimClipParams> declare();
+  static Schema declare();
 
   std::string label() const override;
 

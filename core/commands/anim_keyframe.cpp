@@ -4,10 +4,9 @@
 
 namespace trispline::core {
 
-ParamSchema<AnimKeyframeParams> AnimKeyframeCommand::declare() {
-  using P = AnimKeyframeParams;
-  return ParamSchema<P>("anim.keyframe",
-                        "Key (or delete a key of) an object's parameter offset along its path at a frame (seed §2.4.3)")
+auto AnimKeyframeCommand::declare() -> Schema {
+  return Schema("anim.keyframe",
+                "Key (or delete a key of) an object's parameter offset along its path at a frame (seed §2.4.3)")
       .field("object", &P::object, {.required = true, .help = "A deformed object (FFD or DFFD)"})
       .field(
           "frame", &P::frame,

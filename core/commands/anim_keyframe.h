@@ -29,8 +29,7 @@ struct AnimKeyframeParams {
 
 class AnimKeyframeCommand : public ObjectSnapshotCommand<AnimKeyframeCommand, AnimKeyframeParams> {
  public:
-  using ObjectSnapshotCommand::ObjectSnapshotCommand;
-  static ParamSchema<AnimKeyframeParams> declare();
+  static Schema declare();
 
   std::string label() const override;
 

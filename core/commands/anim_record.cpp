@@ -12,10 +12,8 @@ std::string frame_range_error(const Timeline& timeline, int first, int last) {
   return {};
 }
 
-ParamSchema<AnimRecordParams> AnimRecordCommand::declare() {
-  using P = AnimRecordParams;
-  return ParamSchema<P>("anim.record",
-                        "Record timeline frames to PNG/EXR images, an animated glb and an MP4 (seed §2.4.3)")
+auto AnimRecordCommand::declare() -> Schema {
+  return Schema("anim.record", "Record timeline frames to PNG/EXR images, an animated glb and an MP4 (seed §2.4.3)")
       .field("out", &P::out,
              {.write = ParamWrite::UnlessDefault,
               .default_text = "the caller's",

@@ -65,7 +65,7 @@ struct AnimRecordParams {
 class AnimRecordCommand : public DeclaredCommand<AnimRecordCommand, AnimRecordParams>, public FileOutput {
  public:
   explicit AnimRecordCommand(AnimRecordParams p, const std::filesystem::path& base_dir = {});
-  static ParamSchema<AnimRecordParams> declare();
+  static Schema declare();
   // As DeclaredCommand::parse, and `out` is resolved against the log's folder.
   static CommandPtr parse(const nlohmann::json& line, const CommandContext& ctx);
 

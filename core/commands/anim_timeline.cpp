@@ -4,9 +4,8 @@
 
 namespace trispline::core {
 
-ParamSchema<AnimTimelineParams> AnimTimelineCommand::declare() {
-  using P = AnimTimelineParams;
-  return ParamSchema<P>("anim.timeline", "Set the timeline's frame range and frame rate")
+auto AnimTimelineCommand::declare() -> Schema {
+  return Schema("anim.timeline", "Set the timeline's frame range and frame rate")
       // At least one frame per 100 s: below that, frame times overflow long before a timeline ends (1e-320 fps).
       .field("fps", &P::fps, {.range = ParamRange{0.01, 240}, .unit = "frames per second", .help = "Frame rate"})
       .field("start", &P::start, {.range = ParamRange{0, 100000}, .help = "First frame"})

@@ -21,8 +21,7 @@ struct AnimTimelineParams {
 
 class AnimTimelineCommand : public DeclaredCommand<AnimTimelineCommand, AnimTimelineParams> {
  public:
-  using DeclaredCommand::DeclaredCommand;
-  static ParamSchema<AnimTimelineParams> declare();
+  static Schema declare();
 
   std::string label() const override;
   void redo(Scene& scene) override;

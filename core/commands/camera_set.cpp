@@ -4,9 +4,8 @@
 
 namespace trispline::core {
 
-ParamSchema<Camera> CameraSetCommand::declare() {
-  return ParamSchema<Camera>("camera.set", "Set the view (eye, target, up, field of view, viewport)")
-      .include(camera_schema());
+auto CameraSetCommand::declare() -> Schema {
+  return Schema("camera.set", "Set the view (eye, target, up, field of view, viewport)").include(camera_schema());
 }
 
 void CameraSetCommand::redo(Scene& scene) {

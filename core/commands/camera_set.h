@@ -8,8 +8,7 @@ namespace trispline::core {
 
 class CameraSetCommand : public DeclaredCommand<CameraSetCommand, Camera> {
  public:
-  using DeclaredCommand::DeclaredCommand;
-  static ParamSchema<Camera> declare();
+  static Schema declare();
 
   std::string label() const override { return "Set camera"; }
   void redo(Scene& scene) override;

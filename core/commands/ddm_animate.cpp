@@ -59,10 +59,9 @@ std::vector<OffsetKey> value_keys(const std::vector<glm::dvec2>& keys, const Tim
 
 }  // namespace
 
-ParamSchema<DdmAnimateParams> DdmAnimateCommand::declare() {
-  return ParamSchema<P>(
-             "ddm.animate",
-             "Animate a tile layer: texture-space offset, rotation, scale, w and metamorphosis (seed §5.4.2)")
+auto DdmAnimateCommand::declare() -> Schema {
+  return Schema("ddm.animate",
+                "Animate a tile layer: texture-space offset, rotation, scale, w and metamorphosis (seed §5.4.2)")
       .field("object", &P::object, {.required = true, .help = "The object holding the layer"})
       .field("layer", &P::layer, {.required = true, .help = "The layer to animate"})
       .field("clear", &P::clear,

@@ -40,8 +40,7 @@ struct DdmAnimateParams {
 
 class DdmAnimateCommand : public ObjectSnapshotCommand<DdmAnimateCommand, DdmAnimateParams> {
  public:
-  using ObjectSnapshotCommand::ObjectSnapshotCommand;
-  static ParamSchema<DdmAnimateParams> declare();
+  static Schema declare();
   std::string label() const override;
 
  protected:

@@ -6,9 +6,8 @@
 
 namespace trispline::core {
 
-ParamSchema<DdmBakeParams> DdmBakeCommand::declare() {
-  using P = DdmBakeParams;
-  return ParamSchema<P>("ddm.bake", "Turn a tile layer into an ordinary mesh object (for export)")
+auto DdmBakeCommand::declare() -> Schema {
+  return Schema("ddm.bake", "Turn a tile layer into an ordinary mesh object (for export)")
       .field("object", &P::object, {.required = true, .help = "The object holding the layer"})
       .field("layer", &P::layer, {.required = true, .help = "The layer to bake"})
       .field("name", &P::name, {.required = true, .help = "Id of the new object; an existing name is an error"})

@@ -24,8 +24,7 @@ struct DdmBakeParams {
 
 class DdmBakeCommand : public DeclaredCommand<DdmBakeCommand, DdmBakeParams, SnapshotCommand> {
  public:
-  using DeclaredCommand::DeclaredCommand;
-  static ParamSchema<DdmBakeParams> declare();
+  static Schema declare();
   std::string label() const override;
   bool preparable() const override { return true; }  // the editor bakes on a worker thread
 

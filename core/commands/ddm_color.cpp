@@ -25,9 +25,8 @@ void write_layer_color(const ParamSchema<DdmColorParams>::Field& f, const DdmCol
 
 }  // namespace
 
-ParamSchema<DdmColorParams> DdmColorCommand::declare() {
-  using P = DdmColorParams;
-  return ParamSchema<P>("ddm.color", "Give a tile layer its own colour, or its object's again")
+auto DdmColorCommand::declare() -> Schema {
+  return Schema("ddm.color", "Give a tile layer its own colour, or its object's again")
       .field("object", &P::object, {.required = true, .help = "The object holding the layer"})
       .field("layer", &P::layer, {.required = true, .help = "The layer to colour"})
       .custom("color", read_layer_color, write_layer_color,

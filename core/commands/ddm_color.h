@@ -19,8 +19,7 @@ struct DdmColorParams {
 
 class DdmColorCommand : public ObjectSnapshotCommand<DdmColorCommand, DdmColorParams> {
  public:
-  using ObjectSnapshotCommand::ObjectSnapshotCommand;
-  static ParamSchema<DdmColorParams> declare();
+  static Schema declare();
   std::string label() const override;
 
  protected:

@@ -10,10 +10,8 @@
 
 namespace trispline::core {
 
-ParamSchema<DdmExportParams> DdmExportCommand::declare() {
-  using P = DdmExportParams;
-  return ParamSchema<P>("ddm.export",
-                        "Export a tile layer's sampled position or normal map as a picture (seed Figs. 5.3, 5.5)")
+auto DdmExportCommand::declare() -> Schema {
+  return Schema("ddm.export", "Export a tile layer's sampled position or normal map as a picture (seed Figs. 5.3, 5.5)")
       .field("object", &P::object, {.required = true, .help = "The object holding the layer"})
       .field("layer", &P::layer, {.required = true, .help = "The tile layer whose maps are written"})
       .choice("what", &P::what, {"positions", "normals"},

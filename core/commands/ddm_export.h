@@ -24,7 +24,7 @@ class DdmExportCommand : public DeclaredCommand<DdmExportCommand, DdmExportParam
   // `file`: p.path resolved by CommandContext::resolve_output (absolute, inside the output folder).
   DdmExportCommand(DdmExportParams p, std::filesystem::path file)
       : DeclaredCommand(std::move(p)), FileExport(std::move(file)) {}
-  static ParamSchema<DdmExportParams> declare();
+  static Schema declare();
   static CommandPtr parse(const nlohmann::json& line, const CommandContext& ctx) {
     return parse_with_output<DdmExportCommand>(line, ctx);
   }

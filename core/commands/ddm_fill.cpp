@@ -6,9 +6,8 @@
 
 namespace trispline::core {
 
-ParamSchema<DdmFillParams> DdmFillCommand::declare() {
-  using P = DdmFillParams;
-  return ParamSchema<P>("ddm.fill", "Cover an object's surface with a layer of geometric tiles (DDM, seed ch. 5)")
+auto DdmFillCommand::declare() -> Schema {
+  return Schema("ddm.fill", "Cover an object's surface with a layer of geometric tiles (DDM, seed ch. 5)")
       .field(
           "object", &P::object,
           {.required = true,

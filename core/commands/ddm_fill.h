@@ -37,8 +37,7 @@ struct DdmFillParams {
 
 class DdmFillCommand : public ObjectSnapshotCommand<DdmFillCommand, DdmFillParams> {
  public:
-  using ObjectSnapshotCommand::ObjectSnapshotCommand;
-  static ParamSchema<DdmFillParams> declare();
+  static Schema declare();
   std::string label() const override;
   bool preparable() const override { return true; }  // the editor builds a fill on a worker thread
 

@@ -257,10 +257,8 @@ std::vector<DdmInstance> ddm_paint_cells(const Scene& scene, const SceneObject& 
   return out;
 }
 
-ParamSchema<DdmPaintParams> DdmPaintCommand::declare() {
-  using P = DdmPaintParams;
-  return ParamSchema<P>("ddm.paint",
-                        "Paint (or erase) tiles of a layer with a brush stroke in the viewport (DDM, seed ch. 5)")
+auto DdmPaintCommand::declare() -> Schema {
+  return Schema("ddm.paint", "Paint (or erase) tiles of a layer with a brush stroke in the viewport (DDM, seed ch. 5)")
       .field(
           "object", &P::object,
           {.required = true,

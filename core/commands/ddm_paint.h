@@ -67,8 +67,7 @@ struct DdmPaintParams {
 
 class DdmPaintCommand : public ObjectSnapshotCommand<DdmPaintCommand, DdmPaintParams> {
  public:
-  using ObjectSnapshotCommand::ObjectSnapshotCommand;
-  static ParamSchema<DdmPaintParams> declare();
+  static Schema declare();
   std::string label() const override;
 
  protected:

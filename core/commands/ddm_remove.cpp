@@ -2,9 +2,8 @@
 
 namespace trispline::core {
 
-ParamSchema<DdmRemoveParams> DdmRemoveCommand::declare() {
-  using P = DdmRemoveParams;
-  return ParamSchema<P>("ddm.remove", "Delete a tile layer")
+auto DdmRemoveCommand::declare() -> Schema {
+  return Schema("ddm.remove", "Delete a tile layer")
       .field("object", &P::object, {.required = true, .help = "The object holding the layer"})
       .field("layer", &P::layer, {.required = true, .help = "The layer to delete"});
 }

@@ -17,8 +17,7 @@ struct DdmRemoveParams {
 
 class DdmRemoveCommand : public ObjectSnapshotCommand<DdmRemoveCommand, DdmRemoveParams> {
  public:
-  using ObjectSnapshotCommand::ObjectSnapshotCommand;
-  static ParamSchema<DdmRemoveParams> declare();
+  static Schema declare();
   std::string label() const override;
 
  protected:

@@ -1,6 +1,6 @@
 // trispline::core::DeclaredCommand — a command whose parameters are one params struct P declared by a ParamSchema.
 //
-// The derived class C defines `static ParamSchema<P> declare();` (in its .cpp) and the effect (redo/undo, or build()
+// The derived class C defines `static Schema declare();` (in its .cpp) and the effect (redo/undo, or build()
 // for a SnapshotCommand); schema() builds that once, and parsing, to_json() and id() come from it, so the id, every
 // field's name, default, range and help are written once. Register it with one line: `registry.add<C>();`.
 // ObjectSnapshotCommand<C, P> is the common case: a SnapshotCommand whose target is the params' `object` field.
@@ -14,21 +14,26 @@
 
 namespace trispline::core {
 
-template <class C, class P, class Base = Command>
+template <class C, class ParamsT, class Base = Command>
 class DeclaredCommand : public Base {
  public:
-  using Params = P;
+  using Params = ParamsT;
+  using P = ParamsT;  // the short name the declare() bodies use
+  using Schema = ParamSchema<ParamsT>;
+  DeclaredCommand() = default;
   explicit DeclaredCommand(P p) : p_(std::move(p)) {}
 
   // The command's schema: C::declare(), built on first use.
-  static const ParamSchema<P>& schema() {
-    static const ParamSchema<P> s = C::declare();
+  static const Schema& schema() {
+    static const Schema s = C::declare();
     return s;
   }
 
   // Throws CommandError naming the bad field.
   static CommandPtr parse(const nlohmann::json& line, const CommandContext& ctx) {
-    return std::make_unique<C>(C::schema().parse(line, ctx));
+    auto command = std::make_unique<C>();
+    static_cast<DeclaredCommand&>(*command).p_ = C::schema().parse(line, ctx);
+    return command;
   }
   std::string id() const override { return C::schema().id(); }
   nlohmann::json to_json() const override { return C::schema().to_json(p_); }
@@ -42,6 +47,7 @@ class DeclaredCommand : public Base {
 template <class C, class P>
 class ObjectSnapshotCommand : public DeclaredCommand<C, P, SnapshotCommand> {
  public:
+  ObjectSnapshotCommand() = default;
   explicit ObjectSnapshotCommand(P p) : DeclaredCommand<C, P, SnapshotCommand>(std::move(p)) {}
 
  protected:

@@ -7,7 +7,7 @@
 
 namespace trispline::core {
 
-ParamSchema<DffdAnimateParams> DffdAnimateCommand::declare() {
+auto DffdAnimateCommand::declare() -> Schema {
   return keyed_weight_schema(
       {"dffd.animate", "Key a DFFD's seam on the timeline: 0 the openings capped, 1 stitched (seed §6.3.2)",
        "An object split by dffd.split with openings cap or stitch", "Remove the keys: the seam as dffd.split built it",

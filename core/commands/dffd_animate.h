@@ -28,8 +28,7 @@ using DffdAnimateParams = KeyedWeightParams;  // keys: "stitch_keys"
 
 class DffdAnimateCommand : public ObjectSnapshotCommand<DffdAnimateCommand, DffdAnimateParams> {
  public:
-  using ObjectSnapshotCommand::ObjectSnapshotCommand;
-  static ParamSchema<DffdAnimateParams> declare();
+  static Schema declare();
   std::string label() const override;
 
  protected:

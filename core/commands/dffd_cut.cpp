@@ -28,11 +28,9 @@ glm::dvec3 plane_centroid(const TrivariateBSpline<glm::dvec3>& F, int axis, int 
 }
 }  // namespace
 
-ParamSchema<DffdCutParams> DffdCutCommand::declare() {
-  using P = DffdCutParams;
-  return ParamSchema<P>(
-             "dffd.cut",
-             "Cut a deformed object at a lattice parameter: C⁻¹ knots, exact mesh split, opening (seed §6.3)")
+auto DffdCutCommand::declare() -> Schema {
+  return Schema("dffd.cut",
+                "Cut a deformed object at a lattice parameter: C⁻¹ knots, exact mesh split, opening (seed §6.3)")
       .field("object", &P::object, {.required = true, .help = "A deformed object (with an FFD), without a glTF clip"})
       .choice("axis", &P::axis, {"u", "v", "w"}, {.help = "Lattice axis the cut plane is orthogonal to"})
       .field("at", &P::at,

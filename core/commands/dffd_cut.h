@@ -28,8 +28,7 @@ struct DffdCutParams {
 
 class DffdCutCommand : public ObjectSnapshotCommand<DffdCutCommand, DffdCutParams> {
  public:
-  using ObjectSnapshotCommand::ObjectSnapshotCommand;
-  static ParamSchema<DffdCutParams> declare();
+  static Schema declare();
 
   std::string label() const override;
 

@@ -248,11 +248,10 @@ const ParamSchema<GlobalDffdParams>& global_dffd_schema() {
   return s;
 }
 
-ParamSchema<DffdSplitParams> DffdSplitCommand::declare() {
-  using P = DffdSplitParams;
-  return ParamSchema<P>("dffd.split",
-                        "Split an object around obstacles with a global discontinuous FFD; open, stitched "
-                        "or capped openings (seed §6.3)")
+auto DffdSplitCommand::declare() -> Schema {
+  return Schema("dffd.split",
+                "Split an object around obstacles with a global discontinuous FFD; open, stitched "
+                "or capped openings (seed §6.3)")
       .field("object", &P::object, {.required = true, .help = "An undeformed object without a glTF clip"})
       .field("obstacles", &P::obstacles, {.required = true, .help = "Ids of other objects (static)"})
       .check([](const P& p) {

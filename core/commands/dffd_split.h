@@ -44,8 +44,7 @@ const ParamSchema<GlobalDffdParams>& global_dffd_schema();
 
 class DffdSplitCommand : public ObjectSnapshotCommand<DffdSplitCommand, DffdSplitParams> {
  public:
-  using ObjectSnapshotCommand::ObjectSnapshotCommand;
-  static ParamSchema<DffdSplitParams> declare();
+  static Schema declare();
 
   std::string label() const override;
 

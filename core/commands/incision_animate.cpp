@@ -8,7 +8,7 @@
 
 namespace trispline::core {
 
-ParamSchema<IncisionAnimateParams> IncisionAnimateCommand::declare() {
+auto IncisionAnimateCommand::declare() -> Schema {
   return keyed_weight_schema(
       {"incision.animate", "Key an incision's opening on the timeline: 0 closed, 1 as drawn (seed §6.4)",
        "An object cut by incision.draw", "Remove the keys: the incision shows fully open", "opening_keys",

@@ -26,8 +26,7 @@ using IncisionAnimateParams = KeyedWeightParams;  // keys: "opening_keys"
 
 class IncisionAnimateCommand : public ObjectSnapshotCommand<IncisionAnimateCommand, IncisionAnimateParams> {
  public:
-  using ObjectSnapshotCommand::ObjectSnapshotCommand;
-  static ParamSchema<IncisionAnimateParams> declare();
+  static Schema declare();
   std::string label() const override;
 
  protected:

@@ -54,9 +54,8 @@ const ParamSchema<IncisionParams>& incision_schema() {
   return s;
 }
 
-ParamSchema<IncisionDrawParams> IncisionDrawCommand::declare() {
-  using P = IncisionDrawParams;
-  return ParamSchema<P>("incision.draw", "Cut an incision drawn on a surface: width, depth, opening, walls (seed §6.4)")
+auto IncisionDrawCommand::declare() -> Schema {
+  return Schema("incision.draw", "Cut an incision drawn on a surface: width, depth, opening, walls (seed §6.4)")
       .field("object", &P::object, {.required = true, .help = "An undeformed object (no ffd, dffd or clip)"})
       .field(
           "stroke", &P::stroke,

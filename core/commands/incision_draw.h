@@ -39,8 +39,7 @@ const ParamSchema<IncisionParams>& incision_schema();
 
 class IncisionDrawCommand : public ObjectSnapshotCommand<IncisionDrawCommand, IncisionDrawParams> {
  public:
-  using ObjectSnapshotCommand::ObjectSnapshotCommand;
-  static ParamSchema<IncisionDrawParams> declare();
+  static Schema declare();
 
   std::string label() const override;
 

@@ -5,10 +5,8 @@
 
 namespace trispline::core {
 
-ParamSchema<LatticeAnimateOffsetParams> LatticeAnimateOffsetCommand::declare() {
-  using P = LatticeAnimateOffsetParams;
-  return ParamSchema<P>("lattice.animate_offset",
-                        "Move an object through its lattice over time: parameter offset and velocity")
+auto LatticeAnimateOffsetCommand::declare() -> Schema {
+  return Schema("lattice.animate_offset", "Move an object through its lattice over time: parameter offset and velocity")
       .field("object", &P::object, {.required = true, .help = "A deformed object (with an FFD)"})
       .field("offset", &P::offset,
              {.range = ParamRange::magnitude_at_most(1e6),

@@ -22,8 +22,7 @@ struct LatticeAnimateOffsetParams {
 class LatticeAnimateOffsetCommand
     : public ObjectSnapshotCommand<LatticeAnimateOffsetCommand, LatticeAnimateOffsetParams> {
  public:
-  using ObjectSnapshotCommand::ObjectSnapshotCommand;
-  static ParamSchema<LatticeAnimateOffsetParams> declare();
+  static Schema declare();
 
   std::string label() const override { return "Animate offset of '" + p_.object + "'"; }
 

@@ -5,10 +5,8 @@
 
 namespace trispline::core {
 
-ParamSchema<LatticeCertifyParams> LatticeCertifyCommand::declare() {
-  using P = LatticeCertifyParams;
-  return ParamSchema<P>("lattice.certify",
-                        "Certify that a deformed object's lattice does not fold (det J > 0 everywhere)")
+auto LatticeCertifyCommand::declare() -> Schema {
+  return Schema("lattice.certify", "Certify that a deformed object's lattice does not fold (det J > 0 everywhere)")
       .field("object", &P::object, {.required = true, .help = "A deformed object (with an FFD)"})
       .field("max_depth", &P::max_depth,
              {.range = ParamRange{0, 12},

@@ -21,8 +21,7 @@ struct LatticeCertifyParams {
 
 class LatticeCertifyCommand : public DeclaredCommand<LatticeCertifyCommand, LatticeCertifyParams> {
  public:
-  using DeclaredCommand::DeclaredCommand;
-  static ParamSchema<LatticeCertifyParams> declare();
+  static Schema declare();
 
   std::string label() const override;
   void redo(Scene& scene) override;  // computes the certificate; the scene is not modified

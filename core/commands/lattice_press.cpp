@@ -7,11 +7,10 @@
 
 namespace trispline::core {
 
-ParamSchema<LatticePressParams> LatticePressCommand::declare() {
-  using P = LatticePressParams;
+auto LatticePressCommand::declare() -> Schema {
   static const std::vector<std::string> falloffs(kFalloffNames.begin(), kFalloffNames.end());
-  return ParamSchema<P>("lattice.press",
-                        "Press a placed object's lattice with a sphere swept along a path (seed §2.4.1, Fig. 2.7)")
+  return Schema("lattice.press",
+                "Press a placed object's lattice with a sphere swept along a path (seed §2.4.1, Fig. 2.7)")
       .field("object", &P::object, {.required = true, .help = "A deformed object (with an FFD)"})
       .field("path", &P::path, {.required = true, .unit = "world units", .help = "Sphere centres along the sweep, ≥ 1"})
       .check([](const P& p) {

@@ -31,8 +31,7 @@ struct LatticePressParams {
 
 class LatticePressCommand : public ObjectSnapshotCommand<LatticePressCommand, LatticePressParams> {
  public:
-  using ObjectSnapshotCommand::ObjectSnapshotCommand;
-  static ParamSchema<LatticePressParams> declare();
+  static Schema declare();
 
   // A negative strength pulls (the Press tool's Ctrl+drag); a press limited to stay fold-free says to what.
   std::string label() const override;

@@ -7,10 +7,8 @@
 
 namespace trispline::core {
 
-ParamSchema<LatticePullColumnParams> LatticePullColumnCommand::declare() {
-  using P = LatticePullColumnParams;
-  return ParamSchema<P>("lattice.pull_column",
-                        "Pull or push one contact control point and its column along V_P (seed §2.4.1)")
+auto LatticePullColumnCommand::declare() -> Schema {
+  return Schema("lattice.pull_column", "Pull or push one contact control point and its column along V_P (seed §2.4.1)")
       .field("object", &P::object, {.required = true, .help = "A deformed object (with an FFD)"})
       .field("column", &P::column, {.required = true, .help = "(i, j) of the contact control point"})
       .field("distance", &P::distance, {.required = true, .unit = "world units", .help = "Move along V_P; < 0 pushes"});

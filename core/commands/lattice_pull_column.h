@@ -21,8 +21,7 @@ struct LatticePullColumnParams {
 
 class LatticePullColumnCommand : public ObjectSnapshotCommand<LatticePullColumnCommand, LatticePullColumnParams> {
  public:
-  using ObjectSnapshotCommand::ObjectSnapshotCommand;
-  static ParamSchema<LatticePullColumnParams> declare();
+  static Schema declare();
 
   std::string label() const override {
     return "Pull column (" + std::to_string(p_.column.x) + ", " + std::to_string(p_.column.y) + ") of '" + p_.object +

@@ -11,12 +11,10 @@
 
 namespace trispline::core {
 
-ParamSchema<LatticeRingParams> LatticeRingCommand::declare() {
-  using P = LatticeRingParams;
-  return ParamSchema<P>(
-             "lattice.ring",
-             "Bind an object to a ring-shaped lattice, periodic along u, optionally twisted into a Möbius band "
-             "(seed §4.5, Fig. 4.5, 4.6)")
+auto LatticeRingCommand::declare() -> Schema {
+  return Schema("lattice.ring",
+                "Bind an object to a ring-shaped lattice, periodic along u, optionally twisted into a Möbius band "
+                "(seed §4.5, Fig. 4.5, 4.6)")
       .field("object", &P::object, {.required = true, .help = "Object to bind; any previous FFD is replaced"})
       .field("center", &P::center,
              {.unit = "world units",

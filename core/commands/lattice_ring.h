@@ -40,8 +40,7 @@ struct LatticeRingParams {
 
 class LatticeRingCommand : public ObjectSnapshotCommand<LatticeRingCommand, LatticeRingParams> {
  public:
-  using ObjectSnapshotCommand::ObjectSnapshotCommand;
-  static ParamSchema<LatticeRingParams> declare();
+  static Schema declare();
 
   std::string label() const override { return "Ring lattice for '" + p_.object + "'"; }
 

@@ -5,10 +5,8 @@
 
 namespace trispline::core {
 
-ParamSchema<LatticeSetPointParams> LatticeSetPointCommand::declare() {
-  using P = LatticeSetPointParams;
-  return ParamSchema<P>("lattice.set_point",
-                        "Move one control point of a deformed object's lattice to an exact position")
+auto LatticeSetPointCommand::declare() -> Schema {
+  return Schema("lattice.set_point", "Move one control point of a deformed object's lattice to an exact position")
       .field("object", &P::object, {.required = true, .help = "A deformed object (with an FFD)"})
       .field("index", &P::index, {.required = true, .help = "(i, j, k) of the control point, each inside the lattice"})
       .field("position", &P::position,

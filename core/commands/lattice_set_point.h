@@ -21,8 +21,7 @@ struct LatticeSetPointParams {
 
 class LatticeSetPointCommand : public ObjectSnapshotCommand<LatticeSetPointCommand, LatticeSetPointParams> {
  public:
-  using ObjectSnapshotCommand::ObjectSnapshotCommand;
-  static ParamSchema<LatticeSetPointParams> declare();
+  static Schema declare();
 
   std::string label() const override;
 

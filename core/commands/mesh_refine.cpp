@@ -7,9 +7,8 @@
 
 namespace trispline::core {
 
-ParamSchema<MeshRefineParams> MeshRefineCommand::declare() {
-  using P = MeshRefineParams;
-  return ParamSchema<P>("mesh.refine", "Refine a deformed object's mesh until its edges follow the FFD (seed §2.4.2)")
+auto MeshRefineCommand::declare() -> Schema {
+  return Schema("mesh.refine", "Refine a deformed object's mesh until its edges follow the FFD (seed §2.4.2)")
       .field("object", &P::object, {.required = true, .help = "A deformed object (with an FFD), without a glTF clip"})
       .field("tolerance", &P::tolerance,
              {.required = true,

@@ -33,8 +33,7 @@ struct MeshRefineParams {
 
 class MeshRefineCommand : public ObjectSnapshotCommand<MeshRefineCommand, MeshRefineParams> {
  public:
-  using ObjectSnapshotCommand::ObjectSnapshotCommand;
-  static ParamSchema<MeshRefineParams> declare();
+  static Schema declare();
 
   std::string label() const override { return "Refine '" + p_.object + "' for its FFD"; }
 

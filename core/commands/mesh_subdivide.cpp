@@ -16,10 +16,8 @@ constexpr std::size_t kMaxTriangles = 8'000'000;
 
 }  // namespace
 
-ParamSchema<MeshSubdivideParams> MeshSubdivideCommand::declare() {
-  using P = MeshSubdivideParams;
-  return ParamSchema<P>("mesh.subdivide",
-                        "Subdivide an object's rest mesh uniformly (Loop, OpenSubdiv), before deforming it")
+auto MeshSubdivideCommand::declare() -> Schema {
+  return Schema("mesh.subdivide", "Subdivide an object's rest mesh uniformly (Loop, OpenSubdiv), before deforming it")
       .field("object", &P::object, {.required = true, .help = "An undeformed object without tile layers"})
       .field("levels", &P::levels,
              {.range = ParamRange{1, kMaxLevels}, .help = "Subdivision levels; each quadruples the triangles"})

@@ -30,8 +30,7 @@ struct MeshSubdivideParams {
 
 class MeshSubdivideCommand : public ObjectSnapshotCommand<MeshSubdivideCommand, MeshSubdivideParams> {
  public:
-  using ObjectSnapshotCommand::ObjectSnapshotCommand;
-  static ParamSchema<MeshSubdivideParams> declare();
+  static Schema declare();
 
   std::string label() const override;
 

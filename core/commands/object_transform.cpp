@@ -118,9 +118,8 @@ SceneObject object_with_transform(const SceneObject& object, const Transform& t,
   return out;
 }
 
-ParamSchema<ObjectTransformParams> ObjectTransformCommand::declare() {
-  using P = ObjectTransformParams;
-  return ParamSchema<P>("object.transform", "Set an object's location, rotation and scale (its lattice moves with it)")
+auto ObjectTransformCommand::declare() -> Schema {
+  return Schema("object.transform", "Set an object's location, rotation and scale (its lattice moves with it)")
       .field("object", &P::object, {.required = true, .help = "Object id"})
       .field("translate", &P::translate,
              {.range = ParamRange::magnitude_at_most(kMaxTranslate),

@@ -39,7 +39,7 @@ struct ObjectTransformParams {
 class ObjectTransformCommand : public ObjectSnapshotCommand<ObjectTransformCommand, ObjectTransformParams> {
  public:
   using ObjectSnapshotCommand::ObjectSnapshotCommand;
-  static ParamSchema<ObjectTransformParams> declare();
+  static Schema declare();
   // The command setting `t` completely (all three fields), as the editor logs it.
   static CommandPtr make(const std::string& object, const Transform& t);
 

@@ -29,9 +29,8 @@ std::pair<bool, bool> set_flags(Scene& scene, const std::string& name, std::opti
 
 }  // namespace
 
-ParamSchema<ObjectVisibilityParams> ObjectVisibilityCommand::declare() {
-  using P = ObjectVisibilityParams;
-  return ParamSchema<P>("object.visibility", "Show or hide an object or a volume in the viewport and in renders")
+auto ObjectVisibilityCommand::declare() -> Schema {
+  return Schema("object.visibility", "Show or hide an object or a volume in the viewport and in renders")
       .field("object", &P::object, {.required = true, .help = "Object or volume id"})
       .field("viewport", &P::viewport,
              {.default_text = "unchanged",

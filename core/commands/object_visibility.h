@@ -19,8 +19,7 @@ struct ObjectVisibilityParams {
 
 class ObjectVisibilityCommand : public DeclaredCommand<ObjectVisibilityCommand, ObjectVisibilityParams> {
  public:
-  using DeclaredCommand::DeclaredCommand;
-  static ParamSchema<ObjectVisibilityParams> declare();
+  static Schema declare();
 
   std::string label() const override;
   void redo(Scene& scene) override;

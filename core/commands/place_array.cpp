@@ -7,10 +7,8 @@
 
 namespace trispline::core {
 
-ParamSchema<PlaceArrayParams> PlaceArrayCommand::declare() {
-  using P = PlaceArrayParams;
-  return ParamSchema<P>("place.array",
-                        "Add copies of a placed object in a row along its path (seed Fig. 2.11, the ants)")
+auto PlaceArrayCommand::declare() -> Schema {
+  return Schema("place.array", "Add copies of a placed object in a row along its path (seed Fig. 2.11, the ants)")
       .field("object", &P::object, {.required = true, .help = "A placed object"})
       .field("count", &P::count, {.range = ParamRange{1, 64}, .help = "Copies to add"})
       .field("spacing", &P::spacing,

@@ -24,8 +24,7 @@ struct PlaceArrayParams {
 
 class PlaceArrayCommand : public DeclaredCommand<PlaceArrayCommand, PlaceArrayParams> {
  public:
-  using DeclaredCommand::DeclaredCommand;
-  static ParamSchema<PlaceArrayParams> declare();
+  static Schema declare();
 
   std::string label() const override;
   void redo(Scene& scene) override;

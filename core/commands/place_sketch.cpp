@@ -218,9 +218,8 @@ const ParamSchema<SpringParams>& spring_schema() {
   return s;
 }
 
-ParamSchema<PlaceSketchParams> PlaceSketchCommand::declare() {
-  using P = PlaceSketchParams;
-  return ParamSchema<P>("place.sketch", "Place an object along a stroke sketched over the scene (seed §2.3.1)")
+auto PlaceSketchCommand::declare() -> Schema {
+  return Schema("place.sketch", "Place an object along a stroke sketched over the scene (seed §2.3.1)")
       .field("object", &P::object,
              {.required = true, .help = "Id of the object to place; rays see every other visible object"})
       .field("stroke", &P::stroke,

@@ -51,8 +51,7 @@ const ParamSchema<SpringParams>& spring_schema();
 
 class PlaceSketchCommand : public ObjectSnapshotCommand<PlaceSketchCommand, PlaceSketchParams> {
  public:
-  using ObjectSnapshotCommand::ObjectSnapshotCommand;
-  static ParamSchema<PlaceSketchParams> declare();
+  static Schema declare();
 
   std::string label() const override { return "Place '" + p_.object + "' along stroke"; }
 

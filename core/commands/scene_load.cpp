@@ -4,9 +4,8 @@
 
 namespace trispline::core {
 
-ParamSchema<SceneLoadParams> SceneLoadCommand::declare() {
-  using P = SceneLoadParams;
-  return ParamSchema<P>("scene.load", "Load a mesh file (OBJ, PLY, OFF, STL, Collada, FBX, glTF, GLB) as a new object")
+auto SceneLoadCommand::declare() -> Schema {
+  return Schema("scene.load", "Load a mesh file (OBJ, PLY, OFF, STL, Collada, FBX, glTF, GLB) as a new object")
       // Logged with its absolute path so the session log replays from anywhere; Save makes it relative again
       // (editor::make_paths_relative).
       .field("path", &P::path,

@@ -23,8 +23,7 @@ struct SceneLoadParams {
 
 class SceneLoadCommand : public DeclaredCommand<SceneLoadCommand, SceneLoadParams, AddObjectCommand> {
  public:
-  using DeclaredCommand::DeclaredCommand;
-  static ParamSchema<SceneLoadParams> declare();
+  static Schema declare();
 
   std::string label() const override { return "Load '" + p_.object.name + "'"; }
 

@@ -4,9 +4,8 @@
 
 namespace trispline::core {
 
-ParamSchema<ScenePrimitiveParams> ScenePrimitiveCommand::declare() {
-  using P = ScenePrimitiveParams;
-  return ParamSchema<P>("scene.primitive", "Add a teapot, plane, sphere, box, cylinder or terrain")
+auto ScenePrimitiveCommand::declare() -> Schema {
+  return Schema("scene.primitive", "Add a teapot, plane, sphere, box, cylinder or terrain")
       .choice("kind", &P::kind, {"teapot", "plane", "sphere", "box", "cylinder", "terrain"},
               {.required = true,
                .help = "plane 2×2 in xz, sphere radius 1, box 2×2×2, cylinder r 1 h 2 along y, terrain 2×2 with "

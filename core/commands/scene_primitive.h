@@ -16,8 +16,7 @@ struct ScenePrimitiveParams {
 
 class ScenePrimitiveCommand : public DeclaredCommand<ScenePrimitiveCommand, ScenePrimitiveParams, AddObjectCommand> {
  public:
-  using DeclaredCommand::DeclaredCommand;
-  static ParamSchema<ScenePrimitiveParams> declare();
+  static Schema declare();
 
   std::string label() const override { return "Add " + p_.kind + " '" + p_.object.name + "'"; }
 

@@ -2,9 +2,8 @@
 
 namespace trispline::core {
 
-ParamSchema<SceneRemoveParams> SceneRemoveCommand::declare() {
-  using P = SceneRemoveParams;
-  return ParamSchema<P>("scene.remove", "Remove an object")
+auto SceneRemoveCommand::declare() -> Schema {
+  return Schema("scene.remove", "Remove an object")
       .field("name", &P::name, {.required = true, .help = "Id of the object to remove"});
 }
 

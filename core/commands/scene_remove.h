@@ -12,8 +12,7 @@ struct SceneRemoveParams {
 
 class SceneRemoveCommand : public DeclaredCommand<SceneRemoveCommand, SceneRemoveParams, SnapshotCommand> {
  public:
-  using DeclaredCommand::DeclaredCommand;
-  static ParamSchema<SceneRemoveParams> declare();
+  static Schema declare();
 
   std::string label() const override { return "Remove '" + p_.name + "'"; }
 

@@ -6,9 +6,8 @@
 
 namespace trispline::core {
 
-ParamSchema<SceneTextParams> SceneTextCommand::declare() {
-  using P = SceneTextParams;
-  return ParamSchema<P>("scene.text", "Add a line of text as an extruded mesh (TrueType / OpenType font)")
+auto SceneTextCommand::declare() -> Schema {
+  return Schema("scene.text", "Add a line of text as an extruded mesh (TrueType / OpenType font)")
       .field("text", &P::text,
              {.required = true,
               .help = "One line, UTF-8, 1–256 characters; reads along +x, glyphs up +y, centred on the origin"})

@@ -22,8 +22,7 @@ struct SceneTextParams {
 
 class SceneTextCommand : public DeclaredCommand<SceneTextCommand, SceneTextParams, AddObjectCommand> {
  public:
-  using DeclaredCommand::DeclaredCommand;
-  static ParamSchema<SceneTextParams> declare();
+  static Schema declare();
   std::string label() const override { return "Add text '" + p_.text + "'"; }
 
  protected:

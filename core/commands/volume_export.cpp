@@ -28,9 +28,8 @@ void require_finite_points(const Points& points, const char* what) {
 
 }  // namespace
 
-ParamSchema<VolumeExportParams> VolumeExportCommand::declare() {
-  using P = VolumeExportParams;
-  return ParamSchema<P>("volume.export", "Export a volume's silhouettes (SVG, glTF lines) or its iso-surface mesh")
+auto VolumeExportCommand::declare() -> Schema {
+  return Schema("volume.export", "Export a volume's silhouettes (SVG, glTF lines) or its iso-surface mesh")
       .field("object", &P::object, {.required = true, .help = "A volume"})
       .choice("what", &P::what, {"silhouettes", "iso"},
               {.help = "silhouettes: for the current camera, as .svg or .glb line strips; iso: the surface D = iso "

@@ -36,7 +36,7 @@ class VolumeExportCommand : public DeclaredCommand<VolumeExportCommand, VolumeEx
   // `file`: p.path resolved by CommandContext::resolve_output (absolute, inside the output folder).
   VolumeExportCommand(VolumeExportParams p, std::filesystem::path file)
       : DeclaredCommand(std::move(p)), FileExport(std::move(file)) {}
-  static ParamSchema<VolumeExportParams> declare();
+  static Schema declare();
   static CommandPtr parse(const nlohmann::json& line, const CommandContext& ctx) {
     return parse_with_output<VolumeExportCommand>(line, ctx);
   }

@@ -84,9 +84,8 @@ void write_levels(const IsoField&, const P& p, nlohmann::json& line) {
 
 }  // namespace
 
-ParamSchema<VolumeIsoParams> VolumeIsoCommand::declare() {
-  return ParamSchema<P>("volume.iso",
-                        "Set a volume's iso-level (the surface D = level) and further levels' silhouettes")
+auto VolumeIsoCommand::declare() -> Schema {
+  return Schema("volume.iso", "Set a volume's iso-level (the surface D = level) and further levels' silhouettes")
       .field("object", &P::object, {.required = true, .help = "A volume"})
       .field("level", &P::level,
              {.range = ParamRange::magnitude_at_most(1e30),

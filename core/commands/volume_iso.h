@@ -33,8 +33,7 @@ struct VolumeIsoParams {
 
 class VolumeIsoCommand : public DeclaredCommand<VolumeIsoCommand, VolumeIsoParams, VolumeSnapshotCommand> {
  public:
-  using DeclaredCommand::DeclaredCommand;
-  static ParamSchema<VolumeIsoParams> declare();
+  static Schema declare();
   std::string label() const override;
 
  protected:

@@ -6,11 +6,10 @@
 
 namespace trispline::core {
 
-ParamSchema<VolumeLoadParams> VolumeLoadCommand::declare() {
-  using P = VolumeLoadParams;
-  return ParamSchema<P>("volume.load",
-                        "Load a CT/MRI volume (NIfTI, DICOM series, InVesalius .inv3) as a trivariate "
-                        "B-spline (seed ch. 7)")
+auto VolumeLoadCommand::declare() -> Schema {
+  return Schema("volume.load",
+                "Load a CT/MRI volume (NIfTI, DICOM series, InVesalius .inv3) as a trivariate "
+                "B-spline (seed ch. 7)")
       .field("path", &P::path,
              {.write = ParamWrite::UnlessDefault,
               .path = true,

@@ -27,8 +27,7 @@ struct VolumeLoadParams {
 
 class VolumeLoadCommand : public DeclaredCommand<VolumeLoadCommand, VolumeLoadParams, VolumeSnapshotCommand> {
  public:
-  using DeclaredCommand::DeclaredCommand;
-  static ParamSchema<VolumeLoadParams> declare();
+  static Schema declare();
   std::string label() const override { return "Load volume '" + p_.name + "'"; }
 
  protected:

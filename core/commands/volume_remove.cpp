@@ -2,10 +2,8 @@
 
 namespace trispline::core {
 
-ParamSchema<VolumeRemoveParams> VolumeRemoveCommand::declare() {
-  using P = VolumeRemoveParams;
-  return ParamSchema<P>("volume.remove", "Remove a volume")
-      .field("object", &P::object, {.required = true, .help = "A volume"});
+auto VolumeRemoveCommand::declare() -> Schema {
+  return Schema("volume.remove", "Remove a volume").field("object", &P::object, {.required = true, .help = "A volume"});
 }
 
 std::optional<VolumeObject> VolumeRemoveCommand::build(const Scene& scene) {

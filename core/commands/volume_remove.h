@@ -14,8 +14,7 @@ struct VolumeRemoveParams {
 
 class VolumeRemoveCommand : public DeclaredCommand<VolumeRemoveCommand, VolumeRemoveParams, VolumeSnapshotCommand> {
  public:
-  using DeclaredCommand::DeclaredCommand;
-  static ParamSchema<VolumeRemoveParams> declare();
+  static Schema declare();
   std::string label() const override { return "Remove volume '" + p_.object + "'"; }
 
  protected:

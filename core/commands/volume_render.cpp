@@ -45,10 +45,10 @@ TransferFunction default_transfer_function(const VolumeObject& volume) {
   return {{{a, {0.90, 0.60, 0.45, 0.0}}, {a + 0.25 * (b - a), {0.95, 0.80, 0.60, 0.05}}, {b, {1.0, 1.0, 1.0, 0.6}}}};
 }
 
-ParamSchema<VolumeRenderParams> VolumeRenderCommand::declare() {
-  return ParamSchema<P>("volume.render",
-                        "Draw a volume as its iso-surface or by direct volume rendering through a transfer function "
-                        "(seed §7.4, Fig. 7.7)")
+auto VolumeRenderCommand::declare() -> Schema {
+  return Schema("volume.render",
+                "Draw a volume as its iso-surface or by direct volume rendering through a transfer function "
+                "(seed §7.4, Fig. 7.7)")
       .field("object", &P::object, {.required = true, .help = "A volume"})
       .choice("mode", &P::mode, {"iso", "dvr"},
               {.ui = {"Render"},

@@ -29,8 +29,7 @@ TransferFunction default_transfer_function(const VolumeObject& volume);
 
 class VolumeRenderCommand : public DeclaredCommand<VolumeRenderCommand, VolumeRenderParams, VolumeSnapshotCommand> {
  public:
-  using DeclaredCommand::DeclaredCommand;
-  static ParamSchema<VolumeRenderParams> declare();
+  static Schema declare();
   std::string label() const override;
 
  protected:

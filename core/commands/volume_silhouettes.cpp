@@ -2,9 +2,8 @@
 
 namespace trispline::core {
 
-ParamSchema<VolumeSilhouettesParams> VolumeSilhouettesCommand::declare() {
-  using P = VolumeSilhouettesParams;
-  return ParamSchema<P>("volume.silhouettes", "Show a volume's smooth silhouettes for the current view (seed §7.3)")
+auto VolumeSilhouettesCommand::declare() -> Schema {
+  return Schema("volume.silhouettes", "Show a volume's smooth silhouettes for the current view (seed §7.3)")
       .field("object", &P::object, {.required = true, .help = "A volume"})
       .field("enabled", &P::enabled, {.help = "Extract and draw the silhouettes (false hides them)"})
       .choice(

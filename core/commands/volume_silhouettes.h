@@ -23,8 +23,7 @@ struct VolumeSilhouettesParams {
 class VolumeSilhouettesCommand
     : public DeclaredCommand<VolumeSilhouettesCommand, VolumeSilhouettesParams, VolumeSnapshotCommand> {
  public:
-  using DeclaredCommand::DeclaredCommand;
-  static ParamSchema<VolumeSilhouettesParams> declare();
+  static Schema declare();
   std::string label() const override {
     return std::string(p_.enabled ? "Silhouettes of '" : "Hide silhouettes of '") + p_.object + "'";
   }
