@@ -140,6 +140,59 @@ std::vector<bool> unclosed_loops(const std::vector<std::vector<std::uint32_t>>& 
   return bad;
 }
 
+// Cut vertices of one side that stand at the same point of the section (2-D distance in the two other parameter
+// coordinates ≤ kWeldTol): the copies a mesh carries along its seams (a box's hard edges, UV seams) are cut into
+// separate vertices at one place. Returns (vertex, representative) sorted by vertex, the representative the
+// smallest vertex index of its group, so loops are chained on the welded surface. Deterministic.
+constexpr double kWeldTol = 1e-9;
+
+std::vector<std::pair<std::uint32_t, std::uint32_t>> weld_cut_vertices(const std::vector<std::uint32_t>& verts,
+                                                                       const std::vector<std::int8_t>& cut,
+                                                                       const std::vector<glm::dvec3>& params,
+                                                                       int axis) {
+  const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> rep;  // (vertex, representative), sorted by vertex
+  rep.reserve(verts.size());
+  for (std::uint32_t v : verts) rep.emplace_back(v, v);
+  std::sort(rep.begin(), rep.end());
+  rep.erase(std::unique(rep.begin(), rep.end()), rep.end());
+  auto parent = [&](std::uint32_t v) -> std::uint32_t& {
+    return std::lower_bound(rep.begin(), rep.end(), std::make_pair(v, std::uint32_t{0}))->second;
+  };
+  auto root = [&](std::uint32_t v) {
+    while (parent(v) != v) v = parent(v);
+    return v;
+  };
+  // Grid cells of side kWeldTol: a vertex is compared with those in its own and the 8 neighbouring cells.
+  using Cell = std::array<std::int64_t, 3>;  // (side, cell along a1, cell along a2)
+  auto cell_of = [&](std::uint32_t v) {
+    auto index = [](double x) {  // params are finite; clamped so the conversion is defined
+      return static_cast<std::int64_t>(std::clamp(std::floor(x / kWeldTol), -1e15, 1e15));
+    };
+    return Cell{cut[v], index(params[v][a1]), index(params[v][a2])};
+  };
+  std::vector<std::pair<Cell, std::uint32_t>> cells;
+  cells.reserve(rep.size());
+  for (const auto& [v, r] : rep) cells.emplace_back(cell_of(v), v);
+  std::sort(cells.begin(), cells.end());
+  for (const auto& [c, x] : cells)
+    for (std::int64_t d1 = -1; d1 <= 1; ++d1)
+      for (std::int64_t d2 = -1; d2 <= 1; ++d2) {
+        const Cell n{c[0], c[1] + d1, c[2] + d2};
+        for (auto it = std::lower_bound(cells.begin(), cells.end(), std::make_pair(n, std::uint32_t{0}));
+             it != cells.end() && it->first == n; ++it) {
+          const std::uint32_t y = it->second;
+          if (y <= x || std::abs(params[y][a1] - params[x][a1]) > kWeldTol ||
+              std::abs(params[y][a2] - params[x][a2]) > kWeldTol)
+            continue;
+          const std::uint32_t rx = root(x), ry = root(y);
+          if (rx != ry) parent(std::max(rx, ry)) = std::min(rx, ry);
+        }
+      }
+  for (auto& [v, r] : rep) r = root(v);
+  return rep;
+}
+
 }  // namespace
 
 CapStats cap_split_openings(MeshSplit& split, int axis, double u0, double eps, MaterialSlot material) {
@@ -173,7 +226,14 @@ CapStats cap_split_openings(MeshSplit& split, int axis, double u0, double eps, M
     if ((s == -1 || s == 1) && std::abs(split.params[v][axis] - (u0 + s * eps)) <= kCutTol)
       cut[v] = static_cast<std::int8_t>(s);
   }
-  // Undirected edge use counts among edges with both ends cut on the same side.
+  std::vector<std::uint32_t> cut_list;
+  for (std::uint32_t v : split.cut_vertices)
+    if (cut[v] != 0) cut_list.push_back(v);
+  const auto welded = weld_cut_vertices(cut_list, cut, split.params, axis);
+  auto rep = [&](std::uint32_t v) {
+    return std::lower_bound(welded.begin(), welded.end(), std::make_pair(v, std::uint32_t{0}))->second;
+  };
+  // Undirected edge use counts among edges with both ends cut on the same side, on the welded vertices.
   auto key = [](std::uint32_t a, std::uint32_t b) {
     return (static_cast<std::uint64_t>(std::min(a, b)) << 32) | std::max(a, b);
   };
@@ -183,7 +243,7 @@ CapStats cap_split_openings(MeshSplit& split, int axis, double u0, double eps, M
     const glm::uvec3& f = mesh.triangles[fi];
     for (int e = 0; e < 3; ++e) {
       const std::uint32_t a = f[e], b = f[(e + 1) % 3];
-      if (cut[a] != 0 && cut[a] == cut[b]) uses.push_back(key(a, b));
+      if (cut[a] != 0 && cut[a] == cut[b]) uses.push_back(key(rep(a), rep(b)));
     }
   }
   std::sort(uses.begin(), uses.end());
@@ -197,7 +257,9 @@ CapStats cap_split_openings(MeshSplit& split, int axis, double u0, double eps, M
     const glm::uvec3& f = mesh.triangles[fi];
     for (int e = 0; e < 3; ++e) {
       const std::uint32_t a = f[e], b = f[(e + 1) % 3];
-      if (cut[a] != 0 && cut[a] == cut[b] && used_once(key(a, b))) boundary[cut[a] < 0 ? 0 : 1].emplace_back(a, b);
+      if (cut[a] == 0 || cut[a] != cut[b]) continue;
+      const std::uint32_t ra = rep(a), rb = rep(b);
+      if (ra != rb && used_once(key(ra, rb))) boundary[cut[a] < 0 ? 0 : 1].emplace_back(ra, rb);
     }
   }
 

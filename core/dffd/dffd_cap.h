@@ -28,9 +28,13 @@ struct CapStats {
 // params[·][axis] = u0 made by split_mesh_at_parameter(…, axis, u0, eps):
 //  * cut vertices are the split's split.cut_vertices with |params[v][axis] − (u0 ∓ eps)| ≤ 1e-9 on side ∓1, and
 //    only the triangles it touched (split.touched) are scanned: O(cut) work, not O(#F), however large the mesh;
-//  * boundary edges (used by exactly one triangle) whose two ends are cut vertices of the same side are chained
-//    into loops per side; each side's loops are triangulated in the two other parameter coordinates (constrained
-//    Delaunay, CGAL; a face is inside when its nesting depth among the loops is odd, so holes stay open);
+//  * cut vertices of one side at the same point of the section (within 1e-9 in the two other parameter
+//    coordinates: the copies a mesh carries along hard edges and UV seams) are welded, the smallest index standing
+//    for its group, so a box with per-face vertices or a textured asset with seams is closed where it is cut;
+//  * boundary edges (used by exactly one triangle, counted on the welded vertices) whose two ends are cut vertices
+//    of the same side are chained into loops per side; each side's loops are triangulated in the two other parameter
+//    coordinates (constrained Delaunay, CGAL; a face is inside when its nesting depth among the loops is odd, so holes
+//    stay open);
 //  * minus-side cap triangles face +axis (out of the minus part), plus-side ones face −axis;
 //  * every appended triangle gets face_material = `material` (face_material is filled with kMaterialSurface for
 //    the existing triangles first if it was empty).

@@ -182,6 +182,40 @@ TEST(DffdCap, TorusAnnulusKeepsItsHole) {
   EXPECT_EQ(st.loops, 4u);
 }
 
+// The box primitive carries its corners once per face (hard edges): the cut meets each seam in two vertices at one
+// point. Welded on the section, each side still gets one loop and a closed surface: the cap is the box's
+// cross-section and every side's area-weighted normals sum to zero.
+TEST(DffdCap, HardEdgedBoxClosesAcrossItsSeams) {
+  const TriMesh box = make_primitive(PrimitiveKind::Box);
+  ASSERT_GT(box.vertex_count(), 8u);  // per-face corner copies
+  Aabb bounds;
+  for (const glm::dvec3& p : box.positions) bounds.extend(p);
+  for (int axis = 0; axis < 3; ++axis) {
+    for (double u0 : {0.37, 0.5}) {
+      const double eps = 1e-7;
+      MeshSplit s = split_mesh_at_parameter(box, box_params(box), axis, u0, eps);
+      const std::size_t first_cap = s.mesh.triangle_count();
+      const CapStats st = cap_split_openings(s, axis, u0, eps);
+      EXPECT_EQ(st.open_chains, 0u) << axis << " " << u0;
+      EXPECT_EQ(st.loops, 2u) << axis << " " << u0;
+      EXPECT_EQ(st.fan_loops, 0u) << axis << " " << u0;
+      const glm::dvec3 size = bounds.size();
+      const double section = size[(axis + 1) % 3] * size[(axis + 2) % 3];
+      for (int side : {-1, 1}) {
+        EXPECT_NEAR(cap_area(s, first_cap, side), section, 1e-9 * section) << axis << " " << side;
+        glm::dvec3 sum(0.0);
+        double total = 0.0;
+        for (const glm::uvec3& f : s.mesh.triangles)
+          if (s.side[f[0]] == side) {
+            const glm::dvec3 n = tri_normal(s.mesh, f);
+            sum += n, total += glm::length(n);
+          }
+        EXPECT_LT(glm::length(sum), 1e-9 * total) << "side " << side << " of axis " << axis << " is not closed";
+      }
+    }
+  }
+}
+
 TEST(DffdCap, OpenMeshLeavesChainsOpen) {
   // The plane primitive (open, in y = 0): the cut x = 0 gives one open chain per side, nothing to cap.
   const TriMesh plane = make_primitive(PrimitiveKind::Plane);
