@@ -5,7 +5,9 @@
 #     AnimatedMorphCube/AnimatedMorphCube.gltf + .bin (Khronos sample, morph-target weights, 24 vertices) and
 #     simple_skin/simple_skin.gltf (glTF tutorial skin: two joints, 10 vertices, buffers embedded);
 #   libcgal-demo (23 MB) → nefertiti.off (CGAL's data/meshes/nefertiti.off, a face mask: 299 vertices, 562 triangles,
-#     one open boundary, looking along +z; CC0 per CGAL's LICENSE), from the data.tar.gz the package ships.
+#     one open boundary, looking along +z; CC0 per CGAL's LICENSE), from the data.tar.gz the package ships;
+#   fonts-symbola (1.3 MB) → fonts/Symbola_hint.ttf (George Douros' Symbola, free for any use): its U+1F5E3 SPEAKING
+#     HEAD IN SILHOUETTE is the face profile molded into a part in assets/scenes/seed/face_mould.jsonl (seed Fig. 6.2).
 # Real volumes for core/volume's loaders (tests/core/volume/test_volume_io.cpp):
 #   invesalius-examples (19 MB) → Cranium.inv3 (InVesalius project of a CT skull: 256×256×108 int16 HU samples,
 #     0.957×0.957×1.5 mm); insighttoolkit5-examples (2 MB) → KmeansTest_T1UCharRaw.nii.gz (ITK's T1 MRI brain,
@@ -29,7 +31,7 @@ mode="${1:-all}"
 if [ "$mode" = --check ]; then
   missing=()
   for f in bunny.obj venus.obj AnimatedMorphCube/AnimatedMorphCube.gltf simple_skin/simple_skin.gltf Cranium.inv3 \
-           KmeansTest_T1UCharRaw.nii.gz nefertiti.off corpus/cgal/.complete corpus/assimp/.complete \
+           KmeansTest_T1UCharRaw.nii.gz nefertiti.off fonts/Symbola_hint.ttf corpus/cgal/.complete corpus/assimp/.complete \
            corpus/geomview/.complete qt3d/.complete; do
     [ -e "$data/$f" ] || missing+=("$f")
   done
@@ -73,6 +75,8 @@ fetch assimp-testmodels \
 fetch invesalius-examples usr/share/doc/invesalius-examples/examples/Cranium.inv3 Cranium.inv3
 fetch insighttoolkit5-examples usr/share/doc/insighttoolkit5-examples/examples/Data/KmeansTest_T1UCharRaw.nii.gz \
   KmeansTest_T1UCharRaw.nii.gz
+
+fetch fonts-symbola usr/share/fonts/truetype/ancient-scripts/Symbola_hint.ttf fonts/Symbola_hint.ttf
 
 fetch_tree() {  # fetch_tree PACKAGE TARGET_DIR PATH_IN_PACKAGE... : copies folders of a package (all files below)
   local pkg="$1" name="$2" target="$data/$2"; shift 2
