@@ -142,8 +142,8 @@ ParamSchema<S> make_layer_schema(bool fill) {
              {.range = ParamRange{1, double(kMaxDdmLayerVertices)},
               .unit = "tile vertices",
               .default_text = "10000000",
-              .help = "Refuse a layer of more tile vertices than this, counted before it is built (ddm.paint: after "
-                      "the stroke)"})
+              .help = "Refuse a layer of more tile vertices than this, counted before it is built (uv and auto_uv: "
+                      "after the cells off the UV islands are pruned; ddm.paint: after the stroke)"})
       .field("height", &S::height,
              {.required = fill,
               .range = ParamRange::above(0),
@@ -267,6 +267,26 @@ std::shared_ptr<const DdmTileClip> load_ddm_tile_clip(const DdmLayer& layer, con
 }
 }  // namespace
 
+namespace {
+// The tile vertices of a uv layer's cells that the UV islands kept, against spec.max_vertices: refused before any
+// tile is evaluated, naming the field that made the cells.
+void ddm_check_kept_vertices(const DdmLayerSpec& spec, const DdmLayer& layer, std::size_t cells_laid) {
+  std::size_t vertices = 0;
+  for (const DdmInstance& c : layer.instances)
+    vertices += layer.tiles[static_cast<std::size_t>(c.tile)].mesh.vertex_count();
+  const std::size_t limit = spec.max_vertices ? static_cast<std::size_t>(*spec.max_vertices) : kMaxDdmLayerVertices;
+  if (vertices <= limit) return;
+  const char* field = spec.tile_size ? "tile_size" : "counts";
+  char size[80] = "";
+  if (spec.tile_size) std::snprintf(size, sizeof size, "tiles %g world units across make ", *spec.tile_size);
+  throw CommandError("field '" + std::string(field) + "': " + size + std::to_string(layer.instances.size()) +
+                         " tiles on the UV islands (of " + std::to_string(cells_laid) + " cells) with " +
+                         std::to_string(vertices) + " tile vertices (at most " + std::to_string(limit) +
+                         (spec.max_vertices ? ", max_vertices)" : ")"),
+                     field);
+}
+}  // namespace
+
 std::shared_ptr<DdmLayer> make_ddm_layer(const SceneObject& object, const std::string& name, const DdmLayerSpec& spec,
                                          bool fill, const ProgressSink* progress) {
   check_progress(progress, 0.0);
@@ -318,8 +338,10 @@ std::shared_ptr<DdmLayer> make_ddm_layer(const SceneObject& object, const std::s
   std::vector<glm::ivec2> chart_counts =
       ddm_fill_chart_counts(spec, layer->base, *base_mesh, layer->surface.get(), charts, fill ? largest : 0);
   if (spec.tile_size) layer->counts = chart_counts.front();
+  std::size_t cells_laid = 0;
   if (fill) {
     layer->instances = ddm_layout_cells(layer->layout, chart_counts);
+    cells_laid = layer->instances.size();
     if (layer->tiles.size() > 1) {
       std::mt19937 rng(static_cast<std::uint32_t>(spec.seed));
       const std::size_t k = layer->tiles.size();
@@ -334,6 +356,11 @@ std::shared_ptr<DdmLayer> make_ddm_layer(const SceneObject& object, const std::s
     }
   }
   if (spec.tile_size) layer->chart_counts = std::move(chart_counts);
+  if (fill && ddm_base_is_uv(layer->base)) {
+    std::erase_if(layer->instances,
+                  [&](const DdmInstance& c) { return !ddm_uv_cell_kept(layer->base, *layer->maps, c); });
+    ddm_check_kept_vertices(spec, *layer, cells_laid);
+  }
   const ProgressSink finishing = progress_range(progress, 0.05, 1.0);  // tiles, base and layout: the first 5 %
   try {
     ddm_layer_finish(*layer, spec.map_resolution.value_or(resolution), progress ? &finishing : nullptr);
@@ -375,6 +402,19 @@ std::vector<glm::ivec2> ddm_fill_chart_counts(const DdmLayerSpec& spec, DdmBaseK
   }
   std::size_t cells = 0;
   for (const glm::ivec2& c : counts) cells += ddm_layout_cell_count(spec.layout, c);
+  if (tile_vertices > 0 && ddm_base_is_uv(base)) {
+    // Tiles come only where the UV islands are (pruned once the maps exist): the tile vertices are counted then
+    // (ddm_check_kept_vertices); here only the cells, which are made before pruning, are bounded.
+    if (cells > kMaxDdmLayoutCells) {
+      char size[80] = "";
+      if (spec.tile_size) std::snprintf(size, sizeof size, "tiles %g world units across make ", *spec.tile_size);
+      throw CommandError("field '" + std::string(field) + "': " + size + std::to_string(cells) +
+                             " cells before the UV islands prune them (at most " + std::to_string(kMaxDdmLayoutCells) +
+                             ")",
+                         field);
+    }
+    return counts;
+  }
   const std::size_t per_tile = std::max<std::size_t>(tile_vertices, 1);
   const std::size_t limit = spec.max_vertices ? static_cast<std::size_t>(*spec.max_vertices) : kMaxDdmLayerVertices;
   if (cells > limit / per_tile) {

@@ -79,7 +79,8 @@ std::shared_ptr<DdmLayer> make_ddm_layer(const SceneObject& object, const std::s
 // ddm_uv_chart_size(base_mesh) for uv and auto_uv (the unwrapped mesh), ddm_chart_size(*surface) otherwise. Throws
 // CommandError ("tile_size", or "counts" without it): cells × `tile_vertices` (the largest tile's vertex count) over
 // spec.max_vertices (default and at most kMaxDdmLayerVertices) — counted before any cell is made, the message giving
-// both numbers. `tile_vertices` = 0 (a
+// both numbers; for uv and auto_uv bases only cells over kMaxDdmLayoutCells, since make_ddm_layer counts their tile
+// vertices after the cells off the UV islands are pruned (before any tile is evaluated). `tile_vertices` = 0 (a
 // layer ddm.paint makes: its cells are candidates, tiles come only where painted) weighs the cells alone.
 std::vector<glm::ivec2> ddm_fill_chart_counts(const DdmLayerSpec& spec, DdmBaseKind base, const TriMesh& base_mesh,
                                               const DdmBase* surface, int charts, std::size_t tile_vertices);

@@ -39,6 +39,9 @@ inline bool ddm_uv_cell_kept(DdmBaseKind k, const DdmMaps& maps, const DdmInstan
 // the maps and the float32 export, so 10 M vertices peak near 2.6 GB; the largest shipped layer (bust_chains) holds
 // 4.9 M.
 inline constexpr std::size_t kMaxDdmLayerVertices = 10'000'000;
+// Layout cells a uv or auto_uv layer may lay before its UV islands prune them (DdmInstance: 48 bytes a cell, so
+// ~100 MB at most for the moment before pruning); the kept cells' tile vertices are then held to the vertex budget.
+inline constexpr std::size_t kMaxDdmLayoutCells = 2'000'000;
 
 struct DdmLayer {
   std::string name;                       // unique per object

@@ -155,6 +155,41 @@ TEST(DdmFillSize, BadSizesAreRefusedNamingTheField) {
       test::throws_command_error([&] { (void)ddm_fill_estimate(*s.find("ball"), spec); }, "tile_size", "tiles ×"));
 }
 
+// On a uv base the vertex budget holds the tiles the UV islands keep, not the layout's cells before pruning: a tile
+// size whose cells × tile vertices exceed max_vertices is laid when the kept tiles fit, and refused naming the field,
+// the scene unchanged, when they do not.
+TEST(DdmFillSize, TheBudgetOnAUvBaseCountsTheTilesTheIslandsKeep) {
+  Scene s;
+  s.insert(test::sphere_object("ball", 16, 8, glm::dvec3(0.0)));
+  const std::string line = R"({"cmd":"ddm.fill","base":"auto_uv","object":"ball","layer":"x","tile":"thorn",
+      "layout":"rect","height":0.05,"tile_size":0.15)";
+  DdmLayerSpec spec;
+  spec.base = DdmBaseKind::auto_uv;
+  spec.tile_size = 0.15;
+  const DdmFillEstimate e = ddm_fill_estimate(*s.find("ball"), spec);
+  ASSERT_TRUE(e.upper_bound);
+  auto fill = test::run_line<DdmFillCommand>(s, json::parse(line + "}"));
+  const DdmLayer& layer = *s.find("ball")->ddm_layers.at(0);
+  const std::size_t per_tile = layer.tiles.at(0).mesh.vertex_count();
+  const std::size_t kept = layer.instances.size() * per_tile;
+  ASSERT_GT(e.tile_vertices, kept) << "the islands prune some cells";
+  EXPECT_EQ(layer.mesh->vertex_count(), kept);
+  // max_vertices between the kept tiles and the cells laid: accepted before, refused by the cells, now laid.
+  Scene t;
+  t.insert(test::sphere_object("ball", 16, 8, glm::dvec3(0.0)));
+  test::run_line<DdmFillCommand>(t, json::parse(line + ",\"max_vertices\":" + std::to_string(kept) + "}"));
+  EXPECT_EQ(t.find("ball")->ddm_layers.at(0)->instances.size(), layer.instances.size());
+  // One vertex fewer than the kept tiles: refused, naming tile_size and both counts, nothing added.
+  Scene u;
+  u.insert(test::sphere_object("ball", 16, 8, glm::dvec3(0.0)));
+  EXPECT_TRUE(test::throws_command_error(
+      [&] {
+        DdmFillCommand::parse(json::parse(line + ",\"max_vertices\":" + std::to_string(kept - 1) + "}"), {})->redo(u);
+      },
+      "tile_size", std::to_string(layer.instances.size()) + " tiles on the UV islands"));
+  EXPECT_TRUE(u.find("ball")->ddm_layers.empty()) << "the scene is unchanged";
+}
+
 // A line without "base" means what the Tile Paint panel shows: the object's own base (ddm_default_base), named in
 // the report — on the teapot primitive its body patches, on a mesh without texture coordinates automatic ones.
 TEST(DdmFillSize, ALineWithoutBaseGetsTheObjectsBaseAsThePanelDoes) {
