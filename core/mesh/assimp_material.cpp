@@ -207,9 +207,11 @@ Material convert(const aiMaterial& am, ImageTable& images) {
   return m;
 }
 
+// A material assimp made up for a format without materials: "DefaultMaterial" (STL, and meshes without one), or
+// unnamed (the OFF and PLY loaders' grey), without textures. Every format that has materials names them.
 bool is_assimp_default(const aiMaterial& am) {
   aiString name;
-  if (am.Get(AI_MATKEY_NAME, name) != aiReturn_SUCCESS || std::strcmp(name.C_Str(), AI_DEFAULT_MATERIAL_NAME) != 0)
+  if (am.Get(AI_MATKEY_NAME, name) == aiReturn_SUCCESS && std::strcmp(name.C_Str(), AI_DEFAULT_MATERIAL_NAME) != 0)
     return false;
   for (int t = aiTextureType_NONE + 1; t <= AI_TEXTURE_TYPE_MAX; ++t)
     if (am.GetTextureCount(static_cast<aiTextureType>(t))) return false;

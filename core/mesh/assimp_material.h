@@ -36,7 +36,8 @@ struct aiScene;
 namespace trispline::core {
 
 // `used` lists the scene's material indices in the order they become slots 0, 1, …; a file whose only material is
-// assimp's default ("DefaultMaterial", no texture) gives null (the object keeps its colour). `model` is the file's
+// one assimp made up ("DefaultMaterial", or unnamed as OFF's and PLY's grey; no texture) gives null (the object keeps
+// its colour). `model` is the file's
 // path (textures are relative to its folder). Images over the texture budget are refused by their header.
 std::shared_ptr<const MaterialSet> convert_assimp_materials(const aiScene& scene, const std::vector<unsigned>& used,
                                                             const std::filesystem::path& model);

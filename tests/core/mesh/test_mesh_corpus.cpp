@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "core/mesh/mesh_io.h"
+#include "core/mesh/model_load.h"
 
 namespace fs = std::filesystem;
 using namespace trispline;
@@ -145,5 +146,18 @@ TEST(MeshCorpus, GeomviewColourFilesLoadWhole) {
     const core::TriMesh m = core::load_mesh(file);
     EXPECT_EQ(static_cast<long long>(m.triangles.size()), assimp_reference(file).faces);
     EXPECT_GE(m.triangles.size(), 4u);
+  }
+}
+
+// Formats without materials (OFF, PLY, STL): assimp makes one up (unnamed grey for OFF and PLY, "DefaultMaterial" for
+// STL); none is the file's, so the model has no MaterialSet and the object keeps the colour its line gives.
+TEST(MeshCorpus, FormatsWithoutMaterialsLeaveTheObjectsColour) {
+  for (const fs::path& file : {corpus_dir() / "cgal" / "camel.off", corpus_dir() / "assimp" / "PLY" / "cube.ply",
+                               corpus_dir() / "assimp" / "STL" / "Wuson.stl"}) {
+    SCOPED_TRACE(file.filename().string());
+    ASSERT_TRUE(fs::exists(file));
+    const core::LoadedModel m = core::load_model(file);
+    EXPECT_GT(m.mesh.triangle_count(), 0u);
+    EXPECT_FALSE(m.materials) << "a material the file does not have";
   }
 }
