@@ -19,11 +19,11 @@ struct DdmExportParams {
   std::string path;
 };
 
-class DdmExportCommand : public DeclaredCommand<DdmExportCommand, DdmExportParams, SnapshotCommand>, public FileExport {
+class DdmExportCommand : public ObjectSnapshotCommand<DdmExportCommand, DdmExportParams>, public FileExport {
  public:
   // `file`: p.path resolved by CommandContext::resolve_output (absolute, inside the output folder).
   DdmExportCommand(DdmExportParams p, std::filesystem::path file)
-      : DeclaredCommand(std::move(p)), FileExport(std::move(file)) {}
+      : ObjectSnapshotCommand(std::move(p)), FileExport(std::move(file)) {}
   static Schema declare();
   static CommandPtr parse(const nlohmann::json& line, const CommandContext& ctx) {
     return parse_with_output<DdmExportCommand>(line, ctx);
@@ -31,7 +31,6 @@ class DdmExportCommand : public DeclaredCommand<DdmExportCommand, DdmExportParam
   std::string label() const override { return "Export the " + p_.what + " map of " + p_.object + "/" + p_.layer; }
 
  protected:
-  std::string target() const override { return p_.object; }
   std::optional<SceneObject> build(const Scene& scene) override;
   std::string failure_field() const override { return "path"; }
 };

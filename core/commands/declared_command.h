@@ -3,7 +3,10 @@
 // The derived class C defines `static Schema declare();` (in its .cpp) and the effect (redo/undo, or build()
 // for a SnapshotCommand); schema() builds that once, and parsing, to_json() and id() come from it, so the id, every
 // field's name, default, range and help are written once. Register it with one line: `registry.add<C>();`.
-// ObjectSnapshotCommand<C, P> is the common case: a SnapshotCommand whose target is the params' `object` field.
+// `Schema` is ParamSchema<P> and `P` the params struct, both named here, so C's .cpp writes
+// `auto C::declare() -> Schema { return Schema("id", "summary").field("object", &P::object, {...}); }`.
+// ObjectSnapshotCommand<C, P[, Base]> is the common case: a SnapshotCommand (VolumeSnapshotCommand for volumes) whose
+// target is the params' `object` field.
 #pragma once
 
 #include <memory>
@@ -43,12 +46,13 @@ class DeclaredCommand : public Base {
   P p_;
 };
 
-// A declared SnapshotCommand that changes the object named by P::object (a std::string).
-template <class C, class P>
-class ObjectSnapshotCommand : public DeclaredCommand<C, P, SnapshotCommand> {
+// A declared snapshot command (SnapshotCommand for scene objects, VolumeSnapshotCommand for volumes) that changes the
+// item named by P::object (a std::string).
+template <class C, class P, class Base = SnapshotCommand>
+class ObjectSnapshotCommand : public DeclaredCommand<C, P, Base> {
  public:
   ObjectSnapshotCommand() = default;
-  explicit ObjectSnapshotCommand(P p) : DeclaredCommand<C, P, SnapshotCommand>(std::move(p)) {}
+  explicit ObjectSnapshotCommand(P p) : DeclaredCommand<C, P, Base>(std::move(p)) {}
 
  protected:
   std::string target() const override { return this->p_.object; }

@@ -30,12 +30,13 @@ struct VolumeExportParams {
   std::optional<Camera> camera;  // silhouettes: the view (camera.set's fields); default: the scene camera
 };
 
-class VolumeExportCommand : public DeclaredCommand<VolumeExportCommand, VolumeExportParams, VolumeSnapshotCommand>,
-                            public FileExport {
+class VolumeExportCommand
+    : public ObjectSnapshotCommand<VolumeExportCommand, VolumeExportParams, VolumeSnapshotCommand>,
+      public FileExport {
  public:
   // `file`: p.path resolved by CommandContext::resolve_output (absolute, inside the output folder).
   VolumeExportCommand(VolumeExportParams p, std::filesystem::path file)
-      : DeclaredCommand(std::move(p)), FileExport(std::move(file)) {}
+      : ObjectSnapshotCommand(std::move(p)), FileExport(std::move(file)) {}
   static Schema declare();
   static CommandPtr parse(const nlohmann::json& line, const CommandContext& ctx) {
     return parse_with_output<VolumeExportCommand>(line, ctx);
@@ -43,7 +44,6 @@ class VolumeExportCommand : public DeclaredCommand<VolumeExportCommand, VolumeEx
   std::string label() const override { return "Export " + p_.what + " of '" + p_.object + "'"; }
 
  protected:
-  std::string target() const override { return p_.object; }
   std::optional<VolumeObject> build(const Scene& scene) override;
   std::string failure_field() const override { return "path"; }
 };

@@ -31,13 +31,12 @@ struct VolumeIsoParams {
   std::optional<std::vector<VolumeLevelSpec>> levels;  // every level, the first the surface; unset = kept
 };
 
-class VolumeIsoCommand : public DeclaredCommand<VolumeIsoCommand, VolumeIsoParams, VolumeSnapshotCommand> {
+class VolumeIsoCommand : public ObjectSnapshotCommand<VolumeIsoCommand, VolumeIsoParams, VolumeSnapshotCommand> {
  public:
   static Schema declare();
   std::string label() const override;
 
  protected:
-  std::string target() const override { return p_.object; }
   std::optional<VolumeObject> build(const Scene& scene) override;
 };
 

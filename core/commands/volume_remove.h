@@ -12,13 +12,13 @@ struct VolumeRemoveParams {
   std::string object;
 };
 
-class VolumeRemoveCommand : public DeclaredCommand<VolumeRemoveCommand, VolumeRemoveParams, VolumeSnapshotCommand> {
+class VolumeRemoveCommand
+    : public ObjectSnapshotCommand<VolumeRemoveCommand, VolumeRemoveParams, VolumeSnapshotCommand> {
  public:
   static Schema declare();
   std::string label() const override { return "Remove volume '" + p_.object + "'"; }
 
  protected:
-  std::string target() const override { return p_.object; }
   std::optional<VolumeObject> build(const Scene& scene) override;
 };
 

@@ -27,13 +27,13 @@ struct VolumeRenderParams {
 // The transfer function a volume switched to dvr without one gets (see the header comment).
 TransferFunction default_transfer_function(const VolumeObject& volume);
 
-class VolumeRenderCommand : public DeclaredCommand<VolumeRenderCommand, VolumeRenderParams, VolumeSnapshotCommand> {
+class VolumeRenderCommand
+    : public ObjectSnapshotCommand<VolumeRenderCommand, VolumeRenderParams, VolumeSnapshotCommand> {
  public:
   static Schema declare();
   std::string label() const override;
 
  protected:
-  std::string target() const override { return p_.object; }
   std::optional<VolumeObject> build(const Scene& scene) override;
 };
 

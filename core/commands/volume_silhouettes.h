@@ -21,7 +21,7 @@ struct VolumeSilhouettesParams {
 };
 
 class VolumeSilhouettesCommand
-    : public DeclaredCommand<VolumeSilhouettesCommand, VolumeSilhouettesParams, VolumeSnapshotCommand> {
+    : public ObjectSnapshotCommand<VolumeSilhouettesCommand, VolumeSilhouettesParams, VolumeSnapshotCommand> {
  public:
   static Schema declare();
   std::string label() const override {
@@ -29,7 +29,6 @@ class VolumeSilhouettesCommand
   }
 
  protected:
-  std::string target() const override { return p_.object; }
   std::optional<VolumeObject> build(const Scene& scene) override;
 };
 
