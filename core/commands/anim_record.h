@@ -36,16 +36,23 @@ inline std::string frame_budget_problem(std::int64_t width, std::int64_t height)
          std::to_string(width * height * 32 >> 30) + " GiB";
 }
 
-// What anim.record asks for, with the frame range resolved against the timeline by redo().
-struct RecordRequest {
-  std::string out;                      // as in the log ("" = the caller's default)
-  std::filesystem::path out_dir;        // `out` resolved against the log's folder ("" when out is "")
+// What a recording makes: anim.record's request (RecordRequest) and the recorder's options (editor::RecordOptions)
+// both start with it.
+struct RecordOutputs {
   std::string format = "png";           // "png" | "exr"
-  int frame_first = 0, frame_last = 0;  // inclusive timeline frames (after redo: never 0/0 unless the timeline is)
-  bool frames_given = false;            // "frames" was in the line (else: the whole timeline at redo time)
-  bool glb = true, mp4 = true;
-  int width = 0, height = 0;     // pixels, 0 = the camera's viewport
-  std::optional<Camera> camera;  // the view recorded; unset = the scene camera
+  int frame_first = 0, frame_last = 0;  // inclusive timeline frame numbers; both 0 = the whole timeline
+  int width = 0, height = 0;            // pixels in [1, 16384], both or neither; 0 = the camera's viewport
+  bool glb = true;                      // write animation.glb
+  bool mp4 = true;                      // write animation.mp4 when ffmpeg is available (reported when it is not)
+  std::optional<Camera> camera;         // the view every frame is rendered from; unset = the scene camera
+};
+
+// What anim.record asks for, with the frame range resolved against the timeline by redo() (never 0/0 after it unless
+// the timeline is).
+struct RecordRequest : RecordOutputs {
+  std::string out;                // as in the log ("" = the caller's default)
+  std::filesystem::path out_dir;  // `out` resolved against the log's folder ("" when out is "")
+  bool frames_given = false;      // "frames" was in the line (else: the whole timeline at redo time)
 };
 
 // "" when [first, last] is a valid range of `timeline`, else the reason ("frames 100–130 lie outside the timeline

@@ -72,14 +72,16 @@ void pose_animation_glb(const FarmPlan& plan) {
   const ScratchFolder scratch;  // what the log exports goes there, not next to the log
   const ReplayResult r = replay_lines(history, plan.log, {}, scratch.path());
   if (!r.ok) throw std::runtime_error("the log does not replay: " + r.error);
-  record_frames(scene, RecordOptions{.out_dir = plan.dir,
-                                     .format = plan.format,
-                                     .frame_first = plan.frame_first,
-                                     .frame_last = plan.frame_last,
-                                     .width = plan.width,
-                                     .height = plan.height,
-                                     .images = false,
-                                     .mp4 = false});
+  RecordOptions ro;
+  ro.out_dir = plan.dir;
+  ro.format = plan.format;
+  ro.frame_first = plan.frame_first;
+  ro.frame_last = plan.frame_last;
+  ro.width = plan.width;
+  ro.height = plan.height;
+  ro.images = false;
+  ro.mp4 = false;
+  record_frames(scene, ro);
 }
 
 // Every chunk checked against its record, every frame decoded: "" when all hold, else the first problem.

@@ -134,15 +134,8 @@ std::pair<int, int> record_range(const core::Scene& scene, const RecordOptions& 
 
 RecordOptions record_options(const core::RecordRequest& request, std::filesystem::path out_dir) {
   RecordOptions ro;
+  static_cast<core::RecordOutputs&>(ro) = request;
   ro.out_dir = std::move(out_dir);
-  ro.format = request.format;
-  ro.frame_first = request.frame_first;
-  ro.frame_last = request.frame_last;
-  ro.width = request.width;
-  ro.height = request.height;
-  ro.glb = request.glb;
-  ro.mp4 = request.mp4;
-  ro.camera = request.camera;
   return ro;
 }
 

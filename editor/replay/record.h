@@ -29,22 +29,16 @@
 #include <utility>
 #include <vector>
 
+#include "core/commands/anim_record.h"
 #include "core/ffd/ffd_evaluator.h"
 #include "core/scene/scene.h"
 
-namespace trispline::core {
-struct RecordRequest;
-}
-
 namespace trispline::editor {
 
-struct RecordOptions {
+// The recorder's options: what it makes (core::RecordOutputs: format, frames, size, glb, mp4, camera; the camera
+// unset: see above) and where and how.
+struct RecordOptions : core::RecordOutputs {
   std::filesystem::path out_dir;  // required (created if missing)
-  std::string format = "png";     // "png" | "exr"
-  int frame_first = 0;            // inclusive, timeline frame numbers; both 0 = the whole timeline
-  int frame_last = 0;
-  int width = 0, height = 0;  // pixels in [1, 16384], both or neither; 0 = the camera's viewport (default 1280×720)
-  bool glb = true;            // write animation.glb
   // false: render nothing and write no frame files, only pose every frame for animation.glb (and make the MP4 from
   // the frame_NNNN.png files already in out_dir): a render farm's assemble step. No GL context is needed.
   bool images = true;
@@ -52,9 +46,7 @@ struct RecordOptions {
   // the pose of this timeline frame (posed, not rendered, when it is before frame_first): one chunk of a render
   // farm's range, joined exactly by `trispline farm assemble`. Must lie in [timeline start, frame_first].
   int piece_base = -1;
-  bool mp4 = true;  // write animation.mp4 when ffmpeg is available (reported when it is not)
   core::FfdBackend ffd_backend = core::FfdBackend::cpu_ref;  // geometry path (cpu_ref: bit-exact frames)
-  std::optional<core::Camera> camera;  // the view every frame is rendered from (anim.record's camera); unset: below
 };
 
 // The options of an executed anim.record (its resolved frames, size, format, outputs and camera), written into
