@@ -18,13 +18,13 @@ auto AnimClipCommand::declare() -> Schema {
       .field("start_frame", &P::start_frame,
              {.range = ParamRange::magnitude_at_most(1e6),
               .help = "Frame the clip starts at; default: the timeline's first frame"})
-      .field("loop", &P::loop, {.help = "Play the clip again after its end"});
-}
-
-std::string AnimClipCommand::label() const {
-  if (p_.remove) return "Remove clip from '" + p_.object + "'";
-  return "Clip '" + (p_.clip.empty() ? std::filesystem::path(p_.path).filename().string() : p_.clip) + "' on '" +
-         p_.object + "'";
+      .field("loop", &P::loop, {.help = "Play the clip again after its end"})
+      .label([](const P& p) {
+        if (p.remove) return "Remove clip from '" + p.object + "'";
+        return "Clip '" + (p.clip.empty() ? std::filesystem::path(p.path).filename().string() : p.clip) + "' on '" +
+               p.object + "'";
+      })
+      .failure_field("path");
 }
 
 std::optional<SceneObject> AnimClipCommand::build(const Scene& scene) {

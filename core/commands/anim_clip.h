@@ -31,11 +31,8 @@ class AnimClipCommand : public ObjectSnapshotCommand<AnimClipCommand, AnimClipPa
  public:
   static Schema declare();
 
-  std::string label() const override;
-
  protected:
   std::optional<SceneObject> build(const Scene& scene) override;
-  std::string failure_field() const override { return "path"; }
 };
 
 }  // namespace trispline::core

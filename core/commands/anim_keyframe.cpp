@@ -26,13 +26,12 @@ auto AnimKeyframeCommand::declare() -> Schema {
           params::fail("offset", "missing (give \"offset\":[du,dv,dw] or \"u\":du)");
       })
       .choice("interpolation", &P::interpolation, {"linear", "constant", "smooth"},
-              {.help = "How the offset goes from this key to the next"});
-}
-
-std::string AnimKeyframeCommand::label() const {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, "%g", p_.frame);
-  return (p_.remove ? "Delete keyframe of '" : "Keyframe '") + p_.object + "' at frame " + buf;
+              {.help = "How the offset goes from this key to the next"})
+      .label([](const P& p) {
+        char buf[48];
+        std::snprintf(buf, sizeof buf, "%g", p.frame);
+        return (p.remove ? "Delete keyframe of '" : "Keyframe '") + p.object + "' at frame " + buf;
+      });
 }
 
 std::optional<SceneObject> AnimKeyframeCommand::build(const Scene& scene) {

@@ -31,8 +31,6 @@ class AnimKeyframeCommand : public ObjectSnapshotCommand<AnimKeyframeCommand, An
  public:
   static Schema declare();
 
-  std::string label() const override;
-
  protected:
   std::optional<SceneObject> build(const Scene& scene) override;
 };

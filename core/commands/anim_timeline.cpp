@@ -12,19 +12,18 @@ auto AnimTimelineCommand::declare() -> Schema {
       .field("end", &P::end, {.range = ParamRange{0, 100000}, .help = "Last frame, ≥ start"})
       .check([](const P& p) {
         if (!p.fps && !p.start && !p.end) params::fail("fps", "give at least one of fps, start, end");
+      })
+      .label([](const P& p) {
+        std::string s = "Timeline";
+        if (p.start || p.end)
+          s += " frames " + (p.start ? std::to_string(*p.start) : "…") + "-" + (p.end ? std::to_string(*p.end) : "…");
+        if (p.fps) {
+          char buf[32];
+          std::snprintf(buf, sizeof buf, " at %g fps", *p.fps);
+          s += buf;
+        }
+        return s;
       });
-}
-
-std::string AnimTimelineCommand::label() const {
-  std::string s = "Timeline";
-  if (p_.start || p_.end)
-    s += " frames " + (p_.start ? std::to_string(*p_.start) : "…") + "-" + (p_.end ? std::to_string(*p_.end) : "…");
-  if (p_.fps) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, " at %g fps", *p_.fps);
-    s += buf;
-  }
-  return s;
 }
 
 void AnimTimelineCommand::redo(Scene& scene) {

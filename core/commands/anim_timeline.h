@@ -23,7 +23,6 @@ class AnimTimelineCommand : public DeclaredCommand<AnimTimelineCommand, AnimTime
  public:
   static Schema declare();
 
-  std::string label() const override;
   void redo(Scene& scene) override;
   void undo(Scene& scene) override;
 

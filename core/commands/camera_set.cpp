@@ -5,7 +5,9 @@
 namespace trispline::core {
 
 auto CameraSetCommand::declare() -> Schema {
-  return Schema("camera.set", "Set the view (eye, target, up, field of view, viewport)").include(camera_schema());
+  return Schema("camera.set", "Set the view (eye, target, up, field of view, viewport)")
+      .include(camera_schema())
+      .label([](const P& p) { return "Set camera"; });
 }
 
 void CameraSetCommand::redo(Scene& scene) {

@@ -10,7 +10,6 @@ class CameraSetCommand : public DeclaredCommand<CameraSetCommand, Camera> {
  public:
   static Schema declare();
 
-  std::string label() const override { return "Set camera"; }
   void redo(Scene& scene) override;
   void undo(Scene& scene) override;
 

@@ -107,10 +107,10 @@ auto DdmAnimateCommand::declare() -> Schema {
       })
       .field("alpha", &P::alpha, {.default_text = "kept", .help = "α shown when there are no alpha keys (0 at first)"})
       .choice("interpolation", &P::interpolation, {"linear", "constant", "smooth"},
-              {.write = ParamWrite::UnlessDefault, .help = "How this line's keys move to the next key"});
+              {.write = ParamWrite::UnlessDefault, .help = "How this line's keys move to the next key"})
+      .label([](const P& p) { return "Animate tiles " + p.object + "/" + p.layer; })
+      .failure_field("morph_tile");
 }
-
-std::string DdmAnimateCommand::label() const { return "Animate tiles " + p_.object + "/" + p_.layer; }
 
 std::optional<SceneObject> DdmAnimateCommand::build(const Scene& scene) {
   const SceneObject* object = &require_object(scene, p_.object);

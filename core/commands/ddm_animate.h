@@ -41,11 +41,9 @@ struct DdmAnimateParams {
 class DdmAnimateCommand : public ObjectSnapshotCommand<DdmAnimateCommand, DdmAnimateParams> {
  public:
   static Schema declare();
-  std::string label() const override;
 
  protected:
   std::optional<SceneObject> build(const Scene& scene) override;
-  std::string failure_field() const override { return "morph_tile"; }
 };
 
 }  // namespace trispline::core

@@ -15,10 +15,9 @@ auto DdmBakeCommand::declare() -> Schema {
         if (const std::string bad = object_name_error(p.name); !bad.empty()) params::fail("name", bad);
       })
       .field("frame", &P::frame,
-             {.default_text = "scene time 0", .help = "Timeline frame of the layer's animation to bake"});
+             {.default_text = "scene time 0", .help = "Timeline frame of the layer's animation to bake"})
+      .label([](const P& p) { return "Bake " + p.object + "/" + p.layer + " as '" + p.name + "'"; });
 }
-
-std::string DdmBakeCommand::label() const { return "Bake " + p_.object + "/" + p_.layer + " as '" + p_.name + "'"; }
 
 std::optional<SceneObject> DdmBakeCommand::build(const Scene& scene) {
   const SceneObject* object = &require_object(scene, p_.object);

@@ -22,10 +22,9 @@ struct DdmBakeParams {
   std::optional<double> frame;  // timeline frame of the layer's animation; unset = scene time 0
 };
 
-class DdmBakeCommand : public DeclaredCommand<DdmBakeCommand, DdmBakeParams, SnapshotCommand> {
+class DdmBakeCommand : public DeclaredSnapshotCommand<DdmBakeCommand, DdmBakeParams, SnapshotCommand> {
  public:
   static Schema declare();
-  std::string label() const override;
   bool preparable() const override { return true; }  // the editor bakes on a worker thread
 
  protected:

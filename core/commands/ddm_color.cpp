@@ -34,10 +34,9 @@ auto DdmColorCommand::declare() -> Schema {
                .range = ParamRange{0, 1},
                .unit = "linear RGB",
                .type_text = "[r,g,b] or null",
-               .help = "The layer's own colour; null: its object's again"});
+               .help = "The layer's own colour; null: its object's again"})
+      .label([](const P& p) { return "Colour of tile layer " + p.object + "/" + p.layer; });
 }
-
-std::string DdmColorCommand::label() const { return "Colour of tile layer " + p_.object + "/" + p_.layer; }
 
 std::optional<SceneObject> DdmColorCommand::build(const Scene& scene) {
   const SceneObject* object = &require_object(scene, p_.object);

@@ -20,7 +20,6 @@ struct DdmColorParams {
 class DdmColorCommand : public ObjectSnapshotCommand<DdmColorCommand, DdmColorParams> {
  public:
   static Schema declare();
-  std::string label() const override;
 
  protected:
   std::optional<SceneObject> build(const Scene& scene) override;

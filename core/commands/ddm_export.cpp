@@ -25,7 +25,9 @@ auto DdmExportCommand::declare() -> Schema {
       .check([](const P& p) {
         const std::string e = lower_extension(p.path);
         if (e != ".png") params::fail("path", "a map is written as .png, not '" + e + "'");
-      });
+      })
+      .label([](const P& p) { return "Export the " + p.what + " map of " + p.object + "/" + p.layer; })
+      .failure_field("path");
 }
 
 std::optional<SceneObject> DdmExportCommand::build(const Scene& scene) {

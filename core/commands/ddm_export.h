@@ -28,11 +28,9 @@ class DdmExportCommand : public ObjectSnapshotCommand<DdmExportCommand, DdmExpor
   static CommandPtr parse(const nlohmann::json& line, const CommandContext& ctx) {
     return parse_with_output<DdmExportCommand>(line, ctx);
   }
-  std::string label() const override { return "Export the " + p_.what + " map of " + p_.object + "/" + p_.layer; }
 
  protected:
   std::optional<SceneObject> build(const Scene& scene) override;
-  std::string failure_field() const override { return "path"; }
 };
 
 }  // namespace trispline::core

@@ -14,11 +14,9 @@ auto DdmFillCommand::declare() -> Schema {
            .help = "The object; tiles lie on its rest surface and ride on its deformation (FFD, DFFD, clip, incision)"})
       .field("layer", &P::layer, {.required = true, .help = "Name of the layer; a layer of that name is replaced"})
       .check([](const P& p) { check_ddm_layer_name(p.layer); })
-      .embed(&P::spec, ddm_layer_schema(true));
-}
-
-std::string DdmFillCommand::label() const {
-  return "Fill '" + p_.object + "' with " + p_.spec.tiles.front() + " (" + p_.layer + ")";
+      .embed(&P::spec, ddm_layer_schema(true))
+      .label([](const P& p) { return "Fill '" + p.object + "' with " + p.spec.tiles.front() + " (" + p.layer + ")"; })
+      .failure_field("tile");
 }
 
 std::optional<SceneObject> DdmFillCommand::build(const Scene& scene) {

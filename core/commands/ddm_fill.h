@@ -38,12 +38,10 @@ struct DdmFillParams {
 class DdmFillCommand : public ObjectSnapshotCommand<DdmFillCommand, DdmFillParams> {
  public:
   static Schema declare();
-  std::string label() const override;
   bool preparable() const override { return true; }  // the editor builds a fill on a worker thread
 
  protected:
   std::optional<SceneObject> build(const Scene& scene) override;
-  std::string failure_field() const override { return "tile"; }
 };
 
 }  // namespace trispline::core

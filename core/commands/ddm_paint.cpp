@@ -284,11 +284,11 @@ auto DdmPaintCommand::declare() -> Schema {
               .help = "Brush radius: cells whose centre projects this close to the stroke are touched"})
       .field("erase", &P::erase, {.help = "Remove the touched cells instead of adding them"})
       .object("camera", &P::camera, camera_schema(),
-              {.help = "The view the stroke was drawn in (camera.set's fields); default: the last camera.set"});
-}
-
-std::string DdmPaintCommand::label() const {
-  return std::string(p_.erase ? "Erase tiles of " : "Paint tiles on ") + p_.object + "/" + p_.layer;
+              {.help = "The view the stroke was drawn in (camera.set's fields); default: the last camera.set"})
+      .label([](const P& p) {
+        return std::string(p.erase ? "Erase tiles of " : "Paint tiles on ") + p.object + "/" + p.layer;
+      })
+      .failure_field("layer");
 }
 
 std::optional<SceneObject> DdmPaintCommand::build(const Scene& scene) {

@@ -68,11 +68,9 @@ struct DdmPaintParams {
 class DdmPaintCommand : public ObjectSnapshotCommand<DdmPaintCommand, DdmPaintParams> {
  public:
   static Schema declare();
-  std::string label() const override;
 
  protected:
   std::optional<SceneObject> build(const Scene& scene) override;
-  std::string failure_field() const override { return "layer"; }
 };
 
 }  // namespace trispline::core

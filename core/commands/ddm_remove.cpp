@@ -5,10 +5,9 @@ namespace trispline::core {
 auto DdmRemoveCommand::declare() -> Schema {
   return Schema("ddm.remove", "Delete a tile layer")
       .field("object", &P::object, {.required = true, .help = "The object holding the layer"})
-      .field("layer", &P::layer, {.required = true, .help = "The layer to delete"});
+      .field("layer", &P::layer, {.required = true, .help = "The layer to delete"})
+      .label([](const P& p) { return "Remove tile layer " + p.object + "/" + p.layer; });
 }
-
-std::string DdmRemoveCommand::label() const { return "Remove tile layer " + p_.object + "/" + p_.layer; }
 
 std::optional<SceneObject> DdmRemoveCommand::build(const Scene& scene) {
   const SceneObject* object = &require_object(scene, p_.object);

@@ -18,7 +18,6 @@ struct DdmRemoveParams {
 class DdmRemoveCommand : public ObjectSnapshotCommand<DdmRemoveCommand, DdmRemoveParams> {
  public:
   static Schema declare();
-  std::string label() const override;
 
  protected:
   std::optional<SceneObject> build(const Scene& scene) override;

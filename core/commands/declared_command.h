@@ -1,12 +1,13 @@
 // trispline::core::DeclaredCommand — a command whose parameters are one params struct P declared by a ParamSchema.
 //
 // The derived class C defines `static Schema declare();` (in its .cpp) and the effect (redo/undo, or build()
-// for a SnapshotCommand); schema() builds that once, and parsing, to_json() and id() come from it, so the id, every
-// field's name, default, range and help are written once. Register it with one line: `registry.add<C>();`.
-// `Schema` is ParamSchema<P> and `P` the params struct, both named here, so C's .cpp writes
-// `auto C::declare() -> Schema { return Schema("id", "summary").field("object", &P::object, {...}); }`.
-// ObjectSnapshotCommand<C, P[, Base]> is the common case: a SnapshotCommand (VolumeSnapshotCommand for volumes) whose
-// target is the params' `object` field.
+// for a SnapshotCommand); schema() builds that once, and parsing, to_json(), id() and label() come from it, so the
+// id, the History label, every field's name, default, range and help are written once. Register it with one line:
+// `registry.add<C>();`. `Schema` is ParamSchema<P> and `P` the params struct, both named here, so C's .cpp writes `auto
+// C::declare() -> Schema { return Schema("id", "summary").field("object", &P::object, {...}); }`.
+// DeclaredSnapshotCommand<C, P, Base> is a declared SnapshotCommand (or VolumeSnapshotCommand, AddObjectCommand) whose
+// failures without a field of their own blame the schema's failure_field(); ObjectSnapshotCommand<C, P[, Base]>, the
+// common case, is one whose target is the params' `object` field.
 #pragma once
 
 #include <memory>
@@ -39,6 +40,7 @@ class DeclaredCommand : public Base {
     return command;
   }
   std::string id() const override { return C::schema().id(); }
+  std::string label() const override { return C::schema().label(p_); }
   nlohmann::json to_json() const override { return C::schema().to_json(p_); }
   const P& params() const { return p_; }
 
@@ -46,13 +48,24 @@ class DeclaredCommand : public Base {
   P p_;
 };
 
-// A declared snapshot command (SnapshotCommand for scene objects, VolumeSnapshotCommand for volumes) that changes the
-// item named by P::object (a std::string).
+// A declared snapshot command (Base: SnapshotCommand, VolumeSnapshotCommand or AddObjectCommand): a failure of
+// build() that names no field blames the schema's failure_field().
+template <class C, class P, class Base>
+class DeclaredSnapshotCommand : public DeclaredCommand<C, P, Base> {
+ public:
+  DeclaredSnapshotCommand() = default;
+  explicit DeclaredSnapshotCommand(P p) : DeclaredCommand<C, P, Base>(std::move(p)) {}
+
+ protected:
+  std::string failure_field() const override { return C::schema().failure_field(); }
+};
+
+// A declared snapshot command that changes the item (object or volume) named by P::object (a std::string).
 template <class C, class P, class Base = SnapshotCommand>
-class ObjectSnapshotCommand : public DeclaredCommand<C, P, Base> {
+class ObjectSnapshotCommand : public DeclaredSnapshotCommand<C, P, Base> {
  public:
   ObjectSnapshotCommand() = default;
-  explicit ObjectSnapshotCommand(P p) : DeclaredCommand<C, P, Base>(std::move(p)) {}
+  explicit ObjectSnapshotCommand(P p) : DeclaredSnapshotCommand<C, P, Base>(std::move(p)) {}
 
  protected:
   std::string target() const override { return this->p_.object; }

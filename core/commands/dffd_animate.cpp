@@ -9,14 +9,15 @@ namespace trispline::core {
 
 auto DffdAnimateCommand::declare() -> Schema {
   return keyed_weight_schema(
-      {"dffd.animate", "Key a DFFD's seam on the timeline: 0 the openings capped, 1 stitched (seed §6.3.2)",
-       "An object split by dffd.split with openings cap or stitch", "Remove the keys: the seam as dffd.split built it",
-       "stitch_keys", "[timeline frame, s] keys: s = 0 the openings as the obstacles leave them, 1 stitched at w_s",
-       "stitched seam"});
-}
-
-std::string DffdAnimateCommand::label() const {
-  return p_.clear && !p_.keys ? "Reset seam of '" + p_.object + "'" : "Animate seam of '" + p_.object + "'";
+             {"dffd.animate", "Key a DFFD's seam on the timeline: 0 the openings capped, 1 stitched (seed §6.3.2)",
+              "An object split by dffd.split with openings cap or stitch",
+              "Remove the keys: the seam as dffd.split built it", "stitch_keys",
+              "[timeline frame, s] keys: s = 0 the openings as the obstacles leave them, 1 stitched at w_s",
+              "stitched seam"})
+      .label([](const P& p) {
+        return p.clear && !p.keys ? "Reset seam of '" + p.object + "'" : "Animate seam of '" + p.object + "'";
+      })
+      .failure_field("stitch_keys");
 }
 
 std::optional<SceneObject> DffdAnimateCommand::build(const Scene& scene) {

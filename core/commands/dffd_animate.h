@@ -29,11 +29,9 @@ using DffdAnimateParams = KeyedWeightParams;  // keys: "stitch_keys"
 class DffdAnimateCommand : public ObjectSnapshotCommand<DffdAnimateCommand, DffdAnimateParams> {
  public:
   static Schema declare();
-  std::string label() const override;
 
  protected:
   std::optional<SceneObject> build(const Scene& scene) override;
-  std::string failure_field() const override { return "stitch_keys"; }
 };
 
 }  // namespace trispline::core

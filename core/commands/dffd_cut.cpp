@@ -42,13 +42,12 @@ auto DffdCutCommand::declare() -> Schema {
       .field("eps", &P::eps,
              {.range = ParamRange{0, 1e-3, true, false},
               .unit = "parameter units",
-              .help = "Cut vertices sit at at ∓ eps"});
-}
-
-std::string DffdCutCommand::label() const {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, " at %s = %g", kAxisNames[p_.axis], p_.at);
-  return "Cut '" + p_.object + "'" + buf;
+              .help = "Cut vertices sit at at ∓ eps"})
+      .label([](const P& p) {
+        char buf[64];
+        std::snprintf(buf, sizeof buf, " at %s = %g", kAxisNames[p.axis], p.at);
+        return "Cut '" + p.object + "'" + buf;
+      });
 }
 
 std::optional<SceneObject> DffdCutCommand::build(const Scene& scene) {

@@ -30,8 +30,6 @@ class DffdCutCommand : public ObjectSnapshotCommand<DffdCutCommand, DffdCutParam
  public:
   static Schema declare();
 
-  std::string label() const override;
-
  protected:
   std::optional<SceneObject> build(const Scene& scene) override;
 };

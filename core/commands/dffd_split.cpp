@@ -264,12 +264,11 @@ auto DffdSplitCommand::declare() -> Schema {
             params::fail("obstacles", "'" + id + "' is listed twice");
         }
       })
-      .embed(&P::dffd, global_dffd_schema());
-}
-
-std::string DffdSplitCommand::label() const {
-  return "Split '" + p_.object + "' around " + std::to_string(p_.obstacles.size()) + " obstacle" +
-         (p_.obstacles.size() == 1 ? "" : "s") + " (" + dffd_openings_name(p_.dffd.openings) + ")";
+      .embed(&P::dffd, global_dffd_schema())
+      .label([](const P& p) {
+        return "Split '" + p.object + "' around " + std::to_string(p.obstacles.size()) + " obstacle" +
+               (p.obstacles.size() == 1 ? "" : "s") + " (" + dffd_openings_name(p.dffd.openings) + ")";
+      });
 }
 
 std::optional<SceneObject> DffdSplitCommand::build(const Scene& scene) {

@@ -46,8 +46,6 @@ class DffdSplitCommand : public ObjectSnapshotCommand<DffdSplitCommand, DffdSpli
  public:
   static Schema declare();
 
-  std::string label() const override;
-
  protected:
   std::optional<SceneObject> build(const Scene& scene) override;
 };

@@ -10,13 +10,13 @@ namespace trispline::core {
 
 auto IncisionAnimateCommand::declare() -> Schema {
   return keyed_weight_schema(
-      {"incision.animate", "Key an incision's opening on the timeline: 0 closed, 1 as drawn (seed §6.4)",
-       "An object cut by incision.draw", "Remove the keys: the incision shows fully open", "opening_keys",
-       "[timeline frame, s] keys: s = fraction of the drawn opening (0 closed, 1 as drawn)", "opening"});
-}
-
-std::string IncisionAnimateCommand::label() const {
-  return p_.clear && !p_.keys ? "Open incision of '" + p_.object + "'" : "Animate incision of '" + p_.object + "'";
+             {"incision.animate", "Key an incision's opening on the timeline: 0 closed, 1 as drawn (seed §6.4)",
+              "An object cut by incision.draw", "Remove the keys: the incision shows fully open", "opening_keys",
+              "[timeline frame, s] keys: s = fraction of the drawn opening (0 closed, 1 as drawn)", "opening"})
+      .label([](const P& p) {
+        return p.clear && !p.keys ? "Open incision of '" + p.object + "'" : "Animate incision of '" + p.object + "'";
+      })
+      .failure_field("opening_keys");
 }
 
 std::optional<SceneObject> IncisionAnimateCommand::build(const Scene& scene) {

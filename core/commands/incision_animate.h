@@ -27,11 +27,9 @@ using IncisionAnimateParams = KeyedWeightParams;  // keys: "opening_keys"
 class IncisionAnimateCommand : public ObjectSnapshotCommand<IncisionAnimateCommand, IncisionAnimateParams> {
  public:
   static Schema declare();
-  std::string label() const override;
 
  protected:
   std::optional<SceneObject> build(const Scene& scene) override;
-  std::string failure_field() const override { return "opening_keys"; }
 };
 
 }  // namespace trispline::core

@@ -77,6 +77,11 @@ auto IncisionDrawCommand::declare() -> Schema {
         if (n.x % 2 == 0 || n.x < std::max(3, o) || n.x > 31 || n.y < o || n.y > 64 || n.z % 2 == 0 ||
             n.z < std::max(3, o) || n.z > 31)
           params::fail("controls", "[l, m, n] with l, n odd in max(3, order)..31 and m in order..64");
+      })
+      .label([](const P& p) {
+        char buf[96];
+        std::snprintf(buf, sizeof buf, " (depth %g, opening %g)", p.incision.depth, p.incision.opening);
+        return "Incision on '" + p.object + "'" + buf;
       });
 }
 
@@ -87,12 +92,6 @@ IncisionParams incision_params(const IncisionDrawParams& p) {
   return out;
 }
 }  // namespace
-
-std::string IncisionDrawCommand::label() const {
-  char buf[96];
-  std::snprintf(buf, sizeof buf, " (depth %g, opening %g)", p_.incision.depth, p_.incision.opening);
-  return "Incision on '" + p_.object + "'" + buf;
-}
 
 std::optional<SceneObject> IncisionDrawCommand::build(const Scene& scene) {
   const SceneObject* object = &require_object(scene, p_.object);

@@ -41,8 +41,6 @@ class IncisionDrawCommand : public ObjectSnapshotCommand<IncisionDrawCommand, In
  public:
   static Schema declare();
 
-  std::string label() const override;
-
  protected:
   std::optional<SceneObject> build(const Scene& scene) override;
 };

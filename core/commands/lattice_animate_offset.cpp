@@ -16,7 +16,8 @@ auto LatticeAnimateOffsetCommand::declare() -> Schema {
       .field("velocity", &P::velocity,
              {.range = ParamRange::magnitude_at_most(100),
               .unit = "parameter units per second",
-              .help = "Offset change per second of scene time ([0,0,0] = still)"});
+              .help = "Offset change per second of scene time ([0,0,0] = still)"})
+      .label([](const P& p) { return "Animate offset of '" + p.object + "'"; });
 }
 
 std::optional<SceneObject> LatticeAnimateOffsetCommand::build(const Scene& scene) {

@@ -24,8 +24,6 @@ class LatticeAnimateOffsetCommand
  public:
   static Schema declare();
 
-  std::string label() const override { return "Animate offset of '" + p_.object + "'"; }
-
  protected:
   std::optional<SceneObject> build(const Scene& scene) override;
 };

@@ -13,10 +13,9 @@ auto LatticeCertifyCommand::declare() -> Schema {
               .help = "Halvings of a Bézier cell before a box that is neither certified nor folded is called "
                       "undecided; the work is also bounded by 512 K Bernstein boxes, what is left after every "
                       "cell's first box shared out over the cells still mixed (a cell that spends its share is "
-                      "undecided, counted in budget_cells)"});
+                      "undecided, counted in budget_cells)"})
+      .label([](const P& p) { return "Certify lattice of '" + p.object + "'"; });
 }
-
-std::string LatticeCertifyCommand::label() const { return "Certify lattice of '" + p_.object + "'"; }
 
 void LatticeCertifyCommand::redo(Scene& scene) {
   const SceneObject& object = require_deformed_object(scene, p_.object);

@@ -23,7 +23,6 @@ class LatticeCertifyCommand : public DeclaredCommand<LatticeCertifyCommand, Latt
  public:
   static Schema declare();
 
-  std::string label() const override;
   void redo(Scene& scene) override;  // computes the certificate; the scene is not modified
   void undo(Scene&) override {}
   bool undoable() const override { return false; }

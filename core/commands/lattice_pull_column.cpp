@@ -11,7 +11,11 @@ auto LatticePullColumnCommand::declare() -> Schema {
   return Schema("lattice.pull_column", "Pull or push one contact control point and its column along V_P (seed §2.4.1)")
       .field("object", &P::object, {.required = true, .help = "A deformed object (with an FFD)"})
       .field("column", &P::column, {.required = true, .help = "(i, j) of the contact control point"})
-      .field("distance", &P::distance, {.required = true, .unit = "world units", .help = "Move along V_P; < 0 pushes"});
+      .field("distance", &P::distance, {.required = true, .unit = "world units", .help = "Move along V_P; < 0 pushes"})
+      .label([](const P& p) {
+        return "Pull column (" + std::to_string(p.column.x) + ", " + std::to_string(p.column.y) + ") of '" + p.object +
+               "'";
+      });
 }
 
 std::optional<SceneObject> LatticePullColumnCommand::build(const Scene& scene) {

@@ -23,11 +23,6 @@ class LatticePullColumnCommand : public ObjectSnapshotCommand<LatticePullColumnC
  public:
   static Schema declare();
 
-  std::string label() const override {
-    return "Pull column (" + std::to_string(p_.column.x) + ", " + std::to_string(p_.column.y) + ") of '" + p_.object +
-           "'";
-  }
-
  protected:
   std::optional<SceneObject> build(const Scene& scene) override;
 };

@@ -73,7 +73,8 @@ auto LatticeRingCommand::declare() -> Schema {
                                          std::to_string(laps) + " turns: controls[0] must be a multiple of " +
                                          std::to_string(laps) + ", at least 3 (better 12) per turn");
         }
-      });
+      })
+      .label([](const P& p) { return "Ring lattice for '" + p.object + "'"; });
 }
 
 std::optional<SceneObject> LatticeRingCommand::build(const Scene& scene) {

@@ -42,8 +42,6 @@ class LatticeRingCommand : public ObjectSnapshotCommand<LatticeRingCommand, Latt
  public:
   static Schema declare();
 
-  std::string label() const override { return "Ring lattice for '" + p_.object + "'"; }
-
  protected:
   std::optional<SceneObject> build(const Scene& scene) override;
 };

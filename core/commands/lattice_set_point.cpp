@@ -10,12 +10,11 @@ auto LatticeSetPointCommand::declare() -> Schema {
       .field("object", &P::object, {.required = true, .help = "A deformed object (with an FFD)"})
       .field("index", &P::index, {.required = true, .help = "(i, j, k) of the control point, each inside the lattice"})
       .field("position", &P::position,
-             {.required = true, .unit = "world units", .help = "Where the control point goes"});
-}
-
-std::string LatticeSetPointCommand::label() const {
-  return "Set control point (" + std::to_string(p_.index.x) + ", " + std::to_string(p_.index.y) + ", " +
-         std::to_string(p_.index.z) + ") of '" + p_.object + "'";
+             {.required = true, .unit = "world units", .help = "Where the control point goes"})
+      .label([](const P& p) {
+        return "Set control point (" + std::to_string(p.index.x) + ", " + std::to_string(p.index.y) + ", " +
+               std::to_string(p.index.z) + ") of '" + p.object + "'";
+      });
 }
 
 std::optional<SceneObject> LatticeSetPointCommand::build(const Scene& scene) {

@@ -23,8 +23,6 @@ class LatticeSetPointCommand : public ObjectSnapshotCommand<LatticeSetPointComma
  public:
   static Schema declare();
 
-  std::string label() const override;
-
  protected:
   std::optional<SceneObject> build(const Scene& scene) override;
 };

@@ -28,7 +28,8 @@ auto MeshRefineCommand::declare() -> Schema {
       .field("max_triangles", &P::max_triangles,
              {.range = ParamRange{1, 8'000'000},
               .help = "The memory budget of a refinement: a round that would exceed it is not applied; ≥ the "
-                      "input's triangles"});
+                      "input's triangles"})
+      .label([](const P& p) { return "Refine '" + p.object + "' for its FFD"; });
 }
 
 RefineOptions MeshRefineCommand::options() const {

@@ -35,8 +35,6 @@ class MeshRefineCommand : public ObjectSnapshotCommand<MeshRefineCommand, MeshRe
  public:
   static Schema declare();
 
-  std::string label() const override { return "Refine '" + p_.object + "' for its FFD"; }
-
  protected:
   std::optional<SceneObject> build(const Scene& scene) override;
 

@@ -21,12 +21,11 @@ auto MeshSubdivideCommand::declare() -> Schema {
       .field("object", &P::object, {.required = true, .help = "An undeformed object without tile layers"})
       .field("levels", &P::levels,
              {.range = ParamRange{1, kMaxLevels}, .help = "Subdivision levels; each quadruples the triangles"})
-      .choice("scheme", &P::scheme, {"loop"}, {.help = "Loop subdivision of the triangles (OpenSubdiv Far)"});
-}
-
-std::string MeshSubdivideCommand::label() const {
-  return "Subdivide '" + p_.object + "' (Loop, " + std::to_string(p_.levels) +
-         (p_.levels == 1 ? " level)" : " levels)");
+      .choice("scheme", &P::scheme, {"loop"}, {.help = "Loop subdivision of the triangles (OpenSubdiv Far)"})
+      .label([](const P& p) {
+        return "Subdivide '" + p.object + "' (Loop, " + std::to_string(p.levels) +
+               (p.levels == 1 ? " level)" : " levels)");
+      });
 }
 
 std::optional<SceneObject> MeshSubdivideCommand::build(const Scene& scene) {

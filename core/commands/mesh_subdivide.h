@@ -32,8 +32,6 @@ class MeshSubdivideCommand : public ObjectSnapshotCommand<MeshSubdivideCommand, 
  public:
   static Schema declare();
 
-  std::string label() const override;
-
  protected:
   std::optional<SceneObject> build(const Scene& scene) override;
 };

@@ -134,7 +134,8 @@ auto ObjectTransformCommand::declare() -> Schema {
       .field_as<ScaleCodec>("scale", &P::scale,
                             {.range = ParamRange{0, kMaxScale, true, false},
                              .default_text = "unchanged",
-                             .help = "Absolute scale per axis; an object with a lattice keeps the signs of its scale"});
+                             .help = "Absolute scale per axis; an object with a lattice keeps the signs of its scale"})
+      .label([](const P& p) { return "Transform '" + p.object + "'"; });
 }
 
 CommandPtr ObjectTransformCommand::make(const std::string& object, const Transform& t) {

@@ -43,8 +43,6 @@ class ObjectTransformCommand : public ObjectSnapshotCommand<ObjectTransformComma
   // The command setting `t` completely (all three fields), as the editor logs it.
   static CommandPtr make(const std::string& object, const Transform& t);
 
-  std::string label() const override { return "Transform '" + p_.object + "'"; }
-
  protected:
   std::optional<SceneObject> build(const Scene& scene) override;
 };

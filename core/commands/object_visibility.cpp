@@ -41,14 +41,13 @@ auto ObjectVisibilityCommand::declare() -> Schema {
       .check([](P& p) {
         if (!p.viewport && !p.render)
           throw CommandError("field 'viewport': give 'viewport', 'render' or both", "viewport");
+      })
+      .label([](const P& p) {
+        std::string what;
+        if (p.viewport) what = *p.viewport ? "Show" : "Hide";
+        if (p.render) what += std::string(what.empty() ? "" : ", ") + (*p.render ? "Render" : "Do not render");
+        return what + " '" + p.object + "'";
       });
-}
-
-std::string ObjectVisibilityCommand::label() const {
-  std::string what;
-  if (p_.viewport) what = *p_.viewport ? "Show" : "Hide";
-  if (p_.render) what += std::string(what.empty() ? "" : ", ") + (*p_.render ? "Render" : "Do not render");
-  return what + " '" + p_.object + "'";
 }
 
 void ObjectVisibilityCommand::redo(Scene& scene) {

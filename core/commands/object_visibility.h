@@ -21,7 +21,6 @@ class ObjectVisibilityCommand : public DeclaredCommand<ObjectVisibilityCommand, 
  public:
   static Schema declare();
 
-  std::string label() const override;
   void redo(Scene& scene) override;
   void undo(Scene& scene) override;
 

@@ -19,11 +19,8 @@ auto PlaceArrayCommand::declare() -> Schema {
              {.write = ParamWrite::UnlessDefault,
               .range = ParamRange::magnitude_at_most(1e4),
               .unit = "seconds",
-              .help = "Each copy's glTF clip starts this much later than the one before"});
-}
-
-std::string PlaceArrayCommand::label() const {
-  return "Array " + std::to_string(p_.count) + " × '" + p_.object + "' along its path";
+              .help = "Each copy's glTF clip starts this much later than the one before"})
+      .label([](const P& p) { return "Array " + std::to_string(p.count) + " × '" + p.object + "' along its path"; });
 }
 
 void PlaceArrayCommand::redo(Scene& scene) {

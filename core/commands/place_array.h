@@ -26,7 +26,6 @@ class PlaceArrayCommand : public DeclaredCommand<PlaceArrayCommand, PlaceArrayPa
  public:
   static Schema declare();
 
-  std::string label() const override;
   void redo(Scene& scene) override;
   void undo(Scene& scene) override;
   nlohmann::json stats() const override { return stats_; }

@@ -296,7 +296,8 @@ auto PlaceSketchCommand::declare() -> Schema {
       .field("ignore", &P::ignore,
              {.write = ParamWrite::UnlessDefault,
               .default_text = "[]",
-              .help = "Ids of objects the rays pass through (the editor lists those hidden in its viewport)"});
+              .help = "Ids of objects the rays pass through (the editor lists those hidden in its viewport)"})
+      .label([](const P& p) { return "Place '" + p.object + "' along stroke"; });
 }
 
 std::optional<SceneObject> PlaceSketchCommand::build(const Scene& scene) {

@@ -53,8 +53,6 @@ class PlaceSketchCommand : public ObjectSnapshotCommand<PlaceSketchCommand, Plac
  public:
   static Schema declare();
 
-  std::string label() const override { return "Place '" + p_.object + "' along stroke"; }
-
  protected:
   std::optional<SceneObject> build(const Scene& scene) override;
 

@@ -17,7 +17,9 @@ auto SceneLoadCommand::declare() -> Schema {
               {.write = ParamWrite::UnlessDefault,
                .help = "Point and line elements beside the faces: fail naming their counts, or leave them out "
                        "(counted in report.json)"})
-      .embed(&P::object, object_fields_schema());
+      .embed(&P::object, object_fields_schema())
+      .label([](const P& p) { return "Load '" + p.object.name + "'"; })
+      .failure_field("path");
 }
 
 TriMesh SceneLoadCommand::make_mesh() const {

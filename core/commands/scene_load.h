@@ -21,11 +21,9 @@ struct SceneLoadParams {
   ObjectFields object;
 };
 
-class SceneLoadCommand : public DeclaredCommand<SceneLoadCommand, SceneLoadParams, AddObjectCommand> {
+class SceneLoadCommand : public DeclaredSnapshotCommand<SceneLoadCommand, SceneLoadParams, AddObjectCommand> {
  public:
   static Schema declare();
-
-  std::string label() const override { return "Load '" + p_.object.name + "'"; }
 
  protected:
   ObjectFields& object_fields() override { return p_.object; }
@@ -33,7 +31,6 @@ class SceneLoadCommand : public DeclaredCommand<SceneLoadCommand, SceneLoadParam
   std::optional<SceneObject> build(const Scene& scene) override;
   std::string default_name() const override { return std::filesystem::path(p_.path).stem().string(); }
   std::string source() const override { return p_.path; }
-  std::string failure_field() const override { return "path"; }
   nlohmann::json stats() const override;
 
  private:

@@ -14,18 +14,16 @@ struct ScenePrimitiveParams {
   ObjectFields object;
 };
 
-class ScenePrimitiveCommand : public DeclaredCommand<ScenePrimitiveCommand, ScenePrimitiveParams, AddObjectCommand> {
+class ScenePrimitiveCommand
+    : public DeclaredSnapshotCommand<ScenePrimitiveCommand, ScenePrimitiveParams, AddObjectCommand> {
  public:
   static Schema declare();
-
-  std::string label() const override { return "Add " + p_.kind + " '" + p_.object.name + "'"; }
 
  protected:
   ObjectFields& object_fields() override { return p_.object; }
   TriMesh make_mesh() const override;
   std::string default_name() const override { return p_.kind; }
   std::string source() const override { return "primitive:" + p_.kind; }
-  std::string failure_field() const override { return "kind"; }
 };
 
 }  // namespace trispline::core

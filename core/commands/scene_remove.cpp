@@ -4,7 +4,8 @@ namespace trispline::core {
 
 auto SceneRemoveCommand::declare() -> Schema {
   return Schema("scene.remove", "Remove an object")
-      .field("name", &P::name, {.required = true, .help = "Id of the object to remove"});
+      .field("name", &P::name, {.required = true, .help = "Id of the object to remove"})
+      .label([](const P& p) { return "Remove '" + p.name + "'"; });
 }
 
 std::optional<SceneObject> SceneRemoveCommand::build(const Scene& scene) {

@@ -10,11 +10,9 @@ struct SceneRemoveParams {
   std::string name;
 };
 
-class SceneRemoveCommand : public DeclaredCommand<SceneRemoveCommand, SceneRemoveParams, SnapshotCommand> {
+class SceneRemoveCommand : public DeclaredSnapshotCommand<SceneRemoveCommand, SceneRemoveParams, SnapshotCommand> {
  public:
   static Schema declare();
-
-  std::string label() const override { return "Remove '" + p_.name + "'"; }
 
  protected:
   std::string target() const override { return p_.name; }

@@ -31,7 +31,9 @@ auto SceneTextCommand::declare() -> Schema {
               .range = ParamRange{1, kMaxCurveSegments},
               .ui = {"Curve segments", 0.1},
               .help = "Line segments per curved piece of a glyph's outline"})
-      .embed(&P::object, object_fields_schema());
+      .embed(&P::object, object_fields_schema())
+      .label([](const P& p) { return "Add text '" + p.text + "'"; })
+      .failure_field("font");
 }
 
 TriMesh SceneTextCommand::make_mesh() const {

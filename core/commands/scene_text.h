@@ -20,17 +20,15 @@ struct SceneTextParams {
   ObjectFields object;
 };
 
-class SceneTextCommand : public DeclaredCommand<SceneTextCommand, SceneTextParams, AddObjectCommand> {
+class SceneTextCommand : public DeclaredSnapshotCommand<SceneTextCommand, SceneTextParams, AddObjectCommand> {
  public:
   static Schema declare();
-  std::string label() const override { return "Add text '" + p_.text + "'"; }
 
  protected:
   ObjectFields& object_fields() override { return p_.object; }
   TriMesh make_mesh() const override;
   std::string default_name() const override { return "text"; }
   std::string source() const override { return "text:" + p_.text; }
-  std::string failure_field() const override { return "font"; }
 };
 
 }  // namespace trispline::core

@@ -50,7 +50,9 @@ auto VolumeExportCommand::declare() -> Schema {
           params::fail("path", "silhouettes are written as .svg or .glb, not '" + e + "'");
         if (p.what == "iso" && e != ".glb" && e != ".obj" && e != ".ply")
           params::fail("path", "an iso-surface is written as .glb, .obj or .ply, not '" + e + "'");
-      });
+      })
+      .label([](const P& p) { return "Export " + p.what + " of '" + p.object + "'"; })
+      .failure_field("path");
 }
 
 std::optional<VolumeObject> VolumeExportCommand::build(const Scene& scene) {

@@ -41,11 +41,9 @@ class VolumeExportCommand
   static CommandPtr parse(const nlohmann::json& line, const CommandContext& ctx) {
     return parse_with_output<VolumeExportCommand>(line, ctx);
   }
-  std::string label() const override { return "Export " + p_.what + " of '" + p_.object + "'"; }
 
  protected:
   std::optional<VolumeObject> build(const Scene& scene) override;
-  std::string failure_field() const override { return "path"; }
 };
 
 }  // namespace trispline::core

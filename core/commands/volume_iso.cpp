@@ -104,16 +104,15 @@ auto VolumeIsoCommand::declare() -> Schema {
         if (p.level && p.levels && *p.level != p.levels->front().level)
           params::fail("level", "differs from levels[0]; give one of them");
         if (!p.level) p.level = p.levels->front().level;
+      })
+      .label([](const P& p) {
+        char buf[64];
+        std::snprintf(buf, sizeof buf, "%g", p.level.value_or(0.0));
+        std::string l = "Iso-level of '" + p.object + "' " + buf;
+        if (p.levels && p.levels->size() > 1)
+          l += " (+" + std::to_string(p.levels->size() - 1) + (p.levels->size() == 2 ? " level)" : " levels)");
+        return l;
       });
-}
-
-std::string VolumeIsoCommand::label() const {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%g", p_.level.value_or(0.0));
-  std::string l = "Iso-level of '" + p_.object + "' " + buf;
-  if (p_.levels && p_.levels->size() > 1)
-    l += " (+" + std::to_string(p_.levels->size() - 1) + (p_.levels->size() == 2 ? " level)" : " levels)");
-  return l;
 }
 
 std::optional<VolumeObject> VolumeIsoCommand::build(const Scene& scene) {

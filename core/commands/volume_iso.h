@@ -34,7 +34,6 @@ struct VolumeIsoParams {
 class VolumeIsoCommand : public ObjectSnapshotCommand<VolumeIsoCommand, VolumeIsoParams, VolumeSnapshotCommand> {
  public:
   static Schema declare();
-  std::string label() const override;
 
  protected:
   std::optional<VolumeObject> build(const Scene& scene) override;

@@ -36,7 +36,9 @@ auto VolumeLoadCommand::declare() -> Schema {
       .check([](const P& p) {
         if (p.path.empty() == p.analytic.empty())
           params::fail("path", "give either a volume file ('path') or an analytic volume ('analytic')");
-      });
+      })
+      .label([](const P& p) { return "Load volume '" + p.name + "'"; })
+      .failure_field("path");
 }
 
 namespace {

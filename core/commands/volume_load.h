@@ -25,15 +25,13 @@ struct VolumeLoadParams {
   std::string axes = "superior_up";  // superior_up: the patient's superior axis is +Y | file: the file's own axes
 };
 
-class VolumeLoadCommand : public DeclaredCommand<VolumeLoadCommand, VolumeLoadParams, VolumeSnapshotCommand> {
+class VolumeLoadCommand : public DeclaredSnapshotCommand<VolumeLoadCommand, VolumeLoadParams, VolumeSnapshotCommand> {
  public:
   static Schema declare();
-  std::string label() const override { return "Load volume '" + p_.name + "'"; }
 
  protected:
   std::string target() const override { return p_.name; }
   std::optional<VolumeObject> build(const Scene& scene) override;
-  std::string failure_field() const override { return "path"; }
 };
 
 }  // namespace trispline::core

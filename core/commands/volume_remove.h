@@ -16,7 +16,6 @@ class VolumeRemoveCommand
     : public ObjectSnapshotCommand<VolumeRemoveCommand, VolumeRemoveParams, VolumeSnapshotCommand> {
  public:
   static Schema declare();
-  std::string label() const override { return "Remove volume '" + p_.object + "'"; }
 
  protected:
   std::optional<VolumeObject> build(const Scene& scene) override;

@@ -64,12 +64,11 @@ auto VolumeRenderCommand::declare() -> Schema {
               .range = ParamRange{1.0 / 64.0, 4.0},
               .unit = "index units",
               .ui = {"Step", 0.01, "%.3f"},
-              .help = "dvr's segment length along a ray; smaller is finer and slower"});
-}
-
-std::string VolumeRenderCommand::label() const {
-  return p_.mode == VolumeObject::RenderMode::dvr ? "Direct volume rendering of '" + p_.object + "'"
-                                                  : "Iso-surface of '" + p_.object + "'";
+              .help = "dvr's segment length along a ray; smaller is finer and slower"})
+      .label([](const P& p) {
+        return p.mode == VolumeObject::RenderMode::dvr ? "Direct volume rendering of '" + p.object + "'"
+                                                       : "Iso-surface of '" + p.object + "'";
+      });
 }
 
 std::optional<VolumeObject> VolumeRenderCommand::build(const Scene& scene) {

@@ -31,7 +31,6 @@ class VolumeRenderCommand
     : public ObjectSnapshotCommand<VolumeRenderCommand, VolumeRenderParams, VolumeSnapshotCommand> {
  public:
   static Schema declare();
-  std::string label() const override;
 
  protected:
   std::optional<VolumeObject> build(const Scene& scene) override;

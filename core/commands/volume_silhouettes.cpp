@@ -25,7 +25,10 @@ auto VolumeSilhouettesCommand::declare() -> Schema {
       .field("accuracy", &P::accuracy,
              {.range = ParamRange{1e-12, 1e-2},
               .ui = {"Accuracy"},
-              .help = "Newton stops when |D − c| ≤ accuracy·range(D) and |G·V| ≤ accuracy·|G|·|V|"});
+              .help = "Newton stops when |D − c| ≤ accuracy·range(D) and |G·V| ≤ accuracy·|G|·|V|"})
+      .label([](const P& p) {
+        return std::string(p.enabled ? "Silhouettes of '" : "Hide silhouettes of '") + p.object + "'";
+      });
 }
 
 std::optional<VolumeObject> VolumeSilhouettesCommand::build(const Scene& scene) {

@@ -24,9 +24,6 @@ class VolumeSilhouettesCommand
     : public ObjectSnapshotCommand<VolumeSilhouettesCommand, VolumeSilhouettesParams, VolumeSnapshotCommand> {
  public:
   static Schema declare();
-  std::string label() const override {
-    return std::string(p_.enabled ? "Silhouettes of '" : "Hide silhouettes of '") + p_.object + "'";
-  }
 
  protected:
   std::optional<VolumeObject> build(const Scene& scene) override;

@@ -379,6 +379,22 @@ class ParamSchema {
     return push(std::move(f), {});
   }
 
+  // What the History panel calls a command with params p (Command::label()): `fn(p)`, e.g.
+  //   .label([](const P& p) { return "Refine '" + p.object + "' for its FFD"; })
+  // Unset: the command's id.
+  ParamSchema& label(std::function<std::string(const P&)> fn) {
+    label_ = std::move(fn);
+    return *this;
+  }
+  std::string label(const P& p) const { return label_ ? label_(p) : id_; }
+  // The field a command's failure that names no field is reported on (e.g. "path" for a file that cannot be read
+  // or written; SnapshotCommand::failure_field()). Unset: none.
+  ParamSchema& failure_field(std::string name) {
+    failure_field_ = std::move(name);
+    return *this;
+  }
+  const std::string& failure_field() const { return failure_field_; }
+
   // The fields declared after this are neither read nor written when `fn` holds for those before it (a line that
   // removes something carries only what names it).
   ParamSchema& stop_if(std::function<bool(const P&)> fn) {
@@ -486,6 +502,8 @@ class ParamSchema {
 
   std::string id_, summary_;
   std::vector<Field> fields_;
+  std::function<std::string(const P&)> label_;
+  std::string failure_field_;
 };
 
 }  // namespace trispline::core
