@@ -75,12 +75,9 @@ void pose_animation_glb(const FarmPlan& plan) {
   RecordOptions ro;
   ro.out_dir = plan.dir;
   ro.format = plan.format;
-  ro.frame_first = plan.frame_first;
-  ro.frame_last = plan.frame_last;
-  ro.width = plan.width;
-  ro.height = plan.height;
-  ro.images = false;
-  ro.mp4 = false;
+  ro.frame_first = plan.frame_first, ro.frame_last = plan.frame_last;
+  ro.width = plan.width, ro.height = plan.height;
+  ro.images = ro.mp4 = false;  // pose only: the frames are the chunks'; no MP4
   record_frames(scene, ro);
 }
 
