@@ -93,19 +93,7 @@ glm::dmat2 DdmTileTransform::linear() const {
   return glm::dmat2(c * scale.x, s * scale.x, -s * scale.y, c * scale.y);  // columns: R·e_x·sx, R·e_y·sy
 }
 
-const char* ddm_base_name(DdmBaseKind k) {
-  switch (k) {
-    case DdmBaseKind::teapot_body:
-      return "teapot_body";
-    case DdmBaseKind::uv:
-      return "uv";
-    case DdmBaseKind::auto_uv:
-      return "auto_uv";
-    case DdmBaseKind::limit:
-      break;
-  }
-  return "limit";
-}
+const char* ddm_base_name(DdmBaseKind k) { return enum_name(k, {"limit", "teapot_body", "uv", "auto_uv"}, "limit"); }
 
 const char* ddm_layout_name(DdmLayout l) { return enum_name(l, {"rect", "hex", "brick"}, "rect"); }
 

@@ -127,11 +127,19 @@ DdmSurfacePoint DdmMapsBase::eval(int chart, double u, double v) const {
   return q;
 }
 
+namespace {
+
+// The maps' slot of the cell's chart, -1 when the maps hold no such chart.
+int chart_slot(const DdmMaps& maps, const DdmInstance& cell) {
+  if (cell.chart < 0 || cell.chart >= static_cast<int>(maps.slot_of_chart.size())) return -1;
+  return maps.slot_of_chart[static_cast<std::size_t>(cell.chart)];
+}
+
+}  // namespace
+
 bool ddm_cell_valid(const DdmMaps& maps, const DdmInstance& cell) {
-  if (cell.chart < 0 || cell.chart >= static_cast<int>(maps.slot_of_chart.size())) return false;
-  const int slot = maps.slot_of_chart[static_cast<std::size_t>(cell.chart)];
-  if (slot < 0) return false;
-  if (maps.valid.empty()) return true;
+  const int slot = chart_slot(maps, cell);
+  if (slot < 0 || maps.valid.empty()) return slot >= 0;
   const int ru = maps.resolution.x, rv = maps.resolution.y;
   auto range = [](double a, double b, int r, int& lo, int& hi) {
     lo = std::clamp(static_cast<int>(std::floor(std::clamp(a, 0.0, 1.0) * (r - 1))), 0, r - 1);
@@ -147,10 +155,8 @@ bool ddm_cell_valid(const DdmMaps& maps, const DdmInstance& cell) {
 }
 
 bool ddm_cell_centre_valid(const DdmMaps& maps, const DdmInstance& cell) {
-  if (cell.chart < 0 || cell.chart >= static_cast<int>(maps.slot_of_chart.size())) return false;
-  const int slot = maps.slot_of_chart[static_cast<std::size_t>(cell.chart)];
-  if (slot < 0) return false;
-  if (maps.valid.empty()) return true;
+  const int slot = chart_slot(maps, cell);
+  if (slot < 0 || maps.valid.empty()) return slot >= 0;
   const glm::dvec2 c = cell.origin + 0.5 * cell.size;
   const int i = std::clamp(static_cast<int>(std::lround(std::clamp(c.x, 0.0, 1.0) * (maps.resolution.x - 1))), 0,
                            maps.resolution.x - 1);

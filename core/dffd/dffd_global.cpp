@@ -9,16 +9,13 @@
 #include <memory>
 #include <string>
 
+#include "core/base/text.h"
 #include "core/raycast/ray_caster.h"
 
 namespace trispline::core {
 namespace {
 
-std::string num6(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", x);
-  return buf;
-}
+std::string num6(double x) { return printf_string("%.6g", x); }
 
 std::string vec(const glm::dvec3& p) { return "(" + num6(p.x) + ", " + num6(p.y) + ", " + num6(p.z) + ")"; }
 

@@ -371,35 +371,33 @@ void FfdFastEvaluator::Impl::run(const glm::dvec3& param_offset, const Outputs& 
   }
 }
 
-void FfdFastEvaluator::read_results(std::vector<glm::dvec3>& positions, std::vector<glm::dvec3>& normals) {
-  const Impl& m = *impl_;
-  if (!m.evaluated) throw std::logic_error("cpu_fast read_results: evaluate() has not run since bind_vertices");
-  const std::size_t V = m.params.size();
-  positions.resize(V);
-  normals.resize(m.nrm.empty() ? 0 : V);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, V, 16384), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i != r.end(); ++i)
-      positions[i] = m.centre + glm::dvec3(m.pos[3 * i], m.pos[3 * i + 1], m.pos[3 * i + 2]);
-    if (!normals.empty())
-      for (std::size_t i = r.begin(); i != r.end(); ++i)
-        normals[i] = glm::dvec3(m.nrm[3 * i], m.nrm[3 * i + 1], m.nrm[3 * i + 2]);
-  });
-}
+namespace {
 
-void FfdFastEvaluator::read_results_float(std::vector<glm::vec3>& positions, std::vector<glm::vec3>& normals) {
-  const Impl& m = *impl_;
-  if (!m.evaluated) throw std::logic_error("cpu_fast read_results_float: evaluate() has not run since bind_vertices");
+// The evaluated positions (the centre added in double, then converted once to Vec) and normals as Vec (dvec3, vec3).
+template <class Vec, class Impl>
+void copy_results(const Impl& m, const char* who, std::vector<Vec>& positions, std::vector<Vec>& normals) {
+  if (!m.evaluated) throw std::logic_error(std::string(who) + ": evaluate() has not run since bind_vertices");
   const std::size_t V = m.params.size();
   positions.resize(V);
   normals.resize(m.nrm.empty() ? 0 : V);
   const glm::dvec3 c = m.centre;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, V, 16384), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i != r.end(); ++i)  // the centre added in double, then rounded once
-      positions[i] = glm::vec3(c + glm::dvec3(m.pos[3 * i], m.pos[3 * i + 1], m.pos[3 * i + 2]));
+    for (std::size_t i = r.begin(); i != r.end(); ++i)
+      positions[i] = Vec(c + glm::dvec3(m.pos[3 * i], m.pos[3 * i + 1], m.pos[3 * i + 2]));
     if (!normals.empty())
       for (std::size_t i = r.begin(); i != r.end(); ++i)
-        normals[i] = glm::vec3(m.nrm[3 * i], m.nrm[3 * i + 1], m.nrm[3 * i + 2]);
+        normals[i] = Vec(m.nrm[3 * i], m.nrm[3 * i + 1], m.nrm[3 * i + 2]);
   });
+}
+
+}  // namespace
+
+void FfdFastEvaluator::read_results(std::vector<glm::dvec3>& positions, std::vector<glm::dvec3>& normals) {
+  copy_results(*impl_, "cpu_fast read_results", positions, normals);
+}
+
+void FfdFastEvaluator::read_results_float(std::vector<glm::vec3>& positions, std::vector<glm::vec3>& normals) {
+  copy_results(*impl_, "cpu_fast read_results_float", positions, normals);
 }
 
 void FfdFastEvaluator::read_results_into(double* positions, double* normals) {

@@ -1,5 +1,6 @@
 #include "core/mesh/gltf_anim_io.h"
 
+#include "core/base/text.h"
 #include "core/mesh/mesh_io.h"
 #include "core/mesh/path_quote.h"
 
@@ -22,11 +23,7 @@
 namespace trispline::core {
 namespace {
 
-std::string target_name(int frame) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "frame_%04d", frame);
-  return buf;
-}
+std::string target_name(int frame) { return printf_string("frame_%04d", frame); }
 
 using gltf_model::add_view;
 

@@ -7,6 +7,7 @@
 #include <limits>
 #include <map>
 
+#include "core/base/text.h"
 #include "core/mesh/gltf_io.h"
 #include "core/mesh/gltf_materials.h"
 #include "core/mesh/gltf_model.h"
@@ -39,18 +40,30 @@ int add_float_attribute(tinygltf::Model& model, const std::vector<V>& values, in
                       TINYGLTF_COMPONENT_TYPE_FLOAT, type, values.size());
 }
 
+// The POSITION attribute of `points` (#V × 3, world units) with the bounds glTF requires: min/max of the float32
+// values written.
+template <class V>
+int add_position_attribute(tinygltf::Model& model, const std::vector<V>& points) {
+  const int a = add_float_attribute<3>(model, points, TINYGLTF_TYPE_VEC3);
+  tinygltf::Accessor& acc = model.accessors[a];
+  acc.minValues.assign(3, std::numeric_limits<double>::infinity());
+  acc.maxValues.assign(3, -std::numeric_limits<double>::infinity());
+  for (const V& p : points)
+    for (int c = 0; c < 3; ++c) {
+      acc.minValues[c] = std::min(acc.minValues[c], double(static_cast<float>(p[c])));
+      acc.maxValues[c] = std::max(acc.maxValues[c], double(static_cast<float>(p[c])));
+    }
+  return a;
+}
+
 // The node's line strips as LINE_STRIP primitives appended to `mesh`, sharing one unlit material.
 void add_line_strips(tinygltf::Model& model, const GltfNode& gn, tinygltf::Mesh& mesh) {
   int material = -1;
   for (const std::vector<glm::vec3>& strip : *gn.line_strips) {
     if (strip.size() < 2) continue;
-    std::vector<double> lo(3, std::numeric_limits<double>::infinity()), hi(3, -std::numeric_limits<double>::infinity());
     for (const glm::vec3& p : strip)
-      for (int c = 0; c < 3; ++c) {
-        if (!std::isfinite(p[c])) throw MeshIoError("object '" + gn.name + "': a line strip has a non-finite point");
-        lo[c] = std::min(lo[c], double(p[c]));
-        hi[c] = std::max(hi[c], double(p[c]));
-      }
+      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+        throw MeshIoError("object '" + gn.name + "': a line strip has a non-finite point");
     if (material < 0) {
       const bool has_triangles = !mesh.primitives.empty();
       material = gltf_model::add_material(model, has_triangles ? gn.name + ".lines" : gn.name, gn.color);
@@ -61,10 +74,7 @@ void add_line_strips(tinygltf::Model& model, const GltfNode& gn, tinygltf::Mesh&
     }
     tinygltf::Primitive prim;
     prim.mode = TINYGLTF_MODE_LINE_STRIP;
-    const int pa = add_float_attribute<3>(model, strip, TINYGLTF_TYPE_VEC3);
-    model.accessors[pa].minValues = lo;
-    model.accessors[pa].maxValues = hi;
-    prim.attributes["POSITION"] = pa;
+    prim.attributes["POSITION"] = add_position_attribute(model, strip);
     prim.material = material;
     mesh.primitives.push_back(prim);
   }
@@ -79,18 +89,9 @@ tinygltf::Primitive vertex_primitive(tinygltf::Model& model, const TriMesh& m, c
   pos.reserve(ids.size());
   for (std::uint32_t i : ids)
     pos.push_back(identity ? m.positions[i] : glm::dvec3(xf * glm::dvec4(m.positions[i], 1.0)));
-  std::vector<double> lo(3, std::numeric_limits<double>::infinity()), hi(3, -std::numeric_limits<double>::infinity());
-  for (const glm::dvec3& p : pos)
-    for (int c = 0; c < 3; ++c) {  // bounds of the float positions written
-      lo[c] = std::min(lo[c], double(static_cast<float>(p[c])));
-      hi[c] = std::max(hi[c], double(static_cast<float>(p[c])));
-    }
   tinygltf::Primitive prim;
   prim.mode = TINYGLTF_MODE_TRIANGLES;
-  const int pa = add_float_attribute<3>(model, pos, TINYGLTF_TYPE_VEC3);
-  model.accessors[pa].minValues = lo;
-  model.accessors[pa].maxValues = hi;
-  prim.attributes["POSITION"] = pa;
+  prim.attributes["POSITION"] = add_position_attribute(model, pos);
   if (m.normals.size() == m.positions.size()) {
     const glm::dmat3 nm = glm::transpose(glm::inverse(glm::dmat3(xf)));
     std::vector<glm::dvec3> nrm;
@@ -365,38 +366,15 @@ std::vector<int> root_nodes(const tinygltf::Model& model) {
 
 namespace {
 
-// `text` with every byte that does not start or continue a well-formed UTF-8 sequence (RFC 3629: no overlong forms,
-// no surrogates, at most U+10FFFF) replaced by U+FFFD.
+// `text` with every byte that does not start or continue a well-formed UTF-8 sequence (utf8_sequence_length)
+// replaced by U+FFFD.
 std::string utf8_repaired(const std::string& text) {
   std::string out;
   out.reserve(text.size());
-  const auto* p = reinterpret_cast<const unsigned char*>(text.data());
-  const std::size_t n = text.size();
-  for (std::size_t i = 0; i < n;) {
-    const unsigned char c = p[i];
-    int len = 0;
-    unsigned char lo = 0x80, hi = 0xBF;  // the second byte's range
-    if (c < 0x80)
-      len = 1;
-    else if (c >= 0xC2 && c <= 0xDF)
-      len = 2;
-    else if (c == 0xE0)
-      len = 3, lo = 0xA0;
-    else if (c == 0xED)
-      len = 3, hi = 0x9F;
-    else if (c >= 0xE1 && c <= 0xEF)
-      len = 3;
-    else if (c == 0xF0)
-      len = 4, lo = 0x90;
-    else if (c == 0xF4)
-      len = 4, hi = 0x8F;
-    else if (c >= 0xF1 && c <= 0xF3)
-      len = 4;
-    bool ok = len > 0 && i + std::size_t(len) <= n;
-    for (int k = 1; ok && k < len; ++k) ok = k == 1 ? p[i + 1] >= lo && p[i + 1] <= hi : (p[i + k] & 0xC0) == 0x80;
-    if (ok) {
-      out.append(text, i, std::size_t(len));
-      i += std::size_t(len);
+  for (std::size_t i = 0; i < text.size();) {
+    if (const std::size_t len = utf8_sequence_length(text, i)) {
+      out.append(text, i, len);
+      i += len;
     } else {
       out += "\xEF\xBF\xBD";
       ++i;

@@ -3,10 +3,12 @@
 #include <array>
 #include <cmath>
 #include <glm/gtc/constants.hpp>
+#include <iterator>
 #include <random>
 #include <stdexcept>
 #include <unordered_map>
 
+#include "core/base/enum_names.h"
 #include "core/mesh/mesh_io.h"
 #include "core/mesh/uv_sphere.h"
 #include "core/spline/bspline_surface.h"
@@ -82,33 +84,24 @@ class Welder {
 
 }  // namespace
 
+namespace {
+
+constexpr const char* kPrimitiveKindNames[] = {"teapot", "plane", "sphere", "box", "cylinder", "terrain"};
+static_assert(std::size(kPrimitiveKindNames) == std::size_t(PrimitiveKind::Terrain) + 1, "one name per kind");
+
+}  // namespace
+
 PrimitiveKind parse_primitive_kind(const std::string& name) {
-  if (name == "teapot") return PrimitiveKind::Teapot;
-  if (name == "plane") return PrimitiveKind::Plane;
-  if (name == "sphere") return PrimitiveKind::Sphere;
-  if (name == "box") return PrimitiveKind::Box;
-  if (name == "cylinder") return PrimitiveKind::Cylinder;
-  if (name == "terrain") return PrimitiveKind::Terrain;
+  for (std::size_t i = 0; i < std::size(kPrimitiveKindNames); ++i)
+    if (name == kPrimitiveKindNames[i]) return static_cast<PrimitiveKind>(i);
   throw std::invalid_argument("unknown primitive kind '" + name +
                               "' (valid kinds: teapot, plane, sphere, box, cylinder, terrain)");
 }
 
 std::string primitive_kind_name(PrimitiveKind kind) {
-  switch (kind) {
-    case PrimitiveKind::Teapot:
-      return "teapot";
-    case PrimitiveKind::Plane:
-      return "plane";
-    case PrimitiveKind::Sphere:
-      return "sphere";
-    case PrimitiveKind::Box:
-      return "box";
-    case PrimitiveKind::Cylinder:
-      return "cylinder";
-    case PrimitiveKind::Terrain:
-      return "terrain";
-  }
-  throw std::invalid_argument("invalid PrimitiveKind");
+  const char* name = core::enum_name(kind, kPrimitiveKindNames, nullptr);
+  if (!name) throw std::invalid_argument("invalid PrimitiveKind");
+  return name;
 }
 
 TriMesh make_primitive(PrimitiveKind kind, std::uint64_t seed) {

@@ -202,6 +202,40 @@ Scene scene_with_posed_clips(const Scene& scene, double time_s) {
   return out;
 }
 
+namespace {
+
+// The scene's two named lists (objects, volumes): found by name, kept in order; `kind` names the item in errors.
+template <class T>
+int index_in(const std::vector<T>& list, const std::string& name) {
+  for (std::size_t i = 0; i < list.size(); ++i)
+    if (list[i].name == name) return static_cast<int>(i);
+  return -1;
+}
+
+template <class T>
+void insert_at(std::vector<T>& list, T item, int index) {
+  if (index < 0 || index > static_cast<int>(list.size())) index = static_cast<int>(list.size());
+  list.insert(list.begin() + index, std::move(item));
+}
+
+template <class T>
+T take_named(std::vector<T>& list, const std::string& name, const char* kind) {
+  const int i = index_in(list, name);
+  if (i < 0) throw std::out_of_range(std::string("no ") + kind + " named '" + name + "'");
+  T out = std::move(list[i]);
+  list.erase(list.begin() + i);
+  return out;
+}
+
+template <class T>
+void replace_named(std::vector<T>& list, T item, const char* kind) {
+  const int i = index_in(list, item.name);
+  if (i < 0) throw std::out_of_range(std::string("no ") + kind + " named '" + item.name + "'");
+  list[i] = std::move(item);
+}
+
+}  // namespace
+
 const SceneObject* Scene::find(const std::string& name) const {
   const int i = index_of(name);
   return i < 0 ? nullptr : &objects_[i];
@@ -212,11 +246,7 @@ SceneObject* Scene::find(const std::string& name) {
   return i < 0 ? nullptr : &objects_[i];
 }
 
-int Scene::index_of(const std::string& name) const {
-  for (std::size_t i = 0; i < objects_.size(); ++i)
-    if (objects_[i].name == name) return static_cast<int>(i);
-  return -1;
-}
+int Scene::index_of(const std::string& name) const { return index_in(objects_, name); }
 
 std::string object_name_error(const std::string& name) {
   if (name.empty()) return "a name must not be empty";
@@ -245,23 +275,12 @@ void Scene::insert(SceneObject object, int index) {
   if (const std::string bad = object_name_error(object.name); !bad.empty()) throw std::invalid_argument(bad);
   if (index_of(object.name) >= 0 || volume_index_of(object.name) >= 0)
     throw std::invalid_argument("an object named '" + object.name + "' already exists");
-  if (index < 0 || index > static_cast<int>(objects_.size())) index = static_cast<int>(objects_.size());
-  objects_.insert(objects_.begin() + index, std::move(object));
+  insert_at(objects_, std::move(object), index);
 }
 
-SceneObject Scene::remove(const std::string& name) {
-  const int i = index_of(name);
-  if (i < 0) throw std::out_of_range("no object named '" + name + "'");
-  SceneObject out = std::move(objects_[i]);
-  objects_.erase(objects_.begin() + i);
-  return out;
-}
+SceneObject Scene::remove(const std::string& name) { return take_named(objects_, name, "object"); }
 
-void Scene::replace(SceneObject object) {
-  const int i = index_of(object.name);
-  if (i < 0) throw std::out_of_range("no object named '" + object.name + "'");
-  objects_[i] = std::move(object);
-}
+void Scene::replace(SceneObject object) { replace_named(objects_, std::move(object), "object"); }
 
 void Scene::clear() {
   objects_.clear();
@@ -288,34 +307,19 @@ const VolumeObject* Scene::find_volume(const std::string& name) const {
   return i < 0 ? nullptr : &volumes_[i];
 }
 
-int Scene::volume_index_of(const std::string& name) const {
-  for (std::size_t i = 0; i < volumes_.size(); ++i)
-    if (volumes_[i].name == name) return static_cast<int>(i);
-  return -1;
-}
+int Scene::volume_index_of(const std::string& name) const { return index_in(volumes_, name); }
 
 void Scene::insert_volume(VolumeObject volume, int index) {
   if (const std::string bad = object_name_error(volume.name); !bad.empty()) throw std::invalid_argument(bad);
   if (index_of(volume.name) >= 0 || volume_index_of(volume.name) >= 0)
     throw std::invalid_argument("an object named '" + volume.name + "' already exists");
   if (!volume.spline || !volume.table) throw std::invalid_argument("a volume needs its spline and singleton table");
-  if (index < 0 || index > static_cast<int>(volumes_.size())) index = static_cast<int>(volumes_.size());
-  volumes_.insert(volumes_.begin() + index, std::move(volume));
+  insert_at(volumes_, std::move(volume), index);
 }
 
-VolumeObject Scene::remove_volume(const std::string& name) {
-  const int i = volume_index_of(name);
-  if (i < 0) throw std::out_of_range("no volume named '" + name + "'");
-  VolumeObject out = std::move(volumes_[i]);
-  volumes_.erase(volumes_.begin() + i);
-  return out;
-}
+VolumeObject Scene::remove_volume(const std::string& name) { return take_named(volumes_, name, "volume"); }
 
-void Scene::replace_volume(VolumeObject volume) {
-  const int i = volume_index_of(volume.name);
-  if (i < 0) throw std::out_of_range("no volume named '" + volume.name + "'");
-  volumes_[i] = std::move(volume);
-}
+void Scene::replace_volume(VolumeObject volume) { replace_named(volumes_, std::move(volume), "volume"); }
 
 Aabb VolumeObject::world_bounds() const {
   Aabb box;

@@ -193,25 +193,11 @@ void bound_slabs(const VolumeSpline& spline, int z0, int z1, Singleton* out) {
 }
 
 void bound_slabs(const VolumeSpline& spline, int z0, int z1, Singleton* out) {
-  switch (spline.order()) {
-    case 2:
-      return bound_slabs<2>(spline, z0, z1, out);
-    case 3:
-      return bound_slabs<3>(spline, z0, z1, out);
-    default:
-      return bound_slabs<4>(spline, z0, z1, out);
-  }
+  with_volume_order(spline.order(), [&](auto k) { bound_slabs<k>(spline, z0, z1, out); });
 }
 
 Singleton bound_cell(const VolumeSpline& spline, int a, int b, int c) {
-  switch (spline.order()) {
-    case 2:
-      return bound_cell<2>(spline, a, b, c);
-    case 3:
-      return bound_cell<3>(spline, a, b, c);
-    default:
-      return bound_cell<4>(spline, a, b, c);
-  }
+  return with_volume_order(spline.order(), [&](auto k) { return bound_cell<k>(spline, a, b, c); });
 }
 
 // Half-angle (radians) of a singleton's cone, π when it is the whole sphere.

@@ -333,19 +333,6 @@ double value_cubic_sse2(const VolumeSpline& s, const glm::dvec3& x) {
 
 #endif
 
-// Calls f(std::integral_constant<int, K>{}) for an order K of 2, 3 or 4 (the spline's order per axis).
-template <class F>
-decltype(auto) with_order(int order, F&& f) {
-  switch (order) {
-    case 2:
-      return f(std::integral_constant<int, 2>{});
-    case 3:
-      return f(std::integral_constant<int, 3>{});
-    default:
-      return f(std::integral_constant<int, 4>{});
-  }
-}
-
 // The tri-cubic value and jet: in SSE2 pairs where the target has them.
 double value_cubic(const VolumeSpline& s, const glm::dvec3& x) {
 #if defined(__SSE2__)
@@ -366,7 +353,7 @@ VolumeJet jet_cubic(const VolumeSpline& s, const glm::dvec3& x) {
 }  // namespace
 
 double VolumeSpline::value(const glm::dvec3& x) const {
-  return with_order(order_, [&](auto k) {
+  return with_volume_order(order_, [&](auto k) {
     if constexpr (k == 4)
       return value_cubic(*this, x);
     else
@@ -375,7 +362,7 @@ double VolumeSpline::value(const glm::dvec3& x) const {
 }
 
 VolumeJet VolumeSpline::jet(const glm::dvec3& x) const {
-  return with_order(order_, [&](auto k) {
+  return with_volume_order(order_, [&](auto k) {
     if constexpr (k == 4)
       return jet_cubic(*this, x);
     else
@@ -413,7 +400,7 @@ void bezier_coefficients_k(const VolumeSpline& s, const std::array<double, 16>& 
 }  // namespace
 
 void VolumeSpline::bezier_coefficients(int s0, int s1, int s2, double* out) const {
-  with_order(order_, [&](auto k) { bezier_coefficients_k<k>(*this, to_bezier_, s0, s1, s2, out); });
+  with_volume_order(order_, [&](auto k) { bezier_coefficients_k<k>(*this, to_bezier_, s0, s1, s2, out); });
 }
 
 }  // namespace trispline::core

@@ -19,6 +19,7 @@
 #include <array>
 #include <glm/glm.hpp>
 #include <memory>
+#include <type_traits>
 #include <vector>
 
 #include "core/volume/scalar_volume.h"
@@ -86,5 +87,19 @@ class VolumeSpline {
 // The centred uniform B-spline basis of order k on one span: w[r] (r = 0…k−1) weights control first_control(s) + r at
 // local coordinate x ∈ [0,1] (x = t − span_begin(s)); dw and d2w (may be null) are the first and second derivatives.
 void uniform_bspline_weights(int order, double x, double* w, double* dw, double* d2w);
+
+// Calls f(std::integral_constant<int, K>{}) with K = `order` (a VolumeSpline's order, 2…4; anything else reads as 4):
+// the dispatch from a spline's run-time order to the kernels compiled per order.
+template <class F>
+decltype(auto) with_volume_order(int order, F&& f) {
+  switch (order) {
+    case 2:
+      return f(std::integral_constant<int, 2>{});
+    case 3:
+      return f(std::integral_constant<int, 3>{});
+    default:
+      return f(std::integral_constant<int, 4>{});
+  }
+}
 
 }  // namespace trispline::core
