@@ -27,11 +27,8 @@ struct AnimClipParams {
   bool loop = true;
 };
 
-class AnimClipCommand : public ObjectSnapshotCommand<AnimClipCommand, AnimClipParams> {
- public:
+struct AnimClipCommand : ObjectSnapshotCommand<AnimClipCommand, AnimClipParams> {
   static Schema declare();
-
- protected:
   std::optional<SceneObject> build(const Scene& scene) override;
 };
 

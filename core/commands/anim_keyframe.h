@@ -27,11 +27,8 @@ struct AnimKeyframeParams {
   glm::dvec3 key_offset() const { return offset ? *offset : glm::dvec3(u ? *u : 0.0, 0.0, 0.0); }
 };
 
-class AnimKeyframeCommand : public ObjectSnapshotCommand<AnimKeyframeCommand, AnimKeyframeParams> {
- public:
+struct AnimKeyframeCommand : ObjectSnapshotCommand<AnimKeyframeCommand, AnimKeyframeParams> {
   static Schema declare();
-
- protected:
   std::optional<SceneObject> build(const Scene& scene) override;
 };
 

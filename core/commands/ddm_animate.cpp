@@ -13,17 +13,11 @@ namespace {
 using P = DdmAnimateParams;
 using AnimateField = ParamSchema<P>::Field;
 
-void read_morph_tile(const AnimateField& f, const nlohmann::json& v, P& p, const CommandContext& ctx) {
-  const std::string tile = params::Codec<std::string>::read(v, f.doc.name);
-  p.morph = std::vector<std::string>{tile};
-  p.morph_paths = {resolve_ddm_tile(tile, ctx)};
-}
-
-void read_morph_tiles(const AnimateField& f, const nlohmann::json& v, P& p, const CommandContext& ctx) {
-  const std::vector<std::string> tiles = params::Codec<std::vector<std::string>>::read(v, f.doc.name);
-  if (tiles.empty()) params::fail(f.doc.name, "expected a list of tiles, one per layer tile");
-  p.morph_paths = resolve_ddm_tiles(tiles, f.doc.name, ctx);
-  p.morph = tiles;
+// "morph_tile" (one tile) or "morph_tiles" (a non-empty list, one per layer tile).
+void read_morph(const AnimateField& f, const nlohmann::json& v, P& p, const CommandContext& ctx) {
+  p.morph.emplace(), p.morph_paths.clear();
+  append_ddm_tiles(v, f.doc.name, f.doc.name == "morph_tiles", ctx, *p.morph, p.morph_paths);
+  if (p.morph->empty()) params::fail(f.doc.name, "expected a list of tiles, one per layer tile");
 }
 
 // One morph tile is logged as "morph_tile", several as "morph_tiles".
@@ -48,15 +42,6 @@ void check_keys(const std::optional<std::vector<glm::dvec2>>& keys, const char* 
   }
 }
 
-// Keys of one [frame, value] list (value in .offset.x).
-std::vector<OffsetKey> value_keys(const std::vector<glm::dvec2>& keys, const Timeline& timeline,
-                                  KeyInterpolation interpolation, const char* field) {
-  std::vector<glm::dvec3> rows;
-  rows.reserve(keys.size());
-  for (const glm::dvec2& r : keys) rows.push_back({r.x, r.y, 0.0});
-  return keys_from_frames(rows, false, timeline, interpolation, field);
-}
-
 }  // namespace
 
 auto DdmAnimateCommand::declare() -> Schema {
@@ -67,12 +52,12 @@ auto DdmAnimateCommand::declare() -> Schema {
       .field("clear", &P::clear,
              {.write = ParamWrite::UnlessDefault,
               .help = "Remove the layer's animation first (the other fields of the line then apply)"})
-      .custom("morph_tile", read_morph_tile, write_morph,
+      .custom("morph_tile", read_morph, write_morph,
               {.default_text = "kept",
                .type_text = "string",
                .help = "Metamorphosis partner of the layer's tile (as ddm.fill's tile), of the same topology; "
                        "\"\" removes it"})
-      .custom("morph_tiles", read_morph_tiles, write_morph,
+      .custom("morph_tiles", read_morph, write_morph,
               {.default_text = "kept",
                .type_text = "[string,…]",
                .help = "One morph tile per tile of a several-tile layer (instead of morph_tile)"})
@@ -144,10 +129,13 @@ std::optional<SceneObject> DdmAnimateCommand::build(const Scene& scene) {
       }
     }
   }
-  if (p_.alpha_keys) layer->alpha_keys = value_keys(*p_.alpha_keys, scene.timeline, interpolation, "alpha_keys");
-  if (p_.rotate_keys) layer->rotate_keys = value_keys(*p_.rotate_keys, scene.timeline, interpolation, "rotate_keys");
-  if (p_.scale_keys) layer->scale_keys = value_keys(*p_.scale_keys, scene.timeline, interpolation, "scale_keys");
-  if (p_.w_keys) layer->w_keys = value_keys(*p_.w_keys, scene.timeline, interpolation, "w_keys");
+  if (p_.alpha_keys)
+    layer->alpha_keys = weight_keys_from_frames(*p_.alpha_keys, scene.timeline, interpolation, "alpha_keys");
+  if (p_.rotate_keys)
+    layer->rotate_keys = weight_keys_from_frames(*p_.rotate_keys, scene.timeline, interpolation, "rotate_keys");
+  if (p_.scale_keys)
+    layer->scale_keys = weight_keys_from_frames(*p_.scale_keys, scene.timeline, interpolation, "scale_keys");
+  if (p_.w_keys) layer->w_keys = weight_keys_from_frames(*p_.w_keys, scene.timeline, interpolation, "w_keys");
   if (p_.offset_keys)
     layer->offset_keys = keys_from_frames(*p_.offset_keys, true, scene.timeline, interpolation, "offset_keys");
   if (p_.offset_velocity) layer->offset_velocity = *p_.offset_velocity;

@@ -38,11 +38,8 @@ struct DdmAnimateParams {
   std::string interpolation = "linear";  // of this line's keys: "linear" | "constant" | "smooth"
 };
 
-class DdmAnimateCommand : public ObjectSnapshotCommand<DdmAnimateCommand, DdmAnimateParams> {
- public:
+struct DdmAnimateCommand : ObjectSnapshotCommand<DdmAnimateCommand, DdmAnimateParams> {
   static Schema declare();
-
- protected:
   std::optional<SceneObject> build(const Scene& scene) override;
 };
 

@@ -17,11 +17,8 @@ struct DdmColorParams {
   std::optional<glm::vec3> color;  // unset: "color": null (the object's colour again)
 };
 
-class DdmColorCommand : public ObjectSnapshotCommand<DdmColorCommand, DdmColorParams> {
- public:
+struct DdmColorCommand : ObjectSnapshotCommand<DdmColorCommand, DdmColorParams> {
   static Schema declare();
-
- protected:
   std::optional<SceneObject> build(const Scene& scene) override;
 };
 

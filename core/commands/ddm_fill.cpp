@@ -8,10 +8,7 @@ namespace trispline::core {
 
 auto DdmFillCommand::declare() -> Schema {
   return Schema("ddm.fill", "Cover an object's surface with a layer of geometric tiles (DDM, seed ch. 5)")
-      .field(
-          "object", &P::object,
-          {.required = true,
-           .help = "The object; tiles lie on its rest surface and ride on its deformation (FFD, DFFD, clip, incision)"})
+      .field("object", &P::object, {.required = true, .help = kDdmLayerObjectHelp})
       .field("layer", &P::layer, {.required = true, .help = "Name of the layer; a layer of that name is replaced"})
       .check([](const P& p) { check_ddm_layer_name(p.layer); })
       .embed(&P::spec, ddm_layer_schema(true))

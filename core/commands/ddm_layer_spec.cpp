@@ -28,10 +28,8 @@ using Field = ParamSchema<S>::Field;
 
 // "tile": the first tile, not empty.
 void read_tile(const Field& f, const nlohmann::json& v, S& s, const CommandContext& ctx) {
-  const std::string tile = params::Codec<std::string>::read(v, f.doc.name);
-  if (tile.empty()) params::fail(f.doc.name, "must not be empty");
-  s.tiles.assign(1, tile);
-  s.tile_paths.assign(1, resolve_ddm_tile(tile, ctx));
+  s.tiles.clear(), s.tile_paths.clear();
+  append_ddm_tiles(v, f.doc.name, false, ctx, s.tiles, s.tile_paths);
 }
 
 void write_tile(const Field& f, const S& s, nlohmann::json& line) {
@@ -40,11 +38,8 @@ void write_tile(const Field& f, const S& s, nlohmann::json& line) {
 
 // "tiles": the tiles after the first, none empty.
 void read_more_tiles(const Field& f, const nlohmann::json& v, S& s, const CommandContext& ctx) {
-  const std::vector<std::string> more = params::Codec<std::vector<std::string>>::read(v, f.doc.name);
-  const std::vector<std::filesystem::path> paths = resolve_ddm_tiles(more, f.doc.name, ctx);
   s.tile_paths.resize(s.tiles.size());
-  s.tiles.insert(s.tiles.end(), more.begin(), more.end());
-  s.tile_paths.insert(s.tile_paths.end(), paths.begin(), paths.end());
+  append_ddm_tiles(v, f.doc.name, true, ctx, s.tiles, s.tile_paths);
 }
 
 void write_more_tiles(const Field& f, const S& s, nlohmann::json& line) {
@@ -132,25 +127,19 @@ ParamSchema<S> make_layer_schema(bool fill) {
              {.default_text = fill ? "required without tile_size" : "[1,1]",
               .help = "Cells per chart n × m (the seed's parametric layouts); not with tile_size"})
       .field("tile_size", &S::tile_size,
-             {.range = ParamRange::above(0),
-              .unit = "world units",
-              .ui = {"Tile size", 0.002, "%.4g"},
-              .object_size = ParamObjectSize{0.1, 0.001, 1.0, 0.01},
-              .help = "Tile width in object space: every chart gets the cells that make its tiles this size (not with "
-                      "counts)"})
+             ParamSchema<S>::object_length("Tile size", {0.1, 0.001, 1.0, 0.01},
+                                           "Tile width in object space: every chart gets the cells that make its "
+                                           "tiles this size (not with counts)"))
       .field("max_vertices", &S::max_vertices,
              {.range = ParamRange{1, double(kMaxDdmLayerVertices)},
               .unit = "tile vertices",
               .default_text = "10000000",
               .help = "Refuse a layer of more tile vertices than this, counted before it is built (uv and auto_uv: "
                       "after the cells off the UV islands are pruned; ddm.paint: after the stroke)"})
-      .field("height", &S::height,
-             {.required = fill,
-              .range = ParamRange::above(0),
-              .unit = "world units",
-              .ui = {"Height", 0.001, "%.4g"},
-              .object_size = ParamObjectSize{0.033, 0.0005, 1.0, 0.01},
-              .help = "World units (object space) per tile unit of w, along the base normal"})
+      .field(
+          "height", &S::height,
+          ParamSchema<S>::object_length("Height", {0.033, 0.0005, 1.0, 0.01},
+                                        "World units (object space) per tile unit of w, along the base normal", fill))
       .custom(
           "base", read_base, write_base,
           {.default_text = "the object's: teapot_body (teapot primitive), uv (texture coordinates), else auto_uv",
@@ -225,15 +214,17 @@ nlohmann::json ddm_tile_files(const std::vector<std::string>& names, const std::
   return files;
 }
 
-std::vector<std::filesystem::path> resolve_ddm_tiles(const std::vector<std::string>& names, const std::string& field,
-                                                     const CommandContext& ctx) {
-  std::vector<std::filesystem::path> paths;
-  for (std::size_t i = 0; i < names.size(); ++i) {
-    if (names[i].empty())
-      params::fail(field, "element " + std::to_string(i) + " is empty: every entry must be a tile name or file");
-    paths.push_back(resolve_ddm_tile(names[i], ctx));
+void append_ddm_tiles(const nlohmann::json& v, const std::string& field, bool list, const CommandContext& ctx,
+                      std::vector<std::string>& names, std::vector<std::filesystem::path>& paths) {
+  const std::vector<std::string> read = list ? params::Codec<std::vector<std::string>>::read(v, field)
+                                             : std::vector<std::string>{params::Codec<std::string>::read(v, field)};
+  for (std::size_t i = 0; i < read.size(); ++i) {
+    if (read[i].empty())
+      params::fail(field, list ? "element " + std::to_string(i) + " is empty: every entry must be a tile name or file"
+                               : std::string("must not be empty"));
+    paths.push_back(resolve_ddm_tile(read[i], ctx));
+    names.push_back(read[i]);
   }
-  return paths;
 }
 
 DdmTile load_ddm_tile(const std::string& name, const std::filesystem::path& path, const char* field, int up_axis) {

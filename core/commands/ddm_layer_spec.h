@@ -51,6 +51,10 @@ struct DdmLayerSpec {
 // ddm.paint's (every field optional, with the defaults above).
 const ParamSchema<DdmLayerSpec>& ddm_layer_schema(bool fill);
 
+// The "object" field of the commands that make a layer (ddm.fill, ddm.paint).
+inline constexpr const char* kDdmLayerObjectHelp =
+    "The object; tiles lie on its rest surface and ride on its deformation (FFD, DFFD, clip, incision)";
+
 // Tile i of a line's list (tiles / tile_paths, morph tiles): the resolved file when parse found one, else the name.
 std::string ddm_tile_file(const std::vector<std::string>& names, const std::vector<std::filesystem::path>& paths,
                           std::size_t i);
@@ -59,9 +63,11 @@ std::filesystem::path resolve_ddm_tile(const std::string& name, const CommandCon
 // Tiles from `first` on as a JSON array of ddm_tile_file's.
 nlohmann::json ddm_tile_files(const std::vector<std::string>& names, const std::vector<std::filesystem::path>& paths,
                               std::size_t first);
-// A line's list of tiles resolved one by one; throws CommandError (`field`) naming an empty entry.
-std::vector<std::filesystem::path> resolve_ddm_tiles(const std::vector<std::string>& names, const std::string& field,
-                                                     const CommandContext& ctx);
+// Reads a tile field of a line — one name (`list` false: a JSON string) or a JSON array of names — and appends each
+// name and its resolve_ddm_tile path to `names` / `paths` (tiles, morph tiles). Throws ParamError naming `field`: a
+// value of another type, an empty name, a file that resolve_ddm_tile refuses.
+void append_ddm_tiles(const nlohmann::json& v, const std::string& field, bool list, const CommandContext& ctx,
+                      std::vector<std::string>& names, std::vector<std::filesystem::path>& paths);
 
 // Loads a tile: a generated kind or a mesh file turned so that its axis `up_axis` (0 x, 1 y, 2 z) is w, made
 // canonical. Throws CommandError (`field`) on failure.

@@ -259,10 +259,7 @@ std::vector<DdmInstance> ddm_paint_cells(const Scene& scene, const SceneObject& 
 
 auto DdmPaintCommand::declare() -> Schema {
   return Schema("ddm.paint", "Paint (or erase) tiles of a layer with a brush stroke in the viewport (DDM, seed ch. 5)")
-      .field(
-          "object", &P::object,
-          {.required = true,
-           .help = "The object; tiles lie on its rest surface and ride on its deformation (FFD, DFFD, clip, incision)"})
+      .field("object", &P::object, {.required = true, .help = kDdmLayerObjectHelp})
       .field("layer", &P::layer,
              {.required = true,
               .help = "The layer painted on; a new one is made from the fields below (ddm.fill's, all optional)"})

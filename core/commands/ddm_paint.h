@@ -65,11 +65,8 @@ struct DdmPaintParams {
   std::optional<Camera> camera;  // the view the stroke was drawn in; unset = the scene's camera
 };
 
-class DdmPaintCommand : public ObjectSnapshotCommand<DdmPaintCommand, DdmPaintParams> {
- public:
+struct DdmPaintCommand : ObjectSnapshotCommand<DdmPaintCommand, DdmPaintParams> {
   static Schema declare();
-
- protected:
   std::optional<SceneObject> build(const Scene& scene) override;
 };
 

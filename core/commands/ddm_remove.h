@@ -15,11 +15,8 @@ struct DdmRemoveParams {
   std::string object, layer;
 };
 
-class DdmRemoveCommand : public ObjectSnapshotCommand<DdmRemoveCommand, DdmRemoveParams> {
- public:
+struct DdmRemoveCommand : ObjectSnapshotCommand<DdmRemoveCommand, DdmRemoveParams> {
   static Schema declare();
-
- protected:
   std::optional<SceneObject> build(const Scene& scene) override;
 };
 

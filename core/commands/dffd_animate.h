@@ -24,13 +24,8 @@
 
 namespace trispline::core {
 
-using DffdAnimateParams = KeyedWeightParams;  // keys: "stitch_keys"
-
-class DffdAnimateCommand : public ObjectSnapshotCommand<DffdAnimateCommand, DffdAnimateParams> {
- public:
+struct DffdAnimateCommand : ObjectSnapshotCommand<DffdAnimateCommand, KeyedWeightParams> {  // keys: "stitch_keys"
   static Schema declare();
-
- protected:
   std::optional<SceneObject> build(const Scene& scene) override;
 };
 

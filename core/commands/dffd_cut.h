@@ -26,11 +26,8 @@ struct DffdCutParams {
   double eps = 1e-6;  // parameter units: cut vertices at at ∓ eps
 };
 
-class DffdCutCommand : public ObjectSnapshotCommand<DffdCutCommand, DffdCutParams> {
- public:
+struct DffdCutCommand : ObjectSnapshotCommand<DffdCutCommand, DffdCutParams> {
   static Schema declare();
-
- protected:
   std::optional<SceneObject> build(const Scene& scene) override;
 };
 

@@ -42,11 +42,8 @@ struct DffdSplitParams {
 // The fields of dffd.split that configure the lattice (axis, w_axis, order, controls, kernel, …).
 const ParamSchema<GlobalDffdParams>& global_dffd_schema();
 
-class DffdSplitCommand : public ObjectSnapshotCommand<DffdSplitCommand, DffdSplitParams> {
- public:
+struct DffdSplitCommand : ObjectSnapshotCommand<DffdSplitCommand, DffdSplitParams> {
   static Schema declare();
-
- protected:
   std::optional<SceneObject> build(const Scene& scene) override;
 };
 

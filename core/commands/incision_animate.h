@@ -22,13 +22,9 @@
 
 namespace trispline::core {
 
-using IncisionAnimateParams = KeyedWeightParams;  // keys: "opening_keys"
-
-class IncisionAnimateCommand : public ObjectSnapshotCommand<IncisionAnimateCommand, IncisionAnimateParams> {
- public:
+struct IncisionAnimateCommand
+    : ObjectSnapshotCommand<IncisionAnimateCommand, KeyedWeightParams> {  // keys: "opening_keys"
   static Schema declare();
-
- protected:
   std::optional<SceneObject> build(const Scene& scene) override;
 };
 

@@ -14,27 +14,18 @@ const ParamSchema<IncisionParams>& incision_schema() {
   static const ParamSchema<I> s =
       ParamSchema<I>("incision", "The shape of an incision (seed §6.4, Eq. 6.2)")
           .field("width", &I::width,
-                 {.required = true,
-                  .range = ParamRange::above(0),
-                  .unit = "world units",
-                  .ui = {"Width", 0.0, "%.4g"},
-                  .object_size = ParamObjectSize{0.02, 0.0005, 0.5, 0.01},
-                  .help = "α: how far the cut pushes the surface apart to each side (the lattice spans ±width across "
-                          "the cut; Eq. 6.2)"})
+                 ParamSchema<I>::object_length("Width", {0.02, 0.0005, 0.5, 0.01},
+                                               "α: how far the cut pushes the surface apart to each side (the "
+                                               "lattice spans ±width across the cut; Eq. 6.2)",
+                                               true))
           .field("depth", &I::depth,
-                 {.required = true,
-                  .range = ParamRange::above(0),
-                  .unit = "world units",
-                  .ui = {"Depth", 0.0, "%.4g"},
-                  .object_size = ParamObjectSize{0.02, 0.0005, 0.5, 0.01},
-                  .help = "β: how deep below the surface the cut goes, along −N (Eq. 6.2)"})
+                 ParamSchema<I>::object_length("Depth", {0.02, 0.0005, 0.5, 0.01},
+                                               "β: how deep below the surface the cut goes, along −N (Eq. 6.2)", true))
           .field("opening", &I::opening,
-                 {.range = ParamRange::at_least(0),
-                  .unit = "world units",
-                  .ui = {"Opening", 0.0, "%.4g"},
-                  .object_size = ParamObjectSize{0.006, 0.0, 0.2, 0.01},
-                  .help = "Gap between the two cut faces at the surface, mid-stroke; it tapers to 0 at the cut's "
-                          "bottom and at both ends of the stroke (§6.4)"})
+                 ParamSchema<I>::object_length("Opening", {0.006, 0.0, 0.2, 0.01},
+                                               "Gap between the two cut faces at the surface, mid-stroke; it tapers "
+                                               "to 0 at the cut's bottom and at both ends of the stroke (§6.4)",
+                                               false, true))
           .field(
               "walls", &I::walls,
               {.ui = {"Walls"},

@@ -37,11 +37,8 @@ struct IncisionDrawParams {
 // The fields of incision.draw that shape the cut (width, depth, opening, walls, order, kernel, wall_rows).
 const ParamSchema<IncisionParams>& incision_schema();
 
-class IncisionDrawCommand : public ObjectSnapshotCommand<IncisionDrawCommand, IncisionDrawParams> {
- public:
+struct IncisionDrawCommand : ObjectSnapshotCommand<IncisionDrawCommand, IncisionDrawParams> {
   static Schema declare();
-
- protected:
   std::optional<SceneObject> build(const Scene& scene) override;
 };
 

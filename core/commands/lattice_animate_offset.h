@@ -19,12 +19,8 @@ struct LatticeAnimateOffsetParams {
   glm::dvec3 velocity{0.0};  // parameter units per second
 };
 
-class LatticeAnimateOffsetCommand
-    : public ObjectSnapshotCommand<LatticeAnimateOffsetCommand, LatticeAnimateOffsetParams> {
- public:
+struct LatticeAnimateOffsetCommand : ObjectSnapshotCommand<LatticeAnimateOffsetCommand, LatticeAnimateOffsetParams> {
   static Schema declare();
-
- protected:
   std::optional<SceneObject> build(const Scene& scene) override;
 };
 

@@ -16,13 +16,7 @@ auto LatticePressCommand::declare() -> Schema {
       .check([](const P& p) {
         if (p.path.empty()) params::fail("path", "expected a non-empty array of [x,y,z] sphere centres");
       })
-      .field("radius", &P::radius,
-             {.required = true,
-              .range = ParamRange::above(0),
-              .unit = "world units",
-              .ui = {"Radius", 0.0, "%.4g"},
-              .object_size = ParamObjectSize{0.1, 0.005, 0.5, 0.01},
-              .help = "Sphere radius"})
+      .field("radius", &P::radius, Schema::object_length("Radius", {0.1, 0.005, 0.5, 0.01}, "Sphere radius", true))
       .field("strength", &P::strength,
              {.required = true,
               .unit = "world units",

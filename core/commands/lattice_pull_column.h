@@ -19,11 +19,8 @@ struct LatticePullColumnParams {
   double distance = 0.0;    // world units along V_P
 };
 
-class LatticePullColumnCommand : public ObjectSnapshotCommand<LatticePullColumnCommand, LatticePullColumnParams> {
- public:
+struct LatticePullColumnCommand : ObjectSnapshotCommand<LatticePullColumnCommand, LatticePullColumnParams> {
   static Schema declare();
-
- protected:
   std::optional<SceneObject> build(const Scene& scene) override;
 };
 

@@ -38,11 +38,8 @@ struct LatticeRingParams {
   std::string up_axis = "y";
 };
 
-class LatticeRingCommand : public ObjectSnapshotCommand<LatticeRingCommand, LatticeRingParams> {
- public:
+struct LatticeRingCommand : ObjectSnapshotCommand<LatticeRingCommand, LatticeRingParams> {
   static Schema declare();
-
- protected:
   std::optional<SceneObject> build(const Scene& scene) override;
 };
 

@@ -19,11 +19,8 @@ struct LatticeSetPointParams {
   glm::dvec3 position{0.0};  // world units
 };
 
-class LatticeSetPointCommand : public ObjectSnapshotCommand<LatticeSetPointCommand, LatticeSetPointParams> {
- public:
+struct LatticeSetPointCommand : ObjectSnapshotCommand<LatticeSetPointCommand, LatticeSetPointParams> {
   static Schema declare();
-
- protected:
   std::optional<SceneObject> build(const Scene& scene) override;
 };
 

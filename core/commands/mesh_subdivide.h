@@ -28,11 +28,8 @@ struct MeshSubdivideParams {
   std::string scheme = "loop";
 };
 
-class MeshSubdivideCommand : public ObjectSnapshotCommand<MeshSubdivideCommand, MeshSubdivideParams> {
- public:
+struct MeshSubdivideCommand : ObjectSnapshotCommand<MeshSubdivideCommand, MeshSubdivideParams> {
   static Schema declare();
-
- protected:
   std::optional<SceneObject> build(const Scene& scene) override;
 };
 

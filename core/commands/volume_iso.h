@@ -31,11 +31,8 @@ struct VolumeIsoParams {
   std::optional<std::vector<VolumeLevelSpec>> levels;  // every level, the first the surface; unset = kept
 };
 
-class VolumeIsoCommand : public ObjectSnapshotCommand<VolumeIsoCommand, VolumeIsoParams, VolumeSnapshotCommand> {
- public:
+struct VolumeIsoCommand : ObjectSnapshotCommand<VolumeIsoCommand, VolumeIsoParams, VolumeSnapshotCommand> {
   static Schema declare();
-
- protected:
   std::optional<VolumeObject> build(const Scene& scene) override;
 };
 

@@ -12,12 +12,8 @@ struct VolumeRemoveParams {
   std::string object;
 };
 
-class VolumeRemoveCommand
-    : public ObjectSnapshotCommand<VolumeRemoveCommand, VolumeRemoveParams, VolumeSnapshotCommand> {
- public:
+struct VolumeRemoveCommand : ObjectSnapshotCommand<VolumeRemoveCommand, VolumeRemoveParams, VolumeSnapshotCommand> {
   static Schema declare();
-
- protected:
   std::optional<VolumeObject> build(const Scene& scene) override;
 };
 

@@ -27,12 +27,8 @@ struct VolumeRenderParams {
 // The transfer function a volume switched to dvr without one gets (see the header comment).
 TransferFunction default_transfer_function(const VolumeObject& volume);
 
-class VolumeRenderCommand
-    : public ObjectSnapshotCommand<VolumeRenderCommand, VolumeRenderParams, VolumeSnapshotCommand> {
- public:
+struct VolumeRenderCommand : ObjectSnapshotCommand<VolumeRenderCommand, VolumeRenderParams, VolumeSnapshotCommand> {
   static Schema declare();
-
- protected:
   std::optional<VolumeObject> build(const Scene& scene) override;
 };
 

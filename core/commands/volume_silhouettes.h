@@ -20,12 +20,9 @@ struct VolumeSilhouettesParams {
   double accuracy = 1e-7;
 };
 
-class VolumeSilhouettesCommand
-    : public ObjectSnapshotCommand<VolumeSilhouettesCommand, VolumeSilhouettesParams, VolumeSnapshotCommand> {
- public:
+struct VolumeSilhouettesCommand
+    : ObjectSnapshotCommand<VolumeSilhouettesCommand, VolumeSilhouettesParams, VolumeSnapshotCommand> {
   static Schema declare();
-
- protected:
   std::optional<VolumeObject> build(const Scene& scene) override;
 };
 

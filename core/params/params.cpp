@@ -122,14 +122,27 @@ bool Codec<bool>::read(const nlohmann::json& v, const std::string& field) {
   return v.get<bool>();
 }
 
+namespace {
+
+// A JSON array of exactly V::length() components, each read by `component` (as_number or as_int).
+template <class V, class Component>
+V read_components(const nlohmann::json& v, const std::string& field, const char* what, Component component) {
+  constexpr int n = V::length();
+  if (!v.is_array() || v.size() != std::size_t(n))
+    fail(field, "expected an array of " + std::to_string(n) + " " + what);
+  V out;
+  for (int i = 0; i < n; ++i) out[i] = component(v[std::size_t(i)], field);
+  return out;
+}
+
+}  // namespace
+
 glm::dvec2 Codec<glm::dvec2>::read(const nlohmann::json& v, const std::string& field) {
-  if (!v.is_array() || v.size() != 2) fail(field, "expected an array of 2 numbers");
-  return {as_number(v[0], field), as_number(v[1], field)};
+  return read_components<glm::dvec2>(v, field, "numbers", as_number);
 }
 
 glm::dvec3 Codec<glm::dvec3>::read(const nlohmann::json& v, const std::string& field) {
-  if (!v.is_array() || v.size() != 3) fail(field, "expected an array of 3 numbers");
-  return {as_number(v[0], field), as_number(v[1], field), as_number(v[2], field)};
+  return read_components<glm::dvec3>(v, field, "numbers", as_number);
 }
 
 glm::vec3 Codec<glm::vec3>::read(const nlohmann::json& v, const std::string& field) {
@@ -137,13 +150,11 @@ glm::vec3 Codec<glm::vec3>::read(const nlohmann::json& v, const std::string& fie
 }
 
 glm::ivec2 Codec<glm::ivec2>::read(const nlohmann::json& v, const std::string& field) {
-  if (!v.is_array() || v.size() != 2) fail(field, "expected an array of 2 integers");
-  return {as_int(v[0], field), as_int(v[1], field)};
+  return read_components<glm::ivec2>(v, field, "integers", as_int);
 }
 
 glm::ivec3 Codec<glm::ivec3>::read(const nlohmann::json& v, const std::string& field) {
-  if (!v.is_array() || v.size() != 3) fail(field, "expected an array of 3 integers");
-  return {as_int(v[0], field), as_int(v[1], field), as_int(v[2], field)};
+  return read_components<glm::ivec3>(v, field, "integers", as_int);
 }
 
 std::vector<glm::dvec2> Codec<std::vector<glm::dvec2>>::read(const nlohmann::json& v, const std::string& field) {

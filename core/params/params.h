@@ -172,6 +172,18 @@ class ParamSchema {
     std::string help;                            // one line, for the docs and the tooltip
   };
 
+  // The settings of a length in world units that a panel sizes to the object it works on (ParamObjectSize: fractions
+  // of the bounding-box diagonal, drag speed relative to the value): range (0, ∞), or [0, ∞) with `zero_allowed`.
+  static Spec object_length(std::string label, ParamObjectSize size, std::string help, bool required = false,
+                            bool zero_allowed = false) {
+    return {.required = required,
+            .range = zero_allowed ? ParamRange::at_least(0) : ParamRange::above(0),
+            .unit = "world units",
+            .ui = {std::move(label), 0.0, "%.4g"},
+            .object_size = size,
+            .help = std::move(help)};
+  }
+
   ParamSchema(std::string id, std::string summary) : id_(std::move(id)), summary_(std::move(summary)) {}
 
   const std::string& id() const { return id_; }
