@@ -4,6 +4,7 @@
 
 #include "ui/frame_timings.h"
 #include "ui/gui_probe.h"
+#include "ui/param_widgets.h"
 
 namespace trispline::ui {
 
@@ -37,16 +38,15 @@ bool ffd_backend_combo(core::FfdBackend& backend) {
         changed = true;
       }
       probe::item(std::string("menu.FFD evaluator.") + ffd_backend_label(b));
-      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", ffd_backend_tooltip(b));
+      tooltip(ffd_backend_tooltip(b));
       if (b == backend) ImGui::SetItemDefaultFocus();
     }
     ImGui::EndCombo();
   }
-  if (ImGui::IsItemHovered())
-    ImGui::SetTooltip(
-        "Which backend evaluates the deformed objects in the viewport. Nothing visible changes\n"
-        "between backends except speed (see the timing overlay, F7).\n\n%s",
-        ffd_backend_tooltip(backend));
+  tooltip((std::string("Which backend evaluates the deformed objects in the viewport. Nothing visible changes\n"
+                       "between backends except speed (see the timing overlay, F7).\n\n") +
+           ffd_backend_tooltip(backend))
+              .c_str());
   return changed;
 }
 
@@ -99,8 +99,7 @@ MenuAction draw_main_menu(ViewToggles& view, const MenuState& state) {
     ImGui::Separator();
     if (menu_item("Save Screenshot", "F12")) action = MenuAction::Screenshot;
     if (menu_item("Record animation...", "Ctrl+F12")) action = MenuAction::RecordAnimation;
-    if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("Render the timeline's frames to PNG/EXR images, an animated GLB and an MP4 (anim.record)");
+    tooltip("Render the timeline's frames to PNG/EXR images, an animated GLB and an MP4 (anim.record)");
     ImGui::Separator();
     if (menu_item("Quit", "Ctrl+Q")) action = MenuAction::Quit;
     end_menu(action != MenuAction::None || picked);
@@ -117,53 +116,46 @@ MenuAction draw_main_menu(ViewToggles& view, const MenuState& state) {
       // Blender's Solid / Material Preview; until picked, Material when the scene has textures (state says which).
       const bool material = state.material_shading;
       if (menu_item("Solid", nullptr, !material)) view.shading = gpu::Shading::solid, picked = true;
-      if (ImGui::IsItemHovered()) ImGui::SetTooltip("Every object in its colour, cut surfaces in its inside colour.");
+      tooltip("Every object in its colour, cut surfaces in its inside colour.");
       if (menu_item("Material", nullptr, material)) view.shading = gpu::Shading::material, picked = true;
-      if (ImGui::IsItemHovered())
-        ImGui::SetTooltip(
-            "Objects with materials (glTF, OBJ/MTL, ...) drawn with their textures, alpha cut-outs,\n"
-            "blending and normal maps; objects without one stay in their colour.");
+      tooltip(
+          "Objects with materials (glTF, OBJ/MTL, ...) drawn with their textures, alpha cut-outs,\n"
+          "blending and normal maps; objects without one stay in their colour.");
       end_menu(picked);
     }
     picked |= menu_item("Lattice", nullptr, &view.show_lattice);
     picked |= menu_item("Discontinuities", nullptr, &view.show_discontinuities);
-    if (ImGui::IsItemHovered())
-      ImGui::SetTooltip(
-          "C-1 breaks of discontinuous FFD lattices and of the incision preview's cut lattice:\n"
-          "the F- plane's control points in red-orange, F+ in cyan (coincident until opened),\n"
-          "for every DFFD object with Lattice on, else for the selected one.");
+    tooltip(
+        "C-1 breaks of discontinuous FFD lattices and of the incision preview's cut lattice:\n"
+        "the F- plane's control points in red-orange, F+ in cyan (coincident until opened),\n"
+        "for every DFFD object with Lattice on, else for the selected one.");
     picked |= menu_item("Contact surface", nullptr, &view.show_contact_surface);
     picked |= menu_item("Grid", nullptr, &view.show_grid);
     picked |= menu_item("Wireframe", nullptr, &view.wireframe);
     picked |= menu_item("Fast tiles", nullptr, &view.fast_tiles);
-    if (ImGui::IsItemHovered())
-      ImGui::SetTooltip(
-          "Large tile layers: leave out the tiles outside the view or facing away, and while the view\n"
-          "moves draw only a share of them (full detail within a quarter second of stopping).\n"
-          "Off: every tile in every frame, as replay and recordings draw them.");
+    tooltip(
+        "Large tile layers: leave out the tiles outside the view or facing away, and while the view\n"
+        "moves draw only a share of them (full detail within a quarter second of stopping).\n"
+        "Off: every tile in every frame, as replay and recordings draw them.");
     picked |= menu_item("Error bounds", nullptr, &view.show_error_bounds);
-    if (ImGui::IsItemHovered())
-      ImGui::SetTooltip(
-          "Colour the selected deformed object's triangles by their certified deformation-error bound\n"
-          "(how far the true deformed surface can be from the drawn triangle, world units; seed ch. 3),\n"
-          "with a legend; follows a Press drag live.");
+    tooltip(
+        "Colour the selected deformed object's triangles by their certified deformation-error bound\n"
+        "(how far the true deformed surface can be from the drawn triangle, world units; seed ch. 3),\n"
+        "with a legend; follows a Press drag live.");
     picked |= menu_item("Fold certificate", nullptr, &view.show_fold_certificate);
-    if (ImGui::IsItemHovered())
-      ImGui::SetTooltip(
-          "Draw the selected deformed object's lattice cells by their fold-free certificate:\n"
-          "green certified det J > 0, red folding (red points: where), grey undecided.");
+    tooltip(
+        "Draw the selected deformed object's lattice cells by their fold-free certificate:\n"
+        "green certified det J > 0, red folding (red points: where), grey undecided.");
     ImGui::Separator();
     picked |= menu_item("Timing overlay", "F7", &view.timing_overlay);
-    if (ImGui::IsItemHovered())
-      ImGui::SetTooltip(
-          "Frame time and FPS, FFD / render / UI pass times, FFD vertices per second, a 5 s graph\n"
-          "and the last command's time per stage, in the viewport's corner.");
+    tooltip(
+        "Frame time and FPS, FFD / render / UI pass times, FFD vertices per second, a 5 s graph\n"
+        "and the last command's time per stage, in the viewport's corner.");
     picked |= ffd_backend_combo(view.ffd_backend);
     picked |= menu_item("Play animation", "Space", &view.play_animation);
-    if (ImGui::IsItemHovered())
-      ImGui::SetTooltip(
-          "Play the timeline: the frame advances at the timeline's fps and loops at its end frame;\n"
-          "animated objects (keys, lattice.animate_offset, glTF clips) move.");
+    tooltip(
+        "Play the timeline: the frame advances at the timeline's fps and loops at its end frame;\n"
+        "animated objects (keys, lattice.animate_offset, glTF clips) move.");
     picked |= menu_item("Tool panel", nullptr, &view.show_tool_panel);
     picked |= menu_item("Scene & History panels", nullptr, &view.show_side_panels);
     picked |= menu_item("Log panel", nullptr, &view.show_log_panel);

@@ -377,20 +377,23 @@ void TimingOverlay::draw_graph(float width, float height) const {
       kGraphSeconds, now - best->time_s, f, e, d, v, u);
 }
 
-void TimingOverlay::draw(const Rect& viewport) const {
+bool begin_viewport_overlay(const char* id, float corner_x, float corner_y, float pivot_x, float pivot_y, float alpha) {
   constexpr int flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
                         ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
                         ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoMove;
-  ImGui::SetNextWindowPos(ImVec2(viewport.pos.x + 10, viewport.pos.y + 10));
-  ImGui::SetNextWindowBgAlpha(0.82f);  // readable over a white object as over the dark background
+  ImGui::SetNextWindowPos(ImVec2(corner_x, corner_y), ImGuiCond_Always, ImVec2(pivot_x, pivot_y));
+  ImGui::SetNextWindowBgAlpha(alpha);
   ImGui::PushStyleColor(ImGuiCol_WindowBg, IM_COL32(18, 18, 20, 255));
   ImGui::PushStyleColor(ImGuiCol_Text, IM_COL32(235, 235, 235, 255));
-  const bool open = ImGui::Begin("##timing_overlay", nullptr, flags);
+  const bool open = ImGui::Begin(id, nullptr, flags);
   ImGui::PopStyleColor(2);
-  if (!open) {
-    ImGui::End();
-    return;
-  }
+  if (!open) ImGui::End();
+  return open;
+}
+
+void TimingOverlay::draw(const Rect& viewport) const {
+  // Top-left; readable over a white object as over the dark background.
+  if (!begin_viewport_overlay("##timing_overlay", viewport.pos.x + 10, viewport.pos.y + 10, 0.0f, 0.0f, 0.82f)) return;
   ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + kGraphWidth);
   const Summary s = summary();
   draw_overlay_pass_rows(s);

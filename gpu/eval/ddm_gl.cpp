@@ -56,12 +56,6 @@ Buffer upload_array(GLenum target, const void* data, std::size_t bytes) {
   return b;
 }
 
-void vec3_attribute(GLuint location, GLuint buffer) {
-  glBindBuffer(GL_ARRAY_BUFFER, buffer);
-  glEnableVertexAttribArray(location);
-  glVertexAttribPointer(location, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
-}
-
 std::invalid_argument layer_error(const core::DdmLayer& layer, const std::string& what) {
   return std::invalid_argument("layer '" + layer.name + "': " + what);
 }
@@ -90,14 +84,12 @@ struct TileBuffers {
 void record_tile_vao(const TileBuffers& tile, GLuint vao, GLuint instances) {
   glBindVertexArray(vao);
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, tile.indices);
-  vec3_attribute(0, tile.positions);
-  vec3_attribute(1, tile.normals);
-  vec3_attribute(2, tile.morph_positions);
-  vec3_attribute(3, tile.morph_normals);
+  float_attribute(0, tile.positions, 3);
+  float_attribute(1, tile.normals, 3);
+  float_attribute(2, tile.morph_positions, 3);
+  float_attribute(3, tile.morph_normals, 3);
   if (tile.uvs) {
-    glBindBuffer(GL_ARRAY_BUFFER, tile.uvs);
-    glEnableVertexAttribArray(13);
-    glVertexAttribPointer(13, 2, GL_FLOAT, GL_FALSE, 2 * sizeof(float), nullptr);
+    float_attribute(13, tile.uvs, 2);
   }
   glBindBuffer(GL_ARRAY_BUFFER, instances);
   const GLsizei stride = sizeof(InstanceRecord);

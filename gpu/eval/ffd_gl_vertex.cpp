@@ -24,13 +24,9 @@ void GlslVertexFfdEvaluator::prepare_programs() {
 // Attribute 2 = params, attribute 1 = rest normals (a constant when bound without normals); attribute 0 unused.
 void GlslVertexFfdEvaluator::setup_vertex_array() {
   glBindVertexArray(vao_.id());
-  glBindBuffer(GL_ARRAY_BUFFER, params_.id());
-  glEnableVertexAttribArray(2);
-  glVertexAttribPointer(2, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
+  float_attribute(2, params_.id(), 3);
   if (normals_) {
-    glBindBuffer(GL_ARRAY_BUFFER, rest_normals_.id());
-    glEnableVertexAttribArray(1);
-    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
+    float_attribute(1, rest_normals_.id(), 3);
   } else {
     glDisableVertexAttribArray(1);
   }

@@ -1,58 +1,45 @@
 #include "gpu/gl/gl_resource.h"
 
+#include <iterator>
+
 namespace trispline::gpu::detail {
+
+namespace {
+
+// The glGen* / glDelete* pair of each GlKind, in the enum's order.
+struct GlObjectCalls {
+  void (*gen)(GLuint* id);
+  void (*del)(GLuint id);
+};
+constexpr GlObjectCalls kGlObjectCalls[] = {
+    {[](GLuint* id) { glGenBuffers(1, id); }, [](GLuint id) { glDeleteBuffers(1, &id); }},
+    {[](GLuint* id) { glGenVertexArrays(1, id); }, [](GLuint id) { glDeleteVertexArrays(1, &id); }},
+    {[](GLuint* id) { glGenTextures(1, id); }, [](GLuint id) { glDeleteTextures(1, &id); }},
+    {[](GLuint* id) { glGenRenderbuffers(1, id); }, [](GLuint id) { glDeleteRenderbuffers(1, &id); }},
+    {[](GLuint* id) { glGenFramebuffers(1, id); }, [](GLuint id) { glDeleteFramebuffers(1, &id); }},
+    {[](GLuint* id) { glGenQueries(1, id); }, [](GLuint id) { glDeleteQueries(1, &id); }},
+};
+static_assert(std::size(kGlObjectCalls) == std::size_t(GlKind::query) + 1, "one entry per GlKind");
+
+}  // namespace
 
 GLuint gen_gl_object(GlKind kind) {
   GLuint id = 0;
-  switch (kind) {
-    case GlKind::buffer:
-      glGenBuffers(1, &id);
-      break;
-    case GlKind::vertex_array:
-      glGenVertexArrays(1, &id);
-      break;
-    case GlKind::texture:
-      glGenTextures(1, &id);
-      break;
-    case GlKind::renderbuffer:
-      glGenRenderbuffers(1, &id);
-      break;
-    case GlKind::framebuffer:
-      glGenFramebuffers(1, &id);
-      break;
-    case GlKind::query:
-      glGenQueries(1, &id);
-      break;
-  }
+  kGlObjectCalls[std::size_t(kind)].gen(&id);
   return id;
 }
 
-void delete_gl_object(GlKind kind, GLuint id) {
-  switch (kind) {
-    case GlKind::buffer:
-      glDeleteBuffers(1, &id);
-      break;
-    case GlKind::vertex_array:
-      glDeleteVertexArrays(1, &id);
-      break;
-    case GlKind::texture:
-      glDeleteTextures(1, &id);
-      break;
-    case GlKind::renderbuffer:
-      glDeleteRenderbuffers(1, &id);
-      break;
-    case GlKind::framebuffer:
-      glDeleteFramebuffers(1, &id);
-      break;
-    case GlKind::query:
-      glDeleteQueries(1, &id);
-      break;
-  }
-}
+void delete_gl_object(GlKind kind, GLuint id) { kGlObjectCalls[std::size_t(kind)].del(id); }
 
 }  // namespace trispline::gpu::detail
 
 namespace trispline::gpu {
+
+void float_attribute(GLuint location, GLuint buffer, GLint components) {
+  glBindBuffer(GL_ARRAY_BUFFER, buffer);
+  glEnableVertexAttribArray(location);
+  glVertexAttribPointer(location, components, GL_FLOAT, GL_FALSE, GLsizei(components * sizeof(float)), nullptr);
+}
 
 GLint bind_complete_draw_framebuffer(Framebuffer& fbo, Renderbuffer& rb) {
   if (glCheckFramebufferStatus(GL_DRAW_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE) return -1;

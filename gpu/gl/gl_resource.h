@@ -59,4 +59,8 @@ using Query = GlHandle<GlKind::query>;
 GLint bind_complete_draw_framebuffer(Framebuffer& fbo, Renderbuffer& rb);
 void restore_draw_framebuffer(GLint previous);  // no-op for −1
 
+// Feeds vertex attribute `location` of the bound vertex array from `buffer`: `components` tightly packed floats a
+// vertex (the buffer stays bound to GL_ARRAY_BUFFER).
+void float_attribute(GLuint location, GLuint buffer, GLint components);
+
 }  // namespace trispline::gpu

@@ -92,14 +92,10 @@ void MeshBuffers::upload(const core::TriMesh& mesh) {
     }
   }
   glBindVertexArray(vao_.id());
-  glBindBuffer(GL_ARRAY_BUFFER, positions_.id());
+  float_attribute(0, positions_.id(), 3);
   glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(pos.size() * sizeof(float)), pos.data(), GL_DYNAMIC_DRAW);
-  glEnableVertexAttribArray(0);
-  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
-  glBindBuffer(GL_ARRAY_BUFFER, normals_.id());
+  float_attribute(1, normals_.id(), 3);
   glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(nrm.size() * sizeof(float)), nrm.data(), GL_DYNAMIC_DRAW);
-  glEnableVertexAttribArray(1);
-  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
   has_uvs_ = nv > 0 && mesh.uvs.size() == nv;
   if (has_uvs_) {
     std::vector<float> uv(nv * 2);
@@ -123,9 +119,7 @@ void MeshBuffers::upload(const core::TriMesh& mesh) {
 
 void MeshBuffers::bind_uvs_to_bound_vao() const {
   if (has_uvs_) {
-    glBindBuffer(GL_ARRAY_BUFFER, uvs_.id());
-    glEnableVertexAttribArray(3);
-    glVertexAttribPointer(3, 2, GL_FLOAT, GL_FALSE, 2 * sizeof(float), nullptr);
+    float_attribute(3, uvs_.id(), 2);
   } else {
     glDisableVertexAttribArray(3);
     glVertexAttrib2f(3, 0.0f, 0.0f);

@@ -14,23 +14,19 @@ std::string defines_text(const ShaderDefines& defines) {
   return s;
 }
 
-std::string shader_log(GLuint shader) {
+// A shader's or a program's info log (`get_iv` / `get_log`: glGetShaderiv and glGetShaderInfoLog, or the program's).
+std::string info_log(GLuint id, void (*get_iv)(GLuint, GLenum, GLint*),
+                     void (*get_log)(GLuint, GLsizei, GLsizei*, GLchar*)) {
   GLint len = 0;
-  glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &len);
+  get_iv(id, GL_INFO_LOG_LENGTH, &len);
   std::string log(std::size_t(std::max(len, 1)), '\0');
-  glGetShaderInfoLog(shader, len, nullptr, log.data());
+  get_log(id, len, nullptr, log.data());
   log.resize(std::string(log.c_str()).size());
   return log;
 }
 
-std::string program_log(GLuint program) {
-  GLint len = 0;
-  glGetProgramiv(program, GL_INFO_LOG_LENGTH, &len);
-  std::string log(std::size_t(std::max(len, 1)), '\0');
-  glGetProgramInfoLog(program, len, nullptr, log.data());
-  log.resize(std::string(log.c_str()).size());
-  return log;
-}
+std::string shader_log(GLuint shader) { return info_log(shader, glGetShaderiv, glGetShaderInfoLog); }
+std::string program_log(GLuint program) { return info_log(program, glGetProgramiv, glGetProgramInfoLog); }
 
 bool ends_with(std::string_view s, std::string_view suffix) {
   return s.size() >= suffix.size() && s.substr(s.size() - suffix.size()) == suffix;
