@@ -3,10 +3,30 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <cstdio>
+#include <string>
 
 #include "ui/theme.h"
 
 namespace trispline::ui {
+
+namespace {
+
+// `text` cut at a character boundary to fit `width` pixels, ending in "..." when cut ("" when not even that fits).
+std::string elided(const std::string& text, float width) {
+  if (ImGui::CalcTextSize(text.c_str()).x <= width) return text;
+  std::string cut = text;
+  while (!cut.empty()) {
+    // Drops the last character: its continuation bytes (10xxxxxx), then its lead byte.
+    while (!cut.empty() && (static_cast<unsigned char>(cut.back()) & 0xC0) == 0x80) cut.pop_back();
+    if (!cut.empty()) cut.pop_back();
+    const std::string shown = cut + "...";
+    if (ImGui::CalcTextSize(shown.c_str()).x <= width) return shown;
+  }
+  return {};
+}
+
+}  // namespace
 
 float status_bar_height() { return ImGui::GetFrameHeight() + 2.0f; }
 
@@ -21,16 +41,21 @@ void draw_status_bar(const StatusInfo& s) {
   const int flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoSavedSettings |
                     ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav;
   if (ImGui::Begin("##status_bar", nullptr, flags)) {
+    // The tool's hint is right-aligned and wins the room: the last command's text is cut ("…") before it.
+    const float hint_x = s.hint.empty() ? display.x : display.x - ImGui::CalcTextSize(s.hint.c_str()).x - 12;
     ImGui::Text("%s%s", s.document.c_str(), s.modified ? " *" : "");
     ImGui::SameLine(0, 24);
     ImGui::TextColored(colors::dim, "Objects %zu   Vertices %zu   Triangles %zu", s.objects, s.vertices, s.triangles);
     if (s.last_command_ms >= 0) {
       ImGui::SameLine(0, 24);
-      ImGui::TextColored(colors::dim, "Last: %s %.1f ms", s.last_command.c_str(), s.last_command_ms);
+      char ms[32];
+      std::snprintf(ms, sizeof ms, " %.1f ms", s.last_command_ms);
+      const std::string last = elided("Last: " + s.last_command + ms, hint_x - 24 - ImGui::GetCursorPosX());
+      ImGui::TextColored(colors::dim, "%s", last.c_str());
     }
     if (!s.hint.empty()) {
-      const float w = ImGui::CalcTextSize(s.hint.c_str()).x;
-      ImGui::SameLine(std::max(ImGui::GetCursorPosX() + 24, display.x - w - 12));
+      ImGui::SameLine(0, 24);
+      if (ImGui::GetCursorPosX() < hint_x) ImGui::SetCursorPosX(hint_x);
       ImGui::TextColored(colors::dim, "%s", s.hint.c_str());
     }
   }
