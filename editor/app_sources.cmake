@@ -17,6 +17,8 @@ set(TRISPLINE_EDITOR_APP_SOURCES
     tools/sketch_tool.cpp
     tools/press_tool.cpp
     tools/incision_tool.cpp
+    tools/tool.cpp
+    tools/keyed_weight_section.cpp
     tools/dffd_tool.cpp
     tools/ddm_paint_tool.cpp
     tools/ddm_paint_export.cpp

@@ -10,6 +10,7 @@
 #include "core/ffd/deformation_bounds.h"
 #include "core/ffd/ffd.h"
 #include "editor/replay/elapsed.h"
+#include "ui/overlays.h"
 
 namespace trispline::editor {
 
@@ -246,20 +247,9 @@ nlohmann::json GuaranteesView::probe() const {
 void GuaranteesView::draw_legend(const ui::Rect& viewport) const {
   if (!shown_) return;
   const Result& r = *shown_;
-  constexpr int flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
-                        ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
-                        ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoMove;
-  ImGui::SetNextWindowPos(ImVec2(viewport.pos.x + viewport.size.x - 10, viewport.pos.y + viewport.size.y - 10),
-                          ImGuiCond_Always, ImVec2(1.0f, 1.0f));
-  ImGui::SetNextWindowBgAlpha(0.85f);
-  ImGui::PushStyleColor(ImGuiCol_WindowBg, IM_COL32(18, 18, 20, 255));
-  ImGui::PushStyleColor(ImGuiCol_Text, IM_COL32(235, 235, 235, 255));
-  const bool open = ImGui::Begin("##guarantees_legend", nullptr, flags);
-  ImGui::PopStyleColor(2);
-  if (!open) {
-    ImGui::End();
+  if (!ui::begin_viewport_overlay("##guarantees_legend", viewport.pos.x + viewport.size.x - 10,
+                                  viewport.pos.y + viewport.size.y - 10, 1.0f, 1.0f, 0.85f))
     return;
-  }
   ImGui::Text("%s%s", r.input.object.c_str(), busy() ? "  (updating...)" : "");
   if (!r.error.empty()) ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.35f, 1.0f), "%s", r.error.c_str());
   if (r.corners) {

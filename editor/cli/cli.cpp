@@ -271,13 +271,20 @@ void print_bounds_table(const nlohmann::json& r, std::ostream& out) {
         << bench_fixed(100.0 * row["best_over_midpoint"].get<double>(), 0) << " %\n";
 }
 
+// A `trispline bench` subcommand: `name`, `description`, and --json (one JSON object instead of the table) into
+// `json`.
+CLI::App* bench_subcommand(CLI::App& bench, bool& json, const std::string& name, const std::string& description) {
+  CLI::App* cmd = bench.add_subcommand(name, description);
+  cmd->add_flag("--json", json, "Print one JSON object instead of a table");
+  return cmd;
+}
+
 // `trispline bench ffd`: FFD throughput of every evaluator backend on a mesh's vertices.
 void add_bench_ffd(CLI::App& bench, CliRequest& o) {
-  o.ffd_cmd = bench.add_subcommand(
-      "ffd",
+  o.ffd_cmd = bench_subcommand(
+      bench, o.ffd.json, "ffd",
       "FFD throughput of every evaluator backend (CPU reference/fast, GLSL compute/vertex) on the bunny "
       "subdivided to ~0.8 M vertices, 4^3 and 8^3 lattices, orders 3 and 4");
-  o.ffd_cmd->add_flag("--json", o.ffd.json, "Print one JSON object instead of a table");
   o.ffd_cmd
       ->add_option("--mesh", o.ffd.mesh_path,
                    "Benchmark this mesh's vertices instead (OBJ/PLY/OFF/STL/glTF; default: the bunny)")
@@ -297,11 +304,10 @@ void add_bench_ffd(CLI::App& bench, CliRequest& o) {
 
 // `trispline bench place`: place.sketch end to end, ms per stage, with and without the mass-spring contact surface.
 void add_bench_place(CLI::App& bench, CliRequest& o) {
-  o.place_cmd = bench.add_subcommand(
-      "place",
+  o.place_cmd = bench_subcommand(
+      bench, o.place.json, "place",
       "place.sketch end to end (stroke -> placed bunny over the teapot and the terrain), ms per stage, "
       "mass-spring contact surface on and off");
-  o.place_cmd->add_flag("--json", o.place.json, "Print one JSON object instead of a table");
   o.place_cmd->add_option("--runs", o.place.runs, "Timed runs per case after one warm-up; the median is reported")
       ->check(CLI::Range(1, 1000));
   o.place_cmd->add_option("--mesh", o.place.mesh_path, "Place this mesh instead of assets/data/bunny.obj")
@@ -318,9 +324,9 @@ void add_bench_place(CLI::App& bench, CliRequest& o) {
 
 // `trispline bench dffd`: discontinuous FFD per frame (split + cap + deform).
 void add_bench_dffd(CLI::App& bench, CliRequest& o) {
-  o.dffd_cmd = bench.add_subcommand(
-      "dffd", "Discontinuous FFD per frame: split + cap + deform of the bunny walking through bars (seed §6.3)");
-  o.dffd_cmd->add_flag("--json", o.dffd.json, "Print one JSON object instead of a table");
+  o.dffd_cmd = bench_subcommand(
+      bench, o.dffd.json, "dffd",
+      "Discontinuous FFD per frame: split + cap + deform of the bunny walking through bars (seed §6.3)");
   o.dffd_cmd->add_option("--scene", o.dffd.scene_path, "Scene log with an animated dffd.split object")
       ->default_str("assets/scenes/seed/bars_walk.jsonl");
   o.dffd_cmd->add_option("--runs", o.dffd.runs, "Timed evaluations per frame (median)")->check(CLI::PositiveNumber);
@@ -329,9 +335,9 @@ void add_bench_dffd(CLI::App& bench, CliRequest& o) {
 
 // `trispline bench ddm`: live DDM layers drawn by GPU instancing, GPU ms per frame.
 void add_bench_ddm(CLI::App& bench, CliRequest& o) {
-  o.ddm_cmd = bench.add_subcommand(
-      "ddm", "Live DDM layers drawn by GPU instancing: tile vertices, GPU ms per frame, fps (seed §5.3.2, Table 5.1)");
-  o.ddm_cmd->add_flag("--json", o.ddm.json, "Print one JSON object instead of a table");
+  o.ddm_cmd = bench_subcommand(
+      bench, o.ddm.json, "ddm",
+      "Live DDM layers drawn by GPU instancing: tile vertices, GPU ms per frame, fps (seed §5.3.2, Table 5.1)");
   o.ddm_cmd->add_option("--frames", o.ddm.frames, "Timed frames per case (after 2 warm-up frames)")
       ->check(CLI::PositiveNumber);
   o.ddm_cmd->add_option("--width", o.ddm.width, "Offscreen target width, pixels")->check(CLI::PositiveNumber);
@@ -348,11 +354,10 @@ void add_bench_ddm(CLI::App& bench, CliRequest& o) {
 
 // `trispline bench silhouettes`: silhouettes of a CT/MRI iso-surface, ms per view.
 void add_bench_silhouettes(CLI::App& bench, CliRequest& o) {
-  o.silhouettes_cmd = bench.add_subcommand(
-      "silhouettes",
-      "Silhouettes of a CT/MRI iso-surface (seed ch. 7): singleton preprocessing, then ms per view "
-      "around the volume (default: the Cranium CT at 226 HU, 36 views)");
-  o.silhouettes_cmd->add_flag("--json", o.silhouettes_json, "Print one JSON object instead of a table");
+  o.silhouettes_cmd =
+      bench_subcommand(bench, o.silhouettes_json, "silhouettes",
+                       "Silhouettes of a CT/MRI iso-surface (seed ch. 7): singleton preprocessing, then ms per view "
+                       "around the volume (default: the Cranium CT at 226 HU, 36 views)");
   o.silhouettes_cmd
       ->add_option("--volume", o.silhouettes.volume_path,
                    "Volume file (NIfTI, DICOM folder, .inv3) or analytic:sphere|torus|sines")
@@ -376,12 +381,11 @@ void add_bench_silhouettes(CLI::App& bench, CliRequest& o) {
 
 // `trispline bench editor`: the editor's frame times beside Blender's, and recording with a hidden volume.
 void add_bench_editor(CLI::App& bench, CliRequest& o) {
-  o.editor_bench_cmd = bench.add_subcommand(
-      "editor",
+  o.editor_bench_cmd = bench_subcommand(
+      bench, o.editor_bench_json, "editor",
       "The editor's frame times (idle, orbiting) on the default scene, a tiled teapot and a volume with silhouettes, "
       "beside Blender's viewport redraw of the same meshes, and the cost of recording with a hidden volume (needs X: "
       "tests/with_xvfb.sh 1280x800x24 ...)");
-  o.editor_bench_cmd->add_flag("--json", o.editor_bench_json, "Print one JSON object instead of a table");
   o.editor_bench_cmd->add_option("--frames", o.editor_bench.frames, "Idle and orbiting frames per scene")
       ->check(CLI::Range(1, 10000));
   o.editor_bench_cmd->add_option("--assets", o.editor_bench.assets, "The project's assets folder")
@@ -397,13 +401,12 @@ void add_bench_editor(CLI::App& bench, CliRequest& o) {
 
 // `trispline bench bounds`: the fold-free certificate, per-triangle error bounds, certified refinement.
 void add_bench_bounds(CLI::App& bench, CliRequest& o) {
-  o.bounds_cmd = bench.add_subcommand(
-      "bounds",
+  o.bounds_cmd = bench_subcommand(
+      bench, o.bounds_json, "bounds",
       "Guarantees: the fold-free certificate's time on 4^3, 8^3, 16^3 lattices (orders 3, 4) and a soundness "
       "sweep over random lattices against dense sampling of det J; per-triangle error bounds on the 836K-vertex "
       "bunny, their soundness and tightness against the measured error, certified refinement of the seed's "
       "cube");
-  o.bounds_cmd->add_flag("--json", o.bounds_json, "Print one JSON object instead of a table");
   o.bounds_cmd->add_option("--repeats", o.bounds.repeats, "Certificate timings: best of this many runs")
       ->check(CLI::Range(1, 1000));
   o.bounds_cmd->add_option("--lattices", o.bounds.lattices, "Random lattices in the soundness sweep")
@@ -417,11 +420,10 @@ void add_bench_bounds(CLI::App& bench, CliRequest& o) {
 
 // `trispline bench press`: a pressing drag on a ~1 M-vertex object.
 void add_bench_press(CLI::App& bench, CliRequest& o) {
-  o.press_cmd = bench.add_subcommand(
-      "press",
+  o.press_cmd = bench_subcommand(
+      bench, o.press.json, "press",
       "A pressing drag on a ~1 M-vertex object: Press tool per mouse move, pressed lattice, cpu_fast / GLSL "
       "re-evaluation per drag sample, and the lattice.press command at release");
-  o.press_cmd->add_flag("--json", o.press.json, "Print one JSON object instead of a table");
   o.press_cmd
       ->add_option("--vertices", o.press.vertices,
                    "Target vertex count: the bunny's subdivision level closest to it (default 1000000)")

@@ -11,6 +11,9 @@
 #include <memory>
 #include <sstream>
 
+#include "core/base/enum_names.h"
+#include "core/base/text.h"
+
 namespace trispline::editor {
 namespace {
 
@@ -22,25 +25,18 @@ std::string describe(const std::filesystem::path& file, int line, const std::str
 
 // What a path that is not a regular file is, for error messages.
 std::string describe_file_type(const std::filesystem::path& path) {
+  using T = std::filesystem::file_type;
   std::error_code ec;
-  switch (std::filesystem::status(path, ec).type()) {
-    case std::filesystem::file_type::not_found:
-      return "no such file";
-    case std::filesystem::file_type::directory:
-      return "it is a directory";
-    case std::filesystem::file_type::fifo:
-      return "it is a FIFO (named pipe)";
-    case std::filesystem::file_type::character:
-      return "it is a character device";
-    case std::filesystem::file_type::block:
-      return "it is a block device";
-    case std::filesystem::file_type::socket:
-      return "it is a socket";
-    case std::filesystem::file_type::regular:
-      return "a regular file";
-    default:
-      return ec ? ec.message() : "not a regular file";
-  }
+  const char* kind = core::code_name<T>(std::filesystem::status(path, ec).type(),
+                                        {{T::not_found, "no such file"},
+                                         {T::directory, "it is a directory"},
+                                         {T::fifo, "it is a FIFO (named pipe)"},
+                                         {T::character, "it is a character device"},
+                                         {T::block, "it is a block device"},
+                                         {T::socket, "it is a socket"},
+                                         {T::regular, "a regular file"}},
+                                        nullptr);
+  return kind ? kind : ec ? ec.message() : "not a regular file";
 }
 
 // "cmd" first, other keys in their (sorted) order: logs read naturally.
@@ -66,32 +62,13 @@ const LogLimits& log_limits() {
 }
 
 std::string utf8_error(std::string_view text) {
-  const auto* s = reinterpret_cast<const unsigned char*>(text.data());
-  const std::size_t n = text.size();
-  for (std::size_t i = 0; i < n;) {
-    const unsigned char c = s[i];
-    int extra = 0;
-    std::uint32_t min = 0, cp = 0;
-    if (c < 0x80) {
-      ++i;
-      continue;
-    } else if ((c & 0xE0) == 0xC0) {
-      extra = 1, min = 0x80, cp = c & 0x1F;
-    } else if ((c & 0xF0) == 0xE0) {
-      extra = 2, min = 0x800, cp = c & 0x0F;
-    } else if ((c & 0xF8) == 0xF0) {
-      extra = 3, min = 0x10000, cp = c & 0x07;
-    } else {
-      return "invalid UTF-8 at byte " + std::to_string(i + 1);
+  for (std::size_t i = 0; i < text.size();) {
+    const std::size_t len = core::utf8_sequence_length(text, i);
+    if (len == 0) {
+      const bool truncated = i + core::utf8_lead_length(static_cast<unsigned char>(text[i])) > text.size();
+      return "invalid UTF-8 at byte " + std::to_string(i + 1) + (truncated ? " (truncated sequence)" : "");
     }
-    if (i + extra >= n) return "invalid UTF-8 at byte " + std::to_string(i + 1) + " (truncated sequence)";
-    for (int k = 1; k <= extra; ++k) {
-      if ((s[i + k] & 0xC0) != 0x80) return "invalid UTF-8 at byte " + std::to_string(i + 1);
-      cp = (cp << 6) | (s[i + k] & 0x3F);
-    }
-    if (cp < min || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF))
-      return "invalid UTF-8 at byte " + std::to_string(i + 1) + " (overlong or not a character)";
-    i += std::size_t(extra) + 1;
+    i += len;
   }
   return {};
 }

@@ -62,6 +62,9 @@ class ScratchFolder {
 // The plan stored in DIR/farm.json, checked (parse_farm_plan), its dir the absolute DIR. Throws FarmPlanError naming
 // the key when it is not a usable plan, std::runtime_error when DIR holds no farm.json or it cannot be read.
 FarmPlan read_plan(const std::filesystem::path& dir);
+// read_plan for a farm subcommand: a plan that cannot be read is reported on `err` as "<who>: <why>" and gives
+// std::nullopt (the subcommand then exits with 2).
+std::optional<FarmPlan> read_plan_or_report(const std::filesystem::path& dir, std::ostream& err, const char* who);
 // Writes DIR/farm.json (temporary file, then renamed). Throws std::runtime_error when it cannot be written.
 void write_plan(const FarmPlan& plan);
 

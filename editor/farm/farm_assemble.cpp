@@ -219,15 +219,10 @@ int assemble_batch(const FarmPlan& plan, std::ostream& out, std::ostream& err) {
 }  // namespace
 
 int farm_assemble(const fs::path& dir, std::ostream& out, std::ostream& err) {
-  FarmPlan plan;
+  const std::optional<FarmPlan> plan = read_plan_or_report(dir, err, "farm assemble");
+  if (!plan) return 2;
   try {
-    plan = read_plan(dir);
-  } catch (const std::exception& e) {
-    err << "farm assemble: " << e.what() << "\n";
-    return 2;
-  }
-  try {
-    return plan.kind == "batch" ? assemble_batch(plan, out, err) : assemble_frames(plan, out, err);
+    return plan->kind == "batch" ? assemble_batch(*plan, out, err) : assemble_frames(*plan, out, err);
   } catch (const std::exception& e) {
     err << "farm assemble: " << e.what() << "\n";
     return 3;

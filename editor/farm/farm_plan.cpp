@@ -7,6 +7,7 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <utility>
 
 #include "core/commands/anim_record.h"
 
@@ -226,16 +227,12 @@ void check_frames_plan(const FarmPlan& p) {
   if (p.chunk < 1 || p.chunk > kFarmMaxFrame + 1)
     fail("chunk", "must be in [1, " + std::to_string(kFarmMaxFrame + 1) + "] frames, got " + std::to_string(p.chunk));
   if ((p.width == 0) != (p.height == 0)) fail("height", "width and height are both 0 or both given");
-  if (p.width < 0 || p.width > kFarmMaxSize)
-    fail("width", "must be 0 or in [1, 16384], got " + std::to_string(p.width));
-  if (p.height < 0 || p.height > kFarmMaxSize)
-    fail("height", "must be 0 or in [1, 16384], got " + std::to_string(p.height));
+  for (const auto& [key, size] : {std::pair{"width", p.width}, {"height", p.height}})
+    if (size < 0 || size > kFarmMaxSize) fail(key, "must be 0 or in [1, 16384], got " + std::to_string(size));
   if (const std::string problem = core::frame_budget_problem(p.width, p.height); !problem.empty())
     fail("width", problem);
-  if (p.frame_width < 1 || p.frame_width > kFarmMaxSize)
-    fail("frame_width", "must be in [1, 16384], got " + std::to_string(p.frame_width));
-  if (p.frame_height < 1 || p.frame_height > kFarmMaxSize)
-    fail("frame_height", "must be in [1, 16384], got " + std::to_string(p.frame_height));
+  for (const auto& [key, size] : {std::pair{"frame_width", p.frame_width}, {"frame_height", p.frame_height}})
+    if (size < 1 || size > kFarmMaxSize) fail(key, "must be in [1, 16384], got " + std::to_string(size));
   if (const std::string problem = core::frame_budget_problem(p.frame_width, p.frame_height); !problem.empty())
     fail("frame_width", problem);
   if (!std::isfinite(p.fps) || p.fps < 0.01 || p.fps > 240) fail("fps", "must be in [0.01, 240] frames per second");

@@ -96,6 +96,15 @@ void write_file_atomically(const fs::path& path, const std::string& text, bool e
   fs::rename(tmp, path);
 }
 
+std::optional<FarmPlan> read_plan_or_report(const fs::path& dir, std::ostream& err, const char* who) {
+  try {
+    return read_plan(dir);
+  } catch (const std::exception& e) {
+    err << who << ": " << e.what() << "\n";
+    return std::nullopt;
+  }
+}
+
 FarmPlan read_plan(const fs::path& dir_in) {
   const fs::path dir = fs::absolute(dir_in).lexically_normal();
   const fs::path path = dir / "farm.json";

@@ -43,13 +43,9 @@ int farm_task(const fs::path& dir, int index, std::ostream& out, std::ostream& e
     err << "farm task: the job script that started this task has ended (its pool was stopped)\n";
     return 1;
   }
-  FarmPlan plan;
-  try {
-    plan = read_plan(dir);
-  } catch (const std::exception& e) {
-    err << "farm task: " << e.what() << "\n";
-    return 2;
-  }
+  const std::optional<FarmPlan> read = read_plan_or_report(dir, err, "farm task");
+  if (!read) return 2;
+  const FarmPlan& plan = *read;
   if (index < 0 || index >= static_cast<int>(plan.tasks.size())) {
     err << "farm task: task " << index << " is not in the plan (tasks 0-" << plan.tasks.size() - 1 << ")\n";
     return 2;

@@ -149,55 +149,48 @@ void DdmPaintTool::handle_input(const ToolInput& in, ToolContext& ctx) {
   if (event == StrokeGesture::Event::Ended) commit(ctx);
 }
 
+const core::SceneObject* DdmPaintTool::target_or_refuse(ToolContext& ctx, bool existing_layer,
+                                                        const std::string& refusal) const {
+  const core::SceneObject* o = target(ctx);
+  if (o && !(existing_layer && new_layer(ctx))) return o;
+  ctx.session.messages().error(refusal);
+  return nullptr;
+}
+
 void DdmPaintTool::commit(ToolContext& ctx) {
   const std::vector<glm::dvec2> stroke = gesture_.take();
   if (stroke.empty()) return;
-  const core::SceneObject* o = target(ctx);
-  if (!o) {
-    ctx.session.messages().error("ddm.paint: choose the object to paint on (select it, or the Tool panel's Object)");
-    return;
-  }
+  const core::SceneObject* o =
+      target_or_refuse(ctx, false, "ddm.paint: choose the object to paint on (select it, or the Tool panel's Object)");
+  if (!o) return;
   const nlohmann::json line = ddm_paint_line(o->name, stroke, params_, erasing_, new_layer(ctx), gesture_.view());
-  EditorSession& session = ctx.session;  // outlives the deferred work; ctx may not
-  ctx.defer((erasing_ ? "Erasing tiles on " : "Painting tiles on ") + o->name, [&session, line]() {
-    session.execute(line);  // errors go to the Log panel; the scene stays as it was
-  });
+  ctx.execute_deferred((erasing_ ? "Erasing tiles on " : "Painting tiles on ") + o->name, line);
 }
 
 void DdmPaintTool::fill(ToolContext& ctx) {
-  const core::SceneObject* o = target(ctx);
-  if (!o) {
-    ctx.session.messages().error("ddm.fill: choose the object to fill (select it, or the Tool panel's Object)");
-    return;
-  }
+  const core::SceneObject* o =
+      target_or_refuse(ctx, false, "ddm.fill: choose the object to fill (select it, or the Tool panel's Object)");
+  if (!o) return;
   const nlohmann::json line = ddm_fill_line(o->name, params_);
   const std::string what = "Filling " + o->name + " with " + params_.paint.spec.tiles.front();
-  if (ctx.background) return ctx.background(line, what, "Fill");
-  EditorSession& session = ctx.session;
-  ctx.defer(what, [&session, line]() { session.execute(line); });
+  ctx.execute_long(line, what, "Fill");
 }
 
 void DdmPaintTool::bake(ToolContext& ctx) {
-  const core::SceneObject* o = target(ctx);
-  if (!o || new_layer(ctx)) {
-    ctx.session.messages().error("ddm.bake: paint or fill the layer '" + params_.paint.layer + "' first");
-    return;
-  }
+  const core::SceneObject* o =
+      target_or_refuse(ctx, true, "ddm.bake: paint or fill the layer '" + params_.paint.layer + "' first");
+  if (!o) return;
   const std::string name = ctx.session.scene().unique_name(o->name + "." + params_.paint.layer);
   const nlohmann::json line =
       core::DdmBakeCommand::schema().to_json({o->name, params_.paint.layer, name, std::nullopt});
   const std::string what = "Baking " + o->name + "/" + params_.paint.layer;
-  if (ctx.background) return ctx.background(line, what, "Bake");
-  EditorSession& session = ctx.session;
-  ctx.defer(what, [&session, line]() { session.execute(line); });
+  ctx.execute_long(line, what, "Bake");
 }
 
 void DdmPaintTool::remove_layer(ToolContext& ctx) {
-  const core::SceneObject* o = target(ctx);
-  if (!o || new_layer(ctx)) {
-    ctx.session.messages().error("ddm.remove: '" + params_.paint.layer + "' is not a layer of the selected object");
-    return;
-  }
+  const core::SceneObject* o =
+      target_or_refuse(ctx, true, "ddm.remove: '" + params_.paint.layer + "' is not a layer of the selected object");
+  if (!o) return;
   const nlohmann::json line = core::DdmRemoveCommand::schema().to_json({o->name, params_.paint.layer});
   ctx.session.execute(line);  // undoable; errors go to the Log panel
 }
@@ -584,9 +577,7 @@ void DdmPaintTool::draw_panel(ToolContext& ctx) {
         layers.push_back({l->name, l->tile_sources.empty() ? "" : l->tile_sources.front(), l->instances.size(),
                           l->mesh ? l->mesh->vertex_count() : 0, l->animated()});
     const ui::DdmAnimPanelResult r = ui::draw_ddm_anim_panel(anim_params_, anim_layer_, o ? o->name : "", layers);
-    if (r.line) {
-      ctx.defer("Animating tiles of " + o->name, [&session = ctx.session, line = *r.line]() { session.execute(line); });
-    }
+    if (r.line) ctx.execute_deferred("Animating tiles of " + o->name, *r.line);
   }
 
   ImGui::Spacing();

@@ -107,6 +107,9 @@ class DdmPaintTool : public Tool {
 
  private:
   const core::SceneObject* target(const ToolContext& ctx) const;
+  // target(), and with `existing_layer` only when the chosen layer is on it; else null, after `refusal` went to the
+  // Log panel as an error.
+  const core::SceneObject* target_or_refuse(ToolContext& ctx, bool existing_layer, const std::string& refusal) const;
   void follow_selection(const ToolContext& ctx);
   void commit(ToolContext& ctx);
   void draw_layer_combo(ToolContext& ctx, const core::SceneObject* o);

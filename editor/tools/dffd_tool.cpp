@@ -7,6 +7,7 @@
 #include "core/commands/dffd_animate.h"
 #include "editor/session/navigation.h"
 #include "editor/session/session.h"
+#include "editor/tools/keyed_weight_section.h"
 #include "editor/tools/select_tool.h"
 #include "ui/gui_probe.h"
 #include "ui/theme.h"
@@ -55,12 +56,15 @@ void DffdTool::split(ToolContext& ctx, const nlohmann::json& line) {
 }
 
 void DffdTool::draw_seam_section(ToolContext& ctx, const std::string& object) {
-  if (!ImGui::CollapsingHeader("Seam over time", ImGuiTreeNodeFlags_DefaultOpen)) return;
-  ui::probe::item("dffd_anim.header");
-  const core::Scene& scene = ctx.session.scene();
-  const core::SceneObject* sel = scene.find(object);
-  if (stitch_keys_.frame_to < 0)
-    stitch_keys_.frame_from = scene.timeline.frame_start, stitch_keys_.frame_to = scene.timeline.frame_end;
+  static const KeyedWeightSection section{
+      "Seam over time",
+      {"dffd_anim", "Stitch",
+       "0: the openings as the obstacles leave them (capped); 1: stitched behind them at the level w_s (seed section "
+       "6.3.2); other values extrapolate",
+       "Key the seam at the two frames (one undoable dffd.animate); it plays with the walk",
+       "Remove the keys: the seam as the split built it"},
+      "Animating the seam of "};
+  const core::SceneObject* sel = ctx.session.scene().find(object);
   std::string unavailable;
   if (!sel)
     unavailable = "select an object split by Split (DFFD)";
@@ -70,21 +74,8 @@ void DffdTool::draw_seam_section(ToolContext& ctx, const std::string& object) {
     unavailable = "'" + sel->name +
                   "' was split with open openings (no caps): split it "
                   "with openings cap or stitch to key its seam";
-  const ui::KeyPairSpec spec{"dffd_anim", "Stitch",
-                             "0: the openings as the obstacles leave them (capped); 1: stitched behind them at the "
-                             "level w_s (seed section 6.3.2); other values extrapolate",
-                             "Key the seam at the two frames (one undoable dffd.animate); it plays with the walk",
-                             "Remove the keys: the seam as the split built it"};
   const bool keyed = sel && sel->dffd && !sel->dffd->stitch_keys.empty();
-  const ui::KeyPairResult k = ui::draw_key_pair_panel(stitch_keys_, spec, unavailable, keyed);
-  if (!k.animate && !k.clear) return;
-  core::DffdAnimateParams a;
-  a.object = sel->name;
-  a.clear = k.clear;
-  if (k.animate) a.keys = ui::key_pair_keys(stitch_keys_), a.interpolation = stitch_keys_.interpolation;
-  const nlohmann::json line = core::DffdAnimateCommand::schema().to_json(a);
-  EditorSession& session = ctx.session;
-  ctx.defer("Animating the seam of " + sel->name, [&session, line]() { session.execute(line); });
+  draw_keyed_weight_section(ctx, section, core::DffdAnimateCommand::schema(), stitch_keys_, sel, unavailable, keyed);
 }
 
 void DffdTool::draw_panel(ToolContext& ctx) {

@@ -9,6 +9,7 @@
 #include "editor/commands/command_registry.h"
 #include "editor/session/navigation.h"
 #include "editor/session/session.h"
+#include "editor/tools/keyed_weight_section.h"
 #include "editor/tools/select_tool.h"
 #include "ui/gui_probe.h"
 #include "ui/number_field.h"
@@ -182,18 +183,12 @@ void IncisionTool::commit(ToolContext& ctx) {
     if (!session.execute(line)) return;  // errors go to the Log panel; the scene stays as it was
     const History& h = session.history();
     last_object_ = name, last_stroke_ = stroke, last_view_ = view, last_typed_ = typed;
-    last_applied_ = h.applied();
-    last_command_ = &h.at(h.applied() - 1);
+    last_step_.mark(h);
   });
 }
 
 bool IncisionTool::last_is_top(const History& h) const {
-  if (!last_command_ || h.applied() != last_applied_ || h.applied() == 0) return false;
-  const core::Command& top = h.at(h.applied() - 1);
-  if (&top != last_command_ || top.id() != "incision.draw") return false;
-  // The address alone could be a new command reusing freed memory: check the content too.
-  const nlohmann::json j = top.to_json();
-  return j.value("object", "") == last_object_ && j.contains("stroke") && j["stroke"].size() == last_stroke_.size();
+  return last_step_.is_top(h, "incision.draw", last_object_, last_stroke_.size());
 }
 
 bool IncisionTool::rerun_last(ToolContext& ctx) {
@@ -215,8 +210,7 @@ bool IncisionTool::rerun_last(ToolContext& ctx) {
     }
     last_typed_ = typed_[last_object_];
     const History& h = s.history();
-    last_applied_ = h.applied();
-    last_command_ = &h.at(h.applied() - 1);
+    last_step_.mark(h);
   });
   return true;
 }
@@ -273,36 +267,23 @@ void IncisionTool::draw_panel(ToolContext& ctx) {
   ui::param_widget(schema, "kernel", params_);
 
   ImGui::Spacing();
-  if (ImGui::CollapsingHeader("Opening over time", ImGuiTreeNodeFlags_DefaultOpen)) {
-    ui::probe::item("incision_anim.header");
-    const core::Scene& scene = ctx.session.scene();
-    if (opening_keys_.frame_to < 0)
-      opening_keys_.frame_from = scene.timeline.frame_start, opening_keys_.frame_to = scene.timeline.frame_end;
-    std::string unavailable;
-    if (!sel)
-      unavailable = "select an object cut by an incision";
-    else if (!sel->morph)
-      unavailable = "'" + sel->name + "' has no incision: cut one first (drag across it)";
-    else if (sel->ffd || sel->dffd)
-      unavailable = "'" + sel->name + "' is deformed; key the opening before placing it";
-    const ui::KeyPairSpec spec{"incision_anim", "Opening",
-                               "Fraction of the opening as drawn: 0 closed (the cut faces touch), 1 as drawn; other "
-                               "values extrapolate",
-                               "Key the incision's opening at the two frames (one undoable incision.animate); press "
-                               "Space to play it",
-                               "Remove the keys: the incision shows fully open"};
-    const bool keyed = sel && sel->morph && (sel->morph->animated() || sel->morph->weight_at(0.0) != 1.0);
-    const ui::KeyPairResult r = ui::draw_key_pair_panel(opening_keys_, spec, unavailable, keyed);
-    if (r.animate || r.clear) {
-      core::IncisionAnimateParams a;
-      a.object = sel->name;
-      a.clear = r.clear;
-      if (r.animate) a.keys = ui::key_pair_keys(opening_keys_), a.interpolation = opening_keys_.interpolation;
-      const nlohmann::json line = core::IncisionAnimateCommand::schema().to_json(a);
-      EditorSession& session = ctx.session;
-      ctx.defer("Animating the incision of " + sel->name, [&session, line]() { session.execute(line); });
-    }
-  }
+  static const KeyedWeightSection section{
+      "Opening over time",
+      {"incision_anim", "Opening",
+       "Fraction of the opening as drawn: 0 closed (the cut faces touch), 1 as drawn; other values extrapolate",
+       "Key the incision's opening at the two frames (one undoable incision.animate); press Space to play it",
+       "Remove the keys: the incision shows fully open"},
+      "Animating the incision of "};
+  std::string unavailable;
+  if (!sel)
+    unavailable = "select an object cut by an incision";
+  else if (!sel->morph)
+    unavailable = "'" + sel->name + "' has no incision: cut one first (drag across it)";
+  else if (sel->ffd || sel->dffd)
+    unavailable = "'" + sel->name + "' is deformed; key the opening before placing it";
+  const bool keyed = sel && sel->morph && (sel->morph->animated() || sel->morph->weight_at(0.0) != 1.0);
+  draw_keyed_weight_section(ctx, section, core::IncisionAnimateCommand::schema(), opening_keys_, sel, unavailable,
+                            keyed);
   ImGui::Separator();
   if (gesture_.drawing() && !preview_error_.empty())
     ImGui::TextColored(ui::colors::warning, "Preview: %s", preview_error_.c_str());

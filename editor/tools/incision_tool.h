@@ -22,6 +22,7 @@
 #include "core/incision/incision.h"
 #include "core/raycast/ray_caster.h"
 #include "editor/commands/history.h"
+#include "editor/tools/last_step.h"
 #include "editor/tools/stroke_gesture.h"
 #include "editor/tools/tool.h"
 #include "ui/key_pair_panel.h"
@@ -95,8 +96,7 @@ class IncisionTool : public Tool {
   std::vector<glm::dvec2> last_stroke_;
   core::Camera last_view_;
   TypedSizes last_typed_;  // the sizes typed for last_object_ when that cut was made
-  const core::Command* last_command_ = nullptr;
-  std::size_t last_applied_ = 0;
+  LastStep last_step_;
 
   core::IncisionParams params_ = incision_tool_defaults();
   ui::KeyPairParams opening_keys_{1, -1, 0.0, 1.0, "smooth"};  // frame_to < 0: the timeline's end when first shown

@@ -202,8 +202,7 @@ void PressTool::commit(ToolContext& ctx) {
   p.radius = radius(ctx);
   p.strength = signed_strength(ctx);
   const nlohmann::json line = lattice_press_line(p);
-  EditorSession& session = ctx.session;  // outlives the deferred work; ctx may not
-  ctx.defer((pull_ ? "Pulling " : "Pressing ") + object_, [&session, line]() { session.execute(line); });
+  ctx.execute_deferred((pull_ ? "Pulling " : "Pressing ") + object_, line);
 }
 
 void PressTool::follow_object(const std::string& name) {

@@ -107,9 +107,7 @@ void SelectTool::draw_ring_section(ToolContext& ctx, const core::SceneObject& o)
   for (const char* field : {"center", "radius", "twist_deg", "phase", "controls"})
     ui::param_widget(schema, field, ring_);
   if (ImGui::Button("Bind to ring")) {
-    const nlohmann::json line = schema.to_json(ring_);
-    EditorSession& session = ctx.session;
-    ctx.defer("Binding " + o.name + " to a ring", [&session, line]() { session.execute(line); });
+    ctx.execute_deferred("Binding " + o.name + " to a ring", schema.to_json(ring_));
   }
   ui::probe::item("select.ring.bind");
   ui::tooltip(

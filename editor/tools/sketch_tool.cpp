@@ -60,18 +60,12 @@ void SketchTool::place(ToolContext& ctx, std::vector<glm::dvec2> stroke, const c
     last_view_ = view;
     last_ignore_ = ignore;
     last_object_ = object;
-    last_applied_ = h.applied();
-    last_command_ = &h.at(h.applied() - 1);
+    last_step_.mark(h);
   });
 }
 
 bool SketchTool::last_is_top(const History& h) const {
-  if (!last_command_ || h.applied() != last_applied_ || h.applied() == 0) return false;
-  const core::Command& top = h.at(h.applied() - 1);
-  if (&top != last_command_ || top.id() != "place.sketch") return false;
-  // The address alone could be a new command reusing freed memory: check the content too.
-  const nlohmann::json j = top.to_json();
-  return j.value("object", "") == last_object_ && j.contains("stroke") && j["stroke"].size() == last_stroke_.size();
+  return last_step_.is_top(h, "place.sketch", last_object_, last_stroke_.size());
 }
 
 void SketchTool::replace_last(ToolContext& ctx) {
@@ -93,8 +87,7 @@ void SketchTool::replace_last(ToolContext& ctx) {
       return;
     }
     History& h = s.history();
-    last_applied_ = h.applied();
-    last_command_ = &h.at(h.applied() - 1);
+    last_step_.mark(h);
   });
 }
 
@@ -124,8 +117,7 @@ void SketchTool::adopt_top(const ToolContext& ctx) {
   params_ = p;
   params_.object = object;
   panel_ = ui::PlacementPanelState::from(p);
-  last_applied_ = h.applied();
-  last_command_ = &top;
+  last_step_.mark(h);
 }
 
 void SketchTool::apply_object_sizes(const ToolContext& ctx) {

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "editor/commands/history.h"
+#include "editor/tools/last_step.h"
 #include "editor/tools/stroke_gesture.h"
 #include "editor/tools/tool.h"
 #include "ui/placement_panel.h"
@@ -68,8 +69,7 @@ class SketchTool : public Tool {
   core::Camera last_view_;
   std::vector<std::string> last_ignore_;
   std::string last_object_;
-  const void* last_command_ = nullptr;  // identity of the History entry it produced
-  std::size_t last_applied_ = 0;
+  LastStep last_step_;
   const void* adopt_checked_ = nullptr;  // top command adopt_top() examined last
 };
 

@@ -46,6 +46,12 @@ struct ToolContext {
   std::function<void(std::string title, std::string extension, std::string name,
                      std::function<void(const std::filesystem::path&)> chosen)>
       save_file;
+
+  // Executes `line` after one frame showing "Working… <what>": one undoable step; a refused line leaves the scene as
+  // it was and the Log panel says why.
+  void execute_deferred(std::string what, nlohmann::json line) const;
+  // A long line (ddm.fill, ddm.bake) behind `background`'s progress bar, or execute_deferred when there is none.
+  void execute_long(nlohmann::json line, std::string what, const std::string& verb) const;
 };
 
 class Tool {
