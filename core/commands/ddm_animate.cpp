@@ -13,9 +13,13 @@ namespace {
 using P = DdmAnimateParams;
 using AnimateField = ParamSchema<P>::Field;
 
-// "morph_tile" (one tile) or "morph_tiles" (a non-empty list, one per layer tile).
+// "morph_tile" (one tile; "" removes the layer's morph) or "morph_tiles" (a non-empty list, one per layer tile).
 void read_morph(const AnimateField& f, const nlohmann::json& v, P& p, const CommandContext& ctx) {
   p.morph.emplace(), p.morph_paths.clear();
+  if (v.is_string() && v.get<std::string>().empty() && f.doc.name == "morph_tile") {
+    p.morph->push_back(""), p.morph_paths.emplace_back();
+    return;
+  }
   append_ddm_tiles(v, f.doc.name, f.doc.name == "morph_tiles", ctx, *p.morph, p.morph_paths);
   if (p.morph->empty()) params::fail(f.doc.name, "expected a list of tiles, one per layer tile");
 }

@@ -155,7 +155,6 @@ TEST(DdmAnimate, BadInputIsRefusedAndTheSceneIsUnchanged) {
     return trispline::test::command_field_of<DdmAnimateCommand>(s, json::parse(line));
   };
   EXPECT_EQ(field_of(R"({"cmd":"ddm.animate","object":"pot","layer":"t","morph_tile":"chain"})"), "morph_tile");
-  EXPECT_EQ(field_of(R"({"cmd":"ddm.animate","object":"pot","layer":"t","morph_tile":""})"), "morph_tile");
   EXPECT_EQ(field_of(R"({"cmd":"ddm.animate","object":"pot","layer":"t","morph_tiles":[]})"), "morph_tiles");
   EXPECT_EQ(field_of(R"({"cmd":"ddm.animate","object":"pot","layer":"t","morph_tiles":["flower",""]})"), "morph_tiles");
   EXPECT_EQ(field_of(R"({"cmd":"ddm.animate","object":"pot","layer":"t","alpha_keys":[[1,0],[9,1]]})"), "alpha_keys");
