@@ -94,9 +94,9 @@ class TimingOverlay {
 };
 
 // Begins a borderless, auto-sized overlay window `id` ("##timing_overlay") over the viewport, dark with light text so
-// that it reads over any object: its `pivot` corner ((0,0) top-left … (1,1) bottom-right) at `corner_px` (window
-// pixels), `alpha` its background's opacity. False when there is nothing to draw (the window is already ended);
-// otherwise end it with ImGui::End().
+// that it reads over any object: its corner (`pivot_x`, `pivot_y`) — (0,0) top-left … (1,1) bottom-right — at
+// (`corner_x`, `corner_y`) in window pixels, `alpha` its background's opacity. False when there is nothing to draw (the
+// window is already ended); otherwise end it with ImGui::End().
 bool begin_viewport_overlay(const char* id, float corner_x, float corner_y, float pivot_x, float pivot_y, float alpha);
 
 // Dims the whole window and shows `text` ("Working...: placing bunny") in a centred box.

@@ -3,9 +3,9 @@
 #include <imgui.h>
 
 #include <algorithm>
-#include <cstdio>
 #include <string>
 
+#include "core/base/text.h"
 #include "ui/theme.h"
 
 namespace trispline::ui {
@@ -41,16 +41,16 @@ void draw_status_bar(const StatusInfo& s) {
   const int flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoSavedSettings |
                     ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav;
   if (ImGui::Begin("##status_bar", nullptr, flags)) {
-    // The tool's hint is right-aligned and wins the room: the last command's text is cut ("…") before it.
-    const float hint_x = s.hint.empty() ? display.x : display.x - ImGui::CalcTextSize(s.hint.c_str()).x - 12;
+    // The tool's hint is right-aligned and wins the room: the last command's text is cut ("...") before it.
+    const float hint_x = display.x - (s.hint.empty() ? 0.0f : ImGui::CalcTextSize(s.hint.c_str()).x + 12);
+    const float last_end = s.hint.empty() ? display.x - 8 : hint_x - 24;
     ImGui::Text("%s%s", s.document.c_str(), s.modified ? " *" : "");
     ImGui::SameLine(0, 24);
     ImGui::TextColored(colors::dim, "Objects %zu   Vertices %zu   Triangles %zu", s.objects, s.vertices, s.triangles);
     if (s.last_command_ms >= 0) {
       ImGui::SameLine(0, 24);
-      char ms[32];
-      std::snprintf(ms, sizeof ms, " %.1f ms", s.last_command_ms);
-      const std::string last = elided("Last: " + s.last_command + ms, hint_x - 24 - ImGui::GetCursorPosX());
+      const std::string last = elided("Last: " + s.last_command + core::printf_string(" %.1f ms", s.last_command_ms),
+                                      last_end - ImGui::GetCursorPosX());
       ImGui::TextColored(colors::dim, "%s", last.c_str());
     }
     if (!s.hint.empty()) {

@@ -64,8 +64,8 @@ std::filesystem::path resolve_ddm_tile(const std::string& name, const CommandCon
 nlohmann::json ddm_tile_files(const std::vector<std::string>& names, const std::vector<std::filesystem::path>& paths,
                               std::size_t first);
 // Reads a tile field of a line — one name (`list` false: a JSON string) or a JSON array of names — and appends each
-// name and its resolve_ddm_tile path to `names` / `paths` (tiles, morph tiles). Throws ParamError naming `field`: a
-// value of another type, an empty name, a file that resolve_ddm_tile refuses.
+// name and its resolve_ddm_tile path to `names` / `paths` (tiles, morph tiles). Throws CommandError naming `field`
+// (params::fail): a value of another type, or an empty name.
 void append_ddm_tiles(const nlohmann::json& v, const std::string& field, bool list, const CommandContext& ctx,
                       std::vector<std::string>& names, std::vector<std::filesystem::path>& paths);
 

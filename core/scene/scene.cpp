@@ -204,7 +204,8 @@ Scene scene_with_posed_clips(const Scene& scene, double time_s) {
 
 namespace {
 
-// The scene's two named lists (objects, volumes): found by name, kept in order; `kind` names the item in errors.
+// The scene's two named lists (objects, volumes): found by name, kept in order; take_named / replace_named's `kind`
+// names the item in their errors ("no volume named …").
 template <class T>
 int index_in(const std::vector<T>& list, const std::string& name) {
   for (std::size_t i = 0; i < list.size(); ++i)

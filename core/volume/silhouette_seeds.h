@@ -467,22 +467,22 @@ inline void seed_cell(const Problem& pb, int a, int b, int c, int subdivision, b
     for (int m = 1; m < n; ++m) mn = std::min(mn, q[m]), mx = std::max(mx, q[m]);
     return mn <= iso && iso <= mx;
   };
-  // The coefficients of sub-interval i of `axis` (restricted; the whole cell when s = 1), and whether they can hold
-  // the iso-level (the sub-cell is skipped when not).
-  auto part = [&](int i, const double* from, double* to, int axis) {
+  // The coefficients of sub-interval i of `axis` (restricted; the whole cell when s = 1), and — when `test` — whether
+  // they can hold the iso-level (the sub-cell is skipped when not).
+  auto part = [&](int i, const double* from, double* to, int axis, bool test) {
     if (s > 1)
       bezier_cell::apply<K>(restrict[i], from, to, axis);
     else
       std::copy(from, from + n, to);
-    return holds_iso(to);
+    return !test || holds_iso(to);
   };
   double zslab[n], yrow[n], sub[n];
   for (int sz = 0; sz < s; ++sz) {
-    if (!part(sz, bez, zslab, 2) && s > 1) continue;
+    if (!part(sz, bez, zslab, 2, s > 1)) continue;
     for (int sy = 0; sy < s; ++sy) {
-      if (!part(sy, zslab, yrow, 1) && s > 1) continue;
+      if (!part(sy, zslab, yrow, 1, s > 1)) continue;
       for (int sx = 0; sx < s; ++sx) {
-        if (!part(sx, yrow, sub, 0)) continue;
+        if (!part(sx, yrow, sub, 0, true)) continue;
         const glm::dvec3 centre = origin + glm::dvec3(sx + 0.5, sy + 0.5, sz + 0.5) * h;
         if (s > 1 && !dot_range_holds_zero<K>(sub, centre, pb.view)) continue;
         if (seed(centre)) return;

@@ -63,12 +63,20 @@ const LogLimits& log_limits() {
 
 std::string utf8_error(std::string_view text) {
   for (std::size_t i = 0; i < text.size();) {
-    const std::size_t len = core::utf8_sequence_length(text, i);
-    if (len == 0) {
-      const bool truncated = i + core::utf8_lead_length(static_cast<unsigned char>(text[i])) > text.size();
-      return "invalid UTF-8 at byte " + std::to_string(i + 1) + (truncated ? " (truncated sequence)" : "");
+    if (const std::size_t len = core::utf8_sequence_length(text, i)) {
+      i += len;
+      continue;
     }
-    i += len;
+    // Why not: the length the lead byte's bit pattern announces (110xxxxx 2, 1110xxxx 3, 11110xxx 4), then the bytes
+    // that follow; a sequence of that shape that is still not well-formed is overlong, a surrogate or > U+10FFFF.
+    const auto c = static_cast<unsigned char>(text[i]);
+    const std::size_t shape = (c & 0xE0) == 0xC0 ? 2 : (c & 0xF0) == 0xE0 ? 3 : (c & 0xF8) == 0xF0 ? 4 : 0;
+    const std::string at = "invalid UTF-8 at byte " + std::to_string(i + 1);
+    if (shape == 0) return at;
+    if (i + shape > text.size()) return at + " (truncated sequence)";
+    for (std::size_t k = 1; k < shape; ++k)
+      if ((static_cast<unsigned char>(text[i + k]) & 0xC0) != 0x80) return at;
+    return at + " (overlong or not a character)";
   }
   return {};
 }

@@ -135,6 +135,11 @@ TEST(HostileLogText, InvalidUtf8IsFoundAtItsByte) {
   EXPECT_NE(editor::utf8_error("a\xc3"), "");         // truncated
   EXPECT_NE(editor::utf8_error("\xc0\xaf"), "");      // overlong '/'
   EXPECT_NE(editor::utf8_error("\xed\xa0\x80"), "");  // a UTF-16 surrogate
+  EXPECT_EQ(editor::utf8_error("a\xc3"), "invalid UTF-8 at byte 2 (truncated sequence)");
+  EXPECT_EQ(editor::utf8_error("\xc0\xaf"), "invalid UTF-8 at byte 1 (overlong or not a character)");
+  EXPECT_EQ(editor::utf8_error("x\xed\xa0\x80"), "invalid UTF-8 at byte 2 (overlong or not a character)");
+  EXPECT_EQ(editor::utf8_error("\xf4\x90\x80\x80"), "invalid UTF-8 at byte 1 (overlong or not a character)");
+  EXPECT_EQ(editor::utf8_error("\xe2\x28\xa1"), "invalid UTF-8 at byte 1");  // not a continuation byte
 }
 
 TEST(HostileLogText, PathsThatAreNotRegularFilesAreNamed) {

@@ -175,6 +175,9 @@ TEST(DdmAnimate, BadInputIsRefusedAndTheSceneIsUnchanged) {
   EXPECT_EQ(field_of(R"({"cmd":"ddm.animate","object":"pot","layer":"t","morph_tile":"flower","alpha":1.5})"),
             "(accepted)");
   EXPECT_DOUBLE_EQ(s.find("pot")->ddm_layers.at(0)->alpha_at(3.0), 1.5);
+  // "morph_tile":"" removes the morph (the Tile Paint tool's "(none)").
+  EXPECT_EQ(field_of(R"({"cmd":"ddm.animate","object":"pot","layer":"t","morph_tile":"","alpha":0})"), "(accepted)");
+  EXPECT_TRUE(s.find("pot")->ddm_layers.at(0)->morph_tiles.empty());
 }
 
 }  // namespace ddm_animate_test
