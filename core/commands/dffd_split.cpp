@@ -299,8 +299,12 @@ std::optional<SceneObject> DffdSplitCommand::build(const Scene& scene) {
   check_cleared(a, p, p_.object);
   SceneObject out = *object;
   out.dffd = a.rig;
+  const std::size_t plain_triangles = a.mesh.triangle_count();
   out.world_mesh = std::make_shared<const TriMesh>(std::move(a.mesh));
+  if (out.inside_textured()) out.refresh();  // caps with vertices of their own for the inside texture
   stats_ = dffd_split_report(a, out, rest, inside_before, rounds, p, interior, build_ms, eval_ms);
+  if (out.inside_textured())  // the caps refined for the inside texture (cap_triangles counts them unrefined)
+    stats_["textured_cap_triangles"] = out.world_mesh->triangle_count() - (plain_triangles - a.st.cap_triangles);
   return out;
 }
 

@@ -6,10 +6,9 @@
 namespace trispline::core {
 namespace {
 
-using P = VolumeRenderParams;
-using RenderField = ParamSchema<P>::Field;
+using RenderField = ParamSchema<VolumeRenderParams>::Field;
 
-void read_transfer(const RenderField&, const nlohmann::json& v, P& p, const CommandContext&) {
+void read_transfer(const RenderField&, const nlohmann::json& v, VolumeRenderParams& p, const CommandContext&) {
   if (!v.is_array()) params::fail("transfer", "expected a list of [value, r, g, b, a] points");
   if (v.size() > std::size_t(kMaxTransferPoints))
     params::fail("transfer",
@@ -26,7 +25,7 @@ void read_transfer(const RenderField&, const nlohmann::json& v, P& p, const Comm
   p.transfer = std::move(tf);
 }
 
-void write_transfer(const RenderField&, const P& p, nlohmann::json& line) {
+void write_transfer(const RenderField&, const VolumeRenderParams& p, nlohmann::json& line) {
   if (!p.transfer) return;
   nlohmann::json out = nlohmann::json::array();
   for (const TransferPoint& t : p.transfer->points) out.push_back({t.value, t.rgba.x, t.rgba.y, t.rgba.z, t.rgba.w});

@@ -10,6 +10,7 @@
 #include <deque>
 #include <stdexcept>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "core/mesh/planar_triangulation.h"
@@ -193,9 +194,128 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> weld_cut_vertices(const std
   return rep;
 }
 
+// Textured caps: every vertex `caps` use is copied (ascending by the vertex copied), the copy carrying the cap's
+// planar uv (CapTexturing), and `caps` re-indexed to the copies.
+void give_caps_own_vertices(MeshSplit& split, std::vector<Tri>& caps, int axis, const glm::dvec3& uv_per_param,
+                            const glm::dvec3& plane_normal) {
+  TriMesh& mesh = split.mesh;
+  const std::size_t nv = mesh.vertex_count();
+  std::vector<std::uint32_t> used;
+  used.reserve(caps.size() * 3);
+  for (const Tri& t : caps) used.insert(used.end(), t.begin(), t.end());
+  std::sort(used.begin(), used.end());
+  used.erase(std::unique(used.begin(), used.end()), used.end());
+  const int a = (axis + 1) % 3, b = (axis + 2) % 3;
+  if (mesh.uvs.empty()) mesh.uvs.assign(nv, glm::dvec2(0.0));
+  const bool normals = !mesh.normals.empty();
+  const std::size_t total = nv + used.size();
+  mesh.positions.reserve(total);
+  mesh.uvs.reserve(total);
+  if (normals) mesh.normals.reserve(total);
+  split.params.reserve(total);
+  split.side.reserve(total);
+  for (std::uint32_t v : used) {
+    mesh.positions.push_back(mesh.positions[v]);
+    if (normals)
+      mesh.normals.push_back(plane_normal == glm::dvec3(0.0) ? mesh.normals[v]
+                                                             : (split.side[v] < 0 ? plane_normal : -plane_normal));
+    const glm::dvec3 p = split.params[v];
+    mesh.uvs.emplace_back(p[a] * uv_per_param[a], p[b] * uv_per_param[b]);
+    split.params.push_back(p);
+    split.side.push_back(split.side[v]);
+  }
+  for (Tri& t : caps)
+    for (std::uint32_t& v : t)
+      v = static_cast<std::uint32_t>(nv + (std::lower_bound(used.begin(), used.end(), v) - used.begin()));
+}
+
+// Red-green refinement of the textured caps' inner edges longer than max_edge (in-plane parameter units, the larger of
+// the two differences); the loop's edges (used by one cap triangle) are kept. New vertices are appended in the order
+// their edges are first met (triangle order, edge order): deterministic.
+void refine_caps(MeshSplit& split, std::vector<Tri>& caps, int axis, double max_edge) {
+  constexpr int kMaxLevels = 16;
+  constexpr std::size_t kMaxCapTriangles = std::size_t(4) << 20;
+  TriMesh& mesh = split.mesh;
+  const int a = (axis + 1) % 3, b = (axis + 2) % 3;
+  const bool normals = !mesh.normals.empty();
+  auto key = [](std::uint32_t x, std::uint32_t y) {
+    return (static_cast<std::uint64_t>(std::min(x, y)) << 32) | std::max(x, y);
+  };
+  for (int level = 0; level < kMaxLevels && caps.size() < kMaxCapTriangles / 4; ++level) {
+    std::vector<std::uint64_t> uses;
+    uses.reserve(caps.size() * 3);
+    for (const Tri& t : caps)
+      for (int e = 0; e < 3; ++e) uses.push_back(key(t[e], t[(e + 1) % 3]));
+    std::sort(uses.begin(), uses.end());
+    auto inner = [&](std::uint64_t k) {
+      const auto r = std::equal_range(uses.begin(), uses.end(), k);
+      return r.second - r.first >= 2;
+    };
+    auto too_long = [&](std::uint32_t x, std::uint32_t y) {
+      const glm::dvec3 d = split.params[x] - split.params[y];
+      return std::max(std::abs(d[a]), std::abs(d[b])) > max_edge;
+    };
+    std::unordered_map<std::uint64_t, std::uint32_t>
+        mids;  // edge key → its midpoint vertex (looked up, never iterated)
+    auto midpoint = [&](std::uint32_t x, std::uint32_t y) -> std::uint32_t {
+      const auto [it, fresh] = mids.try_emplace(key(x, y), static_cast<std::uint32_t>(mesh.positions.size()));
+      if (!fresh) return it->second;
+      const std::uint32_t v = it->second;
+      mesh.positions.push_back(0.5 * (mesh.positions[x] + mesh.positions[y]));
+      if (normals) mesh.normals.push_back(mesh.normals[x]);
+      mesh.uvs.push_back(0.5 * (mesh.uvs[x] + mesh.uvs[y]));
+      split.params.push_back(0.5 * (split.params[x] + split.params[y]));
+      split.side.push_back(split.side[x]);
+      return v;
+    };
+    std::vector<Tri> out;
+    out.reserve(caps.size() * 2);
+    bool any = false;
+    for (const Tri& t : caps) {
+      std::array<std::int64_t, 3> m{-1, -1, -1};  // midpoint of edge e = (t[e], t[e+1])
+      int split_edges = 0;
+      for (int e = 0; e < 3; ++e) {
+        const std::uint32_t x = t[e], y = t[(e + 1) % 3];
+        if (too_long(x, y) && inner(key(x, y))) m[e] = midpoint(x, y), ++split_edges;
+      }
+      if (split_edges == 0) {
+        out.push_back(t);
+        continue;
+      }
+      any = true;
+      if (split_edges == 3) {
+        const auto m0 = std::uint32_t(m[0]), m1 = std::uint32_t(m[1]), m2 = std::uint32_t(m[2]);
+        out.push_back({t[0], m0, m2});
+        out.push_back({m0, t[1], m1});
+        out.push_back({m2, m1, t[2]});
+        out.push_back({m0, m1, m2});
+        continue;
+      }
+      // Rotate so that edge 0 is split (and, with two, edge 1 too or edge 2 too).
+      int r = 0;
+      while (m[r] < 0) ++r;
+      if (split_edges == 2 && m[(r + 2) % 3] >= 0) r = (r + 2) % 3;  // the run of split edges starts at r
+      const std::uint32_t v0 = t[r], v1 = t[(r + 1) % 3], v2 = t[(r + 2) % 3];
+      const auto m0 = std::uint32_t(m[r]);
+      if (split_edges == 1) {
+        out.push_back({v0, m0, v2});
+        out.push_back({m0, v1, v2});
+      } else {
+        const auto m1 = std::uint32_t(m[(r + 1) % 3]);
+        out.push_back({v0, m0, v2});
+        out.push_back({m0, v1, m1});
+        out.push_back({m0, m1, v2});
+      }
+    }
+    caps = std::move(out);
+    if (!any) break;
+  }
+}
+
 }  // namespace
 
-CapStats cap_split_openings(MeshSplit& split, int axis, double u0, double eps, MaterialSlot material) {
+CapStats cap_split_openings(MeshSplit& split, int axis, double u0, double eps, MaterialSlot material,
+                            const CapTexturing& texturing) {
   TriMesh& mesh = split.mesh;
   const std::size_t nv = mesh.vertex_count(), nf = mesh.triangle_count();
   if (axis < 0 || axis > 2)
@@ -217,6 +337,17 @@ CapStats cap_split_openings(MeshSplit& split, int axis, double u0, double eps, M
   }
   for (std::uint32_t v : split.cut_vertices)
     if (v >= nv) throw std::invalid_argument("cap_split_openings: cut vertex " + std::to_string(v) + " ≥ #V");
+  if (texturing.enabled()) {
+    const glm::dvec3& s = texturing.uv_per_param;
+    if (!std::isfinite(s.x) || !std::isfinite(s.y) || !std::isfinite(s.z))
+      throw std::invalid_argument("cap_split_openings: texture repeats per parameter unit are not finite");
+    if (!std::isfinite(texturing.max_edge) || texturing.max_edge < 0.0)
+      throw std::invalid_argument("cap_split_openings: max_edge must be finite and ≥ 0");
+    if (!mesh.uvs.empty() && mesh.uvs.size() != nv)
+      throw std::invalid_argument("cap_split_openings: uvs must be empty or #V");
+    if (!mesh.normals.empty() && mesh.normals.size() != nv)
+      throw std::invalid_argument("cap_split_openings: normals must be empty or #V");
+  }
 
   // Cut vertices of this split: side s ∈ {−1, +1} and params[axis] = u0 + s·eps. Only the triangles the split
   // touched can hold two of them (every other triangle lies strictly on one side), so only those are scanned.
@@ -311,6 +442,10 @@ CapStats cap_split_openings(MeshSplit& split, int axis, double u0, double eps, M
     caps.insert(caps.end(), side.tris.begin(), side.tris.end());
   }
   if (caps.empty()) return stats;
+  if (texturing.enabled()) {
+    give_caps_own_vertices(split, caps, axis, texturing.uv_per_param, texturing.plane_normals[axis]);
+    if (texturing.max_edge > 0.0) refine_caps(split, caps, axis, texturing.max_edge);
+  }
   if (mesh.face_material.empty()) mesh.face_material.assign(mesh.triangles.size(), kMaterialSurface);
   for (const Tri& t : caps) {
     mesh.triangles.emplace_back(t[0], t[1], t[2]);

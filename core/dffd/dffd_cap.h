@@ -5,8 +5,9 @@
 // the planar cross-section loops of the (closed) mesh at u = u_i; they are triangulated, holes included, by CGAL's
 // constrained Delaunay triangulation (CGAL 5.5, Debian libcgal-dev: Constrained_Delaunay_triangulation_2 with exact
 // predicates, faces marked inside by nesting depth), so each side becomes a closed 2-manifold without adding
-// vertices. Because the embedding is affine with det > 0, the loops are planar in rest space too and the
-// orientation found in parameter space is that of the mesh.
+// vertices (unless the caps are textured, CapTexturing: then they get vertices of their own, at the same points).
+// Because the embedding is affine with det > 0, the loops are planar in rest space too and the orientation found in
+// parameter space is that of the mesh.
 #pragma once
 
 #include <cstddef>
@@ -24,8 +25,27 @@ struct CapStats {
   std::size_t fan_loops = 0;    // degenerate loops (touching / crossing others in the plane) closed by a fan
 };
 
-// Appends cap triangles to split.mesh (no vertices are added; split.params / split.side unchanged) for the cut
-// params[·][axis] = u0 made by split_mesh_at_parameter(…, axis, u0, eps):
+// Texture coordinates of the caps (an object's inside texture, SceneObject::inside_texture; seed Fig. 6.9's
+// wood-textured caps). A cap lies in the discontinuity plane params[axis] = u0, so its natural map is the plane's own
+// two parameter coordinates: uv = (params[a]·uv_per_param[a], params[b]·uv_per_param[b]) with a = (axis+1) mod 3,
+// b = (axis+2) mod 3. uv_per_param: texture repeats per parameter unit along u, v, w (the world length of a parameter
+// unit ÷ the world size of one repeat; cap_texturing() in dffd_rig.h). All zero: untextured caps.
+// max_edge > 0 also refines the textured caps inside: cap edges longer than max_edge parameter units (the larger of
+// their two in-plane parameter differences) that are not on the section's loop are halved, level after level, so the
+// FFD bends the cap with the lattice instead of spanning it with long flat triangles (cap_texturing() takes one
+// knot span).
+// plane_normals: column k is the unit rest-space normal of the planes u_k = const, towards growing u_k (the
+// embedding's gradient of u_k); non-zero, the cap copies get it as their normal (minus side +, plus side −), so a
+// viewer that shades by vertex normals lights the caps as flat faces. Zero: the surface's normals are copied.
+struct CapTexturing {
+  glm::dvec3 uv_per_param{0.0};
+  double max_edge = 0.0;
+  glm::dmat3 plane_normals{0.0};
+  bool enabled() const { return uv_per_param != glm::dvec3(0.0); }
+};
+
+// Appends cap triangles to split.mesh (untextured: no vertices are added; split.params / split.side unchanged) for the
+// cut params[·][axis] = u0 made by split_mesh_at_parameter(…, axis, u0, eps):
 //  * cut vertices are the split's split.cut_vertices with |params[v][axis] − (u0 ∓ eps)| ≤ 1e-9 on side ∓1, and
 //    only the triangles it touched (split.touched) are scanned: O(cut) work, not O(#F), however large the mesh;
 //  * cut vertices of one side at the same point of the section (within 1e-9 in the two other parameter
@@ -47,9 +67,19 @@ struct CapStats {
 // loop exactly (the reversed boundary half-edge once, every other cap half-edge paired); loops that fail are left out
 // of a second triangulation and closed by a fan from their first vertex instead (counted in fan_loops), so a closed
 // mesh always gets closed sides (no vertex is ever added to the mesh).
-// Deterministic: the same input gives the same triangles in the same order. Throws std::invalid_argument: bad axis,
-// params.size() != #V, side.size() != #V, a touched triangle ≥ #F or with an index ≥ #V, a cut vertex ≥ #V,
-// face_material neither empty nor #F; `split` is then unchanged.
-CapStats cap_split_openings(MeshSplit& split, int axis, double u0, double eps, MaterialSlot material = kMaterialInside);
+// Textured (texturing.enabled()): every vertex the caps use gets a copy appended to the mesh (ascending by the
+// vertex it copies; position, normal, params and side copied, so it deforms to the same point bit for bit), with the
+// uv above; the cap triangles use the copies. uvs are filled with (0, 0) for the other vertices when the mesh had none.
+// Each side is then closed geometrically (its caps meet the surface at the same points) but not topologically; the
+// cap copies' normals are ±plane_normals[axis] (or the surface's, see above). With max_edge > 0 the caps' inner edges
+// are then split at their midpoints (red-green refinement: a triangle with 1, 2 or 3 split edges becomes 2, 3 or 4; the
+// loop's edges are never split, so the caps still meet the surface at its own points), new vertices interpolating
+// position, params and uv (exact: the section is planar and the embedding affine), in a fixed order (deterministic); at
+// most 16 levels and 4 M cap triangles. Deterministic: the same input gives the same triangles in the same order.
+// Throws std::invalid_argument: bad axis, params.size() != #V, side.size() != #V, a touched triangle ≥ #F or with an
+// index ≥ #V, a cut vertex ≥ #V, face_material neither empty nor #F, uvs / normals neither empty nor #V, non-finite
+// uv_per_param; `split` is then unchanged.
+CapStats cap_split_openings(MeshSplit& split, int axis, double u0, double eps, MaterialSlot material = kMaterialInside,
+                            const CapTexturing& texturing = {});
 
 }  // namespace trispline::core

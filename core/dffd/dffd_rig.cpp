@@ -50,7 +50,7 @@ std::shared_ptr<const DffdRig> dffd_rig_at(const std::shared_ptr<const DffdRig>&
 }
 
 void dffd_split(const DffdRig& rig, const TriMesh& rest_world, const glm::dvec3& offset, MeshSplit& out,
-                DffdApplyStats* stats) {
+                DffdApplyStats* stats, const CapTexturing& texturing) {
   const std::size_t nv = rest_world.vertex_count();
   if (rig.params.size() != nv)
     throw std::invalid_argument("dffd_apply: the rig has " + std::to_string(rig.params.size()) + " parameters for " +
@@ -112,7 +112,7 @@ void dffd_split(const DffdRig& rig, const TriMesh& rest_world, const glm::dvec3&
     detail::split_in_place_unchecked(out, d.axis, d.u0, rig.eps);
     st.cut_edges += out.cut_edges;
     if (rig.openings != DffdOpenings::open && !out.touched.empty()) {
-      const CapStats cs = cap_split_openings(out, d.axis, d.u0, rig.eps, kMaterialInside);
+      const CapStats cs = cap_split_openings(out, d.axis, d.u0, rig.eps, kMaterialInside, texturing);
       st.cap_loops += cs.loops;
       st.open_chains += cs.open_chains;
       st.cap_triangles += cs.triangles;
@@ -121,9 +121,10 @@ void dffd_split(const DffdRig& rig, const TriMesh& rest_world, const glm::dvec3&
   if (stats) *stats = st;
 }
 
-MeshSplit dffd_split(const DffdRig& rig, const TriMesh& rest_world, const glm::dvec3& offset, DffdApplyStats* stats) {
+MeshSplit dffd_split(const DffdRig& rig, const TriMesh& rest_world, const glm::dvec3& offset, DffdApplyStats* stats,
+                     const CapTexturing& texturing) {
   MeshSplit split;
-  dffd_split(rig, rest_world, offset, split, stats);
+  dffd_split(rig, rest_world, offset, split, stats, texturing);
   return split;
 }
 
@@ -151,17 +152,35 @@ void dffd_deform(const DffdRig& rig, MeshSplit& split, TriMesh& out, DffdApplySt
   if (stats) stats->outside_vertices = outside;
 }
 
-TriMesh dffd_apply(const DffdRig& rig, const TriMesh& rest_world, const glm::dvec3& offset, DffdApplyStats* stats) {
+TriMesh dffd_apply(const DffdRig& rig, const TriMesh& rest_world, const glm::dvec3& offset, DffdApplyStats* stats,
+                   const CapTexturing& texturing) {
   DffdFrameEvaluator evaluator;
-  evaluator.evaluate(rig, rest_world, offset, stats);
+  evaluator.evaluate(rig, rest_world, offset, stats, texturing);
   return evaluator.take();
 }
 
+CapTexturing cap_texturing(const DffdRig& rig, double texture_size) {
+  if (!std::isfinite(texture_size) || texture_size <= 0.0)
+    throw std::invalid_argument("cap_texturing: the texture size must be finite and > 0");
+  const double det = glm::determinant(rig.embedding.linear);
+  if (!std::isfinite(det) || det == 0.0) throw std::invalid_argument("cap_texturing: the embedding is singular");
+  const glm::dmat3 inverse = glm::inverse(rig.embedding.linear);  // columns: world vectors of the parameter units
+  CapTexturing t;
+  for (int k = 0; k < 3; ++k) t.uv_per_param[k] = glm::length(inverse[k]) / texture_size;
+  // The planes u_k = const: normals along the gradient of u_k (row k of the embedding's linear part).
+  const glm::dmat3 rows = glm::transpose(rig.embedding.linear);
+  for (int k = 0; k < 3; ++k) t.plane_normals[k] = glm::normalize(rows[k]);
+  // The shortest uniform knot span: the cap bends with the lattice.
+  const glm::ivec3 spans = rig.lattice.control_counts() - rig.lattice.orders() + 1;
+  t.max_edge = 1.0 / std::max({spans.x, spans.y, spans.z, 1});
+  return t;
+}
+
 const TriMesh& DffdFrameEvaluator::evaluate(const DffdRig& rig, const TriMesh& rest_world, const glm::dvec3& offset,
-                                            DffdApplyStats* stats) {
+                                            DffdApplyStats* stats, const CapTexturing& texturing) {
   if (!rig.identity_outside) {  // the overlap below is written for the global DFFD's identity-outside map
     DffdApplyStats st;
-    dffd_split(rig, rest_world, offset, split_, &st);
+    dffd_split(rig, rest_world, offset, split_, &st, texturing);
     dffd_deform(rig, split_, mesh_, &st);
     if (stats) *stats = st;
     return mesh_;
@@ -193,7 +212,7 @@ const TriMesh& DffdFrameEvaluator::evaluate(const DffdRig& rig, const TriMesh& r
   });
   DffdApplyStats st;
   try {
-    dffd_split(rig, rest_world, offset, split_, &st);
+    dffd_split(rig, rest_world, offset, split_, &st, texturing);
   } catch (...) {
     deform_inputs.wait();
     throw;

@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "core/dffd/dffd.h"
+#include "core/dffd/dffd_cap.h"
 #include "core/ffd/ffd.h"
 #include "core/mesh/tri_mesh.h"
 #include "core/spline/keyframes.h"
@@ -93,13 +94,13 @@ struct DffdApplyStats {
 // Steps 1–2 only: the split (and capped) rest mesh with its parameters (offset included) and sides of the last
 // split; what dffd_apply deforms. Same errors as dffd_apply.
 MeshSplit dffd_split(const DffdRig& rig, const TriMesh& rest_world, const glm::dvec3& offset,
-                     DffdApplyStats* stats = nullptr);
+                     DffdApplyStats* stats = nullptr, const CapTexturing& texturing = {});
 
 // The same into `out`, whose buffers are reused (assigned, not reallocated, once they are large enough): one copy of
 // the rest mesh per call, breaks outside the mesh's parameter range skipped, each cap built from the triangles its
 // split touched. On error `out` is unspecified.
 void dffd_split(const DffdRig& rig, const TriMesh& rest_world, const glm::dvec3& offset, MeshSplit& out,
-                DffdApplyStats* stats = nullptr);
+                DffdApplyStats* stats = nullptr, const CapTexturing& texturing = {});
 
 // Step 3 only: deforms `split` (from dffd_split) into `out`. Triangles, uvs and face_material are swapped out of
 // split.mesh (so both keep their buffers); positions / normals are evaluated into out's buffers in one parallel
@@ -109,12 +110,19 @@ void dffd_deform(const DffdRig& rig, MeshSplit& split, TriMesh& out, DffdApplySt
 
 // Evaluates the rig on `rest_world` (world rest mesh with normals, #V = rig.params.size()) at parameter offset
 // `offset`: the split (and capped) mesh, deformed. Output vertices: the #V input vertices first, then the split's
-// new ones; face_material kept (caps get kMaterialInside). Deterministic, and the same mesh bit for bit as
-// dffd_split followed by dffd_deform (it runs as a fresh DffdFrameEvaluator, see below).
+// new ones; face_material kept (caps get kMaterialInside). `texturing` enabled: the caps get vertices of their own
+// with planar uvs (cap_split_openings), appended after each split's new ones. Deterministic, and the same mesh bit
+// for bit as dffd_split followed by dffd_deform (it runs as a fresh DffdFrameEvaluator, see below).
 // Throws std::invalid_argument: params.size() != #V, non-finite offset, normals / uvs neither empty nor #V,
 // face_material neither empty nor #F, a triangle index ≥ #V.
 TriMesh dffd_apply(const DffdRig& rig, const TriMesh& rest_world, const glm::dvec3& offset,
-                   DffdApplyStats* stats = nullptr);
+                   DffdApplyStats* stats = nullptr, const CapTexturing& texturing = {});
+
+// The cap texturing of an inside texture one repeat of which spans `texture_size` world units on the caps: per
+// parameter axis k, |E⁻¹ e_k| (the world length of a parameter unit, rig.embedding) ÷ texture_size; caps refined to
+// the shortest knot span, 1 ÷ max(#controls − order + 1) parameter units (CapTexturing::max_edge). Throws
+// std::invalid_argument: texture_size not finite and > 0, a singular embedding.
+CapTexturing cap_texturing(const DffdRig& rig, double texture_size);
 
 // Frame after frame evaluation of one rig (playback, recording, the bench): dffd_apply with its buffers kept
 // between calls, so a warm evaluator allocates nothing, and with the deformation of the input vertices (whose
@@ -125,7 +133,7 @@ TriMesh dffd_apply(const DffdRig& rig, const TriMesh& rest_world, const glm::dve
 class DffdFrameEvaluator {
  public:
   const TriMesh& evaluate(const DffdRig& rig, const TriMesh& rest_world, const glm::dvec3& offset,
-                          DffdApplyStats* stats = nullptr);
+                          DffdApplyStats* stats = nullptr, const CapTexturing& texturing = {});
   // The last evaluated mesh, moved out (the evaluator's output buffers start empty again).
   TriMesh take() { return std::move(mesh_); }
 

@@ -1,5 +1,7 @@
 #include "core/mesh/gltf_anim_io.h"
 
+#include <algorithm>
+
 #include "core/base/text.h"
 #include "core/mesh/mesh_io.h"
 #include "core/mesh/path_quote.h"
@@ -116,6 +118,8 @@ void MorphAnimationBuilder::add_frame(const std::vector<GltfNode>& nodes) {
       o.name = n.name;
       o.color = n.color;
       o.materials = n.materials;
+      o.inside_color = n.inside_color;
+      o.inside_material = n.inside_material;
       if (n.mesh && !n.mesh->empty()) {
         validate_mesh(*n.mesh, "object '" + n.name + "'");
         o.segments.push_back(Segment{0, 1, *n.mesh, {}, {}, false});
@@ -187,23 +191,28 @@ tinygltf::Primitive add_primitive(tinygltf::Model& model, const TriMesh& m, cons
   return prim;
 }
 
-// `prim` (all faces of `m`, with its targets) as one primitive per material slot the faces use, in slot order, then
-// one of the kMaterialInside faces, appended to `mesh`: same attributes and targets, their own indices.
+// `prim` (all faces of `m`, with its targets) as one primitive per material slot the faces use, in slot order (slots
+// past `set`'s end, or all without a set, in "<name>" of `color`), then one of the kMaterialInside faces, appended to
+// `mesh`: same attributes and targets, their own indices.
+// The kMaterialInside faces get `inside` (its first material) when given, else "<name>.inside" of `inside_color`.
 void split_by_material(tinygltf::Model& model, gltf_materials::GltfMaterialWriter& writer, const std::string& name,
-                       const glm::vec3& color, const std::shared_ptr<const MaterialSet>& set, const TriMesh& m,
-                       const tinygltf::Primitive& prim, tinygltf::Mesh& mesh) {
+                       const glm::vec3& color, const std::shared_ptr<const MaterialSet>& set,
+                       const glm::vec3& inside_color, const std::shared_ptr<const MaterialSet>& inside,
+                       const TriMesh& m, const tinygltf::Primitive& prim, tinygltf::Mesh& mesh) {
   std::map<MaterialSlot, std::vector<std::uint32_t>> faces;  // slot → indices, in face order
   for (std::size_t f = 0; f < m.triangles.size(); ++f) {
     std::vector<std::uint32_t>& idx = faces[m.material(f)];
     for (int c = 0; c < 3; ++c) idx.push_back(m.triangles[f][c]);
   }
-  const std::vector<int>& materials = writer.materials(set);
+  static const std::vector<int> kNone;
+  const std::vector<int>& materials = set && !set->empty() ? writer.materials(set) : kNone;
   int fallback = -1;
   for (const auto& [slot, idx] : faces) {
     tinygltf::Primitive p = prim;
     p.indices = gltf_model::add_index_accessor(model, idx);
     if (slot == kMaterialInside) {
-      p.material = gltf_model::add_material(model, name + ".inside", glm::vec3(0.62f, 0.10f, 0.08f));
+      p.material = inside && !inside->empty() ? writer.materials(inside)[0]
+                                              : gltf_model::add_material(model, name + ".inside", inside_color);
     } else if (slot < materials.size()) {
       p.material = materials[slot];
     } else {
@@ -330,16 +339,18 @@ class MorphGlbModel {
   }
 
   // A segment as a mesh named `name` whose morph targets are its frames after the first (when any differs from its
-  // first), one primitive per material slot when the object has materials; `node` gets the weights channel. Returns
-  // the mesh index.
+  // first), one primitive per material slot when the object has materials or cut surfaces; `node` gets the weights
+  // channel. Returns the mesh index.
   template <class Object, class Segment>
   int add_segment_mesh(const Object& o, const Segment& seg, const std::string& name, int node) {
     tinygltf::Primitive prim = add_primitive(model_, seg.base, o.name, o.color);
     tinygltf::Mesh mesh;
     mesh.name = name;
     if (seg.changed && seg.frames - 1 > 0) add_morph_targets(seg, node, prim, mesh);
-    if (o.materials && !o.materials->empty())
-      split_by_material(model_, writer_, o.name, o.color, o.materials, seg.base, prim, mesh);
+    const auto& fm = seg.base.face_material;
+    if ((o.materials && !o.materials->empty()) || std::find(fm.begin(), fm.end(), kMaterialInside) != fm.end())
+      split_by_material(model_, writer_, o.name, o.color, o.materials, o.inside_color, o.inside_material, seg.base,
+                        prim, mesh);
     else
       mesh.primitives.push_back(std::move(prim));
     model_.meshes.push_back(std::move(mesh));

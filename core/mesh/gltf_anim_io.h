@@ -9,9 +9,10 @@
 // Layout of the file (Blender's glTF importer turns it into shape keys with keyed values):
 //   * per object one node (named by the object id, no transform: positions are world units) and one mesh with one
 //     TRIANGLES primitive; its POSITION / NORMAL / TEXCOORD_0 / indices are the FIRST frame's mesh (as write_glb);
-//     an object with materials (GltfNode::materials) gets one primitive per material slot its faces use instead (and
-//     one for its kMaterialInside faces), sharing the vertex accessors and morph targets, with the materials, their
-//     textures and images written as write_glb writes them (pieces, write_piece, keep them too);
+//     an object with materials (GltfNode::materials) or cut surfaces gets one primitive per material slot its faces
+//     use instead (and one for its kMaterialInside faces, GltfNode::inside_material or "<name>.inside" of
+//     inside_color), sharing the vertex accessors and morph targets, with the materials, their textures and images
+//     written as write_glb writes them (pieces, write_piece, keep them too);
 //   * an object whose geometry changes in any frame gets one morph target per following frame (#frames − 1 targets,
 //     POSITION and NORMAL deltas relative to the first frame, float32; a frame equal to the first has zero deltas),
 //     mesh.weights all 0 and mesh.extras.targetNames = ["frame_NNNN", ...] (Blender names the shape keys so);
@@ -95,8 +96,10 @@ class MorphAnimationBuilder {
   struct Object {
     std::string name;
     glm::vec3 color{0.8f};
-    std::shared_ptr<const MaterialSet> materials;  // the first frame's GltfNode::materials (null: `color`)
-    std::vector<Segment> segments;                 // empty: no mesh
+    std::shared_ptr<const MaterialSet> materials;        // the first frame's GltfNode::materials (null: `color`)
+    glm::vec3 inside_color{0.62f, 0.10f, 0.08f};         // the first frame's GltfNode::inside_color
+    std::shared_ptr<const MaterialSet> inside_material;  // the first frame's GltfNode::inside_material
+    std::vector<Segment> segments;                       // empty: no mesh
   };
   double fps_;
   int first_frame_;

@@ -27,6 +27,9 @@ struct GltfNode {
   const std::vector<std::vector<glm::vec3>>* line_strips = nullptr;
   // The object's materials (TriMesh::face_material indexes them); null or empty → `color`, as above.
   std::shared_ptr<const MaterialSet> materials = nullptr;
+  // The material of the kMaterialInside faces (a textured inside, core::inside_material: its first material, with its
+  // texture); null or empty → "<name>.inside" of `inside_color`.
+  std::shared_ptr<const MaterialSet> inside_material = nullptr;
   // The file's node tree of an undeformed loaded object (SceneObject::parts over `rest_mesh`, object space, placed by
   // `object_to_world`); null or empty → one node of `mesh`.
   const std::vector<MeshPart>* parts = nullptr;
@@ -38,8 +41,8 @@ struct GltfNode {
 // NORMAL and TEXCOORD_0 when the mesh has them, uint32 indices, vertices in the mesh's order, and one material
 // named by the node. A mesh with kMaterialInside faces (TriMesh::face_material) gets two primitives sharing the
 // vertex accessors: its surface faces (material "<name>", `color`; left out when there are none) and its inside
-// faces (material "<name>.inside", `inside_color`), each in face order. A mesh without inside faces is written
-// exactly as before.
+// faces (material "<name>.inside", `inside_color`, or `inside_material` with its texture), each in face order. A mesh
+// without inside faces is written exactly as before.
 // A node with `materials` gets instead one primitive per material slot its faces use, in the order of their first
 // faces (faces of a slot past the set's end use a "<name>" material of `color`), then the inside primitive: with one
 // slot all share the vertex accessors, with several each primitive holds the vertices its faces use, in vertex order

@@ -174,7 +174,9 @@ void add_triangle_primitives(tinygltf::Model& model, gltf_materials::GltfMateria
     }
     p.indices = gltf_model::add_index_accessor(model, idx);
     if (slot == kMaterialInside) {
-      p.material = gltf_model::add_material(model, gn.name + ".inside", gn.inside_color);
+      p.material = gn.inside_material && !gn.inside_material->empty()
+                       ? writer.materials(gn.inside_material)[0]
+                       : gltf_model::add_material(model, gn.name + ".inside", gn.inside_color);
     } else if (gltf_material && slot < gltf_material->size()) {
       p.material = (*gltf_material)[slot];
     } else {

@@ -45,6 +45,21 @@ TriMesh SceneObject::world_rest_mesh() const {
   return transformed(*rest_mesh, transform);
 }
 
+std::shared_ptr<const MaterialSet> inside_material(const SceneObject& o) {
+  if (!o.inside_texture || !o.inside_texture->readable()) return nullptr;
+  auto set = std::make_shared<MaterialSet>();
+  Material m;
+  m.name = o.name + ".inside";
+  m.base_color = glm::dvec4(glm::dvec3(o.inside_color), 1.0);
+  m.base_color_texture.image = 0;
+  m.metallic = 0.0;
+  m.roughness = 0.8;
+  m.double_sided = true;
+  set->materials.push_back(std::move(m));
+  set->images.push_back(o.inside_texture);
+  return set;
+}
+
 TriMesh morphed(const TriMesh& rest, const MorphChannel& morph, double s) {
   if (!std::isfinite(s)) throw std::invalid_argument("morph weight is not finite");
   if (morph.base_positions.size() != rest.positions.size() ||
@@ -87,7 +102,9 @@ void SceneObject::refresh() {
     if (dffd->params.size() != rest.positions.size())
       throw std::invalid_argument("object '" + name + "': DFFD binding has " + std::to_string(dffd->params.size()) +
                                   " parameters for " + std::to_string(rest.positions.size()) + " vertices");
-    world_mesh = std::make_shared<const TriMesh>(dffd_apply(*dffd_rig_at(dffd, 0.0), rest, offset_at(0.0)));
+    const std::shared_ptr<const DffdRig> rig = dffd_rig_at(dffd, 0.0);
+    world_mesh =
+        std::make_shared<const TriMesh>(dffd_apply(*rig, rest, offset_at(0.0), nullptr, cap_texturing_of(*rig)));
   } else if (ffd) {
     if (ffd->params.size() != rest.positions.size())
       throw std::invalid_argument("object '" + name + "': FFD binding has " + std::to_string(ffd->params.size()) +

@@ -86,6 +86,13 @@ struct MorphChannel {
 // The rest mesh morphed to weight `s` (MorphChannel). Throws std::invalid_argument: base not #V, non-finite s.
 TriMesh morphed(const TriMesh& rest, const MorphChannel& morph, double s);
 
+struct SceneObject;
+
+// The material of an object's textured cut surfaces (SceneObject::inside_textured()): one material "<name>.inside"
+// of base colour inside_color × inside_texture (sRGB), metallic 0, roughness 0.8, double sided, the texture
+// repeating; null when the object has no readable inside texture (the cut surfaces are drawn in inside_color).
+std::shared_ptr<const MaterialSet> inside_material(const SceneObject& o);
+
 struct SceneObject {
   std::string name;                          // stable id used by commands
   std::string source;                        // file path or "primitive:<kind>"
@@ -93,6 +100,12 @@ struct SceneObject {
   Transform transform;
   glm::vec3 color{0.8f, 0.8f, 0.8f};            // linear RGB
   glm::vec3 inside_color{0.62f, 0.10f, 0.08f};  // linear RGB of kMaterialInside faces (caps, incision walls: "flesh")
+  // The inside texture (object.inside; seed Fig. 6.9's wood-textured caps): DFFD caps get vertices of their own with
+  // planar uvs in the discontinuity plane (CapTexturing), one repeat spanning inside_texture_size world units, and
+  // are drawn in Material shading with this image × inside_color. Null: the inside colour alone. Incision walls
+  // keep the inside colour.
+  std::shared_ptr<const MaterialImage> inside_texture;
+  double inside_texture_size = 0.25;  // world units per repeat of inside_texture on the caps, > 0
   // The file's materials, indexed by the meshes' face_material (null or empty: Solid colour only, as primitives).
   // Shared by every mesh derived from rest_mesh (FFD, DFFD, incisions, refinement keep face_material and uvs).
   std::shared_ptr<const MaterialSet> materials;
@@ -140,6 +153,13 @@ struct SceneObject {
   // The object must be re-evaluated on the CPU for each scene time (clip poses, DFFD splits).
   bool cpu_animated() const { return clip_animated() || dffd_animated(); }
   bool animated() const { return offset_animated() || clip_animated() || dffd_animated(); }
+  // The cap texturing of `rig` for this object's inside texture (cap_texturing); untextured when there is none or it
+  // is not readable.
+  CapTexturing cap_texturing_of(const DffdRig& rig) const {
+    return inside_texture && inside_texture->readable() ? cap_texturing(rig, inside_texture_size) : CapTexturing{};
+  }
+  // The kMaterialInside faces carry the inside texture's uvs (a DFFD object with a readable inside texture).
+  bool inside_textured() const { return dffd && inside_texture && inside_texture->readable(); }
 
   // Recomputes world_mesh from rest_mesh, transform and ffd (or dffd). Throws std::invalid_argument on
   // inconsistency.

@@ -15,6 +15,7 @@ SceneExport scene_export_nodes(const Scene& scene) {
     if (o.world_mesh) {
       GltfNode node{o.name, o.world_mesh.get(), o.color, o.inside_color};
       node.materials = o.materials;
+      node.inside_material = inside_material(o);
       // An undeformed object loaded from a file of several nodes writes the file's node tree back (write_glb checks
       // that the parts still cover its rest mesh exactly).
       if (!o.parts.empty() && !o.ffd && !o.dffd && !o.clip && !o.morph) {

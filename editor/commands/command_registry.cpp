@@ -27,6 +27,7 @@
 #include "core/commands/mesh_refine.h"
 #include "core/commands/mesh_set.h"
 #include "core/commands/mesh_subdivide.h"
+#include "core/commands/object_inside.h"
 #include "core/commands/object_transform.h"
 #include "core/commands/object_visibility.h"
 #include "core/commands/place_array.h"
@@ -82,6 +83,7 @@ const CommandRegistry& CommandRegistry::builtin() {
     r.add<core::SceneRemoveCommand>();
     r.add<core::ObjectTransformCommand>();
     r.add<core::ObjectVisibilityCommand>();
+    r.add<core::ObjectInsideCommand>();
     r.add<core::CameraSetCommand>();
     r.add<core::PlaceSketchCommand>();
     r.add<core::LatticeRingCommand>();

@@ -91,6 +91,9 @@ void DffdTool::draw_panel(ToolContext& ctx) {
   if (r.line) split(ctx, *r.line);
   ImGui::Spacing();
   if (!split_already) draw_seam_section(ctx, object);
+  ImGui::Spacing();
+  if (const std::optional<nlohmann::json> line = ui::draw_inside_panel(inside_, sel))
+    ctx.execute_deferred("Setting the inside of '" + object + "'", *line);
   ImGui::Separator();
   ImGui::TextWrapped(
       "The lattice spans the obstacles' bounding box grown to hold the part of the object that must split; "

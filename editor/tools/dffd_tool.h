@@ -3,7 +3,8 @@
 // (ui/dffd_panel.h) ticks obstacles among the other visible objects and sets the lattice and opening parameters; its
 // "Split" button executes ONE `dffd.split` command through the session (errors go to the Log panel, the scene stays
 // as it was). In the viewport a click selects the object under the cursor, as the Select tool does; while the tool
-// is active the view shows the discontinuity planes (gpu::ViewOptions::show_discontinuities).
+// is active the view shows the discontinuity planes (gpu::ViewOptions::show_discontinuities). Below, the Inside
+// section (ui/inside_panel.h) sets the colour and texture of the selected object's caps: one `object.inside`.
 #pragma once
 
 #include <map>
@@ -11,6 +12,7 @@
 
 #include "editor/tools/select_tool.h"
 #include "ui/dffd_panel.h"
+#include "ui/inside_panel.h"
 #include "ui/key_pair_panel.h"
 
 namespace trispline::editor {
@@ -33,7 +35,8 @@ class DffdTool : public SelectTool {
 
  private:
   core::DffdSplitParams params_;
-  ui::KeyPairParams stitch_keys_{1, -1, 0.0, 1.0, "smooth"};  // frame_to < 0: the timeline's end when first shown
+  ui::KeyPairParams stitch_keys_{1, -1, 0.0, 1.0, "smooth"};
+  ui::InsidePanelState inside_;  // frame_to < 0: the timeline's end when first shown
   // Bounding-box extent per object, cached on its world_mesh (an O(#V) pass each panel frame otherwise).
   mutable std::map<std::string, std::pair<std::weak_ptr<const core::TriMesh>, glm::dvec3>> extents_;
 };

@@ -176,7 +176,7 @@ SelectedObject Renderer::Impl::pass_objects(const Frame& f) {
       };
     };
     const MeshBuffers& b = d.buffers(shown);
-    if (f.material && o.materials && !o.materials->empty()) {
+    if (f.material && ((o.materials && !o.materials->empty()) || o.inside_textured())) {
       d.draw_materials(f, o, i, shown, is_selected);
     } else {
       d.draw_object(shown, plans[i], d.mesh, {}, shaded(o.color, 0), b.surface_range());

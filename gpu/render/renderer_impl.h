@@ -177,13 +177,15 @@ struct Renderer::Impl {
   }
 
   // Material shading of object `i` (`o`, drawing `shown`): one draw per material range — opaque and MASK ones now,
-  // BLEND ones queued in `blended`, cut surfaces and slots without a material in the Solid look. Leaves `mesh` in use.
+  // BLEND ones queued in `blended`, cut surfaces textured (core::inside_material) or else, like slots without a
+  // material, in the Solid look. Leaves `mesh` in use.
   void draw_materials(const detail::Frame& f, const core::SceneObject& o, std::size_t i,
                       const std::shared_ptr<const core::TriMesh>& shown, bool selected);
   // One material range of object `i` with the MATERIAL program (textures bound, culled unless double sided).
-  void draw_material_range(const detail::Frame& f, const core::SceneObject& o, std::size_t i,
-                           const std::shared_ptr<const core::TriMesh>& shown, const core::Material& m,
-                           TriangleRange range, bool selected);
+  // `set` holds m's images; flat_normal 1: face normals (cut surfaces).
+  void draw_material_range(const detail::Frame& f, std::size_t i, const std::shared_ptr<const core::TriMesh>& shown,
+                           const core::Material& m, const core::MaterialSet& set, TriangleRange range, bool selected,
+                           int flat_normal = 0);
   // The selection outline of `o`'s shown mesh: the enlarged silhouette, its MASK ranges cut out by their alpha.
   void draw_outline(const detail::Frame& f, const core::SceneObject& o, std::size_t i);
 

@@ -25,15 +25,12 @@ struct SolidUniforms {
   }
 };
 
-bool has_material(const Frame& f, const core::SceneObject& o) {
-  return f.material && o.materials && !o.materials->empty();
-}
-
 }  // namespace
 
-void Renderer::Impl::draw_material_range(const Frame& f, const core::SceneObject& o, std::size_t i,
+void Renderer::Impl::draw_material_range(const Frame& f, std::size_t i,
                                          const std::shared_ptr<const core::TriMesh>& shown, const core::Material& m,
-                                         TriangleRange range, bool selected) {
+                                         const core::MaterialSet& set, TriangleRange range, bool selected,
+                                         int flat_normal) {
   if (m.double_sided) {
     glDisable(GL_CULL_FACE);
   } else {  // glTF 2.0 §3.9.6: back faces of single-sided materials are not drawn
@@ -41,7 +38,7 @@ void Renderer::Impl::draw_material_range(const Frame& f, const core::SceneObject
     glCullFace(GL_BACK);
     glFrontFace(GL_CCW);
   }
-  textures.bind(m, *o.materials);
+  textures.bind(m, set);
   material.use();
   draw_object(
       shown, f.plans[i], material, {{"MATERIAL", ""}},
@@ -50,7 +47,7 @@ void Renderer::Impl::draw_material_range(const Frame& f, const core::SceneObject
         p.set("u_eye", f.eye);
         p.set("u_key_dir", f.key);
         p.set("u_highlight", selected ? 1.0f : 0.0f);
-        p.set("u_flat_normal", 0);
+        p.set("u_flat_normal", flat_normal);
         MaterialTextures::set_uniforms(m, p);
       },
       range);
@@ -60,8 +57,14 @@ void Renderer::Impl::draw_material_range(const Frame& f, const core::SceneObject
 void Renderer::Impl::draw_materials(const Frame& f, const core::SceneObject& o, std::size_t i,
                                     const std::shared_ptr<const core::TriMesh>& shown, bool selected) {
   const detail::CachedMesh& c = cached(shown);
-  const core::MaterialSet& set = *o.materials;
+  static const core::MaterialSet kNone;
+  const core::MaterialSet& set = o.materials ? *o.materials : kNone;
+  const std::shared_ptr<const core::MaterialSet> inside = core::inside_material(o);
   for (const MaterialRange& r : c.buffers.material_ranges()) {
+    if (r.slot == core::kMaterialInside && inside && o.inside_textured()) {  // caps with uvs of their own
+      draw_material_range(f, i, shown, inside->materials[0], *inside, r.range, selected, 1);
+      continue;
+    }
     if (r.slot == core::kMaterialInside || r.slot >= set.materials.size()) {
       // Cut surfaces flat in the inside colour; a slot without a material in the object's colour.
       const bool inside = r.slot == core::kMaterialInside;
@@ -75,7 +78,7 @@ void Renderer::Impl::draw_materials(const Frame& f, const core::SceneObject& o, 
       blended.push_back({i, r, glm::length(c.center - f.eye)});
       continue;
     }
-    draw_material_range(f, o, i, shown, m, r.range, selected);
+    draw_material_range(f, i, shown, m, set, r.range, selected);
   }
   mesh.use();
 }
@@ -99,8 +102,8 @@ void Renderer::Impl::pass_blended(const Frame& f, const detail::SelectedObject& 
     const core::SceneObject& o = objects[b.object];
     const bool selected = sel.object == &o;
     glStencilOp(GL_KEEP, GL_KEEP, selected ? GL_REPLACE : GL_KEEP);
-    draw_material_range(f, o, b.object, detail::shown_mesh(o, f.options), o.materials->materials[b.range.slot],
-                        b.range.range, selected);
+    draw_material_range(f, b.object, detail::shown_mesh(o, f.options), o.materials->materials[b.range.slot],
+                        *o.materials, b.range.range, selected);
   }
   textures.unbind();
   glDepthMask(GL_TRUE);
@@ -119,7 +122,7 @@ void Renderer::Impl::draw_outline(const Frame& f, const core::SceneObject& o, st
     p.set("u_outline_center", cached(shown).center);
   };
   const ShaderDefines plain{{"OUTLINE", ""}, {"FLAT_COLOR", ""}};
-  if (!has_material(f, o)) {
+  if (!f.material || !o.materials || o.materials->empty()) {  // no MASK range to cut out
     outline.use();
     draw_object(shown, f.plans[i], outline, plain, common);
     return;

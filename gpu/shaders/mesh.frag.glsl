@@ -100,7 +100,7 @@ vec3 perturb_normal(vec3 n, vec3 p, vec2 uv, vec3 t) {
 void main() {
   vec4 base = u_base_color * texture(u_base_tex, v_uv);
   if (u_alpha_mode == 1 && base.a < u_alpha_cutoff) discard;
-  vec3 n = normalize(v_normal);
+  vec3 n = normalize(u_flat_normal != 0 ? cross(dFdx(v_world), dFdy(v_world)) : v_normal);  // 1: textured caps
   vec3 v = normalize(u_eye - v_world);
   bool back = dot(n, v) < 0.0;
   if (back) n = -n;

@@ -27,7 +27,7 @@ bool material_shading(const core::Scene& scene, Shading shading) {
   if (shading != Shading::automatic) return shading == Shading::material;
   for (const core::SceneObject& o : scene.objects()) {
     if (!o.visible) continue;
-    if (o.materials && o.materials->has_textures()) return true;
+    if ((o.materials && o.materials->has_textures()) || o.inside_textured()) return true;
     for (const auto& layer : o.ddm_layers)  // texture-mapped tiles
       if (layer)
         for (const core::DdmTile& t : layer->tiles)

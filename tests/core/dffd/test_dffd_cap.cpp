@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <set>
 #include <utility>
 
 #include "core/dffd/dffd.h"
@@ -314,6 +315,144 @@ TEST(DffdCap, StanfordBunnyCapsEveryCut) {
   EXPECT_EQ(st.loops, 4u);
 }
 #endif
+
+}  // namespace
+}  // namespace trispline::core
+
+namespace trispline::core {
+namespace {
+
+// Textured caps (CapTexturing): the caps get vertices of their own at the same points, with uvs that are the plane's
+// two other parameter coordinates scaled per axis; the surface keeps its vertices, and welding the copies back onto
+// the cut vertices gives the untextured caps' closed sides.
+TEST(DffdCap, TexturedCapsOwnVerticesWithPlanarUvs) {
+  const TriMesh sphere = make_primitive(PrimitiveKind::Sphere);
+  const int axis = 2;
+  const double u0 = 0.41, eps = 1e-7;
+  const CapTexturing tex{glm::dvec3(3.0, 5.0, 7.0)};
+  MeshSplit plain = split_mesh_at_parameter(sphere, box_params(sphere), axis, u0, eps);
+  MeshSplit textured = plain;
+  const std::size_t nv = plain.mesh.vertex_count(), first_cap = plain.mesh.triangle_count();
+  const CapStats a = cap_split_openings(plain, axis, u0, eps);
+  const CapStats b = cap_split_openings(textured, axis, u0, eps, kMaterialInside, tex);
+  EXPECT_EQ(a.triangles, b.triangles);
+  EXPECT_EQ(a.loops, b.loops);
+  ASSERT_GT(b.triangles, 0u);
+  // One copy per vertex the caps use, appended; params, side and sizes kept consistent.
+  std::vector<std::uint32_t> used;
+  for (std::size_t f = first_cap; f < plain.mesh.triangle_count(); ++f)
+    for (int c = 0; c < 3; ++c) used.push_back(plain.mesh.triangles[f][c]);
+  std::sort(used.begin(), used.end());
+  used.erase(std::unique(used.begin(), used.end()), used.end());
+  ASSERT_EQ(textured.mesh.vertex_count(), nv + used.size());
+  EXPECT_EQ(textured.params.size(), textured.mesh.vertex_count());
+  EXPECT_EQ(textured.side.size(), textured.mesh.vertex_count());
+  EXPECT_EQ(textured.mesh.uvs.size(), textured.mesh.vertex_count());
+  EXPECT_EQ(textured.mesh.normals.size(), textured.mesh.vertex_count());
+  for (std::size_t f = 0; f < first_cap; ++f) EXPECT_EQ(textured.mesh.triangles[f], plain.mesh.triangles[f]) << f;
+  for (std::size_t k = 0; k < used.size(); ++k) {
+    const std::size_t v = nv + k, of = used[k];
+    EXPECT_EQ(textured.mesh.positions[v], textured.mesh.positions[of]);
+    EXPECT_EQ(textured.params[v], textured.params[of]);
+    EXPECT_EQ(textured.side[v], textured.side[of]);
+    EXPECT_DOUBLE_EQ(textured.mesh.uvs[v].x, textured.params[of][0] * 3.0);  // axis z: the plane's x and y
+    EXPECT_DOUBLE_EQ(textured.mesh.uvs[v].y, textured.params[of][1] * 5.0);
+  }
+  // The cap triangles are the untextured ones on the copies, in the same order; all of them use only copies.
+  for (std::size_t f = first_cap; f < textured.mesh.triangle_count(); ++f) {
+    const glm::uvec3 t = textured.mesh.triangles[f], p = plain.mesh.triangles[f];
+    for (int c = 0; c < 3; ++c) {
+      ASSERT_GE(t[c], nv) << f;
+      EXPECT_EQ(used[t[c] - nv], p[c]) << f;
+    }
+    EXPECT_EQ(textured.mesh.face_material[f], kMaterialInside);
+  }
+  // Re-welded onto the vertices they copy, the caps close both sides as before.
+  MeshSplit welded = textured;
+  for (std::size_t f = first_cap; f < welded.mesh.triangle_count(); ++f)
+    for (int c = 0; c < 3; ++c) welded.mesh.triangles[f][c] = used[welded.mesh.triangles[f][c] - nv];
+  welded.mesh.positions.resize(nv);
+  welded.mesh.normals.resize(nv);
+  welded.mesh.uvs.resize(nv);
+  welded.params.resize(nv);
+  welded.side.resize(nv);
+  for (int side : {-1, 1}) EXPECT_EQ(om_check(welded, side).boundary_edges, 0u) << side;
+  EXPECT_EQ(welded.mesh.triangles, plain.mesh.triangles);
+  // Non-finite texturing is refused, the split unchanged.
+  MeshSplit bad = split_mesh_at_parameter(sphere, box_params(sphere), axis, u0, eps);
+  const std::size_t bad_v = bad.mesh.vertex_count();
+  EXPECT_THROW(cap_split_openings(bad, axis, u0, eps, kMaterialInside, CapTexturing{glm::dvec3(1.0, NAN, 1.0)}),
+               std::invalid_argument);
+  EXPECT_EQ(bad.mesh.vertex_count(), bad_v);
+}
+
+}  // namespace
+}  // namespace trispline::core
+
+namespace trispline::core {
+namespace {
+
+// Refined textured caps (CapTexturing::max_edge): every inner cap edge at most max_edge in the plane's parameters, the
+// loop's edges kept (the refined caps' boundary is the unrefined caps' boundary, vertex for vertex), no T-junction
+// (every other edge used twice), the parameter-space area unchanged, and new vertices in the plane.
+TEST(DffdCap, RefinedTexturedCapsConformAndKeepTheLoop) {
+  const TriMesh sphere = make_primitive(PrimitiveKind::Sphere);
+  const int axis = 0;
+  const double u0 = 0.43, eps = 1e-7, h = 0.03;
+  MeshSplit coarse = split_mesh_at_parameter(sphere, box_params(sphere), axis, u0, eps);
+  MeshSplit fine = coarse;
+  const std::size_t first_cap = coarse.mesh.triangle_count();
+  cap_split_openings(coarse, axis, u0, eps, kMaterialInside, CapTexturing{glm::dvec3(1.0), 0.0});
+  CapTexturing with_normals{glm::dvec3(1.0), h};
+  with_normals.plane_normals[0] = glm::dvec3(1, 0, 0);
+  cap_split_openings(fine, axis, u0, eps, kMaterialInside, with_normals);
+  ASSERT_GT(fine.mesh.triangle_count() - first_cap, 4 * (coarse.mesh.triangle_count() - first_cap));
+  EXPECT_EQ(fine.params.size(), fine.mesh.vertex_count());
+  EXPECT_EQ(fine.mesh.uvs.size(), fine.mesh.vertex_count());
+  auto edge_uses = [&](const MeshSplit& s) {
+    std::map<std::pair<unsigned, unsigned>, int> uses;
+    for (std::size_t f = first_cap; f < s.mesh.triangle_count(); ++f)
+      for (int e = 0; e < 3; ++e) {
+        const unsigned a = s.mesh.triangles[f][e], b = s.mesh.triangles[f][(e + 1) % 3];
+        ++uses[{std::min(a, b), std::max(a, b)}];
+      }
+    return uses;
+  };
+  auto boundary = [&](const MeshSplit& s) {
+    std::set<std::pair<unsigned, unsigned>> b;
+    for (const auto& [e, n] : edge_uses(s)) {
+      EXPECT_LE(n, 2);
+      if (n == 1) b.insert(e);
+    }
+    return b;
+  };
+  EXPECT_EQ(boundary(fine), boundary(coarse));  // the loop, vertex for vertex; no T-junction inside
+  auto area2d = [&](const MeshSplit& s) {
+    double area = 0.0;
+    for (std::size_t f = first_cap; f < s.mesh.triangle_count(); ++f) {
+      const glm::uvec3 t = s.mesh.triangles[f];
+      const glm::dvec3 p = s.params[t[0]], q = s.params[t[1]], r = s.params[t[2]];
+      area += std::abs((q.y - p.y) * (r.z - p.z) - (q.z - p.z) * (r.y - p.y)) / 2;
+    }
+    return area;
+  };
+  EXPECT_NEAR(area2d(fine), area2d(coarse), 1e-12);
+  for (const auto& [e, n] : edge_uses(fine)) {
+    if (n != 2) continue;
+    const glm::dvec3 d = fine.params[e.first] - fine.params[e.second];
+    EXPECT_LE(std::max(std::abs(d.y), std::abs(d.z)), h) << e.first << "-" << e.second;
+  }
+  for (std::size_t v = coarse.mesh.vertex_count(); v < fine.mesh.vertex_count(); ++v) {
+    EXPECT_NEAR(fine.params[v].x, u0 + fine.side[v] * eps, 1e-12);                     // on its side's cap plane
+    EXPECT_EQ(fine.mesh.normals[v], glm::dvec3(fine.side[v] < 0 ? 1.0 : -1.0, 0, 0));  // facing out of its side
+    EXPECT_NEAR(fine.mesh.uvs[v].x, fine.params[v].y, 1e-12);
+  }
+  // Deterministic.
+  MeshSplit again = split_mesh_at_parameter(sphere, box_params(sphere), axis, u0, eps);
+  cap_split_openings(again, axis, u0, eps, kMaterialInside, with_normals);
+  EXPECT_EQ(again.mesh.triangles, fine.mesh.triangles);
+  EXPECT_EQ(again.mesh.positions, fine.mesh.positions);
+}
 
 }  // namespace
 }  // namespace trispline::core

@@ -6,6 +6,8 @@
 
 #include <cmath>
 #include <map>
+#include <set>
+#include <tuple>
 #include <utility>
 
 #include "core/dffd/dffd_global.h"
@@ -304,6 +306,55 @@ TEST(DffdGlobal, FrameEvaluatorEqualsDffdApplyBitForBit) {
       EXPECT_EQ(a_st.cap_triangles, b_st.cap_triangles) << at;
       EXPECT_EQ(a_st.outside_vertices, b_st.outside_vertices) << at;
     }
+  }
+}
+
+// Textured caps (cap_texturing) through the frame evaluator: the same mesh bit for bit as dffd_split + dffd_deform;
+// the caps refined inside (more triangles than the plain caps) and their loop deformed onto the surface's points (the
+// copies are evaluated at the same parameters).
+TEST(DffdGlobal, TexturedCapsEvaluateLikeTheSurfaceTheyCopy) {
+  Pierced s;
+  const GlobalDffd g = build_global_dffd(s.sphere, {s.cylinder}, s.params(DffdOpenings::cap));
+  const CapTexturing tex = cap_texturing(g.rig, 0.25);
+  for (int k = 0; k < 3; ++k) EXPECT_GT(tex.uv_per_param[k], 0.0);
+  EXPECT_GT(tex.max_edge, 0.0);
+  EXPECT_THROW(cap_texturing(g.rig, 0.0), std::invalid_argument);
+  DffdFrameEvaluator evaluator;
+  for (const glm::dvec3 offset : {glm::dvec3(0.0), glm::dvec3(0.13, 0, 0)}) {
+    MeshSplit split = dffd_split(g.rig, s.sphere, offset, nullptr, tex);
+    TriMesh a;
+    dffd_deform(g.rig, split, a);
+    const TriMesh& b = evaluator.evaluate(g.rig, s.sphere, offset, nullptr, tex);
+    EXPECT_EQ(a.positions, b.positions);
+    EXPECT_EQ(a.triangles, b.triangles);
+    EXPECT_EQ(a.uvs, b.uvs);
+    const TriMesh plain = dffd_apply(g.rig, s.sphere, offset);
+    EXPECT_GT(b.vertex_count(), plain.vertex_count());
+    EXPECT_GT(b.triangle_count(), plain.triangle_count());
+    std::set<std::tuple<double, double, double>> surface;
+    std::map<std::pair<unsigned, unsigned>, int> cap_edges;
+    for (std::size_t f = 0; f < b.triangle_count(); ++f)
+      for (int c = 0; c < 3; ++c) {
+        const unsigned v = b.triangles[f][c], w = b.triangles[f][(c + 1) % 3];
+        if (b.material(f) == kMaterialInside) {
+          ++cap_edges[{std::min(v, w), std::max(v, w)}];
+        } else {
+          const glm::dvec3 p = b.positions[v];
+          surface.insert({p.x, p.y, p.z});
+        }
+      }
+    std::size_t loop = 0, off = 0;
+    for (const auto& [e, n] : cap_edges) {
+      EXPECT_LE(n, 2);
+      if (n != 1) continue;
+      for (const unsigned v : {e.first, e.second}) {
+        const glm::dvec3 p = b.positions[v];
+        ++loop;
+        off += surface.count({p.x, p.y, p.z}) == 0;
+      }
+    }
+    EXPECT_GT(loop, 0u);
+    EXPECT_EQ(off, 0u);
   }
 }
 
