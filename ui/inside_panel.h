@@ -15,10 +15,10 @@ namespace trispline::ui {
 
 // The fields as edited; taken from the object when another object is shown (synced_object).
 struct InsidePanelState {
-  std::string synced_object;                // the object the fields were last taken from
-  glm::vec3 color{0.62f, 0.10f, 0.08f};     // linear RGB
-  std::string texture;                      // image file path as typed ("" = keep the object's)
-  double texture_size = 0.25;               // world units per repeat, > 0
+  std::string synced_object;             // the object the fields were last taken from
+  glm::vec3 color{0.62f, 0.10f, 0.08f};  // linear RGB
+  std::string texture;                   // image file path as typed ("" = keep the object's)
+  double texture_size = 0.25;            // world units per repeat, > 0
 };
 
 // The object.inside line of the fields for `object`: color and texture_size always, texture when typed, or

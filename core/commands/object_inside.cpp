@@ -61,8 +61,7 @@ std::optional<SceneObject> ObjectInsideCommand::build(const Scene& scene) {
   if (p_.no_texture) out.inside_texture.reset();
   if (p_.texture_size) out.inside_texture_size = *p_.texture_size;
   if (out.dffd) out.refresh();  // the caps with (or without) vertices of their own for the texture
-  stats_ = {{"textured", out.inside_textured()},
-            {"vertices", out.world_mesh ? out.world_mesh->vertex_count() : 0}};
+  stats_ = {{"textured", out.inside_textured()}, {"vertices", out.world_mesh ? out.world_mesh->vertex_count() : 0}};
   return out;
 }
 

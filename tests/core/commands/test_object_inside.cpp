@@ -20,7 +20,8 @@ namespace object_inside_test {
 using nlohmann::json;
 
 struct TempDir {
-  std::filesystem::path path = std::filesystem::temp_directory_path() / ("trispline_inside_" + std::to_string(::getpid()));
+  std::filesystem::path path =
+      std::filesystem::temp_directory_path() / ("trispline_inside_" + std::to_string(::getpid()));
   TempDir() { std::filesystem::create_directories(path); }
   ~TempDir() { std::filesystem::remove_all(path); }
 };
