@@ -35,8 +35,7 @@ bool enum_combo(const char* id, E& value, const std::vector<const char*>& names,
 constexpr const char* kOpeningTips[] = {
     "left open: the inside is visible (seed section 6.3.2, Fig. 6.10)",
     "stitch: F-/F+ moved to the average level w_s, so the mapped model stays closed (seed section 6.3.2, Fig. 6.7b)",
-    "cap: cross-sections triangulated on both sides, so each part is a closed 2-manifold (seed section 6.3.2, "
-    "Fig. 6.9)",
+    "cap: cross-sections triangulated on both sides, so each part is closed (seed section 6.3.2, Fig. 6.9)",
 };
 
 }  // namespace

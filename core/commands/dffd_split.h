@@ -13,7 +13,8 @@
 // state (cap ↔ stitch) is cleared too while that helps, and reported. The log line keeps the user's values (a replay
 // refines the same way).
 // report.json: discontinuities, v_knots, projected_points, max_displacement, fold_overs, w_s, cut_edges, cap_loops,
-// open_chains, cap_triangles, outside_vertices, vertices_before, vertices_after, inside_obstacle (0),
+// open_chains, cap_triangles (untextured), textured_cap_triangles (with an inside texture: the caps refined for it),
+// outside_vertices, vertices_before, vertices_after (of the world mesh, textured caps included), inside_obstacle (0),
 // inside_obstacle_other_state (null without a seam), inside_before_refinement, refinement_rounds, clearance_used,
 // controls_used, kernel_width_used, unchecked_obstacles (obstacles that bound no volume: open or non-manifold meshes,
 // not checked), build_ms, eval_ms.

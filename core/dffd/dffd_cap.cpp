@@ -196,8 +196,9 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> weld_cut_vertices(const std
 
 // Textured caps: every vertex `caps` use is copied (ascending by the vertex copied), the copy carrying the cap's
 // planar uv (CapTexturing), and `caps` re-indexed to the copies.
-void give_caps_own_vertices(MeshSplit& split, std::vector<Tri>& caps, int axis, const glm::dvec3& uv_per_param,
-                            const glm::dvec3& plane_normal) {
+void give_caps_own_vertices(MeshSplit& split, std::vector<Tri>& caps, int axis, const CapTexturing& texturing) {
+  const glm::dvec3& uv_per_param = texturing.uv_per_param;
+  const glm::dvec3& plane_normal = texturing.plane_normals[axis];
   TriMesh& mesh = split.mesh;
   const std::size_t nv = mesh.vertex_count();
   std::vector<std::uint32_t> used;
@@ -219,8 +220,8 @@ void give_caps_own_vertices(MeshSplit& split, std::vector<Tri>& caps, int axis, 
     if (normals)
       mesh.normals.push_back(plane_normal == glm::dvec3(0.0) ? mesh.normals[v]
                                                              : (split.side[v] < 0 ? plane_normal : -plane_normal));
-    const glm::dvec3 p = split.params[v];
-    mesh.uvs.emplace_back(p[a] * uv_per_param[a], p[b] * uv_per_param[b]);
+    const glm::dvec3 p = split.params[v], q = p - texturing.param_offset;
+    mesh.uvs.emplace_back(q[a] * uv_per_param[a], q[b] * uv_per_param[b]);
     split.params.push_back(p);
     split.side.push_back(split.side[v]);
   }
@@ -443,7 +444,7 @@ CapStats cap_split_openings(MeshSplit& split, int axis, double u0, double eps, M
   }
   if (caps.empty()) return stats;
   if (texturing.enabled()) {
-    give_caps_own_vertices(split, caps, axis, texturing.uv_per_param, texturing.plane_normals[axis]);
+    give_caps_own_vertices(split, caps, axis, texturing);
     if (texturing.max_edge > 0.0) refine_caps(split, caps, axis, texturing.max_edge);
   }
   if (mesh.face_material.empty()) mesh.face_material.assign(mesh.triangles.size(), kMaterialSurface);

@@ -27,20 +27,22 @@ struct CapStats {
 
 // Texture coordinates of the caps (an object's inside texture, SceneObject::inside_texture; seed Fig. 6.9's
 // wood-textured caps). A cap lies in the discontinuity plane params[axis] = u0, so its natural map is the plane's own
-// two parameter coordinates: uv = (params[a]·uv_per_param[a], params[b]·uv_per_param[b]) with a = (axis+1) mod 3,
-// b = (axis+2) mod 3. uv_per_param: texture repeats per parameter unit along u, v, w (the world length of a parameter
-// unit ÷ the world size of one repeat; cap_texturing() in dffd_rig.h). All zero: untextured caps.
-// max_edge > 0 also refines the textured caps inside: cap edges longer than max_edge parameter units (the larger of
-// their two in-plane parameter differences) that are not on the section's loop are halved, level after level, so the
-// FFD bends the cap with the lattice instead of spanning it with long flat triangles (cap_texturing() takes one
-// knot span).
+// two parameter coordinates: uv = (p[a]·uv_per_param[a], p[b]·uv_per_param[b]), p = params − param_offset, a = (axis+1)
+// mod 3, b = (axis+2) mod 3. uv_per_param: texture repeats per parameter unit along u, v, w (the world length of a
+// parameter unit ÷ the world size of one repeat; cap_texturing() in dffd_rig.h). All zero: untextured caps. max_edge >
+// 0 also refines the textured caps inside: cap edges longer than max_edge parameter units (the larger of their two
+// in-plane parameter differences) that are not on the section's loop are halved, level after level, so the FFD bends
+// the cap with the lattice instead of spanning it with long flat triangles (cap_texturing() takes one knot span).
 // plane_normals: column k is the unit rest-space normal of the planes u_k = const, towards growing u_k (the
 // embedding's gradient of u_k); non-zero, the cap copies get it as their normal (minus side +, plus side −), so a
 // viewer that shades by vertex normals lights the caps as flat faces. Zero: the surface's normals are copied.
+// param_offset: subtracted from the parameters before the uv is taken (the rig's animated offset: the texture stays
+// on the object, not on the lattice).
 struct CapTexturing {
   glm::dvec3 uv_per_param{0.0};
   double max_edge = 0.0;
   glm::dmat3 plane_normals{0.0};
+  glm::dvec3 param_offset{0.0};
   bool enabled() const { return uv_per_param != glm::dvec3(0.0); }
 };
 
@@ -66,7 +68,7 @@ struct CapTexturing {
 // side at the same 2D point, loops touching or crossing in the plane): every side's caps are verified to close each
 // loop exactly (the reversed boundary half-edge once, every other cap half-edge paired); loops that fail are left out
 // of a second triangulation and closed by a fan from their first vertex instead (counted in fan_loops), so a closed
-// mesh always gets closed sides (no vertex is ever added to the mesh).
+// mesh always gets closed sides (untextured, no vertex is ever added to the mesh).
 // Textured (texturing.enabled()): every vertex the caps use gets a copy appended to the mesh (ascending by the
 // vertex it copies; position, normal, params and side copied, so it deforms to the same point bit for bit), with the
 // uv above; the cap triangles use the copies. uvs are filled with (0, 0) for the other vertices when the mesh had none.

@@ -106,13 +106,15 @@ void dffd_split(const DffdRig& rig, const TriMesh& rest_world, const glm::dvec3&
   out.cut_edges = out.duplicated_on_plane = 0;
   out.cut_vertices.clear();
   out.touched.clear();
+  CapTexturing textured = texturing;  // the uvs are taken without the offset: the texture stays on the object
+  textured.param_offset = offset;
   for (const Discontinuity& d : rig.discontinuities) {
     // Cut vertices interpolate their edge's ends, so the range stays that of the rest vertices after each split.
     if (d.u0 < lo[d.axis] - 1e-12 || d.u0 > hi[d.axis] + 1e-12) continue;  // nothing to cut at this offset
     detail::split_in_place_unchecked(out, d.axis, d.u0, rig.eps);
     st.cut_edges += out.cut_edges;
     if (rig.openings != DffdOpenings::open && !out.touched.empty()) {
-      const CapStats cs = cap_split_openings(out, d.axis, d.u0, rig.eps, kMaterialInside, texturing);
+      const CapStats cs = cap_split_openings(out, d.axis, d.u0, rig.eps, kMaterialInside, textured);
       st.cap_loops += cs.loops;
       st.open_chains += cs.open_chains;
       st.cap_triangles += cs.triangles;

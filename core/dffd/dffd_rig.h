@@ -120,7 +120,8 @@ TriMesh dffd_apply(const DffdRig& rig, const TriMesh& rest_world, const glm::dve
 
 // The cap texturing of an inside texture one repeat of which spans `texture_size` world units on the caps: per
 // parameter axis k, |E⁻¹ e_k| (the world length of a parameter unit, rig.embedding) ÷ texture_size; caps refined to
-// the shortest knot span, 1 ÷ max(#controls − order + 1) parameter units (CapTexturing::max_edge). Throws
+// one uniform knot span of the finest axis, 1 ÷ max(#controls − order + 1) parameter units (CapTexturing::max_edge; the
+// knot vectors of a global DFFD are uniform but for the C⁻¹ breaks). Throws
 // std::invalid_argument: texture_size not finite and > 0, a singular embedding.
 CapTexturing cap_texturing(const DffdRig& rig, double texture_size);
 

@@ -206,7 +206,7 @@ void split_by_material(tinygltf::Model& model, gltf_materials::GltfMaterialWrite
   }
   static const std::vector<int> kNone;
   const std::vector<int>& materials = set && !set->empty() ? writer.materials(set) : kNone;
-  int fallback = -1;
+  int fallback = prim.material;  // "<name>" of `color`, made with the primitive
   for (const auto& [slot, idx] : faces) {
     tinygltf::Primitive p = prim;
     p.indices = gltf_model::add_index_accessor(model, idx);

@@ -103,7 +103,7 @@ struct SceneObject {
   // The inside texture (object.inside; seed Fig. 6.9's wood-textured caps): DFFD caps get vertices of their own with
   // planar uvs in the discontinuity plane (CapTexturing), one repeat spanning inside_texture_size world units, and
   // are drawn in Material shading with this image × inside_color. Null: the inside colour alone. Incision walls
-  // keep the inside colour.
+  // keep the inside colour (unless the object is also split: they share the inside slot).
   std::shared_ptr<const MaterialImage> inside_texture;
   double inside_texture_size = 0.25;  // world units per repeat of inside_texture on the caps, > 0
   // The file's materials, indexed by the meshes' face_material (null or empty: Solid colour only, as primitives).

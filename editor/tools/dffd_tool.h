@@ -35,8 +35,8 @@ class DffdTool : public SelectTool {
 
  private:
   core::DffdSplitParams params_;
-  ui::KeyPairParams stitch_keys_{1, -1, 0.0, 1.0, "smooth"};
-  ui::InsidePanelState inside_;  // frame_to < 0: the timeline's end when first shown
+  ui::KeyPairParams stitch_keys_{1, -1, 0.0, 1.0, "smooth"};  // frame_to < 0: the timeline's end when first shown
+  ui::InsidePanelState inside_;
   // Bounding-box extent per object, cached on its world_mesh (an O(#V) pass each panel frame otherwise).
   mutable std::map<std::string, std::pair<std::weak_ptr<const core::TriMesh>, glm::dvec3>> extents_;
 };

@@ -167,7 +167,8 @@ void MaterialTextures::release_unused(const core::Scene& scene) {
   for (const core::SceneObject& o : scene.objects()) {
     if (o.materials)
       for (const auto& image : o.materials->images) live.insert(image.get());
-    for (const auto& layer : o.ddm_layers)  // texture-mapped tiles
+    if (o.inside_texture) live.insert(o.inside_texture.get());  // textured caps (object.inside)
+    for (const auto& layer : o.ddm_layers)                      // texture-mapped tiles
       if (layer)
         for (const core::DdmTile& t : layer->tiles)
           if (t.materials)

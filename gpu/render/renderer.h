@@ -11,7 +11,8 @@
 // (always for glsl_vertex; for glsl_compute when offset_velocity ≠ 0), the CPU fast path, or the CPU reference
 // (world_mesh). Only speed differs between backends.
 // Two materials: triangles with TriMesh::face_material = kMaterialInside (DFFD caps, incision walls) are
-// drawn with SceneObject::inside_color and flat shading (face normals: their vertices share the surface's normals);
+// drawn with SceneObject::inside_color and flat shading (face normals: untextured, their vertices share the surface's
+// normals; in Material shading an inside texture is drawn on them, core::inside_material);
 // outline and wireframe cover all triangles. DFFD objects (SceneObject::dffd) are drawn as their world_mesh is (it
 // is already split and deformed on the CPU); their lattice, discontinuity planes and fold-over points are overlays
 // (ViewOptions::show_discontinuities).

@@ -320,8 +320,20 @@ TEST(DffdGlobal, TexturedCapsEvaluateLikeTheSurfaceTheyCopy) {
   EXPECT_GT(tex.max_edge, 0.0);
   EXPECT_THROW(cap_texturing(g.rig, 0.0), std::invalid_argument);
   DffdFrameEvaluator evaluator;
-  for (const glm::dvec3 offset : {glm::dvec3(0.0), glm::dvec3(0.13, 0, 0)}) {
+  for (const glm::dvec3 offset : {glm::dvec3(0.0), glm::dvec3(0.13, 0, 0), glm::dvec3(0.0, 0.05, -0.04)}) {
     MeshSplit split = dffd_split(g.rig, s.sphere, offset, nullptr, tex);
+    // The uvs are the plane's parameters without the offset (the texture stays on the object).
+    const int ua = (g.rig.discontinuities[0].axis + 1) % 3, ub = (g.rig.discontinuities[0].axis + 2) % 3;
+    std::set<std::uint32_t> cap_vertices;
+    for (std::size_t f = 0; f < split.mesh.triangle_count(); ++f)
+      if (split.mesh.material(f) == kMaterialInside)
+        for (int c = 0; c < 3; ++c) cap_vertices.insert(split.mesh.triangles[f][c]);
+    ASSERT_FALSE(cap_vertices.empty());
+    for (const std::uint32_t v : cap_vertices) {
+      const glm::dvec3 q = split.params[v] - offset;
+      EXPECT_NEAR(split.mesh.uvs[v].x, q[ua] * tex.uv_per_param[ua], 1e-9) << v;
+      EXPECT_NEAR(split.mesh.uvs[v].y, q[ub] * tex.uv_per_param[ub], 1e-9) << v;
+    }
     TriMesh a;
     dffd_deform(g.rig, split, a);
     const TriMesh& b = evaluator.evaluate(g.rig, s.sphere, offset, nullptr, tex);
